@@ -1,0 +1,153 @@
+"""Command-line interface: thin commands over capred.pipelines.
+
+Only typer is imported at start-up; each command imports its pipeline when it
+runs, so `capred --help` stays fast.
+"""
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+
+from .errors import CapredError
+
+app = typer.Typer(
+    name="capred",
+    help="Capillary effective stress and strength from unsaturated-soil lab tests.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+
+
+def _version(value: bool):
+    if value:
+        from . import __version__
+
+        typer.echo(f"capred {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: Annotated[bool, typer.Option("--version", callback=_version, is_eager=True,
+                                          help="Show the version and exit.")] = False,
+):
+    """capred turns raw unsaturated-soil lab readings into effective stresses,
+    strength parameters, model comparisons and report figures."""
+
+
+def fail(exc: CapredError) -> None:
+    """Print a clean one-message error to stderr and exit 1."""
+    typer.echo(f"Error: {exc}", err=True)
+    raise typer.Exit(1)
+
+
+def _quantity(text: Optional[str], unit: str, kind: str, option: str) -> Optional[float]:
+    from .errors import OptionError
+    from .units import parse_quantity
+
+    if text is None:
+        return None
+    try:
+        return parse_quantity(text, unit, kind)
+    except CapredError as exc:
+        raise OptionError(f"{option}: {exc}") from None
+
+
+def _default_out(command: str, data: Path) -> Path:
+    return Path.cwd() / "capred_out" / f"{command}_{data.stem}"
+
+
+def _console():
+    from rich.console import Console
+
+    return Console()
+
+
+OutOpt = Annotated[Optional[Path], typer.Option("--out", "-o", help="Output folder [default: ./capred_out/<command>_<input name>].")]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON document on stdout instead of tables.")]
+PlotOpt = Annotated[bool, typer.Option("--plots/--no-plots", help="Write the PNG report figures.")]
+SampleOpt = Annotated[bool, typer.Option("--sample", help="Run on the bundled (synthetic) sample data.")]
+
+
+@app.command()
+def shear(
+    data: Annotated[Optional[Path], typer.Argument(help="CSV of direct-shear tests, one row per test.",
+                                                   show_default=False)] = None,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    plots: PlotOpt = True,
+    sample: SampleOpt = False,
+    gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3]; the thesis uses 10.")] = "9.81",
+    surface_tension: Annotated[str, typer.Option(help="Surface tension of water [N/m].")] = "0.0728",
+    gravity: Annotated[str, typer.Option("--g", help="Gravitational acceleration [m/s^2].")] = "9.81",
+    pendular_limit: Annotated[float, typer.Option(help="S_R above which a wet test is flagged outside the pendular regime.")] = 0.05,
+    box_area: Annotated[Optional[str], typer.Option(help="Shear box area [cm^2] for rows without 'box_area'.")] = None,
+    cap_mass: Annotated[Optional[str], typer.Option(help="Top-cap mass [g] for rows without 'cap_mass'.")] = None,
+    radius: Annotated[Optional[str], typer.Option(help="Particle radius R [mm] for rows without 'R'.")] = None,
+    void_volume: Annotated[Optional[str], typer.Option(help="Void volume V_v [cm^3] for rows without 'V_v'.")] = None,
+):
+    """Direct-shear tests with hanging-column suction: dry envelope per material,
+    the four effective-stress models (No suction, Bishop, Own 1, Own 2) on every
+    wet test, their scores and a PNG report sheet per material.
+
+    Values in the file win over the options; options fill absent columns and
+    blank cells. Any option may carry a unit: --box-area "36 cm^2".
+
+    Example: capred shear tests.csv --out report --gamma-w 10
+    """
+    try:
+        from .pipelines.shear import ShearOptions, run_shear, write_shear_outputs
+
+        src = _source(data, sample, "shear")
+        opts = ShearOptions(
+            gamma_w=_quantity(gamma_w, "kN/m^3", "unit_weight", "--gamma-w"),
+            surface_tension=_quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
+            g=_quantity(gravity, "m/s^2", "acceleration", "--g"),
+            pendular_limit=pendular_limit,
+            box_area=_quantity(box_area, "cm^2", "area", "--box-area"),
+            cap_mass=_quantity(cap_mass, "g", "mass", "--cap-mass"),
+            radius=_quantity(radius, "mm", "length", "--radius"),
+            void_volume=_quantity(void_volume, "cm^3", "volume", "--void-volume"),
+        )
+        result = run_shear(src, opts)
+        out_dir = out or _default_out("shear", src)
+        written = write_shear_outputs(result, out_dir, plots=plots, command_options={"plots": plots})
+    except CapredError as exc:
+        fail(exc)
+    if json_out:
+        typer.echo(json.dumps(result.to_json(), indent=2, ensure_ascii=False))
+        return
+    from .report.console import shear_tables
+
+    con = _console()
+    for t in shear_tables(result):
+        con.print(t)
+    for note in result.notes:
+        con.print(f"[yellow]note:[/] {note}")
+    con.print(f"Wrote {len(written)} files to [bold]{out_dir}[/]")
+
+
+def _source(data: Optional[Path], sample: bool, command: str) -> Path:
+    from .errors import OptionError
+    from .samples import sample_path
+
+    if sample and data is not None:
+        raise OptionError("give a data file or --sample, not both")
+    if sample:
+        return sample_path(command)
+    if data is None:
+        raise OptionError(f"no data file given (try: capred {command} --sample)")
+    return data
+
+
+def main() -> None:
+    app(prog_name="capred")
+
+
+if __name__ == "__main__":
+    main()

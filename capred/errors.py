@@ -1,0 +1,58 @@
+"""Exceptions raised by capred.
+
+The library raises these; the command line turns them into one clean message
+and a non-zero exit code. Any other exception is a bug and keeps its traceback.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+class CapredError(Exception):
+    """Base class of every error capred reports to a user."""
+
+
+@dataclass(frozen=True)
+class Problem:
+    """One thing wrong with an input file, located as a spreadsheet shows it."""
+
+    file: str
+    line: int | None
+    column: str | None
+    message: str
+
+    def __str__(self) -> str:
+        where = self.file
+        if self.line is not None:
+            where += f", line {self.line}"
+        if self.column is not None:
+            where += f", column '{self.column}'"
+        return f"{where}: {self.message}"
+
+
+class InputError(CapredError):
+    """Bad input data. Carries every problem found in a file, not only the first."""
+
+    def __init__(self, problems: list[Problem] | Problem):
+        if isinstance(problems, Problem):
+            problems = [problems]
+        self.problems = list(problems)
+        super().__init__(self._text())
+
+    def _text(self) -> str:
+        if len(self.problems) == 1:
+            return str(self.problems[0])
+        head = f"{len(self.problems)} problems in the input:"
+        return "\n".join([head, *("  - " + str(p) for p in self.problems)])
+
+
+class UnitError(CapredError):
+    """A unit that is unknown or of the wrong dimension (outside a file context)."""
+
+
+class FitError(CapredError):
+    """A fit that cannot be made from the data given (too few points, degenerate data)."""
+
+
+class OptionError(CapredError):
+    """An invalid command-line option or function argument value."""

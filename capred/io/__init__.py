@@ -1,0 +1,1 @@
+"""Reading lab CSV files into SI arrays and writing result files."""

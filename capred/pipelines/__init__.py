@@ -1,0 +1,1 @@
+"""One module per command: read, compute, and assemble a result object."""

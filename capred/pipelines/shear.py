@@ -1,0 +1,430 @@
+"""`capred shear`: hanging-column direct-shear tests to a model comparison.
+
+Reads one CSV (one row per test), derives sigma_N, suction and S_R, fits the
+dry envelope per material, predicts every wet test with the thesis's four
+effective-stress models (seed 000) and scores them.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .. import nomenclature as nom
+from ..errors import FitError, InputError, Problem
+from ..fitting.linear import LineFit, fit_line
+from ..io.table import Column, Table, read_table
+from ..physics import shear as ph
+
+SCHEMA = [
+    Column("test_id", "text", None, "test identifier", ("id", "test", "test_no", "sample_id")),
+    Column("material", "text", None, "material name", ("soil", "material_name")),
+    Column("condition", "text", None, "test condition", ("state", "dry_wet"), choices=("dry", "wet")),
+    Column("z1", "length", "cm", "suction head z1", ("suction_head", "head", "z_1"), "nonnegative"),
+    Column("z2", "volume", "cm^3", "air volume z2", ("air_volume", "burette", "z_2", "V_a"), "nonnegative"),
+    Column("V_v", "volume", "cm^3", "void volume V_v", ("Vv", "void_volume"), "positive"),
+    Column("added_mass", "mass", "g", "added mass", ("added_weight", "m_added", "weight"), "nonnegative"),
+    Column("cap_mass", "mass", "g", "cap mass", ("m_cap", "top_cap_mass", "cap_weight"), "nonnegative"),
+    Column("box_area", "area", "cm^2", "box area", ("A_box", "area", "shear_area"), "positive"),
+    Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius", "r_particle"), "positive"),
+    Column("tau_max", "pressure", "kPa", "tau_max", ("tau", "taumax", "shear_strength", "peak_shear_stress"), "nonnegative"),
+    Column("F_max", "force", "N", "F_max", ("fmax", "peak_force", "max_force"), "nonnegative"),
+    Column("sigma_N", "pressure", "kPa", "sigma_N", ("sigma_n", "normal_stress", "sigman"), "nonnegative"),
+    Column("suction", "pressure", "kPa", "suction", ("delta_u", "matric_suction", "ua_uw"), "nonnegative"),
+    Column("S_R", "dimensionless", "-", "S_R", ("Sr", "degree_of_saturation", "saturation"), "fraction"),
+]
+
+
+@dataclass(frozen=True)
+class ShearOptions:
+    """Constants and per-test defaults, all in SI.
+
+    Per-test values (box area, cap mass, R, V_v) given as options fill the
+    rows where the column is absent or blank; a value in the file wins.
+    """
+
+    gamma_w: float = ph.GAMMA_W  # N/m^3
+    surface_tension: float = ph.SURFACE_TENSION  # N/m
+    g: float = ph.G  # m/s^2
+    pendular_limit: float = ph.PENDULAR_LIMIT  # -
+    confidence: float = 0.95
+    box_area: float | None = None  # m^2
+    cap_mass: float | None = None  # kg
+    radius: float | None = None  # m
+    void_volume: float | None = None  # m^3
+
+    def as_dict(self) -> dict:
+        return {k: getattr(self, k) for k in self.__dataclass_fields__}
+
+
+@dataclass
+class ModelMetrics:
+    n: int
+    rmse: float  # Pa
+    bias: float  # Pa, mean(predicted - measured)
+    r2: float
+
+
+@dataclass
+class ShearResult:
+    """Everything `capred shear` computes. SI inside; ``to_json`` gives kPa."""
+
+    source: str
+    options: ShearOptions
+    tests: dict[str, np.ndarray]
+    fits: dict[str, LineFit]
+    metrics: dict[str, dict[str, ModelMetrics]]
+    metrics_overall: dict[str, ModelMetrics]
+    best_model: dict[str, str | None]
+    best_model_overall: str | None
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def materials(self) -> list[str]:
+        return list(self.fits)
+
+    def flags(self, i: int) -> list[str]:
+        out = []
+        if self.tests["condition"][i] == "wet":
+            if self.tests["S_R"][i] > self.options.pendular_limit:
+                out.append("outside_pendular")
+            if self.tests["S_R"][i] > ph.CHI1_UNITY_SR:
+                out.append("chi1_gt_1")
+        return out
+
+    def table(self):
+        """One row per test as a pandas DataFrame, units in the column names."""
+        import pandas as pd
+
+        t = self.tests
+        cols: dict[str, object] = {
+            "test_id": t["test_id"], "material": t["material"], "condition": t["condition"],
+            "line": t["line"],
+        }
+        for name in ("sigma_N", "suction", "S_R", "tau_max", "chi1", "chi2"):
+            cols[nom.column(name)] = nom.to_output(name, t[name])
+        for m in ph.MODELS:
+            cols[nom.column("sigma_eff", f"_{m}")] = nom.to_output("sigma_eff", t[f"sigma_eff_{m}"])
+        for m in ph.MODELS:
+            cols[nom.column("tau_pred", f"_{m}")] = nom.to_output("tau_pred", t[f"tau_pred_{m}"])
+        for m in ph.MODELS:
+            cols[f"residual_{m} [kPa]"] = nom.to_output("tau_pred", t[f"tau_pred_{m}"] - t["tau_max"])
+        cols["flags"] = [";".join(self.flags(i)) for i in range(len(t["test_id"]))]
+        return pd.DataFrame(cols)
+
+    def summary_rows(self) -> list[dict]:
+        """Long table of fits and metrics for the summary CSV."""
+        rows = []
+        for mat, fit in self.fits.items():
+            rows.append({"material": mat, "model": "dry_fit", **_fit_dict(fit)})
+            for m, met in self.metrics[mat].items():
+                rows.append({"material": mat, "model": m, **_metric_dict(met),
+                             "best": m == self.best_model[mat]})
+        for m, met in self.metrics_overall.items():
+            rows.append({"material": "(all)", "model": m, **_metric_dict(met),
+                         "best": m == self.best_model_overall})
+        return rows
+
+    def to_json(self) -> dict:
+        t = self.tests
+        tests = []
+        for i in range(len(t["test_id"])):
+            tests.append({
+                "test_id": str(t["test_id"][i]),
+                "material": str(t["material"][i]),
+                "condition": str(t["condition"][i]),
+                "line": int(t["line"][i]),
+                "sigma_N_kPa": _num(t["sigma_N"][i] / 1e3),
+                "suction_kPa": _num(t["suction"][i] / 1e3),
+                "S_R": _num(t["S_R"][i]),
+                "tau_max_kPa": _num(t["tau_max"][i] / 1e3),
+                "chi1": _num(t["chi1"][i]),
+                "chi2_kPa": _num(t["chi2"][i] / 1e3),
+                "tau_pred_kPa": {m: _num(t[f"tau_pred_{m}"][i] / 1e3) for m in ph.MODELS},
+                "residual_kPa": {m: _num((t[f"tau_pred_{m}"][i] - t["tau_max"][i]) / 1e3) for m in ph.MODELS},
+                "flags": self.flags(i),
+            })
+        return {
+            "source": self.source,
+            "materials": {m: _fit_dict(f) for m, f in self.fits.items()},
+            "tests": tests,
+            "metrics": {mat: {m: _metric_dict(v) for m, v in d.items()} for mat, d in self.metrics.items()},
+            "metrics_overall": {m: _metric_dict(v) for m, v in self.metrics_overall.items()},
+            "best_model": self.best_model,
+            "best_model_overall": self.best_model_overall,
+            "constants": {
+                "gamma_w_kN_per_m3": self.options.gamma_w / 1e3,
+                "surface_tension_N_per_m": self.options.surface_tension,
+                "g_m_per_s2": self.options.g,
+                "pendular_limit": self.options.pendular_limit,
+                "confidence": self.options.confidence,
+            },
+            "notes": self.notes,
+        }
+
+
+def _num(x) -> float | None:
+    x = float(x)
+    return round(x, 10) if np.isfinite(x) else None
+
+
+def _fit_dict(fit: LineFit) -> dict:
+    phi = np.degrees(np.arctan(fit.slope))
+    # delta method: d(phi)/d(tan phi) = 1 / (1 + tan^2 phi)
+    phi_se = np.degrees(fit.slope_se / (1.0 + fit.slope**2))
+    lo, hi = fit.slope_ci
+    c_lo, c_hi = fit.intercept_ci
+    return {
+        "c_kPa": _num(fit.intercept / 1e3),
+        "phi_deg": _num(phi),
+        "tan_phi": _num(fit.slope),
+        "c_se_kPa": _num(fit.intercept_se / 1e3),
+        "phi_se_deg": _num(phi_se),
+        "tan_phi_se": _num(fit.slope_se),
+        "c_ci95_kPa": [_num(c_lo / 1e3), _num(c_hi / 1e3)],
+        "phi_ci95_deg": [_num(np.degrees(np.arctan(lo))), _num(np.degrees(np.arctan(hi)))],
+        "r2": _num(fit.r2),
+        "n": fit.n,
+    }
+
+
+def _metric_dict(m: ModelMetrics) -> dict:
+    return {"n": m.n, "rmse_kPa": _num(m.rmse / 1e3), "bias_kPa": _num(m.bias / 1e3), "r2": _num(m.r2)}
+
+
+def model_metrics(predicted, measured) -> ModelMetrics:
+    """RMSE, bias (mean of predicted - measured) and R^2 = 1 - SS_res/SS_tot."""
+    p = np.asarray(predicted, dtype=float)
+    y = np.asarray(measured, dtype=float)
+    r = p - y
+    tss = float(np.sum((y - y.mean()) ** 2)) if y.size else 0.0
+    r2 = 1.0 - float(r @ r) / tss if tss > 0 else float("nan")
+    if y.size == 0:
+        return ModelMetrics(0, float("nan"), float("nan"), float("nan"))
+    return ModelMetrics(int(y.size), float(np.sqrt(np.mean(r**2))), float(np.mean(r)), r2)
+
+
+def best_of(metrics: dict[str, ModelMetrics]) -> str | None:
+    """Model with the lowest RMSE (None when there is nothing to compare)."""
+    scored = {m: v.rmse for m, v in metrics.items() if np.isfinite(v.rmse)}
+    return min(scored, key=scored.get) if scored else None
+
+
+def _fill(table: Table, name: str, option: float | None) -> np.ndarray:
+    """Column values with blanks (or an absent column) filled from an option."""
+    v = table.get(name).copy()
+    if option is not None:
+        v[np.isnan(v)] = option
+    return v
+
+
+def _derive(table: Table, opt: ShearOptions) -> dict[str, np.ndarray]:
+    """sigma_N, suction, S_R and tau_max per row; problems go into ``table``."""
+    n = len(table)
+    cond = table.columns["condition"]
+    wet = cond == "wet"
+    box = _fill(table, "box_area", opt.box_area)
+    cap = _fill(table, "cap_mass", opt.cap_mass)
+    added = table.get("added_mass")
+    radius = _fill(table, "R", opt.radius)
+    v_v = _fill(table, "V_v", opt.void_volume)
+
+    sigma_N = table.get("sigma_N").copy()
+    from_masses = np.isnan(sigma_N)
+    sigma_N[from_masses] = ph.normal_stress(cap + added, box, opt.g)[from_masses]
+
+    tau = table.get("tau_max").copy()
+    from_force = np.isnan(tau)
+    tau[from_force] = (table.get("F_max") / box)[from_force]
+
+    suction = table.get("suction").copy()
+    from_head = np.isnan(suction)
+    suction[from_head] = ph.suction_from_head(table.get("z1"), opt.gamma_w)[from_head]
+
+    S_R = table.get("S_R").copy()
+    from_burette = np.isnan(S_R)
+    z2 = table.get("z2")
+    S_R[from_burette] = ph.degree_of_saturation(z2, v_v)[from_burette]
+
+    bad_cell = {(p.line, p.column) for p in table.problems}
+
+    def missing(i: int, what: str, column: str | None) -> None:
+        line = int(table.lines[i])
+        if (line, table.headers.get(column, column)) not in bad_cell:
+            table.add_problem(i, column, what)
+
+    for i in range(n):
+        if np.isnan(sigma_N[i]):
+            parts = [c for c, v in (("added_mass", added[i]), ("cap_mass", cap[i]), ("box_area", box[i]))
+                     if np.isnan(v)]
+            col = parts[0] if parts and parts[0] in table.columns else None
+            missing(i, "no normal stress: give 'sigma_N', or 'added_mass' with 'cap_mass' and 'box_area' "
+                       f"(missing here: {', '.join(parts)}; cap mass and box area may come from "
+                       "--cap-mass and --box-area)", col)
+        if np.isnan(tau[i]):
+            col = "tau_max" if "tau_max" in table.columns else None
+            missing(i, "no shear strength: give 'tau_max', or 'F_max' with 'box_area'", col)
+        if not wet[i]:
+            continue
+        if np.isnan(suction[i]):
+            col = "z1" if "z1" in table.columns else None
+            missing(i, "wet test without suction: give 'suction' or the head 'z1'", col)
+        if np.isnan(S_R[i]):
+            col = "z2" if "z2" in table.columns else None
+            missing(i, "wet test without S_R: give 'S_R', or 'z2' with 'V_v' (or --void-volume)", col)
+        elif from_burette[i] and not 0.0 <= S_R[i] <= 1.0:
+            table.add_problem(i, "z2", f"S_R = (V_v - z2)/V_v = {S_R[i]:.4g} lies outside [0, 1]: "
+                                       f"z2 = {table.value_text('z2', i)} exceeds V_v")
+        if np.isnan(radius[i]):
+            col = "R" if "R" in table.columns else None
+            missing(i, "wet test without particle radius: give 'R' or --radius (needed by Own 2)", col)
+
+    suction = np.where(wet, suction, 0.0)
+    S_R = np.where(wet, S_R, 0.0)
+    return {"sigma_N": sigma_N, "suction": suction, "S_R": S_R, "tau_max": tau, "R": radius}
+
+
+def _check_ids(table: Table) -> None:
+    seen: dict[str, int] = {}
+    for i, tid in enumerate(table.columns["test_id"]):
+        if not tid:
+            table.add_problem(i, "test_id", "empty test_id")
+        elif tid in seen:
+            table.add_problem(i, "test_id", f"duplicate test_id '{tid}' (first on line {seen[tid]})")
+        else:
+            seen[tid] = int(table.lines[i])
+
+
+def load_shear_table(source: str | Path) -> Table:
+    table = read_table(source, SCHEMA)
+    for name in ("test_id", "condition"):
+        if name not in table.columns:
+            table.missing_column(name)
+    if "tau_max" not in table.columns and "F_max" not in table.columns:
+        table.missing_column("tau_max", " (or 'F_max')")
+    if "sigma_N" not in table.columns and "added_mass" not in table.columns:
+        table.missing_column("added_mass", " (or 'sigma_N')")
+    if "condition" in table.columns and np.any(table.columns["condition"] == "wet"):
+        if "suction" not in table.columns and "z1" not in table.columns:
+            table.missing_column("z1", " (or 'suction'), needed by the wet tests")
+        if "S_R" not in table.columns and "z2" not in table.columns:
+            table.missing_column("z2", " (or 'S_R'), needed by the wet tests")
+    if "material" not in table.columns:
+        table.columns["material"] = np.array(["(all)"] * len(table), dtype=object)
+        table.notes.append("no 'material' column: all tests treated as one material")
+    table.raise_if_problems()  # structure must be right before values are checked
+    _check_ids(table)
+    return table
+
+
+def run_shear(source: str | Path, options: ShearOptions | None = None) -> ShearResult:
+    """Reduce a direct-shear CSV and compare the four models of seed 000.
+
+    Raises InputError (every problem in the file, each with line and column)
+    or FitError; never writes anything.
+
+    Example
+    -------
+    >>> import capred
+    >>> r = capred.run_shear(capred.sample_path("shear"))   # doctest: +SKIP
+    >>> r.to_json()["materials"]["steel_2mm"]["phi_deg"]     # doctest: +SKIP
+    """
+    opt = options or ShearOptions()
+    table = load_shear_table(source)
+    d = _derive(table, opt)
+    table.raise_if_problems()
+
+    materials = list(dict.fromkeys(table.columns["material"]))
+    mat = table.columns["material"]
+    cond = table.columns["condition"]
+    wet = cond == "wet"
+    fits: dict[str, LineFit] = {}
+    for m in materials:
+        dry = (mat == m) & (cond == "dry")
+        first = int(np.flatnonzero(mat == m)[0])
+        if not dry.any():
+            table.add_problem(first, "condition", f"material '{m}' has no dry test: its envelope c, phi cannot be fitted")
+            continue
+        try:
+            fits[m] = fit_line(d["sigma_N"][dry], d["tau_max"][dry], opt.confidence)
+        except FitError as exc:
+            table.add_problem(first, "condition", f"material '{m}': dry fit impossible: {exc}")
+    table.raise_if_problems()
+
+    c = np.array([fits[m].intercept for m in mat])
+    tan_phi = np.array([fits[m].slope for m in mat])
+    tests: dict[str, np.ndarray] = {
+        "test_id": table.columns["test_id"], "material": mat, "condition": cond, "line": table.lines,
+        **d,
+        "chi1": np.where(wet, ph.chi1(d["S_R"]), 0.0),
+        "chi2": np.where(wet, ph.chi2(d["S_R"], d["R"], opt.surface_tension), 0.0),
+    }
+    for m in ph.MODELS:
+        eff = ph.effective_normal_stress(m, d["sigma_N"], d["suction"], d["S_R"], d["R"], opt.surface_tension)
+        eff = np.where(wet, eff, d["sigma_N"])
+        tests[f"sigma_eff_{m}"] = eff
+        tests[f"tau_pred_{m}"] = ph.mohr_coulomb_strength(c, tan_phi, eff)
+
+    metrics = {
+        m: {mod: model_metrics(tests[f"tau_pred_{mod}"][(mat == m) & wet], d["tau_max"][(mat == m) & wet])
+            for mod in ph.MODELS}
+        for m in fits if np.any((mat == m) & wet)
+    }
+    for m in fits:
+        metrics.setdefault(m, {})
+    overall = {mod: model_metrics(tests[f"tau_pred_{mod}"][wet], d["tau_max"][wet]) for mod in ph.MODELS} \
+        if wet.any() else {}
+    return ShearResult(
+        source=str(source), options=opt, tests=tests, fits=fits, metrics=metrics,
+        metrics_overall=overall, best_model={m: best_of(v) for m, v in metrics.items()},
+        best_model_overall=best_of(overall), notes=table.notes,
+    )
+
+
+def write_shear_outputs(result: ShearResult, out_dir: str | Path, plots: bool = True,
+                        command_options: dict | None = None) -> list[Path]:
+    """Write results.csv, summary.csv/json, one PNG per material and provenance.json.
+
+    Figures are drawn before anything is written, so a failure leaves no
+    partial report behind.
+    """
+    from ..io import writers
+    from ..report.shear_figures import figure_shear_report
+
+    out = Path(out_dir)
+    figures = {f"report_{_safe(m)}.png": figure_shear_report(result, m) for m in result.materials} if plots else {}
+    results = result.table()
+    written = [
+        writers.write_csv(out / "results.csv", results),
+        writers.write_csv(out / "summary.csv", _flat_summary(result)),
+        writers.write_json(out / "summary.json", result.to_json()),
+    ]
+    written += [writers.write_png(out / name, fig) for name, fig in figures.items()]
+    opts = {**result.options.as_dict(), **(command_options or {})}
+    written.append(writers.write_json(out / "provenance.json",
+                                      writers.provenance("shear", [result.source], opts, written)))
+    return written
+
+
+def _safe(name: str) -> str:
+    return "".join(ch if ch.isalnum() or ch in "-_." else "_" for ch in name) or "material"
+
+
+def _flat_summary(result: ShearResult):
+    """Summary CSV: one row per material and model (dry fit rows carry c and phi)."""
+    import pandas as pd
+
+    rows = []
+    for r in result.summary_rows():
+        r = dict(r)
+        for key in ("c_ci95_kPa", "phi_ci95_deg"):
+            if key in r:
+                lo, hi = r.pop(key)
+                r[key.replace("ci95", "ci95_low")] = lo
+                r[key.replace("ci95", "ci95_high")] = hi
+        rows.append(r)
+    return pd.DataFrame(rows)
+
+
+__all__ = ["SCHEMA", "ShearOptions", "ShearResult", "run_shear", "write_shear_outputs"]

@@ -1,0 +1,124 @@
+"""Report sheet of `capred shear`: one figure per material."""
+from __future__ import annotations
+
+import numpy as np
+
+from .. import nomenclature as nom
+from ..physics.shear import MODEL_LABELS, MODELS
+
+MODEL_STYLE = {
+    "no_suction": dict(color="0.45", marker="s"),
+    "bishop": dict(color="tab:blue", marker="o"),
+    "own1": dict(color="tab:orange", marker="^"),
+    "own2": dict(color="tab:green", marker="D"),
+}
+KPA = 1e-3
+
+
+def plot_dry_envelope(ax, result, material):
+    """Dry tests, fitted line tau = c + sigma_N tan(phi) and its confidence band."""
+    t = result.tests
+    fit = result.fits[material]
+    dry = (t["material"] == material) & (t["condition"] == "dry")
+    x = t["sigma_N"][dry]
+    xs = np.linspace(0.0, max(x.max(), 1e-9) * 1.1, 100)
+    lo, hi = fit.mean_band(xs)
+    ax.fill_between(xs * KPA, lo * KPA, hi * KPA, color="tab:blue", alpha=0.2,
+                    label=f"{fit.confidence:.0%} confidence band")
+    phi = np.degrees(np.arctan(fit.slope))
+    ax.plot(xs * KPA, fit.predict(xs) * KPA, color="tab:blue",
+            label=f"c = {fit.intercept * KPA:.4g} kPa, φ = {phi:.2f}°")
+    ax.plot(x * KPA, t["tau_max"][dry] * KPA, "ko", ms=4, label=f"dry tests (n = {fit.n})")
+    ax.set_xlabel(nom.label("sigma_N"))
+    ax.set_ylabel(nom.label("tau_max"))
+    ax.set_title("Dry envelope")
+    ax.set_xlim(left=0)
+    ax.set_ylim(bottom=0)
+    ax.legend(fontsize=7, loc="upper left")
+    return ax
+
+
+def _wet(result, material):
+    t = result.tests
+    return (t["material"] == material) & (t["condition"] == "wet")
+
+
+def plot_measured_vs_predicted(ax, result, material):
+    """Predicted against measured tau for the wet tests, each model, with the 1:1 line."""
+    t = result.tests
+    wet = _wet(result, material)
+    meas = t["tau_max"][wet] * KPA
+    hi = 0.0
+    for m in MODELS:
+        pred = t[f"tau_pred_{m}"][wet] * KPA
+        hi = max(hi, pred.max(initial=0), meas.max(initial=0))
+        met = result.metrics[material].get(m)
+        rmse = f" (RMSE {met.rmse * KPA:.3g})" if met else ""
+        ax.plot(meas, pred, ls="none", ms=4, alpha=0.85, label=MODEL_LABELS[m] + rmse, **MODEL_STYLE[m])
+    hi = hi * 1.05 or 1.0
+    ax.plot([0, hi], [0, hi], "k--", lw=0.8, label="1:1")
+    ax.set_xlim(0, hi)
+    ax.set_ylim(0, hi)
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_xlabel("measured " + nom.label("tau_max"))
+    ax.set_ylabel("predicted " + nom.label("tau_pred"))
+    ax.set_title("Wet tests: measured vs predicted")
+    ax.legend(fontsize=7, loc="upper left")
+    return ax
+
+
+def plot_strength_vs_saturation(ax, result, material):
+    """Measured tau against S_R with each model's prediction, one line per normal-stress level."""
+    t = result.tests
+    wet = _wet(result, material)
+    levels = np.unique(np.round(t["sigma_N"][wet], 6))
+    for k, level in enumerate(levels):
+        sel = wet & (np.round(t["sigma_N"], 6) == level)
+        order = np.argsort(t["S_R"][sel])
+        s = t["S_R"][sel][order]
+        for m in MODELS:
+            ax.plot(s, t[f"tau_pred_{m}"][sel][order] * KPA, "-", color=MODEL_STYLE[m]["color"],
+                    lw=1.2, alpha=0.9, label=MODEL_LABELS[m] if k == 0 else None)
+        ax.plot(s, t["tau_max"][sel][order] * KPA, "k" + "ov^sD"[k % 5], ms=4, ls="none",
+                label=f"measured, σ_N = {level * KPA:.3g} kPa")
+    ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
+    ax.set_xlabel(nom.label("S_R"))
+    ax.set_ylabel(nom.label("tau_max"))
+    ax.set_title("Strength against saturation")
+    ax.legend(fontsize=7)
+    return ax
+
+
+def plot_residuals(ax, result, material):
+    """Residual (predicted - measured) against S_R for each model."""
+    t = result.tests
+    wet = _wet(result, material)
+    for m in MODELS:
+        ax.plot(t["S_R"][wet], (t[f"tau_pred_{m}"][wet] - t["tau_max"][wet]) * KPA, ls="none", ms=4,
+                alpha=0.85, label=MODEL_LABELS[m], **MODEL_STYLE[m])
+    ax.axhline(0.0, color="k", lw=0.8)
+    ax.set_xlabel(nom.label("S_R"))
+    ax.set_ylabel("τ_pred − τ_max [kPa]")
+    ax.set_title("Residuals")
+    ax.legend(fontsize=7)
+    return ax
+
+
+def figure_shear_report(result, material):
+    """2 x 2 report sheet for one material."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(11, 9), layout="constrained")
+    axes = fig.subplots(2, 2)
+    plot_dry_envelope(axes[0, 0], result, material)
+    if _wet(result, material).any():
+        plot_measured_vs_predicted(axes[0, 1], result, material)
+        plot_strength_vs_saturation(axes[1, 0], result, material)
+        plot_residuals(axes[1, 1], result, material)
+    else:
+        for ax in (axes[0, 1], axes[1, 0], axes[1, 1]):
+            ax.text(0.5, 0.5, "no wet tests", ha="center", va="center", transform=ax.transAxes)
+            ax.set_axis_off()
+    best = result.best_model.get(material)
+    fig.suptitle(f"capred shear — {material}" + (f" — best model: {MODEL_LABELS[best]}" if best else ""))
+    return fig

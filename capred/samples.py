@@ -1,0 +1,18 @@
+"""Bundled sample data (synthetic; see sample_data/README.md)."""
+from __future__ import annotations
+
+from importlib.resources import files
+from pathlib import Path
+
+SAMPLES = {
+    "shear": "shear_tests.csv",
+}
+
+
+def sample_path(name: str) -> Path:
+    """Path of a bundled sample file, by command name (e.g. 'shear')."""
+    from .errors import OptionError
+
+    if name not in SAMPLES:
+        raise OptionError(f"no sample for '{name}'; there are: {', '.join(SAMPLES)}")
+    return Path(str(files("capred.sample_data") / SAMPLES[name]))

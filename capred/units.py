@@ -1,0 +1,114 @@
+"""Unit handling at the edges of capred, backed by pint.
+
+Inside capred every quantity is in SI base units (Pa, m, kg, N, m^3, rad for
+angles passed to trigonometry). Columns and options may carry any unit pint
+understands; this module converts them to SI and checks their dimension.
+
+Older literature (Bernatzik, seed 001) writes pressures in g/cm^2 or kg/cm^2,
+meaning gram-force and kilogram-force per cm^2. Where a pressure is expected and
+a mass per area is given, the value is multiplied by standard gravity
+(9.80665 m/s^2) and the conversion is reported back to the caller.
+"""
+from __future__ import annotations
+
+import re
+from functools import lru_cache
+
+import numpy as np
+
+from .errors import UnitError
+
+# Quantity kinds capred knows, with the SI unit every value is converted to.
+SI_UNIT = {
+    "pressure": "Pa",
+    "length": "m",
+    "mass": "kg",
+    "area": "m**2",
+    "volume": "m**3",
+    "force": "N",
+    "surface_tension": "N/m",
+    "unit_weight": "N/m**3",
+    "acceleration": "m/s**2",
+    "dimensionless": "dimensionless",
+    "angle": "deg",  # angles stay in degrees at the interface; physics converts
+    "per_pressure": "1/Pa",
+}
+
+_STANDARD_GRAVITY = 9.80665  # m/s^2, the definition of gram-force / kilogram-force
+
+
+@lru_cache(maxsize=1)
+def registry():
+    """The one pint UnitRegistry of the process (built on first use: it is slow to create)."""
+    import pint
+
+    return pint.UnitRegistry()
+
+
+def _normalise(unit: str) -> str:
+    u = unit.strip()
+    if u in {"-", "", "1"}:
+        return "dimensionless"
+    # 'cm3', 'mm2' -> 'cm**3', 'mm**2' (but leave 'cmH2O' alone)
+    u = re.sub(r"([A-Za-zµ])([23])(?![A-Za-z0-9])", r"\1**\2", u)
+    return u.replace("^", "**")
+
+
+@lru_cache(maxsize=256)
+def conversion(unit: str, kind: str) -> tuple[float, str | None]:
+    """Factor that turns a value in ``unit`` into SI for a quantity of ``kind``.
+
+    Returns ``(factor, note)``; ``note`` says when a mass per area was read as
+    a force per area (g/cm^2 as gram-force per cm^2), else None.
+    Raises UnitError for an unknown unit or one of the wrong dimension.
+    """
+    import pint
+
+    ureg = registry()
+    target = ureg.Unit(SI_UNIT[kind])
+    try:
+        q = ureg.Quantity(1.0, _normalise(unit))
+    except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError,
+            AssertionError, AttributeError, TypeError, ValueError, SyntaxError) as exc:
+        raise UnitError(f"unknown unit '{unit}'") from exc
+    note = None
+    if kind == "pressure" and q.dimensionality == ureg.Unit("kg/m**2").dimensionality:
+        q = q * ureg.Quantity(_STANDARD_GRAVITY, "m/s**2")
+        note = f"'{unit}' read as {unit.replace('kg', 'kgf').replace('g/', 'gf/')} (force per area, g = 9.80665 m/s^2)"
+    if q.dimensionality != target.dimensionality:
+        raise UnitError(
+            f"unit '{unit}' is not a {kind.replace('_', ' ')} (expected something like {_example(kind)})"
+        )
+    return float(q.to(target).magnitude), note
+
+
+def _example(kind: str) -> str:
+    return {
+        "pressure": "kPa, Pa, MPa, g/cm^2",
+        "length": "mm, cm, m, um",
+        "mass": "g, kg",
+        "area": "cm^2, mm^2, m^2",
+        "volume": "cm^3, mm^3, mL",
+        "force": "N, mN, kN",
+        "surface_tension": "N/m, mN/m",
+        "unit_weight": "kN/m^3",
+        "acceleration": "m/s^2",
+        "dimensionless": "-, %",
+        "angle": "deg, rad",
+        "per_pressure": "1/kPa",
+    }[kind]
+
+
+def to_si(value, unit: str, kind: str):
+    """Convert a value (scalar or array) given in ``unit`` to SI for ``kind``."""
+    factor, _ = conversion(unit, kind)
+    return np.asarray(value, dtype=float) * factor if np.ndim(value) else float(value) * factor
+
+
+def parse_quantity(text: str, default_unit: str, kind: str) -> float:
+    """Read an option such as ``"115 g/cm^2"`` or ``"0.5"`` (in ``default_unit``) to SI."""
+    m = re.fullmatch(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*", str(text))
+    if not m:
+        raise UnitError(f"'{text}' is not a number with an optional unit")
+    unit = m.group(2) or default_unit
+    return to_si(float(m.group(1)), unit, kind)

@@ -1,0 +1,1 @@
+"""Bundled synthetic sample data for capred (see README.md in this folder)."""
