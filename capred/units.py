@@ -77,7 +77,7 @@ def conversion(unit: str, kind: str) -> tuple[float, str | None]:
         note = f"'{unit}' read as {unit.replace('kg', 'kgf').replace('g/', 'gf/')} (force per area, g = 9.80665 m/s^2)"
     if q.dimensionality != target.dimensionality:
         raise UnitError(
-            f"unit '{unit}' is not a {kind.replace('_', ' ')} (expected something like {_example(kind)})"
+            f"unit '{unit}' is not a unit of {kind.replace('_', ' ')} (expected e.g. {_example(kind)})"
         )
     return float(q.to(target).magnitude), note
 

@@ -1,0 +1,57 @@
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from capred.errors import FitError
+from capred.fitting.linear import fit_line
+
+# NIST StRD "Norris" (linear least squares, lower difficulty); certified values to 15 digits.
+NORRIS_Y = [0.1, 338.8, 118.1, 888.0, 9.2, 228.1, 668.5, 998.5, 449.1, 778.9, 559.2, 0.3, 0.1, 778.1,
+            668.8, 339.3, 448.9, 10.8, 557.7, 228.3, 998.0, 888.8, 119.6, 0.3, 0.6, 557.6, 339.3, 888.0,
+            998.5, 778.9, 10.2, 117.6, 228.9, 668.4, 449.2, 0.2]
+NORRIS_X = [0.2, 337.4, 118.2, 884.6, 10.1, 226.5, 666.3, 996.3, 448.6, 777.0, 558.2, 0.4, 0.6, 775.5,
+            666.9, 338.0, 447.5, 11.6, 556.0, 228.1, 995.8, 887.6, 120.2, 0.3, 0.3, 556.8, 339.1, 887.2,
+            999.0, 779.0, 11.1, 118.3, 229.2, 669.1, 448.9, 0.5]
+
+
+def test_fit_line_nist_norris_certified():
+    f = fit_line(NORRIS_X, NORRIS_Y)
+    # two-pass centred formulas keep ~12 significant digits on Norris; NIST asks for >= 9
+    assert_allclose(f.intercept, -0.262323073774029, rtol=1e-10)
+    assert_allclose(f.slope, 1.00211681802045, rtol=1e-12)
+    assert_allclose(f.intercept_se, 0.232818234301152, rtol=1e-10)
+    assert_allclose(f.slope_se, 0.429796848199937e-3, rtol=1e-10)
+    assert_allclose(f.rss, 26.6173985294224, rtol=1e-10)
+    assert_allclose(f.r2, 0.999993745883712, rtol=1e-12)
+    assert f.n == 36 and f.dof == 34
+
+
+def test_fit_line_textbook_by_hand():
+    # x = 1..5, y = 2,4,5,4,5: Sxx = 10, Sxy = 6 -> slope 0.6, intercept 2.2,
+    # RSS = 2.4, s^2 = 0.8, se(b) = sqrt(0.08), se(a) = sqrt(0.8 (1/5 + 9/10)), R^2 = 1 - 2.4/6
+    f = fit_line([1, 2, 3, 4, 5], [2, 4, 5, 4, 5])
+    assert_allclose([f.intercept, f.slope], [2.2, 0.6], rtol=1e-13)
+    assert_allclose(f.slope_se, np.sqrt(0.08), rtol=1e-13)
+    assert_allclose(f.intercept_se, np.sqrt(0.88), rtol=1e-13)
+    assert_allclose(f.r2, 0.6, rtol=1e-13)
+    # t(0.975, 3) = 3.182446 (standard t table)
+    assert_allclose(f.t, 3.182446, rtol=1e-6)
+    lo, hi = f.slope_ci
+    assert_allclose(hi - 0.6, 3.182446 * np.sqrt(0.08), rtol=1e-6)
+
+
+def test_fit_line_exact_thesis_envelope():
+    # seed 000, dry tests: steel spheres c = 0.3452 kPa, tan phi = 0.7146
+    s = np.array([0.3, 0.6, 1.2, 2.4])
+    f = fit_line(s, 0.3452 + 0.7146 * s)
+    assert_allclose([f.intercept, f.slope], [0.3452, 0.7146], rtol=1e-12)
+    assert f.slope_se < 1e-12 and f.r2 == pytest.approx(1.0)
+
+
+def test_fit_line_rejects_too_few_or_degenerate():
+    with pytest.raises(FitError, match="at least 3"):
+        fit_line([1, 2], [1, 2])
+    with pytest.raises(FitError, match="same abscissa"):
+        fit_line([1, 1, 1], [1, 2, 3])
+    with pytest.raises(FitError, match="NaN"):
+        fit_line([1, 2, np.nan], [1, 2, 3])
