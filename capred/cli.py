@@ -20,6 +20,8 @@ app = typer.Typer(
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
+    # plain help text: rendering help through rich would double `capred --help` start-up time
+    rich_markup_mode=None,
 )
 
 

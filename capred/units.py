@@ -42,7 +42,10 @@ def registry():
     """The one pint UnitRegistry of the process (built on first use: it is slow to create)."""
     import pint
 
-    return pint.UnitRegistry()
+    try:  # parsed definitions cached on disk: 20 ms instead of 350 ms per process
+        return pint.UnitRegistry(cache_folder=":auto:")
+    except OSError:
+        return pint.UnitRegistry()
 
 
 def _normalise(unit: str) -> str:

@@ -85,7 +85,7 @@ def plot_strength_vs_saturation(ax, result, material):
     ax.set_xlabel(nom.label("S_R"))
     ax.set_ylabel(nom.label("tau_max"))
     ax.set_title("Strength against saturation")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper right")
     return ax
 
 
@@ -100,7 +100,7 @@ def plot_residuals(ax, result, material):
     ax.set_xlabel(nom.label("S_R"))
     ax.set_ylabel("τ_pred − τ_max [kPa]")
     ax.set_title("Residuals")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="lower left")
     return ax
 
 
@@ -108,7 +108,9 @@ def figure_shear_report(result, material):
     """2 x 2 report sheet for one material."""
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(11, 9), layout="constrained")
+    # fixed margins: constrained layout would double the drawing time of a sheet
+    fig = Figure(figsize=(11, 9))
+    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.06, top=0.92, wspace=0.22, hspace=0.28)
     axes = fig.subplots(2, 2)
     plot_dry_envelope(axes[0, 0], result, material)
     if _wet(result, material).any():
