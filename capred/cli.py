@@ -126,10 +126,55 @@ def shear(
         return
     from .report.console import shear_tables
 
+    _print(shear_tables(result), result.notes, written, out_dir)
+
+
+@app.command("triaxial-bounds")
+def triaxial_bounds(
+    data: Annotated[Optional[Path], typer.Argument(help="CSV of triaxial tests, one row per test.",
+                                                   show_default=False)] = None,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    plots: PlotOpt = True,
+    sample: SampleOpt = False,
+    curves: Annotated[Optional[Path], typer.Option(help="Long CSV of raw curves (test_id, axial_strain, q): "
+                                                   "failure = peak of q, for tests without q_f or sigma1.")] = None,
+    c_eff: Annotated[Optional[str], typer.Option(help="Effective cohesion c' [kPa], instead of fitting saturated tests.")] = None,
+    phi_eff: Annotated[Optional[float], typer.Option(help="Effective friction angle phi' [deg], with --c-eff.")] = None,
+):
+    """Bounds of the capillary stress tensor at failure from triaxial tests
+    (Prunier et al. 2024): effective envelope from saturated drained tests, then
+    for every unsaturated test the spherical upper bound (q = q'), the lower
+    bound (sigma1_cap = 0) and the EDTP upper bound (needs s0), with the
+    strength gain q'/q'_sat; groups sharing one tensor get the Appendix 1 analysis.
+
+    Example: capred triaxial-bounds tests.csv --out bounds
+    """
+    try:
+        from .pipelines.triaxial import TriaxialOptions, run_triaxial_bounds, write_triaxial_outputs
+
+        src = _source(data, sample, "triaxial-bounds")
+        opts = TriaxialOptions(c_eff=_quantity(c_eff, "kPa", "pressure", "--c-eff"), phi_eff=phi_eff)
+        result = run_triaxial_bounds(src, opts, curves=curves)
+        out_dir = out or _default_out("triaxial", src)
+        inputs = [src] + ([curves] if curves else [])
+        written = write_triaxial_outputs(result, out_dir, plots=plots, inputs=inputs,
+                                         command_options={"plots": plots, "curves": str(curves) if curves else None})
+    except CapredError as exc:
+        fail(exc)
+    if json_out:
+        typer.echo(json.dumps(result.to_json(), indent=2, ensure_ascii=False))
+        return
+    from .report.console import triaxial_tables
+
+    _print(triaxial_tables(result), result.notes, written, out_dir)
+
+
+def _print(tables, notes, written, out_dir) -> None:
     con = _console()
-    for t in shear_tables(result):
+    for t in tables:
         con.print(t)
-    for note in result.notes:
+    for note in notes:
         con.print(f"[yellow]note:[/] {note}")
     con.print(f"Wrote {len(written)} files to [bold]{out_dir}[/]")
 

@@ -6,6 +6,8 @@ from pathlib import Path
 
 SAMPLES = {
     "shear": "shear_tests.csv",
+    "triaxial-bounds": "triaxial_tests.csv",
+    "triaxial-curves": "triaxial_curves.csv",
 }
 
 

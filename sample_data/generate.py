@@ -67,10 +67,55 @@ def make_shear(rng) -> str:
     return "\n".join(lines) + "\n"
 
 
+# Gavet silt (seed 002): envelope and failure deviators reconstructed from the
+# paper's Tables 2 and 3 (see README.md here and tests/test_triaxial_published.py).
+GAVET_C_KPA, GAVET_PHI_DEG = 2.795, 31.523
+GAVET_UNSAT_Q_KPA = {0.0: 150.2, 100.0: 317.6, 150.0: 396.7}
+GAVET_SAT_P0_KPA = (30.0, 50.0, 100.0, 150.0)
+GAVET_S0_KPA = 55.0
+
+
+def _drained_q(p0, c, phi_deg):
+    s = np.sin(np.radians(phi_deg))
+    kp = (1 + s) / (1 - s)
+    return (kp - 1) * p0 + 2 * c * np.sqrt(kp)
+
+
+def make_triaxial() -> str:
+    lines = [
+        "# capred sample: Gavet silt triaxial tests RECONSTRUCTED from Prunier et al. (2024), Tables 2-3.",
+        "# The paper gives failure points only in figures; see sample_data/README.md for how these were made.",
+        "test_id,condition,sigma3 [kPa],q_f [kPa],p0 [kPa],s0 [kPa]",
+    ]
+    for p0 in GAVET_SAT_P0_KPA:
+        q = _drained_q(p0, GAVET_C_KPA, GAVET_PHI_DEG)
+        lines.append(f"SAT-{p0:g},saturated,{p0:g},{q:.1f},{p0:g},")
+    for p0, q in GAVET_UNSAT_Q_KPA.items():
+        lines.append(f"UNSAT-{p0:g},unsaturated,{p0:g},{q:.1f},{p0:g},{GAVET_S0_KPA:g}")
+    return "\n".join(lines) + "\n"
+
+
+def make_triaxial_curves(rng) -> str:
+    """Synthetic q(eps_a) curves peaking at the reconstructed failure deviators."""
+    lines = ["# capred sample: SYNTHETIC stress-strain curves (hyperbolic rise, softening after the peak).",
+             "test_id,axial_strain [%],q [kPa],vol_strain [%]"]
+    for p0, q_f in GAVET_UNSAT_Q_KPA.items():
+        eps_f = 2.0 + p0 / 100.0  # % axial strain at the peak
+        for eps in np.round(np.arange(0.0, 2.0 * eps_f + 1e-9, 0.25), 2):
+            x = eps / eps_f
+            q = q_f * (2 * x / (1 + x * x)) if x <= 1 else q_f * (1 - 0.25 * (x - 1))
+            q += rng.normal(0.0, 0.002 * q_f) if 0 < eps != eps_f else 0.0
+            ev = -0.3 * eps + 0.04 * eps**2
+            lines.append(f"UNSAT-{p0:g},{eps:.2f},{q:.2f},{ev:.3f}")
+    return "\n".join(lines) + "\n"
+
+
 def main(folder: str | None = None) -> None:
     out = Path(folder) if folder else Path(__file__).parent
     rng = np.random.default_rng(20261121)
     (out / "shear_tests.csv").write_text(make_shear(rng))
+    (out / "triaxial_tests.csv").write_text(make_triaxial())
+    (out / "triaxial_curves.csv").write_text(make_triaxial_curves(rng))
 
 
 if __name__ == "__main__":

@@ -36,3 +36,46 @@ def shear_tables(result) -> list[Table]:
                         _f(v["bias_kPa"], "+.3g"), _f(v["r2"], ".3f"), mark, style=style,
                         end_section=k == len(models) - 1)
     return [fits, met]
+
+
+def triaxial_tables(result) -> list[Table]:
+    """Envelope, then one row per unsaturated test and bound."""
+    js = result.to_json()
+    e = js["envelope"]
+    env = Table(title="Effective envelope (saturated drained tests)", title_justify="left")
+    for col in ("source", "n", "c' [kPa]", "± se", "φ' [°]", "± se", "M", "k [kPa]"):
+        env.add_column(escape(col), justify="right")
+    env.add_row(e["source"], _f(e["n"]) if e["n"] else "—", _f(e["c_kPa"]), _f(e["c_se_kPa"], ".2g"),
+                _f(e["phi_deg"], ".2f"), _f(e["phi_se_deg"], ".2f"), _f(e["M"]), _f(e["k_kPa"]))
+    names = {"lower": "LB", "spherical": "UB q=q'", "edtp": "UB EDTP"}
+    tb = Table(title=escape("Capillary stress tensor at failure [kPa], compression +; gain = q'/q'_sat"),
+               title_justify="left")
+    for col in ("test (σ3, q)", "bound", "σ1_cap", "σ3_cap", "p_cap", "q_cap", "p'", "q'", "gain"):
+        tb.add_column(escape(col), justify="left" if col.startswith(("test", "bound")) else "right")
+    rows = [t for t in js["tests"] if t["condition"] == "unsaturated"]
+    for t in rows:
+        present = [n for n in ("lower", "spherical", "edtp") if t[n]]
+        head = [t["test_id"], f"({_f(t['sigma3_kPa'], '.4g')}, {_f(t['q_kPa'], '.4g')})"]
+        for k, name in enumerate(present):
+            b = t[name]
+            label = names[name] + (" [red]σ_cap>0[/]" if b["positive_component"] else "")
+            tb.add_row(head[k] if k < 2 else "", label, _f(b["sigma1_cap_kPa"], ".1f"),
+                       _f(b["sigma3_cap_kPa"], ".1f"), _f(b["p_cap_kPa"], ".1f"), _f(b["q_cap_kPa"], ".1f"),
+                       _f(b["p_prime_kPa"], ".1f"), _f(b["q_prime_kPa"], ".1f"), _f(b["gain"], ".3g"),
+                       end_section=k == len(present) - 1)
+    out = [env, tb]
+    if js["groups"]:
+        g = Table(title="Groups sharing one capillary tensor (seed 002, Appendix 1)", title_justify="left")
+        for col in ("group", "n", "C [kPa]", "φ [°]", "φ − φ' [°]", "eq. 37 σ_cap", "eq. 48 (LB) σ1_cap, σ3_cap", "eq. 49"):
+            g.add_column(escape(col), justify="right")
+        for r in js["groups"]:
+            if "error" in r:
+                g.add_row(r["group"], str(r["n"]), r["error"], "", "", "", "", "")
+                continue
+            e48 = r["eq48_lower"]
+            g.add_row(r["group"], str(r["n"]), _f(r["C_apparent_kPa"]), _f(r["phi_apparent_deg"], ".2f"),
+                      _f(r["phi_difference_deg"], "+.2f"), _f(r["eq37_sigma_cap_kPa"], ".3g"),
+                      f"{_f(e48['sigma1_cap_kPa'], '.3g')}, {_f(e48['sigma3_cap_kPa'], '.3g')}",
+                      "holds" if r["eq49_holds"] else "fails")
+        out.append(g)
+    return out
