@@ -17,4 +17,8 @@ def sample_path(name: str) -> Path:
 
     if name not in SAMPLES:
         raise OptionError(f"no sample for '{name}'; there are: {', '.join(SAMPLES)}")
-    return Path(str(files("capred.sample_data") / SAMPLES[name]))
+    try:  # installed: the top-level sample_data/ folder ships as capred.sample_data
+        folder = Path(str(files("capred.sample_data")))
+    except ModuleNotFoundError:  # imported from a source checkout
+        folder = Path(__file__).resolve().parents[1] / "sample_data"
+    return folder / SAMPLES[name]
