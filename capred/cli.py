@@ -170,6 +170,50 @@ def triaxial_bounds(
     _print(triaxial_tables(result), result.notes, written, out_dir)
 
 
+@app.command()
+def retention(
+    data: Annotated[Optional[Path], typer.Argument(help="CSV of retention readings: suction or head, and S_R, "
+                                                   "theta or z2 + V_v.", show_default=False)] = None,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    plots: PlotOpt = True,
+    sample: SampleOpt = False,
+    model: Annotated[str, typer.Option(help="vg (m = 1 - 1/n, and m free), bc, or all.")] = "all",
+    fix: Annotated[Optional[list[str]], typer.Option(help="Fix a parameter, e.g. --fix theta_s=0.25 "
+                                                     "(alpha in 1/kPa, s_e in kPa); repeatable.")] = None,
+    gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3], to turn heads into suction.")] = "9.81",
+):
+    """Fit water retention curves: van Genuchten (m = 1 - 1/n and m free) and
+    Brooks-Corey (air-entry suction s_e, index lambda) for every branch (drying,
+    wetting), with standard errors, R^2 and AIC. Branches come from a 'branch'
+    column or, without one, from the order of readings (rising suction = drying).
+
+    Example: capred retention column.csv --model vg --fix theta_r=0
+    """
+    try:
+        from .pipelines.retention import RetentionOptions, parse_fixed, run_retention, write_retention_outputs
+
+        models = {"all": ("vg", "vg_m_free", "bc"), "vg": ("vg", "vg_m_free"), "bc": ("bc",)}
+        if model not in models:
+            from .errors import OptionError
+
+            raise OptionError(f"--model must be vg, bc or all (got '{model}')")
+        src = _source(data, sample, "retention")
+        opts = RetentionOptions(models=models[model], fixed=parse_fixed(fix or []),
+                                gamma_w=_quantity(gamma_w, "kN/m^3", "unit_weight", "--gamma-w"))
+        result = run_retention(src, opts)
+        out_dir = out or _default_out("retention", src)
+        written = write_retention_outputs(result, out_dir, plots=plots, command_options={"plots": plots})
+    except CapredError as exc:
+        fail(exc)
+    if json_out:
+        typer.echo(json.dumps(result.to_json(), indent=2, ensure_ascii=False))
+        return
+    from .report.console import retention_tables
+
+    _print(retention_tables(result), result.notes, written, out_dir)
+
+
 def _print(tables, notes, written, out_dir) -> None:
     con = _console()
     for t in tables:

@@ -8,6 +8,7 @@ SAMPLES = {
     "shear": "shear_tests.csv",
     "triaxial-bounds": "triaxial_tests.csv",
     "triaxial-curves": "triaxial_curves.csv",
+    "retention": "retention.csv",
 }
 
 

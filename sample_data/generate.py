@@ -110,12 +110,29 @@ def make_triaxial_curves(rng) -> str:
     return "\n".join(lines) + "\n"
 
 
+def make_retention(rng) -> str:
+    """Hanging-column retention of the sand: drying then wetting branch (hysteresis)."""
+    lines = ["# capred sample: SYNTHETIC hanging-column retention data for sand 208-417 um (drying, then wetting).",
+             "# Made by sample_data/generate.py; see sample_data/README.md.",
+             "z1 [cm],z2 [cm^3],V_v [cm^3],branch"]
+    v_v = 30.5
+    branches = (("drying", (2, 5, 10, 15, 20, 25, 30, 35, 40, 45, 50, 60, 70, 80, 100, 120), 0.028, 6.0),
+                ("wetting", (120, 100, 80, 60, 50, 40, 35, 30, 25, 20, 15, 10, 5), 0.045, 5.0))
+    for name, heads, alpha, n in branches:
+        for z1 in heads:
+            s_r = retention(z1, alpha, n, 0.04)
+            s_r = min(1.0, max(0.0, s_r + rng.normal(0.0, 0.01)))
+            lines.append(f"{z1},{round(v_v * (1.0 - s_r), 1)},{v_v},{name}")
+    return "\n".join(lines) + "\n"
+
+
 def main(folder: str | None = None) -> None:
     out = Path(folder) if folder else Path(__file__).parent
     rng = np.random.default_rng(20261121)
     (out / "shear_tests.csv").write_text(make_shear(rng))
     (out / "triaxial_tests.csv").write_text(make_triaxial())
     (out / "triaxial_curves.csv").write_text(make_triaxial_curves(rng))
+    (out / "retention.csv").write_text(make_retention(rng))
 
 
 if __name__ == "__main__":

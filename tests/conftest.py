@@ -4,7 +4,9 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-SHARED_RETENTION = ROOT.parent / "shared" / "data" / "retention"
+# public retention datasets with published fits, kept outside the project (not copied in)
+SHARED_RETENTION = next((p for p in (ROOT.parent / "shared" / "data" / "retention",
+                                     Path("/work/shared/data/retention")) if p.is_dir()), None)
 
 
 def file_hash(path: Path) -> str:

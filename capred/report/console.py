@@ -79,3 +79,24 @@ def triaxial_tables(result) -> list[Table]:
                       "holds" if r["eq49_holds"] else "fails")
         out.append(g)
     return out
+
+
+def retention_tables(result) -> list[Table]:
+    """One table for the van Genuchten fits, one for Brooks-Corey."""
+    js = result.to_json()
+    ys, yr = result.names
+    specs = (("van Genuchten", ("vg", "vg_m_free"), (("α [1/kPa]", "alpha_per_kPa"), ("n", "n"), ("m", "m"))),
+             ("Brooks-Corey", ("bc",), (("s_e [kPa]", "s_e_kPa"), ("λ", "lambda"))))
+    out = []
+    for title, models, cols in specs:
+        present = [(b, m, d["fits"][m]) for b, d in js["branches"].items() for m in models if m in d["fits"]]
+        if not present:
+            continue
+        t = Table(title=f"{title} fits — branches: {js['branch_source']}", title_justify="left")
+        for col in ("branch", "model", ys, yr, *(c for c, _ in cols), "R²", "AIC"):
+            t.add_column(escape(col), justify="left" if col in ("branch", "model") else "right")
+        for b, m, v in present:
+            t.add_row(b, m, _f(v[ys]), _f(v[yr]), *(_f(v[k]) for _, k in cols), _f(v["r2"], ".4f"),
+                      _f(v["aic"], ".1f"))
+        out.append(t)
+    return out
