@@ -48,14 +48,15 @@ def fail(exc: CapredError) -> None:
     raise typer.Exit(1)
 
 
-def _quantity(text: Optional[str], unit: str, kind: str, option: str) -> Optional[float]:
+def _quantity(text: Optional[str], unit: str, kind: str, option: str,
+              notes: Optional[list] = None) -> Optional[float]:
     from .errors import OptionError
     from .units import parse_quantity
 
     if text is None:
         return None
     try:
-        return parse_quantity(text, unit, kind)
+        return parse_quantity(text, unit, kind, notes)
     except CapredError as exc:
         raise OptionError(f"{option}: {exc}") from None
 
@@ -214,12 +215,137 @@ def retention(
     _print(retention_tables(result), result.notes, written, out_dir)
 
 
+def _calc_done(result, out, json_out, plots, figure_fn=None, options=None):
+    """Shared ending of the calculator commands: write outputs, print JSON or a table."""
+    from .pipelines.calculators import write_calc_outputs
+
+    out_dir = out or _default_out(result.command, Path(result.source) if result.source else Path("options"))
+    fig = figure_fn() if (plots and figure_fn) else None
+    written = write_calc_outputs(result, out_dir, fig, options)
+    if json_out:
+        typer.echo(json.dumps(result.to_json(), indent=2, ensure_ascii=False))
+        return
+    from .report.console import calc_table
+
+    _print([calc_table(result)], result.notes, written, out_dir)
+
+
+@app.command()
+def prism(
+    data: Annotated[Optional[Path], typer.Argument(help="Optional CSV of cases: break_tension, friction_angle.",
+                                                   show_default=False)] = None,
+    break_tension: Annotated[Optional[str], typer.Option(help="Break tension sigma_b of the prism [kPa]; "
+                                                         "any pressure unit, g/cm^2 read as gram-force.")] = None,
+    friction_angle: Annotated[Optional[float], typer.Option(help="Friction angle rho of the sand [deg].")] = None,
+    gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3].")] = "9.81",
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    sample: SampleOpt = False,
+):
+    """Bernatzik's prism test: maximal capillary pressure
+    P_kmax = sigma_b (1 - sin rho)/(2 sin rho) and capillary rise h_c = P_kmax/gamma_w.
+
+    Example: capred prism --break-tension "115 g/cm^2" --friction-angle 36
+    """
+    try:
+        from .pipelines.calculators import run_prism
+
+        notes: list[str] = []
+        src = _source(data, sample, "prism") if (data or sample) else None
+        result = run_prism(src, _quantity(break_tension, "kPa", "pressure", "--break-tension", notes), friction_angle,
+                           _quantity(gamma_w, "kN/m^3", "unit_weight", "--gamma-w"))
+        result.notes[:0] = notes
+        _calc_done(result, out, json_out, False, options={"break_tension": break_tension,
+                                                          "friction_angle": friction_angle, "gamma_w": gamma_w})
+    except CapredError as exc:
+        fail(exc)
+
+
+@app.command("skempton-b")
+def skempton_b(
+    data: Annotated[Optional[Path], typer.Argument(help="Optional CSV of cases: S_r (or B), and any of kappa, e0, "
+                                                   "p0, u0, pa0.", show_default=False)] = None,
+    sr: Annotated[Optional[float], typer.Option("--sr", help="Degree of saturation S_r [-]: compute B.")] = None,
+    b: Annotated[Optional[float], typer.Option("--b", help="Measured B [-]: compute S_r.")] = None,
+    kappa: Annotated[float, typer.Option(help="Slope of the elastic line in e-ln p'.")] = 0.006,
+    e0: Annotated[float, typer.Option(help="Initial void ratio.")] = 0.8,
+    p0: Annotated[str, typer.Option(help="Mean total stress [kPa].")] = "100",
+    u0: Annotated[str, typer.Option(help="Initial pore pressure [kPa].")] = "30",
+    pa0: Annotated[str, typer.Option(help="Absolute initial air pressure [kPa].")] = "130",
+    se: Annotated[Optional[str], typer.Option("--se", help="Air-entry suction s_e [kPa] (Brooks-Corey): "
+                                              "simulation with suction equilibrium.")] = None,
+    bc_alpha: Annotated[Optional[float], typer.Option(help="Brooks-Corey index alpha, with --se.")] = None,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    plots: PlotOpt = True,
+    sample: SampleOpt = False,
+):
+    """Skempton's B against degree of saturation (Morvan et al., eq. 10):
+    B = 1/(1 + p'0 e0 (1 - S_r)/(kappa P_a0)) with p'0 = p0 - u0, or its inverse
+    S_r from a measured B; with --se and --bc-alpha, the simulation with suction
+    equilibrium (p'0 = p0 - u_a0 + s S_r). Defaults are the seed's Table 1.
+
+    Example: capred skempton-b --sr 0.9 --kappa 0.06
+    """
+    try:
+        from .pipelines.calculators import run_skempton_b
+        from .report.calculator_figures import figure_skempton
+
+        src = _source(data, sample, "skempton-b") if (data or sample) else None
+        kw = dict(kappa=kappa, e0=e0, p0=_quantity(p0, "kPa", "pressure", "--p0"),
+                  u0=_quantity(u0, "kPa", "pressure", "--u0"), pa0=_quantity(pa0, "kPa", "pressure", "--pa0"))
+        s_e = _quantity(se, "kPa", "pressure", "--se")
+        result = run_skempton_b(src, sr=sr, b=b, s_e=s_e, bc_alpha=bc_alpha, **kw)
+        pts = (result.inputs.get("S_r", result.outputs.get("S_r")), result.inputs.get("B", result.outputs.get("B")))
+        _calc_done(result, out, json_out, plots,
+                   lambda: figure_skempton(s_e=s_e, bc_alpha=bc_alpha, points=pts, **kw),
+                   options={**kw, "sr": sr, "b": b, "se": s_e, "bc_alpha": bc_alpha})
+    except CapredError as exc:
+        fail(exc)
+
+
+@app.command()
+def rumpf(
+    data: Annotated[Optional[Path], typer.Argument(help="Optional CSV of cases (shape_factor, void_ratio, S_r, "
+                                                   "diameter, surface_tension, contact_angle).",
+                                                   show_default=False)] = None,
+    shape_factor: Annotated[Optional[float], typer.Option(help="Particle shape factor phi [-].")] = None,
+    void_ratio: Annotated[Optional[float], typer.Option(help="Void ratio e [-].")] = None,
+    sr: Annotated[Optional[float], typer.Option("--sr", help="Degree of saturation S_r [-].")] = None,
+    diameter: Annotated[Optional[str], typer.Option(help="Apparent particle diameter d_p [mm].")] = None,
+    surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m].")] = "0.0728",
+    contact_angle: Annotated[float, typer.Option(help="Wetting angle theta [deg].")] = 0.0,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    sample: SampleOpt = False,
+):
+    """Rumpf's capillary pressure p_cap = -(6/phi)(S_r/e)(gamma/d_p) cos(theta)
+    (Prunier et al. 2024, eq. 19); negative means tension.
+
+    Example: capred rumpf --shape-factor 1 --void-ratio 0.5 --sr 0.3 --diameter 0.2
+    """
+    try:
+        from .pipelines.calculators import run_rumpf
+
+        src = _source(data, sample, "rumpf") if (data or sample) else None
+        result = run_rumpf(src, shape_factor, void_ratio, sr, _quantity(diameter, "mm", "length", "--diameter"),
+                           _quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"), contact_angle)
+        _calc_done(result, out, json_out, False, options={"shape_factor": shape_factor, "void_ratio": void_ratio,
+                                                          "sr": sr, "diameter": diameter,
+                                                          "surface_tension": surface_tension,
+                                                          "contact_angle": contact_angle})
+    except CapredError as exc:
+        fail(exc)
+
+
 def _print(tables, notes, written, out_dir) -> None:
     con = _console()
     for t in tables:
         con.print(t)
+    from rich.markup import escape
+
     for note in notes:
-        con.print(f"[yellow]note:[/] {note}")
+        con.print(f"[yellow]note:[/] {escape(note)}")
     con.print(f"Wrote {len(written)} files to [bold]{out_dir}[/]")
 
 

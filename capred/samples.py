@@ -9,6 +9,9 @@ SAMPLES = {
     "triaxial-bounds": "triaxial_tests.csv",
     "triaxial-curves": "triaxial_curves.csv",
     "retention": "retention.csv",
+    "prism": "prism_tests.csv",
+    "skempton-b": "skempton_cases.csv",
+    "rumpf": "rumpf_cases.csv",
 }
 
 

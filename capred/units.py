@@ -108,10 +108,16 @@ def to_si(value, unit: str, kind: str):
     return np.asarray(value, dtype=float) * factor if np.ndim(value) else float(value) * factor
 
 
-def parse_quantity(text: str, default_unit: str, kind: str) -> float:
-    """Read an option such as ``"115 g/cm^2"`` or ``"0.5"`` (in ``default_unit``) to SI."""
+def parse_quantity(text: str, default_unit: str, kind: str, notes: list[str] | None = None) -> float:
+    """Read an option such as ``"115 g/cm^2"`` or ``"0.5"`` (in ``default_unit``) to SI.
+
+    A note on how the unit was read (g/cm^2 as gram-force) is appended to ``notes``.
+    """
     m = re.fullmatch(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*", str(text))
     if not m:
         raise UnitError(f"'{text}' is not a number with an optional unit")
     unit = m.group(2) or default_unit
-    return to_si(float(m.group(1)), unit, kind)
+    factor, note = conversion(unit, kind)
+    if note and notes is not None:
+        notes.append(note)
+    return float(m.group(1)) * factor

@@ -100,3 +100,14 @@ def retention_tables(result) -> list[Table]:
                       _f(v["aic"], ".1f"))
         out.append(t)
     return out
+
+
+def calc_table(result) -> Table:
+    """Inputs and results of a calculator, one row per case."""
+    rows = result.rows()
+    t = Table(title=f"capred {result.command}", title_justify="left")
+    for k in rows[0]:
+        t.add_column(escape(k), justify="right", style="bold" if k in result.outputs else None)
+    for r in rows:
+        t.add_row(*(v if isinstance(v, str) else _f(v) for v in r.values()))
+    return t
