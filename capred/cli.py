@@ -93,6 +93,19 @@ def shear(
     cap_mass: Annotated[Optional[str], typer.Option(help="Top-cap mass [g] for rows without 'cap_mass'.")] = None,
     radius: Annotated[Optional[str], typer.Option(help="Particle radius R [mm] for rows without 'R'.")] = None,
     void_volume: Annotated[Optional[str], typer.Option(help="Void volume V_v [cm^3] for rows without 'V_v'.")] = None,
+    models: Annotated[str, typer.Option(help="Models to compare, comma separated: no_suction, bishop, own1, own2 "
+                                        "(= 'thesis', the default), vanapalli, khalili, lu_likos, fredlund, "
+                                        "pedrotti_tarantino; 'all' for every one.")] = "thesis",
+    retention: Annotated[Optional[Path], typer.Option(help="fits.json from capred retention: S_res, s_e and van "
+                                                      "Genuchten parameters for the extra models.")] = None,
+    s_res: Annotated[Optional[float], typer.Option(help="Residual S_R (Vanapalli).")] = None,
+    vanapalli_kappa: Annotated[float, typer.Option(help="Fitting exponent kappa of Vanapalli et al.")] = 1.0,
+    air_entry: Annotated[Optional[str], typer.Option(help="Air-entry suction s_e [kPa] (Khalili-Khabbaz).")] = None,
+    vg_alpha: Annotated[Optional[str], typer.Option(help="van Genuchten alpha [1/kPa] (Lu-Likos).")] = None,
+    vg_n: Annotated[Optional[float], typer.Option(help="van Genuchten n (Lu-Likos); m = 1 - 1/n unless --vg-m.")] = None,
+    vg_m: Annotated[Optional[float], typer.Option(help="van Genuchten m (Lu-Likos).")] = None,
+    water_envelope: Annotated[Optional[str], typer.Option(help="'c,phi' [kPa, deg] of the water-saturated soil "
+                                                          "(Pedrotti-Tarantino); default: the dry envelope.")] = None,
 ):
     """Direct-shear tests with hanging-column suction: dry envelope per material,
     the four effective-stress models (No suction, Bishop, Own 1, Own 2) on every
@@ -116,6 +129,11 @@ def shear(
             cap_mass=_quantity(cap_mass, "g", "mass", "--cap-mass"),
             radius=_quantity(radius, "mm", "length", "--radius"),
             void_volume=_quantity(void_volume, "cm^3", "volume", "--void-volume"),
+            models=_model_list(models),
+            model_params=_model_params(retention, s_res=s_res, vanapalli_kappa=vanapalli_kappa,
+                                       air_entry=_quantity(air_entry, "kPa", "pressure", "--air-entry"),
+                                       vg_alpha=_quantity(vg_alpha, "1/kPa", "per_pressure", "--vg-alpha"),
+                                       vg_n=vg_n, vg_m=vg_m, water_envelope=_envelope_pair(water_envelope)),
         )
         result = run_shear(src, opts)
         out_dir = out or _default_out("shear", src)
@@ -347,6 +365,43 @@ def _print(tables, notes, written, out_dir) -> None:
     for note in notes:
         con.print(f"[yellow]note:[/] {escape(note)}")
     con.print(f"Wrote {len(written)} files to [bold]{out_dir}[/]")
+
+
+def _model_list(text: str) -> tuple[str, ...]:
+    from .errors import OptionError
+    from .physics.shear import EXTRA_MODELS, MODELS
+
+    out: list[str] = []
+    for name in (t.strip().lower().replace("-", "_") for t in text.split(",") if t.strip()):
+        expand = {"thesis": MODELS, "all": MODELS + EXTRA_MODELS}.get(name, (name,))
+        for m in expand:
+            if m not in MODELS + EXTRA_MODELS:
+                raise OptionError(f"--models: unknown model '{m}'; choose from {', '.join(MODELS + EXTRA_MODELS)}")
+            if m not in out:
+                out.append(m)
+    if not out:
+        raise OptionError("--models: no model named")
+    return tuple(out)
+
+
+def _model_params(retention: Optional[Path], **kw):
+    from .pipelines.shear import ModelParams, model_params_from_retention
+
+    if retention is not None:
+        return model_params_from_retention(retention, **kw)
+    return ModelParams(**{k: v for k, v in kw.items() if v is not None})
+
+
+def _envelope_pair(text: Optional[str]):
+    from .errors import OptionError
+
+    if text is None:
+        return None
+    try:
+        c, phi = (float(x) for x in text.split(","))
+    except ValueError:
+        raise OptionError(f"--water-envelope '{text}': expected 'c,phi' in kPa and degrees") from None
+    return c * 1e3, phi
 
 
 def _source(data: Optional[Path], sample: bool, command: str) -> Path:

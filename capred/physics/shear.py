@@ -27,11 +27,18 @@ CHI1_UNITY_SR = 3.0 / (2.0 * np.pi)
 
 #: The four effective-stress models of the thesis [1], in display order.
 MODELS = ("no_suction", "bishop", "own1", "own2")
+#: Further models, chosen with `capred shear --models` (see effective_stress_models.py).
+EXTRA_MODELS = ("vanapalli", "khalili", "lu_likos", "fredlund", "pedrotti_tarantino")
 MODEL_LABELS = {
     "no_suction": "No suction",
     "bishop": "Bishop",
     "own1": "Own 1",
     "own2": "Own 2",
+    "vanapalli": "Vanapalli",
+    "khalili": "Khalili-Khabbaz",
+    "lu_likos": "Lu-Likos",
+    "fredlund": "Fredlund φ_b",
+    "pedrotti_tarantino": "Pedrotti-Tarantino",
 }
 
 

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import nomenclature as nom
-from ..errors import FitError, InputError, Problem
+from ..errors import FitError, OptionError
 from ..fitting.linear import LineFit, fit_line
 from ..io.table import Column, Table, read_table
 from ..physics import shear as ph
@@ -37,6 +37,55 @@ SCHEMA = [
 
 
 @dataclass(frozen=True)
+class ModelParams:
+    """Parameters of the models beyond the thesis's four (SI; None = not given).
+
+    Retention parameters come from `capred retention` output (--retention) or options.
+    """
+
+    s_res: float | None = None  # residual S_R (Vanapalli)
+    vanapalli_kappa: float = 1.0
+    air_entry: float | None = None  # Pa (Khalili-Khabbaz)
+    vg_alpha: float | None = None  # 1/Pa (Lu-Likos)
+    vg_n: float | None = None
+    vg_m: float | None = None
+    water_envelope: tuple[float, float] | None = None  # (c [Pa], phi [deg]) of the saturated soil (P-T)
+
+    def require(self, model: str) -> None:
+        need = {"vanapalli": [("s_res", "--s-res")], "khalili": [("air_entry", "--air-entry")],
+                "lu_likos": [("vg_alpha", "--vg-alpha"), ("vg_n", "--vg-n")]}.get(model, [])
+        missing = [opt for name, opt in need if getattr(self, name) is None]
+        if missing:
+            raise OptionError(f"model '{model}' needs {' and '.join(missing)} (or --retention FIT.json "
+                              "written by capred retention)")
+
+
+def model_params_from_retention(path: str | Path, **overrides) -> ModelParams:
+    """Retention parameters from a `capred retention` fits.json; options in ``overrides`` win."""
+    import json
+
+    try:
+        js = json.loads(Path(path).read_text(encoding="utf-8"))
+        fits = js["fits"]
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise OptionError(f"--retention {path}: not a fits.json written by capred retention ({exc})") from None
+    p: dict = {}
+    vg = fits.get("vg") or fits.get("vg_m_free")
+    if vg:
+        ys, yr = (vg.get("S_s"), vg.get("S_res")) if "S_s" in vg else (vg.get("theta_s"), vg.get("theta_r"))
+        if ys:
+            p["s_res"] = yr / ys if "theta_s" in vg else yr
+        p.update(vg_alpha=vg["alpha_per_kPa"] / 1e3, vg_n=vg["n"], vg_m=vg.get("m"))
+    bc = fits.get("bc")
+    if bc:
+        p["air_entry"] = bc["s_e_kPa"] * 1e3
+        if "s_res" not in p:
+            p["s_res"] = bc["S_res"] if "S_res" in bc else bc["theta_r"] / bc["theta_s"]
+    p.update({k: v for k, v in overrides.items() if v is not None})
+    return ModelParams(**p)
+
+
+@dataclass(frozen=True)
 class ShearOptions:
     """Constants and per-test defaults, all in SI.
 
@@ -53,9 +102,14 @@ class ShearOptions:
     cap_mass: float | None = None  # kg
     radius: float | None = None  # m
     void_volume: float | None = None  # m^3
+    models: tuple[str, ...] = ph.MODELS
+    model_params: ModelParams = field(default_factory=ModelParams)
 
     def as_dict(self) -> dict:
-        return {k: getattr(self, k) for k in self.__dataclass_fields__}
+        out = {k: getattr(self, k) for k in self.__dataclass_fields__ if k != "model_params"}
+        out["models"] = list(self.models)
+        out["model_params"] = {k: getattr(self.model_params, k) for k in self.model_params.__dataclass_fields__}
+        return out
 
 
 @dataclass
@@ -79,6 +133,11 @@ class ShearResult:
     best_model: dict[str, str | None]
     best_model_overall: str | None
     notes: list[str] = field(default_factory=list)
+    phi_b: dict[str, float] = field(default_factory=dict)  # Fredlund tan(phi_b) per material
+
+    @property
+    def models(self) -> tuple[str, ...]:
+        return self.options.models
 
     @property
     def materials(self) -> list[str]:
@@ -104,11 +163,11 @@ class ShearResult:
         }
         for name in ("sigma_N", "suction", "S_R", "tau_max", "chi1", "chi2"):
             cols[nom.column(name)] = nom.to_output(name, t[name])
-        for m in ph.MODELS:
+        for m in self.models:
             cols[nom.column("sigma_eff", f"_{m}")] = nom.to_output("sigma_eff", t[f"sigma_eff_{m}"])
-        for m in ph.MODELS:
+        for m in self.models:
             cols[nom.column("tau_pred", f"_{m}")] = nom.to_output("tau_pred", t[f"tau_pred_{m}"])
-        for m in ph.MODELS:
+        for m in self.models:
             cols[f"residual_{m} [kPa]"] = nom.to_output("tau_pred", t[f"tau_pred_{m}"] - t["tau_max"])
         cols["flags"] = [";".join(self.flags(i)) for i in range(len(t["test_id"]))]
         return pd.DataFrame(cols)
@@ -141,13 +200,16 @@ class ShearResult:
                 "tau_max_kPa": _num(t["tau_max"][i] / 1e3),
                 "chi1": _num(t["chi1"][i]),
                 "chi2_kPa": _num(t["chi2"][i] / 1e3),
-                "tau_pred_kPa": {m: _num(t[f"tau_pred_{m}"][i] / 1e3) for m in ph.MODELS},
-                "residual_kPa": {m: _num((t[f"tau_pred_{m}"][i] - t["tau_max"][i]) / 1e3) for m in ph.MODELS},
+                "tau_pred_kPa": {m: _num(t[f"tau_pred_{m}"][i] / 1e3) for m in self.models},
+                "residual_kPa": {m: _num((t[f"tau_pred_{m}"][i] - t["tau_max"][i]) / 1e3) for m in self.models},
                 "flags": self.flags(i),
             })
         return {
             "source": self.source,
-            "materials": {m: _fit_dict(f) for m, f in self.fits.items()},
+            "materials": {m: {**_fit_dict(f), **({"phi_b_deg": _num(np.degrees(np.arctan(self.phi_b[m])))}
+                                                 if m in self.phi_b else {})}
+                          for m, f in self.fits.items()},
+            "models": list(self.models),
             "tests": tests,
             "metrics": {mat: {m: _metric_dict(v) for m, v in d.items()} for mat, d in self.metrics.items()},
             "metrics_overall": {m: _metric_dict(v) for m, v in self.metrics_overall.items()},
@@ -360,26 +422,66 @@ def run_shear(source: str | Path, options: ShearOptions | None = None) -> ShearR
         "chi1": np.where(wet, ph.chi1(d["S_R"]), 0.0),
         "chi2": np.where(wet, ph.chi2(d["S_R"], d["R"], opt.surface_tension), 0.0),
     }
-    for m in ph.MODELS:
-        eff = ph.effective_normal_stress(m, d["sigma_N"], d["suction"], d["S_R"], d["R"], opt.surface_tension)
-        eff = np.where(wet, eff, d["sigma_N"])
-        tests[f"sigma_eff_{m}"] = eff
-        tests[f"tau_pred_{m}"] = ph.mohr_coulomb_strength(c, tan_phi, eff)
-
+    phi_b = _predict(tests, wet, mat, fits, opt)
     metrics = {
         m: {mod: model_metrics(tests[f"tau_pred_{mod}"][(mat == m) & wet], d["tau_max"][(mat == m) & wet])
-            for mod in ph.MODELS}
+            for mod in opt.models}
         for m in fits if np.any((mat == m) & wet)
     }
     for m in fits:
         metrics.setdefault(m, {})
-    overall = {mod: model_metrics(tests[f"tau_pred_{mod}"][wet], d["tau_max"][wet]) for mod in ph.MODELS} \
+    overall = {mod: model_metrics(tests[f"tau_pred_{mod}"][wet], d["tau_max"][wet]) for mod in opt.models} \
         if wet.any() else {}
     return ShearResult(
         source=str(source), options=opt, tests=tests, fits=fits, metrics=metrics,
         metrics_overall=overall, best_model={m: best_of(v) for m, v in metrics.items()},
-        best_model_overall=best_of(overall), notes=table.notes,
+        best_model_overall=best_of(overall), notes=table.notes, phi_b=phi_b,
     )
+
+
+def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions) -> dict[str, float]:
+    """tau_pred (and sigma'_N where the model defines one) of every chosen model, in place."""
+    from ..physics import effective_stress_models as esm
+
+    sigma_N, s, S_R, R = tests["sigma_N"], tests["suction"], tests["S_R"], tests["R"]
+    c = np.array([fits[m].intercept for m in mat])
+    tan_phi = np.array([fits[m].slope for m in mat])
+    mp = opt.model_params
+    phi_b: dict[str, float] = {}
+    for model in opt.models:
+        mp.require(model)
+        if model in ph.MODELS:
+            eff = ph.effective_normal_stress(model, sigma_N, s, S_R, R, opt.surface_tension)
+        elif model == "vanapalli":
+            eff = sigma_N + esm.chi_vanapalli(S_R, mp.s_res, mp.vanapalli_kappa) * s
+        elif model == "khalili":
+            eff = sigma_N + esm.chi_khalili(s, mp.air_entry) * s
+        elif model == "lu_likos":
+            eff = sigma_N + esm.chi_lu_likos(s, mp.vg_alpha, mp.vg_n, mp.vg_m) * s
+        elif model == "fredlund":
+            tb = np.zeros(len(mat))
+            for m in fits:
+                sel = wet & (mat == m)
+                if sel.any():
+                    phi_b[m] = esm.fit_tan_phi_b(s[sel], tests["tau_max"][sel] - ph.mohr_coulomb_strength(
+                        fits[m].intercept, fits[m].slope, sigma_N[sel]))
+                    tb[mat == m] = phi_b[m]
+            eff = sigma_N + s * tb / tan_phi
+        elif model == "pedrotti_tarantino":
+            if mp.water_envelope is None:
+                c_w, tan_w = c, tan_phi
+            else:
+                c_w, tan_w = mp.water_envelope[0], np.tan(np.radians(mp.water_envelope[1]))
+            tau = esm.pedrotti_tarantino_strength(sigma_N, s, S_R, c_w, tan_w, c, tan_phi)
+            tests[f"sigma_eff_{model}"] = np.where(wet, np.nan, sigma_N)
+            tests[f"tau_pred_{model}"] = np.where(wet, tau, ph.mohr_coulomb_strength(c, tan_phi, sigma_N))
+            continue
+        else:
+            raise OptionError(f"unknown model '{model}'; choose from {', '.join(ph.MODELS + ph.EXTRA_MODELS)}")
+        eff = np.where(wet, eff, sigma_N)
+        tests[f"sigma_eff_{model}"] = eff
+        tests[f"tau_pred_{model}"] = ph.mohr_coulomb_strength(c, tan_phi, eff)
+    return phi_b
 
 
 def write_shear_outputs(result: ShearResult, out_dir: str | Path, plots: bool = True,

@@ -15,13 +15,16 @@ def shear_tables(result) -> list[Table]:
     """Dry fits per material, then model metrics with the best model marked."""
     js = result.to_json()
     fits = Table(title="Dry envelope τ = c + σ_N tan φ", title_justify="left")
-    for col in ("material", "n", "c [kPa]", "± se", "φ [°]", "± se", "tan φ", "R²"):
+    phi_b = any("phi_b_deg" in f for f in js["materials"].values())
+    for col in ("material", "n", "c [kPa]", "± se", "φ [°]", "± se", "tan φ", "R²") + (("φ_b [°]",) if phi_b else ()):
         fits.add_column(escape(col), justify="left" if col == "material" else "right")
     for mat, f in js["materials"].items():
         fits.add_row(mat, str(f["n"]), _f(f["c_kPa"]), _f(f["c_se_kPa"], ".2g"), _f(f["phi_deg"], ".2f"),
-                     _f(f["phi_se_deg"], ".2f"), _f(f["tan_phi"]), _f(f["r2"]))
+                     _f(f["phi_se_deg"], ".2f"), _f(f["tan_phi"]), _f(f["r2"]),
+                     *((_f(f.get("phi_b_deg"), ".2f"),) if phi_b else ()))
 
     met = Table(title="Wet tests: model comparison (residual = predicted − measured)", title_justify="left")
+
     for col in ("material", "model", "n", "RMSE [kPa]", "bias [kPa]", "R²", ""):
         met.add_column(escape(col), justify="left" if col in ("material", "model") else "right")
     groups = list(js["metrics"].items())

@@ -4,13 +4,18 @@ from __future__ import annotations
 import numpy as np
 
 from .. import nomenclature as nom
-from ..physics.shear import MODEL_LABELS, MODELS
+from ..physics.shear import MODEL_LABELS
 
 MODEL_STYLE = {
     "no_suction": dict(color="0.45", marker="s"),
     "bishop": dict(color="tab:blue", marker="o"),
     "own1": dict(color="tab:orange", marker="^"),
     "own2": dict(color="tab:green", marker="D"),
+    "vanapalli": dict(color="tab:purple", marker="v"),
+    "khalili": dict(color="tab:brown", marker="<"),
+    "lu_likos": dict(color="tab:pink", marker=">"),
+    "fredlund": dict(color="tab:olive", marker="p"),
+    "pedrotti_tarantino": dict(color="tab:cyan", marker="h"),
 }
 KPA = 1e-3
 
@@ -49,7 +54,7 @@ def plot_measured_vs_predicted(ax, result, material):
     wet = _wet(result, material)
     meas = t["tau_max"][wet] * KPA
     hi = 0.0
-    for m in MODELS:
+    for m in result.models:
         pred = t[f"tau_pred_{m}"][wet] * KPA
         hi = max(hi, pred.max(initial=0), meas.max(initial=0))
         met = result.metrics[material].get(m)
@@ -76,7 +81,7 @@ def plot_strength_vs_saturation(ax, result, material):
         sel = wet & (np.round(t["sigma_N"], 6) == level)
         order = np.argsort(t["S_R"][sel])
         s = t["S_R"][sel][order]
-        for m in MODELS:
+        for m in result.models:
             ax.plot(s, t[f"tau_pred_{m}"][sel][order] * KPA, "-", color=MODEL_STYLE[m]["color"],
                     lw=1.2, alpha=0.9, label=MODEL_LABELS[m] if k == 0 else None)
         ax.plot(s, t["tau_max"][sel][order] * KPA, "k" + "ov^sD"[k % 5], ms=4, ls="none",
@@ -93,7 +98,7 @@ def plot_residuals(ax, result, material):
     """Residual (predicted - measured) against S_R for each model."""
     t = result.tests
     wet = _wet(result, material)
-    for m in MODELS:
+    for m in result.models:
         ax.plot(t["S_R"][wet], (t[f"tau_pred_{m}"][wet] - t["tau_max"][wet]) * KPA, ls="none", ms=4,
                 alpha=0.85, label=MODEL_LABELS[m], **MODEL_STYLE[m])
     ax.axhline(0.0, color="k", lw=0.8)
