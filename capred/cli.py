@@ -42,8 +42,14 @@ def _root(
     strength parameters, model comparisons and report figures."""
 
 
+# While `capred batch` reads a manifest, commands hand their jobs here instead of running them.
+_COLLECTING: Optional[list] = None
+
+
 def fail(exc: CapredError) -> None:
-    """Print a clean one-message error to stderr and exit 1."""
+    """Print a clean one-message error to stderr and exit 1 (re-raised while collecting a manifest)."""
+    if _COLLECTING is not None:
+        raise exc
     typer.echo(f"Error: {exc}", err=True)
     raise typer.Exit(1)
 
@@ -75,16 +81,19 @@ OutOpt = Annotated[Optional[Path], typer.Option("--out", "-o", help="Output fold
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON document on stdout instead of tables.")]
 PlotOpt = Annotated[bool, typer.Option("--plots/--no-plots", help="Write the PNG report figures.")]
 SampleOpt = Annotated[bool, typer.Option("--sample", help="Run on the bundled (synthetic) sample data.")]
+WorkersOpt = Annotated[int, typer.Option(min=1, help="Worker processes for a batch of files.")]
 
 
 @app.command()
 def shear(
-    data: Annotated[Optional[Path], typer.Argument(help="CSV of direct-shear tests, one row per test.",
-                                                   show_default=False)] = None,
+    data: Annotated[Optional[list[Path]], typer.Argument(help="CSV files of direct-shear tests (one row per test); "
+                                                         "several files or globs run as a batch.",
+                                                         show_default=False)] = None,
     out: OutOpt = None,
     json_out: JsonOpt = False,
     plots: PlotOpt = True,
     sample: SampleOpt = False,
+    workers: WorkersOpt = 1,
     gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3]; the thesis uses 10.")] = "9.81",
     surface_tension: Annotated[str, typer.Option(help="Surface tension of water [N/m].")] = "0.0728",
     gravity: Annotated[str, typer.Option("--g", help="Gravitational acceleration [m/s^2].")] = "9.81",
@@ -117,9 +126,8 @@ def shear(
     Example: capred shear tests.csv --out report --gamma-w 10
     """
     try:
-        from .pipelines.shear import ShearOptions, run_shear, write_shear_outputs
+        from .pipelines.shear import ShearOptions
 
-        src = _source(data, sample, "shear")
         opts = ShearOptions(
             gamma_w=_quantity(gamma_w, "kN/m^3", "unit_weight", "--gamma-w"),
             surface_tension=_quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
@@ -135,27 +143,22 @@ def shear(
                                        vg_alpha=_quantity(vg_alpha, "1/kPa", "per_pressure", "--vg-alpha"),
                                        vg_n=vg_n, vg_m=vg_m, water_envelope=_envelope_pair(water_envelope)),
         )
-        result = run_shear(src, opts)
-        out_dir = out or _default_out("shear", src)
-        written = write_shear_outputs(result, out_dir, plots=plots, command_options={"plots": plots})
+        _dispatch("shear", data, sample, out, json_out, plots, workers,
+                  {"options": opts, "command_options": {"plots": plots}})
     except CapredError as exc:
         fail(exc)
-    if json_out:
-        typer.echo(json.dumps(result.to_json(), indent=2, ensure_ascii=False))
-        return
-    from .report.console import shear_tables
-
-    _print(shear_tables(result), result.notes, written, out_dir)
 
 
 @app.command("triaxial-bounds")
 def triaxial_bounds(
-    data: Annotated[Optional[Path], typer.Argument(help="CSV of triaxial tests, one row per test.",
-                                                   show_default=False)] = None,
+    data: Annotated[Optional[list[Path]], typer.Argument(help="CSV files of triaxial tests (one row per test); "
+                                                         "several files or globs run as a batch.",
+                                                         show_default=False)] = None,
     out: OutOpt = None,
     json_out: JsonOpt = False,
     plots: PlotOpt = True,
     sample: SampleOpt = False,
+    workers: WorkersOpt = 1,
     curves: Annotated[Optional[Path], typer.Option(help="Long CSV of raw curves (test_id, axial_strain, q): "
                                                    "failure = peak of q, for tests without q_f or sigma1.")] = None,
     c_eff: Annotated[Optional[str], typer.Option(help="Effective cohesion c' [kPa], instead of fitting saturated tests.")] = None,
@@ -170,33 +173,25 @@ def triaxial_bounds(
     Example: capred triaxial-bounds tests.csv --out bounds
     """
     try:
-        from .pipelines.triaxial import TriaxialOptions, run_triaxial_bounds, write_triaxial_outputs
+        from .pipelines.triaxial import TriaxialOptions
 
-        src = _source(data, sample, "triaxial-bounds")
         opts = TriaxialOptions(c_eff=_quantity(c_eff, "kPa", "pressure", "--c-eff"), phi_eff=phi_eff)
-        result = run_triaxial_bounds(src, opts, curves=curves)
-        out_dir = out or _default_out("triaxial", src)
-        inputs = [src] + ([curves] if curves else [])
-        written = write_triaxial_outputs(result, out_dir, plots=plots, inputs=inputs,
-                                         command_options={"plots": plots, "curves": str(curves) if curves else None})
+        _dispatch("triaxial-bounds", data, sample, out, json_out, plots, workers,
+                  {"options": opts, "curves": curves,
+                   "command_options": {"plots": plots, "curves": str(curves) if curves else None}})
     except CapredError as exc:
         fail(exc)
-    if json_out:
-        typer.echo(json.dumps(result.to_json(), indent=2, ensure_ascii=False))
-        return
-    from .report.console import triaxial_tables
-
-    _print(triaxial_tables(result), result.notes, written, out_dir)
 
 
 @app.command()
 def retention(
-    data: Annotated[Optional[Path], typer.Argument(help="CSV of retention readings: suction or head, and S_R, "
-                                                   "theta or z2 + V_v.", show_default=False)] = None,
+    data: Annotated[Optional[list[Path]], typer.Argument(help="CSV files of retention readings: suction or head, "
+                                                         "and S_R, theta or z2 + V_v.", show_default=False)] = None,
     out: OutOpt = None,
     json_out: JsonOpt = False,
     plots: PlotOpt = True,
     sample: SampleOpt = False,
+    workers: WorkersOpt = 1,
     model: Annotated[str, typer.Option(help="vg (m = 1 - 1/n, and m free), bc, or all.")] = "all",
     fix: Annotated[Optional[list[str]], typer.Option(help="Fix a parameter, e.g. --fix theta_s=0.25 "
                                                      "(alpha in 1/kPa, s_e in kPa); repeatable.")] = None,
@@ -210,27 +205,180 @@ def retention(
     Example: capred retention column.csv --model vg --fix theta_r=0
     """
     try:
-        from .pipelines.retention import RetentionOptions, parse_fixed, run_retention, write_retention_outputs
+        from .pipelines.retention import RetentionOptions, parse_fixed
 
         models = {"all": ("vg", "vg_m_free", "bc"), "vg": ("vg", "vg_m_free"), "bc": ("bc",)}
         if model not in models:
             from .errors import OptionError
 
             raise OptionError(f"--model must be vg, bc or all (got '{model}')")
-        src = _source(data, sample, "retention")
         opts = RetentionOptions(models=models[model], fixed=parse_fixed(fix or []),
                                 gamma_w=_quantity(gamma_w, "kN/m^3", "unit_weight", "--gamma-w"))
-        result = run_retention(src, opts)
-        out_dir = out or _default_out("retention", src)
-        written = write_retention_outputs(result, out_dir, plots=plots, command_options={"plots": plots})
+        _dispatch("retention", data, sample, out, json_out, plots, workers,
+                  {"options": opts, "command_options": {"plots": plots}})
     except CapredError as exc:
         fail(exc)
-    if json_out:
-        typer.echo(json.dumps(result.to_json(), indent=2, ensure_ascii=False))
-        return
-    from .report.console import retention_tables
 
-    _print(retention_tables(result), result.notes, written, out_dir)
+
+def _dispatch(command, data, sample, out, json_out, plots, workers, kwargs) -> None:
+    """One file: run it and show its tables (or JSON). Several: a batch with progress and an index."""
+    from .pipelines import jobs
+
+    sources = _sources(data, sample, command)
+    if _COLLECTING is not None:
+        _COLLECTING.append((command, sources, kwargs, plots, out))
+        return
+    if len(sources) == 1:
+        job = jobs.Job(command, sources[0], out or _default_out(command.split("-")[0], sources[0]), kwargs, plots)
+        result, written = jobs.run(job)
+        if json_out:
+            typer.echo(json.dumps(result.to_json(), indent=2, ensure_ascii=False))
+            return
+        from .report import console
+
+        tables = {"shear": console.shear_tables, "triaxial-bounds": console.triaxial_tables,
+                  "retention": console.retention_tables}[command](result)
+        _print(tables, result.notes, written, job.out_dir)
+        return
+    root = out or Path.cwd() / "capred_out"
+    batch = [jobs.Job(command, src, d, kwargs, plots, keep_json=json_out)
+             for src, d in zip(sources, jobs.output_dirs([command] * len(sources), sources, root))]
+    _run_batch(batch, root, json_out, workers)
+
+
+def _run_batch(batch, root: Path, json_out: bool, workers: int) -> None:
+    """Run jobs with a progress bar (on a terminal, not with --json), print a summary, write index.csv."""
+    from rich.console import Console
+    from rich.markup import escape
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+    from rich.table import Table
+
+    from .pipelines import jobs
+
+    err = Console(stderr=True)
+    show = err.is_terminal and not json_out
+    with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
+                  console=err, disable=not show, transient=True) as progress:
+        task = progress.add_task(f"capred: {len(batch)} files", total=len(batch))
+        outcomes = jobs.run_all(batch, workers, on_done=lambda o: progress.advance(task))
+    index = jobs.write_index(root, outcomes)
+    failed = [o for o in outcomes if not o.ok]
+    if json_out:
+        typer.echo(json.dumps({"files": [{"input": o.source, "command": o.command, "ok": o.ok,
+                                          "error": o.message or None, "out_dir": o.out_dir,
+                                          "result": o.result_json} for o in outcomes],
+                               "index": str(index), "failed": len(failed)}, indent=2, ensure_ascii=False))
+    else:
+        t = Table(title=f"{len(outcomes) - len(failed)} of {len(outcomes)} files reduced", title_justify="left")
+        for col in ("input", "command", "status", "output / error"):
+            t.add_column(col)
+        for o in outcomes:
+            t.add_row(escape(o.source), o.command, "[green]ok[/]" if o.ok else "[red]failed[/]",
+                      escape(o.out_dir if o.ok else o.message))
+        Console().print(t)
+        Console().print(f"Index of all outputs: [bold]{escape(str(index))}[/]")
+    for o in failed:
+        typer.echo(f"Error: {o.message}", err=True)
+    if failed:
+        raise typer.Exit(1)
+
+
+@app.command()
+def batch(
+    manifest: Annotated[Path, typer.Argument(help="CSV (command,input,options) or TOML ([[run]] command, input, "
+                                             "options) listing the runs.", show_default=False)],
+    out: Annotated[Optional[Path], typer.Option("--out", "-o", help="Root output folder [default: ./capred_out].")] = None,
+    json_out: JsonOpt = False,
+    workers: WorkersOpt = 1,
+):
+    """Run a season's worth of reductions listed in a manifest: one line per run,
+    with the command (shear, triaxial-bounds, retention), the input file or glob,
+    and that command's options as on the command line. Every file gets its own
+    folder under --out; bad files are reported and the others still complete;
+    index.csv lists every output; the exit code is 1 if anything failed.
+
+    Example: capred batch season.csv --workers 2   (season.csv: command,input,options /
+    shear,runs/*.csv,--gamma-w 10 --no-plots)
+    """
+    global _COLLECTING
+    import shlex
+
+    import typer.main
+
+    from .errors import InputError, Problem
+    from .pipelines import jobs
+
+    try:
+        entries = _read_manifest(manifest)
+    except CapredError as exc:
+        fail(exc)
+    group = typer.main.get_command(app)
+    root = out or Path.cwd() / "capred_out"
+    collected: list = []
+    problems: list = []
+    base = manifest.parent
+    for line, command, pattern, options in entries:
+        cmd = group.commands.get(command) if command in jobs.RUNNERS else None
+        if cmd is None:
+            problems.append(Problem(str(manifest), line, "command", f"'{command}' is not one of {', '.join(jobs.RUNNERS)}"))
+            continue
+        target = pattern if Path(pattern).is_absolute() else str(base / pattern)
+        try:
+            ctx = cmd.make_context(command, [target, *shlex.split(options)])
+            _COLLECTING = collected
+            ctx.invoke(cmd.callback, **ctx.params)
+        except CapredError as exc:
+            problems.append(Problem(str(manifest), line, None, str(exc)))
+        except Exception as exc:  # click usage errors: bad option names or values in the manifest
+            if type(exc).__module__.split(".")[0] not in ("click", "typer"):
+                raise
+            problems.append(Problem(str(manifest), line, "options", getattr(exc, "format_message", lambda: str(exc))()))
+        finally:
+            _COLLECTING = None
+    if problems:
+        fail(InputError(problems))
+    all_jobs = []
+    for command, sources, kwargs, plots, _ in collected:
+        all_jobs += [(command, src, kwargs, plots) for src in sources]
+    dirs = jobs.output_dirs([c for c, _, _, _ in all_jobs], [src for _, src, _, _ in all_jobs], root)
+    batch_jobs = [jobs.Job(c, src, d, kw, pl, keep_json=json_out) for (c, src, kw, pl), d in zip(all_jobs, dirs)]
+    _run_batch(batch_jobs, root, json_out, workers)
+
+
+def _read_manifest(path: Path) -> list[tuple[int, str, str, str]]:
+    """(line, command, input, options) per run, from a CSV or TOML manifest."""
+    from .errors import InputError, Problem
+
+    if not path.is_file():
+        raise InputError(Problem(str(path), None, None, "file not found"))
+    text = path.read_text(encoding="utf-8-sig")
+    if path.suffix.lower() == ".toml":
+        import tomllib
+
+        try:
+            runs = tomllib.loads(text).get("run", [])
+        except tomllib.TOMLDecodeError as exc:
+            raise InputError(Problem(str(path), None, None, f"not valid TOML: {exc}")) from None
+        out = []
+        for k, r in enumerate(runs, start=1):
+            if not isinstance(r, dict) or "command" not in r or "input" not in r:
+                raise InputError(Problem(str(path), None, None, f"[[run]] number {k} needs 'command' and 'input'"))
+            opts = r.get("options", "")
+            out.append((k, str(r["command"]), str(r["input"]), " ".join(opts) if isinstance(opts, list) else str(opts)))
+        return out
+    import csv
+
+    rows = [(n, row) for n, row in enumerate(csv.reader(text.splitlines()), start=1)
+            if row and not row[0].lstrip().startswith("#") and any(c.strip() for c in row)]
+    if not rows:
+        raise InputError(Problem(str(path), None, None, "the manifest is empty"))
+    header = [h.strip().lower() for h in rows[0][1]]
+    if "command" not in header or "input" not in header:
+        raise InputError(Problem(str(path), rows[0][0], None, "the header needs 'command' and 'input' (and 'options')"))
+    ci, ii = header.index("command"), header.index("input")
+    oi = header.index("options") if "options" in header else None
+    return [(n, r[ci].strip(), r[ii].strip(), r[oi].strip() if oi is not None and oi < len(r) else "")
+            for n, r in rows[1:]]
 
 
 def _calc_done(result, out, json_out, plots, figure_fn=None, options=None):
@@ -402,6 +550,27 @@ def _envelope_pair(text: Optional[str]):
     except ValueError:
         raise OptionError(f"--water-envelope '{text}': expected 'c,phi' in kPa and degrees") from None
     return c * 1e3, phi
+
+
+def _sources(data: Optional[list[Path]], sample: bool, command: str) -> list[Path]:
+    """Input files: the arguments with globs expanded (sorted), or the bundled sample."""
+    import glob
+
+    from .errors import InputError, Problem
+
+    if sample or not data:
+        return [_source(data[0] if data else None, sample, command)]
+    out: list[Path] = []
+    for p in data:
+        text = str(p)
+        if any(ch in text for ch in "*?[") and not p.exists():
+            hits = sorted(glob.glob(text, recursive=True))
+            if not hits:
+                raise InputError(Problem(text, None, None, "no file matches this pattern"))
+            out += [Path(h) for h in hits]
+        else:
+            out.append(p)
+    return out
 
 
 def _source(data: Optional[Path], sample: bool, command: str) -> Path:

@@ -36,7 +36,8 @@ class InputError(CapredError):
     def __init__(self, problems: list[Problem] | Problem):
         if isinstance(problems, Problem):
             problems = [problems]
-        self.problems = list(problems)
+        # report in file order: header problems first, then rows as a spreadsheet lists them
+        self.problems = sorted(problems, key=lambda p: (p.file, p.line or 0))
         super().__init__(self._text())
 
     def _text(self) -> str:
