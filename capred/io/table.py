@@ -137,18 +137,24 @@ def _match_header(header: str, lookup: dict[str, Column]) -> tuple[Column | None
     return None, None
 
 
-def read_table(path: str | Path, schema: list[Column]) -> Table:
-    """Read ``path`` against ``schema``; problems are collected in ``Table.problems``.
+def read_table(path, schema: list[Column]) -> Table:
+    """Read ``path`` (a CSV file, or a pandas DataFrame) against ``schema``.
+
+    Problems are collected in ``Table.problems``.
 
     Raises InputError at once only when the file cannot be read as a table at
     all (missing, empty, no data rows); every other problem is collected so
     the caller can add its own checks and report them together.
     """
-    p = Path(path)
-    shown = str(path)
-    if not p.is_file():
-        raise InputError(Problem(shown, None, None, "file not found"))
-    text = _decode(p)
+    if hasattr(path, "to_csv"):  # a pandas DataFrame from a lab script: parsed like the same table in a file
+        shown = "<DataFrame>"
+        text = path.to_csv(index=False)
+    else:
+        p = Path(path)
+        shown = str(path)
+        if not p.is_file():
+            raise InputError(Problem(shown, None, None, "file not found"))
+        text = _decode(p)
     numbered = [
         (i + 1, line)
         for i, line in enumerate(text.splitlines())
@@ -221,7 +227,12 @@ def read_table(path: str | Path, schema: list[Column]) -> Table:
                 table.add_problem(i, name, f"'{c}' is not a number")
                 v = float("nan")
             values[i] = v
-        table.columns[name] = values * factor
+        with np.errstate(over="ignore", invalid="ignore"):
+            si = values * factor
+        for i in np.flatnonzero(np.isinf(si)):
+            table.add_problem(i, name, f"'{cells[i]}' is too large once converted to SI units")
+            si[i] = np.nan
+        table.columns[name] = si
         _check_rule(table, col)
     return table
 

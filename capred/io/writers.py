@@ -75,7 +75,7 @@ def provenance(command: str, inputs: list[str | Path], options: dict, outputs: l
         "command": command,
         "command_line": " ".join(sys.argv),
         "python": sys.version.split()[0],
-        "inputs": [{"path": str(p), "sha256": sha256(p)} for p in inputs],
+        "inputs": [{"path": str(p), "sha256": sha256(p) if Path(str(p)).is_file() else None} for p in inputs],
         "options": options,
         "outputs": sorted(Path(p).name for p in outputs),
         "created_utc": datetime.now(timezone.utc).replace(microsecond=0).isoformat(),

@@ -84,7 +84,7 @@ def _inputs(source, schema: list[Column], options: dict[str, float | None], opti
     table.raise_if_problems()
     if "case" in table.columns:
         values["case"] = table.columns["case"]
-    return values, table.notes, str(source)
+    return values, table.notes, table.path
 
 
 PRISM = [
@@ -131,7 +131,7 @@ def run_skempton_b(source=None, sr: float | None = None, b: float | None = None,
     labels = _labels(v)
     forward = bool(np.all(np.isfinite(v["S_r"])))
     if not forward and not np.all(np.isfinite(v["B"])):
-        raise InputError(Problem(str(source), None, None, "every row needs 'S_r' (to compute B) or every row 'B' "
+        raise InputError(Problem(str(src), None, None, "every row needs 'S_r' (to compute B) or every row 'B' "
                                                           "(to compute S_r)"))
     v.pop("B" if forward else "S_r")
     suction = s_e is not None and bc_alpha is not None

@@ -206,7 +206,7 @@ def run_retention(source: str | Path, options: RetentionOptions | None = None) -
                     fits[b][m] = fit_van_genuchten(s[sel], y[sel], fx, m_free=(m == "vg_m_free"))
             except FitError as exc:
                 raise FitError(f"{table.path}: branch '{b}', model {m}: {exc}") from None
-    return RetentionResult(str(source), quantity, s, y, branch, how, fits, opt, list(table.notes))
+    return RetentionResult(table.path, quantity, s, y, branch, how, fits, opt, list(table.notes))
 
 
 def write_retention_outputs(result: RetentionResult, out_dir, plots=True, command_options=None) -> list[Path]:

@@ -433,7 +433,7 @@ def run_shear(source: str | Path, options: ShearOptions | None = None) -> ShearR
     overall = {mod: model_metrics(tests[f"tau_pred_{mod}"][wet], d["tau_max"][wet]) for mod in opt.models} \
         if wet.any() else {}
     return ShearResult(
-        source=str(source), options=opt, tests=tests, fits=fits, metrics=metrics,
+        source=table.path, options=opt, tests=tests, fits=fits, metrics=metrics,
         metrics_overall=overall, best_model={m: best_of(v) for m, v in metrics.items()},
         best_model_overall=best_of(overall), notes=table.notes, phi_b=phi_b,
     )

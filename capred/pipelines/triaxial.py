@@ -331,7 +331,7 @@ def run_triaxial_bounds(source: str | Path, options: TriaxialOptions | None = No
         "sigma1": s1, "sigma2": s2, "sigma3": s3, "p": tx.mean_stress(s1, s3, s2), "q": q,
         "p0": p0, "s0": s0, "strain_f": d["strain"], "lode": tx.lode_angle(s1, s2, s3),
     }
-    return TriaxialResult(str(source), env, tests, bounds, q_sat, _group_analysis(tests, env), notes)
+    return TriaxialResult(table.path, env, tests, bounds, q_sat, _group_analysis(tests, env), notes)
 
 
 def _group_analysis(t: dict, env: Envelope) -> list[dict]:
