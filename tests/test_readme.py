@@ -1,0 +1,57 @@
+"""Every capred command and the Python example in the README run as written (issue 6)."""
+import os
+import re
+import shlex
+import shutil
+
+import pytest
+from typer.testing import CliRunner
+
+import capred
+from capred.cli import app
+from conftest import ROOT
+
+README = (ROOT / "README.md").read_text(encoding="utf-8")
+BLOCKS = re.findall(r"```(\w+)\n(.*?)```", README, flags=re.S)
+
+
+def _capred_lines():
+    for lang, body in BLOCKS:
+        if lang != "bash":
+            continue
+        for line in body.splitlines():
+            line = line.split("  #")[0].strip()
+            if "capred " in line:
+                yield line[line.index("capred ") + len("capred "):]
+
+
+@pytest.fixture
+def lab(tmp_path, monkeypatch):
+    """A folder holding the files the README's examples name."""
+    for name, sample in (("tests.csv", "shear"), ("triaxial.csv", "triaxial-bounds"), ("column.csv", "retention")):
+        shutil.copy(capred.sample_path(sample), tmp_path / name)
+    for folder, sample, name in (("runs", "shear", "sand_1.csv"), ("triaxial", "triaxial-bounds", "gavet.csv"),
+                                 ("column", "retention", "c1.csv")):
+        (tmp_path / folder).mkdir()
+        shutil.copy(capred.sample_path(sample), tmp_path / folder / name)
+    manifest = next(body for lang, body in BLOCKS if lang == "text" and body.startswith("command,input,options"))
+    (tmp_path / "season.csv").write_text(manifest)
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
+
+
+def test_readme_has_the_two_setup_commands_first():
+    first = BLOCKS[0][1].strip().splitlines()
+    assert len(first) == 2 and "capred shear --sample" in first[0] and "pytest" in first[1]
+
+
+@pytest.mark.parametrize("line", list(_capred_lines()))
+def test_readme_command_runs(line, lab):
+    res = CliRunner().invoke(app, shlex.split(line))
+    assert res.exit_code == 0, (line, res.output)
+
+
+def test_readme_python_example_runs(lab):
+    code = next(body for lang, body in BLOCKS if lang == "python")
+    exec(compile(code, "README.md", "exec"), {})
+    assert (lab / "report" / "results.csv").exists()
