@@ -381,6 +381,142 @@ def _read_manifest(path: Path) -> list[tuple[int, str, str, str]]:
             for n, r in rows[1:]]
 
 
+bridge_app = typer.Typer(help="Exact capillary bridges between two equal spheres (Young-Laplace), the "
+                              "thesis's analytical comparison and checks against microscopic tests.",
+                         no_args_is_help=True)
+app.add_typer(bridge_app, name="bridge")
+
+
+@bridge_app.command("curve")
+def bridge_curve_cmd(
+    radius: Annotated[str, typer.Option(help="Particle radius R [mm] (2 mm steel spheres: 1).")] = "1",
+    surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m].")] = "0.0728",
+    contact_angle: Annotated[float, typer.Option(help="Contact angle theta [deg].")] = 0.0,
+    points: Annotated[int, typer.Option(help="Number of S_R values.")] = 2000,
+    sr_max: Annotated[float, typer.Option(help="Largest S_R of the sweep (bridges stop where suction reaches 0).")] = 0.3,
+    pendular_limit: Annotated[float, typer.Option(help="S_R bound of the pendular regime panel.")] = 0.05,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    plots: PlotOpt = True,
+):
+    """The thesis's analytical comparison: sigma' = F_cap/(pi R^2) against
+    S_R = 3 V_w/(2 pi R^3) for two spheres in contact, from exact bridges,
+    beside Israelachvili, Bishop, Own 1 and Own 2; one panel inside the
+    pendular regime and one over the whole concave range.
+
+    Example: capred bridge curve --radius 1 --contact-angle 0 --points 2000
+    """
+    try:
+        from .pipelines.bridge import bridge_curve, write_bridge_outputs
+        from .report.bridge_figures import figure_curve
+
+        curve = bridge_curve(_quantity(radius, "mm", "length", "--radius"),
+                             _quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
+                             contact_angle, points, pendular_limit, sr_max)
+        js = curve.to_json()
+        out_dir = out or Path.cwd() / "capred_out" / "bridge_curve"
+        written = write_bridge_outputs("bridge curve", curve.rows(), js, out_dir,
+                                       figure_curve(curve) if plots else None,
+                                       options={"radius": radius, "surface_tension": surface_tension,
+                                                "contact_angle": contact_angle, "points": points})
+    except CapredError as exc:
+        fail(exc)
+    if json_out:
+        typer.echo(json.dumps(js, indent=2, ensure_ascii=False))
+        return
+    from rich.table import Table
+
+    t = Table(title="RMS relative error of sigma' against the exact bridge", title_justify="left")
+    for col in ("model", f"S_R < {pendular_limit:g}", f"S_R >= {pendular_limit:g}"):
+        t.add_column(col, justify="right" if col != "model" else "left")
+    err = js["rms_relative_error_vs_exact"]
+    for m in ("israelachvili", "bishop", "own1", "own2"):
+        t.add_row(m, *(f"{err[r][m]:.1%}" if err[r][m] is not None else "—" for r in ("inside", "outside")))
+    _print([t], [], written, out_dir)
+
+
+@bridge_app.command("solve")
+def bridge_solve_cmd(
+    data: Annotated[Optional[Path], typer.Argument(help="CSV, one bridge per row: R, gamma, theta, gap, and "
+                                                   "suction or V_w.", show_default=False)] = None,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    sample: SampleOpt = False,
+):
+    """Exact bridge per row: neck radius r0, F_cap = F_L + F_T, V_w, half-filling
+    angle, S_R = 3V_w/(2 pi R^3) and sigma' = F_cap/(pi R^2); a row without a
+    bridge (beyond rupture, too much water) gets a status, not an error.
+
+    Example: capred bridge solve cases.csv --json
+    """
+    try:
+        from .pipelines.bridge import solve_bridges, write_bridge_outputs
+
+        src = _source(data, sample, "bridge-solve")
+        res = solve_bridges(src)
+        out_dir = out or _default_out("bridge", src)
+        written = write_bridge_outputs("bridge solve", res.rows(), res.to_json(), out_dir, inputs=[src])
+    except CapredError as exc:
+        fail(exc)
+    if json_out:
+        typer.echo(json.dumps({"bridges": res.rows()}, indent=2, ensure_ascii=False))
+        return
+    keep = ("case", "r0_mm", "F_cap_mN", "V_w_mm3", "filling_angle_deg", "suction_kPa", "S_R", "sigma_prime_kPa",
+            "status")
+    _print([_rows_table("Exact capillary bridges", [{k: r[k] for k in keep if k in r} for r in res.rows()])],
+           res.notes, written, out_dir)
+
+
+@bridge_app.command("compare")
+def bridge_compare_cmd(
+    data: Annotated[Optional[Path], typer.Argument(help="CSV of microscopic tests: R, theta, gap, V_w, measured "
+                                                   "F_cap (and filling_angle).", show_default=False)] = None,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    plots: PlotOpt = True,
+    sample: SampleOpt = False,
+):
+    """Microscopic tests against theory: the measured force of each sphere pair
+    beside the exact bridge of the same R, gap, theta and V_w, the toroidal
+    approximation, Willett et al. (2000) and Israelachvili, with residuals.
+
+    Example: capred bridge compare micro_tests.csv --out micro
+    """
+    try:
+        from .pipelines.bridge import compare_measured, comparison_rows, write_bridge_outputs
+        from .report.bridge_figures import figure_compare
+
+        src = _source(data, sample, "bridge-compare")
+        rows = comparison_rows(compare_measured(src))
+        js = {"source": str(src), "comparison": rows}
+        out_dir = out or _default_out("bridge", src)
+        written = write_bridge_outputs("bridge compare", rows, js, out_dir,
+                                       figure_compare(rows) if plots else None, inputs=[src])
+    except CapredError as exc:
+        fail(exc)
+    if json_out:
+        typer.echo(json.dumps(js, indent=2, ensure_ascii=False))
+        return
+    keep = ("case", "F_measured_mN", "F_exact_mN", "F_toroidal_mN", "F_willett_mN", "F_israelachvili_mN", "status")
+    _print([_rows_table("Measured against predicted capillary force [mN]",
+                        [{k: r[k] for k in keep if k in r} for r in rows])], [], written, out_dir)
+
+
+def _rows_table(title: str, rows: list[dict]):
+    from rich.markup import escape
+    from rich.table import Table
+
+    from .report.console import _f
+
+    t = Table(title=title, title_justify="left")
+    keys = [k for k in rows[0] if k != "note"] if rows else []
+    for k in keys:
+        t.add_column(escape(k), justify="left" if k in ("case", "status") else "right")
+    for r in rows:
+        t.add_row(*(escape(str(r.get(k))) if isinstance(r.get(k), str) else _f(r.get(k)) for k in keys))
+    return t
+
+
 def _calc_done(result, out, json_out, plots, figure_fn=None, options=None):
     """Shared ending of the calculator commands: write outputs, print JSON or a table."""
     from .pipelines.calculators import write_calc_outputs

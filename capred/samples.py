@@ -12,6 +12,8 @@ SAMPLES = {
     "prism": "prism_tests.csv",
     "skempton-b": "skempton_cases.csv",
     "rumpf": "rumpf_cases.csv",
+    "bridge-solve": "bridge_cases.csv",
+    "bridge-compare": "bridge_micro_tests.csv",
 }
 
 
