@@ -86,6 +86,17 @@ class Table:
             Problem(self.path, self.header_line, None, f"missing column '{name}'{why}{hint}")
         )
 
+    def check_unique(self, name: str) -> None:
+        """Record blank and repeated identifiers in a text column (e.g. test_id)."""
+        seen: dict[str, int] = {}
+        for i, v in enumerate(self.columns[name]):
+            if not v:
+                self.add_problem(i, name, f"empty {name}")
+            elif v in seen:
+                self.add_problem(i, name, f"duplicate {name} '{v}' (first on line {seen[v]})")
+            else:
+                seen[v] = int(self.lines[i])
+
     def value_text(self, name: str, row: int) -> str:
         return self.raw[name][row] if name in self.raw else ""
 

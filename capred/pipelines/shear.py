@@ -347,17 +347,6 @@ def _derive(table: Table, opt: ShearOptions) -> dict[str, np.ndarray]:
     return {"sigma_N": sigma_N, "suction": suction, "S_R": S_R, "tau_max": tau, "R": radius}
 
 
-def _check_ids(table: Table) -> None:
-    seen: dict[str, int] = {}
-    for i, tid in enumerate(table.columns["test_id"]):
-        if not tid:
-            table.add_problem(i, "test_id", "empty test_id")
-        elif tid in seen:
-            table.add_problem(i, "test_id", f"duplicate test_id '{tid}' (first on line {seen[tid]})")
-        else:
-            seen[tid] = int(table.lines[i])
-
-
 def load_shear_table(source: str | Path) -> Table:
     table = read_table(source, SCHEMA)
     for name in ("test_id", "condition"):
@@ -376,7 +365,7 @@ def load_shear_table(source: str | Path) -> Table:
         table.columns["material"] = np.array(["(all)"] * len(table), dtype=object)
         table.notes.append("no 'material' column: all tests treated as one material")
     table.raise_if_problems()  # structure must be right before values are checked
-    _check_ids(table)
+    table.check_unique("test_id")
     return table
 
 

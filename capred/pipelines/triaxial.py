@@ -225,15 +225,9 @@ def load_triaxial_table(source: str | Path, curves: dict[str, tuple[float, float
     q = table.get("q_f").copy()
     s1 = table.get("sigma1")
     strain = np.full(n, np.nan)
-    seen: dict[str, int] = {}
+    table.check_unique("test_id")
     for i in range(n):
         tid = table.columns["test_id"][i]
-        if not tid:
-            table.add_problem(i, "test_id", "empty test_id")
-        elif tid in seen:
-            table.add_problem(i, "test_id", f"duplicate test_id '{tid}' (first on line {seen[tid]})")
-        else:
-            seen[tid] = int(table.lines[i])
         if np.isnan(q[i]) and np.isfinite(s1[i]):
             q[i] = s1[i] - s3[i]
             if q[i] <= 0:
