@@ -6,7 +6,6 @@ runs, so `capred --help` stays fast.
 from __future__ import annotations
 
 import json
-import sys
 from pathlib import Path
 from typing import Annotated, Optional
 
@@ -324,7 +323,12 @@ def batch(
             continue
         target = pattern if Path(pattern).is_absolute() else str(base / pattern)
         try:
-            ctx = cmd.make_context(command, [target, *shlex.split(options)])
+            argv = [target, *shlex.split(options)]
+        except ValueError as exc:  # unbalanced quotes in the options
+            problems.append(Problem(str(manifest), line, "options", str(exc)))
+            continue
+        try:
+            ctx = cmd.make_context(command, argv)
             _COLLECTING = collected
             ctx.invoke(cmd.callback, **ctx.params)
         except CapredError as exc:
@@ -332,7 +336,8 @@ def batch(
         except Exception as exc:  # click usage errors: bad option names or values in the manifest
             if type(exc).__module__.split(".")[0] not in ("click", "typer"):
                 raise
-            problems.append(Problem(str(manifest), line, "options", getattr(exc, "format_message", lambda: str(exc))()))
+            message = exc.format_message() if hasattr(exc, "format_message") else str(exc)
+            problems.append(Problem(str(manifest), line, "options", message))
         finally:
             _COLLECTING = None
     if problems:

@@ -1,6 +1,5 @@
 """capred shear end to end: CliRunner, a real subprocess, and every bad input."""
 import json
-import os
 import subprocess
 import sys
 from pathlib import Path

@@ -1,7 +1,6 @@
 """Models beyond the thesis's four (issue 5): formulas by hand and through capred shear."""
 import json
 
-import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 from typer.testing import CliRunner

@@ -1,5 +1,4 @@
 """capred shear on constructed data whose answer is known by hand."""
-import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 

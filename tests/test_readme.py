@@ -1,5 +1,4 @@
 """Every capred command and the Python example in the README run as written (issue 6)."""
-import os
 import re
 import shlex
 import shutil

@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-import capred
 from capred.cli import app
 from capred.pipelines.retention import RetentionOptions, run_retention
 from capred.physics import retention as rp

@@ -403,8 +403,6 @@ def run_shear(source: str | Path, options: ShearOptions | None = None) -> ShearR
             table.add_problem(first, "condition", f"material '{m}': dry fit impossible: {exc}")
     table.raise_if_problems()
 
-    c = np.array([fits[m].intercept for m in mat])
-    tan_phi = np.array([fits[m].slope for m in mat])
     tests: dict[str, np.ndarray] = {
         "test_id": table.columns["test_id"], "material": mat, "condition": cond, "line": table.lines,
         **d,

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import FitError, InputError, OptionError, Problem
+from ..errors import FitError, OptionError
 from ..fitting.linear import LineFit, fit_line
 from ..io.table import Column, Table, read_table
 from ..physics import triaxial as tx
