@@ -3,7 +3,6 @@
 Only typer is imported at start-up; each command imports its pipeline when it
 runs, so `capred --help` stays fast.
 """
-from __future__ import annotations
 
 import json
 from pathlib import Path
