@@ -102,12 +102,6 @@ def _example(kind: str) -> str:
     }[kind]
 
 
-def to_si(value, unit: str, kind: str):
-    """Convert a value (scalar or array) given in ``unit`` to SI for ``kind``."""
-    factor, _ = conversion(unit, kind)
-    return np.asarray(value, dtype=float) * factor if np.ndim(value) else float(value) * factor
-
-
 def parse_quantity(text: str, default_unit: str, kind: str, notes: list[str] | None = None) -> float:
     """Read an option such as ``"115 g/cm^2"`` or ``"0.5"`` (in ``default_unit``) to SI.
 
