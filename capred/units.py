@@ -14,7 +14,6 @@ from __future__ import annotations
 import re
 from functools import lru_cache
 
-import numpy as np
 
 from .errors import UnitError
 
