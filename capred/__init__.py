@@ -3,9 +3,10 @@
 Use from a lab script::
 
     import capred
-    result = capred.run_shear("tests.csv")
+    result = capred.run_shear("tests.csv", capred.ShearOptions(gamma_w="10 kN/m^3"))
     result.table()          # pandas DataFrame, one row per test
-    result.to_json()        # fits, predictions, metrics, best model
+    result.to_json()        # the same document as `capred shear tests.csv --json`
+    capred.write_outputs(result, "report")   # the files `capred shear --out report` writes
 
 Heavy modules (pandas, scipy, matplotlib, pint) load only when used.
 """
@@ -16,17 +17,18 @@ from importlib import import_module
 __version__ = "0.1.0"
 
 _API = {
+    "run": "capred.reductions",
+    "write_outputs": "capred.io.writers",
     "run_shear": "capred.pipelines.shear",
     "ShearOptions": "capred.pipelines.shear",
+    "ModelParams": "capred.pipelines.shear",
     "ShearResult": "capred.pipelines.shear",
-    "write_shear_outputs": "capred.pipelines.shear",
     "run_triaxial_bounds": "capred.pipelines.triaxial",
     "TriaxialOptions": "capred.pipelines.triaxial",
     "TriaxialResult": "capred.pipelines.triaxial",
-    "write_triaxial_outputs": "capred.pipelines.triaxial",
     "run_retention": "capred.pipelines.retention",
     "RetentionOptions": "capred.pipelines.retention",
-    "write_retention_outputs": "capred.pipelines.retention",
+    "RetentionResult": "capred.pipelines.retention",
     "run_prism": "capred.pipelines.calculators",
     "run_skempton_b": "capred.pipelines.calculators",
     "run_rumpf": "capred.pipelines.calculators",
@@ -36,6 +38,8 @@ _API = {
     "sample_path": "capred.samples",
     "CapredError": "capred.errors",
     "InputError": "capred.errors",
+    "OptionError": "capred.errors",
+    "OutputError": "capred.errors",
     "FitError": "capred.errors",
 }
 

@@ -57,3 +57,7 @@ class FitError(CapredError):
 
 class OptionError(CapredError):
     """An invalid command-line option or function argument value."""
+
+
+class OutputError(CapredError):
+    """Outputs that cannot be written where asked (a file as --out, an input in the way, a full disk)."""

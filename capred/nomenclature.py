@@ -1,40 +1,144 @@
-"""The one glossary of quantity names, symbols and output units.
+"""The one glossary of quantity names, symbols, units and valid ranges of capred.
 
-Schemas, result columns, JSON keys and plot labels draw their names from here.
-Output columns carry the unit in brackets, e.g. ``sigma_N [kPa]``.
+Schemas, options, result columns, JSON keys and plot labels draw their names
+from here. One name per concept: ``contact_angle`` (never ``theta``, which is
+the volumetric water content), ``lode_angle``, ``bc_lambda`` (the Brooks-Corey
+pore-size index, called alpha by Morvan et al. and lambda by Brooks & Corey).
+Output columns carry their unit in brackets, e.g. ``sigma_N [kPa]``.
 """
 from __future__ import annotations
 
-# name: (symbol for plots, output unit, SI -> output factor, description)
-QUANTITIES: dict[str, tuple[str, str, float, str]] = {
-    "sigma_N": ("σ_N", "kPa", 1e-3, "total normal stress on the shear plane"),
-    "sigma_eff": ("σ'_N", "kPa", 1e-3, "effective normal stress"),
-    "suction": ("Δu", "kPa", 1e-3, "matric suction u_a - u_w"),
-    "S_R": ("S_R", "-", 1.0, "degree of saturation"),
-    "tau_max": ("τ_max", "kPa", 1e-3, "measured peak shear stress"),
-    "tau_pred": ("τ_pred", "kPa", 1e-3, "predicted shear strength"),
-    "chi1": ("χ1", "-", 1.0, "own approximation 1, (2π S_R/3)^(2/3)"),
-    "chi2": ("χ2", "kPa", 1e-3, "own approximation 2 term, (2γ/R)(2π S_R/3)^(1/3)"),
-    "c": ("c", "kPa", 1e-3, "cohesion intercept"),
-    "z1": ("z1", "cm", 1e2, "height of the sample above the water level"),
-    "z2": ("z2", "cm^3", 1e6, "air volume entered, read on the burette"),
-    "V_v": ("V_v", "cm^3", 1e6, "void volume of the sample"),
-    "R": ("R", "mm", 1e3, "particle radius"),
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Quantity:
+    symbol: str  # for plots and console headers
+    unit: str  # output unit
+    factor: float  # SI value * factor = value in the output unit
+    kind: str  # a key of capred.units.SI_UNIT
+    description: str
+    lower: float | None = None  # hard limits in SI: outside is physically impossible
+    upper: float | None = None
+    lower_open: bool = False  # True: the lower limit itself is excluded (x > lower)
+    upper_open: bool = False  # True: the upper limit itself is excluded (x < upper)
+
+
+QUANTITIES: dict[str, Quantity] = {
+    # direct shear (Evenepoel)
+    "sigma_N": Quantity("σ_N", "kPa", 1e-3, "pressure", "total normal stress on the shear plane", 0.0),
+    "sigma_eff": Quantity("σ'_N", "kPa", 1e-3, "pressure", "effective normal stress"),
+    "suction": Quantity("Δu", "kPa", 1e-3, "pressure", "matric suction u_a − u_w", 0.0),
+    "S_R": Quantity("S_R", "-", 1.0, "dimensionless", "degree of saturation", 0.0, 1.0),
+    "tau_max": Quantity("τ_max", "kPa", 1e-3, "pressure", "measured peak shear stress", 0.0),
+    "tau_pred": Quantity("τ_pred", "kPa", 1e-3, "pressure", "predicted shear strength"),
+    "chi1": Quantity("χ1", "-", 1.0, "dimensionless", "own approximation 1, (2π S_R/3)^(2/3)"),
+    "chi2": Quantity("χ2", "kPa", 1e-3, "pressure", "own approximation 2 term, (2γ/R)(2π S_R/3)^(1/3)"),
+    "c": Quantity("c", "kPa", 1e-3, "pressure", "cohesion intercept"),
+    "phi": Quantity("φ", "deg", 1.0, "angle", "friction angle", 0.0, 90.0, True, True),
+    "z1": Quantity("z1", "cm", 1e2, "length", "height of the sample above the water level", 0.0),
+    "z2": Quantity("z2", "cm^3", 1e6, "volume", "air volume entered, read on the burette", 0.0),
+    "V_v": Quantity("V_v", "cm^3", 1e6, "volume", "void volume of the sample", 0.0, None, True),
+    "R": Quantity("R", "mm", 1e3, "length", "particle radius", 0.0, None, True),
+    "box_area": Quantity("A", "cm^2", 1e4, "area", "shear box area", 0.0, None, True),
+    "cap_mass": Quantity("m_cap", "g", 1e3, "mass", "mass of the top cap", 0.0),
+    "added_mass": Quantity("m_added", "g", 1e3, "mass", "added weights on the top cap", 0.0),
+    "F_max": Quantity("F_max", "N", 1.0, "force", "peak shear force", 0.0),
+    "pendular_limit": Quantity("S_R,pend", "-", 1.0, "dimensionless", "upper S_R of the pendular regime",
+                               0.0, 1.0, True),
+    # constants
+    "gamma_w": Quantity("γ_w", "kN/m^3", 1e-3, "unit_weight", "unit weight of water", 0.0, None, True),
+    "surface_tension": Quantity("γ", "N/m", 1.0, "surface_tension", "surface tension of water", 0.0, None, True),
+    "g": Quantity("g", "m/s^2", 1.0, "acceleration", "gravitational acceleration", 0.0, None, True),
+    # retention
+    "theta": Quantity("θ", "-", 1.0, "dimensionless", "volumetric water content", 0.0, 1.0),
+    "head": Quantity("h", "cm", 1e2, "length", "suction head", 0.0),
+    "air_entry": Quantity("s_e", "kPa", 1e-3, "pressure", "air-entry suction (Brooks-Corey)", 0.0, None, True),
+    "vg_alpha": Quantity("α", "1/kPa", 1e3, "per_pressure", "van Genuchten α", 0.0, None, True),
+    "bc_lambda": Quantity("λ", "-", 1.0, "dimensionless", "Brooks-Corey pore-size index", 0.0, None, True),
+    # triaxial (Prunier et al. 2024)
+    "sigma1": Quantity("σ1", "kPa", 1e-3, "pressure", "major principal total stress at failure"),
+    "sigma3": Quantity("σ3", "kPa", 1e-3, "pressure", "confining (minor principal) total stress", 0.0),
+    "q_f": Quantity("q_f", "kPa", 1e-3, "pressure", "deviator stress at failure"),
+    "c_eff": Quantity("c'", "kPa", 1e-3, "pressure", "effective cohesion", 0.0),
+    "phi_eff": Quantity("φ'", "deg", 1.0, "angle", "effective friction angle", 0.0, 90.0, True, True),
+    "lode_angle": Quantity("θ_L", "deg", 1.0, "angle", "Lode angle"),
+    # bridges
+    "contact_angle": Quantity("θ_c", "deg", 1.0, "angle", "contact angle", 0.0, 90.0, False, True),
+    "gap": Quantity("D", "mm", 1e3, "length", "gap between the particles", 0.0),
+    "V_w": Quantity("V_w", "mm^3", 1e9, "volume", "water volume of a bridge", 0.0, None, True),
+    "F_cap": Quantity("F_cap", "mN", 1e3, "force", "capillary force", 0.0),
+    "filling_angle": Quantity("β", "deg", 1.0, "angle", "half-filling angle", 0.0, 90.0),
+    "r0": Quantity("r0", "mm", 1e3, "length", "neck radius of a bridge"),
+    # calculators
+    "break_tension": Quantity("σ_b", "kPa", 1e-3, "pressure", "break tension of a sand prism", 0.0, None, True),
+    "friction_angle": Quantity("ρ", "deg", 1.0, "angle", "friction angle of the sand", 0.0, 90.0, True, True),
+    "kappa": Quantity("κ", "-", 1.0, "dimensionless", "slope of the elastic line in e-ln p'", 0.0, None, True),
+    "e0": Quantity("e0", "-", 1.0, "dimensionless", "initial void ratio", 0.0, None, True),
+    "p0": Quantity("p0", "kPa", 1e-3, "pressure", "mean total stress", 0.0),
+    "u0": Quantity("u0", "kPa", 1e-3, "pressure", "initial pore pressure"),
+    "pa0": Quantity("P_a0", "kPa", 1e-3, "pressure", "absolute initial air pressure", 0.0, None, True),
+    "B": Quantity("B", "-", 1.0, "dimensionless", "Skempton's pore-pressure coefficient B", 0.0, 1.0),
+    "shape_factor": Quantity("φ_s", "-", 1.0, "dimensionless", "particle shape factor", 0.0, None, True),
+    "void_ratio": Quantity("e", "-", 1.0, "dimensionless", "void ratio", 0.0, None, True),
+    "diameter": Quantity("d_p", "mm", 1e3, "length", "apparent particle diameter", 0.0, None, True),
 }
 
 
 def label(name: str) -> str:
     """Axis label 'symbol [unit]' for a quantity."""
-    symbol, unit, _, _ = QUANTITIES[name]
-    return f"{symbol} [{unit}]"
+    q = QUANTITIES[name]
+    return f"{q.symbol} [{q.unit}]"
 
 
 def column(name: str, suffix: str = "") -> str:
     """Output column name with its unit, e.g. 'tau_pred_bishop [kPa]'."""
-    unit = QUANTITIES[name][1]
-    return f"{name}{suffix} [{unit}]"
+    return f"{name}{suffix} [{QUANTITIES[name].unit}]"
 
 
 def to_output(name: str, value):
     """Convert an SI value of a quantity to its output unit."""
-    return value * QUANTITIES[name][2]
+    return value * QUANTITIES[name].factor
+
+
+def range_problem(name: str, value: float) -> str | None:
+    """Why an SI value lies outside the physical range of quantity ``name`` (None when inside).
+
+    The one wording of range errors, for file columns and options alike.
+    """
+    q = QUANTITIES[name]
+    lo_bad = q.lower is not None and (value <= q.lower if q.lower_open else value < q.lower)
+    hi_bad = q.upper is not None and (value >= q.upper if q.upper_open else value > q.upper)
+    if not (lo_bad or hi_bad):
+        return None
+    unit = "" if q.unit == "-" else f" {q.unit}"
+    got = f"(got {value * q.factor:.6g}{unit})"
+    if q.lower is not None and q.upper is not None:
+        lo, hi = q.lower * q.factor, q.upper * q.factor
+        interval = f"{'(' if q.lower_open else '['}{lo:g}, {hi:g}{')' if q.upper_open else ']'}"
+        return f"{q.description} must lie between {lo:g} and {hi:g}{unit}, in {interval} {got}"
+    bound = (q.lower if lo_bad else q.upper) * q.factor
+    rel = {(True, True): ">", (True, False): ">=", (False, True): "<", (False, False): "<="}[
+        (lo_bad, q.lower_open if lo_bad else q.upper_open)]
+    return f"{q.description} must be {rel} {bound:g}{unit} {got}"
+
+
+#: Plausible ranges (SI) of constants: a value outside is accepted with a warning,
+#: which usually means a number given in another unit than the documented one.
+PLAUSIBLE: dict[str, tuple[float, float]] = {
+    "gamma_w": (9.0e3, 10.5e3),
+    "surface_tension": (0.02, 0.08),
+    "g": (9.7, 9.9),
+}
+
+
+def plausibility_warning(name: str, value: float, where: str | None = None) -> str | None:
+    """A warning when an SI value lies outside the plausible range of a constant (None when plausible)."""
+    if name not in PLAUSIBLE:
+        return None
+    lo, hi = PLAUSIBLE[name]
+    if lo <= value <= hi:
+        return None
+    q = QUANTITIES[name]
+    return (f"{where or name} = {value * q.factor:.6g} {q.unit} lies outside the usual "
+            f"{lo * q.factor:g}-{hi * q.factor:g} {q.unit} for {q.description}; check its unit")

@@ -4,7 +4,7 @@ Inside capred every quantity is in SI base units (Pa, m, kg, N, m^3, rad for
 angles passed to trigonometry). Columns and options may carry any unit pint
 understands; this module converts them to SI and checks their dimension.
 
-Older literature (Bernatzik, seed 001) writes pressures in g/cm^2 or kg/cm^2,
+Older literature (Bernatzik 1948) writes pressures in g/cm^2 or kg/cm^2,
 meaning gram-force and kilogram-force per cm^2. Where a pressure is expected and
 a mass per area is given, the value is multiplied by standard gravity
 (9.80665 m/s^2) and the conversion is reported back to the caller.
@@ -114,3 +114,54 @@ def parse_quantity(text: str, default_unit: str, kind: str, notes: list[str] | N
     if note and notes is not None:
         notes.append(note)
     return float(m.group(1)) * factor
+
+
+def with_unit(text: str | None, default_unit: str) -> str | None:
+    """An option as typed, with ``default_unit`` appended when it is a bare number ("9.81" -> "9.81 kN/m^3")."""
+    if text is None:
+        return None
+    text = str(text).strip()
+    if default_unit and re.fullmatch(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?", text):
+        return f"{text} {default_unit}"
+    return text
+
+
+def to_si(value, name: str, where: str | None = None, notes: list[str] | None = None) -> float:
+    """An API option of quantity ``name`` (a key of capred.nomenclature.QUANTITIES) in SI.
+
+    ``value`` may be a plain number, taken in the SI unit the docstring of the
+    option documents (N/m^3 for a unit weight, Pa for a pressure, m for a
+    length), a string with a unit (``"10 kN/m^3"``), or a pint Quantity. A value
+    of the wrong dimension, not a number, or outside the physical range of the
+    quantity raises OptionError naming ``where`` (the option).
+    """
+    import numbers
+
+    from .errors import OptionError
+    from .nomenclature import QUANTITIES, range_problem
+
+    q = QUANTITIES[name]
+    label = where or name
+    if isinstance(value, bool):
+        raise OptionError(f"{label}: expected a number with an optional unit, got {value!r}")
+    if isinstance(value, numbers.Real):
+        si = float(value)
+    elif isinstance(value, str):
+        try:
+            si = parse_quantity(value, SI_UNIT[q.kind].replace("**", "^"), q.kind, notes)
+        except UnitError as exc:
+            raise OptionError(f"{label}: {exc}") from None
+    elif hasattr(value, "magnitude") and hasattr(value, "units"):  # a pint Quantity
+        try:
+            si = float(value.magnitude) * conversion(str(value.units), q.kind)[0]
+        except (UnitError, TypeError, ValueError) as exc:
+            raise OptionError(f"{label}: {exc}") from None
+    else:
+        raise OptionError(f"{label}: expected a number, a string such as '10 kN/m^3' or a pint Quantity, "
+                          f"got {type(value).__name__}")
+    if si != si or si in (float("inf"), float("-inf")):
+        raise OptionError(f"{label}: {value!r} is not a finite number")
+    problem = range_problem(name, si)
+    if problem:
+        raise OptionError(f"{label}: {problem}")
+    return si

@@ -174,7 +174,7 @@ def test_curve_command_redraws_thesis_comparison(tmp_path):
 
 BAD = {
     "negative_radius": ("R,theta,gap,suction\n-1,0,0,1\n", ["line 2", "column 'R'", "must be > 0"]),
-    "theta_90": ("R,theta,gap,suction\n1,95,0,1\n", ["line 2", "column 'theta'", "theta < 90"]),
+    "theta_90": ("R,theta,gap,suction\n1,95,0,1\n", ["line 2", "column 'theta'", "below 90 deg"]),
     "negative_gap": ("R,theta,gap,suction\n1,0,-0.1,1\n", ["line 2", "column 'gap'", "negative"]),
     "missing_column": ("R,theta,suction\n1,0,1\n", ["missing column 'gap'"]),
     "unknown_unit": ("R [furlongz],theta,gap,suction\n1,0,0,1\n", ["unknown unit 'furlongz'"]),

@@ -1,82 +1,308 @@
-"""Write result files atomically, and the provenance record of a run.
+"""The one writer of capred: any Result becomes one output folder, as a transaction.
 
-Every file is written to a temporary name in the target folder and renamed
-into place, so an interrupted run never leaves a half-written table that looks
-complete. Floats are written with a fixed format so reruns give the same bytes.
+A run writes into a new hidden folder beside ``--out`` and only when every
+file is written swaps it in place of ``--out`` (an atomic exchange where the
+system offers one), so ``--out`` always holds exactly one complete run: no
+stale files of an earlier run, no mix after an interruption or when two runs
+target the same folder (the swaps are serialised by a lock on the parent
+folder). Before anything is computed, ``check_target`` refuses an output
+folder that holds an input, that is a file, that is not a capred output
+folder, or that cannot be written.
+
+Numbers keep their digits: JSON floats are written in shortest round-trip
+form and CSV floats as Python's repr (at least 10 significant digits, exact
+round trip).
 """
 from __future__ import annotations
 
-import hashlib
+import contextlib
+import errno
 import io
 import json
 import os
+import re
+import shutil
 import sys
 import tempfile
 from pathlib import Path
 
-FLOAT_FORMAT = "%.6g"
+from ..errors import OutputError
+
 _UMASK = os.umask(0)
 os.umask(_UMASK)
+_TMP = ".capred-tmp-"
+_OLD = ".capred-old-"
+#: JSON documents shorter than this (compact) are written indented, larger ones compactly.
+INDENT_LIMIT = 256 * 1024
+
+
+# --- encoding ------------------------------------------------------------------------------------
+def encode_json(doc, indent: bool | None = None) -> bytes:
+    """JSON bytes of ``doc``: compact (C encoder) for large documents, indented for small ones."""
+    compact = json.dumps(doc, ensure_ascii=False, separators=(",", ":"), allow_nan=False)
+    if indent is False or (indent is None and len(compact) > INDENT_LIMIT):
+        return (compact + "\n").encode("utf-8")
+    return (json.dumps(doc, ensure_ascii=False, indent=2, allow_nan=False) + "\n").encode("utf-8")
+
+
+def encode_csv(frame) -> bytes:
+    """A DataFrame as CSV; floats in repr form (shortest exact round trip), lists joined with ';'."""
+    frame = frame.copy(deep=False)
+    for col in frame.columns:
+        if frame[col].dtype == object:
+            frame[col] = [";".join(map(str, v)) if isinstance(v, (list, tuple)) else v for v in frame[col]]
+    buf = io.StringIO()
+    frame.to_csv(buf, index=False, lineterminator="\n")
+    return buf.getvalue().encode("utf-8")
+
+
+def safe_name(name: str, taken: set[str], limit: int = 80) -> str:
+    """A file-name stem for a user label (material, sheet), unique among ``taken`` (which it joins)."""
+    stem = re.sub(r"[^\w.-]", "_", name, flags=re.ASCII).strip(".") or "unnamed"
+    stem = stem[:limit]
+    candidate, k = stem, 2
+    while candidate.lower() in taken:
+        candidate, k = f"{stem}_{k}", k + 1
+    taken.add(candidate.lower())
+    return candidate
+
+
+# --- checks before computing ------------------------------------------------------------------------
+def _is_capred_folder(path: Path) -> bool:
+    prov = path / "provenance.json"
+    if prov.is_file():
+        try:
+            return "capred_version" in json.loads(prov.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            return False
+    # a batch root: index.csv written by capred and nothing but capred folders
+    index = path / "index.csv"
+    return index.is_file() and index.read_text(encoding="utf-8", errors="replace").startswith("command,input,status")
+
+
+def check_target(out, inputs=(), replace: bool = True) -> Path:
+    """Refuse an output folder that cannot or must not receive a run; return its absolute path.
+
+    ``replace`` is True for a run folder (replaced whole) and False for a batch
+    root (only its index.csv and per-file folders are written).
+    Raises OutputError with one clear message.
+    """
+    out = Path(os.path.abspath(out))
+    real = Path(os.path.realpath(out))
+    for src in inputs:
+        if src is None or hasattr(src, "to_csv"):
+            continue
+        s = Path(os.path.realpath(src))
+        if s == real or real in s.parents:
+            raise OutputError(f"--out {out} holds the input {src}; capred never writes over its inputs: "
+                              "choose another output folder")
+    if out.exists() and not out.is_dir():
+        raise OutputError(f"--out {out} is a file, not a folder: choose a folder name")
+    cwd = Path(os.path.realpath(Path.cwd()))
+    if replace and (real == cwd or real in cwd.parents):
+        raise OutputError(f"--out {out} is the current folder or one of its parents; capred replaces its output "
+                          "folder as a whole: give a new folder name, e.g. --out report")
+    if replace and out.is_dir() and any(out.iterdir()) and not _is_capred_folder(out):
+        raise OutputError(f"--out {out} is a folder capred did not write (it holds other files); capred replaces "
+                          "its output folder as a whole: give a new or empty folder")
+    parent = out if not replace and out.is_dir() else out.parent
+    while not parent.exists() and parent != parent.parent:
+        parent = parent.parent
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise OutputError(f"cannot write to {parent}: permission denied")
+    return out
+
+
+# --- the transaction ---------------------------------------------------------------------------------
+@contextlib.contextmanager
+def _locked(folder: Path):
+    """Exclusive lock on a folder (serialises swaps into it); a no-op where flock is missing."""
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - Windows
+        yield
+        return
+    fd = os.open(folder, os.O_RDONLY)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        os.close(fd)  # closing releases the lock
+
+
+def _exchange(a: Path, b: Path) -> bool:
+    """Atomically swap two paths (Linux renameat2 RENAME_EXCHANGE); False where unsupported."""
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        fn = libc.renameat2
+    except (OSError, AttributeError):
+        return False
+    at_fdcwd, rename_exchange = -100, 2
+    if fn(at_fdcwd, os.fsencode(a), at_fdcwd, os.fsencode(b), rename_exchange) == 0:
+        return True
+    err = ctypes.get_errno()
+    if err in (errno.EINVAL, errno.ENOSYS, errno.EPERM):
+        return False
+    raise OSError(err, os.strerror(err), str(b))
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def _sweep_stale(parent: Path, stem: str) -> None:
+    """Remove hidden work folders of earlier runs into the same target that were killed."""
+    for p in parent.glob(f".{stem}.capred-*"):
+        m = re.search(r"\.capred-(?:tmp|old)-(\d+)-", p.name)
+        if m and int(m.group(1)) != os.getpid() and not _pid_alive(int(m.group(1))):
+            shutil.rmtree(p, ignore_errors=True)
+
+
+def _prefix(out: Path, kind: str) -> str:
+    return f".{out.name[:100]}{kind}{os.getpid()}-"
+
+
+def _os_error(out: Path, exc: OSError) -> OutputError:
+    reason = {errno.ENOSPC: "no space left on the device", errno.EDQUOT: "disk quota exceeded",
+              errno.EACCES: "permission denied", errno.EROFS: "read-only file system",
+              errno.ENAMETOOLONG: "a file name is too long"}.get(exc.errno, exc.strerror or str(exc))
+    return OutputError(f"cannot write the outputs to {out}: {reason}; nothing was written")
+
+
+class RunFolder:
+    """A hidden work folder that becomes ``out`` on ``commit()``; removed if anything fails."""
+
+    def __init__(self, out: Path):
+        self.out = out
+        self.names: list[str] = []
+        try:
+            out.parent.mkdir(parents=True, exist_ok=True)
+            self.tmp = Path(tempfile.mkdtemp(prefix=_prefix(out, _TMP), dir=out.parent))
+            os.chmod(self.tmp, 0o777 & ~_UMASK)
+        except OSError as exc:
+            raise _os_error(out, exc) from None
+
+    def write_bytes(self, name: str, data: bytes) -> None:
+        with open(self.tmp / name, "wb") as fh:
+            fh.write(data)
+        self._done(name)
+
+    def path_for(self, name: str) -> Path:
+        """Path to write ``name`` to directly (call ``done(name)`` afterwards)."""
+        return self.tmp / name
+
+    def _done(self, name: str) -> None:
+        os.chmod(self.tmp / name, 0o666 & ~_UMASK)
+        self.names.append(name)
+
+    done = _done
+
+    def commit(self) -> list[Path]:
+        out = self.out
+        with _locked(out.parent):
+            _sweep_stale(out.parent, out.name[:100])
+            if out.exists():
+                if not out.is_dir():
+                    raise OutputError(f"--out {out} is a file, not a folder: choose a folder name")
+                if not _exchange(self.tmp, out):
+                    old = Path(tempfile.mkdtemp(prefix=_prefix(out, _OLD), dir=out.parent))
+                    os.replace(out, old / "run")
+                    os.replace(self.tmp, out)
+                    self.tmp = old
+                shutil.rmtree(self.tmp, ignore_errors=True)  # now holds the earlier run
+            else:
+                os.replace(self.tmp, out)
+        return [out / n for n in self.names]
+
+    def abort(self) -> None:
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+
+def write_run(result, out, plots: bool = True, figure_format: str = "png", dpi: int = 150,
+              command_line: str | None = None) -> list[Path]:
+    """Write every output of ``result`` into the folder ``out``, whole or not at all.
+
+    Files: each table as ``<name>.csv``, the JSON document, each figure (when
+    ``plots``), and ``provenance.json``. Returns the paths written.
+    Raises OutputError (nothing written, an earlier run in ``out`` intact).
+    """
+    out = check_target(out, [i.path for i in result.inputs if i.path != "<DataFrame>"])
+    folder = RunFolder(out)
+    try:
+        for name, frame in result.tables().items():
+            folder.write_bytes(f"{name}.csv", encode_csv(frame))
+        folder.write_bytes(result.json_name, encode_json(result.to_json()))
+        if plots:
+            for name, draw in result.figures().items():
+                fig = draw()
+                fname = f"{name}.{figure_format}"
+                fig.savefig(folder.path_for(fname), format=figure_format, dpi=dpi, metadata=_NO_STAMP[figure_format])
+                folder.done(fname)
+        folder.write_bytes("provenance.json", encode_json(provenance(result, folder.names, command_line), True))
+        return folder.commit()
+    except OSError as exc:
+        folder.abort()
+        raise _os_error(out, exc) from None
+    except BaseException:
+        folder.abort()
+        raise
+
+
+# no timestamps in figure files: reruns give the same bytes
+_NO_STAMP = {"png": {"Software": None}, "pdf": {"CreationDate": None, "Producer": None},
+             "svg": {"Date": None}}
+
+
+#: The public name of the one writer: ``capred.write_outputs(result, "report")``.
+write_outputs = write_run
+
+
+def provenance(result, outputs: list[str], command_line: str | None = None) -> dict:
+    """Record of a run: capred version, command line, input hashes, options, outputs."""
+    from datetime import datetime, timezone
+
+    doc = result.to_json()
+    return {
+        "capred_version": doc["capred_version"],
+        "command": doc["command"],
+        "command_line": command_line if command_line is not None else " ".join(sys.argv),
+        "python": sys.version.split()[0],
+        "inputs": doc["inputs"],
+        "options": doc["options"],
+        "option_units": doc["option_units"],
+        "warnings": doc["warnings"],
+        "outputs": sorted(outputs + ["provenance.json"]),
+        "created_utc": datetime.now(timezone.utc).replace(microsecond=0).isoformat(),
+    }
 
 
 def atomic_write_bytes(path: Path, data: bytes) -> Path:
+    """One file written under a temporary name and renamed into place (used for a batch's index.csv)."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    except OSError as exc:
+        raise _os_error(path.parent, exc) from None
     try:
         with os.fdopen(fd, "wb") as fh:
             fh.write(data)
-        os.chmod(tmp, 0o666 & ~_UMASK)  # mkstemp creates 0600; give the usual permissions
+        os.chmod(tmp, 0o666 & ~_UMASK)
         os.replace(tmp, path)
+    except OSError as exc:
+        Path(tmp).unlink(missing_ok=True)
+        raise _os_error(path.parent, exc) from None
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
     return path
-
-
-def write_text(path: Path, text: str) -> Path:
-    return atomic_write_bytes(path, text.encode("utf-8"))
-
-
-def write_json(path: Path, obj) -> Path:
-    return write_text(path, json.dumps(obj, indent=2, ensure_ascii=False) + "\n")
-
-
-def write_csv(path: Path, frame) -> Path:
-    """A pandas DataFrame as CSV with the fixed float format."""
-    buf = io.StringIO()
-    frame.to_csv(buf, index=False, float_format=FLOAT_FORMAT, lineterminator="\n")
-    return write_text(path, buf.getvalue())
-
-
-def write_png(path: Path, figure, dpi: int = 150) -> Path:
-    """A matplotlib Figure as PNG (no timestamp metadata: reruns give the same bytes)."""
-    buf = io.BytesIO()
-    figure.savefig(buf, format="png", dpi=dpi, metadata={"Software": None})
-    return atomic_write_bytes(path, buf.getvalue())
-
-
-def sha256(path: str | Path) -> str:
-    h = hashlib.sha256()
-    with open(path, "rb") as fh:
-        for block in iter(lambda: fh.read(1 << 16), b""):
-            h.update(block)
-    return h.hexdigest()
-
-
-def provenance(command: str, inputs: list[str | Path], options: dict, outputs: list[Path]) -> dict:
-    """Record of a run: capred version, command line, input hashes, options, outputs."""
-    from datetime import datetime, timezone
-
-    from .. import __version__
-
-    return {
-        "capred_version": __version__,
-        "command": command,
-        "command_line": " ".join(sys.argv),
-        "python": sys.version.split()[0],
-        "inputs": [{"path": str(p), "sha256": sha256(p) if Path(str(p)).is_file() else None} for p in inputs],
-        "options": options,
-        "outputs": sorted(Path(p).name for p in outputs),
-        "created_utc": datetime.now(timezone.utc).replace(microsecond=0).isoformat(),
-    }

@@ -1,4 +1,4 @@
-"""Pendular liquid bridge between two equal spheres, zero gravity (seed 000, SPEC §3).
+"""Pendular liquid bridge between two equal spheres, zero gravity (Evenepoel, VUB thesis; Lian et al. 1993).
 
 Dimensionless core: lengths in units of the sphere radius R, suction
 s* = Delta_u R / gamma, force F* = F / (pi gamma R), volume V* = V / R^3.
@@ -264,7 +264,7 @@ def solve_for_volume(theta, volume, gap):
 # ---- approximations -------------------------------------------------------
 
 def israelachvili_force(R, surface_tension, theta):
-    """F = 2 pi R gamma cos(theta): spheres in contact, small volume (seed 000)."""
+    """F = 2 pi R gamma cos(theta): spheres in contact, small volume (Israelachvili; Evenepoel, VUB thesis)."""
     return 2.0 * np.pi * np.asarray(R, float) * surface_tension * np.cos(theta)
 
 

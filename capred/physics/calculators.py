@@ -1,14 +1,14 @@
-"""Small closed-form calculators from the seeds: Bernatzik's prism, Skempton's B, Rumpf.
+"""Small closed-form calculators from the source papers: Bernatzik's prism, Skempton's B, Rumpf.
 
 SI in and out (Pa, m, N/m); angles in degrees.
 
 References
 ----------
 [5] W. Bernatzik, "The determination of the capillary rise in sand by means
-    of prism pressure tests", ISSMGE (seed 001).
+    of prism pressure tests", Proc. 2nd ICSMFE, Rotterdam (Bernatzik 1948).
 [6] M. Morvan, M. Vernay, P. Breul, "Study of the variation of B with Sr"
-    (seed 004), eq. (10)-(13).
-[7] Prunier et al. (2024) (seed 002), eq. (19), after Rumpf (1962).
+    (Morvan et al. 2016), eq. (10)-(13).
+[7] Prunier et al. (2024), doi:10.1080/19648189.2024.2314099, eq. (19), after Rumpf (1962).
 """
 from __future__ import annotations
 

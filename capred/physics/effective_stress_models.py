@@ -1,24 +1,28 @@
-"""Effective-stress and strength models beyond the thesis's four (SI units).
+"""Effective-stress and strength models of `capred shear`, and their one registry (SI units).
+
+A model is one entry of ``REGISTRY``: name, label, the parameters it needs,
+the function giving sigma'_N (or tau directly) and its reference. Adding a
+model is adding one entry.
 
 References
 ----------
-[8] S. K. Vanapalli, D. G. Fredlund, D. E. Pufahl, A. W. Clifton, "Model for
-    the prediction of shear strength with respect to soil suction", Can.
-    Geotech. J. 33 (1996) 379-392.
-[9] N. Khalili, M. H. Khabbaz, "A unique relationship for chi for the
-    determination of the shear strength of unsaturated soils", Geotechnique
-    48 (1998) 681-687.
-[10] N. Lu, W. J. Likos, "Suction stress characteristic curve for unsaturated
-    soil", J. Geotech. Geoenviron. Eng. 132 (2006) 131-142.
-[11] D. G. Fredlund, N. R. Morgenstern, R. A. Widger, "The shear strength of
-    unsaturated soils", Can. Geotech. J. 15 (1978) 313-321.
-[12] M. Pedrotti, A. Tarantino, "Effective stresses for unsaturated states
-    stemming from clay microstructure" (seed 003), eq. [1], [2], [14].
+[1] Evenepoel, master thesis, Vrije Universiteit Brussel: "Own approximation".
+[8] Vanapalli et al. (1996), Can. Geotech. J. 33:379-392, doi:10.1139/t96-060.
+[9] Khalili & Khabbaz (1998), Géotechnique 48:681-687, doi:10.1680/geot.1998.48.5.681.
+[10] Lu & Likos (2006), J. Geotech. Geoenviron. Eng. 132:131-142,
+    doi:10.1061/(ASCE)1090-0241(2006)132:2(131).
+[11] Fredlund et al. (1978), Can. Geotech. J. 15:313-321, doi:10.1139/t78-029.
+[12] Pedrotti & Tarantino, "Effective stresses for unsaturated states stemming
+    from clay microstructure" (submitted), eq. [1], [2], [14].
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+from typing import Callable
+
 import numpy as np
 
+from . import shear as ph
 from .retention import vg_effective_saturation
 
 
@@ -69,3 +73,88 @@ def pedrotti_tarantino_strength(sigma_N, suction, S_R, c_w, tan_phi_w, c_a, tan_
     tau_w = c_w + (sigma_N + np.asarray(suction, float)) * S_R * tan_phi_w
     tau_a = c_a + sigma_N * (1.0 - S_R) * tan_phi_a
     return S_R * tau_w + (1.0 - S_R) * tau_a
+
+
+@dataclass(frozen=True)
+class ModelInputs:
+    """What a model may use, per test (arrays, SI): the dry envelope of each test's material included."""
+
+    sigma_N: np.ndarray
+    suction: np.ndarray
+    S_R: np.ndarray
+    R: np.ndarray
+    tau_max: np.ndarray
+    wet: np.ndarray
+    material: np.ndarray
+    c: np.ndarray
+    tan_phi: np.ndarray
+    surface_tension: float
+    params: object  # capred.pipelines.shear.ModelParams
+
+
+@dataclass(frozen=True)
+class EffectiveStressModel:
+    """One entry of the registry. ``sigma_eff`` gives sigma'_N [Pa]; a model that
+    predicts the strength directly gives ``tau`` instead (its sigma'_N is then NaN)."""
+
+    name: str
+    label: str
+    requires: tuple[tuple[str, str], ...]  # (ModelParams field, option that sets it)
+    reference: str  # key of capred.references.REFERENCES
+    sigma_eff: Callable[[ModelInputs], np.ndarray] | None = None
+    tau: Callable[[ModelInputs], np.ndarray] | None = None
+    thesis: bool = False  # one of the four models of the thesis (the default set)
+
+
+def _fredlund(d: ModelInputs) -> np.ndarray:
+    """sigma'_N equivalent of tau = c + sigma_N tan phi + s tan phi_b, tan phi_b fitted per material [11]."""
+    tb = np.zeros(d.sigma_N.size)
+    for m in dict.fromkeys(d.material):
+        sel = d.wet & (d.material == m)
+        if sel.any():
+            excess = d.tau_max[sel] - ph.mohr_coulomb_strength(d.c[sel], d.tan_phi[sel], d.sigma_N[sel])
+            tb[d.material == m] = fit_tan_phi_b(d.suction[sel], excess)
+    return d.sigma_N + d.suction * tb / d.tan_phi
+
+
+def _pedrotti_tarantino(d: ModelInputs) -> np.ndarray:
+    env = d.params.water_envelope
+    c_w, tan_w = (d.c, d.tan_phi) if env is None else (env[0], np.tan(np.radians(env[1])))
+    return pedrotti_tarantino_strength(d.sigma_N, d.suction, d.S_R, c_w, tan_w, d.c, d.tan_phi)
+
+
+def _thesis(model: str) -> Callable[[ModelInputs], np.ndarray]:
+    return lambda d: ph.effective_normal_stress(model, d.sigma_N, d.suction, d.S_R, d.R, d.surface_tension)
+
+
+REGISTRY: dict[str, EffectiveStressModel] = {m.name: m for m in (
+    EffectiveStressModel("no_suction", "No suction", (), "evenepoel", _thesis("no_suction"), thesis=True),
+    EffectiveStressModel("bishop", "Bishop", (), "bishop1959", _thesis("bishop"), thesis=True),
+    EffectiveStressModel("own1", "Own 1", (), "evenepoel", _thesis("own1"), thesis=True),
+    EffectiveStressModel("own2", "Own 2", (), "evenepoel", _thesis("own2"), thesis=True),
+    EffectiveStressModel("vanapalli", "Vanapalli", (("s_res", "--s-res"),), "vanapalli1996",
+                         lambda d: d.sigma_N + chi_vanapalli(d.S_R, d.params.s_res, d.params.vanapalli_kappa)
+                         * d.suction),
+    EffectiveStressModel("khalili", "Khalili-Khabbaz", (("air_entry", "--air-entry"),), "khalili_khabbaz1998",
+                         lambda d: d.sigma_N + chi_khalili(d.suction, d.params.air_entry) * d.suction),
+    EffectiveStressModel("lu_likos", "Lu-Likos", (("vg_alpha", "--vg-alpha"), ("vg_n", "--vg-n")), "lu_likos2006",
+                         lambda d: d.sigma_N + chi_lu_likos(d.suction, d.params.vg_alpha, d.params.vg_n,
+                                                            d.params.vg_m) * d.suction),
+    EffectiveStressModel("fredlund", "Fredlund φ_b", (), "fredlund1978", _fredlund),
+    EffectiveStressModel("pedrotti_tarantino", "Pedrotti-Tarantino", (), "pedrotti_tarantino",
+                         tau=_pedrotti_tarantino),
+)}
+
+#: The thesis's four models in display order (the default of `capred shear --models`).
+THESIS_MODELS = tuple(m for m, e in REGISTRY.items() if e.thesis)
+MODEL_LABELS = {m: e.label for m, e in REGISTRY.items()}
+
+
+def predict(model: str, d: ModelInputs) -> tuple[np.ndarray, np.ndarray]:
+    """(sigma'_N, tau_pred) [Pa] of every test under ``model``; dry tests keep sigma_N and the dry envelope."""
+    e = REGISTRY[model]
+    dry_tau = ph.mohr_coulomb_strength(d.c, d.tan_phi, d.sigma_N)
+    if e.tau is not None:
+        return np.where(d.wet, np.nan, d.sigma_N), np.where(d.wet, e.tau(d), dry_tau)
+    eff = np.where(d.wet, e.sigma_eff(d), d.sigma_N)
+    return eff, ph.mohr_coulomb_strength(d.c, d.tan_phi, eff)

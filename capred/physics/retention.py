@@ -11,7 +11,7 @@ References
     hydraulic conductivity of unsaturated soils", SSSA J. 44 (1980) 892-898.
 [4] R. H. Brooks, A. T. Corey, "Hydraulic properties of porous media",
     Hydrology Paper 3, Colorado State University (1964); used with air-entry
-    suction s_e and index alpha by Morvan et al. (seed 004, section 3).
+    suction s_e and index alpha by Morvan et al. (2016, section 3).
 """
 from __future__ import annotations
 
@@ -42,7 +42,7 @@ def bc_water(s, y_r, y_s, s_e, lam):
 
 
 def bc_suction(S_r, s_e, alpha):
-    """Suction from Brooks-Corey as Morvan et al. use it (seed 004): S_r = (s_e/s)^alpha -> s = s_e S_r^(-1/alpha).
+    """Suction from Brooks-Corey as Morvan et al. (2016) use it: S_r = (s_e/s)^alpha -> s = s_e S_r^(-1/alpha).
 
     Full saturation (S_r = 1) gives s = s_e.
     """

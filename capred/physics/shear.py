@@ -1,4 +1,4 @@
-"""Direct shear with hanging-column suction: the thesis's formulas (seed 000).
+"""Direct shear with hanging-column suction: the formulas of Evenepoel's thesis.
 
 All functions are vectorised (scalar or ndarray in, same shape out) and work
 in SI: Pa, m, kg, m^3, N/m. Compression is positive; suction u_a - u_w >= 0.
@@ -6,9 +6,9 @@ in SI: Pa, m, kg, m^3, N/m. Compression is positive; suction u_a - u_w >= 0.
 References
 ----------
 [1] R. Evenepoel, "Micro-mechanical characterization of the capillary
-    effective stress in granular materials", master thesis slides, VUB
-    (seed 000_0b13a170520073c5): sections "Apply suction", "Own
-    approximation", "Shear strength".
+    effective stress in granular materials", master thesis, Vrije
+    Universiteit Brussel: sections "Apply suction", "Own approximation",
+    "Shear strength".
 """
 from __future__ import annotations
 
@@ -25,21 +25,9 @@ PENDULAR_LIMIT = 0.05
 #: S_R above which chi1 = (2 pi S_R / 3)^(2/3) exceeds 1: 3 / (2 pi).
 CHI1_UNITY_SR = 3.0 / (2.0 * np.pi)
 
-#: The four effective-stress models of the thesis [1], in display order.
+#: The four effective-stress models of the thesis [1], in display order (the registry of every
+#: model is capred.physics.effective_stress_models.REGISTRY).
 MODELS = ("no_suction", "bishop", "own1", "own2")
-#: Further models, chosen with `capred shear --models` (see effective_stress_models.py).
-EXTRA_MODELS = ("vanapalli", "khalili", "lu_likos", "fredlund", "pedrotti_tarantino")
-MODEL_LABELS = {
-    "no_suction": "No suction",
-    "bishop": "Bishop",
-    "own1": "Own 1",
-    "own2": "Own 2",
-    "vanapalli": "Vanapalli",
-    "khalili": "Khalili-Khabbaz",
-    "lu_likos": "Lu-Likos",
-    "fredlund": "Fredlund φ_b",
-    "pedrotti_tarantino": "Pedrotti-Tarantino",
-}
 
 
 def suction_from_head(z1, gamma_w=GAMMA_W):

@@ -1,4 +1,4 @@
-"""Triaxial failure states and bounds of the capillary stress tensor (seed 002).
+"""Triaxial failure states and bounds of the capillary stress tensor (Prunier et al. 2024).
 
 Compression positive; any consistent stress unit (capred passes Pa). sigma1
 is the major (axial, in compression) principal stress, sigma3 the minor
@@ -8,7 +8,7 @@ References
 ----------
 [2] F. Prunier, D. Branque, J. Duriez, F. Darve, "A method to evaluate the
     capillary stress tensor at failure in unsaturated soils", Eur. J. Environ.
-    Civ. Eng. (2024), doi:10.1080/19648189.2024.2314099 (seed 002).
+    Civ. Eng. (2024), doi:10.1080/19648189.2024.2314099.
 """
 from __future__ import annotations
 

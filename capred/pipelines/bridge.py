@@ -1,4 +1,8 @@
-"""`capred bridge solve | curve | compare`: exact capillary bridges between equal spheres."""
+"""`capred bridge solve | curve | compare`: exact capillary bridges between equal spheres.
+
+The contact angle is ``contact_angle`` everywhere (input column ``contact_angle``,
+also accepted as ``theta``).
+"""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -10,6 +14,8 @@ from ..errors import InputError, OptionError
 from ..io.table import Column, read_table
 from ..physics import bridge as br
 from ..physics import shear as ph
+from ..references import cite
+from ..result import InputFile, Options, Result, TableSpec, input_file, num
 
 # 1: the gap is too wide for this suction or volume; 3: so much water that the bridge would be
 # convex (water above air pressure), outside the pendular model
@@ -19,7 +25,7 @@ SOLVE_SCHEMA = [
     Column("case", "text", None, "case label", ("test_id", "id", "name")),
     Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius"), "positive"),
     Column("gamma", "surface_tension", "N/m", "surface tension", ("surface_tension",), "positive"),
-    Column("theta", "angle", "deg", "contact angle", ("contact_angle",), "nonnegative"),
+    Column("contact_angle", "angle", "deg", "contact angle", ("theta", "wetting_angle"), "nonnegative"),
     Column("gap", "length", "mm", "gap D", ("D", "separation", "distance"), "nonnegative"),
     Column("suction", "pressure", "kPa", "suction", ("delta_u", "ua_uw"), "positive"),
     Column("V_w", "volume", "mm^3", "water volume V_w", ("volume", "V", "Vw"), "positive"),
@@ -28,12 +34,25 @@ SOLVE_SCHEMA = [
 ]
 
 
+@dataclass(frozen=True)
+class BridgeOptions(Options):
+    """Options of `capred bridge solve` and `compare`: the surface tension [N/m, or a string with a unit]
+    of rows without a ``gamma`` value."""
+
+    QUANTITIES = {"surface_tension": "surface_tension"}
+
+    surface_tension: float = ph.SURFACE_TENSION
+
+
 @dataclass
-class BridgeResult:
-    """Bridges, one per case, SI inside; ``to_json`` in mm, mN, kPa."""
+class BridgeResult(Result):
+    """Bridges, one per case, SI inside; tables and JSON in mm, mN, kPa."""
+
+    command = "bridge solve"
+    json_name = "solve.json"
 
     source: str
-    inputs: dict[str, np.ndarray]
+    inputs_si: dict[str, np.ndarray]
     beta: np.ndarray
     suction: np.ndarray  # Pa
     volume: np.ndarray  # m^3
@@ -43,72 +62,98 @@ class BridgeResult:
     note: list[str]
     labels: list[str] | None = None
     notes: list[str] = field(default_factory=list)
+    options: BridgeOptions | None = None
+    inputs: list[InputFile] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
 
-    def rows(self) -> list[dict]:
-        R, g = self.inputs["R"], self.inputs["gamma"]
-        out = []
-        for i in range(self.beta.size):
-            ok = self.status[i] == 0
-            F_L = np.pi * self.neck[i] ** 2 * self.suction[i]
-            F_T = 2 * np.pi * self.neck[i] * g[i]
-            row = {"case": self.labels[i]} if self.labels else {}
-            row.update({
-                "r0_mm": _n(self.neck[i] * 1e3, ok), "F_cap_mN": _n(self.force[i] * 1e3, ok),
-                "F_L_mN": _n(F_L * 1e3, ok), "F_T_mN": _n(F_T * 1e3, ok),
-                "V_w_mm3": _n(self.volume[i] * 1e9, ok), "filling_angle_deg": _n(np.degrees(self.beta[i]), ok),
-                "suction_kPa": _n(self.suction[i] / 1e3, ok),
-                "S_R": _n(3 * self.volume[i] / (2 * np.pi * R[i] ** 3), ok),
-                "sigma_prime_kPa": _n(self.force[i] / (np.pi * R[i] ** 2) / 1e3, ok),
-                "status": STATUS[int(self.status[i])],
-            })
-            if self.note[i]:
-                row["note"] = self.note[i]
-            out.append(row)
-        return out
+    def columns(self) -> dict[str, np.ndarray]:
+        """Output columns (mm, mN, mm^3, deg, kPa); NaN where no bridge was found."""
+        R, g = self.inputs_si["R"], self.inputs_si["gamma"]
+        ok = self.status == 0
 
-    def to_json(self) -> dict:
-        return {"source": self.source, "bridges": self.rows(), "notes": self.notes}
+        def out(x):
+            return np.where(ok, x, np.nan)
 
-    def table(self):
+        return {
+            "r0_mm": out(self.neck * 1e3), "F_cap_mN": out(self.force * 1e3),
+            "F_L_mN": out(np.pi * self.neck**2 * self.suction * 1e3), "F_T_mN": out(2 * np.pi * self.neck * g * 1e3),
+            "V_w_mm3": out(self.volume * 1e9), "filling_angle_deg": out(np.degrees(self.beta)),
+            "suction_kPa": out(self.suction / 1e3), "S_R": out(3 * self.volume / (2 * np.pi * R**3)),
+            "sigma_prime_kPa": out(self.force / (np.pi * R**2) / 1e3),
+        }
+
+    def _frame(self):
         import pandas as pd
 
-        return pd.DataFrame(self.rows())
+        cached = self.__dict__.get("_table")
+        if cached is None:
+            cols = ({"case": self.labels} if self.labels else {}) | self.columns()
+            cols["status"] = np.array([STATUS[k] for k in range(4)], dtype=object)[self.status.astype(int)]
+            cols["note"] = self.note
+            cached = self.__dict__["_table"] = pd.DataFrame(cols)
+        return cached
+
+    def rows(self) -> list[dict]:
+        cached = self.__dict__.get("_rows")
+        if cached is None:
+            cached = self.__dict__["_rows"] = _records(self._frame(), drop_empty="note")
+        return cached
+
+    def payload(self) -> dict:
+        return {"source": self.source, "bridges": self.rows()}
+
+    def tables(self) -> dict:
+        return {"solve": self._frame()}
+
+    def console_tables(self) -> list[TableSpec]:
+        from ..report.console import bridge_solve_tables
+
+        return bridge_solve_tables(self)
 
 
-def _n(x, ok=True):
-    x = float(x)
-    return round(x, 12) if ok and np.isfinite(x) else None
+def _records(frame, drop_empty: str | None = None) -> list[dict]:
+    """DataFrame rows as dicts, NaN as None, an empty ``drop_empty`` cell left out."""
+    keys = list(frame.columns)
+    cols = [[num(x) if isinstance(x, float) else x for x in frame[k].tolist()] for k in keys]
+    out = []
+    for values in zip(*cols):
+        r = dict(zip(keys, values))
+        if drop_empty is not None and not r.get(drop_empty):
+            r.pop(drop_empty, None)
+        out.append(r)
+    return out
 
 
-def _read_cases(source, required_one_of: tuple[str, ...]):
+def _read_cases(source, required_one_of: tuple[str, ...], opt: BridgeOptions):
     table = read_table(source, SOLVE_SCHEMA)
-    for name in ("R", "theta", "gap"):
+    for name in ("R", "contact_angle", "gap"):
         if name not in table.columns:
             table.missing_column(name)
     if not any(n in table.columns for n in required_one_of):
         table.missing_column(required_one_of[0], "".join(f" (or '{n}')" for n in required_one_of[1:]))
     table.raise_if_problems()
     gamma = table.get("gamma").copy()
-    gamma[np.isnan(gamma)] = ph.SURFACE_TENSION
-    for i in np.flatnonzero(table.columns["theta"] >= 90):
-        table.add_problem(i, "theta", f"contact angle {table.value_text('theta', i)} deg: pendular bridges need "
-                                      "theta < 90 deg")
-    for name in ("R", "theta", "gap"):
+    gamma[np.isnan(gamma)] = opt.surface_tension
+    for i in np.flatnonzero(table.columns["contact_angle"] >= 90):
+        table.add_problem(i, "contact_angle", f"contact angle {table.value_text('contact_angle', i)} deg: pendular "
+                                              "bridges need a contact angle below 90 deg")
+    for name in ("R", "contact_angle", "gap"):
         for i in np.flatnonzero(np.isnan(table.columns[name])):
             table.add_problem(i, name, f"blank {name}")
     return table, gamma
 
 
-def solve_bridges(source) -> BridgeResult:
-    """One bridge per row of a CSV: R, gamma, theta, gap and either suction or V_w."""
-    table, gamma = _read_cases(source, ("suction", "V_w"))
+def solve_bridges(source, options: BridgeOptions | None = None) -> BridgeResult:
+    """One bridge per row of a table (CSV path or DataFrame): R, gamma, contact_angle, gap and suction or V_w."""
+    opt = options or BridgeOptions()
+    table, gamma = _read_cases(source, ("suction", "V_w"), opt)
     s_in, v_in = table.get("suction"), table.get("V_w")
     for i in np.flatnonzero(np.isnan(s_in) & np.isnan(v_in)):
         table.add_problem(i, "suction" if "suction" in table.columns else "V_w", "give suction or V_w")
     for i in np.flatnonzero(np.isfinite(s_in) & np.isfinite(v_in)):
         table.add_problem(i, "V_w", "give suction or V_w, not both")
     table.raise_if_problems()
-    R, th, D = table.columns["R"], np.radians(table.columns["theta"]), table.columns["gap"]
+    R, th, D = table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["gap"]
     n = len(table)
     beta, s_star, status = np.full(n, np.nan), np.full(n, np.nan), np.full(n, 2)
     by_s = np.flatnonzero(np.isfinite(s_in))
@@ -122,27 +167,59 @@ def solve_bridges(source) -> BridgeResult:
     if by_v.size:
         beta[by_v], s_star[by_v], status[by_v] = br.solve_for_volume(th[by_v], v_in[by_v] / R[by_v] ** 3,
                                                                      D[by_v] / R[by_v])
-    return _result(table.path, R, gamma, th, D, beta, s_star, status, note,
-                   list(table.columns["case"]) if "case" in table.columns else None, table.notes)
+    res = _result(table.path, R, gamma, th, D, beta, s_star, status, note,
+                  list(table.columns["case"]) if "case" in table.columns else None, table.notes)
+    res.options, res.inputs, res.warnings = opt, [input_file(source)], opt.warnings
+    return res
 
 
 def _result(source, R, gamma, th, D, beta, s_star, status, note, labels=None, notes=None) -> BridgeResult:
     gap_s, vol_s, f_s, y0 = br.geometry(beta, th, s_star)
-    return BridgeResult(source, {"R": R, "gamma": gamma, "theta": th, "gap": D}, beta, s_star * gamma / R,
+    return BridgeResult(source, {"R": R, "gamma": gamma, "contact_angle": th, "gap": D}, beta, s_star * gamma / R,
                         vol_s * R**3, f_s * np.pi * gamma * R, y0 * R, status, note, labels, list(notes or []))
 
 
+@dataclass(frozen=True)
+class CurveOptions(Options):
+    """Options of `capred bridge curve`: radius R [m], surface tension [N/m] (or strings with units),
+    contact angle [deg], number of S_R values, largest S_R, pendular limit."""
+
+    QUANTITIES = {"radius": "R", "surface_tension": "surface_tension", "contact_angle": "contact_angle",
+                  "pendular_limit": "pendular_limit"}
+
+    radius: float = 1e-3
+    surface_tension: float = ph.SURFACE_TENSION
+    contact_angle: float = 0.0
+    points: int = 2000
+    sr_max: float = 0.3
+    pendular_limit: float = ph.PENDULAR_LIMIT
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if self.contact_angle >= 90:
+            raise OptionError("--contact-angle must lie in [0, 90) deg")
+        if self.points < 2 or not 1e-4 < self.sr_max <= 1:
+            raise OptionError("need --points >= 2 and 0.0001 < --sr-max <= 1")
+
+
 @dataclass
-class CurveResult:
-    """The thesis's analytical comparison: sigma' against S_R at contact (seed 000)."""
+class CurveResult(Result):
+    """Evenepoel's analytical comparison: sigma' against S_R for two spheres in contact."""
+
+    command = "bridge curve"
+    json_name = "curve.json"
 
     R: float
     gamma: float
-    theta: float  # rad
+    theta: float  # contact angle, rad
     S_R: np.ndarray
     suction: np.ndarray  # Pa
     sigma_exact: np.ndarray  # Pa
     pendular_limit: float
+    options: CurveOptions | None = None
+    inputs: list[InputFile] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
 
     def models(self) -> dict[str, np.ndarray]:
         S, s = self.S_R, self.suction
@@ -155,107 +232,165 @@ class CurveResult:
         }
 
     def rows(self) -> list[dict]:
-        m = self.models()
-        return [{"S_R": _n(self.S_R[i]), "suction_kPa": _n(self.suction[i] / 1e3),
-                 **{f"sigma_prime_{k}_kPa": _n(v[i] / 1e3) for k, v in m.items()}} for i in range(self.S_R.size)]
+        return _records(self.tables()["curve"])
 
     def summary(self) -> dict:
         m = self.models()
         out = {}
         for regime, sel in (("inside", self.S_R < self.pendular_limit), ("outside", self.S_R >= self.pendular_limit)):
             ex = m["exact"][sel]
-            out[regime] = {k: _n(np.sqrt(np.mean(((v[sel] - ex) / ex) ** 2))) if sel.any() else None
+            out[regime] = {k: num(np.sqrt(np.mean(((v[sel] - ex) / ex) ** 2))) if sel.any() else None
                            for k, v in m.items() if k != "exact"}
         return {"rms_relative_error_vs_exact": out}
 
-    def to_json(self) -> dict:
-        return {"R_mm": self.R * 1e3, "gamma_N_per_m": self.gamma, "theta_deg": float(np.degrees(self.theta)),
+    def payload(self) -> dict:
+        return {"R_mm": self.R * 1e3, "gamma_N_per_m": self.gamma,
+                "contact_angle_deg": float(np.degrees(self.theta)),
                 "pendular_limit": self.pendular_limit, **self.summary(), "curve": self.rows()}
 
-    def table(self):
+    def tables(self) -> dict:
         import pandas as pd
 
-        return pd.DataFrame(self.rows())
+        cached = self.__dict__.get("_tables")
+        if cached is None:
+            cols = {"S_R": self.S_R, "suction_kPa": self.suction / 1e3,
+                    **{f"sigma_prime_{k}_kPa": v / 1e3 for k, v in self.models().items()}}
+            cached = self.__dict__["_tables"] = {"curve": pd.DataFrame(cols)}
+        return cached
+
+    def figures(self) -> dict:
+        from ..report.bridge_figures import figure_curve
+
+        return {"curve": lambda: figure_curve(self)}
+
+    def console_tables(self) -> list[TableSpec]:
+        from ..report.console import bridge_curve_tables
+
+        return bridge_curve_tables(self)
 
 
-def bridge_curve(R: float = 1e-3, gamma: float = ph.SURFACE_TENSION, theta_deg: float = 0.0, points: int = 2000,
+def bridge_curve(R=1e-3, gamma=ph.SURFACE_TENSION, theta_deg: float = 0.0, points: int = 2000,
                  pendular_limit: float = ph.PENDULAR_LIMIT, sr_max: float = 0.3) -> CurveResult:
     """Exact sigma' = F/(pi R^2) against S_R = 3 V/(2 pi R^3) for spheres in contact (gap 0).
 
-    S_R is swept evenly from 1e-4 to ``sr_max``; points beyond the last
-    concave bridge (suction down to zero) are left out.
+    ``R`` [m] and ``gamma`` [N/m] also take strings with units; ``theta_deg``
+    is the contact angle [deg]. S_R is swept evenly from 1e-4 to ``sr_max``;
+    points beyond the last concave bridge (suction down to zero) are left out.
     """
-    if not R > 0 or not gamma > 0:
-        raise OptionError("R and gamma must be > 0")
-    if not 0 <= theta_deg < 90:
-        raise OptionError("the contact angle must lie in [0, 90) deg")
-    if points < 2 or not 1e-4 < sr_max <= 1:
-        raise OptionError("need --points >= 2 and 0.0001 < --sr-max <= 1")
-    th = np.radians(theta_deg)
+    return reduce_curve(None, CurveOptions(R, gamma, theta_deg, points, sr_max, pendular_limit))
+
+
+def reduce_curve(source, opt: CurveOptions) -> CurveResult:
+    """The sweep of bridge_curve for an options record (``source`` is unused: the curve needs no file)."""
+    R, gamma, points, sr_max = opt.radius, opt.surface_tension, opt.points, opt.sr_max
+    th = np.radians(opt.contact_angle)
     S = np.linspace(1e-4, sr_max, points)
     beta, s_star, status = br.solve_for_volume(th, 2 * np.pi * S / 3, 0.0)
     ok = status == 0
     _, vol, f, _ = br.geometry(beta[ok], th, s_star[ok])
-    return CurveResult(R, gamma, th, 3 * vol / (2 * np.pi), s_star[ok] * gamma / R, f * gamma / R, pendular_limit)
+    return CurveResult(R, gamma, th, 3 * vol / (2 * np.pi), s_star[ok] * gamma / R, f * gamma / R,
+                       opt.pendular_limit, opt, [], opt.warnings)
 
 
-def compare_measured(source) -> BridgeResult:
-    """Microscopic tests: exact bridge for each measured (R, gap, theta, V_w), beside the measured force."""
-    table, gamma = _read_cases(source, ("V_w",))
+@dataclass
+class CompareResult(Result):
+    """Measured capillary forces of micro-tests beside the exact bridge and three approximations."""
+
+    command = "bridge compare"
+    json_name = "compare.json"
+
+    bridges: BridgeResult
+    measured_force: np.ndarray  # N
+    measured_beta: np.ndarray  # rad, NaN where not measured
+    volume_in: np.ndarray  # m^3, as given
+
+    @property
+    def options(self):
+        return self.bridges.options
+
+    @property
+    def inputs(self):
+        return self.bridges.inputs
+
+    @property
+    def warnings(self):
+        return self.bridges.warnings
+
+    @property
+    def notes(self):
+        return self.bridges.notes
+
+    def _frame(self):
+        import pandas as pd
+
+        cached = self.__dict__.get("_table")
+        if cached is not None:
+            return cached
+        b = self.bridges
+        i_ = b.inputs_si
+        R, g, th, D = i_["R"], i_["gamma"], i_["contact_angle"], i_["gap"]
+        ok = b.status == 0
+        models = {"exact": (b.force, ok), "toroidal": (br.toroidal(b.beta, th, D / R)[2] * np.pi * g * R, ok),
+                  "willett": (br.willett_force(R, g, th, self.volume_in, D), np.ones_like(ok)),
+                  "israelachvili": (br.israelachvili_force(R, g, th), np.ones_like(ok))}
+        cols: dict = {"case": b.labels} if b.labels else {}
+        cols["F_measured_mN"] = self.measured_force * 1e3
+        for m, (F, good) in models.items():
+            cols[f"F_{m}_mN"] = np.where(good, F * 1e3, np.nan)
+            cols[f"residual_{m}_mN"] = np.where(good, (F - self.measured_force) * 1e3, np.nan)
+        cols["filling_angle_measured_deg"] = np.degrees(self.measured_beta)
+        cols["filling_angle_exact_deg"] = np.where(ok, np.degrees(b.beta), np.nan)
+        cols["status"] = [STATUS[int(k)] for k in b.status]
+        cached = self.__dict__["_table"] = pd.DataFrame(cols)
+        return cached
+
+    def rows(self) -> list[dict]:
+        cached = self.__dict__.get("_rows")
+        if cached is None:
+            cached = self.__dict__["_rows"] = _records(self._frame())
+        return cached
+
+    def payload(self) -> dict:
+        return {"source": self.bridges.source, "comparison": self.rows()}
+
+    def tables(self) -> dict:
+        return {"compare": self._frame()}
+
+    def figures(self) -> dict:
+        from ..report.bridge_figures import figure_compare
+
+        return {"compare": lambda: figure_compare(self.rows())}
+
+    def console_tables(self) -> list[TableSpec]:
+        from ..report.console import bridge_compare_tables
+
+        return bridge_compare_tables(self)
+
+
+def compare_measured(source, options: BridgeOptions | None = None) -> CompareResult:
+    """Micro-tests: the exact bridge of each measured (R, gap, contact angle, V_w) beside the measured force,
+    the toroidal approximation, Willett et al. (2000) and Israelachvili."""
+    opt = options or BridgeOptions()
+    table, gamma = _read_cases(source, ("V_w",), opt)
     if "F_cap" not in table.columns:
         table.missing_column("F_cap")
     table.raise_if_problems()
     for i in np.flatnonzero(np.isnan(table.columns["V_w"])):
         table.add_problem(i, "V_w", "blank V_w")
     table.raise_if_problems()
-    R, th, D, V = table.columns["R"], np.radians(table.columns["theta"]), table.columns["gap"], table.columns["V_w"]
+    R, th, D, V = (table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["gap"],
+                   table.columns["V_w"])
     beta, s_star, status = br.solve_for_volume(th, V / R**3, D / R)
     res = _result(table.path, R, gamma, th, D, beta, s_star, status, [""] * len(table),
                   list(table.columns["case"]) if "case" in table.columns else None, table.notes)
-    res.inputs.update(V_w=V, F_measured=table.columns["F_cap"], beta_measured=np.radians(table.get("filling_angle")))
-    return res
+    res.options, res.inputs, res.warnings = opt, [input_file(source)], opt.warnings
+    return CompareResult(res, table.columns["F_cap"], np.radians(table.get("filling_angle")), V)
 
 
-def comparison_rows(res: BridgeResult) -> list[dict]:
+def comparison_rows(res: CompareResult) -> list[dict]:
     """Measured force against exact, toroidal, Willett and Israelachvili (mN) with residuals."""
-    i_ = res.inputs
-    R, g, th, D, V = i_["R"], i_["gamma"], i_["theta"], i_["gap"], i_["V_w"]
-    tor = br.toroidal(res.beta, th, D / R)[2] * np.pi * g * R
-    models = {"exact": res.force, "toroidal": tor, "willett": br.willett_force(R, g, th, V, D),
-              "israelachvili": br.israelachvili_force(R, g, th)}
-    rows = []
-    for k in range(R.size):
-        ok = res.status[k] == 0
-        row = {"case": res.labels[k]} if res.labels else {}
-        row["F_measured_mN"] = _n(i_["F_measured"][k] * 1e3)
-        for m, F in models.items():
-            good = ok or m == "israelachvili" or m == "willett"
-            row[f"F_{m}_mN"] = _n(F[k] * 1e3, good)
-            row[f"residual_{m}_mN"] = _n((F[k] - i_["F_measured"][k]) * 1e3, good)
-        row["filling_angle_measured_deg"] = _n(np.degrees(i_["beta_measured"][k]))
-        row["filling_angle_exact_deg"] = _n(np.degrees(res.beta[k]), ok)
-        row["status"] = STATUS[int(res.status[k])]
-        rows.append(row)
-    return rows
+    return res.rows()
 
 
 __all__ = ["solve_bridges", "bridge_curve", "compare_measured", "comparison_rows", "BridgeResult", "CurveResult",
-           "InputError"]
-
-
-def write_bridge_outputs(command: str, table_rows: list[dict], js: dict, out_dir, figure=None,
-                         inputs=None, options=None) -> list[Path]:
-    """bridges.csv / curve.csv / compare.csv, the JSON, an optional PNG and provenance.json."""
-    import pandas as pd
-
-    from ..io import writers
-
-    out = Path(out_dir)
-    name = command.split()[-1]
-    written = [writers.write_csv(out / f"{name}.csv", pd.DataFrame(table_rows)),
-               writers.write_json(out / f"{name}.json", js)]
-    if figure is not None:
-        written.append(writers.write_png(out / f"{name}.png", figure))
-    written.append(writers.write_json(out / "provenance.json",
-                                      writers.provenance(command, inputs or [], options or {}, written)))
-    return written
+           "CompareResult", "BridgeOptions", "CurveOptions", "InputError"]

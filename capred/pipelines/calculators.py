@@ -15,42 +15,63 @@ from ..errors import InputError, OptionError, Problem
 from ..io.table import Column, read_table
 from ..physics import calculators as calc
 from ..physics.shear import GAMMA_W, SURFACE_TENSION
+from ..references import cite
+from ..result import InputFile, Options, Result, TableSpec, input_file, num
 
 
 CASE = Column("case", "text", None, "case label", ("test_id", "id", "name", "sample_id"))
 
 
 @dataclass
-class CalcResult:
-    command: str
-    inputs: dict[str, np.ndarray]  # output units
-    outputs: dict[str, np.ndarray]  # output units, keys carry the unit
+class CalcResult(Result):
+    """Result of a calculator: per-case inputs and outputs (output units, keys carry the unit)."""
+
+    calculator: str  # the command: prism, skempton-b or rumpf
+    values: dict[str, np.ndarray]  # inputs per case, output units
+    outputs: dict[str, np.ndarray]  # results per case, output units
     source: str | None
     notes: list[str] = field(default_factory=list)
     labels: list[str] | None = None
+    options: Options | None = None
+    inputs: list[InputFile] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+    title: str = ""
+    figure: object = None  # function drawing the figure, or None
+
+    json_name = "results.json"
+
+    @property
+    def command(self) -> str:
+        return self.calculator
 
     def rows(self) -> list[dict]:
-        n = len(next(iter(self.outputs.values())))
-        return [{**({"case": self.labels[i]} if self.labels else {}),
-                 **{k: _num(v[i]) for k, v in self.inputs.items()},
-                 **{k: _num(v[i]) for k, v in self.outputs.items()}} for i in range(n)]
+        cached = self.__dict__.get("_rows")
+        if cached is None:
+            n = len(next(iter(self.outputs.values())))
+            cols = {k: [num(x) for x in np.asarray(v, float)] for k, v in {**self.values, **self.outputs}.items()}
+            cached = self.__dict__["_rows"] = [{**({"case": self.labels[i]} if self.labels else {}),
+                                               **{k: c[i] for k, c in cols.items()}} for i in range(n)]
+        return cached
 
-    def to_json(self) -> dict:
+    def payload(self) -> dict:
         rows = self.rows()
-        out = {"cases": rows, "notes": self.notes}
+        out = {"source": self.source, "cases": rows}
         if len(rows) == 1:
             out = {**{k: rows[0][k] for k in self.outputs}, **out}
         return out
 
-    def table(self):
+    def tables(self) -> dict:
         import pandas as pd
 
-        return pd.DataFrame(self.rows())
+        return {"results": pd.DataFrame(self.rows())}
 
+    def figures(self) -> dict:
+        return {self.command: self.figure} if self.figure is not None else {}
 
-def _num(x):
-    x = float(x)
-    return round(x, 10) if np.isfinite(x) else None
+    def console_tables(self) -> list[TableSpec]:
+        from ..report.console import calc_tables
+
+        return calc_tables(self)
 
 
 def _labels(values: dict) -> list[str] | None:
@@ -87,23 +108,49 @@ def _inputs(source, schema: list[Column], options: dict[str, float | None], opti
     return values, table.notes, table.path
 
 
+def _finish(command: str, title: str, values, outputs, src, notes, labels, opt, source, figure=None) -> CalcResult:
+    return CalcResult(command, values, outputs, src, notes, labels, opt,
+                      [input_file(source)] if source is not None else [], opt.warnings, title, figure)
+
+
 PRISM = [
     Column("break_tension", "pressure", "kPa", "break tension sigma_b", ("sigma_b", "break_stress"), "positive"),
     Column("friction_angle", "angle", "deg", "friction angle rho", ("rho", "phi"), "positive"),
 ]
 
 
-def run_prism(source=None, break_tension: float | None = None, friction_angle: float | None = None,
-              gamma_w: float = GAMMA_W) -> CalcResult:
-    """Bernatzik (seed 001): maximal capillary pressure and capillary rise of a sand prism."""
-    v, notes, src = _inputs(source, PRISM, {"break_tension": break_tension, "friction_angle": friction_angle})
+@dataclass(frozen=True)
+class PrismOptions(Options):
+    """Break tension sigma_b [Pa], friction angle rho [deg], unit weight of water [N/m^3] (or strings with units)."""
+
+    QUANTITIES = {"break_tension": "break_tension", "friction_angle": "friction_angle", "gamma_w": "gamma_w"}
+
+    break_tension: float | None = None
+    friction_angle: float | None = None
+    gamma_w: float = GAMMA_W
+
+
+def reduce_prism(source, opt: PrismOptions) -> CalcResult:
+    """Bernatzik (1948): maximal capillary pressure and capillary rise of a sand prism."""
+    v, notes, src = _inputs(source, PRISM, {"break_tension": opt.break_tension,
+                                            "friction_angle": opt.friction_angle})
     labels = _labels(v)
     if np.any((v["friction_angle"] <= 0) | (v["friction_angle"] >= 90)):
         raise OptionError("the friction angle must lie between 0 and 90 deg")
     p = calc.prism_capillary_pressure(v["break_tension"], v["friction_angle"])
-    return CalcResult("prism", {"break_tension_kPa": v["break_tension"] / 1e3, "friction_angle_deg": v["friction_angle"]},
-                      {"P_kmax_kPa": p / 1e3, "capillary_rise_cm": calc.capillary_rise(p, gamma_w) * 100.0,
-                       "P_kmax_over_sigma_b": p / v["break_tension"]}, src, notes, labels)
+    return _finish("prism", f"Prism test ({cite('bernatzik1948')})",
+                   {"break_tension_kPa": v["break_tension"] / 1e3, "friction_angle_deg": v["friction_angle"]},
+                   {"P_kmax_kPa": p / 1e3, "capillary_rise_cm": calc.capillary_rise(p, opt.gamma_w) * 100.0,
+                    "P_kmax_over_sigma_b": p / v["break_tension"]}, src, notes, labels, opt, source)
+
+
+def run_prism(source=None, break_tension=None, friction_angle=None, gamma_w=GAMMA_W) -> CalcResult:
+    """Bernatzik (1948): P_kmax = sigma_b (1 - sin rho)/(2 sin rho) and h_c = P_kmax/gamma_w, per case.
+
+    Cases come from ``source`` (CSV path or DataFrame) and/or the options
+    (``break_tension`` [Pa or a string with a unit], ``friction_angle`` [deg]).
+    """
+    return reduce_prism(source, PrismOptions(break_tension, friction_angle, gamma_w))
 
 
 SKEMPTON = [
@@ -115,13 +162,53 @@ SKEMPTON = [
 ]
 
 
-def run_skempton_b(source=None, sr: float | None = None, b: float | None = None, kappa=0.006, e0=0.8,
-                   p0=100e3, u0=30e3, pa0=130e3, s_e: float | None = None, bc_alpha: float | None = None) -> CalcResult:
-    """Morvan et al. (seed 004): B from S_r (eq. 10), or S_r from a measured B.
+@dataclass(frozen=True)
+class SkemptonOptions(Options):
+    """Options of `capred skempton-b` (defaults: Morvan et al. 2016, Table 1); pressures in Pa or with a unit.
 
-    With ``s_e`` and ``bc_alpha`` (Brooks-Corey), B is computed with suction
+    ``bc_lambda`` is the Brooks-Corey pore-size index (Morvan et al. call it alpha).
+    """
+
+    QUANTITIES = {"sr": "S_R", "b": "B", "kappa": "kappa", "e0": "e0", "p0": "p0", "u0": "u0", "pa0": "pa0",
+                  "s_e": "air_entry", "bc_lambda": "bc_lambda"}
+
+    sr: float | None = None
+    b: float | None = None
+    kappa: float = 0.006
+    e0: float = 0.8
+    p0: float = 100e3
+    u0: float = 30e3
+    pa0: float = 130e3
+    s_e: float | None = None
+    bc_lambda: float | None = None
+
+
+def run_skempton_b(source=None, sr=None, b=None, kappa=0.006, e0=0.8, p0=100e3, u0=30e3, pa0=130e3, s_e=None,
+                   bc_lambda=None, bc_alpha=None) -> CalcResult:
+    """Morvan et al. (2016): B from S_r (eq. 10), or S_r from a measured B.
+
+    With ``s_e`` [Pa] and ``bc_lambda`` (Brooks-Corey; ``bc_alpha`` is the
+    same index under Morvan et al.'s name), B is computed with suction
     equilibrium (section 3); its inverse is solved numerically.
     """
+    return reduce_skempton_b(source, SkemptonOptions(sr, b, kappa, e0, p0, u0, pa0, s_e,
+                                                     bc_lambda if bc_lambda is not None else bc_alpha))
+
+
+def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
+    """B or S_r per case (see run_skempton_b), with the figure of the B-S_r relation."""
+    from ..report.calculator_figures import figure_skempton
+
+    kw = dict(kappa=opt.kappa, e0=opt.e0, p0=opt.p0, u0=opt.u0, pa0=opt.pa0)
+    res = _skempton(source, opt.sr, opt.b, s_e=opt.s_e, bc_alpha=opt.bc_lambda, **kw)
+    pts = (res.values.get("S_r", res.outputs.get("S_r")), res.values.get("B", res.outputs.get("B")))
+    res.figure = lambda: figure_skempton(s_e=opt.s_e, bc_alpha=opt.bc_lambda, points=pts, **kw)
+    res.options, res.warnings = opt, opt.warnings
+    res.inputs = [input_file(source)] if source is not None else []
+    return res
+
+
+def _skempton(source, sr, b, kappa, e0, p0, u0, pa0, s_e, bc_alpha) -> CalcResult:
     schema = SKEMPTON + [Column("S_r", "dimensionless", "-", "S_r", ("Sr", "S_R"), "fraction"),
                          Column("B", "dimensionless", "-", "B", ("skempton_b",), "fraction")]
     given = {"kappa": kappa, "e0": e0, "p0": p0, "u0": u0, "pa0": pa0, "S_r": sr, "B": b}
@@ -136,7 +223,7 @@ def run_skempton_b(source=None, sr: float | None = None, b: float | None = None,
     v.pop("B" if forward else "S_r")
     suction = s_e is not None and bc_alpha is not None
     if (s_e is None) != (bc_alpha is None):
-        raise OptionError("give both --se and --bc-alpha for the suction-equilibrium simulation, or neither")
+        raise OptionError("give both --se and --bc-lambda for the suction-equilibrium simulation, or neither")
     p_eff = v["p0"] - v["u0"]
     if np.any(p_eff <= 0):
         raise OptionError("p0 - u0 (initial mean effective stress) must be > 0")
@@ -147,7 +234,7 @@ def run_skempton_b(source=None, sr: float | None = None, b: float | None = None,
             B = calc.skempton_b_suction(v["S_r"], v["p0"], v["u0"], v["e0"], v["kappa"], v["pa0"], s_e, bc_alpha)
         else:
             B = calc.skempton_b(v["S_r"], p_eff, v["e0"], v["kappa"], v["pa0"])
-        return CalcResult("skempton-b", {"S_r": v["S_r"], **ins}, {"B": B}, src, notes, labels)
+        return CalcResult("skempton-b", {"S_r": v["S_r"], **ins}, {"B": B}, src, notes, labels, title=_B_TITLE)
     if suction:
         from scipy.optimize import brentq
 
@@ -161,7 +248,10 @@ def run_skempton_b(source=None, sr: float | None = None, b: float | None = None,
         S = calc.saturation_from_b(v["B"], p_eff, v["e0"], v["kappa"], v["pa0"])
     if np.any(~np.isfinite(S) | (S < 0)):
         notes.append("some B values are below what these parameters give for dry soil: S_r is outside [0, 1] there")
-    return CalcResult("skempton-b", {"B": v["B"], **ins}, {"S_r": S}, src, notes, labels)
+    return CalcResult("skempton-b", {"B": v["B"], **ins}, {"S_r": S}, src, notes, labels, title=_B_TITLE)
+
+
+_B_TITLE = f"Skempton's B and the degree of saturation ({cite('morvan2016', 'eq. 10')})"
 
 
 RUMPF = [
@@ -174,12 +264,33 @@ RUMPF = [
 ]
 
 
+@dataclass(frozen=True)
+class RumpfOptions(Options):
+    """Options of `capred rumpf`: diameter [m], surface tension [N/m] (or strings with units), angles in deg."""
+
+    QUANTITIES = {"shape_factor": "shape_factor", "void_ratio": "void_ratio", "sr": "S_R", "diameter": "diameter",
+                  "surface_tension": "surface_tension", "contact_angle": "contact_angle"}
+
+    shape_factor: float | None = None
+    void_ratio: float | None = None
+    sr: float | None = None
+    diameter: float | None = None
+    surface_tension: float = SURFACE_TENSION
+    contact_angle: float = 0.0
+
+
 def run_rumpf(source=None, shape_factor=None, void_ratio=None, sr=None, diameter=None,
               surface_tension=SURFACE_TENSION, contact_angle=0.0) -> CalcResult:
-    """Rumpf's capillary pressure p_cap = -(6/phi)(S_r/e)(gamma/d_p) cos theta (seed 002, eq. 19)."""
-    v, notes, src = _inputs(source, RUMPF, {"shape_factor": shape_factor, "void_ratio": void_ratio, "S_r": sr,
-                                            "diameter": diameter, "surface_tension": surface_tension,
-                                            "contact_angle": contact_angle})
+    """Rumpf's capillary pressure p_cap = -(6/phi)(S_r/e)(gamma/d_p) cos theta (Prunier et al. 2024, eq. 19)."""
+    return reduce_rumpf(source, RumpfOptions(shape_factor, void_ratio, sr, diameter, surface_tension, contact_angle))
+
+
+def reduce_rumpf(source, opt: RumpfOptions) -> CalcResult:
+    """p_cap per case (see run_rumpf)."""
+    v, notes, src = _inputs(source, RUMPF, {"shape_factor": opt.shape_factor, "void_ratio": opt.void_ratio,
+                                            "S_r": opt.sr, "diameter": opt.diameter,
+                                            "surface_tension": opt.surface_tension,
+                                            "contact_angle": opt.contact_angle})
     labels = _labels(v)
     if np.any(v["contact_angle"] >= 90):
         raise OptionError("the contact angle must be below 90 deg")
@@ -188,20 +299,9 @@ def run_rumpf(source=None, shape_factor=None, void_ratio=None, sr=None, diameter
     ins = {"shape_factor": v["shape_factor"], "void_ratio": v["void_ratio"], "S_r": v["S_r"],
            "diameter_mm": v["diameter"] * 1e3, "surface_tension_N_per_m": v["surface_tension"],
            "contact_angle_deg": v["contact_angle"]}
-    return CalcResult("rumpf", ins, {"p_cap_kPa": p / 1e3}, src, notes, labels)
+    return _finish("rumpf", f"Rumpf's capillary pressure ({cite('prunier2024', 'eq. 19')})", ins,
+                   {"p_cap_kPa": p / 1e3}, src, notes, labels, opt, source)
 
 
-def write_calc_outputs(result: CalcResult, out_dir, figure=None, command_options=None) -> list[Path]:
-    from ..io import writers
-
-    out = Path(out_dir)
-    written = [writers.write_csv(out / "results.csv", result.table()),
-               writers.write_json(out / "results.json", result.to_json())]
-    if figure is not None:
-        written.append(writers.write_png(out / f"{result.command}.png", figure))
-    written.append(writers.write_json(out / "provenance.json", writers.provenance(
-        result.command, [result.source] if result.source else [], command_options or {}, written)))
-    return written
-
-
-__all__ = ["run_prism", "run_skempton_b", "run_rumpf", "write_calc_outputs", "CalcResult", "InputError", "Problem"]
+__all__ = ["run_prism", "run_skempton_b", "run_rumpf", "CalcResult", "PrismOptions", "SkemptonOptions",
+           "RumpfOptions", "InputError", "Problem"]

@@ -12,6 +12,8 @@ from ..fitting.retention import fit_brooks_corey, fit_van_genuchten
 from ..io.table import Column, read_table
 from ..physics import retention as rp
 from ..physics.shear import GAMMA_W
+from ..references import cite
+from ..result import InputFile, Options, Result, TableSpec, input_file, num
 
 SCHEMA = [
     Column("suction", "pressure", "kPa", "suction", ("s", "matric_suction", "delta_u", "ua_uw"), "nonnegative"),
@@ -25,17 +27,37 @@ SCHEMA = [
 ]
 
 MODELS = {"vg": "van Genuchten, m = 1 - 1/n", "vg_m_free": "van Genuchten, m free", "bc": "Brooks-Corey"}
+REFERENCE = {"vg": "vangenuchten1980", "vg_m_free": "vangenuchten1980", "bc": "brooks_corey1964"}
 
 
-@dataclass
-class RetentionOptions:
+@dataclass(frozen=True)
+class RetentionOptions(Options):
+    """Options of `capred retention`: models to fit, fixed parameters (report names and
+    units: kPa, 1/kPa) and the unit weight of water ``gamma_w`` [N/m^3, or a string with a unit]."""
+
+    QUANTITIES = {"gamma_w": "gamma_w"}
+
     models: tuple[str, ...] = ("vg", "vg_m_free", "bc")
-    fixed: dict[str, float] = field(default_factory=dict)  # report names and units (kPa, 1/kPa)
+    fixed: dict[str, float] = field(default_factory=dict)
     gamma_w: float = GAMMA_W
 
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        models = (self.models,) if isinstance(self.models, str) else tuple(self.models)
+        unknown = [m for m in models if m not in MODELS]
+        if unknown or not models:
+            raise OptionError(f"unknown model {unknown[0] if unknown else ''!r}; choose from {', '.join(MODELS)}")
+        object.__setattr__(self, "models", models)
+        for name in self.fixed:
+            if name not in _TO_INTERNAL:
+                raise OptionError(f"fixed: unknown parameter '{name}'; choose from {', '.join(_TO_INTERNAL)}")
+
 
 @dataclass
-class RetentionResult:
+class RetentionResult(Result):
+    command = "retention"
+    json_name = "fits.json"
+
     source: str
     quantity: str  # "theta" or "S_R"
     suction: np.ndarray  # Pa
@@ -45,6 +67,8 @@ class RetentionResult:
     fits: dict[str, dict[str, NonlinearFit]]  # branch -> model -> fit
     options: RetentionOptions
     notes: list[str] = field(default_factory=list)
+    inputs: list[InputFile] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
 
     @property
     def names(self) -> tuple[str, str]:
@@ -56,30 +80,47 @@ class RetentionResult:
         cm = self.options.gamma_w * 0.01  # Pa per cm of water head
 
         def se(k, scale=1.0):
-            return None if e.get(k) is None or not np.isfinite(e[k]) else _num(e[k] * scale)
+            return None if e.get(k) is None or not np.isfinite(e[k]) else num(e[k] * scale)
 
-        out = {ys: _num(p["y_s"]), yr: _num(p["y_r"]), f"{ys}_se": se("y_s"), f"{yr}_se": se("y_r")}
+        out = {ys: num(p["y_s"]), yr: num(p["y_r"]), f"{ys}_se": se("y_s"), f"{yr}_se": se("y_r")}
         if model.startswith("vg"):
-            out.update({"alpha_per_kPa": _num(p["alpha"] * 1e3), "alpha_per_kPa_se": se("alpha", 1e3),
-                        "alpha_per_cm": _num(p["alpha"] * cm), "n": _num(p["n"]), "n_se": se("n"),
-                        "m": _num(p.get("m", 1 - 1 / p["n"])), "m_se": se("m")})
+            out.update({"alpha_per_kPa": num(p["alpha"] * 1e3), "alpha_per_kPa_se": se("alpha", 1e3),
+                        "alpha_per_cm": num(p["alpha"] * cm), "n": num(p["n"]), "n_se": se("n"),
+                        "m": num(p.get("m", 1 - 1 / p["n"])), "m_se": se("m")})
         else:
-            out.update({"s_e_kPa": _num(p["s_e"] / 1e3), "s_e_kPa_se": se("s_e", 1e-3),
-                        "h_b_cm": _num(p["s_e"] / cm), "lambda": _num(p["lam"]), "lambda_se": se("lam")})
-        out.update({"r2": _num(f.r2), "aic": _num(f.aic), "bic": _num(f.bic), "rss": _num(f.rss), "n_points": f.n,
+            out.update({"s_e_kPa": num(p["s_e"] / 1e3), "s_e_kPa_se": se("s_e", 1e-3),
+                        "h_b_cm": num(p["s_e"] / cm), "lambda": num(p["lam"]), "lambda_se": se("lam")})
+        out.update({"r2": num(f.r2), "aic": num(f.aic), "bic": num(f.bic), "rss": num(f.rss), "n_points": f.n,
                     "fixed": [_report_name(k, self.quantity) for k in f.fixed], "converged": f.converged,
-                    "model": MODELS[model]})
+                    "model": MODELS[model], "reference": cite(REFERENCE[model])})
         return out
 
-    def to_json(self) -> dict:
+    def payload(self) -> dict:
         branches = {b: {"n_points": int(np.sum(self.branch == b)),
                         "fits": {m: self.fit_json(f, m) for m, f in fits.items()}}
                     for b, fits in self.fits.items()}
         main = "drying" if "drying" in branches else next(iter(branches))
         return {"source": self.source, "quantity": self.quantity, "branch_source": self.branch_source,
-                "main_branch": main, "fits": branches[main]["fits"], "branches": branches, "notes": self.notes}
+                "main_branch": main, "fits": branches[main]["fits"], "branches": branches}
 
-    def table(self):
+    def tables(self) -> dict:
+        """fits: one row per branch and model."""
+        cached = self.__dict__.get("_tables")
+        if cached is None:
+            cached = self.__dict__["_tables"] = {"fits": self._fits_table()}
+        return cached
+
+    def figures(self) -> dict:
+        from ..report.retention_figures import figure_retention
+
+        return {"retention": lambda: figure_retention(self)}
+
+    def console_tables(self) -> list[TableSpec]:
+        from ..report.console import retention_tables
+
+        return retention_tables(self)
+
+    def _fits_table(self):
         import pandas as pd
 
         rows = []
@@ -94,11 +135,6 @@ class RetentionResult:
         if model.startswith("vg"):
             return rp.vg_water(s, p["y_r"], p["y_s"], p["alpha"], p["n"], p.get("m"))
         return rp.bc_water(s, p["y_r"], p["y_s"], p["s_e"], p["lam"])
-
-
-def _num(x) -> float | None:
-    x = float(x)
-    return round(x, 12) if np.isfinite(x) else None
 
 
 _TO_INTERNAL = {  # report name -> (internal name, factor from report unit to SI)
@@ -150,12 +186,9 @@ def _infer_branches(s: np.ndarray) -> np.ndarray:
     return out
 
 
-def run_retention(source: str | Path, options: RetentionOptions | None = None) -> RetentionResult:
-    """Fit the chosen retention models to every branch of a retention CSV."""
+def run_retention(source, options: RetentionOptions | None = None) -> RetentionResult:
+    """Fit the chosen retention models to every branch of a retention table (CSV path or DataFrame)."""
     opt = options or RetentionOptions()
-    unknown = [m for m in opt.models if m not in MODELS]
-    if unknown:
-        raise OptionError(f"unknown model {unknown[0]!r}; choose from {', '.join(MODELS)}")
     table = read_table(source, SCHEMA)
     if "suction" not in table.columns and "head" not in table.columns:
         table.missing_column("suction", " (or 'head' / 'z1')")
@@ -206,21 +239,5 @@ def run_retention(source: str | Path, options: RetentionOptions | None = None) -
                     fits[b][m] = fit_van_genuchten(s[sel], y[sel], fx, m_free=(m == "vg_m_free"))
             except FitError as exc:
                 raise FitError(f"{table.path}: branch '{b}', model {m}: {exc}") from None
-    return RetentionResult(table.path, quantity, s, y, branch, how, fits, opt, list(table.notes))
-
-
-def write_retention_outputs(result: RetentionResult, out_dir, plots=True, command_options=None) -> list[Path]:
-    from ..io import writers
-    from ..report.retention_figures import figure_retention
-
-    out = Path(out_dir)
-    fig = figure_retention(result) if plots else None
-    written = [writers.write_csv(out / "fits.csv", result.table()),
-               writers.write_json(out / "fits.json", result.to_json())]
-    if fig is not None:
-        written.append(writers.write_png(out / "retention.png", fig))
-    opts = {"models": list(result.options.models), "fixed": result.options.fixed,
-            "gamma_w": result.options.gamma_w, **(command_options or {})}
-    written.append(writers.write_json(out / "provenance.json",
-                                      writers.provenance("retention", [result.source], opts, written)))
-    return written
+    return RetentionResult(table.path, quantity, s, y, branch, how, fits, opt, list(table.notes),
+                           [input_file(source)], opt.warnings)

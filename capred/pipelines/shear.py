@@ -1,8 +1,9 @@
 """`capred shear`: hanging-column direct-shear tests to a model comparison.
 
-Reads one CSV (one row per test), derives sigma_N, suction and S_R, fits the
-dry envelope per material, predicts every wet test with the thesis's four
-effective-stress models (seed 000) and scores them.
+Reads one table (one row per test), derives sigma_N, suction and S_R, fits the
+dry envelope per material, predicts every wet test with the effective-stress
+models of the registry (by default the four of Evenepoel's thesis) and scores
+them.
 """
 from __future__ import annotations
 
@@ -15,7 +16,10 @@ from .. import nomenclature as nom
 from ..errors import FitError, OptionError
 from ..fitting.linear import LineFit, fit_line
 from ..io.table import Column, Table, read_table
+from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
+from ..references import cite
+from ..result import InputFile, Options, Result, TableSpec, input_file, num
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier", ("id", "test", "test_no", "sample_id")),
@@ -37,11 +41,14 @@ SCHEMA = [
 
 
 @dataclass(frozen=True)
-class ModelParams:
+class ModelParams(Options):
     """Parameters of the models beyond the thesis's four (SI; None = not given).
 
     Retention parameters come from `capred retention` output (--retention) or options.
+    ``air_entry`` [Pa] and ``vg_alpha`` [1/Pa] also take a unit: ``air_entry="5 kPa"``.
     """
+
+    QUANTITIES = {"air_entry": "air_entry", "vg_alpha": "vg_alpha"}
 
     s_res: float | None = None  # residual S_R (Vanapalli)
     vanapalli_kappa: float = 1.0
@@ -52,9 +59,7 @@ class ModelParams:
     water_envelope: tuple[float, float] | None = None  # (c [Pa], phi [deg]) of the saturated soil (P-T)
 
     def require(self, model: str) -> None:
-        need = {"vanapalli": [("s_res", "--s-res")], "khalili": [("air_entry", "--air-entry")],
-                "lu_likos": [("vg_alpha", "--vg-alpha"), ("vg_n", "--vg-n")]}.get(model, [])
-        missing = [opt for name, opt in need if getattr(self, name) is None]
+        missing = [opt for name, opt in esm.REGISTRY[model].requires if getattr(self, name) is None]
         if missing:
             raise OptionError(f"model '{model}' needs {' and '.join(missing)} (or --retention FIT.json "
                               "written by capred retention)")
@@ -86,12 +91,19 @@ def model_params_from_retention(path: str | Path, **overrides) -> ModelParams:
 
 
 @dataclass(frozen=True)
-class ShearOptions:
-    """Constants and per-test defaults, all in SI.
+class ShearOptions(Options):
+    """Constants and per-test defaults.
 
-    Per-test values (box area, cap mass, R, V_v) given as options fill the
-    rows where the column is absent or blank; a value in the file wins.
+    Every dimensional option takes a number in the SI unit noted beside it, a
+    string with a unit (``gamma_w="10 kN/m^3"``) or a pint Quantity; it holds
+    SI after construction. Per-test values (box area, cap mass, R, V_v) given
+    as options fill the rows where the column is absent or blank; a value in
+    the file wins.
     """
+
+    QUANTITIES = {"gamma_w": "gamma_w", "surface_tension": "surface_tension", "g": "g",
+                  "pendular_limit": "pendular_limit", "box_area": "box_area", "cap_mass": "cap_mass",
+                  "radius": "R", "void_volume": "V_v"}
 
     gamma_w: float = ph.GAMMA_W  # N/m^3
     surface_tension: float = ph.SURFACE_TENSION  # N/m
@@ -102,14 +114,25 @@ class ShearOptions:
     cap_mass: float | None = None  # kg
     radius: float | None = None  # m
     void_volume: float | None = None  # m^3
-    models: tuple[str, ...] = ph.MODELS
+    models: tuple[str, ...] = esm.THESIS_MODELS
     model_params: ModelParams = field(default_factory=ModelParams)
 
-    def as_dict(self) -> dict:
-        out = {k: getattr(self, k) for k in self.__dataclass_fields__ if k != "model_params"}
-        out["models"] = list(self.models)
-        out["model_params"] = {k: getattr(self.model_params, k) for k in self.model_params.__dataclass_fields__}
-        return out
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        models = (self.models,) if isinstance(self.models, str) else tuple(self.models)
+        unknown = [m for m in models if m not in esm.REGISTRY]
+        if unknown or not models:
+            raise OptionError(f"models: unknown model '{unknown[0] if unknown else ''}'; choose from "
+                              f"{', '.join(esm.REGISTRY)}")
+        object.__setattr__(self, "models", models)
+        if not 0.0 < self.confidence < 1.0:
+            raise OptionError(f"confidence must lie between 0 and 1 (got {self.confidence})")
+        for m in models:
+            self.model_params.require(m)
+
+    @property
+    def warnings(self) -> list[str]:
+        return super().warnings + self.model_params.warnings
 
 
 @dataclass
@@ -121,8 +144,10 @@ class ModelMetrics:
 
 
 @dataclass
-class ShearResult:
+class ShearResult(Result):
     """Everything `capred shear` computes. SI inside; ``to_json`` gives kPa."""
+
+    command = "shear"
 
     source: str
     options: ShearOptions
@@ -134,6 +159,8 @@ class ShearResult:
     best_model_overall: str | None
     notes: list[str] = field(default_factory=list)
     phi_b: dict[str, float] = field(default_factory=dict)  # Fredlund tan(phi_b) per material
+    inputs: list[InputFile] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
 
     @property
     def models(self) -> tuple[str, ...]:
@@ -152,8 +179,26 @@ class ShearResult:
                 out.append("chi1_gt_1")
         return out
 
-    def table(self):
-        """One row per test as a pandas DataFrame, units in the column names."""
+    def tables(self) -> dict:
+        """results (one row per test) and summary (one row per material and model)."""
+        cached = self.__dict__.get("_tables")
+        if cached is None:
+            cached = self.__dict__["_tables"] = {"results": self._results_table(), "summary": _flat_summary(self)}
+        return cached
+
+    def figures(self) -> dict:
+        from ..io.writers import safe_name
+        from ..report.shear_figures import figure_shear_report
+
+        taken: set[str] = set()
+        return {f"report_{safe_name(m, taken)}": (lambda m=m: figure_shear_report(self, m)) for m in self.materials}
+
+    def console_tables(self) -> list[TableSpec]:
+        from ..report.console import shear_tables
+
+        return shear_tables(self)
+
+    def _results_table(self):
         import pandas as pd
 
         t = self.tests
@@ -169,8 +214,16 @@ class ShearResult:
             cols[nom.column("tau_pred", f"_{m}")] = nom.to_output("tau_pred", t[f"tau_pred_{m}"])
         for m in self.models:
             cols[f"residual_{m} [kPa]"] = nom.to_output("tau_pred", t[f"tau_pred_{m}"] - t["tau_max"])
-        cols["flags"] = [";".join(self.flags(i)) for i in range(len(t["test_id"]))]
+        cols["flags"] = self._flag_texts()
         return pd.DataFrame(cols)
+
+    def _flag_texts(self) -> list[str]:
+        wet = self.tests["condition"] == "wet"
+        S = self.tests["S_R"]
+        outside = wet & (S > self.options.pendular_limit)
+        above = wet & (S > ph.CHI1_UNITY_SR)
+        names = np.array(["", "outside_pendular", "chi1_gt_1", "outside_pendular;chi1_gt_1"], dtype=object)
+        return list(names[outside.astype(int) + 2 * above.astype(int)])
 
     def summary_rows(self) -> list[dict]:
         """Long table of fits and metrics for the summary CSV."""
@@ -185,28 +238,25 @@ class ShearResult:
                          "best": m == self.best_model_overall})
         return rows
 
-    def to_json(self) -> dict:
+    def payload(self) -> dict:
         t = self.tests
-        tests = []
-        for i in range(len(t["test_id"])):
-            tests.append({
-                "test_id": str(t["test_id"][i]),
-                "material": str(t["material"][i]),
-                "condition": str(t["condition"][i]),
-                "line": int(t["line"][i]),
-                "sigma_N_kPa": _num(t["sigma_N"][i] / 1e3),
-                "suction_kPa": _num(t["suction"][i] / 1e3),
-                "S_R": _num(t["S_R"][i]),
-                "tau_max_kPa": _num(t["tau_max"][i] / 1e3),
-                "chi1": _num(t["chi1"][i]),
-                "chi2_kPa": _num(t["chi2"][i] / 1e3),
-                "tau_pred_kPa": {m: _num(t[f"tau_pred_{m}"][i] / 1e3) for m in self.models},
-                "residual_kPa": {m: _num((t[f"tau_pred_{m}"][i] - t["tau_max"][i]) / 1e3) for m in self.models},
-                "flags": self.flags(i),
-            })
+        kpa = {k: (t[k] / 1e3).tolist() for k in ("sigma_N", "suction", "tau_max", "chi2")}
+        plain = {k: t[k].tolist() for k in ("S_R", "chi1")}
+        pred = {m: (t[f"tau_pred_{m}"] / 1e3).tolist() for m in self.models}
+        resid = {m: ((t[f"tau_pred_{m}"] - t["tau_max"]) / 1e3).tolist() for m in self.models}
+        flags = self._flag_texts()
+        ids, mats, conds, lines = (t[k].tolist() for k in ("test_id", "material", "condition", "line"))
+        tests = [{
+            "test_id": str(ids[i]), "material": str(mats[i]), "condition": str(conds[i]), "line": int(lines[i]),
+            "sigma_N_kPa": num(kpa["sigma_N"][i]), "suction_kPa": num(kpa["suction"][i]), "S_R": num(plain["S_R"][i]),
+            "tau_max_kPa": num(kpa["tau_max"][i]), "chi1": num(plain["chi1"][i]), "chi2_kPa": num(kpa["chi2"][i]),
+            "tau_pred_kPa": {m: num(pred[m][i]) for m in self.models},
+            "residual_kPa": {m: num(resid[m][i]) for m in self.models},
+            "flags": flags[i].split(";") if flags[i] else [],
+        } for i in range(len(ids))]
         return {
             "source": self.source,
-            "materials": {m: {**_fit_dict(f), **({"phi_b_deg": _num(np.degrees(np.arctan(self.phi_b[m])))}
+            "materials": {m: {**_fit_dict(f), **({"phi_b_deg": num(np.degrees(np.arctan(self.phi_b[m])))}
                                                  if m in self.phi_b else {})}
                           for m, f in self.fits.items()},
             "models": list(self.models),
@@ -222,13 +272,8 @@ class ShearResult:
                 "pendular_limit": self.options.pendular_limit,
                 "confidence": self.options.confidence,
             },
-            "notes": self.notes,
+            "references": {m: cite(esm.REGISTRY[m].reference) for m in self.models},
         }
-
-
-def _num(x) -> float | None:
-    x = float(x)
-    return round(x, 10) if np.isfinite(x) else None
 
 
 def _fit_dict(fit: LineFit) -> dict:
@@ -238,21 +283,21 @@ def _fit_dict(fit: LineFit) -> dict:
     lo, hi = fit.slope_ci
     c_lo, c_hi = fit.intercept_ci
     return {
-        "c_kPa": _num(fit.intercept / 1e3),
-        "phi_deg": _num(phi),
-        "tan_phi": _num(fit.slope),
-        "c_se_kPa": _num(fit.intercept_se / 1e3),
-        "phi_se_deg": _num(phi_se),
-        "tan_phi_se": _num(fit.slope_se),
-        "c_ci95_kPa": [_num(c_lo / 1e3), _num(c_hi / 1e3)],
-        "phi_ci95_deg": [_num(np.degrees(np.arctan(lo))), _num(np.degrees(np.arctan(hi)))],
-        "r2": _num(fit.r2),
+        "c_kPa": num(fit.intercept / 1e3),
+        "phi_deg": num(phi),
+        "tan_phi": num(fit.slope),
+        "c_se_kPa": num(fit.intercept_se / 1e3),
+        "phi_se_deg": num(phi_se),
+        "tan_phi_se": num(fit.slope_se),
+        "c_ci95_kPa": [num(c_lo / 1e3), num(c_hi / 1e3)],
+        "phi_ci95_deg": [num(np.degrees(np.arctan(lo))), num(np.degrees(np.arctan(hi)))],
+        "r2": num(fit.r2),
         "n": fit.n,
     }
 
 
 def _metric_dict(m: ModelMetrics) -> dict:
-    return {"n": m.n, "rmse_kPa": _num(m.rmse / 1e3), "bias_kPa": _num(m.bias / 1e3), "r2": _num(m.r2)}
+    return {"n": m.n, "rmse_kPa": num(m.rmse / 1e3), "bias_kPa": num(m.bias / 1e3), "r2": num(m.r2)}
 
 
 def model_metrics(predicted, measured) -> ModelMetrics:
@@ -369,11 +414,12 @@ def load_shear_table(source: str | Path) -> Table:
     return table
 
 
-def run_shear(source: str | Path, options: ShearOptions | None = None) -> ShearResult:
-    """Reduce a direct-shear CSV and compare the four models of seed 000.
+def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
+    """Reduce a direct-shear table and compare effective-stress models (Evenepoel's four by default).
 
-    Raises InputError (every problem in the file, each with line and column)
-    or FitError; never writes anything.
+    ``source`` is a path to a CSV file or a pandas DataFrame. Raises
+    InputError (every problem in the file, each with line and column),
+    OptionError or FitError; never writes anything.
 
     Example
     -------
@@ -423,81 +469,29 @@ def run_shear(source: str | Path, options: ShearOptions | None = None) -> ShearR
         source=table.path, options=opt, tests=tests, fits=fits, metrics=metrics,
         metrics_overall=overall, best_model={m: best_of(v) for m, v in metrics.items()},
         best_model_overall=best_of(overall), notes=table.notes, phi_b=phi_b,
+        inputs=[input_file(source)], warnings=opt.warnings,
     )
 
 
 def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions) -> dict[str, float]:
-    """tau_pred (and sigma'_N where the model defines one) of every chosen model, in place."""
-    from ..physics import effective_stress_models as esm
+    """sigma'_N (NaN where a model predicts tau directly) and tau_pred of every chosen model, in place.
 
-    sigma_N, s, S_R, R = tests["sigma_N"], tests["suction"], tests["S_R"], tests["R"]
+    Returns tan(phi_b) per material when the Fredlund model is among them.
+    """
     c = np.array([fits[m].intercept for m in mat])
     tan_phi = np.array([fits[m].slope for m in mat])
-    mp = opt.model_params
-    phi_b: dict[str, float] = {}
+    d = esm.ModelInputs(tests["sigma_N"], tests["suction"], tests["S_R"], tests["R"], tests["tau_max"], wet, mat,
+                        c, tan_phi, opt.surface_tension, opt.model_params)
     for model in opt.models:
-        mp.require(model)
-        if model in ph.MODELS:
-            eff = ph.effective_normal_stress(model, sigma_N, s, S_R, R, opt.surface_tension)
-        elif model == "vanapalli":
-            eff = sigma_N + esm.chi_vanapalli(S_R, mp.s_res, mp.vanapalli_kappa) * s
-        elif model == "khalili":
-            eff = sigma_N + esm.chi_khalili(s, mp.air_entry) * s
-        elif model == "lu_likos":
-            eff = sigma_N + esm.chi_lu_likos(s, mp.vg_alpha, mp.vg_n, mp.vg_m) * s
-        elif model == "fredlund":
-            tb = np.zeros(len(mat))
-            for m in fits:
-                sel = wet & (mat == m)
-                if sel.any():
-                    phi_b[m] = esm.fit_tan_phi_b(s[sel], tests["tau_max"][sel] - ph.mohr_coulomb_strength(
-                        fits[m].intercept, fits[m].slope, sigma_N[sel]))
-                    tb[mat == m] = phi_b[m]
-            eff = sigma_N + s * tb / tan_phi
-        elif model == "pedrotti_tarantino":
-            if mp.water_envelope is None:
-                c_w, tan_w = c, tan_phi
-            else:
-                c_w, tan_w = mp.water_envelope[0], np.tan(np.radians(mp.water_envelope[1]))
-            tau = esm.pedrotti_tarantino_strength(sigma_N, s, S_R, c_w, tan_w, c, tan_phi)
-            tests[f"sigma_eff_{model}"] = np.where(wet, np.nan, sigma_N)
-            tests[f"tau_pred_{model}"] = np.where(wet, tau, ph.mohr_coulomb_strength(c, tan_phi, sigma_N))
-            continue
-        else:
-            raise OptionError(f"unknown model '{model}'; choose from {', '.join(ph.MODELS + ph.EXTRA_MODELS)}")
-        eff = np.where(wet, eff, sigma_N)
-        tests[f"sigma_eff_{model}"] = eff
-        tests[f"tau_pred_{model}"] = ph.mohr_coulomb_strength(c, tan_phi, eff)
+        tests[f"sigma_eff_{model}"], tests[f"tau_pred_{model}"] = esm.predict(model, d)
+    phi_b: dict[str, float] = {}
+    if "fredlund" in opt.models:
+        for m in fits:
+            sel = wet & (mat == m)
+            if sel.any():
+                phi_b[m] = esm.fit_tan_phi_b(tests["suction"][sel], tests["tau_max"][sel] - ph.mohr_coulomb_strength(
+                    fits[m].intercept, fits[m].slope, tests["sigma_N"][sel]))
     return phi_b
-
-
-def write_shear_outputs(result: ShearResult, out_dir: str | Path, plots: bool = True,
-                        command_options: dict | None = None) -> list[Path]:
-    """Write results.csv, summary.csv/json, one PNG per material and provenance.json.
-
-    Figures are drawn before anything is written, so a failure leaves no
-    partial report behind.
-    """
-    from ..io import writers
-    from ..report.shear_figures import figure_shear_report
-
-    out = Path(out_dir)
-    figures = {f"report_{_safe(m)}.png": figure_shear_report(result, m) for m in result.materials} if plots else {}
-    results = result.table()
-    written = [
-        writers.write_csv(out / "results.csv", results),
-        writers.write_csv(out / "summary.csv", _flat_summary(result)),
-        writers.write_json(out / "summary.json", result.to_json()),
-    ]
-    written += [writers.write_png(out / name, fig) for name, fig in figures.items()]
-    opts = {**result.options.as_dict(), **(command_options or {})}
-    written.append(writers.write_json(out / "provenance.json",
-                                      writers.provenance("shear", [result.source], opts, written)))
-    return written
-
-
-def _safe(name: str) -> str:
-    return "".join(ch if ch.isalnum() or ch in "-_." else "_" for ch in name) or "material"
 
 
 def _flat_summary(result: ShearResult):
@@ -516,4 +510,4 @@ def _flat_summary(result: ShearResult):
     return pd.DataFrame(rows)
 
 
-__all__ = ["SCHEMA", "ShearOptions", "ShearResult", "run_shear", "write_shear_outputs"]
+__all__ = ["SCHEMA", "ModelParams", "ShearOptions", "ShearResult", "run_shear"]

@@ -1,4 +1,4 @@
-"""`capred triaxial-bounds`: bounds of the capillary stress tensor at failure (seed 002).
+"""`capred triaxial-bounds`: bounds of the capillary stress tensor at failure (Prunier et al. 2024).
 
 Saturated drained tests give the effective envelope c', phi'; every
 unsaturated test's total failure state is projected on it under three
@@ -7,6 +7,7 @@ unsaturated tests that share one tensor get the Appendix 1 analysis.
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -16,6 +17,8 @@ from ..errors import FitError, OptionError
 from ..fitting.linear import LineFit, fit_line
 from ..io.table import Column, Table, read_table
 from ..physics import triaxial as tx
+from ..references import cite
+from ..result import InputFile, Options, Result, TableSpec, input_file, num
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier", ("id", "test", "sample_id")),
@@ -61,7 +64,7 @@ class Envelope:
 def fit_envelope(sigma3_eff, sigma1_eff, confidence=0.95) -> Envelope:
     """c', phi' from saturated failure states by least squares of sigma'_1 on sigma'_3.
 
-    Eq. (25) of seed 002 is linear in the principal-stress plane:
+    Eq. (25) of Prunier et al. (2024) is linear in the principal-stress plane:
     sigma'_1 = K_p sigma'_3 + 2c' sqrt(K_p). The confining stress is the
     controlled variable and sigma'_1 the measured one, so ordinary least
     squares has its error in the right variable (a fit of q on p would put the
@@ -83,15 +86,32 @@ def fit_envelope(sigma3_eff, sigma1_eff, confidence=0.95) -> Envelope:
     return Envelope(float(c), float(phi), float(np.sqrt(max(c_var, 0.0))), float(phi_se), "fit", f)
 
 
-@dataclass
-class TriaxialOptions:
+@dataclass(frozen=True)
+class TriaxialOptions(Options):
+    """Options of `capred triaxial-bounds`.
+
+    ``c_eff`` [Pa] (or a string with a unit) and ``phi_eff`` [deg] replace the
+    fit of the saturated tests; ``curves`` is a long table of raw curves
+    (test_id, axial_strain, q) whose peaks give q_f.
+    """
+
+    QUANTITIES = {"c_eff": "c_eff", "phi_eff": "phi_eff"}
+
     c_eff: float | None = None  # Pa
     phi_eff: float | None = None  # deg
     confidence: float = 0.95
+    curves: str | Path | None = None
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if (self.c_eff is None) != (self.phi_eff is None):
+            raise OptionError("give both --c-eff and --phi-eff, or neither")
 
 
 @dataclass
-class TriaxialResult:
+class TriaxialResult(Result):
+    command = "triaxial-bounds"
+
     source: str
     envelope: Envelope
     tests: dict[str, np.ndarray]
@@ -99,6 +119,9 @@ class TriaxialResult:
     q_sat: np.ndarray
     groups: list[dict]
     notes: list[str] = field(default_factory=list)
+    options: TriaxialOptions | None = None
+    inputs: list[InputFile] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
 
     @property
     def unsaturated(self) -> np.ndarray:
@@ -123,10 +146,10 @@ class TriaxialResult:
             "sigma1_cap_kPa": _kpa(b.sigma1_cap[i]), "sigma3_cap_kPa": _kpa(b.sigma3_cap[i]),
             "p_cap_kPa": _kpa(b.p_cap[i]), "q_cap_kPa": _kpa(b.q_cap[i]),
             "p_prime_kPa": _kpa(b.p_prime[i]), "q_prime_kPa": _kpa(b.q_prime[i]),
-            "gain": _num(gain), "positive_component": bool(b.positive[i]),
+            "gain": num(gain), "positive_component": bool(b.positive[i]),
         }
 
-    def to_json(self) -> dict:
+    def payload(self) -> dict:
         e = self.envelope
         t = self.tests
         tests = []
@@ -138,8 +161,8 @@ class TriaxialResult:
                 "sigma1_kPa": _kpa(t["sigma1"][i]),
                 "p_kPa": _kpa(t["p"][i]), "q_kPa": _kpa(t["q"][i]),
                 "p0_kPa": _kpa(t["p0"][i]), "s0_kPa": _kpa(t["s0"][i]),
-                "lode_angle_deg": _num(t["lode"][i]),
-                "strain_at_failure": _num(t["strain_f"][i]),
+                "lode_angle_deg": num(t["lode"][i]),
+                "strain_at_failure": num(t["strain_f"][i]),
                 "q_sat_kPa": _kpa(self.q_sat[i]) if self.unsaturated[i] else None,
             }
             for name in BOUNDS:
@@ -149,20 +172,43 @@ class TriaxialResult:
         return {
             "source": self.source,
             "envelope": {
-                "c_kPa": _kpa(e.c), "phi_deg": _num(e.phi), "M": _num(e.M), "k_kPa": _kpa(e.k),
+                "c_kPa": _kpa(e.c), "phi_deg": num(e.phi), "M": num(e.M), "k_kPa": _kpa(e.k),
                 "c_se_kPa": _kpa(e.c_se) if e.c_se is not None else None,
-                "phi_se_deg": _num(e.phi_se) if e.phi_se is not None else None,
+                "phi_se_deg": num(e.phi_se) if e.phi_se is not None else None,
                 "source": e.source, "n": e.fit.n if e.fit else None,
-                "r2": _num(e.fit.r2) if e.fit else None,
-                "method": "least squares of sigma'_1 on sigma'_3 (seed 002, eq. 25)" if e.fit else "given as options",
+                "r2": num(e.fit.r2) if e.fit else None,
+                "method": (f"least squares of sigma'_1 on sigma'_3 ({cite('prunier2024', 'eq. 25')})"
+                           if e.fit else "given as options"),
             },
             "tests": tests,
             "groups": self.groups,
-            "notes": self.notes,
         }
 
-    def table(self):
-        """One row per test (kPa), bounds side by side."""
+    def tables(self) -> dict:
+        """results (one row per test, bounds side by side) and, with groups, groups."""
+        cached = self.__dict__.get("_tables")
+        if cached is None:
+            cached = {"results": self._results_table()}
+            if self.groups:
+                import pandas as pd
+
+                rows = [{**g, "tests": ";".join(g["tests"]), "lode_angles_deg": ";".join(
+                    "" if x is None else repr(x) for x in g.get("lode_angles_deg", []))} for g in self.groups]
+                cached["groups"] = pd.json_normalize(rows)
+            self.__dict__["_tables"] = cached
+        return cached
+
+    def figures(self) -> dict:
+        from ..report.triaxial_figures import figure_triaxial_report
+
+        return {"report": lambda: figure_triaxial_report(self)}
+
+    def console_tables(self) -> list[TableSpec]:
+        from ..report.console import triaxial_tables
+
+        return triaxial_tables(self)
+
+    def _results_table(self):
         import pandas as pd
 
         js = self.to_json()
@@ -178,19 +224,14 @@ class TriaxialResult:
         return pd.DataFrame(rows)
 
 
-def _num(x) -> float | None:
-    x = float(x)
-    return round(x, 10) if np.isfinite(x) else None
-
-
 def _kpa(x) -> float | None:
-    return _num(float(x) / 1e3)
+    return num(float(x) / 1e3)
 
 
 def read_curves(source: str | Path) -> dict[str, tuple[float, float]]:
     """Peak q and the axial strain at the peak, per test, from a long CSV of curves.
 
-    Failure is the peak of q, not the residual (seed 002, section 5.4).
+    Failure is the peak of q, not the residual (Prunier et al. 2024, section 5.4).
     """
     table = read_table(source, CURVE_SCHEMA)
     for name in ("test_id", "q"):
@@ -248,9 +289,12 @@ def load_triaxial_table(source: str | Path, curves: dict[str, tuple[float, float
     return table, {"q": q, "strain": strain}
 
 
-def run_triaxial_bounds(source: str | Path, options: TriaxialOptions | None = None,
+def run_triaxial_bounds(source, options: TriaxialOptions | None = None,
                         curves: str | Path | None = None) -> TriaxialResult:
-    """Envelope, bounds and group analysis of a triaxial CSV (see module docstring).
+    """Envelope, bounds and group analysis of a triaxial table (see module docstring).
+
+    ``source`` is a CSV path or a DataFrame; ``curves`` (or ``options.curves``)
+    a long CSV of raw curves.
 
     Example
     -------
@@ -258,12 +302,9 @@ def run_triaxial_bounds(source: str | Path, options: TriaxialOptions | None = No
     >>> r.to_json()["tests"][4]["spherical"]["p_cap_kPa"]                     # doctest: +SKIP
     """
     opt = options or TriaxialOptions()
-    if (opt.c_eff is None) != (opt.phi_eff is None):
-        raise OptionError("give both --c-eff and --phi-eff, or neither")
-    if opt.phi_eff is not None and not 0.0 < opt.phi_eff < 90.0:
-        raise OptionError(f"--phi-eff must lie between 0 and 90 deg (got {opt.phi_eff})")
-    if opt.c_eff is not None and opt.c_eff < 0:
-        raise OptionError("--c-eff must not be negative")
+    if curves is not None:
+        opt = dataclasses.replace(opt, curves=curves)
+    curves = opt.curves
     peaks = read_curves(curves) if curves is not None else None
     table, d = load_triaxial_table(source, peaks)
     table.raise_if_problems()
@@ -325,11 +366,13 @@ def run_triaxial_bounds(source: str | Path, options: TriaxialOptions | None = No
         "sigma1": s1, "sigma2": s2, "sigma3": s3, "p": tx.mean_stress(s1, s3, s2), "q": q,
         "p0": p0, "s0": s0, "strain_f": d["strain"], "lode": tx.lode_angle(s1, s2, s3),
     }
-    return TriaxialResult(table.path, env, tests, bounds, q_sat, _group_analysis(tests, env), notes)
+    inputs = [input_file(source)] + ([input_file(curves)] if curves is not None else [])
+    return TriaxialResult(table.path, env, tests, bounds, q_sat, _group_analysis(tests, env), notes, opt, inputs,
+                          opt.warnings)
 
 
 def _group_analysis(t: dict, env: Envelope) -> list[dict]:
-    """Appendix 1 of seed 002 for every group of unsaturated tests sharing one tensor."""
+    """Appendix 1 of Prunier et al. (2024) for every group of unsaturated tests sharing one tensor."""
     out = []
     for g in [g for g in dict.fromkeys(t["group"]) if g]:
         sel = t["group"] == g
@@ -349,40 +392,12 @@ def _group_analysis(t: dict, env: Envelope) -> list[dict]:
         c2 = tx.fictive_cohesion_lower(C, env.c, env.phi)
         a1, a3 = tx.axisymmetric_group_cap(C, c2, env.c, env.phi)
         res.update({
-            "C_apparent_kPa": _kpa(C), "phi_apparent_deg": _num(phi),
-            "phi_difference_deg": _num(phi - env.phi),
+            "C_apparent_kPa": _kpa(C), "phi_apparent_deg": num(phi),
+            "phi_difference_deg": num(phi - env.phi),
             "eq37_sigma_cap_kPa": _kpa(tx.spherical_group_cap(C, env.c, env.phi)),
             "eq48_lower": {"C_fictive_kPa": _kpa(c2), "sigma1_cap_kPa": _kpa(a1), "sigma3_cap_kPa": _kpa(a3)},
-            "lode_angles_deg": [_num(x) for x in t["lode"][sel]],
+            "lode_angles_deg": [num(x) for x in t["lode"][sel]],
             "eq49_holds": bool(np.ptp(Q) <= 1e-3),
         })
         out.append(res)
     return out
-
-
-
-
-
-def write_triaxial_outputs(result: TriaxialResult, out_dir: str | Path, plots: bool = True,
-                           command_options: dict | None = None, inputs: list | None = None) -> list[Path]:
-    """results.csv, summary.json, groups.csv, report.png and provenance.json."""
-    import pandas as pd
-
-    from ..io import writers
-    from ..report.triaxial_figures import figure_triaxial_report
-
-    out = Path(out_dir)
-    fig = figure_triaxial_report(result) if plots else None
-    js = result.to_json()
-    written = [writers.write_csv(out / "results.csv", result.table()),
-               writers.write_json(out / "summary.json", js)]
-    if js["groups"]:
-        written.append(writers.write_csv(out / "groups.csv", pd.json_normalize(js["groups"])))
-    if fig is not None:
-        written.append(writers.write_png(out / "report.png", fig))
-    opts = {"c_eff": result.envelope.c if result.envelope.source == "options" else None,
-            "phi_eff": result.envelope.phi if result.envelope.source == "options" else None,
-            **(command_options or {})}
-    written.append(writers.write_json(out / "provenance.json", writers.provenance(
-        "triaxial-bounds", inputs or [result.source], opts, written)))
-    return written

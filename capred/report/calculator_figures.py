@@ -1,4 +1,4 @@
-"""Figure of `capred skempton-b`: B against S_r and the seed's parameter studies (seed 004, Fig. 1-3, 5)."""
+"""Figure of `capred skempton-b`: B against S_r and the parameter studies of Morvan et al. (2016), Fig. 1-3, 5."""
 from __future__ import annotations
 
 import numpy as np
@@ -25,14 +25,14 @@ def figure_skempton(kappa, e0, p0, u0, pa0, s_e=None, bc_alpha=None, points=None
     a.set_title(f"κ = {kappa:g}, e0 = {e0:g}, p'0 = {pe / 1e3:g} kPa, P_a0 = {pa0 / 1e3:g} kPa")
     for k in (0.0006, 0.006, 0.06):
         ax[0, 1].plot(S, calc.skempton_b(S, pe, e0, k, pa0), label=f"κ = {k:g}")
-    ax[0, 1].set_title("effect of κ (seed 004, Fig. 2)")
+    ax[0, 1].set_title("effect of κ (Morvan et al. 2016, Fig. 2)")
     for e in (0.6, 0.8, 1.2):
         ax[1, 0].plot(S, calc.skempton_b(S, pe, e, kappa, pa0), label=f"e0 = {e:g}")
-    ax[1, 0].set_title("effect of e0 (seed 004, Fig. 3)")
+    ax[1, 0].set_title("effect of e0 (Morvan et al. 2016, Fig. 3)")
     alpha = bc_alpha if bc_alpha is not None else 0.8
     for se in (5e3, 20e3, 100e3, 1000e3):
         ax[1, 1].plot(S, calc.skempton_b_suction(S, p0, u0, e0, kappa, pa0, se, alpha), label=f"s_e = {se / 1e3:g} kPa")
-    ax[1, 1].set_title(f"suction equilibrium, effect of s_e (α = {alpha:g}; seed 004, Fig. 5)")
+    ax[1, 1].set_title(f"suction equilibrium, effect of s_e (α = {alpha:g}; Morvan et al. 2016, Fig. 5)")
     for x in ax.flat:
         x.set_xlabel("S_r [-]")
         x.set_ylabel("B [-]")

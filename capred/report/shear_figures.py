@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import nomenclature as nom
-from ..physics.shear import MODEL_LABELS
+from ..physics.effective_stress_models import MODEL_LABELS
 
 MODEL_STYLE = {
     "no_suction": dict(color="0.45", marker="s"),

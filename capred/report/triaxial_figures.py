@@ -1,4 +1,4 @@
-"""Figures of `capred triaxial-bounds`, after Fig. 16-18 of seed 002."""
+"""Figures of `capred triaxial-bounds`, after Fig. 16-18 of Prunier et al. (2024)."""
 from __future__ import annotations
 
 import numpy as np

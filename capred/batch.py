@@ -1,0 +1,162 @@
+"""Run one reduction on many files, or a manifest of runs, optionally in worker processes.
+
+Each file is a job with its own output folder, written as a transaction by
+capred.io.writers. A job never raises: bad input makes it ``failed`` (with
+the message), an unexpected exception makes it ``crashed`` (its traceback in
+the folder's errors.log), and after Ctrl-C the jobs not yet done are
+``interrupted``. ``index.csv`` lists every job and every file written, and is
+written in every case.
+"""
+from __future__ import annotations
+
+import time
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .errors import CapredError
+
+STATUSES = ("ok", "failed", "crashed", "interrupted")
+
+
+@dataclass
+class Job:
+    command: str
+    source: Path | None
+    out_dir: Path
+    options: object
+    plots: bool = True
+    keep_json: bool = False
+
+
+@dataclass
+class Outcome:
+    command: str
+    source: str
+    out_dir: str
+    status: str
+    message: str = ""
+    outputs: list[str] = field(default_factory=list)
+    seconds: float = 0.0
+    result_json: dict | None = None
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "ok"
+
+
+def run_job(job: Job):
+    """(result, written paths) of one job; raises CapredError on bad input or unwritable output."""
+    from .io.writers import write_run
+    from .reductions import REDUCTIONS
+
+    result = REDUCTIONS[job.command].run(job.source, job.options)
+    return result, write_run(result, job.out_dir, plots=job.plots)
+
+
+def run_safely(job: Job) -> Outcome:
+    """Outcome of one job: ok, failed (CapredError) or crashed (any other exception)."""
+    t0 = time.perf_counter()
+    src = str(job.source) if job.source is not None else ""
+    try:
+        result, written = run_job(job)
+    except CapredError as exc:
+        return Outcome(job.command, src, str(job.out_dir), "failed", str(exc), seconds=time.perf_counter() - t0)
+    except Exception as exc:  # a bug: keep the traceback for the report, let the other files run
+        log = _save_traceback(job, traceback.format_exc())
+        return Outcome(job.command, src, str(job.out_dir), "crashed",
+                       f"unexpected error {type(exc).__name__}: {exc} (traceback in {log})",
+                       [log] if log else [], time.perf_counter() - t0)
+    return Outcome(job.command, src, str(job.out_dir), "ok", "", [str(p) for p in written],
+                   time.perf_counter() - t0, result.to_json() if job.keep_json else None)
+
+
+def _save_traceback(job: Job, text: str) -> str:
+    from .io.writers import RunFolder, check_target
+
+    try:
+        folder = RunFolder(check_target(job.out_dir, [job.source] if job.source else []))
+        folder.write_bytes("errors.log", f"capred {job.command} {job.source}\n\n{text}".encode("utf-8"))
+        return str(folder.commit()[0])
+    except (CapredError, OSError):
+        return ""
+
+
+def run_all(jobs: list[Job], workers: int = 1, on_done=None) -> tuple[list[Outcome], bool]:
+    """Outcomes of every job in input order, and whether the run was interrupted (Ctrl-C).
+
+    ``on_done(outcome)`` is called after each job.
+    """
+    outcomes: dict[int, Outcome] = {}
+    interrupted = False
+    try:
+        if workers <= 1 or len(jobs) <= 1:
+            for k, job in enumerate(jobs):
+                outcomes[k] = run_safely(job)
+                if on_done:
+                    on_done(outcomes[k])
+        else:
+            from concurrent.futures import ProcessPoolExecutor, as_completed
+
+            pool = ProcessPoolExecutor(max_workers=workers)
+            try:
+                futures = {pool.submit(run_safely, job): k for k, job in enumerate(jobs)}
+                for fut in as_completed(futures):
+                    outcomes[futures[fut]] = fut.result()
+                    if on_done:
+                        on_done(outcomes[futures[fut]])
+            finally:
+                pool.shutdown(wait=True, cancel_futures=True)
+    except KeyboardInterrupt:
+        interrupted = True
+    except Exception as exc:  # a worker process died: the jobs it held are reported, not lost
+        if type(exc).__name__ != "BrokenProcessPool":
+            raise
+        interrupted = True
+    result = []
+    for k, job in enumerate(jobs):
+        if k in outcomes:
+            result.append(outcomes[k])
+        else:
+            result.append(Outcome(job.command, str(job.source or ""), str(job.out_dir), "interrupted",
+                                  "not run: the batch was interrupted"))
+    return result, interrupted
+
+
+def output_dirs(commands: list[str], sources: list[Path], root: Path) -> list[Path]:
+    """One folder per input under ``root``: <prefix>_<stem>, made unique with parent names or a number."""
+    from .reductions import REDUCTIONS
+
+    prefixes = [REDUCTIONS[c].out_prefix for c in commands]
+    stems = [Path(p).stem if p is not None else "options" for p in sources]
+    names = [f"{prefix}_{stem}" for prefix, stem in zip(prefixes, stems)]
+    for i, p in enumerate(sources):
+        if p is not None and names.count(names[i]) > 1:
+            names[i] = f"{prefixes[i]}_{Path(p).parent.name}_{stems[i]}"
+    seen: dict[str, int] = {}
+    out = []
+    for n in names:
+        k = seen.get(n.lower(), 0)
+        seen[n.lower()] = k + 1
+        out.append(root / (n if k == 0 else f"{n}_{k + 1}"))
+    return out
+
+
+def write_index(root: Path, outcomes: list[Outcome]) -> Path:
+    """index.csv: every input with its status, message and each output file written."""
+    import csv
+    import io
+
+    from .io.writers import atomic_write_bytes
+
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["command", "input", "status", "message", "output"])
+    for o in outcomes:
+        message = o.message.replace("\n", " | ")
+        if o.outputs:
+            for f in o.outputs:
+                w.writerow([o.command, o.source, o.status, message, f])
+        else:
+            w.writerow([o.command, o.source, o.status, message, ""])
+    return atomic_write_bytes(root / "index.csv", buf.getvalue().encode("utf-8"))

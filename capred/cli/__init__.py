@@ -1,0 +1,162 @@
+"""Command-line interface: thin commands over capred's reductions.
+
+Only typer is imported at start-up; a command imports its pipeline when it
+runs, so `capred --help` and `capred COMMAND --help` stay fast.
+"""
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+
+from . import bridge_commands, calculator_commands, data_commands
+from .common import BUILDERS, JsonOpt, WorkersOpt, fail, run_batch
+from ..errors import CapredError
+
+app = typer.Typer(
+    name="capred",
+    help="Capillary effective stress and strength from unsaturated-soil lab tests.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+    # plain help text: rendering help through rich would double `capred --help` start-up time
+    rich_markup_mode=None,
+)
+
+
+def _version(value: bool):
+    if value:
+        from .. import __version__
+
+        typer.echo(f"capred {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: Annotated[bool, typer.Option("--version", callback=_version, is_eager=True,
+                                          help="Show the version and exit.")] = False,
+):
+    """capred turns raw unsaturated-soil lab readings into effective stresses,
+    strength parameters, model comparisons and report figures."""
+
+
+data_commands.register(app)
+bridge_commands.register(app)
+calculator_commands.register(app)
+
+
+@app.command()
+def batch(
+    manifest: Annotated[Path, typer.Argument(help="CSV (command,input,options) or TOML ([[run]] command, input, "
+                                             "options) listing the runs.", show_default=False)],
+    out: Annotated[Optional[Path], typer.Option("--out", "-o", help="Root output folder [default: ./capred_out].")] = None,
+    json_out: JsonOpt = False,
+    workers: WorkersOpt = 1,
+):
+    """Run a season's worth of reductions listed in a manifest: one line per run,
+    with the command (shear, triaxial-bounds, retention, prism, skempton-b,
+    rumpf, bridge solve, bridge compare), the input file or glob, and that
+    command's options as on the command line. Every file gets its own folder
+    under --out; bad files are reported and the others still complete;
+    index.csv lists every output; the exit code is 1 if anything failed.
+
+    Example: capred batch season.csv --workers 2   (season.csv: command,input,options /
+    shear,runs/*.csv,--gamma-w 10 --no-plots)
+    """
+    try:
+        jobs = _manifest_jobs(manifest, out, json_out)
+    except CapredError as exc:
+        fail(exc)
+    root = (out or Path.cwd() / "capred_out") if (out is not None or not json_out) else None
+    try:
+        run_batch(jobs, root, json_out, workers)
+    except CapredError as exc:
+        fail(exc)
+
+
+def _manifest_jobs(manifest: Path, out, json_out: bool):
+    """Jobs of every manifest line, each line parsed exactly as the command line would parse it."""
+    import shlex
+
+    import typer.main
+
+    from .. import batch as batch_mod
+    from ..errors import InputError, Problem
+    from ..io.manifest import read_manifest
+
+    group = typer.main.get_command(app)
+    problems: list = []
+    invocations = []
+    for line, command, pattern, options in read_manifest(manifest):
+        cmd = _subcommand(group, command) if command in BUILDERS and command != "bridge curve" else None
+        if cmd is None:
+            runnable = [c for c in BUILDERS if c != "bridge curve"]
+            problems.append(Problem(str(manifest), line, "command",
+                                    f"'{command}' is not one of {', '.join(runnable)}"))
+            continue
+        target = pattern if Path(pattern).is_absolute() else str(manifest.parent / pattern)
+        try:
+            argv = [target, *(shlex.split(options) if isinstance(options, str) else options)]
+        except ValueError as exc:  # unbalanced quotes in the options
+            problems.append(Problem(str(manifest), line, "options", str(exc)))
+            continue
+        try:
+            ctx = cmd.make_context(command, argv)
+            invocations.append(BUILDERS[command](**ctx.params))
+        except CapredError as exc:
+            problems.append(Problem(str(manifest), line, None, str(exc)))
+        except Exception as exc:  # usage errors: bad option names or values in the manifest
+            if type(exc).__module__.split(".")[0] not in ("click", "typer"):
+                raise
+            message = exc.format_message() if hasattr(exc, "format_message") else str(exc)
+            problems.append(Problem(str(manifest), line, "options", message))
+    if problems:
+        raise InputError(problems)
+    write = out is not None or not json_out
+    root = out or Path.cwd() / "capred_out"
+    flat = [(inv, src) for inv in invocations for src in inv.sources]
+    dirs = batch_mod.output_dirs([inv.command for inv, _ in flat], [src for _, src in flat], root)
+    return [batch_mod.Job(inv.command, src, d if write else None, inv.options, inv.plots, keep_json=json_out)
+            for (inv, src), d in zip(flat, dirs)]
+
+
+def _subcommand(group, name: str):
+    cmd = group
+    for part in name.split():
+        cmd = getattr(cmd, "commands", {}).get(part)
+        if cmd is None:
+            return None
+    return cmd
+
+
+def _fast_help() -> None:
+    """Let `capred COMMAND --help` skip building typer's value adapters (and importing pydantic).
+
+    Typer >= 0.2x coerces every parameter through a pydantic adapter, also the
+    unset `--help` flag of the parent command; a bool flag that is unset is
+    simply False. If typer's internals differ, nothing is changed.
+    """
+    try:
+        from typer.core import _TyperParameter
+    except ImportError:  # pragma: no cover - other typer versions
+        return
+    original = getattr(_TyperParameter, "process_value", None)
+    if original is None or getattr(original, "_capred", False):
+        return
+
+    def process_value(self, ctx, value):
+        desc = getattr(self, "type_descriptor", None)
+        if value is None and not self.default and desc is not None and getattr(desc, "annotation", None) is bool:
+            value = False
+        return original(self, ctx, value)
+
+    process_value._capred = True
+    _TyperParameter.process_value = process_value
+
+
+def main() -> None:
+    _fast_help()
+    app(prog_name="capred")
+
+
+__all__ = ["app", "main"]

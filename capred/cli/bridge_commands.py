@@ -1,0 +1,84 @@
+"""`capred bridge curve | solve | compare`: exact capillary bridges between two equal spheres."""
+from typing import Annotated
+
+import typer
+
+from .common import Invocation, JsonOpt, OutOpt, PlotOpt, SampleOpt, WorkersOpt, command, data_arg, quantity, sources
+
+
+def register(app: typer.Typer) -> None:
+    bridge_app = typer.Typer(help="Exact capillary bridges between two equal spheres (Young-Laplace), the "
+                                  "thesis's analytical comparison and checks against microscopic tests.",
+                             no_args_is_help=True, rich_markup_mode=None)
+    app.add_typer(bridge_app, name="bridge")
+    command(bridge_app, "curve", "bridge curve")(curve)
+    command(bridge_app, "solve", "bridge solve")(solve)
+    command(bridge_app, "compare", "bridge compare")(compare)
+
+
+def curve(
+    radius: Annotated[str, typer.Option(help="Particle radius R [mm] (2 mm steel spheres: 1).")] = "1",
+    surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m].")] = "0.0728",
+    contact_angle: Annotated[float, typer.Option(help="Contact angle [deg].")] = 0.0,
+    points: Annotated[int, typer.Option(help="Number of S_R values.")] = 2000,
+    sr_max: Annotated[float, typer.Option(help="Largest S_R of the sweep (bridges stop where suction reaches 0).")] = 0.3,
+    pendular_limit: Annotated[float, typer.Option(help="S_R bound of the pendular regime panel.")] = 0.05,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    plots: PlotOpt = True,
+) -> Invocation:
+    """Evenepoel's analytical comparison: sigma' = F_cap/(pi R^2) against
+    S_R = 3 V_w/(2 pi R^3) for two spheres in contact, from exact bridges,
+    beside Israelachvili, Bishop, Own 1 and Own 2; one panel inside the
+    pendular regime and one over the whole concave range.
+
+    Example: capred bridge curve --radius 1 --contact-angle 0 --points 2000
+    """
+    from ..pipelines.bridge import CurveOptions
+
+    opts = CurveOptions(quantity(radius, "mm", "R", "--radius"),
+                        quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
+                        quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"),
+                        points, sr_max, quantity(repr(float(pendular_limit)), "", "pendular_limit", "--pendular-limit"))
+    return Invocation("bridge curve", [None], opts, plots, out, json_out)
+
+
+def solve(
+    data: data_arg("CSV, one bridge per row: R, gamma, contact_angle, gap, and suction or V_w") = None,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    sample: SampleOpt = False,
+    workers: WorkersOpt = 1,
+    surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma'.")] = "0.0728",
+) -> Invocation:
+    """Exact bridge per row: neck radius r0, F_cap = F_L + F_T, V_w, half-filling
+    angle, S_R = 3V_w/(2 pi R^3) and sigma' = F_cap/(pi R^2); a row without a
+    bridge (beyond rupture, too much water) gets a status, not an error.
+
+    Example: capred bridge solve cases.csv --json
+    """
+    from ..pipelines.bridge import BridgeOptions
+
+    opts = BridgeOptions(quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"))
+    return Invocation("bridge solve", sources(data, sample, "bridge solve"), opts, False, out, json_out, workers)
+
+
+def compare(
+    data: data_arg("CSV of microscopic tests: R, contact_angle, gap, V_w, measured F_cap (and filling_angle)") = None,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    plots: PlotOpt = True,
+    sample: SampleOpt = False,
+    workers: WorkersOpt = 1,
+    surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma'.")] = "0.0728",
+) -> Invocation:
+    """Microscopic tests against theory: the measured force of each sphere pair
+    beside the exact bridge of the same R, gap, contact angle and V_w, the
+    toroidal approximation, Willett et al. (2000) and Israelachvili, with residuals.
+
+    Example: capred bridge compare micro_tests.csv --out micro
+    """
+    from ..pipelines.bridge import BridgeOptions
+
+    opts = BridgeOptions(quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"))
+    return Invocation("bridge compare", sources(data, sample, "bridge compare"), opts, plots, out, json_out, workers)

@@ -1,0 +1,111 @@
+"""`capred prism`, `capred skempton-b`, `capred rumpf`: closed-form calculators, from options or a table of cases."""
+from typing import Annotated, Optional
+
+import typer
+
+from .common import Invocation, JsonOpt, OutOpt, PlotOpt, SampleOpt, WorkersOpt, command, data_arg, quantity, sources
+
+
+def register(app: typer.Typer) -> None:
+    command(app, "prism")(prism)
+    command(app, "skempton-b")(skempton_b)
+    command(app, "rumpf")(rumpf)
+
+
+def _number(value: Optional[float], name: str, option: str) -> Optional[float]:
+    return quantity(None if value is None else repr(float(value)), "", name, option)
+
+
+def prism(
+    data: data_arg("Optional CSV of cases: break_tension, friction_angle") = None,
+    break_tension: Annotated[Optional[str], typer.Option(help="Break tension sigma_b of the prism [kPa]; "
+                                                         "any pressure unit, g/cm^2 read as gram-force.")] = None,
+    friction_angle: Annotated[Optional[float], typer.Option(help="Friction angle rho of the sand [deg].")] = None,
+    gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3].")] = "9.81",
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    sample: SampleOpt = False,
+    workers: WorkersOpt = 1,
+) -> Invocation:
+    """Bernatzik's (1948) prism test: maximal capillary pressure
+    P_kmax = sigma_b (1 - sin rho)/(2 sin rho) and capillary rise h_c = P_kmax/gamma_w.
+
+    Example: capred prism --break-tension "115 g/cm^2" --friction-angle 36
+    """
+    from ..pipelines.calculators import PrismOptions
+
+    opts = PrismOptions(quantity(break_tension, "kPa", "break_tension", "--break-tension"),
+                        quantity(None if friction_angle is None else str(friction_angle), "deg", "friction_angle",
+                                 "--friction-angle"),
+                        quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"))
+    return Invocation("prism", sources(data, sample, "prism"), opts, False, out, json_out, workers)
+
+
+def skempton_b(
+    data: data_arg("Optional CSV of cases: S_r (or B), and any of kappa, e0, p0, u0, pa0") = None,
+    sr: Annotated[Optional[float], typer.Option("--sr", help="Degree of saturation S_r [-]: compute B.")] = None,
+    b: Annotated[Optional[float], typer.Option("--b", help="Measured B [-]: compute S_r.")] = None,
+    kappa: Annotated[float, typer.Option(help="Slope of the elastic line in e-ln p'.")] = 0.006,
+    e0: Annotated[float, typer.Option(help="Initial void ratio.")] = 0.8,
+    p0: Annotated[str, typer.Option(help="Mean total stress [kPa].")] = "100",
+    u0: Annotated[str, typer.Option(help="Initial pore pressure [kPa].")] = "30",
+    pa0: Annotated[str, typer.Option(help="Absolute initial air pressure [kPa].")] = "130",
+    se: Annotated[Optional[str], typer.Option("--se", help="Air-entry suction s_e [kPa] (Brooks-Corey): "
+                                              "simulation with suction equilibrium.")] = None,
+    bc_lambda: Annotated[Optional[float], typer.Option("--bc-lambda", "--bc-alpha",
+                                                       help="Brooks-Corey pore-size index lambda (alpha in Morvan "
+                                                            "et al. 2016), with --se.")] = None,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    plots: PlotOpt = True,
+    sample: SampleOpt = False,
+    workers: WorkersOpt = 1,
+) -> Invocation:
+    """Skempton's B against degree of saturation (Morvan et al. 2016, eq. 10):
+    B = 1/(1 + p'0 e0 (1 - S_r)/(kappa P_a0)) with p'0 = p0 - u0, or its inverse
+    S_r from a measured B; with --se and --bc-lambda, the simulation with suction
+    equilibrium (p'0 = p0 - u_a0 + s S_r). Defaults are those of Morvan et al.
+    (2016), Table 1.
+
+    Example: capred skempton-b --sr 0.9 --kappa 0.06
+    """
+    from ..errors import OptionError
+    from ..pipelines.calculators import SkemptonOptions
+
+    src = sources(data, sample, "skempton-b")
+    if src == [None] and (sr is None) == (b is None):
+        raise OptionError("give exactly one of --sr and --b")
+    opts = SkemptonOptions(_number(sr, "S_R", "--sr"), _number(b, "B", "--b"), _number(kappa, "kappa", "--kappa"),
+                           _number(e0, "e0", "--e0"), quantity(p0, "kPa", "p0", "--p0"),
+                           quantity(u0, "kPa", "u0", "--u0"), quantity(pa0, "kPa", "pa0", "--pa0"),
+                           quantity(se, "kPa", "air_entry", "--se"), _number(bc_lambda, "bc_lambda", "--bc-lambda"))
+    return Invocation("skempton-b", src, opts, plots, out, json_out, workers)
+
+
+def rumpf(
+    data: data_arg("Optional CSV of cases (shape_factor, void_ratio, S_r, diameter, surface_tension, "
+                   "contact_angle)") = None,
+    shape_factor: Annotated[Optional[float], typer.Option(help="Particle shape factor phi [-].")] = None,
+    void_ratio: Annotated[Optional[float], typer.Option(help="Void ratio e [-].")] = None,
+    sr: Annotated[Optional[float], typer.Option("--sr", help="Degree of saturation S_r [-].")] = None,
+    diameter: Annotated[Optional[str], typer.Option(help="Apparent particle diameter d_p [mm].")] = None,
+    surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m].")] = "0.0728",
+    contact_angle: Annotated[float, typer.Option(help="Contact angle theta [deg].")] = 0.0,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    sample: SampleOpt = False,
+    workers: WorkersOpt = 1,
+) -> Invocation:
+    """Rumpf's capillary pressure p_cap = -(6/phi)(S_r/e)(gamma/d_p) cos(theta)
+    (Prunier et al. 2024, eq. 19); negative means tension.
+
+    Example: capred rumpf --shape-factor 1 --void-ratio 0.5 --sr 0.3 --diameter 0.2
+    """
+    from ..pipelines.calculators import RumpfOptions
+
+    opts = RumpfOptions(_number(shape_factor, "shape_factor", "--shape-factor"),
+                        _number(void_ratio, "void_ratio", "--void-ratio"), _number(sr, "S_R", "--sr"),
+                        quantity(diameter, "mm", "diameter", "--diameter"),
+                        quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
+                        quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"))
+    return Invocation("rumpf", sources(data, sample, "rumpf"), opts, False, out, json_out, workers)

@@ -1,0 +1,210 @@
+"""The one CLI path: every command builds an Invocation, ``execute`` runs it.
+
+A command function parses its options into the reduction's Options and
+returns an Invocation; ``execute`` runs it on one file (tables or JSON) or on
+many (a batch with progress and index.csv). `capred batch` parses each
+manifest line with the same command functions, so a manifest line means
+exactly what it means on the command line.
+"""
+
+import functools
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Annotated, Callable, Optional
+
+import typer
+
+from ..errors import CapredError
+
+#: command name -> function turning the parsed parameters into an Invocation
+BUILDERS: dict[str, Callable[..., "Invocation"]] = {}
+
+
+@dataclass
+class Invocation:
+    command: str
+    sources: list  # paths (or None for a run from options only)
+    options: object
+    plots: bool = True
+    out: Optional[Path] = None
+    json: bool = False
+    workers: int = 1
+    extra_inputs: list = field(default_factory=list)  # further files read (curves, a retention fit)
+
+
+def fail(exc: CapredError, code: int = 1) -> None:
+    """One clean message on stderr and a non-zero exit (no traceback)."""
+    typer.echo(f"Error: {exc}", err=True)
+    raise typer.Exit(code)
+
+
+def command(app: typer.Typer, name: str, full_name: Optional[str] = None):
+    """Register ``builder`` as the command ``name`` of ``app``; it runs through ``execute``."""
+
+    def deco(builder):
+        @functools.wraps(builder)
+        def run(**params):
+            try:
+                inv = builder(**params)
+            except CapredError as exc:
+                fail(exc)
+            execute(inv)
+
+        BUILDERS[full_name or name] = builder
+        app.command(name)(run)
+        return builder
+
+    return deco
+
+
+# --- option types shared by the commands ----------------------------------------------------------
+OutOpt = Annotated[Optional[Path], typer.Option(
+    "--out", "-o", help="Output folder, replaced as a whole by each run [default: ./capred_out/<command>_<input>; "
+                        "with --json, no files unless --out is given].")]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON document on stdout instead of tables.")]
+PlotOpt = Annotated[bool, typer.Option("--plots/--no-plots", help="Write the report figures.")]
+SampleOpt = Annotated[bool, typer.Option("--sample", help="Run on the bundled (synthetic) sample data.")]
+WorkersOpt = Annotated[int, typer.Option(min=1, help="Worker processes for a batch of files.")]
+
+
+def data_arg(what: str):
+    return Annotated[Optional[list[Path]], typer.Argument(
+        help=f"{what}; several files or globs run as a batch.", show_default=False)]
+
+
+def quantity(text: Optional[str], default_unit: str, name: str = "", option: str = "") -> Optional[str]:
+    """An option as typed, with its default unit appended to a bare number; the Options convert and check it."""
+    from ..units import with_unit
+
+    return with_unit(text, default_unit)
+
+
+def sources(data: Optional[list[Path]], sample: bool, command: str) -> list:
+    """Input files: the arguments with globs expanded (sorted), the bundled sample, or [None]."""
+    import glob
+
+    from ..errors import InputError, OptionError, Problem
+    from ..reductions import REDUCTIONS
+    from ..samples import sample_path
+
+    red = REDUCTIONS[command]
+    if sample and data:
+        raise OptionError("give a data file or --sample, not both")
+    if sample:
+        return [sample_path(red.sample)]
+    if not data:
+        if red.source == "required":
+            raise OptionError(f"no data file given (try: capred {command} --sample)")
+        return [None]
+    out: list[Path] = []
+    for p in data:
+        text = str(p)
+        if any(ch in text for ch in "*?[") and not p.exists():
+            hits = sorted(glob.glob(text, recursive=True))
+            if not hits:
+                raise InputError(Problem(text, None, None, "no file matches this pattern"))
+            out += [Path(h) for h in hits]
+        else:
+            out.append(p)
+    return out
+
+
+def default_out(command: str, source) -> Path:
+    from ..reductions import REDUCTIONS
+
+    stem = Path(source).stem if source is not None else "options"
+    return Path.cwd() / "capred_out" / f"{REDUCTIONS[command].out_prefix}_{stem}"
+
+
+def execute(inv: Invocation) -> None:
+    """Run an invocation: one file (tables or JSON) or several (a batch)."""
+    try:
+        if len(inv.sources) == 1:
+            _single(inv)
+        else:
+            _batch(inv)
+    except CapredError as exc:
+        fail(exc)
+
+
+def _single(inv: Invocation) -> None:
+    from ..io.writers import check_target, encode_json, write_run
+    from ..reductions import REDUCTIONS
+
+    source = inv.sources[0]
+    write = inv.out is not None or not inv.json
+    out_dir = inv.out or default_out(inv.command, source)
+    if write:  # before anything is computed
+        check_target(out_dir, [source, *inv.extra_inputs])
+    result = REDUCTIONS[inv.command].run(source, inv.options)
+    written = write_run(result, out_dir, plots=inv.plots) if write else None
+    if inv.json:
+        typer.echo(encode_json(result.to_json()).decode("utf-8"), nl=False)
+        return
+    from ..report.render import render
+
+    render(result, out_dir, written)
+
+
+def _batch(inv: Invocation) -> None:
+    from .. import batch
+
+    write = inv.out is not None or not inv.json
+    root = inv.out or Path.cwd() / "capred_out"
+    dirs = batch.output_dirs([inv.command] * len(inv.sources), inv.sources, root)
+    jobs = [batch.Job(inv.command, src, d if write else None, inv.options, inv.plots, keep_json=inv.json)
+            for src, d in zip(inv.sources, dirs)]
+    run_batch(jobs, root if write else None, inv.json, inv.workers, extra_inputs=inv.extra_inputs)
+
+
+def run_batch(jobs, root: Optional[Path], json_out: bool, workers: int, extra_inputs=()) -> None:
+    """Run jobs with a progress bar (on a terminal, not with --json), write index.csv, report, set the exit code."""
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+    from .. import batch
+    from ..io.writers import check_target, encode_json
+
+    if root is not None:
+        check_target(root, [j.source for j in jobs] + list(extra_inputs), replace=False)
+    err = Console(stderr=True)
+    show = err.is_terminal and not json_out
+    with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
+                  console=err, disable=not show, transient=True) as progress:
+        task = progress.add_task(f"capred: {len(jobs)} files", total=len(jobs))
+        outcomes, interrupted = batch.run_all(jobs, workers, on_done=lambda o: progress.advance(task))
+    index = batch.write_index(root, outcomes) if root is not None else None
+    bad = [o for o in outcomes if o.status in ("failed", "crashed")]
+    if json_out:
+        doc = {"files": [{"input": o.source, "command": o.command, "status": o.status, "ok": o.ok,
+                          "error": o.message or None, "out_dir": o.out_dir if root is not None else None,
+                          "result": o.result_json} for o in outcomes],
+               "index": str(index) if index else None, "failed": len(bad),
+               "interrupted": sum(o.status == "interrupted" for o in outcomes)}
+        typer.echo(encode_json(doc).decode("utf-8"), nl=False)
+    else:
+        _outcome_table(outcomes, index)
+    for o in bad:
+        typer.echo(f"Error: {o.message}", err=True)
+    if interrupted:
+        typer.echo("Interrupted: the files not yet reduced are marked 'interrupted' in index.csv", err=True)
+        raise typer.Exit(130)
+    if bad:
+        raise typer.Exit(1)
+
+
+def _outcome_table(outcomes, index) -> None:
+    from rich.console import Console
+
+    from ..report.render import render_tables
+    from ..result import TableSpec
+
+    done = sum(o.ok for o in outcomes)
+    spec = TableSpec(f"{done} of {len(outcomes)} files reduced",
+                     [("input", "left"), ("command", "left"), ("status", "left"), ("output / error", "left")])
+    for o in outcomes:
+        spec.rows.append([o.source, o.command, o.status, o.out_dir if o.ok else o.message.splitlines()[0]])
+    con = Console()
+    render_tables([spec], con)
+    if index is not None:
+        print(f"Index of all outputs: {index}", file=con.file)

@@ -1,0 +1,171 @@
+"""`capred shear`, `capred triaxial-bounds`, `capred retention`: reductions of lab data tables."""
+
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+
+from .common import (Invocation, JsonOpt, OutOpt, PlotOpt, SampleOpt, WorkersOpt, command, data_arg, quantity,
+                     sources)
+
+
+def register(app: typer.Typer) -> None:
+    command(app, "shear")(shear)
+    command(app, "triaxial-bounds")(triaxial_bounds)
+    command(app, "retention")(retention)
+
+
+def shear(
+    data: data_arg("CSV files of direct-shear tests (one row per test)") = None,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    plots: PlotOpt = True,
+    sample: SampleOpt = False,
+    workers: WorkersOpt = 1,
+    gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3]; the thesis uses 10.")] = "9.81",
+    surface_tension: Annotated[str, typer.Option(help="Surface tension of water [N/m].")] = "0.0728",
+    gravity: Annotated[str, typer.Option("--g", help="Gravitational acceleration [m/s^2].")] = "9.81",
+    pendular_limit: Annotated[float, typer.Option(help="S_R above which a wet test is flagged outside the "
+                                                       "pendular regime.")] = 0.05,
+    box_area: Annotated[Optional[str], typer.Option(help="Shear box area [cm^2] for rows without 'box_area'.")] = None,
+    cap_mass: Annotated[Optional[str], typer.Option(help="Top-cap mass [g] for rows without 'cap_mass'.")] = None,
+    radius: Annotated[Optional[str], typer.Option(help="Particle radius R [mm] for rows without 'R'.")] = None,
+    void_volume: Annotated[Optional[str], typer.Option(help="Void volume V_v [cm^3] for rows without 'V_v'.")] = None,
+    models: Annotated[str, typer.Option(help="Models to compare, comma separated: no_suction, bishop, own1, own2 "
+                                        "(= 'thesis', the default), vanapalli, khalili, lu_likos, fredlund, "
+                                        "pedrotti_tarantino; 'all' for every one.")] = "thesis",
+    retention: Annotated[Optional[Path], typer.Option(help="fits.json from capred retention: S_res, s_e and van "
+                                                      "Genuchten parameters for the extra models.")] = None,
+    s_res: Annotated[Optional[float], typer.Option(help="Residual S_R (Vanapalli et al. 1996).")] = None,
+    vanapalli_kappa: Annotated[float, typer.Option(help="Fitting exponent kappa of Vanapalli et al. (1996).")] = 1.0,
+    air_entry: Annotated[Optional[str], typer.Option(help="Air-entry suction s_e [kPa] (Khalili & Khabbaz 1998).")] = None,
+    vg_alpha: Annotated[Optional[str], typer.Option(help="van Genuchten alpha [1/kPa] (Lu & Likos 2006).")] = None,
+    vg_n: Annotated[Optional[float], typer.Option(help="van Genuchten n (Lu & Likos 2006); m = 1 - 1/n unless "
+                                                  "--vg-m.")] = None,
+    vg_m: Annotated[Optional[float], typer.Option(help="van Genuchten m (Lu & Likos 2006).")] = None,
+    water_envelope: Annotated[Optional[str], typer.Option(help="'c,phi' [kPa, deg] of the water-saturated soil "
+                                                          "(Pedrotti & Tarantino); default: the dry envelope.")] = None,
+) -> Invocation:
+    """Direct-shear tests with hanging-column suction (Evenepoel, VUB thesis):
+    dry envelope per material, the effective-stress models (No suction,
+    Bishop, Own 1, Own 2 by default) on every wet test, their scores and a
+    report sheet per material.
+
+    Values in the file win over the options; options fill absent columns and
+    blank cells. Any option may carry a unit: --box-area "36 cm^2".
+
+    Example: capred shear tests.csv --out report --gamma-w 10
+    """
+    from ..pipelines.shear import ModelParams, ShearOptions, model_params_from_retention
+
+    params = dict(s_res=s_res, vanapalli_kappa=vanapalli_kappa,
+                  air_entry=quantity(air_entry, "kPa", "air_entry", "--air-entry"),
+                  vg_alpha=quantity(vg_alpha, "1/kPa", "vg_alpha", "--vg-alpha"),
+                  vg_n=vg_n, vg_m=vg_m, water_envelope=_envelope_pair(water_envelope))
+    mp = (model_params_from_retention(retention, **params) if retention is not None
+          else ModelParams(**{k: v for k, v in params.items() if v is not None}))
+    opts = ShearOptions(
+        gamma_w=quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"),
+        surface_tension=quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
+        g=quantity(gravity, "m/s^2", "g", "--g"),
+        pendular_limit=quantity(str(pendular_limit), "", "pendular_limit", "--pendular-limit"),
+        box_area=quantity(box_area, "cm^2", "box_area", "--box-area"),
+        cap_mass=quantity(cap_mass, "g", "cap_mass", "--cap-mass"),
+        radius=quantity(radius, "mm", "R", "--radius"),
+        void_volume=quantity(void_volume, "cm^3", "V_v", "--void-volume"),
+        models=_model_list(models),
+        model_params=mp,
+    )
+    return Invocation("shear", sources(data, sample, "shear"), opts, plots, out, json_out, workers,
+                      [retention] if retention else [])
+
+
+def triaxial_bounds(
+    data: data_arg("CSV files of triaxial tests (one row per test)") = None,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    plots: PlotOpt = True,
+    sample: SampleOpt = False,
+    workers: WorkersOpt = 1,
+    curves: Annotated[Optional[Path], typer.Option(help="Long CSV of raw curves (test_id, axial_strain, q): "
+                                                   "failure = peak of q, for tests without q_f or sigma1.")] = None,
+    c_eff: Annotated[Optional[str], typer.Option(help="Effective cohesion c' [kPa], instead of fitting saturated "
+                                                 "tests.")] = None,
+    phi_eff: Annotated[Optional[float], typer.Option(help="Effective friction angle phi' [deg], with --c-eff.")] = None,
+) -> Invocation:
+    """Bounds of the capillary stress tensor at failure from triaxial tests
+    (Prunier et al. 2024): effective envelope from saturated drained tests, then
+    for every unsaturated test the spherical upper bound (q = q'), the lower
+    bound (sigma1_cap = 0) and the EDTP upper bound (needs s0), with the
+    strength gain q'/q'_sat; groups sharing one tensor get the Appendix 1 analysis.
+
+    Example: capred triaxial-bounds tests.csv --out bounds
+    """
+    from ..pipelines.triaxial import TriaxialOptions
+
+    opts = TriaxialOptions(c_eff=quantity(c_eff, "kPa", "c_eff", "--c-eff"),
+                           phi_eff=quantity(None if phi_eff is None else str(phi_eff), "deg", "phi_eff", "--phi-eff"),
+                           curves=curves)
+    return Invocation("triaxial-bounds", sources(data, sample, "triaxial-bounds"), opts, plots, out, json_out,
+                      workers, [curves] if curves else [])
+
+
+def retention(
+    data: data_arg("CSV files of retention readings: suction or head, and S_R, theta or z2 + V_v") = None,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+    plots: PlotOpt = True,
+    sample: SampleOpt = False,
+    workers: WorkersOpt = 1,
+    model: Annotated[str, typer.Option(help="vg (m = 1 - 1/n, and m free), bc, or all.")] = "all",
+    fix: Annotated[Optional[list[str]], typer.Option(help="Fix a parameter, e.g. --fix theta_s=0.25 "
+                                                     "(alpha in 1/kPa, s_e in kPa); repeatable.")] = None,
+    gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3], to turn heads into suction.")] = "9.81",
+) -> Invocation:
+    """Fit water retention curves: van Genuchten (1980) (m = 1 - 1/n and m
+    free) and Brooks & Corey (1964) (air-entry suction s_e, index lambda) for
+    every branch (drying, wetting), with standard errors, R^2 and AIC.
+    Branches come from a 'branch' column or, without one, from the order of
+    readings (rising suction = drying).
+
+    Example: capred retention column.csv --model vg --fix theta_r=0
+    """
+    from ..errors import OptionError
+    from ..pipelines.retention import RetentionOptions, parse_fixed
+
+    models = {"all": ("vg", "vg_m_free", "bc"), "vg": ("vg", "vg_m_free"), "bc": ("bc",)}
+    if model not in models:
+        raise OptionError(f"--model must be vg, bc or all (got '{model}')")
+    opts = RetentionOptions(models=models[model], fixed=parse_fixed(fix or []),
+                            gamma_w=quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"))
+    return Invocation("retention", sources(data, sample, "retention"), opts, plots, out, json_out, workers)
+
+
+def _model_list(text: str) -> tuple[str, ...]:
+    from ..errors import OptionError
+    from ..physics.effective_stress_models import REGISTRY, THESIS_MODELS
+
+    out: list[str] = []
+    for name in (t.strip().lower().replace("-", "_") for t in text.split(",") if t.strip()):
+        for m in {"thesis": THESIS_MODELS, "all": tuple(REGISTRY)}.get(name, (name,)):
+            if m not in REGISTRY:
+                raise OptionError(f"--models: unknown model '{m}'; choose from {', '.join(REGISTRY)}")
+            if m not in out:
+                out.append(m)
+    if not out:
+        raise OptionError("--models: no model named")
+    return tuple(out)
+
+
+def _envelope_pair(text: Optional[str]):
+    from ..errors import OptionError
+
+    if text is None:
+        return None
+    try:
+        c, phi = (float(x) for x in text.split(","))
+    except ValueError:
+        raise OptionError(f"--water-envelope '{text}': expected 'c,phi' in kPa and degrees") from None
+    if not (c >= 0 and 0 < phi < 90):
+        raise OptionError(f"--water-envelope '{text}': need c >= 0 kPa and 0 < phi < 90 deg")
+    return c * 1e3, phi

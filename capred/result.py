@@ -1,0 +1,223 @@
+"""The reduction contract every capred command follows.
+
+A command is one *reduction*: a schema for its input table, a pure
+``run(source, options) -> Result`` and a Result that knows
+
+- its tables (pandas DataFrames, one per output CSV; the first is ``table()``),
+- its JSON document (``to_json()``, the same for the API, ``--json`` and the files),
+- its figures (built only when asked for),
+- its console tables (summaries for people; see capred.report.console),
+- its options record (SI values with their unit names).
+
+One writer (capred.io.writers.write_run) writes any Result, one renderer
+(capred.report.console.render) prints any Result, one CLI path runs any
+reduction on one file, many files or a manifest.
+"""
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+from .errors import OptionError
+
+
+@dataclass(frozen=True)
+class InputFile:
+    """One input of a run: its path as given and the SHA-256 of its bytes."""
+
+    path: str
+    sha256: str | None
+
+    def as_dict(self) -> dict:
+        return {"path": self.path, "sha256": self.sha256}
+
+
+def input_file(source) -> InputFile:
+    """InputFile of a path, or of a DataFrame (hash of its CSV text)."""
+    import hashlib
+
+    if hasattr(source, "to_csv"):
+        return InputFile("<DataFrame>", hashlib.sha256(source.to_csv(index=False).encode()).hexdigest())
+    p = Path(source)
+    if not p.is_file():
+        return InputFile(str(source), None)
+    h = hashlib.sha256()
+    with open(p, "rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            h.update(block)
+    return InputFile(str(source), h.hexdigest())
+
+
+class Options:
+    """Base of every command's options dataclass.
+
+    ``QUANTITIES`` maps a dimensional field to its nomenclature name. Such a
+    field accepts a number in SI, a string with a unit (``"10 kN/m^3"``) or a
+    pint Quantity, and holds SI after construction. Values are range checked;
+    implausible constants give warnings (``self.warnings``).
+    """
+
+    QUANTITIES: dict[str, str] = {}
+    #: command-line spelling of a field where it is not --field-name
+    OPTION_NAMES: dict[str, str] = {}
+
+    def option_name(self, field_name: str) -> str:
+        cli = self.OPTION_NAMES.get(field_name, "--" + field_name.replace("_", "-"))
+        return f"{field_name} ({cli})"
+
+    def __post_init__(self) -> None:
+        from .nomenclature import plausibility_warning
+        from .units import to_si
+
+        warnings: list[str] = []
+        notes: list[str] = []
+        for name, quantity in self.QUANTITIES.items():
+            value = getattr(self, name)
+            if value is None:
+                continue
+            where = self.option_name(name)
+            si = to_si(value, quantity, where, notes)
+            object.__setattr__(self, name, si)
+            w = plausibility_warning(quantity, si, where)
+            if w:
+                warnings.append(w)
+        object.__setattr__(self, "_warnings", warnings)
+        object.__setattr__(self, "_notes", notes)
+
+    @property
+    def warnings(self) -> list[str]:
+        """Implausible option values (e.g. a unit weight of water of 10 N/m^3)."""
+        return list(getattr(self, "_warnings", []))
+
+    @property
+    def unit_notes(self) -> list[str]:
+        """How option units were read (e.g. g/cm^2 as gram-force per cm^2)."""
+        return list(getattr(self, "_notes", []))
+
+    def record(self) -> tuple[dict, dict]:
+        """(values, units): every option with its SI value, and the SI unit of the dimensional ones."""
+        from .nomenclature import QUANTITIES
+        from .units import SI_UNIT
+
+        values, units = {}, {}
+        for f in dataclasses.fields(self):
+            if f.name.startswith("_"):
+                continue
+            v = getattr(self, f.name)
+            values[f.name] = _plain(v)
+            if f.name in self.QUANTITIES:
+                units[f.name] = SI_UNIT[QUANTITIES[self.QUANTITIES[f.name]].kind].replace("**", "^")
+        return values, units
+
+
+def _plain(v):
+    """A JSON-ready copy of an option value (tuples as lists, dataclasses as dicts, paths as text)."""
+    if dataclasses.is_dataclass(v):
+        return {f.name: _plain(getattr(v, f.name)) for f in dataclasses.fields(v)}
+    if isinstance(v, (list, tuple)):
+        return [_plain(x) for x in v]
+    if isinstance(v, dict):
+        return {str(k): _plain(x) for k, x in v.items()}
+    if isinstance(v, Path):
+        return str(v)
+    return v
+
+
+@dataclass
+class TableSpec:
+    """A console table: title, column headers with alignment, rows of text.
+
+    ``total_rows`` is the row count of the full table when only the first rows
+    are shown; ``full_table`` names the output file that holds them all.
+    """
+
+    title: str
+    columns: list[tuple[str, str]]  # (header, "left" | "right")
+    rows: list[list[str]] = field(default_factory=list)
+    total_rows: int | None = None
+    full_table: str | None = None
+    bold_rows: set[int] = field(default_factory=set)
+    sections: set[int] = field(default_factory=set)  # rows after which a rule is drawn
+
+
+class Result:
+    """Base of every command's result.
+
+    Subclasses set ``command``, the attributes ``inputs`` (list of InputFile),
+    ``options`` (an Options), ``notes`` and ``warnings`` (lists of str), and
+    implement ``payload()``, ``tables()``, ``console_tables()`` and, when they
+    draw, ``figures()``.
+    """
+
+    command: str = ""
+    json_name: str = "summary.json"
+
+    # --- to implement -------------------------------------------------------------------------
+    def payload(self) -> dict:
+        """The command's own result keys of the JSON document."""
+        raise NotImplementedError
+
+    def tables(self) -> dict[str, "object"]:
+        """Output tables: file stem -> pandas DataFrame (first = the per-row table)."""
+        raise NotImplementedError
+
+    def console_tables(self) -> list[TableSpec]:
+        return []
+
+    def figures(self) -> dict[str, Callable[[], "object"]]:
+        """Figure name (file stem) -> function drawing a matplotlib Figure."""
+        return {}
+
+    # --- shared -------------------------------------------------------------------------------
+    def all_warnings(self) -> list[str]:
+        """Warnings of the run (implausible options and data), as JSON, console and report show them."""
+        return list(dict.fromkeys(self.warnings))
+
+    def all_notes(self) -> list[str]:
+        """Notes of the run: how option units were read, then the command's own notes."""
+        unit_notes = self.options.unit_notes if self.options is not None else []
+        return list(dict.fromkeys(unit_notes + list(self.notes)))
+
+    def table(self):
+        """The per-row table as a pandas DataFrame."""
+        return next(iter(self.tables().values()))
+
+    def to_json(self) -> dict:
+        """The JSON document of the run: the keys every command shares, then the command's own.
+
+        Built once per result and cached: do not modify the returned dict.
+        """
+        cached = self.__dict__.get("_json_cache")
+        if cached is not None:
+            return cached
+        from . import __version__
+
+        values, units = self.options.record() if self.options is not None else ({}, {})
+        doc = {
+            "command": self.command,
+            "capred_version": __version__,
+            "inputs": [i.as_dict() for i in self.inputs],
+            "options": values,
+            "option_units": units,
+            "warnings": self.all_warnings(),
+            "notes": self.all_notes(),
+        }
+        doc.update(self.payload())
+        self.__dict__["_json_cache"] = doc
+        return doc
+
+
+def check_choice(value: str, choices, option: str) -> str:
+    if value not in choices:
+        raise OptionError(f"{option} must be one of {', '.join(choices)} (got '{value}')")
+    return value
+
+
+def num(x) -> float | None:
+    """A float for JSON: every digit kept (shortest round-trip form on output), None when not finite."""
+    if x is None:
+        return None
+    x = float(x)
+    return x if x == x and x not in (float("inf"), float("-inf")) else None
