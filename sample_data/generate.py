@@ -67,7 +67,7 @@ def make_shear(rng) -> str:
     return "\n".join(lines) + "\n"
 
 
-# Gavet silt (seed 002): envelope and failure deviators reconstructed from the
+# Gavet silt (Prunier et al. 2024): envelope and failure deviators reconstructed from the
 # paper's Tables 2 and 3 (see README.md here and tests/test_triaxial_published.py).
 GAVET_C_KPA, GAVET_PHI_DEG = 2.795, 31.523
 GAVET_UNSAT_Q_KPA = {0.0: 150.2, 100.0: 317.6, 150.0: 396.7}

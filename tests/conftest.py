@@ -4,9 +4,8 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-# public retention datasets with published fits, kept outside the project (not copied in)
-SHARED_RETENTION = next((p for p in (ROOT.parent / "shared" / "data" / "retention",
-                                     Path("/work/shared/data/retention")) if p.is_dir()), None)
+# public retention datasets with published fits (sources and licences: tests/data/retention/README.md)
+RETENTION_DATA = ROOT / "tests" / "data" / "retention"
 
 
 def file_hash(path: Path) -> str:

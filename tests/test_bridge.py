@@ -145,7 +145,7 @@ def test_solve_command_json(tmp_path):
     first = rows[0]  # steel spheres in contact at 1 kPa
     assert first["status"] == "ok"
     assert first["F_cap_mN"] == pytest.approx(first["F_L_mN"] + first["F_T_mN"], rel=1e-9)
-    # unit cell (seed 000): S_R = 3 V/(2 pi R^3), sigma' = F/(pi R^2) with R = 1 mm
+    # unit cell (Evenepoel, VUB thesis): S_R = 3 V/(2 pi R^3), sigma' = F/(pi R^2) with R = 1 mm
     assert first["S_R"] == pytest.approx(3 * first["V_w_mm3"] / (2 * np.pi), rel=1e-9)
     assert first["sigma_prime_kPa"] == pytest.approx(first["F_cap_mN"] / np.pi, rel=1e-9)  # mN/mm^2 = kPa
     assert [r["status"] for r in rows[-2:]] == ["no bridge: beyond rupture", "no concave bridge: too much water"]

@@ -1,4 +1,4 @@
-"""Bernatzik prism (seed 001), Skempton's B (seed 004), Rumpf (seed 002 eq. 19)."""
+"""Bernatzik prism (Bernatzik 1948), Skempton's B (Morvan et al. 2016), Rumpf (Prunier et al. 2024, eq. 19)."""
 import json
 
 import numpy as np
@@ -18,9 +18,9 @@ def _json(args):
 
 
 def test_prism_bernatzik_example(tmp_path):
-    # seed 001: sigma_b = 115 g/cm^2, rho = 36 deg -> P_kmax = 0.35 sigma_b = 40.2 g/cm^2 -> rise 40.2 cm
+    # Bernatzik (1948): sigma_b = 115 g/cm^2, rho = 36 deg -> P_kmax = 0.35 sigma_b = 40.2 g/cm^2 -> rise 40.2 cm
     # (spec. weight of water = 1). Exactly: (1 - sin 36)/(2 sin 36) = 0.35065 -> 40.32 gf/cm^2; with
-    # gamma_w = 9.81 kN/m^3 and gf = 9.80665 mN the rise is 40.31 cm; the seed rounds to 0.35.
+    # gamma_w = 9.81 kN/m^3 and gf = 9.80665 mN the rise is 40.31 cm; Bernatzik rounds to 0.35.
     js = _json(["prism", "--break-tension", "115 g/cm^2", "--friction-angle", "36", "--out", str(tmp_path)])
     assert js["P_kmax_over_sigma_b"] == pytest.approx(0.35, abs=0.001)
     assert js["capillary_rise_cm"] == pytest.approx(40.2, abs=0.15)
@@ -29,7 +29,7 @@ def test_prism_bernatzik_example(tmp_path):
 
 
 def test_prism_formula_inverts_mohr_relation():
-    # sin rho = sigma_b / (2 P + sigma_b)  (seed 001)
+    # sin rho = sigma_b / (2 P + sigma_b)  (Bernatzik 1948)
     p = calc.prism_capillary_pressure(100.0, 30.0)
     assert 100.0 / (2 * p + 100.0) == pytest.approx(0.5, rel=1e-14)
 
@@ -40,17 +40,17 @@ def test_prism_sample_file(tmp_path):
     assert js["cases"][0]["capillary_rise_cm"] == pytest.approx(40.3, abs=0.1)
 
 
-SEED004 = [
-    # (options, S_r, published B, tolerance): seed 004 section 2, Table 1 parameters
+MORVAN2016 = [
+    # (options, S_r, published B, tolerance): Morvan et al. (2016) section 2, Table 1 parameters
     ({"--kappa": "0.06"}, 0.90, 0.58, 0.005),
     ({"--kappa": "0.0006"}, 0.90, 0.01, 0.005),
-    ({"--e0": "0.6"}, 0.90, 0.15, 0.01),  # eq. 10 gives 0.157; the seed truncates
+    ({"--e0": "0.6"}, 0.90, 0.15, 0.01),  # eq. 10 gives 0.157; the paper truncates
     ({"--e0": "1.2"}, 0.90, 0.08, 0.005),
 ]
 
 
-@pytest.mark.parametrize("opts,sr,published,tol", SEED004)
-def test_skempton_b_seed_figures(opts, sr, published, tol, tmp_path):
+@pytest.mark.parametrize("opts,sr,published,tol", MORVAN2016)
+def test_skempton_b_published_figures(opts, sr, published, tol, tmp_path):
     args = ["skempton-b", "--sr", str(sr), "--no-plots", "--out", str(tmp_path)]
     for k, v in opts.items():
         args += [k, v]
@@ -58,7 +58,7 @@ def test_skempton_b_seed_figures(opts, sr, published, tol, tmp_path):
 
 
 def test_skempton_b_above_02_needs_sr_above_95(tmp_path):
-    # seed 004: "for B > 0.2, S_r > 95 %": the inverse at B = 0.2 gives S_r = 0.944
+    # Morvan et al. (2016): "for B > 0.2, S_r > 95 %": the inverse at B = 0.2 gives S_r = 0.944
     js = _json(["skempton-b", "--b", "0.2", "--no-plots", "--out", str(tmp_path)])
     assert js["S_r"] == pytest.approx(0.95, abs=0.007)
     # eq. 10 by hand: 1 - (1/0.2 - 1) 0.006 130 / (70 0.8) = 1 - 4 * 0.78 / 56
@@ -72,7 +72,7 @@ def test_skempton_b_inverse_round_trip():
 
 
 def test_skempton_suction_lowers_b_with_air_entry(tmp_path):
-    # seed 004, Fig. 5: the higher s_e, the lower B
+    # Morvan et al. (2016), Fig. 5: the higher s_e, the lower B
     Bs = [_json(["skempton-b", "--sr", "0.9", "--se", str(se), "--bc-alpha", "0.8", "--no-plots",
                  "--out", str(tmp_path)])["B"] for se in (5, 20, 100, 1000)]
     assert all(a > b for a, b in zip(Bs, Bs[1:]))

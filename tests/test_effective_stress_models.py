@@ -32,7 +32,7 @@ def test_chi_lu_likos_by_hand():
 
 def test_pedrotti_tarantino_by_hand():
     # sigma_N = 10, s = 20, S_R = 0.5; W: c 0, tan 0.5 -> tau_W = (10 + 20) 0.5 0.5 = 7.5;
-    # A: c 1, tan 0.6 -> tau_A = 1 + 10 (1 - 0.5) 0.6 = 4; tau = 0.5 7.5 + 0.5 4 = 5.75 (seed 003, eq. 1, 2, 14)
+    # A: c 1, tan 0.6 -> tau_A = 1 + 10 (1 - 0.5) 0.6 = 4; tau = 0.5 7.5 + 0.5 4 = 5.75 (Pedrotti & Tarantino, eq. 1, 2, 14)
     assert_allclose(esm.pedrotti_tarantino_strength(10.0, 20.0, 0.5, 0.0, 0.5, 1.0, 0.6), 5.75, rtol=1e-14)
     # dry: the air-saturated envelope; saturated without suction: the water-saturated one
     assert_allclose(esm.pedrotti_tarantino_strength(10.0, 0.0, 0.0, 0.0, 0.5, 1.0, 0.6), 1.0 + 6.0)

@@ -41,7 +41,7 @@ def test_fit_line_textbook_by_hand():
 
 
 def test_fit_line_exact_thesis_envelope():
-    # seed 000, dry tests: steel spheres c = 0.3452 kPa, tan phi = 0.7146
+    # Evenepoel (VUB thesis), dry tests: steel spheres c = 0.3452 kPa, tan phi = 0.7146
     s = np.array([0.3, 0.6, 1.2, 2.4])
     f = fit_line(s, 0.3452 + 0.7146 * s)
     assert_allclose([f.intercept, f.slope], [0.3452, 0.7146], rtol=1e-12)

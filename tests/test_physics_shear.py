@@ -1,4 +1,4 @@
-"""Thesis formulas (seed 000) against values worked by hand."""
+"""Thesis formulas (Evenepoel, VUB thesis) against values worked by hand."""
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
@@ -8,7 +8,7 @@ from capred.physics import shear as ph
 
 
 def test_suction_from_head_thesis_factor():
-    # seed 000, "Apply suction": Delta_u = z1 * 0.1 kPa/cm with gamma_w = 10 kN/m^3
+    # Evenepoel (VUB thesis), "Apply suction": Delta_u = z1 * 0.1 kPa/cm with gamma_w = 10 kN/m^3
     assert_allclose(ph.suction_from_head(0.10, gamma_w=10_000.0), 1000.0, rtol=1e-15)
     assert_allclose(ph.suction_from_head(0.25, gamma_w=9810.0), 2452.5, rtol=1e-15)
 

@@ -4,7 +4,7 @@ from numpy.testing import assert_allclose
 
 from capred.pipelines.shear import ShearOptions, run_shear
 
-# Noise-free file built from the thesis's dry envelopes (seed 000, "Dry tests"):
+# Noise-free file built from the thesis's dry envelopes (Evenepoel (VUB thesis), "Dry tests"):
 # steel c = 0.3452 kPa, tan phi = 0.7146; sand c = 0.0721 kPa, tan phi = 0.7955.
 # Box 36 cm^2, cap 120 g, g = 9.81 -> sigma_N = (120 + m) g / A.
 AREA, CAP, G = 36e-4, 0.120, 9.81
@@ -36,7 +36,7 @@ def test_shear_recovers_thesis_envelopes_exactly(write_csv):
     steel, sand = js["materials"]["steel"], js["materials"]["sand"]
     assert_allclose([steel["c_kPa"], steel["tan_phi"]], [0.3452, 0.7146], rtol=1e-8)
     assert_allclose([sand["c_kPa"], sand["tan_phi"]], [0.0721, 0.7955], rtol=1e-8)
-    # seed 000 prints the angles: atan(0.7146) = 35.55 deg, atan(0.7955) = 38.50 deg
+    # Evenepoel (VUB thesis) prints the angles: atan(0.7146) = 35.55 deg, atan(0.7955) = 38.50 deg
     assert steel["phi_deg"] == pytest.approx(35.55, abs=0.005)
     assert sand["phi_deg"] == pytest.approx(38.50, abs=0.005)
     assert steel["n"] == 4 and steel["r2"] == pytest.approx(1.0, abs=1e-12)

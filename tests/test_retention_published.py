@@ -1,8 +1,4 @@
-"""Retention fits against published parameters (../shared/data/retention/README.md).
-
-The data are public and live outside the project; the tests skip where that
-folder is absent (as on a user's machine).
-"""
+"""Retention fits against published parameters (data and sources: tests/data/retention/README.md)."""
 import json
 
 import numpy as np
@@ -12,16 +8,14 @@ from typer.testing import CliRunner
 from capred.cli import app
 from capred.pipelines.retention import RetentionOptions, run_retention
 from capred.physics import retention as rp
-from conftest import SHARED_RETENTION
+from conftest import RETENTION_DATA
 
-needs_data = pytest.mark.skipif(SHARED_RETENTION is None, reason="shared retention datasets not present")
 
 
 def _fit(name, **kw):
-    return run_retention(SHARED_RETENTION / name, RetentionOptions(**kw)).to_json()["fits"]
+    return run_retention(RETENTION_DATA / name, RetentionOptions(**kw)).to_json()["fits"]
 
 
-@needs_data
 def test_toyoura_sand_vg_matches_swrcfit():
     # SWRC Fit (Seki 2007) result.txt: thetas 0.38671, thetar 0.055302, alpha 0.021563 /cm, n 15.913, R2 0.99247
     vg = _fit("swrc_toyoura_sand_swrcfit.csv", models=("vg",))["vg"]
@@ -32,7 +26,6 @@ def test_toyoura_sand_vg_matches_swrcfit():
     assert vg["r2"] == pytest.approx(0.99247, abs=5e-5)
 
 
-@needs_data
 def test_toyoura_sand_bc_matches_swrcfit():
     # SWRC Fit: thetas 0.38316, thetar 0.047638, hb 41.704 cm, lambda 7.0104, R2 0.99279; the BC
     # objective is non-smooth at hb, so lambda within 5 %, hb within 1 %, R2 >= 0.9927 (README)
@@ -53,7 +46,6 @@ VG1980 = [
 ]
 
 
-@needs_data
 @pytest.mark.parametrize("name,ts,tr,alpha,n", VG1980)
 def test_van_genuchten_1980_soils(name, ts, tr, alpha, n):
     # theta_s, theta_r fixed at the published values, alpha and n fitted; the original was fitted
@@ -64,7 +56,6 @@ def test_van_genuchten_1980_soils(name, ts, tr, alpha, n):
     assert set(vg["fixed"]) == {"theta_s", "theta_r"} and vg["theta_s_se"] is None
 
 
-@needs_data
 def test_retc_loam_synthetic_five_digits():
     # RETC 6.02 on HYDRUS "Loam": theta_r 0.07801, theta_s 0.43001, alpha 0.03602 /cm, n 1.55993
     vg = _fit("swrc_retc_loam_synthetic.csv", models=("vg",))["vg"]

@@ -1,4 +1,4 @@
-"""Prunier et al. (2024), seed 002: the published Tables 2 and 3 as test cases.
+"""Prunier et al. (2024): the published Tables 2 and 3 as test cases.
 
 The paper gives the Gavet silt failure points only in figures (Fig. 16-17),
 so they were reconstructed from the tables. Unknowns: c', phi' and the three

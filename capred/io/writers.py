@@ -87,7 +87,13 @@ def check_target(out, inputs=(), replace: bool = True) -> Path:
     root (only its index.csv and per-file folders are written).
     Raises OutputError with one clear message.
     """
-    out = Path(os.path.abspath(out))
+    try:
+        return _check_target(Path(os.path.abspath(out)), inputs, replace)
+    except OSError as exc:
+        raise _os_error(Path(out), exc) from None
+
+
+def _check_target(out: Path, inputs, replace: bool) -> Path:
     real = Path(os.path.realpath(out))
     for src in inputs:
         if src is None or hasattr(src, "to_csv"):
