@@ -142,6 +142,37 @@ class TableSpec:
     sections: set[int] = field(default_factory=set)  # rows after which a rule is drawn
 
 
+class Rows:
+    """A long list of JSON rows made on demand, ``size`` at a time.
+
+    A large result (100,000 shear tests, bridges) puts its per-row list in
+    the document as Rows, so the writer can stream it to disk without ever
+    holding every row's dict; ``to_json()`` turns it into a plain list.
+    """
+
+    def __init__(self, n: int, make: Callable[[int, int], list]):
+        self.n = n
+        self.make = make  # (start, stop) -> list of rows
+
+    def chunks(self, size: int = 2000):
+        for start in range(0, self.n, size):
+            yield self.make(start, min(self.n, start + size))
+
+    def tolist(self) -> list:
+        return self.make(0, self.n)
+
+
+def json_list(values) -> list:
+    """A float array as a JSON list: every digit kept, None where not finite."""
+    import numpy as np
+
+    a = np.asarray(values, dtype=float)
+    finite = np.isfinite(a)
+    if finite.all():
+        return a.tolist()
+    return np.where(finite, a, None).tolist()
+
+
 class Result:
     """Base of every command's result.
 
@@ -155,8 +186,11 @@ class Result:
     json_name: str = "summary.json"
 
     # --- to implement -------------------------------------------------------------------------
-    def payload(self) -> dict:
-        """The command's own result keys of the JSON document."""
+    def payload(self, lazy: bool = False) -> dict:
+        """The command's own result keys of the JSON document.
+
+        With ``lazy``, long per-row lists may be Rows (made on demand).
+        """
         raise NotImplementedError
 
     def tables(self) -> dict[str, "object"]:
@@ -184,18 +218,12 @@ class Result:
         """The per-row table as a pandas DataFrame."""
         return next(iter(self.tables().values()))
 
-    def to_json(self) -> dict:
-        """The JSON document of the run: the keys every command shares, then the command's own.
-
-        Built once per result and cached: do not modify the returned dict.
-        """
-        cached = self.__dict__.get("_json_cache")
-        if cached is not None:
-            return cached
+    def header(self) -> dict:
+        """The keys every command's document starts with."""
         from . import __version__
 
         values, units = self.options.record() if self.options is not None else ({}, {})
-        doc = {
+        return {
             "command": self.command,
             "capred_version": __version__,
             "inputs": [i.as_dict() for i in self.inputs],
@@ -204,9 +232,24 @@ class Result:
             "warnings": self.all_warnings(),
             "notes": self.all_notes(),
         }
-        doc.update(self.payload())
-        self.__dict__["_json_cache"] = doc
-        return doc
+
+    def json_lazy(self) -> dict:
+        """The JSON document with long row lists left as Rows (for streaming and summaries); cached."""
+        cached = self.__dict__.get("_json_lazy")
+        if cached is None:
+            cached = self.__dict__["_json_lazy"] = {**self.header(), **self.payload(lazy=True)}
+        return cached
+
+    def to_json(self) -> dict:
+        """The JSON document of the run: the keys every command shares, then the command's own.
+
+        Built once per result and cached: do not modify the returned dict.
+        """
+        cached = self.__dict__.get("_json_cache")
+        if cached is None:
+            cached = {k: (v.tolist() if isinstance(v, Rows) else v) for k, v in self.json_lazy().items()}
+            self.__dict__["_json_cache"] = cached
+        return cached
 
 
 def check_choice(value: str, choices, option: str) -> str:

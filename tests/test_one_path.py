@@ -118,15 +118,15 @@ def test_full_disk_leaves_the_earlier_run_intact(tmp_path, monkeypatch):
     assert runner.invoke(app, ["shear", "--sample", "--no-plots", "--out", str(out)]).exit_code == 0
     before = {p.name: p.read_bytes() for p in out.iterdir()}
     calls = {"n": 0}
-    original = writers.RunFolder.write_bytes
+    original = writers.RunFolder.done
 
-    def full(self, name, data):
+    def full(self, name):
         calls["n"] += 1
-        if calls["n"] == 2:  # the disk fills up after the first file
+        if calls["n"] == 2:  # the disk fills up while the second file is written
             raise OSError(errno.ENOSPC, "No space left on device")
-        return original(self, name, data)
+        return original(self, name)
 
-    monkeypatch.setattr(writers.RunFolder, "write_bytes", full)
+    monkeypatch.setattr(writers.RunFolder, "done", full)
     res = runner.invoke(app, ["shear", "--sample", "--no-plots", "--out", str(out), "--gamma-w", "10"])
     assert res.exit_code == 1
     assert "no space left" in res.stderr and "Traceback" not in res.output
@@ -141,10 +141,10 @@ def test_interrupted_write_leaves_the_earlier_run_intact(tmp_path, monkeypatch):
     assert runner.invoke(app, ["shear", "--sample", "--no-plots", "--out", str(out)]).exit_code == 0
     before = {p.name: p.read_bytes() for p in out.iterdir()}
 
-    def interrupted(self, name, data):
+    def interrupted(self, name):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(writers.RunFolder, "write_bytes", interrupted)
+    monkeypatch.setattr(writers.RunFolder, "done", interrupted)
     result = capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(gamma_w="10 kN/m^3"))
     with pytest.raises(KeyboardInterrupt):
         capred.write_outputs(result, out, plots=False)

@@ -139,7 +139,16 @@ def _single(inv: Invocation) -> None:
     result = REDUCTIONS[inv.command].run(source, inv.options)
     written = write_run(result, out_dir, plots=inv.plots) if write else None
     if inv.json:
-        typer.echo(encode_json(result.to_json()).decode("utf-8"), nl=False)
+        import sys
+
+        from ..io.writers import stream_json
+
+        out = sys.stdout.buffer if hasattr(sys.stdout, "buffer") else None
+        if out is None:  # a text-only stream (as in some test runners)
+            typer.echo(encode_json(result.to_json()).decode("utf-8"), nl=False)
+        else:
+            stream_json(result.json_lazy(), out.write)
+            out.flush()
         return
     from ..report.render import render
 

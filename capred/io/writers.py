@@ -37,23 +37,70 @@ INDENT_LIMIT = 256 * 1024
 
 
 # --- encoding ------------------------------------------------------------------------------------
+def _dumps(obj, indent: bool = False) -> bytes:
+    """JSON bytes: orjson when installed (fast), else the standard library's C encoder."""
+    try:
+        import orjson
+    except ImportError:  # pragma: no cover - orjson is a dependency; kept for a minimal install
+        if indent:
+            return json.dumps(obj, ensure_ascii=False, indent=2, allow_nan=False).encode("utf-8")
+        return json.dumps(obj, ensure_ascii=False, separators=(",", ":"), allow_nan=False).encode("utf-8")
+    option = orjson.OPT_SERIALIZE_NUMPY | (orjson.OPT_INDENT_2 if indent else 0)
+    return orjson.dumps(obj, option=option)
+
+
 def encode_json(doc, indent: bool | None = None) -> bytes:
-    """JSON bytes of ``doc``: compact (C encoder) for large documents, indented for small ones."""
-    compact = json.dumps(doc, ensure_ascii=False, separators=(",", ":"), allow_nan=False)
+    """JSON bytes of ``doc``: indented for small documents, compact for large ones.
+
+    Floats are written in shortest round-trip form (every digit kept).
+    """
+    compact = _dumps(doc)
     if indent is False or (indent is None and len(compact) > INDENT_LIMIT):
-        return (compact + "\n").encode("utf-8")
-    return (json.dumps(doc, ensure_ascii=False, indent=2, allow_nan=False) + "\n").encode("utf-8")
+        return compact + b"\n"
+    return _dumps(doc, indent=True) + b"\n"
 
 
-def encode_csv(frame) -> bytes:
-    """A DataFrame as CSV; floats in repr form (shortest exact round trip), lists joined with ';'."""
+def stream_json(doc: dict, write) -> None:
+    """Write a document whose values may be Rows (made on demand) chunk by chunk through ``write(bytes)``.
+
+    Memory stays bounded by one chunk of rows. A document without Rows that
+    is small is written indented, like encode_json.
+    """
+    from ..result import Rows
+
+    if not any(isinstance(v, Rows) for v in doc.values()):
+        write(encode_json(doc))
+        return
+    write(b"{")
+    for k, (key, value) in enumerate(doc.items()):
+        write((b"," if k else b"") + _dumps(key) + b":")
+        if isinstance(value, Rows):
+            write(b"[")
+            first = True
+            for rows in value.chunks():
+                if rows:
+                    write((b"" if first else b",") + _dumps(rows)[1:-1])
+                    first = False
+            write(b"]")
+        else:
+            write(_dumps(value))
+    write(b"}\n")
+
+
+def write_csv_file(path: Path, frame) -> None:
+    """A DataFrame as CSV: floats in repr form (shortest exact round trip), lists joined with ';'."""
     frame = frame.copy(deep=False)
     for col in frame.columns:
         if frame[col].dtype == object:
             frame[col] = [";".join(map(str, v)) if isinstance(v, (list, tuple)) else v for v in frame[col]]
-    buf = io.StringIO()
-    frame.to_csv(buf, index=False, lineterminator="\n")
-    return buf.getvalue().encode("utf-8")
+    frame.to_csv(path, index=False, lineterminator="\n", encoding="utf-8", chunksize=20_000)
+
+
+def encode_csv(frame) -> bytes:
+    """The bytes write_csv_file writes (for tests and small tables)."""
+    buf = io.BytesIO()
+    write_csv_file(buf, frame)
+    return buf.getvalue()
 
 
 def safe_name(name: str, taken: set[str], limit: int = 80) -> str:
@@ -201,17 +248,16 @@ class RunFolder:
     def write_bytes(self, name: str, data: bytes) -> None:
         with open(self.tmp / name, "wb") as fh:
             fh.write(data)
-        self._done(name)
+        self.done(name)
 
     def path_for(self, name: str) -> Path:
         """Path to write ``name`` to directly (call ``done(name)`` afterwards)."""
         return self.tmp / name
 
-    def _done(self, name: str) -> None:
+    def done(self, name: str) -> None:
+        """Record a file written into the work folder (with the usual permissions)."""
         os.chmod(self.tmp / name, 0o666 & ~_UMASK)
         self.names.append(name)
-
-    done = _done
 
     def commit(self) -> list[Path]:
         out = self.out
@@ -246,8 +292,11 @@ def write_run(result, out, plots: bool = True, figure_format: str = "png", dpi: 
     folder = RunFolder(out)
     try:
         for name, frame in result.tables().items():
-            folder.write_bytes(f"{name}.csv", encode_csv(frame))
-        folder.write_bytes(result.json_name, encode_json(result.to_json()))
+            write_csv_file(folder.path_for(f"{name}.csv"), frame)
+            folder.done(f"{name}.csv")
+        with open(folder.path_for(result.json_name), "wb") as fh:
+            stream_json(result.json_lazy(), fh.write)
+        folder.done(result.json_name)
         if plots:
             for name, draw in result.figures().items():
                 fig = draw()
@@ -277,7 +326,7 @@ def provenance(result, outputs: list[str], command_line: str | None = None) -> d
     """Record of a run: capred version, command line, input hashes, options, outputs."""
     from datetime import datetime, timezone
 
-    doc = result.to_json()
+    doc = result.header()
     return {
         "capred_version": doc["capred_version"],
         "command": doc["command"],

@@ -99,7 +99,7 @@ class BridgeResult(Result):
             cached = self.__dict__["_rows"] = _records(self._frame(), drop_empty="note")
         return cached
 
-    def payload(self) -> dict:
+    def payload(self, lazy: bool = False) -> dict:
         return {"source": self.source, "bridges": self.rows()}
 
     def tables(self) -> dict:
@@ -243,7 +243,7 @@ class CurveResult(Result):
                            for k, v in m.items() if k != "exact"}
         return {"rms_relative_error_vs_exact": out}
 
-    def payload(self) -> dict:
+    def payload(self, lazy: bool = False) -> dict:
         return {"R_mm": self.R * 1e3, "gamma_N_per_m": self.gamma,
                 "contact_angle_deg": float(np.degrees(self.theta)),
                 "pendular_limit": self.pendular_limit, **self.summary(), "curve": self.rows()}
@@ -350,7 +350,7 @@ class CompareResult(Result):
             cached = self.__dict__["_rows"] = _records(self._frame())
         return cached
 
-    def payload(self) -> dict:
+    def payload(self, lazy: bool = False) -> dict:
         return {"source": self.bridges.source, "comparison": self.rows()}
 
     def tables(self) -> dict:

@@ -53,7 +53,7 @@ class CalcResult(Result):
                                                **{k: c[i] for k, c in cols.items()}} for i in range(n)]
         return cached
 
-    def payload(self) -> dict:
+    def payload(self, lazy: bool = False) -> dict:
         rows = self.rows()
         out = {"source": self.source, "cases": rows}
         if len(rows) == 1:

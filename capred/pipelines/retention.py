@@ -95,7 +95,7 @@ class RetentionResult(Result):
                     "model": MODELS[model], "reference": cite(REFERENCE[model])})
         return out
 
-    def payload(self) -> dict:
+    def payload(self, lazy: bool = False) -> dict:
         branches = {b: {"n_points": int(np.sum(self.branch == b)),
                         "fits": {m: self.fit_json(f, m) for m, f in fits.items()}}
                     for b, fits in self.fits.items()}

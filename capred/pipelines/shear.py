@@ -19,7 +19,7 @@ from ..io.table import Column, Table, read_table
 from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
 from ..references import cite
-from ..result import InputFile, Options, Result, TableSpec, input_file, num
+from ..result import InputFile, Options, Result, Rows, TableSpec, input_file, json_list, num
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier", ("id", "test", "test_no", "sample_id")),
@@ -198,6 +198,25 @@ class ShearResult(Result):
 
         return shear_tables(self)
 
+    def _test_rows(self, start: int, stop: int) -> list[dict]:
+        """JSON rows of tests start..stop-1 (kPa)."""
+        t = self.tests
+        sl = slice(start, stop)
+        kpa = {k: json_list(t[k][sl] / 1e3) for k in ("sigma_N", "suction", "tau_max", "chi2")}
+        plain = {k: json_list(t[k][sl]) for k in ("S_R", "chi1")}
+        pred = {m: json_list(t[f"tau_pred_{m}"][sl] / 1e3) for m in self.models}
+        resid = {m: json_list((t[f"tau_pred_{m}"][sl] - t["tau_max"][sl]) / 1e3) for m in self.models}
+        flags = self._flag_texts()[sl]
+        ids, mats, conds, lines = (t[k][sl].tolist() for k in ("test_id", "material", "condition", "line"))
+        return [{
+            "test_id": str(ids[i]), "material": str(mats[i]), "condition": str(conds[i]), "line": int(lines[i]),
+            "sigma_N_kPa": kpa["sigma_N"][i], "suction_kPa": kpa["suction"][i], "S_R": plain["S_R"][i],
+            "tau_max_kPa": kpa["tau_max"][i], "chi1": plain["chi1"][i], "chi2_kPa": kpa["chi2"][i],
+            "tau_pred_kPa": {m: pred[m][i] for m in self.models},
+            "residual_kPa": {m: resid[m][i] for m in self.models},
+            "flags": flags[i].split(";") if flags[i] else [],
+        } for i in range(stop - start)]
+
     def _results_table(self):
         import pandas as pd
 
@@ -218,12 +237,16 @@ class ShearResult(Result):
         return pd.DataFrame(cols)
 
     def _flag_texts(self) -> list[str]:
+        cached = self.__dict__.get("_flags")
+        if cached is not None:
+            return cached
         wet = self.tests["condition"] == "wet"
         S = self.tests["S_R"]
         outside = wet & (S > self.options.pendular_limit)
         above = wet & (S > ph.CHI1_UNITY_SR)
         names = np.array(["", "outside_pendular", "chi1_gt_1", "outside_pendular;chi1_gt_1"], dtype=object)
-        return list(names[outside.astype(int) + 2 * above.astype(int)])
+        cached = self.__dict__["_flags"] = list(names[outside.astype(int) + 2 * above.astype(int)])
+        return cached
 
     def summary_rows(self) -> list[dict]:
         """Long table of fits and metrics for the summary CSV."""
@@ -238,29 +261,16 @@ class ShearResult(Result):
                          "best": m == self.best_model_overall})
         return rows
 
-    def payload(self) -> dict:
-        t = self.tests
-        kpa = {k: (t[k] / 1e3).tolist() for k in ("sigma_N", "suction", "tau_max", "chi2")}
-        plain = {k: t[k].tolist() for k in ("S_R", "chi1")}
-        pred = {m: (t[f"tau_pred_{m}"] / 1e3).tolist() for m in self.models}
-        resid = {m: ((t[f"tau_pred_{m}"] - t["tau_max"]) / 1e3).tolist() for m in self.models}
-        flags = self._flag_texts()
-        ids, mats, conds, lines = (t[k].tolist() for k in ("test_id", "material", "condition", "line"))
-        tests = [{
-            "test_id": str(ids[i]), "material": str(mats[i]), "condition": str(conds[i]), "line": int(lines[i]),
-            "sigma_N_kPa": num(kpa["sigma_N"][i]), "suction_kPa": num(kpa["suction"][i]), "S_R": num(plain["S_R"][i]),
-            "tau_max_kPa": num(kpa["tau_max"][i]), "chi1": num(plain["chi1"][i]), "chi2_kPa": num(kpa["chi2"][i]),
-            "tau_pred_kPa": {m: num(pred[m][i]) for m in self.models},
-            "residual_kPa": {m: num(resid[m][i]) for m in self.models},
-            "flags": flags[i].split(";") if flags[i] else [],
-        } for i in range(len(ids))]
+    def payload(self, lazy: bool = False) -> dict:
+        n = len(self.tests["test_id"])
+        tests = Rows(n, self._test_rows)
         return {
             "source": self.source,
             "materials": {m: {**_fit_dict(f), **({"phi_b_deg": num(np.degrees(np.arctan(self.phi_b[m])))}
                                                  if m in self.phi_b else {})}
                           for m, f in self.fits.items()},
             "models": list(self.models),
-            "tests": tests,
+            "tests": tests if lazy else tests.tolist(),
             "metrics": {mat: {m: _metric_dict(v) for m, v in d.items()} for mat, d in self.metrics.items()},
             "metrics_overall": {m: _metric_dict(v) for m, v in self.metrics_overall.items()},
             "best_model": self.best_model,

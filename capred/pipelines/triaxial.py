@@ -149,7 +149,7 @@ class TriaxialResult(Result):
             "gain": num(gain), "positive_component": bool(b.positive[i]),
         }
 
-    def payload(self) -> dict:
+    def payload(self, lazy: bool = False) -> dict:
         e = self.envelope
         t = self.tests
         tests = []

@@ -13,7 +13,7 @@ def _spec(title: str, headers: list[str], left: int = 1) -> TableSpec:
 
 def shear_tables(result) -> list[TableSpec]:
     """Dry fits per material, then model metrics with the best model marked."""
-    js = result.to_json()
+    js = result.json_lazy()
     phi_b = any("phi_b_deg" in f for f in js["materials"].values())
     fits = _spec("Dry envelope τ = c + σ_N tan φ", ["material", "n", "c [kPa]", "± se", "φ [°]", "± se", "tan φ",
                                                     "R²"] + (["φ_b [°]"] if phi_b else []))
