@@ -129,6 +129,26 @@ def _parse_number(text: str, decimal_comma: bool) -> float | None:
     return v if np.isfinite(v) else None
 
 
+_PLAIN = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+_ALL_PLAIN = re.compile(rf"(?:(?:{_PLAIN})?\n)*(?:{_PLAIN})?")
+_COMMA = _PLAIN.replace(chr(92) + ".", ",")
+_ALL_PLAIN_COMMA = re.compile(rf"(?:(?:{_COMMA})?\n)*(?:{_COMMA})?")
+
+
+def _parse_column(cells: list[str], decimal_comma: bool) -> np.ndarray | None:
+    """Every cell of a column at once when all are plain decimal numbers (the usual case); else None."""
+    if not cells:
+        return np.empty(0)
+    joined = "\n".join(cells)
+    if _ALL_PLAIN.fullmatch(joined):
+        pass
+    elif decimal_comma and _ALL_PLAIN_COMMA.fullmatch(joined):
+        joined = joined.replace(",", ".")
+    else:
+        return None
+    return np.array([c or "nan" for c in joined.split("\n")], dtype=float)  # blank cells are NaN
+
+
 def _match_header(header: str, lookup: dict[str, Column]) -> tuple[Column | None, str | None]:
     """Column a header names, and the unit it declares (None = default)."""
     text = header.strip()
@@ -209,8 +229,15 @@ def read_table(path, schema: list[Column]) -> Table:
             table.problems.append(Problem(shown, int(n), None,
                                           f"{len(row)} fields but the header has {len(headers)}"))
 
+    width = len(headers)
+    if all(len(row) == width for row in body):  # the usual, rectangular table: columns by transposition
+        transposed = list(zip(*body))
+        column_cells = {name: [c.strip() for c in transposed[j]] for name, (j, _, _) in positions.items()}
+    else:
+        column_cells = {name: [row[j].strip() if j < len(row) else "" for row in body]
+                        for name, (j, _, _) in positions.items()}
     for name, (j, col, unit) in positions.items():
-        cells = [row[j].strip() if j < len(row) else "" for row in body]
+        cells = column_cells[name]
         table.raw[name] = cells
         if col.kind == "text":
             values = np.array(cells, dtype=object)
@@ -231,13 +258,15 @@ def read_table(path, schema: list[Column]) -> Table:
         if note:
             table.notes.append(f"column '{table.headers[name]}': {note}")
         table.units[name] = unit_used
-        values = np.empty(len(cells))
-        for i, c in enumerate(cells):
-            v = _parse_number(c, decimal_comma)
-            if v is None:
-                table.add_problem(i, name, f"'{c}' is not a number")
-                v = float("nan")
-            values[i] = v
+        values = _parse_column(cells, decimal_comma)
+        if values is None:  # some cell is blank or not a plain number: cell by cell, naming the bad ones
+            values = np.empty(len(cells))
+            for i, c in enumerate(cells):
+                v = _parse_number(c, decimal_comma)
+                if v is None:
+                    table.add_problem(i, name, f"'{c}' is not a number")
+                    v = float("nan")
+                values[i] = v
         with np.errstate(over="ignore", invalid="ignore"):
             si = values * factor
         for i in np.flatnonzero(np.isinf(si)):
@@ -251,14 +280,11 @@ def read_table(path, schema: list[Column]) -> Table:
 def _check_rule(table: Table, col: Column) -> None:
     v = table.columns[col.name]
     unit = table.units.get(col.name, "")
-    for i in np.flatnonzero(np.isfinite(v)):
-        x = v[i]
-        bad = (
-            (col.rule == "positive" and x <= 0)
-            or (col.rule == "nonnegative" and x < 0)
-            or (col.rule == "fraction" and not 0 <= x <= 1)
-        )
-        if bad:
-            what = {"positive": "must be > 0", "nonnegative": "must not be negative",
-                    "fraction": "must lie between 0 and 1"}[col.rule]
-            table.add_problem(i, col.name, f"{col.description} {what} (got {table.raw[col.name][i]} {unit})".rstrip())
+    with np.errstate(invalid="ignore"):
+        bad = {"positive": v <= 0, "nonnegative": v < 0, "fraction": (v < 0) | (v > 1)}.get(col.rule)
+    if bad is None:
+        return
+    what = {"positive": "must be > 0", "nonnegative": "must not be negative",
+            "fraction": "must lie between 0 and 1"}[col.rule]
+    for i in np.flatnonzero(bad):
+        table.add_problem(i, col.name, f"{col.description} {what} (got {table.raw[col.name][i]} {unit})".rstrip())

@@ -87,13 +87,48 @@ def stream_json(doc: dict, write) -> None:
     write(b"}\n")
 
 
-def write_csv_file(path: Path, frame) -> None:
-    """A DataFrame as CSV: floats in repr form (shortest exact round trip), lists joined with ';'."""
-    frame = frame.copy(deep=False)
-    for col in frame.columns:
-        if frame[col].dtype == object:
-            frame[col] = [";".join(map(str, v)) if isinstance(v, (list, tuple)) else v for v in frame[col]]
-    frame.to_csv(path, index=False, lineterminator="\n", encoding="utf-8", chunksize=20_000)
+def _csv_cell(value) -> str:
+    """One cell of an object column: text quoted as CSV needs, lists joined with ';', blanks empty."""
+    if value is None or (isinstance(value, float) and value != value):
+        return ""
+    if isinstance(value, (list, tuple)):
+        value = ";".join(map(str, value))
+    elif isinstance(value, float):
+        value = repr(value)
+    text = str(value)
+    if any(ch in text for ch in ',"\n\r'):
+        return '"' + text.replace('"', '""') + '"'
+    return text
+
+
+def _csv_column(values) -> list[str]:
+    """Cells of one column; numbers in shortest round-trip form (via orjson's float printer)."""
+    import numpy as np
+
+    a = np.asarray(values)
+    if a.dtype.kind in "fiu" and a.size:
+        try:
+            import orjson
+        except ImportError:  # pragma: no cover
+            return ["" if x != x else repr(x) for x in a.tolist()]
+        text = orjson.dumps(a.astype(float) if a.dtype.kind == "f" else a,
+                            option=orjson.OPT_SERIALIZE_NUMPY).decode("ascii")[1:-1]
+        return text.replace("null", "").split(",")
+    if a.dtype.kind == "b":
+        return ["True" if x else "False" for x in a.tolist()]
+    return [_csv_cell(x) for x in a.tolist()]
+
+
+def write_csv_file(path, frame) -> None:
+    """A DataFrame as UTF-8 CSV: floats in shortest round-trip form (every digit kept), NaN as an
+    empty cell, lists joined with ';', text quoted where CSV needs it. ``path`` may be a binary file."""
+    with contextlib.ExitStack() as stack:
+        fh = path if hasattr(path, "write") else stack.enter_context(open(path, "wb"))
+        fh.write((",".join(_csv_cell(str(c)) for c in frame.columns) + "\n").encode("utf-8"))
+        arrays = [frame[c].to_numpy() for c in frame.columns]
+        for start in range(0, len(frame), 10_000):  # memory bounded by one chunk of rows
+            columns = [_csv_column(a[start:start + 10_000]) for a in arrays]
+            fh.write(("\n".join(map(",".join, zip(*columns))) + "\n").encode("utf-8"))
 
 
 def encode_csv(frame) -> bytes:
