@@ -54,3 +54,24 @@ def test_readme_python_example_runs(lab):
     code = next(body for lang, body in BLOCKS if lang == "python")
     exec(compile(code, "README.md", "exec"), {})
     assert (lab / "report" / "results.csv").exists()
+
+
+EXAMPLES = re.findall(r"^capred (.+?)\s+# \{([^}]*)\}: ([0-9.]+)", README, flags=re.M)
+
+
+def test_readme_has_example_values():
+    assert len(EXAMPLES) >= 3
+
+
+@pytest.mark.parametrize("args,keys,value", EXAMPLES)
+def test_readme_example_values_hold(args, keys, value, lab):
+    """The values the README prints beside its examples, to the digits it prints them."""
+    import json
+
+    res = CliRunner().invoke(app, [*shlex.split(args), "--json"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    key = keys.split(",")[-1].strip()
+    decimals = len(value.split(".")[1]) if "." in value else 0
+    # printed value = computed value rounded to the printed digits: half a unit of the last digit
+    assert doc[key] == pytest.approx(float(value), abs=0.5 * 10 ** -decimals + 1e-12)
