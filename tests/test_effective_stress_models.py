@@ -77,10 +77,11 @@ def test_models_option_needs_parameters():
 def test_models_all_with_retention_fit(tmp_path):
     assert runner.invoke(app, ["retention", "--sample", "--out", str(tmp_path / "r"), "--no-plots"]).exit_code == 0
     res = runner.invoke(app, ["shear", "--sample", "--models", "all", "--retention", str(tmp_path / "r" / "fits.json"),
-                              "--json", "--out", str(tmp_path / "s")])
+                              "--json", "--bootstrap", "50", "--out", str(tmp_path / "s")])
     assert res.exit_code == 0, res.output
     js = json.loads(res.stdout)
-    assert len(js["metrics"]["steel_2mm"]) == 9 and len(js["tests"][0]["tau_pred_kPa"]) == 9
+    n_models = len(capred_models())
+    assert len(js["metrics"]["steel_2mm"]) == n_models == 12 and len(js["tests"][0]["tau_pred_kPa"]) == 12
     assert "phi_b_deg" in js["materials"]["steel_2mm"]
     assert (tmp_path / "s" / "report_steel_2mm.png").exists()
 
@@ -89,3 +90,9 @@ def test_retention_file_must_be_a_fit(write_csv):
     bad = write_csv("not json", "fits.json")
     res = runner.invoke(app, ["shear", "--sample", "--models", "lu_likos", "--retention", str(bad)])
     assert res.exit_code == 1 and "not a fits.json" in res.stderr
+
+
+def capred_models():
+    from capred.physics.effective_stress_models import REGISTRY
+
+    return REGISTRY

@@ -251,7 +251,7 @@ def test_material_names_give_unique_file_names(tmp_path):
     (tmp_path / "t.csv").write_text(text)
     res = runner.invoke(app, ["shear", str(tmp_path / "t.csv"), "--out", str(tmp_path / "o")])
     assert res.exit_code == 0, res.output
-    pngs = sorted(p.name for p in (tmp_path / "o").glob("*.png"))
+    pngs = sorted(p.name for p in (tmp_path / "o").glob("report_*.png"))
     assert pngs == ["report_a_b.png", "report_a_b_2.png"]
 
 
@@ -337,7 +337,7 @@ def test_implausible_unit_weight_warns_in_json():
     """ShearOptions(gamma_w=10) is 10 N/m^3 (SI), not the CLI's kN/m^3: said in the warnings."""
     doc = capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(gamma_w=10)).to_json()
     assert any("gamma_w" in w and "check its unit" in w for w in doc["warnings"])
-    assert capred.run_shear(capred.sample_path("shear")).to_json()["warnings"] == []
+    assert not any("gamma_w" in w for w in capred.run_shear(capred.sample_path("shear")).to_json()["warnings"])
 
 
 def test_no_user_facing_text_names_a_seed_file():

@@ -33,7 +33,9 @@ def shear(
     void_volume: Annotated[Optional[str], typer.Option(help="Void volume V_v [cm^3] for rows without 'V_v'.")] = None,
     models: Annotated[str, typer.Option(help="Models to compare, comma separated: no_suction, bishop, own1, own2 "
                                         "(= 'thesis', the default), vanapalli, khalili, lu_likos, fredlund, "
-                                        "pedrotti_tarantino; 'all' for every one.")] = "thesis",
+                                        "pedrotti_tarantino, exact_neck, and the laws fitted per material "
+                                        "chi_power (chi = S_e^kappa) and khalili_fit (s_b, and eta with "
+                                        "--fit-eta); 'all' for every one.")] = "thesis",
     retention: Annotated[Optional[Path], typer.Option(help="fits.json from capred retention: S_res, s_e and van "
                                                       "Genuchten parameters for the extra models.")] = None,
     s_res: Annotated[Optional[float], typer.Option(help="Residual S_R (Vanapalli et al. 1996).")] = None,
@@ -45,11 +47,22 @@ def shear(
     vg_m: Annotated[Optional[float], typer.Option(help="van Genuchten m (Lu & Likos 2006).")] = None,
     water_envelope: Annotated[Optional[str], typer.Option(help="'c,phi' [kPa, deg] of the water-saturated soil "
                                                           "(Pedrotti & Tarantino); default: the dry envelope.")] = None,
+    contact_angle: Annotated[float, typer.Option(help="Contact angle [deg] of the exact bridge (exact_neck).")] = 0.0,
+    fit_eta: Annotated[bool, typer.Option("--fit-eta", help="khalili_fit: fit the exponent eta too "
+                                                            "(else eta = 0.55).")] = False,
+    dry_fit: Annotated[str, typer.Option(help="Dry envelope: 'free' (c and phi) or 'origin' (c = 0, "
+                                              "cohesionless soil).")] = "free",
+    bootstrap: Annotated[int, typer.Option(help="Replicates of the paired bootstrap of the model ranking "
+                                                "(0: none).")] = 2000,
+    seed: Annotated[int, typer.Option(help="Seed of the bootstrap: the same seed gives the same "
+                                           "probabilities.")] = 0,
 ) -> Invocation:
     """Direct-shear tests with hanging-column suction (Evenepoel, VUB thesis):
     dry envelope per material, the effective-stress models (No suction,
-    Bishop, Own 1, Own 2 by default) on every wet test, their scores and a
-    report sheet per material.
+    Bishop, Own 1, Own 2 by default) on every wet test, their scores (all wet
+    tests and pendular ones), how sure the ranking is (bootstrap), the
+    capillary stress each wet test carried (back-analysed from the dry
+    envelope) and report sheets per material.
 
     Values in the file win over the options; options fill absent columns and
     blank cells. Any option may carry a unit: --box-area "36 cm^2".
@@ -61,7 +74,9 @@ def shear(
     params = dict(s_res=s_res, vanapalli_kappa=vanapalli_kappa,
                   air_entry=quantity(air_entry, "kPa", "air_entry", "--air-entry"),
                   vg_alpha=quantity(vg_alpha, "1/kPa", "vg_alpha", "--vg-alpha"),
-                  vg_n=vg_n, vg_m=vg_m, water_envelope=_envelope_pair(water_envelope))
+                  vg_n=vg_n, vg_m=vg_m, water_envelope=_envelope_pair(water_envelope),
+                  contact_angle=quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"),
+                  fit_eta=fit_eta)
     mp = (model_params_from_retention(retention, **params) if retention is not None
           else ModelParams(**{k: v for k, v in params.items() if v is not None}))
     opts = ShearOptions(
@@ -75,6 +90,9 @@ def shear(
         void_volume=quantity(void_volume, "cm^3", "V_v", "--void-volume"),
         models=_model_list(models),
         model_params=mp,
+        dry_fit=dry_fit,
+        bootstrap=bootstrap,
+        seed=seed,
     )
     return Invocation("shear", sources(data, sample, "shear"), opts, plots, out, json_out, workers,
                       [retention] if retention else [])

@@ -17,7 +17,7 @@ References
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
@@ -27,7 +27,9 @@ from .retention import vg_effective_saturation
 
 
 def chi_vanapalli(S_R, S_res=0.0, kappa=1.0):
-    """chi = Theta^kappa, Theta = (S_R - S_res)/(1 - S_res) clipped to [0, 1] [8].
+    """chi = S_e^kappa, S_e = (S_R - S_res)/(1 - S_res) clipped to [0, 1] [8].
+
+    Also the fitted law `chi_power`, with kappa fitted per material.
 
     Vanapalli et al. write tau = c' + (sigma - u_a) tan phi' + s Theta^kappa tan phi';
     kappa = 1 with the normalised water content is their second form.
@@ -36,11 +38,56 @@ def chi_vanapalli(S_R, S_res=0.0, kappa=1.0):
     return theta**kappa
 
 
-def chi_khalili(suction, air_entry):
-    """chi = (s / s_e)^-0.55 above the air-entry suction, 1 below [9]."""
+def chi_khalili(suction, air_entry, eta=0.55):
+    """chi = (s / s_b)^-eta above the air-entry suction s_b, 1 below [9].
+
+    Parameters
+    ----------
+    suction : matric suction s [Pa], >= 0
+    air_entry : air-entry (or air-expulsion) suction s_b [Pa], > 0
+    eta : exponent [-]; Khalili & Khabbaz (1998) found 0.55 for many soils
+
+    Returns
+    -------
+    chi [-], in (0, 1]
+    """
     s = np.asarray(suction, float)
-    with np.errstate(divide="ignore"):
-        return np.where(s > air_entry, (np.where(s > 0, s, 1.0) / air_entry) ** -0.55, 1.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(s > air_entry, (np.where(s > 0, s, 1.0) / air_entry) ** -eta, 1.0)
+
+
+def exact_neck_capillary_stress(S_R, suction, R, surface_tension, contact_angle=0.0):
+    """Capillary stress of the exact pendular bridge of a two-sphere unit cell [Pa], and where it exists.
+
+    sigma_cap = (pi r0^2 Delta_u + 2 pi r0 gamma) / (pi R^2), with r0 the neck
+    radius of the exact Young-Laplace bridge between two equal spheres of
+    radius R in contact that holds the unit-cell water volume
+    V_w = 2 pi R^3 S_R / 3 (Evenepoel, VUB thesis, "Shape"), and Delta_u the
+    measured suction. As S_R -> 0 it tends to Israelachvili's 2 gamma cos(theta)/R.
+
+    Parameters
+    ----------
+    S_R : degree of saturation [-]
+    suction : measured matric suction Delta_u [Pa]
+    R : particle radius [m]
+    surface_tension : gamma [N/m]
+    contact_angle : [deg], in [0, 90)
+
+    Returns
+    -------
+    (sigma_cap [Pa], ok) : NaN and False where S_R exceeds the last concave bridge (or is 0)
+    """
+    from . import bridge as br
+
+    S, s, R = (np.asarray(x, float) for x in np.broadcast_arrays(S_R, suction, R))
+    th = np.radians(contact_angle)
+    beta, s_star, status = br.solve_for_volume(np.full(S.size, th), (2.0 * np.pi * S / 3.0).ravel(), 0.0)
+    ok = (status == 0).reshape(S.shape)
+    y0 = br.geometry(beta, th, np.where(status == 0, s_star, 0.0))[3].reshape(S.shape)
+    r0 = y0 * R
+    with np.errstate(invalid="ignore"):
+        cap = (np.pi * r0**2 * s + 2.0 * np.pi * r0 * surface_tension) / (np.pi * R**2)
+    return np.where(ok, cap, np.nan), ok
 
 
 def chi_lu_likos(suction, alpha, n, m=None):
@@ -90,6 +137,26 @@ class ModelInputs:
     tan_phi: np.ndarray
     surface_tension: float
     params: object  # capred.pipelines.shear.ModelParams
+    fitted: dict = field(default_factory=dict)  # model -> material -> fitted parameters (SI)
+    cache: dict = field(default_factory=dict)  # per-test arrays that do not depend on the dry fit
+
+    def subset(self, mask) -> "ModelInputs":
+        """The same inputs for the tests selected by ``mask`` (a boolean mask or indices)."""
+        arrays = {k: getattr(self, k)[mask] for k in ("sigma_N", "suction", "S_R", "R", "tau_max", "wet",
+                                                      "material", "c", "tan_phi")}
+        return ModelInputs(**arrays, surface_tension=self.surface_tension, params=self.params, fitted=self.fitted,
+                           cache={k: v[mask] for k, v in self.cache.items()})
+
+    def cached(self, key: str, compute) -> np.ndarray:
+        """A per-test array computed once (e.g. exact bridges), kept through ``subset``."""
+        if key not in self.cache:
+            self.cache[key] = compute()
+        return self.cache[key]
+
+    def per_test(self, model: str, name: str) -> np.ndarray:
+        """A fitted parameter of ``model`` for every test (from its material's fit; NaN where not fitted)."""
+        fits = self.fitted.get(model, {})
+        return np.array([fits[m][name] if m in fits else np.nan for m in self.material], dtype=float)
 
 
 @dataclass(frozen=True)
@@ -104,6 +171,7 @@ class EffectiveStressModel:
     sigma_eff: Callable[[ModelInputs], np.ndarray] | None = None
     tau: Callable[[ModelInputs], np.ndarray] | None = None
     thesis: bool = False  # one of the four models of the thesis (the default set)
+    fitted: tuple[str, ...] = ()  # parameters fitted per material on the wet tests (capred.fitting.chi_laws)
 
 
 def _fredlund(d: ModelInputs) -> np.ndarray:
@@ -143,6 +211,16 @@ REGISTRY: dict[str, EffectiveStressModel] = {m.name: m for m in (
     EffectiveStressModel("fredlund", "Fredlund φ_b", (), "fredlund1978", _fredlund),
     EffectiveStressModel("pedrotti_tarantino", "Pedrotti-Tarantino", (), "pedrotti_tarantino",
                          tau=_pedrotti_tarantino),
+    EffectiveStressModel("chi_power", "χ = S_e^κ (fitted)", (), "vanapalli1996",
+                         lambda d: d.sigma_N + chi_vanapalli(d.S_R, d.params.s_res or 0.0, d.per_test("chi_power", "kappa"))
+                         * d.suction, fitted=("kappa",)),
+    EffectiveStressModel("khalili_fit", "Khalili-Khabbaz (fitted)", (), "khalili_khabbaz1998",
+                         lambda d: d.sigma_N + chi_khalili(d.suction, d.per_test("khalili_fit", "s_b"),
+                                                           d.per_test("khalili_fit", "eta")) * d.suction,
+                         fitted=("s_b", "eta")),
+    EffectiveStressModel("exact_neck", "Exact bridge", (), "evenepoel",
+                         lambda d: d.sigma_N + d.cached("exact_neck", lambda: exact_neck_capillary_stress(
+                             d.S_R, d.suction, d.R, d.surface_tension, d.params.contact_angle)[0])),
 )}
 
 #: The thesis's four models in display order (the default of `capred shear --models`).
@@ -156,5 +234,6 @@ def predict(model: str, d: ModelInputs) -> tuple[np.ndarray, np.ndarray]:
     dry_tau = ph.mohr_coulomb_strength(d.c, d.tan_phi, d.sigma_N)
     if e.tau is not None:
         return np.where(d.wet, np.nan, d.sigma_N), np.where(d.wet, e.tau(d), dry_tau)
-    eff = np.where(d.wet, e.sigma_eff(d), d.sigma_N)
+    with np.errstate(invalid="ignore"):
+        eff = np.where(d.wet, e.sigma_eff(d), d.sigma_N)
     return eff, ph.mohr_coulomb_strength(d.c, d.tan_phi, eff)

@@ -7,6 +7,7 @@ them.
 """
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -14,7 +15,7 @@ import numpy as np
 
 from .. import nomenclature as nom
 from ..errors import FitError, OptionError
-from ..fitting.linear import LineFit, fit_line
+from ..fitting.linear import LineFit, fit_line, fit_line_origin
 from ..io.table import Column, Table, read_table
 from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
@@ -48,7 +49,8 @@ class ModelParams(Options):
     ``air_entry`` [Pa] and ``vg_alpha`` [1/Pa] also take a unit: ``air_entry="5 kPa"``.
     """
 
-    QUANTITIES = {"air_entry": "air_entry", "vg_alpha": "vg_alpha"}
+    QUANTITIES = {"air_entry": "air_entry", "vg_alpha": "vg_alpha", "contact_angle": "contact_angle"}
+    OPTION_NAMES = {"s_res": "--s-res"}
 
     s_res: float | None = None  # residual S_R (Vanapalli)
     vanapalli_kappa: float = 1.0
@@ -57,6 +59,9 @@ class ModelParams(Options):
     vg_n: float | None = None
     vg_m: float | None = None
     water_envelope: tuple[float, float] | None = None  # (c [Pa], phi [deg]) of the saturated soil (P-T)
+    contact_angle: float = 0.0  # deg, of the exact bridge (exact_neck)
+    eta: float = 0.55  # exponent of khalili_fit (fixed unless fit_eta)
+    fit_eta: bool = False
 
     def require(self, model: str) -> None:
         missing = [opt for name, opt in esm.REGISTRY[model].requires if getattr(self, name) is None]
@@ -116,9 +121,18 @@ class ShearOptions(Options):
     void_volume: float | None = None  # m^3
     models: tuple[str, ...] = esm.THESIS_MODELS
     model_params: ModelParams = field(default_factory=ModelParams)
+    dry_fit: str = "free"  # "free" (c and phi) or "origin" (c = 0, cohesionless soil)
+    bootstrap: int = 2000  # replicates of the ranking bootstrap (0: none)
+    seed: int = 0  # of the bootstrap: the same seed gives the same probabilities
 
     def __post_init__(self) -> None:
         super().__post_init__()
+        if self.dry_fit not in ("free", "origin"):
+            raise OptionError(f"dry_fit (--dry-fit) must be 'free' or 'origin' (got '{self.dry_fit}')")
+        if isinstance(self.bootstrap, bool) or not isinstance(self.bootstrap, int) or self.bootstrap < 0:
+            raise OptionError(f"bootstrap (--bootstrap) must be a whole number >= 0 (got {self.bootstrap!r})")
+        if isinstance(self.seed, bool) or not isinstance(self.seed, int) or self.seed < 0:
+            raise OptionError(f"seed (--seed) must be a whole number >= 0 (got {self.seed!r})")
         models = (self.models,) if isinstance(self.models, str) else tuple(self.models)
         unknown = [m for m in models if m not in esm.REGISTRY]
         if unknown or not models:
@@ -161,6 +175,11 @@ class ShearResult(Result):
     phi_b: dict[str, float] = field(default_factory=dict)  # Fredlund tan(phi_b) per material
     inputs: list[InputFile] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
+    metrics_pendular: dict[str, dict[str, ModelMetrics]] = field(default_factory=dict)
+    metrics_pendular_overall: dict[str, ModelMetrics] = field(default_factory=dict)
+    laws: dict = field(default_factory=dict)  # model -> material -> FittedLaw
+    ranking: dict = field(default_factory=dict)  # material -> RankingUncertainty
+    model_inputs: object = None  # esm.ModelInputs of every test (with the fitted laws)
 
     @property
     def models(self) -> tuple[str, ...]:
@@ -171,13 +190,8 @@ class ShearResult(Result):
         return list(self.fits)
 
     def flags(self, i: int) -> list[str]:
-        out = []
-        if self.tests["condition"][i] == "wet":
-            if self.tests["S_R"][i] > self.options.pendular_limit:
-                out.append("outside_pendular")
-            if self.tests["S_R"][i] > ph.CHI1_UNITY_SR:
-                out.append("chi1_gt_1")
-        return out
+        text = self._flag_texts()[i]
+        return text.split(";") if text else []
 
     def tables(self) -> dict:
         """results (one row per test) and summary (one row per material and model)."""
@@ -188,10 +202,17 @@ class ShearResult(Result):
 
     def figures(self) -> dict:
         from ..io.writers import safe_name
-        from ..report.shear_figures import figure_shear_report
+        from ..report.shear_figures import figure_capillary_stress, figure_shear_report
 
         taken: set[str] = set()
-        return {f"report_{safe_name(m, taken)}": (lambda m=m: figure_shear_report(self, m)) for m in self.materials}
+        out = {}
+        wet = self.tests["condition"] == "wet"
+        for m in self.materials:
+            name = safe_name(m, taken)
+            out[f"report_{name}"] = lambda m=m: figure_shear_report(self, m)
+            if np.any(wet & (self.tests["material"] == m)):
+                out[f"capillary_{name}"] = lambda m=m: figure_capillary_stress(self, m)
+        return out
 
     def console_tables(self) -> list[TableSpec]:
         from ..report.console import shear_tables
@@ -208,12 +229,21 @@ class ShearResult(Result):
         resid = {m: json_list((t[f"tau_pred_{m}"][sl] - t["tau_max"][sl]) / 1e3) for m in self.models}
         flags = self._flag_texts()[sl]
         ids, mats, conds, lines = (t[k][sl].tolist() for k in ("test_id", "material", "condition", "line"))
+        back = {k: json_list(t[k][sl] / (1e3 if k.startswith("sigma") else 1.0))
+                for k in ("sigma_cap", "sigma_cap_se", "chi_back", "chi_back_se")}
+        cap_pred = {m: json_list(t[f"sigma_cap_pred_{m}"][sl] / 1e3) for m in self.models}
+        lo = {m: json_list(t[f"tau_pred_lo_{m}"][sl] / 1e3) for m in self.models}
+        hi = {m: json_list(t[f"tau_pred_hi_{m}"][sl] / 1e3) for m in self.models}
         return [{
             "test_id": str(ids[i]), "material": str(mats[i]), "condition": str(conds[i]), "line": int(lines[i]),
             "sigma_N_kPa": kpa["sigma_N"][i], "suction_kPa": kpa["suction"][i], "S_R": plain["S_R"][i],
             "tau_max_kPa": kpa["tau_max"][i], "chi1": plain["chi1"][i], "chi2_kPa": kpa["chi2"][i],
             "tau_pred_kPa": {m: pred[m][i] for m in self.models},
             "residual_kPa": {m: resid[m][i] for m in self.models},
+            "tau_pred_band_kPa": {m: [lo[m][i], hi[m][i]] for m in self.models},
+            "sigma_cap_kPa": back["sigma_cap"][i], "sigma_cap_se_kPa": back["sigma_cap_se"][i],
+            "chi_back": back["chi_back"][i], "chi_back_se": back["chi_back_se"][i],
+            "sigma_cap_pred_kPa": {m: cap_pred[m][i] for m in self.models},
             "flags": flags[i].split(";") if flags[i] else [],
         } for i in range(stop - start)]
 
@@ -233,6 +263,16 @@ class ShearResult(Result):
             cols[nom.column("tau_pred", f"_{m}")] = nom.to_output("tau_pred", t[f"tau_pred_{m}"])
         for m in self.models:
             cols[f"residual_{m} [kPa]"] = nom.to_output("tau_pred", t[f"tau_pred_{m}"] - t["tau_max"])
+        pct = f"{self.options.confidence:.0%}"
+        for m in self.models:
+            cols[f"tau_pred_{m}_low{pct[:-1]} [kPa]"] = t[f"tau_pred_lo_{m}"] / 1e3
+            cols[f"tau_pred_{m}_high{pct[:-1]} [kPa]"] = t[f"tau_pred_hi_{m}"] / 1e3
+        cols["sigma_cap [kPa]"] = t["sigma_cap"] / 1e3
+        cols["sigma_cap_se [kPa]"] = t["sigma_cap_se"] / 1e3
+        cols["chi_back [-]"] = t["chi_back"]
+        cols["chi_back_se [-]"] = t["chi_back_se"]
+        for m in self.models:
+            cols[f"sigma_cap_pred_{m} [kPa]"] = t[f"sigma_cap_pred_{m}"] / 1e3
         cols["flags"] = self._flag_texts()
         return pd.DataFrame(cols)
 
@@ -242,11 +282,42 @@ class ShearResult(Result):
             return cached
         wet = self.tests["condition"] == "wet"
         S = self.tests["S_R"]
-        outside = wet & (S > self.options.pendular_limit)
-        above = wet & (S > ph.CHI1_UNITY_SR)
-        names = np.array(["", "outside_pendular", "chi1_gt_1", "outside_pendular;chi1_gt_1"], dtype=object)
-        cached = self.__dict__["_flags"] = list(names[outside.astype(int) + 2 * above.astype(int)])
+        parts = [("outside_pendular", wet & (S > self.options.pendular_limit)),
+                 ("chi1_gt_1", wet & (S > ph.CHI1_UNITY_SR))]
+        if "exact_neck" in self.models:
+            parts.append(("no_concave_bridge", wet & ~np.isfinite(self.tests["tau_pred_exact_neck"])))
+        code = sum(mask.astype(int) << k for k, (_, mask) in enumerate(parts))
+        names = np.array([";".join(n for k, (n, _) in enumerate(parts) if c >> k & 1) for c in range(1 << len(parts))],
+                         dtype=object)
+        cached = self.__dict__["_flags"] = list(names[code])
         return cached
+
+    def model_selection(self) -> dict:
+        """Per material: each model's k, n, RSS, AICc, BIC, delta AICc and Akaike weight on its wet tests."""
+        from ..fitting.chi_laws import akaike_weights, information_criteria
+
+        out = {}
+        t = self.tests
+        for mat in self.materials:
+            sel = (t["material"] == mat) & (t["condition"] == "wet")
+            if not sel.any():
+                continue
+            rows = {}
+            for m in self.models:
+                r = t[f"tau_pred_{m}"][sel] - t["tau_max"][sel]
+                r = r[np.isfinite(r)]
+                law = self.laws.get(m, {}).get(mat)
+                p = len(law.params) - len(law.fixed) if law is not None else 0
+                if m == "fredlund":
+                    p = 1  # tan(phi_b) fitted on the wet tests
+                ic = information_criteria(float(r @ r), int(r.size), p)
+                rows[m] = {"k": p + 1, "n": int(r.size), "rss_kPa2": num(float(r @ r) / 1e6),
+                           "aicc": num(ic["aicc"]), "bic": num(ic["bic"])}
+            weights = akaike_weights({m: v["aicc"] for m, v in rows.items()})
+            for m, (delta, w) in weights.items():
+                rows[m]["delta_aicc"], rows[m]["weight"] = num(delta), num(w)
+            out[mat] = rows
+        return out
 
     def summary_rows(self) -> list[dict]:
         """Long table of fits and metrics for the summary CSV."""
@@ -275,6 +346,18 @@ class ShearResult(Result):
             "metrics_overall": {m: _metric_dict(v) for m, v in self.metrics_overall.items()},
             "best_model": self.best_model,
             "best_model_overall": self.best_model_overall,
+            "metrics_pendular": {mat: {m: _metric_dict(v) for m, v in d.items()}
+                                 for mat, d in self.metrics_pendular.items()},
+            "metrics_pendular_overall": {m: _metric_dict(v) for m, v in self.metrics_pendular_overall.items()},
+            "best_model_pendular": {m: best_of(v) for m, v in self.metrics_pendular.items()},
+            "best_model_pendular_overall": best_of(self.metrics_pendular_overall),
+            "best_model_probability": {m: r.probability for m, r in self.ranking.items()},
+            "bootstrap": {m: _ranking_dict(r) for m, r in self.ranking.items()},
+            "fitted": {mat: {model: _law_dict(model, law) for model, by_mat in self.laws.items()
+                             for mm, law in by_mat.items() if mm == mat}
+                       for mat in self.materials if any(mat in v for v in self.laws.values())},
+            "model_selection": self.model_selection(),
+            "dry_fit": self.options.dry_fit,
             "constants": {
                 "gamma_w_kN_per_m3": self.options.gamma_w / 1e3,
                 "surface_tension_N_per_m": self.options.surface_tension,
@@ -284,6 +367,27 @@ class ShearResult(Result):
             },
             "references": {m: cite(esm.REGISTRY[m].reference) for m in self.models},
         }
+
+
+def _law_dict(model: str, law) -> dict:
+    from ..fitting.chi_laws import information_criteria
+
+    scale = {"s_b": ("s_b_kPa", 1e-3)}
+    params = {scale.get(k, (k, 1.0))[0]: num(v * scale.get(k, (k, 1.0))[1]) for k, v in law.params.items()}
+    se = {scale.get(k, (k, 1.0))[0]: (None if v is None else num(v * scale.get(k, (k, 1.0))[1]))
+          for k, v in law.se.items()}
+    ic = information_criteria(law.rss, law.n, len(law.params) - len(law.fixed))
+    return {"params": params, "se": se, "fixed": list(law.fixed), "rss_kPa2": num(law.rss / 1e6),
+            "aicc": num(ic["aicc"]), "bic": num(ic["bic"]), "n": law.n, "converged": law.converged}
+
+
+def _ranking_dict(r) -> dict:
+    def kpa(pair):
+        return None if pair is None else [num(pair[0] / 1e3), num(pair[1] / 1e3)]
+
+    return {"replicates": r.replicates, "seed": r.seed, "best_model_probability": r.probability,
+            "rmse_ci95_kPa": {m: kpa(v) for m, v in r.rmse_ci.items()},
+            "best": r.best, "runner_up": r.runner_up, "rmse_difference_ci95_kPa": kpa(r.difference_ci)}
 
 
 def _fit_dict(fit: LineFit) -> dict:
@@ -311,9 +415,15 @@ def _metric_dict(m: ModelMetrics) -> dict:
 
 
 def model_metrics(predicted, measured) -> ModelMetrics:
-    """RMSE, bias (mean of predicted - measured) and R^2 = 1 - SS_res/SS_tot."""
+    """RMSE, bias (mean of predicted - measured) and R^2 = 1 - SS_res/SS_tot.
+
+    Tests without a prediction (NaN, e.g. no concave bridge for exact_neck) are
+    left out; ``n`` counts the tests used.
+    """
     p = np.asarray(predicted, dtype=float)
     y = np.asarray(measured, dtype=float)
+    keep = np.isfinite(p)
+    p, y = p[keep], y[keep]
     r = p - y
     tss = float(np.sum((y - y.mean()) ** 2)) if y.size else 0.0
     r2 = 1.0 - float(r @ r) / tss if tss > 0 else float("nan")
@@ -454,7 +564,8 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
             table.add_problem(first, "condition", f"material '{m}' has no dry test: its envelope c, phi cannot be fitted")
             continue
         try:
-            fits[m] = fit_line(d["sigma_N"][dry], d["tau_max"][dry], opt.confidence)
+            fit = fit_line_origin if opt.dry_fit == "origin" else fit_line
+            fits[m] = fit(d["sigma_N"][dry], d["tau_max"][dry], opt.confidence)
         except FitError as exc:
             table.add_problem(first, "condition", f"material '{m}': dry fit impossible: {exc}")
     table.raise_if_problems()
@@ -465,35 +576,102 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         "chi1": np.where(wet, ph.chi1(d["S_R"]), 0.0),
         "chi2": np.where(wet, ph.chi2(d["S_R"], d["R"], opt.surface_tension), 0.0),
     }
-    phi_b = _predict(tests, wet, mat, fits, opt)
-    metrics = {
-        m: {mod: model_metrics(tests[f"tau_pred_{mod}"][(mat == m) & wet], d["tau_max"][(mat == m) & wet])
-            for mod in opt.models}
-        for m in fits if np.any((mat == m) & wet)
-    }
+    phi_b, laws, model_inputs = _predict(tests, wet, mat, fits, opt)
+    pend = wet & (d["S_R"] <= opt.pendular_limit)
+
+    def scores(sel):
+        return {m: {mod: model_metrics(tests[f"tau_pred_{mod}"][(mat == m) & sel], d["tau_max"][(mat == m) & sel])
+                    for mod in opt.models} for m in fits if np.any((mat == m) & sel)}
+
+    metrics, metrics_pend = scores(wet), scores(pend)
     for m in fits:
         metrics.setdefault(m, {})
     overall = {mod: model_metrics(tests[f"tau_pred_{mod}"][wet], d["tau_max"][wet]) for mod in opt.models} \
         if wet.any() else {}
-    return ShearResult(
+    overall_pend = {mod: model_metrics(tests[f"tau_pred_{mod}"][pend], d["tau_max"][pend]) for mod in opt.models} \
+        if pend.any() else {}
+    warnings = list(opt.warnings) + _warnings(tests, wet, pend, mat, fits, laws, opt)
+    result = ShearResult(
         source=table.path, options=opt, tests=tests, fits=fits, metrics=metrics,
         metrics_overall=overall, best_model={m: best_of(v) for m, v in metrics.items()},
         best_model_overall=best_of(overall), notes=table.notes, phi_b=phi_b,
-        inputs=[input_file(source)], warnings=opt.warnings,
+        inputs=[input_file(source)], warnings=warnings, metrics_pendular=metrics_pend,
+        metrics_pendular_overall=overall_pend, laws=laws, model_inputs=model_inputs,
     )
+    if opt.bootstrap > 0:
+        result.ranking = _bootstrap(result, wet, mat, cond, opt)
+    return result
 
 
-def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions) -> dict[str, float]:
-    """sigma'_N (NaN where a model predicts tau directly) and tau_pred of every chosen model, in place.
+def _warnings(tests, wet, pend, mat, fits, laws, opt) -> list[str]:
+    out = []
+    n_wet, n_pend = int(wet.sum()), int(pend.sum())
+    if n_wet and n_wet - n_pend > n_wet / 2:
+        out.append(f"{n_wet - n_pend} of {n_wet} wet tests lie outside the pendular regime (S_R > "
+                   f"{opt.pendular_limit:g}) for which the chi approximations were derived; see metrics_pendular "
+                   f"({n_pend} tests)")
+    for m in fits:
+        k = int(np.sum(wet & (mat == m)))
+        if 0 < k < 5:
+            out.append(f"material '{m}': the model ranking rests on {k} wet tests (fewer than 5)")
+    for model, by_mat in laws.items():
+        for m, law in by_mat.items():
+            for name in law.at_bound:
+                out.append(f"material '{m}': fitted {model} parameter '{name}' = {law.params[name]:.6g} lies at "
+                           "its bound")
+    if "exact_neck" in opt.models:
+        k = int(np.sum(wet & ~np.isfinite(tests["tau_pred_exact_neck"])))
+        if k:
+            out.append(f"exact_neck: {k} wet tests hold more water than the last concave bridge at contact "
+                       "(flag no_concave_bridge) and are left out of its metrics")
+    return out
 
-    Returns tan(phi_b) per material when the Fredlund model is among them.
+
+def _bootstrap(result: ShearResult, wet, mat, cond, opt: ShearOptions) -> dict:
+    """Ranking uncertainty per material (see capred.pipelines.shear_analysis.bootstrap_ranking)."""
+    from . import shear_analysis as sa
+
+    t = result.tests
+    out = {}
+    d = result.model_inputs
+    for m in result.fits:
+        sel = wet & (mat == m)
+        if not sel.any():
+            continue
+        dry = (mat == m) & (cond == "dry")
+        ranked = sorted((k for k, v in result.metrics[m].items() if np.isfinite(v.rmse)),
+                        key=lambda k: result.metrics[m][k].rmse)
+        out[m] = sa.bootstrap_ranking(d.subset(sel), t["sigma_N"][dry], t["tau_max"][dry], opt.models,
+                                      opt.model_params, d.fitted, ranked, opt.bootstrap, opt.seed,
+                                      opt.dry_fit == "origin")
+    return out
+
+
+def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions):
+    """Per test and model, in place: sigma'_N (NaN where a model predicts tau directly), tau_pred and its
+    band, the predicted capillary stress; and the back-analysed capillary stress of the wet tests.
+
+    Returns tan(phi_b) per material (Fredlund model) and the fitted chi laws.
     """
+    from . import shear_analysis as sa
+
     c = np.array([fits[m].intercept for m in mat])
     tan_phi = np.array([fits[m].slope for m in mat])
     d = esm.ModelInputs(tests["sigma_N"], tests["suction"], tests["S_R"], tests["R"], tests["tau_max"], wet, mat,
                         c, tan_phi, opt.surface_tension, opt.model_params)
+    laws = sa.fit_laws(d, opt.models, list(fits), opt.model_params)
+    d = dataclasses.replace(d, fitted={model: {m: law.params for m, law in by_mat.items()}
+                                       for model, by_mat in laws.items()})
+    cov, s2, t = sa.fit_covariances(fits, mat)
     for model in opt.models:
-        tests[f"sigma_eff_{model}"], tests[f"tau_pred_{model}"] = esm.predict(model, d)
+        tests[f"sigma_eff_{model}"], tau = esm.predict(model, d)
+        tests[f"tau_pred_{model}"] = tau
+        tests[f"tau_pred_lo_{model}"], tests[f"tau_pred_hi_{model}"] = sa.prediction_band(model, d, cov, t)
+        tests[f"sigma_cap_pred_{model}"] = np.where(wet, (tau - c) / tan_phi - tests["sigma_N"], np.nan)
+    cap, cap_se, chi, chi_se = sa.back_analysis(tests["tau_max"], tests["sigma_N"], tests["suction"], c, tan_phi,
+                                                cov, s2)
+    for key, v in (("sigma_cap", cap), ("sigma_cap_se", cap_se), ("chi_back", chi), ("chi_back_se", chi_se)):
+        tests[key] = np.where(wet, v, np.nan)
     phi_b: dict[str, float] = {}
     if "fredlund" in opt.models:
         for m in fits:
@@ -501,7 +679,7 @@ def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions)
             if sel.any():
                 phi_b[m] = esm.fit_tan_phi_b(tests["suction"][sel], tests["tau_max"][sel] - ph.mohr_coulomb_strength(
                     fits[m].intercept, fits[m].slope, tests["sigma_N"][sel]))
-    return phi_b
+    return phi_b, laws, d
 
 
 def _flat_summary(result: ShearResult):

@@ -16,7 +16,15 @@ MODEL_STYLE = {
     "lu_likos": dict(color="tab:pink", marker=">"),
     "fredlund": dict(color="tab:olive", marker="p"),
     "pedrotti_tarantino": dict(color="tab:cyan", marker="h"),
+    "chi_power": dict(color="#CC79A7", marker="P"),
+    "khalili_fit": dict(color="#D55E00", marker="X"),
+    "exact_neck": dict(color="#0072B2", marker="*"),
 }
+
+
+def literal(text: str) -> str:
+    """User text (a material name) drawn as written: no mathtext."""
+    return str(text).replace("$", r"\$")
 KPA = 1e-3
 
 
@@ -56,10 +64,12 @@ def plot_measured_vs_predicted(ax, result, material):
     hi = 0.0
     for m in result.models:
         pred = t[f"tau_pred_{m}"][wet] * KPA
-        hi = max(hi, pred.max(initial=0), meas.max(initial=0))
+        band = np.abs(np.vstack([pred - t[f"tau_pred_lo_{m}"][wet] * KPA, t[f"tau_pred_hi_{m}"][wet] * KPA - pred]))
+        hi = max(hi, np.nanmax(pred, initial=0), meas.max(initial=0))
         met = result.metrics[material].get(m)
         rmse = f" (RMSE {met.rmse * KPA:.3g})" if met else ""
-        ax.plot(meas, pred, ls="none", ms=4, alpha=0.85, label=MODEL_LABELS[m] + rmse, **MODEL_STYLE[m])
+        ax.errorbar(meas, pred, yerr=band, ls="none", ms=4, alpha=0.85, elinewidth=0.8, capsize=1.5,
+                    label=MODEL_LABELS[m] + rmse, **MODEL_STYLE[m])
     hi = hi * 1.05 or 1.0
     ax.plot([0, hi], [0, hi], "k--", lw=0.8, label="1:1")
     ax.set_xlim(0, hi)
@@ -73,18 +83,22 @@ def plot_measured_vs_predicted(ax, result, material):
 
 
 def plot_strength_vs_saturation(ax, result, material):
-    """Measured tau against S_R with each model's prediction, one line per normal-stress level."""
+    """Measured tau against S_R with each model's prediction and its band, as markers per test.
+
+    No lines join the tests: a model defines tau along the water-retention
+    relation, which the tests sample at their own (S_R, suction) pairs only.
+    """
     t = result.tests
     wet = _wet(result, material)
     levels = np.unique(np.round(t["sigma_N"][wet], 6))
+    for m in result.models:
+        pred = t[f"tau_pred_{m}"][wet] * KPA
+        band = np.abs(np.vstack([pred - t[f"tau_pred_lo_{m}"][wet] * KPA, t[f"tau_pred_hi_{m}"][wet] * KPA - pred]))
+        ax.errorbar(t["S_R"][wet], pred, yerr=band, ls="none", ms=4, alpha=0.6, elinewidth=0.8,
+                    markerfacecolor="none", label=MODEL_LABELS[m], **MODEL_STYLE[m])
     for k, level in enumerate(levels):
         sel = wet & (np.round(t["sigma_N"], 6) == level)
-        order = np.argsort(t["S_R"][sel])
-        s = t["S_R"][sel][order]
-        for m in result.models:
-            ax.plot(s, t[f"tau_pred_{m}"][sel][order] * KPA, "-", color=MODEL_STYLE[m]["color"],
-                    lw=1.2, alpha=0.9, label=MODEL_LABELS[m] if k == 0 else None)
-        ax.plot(s, t["tau_max"][sel][order] * KPA, "k" + "ov^sD"[k % 5], ms=4, ls="none",
+        ax.plot(t["S_R"][sel], t["tau_max"][sel] * KPA, "k" + "ov^sD"[k % 5], ms=4, ls="none",
                 label=f"measured, σ_N = {level * KPA:.3g} kPa")
     ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
     ax.set_xlabel(nom.label("S_R"))
@@ -127,5 +141,67 @@ def figure_shear_report(result, material):
             ax.text(0.5, 0.5, "no wet tests", ha="center", va="center", transform=ax.transAxes)
             ax.set_axis_off()
     best = result.best_model.get(material)
-    fig.suptitle(f"capred shear — {material}" + (f" — best model: {MODEL_LABELS[best]}" if best else ""))
+    fig.suptitle(f"Direct shear, {literal(material)}" + (f": best model {MODEL_LABELS[best]}" if best else ""))
+    return fig
+
+
+def plot_capillary_stress(ax, result, material, x: str):
+    """Back-analysed capillary stress of the wet tests (error bars: standard uncertainty) against S_R or
+    suction, with each model's predicted capillary stress per test."""
+    t = result.tests
+    wet = _wet(result, material)
+    xs = t[x][wet] * (1.0 if x == "S_R" else KPA)
+    for m in result.models:
+        ax.plot(xs, t[f"sigma_cap_pred_{m}"][wet] * KPA, ls="none", ms=4, alpha=0.75, markerfacecolor="none",
+                label=MODEL_LABELS[m], **MODEL_STYLE[m])
+    ax.errorbar(xs, t["sigma_cap"][wet] * KPA, yerr=t["sigma_cap_se"][wet] * KPA, fmt="ko", ms=4, capsize=2,
+                elinewidth=0.8, label="back-analysed (± 1 se)")
+    if x == "S_R":
+        ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
+    ax.axhline(0.0, color="k", lw=0.5)
+    ax.set_xlabel(nom.label(x))
+    ax.set_ylabel("σ_cap [kPa]")
+    ax.set_title("Capillary stress carried, against " + ("saturation" if x == "S_R" else "suction"))
+    return ax
+
+
+def plot_chi_back(ax, result, material):
+    """chi_back = sigma_cap / Delta_u of the wet tests against S_R, with chi = S_R, chi1 and the fitted chi = S_e^kappa."""
+    from ..physics import shear as ph
+
+    t = result.tests
+    wet = _wet(result, material) & (t["suction"] > 0)
+    s = np.linspace(0.0, 1.0, 201)
+    ax.plot(s, s, color=MODEL_STYLE["bishop"]["color"], lw=1.2, label="χ = S_R (Bishop)")
+    ax.plot(s, ph.chi1(s), color=MODEL_STYLE["own1"]["color"], lw=1.2, label="χ1 = (2π S_R/3)^(2/3)")
+    law = result.laws.get("chi_power", {}).get(material)
+    if law is not None:
+        s_res = result.options.model_params.s_res or 0.0
+        se = np.clip((s - s_res) / (1 - s_res), 0, 1)
+        ax.plot(s, se ** law.params["kappa"], color=MODEL_STYLE["chi_power"]["color"], lw=1.2,
+                label=f"χ = S_e^κ, κ = {law.params['kappa']:.3g} (fitted)")
+    ax.errorbar(t["S_R"][wet], t["chi_back"][wet], yerr=t["chi_back_se"][wet], fmt="ko", ms=4, capsize=2,
+                elinewidth=0.8, label="χ back-analysed (± 1 se)")
+    ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
+    ax.set_xlabel(nom.label("S_R"))
+    ax.set_ylabel("χ [–]")
+    ax.set_title("Effective-stress parameter χ")
+    return ax
+
+
+def figure_capillary_stress(result, material):
+    """What capillary stress each wet test carried and which chi law explains it: 3 panels."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(15, 5.6))
+    fig.subplots_adjust(left=0.05, right=0.99, bottom=0.27, top=0.88, wspace=0.22)
+    axes = fig.subplots(1, 3)
+    plot_capillary_stress(axes[0], result, material, "S_R")
+    plot_capillary_stress(axes[1], result, material, "suction")
+    plot_chi_back(axes[2], result, material)
+    # legends below the panels, never over the data
+    for ax, anchor in ((axes[0], (0.36, 0.0)), (axes[2], (0.84, 0.0))):
+        handles, labels = ax.get_legend_handles_labels()
+        fig.legend(handles, labels, loc="lower center", bbox_to_anchor=anchor, ncol=2, fontsize=8, frameon=False)
+    fig.suptitle(f"Back-analysed capillary stress, {literal(material)}")
     return fig
