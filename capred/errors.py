@@ -20,9 +20,13 @@ class Problem:
     line: int | None
     column: str | None
     message: str
+    sheet: str | None = None
+    value: str | None = None
 
     def __str__(self) -> str:
         where = self.file
+        if self.sheet is not None:
+            where += f", sheet '{self.sheet}'"
         if self.line is not None:
             where += f", line {self.line}"
         if self.column is not None:
@@ -40,11 +44,22 @@ class InputError(CapredError):
         self.problems = sorted(problems, key=lambda p: (p.file, p.line or 0))
         super().__init__(self._text())
 
+    #: the console lists this many problems, then says how many more there are
+    SHOWN = 20
+
     def _text(self) -> str:
         if len(self.problems) == 1:
             return str(self.problems[0])
         head = f"{len(self.problems)} problems in the input:"
-        return "\n".join([head, *("  - " + str(p) for p in self.problems)])
+        lines = [head, *("  - " + str(p) for p in self.problems[: self.SHOWN])]
+        if len(self.problems) > self.SHOWN:
+            lines.append(f"  ... and {len(self.problems) - self.SHOWN} more (--json lists them all)")
+        return "\n".join(lines)
+
+    def as_json(self) -> dict:
+        """{"errors": [{file, sheet, line, column, value, message}]}: every problem, for scripts."""
+        return {"errors": [{"file": p.file, "sheet": p.sheet, "line": p.line, "column": p.column, "value": p.value,
+                            "message": p.message} for p in self.problems]}
 
 
 class UnitError(CapredError):

@@ -14,6 +14,7 @@ from __future__ import annotations
 import re
 from functools import lru_cache
 
+import numpy as np
 
 from .errors import UnitError
 
@@ -47,10 +48,40 @@ def registry():
         return pint.UnitRegistry()
 
 
-def _normalise(unit: str) -> str:
+#: the longest unit string capred reads (a longer one is not a unit a lab writes)
+MAX_UNIT_LENGTH = 64
+_UNIT_CHARS = re.compile(r"[A-Za-z0-9µμ°Ω%*/^(). _-]*")
+_WATER_HEAD = re.compile(r"^\s*(?P<len>[a-zµμ]*m)\s*(?:_?H2O|water|of water|wc)\s*$", re.I)
+
+
+def check_unit_text(unit: str) -> None:
+    """Refuse a unit string before pint sees it: too long, odd characters, unbalanced parentheses."""
+    if len(unit) > MAX_UNIT_LENGTH:
+        raise UnitError(f"unit '{unit[:20]}...' is longer than {MAX_UNIT_LENGTH} characters")
+    if not _UNIT_CHARS.fullmatch(unit):
+        bad = sorted({ch for ch in unit if not _UNIT_CHARS.fullmatch(ch)})
+        raise UnitError(f"unknown unit '{unit}': it holds {' '.join(repr(b) for b in bad)} (a unit is made of "
+                        "unit names, numbers, * / ^ ( ) and spaces)")
+    depth = 0
+    for ch in unit:
+        depth += {"(": 1, ")": -1}.get(ch, 0)
+        if depth < 0:
+            break
+    if depth != 0:
+        raise UnitError(f"unknown unit '{unit}': its parentheses do not match")
+
+
+def _normalise(unit: str, kind: str | None = None) -> str:
     u = unit.strip()
-    if u in {"-", "", "1"}:
+    if u in {"-", "", "1", "–"}:
         return "dimensionless"
+    if u == "%":
+        return "percent"
+    water = _WATER_HEAD.match(u)
+    if water:  # a head of water: a length where a length is expected, else the pressure of that column
+        length = water.group("len").replace("μ", "µ")
+        return length if kind == "length" else f"{length}_H2O"
+    u = u.replace("μ", "µ")
     # 'cm3', 'mm2' -> 'cm**3', 'mm**2' (but leave 'cmH2O' alone)
     u = re.sub(r"([A-Za-zµ])([23])(?![A-Za-z0-9])", r"\1**\2", u)
     return u.replace("^", "**")
@@ -64,14 +95,15 @@ def conversion(unit: str, kind: str) -> tuple[float, str | None]:
     a force per area (g/cm^2 as gram-force per cm^2), else None.
     Raises UnitError for an unknown unit or one of the wrong dimension.
     """
-    import pint
-
     ureg = registry()
     target = ureg.Unit(SI_UNIT[kind])
+    check_unit_text(unit)
     try:
-        q = ureg.Quantity(1.0, _normalise(unit))
-    except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError,
-            AssertionError, AttributeError, TypeError, ValueError, SyntaxError) as exc:
+        q = ureg.Quantity(1.0, _normalise(unit, kind))
+        factor = float(q.magnitude)
+        if not np.isfinite(factor) or factor == 0:
+            raise ValueError("not a finite, non-zero scale")
+    except Exception as exc:  # pint raises many kinds (and ZeroDivisionError for '1/0'): all mean "not a unit"
         raise UnitError(f"unknown unit '{unit}'") from exc
     note = None
     if kind == "pressure" and q.dimensionality == ureg.Unit("kg/m**2").dimensionality:
@@ -81,7 +113,10 @@ def conversion(unit: str, kind: str) -> tuple[float, str | None]:
         raise UnitError(
             f"unit '{unit}' is not a unit of {kind.replace('_', ' ')} (expected e.g. {_example(kind)})"
         )
-    return float(q.to(target).magnitude), note
+    try:
+        return float(q.to(target).magnitude), note
+    except Exception as exc:  # pragma: no cover - dimensions were checked above
+        raise UnitError(f"unit '{unit}' cannot be converted to {SI_UNIT[kind]}") from exc
 
 
 def _example(kind: str) -> str:
