@@ -51,13 +51,17 @@ def run_job(job: Job):
     from .reductions import REDUCTIONS
 
     result = REDUCTIONS[job.command].run(job.source, job.options)
+    if job.out_dir is None:  # --json without --out: nothing written
+        return result, []
     return result, write_run(result, job.out_dir, plots=job.plots)
 
 
 def run_safely(job: Job) -> Outcome:
     """Outcome of one job: ok, failed (CapredError) or crashed (any other exception)."""
     t0 = time.perf_counter()
-    src = str(job.source) if job.source is not None else ""
+    from .io.grid import source_path
+
+    src = str(source_path(job.source)) if job.source is not None else ""
     try:
         result, written = run_job(job)
     except CapredError as exc:
@@ -75,6 +79,8 @@ def _save_traceback(job: Job, text: str) -> str:
     from .io.writers import RunFolder, check_target
 
     try:
+        if job.out_dir is None:
+            return ""
         folder = RunFolder(check_target(job.out_dir, [job.source] if job.source else []))
         folder.write_bytes("errors.log", f"capred {job.command} {job.source}\n\n{text}".encode("utf-8"))
         return str(folder.commit()[0])
@@ -118,7 +124,8 @@ def run_all(jobs: list[Job], workers: int = 1, on_done=None) -> tuple[list[Outco
         if k in outcomes:
             result.append(outcomes[k])
         else:
-            result.append(Outcome(job.command, str(job.source or ""), str(job.out_dir), "interrupted",
+            result.append(Outcome(job.command, str(getattr(job.source, "path", job.source) or ""), str(job.out_dir),
+                                  "interrupted",
                                   "not run: the batch was interrupted"))
     return result, interrupted
 
@@ -127,6 +134,9 @@ def output_dirs(commands: list[str], sources: list[Path], root: Path) -> list[Pa
     """One folder per input under ``root``: <prefix>_<stem>, made unique with parent names or a number."""
     from .reductions import REDUCTIONS
 
+    from .io.grid import source_path
+
+    sources = [source_path(p) for p in sources]
     prefixes = [REDUCTIONS[c].out_prefix for c in commands]
     stems = [Path(p).stem if p is not None else "options" for p in sources]
     names = [f"{prefix}_{stem}" for prefix, stem in zip(prefixes, stems)]

@@ -46,6 +46,11 @@ QUANTITIES: dict[str, Quantity] = {
     "F_max": Quantity("F_max", "N", 1.0, "force", "peak shear force", 0.0),
     "pendular_limit": Quantity("S_R,pend", "-", 1.0, "dimensionless", "upper S_R of the pendular regime",
                                0.0, 1.0, True),
+    "height": Quantity("H", "mm", 1e3, "length", "sample height", 0.0, None, True),
+    "rho_d": Quantity("ρ_d", "kg/m^3", 1.0, "density", "dry density", 0.0, None, True),
+    "G_s": Quantity("G_s", "-", 1.0, "dimensionless", "specific gravity of the solids", 0.0, None, True),
+    "rho_w": Quantity("ρ_w", "kg/m^3", 1.0, "density", "density of water", 0.0, None, True),
+    "ambient_pressure": Quantity("p_a", "kPa", 1e-3, "pressure", "ambient (atmospheric) pressure", 0.0, None, True),
     # constants
     "gamma_w": Quantity("γ_w", "kN/m^3", 1e-3, "unit_weight", "unit weight of water", 0.0, None, True),
     "surface_tension": Quantity("γ", "N/m", 1.0, "surface_tension", "surface tension of water", 0.0, None, True),
@@ -115,9 +120,13 @@ def range_problem(name: str, value: float) -> str | None:
     got = f"(got {value * q.factor:.6g}{unit})"
     if q.lower is not None and q.upper is not None:
         lo, hi = q.lower * q.factor, q.upper * q.factor
+        if not (q.lower_open or q.upper_open):
+            return f"{q.description} must lie between {lo:g} and {hi:g}{unit} {got}"
         interval = f"{'(' if q.lower_open else '['}{lo:g}, {hi:g}{')' if q.upper_open else ']'}"
         return f"{q.description} must lie between {lo:g} and {hi:g}{unit}, in {interval} {got}"
     bound = (q.lower if lo_bad else q.upper) * q.factor
+    if lo_bad and bound == 0 and not q.lower_open:
+        return f"{q.description} must not be negative {got}"
     rel = {(True, True): ">", (True, False): ">=", (False, True): "<", (False, False): "<="}[
         (lo_bad, q.lower_open if lo_bad else q.upper_open)]
     return f"{q.description} must be {rel} {bound:g}{unit} {got}"

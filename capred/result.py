@@ -29,15 +29,29 @@ class InputFile:
 
     path: str
     sha256: str | None
+    sheet: str | None = None
+    metadata: tuple = ()  # (key, value) pairs of the metadata block above the header
 
     def as_dict(self) -> dict:
-        return {"path": self.path, "sha256": self.sha256}
+        out = {"path": self.path, "sha256": self.sha256}
+        if self.sheet is not None:
+            out["sheet"] = self.sheet
+        if self.metadata:
+            out["metadata"] = dict(self.metadata)
+        return out
 
 
-def input_file(source) -> InputFile:
-    """InputFile of a path, or of a DataFrame (hash of its CSV text)."""
+def input_file(source, table=None) -> InputFile:
+    """InputFile of a path, a TableSource or a DataFrame (hash of its CSV text); with the sheet and the
+    metadata block of the ``table`` read from it."""
+    import dataclasses
     import hashlib
 
+    path = getattr(source, "path", source) if not hasattr(source, "to_csv") else source
+    if table is not None and (table.sheet is not None or table.metadata):
+        base = input_file(path)
+        return dataclasses.replace(base, sheet=table.sheet, metadata=tuple(table.metadata.items()))
+    source = path
     if hasattr(source, "to_csv"):
         return InputFile("<DataFrame>", hashlib.sha256(source.to_csv(index=False).encode()).hexdigest())
     p = Path(source)

@@ -32,6 +32,7 @@ SI_UNIT = {
     "dimensionless": "dimensionless",
     "angle": "deg",  # angles stay in degrees at the interface; physics converts
     "per_pressure": "1/Pa",
+    "density": "kg/m**3",
 }
 
 _STANDARD_GRAVITY = 9.80665  # m/s^2, the definition of gram-force / kilogram-force
@@ -133,6 +134,7 @@ def _example(kind: str) -> str:
         "dimensionless": "-, %",
         "angle": "deg, rad",
         "per_pressure": "1/kPa",
+        "density": "kg/m^3, g/cm^3, Mg/m^3",
     }[kind]
 
 

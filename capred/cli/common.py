@@ -65,6 +65,10 @@ JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON document o
 PlotOpt = Annotated[bool, typer.Option("--plots/--no-plots", help="Write the report figures.")]
 SampleOpt = Annotated[bool, typer.Option("--sample", help="Run on the bundled (synthetic) sample data.")]
 WorkersOpt = Annotated[int, typer.Option(min=1, help="Worker processes for a batch of files.")]
+SheetOpt = Annotated[Optional[str], typer.Option(help="Sheet of an .xlsx or .ods workbook: its name or its number "
+                                                      "(from 1) [default: the first].")]
+ThousandsOpt = Annotated[Optional[str], typer.Option(help="Thousands separator of the file, e.g. '.' to read 1.000 as "
+                                                          "one thousand in a file with decimal commas.")]
 
 
 def data_arg(what: str):
@@ -79,8 +83,19 @@ def quantity(text: Optional[str], default_unit: str, name: str = "", option: str
     return with_unit(text, default_unit)
 
 
-def sources(data: Optional[list[Path]], sample: bool, command: str) -> list:
-    """Input files: the arguments with globs expanded (sorted), the bundled sample, or [None]."""
+def sources(data: Optional[list[Path]], sample: bool, command: str, sheet: Optional[str] = None,
+            thousands: Optional[str] = None) -> list:
+    """Input files: the arguments with globs expanded (sorted), the bundled sample, or [None];
+    as TableSources when a sheet or a thousands separator is given."""
+    paths = _paths(data, sample, command)
+    if sheet is None and thousands is None:
+        return paths
+    from ..io.grid import TableSource
+
+    return [TableSource(p, sheet, thousands) if p is not None else None for p in paths]
+
+
+def _paths(data: Optional[list[Path]], sample: bool, command: str) -> list:
     import glob
 
     from ..errors import InputError, OptionError, Problem
@@ -110,19 +125,29 @@ def sources(data: Optional[list[Path]], sample: bool, command: str) -> list:
 
 
 def default_out(command: str, source) -> Path:
+    from ..io.grid import source_path
     from ..reductions import REDUCTIONS
 
-    stem = Path(source).stem if source is not None else "options"
+    stem = Path(source_path(source)).stem if source is not None else "options"
     return Path.cwd() / "capred_out" / f"{REDUCTIONS[command].out_prefix}_{stem}"
 
 
 def execute(inv: Invocation) -> None:
     """Run an invocation: one file (tables or JSON) or several (a batch)."""
+    from ..errors import InputError
+
     try:
         if len(inv.sources) == 1:
             _single(inv)
         else:
             _batch(inv)
+    except InputError as exc:
+        if inv.json:  # scripts get every problem, as data
+            from ..io.writers import encode_json
+
+            typer.echo(encode_json(exc.as_json()).decode("utf-8"), nl=False)
+            raise typer.Exit(1) from None
+        fail(exc)
     except CapredError as exc:
         fail(exc)
 

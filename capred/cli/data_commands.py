@@ -5,8 +5,8 @@ from typing import Annotated, Optional
 
 import typer
 
-from .common import (Invocation, JsonOpt, OutOpt, PlotOpt, SampleOpt, WorkersOpt, command, data_arg, quantity,
-                     sources)
+from .common import (Invocation, JsonOpt, OutOpt, PlotOpt, SampleOpt, SheetOpt, ThousandsOpt, WorkersOpt, command,
+                     data_arg, quantity, sources)
 
 
 def register(app: typer.Typer) -> None:
@@ -22,6 +22,16 @@ def shear(
     plots: PlotOpt = True,
     sample: SampleOpt = False,
     workers: WorkersOpt = 1,
+    sheet: SheetOpt = None,
+    thousands: ThousandsOpt = None,
+    curves: Annotated[Optional[Path], typer.Option(help="Raw shear curves (CSV, .xlsx or .ods), long format: "
+                                                   "test_id, displacement [mm], F [N] or tau [kPa], optionally "
+                                                   "vertical_displacement [mm]; the peak gives tau_max.")] = None,
+    area_correction: Annotated[str, typer.Option(help="Area of the curves' shear stress: none (nominal, as ASTM "
+                                                      "D3080 reports), square or circular box.")] = "none",
+    ambient_pressure: Annotated[str, typer.Option(help="Ambient air pressure [kPa]: a hanging-column head above "
+                                                       "(p_a - p_vapour)/gamma_w, about 10.1 m, is refused.")] = "101.325",
+    rho_w: Annotated[str, typer.Option(help="Density of water [kg/m^3], for e = G_s rho_w/rho_d - 1.")] = "1000",
     gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3]; the thesis uses 10.")] = "9.81",
     surface_tension: Annotated[str, typer.Option(help="Surface tension of water [N/m].")] = "0.0728",
     gravity: Annotated[str, typer.Option("--g", help="Gravitational acceleration [m/s^2].")] = "9.81",
@@ -93,9 +103,13 @@ def shear(
         dry_fit=dry_fit,
         bootstrap=bootstrap,
         seed=seed,
+        ambient_pressure=quantity(ambient_pressure, "kPa", "ambient_pressure", "--ambient-pressure"),
+        rho_w=quantity(rho_w, "kg/m^3", "rho_w", "--rho-w"),
+        curves=_curves_source(curves, sheet, thousands),
+        area_correction=area_correction,
     )
-    return Invocation("shear", sources(data, sample, "shear"), opts, plots, out, json_out, workers,
-                      [retention] if retention else [])
+    return Invocation("shear", sources(data, sample, "shear", sheet, thousands), opts, plots, out, json_out, workers,
+                      [p for p in (retention, curves) if p])
 
 
 def triaxial_bounds(
@@ -105,6 +119,8 @@ def triaxial_bounds(
     plots: PlotOpt = True,
     sample: SampleOpt = False,
     workers: WorkersOpt = 1,
+    sheet: SheetOpt = None,
+    thousands: ThousandsOpt = None,
     curves: Annotated[Optional[Path], typer.Option(help="Long CSV of raw curves (test_id, axial_strain, q): "
                                                    "failure = peak of q, for tests without q_f or sigma1.")] = None,
     c_eff: Annotated[Optional[str], typer.Option(help="Effective cohesion c' [kPa], instead of fitting saturated "
@@ -124,8 +140,8 @@ def triaxial_bounds(
     opts = TriaxialOptions(c_eff=quantity(c_eff, "kPa", "c_eff", "--c-eff"),
                            phi_eff=quantity(None if phi_eff is None else str(phi_eff), "deg", "phi_eff", "--phi-eff"),
                            curves=curves)
-    return Invocation("triaxial-bounds", sources(data, sample, "triaxial-bounds"), opts, plots, out, json_out,
-                      workers, [curves] if curves else [])
+    return Invocation("triaxial-bounds", sources(data, sample, "triaxial-bounds", sheet, thousands), opts, plots, out,
+                      json_out, workers, [curves] if curves else [])
 
 
 def retention(
@@ -135,6 +151,8 @@ def retention(
     plots: PlotOpt = True,
     sample: SampleOpt = False,
     workers: WorkersOpt = 1,
+    sheet: SheetOpt = None,
+    thousands: ThousandsOpt = None,
     model: Annotated[str, typer.Option(help="vg (m = 1 - 1/n, and m free), bc, or all.")] = "all",
     fix: Annotated[Optional[list[str]], typer.Option(help="Fix a parameter, e.g. --fix theta_s=0.25 "
                                                      "(alpha in 1/kPa, s_e in kPa); repeatable.")] = None,
@@ -156,7 +174,16 @@ def retention(
         raise OptionError(f"--model must be vg, bc or all (got '{model}')")
     opts = RetentionOptions(models=models[model], fixed=parse_fixed(fix or []),
                             gamma_w=quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"))
-    return Invocation("retention", sources(data, sample, "retention"), opts, plots, out, json_out, workers)
+    return Invocation("retention", sources(data, sample, "retention", sheet, thousands), opts, plots, out, json_out,
+                      workers)
+
+
+def _curves_source(path: Optional[Path], sheet, thousands):
+    if path is None or (sheet is None and thousands is None):
+        return path
+    from ..io.grid import TableSource
+
+    return TableSource(path, None, thousands)
 
 
 def _model_list(text: str) -> tuple[str, ...]:

@@ -41,6 +41,11 @@ class TableSource:
             raise OptionError(f"--thousands must be '.', ',', ' ' or \"'\" (got {self.thousands!r})")
 
 
+def source_path(source):
+    """The path (or DataFrame) behind a source given as a path, a DataFrame or a TableSource."""
+    return source.path if isinstance(source, TableSource) else source
+
+
 def as_source(source) -> TableSource:
     return source if isinstance(source, TableSource) else TableSource(source)
 

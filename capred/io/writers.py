@@ -177,7 +177,10 @@ def check_target(out, inputs=(), replace: bool = True) -> Path:
 
 def _check_target(out: Path, inputs, replace: bool) -> Path:
     real = Path(os.path.realpath(out))
+    from .grid import source_path
+
     for src in inputs:
+        src = source_path(src)
         if src is None or hasattr(src, "to_csv"):
             continue
         s = Path(os.path.realpath(src))

@@ -45,6 +45,26 @@ def suction_from_head(z1, gamma_w=GAMMA_W):
     return gamma_w * np.asarray(z1, dtype=float)
 
 
+#: Vapour pressure of water at 20 °C [Pa].
+VAPOUR_PRESSURE_20C = 2339.0
+
+
+def cavitation_head(gamma_w=GAMMA_W, ambient_pressure=101325.0, vapour_pressure=VAPOUR_PRESSURE_20C):
+    """Largest hanging-column head before the water at the sample cavitates [m].
+
+    The water pressure at the sample is p_a - gamma_w z1 (absolute); below the
+    vapour pressure p_v it boils: z1_max = (p_a - p_v) / gamma_w, about 10.1 m
+    of water at 20 °C and 1 atm.
+
+    Parameters
+    ----------
+    gamma_w : unit weight of water [N/m^3]
+    ambient_pressure : absolute air pressure p_a [Pa]
+    vapour_pressure : vapour pressure of water p_v [Pa] (2339 Pa at 20 °C)
+    """
+    return (ambient_pressure - vapour_pressure) / gamma_w
+
+
 def degree_of_saturation(z2, void_volume):
     """S_R = (V_v - z2) / V_v, with z2 the air volume read on the burette [1].
 

@@ -169,7 +169,7 @@ def solve_bridges(source, options: BridgeOptions | None = None) -> BridgeResult:
                                                                      D[by_v] / R[by_v])
     res = _result(table.path, R, gamma, th, D, beta, s_star, status, note,
                   list(table.columns["case"]) if "case" in table.columns else None, table.notes)
-    res.options, res.inputs, res.warnings = opt, [input_file(source)], opt.warnings
+    res.options, res.inputs, res.warnings = opt, [input_file(source, table)], opt.warnings + table.warnings
     return res
 
 
@@ -383,7 +383,7 @@ def compare_measured(source, options: BridgeOptions | None = None) -> CompareRes
     beta, s_star, status = br.solve_for_volume(th, V / R**3, D / R)
     res = _result(table.path, R, gamma, th, D, beta, s_star, status, [""] * len(table),
                   list(table.columns["case"]) if "case" in table.columns else None, table.notes)
-    res.options, res.inputs, res.warnings = opt, [input_file(source)], opt.warnings
+    res.options, res.inputs, res.warnings = opt, [input_file(source, table)], opt.warnings + table.warnings
     return CompareResult(res, table.columns["F_cap"], np.radians(table.get("filling_angle")), V)
 
 

@@ -105,12 +105,15 @@ def _inputs(source, schema: list[Column], options: dict[str, float | None], opti
     table.raise_if_problems()
     if "case" in table.columns:
         values["case"] = table.columns["case"]
+    values["_table"] = table  # taken out by _labels: it carries the warnings and the metadata block
     return values, table.notes, table.path
 
 
-def _finish(command: str, title: str, values, outputs, src, notes, labels, opt, source, figure=None) -> CalcResult:
+def _finish(command: str, title: str, values, outputs, src, notes, labels, opt, source, table=None,
+            figure=None) -> CalcResult:
     return CalcResult(command, values, outputs, src, notes, labels, opt,
-                      [input_file(source)] if source is not None else [], opt.warnings, title, figure)
+                      [input_file(source, table)] if source is not None else [],
+                      opt.warnings + (table.warnings if table is not None else []), title, figure)
 
 
 PRISM = [
@@ -134,6 +137,7 @@ def reduce_prism(source, opt: PrismOptions) -> CalcResult:
     """Bernatzik (1948): maximal capillary pressure and capillary rise of a sand prism."""
     v, notes, src = _inputs(source, PRISM, {"break_tension": opt.break_tension,
                                             "friction_angle": opt.friction_angle})
+    table = v.pop("_table", None)
     labels = _labels(v)
     if np.any((v["friction_angle"] <= 0) | (v["friction_angle"] >= 90)):
         raise OptionError("the friction angle must lie between 0 and 90 deg")
@@ -141,7 +145,7 @@ def reduce_prism(source, opt: PrismOptions) -> CalcResult:
     return _finish("prism", f"Prism test ({cite('bernatzik1948')})",
                    {"break_tension_kPa": v["break_tension"] / 1e3, "friction_angle_deg": v["friction_angle"]},
                    {"P_kmax_kPa": p / 1e3, "capillary_rise_cm": calc.capillary_rise(p, opt.gamma_w) * 100.0,
-                    "P_kmax_over_sigma_b": p / v["break_tension"]}, src, notes, labels, opt, source)
+                    "P_kmax_over_sigma_b": p / v["break_tension"]}, src, notes, labels, opt, source, table)
 
 
 def run_prism(source=None, break_tension=None, friction_angle=None, gamma_w=GAMMA_W) -> CalcResult:
@@ -203,8 +207,7 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     res = _skempton(source, opt.sr, opt.b, s_e=opt.s_e, bc_alpha=opt.bc_lambda, **kw)
     pts = (res.values.get("S_r", res.outputs.get("S_r")), res.values.get("B", res.outputs.get("B")))
     res.figure = lambda: figure_skempton(s_e=opt.s_e, bc_alpha=opt.bc_lambda, points=pts, **kw)
-    res.options, res.warnings = opt, opt.warnings
-    res.inputs = [input_file(source)] if source is not None else []
+    res.options, res.warnings = opt, opt.warnings + res.warnings
     return res
 
 
@@ -215,6 +218,7 @@ def _skempton(source, sr, b, kappa, e0, p0, u0, pa0, s_e, bc_alpha) -> CalcResul
     if source is None and (sr is None) == (b is None):
         raise OptionError("give exactly one of --sr and --b")
     v, notes, src = _inputs(source, schema, given, optional=("S_r", "B"))
+    table = v.pop("_table", None)
     labels = _labels(v)
     forward = bool(np.all(np.isfinite(v["S_r"])))
     if not forward and not np.all(np.isfinite(v["B"])):
@@ -234,7 +238,9 @@ def _skempton(source, sr, b, kappa, e0, p0, u0, pa0, s_e, bc_alpha) -> CalcResul
             B = calc.skempton_b_suction(v["S_r"], v["p0"], v["u0"], v["e0"], v["kappa"], v["pa0"], s_e, bc_alpha)
         else:
             B = calc.skempton_b(v["S_r"], p_eff, v["e0"], v["kappa"], v["pa0"])
-        return CalcResult("skempton-b", {"S_r": v["S_r"], **ins}, {"B": B}, src, notes, labels, title=_B_TITLE)
+        return CalcResult("skempton-b", {"S_r": v["S_r"], **ins}, {"B": B}, src, notes, labels, title=_B_TITLE,
+                          warnings=table.warnings if table is not None else [],
+                          inputs=[input_file(source, table)] if source is not None else [])
     if suction:
         from scipy.optimize import brentq
 
@@ -248,7 +254,9 @@ def _skempton(source, sr, b, kappa, e0, p0, u0, pa0, s_e, bc_alpha) -> CalcResul
         S = calc.saturation_from_b(v["B"], p_eff, v["e0"], v["kappa"], v["pa0"])
     if np.any(~np.isfinite(S) | (S < 0)):
         notes.append("some B values are below what these parameters give for dry soil: S_r is outside [0, 1] there")
-    return CalcResult("skempton-b", {"B": v["B"], **ins}, {"S_r": S}, src, notes, labels, title=_B_TITLE)
+    return CalcResult("skempton-b", {"B": v["B"], **ins}, {"S_r": S}, src, notes, labels, title=_B_TITLE,
+                      warnings=table.warnings if table is not None else [],
+                      inputs=[input_file(source, table)] if source is not None else [])
 
 
 _B_TITLE = f"Skempton's B and the degree of saturation ({cite('morvan2016', 'eq. 10')})"
@@ -291,6 +299,7 @@ def reduce_rumpf(source, opt: RumpfOptions) -> CalcResult:
                                             "S_r": opt.sr, "diameter": opt.diameter,
                                             "surface_tension": opt.surface_tension,
                                             "contact_angle": opt.contact_angle})
+    table = v.pop("_table", None)
     labels = _labels(v)
     if np.any(v["contact_angle"] >= 90):
         raise OptionError("the contact angle must be below 90 deg")
@@ -300,7 +309,7 @@ def reduce_rumpf(source, opt: RumpfOptions) -> CalcResult:
            "diameter_mm": v["diameter"] * 1e3, "surface_tension_N_per_m": v["surface_tension"],
            "contact_angle_deg": v["contact_angle"]}
     return _finish("rumpf", f"Rumpf's capillary pressure ({cite('prunier2024', 'eq. 19')})", ins,
-                   {"p_cap_kPa": p / 1e3}, src, notes, labels, opt, source)
+                   {"p_cap_kPa": p / 1e3}, src, notes, labels, opt, source, table)
 
 
 __all__ = ["run_prism", "run_skempton_b", "run_rumpf", "CalcResult", "PrismOptions", "SkemptonOptions",

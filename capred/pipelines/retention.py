@@ -240,4 +240,4 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
             except FitError as exc:
                 raise FitError(f"{table.path}: branch '{b}', model {m}: {exc}") from None
     return RetentionResult(table.path, quantity, s, y, branch, how, fits, opt, list(table.notes),
-                           [input_file(source)], opt.warnings)
+                           [input_file(source, table)], opt.warnings + table.warnings)

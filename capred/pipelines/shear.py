@@ -26,18 +26,24 @@ SCHEMA = [
     Column("test_id", "text", None, "test identifier", ("id", "test", "test_no", "sample_id")),
     Column("material", "text", None, "material name", ("soil", "material_name")),
     Column("condition", "text", None, "test condition", ("state", "dry_wet"), choices=("dry", "wet")),
-    Column("z1", "length", "cm", "suction head z1", ("suction_head", "head", "z_1"), "nonnegative"),
-    Column("z2", "volume", "cm^3", "air volume z2", ("air_volume", "burette", "z_2", "V_a"), "nonnegative"),
-    Column("V_v", "volume", "cm^3", "void volume V_v", ("Vv", "void_volume"), "positive"),
-    Column("added_mass", "mass", "g", "added mass", ("added_weight", "m_added", "weight"), "nonnegative"),
-    Column("cap_mass", "mass", "g", "cap mass", ("m_cap", "top_cap_mass", "cap_weight"), "nonnegative"),
-    Column("box_area", "area", "cm^2", "box area", ("A_box", "area", "shear_area"), "positive"),
-    Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius", "r_particle"), "positive"),
-    Column("tau_max", "pressure", "kPa", "tau_max", ("tau", "taumax", "shear_strength", "peak_shear_stress"), "nonnegative"),
-    Column("F_max", "force", "N", "F_max", ("fmax", "peak_force", "max_force"), "nonnegative"),
-    Column("sigma_N", "pressure", "kPa", "sigma_N", ("sigma_n", "normal_stress", "sigman"), "nonnegative"),
-    Column("suction", "pressure", "kPa", "suction", ("delta_u", "matric_suction", "ua_uw"), "nonnegative"),
-    Column("S_R", "dimensionless", "-", "S_R", ("Sr", "degree_of_saturation", "saturation"), "fraction"),
+    Column("z1", "length", "cm", "suction head z1", ("suction_head", "head", "z_1"), quantity="z1"),
+    Column("z2", "volume", "cm^3", "air volume z2", ("air_volume", "burette", "z_2", "V_a"), quantity="z2"),
+    Column("V_v", "volume", "cm^3", "void volume V_v", ("Vv", "void_volume"), quantity="V_v"),
+    Column("added_mass", "mass", "g", "added mass", ("added_weight", "m_added", "weight"), quantity="added_mass"),
+    Column("cap_mass", "mass", "g", "cap mass", ("m_cap", "top_cap_mass", "cap_weight"), quantity="cap_mass"),
+    Column("box_area", "area", "cm^2", "box area", ("A_box", "area", "shear_area"), quantity="box_area"),
+    Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius", "r_particle"), quantity="R"),
+    Column("tau_max", "pressure", "kPa", "tau_max", ("tau", "taumax", "shear_strength", "peak_shear_stress"),
+           quantity="tau_max"),
+    Column("F_max", "force", "N", "F_max", ("fmax", "peak_force", "max_force"), quantity="F_max"),
+    Column("sigma_N", "pressure", "kPa", "sigma_N", ("sigma_n", "normal_stress", "sigman"), quantity="sigma_N"),
+    Column("suction", "pressure", "kPa", "suction", ("delta_u", "matric_suction", "ua_uw"), quantity="suction"),
+    Column("S_R", "dimensionless", "-", "S_R", ("Sr", "degree_of_saturation", "saturation"), quantity="S_R"),
+    Column("e", "dimensionless", "-", "void ratio e", ("void_ratio", "e0"), quantity="void_ratio"),
+    Column("height", "length", "mm", "sample height", ("h", "sample_height", "H0", "H"), quantity="height"),
+    Column("rho_d", "density", "kg/m^3", "dry density", ("dry_density", "rhod"), quantity="rho_d"),
+    Column("G_s", "dimensionless", "-", "specific gravity of the solids", ("Gs", "specific_gravity"),
+           quantity="G_s"),
 ]
 
 
@@ -108,7 +114,7 @@ class ShearOptions(Options):
 
     QUANTITIES = {"gamma_w": "gamma_w", "surface_tension": "surface_tension", "g": "g",
                   "pendular_limit": "pendular_limit", "box_area": "box_area", "cap_mass": "cap_mass",
-                  "radius": "R", "void_volume": "V_v"}
+                  "radius": "R", "void_volume": "V_v", "ambient_pressure": "ambient_pressure", "rho_w": "rho_w"}
 
     gamma_w: float = ph.GAMMA_W  # N/m^3
     surface_tension: float = ph.SURFACE_TENSION  # N/m
@@ -121,12 +127,19 @@ class ShearOptions(Options):
     void_volume: float | None = None  # m^3
     models: tuple[str, ...] = esm.THESIS_MODELS
     model_params: ModelParams = field(default_factory=ModelParams)
+    ambient_pressure: float = 101325.0  # Pa: the hanging column cavitates above (p_a - p_v)/gamma_w
+    rho_w: float = 1000.0  # kg/m^3, for e = G_s rho_w/rho_d - 1
+    curves: object = None  # raw direct-shear curves (path or DataFrame): peaks give tau_max
+    area_correction: str = "none"  # of the curves: none (nominal area, ASTM D3080), square or circular
     dry_fit: str = "free"  # "free" (c and phi) or "origin" (c = 0, cohesionless soil)
     bootstrap: int = 2000  # replicates of the ranking bootstrap (0: none)
     seed: int = 0  # of the bootstrap: the same seed gives the same probabilities
 
     def __post_init__(self) -> None:
         super().__post_init__()
+        if self.area_correction not in ("none", "square", "circular"):
+            raise OptionError("area_correction (--area-correction) must be none, square or circular "
+                              f"(got '{self.area_correction}')")
         if self.dry_fit not in ("free", "origin"):
             raise OptionError(f"dry_fit (--dry-fit) must be 'free' or 'origin' (got '{self.dry_fit}')")
         if isinstance(self.bootstrap, bool) or not isinstance(self.bootstrap, int) or self.bootstrap < 0:
@@ -180,6 +193,7 @@ class ShearResult(Result):
     laws: dict = field(default_factory=dict)  # model -> material -> FittedLaw
     ranking: dict = field(default_factory=dict)  # material -> RankingUncertainty
     model_inputs: object = None  # esm.ModelInputs of every test (with the fitted laws)
+    curves: object = None  # ShearCurves when raw curves were given
 
     @property
     def models(self) -> tuple[str, ...]:
@@ -212,6 +226,11 @@ class ShearResult(Result):
             out[f"report_{name}"] = lambda m=m: figure_shear_report(self, m)
             if np.any(wet & (self.tests["material"] == m)):
                 out[f"capillary_{name}"] = lambda m=m: figure_capillary_stress(self, m)
+            if self.curves is not None and any(str(t) in self.curves.curves
+                                               for t in self.tests["test_id"][self.tests["material"] == m]):
+                from ..report.shear_figures import figure_curves
+
+                out[f"curves_{name}"] = lambda m=m: figure_curves(self, m)
         return out
 
     def console_tables(self) -> list[TableSpec]:
@@ -234,7 +253,11 @@ class ShearResult(Result):
         cap_pred = {m: json_list(t[f"sigma_cap_pred_{m}"][sl] / 1e3) for m in self.models}
         lo = {m: json_list(t[f"tau_pred_lo_{m}"][sl] / 1e3) for m in self.models}
         hi = {m: json_list(t[f"tau_pred_hi_{m}"][sl] / 1e3) for m in self.models}
+        curve = ({"displacement_at_peak_mm": json_list(t["displacement_at_peak"][sl] * 1e3),
+                  "tau_residual_kPa": json_list(t["tau_residual"][sl] / 1e3),
+                  "dilatancy_angle_deg": json_list(t["dilatancy_angle"][sl])} if "displacement_at_peak" in t else {})
         return [{
+            **{k: v[i] for k, v in curve.items()},
             "test_id": str(ids[i]), "material": str(mats[i]), "condition": str(conds[i]), "line": int(lines[i]),
             "sigma_N_kPa": kpa["sigma_N"][i], "suction_kPa": kpa["suction"][i], "S_R": plain["S_R"][i],
             "tau_max_kPa": kpa["tau_max"][i], "chi1": plain["chi1"][i], "chi2_kPa": kpa["chi2"][i],
@@ -273,6 +296,10 @@ class ShearResult(Result):
         cols["chi_back_se [-]"] = t["chi_back_se"]
         for m in self.models:
             cols[f"sigma_cap_pred_{m} [kPa]"] = t[f"sigma_cap_pred_{m}"] / 1e3
+        if "displacement_at_peak" in t:
+            cols["displacement_at_peak [mm]"] = t["displacement_at_peak"] * 1e3
+            cols["tau_residual [kPa]"] = t["tau_residual"] / 1e3
+            cols["dilatancy_angle [deg]"] = t["dilatancy_angle"]
         cols["flags"] = self._flag_texts()
         return pd.DataFrame(cols)
 
@@ -446,16 +473,40 @@ def _fill(table: Table, name: str, option: float | None) -> np.ndarray:
     return v
 
 
-def _derive(table: Table, opt: ShearOptions) -> dict[str, np.ndarray]:
-    """sigma_N, suction, S_R and tau_max per row; problems go into ``table``."""
+def _void_volume(table: Table, opt: ShearOptions, box: np.ndarray) -> np.ndarray:
+    """V_v per row [m^3]: the column (or --void-volume), else A h e/(1 + e) from a void ratio e and the
+    sample height, with e = G_s rho_w / rho_d - 1 from a dry density."""
+    v_v = _fill(table, "V_v", opt.void_volume)
+    e = table.get("e").copy()
+    from_density = np.isnan(e) & np.isfinite(table.get("rho_d"))
+    e[from_density] = (table.get("G_s") * opt.rho_w / table.get("rho_d"))[from_density] - 1.0
+    for i in np.flatnonzero(from_density & ~np.isfinite(e)):
+        table.add_problem(i, "rho_d", "a dry density needs 'G_s' (specific gravity of the solids) to give e")
+    for i in np.flatnonzero(from_density & (e <= 0)):
+        table.add_problem(i, "rho_d", f"e = G_s rho_w/rho_d - 1 = {e[i]:.4g} is not positive: check rho_d and G_s")
+    height = table.get("height")
+    from_e = np.isnan(v_v) & np.isfinite(e)
+    with np.errstate(invalid="ignore"):
+        v_v[from_e] = (box * height * e / (1.0 + e))[from_e]
+    for i in np.flatnonzero(from_e & np.isnan(v_v)):
+        table.add_problem(i, "e" if "e" in table.columns else "rho_d",
+                          "V_v from the void ratio needs the sample 'height' and the box area")
+    return v_v
+
+
+def _derive(table: Table, opt: ShearOptions, box: np.ndarray, tau_curve: np.ndarray | None = None
+            ) -> dict[str, np.ndarray]:
+    """sigma_N, suction, S_R and tau_max per row; problems go into ``table``.
+
+    ``tau_curve`` is the peak of each test's raw curve (NaN where it has none); it wins over tau_max.
+    """
     n = len(table)
-    cond = table.columns["condition"]
+    cond = table.columns.get("condition", np.array([""] * n, dtype=object))
     wet = cond == "wet"
-    box = _fill(table, "box_area", opt.box_area)
     cap = _fill(table, "cap_mass", opt.cap_mass)
     added = table.get("added_mass")
     radius = _fill(table, "R", opt.radius)
-    v_v = _fill(table, "V_v", opt.void_volume)
+    v_v = _void_volume(table, opt, box)
 
     sigma_N = table.get("sigma_N").copy()
     from_masses = np.isnan(sigma_N)
@@ -464,10 +515,20 @@ def _derive(table: Table, opt: ShearOptions) -> dict[str, np.ndarray]:
     tau = table.get("tau_max").copy()
     from_force = np.isnan(tau)
     tau[from_force] = (table.get("F_max") / box)[from_force]
+    if tau_curve is not None:
+        has_curve = np.isfinite(tau_curve)
+        tau[has_curve] = tau_curve[has_curve]
 
     suction = table.get("suction").copy()
     from_head = np.isnan(suction)
-    suction[from_head] = ph.suction_from_head(table.get("z1"), opt.gamma_w)[from_head]
+    z1 = table.get("z1")
+    suction[from_head] = ph.suction_from_head(z1, opt.gamma_w)[from_head]
+    z_max = ph.cavitation_head(opt.gamma_w, opt.ambient_pressure)
+    for i in np.flatnonzero(wet & from_head & (z1 > z_max)):
+        table.add_problem(i, "z1", f"a hanging-column head of {z1[i]:.4g} m is impossible: above "
+                                   f"{z_max:.3g} m the water at the sample would fall below its vapour pressure "
+                                   f"(20 °C, ambient {opt.ambient_pressure / 1e3:.5g} kPa) and cavitate; if the "
+                                   "suction was measured another way, give it in a 'suction' column")
 
     S_R = table.get("S_R").copy()
     from_burette = np.isnan(S_R)
@@ -477,6 +538,8 @@ def _derive(table: Table, opt: ShearOptions) -> dict[str, np.ndarray]:
     bad_cell = {(p.line, p.column) for p in table.problems}
 
     def missing(i: int, what: str, column: str | None) -> None:
+        if table.missing:  # a required column is absent: that one message says it for every row
+            return
         line = int(table.lines[i])
         if (line, table.headers.get(column, column)) not in bad_cell:
             table.add_problem(i, column, what)
@@ -491,7 +554,8 @@ def _derive(table: Table, opt: ShearOptions) -> dict[str, np.ndarray]:
                        "--cap-mass and --box-area)", col)
         if np.isnan(tau[i]):
             col = "tau_max" if "tau_max" in table.columns else None
-            missing(i, "no shear strength: give 'tau_max', or 'F_max' with 'box_area'", col)
+            missing(i, "no shear strength: give 'tau_max', or 'F_max' with 'box_area'"
+                       + (", or a curve for this test" if tau_curve is not None else ""), col)
         if not wet[i]:
             continue
         if np.isnan(suction[i]):
@@ -512,13 +576,14 @@ def _derive(table: Table, opt: ShearOptions) -> dict[str, np.ndarray]:
     return {"sigma_N": sigma_N, "suction": suction, "S_R": S_R, "tau_max": tau, "R": radius}
 
 
-def load_shear_table(source: str | Path) -> Table:
+def load_shear_table(source, with_curves: bool = False) -> Table:
+    """The tests table with its required columns checked (problems collected, not raised)."""
     table = read_table(source, SCHEMA)
     for name in ("test_id", "condition"):
         if name not in table.columns:
             table.missing_column(name)
-    if "tau_max" not in table.columns and "F_max" not in table.columns:
-        table.missing_column("tau_max", " (or 'F_max')")
+    if "tau_max" not in table.columns and "F_max" not in table.columns and not with_curves:
+        table.missing_column("tau_max", " (or 'F_max', or raw curves with --curves)")
     if "sigma_N" not in table.columns and "added_mass" not in table.columns:
         table.missing_column("added_mass", " (or 'sigma_N')")
     if "condition" in table.columns and np.any(table.columns["condition"] == "wet"):
@@ -529,8 +594,8 @@ def load_shear_table(source: str | Path) -> Table:
     if "material" not in table.columns:
         table.columns["material"] = np.array(["(all)"] * len(table), dtype=object)
         table.notes.append("no 'material' column: all tests treated as one material")
-    table.raise_if_problems()  # structure must be right before values are checked
-    table.check_unique("test_id")
+    if "test_id" in table.columns:
+        table.check_unique("test_id")
     return table
 
 
@@ -548,9 +613,18 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
     >>> r.to_json()["materials"]["steel_2mm"]["phi_deg"]     # doctest: +SKIP
     """
     opt = options or ShearOptions()
-    table = load_shear_table(source)
-    d = _derive(table, opt)
-    table.raise_if_problems()
+    table = load_shear_table(source, opt.curves is not None)
+    box = _fill(table, "box_area", opt.box_area)
+    curves = None
+    if opt.curves is not None:
+        from .shear_curves import pick_peaks
+
+        curves = pick_peaks(opt.curves, table, box, opt.area_correction)
+    with np.errstate(invalid="ignore", divide="ignore"):  # blanks and absent columns are NaN, reported below
+        d = _derive(table, opt, box, curves.tau_peak if curves else None)
+    if curves is not None:
+        table.problems += curves.problems
+    table.raise_if_problems()  # every problem of the file (and of the curves) at once
 
     materials = list(dict.fromkeys(table.columns["material"]))
     mat = table.columns["material"]
@@ -590,13 +664,17 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         if wet.any() else {}
     overall_pend = {mod: model_metrics(tests[f"tau_pred_{mod}"][pend], d["tau_max"][pend]) for mod in opt.models} \
         if pend.any() else {}
-    warnings = list(opt.warnings) + _warnings(tests, wet, pend, mat, fits, laws, opt)
+    if curves is not None:
+        tests.update(curves.per_test())
+    warnings = (list(opt.warnings) + table.warnings + (curves.warnings if curves else [])
+                + _warnings(tests, wet, pend, mat, fits, laws, opt))
     result = ShearResult(
         source=table.path, options=opt, tests=tests, fits=fits, metrics=metrics,
         metrics_overall=overall, best_model={m: best_of(v) for m, v in metrics.items()},
         best_model_overall=best_of(overall), notes=table.notes, phi_b=phi_b,
-        inputs=[input_file(source)], warnings=warnings, metrics_pendular=metrics_pend,
-        metrics_pendular_overall=overall_pend, laws=laws, model_inputs=model_inputs,
+        inputs=[input_file(source, table)] + ([input_file(opt.curves, curves.table)] if curves else []),
+        warnings=warnings, metrics_pendular=metrics_pend,
+        metrics_pendular_overall=overall_pend, laws=laws, model_inputs=model_inputs, curves=curves,
     )
     if opt.bootstrap > 0:
         result.ranking = _bootstrap(result, wet, mat, cond, opt)
@@ -610,10 +688,21 @@ def _warnings(tests, wet, pend, mat, fits, laws, opt) -> list[str]:
         out.append(f"{n_wet - n_pend} of {n_wet} wet tests lie outside the pendular regime (S_R > "
                    f"{opt.pendular_limit:g}) for which the chi approximations were derived; see metrics_pendular "
                    f"({n_pend} tests)")
-    for m in fits:
+    for m, fit in fits.items():
         k = int(np.sum(wet & (mat == m)))
         if 0 < k < 5:
             out.append(f"material '{m}': the model ranking rests on {k} wet tests (fewer than 5)")
+        phi = float(np.degrees(np.arctan(fit.slope)))
+        if not 15.0 <= phi <= 60.0:
+            out.append(f"material '{m}': the dry fit gives phi = {phi:.3g}°, outside the usual 15-60° of soils; "
+                       "check the normal stresses and their units")
+        if fit.intercept < 0:
+            out.append(f"material '{m}': the dry fit gives c = {fit.intercept / 1e3:.4g} kPa < 0 "
+                       "(try --dry-fit origin for a cohesionless soil)")
+        if fit.r2 < 0.9:
+            out.append(f"material '{m}': the dry fit has R² = {fit.r2:.3g} < 0.9")
+        if fit.n < 5:
+            out.append(f"material '{m}': the dry envelope rests on {fit.n} dry tests (fewer than 5)")
     for model, by_mat in laws.items():
         for m, law in by_mat.items():
             for name in law.at_bound:

@@ -366,9 +366,9 @@ def run_triaxial_bounds(source, options: TriaxialOptions | None = None,
         "sigma1": s1, "sigma2": s2, "sigma3": s3, "p": tx.mean_stress(s1, s3, s2), "q": q,
         "p0": p0, "s0": s0, "strain_f": d["strain"], "lode": tx.lode_angle(s1, s2, s3),
     }
-    inputs = [input_file(source)] + ([input_file(curves)] if curves is not None else [])
+    inputs = [input_file(source, table)] + ([input_file(curves)] if curves is not None else [])
     return TriaxialResult(table.path, env, tests, bounds, q_sat, _group_analysis(tests, env), notes, opt, inputs,
-                          opt.warnings)
+                          opt.warnings + table.warnings)
 
 
 def _group_analysis(t: dict, env: Envelope) -> list[dict]:

@@ -205,3 +205,25 @@ def figure_capillary_stress(result, material):
         fig.legend(handles, labels, loc="lower center", bbox_to_anchor=anchor, ncol=2, fontsize=8, frameon=False)
     fig.suptitle(f"Back-analysed capillary stress, {literal(material)}")
     return fig
+
+
+def figure_curves(result, material):
+    """The raw shear curves of one material (tau against horizontal displacement) with the picked peaks."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(8, 5.5))
+    fig.subplots_adjust(left=0.1, right=0.72, bottom=0.1, top=0.9)
+    ax = fig.subplots()
+    t = result.tests
+    for k, tid in enumerate(t["test_id"][t["material"] == material]):
+        curve = result.curves.curves.get(str(tid))
+        if curve is None:
+            continue
+        d, tau, peak = curve
+        line, = ax.plot(d * 1e3, tau * KPA, lw=1.0, label=literal(tid))
+        ax.plot(d[peak] * 1e3, tau[peak] * KPA, "o", color=line.get_color(), ms=5)
+    ax.set_xlabel("horizontal displacement δ [mm]")
+    ax.set_ylabel("τ [kPa]")
+    ax.set_title(f"Shear curves, {literal(material)} (dots: peaks)")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), ncol=1 if k < 25 else 2, frameon=False)
+    return fig
