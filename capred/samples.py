@@ -14,6 +14,10 @@ SAMPLES = {
     "rumpf": "rumpf_cases.csv",
     "bridge-solve": "bridge_cases.csv",
     "bridge-compare": "bridge_micro_tests.csv",
+    "shear-export": "shear_tests_export.xlsx",
+    "shear-eu": "shear_tests_eu.csv",
+    "shear-curves": "shear_curves.csv",
+    "triaxial-export": "triaxial_export",
 }
 
 

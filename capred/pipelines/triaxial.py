@@ -31,6 +31,8 @@ SCHEMA = [
     Column("p0", "pressure", "kPa", "p0", ("p_0", "initial_pressure"), "nonnegative"),
     Column("s0", "pressure", "kPa", "s0", ("s_0", "initial_suction", "suction"), "nonnegative"),
     Column("group", "text", None, "group", ("tensor_group",)),
+    Column("D0", "length", "mm", "initial diameter", ("initial_diameter", "diameter", "d_0"), "positive"),
+    Column("H0", "length", "mm", "initial height", ("initial_height", "height", "h_0"), "positive"),
 ]
 
 CURVE_SCHEMA = [
@@ -228,33 +230,8 @@ def _kpa(x) -> float | None:
     return num(float(x) / 1e3)
 
 
-def read_curves(source: str | Path) -> dict[str, tuple[float, float]]:
-    """Peak q and the axial strain at the peak, per test, from a long CSV of curves.
-
-    Failure is the peak of q, not the residual (Prunier et al. 2024, section 5.4).
-    """
-    table = read_table(source, CURVE_SCHEMA)
-    for name in ("test_id", "q"):
-        if name not in table.columns:
-            table.missing_column(name)
-    table.raise_if_problems()
-    out: dict[str, tuple[float, float]] = {}
-    ids = table.columns["test_id"]
-    q = table.columns["q"]
-    eps = table.get("axial_strain")
-    for tid in dict.fromkeys(ids):
-        sel = np.flatnonzero((ids == tid) & np.isfinite(q))
-        if sel.size == 0:
-            table.add_problem(int(np.flatnonzero(ids == tid)[0]), "q", f"test '{tid}' has no q values")
-            continue
-        k = sel[np.argmax(q[sel])]
-        out[str(tid)] = (float(q[k]), float(eps[k]))
-    table.raise_if_problems()
-    return out
-
-
-def load_triaxial_table(source: str | Path, curves: dict[str, tuple[float, float]] | None) -> tuple[Table, dict]:
-    table = read_table(source, SCHEMA)
+def load_triaxial_table(table: Table, curves: dict[str, tuple[float, float]] | None) -> tuple[Table, dict]:
+    """q at failure (from q_f, sigma1 or the curves) per test; problems collected in ``table``."""
     for name in ("test_id", "condition", "sigma3"):
         if name not in table.columns:
             table.missing_column(name)
@@ -305,8 +282,16 @@ def run_triaxial_bounds(source, options: TriaxialOptions | None = None,
     if curves is not None:
         opt = dataclasses.replace(opt, curves=curves)
     curves = opt.curves
-    peaks = read_curves(curves) if curves is not None else None
-    table, d = load_triaxial_table(source, peaks)
+    table = read_table(source, SCHEMA)
+    raw_curves = None
+    if curves is not None:
+        from .triaxial_curves import read_curves
+
+        raw_curves = read_curves(curves, table)
+        table.problems += raw_curves.problems  # reported with the table's own, in one round
+        table.notes += raw_curves.notes
+        table.warnings += raw_curves.warnings
+    table, d = load_triaxial_table(table, raw_curves.peaks if raw_curves else None)
     table.raise_if_problems()
 
     cond = table.columns["condition"]
@@ -366,7 +351,7 @@ def run_triaxial_bounds(source, options: TriaxialOptions | None = None,
         "sigma1": s1, "sigma2": s2, "sigma3": s3, "p": tx.mean_stress(s1, s3, s2), "q": q,
         "p0": p0, "s0": s0, "strain_f": d["strain"], "lode": tx.lode_angle(s1, s2, s3),
     }
-    inputs = [input_file(source, table)] + ([input_file(curves)] if curves is not None else [])
+    inputs = [input_file(source, table)] + ([input_file(t.path, t) for t in raw_curves.tables] if raw_curves else [])
     return TriaxialResult(table.path, env, tests, bounds, q_sat, _group_analysis(tests, env), notes, opt, inputs,
                           opt.warnings + table.warnings)
 
