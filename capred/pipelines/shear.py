@@ -535,14 +535,14 @@ def _derive(table: Table, opt: ShearOptions, box: np.ndarray, tau_curve: np.ndar
     z2 = table.get("z2")
     S_R[from_burette] = ph.degree_of_saturation(z2, v_v)[from_burette]
 
-    bad_cell = {(p.line, p.column) for p in table.problems}
+    bad_lines = {p.line for p in table.problems}
 
     def missing(i: int, what: str, column: str | None) -> None:
-        if table.missing:  # a required column is absent: that one message says it for every row
+        """A value that cannot be derived: reported unless its cause is already (a bad cell on the line, an
+        absent column)."""
+        if table.missing or int(table.lines[i]) in bad_lines:
             return
-        line = int(table.lines[i])
-        if (line, table.headers.get(column, column)) not in bad_cell:
-            table.add_problem(i, column, what)
+        table.add_problem(i, column, what)
 
     for i in range(n):
         if np.isnan(sigma_N[i]):

@@ -1,0 +1,423 @@
+"""Lab data in, as labs have it (issue 14): spreadsheets, exports, locale, units, unused columns, one round of
+problems, checked options, physical limits, raw shear and triaxial curves, sample state."""
+import io
+import json
+import shutil
+
+import numpy as np
+import pandas as pd
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from typer.testing import CliRunner
+
+import capred
+from capred.cli import app
+from capred.errors import CapredError, InputError
+from capred.io.grid import TableSource
+from capred.pipelines.shear_curves import corrected_area
+
+runner = CliRunner()
+HEADER = "test_id,material,condition,sigma_N [kPa],tau_max [kPa],suction [kPa],S_R,R [mm]\n"
+DRY = "d1,m,dry,1,1.0452,,,1\nd2,m,dry,2,1.7598,,,1\nd3,m,dry,3,2.4744,,,1\nd4,m,dry,4,3.189,,,1\nd5,m,dry,5,3.9036,,,1\n"
+WET = "w1,m,wet,1,1.5,2,0.3,1\nw2,m,wet,2,2.2,2,0.3,1\n"
+
+
+def _xlsx(path, rows, title="Tests"):
+    from openpyxl import Workbook
+
+    wb = Workbook()
+    ws = wb.active
+    ws.title = title
+    for r in rows:
+        ws.append(r)
+    wb.save(path)
+    return path
+
+
+def _materials(source, **kw):
+    return capred.run_shear(source, capred.ShearOptions(bootstrap=0, **kw)).to_json()["materials"]
+
+
+# --- spreadsheets --------------------------------------------------------------------------------
+def test_xlsx_export_gives_the_same_fits_as_the_csv():
+    a = _materials(capred.sample_path("shear-export"))
+    b = _materials(capred.sample_path("shear"))
+    assert a == b
+    doc = capred.run_shear(capred.sample_path("shear-export"), capred.ShearOptions(bootstrap=0)).to_json()
+    assert doc["inputs"][0]["sheet"] == "Direct shear"
+    assert doc["inputs"][0]["metadata"]["Apparatus"] == "60 mm shear box"
+
+
+def test_xlsx_problems_name_sheet_row_and_column(tmp_path):
+    rows = [["Lab", "x"], [], ["test_id", "condition", "sigma_N [kPa]", "tau_max [kPa]"],
+            ["a", "dry", 1, 1.0], ["b", "dry", "two", 1.7], ["c", "dry", 3, 2.4]]
+    path = _xlsx(tmp_path / "t.xlsx", rows, "Run 2")
+    with pytest.raises(InputError) as info:
+        capred.run_shear(path)
+    p = info.value.problems[0]
+    # the spreadsheet's own row number (5), the sheet named
+    assert (p.sheet, p.line, p.column, p.value) == ("Run 2", 5, "sigma_N [kPa]", "two")
+    assert "sheet 'Run 2', line 5, column 'sigma_N [kPa]'" in str(info.value)
+
+
+def test_sheet_by_name_and_number(tmp_path):
+    from openpyxl import Workbook
+
+    wb = Workbook()
+    wb.active.title = "notes"
+    wb.active.append(["nothing here"])
+    ws = wb.create_sheet("data")
+    for r in [["test_id", "condition", "sigma_N [kPa]", "tau_max [kPa]"], ["a", "dry", 1, 1.0452],
+              ["b", "dry", 2, 1.7598], ["c", "dry", 3, 2.4744]]:
+        ws.append(r)
+    wb.save(tmp_path / "w.xlsx")
+    for sheet in ("data", 2, "2"):
+        m = _materials(TableSource(tmp_path / "w.xlsx", sheet=sheet))
+        assert m["(all)"]["tan_phi"] == pytest.approx(0.7146, rel=1e-9)
+    res = runner.invoke(app, ["shear", str(tmp_path / "w.xlsx"), "--sheet", "nope", "--no-plots"])
+    assert res.exit_code == 1 and "no sheet named 'nope'" in res.stderr and "data" in res.stderr
+    res = runner.invoke(app, ["shear", str(tmp_path / "w.xlsx"), "--sheet", "data", "--no-plots", "--bootstrap", "0",
+                              "--json"])
+    assert res.exit_code == 0, res.output
+
+
+def test_ods_with_metadata_block(tmp_path):
+    frame = pd.DataFrame([["Operator", "me", None, None], [None, None, None, None],
+                          ["test_id", "condition", "sigma_N [kPa]", "tau_max [kPa]"],
+                          ["a", "dry", 1.0, 1.0452], ["b", "dry", 2.0, 1.7598], ["c", "dry", 3.0, 2.4744]])
+    frame.to_excel(tmp_path / "t.ods", engine="odf", header=False, index=False)
+    doc = capred.run_shear(tmp_path / "t.ods", capred.ShearOptions(bootstrap=0)).to_json()
+    assert doc["materials"]["(all)"]["tan_phi"] == pytest.approx(0.7146, rel=1e-9)
+    assert doc["inputs"][0]["metadata"] == {"Operator": "me"}
+    assert [t["line"] for t in doc["tests"]] == [4, 5, 6]  # the spreadsheet's row numbers
+
+
+@pytest.mark.parametrize("magic,what", [(b"PK\x03\x04rest", "zip archive"), (b"\xd0\xcf\x11\xe0rest", ".xls"),
+                                        (b"%PDF-1.4", "PDF"), (b"ab\x00cd" * 10, "binary")])
+def test_binary_named_csv_is_named(tmp_path, magic, what):
+    (tmp_path / "t.csv").write_bytes(magic)
+    res = runner.invoke(app, ["shear", str(tmp_path / "t.csv"), "--no-plots"])
+    assert res.exit_code == 1 and what in res.stderr and "Traceback" not in res.output
+
+
+# --- exports: metadata block and units row ----------------------------------------------------------
+def test_metadata_block_and_units_row(tmp_path):
+    text = ("Instrument: ShearBox 3000\nOperator,Jane\n\n"
+            "test_id,condition,sigma_N,tau_max\n,,kPa,(Pa)\n"
+            "a,dry,1,1045.2\nb,dry,2,1759.8\nc,dry,3,2474.4\n")
+    (tmp_path / "e.csv").write_text(text)
+    doc = capred.run_shear(tmp_path / "e.csv", capred.ShearOptions(bootstrap=0)).to_json()
+    assert doc["materials"]["(all)"]["tan_phi"] == pytest.approx(0.7146, rel=1e-9)
+    assert doc["inputs"][0]["metadata"] == {"Instrument": "ShearBox 3000", "Operator": "Jane"}
+    assert [t["line"] for t in doc["tests"]] == [6, 7, 8]
+
+
+def test_european_sample_runs_as_the_csv():
+    assert _materials(capred.sample_path("shear-eu")) == _materials(capred.sample_path("shear"))
+
+
+# --- locale and plain numbers -----------------------------------------------------------------------
+def test_thousands_separator_is_an_error_unless_told(tmp_path):
+    text = ("test_id;condition;added_mass [g];cap_mass [g];box_area [cm^2];tau_max [kPa]\n"
+            "a;dry;1.000;120;36;0,5\nb;dry;0;120;36;0,35\nc;dry;2.000;120;36;0,9\n")
+    (tmp_path / "eu.csv").write_text(text)
+    with pytest.raises(InputError) as info:
+        capred.run_shear(tmp_path / "eu.csv")
+    msgs = [(p.line, p.column) for p in info.value.problems]
+    assert (2, "added_mass [g]") in msgs and (4, "added_mass [g]") in msgs
+    assert "--thousands ." in str(info.value)
+    res = capred.run_shear(TableSource(tmp_path / "eu.csv", thousands="."), capred.ShearOptions(bootstrap=0))
+    sig = [t["sigma_N_kPa"] for t in res.to_json()["tests"]]
+    # (1000 + 120) g * 9.81 / 36 cm^2 = 3.052 kPa: the dots were thousands separators
+    assert sig[0] == pytest.approx(1.120 * 9.81 / 36e-4 / 1e3, rel=1e-12)
+
+
+@pytest.mark.parametrize("cell", ["1_000", "١٢", "1e5x", "0x1F", "inf", "½"])
+def test_only_plain_decimal_numbers(tmp_path, cell):
+    (tmp_path / "t.csv").write_text(f"test_id,condition,sigma_N,tau_max\na,dry,{cell},1\nb,dry,2,1\nc,dry,3,2\n")
+    with pytest.raises(InputError) as info:
+        capred.run_shear(tmp_path / "t.csv")
+    assert any(p.line == 2 and p.column == "sigma_N" and p.value == cell for p in info.value.problems)
+
+
+def test_quoted_field_over_two_lines(tmp_path):
+    text = ('test_id,condition,sigma_N [kPa],tau_max [kPa],notes\n'
+            'a,dry,1,1.0452,"first line\nsecond line"\nb,dry,2,x,ok\nc,dry,3,2.4744,\n')
+    (tmp_path / "t.csv").write_text(text)
+    with pytest.raises(InputError) as info:
+        capred.run_shear(tmp_path / "t.csv")
+    # b starts on line 4 of the file (the quoted field of a spans lines 2-3)
+    assert [(p.line, p.column) for p in info.value.problems] == [(4, "tau_max [kPa]")]
+
+
+# --- units, safely ---------------------------------------------------------------------------------
+@pytest.mark.parametrize("unit", ["1/0", "((((kPa", "kPa # x", "$kPa", "{kPa}", "m" + "*m" * 3000, "k" * 100_000])
+def test_bad_unit_strings_are_named_problems(tmp_path, unit):
+    (tmp_path / "t.csv").write_text(f"test_id,condition,sigma_N [{unit}],tau_max\na,dry,1,1\nb,dry,2,2\nc,dry,3,3\n")
+    with pytest.raises(InputError) as info:
+        capred.run_shear(tmp_path / "t.csv")
+    assert any(p.line == 1 and "unit" in p.message for p in info.value.problems)
+
+
+@pytest.mark.parametrize("header,value,si", [
+    ("suction [cmH2O]", "10", 980.665), ("suction [cm H2O]", "10", 980.665), ("suction [cm water]", "10", 980.665),
+    ("suction [mH2O]", "1", 9806.65), ("suction [kgf/cm^2]", "0.01", 980.665), ("suction [psi]", "1", 6894.757293),
+])
+def test_lab_spellings_of_units(tmp_path, header, value, si):
+    (tmp_path / "t.csv").write_text(HEADER.replace("suction [kPa]", header) + DRY + WET.replace(",2,0.3", f",{value},0.3"))
+    doc = capred.run_shear(tmp_path / "t.csv", capred.ShearOptions(bootstrap=0)).to_json()
+    wet = [t for t in doc["tests"] if t["condition"] == "wet"]
+    assert wet[0]["suction_kPa"] == pytest.approx(si / 1e3, rel=1e-9)
+
+
+def test_head_in_cm_of_water_and_percent_and_micrometres(tmp_path):
+    text = ("test_id,condition,sigma_N [kPa],tau_max [kPa],z1 [cm H2O],S_R [%],R [um]\n"
+            "d1,dry,1,1.0452,,,\nd2,dry,2,1.7598,,,\nd3,dry,3,2.4744,,,\nw1,wet,1,1.5,20,30,156\n")
+    (tmp_path / "t.csv").write_text(text)
+    w = capred.run_shear(tmp_path / "t.csv", capred.ShearOptions(bootstrap=0)).to_json()["tests"][3]
+    assert w["suction_kPa"] == pytest.approx(0.2 * 9.81, rel=1e-12) and w["S_R"] == pytest.approx(0.3)
+
+
+# --- unused columns --------------------------------------------------------------------------------
+def test_unused_columns_are_warned_with_a_suggestion(tmp_path):
+    text = ("test_id,Materiaal,condition,sigma_N [kPa],tau_max [kPa],,remarks\n"
+            "a,m1,dry,1,1.0452,7,x\nb,m1,dry,2,1.7598,,\nc,m2,dry,3,2.4744,,\n")
+    (tmp_path / "t.csv").write_text(text)
+    doc = capred.run_shear(tmp_path / "t.csv", capred.ShearOptions(bootstrap=0)).to_json()
+    assert any("'Materiaal' is not used" in w and "did you mean 'material'" in w for w in doc["warnings"])
+    assert any("column 6 has data but no header" in w for w in doc["warnings"])
+    assert any("'remarks' is not used" in w for w in doc["warnings"])
+
+
+def test_header_with_unbalanced_brackets_is_a_problem(tmp_path):
+    (tmp_path / "t.csv").write_text("test_id,condition,sigma_N [kPa)],tau_max\na,dry,1,1\nb,dry,2,2\nc,dry,3,3\n")
+    with pytest.raises(InputError) as info:
+        capred.run_shear(tmp_path / "t.csv")
+    assert any("brackets do not match" in p.message for p in info.value.problems)
+
+
+# --- one round of problems ---------------------------------------------------------------------------
+def test_all_problems_in_one_round(tmp_path):
+    rows = "".join(f"t{k},dry,x{k},-1\n" for k in range(30))
+    (tmp_path / "t.csv").write_text("test_id,condition,sigma_N [kPa],tau_max [kPa]\n" + rows)
+    res = runner.invoke(app, ["shear", str(tmp_path / "t.csv"), "--no-plots"])
+    assert res.exit_code == 1
+    assert "60 problems" in res.stderr and "and 40 more" in res.stderr
+    assert res.stderr.count("  - ") == 20
+    res = runner.invoke(app, ["shear", str(tmp_path / "t.csv"), "--no-plots", "--json"])
+    assert res.exit_code == 1
+    errors = json.loads(res.stdout)["errors"]
+    assert len(errors) == 60
+    assert errors[0] == {"file": str(tmp_path / "t.csv"), "sheet": None, "line": 2, "column": "sigma_N [kPa]",
+                         "value": "x0", "message": "'x0' is not a number"}
+
+
+def test_missing_column_and_bad_cells_reported_together(tmp_path):
+    (tmp_path / "t.csv").write_text("test_id,condition,sigma_N [kPa]\na,dry,1\nb,dry,zwei\nc,dry,3\n")
+    with pytest.raises(InputError) as info:
+        capred.run_shear(tmp_path / "t.csv")
+    texts = [p.message for p in info.value.problems]
+    assert any("missing column 'tau_max'" in t for t in texts) and any("'zwei' is not a number" in t for t in texts)
+    assert len(texts) == 2  # no per-row echo of the missing column
+
+
+# --- options checked like columns --------------------------------------------------------------------
+@pytest.mark.parametrize("args,message", [
+    (["shear", "--sample", "--box-area", "-36"], "box area must be > 0"),
+    (["shear", "--sample", "--gamma-w", "0"], "unit weight of water must be > 0"),
+    (["shear", "--sample", "--radius", "0"], "particle radius must be > 0"),
+    (["skempton-b", "--sr", "1.5"], "degree of saturation must lie between 0 and 1"),
+    (["rumpf", "--shape-factor", "1", "--void-ratio", "0.5", "--sr", "2", "--diameter", "0.2"],
+     "degree of saturation must lie between 0 and 1"),
+    (["prism", "--break-tension", "-5", "--friction-angle", "30"], "break tension of a sand prism must be > 0"),
+    (["shear", "--sample", "--box-area", "36 kPa"], "not a unit of area"),
+])
+def test_options_are_checked_like_columns(args, message, tmp_path):
+    res = runner.invoke(app, [*args, "--out", str(tmp_path / "o")])
+    assert res.exit_code == 1 and message in res.stderr, res.output
+    assert not (tmp_path / "o").exists()
+
+
+# --- physics limits and plausibility -----------------------------------------------------------------
+def test_hanging_column_above_cavitation_is_an_error(tmp_path):
+    text = ("test_id,condition,sigma_N [kPa],tau_max [kPa],z1 [m],S_R,R [mm]\n"
+            "d1,dry,1,1.0452,,,\nd2,dry,2,1.7598,,,\nd3,dry,3,2.4744,,,\nw1,wet,1,1.5,50,0.3,1\nw2,wet,1,1.5,9,0.3,1\n")
+    (tmp_path / "t.csv").write_text(text)
+    with pytest.raises(InputError) as info:
+        capred.run_shear(tmp_path / "t.csv")
+    (p,) = info.value.problems
+    # (101325 - 2339) Pa / 9810 N/m^3 = 10.09 m
+    assert p.line == 5 and "cavitate" in p.message and "10.1 m" in p.message and "'suction'" in p.message
+
+
+def test_implausible_dry_fit_warns(tmp_path):
+    text = "test_id,condition,sigma_N [kPa],tau_max [kPa]\na,dry,1,0.2\nb,dry,2,0.25\nc,dry,3,0.35\n"
+    (tmp_path / "t.csv").write_text(text)
+    w = capred.run_shear(tmp_path / "t.csv", capred.ShearOptions(bootstrap=0)).to_json()["warnings"]
+    assert any("outside the usual 15-60°" in x for x in w) and any("fewer than 5" in x for x in w)
+
+
+# --- raw direct-shear curves -------------------------------------------------------------------------
+def test_area_corrections_by_hand():
+    A = 36e-4  # 60 mm square box
+    assert corrected_area(A, 6e-3, "square") == pytest.approx(0.06 * 0.054, rel=1e-12)
+    # circular box: the overlap of two discs of radius r offset by d (lens area), computed independently
+    D = np.sqrt(4 * A / np.pi)
+    r, d = D / 2, 5e-3
+    lens = 2 * r**2 * np.arccos(d / (2 * r)) - d / 2 * np.sqrt(4 * r**2 - d**2)
+    assert corrected_area(A, d, "circular") == pytest.approx(lens, rel=1e-12)
+    assert corrected_area(A, 0.0, "circular") == pytest.approx(A, rel=1e-12)
+    assert corrected_area(A, 1e-3, "none") == A
+
+
+def test_curves_give_the_peaks_residual_and_dilatancy():
+    doc = capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(
+        bootstrap=0, curves=capred.sample_path("shear-curves"))).to_json()
+    plain = capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(bootstrap=0)).to_json()
+    by_id = {t["test_id"]: t for t in plain["tests"]}
+    steel = [t for t in doc["tests"] if t["material"] == "steel_2mm"]
+    for t in steel:
+        assert t["tau_max_kPa"] == pytest.approx(by_id[t["test_id"]]["tau_max_kPa"], rel=1e-5)  # 6 digits in file
+        assert t["displacement_at_peak_mm"] == 1.5
+        # last 10 % of 0-6 mm: 5.5, 5.75, 6.0 mm, all at 85 % of the peak
+        assert t["tau_residual_kPa"] == pytest.approx(0.85 * t["tau_max_kPa"], rel=1e-5)
+        # v = -0.02 d + 0.012 d^2 -> dv/dh at 1.5 mm = -0.02 + 0.036 = 0.016 (central difference is exact)
+        assert t["dilatancy_angle_deg"] == pytest.approx(np.degrees(np.arctan(0.016)), rel=1e-6)
+    assert all(t.get("displacement_at_peak_mm") is None for t in doc["tests"] if t["material"] != "steel_2mm")
+    assert not any("differs by more than 1 %" in w for w in doc["warnings"])
+
+
+def test_curves_replace_a_missing_tau_and_warn_on_a_difference(tmp_path):
+    (tmp_path / "t.csv").write_text("test_id,condition,sigma_N [kPa],box_area [cm^2],tau_max [kPa]\n"
+                                    "a,dry,1,36,\nb,dry,2,36,1.7598\nc,dry,3,36,2.6\n")
+    lines = ["test_id,displacement [mm],F [N]"]
+    for tid, tau in (("a", 1.0452), ("b", 1.7598), ("c", 2.4744)):
+        for d, s in ((0, 0), (1, 0.8), (2, 1.0), (3, 0.9)):
+            lines.append(f"{tid},{d},{tau * 1e3 * 36e-4 * s!r}")
+    (tmp_path / "c.csv").write_text("\n".join(lines) + "\n")
+    res = runner.invoke(app, ["shear", str(tmp_path / "t.csv"), "--curves", str(tmp_path / "c.csv"), "--json",
+                              "--bootstrap", "0"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    assert doc["materials"]["(all)"]["tan_phi"] == pytest.approx(0.7146, rel=1e-9)
+    assert any("test 'c'" in w and "differs by more than 1 %" in w for w in doc["warnings"])
+    res = runner.invoke(app, ["shear", str(tmp_path / "t.csv"), "--curves", str(tmp_path / "c.csv"), "--json",
+                              "--bootstrap", "0", "--area-correction", "square"])
+    doc2 = json.loads(res.stdout)
+    # at the peak (2 mm of 60 mm) the square area is 60 x 58 mm^2: tau higher by 60/58
+    assert doc2["tests"][1]["tau_max_kPa"] == pytest.approx(1.7598 * 60 / 58, rel=1e-9)
+
+
+# --- triaxial instrument exports -------------------------------------------------------------------
+def test_triaxial_exports_from_a_folder_equal_the_long_curves(tmp_path):
+    tests = pd.read_csv(capred.sample_path("triaxial-bounds"), comment="#")
+    tests.loc[tests["condition"] == "unsaturated", "q_f [kPa]"] = np.nan  # the curves must supply the peaks
+    long = capred.run_triaxial_bounds(tests, curves=capred.sample_path("triaxial-curves")).to_json()
+    folder = capred.run_triaxial_bounds(tests, curves=capred.sample_path("triaxial-export")).to_json()
+    qa = {t["test_id"]: t["q_kPa"] for t in long["tests"]}
+    qb = {t["test_id"]: t["q_kPa"] for t in folder["tests"]}
+    for tid in qa:
+        # UNSAT-0 comes from the axial force through A = A0 (1 - eps_v)/(1 - eps_a): 9 digits in the file
+        assert qb[tid] == pytest.approx(qa[tid], rel=1e-8)
+    assert any("A0 (1 - eps_v)/(1 - eps_a)" in n for n in folder["notes"])
+    glob_ = capred.run_triaxial_bounds(tests, curves=str(capred.sample_path("triaxial-export") / "UNSAT-*.csv"))
+    assert {t["test_id"]: t["q_kPa"] for t in glob_.to_json()["tests"]} == qb
+
+
+def test_triaxial_force_without_diameter_is_an_error(tmp_path):
+    src = capred.sample_path("triaxial-export") / "UNSAT-0.csv"
+    text = "\n".join(ln for ln in src.read_text().splitlines() if not ln.startswith("Initial diameter"))
+    (tmp_path / "UNSAT-0.csv").write_text(text + "\n")
+    tests = pd.read_csv(capred.sample_path("triaxial-bounds"), comment="#")
+    tests.loc[tests["test_id"] == "UNSAT-0", "q_f [kPa]"] = np.nan
+    with pytest.raises(InputError, match="initial diameter"):
+        capred.run_triaxial_bounds(tests, curves=tmp_path / "UNSAT-0.csv")
+    tests["D0 [mm]"] = 38.0  # the tests table may give it
+    assert capred.run_triaxial_bounds(tests, curves=tmp_path / "UNSAT-0.csv").to_json()["tests"][4]["q_kPa"] > 0
+
+
+# --- sample state ------------------------------------------------------------------------------------
+def test_void_volume_from_void_ratio_or_dry_density(tmp_path):
+    base = ("test_id,condition,sigma_N [kPa],tau_max [kPa],suction [kPa],z2 [cm^3],R [mm],box_area [cm^2],"
+            "height [mm],{extra}\nd1,dry,1,1.0452,,,1,36,20,{v}\nd2,dry,2,1.7598,,,1,36,20,{v}\n"
+            "d3,dry,3,2.4744,,,1,36,20,{v}\nw1,wet,1,1.5,2,10,1,36,20,{v}\n")
+    (tmp_path / "e.csv").write_text(base.format(extra="e", v="0.6"))
+    w = capred.run_shear(tmp_path / "e.csv", capred.ShearOptions(bootstrap=0)).to_json()["tests"][3]
+    v_v = 36 * 2.0 * 0.6 / 1.6  # cm^3 = A h e / (1 + e) = 27 cm^3
+    assert w["S_R"] == pytest.approx((v_v - 10) / v_v, rel=1e-12)
+    # rho_d = G_s rho_w/(1 + e) = 2.65 * 1000 / 1.6 gives the same e = 0.6
+    (tmp_path / "r.csv").write_text(base.format(extra="rho_d [kg/m^3],G_s", v=f"{2650 / 1.6!r},2.65"))
+    w2 = capred.run_shear(tmp_path / "r.csv", capred.ShearOptions(bootstrap=0)).to_json()["tests"][3]
+    assert w2["S_R"] == pytest.approx(w["S_R"], rel=1e-12)
+
+
+# --- fuzzing the new paths ---------------------------------------------------------------------------
+CELL = st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.integers(-10**9, 10**9), st.none(),
+                 st.text(max_size=6), st.sampled_from(["1.000", "0,5", "kPa", "(g)", "-", "[cm]", "1_0"]))
+HEAD = st.sampled_from(["test_id", "condition", "sigma_N", "tau_max [kPa]", "z1 [cm]", "S_R", "Materiaal", "",
+                        "suction [1/0]", "R [um]", "tau [kPa # x]", "Key: value"])
+SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+
+
+@SETTINGS
+@given(meta=st.lists(st.lists(CELL, max_size=3), max_size=3), header=st.lists(HEAD, min_size=1, max_size=6),
+       units=st.booleans(), rows=st.lists(st.lists(CELL, max_size=7), max_size=5),
+       kind=st.sampled_from(["xlsx", "ods", "csv"]))
+def test_fuzzed_workbooks_read_or_explain(tmp_path, meta, header, units, rows, kind):
+    grid = [*meta, header] + ([["kPa", "(g)", "-", "cm", "%", "um"][: len(header)]] if units else []) + rows
+    if kind == "xlsx":
+        from openpyxl import Workbook
+
+        wb = Workbook()
+        path = tmp_path / "f.xlsx"
+        try:
+            for r in grid:
+                wb.active.append(r)
+            wb.save(path)
+        except Exception:  # openpyxl refuses some characters: not a capred input
+            return
+    elif kind == "ods":
+        width = max((len(r) for r in grid), default=1) or 1
+        frame = pd.DataFrame([list(r) + [None] * (width - len(r)) for r in grid] or [[None]])
+        path = tmp_path / "f.ods"
+        try:
+            frame.to_excel(path, engine="odf", header=False, index=False)
+        except Exception:
+            return
+    else:
+        buf = io.StringIO()
+        for r in grid:
+            buf.write(",".join('"' + str(c).replace('"', '""') + '"' if isinstance(c, str) and ("," in c or "\n" in c)
+                               else ("" if c is None else str(c)) for c in r) + "\n")
+        path = tmp_path / "f.csv"
+        path.write_text(buf.getvalue())
+    for run in (capred.run_shear, capred.run_triaxial_bounds, capred.run_retention):
+        try:
+            run(path)
+        except CapredError as exc:
+            assert str(exc)
+
+
+@SETTINGS
+@given(data=st.binary(min_size=0, max_size=400))
+def test_random_bytes_as_a_workbook_read_or_explain(tmp_path, data):
+    for name in ("r.xlsx", "r.ods"):
+        (tmp_path / name).write_bytes(b"PK\x03\x04" + data)
+        try:
+            capred.run_shear(tmp_path / name)
+        except CapredError as exc:
+            assert str(exc)
+
+
+@SETTINGS
+@given(unit=st.text(max_size=80))
+def test_fuzzed_unit_strings_never_crash(unit):
+    from capred.errors import UnitError
+    from capred.units import conversion
+
+    for kind in ("pressure", "length", "dimensionless"):
+        try:
+            conversion(unit, kind)
+        except UnitError:
+            pass
