@@ -3,7 +3,8 @@ from typing import Annotated
 
 import typer
 
-from .common import Invocation, JsonOpt, OutOpt, PlotOpt, SampleOpt, WorkersOpt, command, data_arg, quantity, sources
+from .common import (Invocation, JsonOpt, OutOpt, PlotOpt, SampleOpt, SheetOpt, ThousandsOpt, WorkersOpt, command,
+                     data_arg, quantity, sources)
 
 
 def register(app: typer.Typer) -> None:
@@ -49,6 +50,8 @@ def solve(
     json_out: JsonOpt = False,
     sample: SampleOpt = False,
     workers: WorkersOpt = 1,
+    sheet: SheetOpt = None,
+    thousands: ThousandsOpt = None,
     surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma'.")] = "0.0728",
 ) -> Invocation:
     """Exact bridge per row: neck radius r0, F_cap = F_L + F_T, V_w, half-filling
@@ -60,7 +63,7 @@ def solve(
     from ..pipelines.bridge import BridgeOptions
 
     opts = BridgeOptions(quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"))
-    return Invocation("bridge solve", sources(data, sample, "bridge solve"), opts, False, out, json_out, workers)
+    return Invocation("bridge solve", sources(data, sample, "bridge solve", sheet, thousands), opts, False, out, json_out, workers)
 
 
 def compare(
@@ -70,6 +73,8 @@ def compare(
     plots: PlotOpt = True,
     sample: SampleOpt = False,
     workers: WorkersOpt = 1,
+    sheet: SheetOpt = None,
+    thousands: ThousandsOpt = None,
     surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma'.")] = "0.0728",
 ) -> Invocation:
     """Microscopic tests against theory: the measured force of each sphere pair
@@ -81,4 +86,4 @@ def compare(
     from ..pipelines.bridge import BridgeOptions
 
     opts = BridgeOptions(quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"))
-    return Invocation("bridge compare", sources(data, sample, "bridge compare"), opts, plots, out, json_out, workers)
+    return Invocation("bridge compare", sources(data, sample, "bridge compare", sheet, thousands), opts, plots, out, json_out, workers)

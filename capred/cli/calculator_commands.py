@@ -3,7 +3,8 @@ from typing import Annotated, Optional
 
 import typer
 
-from .common import Invocation, JsonOpt, OutOpt, PlotOpt, SampleOpt, WorkersOpt, command, data_arg, quantity, sources
+from .common import (Invocation, JsonOpt, OutOpt, PlotOpt, SampleOpt, SheetOpt, ThousandsOpt, WorkersOpt, command,
+                     data_arg, quantity, sources)
 
 
 def register(app: typer.Typer) -> None:
@@ -26,6 +27,8 @@ def prism(
     json_out: JsonOpt = False,
     sample: SampleOpt = False,
     workers: WorkersOpt = 1,
+    sheet: SheetOpt = None,
+    thousands: ThousandsOpt = None,
 ) -> Invocation:
     """Bernatzik's (1948) prism test: maximal capillary pressure
     P_kmax = sigma_b (1 - sin rho)/(2 sin rho) and capillary rise h_c = P_kmax/gamma_w.
@@ -38,7 +41,7 @@ def prism(
                         quantity(None if friction_angle is None else str(friction_angle), "deg", "friction_angle",
                                  "--friction-angle"),
                         quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"))
-    return Invocation("prism", sources(data, sample, "prism"), opts, False, out, json_out, workers)
+    return Invocation("prism", sources(data, sample, "prism", sheet, thousands), opts, False, out, json_out, workers)
 
 
 def skempton_b(
@@ -60,6 +63,8 @@ def skempton_b(
     plots: PlotOpt = True,
     sample: SampleOpt = False,
     workers: WorkersOpt = 1,
+    sheet: SheetOpt = None,
+    thousands: ThousandsOpt = None,
 ) -> Invocation:
     """Skempton's B against degree of saturation (Morvan et al. 2016, eq. 10):
     B = 1/(1 + p'0 e0 (1 - S_r)/(kappa P_a0)) with p'0 = p0 - u0, or its inverse
@@ -72,7 +77,7 @@ def skempton_b(
     from ..errors import OptionError
     from ..pipelines.calculators import SkemptonOptions
 
-    src = sources(data, sample, "skempton-b")
+    src = sources(data, sample, "skempton-b", sheet, thousands)
     if src == [None] and (sr is None) == (b is None):
         raise OptionError("give exactly one of --sr and --b")
     opts = SkemptonOptions(_number(sr, "S_R", "--sr"), _number(b, "B", "--b"), _number(kappa, "kappa", "--kappa"),
@@ -95,6 +100,8 @@ def rumpf(
     json_out: JsonOpt = False,
     sample: SampleOpt = False,
     workers: WorkersOpt = 1,
+    sheet: SheetOpt = None,
+    thousands: ThousandsOpt = None,
 ) -> Invocation:
     """Rumpf's capillary pressure p_cap = -(6/phi)(S_r/e)(gamma/d_p) cos(theta)
     (Prunier et al. 2024, eq. 19); negative means tension.
@@ -108,4 +115,4 @@ def rumpf(
                         quantity(diameter, "mm", "diameter", "--diameter"),
                         quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
                         quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"))
-    return Invocation("rumpf", sources(data, sample, "rumpf"), opts, False, out, json_out, workers)
+    return Invocation("rumpf", sources(data, sample, "rumpf", sheet, thousands), opts, False, out, json_out, workers)
