@@ -27,6 +27,7 @@ class Job:
     options: object
     plots: bool = True
     keep_json: bool = False
+    output: object = None  # capred.cli.common.OutputOptions (None: the defaults)
 
 
 @dataclass
@@ -53,7 +54,9 @@ def run_job(job: Job):
     result = REDUCTIONS[job.command].run(job.source, job.options)
     if job.out_dir is None:  # --json without --out: nothing written
         return result, []
-    return result, write_run(result, job.out_dir, plots=job.plots)
+    o = job.output
+    kw = dict(formats=o.formats, dpi=o.dpi, html=o.html, csv_dialect=o.csv_dialect, xlsx=o.xlsx) if o else {}
+    return result, write_run(result, job.out_dir, plots=job.plots, **kw)
 
 
 def run_safely(job: Job) -> Outcome:

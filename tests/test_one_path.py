@@ -62,7 +62,7 @@ def test_written_json_equals_stdout_json(command, tmp_path):
     on_disk = json.loads((tmp_path / "o" / result.json_name).read_text())
     assert on_disk == json.loads(res.stdout)
     prov = json.loads((tmp_path / "o" / "provenance.json").read_text())
-    assert sorted(p.name for p in (tmp_path / "o").iterdir()) == prov["outputs"]
+    assert _files(tmp_path / "o") == prov["outputs"]
 
 
 def test_input_named_like_an_output_is_refused(tmp_path, monkeypatch):
@@ -107,7 +107,8 @@ def test_rerun_replaces_the_folder_whole(tmp_path):
     assert any(p.suffix == ".png" for p in out.iterdir())
     assert runner.invoke(app, ["shear", "--sample", "--no-plots", "--out", str(out)]).exit_code == 0
     # no stale figures of the earlier run, no hidden work folders left beside it
-    assert sorted(p.name for p in out.iterdir()) == ["provenance.json", "results.csv", "summary.csv", "summary.json"]
+    assert sorted(p.name for p in out.iterdir()) == ["provenance.json", "report.html", "results.csv", "summary.csv",
+                                                     "summary.json"]
     assert [p.name for p in tmp_path.iterdir()] == ["o"]
 
 
@@ -152,10 +153,14 @@ def test_interrupted_write_leaves_the_earlier_run_intact(tmp_path, monkeypatch):
     assert [p.name for p in tmp_path.iterdir()] == ["o"]
 
 
+def _files(out: Path) -> list[str]:
+    return sorted(p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file())
+
+
 def _complete(out: Path) -> bool:
     """A folder holding exactly the files its provenance lists, all from that run."""
     prov = json.loads((out / "provenance.json").read_text())
-    return sorted(p.name for p in out.iterdir()) == prov["outputs"]
+    return _files(out) == prov["outputs"]
 
 
 def _capred(*args) -> list[str]:

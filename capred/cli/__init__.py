@@ -116,8 +116,8 @@ def _manifest_jobs(manifest: Path, out, json_out: bool):
     root = out or Path.cwd() / "capred_out"
     flat = [(inv, src) for inv in invocations for src in inv.sources]
     dirs = batch_mod.output_dirs([inv.command for inv, _ in flat], [src for _, src in flat], root)
-    return [batch_mod.Job(inv.command, src, d if write else None, inv.options, inv.plots, keep_json=json_out)
-            for (inv, src), d in zip(flat, dirs)]
+    return [batch_mod.Job(inv.command, src, d if write else None, inv.options, inv.plots, keep_json=json_out,
+                          output=inv.output) for (inv, src), d in zip(flat, dirs)]
 
 
 def _subcommand(group, name: str):

@@ -7,7 +7,7 @@ manifest line with the same command functions, so a manifest line means
 exactly what it means on the command line.
 """
 
-import functools
+import inspect
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Annotated, Callable, Optional
@@ -20,6 +20,17 @@ from ..errors import CapredError
 BUILDERS: dict[str, Callable[..., "Invocation"]] = {}
 
 
+@dataclass(frozen=True)
+class OutputOptions:
+    """How a run's files are written (the same options for every command)."""
+
+    formats: tuple[str, ...] = ("png",)
+    dpi: int = 150
+    html: bool = True
+    csv_dialect: str = "standard"
+    xlsx: bool = False
+
+
 @dataclass
 class Invocation:
     command: str
@@ -30,6 +41,7 @@ class Invocation:
     json: bool = False
     workers: int = 1
     extra_inputs: list = field(default_factory=list)  # further files read (curves, a retention fit)
+    output: OutputOptions = field(default_factory=OutputOptions)
 
 
 def fail(exc: CapredError, code: int = 1) -> None:
@@ -38,19 +50,62 @@ def fail(exc: CapredError, code: int = 1) -> None:
     raise typer.Exit(code)
 
 
+_OUTPUT_PARAMS = {
+    "formats": (Annotated[str, typer.Option("--format", help="Figure formats, comma separated: any of png, pdf, svg.")],
+                "png"),
+    "dpi": (Annotated[int, typer.Option(help="Resolution of PNG figures [dots per inch].")], 150),
+    "html": (Annotated[bool, typer.Option("--html/--no-html", help="Write report.html, one self-contained "
+                                                                   "document of the run.")], True),
+    "csv_dialect": (Annotated[str, typer.Option(help="CSV tables: 'standard' (comma, decimal point) or 'excel-eu' "
+                                                     "(semicolon, decimal comma, UTF-8 BOM).")], "standard"),
+    "xlsx": (Annotated[bool, typer.Option("--xlsx", help="Also write tables.xlsx, a sheet per table.")], False),
+}
+
+
+def _output_options(formats: str, dpi: int, html: bool, csv_dialect: str, xlsx: bool) -> OutputOptions:
+    from ..errors import OptionError
+
+    fmts = tuple(dict.fromkeys(f.strip().lower() for f in formats.split(",") if f.strip()))
+    bad = [f for f in fmts if f not in ("png", "pdf", "svg")]
+    if bad or not fmts:
+        raise OptionError(f"--format: choose png, pdf and/or svg, comma separated (got '{formats}')")
+    if not 30 <= dpi <= 2400:
+        raise OptionError(f"--dpi must lie between 30 and 2400 (got {dpi})")
+    if csv_dialect not in ("standard", "excel-eu"):
+        raise OptionError(f"--csv-dialect must be 'standard' or 'excel-eu' (got '{csv_dialect}')")
+    return OutputOptions(fmts, dpi, html, csv_dialect, xlsx)
+
+
 def command(app: typer.Typer, name: str, full_name: Optional[str] = None):
-    """Register ``builder`` as the command ``name`` of ``app``; it runs through ``execute``."""
+    """Register ``builder`` as the command ``name`` of ``app``; it runs through ``execute``.
+
+    Every command also gets the output options (--format, --dpi, --html/--no-html,
+    --csv-dialect, --xlsx), parsed here once into the Invocation.
+    """
 
     def deco(builder):
-        @functools.wraps(builder)
+        sig = inspect.signature(builder)
+        extra = [inspect.Parameter(k, inspect.Parameter.KEYWORD_ONLY, default=d, annotation=a)
+                 for k, (a, d) in _OUTPUT_PARAMS.items()]
+
+        def build(**params):
+            out = _output_options(**{k: params.pop(k, d) for k, (_, d) in _OUTPUT_PARAMS.items()})
+            inv = builder(**params)
+            inv.output = out
+            return inv
+
         def run(**params):
             try:
-                inv = builder(**params)
+                inv = build(**params)
             except CapredError as exc:
                 fail(exc)
             execute(inv)
 
-        BUILDERS[full_name or name] = builder
+        run.__name__, run.__doc__ = builder.__name__, builder.__doc__
+        run.__signature__ = sig.replace(parameters=[*sig.parameters.values(), *extra], return_annotation=None)
+        run.__annotations__ = {**{k: v for k, v in builder.__annotations__.items() if k != "return"},
+                               **{p.name: p.annotation for p in extra}}
+        BUILDERS[full_name or name] = build
         app.command(name)(run)
         return builder
 
@@ -162,7 +217,9 @@ def _single(inv: Invocation) -> None:
     if write:  # before anything is computed
         check_target(out_dir, [source, *inv.extra_inputs])
     result = REDUCTIONS[inv.command].run(source, inv.options)
-    written = write_run(result, out_dir, plots=inv.plots) if write else None
+    o = inv.output
+    written = write_run(result, out_dir, plots=inv.plots, formats=o.formats, dpi=o.dpi, html=o.html,
+                        csv_dialect=o.csv_dialect, xlsx=o.xlsx) if write else None
     if inv.json:
         import sys
 
@@ -186,8 +243,8 @@ def _batch(inv: Invocation) -> None:
     write = inv.out is not None or not inv.json
     root = inv.out or Path.cwd() / "capred_out"
     dirs = batch.output_dirs([inv.command] * len(inv.sources), inv.sources, root)
-    jobs = [batch.Job(inv.command, src, d if write else None, inv.options, inv.plots, keep_json=inv.json)
-            for src, d in zip(inv.sources, dirs)]
+    jobs = [batch.Job(inv.command, src, d if write else None, inv.options, inv.plots, keep_json=inv.json,
+                      output=inv.output) for src, d in zip(inv.sources, dirs)]
     run_batch(jobs, root if write else None, inv.json, inv.workers, extra_inputs=inv.extra_inputs)
 
 

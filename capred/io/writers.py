@@ -87,21 +87,21 @@ def stream_json(doc: dict, write) -> None:
     write(b"}\n")
 
 
-def _csv_cell(value) -> str:
-    """One cell of an object column: text quoted as CSV needs, lists joined with ';', blanks empty."""
+def _csv_cell(value, sep: str = ",", joiner: str = ";", eu: bool = False) -> str:
+    """One cell of an object column: text quoted as CSV needs, lists joined, blanks empty."""
     if value is None or (isinstance(value, float) and value != value):
         return ""
     if isinstance(value, (list, tuple)):
-        value = ";".join(map(str, value))
+        value = joiner.join(map(str, value))
     elif isinstance(value, float):
-        value = repr(value)
+        value = repr(value).replace(".", ",") if eu else repr(value)
     text = str(value)
-    if any(ch in text for ch in ',"\n\r'):
+    if any(ch in text for ch in (sep, '"', "\n", "\r")):
         return '"' + text.replace('"', '""') + '"'
     return text
 
 
-def _csv_column(values) -> list[str]:
+def _csv_column(values, sep: str = ",", joiner: str = ";", eu: bool = False) -> list[str]:
     """Cells of one column; numbers in shortest round-trip form (via orjson's float printer)."""
     import numpy as np
 
@@ -110,25 +110,35 @@ def _csv_column(values) -> list[str]:
         try:
             import orjson
         except ImportError:  # pragma: no cover
-            return ["" if x != x else repr(x) for x in a.tolist()]
-        text = orjson.dumps(a.astype(float) if a.dtype.kind == "f" else a,
-                            option=orjson.OPT_SERIALIZE_NUMPY).decode("ascii")[1:-1]
-        return text.replace("null", "").split(",")
+            cells = ["" if x != x else repr(x) for x in a.tolist()]
+        else:
+            text = orjson.dumps(a.astype(float) if a.dtype.kind == "f" else a,
+                                option=orjson.OPT_SERIALIZE_NUMPY).decode("ascii")[1:-1]
+            cells = text.replace("null", "").split(",")
+        return [c.replace(".", ",") for c in cells] if eu else cells
     if a.dtype.kind == "b":
         return ["True" if x else "False" for x in a.tolist()]
-    return [_csv_cell(x) for x in a.tolist()]
+    return [_csv_cell(x, sep, joiner, eu) for x in a.tolist()]
 
 
-def write_csv_file(path, frame) -> None:
+def write_csv_file(path, frame, dialect: str = "standard") -> None:
     """A DataFrame as UTF-8 CSV: floats in shortest round-trip form (every digit kept), NaN as an
-    empty cell, lists joined with ';', text quoted where CSV needs it. ``path`` may be a binary file."""
+    empty cell, lists joined with ';', text quoted where CSV needs it. ``path`` may be a binary file.
+
+    ``dialect="excel-eu"``: what a Belgian, French or German Excel opens as columns: ';' separators,
+    decimal commas, lists joined with '|', and a UTF-8 byte-order mark (so 'µ' and '°' survive).
+    """
+    eu = dialect == "excel-eu"
+    sep, joiner = (";", "|") if eu else (",", ";")
     with contextlib.ExitStack() as stack:
         fh = path if hasattr(path, "write") else stack.enter_context(open(path, "wb"))
-        fh.write((",".join(_csv_cell(str(c)) for c in frame.columns) + "\n").encode("utf-8"))
+        if eu:
+            fh.write("\ufeff".encode("utf-8"))
+        fh.write((sep.join(_csv_cell(str(c), sep) for c in frame.columns) + "\n").encode("utf-8"))
         arrays = [frame[c].to_numpy() for c in frame.columns]
         for start in range(0, len(frame), 10_000):  # memory bounded by one chunk of rows
-            columns = [_csv_column(a[start:start + 10_000]) for a in arrays]
-            fh.write(("\n".join(map(",".join, zip(*columns))) + "\n").encode("utf-8"))
+            columns = [_csv_column(a[start:start + 10_000], sep, joiner, eu) for a in arrays]
+            fh.write(("\n".join(map(sep.join, zip(*columns))) + "\n").encode("utf-8"))
 
 
 def encode_csv(frame) -> bytes:
@@ -318,29 +328,39 @@ class RunFolder:
         shutil.rmtree(self.tmp, ignore_errors=True)
 
 
-def write_run(result, out, plots: bool = True, figure_format: str = "png", dpi: int = 150,
-              command_line: str | None = None) -> list[Path]:
+def write_run(result, out, plots: bool = True, formats=("png",), dpi: int = 150,
+              command_line: str | None = None, html: bool = True, csv_dialect: str = "standard",
+              xlsx: bool = False) -> list[Path]:
     """Write every output of ``result`` into the folder ``out``, whole or not at all.
 
-    Files: each table as ``<name>.csv``, the JSON document, each figure (when
-    ``plots``), and ``provenance.json``. Returns the paths written.
+    Files: each table as ``<name>.csv`` (``csv_dialect`` "standard" or
+    "excel-eu"), the JSON document, each figure sheet (when ``plots``) in
+    every format of ``formats`` with its panels under ``figures/``,
+    ``report.html`` (when ``html``), ``tables.xlsx`` (when ``xlsx``) and
+    ``provenance.json``. Returns the paths written.
     Raises OutputError (nothing written, an earlier run in ``out`` intact).
     """
     out = check_target(out, [i.path for i in result.inputs if i.path != "<DataFrame>"])
     folder = RunFolder(out)
     try:
         for name, frame in result.tables().items():
-            write_csv_file(folder.path_for(f"{name}.csv"), frame)
+            write_csv_file(folder.path_for(f"{name}.csv"), frame, csv_dialect)
             folder.done(f"{name}.csv")
+        if xlsx:
+            from .spreadsheet_out import write_workbook
+
+            write_workbook(folder.path_for("tables.xlsx"), result.tables())
+            folder.done("tables.xlsx")
         with open(folder.path_for(result.json_name), "wb") as fh:
             stream_json(result.json_lazy(), fh.write)
         folder.done(result.json_name)
+        drawn: dict[str, dict[str, str]] = {}
         if plots:
-            for name, draw in result.figures().items():
-                fig = draw()
-                fname = f"{name}.{figure_format}"
-                fig.savefig(folder.path_for(fname), format=figure_format, dpi=dpi, metadata=_NO_STAMP[figure_format])
-                folder.done(fname)
+            drawn = _write_figures(result, folder, formats, dpi, svg_inline=html)
+        if html:
+            from ..report.html import render_html
+
+            folder.write_bytes("report.html", render_html(result, drawn, plots).encode("utf-8"))
         folder.write_bytes("provenance.json", encode_json(provenance(result, folder.names, command_line), True))
         return folder.commit()
     except OSError as exc:
@@ -349,6 +369,42 @@ def write_run(result, out, plots: bool = True, figure_format: str = "png", dpi: 
     except BaseException:
         folder.abort()
         raise
+
+
+def _write_figures(result, folder: "RunFolder", formats, dpi: int, svg_inline: bool) -> dict:
+    """Each sheet as a composite in every format, and each panel alone under figures/.
+
+    Returns {sheet: {"svg": inline SVG of the composite (for the HTML report), "caption": ...}}.
+    """
+    from ..report.sheets import Sheet, compose, single
+
+    out = {}
+    for name, sheet in result.figures().items():
+        if not isinstance(sheet, Sheet):  # a plain figure function: one composite, no panels
+            sheet = Sheet("", [], 1) if sheet is None else sheet
+            fig, panels = sheet(), []
+        else:
+            fig, panels = compose(sheet), sheet.panels
+        for fmt in formats:
+            fname = f"{name}.{fmt}"
+            fig.savefig(folder.path_for(fname), format=fmt, dpi=dpi, metadata=_NO_STAMP[fmt])
+            folder.done(fname)
+        entry = {"caption": getattr(sheet, "caption", "") or "", "panels": []}
+        if svg_inline:
+            buf = io.StringIO()
+            fig.savefig(buf, format="svg", metadata=_NO_STAMP["svg"])
+            entry["svg"] = buf.getvalue()
+        for panel in panels:
+            single_fig = single(sheet, panel)
+            (folder.tmp / "figures").mkdir(exist_ok=True)
+            for fmt in formats:
+                fname = f"figures/{name}_{panel.name}.{fmt}"
+                single_fig.savefig(folder.path_for(fname), format=fmt, dpi=dpi,
+                                   metadata=_NO_STAMP[fmt])
+                folder.done(fname)
+            entry["panels"].append((panel.name, panel.caption))
+        out[name] = entry
+    return out
 
 
 # no timestamps in figure files: reruns give the same bytes

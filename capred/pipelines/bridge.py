@@ -259,9 +259,9 @@ class CurveResult(Result):
         return cached
 
     def figures(self) -> dict:
-        from ..report.bridge_figures import figure_curve
+        from ..report.bridge_figures import sheet_curve
 
-        return {"curve": lambda: figure_curve(self)}
+        return {"curve": sheet_curve(self)}
 
     def console_tables(self) -> list[TableSpec]:
         from ..report.console import bridge_curve_tables
@@ -357,9 +357,9 @@ class CompareResult(Result):
         return {"compare": self._frame()}
 
     def figures(self) -> dict:
-        from ..report.bridge_figures import figure_compare
+        from ..report.bridge_figures import sheet_compare
 
-        return {"compare": lambda: figure_compare(self.rows())}
+        return {"compare": sheet_compare(self.rows())}
 
     def console_tables(self) -> list[TableSpec]:
         from ..report.console import bridge_compare_tables

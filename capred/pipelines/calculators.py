@@ -201,12 +201,23 @@ def run_skempton_b(source=None, sr=None, b=None, kappa=0.006, e0=0.8, p0=100e3, 
 
 def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     """B or S_r per case (see run_skempton_b), with the figure of the B-S_r relation."""
-    from ..report.calculator_figures import figure_skempton
+    from ..report.calculator_figures import sheet_skempton
 
     kw = dict(kappa=opt.kappa, e0=opt.e0, p0=opt.p0, u0=opt.u0, pa0=opt.pa0)
     res = _skempton(source, opt.sr, opt.b, s_e=opt.s_e, bc_alpha=opt.bc_lambda, **kw)
-    pts = (res.values.get("S_r", res.outputs.get("S_r")), res.values.get("B", res.outputs.get("B")))
-    res.figure = lambda: figure_skempton(s_e=opt.s_e, bc_alpha=opt.bc_lambda, points=pts, **kw)
+    S = np.asarray(res.values.get("S_r", res.outputs.get("S_r")), float)
+    B = np.asarray(res.values.get("B", res.outputs.get("B")), float)
+    n = S.size
+    params = [np.broadcast_to(np.asarray(res.values.get(k, kw[k.replace("_kPa", "")]), float)
+                              * (1e3 if k.endswith("_kPa") else 1.0), n)
+              for k in ("kappa", "e0", "p0_kPa", "u0_kPa", "pa0_kPa")]
+    cases: dict = {}
+    for i in range(n):
+        key = tuple(float(p[i]) for p in params)
+        cases.setdefault(key, ([], []))
+        cases[key][0].append(S[i])
+        cases[key][1].append(B[i])
+    res.figure = sheet_skempton(cases, s_e=opt.s_e, bc_lambda=opt.bc_lambda, **kw)
     res.options, res.warnings = opt, opt.warnings + res.warnings
     return res
 

@@ -111,9 +111,9 @@ class RetentionResult(Result):
         return cached
 
     def figures(self) -> dict:
-        from ..report.retention_figures import figure_retention
+        from ..report.retention_figures import sheet_retention
 
-        return {"retention": lambda: figure_retention(self)}
+        return {"retention": sheet_retention(self)}
 
     def console_tables(self) -> list[TableSpec]:
         from ..report.console import retention_tables

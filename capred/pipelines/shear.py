@@ -216,21 +216,19 @@ class ShearResult(Result):
 
     def figures(self) -> dict:
         from ..io.writers import safe_name
-        from ..report.shear_figures import figure_capillary_stress, figure_shear_report
+        from ..report.shear_figures import sheet_capillary_stress, sheet_curves, sheet_shear_report
 
         taken: set[str] = set()
         out = {}
         wet = self.tests["condition"] == "wet"
         for m in self.materials:
             name = safe_name(m, taken)
-            out[f"report_{name}"] = lambda m=m: figure_shear_report(self, m)
+            out[f"report_{name}"] = sheet_shear_report(self, m)
             if np.any(wet & (self.tests["material"] == m)):
-                out[f"capillary_{name}"] = lambda m=m: figure_capillary_stress(self, m)
+                out[f"capillary_{name}"] = sheet_capillary_stress(self, m)
             if self.curves is not None and any(str(t) in self.curves.curves
                                                for t in self.tests["test_id"][self.tests["material"] == m]):
-                from ..report.shear_figures import figure_curves
-
-                out[f"curves_{name}"] = lambda m=m: figure_curves(self, m)
+                out[f"curves_{name}"] = sheet_curves(self, m)
         return out
 
     def console_tables(self) -> list[TableSpec]:

@@ -201,9 +201,9 @@ class TriaxialResult(Result):
         return cached
 
     def figures(self) -> dict:
-        from ..report.triaxial_figures import figure_triaxial_report
+        from ..report.triaxial_figures import sheet_triaxial
 
-        return {"report": lambda: figure_triaxial_report(self)}
+        return {"report": sheet_triaxial(self)}
 
     def console_tables(self) -> list[TableSpec]:
         from ..report.console import triaxial_tables

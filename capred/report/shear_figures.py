@@ -1,30 +1,13 @@
-"""Report sheet of `capred shear`: one figure per material."""
+"""Figure sheets of `capred shear`: per material, the report, the capillary stress and the raw curves."""
 from __future__ import annotations
 
 import numpy as np
 
-from .. import nomenclature as nom
 from ..physics.effective_stress_models import MODEL_LABELS
+from .sheets import Panel, Sheet
+from .style import LABEL, literal
+from .style import style as _style
 
-MODEL_STYLE = {
-    "no_suction": dict(color="0.45", marker="s"),
-    "bishop": dict(color="tab:blue", marker="o"),
-    "own1": dict(color="tab:orange", marker="^"),
-    "own2": dict(color="tab:green", marker="D"),
-    "vanapalli": dict(color="tab:purple", marker="v"),
-    "khalili": dict(color="tab:brown", marker="<"),
-    "lu_likos": dict(color="tab:pink", marker=">"),
-    "fredlund": dict(color="tab:olive", marker="p"),
-    "pedrotti_tarantino": dict(color="tab:cyan", marker="h"),
-    "chi_power": dict(color="#CC79A7", marker="P"),
-    "khalili_fit": dict(color="#D55E00", marker="X"),
-    "exact_neck": dict(color="#0072B2", marker="*"),
-}
-
-
-def literal(text: str) -> str:
-    """User text (a material name) drawn as written: no mathtext."""
-    return str(text).replace("$", r"\$")
 KPA = 1e-3
 
 
@@ -42,8 +25,8 @@ def plot_dry_envelope(ax, result, material):
     ax.plot(xs * KPA, fit.predict(xs) * KPA, color="tab:blue",
             label=f"c = {fit.intercept * KPA:.4g} kPa, φ = {phi:.2f}°")
     ax.plot(x * KPA, t["tau_max"][dry] * KPA, "ko", ms=4, label=f"dry tests (n = {fit.n})")
-    ax.set_xlabel(nom.label("sigma_N"))
-    ax.set_ylabel(nom.label("tau_max"))
+    ax.set_xlabel(LABEL["sigma_N"])
+    ax.set_ylabel(LABEL["tau_max"])
     ax.set_title("Dry envelope")
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
@@ -69,14 +52,14 @@ def plot_measured_vs_predicted(ax, result, material):
         met = result.metrics[material].get(m)
         rmse = f" (RMSE {met.rmse * KPA:.3g})" if met else ""
         ax.errorbar(meas, pred, yerr=band, ls="none", ms=4, alpha=0.85, elinewidth=0.8, capsize=1.5,
-                    label=MODEL_LABELS[m] + rmse, **MODEL_STYLE[m])
+                    label=MODEL_LABELS[m] + rmse, **_style(m))
     hi = hi * 1.05 or 1.0
     ax.plot([0, hi], [0, hi], "k--", lw=0.8, label="1:1")
     ax.set_xlim(0, hi)
     ax.set_ylim(0, hi)
     ax.set_aspect("equal", adjustable="box")
-    ax.set_xlabel("measured " + nom.label("tau_max"))
-    ax.set_ylabel("predicted " + nom.label("tau_pred"))
+    ax.set_xlabel("measured " + LABEL["tau_max"])
+    ax.set_ylabel("predicted " + LABEL["tau_pred"])
     ax.set_title("Wet tests: measured vs predicted")
     ax.legend(fontsize=7, loc="upper left")
     return ax
@@ -95,14 +78,14 @@ def plot_strength_vs_saturation(ax, result, material):
         pred = t[f"tau_pred_{m}"][wet] * KPA
         band = np.abs(np.vstack([pred - t[f"tau_pred_lo_{m}"][wet] * KPA, t[f"tau_pred_hi_{m}"][wet] * KPA - pred]))
         ax.errorbar(t["S_R"][wet], pred, yerr=band, ls="none", ms=4, alpha=0.6, elinewidth=0.8,
-                    markerfacecolor="none", label=MODEL_LABELS[m], **MODEL_STYLE[m])
+                    markerfacecolor="none", label=MODEL_LABELS[m], **_style(m))
     for k, level in enumerate(levels):
         sel = wet & (np.round(t["sigma_N"], 6) == level)
         ax.plot(t["S_R"][sel], t["tau_max"][sel] * KPA, "k" + "ov^sD"[k % 5], ms=4, ls="none",
-                label=f"measured, σ_N = {level * KPA:.3g} kPa")
+                label=rf"measured, $\sigma_N$ = {level * KPA:.3g} kPa")
     ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
-    ax.set_xlabel(nom.label("S_R"))
-    ax.set_ylabel(nom.label("tau_max"))
+    ax.set_xlabel(LABEL["S_R"])
+    ax.set_ylabel(LABEL["tau_max"])
     ax.set_title("Strength against saturation")
     ax.legend(fontsize=7, loc="upper right")
     return ax
@@ -114,35 +97,30 @@ def plot_residuals(ax, result, material):
     wet = _wet(result, material)
     for m in result.models:
         ax.plot(t["S_R"][wet], (t[f"tau_pred_{m}"][wet] - t["tau_max"][wet]) * KPA, ls="none", ms=4,
-                alpha=0.85, label=MODEL_LABELS[m], **MODEL_STYLE[m])
+                alpha=0.85, label=MODEL_LABELS[m], **_style(m))
     ax.axhline(0.0, color="k", lw=0.8)
-    ax.set_xlabel(nom.label("S_R"))
-    ax.set_ylabel("τ_pred − τ_max [kPa]")
+    ax.set_xlabel(LABEL["S_R"])
+    ax.set_ylabel(LABEL["residual"])
     ax.set_title("Residuals")
     ax.legend(fontsize=7, loc="lower left")
     return ax
 
 
-def figure_shear_report(result, material):
-    """2 x 2 report sheet for one material."""
-    from matplotlib.figure import Figure
-
-    # fixed margins: constrained layout would double the drawing time of a sheet
-    fig = Figure(figsize=(11, 9))
-    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.06, top=0.92, wspace=0.22, hspace=0.28)
-    axes = fig.subplots(2, 2)
-    plot_dry_envelope(axes[0, 0], result, material)
-    if _wet(result, material).any():
-        plot_measured_vs_predicted(axes[0, 1], result, material)
-        plot_strength_vs_saturation(axes[1, 0], result, material)
-        plot_residuals(axes[1, 1], result, material)
-    else:
-        for ax in (axes[0, 1], axes[1, 0], axes[1, 1]):
-            ax.text(0.5, 0.5, "no wet tests", ha="center", va="center", transform=ax.transAxes)
-            ax.set_axis_off()
+def sheet_shear_report(result, material) -> Sheet:
+    """The report sheet of one material: dry envelope, measured vs predicted, strength vs S_R, residuals."""
     best = result.best_model.get(material)
-    fig.suptitle(f"Direct shear, {literal(material)}" + (f": best model {MODEL_LABELS[best]}" if best else ""))
-    return fig
+    panels = [Panel("dry_envelope", lambda ax: plot_dry_envelope(ax, result, material),
+                    "Dry tests and the fitted envelope with its 95 % confidence band.")]
+    if _wet(result, material).any():
+        panels += [Panel("measured_vs_predicted", lambda ax: plot_measured_vs_predicted(ax, result, material),
+                         "Wet tests: each model's prediction (with its 95 % band) against the measured strength."),
+                   Panel("strength_vs_saturation", lambda ax: plot_strength_vs_saturation(ax, result, material),
+                         "Measured strength and each model's prediction per test against S_R (no lines: the "
+                         "models are evaluated at the tests' own suction and S_R)."),
+                   Panel("residuals", lambda ax: plot_residuals(ax, result, material),
+                         "Residual (predicted − measured) against S_R.")]
+    title = f"Direct shear, {material}" + (f": best model {MODEL_LABELS[best]}" if best else "")
+    return Sheet(title, panels, 2)
 
 
 def plot_capillary_stress(ax, result, material, x: str):
@@ -153,14 +131,14 @@ def plot_capillary_stress(ax, result, material, x: str):
     xs = t[x][wet] * (1.0 if x == "S_R" else KPA)
     for m in result.models:
         ax.plot(xs, t[f"sigma_cap_pred_{m}"][wet] * KPA, ls="none", ms=4, alpha=0.75, markerfacecolor="none",
-                label=MODEL_LABELS[m], **MODEL_STYLE[m])
+                label=MODEL_LABELS[m], **_style(m))
     ax.errorbar(xs, t["sigma_cap"][wet] * KPA, yerr=t["sigma_cap_se"][wet] * KPA, fmt="ko", ms=4, capsize=2,
                 elinewidth=0.8, label="back-analysed (± 1 se)")
     if x == "S_R":
         ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
     ax.axhline(0.0, color="k", lw=0.5)
-    ax.set_xlabel(nom.label(x))
-    ax.set_ylabel("σ_cap [kPa]")
+    ax.set_xlabel(LABEL[x])
+    ax.set_ylabel(LABEL["sigma_cap"])
     ax.set_title("Capillary stress carried, against " + ("saturation" if x == "S_R" else "suction"))
     return ax
 
@@ -172,48 +150,44 @@ def plot_chi_back(ax, result, material):
     t = result.tests
     wet = _wet(result, material) & (t["suction"] > 0)
     s = np.linspace(0.0, 1.0, 201)
-    ax.plot(s, s, color=MODEL_STYLE["bishop"]["color"], lw=1.2, label="χ = S_R (Bishop)")
-    ax.plot(s, ph.chi1(s), color=MODEL_STYLE["own1"]["color"], lw=1.2, label="χ1 = (2π S_R/3)^(2/3)")
+    ax.plot(s, s, color=_style("bishop")["color"], lw=1.2, label="χ = S_R (Bishop)")
+    ax.plot(s, ph.chi1(s), color=_style("own1")["color"], lw=1.2, label="χ1 = (2π S_R/3)^(2/3)")
     law = result.laws.get("chi_power", {}).get(material)
     if law is not None:
         s_res = result.options.model_params.s_res or 0.0
         se = np.clip((s - s_res) / (1 - s_res), 0, 1)
-        ax.plot(s, se ** law.params["kappa"], color=MODEL_STYLE["chi_power"]["color"], lw=1.2,
+        ax.plot(s, se ** law.params["kappa"], color=_style("chi_power")["color"], lw=1.2,
                 label=f"χ = S_e^κ, κ = {law.params['kappa']:.3g} (fitted)")
     ax.errorbar(t["S_R"][wet], t["chi_back"][wet], yerr=t["chi_back_se"][wet], fmt="ko", ms=4, capsize=2,
                 elinewidth=0.8, label="χ back-analysed (± 1 se)")
     ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
-    ax.set_xlabel(nom.label("S_R"))
-    ax.set_ylabel("χ [–]")
+    ax.set_xlabel(LABEL["S_R"])
+    ax.set_ylabel(LABEL["chi"])
     ax.set_title("Effective-stress parameter χ")
     return ax
 
 
-def figure_capillary_stress(result, material):
+def sheet_capillary_stress(result, material) -> Sheet:
     """What capillary stress each wet test carried and which chi law explains it: 3 panels."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(15, 5.6))
-    fig.subplots_adjust(left=0.05, right=0.99, bottom=0.27, top=0.88, wspace=0.22)
-    axes = fig.subplots(1, 3)
-    plot_capillary_stress(axes[0], result, material, "S_R")
-    plot_capillary_stress(axes[1], result, material, "suction")
-    plot_chi_back(axes[2], result, material)
-    # legends below the panels, never over the data
-    for ax, anchor in ((axes[0], (0.36, 0.0)), (axes[2], (0.84, 0.0))):
-        handles, labels = ax.get_legend_handles_labels()
-        fig.legend(handles, labels, loc="lower center", bbox_to_anchor=anchor, ncol=2, fontsize=8, frameon=False)
-    fig.suptitle(f"Back-analysed capillary stress, {literal(material)}")
-    return fig
+    return Sheet(f"Back-analysed capillary stress, {material}", [
+        Panel("sigma_cap_vs_saturation", lambda ax: plot_capillary_stress(ax, result, material, "S_R"),
+              "σ_cap = (τ_max − c)/tan φ − σ_N of each wet test (± 1 standard uncertainty) and each model's "
+              "prediction, against S_R."),
+        Panel("sigma_cap_vs_suction", lambda ax: plot_capillary_stress(ax, result, material, "suction"),
+              "The same against the suction."),
+        Panel("chi", lambda ax: plot_chi_back(ax, result, material),
+              "χ_back = σ_cap/Δu against S_R with χ = S_R, χ1 and the fitted χ = S_e^κ."),
+    ], 3, panel_size=(4.2, 3.4))
 
 
-def figure_curves(result, material):
+def sheet_curves(result, material) -> Sheet:
+    return Sheet(f"Shear curves, {material}", [
+        Panel("curves", lambda ax: plot_curves(ax, result, material),
+              "Shear stress against horizontal displacement; dots mark the picked peaks.")], 1)
+
+
+def plot_curves(ax, result, material):
     """The raw shear curves of one material (tau against horizontal displacement) with the picked peaks."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(8, 5.5))
-    fig.subplots_adjust(left=0.1, right=0.72, bottom=0.1, top=0.9)
-    ax = fig.subplots()
     t = result.tests
     for k, tid in enumerate(t["test_id"][t["material"] == material]):
         curve = result.curves.curves.get(str(tid))
@@ -222,8 +196,8 @@ def figure_curves(result, material):
         d, tau, peak = curve
         line, = ax.plot(d * 1e3, tau * KPA, lw=1.0, label=literal(tid))
         ax.plot(d[peak] * 1e3, tau[peak] * KPA, "o", color=line.get_color(), ms=5)
-    ax.set_xlabel("horizontal displacement δ [mm]")
-    ax.set_ylabel("τ [kPa]")
-    ax.set_title(f"Shear curves, {literal(material)} (dots: peaks)")
-    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), ncol=1 if k < 25 else 2, frameon=False)
-    return fig
+    ax.set_xlabel(LABEL["displacement"])
+    ax.set_ylabel(LABEL["tau"])
+    ax.set_title("Shear curves (dots: peaks)")
+    ax.legend()
+    return ax

@@ -3,11 +3,16 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..physics import triaxial as tx
+from .sheets import Panel, Sheet
+from .style import LABEL, literal
+from .style import style as model_style
+
 KPA = 1e-3
 BOUND_STYLE = {
-    "lower": dict(color="tab:red", marker="v", label="LB (σ1_cap = 0)"),
-    "spherical": dict(color="tab:blue", marker="o", label="UB q = q' (spherical)"),
-    "edtp": dict(color="tab:green", marker="^", label="UB EDTP"),
+    "lower": dict(**model_style("lower"), label=r"LB ($\sigma_{1,cap}$ = 0)"),
+    "spherical": dict(**model_style("spherical"), label="UB q = q' (spherical)"),
+    "edtp": dict(**model_style("edtp"), label="UB EDTP"),
 }
 
 
@@ -35,37 +40,48 @@ def plot_qp_plane(ax, result):
             ax.annotate("", xy=(b.p_prime[i] * KPA, b.q_prime[i] * KPA), xytext=(t["p"][i] * KPA, t["q"][i] * KPA),
                         arrowprops=dict(arrowstyle="->", color=style["color"], lw=0.8, alpha=0.7))
     edtp = result.bounds["edtp"]
-    for i in np.flatnonzero(uns & np.isfinite(edtp.p_prime)):
+    for k, i in enumerate(np.flatnonzero(uns & np.isfinite(edtp.p_prime))):
         p0e = t["p0"][i] + t["s0"][i]
-        ax.plot([p0e * KPA, edtp.p_prime[i] * KPA], [0, edtp.q_prime[i] * KPA], "--", color="tab:green", lw=0.8)
+        ax.plot([p0e * KPA, edtp.p_prime[i] * KPA], [0, edtp.q_prime[i] * KPA], "--", color=model_style("edtp")["color"],
+                lw=0.8, label="EDTP stress path (from p0 + s0)" if k == 0 else None)
+    for g in result.groups:  # the apparent (total) envelope of each group sharing one capillary tensor
+        if "C_apparent_kPa" not in g:
+            continue
+        M, k_app = tx.envelope_qp(g["C_apparent_kPa"] * 1e3, g["phi_apparent_deg"])
+        ax.plot(ps * KPA, (M * ps + k_app) * KPA, ":", color="0.3", lw=1.0,
+                label=f"group {literal(g['group'])}: apparent envelope (C = {g['C_apparent_kPa']:.3g} kPa, "
+                      f"φ = {g['phi_apparent_deg']:.3g}°)")
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
-    ax.set_xlabel("p, p' [kPa]")
-    ax.set_ylabel("q, q' [kPa]")
-    ax.set_title("q-p plane: failure points and image points of each bound")
-    ax.legend(fontsize=7, loc="upper left")
+    ax.set_xlabel(LABEL["p"])
+    ax.set_ylabel(LABEL["q"])
+    ax.set_title("q-p plane: failure points and the image points of each bound")
+    ax.legend()
     return ax
 
 
 def plot_capillary_ranges(ax, result):
-    """sigma1_cap, sigma3_cap and p_cap of every bound, per unsaturated test."""
+    """sigma1_cap, sigma3_cap and p_cap of every bound, per unsaturated test: colour = bound, hatch = component."""
+    from matplotlib.patches import Patch
+
     t = result.tests
     idx = np.flatnonzero(result.unsaturated)
-    width = 0.25
-    comps = (("sigma1_cap", "σ1_cap"), ("sigma3_cap", "σ3_cap"), ("p_cap", "p_cap"))
-    for k, (name, style) in enumerate(BOUND_STYLE.items()):
+    comps = (("sigma1_cap", r"$\sigma_{1,cap}$", ""), ("sigma3_cap", r"$\sigma_{3,cap}$", "///"),
+             ("p_cap", r"$p_{cap}$", "..."))
+    width = 0.8 / (len(BOUND_STYLE) * len(comps))
+    for k, (name, st) in enumerate(BOUND_STYLE.items()):
         b = result.bounds[name]
-        for j, (attr, _) in enumerate(comps):
-            x = np.arange(len(idx)) * 4 + j + (k - 1) * width
-            ax.bar(x, getattr(b, attr)[idx] * KPA, width, color=style["color"], alpha=0.85,
-                   label=style["label"] if j == 0 else None)
-    ticks = [4 * n + j for n in range(len(idx)) for j in range(3)]
-    ax.set_xticks(ticks, [f"{lab}\n{t['test_id'][i]}" if j == 1 else lab
-                          for i in idx for j, (_, lab) in enumerate(comps)], fontsize=7)
+        for j, (attr, _, hatch) in enumerate(comps):
+            x = np.arange(len(idx)) - 0.4 + width * (k * len(comps) + j + 0.5)
+            ax.bar(x, getattr(b, attr)[idx] * KPA, width, color=st["color"], alpha=0.85, hatch=hatch,
+                   edgecolor="white", lw=0.3)
+    ax.set_xticks(np.arange(len(idx)), [literal(t["test_id"][i]) for i in idx], fontsize=7)
     ax.axhline(0, color="k", lw=0.8)
-    ax.set_ylabel("capillary stress component [kPa]")
-    ax.set_title("Range of capillary stresses at failure")
-    ax.legend(fontsize=7, loc="lower right")
+    handles = [Patch(color=st["color"], label=st["label"]) for st in BOUND_STYLE.values()]
+    handles += [Patch(facecolor="0.75", hatch=h, edgecolor="white", label=lab) for _, lab, h in comps]
+    ax.legend(handles=handles)
+    ax.set_ylabel(LABEL["cap_component"])
+    ax.set_title("Capillary stresses at failure, per test")
     return ax
 
 
@@ -93,21 +109,20 @@ def plot_mohr_circles(ax, result):
     ax.plot([], [], "r--", label="unsaturated, effective (LB)")
     ax.plot([], [], color="0.6", label="saturated, effective")
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("σ, σ' [kPa]")
-    ax.set_ylabel("τ [kPa]")
+    ax.set_xlabel(LABEL["sigma"])
+    ax.set_ylabel(LABEL["tau"])
     ax.set_title("Mohr circles at failure")
-    ax.legend(fontsize=7, loc="upper left")
+    ax.legend()
     return ax
 
 
-def figure_triaxial_report(result):
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(12, 10))
-    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.08, top=0.93, wspace=0.22, hspace=0.3)
-    gs = fig.add_gridspec(2, 2)
-    plot_qp_plane(fig.add_subplot(gs[0, :]), result)
-    plot_capillary_ranges(fig.add_subplot(gs[1, 0]), result)
-    plot_mohr_circles(fig.add_subplot(gs[1, 1]), result)
-    fig.suptitle("capred triaxial-bounds — capillary stress tensor at failure (Prunier et al. 2024)")
-    return fig
+def sheet_triaxial(result) -> Sheet:
+    return Sheet("Capillary stress tensor at failure (after Prunier et al. 2024, Fig. 16-18)", [
+        Panel("qp_plane", lambda ax: plot_qp_plane(ax, result),
+              "Failure points in the q-p plane, the effective envelope, the image points of each bound and the "
+              "EDTP stress paths; groups' apparent envelopes dotted."),
+        Panel("capillary_stresses", lambda ax: plot_capillary_ranges(ax, result),
+              "σ1,cap, σ3,cap and p_cap of each bound for every unsaturated test."),
+        Panel("mohr_circles", lambda ax: plot_mohr_circles(ax, result),
+              "Mohr circles at failure: total (unsaturated), effective under the lower bound, and saturated."),
+    ], 2, spans={"qp_plane": 2})
