@@ -40,6 +40,7 @@ class Outcome:
     outputs: list[str] = field(default_factory=list)
     seconds: float = 0.0
     result_json: dict | None = None
+    season: list[dict] = field(default_factory=list)  # the result's season rows
 
     @property
     def ok(self) -> bool:
@@ -75,7 +76,7 @@ def run_safely(job: Job) -> Outcome:
                        f"unexpected error {type(exc).__name__}: {exc} (traceback in {log})",
                        [log] if log else [], time.perf_counter() - t0)
     return Outcome(job.command, src, str(job.out_dir), "ok", "", [str(p) for p in written],
-                   time.perf_counter() - t0, result.to_json() if job.keep_json else None)
+                   time.perf_counter() - t0, result.to_json() if job.keep_json else None, result.season_rows())
 
 
 def _save_traceback(job: Job, text: str) -> str:
@@ -173,3 +174,25 @@ def write_index(root: Path, outcomes: list[Outcome]) -> Path:
         else:
             w.writerow([o.command, o.source, o.status, message, ""])
     return atomic_write_bytes(root / "index.csv", buf.getvalue().encode("utf-8"))
+
+
+def write_season(root: Path, outcomes: list[Outcome]) -> list[Path]:
+    """season.csv (one row per file and material: c, phi, their standard errors, n, the best model and its
+    RMSE, the number of flagged tests, the file's report) and a season report.html linking every run."""
+    import pandas as pd
+
+    from .io.writers import atomic_write_bytes, encode_csv
+    from .report.html import render_season
+
+    rows = []
+    for o in outcomes:
+        report = Path(o.out_dir) / "report.html"
+        link = report.relative_to(root).as_posix() if o.ok and report.exists() else ""
+        if not o.season:
+            rows.append({"input": o.source, "command": o.command, "status": o.status, "material": None,
+                         "report": link})
+        for r in o.season:
+            rows.append({"input": o.source, "command": o.command, "status": o.status, **r, "report": link})
+    frame = pd.DataFrame(rows)
+    return [atomic_write_bytes(root / "season.csv", encode_csv(frame)),
+            atomic_write_bytes(root / "season.html", render_season(frame).encode("utf-8"))]

@@ -214,6 +214,10 @@ class Result:
     def console_tables(self) -> list[TableSpec]:
         return []
 
+    def season_rows(self) -> list[dict]:
+        """Rows of a batch's season.csv (per material: c, phi, their se, n, best model...); none by default."""
+        return []
+
     def figures(self) -> dict[str, Callable[[], "object"]]:
         """Figure name (file stem) -> function drawing a matplotlib Figure."""
         return {}

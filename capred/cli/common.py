@@ -265,6 +265,8 @@ def run_batch(jobs, root: Optional[Path], json_out: bool, workers: int, extra_in
         task = progress.add_task(f"capred: {len(jobs)} files", total=len(jobs))
         outcomes, interrupted = batch.run_all(jobs, workers, on_done=lambda o: progress.advance(task))
     index = batch.write_index(root, outcomes) if root is not None else None
+    if root is not None:
+        batch.write_season(root, outcomes)
     bad = [o for o in outcomes if o.status in ("failed", "crashed")]
     if json_out:
         doc = {"files": [{"input": o.source, "command": o.command, "status": o.status, "ok": o.ok,

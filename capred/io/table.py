@@ -69,6 +69,7 @@ class Table:
     warnings: list[str] = field(default_factory=list)
     known: tuple[str, ...] = ()  # every spelling the schema accepts, for suggestions
     missing: set[str] = field(default_factory=set)  # required columns reported absent
+    as_read: dict[str, np.ndarray] = field(default_factory=dict)  # numbers in the file's own unit (before SI)
 
     def __len__(self) -> int:
         return len(self.lines)
@@ -374,6 +375,7 @@ def read_table(source, schema: list[Column]) -> Table:
                         table.add_problem(i, name, f"'{c}' is not a number")
                     v = float("nan")
                 values[i] = v
+        table.as_read[name] = values
         with np.errstate(over="ignore", invalid="ignore"):
             si = values * factor
         for i in np.flatnonzero(np.isinf(si)):

@@ -47,6 +47,10 @@ SCHEMA = [
 ]
 
 
+#: input columns repeated in results.csv as read (in their documented units), before the derived columns
+RAW_INPUTS = ("z1", "z2", "V_v", "added_mass", "cap_mass", "box_area", "R", "F_max", "e", "height", "rho_d", "G_s")
+
+
 @dataclass(frozen=True)
 class ModelParams(Options):
     """Parameters of the models beyond the thesis's four (SI; None = not given).
@@ -236,6 +240,31 @@ class ShearResult(Result):
 
         return shear_tables(self)
 
+    def season_rows(self) -> list[dict]:
+        rows = []
+        flags = np.array([bool(f) for f in self._flag_texts()])
+        for m, fit in self.fits.items():
+            f = _fit_dict(fit)
+            best = self.best_model.get(m)
+            met = self.metrics.get(m, {}).get(best) if best else None
+            rows.append({"material": m, "c [kPa]": f["c_kPa"], "c_se [kPa]": f["c_se_kPa"], "phi [deg]": f["phi_deg"],
+                         "phi_se [deg]": f["phi_se_deg"], "n_dry": f["n"],
+                         "n_wet": int(np.sum((self.tests["material"] == m) & (self.tests["condition"] == "wet"))),
+                         "best_model": best, "best_rmse [kPa]": num(met.rmse / 1e3) if met else None,
+                         "flagged_tests": int(np.sum(flags & (self.tests["material"] == m)))})
+        return rows
+
+    def retention_relation(self, material: str):
+        """The S_R(s) relation along which model curves are drawn (None: markers per test only)."""
+        from .shear_analysis import retention_relation
+
+        cache = self.__dict__.setdefault("_relations", {})
+        if material not in cache:
+            sel = (self.tests["material"] == material) & (self.tests["condition"] == "wet")
+            cache[material] = retention_relation(self.options.model_params, self.tests["suction"][sel],
+                                                 self.tests["S_R"][sel])
+        return cache[material]
+
     def _test_rows(self, start: int, stop: int) -> list[dict]:
         """JSON rows of tests start..stop-1 (kPa)."""
         t = self.tests
@@ -276,6 +305,9 @@ class ShearResult(Result):
             "test_id": t["test_id"], "material": t["material"], "condition": t["condition"],
             "line": t["line"],
         }
+        for name in RAW_INPUTS:  # the raw inputs as read, in their documented units
+            if f"in_{name}" in t:
+                cols[f"{name} [{nom.QUANTITIES[name].unit}]"] = t[f"in_{name}"]
         for name in ("sigma_N", "suction", "S_R", "tau_max", "chi1", "chi2"):
             cols[nom.column(name)] = nom.to_output(name, t[name])
         for m in self.models:
@@ -642,9 +674,10 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
             table.add_problem(first, "condition", f"material '{m}': dry fit impossible: {exc}")
     table.raise_if_problems()
 
+    read = {f"in_{name}": _documented(table, name) for name in RAW_INPUTS if name in table.columns}
     tests: dict[str, np.ndarray] = {
         "test_id": table.columns["test_id"], "material": mat, "condition": cond, "line": table.lines,
-        **d,
+        **read, **d,
         "chi1": np.where(wet, ph.chi1(d["S_R"]), 0.0),
         "chi2": np.where(wet, ph.chi2(d["S_R"], d["R"], opt.surface_tension), 0.0),
     }
@@ -677,6 +710,20 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
     if opt.bootstrap > 0:
         result.ranking = _bootstrap(result, wet, mat, cond, opt)
     return result
+
+
+def _documented(table: Table, name: str) -> np.ndarray:
+    """A column in its documented unit: the numbers as typed when the file uses that unit, else converted."""
+    from ..units import conversion
+
+    q = nom.QUANTITIES.get(name)
+    if q is None:
+        return table.columns[name]
+    try:
+        same = conversion(table.units.get(name, q.unit), q.kind)[0] == conversion(q.unit, q.kind)[0]
+    except Exception:
+        same = False
+    return table.as_read[name] if same and name in table.as_read else table.columns[name] * q.factor
 
 
 def _warnings(tests, wet, pend, mat, fits, laws, opt) -> list[str]:

@@ -169,3 +169,61 @@ def fit_covariances(fits: dict[str, LineFit], material) -> tuple[np.ndarray, np.
     s2 = np.array([fits[m].residual_variance for m in material], dtype=float)
     t = np.array([fits[m].t for m in material], dtype=float)
     return cov, s2, t
+
+
+@dataclass
+class RetentionRelation:
+    """S_R(s) of a material, for drawing model curves along it."""
+
+    S_R: object  # callable: suction [Pa] -> S_R [-]
+    source: str  # for the caption
+
+
+def retention_relation(params, suction, S_R) -> RetentionRelation | None:
+    """The water-retention relation of a material's wet tests: van Genuchten from the options (--retention
+    or --vg-alpha/--vg-n), else a van Genuchten fit (m = 1 - 1/n) of the tests' own (suction, S_R) pairs;
+    None when neither is possible (fewer than 4 tests at 3 suctions)."""
+    from ..physics.retention import vg_water
+
+    if params.vg_alpha is not None and params.vg_n is not None:
+        s_res = params.s_res or 0.0
+        a, n, m = params.vg_alpha, params.vg_n, params.vg_m
+        return RetentionRelation(lambda s: vg_water(s, s_res, 1.0, a, n, m),
+                                 f"van Genuchten from the options (α = {a * 1e3:.4g} 1/kPa, n = {n:.4g})")
+    ok = (suction > 0) & np.isfinite(S_R)
+    if ok.sum() < 4 or np.unique(suction[ok]).size < 3:
+        return None
+    from ..errors import FitError
+    from ..fitting.retention import fit_van_genuchten
+
+    try:
+        f = fit_van_genuchten(suction[ok], S_R[ok])
+    except FitError:
+        return None
+    p = f.params
+    return RetentionRelation(lambda s: vg_water(s, p["y_r"], p["y_s"], p["alpha"], p["n"]),
+                             f"van Genuchten fitted to the tests' own (suction, S_R) pairs (α = "
+                             f"{p['alpha'] * 1e3:.4g} 1/kPa, n = {p['n']:.4g}, R² = {f.r2:.3f})")
+
+
+def model_curves(result, material, relation: RetentionRelation, sigma_N: float, points: int = 120):
+    """(S_R, {model: tau [Pa]}) along the retention relation at one normal stress; models fitted on the tests'
+    own strengths (fredlund) are left out."""
+    t = result.tests
+    sel = (t["material"] == material) & (t["condition"] == "wet")
+    s_pos = t["suction"][sel][t["suction"][sel] > 0]
+    s = np.geomspace(s_pos.min() / 3, s_pos.max() * 3, points)
+    S = np.clip(relation.S_R(s), 0.0, 1.0)
+    fit = result.fits[material]
+    n = s.size
+    d = esm.ModelInputs(np.full(n, sigma_N), s, S, np.full(n, float(np.nanmedian(t["R"][sel]))), np.full(n, np.nan),
+                        np.ones(n, bool), np.array([material] * n, dtype=object), np.full(n, fit.intercept),
+                        np.full(n, fit.slope), result.options.surface_tension, result.options.model_params,
+                        fitted=result.model_inputs.fitted)
+    out = {}
+    for m in result.models:
+        if m == "fredlund":
+            continue
+        with np.errstate(invalid="ignore"):
+            out[m] = esm.predict(m, d)[1]
+    return S, out

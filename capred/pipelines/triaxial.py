@@ -200,6 +200,14 @@ class TriaxialResult(Result):
             self.__dict__["_tables"] = cached
         return cached
 
+    def season_rows(self) -> list[dict]:
+        e = self.envelope
+        n_flag = sum(1 for i in range(len(self.tests["test_id"])) if self.flags(i))
+        return [{"material": "(envelope)", "c [kPa]": num(e.c / 1e3), "c_se [kPa]": num(e.c_se / 1e3)
+                 if e.c_se is not None else None, "phi [deg]": num(e.phi), "phi_se [deg]": num(e.phi_se),
+                 "n_dry": e.fit.n if e.fit else None, "n_wet": int(self.unsaturated.sum()), "best_model": None,
+                 "best_rmse [kPa]": None, "flagged_tests": n_flag}]
+
     def figures(self) -> dict:
         from ..report.triaxial_figures import sheet_triaxial
 

@@ -140,3 +140,26 @@ def render_html(result, figures: dict, plots: bool) -> str:
         references=bibliography(refs),
         per_row=_per_row(result),
     )
+
+
+_SEASON = """<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>capred season</title>
+<style>@page { size: A4 landscape; margin: 12mm; } body { font-family: "DejaVu Sans", Arial, sans-serif;
+font-size: 9pt; margin: 1.5em; } table { border-collapse: collapse; } th, td { border-bottom: 1px solid #ccc;
+padding: 2px 6px; text-align: right; } th { background: #eee; } td.l, th.l { text-align: left; }</style></head>
+<body><h1>capred season: {{ n }} runs</h1>
+<table><tr>{% for c in columns %}<th class="l">{{ c }}</th>{% endfor %}</tr>
+{% for row in rows %}<tr>{% for c, v in row %}<td class="{{ 'l' if c in ('input', 'command', 'status', 'material',
+'best_model') else '' }}">{% if c == 'report' and v %}<a href="{{ v }}">report</a>{% else %}{{ v }}{% endif %}</td>
+{% endfor %}</tr>{% endfor %}</table></body></html>
+"""
+
+
+def render_season(frame) -> str:
+    """The season table of a batch as one HTML page linking each run's report.html."""
+    import jinja2
+
+    rows = [[(c, fmt(v) if isinstance(v, float) else ("" if v is None else str(v))) for c, v in zip(frame.columns, r)]
+            for r in frame.itertuples(index=False)]
+    return jinja2.Environment(autoescape=True).from_string(_SEASON).render(
+        n=int(frame["input"].nunique()) if len(frame) else 0, columns=list(frame.columns), rows=rows)

@@ -71,10 +71,21 @@ def plot_strength_vs_saturation(ax, result, material):
     No lines join the tests: a model defines tau along the water-retention
     relation, which the tests sample at their own (S_R, suction) pairs only.
     """
+    from ..pipelines.shear_analysis import model_curves
+
     t = result.tests
     wet = _wet(result, material)
     levels = np.unique(np.round(t["sigma_N"][wet], 6))
+    relation = result.retention_relation(material)
+    if relation is not None:  # model curves along the water-retention relation, one per normal stress
+        for k, level in enumerate(levels):
+            S, taus = model_curves(result, material, relation, float(level))
+            for m, tau in taus.items():
+                ax.plot(S, tau * KPA, "-", color=_style(m)["color"], lw=1.0, alpha=0.9,
+                        label=MODEL_LABELS[m] if k == 0 else None)
     for m in result.models:
+        if relation is not None and m != "fredlund":
+            continue
         pred = t[f"tau_pred_{m}"][wet] * KPA
         band = np.abs(np.vstack([pred - t[f"tau_pred_lo_{m}"][wet] * KPA, t[f"tau_pred_hi_{m}"][wet] * KPA - pred]))
         ax.errorbar(t["S_R"][wet], pred, yerr=band, ls="none", ms=4, alpha=0.6, elinewidth=0.8,
@@ -106,6 +117,15 @@ def plot_residuals(ax, result, material):
     return ax
 
 
+def _strength_caption(result, material) -> str:
+    relation = result.retention_relation(material)
+    if relation is None:
+        return ("Measured strength and each model's prediction per test against S_R, as markers: no "
+                "water-retention relation is available to draw model curves.")
+    return ("Measured strength against S_R; model curves at each normal stress along the water-retention "
+            f"relation: {relation.source}.")
+
+
 def sheet_shear_report(result, material) -> Sheet:
     """The report sheet of one material: dry envelope, measured vs predicted, strength vs S_R, residuals."""
     best = result.best_model.get(material)
@@ -115,8 +135,7 @@ def sheet_shear_report(result, material) -> Sheet:
         panels += [Panel("measured_vs_predicted", lambda ax: plot_measured_vs_predicted(ax, result, material),
                          "Wet tests: each model's prediction (with its 95 % band) against the measured strength."),
                    Panel("strength_vs_saturation", lambda ax: plot_strength_vs_saturation(ax, result, material),
-                         "Measured strength and each model's prediction per test against S_R (no lines: the "
-                         "models are evaluated at the tests' own suction and S_R)."),
+                         _strength_caption(result, material)),
                    Panel("residuals", lambda ax: plot_residuals(ax, result, material),
                          "Residual (predicted − measured) against S_R.")]
     title = f"Direct shear, {material}" + (f": best model {MODEL_LABELS[best]}" if best else "")

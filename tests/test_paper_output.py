@@ -1,0 +1,218 @@
+"""Paper-ready output (issue 10): vector figures and single panels, honest curves, legends off the data,
+literal user text, report.html, spreadsheet-friendly tables, the batch season table."""
+import json
+import shutil
+from html.parser import HTMLParser
+from xml.etree import ElementTree
+
+import numpy as np
+import pandas as pd
+import pytest
+from typer.testing import CliRunner
+
+import capred
+from capred.cli import app
+from capred.report.sheets import compose, single
+
+runner = CliRunner()
+
+
+@pytest.fixture(scope="module")
+def shear_result():
+    return capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(bootstrap=50))
+
+
+def test_vector_sheets_and_single_panels(tmp_path):
+    res = runner.invoke(app, ["shear", "--sample", "--format", "pdf,svg", "--bootstrap", "0", "--out",
+                              str(tmp_path / "o")])
+    assert res.exit_code == 0, res.output
+    out = tmp_path / "o"
+    assert (out / "report_steel_2mm.pdf").read_bytes().startswith(b"%PDF")
+    ElementTree.parse(out / "report_steel_2mm.svg")  # well-formed SVG
+    panels = sorted(p.name for p in (out / "figures").glob("report_steel_2mm_*.svg"))
+    assert panels == ["report_steel_2mm_dry_envelope.svg", "report_steel_2mm_measured_vs_predicted.svg",
+                      "report_steel_2mm_residuals.svg", "report_steel_2mm_strength_vs_saturation.svg"]
+    width = ElementTree.parse(out / "figures" / panels[0]).getroot().get("width")
+    # one journal column (3.5 in = 252 pt) for the data, plus room for the legend beside it
+    assert float(width.rstrip("pt")) == pytest.approx((3.5 + 1.6) * 72)
+    assert not list(out.glob("*.png"))
+
+
+def _data_points(fig):
+    """Display coordinates of every plotted data point of every axes."""
+    pts = []
+    for ax in fig.axes:
+        for line in ax.lines:
+            xy = line.get_xydata()
+            if len(xy) and line.get_transform() is not None:
+                pts.append(line.get_transform().transform(xy))
+        for coll in ax.collections:
+            off = coll.get_offsets()
+            if len(off):
+                pts.append(coll.get_offset_transform().transform(off))
+    return np.vstack([p for p in pts if len(p)]) if pts else np.empty((0, 2))
+
+
+@pytest.mark.parametrize("make", ["composite", "single"])
+def test_legends_never_cover_data(shear_result, make):
+    for sheet in shear_result.figures().values():
+        figs = [compose(sheet)] if make == "composite" else [single(sheet, p) for p in sheet.panels]
+        for fig in figs:
+            fig.canvas.draw() if hasattr(fig.canvas, "draw") else None
+            from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+            FigureCanvasAgg(fig).draw()
+            pts = _data_points(fig)
+            pts = pts[np.all(np.isfinite(pts), axis=1)]
+            for ax in fig.axes:
+                leg = ax.get_legend()
+                if leg is None:
+                    continue
+                box = leg.get_window_extent()
+                inside = (pts[:, 0] > box.x0) & (pts[:, 0] < box.x1) & (pts[:, 1] > box.y0) & (pts[:, 1] < box.y1)
+                assert not inside.any(), (sheet.title, ax.get_title())
+
+
+def test_user_text_is_drawn_literally(tmp_path):
+    text = capred.sample_path("shear").read_text().replace("steel_2mm", r"$\frac{a}{$").replace(
+        "sand_208-417um", "[/x]")
+    (tmp_path / "t.csv").write_text(text)
+    res = runner.invoke(app, ["shear", str(tmp_path / "t.csv"), "--bootstrap", "0", "--out", str(tmp_path / "o")])
+    assert res.exit_code == 0, res.output
+    assert r"$\frac{a}{$" in res.stdout and "[/x]" in res.stdout  # console: no markup read into it
+    result = capred.run_shear(tmp_path / "t.csv", capred.ShearOptions(bootstrap=0))
+    fig = compose(next(v for k, v in result.figures().items() if k.startswith("report_") and "frac" in k))
+    assert r"\$\frac{a}{\$" in fig._suptitle.get_text()  # '$' escaped: drawn as typed
+    html = (tmp_path / "o" / "report.html").read_text()
+    assert "$\\frac{a}{$" in html and "[/x]" in html
+
+
+def _model_lines(ax, labels):
+    return [ln for ln in ax.lines if ln.get_linestyle() not in ("None", "none", " ", "")
+            and len(ln.get_xdata()) > 2 and ln.get_color() not in ("k", "0.6")]
+
+
+def test_no_connecting_lines_without_a_retention_relation(tmp_path):
+    # three wet tests at two suctions: no retention relation can be fitted, so markers only
+    text = ("test_id,condition,sigma_N [kPa],tau_max [kPa],suction [kPa],S_R,R [mm]\n"
+            "d1,dry,1,1.0452,,,\nd2,dry,2,1.7598,,,\nd3,dry,3,2.4744,,,\n"
+            "w1,wet,1,1.5,2,0.3,1\nw2,wet,2,2.2,2,0.3,1\nw3,wet,1,1.3,4,0.1,1\n")
+    (tmp_path / "t.csv").write_text(text)
+    result = capred.run_shear(tmp_path / "t.csv", capred.ShearOptions(bootstrap=0))
+    assert result.retention_relation("(all)") is None
+    sheet = next(v for k, v in result.figures().items() if k.startswith("report_"))
+    panel = next(p for p in sheet.panels if p.name == "strength_vs_saturation")
+    fig = single(sheet, panel)
+    assert not _model_lines(fig.axes[0], None)
+    assert "no water-retention relation" in panel.caption
+    # with a relation (the sample: enough wet tests to fit one), model curves are drawn and the caption says how
+    sample = capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(bootstrap=0))
+    sheet = sample.figures()["report_steel_2mm"]
+    panel = next(p for p in sheet.panels if p.name == "strength_vs_saturation")
+    assert "fitted to the tests' own (suction, S_R) pairs" in panel.caption
+    assert _model_lines(single(sheet, panel).axes[0], None)
+
+
+def test_zero_suction_readings_are_in_a_marked_strip(tmp_path):
+    (tmp_path / "r.csv").write_text("suction [kPa],S_R\n0,1\n0,0.99\n1,0.98\n2,0.9\n4,0.6\n8,0.3\n16,0.15\n"
+                                    "32,0.1\n64,0.08\n")
+    result = capred.run_retention(tmp_path / "r.csv")
+    sheet = result.figures()["retention"]
+    fig = single(sheet, sheet.panels[0])
+    ax = fig.axes[0]
+    assert any(t.get_text() == "s = 0" for t in ax.texts)
+    for line in ax.lines:
+        if line.get_transform() is ax.transData:  # data-coordinate points: every suction is a measured, positive one
+            assert np.all(np.asarray(line.get_xdata(), float) > 0)
+    strip = [ln for ln in ax.lines if ln.get_transform() is not ax.transData]
+    assert strip and sorted(np.concatenate([ln.get_ydata() for ln in strip])) == [0.99, 1.0]
+
+
+class _Links(HTMLParser):
+    def __init__(self):
+        super().__init__()
+        self.refs, self.tags = [], []
+
+    def handle_starttag(self, tag, attrs):
+        self.tags.append(tag)
+        for k, v in attrs:
+            if k in ("src", "href", "xlink:href") and v:
+                self.refs.append(v)
+
+
+@pytest.mark.parametrize("args", [["shear", "--sample", "--bootstrap", "0"], ["triaxial-bounds", "--sample"],
+                                  ["retention", "--sample"], ["bridge", "compare", "--sample"]])
+def test_report_html_is_self_contained(tmp_path, args):
+    res = runner.invoke(app, [*args, "--out", str(tmp_path / "o")])
+    assert res.exit_code == 0, res.output
+    html = (tmp_path / "o" / "report.html").read_text(encoding="utf-8")
+    parser = _Links()
+    parser.feed(html)
+    # no network, no other file: only in-document references (#id) are allowed
+    assert all(r.startswith("#") for r in parser.refs), [r for r in parser.refs if not r.startswith("#")][:3]
+    assert "svg" in parser.tags and "table" in parser.tags
+    assert "link" not in parser.tags and "script" not in parser.tags
+    assert "What was run" in html and "Warnings and flags" in html and "Methods" in html
+    assert "@page { size: A4" in html
+    assert "sha256" in html
+    assert "doi:" in html  # references with their DOI
+
+
+def test_report_can_be_skipped(tmp_path):
+    res = runner.invoke(app, ["shear", "--sample", "--bootstrap", "0", "--no-plots", "--no-html", "--out",
+                              str(tmp_path / "o")])
+    assert res.exit_code == 0 and not (tmp_path / "o" / "report.html").exists()
+
+
+def test_excel_eu_csv_and_xlsx(tmp_path):
+    res = runner.invoke(app, ["shear", "--sample", "--bootstrap", "0", "--no-plots", "--csv-dialect", "excel-eu",
+                              "--xlsx", "--out", str(tmp_path / "eu")])
+    assert res.exit_code == 0, res.output
+    runner.invoke(app, ["shear", "--sample", "--bootstrap", "0", "--no-plots", "--out", str(tmp_path / "std")])
+    raw = (tmp_path / "eu" / "results.csv").read_bytes()
+    assert raw.startswith(b"\xef\xbb\xbf")  # UTF-8 BOM: Excel reads µ, °, – correctly
+    eu = pd.read_csv(tmp_path / "eu" / "results.csv", sep=";", decimal=",", encoding="utf-8-sig")
+    std = pd.read_csv(tmp_path / "std" / "results.csv")
+    assert list(eu.columns) == list(std.columns)
+    num = std.select_dtypes("number").columns
+    np.testing.assert_array_equal(eu[num].to_numpy(), std[num].to_numpy())  # every digit kept in both
+    assert "outside_pendular|chi1_gt_1" in raw.decode("utf-8-sig") or "outside_pendular" in raw.decode("utf-8-sig")
+    from openpyxl import load_workbook
+
+    wb = load_workbook(tmp_path / "eu" / "tables.xlsx")
+    assert wb.sheetnames == ["results", "summary"]
+    ws = wb["results"]
+    header = [c.value for c in ws[1]]
+    assert "tau_max [kPa]" in header and "z1 [cm]" in header
+    assert isinstance(ws.cell(row=2, column=header.index("tau_max [kPa]") + 1).value, float)
+
+
+def test_results_csv_starts_with_the_raw_inputs():
+    cols = list(capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(bootstrap=0)).table().columns)
+    raw = ["z1 [cm]", "z2 [cm^3]", "V_v [cm^3]", "added_mass [g]", "cap_mass [g]", "box_area [cm^2]", "R [mm]"]
+    assert cols[4:11] == raw and cols.index("sigma_N [kPa]") > cols.index("R [mm]")
+
+
+def test_no_python_repr_in_cells(tmp_path):
+    res = runner.invoke(app, ["triaxial-bounds", str(capred.sample_path("triaxial-bounds")), "--no-plots",
+                              "--out", str(tmp_path / "o")])
+    assert res.exit_code == 0
+    for f in (tmp_path / "o").glob("*.csv"):
+        assert "['" not in f.read_text() and "[]" not in f.read_text()
+
+
+def test_batch_season_table(tmp_path):
+    runs = tmp_path / "runs"
+    runs.mkdir()
+    for k in range(2):
+        shutil.copy(capred.sample_path("shear"), runs / f"s{k}.csv")
+    res = runner.invoke(app, ["shear", str(runs / "*.csv"), "--no-plots", "--bootstrap", "0", "--out",
+                              str(tmp_path / "o")])
+    assert res.exit_code == 0, res.output
+    season = pd.read_csv(tmp_path / "o" / "season.csv")
+    assert len(season) == 4  # 2 files x 2 materials
+    assert {"c [kPa]", "phi [deg]", "c_se [kPa]", "phi_se [deg]", "best_model", "best_rmse [kPa]",
+            "flagged_tests", "report"} <= set(season.columns)
+    assert (tmp_path / "o" / season["report"][0]).exists()
+    html = (tmp_path / "o" / "season.html").read_text()
+    assert 'href="shear_s0/report.html"' in html
