@@ -52,6 +52,18 @@ REFERENCES: dict[str, Reference] = {
     "brooks_corey1964": Reference(
         "Brooks & Corey", 1964, "Hydraulic properties of porous media",
         "Hydrology Paper 3, Colorado State University"),
+    "kosugi1996": Reference(
+        "Kosugi", 1996, "Lognormal distribution model for unsaturated soil hydraulic properties",
+        "Water Resour. Res. 32(9):2697-2703", "10.1029/96WR01776"),
+    "fredlund_xing1994": Reference(
+        "Fredlund & Xing", 1994, "Equations for the soil-water characteristic curve",
+        "Can. Geotech. J. 31(4):521-532", "10.1139/t94-061"),
+    "durner1994": Reference(
+        "Durner", 1994, "Hydraulic conductivity estimation for soils with heterogeneous pore structure",
+        "Water Resour. Res. 30(2):211-223", "10.1029/93WR02676"),
+    "kool_parker1987": Reference(
+        "Kool & Parker", 1987, "Development and evaluation of closed-form expressions for hysteretic soil "
+        "hydraulic properties", "Water Resour. Res. 23(1):105-114", "10.1029/WR023i001p00105"),
     "vanapalli1996": Reference(
         "Vanapalli et al.", 1996, "Model for the prediction of shear strength with respect to soil suction",
         "Can. Geotech. J. 33(3):379-392", "10.1139/t96-060"),

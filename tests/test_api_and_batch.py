@@ -107,7 +107,7 @@ def test_manifest_csv_and_toml(tmp_path):
                                      % capred.sample_path("retention"))
     res = runner.invoke(app, ["batch", str(tmp_path / "m.toml"), "--out", str(tmp_path / "o2"), "--json"])
     assert res.exit_code == 0, res.output
-    assert set(json.loads(res.stdout)["files"][0]["result"]["fits"]) == {"vg", "vg_m_free"}
+    assert set(json.loads(res.stdout)["files"][0]["result"]["fits"]) == {"vg"}
 
 
 def test_manifest_errors_name_the_line(tmp_path):

@@ -105,7 +105,7 @@ def test_retention_cli_sample_json(tmp_path):
 @pytest.mark.parametrize("args,message", [
     (["--fix", "theta_s"], "expected NAME=VALUE"),
     (["--fix", "bogus=1"], "expected NAME=VALUE"),
-    (["--model", "xyz"], "--model must be"),
+    (["--model", "xyz"], "--model: unknown model"),
 ])
 def test_retention_bad_options(args, message):
     res = CliRunner().invoke(app, ["retention", "--sample", *args])

@@ -153,27 +153,41 @@ def retention(
     workers: WorkersOpt = 1,
     sheet: SheetOpt = None,
     thousands: ThousandsOpt = None,
-    model: Annotated[str, typer.Option(help="vg (m = 1 - 1/n, and m free), bc, or all.")] = "all",
+    model: Annotated[str, typer.Option(help="Models, comma separated, or all: vg (m = 1 - 1/n), vg_m_free, bc, "
+                                            "kosugi, fx (Fredlund-Xing with C), fx_no_c, durner (bimodal).")
+                     ] = "vg,vg_m_free,bc",
+    hysteresis: Annotated[Optional[str], typer.Option(help="kool-parker: fit the drying and wetting branches "
+                                                      "jointly (shared theta_s, theta_r, n; alpha_d, alpha_w).")
+                          ] = None,
+    rho_w: Annotated[str, typer.Option(help="Density of water [kg/m^3], for theta = w rho_d/rho_w.")] = "1000",
     fix: Annotated[Optional[list[str]], typer.Option(help="Fix a parameter, e.g. --fix theta_s=0.25 "
                                                      "(alpha in 1/kPa, s_e in kPa); repeatable.")] = None,
     gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3], to turn heads into suction.")] = "9.81",
 ) -> Invocation:
-    """Fit water retention curves: van Genuchten (1980) (m = 1 - 1/n and m
-    free) and Brooks & Corey (1964) (air-entry suction s_e, index lambda) for
-    every branch (drying, wetting), with standard errors, R^2 and AIC.
-    Branches come from a 'branch' column or, without one, from the order of
-    readings (rising suction = drying).
+    """Fit water retention curves for every branch (drying, wetting): van
+    Genuchten (1980) (m = 1 - 1/n, m free), Brooks & Corey (1964), Kosugi
+    (1996), Fredlund & Xing (1994) (with and without C), Durner (1994), with
+    standard errors, 95 % intervals, correlations, R^2, RMSE, AIC, AICc, BIC
+    and a model-selection table; --hysteresis kool-parker fits both branches
+    jointly. Suction as a pressure, a head or pF; water as theta, S_R, or w
+    with rho_d; an optional 'weight' column. Branches come from a 'branch'
+    column or, without one, from the order of readings (rising suction = drying).
 
-    Example: capred retention column.csv --model vg --fix theta_r=0
+    Example: capred retention column.csv --model vg,bc,kosugi --fix theta_r=0
     """
     from ..errors import OptionError
-    from ..pipelines.retention import RetentionOptions, parse_fixed
+    from ..pipelines.retention import MODELS, RetentionOptions, parse_fixed
 
-    models = {"all": ("vg", "vg_m_free", "bc"), "vg": ("vg", "vg_m_free"), "bc": ("bc",)}
-    if model not in models:
-        raise OptionError(f"--model must be vg, bc or all (got '{model}')")
-    opts = RetentionOptions(models=models[model], fixed=parse_fixed(fix or []),
-                            gamma_w=quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"))
+    names = [m.strip().lower() for m in model.split(",") if m.strip()]
+    if names == ["all"]:
+        names = list(MODELS)
+    bad = [m for m in names if m not in MODELS]
+    if bad or not names:
+        raise OptionError(f"--model: unknown model '{bad[0] if bad else model}'; choose from "
+                          f"{', '.join(MODELS)} or all")
+    opts = RetentionOptions(models=tuple(dict.fromkeys(names)), fixed=parse_fixed(fix or []),
+                            gamma_w=quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"),
+                            rho_w=quantity(rho_w, "kg/m^3", "rho_w", "--rho-w"), hysteresis=hysteresis)
     return Invocation("retention", sources(data, sample, "retention", sheet, thousands), opts, plots, out, json_out,
                       workers)
 

@@ -24,6 +24,44 @@ class NonlinearFit:
     converged: bool
     message: str = ""
     extra: dict = field(default_factory=dict)
+    covariance: np.ndarray | None = None  # of the free parameters, in the order of ``free``
+    free: tuple[str, ...] = ()
+    bounds: dict = field(default_factory=dict)
+    t: float = float("nan")  # Student t of the 95 % intervals (dof = n - free)
+
+    @property
+    def aicc(self) -> float:
+        """AIC with the small-sample correction: AIC + 2k(k + 1)/(n - k - 1) (k free parameters)."""
+        k = self.nfree
+        return self.aic + 2 * k * (k + 1) / (self.n - k - 1) if self.n - k - 1 > 0 else float("nan")
+
+    @property
+    def rmse(self) -> float:
+        return float(np.sqrt(self.rss / self.n))
+
+    def ci95(self, name: str) -> tuple[float, float] | None:
+        se = self.stderr.get(name)
+        if se is None or not np.isfinite(se):
+            return None
+        return self.params[name] - self.t * se, self.params[name] + self.t * se
+
+    def correlation(self) -> dict[str, dict[str, float]]:
+        """Correlation matrix of the free parameters (unsatfit and SWRC Fit report it)."""
+        if self.covariance is None:
+            return {}
+        sd = np.sqrt(np.clip(np.diag(self.covariance), 1e-300, None))
+        r = self.covariance / np.outer(sd, sd)
+        return {a: {b: float(r[i, j]) for j, b in enumerate(self.free)} for i, a in enumerate(self.free)}
+
+    def at_bounds(self, rel: float = 1e-6) -> list[str]:
+        """Free parameters that ended on (within ``rel`` of the range of) their bounds."""
+        out = []
+        for k in self.free:
+            lo, hi = self.bounds.get(k, (-np.inf, np.inf))
+            span = (hi - lo) if np.isfinite(hi - lo) else max(abs(self.params[k]), 1.0)
+            if self.params[k] <= lo + rel * span or self.params[k] >= hi - rel * span:
+                out.append(k)
+        return out
 
     @property
     def nfree(self) -> int:
@@ -34,11 +72,12 @@ class NonlinearFit:
         return self.n - self.nfree
 
 
-def fit_curve(model, x, y, names, starts, bounds, fixed=None) -> NonlinearFit:
-    """Minimise sum (model(x, **p) - y)^2 over the free parameters.
+def fit_curve(model, x, y, names, starts, bounds, fixed=None, weights=None) -> NonlinearFit:
+    """Minimise sum w (model(x, **p) - y)^2 over the free parameters.
 
     ``starts``: list of dicts of initial values (all names); the best end point
     wins. ``bounds``: {name: (lo, hi)}. ``fixed``: {name: value}.
+    ``weights``: per-point weights (default 1); RSS, R^2 and the criteria are weighted.
     """
     from scipy.optimize import least_squares
 
@@ -58,8 +97,10 @@ def fit_curve(model, x, y, names, starts, bounds, fixed=None) -> NonlinearFit:
         p.update(zip(free, v))
         return p
 
+    sw = np.ones_like(y) if weights is None else np.sqrt(np.asarray(weights, float))
+
     def resid(v):
-        return model(x, **full(v)) - y
+        return (model(x, **full(v)) - y) * sw
 
     best = None
     for start in starts:
@@ -76,13 +117,15 @@ def fit_curve(model, x, y, names, starts, bounds, fixed=None) -> NonlinearFit:
     rss = float(2.0 * best.cost)
     n = len(y)
     k = len(free)
-    tss = float(np.sum((y - y.mean()) ** 2))
+    wts = sw**2
+    ybar = float(np.sum(wts * y) / np.sum(wts))
+    tss = float(np.sum(wts * (y - ybar) ** 2))
     s2 = rss / (n - k)
     try:
         cov = np.linalg.inv(best.jac.T @ best.jac) * s2
         se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
     except np.linalg.LinAlgError:
-        se = np.full(k, np.nan)
+        cov, se = None, np.full(k, np.nan)
     stderr: dict[str, float | None] = {name: None for name in names}
     stderr.update({name: float(v) for name, v in zip(free, se)})
     rss_n = max(rss / n, 1e-300)
@@ -91,5 +134,12 @@ def fit_curve(model, x, y, names, starts, bounds, fixed=None) -> NonlinearFit:
         stderr=stderr, fixed=tuple(fixed), n=n, rss=rss,
         r2=1.0 - rss / tss if tss > 0 else float("nan"),
         aic=n * np.log(rss_n) + 2 * k, bic=n * np.log(rss_n) + k * np.log(n),
-        converged=bool(best.success), message=str(best.message),
+        converged=bool(best.success), message=str(best.message), covariance=cov, free=tuple(free),
+        bounds={k_: tuple(bounds[k_]) for k_ in free}, t=_t95(n - k),
     )
+
+
+def _t95(dof: int) -> float:
+    from .linear import t_quantile
+
+    return t_quantile(0.975, dof) if dof > 0 else float("nan")

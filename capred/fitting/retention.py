@@ -63,7 +63,7 @@ def fit_van_genuchten(s, y, fixed=None, bounds=None, m_free=False) -> NonlinearF
     return fit_curve(model, s, y, VG_NAMES, starts, b, fixed)
 
 
-def fit_brooks_corey(s, y, fixed=None, bounds=None) -> NonlinearFit:
+def fit_brooks_corey(s, y, fixed=None, bounds=None, weights=None) -> NonlinearFit:
     """Least squares of y_r + (y_s - y_r)(s_e/s)^lambda (s > s_e), y_s below s_e.
 
     The objective has kinks at the data suctions as s_e moves past them, so
@@ -85,12 +85,13 @@ def fit_brooks_corey(s, y, fixed=None, bounds=None) -> NonlinearFit:
     def profile(log_se: float) -> float:
         inner = dict(fixed, s_e=float(np.exp(log_se)))
         try:
-            return fit_curve(model, s, y, BC_NAMES, [dict(st, s_e=inner["s_e"]) for st in starts], b, inner).rss
+            return fit_curve(model, s, y, BC_NAMES, [dict(st, s_e=inner["s_e"]) for st in starts], b, inner,
+                             weights).rss
         except FitError:
             return np.inf
 
     if "s_e" in fixed:
-        return fit_curve(model, s, y, BC_NAMES, [dict(st, s_e=fixed["s_e"]) for st in starts], b, fixed)
+        return fit_curve(model, s, y, BC_NAMES, [dict(st, s_e=fixed["s_e"]) for st in starts], b, fixed, weights)
     lo, hi = np.log(b["s_e"][0]), np.log(b["s_e"][1])
     grid = np.linspace(max(lo, np.log(max(s[s > 0].min() * 0.3, b["s_e"][0]))), hi, 60)
     rss = np.array([profile(g) for g in grid])
@@ -99,8 +100,8 @@ def fit_brooks_corey(s, y, fixed=None, bounds=None) -> NonlinearFit:
     best = minimize_scalar(profile, bounds=(a, c), method="bounded", options={"xatol": 1e-10})
     log_se = best.x if best.fun <= rss[k] else grid[k]
     s_e = float(np.exp(log_se))
-    inner = fit_curve(model, s, y, BC_NAMES, [dict(st, s_e=s_e) for st in starts], b, dict(fixed, s_e=s_e))
-    final = fit_curve(model, s, y, BC_NAMES, [inner.params], b, fixed)
+    inner = fit_curve(model, s, y, BC_NAMES, [dict(st, s_e=s_e) for st in starts], b, dict(fixed, s_e=s_e), weights)
+    final = fit_curve(model, s, y, BC_NAMES, [inner.params], b, fixed, weights)
     return final if final.rss <= inner.rss * (1 + 1e-12) else _unfix(inner, "s_e")
 
 

@@ -47,3 +47,38 @@ def bc_suction(S_r, s_e, alpha):
     Full saturation (S_r = 1) gives s = s_e.
     """
     return s_e * np.asarray(S_r, float) ** (-1.0 / alpha)
+
+
+def kosugi_effective_saturation(s, s_m, sigma):
+    """S_e = Q(ln(s/s_m)/sigma), Q the complementary standard normal distribution (Kosugi 1996).
+
+    Parameters
+    ----------
+    s : suction (any unit, the same as s_m), >= 0
+    s_m : median suction of the pore-size distribution (> 0)
+    sigma : standard deviation of ln(pore size) [-], > 0
+    """
+    from scipy.special import erfc
+
+    s = np.asarray(s, float)
+    with np.errstate(divide="ignore"):
+        z = np.log(np.where(s > 0, s, 0.0) / s_m) / sigma
+    return 0.5 * erfc(z / np.sqrt(2.0))
+
+
+def fx_correction(s, s_r, s_max=1e9):
+    """C(s) = 1 - ln(1 + s/s_r)/ln(1 + s_max/s_r) of Fredlund & Xing (1994); s_max = 10^6 kPa (1e9 Pa):
+    the water content reaches zero at that suction."""
+    s = np.asarray(s, float)
+    return 1.0 - np.log1p(np.maximum(s, 0.0) / s_r) / np.log1p(s_max / s_r)
+
+
+def fx_shape(s, a, n, m):
+    """[ln(e + (s/a)^n)]^-m of Fredlund & Xing (1994) (1 at s = 0)."""
+    s = np.maximum(np.asarray(s, float), 0.0)
+    return np.log(np.e + (s / a) ** n) ** (-m)
+
+
+def durner_effective_saturation(s, w1, alpha1, n1, alpha2, n2):
+    """S_e = w1 S_e1 + (1 - w1) S_e2, two van Genuchten curves with m_i = 1 - 1/n_i (Durner 1994)."""
+    return w1 * vg_effective_saturation(s, alpha1, n1) + (1.0 - w1) * vg_effective_saturation(s, alpha2, n2)

@@ -69,6 +69,7 @@ class ModelParams(Options):
     vg_n: float | None = None
     vg_m: float | None = None
     water_envelope: tuple[float, float] | None = None  # (c [Pa], phi [deg]) of the saturated soil (P-T)
+    retention_model: tuple | None = None  # (model name, SI parameters, quantity) of a capred retention fit
     contact_angle: float = 0.0  # deg, of the exact bridge (exact_neck)
     eta: float = 0.55  # exponent of khalili_fit (fixed unless fit_eta)
     fit_eta: bool = False
@@ -101,6 +102,12 @@ def model_params_from_retention(path: str | Path, **overrides) -> ModelParams:
         p["air_entry"] = bc["s_e_kPa"] * 1e3
         if "s_res" not in p:
             p["s_res"] = bc["S_res"] if "S_res" in bc else bc["theta_r"] / bc["theta_s"]
+    # the best fit (lowest AICc) of any model gives the S_R(s) relation of the shear figures
+    scored = [(f.get("aicc") if f.get("aicc") is not None else np.inf, m) for m, f in fits.items()
+              if isinstance(f, dict) and "params_si" in f]
+    if scored:
+        best = min(scored)[1]
+        p["retention_model"] = (best, tuple(sorted(fits[best]["params_si"].items())), js.get("quantity", "S_R"))
     p.update({k: v for k, v in overrides.items() if v is not None})
     return ModelParams(**p)
 

@@ -185,6 +185,15 @@ def retention_relation(params, suction, S_R) -> RetentionRelation | None:
     None when neither is possible (fewer than 4 tests at 3 suctions)."""
     from ..physics.retention import vg_water
 
+    if params.retention_model is not None and params.vg_alpha is None:
+        from ..fitting.retention_models import MODELS
+
+        name, items, quantity = params.retention_model
+        p = dict(items)
+        model = MODELS[name]
+        scale = 1.0 / p["y_s"] if quantity == "theta" else 1.0  # S_R = theta/theta_s
+        return RetentionRelation(lambda s: model.water(s, **p) * scale,
+                                 f"{model.label} fitted by capred retention")
     if params.vg_alpha is not None and params.vg_n is not None:
         s_res = params.s_res or 0.0
         a, n, m = params.vg_alpha, params.vg_n, params.vg_m

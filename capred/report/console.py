@@ -139,20 +139,35 @@ def triaxial_tables(result) -> list[TableSpec]:
 
 
 def retention_tables(result) -> list[TableSpec]:
-    """One table for the van Genuchten fits, one for Brooks-Corey."""
+    """Per branch: every model's parameters (± se), R², RMSE, AICc, ΔAICc and Akaike weight; hysteresis."""
     js = result.to_json()
-    ys, yr = result.names
-    specs = (("van Genuchten", ("vg", "vg_m_free"), (("α [1/kPa]", "alpha_per_kPa"), ("n", "n"), ("m", "m"))),
-             ("Brooks-Corey", ("bc",), (("s_e [kPa]", "s_e_kPa"), ("λ", "lambda"))))
     out = []
-    for title, models, cols in specs:
-        present = [(b, m, d["fits"][m]) for b, d in js["branches"].items() for m in models if m in d["fits"]]
-        if not present:
-            continue
-        t = _spec(f"{title} fits — branches: {js['branch_source']}",
-                  ["branch", "model", ys, yr, *(c for c, _ in cols), "R²", "AIC"], left=2)
-        for b, m, v in present:
-            t.rows.append([b, m, fmt(v[ys]), fmt(v[yr]), *(fmt(v[k]) for _, k in cols), fmt(v["r2"]), fmt(v["aic"])])
+    for b, d in js["branches"].items():
+        t = _spec(f"Retention fits, branch {b} ({js['branch_source']})",
+                  ["model", "parameters (± se)", "R²", "RMSE", "AICc", "ΔAICc", "weight"], left=2)
+        sel = d["model_selection"]
+        order = sorted(d["fits"], key=lambda m: (sel[m]["delta_aicc"] is None, sel[m]["delta_aicc"] or 0.0))
+        for m in order:
+            v = d["fits"][m]
+            names = [k for k in v["params_si"]]
+            from ..pipelines.retention import report_name
+
+            parts = []
+            for k in names:
+                rn = report_name(k, js["quantity"])
+                se = v.get(f"{rn}_se")
+                parts.append(f"{rn} {fmt(v[rn])}" + (f" ± {fmt(se, 2)}" if se is not None else
+                                                     (" (fixed)" if rn in v["fixed"] else "")))
+            t.rows.append([m, "; ".join(parts), fmt(v["r2"]), fmt(v["rmse"]), fmt(v["aicc"]),
+                           fmt(sel[m]["delta_aicc"]), fmt(sel[m]["weight"])])
+        out.append(t)
+    h = js.get("hysteresis")
+    if h:
+        t = _spec(f"Hysteresis, Kool & Parker (1987): joint fit of both branches", ["parameter", "value", "± se"])
+        for k, v in h["params"].items():
+            t.rows.append([k, fmt(v), fmt(h["se"].get(k))])
+        t.rows.append(["α_w/α_d", fmt(h["alpha_ratio"]), ""])
+        t.rows.append(["AICc joint / independent", f"{fmt(h['aicc'])} / {fmt(h['independent_aicc'])}", ""])
         out.append(t)
     return out
 

@@ -12,7 +12,10 @@ import numpy as np
 from .sheets import Panel, Sheet
 from .style import LABEL, style
 
-MODEL = {"vg": "van Genuchten (m = 1 − 1/n)", "vg_m_free": "van Genuchten (m free)", "bc": "Brooks-Corey"}
+MODEL = {"vg": "van Genuchten (m = 1 − 1/n)", "vg_m_free": "van Genuchten (m free)", "bc": "Brooks-Corey",
+         "kosugi": "Kosugi", "fx": "Fredlund-Xing", "fx_no_c": "Fredlund-Xing without C", "durner": "Durner"}
+LINESTYLE = {"vg": "-", "vg_m_free": "--", "bc": "-.", "kosugi": ":", "fx": (0, (5, 1)), "fx_no_c": (0, (3, 1, 1, 1)),
+             "durner": (0, (1, 1))}
 
 
 STRIP = 0.07  # width of the zero-suction strip, as a fraction of the axes
@@ -36,8 +39,12 @@ def plot_retention(ax, result):
         if (sel & zero).any():
             ax.plot(np.full(int((sel & zero).sum()), STRIP / 2), result.water[sel & zero], ls="none", ms=4,
                     color=st["color"], marker=st["marker"], transform=in_strip, clip_on=False)
+        best = min(fits, key=lambda m: fits[m].aicc if np.isfinite(fits[m].aicc) else np.inf)
+        lo_b, hi_b = result.band(b, best, grid)
+        ax.fill_between(grid / 1e3, lo_b, hi_b, color=st["color"], alpha=0.18, lw=0,
+                        label=f"{b}: 95 % confidence band ({MODEL[best]})")
         for m in fits:
-            ax.plot(grid / 1e3, result.curve(b, m, grid), ls=style(m)["ls"], color=st["color"], lw=1.2,
+            ax.plot(grid / 1e3, result.curve(b, m, grid), ls=LINESTYLE.get(m, "-"), color=st["color"], lw=1.2,
                     label=f"{b}: {MODEL[m]}")
     ax.set_xscale("log")
     if zero.any():  # leave the strip free of the suction scale
