@@ -143,3 +143,40 @@ def _t95(dof: int) -> float:
     from .linear import t_quantile
 
     return t_quantile(0.975, dof) if dof > 0 else float("nan")
+
+
+def summarize_fit(model, x, y, names, params: dict, bounds, fixed=None, weights=None,
+                  converged: bool = True) -> NonlinearFit:
+    """The NonlinearFit of given optimal parameters (no optimisation): RSS, R^2, criteria, and standard
+    errors from a central-difference Jacobian of the weighted residuals."""
+    x = np.asarray(x, float)
+    y = np.asarray(y, float)
+    fixed = dict(fixed or {})
+    free = [k for k in names if k not in fixed]
+    sw = np.ones_like(y) if weights is None else np.sqrt(np.asarray(weights, float))
+    r = (model(x, **params) - y) * sw
+    cols = []
+    for k in free:
+        h = 1e-7 * max(abs(params[k]), 1e-12)
+        lo, hi = bounds[k]
+        up, dn = min(params[k] + h, hi), max(params[k] - h, lo)
+        cols.append((model(x, **{**params, k: up}) - model(x, **{**params, k: dn})) * sw / (up - dn))
+    jac = np.column_stack(cols) if cols else np.empty((x.size, 0))
+    n, k = y.size, len(free)
+    rss = float(r @ r)
+    wts = sw**2
+    ybar = float(np.sum(wts * y) / np.sum(wts))
+    tss = float(np.sum(wts * (y - ybar) ** 2))
+    try:
+        cov = np.linalg.inv(jac.T @ jac) * rss / (n - k)
+        se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    except np.linalg.LinAlgError:
+        cov, se = None, np.full(k, np.nan)
+    stderr: dict[str, float | None] = {name: None for name in names}
+    stderr.update({name: float(v) for name, v in zip(free, se)})
+    rss_n = max(rss / n, 1e-300)
+    return NonlinearFit(
+        params={name: float(params[name]) for name in names}, stderr=stderr, fixed=tuple(fixed), n=n, rss=rss,
+        r2=1.0 - rss / tss if tss > 0 else float("nan"), aic=n * np.log(rss_n) + 2 * k,
+        bic=n * np.log(rss_n) + k * np.log(n), converged=converged, covariance=cov, free=tuple(free),
+        bounds={k_: tuple(bounds[k_]) for k_ in free}, t=_t95(n - k))

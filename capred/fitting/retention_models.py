@@ -14,7 +14,7 @@ import numpy as np
 
 from ..errors import FitError
 from ..physics import retention as rp
-from .nonlinear import NonlinearFit, fit_curve
+from .nonlinear import NonlinearFit, fit_curve, summarize_fit
 
 
 @dataclass(frozen=True)
@@ -112,22 +112,157 @@ def bounds_for(s, y) -> dict[str, tuple[float, float]]:
     }
 
 
+class _VarPro:
+    """Variable projection: for given shape parameters the linear ones (y_r, y_s) are solved exactly.
+
+    y = y_r (1 - S) + y_s S with S = S_e(s; shape) (Fredlund-Xing with C: y = y_s S), so the least-squares
+    problem shrinks to the shape parameters; y_r and y_s are the (bounded) weighted linear solution.
+    """
+
+    def __init__(self, model: RetentionModel, s, y, sw, fixed, bounds):
+        self.model, self.s, self.y, self.sw, self.fixed, self.b = model, s, y, sw, fixed, bounds
+        self.lin = [k for k in ("y_r", "y_s") if k in model.names and k not in fixed]
+        self.shape = [k for k in model.names if k not in ("y_r", "y_s") and k not in fixed]
+
+    def S(self, theta) -> np.ndarray:
+        p = {**self.fixed, **dict(zip(self.shape, theta))}
+        if "y_r" in self.model.names:
+            p["y_r"] = 0.0
+        p["y_s"] = 1.0
+        return self.model.water(self.s, **p)
+
+    def linear(self, S) -> dict[str, float]:
+        """Weighted least squares of (y_r, y_s) given S, within their bounds (0 <= y_r <= y_s)."""
+        cols = {"y_r": 1.0 - S, "y_s": S} if "y_r" in self.model.names else {"y_s": S}
+        rhs = self.y.copy()
+        for k, v in self.fixed.items():
+            if k in cols:
+                rhs = rhs - v * cols[k]
+        if not self.lin:
+            return {}
+        w2 = self.sw**2
+        if len(self.lin) == 2:  # the 2 x 2 normal equations, solved in closed form
+            c1, c2 = cols[self.lin[0]], cols[self.lin[1]]
+            a11, a12, a22 = (w2 * c1 * c1).sum(), (w2 * c1 * c2).sum(), (w2 * c2 * c2).sum()
+            b1, b2 = (w2 * c1 * rhs).sum(), (w2 * c2 * rhs).sum()
+            det = a11 * a22 - a12 * a12
+            beta = [(a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det] if det > 0 else [np.nan, np.nan]
+        else:
+            c = cols[self.lin[0]]
+            beta = [(w2 * c * rhs).sum() / max((w2 * c * c).sum(), 1e-300)]
+        if not np.all(np.isfinite(beta)):
+            beta = [self.b[k][0] if k == "y_r" else float(np.max(self.y)) for k in self.lin]
+        out = dict(zip(self.lin, (float(v) for v in beta)))
+        clipped = {k: float(np.clip(v, *self.b[k])) for k, v in out.items()}
+        if clipped != out and len(self.lin) == 2:  # one at its bound: the other by 1-D least squares
+            best = None
+            for k in self.lin:
+                other = self.lin[1 - self.lin.index(k)]
+                xk = clipped[k]
+                r = rhs - xk * cols[k]
+                xo = float(np.clip((cols[other] * self.sw**2) @ r / max((cols[other] ** 2 * self.sw**2).sum(), 1e-300),
+                                   *self.b[other]))
+                cand = {k: xk, other: xo}
+                res = self.resid_with(S, cand)
+                if best is None or res @ res < best[0]:
+                    best = (res @ res, cand)
+            return best[1]
+        return clipped
+
+    def resid_with(self, S, lin) -> np.ndarray:
+        p = {**{k: v for k, v in self.fixed.items() if k in ("y_r", "y_s")}, **lin}
+        y_r = p.get("y_r", 0.0)
+        return (y_r + (p["y_s"] - y_r) * S - self.y) * self.sw
+
+    def resid(self, theta) -> np.ndarray:
+        S = self.S(theta)
+        return self.resid_with(S, self.linear(S))
+
+    def rss(self, theta) -> float:
+        r = self.resid(theta)
+        return float(r @ r) if np.all(np.isfinite(r)) else np.inf
+
+    def full(self, theta) -> dict:
+        S = self.S(theta)
+        return {**self.fixed, **dict(zip(self.shape, theta)), **self.linear(S)}
+
+
 def fit_model(name: str, s, y, fixed=None, weights=None) -> NonlinearFit:
-    """Fit one retention model by (weighted) least squares, with automatic starts."""
-    from .retention import fit_brooks_corey
+    """Fit one retention model by (weighted) least squares, with automatic starts.
+
+    The linear parameters are projected out (variable projection), the starts
+    are screened by their projected residual and only the best two are
+    optimised; a last full fit from the optimum gives the standard errors.
+    Brooks-Corey, whose objective has kinks at the data suctions, profiles
+    the air-entry suction over a grid first.
+    """
+    from scipy.optimize import least_squares
 
     s = np.asarray(s, float)
     y = np.asarray(y, float)
     fixed = dict(fixed or {})
-    if name == "bc":
-        return fit_brooks_corey(s, y, fixed, weights=weights)
     model = MODELS[name]
     b = bounds_for(s, y)
     for k, v in fixed.items():
         lo, hi = b[k]
         if not lo <= v <= hi:
             raise FitError(f"fixed value {k} = {v:.6g} is outside its range [{lo:.4g}, {hi:.4g}]")
-    return fit_curve(model.water, s, y, model.names, model.starts(s, y), b, fixed, weights)
+    free = [k for k in model.names if k not in fixed]
+    if s.size <= len(free):
+        raise FitError(f"{s.size} points for {len(free)} free parameters: too few to fit")
+    sw = np.ones_like(y) if weights is None else np.sqrt(np.asarray(weights, float))
+    vp = _VarPro(model, s, y, sw, fixed, b)
+    lo = np.array([b[k][0] for k in vp.shape])
+    hi = np.array([b[k][1] for k in vp.shape])
+    if name == "bc" and "s_e" in vp.shape:
+        candidates = _bc_profile(vp, s, lo, hi)[:1]
+    else:
+        starts = [np.clip([st[k] for k in vp.shape], lo, hi) for st in model.starts(s, y)]
+        candidates = sorted(starts, key=vp.rss)[:2]
+    best = None
+    for x0 in candidates:
+        if not vp.shape:
+            break
+        x0 = np.clip(x0, lo + 1e-12 * (hi - lo), hi - 1e-12 * (hi - lo))
+        r = least_squares(vp.resid, x0, bounds=(lo, hi), x_scale="jac", xtol=1e-14, ftol=1e-14, gtol=1e-14,
+                          max_nfev=2000)
+        if np.all(np.isfinite(r.fun)) and (best is None or r.cost < best.cost):
+            best = r
+    optimum = vp.full(best.x if best is not None else np.array([]))
+    return summarize_fit(model.water, s, y, model.names, optimum, b, fixed, weights,
+                         converged=best is None or bool(best.success))
+
+
+def _bc_profile(vp: _VarPro, s, lo, hi) -> list:
+    """Starts for Brooks-Corey: the projected RSS on a grid of (air-entry suction, lambda), all at once.
+
+    The objective has kinks where s_e passes a data suction, so a local
+    optimiser alone may stop in the wrong cell; the grid finds the right one.
+    """
+    i_se = vp.shape.index("s_e")
+    i_lam = vp.shape.index("lam") if "lam" in vp.shape else None
+    pos = s[s > 0]
+    se = np.geomspace(max(pos.min() * 0.3, lo[i_se]), hi[i_se], 40)[:, None, None]
+    lam = (np.geomspace(lo[i_lam], hi[i_lam], 40) if i_lam is not None else
+           np.array([vp.fixed["lam"]]))[None, :, None]
+    keep = np.arange(s.size) if s.size <= 400 else np.linspace(0, s.size - 1, 400).astype(int)  # for the start only
+    x = s[keep][None, None, :]
+    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+        S = np.where(x > se, (se / np.where(x > 0, x, 1.0)) ** lam, 1.0)
+    w2 = (vp.sw[keep] ** 2)[None, None, :]
+    y = vp.y[keep][None, None, :]
+    c1, c2 = 1.0 - S, S
+    a11, a12, a22 = (w2 * c1 * c1).sum(-1), (w2 * c1 * c2).sum(-1), (w2 * c2 * c2).sum(-1)
+    b1, b2 = (w2 * c1 * y).sum(-1), (w2 * c2 * y).sum(-1)
+    det = a11 * a22 - a12 * a12
+    with np.errstate(divide="ignore", invalid="ignore"):
+        y_r = np.clip((a22 * b1 - a12 * b2) / det, *vp.b["y_r"])
+        y_s = np.clip((a11 * b2 - a12 * b1) / det, *vp.b["y_s"])
+        rss = (w2 * (y - y_r[..., None] * c1 - y_s[..., None] * c2) ** 2).sum(-1)
+    rss = np.where(np.isfinite(rss), rss, np.inf)
+    g, k = np.unravel_index(int(np.argmin(rss)), rss.shape)
+    theta = np.array([float(se[g, 0, 0]) if n == "s_e" else float(lam[0, k, 0]) for n in vp.shape])
+    return [theta]
 
 
 def confidence_band(name: str, fit: NonlinearFit, s_grid, level_t: float | None = None):
