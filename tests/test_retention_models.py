@@ -149,3 +149,12 @@ def test_shear_reads_any_retention_model(tmp_path):
     res = capred.run_shear(capred.sample_path("shear"), opts)
     relation = res.retention_relation("sand_208-417um")
     assert relation is not None and "Kosugi" in relation.source
+
+
+def test_retention_relation_inverse():
+    from capred.pipelines.shear_analysis import RetentionRelation
+
+    rel = RetentionRelation(lambda s: rp.vg_water(s, 0.05, 1.0, 1 / 3000, 4.0), "test")
+    s = np.array([500.0, 3000.0, 20000.0])
+    assert rel.suction(rel.S_R(s)) == pytest.approx(s, rel=1e-9)  # bisection to machine precision on log s
+    assert np.isnan(rel.suction(np.array([0.01]))[0])  # below the residual saturation: no suction gives it

@@ -178,6 +178,21 @@ class RetentionRelation:
     S_R: object  # callable: suction [Pa] -> S_R [-]
     source: str  # for the caption
 
+    def suction(self, S_R, lo: float = 1e-3, hi: float = 1e9) -> np.ndarray:
+        """The inverse: suction [Pa] at which the relation gives ``S_R`` (NaN outside its range).
+
+        S_R(s) falls monotonically, so the root is bracketed on log s by bisection (vectorised).
+        """
+        target = np.atleast_1d(np.asarray(S_R, float))
+        a = np.full(target.shape, np.log(lo))
+        b = np.full(target.shape, np.log(hi))
+        inside = (self.S_R(np.exp(a)) >= target) & (self.S_R(np.exp(b)) <= target)
+        for _ in range(200):
+            mid = 0.5 * (a + b)
+            above = self.S_R(np.exp(mid)) > target
+            a, b = np.where(above, mid, a), np.where(above, b, mid)
+        return np.where(inside, np.exp(0.5 * (a + b)), np.nan)
+
 
 def retention_relation(params, suction, S_R) -> RetentionRelation | None:
     """The water-retention relation of a material's wet tests: van Genuchten from the options (--retention
