@@ -191,3 +191,32 @@ def test_bridge_bad_input(case, write_csv, tmp_path):
     for piece in expected:
         assert piece in res.stderr, (piece, res.stderr)
     assert not (tmp_path / "o").exists()
+
+
+def test_volume_controlled_scan_never_reports_a_wrong_bridge():
+    """Issue 13: theta in {0, 1, 5, 15, 30, 60} deg, gaps from contact to 0.2 R, volumes over six decades:
+    every bridge reported ok reproduces its gap and volume when its geometry is computed forward."""
+    from capred.physics import bridge as br
+
+    th, D, V = np.meshgrid(np.radians([0, 1, 5, 15, 30, 60]), np.r_[0.0, np.geomspace(1e-3, 0.2, 8)],
+                           np.geomspace(1e-6, 1.0, 13), indexing="ij")
+    th, D, V = th.ravel(), D.ravel(), V.ravel()
+    beta, s, status = br.solve_for_volume(th, V, D)
+    ok = status == 0
+    assert ok.sum() > 0.4 * ok.size  # most of the scan has a bridge
+    g, v, _, _ = br.geometry(beta[ok], th[ok], s[ok])
+    # forward: the reported bridge holds the requested volume at the requested gap (1e-9, the verify tolerance)
+    assert np.all(np.abs(g - D[ok]) <= 1e-9 * np.maximum(D[ok], 1e-6))
+    assert np.all(np.abs(v - V[ok]) <= 1e-9 * V[ok])
+    assert set(np.unique(status)) <= {0, 1, 3, 4}
+
+
+def test_issue_examples_are_never_wrong(tmp_path):
+    (tmp_path / "b.csv").write_text("R,contact_angle,gap,V_w\n1,0,0.2,0.008\n1,0,0.2,0.01\n1,0,0.01,1e-5\n"
+                                    "1,0,0.01,2.264e-6\n")
+    res = capred.solve_bridges(tmp_path / "b.csv")
+    for row, (gap, vol) in zip(res.rows(), ((0.2, 0.008), (0.2, 0.01), (0.01, 1e-5), (0.01, 2.264e-6))):
+        if row["status"] == "ok":  # a bridge reported is the bridge asked for
+            assert row["V_w_mm3"] == pytest.approx(vol, rel=1e-9)
+        else:
+            assert row["V_w_mm3"] is None

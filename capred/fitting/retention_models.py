@@ -202,6 +202,10 @@ def fit_model(name: str, s, y, fixed=None, weights=None) -> NonlinearFit:
     y = np.asarray(y, float)
     fixed = dict(fixed or {})
     model = MODELS[name]
+    if not np.all(np.isfinite(s)) or not np.all(np.isfinite(y)) or np.any(s < 0):
+        raise FitError("the retention data hold negative, NaN or infinite values")
+    if np.unique(s[s > 0]).size < 2:
+        raise FitError("fewer than two distinct positive suctions: no retention curve can be fitted")
     b = bounds_for(s, y)
     for k, v in fixed.items():
         lo, hi = b[k]
@@ -210,6 +214,7 @@ def fit_model(name: str, s, y, fixed=None, weights=None) -> NonlinearFit:
     free = [k for k in model.names if k not in fixed]
     if s.size <= len(free):
         raise FitError(f"{s.size} points for {len(free)} free parameters: too few to fit")
+
     sw = np.ones_like(y) if weights is None else np.sqrt(np.asarray(weights, float))
     vp = _VarPro(model, s, y, sw, fixed, b)
     lo = np.array([b[k][0] for k in vp.shape])

@@ -203,6 +203,38 @@ def suction_for_gap(beta, theta, gap):
 
 
 def solve_for_volume(theta, volume, gap):
+    """(beta, s*, status) of the bridge of given volume* at gap* (theta in rad), verified.
+
+    Two searches: along the family of concave bridges at the gap parametrised
+    by the filling angle (from the catenoid spanning the gap to the largest
+    catenoid), and along the stable branch parametrised by the suction. A
+    candidate counts only if its geometry reproduces the requested gap and
+    volume to 1e-9 relative; rows where neither does keep the status of the
+    first search (1 beyond rupture, 3 too much water) or get 4 (no verified
+    bridge found). Status 2: invalid input.
+    """
+    theta, volume, gap = (x.ravel() for x in _arr(theta, volume, gap))
+    beta, s, status = _solve_for_volume_family(theta, volume, gap)
+    bad = ~_verified(beta, theta, s, gap, volume) & (status == 0)
+    retry = np.flatnonzero(bad | (status == 1))
+    if retry.size:
+        b2, s2, st2 = _solve_for_volume_stable_branch(theta[retry], volume[retry], gap[retry])
+        good = (st2 == 0) & _verified(b2, theta[retry], s2, gap[retry], volume[retry])
+        beta[retry[good]], s[retry[good]], status[retry[good]] = b2[good], s2[good], 0
+        still = retry[~good & bad[retry]]
+        beta[still], s[still], status[still] = np.nan, np.nan, 4
+    return beta, s, status
+
+
+def _verified(beta, theta, s, gap, volume, rtol=1e-9):
+    """Does the bridge (beta, s*) reproduce the gap* (absolute 1e-9 near contact) and volume* to ``rtol``?"""
+    g, v, _, _ = geometry(beta, theta, np.where(np.isfinite(s), s, 0.0))
+    with np.errstate(invalid="ignore"):
+        return ((np.abs(g - gap) <= rtol * np.maximum(np.abs(gap), 1e-6))
+                & (np.abs(v - volume) <= rtol * np.abs(volume)) & np.isfinite(beta))
+
+
+def _solve_for_volume_family(theta, volume, gap):
     """(beta, s*, status) of the bridge of given volume* at gap* (theta in rad).
 
     At fixed gap, the concave bridges form one family in beta, from the
@@ -258,6 +290,103 @@ def solve_for_volume(theta, volume, gap):
         beta[k[good]] = root
         suction[k[good]] = suction_for_gap(root, th[good], D[good])
     status[k] = st
+    return beta, suction, status
+
+
+def _solve_for_volume_stable_branch(theta, volume, gap):
+    """(beta, s*, status) of the stable bridge of given volume* at gap* (theta in rad).
+
+    The stable bridges at a fixed gap form one family parametrised by the
+    suction: at each suction the stable bridge is the one solve_for_suction
+    returns (the continuation of the bridge at contact), from the catenoid at
+    s* -> 0 (the most water a concave bridge holds) up to the rupture suction
+    (at contact, no rupture). Along this family the volume is located by a
+    scan of log s* and refined by the Illinois method on a sign change, so
+    neither the gap(suction) nor the volume(filling angle) relation needs to
+    be monotonic.
+    Status codes: 0 ok, 1 volume too small to span the gap (beyond rupture),
+    3 volume too large for a concave bridge, 2 invalid input.
+    """
+    theta, volume, gap = (x.ravel() for x in _arr(theta, volume, gap))
+    n = theta.size
+    beta = np.full(n, np.nan)
+    suction = np.full(n, np.nan)
+    status = np.full(n, 2, dtype=int)
+    ok = (theta >= 0) & (theta < 0.5 * np.pi) & (volume > 0) & (gap >= 0)
+    k = np.flatnonzero(ok)
+    if k.size == 0:
+        return beta, suction, status
+    th, V, D = theta[k], volume[k], gap[k]
+    m = k.size
+    logs = np.linspace(np.log(1e-7), np.log(1e9), 64)  # s* grid (suction in units of gamma/R)
+
+    def vol_at(log_s, rows):
+        """Volume* of the stable bridge at (s*, gap) for the given rows (NaN where none)."""
+        b, st = solve_for_suction(th[rows], np.exp(log_s), D[rows])
+        v = np.where(st == 0, geometry(b, th[rows], np.exp(log_s))[1], np.nan)
+        return v
+
+    rows = np.repeat(np.arange(m), logs.size)
+    Vg = vol_at(np.tile(logs, m), rows).reshape(m, logs.size)
+    # the rupture suction lies between the last grid suction with a bridge and the next: bisect it, so the
+    # smallest stable volume (at rupture) is on the grid too
+    last = np.where(np.isfinite(Vg).any(axis=1), logs.size - 1 - np.argmax(np.isfinite(Vg)[:, ::-1], axis=1), -1)
+    cut = np.flatnonzero((last >= 0) & (last < logs.size - 1))
+    extra_s = np.full(m, np.nan)
+    extra_v = np.full(m, np.nan)
+    if cut.size:
+        a, c = logs[last[cut]], logs[last[cut] + 1]
+        for _ in range(60):
+            mid = 0.5 * (a + c)
+            v = vol_at(mid, cut)
+            a, c = np.where(np.isfinite(v), mid, a), np.where(np.isfinite(v), c, mid)
+        extra_s[cut], extra_v[cut] = a, vol_at(a, cut)
+    logs_rows = np.tile(logs, (m, 1))
+    ins = np.flatnonzero(np.isfinite(extra_v))
+    grid_s = np.full((m, logs.size + 1), np.nan)
+    grid_v = np.full((m, logs.size + 1), np.nan)
+    grid_s[:, :-1], grid_v[:, :-1] = logs_rows, Vg
+    for i in ins:  # insert the rupture point after the last grid point with a bridge
+        j = last[i] + 1
+        grid_s[i] = np.concatenate([logs_rows[i, :j], [extra_s[i]], logs_rows[i, j:]])
+        grid_v[i] = np.concatenate([Vg[i, :j], [extra_v[i]], Vg[i, j:]])
+    for i in np.setdiff1d(np.arange(m), ins):
+        grid_s[i, -1], grid_v[i, -1] = np.inf, np.nan
+    Vg = grid_v
+    have = np.isfinite(Vg)
+    status_k = np.full(m, 1)
+    lo = np.full(m, np.nan)
+    hi = np.full(m, np.nan)
+    v_lo = np.full(m, np.nan)
+    v_hi = np.full(m, np.nan)
+    for i in range(m):
+        idx = np.flatnonzero(have[i])
+        if idx.size == 0:
+            continue  # no bridge at this gap at any suction: beyond rupture
+        vs = Vg[i, idx]
+        if V[i] > np.max(vs) * (1 + 1e-12) and idx[0] == 0:
+            status_k[i] = 3
+            continue
+        # first bracket along rising suction where the volume crosses the target
+        d = vs - V[i]
+        cross = np.flatnonzero((d[:-1] >= 0) & (d[1:] <= 0) & (np.diff(idx) == 1))
+        if cross.size == 0:
+            status_k[i] = 3 if V[i] > np.max(vs) else 1
+            continue
+        c = cross[0]
+        lo[i], hi[i] = grid_s[i, idx[c]], grid_s[i, idx[c + 1]]
+        v_lo[i], v_hi[i] = d[c], d[c + 1]
+        status_k[i] = 0
+    good = np.flatnonzero(status_k == 0)
+    if good.size:
+        root = _illinois(lambda x, j: vol_at(x, good[j]) - V[good[j]], lo[good], hi[good], v_lo[good], v_hi[good],
+                         tol=1e-15)
+        s_root = np.exp(root)
+        b_root, st = solve_for_suction(th[good], s_root, D[good])
+        beta[k[good]] = b_root
+        suction[k[good]] = s_root
+        status_k[good] = np.where(st == 0, 0, 1)
+    status[k] = status_k
     return beta, suction, status
 
 

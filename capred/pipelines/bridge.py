@@ -19,7 +19,10 @@ from ..result import InputFile, Options, Result, TableSpec, input_file, num
 
 # 1: the gap is too wide for this suction or volume; 3: so much water that the bridge would be
 # convex (water above air pressure), outside the pendular model
-STATUS = {0: "ok", 1: "no bridge: beyond rupture", 2: "invalid input", 3: "no concave bridge: too much water"}
+STATUS = {0: "ok", 1: "no bridge: beyond rupture", 2: "invalid input", 3: "no concave bridge: too much water",
+          4: "no bridge found: the solution did not reproduce the requested gap and volume (or suction) to 1e-9"}
+#: every bridge reported ok reproduces the requested gap and volume (or suction) to this relative tolerance
+VERIFY_RTOL = 1e-9
 
 SOLVE_SCHEMA = [
     Column("case", "text", None, "case label", ("test_id", "id", "name")),
@@ -88,7 +91,7 @@ class BridgeResult(Result):
         cached = self.__dict__.get("_table")
         if cached is None:
             cols = ({"case": self.labels} if self.labels else {}) | self.columns()
-            cols["status"] = np.array([STATUS[k] for k in range(4)], dtype=object)[self.status.astype(int)]
+            cols["status"] = np.array([STATUS[k] for k in range(len(STATUS))], dtype=object)[self.status.astype(int)]
             cols["note"] = self.note
             cached = self.__dict__["_table"] = pd.DataFrame(cols)
         return cached
@@ -168,13 +171,28 @@ def solve_bridges(source, options: BridgeOptions | None = None) -> BridgeResult:
         beta[by_v], s_star[by_v], status[by_v] = br.solve_for_volume(th[by_v], v_in[by_v] / R[by_v] ** 3,
                                                                      D[by_v] / R[by_v])
     res = _result(table.path, R, gamma, th, D, beta, s_star, status, note,
-                  list(table.columns["case"]) if "case" in table.columns else None, table.notes)
+                  list(table.columns["case"]) if "case" in table.columns else None, table.notes, V=v_in)
     res.options, res.inputs, res.warnings = opt, [input_file(source, table)], opt.warnings + table.warnings
     return res
 
 
-def _result(source, R, gamma, th, D, beta, s_star, status, note, labels=None, notes=None) -> BridgeResult:
+def verify(status, D_star, gap_s, vol_s=None, V_star=None):
+    """Status 4 for every 'ok' bridge whose geometry does not reproduce the request: the gap (absolute
+    tolerance at contact) and, for volume control, the volume, to VERIFY_RTOL relative."""
+    status = status.copy()
+    ok = status == 0
+    bad = ok & ~(np.abs(gap_s - D_star) <= VERIFY_RTOL * np.maximum(np.abs(D_star), 1e-6))
+    if V_star is not None:
+        V_star = np.asarray(V_star, float)
+        check = np.isfinite(V_star)
+        bad |= ok & check & ~(np.abs(vol_s - V_star) <= VERIFY_RTOL * np.abs(V_star))
+    status[bad] = 4
+    return status
+
+
+def _result(source, R, gamma, th, D, beta, s_star, status, note, labels=None, notes=None, V=None) -> BridgeResult:
     gap_s, vol_s, f_s, y0 = br.geometry(beta, th, s_star)
+    status = verify(status, D / R, gap_s, vol_s, None if V is None else V / R**3)
     return BridgeResult(source, {"R": R, "gamma": gamma, "contact_angle": th, "gap": D}, beta, s_star * gamma / R,
                         vol_s * R**3, f_s * np.pi * gamma * R, y0 * R, status, note, labels, list(notes or []))
 
@@ -382,7 +400,7 @@ def compare_measured(source, options: BridgeOptions | None = None) -> CompareRes
                    table.columns["V_w"])
     beta, s_star, status = br.solve_for_volume(th, V / R**3, D / R)
     res = _result(table.path, R, gamma, th, D, beta, s_star, status, [""] * len(table),
-                  list(table.columns["case"]) if "case" in table.columns else None, table.notes)
+                  list(table.columns["case"]) if "case" in table.columns else None, table.notes, V=V)
     res.options, res.inputs, res.warnings = opt, [input_file(source, table)], opt.warnings + table.warnings
     return CompareResult(res, table.columns["F_cap"], np.radians(table.get("filling_angle")), V)
 
