@@ -115,14 +115,18 @@ def fit_curve(model, x, y, names, starts, bounds, fixed=None, weights=None) -> N
     if best is None:
         raise FitError("the fit did not converge from any starting point")
     rss = float(2.0 * best.cost)
-    n = len(y)
-    k = len(free)
+    return _assemble(names, full(best.x), fixed, free, y, sw, rss, best.jac, bounds, bool(best.success),
+                     str(best.message))
+
+
+def _assemble(names, params, fixed, free, y, sw, rss, jac, bounds, converged, message="") -> NonlinearFit:
+    """The fit statistics: weighted R^2, AIC/BIC, standard errors and covariance from the Jacobian."""
+    n, k = len(y), len(free)
     wts = sw**2
     ybar = float(np.sum(wts * y) / np.sum(wts))
     tss = float(np.sum(wts * (y - ybar) ** 2))
-    s2 = rss / (n - k)
     try:
-        cov = np.linalg.inv(best.jac.T @ best.jac) * s2
+        cov = np.linalg.inv(jac.T @ jac) * rss / (n - k)
         se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
     except np.linalg.LinAlgError:
         cov, se = None, np.full(k, np.nan)
@@ -130,11 +134,10 @@ def fit_curve(model, x, y, names, starts, bounds, fixed=None, weights=None) -> N
     stderr.update({name: float(v) for name, v in zip(free, se)})
     rss_n = max(rss / n, 1e-300)
     return NonlinearFit(
-        params={name: float(full(best.x)[name]) for name in names},
-        stderr=stderr, fixed=tuple(fixed), n=n, rss=rss,
+        params={name: float(params[name]) for name in names}, stderr=stderr, fixed=tuple(fixed), n=n, rss=rss,
         r2=1.0 - rss / tss if tss > 0 else float("nan"),
         aic=n * np.log(rss_n) + 2 * k, bic=n * np.log(rss_n) + k * np.log(n),
-        converged=bool(best.success), message=str(best.message), covariance=cov, free=tuple(free),
+        converged=converged, message=message, covariance=cov, free=tuple(free),
         bounds={k_: tuple(bounds[k_]) for k_ in free}, t=_t95(n - k),
     )
 
@@ -162,21 +165,4 @@ def summarize_fit(model, x, y, names, params: dict, bounds, fixed=None, weights=
         up, dn = min(params[k] + h, hi), max(params[k] - h, lo)
         cols.append((model(x, **{**params, k: up}) - model(x, **{**params, k: dn})) * sw / (up - dn))
     jac = np.column_stack(cols) if cols else np.empty((x.size, 0))
-    n, k = y.size, len(free)
-    rss = float(r @ r)
-    wts = sw**2
-    ybar = float(np.sum(wts * y) / np.sum(wts))
-    tss = float(np.sum(wts * (y - ybar) ** 2))
-    try:
-        cov = np.linalg.inv(jac.T @ jac) * rss / (n - k)
-        se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
-    except np.linalg.LinAlgError:
-        cov, se = None, np.full(k, np.nan)
-    stderr: dict[str, float | None] = {name: None for name in names}
-    stderr.update({name: float(v) for name, v in zip(free, se)})
-    rss_n = max(rss / n, 1e-300)
-    return NonlinearFit(
-        params={name: float(params[name]) for name in names}, stderr=stderr, fixed=tuple(fixed), n=n, rss=rss,
-        r2=1.0 - rss / tss if tss > 0 else float("nan"), aic=n * np.log(rss_n) + 2 * k,
-        bic=n * np.log(rss_n) + k * np.log(n), converged=converged, covariance=cov, free=tuple(free),
-        bounds={k_: tuple(bounds[k_]) for k_ in free}, t=_t95(n - k))
+    return _assemble(names, params, fixed, free, y, sw, float(r @ r), jac, bounds, converged)

@@ -657,7 +657,7 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         from .shear_curves import pick_peaks
 
         curves = pick_peaks(opt.curves, table, box, opt.area_correction)
-    with np.errstate(invalid="ignore", divide="ignore"):  # blanks and absent columns are NaN, reported below
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # NaN and overflow are reported below
         d = _derive(table, opt, box, curves.tau_peak if curves else None)
     if curves is not None:
         table.problems += curves.problems
