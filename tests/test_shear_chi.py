@@ -62,7 +62,7 @@ def test_back_analysis_recovers_the_generating_chi():
         assert t["chi_back"] == pytest.approx(t["S_R"], abs=1e-9)  # exact data: float rounding only
         assert t["sigma_cap_kPa"] == pytest.approx(t["S_R"] * t["suction_kPa"], abs=1e-9)
         assert t["sigma_cap_pred_kPa"]["bishop"] == pytest.approx(t["sigma_cap_kPa"], abs=1e-9)
-        assert set(t) >= {"sigma_cap_se_kPa", "chi_back_se", "tau_pred_band_kPa"}
+        assert set(t) >= {"sigma_cap_se_kPa", "chi_back_se", "sigma_cap_pred_kPa"}
 
 
 def test_pendular_metrics_use_only_pendular_tests():

@@ -56,7 +56,14 @@ class Grid:
     sheet: str | None
     rows: list[tuple[int, list[str]]]  # (line number, cells)
     delimiters: tuple[str, ...] = (",",)  # candidate CSV delimiters (spreadsheets: none needed)
-    text_rows: dict[str, list[tuple[int, list[str]]]] = field(default_factory=dict)  # per delimiter
+    text_rows: dict[str, list[tuple[int, list[str]]]] = field(default_factory=dict)  # first rows, per delimiter
+    full_text: str | None = None  # a CSV's text (comment lines blanked), parsed once the delimiter is known
+
+    def parse_all(self, delimiter: str) -> None:
+        """Every row of a CSV with the chosen delimiter (spreadsheets: nothing to do)."""
+        if self.full_text is not None:
+            self.rows = _parse(self.full_text, delimiter)
+            self.full_text = None
 
     def where(self) -> str:
         return f"{self.shown}, sheet '{self.sheet}'" if self.sheet is not None else self.shown
@@ -104,26 +111,36 @@ def _csv_grid(shown: str, text: str) -> Grid:
     """Rows of a CSV text for each candidate delimiter (the table reader picks the one whose header fits).
 
     Parsed as a whole (not line by line), so quoted fields may span lines; a
-    row's number is the line it starts on.
+    row's number is the line it starts on. Only the first rows are parsed
+    for each candidate; the whole text is parsed once, with the delimiter
+    chosen (``Grid.parse_all``).
     """
     lines = text.splitlines()
     # comment lines become blank (keeping the numbering); a '#' inside a quoted field is left alone
     kept = "\n".join("" if ln.lstrip().startswith("#") else ln for ln in lines)
     grid = Grid(shown, None, [], (",", ";", "\t"))
+    head = "\n".join(kept.split("\n", 200)[:200])
     for delim in grid.delimiters:
-        rows = []
-        reader = csv.reader(io.StringIO(kept), delimiter=delim)
-        start = 1
-        try:
-            for cells in reader:
-                if any(c.strip() for c in cells):
-                    rows.append((start, [c.strip() for c in cells]))
-                start = reader.line_num + 1
-        except csv.Error as exc:
-            rows.append((start, [f"\x00csv error: {exc}"]))
-        grid.text_rows[delim] = rows
+        grid.text_rows[delim] = _parse(head, delim)
+    grid.full_text = kept
     grid.rows = grid.text_rows[","]
     return grid
+
+
+def _parse(text: str, delim: str) -> list[tuple[int, list[str]]]:
+    """Rows with their first line number; the cells of the first 200 rows stripped (the header and the
+    metadata are searched there), later cells as written (the table reader strips columns where needed)."""
+    rows = []
+    reader = csv.reader(io.StringIO(text), delimiter=delim)
+    start = 1
+    try:
+        for cells in reader:
+            if "".join(cells).strip():
+                rows.append((start, [c.strip() for c in cells] if len(rows) < 200 else cells))
+            start = reader.line_num + 1
+    except csv.Error as exc:
+        rows.append((start, [f"\x00csv error: {exc}"]))
+    return rows
 
 
 def _cell_text(value) -> str:

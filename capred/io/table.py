@@ -146,18 +146,29 @@ _COMMA = _PLAIN.replace(chr(92) + ".", ",")
 _ALL_PLAIN_COMMA = re.compile(rf"(?:(?:{_COMMA})?\n)*(?:{_COMMA})?")
 
 
+_NUMBER_CHARS = str.maketrans("", "", "0123456789+-.eE\n")
+
+
 def _parse_column(cells: list[str], decimal_comma: bool) -> np.ndarray | None:
-    """Every cell of a column at once when all are plain decimal numbers (the usual case); else None."""
+    """Every cell of a column at once when all are plain decimal numbers or blank (the usual case); else None.
+
+    Plain: ASCII digits, sign, one decimal point (a comma in a decimal-comma
+    file), exponent; numpy parses, and a column holding any other character
+    ('_', letters such as 'nan' or 'inf', other digits) goes cell by cell.
+    """
     if not cells:
         return np.empty(0)
     joined = "\n".join(cells)
-    if _ALL_PLAIN.fullmatch(joined):
-        pass
-    elif decimal_comma and _ALL_PLAIN_COMMA.fullmatch(joined):
+    if decimal_comma and "," in joined:
+        if "." in joined:  # decimal commas and points mixed: cell by cell
+            return None
         joined = joined.replace(",", ".")
-    else:
+    if joined.translate(_NUMBER_CHARS):
         return None
-    return np.array([c or "nan" for c in joined.split("\n")], dtype=float)  # blank cells are NaN
+    try:
+        return np.array([c or "nan" for c in joined.split("\n")], dtype=float)  # blank cells are NaN
+    except ValueError:
+        return None
 
 
 def _match_header(header: str, lookup: dict[str, Column]) -> tuple[Column | None, str | None]:
@@ -263,7 +274,7 @@ def read_table(source, schema: list[Column]) -> Table:
         if _find_header(grid.text_rows[best], lookup)[1] == 0:  # no known column at all: the widest first row
             best = max(grid.delimiters, key=lambda d: (len(grid.text_rows[d][0][1]) if grid.text_rows[d] else 0,
                                                        -grid.delimiters.index(d)))
-        grid.rows = grid.text_rows[best]
+        grid.parse_all(best)
         delimiter = best
     else:
         delimiter = None
@@ -326,22 +337,26 @@ def read_table(source, schema: list[Column]) -> Table:
     cells_by_row = [cells for _, cells in body]
 
     width = len(headers)
-    for n, cells in body:
-        if len(cells) > width and any(c for c in cells[width:]):
+    lengths = list(map(len, cells_by_row))
+    for n, cells in (body[k] for k, w in enumerate(lengths) if w > width):
+        if any(c for c in cells[width:]):
             table.problems.append(Problem(shown, int(n), None, f"{len(cells)} fields but the header has {width}",
                                           sheet))
-    if all(len(c) == width for c in cells_by_row):  # the usual, rectangular table: columns by transposition
+    if all(w == width for w in lengths):  # the usual, rectangular table: columns by transposition
         transposed = list(zip(*cells_by_row))
         column_cells = {name: list(transposed[j]) for name, (j, _, _) in positions.items()}
+        del transposed
     else:
         column_cells = {name: [row[j] if j < len(row) else "" for row in cells_by_row]
                         for name, (j, _, _) in positions.items()}
+    del cells_by_row, body, rows  # the row lists: only the columns are kept
+    grid.rows = []
 
     numeric = [cells for name, cells in column_cells.items() if positions[name][1].kind != "text"]
     decimal_comma = delimiter not in (None, ",") and any(
         _DECIMAL_COMMA.fullmatch(c) for cells in numeric for c in cells[:2000] if "," in c)
     for name, (j, col, unit) in positions.items():
-        cells = column_cells[name]
+        cells = _stripped(column_cells[name])
         table.raw[name] = cells
         if col.kind == "text":
             values = np.array(cells, dtype=object)
@@ -386,6 +401,17 @@ def read_table(source, schema: list[Column]) -> Table:
     return table
 
 
+_EDGE_SPACE = re.compile(r"\s\x00|\x00\s|^\s|\s$")
+
+
+def _stripped(cells) -> list[str]:
+    """The cells without surrounding white space (checked for the whole column at once)."""
+    cells = list(cells)
+    if _EDGE_SPACE.search("\x00".join(cells)):
+        return [c.strip() for c in cells]
+    return cells
+
+
 def _thousands(table: Table, name: str, cells: list[str], decimal_comma: bool, thousands: str | None) -> list[str]:
     """Cells with thousands separators removed as ``thousands`` says; ambiguous cells are problems."""
     if thousands is not None:
@@ -417,9 +443,16 @@ def _check_rule(table: Table, col: Column) -> None:
     v = table.columns[col.name]
     unit = table.units.get(col.name, "")
     if col.quantity is not None:
-        from ..nomenclature import range_problem
+        from ..nomenclature import QUANTITIES, range_problem
 
-        for i in np.flatnonzero(np.isfinite(v)):
+        q = QUANTITIES[col.quantity]
+        with np.errstate(invalid="ignore"):  # candidates by the bounds at once, the message per bad cell
+            bad = np.zeros(v.shape, bool)
+            if q.lower is not None:
+                bad |= (v <= q.lower) if q.lower_open else (v < q.lower)
+            if q.upper is not None:
+                bad |= (v >= q.upper) if q.upper_open else (v > q.upper)
+        for i in np.flatnonzero(bad & np.isfinite(v)):
             why = range_problem(col.quantity, float(v[i]))
             if why:
                 table.add_problem(i, col.name, why)

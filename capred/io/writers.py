@@ -118,7 +118,12 @@ def _csv_column(values, sep: str = ",", joiner: str = ";", eu: bool = False) -> 
         return [c.replace(".", ",") for c in cells] if eu else cells
     if a.dtype.kind == "b":
         return ["True" if x else "False" for x in a.tolist()]
-    return [_csv_cell(x, sep, joiner, eu) for x in a.tolist()]
+    values = a.tolist()
+    if all(type(x) is str for x in values):  # plain text: quote only if some cell needs it
+        joined = "\x00".join(values)
+        if not any(ch in joined for ch in (sep, '"', "\n", "\r")):
+            return values
+    return [_csv_cell(x, sep, joiner, eu) for x in values]
 
 
 def write_csv_file(path, frame, dialect: str = "standard") -> None:

@@ -285,24 +285,28 @@ class ShearResult(Result):
         back = {k: json_list(t[k][sl] / (1e3 if k.startswith("sigma") else 1.0))
                 for k in ("sigma_cap", "sigma_cap_se", "chi_back", "chi_back_se")}
         cap_pred = {m: json_list(t[f"sigma_cap_pred_{m}"][sl] / 1e3) for m in self.models}
-        lo = {m: json_list(t[f"tau_pred_lo_{m}"][sl] / 1e3) for m in self.models}
-        hi = {m: json_list(t[f"tau_pred_hi_{m}"][sl] / 1e3) for m in self.models}
         curve = ({"displacement_at_peak_mm": json_list(t["displacement_at_peak"][sl] * 1e3),
                   "tau_residual_kPa": json_list(t["tau_residual"][sl] / 1e3),
                   "dilatancy_angle_deg": json_list(t["dilatancy_angle"][sl])} if "displacement_at_peak" in t else {})
-        return [{
-            **{k: v[i] for k, v in curve.items()},
-            "test_id": str(ids[i]), "material": str(mats[i]), "condition": str(conds[i]), "line": int(lines[i]),
-            "sigma_N_kPa": kpa["sigma_N"][i], "suction_kPa": kpa["suction"][i], "S_R": plain["S_R"][i],
-            "tau_max_kPa": kpa["tau_max"][i], "chi1": plain["chi1"][i], "chi2_kPa": kpa["chi2"][i],
-            "tau_pred_kPa": {m: pred[m][i] for m in self.models},
-            "residual_kPa": {m: resid[m][i] for m in self.models},
-            "tau_pred_band_kPa": {m: [lo[m][i], hi[m][i]] for m in self.models},
-            "sigma_cap_kPa": back["sigma_cap"][i], "sigma_cap_se_kPa": back["sigma_cap_se"][i],
-            "chi_back": back["chi_back"][i], "chi_back_se": back["chi_back_se"][i],
-            "sigma_cap_pred_kPa": {m: cap_pred[m][i] for m in self.models},
-            "flags": flags[i].split(";") if flags[i] else [],
-        } for i in range(stop - start)]
+        models = self.models
+
+        def nested(d):  # {model: list} -> one {model: value} per test, built in C
+            return [dict(zip(models, vals)) for vals in zip(*(d[m] for m in models))]
+
+        columns = {
+            **curve,
+            "test_id": list(map(str, ids)), "material": list(map(str, mats)), "condition": list(map(str, conds)),
+            "line": list(map(int, lines)),
+            "sigma_N_kPa": kpa["sigma_N"], "suction_kPa": kpa["suction"], "S_R": plain["S_R"],
+            "tau_max_kPa": kpa["tau_max"], "chi1": plain["chi1"], "chi2_kPa": kpa["chi2"],
+            "tau_pred_kPa": nested(pred), "residual_kPa": nested(resid),
+            "sigma_cap_kPa": back["sigma_cap"], "sigma_cap_se_kPa": back["sigma_cap_se"],
+            "chi_back": back["chi_back"], "chi_back_se": back["chi_back_se"],
+            "sigma_cap_pred_kPa": nested(cap_pred),
+            "flags": [f.split(";") if f else [] for f in flags],
+        }
+        keys = tuple(columns)
+        return [dict(zip(keys, vals)) for vals in zip(*columns.values())]
 
     def _results_table(self):
         import pandas as pd
@@ -338,7 +342,7 @@ class ShearResult(Result):
             cols["tau_residual [kPa]"] = t["tau_residual"] / 1e3
             cols["dilatancy_angle [deg]"] = t["dilatancy_angle"]
         cols["flags"] = self._flag_texts()
-        return pd.DataFrame(cols)
+        return pd.DataFrame(cols, copy=False)  # columns as they are: no second copy of 100,000-row arrays
 
     def _flag_texts(self) -> list[str]:
         cached = self.__dict__.get("_flags")

@@ -4,7 +4,9 @@ from __future__ import annotations
 from ..physics.effective_stress_models import MODEL_LABELS
 from ..references import cite
 from ..result import TableSpec
-from .render import fmt, row_table
+import numpy as np
+
+from .render import MAX_ROWS, fmt, row_table
 
 
 def _spec(title: str, headers: list[str], left: int = 1) -> TableSpec:
@@ -63,10 +65,16 @@ def shear_tables(result) -> list[TableSpec]:
                         continue
                     f.rows.append([mat, MODEL_LABELS[m], name, fmt(value), fmt(v["se"].get(name)), fmt(v["n"])])
         out.append(f)
-    rows = [r for r in _wet_rows(result)]
-    out.append(row_table("Capillary stress carried by each wet test, σ_cap = (τ − c)/tan φ − σ_N [kPa]", rows,
-                         ["test_id", "material", "S_R", "suction [kPa]", "σ_cap [kPa]", "± se", "χ_back", "± se "],
-                         "results.csv"))
+    import itertools
+
+    n_wet = int(np.sum(result.tests["condition"] == "wet"))
+    rows = list(itertools.islice(_wet_rows(result), MAX_ROWS))
+    table = row_table("Capillary stress carried by each wet test, σ_cap = (τ − c)/tan φ − σ_N [kPa]", rows,
+                      ["test_id", "material", "S_R", "suction [kPa]", "σ_cap [kPa]", "± se", "χ_back", "± se "],
+                      "results.csv")
+    if n_wet > MAX_ROWS:
+        table.total_rows, table.full_table = n_wet, "results.csv"
+    out.append(table)
     return out
 
 
