@@ -585,7 +585,10 @@ def _derive(table: Table, opt: ShearOptions, box: np.ndarray, tau_curve: np.ndar
             return
         table.add_problem(i, column, what)
 
-    for i in range(n):
+    # only rows with something missing or out of range need a look (the rest are fine)
+    look = (np.isnan(sigma_N) | np.isnan(tau) | (wet & (np.isnan(suction) | np.isnan(S_R) | np.isnan(radius)
+                                                      | (from_burette & ((S_R < 0) | (S_R > 1))))))
+    for i in np.flatnonzero(look):
         if np.isnan(sigma_N[i]):
             parts = [c for c, v in (("added_mass", added[i]), ("cap_mass", cap[i]), ("box_area", box[i]))
                      if np.isnan(v)]
@@ -695,9 +698,15 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
     phi_b, laws, model_inputs = _predict(tests, wet, mat, fits, opt)
     pend = wet & (d["S_R"] <= opt.pendular_limit)
 
+    of_material = {m: mat == m for m in fits}
+
     def scores(sel):
-        return {m: {mod: model_metrics(tests[f"tau_pred_{mod}"][(mat == m) & sel], d["tau_max"][(mat == m) & sel])
-                    for mod in opt.models} for m in fits if np.any((mat == m) & sel)}
+        out = {}
+        for m in fits:
+            rows = np.flatnonzero(of_material[m] & sel)
+            if rows.size:
+                out[m] = {mod: model_metrics(tests[f"tau_pred_{mod}"][rows], d["tau_max"][rows]) for mod in opt.models}
+        return out
 
     metrics, metrics_pend = scores(wet), scores(pend)
     for m in fits:

@@ -165,9 +165,14 @@ def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitt
 
 def fit_covariances(fits: dict[str, LineFit], material) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Per test: covariance of (c, tan phi), residual variance and Student t of its material's dry fit."""
-    cov = np.stack([fits[m].covariance for m in material]) if len(material) else np.empty((0, 2, 2))
-    s2 = np.array([fits[m].residual_variance for m in material], dtype=float)
-    t = np.array([fits[m].t for m in material], dtype=float)
+    names = list(fits)
+    if not len(material):
+        return np.empty((0, 2, 2)), np.empty(0), np.empty(0)
+    index = {m: k for k, m in enumerate(names)}
+    which = np.fromiter((index[m] for m in material), dtype=int, count=len(material))
+    cov = np.stack([fits[m].covariance for m in names])[which]
+    s2 = np.array([fits[m].residual_variance for m in names], dtype=float)[which]
+    t = np.array([fits[m].t for m in names], dtype=float)[which]
     return cov, s2, t
 
 

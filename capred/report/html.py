@@ -97,9 +97,9 @@ def _flags(result) -> list[tuple[str, int, str]]:
     if "flags" not in frame.columns:
         return []
     counts: dict[str, int] = {}
-    for text in frame["flags"]:
+    for text, k in frame["flags"].value_counts().items():  # distinct flag combinations, counted once each
         for f in (text.split(";") if isinstance(text, str) and text else []):
-            counts[f] = counts.get(f, 0) + 1
+            counts[f] = counts.get(f, 0) + int(k)
     return [(k, v, FLAG_MEANING.get(k, "")) for k, v in counts.items()]
 
 
