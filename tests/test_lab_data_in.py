@@ -2,7 +2,6 @@
 problems, checked options, physical limits, raw shear and triaxial curves, sample state."""
 import io
 import json
-import shutil
 
 import numpy as np
 import pandas as pd

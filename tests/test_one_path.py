@@ -1,7 +1,6 @@
 """The one path of every command (issue 9): contract, transactional outputs, digits, console, API units."""
 import errno
 import json
-import os
 import re
 import shutil
 import signal

@@ -1,6 +1,5 @@
 """Paper-ready output (issue 10): vector figures and single panels, honest curves, legends off the data,
 literal user text, report.html, spreadsheet-friendly tables, the batch season table."""
-import json
 import shutil
 from html.parser import HTMLParser
 from xml.etree import ElementTree

@@ -3,8 +3,7 @@ from typing import Annotated
 
 import typer
 
-from .common import (Invocation, JsonOpt, OutOpt, PlotOpt, SampleOpt, SheetOpt, ThousandsOpt, WorkersOpt, command,
-                     data_arg, quantity, sources)
+from .common import Invocation, command, quantity
 
 
 def register(app: typer.Typer) -> None:
@@ -13,8 +12,10 @@ def register(app: typer.Typer) -> None:
                              no_args_is_help=True, rich_markup_mode=None)
     app.add_typer(bridge_app, name="bridge")
     command(bridge_app, "curve", "bridge curve")(curve)
-    command(bridge_app, "solve", "bridge solve")(solve)
-    command(bridge_app, "compare", "bridge compare")(compare)
+    command(bridge_app, "solve", "bridge solve", data="CSV, one bridge per row: R, gamma, contact_angle, gap, and "
+                                                      "suction or V_w", plots=False)(solve)
+    command(bridge_app, "compare", "bridge compare", data="CSV of microscopic tests: R, contact_angle, gap, V_w, "
+                                                          "measured F_cap (and filling_angle)")(compare)
 
 
 def curve(
@@ -24,9 +25,6 @@ def curve(
     points: Annotated[int, typer.Option(help="Number of S_R values.")] = 2000,
     sr_max: Annotated[float, typer.Option(help="Largest S_R of the sweep (bridges stop where suction reaches 0).")] = 0.3,
     pendular_limit: Annotated[float, typer.Option(help="S_R bound of the pendular regime panel.")] = 0.05,
-    out: OutOpt = None,
-    json_out: JsonOpt = False,
-    plots: PlotOpt = True,
 ) -> Invocation:
     """Evenepoel's analytical comparison: sigma' = F_cap/(pi R^2) against
     S_R = 3 V_w/(2 pi R^3) for two spheres in contact, from exact bridges,
@@ -41,17 +39,10 @@ def curve(
                         quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
                         quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"),
                         points, sr_max, quantity(repr(float(pendular_limit)), "", "pendular_limit", "--pendular-limit"))
-    return Invocation("bridge curve", [None], opts, plots, out, json_out)
+    return Invocation("bridge curve", opts)
 
 
 def solve(
-    data: data_arg("CSV, one bridge per row: R, gamma, contact_angle, gap, and suction or V_w") = None,
-    out: OutOpt = None,
-    json_out: JsonOpt = False,
-    sample: SampleOpt = False,
-    workers: WorkersOpt = 1,
-    sheet: SheetOpt = None,
-    thousands: ThousandsOpt = None,
     surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma'.")] = "0.0728",
 ) -> Invocation:
     """Exact bridge per row: neck radius r0, F_cap = F_L + F_T, V_w, half-filling
@@ -63,18 +54,10 @@ def solve(
     from ..pipelines.bridge import BridgeOptions
 
     opts = BridgeOptions(quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"))
-    return Invocation("bridge solve", sources(data, sample, "bridge solve", sheet, thousands), opts, False, out, json_out, workers)
+    return Invocation("bridge solve", opts)
 
 
 def compare(
-    data: data_arg("CSV of microscopic tests: R, contact_angle, gap, V_w, measured F_cap (and filling_angle)") = None,
-    out: OutOpt = None,
-    json_out: JsonOpt = False,
-    plots: PlotOpt = True,
-    sample: SampleOpt = False,
-    workers: WorkersOpt = 1,
-    sheet: SheetOpt = None,
-    thousands: ThousandsOpt = None,
     surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma'.")] = "0.0728",
 ) -> Invocation:
     """Microscopic tests against theory: the measured force of each sphere pair
@@ -86,4 +69,4 @@ def compare(
     from ..pipelines.bridge import BridgeOptions
 
     opts = BridgeOptions(quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"))
-    return Invocation("bridge compare", sources(data, sample, "bridge compare", sheet, thousands), opts, plots, out, json_out, workers)
+    return Invocation("bridge compare", opts)

@@ -3,14 +3,15 @@ from typing import Annotated, Optional
 
 import typer
 
-from .common import (Invocation, JsonOpt, OutOpt, PlotOpt, SampleOpt, SheetOpt, ThousandsOpt, WorkersOpt, command,
-                     data_arg, quantity, sources)
+from .common import Invocation, command, quantity
 
 
 def register(app: typer.Typer) -> None:
-    command(app, "prism")(prism)
-    command(app, "skempton-b")(skempton_b)
-    command(app, "rumpf")(rumpf)
+    command(app, "prism", data="Optional CSV of cases: break_tension, friction_angle", plots=False)(prism)
+    command(app, "skempton-b", data="Optional CSV of cases: S_r (or B), and any of kappa, e0, p0, u0, pa0")(
+        skempton_b)
+    command(app, "rumpf", data="Optional CSV of cases (shape_factor, void_ratio, S_r, diameter, surface_tension, "
+                               "contact_angle)", plots=False)(rumpf)
 
 
 def _number(value: Optional[float], name: str, option: str) -> Optional[float]:
@@ -18,17 +19,10 @@ def _number(value: Optional[float], name: str, option: str) -> Optional[float]:
 
 
 def prism(
-    data: data_arg("Optional CSV of cases: break_tension, friction_angle") = None,
     break_tension: Annotated[Optional[str], typer.Option(help="Break tension sigma_b of the prism [kPa]; "
                                                          "any pressure unit, g/cm^2 read as gram-force.")] = None,
     friction_angle: Annotated[Optional[float], typer.Option(help="Friction angle rho of the sand [deg].")] = None,
     gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3].")] = "9.81",
-    out: OutOpt = None,
-    json_out: JsonOpt = False,
-    sample: SampleOpt = False,
-    workers: WorkersOpt = 1,
-    sheet: SheetOpt = None,
-    thousands: ThousandsOpt = None,
 ) -> Invocation:
     """Bernatzik's (1948) prism test: maximal capillary pressure
     P_kmax = sigma_b (1 - sin rho)/(2 sin rho) and capillary rise h_c = P_kmax/gamma_w.
@@ -41,11 +35,10 @@ def prism(
                         quantity(None if friction_angle is None else str(friction_angle), "deg", "friction_angle",
                                  "--friction-angle"),
                         quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"))
-    return Invocation("prism", sources(data, sample, "prism", sheet, thousands), opts, False, out, json_out, workers)
+    return Invocation("prism", opts)
 
 
 def skempton_b(
-    data: data_arg("Optional CSV of cases: S_r (or B), and any of kappa, e0, p0, u0, pa0") = None,
     sr: Annotated[Optional[float], typer.Option("--sr", help="Degree of saturation S_r [-]: compute B.")] = None,
     b: Annotated[Optional[float], typer.Option("--b", help="Measured B [-]: compute S_r.")] = None,
     kappa: Annotated[float, typer.Option(help="Slope of the elastic line in e-ln p'.")] = 0.006,
@@ -58,13 +51,6 @@ def skempton_b(
     bc_lambda: Annotated[Optional[float], typer.Option("--bc-lambda", "--bc-alpha",
                                                        help="Brooks-Corey pore-size index lambda (alpha in Morvan "
                                                             "et al. 2016), with --se.")] = None,
-    out: OutOpt = None,
-    json_out: JsonOpt = False,
-    plots: PlotOpt = True,
-    sample: SampleOpt = False,
-    workers: WorkersOpt = 1,
-    sheet: SheetOpt = None,
-    thousands: ThousandsOpt = None,
 ) -> Invocation:
     """Skempton's B against degree of saturation (Morvan et al. 2016, eq. 10):
     B = 1/(1 + p'0 e0 (1 - S_r)/(kappa P_a0)) with p'0 = p0 - u0, or its inverse
@@ -74,34 +60,22 @@ def skempton_b(
 
     Example: capred skempton-b --sr 0.9 --kappa 0.06
     """
-    from ..errors import OptionError
     from ..pipelines.calculators import SkemptonOptions
 
-    src = sources(data, sample, "skempton-b", sheet, thousands)
-    if src == [None] and (sr is None) == (b is None):
-        raise OptionError("give exactly one of --sr and --b")
     opts = SkemptonOptions(_number(sr, "S_R", "--sr"), _number(b, "B", "--b"), _number(kappa, "kappa", "--kappa"),
                            _number(e0, "e0", "--e0"), quantity(p0, "kPa", "p0", "--p0"),
                            quantity(u0, "kPa", "u0", "--u0"), quantity(pa0, "kPa", "pa0", "--pa0"),
                            quantity(se, "kPa", "air_entry", "--se"), _number(bc_lambda, "bc_lambda", "--bc-lambda"))
-    return Invocation("skempton-b", src, opts, plots, out, json_out, workers)
+    return Invocation("skempton-b", opts)
 
 
 def rumpf(
-    data: data_arg("Optional CSV of cases (shape_factor, void_ratio, S_r, diameter, surface_tension, "
-                   "contact_angle)") = None,
     shape_factor: Annotated[Optional[float], typer.Option(help="Particle shape factor phi [-].")] = None,
     void_ratio: Annotated[Optional[float], typer.Option(help="Void ratio e [-].")] = None,
     sr: Annotated[Optional[float], typer.Option("--sr", help="Degree of saturation S_r [-].")] = None,
     diameter: Annotated[Optional[str], typer.Option(help="Apparent particle diameter d_p [mm].")] = None,
     surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m].")] = "0.0728",
     contact_angle: Annotated[float, typer.Option(help="Contact angle theta [deg].")] = 0.0,
-    out: OutOpt = None,
-    json_out: JsonOpt = False,
-    sample: SampleOpt = False,
-    workers: WorkersOpt = 1,
-    sheet: SheetOpt = None,
-    thousands: ThousandsOpt = None,
 ) -> Invocation:
     """Rumpf's capillary pressure p_cap = -(6/phi)(S_r/e)(gamma/d_p) cos(theta)
     (Prunier et al. 2024, eq. 19); negative means tension.
@@ -115,4 +89,4 @@ def rumpf(
                         quantity(diameter, "mm", "diameter", "--diameter"),
                         quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
                         quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"))
-    return Invocation("rumpf", sources(data, sample, "rumpf", sheet, thousands), opts, False, out, json_out, workers)
+    return Invocation("rumpf", opts)

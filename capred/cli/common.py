@@ -20,6 +20,20 @@ from ..errors import CapredError
 BUILDERS: dict[str, Callable[..., "Invocation"]] = {}
 
 
+# --- option types shared by the commands ----------------------------------------------------------
+OutOpt = Annotated[Optional[Path], typer.Option(
+    "--out", "-o", help="Output folder, replaced as a whole by each run [default: ./capred_out/<command>_<input>; "
+                        "with --json, no files unless --out is given].")]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON document on stdout instead of tables.")]
+PlotOpt = Annotated[bool, typer.Option("--plots/--no-plots", help="Write the report figures.")]
+SampleOpt = Annotated[bool, typer.Option("--sample", help="Run on the bundled (synthetic) sample data.")]
+WorkersOpt = Annotated[int, typer.Option(min=1, help="Worker processes for a batch of files.")]
+SheetOpt = Annotated[Optional[str], typer.Option(help="Sheet of an .xlsx or .ods workbook: its name or its number "
+                                                      "(from 1) [default: the first].")]
+ThousandsOpt = Annotated[Optional[str], typer.Option(help="Thousands separator of the file, e.g. '.' to read 1.000 as "
+                                                          "one thousand in a file with decimal commas.")]
+
+
 @dataclass(frozen=True)
 class OutputOptions:
     """How a run's files are written (the same options for every command)."""
@@ -33,9 +47,12 @@ class OutputOptions:
 
 @dataclass
 class Invocation:
+    """A parsed command: the builder of a command gives ``command``, ``options`` and ``extra_inputs``;
+    ``command()`` fills in the inputs, output folder and output options shared by every command."""
+
     command: str
-    sources: list  # paths (or None for a run from options only)
     options: object
+    sources: list = field(default_factory=lambda: [None])  # paths (or None for a run from options only)
     plots: bool = True
     out: Optional[Path] = None
     json: bool = False
@@ -76,22 +93,44 @@ def _output_options(formats: str, dpi: int, html: bool, csv_dialect: str, xlsx: 
     return OutputOptions(fmts, dpi, html, csv_dialect, xlsx)
 
 
-def command(app: typer.Typer, name: str, full_name: Optional[str] = None):
+def _param(name: str, annotation, default) -> inspect.Parameter:
+    return inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=default, annotation=annotation)
+
+
+def command(app: typer.Typer, name: str, full_name: Optional[str] = None, data: Optional[str] = None,
+            plots: bool = True):
     """Register ``builder`` as the command ``name`` of ``app``; it runs through ``execute``.
 
-    Every command also gets the output options (--format, --dpi, --html/--no-html,
-    --csv-dialect, --xlsx), parsed here once into the Invocation.
+    The builder parses the command's own options and returns an Invocation.
+    The options every command shares are declared and read here, once: the
+    input files (``data``: the help of the DATA argument; None for a command
+    without input files) with --sample, --workers, --sheet and --thousands;
+    --out and --json; --plots/--no-plots (``plots``); and the output options
+    (--format, --dpi, --html/--no-html, --csv-dialect, --xlsx). A builder that
+    needs one of them (shear reads --thousands for its curves) declares it
+    in its own signature and gets it too.
     """
+    full = full_name or name
+    shared = {"out": (OutOpt, None), "json_out": (JsonOpt, False)}
+    if plots:
+        shared["plots"] = (PlotOpt, True)
+    if data is not None:
+        shared = {"data": (data_arg(data), None), **shared, "sample": (SampleOpt, False),
+                  "workers": (WorkersOpt, 1), "sheet": (SheetOpt, None), "thousands": (ThousandsOpt, None)}
 
     def deco(builder):
         sig = inspect.signature(builder)
-        extra = [inspect.Parameter(k, inspect.Parameter.KEYWORD_ONLY, default=d, annotation=a)
-                 for k, (a, d) in _OUTPUT_PARAMS.items()]
+        own = set(sig.parameters)
+        extra = [_param(k, a, d) for k, (a, d) in {**shared, **_OUTPUT_PARAMS}.items() if k not in own]
 
         def build(**params):
+            common = {k: (params[k] if k in own else params.pop(k, d)) for k, (_, d) in shared.items()}
             out = _output_options(**{k: params.pop(k, d) for k, (_, d) in _OUTPUT_PARAMS.items()})
             inv = builder(**params)
-            inv.output = out
+            if data is not None:
+                inv.sources = sources(common["data"], common["sample"], full, common["sheet"], common["thousands"])
+                inv.workers = common["workers"]
+            inv.out, inv.json, inv.plots, inv.output = common["out"], common["json_out"], common.get("plots", False), out
             return inv
 
         def run(**params):
@@ -102,28 +141,17 @@ def command(app: typer.Typer, name: str, full_name: Optional[str] = None):
             execute(inv)
 
         run.__name__, run.__doc__ = builder.__name__, builder.__doc__
-        run.__signature__ = sig.replace(parameters=[*sig.parameters.values(), *extra], return_annotation=None)
+        first = [p for p in extra if p.name == "data"]  # the DATA argument leads
+        mine = [p.replace(kind=inspect.Parameter.KEYWORD_ONLY) for p in sig.parameters.values()]
+        run.__signature__ = sig.replace(parameters=[*first, *mine, *(p for p in extra if p.name != "data")],
+                                        return_annotation=None)
         run.__annotations__ = {**{k: v for k, v in builder.__annotations__.items() if k != "return"},
                                **{p.name: p.annotation for p in extra}}
-        BUILDERS[full_name or name] = build
+        BUILDERS[full] = build
         app.command(name)(run)
         return builder
 
     return deco
-
-
-# --- option types shared by the commands ----------------------------------------------------------
-OutOpt = Annotated[Optional[Path], typer.Option(
-    "--out", "-o", help="Output folder, replaced as a whole by each run [default: ./capred_out/<command>_<input>; "
-                        "with --json, no files unless --out is given].")]
-JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON document on stdout instead of tables.")]
-PlotOpt = Annotated[bool, typer.Option("--plots/--no-plots", help="Write the report figures.")]
-SampleOpt = Annotated[bool, typer.Option("--sample", help="Run on the bundled (synthetic) sample data.")]
-WorkersOpt = Annotated[int, typer.Option(min=1, help="Worker processes for a batch of files.")]
-SheetOpt = Annotated[Optional[str], typer.Option(help="Sheet of an .xlsx or .ods workbook: its name or its number "
-                                                      "(from 1) [default: the first].")]
-ThousandsOpt = Annotated[Optional[str], typer.Option(help="Thousands separator of the file, e.g. '.' to read 1.000 as "
-                                                          "one thousand in a file with decimal commas.")]
 
 
 def data_arg(what: str):

@@ -5,24 +5,18 @@ from typing import Annotated, Optional
 
 import typer
 
-from .common import (Invocation, JsonOpt, OutOpt, PlotOpt, SampleOpt, SheetOpt, ThousandsOpt, WorkersOpt, command,
-                     data_arg, quantity, sources)
+from .common import Invocation, ThousandsOpt, command, quantity
 
 
 def register(app: typer.Typer) -> None:
-    command(app, "shear")(shear)
-    command(app, "triaxial-bounds")(triaxial_bounds)
-    command(app, "retention")(retention)
+    command(app, "shear", data="CSV, .xlsx or .ods files of direct-shear tests (one row per test)")(shear)
+    command(app, "triaxial-bounds", data="CSV, .xlsx or .ods files of triaxial tests (one row per test)")(
+        triaxial_bounds)
+    command(app, "retention", data="CSV, .xlsx or .ods files of retention readings: suction, head or pF, and "
+                                   "S_R, theta, w with rho_d, or z2 + V_v")(retention)
 
 
 def shear(
-    data: data_arg("CSV files of direct-shear tests (one row per test)") = None,
-    out: OutOpt = None,
-    json_out: JsonOpt = False,
-    plots: PlotOpt = True,
-    sample: SampleOpt = False,
-    workers: WorkersOpt = 1,
-    sheet: SheetOpt = None,
     thousands: ThousandsOpt = None,
     curves: Annotated[Optional[Path], typer.Option(help="Raw shear curves (CSV, .xlsx or .ods), long format: "
                                                    "test_id, displacement [mm], F [N] or tau [kPa], optionally "
@@ -105,22 +99,13 @@ def shear(
         seed=seed,
         ambient_pressure=quantity(ambient_pressure, "kPa", "ambient_pressure", "--ambient-pressure"),
         rho_w=quantity(rho_w, "kg/m^3", "rho_w", "--rho-w"),
-        curves=_curves_source(curves, sheet, thousands),
+        curves=_curves_source(curves, thousands),
         area_correction=area_correction,
     )
-    return Invocation("shear", sources(data, sample, "shear", sheet, thousands), opts, plots, out, json_out, workers,
-                      [p for p in (retention, curves) if p])
+    return Invocation("shear", opts, extra_inputs=[p for p in (retention, curves) if p])
 
 
 def triaxial_bounds(
-    data: data_arg("CSV files of triaxial tests (one row per test)") = None,
-    out: OutOpt = None,
-    json_out: JsonOpt = False,
-    plots: PlotOpt = True,
-    sample: SampleOpt = False,
-    workers: WorkersOpt = 1,
-    sheet: SheetOpt = None,
-    thousands: ThousandsOpt = None,
     curves: Annotated[Optional[Path], typer.Option(help="Long CSV of raw curves (test_id, axial_strain, q): "
                                                    "failure = peak of q, for tests without q_f or sigma1.")] = None,
     c_eff: Annotated[Optional[str], typer.Option(help="Effective cohesion c' [kPa], instead of fitting saturated "
@@ -140,19 +125,10 @@ def triaxial_bounds(
     opts = TriaxialOptions(c_eff=quantity(c_eff, "kPa", "c_eff", "--c-eff"),
                            phi_eff=quantity(None if phi_eff is None else str(phi_eff), "deg", "phi_eff", "--phi-eff"),
                            curves=curves)
-    return Invocation("triaxial-bounds", sources(data, sample, "triaxial-bounds", sheet, thousands), opts, plots, out,
-                      json_out, workers, [curves] if curves else [])
+    return Invocation("triaxial-bounds", opts, extra_inputs=[curves] if curves else [])
 
 
 def retention(
-    data: data_arg("CSV files of retention readings: suction or head, and S_R, theta or z2 + V_v") = None,
-    out: OutOpt = None,
-    json_out: JsonOpt = False,
-    plots: PlotOpt = True,
-    sample: SampleOpt = False,
-    workers: WorkersOpt = 1,
-    sheet: SheetOpt = None,
-    thousands: ThousandsOpt = None,
     model: Annotated[str, typer.Option(help="Models, comma separated, or all: vg (m = 1 - 1/n), vg_m_free, bc, "
                                             "kosugi, fx (Fredlund-Xing with C), fx_no_c, durner (bimodal).")
                      ] = "vg,vg_m_free,bc",
@@ -188,12 +164,11 @@ def retention(
     opts = RetentionOptions(models=tuple(dict.fromkeys(names)), fixed=parse_fixed(fix or []),
                             gamma_w=quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"),
                             rho_w=quantity(rho_w, "kg/m^3", "rho_w", "--rho-w"), hysteresis=hysteresis)
-    return Invocation("retention", sources(data, sample, "retention", sheet, thousands), opts, plots, out, json_out,
-                      workers)
+    return Invocation("retention", opts)
 
 
-def _curves_source(path: Optional[Path], sheet, thousands):
-    if path is None or (sheet is None and thousands is None):
+def _curves_source(path: Optional[Path], thousands):
+    if path is None or thousands is None:
         return path
     from ..io.grid import TableSource
 

@@ -18,13 +18,12 @@ from __future__ import annotations
 import difflib
 import re
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
 from ..errors import InputError, Problem, UnitError
 from ..units import conversion
-from .grid import Grid, TableSource, as_source, read_grid
+from .grid import as_source, read_grid
 
 _BLANKS = {"", "na", "n/a", "nan", "none", "null"}
 _UNIT_IN_HEADER = re.compile(r"^(?P<name>.*?)\s*[\[(]\s*(?P<unit>[^\])]*?)\s*[\])]\s*$")

@@ -6,7 +6,6 @@ also accepted as ``theta``).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
@@ -14,7 +13,6 @@ from ..errors import InputError, OptionError
 from ..io.table import Column, read_table
 from ..physics import bridge as br
 from ..physics import shear as ph
-from ..references import cite
 from ..result import InputFile, Options, Result, TableSpec, input_file, num
 
 # 1: the gap is too wide for this suction or volume; 3: so much water that the bridge would be

@@ -7,7 +7,6 @@ option, an option fills absent columns and blank cells.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 

@@ -171,7 +171,7 @@ def retention_tables(result) -> list[TableSpec]:
         out.append(t)
     h = js.get("hysteresis")
     if h:
-        t = _spec(f"Hysteresis, Kool & Parker (1987): joint fit of both branches", ["parameter", "value", "± se"])
+        t = _spec("Hysteresis, Kool & Parker (1987): joint fit of both branches", ["parameter", "value", "± se"])
         for k, v in h["params"].items():
             t.rows.append([k, fmt(v), fmt(h["se"].get(k))])
         t.rows.append(["α_w/α_d", fmt(h["alpha_ratio"]), ""])
