@@ -41,6 +41,7 @@ class Column:
     rule: str | None = None  # "positive", "nonnegative", "fraction", or None
     choices: tuple[str, ...] = ()  # allowed values of a text column (lower case)
     quantity: str | None = None  # nomenclature name: its range rule is used (the same as for options)
+    words: tuple[tuple[str, float], ...] = ()  # words a numeric column also accepts, e.g. ("plane", inf)
 
 
 def _key(text: str) -> str:
@@ -377,6 +378,11 @@ def read_table(source, schema: list[Column]) -> Table:
             table.notes.append(f"column '{table.headers[name]}': {note}")
         table.units[name] = unit_used
         cells = _thousands(table, name, cells, decimal_comma, src.thousands)
+        worded = {}
+        if col.words:
+            meaning = dict(col.words)
+            worded = {i: meaning[c.lower()] for i, c in enumerate(cells) if c.lower() in meaning}
+            cells = [("" if i in worded else c) for i, c in enumerate(cells)]
         values = _parse_column(cells, decimal_comma)
         if values is None:  # some cell is not a plain number: cell by cell, naming the bad ones
             values = np.empty(len(cells))
@@ -395,6 +401,8 @@ def read_table(source, schema: list[Column]) -> Table:
         for i in np.flatnonzero(np.isinf(si)):
             table.add_problem(i, name, f"'{cells[i]}' is too large once converted to SI units")
             si[i] = np.nan
+        for i, v in worded.items():
+            si[i] = values[i] = v
         table.columns[name] = si
         _check_rule(table, col)
     return table

@@ -1,79 +1,210 @@
-"""Pendular liquid bridge between two equal spheres, zero gravity (Evenepoel, VUB thesis; Lian et al. 1993).
+"""Pendular liquid bridge between two spheres, or a sphere and a plane, in zero gravity.
 
-Dimensionless core: lengths in units of the sphere radius R, suction
-s* = Delta_u R / gamma, force F* = F / (pi gamma R), volume V* = V / R^3.
+Sources: Lian, Thornton & Adams (1993), J. Colloid Interface Sci. 161, 138-147,
+doi:10.1006/jcis.1993.1452 (first integral, rupture distance); Evenepoel (VUB
+thesis) for the unit cell; Duriez et al. (2017), doi:10.1007/s11440-016-0500-1
+and Prunier et al. (2024) for the interface tensor and YADE's capillary files.
 
-The meridian y(x) of the bridge (x along the line of centres, neck at x = 0)
-obeys the axisymmetric Young-Laplace equation
-    Delta_u / gamma = kappa_meridional - cos(psi) / y,
-whose first integral is the axial force, the same through every section:
-    F* = 2 y cos(psi) + s* y^2.
-At the neck (psi = 0, y = y0) this is the thesis's F_cap = pi r0^2 Delta_u +
-2 pi r0 gamma; at the contact line (half-filling angle beta, contact angle
-theta) y = sin(beta), psi = pi/2 - beta - theta, so
-    F* = 2 sin(beta) sin(beta + theta) + s* sin^2(beta).
-With cos(psi) = c(y) = (F* - s* y^2)/(2y), dx/dy = c / sqrt(1 - c^2), and
-    1 - c = (y - y0)(2 + s*(y + y0)) / (2y)
-factors exactly, so the substitution y = y0 + (y_c - y0) t^2 removes the
-square-root singularity at the neck and the half-length L and the volume
-under the meridian become smooth integrals over t in [0, 1], computed by
-Gauss-Legendre quadrature (16 nodes give about 1e-13). Then
-    gap* = 2 (L + cos(beta) - 1),
-    V*   = 2 (pi int y^2 dx - pi h^2 (3 - h)/3),  h = 1 - cos(beta).
-Only concave (pendular) bridges with s* >= 0 are treated: they need
-beta + theta < 90 deg.
+Dimensionless core: lengths in units of the radius R1 of the first particle,
+suction s* = Delta_u R1 / gamma, force F* = F / (pi gamma R1), volume
+V* = V / R1^3, areas in R1^2. The second particle has radius rho = R2 / R1
+(``inf`` for a plane). Both particles have the contact angle theta.
+
+The meridian y(x) (x along the line of centres) obeys the axisymmetric
+Young-Laplace equation Delta_u / gamma = kappa_meridional - cos(psi) / y
+(psi: angle of the tangent with the axis). Its first integral is the axial
+force, the same through every section:
+    F* = 2 y cos(psi) + s* y^2,
+so cos(psi) = c(y) = (F* - s* y^2) / (2 y) and the neck (psi = 0) has
+y0 = F* / (1 + sqrt(1 + s* F*)). At the contact line on a sphere of radius
+R_i with filling angle delta_i, y = R_i sin(delta_i) and c = sin(delta_i +
+theta); on a plane, c = sin(theta). With
+    1 - c = (y - y0) A / (2 y),  1 + c = B / (2 y),
+    A = 2 + s* (y + y0),  B = 2 y + F* - s* y^2,
+every integral along the meridian from the neck to a contact (x-length,
+volume under it, interface area, int n(x)n dS) has only an inverse
+square-root singularity at the neck; the substitution y = y0 cosh(tau)
+removes it and also resolves thin necks, and 16 Gauss-Legendre nodes give
+about 1e-13 relative.
+
+The neck lies between the particles when delta_i + theta < 90 deg on both;
+when delta_i + theta > 90 deg on one of them the meridian widens from that
+contact to the other and the neck (a virtual one, on the continuation of the
+meridian) lies behind it: the bridge is then the difference of the two
+neck-to-contact pieces. The force identity F = pi r0^2 Delta_u + 2 pi r0 gamma
+holds with that r0 too.
+
+Only bridges with s* >= 0 (water at or below air pressure: concave,
+pendular) are treated.
 """
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.polynomial.legendre import leggauss
 
 _NODES = 16
-_t, _w = leggauss(_NODES)
-_T = 0.5 * (_t + 1.0)
+_u, _w = leggauss(_NODES)
+_U = 0.5 * (_u + 1.0)
 _W = 0.5 * _w
-_CHUNK = 20000  # cases per vectorised block (bounds memory: chunk x nodes arrays)
+_CHUNK = 8192  # cases per vectorised block (bounds memory: chunk x nodes arrays)
+HALF_PI = 0.5 * np.pi
+
+
+@dataclass
+class Bridge:
+    """A set of bridges, dimensionless (units of R1, gamma); NaN where the input has no concave bridge.
+
+    gap, volume, force (F / (pi gamma R1)), neck (y0), delta2 (filling angle on the second particle,
+    rad; 0 on a plane), area (liquid-gas interface), nn11 = nn22 (transverse) and nn33 (axial)
+    components of the integral of n (x) n over that interface.
+    """
+
+    gap: np.ndarray
+    volume: np.ndarray
+    force: np.ndarray
+    neck: np.ndarray
+    delta2: np.ndarray
+    area: np.ndarray
+    nn11: np.ndarray
+    nn33: np.ndarray
+
+
+_FIELDS = ("gap", "volume", "force", "neck", "delta2", "area", "nn11", "nn33")
 
 
 def _arr(*xs):
     return [np.asarray(x, dtype=float) for x in np.broadcast_arrays(*xs)]
 
 
-def geometry(beta, theta, suction):
-    """Exact bridge from (half-filling angle beta [rad], contact angle theta [rad], s* >= 0).
+def bridge(beta, theta, suction, ratio=1.0) -> Bridge:
+    """Exact bridge from (filling angle beta on particle 1 [rad], contact angle theta [rad], s* >= 0, rho).
 
-    Returns dimensionless (gap*, volume*, force*, neck*). Invalid inputs
-    (beta + theta >= pi/2, beta <= 0, s* < 0) give NaN.
+    ``ratio`` is rho = R2 / R1 (``np.inf`` for a plane). Inputs broadcast;
+    cases without a concave bridge (beta + theta too large, no filling angle
+    on the second particle) give NaN.
     """
-    beta, theta, suction = _arr(beta, theta, suction)
+    beta, theta, suction, ratio = _arr(beta, theta, suction, ratio)
     shape = beta.shape
-    b, th, s = beta.ravel(), theta.ravel(), suction.ravel()
-    out = [np.full(b.size, np.nan) for _ in range(4)]
-    ok = (b > 0) & (b + th < 0.5 * np.pi) & (s >= 0) & (th >= 0)
-    idx = np.flatnonzero(ok)
-    for start in range(0, idx.size, _CHUNK):
-        k = idx[start:start + _CHUNK]
-        g, v, f, y0 = _geometry(b[k], th[k], s[k])
-        out[0][k], out[1][k], out[2][k], out[3][k] = g, v, f, y0
-    return tuple(o.reshape(shape) for o in out)
+    cols = [a.ravel() for a in (beta, theta, suction, ratio)]
+    out = {k: np.full(cols[0].size, np.nan) for k in _FIELDS}
+    with np.errstate(all="ignore"):  # a case outside the concave range comes out NaN, with no warning
+        for start in range(0, cols[0].size, _CHUNK):
+            sl = slice(start, start + _CHUNK)
+            vals = _pair(*(c[sl] for c in cols))
+            bad = ~np.all(np.isfinite(vals), axis=0)
+            for k, v in zip(_FIELDS, vals):
+                out[k][sl] = np.where(bad, np.nan, v)
+    return Bridge(**{k: v.reshape(shape) for k, v in out.items()})
 
 
-def _geometry(b, th, s):
-    yc = np.sin(b)
-    F = 2.0 * yc * np.sin(b + th) + s * yc * yc
-    y0 = F / (1.0 + np.sqrt(1.0 + s * F))  # root of 2 y0 + s y0^2 = F, stable form
-    d = yc - y0
-    y = y0[:, None] + d[:, None] * _T**2
-    A = 2.0 + s[:, None] * (y + y0[:, None])
-    B = 2.0 * y + F[:, None] - s[:, None] * y * y
-    g = 2.0 * np.sqrt(np.maximum(d, 0.0))[:, None] * (F[:, None] - s[:, None] * y * y) / np.sqrt(A * B)
-    L = g @ _W
-    V_under = np.pi * ((g * y * y) @ _W)
-    h = 1.0 - np.cos(b)
-    gap = 2.0 * (L + np.cos(b) - 1.0)
-    vol = 2.0 * (V_under - np.pi * h * h * (3.0 - h) / 3.0)
-    return gap, vol, F, y0
+def geometry(beta, theta, suction, ratio=1.0):
+    """(gap*, volume*, force*, neck*) of the bridge; see :func:`bridge`."""
+    b = bridge(beta, theta, suction, ratio)
+    return b.gap, b.volume, b.force, b.neck
 
+
+def _pieces(y0, yc, F, s):
+    """Integrals from the neck y0 to y = yc: x-length, pi int y^2 dx, area, nn11, nn33 (units of R1)."""
+    x = np.maximum(yc - y0, 0.0) / y0
+    tm = np.log1p(x + np.sqrt(x * (2.0 + x)))  # acosh(yc / y0) without cancellation
+    tau = tm[:, None] * _U
+    sh = np.sinh(0.5 * tau)
+    dy = 2.0 * y0[:, None] * sh * sh  # y - y0
+    y = y0[:, None] + dy
+    sc = s[:, None]
+    AB = (2.0 + sc * (y + y0[:, None])) * (2.0 * y + F[:, None] - sc * y * y)
+    P = F[:, None] - sc * y * y  # 2 y cos(psi)
+    # dy / sqrt(y - y0) = sqrt(2 y0) cosh(tau / 2) dtau
+    J = (np.sqrt(2.0 * y0) * tm)[:, None] * np.cosh(0.5 * tau) / np.sqrt(AB)
+    PJ = P * J
+    yy = y * y
+    L = PJ @ _W
+    vol = np.pi * ((yy * PJ) @ _W)
+    area = 4.0 * np.pi * ((yy * J) @ _W)
+    nn11 = 0.5 * np.pi * ((P * PJ) @ _W)
+    # nn33 = pi int sqrt((y - y0) A B) dy, integrated on its own (area = 2 nn11 + nn33 is then a check)
+    nn33 = np.pi * ((np.sqrt(dy * AB) * np.sinh(tau) * (y0 * tm)[:, None]) @ _W)
+    return L, vol, area, nn11, nn33
+
+
+def _second_filling_angle(F, th, s, rho):
+    """Filling angle delta2 on the sphere of radius rho carrying the force F* (NaN if none).
+
+    F* = 2 rho sin(d) sin(d + th) + s* rho^2 sin^2(d) = a - M cos(2 d + phi) with
+    a = rho cos(th) + s* rho^2 / 2, b = rho sin(th), M = hypot(a, b), phi = atan2(b, a):
+    increasing for 2 d + phi in [phi, pi], solved in closed form and polished by one Newton step.
+    """
+    a = rho * np.cos(th) + 0.5 * s * rho * rho
+    b = rho * np.sin(th)
+    M = np.hypot(a, b)
+    phi = np.arctan2(b, a)
+    with np.errstate(invalid="ignore"):
+        half = np.arctan2(np.sqrt(F + b * b / (M + a)), np.sqrt(M + a - F))  # (2 d + phi) / 2
+        d = half - 0.5 * phi
+        g = 2.0 * rho * np.sin(d) * np.sin(d + th) + s * rho * rho * np.sin(d) ** 2 - F
+        dg = 2.0 * rho * np.sin(2.0 * d + th) + s * rho * rho * np.sin(2.0 * d)
+        d = d - np.where(dg > 0, g / np.where(dg > 0, dg, 1.0), 0.0)
+    return np.where((F <= a + M) & (d > 0), d, np.nan)
+
+
+def _pair(b, th, s, rho):
+    n = b.size
+    nan = np.full(n, np.nan)
+    ok = (b > 0) & (th >= 0) & (th < HALF_PI) & (s >= 0) & (rho > 0)
+    # the filling angle on particle 1 stays on the rising side of its contact relation (as delta2 does)
+    ok &= 2.0 * b + np.arctan2(np.sin(th), np.cos(th) + 0.5 * s) <= np.pi
+    y1 = np.sin(b)
+    c1 = np.sin(b + th)
+    F = 2.0 * y1 * c1 + s * y1 * y1
+    equal = rho == 1.0
+    plane = np.isinf(rho)
+    d2 = np.where(equal, b, 0.0)
+    y2 = y1.copy()
+    c2 = c1.copy()
+    sphere = ~equal & ~plane & ok
+    if sphere.any():
+        d2[sphere] = _second_filling_angle(F[sphere], th[sphere], s[sphere], rho[sphere])
+        y2[sphere] = rho[sphere] * np.sin(d2[sphere])
+        c2[sphere] = np.sin(d2[sphere] + th[sphere])
+    flat = plane & ok
+    if flat.any():
+        sin_t = np.sin(th[flat])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            y2[flat] = F[flat] / (sin_t + np.sqrt(sin_t * sin_t + s[flat] * F[flat]))
+        c2[flat] = sin_t
+    ok &= np.isfinite(y2) & (y2 > 0) & np.isfinite(d2)
+    # the meridian narrows from a contact towards the bridge when delta + theta < 90 deg (sign +1)
+    sig1 = np.where(b + th <= HALF_PI, 1.0, -1.0)
+    sig2 = np.where(plane, 1.0, np.where(d2 + th <= HALF_PI, 1.0, -1.0))
+    ok &= (sig1 > 0) | (sig2 > 0)
+    ok &= ~((sig1 < 0) & (y2 < y1)) & ~((sig2 < 0) & (y1 < y2))
+    k = np.flatnonzero(ok)
+    res = [nan.copy() for _ in _FIELDS]
+    if k.size == 0:
+        return res
+    Fk, sk = F[k], s[k]
+    y0 = Fk / (1.0 + np.sqrt(1.0 + sk * Fk))
+    p1 = _pieces(y0, y1[k], Fk, sk)
+    eq = equal[k]
+    if eq.all():
+        tot = [2.0 * q for q in p1]
+    else:
+        p2 = _pieces(y0, y2[k], Fk, sk)
+        tot = [sig1[k] * q1 + sig2[k] * q2 for q1, q2 in zip(p1, p2)]
+    L, vol_under, area, nn11, nn33 = tot
+    h1 = 2.0 * np.sin(0.5 * b[k]) ** 2
+    rk = np.where(plane[k], 0.0, rho[k])
+    h2 = 2.0 * rk * np.sin(0.5 * d2[k]) ** 2
+    caps = np.pi * (h1 * h1 * (3.0 - h1) + h2 * h2 * (3.0 * rk - h2)) / 3.0
+    vals = [L - h1 - h2, vol_under - caps, Fk, y0, d2[k], area, nn11, nn33]
+    for r, v in zip(res, vals):
+        r[k] = v
+    return res
+
+
+# ---- root finding ------------------------------------------------------------
 
 def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100):
     """Vectorised Illinois (modified regula falsi) root of f on brackets with f_lo >= 0 >= f_hi."""
@@ -86,7 +217,9 @@ def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100):
             break
         a = np.flatnonzero(active)
         denom = f_lo[a] - f_hi[a]
-        xa = np.where(denom != 0, (lo[a] * (-f_hi[a]) + hi[a] * f_lo[a]) / np.where(denom != 0, denom, 1.0),
+        # bisect while an end carries the stand-in value of "no bridge here" (see _below)
+        secant = (denom != 0) & (np.abs(f_lo[a]) < 1e299) & (np.abs(f_hi[a]) < 1e299)
+        xa = np.where(secant, (lo[a] * (-f_hi[a]) + hi[a] * f_lo[a]) / np.where(secant, denom, 1.0),
                       0.5 * (lo[a] + hi[a]))
         # keep strictly inside the bracket (regula falsi can stall on an end)
         span = hi[a] - lo[a]
@@ -94,7 +227,6 @@ def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100):
         fa = f(xa, a)
         x[a] = xa
         pos = fa >= 0
-        # bracket update with the Illinois halving of the retained end's value
         lo_new, hi_new = np.where(pos, xa, lo[a]), np.where(pos, hi[a], xa)
         flo_new = np.where(pos, fa, np.where(side[a] == -1, f_lo[a] * 0.5, f_lo[a]))
         fhi_new = np.where(pos, np.where(side[a] == 1, f_hi[a] * 0.5, f_hi[a]), fa)
@@ -105,289 +237,346 @@ def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100):
     return x
 
 
-def solve_for_suction(theta, suction, gap):
-    """Half-filling angle of the stable bridge at given (theta [rad], s*, gap*), and a status.
-
-    At fixed suction the gap, as a function of beta, rises from 0 to a
-    maximum (the rupture gap at that suction) and then falls: two bridges fit
-    a smaller gap. The one on the falling branch (larger beta, the
-    continuation of the bridge at contact) is the stable one and is returned;
-    beyond the maximum there is no bridge.
-    Status codes: 0 ok, 1 gap beyond rupture at this suction, 2 invalid input.
-    """
-    theta, suction, gap = (x.ravel() for x in _arr(theta, suction, gap))
-    n = theta.size
-    beta = np.full(n, np.nan)
-    status = np.full(n, 2, dtype=int)
-    ok = (theta >= 0) & (theta < 0.5 * np.pi) & (suction > 0) & (gap >= 0)
-    k = np.flatnonzero(ok)
-    if k.size == 0:
-        return beta, status
-    th, s, D = theta[k], suction[k], gap[k]
-    b_end = 0.5 * np.pi - th
-    grid = b_end[:, None] * np.geomspace(1e-4, 1.0 - 1e-9, 14)[None, :]
-    Dg = geometry(grid, th[:, None], s[:, None])[0]
-    Dg[:, -1] = np.minimum(Dg[:, -1], 2.0 * (np.cos(grid[:, -1]) - 1.0) + 1e-300)
-    above = Dg >= D[:, None]
-    has = above.any(axis=1)
-    # last grid point still at or above the target gap: the bracket of the falling-branch root
-    last = np.where(has, above.shape[1] - 1 - np.argmax(above[:, ::-1], axis=1), 0)
-    last = np.minimum(last, above.shape[1] - 2)
-    r = np.arange(k.size)
-    lo, hi = grid[r, last], grid[r, last + 1]
-    f_lo, f_hi = Dg[r, last] - D, Dg[r, last + 1] - D
-    # a peak between grid points can hide a bracket: refine the maximum where none was found
-    miss = np.flatnonzero(~has)
-    if miss.size:
-        j = np.argmax(Dg[miss], axis=1)
-        a = grid[miss, np.maximum(j - 1, 0)]
-        c = grid[miss, np.minimum(j + 1, grid.shape[1] - 1)]
-        bp, dp = _golden_max(lambda x, i: geometry(x, th[miss][i], s[miss][i])[0], a, c)
-        found = dp >= D[miss]
-        has[miss[found]] = True
-        lo[miss] = bp
-        f_lo[miss] = dp - D[miss]
-        hi[miss] = c
-        f_hi[miss] = geometry(c, th[miss], s[miss])[0] - D[miss]
-    good = np.flatnonzero(has)
-    root = _illinois(lambda x, i: geometry(x, th[good][i], s[good][i])[0] - D[good][i],
-                     lo[good], hi[good], f_lo[good], f_hi[good])
-    beta[k[good]] = root
-    status[k] = np.where(has, 0, 1)
-    return beta, status
-
-
-def _golden_max(f, a, c, iters=60):
-    """Vectorised golden-section maximisation of f on [a, c]; returns (x, f(x))."""
+def _golden(f, a, c, iters=60, sign=1.0):
+    """Vectorised golden-section search of the maximum of sign * f on [a, c]; returns (x, f(x))."""
     g = (np.sqrt(5.0) - 1.0) / 2.0
-    a, c = a.copy(), c.copy()
+    a, c = np.array(a, float), np.array(c, float)
     idx = np.arange(a.size)
+
+    def h(x, i):
+        v = sign * f(x, i)
+        return np.where(np.isfinite(v), v, -np.inf)
+
     x1, x2 = c - g * (c - a), a + g * (c - a)
-    f1, f2 = f(x1, idx), f(x2, idx)
+    f1, f2 = h(x1, idx), h(x2, idx)
     for _ in range(iters):
         left = f1 < f2
         a = np.where(left, x1, a)
         c = np.where(left, c, x2)
         x1n = np.where(left, x2, c - g * (c - a))
         x2n = np.where(left, a + g * (c - a), x1)
-        fn = f(np.where(left, x2n, x1n), idx)
+        fn = h(np.where(left, x2n, x1n), idx)
         f1, f2 = np.where(left, f2, fn), np.where(left, fn, f1)
         x1, x2 = x1n, x2n
     x = 0.5 * (x1 + x2)
     return x, f(x, idx)
 
 
-def suction_for_gap(beta, theta, gap):
-    """s* >= 0 with gap*(beta, theta, s*) = gap (the gap falls as suction rises); NaN if none."""
-    beta, theta, gap = (x.ravel() for x in _arr(beta, theta, gap))
-    s = np.full(beta.size, np.nan)
-    ok = (beta > 0) & (beta + theta < 0.5 * np.pi) & (gap >= 0)
-    k = np.flatnonzero(ok)
-    if k.size == 0:
-        return s
-    b, th, D = beta[k], theta[k], gap[k]
-    d0 = geometry(b, th, 0.0)[0] - D
-    feasible = np.flatnonzero(d0 >= 0)
-    if feasible.size == 0:
-        return s
-    b, th, D, d0 = b[feasible], th[feasible], D[feasible], d0[feasible]
-    # q = s / (1 + s) maps [0, inf) to [0, 1); at q -> 1 the gap tends to 2 (cos beta - 1) < 0
-    hi_val = 2.0 * (np.cos(b) - 1.0) - D
-
-    def f(q, i):
-        return geometry(b[i], th[i], q / (1.0 - q))[0] - D[i]
-
-    q = _illinois(f, np.zeros(b.size), np.full(b.size, 1.0 - 1e-15), d0, hi_val)
-    s[k[feasible]] = q / (1.0 - q)
-    return s
+def _below(v):
+    """A value that failed (no bridge) counts as below any target in the brackets (finite, for regula falsi)."""
+    return np.where(np.isfinite(v), v, -1e300)
 
 
-def solve_for_volume(theta, volume, gap):
-    """(beta, s*, status) of the bridge of given volume* at gap* (theta in rad), verified.
+# ---- bridges from their neck ----------------------------------------------------
 
-    Two searches: along the family of concave bridges at the gap parametrised
-    by the filling angle (from the catenoid spanning the gap to the largest
-    catenoid), and along the stable branch parametrised by the suction. A
-    candidate counts only if its geometry reproduces the requested gap and
-    volume to 1e-9 relative; rows where neither does keep the status of the
-    first search (1 beyond rupture, 3 too much water) or get 4 (no verified
-    bridge found). Status 2: invalid input.
+def from_neck(neck, theta, suction, ratio=1.0):
+    """Filling angle on particle 1 [rad] and the bridge with neck radius y0 (units of R1) at s* >= 0.
+
+    The force through the neck is F* = 2 y0 + s* y0^2; each contact angle follows
+    from it in closed form. Along the bridges of one gap, the neck shrinks
+    monotonically from the largest concave bridge to the thinnest, which makes
+    it the parameter of the volume-controlled solver.
     """
-    theta, volume, gap = (x.ravel() for x in _arr(theta, volume, gap))
-    beta, s, status = _solve_for_volume_family(theta, volume, gap)
-    bad = ~_verified(beta, theta, s, gap, volume) & (status == 0)
-    retry = np.flatnonzero(bad | (status == 1))
-    if retry.size:
-        b2, s2, st2 = _solve_for_volume_stable_branch(theta[retry], volume[retry], gap[retry])
-        good = (st2 == 0) & _verified(b2, theta[retry], s2, gap[retry], volume[retry])
-        beta[retry[good]], s[retry[good]], status[retry[good]] = b2[good], s2[good], 0
-        still = retry[~good & bad[retry]]
-        beta[still], s[still], status[still] = np.nan, np.nan, 4
-    return beta, s, status
+    neck, theta, suction, ratio = _arr(neck, theta, suction, ratio)
+    F = 2.0 * neck + suction * neck * neck
+    beta = _second_filling_angle(F, theta, suction, np.ones_like(F))
+    return beta, bridge(beta, theta, suction, ratio)
 
 
-def _verified(beta, theta, s, gap, volume, rtol=1e-9):
-    """Does the bridge (beta, s*) reproduce the gap* (absolute 1e-9 near contact) and volume* to ``rtol``?"""
-    g, v, _, _ = geometry(beta, theta, np.where(np.isfinite(s), s, 0.0))
-    with np.errstate(invalid="ignore"):
-        return ((np.abs(g - gap) <= rtol * np.maximum(np.abs(gap), 1e-6))
-                & (np.abs(v - volume) <= rtol * np.abs(volume)) & np.isfinite(beta))
+def _suction_at_neck(y0, th, rho, target, field):
+    """s* >= 0 at which the bridge of neck y0 has gap (or volume) = target; both fall as s* rises. NaN if none."""
+    def value(q, i):
+        s = q / (1.0 - q) / (y0[i] * y0[i])  # suction scale of a neck y0: 1 / y0^2
+        return _below(getattr(from_neck(y0[i], th[i], s, rho[i])[1], field)) - target[i]
+
+    idx = np.arange(y0.size)
+    f0 = value(np.zeros(y0.size), idx)
+    q_hi = np.full(y0.size, 1.0 - 1e-12)
+    f1 = np.maximum(value(q_hi, idx), -1e300)
+    out = np.full(y0.size, np.nan)
+    # a target met at s* = 0 to rounding (the ends of the arc are catenoids) is met there
+    out[(f0 < 0) & (f0 >= -1e-12 * np.maximum(np.abs(target), 1e-3))] = 0.0
+    k = np.flatnonzero((f0 >= 0) & (f1 <= 0))
+    if k.size:
+        q = _illinois(lambda x, i: np.maximum(value(x, k[i]), -1e300), np.zeros(k.size), q_hi[k], f0[k], f1[k])
+        out[k] = q / (1.0 - q) / (y0[k] * y0[k])
+    return out
 
 
-def _solve_for_volume_family(theta, volume, gap):
-    """(beta, s*, status) of the bridge of given volume* at gap* (theta in rad).
+def _arc(y0, th, rho, D, field="volume"):
+    """Volume (or another field) of the bridge with neck y0 at gap D; NaN where none."""
+    s = _suction_at_neck(y0, th, rho, D, "gap")
+    ok = np.isfinite(s)
+    out = np.full(y0.size, np.nan)
+    if ok.any():
+        out[ok] = getattr(from_neck(y0[ok], th[ok], s[ok], rho[ok])[1], field)
+    return out, s
 
-    At fixed gap, the concave bridges form one family in beta, from the
-    catenoid that just spans the gap (s* = 0, smallest beta) to the catenoid
-    at the largest beta; the volume grows along it, so the solution is unique.
-    Status codes: 0 ok, 1 volume too small to span the gap (beyond rupture),
-    3 volume too large for a concave bridge (the water would be above air
-    pressure), 2 invalid input.
-    """
-    theta, volume, gap = (x.ravel() for x in _arr(theta, volume, gap))
+
+_NECK_GRID = np.geomspace(1e-7, 1.0, 48)  # necks in units of R1
+
+
+def _neck_grid(th, rho, field, s=0.0):
+    """Grid of necks with the field (gap or volume) of the bridge at suction s (default: catenoids)."""
+    m = th.size
+    y = np.tile(_NECK_GRID, (m, 1))
+    vals = getattr(from_neck(y, th[:, None], s, rho[:, None])[1], field)
+    return y, vals
+
+
+def _solve_for_suction(theta, suction, gap, ratio):
+    """Stable bridge (larger filling angle) at given s*, gap*: (beta, status)."""
+    theta, suction, gap, ratio = (x.ravel() for x in _arr(theta, suction, gap, ratio))
     n = theta.size
     beta = np.full(n, np.nan)
-    suction = np.full(n, np.nan)
     status = np.full(n, 2, dtype=int)
-    ok = (theta >= 0) & (theta < 0.5 * np.pi) & (volume > 0) & (gap >= 0)
+    ok = (theta >= 0) & (theta < HALF_PI) & (suction >= 0) & (gap >= 0) & (ratio > 0) & np.isfinite(suction)
+    k = np.flatnonzero(ok)
+    if k.size == 0:
+        return beta, status
+    th, s, D, rho = theta[k], suction[k], gap[k], ratio[k]
+    b_end = 0.5 * (np.pi - np.arctan2(np.sin(th), np.cos(th) + 0.5 * s))
+    grid = b_end[:, None] * np.geomspace(1e-4, 1.0, 16)[None, :]
+    Dg = _below(bridge(grid, th[:, None], s[:, None], rho[:, None]).gap)
+    above = Dg >= D[:, None]
+    has = above.any(axis=1) & ~above[:, -1]
+    last = np.where(has, above.shape[1] - 1 - np.argmax(above[:, ::-1], axis=1), 0)
+    last = np.minimum(last, above.shape[1] - 2)
+    r = np.arange(k.size)
+    lo, hi = grid[r, last], grid[r, last + 1]
+    f_lo, f_hi = Dg[r, last] - D, Dg[r, last + 1] - D
+    miss = np.flatnonzero(~above.any(axis=1))
+    if miss.size:  # a peak between grid points can hide a bracket: refine the maximum
+        j = np.argmax(Dg[miss], axis=1)
+        a = grid[miss, np.maximum(j - 1, 0)]
+        c = grid[miss, np.minimum(j + 1, grid.shape[1] - 1)]
+        bp, dp = _golden(lambda x, i: bridge(x, th[miss][i], s[miss][i], rho[miss][i]).gap, a, c)
+        found = dp >= D[miss]
+        has[miss[found]] = True
+        lo[miss], f_lo[miss] = bp, dp - D[miss]
+        hi[miss] = c
+        f_hi[miss] = _below(bridge(c, th[miss], s[miss], rho[miss]).gap) - D[miss]
+    good = np.flatnonzero(has)
+    f_hi = np.maximum(f_hi, -1e300)
+    root = _illinois(lambda x, i: np.maximum(_below(bridge(x, th[good][i], s[good][i], rho[good][i]).gap), -1e300)
+                     - D[good][i], lo[good], hi[good], f_lo[good], f_hi[good])
+    beta[k[good]] = root
+    # rows whose gap stays above the target up to the last concave bridge: too much water at this suction
+    status[k] = np.where(has, 0, np.where(above[:, -1], 3, 1))
+    return beta, status
+
+
+def _log_root(f, lo, hi):
+    """Root of an increasing-or-decreasing f between necks lo < hi (bracketed), searched in log(neck)."""
+    a, c = np.log(lo), np.log(hi)
+    fa, fc = f(a, np.arange(a.size)), f(c, np.arange(a.size))
+    flip = fa < fc  # Illinois wants f(lo) >= 0 >= f(hi)
+    sign = np.where(flip, -1.0, 1.0)
+    return np.exp(_illinois(lambda x, i: sign[i] * f(x, i), a, c, sign * fa, sign * fc))
+
+
+def _solve_for_volume(theta, volume, gap, ratio):
+    """(beta, s*, status) of the bridge holding volume* at gap*, stable at constant volume.
+
+    At a fixed gap the concave bridges form one arc, parametrised by the neck
+    radius y0 (units of R1): from the largest (the catenoid, s* = 0, at the
+    top neck) through the suction-controlled fold to the thinnest catenoid. Along
+    it the volume falls from its largest value to a minimum (the rupture volume
+    of this gap) and then rises again. The bridge returned is the first one of
+    the requested volume met from the top, i.e. the one continuous with the
+    bridge at contact when the spheres are pulled apart at constant volume.
+    """
+    theta, volume, gap, ratio = (x.ravel() for x in _arr(theta, volume, gap, ratio))
+    n = theta.size
+    beta, suction = np.full(n, np.nan), np.full(n, np.nan)
+    status = np.full(n, 2, dtype=int)
+    ok = (theta >= 0) & (theta < HALF_PI) & (volume > 0) & (gap >= 0) & (ratio > 0) & np.isfinite(volume)
     k = np.flatnonzero(ok)
     if k.size == 0:
         return beta, suction, status
-    th, V, D = theta[k], volume[k], gap[k]
-    b_end = 0.5 * np.pi - th
-    # the catenoid gap D0(beta) rises and falls; feasible betas are where D0 >= D
-    bpk, dpk = _golden_max(lambda x, i: geometry(x, th[i], 0.0)[0], np.full(k.size, 1e-9), b_end * (1 - 1e-9))
-    span = dpk >= D
-    b_lo = np.where(D > 0, np.nan, 1e-12)
-    b_hi = np.full(k.size, np.nan)
-    sp = np.flatnonzero(span)
-    if sp.size:
-        def d0(x, i, sel=sp):
-            return geometry(x, th[sel][i], 0.0)[0] - D[sel][i]
-        b_hi[sp] = _illinois(d0, bpk[sp], b_end[sp] * (1 - 1e-12), dpk[sp] - D[sp],
-                             2.0 * (np.cos(b_end[sp]) - 1.0) - D[sp])
-        pos = sp[D[sp] > 0]
-        if pos.size:
-            def d0r(x, i, sel=pos):  # rising side, root of -(D0 - D) with the sign flipped for the bracket
-                return -(geometry(x, th[sel][i], 0.0)[0] - D[sel][i])
-            b_lo[pos] = _illinois(d0r, np.full(pos.size, 1e-9), bpk[pos], D[pos] - geometry(1e-9, th[pos], 0.0)[0],
-                                  D[pos] - dpk[pos])
-    v_lo = np.where(D > 0, np.nan, 0.0)
-    if sp.size:
-        pos = sp[D[sp] > 0]
-        v_lo[pos] = geometry(b_lo[pos], th[pos], 0.0)[1]
-    v_hi = np.full(k.size, np.nan)
-    v_hi[sp] = geometry(b_hi[sp], th[sp], 0.0)[1]
-    st = np.where(~span, 1, np.where(V < v_lo, 1, np.where(V > v_hi, 3, 0)))
-    good = np.flatnonzero(st == 0)
-    if good.size:
-        def fv(x, i, sel=good):
-            s_ = suction_for_gap(x, th[sel][i], D[sel][i])
-            return V[sel][i] - geometry(x, th[sel][i], s_)[1]
-        f_lo = V[good] - v_lo[good]
-        f_hi = V[good] - v_hi[good]
-        root = _illinois(fv, b_lo[good], b_hi[good], f_lo, f_hi)
-        beta[k[good]] = root
-        suction[k[good]] = suction_for_gap(root, th[good], D[good])
+    th, V, D, rho = theta[k], volume[k], gap[k], ratio[k]
+    m = k.size
+    st = np.full(m, 1)
+    y, gcat = _neck_grid(th, rho, "gap")
+    gcat = _below(gcat)
+    span = gcat >= D[:, None]
+    r = np.arange(m)
+    # peak of the catenoid gap, refined (a narrow peak can hide between grid necks)
+    j = np.argmax(gcat, axis=1)
+    lo_j, hi_j = np.maximum(j - 1, 0), np.minimum(j + 1, y.shape[1] - 1)
+    ypk, gpk = _golden(lambda x, i: bridge(_second_filling_angle(2 * np.exp(x), th[i], 0.0, 1.0), th[i], 0.0,
+                                           rho[i]).gap, np.log(y[r, lo_j]), np.log(y[r, hi_j]))
+    ypk = np.exp(ypk)
+    reach = np.flatnonzero(gpk >= D)
+
+    def cat_gap(x, i, sel):
+        return _below(from_neck(np.exp(x), th[sel][i], 0.0, rho[sel][i])[1].gap) - D[sel][i]
+
+    y_lo, y_hi = np.full(m, np.nan), np.full(m, np.nan)
+    if reach.size:
+        # top neck: the catenoid gap falls through D above the peak
+        top = np.where(span[reach] & (y[reach] > ypk[reach, None]), np.arange(y.shape[1]), -1).max(axis=1)
+        top = np.maximum(top, 0)
+        a = np.maximum(ypk[reach], y[reach, top])
+        c = y[reach, np.minimum(top + 1, y.shape[1] - 1)]
+        y_hi[reach] = _log_root(lambda x, i: cat_gap(x, i, reach), a, c)
+        rising = reach[D[reach] > 0]
+        y_lo[reach[D[reach] == 0]] = _NECK_GRID[0]
+        if rising.size:
+            first = np.argmax(span[rising], axis=1)
+            a = y[rising, np.maximum(first - 1, 0)]
+            c = np.minimum(y[rising, first], ypk[rising])
+            y_lo[rising] = _log_root(lambda x, i: cat_gap(x, i, rising), a, c)
+    has = np.flatnonzero(np.isfinite(y_hi) & np.isfinite(y_lo))
+    v_top = np.full(m, np.nan)
+    if has.size:
+        v_top[has] = from_neck(y_hi[has], th[has], 0.0, rho[has])[1].volume
+        st[has] = np.where(V[has] > v_top[has] * (1 + 1e-12), 3, 1)
+        cand = has[V[has] <= v_top[has] * (1 + 1e-12)]
+    else:
+        cand = has
+    if cand.size:
+        nk = 24
+        frac = np.linspace(0.0, 1.0, nk)
+        yg = np.exp(np.log(y_lo[cand])[:, None] + frac * np.log(y_hi[cand] / y_lo[cand])[:, None])
+        rep = np.repeat(cand, nk)
+        Vg = _arc(yg.ravel(), th[rep], rho[rep], D[rep])[0].reshape(cand.size, nk)
+        Vg_b = np.where(np.isfinite(Vg), Vg, np.inf)
+        jm = np.argmin(Vg_b, axis=1)
+        rr = np.arange(cand.size)
+        a = np.log(yg[rr, np.maximum(jm - 1, 0)])
+        c = np.log(yg[rr, np.minimum(jm + 1, nk - 1)])
+        x_min, v_min = _golden(lambda x, i: _arc(np.exp(x), th[cand][i], rho[cand][i], D[cand][i])[0], a, c,
+                               sign=-1.0)
+        at_contact = D[cand] == 0
+        y_min = np.where(at_contact, y_lo[cand], np.exp(x_min))
+        v_min = np.where(at_contact, 0.0, v_min)
+        inside = V[cand] >= v_min
+        go = cand[inside]
+        if go.size:
+            def f(x, i):
+                return _below(_arc(np.exp(x), th[go][i], rho[go][i], D[go][i])[0]) - V[go][i]
+            sel = inside
+            lo, hi = np.log(y_min[sel]), np.log(y_hi[go])
+            root = np.exp(_illinois(lambda x, i: -f(x, i), lo, hi, -f(lo, np.arange(go.size)),
+                                    V[go] - v_top[go]))
+            s = _suction_at_neck(root, th[go], rho[go], D[go], "gap")
+            b1 = from_neck(root, th[go], np.where(np.isfinite(s), s, 0.0), rho[go])[0]
+            beta[k[go]], suction[k[go]] = b1, s
+            st[go] = 0
     status[k] = st
     return beta, suction, status
 
 
-def _solve_for_volume_stable_branch(theta, volume, gap):
-    """(beta, s*, status) of the stable bridge of given volume* at gap* (theta in rad).
-
-    The stable bridges at a fixed gap form one family parametrised by the
-    suction: at each suction the stable bridge is the one solve_for_suction
-    returns (the continuation of the bridge at contact), from the catenoid at
-    s* -> 0 (the most water a concave bridge holds) up to the rupture suction
-    (at contact, no rupture). Along this family the volume is located by a
-    scan of log s* and refined by the Illinois method on a sign change, so
-    neither the gap(suction) nor the volume(filling angle) relation needs to
-    be monotonic.
-    Status codes: 0 ok, 1 volume too small to span the gap (beyond rupture),
-    3 volume too large for a concave bridge, 2 invalid input.
-    """
-    theta, volume, gap = (x.ravel() for x in _arr(theta, volume, gap))
+def _rupture(theta, volume, ratio):
+    """(gap*, beta, s*, status) of the widest bridge holding volume* (rupture at constant volume)."""
+    theta, volume, ratio = (x.ravel() for x in _arr(theta, volume, ratio))
     n = theta.size
-    beta = np.full(n, np.nan)
-    suction = np.full(n, np.nan)
+    out = [np.full(n, np.nan) for _ in range(3)]
     status = np.full(n, 2, dtype=int)
-    ok = (theta >= 0) & (theta < 0.5 * np.pi) & (volume > 0) & (gap >= 0)
+    ok = (theta >= 0) & (theta < HALF_PI) & (volume > 0) & (ratio > 0) & np.isfinite(volume)
     k = np.flatnonzero(ok)
     if k.size == 0:
-        return beta, suction, status
-    th, V, D = theta[k], volume[k], gap[k]
+        return (*out, status)
+    th, V, rho = theta[k], volume[k], ratio[k]
     m = k.size
-    logs = np.linspace(np.log(1e-7), np.log(1e9), 64)  # s* grid (suction in units of gamma/R)
 
-    def vol_at(log_s, rows):
-        """Volume* of the stable bridge at (s*, gap) for the given rows (NaN where none)."""
-        b, st = solve_for_suction(th[rows], np.exp(log_s), D[rows])
-        v = np.where(st == 0, geometry(b, th[rows], np.exp(log_s))[1], np.nan)
-        return v
+    def gap_at(x, i):
+        y0 = np.exp(x)
+        s = _suction_at_neck(y0, th[i], rho[i], V[i], "volume")
+        return from_neck(y0, th[i], np.where(np.isfinite(s), s, np.nan), rho[i])[1].gap
 
-    rows = np.repeat(np.arange(m), logs.size)
-    Vg = vol_at(np.tile(logs, m), rows).reshape(m, logs.size)
-    # the rupture suction lies between the last grid suction with a bridge and the next: bisect it, so the
-    # smallest stable volume (at rupture) is on the grid too
-    last = np.where(np.isfinite(Vg).any(axis=1), logs.size - 1 - np.argmax(np.isfinite(Vg)[:, ::-1], axis=1), -1)
-    cut = np.flatnonzero((last >= 0) & (last < logs.size - 1))
-    extra_s = np.full(m, np.nan)
-    extra_v = np.full(m, np.nan)
-    if cut.size:
-        a, c = logs[last[cut]], logs[last[cut] + 1]
-        for _ in range(60):
-            mid = 0.5 * (a + c)
-            v = vol_at(mid, cut)
-            a, c = np.where(np.isfinite(v), mid, a), np.where(np.isfinite(v), c, mid)
-        extra_s[cut], extra_v[cut] = a, vol_at(a, cut)
-    logs_rows = np.tile(logs, (m, 1))
-    ins = np.flatnonzero(np.isfinite(extra_v))
-    grid_s = np.full((m, logs.size + 1), np.nan)
-    grid_v = np.full((m, logs.size + 1), np.nan)
-    grid_s[:, :-1], grid_v[:, :-1] = logs_rows, Vg
-    for i in ins:  # insert the rupture point after the last grid point with a bridge
-        j = last[i] + 1
-        grid_s[i] = np.concatenate([logs_rows[i, :j], [extra_s[i]], logs_rows[i, j:]])
-        grid_v[i] = np.concatenate([Vg[i, :j], [extra_v[i]], Vg[i, j:]])
-    for i in np.setdiff1d(np.arange(m), ins):
-        grid_s[i, -1], grid_v[i, -1] = np.inf, np.nan
-    Vg = grid_v
-    have = np.isfinite(Vg)
-    status_k = np.full(m, 1)
-    lo = np.full(m, np.nan)
-    hi = np.full(m, np.nan)
-    v_lo = np.full(m, np.nan)
-    v_hi = np.full(m, np.nan)
-    for i in range(m):
-        idx = np.flatnonzero(have[i])
-        if idx.size == 0:
-            continue  # no bridge at this gap at any suction: beyond rupture
-        vs = Vg[i, idx]
-        if V[i] > np.max(vs) * (1 + 1e-12) and idx[0] == 0:
-            status_k[i] = 3
-            continue
-        # first bracket along rising suction where the volume crosses the target
-        d = vs - V[i]
-        cross = np.flatnonzero((d[:-1] >= 0) & (d[1:] <= 0) & (np.diff(idx) == 1))
-        if cross.size == 0:
-            status_k[i] = 3 if V[i] > np.max(vs) else 1
-            continue
-        c = cross[0]
-        lo[i], hi[i] = grid_s[i, idx[c]], grid_s[i, idx[c + 1]]
-        v_lo[i], v_hi[i] = d[c], d[c + 1]
-        status_k[i] = 0
-    good = np.flatnonzero(status_k == 0)
-    if good.size:
-        root = _illinois(lambda x, j: vol_at(x, good[j]) - V[good[j]], lo[good], hi[good], v_lo[good], v_hi[good],
-                         tol=1e-15)
-        s_root = np.exp(root)
-        b_root, st = solve_for_suction(th[good], s_root, D[good])
-        beta[k[good]] = b_root
-        suction[k[good]] = s_root
-        status_k[good] = np.where(st == 0, 0, 1)
-    status[k] = status_k
-    return beta, suction, status
+    ng = _NECK_GRID.size
+    rep = np.repeat(np.arange(m), ng)
+    G = _below(gap_at(np.tile(np.log(_NECK_GRID), m), rep).reshape(m, ng))
+    j = np.argmax(G, axis=1)
+    found = np.isfinite(G[np.arange(m), j])
+    a = np.log(_NECK_GRID[np.maximum(j - 1, 0)])
+    c = np.log(_NECK_GRID[np.minimum(j + 1, ng - 1)])
+    x, g = _golden(gap_at, a, c)
+    y0 = np.exp(x)
+    s = _suction_at_neck(y0, th, rho, V, "volume")
+    b1 = from_neck(y0, th, s, rho)[0]
+    good = found & np.isfinite(g) & (g >= 0)
+    for o, v in zip(out, (g, b1, s)):
+        o[k[good]] = v[good]
+    status[k] = np.where(good, 0, 3)
+    return (*out, status)
+
+
+# ---- verified solvers ------------------------------------------------------------
+
+#: every bridge called ok reproduces its gap and volume (or suction) to this relative tolerance
+VERIFY_RTOL = 1e-9
+
+
+def _verify(status, beta, theta, s, ratio, gap=None, volume=None):
+    """Status 4 for every 'ok' row whose bridge does not reproduce the requested gap (absolute 1e-12
+    near contact) or volume to VERIFY_RTOL relative."""
+    status = status.copy()
+    ok = status == 0
+    if not ok.any():
+        return status
+    b = bridge(np.where(ok, beta, np.nan), theta, np.where(ok, s, 0.0), ratio)
+    good = np.isfinite(b.gap)
+    with np.errstate(invalid="ignore"):
+        if gap is not None:
+            good &= np.abs(b.gap - gap) <= VERIFY_RTOL * np.maximum(np.abs(gap), 1e-3)
+        if volume is not None:
+            good &= np.abs(b.volume - volume) <= VERIFY_RTOL * np.abs(volume)
+    status[ok & ~good] = 4
+    return status
+
+
+def solve_for_suction(theta, suction, gap, ratio=1.0):
+    """Filling angle on particle 1 [rad] of the stable bridge at (theta [rad], s* >= 0, gap*, rho), and a status.
+
+    At fixed suction the gap, as a function of the filling angle, rises from
+    0 to a maximum (the rupture gap at that suction) and falls: two bridges fit
+    a smaller gap. The one of larger filling angle and volume (the continuation
+    of the bridge at contact) is the stable one and is returned.
+    Status: 0 ok, 1 gap beyond rupture at this suction, 2 invalid input,
+    3 no concave bridge (too much water), 4 no verified bridge.
+    """
+    theta, suction, gap, ratio = (x.ravel() for x in _arr(theta, suction, gap, ratio))
+    beta, status = _solve_for_suction(theta, suction, gap, ratio)
+    return beta, _verify(status, beta, theta, suction, ratio, gap=gap)
+
+
+def solve_for_volume(theta, volume, gap, ratio=1.0):
+    """(beta [rad], s*, status) of the bridge holding volume* at gap* (theta [rad], rho), verified.
+
+    The bridge is the one stable at constant volume, continuous with the
+    bridge at contact (see :func:`_solve_for_volume`); near rupture it can
+    lie past the suction-controlled fold. Status: 0 ok, 1 beyond rupture
+    (volume too small to span the gap), 2 invalid input, 3 too much water for
+    a concave bridge, 4 no bridge reproduced gap and volume to 1e-9.
+    """
+    theta, volume, gap, ratio = (x.ravel() for x in _arr(theta, volume, gap, ratio))
+    beta, s, status = _solve_for_volume(theta, volume, gap, ratio)
+    status = _verify(status, beta, theta, s, ratio, gap=gap, volume=volume)
+    bad = status != 0
+    beta[bad], s[bad] = np.nan, np.nan
+    return beta, s, status
+
+
+def rupture_gap(theta, volume, ratio=1.0):
+    """(gap*, beta [rad], s*, status) of the widest bridge of volume* (rupture distance at constant volume).
+
+    Compare Lian et al. (1993): D_rupt / R ~ (1 + theta / 2) (V / R^3)^(1/3) for equal spheres.
+    Status 0 ok, 2 invalid input, 3 no concave bridge holds this volume, 4 not verified.
+    """
+    theta, volume, ratio = (x.ravel() for x in _arr(theta, volume, ratio))
+    D, beta, s, status = _rupture(theta, volume, ratio)
+    status = _verify(status, beta, theta, s, ratio, volume=volume)
+    bad = status != 0
+    D[bad], beta[bad], s[bad] = np.nan, np.nan, np.nan
+    return D, beta, s, status
+
+
+def lian_rupture_gap(theta, volume):
+    """Lian et al. (1993) estimate D_rupt* = (1 + theta / 2) V*^(1/3) (theta in rad; equal spheres)."""
+    return (1.0 + 0.5 * np.asarray(theta, float)) * np.cbrt(np.asarray(volume, float))
 
 
 # ---- approximations -------------------------------------------------------
@@ -405,7 +594,7 @@ def willett_force(R, surface_tension, theta, volume, gap):
 
 
 def toroidal(beta, theta, gap):
-    """Toroidal (circle-meridian) approximation in units of R: (s*, V*, F*, neck*).
+    """Toroidal (circle-meridian) approximation for equal spheres in units of R: (s*, V*, F*, neck*).
 
     Meridian radius r1 = (1 - cos beta + gap/2) / cos(beta + theta), neck
     r2 = sin beta - r1 (1 - sin(beta + theta)); s* = 1/r1 - 1/r2 (pressure
@@ -417,7 +606,7 @@ def toroidal(beta, theta, gap):
     r2 = np.sin(beta) - r1 * (1.0 - np.sin(beta + theta))
     s = 1.0 / r1 - 1.0 / r2
     xc = r1 * np.cos(beta + theta)
-    x = xc[..., None] * _T
+    x = xc[..., None] * _U
     y = (r2 + r1)[..., None] - np.sqrt(r1[..., None] ** 2 - x * x)
     v_under = np.pi * xc * ((y * y) @ _W)
     h = 1.0 - np.cos(beta)

@@ -1,7 +1,8 @@
-"""`capred bridge solve | curve | compare`: exact capillary bridges between equal spheres.
+"""`capred bridge solve | curve | compare | rupture`: exact capillary bridges between two spheres of radii
+R and R2, or a sphere and a plane.
 
 The contact angle is ``contact_angle`` everywhere (input column ``contact_angle``,
-also accepted as ``theta``).
+also accepted as ``theta``); both particles share it.
 """
 from __future__ import annotations
 
@@ -20,16 +21,21 @@ from ..result import InputFile, Options, Result, TableSpec, input_file, num
 STATUS = {0: "ok", 1: "no bridge: beyond rupture", 2: "invalid input", 3: "no concave bridge: too much water",
           4: "no bridge found: the solution did not reproduce the requested gap and volume (or suction) to 1e-9"}
 #: every bridge reported ok reproduces the requested gap and volume (or suction) to this relative tolerance
-VERIFY_RTOL = 1e-9
+VERIFY_RTOL = br.VERIFY_RTOL
+_PLANE = (("plane", np.inf), ("inf", np.inf), ("infinity", np.inf), ("\u221e", np.inf))
 
+CASE = Column("case", "text", None, "case label", ("test_id", "id", "name"))
+RADIUS = Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius", "R1"), "positive")
+RADIUS2 = Column("R2", "length", "mm", "radius R2 of the second particle ('plane' or 'inf': a plane; "
+                 "absent: equal spheres)", ("radius2", "second_radius"), "positive", words=_PLANE)
+GAMMA = Column("gamma", "surface_tension", "N/m", "surface tension", ("surface_tension",), "positive")
+ANGLE = Column("contact_angle", "angle", "deg", "contact angle", ("theta", "wetting_angle"), "nonnegative")
+VOLUME = Column("V_w", "volume", "mm^3", "water volume V_w", ("volume", "V", "Vw"), "positive")
 SOLVE_SCHEMA = [
-    Column("case", "text", None, "case label", ("test_id", "id", "name")),
-    Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius"), "positive"),
-    Column("gamma", "surface_tension", "N/m", "surface tension", ("surface_tension",), "positive"),
-    Column("contact_angle", "angle", "deg", "contact angle", ("theta", "wetting_angle"), "nonnegative"),
+    CASE, RADIUS, RADIUS2, GAMMA, ANGLE,
     Column("gap", "length", "mm", "gap D", ("D", "separation", "distance"), "nonnegative"),
-    Column("suction", "pressure", "kPa", "suction", ("delta_u", "ua_uw"), "positive"),
-    Column("V_w", "volume", "mm^3", "water volume V_w", ("volume", "V", "Vw"), "positive"),
+    Column("suction", "pressure", "kPa", "suction", ("delta_u", "ua_uw"), "nonnegative"),
+    VOLUME,
     Column("F_cap", "force", "mN", "measured force F_cap", ("F", "force", "F_measured"), "nonnegative"),
     Column("filling_angle", "angle", "deg", "measured filling angle", ("beta", "half_filling_angle"), "nonnegative"),
 ]
@@ -37,8 +43,8 @@ SOLVE_SCHEMA = [
 
 @dataclass(frozen=True)
 class BridgeOptions(Options):
-    """Options of `capred bridge solve` and `compare`: the surface tension [N/m, or a string with a unit]
-    of rows without a ``gamma`` value."""
+    """Options of `capred bridge solve`, `compare` and `rupture`: the surface tension [N/m, or a string with a
+    unit] of rows without a ``gamma`` value."""
 
     QUANTITIES = {"surface_tension": "surface_tension"}
 
@@ -56,9 +62,7 @@ class BridgeResult(Result):
     inputs_si: dict[str, np.ndarray]
     beta: np.ndarray
     suction: np.ndarray  # Pa
-    volume: np.ndarray  # m^3
-    force: np.ndarray  # N
-    neck: np.ndarray  # m
+    shape: br.Bridge  # dimensionless, units of R and gamma
     status: np.ndarray
     note: list[str]
     labels: list[str] | None = None
@@ -67,10 +71,31 @@ class BridgeResult(Result):
     inputs: list[InputFile] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
 
+    @property
+    def volume(self) -> np.ndarray:
+        """Water volume [m^3]."""
+        return self.shape.volume * self.inputs_si["R"] ** 3
+
+    @property
+    def force(self) -> np.ndarray:
+        """Capillary force [N]."""
+        return self.shape.force * np.pi * self.inputs_si["gamma"] * self.inputs_si["R"]
+
+    @property
+    def neck(self) -> np.ndarray:
+        """Neck radius r0 [m] (a virtual neck, behind one contact, when the meridian widens across the bridge)."""
+        return self.shape.neck * self.inputs_si["R"]
+
     def columns(self) -> dict[str, np.ndarray]:
-        """Output columns (mm, mN, mm^3, deg, kPa); NaN where no bridge was found."""
+        """Output columns (mm, mN, mm^3, mm^2, deg, kPa); NaN where no bridge was found.
+
+        S_R = 3 V_w / (2 pi R^3) and sigma' = F / (pi R^2) are the unit cell of the particle of radius R
+        (Evenepoel's thesis); nn11 = nn22 and nn33 are the transverse and axial components of the
+        integral of n (x) n over the liquid-gas interface (area = 2 nn11 + nn33).
+        """
         R, g = self.inputs_si["R"], self.inputs_si["gamma"]
         ok = self.status == 0
+        b = self.shape
 
         def out(x):
             return np.where(ok, x, np.nan)
@@ -79,8 +104,11 @@ class BridgeResult(Result):
             "r0_mm": out(self.neck * 1e3), "F_cap_mN": out(self.force * 1e3),
             "F_L_mN": out(np.pi * self.neck**2 * self.suction * 1e3), "F_T_mN": out(2 * np.pi * self.neck * g * 1e3),
             "V_w_mm3": out(self.volume * 1e9), "filling_angle_deg": out(np.degrees(self.beta)),
+            "filling_angle2_deg": out(np.degrees(b.delta2)),
             "suction_kPa": out(self.suction / 1e3), "S_R": out(3 * self.volume / (2 * np.pi * R**3)),
             "sigma_prime_kPa": out(self.force / (np.pi * R**2) / 1e3),
+            "area_mm2": out(b.area * R**2 * 1e6), "nn11_mm2": out(b.nn11 * R**2 * 1e6),
+            "nn33_mm2": out(b.nn33 * R**2 * 1e6),
         }
 
     def _frame(self):
@@ -125,12 +153,14 @@ def _records(frame, drop_empty: str | None = None) -> list[dict]:
     return out
 
 
-def _read_cases(source, required_one_of: tuple[str, ...], opt: BridgeOptions):
-    table = read_table(source, SOLVE_SCHEMA)
-    for name in ("R", "contact_angle", "gap"):
+def _read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, ...], opt: BridgeOptions,
+                schema=None):
+    """The table of cases with its surface tension and radius ratio R2/R (1 without an R2 column)."""
+    table = read_table(source, schema or SOLVE_SCHEMA)
+    for name in required:
         if name not in table.columns:
             table.missing_column(name)
-    if not any(n in table.columns for n in required_one_of):
+    if required_one_of and not any(n in table.columns for n in required_one_of):
         table.missing_column(required_one_of[0], "".join(f" (or '{n}')" for n in required_one_of[1:]))
     table.raise_if_problems()
     gamma = table.get("gamma").copy()
@@ -138,16 +168,22 @@ def _read_cases(source, required_one_of: tuple[str, ...], opt: BridgeOptions):
     for i in np.flatnonzero(table.columns["contact_angle"] >= 90):
         table.add_problem(i, "contact_angle", f"contact angle {table.value_text('contact_angle', i)} deg: pendular "
                                               "bridges need a contact angle below 90 deg")
-    for name in ("R", "contact_angle", "gap"):
+    for name in required:
         for i in np.flatnonzero(np.isnan(table.columns[name])):
             table.add_problem(i, name, f"blank {name}")
-    return table, gamma
+    ratio = np.ones(len(table))
+    if "R2" in table.columns:
+        for i in np.flatnonzero(np.isnan(table.columns["R2"])):
+            table.add_problem(i, "R2", "blank R2 (give a radius, or 'plane')")
+        ratio = table.columns["R2"] / table.columns["R"]
+    return table, gamma, ratio
 
 
 def solve_bridges(source, options: BridgeOptions | None = None) -> BridgeResult:
-    """One bridge per row of a table (CSV path or DataFrame): R, gamma, contact_angle, gap and suction or V_w."""
+    """One bridge per row of a table (CSV path or DataFrame): R (and R2), gamma, contact_angle, gap and
+    suction or V_w."""
     opt = options or BridgeOptions()
-    table, gamma = _read_cases(source, ("suction", "V_w"), opt)
+    table, gamma, ratio = _read_cases(source, ("R", "contact_angle", "gap"), ("suction", "V_w"), opt)
     s_in, v_in = table.get("suction"), table.get("V_w")
     for i in np.flatnonzero(np.isnan(s_in) & np.isnan(v_in)):
         table.add_problem(i, "suction" if "suction" in table.columns else "V_w", "give suction or V_w")
@@ -155,44 +191,37 @@ def solve_bridges(source, options: BridgeOptions | None = None) -> BridgeResult:
         table.add_problem(i, "V_w", "give suction or V_w, not both")
     table.raise_if_problems()
     R, th, D = table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["gap"]
-    n = len(table)
+    res = _solve(table.path, R, gamma, th, D, ratio, s_in, v_in,
+                 list(table.columns["case"]) if "case" in table.columns else None, table.notes)
+    res.options, res.inputs, res.warnings = opt, [input_file(source, table)], opt.warnings + table.warnings
+    return res
+
+
+def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None) -> BridgeResult:
+    """Suction-controlled rows (s_in finite) and volume-controlled rows (v_in finite), SI in."""
+    n = R.size
     beta, s_star, status = np.full(n, np.nan), np.full(n, np.nan), np.full(n, 2)
     by_s = np.flatnonzero(np.isfinite(s_in))
     by_v = np.flatnonzero(np.isfinite(v_in))
     note = [""] * n
     if by_s.size:
         s_star[by_s] = s_in[by_s] * R[by_s] / gamma[by_s]
-        beta[by_s], status[by_s] = br.solve_for_suction(th[by_s], s_star[by_s], D[by_s] / R[by_s])
+        beta[by_s], status[by_s] = br.solve_for_suction(th[by_s], s_star[by_s], D[by_s] / R[by_s], ratio[by_s])
         for i in by_s[(status[by_s] == 0) & (D[by_s] > 0)]:
             note[i] = "two bridges fit this gap and suction; the stable one (larger filling angle) is given"
     if by_v.size:
         beta[by_v], s_star[by_v], status[by_v] = br.solve_for_volume(th[by_v], v_in[by_v] / R[by_v] ** 3,
-                                                                     D[by_v] / R[by_v])
-    res = _result(table.path, R, gamma, th, D, beta, s_star, status, note,
-                  list(table.columns["case"]) if "case" in table.columns else None, table.notes, V=v_in)
-    res.options, res.inputs, res.warnings = opt, [input_file(source, table)], opt.warnings + table.warnings
-    return res
-
-
-def verify(status, D_star, gap_s, vol_s=None, V_star=None):
-    """Status 4 for every 'ok' bridge whose geometry does not reproduce the request: the gap (absolute
-    tolerance at contact) and, for volume control, the volume, to VERIFY_RTOL relative."""
-    status = status.copy()
-    ok = status == 0
-    bad = ok & ~(np.abs(gap_s - D_star) <= VERIFY_RTOL * np.maximum(np.abs(D_star), 1e-6))
-    if V_star is not None:
-        V_star = np.asarray(V_star, float)
-        check = np.isfinite(V_star)
-        bad |= ok & check & ~(np.abs(vol_s - V_star) <= VERIFY_RTOL * np.abs(V_star))
-    status[bad] = 4
-    return status
-
-
-def _result(source, R, gamma, th, D, beta, s_star, status, note, labels=None, notes=None, V=None) -> BridgeResult:
-    gap_s, vol_s, f_s, y0 = br.geometry(beta, th, s_star)
-    status = verify(status, D / R, gap_s, vol_s, None if V is None else V / R**3)
-    return BridgeResult(source, {"R": R, "gamma": gamma, "contact_angle": th, "gap": D}, beta, s_star * gamma / R,
-                        vol_s * R**3, f_s * np.pi * gamma * R, y0 * R, status, note, labels, list(notes or []))
+                                                                     D[by_v] / R[by_v], ratio[by_v])
+        ok = by_v[status[by_v] == 0]
+        if ok.size:  # past the suction-controlled fold: stable at constant volume only
+            b_s, st_s = br.solve_for_suction(th[ok], s_star[ok], D[ok] / R[ok], ratio[ok])
+            for i, bs, st in zip(ok, b_s, st_s):
+                if st != 0 or abs(bs - beta[i]) > 1e-6 * beta[i]:
+                    note[i] = ("stable at constant volume only (past the suction-controlled fold): at this suction "
+                               "an open water supply would jump to a larger bridge; close to rupture")
+    shape = br.bridge(beta, th, np.where(np.isfinite(s_star), s_star, 0.0), ratio)
+    return BridgeResult(source, {"R": R, "gamma": gamma, "contact_angle": th, "gap": D, "ratio": ratio}, beta,
+                        s_star * gamma / R, shape, status, note, labels, list(notes or []))
 
 
 @dataclass(frozen=True)
@@ -344,11 +373,15 @@ class CompareResult(Result):
             return cached
         b = self.bridges
         i_ = b.inputs_si
-        R, g, th, D = i_["R"], i_["gamma"], i_["contact_angle"], i_["gap"]
+        R, g, th, D, rho = i_["R"], i_["gamma"], i_["contact_angle"], i_["gap"], i_["ratio"]
         ok = b.status == 0
-        models = {"exact": (b.force, ok), "toroidal": (br.toroidal(b.beta, th, D / R)[2] * np.pi * g * R, ok),
-                  "willett": (br.willett_force(R, g, th, self.volume_in, D), np.ones_like(ok)),
-                  "israelachvili": (br.israelachvili_force(R, g, th), np.ones_like(ok))}
+        equal = rho == 1
+        # Derjaguin's effective radius for unequal pairs: R* = 2 R R2 / (R + R2) (R for equal spheres, 2 R on a plane)
+        r_eff = np.where(np.isinf(rho), 2.0 * R, 2.0 * R * rho / (1.0 + np.where(np.isinf(rho), 0.0, rho)))
+        models = {"exact": (b.force, ok),
+                  "toroidal": (br.toroidal(b.beta, th, D / R)[2] * np.pi * g * R, ok & equal),
+                  "willett": (br.willett_force(r_eff, g, th, self.volume_in, D), np.ones_like(ok)),
+                  "israelachvili": (br.israelachvili_force(r_eff, g, th), np.ones_like(ok))}
         cols: dict = {"case": b.labels} if b.labels else {}
         cols["F_measured_mN"] = self.measured_force * 1e3
         for m, (F, good) in models.items():
@@ -384,21 +417,18 @@ class CompareResult(Result):
 
 
 def compare_measured(source, options: BridgeOptions | None = None) -> CompareResult:
-    """Micro-tests: the exact bridge of each measured (R, gap, contact angle, V_w) beside the measured force,
-    the toroidal approximation, Willett et al. (2000) and Israelachvili."""
+    """Micro-tests: the exact bridge of each measured (R, R2, gap, contact angle, V_w) beside the measured force,
+    the toroidal approximation (equal spheres), Willett et al. (2000) and Israelachvili (with Derjaguin's
+    effective radius 2 R R2 / (R + R2) for unequal pairs and a plane)."""
     opt = options or BridgeOptions()
-    table, gamma = _read_cases(source, ("V_w",), opt)
+    table, gamma, ratio = _read_cases(source, ("R", "contact_angle", "gap", "V_w"), (), opt)
     if "F_cap" not in table.columns:
         table.missing_column("F_cap")
     table.raise_if_problems()
-    for i in np.flatnonzero(np.isnan(table.columns["V_w"])):
-        table.add_problem(i, "V_w", "blank V_w")
-    table.raise_if_problems()
     R, th, D, V = (table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["gap"],
                    table.columns["V_w"])
-    beta, s_star, status = br.solve_for_volume(th, V / R**3, D / R)
-    res = _result(table.path, R, gamma, th, D, beta, s_star, status, [""] * len(table),
-                  list(table.columns["case"]) if "case" in table.columns else None, table.notes, V=V)
+    res = _solve(table.path, R, gamma, th, D, ratio, np.full(R.size, np.nan), V,
+                 list(table.columns["case"]) if "case" in table.columns else None, table.notes)
     res.options, res.inputs, res.warnings = opt, [input_file(source, table)], opt.warnings + table.warnings
     return CompareResult(res, table.columns["F_cap"], np.radians(table.get("filling_angle")), V)
 
