@@ -50,6 +50,8 @@ _U = 0.5 * (_u + 1.0)
 _W = 0.5 * _w
 _CHUNK = 8192  # cases per vectorised block (bounds memory: chunk x nodes arrays)
 HALF_PI = 0.5 * np.pi
+#: every bridge called ok reproduces its gap and volume (or suction) to this relative tolerance
+VERIFY_RTOL = 1e-9
 
 
 @dataclass
@@ -99,33 +101,51 @@ def bridge(beta, theta, suction, ratio=1.0) -> Bridge:
     return Bridge(**{k: v.reshape(shape) for k, v in out.items()})
 
 
+def gap_of(beta, theta, suction, ratio=1.0) -> np.ndarray:
+    """Gap* alone (the fast path the solvers iterate on); NaN where no concave bridge."""
+    beta, theta, suction, ratio = _arr(beta, theta, suction, ratio)
+    shape = beta.shape
+    cols = [a.ravel() for a in (beta, theta, suction, ratio)]
+    out = np.full(cols[0].size, np.nan)
+    with np.errstate(all="ignore"):
+        for start in range(0, cols[0].size, _CHUNK):
+            sl = slice(start, start + _CHUNK)
+            out[sl] = _pair(*(c[sl] for c in cols), full=False)[0]
+    out[~np.isfinite(out)] = np.nan
+    return out.reshape(shape)
+
+
 def geometry(beta, theta, suction, ratio=1.0):
     """(gap*, volume*, force*, neck*) of the bridge; see :func:`bridge`."""
     b = bridge(beta, theta, suction, ratio)
     return b.gap, b.volume, b.force, b.neck
 
 
-def _pieces(y0, yc, F, s):
+def _pieces(y0, yc, F, s, length_only=False):
     """Integrals from the neck y0 to y = yc: x-length, pi int y^2 dx, area, nn11, nn33 (units of R1)."""
     x = np.maximum(yc - y0, 0.0) / y0
     tm = np.log1p(x + np.sqrt(x * (2.0 + x)))  # acosh(yc / y0) without cancellation
     tau = tm[:, None] * _U
-    sh = np.sinh(0.5 * tau)
+    e = np.exp(0.5 * tau)
+    sh = 0.5 * (e - 1.0 / e)
+    ch = 0.5 * (e + 1.0 / e)
     dy = 2.0 * y0[:, None] * sh * sh  # y - y0
     y = y0[:, None] + dy
     sc = s[:, None]
     AB = (2.0 + sc * (y + y0[:, None])) * (2.0 * y + F[:, None] - sc * y * y)
     P = F[:, None] - sc * y * y  # 2 y cos(psi)
     # dy / sqrt(y - y0) = sqrt(2 y0) cosh(tau / 2) dtau
-    J = (np.sqrt(2.0 * y0) * tm)[:, None] * np.cosh(0.5 * tau) / np.sqrt(AB)
+    J = (np.sqrt(2.0 * y0) * tm)[:, None] * ch / np.sqrt(AB)
     PJ = P * J
+    if length_only:
+        return PJ @ _W
     yy = y * y
     L = PJ @ _W
     vol = np.pi * ((yy * PJ) @ _W)
     area = 4.0 * np.pi * ((yy * J) @ _W)
     nn11 = 0.5 * np.pi * ((P * PJ) @ _W)
     # nn33 = pi int sqrt((y - y0) A B) dy, integrated on its own (area = 2 nn11 + nn33 is then a check)
-    nn33 = np.pi * ((np.sqrt(dy * AB) * np.sinh(tau) * (y0 * tm)[:, None]) @ _W)
+    nn33 = np.pi * ((np.sqrt(dy * AB) * (2.0 * sh * ch) * (y0 * tm)[:, None]) @ _W)
     return L, vol, area, nn11, nn33
 
 
@@ -149,7 +169,30 @@ def _second_filling_angle(F, th, s, rho):
     return np.where((F <= a + M) & (d > 0), d, np.nan)
 
 
-def _pair(b, th, s, rho):
+def _length(y0, yc, F, s):
+    """x-length of the meridian from the neck y0 to y = yc (units of R1): the gap-only fast path.
+
+    Thick necks (yc < 21 y0) use y = y0 + (yc - y0) t^2, which needs no
+    transcendental function and is as accurate there (1e-13); thin ones the
+    cosh substitution of :func:`_pieces`.
+    """
+    d = np.maximum(yc - y0, 0.0)
+    out = np.empty(y0.size)
+    thick = d <= 20.0 * y0
+    k = np.flatnonzero(thick)
+    if k.size:
+        y = y0[k, None] + d[k, None] * _U**2
+        sc = s[k, None]
+        P = F[k, None] - sc * y * y
+        AB = (2.0 + sc * (y + y0[k, None])) * (2.0 * y + F[k, None] - sc * y * y)
+        out[k] = 2.0 * np.sqrt(d[k]) * ((P / np.sqrt(AB)) @ _W)
+    k = np.flatnonzero(~thick)
+    if k.size:
+        out[k] = _pieces(y0[k], yc[k], F[k], s[k], length_only=True)
+    return out
+
+
+def _pair(b, th, s, rho, full=True):
     n = b.size
     nan = np.full(n, np.nan)
     ok = (b > 0) & (th >= 0) & (th < HALF_PI) & (s >= 0) & (rho > 0)
@@ -186,6 +229,14 @@ def _pair(b, th, s, rho):
         return res
     Fk, sk = F[k], s[k]
     y0 = Fk / (1.0 + np.sqrt(1.0 + sk * Fk))
+    h1 = 2.0 * np.sin(0.5 * b[k]) ** 2
+    rk = np.where(plane[k], 0.0, rho[k])
+    h2 = 2.0 * rk * np.sin(0.5 * d2[k]) ** 2
+    if not full:
+        L1 = _length(y0, y1[k], Fk, sk)
+        L = 2.0 * L1 if equal[k].all() else sig1[k] * L1 + sig2[k] * _length(y0, y2[k], Fk, sk)
+        res[0][k] = L - h1 - h2
+        return res
     p1 = _pieces(y0, y1[k], Fk, sk)
     eq = equal[k]
     if eq.all():
@@ -194,9 +245,6 @@ def _pair(b, th, s, rho):
         p2 = _pieces(y0, y2[k], Fk, sk)
         tot = [sig1[k] * q1 + sig2[k] * q2 for q1, q2 in zip(p1, p2)]
     L, vol_under, area, nn11, nn33 = tot
-    h1 = 2.0 * np.sin(0.5 * b[k]) ** 2
-    rk = np.where(plane[k], 0.0, rho[k])
-    h2 = 2.0 * rk * np.sin(0.5 * d2[k]) ** 2
     caps = np.pi * (h1 * h1 * (3.0 - h1) + h2 * h2 * (3.0 * rk - h2)) / 3.0
     vals = [L - h1 - h2, vol_under - caps, Fk, y0, d2[k], area, nn11, nn33]
     for r, v in zip(res, vals):
@@ -206,8 +254,11 @@ def _pair(b, th, s, rho):
 
 # ---- root finding ------------------------------------------------------------
 
-def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100):
-    """Vectorised Illinois (modified regula falsi) root of f on brackets with f_lo >= 0 >= f_hi."""
+def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100, ftol=None):
+    """Vectorised Illinois (modified regula falsi) root of f on brackets with f_lo >= 0 >= f_hi.
+
+    Stops when the bracket is ``tol`` (relative) narrow or, with ``ftol`` (per row), when |f| <= ftol.
+    """
     lo, hi, f_lo, f_hi = (np.array(x, dtype=float) for x in (lo, hi, f_lo, f_hi))
     x = lo.copy()
     active = np.ones(lo.shape, dtype=bool)
@@ -233,6 +284,8 @@ def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100):
         side[a] = np.where(pos, 1, -1)
         lo[a], hi[a], f_lo[a], f_hi[a] = lo_new, hi_new, flo_new, fhi_new
         done = (np.abs(hi[a] - lo[a]) <= tol * np.maximum(1.0, np.abs(xa))) | (fa == 0)
+        if ftol is not None:
+            done |= np.abs(fa) <= ftol[a]
         active[a[done]] = False
     return x
 
@@ -292,13 +345,14 @@ def _suction_at_neck(y0, th, rho, target, field):
     idx = np.arange(y0.size)
     f0 = value(np.zeros(y0.size), idx)
     q_hi = np.full(y0.size, 1.0 - 1e-12)
-    f1 = np.maximum(value(q_hi, idx), -1e300)
+    f1 = value(q_hi, idx)
     out = np.full(y0.size, np.nan)
     # a target met at s* = 0 to rounding (the ends of the arc are catenoids) is met there
     out[(f0 < 0) & (f0 >= -1e-12 * np.maximum(np.abs(target), 1e-3))] = 0.0
     k = np.flatnonzero((f0 >= 0) & (f1 <= 0))
     if k.size:
-        q = _illinois(lambda x, i: np.maximum(value(x, k[i]), -1e300), np.zeros(k.size), q_hi[k], f0[k], f1[k])
+        q = _illinois(lambda x, i: value(x, k[i]), np.zeros(k.size), q_hi[k], f0[k], f1[k],
+                      ftol=1e-3 * VERIFY_RTOL * np.maximum(np.abs(target[k]), 1e-3 if field == "gap" else 0.0))
         out[k] = q / (1.0 - q) / (y0[k] * y0[k])
     return out
 
@@ -336,8 +390,8 @@ def _solve_for_suction(theta, suction, gap, ratio):
         return beta, status
     th, s, D, rho = theta[k], suction[k], gap[k], ratio[k]
     b_end = 0.5 * (np.pi - np.arctan2(np.sin(th), np.cos(th) + 0.5 * s))
-    grid = b_end[:, None] * np.geomspace(1e-4, 1.0, 16)[None, :]
-    Dg = _below(bridge(grid, th[:, None], s[:, None], rho[:, None]).gap)
+    grid = b_end[:, None] * np.geomspace(1e-4, 1.0, 10)[None, :]
+    Dg = _below(gap_of(grid, th[:, None], s[:, None], rho[:, None]))
     above = Dg >= D[:, None]
     has = above.any(axis=1) & ~above[:, -1]
     last = np.where(has, above.shape[1] - 1 - np.argmax(above[:, ::-1], axis=1), 0)
@@ -350,16 +404,17 @@ def _solve_for_suction(theta, suction, gap, ratio):
         j = np.argmax(Dg[miss], axis=1)
         a = grid[miss, np.maximum(j - 1, 0)]
         c = grid[miss, np.minimum(j + 1, grid.shape[1] - 1)]
-        bp, dp = _golden(lambda x, i: bridge(x, th[miss][i], s[miss][i], rho[miss][i]).gap, a, c)
+        bp, dp = _golden(lambda x, i: gap_of(x, th[miss][i], s[miss][i], rho[miss][i]), a, c)
         found = dp >= D[miss]
         has[miss[found]] = True
         lo[miss], f_lo[miss] = bp, dp - D[miss]
         hi[miss] = c
-        f_hi[miss] = _below(bridge(c, th[miss], s[miss], rho[miss]).gap) - D[miss]
+        f_hi[miss] = _below(gap_of(c, th[miss], s[miss], rho[miss])) - D[miss]
     good = np.flatnonzero(has)
     f_hi = np.maximum(f_hi, -1e300)
-    root = _illinois(lambda x, i: np.maximum(_below(bridge(x, th[good][i], s[good][i], rho[good][i]).gap), -1e300)
-                     - D[good][i], lo[good], hi[good], f_lo[good], f_hi[good])
+    root = _illinois(lambda x, i: np.maximum(_below(gap_of(x, th[good][i], s[good][i], rho[good][i])), -1e300)
+                     - D[good][i], lo[good], hi[good], f_lo[good], f_hi[good],
+                     ftol=1e-3 * VERIFY_RTOL * np.maximum(D[good], 1e-3))
     beta[k[good]] = root
     # rows whose gap stays above the target up to the last concave bridge: too much water at this suction
     status[k] = np.where(has, 0, np.where(above[:, -1], 3, 1))
@@ -506,8 +561,6 @@ def _rupture(theta, volume, ratio):
 
 # ---- verified solvers ------------------------------------------------------------
 
-#: every bridge called ok reproduces its gap and volume (or suction) to this relative tolerance
-VERIFY_RTOL = 1e-9
 
 
 def _verify(status, beta, theta, s, ratio, gap=None, volume=None):
