@@ -35,6 +35,7 @@ _API = {
     "solve_bridges": "capred.pipelines.bridge",
     "bridge_curve": "capred.pipelines.bridge",
     "compare_measured": "capred.pipelines.bridge",
+    "rupture_distances": "capred.pipelines.bridge",
     "sample_path": "capred.samples",
     "CapredError": "capred.errors",
     "InputError": "capred.errors",

@@ -44,6 +44,10 @@ REDUCTIONS: dict[str, Reduction] = {r.name: r for r in (
               "bridge"),
     Reduction("bridge compare", _P + "bridge:compare_measured", _P + "bridge:BridgeOptions", "required",
               "bridge-compare", "bridge_compare"),
+    Reduction("bridge rupture", _P + "bridge:rupture_distances", _P + "bridge:BridgeOptions", "required",
+              "bridge-rupture", "bridge_rupture"),
+    Reduction("bridge yade-files", _P + "yade_files:reduce_yade_files", _P + "yade_files:YadeOptions", "none", None,
+              "yade_files"),
     Reduction("bridge curve", _P + "bridge:reduce_curve", _P + "bridge:CurveOptions", "none", None, "bridge_curve"),
 )}
 

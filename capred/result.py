@@ -218,6 +218,10 @@ class Result:
         """Rows of a batch's season.csv (per material: c, phi, their se, n, best model...); none by default."""
         return []
 
+    def extra_files(self) -> dict[str, bytes]:
+        """Files of the command's own format written beside the tables (name -> bytes); none by default."""
+        return {}
+
     def figures(self) -> dict[str, Callable[[], "object"]]:
         """Figure name (file stem) -> function drawing a matplotlib Figure."""
         return {}

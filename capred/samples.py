@@ -14,6 +14,7 @@ SAMPLES = {
     "rumpf": "rumpf_cases.csv",
     "bridge-solve": "bridge_cases.csv",
     "bridge-compare": "bridge_micro_tests.csv",
+    "bridge-rupture": "bridge_rupture.csv",
     "shear-export": "shear_tests_export.xlsx",
     "shear-eu": "shear_tests_eu.csv",
     "shear-curves": "shear_curves.csv",

@@ -1,4 +1,5 @@
-"""`capred bridge curve | solve | compare`: exact capillary bridges between two equal spheres."""
+"""`capred bridge curve | solve | compare | rupture | yade-files`: exact capillary bridges between two spheres or a
+sphere and a plane."""
 from typing import Annotated
 
 import typer
@@ -7,13 +8,17 @@ from .common import Invocation, command, quantity
 
 
 def register(app: typer.Typer) -> None:
-    bridge_app = typer.Typer(help="Exact capillary bridges between two equal spheres (Young-Laplace), the "
-                                  "thesis's analytical comparison and checks against microscopic tests.",
+    bridge_app = typer.Typer(help="Exact capillary bridges between two spheres or a sphere and a plane "
+                                  "(Young-Laplace): solve, rupture, the thesis's analytical comparison, checks "
+                                  "against microscopic tests and YADE capillary files.",
                              no_args_is_help=True, rich_markup_mode=None)
     app.add_typer(bridge_app, name="bridge")
     command(bridge_app, "curve", "bridge curve")(curve)
     command(bridge_app, "solve", "bridge solve", data="CSV, one bridge per row: R, gamma, contact_angle, gap, and "
                                                       "suction or V_w", plots=False)(solve)
+    command(bridge_app, "rupture", "bridge rupture", data="CSV, one case per row: R, contact_angle, V_w (and R2: a "
+                                                          "radius or 'plane')")(rupture)
+    command(bridge_app, "yade-files", "bridge yade-files", plots=False)(yade_files)
     command(bridge_app, "compare", "bridge compare", data="CSV of microscopic tests: R, contact_angle, gap, V_w, "
                                                           "measured F_cap (and filling_angle)")(compare)
 
@@ -70,3 +75,47 @@ def compare(
 
     opts = BridgeOptions(quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"))
     return Invocation("bridge compare", opts)
+
+
+def rupture(
+    surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma' (for the "
+                                                      "suction and force at rupture).")] = "0.0728",
+) -> Invocation:
+    """Rupture distance at constant volume: the widest gap a bridge of volume
+    V_w spans between particles of radii R and R2 (or a sphere and a plane),
+    beside Lian et al.'s (1993) estimate D = (1 + theta/2) V^(1/3), with the
+    bridge at rupture; figure of both against V^(1/3).
+
+    Example: capred bridge rupture volumes.csv --out rupture
+    """
+    from ..pipelines.bridge import BridgeOptions
+
+    opts = BridgeOptions(quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"))
+    return Invocation("bridge rupture", opts)
+
+
+def yade_files(
+    ratios: Annotated[str, typer.Option(help="Radius ratios R2/R1 >= 1, comma-separated (YADE opens these ten).")]
+    = "1,1.1,1.25,1.5,1.75,2,3,4,5,10",
+    theta: Annotated[float, typer.Option("--theta", "--contact-angle", help="Contact angle [deg].")] = 0.0,
+    distances: Annotated[int, typer.Option(help="Distances per file, 0 to the largest gap bridged at zero "
+                                                "suction.")] = 80,
+    suctions: Annotated[int, typer.Option(help="Suctions per distance: 0, then geometric from uc* = 0.002 to a "
+                                               "mean filling angle of 1 deg at contact.")] = 350,
+) -> Invocation:
+    """Capillary files for YADE's Law2_ScGeom_CapillaryPhys_Capillarity: one
+    file M(r=<ratio>) per radius ratio, in YADE's layout and dimensionless
+    variables, every row an exact stable bridge (with delta1, delta2, nn11,
+    nn33). Run YADE from the output folder (or copy the M(r=...) files next
+    to your script).
+
+    Example: capred bridge yade-files --theta 0 --out capillary_files
+    """
+    from ..errors import OptionError
+    from ..pipelines.yade_files import YadeOptions
+
+    try:
+        values = tuple(float(x) for x in ratios.split(",") if x.strip())
+    except ValueError:
+        raise OptionError(f"--ratios: '{ratios}' is not a comma-separated list of numbers") from None
+    return Invocation("bridge yade-files", YadeOptions(values, theta, distances, suctions))

@@ -356,6 +356,8 @@ def write_run(result, out, plots: bool = True, formats=("png",), dpi: int = 150,
 
             write_workbook(folder.path_for("tables.xlsx"), result.tables())
             folder.done("tables.xlsx")
+        for name, data in result.extra_files().items():
+            folder.write_bytes(name, data)
         with open(folder.path_for(result.json_name), "wb") as fh:
             stream_json(result.json_lazy(), fh.write)
         folder.done(result.json_name)

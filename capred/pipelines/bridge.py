@@ -433,10 +433,105 @@ def compare_measured(source, options: BridgeOptions | None = None) -> CompareRes
     return CompareResult(res, table.columns["F_cap"], np.radians(table.get("filling_angle")), V)
 
 
+RUPTURE_SCHEMA = [CASE, RADIUS, RADIUS2, GAMMA, ANGLE, VOLUME]
+
+
+@dataclass
+class RuptureResult(Result):
+    """Rupture distance at constant volume per case, beside Lian et al.'s (1993) estimate."""
+
+    command = "bridge rupture"
+    json_name = "rupture.json"
+
+    source: str
+    inputs_si: dict[str, np.ndarray]
+    gap: np.ndarray  # m, the rupture distance
+    beta: np.ndarray
+    suction: np.ndarray  # Pa
+    shape: br.Bridge  # the bridge at rupture, dimensionless
+    status: np.ndarray
+    labels: list[str] | None = None
+    notes: list[str] = field(default_factory=list)
+    options: BridgeOptions | None = None
+    inputs: list[InputFile] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+
+    def _frame(self):
+        import pandas as pd
+
+        cached = self.__dict__.get("_table")
+        if cached is not None:
+            return cached
+        i_ = self.inputs_si
+        R, g, th, V, rho = i_["R"], i_["gamma"], i_["contact_angle"], i_["V_w"], i_["ratio"]
+        ok = self.status == 0
+
+        def out(x):
+            return np.where(ok, x, np.nan)
+
+        lian = br.lian_rupture_gap(th, V / R**3) * R
+        cols: dict = {"case": self.labels} if self.labels else {}
+        cols |= {"R_mm": R * 1e3, "R2_mm": np.where(np.isinf(rho), np.inf, rho * R * 1e3),
+                 "contact_angle_deg": np.degrees(th), "V_w_mm3": V * 1e9,
+                 "D_rupture_mm": out(self.gap * 1e3), "D_rupture_lian_mm": lian * 1e3,
+                 "ratio_to_lian": out(self.gap / lian),
+                 "filling_angle_deg": out(np.degrees(self.beta)), "filling_angle2_deg": out(np.degrees(self.shape.delta2)),
+                 "suction_kPa": out(self.suction / 1e3), "F_cap_mN": out(self.shape.force * np.pi * g * R * 1e3),
+                 "r0_mm": out(self.shape.neck * R * 1e3),
+                 "status": [STATUS[int(k)] for k in self.status]}
+        cached = self.__dict__["_table"] = pd.DataFrame(cols)
+        return cached
+
+    def rows(self) -> list[dict]:
+        cached = self.__dict__.get("_rows")
+        if cached is None:
+            cached = self.__dict__["_rows"] = _records(self._frame())
+            for r in cached:  # a plane is written as the word, JSON has no infinity
+                if r["R2_mm"] is None or r["R2_mm"] == float("inf"):
+                    r["R2_mm"] = "plane"
+        return cached
+
+    def payload(self, lazy: bool = False) -> dict:
+        return {"source": self.source, "rupture": self.rows()}
+
+    def tables(self) -> dict:
+        return {"rupture": self._frame()}
+
+    def figures(self) -> dict:
+        from ..report.bridge_figures import sheet_rupture
+
+        return {"rupture": sheet_rupture(self.rows())}
+
+    def console_tables(self) -> list[TableSpec]:
+        from ..report.render import row_table
+
+        keys = ["case", "R_mm", "R2_mm", "contact_angle_deg", "V_w_mm3", "D_rupture_mm", "D_rupture_lian_mm",
+                "ratio_to_lian", "status"]
+        rows = self.rows()
+        present = [k for k in keys if rows and k in rows[0]]
+        return [row_table("Rupture distance at constant volume", rows, present, "rupture.csv")]
+
+
+def rupture_distances(source, options: BridgeOptions | None = None) -> RuptureResult:
+    """Rupture distance of each (R, R2, contact_angle, V_w) row: the widest gap a bridge of that volume spans
+    (Lian et al. 1993; pulled apart at constant volume), with the bridge at rupture."""
+    opt = options or BridgeOptions()
+    table, gamma, ratio = _read_cases(source, ("R", "contact_angle", "V_w"), (), opt, RUPTURE_SCHEMA)
+    table.raise_if_problems()
+    R, th, V = table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["V_w"]
+    D, beta, s, status = br.rupture_gap(th, V / R**3, ratio)
+    shape = br.bridge(beta, th, np.where(np.isfinite(s), s, 0.0), ratio)
+    res = RuptureResult(table.path, {"R": R, "gamma": gamma, "contact_angle": th, "V_w": V, "ratio": ratio},
+                        D * R, beta, s * gamma / R, shape, status,
+                        list(table.columns["case"]) if "case" in table.columns else None, list(table.notes))
+    res.options, res.inputs, res.warnings = opt, [input_file(source, table)], opt.warnings + table.warnings
+    return res
+
+
 def comparison_rows(res: CompareResult) -> list[dict]:
     """Measured force against exact, toroidal, Willett and Israelachvili (mN) with residuals."""
     return res.rows()
 
 
-__all__ = ["solve_bridges", "bridge_curve", "compare_measured", "comparison_rows", "BridgeResult", "CurveResult",
+__all__ = ["solve_bridges", "bridge_curve", "compare_measured", "rupture_distances", "RuptureResult", "comparison_rows", "BridgeResult", "CurveResult",
            "CompareResult", "BridgeOptions", "CurveOptions", "InputError"]

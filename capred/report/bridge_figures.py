@@ -60,3 +60,36 @@ def sheet_compare(rows) -> Sheet:
         Panel("measured_vs_predicted", lambda ax: plot_compare(ax, rows),
               "Each sphere pair's measured force against the exact bridge of the same R, gap, contact angle and "
               "volume, the toroidal approximation, Willett et al. (2000) and Israelachvili.")], 1)
+
+
+def plot_rupture(ax, rows):
+    """Exact rupture distance against V^(1/3), one marker per contact angle, Lian's line for each."""
+    from .style import OKABE_ITO
+
+    palette = [OKABE_ITO[c] for c in ("black", "blue", "vermillion", "green", "purple", "orange", "sky")]
+    ok = [r for r in rows if r["status"] == "ok"]
+    angles = sorted({r["contact_angle_deg"] for r in ok})
+    x_hi = max((r["V_w_mm3"] ** (1 / 3) for r in ok), default=1.0)
+    markers = "osD^v<>ph"
+    for k, th in enumerate(angles):
+        sel = [r for r in ok if r["contact_angle_deg"] == th]
+        colour = palette[k % len(palette)]
+        x = np.array([r["V_w_mm3"] for r in sel]) ** (1 / 3)
+        ax.plot(x, [r["D_rupture_mm"] for r in sel], ls="none", marker=markers[k % len(markers)], color=colour,
+                ms=5, label=f"exact, θ = {th:g}°")
+        xs = np.linspace(0, x_hi * 1.05, 50)
+        ax.plot(xs, (1 + np.radians(th) / 2) * xs, color=colour, lw=1.0, ls="--", label=f"Lian, θ = {th:g}°")
+    ax.set_xlabel(r"$V_w^{1/3}$ [mm]")
+    ax.set_ylabel(r"rupture distance $D_{rupt}$ [mm]")
+    ax.set_title("Rupture at constant volume")
+    ax.set_xlim(left=0)
+    ax.set_ylim(bottom=0)
+    ax.legend()
+    return ax
+
+
+def sheet_rupture(rows) -> Sheet:
+    return Sheet("Rupture distance of pendular bridges against Lian et al. (1993)", [
+        Panel("rupture_vs_lian", lambda ax: plot_rupture(ax, rows),
+              "Exact rupture distance (widest gap spanned at constant volume) against the cube root of the water "
+              "volume, with Lian et al.'s estimate D = (1 + θ/2) V^(1/3) (θ in rad).")], 1)

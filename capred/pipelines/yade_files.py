@@ -1,0 +1,184 @@
+"""`capred bridge yade-files`: capillary files for YADE's Law2_ScGeom_CapillaryPhys_Capillarity.
+
+YADE interpolates capillary bridges in pre-computed tables, one text file per
+radius ratio r = R2 / R1 >= 1 named ``M(r=<ratio>)``, read from the folder
+YADE runs in. Layout (Scholtes et al. 2009, doi:10.1016/j.ijengsci.2008.07.002;
+Duriez et al. 2017, doi:10.1007/s11440-016-0500-1): first line the ratio,
+second line the number of distance blocks; each block is a line
+``<count> 0 0 0 0 0 0 0`` followed by ``<count>`` tab-separated rows
+``d* uc* V* F* delta1 delta2 nn11 nn33`` at one distance, by rising suction,
+in YADE's variables: lengths over the larger radius R2 (d* = D/R2,
+V* = V/R2^3, nn = int n(x)n dS / R2^2), uc* = Delta_u R2 / gamma,
+F* = F / (2 pi gamma R2), filling angles in degrees (delta1 on the smaller
+particle). Every row is the exact stable bridge at its (d*, uc*): nothing is
+interpolated.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import OptionError
+from ..physics import bridge as br
+from ..result import InputFile, Options, Result, TableSpec
+
+DEFAULT_RATIOS = (1.0, 1.1, 1.25, 1.5, 1.75, 2.0, 3.0, 4.0, 5.0, 10.0)
+#: the ratios YADE's law opens (its list is fixed in the C++ source)
+YADE_RATIOS = DEFAULT_RATIOS
+FIRST_SUCTION = 0.002  # smallest positive uc* (Scholtes' files start there)
+MIN_MEAN_FILLING_ANGLE = 1.0  # deg: the largest suction keeps this mean filling angle at contact
+
+
+@dataclass(frozen=True)
+class YadeOptions(Options):
+    """Options of `capred bridge yade-files`: radius ratios R2/R1 >= 1, contact angle [deg], number of
+    distances and of suctions per file."""
+
+    QUANTITIES = {"contact_angle": "contact_angle"}
+
+    ratios: tuple[float, ...] = DEFAULT_RATIOS
+    contact_angle: float = 0.0
+    distances: int = 80
+    suctions: int = 350
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        object.__setattr__(self, "ratios", tuple(float(r) for r in self.ratios))
+        if not self.ratios or any(not np.isfinite(r) or r < 1 for r in self.ratios):
+            raise OptionError("--ratios: radius ratios R2/R1 must be finite numbers >= 1 (the larger over the "
+                              "smaller radius)")
+        if len(set(self.ratios)) != len(self.ratios):
+            raise OptionError("--ratios: each ratio once")
+        if not 0 <= self.contact_angle < 90:
+            raise OptionError("--theta must lie in [0, 90) deg")
+        if self.distances < 2 or self.suctions < 3:
+            raise OptionError("need --distances >= 2 and --suctions >= 3")
+
+
+def file_name(ratio: float) -> str:
+    """YADE's file name for a ratio: ``M(r=1)``, ``M(r=1.1)``, ``M(r=10)``."""
+    return f"M(r={ratio:g})"
+
+
+@dataclass
+class CapillaryFile:
+    """One ratio's table, in YADE's variables (columns d*, uc*, V*, F*, delta1, delta2, nn11, nn33)."""
+
+    ratio: float
+    d_max: float  # largest d* with a bridge at zero suction
+    uc_max: float  # largest uc*
+    distances: np.ndarray
+    suctions: np.ndarray
+    rows: np.ndarray  # (n, 8), grouped by distance, suction rising
+    counts: np.ndarray  # rows per distance block
+
+    def text(self) -> str:
+        """The file as YADE reads it (shortest round-trip numbers)."""
+        lines = [f"{self.ratio:g}", str(len(self.counts))]
+        start = 0
+        for c in self.counts:
+            lines.append(f"{int(c)} 0 0 0 0 0 0 0")
+            lines.extend("\t".join(repr(float(v)) for v in row) for row in self.rows[start:start + c])
+            start += c
+        return "\n".join(lines) + "\n"
+
+
+def capillary_file(ratio: float, theta: float, n_dist: int = 80, n_suct: int = 350) -> CapillaryFile:
+    """The exact capillary file of one radius ratio r >= 1 at contact angle theta [rad].
+
+    Internally lengths are in units of the smaller radius R1 (rho = r); the
+    table is converted to YADE's R2 units on the way out.
+    """
+    r = float(ratio)
+    th = np.full(1, theta)
+    # largest gap at zero suction: the maximum of the catenoid gap over the filling angle
+    b_end = 0.5 * (np.pi - theta)
+    grid = np.linspace(1e-3, b_end, 400)
+    g = br.gap_of(grid, theta, 0.0, r)
+    j = int(np.nanargmax(g))
+    lo, hi = grid[max(j - 1, 0)], grid[min(j + 1, grid.size - 1)]
+    b_star, g_star = br._golden(lambda x, i: br.gap_of(x, theta, 0.0, r), np.array([lo]), np.array([hi]))
+    b_star, D_max = float(b_star[0]), float(g_star[0])
+    # largest suction: the bridge at contact whose mean filling angle is MIN_MEAN_FILLING_ANGLE
+    s_max = _suction_at_mean_filling_angle(theta, r, np.radians(MIN_MEAN_FILLING_ANGLE))
+    uc = np.r_[0.0, np.geomspace(FIRST_SUCTION, s_max * r, n_suct - 1)]
+    d = np.linspace(0.0, D_max / r, n_dist)
+    D_grid, U_grid = np.meshgrid(d * r, uc / r, indexing="ij")  # R1 units
+    beta, status = br.solve_for_suction(theta, U_grid.ravel(), D_grid.ravel(), r)
+    beta, status = beta.reshape(D_grid.shape), status.reshape(D_grid.shape)
+    # the last distance is the maximum itself: its zero-suction bridge is the one found above
+    if status[-1, 0] != 0:
+        beta[-1, 0], status[-1, 0] = b_star, 0
+    ok = status == 0
+    b = br.bridge(beta[ok], theta, U_grid[ok], r)
+    rows = np.column_stack([D_grid[ok] / r, U_grid[ok] * r, b.volume / r**3, b.force / (2.0 * r),
+                            np.degrees(beta[ok]), np.degrees(b.delta2), b.nn11 / r**2, b.nn33 / r**2])
+    return CapillaryFile(r, D_max / r, s_max * r, d, uc, rows, ok.sum(axis=1))
+
+
+def _suction_at_mean_filling_angle(theta: float, r: float, target: float) -> float:
+    """s* (R1 units) of the bridge at contact with (delta1 + delta2) / 2 = target [rad]."""
+    def mean_angle(log_y0):
+        y0 = np.exp(np.atleast_1d(log_y0))
+        n = y0.size
+        s = br._suction_at_neck(y0, np.full(n, theta), np.full(n, r), np.zeros(n), "gap")
+        beta, b = br.from_neck(y0, theta, s, r)
+        return 0.5 * (beta + b.delta2), s
+
+    logs = np.linspace(np.log(1e-6), np.log(0.5), 60)
+    m, _ = mean_angle(logs)
+    k = int(np.flatnonzero(np.isfinite(m) & (m >= target))[0])
+    root = br._illinois(lambda x, i: target - mean_angle(x)[0], np.array([logs[k - 1]]), np.array([logs[k]]),
+                        np.array([target - m[k - 1]]), np.array([target - m[k]]))
+    return float(mean_angle(root)[1][0])
+
+
+@dataclass
+class YadeResult(Result):
+    """Capillary files for YADE, one per radius ratio, and their summary."""
+
+    command = "bridge yade-files"
+    json_name = "yade_files.json"
+
+    files: list[CapillaryFile]
+    options: YadeOptions | None = None
+    inputs: list[InputFile] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+
+    def summary_rows(self) -> list[dict]:
+        return [{"file": file_name(f.ratio), "ratio": f.ratio, "d_star_max": f.d_max, "uc_star_max": f.uc_max,
+                 "distances": int(len(f.counts)), "bridges": int(f.rows.shape[0]),
+                 "smallest_block": int(f.counts.min())} for f in self.files]
+
+    def payload(self, lazy: bool = False) -> dict:
+        return {"contact_angle_deg": self.options.contact_angle if self.options else 0.0,
+                "files": self.summary_rows()}
+
+    def tables(self) -> dict:
+        import pandas as pd
+
+        return {"yade_files": pd.DataFrame(self.summary_rows())}
+
+    def extra_files(self) -> dict[str, bytes]:
+        return {file_name(f.ratio): f.text().encode("ascii") for f in self.files}
+
+    def console_tables(self) -> list[TableSpec]:
+        from ..report.render import row_table
+
+        rows = self.summary_rows()
+        return [row_table("YADE capillary files (exact bridges, YADE's dimensionless variables)", rows,
+                          list(rows[0]) if rows else [], "yade_files.csv")]
+
+
+def reduce_yade_files(source, opt: YadeOptions) -> YadeResult:
+    """Every capillary file of ``opt.ratios`` (``source`` is unused: the files need no input)."""
+    theta = np.radians(opt.contact_angle)
+    files = [capillary_file(r, theta, opt.distances, opt.suctions) for r in opt.ratios]
+    res = YadeResult(files, opt, [], list(opt.warnings))
+    odd = [r for r in opt.ratios if r not in YADE_RATIOS]
+    if odd:
+        res.warnings.append("YADE's capillary law opens only the files of r = 1, 1.1, 1.25, 1.5, 1.75, 2, 3, 4, 5 "
+                            f"and 10; the files of r = {', '.join(f'{r:g}' for r in odd)} are for other codes")
+    return res
