@@ -254,10 +254,11 @@ def _pair(b, th, s, rho, full=True):
 
 # ---- root finding ------------------------------------------------------------
 
-def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100, ftol=None):
+def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100, ftol=None, ends=False):
     """Vectorised Illinois (modified regula falsi) root of f on brackets with f_lo >= 0 >= f_hi.
 
     Stops when the bracket is ``tol`` (relative) narrow or, with ``ftol`` (per row), when |f| <= ftol.
+    With ``ends`` it returns (x, lo, hi): the final bracket too, lo on the side where f >= 0.
     """
     lo, hi, f_lo, f_hi = (np.array(x, dtype=float) for x in (lo, hi, f_lo, f_hi))
     x = lo.copy()
@@ -287,7 +288,7 @@ def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100, ftol=None):
         if ftol is not None:
             done |= np.abs(fa) <= ftol[a]
         active[a[done]] = False
-    return x
+    return (x, lo, hi) if ends else x
 
 
 def _golden(f, a, c, iters=60, sign=1.0):
@@ -336,6 +337,19 @@ def from_neck(neck, theta, suction, ratio=1.0):
     return beta, bridge(beta, theta, suction, ratio)
 
 
+def _floor_suction(y0, th, rho):
+    """The smallest suction of the bridges with neck y0: 0 (the catenoid), or 1e-9 / y0^2 where no catenoid
+    exists (a plane at theta = 0: its bridge grows without bound as s* -> 0)."""
+    g = from_neck(y0, th, 0.0, rho)[1].gap
+    return np.where(np.isfinite(g), 0.0, 1e-9 / (y0 * y0))
+
+
+def _catenoid(y0, th, rho):
+    """The bridge of neck y0 at its smallest suction (see :func:`_floor_suction`)."""
+    y0, th, rho = _arr(y0, th, rho)
+    return from_neck(y0, th, _floor_suction(y0, th, rho), rho)[1]
+
+
 def _suction_at_neck(y0, th, rho, target, field):
     """s* >= 0 at which the bridge of neck y0 has gap (or volume) = target; both fall as s* rises. NaN if none."""
     def value(q, i):
@@ -343,7 +357,9 @@ def _suction_at_neck(y0, th, rho, target, field):
         return _below(getattr(from_neck(y0[i], th[i], s, rho[i])[1], field)) - target[i]
 
     idx = np.arange(y0.size)
-    f0 = value(np.zeros(y0.size), idx)
+    s_floor = _floor_suction(y0, th, rho) * y0 * y0
+    q0 = s_floor / (1.0 + s_floor)
+    f0 = value(q0, idx)
     q_hi = np.full(y0.size, 1.0 - 1e-12)
     f1 = value(q_hi, idx)
     out = np.full(y0.size, np.nan)
@@ -351,7 +367,7 @@ def _suction_at_neck(y0, th, rho, target, field):
     out[(f0 < 0) & (f0 >= -1e-12 * np.maximum(np.abs(target), 1e-3))] = 0.0
     k = np.flatnonzero((f0 >= 0) & (f1 <= 0))
     if k.size:
-        q = _illinois(lambda x, i: value(x, k[i]), np.zeros(k.size), q_hi[k], f0[k], f1[k],
+        q = _illinois(lambda x, i: value(x, k[i]), q0[k], q_hi[k], f0[k], f1[k],
                       ftol=1e-3 * VERIFY_RTOL * np.maximum(np.abs(target[k]), 1e-3 if field == "gap" else 0.0))
         out[k] = q / (1.0 - q) / (y0[k] * y0[k])
     return out
@@ -370,11 +386,11 @@ def _arc(y0, th, rho, D, field="volume"):
 _NECK_GRID = np.geomspace(1e-7, 1.0, 48)  # necks in units of R1
 
 
-def _neck_grid(th, rho, field, s=0.0):
-    """Grid of necks with the field (gap or volume) of the bridge at suction s (default: catenoids)."""
+def _neck_grid(th, rho, field):
+    """Grid of necks with the field (gap or volume) of their largest bridges (see :func:`_catenoid`)."""
     m = th.size
     y = np.tile(_NECK_GRID, (m, 1))
-    vals = getattr(from_neck(y, th[:, None], s, rho[:, None])[1], field)
+    vals = getattr(_catenoid(y, th[:, None], rho[:, None]), field)
     return y, vals
 
 
@@ -404,7 +420,7 @@ def _solve_for_suction(theta, suction, gap, ratio):
         j = np.argmax(Dg[miss], axis=1)
         a = grid[miss, np.maximum(j - 1, 0)]
         c = grid[miss, np.minimum(j + 1, grid.shape[1] - 1)]
-        bp, dp = _golden(lambda x, i: gap_of(x, th[miss][i], s[miss][i], rho[miss][i]), a, c)
+        bp, dp = _golden(lambda x, i: gap_of(x, th[miss][i], s[miss][i], rho[miss][i]), a, c, iters=30)
         found = dp >= D[miss]
         has[miss[found]] = True
         lo[miss], f_lo[miss] = bp, dp - D[miss]
@@ -422,12 +438,15 @@ def _solve_for_suction(theta, suction, gap, ratio):
 
 
 def _log_root(f, lo, hi):
-    """Root of an increasing-or-decreasing f between necks lo < hi (bracketed), searched in log(neck)."""
+    """Root of an increasing-or-decreasing f between necks lo < hi (bracketed), searched in log(neck); the
+    bracket end on the side f >= 0 is returned."""
     a, c = np.log(lo), np.log(hi)
     fa, fc = f(a, np.arange(a.size)), f(c, np.arange(a.size))
     flip = fa < fc  # Illinois wants f(lo) >= 0 >= f(hi)
     sign = np.where(flip, -1.0, 1.0)
-    return np.exp(_illinois(lambda x, i: sign[i] * f(x, i), a, c, sign * fa, sign * fc))
+    _, lo_end, hi_end = _illinois(lambda x, i: sign[i] * f(x, i), a, c, sign * fa, sign * fc, ends=True)
+    # the end where f >= 0: inside the family even when the "root" is where the bridges stop existing
+    return np.exp(np.where(flip, hi_end, lo_end))
 
 
 def _solve_for_volume(theta, volume, gap, ratio):
@@ -459,13 +478,13 @@ def _solve_for_volume(theta, volume, gap, ratio):
     # peak of the catenoid gap, refined (a narrow peak can hide between grid necks)
     j = np.argmax(gcat, axis=1)
     lo_j, hi_j = np.maximum(j - 1, 0), np.minimum(j + 1, y.shape[1] - 1)
-    ypk, gpk = _golden(lambda x, i: bridge(_second_filling_angle(2 * np.exp(x), th[i], 0.0, 1.0), th[i], 0.0,
-                                           rho[i]).gap, np.log(y[r, lo_j]), np.log(y[r, hi_j]))
+    ypk, gpk = _golden(lambda x, i: _catenoid(np.exp(x), th[i], rho[i]).gap, np.log(y[r, lo_j]),
+                       np.log(y[r, hi_j]))
     ypk = np.exp(ypk)
     reach = np.flatnonzero(gpk >= D)
 
     def cat_gap(x, i, sel):
-        return _below(from_neck(np.exp(x), th[sel][i], 0.0, rho[sel][i])[1].gap) - D[sel][i]
+        return _below(_catenoid(np.exp(x), th[sel][i], rho[sel][i]).gap) - D[sel][i]
 
     y_lo, y_hi = np.full(m, np.nan), np.full(m, np.nan)
     if reach.size:
@@ -485,7 +504,7 @@ def _solve_for_volume(theta, volume, gap, ratio):
     has = np.flatnonzero(np.isfinite(y_hi) & np.isfinite(y_lo))
     v_top = np.full(m, np.nan)
     if has.size:
-        v_top[has] = from_neck(y_hi[has], th[has], 0.0, rho[has])[1].volume
+        v_top[has] = _catenoid(y_hi[has], th[has], rho[has]).volume
         st[has] = np.where(V[has] > v_top[has] * (1 + 1e-12), 3, 1)
         cand = has[V[has] <= v_top[has] * (1 + 1e-12)]
     else:

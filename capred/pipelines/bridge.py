@@ -14,7 +14,7 @@ from ..errors import InputError, OptionError
 from ..io.table import Column, read_table
 from ..physics import bridge as br
 from ..physics import shear as ph
-from ..result import InputFile, Options, Result, TableSpec, input_file, num
+from ..result import InputFile, Options, Result, Rows, TableSpec, input_file, json_list, num
 
 # 1: the gap is too wide for this suction or volume; 3: so much water that the bridge would be
 # convex (water above air pressure), outside the pendular model
@@ -111,25 +111,44 @@ class BridgeResult(Result):
             "nn33_mm2": out(b.nn33 * R**2 * 1e6),
         }
 
+    @staticmethod
+    def status_text(code: int) -> str:
+        return STATUS[int(code)]
+
+    def _cols(self) -> dict:
+        """Every output column (arrays; text as object arrays), computed once."""
+        cached = self.__dict__.get("_cols_cache")
+        if cached is None:
+            cached = ({"case": np.asarray(self.labels, dtype=object)} if self.labels else {}) | self.columns()
+            cached["status"] = np.array([STATUS[k] for k in range(len(STATUS))], dtype=object)[self.status.astype(int)]
+            cached["note"] = np.asarray(self.note, dtype=object)
+            self.__dict__["_cols_cache"] = cached
+        return cached
+
     def _frame(self):
         import pandas as pd
 
-        cached = self.__dict__.get("_table")
-        if cached is None:
-            cols = ({"case": self.labels} if self.labels else {}) | self.columns()
-            cols["status"] = np.array([STATUS[k] for k in range(len(STATUS))], dtype=object)[self.status.astype(int)]
-            cols["note"] = self.note
-            cached = self.__dict__["_table"] = pd.DataFrame(cols)
-        return cached
+        return pd.DataFrame(self._cols(), copy=False)
+
+    def rows_range(self, start: int, stop: int) -> list[dict]:
+        """JSON rows start..stop (NaN as None, an empty note left out), built column by column."""
+        cols = self._cols()
+        keys = list(cols)
+        values = [json_list(v[start:stop]) if v.dtype != object else v[start:stop].tolist() for v in cols.values()]
+        out = []
+        for vals in zip(*values):
+            r = dict(zip(keys, vals))
+            if not r["note"]:
+                del r["note"]
+            out.append(r)
+        return out
 
     def rows(self) -> list[dict]:
-        cached = self.__dict__.get("_rows")
-        if cached is None:
-            cached = self.__dict__["_rows"] = _records(self._frame(), drop_empty="note")
-        return cached
+        return self.rows_range(0, self.status.size)
 
     def payload(self, lazy: bool = False) -> dict:
-        return {"source": self.source, "bridges": self.rows()}
+        n = self.status.size
+        return {"source": self.source, "bridges": Rows(n, self.rows_range) if lazy else self.rows()}
 
     def tables(self) -> dict:
         return {"solve": self._frame()}

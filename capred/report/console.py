@@ -187,16 +187,16 @@ def calc_tables(result) -> list[TableSpec]:
 
 
 def bridge_solve_tables(result) -> list[TableSpec]:
-    keys = ["case", "r0_mm", "F_cap_mN", "V_w_mm3", "filling_angle_deg", "suction_kPa", "S_R", "sigma_prime_kPa",
-            "status"]
-    rows = result.rows()
-    counts: dict[str, int] = {}
-    for s in result.table()["status"]:
-        counts[s] = counts.get(s, 0) + 1
+    keys = ["case", "r0_mm", "F_cap_mN", "V_w_mm3", "filling_angle_deg", "filling_angle2_deg", "suction_kPa", "S_R",
+            "sigma_prime_kPa", "status"]
+    rows = result.rows_range(0, MAX_ROWS)
+    codes, counts = np.unique(result.status, return_counts=True)
     summary = _spec("Bridges solved", ["status", "rows"])
-    summary.rows = [[k, str(v)] for k, v in counts.items()]
+    summary.rows = [[result.status_text(k), str(v)] for k, v in zip(codes, counts)]
     present = [k for k in keys if rows and k in rows[0]]
-    return [summary, row_table("Exact capillary bridges", rows, present, "solve.csv")]
+    if "filling_angle2_deg" in present and np.all(result.inputs_si["ratio"] == 1):
+        present.remove("filling_angle2_deg")  # equal spheres: the same angle twice
+    return [summary, row_table("Exact capillary bridges", rows, present, "solve.csv", total=result.status.size)]
 
 
 def bridge_compare_tables(result) -> list[TableSpec]:

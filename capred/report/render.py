@@ -33,13 +33,15 @@ def fmt(x, sig: int = SIGNIFICANT, sign: bool = False) -> str:
 
 
 def row_table(title: str, rows: list[dict], keys: list[str], full_table: str | None = None,
-              left: tuple[str, ...] = ("case", "test_id", "status", "material")) -> TableSpec:
-    """A per-row table of at most MAX_ROWS rows, saying how many there are and where the rest is."""
+              left: tuple[str, ...] = ("case", "test_id", "status", "material"), total: int | None = None) -> TableSpec:
+    """A per-row table of at most MAX_ROWS rows, saying how many there are (``total``, when ``rows`` holds only
+    the first ones) and where the rest is."""
     spec = TableSpec(title, [(k, "left" if k in left else "right") for k in keys])
     for r in rows[:MAX_ROWS]:
         spec.rows.append([fmt(r.get(k)) for k in keys])
-    if len(rows) > MAX_ROWS:
-        spec.total_rows, spec.full_table = len(rows), full_table
+    n = len(rows) if total is None else total
+    if n > MAX_ROWS:
+        spec.total_rows, spec.full_table = n, full_table
     return spec
 
 
