@@ -88,6 +88,22 @@ def _normalise(unit: str, kind: str | None = None) -> str:
     return u.replace("^", "**")
 
 
+#: exact SI factors of the most common units, so that reading a plain lab file needs no pint registry
+_COMMON = {
+    ("m", "length"): 1.0, ("mm", "length"): 1e-3, ("cm", "length"): 1e-2, ("um", "length"): 1e-6,
+    ("µm", "length"): 1e-6,
+    ("Pa", "pressure"): 1.0, ("kPa", "pressure"): 1e3, ("MPa", "pressure"): 1e6,
+    ("N", "force"): 1.0, ("mN", "force"): 1e-3, ("kN", "force"): 1e3,
+    ("N/m", "surface_tension"): 1.0, ("mN/m", "surface_tension"): 1e-3,
+    ("m^3", "volume"): 1.0, ("mm^3", "volume"): 1e-9, ("cm^3", "volume"): 1e-6,
+    ("m^2", "area"): 1.0, ("mm^2", "area"): 1e-6, ("cm^2", "area"): 1e-4,
+    ("deg", "angle"): 1.0, ("kg", "mass"): 1.0, ("g", "mass"): 1e-3,
+    ("N/m^3", "unit_weight"): 1.0, ("kN/m^3", "unit_weight"): 1e3,
+    ("kg/m^3", "density"): 1.0, ("g/cm^3", "density"): 1e3, ("Mg/m^3", "density"): 1e3,
+    ("m/s^2", "acceleration"): 1.0,
+}
+
+
 @lru_cache(maxsize=256)
 def conversion(unit: str, kind: str) -> tuple[float, str | None]:
     """Factor that turns a value in ``unit`` into SI for a quantity of ``kind``.
@@ -96,6 +112,8 @@ def conversion(unit: str, kind: str) -> tuple[float, str | None]:
     a force per area (g/cm^2 as gram-force per cm^2), else None.
     Raises UnitError for an unknown unit or one of the wrong dimension.
     """
+    if (unit, kind) in _COMMON:  # the usual lab units need no unit registry (it takes 0.2 s to build)
+        return _COMMON[unit, kind], None
     ureg = registry()
     target = ureg.Unit(SI_UNIT[kind])
     check_unit_text(unit)
