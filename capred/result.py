@@ -218,6 +218,11 @@ class Result:
         """Rows of a batch's season.csv (per material: c, phi, their se, n, best model...); none by default."""
         return []
 
+    def csv_tables(self) -> dict:
+        """The tables the writer puts in CSV files: ``tables()`` by default; a large result may give plain
+        column mappings (name -> array) instead, which write without pandas."""
+        return self.tables()
+
     def extra_files(self) -> dict[str, bytes]:
         """Files of the command's own format written beside the tables (name -> bytes); none by default."""
         return {}

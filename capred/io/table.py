@@ -409,12 +409,16 @@ def read_table(source, schema: list[Column]) -> Table:
 
 
 _EDGE_SPACE = re.compile(r"\s\x00|\x00\s|^\s|\s$")
+#: every character str.isspace() (and so the regex \s) counts as white space: a column without any needs no strip
+_SPACES = ("\t\n\x0b\x0c\r\x1c\x1d\x1e\x1f \x85\xa0\u1680" + "".join(map(chr, range(0x2000, 0x200B)))
+           + "\u2028\u2029\u202f\u205f\u3000")
 
 
 def _stripped(cells) -> list[str]:
     """The cells without surrounding white space (checked for the whole column at once)."""
     cells = list(cells)
-    if _EDGE_SPACE.search("\x00".join(cells)):
+    joined = "\x00".join(cells)
+    if any(ch in joined for ch in _SPACES) and _EDGE_SPACE.search(joined):
         return [c.strip() for c in cells]
     return cells
 

@@ -127,7 +127,7 @@ def _csv_column(values, sep: str = ",", joiner: str = ";", eu: bool = False) -> 
 
 
 def write_csv_file(path, frame, dialect: str = "standard") -> None:
-    """A DataFrame as UTF-8 CSV: floats in shortest round-trip form (every digit kept), NaN as an
+    """A DataFrame (or a mapping of column name to array) as UTF-8 CSV: floats in shortest round-trip form (every digit kept), NaN as an
     empty cell, lists joined with ';', text quoted where CSV needs it. ``path`` may be a binary file.
 
     ``dialect="excel-eu"``: what a Belgian, French or German Excel opens as columns: ';' separators,
@@ -139,9 +139,10 @@ def write_csv_file(path, frame, dialect: str = "standard") -> None:
         fh = path if hasattr(path, "write") else stack.enter_context(open(path, "wb"))
         if eu:
             fh.write("\ufeff".encode("utf-8"))
-        fh.write((sep.join(_csv_cell(str(c), sep) for c in frame.columns) + "\n").encode("utf-8"))
-        arrays = [frame[c].to_numpy() for c in frame.columns]
-        for start in range(0, len(frame), 10_000):  # memory bounded by one chunk of rows
+        names = list(frame) if isinstance(frame, dict) else list(frame.columns)
+        arrays = list(frame.values()) if isinstance(frame, dict) else [frame[c].to_numpy() for c in names]
+        fh.write((sep.join(_csv_cell(str(c), sep) for c in names) + "\n").encode("utf-8"))
+        for start in range(0, len(arrays[0]) if arrays else 0, 10_000):  # memory bounded by one chunk of rows
             columns = [_csv_column(a[start:start + 10_000], sep, joiner, eu) for a in arrays]
             fh.write(("\n".join(map(sep.join, zip(*columns))) + "\n").encode("utf-8"))
 
@@ -348,7 +349,7 @@ def write_run(result, out, plots: bool = True, formats=("png",), dpi: int = 150,
     out = check_target(out, [i.path for i in result.inputs if i.path != "<DataFrame>"])
     folder = RunFolder(out)
     try:
-        for name, frame in result.tables().items():
+        for name, frame in result.csv_tables().items():
             write_csv_file(folder.path_for(f"{name}.csv"), frame, csv_dialect)
             folder.done(f"{name}.csv")
         if xlsx:

@@ -133,14 +133,13 @@ class BridgeResult(Result):
     def rows_range(self, start: int, stop: int) -> list[dict]:
         """JSON rows start..stop (NaN as None, an empty note left out), built column by column."""
         cols = self._cols()
-        keys = list(cols)
-        values = [json_list(v[start:stop]) if v.dtype != object else v[start:stop].tolist() for v in cols.values()]
-        out = []
-        for vals in zip(*values):
-            r = dict(zip(keys, vals))
-            if not r["note"]:
-                del r["note"]
-            out.append(r)
+        keys = [k for k in cols if k != "note"]
+        values = [json_list(cols[k][start:stop]) if cols[k].dtype != object else cols[k][start:stop].tolist()
+                  for k in keys]
+        out = [dict(zip(keys, vals)) for vals in zip(*values)]
+        for r, note in zip(out, cols["note"][start:stop].tolist()):
+            if note:
+                r["note"] = note
         return out
 
     def rows(self) -> list[dict]:
@@ -152,6 +151,9 @@ class BridgeResult(Result):
 
     def tables(self) -> dict:
         return {"solve": self._frame()}
+
+    def csv_tables(self) -> dict:
+        return {"solve": self._cols()}
 
     def console_tables(self) -> list[TableSpec]:
         from ..report.console import bridge_solve_tables
@@ -223,11 +225,14 @@ def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None) 
     by_s = np.flatnonzero(np.isfinite(s_in))
     by_v = np.flatnonzero(np.isfinite(v_in))
     note = [""] * n
+    notes = list(notes or [])
     if by_s.size:
         s_star[by_s] = s_in[by_s] * R[by_s] / gamma[by_s]
-        beta[by_s], status[by_s] = br.solve_for_suction(th[by_s], s_star[by_s], D[by_s] / R[by_s], ratio[by_s])
-        for i in by_s[(status[by_s] == 0) & (D[by_s] > 0)]:
-            note[i] = "two bridges fit this gap and suction; the stable one (larger filling angle) is given"
+        beta[by_s], status[by_s] = _in_parallel(br.solve_for_suction, th[by_s], s_star[by_s], D[by_s] / R[by_s],
+                                                 ratio[by_s])
+        if np.any((status[by_s] == 0) & (D[by_s] > 0)):
+            notes.append("At a given gap and suction two bridges fit; the stable one (larger filling angle and "
+                         "volume, continuous with the bridge at contact) is given.")
     if by_v.size:
         beta[by_v], s_star[by_v], status[by_v] = br.solve_for_volume(th[by_v], v_in[by_v] / R[by_v] ** 3,
                                                                      D[by_v] / R[by_v], ratio[by_v])
@@ -240,7 +245,27 @@ def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None) 
                                "an open water supply would jump to a larger bridge; close to rupture")
     shape = br.bridge(beta, th, np.where(np.isfinite(s_star), s_star, 0.0), ratio)
     return BridgeResult(source, {"R": R, "gamma": gamma, "contact_angle": th, "gap": D, "ratio": ratio}, beta,
-                        s_star * gamma / R, shape, status, note, labels, list(notes or []))
+                        s_star * gamma / R, shape, status, note, labels, notes)
+
+
+_PARALLEL_ROWS = 40_000  # below this, one process is faster than starting a second
+
+
+def _in_parallel(solver, *columns):
+    """``solver(*columns)`` on both halves of the rows in two processes when there are many rows and two cores."""
+    import os
+
+    n = columns[0].size
+    if n < _PARALLEL_ROWS or (os.cpu_count() or 1) < 2 or os.name != "posix":
+        return solver(*columns)
+    import multiprocessing as mp
+
+    half = n // 2
+    with mp.get_context("fork").Pool(1) as pool:
+        other = pool.apply_async(solver, [c[half:] for c in columns])
+        first = solver(*(c[:half] for c in columns))
+        second = other.get()
+    return tuple(np.concatenate([a, b]) for a, b in zip(first, second))
 
 
 @dataclass(frozen=True)
