@@ -348,7 +348,10 @@ def write_run(result, out, plots: bool = True, formats=("png",), dpi: int = 150,
     """
     out = check_target(out, [i.path for i in result.inputs if i.path != "<DataFrame>"])
     folder = RunFolder(out)
+    json_writer = None
     try:
+        doc = result.json_lazy()
+        json_writer = _JsonWriter(folder.path_for(result.json_name), doc)  # a long document: in a second process
         for name, frame in result.csv_tables().items():
             write_csv_file(folder.path_for(f"{name}.csv"), frame, csv_dialect)
             folder.done(f"{name}.csv")
@@ -359,8 +362,7 @@ def write_run(result, out, plots: bool = True, formats=("png",), dpi: int = 150,
             folder.done("tables.xlsx")
         for name, data in result.extra_files().items():
             folder.write_bytes(name, data)
-        with open(folder.path_for(result.json_name), "wb") as fh:
-            stream_json(result.json_lazy(), fh.write)
+        json_writer.finish()
         folder.done(result.json_name)
         drawn: dict[str, dict[str, str]] = {}
         if plots:
@@ -372,11 +374,69 @@ def write_run(result, out, plots: bool = True, formats=("png",), dpi: int = 150,
         folder.write_bytes("provenance.json", encode_json(provenance(result, folder.names, command_line), True))
         return folder.commit()
     except OSError as exc:
+        if json_writer is not None:
+            json_writer.cancel()
         folder.abort()
         raise _os_error(out, exc) from None
     except BaseException:
+        if json_writer is not None:
+            json_writer.cancel()
         folder.abort()
         raise
+
+
+#: a JSON document with more rows than this is written by a forked process while the tables are written
+PARALLEL_JSON_ROWS = 20_000
+
+
+class _JsonWriter:
+    """Writes the JSON document to ``path``: at once, or (a long one, on a POSIX machine with two cores) in a
+    forked child while the caller writes the other files; ``finish()`` waits and re-raises its failure."""
+
+    def __init__(self, path, doc: dict) -> None:
+        import os
+
+        from ..result import Rows
+
+        self.path, self.doc, self.pid = path, doc, None
+        long = sum(v.n for v in doc.values() if isinstance(v, Rows)) > PARALLEL_JSON_ROWS
+        if long and os.name == "posix" and (os.cpu_count() or 1) > 1:
+            self.pid = os.fork()
+            if self.pid == 0:  # the child: write, then leave without running the parent's clean-up
+                code = 1
+                try:
+                    self._write()
+                    code = 0
+                finally:
+                    os._exit(code)
+        else:
+            self._write()
+
+    def _write(self) -> None:
+        with open(self.path, "wb") as fh:
+            stream_json(self.doc, fh.write)
+
+    def finish(self) -> None:
+        import os
+
+        if self.pid is None:
+            return
+        _, status = os.waitpid(self.pid, 0)
+        self.pid = None
+        if status != 0:  # the child failed (disk full, ...): try once more here, where the error is raised
+            self._write()
+
+    def cancel(self) -> None:
+        import os
+        import signal
+
+        if self.pid is not None:
+            try:
+                os.kill(self.pid, signal.SIGKILL)
+                os.waitpid(self.pid, 0)
+            except OSError:
+                pass
+            self.pid = None
 
 
 def _write_figures(result, folder: "RunFolder", formats, dpi: int, svg_inline: bool) -> dict:
