@@ -426,7 +426,14 @@ def _solve_for_suction(theta, suction, gap, ratio):
         j = np.argmax(Dg[miss], axis=1)
         a = grid[miss, np.maximum(j - 1, 0)]
         c = grid[miss, np.minimum(j + 1, grid.shape[1] - 1)]
-        bp, dp = _golden(lambda x, i: gap_of(x, th[miss][i], s[miss][i], rho[miss][i]), a, c, iters=25)
+        bp, dp = _golden(lambda x, i: gap_of(x, th[miss][i], s[miss][i], rho[miss][i]), a, c, iters=12)
+        # 12 steps leave the bracket at 0.3 % of its width: the maximum is then known to about 1e-4 relative;
+        # rows within 1 % of the gap are refined to 25 steps, the rest are beyond rupture
+        close = np.flatnonzero((dp < D[miss]) & (dp >= 0.99 * D[miss]))
+        if close.size:
+            sub = miss[close]
+            bp[close], dp[close] = _golden(lambda x, i: gap_of(x, th[sub][i], s[sub][i], rho[sub][i]), a[close],
+                                           c[close], iters=25)
         found = dp >= D[miss]
         has[miss[found]] = True
         lo[miss], f_lo[miss] = bp, dp - D[miss]
