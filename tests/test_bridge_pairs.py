@@ -129,10 +129,10 @@ def test_volume_solution_is_the_one_continuous_with_contact():
     assert np.max(np.abs(np.diff(b))) < 0.005  # no jump to the other bridge (those differ by > 0.01 rad)
 
 
-@pytest.mark.parametrize("rho", [1.0, 2.0, np.inf])
+@pytest.mark.parametrize("rho", [1.0, 2.0, 0.5, 10.0, np.inf])
 def test_scan_never_reports_a_wrong_bridge_unequal(rho):
-    th, D, V = np.meshgrid(np.radians([0, 5, 30]), np.r_[0.0, np.geomspace(1e-3, 0.2, 4)],
-                           np.geomspace(1e-6, 1e-1, 6), indexing="ij")
+    th, D, V = np.meshgrid(np.radians([0, 5, 20, 45, 70]), np.r_[0.0, np.geomspace(1e-3, 0.3, 4)],
+                           np.geomspace(1e-12, 1e-1, 7), indexing="ij")
     th, D, V = th.ravel(), D.ravel(), V.ravel()
     b, s, st = br.solve_for_volume(th, V, D, rho)
     ok = st == 0
@@ -140,11 +140,11 @@ def test_scan_never_reports_a_wrong_bridge_unequal(rho):
     x = br.bridge(b[ok], th[ok], s[ok], rho)
     assert np.all(np.abs(x.gap - D[ok]) <= 1e-9 * np.maximum(D[ok], 1e-3))
     assert np.all(np.abs(x.volume - V[ok]) <= 1e-9 * V[ok])
-    # rows said to be beyond rupture are beyond the rupture distance of their volume
-    beyond = np.flatnonzero(st == 1)
-    if beyond.size:
-        d_r = br.rupture_gap(th[beyond], V[beyond], rho)[0]
-        assert np.all(d_r < D[beyond] * (1 + 1e-6))
+    # rows said to be beyond rupture are beyond the rupture distance of their volume, rows solved within it
+    d_r = br.rupture_gap(th, V, rho)[0]
+    assert np.all(d_r[st == 1] < D[st == 1] * (1 + 1e-6))
+    assert np.all(d_r[ok] >= D[ok] * (1 - 1e-6))
+    assert not np.any(st == 4)
 
 
 def test_suction_solver_scan_is_verified_and_stable():
@@ -264,3 +264,26 @@ def test_yade_files_layout_and_values(tmp_path):
     # the largest suction: a mean filling angle of 1 deg at contact
     last = blocks[0][-1]
     assert 0.5 * (last[4] + last[5]) == pytest.approx(1.0, rel=1e-6)
+
+
+def test_precision_at_any_scale(tmp_path):
+    """Issue 13: R from 1 um to 10 mm and volumes down to 1e-12 mm^3 keep their digits. The same dimensionless
+    bridge at three scales scales exactly (lengths as R, volumes as R^3, forces as gamma R)."""
+    scales = [0.001, 1.0, 10.0]  # R in mm
+    text = "case,R [mm],R2,contact_angle,gap [mm],V_w [mm^3]\n" + "".join(
+        f"r{R},{R!r},{2 * R!r},10,{0.01 * R!r},{2e-4 * R**3!r}\n" for R in scales)
+    text += "tiny,10,10,0,0,1e-12\ntiny_plane,10,plane,20,0,1e-12\n"
+    (tmp_path / "s.csv").write_text(text)
+    rows = {r["case"]: r for r in capred.solve_bridges(tmp_path / "s.csv").rows()}
+    assert all(r["status"] == "ok" for r in rows.values()), rows
+    ref = rows["r1.0"]
+    for R in scales:
+        r = rows[f"r{R}"]
+        assert r["V_w_mm3"] == pytest.approx(ref["V_w_mm3"] * R**3, rel=1e-12)
+        assert r["r0_mm"] == pytest.approx(ref["r0_mm"] * R, rel=1e-9)
+        assert r["F_cap_mN"] == pytest.approx(ref["F_cap_mN"] * R, rel=1e-9)
+        assert r["suction_kPa"] == pytest.approx(ref["suction_kPa"] / R, rel=1e-9)
+        assert r["area_mm2"] == pytest.approx(ref["area_mm2"] * R**2, rel=1e-9)
+    for k in ("tiny", "tiny_plane"):  # 1e-12 mm^3 on 10 mm particles: V* = 1e-15
+        assert rows[k]["V_w_mm3"] == pytest.approx(1e-12, rel=1e-9)
+        assert rows[k]["r0_mm"] > 0 and rows[k]["filling_angle_deg"] > 0

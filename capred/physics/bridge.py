@@ -502,10 +502,14 @@ def _solve_for_volume(theta, volume, gap, ratio):
     y_lo, y_hi = np.full(m, np.nan), np.full(m, np.nan)
     if reach.size:
         # top neck: the catenoid gap falls through D above the peak
-        top = np.where(span[reach] & (y[reach] > ypk[reach, None]), np.arange(y.shape[1]), -1).max(axis=1)
-        top = np.maximum(top, 0)
-        a = np.maximum(ypk[reach], y[reach, top])
-        c = y[reach, np.minimum(top + 1, y.shape[1] - 1)]
+        # (or, where it never does, at the edge of the bridges: a plane at small theta)
+        cols = np.arange(y.shape[1])
+        above = y[reach] > ypk[reach, None]
+        last = np.where(span[reach] & above, cols, -1).max(axis=1)  # last spanning neck above the peak
+        first = np.where(above, cols, y.shape[1] - 1).min(axis=1)  # first neck above the peak
+        a = np.where(last >= 0, y[reach, np.maximum(last, 0)], ypk[reach])
+        c = np.where(last >= 0, y[reach, np.minimum(last + 1, y.shape[1] - 1)], y[reach, first])
+        c = np.where(c > a, c, a * (1 + 1e-9))
         y_hi[reach] = _log_root(lambda x, i: cat_gap(x, i, reach), a, c)
         rising = reach[D[reach] > 0]
         y_lo[reach[D[reach] == 0]] = _NECK_GRID[0]
