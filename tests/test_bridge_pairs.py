@@ -141,8 +141,9 @@ def test_scan_never_reports_a_wrong_bridge_unequal(rho):
     assert np.all(np.abs(x.gap - D[ok]) <= 1e-9 * np.maximum(D[ok], 1e-3))
     assert np.all(np.abs(x.volume - V[ok]) <= 1e-9 * V[ok])
     # rows said to be beyond rupture are beyond the rupture distance of their volume, rows solved within it
-    d_r = br.rupture_gap(th, V, rho)[0]
-    assert np.all(d_r[st == 1] < D[st == 1] * (1 + 1e-6))
+    d_r, _, _, st_r = br.rupture_gap(th, V, rho)
+    beyond = (st == 1) & (st_r == 0)  # (st_r = 3: no concave bridge holds V at any gap >= 0)
+    assert np.all(d_r[beyond] < D[beyond] * (1 + 1e-6))
     assert np.all(d_r[ok] >= D[ok] * (1 - 1e-6))
     assert not np.any(st == 4)
 
