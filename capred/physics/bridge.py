@@ -586,6 +586,9 @@ def _rupture(theta, volume, ratio):
     a = np.log(_NECK_GRID[np.maximum(j - 1, 0)])
     c = np.log(_NECK_GRID[np.minimum(j + 1, ng - 1)])
     x, g = _golden(gap_at, a, c)
+    g_grid = G[np.arange(m), j]
+    worse = ~(np.isfinite(g) & (g >= g_grid))  # the refinement failed (an edge of the bridges): keep the grid's
+    x, g = np.where(worse, np.log(_NECK_GRID[j]), x), np.where(worse, g_grid, g)
     y0 = np.exp(x)
     s = _suction_at_neck(y0, th, rho, V, "volume")
     b1 = from_neck(y0, th, s, rho)[0]
