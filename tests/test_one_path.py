@@ -33,6 +33,10 @@ COMMANDS = {
     "bridge compare": (["bridge", "compare", "--sample", "--no-plots"],
                        lambda: capred.compare_measured(capred.sample_path("bridge-compare"))),
     "bridge curve": (["bridge", "curve", "--points", "50", "--no-plots"], lambda: capred.bridge_curve(points=50)),
+    "bridge rupture": (["bridge", "rupture", "--sample", "--no-plots"],
+                       lambda: capred.rupture_distances(capred.sample_path("bridge-rupture"))),
+    "bridge yade-files": (["bridge", "yade-files", "--ratios", "1,2", "--distances", "4", "--suctions", "5"],
+                          lambda: capred.run("bridge yade-files", ratios=(1, 2), distances=4, suctions=5)),
 }
 
 

@@ -84,13 +84,15 @@ def _manifest_jobs(manifest: Path, out, json_out: bool):
     from ..errors import InputError, Problem
     from ..io.manifest import read_manifest
 
+    from ..reductions import REDUCTIONS
+
     group = typer.main.get_command(app)
     problems: list = []
     invocations = []
+    runnable = [c for c in BUILDERS if REDUCTIONS[c].source != "none"]  # the commands that read files
     for line, command, pattern, options in read_manifest(manifest):
-        cmd = _subcommand(group, command) if command in BUILDERS and command != "bridge curve" else None
+        cmd = _subcommand(group, command) if command in runnable else None
         if cmd is None:
-            runnable = [c for c in BUILDERS if c != "bridge curve"]
             problems.append(Problem(str(manifest), line, "command",
                                     f"'{command}' is not one of {', '.join(runnable)}"))
             continue
