@@ -2,7 +2,7 @@
 
 Sources: Lian, Thornton & Adams (1993), J. Colloid Interface Sci. 161, 138-147,
 doi:10.1006/jcis.1993.1452 (first integral, rupture distance); Evenepoel (VUB
-thesis) for the unit cell; Duriez et al. (2017), doi:10.1007/s11440-016-0500-1
+thesis) for the unit cell; Duriez & Wan (2017), doi:10.1007/s11440-016-0500-6
 and Prunier et al. (2024) for the interface tensor and YADE's capillary files.
 
 Dimensionless core: lengths in units of the radius R1 of the first particle,

@@ -2,8 +2,8 @@
 
 YADE interpolates capillary bridges in pre-computed tables, one text file per
 radius ratio r = R2 / R1 >= 1 named ``M(r=<ratio>)``, read from the folder
-YADE runs in. Layout (Scholtes et al. 2009, doi:10.1016/j.ijengsci.2008.07.002;
-Duriez et al. 2017, doi:10.1007/s11440-016-0500-1): first line the ratio,
+YADE runs in. Layout (Scholtès et al. 2009, Int. J. Eng. Sci. 47:64-75;
+Duriez & Wan 2017, doi:10.1007/s11440-016-0500-6): first line the ratio,
 second line the number of distance blocks; each block is a line
 ``<count> 0 0 0 0 0 0 0`` followed by ``<count>`` tab-separated rows
 ``d* uc* V* F* delta1 delta2 nn11 nn33`` at one distance, by rising suction,
