@@ -244,13 +244,16 @@ def _single(inv: Invocation) -> None:
     out_dir = inv.out or default_out(inv.command, source)
     if write:  # before anything is computed
         check_target(out_dir, [source, *inv.extra_inputs])
-    result = REDUCTIONS[inv.command].run(source, inv.options)
+    import sys
+
+    from ..progress import showing
+
+    with showing(not inv.json and sys.stderr.isatty()):
+        result = REDUCTIONS[inv.command].run(source, inv.options)
     o = inv.output
     written = write_run(result, out_dir, plots=inv.plots, formats=o.formats, dpi=o.dpi, html=o.html,
                         csv_dialect=o.csv_dialect, xlsx=o.xlsx) if write else None
     if inv.json:
-        import sys
-
         from ..io.writers import stream_json
 
         out = sys.stdout.buffer if hasattr(sys.stdout, "buffer") else None

@@ -175,7 +175,10 @@ class YadeResult(Result):
 def reduce_yade_files(source, opt: YadeOptions) -> YadeResult:
     """Every capillary file of ``opt.ratios`` (``source`` is unused: the files need no input)."""
     theta = np.radians(opt.contact_angle)
-    files = [capillary_file(r, theta, opt.distances, opt.suctions) for r in opt.ratios]
+    from ..progress import steps
+
+    files = [capillary_file(r, theta, opt.distances, opt.suctions)
+             for r in steps(opt.ratios, "capred: capillary files", len(opt.ratios))]
     res = YadeResult(files, opt, [], list(opt.warnings))
     odd = [r for r in opt.ratios if r not in YADE_RATIOS]
     if odd:
