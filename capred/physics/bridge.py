@@ -358,6 +358,9 @@ def _suction_at_neck(y0, th, rho, target, field):
     """s* >= 0 at which the bridge of neck y0 has gap (or volume) = target; both fall as s* rises. NaN if none."""
     def value(q, i):
         s = q / (1.0 - q) / (y0[i] * y0[i])  # suction scale of a neck y0: 1 / y0^2
+        if field == "gap":  # the gap alone: the fast path
+            F = 2.0 * y0[i] + s * y0[i] * y0[i]
+            return _below(gap_of(_second_filling_angle(F, th[i], s, np.ones_like(F)), th[i], s, rho[i])) - target[i]
         return _below(getattr(from_neck(y0[i], th[i], s, rho[i])[1], field)) - target[i]
 
     idx = np.arange(y0.size)
@@ -527,21 +530,24 @@ def _solve_for_volume(theta, volume, gap, ratio):
     else:
         cand = has
     if cand.size:
-        nk = 24
-        frac = np.linspace(0.0, 1.0, nk)
-        yg = np.exp(np.log(y_lo[cand])[:, None] + frac * np.log(y_hi[cand] / y_lo[cand])[:, None])
-        rep = np.repeat(cand, nk)
-        Vg = _arc(yg.ravel(), th[rep], rho[rep], D[rep])[0].reshape(cand.size, nk)
-        Vg_b = np.where(np.isfinite(Vg), Vg, np.inf)
-        jm = np.argmin(Vg_b, axis=1)
-        rr = np.arange(cand.size)
-        a = np.log(yg[rr, np.maximum(jm - 1, 0)])
-        c = np.log(yg[rr, np.minimum(jm + 1, nk - 1)])
-        x_min, v_min = _golden(lambda x, i: _arc(np.exp(x), th[cand][i], rho[cand][i], D[cand][i])[0], a, c,
-                               sign=-1.0)
-        at_contact = D[cand] == 0
-        y_min = np.where(at_contact, y_lo[cand], np.exp(x_min))
-        v_min = np.where(at_contact, 0.0, v_min)
+        # at contact the volume rises with the neck from 0; at a gap it has one minimum (the rupture volume of
+        # the gap), located on a grid of necks and refined
+        y_min, v_min = y_lo[cand].copy(), np.zeros(cand.size)
+        apart = np.flatnonzero(D[cand] > 0)
+        if apart.size:
+            sub = cand[apart]
+            nk = 24
+            frac = np.linspace(0.0, 1.0, nk)
+            yg = np.exp(np.log(y_lo[sub])[:, None] + frac * np.log(y_hi[sub] / y_lo[sub])[:, None])
+            rep = np.repeat(sub, nk)
+            Vg = _arc(yg.ravel(), th[rep], rho[rep], D[rep])[0].reshape(sub.size, nk)
+            jm = np.argmin(np.where(np.isfinite(Vg), Vg, np.inf), axis=1)
+            rr = np.arange(sub.size)
+            a = np.log(yg[rr, np.maximum(jm - 1, 0)])
+            c = np.log(yg[rr, np.minimum(jm + 1, nk - 1)])
+            x_min, v_sub = _golden(lambda x, i: _arc(np.exp(x), th[sub][i], rho[sub][i], D[sub][i])[0], a, c,
+                                   iters=40, sign=-1.0)
+            y_min[apart], v_min[apart] = np.exp(x_min), v_sub
         inside = V[cand] >= v_min
         go = cand[inside]
         if go.size:
@@ -550,7 +556,7 @@ def _solve_for_volume(theta, volume, gap, ratio):
             sel = inside
             lo, hi = np.log(y_min[sel]), np.log(y_hi[go])
             root = np.exp(_illinois(lambda x, i: -f(x, i), lo, hi, -f(lo, np.arange(go.size)),
-                                    V[go] - v_top[go]))
+                                    V[go] - v_top[go], ftol=1e-3 * VERIFY_RTOL * V[go]))
             s = _suction_at_neck(root, th[go], rho[go], D[go], "gap")
             b1 = from_neck(root, th[go], np.where(np.isfinite(s), s, 0.0), rho[go])[0]
             beta[k[go]], suction[k[go]] = b1, s
