@@ -16,8 +16,9 @@ from scipy.integrate import solve_ivp
 from capred.physics import bridge as br
 
 
-def ivp_bridge(beta, theta, s):
-    """The same bridge by integrating the Young-Laplace ODE from the contact line to the neck (rtol 1e-10)."""
+def ivp_bridge(beta, theta, s, rtol=1e-10):
+    """The same bridge by integrating the Young-Laplace ODE from the contact line to the neck (DOP853): gap,
+    volume and force in units of R and gamma."""
     def rhs(_, u):
         return [-np.cos(u[2]), -np.sin(u[2]), -(s + np.cos(u[2]) / u[1]), np.pi * u[1] ** 2 * np.cos(u[2])]
 
@@ -26,7 +27,7 @@ def ivp_bridge(beta, theta, s):
 
     neck.terminal, neck.direction = True, -1
     sol = solve_ivp(rhs, (0, 50), [0.0, np.sin(beta), 0.5 * np.pi - beta - theta, 0.0], method="DOP853",
-                    rtol=1e-10, atol=1e-13, events=neck)
+                    rtol=rtol, atol=rtol * 1e-3, events=neck)
     x, y, _, v = sol.y_events[0][0]
     h = 1 - np.cos(beta)
     return 2 * (-x + np.cos(beta) - 1), 2 * (v - np.pi * h * h * (3 - h) / 3), 2 * y + s * y * y

@@ -24,7 +24,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from scipy.integrate import solve_ivp
+from bench_bridge import ivp_bridge  # one solve_ivp integration per bridge (this folder)
 
 from capred.physics import bridge as br
 
@@ -58,23 +58,6 @@ def write_csv(path: Path, n: int) -> None:
     with open(path, "w") as fh:
         fh.write("R [mm],contact_angle [deg],gap [mm],suction [kPa]\n")
         fh.writelines(f"{a!r},{b!r},{c!r},{d!r}\n" for a, b, c, d in zip(*(x.tolist() for x in (R, th, D, s))))
-
-
-def ivp_bridge(beta: float, theta: float, s: float, rtol: float = 1e-12):
-    """One bridge by integrating the Young-Laplace ODE from the contact line to the neck (DOP853): gap, volume
-    and force, units of R and gamma."""
-    def rhs(_, u):
-        return [-np.cos(u[2]), -np.sin(u[2]), -(s + np.cos(u[2]) / u[1]), np.pi * u[1] ** 2 * np.cos(u[2])]
-
-    def neck(_, u):
-        return u[2]
-
-    neck.terminal, neck.direction = True, -1
-    sol = solve_ivp(rhs, (0, 50), [0.0, np.sin(beta), 0.5 * np.pi - beta - theta, 0.0], method="DOP853",
-                    rtol=rtol, atol=rtol * 1e-3, events=neck)
-    x, y, _, v = sol.y_events[0][0]
-    h = 1 - np.cos(beta)
-    return 2 * (-x + np.cos(beta) - 1), 2 * (v - np.pi * h * h * (3 - h) / 3), 2 * y + s * y * y
 
 
 def cli(csv: Path, out: Path) -> tuple[float, int]:
