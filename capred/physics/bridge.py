@@ -441,9 +441,8 @@ def _solve_for_suction(theta, suction, gap, ratio):
         hi[miss] = c
         f_hi[miss] = _below(gap_of(c, th[miss], s[miss], rho[miss])) - D[miss]
     good = np.flatnonzero(has)
-    f_hi = np.maximum(f_hi, -1e300)
-    root = _illinois(lambda x, i: np.maximum(_below(gap_of(x, th[good][i], s[good][i], rho[good][i])), -1e300)
-                     - D[good][i], lo[good], hi[good], f_lo[good], f_hi[good],
+    root = _illinois(lambda x, i: _below(gap_of(x, th[good][i], s[good][i], rho[good][i])) - D[good][i],
+                     lo[good], hi[good], f_lo[good], f_hi[good],
                      ftol=1e-3 * VERIFY_RTOL * np.maximum(D[good], 1e-3))
     beta[k[good]] = root
     # rows whose gap stays above the target up to the last concave bridge: too much water at this suction
