@@ -115,9 +115,11 @@ def _csv_grid(shown: str, text: str) -> Grid:
     for each candidate; the whole text is parsed once, with the delimiter
     chosen (``Grid.parse_all``).
     """
-    lines = text.splitlines()
-    # comment lines become blank (keeping the numbering); a '#' inside a quoted field is left alone
-    kept = "\n".join("" if ln.lstrip().startswith("#") else ln for ln in lines)
+    if "#" in text or "\r" in text or any(ch in text for ch in "\x0b\x0c\x1c\x1d\x1e\x85\u2028\u2029"):
+        # comment lines become blank (keeping the numbering); a '#' inside a quoted field is left alone
+        kept = "\n".join("" if ln.lstrip().startswith("#") else ln for ln in text.splitlines())
+    else:  # the usual file: nothing to blank, lines already end in '\n'
+        kept = text[:-1] if text.endswith("\n") else text
     grid = Grid(shown, None, [], (",", ";", "\t"))
     head = "\n".join(kept.split("\n", 200)[:200])
     for delim in grid.delimiters:
@@ -132,10 +134,10 @@ def _parse(text: str, delim: str) -> list[tuple[int, list[str]]]:
     metadata are searched there), later cells as written (the table reader strips columns where needed)."""
     rows = []
     if '"' not in text and "\r" not in text:  # no quoting: a line is a row, split on the delimiter (fast)
-        for start, line in enumerate(text.split("\n"), 1):
-            if line.strip():
-                cells = line.split(delim)
-                rows.append((start, [c.strip() for c in cells] if len(rows) < 200 else cells))
+        lines = text.split("\n")
+        rows = [(k + 1, ln.split(delim)) for k, ln in enumerate(lines) if ln and not ln.isspace()]
+        for k in range(min(200, len(rows))):
+            rows[k] = (rows[k][0], [c.strip() for c in rows[k][1]])
         return rows
     reader = csv.reader(io.StringIO(text), delimiter=delim)
     start = 1
