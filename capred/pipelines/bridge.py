@@ -226,10 +226,13 @@ def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None) 
     by_v = np.flatnonzero(np.isfinite(v_in))
     note = [""] * n
     notes = list(notes or [])
+    fields = {k: np.full(n, np.nan) for k in br.Bridge.__dataclass_fields__}
     if by_s.size:
         s_star[by_s] = s_in[by_s] * R[by_s] / gamma[by_s]
-        beta[by_s], status[by_s] = _in_parallel(br.solve_for_suction, th[by_s], s_star[by_s], D[by_s] / R[by_s],
-                                                 ratio[by_s])
+        beta[by_s], status[by_s], *values = _in_parallel(_suction_rows, th[by_s], s_star[by_s], D[by_s] / R[by_s],
+                                                         ratio[by_s])
+        for k, v in zip(fields, values):
+            fields[k][by_s] = v
         if np.any((status[by_s] == 0) & (D[by_s] > 0)):
             notes.append("At a given gap and suction two bridges fit; the stable one (larger filling angle and "
                          "volume, continuous with the bridge at contact) is given.")
@@ -243,12 +246,22 @@ def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None) 
                 if st != 0 or abs(bs - beta[i]) > 1e-6 * beta[i]:
                     note[i] = ("stable at constant volume only (past the suction-controlled fold): at this suction "
                                "an open water supply would jump to a larger bridge; close to rupture")
-    shape = br.bridge(beta, th, np.where(np.isfinite(s_star), s_star, 0.0), ratio)
+        b = br.bridge(beta[by_v], th[by_v], np.where(np.isfinite(s_star[by_v]), s_star[by_v], 0.0), ratio[by_v])
+        for k in fields:
+            fields[k][by_v] = getattr(b, k)
+    shape = br.Bridge(**fields)
     return BridgeResult(source, {"R": R, "gamma": gamma, "contact_angle": th, "gap": D, "ratio": ratio}, beta,
                         s_star * gamma / R, shape, status, note, labels, notes)
 
 
 _PARALLEL_ROWS = 40_000  # below this, one process is faster than starting a second
+
+
+def _suction_rows(th, s, D, rho):
+    """Suction-controlled rows: (beta, status, every field of the bridge) — one unit of parallel work."""
+    beta, status = br.solve_for_suction(th, s, D, rho)
+    b = br.bridge(beta, th, np.where(status == 0, s, 0.0), rho)
+    return (beta, status, *(getattr(b, k) for k in br.Bridge.__dataclass_fields__))
 
 
 def _in_parallel(solver, *columns):
