@@ -14,13 +14,14 @@ def register(app: typer.Typer) -> None:
                              no_args_is_help=True, rich_markup_mode=None)
     app.add_typer(bridge_app, name="bridge")
     command(bridge_app, "curve", "bridge curve")(curve)
-    command(bridge_app, "solve", "bridge solve", data="CSV, one bridge per row: R, gamma, contact_angle, gap, and "
-                                                      "suction or V_w", plots=False)(solve)
+    command(bridge_app, "solve", "bridge solve", data="CSV, one bridge per row: R (and R2: a radius or 'plane'), "
+                                                      "gamma, contact_angle, gap, and suction or V_w",
+            plots=False)(solve)
     command(bridge_app, "rupture", "bridge rupture", data="CSV, one case per row: R, contact_angle, V_w (and R2: a "
                                                           "radius or 'plane')")(rupture)
     command(bridge_app, "yade-files", "bridge yade-files", plots=False)(yade_files)
-    command(bridge_app, "compare", "bridge compare", data="CSV of microscopic tests: R, contact_angle, gap, V_w, "
-                                                          "measured F_cap (and filling_angle)")(compare)
+    command(bridge_app, "compare", "bridge compare", data="CSV of microscopic tests: R (and R2), contact_angle, gap, "
+                                                          "V_w, measured F_cap (and filling_angle)")(compare)
 
 
 def curve(
@@ -50,9 +51,12 @@ def curve(
 def solve(
     surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma'.")] = "0.0728",
 ) -> Invocation:
-    """Exact bridge per row: neck radius r0, F_cap = F_L + F_T, V_w, half-filling
-    angle, S_R = 3V_w/(2 pi R^3) and sigma' = F_cap/(pi R^2); a row without a
-    bridge (beyond rupture, too much water) gets a status, not an error.
+    """Exact bridge per row between spheres of radii R and R2 (or a sphere and
+    a plane): neck radius r0, F_cap = F_L + F_T, V_w, filling angles on both
+    particles, liquid-gas area and its n(x)n integrals (nn11, nn33),
+    S_R = 3V_w/(2 pi R^3) and sigma' = F_cap/(pi R^2). Every bridge is verified
+    to reproduce its gap and volume (or suction) to 1e-9; a row without one
+    (beyond rupture, too much water) gets a status, not an error.
 
     Example: capred bridge solve cases.csv --json
     """
