@@ -183,7 +183,9 @@ def _read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, .
             table.missing_column(name)
     if required_one_of and not any(n in table.columns for n in required_one_of):
         table.missing_column(required_one_of[0], "".join(f" (or '{n}')" for n in required_one_of[1:]))
-    table.raise_if_problems()
+    if any(n not in table.columns for n in required) or (
+            required_one_of and not any(n in table.columns for n in required_one_of)):
+        table.raise_if_problems()  # without its columns nothing else can be checked
     gamma = table.get("gamma").copy()
     gamma[np.isnan(gamma)] = opt.surface_tension
     for i in np.flatnonzero(table.columns["contact_angle"] >= 90):
