@@ -420,3 +420,29 @@ def test_fuzzed_unit_strings_never_crash(unit):
             conversion(unit, kind)
         except UnitError:
             pass
+
+
+def test_long_plain_csv_names_the_line_of_a_bad_cell_past_the_first_rows(tmp_path):
+    """Rows after the first 200 lines are split as whole columns (issue 13's speed); their messages still name
+    the spreadsheet line, and a ragged or blank line falls back to row-by-row reading."""
+    from capred.io.table import read_table
+    from capred.pipelines.bridge import SOLVE_SCHEMA
+
+    rows = [f"{1 + k % 7},{k % 30},0.{k % 9},1.5" for k in range(5000)]
+    good = "R,contact_angle,gap,suction\n" + "\n".join(rows) + "\n"
+    (tmp_path / "ok.csv").write_text(good)
+    t = read_table(tmp_path / "ok.csv", SOLVE_SCHEMA)
+    assert t.lines[0] == 2 and t.lines[-1] == 5001 and len(t.lines) == 5000
+    assert t.columns["R"][4999] == pytest.approx((1 + 4999 % 7) * 1e-3)  # mm -> m
+    bad = rows.copy()
+    bad[3998] = "1,0,abc,1.5"  # spreadsheet line 4000
+    (tmp_path / "bad.csv").write_text("R,contact_angle,gap,suction\n" + "\n".join(bad) + "\n")
+    t = read_table(tmp_path / "bad.csv", SOLVE_SCHEMA)
+    assert any(p.line == 4000 and "'abc' is not a number" in p.message for p in t.problems)
+    ragged = rows.copy()
+    ragged[2998] = "1,0,0.1,1.5,7"  # line 3000: one field too many
+    ragged.insert(4000, "")  # and a blank line: both read row by row
+    (tmp_path / "ragged.csv").write_text("R,contact_angle,gap,suction\n" + "\n".join(ragged) + "\n")
+    t = read_table(tmp_path / "ragged.csv", SOLVE_SCHEMA)
+    assert any(p.line == 3000 and "5 fields" in p.message for p in t.problems)
+    assert len(t.lines) == 5000 and t.lines[-1] == 5002

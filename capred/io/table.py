@@ -274,10 +274,13 @@ def read_table(source, schema: list[Column]) -> Table:
         if _find_header(grid.text_rows[best], lookup)[1] == 0:  # no known column at all: the widest first row
             best = max(grid.delimiters, key=lambda d: (len(grid.text_rows[d][0][1]) if grid.text_rows[d] else 0,
                                                        -grid.delimiters.index(d)))
-        grid.parse_all(best)
+        tail = _plain_tail(grid, best, lookup)
+        if tail is None:
+            grid.parse_all(best)
         delimiter = best
     else:
         delimiter = None
+        tail = None
     shown, sheet = grid.shown, grid.sheet
     rows = grid.rows
     if not rows:
@@ -333,6 +336,9 @@ def read_table(source, schema: list[Column]) -> Table:
         body = body[1:]
     if not body:
         raise InputError(Problem(shown, header_line, None, "the file has a header but no data rows", sheet))
+    if tail is not None and any(ln.count(delimiter) != len(headers) - 1 for ln in tail[1]):
+        body = body + _parse("\n" * (tail[0] - 1) + "\n".join(tail[1]), delimiter)  # ragged: row by row
+        tail = None
     table.lines = np.array([n for n, _ in body], dtype=int)
     cells_by_row = [cells for _, cells in body]
 
@@ -349,6 +355,14 @@ def read_table(source, schema: list[Column]) -> Table:
     else:
         column_cells = {name: [row[j] if j < len(row) else "" for row in cells_by_row]
                         for name, (j, _, _) in positions.items()}
+    if tail is not None:  # the rows after the first 200: split at once, as columns
+        first, lines = tail
+        flat = delimiter.join(lines).split(delimiter)
+        width = len(headers)
+        for name, (j, _, _) in positions.items():
+            column_cells[name].extend(flat[j::width])
+        table.lines = np.concatenate([table.lines, np.arange(first, first + len(lines))])
+        del flat
     del cells_by_row, body, rows  # the row lists: only the columns are kept
     grid.rows = []
 
@@ -406,6 +420,29 @@ def read_table(source, schema: list[Column]) -> Table:
         table.columns[name] = si
         _check_rule(table, col)
     return table
+
+
+def _plain_tail(grid, delimiter: str, lookup) -> tuple[int, list[str]] | None:
+    """A long plain CSV (no quotes, no blank line after its first 200 lines, every header named): the first
+    200 lines become ``grid.rows`` and the rest is returned as (first line number, lines) to be split as
+    columns at once; None where the row-by-row parse is needed."""
+    text = grid.full_text
+    if text is None or '"' in text or "\r" in text:
+        return None
+    head = grid.text_rows[delimiter]
+    k, found = _find_header(head, lookup)
+    if not found or k > len(head) - 3 or any(not h.strip() for h in head[k][1]):
+        return None
+    lines = text.split("\n")
+    if len(lines) <= 200:
+        return None
+    tail = lines[200:]
+    while tail and not tail[-1].strip():
+        tail.pop()
+    if not tail or any(not ln or ln.isspace() for ln in tail):
+        return None
+    grid.rows, grid.full_text = head, None
+    return 201, tail
 
 
 _EDGE_SPACE = re.compile(r"\s\x00|\x00\s|^\s|\s$")
