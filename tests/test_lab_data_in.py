@@ -441,8 +441,13 @@ def test_long_plain_csv_names_the_line_of_a_bad_cell_past_the_first_rows(tmp_pat
     assert any(p.line == 4000 and "'abc' is not a number" in p.message for p in t.problems)
     ragged = rows.copy()
     ragged[2998] = "1,0,0.1,1.5,7"  # line 3000: one field too many
-    ragged.insert(4000, "")  # and a blank line: both read row by row
     (tmp_path / "ragged.csv").write_text("R,contact_angle,gap,suction\n" + "\n".join(ragged) + "\n")
     t = read_table(tmp_path / "ragged.csv", SOLVE_SCHEMA)
+    assert any(p.line == 3000 and "5 fields" in p.message for p in t.problems)
+    assert len(t.lines) == 5000 and t.lines[-1] == 5001
+    assert t.columns["gap"][4999] == pytest.approx(float(f"0.{4999 % 9}") * 1e-3)
+    ragged.insert(4000, "")  # and a blank line too
+    (tmp_path / "blank.csv").write_text("R,contact_angle,gap,suction\n" + "\n".join(ragged) + "\n")
+    t = read_table(tmp_path / "blank.csv", SOLVE_SCHEMA)
     assert any(p.line == 3000 and "5 fields" in p.message for p in t.problems)
     assert len(t.lines) == 5000 and t.lines[-1] == 5002

@@ -23,7 +23,7 @@ import numpy as np
 
 from ..errors import InputError, Problem, UnitError
 from ..units import conversion
-from .grid import as_source, read_grid
+from .grid import _parse, as_source, read_grid
 
 _BLANKS = {"", "na", "n/a", "nan", "none", "null"}
 _UNIT_IN_HEADER = re.compile(r"^(?P<name>.*?)\s*[\[(]\s*(?P<unit>[^\])]*?)\s*[\])]\s*$")

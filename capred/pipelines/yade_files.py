@@ -91,7 +91,6 @@ def capillary_file(ratio: float, theta: float, n_dist: int = 80, n_suct: int = 3
     table is converted to YADE's R2 units on the way out.
     """
     r = float(ratio)
-    th = np.full(1, theta)
     # largest gap at zero suction: the maximum of the catenoid gap over the filling angle
     b_end = 0.5 * (np.pi - theta)
     grid = np.linspace(1e-3, b_end, 400)
