@@ -82,6 +82,20 @@ def _arr(*xs):
     return [np.asarray(x, dtype=float) for x in np.broadcast_arrays(*xs)]
 
 
+def _blocks(beta, theta, suction, ratio, fields, **how):
+    """``fields`` outputs of :func:`_pair` over broadcast inputs, block by block (memory bounded by a block);
+    a case with any non-finite output is NaN throughout, with no warning."""
+    beta, theta, suction, ratio = _arr(beta, theta, suction, ratio)
+    cols = [a.ravel() for a in (beta, theta, suction, ratio)]
+    out = np.full((fields, cols[0].size), np.nan)
+    with np.errstate(all="ignore"):
+        for start in range(0, cols[0].size, _CHUNK):
+            sl = slice(start, start + _CHUNK)
+            vals = np.array(_pair(*(c[sl] for c in cols), **how)[:fields])
+            out[:, sl] = np.where(np.all(np.isfinite(vals), axis=0), vals, np.nan)
+    return out.reshape((fields, *beta.shape))
+
+
 def bridge(beta, theta, suction, ratio=1.0) -> Bridge:
     """Exact bridge from (filling angle beta on particle 1 [rad], contact angle theta [rad], s* >= 0, rho).
 
@@ -89,33 +103,13 @@ def bridge(beta, theta, suction, ratio=1.0) -> Bridge:
     cases without a concave bridge (beta + theta too large, no filling angle
     on the second particle) give NaN.
     """
-    beta, theta, suction, ratio = _arr(beta, theta, suction, ratio)
-    shape = beta.shape
-    cols = [a.ravel() for a in (beta, theta, suction, ratio)]
-    out = {k: np.full(cols[0].size, np.nan) for k in _FIELDS}
-    with np.errstate(all="ignore"):  # a case outside the concave range comes out NaN, with no warning
-        for start in range(0, cols[0].size, _CHUNK):
-            sl = slice(start, start + _CHUNK)
-            vals = _pair(*(c[sl] for c in cols))
-            bad = ~np.all(np.isfinite(vals), axis=0)
-            for k, v in zip(_FIELDS, vals):
-                out[k][sl] = np.where(bad, np.nan, v)
-    return Bridge(**{k: v.reshape(shape) for k, v in out.items()})
+    return Bridge(*_blocks(beta, theta, suction, ratio, len(_FIELDS)))
 
 
 def gap_of(beta, theta, suction, ratio=1.0, coarse=False) -> np.ndarray:
     """Gap* alone (the fast path the solvers iterate on); NaN where no concave bridge. ``coarse``: an 8-node
     rule for thick necks (about 1e-8), enough to bracket a root."""
-    beta, theta, suction, ratio = _arr(beta, theta, suction, ratio)
-    shape = beta.shape
-    cols = [a.ravel() for a in (beta, theta, suction, ratio)]
-    out = np.full(cols[0].size, np.nan)
-    with np.errstate(all="ignore"):
-        for start in range(0, cols[0].size, _CHUNK):
-            sl = slice(start, start + _CHUNK)
-            out[sl] = _pair(*(c[sl] for c in cols), full=False, coarse=coarse)[0]
-    out[~np.isfinite(out)] = np.nan
-    return out.reshape(shape)
+    return _blocks(beta, theta, suction, ratio, 1, full=False, coarse=coarse)[0]
 
 
 def geometry(beta, theta, suction, ratio=1.0):
