@@ -76,3 +76,16 @@ class OptionError(CapredError):
 
 class OutputError(CapredError):
     """Outputs that cannot be written where asked (a file as --out, an input in the way, a full disk)."""
+
+
+class MissingFileError(InputError, FileNotFoundError):
+    """An input file that does not exist: a capred InputError that is also a FileNotFoundError."""
+
+    def __init__(self, path: str, message: str = "file not found"):
+        InputError.__init__(self, Problem(str(path), None, None, message))
+        self.filename = str(path)
+        self.errno = 2
+        self.strerror = message
+
+    def __str__(self) -> str:
+        return self._text()

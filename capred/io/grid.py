@@ -76,8 +76,12 @@ def read_grid(source: TableSource) -> Grid:
         return _csv_grid("<DataFrame>", path.to_csv(index=False))
     p = Path(path)
     shown = str(path)
+    if not p.exists():
+        from ..errors import MissingFileError
+
+        raise MissingFileError(shown)
     if not p.is_file():
-        raise InputError(Problem(shown, None, None, "file not found" if not p.exists() else "not a file"))
+        raise InputError(Problem(shown, None, None, "not a file"))
     data = p.read_bytes()
     if p.suffix.lower() in SPREADSHEET_SUFFIXES:
         return _spreadsheet_grid(shown, data, p.suffix.lower(), source.sheet)

@@ -13,8 +13,12 @@ def read_manifest(path: Path) -> list[tuple[int, str, str, list[str] | str]]:
     or a list of arguments (a TOML list).
     """
 
+    if not path.exists():
+        from ..errors import MissingFileError
+
+        raise MissingFileError(str(path))
     if not path.is_file():
-        raise InputError(Problem(str(path), None, None, "file not found"))
+        raise InputError(Problem(str(path), None, None, "not a file"))
     text = path.read_text(encoding="utf-8-sig")
     if path.suffix.lower() == ".toml":
         import tomllib
