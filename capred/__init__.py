@@ -18,7 +18,7 @@ __version__ = "0.1.0"
 
 _API = {
     "run": "capred.reductions",
-    "write_outputs": "capred.io.writers",
+    "write_outputs": "capred.report.outputs",
     "run_shear": "capred.pipelines.shear",
     "ShearOptions": "capred.pipelines.shear",
     "ModelParams": "capred.pipelines.shear",
@@ -45,6 +45,10 @@ _API = {
 }
 
 __all__ = ["__version__", *_API]
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)
 
 
 def __getattr__(name: str):

@@ -49,7 +49,7 @@ class Outcome:
 
 def run_job(job: Job):
     """(result, written paths) of one job; raises CapredError on bad input or unwritable output."""
-    from .io.writers import write_run
+    from .report.outputs import write_outputs
     from .reductions import REDUCTIONS
 
     result = REDUCTIONS[job.command].run(job.source, job.options)
@@ -57,7 +57,7 @@ def run_job(job: Job):
         return result, []
     o = job.output
     kw = dict(formats=o.formats, dpi=o.dpi, html=o.html, csv_dialect=o.csv_dialect, xlsx=o.xlsx) if o else {}
-    return result, write_run(result, job.out_dir, plots=job.plots, **kw)
+    return result, write_outputs(result, job.out_dir, plots=job.plots, **kw)
 
 
 def run_safely(job: Job) -> Outcome:

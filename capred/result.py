@@ -211,9 +211,6 @@ class Result:
         """Output tables: file stem -> pandas DataFrame (first = the per-row table)."""
         raise NotImplementedError
 
-    def console_tables(self) -> list[TableSpec]:
-        return []
-
     def season_rows(self) -> list[dict]:
         """Rows of a batch's season.csv (per material: c, phi, their se, n, best model...); none by default."""
         return []
@@ -227,9 +224,48 @@ class Result:
         """Files of the command's own format written beside the tables (name -> bytes); none by default."""
         return {}
 
-    def figures(self) -> dict[str, Callable[[], "object"]]:
-        """Figure name (file stem) -> function drawing a matplotlib Figure."""
-        return {}
+    # --- display: capred.report presents every result (imported at call time) ---------------------
+    def figures(self) -> dict:
+        """The figure sheets of the run, {file stem: capred.report.sheets.Sheet} (nothing drawn yet)."""
+        from .report.presenters import figures
+
+        return figures(self)
+
+    def console_tables(self) -> list[TableSpec]:
+        """The summary tables of the run, as the console and report.html show them."""
+        from .report.presenters import console_tables
+
+        return console_tables(self)
+
+    def plot(self, name: str | None = None):
+        """Draw the run's figures without writing files.
+
+        Parameters
+        ----------
+        name : str, optional
+            One sheet (a key of ``figures()``, e.g. ``"report_sand"``); all sheets when omitted.
+
+        Returns
+        -------
+        matplotlib.figure.Figure or dict of str to Figure
+            The named sheet, or every sheet by name.
+        """
+        from .report.notebook import plot
+
+        return plot(self, name)
+
+    def _repr_html_(self) -> str:
+        """Notebook display: the summary tables and the main figure (small)."""
+        from .report.notebook import repr_html
+
+        return repr_html(self)
+
+    def __repr__(self) -> str:
+        inputs = ", ".join(i.path.replace("\\", "/").rsplit("/", 1)[-1] for i in getattr(self, "inputs", [])) or "options"
+        n = len(self.table()) if self.tables() else 0
+        w = len(self.all_warnings())
+        return (f"<capred {self.command} result: {inputs}; {n} rows"
+                + (f"; {w} warning{'s' if w != 1 else ''}" if w else "") + ">")
 
     # --- shared -------------------------------------------------------------------------------
     def all_warnings(self) -> list[str]:

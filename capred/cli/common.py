@@ -236,7 +236,8 @@ def execute(inv: Invocation) -> None:
 
 
 def _single(inv: Invocation) -> None:
-    from ..io.writers import check_target, encode_json, write_run
+    from ..io.writers import check_target, encode_json
+    from ..report.outputs import write_outputs
     from ..reductions import REDUCTIONS
 
     source = inv.sources[0]
@@ -251,7 +252,7 @@ def _single(inv: Invocation) -> None:
     with showing(not inv.json and sys.stderr.isatty()):
         result = REDUCTIONS[inv.command].run(source, inv.options)
     o = inv.output
-    written = write_run(result, out_dir, plots=inv.plots, formats=o.formats, dpi=o.dpi, html=o.html,
+    written = write_outputs(result, out_dir, plots=inv.plots, formats=o.formats, dpi=o.dpi, html=o.html,
                         csv_dialect=o.csv_dialect, xlsx=o.xlsx) if write else None
     if inv.json:
         from ..io.writers import stream_json

@@ -334,16 +334,15 @@ class RunFolder:
         shutil.rmtree(self.tmp, ignore_errors=True)
 
 
-def write_run(result, out, plots: bool = True, formats=("png",), dpi: int = 150,
-              command_line: str | None = None, html: bool = True, csv_dialect: str = "standard",
-              xlsx: bool = False) -> list[Path]:
-    """Write every output of ``result`` into the folder ``out``, whole or not at all.
+def write_run(result, out, command_line: str | None = None, csv_dialect: str = "standard", xlsx: bool = False,
+              artifacts=None) -> list[Path]:
+    """Write the files of ``result`` into the folder ``out``, whole or not at all.
 
     Files: each table as ``<name>.csv`` (``csv_dialect`` "standard" or
-    "excel-eu"), the JSON document, each figure sheet (when ``plots``) in
-    every format of ``formats`` with its panels under ``figures/``,
-    ``report.html`` (when ``html``), ``tables.xlsx`` (when ``xlsx``) and
-    ``provenance.json``. Returns the paths written.
+    "excel-eu"), the JSON document, ``tables.xlsx`` (when ``xlsx``), the
+    command's own files, then whatever ``artifacts(folder)`` adds (the
+    figures and report.html drawn by capred.report.outputs; this module never
+    draws), and ``provenance.json``. Returns the paths written.
     Raises OutputError (nothing written, an earlier run in ``out`` intact).
     """
     out = check_target(out, [i.path for i in result.inputs if i.path != "<DataFrame>"])
@@ -364,13 +363,8 @@ def write_run(result, out, plots: bool = True, formats=("png",), dpi: int = 150,
             folder.write_bytes(name, data)
         json_writer.finish()
         folder.done(result.json_name)
-        drawn: dict[str, dict[str, str]] = {}
-        if plots:
-            drawn = _write_figures(result, folder, formats, dpi, svg_inline=html)
-        if html:
-            from ..report.html import render_html
-
-            folder.write_bytes("report.html", render_html(result, drawn, plots).encode("utf-8"))
+        if artifacts is not None:
+            artifacts(folder)
         folder.write_bytes("provenance.json", encode_json(provenance(result, folder.names, command_line), True))
         return folder.commit()
     except OSError as exc:
@@ -437,51 +431,6 @@ class _JsonWriter:
             except OSError:
                 pass
             self.pid = None
-
-
-def _write_figures(result, folder: "RunFolder", formats, dpi: int, svg_inline: bool) -> dict:
-    """Each sheet as a composite in every format, and each panel alone under figures/.
-
-    Returns {sheet: {"svg": inline SVG of the composite (for the HTML report), "caption": ...}}.
-    """
-    from ..report.sheets import Sheet, compose, single
-
-    out = {}
-    for name, sheet in result.figures().items():
-        if not isinstance(sheet, Sheet):  # a plain figure function: one composite, no panels
-            sheet = Sheet("", [], 1) if sheet is None else sheet
-            fig, panels = sheet(), []
-        else:
-            fig, panels = compose(sheet), sheet.panels
-        for fmt in formats:
-            fname = f"{name}.{fmt}"
-            fig.savefig(folder.path_for(fname), format=fmt, dpi=dpi, metadata=_NO_STAMP[fmt])
-            folder.done(fname)
-        entry = {"caption": getattr(sheet, "caption", "") or "", "panels": []}
-        if svg_inline:
-            buf = io.StringIO()
-            fig.savefig(buf, format="svg", metadata=_NO_STAMP["svg"])
-            entry["svg"] = buf.getvalue()
-        for panel in panels:
-            single_fig = single(sheet, panel)
-            (folder.tmp / "figures").mkdir(exist_ok=True)
-            for fmt in formats:
-                fname = f"figures/{name}_{panel.name}.{fmt}"
-                single_fig.savefig(folder.path_for(fname), format=fmt, dpi=dpi,
-                                   metadata=_NO_STAMP[fmt])
-                folder.done(fname)
-            entry["panels"].append((panel.name, panel.caption))
-        out[name] = entry
-    return out
-
-
-# no timestamps in figure files: reruns give the same bytes
-_NO_STAMP = {"png": {"Software": None}, "pdf": {"CreationDate": None, "Producer": None},
-             "svg": {"Date": None}}
-
-
-#: The public name of the one writer: ``capred.write_outputs(result, "report")``.
-write_outputs = write_run
 
 
 def provenance(result, outputs: list[str], command_line: str | None = None) -> dict:

@@ -51,7 +51,7 @@ class BridgeOptions(Options):
     surface_tension: float = ph.SURFACE_TENSION
 
 
-@dataclass
+@dataclass(repr=False)
 class BridgeResult(Result):
     """Bridges, one per case, SI inside; tables and JSON in mm, mN, kPa."""
 
@@ -154,12 +154,6 @@ class BridgeResult(Result):
 
     def csv_tables(self) -> dict:
         return {"solve": self._cols()}
-
-    def console_tables(self) -> list[TableSpec]:
-        from ..report.console import bridge_solve_tables
-
-        return bridge_solve_tables(self)
-
 
 def _records(frame, drop_empty: str | None = None) -> list[dict]:
     """DataFrame rows as dicts, NaN as None, an empty ``drop_empty`` cell left out."""
@@ -306,7 +300,7 @@ class CurveOptions(Options):
             raise OptionError("need --points >= 2 and 0.0001 < --sr-max <= 1")
 
 
-@dataclass
+@dataclass(repr=False)
 class CurveResult(Result):
     """Evenepoel's analytical comparison: sigma' against S_R for two spheres in contact."""
 
@@ -362,17 +356,6 @@ class CurveResult(Result):
             cached = self.__dict__["_tables"] = {"curve": pd.DataFrame(cols)}
         return cached
 
-    def figures(self) -> dict:
-        from ..report.bridge_figures import sheet_curve
-
-        return {"curve": sheet_curve(self)}
-
-    def console_tables(self) -> list[TableSpec]:
-        from ..report.console import bridge_curve_tables
-
-        return bridge_curve_tables(self)
-
-
 def bridge_curve(R=1e-3, gamma=ph.SURFACE_TENSION, theta_deg: float = 0.0, points: int = 2000,
                  pendular_limit: float = ph.PENDULAR_LIMIT, sr_max: float = 0.3) -> CurveResult:
     """Exact sigma' = F/(pi R^2) against S_R = 3 V/(2 pi R^3) for spheres in contact (gap 0).
@@ -396,7 +379,7 @@ def reduce_curve(source, opt: CurveOptions) -> CurveResult:
                        opt.pendular_limit, opt, [], opt.warnings)
 
 
-@dataclass
+@dataclass(repr=False)
 class CompareResult(Result):
     """Measured capillary forces of micro-tests beside the exact bridge and three approximations."""
 
@@ -464,17 +447,6 @@ class CompareResult(Result):
     def tables(self) -> dict:
         return {"compare": self._frame()}
 
-    def figures(self) -> dict:
-        from ..report.bridge_figures import sheet_compare
-
-        return {"compare": sheet_compare(self.rows())}
-
-    def console_tables(self) -> list[TableSpec]:
-        from ..report.console import bridge_compare_tables
-
-        return bridge_compare_tables(self)
-
-
 def compare_measured(source, options: BridgeOptions | None = None) -> CompareResult:
     """Micro-tests: the exact bridge of each measured (R, R2, gap, contact angle, V_w) beside the measured force,
     the toroidal approximation (equal spheres), Willett et al. (2000) and Israelachvili (with Derjaguin's
@@ -495,7 +467,7 @@ def compare_measured(source, options: BridgeOptions | None = None) -> CompareRes
 RUPTURE_SCHEMA = [CASE, RADIUS, RADIUS2, GAMMA, ANGLE, VOLUME]
 
 
-@dataclass
+@dataclass(repr=False)
 class RuptureResult(Result):
     """Rupture distance at constant volume per case, beside Lian et al.'s (1993) estimate."""
 
@@ -555,21 +527,6 @@ class RuptureResult(Result):
 
     def tables(self) -> dict:
         return {"rupture": self._frame()}
-
-    def figures(self) -> dict:
-        from ..report.bridge_figures import sheet_rupture
-
-        return {"rupture": sheet_rupture(self.rows())}
-
-    def console_tables(self) -> list[TableSpec]:
-        from ..report.render import row_table
-
-        keys = ["case", "R_mm", "R2_mm", "contact_angle_deg", "V_w_mm3", "D_rupture_mm", "D_rupture_lian_mm",
-                "ratio_to_lian", "status"]
-        rows = self.rows()
-        present = [k for k in keys if rows and k in rows[0]]
-        return [row_table("Rupture distance at constant volume", rows, present, "rupture.csv")]
-
 
 def rupture_distances(source, options: BridgeOptions | None = None) -> RuptureResult:
     """Rupture distance of each (R, R2, contact_angle, V_w) row: the widest gap a bridge of that volume spans

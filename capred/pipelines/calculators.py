@@ -21,7 +21,7 @@ from ..result import InputFile, Options, Result, TableSpec, input_file, num
 CASE = Column("case", "text", None, "case label", ("test_id", "id", "name", "sample_id"))
 
 
-@dataclass
+@dataclass(repr=False)
 class CalcResult(Result):
     """Result of a calculator: per-case inputs and outputs (output units, keys carry the unit)."""
 
@@ -35,7 +35,8 @@ class CalcResult(Result):
     inputs: list[InputFile] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
     title: str = ""
-    figure: object = None  # function drawing the figure, or None
+    #: what the figure of the run is drawn from (skempton-b: the cases by parameter set and the options), or None
+    figure_data: dict | None = None
 
     json_name = "results.json"
 
@@ -63,15 +64,6 @@ class CalcResult(Result):
         import pandas as pd
 
         return {"results": pd.DataFrame(self.rows())}
-
-    def figures(self) -> dict:
-        return {self.command: self.figure} if self.figure is not None else {}
-
-    def console_tables(self) -> list[TableSpec]:
-        from ..report.console import calc_tables
-
-        return calc_tables(self)
-
 
 def _labels(values: dict) -> list[str] | None:
     case = values.pop("case", None)
@@ -109,10 +101,10 @@ def _inputs(source, schema: list[Column], options: dict[str, float | None], opti
 
 
 def _finish(command: str, title: str, values, outputs, src, notes, labels, opt, source, table=None,
-            figure=None) -> CalcResult:
+            figure_data=None) -> CalcResult:
     return CalcResult(command, values, outputs, src, notes, labels, opt,
                       [input_file(source, table)] if source is not None else [],
-                      opt.warnings + (table.warnings if table is not None else []), title, figure)
+                      opt.warnings + (table.warnings if table is not None else []), title, figure_data)
 
 
 PRISM = [
@@ -200,8 +192,6 @@ def run_skempton_b(source=None, sr=None, b=None, kappa=0.006, e0=0.8, p0=100e3, 
 
 def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     """B or S_r per case (see run_skempton_b), with the figure of the B-S_r relation."""
-    from ..report.calculator_figures import sheet_skempton
-
     kw = dict(kappa=opt.kappa, e0=opt.e0, p0=opt.p0, u0=opt.u0, pa0=opt.pa0)
     res = _skempton(source, opt.sr, opt.b, s_e=opt.s_e, bc_alpha=opt.bc_lambda, **kw)
     S = np.asarray(res.values.get("S_r", res.outputs.get("S_r")), float)
@@ -216,7 +206,7 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
         cases.setdefault(key, ([], []))
         cases[key][0].append(S[i])
         cases[key][1].append(B[i])
-    res.figure = sheet_skempton(cases, s_e=opt.s_e, bc_lambda=opt.bc_lambda, **kw)
+    res.figure_data = dict(cases=cases, s_e=opt.s_e, bc_lambda=opt.bc_lambda, **kw)
     res.options, res.warnings = opt, opt.warnings + res.warnings
     return res
 

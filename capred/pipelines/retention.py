@@ -100,7 +100,7 @@ class RetentionOptions(Options):
             raise OptionError(f"--hysteresis must be kool-parker (got '{self.hysteresis}')")
 
 
-@dataclass
+@dataclass(repr=False)
 class RetentionResult(Result):
     command = "retention"
     json_name = "fits.json"
@@ -145,6 +145,7 @@ class RetentionResult(Result):
                                                                     for b, v in row.items()}
                                     for a, row in f.correlation().items()},
                     "params_si": {k: num(v) for k, v in f.params.items()},
+                    "parameters": [report_name(k, self.quantity) for k in f.params],
                     "model": MODELS.get(model, model), "reference": cite(REFERENCE.get(model, "kool_parker1987"))})
         return out
 
@@ -188,16 +189,6 @@ class RetentionResult(Result):
         if cached is None:
             cached = self.__dict__["_tables"] = {"fits": self._fits_table()}
         return cached
-
-    def figures(self) -> dict:
-        from ..report.retention_figures import sheet_retention
-
-        return {"retention": sheet_retention(self)}
-
-    def console_tables(self) -> list[TableSpec]:
-        from ..report.console import retention_tables
-
-        return retention_tables(self)
 
     def _fits_table(self):
         import pandas as pd

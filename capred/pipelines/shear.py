@@ -49,6 +49,8 @@ SCHEMA = [
 
 #: input columns repeated in results.csv as read (in their documented units), before the derived columns
 RAW_INPUTS = ("z1", "z2", "V_v", "added_mass", "cap_mass", "box_area", "R", "F_max", "e", "height", "rho_d", "G_s")
+#: the documented unit of each input column (from its schema entry: one place for it)
+_SCHEMA_UNITS = {c.name: c.unit for c in SCHEMA}
 
 
 @dataclass(frozen=True)
@@ -181,7 +183,7 @@ class ModelMetrics:
     r2: float
 
 
-@dataclass
+@dataclass(repr=False)
 class ShearResult(Result):
     """Everything `capred shear` computes. SI inside; ``to_json`` gives kPa."""
 
@@ -225,28 +227,6 @@ class ShearResult(Result):
             cached = self.__dict__["_tables"] = {"results": self._results_table(), "summary": _flat_summary(self)}
         return cached
 
-    def figures(self) -> dict:
-        from ..io.writers import safe_name
-        from ..report.shear_figures import sheet_capillary_stress, sheet_curves, sheet_shear_report
-
-        taken: set[str] = set()
-        out = {}
-        wet = self.tests["condition"] == "wet"
-        for m in self.materials:
-            name = safe_name(m, taken)
-            out[f"report_{name}"] = sheet_shear_report(self, m)
-            if np.any(wet & (self.tests["material"] == m)):
-                out[f"capillary_{name}"] = sheet_capillary_stress(self, m)
-            if self.curves is not None and any(str(t) in self.curves.curves
-                                               for t in self.tests["test_id"][self.tests["material"] == m]):
-                out[f"curves_{name}"] = sheet_curves(self, m)
-        return out
-
-    def console_tables(self) -> list[TableSpec]:
-        from ..report.console import shear_tables
-
-        return shear_tables(self)
-
     def season_rows(self) -> list[dict]:
         rows = []
         flags = np.array([bool(f) for f in self._flag_texts()])
@@ -271,6 +251,32 @@ class ShearResult(Result):
             cache[material] = retention_relation(self.options.model_params, self.tests["suction"][sel],
                                                  self.tests["S_R"][sel])
         return cache[material]
+
+    def model_curves(self, material: str, sigma_N: float, points: int = 120):
+        """Each model's strength along the material's water-retention relation at one normal stress.
+
+        Parameters
+        ----------
+        material : str
+            A material of the run.
+        sigma_N : float
+            Total normal stress [Pa].
+        points : int
+            Points along the relation.
+
+        Returns
+        -------
+        S_R : ndarray
+            Degrees of saturation [-] (empty when the material has no retention relation).
+        tau : dict of str to ndarray
+            Predicted shear strength of each model [Pa].
+        """
+        from .shear_analysis import model_curves
+
+        relation = self.retention_relation(material)
+        if relation is None:
+            return np.empty(0), {}
+        return model_curves(self, material, relation, sigma_N, points)
 
     def _test_rows(self, start: int, stop: int) -> list[dict]:
         """JSON rows of tests start..stop-1 (kPa)."""
@@ -318,7 +324,7 @@ class ShearResult(Result):
         }
         for name in RAW_INPUTS:  # the raw inputs as read, in their documented units
             if f"in_{name}" in t:
-                cols[f"{name} [{nom.QUANTITIES[name].unit}]"] = t[f"in_{name}"]
+                cols[f"{name} [{_SCHEMA_UNITS[name]}]"] = t[f"in_{name}"]
         for name in ("sigma_N", "suction", "S_R", "tau_max", "chi1", "chi2"):
             cols[nom.column(name)] = nom.to_output(name, t[name])
         for m in self.models:

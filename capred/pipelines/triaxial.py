@@ -110,7 +110,7 @@ class TriaxialOptions(Options):
             raise OptionError("give both --c-eff and --phi-eff, or neither")
 
 
-@dataclass
+@dataclass(repr=False)
 class TriaxialResult(Result):
     command = "triaxial-bounds"
 
@@ -207,16 +207,6 @@ class TriaxialResult(Result):
                  if e.c_se is not None else None, "phi [deg]": num(e.phi), "phi_se [deg]": num(e.phi_se),
                  "n_dry": e.fit.n if e.fit else None, "n_wet": int(self.unsaturated.sum()), "best_model": None,
                  "best_rmse [kPa]": None, "flagged_tests": n_flag}]
-
-    def figures(self) -> dict:
-        from ..report.triaxial_figures import sheet_triaxial
-
-        return {"report": sheet_triaxial(self)}
-
-    def console_tables(self) -> list[TableSpec]:
-        from ..report.console import triaxial_tables
-
-        return triaxial_tables(self)
 
     def _results_table(self):
         import pandas as pd

@@ -133,7 +133,7 @@ def _suction_at_mean_filling_angle(theta: float, r: float, target: float) -> flo
     return float(mean_angle(root)[1][0])
 
 
-@dataclass
+@dataclass(repr=False)
 class YadeResult(Result):
     """Capillary files for YADE, one per radius ratio, and their summary."""
 
@@ -162,14 +162,6 @@ class YadeResult(Result):
 
     def extra_files(self) -> dict[str, bytes]:
         return {file_name(f.ratio): f.text().encode("ascii") for f in self.files}
-
-    def console_tables(self) -> list[TableSpec]:
-        from ..report.render import row_table
-
-        rows = self.summary_rows()
-        return [row_table("YADE capillary files (exact bridges, YADE's dimensionless variables)", rows,
-                          list(rows[0]) if rows else [], "yade_files.csv")]
-
 
 def reduce_yade_files(source, opt: YadeOptions) -> YadeResult:
     """Every capillary file of ``opt.ratios`` (``source`` is unused: the files need no input)."""

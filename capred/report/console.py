@@ -157,12 +157,8 @@ def retention_tables(result) -> list[TableSpec]:
         order = sorted(d["fits"], key=lambda m: (sel[m]["delta_aicc"] is None, sel[m]["delta_aicc"] or 0.0))
         for m in order:
             v = d["fits"][m]
-            names = [k for k in v["params_si"]]
-            from ..pipelines.retention import report_name
-
             parts = []
-            for k in names:
-                rn = report_name(k, js["quantity"])
+            for rn in v["parameters"]:
                 se = v.get(f"{rn}_se")
                 parts.append(f"{rn} {fmt(v[rn])}" + (f" ± {fmt(se, 2)}" if se is not None else
                                                      (" (fixed)" if rn in v["fixed"] else "")))

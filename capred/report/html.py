@@ -118,6 +118,8 @@ def render_html(result, figures: dict, plots: bool) -> str:
 
     import jinja2
 
+    from .presenters import console_tables
+
     template = jinja2.Environment(autoescape=True, undefined=jinja2.StrictUndefined).from_string(
         files("capred.report").joinpath("templates/report.html.j2").read_text(encoding="utf-8"))
     doc = result.header()
@@ -133,7 +135,7 @@ def render_html(result, figures: dict, plots: bool) -> str:
         warnings=doc["warnings"],
         notes=doc["notes"],
         flags=_flags(result),
-        tables=result.console_tables(),
+        tables=console_tables(result),
         figures=list(figures.items()),
         plots=plots,
         methods=paragraphs,

@@ -114,7 +114,9 @@ def render(result, out_dir=None, written=None, console=None) -> None:
 
     con = console or Console()
     terminal = con.is_terminal
-    render_tables(result.console_tables(), con)
+    from .presenters import console_tables
+
+    render_tables(console_tables(result), con)
     for w in result.all_warnings():
         _line(con, terminal, "warning: ", "yellow", w)
     for n in result.all_notes():

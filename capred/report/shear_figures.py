@@ -71,15 +71,13 @@ def plot_strength_vs_saturation(ax, result, material):
     No lines join the tests: a model defines tau along the water-retention
     relation, which the tests sample at their own (S_R, suction) pairs only.
     """
-    from ..pipelines.shear_analysis import model_curves
-
     t = result.tests
     wet = _wet(result, material)
     levels = np.unique(np.round(t["sigma_N"][wet], 6))
     relation = result.retention_relation(material)
     if relation is not None:  # model curves along the water-retention relation, one per normal stress
         for k, level in enumerate(levels):
-            S, taus = model_curves(result, material, relation, float(level))
+            S, taus = result.model_curves(material, float(level))
             for m, tau in taus.items():
                 ax.plot(S, tau * KPA, "-", color=_style(m)["color"], lw=1.0, alpha=0.9,
                         label=MODEL_LABELS[m] if k == 0 else None)
