@@ -6,11 +6,11 @@ A command is one *reduction*: a schema for its input table, a pure
 - its tables (pandas DataFrames, one per output CSV; the first is ``table()``),
 - its JSON document (``to_json()``, the same for the API, ``--json`` and the files),
 - its figures (built only when asked for),
-- its console tables (summaries for people; see capred.report.console),
+- its console tables (summaries for people; see capred.report.presenters),
 - its options record (SI values with their unit names).
 
 One writer (capred.io.writers.write_run) writes any Result, one renderer
-(capred.report.console.render) prints any Result, one CLI path runs any
+(capred.report.render.render) prints any Result, one CLI path runs any
 reduction on one file, many files or a manifest.
 """
 from __future__ import annotations

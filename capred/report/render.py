@@ -147,3 +147,8 @@ def _line(con, terminal: bool, prefix: str, style: str, text: str) -> None:
         con.print(Text(prefix, style=style) + Text(text), soft_wrap=True)
     else:
         print(prefix + text, file=con.file)
+
+
+def spec(title: str, headers: list[str], left: int = 1) -> TableSpec:
+    """An empty console table: the first ``left`` columns left-aligned, the others right-aligned."""
+    return TableSpec(title, [(h, "left" if j < left else "right") for j, h in enumerate(headers)])

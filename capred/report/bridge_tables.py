@@ -1,0 +1,35 @@
+"""Console (and HTML) tables of `capred bridge ...`."""
+from __future__ import annotations
+
+import numpy as np
+
+from ..result import TableSpec
+from .render import MAX_ROWS, row_table, spec
+
+def bridge_solve_tables(result) -> list[TableSpec]:
+    keys = ["case", "r0_mm", "F_cap_mN", "V_w_mm3", "filling_angle_deg", "filling_angle2_deg", "suction_kPa", "S_R",
+            "sigma_prime_kPa", "status"]
+    rows = result.rows_range(0, MAX_ROWS)
+    codes, counts = np.unique(result.status, return_counts=True)
+    summary = spec("Bridges solved", ["status", "rows"])
+    summary.rows = [[result.status_text(k), str(v)] for k, v in zip(codes, counts)]
+    present = [k for k in keys if rows and k in rows[0]]
+    if "filling_angle2_deg" in present and np.all(result.inputs_si["ratio"] == 1):
+        present.remove("filling_angle2_deg")  # equal spheres: the same angle twice
+    return [summary, row_table("Exact capillary bridges", rows, present, "solve.csv", total=result.status.size)]
+
+
+def bridge_compare_tables(result) -> list[TableSpec]:
+    keys = ["case", "F_measured_mN", "F_exact_mN", "F_toroidal_mN", "F_willett_mN", "F_israelachvili_mN", "status"]
+    rows = result.rows()
+    present = [k for k in keys if rows and k in rows[0]]
+    return [row_table("Measured against predicted capillary force [mN]", rows, present, "compare.csv")]
+
+
+def bridge_curve_tables(result) -> list[TableSpec]:
+    err = result.to_json()["rms_relative_error_vs_exact"]
+    lim = result.pendular_limit
+    t = spec("RMS relative error of σ' against the exact bridge", ["model", f"S_R < {lim:g}", f"S_R >= {lim:g}"])
+    for m in ("israelachvili", "bishop", "own1", "own2"):
+        t.rows.append([m, *(f"{err[r][m]:.1%}" if err[r][m] is not None else "—" for r in ("inside", "outside"))])
+    return [t]
