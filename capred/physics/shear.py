@@ -1,14 +1,15 @@
-"""Direct shear with hanging-column suction: the formulas of Evenepoel's thesis.
+r"""Direct shear with hanging-column suction: the formulas of Evenepoel's thesis.
 
 All functions are vectorised (scalar or ndarray in, same shape out) and work
-in SI: Pa, m, kg, m^3, N/m. Compression is positive; suction u_a - u_w >= 0.
+in SI: Pa, m, kg, m^3, N/m. Compression is positive; suction
+:math:`\Delta u = u_a - u_w \ge 0`.
 
 References
 ----------
-[1] R. Evenepoel, "Micro-mechanical characterization of the capillary
-    effective stress in granular materials", master thesis, Vrije
-    Universiteit Brussel: sections "Apply suction", "Own approximation",
-    "Shear strength".
+.. [1] Evenepoel, R. (n.d.). Micro-mechanical characterization of the
+   capillary effective stress in granular materials. Master thesis, Vrije
+   Universiteit Brussel (no DOI): sections "Apply suction", "Own
+   approximation", "Shear strength".
 """
 from __future__ import annotations
 
@@ -31,16 +32,34 @@ MODELS = ("no_suction", "bishop", "own1", "own2")
 
 
 def suction_from_head(z1, gamma_w=GAMMA_W):
-    """Matric suction from the hanging-column head: Delta_u = gamma_w z1 [1].
+    r"""Matric suction applied by a hanging water column.
 
     Parameters
     ----------
-    z1 : height of the sample above the water level [m], >= 0
-    gamma_w : unit weight of water [N/m^3]
+    z1 : numeric
+        Height of the sample above the water level [m], >= 0.
+    gamma_w : float, default :data:`GAMMA_W`
+        Unit weight of water [N/m^3].
 
     Returns
     -------
-    Delta_u = u_a - u_w [Pa]
+    numeric
+        Suction :math:`\Delta u = u_a - u_w` [Pa].
+
+    Notes
+    -----
+    .. math::
+
+       \Delta u = \gamma_w z_1
+
+    The thesis writes :math:`\Delta u = z_1 \cdot 0.1` kPa/cm
+    (:math:`\gamma_w` = 10 kN/m^3).
+
+    References
+    ----------
+    .. [1] Evenepoel, R. (n.d.). Micro-mechanical characterization of the
+       capillary effective stress in granular materials. Master thesis, Vrije
+       Universiteit Brussel (no DOI), section "Apply suction".
     """
     return gamma_w * np.asarray(z1, dtype=float)
 
@@ -50,63 +69,169 @@ VAPOUR_PRESSURE_20C = 2339.0
 
 
 def cavitation_head(gamma_w=GAMMA_W, ambient_pressure=101325.0, vapour_pressure=VAPOUR_PRESSURE_20C):
-    """Largest hanging-column head before the water at the sample cavitates [m].
-
-    The water pressure at the sample is p_a - gamma_w z1 (absolute); below the
-    vapour pressure p_v it boils: z1_max = (p_a - p_v) / gamma_w, about 10.1 m
-    of water at 20 °C and 1 atm.
+    r"""Largest hanging-column head before the water at the sample cavitates.
 
     Parameters
     ----------
-    gamma_w : unit weight of water [N/m^3]
-    ambient_pressure : absolute air pressure p_a [Pa]
-    vapour_pressure : vapour pressure of water p_v [Pa] (2339 Pa at 20 °C)
+    gamma_w : float, default :data:`GAMMA_W`
+        Unit weight of water [N/m^3].
+    ambient_pressure : float, default 101325
+        Absolute air pressure :math:`p_a` [Pa].
+    vapour_pressure : float, default :data:`VAPOUR_PRESSURE_20C`
+        Vapour pressure of water :math:`p_v` [Pa] (2339 Pa at 20 °C).
+
+    Returns
+    -------
+    float
+        :math:`z_{1,max}` [m]; about 10.1 m of water at 20 °C and 1 atm.
+
+    Notes
+    -----
+    The absolute water pressure at the sample is :math:`p_a - \gamma_w z_1`
+    (the column of [1]_); below :math:`p_v` the water boils:
+
+    .. math::
+
+       z_{1,max} = \frac{p_a - p_v}{\gamma_w}
+
+    References
+    ----------
+    .. [1] Evenepoel, R. (n.d.). Micro-mechanical characterization of the
+       capillary effective stress in granular materials. Master thesis, Vrije
+       Universiteit Brussel (no DOI), section "Apply suction" (the head
+       :math:`z_1`; the cavitation limit is capred's, from hydrostatics).
     """
     return (ambient_pressure - vapour_pressure) / gamma_w
 
 
 def degree_of_saturation(z2, void_volume):
-    """S_R = (V_v - z2) / V_v, with z2 the air volume read on the burette [1].
+    r"""Degree of saturation from the air volume read on the burette.
 
     Parameters
     ----------
-    z2 : air volume that has entered the sample [m^3], 0 <= z2 <= V_v
-    void_volume : void volume V_v of the sample [m^3], > 0
+    z2 : numeric
+        Air volume that has entered the sample [m^3], 0 <= z2 <= V_v.
+    void_volume : numeric
+        Void volume :math:`V_v` of the sample [m^3], > 0.
 
     Returns
     -------
-    S_R [-], in [0, 1] for valid input
+    numeric
+        :math:`S_R` [-], in [0, 1] for valid input.
+
+    Notes
+    -----
+    .. math::
+
+       S_R = \frac{V_w}{V_v} = \frac{V_v - V_a}{V_v} = \frac{V_v - z_2}{V_v}
+
+    References
+    ----------
+    .. [1] Evenepoel, R. (n.d.). Micro-mechanical characterization of the
+       capillary effective stress in granular materials. Master thesis, Vrije
+       Universiteit Brussel (no DOI), section "Apply suction".
     """
     v = np.asarray(void_volume, dtype=float)
     return (v - np.asarray(z2, dtype=float)) / v
 
 
 def normal_stress(mass, box_area, g=G):
-    """Total normal stress of dead loads on the shear box: sigma_N = m g / A [Pa].
+    r"""Total normal stress of dead loads on the shear box.
 
-    ``mass`` is the top cap plus added weights [kg]; ``box_area`` [m^2].
+    Parameters
+    ----------
+    mass : numeric
+        Top cap plus added weights [kg].
+    box_area : numeric
+        Plan area of the shear box [m^2], > 0.
+    g : float, default :data:`G`
+        Gravitational acceleration [m/s^2].
+
+    Returns
+    -------
+    numeric
+        :math:`\sigma_N` [Pa].
+
+    Notes
+    -----
+    .. math::
+
+       \sigma_N = \frac{m g}{A}
+
+    References
+    ----------
+    .. [1] Evenepoel, R. (n.d.). Micro-mechanical characterization of the
+       capillary effective stress in granular materials. Master thesis, Vrije
+       Universiteit Brussel (no DOI), section "Shear strength" (added
+       weights on the top cap).
     """
     return np.asarray(mass, dtype=float) * g / np.asarray(box_area, dtype=float)
 
 
 def chi1(S_R):
-    """Own approximation 1: chi1 = (2 pi S_R / 3)^(2/3) [-] [1].
+    r"""Own approximation 1 of the effective-stress parameter, :math:`\chi_1 = (2\pi S_R/3)^{2/3}`.
 
-    From a two-sphere unit cell with one bridge, V_w ~ r0^3 and
-    S_R = 3 V_w / (2 pi R^3), so (r0/R)^2 = (2 pi S_R / 3)^(2/3). Derived for
-    the pendular regime (S_R below about 5 %); exceeds 1 for S_R > 3/(2 pi).
+    Parameters
+    ----------
+    S_R : numeric
+        Degree of saturation [-].
+
+    Returns
+    -------
+    numeric
+        :math:`\chi_1` [-]; exceeds 1 for :math:`S_R > 3/(2\pi)`.
+
+    Notes
+    -----
+    A two-sphere unit cell with one bridge has
+    :math:`S_R = 3V_w/(2\pi R^3) \approx 3r_0^3/(2\pi R^3)`, so
+
+    .. math::
+
+       \chi_1 = \left(\frac{r_0}{R}\right)^2 = \left(\frac{2\pi}{3} S_R\right)^{2/3}
+
+    derived for the pendular regime (:math:`S_R` below about 5 %).
+
+    References
+    ----------
+    .. [1] Evenepoel, R. (n.d.). Micro-mechanical characterization of the
+       capillary effective stress in granular materials. Master thesis, Vrije
+       Universiteit Brussel (no DOI), section "Own approximation".
     """
     return np.cbrt(2.0 * np.pi * np.asarray(S_R, dtype=float) / 3.0) ** 2
 
 
 def chi2(S_R, R, surface_tension=SURFACE_TENSION):
-    """Own approximation 2 surface-tension term: chi2 = (2 gamma / R)(2 pi S_R/3)^(1/3) [Pa] [1].
+    r"""Own approximation 2, the surface-tension term :math:`\chi_2 = (2\gamma/R)(2\pi S_R/3)^{1/3}`.
 
     Parameters
     ----------
-    S_R : degree of saturation [-]
-    R : particle radius [m], > 0
-    surface_tension : gamma [N/m]
+    S_R : numeric
+        Degree of saturation [-].
+    R : numeric
+        Particle radius [m], > 0.
+    surface_tension : float, default :data:`SURFACE_TENSION`
+        Surface tension of water :math:`\gamma` [N/m].
+
+    Returns
+    -------
+    numeric
+        :math:`\chi_2` [Pa].
+
+    Notes
+    -----
+    The tension force :math:`2\pi r_0\gamma` on the cell's area
+    :math:`\pi R^2`, with :math:`r_0/R = (2\pi S_R/3)^{1/3}`:
+
+    .. math::
+
+       \chi_2 = \frac{2\gamma}{R}\left(\frac{2\pi}{3} S_R\right)^{1/3}
+
+    References
+    ----------
+    .. [1] Evenepoel, R. (n.d.). Micro-mechanical characterization of the
+       capillary effective stress in granular materials. Master thesis, Vrije
+       Universiteit Brussel (no DOI), section "Own approximation".
     """
     return 2.0 * surface_tension / np.asarray(R, dtype=float) * np.cbrt(
         2.0 * np.pi * np.asarray(S_R, dtype=float) / 3.0
@@ -114,16 +239,50 @@ def chi2(S_R, R, surface_tension=SURFACE_TENSION):
 
 
 def effective_normal_stress(model, sigma_N, suction, S_R, R=np.nan, surface_tension=SURFACE_TENSION):
-    """sigma'_N under one of the thesis's four models [1] [Pa].
+    r"""Effective normal stress :math:`\sigma'_N` under one of the thesis's four models.
 
-    ========== =========================================
-    model      sigma'_N
-    ========== =========================================
-    no_suction sigma_N
-    bishop     sigma_N + S_R Delta_u
-    own1       sigma_N + chi1 Delta_u
-    own2       sigma_N + chi1 Delta_u + chi2
-    ========== =========================================
+    Parameters
+    ----------
+    model : {"no_suction", "bishop", "own1", "own2"}
+        The effective-stress model (see Notes).
+    sigma_N : numeric
+        Total normal stress [Pa].
+    suction : numeric
+        Matric suction :math:`\Delta u` [Pa].
+    S_R : numeric
+        Degree of saturation [-].
+    R : numeric, optional
+        Particle radius [m]; needed by ``own2`` only.
+    surface_tension : float, default :data:`SURFACE_TENSION`
+        Surface tension :math:`\gamma` [N/m]; ``own2`` only.
+
+    Returns
+    -------
+    numeric
+        :math:`\sigma'_N` [Pa].
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``model``.
+
+    Notes
+    -----
+    .. math::
+
+       \sigma'_N = \sigma_N \ \text{(no_suction)},\quad
+       \sigma_N + S_R\Delta u \ \text{(bishop)},\quad
+       \sigma_N + \chi_1\Delta u \ \text{(own1)},\quad
+       \sigma_N + \chi_1\Delta u + \chi_2 \ \text{(own2)}
+
+    with :math:`\chi_1`, :math:`\chi_2` of :func:`chi1`, :func:`chi2`.
+
+    References
+    ----------
+    .. [1] Evenepoel, R. (n.d.). Micro-mechanical characterization of the
+       capillary effective stress in granular materials. Master thesis, Vrije
+       Universiteit Brussel (no DOI), section "Shear strength" (table of
+       the four models).
     """
     sigma_N = np.asarray(sigma_N, dtype=float)
     suction = np.asarray(suction, dtype=float)
@@ -139,5 +298,32 @@ def effective_normal_stress(model, sigma_N, suction, S_R, R=np.nan, surface_tens
 
 
 def mohr_coulomb_strength(c, tan_phi, sigma_eff):
-    """Shear strength tau = c + sigma' tan(phi) [Pa] [1]."""
+    r"""Shear strength on the shear plane, Mohr-Coulomb in effective stress.
+
+    Parameters
+    ----------
+    c : numeric
+        Cohesion [Pa].
+    tan_phi : numeric
+        Tangent of the friction angle [-].
+    sigma_eff : numeric
+        Effective normal stress :math:`\sigma'_N` [Pa].
+
+    Returns
+    -------
+    numeric
+        :math:`\tau_{max}` [Pa].
+
+    Notes
+    -----
+    .. math::
+
+       \tau_{max} = c + \sigma'_N \tan\varphi
+
+    References
+    ----------
+    .. [1] Evenepoel, R. (n.d.). Micro-mechanical characterization of the
+       capillary effective stress in granular materials. Master thesis, Vrije
+       Universiteit Brussel (no DOI), section "Shear strength".
+    """
     return c + np.asarray(sigma_eff, dtype=float) * tan_phi
