@@ -1,4 +1,16 @@
-"""Ordinary least-squares straight line with standard errors and intervals."""
+"""Ordinary least-squares straight line with standard errors and intervals.
+
+The dry envelope of `capred shear` is such a line, tau = c + sigma_N tan(phi)
+(intercept c [Pa], slope tan(phi) [-]); its covariance feeds every interval
+downstream (back-analysed capillary stress, fitted chi laws, bands).
+
+References
+----------
+.. [1] Draper, N. R. & Smith, H. (1998). Applied Regression Analysis, 3rd ed.
+   Wiley, doi:10.1002/9781118625590, ch. 1 (the straight line: its
+   estimates, their variances, the confidence band of the mean line and the
+   prediction interval of a new observation, and the line through the origin).
+"""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -8,11 +20,26 @@ import numpy as np
 from ..errors import FitError
 
 
-def t_quantile(p: float, dof: int) -> float:
-    """Student-t quantile (scipy.special is much lighter to import than scipy.stats)."""
+def t_quantile(p, dof):
+    """Student-t quantile t_{p, dof} (scipy.special is much lighter to import than scipy.stats).
+
+    Parameters
+    ----------
+    p : float or array_like
+        Lower-tail probability [-], e.g. 0.975 for a two-sided 95 % interval.
+    dof : int or array_like
+        Degrees of freedom [-], > 0 (NaN is returned where dof <= 0).
+
+    Returns
+    -------
+    float or ndarray
+        The quantile t with P(T <= t) = p [-]; a float for scalar input.
+    """
     from scipy.special import stdtrit
 
-    return float(stdtrit(dof, p))
+    dof_a = np.asarray(dof, dtype=float)
+    out = np.where(dof_a > 0, stdtrit(np.where(dof_a > 0, dof_a, 1.0), p), np.nan)
+    return float(out) if out.ndim == 0 else out
 
 
 @dataclass(frozen=True)
@@ -20,7 +47,21 @@ class LineFit:
     """y = intercept + slope x fitted by ordinary least squares.
 
     Standard errors come from the residual variance s^2 = RSS / (n - 2) and
-    (X^T X)^-1; intervals use Student's t with n - 2 degrees of freedom.
+    (X^T X)^-1; intervals use Student's t with n - 2 degrees of freedom
+    (n - 1 through the origin) [1].
+
+    Attributes
+    ----------
+    intercept, slope : a [unit of y], b [unit of y / unit of x]
+    intercept_se, slope_se : their standard errors [same units]
+    covariance : (2, 2) covariance s^2 (X^T X)^-1 of (a, b); row and column of a are 0 through the origin
+    n : number of points [-]
+    rss : residual sum of squares [unit of y squared]
+    r2 : coefficient of determination [-]
+    confidence : level of ``t`` and of the ``*_ci`` intervals [-]
+    t : Student-t quantile at ``confidence`` with ``dof`` degrees of freedom [-]
+    x_mean, sxx : mean of x and sum of (x - x_mean)^2 [unit of x, its square]
+    through_origin : True when a = 0 was imposed
     """
 
     intercept: float
@@ -48,29 +89,88 @@ class LineFit:
         return self.rss / self.dof
 
     @property
+    def unscaled_covariance(self) -> np.ndarray:
+        """(X^T X)^-1 of (a, b): the covariance per unit residual variance [1, 1/x, 1/x^2].
+
+        Free line: [[1/n + xbar^2/Sxx, -xbar/Sxx], [-xbar/Sxx, 1/Sxx]]; through the origin
+        [[0, 0], [0, 1/sum x^2]] with sum x^2 = Sxx + n xbar^2. Defined even when RSS = 0.
+        """
+        if self.through_origin:
+            return np.array([[0.0, 0.0], [0.0, 1.0 / (self.sxx + self.n * self.x_mean**2)]])
+        xm, sxx = self.x_mean, self.sxx
+        return np.array([[1.0 / self.n + xm**2 / sxx, -xm / sxx], [-xm / sxx, 1.0 / sxx]])
+
+    @property
     def intercept_ci(self) -> tuple[float, float]:
+        """a -/+ t se(a) at ``confidence`` [unit of y]."""
         h = self.t * self.intercept_se
         return self.intercept - h, self.intercept + h
 
     @property
     def slope_ci(self) -> tuple[float, float]:
+        """b -/+ t se(b) at ``confidence`` [unit of y / unit of x]."""
         h = self.t * self.slope_se
         return self.slope - h, self.slope + h
 
     def predict(self, x):
+        """a + b x [unit of y] at ``x`` [unit of x]."""
         return self.intercept + self.slope * np.asarray(x, dtype=float)
 
     def mean_band(self, x):
-        """Lower and upper confidence band of the fitted mean line at ``x``."""
+        """Lower and upper confidence band of the fitted mean line at ``x`` [unit of y], at ``confidence``.
+
+        .. math:: \\hat y(x) \\mp t_{1-\\alpha/2,\\,\\nu}\\sqrt{V_{aa} + 2xV_{ab} + x^2V_{bb}}
+
+        with V the covariance of (a, b) and nu = ``dof`` [1]. It covers the true mean line, not a new point:
+        see :meth:`prediction_interval`.
+        """
         x = np.asarray(x, dtype=float)
         cov = self.covariance
         se = np.sqrt(np.maximum(cov[0, 0] + 2 * x * cov[0, 1] + x**2 * cov[1, 1], 0.0))
         y = self.predict(x)
         return y - self.t * se, y + self.t * se
 
+    def prediction_interval(self, x, confidence: float | None = None):
+        """Lower and upper limit [unit of y] of a NEW observation at ``x`` (default level ``confidence``).
+
+        .. math:: \\hat y(x) \\mp t_{1-\\alpha/2,\\,\\nu}\\sqrt{s^2 + V_{aa} + 2xV_{ab} + x^2V_{bb}}
+
+        The new observation's own scatter s^2 = RSS/nu is added to the variance of the fitted mean [1].
+        """
+        x = np.asarray(x, dtype=float)
+        cov = self.covariance
+        var = self.residual_variance + cov[0, 0] + 2 * x * cov[0, 1] + x**2 * cov[1, 1]
+        level = self.confidence if confidence is None else confidence
+        t = t_quantile(0.5 + level / 2.0, self.dof)
+        y = self.predict(x)
+        half = t * np.sqrt(np.maximum(var, 0.0))
+        return y - half, y + half
+
 
 def fit_line(x, y, confidence: float = 0.95) -> LineFit:
-    """Fit y = a + b x by least squares; needs >= 3 points and two distinct x."""
+    """Fit y = a + b x by ordinary least squares; needs >= 3 points and two distinct x.
+
+    .. math:: b = S_{xy}/S_{xx}, \\quad a = \\bar y - b\\bar x, \\quad
+              \\mathrm{Cov}(a, b) = s^2 (X^T X)^{-1}, \\quad s^2 = \\mathrm{RSS}/(n - 2)
+
+    (centred two-pass sums, [1] ch. 1).
+
+    Parameters
+    ----------
+    x, y : array_like
+        Abscissae and ordinates (any consistent units; SI in capred: sigma_N, tau [Pa]).
+    confidence : float
+        Level of the intervals [-], in (0, 1).
+
+    Returns
+    -------
+    LineFit
+
+    Raises
+    ------
+    FitError
+        Fewer than 3 points, non-finite values, or a single abscissa.
+    """
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
     if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
@@ -98,8 +198,28 @@ def fit_line(x, y, confidence: float = 0.95) -> LineFit:
 def fit_line_origin(x, y, confidence: float = 0.95) -> LineFit:
     """Fit y = b x through the origin by least squares (cohesionless soil, c = 0); needs >= 2 points.
 
-    Standard error of b: sqrt(s^2 / sum x^2) with s^2 = RSS / (n - 1); R^2 is
-    1 - RSS/TSS about the mean of y, as for the free fit, so both compare.
+    .. math:: b = \\sum xy / \\sum x^2, \\quad \\mathrm{se}(b) = \\sqrt{s^2/\\sum x^2}, \\quad
+              s^2 = \\mathrm{RSS}/(n - 1)
+
+    R^2 is 1 - RSS/TSS about the mean of y, as for the free fit, so both compare ([1] ch. 1,
+    the line through the origin).
+
+    Parameters
+    ----------
+    x, y : array_like
+        Abscissae and ordinates (SI in capred: sigma_N, tau [Pa]).
+    confidence : float
+        Level of the intervals [-], in (0, 1).
+
+    Returns
+    -------
+    LineFit
+        With ``through_origin=True``, intercept 0 and its variance 0.
+
+    Raises
+    ------
+    FitError
+        Fewer than 2 points, non-finite values, or every x = 0.
     """
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
