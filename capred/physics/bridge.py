@@ -166,15 +166,18 @@ def _second_filling_angle(F, th, s, rho):
     return np.where((F <= a + M) & (d > 0), d, np.nan)
 
 
-def _length(y0, yc, F, s, coarse=False):
+def _length(y0, yc, F, s, coarse=False, volume=False):
     """x-length of the meridian from the neck y0 to y = yc (units of R1): the gap-only fast path.
 
     Thick necks (yc < 21 y0) use y = y0 + (yc - y0) t^2, which needs no
     transcendental function and is as accurate there (1e-13); thin ones the
-    cosh substitution of :func:`_pieces`.
+    cosh substitution of :func:`_pieces`. With ``volume`` it returns
+    (length, pi int y^2 dx) from the same nodes (the volume-controlled solver's
+    fast path).
     """
     d = np.maximum(yc - y0, 0.0)
     out = np.empty(y0.size)
+    vol = np.empty(y0.size) if volume else None
     thick = d <= 20.0 * y0
     k = np.flatnonzero(thick)
     if k.size:
@@ -183,11 +186,18 @@ def _length(y0, yc, F, s, coarse=False):
         sc = s[k, None]
         P = F[k, None] - sc * y * y
         AB = (2.0 + sc * (y + y0[k, None])) * (2.0 * y + F[k, None] - sc * y * y)
-        out[k] = 2.0 * np.sqrt(d[k]) * ((P / np.sqrt(AB)) @ W)
+        Q = P / np.sqrt(AB)
+        root = 2.0 * np.sqrt(d[k])
+        out[k] = root * (Q @ W)
+        if volume:
+            vol[k] = np.pi * root * ((y * y * Q) @ W)
     k = np.flatnonzero(~thick)
     if k.size:
-        out[k] = _pieces(y0[k], yc[k], F[k], s[k], length_only=True)
-    return out
+        if volume:
+            out[k], vol[k] = _pieces(y0[k], yc[k], F[k], s[k])[:2]
+        else:
+            out[k] = _pieces(y0[k], yc[k], F[k], s[k], length_only=True)
+    return (out, vol) if volume else out
 
 
 def _pair(b, th, s, rho, full=True, coarse=False):
@@ -230,6 +240,16 @@ def _pair(b, th, s, rho, full=True, coarse=False):
     h1 = 2.0 * np.sin(0.5 * b[k]) ** 2
     rk = np.where(plane[k], 0.0, rho[k])
     h2 = 2.0 * rk * np.sin(0.5 * d2[k]) ** 2
+    if full == "gap volume":  # gap and volume alone (the volume-controlled solver's iterations)
+        L1, v1 = _length(y0, y1[k], Fk, sk, volume=True)
+        if equal[k].all():
+            L, vol_under = 2.0 * L1, 2.0 * v1
+        else:
+            L2, v2 = _length(y0, y2[k], Fk, sk, volume=True)
+            L, vol_under = sig1[k] * L1 + sig2[k] * L2, sig1[k] * v1 + sig2[k] * v2
+        caps = np.pi * (h1 * h1 * (3.0 - h1) + h2 * h2 * (3.0 * rk - h2)) / 3.0
+        res[0][k], res[1][k] = L - h1 - h2, vol_under - caps
+        return res
     if not full:
         L1 = _length(y0, y1[k], Fk, sk, coarse)
         L = 2.0 * L1 if equal[k].all() else sig1[k] * L1 + sig2[k] * _length(y0, y2[k], Fk, sk, coarse)
@@ -456,10 +476,11 @@ def _log_root(f, lo, hi):
     return np.exp(np.where(flip, hi_end, lo_end))
 
 
-def _solve_for_volume(theta, volume, gap, ratio):
-    """(beta, s*, status) of the bridge holding volume* at gap*, stable at constant volume.
+def _scan_for_volume(theta, volume, gap, ratio):
+    """(beta, s*, status) of the bridge holding volume* at gap*, stable at constant volume, by a scan of the arc.
 
-    At a fixed gap the concave bridges form one arc, parametrised by the neck
+    The fallback of :func:`_solve_for_volume` for the rows its Newton iteration
+    does not settle (no bridge, too much water, bridges next to rupture). At a fixed gap the concave bridges form one arc, parametrised by the neck
     radius y0 (units of R1): from the largest (the catenoid, s* = 0, at the
     top neck) through the suction-controlled fold to the thinnest catenoid. Along
     it the volume falls from its largest value to a minimum (the rupture volume
@@ -556,6 +577,176 @@ def _solve_for_volume(theta, volume, gap, ratio):
             st[go] = 0
     st[(st == 1) & too_much] = 3
     status[k] = st
+    return beta, suction, status
+
+
+# ---- volume control: Newton on the arc ---------------------------------------------
+
+_FD_STEP = 1e-7  # forward-difference step in log(neck) and log(s*) (derivatives to about 1e-7 relative)
+_ARC_MARGIN = 1e-5  # smallest relative slope of the volume along the arc that certifies the branch
+
+
+def _gap_volume_at_neck(x, z, th, rho):
+    """(gap*, volume*) of the bridge with neck exp(x) at s* = exp(z); NaN where there is none."""
+    y0, s = np.exp(x), np.exp(z)
+    F = 2.0 * y0 + s * y0 * y0
+    beta = _second_filling_angle(F, th, s, np.ones_like(F))
+    return _blocks(beta, th, s, rho, 2, full="gap volume")
+
+
+def _volume_guess(th, V, D, rho):
+    """Starting (log neck, log s*) of the bridge holding V* at gap* D*: a thin film between paraboloids.
+
+    The surfaces near the axis are h(r) = D + r^2 / R* apart (Derjaguin's
+    R* = 2 rho / (1 + rho), 2 for a plane); the film of volume V wets a disc
+    of radius a with pi (D a^2 + a^4 / (2 R*)) = V; its meridian is a circle
+    of radius r1 meeting both surfaces at theta (tilted by their filling
+    angles), and s* = 1 / r1 - 1 / y0 (toroidal approximation).
+    """
+    Rs = np.where(np.isinf(rho), 2.0, 2.0 * rho / (1.0 + np.where(np.isinf(rho), 1.0, rho)))
+    a2 = Rs * (np.sqrt(D * D + 2.0 * V / (np.pi * Rs)) - D)
+    a = np.sqrt(a2)
+    b1 = np.arcsin(np.minimum(a, 1.0))
+    b2 = np.where(np.isinf(rho), 0.0, np.arcsin(np.minimum(a / rho, 1.0)))
+    r1 = (D + a2 / Rs) / np.maximum(np.cos(th + b1) + np.cos(th + b2), 0.05)
+    y0 = np.maximum(a - r1 * (1.0 - np.sin(th + b1)), 0.2 * a)
+    s = np.maximum(1.0 / r1 - 1.0 / y0, 0.1 / y0)
+    return np.log(y0), np.log(s)
+
+
+def _newton_volume(th, V, D, rho, iters=40, start=None, loose=False):
+    """(neck, s*, found) of the bridge holding V* at gap* D*: damped Newton in (log neck, log s*).
+
+    Residuals gap - D and log(volume / V), a forward-difference Jacobian, a
+    backtracking line search on their scaled norm. ``found`` rows converged
+    (residuals 1e-12 relative, or at the rounding floor within 1e-11) to a
+    bridge with s* > 0 on the part of the arc of gap D that the volume
+    descends from its top: there the volume along the arc rises with the
+    neck (by at least _ARC_MARGIN relative), which, the volume having a single
+    minimum on the arc, makes it the bridge :func:`_scan_for_volume` returns.
+    The other rows are left to that scan. ``start``: (neck, s*) to start from
+    instead of :func:`_volume_guess`; ``loose``: stop at 1e-6 (a stage of a
+    continuation, see :func:`_continue_volume`).
+    """
+    m = th.size
+    h = _FD_STEP
+    x, z = _volume_guess(th, V, D, rho) if start is None else (np.log(start[0]), np.log(start[1]))
+    lv = np.log(V)
+    gscale = D + np.cbrt(V)  # length scale of a bridge of volume V (its rupture distance, Lian et al. 1993)
+    gtol = 1e-3 * VERIFY_RTOL * np.maximum(D, 1e-3)
+    state = np.zeros(m, dtype=int)  # 0 looking for a start, 1 iterating, 2 converged, 3 given up
+    xa, za = x.copy(), z.copy()  # last accepted point
+    phi = np.full(m, np.inf)
+    dx, dz, t = np.zeros(m), np.zeros(m), np.ones(m)
+    starts = np.zeros(m, dtype=int)
+    slope = np.full(m, np.nan)
+    Gz_at = np.full(m, np.nan)
+    for _ in range(iters):
+        a = np.flatnonzero(state < 2)
+        if a.size == 0:
+            break
+        with np.errstate(all="ignore"):
+            g, v = _gap_volume_at_neck(np.concatenate([x[a], x[a] + h, x[a]]), np.concatenate([z[a], z[a], z[a] + h]),
+                                       np.tile(th[a], 3), np.tile(rho[a], 3))
+            g, lg = g.reshape(3, -1), np.log(v).reshape(3, -1)
+            r1, r2 = g[0] - D[a], lg[0] - lv[a]
+            ph = np.hypot(r1 / gscale[a], r2)
+            Gx, Gz = (g[1] - g[0]) / h, (g[2] - g[0]) / h
+            Lx, Lz = (lg[1] - lg[0]) / h, (lg[2] - lg[0]) / h
+            det = Gx * Lz - Gz * Lx
+        fin = np.isfinite(ph) & np.isfinite(det) & (det != 0)
+        st = state[a]
+        # no bridge at the start (or the line search failed): a thinner neck, a lower suction, at most 8 times
+        b = a[(st == 0) & ~fin]
+        x[b], z[b] = x[b] - 0.15, z[b] - 0.7
+        starts[b] += 1
+        state[b[starts[b] > 8]] = 3
+        acc = fin & ((st == 0) | (ph < (1.0 - 1e-4 * t[a]) * phi[a]))
+        b = a[(st == 1) & ~acc]
+        t[b] *= 0.5
+        lost = b[t[b] < 1e-5]
+        starts[lost] += 3
+        state[lost] = np.where(starts[lost] > 8, 3, 0)
+        x[lost], z[lost] = xa[lost] - 0.1, za[lost]
+        b = b[t[b] >= 1e-5]
+        x[b], z[b] = xa[b] + t[b] * dx[b], za[b] + t[b] * dz[b]
+        b = a[acc]
+        r1, r2, Gx, Gz, Lx, Lz, det = (q[acc] for q in (r1, r2, Gx, Gz, Lx, Lz, det))
+        ddx = (Gz * r2 - Lz * r1) / det
+        ddz = (Lx * r1 - Gx * r2) / det
+        if loose:
+            conv = (np.abs(r1) <= 1e-6 * gscale[b]) & (np.abs(r2) <= 1e-6)
+        else:
+            conv = (np.abs(r1) <= gtol[b]) & (np.abs(r2) <= 1e-12)
+        conv |= (np.abs(r1) <= 10 * gtol[b]) & (np.abs(r2) <= 1e-11) & (np.abs(ddx) + np.abs(ddz) <= 1e-12)
+        state[b] = np.where(conv, 2, 1)
+        xa[b], za[b], phi[b] = x[b], z[b], ph[acc]
+        # slope of log(volume) along the arc of constant gap, per unit log(neck), and its scale
+        slope[b] = (Lx * Gz - Lz * Gx) / Gz / (np.abs(Lx) + np.abs(Lz * Gx / Gz))
+        Gz_at[b] = Gz
+        cap = 1.0 / np.maximum(1.0, np.maximum(np.abs(ddx), np.abs(ddz)))  # at most a factor e per step
+        dx[b], dz[b], t[b] = ddx * cap, ddz * cap, 1.0
+        x[b], z[b] = x[b] + dx[b], z[b] + dz[b]
+    y0, s = np.exp(xa), np.exp(za)
+    # s* y0^2 >= 1e-8: clear of the floor suction of _floor_suction (a plane at theta = 0)
+    found = (state == 2) & (Gz_at < 0) & (slope > _ARC_MARGIN) & (s * y0 * y0 >= 1e-8)
+    return y0, s, found
+
+
+def _continue_volume(th, V, D, rho, stages=8, factor=0.5):
+    """:func:`_newton_volume` by continuation for rows it does not settle from its guess (large bridges):
+    from (V, D) scaled by factor^stages, where the thin-film guess holds (and D / V^(1/3), the gap over the
+    rupture distance, is smaller still), back to (V, D), each stage starting from the bridge of the last."""
+    y0, s = np.exp(_volume_guess(th, V * factor**stages, D * factor**stages, rho))
+    alive = np.ones(th.size, dtype=bool)
+    for j in range(stages - 1, -1, -1):
+        a = np.flatnonzero(alive)
+        if a.size == 0:
+            break
+        f = factor**j
+        y0[a], s[a], found = _newton_volume(th[a], V[a] * f, D[a] * f, rho[a], start=(y0[a], s[a]), loose=j > 0)
+        alive[a[~found]] = False
+    return y0, s, alive
+
+
+def _solve_for_volume(theta, volume, gap, ratio):
+    """(beta, s*, status) of the bridge holding volume* at gap*, stable at constant volume.
+
+    At a fixed gap the concave bridges form one arc, parametrised by the neck
+    radius y0 (units of R1): from the largest (the catenoid, s* = 0, at the
+    top neck) through the suction-controlled fold to the thinnest catenoid. Along
+    it the volume falls from its largest value to a minimum (the rupture volume
+    of this gap) and then rises again. The bridge returned is the first one of
+    the requested volume met from the top, i.e. the one continuous with the
+    bridge at contact when the spheres are pulled apart at constant volume.
+    Newton's method (:func:`_newton_volume`) settles most rows in a few
+    iterations; the rest go through the scan of the arc (:func:`_scan_for_volume`).
+    """
+    theta, volume, gap, ratio = (x.ravel() for x in _arr(theta, volume, gap, ratio))
+    n = theta.size
+    beta, suction = np.full(n, np.nan), np.full(n, np.nan)
+    status = np.full(n, 2, dtype=int)
+    ok = (theta >= 0) & (theta < HALF_PI) & (volume > 0) & (gap >= 0) & (ratio > 0) & np.isfinite(volume)
+    k = np.flatnonzero(ok)
+    if k.size == 0:
+        return beta, suction, status
+    th, V, D, rho = theta[k], volume[k], gap[k], ratio[k]
+    for start in range(0, k.size, _CHUNK):
+        sl = slice(start, start + _CHUNK)
+        y0, s, found = _newton_volume(th[sl], V[sl], D[sl], rho[sl])
+        rows = k[sl][found]
+        yf, sf = y0[found], s[found]
+        beta[rows] = _second_filling_angle(2.0 * yf + sf * yf * yf, th[sl][found], sf, np.ones_like(yf))
+        suction[rows], status[rows] = s[found], 0
+    rest = k[status[k] != 0]
+    if rest.size:
+        y0, s, found = _continue_volume(theta[rest], volume[rest], gap[rest], ratio[rest])
+        yf, sf, rows = y0[found], s[found], rest[found]
+        beta[rows] = _second_filling_angle(2.0 * yf + sf * yf * yf, theta[rows], sf, np.ones_like(yf))
+        suction[rows], status[rows] = sf, 0
+        rest = rest[~found]
+    if rest.size:
+        beta[rest], suction[rest], status[rest] = _scan_for_volume(theta[rest], volume[rest], gap[rest], ratio[rest])
     return beta, suction, status
 
 
