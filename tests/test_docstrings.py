@@ -1,0 +1,113 @@
+"""Every public function of capred.physics and capred.fitting carries a numpydoc docstring.
+
+"Public function": a module-level function whose name has no leading underscore and that is defined in
+that module (not imported into it). Its docstring must have the numpydoc sections "Parameters" (when the
+function takes any argument), "Returns" (or "Yields") and "References" -- the house style of
+pvlib-python's pvlib/temperature.py (STYLE.md). Sections are found as numpydoc writes them: the title
+on its own line, underlined with dashes.
+"""
+import importlib
+import inspect
+import pkgutil
+import re
+
+import pytest
+
+import capred.fitting
+import capred.physics
+
+PACKAGES = (capred.physics, capred.fitting)
+
+# Modules whose docstrings were still being written when this test was committed: each one lacked at
+# least one section in at least one public function at that time (checked by running this test with
+# the list empty). They run as non-strict xfail, so a module that becomes complete shows as XPASS:
+# then delete it from this list. The list is to be emptied at the end of the round.
+NOT_YET_DONE = {
+    "capred.fitting.chi_laws": "law_uncertainty lacks References",
+    "capred.fitting.linear": "fit_line, fit_line_origin, t_quantile lack References",
+    "capred.fitting.nonlinear": "fit_curve, summarize_fit lack References",
+    "capred.fitting.retention": "fit_brooks_corey, fit_van_genuchten lack all three sections",
+    "capred.fitting.retention_models": "bounds_for, confidence_band lack References",
+    "capred.physics.bridge": "bridge, from_neck, gap_of, geometry, ... lack all three sections",
+    "capred.physics.effective_stress_models": "chi_lu_likos, chi_vanapalli, predict, ... lack sections",
+    "capred.physics.pedrotti_tarantino": "path_problems lacks References",
+    "capred.physics.retention": "monotone_suction lacks References",
+}
+
+_SECTION = re.compile(r"^[ \t]*([A-Z][A-Za-z ]+?)[ \t]*\n[ \t]*-{3,}[ \t]*$", re.MULTILINE)
+
+
+def _modules():
+    for pkg in PACKAGES:
+        for info in pkgutil.iter_modules(pkg.__path__):
+            yield f"{pkg.__name__}.{info.name}"
+
+
+MODULES = sorted(_modules())
+
+
+def sections(doc: str | None) -> set[str]:
+    """Titles of the numpydoc sections of a docstring ('Parameters', 'Returns', ...)."""
+    return {m.group(1) for m in _SECTION.finditer(inspect.cleandoc(doc or ""))}
+
+
+def public_functions(module):
+    """(name, function) of every public function defined in ``module`` (aliases of them included)."""
+    for name, obj in inspect.getmembers(module, inspect.isfunction):
+        if not name.startswith("_") and obj.__module__ == module.__name__:
+            yield name, obj
+
+
+def missing_sections(func) -> list[str]:
+    """The required numpydoc sections ``func``'s docstring lacks."""
+    have = sections(func.__doc__)
+    need = []
+    if inspect.signature(func).parameters and "Parameters" not in have:
+        need.append("Parameters")
+    if not have & {"Returns", "Yields"}:
+        need.append("Returns")
+    if "References" not in have:
+        need.append("References")
+    return need
+
+
+def test_section_parser_on_a_numpydoc_docstring():
+    def f(x):
+        """Summary.
+
+        Parameters
+        ----------
+        x : float
+            A length [m].
+
+        Returns
+        -------
+        float
+            The same [m].
+
+        References
+        ----------
+        .. [1] Someone (2024). doi:10.0/x, eq. 1.
+        """
+
+    def g(x):
+        """Summary. Parameters: x [m]. Returns x. References: none."""
+
+    assert sections(f.__doc__) == {"Parameters", "Returns", "References"}
+    assert missing_sections(f) == []
+    assert missing_sections(g) == ["Parameters", "Returns", "References"]
+
+
+def test_every_module_is_listed():
+    # the modules walked are the files of the two packages: a new module is covered without editing this test
+    assert "capred.physics.triaxial" in MODULES and "capred.fitting.linear" in MODULES
+    assert set(NOT_YET_DONE) <= set(MODULES), "NOT_YET_DONE names a module that does not exist"
+
+
+@pytest.mark.parametrize("name", [
+    pytest.param(m, marks=pytest.mark.xfail(reason=NOT_YET_DONE[m], strict=False)) if m in NOT_YET_DONE else m
+    for m in MODULES])
+def test_public_functions_have_numpydoc_sections(name):
+    module = importlib.import_module(name)
+    problems = {fname: miss for fname, f in public_functions(module) if (miss := missing_sections(f))}
+    assert not problems, f"{name}: functions lacking numpydoc sections: {problems}"
