@@ -6,7 +6,7 @@ and plots), so the published content tested is its equations, its two limits
 (S_r = 1: slurry lines; S_r = 0: dry-powder lines) and the behaviour its
 section 4.2 describes for each stage of the path of Fig. 13.
 """
-from math import exp, log
+from math import log
 from pathlib import Path
 
 import numpy as np
