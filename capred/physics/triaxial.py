@@ -228,7 +228,7 @@ def lode_angle_from_ratio_deg(lode_ratio):
 
 
 def lode_branch(sigma1, sigma2, sigma3, tol_deg=LODE_TOL_DEG):
-    r"""Branch of a test: ``compression`` (:math:`\sigma_2 = \sigma_3`), ``extension`` (:math:`\sigma_2 = \sigma_1`) or ``general``.
+    r"""Branch of a test: ``compression`` (σ2 = σ3), ``extension`` (σ2 = σ1) or ``general``.
 
     Parameters
     ----------
@@ -941,7 +941,7 @@ def circle_cohesion(sigma_major, sigma_minor, phi_deg):
 
 
 def intermediate_friction_angle_deg(lode_ratio, phi_deg):
-    r"""Friction angle :math:`\varphi_i` of the line through the :math:`\sigma_1`-:math:`\sigma_2` circles at constant Lode ratio.
+    r"""Friction angle :math:`\varphi_i` of the line through the σ1-σ2 circles at constant Lode ratio.
 
     Parameters
     ----------
