@@ -221,3 +221,63 @@ def test_issue_examples_are_never_wrong(tmp_path):
             assert row["V_w_mm3"] == pytest.approx(vol, rel=1e-9)
         else:
             assert row["V_w_mm3"] is None
+
+
+def test_volume_newton_path_matches_the_scan_of_the_arc():
+    """The fast Newton path of the volume solver returns the bridge of the scan of the arc (its fallback) and the
+    bridge a suction-controlled solve built: same suction, same filling angle."""
+    rng = np.random.default_rng(11)
+    n = 160
+    th = np.radians(rng.uniform(0, 60, n))
+    s = 10 ** rng.uniform(-1, 2.5, n)
+    rho = np.where(rng.uniform(size=n) < 0.5, 1.0, np.where(rng.uniform(size=n) < 0.3, np.inf,
+                                                          10 ** rng.uniform(-0.5, 1, n)))
+    b0 = rng.uniform(0.05, 0.9, n) * (np.pi / 2 - th)
+    D = np.where(np.arange(n) % 2 == 0, 0.0, np.clip(br.gap_of(b0, th, s, rho), 0, None) * rng.uniform(0.2, 1, n))
+    b, st = br.solve_for_suction(th, s, D, rho)
+    ok = st == 0
+    th, s, rho, D, b = th[ok], s[ok], rho[ok], D[ok], b[ok]
+    V = br.bridge(b, th, s, rho).volume
+    y0, s_newton, found = br._newton_volume(th, V, D, rho)
+    assert found.mean() > 0.97  # the rest (huge bridges) go through the continuation or the scan
+    b_scan, s_scan, st_scan = br._scan_for_volume(th[found], V[found], D[found], rho[found])
+    assert np.all(st_scan == 0)
+    # both stop on gap and volume residuals of 1e-12 relative; the suction follows through a conditioning of
+    # at most ~1e4 (near the fold): 1e-7
+    assert_allclose(s_newton[found], s_scan, rtol=1e-7)
+    assert_allclose(s_newton[found], s[found], rtol=1e-7)
+    b_new, s_new, st_new = br.solve_for_volume(th, V, D, rho)
+    assert np.all(st_new == 0)
+    assert_allclose(b_new, b, rtol=1e-9)  # the filling angle is well conditioned: 1e-9, the verify tolerance
+
+
+@pytest.mark.parametrize("gap,s,past_minimum", [(0.1, 0.01, True), (0.1, 0.1, True), (0.1, 0.5, True),
+                                                 (0.1, 2.0, False), (0.3, 0.1, False), (0.3, 0.5, False)])
+def test_volume_newton_certifies_only_the_branch_continuous_with_contact(gap, s, past_minimum):
+    """Equal spheres, theta = 0. The thin bridge of a suction-controlled pair (smaller filling angle) lies on the
+    arc of its gap either before the volume minimum (past the suction fold: the bridge at constant volume) or
+    after it, where a thicker bridge of the arc holds the same volume and is the one continuous with contact.
+    A Newton iteration started on the thin bridge converges to it; the branch certificate (the volume along
+    the arc must rise with the neck) accepts it exactly when the scan of the arc returns it too."""
+    from scipy.optimize import brentq
+
+    th, rho = 0.0, 1.0
+    grid = np.linspace(0.001, 1.5, 3000)
+    g = br.gap_of(grid, th, s, rho)
+    j = int(np.nanargmax(g))
+    b_thin = brentq(lambda x: float(br.gap_of(x, th, s, rho)) - gap, grid[0], grid[j], xtol=1e-15)
+    thin = br.bridge(b_thin, th, s, rho)
+    V = np.atleast_1d(thin.volume)
+    y0, _, found = br._newton_volume(np.array([th]), V, np.array([gap]), np.array([rho]),
+                                     start=(np.atleast_1d(thin.neck), np.array([s])))
+    assert y0[0] == pytest.approx(float(thin.neck), rel=1e-9)  # converged to the thin bridge (1e-12 residuals)
+    assert found[0] == (not past_minimum)
+    b_scan, s_scan, st_scan = br._scan_for_volume(np.array([th]), V, np.array([gap]), np.array([rho]))
+    b, s_v, st = br.solve_for_volume(th, V, gap, rho)
+    assert st[0] == st_scan[0] == 0
+    assert_allclose(s_v, s_scan, rtol=1e-7)  # same bridge as the scan (see the test above for 1e-7)
+    neck = float(br.bridge(b, th, s_v, rho).neck[0])
+    if past_minimum:
+        assert neck > 1.2 * float(thin.neck)  # the thicker bridge (37 % or more here)
+    else:
+        assert neck == pytest.approx(float(thin.neck), rel=1e-9)

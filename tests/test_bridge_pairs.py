@@ -19,7 +19,8 @@ def ode_pair(beta, theta, s, rho):
     """Independent reference: integrate y'' = (1 + y'^2)/y + s (1 + y'^2)^(3/2) (Young-Laplace in units of R1,
     s = Delta_u R1 / gamma) with DOP853 from the contact line on particle 1 (y = sin beta, y' = -cot(beta +
     theta)) until the meridian meets particle 2 (radius rho, or a plane when rho = inf) at the contact angle.
-    No first integral is used. Returns gap, volume, delta2, area, nn11, nn33 accumulated along the way."""
+    No first integral is used. Returns gap, volume, delta2, area, nn11, nn33 accumulated along the way, or None
+    when the meridian meets particle 2 nowhere (no crossing at the contact angle with y below rho)."""
     def rhs(_, u):
         y, p = u[0], u[1]
         q = 1 + p * p
@@ -33,6 +34,8 @@ def ode_pair(beta, theta, s, rho):
     meets.terminal, meets.direction = True, 1
     sol = solve_ivp(rhs, (0, 20), [np.sin(beta), -1 / np.tan(beta + theta), 0, 0, 0, 0], method="DOP853",
                     rtol=1e-12, atol=1e-14, events=meets)
+    if len(sol.t_events[0]) == 0 or sol.y_events[0][0][0] >= rho:  # a contact circle is never wider than rho
+        return None
     x = sol.t_events[0][0]
     y, _, v, area, n11, n33 = sol.y_events[0][0]
     d2 = 0.0 if np.isinf(rho) else np.arcsin(y / rho)
@@ -41,18 +44,43 @@ def ode_pair(beta, theta, s, rho):
     return {"gap": x - h1 - h2, "volume": v - caps, "delta2": d2, "area": area, "nn11": n11, "nn33": n33}
 
 
+def more_force_than_particle_2_carries(beta, theta, s, rho):
+    """Independent proof that no bridge exists: the axial force (units of pi gamma R1) through the contact on
+    particle 1, 2 sin(beta) sin(beta + theta) + s sin^2(beta), exceeds the largest a contact on particle 2 can
+    carry, max over delta of 2 rho sin(delta) sin(delta + theta) + s rho^2 sin^2(delta) (a grid of 200,001
+    angles over [0, pi]; the maximum of this smooth function is found to 1e-10 relative). The force through
+    every section of a bridge is the same (Lian et al. 1993, doi:10.1006/jcis.1993.1452, first integral of the
+    Young-Laplace equation), so the meridian cannot end on particle 2."""
+    if np.isinf(rho):
+        return False
+    d = np.linspace(0.0, np.pi, 200_001)
+    carried = np.max(2 * rho * np.sin(d) * np.sin(d + theta) + s * rho**2 * np.sin(d) ** 2)
+    return 2 * np.sin(beta) * np.sin(beta + theta) + s * np.sin(beta) ** 2 > carried * (1 + 1e-8)
+
+
 CASES = [(rho, th, s, b) for rho in (1.5, 3.0, 10.0, 0.5, np.inf) for th in (0.0, 20.0, 50.0)
          for s in (0.0, 0.5, 20.0) for b in (5.0, 20.0, 40.0)
          if not (np.isinf(rho) and th == 0.0)]  # on a plane at theta = 0 the meridian ends vertical (y' infinite)
+# the cases without a bridge, as the two independent arguments above find them (a small sphere, rho = 0.5,
+# at beta = 40 deg would be engulfed): asserted "no bridge", and their count pinned so a change shows
+NO_BRIDGE = {(0.5, 0.0, 20.0, 40.0), (0.5, 20.0, 0.0, 40.0), (0.5, 20.0, 0.5, 40.0), (0.5, 20.0, 20.0, 40.0),
+             (0.5, 50.0, 0.0, 40.0), (0.5, 50.0, 0.5, 40.0), (0.5, 50.0, 20.0, 40.0)}
 
 
 @pytest.mark.parametrize("rho,theta_deg,s,beta_deg", CASES)
 def test_unequal_and_plane_match_independent_integration(rho, theta_deg, s, beta_deg):
     th, b = np.radians(theta_deg), np.radians(beta_deg)
     got = br.bridge(b, th, s, rho)
-    if not np.isfinite(got.gap):
-        pytest.skip("no concave bridge with this filling angle (the small particle would be engulfed)")
     ref = ode_pair(b, th, s, rho)
+    if ref is None:
+        # no bridge: the integration finds no contact and the force balance excludes one (both independent)
+        assert more_force_than_particle_2_carries(b, th, s, rho)
+        assert (rho, theta_deg, s, beta_deg) in NO_BRIDGE
+        assert all(np.isnan(getattr(got, k)) for k in br.Bridge.__dataclass_fields__)
+        return
+    assert (rho, theta_deg, s, beta_deg) not in NO_BRIDGE
+    assert not more_force_than_particle_2_carries(b, th, s, rho)
+    assert np.isfinite(got.gap), "the integration finds a bridge that capred misses"
     for key, want in ref.items():
         # quadrature (1e-13) against DOP853 at rtol 1e-12: 1e-7 leaves room for the event location
         assert float(getattr(got, key)) == pytest.approx(want, rel=1e-7, abs=1e-12), key
