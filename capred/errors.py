@@ -89,3 +89,17 @@ class MissingFileError(InputError, FileNotFoundError):
 
     def __str__(self) -> str:
         return self._text()
+
+
+class LimitError(InputError):
+    """An input over a reading limit (decompressed size, cells, columns), refused before it is read whole.
+
+    ``limit`` names the limit (a field of :class:`capred.io.grid.ReadLimits`:
+    ``max_bytes``, ``max_cells`` or ``max_columns``) and ``value`` its setting;
+    the message says how to raise it.
+    """
+
+    def __init__(self, problem: Problem, limit: str, value: int):
+        self.limit = limit
+        self.value = value
+        super().__init__(problem)

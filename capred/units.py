@@ -52,7 +52,20 @@ def registry():
 #: the longest unit string capred reads (a longer one is not a unit a lab writes)
 MAX_UNIT_LENGTH = 64
 _UNIT_CHARS = re.compile(r"[A-Za-z0-9µμ°Ω%*/^(). _-]*")
+#: superscript digits and signs as labs type them in Excel ('cm³', 'kN/m³', 'm⁻¹'): read as '^' powers
+_SUPERSCRIPT = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺", "0123456789-+")
+_SUPERSCRIPT_RUN = re.compile(r"[⁻⁺]?[⁰¹²³⁴⁵⁶⁷⁸⁹]+")
+_PRODUCT_SIGNS = str.maketrans({"·": "*", "⋅": "*", "×": "*", "∙": "*"})
 _WATER_HEAD = re.compile(r"^\s*(?P<len>[a-zµμ]*m)\s*(?:_?H2O|water|of water|wc)\s*$", re.I)
+
+
+def ascii_unit(unit: str) -> str:
+    """A unit as typed with superscripts and product signs, in plain text: ``'cm³'`` -> ``'cm^3'``,
+    ``'kN·m⁻³'`` -> ``'kN*m^-3'``. Other text is returned unchanged."""
+    if unit.isascii():
+        return unit
+    unit = _SUPERSCRIPT_RUN.sub(lambda m: "^" + m.group(0).translate(_SUPERSCRIPT), unit)
+    return unit.translate(_PRODUCT_SIGNS)
 
 
 def check_unit_text(unit: str) -> None:
@@ -114,6 +127,13 @@ def conversion(unit: str, kind: str) -> tuple[float, str | None]:
     """
     if (unit, kind) in _COMMON:  # the usual lab units need no unit registry (it takes 0.2 s to build)
         return _COMMON[unit, kind], None
+    if not unit.isascii():  # 'cm³', 'kN/m³', 'kN·m⁻³' as Excel users type them
+        plain = ascii_unit(unit)
+        if plain != unit:
+            try:
+                return conversion(plain, kind)
+            except UnitError as exc:  # the message names the unit as the user wrote it
+                raise UnitError(str(exc).replace(f"'{plain}'", f"'{unit}'")) from None
     ureg = registry()
     target = ureg.Unit(SI_UNIT[kind])
     check_unit_text(unit)

@@ -183,10 +183,20 @@ def test_unused_columns_are_warned_with_a_suggestion(tmp_path):
     text = ("test_id,Materiaal,condition,sigma_N [kPa],tau_max [kPa],,remarks\n"
             "a,m1,dry,1,1.0452,7,x\nb,m1,dry,2,1.7598,,\nc,m2,dry,3,2.4744,,\n")
     (tmp_path / "t.csv").write_text(text)
-    doc = capred.run_shear(tmp_path / "t.csv", capred.ShearOptions(bootstrap=0)).to_json()
-    assert any("'Materiaal' is not used" in w and "did you mean 'material'" in w for w in doc["warnings"])
+    # 'Materiaal' is a near miss of 'material', which groups the tests: an error (issue 23), not a warning
+    with pytest.raises(InputError) as info:
+        capred.run_shear(tmp_path / "t.csv", capred.ShearOptions(bootstrap=0))
+    (p,) = info.value.problems
+    assert (p.line, p.column) == (1, "Materiaal") and "'material'" in p.message and "--ignore-column" in p.message
+    # ignored as asked, the others are warnings as before
+    source = TableSource(tmp_path / "t.csv", ignore_columns=("Materiaal",))
+    doc = capred.run_shear(source, capred.ShearOptions(bootstrap=0)).to_json()
     assert any("column 6 has data but no header" in w for w in doc["warnings"])
     assert any("'remarks' is not used" in w for w in doc["warnings"])
+    assert not any("Materiaal" in w for w in doc["warnings"])
+    (tmp_path / "t.csv").write_text(text.replace("Materiaal", "Mat. type"))  # three edits from 'material'
+    doc = capred.run_shear(tmp_path / "t.csv", capred.ShearOptions(bootstrap=0)).to_json()
+    assert any("'Mat. type' is not used" in w for w in doc["warnings"])  # a warning, as before
 
 
 def test_header_with_unbalanced_brackets_is_a_problem(tmp_path):

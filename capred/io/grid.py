@@ -4,6 +4,27 @@ A grid is a list of rows, each with the line (or spreadsheet row) number a
 person sees and its cells as text. Numbers from spreadsheets are written in
 shortest round-trip form, so nothing is rounded on the way. Comment lines
 (starting with '#') and blank lines are skipped but keep their numbers.
+
+Spreadsheets are read as streams over the cells that hold data, never as a
+whole sheet: an .xlsx or .ods is a zip of XML parts, and a hostile one (a
+zip bomb, a stray cell at XFD1048576, a million repeated cells) could
+otherwise take minutes and gigabytes. :class:`ReadLimits` bounds the work:
+
+- ``max_bytes`` (default :data:`MAX_BYTES`): the bytes a file may hold, a CSV
+  as it is, a workbook once decompressed; a zip whose declared sizes exceed
+  it is refused before anything is decompressed, and decompression stops at
+  the limit whatever the zip declares;
+- ``max_cells`` (default :data:`MAX_CELLS`): the cells of a sheet the reader
+  visits (every cell element of the XML, and the blanks a row is padded
+  with), and the shared strings of a workbook;
+- ``max_columns`` (default :data:`MAX_COLUMNS`): the column of the last cell
+  holding data (spreadsheets) and the width of the header (every table).
+
+Over a limit, :class:`capred.errors.LimitError` names the file, the sheet,
+the cell or line, the limit and how to raise it (the CLI options
+``--max-megabytes``, ``--max-cells``, ``--max-columns``). XML parts with a
+document type declaration are refused (no entity expansion, no external
+entities).
 """
 from __future__ import annotations
 
@@ -12,7 +33,18 @@ import io
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..errors import InputError, Problem
+from ..errors import InputError, LimitError, Problem
+
+#: default limit on the bytes of an input: a CSV file's size, a workbook's decompressed parts (256 MiB)
+MAX_BYTES = 256 * 2**20
+#: default limit on the cells a spreadsheet sheet may make the reader visit (and on a workbook's shared strings)
+MAX_CELLS = 2_000_000
+#: default limit on the columns of a table (the header's width; a spreadsheet's last column holding data)
+MAX_COLUMNS = 1000
+#: a spreadsheet is a zip of tens to hundreds of parts; more than this is not a spreadsheet capred reads
+MAX_ZIP_PARTS = 10_000
+#: the command-line option that raises each limit
+LIMIT_OPTIONS = {"max_bytes": "--max-megabytes", "max_cells": "--max-cells", "max_columns": "--max-columns"}
 
 SPREADSHEET_SUFFIXES = (".xlsx", ".xlsm", ".ods")
 _MAGIC = (
@@ -26,19 +58,76 @@ _MAGIC = (
 
 
 @dataclass(frozen=True)
+class ReadLimits:
+    """How much of a file the reader may take on before it refuses it.
+
+    Attributes
+    ----------
+    max_bytes : int
+        Bytes of a CSV file, or of a workbook's XML once decompressed [bytes].
+    max_cells : int
+        Cells of a spreadsheet sheet the reader visits (cell elements and the
+        blanks rows are padded with), and shared strings of a workbook [-].
+    max_columns : int
+        Columns of a table: the header's width, and the column of the last
+        cell holding data in a spreadsheet [-].
+    """
+
+    max_bytes: int = MAX_BYTES
+    max_cells: int = MAX_CELLS
+    max_columns: int = MAX_COLUMNS
+
+    def __post_init__(self) -> None:
+        from ..errors import OptionError
+
+        for name in ("max_bytes", "max_cells", "max_columns"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+                raise OptionError(f"{LIMIT_OPTIONS[name]} ({name}) must be a whole number >= 1 (got {value!r})")
+
+    def shown(self, name: str) -> str:
+        """The setting of limit ``name`` as a person reads it (MiB for bytes)."""
+        value = getattr(self, name)
+        return f"{value / 2**20:g} MiB" if name == "max_bytes" else f"{value:,}"
+
+    def error(self, name: str, what: str, file: str, line: int | None = None, column: str | None = None,
+              sheet: str | None = None) -> LimitError:
+        """The error for ``what`` going over limit ``name``, saying how to raise it."""
+        unit = "N (MiB)" if name == "max_bytes" else "N"
+        message = (f"{what}: over the limit of {self.shown(name)} ({name}), so it is not read. If the file is "
+                   f"genuine, raise the limit with {LIMIT_OPTIONS[name]} {unit} (from Python: "
+                   f"limits=ReadLimits({name}=...))")
+        return LimitError(Problem(file, line, column, message, sheet), name, getattr(self, name))
+
+
+@dataclass(frozen=True)
 class TableSource:
-    """A table to read: a path (CSV, .xlsx, .ods) or a DataFrame, the sheet of a workbook, and how to
-    read thousands separators ("." to read 1.000 as one thousand in a decimal-comma file)."""
+    """A table to read: a path (CSV, .xlsx, .ods) or a DataFrame, the sheet of a workbook, how to
+    read thousands separators ("." to read 1.000 as one thousand in a decimal-comma file), the
+    columns to leave out (``ignore_columns``: names as the header writes them) and the reading
+    limits (``limits``: a :class:`ReadLimits`; None for the defaults)."""
 
     path: object
     sheet: str | int | None = None
     thousands: str | None = None
+    ignore_columns: tuple[str, ...] = ()
+    limits: ReadLimits | None = None
 
     def __post_init__(self) -> None:
         from ..errors import OptionError
 
         if self.thousands not in (None, ".", ",", " ", "'"):
             raise OptionError(f"--thousands must be '.', ',', ' ' or \"'\" (got {self.thousands!r})")
+        ignore = (self.ignore_columns,) if isinstance(self.ignore_columns, str) else self.ignore_columns
+        try:
+            ignore = tuple(ignore or ())
+        except TypeError:
+            raise OptionError(f"ignore_columns must be column names (got {self.ignore_columns!r})") from None
+        if not all(isinstance(x, str) and x.strip() for x in ignore):
+            raise OptionError(f"--ignore-column takes a column name as the header writes it (got {ignore!r})")
+        object.__setattr__(self, "ignore_columns", ignore)
+        if self.limits is not None and not isinstance(self.limits, ReadLimits):
+            raise OptionError(f"limits must be a capred.io.grid.ReadLimits (got {type(self.limits).__name__})")
 
 
 def source_path(source):
@@ -82,9 +171,13 @@ def read_grid(source: TableSource) -> Grid:
         raise MissingFileError(shown)
     if not p.is_file():
         raise InputError(Problem(shown, None, None, "not a file"))
+    limits = source.limits or ReadLimits()
+    size = p.stat().st_size
+    if size > limits.max_bytes:
+        raise limits.error("max_bytes", f"the file holds {size / 2**20:.1f} MiB", shown)
     data = p.read_bytes()
     if p.suffix.lower() in SPREADSHEET_SUFFIXES:
-        return _spreadsheet_grid(shown, data, p.suffix.lower(), source.sheet)
+        return _spreadsheet_grid(shown, data, p.suffix.lower(), source.sheet, limits)
     if p.suffix.lower() == ".xls":
         raise InputError(Problem(shown, None, None, "old binary Excel workbooks (.xls) cannot be read: save it as "
                                                     ".xlsx or .csv"))
@@ -169,59 +262,573 @@ def _cell_text(value) -> str:
     return str(value).strip()
 
 
-def _spreadsheet_grid(shown: str, data: bytes, suffix: str, sheet) -> Grid:
+def _spreadsheet_grid(shown: str, data: bytes, suffix: str, sheet, limits: ReadLimits | None = None) -> Grid:
+    """The rows holding data of one sheet of an .xlsx or .ods workbook, read as a stream within ``limits``."""
+    limits = limits or ReadLimits()
     try:
-        if suffix == ".ods":
-            names, rows_of = _ods(data)
-        else:
-            names, rows_of = _xlsx(data)
+        book = _Zip(shown, data, limits)
+        name, rows = (_ods_rows if suffix == ".ods" else _xlsx_rows)(book, sheet)
     except InputError:
         raise
     except Exception as exc:  # a damaged or mislabelled workbook: one clear message
         raise InputError(Problem(shown, None, None, f"cannot be read as a {suffix} workbook "
                                                     f"({type(exc).__name__}: {exc})")) from None
-    if sheet is None:
-        name = names[0] if names else None
-    elif isinstance(sheet, int) or (isinstance(sheet, str) and sheet.strip().lstrip("-").isdigit()
-                                    and sheet.strip() not in names):
-        k = int(sheet)
-        if not 1 <= k <= len(names):
-            raise InputError(Problem(shown, None, None, f"there is no sheet number {k}: the workbook has "
-                                                        f"{len(names)} ({', '.join(names)}); sheets count from 1"))
-        name = names[k - 1]
-    else:
-        if sheet not in names:
-            raise InputError(Problem(shown, None, None, f"no sheet named '{sheet}'; the sheets are "
-                                                        f"{', '.join(names)}"))
-        name = sheet
-    if name is None:
-        raise InputError(Problem(shown, None, None, "the workbook has no sheets"))
-    rows = [(n, [_cell_text(v) for v in cells]) for n, cells in rows_of(name)]
     rows = [(n, cells) for n, cells in rows if any(cells) and not cells[0].startswith("#")]
     return Grid(shown, name, rows, ())
 
 
-def _xlsx(data: bytes):
-    import openpyxl
+def _pick_sheet(shown: str, names: list[str], sheet) -> int:
+    """Index (from 0) of the sheet asked for: the first when None, a name, or a number counted from 1."""
+    if not names:
+        raise InputError(Problem(shown, None, None, "the workbook has no sheets"))
+    if sheet is None:
+        return 0
+    if isinstance(sheet, int) or (isinstance(sheet, str) and sheet.strip().lstrip("-").isdigit()
+                                  and sheet.strip() not in names):
+        k = int(sheet)
+        if not 1 <= k <= len(names):
+            raise InputError(Problem(shown, None, None, f"there is no sheet number {k}: the workbook has "
+                                                        f"{len(names)} ({', '.join(names)}); sheets count from 1"))
+        return k - 1
+    if sheet not in names:
+        raise InputError(Problem(shown, None, None, f"no sheet named '{sheet}'; the sheets are {', '.join(names)}"))
+    return names.index(sheet)
 
-    wb = openpyxl.load_workbook(io.BytesIO(data), data_only=True)
 
-    def rows_of(name):
-        for row in wb[name].iter_rows():
-            if row:
-                yield row[0].row, [c.value for c in row]
-
-    return list(wb.sheetnames), rows_of
+class _Stop(Exception):
+    """Raised inside an XML handler to stop reading a part (what was needed has been read)."""
 
 
-def _ods(data: bytes):
-    import pandas as pd
+class _Zip:
+    """A workbook's zip archive, opened after its declared sizes were checked against ``limits.max_bytes``;
+    its parts are parsed as streams, decompression stopping at the limit whatever the zip declares."""
 
-    book = pd.read_excel(io.BytesIO(data), sheet_name=None, header=None, engine="odf", dtype=object)
+    def __init__(self, shown: str, data: bytes, limits: ReadLimits):
+        import zipfile
 
-    def rows_of(name):
-        frame = book[name]
-        for k, row in enumerate(frame.itertuples(index=False), start=1):
-            yield k, [None if (isinstance(v, float) and v != v) else v for v in row]
+        self.shown, self.limits = shown, limits
+        parts = _zip_parts(data)
+        if parts is not None and parts > MAX_ZIP_PARTS:
+            raise InputError(Problem(shown, None, None, f"the zip archive holds {parts:,} parts; a spreadsheet "
+                                                        f"holds tens to hundreds (at most {MAX_ZIP_PARTS:,} are read)"))
+        self.zip = zipfile.ZipFile(io.BytesIO(data))
+        infos = self.zip.infolist()
+        declared = sum(i.file_size for i in infos)
+        if declared > limits.max_bytes:
+            big = max(infos, key=lambda i: i.file_size)
+            raise limits.error("max_bytes", f"the workbook's {len(infos)} parts expand to {declared / 2**20:,.1f} MiB "
+                                            f"({big.filename}: {big.file_size / 2**20:,.1f} MiB, compressed "
+                                            f"{big.compress_size / 2**20:,.2f} MiB; a zip bomb?)", shown)
+        self.names = {i.filename for i in infos}
+        self.used = 0  # bytes decompressed so far, across parts
 
-    return list(book), rows_of
+    def has(self, name: str) -> bool:
+        return name in self.names
+
+    def parse(self, name: str, handler, sheet: str | None = None) -> None:
+        """Feed part ``name`` to ``handler`` (start, end, text methods) in 1 MiB pieces; a DTD is refused."""
+        from xml.parsers import expat
+
+        parser = expat.ParserCreate(namespace_separator=" ")
+        parser.buffer_text = True
+        parser.ordered_attributes = False
+
+        def doctype(*_):
+            raise InputError(Problem(self.shown, None, None, f"part '{name}' declares a document type (DTD); a "
+                                                             "spreadsheet never does: refused (entity expansion)",
+                                     sheet))
+
+        parser.StartDoctypeDeclHandler = doctype
+        parser.EntityDeclHandler = doctype
+        parser.StartElementHandler = handler.start
+        parser.EndElementHandler = handler.end
+        parser.CharacterDataHandler = handler.text
+        with self.zip.open(name) as stream:
+            try:
+                while True:
+                    chunk = stream.read(1 << 20)
+                    self.used += len(chunk)
+                    if self.used > self.limits.max_bytes:
+                        raise self.limits.error("max_bytes", f"the workbook's XML expands beyond what its zip "
+                                                             f"declares (at part '{name}')", self.shown, sheet=sheet)
+                    parser.Parse(chunk, not chunk)
+                    if not chunk:
+                        break
+            except _Stop:
+                pass
+            except expat.ExpatError as exc:
+                raise InputError(Problem(self.shown, None, None, f"part '{name}' is not valid XML "
+                                                                 f"({expat.ErrorString(exc.code)}, line {exc.lineno})",
+                                         sheet)) from None
+
+
+def _zip_parts(data: bytes) -> int | None:
+    """The number of parts a zip's end record declares (read before the central directory is), or None."""
+    k = data.rfind(b"PK\x05\x06", max(0, len(data) - 65_557))
+    if k < 0 or k + 12 > len(data):
+        return None
+    n = int.from_bytes(data[k + 10:k + 12], "little")
+    if n == 0xFFFF:  # zip64: the count is in the zip64 end record
+        j = data.rfind(b"PK\x06\x06", 0, k)
+        if j >= 0 and j + 40 <= len(data):
+            n = int.from_bytes(data[j + 32:j + 40], "little")
+    return n
+
+
+def _local(name: str) -> str:
+    """The local name of an expat name 'namespace local'."""
+    return name.rpartition(" ")[2]
+
+
+def _attr(attrs: dict, local: str, default=None):
+    """An attribute by its local name, whatever its namespace."""
+    for key, value in attrs.items():
+        if key == local or key.endswith(" " + local):
+            return value
+    return default
+
+
+def _number_text(text: str) -> str:
+    """A number as written in the XML, in the form the CSV path would give (int, else shortest float)."""
+    t = text.strip()
+    try:
+        if t.lstrip("+-").isdigit():
+            return str(int(t))
+        v = float(t)
+    except ValueError:
+        return t
+    if v != v:
+        return ""
+    return str(int(v)) if v.is_integer() else repr(v)
+
+
+class _Rows:
+    """The rows of one sheet being read: each row's cells (column -> text), padded to its last cell holding data;
+    counts every cell against ``max_cells`` and the columns against ``max_columns``."""
+
+    def __init__(self, shown: str, limits: ReadLimits):
+        self.shown, self.limits = shown, limits
+        self.sheet: str | None = None
+        self.rows: list[tuple[int, list[str]]] = []
+        self.visited = 0
+
+    def visit(self, n: int = 1, line: int | None = None) -> None:
+        self.visited += n
+        if self.visited > self.limits.max_cells:
+            raise self.limits.error("max_cells", f"the sheet holds more than {self.limits.max_cells:,} cells "
+                                                 f"(reached at row {line})", self.shown, line, sheet=self.sheet)
+
+    def column_ok(self, col: int, line: int) -> None:
+        if col > self.limits.max_columns:
+            ref = f"{_column_letters(col)}{line}"
+            raise self.limits.error("max_columns", f"cell {ref} holds data in column {col:,}", self.shown, line,
+                                    _column_letters(col), self.sheet)
+
+    def add(self, line: int, cells: dict[int, str], repeat: int = 1) -> None:
+        if not cells:
+            return
+        width = max(cells)
+        self.visit((width - len(cells)) + (repeat - 1) * width, line)
+        row = [""] * width
+        for col, text in cells.items():
+            row[col - 1] = text
+        self.rows.append((line, row))
+        for k in range(1, repeat):
+            self.rows.append((line + k, list(row)))
+
+
+def _column_letters(col: int) -> str:
+    letters = ""
+    while col > 0:
+        col, r = divmod(col - 1, 26)
+        letters = chr(65 + r) + letters
+    return letters
+
+
+def _column_number(ref: str) -> int:
+    n = 0
+    for ch in ref:
+        o = ord(ch) & ~32  # upper case
+        if 65 <= o <= 90:
+            n = n * 26 + o - 64
+        else:
+            break
+    return n
+
+
+# --- .xlsx (Office Open XML) -----------------------------------------------------------------------------------------
+_REL = "http://schemas.openxmlformats.org/officeDocument/2006/relationships"
+
+
+class _Collect:
+    """Elements of interest as (local name, attributes) with the text inside chosen elements."""
+
+    def __init__(self, wanted: set[str]):
+        self.wanted = wanted
+        self.found: list[tuple[str, dict]] = []
+
+    def start(self, name, attrs):
+        local = _local(name)
+        if local in self.wanted:
+            self.found.append((local, attrs))
+
+    def end(self, name):
+        pass
+
+    def text(self, data):
+        pass
+
+
+def _xlsx_rows(book: _Zip, sheet) -> tuple[str, list]:
+    import posixpath
+
+    def rels(path: str) -> dict[str, tuple[str, str]]:
+        folder, base = posixpath.split(path)
+        rel_path = posixpath.join(folder, "_rels", base + ".rels")
+        out = {}
+        if book.has(rel_path):
+            c = _Collect({"Relationship"})
+            book.parse(rel_path, c)
+            for _, a in c.found:
+                target = a.get("Target", "")
+                full = target.lstrip("/") if target.startswith("/") else posixpath.normpath(posixpath.join(folder,
+                                                                                                          target))
+                out[a.get("Id", "")] = (a.get("Type", "").rpartition("/")[2], full)
+        return out
+
+    root = rels("")
+    wb_path = next((p for t, p in root.values() if t == "officeDocument"), "xl/workbook.xml")
+    c = _Collect({"sheet", "workbookPr"})
+    book.parse(wb_path, c)
+    sheets = [(a.get("name", ""), _attr(a, "id", "")) for tag, a in c.found if tag == "sheet"]
+    date1904 = any(tag == "workbookPr" and a.get("date1904", "").lower() in ("1", "true") for tag, a in c.found)
+    names = [n for n, _ in sheets]
+    k = _pick_sheet(book.shown, names, sheet)
+    name = names[k]
+    wb_rels = rels(wb_path)
+    kind, path = wb_rels.get(sheets[k][1], ("", ""))
+    if kind != "worksheet" or not book.has(path):
+        raise InputError(Problem(book.shown, None, None, f"sheet '{name}' is not a table of cells "
+                                                         f"({kind or 'no worksheet part'})", name))
+    strings_path = next((p for t, p in wb_rels.values() if t == "sharedStrings"), None)
+    styles_path = next((p for t, p in wb_rels.values() if t == "styles"), None)
+    strings = _xlsx_strings(book, strings_path, name) if strings_path and book.has(strings_path) else []
+    dates = _xlsx_date_styles(book, styles_path) if styles_path and book.has(styles_path) else {}
+    rows = _Rows(book.shown, book.limits)
+    rows.sheet = name
+    book.parse(path, _XlsxSheet(rows, strings, dates, date1904), name)
+    return name, rows.rows
+
+
+class _XlsxStrings:
+    """The shared strings of a workbook: the text of each <si>, phonetic runs left out."""
+
+    def __init__(self, book: _Zip, sheet: str):
+        self.book, self.sheet = book, sheet
+        self.strings: list[str] = []
+        self.parts: list[str] | None = None
+        self.in_t = False
+        self.phonetic = 0
+
+    def start(self, name, attrs):
+        local = _local(name)
+        if local == "si":
+            self.parts = []
+        elif local == "t" and self.parts is not None and not self.phonetic:
+            self.in_t = True
+        elif local == "rPh":
+            self.phonetic += 1
+
+    def end(self, name):
+        local = _local(name)
+        if local == "t":
+            self.in_t = False
+        elif local == "rPh":
+            self.phonetic -= 1
+        elif local == "si" and self.parts is not None:
+            self.strings.append("".join(self.parts))
+            self.parts = None
+            if len(self.strings) > self.book.limits.max_cells:
+                raise self.book.limits.error("max_cells", f"the workbook holds more than "
+                                                          f"{self.book.limits.max_cells:,} shared strings",
+                                             self.book.shown, sheet=self.sheet)
+
+    def text(self, data):
+        if self.in_t:
+            self.parts.append(data)
+
+
+def _xlsx_strings(book: _Zip, path: str, sheet: str) -> list[str]:
+    handler = _XlsxStrings(book, sheet)
+    book.parse(path, handler, sheet)
+    return handler.strings
+
+
+def _xlsx_date_styles(book: _Zip, path: str) -> dict[int, bool]:
+    """Cell styles (index into cellXfs) whose number format is a date or a time: True for a duration."""
+    from openpyxl.styles.numbers import BUILTIN_FORMATS, is_date_format, is_timedelta_format
+
+    class Styles:
+        def __init__(self):
+            self.formats: dict[int, str] = {}
+            self.xfs: list[int] = []
+            self.in_xfs = False
+
+        def start(self, name, attrs):
+            local = _local(name)
+            if local == "numFmt":
+                try:
+                    self.formats[int(attrs.get("numFmtId", "-1"))] = attrs.get("formatCode", "")
+                except ValueError:
+                    pass
+            elif local == "cellXfs":
+                self.in_xfs = True
+            elif local == "xf" and self.in_xfs:
+                try:
+                    self.xfs.append(int(attrs.get("numFmtId", "0")))
+                except ValueError:
+                    self.xfs.append(0)
+                if len(self.xfs) > book.limits.max_cells:
+                    raise book.limits.error("max_cells", "the workbook's styles hold more cell formats than the "
+                                                         "cells allowed", book.shown)
+
+        def end(self, name):
+            if _local(name) == "cellXfs":
+                self.in_xfs = False
+
+        def text(self, data):
+            pass
+
+    st = Styles()
+    book.parse(path, st)
+    out = {}
+    for k, fid in enumerate(st.xfs):
+        code = st.formats.get(fid, BUILTIN_FORMATS.get(fid, ""))
+        if code and is_date_format(code):
+            out[k] = is_timedelta_format(code)
+    return out
+
+
+class _XlsxSheet:
+    """A worksheet's <row>/<c> elements to rows of text, only the cells holding a value kept."""
+
+    def __init__(self, rows: _Rows, strings: list[str], dates: dict[int, bool], date1904: bool):
+        self.out, self.strings, self.dates, self.date1904 = rows, strings, dates, date1904
+        self.line = 0
+        self.col = 0
+        self.cells: dict[int, str] | None = None
+        self.ctype = "n"
+        self.style = 0
+        self.buf: list[str] | None = None
+        self.value: str | None = None
+        self.inline: list[str] | None = None
+        self.phonetic = 0
+
+    def start(self, name, attrs):
+        local = _local(name)
+        if local == "c":
+            ref = attrs.get("r")
+            self.col = _column_number(ref) if ref else self.col + 1
+            self.ctype = attrs.get("t", "n")
+            style = attrs.get("s")
+            self.style = int(style) if style and style.isdigit() else 0
+            self.value = None
+            self.inline = None
+            self.out.visit(1, self.line)
+        elif local == "v":
+            self.buf = []
+        elif local == "row":
+            r = attrs.get("r")
+            self.line = int(r) if r and r.isdigit() else self.line + 1
+            self.col = 0
+            self.cells = {}
+        elif local == "is":
+            self.inline = []
+        elif local == "t" and self.inline is not None and not self.phonetic:
+            self.buf = []
+        elif local == "rPh":
+            self.phonetic += 1
+
+    def end(self, name):
+        local = _local(name)
+        if local == "v":
+            self.value = "".join(self.buf)
+            self.buf = None
+        elif local == "t" and self.buf is not None and self.inline is not None:
+            self.inline.append("".join(self.buf))
+            self.buf = None
+        elif local == "rPh":
+            self.phonetic -= 1
+        elif local == "c":
+            text = self._cell()
+            if text:
+                self.out.column_ok(self.col, self.line)
+                if self.cells is None:  # a cell outside any row: its own row
+                    self.cells = {}
+                self.cells[self.col] = text
+        elif local == "row":
+            if self.cells:
+                self.out.add(self.line, self.cells)
+            self.cells = None
+
+    def text(self, data):
+        if self.buf is not None:
+            self.buf.append(data)
+
+    def _cell(self) -> str:
+        t, v = self.ctype, self.value
+        if t == "inlineStr":
+            return "".join(self.inline or ()).strip()
+        if v is None or v == "":
+            return ""
+        if t == "s":
+            try:
+                return self.strings[int(v)].strip()
+            except (ValueError, IndexError):
+                return ""
+        if t == "b":
+            return "TRUE" if v.strip() in ("1", "true") else "FALSE"
+        if t in ("str", "e"):
+            return v.strip()
+        if t == "d":
+            return v.strip()
+        if self.style in self.dates:
+            from openpyxl.utils.datetime import CALENDAR_MAC_1904, CALENDAR_WINDOWS_1900, from_excel
+
+            try:
+                when = from_excel(float(v), CALENDAR_MAC_1904 if self.date1904 else CALENDAR_WINDOWS_1900,
+                                  timedelta=self.dates[self.style])
+                return str(when) if self.dates[self.style] else when.isoformat()
+            except (ValueError, OverflowError):
+                return _number_text(v)
+        return _number_text(v)
+
+
+# --- .ods (OpenDocument) ---------------------------------------------------------------------------------------------
+class _OdsContent:
+    """content.xml of an .ods: the rows of the sheet asked for (repeated rows and cells expanded only where they
+    hold data), the names of the sheets seen."""
+
+    def __init__(self, rows: _Rows, sheet):
+        self.out, self.want = rows, sheet
+        self.names: list[str] = []
+        self.kept: dict[int, list] = {}  # sheet index -> rows, for the candidates of ``want``
+        self.active = False
+        self.line = 0
+        self.col = 0
+        self.cells: dict[int, str] | None = None
+        self.row_repeat = 1
+        self.cell: dict | None = None
+        self.parts: list[str] | None = None
+        self.paragraphs = 0
+        self.skip = 0  # inside an annotation (a comment on the cell): its text is not the cell's
+        digits = isinstance(sheet, str) and sheet.strip().lstrip("-").isdigit()
+        self.by_number = int(sheet) if isinstance(sheet, int) or digits else (1 if sheet is None else None)
+        self.by_name = sheet if isinstance(sheet, str) else None
+        self.final = not digits  # a sheet asked for by a name or a number: stop once it is read
+
+    def start(self, name, attrs):
+        local = _local(name)
+        if self.active:
+            if local == "table-cell" or local == "covered-table-cell":
+                self.cell = attrs
+                self.parts = []
+                self.paragraphs = 0
+                self.out.visit(1, self.line + 1)
+                return
+            if local == "table-row":
+                self.cells = {}
+                self.col = 0
+                self.row_repeat = _count(_attr(attrs, "number-rows-repeated"))
+                return
+            if self.parts is not None and not self.skip:
+                if local in ("p", "h"):
+                    if self.paragraphs:
+                        self.parts.append("\n")
+                    self.paragraphs += 1
+                elif local == "s":
+                    self.parts.append(" " * min(_count(_attr(attrs, "c")), 1000))
+                elif local == "tab":
+                    self.parts.append("\t")
+                elif local == "line-break":
+                    self.parts.append("\n")
+            if local == "annotation":
+                self.skip += 1
+            return
+        if local == "table":
+            self.names.append(_attr(attrs, "name", f"Sheet{len(self.names) + 1}"))
+            k = len(self.names)
+            if k == self.by_number or (self.by_name is not None and self.names[-1] == self.by_name):
+                self.active = True
+                self.line = 0
+                self.out.rows = self.kept.setdefault(k, [])
+                self.out.sheet = self.names[-1]
+
+    def end(self, name):
+        if not self.active:
+            return
+        local = _local(name)
+        if local == "table-cell" or local == "covered-table-cell":
+            repeat = _count(_attr(self.cell, "number-columns-repeated"))
+            text = self._value()
+            if text:
+                self.out.column_ok(self.col + repeat, self.line + 1)
+                self.out.visit(repeat - 1, self.line + 1)
+                for k in range(1, repeat + 1):
+                    self.cells[self.col + k] = text
+            self.col += repeat
+            self.cell = self.parts = None
+        elif local == "annotation":
+            self.skip -= 1
+        elif local == "table-row":
+            self.out.add(self.line + 1, self.cells, self.row_repeat if self.cells else 1)
+            self.line += self.row_repeat
+            self.cells = None
+        elif local == "table":
+            self.active = False
+            if self.final:
+                raise _Stop
+
+    def text(self, data):
+        if self.parts is not None and self.paragraphs and not self.skip:
+            self.parts.append(data)
+
+    def _value(self) -> str:
+        a = self.cell
+        kind = _attr(a, "value-type")
+        if kind in ("float", "percentage", "currency"):
+            return _number_text(_attr(a, "value", ""))
+        if kind == "boolean":
+            return "TRUE" if _attr(a, "boolean-value", "").strip().lower() in ("true", "1") else "FALSE"
+        if kind == "date":
+            from datetime import datetime
+
+            v = _attr(a, "date-value", "")
+            try:
+                return datetime.fromisoformat(v).isoformat()
+            except ValueError:
+                return v.strip()
+        if kind == "time":
+            return _attr(a, "time-value", "").strip()
+        return "".join(self.parts or ()).strip()
+
+
+def _count(text) -> int:
+    """A repeat count attribute (1 when absent or not a whole number)."""
+    if text and str(text).isdigit():
+        return max(1, int(text))
+    return 1
+
+
+def _ods_rows(book: _Zip, sheet) -> tuple[str, list]:
+    if not book.has("content.xml"):
+        raise InputError(Problem(book.shown, None, None, "no content.xml: not an OpenDocument spreadsheet"))
+    rows = _Rows(book.shown, book.limits)
+    content = _OdsContent(rows, sheet)
+    book.parse("content.xml", content)
+    names = content.names
+    if content.final and content.kept:  # found (names of later sheets were not read)
+        k = next(iter(content.kept))
+        return names[k - 1], content.kept[k]
+    k = _pick_sheet(book.shown, names, sheet) + 1
+    return names[k - 1], content.kept.get(k, [])

@@ -10,20 +10,40 @@ names most known columns); in a file that writes decimal commas ("0,35"), a
 cell such as ``1.000`` (a thousands separator or a decimal point?) is an
 error unless ``thousands='.'`` says how to read it. Only plain decimal
 numbers are numbers. A header may declare its unit: ``tau_max [Pa]``,
-``z1 (mm)``, or a unit suffix ``tau_max_kPa``. Every problem of a file is
-collected in one pass.
+``z1 (mm)``, ``V_v [cm³]``, or a unit suffix ``tau_max_kPa``. Every problem
+of a file is collected in one pass.
+
+Text under the data whose first cell alone is filled ("Remarks: sample
+disturbed") is kept as a note (``Table.notes``), not read as a test.
+
+Unused columns are warnings, except a **near miss of a decisive column**:
+a column whose absence changes what is computed, not only what is shown.
+Decisive are every text column of a schema (identities and groups:
+``test_id``, ``material``, ``condition``, ``group``, ``branch``, ``case``)
+and the numeric columns of :data:`DECISIVE_COLUMNS` (``R``, ``R2``,
+``back_pressure``, ``u_a``, ``weight``) or marked ``decisive=True``. A
+header of an unused column that is one edit away from one of their
+spellings of five letters or more (two edits for eight or more; case,
+spaces and '_' ignored), such as ``Materiaal`` for ``material``, while the
+column itself is absent, is an error naming both: read as a warning, it
+would silently pool two materials. ``ignore_columns`` (CLI
+``--ignore-column NAME``) leaves such a column out and goes on.
 """
 from __future__ import annotations
 
 import difflib
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..errors import InputError, Problem, UnitError
 from ..units import conversion
-from .grid import _parse, as_source, read_grid
+from .grid import MAX_COLUMNS, ReadLimits, _parse, as_source, read_grid
+
+#: numeric columns whose absence changes what is computed (a default radius, equal spheres, no back pressure,
+#: equal weights); text columns (identities and groups) are decisive too. A near miss of one stops the run.
+DECISIVE_COLUMNS = frozenset({"R", "R2", "back_pressure", "u_a", "weight"})
 
 _BLANKS = {"", "na", "n/a", "nan", "none", "null"}
 _UNIT_IN_HEADER = re.compile(r"^(?P<name>.*?)\s*[\[(]\s*(?P<unit>[^\])]*?)\s*[\])]\s*$")
@@ -42,6 +62,14 @@ class Column:
     choices: tuple[str, ...] = ()  # allowed values of a text column (lower case)
     quantity: str | None = None  # nomenclature name: its range rule is used (the same as for options)
     words: tuple[tuple[str, float], ...] = ()  # words a numeric column also accepts, e.g. ("plane", inf)
+    decisive: bool | None = None  # its absence changes the analysis (None: text columns and DECISIVE_COLUMNS)
+
+    @property
+    def is_decisive(self) -> bool:
+        """True when a near miss of this column's name must stop the run (see the module docstring)."""
+        if self.decisive is not None:
+            return self.decisive
+        return self.kind == "text" or self.name in DECISIVE_COLUMNS
 
 
 def _key(text: str) -> str:
@@ -202,12 +230,13 @@ def _header_hits(cells: list[str], lookup) -> int:
     return sum(1 for c in cells if c and _match_header(c, lookup)[0] is not None)
 
 
-def _find_header(rows: list[tuple[int, list[str]]], lookup) -> tuple[int, int]:
+def _find_header(rows: list[tuple[int, list[str]]], lookup, width: int = MAX_COLUMNS) -> tuple[int, int]:
     """(index of the header row, known columns it names): the first row naming two known columns
-    (or, failing that, the first naming one; else the first row)."""
+    (or, failing that, the first naming one; else the first row). Only the first ``width`` + 1 cells of a
+    row are looked at (a wider header is refused afterwards), so the search is bounded."""
     first_one = None
     for k, (_, cells) in enumerate(rows[:60]):
-        hits = _header_hits(cells, lookup)
+        hits = _header_hits(cells[:width + 1], lookup)
         if hits >= 2:
             return k, hits
         if hits == 1 and first_one is None:
@@ -223,10 +252,10 @@ def _unit_cell(text: str) -> str:
 
 
 def _is_units_row(cells: list[str], positions) -> bool:
-    """A row of units under the header: no number in it, and a valid unit under at least one numeric column."""
+    """A row of units under the header: no number in it, and a valid unit under at least one numeric column
+    (a unit that is not valid under another column is then reported as such, not read as a data row)."""
     if not any(cells) or any(_PLAIN_RE.fullmatch(c.strip().replace(",", ".")) for c in cells if c.strip()):
         return False
-    valid = 0
     for j, col, _ in positions.values():
         if col.kind == "text" or j >= len(cells) or not cells[j].strip():
             continue
@@ -236,9 +265,9 @@ def _is_units_row(cells: list[str], positions) -> bool:
         try:
             conversion(unit, col.kind)
         except UnitError:
-            return False
-        valid += 1
-    return valid > 0
+            continue
+        return True
+    return False
 
 
 def _metadata(rows: list[tuple[int, list[str]]]) -> dict[str, str]:
@@ -257,23 +286,52 @@ def _metadata(rows: list[tuple[int, list[str]]]) -> dict[str, str]:
     return out
 
 
-def read_table(source, schema: list[Column]) -> Table:
+def read_table(source, schema: list[Column], *, ignore_columns=(), limits: ReadLimits | None = None) -> Table:
     """Read ``source`` (a path to a CSV, .xlsx or .ods file, a DataFrame, or a TableSource naming the
-    sheet and the thousands separator) against ``schema``.
+    sheet, the thousands separator, the columns to ignore and the limits) against ``schema``.
 
-    Problems are collected in ``Table.problems``, every one of the file in one pass.
+    Parameters
+    ----------
+    source : path, DataFrame or TableSource
+        The table.
+    schema : list of Column
+        The columns the command reads.
+    ignore_columns : sequence of str
+        Header names of columns to leave out (as if absent), added to the source's own; a near miss of a
+        decisive column is an error unless it is ignored (CLI ``--ignore-column NAME``).
+    limits : ReadLimits, optional
+        Reading limits (bytes, cells, columns); default the source's, else :class:`ReadLimits`'s defaults
+        (CLI ``--max-megabytes``, ``--max-cells``, ``--max-columns``).
+
+    Returns
+    -------
+    Table
+        Columns in SI, with ``problems`` (every one of the file, in one pass), ``warnings`` and ``notes``.
+
     Raises InputError at once only when the file cannot be read as a table at
-    all (missing, binary, empty, no data rows).
+    all (missing, binary, empty, no data rows), and LimitError (an InputError)
+    when it is over a reading limit.
     """
     src = as_source(source)
+    if ignore_columns or limits is not None:
+        extra = (ignore_columns,) if isinstance(ignore_columns, str) else tuple(ignore_columns or ())
+        src = replace(src, ignore_columns=src.ignore_columns + extra,
+                      limits=limits if limits is not None else src.limits)
+    limits = src.limits or ReadLimits()
+    width_cap = limits.max_columns
     grid = read_grid(src)
     lookup = _lookup(schema)
     if grid.text_rows:  # CSV: the delimiter whose header names most known columns (ties: , ; tab)
-        best = max(grid.delimiters, key=lambda d: (_find_header(grid.text_rows[d], lookup)[1],
-                                                   -grid.delimiters.index(d)))
-        if _find_header(grid.text_rows[best], lookup)[1] == 0:  # no known column at all: the widest first row
+        found = {d: _find_header(grid.text_rows[d], lookup, width_cap) for d in grid.delimiters}
+        best = max(grid.delimiters, key=lambda d: (found[d][1], -grid.delimiters.index(d)))
+        if found[best][1] == 0:  # no known column at all: the widest first row
             best = max(grid.delimiters, key=lambda d: (len(grid.text_rows[d][0][1]) if grid.text_rows[d] else 0,
                                                        -grid.delimiters.index(d)))
+        head = grid.text_rows[best]
+        k0 = found[best][0]
+        if head and len(_trimmed(head[k0][1])) > width_cap:  # before the whole file is split
+            raise limits.error("max_columns", f"the header has {len(_trimmed(head[k0][1])):,} columns", grid.shown,
+                               head[k0][0])
         tail = _plain_tail(grid, best, lookup)
         if tail is None:
             grid.parse_all(best)
@@ -288,15 +346,26 @@ def read_table(source, schema: list[Column]) -> Table:
     broken = [(n, cells[0]) for n, cells in rows if cells and cells[0].startswith("\x00csv error")]
     if broken:
         raise InputError(Problem(shown, broken[0][0], None, broken[0][1][1:] + " (a quote is not closed?)", sheet))
-    k, _ = _find_header(rows, lookup)
+    k, _ = _find_header(rows, lookup, width_cap)
     header_line, headers = rows[k]
+    if len(_trimmed(headers)) > width_cap:
+        raise limits.error("max_columns", f"the header has {len(_trimmed(headers)):,} columns", shown, header_line,
+                           sheet=sheet)
     metadata = _metadata(rows[:k])
     body = rows[k + 1:]
 
     table = Table(shown, {}, {}, np.empty(0, dtype=int), {}, {}, header_line, [], sheet=sheet, metadata=metadata,
                   known=tuple(dict.fromkeys(sp for col in schema for sp in (col.name, *col.aliases))))
+    ignored = {_key(x): x for x in src.ignore_columns}
+    used_ignores: set[str] = set()
     positions: dict[str, tuple[int, Column, str | None]] = {}
+    blank_headers = []
     for j, h in enumerate(headers):
+        hit = _ignored(h, ignored)
+        if hit is not None:
+            used_ignores.add(hit)
+            table.notes.append(f"column '{h.strip()}' ignored, as asked")
+            continue
         col, unit = _match_header(h, lookup)
         if col is None:
             if h.strip():
@@ -304,8 +373,8 @@ def read_table(source, schema: list[Column]) -> Table:
                 bad = _bad_unit_header(h, lookup)
                 if bad:
                     table.problems.append(Problem(shown, header_line, h.strip(), bad, sheet))
-            elif any(j < len(cells) and cells[j] for _, cells in body):
-                table.warnings.append(f"column {j + 1} has data but no header: it is not used")
+            else:
+                blank_headers.append(j)
             continue
         if col.name in positions:
             first = headers[positions[col.name][0]].strip()
@@ -314,31 +383,48 @@ def read_table(source, schema: list[Column]) -> Table:
             continue
         positions[col.name] = (j, col, unit)
         table.headers[col.name] = h.strip()
-    for h in table.unmatched:
-        near = difflib.get_close_matches(_key(h), [_key(x) for x in table.known], n=1, cutoff=0.6)
-        name = next((x for x in table.known if _key(x) == near[0]), None) if near else None
-        canonical = lookup[_key(name)].name if name else None
-        if canonical and canonical in positions:
-            canonical = None  # the column it resembles is there already
-        table.warnings.append(f"column '{h}' is not used" + (f" — did you mean '{canonical}'?" if canonical else ""))
+    for key, name in ignored.items():
+        if key not in used_ignores:
+            table.warnings.append(f"ignore_columns: the header has no column '{name}'")
+    for j in _with_data(blank_headers, body):
+        table.warnings.append(f"column {j + 1} has data but no header: it is not used")
+    _unused_columns(table, schema, lookup, positions)
 
     if body and _is_units_row(body[0][1], positions):
+        units_line = body[0][0]
         for name, (j, col, unit) in positions.items():
             cell = _unit_cell(body[0][1][j]) if j < len(body[0][1]) else ""
             if col.kind == "text" or not cell or cell in ("-", "–") and col.kind != "dimensionless":
                 continue
             if unit is not None and unit != cell:
-                table.problems.append(Problem(shown, body[0][0], table.headers[name],
+                table.problems.append(Problem(shown, units_line, table.headers[name],
                                               f"the header says '{unit}' but the units row says '{cell}'", sheet))
                 continue
+            try:
+                conversion(cell, col.kind)
+            except UnitError as exc:
+                table.problems.append(Problem(shown, units_line, table.headers[name], f"units row: {exc}", sheet,
+                                              body[0][1][j]))
+                continue
             positions[name] = (j, col, cell)
-        table.notes.append(f"units read from the row under the header (line {body[0][0]})")
+        table.notes.append(f"units read from the row under the header (line {units_line})")
         body = body[1:]
-    if not body:
-        raise InputError(Problem(shown, header_line, None, "the file has a header but no data rows", sheet))
     if tail is not None and any(ln.count(delimiter) != len(headers) - 1 for ln in tail[1]):
         body = body + _parse("\n" * (tail[0] - 1) + "\n".join(tail[1]), delimiter)  # ragged: row by row
         tail = None
+    notes = []  # text lines under the data ("Remarks: ..."): notes, not tests
+    while tail is not None and tail[1] and (text := _note_text(tail[1][-1].split(delimiter), positions)):
+        notes.append((tail[0] + len(tail[1]) - 1, text))
+        tail[1].pop()
+    if tail is not None and not tail[1]:
+        tail = None
+    while tail is None and body and (text := _note_text(body[-1][1], positions)):
+        notes.append((body[-1][0], text))
+        body.pop()
+    for n, text in reversed(notes):
+        table.notes.append(f"note under the data (line {n}): {text}")
+    if not body:
+        raise InputError(Problem(shown, header_line, None, "the file has a header but no data rows", sheet))
     table.lines = np.array([n for n, _ in body], dtype=int)
     cells_by_row = [cells for _, cells in body]
 
@@ -420,6 +506,119 @@ def read_table(source, schema: list[Column]) -> Table:
         table.columns[name] = si
         _check_rule(table, col)
     return table
+
+
+def _trimmed(cells: list[str]) -> list[str]:
+    """A row without its trailing blank cells (the width a header really has)."""
+    end = len(cells)
+    while end and not cells[end - 1].strip():
+        end -= 1
+    return cells[:end]
+
+
+def _name_part(header: str) -> str:
+    """A header without the unit it declares in brackets: 'Materiaal [-]' -> 'Materiaal'."""
+    m = _UNIT_IN_HEADER.match(header.strip())
+    return m.group("name") if m and m.group("name") else header.strip()
+
+
+def _ignored(header: str, ignored: dict[str, str]) -> str | None:
+    """The key of ``ignored`` naming this header (as written, or without its unit), else None."""
+    if not ignored or not header.strip():
+        return None
+    for k in (_key(header), _key(_name_part(header))):
+        if k in ignored:
+            return k
+    return None
+
+
+def _with_data(columns: list[int], body, rows: int = 10_000) -> list[int]:
+    """Which of ``columns`` hold data in the first ``rows`` rows (a bounded look, for a warning)."""
+    left, found = set(columns), []
+    for _, cells in body[:rows]:
+        if not left:
+            break
+        for j in [j for j in left if j < len(cells) and cells[j]]:
+            left.discard(j)
+            found.append(j)
+    return sorted(found)
+
+
+def _edits_within(a: str, b: str, limit: int) -> bool:
+    """True when ``a`` becomes ``b`` with at most ``limit`` insertions, deletions, substitutions or swaps of
+    neighbours (optimal string alignment distance), computed in a band of width ``limit``."""
+    if abs(len(a) - len(b)) > limit:
+        return False
+    prev2, prev = None, list(range(len(b) + 1))
+    for i in range(1, len(a) + 1):
+        cur = [i] + [limit + 1] * len(b)
+        for j in range(max(1, i - limit), min(len(b), i + limit) + 1):
+            cost = a[i - 1] != b[j - 1]
+            v = min(prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + cost)
+            if prev2 is not None and i > 1 and j > 1 and a[i - 1] == b[j - 2] and a[i - 2] == b[j - 1]:
+                v = min(v, prev2[j - 2] + 1)
+            cur[j] = v
+        if min(cur) > limit:
+            return False
+        prev2, prev = prev, cur
+    return prev[len(b)] <= limit
+
+
+def _near_miss(header: str, spellings: dict[str, Column]) -> Column | None:
+    """The decisive column whose spelling (5 letters or more) is one edit from the header (two edits for 8 or more
+    letters), case, spaces and '_' ignored; None when there is none."""
+    h = _key(_name_part(header)).replace("_", "")
+    if len(h) < 4:
+        return None
+    for spelling, col in spellings.items():
+        if h != spelling and _edits_within(h, spelling, 2 if len(spelling) >= 8 else 1):
+            return col
+    return None
+
+
+def _unused_columns(table: Table, schema: list[Column], lookup: dict[str, Column], positions: dict) -> None:
+    """A warning per unused column, with the nearest known name; an error for a near miss of a decisive column
+    that is absent (it would change the analysis without a word)."""
+    if not table.unmatched:
+        return
+    spellings = {}
+    for col in schema:
+        if col.is_decisive and col.name not in positions:
+            for sp in (col.name, *col.aliases):
+                compact = _key(sp).replace("_", "")
+                if len(compact) >= 5:
+                    spellings.setdefault(compact, col)
+    known_keys = {}
+    for x in table.known:
+        known_keys.setdefault(_key(x), x)
+    for h in table.unmatched:
+        col = _near_miss(h, spellings) if spellings else None
+        if col is not None:
+            table.problems.append(Problem(
+                table.path, table.header_line, h,
+                f"column '{h}' is not used, but its name is close to '{col.name}' ({col.description}), which "
+                f"changes the analysis when it is absent. Rename the column '{col.name}' if that is what it holds, "
+                f"or leave it out with --ignore-column '{h}' (from Python: ignore_columns=('{h}',))", table.sheet))
+            continue
+        near = difflib.get_close_matches(_key(h), list(known_keys), n=1, cutoff=0.6) if len(h) <= 64 else []
+        canonical = lookup[near[0]].name if near else None
+        if canonical and canonical in positions:
+            canonical = None  # the column it resembles is there already
+        table.warnings.append(f"column '{h}' is not used" + (f" — did you mean '{canonical}'?" if canonical else ""))
+
+
+def _note_text(cells: list[str], positions: dict) -> str | None:
+    """The text of a line under the data that is a note, not a test: only its first cell filled, not a number,
+    and a sentence ('Remarks: ...', three words or more) or text under a numeric or unused first column."""
+    first = cells[0].strip() if cells else ""
+    if not first or len(positions) < 2 or any(c.strip() for c in cells[1:]):
+        return None
+    if _PLAIN_RE.fullmatch(first.replace(",", ".")):
+        return None
+    col0 = next((col for j, col, _ in positions.values() if j == 0), None)
+    if ":" in first or len(first.split()) >= 3 or col0 is None or col0.kind != "text":
+        return first
+    return None
 
 
 def _plain_tail(grid, delimiter: str, lookup) -> tuple[int, list[str]] | None:
