@@ -13,12 +13,14 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import FitError, OptionError
+from ..errors import CapredError, FitError, OptionError
 from ..fitting.linear import LineFit, fit_line
 from ..io.table import Column, Table, read_table
+from ..nomenclature import QUANTITIES as _GLOSSARY
 from ..physics import triaxial as tx
 from ..references import cite
 from ..result import InputFile, Options, Result, TableSpec, input_file, num
+from ..units import parse_quantity
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier", ("id", "test", "sample_id")),
@@ -33,6 +35,12 @@ SCHEMA = [
     Column("group", "text", None, "group", ("tensor_group",)),
     Column("D0", "length", "mm", "initial diameter", ("initial_diameter", "diameter", "d_0"), "positive"),
     Column("H0", "length", "mm", "initial height", ("initial_height", "height", "h_0"), "positive"),
+    Column("back_pressure", "pressure", "kPa", "back pressure u_b (pore-water pressure)",
+           ("backpressure", "u_b", "bp", "back_pressure_kpa")),
+    Column("u_a", "pressure", "kPa", "pore-air pressure (axis translation)",
+           ("pore_air_pressure", "air_pressure", "ua")),
+    Column("strain_at_failure", "dimensionless", "-", "axial strain at failure",
+           ("eps_f", "axial_strain_f", "axial_strain_at_failure", "strain_f")),
 ]
 
 CURVE_SCHEMA = [
@@ -88,26 +96,69 @@ def fit_envelope(sigma3_eff, sigma1_eff, confidence=0.95) -> Envelope:
     return Envelope(float(c), float(phi), float(np.sqrt(max(c_var, 0.0))), float(phi_se), "fit", f)
 
 
+#: membrane options and their SI unit; their glossary names are used once capred.nomenclature has them
+_MEMBRANE = {"membrane_thickness": ("m", "length"), "membrane_modulus": ("Pa", "pressure")}
+
+
 @dataclass(frozen=True)
 class TriaxialOptions(Options):
     """Options of `capred triaxial-bounds`.
 
-    ``c_eff`` [Pa] (or a string with a unit) and ``phi_eff`` [deg] replace the
-    fit of the saturated tests; ``curves`` is a long table of raw curves
-    (test_id, axial_strain, q) whose peaks give q_f.
+    Attributes
+    ----------
+    c_eff : float or str, optional
+        Effective cohesion c' [Pa] (or a string with a unit); with ``phi_eff``
+        it replaces the fit of the saturated tests.
+    phi_eff : float, optional
+        Effective friction angle phi' [deg].
+    confidence : float
+        Confidence level of the envelope fit's intervals.
+    curves : path, optional
+        Raw curves (a long table with test_id, a file, a folder or a glob of
+        instrument exports) whose peaks give q_f.
+    membrane_thickness : float or str, optional
+        Membrane thickness t_m [m] (CLI in mm); with ``membrane_modulus`` the
+        deviator is corrected for the membrane (ASTM D4767); off by default.
+    membrane_modulus : float or str, optional
+        Young's modulus of the membrane E_m [Pa] (CLI in kPa; latex about
+        1400 kPa).
     """
 
-    QUANTITIES = {"c_eff": "c_eff", "phi_eff": "phi_eff"}
+    QUANTITIES = {"c_eff": "c_eff", "phi_eff": "phi_eff",
+                  **{k: k for k in _MEMBRANE if k in _GLOSSARY}}
 
     c_eff: float | None = None  # Pa
     phi_eff: float | None = None  # deg
     confidence: float = 0.95
     curves: str | Path | None = None
+    membrane_thickness: float | None = None  # m
+    membrane_modulus: float | None = None  # Pa
 
     def __post_init__(self) -> None:
         super().__post_init__()
         if (self.c_eff is None) != (self.phi_eff is None):
             raise OptionError("give both --c-eff and --phi-eff, or neither")
+        for name, (unit, kind) in _MEMBRANE.items():
+            value = getattr(self, name)
+            if value is None or name in self.QUANTITIES:
+                continue
+            try:
+                si = float(value) if isinstance(value, (int, float)) else parse_quantity(str(value), unit, kind)
+            except (CapredError, ValueError) as exc:
+                raise OptionError(f"{self.option_name(name)}: {exc}") from None
+            if not np.isfinite(si) or si <= 0:
+                raise OptionError(f"{self.option_name(name)}: must be > 0 (got {value!r})")
+            object.__setattr__(self, name, si)
+        if (self.membrane_thickness is None) != (self.membrane_modulus is None):
+            raise OptionError("give both --membrane-thickness and --membrane-modulus for the membrane correction, "
+                              "or neither")
+
+    @property
+    def membrane(self) -> tuple[float, float] | None:
+        """(thickness [m], modulus [Pa]) of the membrane, or None (no correction)."""
+        if self.membrane_thickness is None:
+            return None
+        return self.membrane_thickness, self.membrane_modulus
 
 
 @dataclass(repr=False)
@@ -163,6 +214,9 @@ class TriaxialResult(Result):
                 "sigma1_kPa": _kpa(t["sigma1"][i]),
                 "p_kPa": _kpa(t["p"][i]), "q_kPa": _kpa(t["q"][i]),
                 "p0_kPa": _kpa(t["p0"][i]), "s0_kPa": _kpa(t["s0"][i]),
+                "sigma3_total_kPa": _kpa(t["sigma3_total"][i]), "back_pressure_kPa": _kpa(t["back_pressure"][i]),
+                "u_a_kPa": _kpa(t["u_a"][i]), "radial_pressure_kPa": _kpa(t["radial_pressure"][i]),
+                "membrane_correction_kPa": _kpa(t["membrane"][i]),
                 "lode_angle_deg": num(t["lode"][i]),
                 "strain_at_failure": num(t["strain_f"][i]),
                 "q_sat_kPa": _kpa(self.q_sat[i]) if self.unsaturated[i] else None,
@@ -229,7 +283,12 @@ def _kpa(x) -> float | None:
 
 
 def load_triaxial_table(table: Table, curves: dict[str, tuple[float, float]] | None) -> tuple[Table, dict]:
-    """q at failure (from q_f, sigma1 or the curves) per test; problems collected in ``table``."""
+    """q at failure (from q_f, sigma1 or the curves) per test; problems collected in ``table``.
+
+    Returns the table and a dict with ``q`` [Pa], ``strain`` (axial strain at
+    failure [-], from the curve or the column ``strain_at_failure``) and
+    ``from_curve`` (True where the curve gave q).
+    """
     for name in ("test_id", "condition", "sigma3"):
         if name not in table.columns:
             table.missing_column(name)
@@ -240,28 +299,138 @@ def load_triaxial_table(table: Table, curves: dict[str, tuple[float, float]] | N
     s3 = table.columns["sigma3"]
     q = table.get("q_f").copy()
     s1 = table.get("sigma1")
-    strain = np.full(n, np.nan)
+    strain = table.get("strain_at_failure").copy()
+    from_curve = np.zeros(n, bool)
     table.check_unique("test_id")
     for i in range(n):
         tid = table.columns["test_id"][i]
-        if np.isnan(q[i]) and np.isfinite(s1[i]):
+        if np.isnan(q[i]) and np.isfinite(s1[i]) and np.isfinite(s3[i]):
             q[i] = s1[i] - s3[i]
             if q[i] <= 0:
                 table.add_problem(i, "sigma1", f"sigma1 = {table.value_text('sigma1', i)} is not above sigma3: q_f <= 0")
         if np.isnan(q[i]) and curves and tid in curves:
             q[i], strain[i] = curves[tid]
+            from_curve[i] = True
             if q[i] <= 0:
                 table.add_problem(i, "test_id", f"the curve of '{tid}' peaks at q = {q[i] / 1e3:.4g} kPa <= 0")
         if np.isnan(q[i]) and not any(p.line == int(table.lines[i]) for p in table.problems):
             table.add_problem(i, "q_f" if "q_f" in table.columns else None,
                               "no failure deviator: give 'q_f' or 'sigma1'" + (" or a curve" if curves else ""))
-        if np.isnan(s3[i]) and not any(p.line == int(table.lines[i]) for p in table.problems):
-            table.add_problem(i, "sigma3", "sigma3 is blank")
     if curves:
         unknown = sorted(set(curves) - set(table.columns["test_id"]))
         if unknown:
             table.notes.append(f"curves for tests not in the table ignored: {', '.join(unknown)}")
-    return table, {"q": q, "strain": strain}
+    return table, {"q": q, "strain": strain, "from_curve": from_curve}
+
+
+def pressure_tolerance(pressure):
+    """Tolerance [Pa] of a cell or back pressure: 2 kPa below 200 kPa, 1 % above.
+
+    The accuracy ASTM D4767-11 (section 5, pressure-control devices;
+    doi:10.1520/D4767-11) asks of the devices that apply the chamber and back
+    pressures; two readings of one pressure that differ by more are two
+    different pressures.
+    """
+    return np.maximum(2e3, 0.01 * np.abs(pressure))
+
+
+def pore_pressures(table: Table, at_peak: dict[str, dict[str, float]], q) -> dict:
+    """The pore pressure to subtract from each test's stresses and whether the table's stresses are total.
+
+    Saturated tests: sigma' = sigma - u_w with u_w the ``back_pressure``
+    column, else the export's pore pressure at the peak, else its back
+    pressure (Terzaghi). Unsaturated tests under axis translation: the net
+    stress sigma - u_a with u_a the ``u_a`` column, else the export's pore-air
+    pressure (Fredlund & Morgenstern 1977 stress state variables). The table's
+    sigma3 is compared with the export's radial pressure at the peak
+    (sigma1 in extension, where the cell pressure is the major stress) within
+    :func:`pressure_tolerance`: equal -> total stresses (the pore pressure is
+    subtracted); equal to radial - u -> already effective (not subtracted
+    again); otherwise a warning. Problems are added to ``table``.
+
+    Returns
+    -------
+    dict
+        ``u`` [Pa] subtracted per test, ``u_b``, ``u_a`` [Pa] (NaN where
+        unknown), ``radial`` [Pa] (the export's, NaN without one),
+        ``sigma3`` [Pa] (the table's, blank cells filled from the export),
+        ``s0`` [Pa] (blank cells filled with u_a - u_b), ``notes``,
+        ``warnings``.
+    """
+    n = len(table)
+    tids = [str(t) for t in table.columns["test_id"]]
+    sat = table.columns["condition"] == "saturated"
+    s3 = table.columns["sigma3"].copy()
+    s0 = table.get("s0").copy()
+    ub_col, ua_col = table.get("back_pressure").copy(), table.get("u_a").copy()
+    ext = (table.get("sigma2") == s3 + q) if "sigma2" in table.columns else np.zeros(n, bool)
+    exp = {k: np.array([at_peak.get(t, {}).get(k, np.nan) for t in tids]) for k in
+           ("radial_pressure", "back_pressure", "pore_pressure", "air_pressure")}
+    u = np.zeros(n)
+    notes, warnings = [], []
+    filled_s3, from_export, already = [], [], []
+    for i in range(n):
+        tid = tids[i]
+        if sat[i]:
+            if np.isfinite(ua_col[i]):
+                table.add_problem(i, "u_a", "u_a is for unsaturated tests (net stress sigma - u_a); the pore "
+                                            "pressure of a saturated test is its back_pressure")
+            u_tab = ub_col[i]
+            u_exp = exp["pore_pressure"][i] if np.isfinite(exp["pore_pressure"][i]) else exp["back_pressure"][i]
+        else:
+            u_tab = ua_col[i]
+            u_exp = exp["air_pressure"][i]
+            u_w = ub_col[i] if np.isfinite(ub_col[i]) else exp["back_pressure"][i]
+            if np.isfinite(ub_col[i]) and not (np.isfinite(ua_col[i]) or np.isfinite(u_exp)):
+                table.add_problem(i, "back_pressure", "an unsaturated test's back pressure is the pore-water "
+                                  "pressure of axis translation: give the pore-air pressure 'u_a' too (the "
+                                  "stresses are net of u_a)")
+            u_a = u_tab if np.isfinite(u_tab) else u_exp
+            if np.isnan(s0[i]) and np.isfinite(u_a) and np.isfinite(u_w):
+                s0[i] = u_a - u_w
+                notes.append(f"test '{tid}': s0 = u_a - u_w = {s0[i] / 1e3:.4g} kPa (axis translation)")
+        radial = exp["radial_pressure"][i]
+        if np.isnan(s3[i]) and np.isfinite(radial) and not ext[i]:
+            s3[i] = radial
+            filled_s3.append(tid)
+        total = np.isfinite(u_tab)
+        if np.isfinite(radial) and np.isfinite(s3[i]):
+            cell = s3[i] + q[i] if ext[i] else s3[i]
+            u_known = u_tab if np.isfinite(u_tab) else u_exp
+            name = "sigma1" if ext[i] else "sigma3"
+            if abs(cell - radial) <= pressure_tolerance(radial):
+                total = True
+            elif np.isfinite(u_known) and abs(u_known) > pressure_tolerance(radial) and \
+                    abs(cell - (radial - u_known)) <= pressure_tolerance(radial):
+                total = False
+                already.append(tid)
+                if np.isfinite(u_tab):
+                    warnings.append(f"test '{tid}': {name} = {cell / 1e3:.4g} kPa equals the export's radial "
+                                    f"pressure {radial / 1e3:.4g} kPa minus the pore pressure {u_known / 1e3:.4g} kPa: "
+                                    "the table's stresses are already effective; the pore pressure of the table "
+                                    "is not subtracted again")
+            else:
+                warnings.append(f"test '{tid}': {name} = {cell / 1e3:.4g} kPa in the table but the export's radial "
+                                f"pressure at failure is {radial / 1e3:.4g} kPa (tolerance "
+                                f"{pressure_tolerance(radial) / 1e3:.3g} kPa, ASTM D4767); the table's value is used")
+        if total:
+            if np.isfinite(u_tab):
+                u[i] = u_tab
+            elif np.isfinite(u_exp):
+                u[i] = u_exp
+                from_export.append(tid)
+    if filled_s3:
+        notes.append(f"sigma3 taken from the export's radial pressure at failure: {', '.join(filled_s3)}")
+    if from_export:
+        notes.append(f"pore pressure taken from the export at failure (sigma' = sigma - u_w saturated, "
+                     f"sigma - u_a unsaturated): {', '.join(from_export)}")
+    if already:
+        notes.append(f"sigma3 already effective (= radial pressure - pore pressure of the export): "
+                     f"{', '.join(already)}")
+    ub = np.where(sat, np.where(np.isfinite(ub_col), ub_col, np.where(u != 0, u, np.nan)), ub_col)
+    ua = np.where(~sat, np.where(np.isfinite(ua_col), ua_col, np.where(u != 0, u, np.nan)), np.nan)
+    return {"u": u, "u_b": ub, "u_a": ua, "radial": exp["radial_pressure"], "sigma3": s3, "s0": s0,
+            "notes": notes, "warnings": warnings}
 
 
 def run_triaxial_bounds(source, options: TriaxialOptions | None = None,
@@ -269,7 +438,10 @@ def run_triaxial_bounds(source, options: TriaxialOptions | None = None,
     """Envelope, bounds and group analysis of a triaxial table (see module docstring).
 
     ``source`` is a CSV path or a DataFrame; ``curves`` (or ``options.curves``)
-    a long CSV of raw curves.
+    a long CSV of raw curves. Stresses in the table are total unless a pore
+    pressure says otherwise: ``back_pressure`` (saturated tests,
+    sigma' = sigma - u_b) and ``u_a`` (unsaturated tests, net stress
+    sigma - u_a) are subtracted from sigma3, sigma1, sigma2 and p0.
 
     Example
     -------
@@ -285,29 +457,74 @@ def run_triaxial_bounds(source, options: TriaxialOptions | None = None,
     if curves is not None:
         from .triaxial_curves import read_curves
 
-        raw_curves = read_curves(curves, table)
+        raw_curves = read_curves(curves, table, opt.membrane)
         table.problems += raw_curves.problems  # reported with the table's own, in one round
         table.notes += raw_curves.notes
         table.warnings += raw_curves.warnings
     table, d = load_triaxial_table(table, raw_curves.peaks if raw_curves else None)
     table.raise_if_problems()
+    notes = list(table.notes)
+    warnings = list(opt.warnings) + list(table.warnings)
 
     cond = table.columns["condition"]
     sat = cond == "saturated"
     unsat = ~sat
-    s3 = table.columns["sigma3"]
-    q = d["q"]
+    q = d["q"].copy()
+    # membrane correction of the deviator (the curves' readings are corrected before their peak)
+    dq = np.zeros(len(table))
+    if opt.membrane is not None:
+        from .triaxial_curves import membrane_correction
+
+        at = raw_curves.at_peak if raw_curves else {}
+        D0 = table.get("D0")
+        for i in range(len(table)):
+            tid = str(table.columns["test_id"][i])
+            if d["from_curve"][i]:
+                dq[i] = at[tid]["membrane"]
+                continue
+            need = [w for w, ok in (("'strain_at_failure'", np.isfinite(d["strain"][i])),
+                                    ("'D0'", np.isfinite(D0[i]))) if not ok]
+            if need:
+                table.add_problem(i, "test_id", f"the membrane correction of '{tid}' needs {' and '.join(need)} "
+                                                "(or its raw curve with --curves)")
+                continue
+            dq[i] = float(membrane_correction(d["strain"][i], D0[i], *opt.membrane))
+        q = q - np.where(d["from_curve"], 0.0, dq)  # a curve's readings were corrected before its peak
+        for i in np.flatnonzero(q <= 0):
+            table.add_problem(int(i), "test_id", f"after the membrane correction ({dq[i] / 1e3:.4g} kPa) q_f <= 0")
+        t_m, E_m = opt.membrane
+        notes.append(f"membrane correction of the deviator (ASTM D4767-11): Δq = 4 E_m t_m ε_a / D0 with "
+                     f"t_m = {t_m * 1e3:.4g} mm, E_m = {E_m / 1e3:.4g} kPa; D0 for the diameter after consolidation")
+    else:
+        notes.append("no membrane correction of the deviator (give --membrane-thickness and --membrane-modulus "
+                     "to apply ASTM D4767-11's)")
+
+    pp = pore_pressures(table, raw_curves.at_peak if raw_curves else {}, q)
+    notes += pp["notes"]
+    warnings += pp["warnings"]
+    u = pp["u"]
+    for i in np.flatnonzero(np.isnan(pp["sigma3"])):
+        table.add_problem(int(i), "sigma3", "sigma3 is blank")
+    table.raise_if_problems()
+    s3_total = pp["sigma3"]
+    s3 = s3_total - u
     s1 = s3 + q
-    s2 = table.get("sigma2").copy()
+    s2 = table.get("sigma2") - u
     s2[np.isnan(s2)] = s3[np.isnan(s2)]
-    p0 = table.get("p0").copy()
+    p0 = table.get("p0") - u
     p0[np.isnan(p0)] = s3[np.isnan(p0)]
-    s0 = table.get("s0")
-    for i in np.flatnonzero(np.isfinite(s2)):
+    s0 = pp["s0"]
+    for i in np.flatnonzero(s3 < 0):
+        kind = "effective" if sat[i] else "net"
+        table.add_problem(int(i), "sigma3", f"the {kind} confining stress sigma3 - "
+                          f"{'u_b' if sat[i] else 'u_a'} = {s3[i] / 1e3:.4g} kPa is negative")
+    for i in np.flatnonzero(np.isfinite(table.get("sigma2"))):
         if not s3[i] <= s2[i] <= s1[i]:
             table.add_problem(i, "sigma2", "sigma2 must lie between sigma3 and sigma1")
+    if np.any(u != 0):
+        notes.append("stresses net of the pore pressure: sigma' = sigma - u_b (saturated tests, Terzaghi), "
+                     "sigma - u_a (unsaturated tests, axis translation); sigma3_total_kPa keeps the cell pressure")
 
-    notes = list(table.notes)
     if opt.c_eff is not None:
         env = Envelope(opt.c_eff, opt.phi_eff, None, None, "options")
         if sat.any():
@@ -332,6 +549,11 @@ def run_triaxial_bounds(source, options: TriaxialOptions | None = None,
             table.add_problem(int(members[sat[members]][0]), "group",
                               f"group '{g}' holds a saturated test; groups are for unsaturated tests")
     table.raise_if_problems()
+    if env.c < 0:
+        hint = ("; if sigma3 is the cell pressure of back-pressured tests, give their 'back_pressure' "
+                "(sigma' = sigma - u_b)" if not np.any(u[sat] != 0) else "")
+        warnings.append(f"c' = {env.c / 1e3:.4g} kPa < 0 from the saturated tests: a negative cohesion has no "
+                        f"physical meaning and the bounds below rest on it{hint}")
 
     nan = np.full(len(table), np.nan)
     bounds = {}
@@ -348,10 +570,12 @@ def run_triaxial_bounds(source, options: TriaxialOptions | None = None,
         "test_id": table.columns["test_id"], "condition": cond, "group": groups, "line": table.lines,
         "sigma1": s1, "sigma2": s2, "sigma3": s3, "p": tx.mean_stress(s1, s3, s2), "q": q,
         "p0": p0, "s0": s0, "strain_f": d["strain"], "lode": tx.lode_angle(s1, s2, s3),
+        "sigma3_total": s3_total, "back_pressure": pp["u_b"], "u_a": pp["u_a"], "radial_pressure": pp["radial"],
+        "membrane": np.where(dq != 0, dq, np.nan) if opt.membrane is not None else nan,
     }
     inputs = [input_file(source, table)] + ([input_file(t.path, t) for t in raw_curves.tables] if raw_curves else [])
     return TriaxialResult(table.path, env, tests, bounds, q_sat, _group_analysis(tests, env), notes, opt, inputs,
-                          opt.warnings + table.warnings)
+                          warnings)
 
 
 def _group_analysis(t: dict, env: Envelope) -> list[dict]:

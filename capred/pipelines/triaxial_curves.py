@@ -10,6 +10,14 @@ change, A = A0 (1 - eps_v)/(1 - eps_a) (A0/(1 - eps_a) without eps_v),
 A0 = pi D0^2/4; the initial diameter D0 (and height H0) come from the tests
 table (columns ``D0``, ``H0``) or from the file's metadata. The test id is a
 metadata key (``Test ID``, ``Test``, ``Sample``) or else the file name.
+
+The pressures an export logs beside the curve (``Radial Pressure``, ``Back
+Pressure``, ``Pore Pressure``, ``Pore Air Pressure``) are kept at the peak:
+the tests table's sigma3 is checked against the radial pressure, and the
+pore pressures turn total stresses into effective (saturated) or net
+(unsaturated, axis translation) ones. With a membrane (thickness t_m,
+modulus E_m) the deviator of every reading is corrected before the peak is
+taken (:func:`membrane_correction`).
 """
 from __future__ import annotations
 
@@ -36,16 +44,75 @@ SCHEMA = [
     Column("axial_force", "force", "kN", "axial force", ("force", "axial_load", "load", "deviator_force")),
     Column("radial_pressure", "pressure", "kPa", "radial (cell) pressure",
            ("cell_pressure", "confining_pressure", "radial_stress", "sigma3", "radial_pressure_kpa")),
+    Column("back_pressure", "pressure", "kPa", "back pressure", ("backpressure", "u_b", "back_pressure_kpa")),
+    Column("pore_pressure", "pressure", "kPa", "pore (water) pressure",
+           ("pore_water_pressure", "u_w", "pwp", "base_pore_pressure", "pore_pressure_kpa")),
+    Column("air_pressure", "pressure", "kPa", "pore-air pressure",
+           ("pore_air_pressure", "u_a", "air_pressure_kpa")),
 ]
+#: the pressures read at the peak of a curve (an export's columns)
+PEAK_PRESSURES = ("radial_pressure", "back_pressure", "pore_pressure", "air_pressure")
 _ID_KEYS = ("test_id", "test", "sample", "sample_id", "specimen", "test_name")
 _D0_KEYS = ("initial_diameter", "diameter", "d0", "sample_diameter", "specimen_diameter")
 _H0_KEYS = ("initial_height", "height", "h0", "sample_height", "specimen_height")
 _KEY_UNIT = re.compile(r"^(?P<name>.*?)\s*[\[(]\s*(?P<unit>[^\])]+?)\s*[\])]\s*$")
 
 
+def membrane_correction(axial_strain, diameter, membrane_thickness, membrane_modulus):
+    r"""Deviator stress carried by a rubber membrane in triaxial compression.
+
+    Parameters
+    ----------
+    axial_strain : numeric
+        Axial strain :math:`\varepsilon_1` [-] (compression positive).
+    diameter : numeric
+        Specimen diameter :math:`D_c` after consolidation [m] (capred takes
+        the initial diameter D0).
+    membrane_thickness : float
+        Membrane thickness :math:`t_m` [m].
+    membrane_modulus : float
+        Young's modulus of the membrane :math:`E_m` [Pa] (about 1400 kPa for
+        latex).
+
+    Returns
+    -------
+    numeric
+        :math:`\Delta(\sigma_1 - \sigma_3)` [Pa], to subtract from the
+        measured deviator.
+
+    Notes
+    -----
+    The membrane as a thin cylindrical shell shortened with the specimen
+    (the theory of Henkel & Gilbert 1952), the correction of ASTM D4767-11
+    (membrane correction of the deviator stress):
+
+    .. math::
+
+       \Delta(\sigma_1 - \sigma_3) = \frac{4 E_m t_m \varepsilon_1}{D_c}
+
+    BS 1377-8:1990 gives a correction of the same kind as a chart (a 0.2 mm
+    membrane on a 38 mm specimen, scaled by thickness and diameter); capred
+    applies the formula. It holds while the specimen shortens as a cylinder
+    (no barrelling beyond the strain of the chart's break).
+
+    References
+    ----------
+    .. [1] ASTM D4767-11 (2011). Standard Test Method for Consolidated
+       Undrained Triaxial Compression Test for Cohesive Soils. ASTM
+       International. doi:10.1520/D4767-11 (membrane correction).
+    .. [2] Henkel, D. J. & Gilbert, G. D. (1952). The effect of the rubber
+       membrane on the measured triaxial compression strength of clay
+       samples. Geotechnique 3(1), 20-29.
+    """
+    return 4.0 * membrane_modulus * membrane_thickness * np.asarray(axial_strain, float) / np.asarray(diameter, float)
+
+
 @dataclass
 class TriaxialCurves:
     peaks: dict[str, tuple[float, float]] = field(default_factory=dict)  # test id -> (q_peak [Pa], eps_a at peak)
+    #: test id -> pressures at the peak [Pa] (keys of PEAK_PRESSURES, NaN where the export has none),
+    #: "membrane" (the correction at the peak [Pa]) and "D0" [m]
+    at_peak: dict[str, dict[str, float]] = field(default_factory=dict)
     tables: list[Table] = field(default_factory=list)
     problems: list[Problem] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
@@ -89,8 +156,13 @@ def _length(value: str, unit: str) -> float | None:
         return None
 
 
-def read_curves(spec, tests: Table | None = None) -> TriaxialCurves:
-    """Peak q and the axial strain at the peak of every test's curve."""
+def read_curves(spec, tests: Table | None = None, membrane: tuple[float, float] | None = None) -> TriaxialCurves:
+    """Peak q and the axial strain at the peak of every test's curve.
+
+    ``membrane`` = (thickness [m], modulus [Pa]) corrects every reading's q
+    by :func:`membrane_correction` before the peak is taken; the diameter is
+    D0 of the tests table or of the file's metadata.
+    """
     out = TriaxialCurves()
     d0_col = {str(t): d for t, d in zip(tests.columns.get("test_id", []), tests.get("D0"))} if tests is not None else {}
     for f in curve_files(spec):
@@ -113,12 +185,13 @@ def read_curves(spec, tests: Table | None = None) -> TriaxialCurves:
         for tid in dict.fromkeys(ids):
             sel = np.flatnonzero(ids == tid)
             q = table.get("q")[sel].copy()
+            D0 = d0_col.get(str(tid), np.nan)
+            if not np.isfinite(D0):
+                found = _meta(table.metadata, _D0_KEYS)
+                D0 = _length(*found) if found else None
+            D0 = np.nan if D0 is None or not np.isfinite(D0) or D0 <= 0 else float(D0)
             if not np.isfinite(q).any() and has_force:
-                D0 = d0_col.get(str(tid), np.nan)
                 if not np.isfinite(D0):
-                    found = _meta(table.metadata, _D0_KEYS)
-                    D0 = _length(*found) if found else None
-                if D0 is None or not np.isfinite(D0) or D0 <= 0:
                     table.add_problem(int(sel[0]), "axial_force", f"test '{tid}': q from the axial force needs the "
                                       "initial diameter: a column 'D0' in the tests table or a metadata line "
                                       "'Initial diameter (mm): ...'")
@@ -128,6 +201,19 @@ def read_curves(spec, tests: Table | None = None) -> TriaxialCurves:
                 area = np.pi * D0**2 / 4 * np.where(np.isfinite(ev), 1.0 - ev, 1.0) / (1.0 - ea)
                 q = table.columns["axial_force"][sel] / area
                 out.notes.append(f"test '{tid}': q = F/A with A = A0 (1 - eps_v)/(1 - eps_a), D0 = {D0 * 1e3:.4g} mm")
+            dq = np.zeros(len(sel))
+            if membrane is not None:
+                if not np.isfinite(D0):
+                    table.add_problem(int(sel[0]), "axial_strain" if "axial_strain" in table.columns else None,
+                                      f"test '{tid}': the membrane correction needs the diameter: a column 'D0' in "
+                                      "the tests table or a metadata line 'Initial diameter (mm): ...'")
+                    continue
+                if "axial_strain" not in table.columns:
+                    table.add_problem(int(sel[0]), None, f"test '{tid}': the membrane correction needs the axial "
+                                                         "strain of every reading (column 'axial_strain')")
+                    continue
+                dq = membrane_correction(np.where(np.isfinite(eps[sel]), eps[sel], 0.0), D0, *membrane)
+                q = q - dq
             ok = np.isfinite(q)
             if not ok.any():
                 table.add_problem(int(sel[0]), "q" if has_q else "axial_force", f"test '{tid}' has no q values")
@@ -137,5 +223,9 @@ def read_curves(spec, tests: Table | None = None) -> TriaxialCurves:
                 table.add_problem(int(sel[0]), "test_id", f"a second curve for test '{tid}'")
                 continue
             out.peaks[str(tid)] = (float(np.max(q[ok])), float(eps[k]))
+            state = {name: float(table.get(name)[k]) for name in PEAK_PRESSURES}
+            state["membrane"] = float(dq[int(np.flatnonzero(sel == k)[0])])
+            state["D0"] = D0
+            out.at_peak[str(tid)] = state
         out.problems += table.problems
     return out
