@@ -52,6 +52,10 @@ def run_job(job: Job):
     from .report.outputs import write_outputs
     from .reductions import REDUCTIONS
 
+    if job.out_dir is not None:  # refuse a folder capred may not replace before computing anything
+        from .io.writers import check_target
+
+        check_target(job.out_dir, [job.source] if job.source is not None else [])
     result = REDUCTIONS[job.command].run(job.source, job.options)
     if job.out_dir is None:  # --json without --out: nothing written
         return result, []
@@ -80,13 +84,23 @@ def run_safely(job: Job) -> Outcome:
 
 
 def _save_traceback(job: Job, text: str) -> str:
-    from .io.writers import RunFolder, check_target
+    """errors.log (with a provenance.json listing it, so a rerun may replace the folder) in the job's folder."""
+    import sys
+    from datetime import datetime, timezone
+
+    from . import __version__
+    from .io.writers import RunFolder, check_target, encode_json
 
     try:
         if job.out_dir is None:
             return ""
         folder = RunFolder(check_target(job.out_dir, [job.source] if job.source else []))
         folder.write_bytes("errors.log", f"capred {job.command} {job.source}\n\n{text}".encode("utf-8"))
+        folder.write_bytes("provenance.json", encode_json({
+            "capred_version": __version__, "command": job.command, "command_line": " ".join(sys.argv),
+            "python": sys.version.split()[0], "inputs": [str(job.source)] if job.source is not None else [],
+            "outputs": ["errors.log", "provenance.json"], "status": "crashed",
+            "created_utc": datetime.now(timezone.utc).replace(microsecond=0).isoformat()}, True))
         return str(folder.commit()[0])
     except (CapredError, OSError):
         return ""
@@ -156,16 +170,31 @@ def output_dirs(commands: list[str], sources: list[Path], root: Path) -> list[Pa
     return out
 
 
+def _runs(root: Path, outcomes: list[Outcome]) -> list[str]:
+    """The run folders of a batch, relative to its root."""
+    out = []
+    for o in outcomes:
+        try:
+            out.append(Path(o.out_dir).relative_to(root).as_posix())
+        except ValueError:
+            continue
+    return out
+
+
 def write_index(root: Path, outcomes: list[Outcome]) -> Path:
-    """index.csv: every input with its status, message and each output file written."""
+    """index.csv: every input with its status, message and each output file written.
+
+    Refused (OutputError) where an index.csv exists that capred did not write;
+    recorded in the batch's provenance.json.
+    """
     import csv
     import io
 
-    from .io.writers import atomic_write_bytes
+    from .io.writers import INDEX_HEADER, write_batch_file
 
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow(["command", "input", "status", "message", "output"])
+    w.writerow(INDEX_HEADER.split(","))
     for o in outcomes:
         message = o.message.replace("\n", " | ")
         if o.outputs:
@@ -173,17 +202,23 @@ def write_index(root: Path, outcomes: list[Outcome]) -> Path:
                 w.writerow([o.command, o.source, o.status, message, f])
         else:
             w.writerow([o.command, o.source, o.status, message, ""])
-    return atomic_write_bytes(root / "index.csv", buf.getvalue().encode("utf-8"))
+    return write_batch_file(root, "index.csv", buf.getvalue().encode("utf-8"), runs=_runs(Path(root), outcomes))
 
 
 def write_season(root: Path, outcomes: list[Outcome]) -> list[Path]:
     """season.csv (one row per file and material: c, phi, their standard errors, n, the best model and its
-    RMSE, the number of flagged tests, the file's report) and a season report.html linking every run."""
+    RMSE, the number of flagged tests, the file's report) and a season report.html linking every run.
+
+    Each is refused (OutputError) where a file of that name exists that capred
+    did not write (a manifest called season.csv), and recorded in the batch's
+    provenance.json.
+    """
     import pandas as pd
 
-    from .io.writers import atomic_write_bytes, encode_csv
+    from .io.writers import encode_csv, write_batch_file
     from .report.html import render_season
 
+    root = Path(root)
     rows = []
     for o in outcomes:
         report = Path(o.out_dir) / "report.html"
@@ -194,5 +229,6 @@ def write_season(root: Path, outcomes: list[Outcome]) -> list[Path]:
         for r in o.season:
             rows.append({"input": o.source, "command": o.command, "status": o.status, **r, "report": link})
     frame = pd.DataFrame(rows)
-    return [atomic_write_bytes(root / "season.csv", encode_csv(frame)),
-            atomic_write_bytes(root / "season.html", render_season(frame).encode("utf-8"))]
+    runs = _runs(root, outcomes)
+    return [write_batch_file(root, "season.csv", encode_csv(frame), runs),
+            write_batch_file(root, "season.html", render_season(frame).encode("utf-8"), runs)]

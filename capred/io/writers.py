@@ -19,6 +19,7 @@ import contextlib
 import errno
 import io
 import json
+import math
 import os
 import re
 import shutil
@@ -37,16 +38,53 @@ INDENT_LIMIT = 256 * 1024
 
 
 # --- encoding ------------------------------------------------------------------------------------
+def _finite(obj):
+    """``obj`` with every number JSON can hold as is and every other number null (recursively).
+
+    NaN, infinities, integers beyond what JSON readers keep (|n| >= 2**63;
+    written as a float when one holds them) and numpy scalars and arrays of
+    those become Python floats, ints or None.
+    """
+    import math
+
+    if isinstance(obj, dict):
+        return {k if isinstance(k, str) else str(k): _finite(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_finite(v) for v in obj]
+    if isinstance(obj, (str, bool)) or obj is None:
+        return obj
+    if hasattr(obj, "tolist") and not isinstance(obj, (int, float)):  # numpy scalar or array
+        return _finite(obj.tolist())
+    if isinstance(obj, int):
+        if abs(obj) < 2**63:
+            return obj
+        try:
+            return float(obj)
+        except OverflowError:
+            return None
+    if isinstance(obj, float):
+        return obj if math.isfinite(obj) else None
+    return obj
+
+
 def _dumps(obj, indent: bool = False) -> bytes:
-    """JSON bytes: orjson when installed (fast), else the standard library's C encoder."""
+    """JSON bytes: orjson when installed (fast), else the standard library's C encoder.
+
+    Never fails on a number: NaN, infinities and integers too large for JSON
+    readers are written as null (see ``_finite``).
+    """
     try:
         import orjson
     except ImportError:  # pragma: no cover - orjson is a dependency; kept for a minimal install
+        obj = _finite(obj)
         if indent:
             return json.dumps(obj, ensure_ascii=False, indent=2, allow_nan=False).encode("utf-8")
         return json.dumps(obj, ensure_ascii=False, separators=(",", ":"), allow_nan=False).encode("utf-8")
     option = orjson.OPT_SERIALIZE_NUMPY | (orjson.OPT_INDENT_2 if indent else 0)
-    return orjson.dumps(obj, option=option)
+    try:
+        return orjson.dumps(obj, option=option)  # NaN and infinities already become null
+    except (orjson.JSONEncodeError, OverflowError):  # an integer beyond 64 bits, a numpy type orjson lacks
+        return orjson.dumps(_finite(obj), option=option)
 
 
 def encode_json(doc, indent: bool | None = None) -> bytes:
@@ -87,15 +125,36 @@ def stream_json(doc: dict, write) -> None:
     write(b"}\n")
 
 
+#: what starts a formula in a spreadsheet (OWASP "CSV injection": =, +, -, @, tab, carriage return)
+FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
+
+
+def defuse(text: str) -> str:
+    """Text a spreadsheet shows as text: a leading ``'`` before text that would start a formula.
+
+    The OWASP recommendation against CSV (formula) injection: a cell
+    beginning with ``=``, ``+``, ``-``, ``@``, a tab or a carriage return is
+    prefixed with a single quote, which Excel and LibreOffice show as a text
+    cell and never evaluate. Used for the ``excel-eu`` CSV dialect (made to be
+    opened in Excel); the standard CSV keeps text verbatim (it is data).
+    """
+    return "'" + text if text.startswith(FORMULA_START) else text
+
+
 def _csv_cell(value, sep: str = ",", joiner: str = ";", eu: bool = False) -> str:
-    """One cell of an object column: text quoted as CSV needs, lists joined, blanks empty."""
-    if value is None or (isinstance(value, float) and value != value):
+    """One cell of an object column: text quoted as CSV needs, lists joined, blanks empty;
+    with ``eu`` (the Excel dialect) decimal commas, and text that would start a formula defused."""
+    if hasattr(value, "item") and not isinstance(value, str):  # a numpy scalar
+        value = value.item()
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
         return ""
-    if isinstance(value, (list, tuple)):
-        value = joiner.join(map(str, value))
-    elif isinstance(value, float):
-        value = repr(value).replace(".", ",") if eu else repr(value)
-    text = str(value)
+    if isinstance(value, float):
+        return repr(value).replace(".", ",") if eu else repr(value)
+    if isinstance(value, (bool, int)):
+        return str(value)
+    text = joiner.join(map(str, value)) if isinstance(value, (list, tuple)) else str(value)
+    if eu:
+        text = defuse(text)
     if any(ch in text for ch in (sep, '"', "\n", "\r")):
         return '"' + text.replace('"', '""') + '"'
     return text
@@ -110,7 +169,7 @@ def _csv_column(values, sep: str = ",", joiner: str = ";", eu: bool = False) -> 
         try:
             import orjson
         except ImportError:  # pragma: no cover
-            cells = ["" if x != x else repr(x) for x in a.tolist()]
+            cells = ["" if not np.isfinite(x) else repr(x) for x in a.tolist()]
         else:
             text = orjson.dumps(a.astype(float) if a.dtype.kind == "f" else a,
                                 option=orjson.OPT_SERIALIZE_NUMPY).decode("ascii")[1:-1]
@@ -121,7 +180,8 @@ def _csv_column(values, sep: str = ",", joiner: str = ";", eu: bool = False) -> 
     values = a.tolist()
     if all(type(x) is str for x in values):  # plain text: quote only if some cell needs it
         joined = "\x00".join(values)
-        if not any(ch in joined for ch in (sep, '"', "\n", "\r")):
+        if not any(ch in joined for ch in (sep, '"', "\n", "\r")) and not (
+                eu and any(x.startswith(FORMULA_START) for x in values)):
             return values
     return [_csv_cell(x, sep, joiner, eu) for x in values]
 
@@ -131,7 +191,8 @@ def write_csv_file(path, frame, dialect: str = "standard") -> None:
     empty cell, lists joined with ';', text quoted where CSV needs it. ``path`` may be a binary file.
 
     ``dialect="excel-eu"``: what a Belgian, French or German Excel opens as columns: ';' separators,
-    decimal commas, lists joined with '|', and a UTF-8 byte-order mark (so 'µ' and '°' survive).
+    decimal commas, lists joined with '|', a UTF-8 byte-order mark (so 'µ' and '°' survive), and text that
+    would start a formula prefixed with ``'`` (see ``defuse``). The standard dialect writes text verbatim.
     """
     eu = dialect == "excel-eu"
     sep, joiner = (";", "|") if eu else (",", ";")
@@ -141,7 +202,7 @@ def write_csv_file(path, frame, dialect: str = "standard") -> None:
             fh.write("\ufeff".encode("utf-8"))
         names = list(frame) if isinstance(frame, dict) else list(frame.columns)
         arrays = list(frame.values()) if isinstance(frame, dict) else [frame[c].to_numpy() for c in names]
-        fh.write((sep.join(_csv_cell(str(c), sep) for c in names) + "\n").encode("utf-8"))
+        fh.write((sep.join(_csv_cell(str(c), sep, eu=eu) for c in names) + "\n").encode("utf-8"))
         for start in range(0, len(arrays[0]) if arrays else 0, 10_000):  # memory bounded by one chunk of rows
             columns = [_csv_column(a[start:start + 10_000], sep, joiner, eu) for a in arrays]
             fh.write(("\n".join(map(sep.join, zip(*columns))) + "\n").encode("utf-8"))
@@ -166,23 +227,129 @@ def safe_name(name: str, taken: set[str], limit: int = 80) -> str:
 
 
 # --- checks before computing ------------------------------------------------------------------------
-def _is_capred_folder(path: Path) -> bool:
-    prov = path / "provenance.json"
-    if prov.is_file():
-        try:
-            return "capred_version" in json.loads(prov.read_text(encoding="utf-8"))
-        except (OSError, ValueError):
-            return False
-    # a batch root: index.csv written by capred and nothing but capred folders
-    index = path / "index.csv"
-    return index.is_file() and index.read_text(encoding="utf-8", errors="replace").startswith("command,input,status")
+#: files the operating system's file browsers leave in any folder; never a user's work
+OS_LITTER = frozenset({".DS_Store", "Thumbs.db", "desktop.ini"})
+#: the files a batch writes into its root folder (beside one folder per input)
+BATCH_FILES = ("index.csv", "season.csv", "season.html")
+#: the header capred writes on a batch's index.csv
+INDEX_HEADER = "command,input,status,message,output"
+
+
+def _listing(folder: Path) -> tuple[set[str], set[str]]:
+    """(files, folders) under ``folder`` as relative POSIX paths; links are files (never followed)."""
+    files, dirs = set(), set()
+    stack = [(folder, "")]
+    while stack:
+        here, rel = stack.pop()
+        with os.scandir(here) as it:
+            for entry in it:
+                name = f"{rel}{entry.name}"
+                if entry.is_dir(follow_symlinks=False):
+                    dirs.add(name)
+                    stack.append((Path(entry.path), name + "/"))
+                else:
+                    files.add(name)
+    return files, dirs
+
+
+def _provenance(folder: Path) -> dict | None:
+    """A folder's provenance.json when capred wrote it (it names a capred version), else None."""
+    try:
+        doc = json.loads((folder / "provenance.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    return doc if isinstance(doc, dict) and "capred_version" in doc else None
+
+
+def foreign_files(folder) -> list[str]:
+    """Files and folders in a run folder that its provenance.json does not list (sorted, relative).
+
+    A run folder is capred's to replace only when this is empty: every file
+    in it was written by the run its provenance.json records (the files
+    browsers leave, ``OS_LITTER``, do not count). A folder without a capred
+    provenance.json has only foreign files.
+    """
+    folder = Path(folder)
+    if not folder.is_dir():
+        return []
+    files, dirs = _listing(folder)
+    prov = _provenance(folder)
+    outputs = prov.get("outputs") if prov is not None else None
+    listed = {o for o in outputs if isinstance(o, str)} if isinstance(outputs, list) else set()
+    parents = {"/".join(n.split("/")[:k]) for n in listed for k in range(1, n.count("/") + 1)}
+    foreign = [f for f in files if f not in listed and f.rsplit("/", 1)[-1] not in OS_LITTER]
+    foreign += [d + "/" for d in dirs if d not in parents]
+    return sorted(foreign)
+
+
+def _foreign_message(out: Path, foreign: list[str]) -> str:
+    shown = ", ".join(foreign[:5]) + (f" and {len(foreign) - 5} more" if len(foreign) > 5 else "")
+    if _provenance(out) is None:
+        return (f"--out {out} is a folder capred did not write (it holds {shown}); capred replaces its output "
+                "folder as a whole: give a new or empty folder")
+    return (f"--out {out} holds files capred did not write: {shown}; capred replaces its output folder as a "
+            "whole and never deletes a file it did not write: move them out or give another folder")
+
+
+def _sha256(path: Path) -> str:
+    import hashlib
+
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def batch_record(root) -> dict:
+    """The root files a batch wrote into ``root``, {name: [SHA-256, ...]}, from its provenance.json.
+
+    A name holds two hashes only while its file is being replaced (the one
+    before and the one after), so a batch killed at any moment leaves a file
+    the record still recognises.
+    """
+    prov = _provenance(Path(root))
+    files = prov.get("batch_files") if prov is not None and prov.get("command") == "batch" else None
+    if not isinstance(files, dict):
+        return {}
+    return {k: [h for h in v if isinstance(h, str)] for k, v in files.items() if isinstance(v, list)}
+
+
+def foreign_batch_files(root) -> list[str]:
+    """Which of a batch's root files exist in ``root`` but were not written by a capred batch.
+
+    The root files are ``BATCH_FILES`` and provenance.json. capred recognises
+    its own by the batch's provenance.json, which records the SHA-256 of each
+    root file it wrote (a file edited since is no longer capred's), and an
+    index.csv also by its header (folders of earlier versions). A
+    provenance.json that is not a batch's (a single run's report) is foreign
+    too: a batch root is not a report folder.
+    """
+    root = Path(root)
+    record = batch_record(root)
+    foreign = []
+    for name in BATCH_FILES:
+        path = root / name
+        if not os.path.lexists(path):
+            continue
+        if path.is_symlink() or not path.is_file():
+            foreign.append(name)
+        elif _sha256(path) in record.get(name, ()):
+            continue
+        elif name == "index.csv" and path.read_bytes()[:len(INDEX_HEADER) + 1] == (INDEX_HEADER + "\n").encode():
+            continue
+        else:
+            foreign.append(name)
+    prov = root / "provenance.json"
+    if os.path.lexists(prov) and (_provenance(root) or {}).get("command") != "batch":
+        foreign.append("provenance.json")
+    return foreign
 
 
 def check_target(out, inputs=(), replace: bool = True) -> Path:
     """Refuse an output folder that cannot or must not receive a run; return its absolute path.
 
-    ``replace`` is True for a run folder (replaced whole) and False for a batch
-    root (only its index.csv and per-file folders are written).
+    ``replace`` is True for a run folder (replaced whole: refused unless every
+    file in it is one its provenance.json lists) and False for a batch root
+    (only its index.csv, season.csv, season.html, provenance.json and one
+    folder per input are written: refused where one of those root files
+    exists that capred did not write, e.g. a manifest named season.csv).
     Raises OutputError with one clear message.
     """
     try:
@@ -209,9 +376,17 @@ def _check_target(out: Path, inputs, replace: bool) -> Path:
     if replace and (real == cwd or real in cwd.parents):
         raise OutputError(f"--out {out} is the current folder or one of its parents; capred replaces its output "
                           "folder as a whole: give a new folder name, e.g. --out report")
-    if replace and out.is_dir() and any(out.iterdir()) and not _is_capred_folder(out):
-        raise OutputError(f"--out {out} is a folder capred did not write (it holds other files); capred replaces "
-                          "its output folder as a whole: give a new or empty folder")
+    if replace and out.is_dir():
+        foreign = foreign_files(out)
+        if foreign:
+            raise OutputError(_foreign_message(out, foreign))
+    if not replace and out.is_dir():
+        foreign = foreign_batch_files(out)
+        if foreign:
+            raise OutputError(
+                f"--out {out} holds {', '.join(foreign)}, which capred did not write; a batch writes "
+                f"{', '.join(BATCH_FILES)} and provenance.json there and never writes over a file it did not "
+                "write (a manifest among them?): choose another --out or move the file")
     parent = out if not replace and out.is_dir() else out.parent
     while not parent.exists() and parent != parent.parent:
         parent = parent.parent
@@ -320,6 +495,9 @@ class RunFolder:
             if out.exists():
                 if not out.is_dir():
                     raise OutputError(f"--out {out} is a file, not a folder: choose a folder name")
+                foreign = foreign_files(out)  # again, under the lock: a file saved there while we computed
+                if foreign:
+                    raise OutputError(_foreign_message(out, foreign))
                 if not _exchange(self.tmp, out):
                     old = Path(tempfile.mkdtemp(prefix=_prefix(out, _OLD), dir=out.parent))
                     os.replace(out, old / "run")
@@ -450,6 +628,70 @@ def provenance(result, outputs: list[str], command_line: str | None = None) -> d
         "outputs": sorted(outputs + ["provenance.json"]),
         "created_utc": datetime.now(timezone.utc).replace(microsecond=0).isoformat(),
     }
+
+
+def write_batch_file(root, name: str, data: bytes, runs=None, command_line: str | None = None) -> Path:
+    """Write one of a batch's root files (``BATCH_FILES``) into ``root`` and record it in the batch's
+    provenance.json; refuse (OutputError) where a file of that name exists that capred did not write.
+
+    Parameters
+    ----------
+    root : str or Path
+        The batch's root folder.
+    name : str
+        index.csv, season.csv or season.html.
+    data : bytes
+        The file's content.
+    runs : list of str, optional
+        The run folders of the batch (recorded in provenance.json).
+    command_line : str, optional
+        Recorded in provenance.json (default: this process's argv).
+
+    Returns
+    -------
+    Path
+        The file written.
+    """
+    import hashlib
+
+    root = Path(os.path.abspath(root))
+    try:
+        root.mkdir(parents=True, exist_ok=True)
+        with _locked(root):
+            foreign = [f for f in foreign_batch_files(root) if f in (name, "provenance.json")]
+            if foreign:
+                raise OutputError(f"{root / foreign[0]} exists and capred did not write it; a batch never writes "
+                                  "over a file it did not write (a manifest?): move it or choose another --out")
+            record = batch_record(root)
+            new = hashlib.sha256(data).hexdigest()
+            current = _sha256(root / name) if (root / name).is_file() else None
+            old = [h for h in record.get(name, []) if h == current]
+            record[name] = [*old, new] if new not in old else [new]
+            _write_batch_provenance(root, record, runs, command_line)  # both hashes while the file changes
+            atomic_write_bytes(root / name, data)
+            record[name] = [new]
+            _write_batch_provenance(root, record, runs, command_line)
+    except OSError as exc:
+        raise _os_error(root, exc) from None
+    return root / name
+
+
+def _write_batch_provenance(root: Path, record: dict, runs, command_line) -> None:
+    from datetime import datetime, timezone
+
+    from .. import __version__
+
+    before = _provenance(root) or {}
+    if runs is None:
+        runs = before.get("runs", [])
+    doc = {"capred_version": __version__, "command": "batch",
+           "command_line": command_line if command_line is not None else " ".join(sys.argv),
+           "python": sys.version.split()[0],
+           "outputs": sorted([*record, "provenance.json"]),
+           "runs": sorted(runs),
+           "batch_files": {k: record[k] for k in sorted(record)},
+           "created_utc": datetime.now(timezone.utc).replace(microsecond=0).isoformat()}
+    atomic_write_bytes(root / "provenance.json", encode_json(doc, True))
 
 
 def atomic_write_bytes(path: Path, data: bytes) -> Path:
