@@ -39,6 +39,10 @@ SCHEMA = [
            ("backpressure", "u_b", "bp", "back_pressure_kpa")),
     Column("u_a", "pressure", "kPa", "pore-air pressure (axis translation)",
            ("pore_air_pressure", "air_pressure", "ua")),
+    Column("branch", "text", None, "loading branch (compression or extension; blank: from sigma2)",
+           ("loading", "triaxial_branch", "compression_extension")),
+    Column("pair", "text", None, "paired saturated test", ("saturated_pair", "paired_test", "sat_pair", "pair_id",
+                                                          "saturated_test")),
     Column("strain_at_failure", "dimensionless", "-", "axial strain at failure",
            ("eps_f", "axial_strain_f", "axial_strain_at_failure", "strain_f")),
 ]
@@ -196,8 +200,9 @@ class TriaxialResult(Result):
             return None
         gain = b.q_prime[i] / self.q_sat[i]
         return {
-            "sigma1_cap_kPa": _kpa(b.sigma1_cap[i]), "sigma3_cap_kPa": _kpa(b.sigma3_cap[i]),
-            "p_cap_kPa": _kpa(b.p_cap[i]), "q_cap_kPa": _kpa(b.q_cap[i]),
+            "sigma1_cap_kPa": _kpa(b.sigma1_cap[i]),
+            "sigma2_cap_kPa": _kpa((b.sigma3_cap if b.sigma2_cap is None else b.sigma2_cap)[i]),
+            "sigma3_cap_kPa": _kpa(b.sigma3_cap[i]), "p_cap_kPa": _kpa(b.p_cap[i]), "q_cap_kPa": _kpa(b.q_cap[i]),
             "p_prime_kPa": _kpa(b.p_prime[i]), "q_prime_kPa": _kpa(b.q_prime[i]),
             "gain": num(gain), "positive_component": bool(b.positive[i]),
         }
@@ -217,7 +222,7 @@ class TriaxialResult(Result):
                 "sigma3_total_kPa": _kpa(t["sigma3_total"][i]), "back_pressure_kPa": _kpa(t["back_pressure"][i]),
                 "u_a_kPa": _kpa(t["u_a"][i]), "radial_pressure_kPa": _kpa(t["radial_pressure"][i]),
                 "membrane_correction_kPa": _kpa(t["membrane"][i]),
-                "lode_angle_deg": num(t["lode"][i]),
+                "lode_angle_deg": num(t["lode"][i]), "branch": str(t["branch"][i]), "pair": t["pair"][i] or None,
                 "strain_at_failure": num(t["strain_f"][i]),
                 "q_sat_kPa": _kpa(self.q_sat[i]) if self.unsaturated[i] else None,
             }
@@ -248,9 +253,7 @@ class TriaxialResult(Result):
             if self.groups:
                 import pandas as pd
 
-                rows = [{**g, "tests": ";".join(g["tests"]), "lode_angles_deg": ";".join(
-                    "" if x is None else repr(x) for x in g.get("lode_angles_deg", []))} for g in self.groups]
-                cached["groups"] = pd.json_normalize(rows)
+                cached["groups"] = pd.json_normalize([_group_row(g) for g in self.to_json()["groups"]])
             self.__dict__["_tables"] = cached
         return cached
 
@@ -276,6 +279,20 @@ class TriaxialResult(Result):
             r["flags"] = ";".join(t["flags"])
             rows.append(r)
         return pd.DataFrame(rows)
+
+
+def _group_row(g: dict) -> dict:
+    """A group's JSON record as one flat CSV row: lists joined by ';', 95 % intervals as _low/_high columns."""
+    row = {}
+    for k, v in g.items():
+        if k.endswith("_ci95_kPa"):
+            base = k[: -len("_ci95_kPa")]
+            row[f"{base}_ci95_low_kPa"], row[f"{base}_ci95_high_kPa"] = v if v else (None, None)
+        elif isinstance(v, list):
+            row[k] = ";".join("" if x is None else (x if isinstance(x, str) else repr(x)) for x in v)
+        else:
+            row[k] = v
+    return row
 
 
 def _kpa(x) -> float | None:
@@ -334,7 +351,7 @@ def pressure_tolerance(pressure):
     return np.maximum(2e3, 0.01 * np.abs(pressure))
 
 
-def pore_pressures(table: Table, at_peak: dict[str, dict[str, float]], q) -> dict:
+def pore_pressures(table: Table, at_peak: dict[str, dict[str, float]], q, ext=None) -> dict:
     """The pore pressure to subtract from each test's stresses and whether the table's stresses are total.
 
     Saturated tests: sigma' = sigma - u_w with u_w the ``back_pressure``
@@ -363,7 +380,8 @@ def pore_pressures(table: Table, at_peak: dict[str, dict[str, float]], q) -> dic
     s3 = table.columns["sigma3"].copy()
     s0 = table.get("s0").copy()
     ub_col, ua_col = table.get("back_pressure").copy(), table.get("u_a").copy()
-    ext = (table.get("sigma2") == s3 + q) if "sigma2" in table.columns else np.zeros(n, bool)
+    if ext is None:
+        ext = np.zeros(n, bool)
     exp = {k: np.array([at_peak.get(t, {}).get(k, np.nan) for t in tids]) for k in
            ("radial_pressure", "back_pressure", "pore_pressure", "air_pressure")}
     u = np.zeros(n)
@@ -499,7 +517,14 @@ def run_triaxial_bounds(source, options: TriaxialOptions | None = None,
         notes.append("no membrane correction of the deviator (give --membrane-thickness and --membrane-modulus "
                      "to apply ASTM D4767-11's)")
 
-    pp = pore_pressures(table, raw_curves.at_peak if raw_curves else {}, q)
+    branch_col = np.array([str(x).strip().lower() for x in table.columns["branch"]], dtype=object) \
+        if "branch" in table.columns else np.array([""] * len(table), dtype=object)
+    for i in np.flatnonzero(~np.isin(branch_col, ("", "compression", "extension"))):
+        table.add_problem(int(i), "branch", f"'{table.value_text('branch', int(i))}' is not one of 'compression' "
+                                            "or 'extension' (or blank: the branch follows from sigma2)")
+    s2_raw = table.get("sigma2")
+    ext_raw = (branch_col == "extension") | (np.abs(s2_raw - (table.columns["sigma3"] + q)) <= 1e-9 * np.abs(s2_raw))
+    pp = pore_pressures(table, raw_curves.at_peak if raw_curves else {}, q, ext_raw)
     notes += pp["notes"]
     warnings += pp["warnings"]
     u = pp["u"]
@@ -509,8 +534,16 @@ def run_triaxial_bounds(source, options: TriaxialOptions | None = None,
     s3_total = pp["sigma3"]
     s3 = s3_total - u
     s1 = s3 + q
-    s2 = table.get("sigma2") - u
-    s2[np.isnan(s2)] = s3[np.isnan(s2)]
+    s2 = s2_raw - u
+    s2 = np.where(np.isnan(s2), np.where(branch_col == "extension", s1, s3), s2)
+    lode = np.asarray(tx.lode_angle_deg(s1, s2, s3), float)
+    branch = np.atleast_1d(tx.lode_branch(s1, s2, s3)).astype(object)
+    for i in np.flatnonzero((branch_col != "") & (branch != branch_col)):
+        table.add_problem(int(i), "branch", f"branch '{branch_col[i]}' but sigma2 = {s2_raw[i] / 1e3:.4g} kPa gives a "
+                          f"Lode angle of {lode[i]:.3g} deg ({branch[i]}; compression is 0, extension 60, within "
+                          f"{tx.LODE_TOL_DEG:g} deg)")
+    axi = branch != "general"
+    phys_branch = np.where(axi, branch, "compression")
     p0 = table.get("p0") - u
     p0[np.isnan(p0)] = s3[np.isnan(p0)]
     s0 = pp["s0"]
@@ -518,8 +551,8 @@ def run_triaxial_bounds(source, options: TriaxialOptions | None = None,
         kind = "effective" if sat[i] else "net"
         table.add_problem(int(i), "sigma3", f"the {kind} confining stress sigma3 - "
                           f"{'u_b' if sat[i] else 'u_a'} = {s3[i] / 1e3:.4g} kPa is negative")
-    for i in np.flatnonzero(np.isfinite(table.get("sigma2"))):
-        if not s3[i] <= s2[i] <= s1[i]:
+    for i in np.flatnonzero(np.isfinite(s2_raw)):
+        if not s3[i] * (1 - 1e-12) <= s2[i] <= s1[i] * (1 + 1e-12):
             table.add_problem(i, "sigma2", "sigma2 must lie between sigma3 and sigma1")
     if np.any(u != 0):
         notes.append("stresses net of the pore pressure: sigma' = sigma - u_b (saturated tests, Terzaghi), "
@@ -541,6 +574,7 @@ def run_triaxial_bounds(source, options: TriaxialOptions | None = None,
             table.add_problem(first, "condition", f"effective envelope from the saturated tests: {exc} "
                                                   "(or pass --c-eff and --phi-eff)")
     groups = table.get("group") if "group" in table.columns else np.array([""] * len(table), dtype=object)
+    pairs = table.columns["pair"] if "pair" in table.columns else np.array([""] * len(table), dtype=object)
     for g in set(groups) - {""}:
         members = np.flatnonzero(groups == g)
         if len(members) < 2:
@@ -548,6 +582,19 @@ def run_triaxial_bounds(source, options: TriaxialOptions | None = None,
         elif sat[members].any():
             table.add_problem(int(members[sat[members]][0]), "group",
                               f"group '{g}' holds a saturated test; groups are for unsaturated tests")
+        elif 0 < sum(bool(x) for x in pairs[members]) < len(members):
+            table.add_problem(int(members[0]), "pair", f"group '{g}': give a paired saturated test for every "
+                                                       "test of the group, or for none")
+    ids = {str(x): i for i, x in enumerate(table.columns["test_id"])}
+    for i in np.flatnonzero(pairs != ""):
+        j = ids.get(str(pairs[i]))
+        if sat[i]:
+            table.add_problem(int(i), "pair", "a pair is the saturated test paired with an unsaturated one; "
+                                              "give it on the unsaturated test's row")
+        elif j is None:
+            table.add_problem(int(i), "pair", f"no test '{pairs[i]}' in the table")
+        elif not sat[j]:
+            table.add_problem(int(i), "pair", f"'{pairs[i]}' is not a saturated test")
     table.raise_if_problems()
     if env.c < 0:
         hint = ("; if sigma3 is the cell pressure of back-pressured tests, give their 'back_pressure' "
@@ -557,54 +604,148 @@ def run_triaxial_bounds(source, options: TriaxialOptions | None = None,
 
     nan = np.full(len(table), np.nan)
     bounds = {}
-    for name, b in (("spherical", tx.spherical_bound(s1, s3, env.c, env.phi)),
-                    ("lower", tx.lower_bound(s1, s3, env.c, env.phi)),
-                    ("edtp", tx.edtp_bound(s1, s3, p0, np.where(np.isnan(s0), 0.0, s0), env.c, env.phi))):
-        keep = unsat if name != "edtp" else unsat & np.isfinite(s0)
+    s0_or_0 = np.where(np.isnan(s0), 0.0, s0)
+    for name, b in (("spherical", tx.spherical_bound(s1, s3, env.c, env.phi, phys_branch)),
+                    ("lower", tx.lower_bound(s1, s3, env.c, env.phi, phys_branch)),
+                    ("edtp", tx.edtp_bound(s1, s3, p0, s0_or_0, env.c, env.phi, phys_branch))):
+        keep = unsat & axi if name != "edtp" else unsat & axi & np.isfinite(s0)
         bounds[name] = tx.Bound(*(np.where(keep, getattr(b, f), nan)
-                                  for f in ("sigma1_cap", "sigma3_cap", "p_prime", "q_prime")))
-    if (unsat & np.isnan(s0)).any():
+                                  for f in ("sigma1_cap", "sigma3_cap", "p_prime", "q_prime", "sigma2_cap")))
+    if (unsat & axi & np.isnan(s0)).any():
         notes.append("EDTP bound skipped where s0 (initial suction) is not given")
-    q_sat = tx.drained_strength(p0, env.c, env.phi)
+    if (unsat & ~axi).any():
+        notes.append("bounds (section 4 of Prunier et al. 2024) are for axisymmetric tests: none for the "
+                     f"true-triaxial tests {', '.join(str(x) for x in table.columns['test_id'][unsat & ~axi])}; "
+                     "a group of them at one Lode angle gets eq. 50")
+    if (branch == "extension").any():
+        notes.append("extension tests (sigma2 = sigma1) use the extension form of the criterion, "
+                     "M = 6 sin phi'/(3 + sin phi'), in the bounds, q'_sat and the figures")
+    q_sat = tx.drained_strength(p0, env.c, env.phi, phys_branch)
     tests = {
         "test_id": table.columns["test_id"], "condition": cond, "group": groups, "line": table.lines,
         "sigma1": s1, "sigma2": s2, "sigma3": s3, "p": tx.mean_stress(s1, s3, s2), "q": q,
-        "p0": p0, "s0": s0, "strain_f": d["strain"], "lode": tx.lode_angle(s1, s2, s3),
+        "p0": p0, "s0": s0, "strain_f": d["strain"], "lode": lode, "branch": branch, "pair": pairs,
         "sigma3_total": s3_total, "back_pressure": pp["u_b"], "u_a": pp["u_a"], "radial_pressure": pp["radial"],
         "membrane": np.where(dq != 0, dq, np.nan) if opt.membrane is not None else nan,
     }
     inputs = [input_file(source, table)] + ([input_file(t.path, t) for t in raw_curves.tables] if raw_curves else [])
-    return TriaxialResult(table.path, env, tests, bounds, q_sat, _group_analysis(tests, env), notes, opt, inputs,
-                          warnings)
+    group_records = _group_analysis(tests, env)
+    for g in group_records:
+        notes += [f"group {g['group']}: {g[k]}" for k in ("needs", "warning") if g.get(k)]
+    return TriaxialResult(table.path, env, tests, bounds, q_sat, group_records, notes, opt, inputs, warnings)
+
+
+def _ci95(value: float, se: float, dof: int) -> list | None:
+    """[low, high] [kPa] of value +- t(0.975, dof) se (values in Pa), None without a finite se."""
+    from scipy.stats import t as student
+
+    if dof < 1 or not np.isfinite(se):
+        return None
+    h = float(student.ppf(0.975, dof)) * se
+    return [_kpa(value - h), _kpa(value + h)]
+
+
+def _tensor_json(gt: tx.GroupTensor) -> dict:
+    """The keys of a group's capillary tensor (eq. 48 or 50) in a group's JSON record."""
+    out = {}
+    for k in ("sigma1_cap", "sigma2_cap", "sigma3_cap"):
+        v, se = getattr(gt, k), getattr(gt, k + "_se")
+        out[f"{k}_kPa"], out[f"{k}_se_kPa"], out[f"{k}_ci95_kPa"] = _kpa(v), _kpa(se), _ci95(v, se, gt.dof)
+    out.update({
+        "p_cap_kPa": _kpa(gt.p_cap), "q_cap_kPa": _kpa(gt.q_cap), "dof": gt.dof,
+        "C_kPa": _kpa(gt.C_apparent), "C_se_kPa": _kpa(gt.C_apparent_se),
+        "C_fictive_kPa": _kpa(gt.C_fictive), "C_fictive_se_kPa": _kpa(gt.C_fictive_se),
+        "Ci_kPa": _kpa(gt.Ci_apparent), "Ci_fictive_kPa": _kpa(gt.Ci_fictive), "phi_i_deg": num(gt.phi_i_deg),
+        "phi_apparent_se_deg": num(gt.phi_apparent_se_deg),
+    })
+    return out
+
+
+_TENSOR_KEYS = tuple(_tensor_json(tx.GroupTensor(2, 1, "compression", *([np.nan] * 10))))
 
 
 def _group_analysis(t: dict, env: Envelope) -> list[dict]:
-    """Appendix 1 of Prunier et al. (2024) for every group of unsaturated tests sharing one tensor."""
+    """Appendix 1 of Prunier et al. (2024) for every group of unsaturated tests sharing one tensor.
+
+    Every group gets the free regression sigma1 = K sigma3 + b through its
+    failure states (apparent C, phi; eq. 35 and 43 ask phi = phi') and eq. 37
+    (spherical tensor). With each test's paired saturated test (column
+    ``pair``) an axisymmetric group gets eq. 48 with the fictive state sigma''
+    (eq. 44-47) and a true-triaxial group at one Lode angle (eq. 49, within
+    ``tx.LODE_TOL_DEG``) eq. 50, by the least squares the paper recommends
+    (section 7.3), with standard errors and 95 % intervals (t, n - 1 dof).
+    Without pairs eq. 48 is closed with sigma1_cap = 0 (the lower bound,
+    eq. 24) and eq. 50 is not available; ``needs`` says what is missing.
+    """
     out = []
+    index = {str(x): i for i, x in enumerate(t["test_id"])}
     for g in [g for g in dict.fromkeys(t["group"]) if g]:
-        sel = t["group"] == g
+        sel = np.flatnonzero(t["group"] == g)
         s1, s2, s3 = t["sigma1"][sel], t["sigma2"][sel], t["sigma3"][sel]
-        res: dict = {"group": g, "tests": [str(x) for x in t["test_id"][sel]], "n": int(sel.sum())}
-        if np.ptp(s3) <= 0:
-            res["error"] = "all tests of the group share one sigma3: no apparent envelope"
+        lode = t["lode"][sel]
+        branches = sorted(set(t["branch"][sel]))
+        res: dict = {"group": g, "tests": [str(x) for x in t["test_id"][sel]], "n": int(sel.size),
+                     "branch": branches[0] if len(branches) == 1 else "mixed",
+                     "lode_angles_deg": [num(x) for x in lode], "lode_spread_deg": num(np.ptp(lode)),
+                     "lode_tol_deg": tx.LODE_TOL_DEG, "eq49_holds": bool(np.ptp(lode) <= tx.LODE_TOL_DEG),
+                     "pairs": [t["pair"][i] or None for i in sel], "method": None, "needs": None,
+                     **dict.fromkeys(_TENSOR_KEYS)}
+        if len(branches) > 1:
+            res["error"] = (f"the group mixes {' and '.join(branches)} tests: one tensor is shared by tests of "
+                            "one branch (and one Lode angle, eq. 49)")
             out.append(res)
             continue
-        kp, b = np.polyfit(s3, s1, 1)
-        if kp <= 1.0:
-            res["error"] = f"apparent K_p = {kp:.3g} <= 1: no apparent friction angle"
-            out.append(res)
-            continue
-        C, phi = tx.envelope_from_principal_fit(kp, b)
-        Q = tx.lode_ratio(s1, s2, s3)
-        c2 = tx.fictive_cohesion_lower(C, env.c, env.phi)
-        a1, a3 = tx.axisymmetric_group_cap(C, c2, env.c, env.phi)
-        res.update({
-            "C_apparent_kPa": _kpa(C), "phi_apparent_deg": num(phi),
-            "phi_difference_deg": num(phi - env.phi),
-            "eq37_sigma_cap_kPa": _kpa(tx.spherical_group_cap(C, env.c, env.phi)),
-            "eq48_lower": {"C_fictive_kPa": _kpa(c2), "sigma1_cap_kPa": _kpa(a1), "sigma3_cap_kPa": _kpa(a3)},
-            "lode_angles_deg": [num(x) for x in t["lode"][sel]],
-            "eq49_holds": bool(np.ptp(Q) <= 1e-3),
-        })
+        branch = branches[0]
+        if np.ptp(s3) > 0:
+            kp, b = np.polyfit(s3, s1, 1)
+            if kp > 1.0:
+                C, phi = tx.envelope_from_principal_fit(kp, b)
+                c2 = tx.fictive_cohesion_lower(C, env.c, env.phi)
+                a1, a3 = tx.axisymmetric_group_cap(C, c2, env.c, env.phi)
+                res.update({
+                    "C_apparent_kPa": _kpa(C), "phi_apparent_deg": num(phi), "phi_difference_deg": num(phi - env.phi),
+                    "eq37_sigma_cap_kPa": _kpa(tx.spherical_group_cap(C, env.c, env.phi)),
+                    "eq48_lower": {"C_fictive_kPa": _kpa(c2), "sigma1_cap_kPa": _kpa(a1), "sigma3_cap_kPa": _kpa(a3)},
+                })
+            else:
+                res["apparent_error"] = f"apparent K_p = {kp:.3g} <= 1: no apparent friction angle"
+        else:
+            res["apparent_error"] = "all tests of the group share one sigma3: no apparent envelope (eq. 37)"
+        paired = all(t["pair"][i] for i in sel)
+        p_idx = np.array([index[t["pair"][i]] for i in sel]) if paired else None
+        if branch == "general" and not res["eq49_holds"]:
+            res["error"] = (f"the Lode angles of the group spread over {np.ptp(lode):.3g} deg > "
+                            f"{tx.LODE_TOL_DEG:g} deg: eq. 50 needs one Lode angle (eq. 49)")
+        elif branch == "general" and paired:
+            gt = tx.true_triaxial_group_tensor(s1, s2, s3, t["sigma1"][p_idx], t["sigma2"][p_idx],
+                                               t["sigma3"][p_idx], env.c, env.phi)
+            res["method"] = "eq. 50 (fictive state of the paired saturated tests, constant Lode angle)"
+            res.update(_tensor_json(gt))
+            off = np.abs(t["lode"][p_idx] - np.mean(lode)) > tx.LODE_TOL_DEG
+            if off.any():
+                res["warning"] = ("paired saturated tests at another Lode angle than the group: "
+                                  + ", ".join(str(t["test_id"][i]) for i in p_idx[off]))
+        elif branch == "general":
+            res["needs"] = ("eq. 50 needs, for each test, its paired saturated true-triaxial test at the same Lode "
+                            "angle (column 'pair' naming its test_id): the fictive state sigma'' takes its radii")
+        elif paired:
+            gt = tx.axisymmetric_group_tensor(s1, s3, t["sigma1"][p_idx], t["sigma3"][p_idx], env.c, env.phi,
+                                              branch=branch)
+            res["method"] = "eq. 48 (fictive state sigma'' of the paired saturated tests, eq. 44-47)"
+            res.update(_tensor_json(gt))
+        else:
+            res["needs"] = ("eq. 48 with the fictive state sigma'' (eq. 44-47) needs, for each test, the saturated "
+                            "test that reaches the same effective state at failure (column 'pair' naming its "
+                            "test_id); without it eq. 48 is closed with sigma1_cap = 0 (the lower bound, eq. 24)")
+            if "eq48_lower" in res:
+                e = res["eq48_lower"]
+                res["method"] = "eq. 48 closed with sigma1_cap = 0 (no paired saturated tests)"
+                # in extension the major direction is radial: sigma2_cap = sigma1_cap
+                res.update({"sigma1_cap_kPa": e["sigma1_cap_kPa"], "sigma3_cap_kPa": e["sigma3_cap_kPa"],
+                            "sigma2_cap_kPa": e["sigma1_cap_kPa"] if branch == "extension" else e["sigma3_cap_kPa"],
+                            "C_kPa": res["C_apparent_kPa"], "C_fictive_kPa": e["C_fictive_kPa"]})
+                caps = [res[k] * 1e3 for k in ("sigma1_cap_kPa", "sigma2_cap_kPa", "sigma3_cap_kPa")]
+                res["p_cap_kPa"] = _kpa(sum(caps) / 3)
+                res["q_cap_kPa"] = _kpa(caps[0] - caps[2])
         out.append(res)
     return out

@@ -5,42 +5,68 @@ from ..references import cite
 from ..result import TableSpec
 from .render import fmt, spec
 
+_BRANCH = {"compression": "comp.", "extension": "ext.", "general": "true tx."}
+
+
+def _pm(value, se) -> str:
+    """'value ± se' (se omitted when unknown)."""
+    if value is None:
+        return "—"
+    return fmt(value) if se is None else f"{fmt(value)} ± {fmt(se, 2)}"
+
+
 def triaxial_tables(result) -> list[TableSpec]:
-    """Envelope, then one row per unsaturated test and bound, then groups."""
+    """Envelope, then one row per unsaturated test and bound, then groups (apparent envelope and shared tensor)."""
     js = result.to_json()
     e = js["envelope"]
     env = spec("Effective envelope (saturated drained tests)",
-                ["source", "n", "c' [kPa]", "± se", "φ' [°]", "± se", "M", "k [kPa]"])
+               ["source", "n", "c' [kPa]", "± se", "φ' [°]", "± se", "M", "k [kPa]"])
     env.rows.append([e["source"], fmt(e["n"]), fmt(e["c_kPa"]), fmt(e["c_se_kPa"]), fmt(e["phi_deg"]),
                      fmt(e["phi_se_deg"]), fmt(e["M"]), fmt(e["k_kPa"])])
     names = {"lower": "LB", "spherical": "UB q=q'", "edtp": "UB EDTP"}
-    tb = spec("Capillary stress tensor at failure [kPa], compression +; gain = q'/q'_sat",
-               ["test", "σ3 [kPa]", "q [kPa]", "bound", "σ1,cap", "σ3,cap", "p_cap", "q_cap", "p'", "q'", "gain",
-                "σ_cap > 0"], left=1)
-    tb.columns[3] = ("bound", "left")
+    tb = spec("Capillary stress tensor at failure [kPa], compression +; gain = q'/q'_sat; "
+              "θ = Lode angle (0 compression, 60 extension)",
+              ["test", "branch", "θ [°]", "σ3 [kPa]", "q [kPa]", "bound", "σ1,cap", "σ2,cap", "σ3,cap", "p_cap",
+               "q_cap", "p'", "q'", "gain", "σ_cap > 0"], left=2)
+    tb.columns[5] = ("bound", "left")
     for t in (t for t in js["tests"] if t["condition"] == "unsaturated"):
         present = [n for n in ("lower", "spherical", "edtp") if t[n]]
+        head = [t["test_id"], _BRANCH.get(t["branch"], t["branch"]), fmt(t["lode_angle_deg"], 3),
+                fmt(t["sigma3_kPa"]), fmt(t["q_kPa"])]
+        if not present:
+            tb.sections.add(len(tb.rows))
+            tb.rows.append([*head, "none: not axisymmetric (see groups)", *[""] * 9])
+            continue
         for k, name in enumerate(present):
             b = t[name]
-            head = [t["test_id"], fmt(t["sigma3_kPa"]), fmt(t["q_kPa"])] if k == 0 else ["", "", ""]
             if k == len(present) - 1:
                 tb.sections.add(len(tb.rows))
-            tb.rows.append([*head, names[name], fmt(b["sigma1_cap_kPa"]), fmt(b["sigma3_cap_kPa"]),
-                            fmt(b["p_cap_kPa"]), fmt(b["q_cap_kPa"]), fmt(b["p_prime_kPa"]), fmt(b["q_prime_kPa"]),
-                            fmt(b["gain"]), "yes" if b["positive_component"] else ""])
+            tb.rows.append([*(head if k == 0 else [""] * 5), names[name], fmt(b["sigma1_cap_kPa"]),
+                            fmt(b["sigma2_cap_kPa"]), fmt(b["sigma3_cap_kPa"]), fmt(b["p_cap_kPa"]),
+                            fmt(b["q_cap_kPa"]), fmt(b["p_prime_kPa"]), fmt(b["q_prime_kPa"]), fmt(b["gain"]),
+                            "yes" if b["positive_component"] else ""])
     out = [env, tb]
     if js["groups"]:
-        g = spec(f"Groups sharing one capillary tensor ({cite('prunier2024', 'Appendix 1')})",
-                  ["group", "n", "C [kPa]", "φ [°]", "φ − φ' [°]", "eq. 37 σ_cap", "eq. 48 σ1,cap", "eq. 48 σ3,cap",
-                   "eq. 49"])
+        g = spec(f"Groups: apparent envelope ({cite('prunier2024', 'Appendix 1, eq. 35-37, 43')})",
+                 ["group", "n", "branch", "C [kPa]", "φ [°]", "φ − φ' [°]", "eq. 37 σ_cap", "θ spread [°]", "eq. 49"])
+        tensor = spec(f"Groups: shared capillary tensor [kPa] ± se (n − 1 dof; 95 % intervals in the JSON) "
+                      f"({cite('prunier2024', 'eq. 44-50')})",
+                      ["group", "method", "σ1,cap", "σ2,cap", "σ3,cap", "p_cap", "C [kPa]", "C'' [kPa]"], left=2)
         for r in js["groups"]:
+            apparent = [fmt(r.get("C_apparent_kPa")), fmt(r.get("phi_apparent_deg")),
+                        fmt(r.get("phi_difference_deg"), sign=True), fmt(r.get("eq37_sigma_cap_kPa"))]
+            if "C_apparent_kPa" not in r:
+                apparent = [r.get("apparent_error", "—"), "", "", ""]
+            g.rows.append([r["group"], fmt(r["n"]), _BRANCH.get(r["branch"], r["branch"]), *apparent,
+                           fmt(r["lode_spread_deg"], 2), "holds" if r["eq49_holds"] else "fails"])
             if "error" in r:
-                g.rows.append([r["group"], fmt(r["n"]), r["error"], "", "", "", "", "", ""])
+                tensor.rows.append([r["group"], r["error"], *[""] * 6])
                 continue
-            e48 = r["eq48_lower"]
-            g.rows.append([r["group"], fmt(r["n"]), fmt(r["C_apparent_kPa"]), fmt(r["phi_apparent_deg"]),
-                           fmt(r["phi_difference_deg"], sign=True), fmt(r["eq37_sigma_cap_kPa"]),
-                           fmt(e48["sigma1_cap_kPa"]), fmt(e48["sigma3_cap_kPa"]),
-                           "holds" if r["eq49_holds"] else "fails"])
-        out.append(g)
+            method = (r["method"] or "— (see notes)").split(" (")[0]
+            if r["method"] and "closed" in r["method"]:
+                method = "eq. 48, σ1,cap = 0 closure"
+            tensor.rows.append([r["group"], method,
+                                *(_pm(r[f"sigma{k}_cap_kPa"], r[f"sigma{k}_cap_se_kPa"]) for k in (1, 2, 3)),
+                                fmt(r["p_cap_kPa"]), fmt(r["C_kPa"]), fmt(r["C_fictive_kPa"])])
+        out += [g, tensor]
     return out
