@@ -1,5 +1,13 @@
-"""Bounded nonlinear least squares with fixed parameters, several starts and
-standard errors (lmfit-style result object, built on scipy.optimize)."""
+"""Bounded nonlinear least squares with fixed parameters, several starts and standard errors.
+
+The result record :class:`NonlinearFit` follows lmfit's ``MinimizerResult``:
+estimates, standard errors, covariance, n, dof, RSS, R², AIC, AICc, BIC.
+Standard errors come from the Jacobian of the weighted residuals at the
+optimum, :math:`\\mathrm{Cov} = (J^T J)^{-1}\\, \\mathrm{RSS}/(n - k)`
+(the linearisation at the optimum); a parameter that ends on one of its bounds is
+held there for the standard errors of the others (the same numbers as a refit
+with it fixed), and the fit's ``notes`` say so.
+"""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -11,7 +19,47 @@ from ..errors import FitError
 
 @dataclass
 class NonlinearFit:
-    """Estimates, standard errors (None for fixed parameters), n, dof, RSS, R^2, AIC, BIC."""
+    """One least-squares fit.
+
+    Attributes
+    ----------
+    params : dict[str, float]
+        Estimates, in the units of the model's parameters (SI inside capred: Pa, 1/Pa, -).
+    stderr : dict[str, float | None]
+        Standard errors in the same units; None for fixed parameters and for parameters held at a bound.
+    fixed : tuple[str, ...]
+        Parameters fixed by the caller (not estimated).
+    n : int
+        Number of data points.
+    rss : float
+        Weighted residual sum of squares, :math:`\\sum w_i (f(x_i) - y_i)^2` [unit of y squared].
+    r2 : float
+        Weighted coefficient of determination, 1 - RSS/TSS [-].
+    aic, bic : float
+        Akaike and Bayesian information criteria, :math:`n \\ln(\\mathrm{RSS}/n) + 2k` and
+        :math:`n \\ln(\\mathrm{RSS}/n) + k \\ln n`, k the number of estimated parameters.
+    converged : bool
+        The optimiser met its tolerances.
+    message : str
+        The optimiser's message.
+    extra : dict
+        Free-form additions of the caller.
+    covariance : numpy.ndarray or None
+        Covariance of the free parameters in the order of ``free`` (rows and columns of held parameters are 0).
+    free : tuple[str, ...]
+        Estimated parameters.
+    bounds : dict[str, tuple[float, float]]
+        Search bounds of the free parameters.
+    t : float
+        Student t quantile (0.975) of the 95 % intervals, with ``dof_se`` degrees of freedom.
+    notes : list[str]
+        Plain-language remarks on the fit (e.g. a parameter held at its bound for the standard errors).
+    log_params : dict[str, float]
+        Parameters whose natural scale is logarithmic, ``{name: offset}``: the scale is ln(value - offset)
+        (bound checks are made on that scale).
+    held : tuple[str, ...]
+        Free parameters that ended on a bound and were held there for the standard errors.
+    """
 
     params: dict[str, float]
     stderr: dict[str, float | None]
@@ -24,60 +72,114 @@ class NonlinearFit:
     converged: bool
     message: str = ""
     extra: dict = field(default_factory=dict)
-    covariance: np.ndarray | None = None  # of the free parameters, in the order of ``free``
+    covariance: np.ndarray | None = None
     free: tuple[str, ...] = ()
     bounds: dict = field(default_factory=dict)
-    t: float = float("nan")  # Student t of the 95 % intervals (dof = n - free)
+    t: float = float("nan")
+    notes: list = field(default_factory=list)
+    log_params: dict = field(default_factory=dict)
+    held: tuple[str, ...] = ()
 
     @property
     def aicc(self) -> float:
-        """AIC with the small-sample correction: AIC + 2k(k + 1)/(n - k - 1) (k free parameters)."""
+        """AIC with the small-sample correction, :math:`\\mathrm{AIC} + 2k(k + 1)/(n - k - 1)` (k free parameters)."""
         k = self.nfree
         return self.aic + 2 * k * (k + 1) / (self.n - k - 1) if self.n - k - 1 > 0 else float("nan")
 
     @property
     def rmse(self) -> float:
+        """Root mean square of the weighted residuals, sqrt(RSS/n) [unit of y]."""
         return float(np.sqrt(self.rss / self.n))
 
     def ci95(self, name: str) -> tuple[float, float] | None:
+        """95 % interval of one parameter, estimate ± t·SE (None without a standard error)."""
         se = self.stderr.get(name)
         if se is None or not np.isfinite(se):
             return None
         return self.params[name] - self.t * se, self.params[name] + self.t * se
 
     def correlation(self) -> dict[str, dict[str, float]]:
-        """Correlation matrix of the free parameters (unsatfit and SWRC Fit report it)."""
+        """Correlation matrix of the free parameters that have a standard error (as unsatfit and SWRC Fit report)."""
         if self.covariance is None:
             return {}
-        sd = np.sqrt(np.clip(np.diag(self.covariance), 1e-300, None))
-        r = self.covariance / np.outer(sd, sd)
-        return {a: {b: float(r[i, j]) for j, b in enumerate(self.free)} for i, a in enumerate(self.free)}
+        var = np.diag(self.covariance)
+        keep = [i for i, k in enumerate(self.free) if k not in self.held and var[i] > 0]
+        sd = np.sqrt(var[keep])
+        r = self.covariance[np.ix_(keep, keep)] / np.outer(sd, sd)
+        names = [self.free[i] for i in keep]
+        return {a: {b: float(r[i, j]) for j, b in enumerate(names)} for i, a in enumerate(names)}
 
     def at_bounds(self, rel: float = 1e-6) -> list[str]:
-        """Free parameters that ended on (within ``rel`` of the range of) their bounds."""
-        out = []
-        for k in self.free:
-            lo, hi = self.bounds.get(k, (-np.inf, np.inf))
-            span = (hi - lo) if np.isfinite(hi - lo) else max(abs(self.params[k]), 1.0)
-            if self.params[k] <= lo + rel * span or self.params[k] >= hi - rel * span:
-                out.append(k)
-        return out
+        """Free parameters that ended on one of their bounds.
+
+        The distance to a bound is measured in the parameter's own scale (ln(value - offset) for the
+        parameters of ``log_params``, the value itself otherwise) and compared with ``rel`` times the
+        width of the range on that scale.
+        """
+        return [k for k in self.free if _at_bound(self.params[k], self.bounds.get(k, (-np.inf, np.inf)),
+                                                  self.log_params.get(k), rel)]
 
     @property
     def nfree(self) -> int:
+        """Number of estimated parameters (including those held at a bound for the standard errors)."""
         return len(self.params) - len(self.fixed)
 
     @property
     def dof(self) -> int:
+        """Degrees of freedom n - k."""
         return self.n - self.nfree
 
+    @property
+    def dof_se(self) -> int:
+        """Degrees of freedom of the standard errors: n minus the parameters not held at a bound."""
+        return self.n - self.nfree + len(self.held)
 
-def fit_curve(model, x, y, names, starts, bounds, fixed=None, weights=None) -> NonlinearFit:
-    """Minimise sum w (model(x, **p) - y)^2 over the free parameters.
 
-    ``starts``: list of dicts of initial values (all names); the best end point
-    wins. ``bounds``: {name: (lo, hi)}. ``fixed``: {name: value}.
-    ``weights``: per-point weights (default 1); RSS, R^2 and the criteria are weighted.
+def _at_bound(value: float, bounds, offset, rel: float) -> bool:
+    """True when ``value`` lies within ``rel`` of the range width of a bound, on the parameter's own scale."""
+    lo, hi = bounds
+    if offset is not None:  # logarithmic scale ln(x - offset)
+        def f(x):
+            return float(np.log(x - offset)) if x > offset else -np.inf
+
+        u, ulo, uhi = f(value), f(lo), f(hi)
+    else:
+        u, ulo, uhi = value, lo, hi
+    span = uhi - ulo if np.isfinite(uhi - ulo) else max(abs(u), 1.0)
+    return bool(u <= ulo + rel * span or u >= uhi - rel * span)
+
+
+def fit_curve(model, x, y, names, starts, bounds, fixed=None, weights=None, log_params=None) -> NonlinearFit:
+    """Minimise :math:`\\sum_i w_i\\,(f(x_i; p) - y_i)^2` over the free parameters p, from several starts.
+
+    Parameters
+    ----------
+    model : callable
+        ``model(x, **params) -> y`` (numpy, vectorised over x).
+    x, y : array_like
+        Data (any units; y in the unit of the model's output).
+    names : sequence of str
+        All parameter names of the model, in order.
+    starts : list of dict
+        Initial values (every name); the lowest end point wins.
+    bounds : dict[str, tuple[float, float]]
+        Search bounds per parameter.
+    fixed : dict[str, float], optional
+        Parameters held at given values.
+    weights : array_like, optional
+        Per-point weights w_i (default 1); RSS, R² and the criteria are weighted.
+    log_params : dict[str, float], optional
+        ``{name: offset}`` of parameters with a logarithmic scale (bound checks).
+
+    Returns
+    -------
+    NonlinearFit
+        The best fit, standard errors from its Jacobian.
+
+    Raises
+    ------
+    FitError
+        NaN or infinite data, fewer points than free parameters, or no start converged.
     """
     from scipy.optimize import least_squares
 
@@ -114,31 +216,46 @@ def fit_curve(model, x, y, names, starts, bounds, fixed=None, weights=None) -> N
             best = r
     if best is None:
         raise FitError("the fit did not converge from any starting point")
-    rss = float(2.0 * best.cost)
-    return _assemble(names, full(best.x), fixed, free, y, sw, rss, best.jac, bounds, bool(best.success),
-                     str(best.message))
+    return summarize_fit(model, x, y, names, full(best.x), bounds, fixed, weights, bool(best.success),
+                         log_params=log_params, message=str(best.message))
 
 
-def _assemble(names, params, fixed, free, y, sw, rss, jac, bounds, converged, message="") -> NonlinearFit:
-    """The fit statistics: weighted R^2, AIC/BIC, standard errors and covariance from the Jacobian."""
+def _assemble(names, params, fixed, free, y, sw, rss, jac, bounds, converged, message="", held=(),
+              log_params=None, notes=None) -> NonlinearFit:
+    """The fit statistics: weighted R², AIC/BIC, standard errors and covariance from the Jacobian.
+
+    Columns of ``held`` parameters are left out of the covariance (their rows and columns are 0).
+    """
     n, k = len(y), len(free)
+    keep = [i for i, name in enumerate(free) if name not in held]
     wts = sw**2
     ybar = float(np.sum(wts * y) / np.sum(wts))
     tss = float(np.sum(wts * (y - ybar) ** 2))
-    try:
-        cov = np.linalg.inv(jac.T @ jac) * rss / (n - k)
-        se = np.sqrt(np.clip(np.diag(cov), 0.0, None))
-    except np.linalg.LinAlgError:
-        cov, se = None, np.full(k, np.nan)
+    dof_se = n - len(keep)
+    cov = None
+    se = np.full(k, np.nan)
+    if keep and dof_se > 0:
+        J = jac[:, keep]
+        try:
+            sub = np.linalg.inv(J.T @ J) * rss / dof_se
+            if np.all(np.isfinite(sub)):
+                cov = np.zeros((k, k))
+                cov[np.ix_(keep, keep)] = sub
+                se[keep] = np.sqrt(np.clip(np.diag(sub), 0.0, None))
+        except np.linalg.LinAlgError:
+            pass
+    elif not keep:
+        cov = np.zeros((k, k))
     stderr: dict[str, float | None] = {name: None for name in names}
-    stderr.update({name: float(v) for name, v in zip(free, se)})
+    stderr.update({name: (float(v) if name not in held else None) for name, v in zip(free, se)})
     rss_n = max(rss / n, 1e-300)
     return NonlinearFit(
         params={name: float(params[name]) for name in names}, stderr=stderr, fixed=tuple(fixed), n=n, rss=rss,
         r2=1.0 - rss / tss if tss > 0 else float("nan"),
         aic=n * np.log(rss_n) + 2 * k, bic=n * np.log(rss_n) + k * np.log(n),
         converged=converged, message=message, covariance=cov, free=tuple(free),
-        bounds={k_: tuple(bounds[k_]) for k_ in free}, t=_t95(n - k),
+        bounds={k_: tuple(bounds[k_]) for k_ in free}, t=_t95(dof_se), notes=list(notes or []),
+        log_params=dict(log_params or {}), held=tuple(held),
     )
 
 
@@ -149,20 +266,70 @@ def _t95(dof: int) -> float:
 
 
 def summarize_fit(model, x, y, names, params: dict, bounds, fixed=None, weights=None,
-                  converged: bool = True) -> NonlinearFit:
-    """The NonlinearFit of given optimal parameters (no optimisation): RSS, R^2, criteria, and standard
-    errors from a central-difference Jacobian of the weighted residuals."""
+                  converged: bool = True, log_params=None, message: str = "", notes=None) -> NonlinearFit:
+    """The :class:`NonlinearFit` of given optimal parameters (no optimisation).
+
+    RSS, R², the criteria, and standard errors from a central-difference Jacobian of the weighted residuals
+    (step 1e-6 of the parameter's own scale). A free parameter on one of its bounds is held there: the other
+    standard errors are those of a refit with it fixed, its own is None, and a note says so.
+
+    Parameters
+    ----------
+    model : callable
+        ``model(x, **params) -> y``.
+    x, y : array_like
+        Data.
+    names : sequence of str
+        All parameter names.
+    params : dict[str, float]
+        The optimum (every name).
+    bounds : dict[str, tuple[float, float]]
+        Search bounds of the free parameters.
+    fixed : dict[str, float], optional
+        Parameters fixed by the caller.
+    weights : array_like, optional
+        Per-point weights.
+    converged : bool
+        Recorded in the result.
+    log_params : dict[str, float], optional
+        ``{name: offset}`` of log-scaled parameters.
+    message : str
+        Recorded in the result.
+    notes : list of str, optional
+        Remarks carried into the result.
+
+    Returns
+    -------
+    NonlinearFit
+    """
     x = np.asarray(x, float)
     y = np.asarray(y, float)
     fixed = dict(fixed or {})
+    log_params = dict(log_params or {})
     free = [k for k in names if k not in fixed]
     sw = np.ones_like(y) if weights is None else np.sqrt(np.asarray(weights, float))
     r = (model(x, **params) - y) * sw
+    held = tuple(k for k in free if _at_bound(params[k], bounds[k], log_params.get(k), 1e-6))
+    notes = list(notes or [])
+    for k in held:
+        lo, hi = bounds[k]
+        side = "lower" if abs(params[k] - lo) <= abs(params[k] - hi) else "upper"
+        notes.append(f"{k} ended on its {side} bound ({params[k]:.6g}); the standard errors of the other "
+                     "parameters are those of a fit with it held there, it has none")
     cols = []
     for k in free:
-        h = 1e-7 * max(abs(params[k]), 1e-12)
         lo, hi = bounds[k]
-        up, dn = min(params[k] + h, hi), max(params[k] - h, lo)
+        v = params[k]
+        if k in log_params:
+            h = 1e-6 * max(v - log_params[k], 1e-300)
+        else:
+            span = hi - lo if np.isfinite(hi - lo) else 1.0
+            h = 1e-6 * max(abs(v), 1e-3 * span, 1e-300)
+        up, dn = min(v + h, hi), max(v - h, lo)
+        if up <= dn:
+            cols.append(np.zeros_like(y))
+            continue
         cols.append((model(x, **{**params, k: up}) - model(x, **{**params, k: dn})) * sw / (up - dn))
     jac = np.column_stack(cols) if cols else np.empty((x.size, 0))
-    return _assemble(names, params, fixed, free, y, sw, float(r @ r), jac, bounds, converged)
+    return _assemble(names, params, fixed, free, y, sw, float(r @ r), jac, bounds, converged, message, held,
+                     log_params, notes)

@@ -1,13 +1,34 @@
-"""The water-retention models of `capred retention`, one registry entry each, and their fitting.
+"""The water-retention models of `capred retention`: one registry entry each, and their fitting.
 
-Suction s in Pa inside. Every model gives y(s) = y_r + (y_s - y_r) S_e(s)
-except Fredlund-Xing with its correction factor, y = y_s C(s) S_e(s). Start
-values are found automatically from the data (several starts, the best end
-point wins); any parameter may be fixed.
+Each :class:`RetentionModel` of :data:`MODELS` holds everything about a model:
+its name, label, equation (matplotlib mathtext), parameters with units and
+valid ranges, references (keys of :mod:`capred.references`), the method text
+of report.html, the help text and the line style. Adding a model is adding one
+entry.
+
+Suction s is in Pa inside. Every model gives
+
+.. math:: y(s) = y_r + (y_s - y_r)\\, S(s)
+
+except Fredlund-Xing with its correction factor, :math:`y = y_s\\, C(s) S(s)`.
+The fit (:func:`fit_model`) reaches the global least-squares optimum inside
+the bounds by
+
+1. *variable projection*: y_r and y_s enter linearly, so for given shape
+   parameters they are the exact bounded weighted least-squares solution
+   (Golub & Pereyra 1973); the search runs over the shape parameters only;
+2. a *grid* over the shape parameters (log-spaced on each parameter's own
+   scale, dense over the data's suction range and reaching the bounds), its
+   projected residual evaluated at once for every grid point; for a mixture
+   weight (Durner's w1) the weights are projected too;
+3. a bounded local least-squares refinement from the best grid minima;
+   a parameter whose model has kinks at the data suctions (Brooks-Corey's
+   air-entry suction) is refined within each interval between neighbouring
+   data suctions separately, where the objective is smooth.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field, fields
 from typing import Callable
 
 import numpy as np
@@ -16,198 +37,824 @@ from ..errors import FitError
 from ..physics import retention as rp
 from .nonlinear import NonlinearFit, fit_curve, summarize_fit
 
+_SCREEN_POINTS = 200  # data points used to rank the start grid (all points are used for the refinement)
+_CHUNK = 2_000_000  # grid points x data points evaluated at once
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One parameter of a retention model.
+
+    Attributes
+    ----------
+    name : str
+        Internal name (the key of ``NonlinearFit.params``).
+    symbol : str
+        Matplotlib mathtext, e.g. ``r"$\\alpha$"``.
+    unit : str
+        Unit of the internal value: "Pa", "1/Pa", "-", or "y" (the unit of the fitted water quantity,
+        m³/m³ for θ, - for S_R).
+    description : str
+        Meaning, in a few words.
+    kind : str
+        How its search range follows the data: "residual" [0, max y]; "saturated" [min y, max(1, max y)];
+        "suction" [lower·s_min, upper·s_max]; "inverse_suction" [lower/s_max, upper/s_min]; "absolute"
+        [lower, upper]; "suction_to_absolute" [lower·s_min, upper].
+    lower, upper : float
+        The numbers of that rule.
+    log_offset : float or None
+        The parameter's own scale is ln(value - log_offset) (None: linear). The start grid is evenly
+        spaced and bound warnings are judged on that scale.
+    grid : int
+        Start-grid points: per decade for suction-like kinds, in total otherwise (0: not on the grid).
+    kinks_at_data : bool
+        The model has kinks in this parameter at the data suctions (searched interval by interval).
+    grid_span : float
+        Suction-like kinds: the start grid covers the data's suction range widened by this factor each way
+        (plus the two bounds).
+    """
+
+    name: str
+    symbol: str
+    unit: str
+    description: str
+    kind: str = "absolute"
+    lower: float = -np.inf
+    upper: float = np.inf
+    log_offset: float | None = None
+    grid: int = 0
+    kinks_at_data: bool = False
+    grid_span: float = 100.0
+
+    def bounds(self, s_min: float, s_max: float, y_min: float, y_max: float) -> tuple[float, float]:
+        """Search bounds [unit] for data with positive suctions in [s_min, s_max] [Pa] and y in [y_min, y_max]."""
+        if self.kind == "residual":
+            return 0.0, y_max
+        if self.kind == "saturated":
+            return y_min, max(1.0, y_max)
+        if self.kind == "suction":
+            return self.lower * s_min, self.upper * s_max
+        if self.kind == "inverse_suction":
+            return self.lower / s_max, self.upper / s_min
+        if self.kind == "suction_to_absolute":
+            return self.lower * s_min, self.upper
+        return self.lower, self.upper
+
+    @property
+    def range_text(self) -> str:
+        """The valid range in words (s_min, s_max: the smallest and largest positive suction of the data)."""
+        return {"residual": "0 … max(y)", "saturated": "min(y) … max(1, max(y))",
+                "suction": f"{self.lower:g}·s_min … {self.upper:g}·s_max",
+                "inverse_suction": f"{self.lower:g}/s_max … {self.upper:g}/s_min",
+                "suction_to_absolute": f"{self.lower:g}·s_min … {self.upper:g} Pa",
+                }.get(self.kind, f"{self.lower:g} … {self.upper:g}")
+
+
+def _p(name, symbol, unit, description, kind="absolute", lower=-np.inf, upper=np.inf, log_offset=None, grid=0,
+       kinks=False, grid_span=100.0) -> Parameter:
+    return Parameter(name, symbol, unit, description, kind, lower, upper, log_offset, grid, kinks, grid_span)
+
+
+Y_R = _p("y_r", r"$\theta_r$", "y", "residual water content (or S_res)", "residual")
+Y_S = _p("y_s", r"$\theta_s$", "y", "saturated water content (or S_s)", "saturated")
+
+
+def _alpha(name="alpha", symbol=r"$\alpha$", grid=4, grid_span=100.0):
+    return _p(name, symbol, "1/Pa", "inverse of a characteristic suction", "inverse_suction", 1e-3, 1e3, 0.0, grid,
+              grid_span=grid_span)
+
+
+def _n(name="n", symbol="$n$", grid=12):
+    return _p(name, symbol, "-", "pore-size index", "absolute", 1.005, 100.0, 1.0, grid)
+
 
 @dataclass(frozen=True)
 class RetentionModel:
+    """One retention model: everything capred knows about it.
+
+    Attributes
+    ----------
+    name : str
+        Registry key and CLI name (``--model``).
+    label : str
+        Display name (plain text, also valid mathtext).
+    equation : str
+        The model in matplotlib mathtext.
+    parameters : tuple[Parameter, ...]
+        All parameters in order (y_r, y_s first where present).
+    saturation : callable
+        ``saturation(s, **shape) -> S`` [-]: S_e, or C(s)·S_e for Fredlund-Xing with C; broadcasts over
+        array-valued parameters.
+    references : tuple[str, ...]
+        Keys of :data:`capred.references.REFERENCES`, the defining paper first.
+    method : str
+        One or two sentences for the method section of report.html, with the equation.
+    help : str
+        One line for ``capred retention --help``.
+    style : dict
+        Matplotlib line style of the fitted curve.
+    residual_form : bool
+        True: y = y_r + (y_s - y_r) S; False: y = y_s S.
+    mixture : tuple or None
+        ``(weight_name, components)`` when S = w S_1 + (1 - w) S_2 with ``components(s, **others) -> (S_1, S_2)``:
+        the weight is then projected on the start grid like y_r and y_s.
+    inverse : callable or None
+        Closed-form ``inverse(S, **shape) -> s`` [Pa]; None: bisection on ln s.
+    grid_order : tuple[str, str] or None
+        ``(a, b)``: on the start grid only a >= b (removes a symmetry of the model).
+    canonical : callable or None
+        ``canonical(params) -> params``: one labelling of a symmetric model's optimum (Durner: the pore system
+        of larger α first).
+    """
+
     name: str
     label: str
-    reference: str  # key of capred.references.REFERENCES
-    names: tuple[str, ...]  # parameters (internal names, SI)
-    water: Callable  # water(s, **params) -> y
-    starts: Callable  # starts(s, y) -> list of dicts over ``names``
+    equation: str
+    parameters: tuple[Parameter, ...]
+    saturation: Callable
+    references: tuple[str, ...]
+    method: str
+    help: str
+    style: dict = field(default_factory=dict)
+    residual_form: bool = True
+    mixture: tuple | None = None
+    inverse: Callable | None = None
+    grid_order: tuple[str, str] | None = None
+    canonical: Callable | None = None
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """Parameter names, in order."""
+        return tuple(p.name for p in self.parameters)
+
+    @property
+    def reference(self) -> str:
+        """Key of the defining paper."""
+        return self.references[0]
+
+    @property
+    def log_params(self) -> dict[str, float]:
+        """``{name: offset}`` of the parameters with a logarithmic scale."""
+        return {p.name: p.log_offset for p in self.parameters if p.log_offset is not None}
+
+    def parameter(self, name: str) -> Parameter:
+        """The :class:`Parameter` called ``name``."""
+        return next(p for p in self.parameters if p.name == name)
+
+    def water(self, s, **params):
+        """Water content (or S_R) at suction ``s`` [Pa]: :math:`y_r + (y_s - y_r) S(s)` (or :math:`y_s S(s)`).
+
+        Parameters
+        ----------
+        s : array_like
+            Suction [Pa].
+        **params : float
+            Every parameter of the model (internal names, SI units).
+
+        Returns
+        -------
+        numpy.ndarray
+            y(s) in the unit of y_r and y_s.
+        """
+        shape = {k: v for k, v in params.items() if k not in ("y_r", "y_s")}
+        S = self.saturation(s, **shape)
+        if self.residual_form:
+            y_r = params.get("y_r", 0.0)
+            return y_r + (params["y_s"] - y_r) * S
+        return params["y_s"] * S
 
     def effective_saturation(self, s, p: dict):
-        """S_e(s) in [0, 1] (for Fredlund-Xing with C: y/y_s)."""
+        """S_e(s) in [0, 1]: (y - y_r)/(y_s - y_r) (for Fredlund-Xing with C: y/y_s)."""
         y = self.water(s, **p)
         y_r = p.get("y_r", 0.0)
         return (y - y_r) / (p["y_s"] - y_r)
 
+    def suction(self, S, **shape):
+        """Suction [Pa] at which the model's S(s) equals ``S`` [-] (NaN where no suction gives it)."""
+        S = np.asarray(S, float)
+        if self.inverse is not None:
+            return self.inverse(S, **shape)
+        return rp.monotone_suction(lambda x: self.saturation(x, **shape), S)
 
-def _smid(s):
+
+# ---------------------------------------------------------------------------------------------------------------
+# the registry
+
+def _durner_components(s, alpha1, n1, alpha2, n2):
+    return rp.vg_effective_saturation(s, alpha1, n1), rp.vg_effective_saturation(s, alpha2, n2)
+
+
+def _durner_canonical(p: dict) -> dict:
+    if p["alpha1"] >= p["alpha2"]:
+        return p
+    return {**p, "w1": 1.0 - p["w1"], "alpha1": p["alpha2"], "n1": p["n2"], "alpha2": p["alpha1"], "n2": p["n1"]}
+
+
+def _bc_inverse(S, s_e, lam):
+    ok = (S > 0) & (S <= 1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(ok, rp.bc_suction(np.where(ok, S, 1.0), s_e, lam), np.nan)
+
+
+_M = _p("m", "$m$", "-", "shape exponent", "absolute", 1e-3, 20.0, 0.0, 10)
+
+MODELS: dict[str, RetentionModel] = {m.name: m for m in (
+    RetentionModel(
+        "vg", "van Genuchten, m = 1 - 1/n", r"$S_e = [1 + (\alpha s)^n]^{-(1 - 1/n)}$",
+        (Y_R, Y_S, _alpha(), _n()),
+        lambda s, alpha, n: rp.vg_effective_saturation(s, alpha, n), ("vangenuchten1980",),
+        "van Genuchten (1980, eq. 21) with Mualem's constraint: θ = θ_r + (θ_s − θ_r)[1 + (αs)^n]^−m, "
+        "m = 1 − 1/n.",
+        "vg: van Genuchten (1980), m = 1 - 1/n", dict(ls="-"),
+        inverse=lambda S, alpha, n: rp.vg_suction(S, alpha, n)),
+    RetentionModel(
+        "vg_m_free", "van Genuchten, m free", r"$S_e = [1 + (\alpha s)^n]^{-m}$",
+        (Y_R, Y_S, _alpha(), _n(grid=10), _M),
+        lambda s, alpha, n, m: rp.vg_effective_saturation(s, alpha, n, m), ("vangenuchten1980",),
+        "van Genuchten (1980, eq. 21) with m free: θ = θ_r + (θ_s − θ_r)[1 + (αs)^n]^−m.",
+        "vg_m_free: van Genuchten (1980) with m free", dict(ls="--"),
+        inverse=lambda S, alpha, n, m: rp.vg_suction(S, alpha, n, m)),
+    RetentionModel(
+        "bc", "Brooks-Corey", r"$S_e = (s_e/s)^{\lambda}\ (s > s_e)$, $1$ below",
+        (Y_R, Y_S,
+         _p("s_e", "$s_e$", "Pa", "air-entry suction", "suction", 1e-3, 1.0, 0.0, 4, kinks=True),
+         _p("lam", r"$\lambda$", "-", "pore-size distribution index", "absolute", 1e-3, 50.0, 0.0, 12)),
+        lambda s, s_e, lam: rp.bc_effective_saturation(s, s_e, lam), ("brooks_corey1964",),
+        "Brooks & Corey (1964): θ = θ_r + (θ_s − θ_r)(s_e/s)^λ above the air-entry suction s_e, θ_s below; "
+        "s_e is searched between each pair of neighbouring data suctions, where the fit is smooth.",
+        "bc: Brooks & Corey (1964) with the air-entry suction", dict(ls="-."), inverse=_bc_inverse),
+    RetentionModel(
+        "kosugi", "Kosugi (lognormal)", r"$S_e = Q\left(\ln(s/s_m)/\sigma\right)$",
+        (Y_R, Y_S,
+         _p("s_m", "$s_m$", "Pa", "median suction of the pore-size distribution", "suction", 1e-3, 1e3, 0.0, 4),
+         _p("sigma", r"$\sigma$", "-", "standard deviation of ln(pore radius)", "absolute", 1e-3, 10.0, 0.0, 12)),
+        lambda s, s_m, sigma: rp.kosugi_effective_saturation(s, s_m, sigma), ("kosugi1996",),
+        "Kosugi (1996), a lognormal pore-size distribution: θ = θ_r + (θ_s − θ_r) Q(ln(s/s_m)/σ), Q the "
+        "complementary standard normal distribution.",
+        "kosugi: Kosugi (1996), lognormal", dict(ls=":"),
+        inverse=lambda S, s_m, sigma: rp.kosugi_suction(S, s_m, sigma)),
+    RetentionModel(
+        "fx", "Fredlund-Xing with C(s)", r"$\theta = \theta_s\, C(s)\, [\ln(e + (s/a)^n)]^{-m}$",
+        (Y_S,
+         _p("a", "$a$", "Pa", "suction parameter (near the air entry)", "suction", 1e-3, 1e3, 0.0, 4),
+         _n(grid=8), _p("m", "$m$", "-", "shape exponent", "absolute", 1e-3, 20.0, 0.0, 8),
+         _p("s_r", "$s_r$", "Pa", "suction of the residual water content", "suction_to_absolute", 1.0, 1e9, 0.0, 1)),
+        lambda s, a, n, m, s_r: rp.fx_correction(s, s_r) * rp.fx_shape(s, a, n, m), ("fredlund_xing1994",),
+        "Fredlund & Xing (1994, eq. 26): θ = θ_s C(s)[ln(e + (s/a)^n)]^−m with "
+        "C(s) = 1 − ln(1 + s/s_r)/ln(1 + 10⁶ kPa/s_r).",
+        "fx: Fredlund & Xing (1994) with the correction factor C(s)", dict(ls=(0, (5, 1))),
+        residual_form=False),
+    RetentionModel(
+        "fx_no_c", "Fredlund-Xing without C(s)", r"$S_e = [\ln(e + (s/a)^n)]^{-m}$",
+        (Y_R, Y_S,
+         _p("a", "$a$", "Pa", "suction parameter (near the air entry)", "suction", 1e-3, 1e3, 0.0, 4),
+         _n(grid=10), _M),
+        lambda s, a, n, m: rp.fx_shape(s, a, n, m), ("fredlund_xing1994",),
+        "Fredlund & Xing (1994, eq. 26) without the correction factor: θ = θ_r + (θ_s − θ_r)"
+        "[ln(e + (s/a)^n)]^−m.",
+        "fx_no_c: Fredlund & Xing (1994) without C(s)", dict(ls=(0, (3, 1, 1, 1)))),
+    RetentionModel(
+        "durner", "Durner (bimodal van Genuchten)",
+        r"$S_e = w_1 [1 + (\alpha_1 s)^{n_1}]^{-m_1} + (1 - w_1)[1 + (\alpha_2 s)^{n_2}]^{-m_2}$",
+        (Y_R, Y_S, _p("w1", "$w_1$", "-", "weight of the first pore system", "absolute", 0.0, 1.0),
+         _alpha("alpha1", r"$\alpha_1$", 4, 3.0), _n("n1", "$n_1$", 10), _alpha("alpha2", r"$\alpha_2$", 4, 3.0),
+         _n("n2", "$n_2$", 10)),
+        lambda s, w1, alpha1, n1, alpha2, n2: rp.durner_effective_saturation(s, w1, alpha1, n1, alpha2, n2),
+        ("durner1994",),
+        "Durner (1994), two van Genuchten pore systems: S_e = w₁[1 + (α₁s)^n₁]^−m₁ + (1 − w₁)[1 + (α₂s)^n₂]^−m₂, "
+        "m_i = 1 − 1/n_i.",
+        "durner: Durner (1994), bimodal van Genuchten", dict(ls=(0, (1, 1))),
+        mixture=("w1", _durner_components), grid_order=("alpha1", "alpha2"), canonical=_durner_canonical),
+)}
+
+#: the same registry under the name used by the other families
+REGISTRY = MODELS
+
+
+def bounds_for(s, y, model: str | None = None) -> dict[str, tuple[float, float]]:
+    """Search bounds of the retention parameters for data (s, y).
+
+    Parameters
+    ----------
+    s : array_like
+        Suctions [Pa].
+    y : array_like
+        Water contents [m³/m³] or degrees of saturation [-].
+    model : str, optional
+        A key of :data:`MODELS`: only its parameters; all models' when None.
+
+    Returns
+    -------
+    dict[str, tuple[float, float]]
+        ``{name: (lower, upper)}`` in the parameters' units (Pa, 1/Pa, -, unit of y); the rules are in
+        each :class:`Parameter` (``range_text``).
+    """
+    s = np.asarray(s, float)
+    y = np.asarray(y, float)
     pos = s[s > 0]
-    return float(np.median(pos)) if pos.size else 1.0
-
-
-def _base(y):
-    return {"y_r": max(float(np.min(y)) * 0.5, 0.0), "y_s": float(np.max(y))}
-
-
-def _vg_starts(s, y, m_free=False):
-    m = _smid(s)
-    return [{**_base(y), "alpha": a / m, "n": n, "m": 1 - 1 / n} for a in (0.3, 1.0, 3.0)
-            for n in (1.3, 2.0, 4.0, 10.0, 20.0)]
-
-
-def _kosugi_starts(s, y):
-    m = _smid(s)
-    return [{**_base(y), "s_m": f * m, "sigma": sg} for f in (0.5, 1.0, 2.0) for sg in (0.1, 0.4, 1.2)]
-
-
-def _fx_starts(s, y, with_c):
-    m = _smid(s)
-    smax = float(np.max(s)) if s.size else 1.0
-    out = []
-    for f in (0.5, 1.0, 2.0):
-        for n in (2.0, 5.0, 20.0):
-            for mm in (0.5, 1.0, 2.0):
-                p = {**_base(y), "a": f * m, "n": n, "m": mm}
-                if with_c:
-                    p["s_r"] = 10.0 * smax
-                out.append(p)
+    smin = float(pos.min()) if pos.size else 1.0
+    smax = float(s.max()) if s.size and s.max() > 0 else 1.0
+    models = [MODELS[model]] if model is not None else list(MODELS.values())
+    out: dict[str, tuple[float, float]] = {}
+    for m in models:
+        for p in m.parameters:
+            out.setdefault(p.name, p.bounds(smin, smax, float(np.min(y)), float(np.max(y))))
     return out
 
 
-def _durner_starts(s, y):
-    m = _smid(s)
-    return [{**_base(y), "w1": w, "alpha1": a1 / m, "n1": n1, "alpha2": a2 / m, "n2": n2}
-            for w in (0.3, 0.7) for a1, a2 in ((3.0, 0.1), (1.0, 0.03)) for n1, n2 in ((4.0, 1.5), (10.0, 2.0))]
+# ---------------------------------------------------------------------------------------------------------------
+# the fit record
 
+@dataclass
+class RetentionFit(NonlinearFit):
+    """A fitted retention curve: the :class:`~capred.fitting.nonlinear.NonlinearFit` of one model, callable.
 
-MODELS: dict[str, RetentionModel] = {m.name: m for m in (
-    RetentionModel("vg", "van Genuchten, m = 1 - 1/n", "vangenuchten1980", ("y_r", "y_s", "alpha", "n"),
-                   lambda s, y_r, y_s, alpha, n: rp.vg_water(s, y_r, y_s, alpha, n), _vg_starts),
-    RetentionModel("vg_m_free", "van Genuchten, m free", "vangenuchten1980", ("y_r", "y_s", "alpha", "n", "m"),
-                   lambda s, y_r, y_s, alpha, n, m: rp.vg_water(s, y_r, y_s, alpha, n, m),
-                   lambda s, y: _vg_starts(s, y, True)),
-    RetentionModel("bc", "Brooks-Corey", "brooks_corey1964", ("y_r", "y_s", "s_e", "lam"),
-                   lambda s, y_r, y_s, s_e, lam: rp.bc_water(s, y_r, y_s, s_e, lam), lambda s, y: []),
-    RetentionModel("kosugi", "Kosugi (lognormal)", "kosugi1996", ("y_r", "y_s", "s_m", "sigma"),
-                   lambda s, y_r, y_s, s_m, sigma: y_r + (y_s - y_r) * rp.kosugi_effective_saturation(s, s_m, sigma),
-                   _kosugi_starts),
-    RetentionModel("fx", "Fredlund-Xing with C(s)", "fredlund_xing1994", ("y_s", "a", "n", "m", "s_r"),
-                   lambda s, y_s, a, n, m, s_r: y_s * rp.fx_correction(s, s_r) * rp.fx_shape(s, a, n, m),
-                   lambda s, y: [{k: v for k, v in p.items() if k != "y_r"} for p in _fx_starts(s, y, True)]),
-    RetentionModel("fx_no_c", "Fredlund-Xing without C(s)", "fredlund_xing1994", ("y_r", "y_s", "a", "n", "m"),
-                   lambda s, y_r, y_s, a, n, m: y_r + (y_s - y_r) * rp.fx_shape(s, a, n, m),
-                   lambda s, y: _fx_starts(s, y, False)),
-    RetentionModel("durner", "Durner (bimodal van Genuchten)", "durner1994",
-                   ("y_r", "y_s", "w1", "alpha1", "n1", "alpha2", "n2"),
-                   lambda s, y_r, y_s, w1, alpha1, n1, alpha2, n2: y_r + (y_s - y_r) * rp.durner_effective_saturation(
-                       s, w1, alpha1, n1, alpha2, n2), _durner_starts),
-)}
+    Attributes (besides those of NonlinearFit)
+    -------------------------------------------
+    model : str
+        Key of :data:`MODELS`.
 
-
-def bounds_for(s, y) -> dict[str, tuple[float, float]]:
-    top = max(1.0, float(np.max(y)))
-    pos = s[s > 0]
-    smin = float(pos.min()) if pos.size else 1.0
-    smax = float(s.max()) if s.size else 1.0
-    return {
-        "y_r": (0.0, float(np.max(y))), "y_s": (float(np.min(y)), top),
-        "alpha": (1e-3 / smax, 1e3 / smin), "alpha1": (1e-3 / smax, 1e3 / smin), "alpha2": (1e-3 / smax, 1e3 / smin),
-        "n": (1.005, 100.0), "n1": (1.005, 100.0), "n2": (1.005, 100.0), "m": (1e-3, 20.0), "w1": (0.0, 1.0),
-        "s_e": (smin * 1e-3, smax), "lam": (1e-3, 50.0),
-        "s_m": (smin * 1e-3, smax * 1e3), "sigma": (1e-3, 10.0),
-        "a": (smin * 1e-3, smax * 1e3), "s_r": (smin, 1e9),
-    }
-
-
-class _VarPro:
-    """Variable projection: for given shape parameters the linear ones (y_r, y_s) are solved exactly.
-
-    y = y_r (1 - S) + y_s S with S = S_e(s; shape) (Fredlund-Xing with C: y = y_s S), so the least-squares
-    problem shrinks to the shape parameters; y_r and y_s are the (bounded) weighted linear solution.
+    The methods evaluate the fitted curve: suction in Pa, water quantity in the unit of the data fitted
+    (θ [m³/m³] or S_R [-]).
     """
+
+    model: str = ""
+
+    @property
+    def entry(self) -> RetentionModel:
+        """The registry entry of the fitted model."""
+        return MODELS[self.model]
+
+    def water(self, suction):
+        """Fitted water content (or S_R) at ``suction``.
+
+        Parameters
+        ----------
+        suction : array_like
+            Suction [Pa].
+
+        Returns
+        -------
+        numpy.ndarray
+            y [m³/m³ or -], the shape of ``suction``.
+        """
+        return self.entry.water(np.asarray(suction, float), **self.params)
+
+    __call__ = water
+
+    def effective_saturation(self, suction):
+        """Fitted S_e = (y - y_r)/(y_s - y_r) [-] at ``suction`` [Pa] (y/y_s for Fredlund-Xing with C)."""
+        return self.entry.effective_saturation(np.asarray(suction, float), self.params)
+
+    def suction(self, water):
+        """Suction [Pa] at which the fitted curve gives ``water``, the inverse of :meth:`water`.
+
+        Parameters
+        ----------
+        water : array_like
+            Water content [m³/m³] or S_R [-], in the unit fitted.
+
+        Returns
+        -------
+        numpy.ndarray
+            Suction [Pa]; 0 at y_s (the air-entry suction s_e for Brooks-Corey), NaN outside (y_r, y_s].
+        """
+        p = self.params
+        water = np.asarray(water, float)
+        y_r = p.get("y_r", 0.0) if self.entry.residual_form else 0.0
+        S = (water - y_r) / (p["y_s"] - y_r)
+        shape = {k: v for k, v in p.items() if k not in ("y_r", "y_s")}
+        return self.entry.suction(S, **shape)
+
+    def band(self, suction, level_t: float | None = None):
+        """95 % confidence band of the fitted curve at ``suction`` [Pa]: (lower, upper), see :func:`confidence_band`."""
+        return confidence_band(self.model, self, suction, level_t)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# variable projection
+
+def _project(S, y, w2, lin, fixed_lin, b, residual_form):
+    """Bounded weighted least squares of the linear parameters for each row of S (G x n).
+
+    Returns (beta: {name: (G,)}, rss: (G,)). With two linear parameters the box-constrained quadratic
+    is solved exactly: the unconstrained solution if it is feasible, else the best of the four edges.
+    """
+    cols = {"y_r": 1.0 - S, "y_s": S} if residual_form else {"y_s": S}
+    rhs = y
+    for k, v in fixed_lin.items():
+        rhs = rhs - v * cols[k]
+    G = S.shape[0]
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        if not lin:
+            rss = (w2 * rhs * rhs).sum(-1) * np.ones(G)
+            return {}, rss
+        if len(lin) == 1:
+            k = lin[0]
+            c = cols[k]
+            beta = np.clip((w2 * c * rhs).sum(-1) / (w2 * c * c).sum(-1), *b[k])
+            r = rhs - beta[:, None] * c
+            return {k: beta}, (w2 * r * r).sum(-1)
+        c1, c2 = cols[lin[0]], cols[lin[1]]
+        (lo1, hi1), (lo2, hi2) = b[lin[0]], b[lin[1]]
+        a11, a12, a22 = (w2 * c1 * c1).sum(-1), (w2 * c1 * c2).sum(-1), (w2 * c2 * c2).sum(-1)
+        b1, b2 = (w2 * c1 * rhs).sum(-1), (w2 * c2 * rhs).sum(-1)
+        cc = (w2 * rhs * rhs).sum(-1)
+        det = a11 * a22 - a12 * a12
+        u1, u2 = (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
+
+        def q(x1, x2):
+            return cc - 2 * (b1 * x1 + b2 * x2) + a11 * x1 * x1 + 2 * a12 * x1 * x2 + a22 * x2 * x2
+
+        cands = []
+        ok = (det > 0) & (u1 >= lo1) & (u1 <= hi1) & (u2 >= lo2) & (u2 <= hi2)
+        cands.append((np.where(ok, q(u1, u2), np.inf), u1, u2))
+        for e in (lo1, hi1):
+            x2 = np.clip((b2 - a12 * e) / a22, lo2, hi2)
+            cands.append((q(e, x2), np.full(G, e), x2))
+        for e in (lo2, hi2):
+            x1 = np.clip((b1 - a12 * e) / a11, lo1, hi1)
+            cands.append((q(x1, e), x1, np.full(G, e)))
+        vals = np.stack([np.where(np.isfinite(c[0]), c[0], np.inf) for c in cands])
+        pick = np.argmin(vals, axis=0)
+        idx = np.arange(G)
+        x1 = np.stack([np.broadcast_to(c[1], (G,)) for c in cands])[pick, idx]
+        x2 = np.stack([np.broadcast_to(c[2], (G,)) for c in cands])[pick, idx]
+        return {lin[0]: x1, lin[1]: x2}, np.maximum(vals[pick, idx], 0.0)
+
+
+class _Problem:
+    """The projected least-squares problem of one model on one data set."""
 
     def __init__(self, model: RetentionModel, s, y, sw, fixed, bounds):
         self.model, self.s, self.y, self.sw, self.fixed, self.b = model, s, y, sw, fixed, bounds
-        self.lin = [k for k in ("y_r", "y_s") if k in model.names and k not in fixed]
+        self.w2 = sw**2
+        lin_names = ("y_r", "y_s") if model.residual_form else ("y_s",)
+        self.lin = [k for k in lin_names if k not in fixed]
+        self.fixed_lin = {k: fixed[k] for k in lin_names if k in fixed}
         self.shape = [k for k in model.names if k not in ("y_r", "y_s") and k not in fixed]
+        self.fixed_shape = {k: v for k, v in fixed.items() if k not in ("y_r", "y_s")}
+        offsets = model.log_params
+        self.offset = [offsets.get(k) for k in self.shape]
 
-    def S(self, theta) -> np.ndarray:
-        p = {**self.fixed, **dict(zip(self.shape, theta))}
-        if "y_r" in self.model.names:
-            p["y_r"] = 0.0
-        p["y_s"] = 1.0
-        return self.model.water(self.s, **p)
+    # coordinates: u = ln(x - offset) for log-scaled parameters
+    def to_u(self, x):
+        return np.array([np.log(v - o) if o is not None else v for v, o in zip(x, self.offset)], float)
+
+    def from_u(self, u):
+        return np.array([np.exp(v) + o if o is not None else v for v, o in zip(u, self.offset)], float)
+
+    def u_bounds(self, names=None):
+        lo = [self.b[k][0] for k in self.shape]
+        hi = [self.b[k][1] for k in self.shape]
+        return self.to_u(lo), self.to_u(hi)
 
     def linear(self, S) -> dict[str, float]:
-        """Weighted least squares of (y_r, y_s) given S, within their bounds (0 <= y_r <= y_s)."""
-        cols = {"y_r": 1.0 - S, "y_s": S} if "y_r" in self.model.names else {"y_s": S}
-        rhs = self.y.copy()
-        for k, v in self.fixed.items():
-            if k in cols:
-                rhs = rhs - v * cols[k]
-        if not self.lin:
+        """The bounded weighted least-squares (y_r, y_s) for one curve S (scalar arithmetic, exact)."""
+        lin, b = self.lin, self.b
+        if not lin:
             return {}
-        w2 = self.sw**2
-        if len(self.lin) == 2:  # the 2 x 2 normal equations, solved in closed form
-            c1, c2 = cols[self.lin[0]], cols[self.lin[1]]
-            a11, a12, a22 = (w2 * c1 * c1).sum(), (w2 * c1 * c2).sum(), (w2 * c2 * c2).sum()
-            b1, b2 = (w2 * c1 * rhs).sum(), (w2 * c2 * rhs).sum()
-            det = a11 * a22 - a12 * a12
-            beta = [(a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det] if det > 0 else [np.nan, np.nan]
+        if self.model.residual_form:
+            cols = {"y_r": 1.0 - S, "y_s": S}
         else:
-            c = cols[self.lin[0]]
-            beta = [(w2 * c * rhs).sum() / max((w2 * c * c).sum(), 1e-300)]
-        if not np.all(np.isfinite(beta)):
-            beta = [self.b[k][0] if k == "y_r" else float(np.max(self.y)) for k in self.lin]
-        out = dict(zip(self.lin, (float(v) for v in beta)))
-        clipped = {k: float(np.clip(v, *self.b[k])) for k, v in out.items()}
-        if clipped != out and len(self.lin) == 2:  # one at its bound: the other by 1-D least squares
-            best = None
-            for k in self.lin:
-                other = self.lin[1 - self.lin.index(k)]
-                xk = clipped[k]
-                r = rhs - xk * cols[k]
-                xo = float(np.clip((cols[other] * self.sw**2) @ r / max((cols[other] ** 2 * self.sw**2).sum(), 1e-300),
-                                   *self.b[other]))
-                cand = {k: xk, other: xo}
-                res = self.resid_with(S, cand)
-                if best is None or res @ res < best[0]:
-                    best = (res @ res, cand)
-            return best[1]
-        return clipped
+            cols = {"y_s": S}
+        rhs = self.y
+        for k, v in self.fixed_lin.items():
+            rhs = rhs - v * cols[k]
+        w2 = self.w2
+        if len(lin) == 1:
+            c = cols[lin[0]]
+            wc = w2 * c
+            den = float(wc @ c)
+            v = float(wc @ rhs) / den if den > 0 else b[lin[0]][1]
+            return {lin[0]: min(max(v, b[lin[0]][0]), b[lin[0]][1])}
+        c1, c2 = cols[lin[0]], cols[lin[1]]
+        w1c, w2c = w2 * c1, w2 * c2
+        a11, a12, a22 = float(w1c @ c1), float(w1c @ c2), float(w2c @ c2)
+        b1, b2 = float(w1c @ rhs), float(w2c @ rhs)
+        (lo1, hi1), (lo2, hi2) = b[lin[0]], b[lin[1]]
+        det = a11 * a22 - a12 * a12
+        if det > 1e-14 * max(a11 * a22, 1e-300):
+            u1, u2 = (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
+            if lo1 <= u1 <= hi1 and lo2 <= u2 <= hi2:
+                return {lin[0]: u1, lin[1]: u2}
 
-    def resid_with(self, S, lin) -> np.ndarray:
-        p = {**{k: v for k, v in self.fixed.items() if k in ("y_r", "y_s")}, **lin}
-        y_r = p.get("y_r", 0.0)
-        return (y_r + (p["y_s"] - y_r) * S - self.y) * self.sw
+        def q(x1, x2):
+            return -2 * (b1 * x1 + b2 * x2) + a11 * x1 * x1 + 2 * a12 * x1 * x2 + a22 * x2 * x2
 
-    def resid(self, theta) -> np.ndarray:
-        S = self.S(theta)
-        return self.resid_with(S, self.linear(S))
+        cands = []
+        for e in (lo1, hi1):
+            x2 = min(max((b2 - a12 * e) / a22, lo2), hi2) if a22 > 0 else lo2
+            cands.append((q(e, x2), e, x2))
+        for e in (lo2, hi2):
+            x1 = min(max((b1 - a12 * e) / a11, lo1), hi1) if a11 > 0 else lo1
+            cands.append((q(x1, e), x1, e))
+        _, x1, x2 = min(cands)
+        return {lin[0]: x1, lin[1]: x2}
 
-    def rss(self, theta) -> float:
-        r = self.resid(theta)
-        return float(r @ r) if np.all(np.isfinite(r)) else np.inf
+    def resid_x(self, x):
+        with np.errstate(all="ignore"):
+            S = self.model.saturation(self.s, **self.fixed_shape, **dict(zip(self.shape, x)))
+        return self._resid_S(S)
 
-    def full(self, theta) -> dict:
-        S = self.S(theta)
-        return {**self.fixed, **dict(zip(self.shape, theta)), **self.linear(S)}
+    def _resid_S(self, S):
+        p = {**self.fixed_lin, **self.linear(S)}
+        if self.model.residual_form:
+            y_r = p.get("y_r", 0.0)
+            f = y_r + (p["y_s"] - y_r) * S
+        else:
+            f = p["y_s"] * S
+        r = (f - self.y) * self.sw
+        return np.where(np.isfinite(r), r, 1e10)
+
+    def resid_u(self, u):
+        return self.resid_x(self.from_u(u))
+
+    def jac_u(self, u, hi=None):
+        """Forward-difference Jacobian of :meth:`resid_u`, the model evaluated once for all steps (backward
+        where a forward step would leave the box ``u <= hi``: a one-sided derivative from inside)."""
+        u = np.asarray(u, float)
+        k = u.size
+        h = 1.49e-8 * np.maximum(np.abs(u), 1.0)
+        if hi is not None:
+            h = np.where(u + h > hi, -h, h)
+        U = np.vstack([u, u + np.diag(h)])
+        X = np.column_stack([np.exp(U[:, j]) + o if o is not None else U[:, j] for j, o in enumerate(self.offset)])
+        with np.errstate(all="ignore"):
+            S = self.model.saturation(self.s[None, :], **self.fixed_shape,
+                                      **{name: X[:, j][:, None] for j, name in enumerate(self.shape)})
+        S = np.broadcast_to(S, (k + 1, self.s.size))
+        R = np.empty((k + 1, self.s.size))
+        for i in range(k + 1):
+            R[i] = self._resid_S(S[i])
+        return ((R[1:] - R[0]) / h[:, None]).T
+
+    def full(self, x) -> dict:
+        S = self.model.saturation(self.s, **self.fixed_shape, **dict(zip(self.shape, x)))
+        return {**self.fixed, **dict(zip(self.shape, (float(v) for v in x))), **self.linear(S)}
 
 
-def fit_model(name: str, s, y, fixed=None, weights=None) -> NonlinearFit:
-    """Fit one retention model by (weighted) least squares, with automatic starts.
+def _grid_values(par: Parameter, lo: float, hi: float, s_min: float, s_max: float, knots) -> np.ndarray:
+    """The start-grid values of one parameter on its own scale, within [lo, hi]."""
+    if par.kind in ("suction", "inverse_suction", "suction_to_absolute"):
+        f = par.grid_span
+        if par.kind == "inverse_suction":
+            a, b = max(lo, 1.0 / (f * s_max)), min(hi, f / s_min)
+        else:
+            a, b = max(lo, s_min / f), min(hi, s_max * f)
+        if a >= b:
+            a, b = lo, hi
+        k = max(int(np.ceil(np.log10(b / a) * par.grid)) + 1, 2)
+        vals = np.concatenate([np.geomspace(a, b, k), [lo * 1.0000001, hi / 1.0000001]])
+        if par.kinks_at_data:
+            inside = knots[(knots > lo) & (knots < hi)]
+            mids = np.sqrt(inside[1:] * inside[:-1])
+            vals = np.concatenate([vals, inside, mids])
+        return np.unique(vals[(vals >= lo) & (vals <= hi)])
+    if par.log_offset is not None:
+        o = par.log_offset
+        return o + np.geomspace((lo - o) * 1.0000001, (hi - o) / 1.0000001, par.grid)
+    return np.linspace(lo, hi, par.grid)
 
-    The linear parameters are projected out (variable projection), the starts
-    are screened by their projected residual and only the best two are
-    optimised; a last full fit from the optimum gives the standard errors.
-    Brooks-Corey, whose objective has kinks at the data suctions, profiles
-    the air-entry suction over a grid first.
+
+def _screen(pb: _Problem, idx):
+    """Projected RSS over the start grid: (axes, rss array of the grid's shape, mixture weights or None)."""
+    model = pb.model
+    mix = model.mixture if model.mixture is not None and model.mixture[0] in pb.shape else None
+    grid_names = [k for k in pb.shape if mix is None or k != mix[0]]
+    s = pb.s[idx]
+    pos = pb.s[pb.s > 0]
+    s_min, s_max = float(pos.min()), float(pos.max())
+    knots = _knots(pb.s)
+    axes = [_grid_values(model.parameter(k), *pb.b[k], s_min, s_max, knots) for k in grid_names]
+    mesh = np.meshgrid(*axes, indexing="ij") if axes else []
+    shape = tuple(len(a) for a in axes)
+    flat = {k: m.ravel() for k, m in zip(grid_names, mesh)}
+    G = int(np.prod(shape)) if shape else 1
+    keep = np.ones(G, bool)
+    if model.grid_order is not None and all(k in flat for k in model.grid_order):
+        a, b = model.grid_order
+        keep = flat[a] >= flat[b]
+    rss = np.full(G, np.inf)
+    weights = np.full(G, np.nan) if mix else None
+    y, w2 = pb.y[idx], pb.w2[idx]
+    rows = np.flatnonzero(keep)
+    step = max(1, _CHUNK // max(s.size, 1))
+    fixed_shape = pb.fixed_shape
+    for start in range(0, rows.size, step):
+        r = rows[start:start + step]
+        par = {k: v[r][:, None] for k, v in flat.items()}
+        with np.errstate(all="ignore"):
+            if mix is None:
+                S = model.saturation(s[None, :], **fixed_shape, **par)
+            else:
+                S1, S2 = mix[1](s[None, :], **{k: v for k, v in {**fixed_shape, **par}.items() if k != mix[0]})
+                w = _mixture_weight(S1, S2, y, w2)
+                weights[r] = w
+                S = w[:, None] * S1 + (1.0 - w[:, None]) * S2
+            _, v = _project(S, y, w2, pb.lin, pb.fixed_lin, pb.b, model.residual_form)
+        rss[r] = np.where(np.isfinite(v), v, np.inf)
+    return grid_names, axes, rss.reshape(shape) if shape else rss, (weights.reshape(shape) if mix else None), mix
+
+
+def _mixture_weight(S1, S2, y, w2):
+    """The weight w of S = w S1 + (1 - w) S2 from the unconstrained linear fit y = c0 + c1 S1 + c2 S2, clipped."""
+    one = np.ones_like(S1)
+    cols = (one, S1, S2)
+    A = np.stack([np.stack([(w2 * a * b).sum(-1) for b in cols], -1) for a in cols], -2)
+    rhs = np.stack([(w2 * a * y).sum(-1) for a in cols], -1)
+    A = A + np.eye(3) * 1e-14 * np.trace(A, axis1=-2, axis2=-1)[:, None, None]
+    with np.errstate(all="ignore"):
+        c = np.linalg.solve(A, rhs[..., None])[..., 0]
+        w = c[:, 1] / (c[:, 1] + c[:, 2])
+    return np.clip(np.where(np.isfinite(w), w, 0.5), 0.0, 1.0)
+
+
+def _local_minima(rss: np.ndarray) -> np.ndarray:
+    """Flat indices of the grid's local minima (no neighbour along any axis lower), best first."""
+    pad = np.pad(rss, 1, constant_values=np.inf)
+    core = tuple(slice(1, -1) for _ in range(rss.ndim))
+    mask = np.isfinite(rss)
+    for ax in range(rss.ndim):
+        for shift in (-1, 1):
+            sl = list(core)
+            sl[ax] = slice(1 + shift, rss.shape[ax] + 1 + shift)
+            mask &= rss <= pad[tuple(sl)]
+    idx = np.flatnonzero(mask.ravel())
+    return idx[np.argsort(rss.ravel()[idx])]
+
+
+def _starts(pb: _Problem, n_starts: int):
+    """Start points (shape parameters) and their search boxes from the grid, best first."""
+    n = pb.s.size
+    order = np.argsort(pb.s, kind="stable")
+    idx = order if n <= _SCREEN_POINTS else order[np.linspace(0, n - 1, _SCREEN_POINTS).round().astype(int)]
+    names, axes, rss, weights, mix = _screen(pb, idx)
+    flat = rss.ravel()
+    minima = _local_minima(rss) if rss.ndim else np.array([0])
+    if minima.size == 0:
+        minima = np.array([int(np.argmin(flat))])
+    lo, hi = (np.array([pb.b[k][0] for k in pb.shape]), np.array([pb.b[k][1] for k in pb.shape]))
+    knots = _knots(pb.s)
+    kinked = [j for j, k in enumerate(names) if pb.model.parameter(k).kinks_at_data]
+    if kinked:
+        return _interval_starts(pb, names, axes, rss, weights, mix, kinked[0], lo, hi, knots, n_starts)
+    out = []
+    for g in minima[:n_starts]:
+        pos = np.unravel_index(int(g), rss.shape) if rss.ndim else ()
+        out.append((_point(pb, names, axes, weights, mix, pos), lo, hi))
+    return out
+
+
+def _point(pb, names, axes, weights, mix, pos) -> np.ndarray:
+    vals = {k: float(axes[i][pos[i]]) for i, k in enumerate(names)}
+    if mix is not None:
+        vals[mix[0]] = float(weights[pos])
+    return np.array([vals[k] for k in pb.shape])
+
+
+def _interval_starts(pb, names, axes, rss, weights, mix, axis, lo, hi, knots, n_starts):
+    """Starts of a model with kinks at the data suctions in one parameter: the best grid point of each interval
+    between neighbouring data suctions, the intervals ranked by it; the box of each start is its interval."""
+    j = pb.shape.index(names[axis])
+    edges = np.unique(np.concatenate([[lo[j]], knots[(knots > lo[j]) & (knots < hi[j])], [hi[j]]]))
+    values = axes[axis]
+    best_along = np.moveaxis(rss, axis, 0).reshape(len(values), -1)
+    arg = np.argmin(best_along, axis=1)
+    val = best_along[np.arange(len(values)), arg]
+    which = np.clip(np.searchsorted(edges, values, side="right") - 1, 0, edges.size - 2)
+    ranked = []
+    for i in range(edges.size - 1):
+        inside = np.flatnonzero((values >= edges[i]) & (values <= edges[i + 1]))
+        if inside.size == 0:
+            continue
+        g = inside[np.argmin(val[inside])]
+        ranked.append((val[g], i, g))
+    del which
+    ranked.sort()
+    out = []
+    other_shape = tuple(n for a, n in enumerate(rss.shape) if a != axis)
+    for v, i, g in ranked[:max(n_starts, 6)]:
+        rest = np.unravel_index(int(arg[g]), other_shape) if other_shape else ()
+        pos = tuple(rest[:axis]) + (int(g),) + tuple(rest[axis:])
+        blo, bhi = lo.copy(), hi.copy()
+        blo[j], bhi[j] = edges[i], edges[i + 1]
+        out.append((_point(pb, names, axes, weights, mix, pos), blo, bhi))
+    return out
+
+
+def _knots(s, most: int = 150) -> np.ndarray:
+    """The distinct positive data suctions where a kinked model changes form (at most ``most``, evenly chosen)."""
+    knots = np.unique(s[s > 0])
+    if knots.size > most:
+        knots = knots[np.linspace(0, knots.size - 1, most).round().astype(int)]
+    return knots
+
+
+def _levenberg_marquardt(fun, jac, u, lo, hi, ftol: float, max_iter: int):
+    """Box-constrained Levenberg-Marquardt (steps projected on the box, Marquardt's diagonal scaling).
+
+    A variable on a bound whose gradient points outwards is frozen for the step (an active constraint).
+    Stops when an accepted step lowers the cost by less than ``ftol`` relative, or when no step helps.
+    Returns (u, cost = sum r^2, converged).
+    """
+    u = np.clip(np.asarray(u, float), lo, hi)
+    r = fun(u)
+    cost = float(r @ r)
+    lam = 1e-3
+    for _ in range(max_iter):
+        J = jac(u, hi)
+        g = J.T @ r
+        A = J.T @ J
+        free = ~(((u <= lo) & (g > 0)) | ((u >= hi) & (g < 0)))
+        if not free.any():
+            return u, cost, True
+        Af, gf = A[np.ix_(free, free)], g[free]
+        d = np.maximum(np.diag(Af), 1e-300)
+        while True:
+            try:
+                step = np.linalg.solve(Af + lam * np.diag(d), -gf)
+            except np.linalg.LinAlgError:
+                step = np.full(gf.shape, np.nan)
+            trial = u.copy()
+            if np.all(np.isfinite(step)):
+                trial[free] += step
+                trial = np.clip(trial, lo, hi)
+                r_t = fun(trial)
+                c_t = float(r_t @ r_t)
+            else:
+                c_t = np.inf
+            if c_t < cost:
+                lam = max(lam * 0.2, 1e-12)
+                small = cost - c_t <= ftol * cost or np.max(np.abs(trial - u)) <= 1e-13 * (1 + np.max(np.abs(u)))
+                u, r, cost = trial, r_t, c_t
+                if small:
+                    return u, cost, True
+                break
+            lam *= 8.0
+            if lam > 1e14:
+                return u, cost, True  # no descent left: a (bounded) minimum
+    return u, cost, False
+
+
+def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = None) -> RetentionFit:
+    """Fit one retention model by (weighted) least squares at the global optimum inside the bounds.
+
+    Minimises :math:`\\sum_i w_i\\,(y(s_i) - y_i)^2` with y(s) the model of ``MODELS[name]`` (see the
+    module docstring for the search: variable projection of y_r, y_s; a grid over the shape parameters;
+    bounded refinement of the best grid minima).
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`MODELS`.
+    s : array_like
+        Suctions [Pa], >= 0.
+    y : array_like
+        Water contents θ [m³/m³] or degrees of saturation S_R [-].
+    fixed : dict[str, float], optional
+        Parameters held at given values (internal names and SI units).
+    weights : array_like, optional
+        Per-point weights (default 1): a reading of weight 2 counts as that reading twice.
+    n_starts : int, optional
+        Grid minima refined (default 3 for up to two shape parameters, 8 above; at least 6 intervals of a
+        parameter with kinks at the data suctions).
+
+    Returns
+    -------
+    RetentionFit
+        Estimates, standard errors, statistics, and the fitted curve as callables.
+
+    Raises
+    ------
+    FitError
+        Negative, NaN or infinite data, fewer than two distinct positive suctions, too few points, or a
+        fixed value outside its range.
+
+    References
+    ----------
+    Golub, G. H., Pereyra, V. (1973). The differentiation of pseudo-inverses and nonlinear least squares
+    problems whose variables separate. SIAM J. Numer. Anal. 10(2):413-432, doi:10.1137/0710036
+    (variable projection).
     """
     from scipy.optimize import least_squares
 
+    if name not in MODELS:
+        raise FitError(f"unknown retention model '{name}'; choose from {', '.join(MODELS)}")
     s = np.asarray(s, float)
     y = np.asarray(y, float)
     fixed = dict(fixed or {})
     model = MODELS[name]
+    if s.shape != y.shape or s.ndim != 1:
+        raise FitError("suction and water content must be 1-D arrays of the same length")
     if not np.all(np.isfinite(s)) or not np.all(np.isfinite(y)) or np.any(s < 0):
         raise FitError("the retention data hold negative, NaN or infinite values")
     if np.unique(s[s > 0]).size < 2:
         raise FitError("fewer than two distinct positive suctions: no retention curve can be fitted")
-    b = bounds_for(s, y)
+    b = bounds_for(s, y, name)
     for k, v in fixed.items():
+        if k not in b:
+            raise FitError(f"'{k}' is not a parameter of {name} ({', '.join(model.names)})")
         lo, hi = b[k]
         if not lo <= v <= hi:
             raise FitError(f"fixed value {k} = {v:.6g} is outside its range [{lo:.4g}, {hi:.4g}]")
@@ -216,62 +863,54 @@ def fit_model(name: str, s, y, fixed=None, weights=None) -> NonlinearFit:
         raise FitError(f"{s.size} points for {len(free)} free parameters: too few to fit")
 
     sw = np.ones_like(y) if weights is None else np.sqrt(np.asarray(weights, float))
-    vp = _VarPro(model, s, y, sw, fixed, b)
-    lo = np.array([b[k][0] for k in vp.shape])
-    hi = np.array([b[k][1] for k in vp.shape])
-    if name == "bc" and "s_e" in vp.shape:
-        candidates = _bc_profile(vp, s, lo, hi)[:1]
-    else:
-        starts = [np.clip([st[k] for k in vp.shape], lo, hi) for st in model.starts(s, y)]
-        candidates = sorted(starts, key=vp.rss)[:2]
-    best = None
-    for x0 in candidates:
-        if not vp.shape:
-            break
-        x0 = np.clip(x0, lo + 1e-12 * (hi - lo), hi - 1e-12 * (hi - lo))
-        r = least_squares(vp.resid, x0, bounds=(lo, hi), x_scale="jac", xtol=1e-14, ftol=1e-14, gtol=1e-14,
-                          max_nfev=2000)
-        if np.all(np.isfinite(r.fun)) and (best is None or r.cost < best.cost):
-            best = r
-    optimum = vp.full(best.x if best is not None else np.array([]))
-    return summarize_fit(model.water, s, y, model.names, optimum, b, fixed, weights,
-                         converged=best is None or bool(best.success))
-
-
-def _bc_profile(vp: _VarPro, s, lo, hi) -> list:
-    """Starts for Brooks-Corey: the projected RSS on a grid of (air-entry suction, lambda), all at once.
-
-    The objective has kinks where s_e passes a data suction, so a local
-    optimiser alone may stop in the wrong cell; the grid finds the right one.
-    """
-    i_se = vp.shape.index("s_e")
-    i_lam = vp.shape.index("lam") if "lam" in vp.shape else None
-    pos = s[s > 0]
-    se = np.geomspace(max(pos.min() * 0.3, lo[i_se]), hi[i_se], 40)[:, None, None]
-    lam = (np.geomspace(lo[i_lam], hi[i_lam], 40) if i_lam is not None else
-           np.array([vp.fixed["lam"]]))[None, :, None]
-    keep = np.arange(s.size) if s.size <= 400 else np.linspace(0, s.size - 1, 400).astype(int)  # for the start only
-    x = s[keep][None, None, :]
-    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
-        S = np.where(x > se, (se / np.where(x > 0, x, 1.0)) ** lam, 1.0)
-    w2 = (vp.sw[keep] ** 2)[None, None, :]
-    y = vp.y[keep][None, None, :]
-    c1, c2 = 1.0 - S, S
-    a11, a12, a22 = (w2 * c1 * c1).sum(-1), (w2 * c1 * c2).sum(-1), (w2 * c2 * c2).sum(-1)
-    b1, b2 = (w2 * c1 * y).sum(-1), (w2 * c2 * y).sum(-1)
-    det = a11 * a22 - a12 * a12
-    with np.errstate(divide="ignore", invalid="ignore"):
-        y_r = np.clip((a22 * b1 - a12 * b2) / det, *vp.b["y_r"])
-        y_s = np.clip((a11 * b2 - a12 * b1) / det, *vp.b["y_s"])
-        rss = (w2 * (y - y_r[..., None] * c1 - y_s[..., None] * c2) ** 2).sum(-1)
-    rss = np.where(np.isfinite(rss), rss, np.inf)
-    g, k = np.unravel_index(int(np.argmin(rss)), rss.shape)
-    theta = np.array([float(se[g, 0, 0]) if n == "s_e" else float(lam[0, k, 0]) for n in vp.shape])
-    return [theta]
+    pb = _Problem(model, s, y, sw, fixed, b)
+    best_x, converged = np.array([]), True
+    if pb.shape:
+        k = len(pb.shape)
+        n_starts = n_starts or (3 if k <= 2 else 8)
+        runs = []
+        for x0, blo, bhi in _starts(pb, n_starts):  # phase 1: every start, loose tolerance
+            ulo, uhi = pb.to_u(blo), pb.to_u(bhi)
+            u0 = np.clip(pb.to_u(np.clip(x0, blo, bhi)), ulo, uhi)
+            runs.append((*_levenberg_marquardt(pb.resid_u, pb.jac_u, u0, ulo, uhi, ftol=1e-6, max_iter=20),
+                         ulo, uhi))
+        runs.sort(key=lambda t: t[1])
+        best_cost = np.inf
+        for u, cost, _, ulo, uhi in runs:  # phase 2: polish those within 1e-4 of the best
+            if cost > runs[0][1] * (1 + 1e-4) + 1e-300:
+                break
+            u, cost, ok = _levenberg_marquardt(pb.resid_u, pb.jac_u, u, ulo, uhi, ftol=1e-14, max_iter=200)
+            if cost < best_cost:
+                best_x, best_cost, converged = pb.from_u(u), cost, ok
+    optimum = pb.full(best_x)
+    if model.canonical is not None and not fixed:
+        optimum = model.canonical(optimum)
+    nl = summarize_fit(model.water, s, y, model.names, optimum, b, fixed, weights, converged,
+                       log_params=model.log_params)
+    return RetentionFit(**{f.name: getattr(nl, f.name) for f in fields(nl)}, model=name)
 
 
 def confidence_band(name: str, fit: NonlinearFit, s_grid, level_t: float | None = None):
-    """Lower and upper 95 % confidence band of the fitted curve at ``s_grid`` (delta method)."""
+    """95 % confidence band of the mean fitted curve (delta method).
+
+    .. math:: y(s) \\pm t\\, \\sqrt{g(s)^T\\, \\mathrm{Cov}\\, g(s)}, \\qquad g = \\partial y / \\partial p
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`MODELS`.
+    fit : NonlinearFit
+        A fit of that model.
+    s_grid : array_like
+        Suctions [Pa].
+    level_t : float, optional
+        The multiplier t (default: the fit's Student t of 95 %).
+
+    Returns
+    -------
+    (numpy.ndarray, numpy.ndarray)
+        Lower and upper band [unit of y]; both equal the curve without a covariance.
+    """
     model = MODELS[name]
     s_grid = np.asarray(s_grid, float)
     base = model.water(s_grid, **fit.params)
@@ -279,7 +918,7 @@ def confidence_band(name: str, fit: NonlinearFit, s_grid, level_t: float | None 
         return base, base
     cols = []
     for k in fit.free:
-        h = 1e-6 * max(abs(fit.params[k]), 1e-12)
+        h = 1e-6 * max(abs(fit.params[k]), 1e-6)
         up = dict(fit.params, **{k: fit.params[k] + h})
         dn = dict(fit.params, **{k: fit.params[k] - h})
         cols.append((model.water(s_grid, **up) - model.water(s_grid, **dn)) / (2 * h))
@@ -290,8 +929,33 @@ def confidence_band(name: str, fit: NonlinearFit, s_grid, level_t: float | None 
 
 
 def fit_hysteresis(s_d, y_d, s_w, y_w, fixed=None, weights=None) -> NonlinearFit:
-    """Kool & Parker (1987): drying and wetting branches fitted jointly by van Genuchten (m = 1 - 1/n) with
-    shared y_s, y_r and n and separate alpha_d (drying) and alpha_w (wetting)."""
+    """Drying and wetting branches fitted jointly by van Genuchten (m = 1 - 1/n) after Kool & Parker (1987).
+
+    Both branches share y_s, y_r and n; α differs (α_d drying, α_w wetting):
+
+    .. math:: y = y_r + (y_s - y_r)\\left[1 + (\\alpha_{d|w}\\, s)^n\\right]^{-(1 - 1/n)}
+
+    Parameters
+    ----------
+    s_d, y_d : array_like
+        Drying branch: suctions [Pa] and water contents [m³/m³] (or S_R [-]).
+    s_w, y_w : array_like
+        Wetting branch, the same units.
+    fixed : dict[str, float], optional
+        Any of y_r, y_s, n, alpha_d, alpha_w held fixed [SI].
+    weights : array_like, optional
+        Per-point weights, drying points first.
+
+    Returns
+    -------
+    NonlinearFit
+        Parameters y_r, y_s, n, alpha_d [1/Pa], alpha_w [1/Pa].
+
+    References
+    ----------
+    Kool, J. B., Parker, J. C. (1987). Water Resour. Res. 23(1):105-114, doi:10.1029/WR023i001p00105;
+    van Genuchten (1980), doi:10.2136/sssaj1980.03615995004400050002x, eq. 21.
+    """
     s = np.concatenate([np.asarray(s_d, float), np.asarray(s_w, float)])
     y = np.concatenate([np.asarray(y_d, float), np.asarray(y_w, float)])
     branch = np.concatenate([np.zeros(len(s_d)), np.ones(len(s_w))])
@@ -300,9 +964,12 @@ def fit_hysteresis(s_d, y_d, s_w, y_w, fixed=None, weights=None) -> NonlinearFit
         alpha = np.where(branch == 0, alpha_d, alpha_w)
         return rp.vg_water(x, y_r, y_s, alpha, n)
 
-    b = bounds_for(s, y)
+    b = bounds_for(s, y, "vg")
     b = {**b, "alpha_d": b["alpha"], "alpha_w": b["alpha"]}
-    m = _smid(s)
-    starts = [{**_base(y), "n": n, "alpha_d": a / m, "alpha_w": a * r / m} for a in (0.3, 1.0, 3.0)
+    pos = s[s > 0]
+    mid = float(np.median(pos)) if pos.size else 1.0
+    base = {"y_r": max(float(np.min(y)) * 0.5, 0.0), "y_s": float(np.max(y))}
+    starts = [{**base, "n": n, "alpha_d": a / mid, "alpha_w": a * r / mid} for a in (0.3, 1.0, 3.0)
               for n in (1.5, 3.0, 8.0) for r in (1.0, 2.0)]
-    return fit_curve(water, s, y, ("y_r", "y_s", "n", "alpha_d", "alpha_w"), starts, b, fixed, weights)
+    return fit_curve(water, s, y, ("y_r", "y_s", "n", "alpha_d", "alpha_w"), starts, b, fixed, weights,
+                     log_params={"n": 1.0, "alpha_d": 0.0, "alpha_w": 0.0})

@@ -1,62 +1,239 @@
-"""Water retention curves: van Genuchten (1980) and Brooks & Corey (1964).
+"""Water-retention curves: the effective saturation S_e(s) of each model and its inverse.
 
-Suction s >= 0 in any pressure unit consistent with the parameters (capred
-passes Pa, alpha in 1/Pa, s_e in Pa). The water quantity y is volumetric
-water content theta or degree of saturation S_R; y_s, y_r are its saturated
-and residual values (theta_s, theta_r or S_s, S_res).
+Suction ``s`` is in any pressure unit consistent with the parameters (capred
+passes Pa: ``alpha`` in 1/Pa, ``s_e``, ``s_m``, ``a``, ``s_r`` in Pa). The water
+quantity ``y`` is the volumetric water content θ [m³/m³] or the degree of
+saturation S_R [-]; ``y_s`` and ``y_r`` are its saturated and residual values
+(θ_s, θ_r or S_s, S_res), and
+
+.. math:: y(s) = y_r + (y_s - y_r)\\, S_e(s).
+
+Every function takes scalars or arrays (broadcast together) and returns an
+array of the broadcast shape. Suctions below zero are treated as zero.
 
 References
 ----------
-[3] M. Th. van Genuchten, "A closed-form equation for predicting the
-    hydraulic conductivity of unsaturated soils", SSSA J. 44 (1980) 892-898.
-[4] R. H. Brooks, A. T. Corey, "Hydraulic properties of porous media",
-    Hydrology Paper 3, Colorado State University (1964); used with air-entry
-    suction s_e and index alpha by Morvan et al. (2016, section 3).
+.. [1] van Genuchten, M. Th. (1980). A closed-form equation for predicting the
+   hydraulic conductivity of unsaturated soils. Soil Sci. Soc. Am. J. 44:892-898.
+   doi:10.2136/sssaj1980.03615995004400050002x (eqs. 3 and 21).
+.. [2] Brooks, R. H., Corey, A. T. (1964). Hydraulic properties of porous media.
+   Hydrology Paper 3, Colorado State University (no DOI).
+.. [3] Kosugi, K. (1996). Lognormal distribution model for unsaturated soil
+   hydraulic properties. Water Resour. Res. 32(9):2697-2703. doi:10.1029/96WR01776.
+.. [4] Fredlund, D. G., Xing, A. (1994). Equations for the soil-water
+   characteristic curve. Can. Geotech. J. 31(4):521-532. doi:10.1139/t94-061
+   (eq. 26 and its correction factor C(ψ)).
+.. [5] Durner, W. (1994). Hydraulic conductivity estimation for soils with
+   heterogeneous pore structure. Water Resour. Res. 30(2):211-223.
+   doi:10.1029/93WR02676.
+.. [6] Morvan, M., Vernay, M., Breul, P. (2016). Study of the variation of B
+   with Sr. E-UNSAT 2016, E3S Web of Conferences (section 3).
 """
 from __future__ import annotations
 
 import numpy as np
 
+#: Suction at which Fredlund & Xing's correction factor brings the water content to zero [Pa] (10^6 kPa) [4]
+FX_S_MAX = 1e9
+
 
 def vg_effective_saturation(s, alpha, n, m=None):
-    """S_e = [1 + (alpha s)^n]^(-m), m = 1 - 1/n unless given [3]."""
-    m = 1.0 - 1.0 / n if m is None else m
+    """Effective saturation of van Genuchten (1980).
+
+    .. math:: S_e = \\left[1 + (\\alpha s)^n\\right]^{-m}, \\qquad m = 1 - 1/n \\text{ unless given}
+
+    Parameters
+    ----------
+    s : array_like
+        Suction [Pa] (any unit, the inverse of ``alpha``'s), >= 0.
+    alpha : array_like
+        Inverse of a characteristic suction [1/Pa], > 0.
+    n : array_like
+        Pore-size index [-], > 1 when ``m = 1 - 1/n``.
+    m : array_like, optional
+        Shape exponent [-], > 0; ``1 - 1/n`` (Mualem's constraint) when None.
+
+    Returns
+    -------
+    numpy.ndarray
+        S_e [-] in [0, 1].
+
+    References
+    ----------
+    van Genuchten (1980), doi:10.2136/sssaj1980.03615995004400050002x, eq. 3.
+    """
+    m = 1.0 - 1.0 / np.asarray(n, float) if m is None else m
     return (1.0 + (alpha * np.maximum(np.asarray(s, float), 0.0)) ** n) ** (-m)
 
 
 def vg_water(s, y_r, y_s, alpha, n, m=None):
-    """y(s) = y_r + (y_s - y_r) S_e(s) (van Genuchten [3])."""
+    """Water content (or S_R) of van Genuchten (1980).
+
+    .. math:: y = y_r + \\frac{y_s - y_r}{\\left[1 + (\\alpha s)^n\\right]^{m}}
+
+    Parameters
+    ----------
+    s : array_like
+        Suction [Pa].
+    y_r, y_s : array_like
+        Residual and saturated water content [m³/m³] or degree of saturation [-].
+    alpha : array_like
+        [1/Pa].
+    n : array_like
+        [-].
+    m : array_like, optional
+        [-]; ``1 - 1/n`` when None.
+
+    Returns
+    -------
+    numpy.ndarray
+        y(s) in the unit of ``y_r`` and ``y_s``.
+
+    References
+    ----------
+    van Genuchten (1980), doi:10.2136/sssaj1980.03615995004400050002x, eq. 21.
+    """
     return y_r + (y_s - y_r) * vg_effective_saturation(s, alpha, n, m)
 
 
+def vg_suction(S_e, alpha, n, m=None):
+    """Suction at a given effective saturation, the inverse of :func:`vg_effective_saturation`.
+
+    .. math:: s = \\frac{1}{\\alpha}\\left(S_e^{-1/m} - 1\\right)^{1/n}
+
+    Parameters
+    ----------
+    S_e : array_like
+        Effective saturation [-] in (0, 1]; outside, NaN.
+    alpha : array_like
+        [1/Pa].
+    n : array_like
+        [-].
+    m : array_like, optional
+        [-]; ``1 - 1/n`` when None.
+
+    Returns
+    -------
+    numpy.ndarray
+        Suction [Pa] (0 at S_e = 1).
+
+    References
+    ----------
+    van Genuchten (1980), doi:10.2136/sssaj1980.03615995004400050002x, eq. 3 solved for s.
+    """
+    S_e = np.asarray(S_e, float)
+    m = 1.0 - 1.0 / np.asarray(n, float) if m is None else m
+    ok = (S_e > 0) & (S_e <= 1)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        s = np.maximum(np.where(ok, S_e, 0.5) ** (-1.0 / m) - 1.0, 0.0) ** (1.0 / n) / alpha
+    return np.where(ok, s, np.nan)
+
+
 def bc_effective_saturation(s, s_e, lam):
-    """S_e = (s_e/s)^lambda for s > s_e, else 1 (Brooks & Corey [4])."""
+    """Effective saturation of Brooks & Corey (1964).
+
+    .. math:: S_e = (s_e / s)^{\\lambda} \\ (s > s_e), \\qquad S_e = 1 \\ (s \\le s_e)
+
+    Parameters
+    ----------
+    s : array_like
+        Suction [Pa].
+    s_e : array_like
+        Air-entry (bubbling) suction [Pa], > 0.
+    lam : array_like
+        Pore-size distribution index λ [-] (``bc_lambda``), > 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        S_e [-] in (0, 1].
+
+    References
+    ----------
+    Brooks & Corey (1964), Hydrology Paper 3 (no DOI).
+    """
     s = np.asarray(s, float)
     with np.errstate(divide="ignore"):
         return np.where(s > s_e, (s_e / np.where(s > 0, s, 1.0)) ** lam, 1.0)
 
 
 def bc_water(s, y_r, y_s, s_e, lam):
-    """y(s) = y_r + (y_s - y_r) S_e(s) (Brooks & Corey [4])."""
+    """Water content (or S_R) of Brooks & Corey (1964): :math:`y = y_r + (y_s - y_r) S_e(s)`.
+
+    Parameters
+    ----------
+    s : array_like
+        Suction [Pa].
+    y_r, y_s : array_like
+        Residual and saturated water content [m³/m³] or degree of saturation [-].
+    s_e : array_like
+        Air-entry suction [Pa].
+    lam : array_like
+        λ [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        y(s) in the unit of ``y_r`` and ``y_s``.
+
+    References
+    ----------
+    Brooks & Corey (1964), Hydrology Paper 3 (no DOI).
+    """
     return y_r + (y_s - y_r) * bc_effective_saturation(s, s_e, lam)
 
 
 def bc_suction(S_r, s_e, alpha):
-    """Suction from Brooks-Corey as Morvan et al. (2016) use it: S_r = (s_e/s)^alpha -> s = s_e S_r^(-1/alpha).
+    """Suction from Brooks-Corey as Morvan et al. (2016) use it, the inverse of :func:`bc_effective_saturation`.
 
-    Full saturation (S_r = 1) gives s = s_e.
+    .. math:: s = s_e\\, S_r^{-1/\\alpha}
+
+    Parameters
+    ----------
+    S_r : array_like
+        Degree of saturation (effective saturation) [-] in (0, 1]; 1 gives ``s = s_e``.
+    s_e : array_like
+        Air-entry suction [Pa] (any pressure unit; the result has the same).
+    alpha : array_like
+        Brooks-Corey index [-] (``bc_lambda``; Morvan et al. call it α).
+
+    Returns
+    -------
+    numpy.ndarray
+        Suction [Pa].
+
+    References
+    ----------
+    Brooks & Corey (1964), Hydrology Paper 3; Morvan et al. (2016), section 3.
     """
     return s_e * np.asarray(S_r, float) ** (-1.0 / alpha)
 
 
 def kosugi_effective_saturation(s, s_m, sigma):
-    """S_e = Q(ln(s/s_m)/sigma), Q the complementary standard normal distribution (Kosugi 1996).
+    """Effective saturation of Kosugi's (1996) lognormal model.
+
+    .. math:: S_e = Q\\!\\left(\\frac{\\ln(s/s_m)}{\\sigma}\\right) = \\tfrac12\\,
+              \\mathrm{erfc}\\!\\left(\\frac{\\ln(s/s_m)}{\\sqrt{2}\\,\\sigma}\\right)
+
+    with Q the complementary standard normal distribution function.
 
     Parameters
     ----------
-    s : suction (any unit, the same as s_m), >= 0
-    s_m : median suction of the pore-size distribution (> 0)
-    sigma : standard deviation of ln(pore size) [-], > 0
+    s : array_like
+        Suction [Pa], >= 0 (S_e = 1 at s = 0).
+    s_m : array_like
+        Median suction of the pore-size distribution [Pa], > 0.
+    sigma : array_like
+        Standard deviation of ln(pore radius) [-], > 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        S_e [-] in [0, 1].
+
+    References
+    ----------
+    Kosugi (1996), doi:10.1029/96WR01776.
     """
     from scipy.special import erfc
 
@@ -66,19 +243,148 @@ def kosugi_effective_saturation(s, s_m, sigma):
     return 0.5 * erfc(z / np.sqrt(2.0))
 
 
-def fx_correction(s, s_r, s_max=1e9):
-    """C(s) = 1 - ln(1 + s/s_r)/ln(1 + s_max/s_r) of Fredlund & Xing (1994); s_max = 10^6 kPa (1e9 Pa):
-    the water content reaches zero at that suction."""
+def kosugi_suction(S_e, s_m, sigma):
+    """Suction at a given effective saturation, the inverse of :func:`kosugi_effective_saturation`.
+
+    .. math:: s = s_m \\exp\\!\\left(\\sigma\\, Q^{-1}(S_e)\\right)
+
+    Parameters
+    ----------
+    S_e : array_like
+        Effective saturation [-] in (0, 1]; outside, NaN (1 gives 0).
+    s_m : array_like
+        [Pa].
+    sigma : array_like
+        [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Suction [Pa].
+
+    References
+    ----------
+    Kosugi (1996), doi:10.1029/96WR01776.
+    """
+    from scipy.special import ndtri
+
+    S_e = np.asarray(S_e, float)
+    ok = (S_e > 0) & (S_e <= 1)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        s = s_m * np.exp(sigma * -ndtri(np.where(ok, S_e, 0.5)))
+    return np.where(ok, np.where(S_e >= 1, 0.0, s), np.nan)
+
+
+def fx_correction(s, s_r, s_max=FX_S_MAX):
+    """Correction factor C(s) of Fredlund & Xing (1994): the water content reaches zero at ``s_max``.
+
+    .. math:: C(s) = 1 - \\frac{\\ln(1 + s/s_r)}{\\ln(1 + s_{max}/s_r)}
+
+    Parameters
+    ----------
+    s : array_like
+        Suction [Pa].
+    s_r : array_like
+        Suction of the residual water content [Pa], > 0.
+    s_max : float, optional
+        Suction of zero water content [Pa]; 10^6 kPa as in Fredlund & Xing.
+
+    Returns
+    -------
+    numpy.ndarray
+        C [-] (1 at s = 0, 0 at ``s_max``).
+
+    References
+    ----------
+    Fredlund & Xing (1994), doi:10.1139/t94-061, eq. 26.
+    """
     s = np.asarray(s, float)
     return 1.0 - np.log1p(np.maximum(s, 0.0) / s_r) / np.log1p(s_max / s_r)
 
 
 def fx_shape(s, a, n, m):
-    """[ln(e + (s/a)^n)]^-m of Fredlund & Xing (1994) (1 at s = 0)."""
+    """The shape factor of Fredlund & Xing (1994).
+
+    .. math:: S(s) = \\left[\\ln\\!\\left(e + (s/a)^n\\right)\\right]^{-m}
+
+    Parameters
+    ----------
+    s : array_like
+        Suction [Pa].
+    a : array_like
+        Suction parameter [Pa], > 0 (near the air-entry suction).
+    n : array_like
+        Steepness [-], > 0.
+    m : array_like
+        Exponent of the residual range [-], > 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        S [-] in (0, 1] (1 at s = 0).
+
+    References
+    ----------
+    Fredlund & Xing (1994), doi:10.1139/t94-061, eq. 26 (without C).
+    """
     s = np.maximum(np.asarray(s, float), 0.0)
     return np.log(np.e + (s / a) ** n) ** (-m)
 
 
 def durner_effective_saturation(s, w1, alpha1, n1, alpha2, n2):
-    """S_e = w1 S_e1 + (1 - w1) S_e2, two van Genuchten curves with m_i = 1 - 1/n_i (Durner 1994)."""
+    """Effective saturation of Durner (1994), two van Genuchten curves (m_i = 1 - 1/n_i) weighted.
+
+    .. math:: S_e = w_1 \\left[1 + (\\alpha_1 s)^{n_1}\\right]^{-m_1}
+              + (1 - w_1) \\left[1 + (\\alpha_2 s)^{n_2}\\right]^{-m_2}
+
+    Parameters
+    ----------
+    s : array_like
+        Suction [Pa].
+    w1 : array_like
+        Weight of the first pore system [-] in [0, 1].
+    alpha1, alpha2 : array_like
+        [1/Pa].
+    n1, n2 : array_like
+        [-], > 1.
+
+    Returns
+    -------
+    numpy.ndarray
+        S_e [-] in [0, 1].
+
+    References
+    ----------
+    Durner (1994), doi:10.1029/93WR02676.
+    """
     return w1 * vg_effective_saturation(s, alpha1, n1) + (1.0 - w1) * vg_effective_saturation(s, alpha2, n2)
+
+
+def monotone_suction(saturation, target, lo=1e-6, hi=FX_S_MAX, iterations=64):
+    """Suction at which a decreasing S(s) equals ``target``, by bisection on ln s (vectorised).
+
+    Parameters
+    ----------
+    saturation : callable
+        ``saturation(s) -> S`` [-], non-increasing in s [Pa].
+    target : array_like
+        Values of S [-] to invert.
+    lo, hi : float
+        Bracket [Pa]; targets outside [S(hi), S(lo)] give NaN.
+    iterations : int
+        Halvings of the log bracket (64 reach the float resolution of ln s).
+
+    Returns
+    -------
+    numpy.ndarray
+        Suction [Pa], NaN where ``target`` is out of reach.
+    """
+    target = np.asarray(target, float)
+    a = np.full(target.shape, np.log(lo))
+    b = np.full(target.shape, np.log(hi))
+    inside = (saturation(np.exp(a)) >= target) & (saturation(np.exp(b)) <= target)
+    for _ in range(iterations):
+        mid = 0.5 * (a + b)
+        above = saturation(np.exp(mid)) > target
+        a, b = np.where(above, mid, a), np.where(above, b, mid)
+    return np.where(inside, np.exp(0.5 * (a + b)), np.nan)
