@@ -4,6 +4,7 @@ import io
 import json
 
 import numpy as np
+from numpy.testing import assert_allclose
 import pandas as pd
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -178,6 +179,66 @@ def test_head_in_cm_of_water_and_percent_and_micrometres(tmp_path):
     assert w["suction_kPa"] == pytest.approx(0.2 * 9.81, rel=1e-12) and w["S_R"] == pytest.approx(0.3)
 
 
+@pytest.mark.parametrize("header,cell,name,si", [
+    ("V_v [cm³]", "27", "V_v", 27e-6), ("V_v [m³]", "2.7e-5", "V_v", 2.7e-5), ("V_v_mm³", "27000", "V_v", 27e-6),
+    ("box_area [cm²]", "36", "box_area", 36e-4), ("box_area [mm²]", "3600", "box_area", 36e-4),
+    ("box_area (m²)", "0.0036", "box_area", 36e-4), ("rho_d [g/cm³]", "1.65", "rho_d", 1650.0),
+])
+def test_superscript_units_in_headers(tmp_path, header, cell, name, si):
+    """Units as Excel users type them (issue 23): cm³ = 1e-6 m³, cm² = 1e-4 m², g/cm³ = 1000 kg/m³."""
+    from capred.io.table import read_table
+    from capred.pipelines.shear import SCHEMA
+
+    (tmp_path / "t.csv").write_text(f"test_id,condition,tau_max,{header}\na,dry,1,{cell}\n", encoding="utf-8")
+    t = read_table(tmp_path / "t.csv", SCHEMA)
+    assert not t.problems
+    assert_allclose(t.columns[name], [si], rtol=1e-12)  # one decimal scaling: exact to rounding
+
+
+def test_superscript_units_row_is_a_units_row(tmp_path):
+    """A units row with cm³ and cm² is read as units, not as a data row (it gave 10 misleading errors)."""
+    from capred.io.table import read_table
+    from capred.pipelines.shear import SCHEMA
+
+    text = ("test_id,condition,z1,z2,V_v,added_mass,cap_mass,box_area,R,tau_max\n"
+            "-,-,cm,cm³,cm³,g,g,cm²,mm,kPa\n"
+            "w1,wet,20,5,27,1000,120,36,0.5,2.2\n")
+    (tmp_path / "t.csv").write_text(text, encoding="utf-8")
+    t = read_table(tmp_path / "t.csv", SCHEMA)
+    assert not t.problems and list(t.lines) == [3]
+    assert t.units["z2"] == "cm³" and t.units["box_area"] == "cm²"
+    assert_allclose([t.columns["V_v"][0], t.columns["box_area"][0]], [27e-6, 36e-4], rtol=1e-12)
+    # one unit nobody knows is named, on the units row, and the row is still a units row
+    (tmp_path / "u.csv").write_text(text.replace("cm²", "blorp²"), encoding="utf-8")
+    t = read_table(tmp_path / "u.csv", SCHEMA)
+    assert [(p.line, p.column) for p in t.problems] == [(2, "box_area")] and list(t.lines) == [3]
+
+
+@pytest.mark.parametrize("kind", ["csv", "xlsx"])
+def test_text_under_the_data_is_a_note(tmp_path, kind):
+    """'Remarks: ...' under the data (first cell only) is reported as a note, not read as a test (issue 23)."""
+    rows = [["test_id", "condition", "sigma_N [kPa]", "tau_max [kPa]"], ["a", "dry", 1, 1.0452],
+            ["b", "dry", 2, 1.7598], ["c", "dry", 3, 2.4744], ["Remarks: sample b disturbed", None, None, None],
+            ["checked by the operator", None, None, None]]
+    if kind == "xlsx":
+        path = _xlsx(tmp_path / "t.xlsx", rows)
+    else:
+        path = tmp_path / "t.csv"  # as Excel saves it: the empty cells kept as trailing commas
+        path.write_text("\n".join(",".join("" if c is None else str(c) for c in r) for r in rows) + "\n")
+    doc = capred.run_shear(path, capred.ShearOptions(bootstrap=0)).to_json()
+    assert [t["line"] for t in doc["tests"]] == [2, 3, 4]
+    assert "note under the data (line 5): Remarks: sample b disturbed" in doc["notes"]
+    assert "note under the data (line 6): checked by the operator" in doc["notes"]
+    assert doc["materials"]["(all)"]["tan_phi"] == pytest.approx(0.7146, rel=1e-9)  # the sample's 3 tests
+
+
+def test_a_test_id_alone_is_still_a_row(tmp_path):
+    (tmp_path / "t.csv").write_text("test_id,condition,sigma_N,tau_max\na,dry,1,1\nb,dry,2,2\nd4,,,\n")
+    with pytest.raises(InputError) as info:
+        capred.run_shear(tmp_path / "t.csv")
+    assert any(p.line == 4 for p in info.value.problems)  # an incomplete test, not a note
+
+
 # --- unused columns --------------------------------------------------------------------------------
 def test_unused_columns_are_warned_with_a_suggestion(tmp_path):
     text = ("test_id,Materiaal,condition,sigma_N [kPa],tau_max [kPa],,remarks\n"
@@ -197,6 +258,49 @@ def test_unused_columns_are_warned_with_a_suggestion(tmp_path):
     (tmp_path / "t.csv").write_text(text.replace("Materiaal", "Mat. type"))  # three edits from 'material'
     doc = capred.run_shear(tmp_path / "t.csv", capred.ShearOptions(bootstrap=0)).to_json()
     assert any("'Mat. type' is not used" in w for w in doc["warnings"])  # a warning, as before
+
+
+@pytest.mark.parametrize("schema_of,header,column", [
+    ("shear", "Conditon", "condition"), ("shear", "tset_id", "test_id"), ("shear", "Materials", "material"),
+    ("shear", "Radious [mm]", "R"), ("triaxial", "grup", "group"), ("retention", "Brnach", "branch"),
+    ("retention", "weigth", "weight"), ("bridge", "Radios", "R"),
+])
+def test_near_miss_of_a_decisive_column_is_an_error_in_every_schema(tmp_path, schema_of, header, column):
+    import importlib
+
+    from capred.io.table import read_table
+
+    module = importlib.import_module(f"capred.pipelines.{schema_of}")
+    schema = getattr(module, "SCHEMA", None) or module.SOLVE_SCHEMA
+    (tmp_path / "t.csv").write_text(f"x,{header}\n1,2\n")
+    (p,) = read_table(tmp_path / "t.csv", schema).problems
+    assert (p.line, p.column) == (1, header) and f"close to '{column}'" in p.message
+    t = read_table(TableSource(tmp_path / "t.csv", ignore_columns=(header,)), schema)
+    assert not t.problems and f"column '{header}' ignored, as asked" in t.notes
+
+
+@pytest.mark.parametrize("schema_of,header", [("triaxial", "Stage"), ("shear", "soils"), ("shear", "Remark"),
+                                              ("shear", "test"), ("retention", "weights_old_2")])
+def test_far_or_short_names_stay_warnings(tmp_path, schema_of, header):
+    """'Stage' is one edit from the alias 'state' (of condition), but short aliases are too near everyday words."""
+    import importlib
+
+    from capred.io.table import read_table
+
+    schema = importlib.import_module(f"capred.pipelines.{schema_of}").SCHEMA
+    (tmp_path / "t.csv").write_text(f"x,{header}\n1,2\n")
+    t = read_table(tmp_path / "t.csv", schema)
+    assert not [p for p in t.problems if "close to" in p.message]
+
+
+def test_ignore_columns_drops_a_known_column_and_names_absent_ones(tmp_path):
+    from capred.io.table import read_table
+    from capred.pipelines.shear import SCHEMA
+
+    (tmp_path / "t.csv").write_text("test_id,material,condition,sigma_N,tau_max\na,m,dry,1,1\n")
+    t = read_table(tmp_path / "t.csv", SCHEMA, ignore_columns=("Material", "nope"))
+    assert "material" not in t.columns and "column 'material' ignored, as asked" in t.notes
+    assert "ignore_columns: the header has no column 'nope'" in t.warnings
 
 
 def test_header_with_unbalanced_brackets_is_a_problem(tmp_path):

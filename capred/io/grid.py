@@ -388,8 +388,9 @@ def _attr(attrs: dict, local: str, default=None):
     return default
 
 
-def _number_text(text: str) -> str:
-    """A number as written in the XML, in the form the CSV path would give (int, else shortest float)."""
+def _number_text(text: str, integral_floats: bool = False) -> str:
+    """A number as the XML writes it, as text: a whole number when written as one (and, with ``integral_floats``,
+    a float of integral value, as .ods readers give it), else the shortest float that round-trips."""
     t = text.strip()
     try:
         if t.lstrip("+-").isdigit():
@@ -399,7 +400,7 @@ def _number_text(text: str) -> str:
         return t
     if v != v:
         return ""
-    return str(int(v)) if v.is_integer() else repr(v)
+    return str(int(v)) if integral_floats and v.is_integer() else repr(v)
 
 
 class _Rows:
@@ -797,7 +798,7 @@ class _OdsContent:
         a = self.cell
         kind = _attr(a, "value-type")
         if kind in ("float", "percentage", "currency"):
-            return _number_text(_attr(a, "value", ""))
+            return _number_text(_attr(a, "value", ""), integral_floats=True)
         if kind == "boolean":
             return "TRUE" if _attr(a, "boolean-value", "").strip().lower() in ("true", "1") else "FALSE"
         if kind == "date":

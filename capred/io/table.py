@@ -22,10 +22,10 @@ Decisive are every text column of a schema (identities and groups:
 ``test_id``, ``material``, ``condition``, ``group``, ``branch``, ``case``)
 and the numeric columns of :data:`DECISIVE_COLUMNS` (``R``, ``R2``,
 ``back_pressure``, ``u_a``, ``weight``) or marked ``decisive=True``. A
-header of an unused column that is one edit away from one of their
-spellings of five letters or more (two edits for eight or more; case,
-spaces and '_' ignored), such as ``Materiaal`` for ``material``, while the
-column itself is absent, is an error naming both: read as a warning, it
+header of an unused column that is one edit away from their name (five
+letters or more) or an alias (six or more; two edits for eight or more;
+case, spaces and '_' ignored), such as ``Materiaal`` for ``material``,
+while the column itself is absent, is an error naming both: read as a warning, it
 would silently pool two materials. ``ignore_columns`` (CLI
 ``--ignore-column NAME``) leaves such a column out and goes on.
 """
@@ -565,8 +565,8 @@ def _edits_within(a: str, b: str, limit: int) -> bool:
 
 
 def _near_miss(header: str, spellings: dict[str, Column]) -> Column | None:
-    """The decisive column whose spelling (5 letters or more) is one edit from the header (two edits for 8 or more
-    letters), case, spaces and '_' ignored; None when there is none."""
+    """The decisive column one of whose ``spellings`` is one edit from the header (two edits for spellings of 8 or
+    more letters), case, spaces and '_' ignored; None when there is none."""
     h = _key(_name_part(header)).replace("_", "")
     if len(h) < 4:
         return None
@@ -574,6 +574,10 @@ def _near_miss(header: str, spellings: dict[str, Column]) -> Column | None:
         if h != spelling and _edits_within(h, spelling, 2 if len(spelling) >= 8 else 1):
             return col
     return None
+
+
+#: unused columns warned about one by one (with the nearest known name); the rest are counted
+_UNUSED_SHOWN = 50
 
 
 def _unused_columns(table: Table, schema: list[Column], lookup: dict[str, Column], positions: dict) -> None:
@@ -584,15 +588,18 @@ def _unused_columns(table: Table, schema: list[Column], lookup: dict[str, Column
     spellings = {}
     for col in schema:
         if col.is_decisive and col.name not in positions:
-            for sp in (col.name, *col.aliases):
+            for sp in (col.name, *col.aliases):  # short aliases ('state', 'soil') are too near everyday words
                 compact = _key(sp).replace("_", "")
-                if len(compact) >= 5:
+                if len(compact) >= (5 if sp == col.name else 6):
                     spellings.setdefault(compact, col)
     known_keys = {}
     for x in table.known:
         known_keys.setdefault(_key(x), x)
+    told = 0
     for h in table.unmatched:
         col = _near_miss(h, spellings) if spellings else None
+        if col is None and told >= _UNUSED_SHOWN:
+            continue
         if col is not None:
             table.problems.append(Problem(
                 table.path, table.header_line, h,
@@ -605,6 +612,11 @@ def _unused_columns(table: Table, schema: list[Column], lookup: dict[str, Column
         if canonical and canonical in positions:
             canonical = None  # the column it resembles is there already
         table.warnings.append(f"column '{h}' is not used" + (f" — did you mean '{canonical}'?" if canonical else ""))
+        told += 1
+    if len(table.unmatched) - told > 0 and told >= _UNUSED_SHOWN:
+        more = len(table.unmatched) - told - sum(1 for p in table.problems if "is not used, but" in p.message)
+        if more > 0:
+            table.warnings.append(f"... and {more:,} more columns not used")
 
 
 def _note_text(cells: list[str], positions: dict) -> str | None:
