@@ -19,7 +19,7 @@ from ..io.table import Column, Table, read_table
 from ..nomenclature import QUANTITIES as _GLOSSARY
 from ..physics import triaxial as tx
 from ..references import cite
-from ..result import InputFile, Options, Result, TableSpec, input_file, num
+from ..result import InputFile, Options, Result, input_file, num
 from ..units import parse_quantity
 
 SCHEMA = [
@@ -68,11 +68,23 @@ class Envelope:
 
     @property
     def M(self) -> float:
+        """Slope of the envelope in the (p, q) plane, triaxial compression [-]."""
         return float(tx.envelope_qp(self.c, self.phi)[0])
 
     @property
     def k(self) -> float:
+        """Intercept of the envelope in the (p, q) plane, triaxial compression [Pa]."""
         return float(tx.envelope_qp(self.c, self.phi)[1])
+
+    @property
+    def M_extension(self) -> float:
+        """Slope in the (p, q) plane in triaxial extension, 6 sin phi'/(3 + sin phi') [-]."""
+        return float(tx.envelope_qp(self.c, self.phi, "extension")[0])
+
+    @property
+    def k_extension(self) -> float:
+        """Intercept in the (p, q) plane in triaxial extension [Pa]."""
+        return float(tx.envelope_qp(self.c, self.phi, "extension")[1])
 
 
 def fit_envelope(sigma3_eff, sigma1_eff, confidence=0.95) -> Envelope:
@@ -234,6 +246,7 @@ class TriaxialResult(Result):
             "source": self.source,
             "envelope": {
                 "c_kPa": _kpa(e.c), "phi_deg": num(e.phi), "M": num(e.M), "k_kPa": _kpa(e.k),
+                "M_extension": num(e.M_extension), "k_extension_kPa": _kpa(e.k_extension),
                 "c_se_kPa": _kpa(e.c_se) if e.c_se is not None else None,
                 "phi_se_deg": num(e.phi_se) if e.phi_se is not None else None,
                 "source": e.source, "n": e.fit.n if e.fit else None,
@@ -700,6 +713,8 @@ def _group_analysis(t: dict, env: Envelope) -> list[dict]:
             kp, b = np.polyfit(s3, s1, 1)
             if kp > 1.0:
                 C, phi = tx.envelope_from_principal_fit(kp, b)
+                M_app, k_app = tx.envelope_qp(C, phi, "extension" if branch == "extension" else "compression")
+                res.update({"apparent_M": num(M_app), "apparent_k_kPa": _kpa(k_app)})
                 c2 = tx.fictive_cohesion_lower(C, env.c, env.phi)
                 a1, a3 = tx.axisymmetric_group_cap(C, c2, env.c, env.phi)
                 res.update({
@@ -713,6 +728,9 @@ def _group_analysis(t: dict, env: Envelope) -> list[dict]:
             res["apparent_error"] = "all tests of the group share one sigma3: no apparent envelope (eq. 37)"
         paired = all(t["pair"][i] for i in sel)
         p_idx = np.array([index[t["pair"][i]] for i in sel]) if paired else None
+        if paired:  # the fictive state sigma'' (eq. 44): the unsaturated circle's centre, the saturated radius
+            f1, f3 = tx.fictive_state(s1, s3, t["sigma1"][p_idx], t["sigma3"][p_idx])
+            res.update({"fictive_sigma1_kPa": [_kpa(x) for x in f1], "fictive_sigma3_kPa": [_kpa(x) for x in f3]})
         if branch == "general" and not res["eq49_holds"]:
             res["error"] = (f"the Lode angles of the group spread over {np.ptp(lode):.3g} deg > "
                             f"{tx.LODE_TOL_DEG:g} deg: eq. 50 needs one Lode angle (eq. 49)")

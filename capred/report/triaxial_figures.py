@@ -3,12 +3,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..physics import triaxial as tx
 from .sheets import Panel, Sheet
-from .style import LABEL, literal
+from .style import LABEL, OKABE_ITO, literal
 from .style import style as model_style
 
 KPA = 1e-3
+#: one colour per group (Okabe-Ito, the bounds' vermillion, blue and green left to the bounds)
+GROUP_COLOURS = [OKABE_ITO[k] for k in ("orange", "sky", "purple", "yellow", "black", "grey")]
 BOUND_STYLE = {
     "lower": dict(**model_style("lower"), label=r"LB ($\sigma_{1,cap}$ = 0)"),
     "spherical": dict(**model_style("spherical"), label="UB q = q' (spherical)"),
@@ -27,8 +28,16 @@ def plot_qp_plane(ax, result):
     ps = np.linspace(0.0, p_max, 50)
     ax.plot(ps * KPA, (env.M * ps + env.k) * KPA, "k-", lw=1.2,
             label=f"effective envelope (c' = {env.c * KPA:.3g} kPa, φ' = {env.phi:.2f}°)")
-    ax.plot(t["p"][sat] * KPA, t["q"][sat] * KPA, "ks", mfc="white", label="saturated failure (p', q)")
-    ax.plot(t["p"][uns] * KPA, t["q"][uns] * KPA, "k*", ms=9, label="unsaturated failure (p, q) total")
+    ext = t["branch"] == "extension"
+    if ext.any():  # extension: M = 6 sin phi'/(3 + sin phi')
+        ax.plot(ps * KPA, (env.M_extension * ps + env.k_extension) * KPA, "k--", lw=1.0,
+                label="effective envelope, extension (M = 6 sin φ'/(3 + sin φ'))")
+    ax.plot(t["p"][sat & ~ext] * KPA, t["q"][sat & ~ext] * KPA, "ks", mfc="white", label="saturated failure (p', q)")
+    ax.plot(t["p"][uns & ~ext] * KPA, t["q"][uns & ~ext] * KPA, "k*", ms=9, label="unsaturated failure (p, q) total")
+    if ext.any():
+        ax.plot(t["p"][sat & ext] * KPA, t["q"][sat & ext] * KPA, "kD", mfc="white", ms=5,
+                label="saturated failure, extension")
+        ax.plot(t["p"][uns & ext] * KPA, t["q"][uns & ext] * KPA, "kP", ms=7, label="unsaturated failure, extension")
     for name, style in BOUND_STYLE.items():
         b = result.bounds[name]
         ok = uns & np.isfinite(b.p_prime)
@@ -44,11 +53,11 @@ def plot_qp_plane(ax, result):
         p0e = t["p0"][i] + t["s0"][i]
         ax.plot([p0e * KPA, edtp.p_prime[i] * KPA], [0, edtp.q_prime[i] * KPA], "--", color=model_style("edtp")["color"],
                 lw=0.8, label="EDTP stress path (from p0 + s0)" if k == 0 else None)
-    for g in result.groups:  # the apparent (total) envelope of each group sharing one capillary tensor
-        if "C_apparent_kPa" not in g:
+    for j, g in enumerate(result.groups):  # the apparent (total) envelope of each group sharing one tensor
+        if g.get("apparent_M") is None:
             continue
-        M, k_app = tx.envelope_qp(g["C_apparent_kPa"] * 1e3, g["phi_apparent_deg"])
-        ax.plot(ps * KPA, (M * ps + k_app) * KPA, ":", color="0.3", lw=1.0,
+        ax.plot(ps * KPA, g["apparent_M"] * ps * KPA + g["apparent_k_kPa"], ":",
+                color=GROUP_COLOURS[j % len(GROUP_COLOURS)], lw=1.0,
                 label=f"group {literal(g['group'])}: apparent envelope (C = {g['C_apparent_kPa']:.3g} kPa, "
                       f"φ = {g['phi_apparent_deg']:.3g}°)")
     ax.set_xlim(left=0)
@@ -116,6 +125,68 @@ def plot_mohr_circles(ax, result):
     return ax
 
 
+def plot_group_circles(ax, result):
+    """Each group's unsaturated Mohr circles (solid), fictive circles sigma'' (dashed, eq. 44) and the lines of
+    cohesion C and C'' at the effective friction angle (eq. 43, 48)."""
+    t = result.tests
+    env = result.envelope
+    th = np.linspace(0, np.pi, 90)
+    tan_phi = np.tan(np.radians(env.phi))
+    hi = 0.0
+    for j, g in enumerate(result.groups):
+        colour = GROUP_COLOURS[j % len(GROUP_COLOURS)]
+        sel = np.isin(t["test_id"], g["tests"])
+        pairs = [(a, b, "-") for a, b in zip(t["sigma3"][sel] * KPA, t["sigma1"][sel] * KPA)]
+        if g.get("fictive_sigma1_kPa"):
+            pairs += [(a, b, "--") for a, b in zip(g["fictive_sigma3_kPa"], g["fictive_sigma1_kPa"])]
+        for a, b, ls in pairs:
+            c, r = (a + b) / 2, (b - a) / 2
+            ax.plot(c + r * np.cos(th), r * np.sin(th), ls=ls, color=colour, lw=0.9)
+            hi = max(hi, b)
+        s_line = np.linspace(0.0, hi, 20)
+        for key, ls, what in (("C_kPa", "-", "C"), ("C_fictive_kPa", "--", "C''")):
+            if g.get(key) is not None:
+                ax.plot(s_line, g[key] + s_line * tan_phi, ls=ls, color=colour, lw=1.4,
+                        label=f"group {literal(g['group'])}: {what} = {g[key]:.3g} kPa")
+    s_line = np.linspace(0.0, max(hi, 1.0), 20)
+    ax.plot(s_line, env.c * KPA + s_line * tan_phi, "k-", lw=1.0, label=f"effective envelope, C' = {env.c * KPA:.3g} kPa")
+    ax.plot([], [], "k-", lw=0.9, label="unsaturated circles (total)")
+    ax.plot([], [], "k--", lw=0.9, label="fictive circles σ'' (saturated radius)")
+    ax.set_xlim(left=0)
+    ax.set_ylim(bottom=0)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel(LABEL["sigma"])
+    ax.set_ylabel(LABEL["tau"])
+    ax.set_title("Groups: circles and the lines C, C''")
+    ax.legend()
+    return ax
+
+
+def plot_group_tensors(ax, result):
+    """sigma1_cap, sigma2_cap, sigma3_cap of each group (eq. 48 or 50) with their standard errors."""
+    from matplotlib.patches import Patch
+
+    groups = [g for g in result.groups if g.get("sigma1_cap_kPa") is not None]
+    comps = ((1, r"$\sigma_{1,cap}$", ""), (2, r"$\sigma_{2,cap}$", "///"), (3, r"$\sigma_{3,cap}$", "..."))
+    width = 0.8 / len(comps)
+    for k, (n, label, hatch) in enumerate(comps):
+        x = np.arange(len(groups)) - 0.4 + width * (k + 0.5)
+        values = [g[f"sigma{n}_cap_kPa"] for g in groups]
+        errors = [g[f"sigma{n}_cap_se_kPa"] or 0.0 for g in groups]
+        ax.bar(x, values, width, yerr=errors, capsize=3, hatch=hatch, edgecolor="white", lw=0.3,
+               color=[GROUP_COLOURS[result.groups.index(g) % len(GROUP_COLOURS)] for g in groups], label=label)
+    def short(method):
+        return "eq. 48, σ1,cap = 0" if "closed" in method else method.split(" (")[0]
+
+    ax.set_xticks(np.arange(len(groups)), [f"{literal(g['group'])}\n{short(g['method'] or '')}" for g in groups],
+                  fontsize=7)
+    ax.axhline(0, color="k", lw=0.8)
+    ax.set_ylabel(LABEL["cap_component"])
+    ax.set_title("Tensor shared by each group (± se)")
+    ax.legend(handles=[Patch(facecolor="0.75", hatch=h, edgecolor="white", label=lab) for _, lab, h in comps])
+    return ax
+
+
 def sheet_triaxial(result) -> Sheet:
     return Sheet("Capillary stress tensor at failure (after Prunier et al. 2024, Fig. 16-18)", [
         Panel("qp_plane", lambda ax: plot_qp_plane(ax, result),
@@ -125,4 +196,10 @@ def sheet_triaxial(result) -> Sheet:
               "σ1,cap, σ3,cap and p_cap of each bound for every unsaturated test."),
         Panel("mohr_circles", lambda ax: plot_mohr_circles(ax, result),
               "Mohr circles at failure: total (unsaturated), effective under the lower bound, and saturated."),
-    ], 2, spans={"qp_plane": 2})
+    ] + ([
+        Panel("group_circles", lambda ax: plot_group_circles(ax, result),
+              "Groups sharing one tensor (Prunier et al. 2024, Appendix 1): unsaturated Mohr circles, fictive "
+              "circles σ'' with the paired saturated radius (eq. 44) and the lines of cohesion C and C'' (eq. 48)."),
+        Panel("group_tensors", lambda ax: plot_group_tensors(ax, result),
+              "σ1,cap, σ2,cap, σ3,cap of each group by eq. 48 or 50, with standard errors from the regression."),
+    ] if any(g.get("sigma1_cap_kPa") is not None for g in result.groups) else []), 2, spans={"qp_plane": 2})
