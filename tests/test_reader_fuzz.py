@@ -113,3 +113,89 @@ def test_fuzzed_values_triaxial(tmp_path, text):
         run_triaxial_bounds(path).to_json()
     except CapredError:
         pass
+
+
+# --- manifests and spreadsheet XML (issue 19): fuzzed, they are read or explained -----------------------------------
+MANIFEST_CELLS = st.one_of(st.sampled_from(["shear", "retention", "triaxial-bounds", "frobnicate", "", "a.csv",
+                                            "runs/*.csv", "--no-plots", "--gamma-w 10", '"x,y"', "--model vg",
+                                            "r\u00e9sum\u00e9.csv", "#", "'", '"']),
+                           st.text(alphabet=string.printable + "é\x00", max_size=10))
+
+
+@st.composite
+def manifests(draw):
+    if draw(st.booleans()):  # CSV
+        header = draw(st.sampled_from(["command,input,options", "command,input", "command,input,option", "input",
+                                       "Command, Input ,Options", ""]))
+        rows = draw(st.lists(st.lists(MANIFEST_CELLS, max_size=5).map(",".join), max_size=5))
+        text, name = "\n".join([header, *rows]) + "\n", "m.csv"
+    else:  # TOML
+        strings = MANIFEST_CELLS.map(repr).map(lambda r: r.replace("\\", ""))
+        values = st.one_of(st.integers(-5, 5), st.booleans(), strings,
+                           st.lists(MANIFEST_CELLS, max_size=3).map(lambda xs: "[" + ", ".join(map(repr, xs)) + "]"))
+        parts = []
+        for _ in range(draw(st.integers(0, 3))):
+            head = draw(st.sampled_from(["[[run]]", "[run]", "run = 5", "[[runs]]", ""]))
+            keys = draw(st.lists(st.sampled_from(["command", "input", "options", "option", "run"]), max_size=4))
+            parts.append("\n".join([head, *(f"{k} = {draw(values)}" for k in keys)]))
+        text, name = "\n".join(parts) + "\n", "m.toml"
+    encoding = draw(st.sampled_from(["utf-8", "utf-8-sig", "cp1252", "utf-16"]))
+    return name, text.encode(encoding, errors="replace")
+
+
+@SETTINGS
+@given(manifest=manifests())
+def test_fuzzed_manifests_read_or_explain(tmp_path, manifest):
+    from pathlib import Path
+
+    from capred.io.manifest import read_manifest
+
+    name, data = manifest
+    path = Path(tmp_path) / name
+    path.write_bytes(data)
+    try:
+        runs = read_manifest(path)
+    except CapredError as exc:
+        assert str(exc) and str(path) in str(exc)  # the message names the file
+    else:  # every run has its line, a command, an input and options
+        assert runs and all(isinstance(n, int) and c and i and isinstance(o, (str, list)) for n, c, i, o in runs)
+
+
+XML_PIECES = st.sampled_from(['<row r="2">', "</row>", '<row>', '<c r="A1">', '<c r="XFD3" t="s">', '<c t="b">',
+                              '<c t="inlineStr"><is><t>x</t></is>', "</c>", "<v>1.5</v>", "<v>-1</v>", "<v>99</v>",
+                              "<v>x</v>", '<c r="B2" t="e"><v>#DIV/0!</v>', "<f>SUM(A1)</f>", "<v>1e999</v>",
+                              '<c r="ZZZZ9">', "&amp;", "&lol;", "<!-- c -->", " "])
+
+
+_BLANK_WORKBOOK: list = []  # the parts of an empty workbook, made once
+
+
+@SETTINGS
+@given(pieces=st.lists(XML_PIECES, max_size=30))
+def test_fuzzed_sheet_xml_reads_or_explains(tmp_path, pieces):
+    """Any sheet XML inside a valid workbook: rows of text, or one clear InputError (never another exception)."""
+    from pathlib import Path
+
+    import zipfile
+
+    from openpyxl import Workbook
+
+    from capred.io.grid import TableSource, read_grid
+
+    path = Path(tmp_path) / "w.xlsx"
+    if not _BLANK_WORKBOOK:
+        Workbook().save(path)
+        with zipfile.ZipFile(path) as z:
+            _BLANK_WORKBOOK.extend((n, z.read(n)) for n in z.namelist())
+    members = _BLANK_WORKBOOK
+    sheet = ('<worksheet xmlns="http://schemas.openxmlformats.org/spreadsheetml/2006/main"><sheetData>'
+             + "".join(pieces) + "</sheetData></worksheet>").encode()
+    with zipfile.ZipFile(path, "w") as z:
+        for n, d in members:
+            z.writestr(n, sheet if n == "xl/worksheets/sheet1.xml" else d)
+    try:
+        grid = read_grid(TableSource(path))
+    except CapredError as exc:
+        assert str(path) in str(exc)
+    else:
+        assert all(isinstance(n, int) and all(isinstance(c, str) for c in cells) for n, cells in grid.rows)

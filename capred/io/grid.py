@@ -683,10 +683,8 @@ class _XlsxSheet:
         if v is None or v == "":
             return ""
         if t == "s":
-            try:
-                return self.strings[int(v)].strip()
-            except (ValueError, IndexError):
-                return ""
+            k = v.strip()
+            return self.strings[int(k)].strip() if k.isdigit() and int(k) < len(self.strings) else ""
         if t == "b":
             return "TRUE" if v.strip() in ("1", "true") else "FALSE"
         if t in ("str", "e"):
