@@ -180,6 +180,12 @@ def fit_curve(model, x, y, names, starts, bounds, fixed=None, weights=None, log_
     ------
     FitError
         NaN or infinite data, fewer points than free parameters, or no start converged.
+
+    References
+    ----------
+    Branch, M. A., Coleman, T. F., Li, Y. (1999). A subspace, interior, and conjugate gradient method for
+    large-scale bound-constrained minimization problems. SIAM J. Sci. Comput. 21(1):1-23,
+    doi:10.1137/S1064827595289108 (the trust-region reflective method of scipy's least_squares).
     """
     from scipy.optimize import least_squares
 
@@ -301,6 +307,11 @@ def summarize_fit(model, x, y, names, params: dict, bounds, fixed=None, weights=
     Returns
     -------
     NonlinearFit
+
+    References
+    ----------
+    Bates, D. M., Watts, D. G. (1988). Nonlinear Regression Analysis and Its Applications. Wiley,
+    doi:10.1002/9780470316757, section 2.3 (linearisation: Cov = s² (JᵀJ)⁻¹, s² = RSS/(n - k)).
     """
     x = np.asarray(x, float)
     y = np.asarray(y, float)

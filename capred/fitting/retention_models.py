@@ -348,6 +348,11 @@ def bounds_for(s, y, model: str | None = None) -> dict[str, tuple[float, float]]
     dict[str, tuple[float, float]]
         ``{name: (lower, upper)}`` in the parameters' units (Pa, 1/Pa, -, unit of y); the rules are in
         each :class:`Parameter` (``range_text``).
+
+    References
+    ----------
+    The parameters are those of the models' papers (each entry's ``references``); the ranges are capred's,
+    wide enough to hold the fits of SWRC Fit (Seki 2007, Hydrol. Earth Syst. Sci. Discuss. 4:407-437).
     """
     s = np.asarray(s, float)
     y = np.asarray(y, float)
@@ -833,6 +838,9 @@ def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = 
 
     References
     ----------
+    The models: each entry's ``references`` (e.g. van Genuchten 1980, doi:10.2136/sssaj1980.03615995004400050002x,
+    eq. 21). Marquardt, D. W. (1963). An algorithm for least-squares estimation of nonlinear parameters.
+    J. Soc. Ind. Appl. Math. 11(2):431-441, doi:10.1137/0111030 (the local refinement).
     Golub, G. H., Pereyra, V. (1973). The differentiation of pseudo-inverses and nonlinear least squares
     problems whose variables separate. SIAM J. Numer. Anal. 10(2):413-432, doi:10.1137/0710036
     (variable projection).
@@ -872,8 +880,8 @@ def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = 
         for x0, blo, bhi in _starts(pb, n_starts):  # phase 1: every start, loose tolerance
             ulo, uhi = pb.to_u(blo), pb.to_u(bhi)
             u0 = np.clip(pb.to_u(np.clip(x0, blo, bhi)), ulo, uhi)
-            runs.append((*_levenberg_marquardt(pb.resid_u, pb.jac_u, u0, ulo, uhi, ftol=1e-6, max_iter=20),
-                         ulo, uhi))
+            runs.append((*_levenberg_marquardt(pb.resid_u, pb.jac_u, u0, ulo, uhi, ftol=1e-6,
+                                               max_iter=20 if k <= 3 else 80), ulo, uhi))
         runs.sort(key=lambda t: t[1])
         best_cost = np.inf
         for u, cost, _, ulo, uhi in runs:  # phase 2: polish those within 1e-4 of the best
@@ -910,6 +918,11 @@ def confidence_band(name: str, fit: NonlinearFit, s_grid, level_t: float | None 
     -------
     (numpy.ndarray, numpy.ndarray)
         Lower and upper band [unit of y]; both equal the curve without a covariance.
+
+    References
+    ----------
+    Bates, D. M., Watts, D. G. (1988). Nonlinear Regression Analysis and Its Applications. Wiley,
+    doi:10.1002/9780470316757, section 2.3.1 (confidence band of the expectation surface).
     """
     model = MODELS[name]
     s_grid = np.asarray(s_grid, float)

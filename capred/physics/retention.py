@@ -378,6 +378,11 @@ def monotone_suction(saturation, target, lo=1e-6, hi=FX_S_MAX, iterations=64):
     -------
     numpy.ndarray
         Suction [Pa], NaN where ``target`` is out of reach.
+
+    References
+    ----------
+    Used for the models without a closed-form inverse: Fredlund & Xing (1994), doi:10.1139/t94-061, eq. 26;
+    Durner (1994), doi:10.1029/93WR02676.
     """
     target = np.asarray(target, float)
     a = np.full(target.shape, np.log(lo))
