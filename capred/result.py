@@ -156,6 +156,104 @@ class TableSpec:
     sections: set[int] = field(default_factory=set)  # rows after which a rule is drawn
 
 
+# --- records: typed results and their one mapping to JSON keys and table columns -------------------
+@dataclass(frozen=True)
+class Output:
+    """How one field of a record appears in the outputs.
+
+    ``json`` and ``column`` are patterns: ``{model}`` is replaced by a model's
+    name and ``{level}`` by the confidence level in percent (95). A field of a
+    model-indexed record appears in the JSON rows as ``{json: {model: value}}``
+    and in tables as one column per model. ``unit`` is the output unit shown
+    in the column header ("" for a dimensionless value) and ``scale`` turns the
+    SI value into it. ``pair`` fields hold (low, high) arrays: a JSON list
+    ``[low, high]`` and two columns ``<column>_low``/``<column>_high`` (or the
+    two ``column`` patterns given as a tuple).
+    """
+
+    json: str | None
+    column: str | tuple[str, str] | None
+    unit: str = ""
+    scale: float = 1.0
+    pair: bool = False
+
+
+def output(json: str | None, column=None, unit: str = "", scale: float = 1.0, pair: bool = False):
+    """Field metadata of a record attribute (see Output); use as ``x: np.ndarray = output(...)``."""
+    return field(default=None, metadata={"output": Output(json, column, unit, scale, pair)})
+
+
+def record_outputs(record) -> list[tuple[str, Output, object]]:
+    """(field name, Output, value) of every output field of a record, in declaration order."""
+    return [(f.name, f.metadata["output"], getattr(record, f.name)) for f in dataclasses.fields(record)
+            if "output" in f.metadata and getattr(record, f.name) is not None]
+
+
+def _scaled(values, scale: float):
+    import numpy as np
+
+    a = np.asarray(values, dtype=float)
+    return a * scale if scale != 1.0 else a
+
+
+def record_columns(records: dict, level: str = "95") -> dict:
+    """Table columns of records, ``{header: array}``.
+
+    ``records`` maps a model name to its record (model-indexed records) or
+    ``None`` to a single record. Columns come field by field, models inner.
+    """
+    out: dict = {}
+    first = next(iter(records.values()), None)
+    if first is None:
+        return out
+    for name, spec, _ in record_outputs(first):
+        if spec.column is None:
+            continue
+        for model, rec in records.items():
+            value = getattr(rec, name)
+            if value is None:
+                continue
+            names = spec.column if isinstance(spec.column, tuple) else (
+                (spec.column + "_low", spec.column + "_high") if spec.pair else (spec.column,))
+            parts = value if spec.pair else (value,)
+            for pattern, part in zip(names, parts):
+                head = pattern.format(model=model, level=level)
+                out[f"{head} [{spec.unit or '-'}]"] = _scaled(part, spec.scale)
+    return out
+
+
+def record_json_columns(records: dict, start: int, stop: int, level: str = "95") -> dict:
+    """Per-row JSON values of records for rows start..stop-1: ``{key: list}``; a model-indexed field gives a
+    list of ``{model: value}`` dicts, a pair a list of ``[low, high]``."""
+    out: dict = {}
+    first = next(iter(records.values()), None)
+    if first is None:
+        return out
+    sl = slice(start, stop)
+    for name, spec, _ in record_outputs(first):
+        if spec.json is None:
+            continue
+        key = spec.json.format(level=level)
+        per_model = {}
+        for model, rec in records.items():
+            value = getattr(rec, name)
+            if value is None:
+                continue
+            if spec.pair:
+                lo, hi = (json_list(_scaled(v[sl], spec.scale)) for v in value)
+                per_model[model] = [list(p) for p in zip(lo, hi)]
+            else:
+                per_model[model] = json_list(_scaled(value[sl], spec.scale))
+        if not per_model:
+            continue
+        if None in records:  # a single record
+            out[key] = per_model[None]
+        else:
+            models = list(per_model)
+            out[key] = [dict(zip(models, vals)) for vals in zip(*(per_model[m] for m in models))]
+    return out
+
+
 class Rows:
     """A long list of JSON rows made on demand, ``size`` at a time.
 
@@ -210,6 +308,10 @@ class Result:
     def tables(self) -> dict[str, "object"]:
         """Output tables: file stem -> pandas DataFrame (first = the per-row table)."""
         raise NotImplementedError
+
+    def method_notes(self) -> tuple[list[str], list[str]]:
+        """(paragraphs, reference keys) the run adds to its command's methods text (e.g. the models in force)."""
+        return [], []
 
     def season_rows(self) -> list[dict]:
         """Rows of a batch's season.csv (per material: c, phi, their se, n, best model...); none by default."""

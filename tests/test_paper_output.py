@@ -139,7 +139,8 @@ class _Links(HTMLParser):
                 self.refs.append(v)
 
 
-@pytest.mark.parametrize("args", [["shear", "--sample", "--bootstrap", "0"], ["triaxial-bounds", "--sample"],
+@pytest.mark.parametrize("args", [["shear", "--sample", "--bootstrap", "0", "--models", "bishop,vanapalli", "--s-res", "0"],
+                                  ["triaxial-bounds", "--sample"],
                                   ["retention", "--sample"], ["bridge", "compare", "--sample"]])
 def test_report_html_is_self_contained(tmp_path, args):
     res = runner.invoke(app, [*args, "--out", str(tmp_path / "o")])

@@ -194,16 +194,22 @@ def test_exact_neck_flags_tests_without_concave_bridge():
     assert any("exact_neck" in w for w in js["warnings"])
 
 
-def test_prediction_band_matches_the_delta_method():
+def test_mean_band_and_prediction_interval_match_the_delta_method():
     res = capred.run_shear(_table(lambda S, u: S, noise=0.02), capred.ShearOptions(bootstrap=0))
     t = res.tests
     fit = next(iter(res.fits.values()))
     i = int(np.flatnonzero(t["condition"] == "wet")[0])
-    sig = t["sigma_eff_bishop"][i]
+    p = res.predictions["bishop"]
+    sig = p.sigma_eff[i]
     cov = fit.covariance
-    half = fit.t * np.sqrt(cov[0, 0] + 2 * sig * cov[0, 1] + sig**2 * cov[1, 1])
-    assert t["tau_pred_hi_bishop"][i] - t["tau_pred_bishop"][i] == pytest.approx(half, rel=1e-6)
-    assert t["tau_pred_bishop"][i] - t["tau_pred_lo_bishop"][i] == pytest.approx(half, rel=1e-6)
+    var_mean = cov[0, 0] + 2 * sig * cov[0, 1] + sig**2 * cov[1, 1]
+    half = fit.t * np.sqrt(var_mean)
+    # the band of the mean: t times the delta-method SE of c + sigma' tan(phi) (numerical derivatives: 1e-6)
+    assert p.tau_mean_ci[1][i] - p.tau[i] == pytest.approx(half, rel=1e-6)
+    assert p.tau[i] - p.tau_mean_ci[0][i] == pytest.approx(half, rel=1e-6)
+    # a new test adds the scatter of one test, the dry fit's residual variance s^2
+    half_new = fit.t * np.sqrt(var_mean + fit.residual_variance)
+    assert p.tau_prediction_interval[1][i] - p.tau[i] == pytest.approx(half_new, rel=1e-6)
 
 
 def test_dry_fit_through_origin():

@@ -160,29 +160,84 @@ class ModelInputs:
 
 
 @dataclass(frozen=True)
+class Flag:
+    """A per-test flag: its name in results.csv and what it means (completes "N wet tests ...")."""
+
+    name: str
+    meaning: str
+
+
+@dataclass(frozen=True)
 class EffectiveStressModel:
-    """One entry of the registry. ``sigma_eff`` gives sigma'_N [Pa]; a model that
-    predicts the strength directly gives ``tau`` instead (its sigma'_N is then NaN)."""
+    """One entry of the registry: everything capred knows about a model.
+
+    Attributes
+    ----------
+    name : str
+        Name as typed in ``--models`` and used in JSON keys and columns.
+    label : str
+        Short label of tables and legends (mathtext allowed).
+    requires : tuple of (str, str)
+        (ModelParams field, command-line option) of each parameter the model needs.
+    reference : str
+        Key of capred.references.REFERENCES.
+    sigma_eff, tau : callable
+        ``sigma_eff(ModelInputs)`` gives σ'_N [Pa]; a model that predicts the strength directly gives ``tau``
+        [Pa] instead (its σ'_N is then NaN).
+    thesis : bool
+        One of the four models of Evenepoel's thesis (the default set).
+    fitted : tuple of str
+        Parameters fitted per material on the wet tests (capred.fitting.chi_laws).
+    wet_parameters : int
+        Parameters fitted on the wet tests outside a χ law (Fredlund's tan φ_b): counted in AICc and BIC.
+    material_values : callable, optional
+        ``material_values(ModelInputs of one material's wet tests) -> {json key: value}``: what the model
+        reports per material beside the dry envelope.
+    no_prediction : Flag, optional
+        The flag of wet tests the model cannot predict (NaN), left out of its metrics.
+    along_retention : bool
+        Drawn as a curve along the material's water-retention relation (False: markers per test only).
+    style : dict
+        Colour (a name of capred.report.style.OKABE_ITO) and marker of every figure.
+    method : str
+        One sentence for the methods section of report.html (the equation of the model).
+    chi_of_saturation : callable, optional
+        ``chi(S_R, params, fitted)`` for a model whose χ depends on S_R alone (drawn against the
+        back-analysed χ); ``params`` is the run's ModelParams, ``fitted`` the material's fitted law parameters
+        (or None).
+    """
 
     name: str
     label: str
-    requires: tuple[tuple[str, str], ...]  # (ModelParams field, option that sets it)
-    reference: str  # key of capred.references.REFERENCES
+    requires: tuple[tuple[str, str], ...]
+    reference: str
     sigma_eff: Callable[[ModelInputs], np.ndarray] | None = None
     tau: Callable[[ModelInputs], np.ndarray] | None = None
-    thesis: bool = False  # one of the four models of the thesis (the default set)
-    fitted: tuple[str, ...] = ()  # parameters fitted per material on the wet tests (capred.fitting.chi_laws)
+    thesis: bool = False
+    fitted: tuple[str, ...] = ()
+    wet_parameters: int = 0
+    material_values: Callable[[ModelInputs], dict] | None = None
+    no_prediction: Flag | None = None
+    along_retention: bool = True
+    style: dict = field(default_factory=lambda: {"color": "black", "marker": "o"})
+    method: str = ""
+    chi_of_saturation: Callable[[np.ndarray, object, dict], np.ndarray] | None = None
 
 
-def _fredlund(d: ModelInputs) -> np.ndarray:
-    """sigma'_N equivalent of tau = c + sigma_N tan phi + s tan phi_b, tan phi_b fitted per material [11]."""
+def _tan_phi_b(d: ModelInputs) -> np.ndarray:
+    """tan(phi_b) of each test, fitted per material on its wet tests [11]."""
     tb = np.zeros(d.sigma_N.size)
     for m in dict.fromkeys(d.material):
         sel = d.wet & (d.material == m)
         if sel.any():
             excess = d.tau_max[sel] - ph.mohr_coulomb_strength(d.c[sel], d.tan_phi[sel], d.sigma_N[sel])
             tb[d.material == m] = fit_tan_phi_b(d.suction[sel], excess)
-    return d.sigma_N + d.suction * tb / d.tan_phi
+    return tb
+
+
+def _fredlund(d: ModelInputs) -> np.ndarray:
+    """sigma'_N equivalent of tau = c + sigma_N tan phi + s tan phi_b, tan phi_b fitted per material [11]."""
+    return d.sigma_N + d.suction * _tan_phi_b(d) / d.tan_phi
 
 
 def _pedrotti_tarantino(d: ModelInputs) -> np.ndarray:
@@ -196,31 +251,64 @@ def _thesis(model: str) -> Callable[[ModelInputs], np.ndarray]:
 
 
 REGISTRY: dict[str, EffectiveStressModel] = {m.name: m for m in (
-    EffectiveStressModel("no_suction", "No suction", (), "evenepoel", _thesis("no_suction"), thesis=True),
-    EffectiveStressModel("bishop", "Bishop", (), "bishop1959", _thesis("bishop"), thesis=True),
-    EffectiveStressModel("own1", "Own 1", (), "evenepoel", _thesis("own1"), thesis=True),
-    EffectiveStressModel("own2", "Own 2", (), "evenepoel", _thesis("own2"), thesis=True),
+    EffectiveStressModel("no_suction", "No suction", (), "evenepoel", _thesis("no_suction"), thesis=True,
+                         style={"color": "grey", "marker": "s"},
+                         method="No suction: σ'_N = σ_N, the dry envelope alone."),
+    EffectiveStressModel("bishop", "Bishop", (), "bishop1959", _thesis("bishop"), thesis=True,
+                         style={"color": "blue", "marker": "o"},
+                         method="Bishop: σ'_N = σ_N + S_R Δu (χ = S_R).",
+                         chi_of_saturation=lambda S, p, f: np.asarray(S, float)),
+    EffectiveStressModel("own1", "Own 1", (), "evenepoel", _thesis("own1"), thesis=True,
+                         style={"color": "orange", "marker": "^"},
+                         method="Own 1: σ'_N = σ_N + χ1 Δu with χ1 = (2π S_R/3)^(2/3).",
+                         chi_of_saturation=lambda S, p, f: ph.chi1(S)),
+    EffectiveStressModel("own2", "Own 2", (), "evenepoel", _thesis("own2"), thesis=True,
+                         style={"color": "green", "marker": "D"},
+                         method="Own 2: σ'_N = σ_N + χ1 Δu + (2γ/R)(2π S_R/3)^(1/3)."),
     EffectiveStressModel("vanapalli", "Vanapalli", (("s_res", "--s-res"),), "vanapalli1996",
                          lambda d: d.sigma_N + chi_vanapalli(d.S_R, d.params.s_res, d.params.vanapalli_kappa)
-                         * d.suction),
+                         * d.suction, style={"color": "purple", "marker": "v"},
+                         method="Vanapalli: χ = S_e^κ with S_e = (S_R − S_res)/(1 − S_res), κ from --vanapalli-kappa.",
+                         chi_of_saturation=lambda S, p, f: chi_vanapalli(S, p.s_res, p.vanapalli_kappa)),
     EffectiveStressModel("khalili", "Khalili-Khabbaz", (("air_entry", "--air-entry"),), "khalili_khabbaz1998",
-                         lambda d: d.sigma_N + chi_khalili(d.suction, d.params.air_entry) * d.suction),
+                         lambda d: d.sigma_N + chi_khalili(d.suction, d.params.air_entry) * d.suction,
+                         style={"color": "vermillion", "marker": "<"},
+                         method="Khalili-Khabbaz: χ = (Δu/s_b)^−0.55 above the air-entry suction s_b, 1 below."),
     EffectiveStressModel("lu_likos", "Lu-Likos", (("vg_alpha", "--vg-alpha"), ("vg_n", "--vg-n")), "lu_likos2006",
                          lambda d: d.sigma_N + chi_lu_likos(d.suction, d.params.vg_alpha, d.params.vg_n,
-                                                            d.params.vg_m) * d.suction),
-    EffectiveStressModel("fredlund", "Fredlund φ_b", (), "fredlund1978", _fredlund),
+                                                            d.params.vg_m) * d.suction,
+                         style={"color": "sky", "marker": ">"},
+                         method="Lu-Likos: χ = S_e of van Genuchten's curve at the test's suction (suction stress)."),
+    EffectiveStressModel("fredlund", "Fredlund φ_b", (), "fredlund1978", _fredlund, wet_parameters=1,
+                         material_values=lambda d: {"phi_b_deg": float(np.degrees(np.arctan(_tan_phi_b(d)[0])))},
+                         along_retention=False, style={"color": "black", "marker": "p"},
+                         method="Fredlund: τ = c + σ_N tan φ + Δu tan φ_b, tan φ_b fitted per material on the wet "
+                                "tests."),
     EffectiveStressModel("pedrotti_tarantino", "Pedrotti-Tarantino", (), "pedrotti_tarantino",
-                         tau=_pedrotti_tarantino),
+                         tau=_pedrotti_tarantino, style={"color": "sky", "marker": "h"},
+                         method="Pedrotti-Tarantino: τ = S_R τ^W + (1 − S_R) τ^A with σ'_W = (σ − u_w) S_R on the "
+                                "saturated envelope and σ'_A = (σ − u_a)(1 − S_R) on the dry one."),
     EffectiveStressModel("chi_power", "χ = S_e^κ (fitted)", (), "vanapalli1996",
-                         lambda d: d.sigma_N + chi_vanapalli(d.S_R, d.params.s_res or 0.0, d.per_test("chi_power", "kappa"))
-                         * d.suction, fitted=("kappa",)),
+                         lambda d: d.sigma_N + chi_vanapalli(d.S_R, d.params.s_res or 0.0,
+                                                             d.per_test("chi_power", "kappa")) * d.suction,
+                         fitted=("kappa",), style={"color": "purple", "marker": "P"},
+                         method="χ = S_e^κ with κ fitted per material on the wet tests.",
+                         chi_of_saturation=lambda S, p, f: (np.full(np.shape(S), np.nan) if f is None else
+                                                            chi_vanapalli(S, p.s_res or 0.0, f["kappa"]))),
     EffectiveStressModel("khalili_fit", "Khalili-Khabbaz (fitted)", (), "khalili_khabbaz1998",
                          lambda d: d.sigma_N + chi_khalili(d.suction, d.per_test("khalili_fit", "s_b"),
                                                            d.per_test("khalili_fit", "eta")) * d.suction,
-                         fitted=("s_b", "eta")),
+                         fitted=("s_b", "eta"), style={"color": "vermillion", "marker": "X"},
+                         method="Khalili-Khabbaz with the air-entry suction s_b (and optionally η) fitted per "
+                                "material on the wet tests."),
     EffectiveStressModel("exact_neck", "Exact bridge", (), "evenepoel",
                          lambda d: d.sigma_N + d.cached("exact_neck", lambda: exact_neck_capillary_stress(
-                             d.S_R, d.suction, d.R, d.surface_tension, d.params.contact_angle)[0])),
+                             d.S_R, d.suction, d.R, d.surface_tension, d.params.contact_angle)[0]),
+                         no_prediction=Flag("no_concave_bridge", "hold more water than the last concave bridge at "
+                                                                 "contact"),
+                         style={"color": "black", "marker": "*"},
+                         method="Exact bridge: σ'_N = σ_N + F_cap/(πR²) of the exact pendular bridge between two "
+                                "spheres in contact holding the test's water at its suction."),
 )}
 
 #: The thesis's four models in display order (the default of `capred shear --models`).

@@ -20,7 +20,8 @@ from ..io.table import Column, Table, read_table
 from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
 from ..references import cite
-from ..result import InputFile, Options, Result, Rows, TableSpec, input_file, json_list, num
+from ..result import InputFile, Options, Result, Rows, input_file, json_list, num
+from .shear_records import BackAnalysis, ModelPrediction
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier", ("id", "test", "test_no", "sample_id")),
@@ -198,7 +199,7 @@ class ShearResult(Result):
     best_model: dict[str, str | None]
     best_model_overall: str | None
     notes: list[str] = field(default_factory=list)
-    phi_b: dict[str, float] = field(default_factory=dict)  # Fredlund tan(phi_b) per material
+    per_material: dict[str, dict] = field(default_factory=dict)  # what models report per material (phi_b_deg)
     inputs: list[InputFile] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
     metrics_pendular: dict[str, dict[str, ModelMetrics]] = field(default_factory=dict)
@@ -207,6 +208,13 @@ class ShearResult(Result):
     ranking: dict = field(default_factory=dict)  # material -> RankingUncertainty
     model_inputs: object = None  # esm.ModelInputs of every test (with the fitted laws)
     curves: object = None  # ShearCurves when raw curves were given
+    predictions: dict = field(default_factory=dict)  # model -> ModelPrediction (every test)
+    back: object = None  # BackAnalysis of the wet tests
+
+    @property
+    def level(self) -> str:
+        """The confidence level in percent, as output names carry it ("95")."""
+        return f"{self.options.confidence * 100:g}"
 
     @property
     def models(self) -> tuple[str, ...]:
@@ -240,6 +248,12 @@ class ShearResult(Result):
                          "best_model": best, "best_rmse [kPa]": num(met.rmse / 1e3) if met else None,
                          "flagged_tests": int(np.sum(flags & (self.tests["material"] == m)))})
         return rows
+
+    def method_notes(self) -> tuple[list[str], list[str]]:
+        """The models of the run, one sentence each, and their references."""
+        entries = [esm.REGISTRY[m] for m in self.models]
+        text = "Models compared: " + " ".join(e.method for e in entries if e.method)
+        return [text], [e.reference for e in entries]
 
     def retention_relation(self, material: str):
         """The S_R(s) relation along which model curves are drawn (None: markers per test only)."""
@@ -280,35 +294,25 @@ class ShearResult(Result):
 
     def _test_rows(self, start: int, stop: int) -> list[dict]:
         """JSON rows of tests start..stop-1 (kPa)."""
+        from ..result import record_json_columns
+
         t = self.tests
         sl = slice(start, stop)
         kpa = {k: json_list(t[k][sl] / 1e3) for k in ("sigma_N", "suction", "tau_max", "chi2")}
         plain = {k: json_list(t[k][sl]) for k in ("S_R", "chi1")}
-        pred = {m: json_list(t[f"tau_pred_{m}"][sl] / 1e3) for m in self.models}
-        resid = {m: json_list((t[f"tau_pred_{m}"][sl] - t["tau_max"][sl]) / 1e3) for m in self.models}
         flags = self._flag_texts()[sl]
         ids, mats, conds, lines = (t[k][sl].tolist() for k in ("test_id", "material", "condition", "line"))
-        back = {k: json_list(t[k][sl] / (1e3 if k.startswith("sigma") else 1.0))
-                for k in ("sigma_cap", "sigma_cap_se", "chi_back", "chi_back_se")}
-        cap_pred = {m: json_list(t[f"sigma_cap_pred_{m}"][sl] / 1e3) for m in self.models}
         curve = ({"displacement_at_peak_mm": json_list(t["displacement_at_peak"][sl] * 1e3),
                   "tau_residual_kPa": json_list(t["tau_residual"][sl] / 1e3),
                   "dilatancy_angle_deg": json_list(t["dilatancy_angle"][sl])} if "displacement_at_peak" in t else {})
-        models = self.models
-
-        def nested(d):  # {model: list} -> one {model: value} per test, built in C
-            return [dict(zip(models, vals)) for vals in zip(*(d[m] for m in models))]
-
         columns = {
             **curve,
             "test_id": list(map(str, ids)), "material": list(map(str, mats)), "condition": list(map(str, conds)),
             "line": list(map(int, lines)),
             "sigma_N_kPa": kpa["sigma_N"], "suction_kPa": kpa["suction"], "S_R": plain["S_R"],
             "tau_max_kPa": kpa["tau_max"], "chi1": plain["chi1"], "chi2_kPa": kpa["chi2"],
-            "tau_pred_kPa": nested(pred), "residual_kPa": nested(resid),
-            "sigma_cap_kPa": back["sigma_cap"], "sigma_cap_se_kPa": back["sigma_cap_se"],
-            "chi_back": back["chi_back"], "chi_back_se": back["chi_back_se"],
-            "sigma_cap_pred_kPa": nested(cap_pred),
+            **record_json_columns(self.predictions, start, stop, self.level),
+            **record_json_columns({None: self.back}, start, stop, self.level),
             "flags": [f.split(";") if f else [] for f in flags],
         }
         keys = tuple(columns)
@@ -316,6 +320,8 @@ class ShearResult(Result):
 
     def _results_table(self):
         import pandas as pd
+
+        from ..result import record_columns
 
         t = self.tests
         cols: dict[str, object] = {
@@ -327,22 +333,8 @@ class ShearResult(Result):
                 cols[f"{name} [{_SCHEMA_UNITS[name]}]"] = t[f"in_{name}"]
         for name in ("sigma_N", "suction", "S_R", "tau_max", "chi1", "chi2"):
             cols[nom.column(name)] = nom.to_output(name, t[name])
-        for m in self.models:
-            cols[nom.column("sigma_eff", f"_{m}")] = nom.to_output("sigma_eff", t[f"sigma_eff_{m}"])
-        for m in self.models:
-            cols[nom.column("tau_pred", f"_{m}")] = nom.to_output("tau_pred", t[f"tau_pred_{m}"])
-        for m in self.models:
-            cols[f"residual_{m} [kPa]"] = nom.to_output("tau_pred", t[f"tau_pred_{m}"] - t["tau_max"])
-        pct = f"{self.options.confidence:.0%}"
-        for m in self.models:
-            cols[f"tau_pred_{m}_low{pct[:-1]} [kPa]"] = t[f"tau_pred_lo_{m}"] / 1e3
-            cols[f"tau_pred_{m}_high{pct[:-1]} [kPa]"] = t[f"tau_pred_hi_{m}"] / 1e3
-        cols["sigma_cap [kPa]"] = t["sigma_cap"] / 1e3
-        cols["sigma_cap_se [kPa]"] = t["sigma_cap_se"] / 1e3
-        cols["chi_back [-]"] = t["chi_back"]
-        cols["chi_back_se [-]"] = t["chi_back_se"]
-        for m in self.models:
-            cols[f"sigma_cap_pred_{m} [kPa]"] = t[f"sigma_cap_pred_{m}"] / 1e3
+        cols.update(record_columns(self.predictions, self.level))
+        cols.update(record_columns({None: self.back}, self.level))
         if "displacement_at_peak" in t:
             cols["displacement_at_peak [mm]"] = t["displacement_at_peak"] * 1e3
             cols["tau_residual [kPa]"] = t["tau_residual"] / 1e3
@@ -358,8 +350,10 @@ class ShearResult(Result):
         S = self.tests["S_R"]
         parts = [("outside_pendular", wet & (S > self.options.pendular_limit)),
                  ("chi1_gt_1", wet & (S > ph.CHI1_UNITY_SR))]
-        if "exact_neck" in self.models:
-            parts.append(("no_concave_bridge", wet & ~np.isfinite(self.tests["tau_pred_exact_neck"])))
+        for model in self.models:
+            flag = esm.REGISTRY[model].no_prediction
+            if flag is not None:
+                parts.append((flag.name, wet & ~np.isfinite(self.predictions[model].tau)))
         code = sum(mask.astype(int) << k for k, (_, mask) in enumerate(parts))
         names = np.array([";".join(n for k, (n, _) in enumerate(parts) if c >> k & 1) for c in range(1 << len(parts))],
                          dtype=object)
@@ -378,12 +372,11 @@ class ShearResult(Result):
                 continue
             rows = {}
             for m in self.models:
-                r = t[f"tau_pred_{m}"][sel] - t["tau_max"][sel]
+                r = self.predictions[m].residual[sel]
                 r = r[np.isfinite(r)]
                 law = self.laws.get(m, {}).get(mat)
                 p = len(law.params) - len(law.fixed) if law is not None else 0
-                if m == "fredlund":
-                    p = 1  # tan(phi_b) fitted on the wet tests
+                p += esm.REGISTRY[m].wet_parameters  # e.g. Fredlund's tan(phi_b), fitted on the wet tests
                 ic = information_criteria(float(r @ r), int(r.size), p)
                 rows[m] = {"k": p + 1, "n": int(r.size), "rss_kPa2": num(float(r @ r) / 1e6),
                            "aicc": num(ic["aicc"]), "bic": num(ic["bic"])}
@@ -411,8 +404,7 @@ class ShearResult(Result):
         tests = Rows(n, self._test_rows)
         return {
             "source": self.source,
-            "materials": {m: {**_fit_dict(f), **({"phi_b_deg": num(np.degrees(np.arctan(self.phi_b[m])))}
-                                                 if m in self.phi_b else {})}
+            "materials": {m: {**_fit_dict(f), **{k: num(v) for k, v in self.per_material.get(m, {}).items()}}
                           for m, f in self.fits.items()},
             "models": list(self.models),
             "tests": tests if lazy else tests.tolist(),
@@ -701,7 +693,7 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         "chi1": np.where(wet, ph.chi1(d["S_R"]), 0.0),
         "chi2": np.where(wet, ph.chi2(d["S_R"], d["R"], opt.surface_tension), 0.0),
     }
-    phi_b, laws, model_inputs = _predict(tests, wet, mat, fits, opt)
+    predictions, back, per_material, laws, model_inputs = _predict(tests, wet, mat, fits, opt)
     pend = wet & (d["S_R"] <= opt.pendular_limit)
 
     of_material = {m: mat == m for m in fits}
@@ -711,27 +703,28 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         for m in fits:
             rows = np.flatnonzero(of_material[m] & sel)
             if rows.size:
-                out[m] = {mod: model_metrics(tests[f"tau_pred_{mod}"][rows], d["tau_max"][rows]) for mod in opt.models}
+                out[m] = {mod: model_metrics(predictions[mod].tau[rows], d["tau_max"][rows]) for mod in opt.models}
         return out
 
     metrics, metrics_pend = scores(wet), scores(pend)
     for m in fits:
         metrics.setdefault(m, {})
-    overall = {mod: model_metrics(tests[f"tau_pred_{mod}"][wet], d["tau_max"][wet]) for mod in opt.models} \
+    overall = {mod: model_metrics(predictions[mod].tau[wet], d["tau_max"][wet]) for mod in opt.models} \
         if wet.any() else {}
-    overall_pend = {mod: model_metrics(tests[f"tau_pred_{mod}"][pend], d["tau_max"][pend]) for mod in opt.models} \
+    overall_pend = {mod: model_metrics(predictions[mod].tau[pend], d["tau_max"][pend]) for mod in opt.models} \
         if pend.any() else {}
     if curves is not None:
         tests.update(curves.per_test())
     warnings = (list(opt.warnings) + table.warnings + (curves.warnings if curves else [])
-                + _warnings(tests, wet, pend, mat, fits, laws, opt))
+                + _warnings(wet, pend, mat, fits, laws, predictions, opt))
     result = ShearResult(
         source=table.path, options=opt, tests=tests, fits=fits, metrics=metrics,
         metrics_overall=overall, best_model={m: best_of(v) for m, v in metrics.items()},
-        best_model_overall=best_of(overall), notes=table.notes, phi_b=phi_b,
+        best_model_overall=best_of(overall), notes=table.notes, per_material=per_material,
         inputs=[input_file(source, table)] + ([input_file(opt.curves, curves.table)] if curves else []),
         warnings=warnings, metrics_pendular=metrics_pend,
         metrics_pendular_overall=overall_pend, laws=laws, model_inputs=model_inputs, curves=curves,
+        predictions=predictions, back=back,
     )
     if opt.bootstrap > 0:
         result.ranking = _bootstrap(result, wet, mat, cond, opt)
@@ -752,7 +745,7 @@ def _documented(table: Table, name: str) -> np.ndarray:
     return table.as_read[name] if same and name in table.as_read else table.columns[name] * q.factor
 
 
-def _warnings(tests, wet, pend, mat, fits, laws, opt) -> list[str]:
+def _warnings(wet, pend, mat, fits, laws, predictions, opt) -> list[str]:
     out = []
     n_wet, n_pend = int(wet.sum()), int(pend.sum())
     if n_wet and n_wet - n_pend > n_wet / 2:
@@ -779,11 +772,11 @@ def _warnings(tests, wet, pend, mat, fits, laws, opt) -> list[str]:
             for name in law.at_bound:
                 out.append(f"material '{m}': fitted {model} parameter '{name}' = {law.params[name]:.6g} lies at "
                            "its bound")
-    if "exact_neck" in opt.models:
-        k = int(np.sum(wet & ~np.isfinite(tests["tau_pred_exact_neck"])))
+    for model in opt.models:
+        flag = esm.REGISTRY[model].no_prediction
+        k = int(np.sum(wet & ~np.isfinite(predictions[model].tau))) if flag else 0
         if k:
-            out.append(f"exact_neck: {k} wet tests hold more water than the last concave bridge at contact "
-                       "(flag no_concave_bridge) and are left out of its metrics")
+            out.append(f"{model}: {k} wet tests {flag.meaning} (flag {flag.name}) and are left out of its metrics")
     return out
 
 
@@ -808,10 +801,11 @@ def _bootstrap(result: ShearResult, wet, mat, cond, opt: ShearOptions) -> dict:
 
 
 def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions):
-    """Per test and model, in place: sigma'_N (NaN where a model predicts tau directly), tau_pred and its
-    band, the predicted capillary stress; and the back-analysed capillary stress of the wet tests.
+    """Per test and model: sigma'_N (NaN where a model predicts tau directly), tau_pred and its bands, the
+    predicted capillary stress; and the back-analysed capillary stress of the wet tests.
 
-    Returns tan(phi_b) per material (Fredlund model) and the fitted chi laws.
+    Returns the ModelPrediction of each model, the BackAnalysis, what models report per material (Fredlund's
+    phi_b), the fitted chi laws and the ModelInputs.
     """
     from . import shear_analysis as sa
 
@@ -823,23 +817,39 @@ def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions)
     d = dataclasses.replace(d, fitted={model: {m: law.params for m, law in by_mat.items()}
                                        for model, by_mat in laws.items()})
     cov, s2, t = sa.fit_covariances(fits, mat)
+    dof = np.array([fits[m].dof for m in mat], dtype=float)
+    predictions = {}
     for model in opt.models:
-        tests[f"sigma_eff_{model}"], tau = esm.predict(model, d)
-        tests[f"tau_pred_{model}"] = tau
-        tests[f"tau_pred_lo_{model}"], tests[f"tau_pred_hi_{model}"] = sa.prediction_band(model, d, cov, t)
-        tests[f"sigma_cap_pred_{model}"] = np.where(wet, (tau - c) / tan_phi - tests["sigma_N"], np.nan)
+        eff, tau = esm.predict(model, d)
+        lo, hi = sa.prediction_band(model, d, cov, t)
+        # the prediction interval of a new test: the mean band's variance plus one test's scatter (s^2)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            half_mean = np.where(t > 0, (hi - lo) / (2 * t), np.nan)
+        half_new = t * np.sqrt(half_mean**2 + s2)
+        predictions[model] = ModelPrediction(
+            model, sigma_eff=eff, tau=tau, residual=tau - tests["tau_max"], tau_mean_ci=(lo, hi),
+            tau_prediction_interval=(tau - half_new, tau + half_new),
+            sigma_cap=np.where(wet, (tau - c) / tan_phi - tests["sigma_N"], np.nan))
     cap, cap_se, chi, chi_se = sa.back_analysis(tests["tau_max"], tests["sigma_N"], tests["suction"], c, tan_phi,
                                                 cov, s2)
-    for key, v in (("sigma_cap", cap), ("sigma_cap_se", cap_se), ("chi_back", chi), ("chi_back_se", chi_se)):
-        tests[key] = np.where(wet, v, np.nan)
-    phi_b: dict[str, float] = {}
-    if "fredlund" in opt.models:
+    on_wet = {k: np.where(wet, v, np.nan) for k, v in (("cap", cap), ("cap_se", cap_se), ("chi", chi),
+                                                      ("chi_se", chi_se))}
+    back = BackAnalysis(
+        sigma_cap=on_wet["cap"], sigma_cap_se=on_wet["cap_se"],
+        sigma_cap_ci=(on_wet["cap"] - t * on_wet["cap_se"], on_wet["cap"] + t * on_wet["cap_se"]),
+        chi_back=on_wet["chi"], chi_back_se=on_wet["chi_se"],
+        chi_back_ci=(on_wet["chi"] - t * on_wet["chi_se"], on_wet["chi"] + t * on_wet["chi_se"]),
+        dof=np.where(wet, dof, np.nan))
+    extra: dict[str, dict] = {}  # per material: what a model reports beside the dry fit (Fredlund's phi_b)
+    for model in opt.models:
+        per_material = esm.REGISTRY[model].material_values
+        if per_material is None:
+            continue
         for m in fits:
             sel = wet & (mat == m)
             if sel.any():
-                phi_b[m] = esm.fit_tan_phi_b(tests["suction"][sel], tests["tau_max"][sel] - ph.mohr_coulomb_strength(
-                    fits[m].intercept, fits[m].slope, tests["sigma_N"][sel]))
-    return phi_b, laws, d
+                extra.setdefault(m, {}).update(per_material(d.subset(sel)))
+    return predictions, back, extra, laws, d
 
 
 def _flat_summary(result: ShearResult):

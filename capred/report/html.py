@@ -24,51 +24,6 @@ FLAG_MEANING = {
     "spherical_negative_p_prime": "spherical bound gives p' < 0",
 }
 
-METHODS = {
-    "shear": (
-        ["Suction Δu = γ_w z1 from the hanging-column head, degree of saturation S_R = (V_v − z2)/V_v from the "
-         "burette, normal stress σ_N = (m_cap + m_added) g/A (Evenepoel, VUB thesis, \"Apply suction\").",
-         "Per material, the dry envelope τ = c + σ_N tan φ is fitted by least squares with standard errors and "
-         "Student-t 95 % intervals. Every wet test is predicted with the dry c, φ and σ'_N = σ_N + χ Δu of each "
-         "model: χ = S_R (Bishop 1959), χ1 = (2π S_R/3)^(2/3) and χ1 Δu + (2γ/R)(2π S_R/3)^(1/3) (Evenepoel's "
-         "Own 1 and Own 2), and the others chosen with --models. Scores: RMSE, bias and R² of predicted − measured, "
-         "on all wet tests and on the pendular ones.",
-         "The capillary stress each wet test carried is back-analysed as σ_cap = (τ_max − c)/tan φ − σ_N with its "
-         "standard uncertainty by the delta method; χ_back = σ_cap/Δu. The ranking's uncertainty comes from a "
-         "paired bootstrap over the wet tests that refits the dry envelope in every replicate."],
-        ["evenepoel", "bishop1959", "vanapalli1996", "khalili_khabbaz1998", "lu_likos2006", "fredlund1978",
-         "pedrotti_tarantino"]),
-    "triaxial-bounds": (
-        ["The effective envelope c', φ' is fitted to the saturated drained tests by least squares of σ'1 on σ'3, "
-         "σ'1 = K_p σ'3 + 2c'√K_p (Prunier et al. 2024, eq. 25). For every unsaturated test the total failure state "
-         "is projected on it under three hypotheses: a spherical capillary tensor (q = q'), the lower bound "
-         "σ1,cap = 0, and the EDTP upper bound from the initial suction s0; the strength gain is q'/q'_sat. Groups "
-         "sharing one tensor get the analysis of Appendix 1 (eqs. 37, 48, 49)."],
-        ["prunier2024"]),
-    "retention": (
-        ["Water retention curves are fitted per branch (drying, wetting) by least squares on θ or S_R: van "
-         "Genuchten (1980) with m = 1 − 1/n and with m free, and Brooks & Corey (1964) with the air-entry suction "
-         "profiled exactly. Standard errors from the Jacobian; R², AIC and BIC."],
-        ["vangenuchten1980", "brooks_corey1964"]),
-    "prism": (["P_kmax = σ_b (1 − sin ρ)/(2 sin ρ) and h_c = P_kmax/γ_w from the break tension of a sand prism and "
-               "the friction angle of the sand (Bernatzik 1948)."], ["bernatzik1948"]),
-    "skempton-b": (["B = 1/(1 + p'0 e0 (1 − S_r)/(κ P_a0)) with p'0 = p0 − u0 (Morvan et al. 2016, eq. 10), or its "
-                    "inverse; with suction equilibrium p'0 = p0 − u_a0 + s S_r and s from Brooks-Corey."],
-                   ["morvan2016", "skempton1954", "brooks_corey1964"]),
-    "rumpf": (["p_cap = −(6/φ)(S_r/e)(γ/d_p) cos θ (Prunier et al. 2024, eq. 19, after Rumpf)."], ["prunier2024"]),
-    "bridge solve": (["Exact pendular bridges between two equal spheres from the axisymmetric Young-Laplace equation, "
-                      "its first integral evaluated by Gauss-Legendre quadrature; F_cap = π r0² Δu + 2π r0 γ, "
-                      "S_R = 3V_w/(2πR³), σ' = F_cap/(πR²) (Evenepoel's unit cell; Lian et al. 1993)."],
-                     ["evenepoel", "lian1993"]),
-    "bridge compare": (["Measured capillary forces of micro-tests beside the exact bridge of the same R, gap, contact "
-                        "angle and volume, the toroidal approximation, Willett et al. (2000) and Israelachvili's "
-                        "2πRγ cos θ."], ["willett2000", "israelachvili", "lian1993"]),
-    "bridge curve": (["σ' = F_cap/(πR²) against S_R = 3V_w/(2πR³) for two spheres in contact, from exact bridges, "
-                      "beside Israelachvili, Bishop (S_R Δu) and Evenepoel's Own 1 and Own 2."],
-                     ["evenepoel", "israelachvili", "bishop1959"]),
-}
-
-
 def _options(doc: dict) -> list[tuple[str, str, str]]:
     units = doc.get("option_units", {})
     out = []
@@ -123,7 +78,12 @@ def render_html(result, figures: dict, plots: bool) -> str:
     template = jinja2.Environment(autoescape=True, undefined=jinja2.StrictUndefined).from_string(
         files("capred.report").joinpath("templates/report.html.j2").read_text(encoding="utf-8"))
     doc = result.header()
-    paragraphs, refs = METHODS.get(result.command, ([], []))
+    from ..reductions import REDUCTIONS
+
+    reduction = REDUCTIONS.get(result.command)
+    paragraphs, refs = (list(reduction.method), list(reduction.references)) if reduction else ([], [])
+    more, more_refs = result.method_notes()
+    paragraphs, refs = paragraphs + more, list(dict.fromkeys(refs + more_refs))
     names = ", ".join(i["path"].replace("\\", "/").rsplit("/", 1)[-1] for i in doc["inputs"]) or "options"
     return template.render(
         title=f"capred {result.command}: {names}",

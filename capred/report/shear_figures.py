@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..physics.effective_stress_models import MODEL_LABELS
+from ..physics.effective_stress_models import MODEL_LABELS, REGISTRY
 from .sheets import Panel, Sheet
 from .style import LABEL, literal
 from .style import style as _style
@@ -46,8 +46,10 @@ def plot_measured_vs_predicted(ax, result, material):
     meas = t["tau_max"][wet] * KPA
     hi = 0.0
     for m in result.models:
-        pred = t[f"tau_pred_{m}"][wet] * KPA
-        band = np.abs(np.vstack([pred - t[f"tau_pred_lo_{m}"][wet] * KPA, t[f"tau_pred_hi_{m}"][wet] * KPA - pred]))
+        p = result.predictions[m]
+        pred = p.tau[wet] * KPA
+        lo_pi, hi_pi = p.tau_prediction_interval
+        band = np.abs(np.vstack([pred - lo_pi[wet] * KPA, hi_pi[wet] * KPA - pred]))
         hi = max(hi, np.nanmax(pred, initial=0), meas.max(initial=0))
         met = result.metrics[material].get(m)
         rmse = f" (RMSE {met.rmse * KPA:.3g})" if met else ""
@@ -82,10 +84,12 @@ def plot_strength_vs_saturation(ax, result, material):
                 ax.plot(S, tau * KPA, "-", color=_style(m)["color"], lw=1.0, alpha=0.9,
                         label=MODEL_LABELS[m] if k == 0 else None)
     for m in result.models:
-        if relation is not None and m != "fredlund":
+        if relation is not None and REGISTRY[m].along_retention:
             continue
-        pred = t[f"tau_pred_{m}"][wet] * KPA
-        band = np.abs(np.vstack([pred - t[f"tau_pred_lo_{m}"][wet] * KPA, t[f"tau_pred_hi_{m}"][wet] * KPA - pred]))
+        p = result.predictions[m]
+        pred = p.tau[wet] * KPA
+        lo_pi, hi_pi = p.tau_prediction_interval
+        band = np.abs(np.vstack([pred - lo_pi[wet] * KPA, hi_pi[wet] * KPA - pred]))
         ax.errorbar(t["S_R"][wet], pred, yerr=band, ls="none", ms=4, alpha=0.6, elinewidth=0.8,
                     markerfacecolor="none", label=MODEL_LABELS[m], **_style(m))
     for k, level in enumerate(levels):
@@ -105,7 +109,7 @@ def plot_residuals(ax, result, material):
     t = result.tests
     wet = _wet(result, material)
     for m in result.models:
-        ax.plot(t["S_R"][wet], (t[f"tau_pred_{m}"][wet] - t["tau_max"][wet]) * KPA, ls="none", ms=4,
+        ax.plot(t["S_R"][wet], result.predictions[m].residual[wet] * KPA, ls="none", ms=4,
                 alpha=0.85, label=MODEL_LABELS[m], **_style(m))
     ax.axhline(0.0, color="k", lw=0.8)
     ax.set_xlabel(LABEL["S_R"])
@@ -131,7 +135,7 @@ def sheet_shear_report(result, material) -> Sheet:
                     "Dry tests and the fitted envelope with its 95 % confidence band.")]
     if _wet(result, material).any():
         panels += [Panel("measured_vs_predicted", lambda ax: plot_measured_vs_predicted(ax, result, material),
-                         "Wet tests: each model's prediction (with its 95 % band) against the measured strength."),
+                         "Wet tests: each model's prediction, with the 95 % prediction interval of a new test, against the measured strength."),
                    Panel("strength_vs_saturation", lambda ax: plot_strength_vs_saturation(ax, result, material),
                          _strength_caption(result, material)),
                    Panel("residuals", lambda ax: plot_residuals(ax, result, material),
@@ -147,9 +151,10 @@ def plot_capillary_stress(ax, result, material, x: str):
     wet = _wet(result, material)
     xs = t[x][wet] * (1.0 if x == "S_R" else KPA)
     for m in result.models:
-        ax.plot(xs, t[f"sigma_cap_pred_{m}"][wet] * KPA, ls="none", ms=4, alpha=0.75, markerfacecolor="none",
+        ax.plot(xs, result.predictions[m].sigma_cap[wet] * KPA, ls="none", ms=4, alpha=0.75, markerfacecolor="none",
                 label=MODEL_LABELS[m], **_style(m))
-    ax.errorbar(xs, t["sigma_cap"][wet] * KPA, yerr=t["sigma_cap_se"][wet] * KPA, fmt="ko", ms=4, capsize=2,
+    back = result.back
+    ax.errorbar(xs, back.sigma_cap[wet] * KPA, yerr=back.sigma_cap_se[wet] * KPA, fmt="ko", ms=4, capsize=2,
                 elinewidth=0.8, label="back-analysed (± 1 se)")
     if x == "S_R":
         ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
@@ -161,21 +166,23 @@ def plot_capillary_stress(ax, result, material, x: str):
 
 
 def plot_chi_back(ax, result, material):
-    """chi_back = sigma_cap / Delta_u of the wet tests against S_R, with chi = S_R, chi1 and the fitted chi = S_e^kappa."""
-    from ..physics import shear as ph
-
+    """chi_back = sigma_cap / Delta_u of the wet tests against S_R, with the chi(S_R) of every model of the run
+    that has one (Bishop's S_R, Own 1's chi1, a fitted S_e^kappa ...)."""
     t = result.tests
     wet = _wet(result, material) & (t["suction"] > 0)
     s = np.linspace(0.0, 1.0, 201)
-    ax.plot(s, s, color=_style("bishop")["color"], lw=1.2, label="χ = S_R (Bishop)")
-    ax.plot(s, ph.chi1(s), color=_style("own1")["color"], lw=1.2, label="χ1 = (2π S_R/3)^(2/3)")
-    law = result.laws.get("chi_power", {}).get(material)
-    if law is not None:
-        s_res = result.options.model_params.s_res or 0.0
-        se = np.clip((s - s_res) / (1 - s_res), 0, 1)
-        ax.plot(s, se ** law.params["kappa"], color=_style("chi_power")["color"], lw=1.2,
-                label=f"χ = S_e^κ, κ = {law.params['kappa']:.3g} (fitted)")
-    ax.errorbar(t["S_R"][wet], t["chi_back"][wet], yerr=t["chi_back_se"][wet], fmt="ko", ms=4, capsize=2,
+    params = result.options.model_params
+    for m in result.models:
+        entry = REGISTRY[m]
+        if entry.chi_of_saturation is None:
+            continue
+        law = result.laws.get(m, {}).get(material)
+        chi = entry.chi_of_saturation(s, params, law.params if law is not None else None)
+        if np.isfinite(chi).any():
+            extra = "".join(f", {k} = {law.params[k]:.3g}" for k in entry.fitted) if law is not None else ""
+            ax.plot(s, chi, color=_style(m)["color"], lw=1.2, label=MODEL_LABELS[m] + extra)
+    back = result.back
+    ax.errorbar(t["S_R"][wet], back.chi_back[wet], yerr=back.chi_back_se[wet], fmt="ko", ms=4, capsize=2,
                 elinewidth=0.8, label="χ back-analysed (± 1 se)")
     ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
     ax.set_xlabel(LABEL["S_R"])
@@ -193,7 +200,7 @@ def sheet_capillary_stress(result, material) -> Sheet:
         Panel("sigma_cap_vs_suction", lambda ax: plot_capillary_stress(ax, result, material, "suction"),
               "The same against the suction."),
         Panel("chi", lambda ax: plot_chi_back(ax, result, material),
-              "χ_back = σ_cap/Δu against S_R with χ = S_R, χ1 and the fitted χ = S_e^κ."),
+              "χ_back = σ_cap/Δu against S_R with the χ(S_R) of each model of the run that has one."),
     ], 3, panel_size=(4.2, 3.4))
 
 

@@ -77,9 +77,10 @@ def _wet_rows(result):
     for i in range(len(t["test_id"])):
         if t["condition"][i] != "wet":
             continue
+        b = result.back
         yield {"test_id": str(t["test_id"][i]), "material": str(t["material"][i]), "S_R": t["S_R"][i],
-               "suction [kPa]": t["suction"][i] / 1e3, "σ_cap [kPa]": t["sigma_cap"][i] / 1e3,
-               "± se": t["sigma_cap_se"][i] / 1e3, "χ_back": t["chi_back"][i], "± se ": t["chi_back_se"][i]}
+               "suction [kPa]": t["suction"][i] / 1e3, "σ_cap [kPa]": b.sigma_cap[i] / 1e3,
+               "± se": b.sigma_cap_se[i] / 1e3, "χ_back": b.chi_back[i], "± se ": b.chi_back_se[i]}
 
 
 def _metrics_table(title, metrics, overall, best_of_material, best_overall) -> TableSpec:

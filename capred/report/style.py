@@ -12,21 +12,9 @@ OKABE_ITO = {
 }
 _C = OKABE_ITO
 
-#: model (or curve) name -> matplotlib style: one colour and one marker per model, everywhere
+#: curve name -> matplotlib style: one colour and one marker per curve, everywhere (effective-stress
+#: models carry their own style in their registry entry)
 MODEL_STYLE: dict[str, dict] = {
-    # effective-stress models (shear, bridge curve)
-    "no_suction": dict(color=_C["grey"], marker="s"),
-    "bishop": dict(color=_C["blue"], marker="o"),
-    "own1": dict(color=_C["orange"], marker="^"),
-    "own2": dict(color=_C["green"], marker="D"),
-    "vanapalli": dict(color=_C["purple"], marker="v"),
-    "khalili": dict(color=_C["vermillion"], marker="<"),
-    "lu_likos": dict(color=_C["sky"], marker=">"),
-    "fredlund": dict(color=_C["black"], marker="p"),
-    "pedrotti_tarantino": dict(color=_C["sky"], marker="h"),
-    "chi_power": dict(color=_C["purple"], marker="P"),
-    "khalili_fit": dict(color=_C["vermillion"], marker="X"),
-    "exact_neck": dict(color=_C["black"], marker="*"),
     # bridges
     "exact": dict(color=_C["black"], marker="o"),
     "israelachvili": dict(color=_C["purple"], marker="d"),
@@ -79,8 +67,16 @@ def literal(text) -> str:
 
 
 def style(name: str, **over) -> dict:
-    """Colour and marker of a model (and any overrides)."""
-    return {**MODEL_STYLE.get(name, dict(color=_C["black"], marker="o")), **over}
+    """Colour and marker of a model or curve (and any overrides): an effective-stress model's from its registry
+    entry, the others' from MODEL_STYLE."""
+    from ..physics.effective_stress_models import REGISTRY
+
+    entry = REGISTRY.get(name)
+    if entry is not None:
+        base = {**entry.style, "color": _C.get(entry.style.get("color"), entry.style.get("color", _C["black"]))}
+    else:
+        base = MODEL_STYLE.get(name, dict(color=_C["black"], marker="o"))
+    return {**base, **over}
 
 
 def legend_outside(ax, ncol: int = 1) -> None:

@@ -1,0 +1,82 @@
+"""Typed records of `capred shear`: one per concept, each field with its unit, meaning and output names.
+
+Arrays run over the tests of the run (dry tests included: NaN where a value
+concerns wet tests only). Values are SI (Pa); JSON keys and results.csv
+columns come from each field's ``output`` metadata through the one mapping
+of capred.result (``record_columns``, ``record_json_columns``).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..result import output
+
+
+@dataclass(frozen=True)
+class ModelPrediction:
+    """One effective-stress model's prediction of every test.
+
+    Attributes
+    ----------
+    model : str
+        Name of the model (a key of capred.physics.effective_stress_models.REGISTRY).
+    sigma_eff : ndarray
+        Effective normal stress σ'_N [Pa] (NaN for a model that predicts τ directly).
+    tau : ndarray
+        Predicted peak shear strength τ_pred [Pa] (dry tests: the dry envelope).
+    residual : ndarray
+        τ_pred − τ_max [Pa].
+    tau_mean_ci : (ndarray, ndarray)
+        Confidence band of the mean prediction at the test's state [Pa]: where the model's τ lies given the
+        uncertainty of the dry envelope (and of a fitted χ law's parameters).
+    tau_prediction_interval : (ndarray, ndarray)
+        Prediction interval of a new test at the same state [Pa]: the mean band widened by the scatter of a
+        single test (the dry fit's residual variance), so it covers new tests at the stated level.
+    sigma_cap : ndarray
+        Capillary stress the model ascribes to each wet test, (τ_pred − c)/tan φ − σ_N [Pa].
+    """
+
+    model: str
+    sigma_eff: np.ndarray = output(None, "sigma_eff_{model}", "kPa", 1e-3)
+    tau: np.ndarray = output("tau_pred_kPa", "tau_pred_{model}", "kPa", 1e-3)
+    residual: np.ndarray = output("residual_kPa", "residual_{model}", "kPa", 1e-3)
+    tau_prediction_interval: tuple = output("tau_pred_pi{level}_kPa",
+                                            ("tau_pred_{model}_low{level}", "tau_pred_{model}_high{level}"),
+                                            "kPa", 1e-3, pair=True)
+    tau_mean_ci: tuple = output("tau_mean_ci{level}_kPa", ("tau_mean_{model}_low{level}", "tau_mean_{model}_high{level}"),
+                                "kPa", 1e-3, pair=True)
+    sigma_cap: np.ndarray = output("sigma_cap_pred_kPa", "sigma_cap_pred_{model}", "kPa", 1e-3)
+
+
+@dataclass(frozen=True)
+class BackAnalysis:
+    """The capillary stress each wet test carried, back-analysed from the dry envelope.
+
+    σ_cap = (τ_max − c)/tan φ − σ_N and χ_back = σ_cap/Δu, with standard uncertainties by the delta method
+    (the dry fit's covariance of c and tan φ and one test's scatter) and intervals with the Student t
+    quantile of the dry fit's degrees of freedom.
+
+    Attributes
+    ----------
+    sigma_cap, sigma_cap_se : ndarray
+        Back-analysed capillary stress and its standard uncertainty [Pa] (NaN on dry tests).
+    sigma_cap_ci : (ndarray, ndarray)
+        Its confidence interval [Pa] (``confidence`` of the run, 95 % by default).
+    chi_back, chi_back_se : ndarray
+        χ_back = σ_cap/Δu and its standard uncertainty [-] (NaN where Δu = 0).
+    chi_back_ci : (ndarray, ndarray)
+        Its confidence interval [-].
+    dof : ndarray
+        Degrees of freedom of the dry fit behind each test's interval [-].
+    """
+
+    sigma_cap: np.ndarray = output("sigma_cap_kPa", "sigma_cap", "kPa", 1e-3)
+    sigma_cap_se: np.ndarray = output("sigma_cap_se_kPa", "sigma_cap_se", "kPa", 1e-3)
+    sigma_cap_ci: tuple = output("sigma_cap_ci{level}_kPa", ("sigma_cap_low{level}", "sigma_cap_high{level}"),
+                                 "kPa", 1e-3, pair=True)
+    chi_back: np.ndarray = output("chi_back", "chi_back")
+    chi_back_se: np.ndarray = output("chi_back_se", "chi_back_se")
+    chi_back_ci: tuple = output("chi_back_ci{level}", ("chi_back_low{level}", "chi_back_high{level}"), pair=True)
+    dof: np.ndarray = output("dof", "dof")
