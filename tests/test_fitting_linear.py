@@ -3,7 +3,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 from capred.errors import FitError
-from capred.fitting.linear import fit_line
+from capred.fitting.linear import fit_line, fit_line_origin, t_quantile
 
 # NIST StRD "Norris" (linear least squares, lower difficulty); certified values to 15 digits.
 NORRIS_Y = [0.1, 338.8, 118.1, 888.0, 9.2, 228.1, 668.5, 998.5, 449.1, 778.9, 559.2, 0.3, 0.1, 778.1,
@@ -55,3 +55,41 @@ def test_fit_line_rejects_too_few_or_degenerate():
         fit_line([1, 1, 1], [1, 2, 3])
     with pytest.raises(FitError, match="NaN"):
         fit_line([1, 2, np.nan], [1, 2, 3])
+
+
+def test_prediction_interval_and_unscaled_covariance_by_hand():
+    # x = 1..5, y = 2,4,5,4,5 (above): s^2 = 0.8, xbar = 3, Sxx = 10. (X^T X)^-1 = [[1/5 + 9/10, -3/10],
+    # [-3/10, 1/10]]. At x = 3 the mean has variance s^2/n = 0.16; a new point adds s^2: 0.96.
+    f = fit_line([1, 2, 3, 4, 5], [2, 4, 5, 4, 5])
+    assert_allclose(f.unscaled_covariance, [[1.1, -0.3], [-0.3, 0.1]], rtol=1e-13)
+    lo, hi = f.prediction_interval(3.0)
+    assert_allclose([lo, hi], [4.0 - 3.182446 * np.sqrt(0.96), 4.0 + 3.182446 * np.sqrt(0.96)], rtol=1e-6)
+    mlo, mhi = f.mean_band(3.0)
+    assert_allclose(mhi - 4.0, 3.182446 * np.sqrt(0.16), rtol=1e-6)  # t table to 7 digits
+    # through the origin: (X^T X)^-1 = 1/sum x^2 = 1/14 for x = 1, 2, 3
+    g = fit_line_origin([1, 2, 3], [1.1, 1.9, 3.0])
+    assert_allclose(g.unscaled_covariance, [[0, 0], [0, 1 / 14]], rtol=1e-13)
+
+
+def test_t_quantile_vectorised():
+    # t table: t(0.975, 3) = 3.182446, t(0.975, 10) = 2.228139; dof <= 0 has no quantile
+    assert_allclose(t_quantile(0.975, np.array([3, 10])), [3.182446, 2.228139], rtol=1e-6)
+    assert np.isnan(t_quantile(0.975, 0)) and isinstance(t_quantile(0.975, 3), float)
+
+
+def test_prediction_interval_covers_new_points():
+    """400 lines of 6 points (noise SD 1): a new point at x = 5 falls inside the 95 % prediction interval
+    95 % +/- 3 binomial SDs (1.09 %) of the time; the mean band holds it far less often."""
+    rng = np.random.default_rng(4)
+    x = np.array([1.0, 2, 3, 1, 2, 3])
+    hit = hit_mean = 0
+    for _ in range(400):
+        f = fit_line(x, 1.0 + 0.5 * x + rng.normal(0, 1, 6))
+        new = 1.0 + 0.5 * 5 + rng.normal(0, 1)
+        lo, hi = f.prediction_interval(5.0)
+        mlo, mhi = f.mean_band(5.0)
+        hit += lo <= new <= hi
+        hit_mean += mlo <= new <= mhi
+    sd = np.sqrt(0.95 * 0.05 / 400)
+    assert abs(hit / 400 - 0.95) <= 3 * sd
+    assert hit_mean / 400 < 0.95 - 3 * sd

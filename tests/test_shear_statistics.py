@@ -1,0 +1,299 @@
+"""Every uncertainty of `capred shear` covers what it says (issue 23), and the vectorised bootstrap gives
+the numbers of the loop it replaced (issue 20).
+
+Coverage tests draw a few hundred synthetic data sets from a known law plus Gaussian noise (fixed seed)
+and count how often the 95 % interval holds the truth. With N independent sets the count is binomial:
+SD = sqrt(0.95 * 0.05 / N) (1.26 % at N = 300, 1.09 % at N = 400); each test accepts 95 % +/- 3 SD,
+which a correct interval fails with probability 0.3 %. One interval per data set keeps the sets
+independent. The design is realistic for the hanging-column tests: 6 dry tests at sigma_N = 1, 2, 3 kPa,
+10 wet tests at suctions 0.5-8 kPa, c = 0.3 kPa, tan phi = 0.7, noise SD 10 Pa (0.01 kPa).
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+from capred.fitting.chi_laws import fit_chi_power, fit_khalili, law_uncertainty
+from capred.fitting.linear import fit_line, t_quantile
+from capred.physics import effective_stress_models as esm
+from capred.pipelines import shear_analysis as sa
+from capred.pipelines.shear import ModelParams
+
+C, TAN_PHI, NOISE = 300.0, 0.7, 10.0  # Pa, -, Pa
+COVERAGE: dict[str, float] = {}  # measured coverages, for the record (benchmarks print them too)
+DRY_X = np.array([1.0, 2.0, 3.0, 1.0, 2.0, 3.0]) * 1e3
+WET_SIGMA = np.array([1, 2, 3, 1, 2, 3, 1, 2, 3, 2.0]) * 1e3
+WET_S_R = np.array([0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9])
+WET_SUCTION = np.array([4.0, 3.5, 3.0, 2.5, 2.0, 1.8, 1.5, 1.2, 1.0, 0.6]) * 1e3
+
+
+def _limits(n: int) -> tuple[float, float]:
+    """95 % -/+ 3 binomial SDs for n independent intervals."""
+    sd = np.sqrt(0.95 * 0.05 / n)
+    return 0.95 - 3 * sd, 0.95 + 3 * sd
+
+
+def _dry(rng):
+    return fit_line(DRY_X, C + TAN_PHI * DRY_X + rng.normal(0, NOISE, DRY_X.size))
+
+
+def _inputs(sigma_N, suction, S_R, tau, wet, fit, material="m"):
+    n = sigma_N.size
+    return esm.ModelInputs(sigma_N, suction, S_R, np.full(n, 1e-3), tau, wet, np.array([material] * n, dtype=object),
+                           np.full(n, fit.intercept), np.full(n, fit.slope), 0.0728, ModelParams())
+
+
+# ---------------------------------------------------------------------------------------------------- laws
+
+def test_law_uncertainty_equals_the_exact_linear_two_step_covariance():
+    """A law linear in theta (tau = c + b sigma + theta x): the two-step estimate is L y exactly, its covariance
+    s^2 L L^T, and the joint fit's RSS is that of ordinary least squares on the stacked design."""
+    rng = np.random.default_rng(3)
+    x = np.linspace(0.5, 2.0, 8) * 1e3
+    theta = 0.4
+    yd = C + TAN_PHI * DRY_X + rng.normal(0, NOISE, 6)
+    yw = C + TAN_PHI * WET_SIGMA[:8] + theta * x + rng.normal(0, NOISE, 8)
+    dry = fit_line(DRY_X, yd)
+    z = yw - dry.intercept - dry.slope * WET_SIGMA[:8]
+    th = float(x @ z / (x @ x))
+    r = dry.intercept + dry.slope * WET_SIGMA[:8] + th * x - yw
+    u = law_uncertainty(["theta"], [th], x[:, None], np.column_stack([np.ones(8), WET_SIGMA[:8]]), r, dry)
+    # exact: theta_hat = L y with y = (y_dry, y_wet)
+    X = np.column_stack([np.ones(6), DRY_X])
+    Ldry = np.linalg.solve(X.T @ X, X.T)  # (c, b) = Ldry y_dry
+    a = x / (x @ x)
+    L = np.concatenate([-(a @ np.column_stack([np.ones(8), WET_SIGMA[:8]])) @ Ldry, a])
+    stacked = np.block([[X, np.zeros((6, 1))], [np.column_stack([np.ones(8), WET_SIGMA[:8]]), x[:, None]]])
+    y = np.concatenate([yd, yw])
+    rss_joint = float(np.sum((y - stacked @ np.linalg.lstsq(stacked, y, rcond=None)[0]) ** 2))
+    s2 = rss_joint / (14 - 3)
+    # linear algebra only: agreement to rounding (1e-9 relative)
+    assert_allclose(u["residual_variance"], s2, rtol=1e-9)
+    assert_allclose(u["se"]["theta"], np.sqrt(s2 * L @ L), rtol=1e-9)
+    assert u["dof"] == 11
+    lo, hi = u["ci"]["theta"]
+    assert_allclose(hi - th, t_quantile(0.975, 11) * np.sqrt(s2 * L @ L), rtol=1e-9)
+
+
+def test_chi_power_ci95_covers_kappa():
+    """chi = S_R^1.7; 300 data sets. Holding the dry fit fixed (se_conditional) covered 85 % here."""
+    rng = np.random.default_rng(20230)
+    kappa, n = 1.7, 300
+    hits = hits_cond = 0
+    for _ in range(n):
+        dry = _dry(rng)
+        tau = C + TAN_PHI * (WET_SIGMA + WET_S_R**kappa * WET_SUCTION) + rng.normal(0, NOISE, 10)
+        law = fit_chi_power(WET_SIGMA, WET_SUCTION, WET_S_R, tau, dry.intercept, dry.slope, start={"kappa": kappa},
+                            dry=dry)
+        lo, hi = law.ci95["kappa"]
+        hits += lo <= kappa <= hi
+        hits_cond += abs(law.params["kappa"] - kappa) <= t_quantile(0.975, 9) * law.se_conditional["kappa"]
+        assert law.dof == 6 - 2 + 10 - 1
+    COVERAGE["kappa"], COVERAGE["kappa_conditional"] = hits / n, hits_cond / n
+    low, high = _limits(n)
+    assert low <= hits / n <= high, hits / n
+    assert hits_cond / n < low  # the old interval (dry envelope held exact) undercovers
+
+
+def test_khalili_ci95_covers_s_b():
+    """chi = (s/1.5 kPa)^-0.55 above s_b; 300 data sets; the interval is built on ln s_b."""
+    rng = np.random.default_rng(7)
+    s_b, eta, n = 1500.0, 0.55, 300
+    suction = np.array([0.5, 0.8, 1.0, 1.3, 1.7, 2.2, 3.0, 4.0, 6.0, 8.0]) * 1e3
+    chi = np.where(suction > s_b, (suction / s_b) ** -eta, 1.0)
+    hits = 0
+    for _ in range(n):
+        dry = _dry(rng)
+        tau = C + TAN_PHI * (WET_SIGMA + chi * suction) + rng.normal(0, NOISE, 10)
+        law = fit_khalili(WET_SIGMA, suction, WET_S_R, tau, dry.intercept, dry.slope, eta, start={"s_b": s_b},
+                          dry=dry)
+        lo, hi = law.ci95["s_b"]
+        hits += lo <= s_b <= hi
+    COVERAGE["s_b"] = hits / n
+    low, high = _limits(n)
+    assert low <= hits / n <= high, hits / n
+
+
+def test_fit_laws_recomputes_the_dry_fit_when_not_given():
+    rng = np.random.default_rng(1)
+    dry_y = C + TAN_PHI * DRY_X + rng.normal(0, NOISE, 6)
+    fit = fit_line(DRY_X, dry_y)
+    tau = C + TAN_PHI * (WET_SIGMA + WET_S_R**1.5 * WET_SUCTION) + rng.normal(0, NOISE, 10)
+    d = _inputs(np.r_[DRY_X, WET_SIGMA], np.r_[np.zeros(6), WET_SUCTION], np.r_[np.zeros(6), WET_S_R],
+                np.r_[dry_y, tau], np.r_[np.zeros(6, bool), np.ones(10, bool)], fit)
+    a = sa.fit_laws(d, ["chi_power"], ["m"], ModelParams())["chi_power"]["m"]
+    b = sa.fit_laws(d, ["chi_power"], ["m"], ModelParams(), fits={"m": fit})["chi_power"]["m"]
+    assert a.ci95 == b.ci95 and a.dof == b.dof == 13  # the same dry fit, found from d's dry tests
+    # an envelope that does not come from these dry tests is not propagated (c, tan phi taken as exact)
+    other = dataclasses.replace(d, c=d.c + 50.0)
+    assert sa.fit_laws(other, ["chi_power"], ["m"], ModelParams())["chi_power"]["m"].dof == 9
+
+
+# ------------------------------------------------------------------------------------------ back-analysis
+
+def test_back_analysis_intervals_hand_worked():
+    # the case of test_shear_chi: sigma_cap = 2 kPa, se = 0.44; dof 4 -> t = 2.776445 (t table)
+    cov = np.array([[[0.01, -0.001], [-0.001, 0.0004]]])
+    ba = sa.back_analysis_intervals(np.array([3.0]), np.array([2.0]), np.array([4.0]), np.array([1.0]),
+                                    np.array([0.5]), cov, np.array([0.04]), np.array([4]))
+    assert_allclose([ba.sigma_cap_low[0], ba.sigma_cap_high[0]], [2 - 2.776445 * 0.44, 2 + 2.776445 * 0.44],
+                    rtol=1e-6)  # t table to 7 digits
+    assert_allclose([ba.chi_back_low[0], ba.chi_back_high[0]], [(2 - 2.776445 * 0.44) / 4, (2 + 2.776445 * 0.44) / 4],
+                    rtol=1e-6)
+    assert ba.dof[0] == 4
+
+
+def test_sigma_cap_interval_covers_the_true_capillary_stress():
+    """One wet test per data set (chi = S_R at S_R = 0.3, s = 2.5 kPa, sigma_N = 1 kPa); 400 sets."""
+    rng = np.random.default_rng(11)
+    n = 400
+    hits = hits_z = 0
+    truth = 0.3 * 2500.0
+    for _ in range(n):
+        dry = _dry(rng)
+        tau = C + TAN_PHI * (1000.0 + truth) + rng.normal(0, NOISE)
+        ba = sa.back_analysis_intervals(np.array([tau]), np.array([1000.0]), np.array([2500.0]),
+                                        np.array([dry.intercept]), np.array([dry.slope]), dry.covariance[None],
+                                        np.array([dry.residual_variance]), np.array([dry.dof]))
+        hits += ba.sigma_cap_low[0] <= truth <= ba.sigma_cap_high[0]
+        hits_z += abs(ba.sigma_cap[0] - truth) <= 1.96 * ba.sigma_cap_se[0]
+        chi_ok = ba.chi_back_low[0] <= 0.3 <= ba.chi_back_high[0]
+        assert chi_ok == (ba.sigma_cap_low[0] <= truth <= ba.sigma_cap_high[0])  # the same interval / s
+    COVERAGE["sigma_cap"], COVERAGE["sigma_cap_1.96"] = hits / n, hits_z / n
+    low, high = _limits(n)
+    assert low <= hits / n <= high, hits / n
+    assert hits_z / n < low  # +/- 1.96 se with 4 dof undercovers (~88 %)
+
+
+# ---------------------------------------------------------------------------------------------------- bands
+
+def test_tau_bands_bishop_equal_the_line_formulas():
+    """Bishop: tau = c + b sigma' with sigma' fixed by the test, so the mean band and the prediction interval
+    are those of the dry line at x = sigma' (Draper & Smith 1998, ch. 1)."""
+    rng = np.random.default_rng(2)
+    dry = _dry(rng)
+    d = _inputs(WET_SIGMA, WET_SUCTION, WET_S_R, np.zeros(10), np.ones(10, bool), dry)
+    cov, s2, _ = sa.fit_covariances({"m": dry}, d.material)
+    b = sa.tau_bands("bishop", d, cov, s2, sa.fit_dof({"m": dry}, d.material))
+    x = WET_SIGMA + WET_S_R * WET_SUCTION
+    # central differences of an affine model: exact to ~1e-9 relative
+    assert_allclose(np.column_stack([b.mean_low, b.mean_high]), np.column_stack(dry.mean_band(x)), rtol=1e-8)
+    assert_allclose(np.column_stack([b.pred_low, b.pred_high]), np.column_stack(dry.prediction_interval(x)),
+                    rtol=1e-8)
+    assert np.all(b.dof == 4)
+    # the old entry point is the mean band
+    lo, hi = sa.prediction_band("bishop", d, cov, np.full(10, dry.t))
+    assert_allclose(np.column_stack([lo, hi]), np.column_stack([b.mean_low, b.mean_high]), rtol=1e-12)
+
+
+@pytest.mark.parametrize("model", ["bishop", "chi_power"])
+def test_tau_bands_cover_the_mean_and_new_tests(model):
+    """300 data sets from the model itself (chi = S_R, or S_R^1.7 fitted); per set one wet test (the 4th, S_R
+    = 0.3): the mean band must hold the true mean strength and the prediction interval a new test there."""
+    rng = np.random.default_rng(5 if model == "bishop" else 6)
+    kappa = 1.0 if model == "bishop" else 1.7
+    n, k = 300, 3
+    mean_true = C + TAN_PHI * (WET_SIGMA + WET_S_R**kappa * WET_SUCTION)
+    hit_mean = hit_new = hit_mean_as_new = 0
+    for _ in range(n):
+        dry = _dry(rng)
+        tau = mean_true + rng.normal(0, NOISE, 10)
+        d = _inputs(WET_SIGMA, WET_SUCTION, WET_S_R, tau, np.ones(10, bool), dry)
+        laws = None
+        if model == "chi_power":  # warm-started at the truth: the search is not the subject here
+            law = fit_chi_power(WET_SIGMA, WET_SUCTION, WET_S_R, tau, dry.intercept, dry.slope,
+                                start={"kappa": kappa}, dry=dry)
+            laws = {model: {"m": law}}
+            d = dataclasses.replace(d, fitted={model: {"m": law.params}})
+        cov, s2, _ = sa.fit_covariances({"m": dry}, d.material)
+        b = sa.tau_bands(model, d, cov, s2, sa.fit_dof({"m": dry}, d.material), laws)
+        new = mean_true[k] + rng.normal(0, NOISE)
+        hit_mean += b.mean_low[k] <= mean_true[k] <= b.mean_high[k]
+        hit_new += b.pred_low[k] <= new <= b.pred_high[k]
+        hit_mean_as_new += b.mean_low[k] <= new <= b.mean_high[k]
+    COVERAGE[f"{model}_mean"], COVERAGE[f"{model}_new"] = hit_mean / n, hit_new / n
+    COVERAGE[f"{model}_mean_band_as_new"] = hit_mean_as_new / n
+    low, high = _limits(n)
+    assert low <= hit_mean / n <= high, hit_mean / n
+    assert low <= hit_new / n <= high, hit_new / n
+    assert hit_mean_as_new / n < low  # the band of the mean is no interval for a new test
+
+
+# ------------------------------------------------------------------------------------------------ bootstrap
+
+def _loop_ranking(d_mat, dry_x, dry_y, models, params, fitted, replicates, seed, through_origin=False):
+    """The first (loop) version of the bootstrap, the reference: RMSE per replicate and model."""
+    rng = np.random.default_rng(seed)
+    nd, nw = dry_x.size, d_mat.sigma_N.size
+    scores = np.full((replicates, len(models)), np.nan)
+    for r in range(replicates):
+        for _ in range(100):
+            di = rng.integers(0, nd, nd)
+            x, y = dry_x[di], dry_y[di]
+            if through_origin:
+                if x @ x > 0:
+                    c, b = 0.0, float(x @ y / (x @ x))
+                    break
+            elif np.ptp(x) > 0:
+                b = float(np.polyfit(x, y, 1)[0])
+                c = float(y.mean() - b * x.mean())
+                break
+        w = d_mat.subset(rng.integers(0, nw, nw))
+        w = dataclasses.replace(w, c=np.full(nw, c), tan_phi=np.full(nw, b))
+        refit = {m: {"m": sa._fit_one(m, w, params, start=fitted[m]["m"]).params} for m in models
+                 if esm.REGISTRY[m].fitted}
+        w = dataclasses.replace(w, fitted={**fitted, **refit})
+        for k, m in enumerate(models):
+            with np.errstate(invalid="ignore"):
+                pred = esm.predict(m, w)[1]
+            ok = np.isfinite(pred)
+            scores[r, k] = np.sqrt(np.mean((pred[ok] - w.tau_max[ok]) ** 2)) if ok.any() else np.nan
+    return scores
+
+
+@pytest.mark.parametrize("through_origin", [False, True])
+def test_bootstrap_ranking_reproduces_the_loop(monkeypatch, through_origin):
+    """Same seed, same resamples: every replicate's RMSE as the loop's, to rounding (affine models, 1e-9)
+    and to the solvers' tolerance (refitted laws: both stop at relative steps ~1e-12; 1e-6 allows for the
+    flat Khalili objective), hence the same win shares."""
+    rng = np.random.default_rng(9)
+    c = 0.0 if through_origin else C
+    dry_y = c + TAN_PHI * DRY_X + rng.normal(0, 3 * NOISE, 6)
+    dry = (sa.fit_line_origin if through_origin else fit_line)(DRY_X, dry_y)
+    suction = np.array([0.5, 0.8, 1.0, 1.3, 1.7, 2.2, 3.0, 4.0, 6.0, 8.0]) * 1e3
+    tau = C * (not through_origin) + TAN_PHI * (WET_SIGMA + 0.5 * (WET_S_R + WET_S_R**0.5) * suction) \
+        + rng.normal(0, 30.0, 10)
+    d = _inputs(WET_SIGMA, suction, WET_S_R, tau, np.ones(10, bool), dry)
+    models = ["no_suction", "bishop", "own1", "chi_power", "khalili_fit", "fredlund", "pedrotti_tarantino"]
+    laws = sa.fit_laws(d, models, ["m"], ModelParams(), fits={"m": dry})
+    fitted = {m: {"m": v["m"].params} for m, v in laws.items()}
+    d = dataclasses.replace(d, fitted=fitted)
+    ref = _loop_ranking(d, DRY_X, dry_y, models, ModelParams(), fitted, 150, 4, through_origin)
+    seen = {}
+    real = sa._summarise
+    monkeypatch.setattr(sa, "_summarise", lambda s, *a: seen.setdefault("s", s) is not None and real(s, *a))
+    monkeypatch.setattr(sa, "BLOCK_ELEMENTS", 400)  # several blocks: the stream continues across them
+    out = sa.bootstrap_ranking(d, DRY_X, dry_y, models, ModelParams(), fitted, ["bishop", "own1"], 150, 4,
+                               through_origin)
+    got = seen["s"]
+    affine = [models.index(m) for m in ("no_suction", "bishop", "own1", "fredlund", "pedrotti_tarantino")]
+    assert_allclose(got[:, affine], ref[:, affine], rtol=1e-9)
+    assert_allclose(got, ref, rtol=1e-6)
+    winners = np.argmin(ref, axis=1)
+    assert out.probability == {m: float(np.mean(winners == k)) for k, m in enumerate(models)}
+    assert sum(out.probability.values()) == pytest.approx(1.0, abs=1e-12)
+
+
+def test_dry_refit_by_weighted_sums_matches_polyfit():
+    rng = np.random.default_rng(0)
+    y = C + TAN_PHI * DRY_X + rng.normal(0, NOISE, 6)
+    U = np.array([[1, 1, 1, 1, 1, 1], [2, 0, 1, 0, 3, 0], [0, 6, 0, 0, 0, 0]], float)
+    U[2] = [0, 3, 3, 0, 0, 0]
+    c, b = sa._dry_refit(U, DRY_X, y, False)
+    for k in range(3):
+        x_r, y_r = np.repeat(DRY_X, U[k].astype(int)), np.repeat(y, U[k].astype(int))
+        bb, cc = np.polyfit(x_r, y_r, 1)
+        assert_allclose([c[k], b[k]], [cc, bb], rtol=1e-10)  # two least-squares routes, rounding only
