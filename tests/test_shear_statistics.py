@@ -139,11 +139,14 @@ def test_back_analysis_intervals_hand_worked():
     cov = np.array([[[0.01, -0.001], [-0.001, 0.0004]]])
     ba = sa.back_analysis_intervals(np.array([3.0]), np.array([2.0]), np.array([4.0]), np.array([1.0]),
                                     np.array([0.5]), cov, np.array([0.04]), np.array([4]))
-    assert_allclose([ba.sigma_cap_low[0], ba.sigma_cap_high[0]], [2 - 2.776445 * 0.44, 2 + 2.776445 * 0.44],
+    assert_allclose(np.ravel(ba.sigma_cap_ci), [2 - 2.776445 * 0.44, 2 + 2.776445 * 0.44],
                     rtol=1e-6)  # t table to 7 digits
-    assert_allclose([ba.chi_back_low[0], ba.chi_back_high[0]], [(2 - 2.776445 * 0.44) / 4, (2 + 2.776445 * 0.44) / 4],
-                    rtol=1e-6)
+    assert_allclose(np.ravel(ba.chi_back_ci), [(2 - 2.776445 * 0.44) / 4, (2 + 2.776445 * 0.44) / 4], rtol=1e-6)
     assert ba.dof[0] == 4
+    # dry tests (wet = False) carry no capillary stress
+    ba = sa.back_analysis_intervals(np.array([3.0]), np.array([2.0]), np.array([0.0]), np.array([1.0]),
+                                    np.array([0.5]), cov, np.array([0.04]), np.array([4]), wet=np.array([False]))
+    assert np.isnan(ba.sigma_cap[0]) and np.isnan(ba.sigma_cap_ci[0][0]) and np.isnan(ba.dof[0])
 
 
 def test_sigma_cap_interval_covers_the_true_capillary_stress():
@@ -158,10 +161,11 @@ def test_sigma_cap_interval_covers_the_true_capillary_stress():
         ba = sa.back_analysis_intervals(np.array([tau]), np.array([1000.0]), np.array([2500.0]),
                                         np.array([dry.intercept]), np.array([dry.slope]), dry.covariance[None],
                                         np.array([dry.residual_variance]), np.array([dry.dof]))
-        hits += ba.sigma_cap_low[0] <= truth <= ba.sigma_cap_high[0]
+        (lo,), (hi,) = ba.sigma_cap_ci
+        hits += lo <= truth <= hi
         hits_z += abs(ba.sigma_cap[0] - truth) <= 1.96 * ba.sigma_cap_se[0]
-        chi_ok = ba.chi_back_low[0] <= 0.3 <= ba.chi_back_high[0]
-        assert chi_ok == (ba.sigma_cap_low[0] <= truth <= ba.sigma_cap_high[0])  # the same interval / s
+        (chi_lo,), (chi_hi,) = ba.chi_back_ci
+        assert (chi_lo <= 0.3 <= chi_hi) == (lo <= truth <= hi)  # the same interval, divided by s
     COVERAGE["sigma_cap"], COVERAGE["sigma_cap_1.96"] = hits / n, hits_z / n
     low, high = _limits(n)
     assert low <= hits / n <= high, hits / n

@@ -82,44 +82,17 @@ def back_analysis(tau, sigma_N, suction, c, tan_phi, cov, s2):
     return cap, se, chi, chi_se
 
 
-@dataclass
-class BackAnalysis:
-    """Back-analysed capillary stress and chi of every test, with intervals.
-
-    Attributes
-    ----------
-    sigma_cap, sigma_cap_se, sigma_cap_low, sigma_cap_high : ndarray
-        Capillary stress, its standard error and its interval [Pa].
-    chi_back, chi_back_se, chi_back_low, chi_back_high : ndarray
-        sigma_cap / Delta_u, its standard error and its interval [-] (NaN where Delta_u = 0).
-    dof : ndarray of int
-        Degrees of freedom of the t quantile (the dry fit's residual dof) [-].
-    confidence : float
-        Level of the intervals [-].
-    """
-
-    sigma_cap: np.ndarray
-    sigma_cap_se: np.ndarray
-    sigma_cap_low: np.ndarray
-    sigma_cap_high: np.ndarray
-    chi_back: np.ndarray
-    chi_back_se: np.ndarray
-    chi_back_low: np.ndarray
-    chi_back_high: np.ndarray
-    dof: np.ndarray
-    confidence: float = 0.95
-
-
-def back_analysis_intervals(tau, sigma_N, suction, c, tan_phi, cov, s2, dof, confidence: float = 0.95
-                            ) -> BackAnalysis:
-    r"""`back_analysis` with intervals: sigma_cap -/+ t_{(1+confidence)/2, dof} se, the same for chi_back.
+def back_analysis_intervals(tau, sigma_N, suction, c, tan_phi, cov, s2, dof, confidence: float = 0.95,
+                            wet=None):
+    r"""`back_analysis` with intervals, as the run's record: sigma_cap -/+ t se, chi_back -/+ t se/Delta_u.
 
     .. math:: \sigma_{cap} \mp t_{1-\alpha/2,\,\nu}\,\mathrm{se}(\sigma_{cap}), \qquad
               \chi_{back} \mp t_{1-\alpha/2,\,\nu}\,\mathrm{se}(\sigma_{cap})/\Delta u
 
     with nu the dry fit's residual dof (n_dry - 2, or n_dry - 1 through the origin): the variance estimate
     rests on the dry residuals alone, so (sigma_cap_hat - sigma_cap)/se follows Student's t with nu dof
-    (to first order in the dry fit's error); +/- 1.96 se would cover about 86 % with 6 dry tests.
+    (to first order in the dry fit's error). Simulated (tests/test_shear_statistics.py, 6 dry tests,
+    400 sets): 94.8 % coverage; +/- 1.96 se covers 88.8 %.
 
     Parameters
     ----------
@@ -129,20 +102,32 @@ def back_analysis_intervals(tau, sigma_N, suction, c, tan_phi, cov, s2, dof, con
         Residual dof of each test's dry fit [-] (`fit_dof`).
     confidence : float
         Level [-].
+    wet : (n,) bool ndarray, optional
+        Tests to report; the others get NaN (dry tests carry no capillary stress).
 
     Returns
     -------
-    BackAnalysis
+    capred.pipelines.shear_records.BackAnalysis
+        ``sigma_cap``, ``sigma_cap_se``, ``sigma_cap_ci`` [Pa]; ``chi_back``, ``chi_back_se``,
+        ``chi_back_ci`` [-]; ``dof`` [-].
 
     References
     ----------
     Draper & Smith (1998), doi:10.1002/9781118625590, ch. 1 (t intervals from a fitted line).
     """
+    from .shear_records import BackAnalysis
+
     cap, se, chi, chi_se = back_analysis(tau, sigma_N, suction, c, tan_phi, cov, s2)
-    dof = np.asarray(dof, dtype=int) * np.ones(np.shape(cap), dtype=int)
-    t = t_quantile(0.5 + confidence / 2.0, dof)
-    return BackAnalysis(cap, se, cap - t * se, cap + t * se, chi, chi_se, chi - t * chi_se, chi + t * chi_se,
-                        dof, confidence)
+    nu = np.asarray(dof, dtype=float) * np.ones(np.shape(cap))
+    t = t_quantile(0.5 + confidence / 2.0, nu)
+    keep = np.ones(np.shape(cap), bool) if wet is None else np.asarray(wet, bool)
+
+    def on(v):
+        return np.where(keep, v, np.nan)
+
+    return BackAnalysis(sigma_cap=on(cap), sigma_cap_se=on(se), sigma_cap_ci=(on(cap - t * se), on(cap + t * se)),
+                        chi_back=on(chi), chi_back_se=on(chi_se),
+                        chi_back_ci=(on(chi - t * chi_se), on(chi + t * chi_se)), dof=on(nu))
 
 
 def _dry_fit(d: esm.ModelInputs, material) -> LineFit | None:
