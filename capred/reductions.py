@@ -19,6 +19,8 @@ class Reduction:
     out_prefix: str  # default output folder: ./capred_out/<prefix>_<input stem>
     method: tuple[str, ...] = ()  # paragraphs of the methods section of report.html
     references: tuple[str, ...] = ()  # keys of capred.references.REFERENCES cited there
+    #: write files without --out (into ./capred_out/...); a calculator only prints unless --out is given
+    files_by_default: bool = True
 
     def run(self, source, options):
         module, name = self.run_path.split(":")
@@ -73,20 +75,23 @@ REDUCTIONS: dict[str, Reduction] = {r.name: r for r in (
                   'P_kmax = σ_b (1 − sin ρ)/(2 sin ρ) and h_c = P_kmax/γ_w from the break tension of a sand '
                   'prism and the friction angle of the sand (Bernatzik 1948).',
               ),
-              references=('bernatzik1948',)),
+              references=('bernatzik1948',),
+              files_by_default=False),
     Reduction("skempton-b", _P + "calculators:reduce_skempton_b", _P + "calculators:SkemptonOptions", "optional",
               "skempton-b", "skempton",
               method=(
                   "B = 1/(1 + p'0 e0 (1 − S_r)/(κ P_a0)) with p'0 = p0 − u0 (Morvan et al. 2016, eq. 10), or "
                   "its inverse; with suction equilibrium p'0 = p0 − u_a0 + s S_r and s from Brooks-Corey.",
               ),
-              references=('morvan2016', 'skempton1954', 'brooks_corey1964')),
+              references=('morvan2016', 'skempton1954', 'brooks_corey1964'),
+              files_by_default=False),
     Reduction("rumpf", _P + "calculators:reduce_rumpf", _P + "calculators:RumpfOptions", "optional", "rumpf",
               "rumpf",
               method=(
                   'p_cap = −(6/φ)(S_r/e)(γ/d_p) cos θ (Prunier et al. 2024, eq. 19, after Rumpf).',
               ),
-              references=('prunier2024',)),
+              references=('prunier2024',),
+              files_by_default=False),
     Reduction("bridge solve", _P + "bridge:solve_bridges", _P + "bridge:BridgeOptions", "required", "bridge-solve",
               "bridge",
               method=(

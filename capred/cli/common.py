@@ -32,6 +32,17 @@ SheetOpt = Annotated[Optional[str], typer.Option(help="Sheet of an .xlsx or .ods
                                                       "(from 1) [default: the first].")]
 ThousandsOpt = Annotated[Optional[str], typer.Option(help="Thousands separator of the file, e.g. '.' to read 1.000 as "
                                                           "one thousand in a file with decimal commas.")]
+IgnoreOpt = Annotated[Optional[list[str]], typer.Option(
+    "--ignore-column", help="A column of the file to leave out, as its header writes it (repeat for several); "
+                            "also lets a run go on past a header that looks like a misspelt known column.",
+    show_default=False)]
+MaxMbOpt = Annotated[Optional[int], typer.Option("--max-megabytes", min=1, help="Largest input the reader takes "
+                                                 "on: bytes of a CSV file or of a workbook once decompressed "
+                                                 "[MiB; default 256].", show_default=False)]
+MaxCellsOpt = Annotated[Optional[int], typer.Option("--max-cells", min=1, help="Most cells of a spreadsheet the "
+                                                    "reader visits [default 2,000,000].", show_default=False)]
+MaxColumnsOpt = Annotated[Optional[int], typer.Option("--max-columns", min=1, help="Widest table the reader takes "
+                                                      "on [columns; default 1,000].", show_default=False)]
 
 
 @dataclass(frozen=True)
@@ -111,12 +122,13 @@ def command(app: typer.Typer, name: str, full_name: Optional[str] = None, data: 
     in its own signature and gets it too.
     """
     full = full_name or name
-    shared = {"out": (OutOpt, None), "json_out": (JsonOpt, False)}
-    if plots:
-        shared["plots"] = (PlotOpt, True)
+    # every command takes --plots/--no-plots (a command without figures accepts and ignores it)
+    shared = {"out": (OutOpt, None), "json_out": (JsonOpt, False), "plots": (PlotOpt, True)}
     if data is not None:
         shared = {"data": (data_arg(data), None), **shared, "sample": (SampleOpt, False),
-                  "workers": (WorkersOpt, 1), "sheet": (SheetOpt, None), "thousands": (ThousandsOpt, None)}
+                  "workers": (WorkersOpt, 1), "sheet": (SheetOpt, None), "thousands": (ThousandsOpt, None),
+                  "ignore_column": (IgnoreOpt, None), "max_megabytes": (MaxMbOpt, None),
+                  "max_cells": (MaxCellsOpt, None), "max_columns": (MaxColumnsOpt, None)}
 
     def deco(builder):
         sig = inspect.signature(builder)
@@ -128,9 +140,11 @@ def command(app: typer.Typer, name: str, full_name: Optional[str] = None, data: 
             out = _output_options(**{k: params.pop(k, d) for k, (_, d) in _OUTPUT_PARAMS.items()})
             inv = builder(**params)
             if data is not None:
-                inv.sources = sources(common["data"], common["sample"], full, common["sheet"], common["thousands"])
+                inv.sources = sources(common["data"], common["sample"], full, common["sheet"], common["thousands"],
+                                      common["ignore_column"], _limits(common))
                 inv.workers = common["workers"]
-            inv.out, inv.json, inv.plots, inv.output = common["out"], common["json_out"], common.get("plots", False), out
+            inv.out, inv.json, inv.output = common["out"], common["json_out"], out
+            inv.plots = common["plots"] and plots
             return inv
 
         def run(**params):
@@ -166,16 +180,29 @@ def quantity(text: Optional[str], default_unit: str, name: str = "", option: str
     return with_unit(text, default_unit)
 
 
+def _limits(common: dict):
+    """The reading limits the options ask for (None: the reader's defaults)."""
+    given = {k: common.get(k) for k in ("max_megabytes", "max_cells", "max_columns")}
+    if all(v is None for v in given.values()):
+        return None
+    from ..io.grid import ReadLimits
+
+    kw = {"max_cells": given["max_cells"], "max_columns": given["max_columns"],
+          "max_bytes": None if given["max_megabytes"] is None else given["max_megabytes"] * 2**20}
+    return ReadLimits(**{k: v for k, v in kw.items() if v is not None})
+
+
 def sources(data: Optional[list[Path]], sample: bool, command: str, sheet: Optional[str] = None,
-            thousands: Optional[str] = None) -> list:
+            thousands: Optional[str] = None, ignore_columns=None, limits=None) -> list:
     """Input files: the arguments with globs expanded (sorted), the bundled sample, or [None];
-    as TableSources when a sheet or a thousands separator is given."""
+    as TableSources when a sheet, a thousands separator, columns to ignore or reading limits are given."""
     paths = _paths(data, sample, command)
-    if sheet is None and thousands is None:
+    if sheet is None and thousands is None and not ignore_columns and limits is None:
         return paths
     from ..io.grid import TableSource
 
-    return [TableSource(p, sheet, thousands) if p is not None else None for p in paths]
+    return [TableSource(p, sheet, thousands, tuple(ignore_columns or ()), limits) if p is not None else None
+            for p in paths]
 
 
 def _paths(data: Optional[list[Path]], sample: bool, command: str) -> list:
@@ -241,7 +268,7 @@ def _single(inv: Invocation) -> None:
     from ..reductions import REDUCTIONS
 
     source = inv.sources[0]
-    write = inv.out is not None or not inv.json
+    write = inv.out is not None or (not inv.json and REDUCTIONS[inv.command].files_by_default)
     out_dir = inv.out or default_out(inv.command, source)
     if write:  # before anything is computed
         check_target(out_dir, [source, *inv.extra_inputs])
@@ -272,7 +299,9 @@ def _single(inv: Invocation) -> None:
 def _batch(inv: Invocation) -> None:
     from .. import batch
 
-    write = inv.out is not None or not inv.json
+    from ..reductions import REDUCTIONS
+
+    write = inv.out is not None or (not inv.json and REDUCTIONS[inv.command].files_by_default)
     root = inv.out or Path.cwd() / "capred_out"
     dirs = batch.output_dirs([inv.command] * len(inv.sources), inv.sources, root)
     jobs = [batch.Job(inv.command, src, d if write else None, inv.options, inv.plots, keep_json=inv.json,

@@ -384,6 +384,7 @@ class RetentionFit(NonlinearFit):
     """
 
     model: str = ""
+    quantity: str = "S_R"  # what was fitted: "S_R" [-] or "theta" [m³/m³]
 
     @property
     def entry(self) -> RetentionModel:
@@ -406,6 +407,17 @@ class RetentionFit(NonlinearFit):
         return self.entry.water(np.asarray(suction, float), **self.params)
 
     __call__ = water
+
+    def S_R(self, suction):
+        """Degree of saturation S_R [-] at ``suction`` [Pa]: the fitted curve itself when S_R was fitted, θ/θ_s
+        when a volumetric water content was (θ_s taken as the porosity: the soil saturated at zero suction)."""
+        y = self.water(suction)
+        return y if self.quantity == "S_R" else y / self.params["y_s"]
+
+    def suction_at_S_R(self, S_R):
+        """Suction [Pa] at which the fitted curve gives the degree of saturation ``S_R`` [-] (inverse of S_R)."""
+        S_R = np.asarray(S_R, float)
+        return self.suction(S_R if self.quantity == "S_R" else S_R * self.params["y_s"])
 
     def effective_saturation(self, suction):
         """Fitted S_e = (y - y_r)/(y_s - y_r) [-] at ``suction`` [Pa] (y/y_s for Fredlund-Xing with C)."""

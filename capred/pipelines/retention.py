@@ -2,6 +2,7 @@
 and hysteresis fitted jointly (Kool & Parker 1987)."""
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -146,6 +147,8 @@ class RetentionResult(Result):
                                     for a, row in f.correlation().items()},
                     "params_si": {k: num(v) for k, v in f.params.items()},
                     "parameters": [report_name(k, self.quantity) for k in f.params],
+                    "held": [report_name(k, self.quantity) for k in getattr(f, "held", ())],
+                    "notes": list(getattr(f, "notes", [])),
                     "model": MODELS.get(model, model), "reference": cite(REFERENCE.get(model, "kool_parker1987"))})
         return out
 
@@ -182,6 +185,20 @@ class RetentionResult(Result):
                 "rss": js["rss"], "r2": js["r2"], "aicc": js["aicc"], "independent_aicc": num(ind_aicc),
                 "reference": cite("kool_parker1987")}
         return out
+
+    def season_rows(self) -> list[dict]:
+        """One row per branch for a batch's season.csv: the best model (lowest AICc) and its parameters."""
+        rows = []
+        for b, fits in self.fits.items():
+            if not fits:
+                continue
+            sel = self.model_selection(b)
+            best = min(sel, key=lambda m: (sel[m]["aicc"] is None, sel[m]["aicc"] or 0.0))
+            js = self.fit_json(fits[best], best)
+            params = {name: js.get(name) for name in js["parameters"]}
+            rows.append({"branch": b, "best_model": best, "n_points": fits[best].n, "r2": js["r2"],
+                         "rmse": js["rmse"], "aicc": js["aicc"], **params})
+        return rows
 
     def tables(self) -> dict:
         """fits: one row per branch and model (parameters with their standard errors)."""
@@ -312,7 +329,7 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
                                 f"{m}: not fitted")
                 continue
             try:
-                f = fit_model(m, s[sel], y[sel], fx, weights[sel])
+                f = dataclasses.replace(fit_model(m, s[sel], y[sel], fx, weights[sel]), quantity=quantity)
             except FitError as exc:
                 warnings.append(f"branch '{b}', model {m}: not fitted ({exc})")
                 continue
@@ -335,6 +352,7 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
         if "vg" not in opt.models:
             for b in ("drying", "wetting"):
                 sel = branch == b
-                fits.setdefault(b, {})["vg"] = fit_model("vg", s[sel], y[sel], {}, weights[sel])
+                fits.setdefault(b, {})["vg"] = dataclasses.replace(fit_model("vg", s[sel], y[sel], {}, weights[sel]),
+                                                                   quantity=quantity)
     return RetentionResult(table.path, quantity, s, y, branch, how, fits, opt, list(table.notes),
                            [input_file(source, table)], warnings, hyst)
