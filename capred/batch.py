@@ -106,11 +106,68 @@ def _save_traceback(job: Job, text: str) -> str:
         return ""
 
 
-def run_all(jobs: list[Job], workers: int = 1, on_done=None) -> tuple[list[Outcome], bool]:
+def default_workers(n_jobs: int) -> int:
+    """Worker processes for ``n_jobs`` jobs: one per core this process may use, never more than the jobs."""
+    import os
+
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # pragma: no cover - not Linux
+        cores = os.cpu_count() or 1
+    return max(1, min(cores, n_jobs))
+
+
+def _warm(jobs: list[Job]) -> None:
+    """Import what every job needs once, in the parent, so that forked workers inherit it (a worker
+    otherwise spends ~1 s of CPU importing pandas, the pipeline and the report before its first file)."""
+    from importlib import import_module
+
+    from .reductions import REDUCTIONS
+
+    import_module("capred.report.outputs")
+    import_module("capred.io.writers")
+    for command in {j.command for j in jobs}:
+        red = REDUCTIONS.get(command)
+        if red is not None:
+            import_module(red.run_path.split(":")[0])
+    if any(j.output is None or j.output.html for j in jobs if j.out_dir is not None):
+        import_module("capred.report.html")
+    if any(j.output is not None and j.output.xlsx for j in jobs if j.out_dir is not None):
+        import_module("openpyxl")
+
+
+def _pool(workers: int):
+    """A process pool; forked workers where the platform offers it (they start with capred imported)."""
+    import multiprocessing
+    import sys
+    from concurrent.futures import ProcessPoolExecutor
+
+    if sys.platform.startswith("linux") and "fork" in multiprocessing.get_all_start_methods():
+        return ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("fork"))
+    return ProcessPoolExecutor(max_workers=workers)  # pragma: no cover
+
+
+def run_all(jobs: list[Job], workers: int | None = None, on_done=None) -> tuple[list[Outcome], bool]:
     """Outcomes of every job in input order, and whether the run was interrupted (Ctrl-C).
 
-    ``on_done(outcome)`` is called after each job.
+    Parameters
+    ----------
+    jobs : list of Job
+        The runs, each with its own output folder.
+    workers : int, optional
+        Worker processes; None (the default): one per core, at most one per
+        job (see ``default_workers``). One worker runs the jobs in this process.
+    on_done : callable, optional
+        Called with each Outcome as its job ends.
+
+    Returns
+    -------
+    (list of Outcome, bool)
+        One outcome per job, in the order of ``jobs``, and True after Ctrl-C
+        or a worker's death (the jobs not done are then ``interrupted``).
     """
+    if workers is None or workers < 1:
+        workers = default_workers(len(jobs))
     outcomes: dict[int, Outcome] = {}
     interrupted = False
     try:
@@ -120,9 +177,10 @@ def run_all(jobs: list[Job], workers: int = 1, on_done=None) -> tuple[list[Outco
                 if on_done:
                     on_done(outcomes[k])
         else:
-            from concurrent.futures import ProcessPoolExecutor, as_completed
+            from concurrent.futures import as_completed
 
-            pool = ProcessPoolExecutor(max_workers=workers)
+            _warm(jobs)
+            pool = _pool(min(workers, len(jobs)))
             try:
                 futures = {pool.submit(run_safely, job): k for k, job in enumerate(jobs)}
                 for fut in as_completed(futures):

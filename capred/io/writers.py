@@ -186,6 +186,25 @@ def _csv_column(values, sep: str = ",", joiner: str = ";", eu: bool = False) -> 
     return [_csv_cell(x, sep, joiner, eu) for x in values]
 
 
+def _column_arrays(frame) -> list:
+    """The columns of a DataFrame as arrays (without making a Series per column where pandas allows)."""
+    get = getattr(frame, "_get_column_array", None)  # pandas >= 1.3; a Series per column otherwise
+    if get is not None:
+        try:
+            return [np_array(get(i)) for i in range(frame.shape[1])]
+        except (TypeError, IndexError, AttributeError):  # pragma: no cover - a pandas without it
+            pass
+    return [frame.iloc[:, i].to_numpy() for i in range(frame.shape[1])]
+
+
+def np_array(values):
+    """``values`` as a numpy array (an extension array, e.g. nullable integers, through to_numpy)."""
+    import numpy as np
+
+    return values if isinstance(values, np.ndarray) else np.asarray(values.to_numpy() if hasattr(values, "to_numpy")
+                                                                      else values)
+
+
 def write_csv_file(path, frame, dialect: str = "standard") -> None:
     """A DataFrame (or a mapping of column name to array) as UTF-8 CSV: floats in shortest round-trip form (every digit kept), NaN as an
     empty cell, lists joined with ';', text quoted where CSV needs it. ``path`` may be a binary file.
@@ -201,7 +220,7 @@ def write_csv_file(path, frame, dialect: str = "standard") -> None:
         if eu:
             fh.write("\ufeff".encode("utf-8"))
         names = list(frame) if isinstance(frame, dict) else list(frame.columns)
-        arrays = list(frame.values()) if isinstance(frame, dict) else [frame[c].to_numpy() for c in names]
+        arrays = list(frame.values()) if isinstance(frame, dict) else _column_arrays(frame)
         fh.write((sep.join(_csv_cell(str(c), sep, eu=eu) for c in names) + "\n").encode("utf-8"))
         for start in range(0, len(arrays[0]) if arrays else 0, 10_000):  # memory bounded by one chunk of rows
             columns = [_csv_column(a[start:start + 10_000], sep, joiner, eu) for a in arrays]
