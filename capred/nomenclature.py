@@ -61,11 +61,21 @@ QUANTITIES: dict[str, Quantity] = {
     "air_entry": Quantity("s_e", "kPa", 1e-3, "pressure", "air-entry suction (Brooks-Corey)", 0.0, None, True),
     "vg_alpha": Quantity("α", "1/kPa", 1e3, "per_pressure", "van Genuchten α", 0.0, None, True),
     "bc_lambda": Quantity("λ", "-", 1.0, "dimensionless", "Brooks-Corey pore-size index", 0.0, None, True),
+    "vg_n": Quantity("n", "-", 1.0, "dimensionless", "van Genuchten n", 1.0, None, True),
+    "vg_m": Quantity("m", "-", 1.0, "dimensionless", "van Genuchten m", 0.0, 1.0, True),
+    "S_res": Quantity("S_res", "-", 1.0, "dimensionless", "residual degree of saturation", 0.0, 1.0, False, True),
+    "vanapalli_kappa": Quantity("κ", "-", 1.0, "dimensionless", "exponent κ of χ = S_e^κ (Vanapalli)",
+                                0.0, None, True),
+    "khalili_eta": Quantity("η", "-", 1.0, "dimensionless", "exponent η of χ = (s/s_b)^−η (Khalili-Khabbaz)",
+                            0.0, None, True),
     # triaxial (Prunier et al. 2024)
     "sigma1": Quantity("σ1", "kPa", 1e-3, "pressure", "major principal total stress at failure"),
     "sigma3": Quantity("σ3", "kPa", 1e-3, "pressure", "confining (minor principal) total stress", 0.0),
     "q_f": Quantity("q_f", "kPa", 1e-3, "pressure", "deviator stress at failure"),
     "c_eff": Quantity("c'", "kPa", 1e-3, "pressure", "effective cohesion", 0.0),
+    "membrane_thickness": Quantity("t_m", "mm", 1e3, "length", "membrane thickness", 0.0, None, True),
+    "membrane_modulus": Quantity("E_m", "kPa", 1e-3, "pressure", "Young's modulus of the membrane", 0.0, None,
+                                 True),
     "phi_eff": Quantity("φ'", "deg", 1.0, "angle", "effective friction angle", 0.0, 90.0, True, True),
     "lode_angle": Quantity("θ_L", "deg", 1.0, "angle", "Lode angle"),
     # bridges
@@ -87,6 +97,32 @@ QUANTITIES: dict[str, Quantity] = {
     "shape_factor": Quantity("φ_s", "-", 1.0, "dimensionless", "particle shape factor", 0.0, None, True),
     "void_ratio": Quantity("e", "-", 1.0, "dimensionless", "void ratio", 0.0, None, True),
     "diameter": Quantity("d_p", "mm", 1e3, "length", "apparent particle diameter", 0.0, None, True),
+    # volume change of clay with two effective stresses (Pedrotti & Tarantino)
+    "sigma": Quantity("σ", "kPa", 1e-3, "pressure", "total (mean) stress, compression positive"),
+    "u_w": Quantity("u_w", "kPa", 1e-3, "pressure", "pore-water pressure (gauge)"),
+    "u_a": Quantity("u_a", "kPa", 1e-3, "pressure", "pore-air pressure (gauge)"),
+    "sigma_W": Quantity("σ'_W", "kPa", 1e-3, "pressure", "effective stress of the water-saturated part, "
+                        "(σ − u_w) S_r", 0.0),
+    "sigma_A": Quantity("σ'_A", "kPa", 1e-3, "pressure", "effective stress of the air-saturated part, "
+                        "(σ − u_a)(1 − S_r)", 0.0),
+    "lambda_W": Quantity("λ_W", "-", 1.0, "dimensionless", "slope of the ncl of clay reconstituted from slurry "
+                         "in e-ln σ'", 0.0, None, True),
+    "kappa_W": Quantity("κ_W", "-", 1.0, "dimensionless", "slope of the url of clay reconstituted from slurry "
+                        "in e-ln σ'", 0.0, None, True),
+    "e_ncl_W": Quantity("e_ncl,W", "-", 1.0, "dimensionless", "void ratio on the slurry ncl at the reference "
+                        "stress", 0.0, None, True),
+    "lambda_A": Quantity("λ_A", "-", 1.0, "dimensionless", "slope of the ncl of clay compressed from dry powder "
+                         "in e-ln σ'", 0.0, None, True),
+    "kappa_A": Quantity("κ_A", "-", 1.0, "dimensionless", "slope of the url of clay compressed from dry powder "
+                        "in e-ln σ'", 0.0, None, True),
+    "e_ncl_A": Quantity("e_ncl,A", "-", 1.0, "dimensionless", "void ratio on the dry-powder ncl at the reference "
+                        "stress", 0.0, None, True),
+    "reference_stress": Quantity("σ_ref", "kPa", 1e-3, "pressure", "stress at which the ncl intercepts are read",
+                                 0.0, None, True),
+    "initial_yield_W": Quantity("σ'_y,W", "kPa", 1e-3, "pressure", "largest σ'_W carried before the path",
+                                0.0, None, True),
+    "initial_yield_A": Quantity("σ'_y,A", "kPa", 1e-3, "pressure", "largest σ'_A carried before the path",
+                                0.0, None, True),
 }
 
 

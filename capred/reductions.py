@@ -118,6 +118,26 @@ REDUCTIONS: dict[str, Reduction] = {r.name: r for r in (
                   "beside Israelachvili, Bishop (S_R Δu) and Evenepoel's Own 1 and Own 2.",
               ),
               references=('evenepoel', 'israelachvili', 'bishop1959')),
+    Reduction("pt-volume", _P + "pt_volume:run_pt_volume", _P + "pt_volume:PTVolumeOptions", "required",
+              "pt-volume", "pt_volume",
+              method=(
+                  "Volume change along a path of total stress σ, pore pressures u_w, u_a and degree of saturation "
+                  "S_r with the model of Pedrotti & Tarantino (submitted): the water-saturated pores carry "
+                  "σ'_W = (σ − u_w) S_r and the air-saturated pores σ'_A = (σ − u_a)(1 − S_r) (eq. 1-2, with u_w "
+                  "and u_a as in their section 5.1). Pores that keep their fluid move on the url (eq. 6-7) or ncl "
+                  "(eq. 10) of clay reconstituted from slurry (W: λ_W, κ_W) or compressed from dry powder (A: "
+                  "λ_A, κ_A); pores that change fluid move from the equivalent pre-consolidation stress σ* onto "
+                  "the lines of their new fluid (eq. 8-9). The sample's void ratio couples the parts through S_r "
+                  "(eq. 5, read as e = e^W e^A/(e^W (1 − S_r) + e^A S_r), the form that returns e^W at S_r = 1 "
+                  "and e^A at S_r = 0).",
+                  "capred keeps the books of solids and voids of each part instead of adding the class changes "
+                  "with the weights ΔS_r/S_r and −ΔS_r/(1 − S_r) of eq. 3-4 (which it reports as w_AW, w_WA): "
+                  "the pores that change fluid are taken pro rata from the part they leave, in the amount that "
+                  "makes the model's S_r equal the path's. Both parts start on their ncl at the first point "
+                  "(the end of compaction, point A of Fig. 13) unless initial yield stresses are given; steps "
+                  "are split into sub-steps (|ΔS_r| ≤ 0.002, |Δ ln σ'| ≤ 0.02 by default).",
+              ),
+              references=('pedrotti_tarantino',)),
 )}
 
 

@@ -19,6 +19,7 @@ SAMPLES = {
     "shear-eu": "shear_tests_eu.csv",
     "shear-curves": "shear_curves.csv",
     "triaxial-export": "triaxial_export",
+    "pt-volume": "pt_volume_path.csv",
 }
 
 

@@ -8,7 +8,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from . import bridge_commands, calculator_commands, data_commands
+from . import bridge_commands, calculator_commands, data_commands, pt_volume_command
 from .common import BUILDERS, JsonOpt, WorkersOpt, fail, run_batch
 from ..errors import CapredError
 
@@ -43,6 +43,7 @@ def _root(
 data_commands.register(app)
 bridge_commands.register(app)
 calculator_commands.register(app)
+pt_volume_command.register(app)
 
 
 @app.command()

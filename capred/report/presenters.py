@@ -115,6 +115,8 @@ PRESENTERS: dict[str, Presenter] = {
     "bridge rupture": Presenter(lambda r: {"rupture": _lazy("bridge_figures", "sheet_rupture")(r.rows())},
                                 _rupture_tables),
     "bridge yade-files": Presenter(_none, _yade_tables),
+    "pt-volume": Presenter(_one("pt_volume_figures", "sheet_pt_volume", "pt_volume"),
+                           _lazy("pt_volume_tables", "pt_volume_tables")),
 }
 
 

@@ -1,0 +1,426 @@
+"""`capred pt-volume`: void ratio along a path of total stress, pore pressures and S_r (Pedrotti & Tarantino).
+
+Reads a path table (one row per point: ``sigma``, ``u_w`` or ``suction``,
+``u_a``, ``S_r``; pressures in kPa unless a header says otherwise; optional
+``step`` and ``stage`` labels), takes the compressibility lines of the clay
+reconstituted from slurry (W) and compressed from dry powder (A) as options,
+and runs :func:`capred.physics.pedrotti_tarantino.simulate_volume_path`.
+Every point gives one record row: the inputs, σ'_W and σ'_A (eq. 1-2), e,
+e^W, e^A (eq. 5), the void-ratio changes of the four pore classes (eq. 6-10)
+and flags. Rows with an impossible state are reported by file line.
+
+References
+----------
+Pedrotti, M., Tarantino, A., "Effective stresses for unsaturated states stemming from clay
+microstructure", submitted to Geomechanics for Energy and the Environment: eq. 1-10, Fig. 13-17.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, fields
+
+import numpy as np
+
+from ..errors import OptionError
+from ..io.table import Column, read_table
+from ..physics import pedrotti_tarantino as pt
+from ..references import cite
+from ..result import InputFile, Options, Result, input_file, json_list, num, output
+
+SCHEMA = [
+    Column("step", "dimensionless", "-", "step number of the point", ("point", "point_no"), None, decisive=False),
+    Column("stage", "text", None, "stage label (A, A-B, B...)", ("label", "stage_label"), decisive=False),
+    Column("sigma", "pressure", "kPa", pt.PATH_COLUMNS["sigma"][1], ("total_stress", "mean_stress", "p")),
+    Column("u_w", "pressure", "kPa", pt.PATH_COLUMNS["u_w"][1], ("uw", "pore_water_pressure")),
+    Column("u_a", "pressure", "kPa", pt.PATH_COLUMNS["u_a"][1], ("ua", "pore_air_pressure")),
+    Column("suction", "pressure", "kPa", "matric suction u_a - u_w (instead of u_w)",
+           ("s", "matric_suction", "ua_uw"), "nonnegative"),
+    Column("S_r", "dimensionless", "-", pt.PATH_COLUMNS["S_r"][1], ("Sr", "S_R", "degree_of_saturation")),
+]
+
+#: the six line parameters: option field -> CLI option
+LINE_OPTIONS = {"lambda_W": "--lambda-w", "kappa_W": "--kappa-w", "e_ncl_W": "--e-ncl-w",
+                "lambda_A": "--lambda-a", "kappa_A": "--kappa-a", "e_ncl_A": "--e-ncl-a"}
+
+
+@dataclass(frozen=True)
+class PTVolumeOptions(Options):
+    """Options of `capred pt-volume`.
+
+    Attributes
+    ----------
+    lambda_W, kappa_W, e_ncl_W : float, optional
+        ncl slope, url slope and ncl void ratio at ``reference_stress`` of the clay reconstituted from slurry
+        [-] (natural-log slopes, λ = C_c/ln 10).
+    lambda_A, kappa_A, e_ncl_A : float, optional
+        The same for the clay compressed from dry powder [-].
+    reference_stress : float
+        σ_ref where the intercepts are read [Pa, or a string with a unit]; default 1 kPa.
+    example_kaolin : bool
+        Take the lines not given from ``EXAMPLE_KAOLIN`` (illustrative values, not from the paper; the run
+        says so in a warning).
+    initial_yield_W, initial_yield_A : float, optional
+        Largest σ'_W (σ'_A) carried before the first point [Pa]; default: the first point's own stress
+        (both parts on their ncl, the end of compaction).
+    substeps : int, optional
+        Sub-steps per step between two points; default: automatic (|ΔS_r| ≤ 0.002, |Δ ln σ'| ≤ 0.02).
+    """
+
+    QUANTITIES = {"lambda_W": "lambda_W", "kappa_W": "kappa_W", "e_ncl_W": "e_ncl_W", "lambda_A": "lambda_A",
+                  "kappa_A": "kappa_A", "e_ncl_A": "e_ncl_A", "reference_stress": "reference_stress",
+                  "initial_yield_W": "initial_yield_W", "initial_yield_A": "initial_yield_A"}
+    OPTION_NAMES = {**LINE_OPTIONS, "initial_yield_W": "--initial-yield-w", "initial_yield_A": "--initial-yield-a"}
+
+    lambda_W: float | None = None
+    kappa_W: float | None = None
+    e_ncl_W: float | None = None
+    lambda_A: float | None = None
+    kappa_A: float | None = None
+    e_ncl_A: float | None = None
+    reference_stress: float = 1.0e3
+    example_kaolin: bool = False
+    initial_yield_W: float | None = None
+    initial_yield_A: float | None = None
+    substeps: int | None = None
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if self.substeps is not None and (isinstance(self.substeps, bool)
+                                          or not isinstance(self.substeps, (int, np.integer))
+                                          or not 1 <= self.substeps <= 100_000):
+            raise OptionError(f"substeps (--substeps) must be a whole number from 1 to 100000 (got {self.substeps!r})")
+        if not isinstance(self.example_kaolin, bool):
+            raise OptionError(f"example_kaolin (--example-kaolin) must be True or False (got {self.example_kaolin!r})")
+        if all(getattr(self, k) is not None for k in LINE_OPTIONS) or self.example_kaolin:
+            self.parameters()  # kappa < lambda and the other joint checks, at once
+
+    def illustrative(self) -> list[str]:
+        """The line parameters taken from EXAMPLE_KAOLIN (empty unless ``example_kaolin``)."""
+        return [k for k in LINE_OPTIONS if getattr(self, k) is None] if self.example_kaolin else []
+
+    def parameters(self) -> pt.PTVolumeParameters:
+        """The lines of the run; OptionError naming every missing option when some are not given."""
+        missing = [k for k in LINE_OPTIONS if getattr(self, k) is None]
+        if missing and not self.example_kaolin:
+            raise OptionError(
+                "the volume-change model of Pedrotti & Tarantino needs the compressibility lines of the clay "
+                "reconstituted from slurry (W) and compressed from dry powder (A); missing: "
+                + ", ".join(LINE_OPTIONS[k] for k in missing)
+                + " (natural-log slopes lambda, kappa and the ncl void ratio e_ncl at --reference-stress, "
+                  "default 1 kPa), or --example-kaolin for illustrative kaolin values")
+        values = {k: (getattr(self, k) if getattr(self, k) is not None else getattr(pt.EXAMPLE_KAOLIN, k))
+                  for k in LINE_OPTIONS}
+        return pt.PTVolumeParameters(**values, reference_stress=self.reference_stress)
+
+
+@dataclass(frozen=True)
+class PTVolumePoints:
+    """The simulated path, one value per point (SI); JSON keys and results.csv columns from ``output``.
+
+    Increments (``de_*``, ``w_*``, ``sigma_star_*``) belong to the step that ends at the point (NaN at the
+    first point and where the class is absent).
+
+    Attributes
+    ----------
+    sigma, u_w, u_a, suction : ndarray
+        Total stress, pore-water and pore-air pressure and suction u_a − u_w [Pa].
+    S_r : ndarray
+        Degree of saturation of the path [-].
+    sigma_W, sigma_A : ndarray
+        σ'_W = (σ − u_w) S_r and σ'_A = (σ − u_a)(1 − S_r) [Pa] (eq. 1-2).
+    e, e_W, e_A : ndarray
+        Void ratio of the sample and of its water- and air-saturated parts [-] (eq. 5).
+    solid_fraction_W : ndarray
+        Share of the solids in the water-saturated part [-].
+    ncl_fraction_W, ncl_fraction_A : ndarray
+        Share of each part's solids on its ncl [-].
+    de_WW, de_AA : ndarray
+        Void-ratio change of the pores that kept their fluid [-] (eq. 7/10 and 6).
+    de_AW, de_WA : ndarray
+        Void-ratio change of the pores that changed fluid, air to water (eq. 9) and water to air (eq. 8) [-].
+    w_AW, w_WA : ndarray
+        Share of the receiving part's voids that changed fluid in the step [-] (the weights of eq. 3-4).
+    sigma_star_W, sigma_star_A : ndarray
+        Equivalent pre-consolidation stresses σ'*_W (eq. 9) and σ*_A (eq. 8) [Pa].
+    """
+
+    sigma: np.ndarray = output("sigma_kPa", "sigma", "kPa", 1e-3)
+    u_w: np.ndarray = output("u_w_kPa", "u_w", "kPa", 1e-3)
+    u_a: np.ndarray = output("u_a_kPa", "u_a", "kPa", 1e-3)
+    suction: np.ndarray = output("suction_kPa", "suction", "kPa", 1e-3)
+    S_r: np.ndarray = output("S_r", "S_r")
+    sigma_W: np.ndarray = output("sigma_W_kPa", "sigma_W", "kPa", 1e-3)
+    sigma_A: np.ndarray = output("sigma_A_kPa", "sigma_A", "kPa", 1e-3)
+    e: np.ndarray = output("e", "e")
+    e_W: np.ndarray = output("e_W", "e_W")
+    e_A: np.ndarray = output("e_A", "e_A")
+    solid_fraction_W: np.ndarray = output("solid_fraction_W", "solid_fraction_W")
+    ncl_fraction_W: np.ndarray = output("ncl_fraction_W", "ncl_fraction_W")
+    ncl_fraction_A: np.ndarray = output("ncl_fraction_A", "ncl_fraction_A")
+    de_WW: np.ndarray = output("de_WW", "de_WW")
+    de_AA: np.ndarray = output("de_AA", "de_AA")
+    de_AW: np.ndarray = output("de_AW", "de_AW")
+    de_WA: np.ndarray = output("de_WA", "de_WA")
+    w_AW: np.ndarray = output("w_AW", "w_AW")
+    w_WA: np.ndarray = output("w_WA", "w_WA")
+    sigma_star_W: np.ndarray = output("sigma_star_W_kPa", "sigma_star_W", "kPa", 1e-3)
+    sigma_star_A: np.ndarray = output("sigma_star_A_kPa", "sigma_star_A", "kPa", 1e-3)
+
+    @classmethod
+    def from_path(cls, path: pt.PTVolumePath) -> "PTVolumePoints":
+        names = {f.name for f in fields(cls)} - {"suction"}
+        return cls(suction=path.u_a - path.u_w, **{k: getattr(path, k) for k in names})
+
+
+#: boolean flags of each point (JSON true/false, CSV True/False)
+FLAGS = ("loading_W", "loading_A", "yielding_W", "yielding_A")
+
+
+@dataclass(frozen=True)
+class Stage:
+    """A run of consecutive points with the same ``stage`` label.
+
+    Attributes
+    ----------
+    label : str
+        The label.
+    first, last : int
+        0-based indices of its first and last point.
+    de, de_W, de_A : float
+        Change of e, e^W, e^A [-] from the point before the run (its first point for the first run) to its
+        last point.
+    """
+
+    label: str
+    first: int
+    last: int
+    de: float
+    de_W: float
+    de_A: float
+
+
+def stage_runs(labels, e, e_W, e_A) -> list[Stage]:
+    """Runs of consecutive equal stage labels with the changes of e, e^W and e^A over each (see Stage)."""
+    out: list[Stage] = []
+    start = 0
+    for i in range(1, len(labels) + 1):
+        if i == len(labels) or labels[i] != labels[start]:
+            before = max(start - 1, 0)
+            out.append(Stage(str(labels[start]), start, i - 1, float(e[i - 1] - e[before]),
+                             float(e_W[i - 1] - e_W[before]), float(e_A[i - 1] - e_A[before])))
+            start = i
+    return out
+
+
+@dataclass(repr=False)
+class PTVolumeResult(Result):
+    """Result of `capred pt-volume`.
+
+    Attributes
+    ----------
+    source : str
+        The path file.
+    points : PTVolumePoints
+        The simulated path (records of every point).
+    path : PTVolumePath
+        The physics' own result (flags, substeps, the lines used).
+    step : ndarray
+        Step of each point (the file's ``step`` column, else 0, 1, 2...) [-].
+    stage : list of str or None
+        Stage labels of the points (None without a ``stage`` column).
+    line : ndarray of int
+        Line of each point in the file.
+    stages : list of Stage
+        Runs of equal stage labels (empty without labels).
+    """
+
+    command = "pt-volume"
+    json_name = "results.json"
+
+    source: str
+    points: PTVolumePoints
+    path: pt.PTVolumePath
+    step: np.ndarray
+    stage: list | None
+    line: np.ndarray
+    stages: list
+    options: PTVolumeOptions
+    notes: list[str] = field(default_factory=list)
+    inputs: list[InputFile] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def params(self) -> pt.PTVolumeParameters:
+        return self.path.params
+
+    def fluid_change(self) -> list[str]:
+        """Per point: 'air_to_water', 'water_to_air' or '' (pores that changed fluid in the step ending there)."""
+        aw, wa = self.points.w_AW > 0, self.points.w_WA > 0
+        return ["air_to_water" if a else ("water_to_air" if w else "") for a, w in zip(aw, wa)]
+
+    def parameters_json(self) -> dict:
+        p = self.params
+        return {"lambda_W": num(p.lambda_W), "kappa_W": num(p.kappa_W), "e_ncl_W": num(p.e_ncl_W),
+                "lambda_A": num(p.lambda_A), "kappa_A": num(p.kappa_A), "e_ncl_A": num(p.e_ncl_A),
+                "reference_stress_kPa": num(p.reference_stress / 1e3),
+                "illustrative": self.options.illustrative()}
+
+    def rows(self) -> list[dict]:
+        """JSON rows of the points."""
+        from ..result import record_json_columns
+
+        n = len(self.step)
+        cols = {"line": [int(x) for x in self.line], "step": json_list(self.step)}
+        if self.stage is not None:
+            cols["stage"] = list(self.stage)
+        cols.update(record_json_columns({None: self.points}, 0, n))
+        for k in FLAGS:
+            cols[k] = [bool(x) for x in getattr(self.path, k)]
+        cols["fluid_change"] = self.fluid_change()
+        keys = tuple(cols)
+        return [dict(zip(keys, vals)) for vals in zip(*cols.values())]
+
+    def payload(self, lazy: bool = False) -> dict:
+        e = self.points.e
+        return {
+            "source": self.source,
+            "model": f"{cite('pedrotti_tarantino')}, eq. 1-10",
+            "parameters": self.parameters_json(),
+            "n_points": len(self.step),
+            "e_initial": num(e[0]), "e_final": num(e[-1]),
+            "substeps": [int(x) for x in self.path.substeps],
+            "points": self.rows(),
+            "stages": [{"stage": s.label, "first_step": num(self.step[s.first]), "last_step": num(self.step[s.last]),
+                        "first_line": int(self.line[s.first]), "last_line": int(self.line[s.last]),
+                        "e_end": num(e[s.last]), "de": num(s.de), "de_W": num(s.de_W), "de_A": num(s.de_A),
+                        "S_r_end": num(self.points.S_r[s.last]),
+                        "sigma_W_end_kPa": num(self.points.sigma_W[s.last] / 1e3),
+                        "sigma_A_end_kPa": num(self.points.sigma_A[s.last] / 1e3)} for s in self.stages],
+        }
+
+    def tables(self) -> dict:
+        """results: one row per point; stages: one row per run of equal stage labels (when labelled)."""
+        cached = self.__dict__.get("_tables")
+        if cached is None:
+            cached = self.__dict__["_tables"] = self._tables()
+        return cached
+
+    def _tables(self) -> dict:
+        import pandas as pd
+
+        from ..result import record_columns
+
+        cols: dict = {"line": self.line, "step [-]": self.step}
+        if self.stage is not None:
+            cols["stage"] = self.stage
+        cols.update(record_columns({None: self.points}))
+        for k in FLAGS:
+            cols[k] = np.asarray(getattr(self.path, k), bool)
+        cols["fluid_change"] = self.fluid_change()
+        out = {"results": pd.DataFrame(cols)}
+        if self.stages:
+            def head(k: str) -> str:
+                if k.endswith("_kPa"):
+                    return k[:-4] + " [kPa]"
+                return k if k in ("stage", "first_line", "last_line") else f"{k} [-]"
+
+            out["stages"] = pd.DataFrame([{head(k): v for k, v in s.items()} for s in self.payload()["stages"]])
+        return out
+
+    def method_notes(self) -> tuple[list[str], list[str]]:
+        p = self.params
+        text = (f"Lines of this run: slurry (W) λ_W = {p.lambda_W:g}, κ_W = {p.kappa_W:g}, e_ncl,W = {p.e_ncl_W:g}; "
+                f"dry powder (A) λ_A = {p.lambda_A:g}, κ_A = {p.kappa_A:g}, e_ncl,A = {p.e_ncl_A:g}; intercepts at "
+                f"σ_ref = {p.reference_stress / 1e3:g} kPa.")
+        if self.options.illustrative():
+            text += (" " + ", ".join(self.options.illustrative()) + " are the illustrative EXAMPLE_KAOLIN values "
+                     "(not from the paper, which prints none).")
+        return [text], ["pedrotti_tarantino"]
+
+
+def run_pt_volume(source, options: PTVolumeOptions | None = None) -> PTVolumeResult:
+    """Simulate the void ratio along a path with the volume-change model of Pedrotti & Tarantino.
+
+    Parameters
+    ----------
+    source : str, Path, DataFrame or TableSource
+        The path: one row per point with ``sigma`` (total mean stress), ``u_w`` (or ``suction`` = u_a − u_w),
+        ``u_a`` (optional, default 0: atmospheric air) [kPa unless the header gives a unit] and ``S_r`` [-];
+        optional ``step`` and ``stage`` labels.
+    options : PTVolumeOptions
+        The lines of slurry (W) and dry-powder (A) clay (or ``example_kaolin``), the initial yield stresses
+        and the sub-steps.
+
+    Returns
+    -------
+    PTVolumeResult
+        One record per point: σ'_W, σ'_A, e, e^W, e^A, the pore-class changes and flags.
+
+    Raises
+    ------
+    InputError
+        Missing columns or points that cannot be simulated (S_r outside [0, 1], σ − u_w ≤ 0 where the
+        water-saturated part exists, σ − u_a ≤ 0 where the air-saturated part exists), each with its line.
+    OptionError
+        Lines missing or out of range.
+
+    References
+    ----------
+    Pedrotti & Tarantino (submitted), eq. 1-2 (σ'_W, σ'_A), 5 (coupling), 6-10 (pore classes), Fig. 13-17.
+    """
+    opt = options if options is not None else PTVolumeOptions()
+    params = opt.parameters()
+    table = read_table(source, SCHEMA)
+    notes = list(table.notes)
+    for name in ("sigma", "S_r"):
+        if name not in table.columns:
+            table.missing_column(name)
+    if "u_w" not in table.columns and "suction" not in table.columns:
+        table.missing_column("u_w", " (or 'suction' = u_a - u_w)")
+    table.raise_if_problems()
+    u_a = table.get("u_a", 0.0).copy()
+    if "u_a" not in table.columns:
+        notes.append("no u_a column: the pore air is taken as atmospheric (u_a = 0)")
+    if "u_w" in table.columns:
+        u_w = table.get("u_w").copy()
+        if "suction" in table.columns:
+            fill = np.isnan(u_w)
+            u_w[fill] = (u_a - table.get("suction"))[fill]
+    else:
+        u_w = u_a - table.get("suction")
+    sigma, S_r = table.get("sigma"), table.get("S_r")
+    values = {"sigma": sigma, "u_w": u_w, "u_a": u_a, "S_r": S_r}
+    for name, v in values.items():
+        where = name if name in table.columns else ("suction" if name == "u_w" else None)
+        for i in np.flatnonzero(np.isnan(v)):
+            table.add_problem(i, where, f"no value for '{name}'")
+    table.raise_if_problems()
+    for i, col, message in pt.path_problems(sigma, u_w, u_a, S_r):
+        shown = col if col in table.columns else ("suction" if col == "u_w" and "suction" in table.columns
+                                                  else None)
+        table.add_problem(i if i >= 0 else None, shown, message)
+    table.raise_if_problems()
+
+    path = pt.simulate_volume_path(sigma, u_w, u_a, S_r, params=params, initial_yield_W=opt.initial_yield_W,
+                                   initial_yield_A=opt.initial_yield_A, substeps=opt.substeps)
+    points = PTVolumePoints.from_path(path)
+    n = len(sigma)
+    step = table.get("step").copy() if "step" in table.columns else np.arange(n, dtype=float)
+    if "step" in table.columns and np.isnan(step).any():
+        notes.append("blank 'step' cells: those points are numbered by their position (from 0)")
+        step[np.isnan(step)] = np.flatnonzero(np.isnan(step))
+    stage = [str(s) for s in table.columns["stage"]] if "stage" in table.columns else None
+    stages = stage_runs(stage, path.e, path.e_W, path.e_A) if stage is not None else []
+
+    warnings = list(opt.warnings) + list(table.warnings)
+    if opt.illustrative():
+        warnings.append("lines " + ", ".join(opt.illustrative()) + " are EXAMPLE_KAOLIN: illustrative values for "
+                        "a kaolin, NOT from Pedrotti & Tarantino (who print none) nor from this soil; the void "
+                        "ratios show the model's behaviour, not a prediction")
+    if opt.substeps is None:
+        notes.append(f"{int(path.substeps.sum())} sub-steps in all ({len(path.substeps)} steps; automatic: "
+                     "|ΔS_r| ≤ 0.002 and |Δ ln σ'| ≤ 0.02 in each)")
+    return PTVolumeResult(table.path, points, path, step, stage, np.asarray(table.lines, int), stages, opt, notes,
+                          [input_file(source, table)], warnings)
+
+
+__all__ = ["run_pt_volume", "PTVolumeOptions", "PTVolumeResult", "PTVolumePoints", "Stage", "SCHEMA"]
