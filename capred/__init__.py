@@ -42,7 +42,27 @@ _API = {
     "OptionError": "capred.errors",
     "OutputError": "capred.errors",
     "FitError": "capred.errors",
+    "MissingFileError": "capred.errors",
+    "CapredWarning": "capred.errors",
 }
+
+
+def _warning(run):
+    """The public form of a run function: the result's warnings are also emitted as CapredWarning."""
+    import functools
+
+    @functools.wraps(run)
+    def public(*args, **kwargs):
+        import warnings
+
+        from .errors import CapredWarning
+
+        result = run(*args, **kwargs)
+        for text in result.all_warnings():
+            warnings.warn(text, CapredWarning, stacklevel=2)
+        return result
+
+    return public
 
 __all__ = ["__version__", *_API]
 
@@ -53,5 +73,9 @@ def __dir__() -> list[str]:
 
 def __getattr__(name: str):
     if name in _API:
-        return getattr(import_module(_API[name]), name)
+        value = getattr(import_module(_API[name]), name)
+        if name == "run" or name.startswith("run_") or name in ("solve_bridges", "bridge_curve", "compare_measured",
+                                                                  "rupture_distances"):
+            value = globals().setdefault(f"_public_{name}", _warning(value))
+        return value
     raise AttributeError(f"module 'capred' has no attribute '{name}'")

@@ -103,3 +103,11 @@ class LimitError(InputError):
         self.limit = limit
         self.value = value
         super().__init__(problem)
+
+
+class CapredWarning(UserWarning):
+    """An implausible value or a model used outside its regime: the run goes on, the result says so.
+
+    Every such warning is also in the result's ``warnings`` (JSON, console, report.html); the public API
+    (``capred.run_shear`` and friends) emits each as a Python warning of this class.
+    """

@@ -45,6 +45,15 @@ REFERENCES: dict[str, Reference] = {
     "morvan2016": Reference(
         "Morvan et al.", 2016, "Study of the variation of B with Sr",
         "E-UNSAT 2016, E3S Web of Conferences"),
+    "morvan_wong_branque2010": Reference(
+        "Morvan et al.", 2010, "An unsaturated soil model with minimal number of parameters based on bounding "
+        "surface plasticity", "Int. J. Numer. Anal. Meth. Geomech. 34:1512-1537"),
+    "pedrotti_tarantino2019": Reference(
+        "Pedrotti & Tarantino", 2019, "A conceptual constitutive model unifying slurried (saturated), compacted "
+        "(unsaturated) and dry states", "Géotechnique 69(3):217-233"),
+    "astm_d4767": Reference(
+        "ASTM International", 2011, "Standard test method for consolidated undrained triaxial compression test "
+        "for cohesive soils", "ASTM D4767-11"),
     "vangenuchten1980": Reference(
         "van Genuchten", 1980,
         "A closed-form equation for predicting the hydraulic conductivity of unsaturated soils",
@@ -89,10 +98,38 @@ REFERENCES: dict[str, Reference] = {
         "Willett et al.", 2000, "Capillary bridges between two spherical bodies",
         "Langmuir 16:9396-9405", "10.1021/la000657y"),
     "israelachvili": Reference(
-        "Israelachvili", None, "Intermolecular and Surface Forces", "Academic Press"),
+        "Israelachvili", 2011, "Intermolecular and Surface Forces", "3rd ed., Academic Press"),
+    "orr1975": Reference(
+        "Orr et al.", 1975, "Pendular rings between solids: meniscus properties and capillary force",
+        "J. Fluid Mech. 67(4):723-742", "10.1017/S0022112075000572"),
+    "fisher1926": Reference(
+        "Fisher", 1926, "On the capillary forces in an ideal soil; correction of formulae given by W. B. Haines",
+        "J. Agric. Sci. 16(3):492-505", "10.1017/S0021859600007838"),
     "duriez_wan2017": Reference(
         "Duriez & Wan", 2017, "Contact angle mechanical influence in wet granular soils",
         "Acta Geotech. 12:67-83", "10.1007/s11440-016-0500-6"),
+    "golub_pereyra1973": Reference(
+        "Golub & Pereyra", 1973, "The differentiation of pseudo-inverses and nonlinear least squares problems "
+        "whose variables separate", "SIAM J. Numer. Anal. 10(2):413-432", "10.1137/0710036"),
+    "marquardt1963": Reference(
+        "Marquardt", 1963, "An algorithm for least-squares estimation of nonlinear parameters",
+        "J. Soc. Ind. Appl. Math. 11(2):431-441", "10.1137/0111030"),
+    "bates_watts1988": Reference(
+        "Bates & Watts", 1988, "Nonlinear Regression Analysis and Its Applications", "Wiley",
+        "10.1002/9780470316757"),
+    "efron_tibshirani1993": Reference(
+        "Efron & Tibshirani", 1993, "An Introduction to the Bootstrap", "Chapman & Hall",
+        "10.1007/978-1-4899-4541-9"),
+    "murphy_topel1985": Reference(
+        "Murphy & Topel", 1985, "Estimation and inference in two-step econometric models",
+        "J. Bus. Econ. Stat. 3(4):370-379", "10.1080/07350015.1985.10509470"),
+    "draper_smith1998": Reference(
+        "Draper & Smith", 1998, "Applied Regression Analysis", "3rd ed., Wiley", "10.1002/9781118625590"),
+    "seber_wild1989": Reference(
+        "Seber & Wild", 1989, "Nonlinear Regression", "Wiley", "10.1002/0471725315"),
+    "burnham_anderson2002": Reference(
+        "Burnham & Anderson", 2002, "Model Selection and Multimodel Inference", "2nd ed., Springer",
+        "10.1007/b97636"),
     "seki2007": Reference(
         "Seki", 2007, "SWRC fit - a nonlinear fitting program with a water retention curve for soils "
         "having unimodal and bimodal pore structure", "Hydrol. Earth Syst. Sci. Discuss. 4:407-437"),

@@ -152,7 +152,8 @@ def retention(
     Example: capred retention column.csv --model vg,bc,kosugi --fix theta_r=0
     """
     from ..errors import OptionError
-    from ..pipelines.retention import MODELS, RetentionOptions, parse_fixed
+    from ..fitting.retention_models import MODELS
+    from ..pipelines.retention import RetentionOptions, parse_fixed
 
     names = [m.strip().lower() for m in model.split(",") if m.strip()]
     if names == ["all"]:
@@ -177,18 +178,12 @@ def _curves_source(path: Optional[Path], thousands):
 
 def _model_list(text: str) -> tuple[str, ...]:
     from ..errors import OptionError
-    from ..physics.effective_stress_models import REGISTRY, THESIS_MODELS
+    from ..physics.effective_stress_models import resolve_models
 
-    out: list[str] = []
-    for name in (t.strip().lower().replace("-", "_") for t in text.split(",") if t.strip()):
-        for m in {"thesis": THESIS_MODELS, "all": tuple(REGISTRY)}.get(name, (name,)):
-            if m not in REGISTRY:
-                raise OptionError(f"--models: unknown model '{m}'; choose from {', '.join(REGISTRY)}")
-            if m not in out:
-                out.append(m)
-    if not out:
-        raise OptionError("--models: no model named")
-    return tuple(out)
+    try:
+        return resolve_models(text)
+    except ValueError as exc:
+        raise OptionError(f"--models: {exc}") from None
 
 
 def _envelope_pair(text: Optional[str]):

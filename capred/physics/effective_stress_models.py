@@ -17,6 +17,7 @@ References
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -313,7 +314,44 @@ REGISTRY: dict[str, EffectiveStressModel] = {m.name: m for m in (
 
 #: The thesis's four models in display order (the default of `capred shear --models`).
 THESIS_MODELS = tuple(m for m, e in REGISTRY.items() if e.thesis)
-MODEL_LABELS = {m: e.label for m, e in REGISTRY.items()}
+
+
+class _Labels(Mapping):
+    """model name -> label, read from the registry at each access (an entry added later is labelled too)."""
+
+    def __getitem__(self, name: str) -> str:
+        return REGISTRY[name].label
+
+    def __iter__(self):
+        return iter(REGISTRY)
+
+    def __len__(self) -> int:
+        return len(REGISTRY)
+
+
+MODEL_LABELS = _Labels()
+
+
+def resolve_models(names) -> tuple[str, ...]:
+    """Model names as a user gives them: a comma-separated string or a sequence, where ``thesis`` stands for
+    the thesis's four and ``all`` for every model of the registry; duplicates dropped, order kept.
+
+    Raises
+    ------
+    ValueError
+        For an unknown name (the message lists the choices) or an empty selection.
+    """
+    items = names.split(",") if isinstance(names, str) else list(names)
+    out: list[str] = []
+    for name in (str(t).strip().lower().replace("-", "_") for t in items if str(t).strip()):
+        for m in {"thesis": THESIS_MODELS, "all": tuple(REGISTRY)}.get(name, (name,)):
+            if m not in REGISTRY:
+                raise ValueError(f"unknown model '{m}'; choose from {', '.join(REGISTRY)}, thesis or all")
+            if m not in out:
+                out.append(m)
+    if not out:
+        raise ValueError("no model named")
+    return tuple(out)
 
 
 def predict(model: str, d: ModelInputs) -> tuple[np.ndarray, np.ndarray]:

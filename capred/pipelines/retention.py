@@ -35,8 +35,6 @@ SCHEMA = [
 ]
 
 #: the models of `--model all`, in display order
-MODELS = {name: m.label for name, m in FITTERS.items()}
-REFERENCE = {name: m.reference for name, m in FITTERS.items()}
 
 # internal parameter -> (report name, factor SI -> report unit); water quantities named by the data kind
 _REPORT = {"alpha": ("alpha_per_kPa", 1e3), "alpha1": ("alpha1_per_kPa", 1e3), "alpha2": ("alpha2_per_kPa", 1e3),
@@ -54,7 +52,16 @@ def _names(quantity: str) -> dict[str, str]:
 
 
 def report_name(internal: str, quantity: str) -> str:
-    return _names(quantity).get(internal) or _REPORT[internal][0]
+    return _names(quantity).get(internal) or _report(internal)[0]
+
+
+def _report(internal: str) -> tuple[str, float]:
+    """(report name, factor SI -> report unit) of a parameter: from the table above, else from the unit its
+    registry entry gives (Pa -> '<name>_kPa', 1/Pa -> '<name>_per_kPa', dimensionless as it is)."""
+    if internal in _REPORT:
+        return _REPORT[internal]
+    unit = next((p.unit for m in FITTERS.values() for p in m.parameters if p.name == internal), "-")
+    return {"Pa": (f"{internal}_kPa", 1e-3), "1/Pa": (f"{internal}_per_kPa", 1e3)}.get(unit, (internal, 1.0))
 
 
 def _to_internal(name: str) -> tuple[str, float]:
@@ -86,10 +93,10 @@ class RetentionOptions(Options):
         super().__post_init__()
         models = (self.models,) if isinstance(self.models, str) else tuple(self.models)
         if models == ("all",):
-            models = tuple(MODELS)
-        unknown = [m for m in models if m not in MODELS]
+            models = tuple(FITTERS)
+        unknown = [m for m in models if m not in FITTERS]
         if unknown or not models:
-            raise OptionError(f"unknown model {unknown[0] if unknown else ''!r}; choose from {', '.join(MODELS)} "
+            raise OptionError(f"unknown model {unknown[0] if unknown else ''!r}; choose from {', '.join(FITTERS)} "
                               "or all")
         object.__setattr__(self, "models", models)
         for name in self.fixed:
@@ -128,7 +135,7 @@ class RetentionResult(Result):
         out: dict = {}
         for k, v in f.params.items():
             name = report_name(k, self.quantity)
-            scale = _REPORT.get(k, (None, 1.0))[1] if k not in ("y_s", "y_r") else 1.0
+            scale = _report(k)[1] if k not in ("y_s", "y_r") else 1.0
             se = f.stderr.get(k)
             ci = f.ci95(k)
             out[name] = num(v * scale)
@@ -149,7 +156,8 @@ class RetentionResult(Result):
                     "parameters": [report_name(k, self.quantity) for k in f.params],
                     "held": [report_name(k, self.quantity) for k in getattr(f, "held", ())],
                     "notes": list(getattr(f, "notes", [])),
-                    "model": MODELS.get(model, model), "reference": cite(REFERENCE.get(model, "kool_parker1987"))})
+                    "model": FITTERS[model].label if model in FITTERS else model,
+                    "reference": cite(FITTERS[model].reference if model in FITTERS else "kool_parker1987")})
         return out
 
     def model_selection(self, branch: str) -> dict:
@@ -288,6 +296,12 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
         table.missing_column("rho_d", " (needed with the gravimetric 'w': theta = w rho_d/rho_w)")
     table.raise_if_problems()
     s = _suction(table, opt)
+    positive = s[s > 0]
+    with np.errstate(over="ignore", divide="ignore"):
+        span = positive.max() / positive.min() if positive.size else 1.0
+    if positive.size and not (np.isfinite(span) and 1e-30 < positive.min() and positive.max() < 1e30):
+        raise FitError(f"{table.path}: suctions from {positive.min():.3g} to {positive.max():.3g} Pa cannot be "
+                       "fitted: check the units of the file and --gamma-w")
     if "theta" in table.columns or "w" in table.columns:
         quantity = "theta"
         y = table.get("theta").copy()
@@ -335,7 +349,7 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
                 continue
             fits[b][m] = f
             for k in f.at_bounds():
-                scale = _REPORT.get(k, (None, 1.0))[1] if k not in ("y_s", "y_r") else 1.0
+                scale = _report(k)[1] if k not in ("y_s", "y_r") else 1.0
                 warnings.append(f"branch '{b}', model {m}: {report_name(k, quantity)} = {f.params[k] * scale:.6g} "
                                 "lies at its bound")
     if not any(fits.values()):

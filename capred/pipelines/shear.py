@@ -62,8 +62,10 @@ class ModelParams(Options):
     ``air_entry`` [Pa] and ``vg_alpha`` [1/Pa] also take a unit: ``air_entry="5 kPa"``.
     """
 
-    QUANTITIES = {"air_entry": "air_entry", "vg_alpha": "vg_alpha", "contact_angle": "contact_angle"}
-    OPTION_NAMES = {"s_res": "--s-res"}
+    QUANTITIES = {"air_entry": "air_entry", "vg_alpha": "vg_alpha", "contact_angle": "contact_angle",
+                  "s_res": "S_res", "vanapalli_kappa": "vanapalli_kappa", "vg_n": "vg_n", "vg_m": "vg_m",
+                  "eta": "khalili_eta"}
+    OPTION_NAMES = {"s_res": "--s-res", "eta": "--eta"}
 
     s_res: float | None = None  # residual S_R (Vanapalli)
     vanapalli_kappa: float = 1.0
@@ -160,11 +162,10 @@ class ShearOptions(Options):
             raise OptionError(f"bootstrap (--bootstrap) must be a whole number >= 0 (got {self.bootstrap!r})")
         if isinstance(self.seed, bool) or not isinstance(self.seed, int) or self.seed < 0:
             raise OptionError(f"seed (--seed) must be a whole number >= 0 (got {self.seed!r})")
-        models = (self.models,) if isinstance(self.models, str) else tuple(self.models)
-        unknown = [m for m in models if m not in esm.REGISTRY]
-        if unknown or not models:
-            raise OptionError(f"models: unknown model '{unknown[0] if unknown else ''}'; choose from "
-                              f"{', '.join(esm.REGISTRY)}")
+        try:
+            models = esm.resolve_models(self.models)
+        except (ValueError, TypeError) as exc:
+            raise OptionError(f"models (--models): {exc}") from None
         object.__setattr__(self, "models", models)
         if not 0.0 < self.confidence < 1.0:
             raise OptionError(f"confidence must lie between 0 and 1 (got {self.confidence})")
@@ -443,7 +444,11 @@ def _law_dict(model: str, law) -> dict:
     se = {scale.get(k, (k, 1.0))[0]: (None if v is None else num(v * scale.get(k, (k, 1.0))[1]))
           for k, v in law.se.items()}
     ic = information_criteria(law.rss, law.n, len(law.params) - len(law.fixed))
-    return {"params": params, "se": se, "fixed": list(law.fixed), "rss_kPa2": num(law.rss / 1e6),
+    ci = {scale.get(k, (k, 1.0))[0]: (None if v is None else [num(v[0] * scale.get(k, (k, 1.0))[1]),
+                                                               num(v[1] * scale.get(k, (k, 1.0))[1])])
+          for k, v in law.ci95.items()}
+    return {"params": params, "se": se, "ci95": ci, "dof": law.dof, "fixed": list(law.fixed),
+            "rss_kPa2": num(law.rss / 1e6),
             "aicc": num(ic["aicc"]), "bic": num(ic["bic"]), "n": law.n, "converged": law.converged}
 
 
@@ -457,9 +462,11 @@ def _ranking_dict(r) -> dict:
 
 
 def _fit_dict(fit: LineFit) -> dict:
-    phi = np.degrees(np.arctan(fit.slope))
+    slope = np.float64(fit.slope)  # numpy arithmetic: an absurd input overflows to inf (null in JSON), no exception
+    phi = np.degrees(np.arctan(slope))
     # delta method: d(phi)/d(tan phi) = 1 / (1 + tan^2 phi)
-    phi_se = np.degrees(fit.slope_se / (1.0 + fit.slope**2))
+    with np.errstate(over="ignore", invalid="ignore"):
+        phi_se = np.degrees(fit.slope_se / (1.0 + slope**2))
     lo, hi = fit.slope_ci
     c_lo, c_hi = fit.intercept_ci
     return {
@@ -664,6 +671,11 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         curves = pick_peaks(opt.curves, table, box, opt.area_correction)
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # NaN and overflow are reported below
         d = _derive(table, opt, box, curves.tau_peak if curves else None)
+    if curves is not None and opt.area_correction != "none":
+        # sigma_N on the corrected area at the peak, as tau (ASTM D3080 / BS 1377-7 practice)
+        d["sigma_N"] = d["sigma_N"] * curves.area_ratio_at_peak
+        table.notes.append(f"--area-correction {opt.area_correction}: tau and sigma_N of the tests with a curve are "
+                           "taken on the corrected contact area at the peak (ASTM D3080, BS 1377-7)")
     if curves is not None:
         table.problems += curves.problems
     table.raise_if_problems()  # every problem of the file (and of the curves) at once
@@ -813,33 +825,22 @@ def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions)
     tan_phi = np.array([fits[m].slope for m in mat])
     d = esm.ModelInputs(tests["sigma_N"], tests["suction"], tests["S_R"], tests["R"], tests["tau_max"], wet, mat,
                         c, tan_phi, opt.surface_tension, opt.model_params)
-    laws = sa.fit_laws(d, opt.models, list(fits), opt.model_params)
+    laws = sa.fit_laws(d, opt.models, list(fits), opt.model_params, fits=fits)
     d = dataclasses.replace(d, fitted={model: {m: law.params for m, law in by_mat.items()}
                                        for model, by_mat in laws.items()})
     cov, s2, t = sa.fit_covariances(fits, mat)
-    dof = np.array([fits[m].dof for m in mat], dtype=float)
+    dof = sa.fit_dof(fits, mat)
     predictions = {}
     for model in opt.models:
         eff, tau = esm.predict(model, d)
-        lo, hi = sa.prediction_band(model, d, cov, t)
-        # the prediction interval of a new test: the mean band's variance plus one test's scatter (s^2)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            half_mean = np.where(t > 0, (hi - lo) / (2 * t), np.nan)
-        half_new = t * np.sqrt(half_mean**2 + s2)
+        # mean band: the dry envelope's (and a fitted law's) uncertainty; prediction interval: plus one test's scatter
+        b = sa.tau_bands(model, d, cov, s2, dof, laws, opt.confidence)
         predictions[model] = ModelPrediction(
-            model, sigma_eff=eff, tau=tau, residual=tau - tests["tau_max"], tau_mean_ci=(lo, hi),
-            tau_prediction_interval=(tau - half_new, tau + half_new),
+            model, sigma_eff=eff, tau=tau, residual=tau - tests["tau_max"], tau_mean_ci=(b.mean_low, b.mean_high),
+            tau_prediction_interval=(b.pred_low, b.pred_high),
             sigma_cap=np.where(wet, (tau - c) / tan_phi - tests["sigma_N"], np.nan))
-    cap, cap_se, chi, chi_se = sa.back_analysis(tests["tau_max"], tests["sigma_N"], tests["suction"], c, tan_phi,
-                                                cov, s2)
-    on_wet = {k: np.where(wet, v, np.nan) for k, v in (("cap", cap), ("cap_se", cap_se), ("chi", chi),
-                                                      ("chi_se", chi_se))}
-    back = BackAnalysis(
-        sigma_cap=on_wet["cap"], sigma_cap_se=on_wet["cap_se"],
-        sigma_cap_ci=(on_wet["cap"] - t * on_wet["cap_se"], on_wet["cap"] + t * on_wet["cap_se"]),
-        chi_back=on_wet["chi"], chi_back_se=on_wet["chi_se"],
-        chi_back_ci=(on_wet["chi"] - t * on_wet["chi_se"], on_wet["chi"] + t * on_wet["chi_se"]),
-        dof=np.where(wet, dof, np.nan))
+    back = sa.back_analysis_intervals(tests["tau_max"], tests["sigma_N"], tests["suction"], c, tan_phi, cov, s2,
+                                      dof, opt.confidence, wet=wet)
     extra: dict[str, dict] = {}  # per material: what a model reports beside the dry fit (Fredlund's phi_b)
     for model in opt.models:
         per_material = esm.REGISTRY[model].material_values

@@ -62,6 +62,10 @@ class ShearCurves:
     curves: dict[str, tuple[np.ndarray, np.ndarray, int]]  # test_id -> (displacement [m], tau [Pa], peak index)
     problems: list = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
+    #: test_id -> vertical displacement [m] (positive up: dilation) at the readings of ``curves``, where given
+    vertical: dict[str, np.ndarray] = field(default_factory=dict)
+    #: per test: nominal over corrected area at the peak, A / A_c(delta_peak) [-] (1 without area correction)
+    area_ratio_at_peak: np.ndarray | None = None
 
     def per_test(self) -> dict[str, np.ndarray]:
         return {"displacement_at_peak": self.displacement_at_peak, "tau_residual": self.tau_residual,
@@ -78,7 +82,8 @@ def pick_peaks(source, tests: Table, box_area: np.ndarray, area_correction: str 
     if "F" not in table.columns and "tau" not in table.columns:
         table.missing_column("F", " (or 'tau')")
     n = len(tests)
-    out = ShearCurves(table, *(np.full(n, np.nan) for _ in range(4)), {}, table.problems, list(table.warnings))
+    out = ShearCurves(table, *(np.full(n, np.nan) for _ in range(4)), {}, table.problems, list(table.warnings),
+                      area_ratio_at_peak=np.ones(n))
     if table.missing or "test_id" not in tests.columns:
         return out
     ids = tests.columns["test_id"]
@@ -120,6 +125,11 @@ def pick_peaks(source, tests: Table, box_area: np.ndarray, area_correction: str 
             at_peak = int(np.flatnonzero(order == k)[0])
             out.dilatancy_angle[i] = float(np.degrees(np.arctan(slope[at_peak])))
         out.curves[str(tid)] = (d, tau, k)
+        if np.isfinite(vert).any():
+            out.vertical[str(tid)] = vert
+        if np.isfinite(box_area[i]):
+            # the normal force acts on the same corrected area as the shear force (ASTM D3080, BS 1377-7)
+            out.area_ratio_at_peak[i] = float(box_area[i] / corrected_area(box_area[i], d[k], area_correction))
         given = tests.get("tau_max")[i]
         if np.isfinite(given) and abs(given - tau[k]) > 0.01 * abs(tau[k]):
             out.warnings.append(f"test '{tid}': tau_max {given / 1e3:.4g} kPa in the tests table differs by more "
