@@ -416,7 +416,7 @@ def run_pt_volume(source, options: PTVolumeOptions | None = None) -> PTVolumeRes
         warnings.append("lines " + ", ".join(opt.illustrative()) + " are EXAMPLE_KAOLIN: illustrative values for "
                         "a kaolin, NOT from Pedrotti & Tarantino (who print none) nor from this soil; the void "
                         "ratios show the model's behaviour, not a prediction")
-    if opt.substeps is None:
+    if opt.substeps is None and len(path.substeps):
         notes.append(f"{int(path.substeps.sum())} sub-steps in all ({len(path.substeps)} steps; automatic: "
                      "|ΔS_r| ≤ 0.002 and |Δ ln σ'| ≤ 0.02 in each)")
     return PTVolumeResult(table.path, points, path, step, stage, np.asarray(table.lines, int), stages, opt, notes,

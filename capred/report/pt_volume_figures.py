@@ -133,4 +133,5 @@ def sheet_pt_volume(result) -> Sheet:
               "Void ratio of the sample (eq. 5) and of its two parts at every point of the path." + illustrative),
         Panel("e_net_stress", lambda ax: plot_e_net_stress(ax, result),
               "Void ratio of the sample against the net stress σ − u_a." + illustrative),
-    ], 2, spans={"e_ln_sigma": 2}, caption="Pedrotti & Tarantino (submitted), eq. 1-10; stage labels from the path file." + illustrative)
+    ], 2, spans={"e_ln_sigma": 2},
+        caption="Pedrotti & Tarantino (submitted), eq. 1-10; stage labels from the path file." + illustrative)

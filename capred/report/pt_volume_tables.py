@@ -6,7 +6,7 @@ from .render import MAX_ROWS, fmt, spec
 
 
 def pt_volume_tables(result) -> list[TableSpec]:
-    """The lines used, the path points (at most 20 shown; all in results.csv) and the stages (runs of labels)."""
+    """The lines used, the path points (at most 20 shown; all in results.csv) and the stages (label runs)."""
     js = result.to_json()
     p = js["parameters"]
     lines = spec("Compressibility lines (Pedrotti & Tarantino: slurry W, dry powder A; e = e_ncl − λ ln(σ'/σ_ref))",
