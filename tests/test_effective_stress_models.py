@@ -98,3 +98,27 @@ def capred_models():
     from capred.physics.effective_stress_models import REGISTRY
 
     return REGISTRY
+
+
+def test_pedrotti_tarantino_takes_tau_w_from_saturated_tests(write_csv):
+    """Pedrotti & Tarantino (submitted), eq. 13-14: tau^W from the saturated tests, tau^A from the dry ones.
+
+    Exact data from c_W = 0.5 kPa, tan phi_W = 0.5 (saturated) and c_A = 0.2 kPa, tan phi_A = 0.7 (dry): the
+    model reproduces every wet test to rounding only when it uses both envelopes."""
+    lines = ["test_id,condition,sigma_N,suction,S_R,R,tau_max"]
+    for i, s in enumerate([2.0, 4.0, 6.0, 8.0]):
+        lines.append(f"D{i},dry,{s},,,,{0.2 + 0.7 * s!r}")
+        lines.append(f"S{i},saturated,{s},,,,{0.5 + 0.5 * s!r}")
+    k = 0
+    for s in (3.0, 6.0):
+        for sr, u in ((0.2, 8.0), (0.5, 4.0), (0.8, 2.0)):
+            tau = float(esm.pedrotti_tarantino_strength(s, u, sr, 0.5, 0.5, 0.2, 0.7))
+            lines.append(f"W{k},wet,{s},{u},{sr},1,{tau!r}")
+            k += 1
+    r = run_shear(write_csv("\n".join(lines) + "\n"), ShearOptions(models=("bishop", "pedrotti_tarantino"),
+                                                                    bootstrap=0))
+    assert r.metrics["(all)"]["pedrotti_tarantino"].rmse < 1e-9  # Pa: exact data
+    mat = r.to_json()["materials"]["(all)"]
+    assert mat["water_envelope"] == "saturated tests"
+    assert_allclose([mat["saturated_envelope"]["c_kPa"], mat["saturated_envelope"]["tan_phi"]], [0.5, 0.5],
+                    rtol=1e-12)

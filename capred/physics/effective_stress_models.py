@@ -140,13 +140,17 @@ class ModelInputs:
     params: object  # capred.pipelines.shear.ModelParams
     fitted: dict = field(default_factory=dict)  # model -> material -> fitted parameters (SI)
     cache: dict = field(default_factory=dict)  # per-test arrays that do not depend on the dry fit
+    #: per test, the envelope of its material's saturated tests (c [Pa], tan phi [-]); NaN where it has none
+    c_sat: np.ndarray | None = None
+    tan_phi_sat: np.ndarray | None = None
 
     def subset(self, mask) -> "ModelInputs":
         """The same inputs for the tests selected by ``mask`` (a boolean mask or indices)."""
         arrays = {k: getattr(self, k)[mask] for k in ("sigma_N", "suction", "S_R", "R", "tau_max", "wet",
                                                       "material", "c", "tan_phi")}
+        sat = {k: getattr(self, k)[mask] for k in ("c_sat", "tan_phi_sat") if getattr(self, k) is not None}
         return ModelInputs(**arrays, surface_tension=self.surface_tension, params=self.params, fitted=self.fitted,
-                           cache={k: v[mask] for k, v in self.cache.items()})
+                           cache={k: v[mask] for k, v in self.cache.items()}, **sat)
 
     def cached(self, key: str, compute) -> np.ndarray:
         """A per-test array computed once (e.g. exact bridges), kept through ``subset``."""
@@ -241,9 +245,21 @@ def _fredlund(d: ModelInputs) -> np.ndarray:
     return d.sigma_N + d.suction * _tan_phi_b(d) / d.tan_phi
 
 
-def _pedrotti_tarantino(d: ModelInputs) -> np.ndarray:
+def _water_envelope(d: ModelInputs):
+    """(c_W [Pa], tan phi_W, source) of each test [12, eq. 13]: its material's saturated tests where the run has
+    them, else --water-envelope, else the dry envelope (a stand-in the result names)."""
     env = d.params.water_envelope
-    c_w, tan_w = (d.c, d.tan_phi) if env is None else (env[0], np.tan(np.radians(env[1])))
+    c_w, tan_w = (d.c, d.tan_phi) if env is None else (np.full(d.c.shape, env[0]),
+                                                         np.full(d.c.shape, np.tan(np.radians(env[1]))))
+    if d.c_sat is None:
+        return c_w, tan_w, np.full(d.c.shape, "dry envelope" if env is None else "--water-envelope")
+    own = np.isfinite(d.c_sat)
+    source = np.where(own, "saturated tests", "dry envelope" if env is None else "--water-envelope")
+    return np.where(own, d.c_sat, c_w), np.where(own, d.tan_phi_sat, tan_w), source
+
+
+def _pedrotti_tarantino(d: ModelInputs) -> np.ndarray:
+    c_w, tan_w, _ = _water_envelope(d)
     return pedrotti_tarantino_strength(d.sigma_N, d.suction, d.S_R, c_w, tan_w, d.c, d.tan_phi)
 
 
@@ -287,6 +303,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {m.name: m for m in (
                                 "tests."),
     EffectiveStressModel("pedrotti_tarantino", "Pedrotti-Tarantino", (), "pedrotti_tarantino",
                          tau=_pedrotti_tarantino, style={"color": "sky", "marker": "h"},
+                         material_values=lambda d: {"water_envelope": str(_water_envelope(d)[2][0])},
                          method="Pedrotti-Tarantino: τ = S_R τ^W + (1 − S_R) τ^A with σ'_W = (σ − u_w) S_R on the "
                                 "saturated envelope and σ'_A = (σ − u_a)(1 − S_R) on the dry one."),
     EffectiveStressModel("chi_power", "χ = S_e^κ (fitted)", (), "vanapalli1996",

@@ -26,7 +26,7 @@ from .shear_records import BackAnalysis, ModelPrediction
 SCHEMA = [
     Column("test_id", "text", None, "test identifier", ("id", "test", "test_no", "sample_id")),
     Column("material", "text", None, "material name", ("soil", "material_name")),
-    Column("condition", "text", None, "test condition", ("state", "dry_wet"), choices=("dry", "wet")),
+    Column("condition", "text", None, "test condition", ("state", "dry_wet"), choices=("dry", "wet", "saturated")),
     Column("z1", "length", "cm", "suction head z1", ("suction_head", "head", "z_1"), quantity="z1"),
     Column("z2", "volume", "cm^3", "air volume z2", ("air_volume", "burette", "z_2", "V_a"), quantity="z2"),
     Column("V_v", "volume", "cm^3", "void volume V_v", ("Vv", "void_volume"), quantity="V_v"),
@@ -210,6 +210,7 @@ class ShearResult(Result):
     model_inputs: object = None  # esm.ModelInputs of every test (with the fitted laws)
     curves: object = None  # ShearCurves when raw curves were given
     predictions: dict = field(default_factory=dict)  # model -> ModelPrediction (every test)
+    saturated_fits: dict = field(default_factory=dict)  # material -> LineFit of its saturated tests
     back: object = None  # BackAnalysis of the wet tests
 
     @property
@@ -405,7 +406,11 @@ class ShearResult(Result):
         tests = Rows(n, self._test_rows)
         return {
             "source": self.source,
-            "materials": {m: {**_fit_dict(f), **{k: num(v) for k, v in self.per_material.get(m, {}).items()}}
+            "materials": {m: {**_fit_dict(f),
+                              **({"saturated_envelope": _fit_dict(self.saturated_fits[m])}
+                                 if m in self.saturated_fits else {}),
+                              **{k: (v if isinstance(v, str) else num(v))
+                                 for k, v in self.per_material.get(m, {}).items()}}
                           for m, f in self.fits.items()},
             "models": list(self.models),
             "tests": tests if lazy else tests.tolist(),
@@ -621,7 +626,7 @@ def _derive(table: Table, opt: ShearOptions, box: np.ndarray, tau_curve: np.ndar
             missing(i, "wet test without particle radius: give 'R' or --radius (needed by Own 2)", col)
 
     suction = np.where(wet, suction, 0.0)
-    S_R = np.where(wet, S_R, 0.0)
+    S_R = np.where(wet, S_R, np.where(cond == "saturated", 1.0, 0.0))  # a saturated test: S_R = 1, no suction
     return {"sigma_N": sigma_N, "suction": suction, "S_R": S_R, "tau_max": tau, "R": radius}
 
 
@@ -696,6 +701,7 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
             fits[m] = fit(d["sigma_N"][dry], d["tau_max"][dry], opt.confidence)
         except FitError as exc:
             table.add_problem(first, "condition", f"material '{m}': dry fit impossible: {exc}")
+    saturated_fits = _saturated_fits(table, d, mat, cond, materials, opt)
     table.raise_if_problems()
 
     read = {f"in_{name}": _documented(table, name) for name in RAW_INPUTS if name in table.columns}
@@ -705,7 +711,7 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         "chi1": np.where(wet, ph.chi1(d["S_R"]), 0.0),
         "chi2": np.where(wet, ph.chi2(d["S_R"], d["R"], opt.surface_tension), 0.0),
     }
-    predictions, back, per_material, laws, model_inputs = _predict(tests, wet, mat, fits, opt)
+    predictions, back, per_material, laws, model_inputs = _predict(tests, wet, mat, fits, opt, saturated_fits)
     pend = wet & (d["S_R"] <= opt.pendular_limit)
 
     of_material = {m: mat == m for m in fits}
@@ -736,7 +742,7 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         inputs=[input_file(source, table)] + ([input_file(opt.curves, curves.table)] if curves else []),
         warnings=warnings, metrics_pendular=metrics_pend,
         metrics_pendular_overall=overall_pend, laws=laws, model_inputs=model_inputs, curves=curves,
-        predictions=predictions, back=back,
+        predictions=predictions, back=back, saturated_fits=saturated_fits,
     )
     if opt.bootstrap > 0:
         result.ranking = _bootstrap(result, wet, mat, cond, opt)
@@ -812,7 +818,24 @@ def _bootstrap(result: ShearResult, wet, mat, cond, opt: ShearOptions) -> dict:
     return out
 
 
-def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions):
+def _saturated_fits(table: Table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[str, LineFit]:
+    """Per material, the envelope tau = c_W + sigma_N tan(phi_W) of its saturated tests (clay reconstituted from
+    slurry and sheared saturated, drained: sigma'_W = sigma_N), the tau^W envelope of Pedrotti & Tarantino
+    (submitted), eq. 13; problems go into ``table``."""
+    out: dict[str, LineFit] = {}
+    for m in materials:
+        sat = (mat == m) & (cond == "saturated")
+        if not sat.any():
+            continue
+        try:
+            out[m] = fit_line(d["sigma_N"][sat], d["tau_max"][sat], opt.confidence)
+        except FitError as exc:
+            table.add_problem(int(np.flatnonzero(sat)[0]), "condition",
+                              f"material '{m}': the envelope of the saturated tests cannot be fitted: {exc}")
+    return out
+
+
+def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions, saturated_fits=None):
     """Per test and model: sigma'_N (NaN where a model predicts tau directly), tau_pred and its bands, the
     predicted capillary stress; and the back-analysed capillary stress of the wet tests.
 
@@ -823,8 +846,11 @@ def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions)
 
     c = np.array([fits[m].intercept for m in mat])
     tan_phi = np.array([fits[m].slope for m in mat])
+    saturated_fits = saturated_fits or {}
+    c_sat = np.array([saturated_fits[m].intercept if m in saturated_fits else np.nan for m in mat])
+    tan_phi_sat = np.array([saturated_fits[m].slope if m in saturated_fits else np.nan for m in mat])
     d = esm.ModelInputs(tests["sigma_N"], tests["suction"], tests["S_R"], tests["R"], tests["tau_max"], wet, mat,
-                        c, tan_phi, opt.surface_tension, opt.model_params)
+                        c, tan_phi, opt.surface_tension, opt.model_params, c_sat=c_sat, tan_phi_sat=tan_phi_sat)
     laws = sa.fit_laws(d, opt.models, list(fits), opt.model_params, fits=fits)
     d = dataclasses.replace(d, fitted={model: {m: law.params for m, law in by_mat.items()}
                                        for model, by_mat in laws.items()})
