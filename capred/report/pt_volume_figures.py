@@ -15,10 +15,8 @@ from .style import OKABE_ITO, literal
 
 KPA = 1e-3
 PART = {
-    "W": dict(color=OKABE_ITO["blue"], marker="o", name="water-saturated part (W)",
-              ncl="ncl of clay from slurry (W)"),
-    "A": dict(color=OKABE_ITO["orange"], marker="s", name="air-saturated part (A)",
-              ncl="ncl of clay from dry powder (A)"),
+    "W": dict(color=OKABE_ITO["blue"], marker="o", name="water-sat. part W", ncl="slurry ncl"),
+    "A": dict(color=OKABE_ITO["orange"], marker="s", name="air-sat. part A", ncl="dry-powder ncl"),
 }
 SAMPLE = dict(color=OKABE_ITO["black"], marker="D")
 LABEL = {
@@ -88,11 +86,11 @@ def plot_e_step(ax, result):
     """e, e^W and e^A against the step, stage labels on top."""
     pts = result.points
     x = result.step
-    ax.plot(x, pts.e, "-", color=SAMPLE["color"], marker=SAMPLE["marker"], ms=3, lw=1.2, label="sample e (eq. 5)")
+    ax.plot(x, pts.e, "-", color=SAMPLE["color"], marker=SAMPLE["marker"], ms=3, lw=1.2, label="sample $e$")
     for part in ("W", "A"):
         st = PART[part]
         ax.plot(x, getattr(pts, f"e_{part}"), "-", color=st["color"], marker=st["marker"], ms=3, lw=1.0,
-                label=f"{st['name']}, $e^{part}$")
+                label=f"$e^{part}$")
     for label, i in stage_marks(result):
         ax.axvline(x[i], color=OKABE_ITO["grey"], lw=0.6, ls=":")
         ax.annotate(literal(label), (x[i], 1.0), xycoords=("data", "axes fraction"), xytext=(2, -10),
@@ -109,14 +107,12 @@ def plot_e_net_stress(ax, result):
     pts = result.points
     net = pts.sigma - pts.u_a
     ok = net > 0
-    ax.plot(net[ok] * KPA, pts.e[ok], "-", color=SAMPLE["color"], marker=SAMPLE["marker"], ms=3, lw=1.2,
-            label="sample e (eq. 5)")
+    ax.plot(net[ok] * KPA, pts.e[ok], "-", color=SAMPLE["color"], marker=SAMPLE["marker"], ms=3, lw=1.2)
     _annotate(ax, result, np.where(ok, net * KPA, np.nan), pts.e, SAMPLE["color"])
     _log_axis(ax, net[ok] * KPA)
     ax.set_xlabel(LABEL["net"])
     ax.set_ylabel(LABEL["e"])
-    ax.set_title("Sample void ratio against net stress (after Fig. 17)")
-    ax.legend()
+    ax.set_title("Sample e against net stress (after Fig. 17)")
     return ax
 
 
