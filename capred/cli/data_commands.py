@@ -111,6 +111,11 @@ def triaxial_bounds(
     c_eff: Annotated[Optional[str], typer.Option(help="Effective cohesion c' [kPa], instead of fitting saturated "
                                                  "tests.")] = None,
     phi_eff: Annotated[Optional[float], typer.Option(help="Effective friction angle phi' [deg], with --c-eff.")] = None,
+    membrane_thickness: Annotated[Optional[str], typer.Option(
+        help="Membrane thickness t_m [mm]; with --membrane-modulus the deviator is corrected for the membrane "
+             "(ASTM D4767: 4 E_m t_m eps_a / D0). Off by default.")] = None,
+    membrane_modulus: Annotated[Optional[str], typer.Option(
+        help="Young's modulus of the membrane E_m [kPa] (latex: about 1400 kPa), with --membrane-thickness.")] = None,
 ) -> Invocation:
     """Bounds of the capillary stress tensor at failure from triaxial tests
     (Prunier et al. 2024): effective envelope from saturated drained tests, then
@@ -124,7 +129,10 @@ def triaxial_bounds(
 
     opts = TriaxialOptions(c_eff=quantity(c_eff, "kPa", "c_eff", "--c-eff"),
                            phi_eff=quantity(None if phi_eff is None else str(phi_eff), "deg", "phi_eff", "--phi-eff"),
-                           curves=curves)
+                           curves=curves,
+                           membrane_thickness=quantity(membrane_thickness, "mm", "membrane_thickness",
+                                                       "--membrane-thickness"),
+                           membrane_modulus=quantity(membrane_modulus, "kPa", "membrane_modulus", "--membrane-modulus"))
     return Invocation("triaxial-bounds", opts, extra_inputs=[curves] if curves else [])
 
 
