@@ -26,7 +26,6 @@ NOT_YET_DONE = {
     "capred.fitting.chi_laws": "law_uncertainty lacks References",
     "capred.fitting.linear": "fit_line, fit_line_origin, t_quantile lack References",
     "capred.fitting.nonlinear": "fit_curve, summarize_fit lack References",
-    "capred.fitting.retention": "fit_brooks_corey, fit_van_genuchten lack all three sections",
     "capred.fitting.retention_models": "bounds_for, confidence_band lack References",
     "capred.physics.bridge": "bridge, from_neck, gap_of, geometry, ... lack all three sections",
     "capred.physics.effective_stress_models": "chi_lu_likos, chi_vanapalli, predict, ... lack sections",

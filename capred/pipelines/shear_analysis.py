@@ -689,10 +689,10 @@ def retention_relation(params, suction, S_R) -> RetentionRelation | None:
     if ok.sum() < 4 or np.unique(suction[ok]).size < 3:
         return None
     from ..errors import FitError
-    from ..fitting.retention import fit_van_genuchten
+    from ..fitting.retention_models import fit_model
 
     try:
-        f = fit_van_genuchten(suction[ok], S_R[ok])
+        f = fit_model("vg", suction[ok], S_R[ok])
     except FitError:
         return None
     p = f.params
