@@ -20,6 +20,7 @@ SAMPLES = {
     "shear-curves": "shear_curves.csv",
     "triaxial-export": "triaxial_export",
     "pt-volume": "pt_volume_path.csv",
+    "triaxial-groups": "triaxial_groups.csv",
 }
 
 
