@@ -529,11 +529,15 @@ def test_fuzzed_unit_strings_never_crash(unit):
     from capred.errors import UnitError
     from capred.units import conversion
 
+    import math
+
     for kind in ("pressure", "length", "dimensionless"):
         try:
-            conversion(unit, kind)
-        except UnitError:
-            pass
+            factor = conversion(unit, kind)[0]
+        except UnitError as exc:
+            assert str(exc)  # a message, not a traceback
+        else:  # a unit that is read converts by a finite, positive factor
+            assert math.isfinite(factor) and factor > 0, (unit, kind, factor)
 
 
 def test_long_plain_csv_names_the_line_of_a_bad_cell_past_the_first_rows(tmp_path):
