@@ -1,5 +1,8 @@
 """capred shear on constructed data whose answer is known by hand."""
+import numpy as np
 import pytest
+
+import capred
 from numpy.testing import assert_allclose
 
 from capred.pipelines.shear import ShearOptions, run_shear
@@ -108,3 +111,35 @@ def test_shear_options_fill_blank_columns_but_file_wins(write_csv):
     r = run_shear(write_csv(text), ShearOptions(box_area=36e-4, cap_mass=0.0))
     s = r.tests["sigma_N"]
     assert_allclose(s, [0.0, 0.1 * 9.81 / 36e-4, 0.2 * 9.81 / 18e-4], rtol=1e-12)
+
+
+@pytest.mark.parametrize("given", ["e_height", "rho_d_G_s"])
+def test_void_ratio_and_dry_density_inputs_write_every_output(tmp_path, given):
+    """The documented alternatives to V_v (e with the sample height; rho_d with G_s) give the same S_R as V_v and
+    every output file (issue 18: e + height used to crash when results.csv was written)."""
+    import pandas as pd
+    from typer.testing import CliRunner
+
+    from capred.cli import app
+
+    frame = pd.read_csv(capred.sample_path("shear"), comment="#")
+    v_v, area, height = frame["V_v [cm^3]"], frame["box_area [cm^2]"], 2.0  # cm^3, cm^2, cm
+    e = v_v / (area * height - v_v)  # from V_v = A h e/(1 + e)
+    frame = frame.drop(columns=["V_v [cm^3]"]).assign(**{"height [mm]": height * 10})
+    if given == "e_height":
+        frame["e [-]"] = e
+    else:
+        frame["G_s [-]"] = 2.65
+        frame["rho_d [kg/m^3]"] = 2.65 * 1000.0 / (1.0 + e)  # e = G_s rho_w/rho_d - 1
+    path = tmp_path / "tests.csv"
+    frame.to_csv(path, index=False)
+    out = tmp_path / "out"
+    res = CliRunner().invoke(app, ["shear", str(path), "--bootstrap", "0", "--out", str(out), "--xlsx"])
+    assert res.exit_code == 0, res.output
+    names = {p.name for p in out.iterdir()}
+    assert {"results.csv", "summary.csv", "summary.json", "report.html", "provenance.json", "tables.xlsx"} <= names
+    assert any(n.endswith(".png") for n in names)
+    table = pd.read_csv(out / "results.csv")
+    reference = capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(bootstrap=0)).table()
+    # S_R = (V_v - z2)/V_v with V_v rebuilt from e (or rho_d): the same to rounding of the e round trip
+    np.testing.assert_allclose(table["S_R [-]"], reference["S_R [-]"], rtol=1e-9, atol=1e-12)
