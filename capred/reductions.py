@@ -21,6 +21,7 @@ class Reduction:
     references: tuple[str, ...] = ()  # keys of capred.references.REFERENCES cited there
     #: write files without --out (into ./capred_out/...); a calculator only prints unless --out is given
     files_by_default: bool = True
+    summary: str = ""  # one line of `capred --help`
 
     def run(self, source, options):
         module, name = self.run_path.split(":")
@@ -49,7 +50,8 @@ REDUCTIONS: dict[str, Reduction] = {r.name: r for r in (
                   'uncertainty comes from a paired bootstrap over the wet tests that refits the dry envelope in '
                   'every replicate.',
               ),
-              references=('evenepoel', 'bishop1959')),
+              references=('evenepoel', 'bishop1959'),
+              summary='Direct shear with hanging-column suction: dry envelope, effective-stress models, σ_cap.'),
     Reduction("triaxial-bounds", _P + "triaxial:run_triaxial_bounds", _P + "triaxial:TriaxialOptions", "required",
               "triaxial-bounds", "triaxial",
               method=(
@@ -60,7 +62,8 @@ REDUCTIONS: dict[str, Reduction] = {r.name: r for r in (
                   "initial suction s0; the strength gain is q'/q'_sat. Groups sharing one tensor get the "
                   'analysis of Appendix 1 (eqs. 37, 48, 49).',
               ),
-              references=('prunier2024',)),
+              references=('prunier2024',),
+              summary='Capillary stress tensor at failure from triaxial tests: bounds and groups.'),
     Reduction("retention", _P + "retention:run_retention", _P + "retention:RetentionOptions", "required",
               "retention", "retention",
               method=(
@@ -68,7 +71,8 @@ REDUCTIONS: dict[str, Reduction] = {r.name: r for r in (
                   'van Genuchten (1980) with m = 1 − 1/n and with m free, and Brooks & Corey (1964) with the '
                   'air-entry suction profiled exactly. Standard errors from the Jacobian; R², AIC and BIC.',
               ),
-              references=('vangenuchten1980', 'brooks_corey1964')),
+              references=('vangenuchten1980', 'brooks_corey1964'),
+              summary='Water retention curves per branch: fits at the optimum, model selection.'),
     Reduction("prism", _P + "calculators:reduce_prism", _P + "calculators:PrismOptions", "optional", "prism",
               "prism",
               method=(
@@ -76,7 +80,8 @@ REDUCTIONS: dict[str, Reduction] = {r.name: r for r in (
                   'prism and the friction angle of the sand (Bernatzik 1948).',
               ),
               references=('bernatzik1948',),
-              files_by_default=False),
+              files_by_default=False,
+              summary='Capillary pressure and rise from the break tension of a sand prism.'),
     Reduction("skempton-b", _P + "calculators:reduce_skempton_b", _P + "calculators:SkemptonOptions", "optional",
               "skempton-b", "skempton",
               method=(
@@ -84,14 +89,16 @@ REDUCTIONS: dict[str, Reduction] = {r.name: r for r in (
                   "its inverse; with suction equilibrium p'0 = p0 − u_a0 + s S_r and s from Brooks-Corey.",
               ),
               references=('morvan2016', 'skempton1954', 'brooks_corey1964'),
-              files_by_default=False),
+              files_by_default=False,
+              summary="Skempton's B from S_r, or S_r from a measured B."),
     Reduction("rumpf", _P + "calculators:reduce_rumpf", _P + "calculators:RumpfOptions", "optional", "rumpf",
               "rumpf",
               method=(
                   'p_cap = −(6/φ)(S_r/e)(γ/d_p) cos θ (Prunier et al. 2024, eq. 19, after Rumpf).',
               ),
               references=('prunier2024',),
-              files_by_default=False),
+              files_by_default=False,
+              summary="Rumpf's capillary pressure from S_r, void ratio and grain size."),
     Reduction("bridge solve", _P + "bridge:solve_bridges", _P + "bridge:BridgeOptions", "required", "bridge-solve",
               "bridge",
               method=(
@@ -99,7 +106,8 @@ REDUCTIONS: dict[str, Reduction] = {r.name: r for r in (
                   'equation, its first integral evaluated by Gauss-Legendre quadrature; F_cap = π r0² Δu + 2π '
                   "r0 γ, S_R = 3V_w/(2πR³), σ' = F_cap/(πR²) (Evenepoel's unit cell; Lian et al. 1993).",
               ),
-              references=('evenepoel', 'lian1993')),
+              references=('evenepoel', 'lian1993'),
+              summary='Exact capillary bridges from a table of cases.'),
     Reduction("bridge compare", _P + "bridge:compare_measured", _P + "bridge:BridgeOptions", "required",
               "bridge-compare", "bridge_compare",
               method=(
@@ -107,17 +115,21 @@ REDUCTIONS: dict[str, Reduction] = {r.name: r for r in (
                   "angle and volume, the toroidal approximation, Willett et al. (2000) and Israelachvili's 2πRγ "
                   'cos θ.',
               ),
-              references=('willett2000', 'israelachvili', 'lian1993')),
+              references=('willett2000', 'israelachvili', 'lian1993'),
+              summary='Measured capillary forces beside the exact bridge and approximations.'),
     Reduction("bridge rupture", _P + "bridge:rupture_distances", _P + "bridge:BridgeOptions", "required",
-              "bridge-rupture", "bridge_rupture"),
+              "bridge-rupture", "bridge_rupture",
+              summary='Rupture distance of bridges at constant volume.'),
     Reduction("bridge yade-files", _P + "yade_files:reduce_yade_files", _P + "yade_files:YadeOptions", "none", None,
-              "yade_files"),
+              "yade_files",
+              summary="Capillary files for YADE's capillary law."),
     Reduction("bridge curve", _P + "bridge:reduce_curve", _P + "bridge:CurveOptions", "none", None, "bridge_curve",
               method=(
                   "σ' = F_cap/(πR²) against S_R = 3V_w/(2πR³) for two spheres in contact, from exact bridges, "
                   "beside Israelachvili, Bishop (S_R Δu) and Evenepoel's Own 1 and Own 2.",
               ),
-              references=('evenepoel', 'israelachvili', 'bishop1959')),
+              references=('evenepoel', 'israelachvili', 'bishop1959'),
+              summary="The thesis's σ'-S_R comparison for spheres in contact."),
     Reduction("pt-volume", _P + "pt_volume:run_pt_volume", _P + "pt_volume:PTVolumeOptions", "required",
               "pt-volume", "pt_volume",
               method=(
@@ -137,7 +149,8 @@ REDUCTIONS: dict[str, Reduction] = {r.name: r for r in (
                   "(the end of compaction, point A of Fig. 13) unless initial yield stresses are given; steps "
                   "are split into sub-steps (|ΔS_r| ≤ 0.002, |Δ ln σ'| ≤ 0.02 by default).",
               ),
-              references=('pedrotti_tarantino',)),
+              references=('pedrotti_tarantino',),
+              summary='Void ratio along a stress path with two effective stresses.'),
 )}
 
 

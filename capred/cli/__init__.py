@@ -46,7 +46,7 @@ calculator_commands.register(app)
 pt_volume_command.register(app)
 
 
-@app.command()
+@app.command(short_help="A season's runs from a CSV or TOML manifest.")
 def batch(
     manifest: Annotated[Path, typer.Argument(help="CSV (command,input,options) or TOML ([[run]] command, input, "
                                              "options) listing the runs.", show_default=False)],

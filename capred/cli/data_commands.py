@@ -21,7 +21,7 @@ def shear(
     curves: Annotated[Optional[Path], typer.Option(help="Raw shear curves (CSV, .xlsx or .ods), long format: "
                                                    "test_id, displacement [mm], F [N] or tau [kPa], optionally "
                                                    "vertical_displacement [mm]; the peak gives tau_max.")] = None,
-    area_correction: Annotated[str, typer.Option(help="Area of the curves' shear stress: none (nominal, as ASTM "
+    area_correction: Annotated[str, typer.Option(metavar="none|square|circular", help="Area of the curves' shear stress: none (nominal, as ASTM "
                                                       "D3080 reports), square or circular box.")] = "none",
     ambient_pressure: Annotated[str, typer.Option(help="Ambient air pressure [kPa]: a hanging-column head above "
                                                        "(p_a - p_vapour)/gamma_w, about 10.1 m, is refused.")] = "101.325",
@@ -54,7 +54,7 @@ def shear(
     contact_angle: Annotated[float, typer.Option(help="Contact angle [deg] of the exact bridge (exact_neck).")] = 0.0,
     fit_eta: Annotated[bool, typer.Option("--fit-eta", help="khalili_fit: fit the exponent eta too "
                                                             "(else eta = 0.55).")] = False,
-    dry_fit: Annotated[str, typer.Option(help="Dry envelope: 'free' (c and phi) or 'origin' (c = 0, "
+    dry_fit: Annotated[str, typer.Option(metavar="free|origin", help="Dry envelope: 'free' (c and phi) or 'origin' (c = 0, "
                                               "cohesionless soil).")] = "free",
     bootstrap: Annotated[int, typer.Option(help="Replicates of the paired bootstrap of the model ranking "
                                                 "(0: none).")] = 2000,
@@ -140,7 +140,7 @@ def retention(
     model: Annotated[str, typer.Option(help="Models, comma separated, or all: vg (m = 1 - 1/n), vg_m_free, bc, "
                                             "kosugi, fx (Fredlund-Xing with C), fx_no_c, durner (bimodal).")
                      ] = "vg,vg_m_free,bc",
-    hysteresis: Annotated[Optional[str], typer.Option(help="kool-parker: fit the drying and wetting branches "
+    hysteresis: Annotated[Optional[str], typer.Option(metavar="kool-parker", help="kool-parker: fit the drying and wetting branches "
                                                       "jointly (shared theta_s, theta_r, n; alpha_d, alpha_w).")
                           ] = None,
     rho_w: Annotated[str, typer.Option(help="Density of water [kg/m^3], for theta = w rho_d/rho_w.")] = "1000",
