@@ -89,6 +89,9 @@ QUANTITIES: dict[str, Quantity] = {
     "break_tension": Quantity("σ_b", "kPa", 1e-3, "pressure", "break tension of a sand prism", 0.0, None, True),
     "friction_angle": Quantity("ρ", "deg", 1.0, "angle", "friction angle of the sand", 0.0, 90.0, True, True),
     "kappa": Quantity("κ", "-", 1.0, "dimensionless", "slope of the elastic line in e-ln p'", 0.0, None, True),
+    # the Python name of that slope (``kappa`` stays the CSV column and JSON key of `capred skempton-b`)
+    "kappa_elastic": Quantity("κ", "-", 1.0, "dimensionless", "slope of the elastic line in e-ln p'", 0.0, None,
+                              True),
     "e0": Quantity("e0", "-", 1.0, "dimensionless", "initial void ratio", 0.0, None, True),
     "p0": Quantity("p0", "kPa", 1e-3, "pressure", "mean total stress", 0.0),
     "u0": Quantity("u0", "kPa", 1e-3, "pressure", "initial pore pressure"),
@@ -123,7 +126,54 @@ QUANTITIES: dict[str, Quantity] = {
                                 0.0, None, True),
     "initial_yield_A": Quantity("σ'_y,A", "kPa", 1e-3, "pressure", "largest σ'_A carried before the path",
                                 0.0, None, True),
+    # the slopes of one line, W or A, as the functions of capred.physics.pedrotti_tarantino take them
+    "ncl_slope": Quantity("λ", "-", 1.0, "dimensionless", "slope of a normal-compression line in e-ln σ' "
+                          "(λ_W or λ_A)", 0.0, None, True),
+    "url_slope": Quantity("κ", "-", 1.0, "dimensionless", "slope of an unloading-reloading line in e-ln σ' "
+                          "(κ_W or κ_A)", 0.0, None, True),
 }
+
+
+def renamed_keywords(**old_to_new: str):
+    """Decorator: a function or an options class also takes the old keyword of a renamed parameter.
+
+    ``@renamed_keywords(sr="S_R")`` on ``f(S_R=None)`` makes ``f(sr=0.9)`` work as ``f(S_R=0.9)`` with a
+    DeprecationWarning naming the new keyword; giving both raises TypeError. The signature seen by
+    :func:`inspect.signature` (and by help and tab completion) is the new one. On a class, its
+    ``__init__`` is wrapped.
+    """
+    import functools
+    import inspect
+    import warnings
+
+    def convert(where: str, kwargs: dict) -> dict:
+        for old, new in old_to_new.items():
+            if old in kwargs:
+                if new in kwargs:
+                    raise TypeError(f"{where}() got both '{old}' and its new name '{new}'")
+                warnings.warn(f"{where}(): the keyword '{old}' is deprecated, use '{new}' (capred's glossary)",
+                              DeprecationWarning, stacklevel=3)
+                kwargs[new] = kwargs.pop(old)
+        return kwargs
+
+    def decorate(obj):
+        if inspect.isclass(obj):
+            init = obj.__init__
+
+            @functools.wraps(init)
+            def __init__(self, *args, **kwargs):
+                init(self, *args, **convert(obj.__name__, kwargs))
+
+            obj.__init__ = __init__
+            return obj
+
+        @functools.wraps(obj)
+        def wrapper(*args, **kwargs):
+            return obj(*args, **convert(obj.__name__, kwargs))
+
+        return wrapper
+
+    return decorate
 
 
 def label(name: str) -> str:

@@ -13,7 +13,7 @@ from capred.physics import calculators as calc
 from capred.physics import skempton_elastoplastic as sep
 
 # Morvan et al. (2016), Table 3 (SI); u0 = 30 kPa gauge as Table 1 (P_a0 = 130 kPa absolute)
-TABLE3 = dict(kappa=0.006, p0=100e3, u0=30e3, e0=0.8, pa0=130e3, air_entry=20e3, bc_lambda=0.8)
+TABLE3 = dict(kappa_elastic=0.006, p0=100e3, u0=30e3, e0=0.8, pa0=130e3, air_entry=20e3, bc_lambda=0.8)
 
 
 def test_skempton_b_from_compliance_by_hand():
@@ -48,7 +48,7 @@ def test_saturated_gives_b_one():
     # S_R = 1: no air, V_a = 0, so du_w = dp whatever the skeleton (eq. 24 limit, Morvan et al. 2016 Fig. 6)
     assert sep.skempton_b_from_compliance(1e-9, 1.0, 0.8, 130e3) == 1.0
     assert sep.skempton_b_incremental(1.0, **TABLE3) == 1.0
-    assert sep.skempton_b_incremental(1.0, compliance=sep.ElasticCompliance(1e-6), **{**TABLE3, "kappa": 1e-6}) == 1.0
+    assert sep.skempton_b_incremental(1.0, compliance=sep.ElasticCompliance(1e-6), **{**TABLE3, "kappa_elastic": 1e-6}) == 1.0
 
 
 def test_drying_loop_follows_eq13():

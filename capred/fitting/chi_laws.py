@@ -226,6 +226,15 @@ def law_uncertainty(names, values, jac_law, jac_envelope, resid_wet, dry: LineFi
     dict
         ``se``, ``se_conditional``, ``ci`` ({name: (low, high) or None}), ``dof``, ``covariance``
         (joint, over ``("c", "tan_phi", *names)``, or None), ``residual_variance`` [Pa^2].
+
+    References
+    ----------
+    .. [1] Murphy, K. M. & Topel, R. H. (1985). Estimation and inference in two-step econometric models.
+       J. Bus. Econ. Stat. 3(4):370-379. doi:10.1080/07350015.1985.10509470, Theorem 1 (the corrected
+       covariance of the second-step estimate).
+    .. [2] Seber, G. A. F. & Wild, C. J. (1989). Nonlinear Regression. Wiley. doi:10.1002/0471725315,
+       ch. 2 (the linearised covariance s^2 (J^T J)^-1 and Student-t intervals; equation number not
+       checked).
     """
     names = tuple(names)
     values = np.asarray(values, float)
@@ -287,15 +296,17 @@ def _with_uncertainty(law: FittedLaw, names, values, jac_law, jac_env, resid, dr
     return law
 
 
-def chi_power(S_R, kappa, S_res: float = 0.0):
+def chi_power(S_R, vanapalli_kappa, S_res: float = 0.0):
     """chi = S_e^kappa with S_e = (S_R - S_res)/(1 - S_res) clipped to [0, 1] [-] (Vanapalli et al. 1996).
+
+    .. math:: \\chi = S_e^{\\kappa}, \\quad S_e = \\frac{S_R - S_{res}}{1 - S_{res}}
 
     Parameters
     ----------
     S_R : array_like
         Degree of saturation [-].
-    kappa : float or array_like
-        Exponent [-], > 0 (broadcast against ``S_R``).
+    vanapalli_kappa : float or array_like
+        Exponent κ [-], > 0 (broadcast against ``S_R``); the fitted law's JSON parameter is ``kappa``.
     S_res : float
         Residual degree of saturation [-].
 
@@ -310,7 +321,7 @@ def chi_power(S_R, kappa, S_res: float = 0.0):
     content raised to kappa.
     """
     S_e = np.clip((np.asarray(S_R, float) - S_res) / (1.0 - S_res), 0.0, 1.0)
-    return S_e ** np.asarray(kappa, float)
+    return S_e ** np.asarray(vanapalli_kappa, float)
 
 
 def fit_chi_power(sigma_N, suction, S_R, tau, c, tan_phi, S_res: float = 0.0, start: dict | None = None,

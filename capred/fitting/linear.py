@@ -34,6 +34,20 @@ def t_quantile(p, dof):
     -------
     float or ndarray
         The quantile t with P(T <= t) = p [-]; a float for scalar input.
+
+    Notes
+    -----
+    The inverse in t of Student's distribution function,
+
+    .. math:: p = \\int_{-\\infty}^{t} \\frac{\\Gamma((\\nu + 1)/2)}{\\sqrt{\\nu\\pi}\\,\\Gamma(\\nu/2)}
+              \\left(1 + \\frac{u^2}{\\nu}\\right)^{-(\\nu + 1)/2} du, \\qquad \\nu = \\text{dof},
+
+    computed by ``scipy.special.stdtrit`` (Cephes).
+
+    References
+    ----------
+    .. [1] Draper, N. R. & Smith, H. (1998). Applied Regression Analysis, 3rd ed. Wiley,
+       doi:10.1002/9781118625590, ch. 1 (the t quantiles of the confidence intervals of a fitted line).
     """
     from scipy.special import stdtrit
 
@@ -165,11 +179,19 @@ def fit_line(x, y, confidence: float = 0.95) -> LineFit:
     Returns
     -------
     LineFit
+        Intercept a [unit of y], slope b [unit of y / unit of x], their standard errors and covariance,
+        RSS, R² and the t quantile of the intervals with n - 2 degrees of freedom.
 
     Raises
     ------
     FitError
         Fewer than 3 points, non-finite values, or a single abscissa.
+
+    References
+    ----------
+    .. [1] Draper, N. R. & Smith, H. (1998). Applied Regression Analysis, 3rd ed. Wiley,
+       doi:10.1002/9781118625590, ch. 1 (the least-squares straight line, the variances of a and b and
+       their t intervals).
     """
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
@@ -214,12 +236,19 @@ def fit_line_origin(x, y, confidence: float = 0.95) -> LineFit:
     Returns
     -------
     LineFit
-        With ``through_origin=True``, intercept 0 and its variance 0.
+        With ``through_origin=True``, intercept 0 and its variance 0; slope b [unit of y / unit of x],
+        its standard error, RSS, R² and the t quantile with n - 1 degrees of freedom.
 
     Raises
     ------
     FitError
         Fewer than 2 points, non-finite values, or every x = 0.
+
+    References
+    ----------
+    .. [1] Draper, N. R. & Smith, H. (1998). Applied Regression Analysis, 3rd ed. Wiley,
+       doi:10.1002/9781118625590, ch. 1 (the straight line through the origin, b = Σxy/Σx²,
+       s² = RSS/(n − 1)).
     """
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)

@@ -8,7 +8,8 @@ and Prunier et al. (2024) for the interface tensor and YADE's capillary files.
 Dimensionless core: lengths in units of the radius R1 of the first particle,
 suction s* = Delta_u R1 / gamma, force F* = F / (pi gamma R1), volume
 V* = V / R1^3, areas in R1^2. The second particle has radius rho = R2 / R1
-(``inf`` for a plane). Both particles have the contact angle theta.
+(``inf`` for a plane). Both particles have the contact angle theta (``contact_angle_rad``
+in the public functions, radians; ``contact_angle`` [deg] in the pipelines and the CLI).
 
 The meridian y(x) (x along the line of centres) obeys the axisymmetric
 Young-Laplace equation Delta_u / gamma = kappa_meridional - cos(psi) / y
@@ -117,15 +118,15 @@ def _blocks(beta, theta, suction, ratio, fields, **how):
     return out.reshape((fields, *beta.shape))
 
 
-def bridge(beta, theta, suction, ratio=1.0) -> Bridge:
+def bridge(beta, contact_angle_rad, suction, ratio=1.0) -> Bridge:
     r"""Exact pendular bridge from its filling angle, contact angle and suction (zero gravity).
 
     Parameters
     ----------
     beta : float or array_like
         Filling angle on particle 1 [rad], > 0.
-    theta : float or array_like
-        Contact angle [rad], in [0, pi/2).
+    contact_angle_rad : float or array_like
+        Contact angle θ [rad], in [0, pi/2).
     suction : float or array_like
         Dimensionless suction s* = Delta_u R1 / gamma [-], >= 0.
     ratio : float or array_like, default 1.0
@@ -165,18 +166,18 @@ def bridge(beta, theta, suction, ratio=1.0) -> Bridge:
     .. [3] Duriez, J. & Wan, R. (2017). Contact angle mechanical influence in wet granular soils. Acta Geotech.
        12, 67-83. doi:10.1007/s11440-016-0500-6 (the interface tensor int n (x) n dS).
     """
-    return Bridge(*_blocks(beta, theta, suction, ratio, len(_FIELDS)))
+    return Bridge(*_blocks(beta, contact_angle_rad, suction, ratio, len(_FIELDS)))
 
 
-def gap_of(beta, theta, suction, ratio=1.0, coarse=False) -> np.ndarray:
+def gap_of(beta, contact_angle_rad, suction, ratio=1.0, coarse=False) -> np.ndarray:
     r"""Gap* alone of the bridge (the fast path the solvers iterate on).
 
     Parameters
     ----------
     beta : float or array_like
         Filling angle on particle 1 [rad], > 0.
-    theta : float or array_like
-        Contact angle [rad], in [0, pi/2).
+    contact_angle_rad : float or array_like
+        Contact angle θ [rad], in [0, pi/2).
     suction : float or array_like
         Dimensionless suction s* = Delta_u R1 / gamma [-], >= 0.
     ratio : float or array_like, default 1.0
@@ -201,18 +202,18 @@ def gap_of(beta, theta, suction, ratio=1.0, coarse=False) -> np.ndarray:
     .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
        spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
     """
-    return _blocks(beta, theta, suction, ratio, 1, full=False, coarse=coarse)[0]
+    return _blocks(beta, contact_angle_rad, suction, ratio, 1, full=False, coarse=coarse)[0]
 
 
-def geometry(beta, theta, suction, ratio=1.0):
+def geometry(beta, contact_angle_rad, suction, ratio=1.0):
     r"""(gap*, volume*, force*, neck*) of the bridge: the first four fields of :func:`bridge`.
 
     Parameters
     ----------
     beta : float or array_like
         Filling angle on particle 1 [rad], > 0.
-    theta : float or array_like
-        Contact angle [rad], in [0, pi/2).
+    contact_angle_rad : float or array_like
+        Contact angle θ [rad], in [0, pi/2).
     suction : float or array_like
         Dimensionless suction s* = Delta_u R1 / gamma [-], >= 0.
     ratio : float or array_like, default 1.0
@@ -234,7 +235,7 @@ def geometry(beta, theta, suction, ratio=1.0):
     .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
        spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
     """
-    b = bridge(beta, theta, suction, ratio)
+    b = bridge(beta, contact_angle_rad, suction, ratio)
     return b.gap, b.volume, b.force, b.neck
 
 
@@ -461,15 +462,15 @@ def _below(v):
 
 # ---- bridges from their neck ----------------------------------------------------
 
-def from_neck(neck, theta, suction, ratio=1.0):
+def from_neck(neck, contact_angle_rad, suction, ratio=1.0):
     r"""Filling angle on particle 1 and the bridge whose neck radius is y0, at s* >= 0.
 
     Parameters
     ----------
     neck : float or array_like
         Neck radius y0 = r0 / R1 [-], > 0.
-    theta : float or array_like
-        Contact angle [rad].
+    contact_angle_rad : float or array_like
+        Contact angle θ [rad].
     suction : float or array_like
         s* = Delta_u R1 / gamma [-], >= 0.
     ratio : float or array_like, default 1.0
@@ -497,10 +498,10 @@ def from_neck(neck, theta, suction, ratio=1.0):
     .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
        spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
     """
-    neck, theta, suction, ratio = _arr(neck, theta, suction, ratio)
+    neck, th, suction, ratio = _arr(neck, contact_angle_rad, suction, ratio)
     F = 2.0 * neck + suction * neck * neck
-    beta = _second_filling_angle(F, theta, suction, np.ones_like(F))
-    return beta, bridge(beta, theta, suction, ratio)
+    beta = _second_filling_angle(F, th, suction, np.ones_like(F))
+    return beta, bridge(beta, th, suction, ratio)
 
 
 def _floor_suction(y0, th, rho):
@@ -965,13 +966,13 @@ def _verify(status, beta, theta, s, ratio, gap=None, volume=None):
     return status
 
 
-def solve_for_suction(theta, suction, gap, ratio=1.0):
+def solve_for_suction(contact_angle_rad, suction, gap, ratio=1.0):
     r"""Filling angle of the stable bridge at a given suction and gap (suction control), verified.
 
     Parameters
     ----------
-    theta : float or array_like
-        Contact angle [rad].
+    contact_angle_rad : float or array_like
+        Contact angle θ [rad].
     suction : float or array_like
         s* = Delta_u R1 / gamma [-].
     gap : float or array_like
@@ -1003,18 +1004,18 @@ def solve_for_suction(theta, suction, gap, ratio=1.0):
     .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
        spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
     """
-    theta, suction, gap, ratio = (x.ravel() for x in _arr(theta, suction, gap, ratio))
-    beta, status = _solve_for_suction(theta, suction, gap, ratio)
-    return beta, _verify(status, beta, theta, suction, ratio, gap=gap)
+    contact_angle_rad, suction, gap, ratio = (x.ravel() for x in _arr(contact_angle_rad, suction, gap, ratio))
+    beta, status = _solve_for_suction(contact_angle_rad, suction, gap, ratio)
+    return beta, _verify(status, beta, contact_angle_rad, suction, ratio, gap=gap)
 
 
-def solve_for_volume(theta, volume, gap, ratio=1.0):
+def solve_for_volume(contact_angle_rad, volume, gap, ratio=1.0):
     r"""Filling angle and suction of the bridge holding a given volume at a given gap (volume control), verified.
 
     Parameters
     ----------
-    theta : float or array_like
-        Contact angle [rad].
+    contact_angle_rad : float or array_like
+        Contact angle θ [rad].
     volume : float or array_like
         Liquid volume V / R1^3 [-], > 0.
     gap : float or array_like
@@ -1066,21 +1067,21 @@ def solve_for_volume(theta, volume, gap, ratio=1.0):
     .. [2] Orr, F. M., Scriven, L. E. & Rivas, A. P. (1975). Pendular rings between solids: meniscus properties and
        capillary force. J. Fluid Mech. 67, 723-742. doi:10.1017/S0022112075000572
     """
-    theta, volume, gap, ratio = (x.ravel() for x in _arr(theta, volume, gap, ratio))
-    beta, s, status = _solve_for_volume(theta, volume, gap, ratio)
-    status = _verify(status, beta, theta, s, ratio, gap=gap, volume=volume)
+    contact_angle_rad, volume, gap, ratio = (x.ravel() for x in _arr(contact_angle_rad, volume, gap, ratio))
+    beta, s, status = _solve_for_volume(contact_angle_rad, volume, gap, ratio)
+    status = _verify(status, beta, contact_angle_rad, s, ratio, gap=gap, volume=volume)
     bad = status != 0
     beta[bad], s[bad] = np.nan, np.nan
     return beta, s, status
 
 
-def rupture_gap(theta, volume, ratio=1.0):
+def rupture_gap(contact_angle_rad, volume, ratio=1.0):
     r"""Rupture distance at constant volume: the widest gap any bridge of this volume spans, verified.
 
     Parameters
     ----------
-    theta : float or array_like
-        Contact angle [rad].
+    contact_angle_rad : float or array_like
+        Contact angle θ [rad].
     volume : float or array_like
         V / R1^3 [-], > 0.
     ratio : float or array_like, default 1.0
@@ -1109,21 +1110,21 @@ def rupture_gap(theta, volume, ratio=1.0):
     .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
        spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452 (rupture distance).
     """
-    theta, volume, ratio = (x.ravel() for x in _arr(theta, volume, ratio))
-    D, beta, s, status = _rupture(theta, volume, ratio)
-    status = _verify(status, beta, theta, s, ratio, volume=volume)
+    contact_angle_rad, volume, ratio = (x.ravel() for x in _arr(contact_angle_rad, volume, ratio))
+    D, beta, s, status = _rupture(contact_angle_rad, volume, ratio)
+    status = _verify(status, beta, contact_angle_rad, s, ratio, volume=volume)
     bad = status != 0
     D[bad], beta[bad], s[bad] = np.nan, np.nan, np.nan
     return D, beta, s, status
 
 
-def lian_rupture_gap(theta, volume):
+def lian_rupture_gap(contact_angle_rad, volume):
     r"""Lian et al. (1993) estimate of the rupture distance of equal spheres.
 
     Parameters
     ----------
-    theta : float or array_like
-        Contact angle [rad].
+    contact_angle_rad : float or array_like
+        Contact angle θ [rad].
     volume : float or array_like
         V / R^3 [-].
 
@@ -1146,12 +1147,12 @@ def lian_rupture_gap(theta, volume):
     .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
        spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452 (the rupture-distance relation).
     """
-    return (1.0 + 0.5 * np.asarray(theta, float)) * np.cbrt(np.asarray(volume, float))
+    return (1.0 + 0.5 * np.asarray(contact_angle_rad, float)) * np.cbrt(np.asarray(volume, float))
 
 
 # ---- approximations -------------------------------------------------------
 
-def israelachvili_force(R, surface_tension, theta):
+def israelachvili_force(R, surface_tension, contact_angle_rad):
     r"""Capillary force between two equal spheres in contact, small volume limit.
 
     Parameters
@@ -1160,8 +1161,8 @@ def israelachvili_force(R, surface_tension, theta):
         Sphere radius [m] (or any length unit, the force then in that unit times N/m).
     surface_tension : float or array_like
         gamma [N/m].
-    theta : float or array_like
-        Contact angle [rad].
+    contact_angle_rad : float or array_like
+        Contact angle θ [rad].
 
     Returns
     -------
@@ -1182,10 +1183,10 @@ def israelachvili_force(R, surface_tension, theta):
     .. [1] Israelachvili, J. N. (2011). Intermolecular and Surface Forces, 3rd ed. Academic Press
        (ISBN 978-0-12-391927-4; no DOI)
     """
-    return 2.0 * np.pi * np.asarray(R, float) * surface_tension * np.cos(theta)
+    return 2.0 * np.pi * np.asarray(R, float) * surface_tension * np.cos(contact_angle_rad)
 
 
-def willett_force(R, surface_tension, theta, volume, gap):
+def willett_force(R, surface_tension, contact_angle_rad, volume, gap):
     r"""Willett et al. (2000) closed form for the capillary force between equal spheres at a gap.
 
     Parameters
@@ -1194,8 +1195,8 @@ def willett_force(R, surface_tension, theta, volume, gap):
         Sphere radius [m].
     surface_tension : float or array_like
         gamma [N/m].
-    theta : float or array_like
-        Contact angle [rad].
+    contact_angle_rad : float or array_like
+        Contact angle θ [rad].
     volume : float or array_like
         Bridge volume [m^3].
     gap : float or array_like
@@ -1221,18 +1222,18 @@ def willett_force(R, surface_tension, theta, volume, gap):
        spherical bodies. Langmuir 16, 9396-9405. doi:10.1021/la000657y
     """
     S = 0.5 * np.asarray(gap, float) / np.sqrt(np.asarray(volume, float) / R)
-    return israelachvili_force(R, surface_tension, theta) / (1.0 + 2.1 * S + 10.0 * S * S)
+    return israelachvili_force(R, surface_tension, contact_angle_rad) / (1.0 + 2.1 * S + 10.0 * S * S)
 
 
-def toroidal(beta, theta, gap):
+def toroidal(beta, contact_angle_rad, gap):
     r"""Toroidal (circle-meridian) approximation of the bridge between equal spheres.
 
     Parameters
     ----------
     beta : float or array_like
         Filling angle [rad].
-    theta : float or array_like
-        Contact angle [rad].
+    contact_angle_rad : float or array_like
+        Contact angle θ [rad].
     gap : float or array_like
         D / R [-].
 
@@ -1265,11 +1266,11 @@ def toroidal(beta, theta, gap):
     .. [2] Orr, F. M., Scriven, L. E. & Rivas, A. P. (1975). Pendular rings between solids: meniscus properties and
        capillary force. J. Fluid Mech. 67, 723-742. doi:10.1017/S0022112075000572 (range of the circle approximation).
     """
-    beta, theta, gap = _arr(beta, theta, gap)
-    r1 = (1.0 - np.cos(beta) + 0.5 * gap) / np.cos(beta + theta)
-    r2 = np.sin(beta) - r1 * (1.0 - np.sin(beta + theta))
+    beta, th, gap = _arr(beta, contact_angle_rad, gap)
+    r1 = (1.0 - np.cos(beta) + 0.5 * gap) / np.cos(beta + th)
+    r2 = np.sin(beta) - r1 * (1.0 - np.sin(beta + th))
     s = 1.0 / r1 - 1.0 / r2
-    xc = r1 * np.cos(beta + theta)
+    xc = r1 * np.cos(beta + th)
     x = xc[..., None] * _U
     y = (r2 + r1)[..., None] - np.sqrt(r1[..., None] ** 2 - x * x)
     v_under = np.pi * xc * ((y * y) @ _W)

@@ -88,19 +88,19 @@ def capillary_rise(capillary_pressure, gamma_w):
     return np.asarray(capillary_pressure, float) / gamma_w
 
 
-def skempton_b(S_r, p0_eff, e0, kappa, pa0):
+def skempton_b(S_R, p0_eff, e0, kappa_elastic, pa0):
     r"""Skempton's B of an unsaturated elastic soil with compressible air (Boyle's law).
 
     Parameters
     ----------
-    S_r : numeric
-        Degree of saturation [-].
+    S_R : numeric
+        Degree of saturation :math:`S_r` [-].
     p0_eff : numeric
         Initial mean effective stress :math:`p'_0` [Pa].
     e0 : numeric
         Initial void ratio [-].
-    kappa : numeric
-        Slope of the elastic line in :math:`e`-:math:`\ln p` [-].
+    kappa_elastic : numeric
+        Slope :math:`\kappa` of the elastic line in :math:`e`-:math:`\ln p` [-].
     pa0 : numeric
         Absolute initial air pressure :math:`P_{a0}` [Pa].
 
@@ -123,10 +123,10 @@ def skempton_b(S_r, p0_eff, e0, kappa, pa0):
        of B with Sr. E-UNSAT 2016, E3S Web of Conferences (DOI not given in
        the source), eq. 8-10.
     """
-    return 1.0 / (1.0 + p0_eff * e0 * (1.0 - np.asarray(S_r, float)) / (kappa * pa0))
+    return 1.0 / (1.0 + p0_eff * e0 * (1.0 - np.asarray(S_R, float)) / (kappa_elastic * pa0))
 
 
-def saturation_from_b(B, p0_eff, e0, kappa, pa0):
+def saturation_from_b(B, p0_eff, e0, kappa_elastic, pa0):
     r"""Degree of saturation from a measured B (eq. 10 of Morvan et al. inverted).
 
     Parameters
@@ -137,15 +137,15 @@ def saturation_from_b(B, p0_eff, e0, kappa, pa0):
         Initial mean effective stress :math:`p'_0` [Pa].
     e0 : numeric
         Initial void ratio [-].
-    kappa : numeric
-        Slope of the elastic line in :math:`e`-:math:`\ln p` [-].
+    kappa_elastic : numeric
+        Slope :math:`\kappa` of the elastic line in :math:`e`-:math:`\ln p` [-].
     pa0 : numeric
         Absolute initial air pressure :math:`P_{a0}` [Pa].
 
     Returns
     -------
     numeric
-        :math:`S_r` [-].
+        Degree of saturation :math:`S_r` [-].
 
     Notes
     -----
@@ -159,31 +159,31 @@ def saturation_from_b(B, p0_eff, e0, kappa, pa0):
        of B with Sr. E-UNSAT 2016, E3S Web of Conferences (DOI not given in
        the source), eq. 10.
     """
-    return 1.0 - (1.0 / np.asarray(B, float) - 1.0) * kappa * pa0 / (p0_eff * e0)
+    return 1.0 - (1.0 / np.asarray(B, float) - 1.0) * kappa_elastic * pa0 / (p0_eff * e0)
 
 
-def skempton_b_suction(S_r, p0, ua0, e0, kappa, pa0, s_e, alpha):
+def skempton_b_suction(S_R, p0, ua0, e0, kappa_elastic, pa0, s_e, bc_lambda):
     r"""Skempton's B with suction equilibrium before the increment (Brooks-Corey retention).
 
     Parameters
     ----------
-    S_r : numeric
-        Degree of saturation [-].
+    S_R : numeric
+        Degree of saturation :math:`S_r` [-].
     p0 : numeric
         Initial mean total stress [Pa].
     ua0 : numeric
         Initial air pressure (gauge) [Pa].
     e0 : numeric
         Initial void ratio [-].
-    kappa : numeric
-        Slope of the elastic line in :math:`e`-:math:`\ln p` [-].
+    kappa_elastic : numeric
+        Slope :math:`\kappa` of the elastic line in :math:`e`-:math:`\ln p` [-].
     pa0 : numeric
         Absolute initial air pressure :math:`P_{a0}` [Pa].
     s_e : numeric
         Air-entry suction of Brooks-Corey [Pa].
-    alpha : numeric
+    bc_lambda : numeric
         Brooks-Corey pore-size index (:math:`\alpha` of Morvan et al.,
-        ``bc_lambda`` in capred's glossary) [-].
+        :math:`\lambda` of Brooks & Corey) [-].
 
     Returns
     -------
@@ -210,12 +210,12 @@ def skempton_b_suction(S_r, p0, ua0, e0, kappa, pa0, s_e, alpha):
     .. [2] Brooks, R. H. & Corey, A. T. (1964). Hydraulic properties of porous
        media. Hydrology Paper 3, Colorado State University (no DOI).
     """
-    S_r = np.asarray(S_r, float)
-    p0_eff = p0 - ua0 + bc_suction(S_r, s_e, alpha) * S_r
-    return skempton_b(S_r, p0_eff, e0, kappa, pa0)
+    S_R = np.asarray(S_R, float)
+    p0_eff = p0 - ua0 + bc_suction(S_R, s_e, bc_lambda) * S_R
+    return skempton_b(S_R, p0_eff, e0, kappa_elastic, pa0)
 
 
-def rumpf_capillary_pressure(shape_factor, void_ratio, S_r, diameter, surface_tension, contact_angle_deg):
+def rumpf_capillary_pressure(shape_factor, void_ratio, S_R, diameter, surface_tension, contact_angle_deg):
     r"""Capillary pressure of a moist granular medium after Rumpf (negative: tension).
 
     Parameters
@@ -224,8 +224,8 @@ def rumpf_capillary_pressure(shape_factor, void_ratio, S_r, diameter, surface_te
         Particle shape factor :math:`\phi` [-].
     void_ratio : numeric
         Void ratio :math:`e` [-].
-    S_r : numeric
-        Degree of saturation [-].
+    S_R : numeric
+        Degree of saturation :math:`S_r` [-].
     diameter : numeric
         Apparent particle diameter :math:`d_p` [m].
     surface_tension : numeric
@@ -251,5 +251,5 @@ def rumpf_capillary_pressure(shape_factor, void_ratio, S_r, diameter, surface_te
        Eur. J. Environ. Civ. Eng. doi:10.1080/19648189.2024.2314099, eq. 19,
        after Rumpf, H. (1962).
     """
-    return -(6.0 / np.asarray(shape_factor, float)) * (np.asarray(S_r, float) / void_ratio) * (
+    return -(6.0 / np.asarray(shape_factor, float)) * (np.asarray(S_R, float) / void_ratio) * (
         surface_tension / np.asarray(diameter, float)) * np.cos(np.radians(contact_angle_deg))

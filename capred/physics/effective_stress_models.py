@@ -27,30 +27,69 @@ from . import shear as ph
 from .retention import vg_effective_saturation
 
 
-def chi_vanapalli(S_R, S_res=0.0, kappa=1.0):
-    """chi = S_e^kappa, S_e = (S_R - S_res)/(1 - S_res) clipped to [0, 1] [8].
+def chi_vanapalli(S_R, S_res=0.0, vanapalli_kappa=1.0):
+    r"""Bishop's χ as the normalised degree of saturation raised to κ (Vanapalli et al. 1996).
 
-    Also the fitted law `chi_power`, with kappa fitted per material.
+    .. math::
 
-    Vanapalli et al. write tau = c' + (sigma - u_a) tan phi' + s Theta^kappa tan phi';
-    kappa = 1 with the normalised water content is their second form.
-    """
-    theta = np.clip((np.asarray(S_R, float) - S_res) / (1.0 - S_res), 0.0, 1.0)
-    return theta**kappa
+        \chi = S_e^{\kappa}, \qquad S_e = \frac{S_R - S_{res}}{1 - S_{res}} \in [0, 1]
 
-
-def chi_khalili(suction, air_entry, eta=0.55):
-    """chi = (s / s_b)^-eta above the air-entry suction s_b, 1 below [9].
+    Vanapalli et al. write :math:`\tau = c' + (\sigma - u_a)\tan\phi' + s\,\Theta^{\kappa}\tan\phi'`
+    with :math:`\Theta` the normalised volumetric water content; at constant void ratio
+    :math:`\Theta = S_e`, and κ = 1 is their second form (the normalised water content itself). The fitted law ``chi_power``
+    (:mod:`capred.fitting.chi_laws`) is this χ with κ fitted per material.
 
     Parameters
     ----------
-    suction : matric suction s [Pa], >= 0
-    air_entry : air-entry (or air-expulsion) suction s_b [Pa], > 0
-    eta : exponent [-]; Khalili & Khabbaz (1998) found 0.55 for many soils
+    S_R : array_like
+        Degree of saturation [-].
+    S_res : float or array_like, default 0
+        Residual degree of saturation [-], in [0, 1).
+    vanapalli_kappa : float or array_like, default 1
+        Exponent κ [-], > 0 (glossary ``vanapalli_kappa``; the JSON parameter of ``chi_power`` is ``kappa``).
 
     Returns
     -------
-    chi [-], in (0, 1]
+    numpy.ndarray
+        χ [-], in [0, 1]; 0 at and below ``S_res``.
+
+    References
+    ----------
+    .. [1] Vanapalli, S. K., Fredlund, D. G., Pufahl, D. E. & Clifton, A. W. (1996). Model for the
+       prediction of shear strength with respect to soil suction. Can. Geotech. J. 33(3):379-392.
+       doi:10.1139/t96-060: the prediction equation with :math:`\Theta^\kappa` (equation number not
+       checked against the paper, which capred does not hold).
+    """
+    S_e = np.clip((np.asarray(S_R, float) - S_res) / (1.0 - S_res), 0.0, 1.0)
+    return S_e**vanapalli_kappa
+
+
+def chi_khalili(suction, air_entry, eta=0.55):
+    r"""Bishop's χ of Khalili & Khabbaz (1998): a power of the suction above the air-entry value.
+
+    .. math::
+
+        \chi = \left(\frac{s}{s_b}\right)^{-\eta} \;\; (s > s_b), \qquad \chi = 1 \;\; (s \le s_b)
+
+    Parameters
+    ----------
+    suction : array_like
+        Matric suction s [Pa], >= 0.
+    air_entry : float or array_like
+        Air-entry (or air-expulsion) suction :math:`s_b` [Pa], > 0.
+    eta : float or array_like, default 0.55
+        Exponent η [-]; Khalili & Khabbaz found 0.55 for many soils.
+
+    Returns
+    -------
+    numpy.ndarray
+        χ [-], in (0, 1].
+
+    References
+    ----------
+    .. [1] Khalili, N. & Khabbaz, M. H. (1998). A unique relationship for chi for the determination of the
+       shear strength of unsaturated soils. Géotechnique 48(5):681-687. doi:10.1680/geot.1998.48.5.681,
+       the χ-(s/s_b) relation and its best-fit exponent η = 0.55 (equation number not checked).
     """
     s = np.asarray(suction, float)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -58,25 +97,45 @@ def chi_khalili(suction, air_entry, eta=0.55):
 
 
 def exact_neck_capillary_stress(S_R, suction, R, surface_tension, contact_angle=0.0):
-    """Capillary stress of the exact pendular bridge of a two-sphere unit cell [Pa], and where it exists.
+    r"""Capillary stress of the exact pendular bridge of a two-sphere unit cell [Pa], and where it exists.
 
-    sigma_cap = (pi r0^2 Delta_u + 2 pi r0 gamma) / (pi R^2), with r0 the neck
-    radius of the exact Young-Laplace bridge between two equal spheres of
-    radius R in contact that holds the unit-cell water volume
-    V_w = 2 pi R^3 S_R / 3 (Evenepoel, VUB thesis, "Shape"), and Delta_u the
-    measured suction. As S_R -> 0 it tends to Israelachvili's 2 gamma cos(theta)/R.
+    .. math::
+
+        \sigma_{cap} = \frac{\pi r_0^2\,\Delta u + 2\pi r_0\,\gamma}{\pi R^2}, \qquad
+        V_w = \frac{2\pi R^3 S_R}{3}
+
+    with :math:`r_0` the neck radius of the exact Young-Laplace bridge between two equal spheres of
+    radius R in contact that holds the unit-cell water volume :math:`V_w` (Evenepoel, VUB thesis,
+    "Shape"), and Δu the measured suction. As S_R -> 0 it tends to Israelachvili's
+    :math:`2\gamma\cos\theta_c/R`.
 
     Parameters
     ----------
-    S_R : degree of saturation [-]
-    suction : measured matric suction Delta_u [Pa]
-    R : particle radius [m]
-    surface_tension : gamma [N/m]
-    contact_angle : [deg], in [0, 90)
+    S_R : array_like
+        Degree of saturation [-].
+    suction : array_like
+        Measured matric suction Δu [Pa].
+    R : array_like
+        Particle radius [m].
+    surface_tension : float
+        γ [N/m].
+    contact_angle : float, default 0
+        Contact angle :math:`\theta_c` [deg], in [0, 90).
 
     Returns
     -------
-    (sigma_cap [Pa], ok) : NaN and False where S_R exceeds the last concave bridge (or is 0)
+    sigma_cap : numpy.ndarray
+        Capillary stress [Pa]; NaN where S_R exceeds the last concave bridge (or is 0).
+    ok : numpy.ndarray of bool
+        Where the bridge exists.
+
+    References
+    ----------
+    .. [1] Evenepoel, Micro-mechanical characterization of the capillary effective stress in granular
+       materials, master thesis, Vrije Universiteit Brussel (no DOI): the unit cell, section "Shape".
+    .. [2] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two
+       rigid spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452 (the bridge and
+       its force through the neck).
     """
     from . import bridge as br
 
@@ -91,15 +150,68 @@ def exact_neck_capillary_stress(S_R, suction, R, surface_tension, contact_angle=
     return np.where(ok, cap, np.nan), ok
 
 
-def chi_lu_likos(suction, alpha, n, m=None):
-    """chi = S_e(s) of the van Genuchten curve: suction stress -sigma^s = S_e s [10]."""
-    return vg_effective_saturation(suction, alpha, n, m)
+def chi_lu_likos(suction, vg_alpha, vg_n, vg_m=None):
+    r"""Bishop's χ as the effective saturation of van Genuchten's curve (Lu & Likos 2006).
+
+    .. math::
+
+        \chi = S_e(s) = \left[1 + (\alpha s)^n\right]^{-m}, \qquad -\sigma^s = S_e\, s
+
+    (the suction stress :math:`\sigma^s` of Lu & Likos with van Genuchten's S_e).
+
+    Parameters
+    ----------
+    suction : array_like
+        Matric suction s [Pa], >= 0.
+    vg_alpha : float or array_like
+        van Genuchten :math:`\alpha` [1/Pa], > 0.
+    vg_n : float or array_like
+        van Genuchten n [-], > 1.
+    vg_m : float or array_like, optional
+        van Genuchten m [-]; ``1 - 1/vg_n`` when None.
+
+    Returns
+    -------
+    numpy.ndarray
+        χ [-], in [0, 1].
+
+    References
+    ----------
+    .. [1] Lu, N. & Likos, W. J. (2006). Suction stress characteristic curve for unsaturated soil.
+       J. Geotech. Geoenviron. Eng. 132(2):131-142. doi:10.1061/(ASCE)1090-0241(2006)132:2(131): the
+       suction stress -σ^s = S_e s (equation number not checked).
+    .. [2] van Genuchten, M. Th. (1980). A closed-form equation for predicting the hydraulic conductivity of
+       unsaturated soils. Soil Sci. Soc. Am. J. 44:892-898. doi:10.2136/sssaj1980.03615995004400050002x,
+       eq. 3.
+    """
+    return vg_effective_saturation(suction, vg_alpha, vg_n, vg_m)
 
 
 def fit_tan_phi_b(suction, excess_strength):
-    """tan phi_b of tau = c' + sigma_N tan phi' + s tan phi_b [11], least squares through the origin.
+    r"""tan φ_b of Fredlund et al. (1978) by least squares through the origin.
 
-    ``excess_strength`` is tau_measured - (c' + sigma_N tan phi') of the wet tests.
+    .. math::
+
+        \tau = c' + \sigma_N \tan\phi' + s \tan\phi_b, \qquad
+        \tan\phi_b = \frac{\sum_i s_i\,r_i}{\sum_i s_i^2}, \quad r_i = \tau_i - (c' + \sigma_{N,i}\tan\phi')
+
+    Parameters
+    ----------
+    suction : array_like
+        Matric suction s of the wet tests [Pa].
+    excess_strength : array_like
+        :math:`r_i`, measured strength above the dry envelope of the wet tests [Pa].
+
+    Returns
+    -------
+    float
+        tan φ_b [-]; NaN when every suction is 0.
+
+    References
+    ----------
+    .. [1] Fredlund, D. G., Morgenstern, N. R. & Widger, R. A. (1978). The shear strength of unsaturated
+       soils. Can. Geotech. J. 15(3):313-321. doi:10.1139/t78-029: the planar envelope in (σ − u_a,
+       u_a − u_w) (equation number not checked).
     """
     s = np.asarray(suction, float)
     r = np.asarray(excess_strength, float)
@@ -108,13 +220,42 @@ def fit_tan_phi_b(suction, excess_strength):
 
 
 def pedrotti_tarantino_strength(sigma_N, suction, S_R, c_w, tan_phi_w, c_a, tan_phi_a):
-    """tau = S_R tau_W + (1 - S_R) tau_A [12, eq. 14].
+    r"""Shear strength of Pedrotti & Tarantino: the two pore classes each on its own envelope.
 
-    tau_W = c_W + sigma'_W tan phi_W with sigma'_W = (sigma - u_w) S_R [12, eq. 1]
-    (sigma - u_w = sigma_N + s when the air is at atmospheric pressure), and
-    tau_A = c_A + sigma'_A tan phi_A with sigma'_A = (sigma - u_a)(1 - S_R) [12, eq. 2].
-    The W envelope is that of the water-saturated (reconstituted) soil, the A
+    .. math::
+
+        \tau = S_R\,\tau^W + (1 - S_R)\,\tau^A, \qquad
+        \tau^W = c_W + \sigma'_W \tan\phi_W, \quad \tau^A = c_A + \sigma'_A \tan\phi_A,
+
+        \sigma'_W = (\sigma - u_w)\,S_R, \qquad \sigma'_A = (\sigma - u_a)(1 - S_R)
+
+    with :math:`\sigma - u_w = \sigma_N + s` and :math:`\sigma - u_a = \sigma_N` when the air is at
+    atmospheric pressure. The W envelope is that of the water-saturated (reconstituted) soil, the A
     envelope that of the dry one.
+
+    Parameters
+    ----------
+    sigma_N : array_like
+        Total normal stress σ_N [Pa].
+    suction : array_like
+        Matric suction s = u_a − u_w [Pa].
+    S_R : array_like
+        Degree of saturation [-].
+    c_w, tan_phi_w : float or array_like
+        Cohesion [Pa] and friction coefficient [-] of the water-saturated soil.
+    c_a, tan_phi_a : float or array_like
+        Cohesion [Pa] and friction coefficient [-] of the dry soil.
+
+    Returns
+    -------
+    numpy.ndarray
+        τ [Pa].
+
+    References
+    ----------
+    .. [1] Pedrotti, M. & Tarantino, A. Effective stresses for unsaturated states stemming from clay
+       microstructure. Submitted to Geomechanics for Energy and the Environment (no DOI yet), eq. 1, 2
+       and 14.
     """
     S_R = np.asarray(S_R, float)
     sigma_N = np.asarray(sigma_N, float)
@@ -285,7 +426,8 @@ REGISTRY: dict[str, EffectiveStressModel] = {m.name: m for m in (
     EffectiveStressModel("vanapalli", "Vanapalli", (("s_res", "--s-res"),), "vanapalli1996",
                          lambda d: d.sigma_N + chi_vanapalli(d.S_R, d.params.s_res, d.params.vanapalli_kappa)
                          * d.suction, style={"color": "purple", "marker": "v"},
-                         method="Vanapalli: χ = S_e^κ with S_e = (S_R − S_res)/(1 − S_res), κ from --vanapalli-kappa.",
+                         method="Vanapalli: χ = S_e^κ with S_e = (S_R − S_res)/(1 − S_res), κ from "
+                                "--vanapalli-kappa.",
                          chi_of_saturation=lambda S, p, f: chi_vanapalli(S, p.s_res, p.vanapalli_kappa)),
     EffectiveStressModel("khalili", "Khalili-Khabbaz", (("air_entry", "--air-entry"),), "khalili_khabbaz1998",
                          lambda d: d.sigma_N + chi_khalili(d.suction, d.params.air_entry) * d.suction,
@@ -353,10 +495,27 @@ def resolve_models(names) -> tuple[str, ...]:
     """Model names as a user gives them: a comma-separated string or a sequence, where ``thesis`` stands for
     the thesis's four and ``all`` for every model of the registry; duplicates dropped, order kept.
 
+    No equation: a lookup in ``REGISTRY`` (names are lower-cased, ``-`` read as ``_``).
+
+    Parameters
+    ----------
+    names : str or sequence of str
+        E.g. ``"thesis,vanapalli"`` or ``["bishop", "own1"]``.
+
+    Returns
+    -------
+    tuple of str
+        Registry names, in the order given.
+
     Raises
     ------
     ValueError
         For an unknown name (the message lists the choices) or an empty selection.
+
+    References
+    ----------
+    .. [1] Evenepoel, Micro-mechanical characterization of the capillary effective stress in granular
+       materials, master thesis, Vrije Universiteit Brussel (no DOI): the four models of ``thesis``.
     """
     items = names.split(",") if isinstance(names, str) else list(names)
     out: list[str] = []
@@ -372,7 +531,36 @@ def resolve_models(names) -> tuple[str, ...]:
 
 
 def predict(model: str, d: ModelInputs) -> tuple[np.ndarray, np.ndarray]:
-    """(sigma'_N, tau_pred) [Pa] of every test under ``model``; dry tests keep sigma_N and the dry envelope."""
+    r"""(σ'_N, τ_pred) of every test under ``model``; dry tests keep σ_N and the dry envelope.
+
+    .. math::
+
+        \tau_{pred} = c + \sigma'_N \tan\phi, \qquad \sigma'_N = \sigma_N + \chi\,\Delta u \;\;
+        \text{(wet tests; } \sigma'_N = \sigma_N \text{ for dry ones)}
+
+    with χ Δu (or σ'_N itself) from the model's registry entry (Bishop 1959, eq. of the effective
+    stress); a model that predicts the strength directly (``tau`` in its entry) gives τ_pred and a NaN
+    σ'_N on the wet tests.
+
+    Parameters
+    ----------
+    model : str
+        A name of ``REGISTRY``.
+    d : ModelInputs
+        The tests and the dry envelope of each (SI).
+
+    Returns
+    -------
+    sigma_eff : numpy.ndarray
+        σ'_N [Pa]; NaN on the wet tests of a model that predicts τ directly.
+    tau_pred : numpy.ndarray
+        Predicted shear strength [Pa].
+
+    References
+    ----------
+    .. [1] Bishop, A. W. (1959). The principle of effective stress. Teknisk Ukeblad 106(39):859-863 (no DOI).
+    .. [2] Evenepoel, master thesis, Vrije Universiteit Brussel (no DOI): σ'_N on the dry envelope.
+    """
     e = REGISTRY[model]
     dry_tau = ph.mohr_coulomb_strength(d.c, d.tan_phi, d.sigma_N)
     if e.tau is not None:

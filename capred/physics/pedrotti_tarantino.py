@@ -115,7 +115,7 @@ PATH_COLUMNS: dict[str, tuple[str, str]] = {
 # --------------------------------------------------------------------------------------------
 # eq. 1-2: the two effective stresses
 # --------------------------------------------------------------------------------------------
-def water_saturated_effective_stress(sigma, u_w, S_r):
+def water_saturated_effective_stress(sigma, u_w, S_R):
     """Effective stress of the water-saturated part, σ'_W = (σ − u_w) S_r [Pa].
 
     .. math:: \\sigma'_W = (\\sigma - u_w)\\,S_r
@@ -127,7 +127,7 @@ def water_saturated_effective_stress(sigma, u_w, S_r):
         lines are isotropic ones).
     u_w : array_like
         Pore-water pressure [Pa] (gauge; negative under suction).
-    S_r : array_like
+    S_R : array_like
         Degree of saturation [-], in [0, 1].
 
     Returns
@@ -139,10 +139,10 @@ def water_saturated_effective_stress(sigma, u_w, S_r):
     ----------
     Pedrotti & Tarantino (submitted), eq. 1, with u = u_w as in their section 5.1.
     """
-    return (np.asarray(sigma, float) - np.asarray(u_w, float)) * np.asarray(S_r, float)
+    return (np.asarray(sigma, float) - np.asarray(u_w, float)) * np.asarray(S_R, float)
 
 
-def air_saturated_effective_stress(sigma, u_a, S_r):
+def air_saturated_effective_stress(sigma, u_a, S_R):
     """Effective stress of the air-saturated part, σ'_A = (σ − u_a)(1 − S_r) [Pa].
 
     .. math:: \\sigma'_A = (\\sigma - u_a)\\,(1 - S_r)
@@ -153,7 +153,7 @@ def air_saturated_effective_stress(sigma, u_a, S_r):
         Total stress σ [Pa], compression positive.
     u_a : array_like
         Pore-air pressure [Pa] (gauge; 0 for atmospheric air).
-    S_r : array_like
+    S_R : array_like
         Degree of saturation [-], in [0, 1].
 
     Returns
@@ -166,7 +166,7 @@ def air_saturated_effective_stress(sigma, u_a, S_r):
     Pedrotti & Tarantino (submitted), eq. 2, with u = u_a as in their section 5.1
     (section 4.1 typesets a single u).
     """
-    return (np.asarray(sigma, float) - np.asarray(u_a, float)) * (1.0 - np.asarray(S_r, float))
+    return (np.asarray(sigma, float) - np.asarray(u_a, float)) * (1.0 - np.asarray(S_R, float))
 
 
 # --------------------------------------------------------------------------------------------
@@ -262,15 +262,15 @@ EXAMPLE_KAOLIN = PTVolumeParameters(lambda_W=0.18, kappa_W=0.03, e_ncl_W=2.23,
 # --------------------------------------------------------------------------------------------
 # the lines and the laws of the pore classes (eq. 6-10)
 # --------------------------------------------------------------------------------------------
-def ncl_void_ratio(sigma_eff, lam, e_ncl, reference_stress=1.0e3):
+def ncl_void_ratio(sigma_eff, ncl_slope, e_ncl, reference_stress=1.0e3):
     """Void ratio on a normal-compression line, e = e_ncl − λ ln(σ'/σ_ref) [-].
 
     Parameters
     ----------
     sigma_eff : array_like
         Effective stress σ' [Pa], > 0.
-    lam : float
-        Slope λ of the ncl [-].
+    ncl_slope : float
+        Slope λ of the ncl [-] (λ_W or λ_A).
     e_ncl : float
         Void ratio on the ncl at ``reference_stress`` [-].
     reference_stress : float
@@ -285,10 +285,10 @@ def ncl_void_ratio(sigma_eff, lam, e_ncl, reference_stress=1.0e3):
     ----------
     Pedrotti & Tarantino (submitted), eq. 10 integrated: (Δe)_ncl = −λ Δ(ln σ').
     """
-    return e_ncl - lam * np.log(np.asarray(sigma_eff, float) / reference_stress)
+    return e_ncl - ncl_slope * np.log(np.asarray(sigma_eff, float) / reference_stress)
 
 
-def compression_void_ratio(sigma_eff, yield_stress, lam, kappa, e_ncl, reference_stress=1.0e3):
+def compression_void_ratio(sigma_eff, yield_stress, ncl_slope, url_slope, e_ncl, reference_stress=1.0e3):
     """Void ratio of pores with past yield stress σ_y at effective stress σ' [-] (ncl/url model).
 
     .. math::
@@ -304,8 +304,8 @@ def compression_void_ratio(sigma_eff, yield_stress, lam, kappa, e_ncl, reference
         Effective stress σ' [Pa], > 0.
     yield_stress : array_like
         Largest effective stress σ_y the pores have carried on their ncl [Pa], > 0.
-    lam, kappa : float
-        Slopes of the ncl and url [-].
+    ncl_slope, url_slope : float
+        Slopes λ of the ncl and κ of the url [-].
     e_ncl : float
         Void ratio on the ncl at ``reference_stress`` [-].
     reference_stress : float
@@ -322,16 +322,16 @@ def compression_void_ratio(sigma_eff, yield_stress, lam, kappa, e_ncl, reference
     """
     s = np.asarray(sigma_eff, float)
     sc = np.maximum(np.asarray(yield_stress, float), s)
-    return e_ncl - lam * np.log(sc / reference_stress) - kappa * np.log(s / sc)
+    return e_ncl - ncl_slope * np.log(sc / reference_stress) - url_slope * np.log(s / sc)
 
 
-def url_void_ratio_change(kappa, sigma_before, sigma_after):
+def url_void_ratio_change(url_slope, sigma_before, sigma_after):
     """(Δe)_url = −κ Δ(ln σ') of pores that keep their fluid, below their yield stress [-].
 
     Parameters
     ----------
-    kappa : float
-        url slope [-]: κ_A for air-saturated pores (eq. 6), κ_W for water-saturated ones (eq. 7).
+    url_slope : float
+        url slope κ [-]: κ_A for air-saturated pores (eq. 6), κ_W for water-saturated ones (eq. 7).
     sigma_before, sigma_after : array_like
         Effective stress of the pores' part before and after the increment [Pa], > 0.
 
@@ -344,16 +344,16 @@ def url_void_ratio_change(kappa, sigma_before, sigma_after):
     ----------
     Pedrotti & Tarantino (submitted), eq. 6 (Δe^AA) and eq. 7 (Δe^WW).
     """
-    return -kappa * np.log(np.asarray(sigma_after, float) / np.asarray(sigma_before, float))
+    return -url_slope * np.log(np.asarray(sigma_after, float) / np.asarray(sigma_before, float))
 
 
-def ncl_void_ratio_change(lam, sigma_before, sigma_after):
+def ncl_void_ratio_change(ncl_slope, sigma_before, sigma_after):
     """(Δe)_ncl = −λ Δ(ln σ') of pores compressed on their ncl [-].
 
     Parameters
     ----------
-    lam : float
-        ncl slope [-] (λ_W for water-saturated pores).
+    ncl_slope : float
+        ncl slope λ [-] (λ_W for water-saturated pores).
     sigma_before, sigma_after : array_like
         Effective stress before and after [Pa], > 0, both on the ncl.
 
@@ -366,10 +366,10 @@ def ncl_void_ratio_change(lam, sigma_before, sigma_after):
     ----------
     Pedrotti & Tarantino (submitted), eq. 10.
     """
-    return -lam * np.log(np.asarray(sigma_after, float) / np.asarray(sigma_before, float))
+    return -ncl_slope * np.log(np.asarray(sigma_after, float) / np.asarray(sigma_before, float))
 
 
-def equivalent_preconsolidation_stress(void_ratio, lam, e_ncl, reference_stress=1.0e3):
+def equivalent_preconsolidation_stress(void_ratio, ncl_slope, e_ncl, reference_stress=1.0e3):
     """σ* [Pa]: the effective stress at which an ncl passes through a given void ratio.
 
     .. math:: \\sigma^* = \\sigma_{ref}\\,\\exp\\left((e_{ncl} - e)/\\lambda\\right)
@@ -381,8 +381,8 @@ def equivalent_preconsolidation_stress(void_ratio, lam, e_ncl, reference_stress=
     ----------
     void_ratio : array_like
         Void ratio of the pores just before they change fluid [-].
-    lam, e_ncl : float
-        Slope and intercept of the ncl of the new fluid [-].
+    ncl_slope, e_ncl : float
+        Slope λ and intercept of the ncl of the new fluid [-].
     reference_stress : float
         σ_ref [Pa].
 
@@ -395,10 +395,10 @@ def equivalent_preconsolidation_stress(void_ratio, lam, e_ncl, reference_stress=
     ----------
     [1] Pedrotti & Tarantino (submitted), definitions before eq. 8 and eq. 9.
     """
-    return reference_stress * np.exp((e_ncl - np.asarray(void_ratio, float)) / lam)
+    return reference_stress * np.exp((e_ncl - np.asarray(void_ratio, float)) / ncl_slope)
 
 
-def transition_void_ratio_change(sigma_eff, sigma_star, lam, kappa):
+def transition_void_ratio_change(sigma_eff, sigma_star, ncl_slope, url_slope):
     """Δe of pores that change fluid: from σ* onto the lines of the new fluid [-].
 
     .. math::
@@ -417,8 +417,8 @@ def transition_void_ratio_change(sigma_eff, sigma_star, lam, kappa):
         Effective stress of the new fluid's part after the increment [Pa], > 0.
     sigma_star : array_like
         Equivalent pre-consolidation stress [Pa] (:func:`equivalent_preconsolidation_stress`).
-    lam, kappa : float
-        ncl and url slopes of the new fluid [-].
+    ncl_slope, url_slope : float
+        ncl slope λ and url slope κ of the new fluid [-].
 
     Returns
     -------
@@ -430,13 +430,13 @@ def transition_void_ratio_change(sigma_eff, sigma_star, lam, kappa):
     Pedrotti & Tarantino (submitted), eq. 8 and eq. 9.
     """
     r = np.log(np.asarray(sigma_eff, float) / np.asarray(sigma_star, float))
-    return -np.where(r >= 0.0, lam, kappa) * r
+    return -np.where(r >= 0.0, ncl_slope, url_slope) * r
 
 
 # --------------------------------------------------------------------------------------------
 # eq. 3-5 as printed (eq. 5 corrected)
 # --------------------------------------------------------------------------------------------
-def water_saturated_increment(de_WW, de_AW, S_r, dS_r):
+def water_saturated_increment(de_WW, de_AW, S_R, dS_R):
     """Eq. 3 as printed: Δe^W = Δe^WW (1 − ΔS_r/S_r) + Δe^AW ΔS_r/S_r [-].
 
     Only wetting (ΔS_r > 0) brings air-saturated pores into the water-saturated
@@ -450,9 +450,9 @@ def water_saturated_increment(de_WW, de_AW, S_r, dS_r):
         Void-ratio change of the pores that stay water-saturated [-] (eq. 7 or 10).
     de_AW : array_like
         Void-ratio change of the pores going from air to water [-] (eq. 9).
-    S_r : array_like
+    S_R : array_like
         Degree of saturation at the end of the increment [-], in (0, 1].
-    dS_r : array_like
+    dS_R : array_like
         Change of degree of saturation over the increment [-].
 
     Returns
@@ -470,11 +470,11 @@ def water_saturated_increment(de_WW, de_AW, S_r, dS_r):
     ----------
     Pedrotti & Tarantino (submitted), eq. 3.
     """
-    w = np.clip(np.asarray(dS_r, float), 0.0, None) / np.asarray(S_r, float)
+    w = np.clip(np.asarray(dS_R, float), 0.0, None) / np.asarray(S_R, float)
     return np.asarray(de_WW, float) * (1.0 - w) + np.asarray(de_AW, float) * w
 
 
-def air_saturated_increment(de_AA, de_WA, S_r, dS_r):
+def air_saturated_increment(de_AA, de_WA, S_R, dS_R):
     """Eq. 4 as printed: Δe^A = Δe^AA (1 − (−ΔS_r)/(1 − S_r)) + Δe^WA (−ΔS_r)/(1 − S_r) [-].
 
     Only drying (ΔS_r < 0) brings water-saturated pores into the air-saturated
@@ -486,9 +486,9 @@ def air_saturated_increment(de_AA, de_WA, S_r, dS_r):
         Void-ratio change of the pores that stay air-saturated [-] (eq. 6).
     de_WA : array_like
         Void-ratio change of the pores going from water to air [-] (eq. 8).
-    S_r : array_like
+    S_R : array_like
         Degree of saturation at the end of the increment [-], in [0, 1).
-    dS_r : array_like
+    dS_R : array_like
         Change of degree of saturation over the increment [-].
 
     Returns
@@ -500,11 +500,11 @@ def air_saturated_increment(de_AA, de_WA, S_r, dS_r):
     ----------
     Pedrotti & Tarantino (submitted), eq. 4.
     """
-    w = np.clip(-np.asarray(dS_r, float), 0.0, None) / (1.0 - np.asarray(S_r, float))
+    w = np.clip(-np.asarray(dS_R, float), 0.0, None) / (1.0 - np.asarray(S_R, float))
     return np.asarray(de_AA, float) * (1.0 - w) + np.asarray(de_WA, float) * w
 
 
-def coupled_void_ratio(e_W, e_A, S_r):
+def coupled_void_ratio(e_W, e_A, S_R):
     """Void ratio of the sample from those of its two parts, e = e^W e^A / (e^W (1 − S_r) + e^A S_r) [-].
 
     .. math:: \\frac{1}{e} = \\frac{S_r}{e^W} + \\frac{1 - S_r}{e^A}
@@ -519,7 +519,7 @@ def coupled_void_ratio(e_W, e_A, S_r):
         Void ratio of the water-saturated part [-], > 0.
     e_A : array_like
         Void ratio of the air-saturated part [-], > 0.
-    S_r : array_like
+    S_R : array_like
         Degree of saturation [-], in [0, 1].
 
     Returns
@@ -540,7 +540,7 @@ def coupled_void_ratio(e_W, e_A, S_r):
     """
     e_W = np.asarray(e_W, float)
     e_A = np.asarray(e_A, float)
-    S = np.asarray(S_r, float)
+    S = np.asarray(S_R, float)
     return e_W * e_A / (e_W * (1.0 - S) + e_A * S)
 
 
@@ -558,7 +558,7 @@ class PTVolumePath:
     ----------
     sigma, u_w, u_a : ndarray
         The path: total stress, pore-water and pore-air pressure [Pa].
-    S_r : ndarray
+    S_R : ndarray
         Degree of saturation of the path [-].
     sigma_W, sigma_A : ndarray
         Effective stresses σ'_W = (σ − u_w) S_r and σ'_A = (σ − u_a)(1 − S_r) [Pa] (eq. 1-2).
@@ -595,7 +595,7 @@ class PTVolumePath:
     sigma: np.ndarray
     u_w: np.ndarray
     u_a: np.ndarray
-    S_r: np.ndarray
+    S_R: np.ndarray
     sigma_W: np.ndarray
     sigma_A: np.ndarray
     e: np.ndarray
@@ -620,35 +620,52 @@ class PTVolumePath:
     substeps: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
 
     #: unit (SI) of each array attribute; the output layer converts Pa to kPa
-    UNITS = {"sigma": "Pa", "u_w": "Pa", "u_a": "Pa", "S_r": "-", "sigma_W": "Pa", "sigma_A": "Pa",
+    UNITS = {"sigma": "Pa", "u_w": "Pa", "u_a": "Pa", "S_R": "-", "sigma_W": "Pa", "sigma_A": "Pa",
              "e": "-", "e_W": "-", "e_A": "-", "solid_fraction_W": "-", "ncl_fraction_W": "-",
              "ncl_fraction_A": "-", "de_WW": "-", "de_AA": "-", "de_AW": "-", "de_WA": "-",
              "w_AW": "-", "w_WA": "-", "sigma_star_W": "Pa", "sigma_star_A": "Pa",
              "loading_W": "bool", "loading_A": "bool", "yielding_W": "bool", "yielding_A": "bool"}
 
+    @property
+    def S_r(self) -> np.ndarray:
+        """Deprecated spelling of :attr:`S_R` (read by ``PTVolumePoints.from_path`` of capred.pipelines.pt_volume
+        until it asks for ``S_R``)."""
+        return self.S_R
 
-def path_problems(sigma, u_w, u_a, S_r) -> list[tuple[int, str, str]]:
+
+def path_problems(sigma, u_w, u_a, S_R) -> list[tuple[int, str, str]]:
     """Every reason a path cannot be simulated, as (point index, column, message); empty when fine.
 
     Checks: equal lengths (≥ 1 point), finite values, S_r in [0, 1], σ − u_w > 0
     where S_r > 0 and σ − u_a > 0 where S_r < 1, at the point or at a
     neighbouring one (each part's effective stress must be positive for ln σ'
-    to exist, also on the sub-steps between points).
+    to exist, also on the sub-steps between points):
+
+    .. math::
+
+        \\sigma'_W = (\\sigma - u_w)\\,S_r > 0 \\;\\text{where}\\; S_r > 0, \\qquad
+        \\sigma'_A = (\\sigma - u_a)\\,(1 - S_r) > 0 \\;\\text{where}\\; S_r < 1
 
     Parameters
     ----------
     sigma, u_w, u_a : array_like
         Total stress, pore-water and pore-air pressure [Pa].
-    S_r : array_like
+    S_R : array_like
         Degree of saturation [-].
 
     Returns
     -------
     list of (int, str, str)
         (0-based point index or -1 for the whole path, column name, message), for the
-        pipeline to turn into file/line problems.
+        pipeline to turn into file/line problems. The column names are those of a path
+        file (``PATH_COLUMNS``: ``sigma``, ``u_w``, ``u_a``, ``S_r``).
+
+    References
+    ----------
+    Pedrotti & Tarantino (submitted), eq. 1-2 (the two effective stresses) and eq. 6-10 (lines in
+    e-ln σ', which need σ' > 0).
     """
-    cols = {"sigma": sigma, "u_w": u_w, "u_a": u_a, "S_r": S_r}
+    cols = {"sigma": sigma, "u_w": u_w, "u_a": u_a, "S_r": S_R}
     arrs = {k: np.atleast_1d(np.asarray(v, float)) for k, v in cols.items()}
     n = {k: a.size for k, a in arrs.items()}
     if len(set(n.values())) != 1:
@@ -724,7 +741,7 @@ class _Part:
         return float(self.m[self.lny <= ln_s + 1e-12].sum()) / M if M > 0 else float("nan")
 
 
-def simulate_volume_path(sigma, u_w, u_a, S_r, *, params: PTVolumeParameters,
+def simulate_volume_path(sigma, u_w, u_a, S_R, *, params: PTVolumeParameters,
                          initial_yield_W=None, initial_yield_A=None,
                          substeps: int | None = None) -> PTVolumePath:
     """Void ratio along a path of total stress, pore pressures and S_r (Pedrotti & Tarantino, eq. 1-10).
@@ -760,7 +777,7 @@ def simulate_volume_path(sigma, u_w, u_a, S_r, *, params: PTVolumeParameters,
         Pore-water pressure [Pa] (gauge; −suction when u_a = 0).
     u_a : array_like
         Pore-air pressure [Pa] (gauge).
-    S_r : array_like
+    S_R : array_like
         Degree of saturation [-], in [0, 1] (measured or prescribed; an input).
     params : PTVolumeParameters
         ncl/url slopes and intercepts of slurry (W) and dry-powder (A) clay.
@@ -792,27 +809,27 @@ def simulate_volume_path(sigma, u_w, u_a, S_r, *, params: PTVolumeParameters,
     Pedrotti & Tarantino (submitted), eq. 1-2, 3-5, 6-10, Fig. 13-17; the model of
     Pedrotti & Tarantino (2019), Géotechnique 69(3):217-233.
     """
-    problems = path_problems(sigma, u_w, u_a, S_r)
+    problems = path_problems(sigma, u_w, u_a, S_R)
     if problems:
         raise OptionError("path: " + "; ".join(
             (f"point {i + 1}, {c}: " if i >= 0 else "") + m for i, c, m in problems[:20]))
     if substeps is not None and not (isinstance(substeps, (int, np.integer)) and substeps >= 1):
         raise OptionError(f"substeps must be None or an integer >= 1 (got {substeps!r})")
-    sigma, u_w, u_a, S_r = (np.atleast_1d(np.asarray(x, float)) for x in (sigma, u_w, u_a, S_r))
+    sigma, u_w, u_a, S_R = (np.atleast_1d(np.asarray(x, float)) for x in (sigma, u_w, u_a, S_R))
     n = sigma.size
     p = params
     ln_ref = np.log(p.reference_stress)
     W = _Part(*p.line("W"), ln_ref)
     A = _Part(*p.line("A"), ln_ref)
 
-    sW_path = water_saturated_effective_stress(sigma, u_w, S_r)
-    sA_path = air_saturated_effective_stress(sigma, u_a, S_r)
+    sW_path = water_saturated_effective_stress(sigma, u_w, S_R)
+    sA_path = air_saturated_effective_stress(sigma, u_a, S_R)
 
     def ln_or_nan(x):
         return np.log(x) if x > 0 else np.nan
 
     # --- initial state: both parts on (or below) their ncl; solids split by eq. 5
-    S0 = S_r[0]
+    S0 = S_R[0]
     lnW0, lnA0 = ln_or_nan(sW_path[0]), ln_or_nan(sA_path[0])
     if S0 > 0:
         yW = lnW0 if initial_yield_W is None else max(lnW0, np.log(initial_yield_W))
@@ -850,7 +867,7 @@ def simulate_volume_path(sigma, u_w, u_a, S_r, *, params: PTVolumeParameters,
         flags["yielding_A"][i] = MA > 0 and rec["ncl_fraction_A"][i] > 0
 
     record(0, lnW0, lnA0)
-    n_sub = _substeps(sW_path, sA_path, S_r) if substeps is None else np.full(max(n - 1, 0), int(substeps))
+    n_sub = _substeps(sW_path, sA_path, S_R) if substeps is None else np.full(max(n - 1, 0), int(substeps))
     for k in range(1, n):
         nk = int(n_sub[k - 1])
         acc = {key: [] for key in ("de_WW", "de_AA", "sigma_star_W", "sigma_star_A")}
@@ -860,7 +877,7 @@ def simulate_volume_path(sigma, u_w, u_a, S_r, *, params: PTVolumeParameters,
             s0, s1 = (sigma[k - 1] + t * (sigma[k] - sigma[k - 1]) for t in (t0, t1))
             uw0, uw1 = (u_w[k - 1] + t * (u_w[k] - u_w[k - 1]) for t in (t0, t1))
             ua0, ua1 = (u_a[k - 1] + t * (u_a[k] - u_a[k - 1]) for t in (t0, t1))
-            S_a, S = (S_r[k - 1] + t * (S_r[k] - S_r[k - 1]) for t in (t0, t1))
+            S_a, S = (S_R[k - 1] + t * (S_R[k] - S_R[k - 1]) for t in (t0, t1))
             lnW_a = ln_or_nan(float(water_saturated_effective_stress(s0, uw0, S_a)))
             lnA_a = ln_or_nan(float(air_saturated_effective_stress(s0, ua0, S_a)))
             lnW = ln_or_nan(float(water_saturated_effective_stress(s1, uw1, S)))
@@ -892,7 +909,7 @@ def simulate_volume_path(sigma, u_w, u_a, S_r, *, params: PTVolumeParameters,
         flags["loading_A"][k] = bool(sA_path[k] > sA_path[k - 1])
         record(k, lnWk, lnAk)
 
-    return PTVolumePath(sigma=sigma, u_w=u_w, u_a=u_a, S_r=S_r, sigma_W=sW_path, sigma_A=sA_path,
+    return PTVolumePath(sigma=sigma, u_w=u_w, u_a=u_a, S_R=S_R, sigma_W=sW_path, sigma_A=sA_path,
                         **rec, **flags, params=p, substeps=n_sub)
 
 

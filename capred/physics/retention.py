@@ -1,7 +1,7 @@
 """Water-retention curves: the effective saturation S_e(s) of each model and its inverse.
 
 Suction ``s`` is in any pressure unit consistent with the parameters (capred
-passes Pa: ``alpha`` in 1/Pa, ``s_e``, ``s_m``, ``a``, ``s_r`` in Pa). The water
+passes Pa: ``vg_alpha`` in 1/Pa, ``s_e``, ``s_m``, ``a``, ``s_r`` in Pa). The water
 quantity ``y`` is the volumetric water content θ [m³/m³] or the degree of
 saturation S_R [-]; ``y_s`` and ``y_r`` are its saturated and residual values
 (θ_s, θ_r or S_s, S_res), and
@@ -37,7 +37,7 @@ import numpy as np
 FX_S_MAX = 1e9
 
 
-def vg_effective_saturation(s, alpha, n, m=None):
+def vg_effective_saturation(s, vg_alpha, vg_n, vg_m=None):
     """Effective saturation of van Genuchten (1980).
 
     .. math:: S_e = \\left[1 + (\\alpha s)^n\\right]^{-m}, \\qquad m = 1 - 1/n \\text{ unless given}
@@ -45,13 +45,13 @@ def vg_effective_saturation(s, alpha, n, m=None):
     Parameters
     ----------
     s : array_like
-        Suction [Pa] (any unit, the inverse of ``alpha``'s), >= 0.
-    alpha : array_like
-        Inverse of a characteristic suction [1/Pa], > 0.
-    n : array_like
-        Pore-size index [-], > 1 when ``m = 1 - 1/n``.
-    m : array_like, optional
-        Shape exponent [-], > 0; ``1 - 1/n`` (Mualem's constraint) when None.
+        Suction [Pa] (any unit, the inverse of ``vg_alpha``'s), >= 0.
+    vg_alpha : array_like
+        :math:`\\alpha`, the inverse of a characteristic suction [1/Pa], > 0.
+    vg_n : array_like
+        Pore-size index :math:`n` [-], > 1 when ``vg_m = 1 - 1/vg_n``.
+    vg_m : array_like, optional
+        Shape exponent :math:`m` [-], > 0; ``1 - 1/vg_n`` (Mualem's constraint) when None.
 
     Returns
     -------
@@ -62,11 +62,11 @@ def vg_effective_saturation(s, alpha, n, m=None):
     ----------
     van Genuchten (1980), doi:10.2136/sssaj1980.03615995004400050002x, eq. 3.
     """
-    m = 1.0 - 1.0 / np.asarray(n, float) if m is None else m
-    return (1.0 + (alpha * np.maximum(np.asarray(s, float), 0.0)) ** n) ** (-m)
+    m = 1.0 - 1.0 / np.asarray(vg_n, float) if vg_m is None else vg_m
+    return (1.0 + (vg_alpha * np.maximum(np.asarray(s, float), 0.0)) ** vg_n) ** (-m)
 
 
-def vg_water(s, y_r, y_s, alpha, n, m=None):
+def vg_water(s, y_r, y_s, vg_alpha, vg_n, vg_m=None):
     """Water content (or S_R) of van Genuchten (1980).
 
     .. math:: y = y_r + \\frac{y_s - y_r}{\\left[1 + (\\alpha s)^n\\right]^{m}}
@@ -77,12 +77,12 @@ def vg_water(s, y_r, y_s, alpha, n, m=None):
         Suction [Pa].
     y_r, y_s : array_like
         Residual and saturated water content [m³/m³] or degree of saturation [-].
-    alpha : array_like
-        [1/Pa].
-    n : array_like
-        [-].
-    m : array_like, optional
-        [-]; ``1 - 1/n`` when None.
+    vg_alpha : array_like
+        :math:`\\alpha` [1/Pa].
+    vg_n : array_like
+        :math:`n` [-].
+    vg_m : array_like, optional
+        :math:`m` [-]; ``1 - 1/vg_n`` when None.
 
     Returns
     -------
@@ -93,10 +93,10 @@ def vg_water(s, y_r, y_s, alpha, n, m=None):
     ----------
     van Genuchten (1980), doi:10.2136/sssaj1980.03615995004400050002x, eq. 21.
     """
-    return y_r + (y_s - y_r) * vg_effective_saturation(s, alpha, n, m)
+    return y_r + (y_s - y_r) * vg_effective_saturation(s, vg_alpha, vg_n, vg_m)
 
 
-def vg_suction(S_e, alpha, n, m=None):
+def vg_suction(S_e, vg_alpha, vg_n, vg_m=None):
     """Suction at a given effective saturation, the inverse of :func:`vg_effective_saturation`.
 
     .. math:: s = \\frac{1}{\\alpha}\\left(S_e^{-1/m} - 1\\right)^{1/n}
@@ -105,12 +105,12 @@ def vg_suction(S_e, alpha, n, m=None):
     ----------
     S_e : array_like
         Effective saturation [-] in (0, 1]; outside, NaN.
-    alpha : array_like
-        [1/Pa].
-    n : array_like
-        [-].
-    m : array_like, optional
-        [-]; ``1 - 1/n`` when None.
+    vg_alpha : array_like
+        :math:`\\alpha` [1/Pa].
+    vg_n : array_like
+        :math:`n` [-].
+    vg_m : array_like, optional
+        :math:`m` [-]; ``1 - 1/vg_n`` when None.
 
     Returns
     -------
@@ -122,14 +122,14 @@ def vg_suction(S_e, alpha, n, m=None):
     van Genuchten (1980), doi:10.2136/sssaj1980.03615995004400050002x, eq. 3 solved for s.
     """
     S_e = np.asarray(S_e, float)
-    m = 1.0 - 1.0 / np.asarray(n, float) if m is None else m
+    m = 1.0 - 1.0 / np.asarray(vg_n, float) if vg_m is None else vg_m
     ok = (S_e > 0) & (S_e <= 1)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        s = np.maximum(np.where(ok, S_e, 0.5) ** (-1.0 / m) - 1.0, 0.0) ** (1.0 / n) / alpha
+        s = np.maximum(np.where(ok, S_e, 0.5) ** (-1.0 / m) - 1.0, 0.0) ** (1.0 / vg_n) / vg_alpha
     return np.where(ok, s, np.nan)
 
 
-def bc_effective_saturation(s, s_e, lam):
+def bc_effective_saturation(s, s_e, bc_lambda):
     """Effective saturation of Brooks & Corey (1964).
 
     .. math:: S_e = (s_e / s)^{\\lambda} \\ (s > s_e), \\qquad S_e = 1 \\ (s \\le s_e)
@@ -140,8 +140,8 @@ def bc_effective_saturation(s, s_e, lam):
         Suction [Pa].
     s_e : array_like
         Air-entry (bubbling) suction [Pa], > 0.
-    lam : array_like
-        Pore-size distribution index λ [-] (``bc_lambda``), > 0.
+    bc_lambda : array_like
+        Pore-size distribution index λ [-], > 0.
 
     Returns
     -------
@@ -154,10 +154,10 @@ def bc_effective_saturation(s, s_e, lam):
     """
     s = np.asarray(s, float)
     with np.errstate(divide="ignore"):
-        return np.where(s > s_e, (s_e / np.where(s > 0, s, 1.0)) ** lam, 1.0)
+        return np.where(s > s_e, (s_e / np.where(s > 0, s, 1.0)) ** bc_lambda, 1.0)
 
 
-def bc_water(s, y_r, y_s, s_e, lam):
+def bc_water(s, y_r, y_s, s_e, bc_lambda):
     """Water content (or S_R) of Brooks & Corey (1964): :math:`y = y_r + (y_s - y_r) S_e(s)`.
 
     Parameters
@@ -168,8 +168,8 @@ def bc_water(s, y_r, y_s, s_e, lam):
         Residual and saturated water content [m³/m³] or degree of saturation [-].
     s_e : array_like
         Air-entry suction [Pa].
-    lam : array_like
-        λ [-].
+    bc_lambda : array_like
+        Pore-size distribution index λ [-].
 
     Returns
     -------
@@ -180,22 +180,23 @@ def bc_water(s, y_r, y_s, s_e, lam):
     ----------
     Brooks & Corey (1964), Hydrology Paper 3 (no DOI).
     """
-    return y_r + (y_s - y_r) * bc_effective_saturation(s, s_e, lam)
+    return y_r + (y_s - y_r) * bc_effective_saturation(s, s_e, bc_lambda)
 
 
-def bc_suction(S_r, s_e, alpha):
+def bc_suction(S_R, s_e, bc_lambda):
     """Suction from Brooks-Corey as Morvan et al. (2016) use it, the inverse of :func:`bc_effective_saturation`.
 
-    .. math:: s = s_e\\, S_r^{-1/\\alpha}
+    .. math:: s = s_e\\, S_R^{-1/\\lambda}
 
     Parameters
     ----------
-    S_r : array_like
-        Degree of saturation (effective saturation) [-] in (0, 1]; 1 gives ``s = s_e``.
+    S_R : array_like
+        Degree of saturation [-] in (0, 1], taken as the effective saturation (no residual saturation, as
+        Morvan et al. do); 1 gives ``s = s_e``.
     s_e : array_like
         Air-entry suction [Pa] (any pressure unit; the result has the same).
-    alpha : array_like
-        Brooks-Corey index [-] (``bc_lambda``; Morvan et al. call it α).
+    bc_lambda : array_like
+        Brooks-Corey pore-size index λ [-] (Morvan et al. call it α).
 
     Returns
     -------
@@ -206,7 +207,7 @@ def bc_suction(S_r, s_e, alpha):
     ----------
     Brooks & Corey (1964), Hydrology Paper 3; Morvan et al. (2016), section 3.
     """
-    return s_e * np.asarray(S_r, float) ** (-1.0 / alpha)
+    return s_e * np.asarray(S_R, float) ** (-1.0 / bc_lambda)
 
 
 def kosugi_effective_saturation(s, s_m, sigma):

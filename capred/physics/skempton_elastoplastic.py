@@ -94,8 +94,8 @@ def air_volume_ratio(S_R, void_ratio):
     return e * (1.0 - np.asarray(S_R, float)) / (1.0 + e)
 
 
-def elastic_compliance(p_eff, void_ratio, kappa):
-    """Elastic isotropic compliance ``A11 = kappa / ((1 + e) p')`` [1/Pa] (eq. 5 of [1]).
+def elastic_compliance(p_eff, void_ratio, kappa_elastic):
+    """Elastic isotropic compliance ``A11 = kappa_elastic / ((1 + e) p')`` [1/Pa] (eq. 5 of [1]).
 
     Parameters
     ----------
@@ -103,7 +103,7 @@ def elastic_compliance(p_eff, void_ratio, kappa):
         Mean effective stress ``p'`` [Pa], > 0 (eq. 13 of [1]).
     void_ratio : array_like
         Void ratio ``e`` [-].
-    kappa : float
+    kappa_elastic : float
         Slope of the elastic line in the ``e - ln p'`` plane [-].
 
     Returns
@@ -115,23 +115,23 @@ def elastic_compliance(p_eff, void_ratio, kappa):
     ----------
     [1] Morvan et al. (2016), eq. 5.
     """
-    return kappa / ((1.0 + np.asarray(void_ratio, float)) * np.asarray(p_eff, float))
+    return kappa_elastic / ((1.0 + np.asarray(void_ratio, float)) * np.asarray(p_eff, float))
 
 
 @dataclass(frozen=True)
 class ElasticCompliance:
-    """:class:`Compliance` of eq. 5 of [1]: ``A11 = kappa / ((1 + e) p')``.
+    """:class:`Compliance` of eq. 5 of [1]: ``A11 = kappa_elastic / ((1 + e) p')``.
 
     Attributes
     ----------
-    kappa : float
+    kappa_elastic : float
         Slope of the elastic line in ``e - ln p'`` [-].
     """
 
-    kappa: float
+    kappa_elastic: float
 
     def __call__(self, p_eff: float, void_ratio: float) -> float:
-        return float(elastic_compliance(p_eff, void_ratio, self.kappa))
+        return float(elastic_compliance(p_eff, void_ratio, self.kappa_elastic))
 
 
 def skempton_b_from_compliance(A11, S_R, void_ratio, pa):
@@ -265,12 +265,12 @@ def _undrained_b(compliance: Compliance, p_eff, e, S_R, pa0, dp, n_dp):
 
 
 def skempton_b_incremental_path(S_R_min=0.5, *, compliance: Compliance | Callable[[float, float], float] | None = None,
-                                kappa=0.006, p0=100e3, u0=30e3, e0=0.8, pa0=130e3, air_entry=20e3, bc_lambda=0.8,
-                                dp=1e3, n_dp=10, sr_step=1e-3, at=None) -> IncrementalBPath:
+                                kappa_elastic=0.006, p0=100e3, u0=30e3, e0=0.8, pa0=130e3, air_entry=20e3,
+                                bc_lambda=0.8, dp=1e3, n_dp=10, S_R_step=1e-3, at=None) -> IncrementalBPath:
     r"""The two incremental loops of Morvan et al. (2016), section 4: B along a drying path.
 
     Loop 1 dries the sample from ``S_R = 1`` (suction ``s_e``, ``p' = p0 - u0 + s_e``)
-    down to ``S_R_min`` in steps of ``sr_step``, at constant total stress and
+    down to ``S_R_min`` in steps of ``S_R_step``, at constant total stress and
     air pressure (``dp = du_a = 0``), with
 
     .. math::
@@ -290,10 +290,10 @@ def skempton_b_incremental_path(S_R_min=0.5, *, compliance: Compliance | Callabl
         Lowest degree of saturation of the path [-], in (0, 1].
     compliance : Compliance, optional
         ``A11(p_eff [Pa], void_ratio [-]) -> [1/Pa]``. Default: the elastic
-        compliance of eq. 5 with ``kappa`` (:class:`ElasticCompliance`). The
+        compliance of eq. 5 with ``kappa_elastic`` (:class:`ElasticCompliance`). The
         bounding-surface compliance of Morvan, Wong & Branque (2010) that the
         paper uses is not available in capred.
-    kappa : float
+    kappa_elastic : float
         Slope of the elastic line in ``e - ln p'`` [-] (Table 3: 0.006).
     p0 : float
         Mean total stress [Pa] (Table 3: 100 kPa).
@@ -314,7 +314,7 @@ def skempton_b_incremental_path(S_R_min=0.5, *, compliance: Compliance | Callabl
         to eq. 24 as ``dp -> 0`` (1 kPa changes B by < 1 % at Table 3 values).
     n_dp : int
         Sub-increments of ``dp``.
-    sr_step : float
+    S_R_step : float
         Step of ``S_R`` in loop 1 [-].
     at : array_like, optional
         Degrees of saturation at which to record the state (each in
@@ -329,7 +329,7 @@ def skempton_b_incremental_path(S_R_min=0.5, *, compliance: Compliance | Callabl
     ------
     OptionError
         ``S_R_min`` outside (0, 1], a recording point outside ``[S_R_min, 1]``,
-        or a non-positive ``dp``, ``n_dp`` or ``sr_step``.
+        or a non-positive ``dp``, ``n_dp`` or ``S_R_step``.
 
     References
     ----------
@@ -337,12 +337,12 @@ def skempton_b_incremental_path(S_R_min=0.5, *, compliance: Compliance | Callabl
     [3] Brooks & Corey (1964), retention curve ``S_R = (s_e / s)^lambda``.
     """
     if compliance is None:
-        compliance = ElasticCompliance(kappa)
+        compliance = ElasticCompliance(kappa_elastic)
     if not 0.0 < S_R_min <= 1.0:
         raise OptionError(f"S_R_min must be in (0, 1], got {S_R_min}")
-    if dp <= 0 or n_dp < 1 or sr_step <= 0:
-        raise OptionError("dp, n_dp and sr_step must be positive")
-    n = max(1, int(np.ceil((1.0 - S_R_min) / sr_step - 1e-9)))
+    if dp <= 0 or n_dp < 1 or S_R_step <= 0:
+        raise OptionError("dp, n_dp and S_R_step must be positive")
+    n = max(1, int(np.ceil((1.0 - S_R_min) / S_R_step - 1e-9)))
     grid = np.linspace(1.0, S_R_min, n + 1)
     if at is None:
         stops = grid
@@ -376,8 +376,8 @@ def skempton_b_incremental_path(S_R_min=0.5, *, compliance: Compliance | Callabl
 
 
 def skempton_b_incremental(S_R, *, compliance: Compliance | Callable[[float, float], float] | None = None,
-                           kappa=0.006, p0=100e3, u0=30e3, e0=0.8, pa0=130e3, air_entry=20e3, bc_lambda=0.8,
-                           dp=1e3, n_dp=10, sr_step=1e-3):
+                           kappa_elastic=0.006, p0=100e3, u0=30e3, e0=0.8, pa0=130e3, air_entry=20e3,
+                           bc_lambda=0.8, dp=1e3, n_dp=10, S_R_step=1e-3):
     r"""Skempton's B at each ``S_R`` by the two incremental loops of Morvan et al. (2016), eqs. 14-24.
 
     One drying path from ``S_R = 1`` down to ``min(S_R)`` (loop 1) and, at each
@@ -394,7 +394,7 @@ def skempton_b_incremental(S_R, *, compliance: Compliance | Callable[[float, flo
     ----------
     S_R : array_like
         Degrees of saturation [-], each in (0, 1].
-    compliance, kappa, p0, u0, e0, pa0, air_entry, bc_lambda, dp, n_dp, sr_step
+    compliance, kappa_elastic, p0, u0, e0, pa0, air_entry, bc_lambda, dp, n_dp, S_R_step
         As in :func:`skempton_b_incremental_path` (SI units, Pa).
 
     Returns
@@ -426,8 +426,8 @@ def skempton_b_incremental(S_R, *, compliance: Compliance | Callable[[float, flo
         return S.copy()
     if np.any(~np.isfinite(S)) or np.any(S <= 0.0) or np.any(S > 1.0):
         raise OptionError("S_R must lie in (0, 1]")
-    path = skempton_b_incremental_path(float(S.min()), compliance=compliance, kappa=kappa, p0=p0, u0=u0, e0=e0,
-                                       pa0=pa0, air_entry=air_entry, bc_lambda=bc_lambda, dp=dp, n_dp=n_dp,
-                                       sr_step=sr_step, at=S)
+    path = skempton_b_incremental_path(float(S.min()), compliance=compliance, kappa_elastic=kappa_elastic, p0=p0,
+                                       u0=u0, e0=e0, pa0=pa0, air_entry=air_entry, bc_lambda=bc_lambda, dp=dp,
+                                       n_dp=n_dp, S_R_step=S_R_step, at=S)
     B = np.interp(S.ravel(), path.S_R[::-1], path.B[::-1]).reshape(S.shape)  # exact: every S_R is a path point
     return B if B.ndim else float(B)
