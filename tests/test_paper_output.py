@@ -22,9 +22,8 @@ def shear_result():
 
 
 def test_vector_sheets_and_single_panels(tmp_path):
-    res = runner.invoke(app, ["shear", "--sample", "--format", "pdf,svg", "--bootstrap", "0", "--out",
-                              str(tmp_path / "o")])
-    assert res.exit_code == 0, res.output
+    result = capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(bootstrap=0))
+    capred.write_outputs(result, tmp_path / "o", formats=("pdf", "svg"), panels=True)
     out = tmp_path / "o"
     assert (out / "report_steel_2mm.pdf").read_bytes().startswith(b"%PDF")
     ElementTree.parse(out / "report_steel_2mm.svg")  # well-formed SVG
@@ -32,8 +31,8 @@ def test_vector_sheets_and_single_panels(tmp_path):
     assert panels == ["report_steel_2mm_dry_envelope.svg", "report_steel_2mm_measured_vs_predicted.svg",
                       "report_steel_2mm_residuals.svg", "report_steel_2mm_strength_vs_saturation.svg"]
     width = ElementTree.parse(out / "figures" / panels[0]).getroot().get("width")
-    # one journal column (3.5 in = 252 pt) for the data, plus room for the legend beside it
-    assert float(width.rstrip("pt")) == pytest.approx((3.5 + 1.6) * 72)
+    # one journal column, 85 mm = 240.9 pt, legend included
+    assert float(width.rstrip("pt")) == pytest.approx(85 / 25.4 * 72, abs=0.5)
     assert not list(out.glob("*.png"))
 
 
@@ -148,9 +147,10 @@ def test_report_html_is_self_contained(tmp_path, args):
     html = (tmp_path / "o" / "report.html").read_text(encoding="utf-8")
     parser = _Links()
     parser.feed(html)
-    # no network, no other file: only in-document references (#id) are allowed
-    assert all(r.startswith("#") for r in parser.refs), [r for r in parser.refs if not r.startswith("#")][:3]
-    assert "svg" in parser.tags and "table" in parser.tags
+    # no network, no other file: only in-document references (#id) and embedded images (data:) are allowed
+    assert all(r.startswith(("#", "data:image/")) for r in parser.refs), \
+        [r[:40] for r in parser.refs if not r.startswith(("#", "data:image/"))][:3]
+    assert ("svg" in parser.tags or "img" in parser.tags) and "table" in parser.tags
     assert "link" not in parser.tags and "script" not in parser.tags
     assert "What was run" in html and "Warnings and flags" in html and "Methods" in html
     assert "@page { size: A4" in html

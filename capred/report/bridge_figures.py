@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .sheets import Panel, Sheet
-from .style import LABEL, style
+from .style import LABEL, OKABE_ITO, style, untitled
 
 LINES = {
     "exact": dict(lw=2.0, ls="-", label="exact bridge (Young-Laplace)"),
@@ -31,13 +31,18 @@ def plot_curve(ax, curve, inside: bool):
 
 
 def sheet_curve(curve) -> Sheet:
-    return Sheet(f"σ' = F_cap/(πR²) against S_R = 3V_w/(2πR³), spheres in contact (R = {curve.R * 1e3:g} mm, "
-                 f"γ = {curve.gamma:g} N/m, θ = {np.degrees(curve.theta):g}°)", [
+    return Sheet(f"Effective stress of a pendular bridge against the degree of saturation, spheres in contact "
+                 f"(R = {curve.R * 1e3:g} mm, γ = {curve.gamma:g} N/m, θ = {np.degrees(curve.theta):g}°)", [
                      Panel("pendular", lambda ax: plot_curve(ax, curve, True),
-                           "Inside the pendular regime: the exact bridge against the approximations."),
+                           "σ' = F_cap/(πR²) against S_R = 3V_w/(2πR³) inside the pendular regime: the exact "
+                           "bridge against the approximations."),
                      Panel("concave_range", lambda ax: plot_curve(ax, curve, False),
                            "Over the whole range of concave bridges."),
                  ], 2)
+
+
+COMPARE_LABEL = {"exact": "exact bridge", "toroidal": "toroidal", "willett": "Willett et al. (2000)",
+                 "israelachvili": "Israelachvili"}
 
 
 def plot_compare(ax, rows):
@@ -45,7 +50,7 @@ def plot_compare(ax, rows):
     hi = 0.0
     for name in ("exact", "toroidal", "willett", "israelachvili"):
         pred = np.array([np.nan if r[f"F_{name}_mN"] is None else r[f"F_{name}_mN"] for r in rows], float)
-        ax.plot(meas, pred, ls="none", ms=5, alpha=0.85, label=name, **style(name))
+        ax.plot(meas, pred, ms=4, alpha=0.85, label=COMPARE_LABEL[name], **{**style(name), "ls": "none"})
         hi = max(hi, np.nanmax(pred, initial=0.0), np.nanmax(meas, initial=0.0))
     ax.plot([0, hi * 1.05], [0, hi * 1.05], "k--", lw=0.8, label="1:1")
     ax.set_xlabel(LABEL["F_measured"])
@@ -57,15 +62,13 @@ def plot_compare(ax, rows):
 
 def sheet_compare(rows) -> Sheet:
     return Sheet("Measured capillary forces against theory", [
-        Panel("measured_vs_predicted", lambda ax: plot_compare(ax, rows),
+        Panel("measured_vs_predicted", untitled(lambda ax: plot_compare(ax, rows)),
               "Each sphere pair's measured force against the exact bridge of the same R, gap, contact angle and "
               "volume, the toroidal approximation, Willett et al. (2000) and Israelachvili.")], 1)
 
 
 def plot_rupture(ax, rows):
     """Exact rupture distance against V^(1/3), one marker per contact angle, Lian's line for each."""
-    from .style import OKABE_ITO
-
     palette = [OKABE_ITO[c] for c in ("black", "blue", "vermillion", "green", "purple", "orange", "sky")]
     ok = [r for r in rows if r["status"] == "ok"]
     angles = sorted({r["contact_angle_deg"] for r in ok})
@@ -76,11 +79,11 @@ def plot_rupture(ax, rows):
         colour = palette[k % len(palette)]
         x = np.array([r["V_w_mm3"] for r in sel]) ** (1 / 3)
         ax.plot(x, [r["D_rupture_mm"] for r in sel], ls="none", marker=markers[k % len(markers)], color=colour,
-                ms=5, label=f"exact, θ = {th:g}°")
+                ms=5, label=rf"exact, $\theta$ = {th:g}°")
         xs = np.linspace(0, x_hi * 1.05, 50)
-        ax.plot(xs, (1 + np.radians(th) / 2) * xs, color=colour, lw=1.0, ls="--", label=f"Lian, θ = {th:g}°")
-    ax.set_xlabel(r"$V_w^{1/3}$ [mm]")
-    ax.set_ylabel(r"rupture distance $D_{rupt}$ [mm]")
+        ax.plot(xs, (1 + np.radians(th) / 2) * xs, color=colour, lw=1.0, ls="--", label=rf"Lian et al., $\theta$ = {th:g}°")
+    ax.set_xlabel(LABEL["V13"])
+    ax.set_ylabel(LABEL["D_rupture"])
     ax.set_title("Rupture at constant volume")
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
@@ -90,6 +93,6 @@ def plot_rupture(ax, rows):
 
 def sheet_rupture(rows) -> Sheet:
     return Sheet("Rupture distance of pendular bridges against Lian et al. (1993)", [
-        Panel("rupture_vs_lian", lambda ax: plot_rupture(ax, rows),
+        Panel("rupture_vs_lian", untitled(lambda ax: plot_rupture(ax, rows)),
               "Exact rupture distance (widest gap spanned at constant volume) against the cube root of the water "
-              "volume, with Lian et al.'s estimate D = (1 + θ/2) V^(1/3) (θ in rad).")], 1)
+              "volume, with Lian et al.'s estimate D = (1 + θ/2) V_w^(1/3) (θ in rad), one line style each.")], 1)

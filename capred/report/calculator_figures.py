@@ -6,9 +6,14 @@ import numpy as np
 
 from ..physics import calculators as calc
 from .sheets import Panel, Sheet
-from .style import LABEL, OKABE_ITO
+from .style import LABEL, LINESTYLES, OKABE_ITO, SERIES_COLOURS
 
 _COLORS = [OKABE_ITO[k] for k in ("black", "blue", "vermillion", "green", "orange", "purple", "sky")]
+
+
+def _line(k: int) -> dict:
+    """Colour and line style of the k-th curve of a parameter study (no markers: the curves are continuous)."""
+    return dict(color=SERIES_COLOURS[k % len(SERIES_COLOURS)], ls=LINESTYLES[k % len(LINESTYLES)], lw=1.2)
 
 
 def _axes(ax, title):
@@ -26,11 +31,12 @@ def plot_cases(ax, cases, s_e=None, bc_lambda=None):
     for k, (params, pts) in enumerate(cases.items()):
         kappa, e0, p0, u0, pa0 = params
         color = _COLORS[k % len(_COLORS)]
-        label = f"κ = {kappa:g}, e0 = {e0:g}, p'0 = {(p0 - u0) / 1e3:g} kPa, P_a0 = {pa0 / 1e3:g} kPa"
+        label = (rf"$\kappa$ = {kappa:g}, $e_0$ = {e0:g}, $p'_0$ = {(p0 - u0) / 1e3:g} kPa, "
+                 rf"$P_{{a0}}$ = {pa0 / 1e3:g} kPa")
         ax.plot(S, calc.skempton_b(S, p0 - u0, e0, kappa, pa0), "-", color=color, lw=1.2, label=label)
         if s_e is not None:
             ax.plot(S, calc.skempton_b_suction(S, p0, u0, e0, kappa, pa0, s_e, bc_lambda), "--", color=color, lw=1.0,
-                    label=f"  with suction (s_e = {s_e / 1e3:g} kPa, λ = {bc_lambda:g})")
+                    label=rf"  with suction ($s_e$ = {s_e / 1e3:g} kPa, $\lambda$ = {bc_lambda:g})")
         ax.plot(pts[0], pts[1], "o", color=color, ms=5, ls="none", label="  computed cases")
     return _axes(ax, "Computed cases on their own curves")
 
@@ -42,19 +48,20 @@ def sheet_skempton(cases: dict, kappa, e0, p0, u0, pa0, s_e=None, bc_lambda=None
     lam = bc_lambda if bc_lambda is not None else 0.8
 
     def kappa_study(ax):
-        for k in (0.0006, 0.006, 0.06):
-            ax.plot(S, calc.skempton_b(S, pe, e0, k, pa0), label=f"κ = {k:g}")
-        return _axes(ax, "Effect of κ (Morvan et al. 2016, Fig. 2)")
+        for j, k in enumerate((0.0006, 0.006, 0.06)):
+            ax.plot(S, calc.skempton_b(S, pe, e0, k, pa0), label=rf"$\kappa$ = {k:g}", **_line(j))
+        return _axes(ax, r"Effect of $\kappa$ (Morvan et al. 2016, Fig. 2)")
 
     def e0_study(ax):
-        for e in (0.6, 0.8, 1.2):
-            ax.plot(S, calc.skempton_b(S, pe, e, kappa, pa0), label=f"e0 = {e:g}")
-        return _axes(ax, "Effect of e0 (Morvan et al. 2016, Fig. 3)")
+        for j, e in enumerate((0.6, 0.8, 1.2)):
+            ax.plot(S, calc.skempton_b(S, pe, e, kappa, pa0), label=f"$e_0$ = {e:g}", **_line(j))
+        return _axes(ax, r"Effect of $e_0$ (Morvan et al. 2016, Fig. 3)")
 
     def se_study(ax):
-        for se in (5e3, 20e3, 100e3, 1000e3):
-            ax.plot(S, calc.skempton_b_suction(S, p0, u0, e0, kappa, pa0, se, lam), label=f"s_e = {se / 1e3:g} kPa")
-        return _axes(ax, f"Suction equilibrium, effect of s_e (λ = {lam:g}; Morvan et al. 2016, Fig. 5)")
+        for j, se in enumerate((5e3, 20e3, 100e3, 1000e3)):
+            ax.plot(S, calc.skempton_b_suction(S, p0, u0, e0, kappa, pa0, se, lam), label=f"$s_e$ = {se / 1e3:g} kPa",
+                    **_line(j))
+        return _axes(ax, rf"Effect of $s_e$, $\lambda$ = {lam:g} (Morvan et al. 2016, Fig. 5)")
 
     return Sheet("Skempton's B against the degree of saturation", [
         Panel("cases", lambda ax: plot_cases(ax, cases, s_e, bc_lambda), "B(S_r) of eq. 10 for each parameter set "

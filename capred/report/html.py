@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import sys
 from datetime import datetime, timezone
+from functools import lru_cache
 
 from ..references import bibliography
 from .render import fmt
@@ -24,21 +25,77 @@ FLAG_MEANING = {
     "spherical_negative_p_prime": "spherical bound gives p' < 0",
 }
 
-def _options(doc: dict) -> list[tuple[str, str, str]]:
-    units = doc.get("option_units", {})
+def _unit_text(unit: str) -> str:
+    """A unit as printed: 'kN/m^3' -> 'kN/m³', '-' -> ''."""
+    if unit in ("-", "dimensionless"):
+        return ""
+    return unit.replace("^-1", "⁻¹").replace("^2", "²").replace("^3", "³")
+
+
+def _shown(value) -> bool:
+    return value is not None and not (isinstance(value, (list, tuple, dict, str)) and len(value) == 0)
+
+
+def _option_value(value, quantity) -> tuple[str, str]:
+    """(value, unit) of one option as a user types it: the nomenclature's unit (kPa, kN/m³), not SI."""
+    if quantity is not None and isinstance(value, (int, float)) and not isinstance(value, bool):
+        return fmt(value * quantity.factor, 6), _unit_text(quantity.unit)
+    return _text(value), ""
+
+
+def _in_force(options, used: set[str]) -> list[tuple[str, object, object]]:
+    """(name, value, Quantity or None) of the options of one Options dataclass that are in force: every set
+    top-level option; of a nested one (model parameters), those a model of the run needs and those set to
+    other than their default."""
+    import dataclasses
+
+    from ..nomenclature import QUANTITIES
+
     out = []
-    for name, value in doc["options"].items():
-        if isinstance(value, dict):
-            for k, v in value.items():
-                out.append((f"{name}.{k}", _text(v), ""))
-        else:
-            out.append((name, _text(value), units.get(name, "")))
+    for f in dataclasses.fields(options):
+        if f.name.startswith("_"):
+            continue
+        value = getattr(options, f.name)
+        if dataclasses.is_dataclass(value):
+            for name, v, q in _in_force(value, used):
+                sub = next(x for x in dataclasses.fields(value) if x.name == name)
+                default = sub.default if sub.default is not dataclasses.MISSING else None
+                if name in used or (_shown(v) and v != default):
+                    out.append((f"{f.name}.{name}", v, q))
+            continue
+        if not _shown(value):
+            continue
+        qname = getattr(options, "QUANTITIES", {}).get(f.name)
+        out.append((f.name, value, QUANTITIES.get(qname) if qname else None))
     return out
 
 
+def _options(result, doc: dict) -> list[tuple[str, str, str]]:
+    """Rows (option, value, unit) of the options in force, in the units a user types (kPa, kN/m³, mm)."""
+    options = getattr(result, "options", None)
+    if options is None or not hasattr(options, "__dataclass_fields__"):  # a result without an Options record
+        units = doc.get("option_units", {})
+        return [(k, _text(v), units.get(k, "")) for k, v in doc["options"].items()
+                if _shown(v) and not isinstance(v, dict)]
+    used: set[str] = set()
+    from ..physics.effective_stress_models import REGISTRY
+
+    for m in getattr(result, "models", ()) or ():
+        entry = REGISTRY.get(m) if isinstance(m, str) else None
+        if entry is not None:
+            used.update(name for name, _ in entry.requires)
+    rows = []
+    for name, value, quantity in _in_force(options, used):
+        text, unit = _option_value(value, quantity)
+        rows.append((name, text, unit))
+    return rows
+
+
 def _text(v) -> str:
+    if isinstance(v, bool):
+        return "yes" if v else "no"
     if isinstance(v, float):
-        return repr(v)
+        return fmt(v, 6)
     if isinstance(v, (list, tuple)):
         return ", ".join(_text(x) for x in v)
     return "—" if v is None else str(v)
@@ -58,50 +115,180 @@ def _flags(result) -> list[tuple[str, int, str]]:
     return [(k, v, FLAG_MEANING.get(k, "")) for k, v in counts.items()]
 
 
+#: printable width of the per-row table on an A4 portrait page (210 mm − 2 × 12 mm margins) [mm]
+PRINT_WIDTH_MM = 186.0
+#: width of one character of the per-row table's 7 pt text [mm] (DejaVu Sans digits are 0.64 em; 7 pt = 2.47
+#: mm), and the cell padding and border [mm]
+CHAR_MM = 0.64 * 7 * 25.4 / 72
+CELL_MM = 2.2
+
+
+def _label_columns(columns: list[str]) -> list[int]:
+    """Columns repeated in every column group of a split table: the test's identity (test_id, material, case,
+    condition) where present, else the first column."""
+    keys = [j for j, c in enumerate(columns) if c.split(" [")[0] in ("test_id", "case", "material", "condition")]
+    return keys or [0]
+
+
+def column_groups(columns: list[str], rows: list[list[str]], width_mm: float = PRINT_WIDTH_MM) -> list[list[int]]:
+    """Columns packed into groups that each fit ``width_mm`` when printed, the label columns repeated in each.
+
+    A column is as wide as its longest cell or the longest word of its header (headers wrap at spaces).
+
+    Parameters
+    ----------
+    columns : list of str
+        Column headers.
+    rows : list of list of str
+        Cells as printed.
+    width_mm : float
+        Printable width [mm].
+
+    Returns
+    -------
+    list of list of int
+        Column indices of each group, in order; every column is in exactly one group (besides the repeated
+        label columns).
+    """
+    widths = []
+    for j, head in enumerate(columns):
+        longest = max([len(w) for w in head.split()] + [len(r[j]) for r in rows if j < len(r)] + [1])
+        widths.append(longest * CHAR_MM + CELL_MM)
+    labels = _label_columns(columns)
+    base = sum(widths[j] for j in labels)
+    groups, current, used = [], [], base
+    for j in range(len(columns)):
+        if j in labels:
+            continue
+        if current and used + widths[j] > width_mm:
+            groups.append(labels + current)
+            current, used = [], base
+        current.append(j)
+        used += widths[j]
+    if current or not groups:
+        groups.append(labels + current)
+    return groups
+
+
 def _per_row(result) -> dict:
     frame = result.table()
     rows = []
     for values in frame.head(MAX_REPORT_ROWS).itertuples(index=False):
         rows.append([fmt(v) if isinstance(v, float) else ("" if v is None else str(v)) for v in values])
+    columns = [str(c) for c in frame.columns]
     name = next(iter(result.tables()))
-    return {"columns": [str(c) for c in frame.columns], "rows": rows, "total": len(frame), "file": f"{name}.csv"}
+    groups = column_groups(columns, rows)
+    parts = [{"columns": [columns[j] for j in g], "left": [columns[j].split(" [")[0] in _LEFT for j in g],
+              "rows": [[r[j] for j in g] for r in rows]} for g in groups]
+    return {"columns": columns, "parts": parts, "rows": rows, "total": len(frame), "file": f"{name}.csv"}
 
 
-def render_html(result, figures: dict, plots: bool) -> str:
-    """The report of one run as an HTML string (figures: {sheet: {"svg", "caption", "panels"}})."""
+_LEFT = ("test_id", "case", "material", "condition", "flags", "status", "branch", "group", "source")
+
+
+def _created() -> str:
+    """The report's date: SOURCE_DATE_EPOCH when set (reproducible builds), else now (UTC, ISO 8601)."""
+    from ..io.spreadsheet_out import source_date_epoch
+
+    when = source_date_epoch() or datetime.now(timezone.utc)
+    return when.replace(microsecond=0).isoformat()
+
+
+@lru_cache(maxsize=None)
+def _template(name: str):
+    """A template of this package, compiled once per process (with its Environment)."""
     from importlib.resources import files
 
     import jinja2
 
-    from .presenters import console_tables
+    env = jinja2.Environment(autoescape=True, undefined=jinja2.StrictUndefined)
+    if name == "season":
+        return env.from_string(_SEASON)
+    return env.from_string(files("capred.report").joinpath(f"templates/{name}").read_text(encoding="utf-8"))
 
-    template = jinja2.Environment(autoescape=True, undefined=jinja2.StrictUndefined).from_string(
-        files("capred.report").joinpath("templates/report.html.j2").read_text(encoding="utf-8"))
-    doc = result.header()
+
+def _methods(result) -> tuple[list[str], list[str]]:
+    """Paragraphs and reference keys of the methods section: the command's (capred.reductions), the run's own
+    notes (result.method_notes()) and, for retention, each fitted model's registry method and references."""
     from ..reductions import REDUCTIONS
 
     reduction = REDUCTIONS.get(result.command)
     paragraphs, refs = (list(reduction.method), list(reduction.references)) if reduction else ([], [])
     more, more_refs = result.method_notes()
-    paragraphs, refs = paragraphs + more, list(dict.fromkeys(refs + more_refs))
+    paragraphs, refs = paragraphs + list(more), refs + list(more_refs)
+    if result.command == "retention":
+        from ..fitting.retention_models import MODELS
+
+        fitted = list(dict.fromkeys(m for fits in result.fits.values() for m in fits))
+        for m in fitted:
+            if m in MODELS:
+                paragraphs.append(f"{MODELS[m].label}: {MODELS[m].method}")
+                refs += list(MODELS[m].references)
+    return list(dict.fromkeys(paragraphs)), list(dict.fromkeys(refs))
+
+
+def render_html(result, figures: dict, plots: bool) -> str:
+    """The report of one run as an HTML string.
+
+    Parameters
+    ----------
+    result : Result
+        Any command's result.
+    figures : dict
+        ``{sheet: {"svg": inline SVG, "caption": str, "panels": [(name, caption), ...]}}`` of the drawn sheets.
+    plots : bool
+        Whether figures were asked for (the report says so when they were not).
+
+    Returns
+    -------
+    str
+        A self-contained HTML document that prints whole on A4: wide tables split into column groups that
+        repeat the test's identity, figures at their printed size.
+    """
+    from .presenters import console_tables
+
+    doc = result.header()
+    paragraphs, refs = _methods(result)
     names = ", ".join(i["path"].replace("\\", "/").rsplit("/", 1)[-1] for i in doc["inputs"]) or "options"
-    return template.render(
+    return _template("report.html.j2").render(
         title=f"capred {result.command}: {names}",
         doc=doc,
-        created=datetime.now(timezone.utc).replace(microsecond=0).isoformat(),
+        created=_created(),
         command_line=" ".join(["capred", *sys.argv[1:]]) if sys.argv and "capred" in sys.argv[0] else
         f"capred {result.command}",
-        options=_options(doc),
+        options=_options(result, doc),
         warnings=doc["warnings"],
         notes=doc["notes"],
         flags=_flags(result),
-        tables=console_tables(result),
+        tables=[_split_spec(t) for t in console_tables(result)],
         figures=list(figures.items()),
         plots=plots,
         methods=paragraphs,
         references=bibliography(refs),
         per_row=_per_row(result),
     )
+
+
+def _split_spec(spec) -> dict:
+    """A summary table as column groups that fit the printed width, its row labels repeated in each."""
+    heads = [h for h, _ in spec.columns]
+    labels = [j for j, (_, a) in enumerate(spec.columns) if a == "left"][:3] or [0]
+    widths = [max([len(w) for w in h.split()] + [len(r[j]) for r in spec.rows] + [1]) * CHAR_MM * 8.5 / 7 + CELL_MM
+              for j, h in enumerate(heads)]
+    groups, current, used = [], [], sum(widths[j] for j in labels)
+    for j in range(len(heads)):
+        if j in labels:
+            continue
+        if current and used + widths[j] > PRINT_WIDTH_MM:
+            groups.append(labels + current)
+            current, used = [], sum(widths[k] for k in labels)
+        current.append(j)
+        used += widths[j]
+    if current or not groups:
+        groups.append(labels + current)
+    return {"spec": spec, "parts": [{"columns": [spec.columns[j] for j in g], "rows": [[r[j] for j in g]
+                                                                                       for r in spec.rows]}
+                                    for g in groups]}
 
 
 _SEASON = """<!DOCTYPE html>
@@ -119,9 +306,7 @@ padding: 2px 6px; text-align: right; } th { background: #eee; } td.l, th.l { tex
 
 def render_season(frame) -> str:
     """The season table of a batch as one HTML page linking each run's report.html."""
-    import jinja2
-
     rows = [[(c, fmt(v) if isinstance(v, float) else ("" if v is None else str(v))) for c, v in zip(frame.columns, r)]
             for r in frame.itertuples(index=False)]
-    return jinja2.Environment(autoescape=True).from_string(_SEASON).render(
+    return _template("season").render(
         n=int(frame["input"].nunique()) if len(frame) else 0, columns=list(frame.columns), rows=rows)

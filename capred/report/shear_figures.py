@@ -1,37 +1,33 @@
-"""Figure sheets of `capred shear`: per material, the report, the capillary stress and the raw curves."""
+"""Figure sheets of `capred shear`: per material, the report, the capillary stress and the raw curves.
+
+Every panel draws from the run's records (``result.tests``, ``result.fits``,
+``result.predictions[model]``, ``result.back``, ``result.model_curves``,
+``result.curves``) and recomputes no physics. A model keeps its registry
+colour and marker everywhere; a normal stress its line style and marker
+(``style.level_style``); a test's curve its own colour, line style and marker
+(``style.series_style``). Panels of more than ``style.MAX_MARKERS`` tests draw
+a stated random sample of markers; fits and metrics in the legends use every
+test.
+"""
 from __future__ import annotations
 
 import numpy as np
 
 from ..physics.effective_stress_models import MODEL_LABELS, REGISTRY
 from .sheets import Panel, Sheet
-from .style import LABEL, literal
+from .style import (LABEL, MAX_MARKERS, OKABE_ITO, THIN_SEED, level_style, literal, note, series_style, symbol,
+                    tex, thin, untitled)
 from .style import style as _style
 
 KPA = 1e-3
+#: normal-stress levels drawn as their own series (model curves and measured markers); the others are grey
+MAX_LEVELS = 5
+#: raw curves drawn per panel (a legend of more cannot be read); above it, a stated random sample of them
+MAX_CURVES = 16
 
 
-def plot_dry_envelope(ax, result, material):
-    """Dry tests, fitted line tau = c + sigma_N tan(phi) and its confidence band."""
-    t = result.tests
-    fit = result.fits[material]
-    dry = (t["material"] == material) & (t["condition"] == "dry")
-    x = t["sigma_N"][dry]
-    xs = np.linspace(0.0, max(x.max(), 1e-9) * 1.1, 100)
-    lo, hi = fit.mean_band(xs)
-    ax.fill_between(xs * KPA, lo * KPA, hi * KPA, color="tab:blue", alpha=0.2,
-                    label=f"{fit.confidence:.0%} confidence band")
-    phi = np.degrees(np.arctan(fit.slope))
-    ax.plot(xs * KPA, fit.predict(xs) * KPA, color="tab:blue",
-            label=f"c = {fit.intercept * KPA:.4g} kPa, φ = {phi:.2f}°")
-    ax.plot(x * KPA, t["tau_max"][dry] * KPA, "ko", ms=4, label=f"dry tests (n = {fit.n})")
-    ax.set_xlabel(LABEL["sigma_N"])
-    ax.set_ylabel(LABEL["tau_max"])
-    ax.set_title("Dry envelope")
-    ax.set_xlim(left=0)
-    ax.set_ylim(bottom=0)
-    ax.legend(fontsize=7, loc="upper left")
-    return ax
+def _label(model: str) -> str:
+    return tex(MODEL_LABELS[model])
 
 
 def _wet(result, material):
@@ -39,83 +35,139 @@ def _wet(result, material):
     return (t["material"] == material) & (t["condition"] == "wet")
 
 
-def plot_measured_vs_predicted(ax, result, material):
-    """Predicted against measured tau for the wet tests, each model, with the 1:1 line."""
+def plot_dry_envelope(ax, result, material):
+    """Dry tests, the fitted line τ = c + σ_N tan φ and its confidence band of the mean."""
     t = result.tests
-    wet = _wet(result, material)
-    meas = t["tau_max"][wet] * KPA
-    hi = 0.0
+    fit = result.fits[material]
+    dry = (t["material"] == material) & (t["condition"] == "dry")
+    x = t["sigma_N"][dry]
+    xs = np.linspace(0.0, max(x.max(initial=0.0), 1e-9) * 1.1, 100)
+    lo, hi = fit.mean_band(xs)
+    colour = OKABE_ITO["blue"]
+    ax.fill_between(xs * KPA, lo * KPA, hi * KPA, color=colour, alpha=0.2, lw=0,
+                    label=f"{fit.confidence:.0%} confidence band")
+    phi = np.degrees(np.arctan(fit.slope))
+    ax.plot(xs * KPA, fit.predict(xs) * KPA, color=colour, ls="-",
+            label=rf"fit: $c$ = {fit.intercept * KPA:.4g} kPa, $\phi$ = {phi:.2f}°")
+    keep, shown = thin(np.flatnonzero(dry))
+    ax.plot(t["sigma_N"][keep] * KPA, t["tau_max"][keep] * KPA, ls="none", marker="o", color="k", ms=3.5,
+            label=f"dry tests ($n$ = {fit.n})")
+    note(ax, shown)
+    ax.set_xlabel(LABEL["sigma_N"])
+    ax.set_ylabel(LABEL["tau_max"])
+    ax.set_title("Dry envelope")
+    ax.set_xlim(left=0)
+    ax.set_ylim(bottom=0)
+    ax.legend(loc="upper left")
+    return ax
+
+
+def _band(p, keep, pred):
+    lo_pi, hi_pi = p.tau_prediction_interval
+    return np.abs(np.vstack([pred - lo_pi[keep] * KPA, hi_pi[keep] * KPA - pred]))
+
+
+def plot_measured_vs_predicted(ax, result, material):
+    """Predicted against measured τ of the wet tests, each model with its 95 % prediction interval, and 1:1."""
+    t = result.tests
+    keep, shown = thin(np.flatnonzero(_wet(result, material)))
+    meas = t["tau_max"][keep] * KPA
+    hi = float(np.nanmax(meas, initial=0.0))
     for m in result.models:
         p = result.predictions[m]
-        pred = p.tau[wet] * KPA
-        lo_pi, hi_pi = p.tau_prediction_interval
-        band = np.abs(np.vstack([pred - lo_pi[wet] * KPA, hi_pi[wet] * KPA - pred]))
-        hi = max(hi, np.nanmax(pred, initial=0), meas.max(initial=0))
-        met = result.metrics[material].get(m)
-        rmse = f" (RMSE {met.rmse * KPA:.3g})" if met else ""
-        ax.errorbar(meas, pred, yerr=band, ls="none", ms=4, alpha=0.85, elinewidth=0.8, capsize=1.5,
-                    label=MODEL_LABELS[m] + rmse, **_style(m))
+        pred = p.tau[keep] * KPA
+        hi = max(hi, float(np.nanmax(pred, initial=0.0)))
+        ax.errorbar(meas, pred, yerr=_band(p, keep, pred), ms=3.5, alpha=0.85, elinewidth=0.6,
+                    capsize=1.2, label=_label(m), **{**_style(m), "ls": "none"})
     hi = hi * 1.05 or 1.0
-    ax.plot([0, hi], [0, hi], "k--", lw=0.8, label="1:1")
+    ax.plot([0, hi], [0, hi], color="k", ls="--", lw=0.8, label="1:1")
+    note(ax, shown)
     ax.set_xlim(0, hi)
     ax.set_ylim(0, hi)
     ax.set_aspect("equal", adjustable="box")
     ax.set_xlabel("measured " + LABEL["tau_max"])
     ax.set_ylabel("predicted " + LABEL["tau_pred"])
-    ax.set_title("Wet tests: measured vs predicted")
-    ax.legend(fontsize=7, loc="upper left")
+    ax.set_title("Measured and predicted strength")
+    ax.legend(loc="upper left")
     return ax
 
 
-def plot_strength_vs_saturation(ax, result, material):
-    """Measured tau against S_R with each model's prediction and its band, as markers per test.
+def _levels(sigma_N):
+    """The normal-stress levels of the wet tests (rounded to 1e-6 Pa) with their test counts, most tests first,
+    at most MAX_LEVELS of them, in increasing order."""
+    levels, counts = np.unique(np.round(sigma_N, 6), return_counts=True)
+    top = np.sort(levels[np.argsort(-counts, kind="stable")[:MAX_LEVELS]])
+    return top, levels.size
 
-    No lines join the tests: a model defines tau along the water-retention
-    relation, which the tests sample at their own (S_R, suction) pairs only.
+
+def plot_strength_vs_saturation(ax, result, material):
+    """Measured τ against S_R at each normal stress, with each model's strength along the water-retention
+    relation (one line style per normal stress) or, without a relation, each model's prediction per test.
+
+    Colour and marker say which model, line style and marker of the black measured points which normal
+    stress; the legend lists both.
     """
+    from matplotlib.lines import Line2D
+
     t = result.tests
     wet = _wet(result, material)
-    levels = np.unique(np.round(t["sigma_N"][wet], 6))
+    levels, n_levels = _levels(t["sigma_N"][wet])
     relation = result.retention_relation(material)
-    if relation is not None:  # model curves along the water-retention relation, one per normal stress
+    handles = []
+    curves_drawn = set()
+    if relation is not None:  # model curves along the water-retention relation, one line style per level
         for k, level in enumerate(levels):
             S, taus = result.model_curves(material, float(level))
             for m, tau in taus.items():
-                ax.plot(S, tau * KPA, "-", color=_style(m)["color"], lw=1.0, alpha=0.9,
-                        label=MODEL_LABELS[m] if k == 0 else None)
-    for m in result.models:
-        if relation is not None and REGISTRY[m].along_retention:
-            continue
+                ax.plot(S, tau * KPA, color=_style(m)["color"], ls=level_style(k)["ls"], lw=1.0, alpha=0.9)
+                curves_drawn.add(m)
+    per_test = [m for m in result.models if m not in curves_drawn]
+    keep, shown = thin(np.flatnonzero(wet))
+    for m in per_test:  # no curve: markers per test with the prediction interval
         p = result.predictions[m]
-        pred = p.tau[wet] * KPA
-        lo_pi, hi_pi = p.tau_prediction_interval
-        band = np.abs(np.vstack([pred - lo_pi[wet] * KPA, hi_pi[wet] * KPA - pred]))
-        ax.errorbar(t["S_R"][wet], pred, yerr=band, ls="none", ms=4, alpha=0.6, elinewidth=0.8,
-                    markerfacecolor="none", label=MODEL_LABELS[m], **_style(m))
+        pred = p.tau[keep] * KPA
+        ax.errorbar(t["S_R"][keep], pred, yerr=_band(p, keep, pred), ms=3.5, alpha=0.6,
+                    elinewidth=0.6, markerfacecolor="none", **{**_style(m), "ls": "none"})
+    for m in result.models:
+        st = _style(m)
+        handles.append(Line2D([], [], color=st["color"], marker=st.get("marker", "o"), ms=3.5,
+                              ls="-" if m in curves_drawn else "none",
+                              mfc=st["color"] if m in curves_drawn else "none", label=_label(m)))
+    sig = np.round(t["sigma_N"][keep], 6)
     for k, level in enumerate(levels):
-        sel = wet & (np.round(t["sigma_N"], 6) == level)
-        ax.plot(t["S_R"][sel], t["tau_max"][sel] * KPA, "k" + "ov^sD"[k % 5], ms=4, ls="none",
-                label=rf"measured, $\sigma_N$ = {level * KPA:.3g} kPa")
+        sel = keep[sig == level]
+        ls = level_style(k)
+        ax.plot(t["S_R"][sel], t["tau_max"][sel] * KPA, ls="none", marker=ls["marker"], color="k", ms=3.5)
+        handles.append(Line2D([], [], color="k", marker=ls["marker"], ms=3.5,
+                              ls=ls["ls"] if curves_drawn else "none",
+                              label=rf"$\sigma_N$ = {level * KPA:.3g} kPa"))
+    other = keep[~np.isin(sig, levels)]
+    if other.size:
+        ax.plot(t["S_R"][other], t["tau_max"][other] * KPA, ls="none", marker=".", color="0.6", ms=3)
+        handles.append(Line2D([], [], color="0.6", marker=".", ls="none",
+                              label=rf"{n_levels - levels.size} other $\sigma_N$"))
     ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
+    note(ax, shown)
     ax.set_xlabel(LABEL["S_R"])
     ax.set_ylabel(LABEL["tau_max"])
     ax.set_title("Strength against saturation")
-    ax.legend(fontsize=7, loc="upper right")
+    ax.legend(handles=handles, loc="upper right")
     return ax
 
 
 def plot_residuals(ax, result, material):
-    """Residual (predicted - measured) against S_R for each model."""
+    """Residual (predicted − measured) against S_R for each model."""
     t = result.tests
-    wet = _wet(result, material)
+    keep, shown = thin(np.flatnonzero(_wet(result, material)))
     for m in result.models:
-        ax.plot(t["S_R"][wet], result.predictions[m].residual[wet] * KPA, ls="none", ms=4,
-                alpha=0.85, label=MODEL_LABELS[m], **_style(m))
+        ax.plot(t["S_R"][keep], result.predictions[m].residual[keep] * KPA, ms=3.5, alpha=0.85,
+                label=_label(m), **{**_style(m), "ls": "none"})
     ax.axhline(0.0, color="k", lw=0.8)
+    note(ax, shown)
     ax.set_xlabel(LABEL["S_R"])
     ax.set_ylabel(LABEL["residual"])
     ax.set_title("Residuals")
-    ax.legend(fontsize=7, loc="lower left")
+    ax.legend(loc="lower left")
     return ax
 
 
@@ -124,22 +176,31 @@ def _strength_caption(result, material) -> str:
     if relation is None:
         return ("Measured strength and each model's prediction per test against S_R, as markers: no "
                 "water-retention relation is available to draw model curves.")
-    return ("Measured strength against S_R; model curves at each normal stress along the water-retention "
-            f"relation: {relation.source}.")
+    return ("Measured strength against S_R (black markers, one marker per normal stress) and each model's "
+            "strength (its colour) at each normal stress (the line style of that stress) along the water-retention "
+            f"relation: {relation.source}. Markers without lines: models predicted per test.")
+
+
+def _sample_caption(result, material) -> str:
+    n = int(np.sum(result.tests["material"] == material))
+    return (f" Markers: a random sample of {MAX_MARKERS:,} tests of {n:,} (seed {THIN_SEED}); fits and metrics "
+            "use every test." if n > MAX_MARKERS else "")
 
 
 def sheet_shear_report(result, material) -> Sheet:
     """The report sheet of one material: dry envelope, measured vs predicted, strength vs S_R, residuals."""
     best = result.best_model.get(material)
+    more = _sample_caption(result, material)
     panels = [Panel("dry_envelope", lambda ax: plot_dry_envelope(ax, result, material),
-                    "Dry tests and the fitted envelope with its 95 % confidence band.")]
+                    "Dry tests and the fitted envelope with its 95 % confidence band." + more)]
     if _wet(result, material).any():
         panels += [Panel("measured_vs_predicted", lambda ax: plot_measured_vs_predicted(ax, result, material),
-                         "Wet tests: each model's prediction, with the 95 % prediction interval of a new test, against the measured strength."),
+                         "Wet tests: each model's prediction, with the 95 % prediction interval of a new test, "
+                         "against the measured strength." + more),
                    Panel("strength_vs_saturation", lambda ax: plot_strength_vs_saturation(ax, result, material),
-                         _strength_caption(result, material)),
+                         _strength_caption(result, material) + more),
                    Panel("residuals", lambda ax: plot_residuals(ax, result, material),
-                         "Residual (predicted − measured) against S_R.")]
+                         "Residual (predicted − measured) against S_R." + more)]
     title = f"Direct shear, {material}" + (f": best model {MODEL_LABELS[best]}" if best else "")
     return Sheet(title, panels, 2)
 
@@ -148,28 +209,29 @@ def plot_capillary_stress(ax, result, material, x: str):
     """Back-analysed capillary stress of the wet tests (error bars: standard uncertainty) against S_R or
     suction, with each model's predicted capillary stress per test."""
     t = result.tests
-    wet = _wet(result, material)
-    xs = t[x][wet] * (1.0 if x == "S_R" else KPA)
+    keep, shown = thin(np.flatnonzero(_wet(result, material)))
+    xs = t[x][keep] * (1.0 if x == "S_R" else KPA)
     for m in result.models:
-        ax.plot(xs, result.predictions[m].sigma_cap[wet] * KPA, ls="none", ms=4, alpha=0.75, markerfacecolor="none",
-                label=MODEL_LABELS[m], **_style(m))
+        ax.plot(xs, result.predictions[m].sigma_cap[keep] * KPA, ms=3.5, alpha=0.75, markerfacecolor="none",
+                label=_label(m), **{**_style(m), "ls": "none"})
     back = result.back
-    ax.errorbar(xs, back.sigma_cap[wet] * KPA, yerr=back.sigma_cap_se[wet] * KPA, fmt="ko", ms=4, capsize=2,
-                elinewidth=0.8, label="back-analysed (± 1 se)")
+    ax.errorbar(xs, back.sigma_cap[keep] * KPA, yerr=back.sigma_cap_se[keep] * KPA, ls="none", marker="o",
+                color="k", ms=3.5, capsize=1.5, elinewidth=0.6, label=r"back-analysed ($\pm$ 1 se)")
     if x == "S_R":
         ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
     ax.axhline(0.0, color="k", lw=0.5)
+    note(ax, shown)
     ax.set_xlabel(LABEL[x])
     ax.set_ylabel(LABEL["sigma_cap"])
-    ax.set_title("Capillary stress carried, against " + ("saturation" if x == "S_R" else "suction"))
+    ax.set_title("Against saturation" if x == "S_R" else "Against suction")
     return ax
 
 
 def plot_chi_back(ax, result, material):
-    """chi_back = sigma_cap / Delta_u of the wet tests against S_R, with the chi(S_R) of every model of the run
-    that has one (Bishop's S_R, Own 1's chi1, a fitted S_e^kappa ...)."""
+    """χ_back = σ_cap/Δu of the wet tests against S_R, with the χ(S_R) of every model of the run that has one
+    (Bishop's S_R, Own 1's χ1, a fitted S_e^κ ...)."""
     t = result.tests
-    wet = _wet(result, material) & (t["suction"] > 0)
+    keep, shown = thin(np.flatnonzero(_wet(result, material) & (t["suction"] > 0)))
     s = np.linspace(0.0, 1.0, 201)
     params = result.options.model_params
     for m in result.models:
@@ -179,49 +241,146 @@ def plot_chi_back(ax, result, material):
         law = result.laws.get(m, {}).get(material)
         chi = entry.chi_of_saturation(s, params, law.params if law is not None else None)
         if np.isfinite(chi).any():
-            extra = "".join(f", {k} = {law.params[k]:.3g}" for k in entry.fitted) if law is not None else ""
-            ax.plot(s, chi, color=_style(m)["color"], lw=1.2, label=MODEL_LABELS[m] + extra)
+            extra = "".join(f", {symbol(k)} = {law.params[k]:.3g}" for k in entry.fitted) if law is not None else ""
+            st = _style(m)
+            ax.plot(s, chi, color=st["color"], ls=st.get("ls", "-"), lw=1.2, label=_label(m) + extra)
     back = result.back
-    ax.errorbar(t["S_R"][wet], back.chi_back[wet], yerr=back.chi_back_se[wet], fmt="ko", ms=4, capsize=2,
-                elinewidth=0.8, label="χ back-analysed (± 1 se)")
+    ax.errorbar(t["S_R"][keep], back.chi_back[keep], yerr=back.chi_back_se[keep], ls="none", marker="o", color="k",
+                ms=3.5, capsize=1.5, elinewidth=0.6, label=r"$\chi$ back-analysed ($\pm$ 1 se)")
     ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
+    note(ax, shown)
     ax.set_xlabel(LABEL["S_R"])
     ax.set_ylabel(LABEL["chi"])
-    ax.set_title("Effective-stress parameter χ")
+    ax.set_title(r"Effective-stress parameter $\chi$")
     return ax
 
 
 def sheet_capillary_stress(result, material) -> Sheet:
-    """What capillary stress each wet test carried and which chi law explains it: 3 panels."""
+    """What capillary stress each wet test carried and which χ law explains it: 3 panels."""
+    more = _sample_caption(result, material)
     return Sheet(f"Back-analysed capillary stress, {material}", [
         Panel("sigma_cap_vs_saturation", lambda ax: plot_capillary_stress(ax, result, material, "S_R"),
               "σ_cap = (τ_max − c)/tan φ − σ_N of each wet test (± 1 standard uncertainty) and each model's "
-              "prediction, against S_R."),
+              "prediction, against S_R." + more),
         Panel("sigma_cap_vs_suction", lambda ax: plot_capillary_stress(ax, result, material, "suction"),
-              "The same against the suction."),
+              "The same against the suction." + more),
         Panel("chi", lambda ax: plot_chi_back(ax, result, material),
-              "χ_back = σ_cap/Δu against S_R with the χ(S_R) of each model of the run that has one."),
+              "χ_back = σ_cap/Δu against S_R with the χ(S_R) of each model of the run that has one." + more),
     ], 3, panel_size=(4.2, 3.4))
 
 
-def sheet_curves(result, material) -> Sheet:
-    return Sheet(f"Shear curves, {material}", [
-        Panel("curves", lambda ax: plot_curves(ax, result, material),
-              "Shear stress against horizontal displacement; dots mark the picked peaks.")], 1)
-
-
-def plot_curves(ax, result, material):
-    """The raw shear curves of one material (tau against horizontal displacement) with the picked peaks."""
+def _curve_tests(result, material, condition: str):
+    """(row indices of the material's tests of ``condition`` that have a curve, drawn sample of them, note)."""
     t = result.tests
-    for k, tid in enumerate(t["test_id"][t["material"] == material]):
-        curve = result.curves.curves.get(str(tid))
-        if curve is None:
-            continue
-        d, tau, peak = curve
-        line, = ax.plot(d * 1e3, tau * KPA, lw=1.0, label=literal(tid))
-        ax.plot(d[peak] * 1e3, tau[peak] * KPA, "o", color=line.get_color(), ms=5)
+    rows = np.flatnonzero((t["material"] == material) & (t["condition"] == condition))
+    have = rows[np.isin(t["test_id"][rows].astype(str), np.array(list(result.curves.curves), dtype=str))]
+    keep, shown = thin(have, MAX_CURVES)
+    return have, keep, shown.replace("tests", "curves")
+
+
+def _vertical(result, tid):
+    """(horizontal, vertical) displacement [m] of one test's readings with both (raw data of the curves file)."""
+    table = result.curves.table
+    sel = table.columns["test_id"] == tid
+    d = table.columns["displacement"][sel]
+    v = table.get("vertical_displacement")[sel]
+    ok = np.isfinite(d) & np.isfinite(v)
+    order = np.argsort(d[ok], kind="stable")
+    return d[ok][order], v[ok][order]
+
+
+def has_vertical(result) -> bool:
+    """True when the raw curves of the run give vertical displacements."""
+    table = getattr(result.curves, "table", None)
+    return (table is not None and "vertical_displacement" in table.columns
+            and bool(np.isfinite(table.columns["vertical_displacement"]).any()))
+
+
+def plot_curves(ax, result, material, condition: str):
+    """The raw shear curves of one material's dry or wet tests (τ against horizontal displacement), each test
+    in its own colour, line style and marker; the marker sits on the picked peak."""
+    t = result.tests
+    _, keep, shown = _curve_tests(result, material, condition)
+    for k, i in enumerate(keep):
+        tid = str(t["test_id"][i])
+        d, tau, peak = result.curves.curves[tid]
+        st = series_style(k)
+        ax.plot(d * 1e3, tau * KPA, color=st["color"], ls=st["ls"], lw=1.0, marker=st["marker"], ms=3.5,
+                markevery=[int(peak)], label=literal(tid))
+    note(ax, shown)
     ax.set_xlabel(LABEL["displacement"])
     ax.set_ylabel(LABEL["tau"])
-    ax.set_title("Shear curves (dots: peaks)")
+    ax.set_title(f"Shear stress, {condition} tests")
+    ax.set_xlim(left=0)
     ax.legend()
     return ax
+
+
+def plot_vertical_displacement(ax, result, material, condition: str):
+    """Vertical against horizontal displacement of one material's dry or wet tests (positive: dilation), in
+    the tests' styles of ``plot_curves``; the marker is at the peak of shear stress."""
+    t = result.tests
+    _, keep, shown = _curve_tests(result, material, condition)
+    for k, i in enumerate(keep):
+        tid = str(t["test_id"][i])
+        d, v = _vertical(result, tid)
+        if not d.size:
+            continue
+        st = series_style(k)
+        dc, _, peak = result.curves.curves[tid]
+        at = [int(np.argmin(np.abs(d - dc[peak])))]
+        ax.plot(d * 1e3, v * 1e3, color=st["color"], ls=st["ls"], lw=1.0, marker=st["marker"], ms=3.5,
+                markevery=at, label="_" + literal(tid))  # the key is the shear-stress panel's
+    ax.axhline(0.0, color="k", lw=0.5)
+    note(ax, shown)
+    ax.set_xlabel(LABEL["displacement"])
+    ax.set_ylabel(LABEL["vertical_displacement"])
+    ax.set_title(f"Vertical displacement, {condition} tests")
+    ax.set_xlim(left=0)
+    return ax
+
+
+def plot_dilatancy(ax, result, material):
+    """Dilatancy angle at the peak, ψ = atan(dδ_v/dδ_h), of each test against its normal stress (dry and wet)."""
+    t = result.tests
+    psi = t.get("dilatancy_angle")
+    mat = t["material"] == material
+    for cond, mk, colour in (("dry", "s", OKABE_ITO["black"]), ("wet", "o", OKABE_ITO["blue"])):
+        keep, _ = thin(np.flatnonzero(mat & (t["condition"] == cond) & np.isfinite(psi)))
+        if keep.size:
+            ax.plot(t["sigma_N"][keep] * KPA, psi[keep], ls="none", marker=mk, color=colour, ms=3.5,
+                    mfc="none" if cond == "dry" else colour, label=f"{cond} tests")
+    ax.axhline(0.0, color="k", lw=0.5)
+    ax.set_xlabel(LABEL["sigma_N"])
+    ax.set_ylabel(LABEL["dilatancy_angle"])
+    ax.set_title("Dilatancy at the peak")
+    ax.legend()
+    return ax
+
+
+def sheet_curves(result, material) -> Sheet:
+    """Raw curves of one material, dry and wet tests apart: τ-δ and, when vertical displacements are given,
+    δ_v-δ of the same tests in the same styles and the dilatancy angle at the peak."""
+    vertical = has_vertical(result)
+    panels = []
+    for cond in ("dry", "wet"):
+        have, keep, shown = _curve_tests(result, material, cond)
+        if not have.size:
+            continue
+        sampled = f" {shown[0].upper()}{shown[1:]}." if shown else ""
+        panels.append(Panel(f"curves_{cond}", lambda ax, c=cond: plot_curves(ax, result, material, c),
+                            f"Shear stress against horizontal displacement of the {cond} tests, each test in its own "
+                            "colour, line style and marker; the marker is on the picked peak." + sampled))
+        if vertical:
+            panels.append(Panel(f"vertical_{cond}",
+                                lambda ax, c=cond: plot_vertical_displacement(ax, result, material, c),
+                                f"Vertical displacement (positive: dilation) against horizontal displacement of the "
+                                f"{cond} tests, in the styles of the shear-stress panel; the marker is at the peak "
+                                "of shear stress." + sampled))
+    if vertical:
+        panels.append(Panel("dilatancy", lambda ax: plot_dilatancy(ax, result, material),
+                            "Dilatancy angle at the peak, ψ = atan(dδ_v/dδ_h), of each test against its normal "
+                            "stress."))
+    if len(panels) == 1:
+        panels[0].draw = untitled(panels[0].draw)
+    return Sheet(f"Shear curves, {material}", panels, 2)

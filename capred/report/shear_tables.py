@@ -27,14 +27,13 @@ def shear_tables(result) -> list[TableSpec]:
                                   js["metrics_pendular_overall"], js["best_model_pendular"],
                                   js["best_model_pendular_overall"]))
     if js["bootstrap"]:
-        boot = spec("How sure is the ranking? (paired bootstrap of wet and dry tests)",
-                     ["material", "best model", "best in", "runner-up", "RMSE difference 95 % CI [kPa]",
-                      "replicates"])
+        boot = spec("How sure is the ranking? (paired bootstrap of wet and dry tests; ΔRMSE = runner-up − best)",
+                     ["material", "best model", "best in", "runner-up", "ΔRMSE 95 % CI [kPa]", "replicates"])
         for mat, b in js["bootstrap"].items():
             best = b["best"]
             p = b["best_model_probability"].get(best) if best else None
             diff = b["rmse_difference_ci95_kPa"]
-            boot.rows.append([mat, MODEL_LABELS.get(best, "—"), "—" if p is None else f"{p:.0%} of resamples",
+            boot.rows.append([mat, MODEL_LABELS.get(best, "—"), "—" if p is None else f"{p:.0%}",
                               MODEL_LABELS.get(b["runner_up"], "—"),
                               "—" if diff is None else f"{fmt(diff[0])} to {fmt(diff[1])}", fmt(b["replicates"])])
         out.append(boot)

@@ -2,9 +2,21 @@
 symbols and units, user text drawn literally, and legends placed where they never cover data.
 
 Colours are the Okabe & Ito (2008) palette; every model keeps its colour and
-marker in every figure of every command.
+marker in every figure of every command (``style(name)``: effective-stress
+models from their registry entry, retention models from theirs). Curves that
+are not models (one per test, one per normal stress) take a line style and a
+marker of their own as well as a colour (``series_style``, ``level_style``),
+so that 15 curves never repeat a look and a figure printed in grey stays
+readable. Every label is mathtext with its unit (``tex`` turns registry text
+such as ``S_e^κ`` into mathtext). Panels of large tables draw a stated random
+sample of markers (``thin``) so that a figure's cost does not grow with the
+number of tests.
 """
 from __future__ import annotations
+
+import re
+
+import numpy as np
 
 OKABE_ITO = {
     "black": "#000000", "orange": "#E69F00", "sky": "#56B4E9", "green": "#009E73",
@@ -54,8 +66,24 @@ LABEL = {
     "F_predicted": r"predicted $F_{cap}$ [mN]",
     "B": r"$B$ [–]",
     "S_r": r"$S_r$ [–]",
-    "theta": r"$\theta$ [–]",
+    "theta": r"volumetric water content $\theta$ [–]",
+    "vertical_displacement": r"vertical displacement $\delta_v$ [mm]",
+    "dilatancy_angle": r"dilatancy angle at the peak $\psi$ [°]",
+    "suction_s": r"suction $s$ [kPa]",
+    "V13": r"$V_w^{1/3}$ [mm]",
+    "D_rupture": r"rupture distance $D_{rupt}$ [mm]",
 }
+
+#: colours of series that are not models (tests, groups), in order: Okabe-Ito without yellow and grey,
+#: which print too pale on white
+SERIES_COLOURS = [OKABE_ITO[k] for k in ("black", "orange", "sky", "green", "blue", "vermillion", "purple")]
+#: line styles of series and of normal-stress levels, in order (solid first)
+LINESTYLES = ["-", "--", ":", "-.", (0, (5, 1)), (0, (3, 1, 1, 1)), (0, (1, 1)), (0, (5, 2, 1, 2, 1, 2))]
+#: markers of series and of normal-stress levels, in order
+MARKERS = ["o", "s", "^", "D", "v", "<", ">", "p", "h", "X", "P", "*"]
+#: panels draw at most this many markers per series; above it, a random sample (seed THIN_SEED) and a note
+MAX_MARKERS = 2000
+THIN_SEED = 0
 
 #: a one-column journal figure (89 mm wide)
 SINGLE_PANEL_SIZE = (3.5, 2.8)
@@ -67,16 +95,111 @@ def literal(text) -> str:
 
 
 def style(name: str, **over) -> dict:
-    """Colour and marker of a model or curve (and any overrides): an effective-stress model's from its registry
-    entry, the others' from MODEL_STYLE."""
+    """Colour, marker and line style of a model or curve (and any overrides).
+
+    An effective-stress model's come from its entry of
+    ``capred.physics.effective_stress_models.REGISTRY``, a retention model's line style from its entry of
+    ``capred.fitting.retention_models.MODELS`` (its colour is the branch's), the others' from MODEL_STYLE.
+    Colour names of the registries are names of OKABE_ITO.
+    """
+    from ..fitting.retention_models import MODELS
     from ..physics.effective_stress_models import REGISTRY
 
     entry = REGISTRY.get(name)
+    retention = MODELS.get(name)
     if entry is not None:
-        base = {**entry.style, "color": _C.get(entry.style.get("color"), entry.style.get("color", _C["black"]))}
+        base = dict(entry.style)
+    elif retention is not None:
+        base = {"color": "black", **MODEL_STYLE.get(name, {}), **retention.style}
     else:
         base = MODEL_STYLE.get(name, dict(color=_C["black"], marker="o"))
-    return {**base, **over}
+    base = {**base, **over}
+    if "color" in base:
+        base["color"] = _C.get(base["color"], base["color"])
+    return base
+
+
+def series_style(k: int) -> dict:
+    """Colour, line style and marker of the k-th of several series that are not models (a test's curve).
+
+    The colour runs through SERIES_COLOURS and the line style changes after each round of colours, so that
+    the first ``len(SERIES_COLOURS) * len(LINESTYLES)`` (56) series all differ in colour or line style; the
+    marker runs through MARKERS as well.
+    """
+    nc = len(SERIES_COLOURS)
+    return dict(color=SERIES_COLOURS[k % nc], ls=LINESTYLES[(k // nc) % len(LINESTYLES)],
+                marker=MARKERS[k % len(MARKERS)])
+
+
+def level_style(k: int) -> dict:
+    """Line style and marker of the k-th normal-stress level (the colour stays the model's)."""
+    return dict(ls=LINESTYLES[k % len(LINESTYLES)], marker=MARKERS[k % len(MARKERS)])
+
+
+_GREEK = {"alpha": r"\alpha", "beta": r"\beta", "gamma": r"\gamma", "delta": r"\delta", "eta": r"\eta",
+          "theta": r"\theta", "kappa": r"\kappa", "lambda": r"\lambda", "lam": r"\lambda", "mu": r"\mu",
+          "rho": r"\rho", "sigma": r"\sigma", "tau": r"\tau", "phi": r"\phi", "chi": r"\chi", "psi": r"\psi"}
+_WORD = r"[A-Za-z\u0370-\u03ff]+'*"
+_SCRIPT = r"[A-Za-z0-9\u0370-\u03ff,.]+"
+_TOKEN = re.compile(rf"({_WORD})(_\{{[^}}]*\}}|_{_SCRIPT})?(\^\([^)]*\)|\^\{{[^}}]*\}}|\^[-+]?{_SCRIPT})?")
+
+
+def _script(text: str) -> str:
+    text = text[1:]
+    if text[:1] in "({":
+        text = text[1:-1]
+    return "{" + text + "}"
+
+
+def tex(text: str) -> str:
+    """Plain text with sub- and superscripts (``S_R``, ``φ_b``, ``S_e^κ``, ``(2π S_R/3)^(2/3)``) as mathtext.
+
+    Only words that carry a ``_`` or ``^`` are set in math (``S_e^κ`` becomes ``$S_{e}^{κ}$``); the rest of
+    the text, and any part already between ``$``, is left as it is.
+    """
+    parts = str(text).split("$")
+    for j in range(0, len(parts), 2):  # outside existing math only
+        def sub(m):
+            base, low, high = m.group(1), m.group(2), m.group(3)
+            if not low and not high:
+                return m.group(0)
+            bare = base.rstrip("'")
+            base = _GREEK.get(bare, bare) + base[len(bare):]
+            return "$" + base + (("_" + _script(low)) if low else "") + (("^" + _script(high)) if high else "") + "$"
+
+        parts[j] = _TOKEN.sub(sub, parts[j])
+        parts[j] = re.sub(r"\)\^\(([^)]*)\)", r")$^{\1}$", parts[j])  # (…)^(2/3)
+    return "$".join(parts)
+
+
+def symbol(name: str) -> str:
+    """A parameter name (``kappa``, ``s_b``, ``alpha1``) as mathtext (``$\\kappa$``, ``$s_{b}$``, ``$\\alpha_1$``)."""
+    m = re.fullmatch(r"([A-Za-z]+?)(\d*)(?:_(\w+))?", name)
+    if not m:
+        return literal(name)
+    base, digits, low = m.groups()
+    base = _GREEK.get(base, base)
+    low = digits or low
+    return f"${base}" + (f"_{{{low}}}" if low else "") + "$"
+
+
+def thin(index, limit: int = MAX_MARKERS, seed: int = THIN_SEED):
+    """At most ``limit`` of the row indices ``index`` (a random sample without replacement, in order), and a
+    note saying so ("" when all are kept). Figures of large tables draw this sample so that their cost does
+    not grow with the number of tests; statistics in legends and tables use every test."""
+    index = np.asarray(index)
+    if index.dtype == bool:
+        index = np.flatnonzero(index)
+    if index.size <= limit:
+        return index, ""
+    keep = np.sort(np.random.default_rng(seed).choice(index, limit, replace=False))
+    return keep, f"markers: random sample of {limit:,} of {index.size:,} tests (seed {seed})"
+
+
+def note(ax, text: str) -> None:
+    """A small note in the lower right corner of an axes (e.g. which markers a panel shows)."""
+    if text:
+        ax.text(0.99, 0.01, text, transform=ax.transAxes, ha="right", va="bottom", fontsize=6, color="0.3")
 
 
 def legend_outside(ax, ncol: int = 1) -> None:
@@ -85,9 +208,24 @@ def legend_outside(ax, ncol: int = 1) -> None:
     if old is not None:  # keep what the panel put in its legend (also proxy handles)
         handles = list(getattr(old, "legend_handles", None) or old.legendHandles)
         labels = [t.get_text() for t in old.get_texts()]
+        artists, own = ax.get_legend_handles_labels()
+        if own == labels:  # the axes' own artists (error bars keep their look in the new legend)
+            handles = artists
         old.remove()
     else:
         handles, labels = ax.get_legend_handles_labels()
     if handles:
         ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=7,
                   frameon=False, ncol=ncol)
+
+
+def untitled(draw):
+    """A panel's draw function without its axes title: for a sheet of one panel, whose figure title (and the
+    report's caption) already names it, so that no figure carries two titles."""
+
+    def draw_untitled(ax):
+        out = draw(ax)
+        ax.set_title("")
+        return out
+
+    return draw_untitled

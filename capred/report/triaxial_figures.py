@@ -10,9 +10,15 @@ from .style import style as model_style
 KPA = 1e-3
 #: one colour per group (Okabe-Ito, the bounds' vermillion, blue and green left to the bounds)
 GROUP_COLOURS = [OKABE_ITO[k] for k in ("orange", "sky", "purple", "yellow", "black", "grey")]
+#: Mohr circles: unsaturated total, unsaturated effective under the lower bound (the bound's colour), saturated
+MOHR = {
+    "total": dict(color=OKABE_ITO["black"], ls="-", label="unsaturated, total"),
+    "effective": dict(color=OKABE_ITO["vermillion"], ls="--", label="unsaturated, effective (LB)"),
+    "saturated": dict(color=OKABE_ITO["grey"], ls=":", label="saturated, effective"),
+}
 BOUND_STYLE = {
     "lower": dict(**model_style("lower"), label=r"LB ($\sigma_{1,cap}$ = 0)"),
-    "spherical": dict(**model_style("spherical"), label="UB q = q' (spherical)"),
+    "spherical": dict(**model_style("spherical"), label=r"UB $q = q'$ (spherical)"),
     "edtp": dict(**model_style("edtp"), label="UB EDTP"),
 }
 
@@ -27,13 +33,13 @@ def plot_qp_plane(ax, result):
     p_max = max(float(np.nanmax(p_all)) * 1.1, 1.0)
     ps = np.linspace(0.0, p_max, 50)
     ax.plot(ps * KPA, (env.M * ps + env.k) * KPA, "k-", lw=1.2,
-            label=f"effective envelope (c' = {env.c * KPA:.3g} kPa, φ' = {env.phi:.2f}°)")
+            label=rf"effective envelope ($c'$ = {env.c * KPA:.3g} kPa, $\phi'$ = {env.phi:.2f}°)")
     ext = t["branch"] == "extension"
     if ext.any():  # extension: M = 6 sin phi'/(3 + sin phi')
         ax.plot(ps * KPA, (env.M_extension * ps + env.k_extension) * KPA, "k--", lw=1.0,
-                label="effective envelope, extension (M = 6 sin φ'/(3 + sin φ'))")
-    ax.plot(t["p"][sat & ~ext] * KPA, t["q"][sat & ~ext] * KPA, "ks", mfc="white", label="saturated failure (p', q)")
-    ax.plot(t["p"][uns & ~ext] * KPA, t["q"][uns & ~ext] * KPA, "k*", ms=9, label="unsaturated failure (p, q) total")
+                label=r"effective envelope, extension ($M = 6\sin\phi'/(3 + \sin\phi')$)")
+    ax.plot(t["p"][sat & ~ext] * KPA, t["q"][sat & ~ext] * KPA, "ks", mfc="white", label=r"saturated failure ($p'$, $q$)")
+    ax.plot(t["p"][uns & ~ext] * KPA, t["q"][uns & ~ext] * KPA, "k*", ms=9, label=r"unsaturated failure ($p$, $q$), total")
     if ext.any():
         ax.plot(t["p"][sat & ext] * KPA, t["q"][sat & ext] * KPA, "kD", mfc="white", ms=5,
                 label="saturated failure, extension")
@@ -52,19 +58,19 @@ def plot_qp_plane(ax, result):
     for k, i in enumerate(np.flatnonzero(uns & np.isfinite(edtp.p_prime))):
         p0e = t["p0"][i] + t["s0"][i]
         ax.plot([p0e * KPA, edtp.p_prime[i] * KPA], [0, edtp.q_prime[i] * KPA], "--", color=model_style("edtp")["color"],
-                lw=0.8, label="EDTP stress path (from p0 + s0)" if k == 0 else None)
+                lw=0.8, label=r"EDTP stress path (from $p_0 + s_0$)" if k == 0 else None)
     for j, g in enumerate(result.groups):  # the apparent (total) envelope of each group sharing one tensor
         if g.get("apparent_M") is None:
             continue
         ax.plot(ps * KPA, g["apparent_M"] * ps * KPA + g["apparent_k_kPa"], ":",
                 color=GROUP_COLOURS[j % len(GROUP_COLOURS)], lw=1.0,
-                label=f"group {literal(g['group'])}: apparent envelope (C = {g['C_apparent_kPa']:.3g} kPa, "
-                      f"φ = {g['phi_apparent_deg']:.3g}°)")
+                label=f"group {literal(g['group'])}: apparent envelope ($C$ = {g['C_apparent_kPa']:.3g} kPa, "
+                      rf"$\phi$ = {g['phi_apparent_deg']:.3g}°)")
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
     ax.set_xlabel(LABEL["p"])
     ax.set_ylabel(LABEL["q"])
-    ax.set_title("q-p plane: failure points and the image points of each bound")
+    ax.set_title(r"$q$-$p$ plane: failure points and image points of the bounds")
     ax.legend()
     return ax
 
@@ -102,21 +108,21 @@ def plot_mohr_circles(ax, result):
     hi = 0.0
     for i in range(len(t["test_id"])):
         if result.unsaturated[i]:
-            pairs = [(t["sigma3"][i], t["sigma1"][i], "k-", "total")]
+            pairs = [(t["sigma3"][i], t["sigma1"][i], MOHR["total"])]
             lb = result.bounds["lower"]
             s3e = t["sigma3"][i] - lb.sigma3_cap[i]
-            pairs.append((s3e, t["sigma1"][i] - lb.sigma1_cap[i], "r--", "effective (LB)"))
+            pairs.append((s3e, t["sigma1"][i] - lb.sigma1_cap[i], MOHR["effective"]))
         else:
-            pairs = [(t["sigma3"][i], t["sigma1"][i], "0.6", "saturated")]
-        for a, b, style, _ in pairs:
+            pairs = [(t["sigma3"][i], t["sigma1"][i], MOHR["saturated"])]
+        for a, b, st in pairs:
             c, r = (a + b) / 2, (b - a) / 2
-            ax.plot((c + r * np.cos(th)) * KPA, r * np.sin(th) * KPA, style, lw=0.9)
+            ax.plot((c + r * np.cos(th)) * KPA, r * np.sin(th) * KPA, color=st["color"], ls=st["ls"], lw=0.9)
             hi = max(hi, b)
     s = np.linspace(0, hi, 20)
-    ax.plot(s * KPA, (env.c + s * np.tan(np.radians(env.phi))) * KPA, "b-", lw=1.0, label="τ = c' + σ' tan φ'")
-    ax.plot([], [], "k-", label="unsaturated, total")
-    ax.plot([], [], "r--", label="unsaturated, effective (LB)")
-    ax.plot([], [], color="0.6", label="saturated, effective")
+    ax.plot(s * KPA, (env.c + s * np.tan(np.radians(env.phi))) * KPA, color=OKABE_ITO["blue"], ls="-", lw=1.0,
+            label=r"$\tau = c' + \sigma' \tan\phi'$")
+    for st in MOHR.values():
+        ax.plot([], [], color=st["color"], ls=st["ls"], label=st["label"])
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(LABEL["sigma"])
     ax.set_ylabel(LABEL["tau"])
@@ -147,17 +153,17 @@ def plot_group_circles(ax, result):
         for key, ls, what in (("C_kPa", "-", "C"), ("C_fictive_kPa", "--", "C''")):
             if g.get(key) is not None:
                 ax.plot(s_line, g[key] + s_line * tan_phi, ls=ls, color=colour, lw=1.4,
-                        label=f"group {literal(g['group'])}: {what} = {g[key]:.3g} kPa")
+                        label=f"group {literal(g['group'])}: ${what}$ = {g[key]:.3g} kPa")
     s_line = np.linspace(0.0, max(hi, 1.0), 20)
-    ax.plot(s_line, env.c * KPA + s_line * tan_phi, "k-", lw=1.0, label=f"effective envelope, C' = {env.c * KPA:.3g} kPa")
+    ax.plot(s_line, env.c * KPA + s_line * tan_phi, "k-", lw=1.0, label=f"effective envelope, $C'$ = {env.c * KPA:.3g} kPa")
     ax.plot([], [], "k-", lw=0.9, label="unsaturated circles (total)")
-    ax.plot([], [], "k--", lw=0.9, label="fictive circles σ'' (saturated radius)")
+    ax.plot([], [], "k--", lw=0.9, label=r"fictive circles $\sigma''$ (saturated radius)")
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(LABEL["sigma"])
     ax.set_ylabel(LABEL["tau"])
-    ax.set_title("Groups: circles and the lines C, C''")
+    ax.set_title(r"Groups: circles and the lines $C$, $C''$")
     ax.legend()
     return ax
 
@@ -176,13 +182,13 @@ def plot_group_tensors(ax, result):
         ax.bar(x, values, width, yerr=errors, capsize=3, hatch=hatch, edgecolor="white", lw=0.3,
                color=[GROUP_COLOURS[result.groups.index(g) % len(GROUP_COLOURS)] for g in groups], label=label)
     def short(method):
-        return "eq. 48, σ1,cap = 0" if "closed" in method else method.split(" (")[0]
+        return r"eq. 48, $\sigma_{1,cap}$ = 0" if "closed" in method else method.split(" (")[0]
 
     ax.set_xticks(np.arange(len(groups)), [f"{literal(g['group'])}\n{short(g['method'] or '')}" for g in groups],
                   fontsize=7)
     ax.axhline(0, color="k", lw=0.8)
     ax.set_ylabel(LABEL["cap_component"])
-    ax.set_title("Tensor shared by each group (± se)")
+    ax.set_title(r"Tensor shared by each group ($\pm$ se)")
     ax.legend(handles=[Patch(facecolor="0.75", hatch=h, edgecolor="white", label=lab) for _, lab, h in comps])
     return ax
 

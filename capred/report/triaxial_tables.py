@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from ..references import cite
 from ..result import TableSpec
-from .render import fmt, spec
+from .render import fmt, magnitude, spec
 
 _BRANCH = {"compression": "comp.", "extension": "ext.", "general": "true tx."}
 
@@ -25,25 +25,28 @@ def triaxial_tables(result) -> list[TableSpec]:
                      fmt(e["phi_se_deg"]), fmt(e["M"]), fmt(e["k_kPa"])])
     names = {"lower": "LB", "spherical": "UB q=q'", "edtp": "UB EDTP"}
     tb = spec("Capillary stress tensor at failure [kPa], compression +; gain = q'/q'_sat; "
-              "θ = Lode angle (0 compression, 60 extension)",
-              ["test", "branch", "θ [°]", "σ3 [kPa]", "q [kPa]", "bound", "σ1,cap", "σ2,cap", "σ3,cap", "p_cap",
-               "q_cap", "p'", "q'", "gain", "σ_cap > 0"], left=2)
-    tb.columns[5] = ("bound", "left")
+              "θ = Lode angle (0 compression, 60 extension); bound 'none': not axisymmetric (see groups)",
+              ["test", "bound", "branch", "θ [°]", "σ3 [kPa]", "q [kPa]", "σ1,cap", "σ2,cap", "σ3,cap", "p_cap",
+               "q_cap", "p'", "q'", "gain", "σ_cap > 0"], left=3)
+    tb.label_columns = 2  # test and bound name each row when the table is folded
     for t in (t for t in js["tests"] if t["condition"] == "unsaturated"):
         present = [n for n in ("lower", "spherical", "edtp") if t[n]]
-        head = [t["test_id"], _BRANCH.get(t["branch"], t["branch"]), fmt(t["lode_angle_deg"], 3),
-                fmt(t["sigma3_kPa"]), fmt(t["q_kPa"])]
+        head = [_BRANCH.get(t["branch"], t["branch"]), fmt(t["lode_angle_deg"], 3), fmt(t["sigma3_kPa"]),
+                fmt(t["q_kPa"])]
         if not present:
             tb.sections.add(len(tb.rows))
-            tb.rows.append([*head, "none: not axisymmetric (see groups)", *[""] * 9])
+            tb.rows.append([t["test_id"], "none", *head, *[""] * 9])
             continue
         for k, name in enumerate(present):
             b = t[name]
             if k == len(present) - 1:
                 tb.sections.add(len(tb.rows))
-            tb.rows.append([*(head if k == 0 else [""] * 5), names[name], fmt(b["sigma1_cap_kPa"]),
-                            fmt(b["sigma2_cap_kPa"]), fmt(b["sigma3_cap_kPa"]), fmt(b["p_cap_kPa"]),
-                            fmt(b["q_cap_kPa"]), fmt(b["p_prime_kPa"]), fmt(b["q_prime_kPa"]), fmt(b["gain"]),
+            stresses = [b[f"{c}_kPa"] for c in ("sigma1_cap", "sigma2_cap", "sigma3_cap", "p_cap", "q_cap",
+                                                 "p_prime", "q_prime")]
+            # 0 within rounding of the stresses the row was computed from (the test's and the bound's)
+            scale = magnitude([*stresses, t["sigma3_kPa"], t["q_kPa"]])
+            tb.rows.append([t["test_id"] if k == 0 else "", names[name], *(head if k == 0 else [""] * 4),
+                            *(fmt(v, scale=scale) for v in stresses), fmt(b["gain"]),
                             "yes" if b["positive_component"] else ""])
     out = [env, tb]
     if js["groups"]:
