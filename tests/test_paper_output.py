@@ -1,5 +1,6 @@
 """Paper-ready output (issue 10): vector figures and single panels, honest curves, legends off the data,
 literal user text, report.html, spreadsheet-friendly tables, the batch season table."""
+import re
 import shutil
 from html.parser import HTMLParser
 from xml.etree import ElementTree
@@ -216,3 +217,144 @@ def test_batch_season_table(tmp_path):
     assert (tmp_path / "o" / season["report"][0]).exists()
     html = (tmp_path / "o" / "season.html").read_text()
     assert 'href="shear_s0/report.html"' in html
+
+
+# --- one house style (issue 21, item 1) ---------------------------------------------------------------------
+from capred.report.style import MAX_MARKERS, OKABE_ITO  # noqa: E402
+
+
+def _texts(fig):
+    """Every text a reader sees in the axes of a figure except tick labels: titles, axis labels, legend, notes."""
+    out = []
+    for ax in fig.axes:
+        out += [ax.get_title(loc) for loc in ("left", "center", "right")]
+        out += [ax.get_xlabel(), ax.get_ylabel()] + [t.get_text() for t in ax.texts]
+        leg = ax.get_legend()
+        if leg is not None:
+            out += [t.get_text() for t in leg.get_texts()]
+    return [t for t in out if t]
+
+
+def _outside_math(text):
+    return "".join(text.split("$")[0::2])
+
+
+@pytest.fixture(scope="module")
+def curves_result():
+    return capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(
+        bootstrap=0, curves=capred.sample_path("shear-curves")))
+
+
+def _command_sheets(curves_result):
+    from capred.reductions import REDUCTIONS
+
+    yield from curves_result.figures().items()
+    yield from capred.run_triaxial_bounds(capred.sample_path("triaxial-bounds")).figures().items()
+    yield from capred.run_retention(capred.sample_path("retention")).figures().items()
+    for cmd in ("bridge compare", "bridge rupture", "skempton-b"):
+        red = REDUCTIONS[cmd]
+        yield from red.run(capred.sample_path(red.sample), red.options()).figures().items()
+    yield from REDUCTIONS["bridge curve"].run(None, REDUCTIONS["bridge curve"].options(points=200)).figures().items()
+
+
+def test_labels_are_mathtext_and_panels_have_one_title(curves_result):
+    seen = 0
+    for name, sheet in _command_sheets(curves_result):
+        for panel in sheet.panels:
+            fig = single(sheet, panel)
+            assert fig._suptitle is None  # a panel alone: no figure title (the caption is the report's)
+            ax = fig.axes[0]
+            assert sum(bool(ax.get_title(loc)) for loc in ("left", "center", "right")) <= 1
+            for text in _texts(fig):
+                raw = _outside_math(text)
+                # no raw sub- or superscripts (S_R, φ_b, ^(2/3)) outside mathtext; test ids are drawn literally
+                assert not re.search(r"[A-Za-zα-ωφχσ]_[A-Za-z0-9{]|\^\(|\^[0-9{]", raw), (name, panel.name, text)
+            seen += 1
+        if len(sheet.panels) == 1:  # the sheet's title is the one title of its only panel
+            fig = compose(sheet)
+            assert not fig.axes[0].get_title(), name
+    assert seen >= 20
+
+
+def test_curves_of_15_tests_never_share_a_look_and_vertical_displacement_is_drawn(curves_result):
+    sheet = curves_result.figures()["curves_steel_2mm"]
+    names = [p.name for p in sheet.panels]
+    assert names == ["curves_dry", "vertical_dry", "curves_wet", "vertical_wet", "dilatancy"]
+    ax = single(sheet, sheet.panels[2]).axes[0]  # 14 wet tests
+    lines = [ln for ln in ax.lines if not ln.get_label().startswith("_")]
+    assert len(lines) == 14
+    looks = {(ln.get_color(), str(ln.get_linestyle()), ln.get_marker()) for ln in lines}
+    assert len(looks) == len(lines)
+    assert {ln.get_color() for ln in lines} <= {v.lower() for v in OKABE_ITO.values()} | set(OKABE_ITO.values())
+    # the δv-δ panel draws the file's vertical displacements [mm] of each test as read
+    raw = pd.read_csv(capred.sample_path("shear-curves"), comment="#")
+    w01 = raw[raw["test_id"] == "ST-W01"]
+    ax = single(sheet, sheet.panels[3]).axes[0]
+    line = next(ln for ln in ax.lines if ln.get_label() == "_ST-W01")
+    np.testing.assert_allclose(line.get_xdata(), w01["displacement [mm]"], rtol=1e-12)  # mm -> m -> mm
+    np.testing.assert_allclose(line.get_ydata(), w01["vertical_displacement [mm]"], rtol=1e-12)
+    # dilatancy at the peak: the result's own angles, one marker per test
+    ax = single(sheet, sheet.panels[4]).axes[0]
+    psi = np.concatenate([ln.get_ydata() for ln in ax.lines if ln.get_label() in ("dry tests", "wet tests")])
+    mat = curves_result.tests["material"] == "steel_2mm"
+    np.testing.assert_allclose(np.sort(psi), np.sort(curves_result.tests["dilatancy_angle"][mat]), rtol=0)
+
+
+def test_mohr_panel_in_okabe_ito():
+    result = capred.run_triaxial_bounds(capred.sample_path("triaxial-bounds"))
+    sheet = result.figures()["report"]
+    ax = single(sheet, next(p for p in sheet.panels if p.name == "mohr_circles")).axes[0]
+    from matplotlib.colors import to_hex
+
+    colours = {to_hex(ln.get_color()).upper() for ln in ax.lines}
+    assert colours <= set(OKABE_ITO.values()), colours
+    assert len(colours) >= 3  # total, effective (LB), saturated and the envelope told apart
+
+
+def test_strength_against_saturation_one_line_style_per_normal_stress(shear_result):
+    sheet = shear_result.figures()["report_steel_2mm"]
+    ax = single(sheet, next(p for p in sheet.panels if p.name == "strength_vs_saturation")).axes[0]
+    from matplotlib.colors import to_hex
+
+    for model in shear_result.models:
+        colour = to_hex(capred.report.style.style(model)["color"])
+        curves = [ln for ln in ax.lines if to_hex(ln.get_color()) == colour and len(ln.get_xdata()) > 2]
+        assert len(curves) == 2, model  # the sample's two normal stresses of the wet steel tests
+        assert len({str(ln.get_linestyle()) for ln in curves}) == 2, model
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert r"$\sigma_N$ = 0.327 kPa" in legend and r"$\sigma_N$ = 0.538 kPa" in legend
+
+
+def test_retention_legend_from_the_registry():
+    from capred.fitting.retention_models import MODELS
+
+    result = capred.run_retention(capred.sample_path("retention"))
+    sheet = result.figures()["retention"]
+    ax = single(sheet, sheet.panels[0]).axes[0]
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    fitted = {m for fits in result.fits.values() for m in fits}
+    for m in fitted:
+        assert f"{MODELS[m].label}\n{MODELS[m].equation}" in legend
+    handles = dict(zip(legend, ax.get_legend().legend_handles))
+    for m in fitted:
+        assert handles[f"{MODELS[m].label}\n{MODELS[m].equation}"].get_linestyle() == \
+            ax.lines[0].__class__([], [], ls=MODELS[m].style["ls"]).get_linestyle()
+
+
+def test_large_tables_draw_a_stated_sample(tmp_path):
+    lines = capred.sample_path("shear").read_text().splitlines()
+    head = next(ln for ln in lines if ln.startswith("test_id"))
+    rows = [ln for ln in lines if ln.startswith("ST-")]
+    body = [head] + [",".join([f"{r.split(',')[0]}-{k}", *r.split(",")[1:]]) for k in range(200) for r in rows]
+    (tmp_path / "big.csv").write_text("\n".join(body) + "\n")
+    result = capred.run_shear(tmp_path / "big.csv", capred.ShearOptions(bootstrap=0))
+    n_wet = int(np.sum(result.tests["condition"] == "wet"))
+    assert n_wet == 2800
+    sheet = result.figures()["report_steel_2mm"]
+    panel = next(p for p in sheet.panels if p.name == "measured_vs_predicted")
+    assert "random sample of 2,000 tests of 5,200" in panel.caption
+    ax = single(sheet, panel).axes[0]
+    markers = [ln for ln in ax.lines if ln.get_linestyle() in ("None", "none", "")]
+    assert len(markers) == len(result.models)
+    assert all(len(ln.get_xdata()) == MAX_MARKERS for ln in markers)  # a fixed cost, whatever the row count
+    assert any("random sample of 2,000 of 2,800 tests" in t.get_text() for t in ax.texts)

@@ -272,7 +272,9 @@ def render_html(result, figures: dict, plots: bool) -> str:
 def _split_spec(spec) -> dict:
     """A summary table as column groups that fit the printed width, its row labels repeated in each."""
     heads = [h for h, _ in spec.columns]
-    labels = [j for j, (_, a) in enumerate(spec.columns) if a == "left"][:3] or [0]
+    from .render import label_columns
+
+    labels = label_columns(spec)
     widths = [max([len(w) for w in h.split()] + [len(r[j]) for r in spec.rows] + [1]) * CHAR_MM * 8.5 / 7 + CELL_MM
               for j, h in enumerate(heads)]
     groups, current, used = [], [], sum(widths[j] for j in labels)

@@ -22,6 +22,9 @@ from .style import style as _style
 KPA = 1e-3
 #: normal-stress levels drawn as their own series (model curves and measured markers); the others are grey
 MAX_LEVELS = 5
+#: error bars are drawn for at most this many tests per series (more cannot be told apart and cost a segment
+#: each); above, markers only, and the caption says so
+MAX_ERRORBARS = 300
 #: raw curves drawn per panel (a legend of more cannot be read); above it, a stated random sample of them
 MAX_CURVES = 16
 
@@ -67,6 +70,16 @@ def _band(p, keep, pred):
     return np.abs(np.vstack([pred - lo_pi[keep] * KPA, hi_pi[keep] * KPA - pred]))
 
 
+def _points(ax, x, y, yerr, **kw):
+    """Markers with error bars, or markers alone above MAX_ERRORBARS points."""
+    kw = {**kw, "ls": "none"}
+    if np.size(x) <= MAX_ERRORBARS:
+        return ax.errorbar(x, y, yerr=yerr, **kw)
+    for k in ("elinewidth", "capsize"):
+        kw.pop(k, None)
+    return ax.plot(x, y, **kw)
+
+
 def plot_measured_vs_predicted(ax, result, material):
     """Predicted against measured τ of the wet tests, each model with its 95 % prediction interval, and 1:1."""
     t = result.tests
@@ -77,8 +90,8 @@ def plot_measured_vs_predicted(ax, result, material):
         p = result.predictions[m]
         pred = p.tau[keep] * KPA
         hi = max(hi, float(np.nanmax(pred, initial=0.0)))
-        ax.errorbar(meas, pred, yerr=_band(p, keep, pred), ms=3.5, alpha=0.85, elinewidth=0.6,
-                    capsize=1.2, label=_label(m), **{**_style(m), "ls": "none"})
+        _points(ax, meas, pred, _band(p, keep, pred), ms=3.5, alpha=0.85, elinewidth=0.6, capsize=1.2,
+                label=_label(m), **_style(m))
     hi = hi * 1.05 or 1.0
     ax.plot([0, hi], [0, hi], color="k", ls="--", lw=0.8, label="1:1")
     note(ax, shown)
@@ -126,8 +139,8 @@ def plot_strength_vs_saturation(ax, result, material):
     for m in per_test:  # no curve: markers per test with the prediction interval
         p = result.predictions[m]
         pred = p.tau[keep] * KPA
-        ax.errorbar(t["S_R"][keep], pred, yerr=_band(p, keep, pred), ms=3.5, alpha=0.6,
-                    elinewidth=0.6, markerfacecolor="none", **{**_style(m), "ls": "none"})
+        _points(ax, t["S_R"][keep], pred, _band(p, keep, pred), ms=3.5, alpha=0.6, elinewidth=0.6,
+                markerfacecolor="none", **_style(m))
     for m in result.models:
         st = _style(m)
         handles.append(Line2D([], [], color=st["color"], marker=st.get("marker", "o"), ms=3.5,
@@ -183,8 +196,9 @@ def _strength_caption(result, material) -> str:
 
 def _sample_caption(result, material) -> str:
     n = int(np.sum(result.tests["material"] == material))
-    return (f" Markers: a random sample of {MAX_MARKERS:,} tests of {n:,} (seed {THIN_SEED}); fits and metrics "
+    text = (f" Markers: a random sample of {MAX_MARKERS:,} tests of {n:,} (seed {THIN_SEED}); fits and metrics "
             "use every test." if n > MAX_MARKERS else "")
+    return text + (f" No error bars above {MAX_ERRORBARS} tests." if n > MAX_ERRORBARS else "")
 
 
 def sheet_shear_report(result, material) -> Sheet:
@@ -215,8 +229,8 @@ def plot_capillary_stress(ax, result, material, x: str):
         ax.plot(xs, result.predictions[m].sigma_cap[keep] * KPA, ms=3.5, alpha=0.75, markerfacecolor="none",
                 label=_label(m), **{**_style(m), "ls": "none"})
     back = result.back
-    ax.errorbar(xs, back.sigma_cap[keep] * KPA, yerr=back.sigma_cap_se[keep] * KPA, ls="none", marker="o",
-                color="k", ms=3.5, capsize=1.5, elinewidth=0.6, label=r"back-analysed ($\pm$ 1 se)")
+    _points(ax, xs, back.sigma_cap[keep] * KPA, back.sigma_cap_se[keep] * KPA, marker="o", color="k", ms=3.5,
+            capsize=1.5, elinewidth=0.6, label=r"back-analysed ($\pm$ 1 se)")
     if x == "S_R":
         ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
     ax.axhline(0.0, color="k", lw=0.5)
@@ -245,8 +259,8 @@ def plot_chi_back(ax, result, material):
             st = _style(m)
             ax.plot(s, chi, color=st["color"], ls=st.get("ls", "-"), lw=1.2, label=_label(m) + extra)
     back = result.back
-    ax.errorbar(t["S_R"][keep], back.chi_back[keep], yerr=back.chi_back_se[keep], ls="none", marker="o", color="k",
-                ms=3.5, capsize=1.5, elinewidth=0.6, label=r"$\chi$ back-analysed ($\pm$ 1 se)")
+    _points(ax, t["S_R"][keep], back.chi_back[keep], back.chi_back_se[keep], marker="o", color="k", ms=3.5,
+            capsize=1.5, elinewidth=0.6, label=r"$\chi$ back-analysed ($\pm$ 1 se)")
     ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
     note(ax, shown)
     ax.set_xlabel(LABEL["S_R"])
