@@ -176,6 +176,24 @@ def renamed_keywords(**old_to_new: str):
     return decorate
 
 
+class StableJsonKeys:
+    """Mixin of an options dataclass whose fields were renamed to the glossary: ``record()`` (the JSON
+    ``options`` and ``option_units``) keeps the keys users have, ``JSON_NAMES`` mapping field -> key.
+
+    Put it before ``capred.result.Options`` among the bases.
+    """
+
+    JSON_NAMES: dict[str, str] = {}
+
+    def record(self) -> tuple[dict, dict]:
+        values, units = super().record()
+
+        def keyed(d: dict) -> dict:
+            return {self.JSON_NAMES.get(k, k): v for k, v in d.items()}
+
+        return keyed(values), keyed(units)
+
+
 def label(name: str) -> str:
     """Axis label 'symbol [unit]' for a quantity."""
     q = QUANTITIES[name]

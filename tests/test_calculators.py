@@ -103,7 +103,7 @@ def test_rumpf_by_hand(tmp_path):
     (["prism", "--break-tension", "115"], "--friction-angle"),
     (["prism", "--break-tension", "115 cm", "--friction-angle", "36"], "not a unit of pressure"),
     (["prism", "--break-tension", "115", "--friction-angle", "95"], "between 0 and 90"),
-    (["skempton-b"], "exactly one of --sr and --b"),
+    (["skempton-b"], "exactly one of --S-R (or --sr) and --b"),
     (["skempton-b", "--sr", "0.9", "--se", "20"], "both --se and --bc-lambda"),
     (["rumpf", "--shape-factor", "1", "--void-ratio", "0.5", "--sr", "0.5", "--diameter", "0.1",
       "--contact-angle", "95"], "contact angle must lie between 0 and 90 deg"),

@@ -29,7 +29,8 @@ def curve(
     surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m].")] = "0.0728",
     contact_angle: Annotated[float, typer.Option(help="Contact angle [deg].")] = 0.0,
     points: Annotated[int, typer.Option(help="Number of S_R values.")] = 2000,
-    sr_max: Annotated[float, typer.Option(help="Largest S_R of the sweep (bridges stop where suction reaches 0).")] = 0.3,
+    S_R_max: Annotated[float, typer.Option("--S-R-max", "--sr-max", help="Largest S_R of the sweep (bridges stop "
+                                                                       "where suction reaches 0).")] = 0.3,
     pendular_limit: Annotated[float, typer.Option(help="S_R bound of the pendular regime panel.")] = 0.05,
 ) -> Invocation:
     """Evenepoel's analytical comparison: sigma' = F_cap/(pi R^2) against
@@ -44,7 +45,7 @@ def curve(
     opts = CurveOptions(quantity(radius, "mm", "R", "--radius"),
                         quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
                         quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"),
-                        points, sr_max, quantity(repr(float(pendular_limit)), "", "pendular_limit", "--pendular-limit"))
+                        points, S_R_max, quantity(repr(float(pendular_limit)), "", "pendular_limit", "--pendular-limit"))
     return Invocation("bridge curve", opts)
 
 
@@ -101,7 +102,7 @@ def rupture(
 def yade_files(
     ratios: Annotated[str, typer.Option(help="Radius ratios R2/R1 >= 1, comma-separated (YADE opens these ten).")]
     = "1,1.1,1.25,1.5,1.75,2,3,4,5,10",
-    theta: Annotated[float, typer.Option("--theta", "--contact-angle", help="Contact angle [deg].")] = 0.0,
+    contact_angle: Annotated[float, typer.Option("--contact-angle", "--theta", help="Contact angle [deg].")] = 0.0,
     distances: Annotated[int, typer.Option(help="Distances per file, 0 to the largest gap bridged at zero "
                                                 "suction.")] = 80,
     suctions: Annotated[int, typer.Option(help="Suctions per distance: 0, then geometric from uc* = 0.002 to a "
@@ -113,7 +114,7 @@ def yade_files(
     nn33). Run YADE from the output folder (or copy the M(r=...) files next
     to your script).
 
-    Example: capred bridge yade-files --theta 0 --out capillary_files
+    Example: capred bridge yade-files --contact-angle 0 --out capillary_files
     """
     from ..errors import OptionError
     from ..pipelines.yade_files import YadeOptions
@@ -122,4 +123,4 @@ def yade_files(
         values = tuple(float(x) for x in ratios.split(",") if x.strip())
     except ValueError:
         raise OptionError(f"--ratios: '{ratios}' is not a comma-separated list of numbers") from None
-    return Invocation("bridge yade-files", YadeOptions(values, theta, distances, suctions))
+    return Invocation("bridge yade-files", YadeOptions(values, contact_angle, distances, suctions))

@@ -39,9 +39,11 @@ def prism(
 
 
 def skempton_b(
-    sr: Annotated[Optional[float], typer.Option("--sr", help="Degree of saturation S_r [-]: compute B.")] = None,
-    b: Annotated[Optional[float], typer.Option("--b", help="Measured B [-]: compute S_r.")] = None,
-    kappa: Annotated[float, typer.Option(help="Slope of the elastic line in e-ln p'.")] = 0.006,
+    S_R: Annotated[Optional[float], typer.Option("--S-R", "--sr", help="Degree of saturation S_R [-]: compute B.")
+                   ] = None,
+    b: Annotated[Optional[float], typer.Option("--b", help="Measured B [-]: compute S_R.")] = None,
+    kappa_elastic: Annotated[float, typer.Option("--kappa-elastic", "--kappa",
+                                                 help="Slope kappa of the elastic line in e-ln p' [-].")] = 0.006,
     e0: Annotated[float, typer.Option(help="Initial void ratio.")] = 0.8,
     p0: Annotated[str, typer.Option(help="Mean total stress [kPa].")] = "100",
     u0: Annotated[str, typer.Option(help="Initial pore pressure [kPa].")] = "30",
@@ -58,11 +60,12 @@ def skempton_b(
     equilibrium (p'0 = p0 - u_a0 + s S_r). Defaults are those of Morvan et al.
     (2016), Table 1.
 
-    Example: capred skempton-b --sr 0.9 --kappa 0.06
+    Example: capred skempton-b --S-R 0.9 --kappa-elastic 0.06
     """
     from ..pipelines.calculators import SkemptonOptions
 
-    opts = SkemptonOptions(_number(sr, "S_R", "--sr"), _number(b, "B", "--b"), _number(kappa, "kappa", "--kappa"),
+    opts = SkemptonOptions(_number(S_R, "S_R", "--S-R"), _number(b, "B", "--b"),
+                           _number(kappa_elastic, "kappa_elastic", "--kappa-elastic"),
                            _number(e0, "e0", "--e0"), quantity(p0, "kPa", "p0", "--p0"),
                            quantity(u0, "kPa", "u0", "--u0"), quantity(pa0, "kPa", "pa0", "--pa0"),
                            quantity(se, "kPa", "air_entry", "--se"), _number(bc_lambda, "bc_lambda", "--bc-lambda"))
@@ -72,20 +75,20 @@ def skempton_b(
 def rumpf(
     shape_factor: Annotated[Optional[float], typer.Option(help="Particle shape factor phi [-].")] = None,
     void_ratio: Annotated[Optional[float], typer.Option(help="Void ratio e [-].")] = None,
-    sr: Annotated[Optional[float], typer.Option("--sr", help="Degree of saturation S_r [-].")] = None,
+    S_R: Annotated[Optional[float], typer.Option("--S-R", "--sr", help="Degree of saturation S_R [-].")] = None,
     diameter: Annotated[Optional[str], typer.Option(help="Apparent particle diameter d_p [mm].")] = None,
     surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m].")] = "0.0728",
-    contact_angle: Annotated[float, typer.Option(help="Contact angle theta [deg].")] = 0.0,
+    contact_angle: Annotated[float, typer.Option(help="Contact angle [deg].")] = 0.0,
 ) -> Invocation:
     """Rumpf's capillary pressure p_cap = -(6/phi)(S_r/e)(gamma/d_p) cos(theta)
     (Prunier et al. 2024, eq. 19); negative means tension.
 
-    Example: capred rumpf --shape-factor 1 --void-ratio 0.5 --sr 0.3 --diameter 0.2
+    Example: capred rumpf --shape-factor 1 --void-ratio 0.5 --S-R 0.3 --diameter 0.2
     """
     from ..pipelines.calculators import RumpfOptions
 
     opts = RumpfOptions(_number(shape_factor, "shape_factor", "--shape-factor"),
-                        _number(void_ratio, "void_ratio", "--void-ratio"), _number(sr, "S_R", "--sr"),
+                        _number(void_ratio, "void_ratio", "--void-ratio"), _number(S_R, "S_R", "--S-R"),
                         quantity(diameter, "mm", "diameter", "--diameter"),
                         quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
                         quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"))

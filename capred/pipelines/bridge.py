@@ -14,6 +14,7 @@ from ..errors import InputError, OptionError
 from ..io.table import Column, read_table
 from ..physics import bridge as br
 from ..physics import shear as ph
+from ..nomenclature import StableJsonKeys, renamed_keywords
 from ..result import InputFile, Options, Result, Rows, TableSpec, input_file, json_list, num
 
 # 1: the gap is too wide for this suction or volume; 3: so much water that the bridge would be
@@ -59,8 +60,9 @@ class BridgeResult(Result):
     json_name = "solve.json"
 
     source: str
+    #: per case, SI: R and R2/R ratio [m, -], gamma [N/m], contact_angle_rad [rad], gap [m]
     inputs_si: dict[str, np.ndarray]
-    beta: np.ndarray
+    beta: np.ndarray  # filling angle on particle 1 [rad]
     suction: np.ndarray  # Pa
     shape: br.Bridge  # dimensionless, units of R and gamma
     status: np.ndarray
@@ -246,7 +248,7 @@ def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None) 
         for k in fields:
             fields[k][by_v] = getattr(b, k)
     shape = br.Bridge(**fields)
-    return BridgeResult(source, {"R": R, "gamma": gamma, "contact_angle": th, "gap": D, "ratio": ratio}, beta,
+    return BridgeResult(source, {"R": R, "gamma": gamma, "contact_angle_rad": th, "gap": D, "ratio": ratio}, beta,
                         s_star * gamma / R, shape, status, note, labels, notes)
 
 
@@ -277,27 +279,31 @@ def _in_parallel(solver, *columns):
     return tuple(np.concatenate([a, b]) for a, b in zip(first, second))
 
 
+@renamed_keywords(sr_max="S_R_max")
 @dataclass(frozen=True)
-class CurveOptions(Options):
+class CurveOptions(StableJsonKeys, Options):
     """Options of `capred bridge curve`: radius R [m], surface tension [N/m] (or strings with units),
-    contact angle [deg], number of S_R values, largest S_R, pendular limit."""
+    contact angle [deg], number of S_R values, largest S_R (``S_R_max``; the keyword ``sr_max`` still works
+    with a DeprecationWarning, and the JSON keeps the key ``sr_max``), pendular limit."""
 
     QUANTITIES = {"radius": "R", "surface_tension": "surface_tension", "contact_angle": "contact_angle",
                   "pendular_limit": "pendular_limit"}
+    OPTION_NAMES = {"S_R_max": "--S-R-max"}
+    JSON_NAMES = {"S_R_max": "sr_max"}
 
     radius: float = 1e-3
     surface_tension: float = ph.SURFACE_TENSION
     contact_angle: float = 0.0
     points: int = 2000
-    sr_max: float = 0.3
+    S_R_max: float = 0.3
     pendular_limit: float = ph.PENDULAR_LIMIT
 
     def __post_init__(self) -> None:
         super().__post_init__()
         if self.contact_angle >= 90:
             raise OptionError("--contact-angle must lie in [0, 90) deg")
-        if self.points < 2 or not 1e-4 < self.sr_max <= 1:
-            raise OptionError("need --points >= 2 and 0.0001 < --sr-max <= 1")
+        if self.points < 2 or not 1e-4 < self.S_R_max <= 1:
+            raise OptionError("need --points >= 2 and 0.0001 < --S-R-max <= 1")
 
 
 @dataclass(repr=False)
@@ -307,9 +313,9 @@ class CurveResult(Result):
     command = "bridge curve"
     json_name = "curve.json"
 
-    R: float
-    gamma: float
-    theta: float  # contact angle, rad
+    R: float  # m
+    gamma: float  # N/m
+    contact_angle_rad: float  # contact angle [rad]; JSON and tables give contact_angle_deg
     S_R: np.ndarray
     suction: np.ndarray  # Pa
     sigma_exact: np.ndarray  # Pa
@@ -323,11 +329,17 @@ class CurveResult(Result):
         S, s = self.S_R, self.suction
         return {
             "exact": self.sigma_exact,
-            "israelachvili": np.full_like(S, 2.0 * self.gamma * np.cos(self.theta) / self.R),
+            "israelachvili": np.full_like(S, 2.0 * self.gamma * np.cos(self.contact_angle_rad) / self.R),
             "bishop": S * s,
             "own1": ph.chi1(S) * s,
             "own2": ph.chi1(S) * s + ph.chi2(S, self.R, self.gamma),
         }
+
+    @property
+    def theta(self) -> float:
+        """Deprecated spelling of :attr:`contact_angle_rad` [rad] (read by capred.report.bridge_figures until it
+        asks for ``contact_angle_rad``)."""
+        return self.contact_angle_rad
 
     def rows(self) -> list[dict]:
         return _records(self.tables()["curve"])
@@ -343,7 +355,7 @@ class CurveResult(Result):
 
     def payload(self, lazy: bool = False) -> dict:
         return {"R_mm": self.R * 1e3, "gamma_N_per_m": self.gamma,
-                "contact_angle_deg": float(np.degrees(self.theta)),
+                "contact_angle_deg": float(np.degrees(self.contact_angle_rad)),
                 "pendular_limit": self.pendular_limit, **self.summary(), "curve": self.rows()}
 
     def tables(self) -> dict:
@@ -356,22 +368,24 @@ class CurveResult(Result):
             cached = self.__dict__["_tables"] = {"curve": pd.DataFrame(cols)}
         return cached
 
-def bridge_curve(R=1e-3, gamma=ph.SURFACE_TENSION, theta_deg: float = 0.0, points: int = 2000,
-                 pendular_limit: float = ph.PENDULAR_LIMIT, sr_max: float = 0.3) -> CurveResult:
+@renamed_keywords(theta_deg="contact_angle_deg", sr_max="S_R_max")
+def bridge_curve(R=1e-3, gamma=ph.SURFACE_TENSION, contact_angle_deg: float = 0.0, points: int = 2000,
+                 pendular_limit: float = ph.PENDULAR_LIMIT, S_R_max: float = 0.3) -> CurveResult:
     """Exact sigma' = F/(pi R^2) against S_R = 3 V/(2 pi R^3) for spheres in contact (gap 0).
 
-    ``R`` [m] and ``gamma`` [N/m] also take strings with units; ``theta_deg``
-    is the contact angle [deg]. S_R is swept evenly from 1e-4 to ``sr_max``;
+    ``R`` [m] and ``gamma`` [N/m] also take strings with units; ``contact_angle_deg``
+    is the contact angle [deg]. S_R is swept evenly from 1e-4 to ``S_R_max``;
     points beyond the last concave bridge (suction down to zero) are left out.
+    The former keywords ``theta_deg`` and ``sr_max`` still work for one release, with a DeprecationWarning.
     """
-    return reduce_curve(None, CurveOptions(R, gamma, theta_deg, points, sr_max, pendular_limit))
+    return reduce_curve(None, CurveOptions(R, gamma, contact_angle_deg, points, S_R_max, pendular_limit))
 
 
 def reduce_curve(source, opt: CurveOptions) -> CurveResult:
     """The sweep of bridge_curve for an options record (``source`` is unused: the curve needs no file)."""
-    R, gamma, points, sr_max = opt.radius, opt.surface_tension, opt.points, opt.sr_max
+    R, gamma, points, S_R_max = opt.radius, opt.surface_tension, opt.points, opt.S_R_max
     th = np.radians(opt.contact_angle)
-    S = np.linspace(1e-4, sr_max, points)
+    S = np.linspace(1e-4, S_R_max, points)
     beta, s_star, status = br.solve_for_volume(th, 2 * np.pi * S / 3, 0.0)
     ok = status == 0
     _, vol, f, _ = br.geometry(beta[ok], th, s_star[ok])
@@ -415,7 +429,7 @@ class CompareResult(Result):
             return cached
         b = self.bridges
         i_ = b.inputs_si
-        R, g, th, D, rho = i_["R"], i_["gamma"], i_["contact_angle"], i_["gap"], i_["ratio"]
+        R, g, th, D, rho = i_["R"], i_["gamma"], i_["contact_angle_rad"], i_["gap"], i_["ratio"]
         ok = b.status == 0
         equal = rho == 1
         # Derjaguin's effective radius for unequal pairs: R* = 2 R R2 / (R + R2) (R for equal spheres, 2 R on a plane)
@@ -475,9 +489,10 @@ class RuptureResult(Result):
     json_name = "rupture.json"
 
     source: str
+    #: per case, SI: R and R2/R ratio [m, -], gamma [N/m], contact_angle_rad [rad], V_w [m^3]
     inputs_si: dict[str, np.ndarray]
     gap: np.ndarray  # m, the rupture distance
-    beta: np.ndarray
+    beta: np.ndarray  # filling angle on particle 1 at rupture [rad]
     suction: np.ndarray  # Pa
     shape: br.Bridge  # the bridge at rupture, dimensionless
     status: np.ndarray
@@ -494,7 +509,7 @@ class RuptureResult(Result):
         if cached is not None:
             return cached
         i_ = self.inputs_si
-        R, g, th, V, rho = i_["R"], i_["gamma"], i_["contact_angle"], i_["V_w"], i_["ratio"]
+        R, g, th, V, rho = i_["R"], i_["gamma"], i_["contact_angle_rad"], i_["V_w"], i_["ratio"]
         ok = self.status == 0
 
         def out(x):
@@ -537,7 +552,7 @@ def rupture_distances(source, options: BridgeOptions | None = None) -> RuptureRe
     R, th, V = table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["V_w"]
     D, beta, s, status = br.rupture_gap(th, V / R**3, ratio)
     shape = br.bridge(beta, th, np.where(np.isfinite(s), s, 0.0), ratio)
-    res = RuptureResult(table.path, {"R": R, "gamma": gamma, "contact_angle": th, "V_w": V, "ratio": ratio},
+    res = RuptureResult(table.path, {"R": R, "gamma": gamma, "contact_angle_rad": th, "V_w": V, "ratio": ratio},
                         D * R, beta, s * gamma / R, shape, status,
                         list(table.columns["case"]) if "case" in table.columns else None, list(table.notes))
     res.options, res.inputs, res.warnings = opt, [input_file(source, table)], opt.warnings + table.warnings

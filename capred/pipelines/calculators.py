@@ -12,6 +12,7 @@ import numpy as np
 
 from ..errors import InputError, OptionError, Problem
 from ..io.table import Column, read_table
+from ..nomenclature import StableJsonKeys, renamed_keywords
 from ..physics import calculators as calc
 from ..physics.shear import GAMMA_W, SURFACE_TENSION
 from ..references import cite
@@ -157,19 +158,25 @@ SKEMPTON = [
 ]
 
 
+@renamed_keywords(sr="S_R", kappa="kappa_elastic")
 @dataclass(frozen=True)
-class SkemptonOptions(Options):
+class SkemptonOptions(StableJsonKeys, Options):
     """Options of `capred skempton-b` (defaults: Morvan et al. 2016, Table 1); pressures in Pa or with a unit.
 
-    ``bc_lambda`` is the Brooks-Corey pore-size index (Morvan et al. call it alpha).
+    ``S_R`` is the degree of saturation [-] (compute B) and ``b`` a measured B [-] (compute S_R);
+    ``kappa_elastic`` the slope of the elastic line in e-ln p' [-]; ``bc_lambda`` the Brooks-Corey pore-size
+    index (Morvan et al. call it alpha). The keywords ``sr`` and ``kappa`` still work (DeprecationWarning);
+    the JSON keeps the option keys ``sr`` and ``kappa``.
     """
 
-    QUANTITIES = {"sr": "S_R", "b": "B", "kappa": "kappa", "e0": "e0", "p0": "p0", "u0": "u0", "pa0": "pa0",
-                  "s_e": "air_entry", "bc_lambda": "bc_lambda"}
+    QUANTITIES = {"S_R": "S_R", "b": "B", "kappa_elastic": "kappa_elastic", "e0": "e0", "p0": "p0", "u0": "u0",
+                  "pa0": "pa0", "s_e": "air_entry", "bc_lambda": "bc_lambda"}
+    OPTION_NAMES = {"S_R": "--S-R", "kappa_elastic": "--kappa-elastic", "s_e": "--se"}
+    JSON_NAMES = {"S_R": "sr", "kappa_elastic": "kappa"}
 
-    sr: float | None = None
+    S_R: float | None = None
     b: float | None = None
-    kappa: float = 0.006
+    kappa_elastic: float = 0.006
     e0: float = 0.8
     p0: float = 100e3
     u0: float = 30e3
@@ -178,22 +185,23 @@ class SkemptonOptions(Options):
     bc_lambda: float | None = None
 
 
-def run_skempton_b(source=None, sr=None, b=None, kappa=0.006, e0=0.8, p0=100e3, u0=30e3, pa0=130e3, s_e=None,
-                   bc_lambda=None, bc_alpha=None) -> CalcResult:
-    """Morvan et al. (2016): B from S_r (eq. 10), or S_r from a measured B.
+@renamed_keywords(sr="S_R", kappa="kappa_elastic", bc_alpha="bc_lambda")
+def run_skempton_b(source=None, S_R=None, b=None, kappa_elastic=0.006, e0=0.8, p0=100e3, u0=30e3, pa0=130e3,
+                   s_e=None, bc_lambda=None) -> CalcResult:
+    """Morvan et al. (2016): B from the degree of saturation ``S_R`` [-] (eq. 10), or S_R from a measured B.
 
-    With ``s_e`` [Pa] and ``bc_lambda`` (Brooks-Corey; ``bc_alpha`` is the
-    same index under Morvan et al.'s name), B is computed with suction
-    equilibrium (section 3); its inverse is solved numerically.
+    ``kappa_elastic`` is the slope of the elastic line in e-ln p' [-]. With ``s_e`` [Pa] and ``bc_lambda``
+    (the Brooks-Corey index, alpha in Morvan et al.), B is computed with suction equilibrium (section 3);
+    its inverse is solved numerically. The former keywords ``sr``, ``kappa`` and ``bc_alpha`` still work for
+    one release, with a DeprecationWarning.
     """
-    return reduce_skempton_b(source, SkemptonOptions(sr, b, kappa, e0, p0, u0, pa0, s_e,
-                                                     bc_lambda if bc_lambda is not None else bc_alpha))
+    return reduce_skempton_b(source, SkemptonOptions(S_R, b, kappa_elastic, e0, p0, u0, pa0, s_e, bc_lambda))
 
 
 def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     """B or S_r per case (see run_skempton_b), with the figure of the B-S_r relation."""
-    kw = dict(kappa=opt.kappa, e0=opt.e0, p0=opt.p0, u0=opt.u0, pa0=opt.pa0)
-    res = _skempton(source, opt.sr, opt.b, s_e=opt.s_e, bc_alpha=opt.bc_lambda, **kw)
+    kw = dict(kappa=opt.kappa_elastic, e0=opt.e0, p0=opt.p0, u0=opt.u0, pa0=opt.pa0)  # keys: the figure's
+    res = _skempton(source, opt.S_R, opt.b, s_e=opt.s_e, bc_lambda=opt.bc_lambda, **kw)
     S = np.asarray(res.values.get("S_r", res.outputs.get("S_r")), float)
     B = np.asarray(res.values.get("B", res.outputs.get("B")), float)
     n = S.size
@@ -211,12 +219,13 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     return res
 
 
-def _skempton(source, sr, b, kappa, e0, p0, u0, pa0, s_e, bc_alpha) -> CalcResult:
+def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda) -> CalcResult:
+    """B or S_R per case; the dict keys are the CSV columns and JSON keys (``S_r``, ``kappa``), unchanged."""
     schema = SKEMPTON + [Column("S_r", "dimensionless", "-", "S_r", ("Sr", "S_R"), "fraction"),
                          Column("B", "dimensionless", "-", "B", ("skempton_b",), "fraction")]
-    given = {"kappa": kappa, "e0": e0, "p0": p0, "u0": u0, "pa0": pa0, "S_r": sr, "B": b}
-    if source is None and (sr is None) == (b is None):
-        raise OptionError("give exactly one of --sr and --b")
+    given = {"kappa": kappa, "e0": e0, "p0": p0, "u0": u0, "pa0": pa0, "S_r": S_R, "B": b}
+    if source is None and (S_R is None) == (b is None):
+        raise OptionError("give exactly one of --S-R (or --sr) and --b")
     v, notes, src = _inputs(source, schema, given, optional=("S_r", "B"))
     table = v.pop("_table", None)
     labels = _labels(v)
@@ -225,8 +234,8 @@ def _skempton(source, sr, b, kappa, e0, p0, u0, pa0, s_e, bc_alpha) -> CalcResul
         raise InputError(Problem(str(src), None, None, "every row needs 'S_r' (to compute B) or every row 'B' "
                                                           "(to compute S_r)"))
     v.pop("B" if forward else "S_r")
-    suction = s_e is not None and bc_alpha is not None
-    if (s_e is None) != (bc_alpha is None):
+    suction = s_e is not None and bc_lambda is not None
+    if (s_e is None) != (bc_lambda is None):
         raise OptionError("give both --se and --bc-lambda for the suction-equilibrium simulation, or neither")
     p_eff = v["p0"] - v["u0"]
     if np.any(p_eff <= 0):
@@ -235,7 +244,7 @@ def _skempton(source, sr, b, kappa, e0, p0, u0, pa0, s_e, bc_alpha) -> CalcResul
            for k, x in v.items() if k not in ("S_r", "B")}
     if forward:
         if suction:
-            B = calc.skempton_b_suction(v["S_r"], v["p0"], v["u0"], v["e0"], v["kappa"], v["pa0"], s_e, bc_alpha)
+            B = calc.skempton_b_suction(v["S_r"], v["p0"], v["u0"], v["e0"], v["kappa"], v["pa0"], s_e, bc_lambda)
         else:
             B = calc.skempton_b(v["S_r"], p_eff, v["e0"], v["kappa"], v["pa0"])
         return CalcResult("skempton-b", {"S_r": v["S_r"], **ins}, {"B": B}, src, notes, labels, title=_B_TITLE,
@@ -245,7 +254,7 @@ def _skempton(source, sr, b, kappa, e0, p0, u0, pa0, s_e, bc_alpha) -> CalcResul
         from scipy.optimize import brentq
 
         def solve(bi, k, e, p, u, pa):
-            f = lambda s: calc.skempton_b_suction(s, p, u, e, k, pa, s_e, bc_alpha) - bi  # noqa: E731
+            f = lambda s: calc.skempton_b_suction(s, p, u, e, k, pa, s_e, bc_lambda) - bi  # noqa: E731
             lo, hi = 1e-9, 1.0
             return brentq(f, lo, hi, xtol=1e-14) if f(lo) * f(hi) < 0 else np.nan
 
@@ -272,31 +281,39 @@ RUMPF = [
 ]
 
 
+@renamed_keywords(sr="S_R")
 @dataclass(frozen=True)
-class RumpfOptions(Options):
-    """Options of `capred rumpf`: diameter [m], surface tension [N/m] (or strings with units), angles in deg."""
+class RumpfOptions(StableJsonKeys, Options):
+    """Options of `capred rumpf`: degree of saturation ``S_R`` [-], diameter [m], surface tension [N/m] (or
+    strings with units), contact angle [deg]. The keyword ``sr`` still works (DeprecationWarning); the JSON
+    keeps the option key ``sr``."""
 
-    QUANTITIES = {"shape_factor": "shape_factor", "void_ratio": "void_ratio", "sr": "S_R", "diameter": "diameter",
+    QUANTITIES = {"shape_factor": "shape_factor", "void_ratio": "void_ratio", "S_R": "S_R", "diameter": "diameter",
                   "surface_tension": "surface_tension", "contact_angle": "contact_angle"}
+    OPTION_NAMES = {"S_R": "--S-R"}
+    JSON_NAMES = {"S_R": "sr"}
 
     shape_factor: float | None = None
     void_ratio: float | None = None
-    sr: float | None = None
+    S_R: float | None = None
     diameter: float | None = None
     surface_tension: float = SURFACE_TENSION
     contact_angle: float = 0.0
 
 
-def run_rumpf(source=None, shape_factor=None, void_ratio=None, sr=None, diameter=None,
+@renamed_keywords(sr="S_R")
+def run_rumpf(source=None, shape_factor=None, void_ratio=None, S_R=None, diameter=None,
               surface_tension=SURFACE_TENSION, contact_angle=0.0) -> CalcResult:
-    """Rumpf's capillary pressure p_cap = -(6/phi)(S_r/e)(gamma/d_p) cos theta (Prunier et al. 2024, eq. 19)."""
-    return reduce_rumpf(source, RumpfOptions(shape_factor, void_ratio, sr, diameter, surface_tension, contact_angle))
+    """Rumpf's capillary pressure p_cap = -(6/phi)(S_R/e)(gamma/d_p) cos(contact_angle) (Prunier et al. 2024,
+    eq. 19); ``contact_angle`` in degrees. The former keyword ``sr`` still works for one release, with a
+    DeprecationWarning."""
+    return reduce_rumpf(source, RumpfOptions(shape_factor, void_ratio, S_R, diameter, surface_tension, contact_angle))
 
 
 def reduce_rumpf(source, opt: RumpfOptions) -> CalcResult:
     """p_cap per case (see run_rumpf)."""
     v, notes, src = _inputs(source, RUMPF, {"shape_factor": opt.shape_factor, "void_ratio": opt.void_ratio,
-                                            "S_r": opt.sr, "diameter": opt.diameter,
+                                            "S_r": opt.S_R, "diameter": opt.diameter,
                                             "surface_tension": opt.surface_tension,
                                             "contact_angle": opt.contact_angle})
     table = v.pop("_table", None)

@@ -51,7 +51,7 @@ class YadeOptions(Options):
         if len(set(self.ratios)) != len(self.ratios):
             raise OptionError("--ratios: each ratio once")
         if not 0 <= self.contact_angle < 90:
-            raise OptionError("--theta must lie in [0, 90) deg")
+            raise OptionError("--contact-angle must lie in [0, 90) deg")
         if self.distances < 2 or self.suctions < 3:
             raise OptionError("need --distances >= 2 and --suctions >= 3")
 
@@ -84,13 +84,14 @@ class CapillaryFile:
         return "\n".join(lines) + "\n"
 
 
-def capillary_file(ratio: float, theta: float, n_dist: int = 80, n_suct: int = 350) -> CapillaryFile:
-    """The exact capillary file of one radius ratio r >= 1 at contact angle theta [rad].
+def capillary_file(ratio: float, contact_angle_rad: float, n_dist: int = 80, n_suct: int = 350) -> CapillaryFile:
+    """The exact capillary file of one radius ratio r >= 1 at contact angle ``contact_angle_rad`` [rad].
 
     Internally lengths are in units of the smaller radius R1 (rho = r); the
     table is converted to YADE's R2 units on the way out.
     """
     r = float(ratio)
+    theta = float(contact_angle_rad)
     # largest gap at zero suction: the maximum of the catenoid gap over the filling angle
     b_end = 0.5 * (np.pi - theta)
     grid = np.linspace(1e-3, b_end, 400)
@@ -165,10 +166,10 @@ class YadeResult(Result):
 
 def reduce_yade_files(source, opt: YadeOptions) -> YadeResult:
     """Every capillary file of ``opt.ratios`` (``source`` is unused: the files need no input)."""
-    theta = np.radians(opt.contact_angle)
+    contact_angle_rad = np.radians(opt.contact_angle)
     from ..progress import steps
 
-    files = [capillary_file(r, theta, opt.distances, opt.suctions)
+    files = [capillary_file(r, contact_angle_rad, opt.distances, opt.suctions)
              for r in steps(opt.ratios, "capred: capillary files", len(opt.ratios))]
     res = YadeResult(files, opt, [], list(opt.warnings))
     odd = [r for r in opt.ratios if r not in YADE_RATIOS]
