@@ -59,6 +59,7 @@ def _print_pdf(html_path, pdf_path, tmp_path):
     assert pdf_path.read_bytes().startswith(b"%PDF")
 
 
+@pytest.mark.slow  # ~25 s: a report written with its figures, printed by Chromium
 def test_printed_report_keeps_every_column(tmp_path, shear_result):
     out = tmp_path / "o"
     capred.write_outputs(shear_result, out)
@@ -160,3 +161,16 @@ def test_retention_methods_from_the_registry(tmp_path):
             doi = getattr(REFERENCES[key], "doi", None)
             if doi:
                 assert doi in text
+
+
+@pytest.mark.parametrize("command", ["triaxial-bounds", "retention", "prism", "skempton-b", "rumpf", "bridge solve",
+                                     "bridge compare", "bridge rupture", "bridge curve"])
+def test_every_command_renders_its_report(command):
+    from capred.reductions import REDUCTIONS
+
+    red = REDUCTIONS[command]
+    opts = red.options(points=100) if command == "bridge curve" else red.options()
+    result = red.run(capred.sample_path(red.sample) if red.sample else None, opts)
+    html = report_html.render_html(result, {}, False)
+    assert "Options in force" in html and "Per-row table" in html
+    assert "N/m^3" not in html and "^" not in re.sub(r"<[^>]+>", "", html).split("Methods")[0]

@@ -80,7 +80,8 @@ def _options(result, doc: dict) -> list[tuple[str, str, str]]:
     used: set[str] = set()
     from ..physics.effective_stress_models import REGISTRY
 
-    for m in getattr(result, "models", ()) or ():
+    models = getattr(result, "models", ())
+    for m in models if isinstance(models, (list, tuple)) else ():
         entry = REGISTRY.get(m) if isinstance(m, str) else None
         if entry is not None:
             used.update(name for name, _ in entry.requires)
