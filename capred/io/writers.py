@@ -303,7 +303,11 @@ def foreign_files(folder) -> list[str]:
 
 def _foreign_message(out: Path, foreign: list[str]) -> str:
     shown = ", ".join(foreign[:5]) + (f" and {len(foreign) - 5} more" if len(foreign) > 5 else "")
-    if _provenance(out) is None:
+    prov = _provenance(out)
+    if prov is not None and prov.get("command") == "batch":
+        return (f"--out {out} is the folder of a batch (index.csv and one folder per input); a single run is "
+                "written into a folder of its own: give another --out")
+    if prov is None:
         return (f"--out {out} is a folder capred did not write (it holds {shown}); capred replaces its output "
                 "folder as a whole: give a new or empty folder")
     return (f"--out {out} holds files capred did not write: {shown}; capred replaces its output folder as a "
@@ -401,6 +405,10 @@ def _check_target(out: Path, inputs, replace: bool) -> Path:
             raise OutputError(_foreign_message(out, foreign))
     if not replace and out.is_dir():
         foreign = foreign_batch_files(out)
+        if foreign == ["provenance.json"] and _provenance(out) is not None:
+            raise OutputError(f"--out {out} is the report folder of one run (capred {_provenance(out).get('command')}); "
+                              "a batch writes index.csv and one folder per input into a folder of its own: "
+                              "give another --out")
         if foreign:
             raise OutputError(
                 f"--out {out} holds {', '.join(foreign)}, which capred did not write; a batch writes "
