@@ -107,8 +107,8 @@ def style(name: str, **over) -> dict:
 
     entry = REGISTRY.get(name)
     retention = MODELS.get(name)
-    if entry is not None:
-        base = dict(entry.style)
+    if entry is not None:  # a line style of its own too (by registry order) where the entry names none
+        base = {"ls": LINESTYLES[list(REGISTRY).index(name) % len(LINESTYLES)], **entry.style}
     elif retention is not None:
         base = {"color": "black", **MODEL_STYLE.get(name, {}), **retention.style}
     else:
