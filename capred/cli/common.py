@@ -85,7 +85,7 @@ _OUTPUT_PARAMS = {
     "dpi": (Annotated[int, typer.Option(help="Resolution of PNG figures [dots per inch].")], 300),
     "html": (Annotated[bool, typer.Option("--html/--no-html", help="Write report.html, one self-contained "
                                                                    "document of the run.")], True),
-    "csv_dialect": (Annotated[str, typer.Option(help="CSV tables: 'standard' (comma, decimal point) or 'excel-eu' "
+    "csv_dialect": (Annotated[str, typer.Option(metavar="standard|excel-eu", help="CSV tables: 'standard' (comma, decimal point) or 'excel-eu' "
                                                      "(semicolon, decimal comma, UTF-8 BOM).")], "standard"),
     "xlsx": (Annotated[bool, typer.Option("--xlsx", help="Also write tables.xlsx, a sheet per table.")], False),
     "panels": (Annotated[bool, typer.Option("--panels", help="Also write each panel of a figure alone, "
@@ -288,7 +288,7 @@ def _single(inv: Invocation) -> None:
         result = REDUCTIONS[inv.command].run(source, inv.options)
     o = inv.output
     written = write_outputs(result, out_dir, plots=inv.plots, formats=o.formats, dpi=o.dpi, html=o.html,
-                        csv_dialect=o.csv_dialect, xlsx=o.xlsx) if write else None
+                        csv_dialect=o.csv_dialect, xlsx=o.xlsx, panels=o.panels) if write else None
     if inv.json:
         from ..io.writers import stream_json
 
