@@ -43,14 +43,6 @@ ALLOWED = {
 
 #: (object, name) whose rename waits for a file another engineer owns this round (non-strict xfail below:
 #: an entry that is done shows as XPASS -- then delete it here, and the alias it needed).
-PENDING = {
-    ("capred.pipelines.pt_volume.PTVolumePoints", "S_r"):
-        "capred/pipelines/pt_volume.py: field S_r -> S_R (the JSON key / CSV column 'S_r' stays via output())",
-    ("capred.physics.pedrotti_tarantino.PTVolumePath", "S_r"):
-        "deprecated alias of PTVolumePath.S_R, read by PTVolumePoints.from_path until that field is S_R",
-    ("capred.pipelines.bridge.CurveResult", "theta"):
-        "deprecated alias of CurveResult.contact_angle_rad, read by capred/report/bridge_figures.py",
-}
 
 
 def is_ambiguous(name: str) -> bool:
@@ -127,7 +119,7 @@ def test_the_walk_covers_the_three_packages_and_the_api():
 
 
 def test_no_ambiguous_name_in_public_signatures():
-    left = sorted(violations() - set(ALLOWED) - set(PENDING))
+    left = sorted(violations() - set(ALLOWED))
     assert not left, ("ambiguous names (use the glossary of capred/nomenclature.py, or a name with its unit): "
                       + ", ".join(f"{q}({n})" for q, n in left))
 
@@ -138,12 +130,6 @@ def test_allowed_entries_exist_and_are_glossary_names():
     for (q, n) in ALLOWED:
         assert (q, n) in found, f"stale ALLOWED entry {q}({n})"
         assert n in QUANTITIES
-
-
-@pytest.mark.parametrize("entry", [pytest.param(k, marks=pytest.mark.xfail(reason=v, strict=False))
-                                   for k, v in PENDING.items()], ids=lambda k: f"{k[0]}.{k[1]}")
-def test_pending_renames(entry):
-    assert entry not in violations()
 
 
 # --- the old keywords keep working for one release, and the output keys do not change ---------------------------

@@ -626,12 +626,6 @@ class PTVolumePath:
              "w_AW": "-", "w_WA": "-", "sigma_star_W": "Pa", "sigma_star_A": "Pa",
              "loading_W": "bool", "loading_A": "bool", "yielding_W": "bool", "yielding_A": "bool"}
 
-    @property
-    def S_r(self) -> np.ndarray:
-        """Deprecated spelling of :attr:`S_R` (read by ``PTVolumePoints.from_path`` of capred.pipelines.pt_volume
-        until it asks for ``S_R``)."""
-        return self.S_R
-
 
 def path_problems(sigma, u_w, u_a, S_R) -> list[tuple[int, str, str]]:
     """Every reason a path cannot be simulated, as (point index, column, message); empty when fine.

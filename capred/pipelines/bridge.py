@@ -335,12 +335,6 @@ class CurveResult(Result):
             "own2": ph.chi1(S) * s + ph.chi2(S, self.R, self.gamma),
         }
 
-    @property
-    def theta(self) -> float:
-        """Deprecated spelling of :attr:`contact_angle_rad` [rad] (read by capred.report.bridge_figures until it
-        asks for ``contact_angle_rad``)."""
-        return self.contact_angle_rad
-
     def rows(self) -> list[dict]:
         return _records(self.tables()["curve"])
 

@@ -123,7 +123,7 @@ class PTVolumePoints:
     ----------
     sigma, u_w, u_a, suction : ndarray
         Total stress, pore-water and pore-air pressure and suction u_a − u_w [Pa].
-    S_r : ndarray
+    S_R : ndarray
         Degree of saturation of the path [-].
     sigma_W, sigma_A : ndarray
         σ'_W = (σ − u_w) S_r and σ'_A = (σ − u_a)(1 − S_r) [Pa] (eq. 1-2).
@@ -147,7 +147,7 @@ class PTVolumePoints:
     u_w: np.ndarray = output("u_w_kPa", "u_w", "kPa", 1e-3)
     u_a: np.ndarray = output("u_a_kPa", "u_a", "kPa", 1e-3)
     suction: np.ndarray = output("suction_kPa", "suction", "kPa", 1e-3)
-    S_r: np.ndarray = output("S_r", "S_r")
+    S_R: np.ndarray = output("S_r", "S_r")
     sigma_W: np.ndarray = output("sigma_W_kPa", "sigma_W", "kPa", 1e-3)
     sigma_A: np.ndarray = output("sigma_A_kPa", "sigma_A", "kPa", 1e-3)
     e: np.ndarray = output("e", "e")
@@ -292,7 +292,7 @@ class PTVolumeResult(Result):
             "stages": [{"stage": s.label, "first_step": num(self.step[s.first]), "last_step": num(self.step[s.last]),
                         "first_line": int(self.line[s.first]), "last_line": int(self.line[s.last]),
                         "e_end": num(e[s.last]), "de": num(s.de), "de_W": num(s.de_W), "de_A": num(s.de_A),
-                        "S_r_end": num(self.points.S_r[s.last]),
+                        "S_r_end": num(self.points.S_R[s.last]),
                         "sigma_W_end_kPa": num(self.points.sigma_W[s.last] / 1e3),
                         "sigma_A_end_kPa": num(self.points.sigma_A[s.last] / 1e3)} for s in self.stages],
         }

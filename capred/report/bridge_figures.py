@@ -32,7 +32,7 @@ def plot_curve(ax, curve, inside: bool):
 
 def sheet_curve(curve) -> Sheet:
     return Sheet(f"Effective stress of a pendular bridge against the degree of saturation, spheres in contact "
-                 f"(R = {curve.R * 1e3:g} mm, γ = {curve.gamma:g} N/m, θ = {np.degrees(curve.theta):g}°)", [
+                 f"(R = {curve.R * 1e3:g} mm, γ = {curve.gamma:g} N/m, θ = {np.degrees(curve.contact_angle_rad):g}°)", [
                      Panel("pendular", lambda ax: plot_curve(ax, curve, True),
                            "σ' = F_cap/(πR²) against S_R = 3V_w/(2πR³) inside the pendular regime: the exact "
                            "bridge against the approximations."),
