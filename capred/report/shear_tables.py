@@ -28,7 +28,7 @@ def shear_tables(result) -> list[TableSpec]:
                                   js["best_model_pendular_overall"]))
     if js["bootstrap"]:
         boot = spec("How sure is the ranking? (paired bootstrap of wet and dry tests; ΔRMSE = runner-up − best)",
-                     ["material", "best model", "best in", "runner-up", "ΔRMSE 95 % CI [kPa]", "replicates"])
+                     ["material", "best model", "best in % of resamples", "runner-up", "ΔRMSE 95 % CI [kPa]", "replicates"])
         for mat, b in js["bootstrap"].items():
             best = b["best"]
             p = b["best_model_probability"].get(best) if best else None
