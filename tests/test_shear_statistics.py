@@ -229,23 +229,22 @@ def test_tau_bands_cover_the_mean_and_new_tests(model):
 # ------------------------------------------------------------------------------------------------ bootstrap
 
 def _loop_ranking(d_mat, dry_x, dry_y, models, params, fitted, replicates, seed, through_origin=False):
-    """The first (loop) version of the bootstrap, the reference: RMSE per replicate and model."""
+    """The first (loop) version of the bootstrap, the reference: RMSE per replicate and model, scored one
+    replicate at a time on the same resamples (the same seed and block as bootstrap_ranking draws)."""
     rng = np.random.default_rng(seed)
-    nd, nw = dry_x.size, d_mat.sigma_N.size
+    nw = d_mat.sigma_N.size
+    U, idx, valid = sa._draw(rng, dry_x, nw, replicates, through_origin)
+    assert valid.all()
     scores = np.full((replicates, len(models)), np.nan)
     for r in range(replicates):
-        for _ in range(100):
-            di = rng.integers(0, nd, nd)
-            x, y = dry_x[di], dry_y[di]
-            if through_origin:
-                if x @ x > 0:
-                    c, b = 0.0, float(x @ y / (x @ x))
-                    break
-            elif np.ptp(x) > 0:
-                b = float(np.polyfit(x, y, 1)[0])
-                c = float(y.mean() - b * x.mean())
-                break
-        w = d_mat.subset(rng.integers(0, nw, nw))
+        di = np.repeat(np.arange(dry_x.size), U[r].astype(int))
+        x, y = dry_x[di], dry_y[di]
+        if through_origin:
+            c, b = 0.0, float(x @ y / (x @ x))
+        else:
+            b = float(np.polyfit(x, y, 1)[0])
+            c = float(y.mean() - b * x.mean())
+        w = d_mat.subset(idx[r])
         w = dataclasses.replace(w, c=np.full(nw, c), tan_phi=np.full(nw, b))
         refit = {m: {"m": sa._fit_one(m, w, params, start=fitted[m]["m"]).params} for m in models
                  if esm.REGISTRY[m].fitted}
@@ -279,7 +278,8 @@ def test_bootstrap_ranking_reproduces_the_loop(monkeypatch, through_origin):
     seen = {}
     real = sa._summarise
     monkeypatch.setattr(sa, "_summarise", lambda s, *a: seen.setdefault("s", s) is not None and real(s, *a))
-    monkeypatch.setattr(sa, "BLOCK_ELEMENTS", 400)  # several blocks: the stream continues across them
+    # one block of 150 replicates, drawn as the reference draws them
+    monkeypatch.setattr(sa, "BLOCK_ELEMENTS", 150 * max(DRY_X.size, 10))
     out = sa.bootstrap_ranking(d, DRY_X, dry_y, models, ModelParams(), fitted, ["bishop", "own1"], 150, 4,
                                through_origin)
     got = seen["s"]

@@ -411,27 +411,31 @@ def _pointwise_affine(model: str, d: esm.ModelInputs):
 
 
 def _draw(rng, dry_x, nw: int, count: int, through_origin: bool):
-    """Resampling counts of one block, drawn in the stream order of the first capred versions.
+    """Resampling of one block of replicates, drawn as whole matrices.
 
-    Per replicate: the dry indices (redrawn, up to 100 times, while the sample cannot fit a line), then the
-    wet indices. Returns dry counts (count, nd), wet indices (count, nw) and the valid rows.
+    The dry indices of every replicate (count x nd), then the wet ones (count x nw); a dry sample that cannot
+    fit a line (all its normal stresses equal; all zero through the origin) is redrawn, up to 100 times.
+    Returns dry counts (count, nd), wet indices (count, nw) and the valid rows. (Versions before 0.2 drew
+    replicate by replicate in a Python loop: the same distribution, another random stream.)
     """
     nd = dry_x.size
-    U = np.zeros((count, nd))
-    idx = np.zeros((count, nw), dtype=np.intp)
-    valid = np.zeros(count, bool)
-    integers = rng.integers
-    for k in range(count):
-        for _ in range(100):
-            di = integers(0, nd, nd)
-            x = dry_x[di]
-            if (x @ x > 0) if through_origin else (x.max() > x.min()):
-                break
-        else:  # pragma: no cover - every dry sample degenerate: leave the replicate out
-            continue
-        U[k] = np.bincount(di, minlength=nd)
-        idx[k] = integers(0, nw, nw)
-        valid[k] = True
+    di = rng.integers(0, nd, (count, nd))
+
+    def fits(rows):
+        x = dry_x[di[rows]]
+        return np.einsum("ij,ij->i", x, x) > 0 if through_origin else x.max(axis=1) > x.min(axis=1)
+
+    valid = fits(slice(None))
+    for _ in range(100):
+        bad = np.flatnonzero(~valid)
+        if not bad.size:
+            break
+        di[bad] = rng.integers(0, nd, (bad.size, nd))
+        valid[bad] = fits(bad)
+    rows = np.repeat(np.arange(count), nd)
+    U = np.bincount(rows * nd + di.ravel(), minlength=count * nd).reshape(count, nd).astype(float)
+    idx = rng.integers(0, nw, (count, nw))
+    U[~valid] = 0.0
     return U, idx, valid
 
 
