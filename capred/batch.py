@@ -60,7 +60,8 @@ def run_job(job: Job):
     if job.out_dir is None:  # --json without --out: nothing written
         return result, []
     o = job.output
-    kw = dict(formats=o.formats, dpi=o.dpi, html=o.html, csv_dialect=o.csv_dialect, xlsx=o.xlsx) if o else {}
+    kw = dict(formats=o.formats, dpi=o.dpi, html=o.html, csv_dialect=o.csv_dialect, xlsx=o.xlsx,
+              panels=o.panels) if o else {}
     return result, write_outputs(result, job.out_dir, plots=job.plots, **kw)
 
 

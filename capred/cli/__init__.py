@@ -52,7 +52,7 @@ def batch(
                                              "options) listing the runs.", show_default=False)],
     out: Annotated[Optional[Path], typer.Option("--out", "-o", help="Root output folder [default: ./capred_out].")] = None,
     json_out: JsonOpt = False,
-    workers: WorkersOpt = 1,
+    workers: WorkersOpt = None,
 ):
     """Run a season's worth of reductions listed in a manifest: one line per run,
     with the command (shear, triaxial-bounds, retention, prism, skempton-b,
@@ -61,7 +61,7 @@ def batch(
     under --out; bad files are reported and the others still complete;
     index.csv lists every output; the exit code is 1 if anything failed.
 
-    Example: capred batch season.csv --workers 2   (season.csv: command,input,options /
+    Example: capred batch season.csv --out results   (season.csv: command,input,options /
     shear,runs/*.csv,--gamma-w 10 --no-plots)
     """
     try:
@@ -70,7 +70,7 @@ def batch(
         fail(exc)
     root = (out or Path.cwd() / "capred_out") if (out is not None or not json_out) else None
     try:
-        run_batch(jobs, root, json_out, workers)
+        run_batch(jobs, root, json_out, workers, extra_inputs=[manifest])
     except CapredError as exc:
         fail(exc)
 

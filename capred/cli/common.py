@@ -27,7 +27,9 @@ OutOpt = Annotated[Optional[Path], typer.Option(
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON document on stdout instead of tables.")]
 PlotOpt = Annotated[bool, typer.Option("--plots/--no-plots", help="Write the report figures.")]
 SampleOpt = Annotated[bool, typer.Option("--sample", help="Run on the bundled (synthetic) sample data.")]
-WorkersOpt = Annotated[int, typer.Option(min=1, help="Worker processes for a batch of files.")]
+WorkersOpt = Annotated[Optional[int], typer.Option(min=1, help="Worker processes for a batch of files "
+                                                              "[default: one per core, at most one per file].",
+                                                   show_default=False)]
 SheetOpt = Annotated[Optional[str], typer.Option(help="Sheet of an .xlsx or .ods workbook: its name or its number "
                                                       "(from 1) [default: the first].")]
 ThousandsOpt = Annotated[Optional[str], typer.Option(help="Thousands separator of the file, e.g. '.' to read 1.000 as "
@@ -68,7 +70,7 @@ class Invocation:
     plots: bool = True
     out: Optional[Path] = None
     json: bool = False
-    workers: int = 1
+    workers: Optional[int] = None  # None: one per core
     extra_inputs: list = field(default_factory=list)  # further files read (curves, a retention fit)
     output: OutputOptions = field(default_factory=OutputOptions)
 
@@ -131,7 +133,7 @@ def command(app: typer.Typer, name: str, full_name: Optional[str] = None, data: 
     shared = {"out": (OutOpt, None), "json_out": (JsonOpt, False), "plots": (PlotOpt, True)}
     if data is not None:
         shared = {"data": (data_arg(data), None), **shared, "sample": (SampleOpt, False),
-                  "workers": (WorkersOpt, 1), "sheet": (SheetOpt, None), "thousands": (ThousandsOpt, None),
+                  "workers": (WorkersOpt, None), "sheet": (SheetOpt, None), "thousands": (ThousandsOpt, None),
                   "ignore_column": (IgnoreOpt, None), "max_megabytes": (MaxMbOpt, None),
                   "max_cells": (MaxCellsOpt, None), "max_columns": (MaxColumnsOpt, None)}
 
@@ -317,7 +319,7 @@ def _batch(inv: Invocation) -> None:
     run_batch(jobs, root if write else None, inv.json, inv.workers, extra_inputs=inv.extra_inputs)
 
 
-def run_batch(jobs, root: Optional[Path], json_out: bool, workers: int, extra_inputs=()) -> None:
+def run_batch(jobs, root: Optional[Path], json_out: bool, workers: Optional[int], extra_inputs=()) -> None:
     """Run jobs with a progress bar (on a terminal, not with --json), write index.csv, report, set the exit code."""
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
