@@ -180,8 +180,21 @@ def _per_row(result) -> dict:
     name = next(iter(result.tables()))
     groups = column_groups(columns, rows)
     parts = [{"columns": [columns[j] for j in g], "left": [columns[j].split(" [")[0] in _LEFT for j in g],
-              "rows": [[r[j] for j in g] for r in rows]} for g in groups]
+              "body": _body([[r[j] for j in g] for r in rows], [columns[j].split(" [")[0] in _LEFT for j in g])}
+             for g in groups]
     return {"columns": columns, "parts": parts, "rows": rows, "total": len(frame), "file": f"{name}.csv"}
+
+
+def _body(rows: list[list[str]], left: list[bool]):
+    """The <tr> rows of a table as one escaped HTML string (built here: a template loop per cell costs ~35 ms
+    a report)."""
+    from html import escape
+
+    from markupsafe import Markup
+
+    open_cell = ['<td class="l">' if is_left else "<td>" for is_left in left]
+    return Markup("\n".join("<tr>" + "".join(o + escape(cell, quote=False) + "</td>" for o, cell in zip(open_cell, row))
+                             + "</tr>" for row in rows))
 
 
 _LEFT = ("test_id", "case", "material", "condition", "flags", "status", "branch", "group", "source")
