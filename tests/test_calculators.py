@@ -119,3 +119,16 @@ def test_calculator_bad_csv(write_csv, tmp_path):
     res = runner.invoke(app, ["prism", str(data), "--out", str(tmp_path / "o")])
     assert res.exit_code == 1
     assert "line 3, column 'break_tension'" in res.stderr and "'abc' is not a number" in res.stderr
+
+
+@pytest.mark.parametrize("args", [["--model", "elastoplastic", "--a-ini", "10"], ["--model", "elastoplastic"]])
+def test_elastoplastic_b_is_refused_with_the_reason(args):
+    """Morvan et al. (2016), section 4 needs the bounding-surface model of their ref. [16], which capred does not
+    have: a clear error, never the elastic B presented as the elasto-plastic one."""
+    from typer.testing import CliRunner
+
+    from capred.cli import app
+
+    res = CliRunner().invoke(app, ["skempton-b", "--S-R", "0.9", *args])
+    assert res.exit_code == 1 and "Traceback" not in res.output
+    assert "bounding-surface model" in res.stderr and "Morvan, Wong & Branque (2010)" in res.stderr

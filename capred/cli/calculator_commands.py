@@ -53,6 +53,13 @@ def skempton_b(
     bc_lambda: Annotated[Optional[float], typer.Option("--bc-lambda", "--bc-alpha",
                                                        help="Brooks-Corey pore-size index lambda (alpha in Morvan "
                                                             "et al. 2016), with --se.")] = None,
+    model: Annotated[str, typer.Option(metavar="elastic|elastoplastic",
+                                       help="Skeleton model: elastic (eq. 10, or with suction equilibrium); "
+                                            "elastoplastic (section 4) is not available, see the README.")
+                     ] = "elastic",
+    a_ini: Annotated[Optional[str], typer.Option("--a-ini", help="Initial position A_ini of the bounding "
+                                                 "surface [kPa] (Morvan et al. 2016, Table 3), with --model "
+                                                 "elastoplastic.")] = None,
 ) -> Invocation:
     """Skempton's B against degree of saturation (Morvan et al. 2016, eq. 10):
     B = 1/(1 + p'0 e0 (1 - S_r)/(kappa P_a0)) with p'0 = p0 - u0, or its inverse
@@ -68,7 +75,8 @@ def skempton_b(
                            _number(kappa_elastic, "kappa_elastic", "--kappa-elastic"),
                            _number(e0, "e0", "--e0"), quantity(p0, "kPa", "p0", "--p0"),
                            quantity(u0, "kPa", "u0", "--u0"), quantity(pa0, "kPa", "pa0", "--pa0"),
-                           quantity(se, "kPa", "air_entry", "--se"), _number(bc_lambda, "bc_lambda", "--bc-lambda"))
+                           quantity(se, "kPa", "air_entry", "--se"), _number(bc_lambda, "bc_lambda", "--bc-lambda"),
+                           model=model, a_ini=quantity(a_ini, "kPa", "p0", "--a-ini"))
     return Invocation("skempton-b", opts)
 
 

@@ -183,19 +183,36 @@ class SkemptonOptions(StableJsonKeys, Options):
     pa0: float = 130e3
     s_e: float | None = None
     bc_lambda: float | None = None
+    model: str = "elastic"
+    a_ini: float | str | None = None  # Pa, initial position of the bounding surface (elastoplastic only)
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if self.a_ini is not None and self.model != "elastoplastic":
+            raise OptionError("--a-ini (the bounding surface's initial position) goes with --model elastoplastic")
+        if self.model == "elastoplastic":
+            raise OptionError(
+                "--model elastoplastic: the elasto-plastic B of Morvan et al. (2016), section 4, needs the "
+                "bounding-surface model of Morvan, Wong & Branque (2010), whose equations capred does not have; "
+                "the elastic B (eq. 10), or with --se and --bc-lambda the elastic B with suction equilibrium, is "
+                "what capred computes")
+        if self.model != "elastic":
+            raise OptionError(f"--model must be elastic or elastoplastic (got '{self.model}')")
 
 
 @renamed_keywords(sr="S_R", kappa="kappa_elastic", bc_alpha="bc_lambda")
 def run_skempton_b(source=None, S_R=None, b=None, kappa_elastic=0.006, e0=0.8, p0=100e3, u0=30e3, pa0=130e3,
-                   s_e=None, bc_lambda=None) -> CalcResult:
+                   s_e=None, bc_lambda=None, model="elastic") -> CalcResult:
     """Morvan et al. (2016): B from the degree of saturation ``S_R`` [-] (eq. 10), or S_R from a measured B.
 
     ``kappa_elastic`` is the slope of the elastic line in e-ln p' [-]. With ``s_e`` [Pa] and ``bc_lambda``
     (the Brooks-Corey index, alpha in Morvan et al.), B is computed with suction equilibrium (section 3);
     its inverse is solved numerically. The former keywords ``sr``, ``kappa`` and ``bc_alpha`` still work for
-    one release, with a DeprecationWarning.
+    one release, with a DeprecationWarning. ``model="elastoplastic"`` (section 4 of the paper) raises
+    OptionError: the bounding-surface model it needs (Morvan, Wong & Branque 2010) is not available.
     """
-    return reduce_skempton_b(source, SkemptonOptions(S_R, b, kappa_elastic, e0, p0, u0, pa0, s_e, bc_lambda))
+    return reduce_skempton_b(source, SkemptonOptions(S_R, b, kappa_elastic, e0, p0, u0, pa0, s_e, bc_lambda,
+                                                     model))
 
 
 def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
