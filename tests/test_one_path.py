@@ -246,7 +246,8 @@ def test_batch_interrupted_still_writes_the_index(tmp_path, monkeypatch):
 
     monkeypatch.setattr(batch, "run_safely", ctrl_c)
     out = tmp_path / "out"
-    res = runner.invoke(app, ["shear", str(runs / "*.csv"), "--no-plots", "--out", str(out)])
+    # one worker: the patched job runs in this process (workers would not see the patch)
+    res = runner.invoke(app, ["shear", str(runs / "*.csv"), "--no-plots", "--workers", "1", "--out", str(out)])
     assert res.exit_code == 130
     index = pd.read_csv(out / "index.csv")
     by_input = index.groupby("input")["status"].first()

@@ -75,7 +75,7 @@ def test_groups_sample_through_the_cli_with_files(tmp_path):
 
 @pytest.mark.slow
 def test_groups_sample_figures(tmp_path):
-    res = runner.invoke(app, ["triaxial-bounds", str(_sample()), "--out", str(tmp_path)])
+    res = runner.invoke(app, ["triaxial-bounds", str(_sample()), "--panels", "--out", str(tmp_path)])
     assert res.exit_code == 0, res.output
     assert (tmp_path / "figures" / "report_group_circles.png").exists()
     assert (tmp_path / "figures" / "report_group_tensors.png").exists()
