@@ -54,6 +54,7 @@ def test_shear_rerun_is_byte_identical(tmp_path, write_csv):
         assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes(), name
 
 
+@pytest.mark.slow
 def test_shear_through_installed_entry_point(tmp_path):
     exe = Path(sys.executable).with_name("capred")
     cmd = [str(exe)] if exe.exists() else [sys.executable, "-m", "capred"]

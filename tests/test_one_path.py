@@ -170,6 +170,7 @@ def _capred(*args) -> list[str]:
     return [sys.executable, "-m", "capred", *args]
 
 
+@pytest.mark.slow
 def test_killed_reruns_never_leave_a_mixed_folder(tmp_path):
     """SIGKILL at random moments of a rerun: --out holds one complete run, the earlier or the new one."""
     out = tmp_path / "o"
@@ -190,6 +191,7 @@ def test_killed_reruns_never_leave_a_mixed_folder(tmp_path):
     assert [p.name for p in tmp_path.iterdir()] == ["o"]
 
 
+@pytest.mark.slow
 def test_concurrent_runs_into_one_folder_do_not_mix(tmp_path):
     out = tmp_path / "o"
     procs = [subprocess.Popen(_capred("shear", "--sample", "--gamma-w", g, "--out", str(out)),

@@ -22,6 +22,7 @@ def shear_result():
     return capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(bootstrap=50))
 
 
+@pytest.mark.slow
 def test_vector_sheets_and_single_panels(tmp_path):
     result = capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(bootstrap=0))
     capred.write_outputs(result, tmp_path / "o", formats=("pdf", "svg"), panels=True)
