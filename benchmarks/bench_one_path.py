@@ -14,6 +14,8 @@ shared machine hits each alike; medians of the repeats:
 - ``readme``:      ``capred shear --sample --out DIR`` (the default bootstrap)
 - ``boot0``:       the same with ``--bootstrap 0`` (the bootstrap is timed on its own in bench_bootstrap.py)
 - ``no-figures``:  ``--bootstrap 0 --no-plots --no-html`` (what the figures and the report cost, by difference)
+- ``boot0-1proc``, ``boot0-2proc``: ``--bootstrap 0`` with the figures drawn in one process or two
+  (CAPRED_FIGURE_PROCESSES; by default two only when the load average leaves a core free)
 
 CPU counts the figure process a run forks (children are waited for), so the
 ratios compare core for core; wall time shows what the second core buys.
@@ -58,14 +60,17 @@ def main(repeats: int = 5, baseline: str | None = None) -> None:
 
             def go():
                 shutil.rmtree(out, ignore_errors=True)
-                run([py, "-m", "capred", "shear", "--sample", *args, "--out", str(out)], env=env)
+                # cwd: a neutral folder, so that `python -m` imports capred from PYTHONPATH / the install
+                run([py, "-m", "capred", "shear", "--sample", *args, "--out", str(out)], env=env, cwd=tmp)
             return go
 
         contestants = {
-            "floor": lambda: run([py, "-c", FLOOR.format(out=tmp)]),
+            "floor": lambda: run([py, "-c", FLOOR.format(out=tmp)], cwd=tmp),
             "readme": capred(),
             "boot0": capred("--bootstrap", "0"),
             "no-figures": capred("--bootstrap", "0", "--no-plots", "--no-html"),
+            "boot0-1proc": capred("--bootstrap", "0", env={**os.environ, "CAPRED_FIGURE_PROCESSES": "1"}),
+            "boot0-2proc": capred("--bootstrap", "0", env={**os.environ, "CAPRED_FIGURE_PROCESSES": "2"}),
         }
         base = Path(tmp) / "baseline"
         if baseline:
@@ -91,6 +96,8 @@ def main(repeats: int = 5, baseline: str | None = None) -> None:
     fig = m["boot0"].cpu - m["no-figures"].cpu
     print(f"figures and report.html: {fig:.2f} s CPU, {m['boot0'].wall - m['no-figures'].wall:.2f} s wall "
           f"({fig / m['boot0'].cpu:.0%} of the --bootstrap 0 run's CPU)")
+    print(ratio_line("figures in two processes / one, CPU", m["boot0-2proc"].cpu, m["boot0-1proc"].cpu) + "; "
+          + ratio_line("wall", m["boot0-2proc"].wall, m["boot0-1proc"].wall))
     if baseline:
         for name in ("readme", "boot0"):
             b = m[f"{name}@base"]

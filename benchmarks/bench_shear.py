@@ -1,62 +1,81 @@
-"""Speed targets of `capred shear` (issue 2), measured in fresh subprocesses.
+"""`capred shear` on 100,000 rows: every default output against tables and JSON alone (issue 20).
 
-1. `capred --help` against `python -c "import typer"` (target <= 1.3x).
-2. `capred shear --sample` (with PNGs) against the bare imports it needs plus
-   one savefig of a 2x2 figure (target <= 1.5x).
+What it claims: the run with every default output (tables, JSON, the
+default bootstrap, one composite PNG per figure sheet at 300 dpi, report.html)
+costs <= 3x the same run with ``--no-plots --no-html --bootstrap 0``, in CPU
+seconds of the whole process tree; figures of a large table do not grow with
+its rows. Both are printed with their wall times, and the figures and report
+alone (``--bootstrap 0`` with and without them) as a third contestant, so the
+bootstrap's share is visible too.
 
-Run: python benchmarks/bench_shear.py [repeats]
+The 100,000 rows repeat sample_data/shear_tests.csv (52 tests) with unique
+test ids and tau_max perturbed by a seeded relative noise of 2 % (so that the
+repeats are not identical points), both materials kept.
+
+Contestants run in turn (A B C, A B C, ...), medians of the repeats.
+
+Run from the repository root: python benchmarks/bench_shear.py [repeats=3] [rows=100000]
 """
 from __future__ import annotations
 
-import statistics
-import subprocess
+import shutil
 import sys
 import tempfile
-import time
 from pathlib import Path
 
-
-def timed(cmd: list[str], repeats: int) -> float:
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        subprocess.run(cmd, check=True, capture_output=True)
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from common import interleaved, ratio_line, run  # noqa: E402
 
 
-BARE = """
-import numpy, pandas, scipy.special, pint, rich, typer
-from matplotlib.figure import Figure
-fig = Figure(figsize=(11, 9))
-axes = fig.subplots(2, 2)
-for ax in axes.flat:
-    ax.plot([0, 1], [0, 1], "o-")
-fig.savefig(r"{out}/bare.png", dpi=150)
-"""
+def make_rows(path: Path, n: int, seed: int = 20) -> None:
+    """``n`` rows of shear tests: the sample repeated, test ids made unique, tau_max perturbed by 2 % (seeded)."""
+    import numpy as np
+
+    from capred.samples import sample_path
+
+    lines = [ln for ln in sample_path("shear").read_text().splitlines() if ln and not ln.startswith("#")]
+    header, rows = lines[0], lines[1:]
+    cols = header.split(",")
+    tau = cols.index("tau_max [kPa]")
+    rng = np.random.default_rng(seed)
+    noise = 1.0 + 0.02 * rng.standard_normal(n)
+    out = [header]
+    for k in range(n):
+        cells = rows[k % len(rows)].split(",")
+        cells[0] = f"{cells[0]}-{k // len(rows)}"
+        cells[tau] = f"{float(cells[tau]) * noise[k]:.4f}"
+        out.append(",".join(cells))
+    path.write_text("\n".join(out) + "\n")
 
 
-def main(repeats: int = 7) -> None:
+def main(repeats: int = 3, n: int = 100_000) -> None:
     py = sys.executable
     with tempfile.TemporaryDirectory() as tmp:
-        typer_t = timed([py, "-c", "import typer"], repeats)
-        help_t = timed([py, "-m", "capred", "--help"], repeats)
-        bare_t = timed([py, "-c", BARE.format(out=tmp)], repeats)
-        shear_t = timed([py, "-m", "capred", "shear", "--sample", "--out", f"{tmp}/o"], repeats)
-        # the sample holds two materials (two report sheets); time one material alone too
-        from capred.samples import sample_path
+        data = Path(tmp) / "shear_100k.csv"
+        make_rows(data, n)
 
-        lines = sample_path("shear").read_text().splitlines()
-        one = [ln for ln in lines if not ln.startswith("SA-")]
-        single = Path(tmp) / "steel_only.csv"
-        single.write_text("\n".join(one) + "\n")
-        one_t = timed([py, "-m", "capred", "shear", str(single), "--out", f"{tmp}/o1"], repeats)
-    print(f"import typer              {typer_t * 1e3:7.0f} ms")
-    print(f"capred --help             {help_t * 1e3:7.0f} ms   ratio {help_t / typer_t:.2f} (target <= 1.3)")
-    print(f"bare imports + savefig    {bare_t * 1e3:7.0f} ms")
-    print(f"capred shear --sample     {shear_t * 1e3:7.0f} ms   ratio {shear_t / bare_t:.2f} (2 report sheets)")
-    print(f"capred shear, 1 material  {one_t * 1e3:7.0f} ms   ratio {one_t / bare_t:.2f} (1 sheet; target <= 1.5)")
+        def shear(*args):
+            out = Path(tmp) / "o"
+
+            def go():
+                shutil.rmtree(out, ignore_errors=True)
+                run([py, "-m", "capred", "shear", str(data), *args, "--out", str(out)], cwd=tmp)
+            return go
+
+        contestants = {
+            "defaults": shear(),
+            "boot0": shear("--bootstrap", "0"),
+            "tables": shear("--no-plots", "--no-html", "--bootstrap", "0"),
+        }
+        m = interleaved(contestants, repeats)
+    for name, v in m.items():
+        print(f"{name:9s} CPU {v.cpu:7.2f} s   wall {v.wall:7.2f} s")
+    print(ratio_line(f"{n:,} rows, every default output / --no-plots --no-html --bootstrap 0, CPU",
+                     m["defaults"].cpu, m["tables"].cpu, "<= 3x"))
+    print(ratio_line("  the same, wall", m["defaults"].wall, m["tables"].wall))
+    print(ratio_line("figures and report.html (--bootstrap 0) / tables, CPU", m["boot0"].cpu, m["tables"].cpu))
+    print(ratio_line("  the same, wall", m["boot0"].wall, m["tables"].wall))
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 7)
+    main(int(sys.argv[1]) if len(sys.argv) > 1 else 3, int(sys.argv[2]) if len(sys.argv) > 2 else 100_000)

@@ -18,8 +18,8 @@ from pathlib import Path
 
 from .sheets import NO_STAMP  # noqa: F401  (kept importable from here)
 
-#: draw the sheets in two processes when the run has at least this many panels in two sheets or more
-#: (a fork costs ~0.05 s of CPU; one panel ~0.15 s; measured in benchmarks/bench_one_path.py)
+#: draw the sheets in two processes when the run has at least this many panels in two sheets or more and a
+#: core is free (the child costs ~15 % more CPU in all, re-loading fonts and copying pages; one panel ~0.3 s)
 PARALLEL_MIN_PANELS = 6
 
 
@@ -197,8 +197,24 @@ def _write_figures(result, folder, opts: FigureOptions) -> dict:
 
 
 def _parallel(cost: list[int]) -> bool:
-    return (len(cost) >= 2 and sum(cost) >= PARALLEL_MIN_PANELS and hasattr(os, "fork")
-            and (os.cpu_count() or 1) >= 2)
+    """Two processes for several sheets with enough panels, when a second core is free: the machine has two
+    or more and its load average leaves one idle (on a busy shared machine the fork's ~15 % more CPU buys no
+    time: benchmarks/bench_one_path.py). CAPRED_FIGURE_PROCESSES=1 or 2 decides instead."""
+    if len(cost) < 2 or sum(cost) < PARALLEL_MIN_PANELS or not hasattr(os, "fork"):
+        return False
+    import multiprocessing
+
+    if multiprocessing.current_process().daemon:  # a batch worker: the batch already uses the cores
+        return False
+    forced = os.environ.get("CAPRED_FIGURE_PROCESSES")
+    if forced in ("1", "2"):
+        return forced == "2"
+    cores = os.cpu_count() or 1
+    try:
+        load = os.getloadavg()[0]  # this run itself counts for up to one
+    except OSError:
+        load = 0.0
+    return cores >= 2 and load < cores - 0.5
 
 
 def _two_processes(sheets, cost, folder, opts, advance) -> list:
@@ -214,9 +230,20 @@ def _two_processes(sheets, cost, folder, opts, advance) -> list:
         load[side] += cost[k]
     mine.sort()
     theirs.sort()
+    import gc
+
+    from .sheets import warm_up
+
+    warm_up(opts.dpi)  # fonts, glyphs and mathtext loaded once, before the child inherits them
     box = tempfile.TemporaryFile()
     ticks_r, ticks_w = os.pipe()
-    pid = os.fork()
+    gc.freeze()  # the child's collections leave the inherited objects alone: their pages stay shared
+    pid = -1
+    try:
+        pid = os.fork()
+    finally:
+        if pid != 0:
+            gc.unfreeze()
     if pid == 0:  # the child: draw its sheets, pickle the results into the shared file, leave
         code = 1
         try:

@@ -275,6 +275,24 @@ def single(sheet: Sheet, panel: Panel, dpi: float = 300.0):
     return panel_figure(sheet, panel, dpi)
 
 
+def warm_up(dpi: float = 300.0) -> None:
+    """Draw a tiny panel (title, mathtext labels, ticks, legend, markers) so that fonts, glyph caches and
+    the mathtext parser are loaded: a process forked afterwards inherits them instead of loading its own."""
+    from matplotlib.figure import Figure
+
+    with journal_style():
+        fig = Figure(figsize=(1.0, 0.8), dpi=dpi)
+        _canvas(fig)
+        ax = fig.add_axes((0.3, 0.3, 0.6, 0.6))
+        ax.plot([0, 1], [0, 1], "o-", label=r"$\sigma_N$")
+        ax.errorbar([0.5], [0.5], yerr=[0.1], fmt="s")
+        ax.set_title("t")
+        ax.set_xlabel(r"$\tau_{max}$ [kPa]")
+        ax.set_ylabel(r"$S_R$ [–]")
+        ax.legend()
+        encode_png(raster(fig), dpi)
+
+
 # --- rasters ------------------------------------------------------------------------------------------------
 def raster(fig):
     """The figure drawn once by Agg at its own dpi: an (rows, columns, 3) uint8 RGB array."""
