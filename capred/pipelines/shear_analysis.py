@@ -695,8 +695,13 @@ def retention_relation(params, suction, S_R) -> RetentionRelation | None:
     from ..errors import FitError
     from ..fitting.retention_models import fit_model
 
+    # the same least squares on the distinct (suction, S_R) pairs weighted by their counts: the cost stays that of
+    # the distinct states however many tests repeat them (a 100,000-row file has a few dozen per material)
+    pairs, counts = np.unique(np.column_stack([suction[ok], S_R[ok]]), axis=0, return_counts=True)
+    s_fit, y_fit, w_fit = ((pairs[:, 0], pairs[:, 1], counts.astype(float)) if pairs.shape[0] >= 5
+                           else (suction[ok], S_R[ok], None))
     try:
-        f = fit_model("vg", suction[ok], S_R[ok])
+        f = fit_model("vg", s_fit, y_fit, weights=w_fit)
     except FitError:
         return None
     p = f.params
