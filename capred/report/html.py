@@ -155,20 +155,9 @@ def column_groups(columns: list[str], rows: list[list[str]], width_mm: float = P
     for j, head in enumerate(columns):
         longest = max([len(w) for w in head.split()] + [len(r[j]) for r in rows if j < len(r)] + [1])
         widths.append(longest * CHAR_MM + CELL_MM)
-    labels = _label_columns(columns)
-    base = sum(widths[j] for j in labels)
-    groups, current, used = [], [], base
-    for j in range(len(columns)):
-        if j in labels:
-            continue
-        if current and used + widths[j] > width_mm:
-            groups.append(labels + current)
-            current, used = [], base
-        current.append(j)
-        used += widths[j]
-    if current or not groups:
-        groups.append(labels + current)
-    return groups
+    from .render import pack_columns
+
+    return pack_columns(widths, _label_columns(columns), width_mm)
 
 
 def _per_row(result) -> dict:

@@ -153,17 +153,22 @@ def column_groups(spec: TableSpec, width: int) -> list[list[int]]:
     """Columns packed into groups that fit ``width`` characters, the row labels (``label_columns``) repeated
     in each group; headers wrap at spaces before a column moves to the next group."""
     w = [x + 3 for x in _folded_widths(spec)]  # rich: padding and border per column
-    labels = label_columns(spec)
-    base = 1 + sum(w[j] for j in labels)
-    groups, current, used = [], [], base
-    for j in range(len(w)):
+    return pack_columns(w, label_columns(spec), width, base=1)
+
+
+def pack_columns(widths, labels: list[int], limit: float, base: float = 0.0) -> list[list[int]]:
+    """Column indices packed in order into groups whose widths (the label columns', repeated in each group,
+    included; plus ``base``) fit ``limit``; every other column is in exactly one group."""
+    start = base + sum(widths[j] for j in labels)
+    groups, current, used = [], [], start
+    for j in range(len(widths)):
         if j in labels:
             continue
-        if current and used + w[j] > width:
+        if current and used + widths[j] > limit:
             groups.append(labels + current)
-            current, used = [], base
+            current, used = [], start
         current.append(j)
-        used += w[j]
+        used += widths[j]
     if current or not groups:
         groups.append(labels + current)
     return groups
