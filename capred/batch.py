@@ -288,6 +288,10 @@ def write_season(root: Path, outcomes: list[Outcome]) -> list[Path]:
         for r in o.season:
             rows.append({"input": o.source, "command": o.command, "status": o.status, **r, "report": link})
     frame = pd.DataFrame(rows)
+    for name in frame.columns:  # counts stay whole numbers where some runs have none (pandas would make floats)
+        values = [v for v in (r.get(name) for r in rows) if v is not None]
+        if values and all(isinstance(v, int) and not isinstance(v, bool) for v in values):
+            frame[name] = frame[name].astype("Int64")
     runs = _runs(root, outcomes)
     return [write_batch_file(root, "season.csv", encode_csv(frame), runs),
             write_batch_file(root, "season.html", render_season(frame).encode("utf-8"), runs)]

@@ -226,8 +226,8 @@ def range_problem(name: str, value: float) -> str | None:
         lo, hi = q.lower * q.factor, q.upper * q.factor
         if not (q.lower_open or q.upper_open):
             return f"{q.description} must lie between {lo:g} and {hi:g}{unit} {got}"
-        interval = f"{'(' if q.lower_open else '['}{lo:g}, {hi:g}{')' if q.upper_open else ']'}"
-        return f"{q.description} must lie between {lo:g} and {hi:g}{unit}, in {interval} {got}"
+        excluded = " and ".join(f"{v:g}" for v, is_open in ((lo, q.lower_open), (hi, q.upper_open)) if is_open)
+        return f"{q.description} must lie between {lo:g} and {hi:g}{unit}, {excluded} excluded {got}"
     bound = (q.lower if lo_bad else q.upper) * q.factor
     if lo_bad and bound == 0 and not q.lower_open:
         return f"{q.description} must not be negative {got}"

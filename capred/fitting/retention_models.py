@@ -409,13 +409,20 @@ class RetentionFit(NonlinearFit):
     __call__ = water
 
     def S_R(self, suction):
-        """Degree of saturation S_R [-] at ``suction`` [Pa]: the fitted curve itself when S_R was fitted, θ/θ_s
-        when a volumetric water content was (θ_s taken as the porosity: the soil saturated at zero suction)."""
-        y = self.water(suction)
+        """Degree of saturation S_R [-] at ``suction`` [Pa] (>= 0): the fitted curve itself when S_R was fitted,
+        θ/θ_s when a volumetric water content was (θ_s taken as the porosity: the soil saturated at zero
+        suction). A negative suction raises OptionError."""
+        s = np.asarray(suction, float)
+        if np.any(s < 0):
+            from ..errors import OptionError
+
+            raise OptionError(f"suction must be >= 0 Pa (got {s[s < 0].flat[0]:g})")
+        y = self.water(s)
         return y if self.quantity == "S_R" else y / self.params["y_s"]
 
     def suction_at_S_R(self, S_R):
-        """Suction [Pa] at which the fitted curve gives the degree of saturation ``S_R`` [-] (inverse of S_R)."""
+        """Suction [Pa] at which the fitted curve gives the degree of saturation ``S_R`` [-] (inverse of S_R);
+        NaN where S_R lies outside the fitted curve's range (S_res, S_s]."""
         S_R = np.asarray(S_R, float)
         return self.suction(S_R if self.quantity == "S_R" else S_R * self.params["y_s"])
 

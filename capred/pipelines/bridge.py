@@ -187,9 +187,11 @@ def _read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, .
     for i in np.flatnonzero(table.columns["contact_angle"] >= 90):
         table.add_problem(i, "contact_angle", f"contact angle {table.value_text('contact_angle', i)} deg: pendular "
                                               "bridges need a contact angle below 90 deg")
+    reported = {(p.line, p.column) for p in table.problems}  # a cell already explained (text in a number)
     for name in required:
         for i in np.flatnonzero(np.isnan(table.columns[name])):
-            table.add_problem(i, name, f"blank {name}")
+            if (int(table.lines[i]), table.headers.get(name, name)) not in reported:
+                table.add_problem(i, name, f"blank {name}")
     ratio = np.ones(len(table))
     if "R2" in table.columns:
         for i in np.flatnonzero(np.isnan(table.columns["R2"])):

@@ -83,7 +83,7 @@ def _wet_rows(result):
 
 
 def _metrics_table(title, metrics, overall, best_of_material, best_overall) -> TableSpec:
-    met = spec(title, ["material", "model", "n", "RMSE [kPa]", "bias [kPa]", "R²", ""], left=2)
+    met = spec(title, ["material", "model", "n", "RMSE [kPa]", "bias [kPa]", "R²", "lowest RMSE"], left=2)
     groups = list(metrics.items())
     if overall and len(groups) > 1:
         groups.append(("(all)", overall))
