@@ -8,11 +8,11 @@ from .render import fmt, magnitude, spec
 _BRANCH = {"compression": "comp.", "extension": "ext.", "general": "true tx."}
 
 
-def _pm(value, se) -> str:
-    """'value ± se' (se omitted when unknown)."""
+def _pm(value, se, scale: float | None = None) -> str:
+    """'value ± se' (se omitted when unknown; 0 when the value is 0 within rounding of ``scale``)."""
     if value is None:
         return "—"
-    return fmt(value) if se is None else f"{fmt(value)} ± {fmt(se, 2)}"
+    return fmt(value, scale=scale) if se is None else f"{fmt(value, scale=scale)} ± {fmt(se, 2)}"
 
 
 def triaxial_tables(result) -> list[TableSpec]:
@@ -68,8 +68,10 @@ def triaxial_tables(result) -> list[TableSpec]:
             method = (r["method"] or "— (see notes)").split(" (")[0]
             if r["method"] and "closed" in r["method"]:
                 method = "eq. 48, σ1,cap = 0 closure"
+            caps = [abs(r[f"sigma{k}_cap_kPa"]) for k in (1, 2, 3) if r[f"sigma{k}_cap_kPa"] is not None]
+            scale = max(caps + [abs(r.get("C_kPa") or 0.0)]) or None  # the magnitudes the tensor came from
             tensor.rows.append([r["group"], method,
-                                *(_pm(r[f"sigma{k}_cap_kPa"], r[f"sigma{k}_cap_se_kPa"]) for k in (1, 2, 3)),
+                                *(_pm(r[f"sigma{k}_cap_kPa"], r[f"sigma{k}_cap_se_kPa"], scale) for k in (1, 2, 3)),
                                 fmt(r["p_cap_kPa"]), fmt(r["C_kPa"]), fmt(r["C_fictive_kPa"])])
         out += [g, tensor]
     return out
