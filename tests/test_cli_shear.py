@@ -46,6 +46,7 @@ def test_shear_json_has_the_documented_keys(tmp_path):
     assert not list((tmp_path / "o").glob("*.png"))
 
 
+@pytest.mark.slow
 def test_shear_rerun_is_byte_identical(tmp_path, write_csv):
     data = write_csv(GOOD)
     for k in ("a", "b"):

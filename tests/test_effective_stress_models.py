@@ -76,6 +76,7 @@ def test_models_option_needs_parameters():
     assert res.exit_code == 1 and "unknown model 'nonsense'" in res.stderr
 
 
+@pytest.mark.slow
 def test_models_all_with_retention_fit(tmp_path):
     assert runner.invoke(app, ["retention", "--sample", "--out", str(tmp_path / "r"), "--no-plots"]).exit_code == 0
     res = runner.invoke(app, ["shear", "--sample", "--models", "all", "--retention", str(tmp_path / "r" / "fits.json"),

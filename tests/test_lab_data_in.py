@@ -473,6 +473,7 @@ HEAD = st.sampled_from(["test_id", "condition", "sigma_N", "tau_max [kPa]", "z1 
 SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(meta=st.lists(st.lists(CELL, max_size=3), max_size=3), header=st.lists(HEAD, min_size=1, max_size=6),
        units=st.booleans(), rows=st.lists(st.lists(CELL, max_size=7), max_size=5),

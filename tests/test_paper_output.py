@@ -258,6 +258,7 @@ def _command_sheets(curves_result):
     yield from REDUCTIONS["bridge curve"].run(None, REDUCTIONS["bridge curve"].options(points=200)).figures().items()
 
 
+@pytest.mark.slow
 def test_labels_are_mathtext_and_panels_have_one_title(curves_result):
     seen = 0
     for name, sheet in _command_sheets(curves_result):
