@@ -344,7 +344,8 @@ class EffectiveStressModel:
     along_retention : bool
         Drawn as a curve along the material's water-retention relation (False: markers per test only).
     style : dict
-        Colour (a name of capred.report.style.OKABE_ITO) and marker of every figure.
+        Colour (an Okabe-Ito colour name: black, orange, sky, green, yellow, blue, vermillion, purple, grey)
+        and marker of every figure.
     method : str
         One sentence for the methods section of report.html (the equation of the model).
     chi_of_saturation : callable, optional
