@@ -147,11 +147,12 @@ class Grid:
     delimiters: tuple[str, ...] = (",",)  # candidate CSV delimiters (spreadsheets: none needed)
     text_rows: dict[str, list[tuple[int, list[str]]]] = field(default_factory=dict)  # first rows, per delimiter
     full_text: str | None = None  # a CSV's text (comment lines blanked), parsed once the delimiter is known
+    first_line: int = 1  # the line number of the text's first line (a block of a long file starts later)
 
     def parse_all(self, delimiter: str) -> None:
         """Every row of a CSV with the chosen delimiter (spreadsheets: nothing to do)."""
         if self.full_text is not None:
-            self.rows = _parse(self.full_text, delimiter)
+            self.rows = _parse(self.full_text, delimiter, self.first_line)
             self.full_text = None
 
     def where(self) -> str:
@@ -204,7 +205,7 @@ def _decode(data: bytes) -> str:
     return data.decode("latin-1")
 
 
-def _csv_grid(shown: str, text: str) -> Grid:
+def _csv_grid(shown: str, text: str, first_line: int = 1) -> Grid:
     """Rows of a CSV text for each candidate delimiter (the table reader picks the one whose header fits).
 
     Parsed as a whole (not line by line), so quoted fields may span lines; a
@@ -217,32 +218,33 @@ def _csv_grid(shown: str, text: str) -> Grid:
         kept = "\n".join("" if ln.lstrip().startswith("#") else ln for ln in text.splitlines())
     else:  # the usual file: nothing to blank, lines already end in '\n'
         kept = text[:-1] if text.endswith("\n") else text
-    grid = Grid(shown, None, [], (",", ";", "\t"))
+    grid = Grid(shown, None, [], (",", ";", "\t"), first_line=first_line)
     head = "\n".join(kept.split("\n", 200)[:200])
     for delim in grid.delimiters:
-        grid.text_rows[delim] = _parse(head, delim)
+        grid.text_rows[delim] = _parse(head, delim, first_line)
     grid.full_text = kept
     grid.rows = grid.text_rows[","]
     return grid
 
 
-def _parse(text: str, delim: str) -> list[tuple[int, list[str]]]:
-    """Rows with their first line number; the cells of the first 200 rows stripped (the header and the
-    metadata are searched there), later cells as written (the table reader strips columns where needed)."""
+def _parse(text: str, delim: str, first_line: int = 1) -> list[tuple[int, list[str]]]:
+    """Rows with their first line number (the text's first line is ``first_line``); the cells of the first
+    200 rows stripped (the header and the metadata are searched there), later cells as written (the table
+    reader strips columns where needed)."""
     rows = []
     if '"' not in text and "\r" not in text:  # no quoting: a line is a row, split on the delimiter (fast)
         lines = text.split("\n")
-        rows = [(k + 1, ln.split(delim)) for k, ln in enumerate(lines) if ln and not ln.isspace()]
+        rows = [(k + first_line, ln.split(delim)) for k, ln in enumerate(lines) if ln and not ln.isspace()]
         for k in range(min(200, len(rows))):
             rows[k] = (rows[k][0], [c.strip() for c in rows[k][1]])
         return rows
     reader = csv.reader(io.StringIO(text), delimiter=delim)
-    start = 1
+    start = first_line
     try:
         for cells in reader:
             if cells and (cells[0].strip() or "".join(cells).strip()):  # skip blank rows (first cell decides fast)
                 rows.append((start, [c.strip() for c in cells] if len(rows) < 200 else cells))
-            start = reader.line_num + 1
+            start = reader.line_num + first_line
     except csv.Error as exc:
         rows.append((start, [f"\x00csv error: {exc}"]))
     return rows

@@ -98,6 +98,7 @@ class Table:
     known: tuple[str, ...] = ()  # every spelling the schema accepts, for suggestions
     missing: set[str] = field(default_factory=set)  # required columns reported absent
     as_read: dict[str, np.ndarray] = field(default_factory=dict)  # numbers in the file's own unit (before SI)
+    units_line: int | None = None  # the line of a units row under the header (None: no units row)
 
     def __len__(self) -> int:
         return len(self.lines)
@@ -312,14 +313,22 @@ def read_table(source, schema: list[Column], *, ignore_columns=(), limits: ReadL
     all (missing, binary, empty, no data rows), and LimitError (an InputError)
     when it is over a reading limit.
     """
-    src = as_source(source)
+    src = _with_options(as_source(source), ignore_columns, limits)
+    return _grid_table(read_grid(src), src, schema)
+
+
+def _with_options(src, ignore_columns, limits):
     if ignore_columns or limits is not None:
         extra = (ignore_columns,) if isinstance(ignore_columns, str) else tuple(ignore_columns or ())
         src = replace(src, ignore_columns=src.ignore_columns + extra,
                       limits=limits if limits is not None else src.limits)
+    return src
+
+
+def _grid_table(grid, src, schema: list[Column]) -> Table:
+    """The table of a grid read from ``src`` (see read_table)."""
     limits = src.limits or ReadLimits()
     width_cap = limits.max_columns
-    grid = read_grid(src)
     lookup = _lookup(schema)
     if grid.text_rows:  # CSV: the delimiter whose header names most known columns (ties: , ; tab)
         found = {d: _find_header(grid.text_rows[d], lookup, width_cap) for d in grid.delimiters}
@@ -408,9 +417,10 @@ def read_table(source, schema: list[Column], *, ignore_columns=(), limits: ReadL
                 continue
             positions[name] = (j, col, cell)
         table.notes.append(f"units read from the row under the header (line {units_line})")
+        table.units_line = units_line
         body = body[1:]
     if tail is not None and any(ln.count(delimiter) != len(headers) - 1 for ln in tail[1]):
-        body = body + _parse("\n" * (tail[0] - 1) + "\n".join(tail[1]), delimiter)  # ragged: row by row
+        body = body + _parse("\n".join(tail[1]), delimiter, tail[0])  # ragged: row by row
         tail = None
     notes = []  # text lines under the data ("Remarks: ..."): notes, not tests
     while tail is not None and tail[1] and (text := _note_text(tail[1][-1].split(delimiter), positions)):
@@ -653,7 +663,7 @@ def _plain_tail(grid, delimiter: str, lookup) -> tuple[int, list[str]] | None:
     if not tail or any(not ln or ln.isspace() for ln in tail):
         return None
     grid.rows, grid.full_text = head, None
-    return 201, tail
+    return grid.first_line + 200, tail
 
 
 _EDGE_SPACE = re.compile(r"\s\x00|\x00\s|^\s|\s$")
