@@ -1029,14 +1029,16 @@ def _rupture(theta, volume, ratio):
 
 
 
-def _verify(status, beta, theta, s, ratio, gap=None, volume=None):
+def _verify(status, beta, theta, s, ratio, gap=None, volume=None, found=None):
     """Status 4 for every 'ok' row whose bridge does not reproduce the requested gap (absolute 1e-12
-    near contact) or volume to VERIFY_RTOL relative."""
+    near contact) or volume to VERIFY_RTOL relative. ``found``: the bridges already computed (a Bridge)."""
     status = status.copy()
     ok = status == 0
     if not ok.any():
         return status
-    if volume is None:  # the gap alone (the fast path, same quadrature accuracy)
+    if found is not None:
+        g, v = found.gap, found.volume
+    elif volume is None:  # the gap alone (the fast path, same quadrature accuracy)
         g, v = gap_of(np.where(ok, beta, np.nan), theta, np.where(ok, s, 0.0), ratio), None
     else:
         b = bridge(np.where(ok, beta, np.nan), theta, np.where(ok, s, 0.0), ratio)
@@ -1092,6 +1094,53 @@ def solve_for_suction(contact_angle_rad, suction, gap, ratio=1.0):
     contact_angle_rad, suction, gap, ratio = (x.ravel() for x in _arr(contact_angle_rad, suction, gap, ratio))
     beta, status = _solve_for_suction(contact_angle_rad, suction, gap, ratio)
     return beta, _verify(status, beta, contact_angle_rad, suction, ratio, gap=gap)
+
+
+def bridge_at_suction(contact_angle_rad, suction, gap, ratio=1.0):
+    r"""The stable bridge at a given suction and gap, with every field, verified on those fields.
+
+    Parameters
+    ----------
+    contact_angle_rad : float or array_like
+        Contact angle θ [rad].
+    suction : float or array_like
+        s* = Delta_u R1 / gamma [-].
+    gap : float or array_like
+        D / R1 [-], >= 0.
+    ratio : float or array_like, default 1.0
+        rho = R2 / R1 [-]; ``np.inf`` for a plane.
+
+    Returns
+    -------
+    beta : numpy.ndarray
+        Filling angle on particle 1 [rad], 1-D; NaN without a bridge.
+    status : numpy.ndarray of int
+        As :func:`solve_for_suction`.
+    bridge : Bridge
+        Its fields (:func:`bridge`); NaN where status is not 0.
+
+    Notes
+    -----
+    :func:`solve_for_suction` followed by :func:`bridge`, the gap check of
+    every ``ok`` row made on the bridge returned (its
+    :math:`D^* = L_1 + L_2 - (1 - \cos\beta) - \rho (1 - \cos\delta_2)`
+    to VERIFY_RTOL) instead of a separate evaluation.
+
+    References
+    ----------
+    .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
+       spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
+    """
+    contact_angle_rad, suction, gap, ratio = (x.ravel() for x in _arr(contact_angle_rad, suction, gap, ratio))
+    beta, status = _solve_for_suction(contact_angle_rad, suction, gap, ratio)
+    ok = status == 0
+    b = bridge(np.where(ok, beta, np.nan), contact_angle_rad, np.where(ok, suction, 0.0), ratio)
+    status = _verify(status, beta, contact_angle_rad, suction, ratio, gap=gap, found=b)
+    bad = status != 0
+    beta[bad] = np.nan
+    for k in _FIELDS:
+        getattr(b, k)[bad] = np.nan
+    return beta, status, b
 
 
 def solve_for_volume(contact_angle_rad, volume, gap, ratio=1.0):
