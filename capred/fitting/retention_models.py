@@ -521,18 +521,6 @@ class _Problem:
         offsets = model.log_params
         self.offset = [offsets.get(k) for k in self.shape]
 
-    # coordinates: u = ln(x - offset) for log-scaled parameters
-    def to_u(self, x):
-        return np.array([np.log(v - o) if o is not None else v for v, o in zip(x, self.offset)], float)
-
-    def from_u(self, u):
-        return np.array([np.exp(v) + o if o is not None else v for v, o in zip(u, self.offset)], float)
-
-    def u_bounds(self, names=None):
-        lo = [self.b[k][0] for k in self.shape]
-        hi = [self.b[k][1] for k in self.shape]
-        return self.to_u(lo), self.to_u(hi)
-
     def linear(self, S) -> dict[str, float]:
         """The bounded weighted least-squares (y_r, y_s) for one curve S (scalar arithmetic, exact)."""
         lin, b = self.lin, self.b
@@ -591,27 +579,90 @@ class _Problem:
         r = (f - self.y) * self.sw
         return np.where(np.isfinite(r), r, 1e10)
 
-    def resid_u(self, u):
-        return self.resid_x(self.from_u(u))
+    # fitting coordinates: u = ln(x - offset) for log-scaled parameters, x otherwise
+    def x_rows(self, U):
+        """Natural parameters of rows ``U`` (m, k) of the fitting coordinates."""
+        X = np.array(U, float, copy=True)
+        for j, o in enumerate(self.offset):
+            if o is not None:
+                X[:, j] = np.exp(U[:, j]) + o
+        return X
 
-    def jac_u(self, u, hi=None):
-        """Forward-difference Jacobian of :meth:`resid_u`, the model evaluated once for all steps (backward
-        where a forward step would leave the box ``u <= hi``: a one-sided derivative from inside)."""
-        u = np.asarray(u, float)
-        k = u.size
-        h = 1.49e-8 * np.maximum(np.abs(u), 1.0)
-        if hi is not None:
-            h = np.where(u + h > hi, -h, h)
-        U = np.vstack([u, u + np.diag(h)])
-        X = np.column_stack([np.exp(U[:, j]) + o if o is not None else U[:, j] for j, o in enumerate(self.offset)])
+    def u_rows(self, X):
+        """Fitting coordinates of rows ``X`` (m, k) of natural parameters: ln(x - offset) or x."""
+        U = np.array(X, float, copy=True)
+        for j, o in enumerate(self.offset):
+            if o is not None:
+                U[:, j] = np.log(X[:, j] - o)
+        return U
+
+    def fitted_rows(self, S):
+        """The fitted curve of each row of S (m, n): y_r + (y_s - y_r) S (or y_s S) with the bounded weighted
+        least-squares y_r, y_s of that row (the arithmetic of :meth:`linear`, vectorised over the rows)."""
+        lin, b, w2 = self.lin, self.b, self.w2
+        cols = {"y_r": 1.0 - S, "y_s": S} if self.model.residual_form else {"y_s": S}
+        rhs, f = self.y, 0.0
+        for k, v in self.fixed_lin.items():
+            rhs = rhs - v * cols[k]
+            f = f + v * cols[k]
+        if not lin:
+            return f + np.zeros_like(S)
+        if len(lin) == 1:
+            c = cols[lin[0]]
+            wc = w2 * c
+            den = np.einsum("mn,mn->m", wc, c)
+            v = np.where(den > 0, np.einsum("mn,mn->m", wc, np.broadcast_to(rhs, S.shape)) / den, b[lin[0]][1])
+            return f + np.clip(v, *b[lin[0]])[:, None] * c
+        c1, c2 = cols[lin[0]], cols[lin[1]]
+        w1c, w2c = w2 * c1, w2 * c2
+        rhs = np.broadcast_to(rhs, S.shape)
+        a11, a12, a22 = (np.einsum("mn,mn->m", w1c, c1), np.einsum("mn,mn->m", w1c, c2),
+                         np.einsum("mn,mn->m", w2c, c2))
+        b1, b2 = np.einsum("mn,mn->m", w1c, rhs), np.einsum("mn,mn->m", w2c, rhs)
+        (lo1, hi1), (lo2, hi2) = b[lin[0]], b[lin[1]]
+        det = a11 * a22 - a12 * a12
+        u1, u2 = (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
+        inside = ((det > 1e-14 * np.maximum(a11 * a22, 1e-300)) & (u1 >= lo1) & (u1 <= hi1) & (u2 >= lo2)
+                  & (u2 <= hi2))
+        x1, x2 = np.where(inside, u1, lo1), np.where(inside, u2, lo2)
+        out = np.flatnonzero(~inside)
+        if out.size:  # the best point on the box's four edges
+            a11, a12, a22, b1, b2 = a11[out], a12[out], a22[out], b1[out], b2[out]
+            best = np.full(out.size, np.inf)
+            e1, e2 = np.full(out.size, lo1), np.full(out.size, lo2)
+            for e in (lo1, hi1, lo2, hi2):
+                if e in (lo1, hi1):
+                    c_1 = np.full_like(a11, e)
+                    c_2 = np.where(a22 > 0, np.clip((b2 - a12 * e) / a22, lo2, hi2), lo2)
+                else:
+                    c_2 = np.full_like(a11, e)
+                    c_1 = np.where(a11 > 0, np.clip((b1 - a12 * e) / a11, lo1, hi1), lo1)
+                q = -2 * (b1 * c_1 + b2 * c_2) + a11 * c_1 * c_1 + 2 * a12 * c_1 * c_2 + a22 * c_2 * c_2
+                better = q < best
+                best, e1, e2 = np.where(better, q, best), np.where(better, c_1, e1), np.where(better, c_2, e2)
+            x1[out], x2[out] = e1, e2
+        return f + x1[:, None] * c1 + x2[:, None] * c2
+
+    def resid_rows(self, U):
+        """Weighted projected residuals (m, n) at rows ``U`` (m, k) of the fitting coordinates."""
+        X = self.x_rows(U)
         with np.errstate(all="ignore"):
             S = self.model.saturation(self.s[None, :], **self.fixed_shape,
                                       **{name: X[:, j][:, None] for j, name in enumerate(self.shape)})
-        S = np.broadcast_to(S, (k + 1, self.s.size))
-        R = np.empty((k + 1, self.s.size))
-        for i in range(k + 1):
-            R[i] = self._resid_S(S[i])
-        return ((R[1:] - R[0]) / h[:, None]).T
+            S = np.broadcast_to(S, (X.shape[0], self.s.size))
+            r = (self.fitted_rows(S) - self.y) * self.sw
+        return np.where(np.isfinite(r), r, 1e10)
+
+    def resid_jac_rows(self, U, hi):
+        """Residuals (m, n) at rows ``U`` (m, k) and their forward-difference Jacobians (m, n, k), all in one
+        evaluation of the model (backward where a forward step would leave the box ``U <= hi``: a one-sided
+        derivative from inside)."""
+        m, k = U.shape
+        h = 1.49e-8 * np.maximum(np.abs(U), 1.0)
+        h = np.where(U + h > hi, -h, h)
+        pts = np.concatenate([U[:, None, :], U[:, None, :] + h[:, :, None] * np.eye(k)], axis=1)
+        Rs = self.resid_rows(pts.reshape(m * (k + 1), k)).reshape(m, k + 1, -1)
+        return Rs[:, 0], ((Rs[:, 1:] - Rs[:, :1]) / h[:, :, None]).transpose(0, 2, 1)
 
     def full(self, x) -> dict:
         S = self.model.saturation(self.s, **self.fixed_shape, **dict(zip(self.shape, x)))
@@ -775,50 +826,75 @@ def _knots(s, most: int = 150) -> np.ndarray:
     return knots
 
 
-def _levenberg_marquardt(fun, jac, u, lo, hi, ftol: float, max_iter: int):
-    """Box-constrained Levenberg-Marquardt (steps projected on the box, Marquardt's diagonal scaling).
+def _levenberg_marquardt(pb: _Problem, U, lo, hi, ftol: float, max_iter: int):
+    """Box-constrained Levenberg-Marquardt from every row of ``U`` at once (steps projected on each row's box
+    ``lo``, ``hi``; Marquardt's diagonal scaling).
 
-    A variable on a bound whose gradient points outwards is frozen for the step (an active constraint).
-    Stops when an accepted step lowers the cost by less than ``ftol`` relative, or when no step helps.
-    Returns (u, cost = sum r^2, converged).
+    Each row runs its own iteration (its own damping, acceptance and stop), the rows are only evaluated
+    together. A variable on a bound whose gradient points outwards is frozen for the step (an active
+    constraint). A row stops when an accepted step lowers its cost by less than ``ftol`` relative, when no
+    step helps, or after ``max_iter`` accepted steps (not converged).
+    Returns (U, cost = sum r^2 per row, converged per row).
     """
-    u = np.clip(np.asarray(u, float), lo, hi)
-    r = fun(u)
-    cost = float(r @ r)
-    lam = 1e-3
-    for _ in range(max_iter):
-        J = jac(u, hi)
-        g = J.T @ r
-        A = J.T @ J
-        free = ~(((u <= lo) & (g > 0)) | ((u >= hi) & (g < 0)))
-        if not free.any():
-            return u, cost, True
-        Af, gf = A[np.ix_(free, free)], g[free]
-        d = np.maximum(np.diag(Af), 1e-300)
-        while True:
+    U = np.clip(np.asarray(U, float), lo, hi)
+    G, k = U.shape
+    R, J = pb.resid_jac_rows(U, hi)
+    cost = np.einsum("gn,gn->g", R, R)
+    lam = np.full(G, 1e-3)
+    active = np.ones(G, bool)
+    converged = np.zeros(G, bool)
+    steps = np.zeros(G, int)
+    eye = np.eye(k, dtype=bool)
+    for _ in range(64 * max_iter):
+        a = np.flatnonzero(active)
+        if a.size == 0:
+            break
+        Ja, Ua, ca = J[a], U[a], cost[a]
+        g = np.einsum("gnk,gn->gk", Ja, R[a])
+        A = np.einsum("gnk,gnl->gkl", Ja, Ja)
+        frozen = ((Ua <= lo[a]) & (g > 0)) | ((Ua >= hi[a]) & (g < 0))
+        d = np.maximum(np.diagonal(A, axis1=1, axis2=2), 1e-300)
+        M = A + (lam[a][:, None] * d)[:, :, None] * eye
+        M = np.where(frozen[:, :, None] | frozen[:, None, :], 0.0, M) + frozen[:, :, None] * eye
+        g = np.where(frozen, 0.0, g)
+        with np.errstate(all="ignore"):
             try:
-                step = np.linalg.solve(Af + lam * np.diag(d), -gf)
+                step = np.linalg.solve(M, -g[:, :, None])[:, :, 0]
+                # the decrease of the cost that the undamped linearised model promises (Gauss-Newton)
+                M0 = np.where(frozen[:, :, None] | frozen[:, None, :], 0.0, A + (1e-12 * d)[:, :, None] * eye)
+                promised = np.einsum("gk,gk->g", g, np.linalg.solve(M0 + frozen[:, :, None] * eye,
+                                                                      g[:, :, None])[:, :, 0])
             except np.linalg.LinAlgError:
-                step = np.full(gf.shape, np.nan)
-            trial = u.copy()
-            if np.all(np.isfinite(step)):
-                trial[free] += step
-                trial = np.clip(trial, lo, hi)
-                r_t = fun(trial)
-                c_t = float(r_t @ r_t)
-            else:
-                c_t = np.inf
-            if c_t < cost:
-                lam = max(lam * 0.2, 1e-12)
-                small = cost - c_t <= ftol * cost or np.max(np.abs(trial - u)) <= 1e-13 * (1 + np.max(np.abs(u)))
-                u, r, cost = trial, r_t, c_t
-                if small:
-                    return u, cost, True
-                break
-            lam *= 8.0
-            if lam > 1e14:
-                return u, cost, True  # no descent left: a (bounded) minimum
-    return u, cost, False
+                step, promised = np.full(g.shape, np.nan), np.full(a.size, np.inf)
+                for i in range(a.size):
+                    try:
+                        step[i] = np.linalg.solve(M[i], -g[i])
+                    except np.linalg.LinAlgError:
+                        pass
+        ok = np.all(np.isfinite(step), axis=1)
+        step = np.where(ok[:, None], step, 0.0)
+        trial = np.clip(Ua + step, lo[a], hi[a])
+        step = trial - Ua
+        c_t = np.full(a.size, np.inf)
+        R_t, J_t = pb.resid_jac_rows(trial, hi[a])
+        c_t[ok] = np.einsum("gn,gn->g", R_t[ok], R_t[ok])
+        acc = c_t < ca
+        small = (ca - c_t <= ftol * ca) | (np.max(np.abs(step), axis=1) <= 1e-13 * (1 + np.max(np.abs(Ua), axis=1)))
+        i = a[acc]
+        lam[i] = np.maximum(lam[i] * 0.2, 1e-12)
+        U[i], R[i], J[i], cost[i] = trial[acc], R_t[acc], J_t[acc], c_t[acc]
+        steps[i] += 1
+        stop = i[small[acc]]
+        active[stop], converged[stop] = False, True
+        active[i[~small[acc] & (steps[i] >= max_iter)]] = False
+        # a rejected step: more damping; no descent left (the model promises less than ftol, or the damping
+        # has made every step vanish): a (bounded) minimum
+        rej = ~acc
+        j = a[rej]
+        lam[j] *= 8.0
+        flat = j[(lam[j] > 1e14) | (promised[rej] <= ftol * ca[rej]) | frozen[rej].all(1)]
+        active[flat], converged[flat] = False, True
+    return U, cost, converged
 
 
 def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = None) -> RetentionFit:
@@ -895,20 +971,19 @@ def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = 
     if pb.shape:
         k = len(pb.shape)
         n_starts = n_starts or (3 if k <= 2 else 8)
-        runs = []
-        for x0, blo, bhi in _starts(pb, n_starts):  # phase 1: every start, loose tolerance
-            ulo, uhi = pb.to_u(blo), pb.to_u(bhi)
-            u0 = np.clip(pb.to_u(np.clip(x0, blo, bhi)), ulo, uhi)
-            runs.append((*_levenberg_marquardt(pb.resid_u, pb.jac_u, u0, ulo, uhi, ftol=1e-6,
-                                               max_iter=20 if k <= 3 else 80), ulo, uhi))
-        runs.sort(key=lambda t: t[1])
-        best_cost = np.inf
-        for u, cost, _, ulo, uhi in runs:  # phase 2: polish those within 1e-4 of the best
-            if cost > runs[0][1] * (1 + 1e-4) + 1e-300:
-                break
-            u, cost, ok = _levenberg_marquardt(pb.resid_u, pb.jac_u, u, ulo, uhi, ftol=1e-14, max_iter=200)
-            if cost < best_cost:
-                best_x, best_cost, converged = pb.from_u(u), cost, ok
+        starts = _starts(pb, n_starts)
+        X0 = np.array([x for x, _, _ in starts])
+        ulo, uhi = pb.u_rows(np.array([b for _, b, _ in starts])), pb.u_rows(np.array([b for _, _, b in starts]))
+        lo_x, hi_x = np.array([b for _, b, _ in starts]), np.array([b for _, _, b in starts])
+        U0 = np.clip(pb.u_rows(np.clip(X0, lo_x, hi_x)), ulo, uhi)
+        # phase 1: every start, loose tolerance
+        U1, cost1, _ = _levenberg_marquardt(pb, U0, ulo, uhi, ftol=1e-6, max_iter=20 if k <= 3 else 80)
+        order = np.argsort(cost1, kind="stable")
+        order = order[cost1[order] <= cost1[order[0]] * (1 + 1e-4) + 1e-300]
+        # phase 2: polish those within 1e-4 of the best
+        U2, cost2, ok2 = _levenberg_marquardt(pb, U1[order], ulo[order], uhi[order], ftol=1e-14, max_iter=200)
+        i = int(np.argmin(cost2))
+        best_x, converged = pb.x_rows(U2[i:i + 1])[0], bool(ok2[i])
     optimum = pb.full(best_x)
     if model.canonical is not None and not fixed:
         optimum = model.canonical(optimum)
