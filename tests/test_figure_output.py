@@ -50,8 +50,13 @@ def _printed_mm(path):
         return im.size[0] / dpi[0] * MM, im.size[1] / dpi[1] * MM, dpi
 
 
+def _main(result) -> dict:
+    """The sheets written by default (those not drawn only on request)."""
+    return {k: s for k, s in result.figures().items() if not s.on_request}
+
+
 def test_composites_fill_the_text_width_at_300_dpi(default_run, shear_result):
-    sheets = shear_result.figures()
+    sheets = _main(shear_result)
     pngs = sorted(p.name for p in default_run.glob("*.png"))
     assert pngs == sorted(f"{k}.png" for k in sheets)
     for name, sheet in sheets.items():
@@ -112,9 +117,66 @@ def test_journal_font_sizes(shear_result):
 def test_report_embeds_the_composite_png_as_written(default_run, shear_result):
     html = (default_run / "report.html").read_text(encoding="utf-8")
     embedded = [base64.b64decode(m) for m in re.findall(r"data:image/png;base64,([A-Za-z0-9+/=]+)", html)]
-    written = [(default_run / f"{k}.png").read_bytes() for k in shear_result.figures()]
+    written = [(default_run / f"{k}.png").read_bytes() for k in _main(shear_result)]
     assert embedded == written  # the same bytes: drawn once, not re-rendered for the report
     assert "<svg" not in html  # no second (vector) rendering unless svg was asked for
+
+
+def test_default_sheets_are_the_report_sheets(default_run, shear_result):
+    """By default shear writes each material's report sheet; the capillary-stress sheets are drawn on request
+    and report.html names each one left out and how to have it."""
+    sheets = shear_result.figures()
+    assert sorted(_main(shear_result)) == ["report_sand_208-417um", "report_steel_2mm"]
+    extra = sorted(k for k in sheets if k not in _main(shear_result))
+    assert extra == ["capillary_sand_208-417um", "capillary_steel_2mm"]
+    html = (default_run / "report.html").read_text(encoding="utf-8")
+    for k in extra:
+        assert f"<b>{k}.</b> Not drawn by default: {sheets[k].title}" in html
+    assert html.count("--figures all") == len(extra)
+
+
+def test_figures_all_draws_the_sheets_on_request(tmp_path, monkeypatch, light):
+    import capred.report.presenters as presenters
+
+    def sheets(result):
+        out = _light_sheets(result, 2)
+        out["s1"].on_request = True
+        return out
+
+    monkeypatch.setattr(presenters, "figures", sheets)
+    capred.write_outputs(light, tmp_path / "main", dpi=50)
+    capred.write_outputs(light, tmp_path / "all", dpi=50, figures="all")
+    assert sorted(p.name for p in (tmp_path / "main").glob("*.png")) == ["s0.png"]
+    assert sorted(p.name for p in (tmp_path / "all").glob("*.png")) == ["s0.png", "s1.png"]
+    assert "Not drawn by default: sheet 1" in (tmp_path / "main" / "report.html").read_text(encoding="utf-8")
+    assert "Not drawn by default" not in (tmp_path / "all" / "report.html").read_text(encoding="utf-8")
+
+
+def test_figures_must_be_main_or_all(shear_result, tmp_path):
+    with pytest.raises(capred.OptionError, match="main, all"):
+        capred.write_outputs(shear_result, tmp_path / "o", figures="some")
+    assert not (tmp_path / "o").exists()
+
+
+def test_sheet_figure_lays_out_like_the_pasted_panels(shear_result):
+    """A sheet drawn on one figure puts each panel where its own figure would: the same slot, the same fitted
+    axes box (within a pixel: the slots' edges are rounded to whole pixels when pasted)."""
+    from capred.report.sheets import sheet_figure
+
+    sheet = shear_result.figures()["report_steel_2mm"]
+    dpi = 100
+    fig = sheet_figure(sheet, dpi)
+    slots, width, height = sheet_layout(sheet)
+    assert_allclose((fig.bbox.width, fig.bbox.height), (width / MM * dpi, height / MM * dpi), atol=1)
+    assert len(fig.axes) == len(sheet.panels)
+    px = dpi / MM
+    for ax, slot, panel in zip(fig.axes, slots, sheet.panels):
+        own = panel_figure(sheet, panel, dpi).axes[0].get_window_extent()
+        box = ax.get_window_extent()
+        # in the sheet: the panel's box shifted to its slot (top-left origin in mm, bottom-left in pixels)
+        x0 = slot.x * px + own.x0
+        y0 = fig.bbox.height - (slot.y + slot.height) * px + own.y0
+        assert_allclose([box.x0, box.y0, box.width, box.height], [x0, y0, own.width, own.height], atol=1.0)
 
 
 def test_report_embeds_the_svg_when_svg_is_asked(tmp_path):
@@ -178,20 +240,21 @@ def test_reruns_are_byte_identical(tmp_path, monkeypatch, light, formats):
                 assert set(im.info) == {"dpi"}  # no text chunk: no software name, no time
 
 
-def test_two_processes_write_the_same_bytes(tmp_path, monkeypatch, light):
+@pytest.mark.parametrize("panels", [True, False])
+def test_two_processes_write_the_same_bytes(tmp_path, monkeypatch, light, panels):
     monkeypatch.setattr(outputs, "PARALLEL_MIN_PANELS", 10 ** 9)
-    capred.write_outputs(light, tmp_path / "one", panels=True)
+    capred.write_outputs(light, tmp_path / "one", panels=panels)
     monkeypatch.setattr(outputs, "PARALLEL_MIN_PANELS", 1)
     monkeypatch.setenv("CAPRED_FIGURE_PROCESSES", "2")  # whatever the machine's load
     calls = []
     real = outputs._two_processes
     monkeypatch.setattr(outputs, "_two_processes", lambda *a: calls.append(1) or real(*a))
-    capred.write_outputs(light, tmp_path / "two", panels=True)
+    capred.write_outputs(light, tmp_path / "two", panels=panels)
     assert calls  # the forked path ran
     one, two = _files(tmp_path / "one"), _files(tmp_path / "two")
     one.pop("provenance.json"), two.pop("provenance.json")
     html_one, html_two = one.pop("report.html"), two.pop("report.html")
-    assert one == two and len(one) > 9
+    assert one == two and len(one) > (9 if panels else 3)
     stamp = re.compile(rb"\d{4}-\d\d-\d\dT[0-9:]+(\+00:00|Z)?")  # the report's date (no SOURCE_DATE_EPOCH)
     assert stamp.sub(b"", html_one) == stamp.sub(b"", html_two)
 

@@ -3,11 +3,14 @@
 ``write_outputs(result, out)`` is the public writer (``capred.write_outputs``):
 the CLI, the batch runner and lab scripts all write a run through it.
 
-Figures are drawn once: each panel on its own journal-sized figure (laid out
-once), its pixels pasted into the sheet's composite PNG, which report.html
-embeds as it is. Single panels (``figures/``) are written only when asked
-(``panels=True``), vector formats only when named. Several sheets are drawn
-by two processes on a machine with two cores or more.
+Figures are drawn once. By default a sheet is one journal-sized figure with
+one layout pass (``sheets.sheet_figure``), saved in each format asked for,
+and report.html embeds the PNG written. With single panels (``panels=True``)
+each panel is drawn on its own figure and the sheet's PNG is pasted from the
+panels' pixels. Vector formats are written only when named, and the sheets a
+command draws only on request (``Sheet.on_request``, e.g. shear's capillary
+stress sheet) only with ``figures="all"``. Several sheets are drawn by two
+processes on a machine with two cores or more.
 """
 from __future__ import annotations
 
@@ -19,24 +22,28 @@ from pathlib import Path
 from .sheets import NO_STAMP  # noqa: F401  (kept importable from here)
 
 #: draw the sheets in two processes when the run has at least this many panels in two sheets or more and a
-#: core is free (the child costs ~15 % more CPU in all, re-loading fonts and copying pages; one panel ~0.3 s)
+#: core is free (the child costs ~15 % more CPU in all, re-loading fonts and copying pages; one panel ~0.2 s)
 PARALLEL_MIN_PANELS = 6
+#: which sheets ``figures`` draws: those drawn by default, or every sheet (also those on request)
+FIGURE_SETS = ("main", "all")
 
 
 @dataclass(frozen=True)
 class FigureOptions:
     """What to draw: figure ``formats`` (png, pdf, svg), ``dpi`` of PNGs, single ``panels`` under figures/,
-    and whether report.html wants each composite (``html``)."""
+    whether report.html wants each composite (``html``), and which sheets (``figures``: "main" leaves out
+    the sheets drawn only on request, "all" draws them too)."""
 
     formats: tuple[str, ...] = ("png",)
     dpi: int = 300
     panels: bool = False
     html: bool = True
+    figures: str = "main"
 
 
 def write_outputs(result, out, plots: bool = True, formats=("png",), dpi: int = 300,
                   command_line: str | None = None, html: bool = True, csv_dialect: str = "standard",
-                  xlsx: bool = False, panels: bool = False) -> list[Path]:
+                  xlsx: bool = False, panels: bool = False, figures: str = "main") -> list[Path]:
     """Write every output of ``result`` into the folder ``out``, whole or not at all.
 
     Parameters
@@ -62,6 +69,10 @@ def write_outputs(result, out, plots: bool = True, formats=("png",), dpi: int = 
         Also write every table into tables.xlsx.
     panels : bool
         Also write each panel alone, ``figures/<sheet>_<panel>.<format>`` (85 or 180 mm wide).
+    figures : {"main", "all"}
+        Which sheets: "main" (default) the command's main sheets (shear: the report sheet of each material,
+        and its raw curves when they were read); "all" also the sheets drawn only on request (shear: the
+        back-analysed capillary stress of each material). report.html names the sheets left out.
 
     Returns
     -------
@@ -71,7 +82,11 @@ def write_outputs(result, out, plots: bool = True, formats=("png",), dpi: int = 
     from ..io.writers import write_run
     from ..progress import showing, task, wanted
 
-    opts = FigureOptions(tuple(formats), int(dpi), bool(panels), bool(html))
+    if figures not in FIGURE_SETS:
+        from ..errors import OptionError
+
+        raise OptionError(f"figures must be one of {', '.join(FIGURE_SETS)} (got {figures!r})")
+    opts = FigureOptions(tuple(formats), int(dpi), bool(panels), bool(html), figures)
 
     with showing(wanted()), ExitStack() as tables:
         tables.enter_context(task("writing tables"))
@@ -102,7 +117,7 @@ def _img_markup(name: str, png: bytes, width_mm: float) -> str:
 def _draw_sheet(name: str, sheet, folder, opts: FigureOptions) -> tuple[dict, list[str]]:
     """Draw one sheet and write its files; returns (entry for report.html, names written)."""
     from .sheets import (NO_STAMP, Sheet, compose, compose_raster, encode_png, journal_style, panel_figure,
-                         raster, sheet_layout)
+                         raster, sheet_figure, sheet_layout)
 
     written: list[str] = []
     entry = {"caption": getattr(sheet, "caption", "") or "", "panels": [], "svg": ""}
@@ -130,27 +145,38 @@ def _draw_sheet(name: str, sheet, folder, opts: FigureOptions) -> tuple[dict, li
             save(fig, f"{name}.{fmt}", fmt)
         return _html_svg(entry, name, folder, opts), written
 
-    pfigs = [panel_figure(sheet, p, opts.dpi) for p in sheet.panels]
     entry["panels"] = [(p.name, p.caption) for p in sheet.panels]
+    if not opts.panels:  # the sheet alone: one figure, laid out once, saved in each format
+        fig = sheet_figure(sheet, opts.dpi)
+        if want_png:
+            png = encode_png(raster(fig), opts.dpi)
+            if "png" in opts.formats:
+                folder.path_for(f"{name}.png").write_bytes(png)
+                written.append(f"{name}.png")
+            entry["svg"] = _img_markup(name, png, sheet_layout(sheet)[1])
+        for fmt in vector:
+            save(fig, f"{name}.{fmt}", fmt)
+        return _html_svg(entry, name, folder, opts), written
+
+    # single panels asked for: each panel on its own figure, the sheet's PNG pasted from their pixels
+    pfigs = [panel_figure(sheet, p, opts.dpi) for p in sheet.panels]
     if want_png:
         rasters = [raster(f) for f in pfigs]
         png = encode_png(compose_raster(sheet, rasters, opts.dpi), opts.dpi)
         if "png" in opts.formats:
             folder.path_for(f"{name}.png").write_bytes(png)
             written.append(f"{name}.png")
-            if opts.panels:
-                for p, img in zip(sheet.panels, rasters):
-                    fname = f"figures/{name}_{p.name}.png"
-                    folder.path_for(fname).write_bytes(encode_png(img, opts.dpi))
-                    written.append(fname)
+            for p, img in zip(sheet.panels, rasters):
+                fname = f"figures/{name}_{p.name}.png"
+                folder.path_for(fname).write_bytes(encode_png(img, opts.dpi))
+                written.append(fname)
         entry["svg"] = _img_markup(name, png, sheet_layout(sheet)[1])
     if vector:
         composite = compose(sheet, opts.dpi, pfigs)
         for fmt in vector:
             save(composite, f"{name}.{fmt}", fmt)
-            if opts.panels:
-                for p, pfig in zip(sheet.panels, pfigs):
-                    save(pfig, f"figures/{name}_{p.name}.{fmt}", fmt)
+            for p, pfig in zip(sheet.panels, pfigs):
+                save(pfig, f"figures/{name}_{p.name}.{fmt}", fmt)
     return _html_svg(entry, name, folder, opts), written
 
 
@@ -167,14 +193,17 @@ def _write_figures(result, folder, opts: FigureOptions) -> dict:
     """Each sheet's composite in every format (its panels under figures/ when asked).
 
     Returns {sheet: {"svg": the composite's markup for report.html (an <img> of the PNG, or the inline SVG),
-    "caption": ..., "panels": [(name, caption), ...]}}.
+    "caption": ..., "panels": [(name, caption), ...]}}, in the presenter's order; a sheet drawn only on
+    request and not asked for has no picture ("svg" empty) and a caption saying how to have it.
     """
     from ..progress import task
     from .presenters import figures
 
-    sheets = list(figures(result).items())
+    every = list(figures(result).items())
+    sheets = [(k, s) for k, s in every if opts.figures == "all" or not getattr(s, "on_request", False)]
+    skipped = {k: _on_request_entry(s) for k, s in every if (k, s) not in sheets}
     if not sheets:
-        return {}
+        return skipped
     if opts.panels:
         (folder.tmp / "figures").mkdir(exist_ok=True)
     cost = [len(getattr(s, "panels", ())) or 1 for _, s in sheets]
@@ -186,14 +215,23 @@ def _write_figures(result, folder, opts: FigureOptions) -> dict:
             for name, sheet in sheets:
                 results.append(_draw_sheet(name, sheet, folder, opts))
                 advance(1)
-    out = {}
+    drawn = {}
     for (name, _), (entry, names) in zip(sheets, results):
         for fname in names:
             folder.done(fname)
-        out[name] = entry
+        drawn[name] = entry
     if opts.panels and not any(n.startswith("figures/") for _, names in results for n in names):
         os.rmdir(folder.tmp / "figures")
-    return out
+    return {name: drawn.get(name) or skipped[name] for name, _ in every}
+
+
+def _on_request_entry(sheet) -> dict:
+    """report.html's entry of a sheet not drawn (drawn on request only): no picture, a caption saying how to
+    have it."""
+    what = getattr(sheet, "title", "") or ""
+    return {"svg": "", "panels": [],
+            "caption": f"Not drawn by default: {what} ({len(getattr(sheet, 'panels', ()))} panels) is drawn with "
+                       "--figures all (write_outputs(..., figures=\"all\")). " + (getattr(sheet, "caption", "") or "")}
 
 
 def _parallel(cost: list[int]) -> bool:

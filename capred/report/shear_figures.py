@@ -270,7 +270,8 @@ def plot_chi_back(ax, result, material):
 
 
 def sheet_capillary_stress(result, material) -> Sheet:
-    """What capillary stress each wet test carried and which χ law explains it: 3 panels."""
+    """What capillary stress each wet test carried and which χ law explains it: 3 panels, drawn on request
+    (``figures="all"``)."""
     more = _sample_caption(result, material)
     return Sheet(f"Back-analysed capillary stress, {material}", [
         Panel("sigma_cap_vs_saturation", lambda ax: plot_capillary_stress(ax, result, material, "S_R"),
@@ -280,7 +281,7 @@ def sheet_capillary_stress(result, material) -> Sheet:
               "The same against the suction." + more),
         Panel("chi", lambda ax: plot_chi_back(ax, result, material),
               "χ_back = σ_cap/Δu against S_R with the χ(S_R) of each model of the run that has one." + more),
-    ], 3, panel_size=(4.2, 3.4))
+    ], 3, panel_size=(4.2, 3.4), on_request=True)
 
 
 def _curve_tests(result, material, condition: str):

@@ -85,7 +85,8 @@ class Panel:
 class Sheet:
     """Panels shown together: ``columns`` per row at most (wrapped to two, the width of a page), a panel
     named in ``spans`` with 2 takes a whole row at two-column width; ``panel_size`` gives the panels'
-    aspect (height / width of its two numbers)."""
+    aspect (height / width of its two numbers); an ``on_request`` sheet is written only when every sheet
+    is asked for (``write_outputs(..., figures="all")``, ``--figures all``)."""
 
     title: str
     panels: list[Panel]
@@ -93,6 +94,7 @@ class Sheet:
     caption: str = ""
     spans: dict[str, int] = field(default_factory=dict)  # panel name -> columns it spans (one row)
     panel_size: tuple[float, float] = (4.6, 3.4)  # only its aspect counts: height / width
+    on_request: bool = False  # not among the sheets written by default
 
 
 @contextmanager
@@ -202,26 +204,32 @@ def _below_axis_pt(ax) -> float:
     return ticks + label + 2.0
 
 
-def _fit(fig, renderer, pad_mm: float = PAD_MM) -> None:
-    """Fixed layout in one pass: move and scale the figure's axes (with any colour bar or twin, as a group)
-    so that everything drawn around them (tick labels, axis labels, title, legend) just fits the figure."""
+def _fit(fig, renderer, pad_mm: float = PAD_MM, axes=None, region=None) -> None:
+    """Fixed layout in one pass: move and scale a panel's axes (with any colour bar or twin, as a group) so
+    that everything drawn around them (tick labels, axis labels, title, legend) just fits its region.
+
+    ``axes``: the group (default: every axes of the figure); ``region``: (x0, y0, x1, y1) of the room it
+    has [figure pixels, from the lower left corner] (default: the whole figure).
+    """
     from matplotlib.transforms import Bbox
 
-    axes = [ax for ax in fig.axes if ax.get_visible()]
+    axes = [ax for ax in (fig.axes if axes is None else axes) if ax.get_visible()]
     if not axes:
         return
     tight = Bbox.union([b for b in (ax.get_tightbbox(renderer) for ax in axes) if b is not None])
     inner = Bbox.union([ax.bbox for ax in axes])  # after apply_aspect: the boxes as drawn
     W, H = fig.bbox.width, fig.bbox.height
+    X0, Y0, X1, Y1 = region if region is not None else (0.0, 0.0, W, H)
+    RW, RH = X1 - X0, Y1 - Y0
     pad = pad_mm / MM_PER_INCH * fig.dpi
-    x0 = pad + (inner.x0 - tight.x0)
-    x1 = W - pad - (tight.x1 - inner.x1)
-    y0 = pad + (inner.y0 - tight.y0)
-    y1 = H - pad - (tight.y1 - inner.y1)
-    if x1 - x0 < 0.25 * W:  # decorations too wide for the panel: keep a readable plot, let them spill
-        x0, x1 = 0.5 * (x0 + x1) - 0.125 * W, 0.5 * (x0 + x1) + 0.125 * W
-    if y1 - y0 < 0.25 * H:
-        y0, y1 = 0.5 * (y0 + y1) - 0.125 * H, 0.5 * (y0 + y1) + 0.125 * H
+    x0 = X0 + pad + (inner.x0 - tight.x0)
+    x1 = X1 - pad - (tight.x1 - inner.x1)
+    y0 = Y0 + pad + (inner.y0 - tight.y0)
+    y1 = Y1 - pad - (tight.y1 - inner.y1)
+    if x1 - x0 < 0.25 * RW:  # decorations too wide for the panel: keep a readable plot, let them spill
+        x0, x1 = 0.5 * (x0 + x1) - 0.125 * RW, 0.5 * (x0 + x1) + 0.125 * RW
+    if y1 - y0 < 0.25 * RH:
+        y0, y1 = 0.5 * (y0 + y1) - 0.125 * RH, 0.5 * (y0 + y1) + 0.125 * RH
     old = Bbox.union([ax.get_position(original=True) for ax in axes])
     sx, sy = (x1 - x0) / W / old.width, (y1 - y0) / H / old.height
     for ax in axes:
@@ -366,10 +374,56 @@ def encode_png(image, dpi: float, compress_level: int = 3) -> bytes:
     return buf.getvalue()
 
 
+# --- one figure per sheet ------------------------------------------------------------------------------------
+def sheet_figure(sheet: Sheet, dpi: float = 300.0):
+    """A whole sheet drawn on one figure: the title band on top, each panel in its slot (``sheet_layout``),
+    every panel's axes fitted to its slot in one pass (``_fit``), the layout then final.
+
+    The panels share one renderer, so a text seen in several panels (axis labels, tick labels, legend
+    entries) is measured once; the figure is drawn once whatever is saved from it (PNG, PDF, SVG). Its pixels
+    at ``dpi`` are those of ``compose_raster`` of the panels' own figures (the same sizes and layout rule).
+
+    Parameters
+    ----------
+    sheet : Sheet
+        The sheet.
+    dpi : float
+        Resolution the figure is laid out and drawn at [dots per inch].
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The sheet's figure (with an Agg canvas), ``sheet_layout`` size rounded to whole pixels, no layout engine.
+    """
+    from matplotlib.figure import Figure
+
+    slots, width, height = sheet_layout(sheet)
+    with journal_style():
+        fig = Figure(figsize=(_inches(width, dpi), _inches(height, dpi)), dpi=dpi)
+        renderer = _canvas(fig)
+        W, H = fig.bbox.width, fig.bbox.height
+        px = dpi / MM_PER_INCH
+        fig.suptitle(literal(sheet.title), y=1 - 0.55 * TITLE_MM * px / H, va="center",
+                     wrap=len(sheet.title) > 80)
+        for panel, slot in zip(sheet.panels, slots):
+            x0, x1 = slot.x * px, (slot.x + slot.width) * px
+            y1 = H - slot.y * px
+            y0 = y1 - slot.height * px
+            before = len(fig.axes)
+            ax = fig.add_axes((x0 / W + 0.15 * slot.width * px / W, y0 / H + 0.15 * slot.height * px / H,
+                               0.7 * slot.width * px / W, 0.7 * slot.height * px / H))
+            panel.draw(ax)
+            _dress(ax, x1 - x0, renderer)
+            _fit(fig, renderer, axes=fig.axes[before:], region=(x0, y0, x1, y1))
+    return fig
+
+
 # --- vector composite ---------------------------------------------------------------------------------------
 def compose(sheet: Sheet, dpi: float = 300.0, panel_figures: list | None = None):
-    """The composite figure of a sheet (for PDF/SVG and notebooks): the title on top, each panel's axes
-    placed where its own figure's frozen layout put them.
+    """The composite figure of a sheet (for PDF/SVG and notebooks): the title on top, each panel in its slot.
+
+    Without ``panel_figures`` it is ``sheet_figure(sheet, dpi)`` (one figure, one layout pass); with them,
+    each panel's axes are placed where its own figure's frozen layout put them.
 
     Parameters
     ----------
@@ -388,7 +442,7 @@ def compose(sheet: Sheet, dpi: float = 300.0, panel_figures: list | None = None)
     from matplotlib.figure import Figure
 
     if panel_figures is None:
-        panel_figures = [panel_figure(sheet, p, dpi) for p in sheet.panels]
+        return sheet_figure(sheet, dpi)
     slots, width, height = sheet_layout(sheet)
     with journal_style():
         fig = Figure(figsize=(width / MM_PER_INCH, height / MM_PER_INCH), dpi=dpi)
