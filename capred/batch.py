@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import time
 import traceback
+from contextlib import contextmanager, nullcontext
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -137,6 +138,56 @@ def _warm(jobs: list[Job]) -> None:
         import_module("openpyxl")
 
 
+def _openblas_controls() -> list:
+    """(set, get) C functions of every OpenBLAS library loaded in this process (numpy's and scipy's each bundle
+    one), found through /proc/self/maps; none elsewhere than Linux or without OpenBLAS."""
+    import ctypes
+
+    try:
+        with open("/proc/self/maps", encoding="utf-8", errors="replace") as maps:
+            paths = {line.split()[-1] for line in maps if "openblas" in line.rsplit("/", 1)[-1].lower()}
+    except OSError:  # pragma: no cover - not Linux
+        return []
+    out = []
+    for path in sorted(paths):
+        try:
+            lib = ctypes.CDLL(path)  # already loaded: the same handle, nothing new is mapped
+        except OSError:  # pragma: no cover
+            continue
+        for prefix in ("scipy_openblas", "openblas"):
+            for suffix in ("64_", ""):
+                set_ = getattr(lib, f"{prefix}_set_num_threads{suffix}", None)
+                get_ = getattr(lib, f"{prefix}_get_num_threads{suffix}", None)
+                if set_ is not None and get_ is not None:
+                    set_.argtypes, set_.restype, get_.restype = [ctypes.c_int], None, ctypes.c_int
+                    out.append((set_, get_))
+                    break
+            else:
+                continue
+            break
+    return out
+
+
+@contextmanager
+def single_threaded_blas():
+    """OpenBLAS on one thread while a batch runs, its thread counts restored after.
+
+    A batch's matrix products are small (a bootstrap's 2,000 x 14 counts times 14 x 28 sums) and its files
+    already fill the cores, one worker each. OpenBLAS's own threads on such products only wait and spin: on a
+    2-core machine they doubled the CPU time of a shear file (122 -> 68 ms, benchmarks/bench_batch.py) for no
+    gain in wall time. Forked workers inherit the setting.
+    """
+    controls = _openblas_controls()
+    before = [get_() for _, get_ in controls]
+    for set_, _ in controls:
+        set_(1)
+    try:
+        yield
+    finally:
+        for (set_, _), n in zip(controls, before):
+            set_(n)
+
+
 def _pool(workers: int):
     """A process pool; forked workers where the platform offers it (they start with capred imported)."""
     import multiprocessing
@@ -172,24 +223,10 @@ def run_all(jobs: list[Job], workers: int | None = None, on_done=None) -> tuple[
     outcomes: dict[int, Outcome] = {}
     interrupted = False
     try:
-        if workers <= 1 or len(jobs) <= 1:
-            for k, job in enumerate(jobs):
-                outcomes[k] = run_safely(job)
-                if on_done:
-                    on_done(outcomes[k])
-        else:
-            from concurrent.futures import as_completed
-
+        if len(jobs) > 1:  # what the jobs import is loaded first: its BLAS libraries are then limited too
             _warm(jobs)
-            pool = _pool(min(workers, len(jobs)))
-            try:
-                futures = {pool.submit(run_safely, job): k for k, job in enumerate(jobs)}
-                for fut in as_completed(futures):
-                    outcomes[futures[fut]] = fut.result()
-                    if on_done:
-                        on_done(outcomes[futures[fut]])
-            finally:
-                pool.shutdown(wait=True, cancel_futures=True)
+        with single_threaded_blas() if len(jobs) > 1 else nullcontext():
+            _run(jobs, workers, outcomes, on_done)
     except KeyboardInterrupt:
         interrupted = True
     except Exception as exc:  # a worker process died: the jobs it held are reported, not lost
@@ -205,6 +242,27 @@ def run_all(jobs: list[Job], workers: int | None = None, on_done=None) -> tuple[
                                   "interrupted",
                                   "not run: the batch was interrupted"))
     return result, interrupted
+
+
+def _run(jobs: list[Job], workers: int, outcomes: dict, on_done) -> None:
+    """Run the jobs, in this process or in a pool, filling ``outcomes`` (job index -> Outcome) as they end."""
+    if workers <= 1 or len(jobs) <= 1:
+        for k, job in enumerate(jobs):
+            outcomes[k] = run_safely(job)
+            if on_done:
+                on_done(outcomes[k])
+        return
+    from concurrent.futures import as_completed
+
+    pool = _pool(min(workers, len(jobs)))
+    try:
+        futures = {pool.submit(run_safely, job): k for k, job in enumerate(jobs)}
+        for fut in as_completed(futures):
+            outcomes[futures[fut]] = fut.result()
+            if on_done:
+                on_done(outcomes[futures[fut]])
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
 
 
 def output_dirs(commands: list[str], sources: list[Path], root: Path) -> list[Path]:
