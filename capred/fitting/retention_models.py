@@ -458,53 +458,49 @@ class RetentionFit(NonlinearFit):
 # ---------------------------------------------------------------------------------------------------------------
 # variable projection
 
-def _project(S, y, w2, lin, fixed_lin, b, residual_form):
-    """Bounded weighted least squares of the linear parameters for each row of S (G x n).
+def _projected_rss(pb: "_Problem", W, Y, YY, mS, mSS, mSy):
+    """Projected RSS of curves S known by their weighted moments: the bounded weighted least-squares y_r, y_s
+    of each curve, from its moments alone (every column of the linear problem is affine in S and y).
 
-    Returns (beta: {name: (G,)}, rss: (G,)). With two linear parameters the box-constrained quadratic
-    is solved exactly: the unconstrained solution if it is feasible, else the best of the four edges.
+    ``W, Y, YY`` are Σw, Σw y, Σw y² of the data; ``mS, mSS, mSy`` are Σw S, Σw S², Σw S y of each curve (any
+    broadcastable shape). With two linear parameters the box-constrained quadratic is solved exactly: the
+    unconstrained solution if it is feasible, else the best point on the four edges.
     """
-    cols = {"y_r": 1.0 - S, "y_s": S} if residual_form else {"y_s": S}
-    rhs = y
-    for k, v in fixed_lin.items():
-        rhs = rhs - v * cols[k]
-    G = S.shape[0]
+    def dot(f, g):  # <f, g> for f = p + q S + r y
+        (p1, q1, r1), (p2, q2, r2) = f, g
+        return (p1 * p2 * W + (p1 * q2 + q1 * p2) * mS + q1 * q2 * mSS + (p1 * r2 + r1 * p2) * Y
+                + (q1 * r2 + r1 * q2) * mSy + r1 * r2 * YY)
+
+    cols = {"y_r": (1.0, -1.0, 0.0), "y_s": (0.0, 1.0, 0.0)} if pb.model.residual_form else {"y_s": (0.0, 1.0, 0.0)}
+    rhs = (-sum(v * cols[k][0] for k, v in pb.fixed_lin.items()),
+           -sum(v * cols[k][1] for k, v in pb.fixed_lin.items()), 1.0)
+    lin, b = pb.lin, pb.b
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        cc = dot(rhs, rhs)
         if not lin:
-            rss = (w2 * rhs * rhs).sum(-1) * np.ones(G)
-            return {}, rss
+            return cc
         if len(lin) == 1:
-            k = lin[0]
-            c = cols[k]
-            beta = np.clip((w2 * c * rhs).sum(-1) / (w2 * c * c).sum(-1), *b[k])
-            r = rhs - beta[:, None] * c
-            return {k: beta}, (w2 * r * r).sum(-1)
+            c = cols[lin[0]]
+            a11, b1 = dot(c, c), dot(c, rhs)
+            beta = np.clip(b1 / a11, *b[lin[0]])
+            return cc - 2 * beta * b1 + beta * beta * a11
         c1, c2 = cols[lin[0]], cols[lin[1]]
         (lo1, hi1), (lo2, hi2) = b[lin[0]], b[lin[1]]
-        a11, a12, a22 = (w2 * c1 * c1).sum(-1), (w2 * c1 * c2).sum(-1), (w2 * c2 * c2).sum(-1)
-        b1, b2 = (w2 * c1 * rhs).sum(-1), (w2 * c2 * rhs).sum(-1)
-        cc = (w2 * rhs * rhs).sum(-1)
+        a11, a12, a22 = dot(c1, c1), dot(c1, c2), dot(c2, c2)
+        b1, b2 = dot(c1, rhs), dot(c2, rhs)
         det = a11 * a22 - a12 * a12
         u1, u2 = (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
 
         def q(x1, x2):
             return cc - 2 * (b1 * x1 + b2 * x2) + a11 * x1 * x1 + 2 * a12 * x1 * x2 + a22 * x2 * x2
 
-        cands = []
         ok = (det > 0) & (u1 >= lo1) & (u1 <= hi1) & (u2 >= lo2) & (u2 <= hi2)
-        cands.append((np.where(ok, q(u1, u2), np.inf), u1, u2))
+        best = np.where(ok, q(u1, u2), np.inf)
         for e in (lo1, hi1):
-            x2 = np.clip((b2 - a12 * e) / a22, lo2, hi2)
-            cands.append((q(e, x2), np.full(G, e), x2))
+            best = np.fmin(best, q(e, np.clip((b2 - a12 * e) / a22, lo2, hi2)))
         for e in (lo2, hi2):
-            x1 = np.clip((b1 - a12 * e) / a11, lo1, hi1)
-            cands.append((q(x1, e), x1, np.full(G, e)))
-        vals = np.stack([np.where(np.isfinite(c[0]), c[0], np.inf) for c in cands])
-        pick = np.argmin(vals, axis=0)
-        idx = np.arange(G)
-        x1 = np.stack([np.broadcast_to(c[1], (G,)) for c in cands])[pick, idx]
-        x2 = np.stack([np.broadcast_to(c[2], (G,)) for c in cands])[pick, idx]
-        return {lin[0]: x1, lin[1]: x2}, np.maximum(vals[pick, idx], 0.0)
+            best = np.fmin(best, q(np.clip((b1 - a12 * e) / a11, lo1, hi1), e))
+        return np.maximum(best, 0.0)
 
 
 class _Problem:
@@ -693,55 +689,87 @@ def _grid_values(par: Parameter, lo: float, hi: float, s_min: float, s_max: floa
 
 
 def _screen(pb: _Problem, idx):
-    """Projected RSS over the start grid: (axes, rss array of the grid's shape, mixture weights or None)."""
+    """Projected RSS over the start grid: (names, axes, rss array of the grid's shape, mixture weights or None,
+    mixture).
+
+    The grid parameters are passed to the model on separate broadcast axes, so a part of the model that
+    depends on some of them only is evaluated once per combination of those; each curve enters the projection
+    by its three weighted moments. A mixture's two components are evaluated on their own axes and every pair
+    is combined from the components' moments and cross products (no curve of a pair is ever built).
+    """
     model = pb.model
     mix = model.mixture if model.mixture is not None and model.mixture[0] in pb.shape else None
     grid_names = [k for k in pb.shape if mix is None or k != mix[0]]
-    s = pb.s[idx]
+    s, y, w2 = pb.s[idx], pb.y[idx], pb.w2[idx]
     pos = pb.s[pb.s > 0]
-    s_min, s_max = float(pos.min()), float(pos.max())
     knots = _knots(pb.s)
-    axes = [_grid_values(model.parameter(k), *pb.b[k], s_min, s_max, knots) for k in grid_names]
-    mesh = np.meshgrid(*axes, indexing="ij") if axes else []
-    shape = tuple(len(a) for a in axes)
-    flat = {k: m.ravel() for k, m in zip(grid_names, mesh)}
-    G = int(np.prod(shape)) if shape else 1
-    keep = np.ones(G, bool)
-    if model.grid_order is not None and all(k in flat for k in model.grid_order):
-        a, b = model.grid_order
-        keep = flat[a] >= flat[b]
-    rss = np.full(G, np.inf)
-    weights = np.full(G, np.nan) if mix else None
-    y, w2 = pb.y[idx], pb.w2[idx]
-    rows = np.flatnonzero(keep)
-    step = max(1, _CHUNK // max(s.size, 1))
-    fixed_shape = pb.fixed_shape
-    for start in range(0, rows.size, step):
-        r = rows[start:start + step]
-        par = {k: v[r][:, None] for k, v in flat.items()}
-        with np.errstate(all="ignore"):
-            if mix is None:
-                S = model.saturation(s[None, :], **fixed_shape, **par)
-            else:
-                S1, S2 = mix[1](s[None, :], **{k: v for k, v in {**fixed_shape, **par}.items() if k != mix[0]})
-                w = _mixture_weight(S1, S2, y, w2)
-                weights[r] = w
-                S = w[:, None] * S1 + (1.0 - w[:, None]) * S2
-            _, v = _project(S, y, w2, pb.lin, pb.fixed_lin, pb.b, model.residual_form)
-        rss[r] = np.where(np.isfinite(v), v, np.inf)
-    return grid_names, axes, rss.reshape(shape) if shape else rss, (weights.reshape(shape) if mix else None), mix
-
-
-def _mixture_weight(S1, S2, y, w2):
-    """The weight w of S = w S1 + (1 - w) S2 from the unconstrained linear fit y = c0 + c1 S1 + c2 S2, clipped."""
-    one = np.ones_like(S1)
-    cols = (one, S1, S2)
-    A = np.stack([np.stack([(w2 * a * b).sum(-1) for b in cols], -1) for a in cols], -2)
-    rhs = np.stack([(w2 * a * y).sum(-1) for a in cols], -1)
-    A = A + np.eye(3) * 1e-14 * np.trace(A, axis1=-2, axis2=-1)[:, None, None]
+    axes = [_grid_values(model.parameter(k), *pb.b[k], float(pos.min()), float(pos.max()), knots)
+            for k in grid_names]
+    nd, shape = len(axes), tuple(len(a) for a in axes)
+    par = {k: a.reshape([-1 if i == j else 1 for i in range(nd)] + [1]) for j, (k, a) in enumerate(zip(grid_names,
+                                                                                                       axes))}
+    sb = s.reshape((1,) * nd + (-1,))
+    wy = w2 * y
+    W, Y, YY = w2.sum(), wy.sum(), wy @ y
+    weights = None
     with np.errstate(all="ignore"):
-        c = np.linalg.solve(A, rhs[..., None])[..., 0]
-        w = c[:, 1] / (c[:, 1] + c[:, 2])
+        if mix is None:
+            mS, mSS, mSy = (np.empty(shape) for _ in range(3))
+            step = max(1, _CHUNK // max(s.size * int(np.prod(shape[1:])), 1)) if nd else 1
+            for start in range(0, shape[0] if nd else 1, step):
+                sl = slice(start, start + step)
+                p = {k: (v[sl] if j == 0 else v) for j, (k, v) in enumerate(par.items())}
+                S = model.saturation(sb, **pb.fixed_shape, **p)
+                S = np.broadcast_to(S, ((min(step, shape[0] - start),) + shape[1:] if nd else ()) + (s.size,))
+                mS[sl], mSS[sl], mSy[sl] = S @ w2, (S * S) @ w2, S @ wy
+        else:
+            S1, S2 = mix[1](sb, **pb.fixed_shape, **{k: v for k, v in par.items()})
+            S1, S2 = np.broadcast_to(S1, S1.shape[:-1] + (s.size,)), np.broadcast_to(S2, S2.shape[:-1] + (s.size,))
+            m1, m2, G11, G22 = S1 @ w2, S2 @ w2, (S1 * S1) @ w2, (S2 * S2) @ w2
+            m1y, m2y = S1 @ wy, S2 @ wy
+            G12 = _cross(S1 * w2, S2, shape)
+            weights = np.broadcast_to(_mixture_weight(W, Y, m1, m2, G11, G12, G22, m1y, m2y), shape)
+            u = 1.0 - weights
+            mS = weights * m1 + u * m2
+            mSS = weights * weights * G11 + 2 * weights * u * G12 + u * u * G22
+            mSy = weights * m1y + u * m2y
+        rss = np.broadcast_to(_projected_rss(pb, W, Y, YY, mS, mSS, mSy), shape).copy()
+    rss[~np.isfinite(rss)] = np.inf
+    if model.grid_order is not None and all(k in par for k in model.grid_order):
+        a, b = model.grid_order
+        rss[~np.broadcast_to(par[a][..., 0] >= par[b][..., 0], shape)] = np.inf
+    return grid_names, axes, rss, weights, mix
+
+
+def _cross(A, B, shape):
+    """Σ_n A[..., n] B[..., n] of two arrays broadcast over the grid axes, each summed on its own axes only
+    (a matrix product when they share none): the result broadcasts to ``shape``."""
+    nd = len(shape)
+    letters = "abcdefghijklmnopqrstuvwxy"[:nd]
+    ax_a = [i for i in range(nd) if A.shape[i] > 1]
+    ax_b = [i for i in range(nd) if B.shape[i] > 1]
+    out = sorted(set(ax_a) | set(ax_b))
+    spec = (f"{''.join(letters[i] for i in ax_a)}z,{''.join(letters[i] for i in ax_b)}z->"
+            f"{''.join(letters[i] for i in out)}")
+    C = np.einsum(spec, A.reshape([A.shape[i] for i in ax_a] + [-1]), B.reshape([B.shape[i] for i in ax_b] + [-1]),
+                  optimize=True)
+    return C.reshape([shape[i] if i in out else 1 for i in range(nd)])
+
+
+def _mixture_weight(W, Y, m1, m2, G11, G12, G22, m1y, m2y):
+    """The weight w of S = w S1 + (1 - w) S2 from the unconstrained weighted linear fit y = c0 + c1 S1 + c2 S2
+    (its normal equations from the moments), clipped to [0, 1]."""
+    m1, m2, G11, G12, G22, m1y, m2y = np.broadcast_arrays(m1, m2, G11, G12, G22, m1y, m2y)
+    A = np.stack([np.stack([np.full_like(m1, W), m1, m2], -1), np.stack([m1, G11, G12], -1),
+                  np.stack([m2, G12, G22], -1)], -2)
+    rhs = np.stack([np.full_like(m1, Y), m1y, m2y], -1)
+    A = A + np.eye(3) * (1e-14 * (W + G11 + G22))[..., None, None]
+    with np.errstate(all="ignore"):
+        try:
+            c = np.linalg.solve(A, rhs[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            c = (np.linalg.pinv(A) @ rhs[..., None])[..., 0]
+        w = c[..., 1] / (c[..., 1] + c[..., 2])
     return np.clip(np.where(np.isfinite(w), w, 0.5), 0.0, 1.0)
 
 
