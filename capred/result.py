@@ -274,6 +274,76 @@ class Rows:
         return self.make(0, self.n)
 
 
+class Spool:
+    """Per-row output columns of a long run, kept block by block in a temporary file instead of in memory.
+
+    A command whose rows are independent (``bridge solve``) appends each
+    block's columns (a dict of arrays) as it computes them; the writer reads
+    them back one block at a time (``blocks()``), also from a forked process
+    (reads use ``os.pread``: no shared file offset). Peak memory is then one
+    block's, whatever the number of rows.
+    """
+
+    def __init__(self) -> None:
+        import tempfile
+
+        self._file = tempfile.TemporaryFile()
+        self._index: list[tuple[int, int, int]] = []  # (offset, bytes, rows) of each block
+        self._end = 0
+        self._cached: tuple[int, dict] | None = None  # the block read last (rows_range reads many slices of it)
+        self.n = 0
+
+    def append(self, columns: dict) -> None:
+        """Add one block: every column an array of the same length."""
+        import pickle
+
+        data = pickle.dumps(columns, protocol=pickle.HIGHEST_PROTOCOL)
+        self._file.seek(self._end)
+        self._file.write(data)
+        self._file.flush()
+        rows = len(next(iter(columns.values()))) if columns else 0
+        self._index.append((self._end, len(data), rows))
+        self._end += len(data)
+        self.n += rows
+
+    def _block(self, k: int) -> dict:
+        import os
+        import pickle
+
+        if self._cached is not None and self._cached[0] == k:
+            return self._cached[1]
+        offset, size, _ = self._index[k]
+        block = pickle.loads(os.pread(self._file.fileno(), size, offset))
+        self._cached = (k, block)
+        return block
+
+    def blocks(self):
+        """The blocks' column dicts, in order."""
+        for k in range(len(self._index)):
+            yield self._block(k)
+
+    def columns(self, start: int, stop: int) -> dict:
+        """Every column of rows ``start`` .. ``stop - 1`` (possibly across blocks)."""
+        import numpy as np
+
+        parts, first = [], 0
+        for k, (_, _, rows) in enumerate(self._index):
+            lo, hi = max(start, first), min(stop, first + rows)
+            if lo < hi:
+                block = self._block(k)
+                parts.append({name: v[lo - first:hi - first] for name, v in block.items()})
+            first += rows
+            if first >= stop:
+                break
+        if len(parts) == 1:
+            return parts[0]
+        names = list(self._block(0)) if self._index else []
+        return {name: np.concatenate([p[name] for p in parts]) if parts else np.empty(0) for name in names}
+
+    def close(self) -> None:
+        self._file.close()
+
+
 def json_list(values) -> list:
     """A float array as a JSON list: every digit kept, None where not finite."""
     import numpy as np

@@ -206,7 +206,7 @@ def np_array(values):
 
 
 def write_csv_file(path, frame, dialect: str = "standard") -> None:
-    """A DataFrame (or a mapping of column name to array) as UTF-8 CSV: floats in shortest round-trip form (every digit kept), NaN as an
+    """A DataFrame (a mapping of column name to array, or a capred.result.Spool of them) as UTF-8 CSV: floats in shortest round-trip form (every digit kept), NaN as an
     empty cell, lists joined with ';', text quoted where CSV needs it. ``path`` may be a binary file.
 
     ``dialect="excel-eu"``: what a Belgian, French or German Excel opens as columns: ';' separators,
@@ -219,12 +219,15 @@ def write_csv_file(path, frame, dialect: str = "standard") -> None:
         fh = path if hasattr(path, "write") else stack.enter_context(open(path, "wb"))
         if eu:
             fh.write("\ufeff".encode("utf-8"))
-        names = list(frame) if isinstance(frame, dict) else list(frame.columns)
-        arrays = list(frame.values()) if isinstance(frame, dict) else _column_arrays(frame)
-        fh.write((sep.join(_csv_cell(str(c), sep, eu=eu) for c in names) + "\n").encode("utf-8"))
-        for start in range(0, len(arrays[0]) if arrays else 0, 10_000):  # memory bounded by one chunk of rows
-            columns = [_csv_column(a[start:start + 10_000], sep, joiner, eu) for a in arrays]
-            fh.write(("\n".join(map(sep.join, zip(*columns))) + "\n").encode("utf-8"))
+        blocks = frame.blocks() if hasattr(frame, "blocks") else [frame]  # a Spool: block by block
+        for k, block in enumerate(blocks):
+            names = list(block) if isinstance(block, dict) else list(block.columns)
+            arrays = list(block.values()) if isinstance(block, dict) else _column_arrays(block)
+            if k == 0:
+                fh.write((sep.join(_csv_cell(str(c), sep, eu=eu) for c in names) + "\n").encode("utf-8"))
+            for start in range(0, len(arrays[0]) if arrays else 0, 10_000):  # memory bounded by one chunk
+                columns = [_csv_column(a[start:start + 10_000], sep, joiner, eu) for a in arrays]
+                fh.write(("\n".join(map(sep.join, zip(*columns))) + "\n").encode("utf-8"))
 
 
 def encode_csv(frame) -> bytes:

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError, OptionError
-from ..io.table import Column, read_table
+from ..io.table import Column, Table, read_table
 from ..physics import bridge as br
 from ..physics import shear as ph
 from ..nomenclature import StableJsonKeys, renamed_keywords
@@ -134,15 +134,7 @@ class BridgeResult(Result):
 
     def rows_range(self, start: int, stop: int) -> list[dict]:
         """JSON rows start..stop (NaN as None, an empty note left out), built column by column."""
-        cols = self._cols()
-        keys = [k for k in cols if k != "note"]
-        values = [json_list(cols[k][start:stop]) if cols[k].dtype != object else cols[k][start:stop].tolist()
-                  for k in keys]
-        out = [dict(zip(keys, vals)) for vals in zip(*values)]
-        for r, note in zip(out, cols["note"][start:stop].tolist()):
-            if note:
-                r["note"] = note
-        return out
+        return json_rows({k: v[start:stop] for k, v in self._cols().items()})
 
     def rows(self) -> list[dict]:
         return self.rows_range(0, self.status.size)
@@ -156,6 +148,17 @@ class BridgeResult(Result):
 
     def csv_tables(self) -> dict:
         return {"solve": self._cols()}
+
+def json_rows(cols: dict[str, np.ndarray]) -> list[dict]:
+    """JSON rows of output columns (NaN as None, an empty note left out), built column by column."""
+    keys = [k for k in cols if k != "note"]
+    values = [json_list(cols[k]) if cols[k].dtype != object else cols[k].tolist() for k in keys]
+    out = [dict(zip(keys, vals)) for vals in zip(*values)]
+    for r, note in zip(out, cols["note"].tolist()):
+        if note:
+            r["note"] = note
+    return out
+
 
 def _records(frame, drop_empty: str | None = None) -> list[dict]:
     """DataFrame rows as dicts, NaN as None, an empty ``drop_empty`` cell left out."""
@@ -172,8 +175,9 @@ def _records(frame, drop_empty: str | None = None) -> list[dict]:
 
 def _read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, ...], opt: BridgeOptions,
                 schema=None):
-    """The table of cases with its surface tension and radius ratio R2/R (1 without an R2 column)."""
-    table = read_table(source, schema or SOLVE_SCHEMA)
+    """The table of cases (read from ``source``, or a Table already read) with its surface tension and radius
+    ratio R2/R (1 without an R2 column)."""
+    table = source if isinstance(source, Table) else read_table(source, schema or SOLVE_SCHEMA)
     for name in required:
         if name not in table.columns:
             table.missing_column(name)
@@ -202,8 +206,12 @@ def _read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, .
 
 def solve_bridges(source, options: BridgeOptions | None = None) -> BridgeResult:
     """One bridge per row of a table (CSV path or DataFrame): R (and R2), gamma, contact_angle, gap and
-    suction or V_w."""
+    suction or V_w. A long plain CSV is read, solved and kept block by block (capred.pipelines.bridge_blocks)."""
     opt = options or BridgeOptions()
+    if not isinstance(source, Table):
+        from .bridge_blocks import solve_in_blocks
+
+        return solve_in_blocks(source, opt)
     table, gamma, ratio = _read_cases(source, ("R", "contact_angle", "gap"), ("suction", "V_w"), opt)
     s_in, v_in = table.get("suction"), table.get("V_w")
     for i in np.flatnonzero(np.isnan(s_in) & np.isnan(v_in)):
@@ -214,7 +222,7 @@ def solve_bridges(source, options: BridgeOptions | None = None) -> BridgeResult:
     R, th, D = table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["gap"]
     res = _solve(table.path, R, gamma, th, D, ratio, s_in, v_in,
                  list(table.columns["case"]) if "case" in table.columns else None, table.notes)
-    res.options, res.inputs, res.warnings = opt, [input_file(source, table)], opt.warnings + table.warnings
+    res.options, res.warnings = opt, opt.warnings + table.warnings  # inputs: set by solve_in_blocks
     return res
 
 

@@ -1,0 +1,123 @@
+"""`capred bridge solve` on a long file: read, solved and kept block by block, so memory stays flat (issue 20).
+
+Rows of ``bridge solve`` are independent: each block of lines (capred.io.blocks)
+is solved as a table of its own and its output columns go to a
+:class:`capred.result.Spool` on disk; only the status and the radius ratio of
+every row stay in memory. A file of one block gives the ordinary
+:class:`capred.pipelines.bridge.BridgeResult`.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..io.blocks import read_table_blocks
+from ..result import InputFile, Result, Rows, Spool, input_file
+from . import bridge as pb
+
+
+@dataclass(repr=False)
+class BridgeBlocks(Result):
+    """Bridges of a long table, one per row, their output columns kept on disk block by block.
+
+    Attributes
+    ----------
+    source : str
+        The file read.
+    status : ndarray of int
+        Per row: 0 a verified bridge, else the code of :data:`capred.pipelines.bridge.STATUS`.
+    inputs_si : dict
+        ``ratio``: R2/R per row [-].
+    spool : Spool
+        The output columns (mm, mN, mm^3, mm^2, deg, kPa), as ``BridgeResult`` writes them.
+    """
+
+    command = "bridge solve"
+    json_name = "solve.json"
+
+    source: str
+    status: np.ndarray
+    inputs_si: dict
+    spool: Spool
+    options: pb.BridgeOptions | None = None
+    inputs: list[InputFile] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+
+    status_text = staticmethod(pb.BridgeResult.status_text)
+
+    def rows_range(self, start: int, stop: int) -> list[dict]:
+        """JSON rows start..stop, read back from the spool."""
+        return pb.json_rows(self.spool.columns(start, stop))
+
+    def rows(self) -> list[dict]:
+        return self.rows_range(0, self.status.size)
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """Every output column of every row (in memory: for a script that asks for them)."""
+        return self.spool.columns(0, self.status.size)
+
+    def payload(self, lazy: bool = False) -> dict:
+        n = self.status.size
+        return {"source": self.source, "bridges": Rows(n, self.rows_range) if lazy else self.rows()}
+
+    def tables(self) -> dict:
+        import pandas as pd
+
+        return {"solve": pd.DataFrame(self.columns(), copy=False)}
+
+    def csv_tables(self) -> dict:
+        return {"solve": self.spool}  # written block by block
+
+
+def solve_in_blocks(source, opt: pb.BridgeOptions):
+    """Solve every row of ``source`` block by block (see the module docstring).
+
+    Parameters
+    ----------
+    source : path, DataFrame or TableSource
+        The table of cases (see capred.pipelines.bridge.solve_bridges).
+    opt : BridgeOptions
+        Options of the run.
+
+    Returns
+    -------
+    BridgeResult or BridgeBlocks
+        A BridgeResult when the table is one block; else a BridgeBlocks.
+
+    Raises
+    ------
+    InputError
+        The problems of the first block that has any (nothing is returned).
+    """
+    blocks = read_table_blocks(source, pb.SOLVE_SCHEMA)
+    table = next(blocks)
+    res = pb.solve_bridges(table, opt)
+    res.inputs = [input_file(source, table)]
+    path = str(table.path)
+    del table  # one block in memory at a time: its cells go before the next is read
+    table = next(blocks, None)
+    if table is None:
+        return res
+    spool = Spool()
+    try:
+        status, ratio = [res.status], [res.inputs_si["ratio"]]
+        notes, warnings, inputs = dict.fromkeys(res.notes), dict.fromkeys(res.warnings), res.inputs
+        spool.append(res._cols())
+        del res
+        while table is not None:
+            part = pb.solve_bridges(table, opt)
+            del table
+            spool.append(part._cols())
+            status.append(part.status)
+            ratio.append(part.inputs_si["ratio"])
+            notes.update(dict.fromkeys(part.notes))
+            warnings.update(dict.fromkeys(part.warnings))
+            del part
+            table = next(blocks, None)
+    except BaseException:
+        spool.close()
+        raise
+    return BridgeBlocks(path, np.concatenate(status).astype(np.int8), {"ratio": np.concatenate(ratio)}, spool, opt,
+                        inputs, list(notes), list(warnings))
