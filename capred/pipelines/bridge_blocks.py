@@ -9,10 +9,13 @@ every row stay in memory. A file of one block gives the ordinary
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
+from ..io import blocks as blocks_module
 from ..io.blocks import read_table_blocks
+from ..progress import task
 from ..result import InputFile, Result, Rows, Spool, input_file
 from . import bridge as pb
 
@@ -106,16 +109,20 @@ def solve_in_blocks(source, opt: pb.BridgeOptions):
         notes, warnings, inputs = dict.fromkeys(res.notes), dict.fromkeys(res.warnings), res.inputs
         spool.append(res._cols())
         del res
-        while table is not None:
-            part = pb.solve_bridges(table, opt)
-            del table
-            spool.append(part._cols())
-            status.append(part.status)
-            ratio.append(part.inputs_si["ratio"])
-            notes.update(dict.fromkeys(part.notes))
-            warnings.update(dict.fromkeys(part.warnings))
-            del part
-            table = next(blocks, None)
+        size = Path(path).stat().st_size
+        with task("solving bridges, block by block", total=-(-size // blocks_module.BLOCK_BYTES)) as advance:
+            advance(1)  # the first block, solved above
+            while table is not None:
+                part = pb.solve_bridges(table, opt)
+                del table
+                spool.append(part._cols())
+                status.append(part.status)
+                ratio.append(part.inputs_si["ratio"])
+                notes.update(dict.fromkeys(part.notes))
+                warnings.update(dict.fromkeys(part.warnings))
+                del part
+                advance(1)
+                table = next(blocks, None)
     except BaseException:
         spool.close()
         raise
