@@ -668,27 +668,44 @@ def _solve_for_suction(theta, suction, gap, ratio):
     lj = np.clip(last, 0, ng - 2)
     lo, hi = grid[r, lj], grid[r, lj + 1]
     f_lo, f_hi = Dg[r, lj] - D, Dg[r, lj + 1] - D
-    # rows whose grid maximum is below 0.4 D are beyond rupture: over 20,000 random pairs (theta 0-80 deg,
-    # s* 1e-4-1e6, spheres and planes) the grid maximum was never below 0.56 of the true one
-    pk = np.maximum(peak, 0)
-    miss = np.flatnonzero((last < 0) & (Dg[r, pk] >= 0.4 * D))
-    if miss.size:  # a peak between grid points can hide a bracket: refine the maximum
-        j = peak[miss]
-        a = grid[miss, np.maximum(j - 1, 0)]
-        c = grid[miss, np.minimum(j + 1, ng - 1)]
-        bp, dp = _golden(lambda x, i: gap_of(x, th[miss][i], s[miss][i], rho[miss][i]), a, c, iters=12)
+    nob = np.flatnonzero(last < 0)  # no grid point reaches D*: is the maximum between grid points above it?
+    if nob.size:
+        # five points around the grid maximum, half a grid step apart (the two new ones coarse too)
+        j = peak[nob]
+        h = np.sqrt(_SUCTION_GRID[1] / _SUCTION_GRID[0])
+        b_mid = grid[nob, j]
+        pts = np.minimum(b_mid[:, None] * h ** np.arange(-2.0, 3.0), grid[nob, -1:])
+        val = np.full(pts.shape, -np.inf)
+        val[:, 2] = Dg[nob, j]
+        val[:, 0] = np.where(j >= 1, Dg[nob, np.maximum(j - 1, 0)], -np.inf)
+        val[:, 4] = np.where(j <= ng - 2, Dg[nob, np.minimum(j + 1, ng - 1)], -np.inf)
+        mids = _below(gap_of(pts[:, [1, 3]], th[nob, None], s[nob, None], rho[nob, None], coarse=True))
+        val[:, 1], val[:, 3] = mids[:, 0], mids[:, 1]
+        best = np.clip(np.argmax(val, axis=1), 1, 3)
+        rr = np.arange(nob.size)
+        vmax = val[rr, best]
+        # rows whose five-point maximum is below half the gap are beyond rupture: over 60,000 random pairs
+        # (theta 0-89 deg, s* 1e-6-1e8, rho 0.01-100 and planes, wherever the grid meets a bridge) it was never
+        # below 0.59 of the true maximum (0.77 for rho >= 0.1)
+        miss = nob[vmax >= 0.5 * D[nob]]
+        sel = vmax >= 0.5 * D[nob]
+        a, c = pts[rr[sel], best[sel] - 1], pts[rr[sel], best[sel] + 1]
+    else:
+        miss = nob
+    if miss.size:  # refine the maximum by golden sections (unimodal between a and c)
+        thm, sm, rhom, Dm = th[miss], s[miss], rho[miss], D[miss]
+        bp, dp = _golden(lambda x, i: gap_of(x, thm[i], sm[i], rhom[i], coarse=True), a, c, iters=12)
         # 12 steps leave the bracket at 0.3 % of its width: the maximum is then known to about 1e-4 relative;
-        # rows within 1 % of the gap are refined to 25 steps, the rest are beyond rupture
-        close = np.flatnonzero((dp < D[miss]) & (dp >= 0.99 * D[miss]))
+        # rows within 1 % of the gap are refined to 25 steps with the full quadrature, the rest are settled
+        close = np.flatnonzero((dp >= 0.99 * Dm) & (dp < 1.01 * Dm))
         if close.size:
-            sub = miss[close]
-            bp[close], dp[close] = _golden(lambda x, i: gap_of(x, th[sub][i], s[sub][i], rho[sub][i]), a[close],
-                                           c[close], iters=25)
-        found = dp >= D[miss]
+            bp[close], dp[close] = _golden(lambda x, i: gap_of(x, thm[close][i], sm[close][i], rhom[close][i]),
+                                           a[close], c[close], iters=25)
+        found = dp >= Dm
         has[miss[found]] = True
-        lo[miss], f_lo[miss] = bp, dp - D[miss]
+        lo[miss], f_lo[miss] = bp, dp - Dm
         hi[miss] = c
-        f_hi[miss] = _below(gap_of(c, th[miss], s[miss], rho[miss])) - D[miss]
+        f_hi[miss] = _below(gap_of(c, thm, sm, rhom)) - Dm
     good = np.flatnonzero(has)
     thg, sg, Dgd, rhog = th[good], s[good], D[good], rho[good]
     root = _chandrupatla(lambda x, i: _below(gap_of(x, thg[i], sg[i], rhog[i])) - Dgd[i],
