@@ -19,9 +19,12 @@ the bounds by
    (Golub & Pereyra 1973); the search runs over the shape parameters only;
 2. a *grid* over the shape parameters (log-spaced on each parameter's own
    scale, dense over the data's suction range and reaching the bounds), its
-   projected residual evaluated at once for every grid point; for a mixture
-   weight (Durner's w1) the weights are projected too;
-3. a bounded local least-squares refinement from the best grid minima;
+   projected residual evaluated at once for every grid point from each
+   curve's weighted moments; for a mixture weight (Durner's w1) the weights
+   are projected too;
+3. a bounded Levenberg-Marquardt refinement from the best grid minima, all
+   starts iterated together: first loosely (on at most 200 points of a large
+   data set), then the best to full precision on all points;
    a parameter whose model has kinks at the data suctions (Brooks-Corey's
    air-entry suction) is refined within each interval between neighbouring
    data suctions separately, where the objective is smooth.
@@ -610,33 +613,31 @@ class _Problem:
             v = np.where(den > 0, np.einsum("mn,mn->m", wc, np.broadcast_to(rhs, S.shape)) / den, b[lin[0]][1])
             return f + np.clip(v, *b[lin[0]])[:, None] * c
         c1, c2 = cols[lin[0]], cols[lin[1]]
-        w1c, w2c = w2 * c1, w2 * c2
-        rhs = np.broadcast_to(rhs, S.shape)
-        a11, a12, a22 = (np.einsum("mn,mn->m", w1c, c1), np.einsum("mn,mn->m", w1c, c2),
-                         np.einsum("mn,mn->m", w2c, c2))
-        b1, b2 = np.einsum("mn,mn->m", w1c, rhs), np.einsum("mn,mn->m", w2c, rhs)
+        C = np.empty((S.shape[0], 3, S.shape[1]))  # (m, 3, n): the Gram matrix in one product
+        C[:, 0], C[:, 1], C[:, 2] = c1, c2, rhs
+        gram = (C * w2) @ C.transpose(0, 2, 1)
+        a11, a12, a22, b1, b2 = gram[:, 0, 0], gram[:, 0, 1], gram[:, 1, 1], gram[:, 0, 2], gram[:, 1, 2]
         (lo1, hi1), (lo2, hi2) = b[lin[0]], b[lin[1]]
         det = a11 * a22 - a12 * a12
         u1, u2 = (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
-        inside = ((det > 1e-14 * np.maximum(a11 * a22, 1e-300)) & (u1 >= lo1) & (u1 <= hi1) & (u2 >= lo2)
-                  & (u2 <= hi2))
-        x1, x2 = np.where(inside, u1, lo1), np.where(inside, u2, lo2)
-        out = np.flatnonzero(~inside)
-        if out.size:  # the best point on the box's four edges
+        inside = (det > 1e-14 * np.maximum(a11 * a22, 1e-300)) & (u1 >= lo1) & (u1 <= hi1) & (u2 >= lo2) & (u2 <= hi2)
+        x1, x2 = u1, u2
+        if not inside.all():
+            # the unconstrained minimum leaves the box: the constrained one lies on an edge it violates, at the
+            # best point of that edge (a corner included); both candidates are feasible, the lower one wins
+            out = np.flatnonzero(~inside)
             a11, a12, a22, b1, b2 = a11[out], a12[out], a22[out], b1[out], b2[out]
-            best = np.full(out.size, np.inf)
-            e1, e2 = np.full(out.size, lo1), np.full(out.size, lo2)
-            for e in (lo1, hi1, lo2, hi2):
-                if e in (lo1, hi1):
-                    c_1 = np.full_like(a11, e)
-                    c_2 = np.where(a22 > 0, np.clip((b2 - a12 * e) / a22, lo2, hi2), lo2)
-                else:
-                    c_2 = np.full_like(a11, e)
-                    c_1 = np.where(a11 > 0, np.clip((b1 - a12 * e) / a11, lo1, hi1), lo1)
-                q = -2 * (b1 * c_1 + b2 * c_2) + a11 * c_1 * c_1 + 2 * a12 * c_1 * c_2 + a22 * c_2 * c_2
-                better = q < best
-                best, e1, e2 = np.where(better, q, best), np.where(better, c_1, e1), np.where(better, c_2, e2)
-            x1[out], x2[out] = e1, e2
+            with np.errstate(divide="ignore", invalid="ignore"):
+                p1 = np.clip(np.where(np.isfinite(u1[out]), u1[out], lo1), lo1, hi1)
+                p2 = np.clip(np.where(np.isfinite(u2[out]), u2[out], lo2), lo2, hi2)
+                q2 = np.clip((b2 - a12 * p1) / a22, lo2, hi2)
+                q1 = np.clip((b1 - a12 * p2) / a11, lo1, hi1)
+            q2, q1 = np.where(np.isfinite(q2), q2, p2), np.where(np.isfinite(q1), q1, p1)
+            X1, X2 = np.stack([p1, q1]), np.stack([q2, p2])
+            q = -2 * (b1 * X1 + b2 * X2) + a11 * X1 * X1 + 2 * a12 * X1 * X2 + a22 * X2 * X2
+            pick = (q[1] < q[0]).astype(int)
+            x1, x2 = u1.copy(), u2.copy()
+            x1[out], x2[out] = X1[pick, np.arange(out.size)], X2[pick, np.arange(out.size)]
         return f + x1[:, None] * c1 + x2[:, None] * c2
 
     def resid_rows(self, U):
@@ -787,12 +788,18 @@ def _local_minima(rss: np.ndarray) -> np.ndarray:
     return idx[np.argsort(rss.ravel()[idx])]
 
 
+def _screen_points(s) -> np.ndarray:
+    """Indices of the data points that rank the start grid and run the first, loose refinement: all points, or
+    ``_SCREEN_POINTS`` of them evenly spread in the order of suction."""
+    order = np.argsort(s, kind="stable")
+    if s.size <= _SCREEN_POINTS:
+        return order
+    return order[np.linspace(0, s.size - 1, _SCREEN_POINTS).round().astype(int)]
+
+
 def _starts(pb: _Problem, n_starts: int):
     """Start points (shape parameters) and their search boxes from the grid, best first."""
-    n = pb.s.size
-    order = np.argsort(pb.s, kind="stable")
-    idx = order if n <= _SCREEN_POINTS else order[np.linspace(0, n - 1, _SCREEN_POINTS).round().astype(int)]
-    names, axes, rss, weights, mix = _screen(pb, idx)
+    names, axes, rss, weights, mix = _screen(pb, _screen_points(pb.s))
     flat = rss.ravel()
     minima = _local_minima(rss) if rss.ndim else np.array([0])
     if minima.size == 0:
@@ -844,6 +851,45 @@ def _interval_starts(pb, names, axes, rss, weights, mix, axis, lo, hi, knots, n_
         blo[j], bhi[j] = edges[i], edges[i + 1]
         out.append((_point(pb, names, axes, weights, mix, pos), blo, bhi))
     return out
+
+
+def _distinct(U, cost, close: float) -> np.ndarray:
+    """Indices of the rows of ``U`` with a cost within ``close`` (relative) of the lowest, best first, without
+    the rows that repeat a better one (every coordinate within 1e-6 of it, relative)."""
+    order = np.argsort(cost, kind="stable")
+    order = order[cost[order] <= cost[order[0]] * (1 + close) + 1e-300]
+    out: list[int] = []
+    for i in order:
+        if not any(np.all(np.abs(U[i] - U[j]) <= 1e-6 * (1 + np.abs(U[j]))) for j in out):
+            out.append(int(i))
+    return np.array(out)
+
+
+def _interval_walk(pb: _Problem, u, cost: float, converged: bool, j: int, lo, hi):
+    """Refine a fit of a model with kinks at the data suctions in parameter ``j`` (fitting coordinates ``u``):
+    a bounded fit in each interval between neighbouring distinct data suctions around ``u[j]`` (two each side),
+    moving on while the lowest lies less than two intervals from the unexplored ones. Returns (u, converged)."""
+    o = pb.offset[j]
+    knots = np.unique(pb.s[pb.s > 0])
+    knots = np.log(knots - o) if o is not None else knots
+    lo_all, hi_all = pb.u_rows(np.array([[pb.b[k][0] for k in pb.shape], [pb.b[k][1] for k in pb.shape]]))
+    edges = np.unique(np.concatenate([[lo_all[j]], knots[(knots > lo_all[j]) & (knots < hi_all[j])],
+                                      [hi_all[j]]]))
+    here = int(np.clip(np.searchsorted(edges, u[j], side="right") - 1, 0, edges.size - 2))
+    done: set[int] = set()
+    while True:
+        todo = [i for i in range(here - 2, here + 3) if 0 <= i < edges.size - 1 and i not in done]
+        if not todo:
+            return u, converged
+        done.update(todo)
+        U0 = np.repeat(u[None, :], len(todo), axis=0)
+        LO, HI = np.repeat(lo[None, :], len(todo), axis=0), np.repeat(hi[None, :], len(todo), axis=0)
+        LO[:, j], HI[:, j] = edges[todo], edges[np.array(todo) + 1]
+        U0[:, j] = np.where(np.array(todo) == here, np.clip(u[j], LO[:, j], HI[:, j]), 0.5 * (LO[:, j] + HI[:, j]))
+        Ut, ct, okt = _levenberg_marquardt(pb, U0, LO, HI, ftol=1e-14, max_iter=200)
+        b = int(np.argmin(ct))
+        if ct[b] < cost:
+            u, cost, converged, here = Ut[b], float(ct[b]), bool(okt[b]), todo[b]
 
 
 def _knots(s, most: int = 150) -> np.ndarray:
@@ -1004,14 +1050,26 @@ def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = 
         ulo, uhi = pb.u_rows(np.array([b for _, b, _ in starts])), pb.u_rows(np.array([b for _, _, b in starts]))
         lo_x, hi_x = np.array([b for _, b, _ in starts]), np.array([b for _, _, b in starts])
         U0 = np.clip(pb.u_rows(np.clip(X0, lo_x, hi_x)), ulo, uhi)
-        # phase 1: every start, loose tolerance
-        U1, cost1, _ = _levenberg_marquardt(pb, U0, ulo, uhi, ftol=1e-6, max_iter=20 if k <= 3 else 80)
-        order = np.argsort(cost1, kind="stable")
-        order = order[cost1[order] <= cost1[order[0]] * (1 + 1e-4) + 1e-300]
-        # phase 2: polish those within 1e-4 of the best
-        U2, cost2, ok2 = _levenberg_marquardt(pb, U1[order], ulo[order], uhi[order], ftol=1e-14, max_iter=200)
+        # phase 1: every start, loose tolerance, on the points that ranked the grid
+        idx = _screen_points(s)
+        pb1 = pb if idx.size == s.size else _Problem(model, s[idx], y[idx], sw[idx], fixed, b)
+        loose = 20 if k <= 3 else 80
+        U1, cost1, _ = _levenberg_marquardt(pb1, U0, ulo, uhi, ftol=1e-6, max_iter=loose)
+        order = np.arange(U1.shape[0])
+        if pb1 is not pb:  # those within 5 % of the best, loosely again on all points
+            order = _distinct(U1, cost1, 0.05)
+            U1, cost1, _ = _levenberg_marquardt(pb, U1[order], ulo[order], uhi[order], ftol=1e-6, max_iter=loose)
+        # phase 2 on all points: polish the distinct end points within 1e-4 of the best
+        keep = _distinct(U1, cost1, 1e-4)
+        order = order[keep]
+        U2, cost2, ok2 = _levenberg_marquardt(pb, U1[keep], ulo[order], uhi[order], ftol=1e-14, max_iter=200)
         i = int(np.argmin(cost2))
-        best_x, converged = pb.x_rows(U2[i:i + 1])[0], bool(ok2[i])
+        u, converged = U2[i], bool(ok2[i])
+        kinked = [j for j, p in enumerate(pb.shape) if model.parameter(p).kinks_at_data]
+        if kinked and np.unique(s[s > 0]).size > _knots(s).size:  # the start boxes held several data suctions
+            u, converged = _interval_walk(pb, u, float(cost2[i]), converged, kinked[0], ulo[order[i]],
+                                          uhi[order[i]])
+        best_x = pb.x_rows(u[None, :])[0]
     optimum = pb.full(best_x)
     if model.canonical is not None and not fixed:
         optimum = model.canonical(optimum)
