@@ -157,12 +157,24 @@ LEGEND_SIDE_MAX = 0.30
 PAD_MM = 1.0
 
 
+_MATHTEXT = []  # the one mathtext parser of every capred figure drawn by Agg (made on first use)
+
+
 def _canvas(fig):
-    """Give ``fig`` an Agg canvas: layout and drawing then share one renderer and its text-size cache."""
+    """Give ``fig`` an Agg canvas: layout and drawing then share one renderer and its text-size cache.
+
+    Every such renderer also shares one mathtext parser, whose cache keeps each parsed label (a label such
+    as ``$\\tau_{max}$ [kPa]`` costs 10-50 ms to parse): a label repeated in another panel or sheet at the
+    same size and dpi is parsed once.
+    """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
     FigureCanvasAgg(fig)
-    return fig.canvas.get_renderer()
+    renderer = fig.canvas.get_renderer()
+    if not _MATHTEXT:
+        _MATHTEXT.append(renderer.mathtext_parser)
+    renderer.mathtext_parser = _MATHTEXT[0]
+    return renderer
 
 
 def _dress(ax, width_px: float, renderer) -> None:
