@@ -51,6 +51,7 @@ _U = 0.5 * (_u + 1.0)
 _W = 0.5 * _w
 _u8, _w8 = leggauss(8)  # a coarse rule for bracketing scans, where only the sign of gap - D matters
 _U8, _W8 = 0.5 * (_u8 + 1.0), 0.5 * _w8
+_USQ, _U8SQ = _U * _U, _U8 * _U8  # node positions of the t^2 substitution of _length
 _CHUNK = 8192  # cases per vectorised block (bounds memory: chunk x nodes arrays)
 HALF_PI = 0.5 * np.pi
 #: every bridge called ok reproduces its gap and volume (or suction) to this relative tolerance
@@ -300,20 +301,21 @@ def _length(y0, yc, F, s, coarse=False, volume=False):
     out = np.empty(y0.size)
     vol = np.empty(y0.size) if volume else None
     thick = d <= 20.0 * y0
-    k = np.flatnonzero(thick)
-    if k.size:
-        U, W = (_U8, _W8) if coarse else (_U, _W)
-        y = y0[k, None] + d[k, None] * U**2
-        sc = s[k, None]
-        P = F[k, None] - sc * y * y
-        AB = (2.0 + sc * (y + y0[k, None])) * (2.0 * y + F[k, None] - sc * y * y)
-        Q = P / np.sqrt(AB)
-        root = 2.0 * np.sqrt(d[k])
+    every = bool(thick.all())  # the usual case: no copies of the rows
+    k = slice(None) if every else np.flatnonzero(thick)
+    if every or k.size:
+        U2, W = (_U8SQ, _W8) if coarse else (_USQ, _W)
+        y0k, dk, Fk, sk = (y0, d, F, s) if every else (y0[k], d[k], F[k], s[k])
+        y = y0k[:, None] + dk[:, None] * U2
+        sc = sk[:, None]
+        P = Fk[:, None] - sc * y * y  # 2 y cos(psi)
+        Q = P / np.sqrt((2.0 + sc * (y + y0k[:, None])) * (2.0 * y + P))  # A B, with B = 2 y + P
+        root = 2.0 * np.sqrt(dk)
         out[k] = root * (Q @ W)
         if volume:
             vol[k] = np.pi * root * ((y * y * Q) @ W)
-    k = np.flatnonzero(~thick)
-    if k.size:
+    if not every:
+        k = np.flatnonzero(~thick)
         if volume:
             out[k], vol[k] = _pieces(y0[k], yc[k], F[k], s[k])[:2]
         else:
@@ -321,7 +323,24 @@ def _length(y0, yc, F, s, coarse=False, volume=False):
     return (out, vol) if volume else out
 
 
+def _gap_equal(b, th, s, coarse=False):
+    """gap* alone of bridges between equal spheres (the suction solver's inner loop); NaN where none.
+
+    The general :func:`_pair` with rho = 1: both contacts alike (delta2 = beta), the neck between them
+    (beta + theta <= 90 deg, which also keeps beta on the rising side of its contact relation), and
+    gap* = 2 (L1 - (1 - cos beta)).
+    """
+    ok = (b > 0) & (th >= 0) & (b + th <= HALF_PI) & (s >= 0)
+    y1 = np.sin(b)
+    F = 2.0 * y1 * np.sin(b + th) + s * y1 * y1
+    y0 = F / (1.0 + np.sqrt(1.0 + s * F))
+    gap = 2.0 * _length(y0, y1, F, s, coarse) - 4.0 * np.sin(0.5 * b) ** 2
+    return np.where(ok, gap, np.nan)
+
+
 def _pair(b, th, s, rho, full=True, coarse=False):
+    if full is False and np.all(rho == 1.0):
+        return [_gap_equal(b, th, s, coarse)]
     n = b.size
     nan = np.full(n, np.nan)
     ok = (b > 0) & (th >= 0) & (th < HALF_PI) & (s >= 0) & (rho > 0)
