@@ -245,18 +245,13 @@ def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None) 
             notes.append("At a given gap and suction two bridges fit; the stable one (larger filling angle and "
                          "volume, continuous with the bridge at contact) is given.")
     if by_v.size:
-        beta[by_v], s_star[by_v], status[by_v] = br.solve_for_volume(th[by_v], v_in[by_v] / R[by_v] ** 3,
-                                                                     D[by_v] / R[by_v], ratio[by_v])
-        ok = by_v[status[by_v] == 0]
-        if ok.size:  # past the suction-controlled fold: stable at constant volume only
-            b_s, st_s = br.solve_for_suction(th[ok], s_star[ok], D[ok] / R[ok], ratio[ok])
-            for i, bs, st in zip(ok, b_s, st_s):
-                if st != 0 or abs(bs - beta[i]) > 1e-6 * beta[i]:
-                    note[i] = ("stable at constant volume only (past the suction-controlled fold): at this suction "
-                               "an open water supply would jump to a larger bridge; close to rupture")
-        b = br.bridge(beta[by_v], th[by_v], np.where(np.isfinite(s_star[by_v]), s_star[by_v], 0.0), ratio[by_v])
-        for k in fields:
-            fields[k][by_v] = getattr(b, k)
+        beta[by_v], s_star[by_v], status[by_v], past_fold, *values = _in_parallel(
+            _volume_rows, th[by_v], v_in[by_v] / R[by_v] ** 3, D[by_v] / R[by_v], ratio[by_v])
+        for k, v in zip(fields, values):
+            fields[k][by_v] = v
+        for i in by_v[past_fold > 0]:
+            note[i] = ("stable at constant volume only (past the suction-controlled fold): at this suction "
+                       "an open water supply would jump to a larger bridge; close to rupture")
     shape = br.Bridge(**fields)
     return BridgeResult(source, {"R": R, "gamma": gamma, "contact_angle_rad": th, "gap": D, "ratio": ratio}, beta,
                         s_star * gamma / R, shape, status, note, labels, notes)
@@ -267,9 +262,26 @@ _PARALLEL_ROWS = 40_000  # below this, one process is faster than starting a sec
 
 def _suction_rows(th, s, D, rho):
     """Suction-controlled rows: (beta, status, every field of the bridge) — one unit of parallel work."""
-    beta, status = br.solve_for_suction(th, s, D, rho)
-    b = br.bridge(beta, th, np.where(status == 0, s, 0.0), rho)
+    beta, status, b = br.bridge_at_suction(th, s, D, rho)
     return (beta, status, *(getattr(b, k) for k in br.Bridge.__dataclass_fields__))
+
+
+def _volume_rows(th, V, D, rho):
+    """Volume-controlled rows (V = V_w / R^3): (beta, s*, status, past the suction-controlled fold (1.0 or 0.0),
+    every field of the bridge) — one unit of parallel work.
+
+    A bridge is past the fold when the stable bridge at its own suction and gap (suction control) is not
+    this one: an open water supply would make it jump to a larger bridge.
+    """
+    beta, s, status = br.solve_for_volume(th, V, D, rho)
+    ok = np.flatnonzero(status == 0)
+    past = np.zeros(beta.size)
+    if ok.size:
+        b_s, st_s = br.solve_for_suction(th[ok], s[ok], D[ok], rho[ok])
+        with np.errstate(invalid="ignore"):
+            past[ok] = (st_s != 0) | ~(np.abs(b_s - beta[ok]) <= 1e-6 * beta[ok])
+    b = br.bridge(beta, th, np.where(np.isfinite(s), s, 0.0), rho)
+    return (beta, s, status, past, *(getattr(b, k) for k in br.Bridge.__dataclass_fields__))
 
 
 def _in_parallel(solver, *columns):

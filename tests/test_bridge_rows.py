@@ -1,0 +1,69 @@
+"""Issue 20: `bridge solve`'s rows in one or two processes, and the note on volume-controlled bridges past the
+suction-controlled fold."""
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+from scipy.optimize import brentq
+
+import capred.pipelines.bridge as pb
+from capred.physics import bridge as br
+
+
+def thin_bridge(gap, s):
+    """Equal spheres, theta = 0, R = 1: the bridge of smaller filling angle at (gap*, s*), unstable under
+    suction control (on the rising side of gap*(beta))."""
+    grid = np.linspace(0.001, 1.5, 3000)
+    j = int(np.nanargmax(br.gap_of(grid, 0.0, s)))
+    b = brentq(lambda x: float(br.gap_of(x, 0.0, s)) - gap, grid[0], grid[j], xtol=1e-15)
+    return br.bridge(b, 0.0, s)
+
+
+def write_rows(path, gap, volume):
+    with open(path, "w") as fh:
+        fh.write("R [mm],contact_angle [deg],gap [mm],V_w [mm^3]\n")
+        fh.writelines(f"1.0,0.0,{g!r},{v!r}\n" for g, v in zip(gap, volume))
+
+
+def test_volume_rows_past_the_suction_fold_carry_the_note(tmp_path):
+    # the thin bridges of (gap*, s*) = (0.1, 2), (0.3, 0.1), (0.3, 0.5) are the ones held at constant volume
+    # (tests/test_bridge.py: the volume along the arc rises with the neck there), past the suction fold; the
+    # stable bridges of the same pairs, and a bridge at contact, are not
+    pairs = [(0.1, 2.0), (0.3, 0.1), (0.3, 0.5)]
+    thin = [float(thin_bridge(g, s).volume) for g, s in pairs]
+    stable = [float(br.bridge(br.solve_for_suction(0.0, s, g)[0], 0.0, s).volume[0]) for g, s in pairs]
+    gap = [g for g, _ in pairs] * 2 + [0.0]
+    write_rows(tmp_path / "v.csv", gap, thin + stable + [1e-3])
+    res = pb.solve_bridges(tmp_path / "v.csv")
+    assert np.all(res.status == 0)
+    past = ["past the suction-controlled fold" in n for n in res.note]
+    assert past == [True] * 3 + [False] * 4
+
+
+@pytest.mark.parametrize("control", ["suction", "V_w"])
+def test_two_processes_give_the_rows_of_one(tmp_path, monkeypatch, control):
+    rng = np.random.default_rng(5)
+    n = 41
+    R = rng.uniform(0.1, 2.0, n)
+    th = rng.uniform(0.0, 60.0, n)
+    D = rng.uniform(0.0, 0.05, n) * R
+    s = 10 ** rng.uniform(-1, 1.5, n)  # kPa; about a third beyond rupture
+    if control == "V_w":
+        s_star = s * 1e3 * R * 1e-3 / 0.0728
+        b, st = br.solve_for_suction(np.radians(th), s_star, D / R)
+        x = np.where(st == 0, br.bridge(b, np.radians(th), s_star).volume * R**3, 1e-9 * R**3)  # mm^3
+    else:
+        x = s
+    unit = "kPa" if control == "suction" else "mm^3"
+    with open(tmp_path / "in.csv", "w") as fh:
+        fh.write(f"R [mm],contact_angle [deg],gap [mm],{control} [{unit}]\n")
+        fh.writelines(",".join(map(repr, row)) + "\n" for row in zip(R.tolist(), th.tolist(), D.tolist(), x.tolist()))
+    one = pb.solve_bridges(tmp_path / "in.csv")
+    monkeypatch.setattr(pb, "_PARALLEL_ROWS", 10)  # both halves of the 41 rows, the second in a forked process
+    two = pb.solve_bridges(tmp_path / "in.csv")
+    assert 0 < np.sum(one.status == 0) < n  # bridges and rows without one
+    assert np.array_equal(one.status, two.status)
+    assert one.note == two.note
+    for k, v in one.columns().items():
+        # the same solver row by row; the matrix products of the quadrature may round differently on another
+        # number of rows (last bit), which can move a root finder's stopping point within its tolerance: 1e-9
+        assert_allclose(two.columns()[k], v, rtol=1e-9, atol=0)
