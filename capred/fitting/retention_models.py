@@ -40,7 +40,7 @@ from ..errors import FitError
 from ..physics import retention as rp
 from .nonlinear import NonlinearFit, fit_curve, summarize_fit
 
-_SCREEN_POINTS = 200  # data points used to rank the start grid (all points are used for the refinement)
+_SCREEN_POINTS = 100  # data points used to rank the start grid (all points are used for the refinement)
 _CHUNK = 2_000_000  # grid points x data points evaluated at once
 
 
@@ -758,8 +758,9 @@ def _cross(A, B, shape):
 
 
 def _mixture_weight(W, Y, m1, m2, G11, G12, G22, m1y, m2y):
-    """The weight w of S = w S1 + (1 - w) S2 from the unconstrained weighted linear fit y = c0 + c1 S1 + c2 S2
-    (its normal equations from the moments), clipped to [0, 1]."""
+    """The weight w = c1/(c1 + c2) of S = w S1 + (1 - w) S2 from the unconstrained weighted linear fit
+    y = c0 + c1 S1 + c2 S2 (its normal equations from the moments, regularised by 1e-14 of their trace), clipped
+    to [0, 1]; 0.5 where undefined."""
     m1, m2, G11, G12, G22, m1y, m2y = np.broadcast_arrays(m1, m2, G11, G12, G22, m1y, m2y)
     A = np.stack([np.stack([np.full_like(m1, W), m1, m2], -1), np.stack([m1, G11, G12], -1),
                   np.stack([m2, G12, G22], -1)], -2)
@@ -865,10 +866,11 @@ def _distinct(U, cost, close: float) -> np.ndarray:
     return np.array(out)
 
 
-def _interval_walk(pb: _Problem, u, cost: float, converged: bool, j: int, lo, hi):
-    """Refine a fit of a model with kinks at the data suctions in parameter ``j`` (fitting coordinates ``u``):
-    a bounded fit in each interval between neighbouring distinct data suctions around ``u[j]`` (two each side),
-    moving on while the lowest lies less than two intervals from the unexplored ones. Returns (u, converged)."""
+def _interval_walk(pb: _Problem, u, j: int, lo, hi):
+    """Polish a start of a model with kinks at the data suctions in parameter ``j`` (fitting coordinates ``u``,
+    box ``lo``, ``hi``): a bounded fit in each interval between neighbouring distinct data suctions around
+    ``u[j]`` (two each side), moving on while the lowest lies less than two intervals from the unexplored ones.
+    Returns (u, cost, converged)."""
     o = pb.offset[j]
     knots = np.unique(pb.s[pb.s > 0])
     knots = np.log(knots - o) if o is not None else knots
@@ -876,20 +878,23 @@ def _interval_walk(pb: _Problem, u, cost: float, converged: bool, j: int, lo, hi
     edges = np.unique(np.concatenate([[lo_all[j]], knots[(knots > lo_all[j]) & (knots < hi_all[j])],
                                       [hi_all[j]]]))
     here = int(np.clip(np.searchsorted(edges, u[j], side="right") - 1, 0, edges.size - 2))
+    start, cost, converged = u, np.inf, False
     done: set[int] = set()
     while True:
-        todo = [i for i in range(here - 2, here + 3) if 0 <= i < edges.size - 1 and i not in done]
-        if not todo:
-            return u, converged
-        done.update(todo)
-        U0 = np.repeat(u[None, :], len(todo), axis=0)
-        LO, HI = np.repeat(lo[None, :], len(todo), axis=0), np.repeat(hi[None, :], len(todo), axis=0)
-        LO[:, j], HI[:, j] = edges[todo], edges[np.array(todo) + 1]
-        U0[:, j] = np.where(np.array(todo) == here, np.clip(u[j], LO[:, j], HI[:, j]), 0.5 * (LO[:, j] + HI[:, j]))
+        todo = np.array([i for i in range(here - 2, here + 3) if 0 <= i < edges.size - 1 and i not in done])
+        if todo.size == 0:
+            return u, cost, converged
+        done.update(todo.tolist())
+        U0 = np.repeat(u[None, :], todo.size, axis=0)
+        LO, HI = np.repeat(lo[None, :], todo.size, axis=0), np.repeat(hi[None, :], todo.size, axis=0)
+        LO[:, j], HI[:, j] = edges[todo], edges[todo + 1]
+        U0[:, j] = np.clip(start[j], LO[:, j], HI[:, j])
+        inner = (U0[:, j] <= LO[:, j]) | (U0[:, j] >= HI[:, j])
+        U0[:, j] = np.where(inner, 0.5 * (LO[:, j] + HI[:, j]), U0[:, j])  # other intervals: from their middle
         Ut, ct, okt = _levenberg_marquardt(pb, U0, LO, HI, ftol=1e-14, max_iter=200)
         b = int(np.argmin(ct))
         if ct[b] < cost:
-            u, cost, converged, here = Ut[b], float(ct[b]), bool(okt[b]), todo[b]
+            u, cost, converged, here = Ut[b], float(ct[b]), bool(okt[b]), int(todo[b])
 
 
 def _knots(s, most: int = 150) -> np.ndarray:
@@ -1062,13 +1067,15 @@ def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = 
         # phase 2 on all points: polish the distinct end points within 1e-4 of the best
         keep = _distinct(U1, cost1, 1e-4)
         order = order[keep]
-        U2, cost2, ok2 = _levenberg_marquardt(pb, U1[keep], ulo[order], uhi[order], ftol=1e-14, max_iter=200)
-        i = int(np.argmin(cost2))
-        u, converged = U2[i], bool(ok2[i])
         kinked = [j for j, p in enumerate(pb.shape) if model.parameter(p).kinks_at_data]
-        if kinked and np.unique(s[s > 0]).size > _knots(s).size:  # the start boxes held several data suctions
-            u, converged = _interval_walk(pb, u, float(cost2[i]), converged, kinked[0], ulo[order[i]],
-                                          uhi[order[i]])
+        if kinked and np.unique(s[s > 0]).size > _knots(s).size:
+            # the start boxes held several data suctions: polish in the intervals between them around each
+            walks = [_interval_walk(pb, U1[r], kinked[0], ulo[o], uhi[o]) for r, o in zip(keep, order)]
+            u, _, converged = min(walks, key=lambda w: w[1])
+        else:
+            U2, cost2, ok2 = _levenberg_marquardt(pb, U1[keep], ulo[order], uhi[order], ftol=1e-14, max_iter=200)
+            i = int(np.argmin(cost2))
+            u, converged = U2[i], bool(ok2[i])
         best_x = pb.x_rows(u[None, :])[0]
     optimum = pb.full(best_x)
     if model.canonical is not None and not fixed:

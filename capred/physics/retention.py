@@ -154,7 +154,9 @@ def bc_effective_saturation(s, s_e, bc_lambda):
     """
     s = np.asarray(s, float)
     with np.errstate(divide="ignore"):
-        return np.where(s > s_e, (s_e / np.where(s > 0, s, 1.0)) ** bc_lambda, 1.0)
+        # exp(λ ln min(s_e/s, 1)): exactly 1 up to s_e; the logarithm is taken once per (s, s_e) when λ varies
+        # on another broadcast axis
+        return np.exp(bc_lambda * np.log(np.minimum(s_e / np.where(s > 0, s, 0.0), 1.0)))
 
 
 def bc_water(s, y_r, y_s, s_e, bc_lambda):
