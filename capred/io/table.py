@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import difflib
 import re
+from functools import lru_cache
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -72,6 +73,7 @@ class Column:
         return self.kind == "text" or self.name in DECISIVE_COLUMNS
 
 
+@lru_cache(maxsize=4096)
 def _key(text: str) -> str:
     """Normalised spelling used to match headers: lower case, '_' between words."""
     k = re.sub(r"[\s\-./]+", "_", text.strip().lower())
@@ -202,21 +204,32 @@ def _parse_column(cells: list[str], decimal_comma: bool) -> np.ndarray | None:
 
 def _match_header(header: str, lookup: dict[str, Column]) -> tuple[Column | None, str | None]:
     """Column a header names, and the unit it declares (None = default)."""
-    text = header.strip()
-    m = _UNIT_IN_HEADER.match(text)
-    if m and m.group("name"):
-        col = lookup.get(_key(m.group("name")))
-        return (col, m.group("unit")) if col else (None, None)
-    col = lookup.get(_key(text))
+    declared, key, unit, stem, suffix = _header_spellings(header)
+    col = lookup.get(key)
+    if declared:
+        return (col, unit) if col else (None, None)
     if col is not None:
         return col, None
-    # unit as a suffix: tau_max_kPa, z1_mm
-    if "_" in text:
-        stem, suffix = text.rsplit("_", 1)
-        col = lookup.get(_key(stem))
+    if stem is not None:  # unit as a suffix: tau_max_kPa, z1_mm
+        col = lookup.get(stem)
         if col is not None and col.kind != "text":
             return col, suffix
     return None, None
+
+
+@lru_cache(maxsize=8192)
+def _header_spellings(header: str) -> tuple[bool, str, str | None, str | None, str | None]:
+    """(declares a unit in brackets, key of the name, that unit, key of the stem before a last '_', the suffix)
+    of a header cell: what _match_header looks up (cached: the first rows of a file are searched for every
+    candidate delimiter)."""
+    text = header.strip()
+    m = _UNIT_IN_HEADER.match(text)
+    if m and m.group("name"):
+        return True, _key(m.group("name")), m.group("unit"), None, None
+    if "_" in text:
+        stem, suffix = text.rsplit("_", 1)
+        return False, _key(text), None, _key(stem), suffix
+    return False, _key(text), None, None, None
 
 
 def _lookup(schema: list[Column]) -> dict[str, Column]:

@@ -234,8 +234,18 @@ class ShearResult(Result):
         """results (one row per test) and summary (one row per material and model)."""
         cached = self.__dict__.get("_tables")
         if cached is None:
-            cached = self.__dict__["_tables"] = {"results": self._results_table(), "summary": _flat_summary(self)}
+            import pandas as pd
+
+            cached = self.__dict__["_tables"] = {"results": pd.DataFrame(self._results_columns(), copy=False),
+                                                 "summary": _flat_summary(self)}
         return cached
+
+    def csv_tables(self) -> dict:
+        """The tables as CSV files take them: results as plain columns (no DataFrame is built)."""
+        cached = self.__dict__.get("_tables")
+        if cached is not None:
+            return cached
+        return {"results": self._results_columns(), "summary": _flat_summary(self)}
 
     def season_rows(self) -> list[dict]:
         rows = []
@@ -320,9 +330,8 @@ class ShearResult(Result):
         keys = tuple(columns)
         return [dict(zip(keys, vals)) for vals in zip(*columns.values())]
 
-    def _results_table(self):
-        import pandas as pd
-
+    def _results_columns(self) -> dict:
+        """The columns of results.csv (name -> array); the arrays as they are, no copies."""
         from ..result import record_columns
 
         t = self.tests
@@ -341,8 +350,8 @@ class ShearResult(Result):
             cols["displacement_at_peak [mm]"] = t["displacement_at_peak"] * 1e3
             cols["tau_residual [kPa]"] = t["tau_residual"] / 1e3
             cols["dilatancy_angle [deg]"] = t["dilatancy_angle"]
-        cols["flags"] = self._flag_texts()
-        return pd.DataFrame(cols, copy=False)  # columns as they are: no second copy of 100,000-row arrays
+        cols["flags"] = np.asarray(self._flag_texts(), dtype=object)
+        return cols
 
     def _flag_texts(self) -> list[str]:
         cached = self.__dict__.get("_flags")
