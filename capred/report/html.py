@@ -361,15 +361,27 @@ font-size: 9pt; margin: 1.5em; } table { border-collapse: collapse; } th, td { b
 padding: 2px 6px; text-align: right; } th { background: #eee; } td.l, th.l { text-align: left; }</style></head>
 <body><h1>capred season: {{ n }} runs</h1>
 <table><tr>{% for c in columns %}<th class="l">{{ c }}</th>{% endfor %}</tr>
-{% for row in rows %}<tr>{% for c, v in row %}<td class="{{ 'l' if c in ('input', 'command', 'status', 'material',
-'best_model') else '' }}">{% if c == 'report' and v %}<a href="{{ v }}">report</a>{% else %}{{ v }}{% endif %}</td>
-{% endfor %}</tr>{% endfor %}</table></body></html>
+{{ body }}</table></body></html>
 """
+_SEASON_LEFT = ("input", "command", "status", "material", "best_model")
 
 
 def render_season(frame) -> str:
-    """The season table of a batch as one HTML page linking each run's report.html."""
-    rows = [[(c, fmt(v) if isinstance(v, float) else ("" if v is None else str(v))) for c, v in zip(frame.columns, r)]
-            for r in frame.itertuples(index=False)]
+    """The season table of a batch as one HTML page linking each run's report.html.
+
+    The rows are built here, column by column (a template loop per cell cost ~0.8 s for 1,000 files).
+    """
+    from markupsafe import Markup, escape
+
+    columns = [str(c) for c in frame.columns]
+    cells = []
+    for c, name in zip(frame.columns, columns):
+        opened = '<td class="l">' if name in _SEASON_LEFT else '<td class="">'
+        texts = [fmt(v) if isinstance(v, float) else ("" if v is None else str(v)) for v in frame[c].tolist()]
+        if name == "report":
+            cells.append([opened + (f'<a href="{escape(v)}">report</a>' if v else "") + "</td>\n" for v in texts])
+        else:  # str(): a str plus Markup would escape the str
+            cells.append([opened + str(escape(v)) + "</td>\n" for v in texts])
+    body = Markup("".join(["<tr>" + "".join(row) + "</tr>" for row in zip(*cells)]))
     return _template("season").render(
-        n=int(frame["input"].nunique()) if len(frame) else 0, columns=list(frame.columns), rows=rows)
+        n=int(frame["input"].nunique()) if len(frame) else 0, columns=list(frame.columns), body=body)
