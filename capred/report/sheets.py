@@ -50,6 +50,7 @@ RC = {
     "legend.fontsize": 7.0,
     "legend.title_fontsize": 7.0,
     "figure.titlesize": 9.0,
+    "axes.titley": 1.0,  # titles at the top of the axes (no panel has top ticks): no search for a place per draw
     "lines.linewidth": 1.0,
     "lines.markersize": 4.0,
     "axes.linewidth": 0.6,
@@ -376,14 +377,48 @@ def compose_raster(sheet: Sheet, panel_rasters: list, dpi: float):
 
 
 def encode_png(image, dpi: float, compress_level: int = 3) -> bytes:
-    """PNG bytes of an RGB array with its resolution (pHYs) and no text chunk (no time, no software)."""
-    import io
+    """PNG bytes of an RGB array with its resolution (pHYs) and no text chunk (no time, no software).
 
-    from PIL import Image
+    Every row is stored unfiltered (PNG filter type 0) and deflated at ``compress_level``: a figure is mostly
+    flat white with thin lines, which deflate alone packs as small as adaptive filtering does (about 320 kB for
+    a 180 x 135 mm sheet at 300 dpi) in a third of the time.
 
-    buf = io.BytesIO()
-    Image.fromarray(image, "RGB").save(buf, format="png", dpi=(dpi, dpi), compress_level=compress_level)
-    return buf.getvalue()
+    Parameters
+    ----------
+    image : ndarray
+        (rows, columns, 3) uint8 RGB pixels.
+    dpi : float
+        Resolution written in the pHYs chunk [dots per inch], stored as whole pixels per metre.
+    compress_level : int
+        zlib level, 0-9.
+
+    Returns
+    -------
+    bytes
+        The PNG file (signature, IHDR, pHYs, IDAT, IEND), the same bytes for the same pixels.
+    """
+    import struct
+    import zlib
+
+    import numpy as np
+
+    img = np.asarray(image, dtype=np.uint8)
+    if img.ndim != 3 or img.shape[2] != 3:
+        raise ValueError(f"encode_png wants (rows, columns, 3) RGB pixels, got shape {img.shape}")
+    h, w = img.shape[:2]
+    rows = np.empty((h, 3 * w + 1), np.uint8)
+    rows[:, 0] = 0  # filter type None
+    rows[:, 1:] = img.reshape(h, 3 * w)
+
+    def chunk(tag: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + tag + data + struct.pack(">I", zlib.crc32(tag + data))
+
+    ppm = int(dpi / 0.0254 + 0.5)  # pixels per metre, as PIL rounds them
+    return b"".join([b"\x89PNG\r\n\x1a\n",
+                     chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)),  # 8-bit RGB, no interlace
+                     chunk(b"pHYs", struct.pack(">IIB", ppm, ppm, 1)),  # unit: metre
+                     chunk(b"IDAT", zlib.compress(rows.tobytes(), compress_level)),
+                     chunk(b"IEND", b"")])
 
 
 # --- one figure per sheet ------------------------------------------------------------------------------------
