@@ -493,9 +493,12 @@ def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitt
     Monte-Carlo error of the probabilities, measured as their SD over 50 seeds (it follows
     sqrt(p(1 - p)/R)): on a contested table (Bishop against Own 1 at p = 0.48/0.52; 21 wet tests,
     chi = (S_R + chi1)/2, noise 0.15 kPa) SD 0.040 at R = 200, 0.017 at 1000, 0.010 at 2000 and
-    0.0086 at 4000; on the bundled sample (steel: Own 2 wins 97.4 %) 0.0117, 0.0047, 0.0038, 0.0027.
-    R = 2000 (the default of `capred shear`) holds the worst case (p = 0.5) near 0.01, the resolution
-    at which the probabilities are printed; it costs ~0.06 ms per replicate and material.
+    0.0086 at 4000; on the bundled sample (steel: Own 2 wins 97.4 %) 0.0075 at R = 500, 0.0052 at 1000,
+    0.0034 at 2000 and 0.0023 at 4000, the binomial values to +/- 10 % (`benchmarks/bench_bootstrap.py
+    --mc`). R = 2000 (the default of `capred shear`) holds the worst case (p = 0.5) near 0.01, the
+    resolution at which the probabilities are printed (R = 1000 would leave 0.016 there). Its cost is
+    mostly fixed: ~2 ms per material (the affine check of each model, the draws, the percentiles) plus
+    ~1 us per replicate.
 
     Parameters
     ----------
