@@ -924,55 +924,59 @@ def _levenberg_marquardt(pb: _Problem, U, lo, hi, ftol: float, max_iter: int):
     converged = np.zeros(G, bool)
     steps = np.zeros(G, int)
     eye = np.eye(k, dtype=bool)
-    for _ in range(64 * max_iter):
-        a = np.flatnonzero(active)
-        if a.size == 0:
-            break
-        Ja, Ua, ca = J[a], U[a], cost[a]
-        g = np.einsum("gnk,gn->gk", Ja, R[a])
-        A = np.einsum("gnk,gnl->gkl", Ja, Ja)
-        frozen = ((Ua <= lo[a]) & (g > 0)) | ((Ua >= hi[a]) & (g < 0))
-        d = np.maximum(np.diagonal(A, axis1=1, axis2=2), 1e-300)
-        M = A + (lam[a][:, None] * d)[:, :, None] * eye
-        M = np.where(frozen[:, :, None] | frozen[:, None, :], 0.0, M) + frozen[:, :, None] * eye
-        g = np.where(frozen, 0.0, g)
-        with np.errstate(all="ignore"):
-            try:
-                step = np.linalg.solve(M, -g[:, :, None])[:, :, 0]
-                # the decrease of the cost that the undamped linearised model promises (Gauss-Newton)
-                M0 = np.where(frozen[:, :, None] | frozen[:, None, :], 0.0, A + (1e-12 * d)[:, :, None] * eye)
-                promised = np.einsum("gk,gk->g", g, np.linalg.solve(M0 + frozen[:, :, None] * eye,
-                                                                      g[:, :, None])[:, :, 0])
-            except np.linalg.LinAlgError:
-                step, promised = np.full(g.shape, np.nan), np.full(a.size, np.inf)
-                for i in range(a.size):
-                    try:
-                        step[i] = np.linalg.solve(M[i], -g[i])
-                    except np.linalg.LinAlgError:
-                        pass
-        ok = np.all(np.isfinite(step), axis=1)
-        step = np.where(ok[:, None], step, 0.0)
-        trial = np.clip(Ua + step, lo[a], hi[a])
-        step = trial - Ua
-        c_t = np.full(a.size, np.inf)
-        R_t, J_t = pb.resid_jac_rows(trial, hi[a])
-        c_t[ok] = np.einsum("gn,gn->g", R_t[ok], R_t[ok])
-        acc = c_t < ca
-        small = (ca - c_t <= ftol * ca) | (np.max(np.abs(step), axis=1) <= 1e-13 * (1 + np.max(np.abs(Ua), axis=1)))
-        i = a[acc]
-        lam[i] = np.maximum(lam[i] * 0.2, 1e-12)
-        U[i], R[i], J[i], cost[i] = trial[acc], R_t[acc], J_t[acc], c_t[acc]
-        steps[i] += 1
-        stop = i[small[acc]]
-        active[stop], converged[stop] = False, True
-        active[i[~small[acc] & (steps[i] >= max_iter)]] = False
-        # a rejected step: more damping; no descent left (the model promises less than ftol, or the damping
-        # has made every step vanish): a (bounded) minimum
-        rej = ~acc
-        j = a[rej]
-        lam[j] *= 8.0
-        flat = j[(lam[j] > 1e14) | (promised[rej] <= ftol * ca[rej]) | frozen[rej].all(1)]
-        active[flat], converged[flat] = False, True
+
+    def solve(M, rhs):
+        try:
+            return np.linalg.solve(M, rhs[:, :, None])[:, :, 0]
+        except np.linalg.LinAlgError:  # a singular row: solve row by row, NaN where singular
+            out = np.full(rhs.shape, np.nan)
+            for i in range(M.shape[0]):
+                try:
+                    out[i] = np.linalg.solve(M[i], rhs[i])
+                except np.linalg.LinAlgError:
+                    pass
+            return out
+
+    with np.errstate(all="ignore"):
+        for _ in range(64 * max_iter):
+            a = np.flatnonzero(active)
+            if a.size == 0:
+                break
+            Ja, Ua, ca, loa, hia = J[a], U[a], cost[a], lo[a], hi[a]
+            g = np.einsum("gnk,gn->gk", Ja, R[a])
+            A = np.einsum("gnk,gnl->gkl", Ja, Ja)
+            frozen = ((Ua <= loa) & (g > 0)) | ((Ua >= hia) & (g < 0))
+            any_frozen = frozen.any()
+            if any_frozen:  # frozen variables: their rows and columns of the system replaced by the identity
+                off = frozen[:, :, None] | frozen[:, None, :]
+                A = np.where(off, 0.0, A) + frozen[:, :, None] * eye
+                g = np.where(frozen, 0.0, g)
+            d = np.maximum(np.diagonal(A, axis1=1, axis2=2), 1e-300)
+            step = solve(A + (lam[a][:, None] * d)[:, :, None] * eye, -g)
+            ok = np.all(np.isfinite(step), axis=1)
+            trial = np.clip(Ua + np.where(ok[:, None], step, 0.0), loa, hia)
+            step = trial - Ua
+            R_t, J_t = pb.resid_jac_rows(trial, hia)
+            c_t = np.where(ok, np.einsum("gn,gn->g", R_t, R_t), np.inf)
+            acc = c_t < ca
+            small = (ca - c_t <= ftol * ca) | (np.max(np.abs(step), axis=1) <= 1e-13 * (1 + np.max(np.abs(Ua), axis=1)))
+            i = a[acc]
+            lam[i] = np.maximum(lam[i] * 0.2, 1e-12)
+            U[i], R[i], J[i], cost[i] = trial[acc], R_t[acc], J_t[acc], c_t[acc]
+            steps[i] += 1
+            stop = i[small[acc]]
+            active[stop], converged[stop] = False, True
+            active[i[~small[acc] & (steps[i] >= max_iter)]] = False
+            rej = ~acc
+            if rej.any():
+                # a rejected step: more damping; no descent left (the undamped Gauss-Newton step promises a
+                # decrease below ftol, or the damping has made every step vanish): a (bounded) minimum
+                j = a[rej]
+                lam[j] *= 8.0
+                A_r, g_r = A[rej], g[rej]
+                promised = np.einsum("gk,gk->g", g_r, solve(A_r + (1e-12 * d[rej])[:, :, None] * eye, g_r))
+                flat = j[(lam[j] > 1e14) | (promised <= ftol * ca[rej]) | frozen[rej].all(1)]
+                active[flat], converged[flat] = False, True
     return U, cost, converged
 
 
