@@ -32,10 +32,12 @@ def test_single_threaded_blas_sets_one_thread_and_restores_the_count():
 
 def test_float_cells_print_as_fmt_prints_each_value():
     values = np.array([np.nan, np.inf, -np.inf, -0.0, 0.0, 1e-300, 123456.7, 0.1 + 0.2, -2.5e-7, 42.0])
-    cells = report_html._float_cells(values)
-    assert cells == [fmt(float(v)) for v in values]
+    cells = report_html._float_cells(np.stack([values, values[::-1]]))
+    assert cells == [[fmt(float(v)) for v in values], [fmt(float(v)) for v in values[::-1]]]
     # by hand: 4 significant digits, '—' where not finite
-    assert cells[:3] == ["—"] * 3 and cells[6] == "1.235e+05" and cells[7] == "0.3" and cells[9] == "42"
+    assert cells[0][:3] == ["—"] * 3 and cells[0][6] == "1.235e+05" and cells[0][7] == "0.3" and cells[0][9] == "42"
+    many = np.random.default_rng(1).standard_cauchy(20_000) * 10.0 ** np.random.default_rng(2).integers(-12, 12, 20_000)
+    assert report_html._float_cells(many[None, :])[0] == [fmt(float(v)) for v in many]
 
 
 #: the summary-table rows of report.html as its template built them, cell by cell (before the rows were built
