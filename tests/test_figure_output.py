@@ -307,3 +307,25 @@ def test_progress_tasks_without_a_display_do_nothing():
     with showing(False):
         with task("y") as advance:
             advance()
+
+
+@pytest.mark.skipif(not hasattr(__import__("os"), "fork"), reason="no fork on this platform")
+def test_a_forked_child_parses_and_opens_its_own_fonts():
+    """Parsed mathtext keeps the font objects its glyphs are drawn from; fonts opened before a fork read their
+    files through offsets shared with the parent, so a child must not reuse them: it starts with no cached
+    parse and no shared parser."""
+    import os
+
+    from matplotlib.mathtext import MathTextParser
+
+    from capred.report import sheets
+
+    sheets.warm_up(72)  # parses mathtext labels with the shared parser
+    assert sheets._MATHTEXT and MathTextParser._parse_cached.cache_info().currsize > 0
+    pid = os.fork()
+    if pid == 0:  # the child: report by exit status only
+        ok = not sheets._MATHTEXT and MathTextParser._parse_cached.cache_info().currsize == 0
+        os._exit(0 if ok else 1)
+    _, status = os.waitpid(pid, 0)
+    assert os.waitstatus_to_exitcode(status) == 0
+    assert sheets._MATHTEXT  # the parent keeps its own

@@ -19,6 +19,7 @@ no random id (``RC["svg.hashsalt"]``, ``NO_STAMP``): a rerun writes the same byt
 """
 from __future__ import annotations
 
+import os
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Callable
@@ -159,6 +160,23 @@ PAD_MM = 1.0
 
 
 _MATHTEXT = []  # the one mathtext parser of every capred figure drawn by Agg (made on first use)
+
+
+def _forget_fonts_after_fork() -> None:
+    """In a forked child: drop the shared mathtext parser and every cached parse. A parse keeps the font
+    objects its glyphs are drawn from, and font objects opened before the fork read their files through
+    offsets the parent shares (FreeType then fails: "too many hints", "invalid outline"); matplotlib forgets
+    its own font cache at a fork, this forgets the parses, so the child opens fonts of its own."""
+    import sys
+
+    _MATHTEXT.clear()
+    mathtext = sys.modules.get("matplotlib.mathtext")
+    if mathtext is not None:
+        mathtext.MathTextParser._parse_cached.cache_clear()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_fonts_after_fork)
 
 
 def _canvas(fig):
