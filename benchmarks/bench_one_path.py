@@ -1,7 +1,9 @@
 """The README's first command against its floor (issue 20): CPU of the whole process tree and wall time.
 
 What it claims: ``capred shear --sample --out DIR`` (every default output:
-tables, JSON, one composite PNG per figure sheet at 300 dpi, report.html)
+tables, JSON, one PNG at 300 dpi per main figure sheet -- the report sheet of
+each of the sample's two materials, each drawn as one figure laid out once;
+the capillary-stress sheets only with ``--figures all`` -- and report.html)
 costs <= 2.0x its floor in CPU seconds (aim: 1.5x). The floor is what any
 such run must pay: ``python -c "import capred, matplotlib.pyplot"`` plus one
 ``savefig`` of a 2x2 figure the size of one of capred's sheets (180 x 135 mm,
