@@ -379,33 +379,45 @@ class RankingUncertainty:
 BLOCK_ELEMENTS = 1_000_000
 
 
-def _pointwise_affine(model: str, d: esm.ModelInputs):
-    """(e0, beta, gamma) with tau_pred(c, b) - tau = e0 + (c - c0) beta + (b - b0) gamma per test, or None.
+def _affine_probes(d: esm.ModelInputs) -> dict:
+    """What `_pointwise_affine` evaluates every model on, built once for all of them.
 
-    None when the model's prediction of a test is not affine in the envelope (c, b) or depends on which
-    other tests are in the set (e.g. a parameter fitted on the set, as Fredlund's tan phi_b): such a
-    model is evaluated replicate by replicate.
+    The five envelopes (c0, b0), (c0 + hc, b0), (c0, b0 + hb), the probe (c0 - 2 hc, b0 - 3 hb) and
+    (c0 + hc, b0 - hb) of the tests in one set repeated five times (one prediction), and two subsets of the
+    tests (half of them; all with the first half twice) for the checks that a model predicts test by test.
     """
     n = d.sigma_N.size
     c0, b0 = float(d.c[0]), float(d.tan_phi[0])
     hc, hb = 0.1 * max(abs(c0), 1.0), 0.1 * max(abs(b0), 1e-3)
-    # the five envelopes of the test in one prediction of the set repeated five times: (c0, b0), (c0 + hc, b0),
-    # (c0, b0 + hb), the probe (c0 - 2 hc, b0 - 3 hb) and (c0 + hc, b0 - hb) for the subset checks. A model that
-    # predicts test by test gives each copy what it gives alone; one that depends on the set fails a check
-    # below (the subsets), and is then evaluated replicate by replicate as before.
     envelopes = np.array([(c0, b0), (c0 + hc, b0), (c0, b0 + hb), (c0 - 2 * hc, b0 - 3 * hb), (c0 + hc, b0 - hb)])
-    stacked = d.subset(np.tile(np.arange(n), len(envelopes)))
-    t0, tc, tb, probe, full = _tau(model, stacked, c=np.repeat(envelopes[:, 0], n),
-                                   tan_phi=np.repeat(envelopes[:, 1], n)).reshape(len(envelopes), n)
+    subs = (np.arange(n)[::-2], np.r_[np.arange(n), np.zeros(max(n // 2, 1), int)])
+    parts = [d.subset(sub) for sub in subs]
+    return {"n": n, "c0": c0, "b0": b0, "hc": hc, "hb": hb, "stacked": d.subset(np.tile(np.arange(n), 5)),
+            "c": np.repeat(envelopes[:, 0], n), "tan_phi": np.repeat(envelopes[:, 1], n), "subs": subs,
+            "parts": [(p, np.full(p.sigma_N.size, c0 + hc), np.full(p.sigma_N.size, b0 - hb)) for p in parts]}
+
+
+def _pointwise_affine(model: str, d: esm.ModelInputs, probes: dict | None = None):
+    """(e0, beta, gamma) with tau_pred(c, b) - tau = e0 + (c - c0) beta + (b - b0) gamma per test, or None.
+
+    None when the model's prediction of a test is not affine in the envelope (c, b) or depends on which
+    other tests are in the set (e.g. a parameter fitted on the set, as Fredlund's tan phi_b): such a
+    model is evaluated replicate by replicate. ``probes``: `_affine_probes` of ``d`` (made here if absent).
+
+    Three predictions: the five envelopes of `_affine_probes` at once (a model that predicts test by test
+    gives each copy of a test what it gives alone), then each subset alone at (c0 + hc, b0 - hb), which must
+    give what the whole set gave its tests (one that depends on the set fails there).
+    """
+    p = _affine_probes(d) if probes is None else probes
+    n, hc, hb = p["n"], p["hc"], p["hb"]
+    t0, tc, tb, probe, full = _tau(model, p["stacked"], c=p["c"], tan_phi=p["tan_phi"]).reshape(5, n)
     beta = (tc - t0) / hc
     gamma = (tb - t0) / hb
     scale = np.nanmax(np.abs(t0)) if np.isfinite(t0).any() else 1.0
     tol = 1e-9 * max(scale, 1.0)
     got, want = [probe], [t0 - 2 * hc * beta - 3 * hb * gamma]
-    for sub in (np.arange(n)[::-2], np.r_[np.arange(n), np.zeros(max(n // 2, 1), int)]):
-        part = d.subset(sub)
-        k = part.sigma_N.size
-        got.append(_tau(model, part, c=np.full(k, c0 + hc), tan_phi=np.full(k, b0 - hb)))
+    for sub, (part, c, b) in zip(p["subs"], p["parts"]):
+        got.append(_tau(model, part, c=c, tan_phi=b))
         want.append(full[sub])
     if not _all_close(np.concatenate(got), np.concatenate(want), tol):
         return None
@@ -537,10 +549,11 @@ def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitt
     models = list(models)
     laws = [m for m in models if esm.REGISTRY[m].fitted and m in chi_laws.LAWS and mat in fitted.get(m, {})]
     affine, per_replicate = {}, []
+    probes = _affine_probes(d_mat) if any(m not in laws for m in models) else None
     for m in models:
         if m in laws:
             continue
-        coef = _pointwise_affine(m, d_mat)
+        coef = _pointwise_affine(m, d_mat, probes)
         if coef is None:
             per_replicate.append(m)
         else:
