@@ -905,14 +905,16 @@ def _knots(s, most: int = 150) -> np.ndarray:
     return knots
 
 
-def _levenberg_marquardt(pb: _Problem, U, lo, hi, ftol: float, max_iter: int):
+def _levenberg_marquardt(pb: _Problem, U, lo, hi, ftol: float, max_iter: int, prune: float = 0.0):
     """Box-constrained Levenberg-Marquardt from every row of ``U`` at once (steps projected on each row's box
     ``lo``, ``hi``; Marquardt's diagonal scaling).
 
     Each row runs its own iteration (its own damping, acceptance and stop), the rows are only evaluated
     together. A variable on a bound whose gradient points outwards is frozen for the step (an active
     constraint). A row stops when an accepted step lowers its cost by less than ``ftol`` relative, when no
-    step helps, or after ``max_iter`` accepted steps (not converged).
+    step helps, or after ``max_iter`` accepted steps (not converged). With ``prune`` > 0, a row is also given up
+    (not converged) once another has converged at cost c and the lowest cost its undamped Gauss-Newton model
+    can reach is above ``prune`` c: a start that its own local model places in a worse basin.
     Returns (U, cost = sum r^2 per row, converged per row).
     """
     U = np.clip(np.asarray(U, float), lo, hi)
@@ -967,6 +969,11 @@ def _levenberg_marquardt(pb: _Problem, U, lo, hi, ftol: float, max_iter: int):
             stop = i[small[acc]]
             active[stop], converged[stop] = False, True
             active[i[~small[acc] & (steps[i] >= max_iter)]] = False
+            if prune and converged.any() and active[a].any():
+                live = active[a]
+                floor = ca[live] - np.einsum("gk,gk->g", g[live], solve(A[live] + (1e-12 * d[live])[:, :, None] * eye,
+                                                                        g[live]))
+                active[a[live][floor > prune * cost[converged].min()]] = False
             rej = ~acc
             if rej.any():
                 # a rejected step: more damping; no descent left (the undamped Gauss-Newton step promises a
@@ -1063,7 +1070,7 @@ def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = 
         idx = _screen_points(s)
         pb1 = pb if idx.size == s.size else _Problem(model, s[idx], y[idx], sw[idx], fixed, b)
         loose = 20 if k <= 3 else 80
-        U1, cost1, _ = _levenberg_marquardt(pb1, U0, ulo, uhi, ftol=1e-6, max_iter=loose)
+        U1, cost1, _ = _levenberg_marquardt(pb1, U0, ulo, uhi, ftol=1e-6, max_iter=loose, prune=2.0)
         order = np.arange(U1.shape[0])
         if pb1 is not pb:  # those within 5 % of the best, loosely again on all points
             order = _distinct(U1, cost1, 0.05)
