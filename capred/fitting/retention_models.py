@@ -869,7 +869,7 @@ def _distinct(U, cost, close: float) -> np.ndarray:
 def _interval_walk(pb: _Problem, u, j: int, lo, hi):
     """Polish a start of a model with kinks at the data suctions in parameter ``j`` (fitting coordinates ``u``,
     box ``lo``, ``hi``): a bounded fit in each interval between neighbouring distinct data suctions around
-    ``u[j]`` (two each side), moving on while the lowest lies less than two intervals from the unexplored ones.
+    ``u[j]`` (one each side), moving on while the lowest lies next to an unexplored one.
     Returns (u, cost, converged)."""
     o = pb.offset[j]
     knots = np.unique(pb.s[pb.s > 0])
@@ -881,7 +881,7 @@ def _interval_walk(pb: _Problem, u, j: int, lo, hi):
     start, cost, converged = u, np.inf, False
     done: set[int] = set()
     while True:
-        todo = np.array([i for i in range(here - 2, here + 3) if 0 <= i < edges.size - 1 and i not in done])
+        todo = np.array([i for i in range(here - 1, here + 2) if 0 <= i < edges.size - 1 and i not in done])
         if todo.size == 0:
             return u, cost, converged
         done.update(todo.tolist())
