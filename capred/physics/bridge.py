@@ -523,10 +523,17 @@ def from_neck(neck, contact_angle_rad, suction, ratio=1.0):
     return beta, bridge(beta, th, suction, ratio)
 
 
+def _neck_gap(y0, th, s, rho):
+    """gap* alone of the bridge with neck y0 at s* (the fast path of :func:`gap_of`); NaN where there is none."""
+    F = 2.0 * y0 + s * y0 * y0
+    return gap_of(_second_filling_angle(F, th, s, np.ones_like(F)), th, s, rho)
+
+
 def _floor_suction(y0, th, rho):
     """The smallest suction of the bridges with neck y0: 0 (the catenoid), or 1e-9 / y0^2 where no catenoid
     exists (a plane at theta = 0: its bridge grows without bound as s* -> 0)."""
-    g = from_neck(y0, th, 0.0, rho)[1].gap
+    y0, th, rho = _arr(y0, th, rho)
+    g = _neck_gap(y0, th, 0.0, rho)
     return np.where(np.isfinite(g), 0.0, 1e-9 / (y0 * y0))
 
 
@@ -534,6 +541,16 @@ def _catenoid(y0, th, rho):
     """The bridge of neck y0 at its smallest suction (see :func:`_floor_suction`)."""
     y0, th, rho = _arr(y0, th, rho)
     return from_neck(y0, th, _floor_suction(y0, th, rho), rho)[1]
+
+
+def _catenoid_gap(y0, th, rho):
+    """gap* alone of :func:`_catenoid` (one gap evaluation where the catenoid exists)."""
+    y0, th, rho = _arr(y0, th, rho)
+    g = _neck_gap(y0, th, 0.0, rho)
+    none = ~np.isfinite(g)
+    if none.any():
+        g[none] = _neck_gap(y0[none], th[none], 1e-9 / (y0[none] * y0[none]), rho[none])
+    return g
 
 
 def _suction_at_neck(y0, th, rho, target, field):
@@ -779,13 +796,13 @@ def _scan_for_volume(theta, volume, gap, ratio):
     # peak of the catenoid gap, refined (a narrow peak can hide between grid necks)
     j = np.argmax(gcat, axis=1)
     lo_j, hi_j = np.maximum(j - 1, 0), np.minimum(j + 1, y.shape[1] - 1)
-    ypk, gpk = _golden(lambda x, i: _catenoid(np.exp(x), th[i], rho[i]).gap, np.log(y[r, lo_j]),
+    ypk, gpk = _golden(lambda x, i: _catenoid_gap(np.exp(x), th[i], rho[i]), np.log(y[r, lo_j]),
                        np.log(y[r, hi_j]))
     ypk = np.exp(ypk)
     reach = np.flatnonzero(gpk >= D)
 
     def cat_gap(x, i, sel):
-        return _below(_catenoid(np.exp(x), th[sel][i], rho[sel][i]).gap) - D[sel][i]
+        return _below(_catenoid_gap(np.exp(x), th[sel][i], rho[sel][i])) - D[sel][i]
 
     y_lo, y_hi = np.full(m, np.nan), np.full(m, np.nan)
     if reach.size:
