@@ -75,3 +75,24 @@ def test_bridge_at_suction_verifies_on_its_own_fields():
     assert_allclose(beta[ok], beta2[ok], rtol=0)  # the same solver underneath, the same filling angles
     assert np.all(np.abs(b.gap[ok] - D[ok]) <= 1e-9 * np.maximum(D[ok], 1e-3))
     assert np.all(np.isnan(b.force[~ok])) and np.all(np.isnan(beta[~ok]))
+
+
+def test_bulk_no_bridge_of_volume_rows_agrees_with_the_scan_of_the_arc():
+    # volume-controlled rows around their rupture distance (Lian et al. 1993: about (1 + theta/2) V^(1/3)), equal
+    # spheres, unequal ones and planes: every row the bulk check settles as beyond rupture is beyond rupture
+    # for the scan of the arc too (the row-by-row fallback of the volume solver), and most far rows are settled
+    rng = np.random.default_rng(11)
+    n = 200
+    th = np.radians(rng.uniform(0.0, 70.0, n))
+    V = 10 ** rng.uniform(-9.0, -1.0, n)
+    u = rng.uniform(size=n)
+    rho = np.where(u < 0.4, 1.0, np.where(u < 0.6, np.inf, 10 ** rng.uniform(-1.0, 1.0, n)))
+    D = br.lian_rupture_gap(th, V) * rng.uniform(0.5, 3.0, n)
+    far = br._beyond_rupture(th, V, D, rho)
+    _, _, st_scan = br._scan_for_volume(th, V, D, rho)
+    assert np.all(st_scan[far] == 1)
+    assert far.sum() > 0.5 * np.sum(D > 2 * br.lian_rupture_gap(th, V))  # the bulk check does settle rows
+    # and the solver's verdicts are the scan's wherever either finds no bridge
+    _, _, st = br.solve_for_volume(th, V, D, rho)
+    none = (st != 0) | (st_scan != 0)
+    assert np.array_equal(st[none], st_scan[none])

@@ -997,6 +997,34 @@ def _continue_volume(th, V, D, rho, stages=8, factor=0.5):
     return y0, s, alive
 
 
+def _beyond_rupture(th, V, D, rho):
+    """Rows whose volume V* cannot span the gap D* at all, settled for all rows at once (True: no bridge).
+
+    The liquid between the axis and the neck radius y0 (the narrowest radius of the bridge, or less when the
+    neck is virtual) spans at least the gap, so V* >= pi y0^2 D*: every bridge of the row has
+    y0 <= y_b = sqrt(V* / (pi D*)). At a fixed neck the gap falls as s* rises (see :func:`_suction_at_neck`),
+    so no bridge of neck y0 spans more than its catenoid (:func:`_catenoid_gap`); the catenoid gap rises with
+    the neck up to its peak and falls after. Where it still rises at y_b and is below D* there, no neck
+    y0 <= y_b reaches D*: beyond rupture. A row is settled only when some catenoid of the upper necks of
+    _NECK_GRID holds at least V* (so that "too much water", V* above every catenoid of the grid, cannot apply,
+    as in :func:`_scan_for_volume`); the rest is left to the solver.
+    """
+    out = np.zeros(th.size, dtype=bool)
+    cand = np.flatnonzero(D > 0)
+    if cand.size == 0:
+        return out
+    yb = np.sqrt(V[cand] / (np.pi * D[cand]))
+    g = _catenoid_gap(np.concatenate([yb, yb * (1.0 + 1e-3)]), np.tile(th[cand], 2), np.tile(rho[cand], 2))
+    g0, g1 = g[:cand.size], g[cand.size:]
+    with np.errstate(invalid="ignore"):
+        cand = cand[np.isfinite(g0) & np.isfinite(g1) & (g1 > g0) & (g0 < D[cand] * (1.0 - 1e-9))]
+    if cand.size:
+        necks = _NECK_GRID[-12:]
+        vol = _catenoid(np.tile(necks, (cand.size, 1)), th[cand, None], rho[cand, None]).volume
+        out[cand] = V[cand] <= np.max(np.where(np.isfinite(vol), vol, -np.inf), axis=1)
+    return out
+
+
 def _solve_for_volume(theta, volume, gap, ratio):
     """(beta, s*, status) of the bridge holding volume* at gap*, stable at constant volume.
 
@@ -1018,6 +1046,9 @@ def _solve_for_volume(theta, volume, gap, ratio):
     k = np.flatnonzero(ok)
     if k.size == 0:
         return beta, suction, status
+    far = _beyond_rupture(theta[k], volume[k], gap[k], ratio[k])
+    status[k[far]] = 1
+    k = k[~far]
     th, V, D, rho = theta[k], volume[k], gap[k], ratio[k]
     for start in range(0, k.size, _CHUNK):
         sl = slice(start, start + _CHUNK)
