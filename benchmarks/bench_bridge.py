@@ -6,8 +6,8 @@
    (`solve_for_volume` on (V*, gap*) against `solve_for_suction` on
    (s*, gap*), every row with a bridge), at contact and at a gap, for equal
    spheres and for mixed partners (unequal spheres and planes): target
-   <= 3x. Rows with no bridge (beyond rupture) are timed apart: they take
-   the scan of the arc.
+   <= 3x. Rows with no bridge (beyond rupture) are timed apart: most are
+   settled in bulk, the rest take the scan of the arc.
 3. The suction-controlled solver against solve_ivp charged only for the rows
    that have a bridge.
 
