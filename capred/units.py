@@ -114,6 +114,7 @@ _COMMON = {
     ("N/m^3", "unit_weight"): 1.0, ("kN/m^3", "unit_weight"): 1e3,
     ("kg/m^3", "density"): 1.0, ("g/cm^3", "density"): 1e3, ("Mg/m^3", "density"): 1e3,
     ("m/s^2", "acceleration"): 1.0,
+    ("dimensionless", "dimensionless"): 1.0, ("-", "dimensionless"): 1.0, ("%", "dimensionless"): 0.01,
 }
 
 
