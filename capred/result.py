@@ -344,6 +344,28 @@ class Spool:
         self._file.close()
 
 
+def columns_of_rows(rows: list[dict]) -> dict:
+    """Rows (dicts, some keys absent) as columns in order of first appearance, typed as pandas would type
+    them, so that capred.io.writers.write_csv_file writes the bytes it writes for ``pandas.DataFrame(rows)``:
+    whole numbers stay integers unless a row lacks them, numbers with a gap are floats with NaN there,
+    anything else is an object column (None where absent)."""
+    import numpy as np
+
+    keys = list(dict.fromkeys(k for r in rows for k in r))
+    out = {}
+    for k in keys:
+        values = [r.get(k) for r in rows]
+        present = [v for v in values if v is not None]
+        numbers = present and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in present)
+        if numbers and len(present) == len(values) and all(isinstance(v, int) for v in present):
+            out[k] = np.array(values, dtype=np.int64)
+        elif numbers:
+            out[k] = np.array([np.nan if v is None else v for v in values], dtype=float)
+        else:
+            out[k] = np.array(values, dtype=object)
+    return out
+
+
 def json_list(values) -> list:
     """A float array as a JSON list: every digit kept, None where not finite."""
     import numpy as np

@@ -245,7 +245,7 @@ class ShearResult(Result):
         cached = self.__dict__.get("_tables")
         if cached is not None:
             return cached
-        return {"results": self._results_columns(), "summary": _flat_summary(self)}
+        return {"results": self._results_columns(), "summary": _flat_summary(self, frame=False)}
 
     def season_rows(self) -> list[dict]:
         rows = []
@@ -888,10 +888,9 @@ def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions,
     return predictions, back, extra, laws, d
 
 
-def _flat_summary(result: ShearResult):
-    """Summary CSV: one row per material and model (dry fit rows carry c and phi)."""
-    import pandas as pd
-
+def _flat_summary(result: ShearResult, frame: bool = True):
+    """Summary CSV: one row per material and model (dry fit rows carry c and phi); a DataFrame, or with
+    ``frame=False`` plain columns that write the same CSV without pandas."""
     rows = []
     for r in result.summary_rows():
         r = dict(r)
@@ -901,6 +900,12 @@ def _flat_summary(result: ShearResult):
                 r[key.replace("ci95", "ci95_low")] = lo
                 r[key.replace("ci95", "ci95_high")] = hi
         rows.append(r)
+    if not frame:
+        from ..result import columns_of_rows
+
+        return columns_of_rows(rows)
+    import pandas as pd
+
     return pd.DataFrame(rows)
 
 
