@@ -257,7 +257,7 @@ def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None) 
                         s_star * gamma / R, shape, status, note, labels, notes)
 
 
-_PARALLEL_ROWS = 40_000  # below this, one process is faster than starting a second
+_PARALLEL_ROWS = 30_000  # below this, one process is faster than starting a second
 
 
 def _suction_rows(th, s, D, rho):
