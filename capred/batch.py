@@ -62,7 +62,7 @@ def run_job(job: Job):
         return result, []
     o = job.output
     kw = dict(formats=o.formats, dpi=o.dpi, html=o.html, csv_dialect=o.csv_dialect, xlsx=o.xlsx,
-              panels=o.panels) if o else {}
+              panels=o.panels, figures=o.figures) if o else {}
     return result, write_outputs(result, job.out_dir, plots=job.plots, **kw)
 
 

@@ -158,6 +158,21 @@ def test_figures_must_be_main_or_all(shear_result, tmp_path):
     assert not (tmp_path / "o").exists()
 
 
+def test_figures_option_on_the_command_line_and_in_a_manifest(tmp_path):
+    sample = capred.sample_path("shear")
+    res = CliRunner().invoke(app, ["shear", str(sample), "--figures", "all", "--dpi", "40", "--no-html", "--bootstrap",
+                                   "0", "--out", str(tmp_path / "o")])
+    assert res.exit_code == 0, res.output
+    assert sorted(p.name.split("_")[0] for p in (tmp_path / "o").glob("*.png")) == ["capillary"] * 2 + ["report"] * 2
+    res = CliRunner().invoke(app, ["shear", str(sample), "--figures", "some", "--out", str(tmp_path / "x")])
+    assert res.exit_code != 0 and "--figures must be 'main' or 'all'" in res.output and not (tmp_path / "x").exists()
+    (tmp_path / "season.csv").write_text(f"command,input,options\nshear,{sample},--figures all --dpi 40 --no-html "
+                                         "--bootstrap 0\n", encoding="utf-8")
+    res = CliRunner().invoke(app, ["batch", str(tmp_path / "season.csv"), "--out", str(tmp_path / "b")])
+    assert res.exit_code == 0, res.output
+    assert len(list((tmp_path / "b").glob("*/capillary_*.png"))) == 2
+
+
 def test_sheet_figure_lays_out_like_the_pasted_panels(shear_result):
     """A sheet drawn on one figure puts each panel where its own figure would: the same slot, the same fitted
     axes box (within a pixel: the slots' edges are rounded to whole pixels when pasted)."""

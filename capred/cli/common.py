@@ -57,6 +57,7 @@ class OutputOptions:
     csv_dialect: str = "standard"
     xlsx: bool = False
     panels: bool = False
+    figures: str = "main"
 
 
 @dataclass
@@ -93,11 +94,14 @@ _OUTPUT_PARAMS = {
     "panels": (Annotated[bool, typer.Option("--panels", help="Also write each panel of a figure alone, "
                                                              "figures/<figure>_<panel>.<format>, one journal "
                                                              "column (85 mm) or two (180 mm) wide.")], False),
+    "figures": (Annotated[str, typer.Option(metavar="main|all", help="Figure sheets: 'main', or 'all' to add "
+                                                                      "those drawn on request (shear: the "
+                                                                      "capillary-stress sheets).")], "main"),
 }
 
 
 def _output_options(formats: str, dpi: int, html: bool, csv_dialect: str, xlsx: bool,
-                    panels: bool = False) -> OutputOptions:
+                    panels: bool = False, figures: str = "main") -> OutputOptions:
     from ..errors import OptionError
 
     fmts = tuple(dict.fromkeys(f.strip().lower() for f in formats.split(",") if f.strip()))
@@ -108,7 +112,9 @@ def _output_options(formats: str, dpi: int, html: bool, csv_dialect: str, xlsx: 
         raise OptionError(f"--dpi must lie between 30 and 2400 (got {dpi})")
     if csv_dialect not in ("standard", "excel-eu"):
         raise OptionError(f"--csv-dialect must be 'standard' or 'excel-eu' (got '{csv_dialect}')")
-    return OutputOptions(fmts, dpi, html, csv_dialect, xlsx, panels)
+    if figures not in ("main", "all"):
+        raise OptionError(f"--figures must be 'main' or 'all' (got '{figures}')")
+    return OutputOptions(fmts, dpi, html, csv_dialect, xlsx, panels, figures)
 
 
 def _param(name: str, annotation, default) -> inspect.Parameter:
@@ -290,7 +296,7 @@ def _single(inv: Invocation) -> None:
         result = REDUCTIONS[inv.command].run(source, inv.options)
     o = inv.output
     written = write_outputs(result, out_dir, plots=inv.plots, formats=o.formats, dpi=o.dpi, html=o.html,
-                        csv_dialect=o.csv_dialect, xlsx=o.xlsx, panels=o.panels) if write else None
+                        csv_dialect=o.csv_dialect, xlsx=o.xlsx, panels=o.panels, figures=o.figures) if write else None
     if inv.json:
         from ..io.writers import stream_json
 
