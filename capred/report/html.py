@@ -104,18 +104,37 @@ def _text(v) -> str:
     return "—" if v is None else str(v)
 
 
+def _row_table(result, limit: int | None = None) -> tuple[str, dict, int]:
+    """(file stem, {header: the first ``limit`` values}, number of rows) of a result's per-row table, read from
+    the columns its CSV is written from (no DataFrame where the result gives plain columns)."""
+    import numpy as np
+
+    tables = result.csv_tables()
+    if not tables:
+        return "", {}, 0
+    name, table = next(iter(tables.items()))
+    if hasattr(table, "blocks"):  # a Spool: only the rows shown are read back
+        return name, table.columns(0, min(table.n, limit if limit is not None else table.n)), table.n
+    if isinstance(table, dict):
+        n = len(next(iter(table.values()))) if table else 0
+        return name, {str(k): np.asarray(v)[:limit] for k, v in table.items()}, n
+    head = table if limit is None or len(table) <= limit else table.head(limit)
+    return name, {str(c): head.iloc[:, j].to_numpy() for j, c in enumerate(table.columns)}, len(table)
+
+
 def _flags(result) -> list[tuple[str, int, str]]:
-    try:
-        frame = result.table()
-    except Exception:  # pragma: no cover - every result has a table
-        return []
-    if "flags" not in frame.columns:
+    _, columns, _ = _row_table(result)
+    if "flags" not in columns:
         return []
     counts: dict[str, int] = {}
-    for text, k in frame["flags"].value_counts().items():  # distinct flag combinations, counted once each
-        for f in (text.split(";") if isinstance(text, str) and text else []):
-            counts[f] = counts.get(f, 0) + int(k)
-    return [(k, v, FLAG_MEANING.get(k, "")) for k, v in counts.items()]
+    for text in columns["flags"].tolist():
+        if isinstance(text, str) and text:
+            counts[text] = counts.get(text, 0) + 1
+    out: dict[str, int] = {}
+    for text, k in sorted(counts.items(), key=lambda kv: -kv[1]):  # distinct combinations, most frequent first
+        for f in text.split(";"):
+            out[f] = out.get(f, 0) + k
+    return [(k, v, FLAG_MEANING.get(k, "")) for k, v in out.items()]
 
 
 #: printable width of the per-row table on an A4 portrait page (210 mm − 2 × 12 mm margins) [mm]
@@ -168,20 +187,21 @@ def _per_row(result) -> dict:
     Built column by column (a float column formatted in one pass, escaping only text columns): cell by cell
     through pandas' rows it cost ~20 ms of a 52-test report's ~25.
     """
-    frame = result.table()
-    head = frame if len(frame) <= MAX_REPORT_ROWS else frame.head(MAX_REPORT_ROWS)
-    columns = [str(c) for c in frame.columns]
-    kinds = [dt.kind for dt in head.dtypes]
+    import numpy as np
+
+    name, head, total = _row_table(result, MAX_REPORT_ROWS)
+    columns = list(head)
+    arrays = list(head.values())
+    kinds = [a.dtype.kind for a in arrays]
     floats = [j for j, k in enumerate(kinds) if k == "f"]
     cells: list = [None] * len(columns)
     if floats:  # every float column in one copy, formatted in one pass
-        values = head.iloc[:, floats].to_numpy(dtype=float).T
+        values = np.array([arrays[j] for j in floats], dtype=float)
         for j, col in zip(floats, _float_cells(values)):
             cells[j] = col
     for j, k in enumerate(kinds):
         if k != "f":
-            cells[j] = [fmt(v) if isinstance(v, float) else ("" if v is None else str(v)) for v in head.iloc[:, j].tolist()]
-    name = next(iter(result.tables()))
+            cells[j] = [fmt(v) if isinstance(v, float) else ("" if v is None else str(v)) for v in arrays[j].tolist()]
     widths = [max([len(w) for w in h.split()] + [max(map(len, col), default=0)] + [1]) * CHAR_MM + CELL_MM
               for h, col in zip(columns, cells)]
     from .render import pack_columns
@@ -195,7 +215,7 @@ def _per_row(result) -> dict:
     cells = [[escape(c, quote=False) for c in col] if k not in "fiub" else col for col, k in zip(cells, kinds)]
     parts = [{"columns": [columns[j] for j in g], "left": [left[j] for j in g],
               "body": _rows_markup([cells[j] for j in g], [left[j] for j in g])} for g in groups]
-    return {"columns": columns, "parts": parts, "rows": range(len(head)), "total": len(frame),
+    return {"columns": columns, "parts": parts, "rows": range(len(arrays[0]) if arrays else 0), "total": total,
             "file": f"{name}.csv"}
 
 
