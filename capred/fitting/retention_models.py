@@ -1030,7 +1030,6 @@ def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = 
     problems whose variables separate. SIAM J. Numer. Anal. 10(2):413-432, doi:10.1137/0710036
     (variable projection).
     """
-    from scipy.optimize import least_squares
 
     if name not in MODELS:
         raise FitError(f"unknown retention model '{name}'; choose from {', '.join(MODELS)}")
