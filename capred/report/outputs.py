@@ -22,8 +22,10 @@ from pathlib import Path
 from .sheets import NO_STAMP  # noqa: F401  (kept importable from here)
 
 #: draw the sheets in two processes when the run has at least this many panels in two sheets or more and a
-#: core is free (the child costs ~15 % more CPU in all, re-loading fonts and copying pages; one panel ~0.2 s)
-PARALLEL_MIN_PANELS = 6
+#: core is free. The child re-loads fonts and re-parses every label (~0.6 s of CPU); a 4-panel sheet costs ~0.55 s:
+#: the README's two report sheets drawn in two processes cost 17 % more CPU for 11 % less wall time
+#: (benchmarks/bench_one_path.py), so a second process starts from three sheets' worth
+PARALLEL_MIN_PANELS = 12
 #: which sheets ``figures`` draws: those drawn by default, or every sheet (also those on request)
 FIGURE_SETS = ("main", "all")
 
@@ -235,10 +237,10 @@ def _on_request_entry(sheet) -> dict:
 
 
 def _parallel(cost: list[int]) -> bool:
-    """Two processes for several sheets with enough panels, when a second core is free: the machine has two
-    or more and its load average leaves one idle (on a busy shared machine the fork's ~15 % more CPU buys no
-    time: benchmarks/bench_one_path.py). CAPRED_FIGURE_PROCESSES=1 or 2 decides instead."""
-    if len(cost) < 2 or sum(cost) < PARALLEL_MIN_PANELS or not hasattr(os, "fork"):
+    """Two processes for several sheets with enough panels (PARALLEL_MIN_PANELS), when a second core is free:
+    the machine has two or more and its load average leaves one idle (on a busy shared machine the fork's extra
+    CPU buys no time: benchmarks/bench_one_path.py). CAPRED_FIGURE_PROCESSES=1 or 2 decides instead."""
+    if len(cost) < 2 or not hasattr(os, "fork"):
         return False
     import multiprocessing
 
@@ -247,6 +249,8 @@ def _parallel(cost: list[int]) -> bool:
     forced = os.environ.get("CAPRED_FIGURE_PROCESSES")
     if forced in ("1", "2"):
         return forced == "2"
+    if sum(cost) < PARALLEL_MIN_PANELS:
+        return False
     cores = os.cpu_count() or 1
     try:
         load = os.getloadavg()[0]  # this run itself counts for up to one
