@@ -241,11 +241,12 @@ class ShearResult(Result):
         return cached
 
     def csv_tables(self) -> dict:
-        """The tables as CSV files take them: results as plain columns (no DataFrame is built)."""
-        cached = self.__dict__.get("_tables")
-        if cached is not None:
-            return cached
-        return {"results": self._results_columns(), "summary": _flat_summary(self, frame=False)}
+        """The tables as CSV files take them: results as plain columns (no DataFrame is built); made once."""
+        cached = self.__dict__.get("_tables") or self.__dict__.get("_csv_tables")
+        if cached is None:
+            cached = self.__dict__["_csv_tables"] = {"results": self._results_columns(),
+                                                     "summary": _flat_summary(self, frame=False)}
+        return cached
 
     def season_rows(self) -> list[dict]:
         rows = []
