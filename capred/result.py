@@ -286,8 +286,10 @@ class Spool:
 
     def __init__(self) -> None:
         import tempfile
+        import weakref
 
         self._file = tempfile.TemporaryFile()
+        self._closer = weakref.finalize(self, self._file.close)  # the file goes with the spool
         self._index: list[tuple[int, int, int]] = []  # (offset, bytes, rows) of each block
         self._end = 0
         self._cached: tuple[int, dict] | None = None  # the block read last (rows_range reads many slices of it)
@@ -341,7 +343,7 @@ class Spool:
         return {name: np.concatenate([p[name] for p in parts]) if parts else np.empty(0) for name in names}
 
     def close(self) -> None:
-        self._file.close()
+        self._closer()
 
 
 def columns_of_rows(rows: list[dict]) -> dict:

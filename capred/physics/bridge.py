@@ -969,8 +969,10 @@ def _newton_volume(th, V, D, rho, iters=40, start=None, loose=False):
         conv |= (np.abs(r1) <= 10 * gtol[b]) & (np.abs(r2) <= 1e-11) & (np.abs(ddx) + np.abs(ddz) <= 1e-12)
         state[b] = np.where(conv, 2, 1)
         xa[b], za[b], phi[b] = x[b], z[b], ph[acc]
-        # slope of log(volume) along the arc of constant gap, per unit log(neck), and its scale
-        slope[b] = (Lx * Gz - Lz * Gx) / Gz / (np.abs(Lx) + np.abs(Lz * Gx / Gz))
+        # slope of log(volume) along the arc of constant gap, per unit log(neck), and its scale; where Gz = 0 (the
+        # gap flat in suction) it is not finite, and such a row is not found (found needs Gz < 0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            slope[b] = (Lx * Gz - Lz * Gx) / Gz / (np.abs(Lx) + np.abs(Lz * Gx / Gz))
         Gz_at[b] = Gz
         cap = 1.0 / np.maximum(1.0, np.maximum(np.abs(ddx), np.abs(ddz)))  # at most a factor e per step
         dx[b], dz[b], t[b] = ddx * cap, ddz * cap, 1.0

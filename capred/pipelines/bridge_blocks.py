@@ -20,9 +20,18 @@ from ..result import InputFile, Result, Rows, Spool, input_file
 from . import bridge as pb
 
 
+#: output columns that are text, not numbers (BridgeResult.columns leaves them out)
+_TEXT_COLUMNS = ("case", "status", "note")
+
+
 @dataclass(repr=False)
 class BridgeBlocks(Result):
     """Bridges of a long table, one per row, their output columns kept on disk block by block.
+
+    It offers what the writer and a script need of a :class:`BridgeResult`: ``rows()``, ``rows_range()``,
+    ``columns()`` (the same keys), ``status``, ``to_json()``. The per-row SI arrays of a BridgeResult
+    (``force``, ``volume``, ``neck``, ``beta``, ``suction``, ``shape``) are not kept: ``columns()`` gives the
+    same quantities in output units.
 
     Attributes
     ----------
@@ -58,7 +67,11 @@ class BridgeBlocks(Result):
         return self.rows_range(0, self.status.size)
 
     def columns(self) -> dict[str, np.ndarray]:
-        """Every output column of every row (in memory: for a script that asks for them)."""
+        """The numeric output columns of every row, as :meth:`BridgeResult.columns` gives them (mm, mN, mm^3,
+        mm^2, deg, kPa; NaN where no bridge was found), read back into memory."""
+        return {k: v for k, v in self._all().items() if k not in _TEXT_COLUMNS}
+
+    def _all(self) -> dict[str, np.ndarray]:
         return self.spool.columns(0, self.status.size)
 
     def payload(self, lazy: bool = False) -> dict:
@@ -68,7 +81,7 @@ class BridgeBlocks(Result):
     def tables(self) -> dict:
         import pandas as pd
 
-        return {"solve": pd.DataFrame(self.columns(), copy=False)}
+        return {"solve": pd.DataFrame(self._all(), copy=False)}  # tables.xlsx: every row in memory
 
     def csv_tables(self) -> dict:
         return {"solve": self.spool}  # written block by block

@@ -315,7 +315,7 @@ def render_html(result, figures: dict, plots: bool) -> str:
         A self-contained HTML document that prints whole on A4: wide tables split into column groups that
         repeat the test's identity, figures at their printed size.
     """
-    from .presenters import console_tables
+    from .presenters import console_tables, draws_figures
 
     doc = result.header()
     paragraphs, refs = _methods(result)
@@ -332,7 +332,7 @@ def render_html(result, figures: dict, plots: bool) -> str:
         flags=_flags(result),
         tables=[_split_spec(t) for t in console_tables(result)],
         figures=list(figures.items()),
-        plots=plots,
+        plots=plots or not draws_figures(result),  # no "not drawn" note for a command that draws none
         methods=paragraphs,
         references=bibliography(refs),
         per_row=_per_row(result),

@@ -130,6 +130,11 @@ def figures(result) -> dict:
     return presenter(result).figures(result)
 
 
+def draws_figures(result) -> bool:
+    """False for a command that never draws a figure (``bridge solve``, ``bridge yade-files``)."""
+    return presenter(result).figures is not _none
+
+
 def console_tables(result) -> list[TableSpec]:
     """Summary tables of a result, for the console and report.html."""
     return presenter(result).tables(result)
