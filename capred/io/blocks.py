@@ -150,6 +150,4 @@ def _pieces(path: Path, block_bytes: int) -> Iterator[tuple[int, str]]:
             text = data.decode("utf-8")
             yield first_line, text[:-1] if text.endswith("\n") else text
             first_line += data.count(b"\n")
-            data = ahead
-        if carry:
-            yield first_line, carry.decode("utf-8")
+            data = ahead  # the last block takes what is left: nothing is carried past the end

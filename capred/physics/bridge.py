@@ -1168,7 +1168,7 @@ def solve_for_suction(contact_angle_rad, suction, gap, ratio=1.0):
     smaller gap. The one of larger filling angle and volume, continuous with
     the bridge at contact, is stable under suction control [1]_ and is
     returned: the root of :math:`D^*(\beta) = D^*` on the falling side,
-    bracketed on a grid and refined by the Illinois method. Every ``ok`` row
+    bracketed on a grid and refined by Chandrupatla's method. Every ``ok`` row
     reproduces its gap to VERIFY_RTOL (1e-9 relative, 1e-12 absolute below
     1e-3 R1).
 
