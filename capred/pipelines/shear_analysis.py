@@ -391,10 +391,12 @@ def _affine_probes(d: esm.ModelInputs) -> dict:
     hc, hb = 0.1 * max(abs(c0), 1.0), 0.1 * max(abs(b0), 1e-3)
     envelopes = np.array([(c0, b0), (c0 + hc, b0), (c0, b0 + hb), (c0 - 2 * hc, b0 - 3 * hb), (c0 + hc, b0 - hb)])
     subs = (np.arange(n)[::-2], np.r_[np.arange(n), np.zeros(max(n // 2, 1), int)])
-    parts = [d.subset(sub) for sub in subs]
-    return {"n": n, "c0": c0, "b0": b0, "hc": hc, "hb": hb, "stacked": d.subset(np.tile(np.arange(n), 5)),
-            "c": np.repeat(envelopes[:, 0], n), "tan_phi": np.repeat(envelopes[:, 1], n), "subs": subs,
-            "parts": [(p, np.full(p.sigma_N.size, c0 + hc), np.full(p.sigma_N.size, b0 - hb)) for p in parts]}
+    def at(sub, c, tan_phi):  # the tests ``sub`` under the envelopes (c, tan_phi), one ModelInputs
+        return dataclasses.replace(d.subset(sub), c=c, tan_phi=tan_phi)
+
+    stacked = at(np.tile(np.arange(n), 5), np.repeat(envelopes[:, 0], n), np.repeat(envelopes[:, 1], n))
+    parts = [at(sub, np.full(sub.size, c0 + hc), np.full(sub.size, b0 - hb)) for sub in subs]
+    return {"n": n, "c0": c0, "b0": b0, "hc": hc, "hb": hb, "stacked": stacked, "subs": subs, "parts": parts}
 
 
 def _pointwise_affine(model: str, d: esm.ModelInputs, probes: dict | None = None):
@@ -410,14 +412,14 @@ def _pointwise_affine(model: str, d: esm.ModelInputs, probes: dict | None = None
     """
     p = _affine_probes(d) if probes is None else probes
     n, hc, hb = p["n"], p["hc"], p["hb"]
-    t0, tc, tb, probe, full = _tau(model, p["stacked"], c=p["c"], tan_phi=p["tan_phi"]).reshape(5, n)
+    t0, tc, tb, probe, full = _tau(model, p["stacked"]).reshape(5, n)
     beta = (tc - t0) / hc
     gamma = (tb - t0) / hb
     scale = np.nanmax(np.abs(t0)) if np.isfinite(t0).any() else 1.0
     tol = 1e-9 * max(scale, 1.0)
     got, want = [probe], [t0 - 2 * hc * beta - 3 * hb * gamma]
-    for sub, (part, c, b) in zip(p["subs"], p["parts"]):
-        got.append(_tau(model, part, c=c, tan_phi=b))
+    for sub, part in zip(p["subs"], p["parts"]):
+        got.append(_tau(model, part))
         want.append(full[sub])
     if not _all_close(np.concatenate(got), np.concatenate(want), tol):
         return None
@@ -439,21 +441,35 @@ def _draw(rng, dry_x, nw: int, count: int, through_origin: bool):
     replicate by replicate in a Python loop: the same distribution, another random stream.)
     """
     nd = dry_x.size
+    # a sample fits a line when it holds two distinct normal stresses (through the origin: one whose square is
+    # not 0): decided from the counts of each distinct value (or of the usable ones)
+    if through_origin:
+        group, k = (dry_x * dry_x > 0).astype(int), 2
+    else:
+        _, group = np.unique(dry_x, return_inverse=True)
+        k = int(group.max()) + 1 if nd else 1
+
+    def counts(di):
+        rows = np.repeat(np.arange(di.shape[0]), nd)
+        return np.bincount(rows * nd + di.ravel(), minlength=di.size).reshape(di.shape)
+
+    one_hot = np.zeros((nd, k))
+    one_hot[np.arange(nd), group] = 1.0
+
+    def fits(u):
+        g = u if k == nd and not through_origin else u @ one_hot  # counts per distinct value
+        return g[:, 1] > 0 if through_origin else np.count_nonzero(g, axis=1) >= 2
+
     di = rng.integers(0, nd, (count, nd))
-
-    def fits(rows):
-        x = dry_x[di[rows]]
-        return np.einsum("ij,ij->i", x, x) > 0 if through_origin else x.max(axis=1) > x.min(axis=1)
-
-    valid = fits(slice(None))
+    U = counts(di)
+    valid = fits(U)
     for _ in range(100):
         bad = np.flatnonzero(~valid)
         if not bad.size:
             break
-        di[bad] = rng.integers(0, nd, (bad.size, nd))
-        valid[bad] = fits(bad)
-    rows = np.repeat(np.arange(count), nd)
-    U = np.bincount(rows * nd + di.ravel(), minlength=count * nd).reshape(count, nd).astype(float)
+        U[bad] = counts(rng.integers(0, nd, (bad.size, nd)))
+        valid[bad] = fits(U[bad])
+    U = U.astype(float)
     idx = rng.integers(0, nw, (count, nw))
     U[~valid] = 0.0
     return U, idx, valid
@@ -617,20 +633,39 @@ def _summarise(scores: np.ndarray, models: list[str], ranked: list[str], seed: i
     counts = np.bincount(winners, minlength=len(models))
     total = max(int(counts.sum()), 1)
     prob = {m: float(counts[k] / total) for k, m in enumerate(models)}
-    if everywhere:  # the usual case: every percentile in one call (the same numbers as column by column)
-        bounds = np.percentile(scores, [2.5, 97.5], axis=0)
-        ci = {m: (float(bounds[0, k]), float(bounds[1, k])) for k, m in enumerate(models)}
-    else:
-        ci = {m: tuple(float(v) for v in np.percentile(scores[finite[:, k], k], [2.5, 97.5]))
-              for k, m in enumerate(models) if finite[:, k].any()}
     best, runner = (list(ranked) + [None, None])[:2]
-    diff = None
-    if best is not None and runner is not None:
-        dd = scores[:, models.index(runner)] - scores[:, models.index(best)]
-        dd = dd[np.isfinite(dd)]
-        if dd.size:
-            diff = tuple(float(v) for v in np.percentile(dd, [2.5, 97.5]))
+    paired = best is not None and runner is not None
+    dd = scores[:, models.index(runner)] - scores[:, models.index(best)] if paired else None
+    if everywhere:  # the usual case: every column and the difference in one sort
+        bounds = _percentiles(np.column_stack([scores, dd]) if paired else scores, (2.5, 97.5))
+        ci = {m: (float(bounds[0, k]), float(bounds[1, k])) for k, m in enumerate(models)}
+        diff = (float(bounds[0, -1]), float(bounds[1, -1])) if paired else None
+    else:
+        ci = {m: tuple(float(v) for v in _percentiles(scores[finite[:, k], k], (2.5, 97.5)))
+              for k, m in enumerate(models) if finite[:, k].any()}
+        dd = dd[np.isfinite(dd)] if paired else None
+        diff = tuple(float(v) for v in _percentiles(dd, (2.5, 97.5))) if paired and dd.size else None
     return RankingUncertainty(int(stack.shape[0]), seed, prob, ci, best, runner, diff)
+
+
+def _percentiles(a: np.ndarray, q: tuple[float, ...]) -> np.ndarray:
+    """``np.percentile(a, q, axis=0)`` (its default linear method, bit for bit) from one sort, without its
+    per-call overhead (~0.2 ms, half the bootstrap's summary).
+
+    The q-th percentile of n sorted values lies at the virtual index (n - 1) q / 100 and is interpolated
+    between its two neighbours as numpy's ``_lerp`` does (from the upper one above the midpoint)."""
+    s = np.sort(a, axis=0)
+    n = s.shape[0]
+    out = []
+    for p in q:
+        virtual = (n - 1) * (p / 100.0)
+        lo = int(np.floor(virtual))
+        hi = min(lo + 1, n - 1)
+        g = virtual - lo
+        below, above = s[lo], s[hi]
+        diff = above - below
+        out.append(above - diff * (1.0 - g) if g >= 0.5 else below + diff * g)
+    return np.array(out)
 
 
 def fit_covariances(fits: dict[str, LineFit], material) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -5,6 +5,7 @@ user text (material names, test ids) is shown literally.
 """
 from __future__ import annotations
 
+import re
 import sys
 from datetime import datetime, timezone
 from functools import lru_cache
@@ -213,7 +214,7 @@ def _per_row(result) -> dict:
     from html import escape
 
     cells = [[escape(c, quote=False) for c in col] if k not in "fiub" else col for col, k in zip(cells, kinds)]
-    parts = [{"columns": [columns[j] for j in g], "left": [left[j] for j in g],
+    parts = [{"head": _head_markup([(columns[j], left[j]) for j in g]),
               "body": _rows_markup([cells[j] for j in g], [left[j] for j in g])} for g in groups]
     return {"columns": columns, "parts": parts, "rows": range(len(arrays[0]) if arrays else 0), "total": total,
             "file": f"{name}.csv"}
@@ -227,6 +228,26 @@ def _float_cells(values: np.ndarray) -> list[list[str]]:
     for k in np.flatnonzero(~np.isfinite(values.ravel())).tolist():
         flat[k] = "—"
     return [flat[i * n:(i + 1) * n] for i in range(rows)]
+
+
+def _escape(text: str) -> str:
+    """``markupsafe.escape(text)`` as a plain str (the same entities), at the cost of one regex search for the
+    usual cell with nothing to escape (a number as printed)."""
+    if _SPECIAL.search(text) is None:
+        return text
+    from markupsafe import escape
+
+    return str(escape(text))
+
+
+_SPECIAL = re.compile("[&<>'\"]")
+
+
+def _head_markup(columns: list[tuple[str, bool]]):
+    """The <th> cells of a table's header row from (header, left-aligned) pairs, escaped, as one HTML string."""
+    from markupsafe import Markup
+
+    return Markup("".join(f'<th class="{"l" if is_left else ""}">{_escape(head)}</th>' for head, is_left in columns))
 
 
 def _rows_markup(columns: list[list[str]], left: list[bool]):
@@ -358,7 +379,8 @@ def _split_spec(spec) -> dict:
         used += widths[j]
     if current or not groups:
         groups.append(labels + current)
-    return {"spec": spec, "parts": [{"columns": [spec.columns[j] for j in g],
+    return {"spec": spec, "parts": [{"head": _head_markup([(spec.columns[j][0], spec.columns[j][1] == "left")
+                                                          for j in g]),
                                      "body": _summary_rows(spec.rows, [spec.columns[j][1] == "left" for j in g], g)}
                                     for g in groups]}
 
@@ -366,10 +388,10 @@ def _split_spec(spec) -> dict:
 def _summary_rows(rows, left: list[bool], columns: list[int]):
     """The rows of one column group of a summary table as HTML, each ``\n  <tr>...</tr>\n  `` (the layout the
     template's row loop gave), cells escaped as the template escapes them."""
-    from markupsafe import Markup, escape
+    from markupsafe import Markup
 
     opens = ['<td class="l">' if is_left else '<td class="">' for is_left in left]
-    return Markup("".join(["\n  <tr>" + "".join([o + str(escape(r[j])) + "</td>" for o, j in zip(opens, columns)])
+    return Markup("".join(["\n  <tr>" + "".join([o + _escape(str(r[j])) + "</td>" for o, j in zip(opens, columns)])
                            + "</tr>\n  " for r in rows]))
 
 
