@@ -308,6 +308,10 @@ class Spool:
         self._end += len(data)
         self.n += rows
 
+    def block(self, k: int) -> dict:
+        """The columns of block ``k`` (the last block read is kept: reading it again costs nothing)."""
+        return self._block(k)
+
     def _block(self, k: int) -> dict:
         import os
         import pickle
@@ -458,12 +462,16 @@ class Result:
 
     def __repr__(self) -> str:
         inputs = ", ".join(i.path.replace("\\", "/").rsplit("/", 1)[-1] for i in getattr(self, "inputs", [])) or "options"
-        n = len(self.table()) if self.tables() else 0
+        n = self.row_count()
         w = len(self.all_warnings())
         return (f"<capred {self.command} result: {inputs}; {n} rows"
                 + (f"; {w} warning{'s' if w != 1 else ''}" if w else "") + ">")
 
     # --- shared -------------------------------------------------------------------------------
+    def row_count(self) -> int:
+        """Rows of the per-row table (a long result counts them without building it)."""
+        return len(self.table()) if self.tables() else 0
+
     def all_warnings(self) -> list[str]:
         """Warnings of the run (implausible options and data), as JSON, console and report show them."""
         return list(dict.fromkeys(self.warnings))

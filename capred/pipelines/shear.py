@@ -20,8 +20,8 @@ from ..io.table import Column, Table, read_table
 from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
 from ..references import cite
-from ..result import InputFile, Options, Result, Rows, input_file, json_list, num
-from .shear_records import BackAnalysis, ModelPrediction
+from ..result import InputFile, Options, Result, Rows, Spool, input_file, json_list, num
+from .shear_records import BackAnalysis, ModelPrediction, Sampled
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier", ("id", "test", "test_no", "sample_id")),
@@ -305,6 +305,10 @@ class ShearResult(Result):
             return np.empty(0), {}
         return model_curves(self, material, relation, sigma_N, points)
 
+    def test_ids(self, rows) -> list[str]:
+        """The test_id of each of ``rows`` (row numbers), as read."""
+        return [str(x) for x in self.tests["test_id"][np.asarray(rows, dtype=int)]]
+
     def _test_rows(self, start: int, stop: int) -> list[dict]:
         """JSON rows of tests start..stop-1 (kPa)."""
         from ..result import record_json_columns
@@ -384,7 +388,7 @@ class ShearResult(Result):
                 continue
             rows = {}
             for m in self.models:
-                r = self.predictions[m].residual[sel]
+                r = self.predictions[m].tau[sel] - t["tau_max"][sel]  # the residual column, also in a long run
                 r = r[np.isfinite(r)]
                 law = self.laws.get(m, {}).get(mat)
                 p = len(law.params) - len(law.fixed) if law is not None else 0
@@ -412,7 +416,7 @@ class ShearResult(Result):
         return rows
 
     def payload(self, lazy: bool = False) -> dict:
-        n = len(self.tests["test_id"])
+        n = len(self.tests["line"])
         tests = Rows(n, self._test_rows)
         return {
             "source": self.source,
@@ -643,6 +647,12 @@ def _derive(table: Table, opt: ShearOptions, box: np.ndarray, tau_curve: np.ndar
 def load_shear_table(source, with_curves: bool = False) -> Table:
     """The tests table with its required columns checked (problems collected, not raised)."""
     table = read_table(source, SCHEMA)
+    _check_table(table, with_curves)
+    return table
+
+
+def _check_table(table: Table, with_curves: bool = False, unique: bool = True) -> None:
+    """The checks of load_shear_table on a table read (``unique``: also blank and repeated test ids)."""
     for name in ("test_id", "condition"):
         if name not in table.columns:
             table.missing_column(name)
@@ -658,9 +668,8 @@ def load_shear_table(source, with_curves: bool = False) -> Table:
     if "material" not in table.columns:
         table.columns["material"] = np.array(["(all)"] * len(table), dtype=object)
         table.notes.append("no 'material' column: all tests treated as one material")
-    if "test_id" in table.columns:
+    if unique and "test_id" in table.columns:
         table.check_unique("test_id")
-    return table
 
 
 def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
@@ -677,7 +686,19 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
     >>> r.to_json()["materials"]["steel_2mm"]["phi_deg"]     # doctest: +SKIP
     """
     opt = options or ShearOptions()
-    table = load_shear_table(source, opt.curves is not None)
+    if opt.curves is None:  # a long plain CSV is read, computed and kept block by block (issue 20)
+        from ..io.blocks import read_table_blocks
+
+        blocks = read_table_blocks(source, SCHEMA)
+        table = next(blocks)
+        more = next(blocks, None)
+        if more is not None:
+            pending = [table, more]
+            del table, more  # _run_blocks lets go of each block once read
+            return _run_blocks(source, opt, pending, blocks)
+        _check_table(table)
+    else:
+        table = load_shear_table(source, True)
     box = _fill(table, "box_area", opt.box_area)
     curves = None
     if opt.curves is not None:
@@ -722,8 +743,262 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         "chi2": np.where(wet, ph.chi2(d["S_R"], d["R"], opt.surface_tension), 0.0),
     }
     predictions, back, per_material, laws, model_inputs = _predict(tests, wet, mat, fits, opt, saturated_fits)
-    pend = wet & (d["S_R"] <= opt.pendular_limit)
+    scored = _scores(d, wet, mat, fits, laws, predictions, opt)
+    metrics, overall = scored["metrics"], scored["overall"]
+    if curves is not None:
+        tests.update(curves.per_test())
+    warnings = list(opt.warnings) + table.warnings + (curves.warnings if curves else []) + scored["warnings"]
+    result = ShearResult(
+        source=table.path, options=opt, tests=tests, fits=fits, metrics=metrics,
+        metrics_overall=overall, best_model={m: best_of(v) for m, v in metrics.items()},
+        best_model_overall=best_of(overall), notes=table.notes, per_material=per_material,
+        inputs=[input_file(source, table)] + ([input_file(opt.curves, curves.table)] if curves else []),
+        warnings=warnings, metrics_pendular=scored["pendular"],
+        metrics_pendular_overall=scored["overall_pendular"], laws=laws, model_inputs=model_inputs, curves=curves,
+        predictions=predictions, back=back, saturated_fits=saturated_fits,
+    )
+    if opt.bootstrap > 0:
+        result.ranking = _bootstrap(result, wet, mat, cond, opt)
+    return result
 
+
+# --- a long table, block by block (issue 20) ---------------------------------------------------------------------
+#: per-test arrays a long run keeps in memory for every test: what the fits, metrics, flags, bootstrap and figures
+#: read (about 60 bytes a test with the material and condition, which refer to one str object per name)
+_COMPACT = ("sigma_N", "suction", "S_R", "tau_max", "R")
+
+
+class _RowProblems:
+    """Problems of a long table, located by row over all its blocks (as Table.add_problem locates them)."""
+
+    def __init__(self, path: str, sheet, headers: dict, lines: np.ndarray, text: dict):
+        self.path, self.sheet, self.headers, self.lines, self.text = path, sheet, headers, lines, text
+        self.problems: list = []
+
+    def add_problem(self, row: int, column: str | None, message: str, value: str | None = None) -> None:
+        from ..errors import Problem
+
+        if value is None and column in self.text:
+            value = str(self.text[column][row])
+        self.problems.append(Problem(self.path, int(self.lines[row]), self.headers.get(column, column) if column
+                                     else None, message, self.sheet, value))
+
+    def raise_if_problems(self) -> None:
+        if self.problems:
+            from ..errors import InputError
+
+            raise InputError(self.problems)
+
+
+def _interned(values, names: dict) -> np.ndarray:
+    """An object array of ``values`` in which equal strings are one object (the first seen, kept in ``names``)."""
+    return np.array([names.setdefault(v, v) for v in values.tolist()], dtype=object)
+
+
+def _flat(records: dict) -> dict:
+    """The output arrays of records ({prefix: record}) as one flat dict (pairs as two arrays), for a Spool."""
+    out = {}
+    for prefix, rec in records.items():
+        for f in dataclasses.fields(rec):
+            v = getattr(rec, f.name)
+            if "output" not in f.metadata or v is None:
+                continue
+            if isinstance(v, tuple):
+                out[f"{prefix}|{f.name}|0"], out[f"{prefix}|{f.name}|1"] = v
+            else:
+                out[f"{prefix}|{f.name}"] = v
+    return out
+
+
+def _record(cls, prefix: str, arrays: dict, **fixed):
+    """A record of ``cls`` rebuilt from the flat arrays of ``_flat`` (any mapping of key to array-like)."""
+    values = {}
+    for f in dataclasses.fields(cls):
+        key = f"{prefix}|{f.name}"
+        if key in arrays:
+            values[f.name] = arrays[key]
+        elif key + "|0" in arrays:
+            values[f.name] = (arrays[key + "|0"], arrays[key + "|1"])
+    return cls(**fixed, **values)
+
+
+def _sample_rows(wet, mat, suction, materials) -> np.ndarray:
+    """Rows whose per-test outputs a long run keeps in memory: the samples its figures draw (style.thin of the
+    same index sets as capred.report.shear_figures) and the first wet tests its console table lists."""
+    from ..report.render import MAX_ROWS
+    from ..report.style import thin
+
+    parts = [np.flatnonzero(wet)[:MAX_ROWS]]
+    for m in materials:
+        wet_m = wet & (mat == m)
+        parts += [thin(np.flatnonzero(wet_m))[0], thin(np.flatnonzero(wet_m & (suction > 0)))[0]]
+    return np.unique(np.concatenate(parts)).astype(np.int64)
+
+
+def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlocks":
+    """`capred shear` on a table of several blocks (capred.io.blocks): memory flat in the number of tests.
+
+    Pass 1 reads each block, checks and derives it, keeps the compact per-test arrays of ``_COMPACT`` (and the
+    material and condition) and spools the test ids and raw inputs; then the dry fits and chi laws are fitted on
+    every test. Pass 2 predicts block by block and spools every per-test output; the writer reads both spools
+    back block by block. Outputs are those of the whole-table run, byte for byte.
+    """
+    import itertools
+
+    from . import shear_analysis as sa
+
+    first = pending[0]
+    inputs = [input_file(source, first)]
+    path, sheet, headers = first.path, first.sheet, dict(first.headers)
+    del first
+    spool_in, spool_out = Spool(), Spool()
+    try:
+        keep: dict[str, list] = {k: [] for k in _COMPACT}
+        lines, mats, conds, hashes, sizes = [], [], [], [], []
+        mat_names: dict[str, str] = {}
+        cond_names: dict[str, str] = {}
+        notes: dict[str, None] = {}
+        warnings: dict[str, None] = {}
+
+        def tables():
+            while pending:
+                yield pending.pop(0)  # the caller keeps no reference: one block's cells in memory at a time
+
+        for table in itertools.chain(tables(), blocks):
+            _check_table(table, unique=False)
+            if "test_id" in table.columns:
+                for i in np.flatnonzero(table.columns["test_id"] == ""):
+                    table.add_problem(int(i), "test_id", "empty test_id")
+            box = _fill(table, "box_area", opt.box_area)
+            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                d = _derive(table, opt, box)
+            table.raise_if_problems()
+            ids = table.columns["test_id"]
+            for k in _COMPACT:
+                keep[k].append(d[k])
+            lines.append(table.lines)
+            mats.append(_interned(table.columns["material"], mat_names))
+            conds.append(_interned(table.columns["condition"], cond_names))
+            hashes.append(np.fromiter(map(hash, ids.tolist()), dtype=np.int64, count=len(ids)))
+            spool_in.append({"test_id": ids, **{f"in_{name}": _documented(table, name) for name in RAW_INPUTS
+                                                if name in table.columns}})
+            sizes.append(len(table))
+            notes.update(dict.fromkeys(table.notes))
+            warnings.update(dict.fromkeys(table.warnings))
+            del table, d, ids, box
+        starts = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+        lines_all = np.concatenate(lines)
+        mat, cond = np.concatenate(mats), np.concatenate(conds)
+        del lines, mats, conds
+        d = {k: np.concatenate(v) for k, v in keep.items()}
+        del keep
+        problems = _RowProblems(path, sheet, headers, lines_all, {"condition": cond, "material": mat})
+        _duplicate_ids(np.concatenate(hashes), spool_in, starts, problems)
+        del hashes
+        problems.raise_if_problems()
+
+        materials = list(mat_names)
+        wet = cond == "wet"
+        fits: dict[str, LineFit] = {}
+        for m in materials:
+            of_m = mat == m
+            dry = of_m & (cond == "dry")
+            first_row = int(np.argmax(of_m))
+            if not dry.any():
+                problems.add_problem(first_row, "condition",
+                                     f"material '{m}' has no dry test: its envelope c, phi cannot be fitted")
+                continue
+            try:
+                fit = fit_line_origin if opt.dry_fit == "origin" else fit_line
+                fits[m] = fit(d["sigma_N"][dry], d["tau_max"][dry], opt.confidence)
+            except FitError as exc:
+                problems.add_problem(first_row, "condition", f"material '{m}': dry fit impossible: {exc}")
+        saturated_fits = _saturated_fits(problems, d, mat, cond, materials, opt)
+        problems.raise_if_problems()
+
+        tests = _LongTests({"material": mat, "condition": cond, "line": lines_all, **d})
+        md = _model_inputs(tests, wet, mat, fits, opt, saturated_fits)
+        laws = sa.fit_laws(md, opt.models, list(fits), opt.model_params, fits=fits)
+        md = dataclasses.replace(md, fitted={model: {m: law.params for m, law in by_mat.items()}
+                                             for model, by_mat in laws.items()})
+        per_material = _material_values(md, wet, mat, fits, opt)
+
+        rows = _sample_rows(wet, mat, d["suction"], list(fits))
+        taus: dict[str, list] = {m: [] for m in opt.models}
+        samples: dict[str, list] = {}
+        for k in range(len(sizes)):
+            lo, hi = int(starts[k]), int(starts[k + 1])
+            sl = slice(lo, hi)
+            part = {name: d[name][sl] for name in ("sigma_N", "suction", "tau_max")}
+            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                preds, back = _predictions(part, wet[sl], md.subset(sl), fits, laws, opt)
+                cols = {"chi1": np.where(wet[sl], ph.chi1(d["S_R"][sl]), 0.0),
+                        "chi2": np.where(wet[sl], ph.chi2(d["S_R"][sl], d["R"][sl], opt.surface_tension), 0.0),
+                        **_flat(preds), **_flat({"back": back})}
+            spool_out.append(cols)
+            for m in opt.models:
+                taus[m].append(preds[m].tau)
+            here = rows[(rows >= lo) & (rows < hi)] - lo
+            for key, v in cols.items():
+                samples.setdefault(key, []).append(v[here])
+            del preds, back, cols, part
+        n = int(starts[-1])
+        sampled = {key: Sampled(rows, np.concatenate(v), n) for key, v in samples.items()}
+        for m in opt.models:
+            sampled[f"{m}|tau"] = np.concatenate(taus[m])
+        del taus, samples
+        predictions = {m: _record(ModelPrediction, m, sampled, model=m) for m in opt.models}
+        back = _record(BackAnalysis, "back", sampled)
+        scored = _scores(d, wet, mat, fits, laws, predictions, opt)
+        result = ShearBlocks(
+            source=path, options=opt, tests=tests, fits=fits, metrics=scored["metrics"],
+            metrics_overall=scored["overall"], best_model={m: best_of(v) for m, v in scored["metrics"].items()},
+            best_model_overall=best_of(scored["overall"]), notes=list(notes), per_material=per_material,
+            inputs=inputs, warnings=list(opt.warnings) + list(warnings) + scored["warnings"],
+            metrics_pendular=scored["pendular"], metrics_pendular_overall=scored["overall_pendular"], laws=laws,
+            model_inputs=md, curves=None, predictions=predictions, back=back, saturated_fits=saturated_fits,
+            spool_in=spool_in, spool_out=spool_out, starts=starts)
+        tests.result = result
+        if opt.bootstrap > 0:
+            result.ranking = _bootstrap(result, wet, mat, cond, opt)
+        return result
+    except BaseException:
+        spool_in.close()
+        spool_out.close()
+        raise
+
+
+def _duplicate_ids(hashes: np.ndarray, spool: Spool, starts: np.ndarray, problems: _RowProblems) -> None:
+    """Repeated test ids of a long table (as Table.check_unique words them), found by their hashes and confirmed
+    on the ids themselves, read back from the spool (no Python str per test held at once)."""
+    order = np.argsort(hashes, kind="stable")
+    sorted_h = hashes[order]
+    same = np.flatnonzero(sorted_h[1:] == sorted_h[:-1])
+    if not same.size:
+        return
+    rows = np.unique(np.concatenate([order[same], order[same + 1]]))
+    seen: dict[str, int] = {}
+    for i, v in zip(rows.tolist(), _spooled(spool, starts, "test_id", rows)):
+        if v in seen:
+            problems.add_problem(i, "test_id", f"duplicate test_id '{v}' (first on line {seen[v]})", v)
+        else:
+            seen[v] = int(problems.lines[i])
+
+
+def _spooled(spool: Spool, starts: np.ndarray, key: str, rows: np.ndarray) -> list:
+    """The values of one spooled column at ``rows`` (increasing row numbers)."""
+    out: list = []
+    for k in range(len(starts) - 1):
+        lo, hi = starts[k], starts[k + 1]
+        here = rows[(rows >= lo) & (rows < hi)]
+        if here.size:
+            out += spool.block(k)[key][here - lo].tolist()
+    return out
+
+
+def _scores(d: dict, wet, mat, fits, laws, predictions, opt: ShearOptions) -> dict:
+    """Metrics of every model per material and overall, on all wet tests and on the pendular ones; warnings."""
+    pend = wet & (d["S_R"] <= opt.pendular_limit)
     of_material = {m: mat == m for m in fits}
 
     def scores(sel):
@@ -741,22 +1016,154 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         if wet.any() else {}
     overall_pend = {mod: model_metrics(predictions[mod].tau[pend], d["tau_max"][pend]) for mod in opt.models} \
         if pend.any() else {}
-    if curves is not None:
-        tests.update(curves.per_test())
-    warnings = (list(opt.warnings) + table.warnings + (curves.warnings if curves else [])
-                + _warnings(wet, pend, mat, fits, laws, predictions, opt))
-    result = ShearResult(
-        source=table.path, options=opt, tests=tests, fits=fits, metrics=metrics,
-        metrics_overall=overall, best_model={m: best_of(v) for m, v in metrics.items()},
-        best_model_overall=best_of(overall), notes=table.notes, per_material=per_material,
-        inputs=[input_file(source, table)] + ([input_file(opt.curves, curves.table)] if curves else []),
-        warnings=warnings, metrics_pendular=metrics_pend,
-        metrics_pendular_overall=overall_pend, laws=laws, model_inputs=model_inputs, curves=curves,
-        predictions=predictions, back=back, saturated_fits=saturated_fits,
-    )
-    if opt.bootstrap > 0:
-        result.ranking = _bootstrap(result, wet, mat, cond, opt)
-    return result
+    return {"metrics": metrics, "pendular": metrics_pend, "overall": overall, "overall_pendular": overall_pend,
+            "warnings": _warnings(wet, pend, mat, fits, laws, predictions, opt)}
+
+
+class _LongTests(dict):
+    """``ShearBlocks.tests``: the compact per-test arrays in memory; any other column (test_id, the raw inputs,
+    chi1, chi2) is read back from the spools, whole, when asked for."""
+
+    result = None
+
+    def __missing__(self, key):
+        r = self.result
+        if r is None:
+            raise KeyError(key)
+        if key in ("chi1", "chi2"):
+            spool = r.spool_out
+        elif key in r.spool_in.block(0):
+            spool = r.spool_in
+        else:
+            raise KeyError(key)
+        return np.concatenate([b[key] for b in spool.blocks()])
+
+
+class _ResultsBlocks:
+    """results.csv of a long run for capred.io.writers.write_csv_file: ``blocks()`` gives each block's columns,
+    made from the spools one block at a time; ``columns(start, stop)`` as a Spool's."""
+
+    def __init__(self, result: "ShearBlocks"):
+        self.result = result
+        self.n = int(result.starts[-1])
+
+    def blocks(self):
+        for k in range(len(self.result.starts) - 1):
+            yield self.result._block(k)._results_columns()
+
+    def columns(self, start: int, stop: int):
+        """Every column of rows start..stop-1; more than one block's rows: columns made when looked up."""
+        if stop - start > int(np.max(np.diff(self.result.starts))):
+            return _LazyColumns(self.result, start, stop)
+        return self.result._columns(start, stop)
+
+
+class _LazyColumns(dict):
+    """Columns of many rows of a long run, each made only when looked up (``flags`` from memory)."""
+
+    def __init__(self, result, start: int, stop: int):
+        super().__init__(dict.fromkeys(result._block(0)._results_columns()))
+        self.result, self.start, self.stop = result, start, stop
+
+    def __getitem__(self, key):
+        if key not in self:
+            raise KeyError(key)
+        if key == "flags":
+            return np.asarray(self.result._flag_texts()[self.start:self.stop], dtype=object)
+        return self.result._columns(self.start, self.stop, key)[key]
+
+    def items(self):
+        return ((k, self[k]) for k in self)
+
+    def values(self):
+        return (self[k] for k in self)
+
+
+@dataclass(repr=False)
+class ShearBlocks(ShearResult):
+    """The result of `capred shear` on a long table (several blocks of capred.io.blocks): a ShearResult whose
+    per-test outputs stay on disk.
+
+    In memory, for every test: ``tests`` sigma_N, suction, S_R, tau_max, R, material, condition, line, and
+    each model's ``predictions[model].tau``. The other per-test arrays (every prediction's bands, residuals,
+    sigma_cap, the back-analysis, chi1, chi2) are :class:`capred.pipelines.shear_records.Sampled`: kept at the
+    rows the figures and console tables show; ``tests["test_id"]`` and the raw inputs are read back whole
+    when asked for, ``table()`` builds the whole DataFrame. results.csv and the JSON are written block by
+    block from the spools, the same bytes as the whole-table run.
+    """
+
+    spool_in: object = None  # Spool: test_id and the raw inputs of each block
+    spool_out: object = None  # Spool: chi1, chi2, every model's prediction and the back-analysis of each block
+    starts: np.ndarray | None = None  # first row of each block, and the number of tests last
+
+    def _block(self, k: int) -> ShearResult:
+        """Block ``k`` as a ShearResult of its own tests (what _results_columns and _test_rows read)."""
+        cached = self.__dict__.get("_block_cache")
+        if cached is not None and cached[0] == k:
+            return cached[1]
+        lo, hi = int(self.starts[k]), int(self.starts[k + 1])
+        a, b = self.spool_in.block(k), self.spool_out.block(k)
+        t = self.tests
+        tests = {"test_id": a["test_id"], "material": t["material"][lo:hi], "condition": t["condition"][lo:hi],
+                 "line": t["line"][lo:hi], **{key: v for key, v in a.items() if key != "test_id"},
+                 **{key: t[key][lo:hi] for key in _COMPACT}, "chi1": b["chi1"], "chi2": b["chi2"]}
+        part = ShearResult(source=self.source, options=self.options, tests=tests, fits=self.fits, metrics={},
+                           metrics_overall={}, best_model={}, best_model_overall=None,
+                           predictions={m: _record(ModelPrediction, m, b, model=m) for m in self.models},
+                           back=_record(BackAnalysis, "back", b))
+        self.__dict__["_block_cache"] = (k, part)
+        return part
+
+    def _columns(self, start: int, stop: int, key: str | None = None) -> dict:
+        """results.csv columns (or one) of rows start..stop-1, across blocks."""
+        parts = []
+        for k in range(len(self.starts) - 1):
+            lo, hi = int(self.starts[k]), int(self.starts[k + 1])
+            a, b = max(start, lo), min(stop, hi)
+            if a < b:
+                cols = self._block(k)._results_columns()
+                parts.append({name: v[a - lo:b - lo] for name, v in cols.items() if key is None or name == key})
+        if len(parts) == 1:
+            return parts[0]
+        return {name: np.concatenate([p[name] for p in parts]) for name in parts[0]} if parts else {}
+
+    def _test_rows(self, start: int, stop: int) -> list[dict]:
+        rows: list[dict] = []
+        for k in range(len(self.starts) - 1):
+            lo, hi = int(self.starts[k]), int(self.starts[k + 1])
+            a, b = max(start, lo), min(stop, hi)
+            if a < b:
+                rows += self._block(k)._test_rows(a - lo, b - lo)
+        return rows
+
+    def test_ids(self, rows) -> list[str]:
+        return [str(x) for x in _spooled(self.spool_in, self.starts, "test_id", np.asarray(rows, dtype=np.int64))]
+
+    def row_count(self) -> int:
+        return int(self.starts[-1])
+
+    def csv_tables(self) -> dict:
+        cached = self.__dict__.get("_csv_tables")
+        if cached is None:
+            cached = self.__dict__["_csv_tables"] = {"results": _ResultsBlocks(self),
+                                                     "summary": _flat_summary(self, frame=False)}
+        return cached
+
+    def tables(self) -> dict:
+        """results (every test, in memory: for tables.xlsx or a script) and summary."""
+        cached = self.__dict__.get("_tables")
+        if cached is None:
+            import pandas as pd
+
+            cached = self.__dict__["_tables"] = {
+                "results": pd.DataFrame(self._columns(0, self.row_count()), copy=False),
+                "summary": _flat_summary(self)}
+        return cached
+
+    def close(self) -> None:
+        """Remove the spool files now (they also go when the result is garbage collected)."""
+        self.spool_in.close()
+        self.spool_out.close()
 
 
 def _documented(table: Table, name: str) -> np.ndarray:
@@ -854,18 +1261,48 @@ def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions,
     """
     from . import shear_analysis as sa
 
-    c = np.array([fits[m].intercept for m in mat])
-    tan_phi = np.array([fits[m].slope for m in mat])
-    saturated_fits = saturated_fits or {}
-    c_sat = np.array([saturated_fits[m].intercept if m in saturated_fits else np.nan for m in mat])
-    tan_phi_sat = np.array([saturated_fits[m].slope if m in saturated_fits else np.nan for m in mat])
-    d = esm.ModelInputs(tests["sigma_N"], tests["suction"], tests["S_R"], tests["R"], tests["tau_max"], wet, mat,
-                        c, tan_phi, opt.surface_tension, opt.model_params, c_sat=c_sat, tan_phi_sat=tan_phi_sat)
+    d = _model_inputs(tests, wet, mat, fits, opt, saturated_fits)
     laws = sa.fit_laws(d, opt.models, list(fits), opt.model_params, fits=fits)
     d = dataclasses.replace(d, fitted={model: {m: law.params for m, law in by_mat.items()}
                                        for model, by_mat in laws.items()})
-    cov, s2, t = sa.fit_covariances(fits, mat)
-    dof = sa.fit_dof(fits, mat)
+    predictions, back = _predictions(tests, wet, d, fits, laws, opt)
+    return predictions, back, _material_values(d, wet, mat, fits, opt), laws, d
+
+
+def _model_inputs(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions, saturated_fits=None):
+    """The esm.ModelInputs of every test: its state and its material's dry (and saturated) envelope."""
+    names = list(fits)
+    saturated_fits = saturated_fits or {}
+    if len(mat) > 10_000:  # a long table: by material code (a Python list of a million floats is ~30 MB)
+        which = _codes(mat, names)
+        pad = lambda v: np.append(np.asarray(v, dtype=float), np.nan)[which]  # noqa: E731
+        c, tan_phi = pad([fits[m].intercept for m in names]), pad([fits[m].slope for m in names])
+        c_sat = pad([saturated_fits[m].intercept if m in saturated_fits else np.nan for m in names])
+        tan_phi_sat = pad([saturated_fits[m].slope if m in saturated_fits else np.nan for m in names])
+    else:
+        c = np.array([fits[m].intercept for m in mat])
+        tan_phi = np.array([fits[m].slope for m in mat])
+        c_sat = np.array([saturated_fits[m].intercept if m in saturated_fits else np.nan for m in mat])
+        tan_phi_sat = np.array([saturated_fits[m].slope if m in saturated_fits else np.nan for m in mat])
+    return esm.ModelInputs(tests["sigma_N"], tests["suction"], tests["S_R"], tests["R"], tests["tau_max"], wet, mat,
+                           c, tan_phi, opt.surface_tension, opt.model_params, c_sat=c_sat, tan_phi_sat=tan_phi_sat)
+
+
+def _codes(values, names: list) -> np.ndarray:
+    """Index of each value in ``names`` (len(names) where absent), without a Python object per row."""
+    out = np.full(len(values), len(names), dtype=np.int16)
+    for k, name in enumerate(names):
+        out[values == name] = k
+    return out
+
+
+def _predictions(tests: dict, wet, d, fits: dict[str, LineFit], laws: dict, opt: ShearOptions):
+    """Each model's ModelPrediction and the BackAnalysis of the tests of ``d`` (rows of ``tests``)."""
+    from . import shear_analysis as sa
+
+    c, tan_phi = d.c, d.tan_phi
+    cov, s2, t = sa.fit_covariances(fits, d.material)
+    dof = sa.fit_dof(fits, d.material)
     predictions = {}
     for model in opt.models:
         eff, tau = esm.predict(model, d)
@@ -877,6 +1314,11 @@ def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions,
             sigma_cap=np.where(wet, (tau - c) / tan_phi - tests["sigma_N"], np.nan))
     back = sa.back_analysis_intervals(tests["tau_max"], tests["sigma_N"], tests["suction"], c, tan_phi, cov, s2,
                                       dof, opt.confidence, wet=wet)
+    return predictions, back
+
+
+def _material_values(d, wet, mat, fits: dict[str, LineFit], opt: ShearOptions) -> dict[str, dict]:
+    """What a model reports per material beside the dry fit (Fredlund's phi_b), from its wet tests."""
     extra: dict[str, dict] = {}  # per material: what a model reports beside the dry fit (Fredlund's phi_b)
     for model in opt.models:
         per_material = esm.REGISTRY[model].material_values
@@ -886,7 +1328,7 @@ def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions,
             sel = wet & (mat == m)
             if sel.any():
                 extra.setdefault(m, {}).update(per_material(d.subset(sel)))
-    return predictions, back, extra, laws, d
+    return extra
 
 
 def _flat_summary(result: ShearResult, frame: bool = True):
@@ -910,4 +1352,4 @@ def _flat_summary(result: ShearResult, frame: bool = True):
     return pd.DataFrame(rows)
 
 
-__all__ = ["SCHEMA", "ModelParams", "ShearOptions", "ShearResult", "run_shear"]
+__all__ = ["SCHEMA", "ModelParams", "ShearBlocks", "ShearOptions", "ShearResult", "run_shear"]

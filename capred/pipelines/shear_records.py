@@ -80,3 +80,42 @@ class BackAnalysis:
     chi_back_se: np.ndarray = output("chi_back_se", "chi_back_se")
     chi_back_ci: tuple = output("chi_back_ci{level}", ("chi_back_low{level}", "chi_back_high{level}"), pair=True)
     dof: np.ndarray = output("dof", "dof")
+
+
+class Sampled:
+    """Values of a per-test array kept at some rows only (a long run's figures and console tables need no more).
+
+    ``a[rows]`` gives the values at ``rows`` (integer indices, or one index) when every one of them was kept;
+    any other row raises IndexError. A long `capred shear` run (capred.pipelines.shear, block by block) keeps
+    its per-test outputs in a spool on disk and these samples in memory.
+
+    Parameters
+    ----------
+    rows : ndarray of int
+        The rows kept, increasing.
+    values : ndarray
+        The values at those rows.
+    n : int
+        Length of the whole array (the number of tests).
+    """
+
+    def __init__(self, rows: np.ndarray, values: np.ndarray, n: int):
+        self.rows, self.values, self.n = rows, values, n
+
+    def __len__(self) -> int:
+        return self.n
+
+    @property
+    def shape(self) -> tuple[int]:
+        return (self.n,)
+
+    def __getitem__(self, index):
+        idx = np.asarray(index)
+        if idx.dtype == bool or idx.dtype.kind not in "iu":
+            raise IndexError("a long run keeps this per-test array at sampled rows only: index it with row numbers "
+                             "(the whole column is in results.csv)")
+        pos = np.searchsorted(self.rows, idx)
+        pos_ok = np.minimum(pos, max(self.rows.size - 1, 0))
+        if self.rows.size == 0 or np.any(self.rows[pos_ok] != idx):
+            raise IndexError("rows not kept in memory by a long run (the whole column is in results.csv)")
+        return self.values[pos_ok]

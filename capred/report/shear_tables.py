@@ -71,13 +71,13 @@ def shear_tables(result) -> list[TableSpec]:
     return out
 
 
-def _wet_rows(result):
+def _wet_rows(result, limit: int = MAX_ROWS):
+    """The first ``limit`` wet tests' rows of the capillary-stress table (a long run keeps just these in memory)."""
     t = result.tests
-    for i in range(len(t["test_id"])):
-        if t["condition"][i] != "wet":
-            continue
-        b = result.back
-        yield {"test_id": str(t["test_id"][i]), "material": str(t["material"][i]), "S_R": t["S_R"][i],
+    rows = np.flatnonzero(t["condition"] == "wet")[:limit]
+    b = result.back
+    for i, tid in zip(rows.tolist(), result.test_ids(rows)):
+        yield {"test_id": tid, "material": str(t["material"][i]), "S_R": t["S_R"][i],
                "suction [kPa]": t["suction"][i] / 1e3, "σ_cap [kPa]": b.sigma_cap[i] / 1e3,
                "± se": b.sigma_cap_se[i] / 1e3, "χ_back": b.chi_back[i], "± se ": b.chi_back_se[i]}
 
