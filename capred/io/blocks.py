@@ -15,11 +15,14 @@ other table is read whole (one block), exactly as ``read_table`` reads it.
 from __future__ import annotations
 
 import codecs
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Iterator
 
+from ..errors import InputError
+from ..units import conversion
 from .grid import SPREADSHEET_SUFFIXES, ReadLimits, _csv_grid, as_source
-from .table import Column, Table, _grid_table, _with_options, read_table
+from .table import Column, Table, _check_rule, _grid_table, _with_options, read_table
 
 #: bytes of CSV text per block: about 50,000 rows of a four-column bridge table, enough for two processes to share
 #: a block (capred.pipelines.bridge), small enough that 1M rows peak at 1.27x the memory of 100,000 (measured:
@@ -81,21 +84,199 @@ def read_table_blocks(source, schema: list[Column], *, ignore_columns=(), limits
     seen: set[str] = set()
     prefix: list[str] = []  # the header line (and units row) that every later block repeats
     for first_line, text in _pieces(p, block_bytes):
+        tables = []
         if first_line == 1:
-            table = _grid_table(_csv_grid(str(path), text), src, schema)
-            lines = text.split("\n", table.units_line or table.header_line)
-            prefix = [lines[table.header_line - 1]] + ([lines[table.units_line - 1]] if table.units_line else [])
+            # the head (header, metadata, the first rows) read as usual, the rest of the piece by the fast path
+            # when it can take it, joined as one block (the blocks, and so every number computed on them, stay
+            # as they were); else the piece read whole
+            head, rest = _split_head(text)
+            if rest:
+                table = _grid_table(_csv_grid(str(path), head), src, schema)
+                prefix = _prefix(head, table)
+                fast = _numeric_block(str(path), src, schema, prefix, HEAD_LINES + 1, rest)
+                if fast is not None and _numeric_line(head[head.rfind("\n") + 1:], len(prefix[0].split(","))):
+                    tables = [_joined(table, fast)]
+            if not tables:
+                table = _grid_table(_csv_grid(str(path), text), src, schema)
+                prefix = _prefix(text, table)
+                tables = [table]
         else:
             if not text.strip():
                 continue
-            # the header (and units row) just above the block's lines, which keep their line numbers
-            grid = _csv_grid(str(path), "\n".join(prefix) + "\n" + text, first_line - len(prefix))
-            table = _grid_table(grid, src, schema)
-            if table.units_line is not None:  # said once, by the first block
+            table = _numeric_block(str(path), src, schema, prefix, first_line, text)
+            if table is None:
+                # the header (and units row) just above the block's lines, which keep their line numbers
+                grid = _csv_grid(str(path), "\n".join(prefix) + "\n" + text, first_line - len(prefix))
+                table = _grid_table(grid, src, schema)
+            tables = [table]
+        for table in tables:
+            if table.units_line is not None and first_line > 1:
+                # said once, by the first block
                 table.notes.remove(f"units read from the row under the header (line {table.units_line})")
-        table.notes = _unseen(table.notes, seen)
-        table.warnings = _unseen(table.warnings, seen)
-        yield table
+            table.notes = _unseen(table.notes, seen)
+            table.warnings = _unseen(table.warnings, seen)
+            yield table
+        del tables, table
+
+
+#: lines of the first piece read by the whole-file reader (header, metadata, units row, first rows); the lines after
+#: them go to the fast reader of plain numeric blocks when it can take them
+HEAD_LINES = 1000
+#: the characters of a plain numeric block: digits, signs, decimal points, exponents, commas and line ends
+_NUMERIC_CHARS = str.maketrans("", "", "0123456789+-.eE,\n")
+
+
+def _prefix(text: str, table: Table) -> list[str]:
+    """The header line (and units row) of ``text`` as ``table`` found them: what every later block repeats."""
+    lines = text.split("\n", table.units_line or table.header_line)
+    return [lines[table.header_line - 1]] + ([lines[table.units_line - 1]] if table.units_line else [])
+
+
+def _split_head(text: str) -> tuple[str, str]:
+    """(the first HEAD_LINES lines, the rest) of the first piece; the rest is empty for a short piece."""
+    cut = -1
+    for _ in range(HEAD_LINES):
+        cut = text.find("\n", cut + 1)
+        if cut < 0:
+            return text, ""
+    return text[:cut], text[cut + 1:]
+
+
+def _numeric_line(line: str, width: int) -> bool:
+    """True for a line of ``width`` filled cells of plain-number characters."""
+    return (not line.translate(_NUMERIC_CHARS) and line.count(",") == width - 1 and "" not in line.split(","))
+
+
+class _Cells(Sequence):
+    """Column ``j`` of a plain numeric block's lines as text, cut out when a message needs a cell (Table.raw)."""
+
+    def __init__(self, text: str, width: int, j: int, n: int) -> None:
+        self._text, self._width, self._j, self._n = text, width, j, n
+        self._lines: list[str] | None = None
+
+    def __len__(self) -> int:
+        return self._n
+
+    def __getitem__(self, i):
+        if self._lines is None:
+            self._lines = self._text.split("\n")
+        if isinstance(i, slice):
+            return [ln.split(",")[self._j] for ln in self._lines[i]]
+        return self._lines[i].split(",")[self._j]
+
+
+def _numeric_block(shown: str, src, schema: list[Column], prefix: list[str], first_line: int,
+                   text: str) -> Table | None:
+    """The Table the whole-file reader makes of a block whose every cell is a plain number, made without a
+    Python object per cell; None where the block is anything else (or has any problem), for the usual reader.
+
+    Taken only when every line has as many filled cells as the header (no blank cell, line or header cell),
+    every character is a digit, sign, point, exponent mark, comma or line end, the header is comma-separated,
+    no column the schema reads is text and no thousands separator is set. What the reader says of the header
+    (its line, units row, units, notes, warnings) comes from the usual reader on the header and the block's
+    first line; the numbers are parsed by orjson (correctly rounded, as float() is; cells JSON does not take,
+    such as '+1' or '.5', by float()); a block with any value out of range goes to the usual reader, which
+    names it.
+    """
+    import numpy as np
+
+    header = prefix[0]
+    width = header.count(",") + 1
+    if (not text or text.translate(_NUMERIC_CHARS) or src.thousands is not None or ";" in "".join(prefix)
+            or "\t" in "".join(prefix) or any(not c.strip() for c in header.split(","))):
+        return None
+    if (text[0] in ",\n" or text[-1] in ",\n" or "\n\n" in text or ",," in text or ",\n" in text
+            or "\n," in text):
+        return None  # a blank line or a blank cell
+    n = text.count("\n") + 1
+    if text.count(",") != n * (width - 1):
+        return None
+    first = text[:text.find("\n")] if n > 1 else text
+    try:
+        table = _grid_table(_csv_grid(shown, "\n".join(prefix) + "\n" + first, first_line - len(prefix)), src,
+                            schema)
+    except InputError:
+        return None
+    cols = {c.name: c for c in schema}
+    headers = [c.strip() for c in header.split(",")]
+    if table.problems or len(table) != 1 or any(cols[name].kind == "text" for name in table.headers):
+        return None
+    values = _parse_numbers(text, n, width)
+    if values is None:
+        return None
+    table.lines = np.arange(first_line, first_line + n)
+    for name, shown_header in table.headers.items():
+        j = headers.index(shown_header)
+        col = cols[name]
+        as_read = np.ascontiguousarray(values[:, j])
+        factor = conversion(table.units[name], col.kind)[0]
+        with np.errstate(over="ignore", invalid="ignore"):
+            si = as_read * factor
+        if np.isinf(si).any():
+            return None
+        table.raw[name] = _Cells(text, width, j, n)
+        table.as_read[name] = as_read
+        table.columns[name] = si
+        _check_rule(table, col)
+        if table.problems:
+            return None
+    return table
+
+
+def _joined(head: Table, rest: Table) -> Table:
+    """The table of the head's lines then the rest's (the rest read by _numeric_block after the head): what the
+    whole-file reader makes of both together."""
+    import numpy as np
+
+    for name in head.columns:
+        head.columns[name] = np.concatenate([head.columns[name], rest.columns[name]])
+        head.as_read[name] = np.concatenate([head.as_read[name], rest.as_read[name]])
+        head.raw[name] = _Concatenated(head.raw[name], rest.raw[name])
+    head.lines = np.concatenate([head.lines, rest.lines])
+    return head
+
+
+class _Concatenated(Sequence):
+    """Two sequences of cells as one (Table.raw of a head and the rest read after it)."""
+
+    def __init__(self, first, second) -> None:
+        self._first, self._second = first, second
+
+    def __len__(self) -> int:
+        return len(self._first) + len(self._second)
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[k] for k in range(*i.indices(len(self)))]
+        if i < 0:
+            i += len(self)
+        if not 0 <= i < len(self):
+            raise IndexError(i)
+        k = len(self._first)
+        return self._first[i] if i < k else self._second[i - k]
+
+
+def _parse_numbers(text: str, n: int, width: int):
+    """The cells of a plain numeric block as an (n, width) float array; None where a line has another width or
+    a cell is not a number."""
+    import numpy as np
+
+    try:
+        import orjson
+
+        if ",-0," not in "," + text.replace("\n", ",") + ",":  # JSON reads the integer -0 as 0 (not -0.0)
+            rows = orjson.loads("[[" + text.replace("\n", "],[") + "]]")
+            values = np.array(rows, dtype=float)
+            return values if values.shape == (n, width) else None
+    except (ImportError, ValueError, TypeError, OverflowError):  # orjson.JSONDecodeError is a ValueError
+        pass
+    cells = text.replace("\n", ",").split(",")
+    if len(cells) != n * width or any(ln.count(",") != width - 1 for ln in text.split("\n")):
+        return None
+    try:
+        return np.fromiter(map(float, cells), float, len(cells)).reshape(n, width)
+    except ValueError:
+        return None
 
 
 def _unseen(messages: list[str], seen: set[str]) -> list[str]:
