@@ -289,8 +289,11 @@ def output_dirs(commands: list[str], sources: list[Path], root: Path) -> list[Pa
     prefixes = [REDUCTIONS[c].out_prefix for c in commands]
     stems = [Path(p).stem if p is not None else "options" for p in sources]
     names = [f"{prefix}_{stem}" for prefix, stem in zip(prefixes, stems)]
+    from collections import Counter
+
+    repeats = Counter(names)
     for i, p in enumerate(sources):
-        if p is not None and names.count(names[i]) > 1:
+        if p is not None and repeats[names[i]] > 1:
             names[i] = f"{prefixes[i]}_{Path(p).parent.name}_{stems[i]}"
     seen: dict[str, int] = {}
     out = []
@@ -344,8 +347,6 @@ def write_season(root: Path, outcomes: list[Outcome]) -> list[Path]:
     did not write (a manifest called season.csv), and recorded in the batch's
     provenance.json.
     """
-    import pandas as pd
-
     from .io.writers import encode_csv, write_batch_file
     from .report.html import render_season
 
@@ -359,11 +360,29 @@ def write_season(root: Path, outcomes: list[Outcome]) -> list[Path]:
                          "report": link})
         for r in o.season:
             rows.append({"input": o.source, "command": o.command, "status": o.status, **r, "report": link})
-    frame = pd.DataFrame(rows)
-    for name in frame.columns:  # counts stay whole numbers where some runs have none (pandas would make floats)
-        values = [v for v in (r.get(name) for r in rows) if v is not None]
-        if values and all(isinstance(v, int) and not isinstance(v, bool) for v in values):
-            frame[name] = frame[name].astype("Int64")
+    table = season_columns(rows)
     runs = _runs(root, outcomes)
-    return [write_batch_file(root, "season.csv", encode_csv(frame), runs),
-            write_batch_file(root, "season.html", render_season(frame).encode("utf-8"), runs)]
+    return [write_batch_file(root, "season.csv", encode_csv(table), runs),
+            write_batch_file(root, "season.html", render_season(table).encode("utf-8"), runs)]
+
+
+def season_columns(rows: list[dict]) -> dict:
+    """The season table's columns (every key of any row, in order of first appearance) as arrays: counts stay
+    whole numbers (Python ints, None where a run has none: ``n_dry`` of a retention row), other numbers floats
+    (NaN where a run has none), text and mixed columns objects (None where missing)."""
+    import numbers
+
+    import numpy as np
+
+    names = list(dict.fromkeys(k for r in rows for k in r))
+    out = {}
+    for name in names:
+        values = [r.get(name) for r in rows]
+        present = [v for v in values if v is not None]
+        if present and all(isinstance(v, numbers.Integral) and not isinstance(v, (bool, np.bool_)) for v in present):
+            out[name] = np.array([None if v is None else int(v) for v in values], dtype=object)
+        elif present and all(isinstance(v, numbers.Real) and not isinstance(v, (bool, np.bool_)) for v in present):
+            out[name] = np.array([np.nan if v is None else float(v) for v in values], dtype=float)
+        else:
+            out[name] = np.array(values, dtype=object)
+    return out

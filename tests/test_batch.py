@@ -116,3 +116,22 @@ def test_batch_cli_writes_its_provenance_beside_the_index(tmp_path):
     assert prov["runs"] == ["shear_s0", "shear_s1"]
     index = pd.read_csv(out / "index.csv")
     assert set(index["status"]) == {"ok"}
+
+
+def test_season_counts_stay_whole_numbers_in_a_mixed_batch(tmp_path):
+    """season.csv of a shear + retention batch: counts are integers where a run has them and empty where it has
+    none (they were written 12.0 because the retention rows have no n_dry). The sample's steel has 12 dry and
+    14 wet tests (sample_data/shear_tests.csv, counted by hand); the retention sample's drying branch 16 points."""
+    manifest = tmp_path / "runs.csv"
+    manifest.write_text("command,input,options\n"
+                        f"shear,{capred.sample_path('shear')},--no-plots --bootstrap 0\n"
+                        f"retention,{capred.sample_path('retention')},--no-plots\n")
+    res = CliRunner().invoke(app, ["batch", str(manifest), "--out", str(tmp_path / "out")])
+    assert res.exit_code == 0, res.output
+    season = pd.read_csv(tmp_path / "out" / "season.csv", dtype=str, keep_default_na=False)
+    steel = season[season["material"] == "steel_2mm"].iloc[0]
+    assert (steel["n_dry"], steel["n_wet"], steel["n_points"]) == ("12", "14", "")
+    drying = season[season["branch"] == "drying"].iloc[0]
+    assert (drying["n_points"], drying["n_dry"]) == ("16", "")
+    html = (tmp_path / "out" / "season.html").read_text()
+    assert "12.0" not in html and "<NA>" not in html
