@@ -133,6 +133,7 @@ def test_default_sheets_are_the_report_sheets(default_run, shear_result):
     for k in extra:
         assert f"<b>{k}.</b> Not drawn by default: {sheets[k].title}" in html
     assert html.count("--figures all") == len(extra)
+    assert html.count("<figure>") == len(_main(shear_result))  # a sheet left out is a note, not an empty figure
 
 
 def test_figures_all_draws_the_sheets_on_request(tmp_path, monkeypatch, light):
