@@ -52,3 +52,72 @@ def test_a_file_that_cannot_be_split_is_one_block(tmp_path, quote):
     blocks = list(read_table_blocks(f, SOLVE_SCHEMA, block_bytes=20_000 if quote else 10**6))
     assert len(blocks) == 1  # quoted cells (or a file shorter than a block) are read whole
     assert [str(p) for p in blocks[0].problems] == [str(p) for p in read_table(f, SOLVE_SCHEMA).problems]
+
+
+def _numeric_file(path, rows=3000, units_row=False, cells=None):
+    """A plain numeric bridge table (the usual long file): numbers only, every cell filled; ``cells`` replaces
+    cells by (row, column): text."""
+    rng = np.random.default_rng(11)
+    lines = ["R,contact_angle,gap,suction", "mm,deg,mm,kPa"] if units_row else [
+        "R [mm],contact_angle [deg],gap [mm],suction [kPa]"]
+    data = [[repr(rng.uniform(.1, 2)), repr(rng.uniform(0, 60)), repr(rng.uniform(0, .05)),
+             repr(10 ** rng.uniform(-1, 1.5))] for _ in range(rows)]
+    for (i, j), text in (cells or {}).items():
+        data[i][j] = text
+    path.write_text("\n".join(lines + [",".join(r) for r in data]) + "\n", encoding="utf-8")
+    return path
+
+
+def _same_tables(blocks, whole):
+    for name, values in whole.columns.items():  # bit for bit: the same numbers, parsed another way
+        np.testing.assert_array_equal(np.concatenate([b.columns[name] for b in blocks]).view(np.int64),
+                                      values.view(np.int64))
+        np.testing.assert_array_equal(np.concatenate([b.as_read[name] for b in blocks]), whole.as_read[name])
+        assert [b.raw[name][i] for b in blocks for i in range(len(b))] == list(whole.raw[name])
+    np.testing.assert_array_equal(np.concatenate([b.lines for b in blocks]), whole.lines)
+    assert [str(p) for b in blocks for p in b.problems] == [str(p) for p in whole.problems]
+    assert [n for b in blocks for n in b.notes] == whole.notes
+    assert [w for b in blocks for w in b.warnings] == whole.warnings
+    assert all(b.units == whole.units and b.headers == whole.headers for b in blocks)
+
+
+@pytest.mark.parametrize("units_row", [False, True])
+def test_plain_numeric_blocks_read_fast_give_the_whole_file(tmp_path, monkeypatch, units_row):
+    monkeypatch.setattr("capred.io.blocks.HEAD_LINES", 50)  # the first block: 50 lines as usual, the rest fast
+    f = _numeric_file(tmp_path / "cases.csv", units_row=units_row)
+    blocks = list(read_table_blocks(f, SOLVE_SCHEMA, block_bytes=20_000))
+    assert len(blocks) > 5
+    # every block went through the fast reader (its cells are cut from the text only when asked for)
+    assert all(type(b.raw["R"]).__name__ in ("_Cells", "_Concatenated") for b in blocks)
+    _same_tables(blocks, read_table(f, SOLVE_SCHEMA))
+    # the first block is the head and the rest of the first piece joined: the blocks are those of the usual reader
+    monkeypatch.setattr("capred.io.blocks.HEAD_LINES", 10**9)
+    assert [len(b) for b in read_table_blocks(f, SOLVE_SCHEMA, block_bytes=20_000)] == [len(b) for b in blocks]
+
+
+def test_cells_json_does_not_take_are_read_as_float_reads_them(tmp_path, monkeypatch):
+    monkeypatch.setattr("capred.io.blocks.HEAD_LINES", 50)
+    odd = {(700, 0): "+1", (701, 1): ".5", (702, 2): "1.", (2500, 3): "-0", (704, 2): "1E-3", (705, 3): "007",
+           (706, 0): "1.2345678901234567890123456789", (707, 2): "0e5"}
+    f = _numeric_file(tmp_path / "cases.csv", cells=odd)
+    blocks = list(read_table_blocks(f, SOLVE_SCHEMA, block_bytes=20_000))
+    _same_tables(blocks, read_table(f, SOLVE_SCHEMA))
+    gap = np.concatenate([b.as_read["gap"] for b in blocks])
+    assert gap[702] == 1.0 and gap[704] == 0.001 and gap[707] == 0.0  # as float('1.'), float('1E-3'), float('0e5')
+    suction = np.concatenate([b.as_read["suction"] for b in blocks])
+    assert suction[2500] == 0 and np.signbit(suction[2500])  # '-0' is -0.0, as float('-0') (JSON would say 0)
+
+
+@pytest.mark.parametrize("cell, message", [("-0.5", "must be > 0"), ("abc", "is not a number"),
+                                           ("", "blank"), ("1e400", "too large")])
+def test_a_block_with_a_bad_cell_goes_to_the_usual_reader(tmp_path, monkeypatch, cell, message):
+    """The fast reader takes only blocks without a problem; any other block is read (and its problem named)
+    as before."""
+    monkeypatch.setattr("capred.io.blocks.HEAD_LINES", 50)
+    f = _numeric_file(tmp_path / "cases.csv", cells={(1500, 0): cell})
+    blocks = list(read_table_blocks(f, SOLVE_SCHEMA, block_bytes=20_000))
+    whole = read_table(f, SOLVE_SCHEMA)
+    _same_tables(blocks, whole)
+    if cell:  # a blank cell is a problem of the command (blank R), not of the reader
+        assert len(whole.problems) == 1 and message in str(whole.problems[0])
+        assert "line 1502" in str(whole.problems[0])  # header on line 1, row 1500 (from 0) on line 1502

@@ -116,8 +116,7 @@ def stream_json(doc: dict, write) -> None:
             write(b"[")
             first = True
             # a Rows that can encode its rows itself (column by column, the same bytes) does
-            pieces = value.json_chunks() if hasattr(value, "json_chunks") else (
-                _dumps(rows)[1:-1] if rows else b"" for rows in value.chunks())
+            pieces = value.json_chunks() if hasattr(value, "json_chunks") else map(encode_rows, value.chunks())
             for data in pieces:
                 if data:
                     write((b"" if first else b",") + data)
@@ -128,92 +127,9 @@ def stream_json(doc: dict, write) -> None:
     write(b"}\n")
 
 
-def json_rows_bytes(columns: dict, optional: tuple[str, ...] = ()) -> bytes:
-    """The JSON rows of output columns, as ``_dumps(rows)[1:-1]`` writes the list of their dicts, built column by
-    column.
-
-    Parameters
-    ----------
-    columns : dict of str to numpy.ndarray
-        Columns of equal length, in key order: numbers (written as floats, NaN and infinities as null) or object
-        arrays (text).
-    optional : tuple of str
-        Columns left out of a row where their cell is empty (or None), and written after every other key where
-        it is not.
-
-    Returns
-    -------
-    bytes
-        The rows' JSON objects joined by commas, without the enclosing brackets (empty for no rows); the bytes
-        of ``orjson.dumps([dict, ...])[1:-1]`` of the same rows.
-
-    Notes
-    -----
-    Every float column is printed by one orjson call on the array (shortest round-trip form, the printer
-    orjson uses for Python floats too) and the key names are laid between the cells by list slicing: no dict
-    and no float object per row. Text columns that are not all str, and a missing orjson, take the row-dict path.
-    """
-    import numpy as np
-
-    keys = [k for k in columns if k not in optional] + [k for k in optional if k in columns]
-    n = len(columns[keys[0]]) if keys else 0
-    if n == 0:
-        return b""
-    try:
-        import orjson
-    except ImportError:  # pragma: no cover - orjson is a dependency
-        orjson = None
-    cells = {}
-    for k in keys:
-        a = np.asarray(columns[k])
-        if a.dtype != object:
-            if orjson is None or k in optional:
-                return _row_dicts_bytes(columns, keys, optional)
-            text = orjson.dumps(np.ascontiguousarray(a, dtype=float), option=orjson.OPT_SERIALIZE_NUMPY)
-            cells[k] = text.decode("ascii")[1:-1].split(",")
-            continue
-        values = a.tolist()
-        if orjson is None or set(map(type, values)) != {str}:
-            return _row_dicts_bytes(columns, keys, optional)
-        encoded = {v: orjson.dumps(v).decode("utf-8") for v in set(values)}
-        if k in optional:  # the key and its cell together, or nothing
-            if keys.index(k) == 0:
-                return _row_dicts_bytes(columns, keys, optional)
-            name = orjson.dumps(k).decode("utf-8")
-            encoded = {v: ("," + name + ":" + e if v else "") for v, e in encoded.items()}
-        cells[k] = list(map(encoded.__getitem__, values))
-    # per row: {"k1":v1,"k2":v2,...} and a comma; the tokens of each slot laid in by list slicing (str, whose
-    # join is several times faster than that of bytes)
-    slots = []
-    for j, k in enumerate(keys):
-        if k not in optional:
-            slots.append([("{" if j == 0 else ",") + orjson.dumps(k).decode("utf-8") + ":"] * n)
-        slots.append(cells[k])
-    slots.append(["},"] * n)
-    tokens = [""] * (n * len(slots))
-    for j, slot in enumerate(slots):
-        tokens[j::len(slots)] = slot
-    return "".join(tokens)[:-1].encode("utf-8")
-
-
-def _row_dicts_bytes(columns: dict, keys: list[str], optional: tuple[str, ...]) -> bytes:
-    """json_rows_bytes through a dict per row (any column content)."""
-    import numpy as np
-
-    def listed(a):
-        a = np.asarray(a)
-        if a.dtype == object:
-            return a.tolist()
-        f = np.asarray(a, dtype=float)
-        return np.where(np.isfinite(f), f, None).tolist()
-
-    plain = [k for k in keys if k not in optional]
-    rows = [dict(zip(plain, vals)) for vals in zip(*(listed(columns[k]) for k in plain))]
-    for k in keys:
-        if k in optional:
-            for r, v in zip(rows, listed(columns[k])):
-                if v:
-                    r[k] = v
+def encode_rows(rows: list) -> bytes:
+    """The JSON of a list of rows without its brackets (what stream_json writes of each chunk of Rows): NaN and
+    infinities as null, floats in shortest round-trip form; empty for no rows."""
     return _dumps(rows)[1:-1] if rows else b""
 
 

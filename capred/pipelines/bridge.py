@@ -7,6 +7,7 @@ also accepted as ``theta``); both particles share it.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from itertools import repeat
 
 import numpy as np
 
@@ -134,14 +135,17 @@ class BridgeResult(Result):
 
     def rows_range(self, start: int, stop: int) -> list[dict]:
         """JSON rows start..stop (NaN as None, an empty note left out), built column by column."""
-        return json_rows({k: v[start:stop] for k, v in self._cols().items()})
+        return json_rows(self._cols_range(start, stop))
+
+    def _cols_range(self, start: int, stop: int) -> dict:
+        return {k: v[start:stop] for k, v in self._cols().items()}
 
     def rows(self) -> list[dict]:
         return self.rows_range(0, self.status.size)
 
     def payload(self, lazy: bool = False) -> dict:
         n = self.status.size
-        return {"source": self.source, "bridges": Rows(n, self.rows_range) if lazy else self.rows()}
+        return {"source": self.source, "bridges": ColumnRows(n, self._cols_range) if lazy else self.rows()}
 
     def tables(self) -> dict:
         return {"solve": self._frame()}
@@ -149,15 +153,46 @@ class BridgeResult(Result):
     def csv_tables(self) -> dict:
         return {"solve": self._cols()}
 
-def json_rows(cols: dict[str, np.ndarray]) -> list[dict]:
-    """JSON rows of output columns (NaN as None, an empty note left out), built column by column."""
+def json_rows(cols: dict[str, np.ndarray], nan_as_none: bool = True) -> list[dict]:
+    """JSON rows of output columns (an empty note left out), built column by column.
+
+    Parameters
+    ----------
+    cols : dict of str to numpy.ndarray
+        Output columns of equal length, with a ``note`` column (object arrays: text).
+    nan_as_none : bool, default True
+        Non-finite numbers as None; False keeps them as floats, for an encoder that writes them as null
+        (orjson, :func:`capred.io.writers.stream_json`): the same JSON, without an object array per column.
+
+    Returns
+    -------
+    list of dict
+        One dict per row, keys in column order, ``note`` last and only where it is not empty.
+    """
     keys = [k for k in cols if k != "note"]
-    values = [json_list(cols[k]) if cols[k].dtype != object else cols[k].tolist() for k in keys]
-    out = [dict(zip(keys, vals)) for vals in zip(*values)]
+    values = [cols[k].tolist() if cols[k].dtype == object or not nan_as_none else json_list(cols[k])
+              for k in keys]
+    out = list(map(dict, map(zip, repeat(keys), zip(*values))))
     for r, note in zip(out, cols["note"].tolist()):
         if note:
             r["note"] = note
     return out
+
+
+class ColumnRows(Rows):
+    """JSON rows made on demand from output columns (``columns(start, stop)``), which the writer encodes chunk
+    by chunk straight from the columns (:meth:`json_chunks`: no None per non-finite cell, the same bytes)."""
+
+    def __init__(self, n: int, columns) -> None:
+        super().__init__(n, lambda start, stop: json_rows(columns(start, stop)))
+        self.columns = columns
+
+    def json_chunks(self, size: int = 2000):
+        """The rows' JSON objects joined by commas, ``size`` rows per chunk (bytes, no brackets)."""
+        from ..io.writers import encode_rows
+
+        for start in range(0, self.n, size):
+            yield encode_rows(json_rows(self.columns(start, min(self.n, start + size)), nan_as_none=False))
 
 
 def _records(frame, drop_empty: str | None = None) -> list[dict]:
@@ -285,19 +320,49 @@ def _volume_rows(th, V, D, rho):
 
 
 def _in_parallel(solver, *columns):
-    """``solver(*columns)`` on both halves of the rows in two processes when there are many rows and two cores."""
+    """``solver(*columns)`` on both halves of the rows in two processes when there are many rows and two cores.
+
+    The second half is solved by a forked child, which sends its result back through a pipe (no process pool:
+    no pool threads, no import of multiprocessing); should the child fail, the parent solves that half itself,
+    so an error is raised where it can be reported.
+    """
     import os
+    import pickle
 
     n = columns[0].size
     if n < _PARALLEL_ROWS or (os.cpu_count() or 1) < 2 or os.name != "posix":
         return solver(*columns)
-    import multiprocessing as mp
-
     half = n // 2
-    with mp.get_context("fork").Pool(1) as pool:
-        other = pool.apply_async(solver, [c[half:] for c in columns])
+    read_end, write_end = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the child: solve, send, leave without running the parent's clean-up
+        code = 1
+        try:
+            os.close(read_end)
+            data = pickle.dumps(solver(*(c[half:] for c in columns)), protocol=pickle.HIGHEST_PROTOCOL)
+            with os.fdopen(write_end, "wb") as fh:
+                fh.write(data)
+            code = 0
+        finally:
+            os._exit(code)
+    os.close(write_end)
+    reader = os.fdopen(read_end, "rb")
+    try:
         first = solver(*(c[:half] for c in columns))
-        second = other.get()
+        data = reader.read()
+        _, status = os.waitpid(pid, 0)
+        pid = None
+    finally:
+        reader.close()
+        if pid is not None:  # interrupted: the child goes too
+            import signal
+
+            try:
+                os.kill(pid, signal.SIGKILL)
+                os.waitpid(pid, 0)
+            except OSError:
+                pass
+    second = pickle.loads(data) if status == 0 else solver(*(c[half:] for c in columns))
     return tuple(np.concatenate([a, b]) for a, b in zip(first, second))
 
 

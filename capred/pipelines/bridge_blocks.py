@@ -16,7 +16,7 @@ import numpy as np
 from ..io import blocks as blocks_module
 from ..io.blocks import read_table_blocks
 from ..progress import task
-from ..result import InputFile, Result, Rows, Spool, input_file
+from ..result import InputFile, Result, Spool, input_file
 from . import bridge as pb
 
 
@@ -76,7 +76,7 @@ class BridgeBlocks(Result):
 
     def payload(self, lazy: bool = False) -> dict:
         n = self.status.size
-        return {"source": self.source, "bridges": Rows(n, self.rows_range) if lazy else self.rows()}
+        return {"source": self.source, "bridges": pb.ColumnRows(n, self.spool.columns) if lazy else self.rows()}
 
     def tables(self) -> dict:
         import pandas as pd
