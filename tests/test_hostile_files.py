@@ -349,3 +349,17 @@ def test_streamed_ods_reads_what_pandas_reads(tmp_path):
         if any(cells):
             expect.append((k, cells))
     assert read_grid(TableSource(tmp_path / "v.ods")).rows == expect
+
+
+@pytest.mark.parametrize("odd", ["\x0b", "\x0c", "\x1c", "\x85", "\u2028"])
+def test_line_breaks_other_than_cr_lf_stay_inside_their_cell(tmp_path, odd):
+    """A file with a comment line and CRLF line ends (the path that blanks comments line by line): a vertical
+    tab, form feed, file separator, U+0085 (the '…' of a Windows-1252 file read as Latin-1) or U+2028 in a
+    cell stays in that cell; the row is neither split nor renumbered (str.splitlines split it)."""
+    lines = ["# material names with odd characters", "material,condition,x", f"a{odd}b,dry,1", "c,dry,2"]
+    path = tmp_path / "odd.csv"
+    path.write_bytes("\r\n".join(lines).encode("utf-8") + b"\r\n")
+    grid = read_grid(TableSource(path))
+    grid.parse_all(",")
+    rows = [(line, [c.strip() for c in cells]) for line, cells in grid.rows]
+    assert rows == [(2, ["material", "condition", "x"]), (3, [f"a{odd}b", "dry", "1"]), (4, ["c", "dry", "2"])]

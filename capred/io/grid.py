@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import csv
 import io
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -205,6 +206,9 @@ def _decode(data: bytes) -> str:
     return data.decode("latin-1")
 
 
+_LINE_END = re.compile("\r\n|\r|\n")
+
+
 def _csv_grid(shown: str, text: str, first_line: int = 1) -> Grid:
     """Rows of a CSV text for each candidate delimiter (the table reader picks the one whose header fits).
 
@@ -213,9 +217,14 @@ def _csv_grid(shown: str, text: str, first_line: int = 1) -> Grid:
     for each candidate; the whole text is parsed once, with the delimiter
     chosen (``Grid.parse_all``).
     """
-    if "#" in text or "\r" in text or any(ch in text for ch in "\x0b\x0c\x1c\x1d\x1e\x85\u2028\u2029"):
-        # comment lines become blank (keeping the numbering); a '#' inside a quoted field is left alone
-        kept = "\n".join("" if ln.lstrip().startswith("#") else ln for ln in text.splitlines())
+    if "#" in text or "\r" in text:
+        # comment lines become blank (keeping the numbering); a '#' inside a quoted field is left alone. Lines
+        # end only at \n, \r\n or \r, as for the csv module (str.splitlines would also split at \v, \f, \x1c-\x1e,
+        # U+0085 -- the '…' of a Windows-1252 file read as Latin-1 -- and U+2028/2029 inside a cell)
+        lines = _LINE_END.split(text)
+        if lines[-1] == "":  # the last line's end
+            lines.pop()
+        kept = "\n".join("" if ln.lstrip().startswith("#") else ln for ln in lines)
     else:  # the usual file: nothing to blank, lines already end in '\n'
         kept = text[:-1] if text.endswith("\n") else text
     grid = Grid(shown, None, [], (",", ";", "\t"), first_line=first_line)
