@@ -52,7 +52,7 @@ _W = 0.5 * _w
 _u8, _w8 = leggauss(8)  # a coarse rule for bracketing scans, where only the sign of gap - D matters
 _U8, _W8 = 0.5 * (_u8 + 1.0), 0.5 * _w8
 _USQ, _U8SQ = _U * _U, _U8 * _U8  # node positions of the t^2 substitution of _length
-_CHUNK = 8192  # cases per vectorised block (bounds memory: chunk x nodes arrays)
+_CHUNK = 2048  # cases per vectorised block: its chunk x nodes arrays (256 kB) stay in the cache and in the heap
 HALF_PI = 0.5 * np.pi
 #: every bridge called ok reproduces its gap and volume (or suction) to this relative tolerance
 VERIFY_RTOL = 1e-9
@@ -240,6 +240,31 @@ def geometry(beta, contact_angle_rad, suction, ratio=1.0):
     return b.gap, b.volume, b.force, b.neck
 
 
+#: rows of a quadrature's matrix summed together by the matrix-vector product (see _quad)
+_QUAD_ROWS = 16
+
+
+def _quad(values, weights):
+    """``values @ weights`` (one quadrature per row), every row summed in the same order wherever it stands.
+
+    BLAS sums the rows of a matrix-vector product in groups (of 4 in OpenBLAS's kernels), the last
+    n mod 4 rows in another order, which can move the last bit: a row's result would then depend on the rows
+    computed with it (a block of a long file, a process's half). The matrix is cut at a multiple of
+    _QUAD_ROWS and its last rows are summed padded with zeros, so every row is summed as the groups are.
+    """
+    n = values.shape[0]
+    k = n - n % _QUAD_ROWS
+    if k == n:
+        return values @ weights
+    out = np.empty(n)
+    if k:
+        out[:k] = values[:k] @ weights
+    pad = np.zeros((_QUAD_ROWS, values.shape[1]))
+    pad[:n - k] = values[k:]
+    out[k:] = (pad @ weights)[:n - k]
+    return out
+
+
 def _pieces(y0, yc, F, s, length_only=False):
     """Integrals from the neck y0 to y = yc: x-length, pi int y^2 dx, area, nn11, nn33 (units of R1)."""
     x = np.maximum(yc - y0, 0.0) / y0
@@ -257,14 +282,14 @@ def _pieces(y0, yc, F, s, length_only=False):
     J = (np.sqrt(2.0 * y0) * tm)[:, None] * ch / np.sqrt(AB)
     PJ = P * J
     if length_only:
-        return PJ @ _W
+        return _quad(PJ, _W)
     yy = y * y
-    L = PJ @ _W
-    vol = np.pi * ((yy * PJ) @ _W)
-    area = 4.0 * np.pi * ((yy * J) @ _W)
-    nn11 = 0.5 * np.pi * ((P * PJ) @ _W)
+    L = _quad(PJ, _W)
+    vol = np.pi * _quad(yy * PJ, _W)
+    area = 4.0 * np.pi * _quad(yy * J, _W)
+    nn11 = 0.5 * np.pi * _quad(P * PJ, _W)
     # nn33 = pi int sqrt((y - y0) A B) dy, integrated on its own (area = 2 nn11 + nn33 is then a check)
-    nn33 = np.pi * ((np.sqrt(dy * AB) * (2.0 * sh * ch) * (y0 * tm)[:, None]) @ _W)
+    nn33 = np.pi * _quad(np.sqrt(dy * AB) * (2.0 * sh * ch) * (y0 * tm)[:, None], _W)
     return L, vol, area, nn11, nn33
 
 
@@ -311,9 +336,9 @@ def _length(y0, yc, F, s, coarse=False, volume=False):
         P = Fk[:, None] - sc * y * y  # 2 y cos(psi)
         Q = P / np.sqrt((2.0 + sc * (y + y0k[:, None])) * (2.0 * y + P))  # A B, with B = 2 y + P
         root = 2.0 * np.sqrt(dk)
-        out[k] = root * (Q @ W)
+        out[k] = root * _quad(Q, W)
         if volume:
-            vol[k] = np.pi * root * ((y * y * Q) @ W)
+            vol[k] = np.pi * root * _quad(y * y * Q, W)
     if not every:
         k = np.flatnonzero(~thick)
         if volume:
