@@ -17,6 +17,12 @@
 
 All timings are interleaved (A, B, A, B, ...; medians of the repeats).
 
+capred runs with its bytecode cached, as an installed package has it (pip
+compiles on install): a warm-up run writes it to a temporary
+PYTHONPYCACHEPREFIX, also where the environment sets PYTHONDONTWRITEBYTECODE
+(which would make every run compile capred's modules again, about 0.2 s CPU).
+Set CAPRED_BENCH_COMPILE=1 to keep the environment's setting.
+
 Run from the repository root with capred installed:
     python benchmarks/bench_bridge_cli.py [rows] [repeats] [ivp_sample]
 """
@@ -75,9 +81,22 @@ def suction_file(path: Path, R, th, D, s) -> None:
     write_csv(path, {"R [mm]": R, "contact_angle [deg]": th, "gap [mm]": D, "suction [kPa]": s})
 
 
+#: environment of the CLI runs (see the module docstring): set by main
+ENV: dict | None = None
+
+
+def cli_env(pycache: Path) -> dict | None:
+    """The environment of the CLI runs: bytecode cached under ``pycache`` unless CAPRED_BENCH_COMPILE=1."""
+    if os.environ.get("CAPRED_BENCH_COMPILE") == "1":
+        return None
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    env["PYTHONPYCACHEPREFIX"] = str(pycache)
+    return env
+
+
 def cli(csv: Path, out: Path):
     """One `capred bridge solve` run: (Timing of its process tree, peak RSS [kB])."""
-    p, t = run([sys.executable, "-c", RUN, "bridge", "solve", str(csv), "--out", str(out), "--no-html"])
+    p, t = run([sys.executable, "-c", RUN, "bridge", "solve", str(csv), "--out", str(out), "--no-html"], env=ENV)
     return t, int(p.stderr.split("MAXRSS_KB")[-1].split()[0])
 
 
@@ -93,8 +112,12 @@ def main(n: int = 100_000, repeats: int = 3, sample: int = 300) -> None:
     mine = br.bridge(beta[pick], th_r[pick], s_star[pick])
     err = np.max(np.abs(np.array([ivp_bridge(beta[i], th_r[i], s_star[i], 1e-12)[2] for i in pick]) / mine.force - 1))
 
+    global ENV
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
+        ENV = cli_env(tmp / "pycache")
+        print("bytecode: " + ("compiled by every run (CAPRED_BENCH_COMPILE=1)" if ENV is None
+                              else "cached by the warm-up run (PYTHONPYCACHEPREFIX)"))
         big, small = tmp / "big.csv", tmp / "small.csv"
         suction_file(big, R, th, D, s)
         suction_file(small, *(x[: n // 10] for x in (R, th, D, s)))

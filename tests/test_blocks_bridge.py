@@ -87,3 +87,29 @@ def test_no_numpy_warning_where_the_gap_is_flat_in_suction():
         warnings.simplefilter("error")
         res = pb.solve_bridges(Path(__file__).parent / "data" / "bridge" / "gap_flat_in_suction.csv")
     assert res.status.size == 225 and np.any(res.status == 0)
+
+
+def test_one_helper_process_serves_every_block(tmp_path, small_blocks, monkeypatch):
+    """Blocks of a long file share one forked helper (the second half of each block): one fork for the run,
+    and the bridges, bit for bit, of one process."""
+    import os
+
+    f = _cases(tmp_path / "cases.csv")
+    one = pb.solve_bridges(f)._all()
+    forks = []
+    real_fork = os.fork
+
+    def fork():
+        pid = real_fork()
+        if pid:
+            forks.append(pid)
+        return pid
+
+    monkeypatch.setattr(os, "fork", fork)
+    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+    monkeypatch.setattr(pb, "_PARALLEL_ROWS", 100)  # every block of ~400 rows in two processes
+    two = pb.solve_bridges(f)._all()
+    assert len(forks) == 1  # one helper for the 8 blocks
+    assert pb._HELPER is None  # closed with the run
+    for k, v in one.items():
+        np.testing.assert_array_equal(two[k], v)  # exact: each row solved by the same operations

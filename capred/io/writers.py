@@ -660,7 +660,12 @@ class _JsonWriter:
         self.path, self.doc, self.pid = path, doc, None
         long = sum(v.n for v in doc.values() if isinstance(v, Rows)) > PARALLEL_JSON_ROWS
         if long and os.name == "posix" and (os.cpu_count() or 1) > 1:
+            import gc
+
+            gc.freeze()  # neither process's collections visit the objects they share: their pages stay shared
             self.pid = os.fork()
+            if self.pid != 0:
+                gc.unfreeze()  # the parent's own collections as before (its pages are copied as it writes them)
             if self.pid == 0:  # the child: write, then leave without running the parent's clean-up
                 code = 1
                 try:

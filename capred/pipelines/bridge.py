@@ -6,6 +6,7 @@ also accepted as ``theta``); both particles share it.
 """
 from __future__ import annotations
 
+import pickle
 from dataclasses import dataclass, field
 from itertools import repeat
 
@@ -322,48 +323,181 @@ def _volume_rows(th, V, D, rho):
 def _in_parallel(solver, *columns):
     """``solver(*columns)`` on both halves of the rows in two processes when there are many rows and two cores.
 
-    The second half is solved by a forked child, which sends its result back through a pipe (no process pool:
-    no pool threads, no import of multiprocessing); should the child fail, the parent solves that half itself,
-    so an error is raised where it can be reported.
+    The second half is solved by a forked child (the run's :class:`_Helper` when one is open, see
+    :func:`helper`; else one forked for this call), which sends its result back through a pipe; should the child
+    fail, the parent solves that half itself, so an error is raised where it can be reported.
     """
     import os
-    import pickle
 
     n = columns[0].size
     if n < _PARALLEL_ROWS or (os.cpu_count() or 1) < 2 or os.name != "posix":
         return solver(*columns)
     half = n // 2
-    read_end, write_end = os.pipe()
-    pid = os.fork()
-    if pid == 0:  # the child: solve, send, leave without running the parent's clean-up
-        code = 1
-        try:
-            os.close(read_end)
-            data = pickle.dumps(solver(*(c[half:] for c in columns)), protocol=pickle.HIGHEST_PROTOCOL)
-            with os.fdopen(write_end, "wb") as fh:
-                fh.write(data)
-            code = 0
-        finally:
-            os._exit(code)
-    os.close(write_end)
-    reader = os.fdopen(read_end, "rb")
-    try:
+    second_half = [c[half:] for c in columns]
+    global _HELPER
+    if _HELPER_WANTED and _HELPER is None:
+        _HELPER = _Helper()
+    if _HELPER is not None and _HELPER.alive:
+        _HELPER.submit(solver, second_half)
         first = solver(*(c[:half] for c in columns))
-        data = reader.read()
-        _, status = os.waitpid(pid, 0)
-        pid = None
-    finally:
-        reader.close()
-        if pid is not None:  # interrupted: the child goes too
-            import signal
-
-            try:
-                os.kill(pid, signal.SIGKILL)
-                os.waitpid(pid, 0)
-            except OSError:
-                pass
-    second = pickle.loads(data) if status == 0 else solver(*(c[half:] for c in columns))
+        second = _HELPER.result()
+    else:
+        with _Helper((solver, second_half)) as one:  # the job inherited by the child, not sent
+            first = solver(*(c[:half] for c in columns))
+            second = one.result()
+    if second is None:  # the child failed: this process solves its half (and raises what it raises)
+        second = solver(*second_half)
     return tuple(np.concatenate([a, b]) for a, b in zip(first, second))
+
+
+class _Helper:
+    """A forked process that solves what it is sent (``submit``, then ``result``) until it is closed.
+
+    One helper serves every block of a long run (capred.pipelines.bridge_blocks): one fork per run instead of
+    one per block. Messages are pickles behind their length, over two pipes. The cyclic garbage collector
+    leaves the objects both processes share alone (``gc.freeze``) while the helper lives, so their pages stay
+    shared.
+    """
+
+    def __init__(self, job=None) -> None:
+        """Fork the helper; ``job`` ((solver, columns), optional) is its first, handed over by the fork."""
+        import gc
+        import os
+
+        to_child, self._to_child = os.pipe()
+        self._from_child, from_child = os.pipe()
+        gc.freeze()
+        self.pid = os.fork()
+        if self.pid == 0:  # the child: serve, then leave without running the parent's clean-up
+            code = 1
+            try:
+                gc.disable()  # numpy arrays only: nothing to collect
+                os.close(self._to_child)
+                os.close(self._from_child)
+                if job is not None:
+                    _send(from_child, _run(job))
+                self._serve(to_child, from_child)
+                code = 0
+            finally:
+                os._exit(code)
+        os.close(to_child)
+        os.close(from_child)
+        self.alive = True
+
+    @staticmethod
+    def _serve(inbox: int, outbox: int) -> None:
+        while (job := _receive(inbox)) is not None:
+            _send(outbox, _run(job))
+
+    def submit(self, solver, columns) -> None:
+        """Send a job (``solver`` must pickle: a module's function)."""
+        try:
+            _send(self._to_child, (solver, columns))
+        except (OSError, pickle.PicklingError, AttributeError, TypeError):
+            self.alive = False
+
+    def result(self):
+        """The child's answer; None when it failed or is gone."""
+        if not self.alive:
+            return None
+        try:
+            out = _receive(self._from_child)
+        except (OSError, EOFError):
+            out = None
+        if out is None:
+            self.alive = False
+        return out
+
+    def close(self) -> None:
+        import gc
+        import os
+        import signal
+
+        if self.pid is None:
+            return
+        try:
+            os.close(self._to_child)  # end of the jobs: the child leaves
+            os.close(self._from_child)
+            if not self.alive:  # it failed, or may be stuck: it goes
+                os.kill(self.pid, signal.SIGKILL)
+            os.waitpid(self.pid, 0)
+        except OSError:
+            pass
+        finally:
+            self.pid, self.alive = None, False
+            gc.unfreeze()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+def _run(job):
+    """A helper's answer to (solver, columns): the result, or None when it fails (the parent solves it again and
+    reports the error)."""
+    solver, columns = job
+    try:
+        return solver(*columns)
+    except Exception:
+        return None
+
+
+def _send(fd: int, obj) -> None:
+    import os
+
+    data = pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
+    view = memoryview(len(data).to_bytes(8, "little") + data)
+    while view:
+        view = view[os.write(fd, view):]
+
+
+def _receive(fd: int):
+    """The next message; None at the end of the pipe."""
+    import os
+
+    head = _read_exactly(fd, 8)
+    if head is None:
+        return None
+    body = _read_exactly(fd, int.from_bytes(head, "little"))
+    if body is None:
+        raise EOFError("the helper process left mid-message")
+    return pickle.loads(body)
+
+
+def _read_exactly(fd: int, size: int) -> bytes | None:
+    import os
+
+    buf = bytearray()
+    while len(buf) < size:
+        chunk = os.read(fd, min(size - len(buf), 1 << 20))
+        if not chunk:
+            return None
+        buf += chunk
+    return bytes(buf)
+
+
+#: the helper process of the run under way (see :class:`helper`), else None; wanted inside such a run
+_HELPER: _Helper | None = None
+_HELPER_WANTED = False
+
+
+class helper:
+    """Context of a long run: the second halves of its blocks go to one helper process, forked at the first
+    block that needs it and closed at the end (capred.pipelines.bridge_blocks.solve_in_blocks)."""
+
+    def __enter__(self):
+        global _HELPER_WANTED
+        _HELPER_WANTED = True
+        return self
+
+    def __exit__(self, *exc) -> None:
+        global _HELPER, _HELPER_WANTED
+        _HELPER_WANTED = False
+        if _HELPER is not None:
+            _HELPER.close()
+            _HELPER = None
 
 
 @renamed_keywords(sr_max="S_R_max")

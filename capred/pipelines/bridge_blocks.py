@@ -107,6 +107,11 @@ def solve_in_blocks(source, opt: pb.BridgeOptions):
     InputError
         The problems of the first block that has any (nothing is returned).
     """
+    with pb.helper():  # one helper process (when two cores share the rows) for every block
+        return _solve_in_blocks(source, opt)
+
+
+def _solve_in_blocks(source, opt: pb.BridgeOptions):
     blocks = read_table_blocks(source, pb.SOLVE_SCHEMA)
     table = next(blocks)
     res = pb.solve_bridges(table, opt)
