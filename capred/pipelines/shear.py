@@ -774,6 +774,9 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
 #: per-test arrays a long run keeps in memory for every test: what the fits, metrics, flags, bootstrap and figures
 #: read (about 60 bytes a test with the material and condition, which refer to one str object per name)
 _COMPACT = ("sigma_N", "suction", "S_R", "tau_max", "R")
+#: tests per piece of the spools: a block read (capred.io.blocks, ~60,000 tests) is predicted, spooled and written
+#: in pieces of this many, so that predicting and writing take a quarter of the memory reading takes
+_SPOOL_ROWS = 16_384
 
 
 class _RowProblems:
@@ -911,12 +914,14 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
             mats.append(_interned(table.columns["material"], mat_names))
             conds.append(_interned(table.columns["condition"], cond_names))
             hashes.append(np.fromiter(map(hash, ids.tolist()), dtype=np.int64, count=len(ids)))
-            spool_in.append({"test_id": ids, **{f"in_{name}": _documented(table, name) for name in RAW_INPUTS
-                                                if name in table.columns}})
-            sizes.append(len(table))
+            spooled = {"test_id": ids, **{f"in_{name}": _documented(table, name) for name in RAW_INPUTS
+                                          if name in table.columns}}
+            for lo in range(0, len(table), _SPOOL_ROWS):
+                spool_in.append({k: v[lo:lo + _SPOOL_ROWS] for k, v in spooled.items()})
+                sizes.append(min(_SPOOL_ROWS, len(table) - lo))
             notes.update(dict.fromkeys(table.notes))
             warnings.update(dict.fromkeys(table.warnings))
-            del table, d, ids, box
+            del table, d, ids, box, spooled
             _trim()
         starts = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
         lines_all = np.concatenate(lines)
@@ -957,7 +962,8 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
         per_material = _material_values(md, wet, mat, fits, opt)
 
         rows = _sample_rows(wet, mat, d["suction"], list(fits))
-        taus: dict[str, list] = {m: [] for m in opt.models}
+        n = int(starts[-1])
+        taus = {m: np.empty(n) for m in opt.models}
         samples: dict[str, list] = {}
         for k in range(len(sizes)):
             lo, hi = int(starts[k]), int(starts[k + 1])
@@ -970,18 +976,19 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
                         **_flat(preds), **_flat({"back": back})}
             spool_out.append(cols)
             for m in opt.models:
-                taus[m].append(preds[m].tau)
+                taus[m][lo:hi] = preds[m].tau
             here = rows[(rows >= lo) & (rows < hi)] - lo
             for key, v in cols.items():
                 samples.setdefault(key, []).append(v[here])
             del preds, back, cols, part
             _trim()
-        n = int(starts[-1])
         sampled = {key: Sampled(rows, np.concatenate(v), n) for key, v in samples.items()}
-        whole = {f"{m}|tau": np.concatenate(taus[m]) for m in opt.models}
-        del taus, samples
-        predictions = {m: _record(ModelPrediction, m, {**sampled, **whole}, model=m) for m in opt.models}
+        del samples
+        predictions = {m: _record(ModelPrediction, m, {**sampled, f"{m}|tau": taus[m]}, model=m) for m in opt.models}
         back = _record(BackAnalysis, "back", sampled)
+        fitted = md.fitted
+        del md  # its per-test envelope arrays: made again for the bootstrap, after the predictions go
+        _trim()
         scored = _scores(d, wet, mat, fits, laws, predictions, opt)
         result = ShearBlocks(
             source=path, options=opt, tests=tests, fits=fits, metrics=scored["metrics"],
@@ -989,7 +996,7 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
             best_model_overall=best_of(scored["overall"]), notes=list(notes), per_material=per_material,
             inputs=inputs, warnings=list(opt.warnings) + list(warnings) + scored["warnings"],
             metrics_pendular=scored["pendular"], metrics_pendular_overall=scored["overall_pendular"], laws=laws,
-            model_inputs=md, curves=None, predictions=predictions, back=back, saturated_fits=saturated_fits,
+            model_inputs=None, curves=None, predictions=predictions, back=back, saturated_fits=saturated_fits,
             spool_in=spool_in, spool_out=spool_out, starts=starts)
         tests.result = result
         # what needs every test's prediction, made now; then the predictions are kept at the sampled rows only
@@ -997,11 +1004,15 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
         result.__dict__["_flag_code"] = (code.astype(np.uint8 if len(names) <= 256 else np.int64), names)
         result.model_selection()
         result.predictions = {m: dataclasses.replace(p, tau=sampled[f"{m}|tau"]) for m, p in predictions.items()}
-        del predictions, whole
+        del predictions, taus
+        _trim()
         if opt.bootstrap > 0:
+            result.model_inputs = dataclasses.replace(_model_inputs(tests, wet, mat, fits, opt, saturated_fits),
+                                                      fitted=fitted)
             result.ranking = _bootstrap(result, wet, mat, cond, opt)
-        result.model_inputs = md.subset(np.empty(0, dtype=np.int64))  # the fitted laws, no tests
-        del md
+        none = {k: d[k][:0] for k in _COMPACT}
+        result.model_inputs = dataclasses.replace(  # the fitted laws, no tests
+            _model_inputs(none, wet[:0], mat[:0], fits, opt, saturated_fits), fitted=fitted)
         _trim()
         return result
     except BaseException:
@@ -1013,12 +1024,12 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
 def _duplicate_ids(hashes: np.ndarray, spool: Spool, starts: np.ndarray, problems: _RowProblems) -> None:
     """Repeated test ids of a long table (as Table.check_unique words them), found by their hashes and confirmed
     on the ids themselves, read back from the spool (no Python str per test held at once)."""
-    order = np.argsort(hashes, kind="stable")
-    sorted_h = hashes[order]
-    same = np.flatnonzero(sorted_h[1:] == sorted_h[:-1])
-    if not same.size:
+    sorted_h = np.sort(hashes)
+    repeated = np.unique(sorted_h[1:][sorted_h[1:] == sorted_h[:-1]])
+    del sorted_h
+    if not repeated.size:
         return
-    rows = np.unique(np.concatenate([order[same], order[same + 1]]))
+    rows = np.flatnonzero(np.isin(hashes, repeated))
     seen: dict[str, int] = {}
     for i, v in zip(rows.tolist(), _spooled(spool, starts, "test_id", rows)):
         if v in seen:
@@ -1092,7 +1103,6 @@ class _ResultsBlocks:
     def blocks(self):
         for k in range(len(self.result.starts) - 1):
             yield self.result._block(k)._results_columns()
-            _trim()
 
     def columns(self, start: int, stop: int):
         """Every column of rows start..stop-1; more than one block's rows: columns made when looked up."""
@@ -1144,6 +1154,9 @@ class ShearBlocks(ShearResult):
         cached = self.__dict__.get("_block_cache")
         if cached is not None and cached[0] == k:
             return cached[1]
+        if cached is not None:  # the block before goes first (the writer and the JSON child read in order)
+            del self.__dict__["_block_cache"], cached
+            _trim()
         lo, hi = int(self.starts[k]), int(self.starts[k + 1])
         a, b = self.spool_in.block(k), self.spool_out.block(k)
         t = self.tests
