@@ -662,10 +662,8 @@ class _JsonWriter:
         if long and os.name == "posix" and (os.cpu_count() or 1) > 1:
             import gc
 
-            gc.freeze()  # neither process's collections visit the objects they share: their pages stay shared
+            gc.freeze()  # neither process's collections visit the objects they share (until finish or cancel)
             self.pid = os.fork()
-            if self.pid != 0:
-                gc.unfreeze()  # the parent's own collections as before (its pages are copied as it writes them)
             if self.pid == 0:  # the child: write, then leave without running the parent's clean-up
                 code = 1
                 try:
@@ -685,8 +683,13 @@ class _JsonWriter:
 
         if self.pid is None:
             return
-        _, status = os.waitpid(self.pid, 0)
-        self.pid = None
+        import gc
+
+        try:
+            _, status = os.waitpid(self.pid, 0)
+        finally:
+            self.pid = None
+            gc.unfreeze()
         if status != 0:  # the child failed (disk full, ...): try once more here, where the error is raised
             self._write()
 
@@ -695,12 +698,15 @@ class _JsonWriter:
         import signal
 
         if self.pid is not None:
+            import gc
+
             try:
                 os.kill(self.pid, signal.SIGKILL)
                 os.waitpid(self.pid, 0)
             except OSError:
                 pass
             self.pid = None
+            gc.unfreeze()
 
 
 def provenance(result, outputs: list[str], command_line: str | None = None) -> dict:

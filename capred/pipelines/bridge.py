@@ -193,7 +193,31 @@ class ColumnRows(Rows):
         from ..io.writers import encode_rows
 
         for start in range(0, self.n, size):
-            yield encode_rows(json_rows(self.columns(start, min(self.n, start + size)), nan_as_none=False))
+            yield encode_rows(_json_chunk_rows(self.columns(start, min(self.n, start + size))))
+
+
+def _json_chunk_rows(cols: dict) -> list[dict]:
+    """``json_rows(cols, nan_as_none=False)`` for the writer: the rows without any number (no bridge) and
+    without a note share one dict per status, so only the rows with a bridge cost a dict of their own."""
+    n = len(cols["status"])
+    numeric = [k for k, v in cols.items() if v.dtype != object]
+    if not numeric or any(v.dtype == object and k not in ("status", "note") for k, v in cols.items()):
+        return json_rows(cols, nan_as_none=False)  # a case label per row: nothing to share
+    empty = cols["note"] == ""
+    for k in numeric:
+        empty &= ~np.isfinite(cols[k])
+    if not empty.any():
+        return json_rows(cols, nan_as_none=False)
+    rows = np.empty(n, dtype=object)
+    full = np.flatnonzero(~empty)
+    if full.size:
+        rows[full] = json_rows({k: v[full] for k, v in cols.items()}, nan_as_none=False)
+    status = cols["status"]
+    for text in dict.fromkeys(status[empty].tolist()):
+        same = np.flatnonzero(empty & (status == text))
+        shared = json_rows({k: v[same[:1]] for k, v in cols.items()}, nan_as_none=False)[0]
+        rows[same] = [shared] * same.size
+    return rows.tolist()
 
 
 def _records(frame, drop_empty: str | None = None) -> list[dict]:
