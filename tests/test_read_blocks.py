@@ -121,3 +121,20 @@ def test_a_block_with_a_bad_cell_goes_to_the_usual_reader(tmp_path, monkeypatch,
     if cell:  # a blank cell is a problem of the command (blank R), not of the reader
         assert len(whole.problems) == 1 and message in str(whole.problems[0])
         assert "line 1502" in str(whole.problems[0])  # header on line 1, row 1500 (from 0) on line 1502
+
+
+@pytest.mark.parametrize("encoding", ["utf-8", "utf-8-sig"])
+def test_a_header_in_non_ascii_and_a_byte_order_mark(tmp_path, monkeypatch, encoding):
+    """'contact_angle [°]' in UTF-8 (with or without a byte-order mark): the numeric blocks read fast, the same
+    table; a file whose later bytes are not UTF-8 is read whole by the usual reader."""
+    monkeypatch.setattr("capred.io.blocks.HEAD_LINES", 50)
+    f = _numeric_file(tmp_path / "cases.csv")
+    text = f.read_text(encoding="utf-8").replace("contact_angle [deg]", "contact_angle [°]")
+    f.write_bytes(text.encode(encoding))
+    blocks = list(read_table_blocks(f, SOLVE_SCHEMA, block_bytes=20_000))
+    assert len(blocks) > 5 and type(blocks[-1].raw["R"]).__name__ == "_Cells"
+    _same_tables(blocks, read_table(f, SOLVE_SCHEMA))
+    # a Latin-1 byte deep in the file: not UTF-8, so one block, as read_table reads it
+    g = tmp_path / "latin.csv"
+    g.write_bytes(text.encode("utf-8") + "0.5,1,0,1 µ\n".encode("latin-1"))
+    assert len(list(read_table_blocks(g, SOLVE_SCHEMA, block_bytes=20_000))) == 1

@@ -264,7 +264,7 @@ def _parse_numbers(text: str, n: int, width: int):
     try:
         import orjson
 
-        if ",-0," not in "," + text.replace("\n", ",") + ",":  # JSON reads the integer -0 as 0 (not -0.0)
+        if not _minus_zero(text):  # JSON reads the integer -0 as 0 (float reads -0.0)
             rows = orjson.loads("[[" + text.replace("\n", "],[") + "]]")
             values = np.array(rows, dtype=float)
             return values if values.shape == (n, width) else None
@@ -279,6 +279,13 @@ def _parse_numbers(text: str, n: int, width: int):
         return None
 
 
+def _minus_zero(text: str) -> bool:
+    """True when some cell of the lines is exactly '-0'."""
+    if text == "-0" or text.startswith(("-0,", "-0\n")) or text.endswith((",-0", "\n-0")):
+        return True
+    return any(p in text for p in (",-0,", ",-0\n", "\n-0,", "\n-0\n"))
+
+
 def _unseen(messages: list[str], seen: set[str]) -> list[str]:
     fresh = [m for m in messages if m not in seen]
     seen.update(fresh)
@@ -291,13 +298,14 @@ def _plain_utf8(path: Path, chunk: int = 2**22) -> bool:
     tail = b""
     with open(path, "rb") as fh:
         while data := fh.read(chunk):
-            window = tail + data  # a marker split between two chunks is found too
-            if any(m in window for m in _NOT_PLAIN):
+            # a marker split between two chunks is found at the seam (markers are at most 3 bytes)
+            if any(m in data or m in tail + data[:2] for m in _NOT_PLAIN):
                 return False
-            try:
-                decoder.decode(data)
-            except UnicodeDecodeError:
-                return False
+            if not (data.isascii() and not decoder.getstate()[0]):  # ASCII after a whole character is UTF-8
+                try:
+                    decoder.decode(data)
+                except UnicodeDecodeError:
+                    return False
             tail = data[-2:]
     try:
         decoder.decode(b"", final=True)
@@ -307,15 +315,15 @@ def _plain_utf8(path: Path, chunk: int = 2**22) -> bool:
 
 
 def _pieces(path: Path, block_bytes: int) -> Iterator[tuple[int, str]]:
-    """(line number of the first line, text) of consecutive blocks of whole lines; the first without its BOM."""
+    """(line number of the first line, text) of consecutive blocks of whole lines, each without its last line
+    end; the first without its BOM."""
     first_line = 1
     carry = b""
     with open(path, "rb") as fh:
         data = fh.read(block_bytes)
-        if data.startswith(codecs.BOM_UTF8):
-            data = data[len(codecs.BOM_UTF8):]
+        start = len(codecs.BOM_UTF8) if data.startswith(codecs.BOM_UTF8) else 0
         while data:
-            data = carry + data
+            data = carry + data if carry else data
             ahead = fh.read(block_bytes)
             if ahead and len(ahead) < block_bytes // 4:  # a short last piece joins this block
                 data += ahead
@@ -325,10 +333,10 @@ def _pieces(path: Path, block_bytes: int) -> Iterator[tuple[int, str]]:
                 if cut == 0:  # a line longer than a block: keep reading
                     carry, data = data, ahead
                     continue
-                data, carry = data[:cut], data[cut:]
+                carry = data[cut:]
             else:
-                carry = b""
-            text = data.decode("utf-8")
-            yield first_line, text[:-1] if text.endswith("\n") else text
-            first_line += data.count(b"\n")
-            data = ahead  # the last block takes what is left: nothing is carried past the end
+                cut, carry = len(data), b""
+            end = cut - 1 if cut > start and data[cut - 1] == 0x0A else cut
+            yield first_line, str(memoryview(data)[start:end], "utf-8")  # decoded in place, no copy of the bytes
+            first_line += data.count(b"\n", start, cut)
+            data, start = ahead, 0  # the last block takes what is left: nothing is carried past the end
