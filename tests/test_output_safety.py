@@ -355,3 +355,23 @@ def test_sigkill_during_reruns_with_figures_leaves_one_whole_run(tmp_path):
     """12 kills while the figures of a rerun are drawn and written (30 more without figures above)."""
     seen = _kill_trials(tmp_path, trials=12, plots=True, seed=20)
     assert sum(seen.values()) == 12
+
+
+def test_the_sweep_reads_names_as_text(tmp_path):
+    """A killed run's work folder is removed by the next run into the same target, also when the target's name
+    holds characters a glob pattern would read ('[', '*'); live runs' folders and other names are left."""
+    import os
+    import subprocess
+
+    from capred.io.writers import _sweep_stale
+
+    dead = subprocess.Popen(["true"])
+    dead.wait()  # a process id that no longer runs
+    stem = "run[1]*"
+    stale = tmp_path / f".{stem}.capred-tmp-{dead.pid}-abc"
+    live = tmp_path / f".{stem}.capred-old-{os.getpid()}-def"
+    other = tmp_path / f".run1.capred-tmp-{dead.pid}-ghi"  # another target's: not this sweep's
+    for p in (stale, live, other):
+        p.mkdir()
+    _sweep_stale(tmp_path, stem)
+    assert not stale.exists() and live.exists() and other.exists()

@@ -221,6 +221,8 @@ def write_csv_file(path, frame, dialect: str = "standard") -> None:
     decimal commas, lists joined with '|', a UTF-8 byte-order mark (so 'µ' and '°' survive), and text that
     would start a formula prefixed with ``'`` (see ``defuse``). The standard dialect writes text verbatim.
     """
+    import numpy as np
+
     eu = dialect == "excel-eu"
     sep, joiner = (";", "|") if eu else (",", ";")
     with contextlib.ExitStack() as stack:
@@ -232,7 +234,8 @@ def write_csv_file(path, frame, dialect: str = "standard") -> None:
             names = list(block) if isinstance(block, dict) else list(block.columns)
             arrays = list(block.values()) if isinstance(block, dict) else _column_arrays(block)
             if k == 0:
-                fh.write((sep.join(_csv_cell(str(c), sep, eu=eu) for c in names) + "\n").encode("utf-8"))
+                fh.write((sep.join(_csv_column(np.array([str(c) for c in names], dtype=object), sep, eu=eu))
+                          + "\n").encode("utf-8"))
             runs = _float_runs(arrays)
             for start in range(0, len(arrays[0]) if arrays else 0, 10_000):  # memory bounded by one chunk
                 stop = start + 10_000
@@ -530,11 +533,23 @@ def _pid_alive(pid: int) -> bool:
 
 
 def _sweep_stale(parent: Path, stem: str) -> None:
-    """Remove hidden work folders of earlier runs into the same target that were killed."""
-    for p in parent.glob(f".{stem}.capred-*"):
-        m = re.search(r"\.capred-(?:tmp|old)-(\d+)-", p.name)
+    """Remove hidden work folders of earlier runs into the same target that were killed.
+
+    The folder's names are compared as text (no glob pattern: a batch's folder holds one folder per input,
+    and a stem may hold characters a pattern would read, such as '[')."""
+    prefix = f".{stem}.capred-"
+    try:
+        names = [n for n in os.listdir(parent) if n.startswith(prefix)]
+    except OSError:
+        return
+    for name in names:
+        m = _STALE.match(name, len(prefix) - len(".capred-"))
         if m and int(m.group(1)) != os.getpid() and not _pid_alive(int(m.group(1))):
-            shutil.rmtree(p, ignore_errors=True)
+            shutil.rmtree(parent / name, ignore_errors=True)
+
+
+#: the tail of a work folder's name: .capred-tmp-<pid>- or .capred-old-<pid>-
+_STALE = re.compile(r"\.capred-(?:tmp|old)-(\d+)-")
 
 
 def _prefix(out: Path, kind: str) -> str:
