@@ -138,3 +138,19 @@ def test_a_header_in_non_ascii_and_a_byte_order_mark(tmp_path, monkeypatch, enco
     g = tmp_path / "latin.csv"
     g.write_bytes(text.encode("utf-8") + "0.5,1,0,1 µ\n".encode("latin-1"))
     assert len(list(read_table_blocks(g, SOLVE_SCHEMA, block_bytes=20_000))) == 1
+
+
+def test_lines_of_other_widths_go_to_the_usual_reader(tmp_path, monkeypatch):
+    """A line with a cell too many and another with one too few in the same block (the block's commas add up):
+    the usual reader reads that block and names the long line."""
+    monkeypatch.setattr("capred.io.blocks.HEAD_LINES", 50)
+    f = _numeric_file(tmp_path / "cases.csv")
+    lines = f.read_text().split("\n")
+    lines[1501] += ",1.5"
+    lines[1502] = lines[1502].rsplit(",", 1)[0]
+    f.write_text("\n".join(lines))
+    blocks = list(read_table_blocks(f, SOLVE_SCHEMA, block_bytes=20_000))
+    whole = read_table(f, SOLVE_SCHEMA)
+    _same_tables(blocks, whole)
+    assert [str(p) for p in whole.problems] == [f"{f}, line 1502: 5 fields but the header has 4"]
+    assert np.isnan(whole.columns["suction"][1501])  # the short line's missing cell is blank

@@ -265,9 +265,10 @@ def _parse_numbers(text: str, n: int, width: int):
         import orjson
 
         if not _minus_zero(text):  # JSON reads the integer -0 as 0 (float reads -0.0)
-            rows = orjson.loads("[[" + text.replace("\n", "],[") + "]]")
-            values = np.array(rows, dtype=float)
-            return values if values.shape == (n, width) else None
+            values = np.array(orjson.loads("[" + text.replace("\n", ",") + "]"), dtype=float)
+            if values.shape != (n * width,) or not _rectangular(text, n, width):
+                return None
+            return values.reshape(n, width)
     except (ImportError, ValueError, TypeError, OverflowError):  # orjson.JSONDecodeError is a ValueError
         pass
     cells = text.replace("\n", ",").split(",")
@@ -277,6 +278,16 @@ def _parse_numbers(text: str, n: int, width: int):
         return np.fromiter(map(float, cells), float, len(cells)).reshape(n, width)
     except ValueError:
         return None
+
+
+def _rectangular(text: str, n: int, width: int) -> bool:
+    """True when each of the n lines of an ASCII ``text`` has width - 1 commas (counted with numpy)."""
+    import numpy as np
+
+    chars = np.frombuffer(text.encode("ascii"), np.uint8)
+    line_ends = np.flatnonzero(chars == 10)
+    commas_per_line = np.bincount(np.searchsorted(line_ends, np.flatnonzero(chars == 44)), minlength=n)
+    return line_ends.size == n - 1 and bool(np.all(commas_per_line == width - 1))
 
 
 def _minus_zero(text: str) -> bool:
