@@ -186,7 +186,7 @@ def _csv_column(values, sep: str = ",", joiner: str = ";", eu: bool = False) -> 
     if a.dtype.kind == "b":
         return ["True" if x else "False" for x in a.tolist()]
     values = a.tolist()
-    if all(type(x) is str for x in values):  # plain text: quote only if some cell needs it
+    if values and set(map(type, values)) == {str}:  # plain text: quote only if some cell needs it
         joined = "\x00".join(values)
         if not any(ch in joined for ch in (sep, '"', "\n", "\r")) and not (
                 eu and any(x.startswith(FORMULA_START) for x in values)):
@@ -239,14 +239,14 @@ def write_csv_file(path, frame, dialect: str = "standard") -> None:
             runs = _float_runs(arrays)
             for start in range(0, len(arrays[0]) if arrays else 0, 10_000):  # memory bounded by one chunk
                 stop = start + 10_000
-                if runs == [(0, len(arrays))]:  # every column a float column: the text as it comes
-                    fh.write((_float_lines(arrays, sep, eu, start, stop) + "\n").encode("utf-8"))
+                if runs == [(0, len(arrays))]:  # every column a float column: the rows as they come
+                    fh.write(("\n".join(_float_lines(arrays, sep, eu, start, stop)) + "\n").encode("utf-8"))
                     continue
                 columns, j = [], 0
                 while j < len(arrays):
                     run = next((r for r in runs if r[0] == j), None)
                     if run is not None:  # consecutive float columns: one string per row, printed at once
-                        columns.append(_float_lines(arrays[run[0]:run[1]], sep, eu, start, stop).split("\n"))
+                        columns.append(_float_lines(arrays[run[0]:run[1]], sep, eu, start, stop))
                         j = run[1]
                     else:
                         columns.append(_csv_column(arrays[j][start:stop], sep, joiner, eu))
@@ -272,10 +272,10 @@ def _float_runs(arrays) -> list[tuple[int, int]]:
     return runs
 
 
-def _float_lines(arrays, sep: str, eu: bool, start: int, stop: int) -> str:
-    """Rows start..stop of float columns as CSV text, rows joined by newlines: the cells _csv_column writes
+def _float_lines(arrays, sep: str, eu: bool, start: int, stop: int) -> list[str]:
+    """Rows start..stop of float columns as CSV text, one string per row: the cells _csv_column writes
     (shortest round-trip form, NaN and infinities empty, decimal commas with ``eu``), printed by one orjson call
-    on the rows as a matrix."""
+    on the rows that hold a number, as a matrix; a row without any is its separators alone."""
     import numpy as np
     import orjson
 
@@ -283,11 +283,23 @@ def _float_lines(arrays, sep: str, eu: bool, start: int, stop: int) -> str:
     matrix = np.empty((n, len(arrays)))
     for j, a in enumerate(arrays):
         matrix[:, j] = a[start:stop]
-    text = orjson.dumps(matrix, option=orjson.OPT_SERIALIZE_NUMPY).decode("ascii")[2:-2]
-    text = text.replace("],[", "\n").replace("null", "")
-    if eu:
-        return text.replace(",", sep).replace(".", ",")
-    return text if sep == "," else text.replace(",", sep)
+    finite = np.isfinite(matrix)
+    some = np.flatnonzero(finite.any(axis=1))
+    if some.size < n:
+        matrix = matrix[some]
+    text = orjson.dumps(matrix, option=orjson.OPT_SERIALIZE_NUMPY).decode("ascii")[2:-2] if some.size else ""
+    if some.size and not finite[some].all():
+        text = text.replace("null", "")
+    if eu:  # ';' between cells (and rows: '];['), decimal commas
+        text, between = text.replace(",", sep).replace(".", ","), "]" + sep + "["
+    else:
+        text, between = (text, "],[") if sep == "," else (text.replace(",", sep), "]" + sep + "[")
+    rows = text.split(between) if some.size else []
+    if some.size == n:
+        return rows
+    lines = np.full(n, sep * (len(arrays) - 1), dtype=object)
+    lines[some] = rows
+    return lines.tolist()
 
 
 def encode_csv(frame) -> bytes:
