@@ -509,11 +509,23 @@ _HELPER_WANTED = False
 
 class helper:
     """Context of a long run: the second halves of its blocks go to one helper process, forked at the first
-    block that needs it and closed at the end (capred.pipelines.bridge_blocks.solve_in_blocks)."""
+    block that needs it (or at once with ``start``) and closed at the end
+    (capred.pipelines.bridge_blocks.solve_in_blocks).
+
+    Forked before the run's data are read (``start``), the two processes share only what was there before:
+    the pages the parent later fills are its own, not copies of shared ones.
+    """
+
+    def __init__(self, start: bool = False) -> None:
+        self.start = start
 
     def __enter__(self):
-        global _HELPER_WANTED
+        import os
+
+        global _HELPER, _HELPER_WANTED
         _HELPER_WANTED = True
+        if self.start and _HELPER is None and (os.cpu_count() or 1) >= 2 and os.name == "posix":
+            _HELPER = _Helper()
         return self
 
     def __exit__(self, *exc) -> None:

@@ -107,8 +107,17 @@ def solve_in_blocks(source, opt: pb.BridgeOptions):
     InputError
         The problems of the first block that has any (nothing is returned).
     """
-    with pb.helper():  # one helper process (when two cores share the rows) for every block
+    with pb.helper(start=_long(source)):  # one helper process (when two cores share the rows) for every block
         return _solve_in_blocks(source, opt)
+
+
+def _long(source) -> bool:
+    """True for a CSV file read in several blocks: its blocks are long enough to be shared by two processes."""
+    try:
+        size = Path(source).stat().st_size if isinstance(source, (str, Path)) else 0
+    except OSError:
+        return False
+    return size > blocks_module.BLOCK_BYTES + blocks_module.BLOCK_BYTES // 4
 
 
 def _solve_in_blocks(source, opt: pb.BridgeOptions):
