@@ -1,10 +1,10 @@
 """Peak memory of `capred shear` on n tests against n/10 (issue 20: within 1.5x), and the peak per test.
 
-Each run is one `python -m capred shear FILE --out DIR` process, started from this small process; its peak
-resident set size is the ``ru_maxrss`` that ``os.wait4`` reports for it (on Linux the largest of the process and the children it
-waited for: the forked JSON writer, the figure processes). Three contestants per size: every default
-output (figures, report.html, the 2,000-replicate bootstrap), ``--no-plots`` (report.html without
-figures) and ``--no-plots --bootstrap 0`` (without the ranking bootstrap of
+Each run is one `python -m capred shear FILE --out DIR` process, started from this small process; its
+peak resident set size is the ``ru_maxrss`` that ``os.wait4`` reports for it (on Linux the largest of the
+process and the children it waited for: the forked JSON writer, the figure processes). Three contestants
+per size: every default output (figures, report.html, the 2,000-replicate bootstrap), ``--no-plots``
+(report.html without figures) and ``--no-plots --bootstrap 0`` (without the ranking bootstrap of
 capred.pipelines.shear_analysis, whose working set grows with the wet tests of a material).
 
 The rows repeat sample_data/shear_tests.csv with unique test ids and 2 % noise on tau_max
@@ -25,7 +25,8 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from common import ratio_line  # noqa: E402
 
-CONTESTANTS = {"defaults": (), "--no-plots": ("--no-plots",), "--no-plots --bootstrap 0": ("--no-plots", "--bootstrap", "0")}
+CONTESTANTS = {"defaults": (), "--no-plots": ("--no-plots",),
+               "--no-plots --bootstrap 0": ("--no-plots", "--bootstrap", "0")}
 
 
 def peak_mb(data: Path, out: Path, args: tuple[str, ...]) -> tuple[float, float]:

@@ -687,6 +687,13 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
     InputError (every problem in the file, each with line and column),
     OptionError or FitError; never writes anything.
 
+    A plain CSV longer than one block of capred.io.blocks (about 60,000
+    tests) is read and predicted block by block and gives a ShearBlocks (a
+    ShearResult whose per-test outputs stay in a temporary file: memory flat
+    in the number of tests, the same output files); its problems are raised
+    block by block (the first block that has any), repeated test ids after
+    the last. With raw curves (``options.curves``) a table is read whole.
+
     Example
     -------
     >>> import capred
