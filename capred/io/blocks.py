@@ -90,7 +90,7 @@ def read_table_blocks(source, schema: list[Column], *, ignore_columns=(), limits
             # when it can take it, joined as one block (the blocks, and so every number computed on them, stay
             # as they were); else the piece read whole
             head, rest = _split_head(text)
-            if rest:
+            if rest and not rest[:rest.find("\n")].translate(_NUMERIC_CHARS):  # numbers after the head
                 table = _grid_table(_csv_grid(str(path), head), src, schema)
                 prefix = _prefix(head, table)
                 fast = _numeric_block(str(path), src, schema, prefix, HEAD_LINES + 1, rest)
