@@ -117,3 +117,17 @@ def test_repeated_id_across_blocks(tmp_path, monkeypatch):
     # the header is line 1, so lines[k] is file line k + 1
     assert f"duplicate test_id '{first}' (first on line 6)" in text
     assert "line 1201" in text
+
+
+def test_sampled():
+    """Sampled gives the kept values at kept rows, and refuses any other row, a mask or a whole-array use."""
+    from capred.pipelines.shear_records import Sampled
+
+    a = Sampled(np.array([2, 5, 9]), np.array([20.0, 50.0, 90.0]), 12)
+    assert_array_equal(a[np.array([9, 2])], [90.0, 20.0])
+    assert a[5] == 50.0 and len(a) == 12
+    for bad in (np.array([3]), np.array([12]), np.zeros(12, dtype=bool)):
+        with pytest.raises(IndexError):
+            a[bad]
+    with pytest.raises(TypeError):
+        np.asarray(a)

@@ -109,6 +109,10 @@ class Sampled:
     def shape(self) -> tuple[int]:
         return (self.n,)
 
+    def __array__(self, dtype=None, copy=None):
+        raise TypeError("a long run keeps this per-test array at sampled rows only (Sampled.rows, Sampled.values); "
+                        "every test's value is in results.csv, or in result.table()")
+
     def __getitem__(self, index):
         idx = np.asarray(index)
         if idx.dtype == bool or idx.dtype.kind not in "iu":
