@@ -331,10 +331,22 @@ def _length(y0, yc, F, s, coarse=False, volume=False):
     if every or k.size:
         U2, W = (_U8SQ, _W8) if coarse else (_USQ, _W)
         y0k, dk, Fk, sk = (y0, d, F, s) if every else (y0[k], d[k], F[k], s[k])
-        y = y0k[:, None] + dk[:, None] * U2
+        # the same operations in the same order as P = F - s y y, Q = P / sqrt((2 + s (y + y0)) (2 y + P)),
+        # written into three arrays (fewer temporaries: the chunk's arrays stay in the cache)
+        y = np.multiply(dk[:, None], U2)
+        np.add(y0k[:, None], y, out=y)
         sc = sk[:, None]
-        P = Fk[:, None] - sc * y * y  # 2 y cos(psi)
-        Q = P / np.sqrt((2.0 + sc * (y + y0k[:, None])) * (2.0 * y + P))  # A B, with B = 2 y + P
+        P = np.multiply(sc, y)
+        np.multiply(P, y, out=P)
+        np.subtract(Fk[:, None], P, out=P)  # 2 y cos(psi)
+        A = np.add(y, y0k[:, None])
+        np.multiply(sc, A, out=A)
+        np.add(2.0, A, out=A)
+        B = np.multiply(2.0, y)
+        np.add(B, P, out=B)  # B = 2 y + P
+        np.multiply(A, B, out=A)
+        np.sqrt(A, out=A)
+        Q = np.divide(P, A, out=A)
         root = 2.0 * np.sqrt(dk)
         out[k] = root * _quad(Q, W)
         if volume:
