@@ -59,6 +59,7 @@ def test_two_processes_give_the_rows_of_one(tmp_path, monkeypatch, control):
         fh.writelines(",".join(map(repr, row)) + "\n" for row in zip(R.tolist(), th.tolist(), D.tolist(), x.tolist()))
     one = pb.solve_bridges(tmp_path / "in.csv")
     monkeypatch.setattr(pb, "_PARALLEL_ROWS", 10)  # both halves of the 41 rows, the second in a forked process
+    monkeypatch.setenv("CAPRED_PROCESSES", "2")  # whatever the machine's load
     two = pb.solve_bridges(tmp_path / "in.csv")
     assert 0 < np.sum(one.status == 0) < n  # bridges and rows without one
     assert np.array_equal(one.status, two.status)

@@ -97,9 +97,31 @@ def test_a_forked_half_that_fails_is_solved_by_the_parent(monkeypatch):
 
     parent = os.getpid()
     monkeypatch.setattr(pb, "_PARALLEL_ROWS", 4)
-    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+    monkeypatch.setenv("CAPRED_PROCESSES", "2")
     x = np.arange(10.0)
     a, b = pb._in_parallel(solver, x)
     np.testing.assert_array_equal(a, 2.0 * x)  # exact: the same arithmetic on every row
     np.testing.assert_array_equal(b, x + 1.0)
     assert calls == [parent, parent]  # the first half, then the half the child did not deliver
+
+
+def test_a_second_process_only_on_a_free_core(monkeypatch):
+    """second_core_free: two cores and a load average that leaves one idle; CAPRED_PROCESSES decides instead."""
+    import os
+
+    from capred.io.writers import second_core_free
+
+    monkeypatch.delenv("CAPRED_PROCESSES", raising=False)
+    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+    monkeypatch.setattr(os, "getloadavg", lambda: (0.9, 0.0, 0.0))  # this run, and an idle core
+    assert second_core_free()
+    monkeypatch.setattr(os, "getloadavg", lambda: (1.6, 0.0, 0.0))  # the other core busy
+    assert not second_core_free()
+    monkeypatch.setenv("CAPRED_PROCESSES", "2")
+    assert second_core_free()
+    monkeypatch.setenv("CAPRED_PROCESSES", "1")
+    monkeypatch.setattr(os, "getloadavg", lambda: (0.0, 0.0, 0.0))
+    assert not second_core_free()
+    monkeypatch.delenv("CAPRED_PROCESSES")
+    monkeypatch.setattr(os, "cpu_count", lambda: 1)
+    assert not second_core_free()

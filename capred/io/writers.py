@@ -675,6 +675,31 @@ def write_run(result, out, command_line: str | None = None, csv_dialect: str = "
 PARALLEL_JSON_ROWS = 20_000
 
 
+def second_core_free() -> bool:
+    """True when a second process would run on a core of its own: two cores or more, a load average that leaves
+    one idle, not a batch's worker (the batch already uses the cores), fork available.
+
+    On a busy shared machine a forked helper's extra CPU (its copied pages, its own start) buys no time: measured on
+    ``capred bridge solve`` of 100,000 rows with the other core busy, 1.30 s CPU and 1.10 s wall in two processes
+    against 1.22 s and 1.02 s in one (benchmarks/bench_bridge_cli.py). CAPRED_PROCESSES=1 or 2 decides instead
+    (the figure sheets have CAPRED_FIGURE_PROCESSES).
+    """
+    if os.name != "posix" or not hasattr(os, "fork"):
+        return False
+    forced = os.environ.get("CAPRED_PROCESSES")
+    if forced in ("1", "2"):
+        return forced == "2"
+    mp = sys.modules.get("multiprocessing")  # a batch's worker has imported it; a plain run has not
+    if mp is not None and mp.current_process().daemon:
+        return False
+    cores = os.cpu_count() or 1
+    try:
+        load = os.getloadavg()[0]  # this run itself counts for up to one
+    except OSError:
+        load = 0.0
+    return cores >= 2 and load < cores - 0.5
+
+
 class _JsonWriter:
     """Writes the JSON document to ``path``: at once, or (a long one, on a POSIX machine with two cores) in a
     forked child while the caller writes the other files; ``finish()`` waits and re-raises its failure."""
@@ -686,7 +711,7 @@ class _JsonWriter:
 
         self.path, self.doc, self.pid = path, doc, None
         long = sum(v.n for v in doc.values() if isinstance(v, Rows)) > PARALLEL_JSON_ROWS
-        if long and os.name == "posix" and (os.cpu_count() or 1) > 1:
+        if long and second_core_free():
             import gc
 
             gc.freeze()  # neither process's collections visit the objects they share (until finish or cancel)

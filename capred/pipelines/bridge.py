@@ -351,14 +351,14 @@ def _in_parallel(solver, *columns):
     :func:`helper`; else one forked for this call), which sends its result back through a pipe; should the child
     fail, the parent solves that half itself, so an error is raised where it can be reported.
     """
-    import os
+    global _HELPER
+    from ..io.writers import second_core_free
 
     n = columns[0].size
-    if n < _PARALLEL_ROWS or (os.cpu_count() or 1) < 2 or os.name != "posix":
-        return solver(*columns)
+    if n < _PARALLEL_ROWS or not (_HELPER_WANTED if _IN_RUN else second_core_free()):
+        return solver(*columns)  # few rows, or no core free (decided once for a run of blocks)
     half = n // 2
     second_half = [c[half:] for c in columns]
-    global _HELPER
     if _HELPER_WANTED and _HELPER is None:
         _HELPER = _Helper()
     if _HELPER is not None and _HELPER.alive:
@@ -505,6 +505,7 @@ def _read_exactly(fd: int, size: int) -> bytes | None:
 #: the helper process of the run under way (see :class:`helper`), else None; wanted inside such a run
 _HELPER: _Helper | None = None
 _HELPER_WANTED = False
+_IN_RUN = False
 
 
 class helper:
@@ -520,17 +521,17 @@ class helper:
         self.start = start
 
     def __enter__(self):
-        import os
+        from ..io.writers import second_core_free
 
-        global _HELPER, _HELPER_WANTED
-        _HELPER_WANTED = True
-        if self.start and _HELPER is None and (os.cpu_count() or 1) >= 2 and os.name == "posix":
+        global _HELPER, _HELPER_WANTED, _IN_RUN
+        _IN_RUN, _HELPER_WANTED = True, second_core_free()  # decided once for the run
+        if self.start and _HELPER_WANTED and _HELPER is None:
             _HELPER = _Helper()
         return self
 
     def __exit__(self, *exc) -> None:
-        global _HELPER, _HELPER_WANTED
-        _HELPER_WANTED = False
+        global _HELPER, _HELPER_WANTED, _IN_RUN
+        _IN_RUN = _HELPER_WANTED = False
         if _HELPER is not None:
             _HELPER.close()
             _HELPER = None
