@@ -23,6 +23,11 @@ PYTHONPYCACHEPREFIX, also where the environment sets PYTHONDONTWRITEBYTECODE
 (which would make every run compile capred's modules again, about 0.2 s CPU).
 Set CAPRED_BENCH_COMPILE=1 to keep the environment's setting.
 
+capred forks its helper processes (the second half of each block's solve, the
+JSON writer) only when a core is free (capred.io.writers.second_core_free:
+the load average leaves one idle); the load average is printed. Set
+CAPRED_PROCESSES=2 (or 1) to force two processes (or one) whatever the load.
+
 Run from the repository root with capred installed:
     python benchmarks/bench_bridge_cli.py [rows] [repeats] [ivp_sample]
 """
@@ -117,7 +122,9 @@ def main(n: int = 100_000, repeats: int = 3, sample: int = 300) -> None:
         tmp = Path(tmp)
         ENV = cli_env(tmp / "pycache")
         print("bytecode: " + ("compiled by every run (CAPRED_BENCH_COMPILE=1)" if ENV is None
-                              else "cached by the warm-up run (PYTHONPYCACHEPREFIX)"))
+                              else "cached by the warm-up run (PYTHONPYCACHEPREFIX)")
+              + f"; load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores; CAPRED_PROCESSES="
+              + os.environ.get("CAPRED_PROCESSES", "(unset: capred decides by the load)"))
         big, small = tmp / "big.csv", tmp / "small.csv"
         suction_file(big, R, th, D, s)
         suction_file(small, *(x[: n // 10] for x in (R, th, D, s)))
