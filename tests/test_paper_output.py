@@ -360,3 +360,22 @@ def test_large_tables_draw_a_stated_sample(tmp_path):
     assert len(markers) == len(result.models)
     assert all(len(ln.get_xdata()) == MAX_MARKERS for ln in markers)  # a fixed cost, whatever the row count
     assert any("random sample of 2,000 of 2,800 tests" in t.get_text() for t in ax.texts)
+
+
+def test_report_flags_of_a_spooled_table_are_counted_block_by_block():
+    """report.html's flag table of a long run reads the spool's flags column block by block (never every
+    column of every row at once) and counts as for a table in memory: 2 + 1 tests with 'a', 1 with 'b'."""
+    import numpy as np
+
+    from capred.report.html import _flags
+    from capred.result import Spool
+
+    spool = Spool()
+    spool.append({"x": np.zeros(3), "flags": np.array(["a", "", "a;b"], dtype=object)})
+    spool.append({"x": np.zeros(2), "flags": np.array(["a", ""], dtype=object)})
+
+    class Long:
+        def csv_tables(self):
+            return {"results": spool}
+
+    assert [(f, n) for f, n, _ in _flags(Long())] == [("a", 3), ("b", 1)]

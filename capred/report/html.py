@@ -124,13 +124,22 @@ def _row_table(result, limit: int | None = None) -> tuple[str, dict, int]:
 
 
 def _flags(result) -> list[tuple[str, int, str]]:
-    _, columns, _ = _row_table(result)
-    if "flags" not in columns:
+    """(flag, tests, meaning) of the per-row table's flags column, counted block by block for a long run (a
+    Spool's blocks one at a time: never the whole table in memory)."""
+    tables = result.csv_tables()
+    if not tables:
         return []
+    table = next(iter(tables.values()))
+    if hasattr(table, "blocks"):
+        pieces = (block["flags"] for block in table.blocks() if "flags" in block)
+    else:
+        _, columns, _ = _row_table(result)
+        pieces = [columns["flags"]] if "flags" in columns else []
     counts: dict[str, int] = {}
-    for text in columns["flags"].tolist():
-        if isinstance(text, str) and text:
-            counts[text] = counts.get(text, 0) + 1
+    for piece in pieces:
+        for text in np.asarray(piece).tolist():
+            if isinstance(text, str) and text:
+                counts[text] = counts.get(text, 0) + 1
     out: dict[str, int] = {}
     for text, k in sorted(counts.items(), key=lambda kv: -kv[1]):  # distinct combinations, most frequent first
         for f in text.split(";"):
