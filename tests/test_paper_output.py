@@ -379,3 +379,16 @@ def test_report_flags_of_a_spooled_table_are_counted_block_by_block():
             return {"results": spool}
 
     assert [(f, n) for f, n, _ in _flags(Long())] == [("a", 3), ("b", 1)]
+
+
+def test_report_prints_an_interval_cell_as_its_numbers_not_a_python_list():
+    """The retention fits' per-row table holds 95 % intervals (lists): report.html prints each bound as any
+    number (4 significant digits) joined by '; ', as the CSV joins lists, never '[0.0317..., 0.0608...]'."""
+    import re
+
+    import capred
+    from capred.report.html import render_html
+
+    html = render_html(capred.run_retention(capred.sample_path("retention")), {}, False)
+    assert not re.search(r"<td>\[[-0-9.e]+, ", html)
+    assert re.search(r"<td>[-0-9.e]+; [-0-9.e]+</td>", html)

@@ -211,7 +211,7 @@ def _per_row(result) -> dict:
             cells[j] = col
     for j, k in enumerate(kinds):
         if k != "f":
-            cells[j] = [fmt(v) if isinstance(v, float) else ("" if v is None else str(v)) for v in arrays[j].tolist()]
+            cells[j] = [_cell(v) for v in arrays[j].tolist()]
     widths = [max([len(w) for w in h.split()] + [max(map(len, col), default=0)] + [1]) * CHAR_MM + CELL_MM
               for h, col in zip(columns, cells)]
     from .render import pack_columns
@@ -227,6 +227,14 @@ def _per_row(result) -> dict:
               "body": _rows_markup([cells[j] for j in g], [left[j] for j in g])} for g in groups]
     return {"columns": columns, "parts": parts, "rows": range(len(arrays[0]) if arrays else 0), "total": total,
             "file": f"{name}.csv"}
+
+
+def _cell(value) -> str:
+    """One cell of a text or mixed column as printed: numbers as ``fmt`` prints them, a list (an interval) as
+    its numbers joined by '; ' (as in the CSV, never a Python repr), nothing for None."""
+    if isinstance(value, (list, tuple)):
+        return "; ".join(_cell(v) for v in value)
+    return fmt(value) if isinstance(value, float) else ("" if value is None else str(value))
 
 
 def _float_cells(values: np.ndarray) -> list[list[str]]:
