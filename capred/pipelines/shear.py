@@ -19,6 +19,7 @@ from ..fitting.linear import LineFit, fit_line, fit_line_origin
 from ..io.table import Column, Table, read_table
 from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
+from ..progress import steps, task
 from ..references import cite
 from ..result import InputFile, Options, Result, Rows, Spool, input_file, json_list, num
 from .shear_records import BackAnalysis, ModelPrediction, Sampled
@@ -905,31 +906,33 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
             while pending:
                 yield pending.pop(0)  # the caller keeps no reference: one block's cells in memory at a time
 
-        for table in itertools.chain(tables(), blocks):
-            _check_table(table, unique=False)
-            if "test_id" in table.columns:
-                for i in np.flatnonzero(table.columns["test_id"] == ""):
-                    table.add_problem(int(i), "test_id", "empty test_id")
-            box = _fill(table, "box_area", opt.box_area)
-            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-                d = _derive(table, opt, box)
-            table.raise_if_problems()
-            ids = table.columns["test_id"]
-            for k in _COMPACT:
-                keep[k].append(d[k])
-            lines.append(table.lines.astype(np.int32))  # line numbers of a file below max_bytes fit
-            mats.append(_interned(table.columns["material"], mat_names))
-            conds.append(_interned(table.columns["condition"], cond_names))
-            hashes.append(np.fromiter(map(hash, ids.tolist()), dtype=np.int64, count=len(ids)))
-            spooled = {"test_id": ids, **{f"in_{name}": _documented(table, name) for name in RAW_INPUTS
-                                          if name in table.columns}}
-            for lo in range(0, len(table), _SPOOL_ROWS):
-                spool_in.append({k: v[lo:lo + _SPOOL_ROWS] for k, v in spooled.items()})
-                sizes.append(min(_SPOOL_ROWS, len(table) - lo))
-            notes.update(dict.fromkeys(table.notes))
-            warnings.update(dict.fromkeys(table.warnings))
-            del table, d, ids, box, spooled
-            _trim()
+        with task("reading tests, block by block") as advance_read:  # a bar on a terminal
+            for table in itertools.chain(tables(), blocks):
+                _check_table(table, unique=False)
+                if "test_id" in table.columns:
+                    for i in np.flatnonzero(table.columns["test_id"] == ""):
+                        table.add_problem(int(i), "test_id", "empty test_id")
+                box = _fill(table, "box_area", opt.box_area)
+                with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                    d = _derive(table, opt, box)
+                table.raise_if_problems()
+                ids = table.columns["test_id"]
+                for k in _COMPACT:
+                    keep[k].append(d[k])
+                lines.append(table.lines.astype(np.int32))  # line numbers of a file below max_bytes fit
+                mats.append(_interned(table.columns["material"], mat_names))
+                conds.append(_interned(table.columns["condition"], cond_names))
+                hashes.append(np.fromiter(map(hash, ids.tolist()), dtype=np.int64, count=len(ids)))
+                spooled = {"test_id": ids, **{f"in_{name}": _documented(table, name) for name in RAW_INPUTS
+                                              if name in table.columns}}
+                for lo in range(0, len(table), _SPOOL_ROWS):
+                    spool_in.append({k: v[lo:lo + _SPOOL_ROWS] for k, v in spooled.items()})
+                    sizes.append(min(_SPOOL_ROWS, len(table) - lo))
+                notes.update(dict.fromkeys(table.notes))
+                warnings.update(dict.fromkeys(table.warnings))
+                del table, d, ids, box, spooled
+                _trim()
+                advance_read()
         starts = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
         lines_all = np.concatenate(lines)
         mat, cond = np.concatenate(mats), np.concatenate(conds)
@@ -972,7 +975,7 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
         n = int(starts[-1])
         taus = {m: np.empty(n) for m in opt.models}
         samples: dict[str, list] = {}
-        for k in range(len(sizes)):
+        for k in steps(range(len(sizes)), "predicting, piece by piece"):
             lo, hi = int(starts[k]), int(starts[k + 1])
             sl = slice(lo, hi)
             part = {name: d[name][sl] for name in ("sigma_N", "suction", "tau_max")}
@@ -1293,7 +1296,7 @@ def _bootstrap(result: ShearResult, wet, mat, cond, opt: ShearOptions) -> dict:
     t = result.tests
     out = {}
     d = result.model_inputs
-    for m in result.fits:
+    for m in steps(list(result.fits), "ranking bootstrap, material by material"):
         sel = wet & (mat == m)
         if not sel.any():
             continue
