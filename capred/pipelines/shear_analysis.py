@@ -383,7 +383,7 @@ BLOCK_ELEMENTS = 262_144
 #: the material), and tests whose coefficients and weighted sums are formed at once: the bootstrap's memory
 #: per wet test stays a few floats per model.
 CHECK_TESTS = 2048
-CHUNK_TESTS = 16384
+CHUNK_TESTS = 65536
 
 
 def _affine_probes(d: esm.ModelInputs) -> dict:
@@ -460,7 +460,23 @@ def _all_close(a: np.ndarray, b: np.ndarray, atol: float) -> bool:
         return bool(np.all((a == b) | (np.abs(a - b) <= atol) | (np.isnan(a) & np.isnan(b))))
 
 
-def _draw(rng, dry_x, nw: int, count: int, through_origin: bool):
+def _dry_groups(dry_x, through_origin: bool) -> np.ndarray | None:
+    """(nd, k) indicator of each dry test's distinct normal stress (through the origin: of a usable one, whose
+    square is not 0), or None where every stress is distinct: what `_draw` checks a sample's fit on."""
+    nd = dry_x.size
+    if through_origin:
+        group, k = (dry_x * dry_x > 0).astype(int), 2
+    else:
+        _, group = np.unique(dry_x, return_inverse=True)
+        k = int(group.max()) + 1 if nd else 1
+        if k == nd:
+            return None
+    one_hot = np.zeros((nd, k))
+    one_hot[np.arange(nd), group.ravel()] = 1.0
+    return one_hot
+
+
+def _draw(rng, dry_x, nw: int, count: int, through_origin: bool, groups="find"):
     """Resampling of one block of replicates, drawn as whole matrices.
 
     The dry indices of every replicate (count x nd), then the wet ones (count x nw); a dry sample that cannot
@@ -470,22 +486,15 @@ def _draw(rng, dry_x, nw: int, count: int, through_origin: bool):
     """
     nd = dry_x.size
     # a sample fits a line when it holds two distinct normal stresses (through the origin: one whose square is
-    # not 0): decided from the counts of each distinct value (or of the usable ones)
-    if through_origin:
-        group, k = (dry_x * dry_x > 0).astype(int), 2
-    else:
-        _, group = np.unique(dry_x, return_inverse=True)
-        k = int(group.max()) + 1 if nd else 1
+    # not 0): decided from the counts of each distinct value (or of the usable ones); ``groups``: _dry_groups
+    one_hot = _dry_groups(dry_x, through_origin) if isinstance(groups, str) else groups
 
     def counts(di):
         rows = np.repeat(np.arange(di.shape[0]), nd)
         return np.bincount(rows * nd + di.ravel(), minlength=di.size).reshape(di.shape)
 
-    one_hot = np.zeros((nd, k))
-    one_hot[np.arange(nd), group] = 1.0
-
     def fits(u):
-        g = u if k == nd and not through_origin else u @ one_hot  # counts per distinct value
+        g = u if one_hot is None else u @ one_hot  # counts per distinct value
         return g[:, 1] > 0 if through_origin else np.count_nonzero(g, axis=1) >= 2
 
     di = rng.integers(0, nd, (count, nd))
@@ -617,9 +626,10 @@ def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitt
     affine_cols = np.array([col[m] for m in affine], dtype=int)
     scores = np.full((replicates, len(models)), np.nan)
     block = max(1, BLOCK_ELEMENTS // max(nw, dry_x.size, 1))
+    groups = _dry_groups(dry_x, through_origin)
     for first in range(0, replicates, block):
         count = min(block, replicates - first)
-        U, idx, valid = _draw(rng, dry_x, nw, count, through_origin)
+        U, idx, valid = _draw(rng, dry_x, nw, count, through_origin, groups)
         kept = np.flatnonzero(valid)
         if kept.size < count:
             U, idx = U[kept], idx[kept]
