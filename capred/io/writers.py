@@ -675,9 +675,10 @@ def write_run(result, out, command_line: str | None = None, csv_dialect: str = "
 PARALLEL_JSON_ROWS = 20_000
 
 
-def second_core_free() -> bool:
+def second_core_free(variable: str = "CAPRED_PROCESSES") -> bool:
     """True when a second process would run on a core of its own: two cores or more, a load average that leaves
-    one idle, not a batch's worker (the batch already uses the cores), fork available.
+    one idle, not a batch's worker (the batch already uses the cores), fork available. The environment
+    ``variable`` set to 1 or 2 decides instead.
 
     On a busy shared machine a forked helper's extra CPU (its copied pages, its own start) buys no time: measured on
     ``capred bridge solve`` of 100,000 rows with the other core busy, 1.30 s CPU and 1.10 s wall in two processes
@@ -686,7 +687,7 @@ def second_core_free() -> bool:
     """
     if os.name != "posix" or not hasattr(os, "fork"):
         return False
-    forced = os.environ.get("CAPRED_PROCESSES")
+    forced = os.environ.get(variable)
     if forced in ("1", "2"):
         return forced == "2"
     mp = sys.modules.get("multiprocessing")  # a batch's worker has imported it; a plain run has not

@@ -237,26 +237,16 @@ def _on_request_entry(sheet) -> dict:
 
 
 def _parallel(cost: list[int]) -> bool:
-    """Two processes for several sheets with enough panels (PARALLEL_MIN_PANELS), when a second core is free:
-    the machine has two or more and its load average leaves one idle (on a busy shared machine the fork's extra
-    CPU buys no time: benchmarks/bench_one_path.py). CAPRED_FIGURE_PROCESSES=1 or 2 decides instead."""
-    if len(cost) < 2 or not hasattr(os, "fork"):
-        return False
-    import multiprocessing
+    """Two processes for several sheets with enough panels (PARALLEL_MIN_PANELS), when a second core is free
+    (`capred.io.writers.second_core_free`: on a busy shared machine the fork's extra CPU buys no time,
+    benchmarks/bench_one_path.py). CAPRED_FIGURE_PROCESSES=1 or 2 decides instead."""
+    from ..io.writers import second_core_free
 
-    if multiprocessing.current_process().daemon:  # a batch worker: the batch already uses the cores
+    if len(cost) < 2:
         return False
-    forced = os.environ.get("CAPRED_FIGURE_PROCESSES")
-    if forced in ("1", "2"):
-        return forced == "2"
-    if sum(cost) < PARALLEL_MIN_PANELS:
+    if os.environ.get("CAPRED_FIGURE_PROCESSES") not in ("1", "2") and sum(cost) < PARALLEL_MIN_PANELS:
         return False
-    cores = os.cpu_count() or 1
-    try:
-        load = os.getloadavg()[0]  # this run itself counts for up to one
-    except OSError:
-        load = 0.0
-    return cores >= 2 and load < cores - 0.5
+    return second_core_free("CAPRED_FIGURE_PROCESSES")
 
 
 def _two_processes(sheets, cost, folder, opts, advance) -> list:
