@@ -327,6 +327,7 @@ def test_chunked_affine_coefficients_give_the_same_ranking(monkeypatch):
     whole = sa.bootstrap_ranking(*args)
     monkeypatch.setattr(sa, "CHECK_TESTS", 8)
     monkeypatch.setattr(sa, "CHUNK_TESTS", 10)
+    monkeypatch.setattr(sa, "KEEP_FEATURES_TESTS", 10)
     assert sa._pointwise_affine("fredlund", d) is None
     e0, beta, gamma = sa._pointwise_affine("bishop", d)
     assert e0.size == d.sigma_N.size

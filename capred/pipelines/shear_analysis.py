@@ -383,7 +383,10 @@ BLOCK_ELEMENTS = 262_144
 #: the material), and tests whose coefficients and weighted sums are formed at once: the bootstrap's memory
 #: per wet test stays a few floats per model.
 CHECK_TESTS = 2048
-CHUNK_TESTS = 65536
+CHUNK_TESTS = 16384
+#: Wet tests of a material up to which the affine models' products are formed once and kept (~0.2 KB a test):
+#: beyond, they are formed CHUNK_TESTS tests at a time in every block (slower, memory flat).
+KEEP_FEATURES_TESTS = 65536
 
 
 def _affine_probes(d: esm.ModelInputs) -> dict:
@@ -550,9 +553,9 @@ def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitt
     expanded into six weighted sums (one matrix product for all replicates); the fitted laws are refitted
     by a damped Gauss-Newton over all replicates at once (`capred.fitting.chi_laws.batch_least_squares`);
     other models are scored replicate by replicate. Replicates are drawn and scored in blocks of
-    ``BLOCK_ELEMENTS`` counts, and the affine models' coefficients and sums formed ``CHUNK_TESTS`` tests at
-    a time, so memory stays flat: measured (tracemalloc) 20 MB for 26,922 wet tests of a material and 28 MB
-    for 53,844, about 0.3 KB per wet test beyond a fixed ~12 MB.
+    ``BLOCK_ELEMENTS`` counts; the affine models' coefficients are formed ``CHUNK_TESTS`` tests at a time, and
+    their weighted sums too beyond ``KEEP_FEATURES_TESTS`` wet tests, so memory stays flat (about 0.1 KB
+    per wet test beyond that, plus the material's inputs).
 
     The same seed gives the same resamples and the same numbers; the numbers are those of the replicate-by-
     replicate computation to rounding (RMSEs to ~1e-9 relative; fitted laws to their solver tolerance).
@@ -614,13 +617,13 @@ def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitt
         else:
             affine[m] = coef
     # six weighted sums per affine model: [ok, e^2, e beta, e gamma, beta^2, beta gamma, gamma^2], formed
-    # CHUNK_TESTS tests at a time (once, for a material of one chunk)
+    # once for up to KEEP_FEATURES_TESTS tests, else CHUNK_TESTS tests at a time in every block
     for m in affine:
         e, be, ga = affine[m]
         ok = np.isfinite(e) & np.isfinite(be) & np.isfinite(ga)
         affine[m] = tuple(np.where(ok, v, 0.0) for v in (e, be, ga)) + (ok,)
     chunks = [slice(k, min(k + CHUNK_TESTS, nw)) for k in range(0, nw, CHUNK_TESTS)]
-    F_once = _affine_features(affine, chunks[0]) if affine and len(chunks) == 1 else None
+    F_once = _affine_features(affine, slice(0, nw)) if affine and nw <= KEEP_FEATURES_TESTS else None
     c0, b0 = float(d_mat.c[0]), float(d_mat.tan_phi[0])
     col = {m: k for k, m in enumerate(models)}
     affine_cols = np.array([col[m] for m in affine], dtype=int)
