@@ -1303,9 +1303,8 @@ def _bootstrap(result: ShearResult, wet, mat, cond, opt: ShearOptions) -> dict:
         dry = (mat == m) & (cond == "dry")
         ranked = sorted((k for k, v in result.metrics[m].items() if np.isfinite(v.rmse)),
                         key=lambda k: result.metrics[m][k].rmse)
-        out[m] = sa.bootstrap_ranking(d.subset(sel), t["sigma_N"][dry], t["tau_max"][dry], opt.models,
-                                      opt.model_params, d.fitted, ranked, opt.bootstrap, opt.seed,
-                                      opt.dry_fit == "origin")
+        out[m] = sa.bootstrap_ranking(d, t["sigma_N"][dry], t["tau_max"][dry], opt.models, opt.model_params,
+                                      d.fitted, ranked, opt.bootstrap, opt.seed, opt.dry_fit == "origin", rows=sel)
     return out
 
 

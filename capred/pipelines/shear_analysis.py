@@ -534,7 +534,7 @@ def _dry_refit(U, dry_x, dry_y, through_origin: bool):
 
 
 def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitted: dict, ranked: list[str],
-                      replicates: int, seed: int, through_origin: bool) -> RankingUncertainty:
+                      replicates: int, seed: int, through_origin: bool, rows=None) -> RankingUncertainty:
     r"""Paired bootstrap over the wet tests of one material, refitting the dry envelope in every replicate.
 
     Each replicate resamples the dry tests (with replacement) and refits c and tan(phi) (redrawing a
@@ -590,6 +590,9 @@ def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitt
         Seed of ``numpy.random.default_rng``.
     through_origin : bool
         The dry envelope is fitted through the origin (c = 0).
+    rows : array_like of bool or int, optional
+        The material's wet tests within ``d_mat`` (then every test): their inputs are taken here and let go
+        once the affine models' coefficients are formed, when no model needs them in every replicate.
 
     Returns
     -------
@@ -602,6 +605,8 @@ def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitt
     """
     rng = np.random.default_rng(seed)
     dry_x, dry_y = np.asarray(dry_x, float), np.asarray(dry_y, float)
+    if rows is not None:
+        d_mat = d_mat.subset(rows)
     nw = d_mat.sigma_N.size
     mat = d_mat.material[0]
     models = list(models)
@@ -625,6 +630,9 @@ def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitt
     chunks = [slice(k, min(k + CHUNK_TESTS, nw)) for k in range(0, nw, CHUNK_TESTS)]
     F_once = _affine_features(affine, slice(0, nw)) if affine and nw <= KEEP_FEATURES_TESTS else None
     c0, b0 = float(d_mat.c[0]), float(d_mat.tan_phi[0])
+    if rows is not None and not laws and not per_replicate:
+        del d_mat, probes  # ~0.1 KB a wet test no replicate needs (a long table's memory)
+        d_mat = None
     col = {m: k for k, m in enumerate(models)}
     affine_cols = np.array([col[m] for m in affine], dtype=int)
     scores = np.full((replicates, len(models)), np.nan)
@@ -636,15 +644,16 @@ def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitt
         kept = np.flatnonzero(valid)
         if kept.size < count:
             U, idx = U[kept], idx[kept]
-        _score_replicates(scores, first + kept, U, idx, d_mat, dry_x, dry_y, through_origin, c0, b0, affine,
+        _score_replicates(scores, first + kept, U, idx, nw, d_mat, dry_x, dry_y, through_origin, c0, b0, affine,
                           affine_cols, F_once, chunks, laws, per_replicate, col, params, fitted, mat)
     return _summarise(scores, models, ranked, seed)
 
 
-def _score_replicates(scores, rows, U, idx, d_mat, dry_x, dry_y, through_origin, c0, b0, affine, affine_cols,
+def _score_replicates(scores, rows, U, idx, nw, d_mat, dry_x, dry_y, through_origin, c0, b0, affine, affine_cols,
                       F_once, chunks, laws, per_replicate, col, params, fitted, mat) -> None:
-    """Each model's RMSE in the replicates ``rows`` (dry counts U, wet indices idx) into ``scores``."""
-    nw = d_mat.sigma_N.size
+    """Each model's RMSE in the replicates ``rows`` (dry counts U, wet indices idx of ``nw`` tests) into
+    ``scores``; ``d_mat`` (the wet tests) is needed only by fitted laws and models scored replicate by
+    replicate."""
     W = np.bincount((idx + nw * np.arange(idx.shape[0])[:, None]).ravel(),
                     minlength=idx.shape[0] * nw).reshape(idx.shape).astype(float)
     c, b = _dry_refit(U, dry_x, dry_y, through_origin)
