@@ -396,7 +396,7 @@ def _affine_probes(d: esm.ModelInputs) -> dict:
     (c0 + hc, b0 - hb) of the first ``CHECK_TESTS`` tests repeated five times (one prediction), and two
     subsets of them (half; all with the first half twice) for the checks that a model predicts test by test.
     """
-    d = d if d.sigma_N.size <= CHECK_TESTS else d.subset(slice(0, CHECK_TESTS))
+    d = d if _size(d) <= CHECK_TESTS and not isinstance(d, _Selected) else d.subset(slice(0, CHECK_TESTS))
     n = d.sigma_N.size
     c0, b0 = float(d.c[0]), float(d.tan_phi[0])
     hc, hb = 0.1 * max(abs(c0), 1.0), 0.1 * max(abs(b0), 1e-3)
@@ -437,9 +437,9 @@ def _pointwise_affine(model: str, d: esm.ModelInputs, probes: dict | None = None
         want.append(full[sub])
     if not _all_close(np.concatenate(got), np.concatenate(want), tol):
         return None
-    total = d.sigma_N.size
+    total = _size(d)
     if total == n:  # the checked tests are all of them
-        return t0 - d.tau_max, beta, gamma
+        return t0 - p["stacked"].tau_max[:n], beta, gamma
     e0, beta, gamma = np.empty(total), np.empty(total), np.empty(total)
     c0, b0 = p["c0"], p["b0"]
     for first in range(0, total, CHUNK_TESTS):
@@ -452,9 +452,25 @@ def _pointwise_affine(model: str, d: esm.ModelInputs, probes: dict | None = None
         e0[first:first + k] = a0 - chunk.tau_max
         beta[first:first + k] = (ac - a0) / hc
         gamma[first:first + k] = (ab - a0) / hb
-    if not _all_close(e0[:n] + d.tau_max[:n], t0, tol):
+    if not _all_close(e0[:n] + p["stacked"].tau_max[:n], t0, tol):
         return None  # a chunk predicts its first tests otherwise than the checked set did: it depends on the set
     return e0, beta, gamma
+
+
+class _Selected:
+    """The tests ``index`` of a ModelInputs, copied a slice at a time on demand (``subset``): a long material's
+    inputs are never all copied when only the affine models' coefficients need them."""
+
+    def __init__(self, d: esm.ModelInputs, index: np.ndarray):
+        self.d, self.index, self.size = d, index, index.size
+
+    def subset(self, rows) -> esm.ModelInputs:
+        return self.d.subset(self.index[rows])
+
+
+def _size(d) -> int:
+    """Number of tests of a ModelInputs or a _Selected."""
+    return d.size if isinstance(d, _Selected) else d.sigma_N.size
 
 
 def _all_close(a: np.ndarray, b: np.ndarray, atol: float) -> bool:
@@ -591,8 +607,9 @@ def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitt
     through_origin : bool
         The dry envelope is fitted through the origin (c = 0).
     rows : array_like of bool or int, optional
-        The material's wet tests within ``d_mat`` (then every test): their inputs are taken here and let go
-        once the affine models' coefficients are formed, when no model needs them in every replicate.
+        The material's wet tests within ``d_mat`` (then every test): their inputs are copied a chunk at a
+        time for the affine models' coefficients, and whole only for a model that needs them in every
+        replicate (a fitted law, a model scored replicate by replicate).
 
     Returns
     -------
@@ -605,12 +622,16 @@ def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitt
     """
     rng = np.random.default_rng(seed)
     dry_x, dry_y = np.asarray(dry_x, float), np.asarray(dry_y, float)
-    if rows is not None:
-        d_mat = d_mat.subset(rows)
-    nw = d_mat.sigma_N.size
-    mat = d_mat.material[0]
+    if rows is not None:  # the material's tests, copied only where a model needs them all at once
+        index = np.asarray(rows)
+        d_mat = _Selected(d_mat, np.flatnonzero(index) if index.dtype == bool else index)
+    nw = _size(d_mat)
+    first_test = d_mat.subset(slice(0, 1))
+    mat, c0, b0 = first_test.material[0], float(first_test.c[0]), float(first_test.tan_phi[0])
     models = list(models)
     laws = [m for m in models if esm.REGISTRY[m].fitted and m in chi_laws.LAWS and mat in fitted.get(m, {})]
+    if laws and isinstance(d_mat, _Selected):  # a fitted law is refitted on every replicate's tests
+        d_mat = d_mat.subset(slice(None))
     affine, per_replicate = {}, []
     probes = _affine_probes(d_mat) if any(m not in laws for m in models) else None
     for m in models:
@@ -629,10 +650,9 @@ def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitt
         affine[m] = tuple(np.where(ok, v, 0.0) for v in (e, be, ga)) + (ok,)
     chunks = [slice(k, min(k + CHUNK_TESTS, nw)) for k in range(0, nw, CHUNK_TESTS)]
     F_once = _affine_features(affine, slice(0, nw)) if affine and nw <= KEEP_FEATURES_TESTS else None
-    c0, b0 = float(d_mat.c[0]), float(d_mat.tan_phi[0])
-    if rows is not None and not laws and not per_replicate:
-        del d_mat, probes  # ~0.1 KB a wet test no replicate needs (a long table's memory)
-        d_mat = None
+    del probes
+    if isinstance(d_mat, _Selected):  # a model scored replicate by replicate needs every test's inputs
+        d_mat = d_mat.subset(slice(None)) if per_replicate else None
     col = {m: k for k, m in enumerate(models)}
     affine_cols = np.array([col[m] for m in affine], dtype=int)
     scores = np.full((replicates, len(models)), np.nan)
