@@ -736,18 +736,7 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
     mat = table.columns["material"]
     cond = table.columns["condition"]
     wet = cond == "wet"
-    fits: dict[str, LineFit] = {}
-    for m in materials:
-        dry = (mat == m) & (cond == "dry")
-        first = int(np.flatnonzero(mat == m)[0])
-        if not dry.any():
-            table.add_problem(first, "condition", f"material '{m}' has no dry test: its envelope c, phi cannot be fitted")
-            continue
-        try:
-            fit = fit_line_origin if opt.dry_fit == "origin" else fit_line
-            fits[m] = fit(d["sigma_N"][dry], d["tau_max"][dry], opt.confidence)
-        except FitError as exc:
-            table.add_problem(first, "condition", f"material '{m}': dry fit impossible: {exc}")
+    fits = _dry_fits(table, d, mat, cond, materials, opt)
     saturated_fits = _saturated_fits(table, d, mat, cond, materials, opt)
     table.raise_if_problems()
 
@@ -947,20 +936,7 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
 
         materials = list(mat_names)
         wet = cond == "wet"
-        fits: dict[str, LineFit] = {}
-        for m in materials:
-            of_m = mat == m
-            dry = of_m & (cond == "dry")
-            first_row = int(np.argmax(of_m))
-            if not dry.any():
-                problems.add_problem(first_row, "condition",
-                                     f"material '{m}' has no dry test: its envelope c, phi cannot be fitted")
-                continue
-            try:
-                fit = fit_line_origin if opt.dry_fit == "origin" else fit_line
-                fits[m] = fit(d["sigma_N"][dry], d["tau_max"][dry], opt.confidence)
-            except FitError as exc:
-                problems.add_problem(first_row, "condition", f"material '{m}': dry fit impossible: {exc}")
+        fits = _dry_fits(problems, d, mat, cond, materials, opt)
         saturated_fits = _saturated_fits(problems, d, mat, cond, materials, opt)
         problems.raise_if_problems()
 
@@ -1306,6 +1282,25 @@ def _bootstrap(result: ShearResult, wet, mat, cond, opt: ShearOptions) -> dict:
         out[m] = sa.bootstrap_ranking(d, t["sigma_N"][dry], t["tau_max"][dry], opt.models, opt.model_params,
                                       d.fitted, ranked, opt.bootstrap, opt.seed, opt.dry_fit == "origin", rows=sel)
     return out
+
+
+def _dry_fits(table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[str, LineFit]:
+    """Per material, the dry envelope tau = c + sigma_N tan(phi) (through the origin with ``dry_fit='origin'``);
+    a material without dry tests, or whose fit is impossible, is a problem of its first row in ``table``."""
+    fits: dict[str, LineFit] = {}
+    fit = fit_line_origin if opt.dry_fit == "origin" else fit_line
+    for m in materials:
+        of_m = mat == m
+        dry = of_m & (cond == "dry")
+        first = int(np.argmax(of_m))
+        if not dry.any():
+            table.add_problem(first, "condition", f"material '{m}' has no dry test: its envelope c, phi cannot be fitted")
+            continue
+        try:
+            fits[m] = fit(d["sigma_N"][dry], d["tau_max"][dry], opt.confidence)
+        except FitError as exc:
+            table.add_problem(first, "condition", f"material '{m}': dry fit impossible: {exc}")
+    return fits
 
 
 def _saturated_fits(table: Table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[str, LineFit]:
