@@ -662,6 +662,8 @@ def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitt
         count = min(block, replicates - first)
         U, idx, valid = _draw(rng, dry_x, nw, count, through_origin, groups)
         kept = np.flatnonzero(valid)
+        if not kept.size:  # no dry sample of the block could be refitted
+            continue
         if kept.size < count:
             U, idx = U[kept], idx[kept]
         _score_replicates(scores, first + kept, U, idx, nw, d_mat, dry_x, dry_y, through_origin, c0, b0, affine,
