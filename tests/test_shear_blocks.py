@@ -119,6 +119,35 @@ def test_repeated_id_across_blocks(tmp_path, monkeypatch):
     assert "line 1201" in text
 
 
+def test_problems_of_every_block_are_reported_at_once(tmp_path, monkeypatch):
+    """As for a short table, a long one's problems are all reported in one pass: a negative void volume in
+    one block, a letter in a number in another and a test id repeated across two more (block path: 30 kB
+    blocks of ~400 tests)."""
+    from capred.errors import InputError
+
+    path = tmp_path / "bad.csv"
+    _rows(path, 2600)
+    lines = path.read_text(encoding="utf-8").split("\n")
+    header = lines[0].split(",")
+    vv, tau = header.index("V_v [cm^3]"), header.index("tau_max [kPa]")
+    cells = lines[500].split(",")
+    cells[vv] = "-3.0"
+    lines[500] = ",".join(cells)
+    cells = lines[1500].split(",")
+    cells[tau] = "1.2abc"
+    lines[1500] = ",".join(cells)
+    cells = lines[2400].split(",")
+    cells[0] = lines[1000].split(",")[0]
+    lines[2400] = ",".join(cells)
+    path.write_text("\n".join(lines), encoding="utf-8")
+    monkeypatch.setattr(blocks_module, "BLOCK_BYTES", 30_000)
+    with pytest.raises(InputError) as err:
+        run_shear(path, ShearOptions(bootstrap=0))
+    where = {(p.line, p.column) for p in err.value.problems}
+    assert {(501, "V_v [cm^3]"), (1501, "tau_max [kPa]")} <= where
+    assert any(p.line == 2401 and "duplicate test_id" in p.message for p in err.value.problems)
+
+
 def test_sampled():
     """Sampled gives the kept values at kept rows, and refuses any other row, a mask or a whole-array use."""
     from capred.pipelines.shear_records import Sampled

@@ -895,6 +895,7 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
             while pending:
                 yield pending.pop(0)  # the caller keeps no reference: one block's cells in memory at a time
 
+        found: list = []  # the problems of every block
         with task("reading tests, block by block") as advance_read:  # a bar on a terminal
             for table in itertools.chain(tables(), blocks):
                 _check_table(table, unique=False)
@@ -904,7 +905,11 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
                 box = _fill(table, "box_area", opt.box_area)
                 with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
                     d = _derive(table, opt, box)
-                table.raise_if_problems()
+                if table.problems:  # every block is read: the file's problems are reported at once
+                    found += table.problems
+                    del table, d, box
+                    advance_read()
+                    continue
                 ids = table.columns["test_id"]
                 for k in _COMPACT:
                     keep[k].append(d[k])
@@ -922,6 +927,10 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
                 del table, d, ids, box, spooled
                 _trim()
                 advance_read()
+        if found and not sizes:  # no block without problems
+            from ..errors import InputError
+
+            raise InputError(found)
         starts = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
         lines_all = np.concatenate(lines)
         mat, cond = np.concatenate(mats), np.concatenate(conds)
@@ -929,7 +938,8 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
         d = {k: np.concatenate(v) for k, v in keep.items()}
         del keep
         problems = _RowProblems(path, sheet, headers, lines_all, {"condition": cond, "material": mat})
-        _duplicate_ids(np.concatenate(hashes), spool_in, starts, problems)
+        problems.problems += found  # with the repeated test ids among the blocks without problems
+        _duplicate_ids(np.concatenate(hashes) if hashes else np.zeros(0, np.int64), spool_in, starts, problems)
         del hashes
         _trim()
         problems.raise_if_problems()
