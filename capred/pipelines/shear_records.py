@@ -105,6 +105,10 @@ class Sampled:
     def __len__(self) -> int:
         return self.n
 
+    def __repr__(self) -> str:
+        return (f"Sampled({self.rows.size} of {self.n} tests kept, e.g. {self.values[:3].tolist()}; every test's "
+                "value is in results.csv or result.table())")
+
     @property
     def shape(self) -> tuple[int]:
         return (self.n,)

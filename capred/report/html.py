@@ -421,7 +421,7 @@ padding: 2px 6px; text-align: right; } th { background: #eee; } td.l, th.l { tex
 <table><tr>{% for c in columns %}<th class="l">{{ c }}</th>{% endfor %}</tr>
 {{ body }}</table></body></html>
 """
-_SEASON_LEFT = ("input", "command", "status", "material", "best_model")
+_SEASON_LEFT = ("input", "command", "status", "material", "best_model", "branch")
 
 
 def render_season(frame) -> str:
@@ -436,7 +436,9 @@ def render_season(frame) -> str:
     cells = []
     for c, name in zip(frame, columns):
         opened = '<td class="l">' if name in _SEASON_LEFT else '<td class="">'
-        texts = [fmt(v) if isinstance(v, float) else ("" if v is None else str(v)) for v in frame[c].tolist()]
+        # a cell a run has no value for is blank whatever its column's type (NaN in a float column too)
+        texts = [("" if v != v else fmt(v)) if isinstance(v, float) else ("" if v is None else str(v))
+                 for v in frame[c].tolist()]
         if name == "report":
             cells.append([opened + (f'<a href="{_escape(v)}">report</a>' if v else "") + "</td>\n" for v in texts])
         else:
