@@ -354,7 +354,10 @@ def test_large_tables_draw_a_stated_sample(tmp_path):
     assert n_wet == 2800
     sheet = result.figures()["report_steel_2mm"]
     panel = next(p for p in sheet.panels if p.name == "measured_vs_predicted")
-    assert "random sample of 2,000 tests of 5,200" in panel.caption
+    assert "random sample of 2,000 of the 2,800 wet tests" in panel.caption  # the panel's tests, not 5,200
+    dry = next(p for p in sheet.panels if p.name == "dry_envelope")
+    assert "random sample of 2,000 of the 2,400 dry tests" in dry.caption  # 12 dry tests of steel x 200
+
     ax = single(sheet, panel).axes[0]
     markers = [ln for ln in ax.lines if ln.get_linestyle() in ("None", "none", "")]
     assert len(markers) == len(result.models)

@@ -194,19 +194,22 @@ def _strength_caption(result, material) -> str:
             f"relation: {relation.source}. Markers without lines: models predicted per test.")
 
 
-def _sample_caption(result, material) -> str:
-    n = int(np.sum(result.tests["material"] == material))
-    text = (f" Markers: a random sample of {MAX_MARKERS:,} tests of {n:,} (seed {THIN_SEED}); fits and metrics "
-            "use every test." if n > MAX_MARKERS else "")
+def _sample_caption(result, material, condition: str) -> str:
+    """The note of a panel of the material's ``condition`` tests (dry or wet) drawn as a random sample."""
+    t = result.tests
+    n = int(np.sum((t["material"] == material) & (t["condition"] == condition)))
+    text = (f" Markers: a random sample of {MAX_MARKERS:,} of the {n:,} {condition} tests (seed {THIN_SEED}); fits "
+            "and metrics use every test." if n > MAX_MARKERS else "")
     return text + (f" No error bars above {MAX_ERRORBARS} tests." if n > MAX_ERRORBARS else "")
 
 
 def sheet_shear_report(result, material) -> Sheet:
     """The report sheet of one material: dry envelope, measured vs predicted, strength vs S_R, residuals."""
     best = result.best_model.get(material)
-    more = _sample_caption(result, material)
+    more = _sample_caption(result, material, "wet")
     panels = [Panel("dry_envelope", lambda ax: plot_dry_envelope(ax, result, material),
-                    "Dry tests and the fitted envelope with its 95 % confidence band." + more)]
+                    "Dry tests and the fitted envelope with its 95 % confidence band."
+                    + _sample_caption(result, material, "dry"))]
     if _wet(result, material).any():
         panels += [Panel("measured_vs_predicted", lambda ax: plot_measured_vs_predicted(ax, result, material),
                          "Wet tests: each model's prediction, with the 95 % prediction interval of a new test, "
@@ -272,7 +275,7 @@ def plot_chi_back(ax, result, material):
 def sheet_capillary_stress(result, material) -> Sheet:
     """What capillary stress each wet test carried and which χ law explains it: 3 panels, drawn on request
     (``figures="all"``)."""
-    more = _sample_caption(result, material)
+    more = _sample_caption(result, material, "wet")
     return Sheet(f"Back-analysed capillary stress, {material}", [
         Panel("sigma_cap_vs_saturation", lambda ax: plot_capillary_stress(ax, result, material, "S_R"),
               "σ_cap = (τ_max − c)/tan φ − σ_N of each wet test (± 1 standard uncertainty) and each model's "
