@@ -77,7 +77,7 @@ def _t_quantile_one(p: float, nu: float) -> float:
     """t_{p, ν} of one pair: the closed form for whole ν (see t_quantile), scipy otherwise, NaN for ν <= 0."""
     if not nu > 0:
         return math.nan
-    if nu == int(nu) and nu <= _CLOSED_FORM_DOF:
+    if nu <= _CLOSED_FORM_DOF and nu == int(nu):
         return _t_quantile_whole(p, int(nu))
     from scipy.special import stdtrit
 
