@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import jinja2
 import numpy as np
-import pandas as pd
 import pytest
 from numpy.testing import assert_allclose
 
@@ -59,24 +58,23 @@ def test_summary_rows_are_the_bytes_of_the_template_loop():
         assert str(got) == want
 
 
-#: season.html's rows as the template built them before (one template step per cell)
-_SEASON_LOOP = jinja2.Environment(autoescape=True).from_string(
-    """{% for row in rows %}<tr>{% for c, v in row %}<td class="{{ 'l' if c in ('input', 'command', 'status', """
-    """'material',
-'best_model') else '' }}">{% if c == 'report' and v %}<a href="{{ v }}">report</a>{% else %}{{ v }}{% endif %}</td>
-{% endfor %}</tr>{% endfor %}""")
+def test_season_html_cells_are_escaped_and_a_missing_value_is_blank():
+    """season.html from the season table's columns (capred.batch.season_columns): user text escaped as the
+    template escaped it, a count a run has not blank (not '<NA>', not 12.0), a missing float blank too (not
+    '—'), text columns left-aligned, the report a link."""
+    from capred.batch import season_columns
 
-
-def test_season_html_rows_are_the_bytes_of_the_template_loop():
-    frame = pd.DataFrame({"input": ["a<1>.csv", "b&'c'.csv"], "command": ["shear", "shear"],
-                          "status": ["ok", "failed"], "material": ['sand "x"', None],
-                          "c [kPa]": [1.23456, np.nan], "n_dry": pd.array([4, None], dtype="Int64"),
-                          "report": ["shear_a/report.html", ""]})
-    rows = [[(c, fmt(v) if isinstance(v, float) else ("" if v is None else str(v))) for c, v in zip(frame.columns, r)]
-            for r in frame.itertuples(index=False)]
-    page = report_html.render_season(frame)
-    assert _SEASON_LOOP.render(rows=rows) in page
-    assert '<a href="shear_a/report.html">report</a>' in page and "a&lt;1&gt;.csv" in page
+    rows = [{"input": "a<1>.csv", "command": "shear", "status": "ok", "material": 'sand "x"', "c [kPa]": 1.23456,
+             "n_dry": 4, "report": "shear_a/report.html"},
+            {"input": "b&'c'.csv", "command": "retention", "status": "ok", "branch": "drying", "n_dry": None,
+             "report": ""}]
+    page = report_html.render_season(season_columns(rows))
+    assert ('<tr><td class="l">a&lt;1&gt;.csv</td>\n<td class="l">shear</td>\n<td class="l">ok</td>\n'
+            '<td class="l">sand &#34;x&#34;</td>\n<td class="">1.235</td>\n<td class="">4</td>\n'
+            '<td class=""><a href="shear_a/report.html">report</a></td>\n<td class="l"></td>\n</tr>') in page
+    assert ('<tr><td class="l">b&amp;&#39;c&#39;.csv</td>\n<td class="l">retention</td>\n<td class="l">ok</td>\n'
+            '<td class="l"></td>\n<td class=""></td>\n<td class=""></td>\n<td class=""></td>\n'
+            '<td class="l">drying</td>\n</tr>') in page
 
 
 def _wet(n: int = 7) -> esm.ModelInputs:
