@@ -854,15 +854,14 @@ def _record(cls, prefix: str, arrays: dict, **fixed):
 
 
 def _sample_rows(wet, mat, suction, materials) -> np.ndarray:
-    """Rows whose per-test outputs a long run keeps in memory: the samples its figures draw (style.thin of the
-    same index sets as capred.report.shear_figures) and the first wet tests its console table lists."""
-    from ..report.render import MAX_ROWS
-    from ..report.style import thin
+    """Rows whose per-test outputs a long run keeps in memory: the samples its figures draw (capred.sampling of the
+    same index sets as the report's figures) and the first wet tests its console table lists."""
+    from ..sampling import MAX_ROWS, sample_rows
 
     parts = [np.flatnonzero(wet)[:MAX_ROWS]]
     for m in materials:
         wet_m = wet & (mat == m)
-        parts += [thin(np.flatnonzero(wet_m))[0], thin(np.flatnonzero(wet_m & (suction > 0)))[0]]
+        parts += [sample_rows(np.flatnonzero(wet_m)), sample_rows(np.flatnonzero(wet_m & (suction > 0)))]
     return np.unique(np.concatenate(parts)).astype(np.int64)
 
 

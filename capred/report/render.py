@@ -16,11 +16,10 @@ from __future__ import annotations
 import math
 
 from ..result import TableSpec
+from ..sampling import MAX_ROWS  # per-row tables: the first rows only (re-exported)
 
 #: The one rule for numbers in console tables: this many significant digits.
 SIGNIFICANT = 4
-#: Per-row tables show at most this many rows; the rest are in the output files.
-MAX_ROWS = 20
 #: A value below ZERO_RTOL x the magnitudes it was computed from is 0 within the computation's tolerance: the
 #: stresses of capred are sums and differences of a few terms of that magnitude in double precision, whose
 #: rounding errors are a few ulp (~1e-15 relative; the triaxial console printed 7.276e-15 kPa for an exact 0

@@ -18,6 +18,8 @@ import re
 
 import numpy as np
 
+from ..sampling import MAX_MARKERS, THIN_SEED, sample_rows  # noqa: F401  (re-exported)
+
 OKABE_ITO = {
     "black": "#000000", "orange": "#E69F00", "sky": "#56B4E9", "green": "#009E73",
     "yellow": "#F0E442", "blue": "#0072B2", "vermillion": "#D55E00", "purple": "#CC79A7", "grey": "#7F7F7F",
@@ -81,9 +83,7 @@ SERIES_COLOURS = [OKABE_ITO[k] for k in ("black", "orange", "sky", "green", "blu
 LINESTYLES = ["-", "--", ":", "-.", (0, (5, 1)), (0, (3, 1, 1, 1)), (0, (1, 1)), (0, (5, 2, 1, 2, 1, 2))]
 #: markers of series and of normal-stress levels, in order
 MARKERS = ["o", "s", "^", "D", "v", "<", ">", "p", "h", "X", "P", "*"]
-#: panels draw at most this many markers per series; above it, a random sample (seed THIN_SEED) and a note
-MAX_MARKERS = 2000
-THIN_SEED = 0
+#: MAX_MARKERS, THIN_SEED: how many markers a panel draws per series (capred.sampling, shared with the pipelines)
 
 #: a one-column journal figure (89 mm wide)
 SINGLE_PANEL_SIZE = (3.5, 2.8)
@@ -188,12 +188,9 @@ def thin(index, limit: int = MAX_MARKERS, seed: int = THIN_SEED):
     note saying so ("" when all are kept). Figures of large tables draw this sample so that their cost does
     not grow with the number of tests; statistics in legends and tables use every test."""
     index = np.asarray(index)
-    if index.dtype == bool:
-        index = np.flatnonzero(index)
-    if index.size <= limit:
-        return index, ""
-    keep = np.sort(np.random.default_rng(seed).choice(index, limit, replace=False))
-    return keep, f"markers: random sample of {limit:,} of {index.size:,} tests (seed {seed})"
+    n = int(index.sum()) if index.dtype == bool else index.size
+    keep = sample_rows(index, limit, seed)
+    return keep, (f"markers: random sample of {limit:,} of {n:,} tests (seed {seed})" if n > limit else "")
 
 
 def note(ax, text: str) -> None:
