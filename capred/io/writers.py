@@ -682,8 +682,8 @@ def second_core_free(variable: str = "CAPRED_PROCESSES") -> bool:
 
     On a busy shared machine a forked helper's extra CPU (its copied pages, its own start) buys no time: measured on
     ``capred bridge solve`` of 100,000 rows with the other core busy, 1.30 s CPU and 1.10 s wall in two processes
-    against 1.22 s and 1.02 s in one (benchmarks/bench_bridge_cli.py). CAPRED_PROCESSES=1 or 2 decides instead
-    (the figure sheets have CAPRED_FIGURE_PROCESSES).
+    against 1.22 s and 1.02 s in one (benchmarks/bench_bridge_cli.py). The bridge solver and the JSON writer ask
+    with CAPRED_PROCESSES, the figure sheets with CAPRED_FIGURE_PROCESSES.
     """
     if os.name != "posix" or not hasattr(os, "fork"):
         return False
