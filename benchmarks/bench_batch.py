@@ -17,6 +17,7 @@ run in turn (A B C D, A B C D, ...) so that a change of load hits each alike:
 
 Run: python benchmarks/bench_batch.py [n_files=200] [repeats=3] [--workers W]
 """
+
 from __future__ import annotations
 
 import os
@@ -100,11 +101,15 @@ def main(n: int = 200, repeats: int = 3, workers: int | None = None) -> None:
     med = {k: sorted(v)[len(v) // 2] for k, v in ((k, [x[0] for x in t]) for k, t in times.items())}
     cpu = {k: sorted(x[1] for x in t)[len(t) // 2] for k, t in times.items()}
     start_cpu = cpu["startup"]
-    print(f"capred batch over {n} copies of the shear sample; {repeats} interleaved repeats (medians); "
-          f"{c} cores, {w} workers ({'--workers' if workers else 'the CLI default'}); "
-          f"load average at the end {load:.1f}")
-    print(f"{'variant':14s} {'wall s':>8s} {'CPU s':>8s} {'CPU ms/file':>12s} {'idle wall s':>12s} "
-          f"{'1000 files, idle wall s':>24s}")
+    print(
+        f"capred batch over {n} copies of the shear sample; {repeats} interleaved repeats (medians); "
+        f"{c} cores, {w} workers ({'--workers' if workers else 'the CLI default'}); "
+        f"load average at the end {load:.1f}"
+    )
+    print(
+        f"{'variant':14s} {'wall s':>8s} {'CPU s':>8s} {'CPU ms/file':>12s} {'idle wall s':>12s} "
+        f"{'1000 files, idle wall s':>24s}"
+    )
     for name in VARIANTS:
         per_file = (cpu[name] - start_cpu) / n
         idle = start_cpu + per_file * n / w  # start-up is serial; the files spread over the workers
@@ -112,8 +117,10 @@ def main(n: int = 200, repeats: int = 3, workers: int | None = None) -> None:
         print(f"{name:14s} {med[name]:8.2f} {cpu[name]:8.2f} {per_file * 1e3:12.1f} {idle:12.2f} {at_1000:24.1f}")
     print(f"{'startup':14s} {med['startup']:8.2f} {start_cpu:8.2f}   (one file: the fixed cost of a batch)")
     target = start_cpu + (cpu["default"] - start_cpu) / n * 1000 / w
-    print(f"claim: 1,000 files with default options and --no-plots in {target:.1f} s wall on an idle "
-          f"{c}-core machine (target <= 10 s): {'met' if target <= 10 else 'NOT met'}")
+    print(
+        f"claim: 1,000 files with default options and --no-plots in {target:.1f} s wall on an idle "
+        f"{c}-core machine (target <= 10 s): {'met' if target <= 10 else 'NOT met'}"
+    )
 
 
 if __name__ == "__main__":
@@ -122,5 +129,5 @@ if __name__ == "__main__":
     if "--workers" in argv:
         k = argv.index("--workers")
         workers = int(argv[k + 1])
-        del argv[k:k + 2]
+        del argv[k : k + 2]
     main(*(int(a) for a in argv[:2]), workers=workers)

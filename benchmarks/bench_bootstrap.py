@@ -13,6 +13,7 @@ this process: for each material of the bundled sample and each replicate count R
 over ``seeds`` seeds of every model's probability of being best, beside the binomial sqrt(p(1 - p)/R)
 (Efron & Tibshirani 1993, doi:10.1007/978-1-4899-4541-9, ch. 6) and the CPU time of one call.
 """
+
 from __future__ import annotations
 
 import resource
@@ -88,9 +89,11 @@ def monte_carlo_error(seeds: int = 50, counts=(250, 500, 1000, 2000, 4000)) -> d
                 worst = int(np.argmax(sd))
                 p = table[:, worst].mean()
                 out[(material, R)] = (float(sd[worst]), float(np.sqrt(p * (1 - p) / R)), ms)
-                print(f"{material:12s} R={R:5d}  SD of P(best) {sd[worst]:.4f} ({models[worst]}, mean {p:.3f}; "
-                      f"binomial {np.sqrt(p * (1 - p) / R):.4f}; worst case p = 0.5: {np.sqrt(0.25 / R):.4f})  "
-                      f"{ms:.2f} ms CPU per call")
+                print(
+                    f"{material:12s} R={R:5d}  SD of P(best) {sd[worst]:.4f} ({models[worst]}, mean {p:.3f}; "
+                    f"binomial {np.sqrt(p * (1 - p) / R):.4f}; worst case p = 0.5: {np.sqrt(0.25 / R):.4f})  "
+                    f"{ms:.2f} ms CPU per call"
+                )
     return out
 
 

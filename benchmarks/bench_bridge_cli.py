@@ -31,6 +31,7 @@ CAPRED_PROCESSES=2 (or 1) to force two processes (or one) whatever the load.
 Run from the repository root with capred installed:
     python benchmarks/bench_bridge_cli.py [rows] [repeats] [ivp_sample]
 """
+
 from __future__ import annotations
 
 import os
@@ -121,30 +122,46 @@ def main(n: int = 100_000, repeats: int = 3, sample: int = 300) -> None:
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         ENV = cli_env(tmp / "pycache")
-        print("bytecode: " + ("compiled by every run (CAPRED_BENCH_COMPILE=1)" if ENV is None
-                              else "cached by the warm-up run (PYTHONPYCACHEPREFIX)")
-              + f"; load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores; CAPRED_PROCESSES="
-              + os.environ.get("CAPRED_PROCESSES", "(unset: capred decides by the load)"))
+        print(
+            "bytecode: "
+            + (
+                "compiled by every run (CAPRED_BENCH_COMPILE=1)"
+                if ENV is None
+                else "cached by the warm-up run (PYTHONPYCACHEPREFIX)"
+            )
+            + f"; load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores; CAPRED_PROCESSES="
+            + os.environ.get("CAPRED_PROCESSES", "(unset: capred decides by the load)")
+        )
         big, small = tmp / "big.csv", tmp / "small.csv"
         suction_file(big, R, th, D, s)
         suction_file(small, *(x[: n // 10] for x in (R, th, D, s)))
         cli(small, tmp / "warm")  # warm the file cache and the bytecode
-        t = interleaved({"capred": lambda: cli(big, tmp / "out_big"),
-                         "solve_ivp": lambda: [ivp_bridge(beta[i], th_r[i], s_star[i], 1e-12) for i in pick]},
-                        repeats)
+        t = interleaved(
+            {
+                "capred": lambda: cli(big, tmp / "out_big"),
+                "solve_ivp": lambda: [ivp_bridge(beta[i], th_r[i], s_star[i], 1e-12) for i in pick],
+            },
+            repeats,
+        )
         rss_big = cli(big, tmp / "out_big")[1]
         rss_small = cli(small, tmp / "out_small")[1]
 
         cpu_ivp = t["solve_ivp"].cpu / pick.size * ok.size  # charged for the rows with a bridge only
         wall_ivp = t["solve_ivp"].wall / pick.size * ok.size / procs  # spread over as many processes as capred
-        print(f"capred bridge solve, {n:,} suction-controlled rows ({ok.size:,} with a bridge), {procs} process(es): "
-              f"{t['capred'].cpu:.2f} s CPU, {t['capred'].wall:.2f} s wall "
-              f"({ok.size / t['capred'].cpu:,.0f} bridges per CPU second)")
-        print(f"solve_ivp (DOP853, rtol 1e-12, max force difference {err:.1e}): "
-              f"{t['solve_ivp'].cpu / pick.size * 1e3:.3f} ms CPU per bridge -> {cpu_ivp:.1f} s CPU for the "
-              f"{ok.size:,} bridges")
-        print("  " + ratio_line("solve_ivp over capred, CPU (core for core, bridges only)", cpu_ivp,
-                                t["capred"].cpu, ">= 50x"))
+        print(
+            f"capred bridge solve, {n:,} suction-controlled rows ({ok.size:,} with a bridge), {procs} process(es): "
+            f"{t['capred'].cpu:.2f} s CPU, {t['capred'].wall:.2f} s wall "
+            f"({ok.size / t['capred'].cpu:,.0f} bridges per CPU second)"
+        )
+        print(
+            f"solve_ivp (DOP853, rtol 1e-12, max force difference {err:.1e}): "
+            f"{t['solve_ivp'].cpu / pick.size * 1e3:.3f} ms CPU per bridge -> {cpu_ivp:.1f} s CPU for the "
+            f"{ok.size:,} bridges"
+        )
+        print(
+            "  "
+            + ratio_line("solve_ivp over capred, CPU (core for core, bridges only)", cpu_ivp, t["capred"].cpu, ">= 50x")
+        )
         print("  " + ratio_line(f"wall, the peer on {procs} process(es)", wall_ivp, t["capred"].wall))
 
         # volume-controlled against suction-controlled rows of the same bridges, through the CLI
@@ -156,15 +173,22 @@ def main(n: int = 100_000, repeats: int = 3, sample: int = 300) -> None:
             fs, fv = tmp / f"s_{where}.csv", tmp / f"v_{where}.csv"
             suction_file(fs, R[k], th[k], Dw[k] * R[k], s[k])
             write_csv(fv, {"R [mm]": R[k], "contact_angle [deg]": th[k], "gap [mm]": Dw[k] * R[k], "V_w [mm^3]": V})
-            tv = interleaved({"suction": lambda: cli(fs, tmp / "os"), "volume": lambda: cli(fv, tmp / "ov")},
-                             repeats)
-            print(f"bridge solve at {where}, {k.size:,} bridges: suction rows {tv['suction'].cpu:.2f} s CPU "
-                  f"({tv['suction'].wall:.2f} wall), volume rows {tv['volume'].cpu:.2f} s CPU "
-                  f"({tv['volume'].wall:.2f} wall)")
-            print("  " + ratio_line("volume over suction, CPU", tv["volume"].cpu, tv["suction"].cpu, "<= 3x")
-                  + "; " + ratio_line("wall", tv["volume"].wall, tv["suction"].wall))
-    print(f"peak RSS: {rss_small / 1024:.0f} MB for {n // 10:,} rows, {rss_big / 1024:.0f} MB for {n:,} rows "
-          f"({(rss_big - rss_small) * 1024 / (n - n // 10):.0f} B/row)")
+            tv = interleaved({"suction": lambda: cli(fs, tmp / "os"), "volume": lambda: cli(fv, tmp / "ov")}, repeats)
+            print(
+                f"bridge solve at {where}, {k.size:,} bridges: suction rows {tv['suction'].cpu:.2f} s CPU "
+                f"({tv['suction'].wall:.2f} wall), volume rows {tv['volume'].cpu:.2f} s CPU "
+                f"({tv['volume'].wall:.2f} wall)"
+            )
+            print(
+                "  "
+                + ratio_line("volume over suction, CPU", tv["volume"].cpu, tv["suction"].cpu, "<= 3x")
+                + "; "
+                + ratio_line("wall", tv["volume"].wall, tv["suction"].wall)
+            )
+    print(
+        f"peak RSS: {rss_small / 1024:.0f} MB for {n // 10:,} rows, {rss_big / 1024:.0f} MB for {n:,} rows "
+        f"({(rss_big - rss_small) * 1024 / (n - n // 10):.0f} B/row)"
+    )
 
 
 if __name__ == "__main__":

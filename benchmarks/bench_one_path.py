@@ -28,6 +28,7 @@ before/after of a change in one session.
 
 Run from the repository root: python benchmarks/bench_one_path.py [repeats=5] [--baseline COMMIT]
 """
+
 from __future__ import annotations
 
 import os
@@ -57,6 +58,7 @@ ROOT = Path(__file__).resolve().parents[1]
 def main(repeats: int = 5, baseline: str | None = None) -> None:
     py = sys.executable
     with tempfile.TemporaryDirectory() as tmp:
+
         def capred(*args, env=None):
             out = Path(tmp) / ("b" if env else "o")
 
@@ -64,6 +66,7 @@ def main(repeats: int = 5, baseline: str | None = None) -> None:
                 shutil.rmtree(out, ignore_errors=True)
                 # cwd: a neutral folder, so that `python -m` imports capred from PYTHONPATH / the install
                 run([py, "-m", "capred", "shear", "--sample", *args, "--out", str(out)], env=env, cwd=tmp)
+
             return go
 
         contestants = {
@@ -76,8 +79,11 @@ def main(repeats: int = 5, baseline: str | None = None) -> None:
         }
         base = Path(tmp) / "baseline"
         if baseline:
-            subprocess.run(["git", "-C", str(ROOT), "worktree", "add", "--detach", str(base), baseline], check=True,
-                           capture_output=True)
+            subprocess.run(
+                ["git", "-C", str(ROOT), "worktree", "add", "--detach", str(base), baseline],
+                check=True,
+                capture_output=True,
+            )
             env = {**os.environ, "PYTHONPATH": str(base)}
             contestants.update({"readme@base": capred(env=env), "boot0@base": capred("--bootstrap", "0", env=env)})
         try:
@@ -86,8 +92,9 @@ def main(repeats: int = 5, baseline: str | None = None) -> None:
             m = interleaved(contestants, repeats)
         finally:
             if baseline:
-                subprocess.run(["git", "-C", str(ROOT), "worktree", "remove", "--force", str(base)],
-                               capture_output=True)
+                subprocess.run(
+                    ["git", "-C", str(ROOT), "worktree", "remove", "--force", str(base)], capture_output=True
+                )
     for name, v in m.items():
         print(f"{name:12s} CPU {v.cpu:6.2f} s   wall {v.wall:6.2f} s")
     floor = m["floor"]
@@ -96,15 +103,23 @@ def main(repeats: int = 5, baseline: str | None = None) -> None:
     print(ratio_line("--bootstrap 0 / floor, CPU", m["boot0"].cpu, floor.cpu, "<= 2.0x"))
     print(ratio_line("--bootstrap 0 / floor, wall", m["boot0"].wall, floor.wall))
     fig = m["boot0"].cpu - m["no-figures"].cpu
-    print(f"figures and report.html: {fig:.2f} s CPU, {m['boot0'].wall - m['no-figures'].wall:.2f} s wall "
-          f"({fig / m['boot0'].cpu:.0%} of the --bootstrap 0 run's CPU)")
-    print(ratio_line("figures in two processes / one, CPU", m["boot0-2proc"].cpu, m["boot0-1proc"].cpu) + "; "
-          + ratio_line("wall", m["boot0-2proc"].wall, m["boot0-1proc"].wall))
+    print(
+        f"figures and report.html: {fig:.2f} s CPU, {m['boot0'].wall - m['no-figures'].wall:.2f} s wall "
+        f"({fig / m['boot0'].cpu:.0%} of the --bootstrap 0 run's CPU)"
+    )
+    print(
+        ratio_line("figures in two processes / one, CPU", m["boot0-2proc"].cpu, m["boot0-1proc"].cpu)
+        + "; "
+        + ratio_line("wall", m["boot0-2proc"].wall, m["boot0-1proc"].wall)
+    )
     if baseline:
         for name in ("readme", "boot0"):
             b = m[f"{name}@base"]
-            print(ratio_line(f"{name} at {baseline} / floor, CPU", b.cpu, floor.cpu) + "; "
-                  + ratio_line("wall", b.wall, floor.wall))
+            print(
+                ratio_line(f"{name} at {baseline} / floor, CPU", b.cpu, floor.cpu)
+                + "; "
+                + ratio_line("wall", b.wall, floor.wall)
+            )
 
 
 if __name__ == "__main__":
@@ -113,5 +128,5 @@ if __name__ == "__main__":
     if "--baseline" in args:
         k = args.index("--baseline")
         base = args[k + 1]
-        del args[k:k + 2]
+        del args[k : k + 2]
     main(int(args[0]) if args else 5, base)

@@ -29,6 +29,7 @@ a lower RSS outside capred's range; the column ``rss capred/unsatfit`` shows it.
 
 Run: python benchmarks/bench_retention.py [repeats]   (needs ``pip install unsatfit``; not a dependency)
 """
+
 from __future__ import annotations
 
 import os
@@ -46,8 +47,14 @@ import numpy as np  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 CM = 98.1  # Pa per cm of head (gamma_w = 9.81 kN/m^3)
-PAIRS = {"vg": ("vg", ["q=1"]), "vg_m_free": ("vg", []), "bc": ("bc", []), "kosugi": ("ln", []),
-         "fx_no_c": ("fx", []), "durner": ("vg2", ["q=1"])}
+PAIRS = {
+    "vg": ("vg", ["q=1"]),
+    "vg_m_free": ("vg", []),
+    "bc": ("bc", []),
+    "kosugi": ("ln", []),
+    "fx_no_c": ("fx", []),
+    "durner": ("vg2", ["q=1"]),
+}
 
 
 def datasets():
@@ -57,8 +64,10 @@ def datasets():
     dry = sample[sample["branch"] == "drying"]
     s_r = (dry["V_v [cm^3]"] - dry["z2 [cm^3]"]) / dry["V_v [cm^3]"]
     yield "capred sample, drying (16 points)", dry["z1 [cm]"].to_numpy(float), s_r.to_numpy(float)
-    for name, label in (("swrc_toyoura_sand_swrcfit.csv", "Toyoura sand (44 points)"),
-                        ("swrc_vg1980_silt_loam_ge3.csv", "silt loam G.E. 3, van Genuchten 1980")):
+    for name, label in (
+        ("swrc_toyoura_sand_swrcfit.csv", "Toyoura sand (44 points)"),
+        ("swrc_vg1980_silt_loam_ge3.csv", "silt loam G.E. 3, van Genuchten 1980"),
+    ):
         d = pd.read_csv(ROOT / "tests" / "data" / "retention" / name)
         yield label, d.iloc[:, 0].to_numpy(float), d.iloc[:, 1].to_numpy(float)
     rng = np.random.default_rng(1)
@@ -105,7 +114,7 @@ def compare(model, h, theta, repeats):
     times = {k: ([], []) for k in sides}
     rss = {}
     for i in range(repeats):
-        for k in (("capred", "unsatfit") if i % 2 == 0 else ("unsatfit", "capred")):
+        for k in ("capred", "unsatfit") if i % 2 == 0 else ("unsatfit", "capred"):
             cpu, wall, rss[k] = clock(sides[k])
             times[k][0].append(cpu)
             times[k][1].append(wall)
@@ -119,8 +128,10 @@ def main(repeats: int = 7) -> None:
         raise SystemExit("unsatfit is not installed: pip install unsatfit (the benchmark compares with it)")
     warnings.simplefilter("ignore")
     worst = 0.0
-    print(f"{'model':10s} {'capred cpu':>10s} {'unsatfit cpu':>12s} {'ratio cpu':>9s} {'ratio wall':>10s}"
-          f"  {'rss capred':>12s} {'rss unsatfit':>12s} {'rss c/u':>8s}")
+    print(
+        f"{'model':10s} {'capred cpu':>10s} {'unsatfit cpu':>12s} {'ratio cpu':>9s} {'ratio wall':>10s}"
+        f"  {'rss capred':>12s} {'rss unsatfit':>12s} {'rss c/u':>8s}"
+    )
     for label, h, theta in datasets():
         print(label)
         for model in PAIRS:
@@ -131,8 +142,10 @@ def main(repeats: int = 7) -> None:
                 continue
             (cc, cw, cr), (uc, uw, ur) = r["capred"], r["unsatfit"]
             worst = max(worst, cc / uc)
-            print(f"  {model:10s} {cc * 1e3:8.1f}ms {uc * 1e3:10.1f}ms {cc / uc:8.2f}x {cw / uw:9.2f}x"
-                  f"  {cr:12.6g} {ur:12.6g} {cr / ur:8.4f}")
+            print(
+                f"  {model:10s} {cc * 1e3:8.1f}ms {uc * 1e3:10.1f}ms {cc / uc:8.2f}x {cw / uw:9.2f}x"
+                f"  {cr:12.6g} {ur:12.6g} {cr / ur:8.4f}"
+            )
     print(f"worst CPU ratio capred/unsatfit: {worst:.2f}x (target <= 1.0x)")
 
 

@@ -16,6 +16,7 @@ Contestants run in turn (A B C, A B C, ...), medians of the repeats.
 
 Run from the repository root: python benchmarks/bench_shear.py [repeats=3] [rows=100000]
 """
+
 from __future__ import annotations
 
 import shutil
@@ -60,6 +61,7 @@ def main(repeats: int = 3, n: int = 100_000) -> None:
             def go():
                 shutil.rmtree(out, ignore_errors=True)
                 run([py, "-m", "capred", "shear", str(data), *args, "--out", str(out)], cwd=tmp)
+
             return go
 
         contestants = {
@@ -70,8 +72,14 @@ def main(repeats: int = 3, n: int = 100_000) -> None:
         m = interleaved(contestants, repeats)
     for name, v in m.items():
         print(f"{name:9s} CPU {v.cpu:7.2f} s   wall {v.wall:7.2f} s")
-    print(ratio_line(f"{n:,} rows, every default output / --no-plots --no-html --bootstrap 0, CPU",
-                     m["defaults"].cpu, m["tables"].cpu, "<= 3x"))
+    print(
+        ratio_line(
+            f"{n:,} rows, every default output / --no-plots --no-html --bootstrap 0, CPU",
+            m["defaults"].cpu,
+            m["tables"].cpu,
+            "<= 3x",
+        )
+    )
     print(ratio_line("  the same, wall", m["defaults"].wall, m["tables"].wall))
     print(ratio_line("figures and report.html (--bootstrap 0) / tables, CPU", m["boot0"].cpu, m["tables"].cpu))
     print(ratio_line("  the same, wall", m["boot0"].wall, m["tables"].wall))

@@ -13,6 +13,7 @@ per test at n, (peak(n) - peak(n/10)) / (0.9 n), the memory each further test co
 
 Run from the repository root: python benchmarks/bench_shear_memory.py [rows=1000000]
 """
+
 from __future__ import annotations
 
 import os
@@ -25,15 +26,21 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from common import ratio_line  # noqa: E402
 
-CONTESTANTS = {"defaults": (), "--no-plots": ("--no-plots",),
-               "--no-plots --bootstrap 0": ("--no-plots", "--bootstrap", "0")}
+CONTESTANTS = {
+    "defaults": (),
+    "--no-plots": ("--no-plots",),
+    "--no-plots --bootstrap 0": ("--no-plots", "--bootstrap", "0"),
+}
 
 
 def peak_mb(data: Path, out: Path, args: tuple[str, ...]) -> tuple[float, float]:
     """(peak RSS [MB], wall time [s]) of one `capred shear` process."""
     t = time.perf_counter()
-    p = subprocess.Popen([sys.executable, "-m", "capred", "shear", str(data), "--out", str(out), *args],
-                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    p = subprocess.Popen(
+        [sys.executable, "-m", "capred", "shear", str(data), "--out", str(out), *args],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+    )
     err = p.stderr.read()
     _, status, usage = os.wait4(p.pid, 0)
     p.returncode = os.waitstatus_to_exitcode(status)
@@ -50,14 +57,23 @@ def main(n: int = 1_000_000) -> None:
         # process between fork and exec, so this one must stay small
         here = str(Path(__file__).resolve().parent)
         for path, rows in ((small, n // 10), (big, n)):
-            subprocess.run([sys.executable, "-c", f"import sys; sys.path.insert(0, {here!r}); from bench_shear import "
-                            f"make_rows; from pathlib import Path; make_rows(Path({str(path)!r}), {rows})"], check=True)
+            subprocess.run(
+                [
+                    sys.executable,
+                    "-c",
+                    f"import sys; sys.path.insert(0, {here!r}); from bench_shear import "
+                    f"make_rows; from pathlib import Path; make_rows(Path({str(path)!r}), {rows})",
+                ],
+                check=True,
+            )
         peak_mb(small, tmp / "warm", ("--no-plots", "--bootstrap", "0"))  # file cache and bytecode warm
         for name, args in CONTESTANTS.items():
             lo, t_lo = peak_mb(small, tmp / "o_small", args)
             hi, t_hi = peak_mb(big, tmp / "o_big", args)
-            print(f"{name}: {n // 10:,} tests {lo:.0f} MB ({t_lo:.0f} s), {n:,} tests {hi:.0f} MB ({t_hi:.0f} s); "
-                  f"peak per test {hi * 2**20 / n:.0f} B, each further test {(hi - lo) * 2**20 / (0.9 * n):.0f} B")
+            print(
+                f"{name}: {n // 10:,} tests {lo:.0f} MB ({t_lo:.0f} s), {n:,} tests {hi:.0f} MB ({t_hi:.0f} s); "
+                f"peak per test {hi * 2**20 / n:.0f} B, each further test {(hi - lo) * 2**20 / (0.9 * n):.0f} B"
+            )
             print("  " + ratio_line(f"peak at {n:,} / at {n // 10:,}", hi, lo, "<= 1.5x"))
 
 

@@ -10,14 +10,16 @@ whatever the number of processes each side uses.
 Interleaving (A, B, A, B, ...) exposes both sides to the same load on a
 shared machine; the median of the repeats is reported.
 """
+
 from __future__ import annotations
 
 import resource
 import statistics
 import subprocess
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any
 
 
 def _children_cpu() -> float:
@@ -43,11 +45,13 @@ def timed(fn: Callable[[], Any]) -> tuple[Any, Timing]:
 
 def run(cmd: list[str], **kw) -> tuple[subprocess.CompletedProcess, Timing]:
     """A command to completion (checked), timed with its whole process tree."""
+
     def go():
         p = subprocess.run(cmd, capture_output=True, text=True, **kw)
         if p.returncode != 0:
             raise SystemExit(f"{' '.join(cmd)} failed:\n{p.stderr}")
         return p
+
     return timed(go)
 
 
@@ -66,8 +70,10 @@ def interleaved(contestants: dict[str, Callable[[], Any]], repeats: int = 5) -> 
     for _ in range(repeats):
         for name, fn in contestants.items():
             seen[name].append(timed(fn)[1])
-    return {k: Medians(statistics.median(t.cpu for t in v), statistics.median(t.wall for t in v), v)
-            for k, v in seen.items()}
+    return {
+        k: Medians(statistics.median(t.cpu for t in v), statistics.median(t.wall for t in v), v)
+        for k, v in seen.items()
+    }
 
 
 def ratio_line(label: str, num: float, den: float, target: str = "") -> str:

@@ -10,6 +10,7 @@ Use from a lab script::
 
 Heavy modules (pandas, scipy, matplotlib, pint) load only when used.
 """
+
 from __future__ import annotations
 
 from importlib import import_module
@@ -67,6 +68,7 @@ def _warning(run):
 
     return public
 
+
 __all__ = ["__version__", *_API]
 
 
@@ -77,8 +79,11 @@ def __dir__() -> list[str]:
 def __getattr__(name: str):
     if name in _API:
         value = getattr(import_module(_API[name]), name)
-        if name == "run" or name.startswith("run_") or name in ("solve_bridges", "bridge_curve", "compare_measured",
-                                                                  "rupture_distances"):
+        if (
+            name == "run"
+            or name.startswith("run_")
+            or name in ("solve_bridges", "bridge_curve", "compare_measured", "rupture_distances")
+        ):
             value = globals().setdefault(f"_public_{name}", _warning(value))
         return value
     raise AttributeError(f"module 'capred' has no attribute '{name}'")

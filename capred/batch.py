@@ -7,12 +7,14 @@ the folder's errors.log), and after Ctrl-C the jobs not yet done are
 ``interrupted``. ``index.csv`` lists every job and every file written, and is
 written in every case.
 """
+
 from __future__ import annotations
 
 import time
 import traceback
 from contextlib import contextmanager, nullcontext
 from dataclasses import dataclass, field
+from datetime import UTC
 from pathlib import Path
 
 from .errors import CapredError
@@ -50,8 +52,8 @@ class Outcome:
 
 def run_job(job: Job):
     """(result, written paths) of one job; raises CapredError on bad input or unwritable output."""
-    from .report.outputs import write_outputs
     from .reductions import REDUCTIONS
+    from .report.outputs import write_outputs
 
     if job.out_dir is not None:  # refuse a folder capred may not replace before computing anything
         from .io.writers import check_target
@@ -61,8 +63,19 @@ def run_job(job: Job):
     if job.out_dir is None:  # --json without --out: nothing written
         return result, []
     o = job.output
-    kw = dict(formats=o.formats, dpi=o.dpi, html=o.html, csv_dialect=o.csv_dialect, xlsx=o.xlsx,
-              panels=o.panels, figures=o.figures) if o else {}
+    kw = (
+        dict(
+            formats=o.formats,
+            dpi=o.dpi,
+            html=o.html,
+            csv_dialect=o.csv_dialect,
+            xlsx=o.xlsx,
+            panels=o.panels,
+            figures=o.figures,
+        )
+        if o
+        else {}
+    )
     return result, write_outputs(result, job.out_dir, plots=job.plots, **kw)
 
 
@@ -78,17 +91,32 @@ def run_safely(job: Job) -> Outcome:
         return Outcome(job.command, src, str(job.out_dir), "failed", str(exc), seconds=time.perf_counter() - t0)
     except Exception as exc:  # a bug: keep the traceback for the report, let the other files run
         log = _save_traceback(job, traceback.format_exc())
-        return Outcome(job.command, src, str(job.out_dir), "crashed",
-                       f"unexpected error {type(exc).__name__}: {exc} (traceback in {log})",
-                       [log] if log else [], time.perf_counter() - t0)
-    return Outcome(job.command, src, str(job.out_dir), "ok", "", [str(p) for p in written],
-                   time.perf_counter() - t0, result.to_json() if job.keep_json else None, result.season_rows())
+        return Outcome(
+            job.command,
+            src,
+            str(job.out_dir),
+            "crashed",
+            f"unexpected error {type(exc).__name__}: {exc} (traceback in {log})",
+            [log] if log else [],
+            time.perf_counter() - t0,
+        )
+    return Outcome(
+        job.command,
+        src,
+        str(job.out_dir),
+        "ok",
+        "",
+        [str(p) for p in written],
+        time.perf_counter() - t0,
+        result.to_json() if job.keep_json else None,
+        result.season_rows(),
+    )
 
 
 def _save_traceback(job: Job, text: str) -> str:
     """errors.log (with a provenance.json listing it, so a rerun may replace the folder) in the job's folder."""
     import sys
-    from datetime import datetime, timezone
+    from datetime import datetime
 
     from . import __version__
     from .io.writers import RunFolder, check_target, encode_json
@@ -97,12 +125,23 @@ def _save_traceback(job: Job, text: str) -> str:
         if job.out_dir is None:
             return ""
         folder = RunFolder(check_target(job.out_dir, [job.source] if job.source else []))
-        folder.write_bytes("errors.log", f"capred {job.command} {job.source}\n\n{text}".encode("utf-8"))
-        folder.write_bytes("provenance.json", encode_json({
-            "capred_version": __version__, "command": job.command, "command_line": " ".join(sys.argv),
-            "python": sys.version.split()[0], "inputs": [str(job.source)] if job.source is not None else [],
-            "outputs": ["errors.log", "provenance.json"], "status": "crashed",
-            "created_utc": datetime.now(timezone.utc).replace(microsecond=0).isoformat()}, True))
+        folder.write_bytes("errors.log", f"capred {job.command} {job.source}\n\n{text}".encode())
+        folder.write_bytes(
+            "provenance.json",
+            encode_json(
+                {
+                    "capred_version": __version__,
+                    "command": job.command,
+                    "command_line": " ".join(sys.argv),
+                    "python": sys.version.split()[0],
+                    "inputs": [str(job.source)] if job.source is not None else [],
+                    "outputs": ["errors.log", "provenance.json"],
+                    "status": "crashed",
+                    "created_utc": datetime.now(UTC).replace(microsecond=0).isoformat(),
+                },
+                True,
+            ),
+        )
         return str(folder.commit()[0])
     except (CapredError, OSError):
         return ""
@@ -238,9 +277,15 @@ def run_all(jobs: list[Job], workers: int | None = None, on_done=None) -> tuple[
         if k in outcomes:
             result.append(outcomes[k])
         else:
-            result.append(Outcome(job.command, str(getattr(job.source, "path", job.source) or ""), str(job.out_dir),
-                                  "interrupted",
-                                  "not run: the batch was interrupted"))
+            result.append(
+                Outcome(
+                    job.command,
+                    str(getattr(job.source, "path", job.source) or ""),
+                    str(job.out_dir),
+                    "interrupted",
+                    "not run: the batch was interrupted",
+                )
+            )
     return result, interrupted
 
 
@@ -252,6 +297,7 @@ def _run(jobs: list[Job], workers: int, outcomes: dict, on_done) -> None:
     shear file, against ~0.05 s for the next one) is then loaded once and inherited by every worker instead
     of loaded again by each (benchmarks/bench_batch.py).
     """
+
     def done(k: int, outcome: Outcome) -> None:
         outcomes[k] = outcome
         if on_done:
@@ -281,9 +327,8 @@ def _run(jobs: list[Job], workers: int, outcomes: dict, on_done) -> None:
 
 def output_dirs(commands: list[str], sources: list[Path], root: Path) -> list[Path]:
     """One folder per input under ``root``: <prefix>_<stem>, made unique with parent names or a number."""
-    from .reductions import REDUCTIONS
-
     from .io.grid import source_path
+    from .reductions import REDUCTIONS
 
     sources = [source_path(p) for p in sources]
     prefixes = [REDUCTIONS[c].out_prefix for c in commands]
@@ -356,14 +401,15 @@ def write_season(root: Path, outcomes: list[Outcome]) -> list[Path]:
         report = Path(o.out_dir) / "report.html"
         link = report.relative_to(root).as_posix() if o.ok and report.exists() else ""
         if not o.season:
-            rows.append({"input": o.source, "command": o.command, "status": o.status, "material": None,
-                         "report": link})
+            rows.append({"input": o.source, "command": o.command, "status": o.status, "material": None, "report": link})
         for r in o.season:
             rows.append({"input": o.source, "command": o.command, "status": o.status, **r, "report": link})
     table = season_columns(rows)
     runs = _runs(root, outcomes)
-    return [write_batch_file(root, "season.csv", encode_csv(table), runs),
-            write_batch_file(root, "season.html", render_season(table).encode("utf-8"), runs)]
+    return [
+        write_batch_file(root, "season.csv", encode_csv(table), runs),
+        write_batch_file(root, "season.html", render_season(table).encode("utf-8"), runs),
+    ]
 
 
 def season_columns(rows: list[dict]) -> dict:

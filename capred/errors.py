@@ -3,6 +3,7 @@
 The library raises these; the command line turns them into one clean message
 and a non-zero exit code. Any other exception is a bug and keeps its traceback.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -58,8 +59,19 @@ class InputError(CapredError):
 
     def as_json(self) -> dict:
         """{"errors": [{file, sheet, line, column, value, message}]}: every problem, for scripts."""
-        return {"errors": [{"file": p.file, "sheet": p.sheet, "line": p.line, "column": p.column, "value": p.value,
-                            "message": p.message} for p in self.problems]}
+        return {
+            "errors": [
+                {
+                    "file": p.file,
+                    "sheet": p.sheet,
+                    "line": p.line,
+                    "column": p.column,
+                    "value": p.value,
+                    "message": p.message,
+                }
+                for p in self.problems
+            ]
+        }
 
 
 class UnitError(CapredError):

@@ -6,6 +6,7 @@ the volumetric water content), ``lode_angle``, ``bc_lambda`` (the Brooks-Corey
 pore-size index, called alpha by Morvan et al. and lambda by Brooks & Corey).
 Output columns carry their unit in brackets, e.g. ``sigma_N [kPa]``.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -44,8 +45,9 @@ QUANTITIES: dict[str, Quantity] = {
     "cap_mass": Quantity("m_cap", "g", 1e3, "mass", "mass of the top cap", 0.0),
     "added_mass": Quantity("m_added", "g", 1e3, "mass", "added weights on the top cap", 0.0),
     "F_max": Quantity("F_max", "N", 1.0, "force", "peak shear force", 0.0),
-    "pendular_limit": Quantity("S_R,pend", "-", 1.0, "dimensionless", "upper S_R of the pendular regime",
-                               0.0, 1.0, True),
+    "pendular_limit": Quantity(
+        "S_R,pend", "-", 1.0, "dimensionless", "upper S_R of the pendular regime", 0.0, 1.0, True
+    ),
     "height": Quantity("H", "mm", 1e3, "length", "sample height", 0.0, None, True),
     "rho_d": Quantity("ρ_d", "kg/m^3", 1.0, "density", "dry density", 0.0, None, True),
     "G_s": Quantity("G_s", "-", 1.0, "dimensionless", "specific gravity of the solids", 0.0, None, True),
@@ -64,18 +66,17 @@ QUANTITIES: dict[str, Quantity] = {
     "vg_n": Quantity("n", "-", 1.0, "dimensionless", "van Genuchten n", 1.0, None, True),
     "vg_m": Quantity("m", "-", 1.0, "dimensionless", "van Genuchten m", 0.0, 1.0, True),
     "S_res": Quantity("S_res", "-", 1.0, "dimensionless", "residual degree of saturation", 0.0, 1.0, False, True),
-    "vanapalli_kappa": Quantity("κ", "-", 1.0, "dimensionless", "exponent κ of χ = S_e^κ (Vanapalli)",
-                                0.0, None, True),
-    "khalili_eta": Quantity("η", "-", 1.0, "dimensionless", "exponent η of χ = (s/s_b)^−η (Khalili-Khabbaz)",
-                            0.0, None, True),
+    "vanapalli_kappa": Quantity("κ", "-", 1.0, "dimensionless", "exponent κ of χ = S_e^κ (Vanapalli)", 0.0, None, True),
+    "khalili_eta": Quantity(
+        "η", "-", 1.0, "dimensionless", "exponent η of χ = (s/s_b)^−η (Khalili-Khabbaz)", 0.0, None, True
+    ),
     # triaxial (Prunier et al. 2024)
     "sigma1": Quantity("σ1", "kPa", 1e-3, "pressure", "major principal total stress at failure"),
     "sigma3": Quantity("σ3", "kPa", 1e-3, "pressure", "confining (minor principal) total stress", 0.0),
     "q_f": Quantity("q_f", "kPa", 1e-3, "pressure", "deviator stress at failure"),
     "c_eff": Quantity("c'", "kPa", 1e-3, "pressure", "effective cohesion", 0.0),
     "membrane_thickness": Quantity("t_m", "mm", 1e3, "length", "membrane thickness", 0.0, None, True),
-    "membrane_modulus": Quantity("E_m", "kPa", 1e-3, "pressure", "Young's modulus of the membrane", 0.0, None,
-                                 True),
+    "membrane_modulus": Quantity("E_m", "kPa", 1e-3, "pressure", "Young's modulus of the membrane", 0.0, None, True),
     "phi_eff": Quantity("φ'", "deg", 1.0, "angle", "effective friction angle", 0.0, 90.0, True, True),
     "lode_angle": Quantity("θ_L", "deg", 1.0, "angle", "Lode angle"),
     # bridges
@@ -90,8 +91,7 @@ QUANTITIES: dict[str, Quantity] = {
     "friction_angle": Quantity("ρ", "deg", 1.0, "angle", "friction angle of the sand", 0.0, 90.0, True, True),
     "kappa": Quantity("κ", "-", 1.0, "dimensionless", "slope of the elastic line in e-ln p'", 0.0, None, True),
     # the Python name of that slope (``kappa`` stays the CSV column and JSON key of `capred skempton-b`)
-    "kappa_elastic": Quantity("κ", "-", 1.0, "dimensionless", "slope of the elastic line in e-ln p'", 0.0, None,
-                              True),
+    "kappa_elastic": Quantity("κ", "-", 1.0, "dimensionless", "slope of the elastic line in e-ln p'", 0.0, None, True),
     "e0": Quantity("e0", "-", 1.0, "dimensionless", "initial void ratio", 0.0, None, True),
     "p0": Quantity("p0", "kPa", 1e-3, "pressure", "mean total stress", 0.0),
     "u0": Quantity("u0", "kPa", 1e-3, "pressure", "initial pore pressure"),
@@ -104,33 +104,81 @@ QUANTITIES: dict[str, Quantity] = {
     "sigma": Quantity("σ", "kPa", 1e-3, "pressure", "total (mean) stress, compression positive"),
     "u_w": Quantity("u_w", "kPa", 1e-3, "pressure", "pore-water pressure (gauge)"),
     "u_a": Quantity("u_a", "kPa", 1e-3, "pressure", "pore-air pressure (gauge)"),
-    "sigma_W": Quantity("σ'_W", "kPa", 1e-3, "pressure", "effective stress of the water-saturated part, "
-                        "(σ − u_w) S_r", 0.0),
-    "sigma_A": Quantity("σ'_A", "kPa", 1e-3, "pressure", "effective stress of the air-saturated part, "
-                        "(σ − u_a)(1 − S_r)", 0.0),
-    "lambda_W": Quantity("λ_W", "-", 1.0, "dimensionless", "slope of the ncl of clay reconstituted from slurry "
-                         "in e-ln σ'", 0.0, None, True),
-    "kappa_W": Quantity("κ_W", "-", 1.0, "dimensionless", "slope of the url of clay reconstituted from slurry "
-                        "in e-ln σ'", 0.0, None, True),
-    "e_ncl_W": Quantity("e_ncl,W", "-", 1.0, "dimensionless", "void ratio on the slurry ncl at the reference "
-                        "stress", 0.0, None, True),
-    "lambda_A": Quantity("λ_A", "-", 1.0, "dimensionless", "slope of the ncl of clay compressed from dry powder "
-                         "in e-ln σ'", 0.0, None, True),
-    "kappa_A": Quantity("κ_A", "-", 1.0, "dimensionless", "slope of the url of clay compressed from dry powder "
-                        "in e-ln σ'", 0.0, None, True),
-    "e_ncl_A": Quantity("e_ncl,A", "-", 1.0, "dimensionless", "void ratio on the dry-powder ncl at the reference "
-                        "stress", 0.0, None, True),
-    "reference_stress": Quantity("σ_ref", "kPa", 1e-3, "pressure", "stress at which the ncl intercepts are read",
-                                 0.0, None, True),
-    "initial_yield_W": Quantity("σ'_y,W", "kPa", 1e-3, "pressure", "largest σ'_W carried before the path",
-                                0.0, None, True),
-    "initial_yield_A": Quantity("σ'_y,A", "kPa", 1e-3, "pressure", "largest σ'_A carried before the path",
-                                0.0, None, True),
+    "sigma_W": Quantity(
+        "σ'_W", "kPa", 1e-3, "pressure", "effective stress of the water-saturated part, (σ − u_w) S_r", 0.0
+    ),
+    "sigma_A": Quantity(
+        "σ'_A", "kPa", 1e-3, "pressure", "effective stress of the air-saturated part, (σ − u_a)(1 − S_r)", 0.0
+    ),
+    "lambda_W": Quantity(
+        "λ_W",
+        "-",
+        1.0,
+        "dimensionless",
+        "slope of the ncl of clay reconstituted from slurry in e-ln σ'",
+        0.0,
+        None,
+        True,
+    ),
+    "kappa_W": Quantity(
+        "κ_W",
+        "-",
+        1.0,
+        "dimensionless",
+        "slope of the url of clay reconstituted from slurry in e-ln σ'",
+        0.0,
+        None,
+        True,
+    ),
+    "e_ncl_W": Quantity(
+        "e_ncl,W", "-", 1.0, "dimensionless", "void ratio on the slurry ncl at the reference stress", 0.0, None, True
+    ),
+    "lambda_A": Quantity(
+        "λ_A",
+        "-",
+        1.0,
+        "dimensionless",
+        "slope of the ncl of clay compressed from dry powder in e-ln σ'",
+        0.0,
+        None,
+        True,
+    ),
+    "kappa_A": Quantity(
+        "κ_A",
+        "-",
+        1.0,
+        "dimensionless",
+        "slope of the url of clay compressed from dry powder in e-ln σ'",
+        0.0,
+        None,
+        True,
+    ),
+    "e_ncl_A": Quantity(
+        "e_ncl,A",
+        "-",
+        1.0,
+        "dimensionless",
+        "void ratio on the dry-powder ncl at the reference stress",
+        0.0,
+        None,
+        True,
+    ),
+    "reference_stress": Quantity(
+        "σ_ref", "kPa", 1e-3, "pressure", "stress at which the ncl intercepts are read", 0.0, None, True
+    ),
+    "initial_yield_W": Quantity(
+        "σ'_y,W", "kPa", 1e-3, "pressure", "largest σ'_W carried before the path", 0.0, None, True
+    ),
+    "initial_yield_A": Quantity(
+        "σ'_y,A", "kPa", 1e-3, "pressure", "largest σ'_A carried before the path", 0.0, None, True
+    ),
     # the slopes of one line, W or A, as the functions of capred.physics.pedrotti_tarantino take them
-    "ncl_slope": Quantity("λ", "-", 1.0, "dimensionless", "slope of a normal-compression line in e-ln σ' "
-                          "(λ_W or λ_A)", 0.0, None, True),
-    "url_slope": Quantity("κ", "-", 1.0, "dimensionless", "slope of an unloading-reloading line in e-ln σ' "
-                          "(κ_W or κ_A)", 0.0, None, True),
+    "ncl_slope": Quantity(
+        "λ", "-", 1.0, "dimensionless", "slope of a normal-compression line in e-ln σ' (λ_W or λ_A)", 0.0, None, True
+    ),
+    "url_slope": Quantity(
+        "κ", "-", 1.0, "dimensionless", "slope of an unloading-reloading line in e-ln σ' (κ_W or κ_A)", 0.0, None, True
+    ),
 }
 
 
@@ -151,8 +199,11 @@ def renamed_keywords(**old_to_new: str):
             if old in kwargs:
                 if new in kwargs:
                     raise TypeError(f"{where}() got both '{old}' and its new name '{new}'")
-                warnings.warn(f"{where}(): the keyword '{old}' is deprecated, use '{new}' (capred's glossary)",
-                              DeprecationWarning, stacklevel=3)
+                warnings.warn(
+                    f"{where}(): the keyword '{old}' is deprecated, use '{new}' (capred's glossary)",
+                    DeprecationWarning,
+                    stacklevel=3,
+                )
                 kwargs[new] = kwargs.pop(old)
         return kwargs
 
@@ -232,7 +283,8 @@ def range_problem(name: str, value: float) -> str | None:
     if lo_bad and bound == 0 and not q.lower_open:
         return f"{q.description} must not be negative {got}"
     rel = {(True, True): ">", (True, False): ">=", (False, True): "<", (False, False): "<="}[
-        (lo_bad, q.lower_open if lo_bad else q.upper_open)]
+        (lo_bad, q.lower_open if lo_bad else q.upper_open)
+    ]
     return f"{q.description} must be {rel} {bound:g}{unit} {got}"
 
 
@@ -253,5 +305,7 @@ def plausibility_warning(name: str, value: float, where: str | None = None) -> s
     if lo <= value <= hi:
         return None
     q = QUANTITIES[name]
-    return (f"{where or name} = {value * q.factor:.6g} {q.unit} lies outside the usual "
-            f"{lo * q.factor:g}-{hi * q.factor:g} {q.unit} for {q.description}; check its unit")
+    return (
+        f"{where or name} = {value * q.factor:.6g} {q.unit} lies outside the usual "
+        f"{lo * q.factor:g}-{hi * q.factor:g} {q.unit} for {q.description}; check its unit"
+    )

@@ -5,11 +5,13 @@ The bar appears only once a run has lasted ``DELAY`` seconds (a quick run prints
 nothing extra) and disappears when the block ends. The command line turns it on
 for a terminal without ``--json``; scripts, notebooks and pipes see nothing.
 """
+
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
-from typing import Callable, Iterable, Iterator, TypeVar
+from typing import TypeVar
 
 T = TypeVar("T")
 _PROGRESS: ContextVar = ContextVar("capred_progress", default=None)
@@ -75,11 +77,24 @@ def showing(enabled: bool, delay: float = DELAY):
     import threading
 
     from rich.console import Console
-    from rich.progress import (BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn,
-                               TimeRemainingColumn)
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
 
-    progress = Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-                        TimeRemainingColumn(), console=Console(stderr=True), transient=True)
+    progress = Progress(
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+        console=Console(stderr=True),
+        transient=True,
+    )
     timer = threading.Timer(delay, progress.start)
     timer.daemon = True
     token = _PROGRESS.set(progress)

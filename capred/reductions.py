@@ -3,6 +3,7 @@
 The functions are named as "module:function" and imported only when a
 reduction runs, so that `capred --help` loads no numerical library.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -33,125 +34,200 @@ class Reduction:
 
 
 _P = "capred.pipelines."
-REDUCTIONS: dict[str, Reduction] = {r.name: r for r in (
-    Reduction("shear", _P + "shear:run_shear", _P + "shear:ShearOptions", "required", "shear", "shear",
-              method=(
-                  'Suction Δu = γ_w z1 from the hanging-column head, degree of saturation S_R = (V_v − z2)/V_v '
-                  'from the burette, normal stress σ_N = (m_cap + m_added) g/A (Evenepoel, VUB thesis, "Apply '
-                  'suction").',
-                  'Per material, the dry envelope τ = c + σ_N tan φ is fitted by least squares with standard '
-                  "errors and Student-t 95 % intervals. Every wet test is predicted with the dry c, φ and σ'_N "
-                  '= σ_N + χ Δu of each model: χ = S_R (Bishop 1959), χ1 = (2π S_R/3)^(2/3) and χ1 Δu + '
-                  "(2γ/R)(2π S_R/3)^(1/3) (Evenepoel's Own 1 and Own 2), and the others chosen with --models. "
-                  'Scores: RMSE, bias and R² of predicted − measured, on all wet tests and on the pendular '
-                  'ones.',
-                  'The capillary stress each wet test carried is back-analysed as σ_cap = (τ_max − c)/tan φ − '
-                  "σ_N with its standard uncertainty by the delta method; χ_back = σ_cap/Δu. The ranking's "
-                  'uncertainty comes from a paired bootstrap over the wet tests that refits the dry envelope in '
-                  'every replicate.',
-              ),
-              references=('evenepoel', 'bishop1959'),
-              summary='Direct shear with hanging-column suction: dry envelope, effective-stress models, σ_cap.'),
-    Reduction("triaxial-bounds", _P + "triaxial:run_triaxial_bounds", _P + "triaxial:TriaxialOptions", "required",
-              "triaxial-bounds", "triaxial",
-              method=(
-                  "The effective envelope c', φ' is fitted to the saturated drained tests by least squares of "
-                  "σ'1 on σ'3, σ'1 = K_p σ'3 + 2c'√K_p (Prunier et al. 2024, eq. 25). For every unsaturated "
-                  'test the total failure state is projected on it under three hypotheses: a spherical '
-                  "capillary tensor (q = q'), the lower bound σ1,cap = 0, and the EDTP upper bound from the "
-                  "initial suction s0; the strength gain is q'/q'_sat. Groups sharing one tensor get the "
-                  'analysis of Appendix 1 (eqs. 37, 48, 49).',
-              ),
-              references=('prunier2024',),
-              summary='Capillary stress tensor at failure from triaxial tests: bounds and groups.'),
-    Reduction("retention", _P + "retention:run_retention", _P + "retention:RetentionOptions", "required",
-              "retention", "retention",
-              method=(
-                  'Water retention curves are fitted per branch (drying, wetting) by least squares on θ or S_R: '
-                  'van Genuchten (1980) with m = 1 − 1/n and with m free, and Brooks & Corey (1964) with the '
-                  'air-entry suction profiled exactly. Standard errors from the Jacobian; R², AIC and BIC.',
-              ),
-              references=('vangenuchten1980', 'brooks_corey1964'),
-              summary='Water retention curves per branch: fits at the optimum, model selection.'),
-    Reduction("prism", _P + "calculators:reduce_prism", _P + "calculators:PrismOptions", "optional", "prism",
-              "prism",
-              method=(
-                  'P_kmax = σ_b (1 − sin ρ)/(2 sin ρ) and h_c = P_kmax/γ_w from the break tension of a sand '
-                  'prism and the friction angle of the sand (Bernatzik 1948).',
-              ),
-              references=('bernatzik1948',),
-              files_by_default=False,
-              summary='Capillary pressure and rise from the break tension of a sand prism.'),
-    Reduction("skempton-b", _P + "calculators:reduce_skempton_b", _P + "calculators:SkemptonOptions", "optional",
-              "skempton-b", "skempton",
-              method=(
-                  "B = 1/(1 + p'0 e0 (1 − S_r)/(κ P_a0)) with p'0 = p0 − u0 (Morvan et al. 2016, eq. 10), or "
-                  "its inverse; with suction equilibrium p'0 = p0 − u_a0 + s S_r and s from Brooks-Corey.",
-              ),
-              references=('morvan2016', 'skempton1954', 'brooks_corey1964'),
-              files_by_default=False,
-              summary="Skempton's B from S_r, or S_r from a measured B."),
-    Reduction("rumpf", _P + "calculators:reduce_rumpf", _P + "calculators:RumpfOptions", "optional", "rumpf",
-              "rumpf",
-              method=(
-                  'p_cap = −(6/φ)(S_r/e)(γ/d_p) cos θ (Prunier et al. 2024, eq. 19, after Rumpf).',
-              ),
-              references=('prunier2024',),
-              files_by_default=False,
-              summary="Rumpf's capillary pressure from S_r, void ratio and grain size."),
-    Reduction("bridge solve", _P + "bridge:solve_bridges", _P + "bridge:BridgeOptions", "required", "bridge-solve",
-              "bridge",
-              method=(
-                  'Exact pendular bridges between two equal spheres from the axisymmetric Young-Laplace '
-                  'equation, its first integral evaluated by Gauss-Legendre quadrature; F_cap = π r0² Δu + 2π '
-                  "r0 γ, S_R = 3V_w/(2πR³), σ' = F_cap/(πR²) (Evenepoel's unit cell; Lian et al. 1993).",
-              ),
-              references=('evenepoel', 'lian1993'),
-              summary='Exact capillary bridges from a table of cases.'),
-    Reduction("bridge compare", _P + "bridge:compare_measured", _P + "bridge:BridgeOptions", "required",
-              "bridge-compare", "bridge_compare",
-              method=(
-                  'Measured capillary forces of micro-tests beside the exact bridge of the same R, gap, contact '
-                  "angle and volume, the toroidal approximation, Willett et al. (2000) and Israelachvili's 2πRγ "
-                  'cos θ.',
-              ),
-              references=('willett2000', 'israelachvili', 'lian1993'),
-              summary='Measured capillary forces beside the exact bridge and approximations.'),
-    Reduction("bridge rupture", _P + "bridge:rupture_distances", _P + "bridge:BridgeOptions", "required",
-              "bridge-rupture", "bridge_rupture",
-              summary='Rupture distance of bridges at constant volume.'),
-    Reduction("bridge yade-files", _P + "yade_files:reduce_yade_files", _P + "yade_files:YadeOptions", "none", None,
-              "yade_files",
-              summary="Capillary files for YADE's capillary law."),
-    Reduction("bridge curve", _P + "bridge:reduce_curve", _P + "bridge:CurveOptions", "none", None, "bridge_curve",
-              method=(
-                  "σ' = F_cap/(πR²) against S_R = 3V_w/(2πR³) for two spheres in contact, from exact bridges, "
-                  "beside Israelachvili, Bishop (S_R Δu) and Evenepoel's Own 1 and Own 2.",
-              ),
-              references=('evenepoel', 'israelachvili', 'bishop1959'),
-              summary="The thesis's σ'-S_R comparison for spheres in contact."),
-    Reduction("pt-volume", _P + "pt_volume:run_pt_volume", _P + "pt_volume:PTVolumeOptions", "required",
-              "pt-volume", "pt_volume",
-              method=(
-                  "Volume change along a path of total stress σ, pore pressures u_w, u_a and degree of saturation "
-                  "S_r with the model of Pedrotti & Tarantino (submitted): the water-saturated pores carry "
-                  "σ'_W = (σ − u_w) S_r and the air-saturated pores σ'_A = (σ − u_a)(1 − S_r) (eq. 1-2, with u_w "
-                  "and u_a as in their section 5.1). Pores that keep their fluid move on the url (eq. 6-7) or ncl "
-                  "(eq. 10) of clay reconstituted from slurry (W: λ_W, κ_W) or compressed from dry powder (A: "
-                  "λ_A, κ_A); pores that change fluid move from the equivalent pre-consolidation stress σ* onto "
-                  "the lines of their new fluid (eq. 8-9). The sample's void ratio couples the parts through S_r "
-                  "(eq. 5, read as e = e^W e^A/(e^W (1 − S_r) + e^A S_r), the form that returns e^W at S_r = 1 "
-                  "and e^A at S_r = 0).",
-                  "capred keeps the books of solids and voids of each part instead of adding the class changes "
-                  "with the weights ΔS_r/S_r and −ΔS_r/(1 − S_r) of eq. 3-4 (which it reports as w_AW, w_WA): "
-                  "the pores that change fluid are taken pro rata from the part they leave, in the amount that "
-                  "makes the model's S_r equal the path's. Both parts start on their ncl at the first point "
-                  "(the end of compaction, point A of Fig. 13) unless initial yield stresses are given; steps "
-                  "are split into sub-steps (|ΔS_r| ≤ 0.002, |Δ ln σ'| ≤ 0.02 by default).",
-              ),
-              references=('pedrotti_tarantino',),
-              summary='Void ratio along a stress path with two effective stresses.'),
-)}
+REDUCTIONS: dict[str, Reduction] = {
+    r.name: r
+    for r in (
+        Reduction(
+            "shear",
+            _P + "shear:run_shear",
+            _P + "shear:ShearOptions",
+            "required",
+            "shear",
+            "shear",
+            method=(
+                "Suction Δu = γ_w z1 from the hanging-column head, degree of saturation S_R = (V_v − z2)/V_v "
+                'from the burette, normal stress σ_N = (m_cap + m_added) g/A (Evenepoel, VUB thesis, "Apply '
+                'suction").',
+                "Per material, the dry envelope τ = c + σ_N tan φ is fitted by least squares with standard "
+                "errors and Student-t 95 % intervals. Every wet test is predicted with the dry c, φ and σ'_N "
+                "= σ_N + χ Δu of each model: χ = S_R (Bishop 1959), χ1 = (2π S_R/3)^(2/3) and χ1 Δu + "
+                "(2γ/R)(2π S_R/3)^(1/3) (Evenepoel's Own 1 and Own 2), and the others chosen with --models. "
+                "Scores: RMSE, bias and R² of predicted − measured, on all wet tests and on the pendular "
+                "ones.",
+                "The capillary stress each wet test carried is back-analysed as σ_cap = (τ_max − c)/tan φ − "
+                "σ_N with its standard uncertainty by the delta method; χ_back = σ_cap/Δu. The ranking's "
+                "uncertainty comes from a paired bootstrap over the wet tests that refits the dry envelope in "
+                "every replicate.",
+            ),
+            references=("evenepoel", "bishop1959"),
+            summary="Direct shear with hanging-column suction: dry envelope, effective-stress models, σ_cap.",
+        ),
+        Reduction(
+            "triaxial-bounds",
+            _P + "triaxial:run_triaxial_bounds",
+            _P + "triaxial:TriaxialOptions",
+            "required",
+            "triaxial-bounds",
+            "triaxial",
+            method=(
+                "The effective envelope c', φ' is fitted to the saturated drained tests by least squares of "
+                "σ'1 on σ'3, σ'1 = K_p σ'3 + 2c'√K_p (Prunier et al. 2024, eq. 25). For every unsaturated "
+                "test the total failure state is projected on it under three hypotheses: a spherical "
+                "capillary tensor (q = q'), the lower bound σ1,cap = 0, and the EDTP upper bound from the "
+                "initial suction s0; the strength gain is q'/q'_sat. Groups sharing one tensor get the "
+                "analysis of Appendix 1 (eqs. 37, 48, 49).",
+            ),
+            references=("prunier2024",),
+            summary="Capillary stress tensor at failure from triaxial tests: bounds and groups.",
+        ),
+        Reduction(
+            "retention",
+            _P + "retention:run_retention",
+            _P + "retention:RetentionOptions",
+            "required",
+            "retention",
+            "retention",
+            method=(
+                "Water retention curves are fitted per branch (drying, wetting) by least squares on θ or S_R: "
+                "van Genuchten (1980) with m = 1 − 1/n and with m free, and Brooks & Corey (1964) with the "
+                "air-entry suction profiled exactly. Standard errors from the Jacobian; R², AIC and BIC.",
+            ),
+            references=("vangenuchten1980", "brooks_corey1964"),
+            summary="Water retention curves per branch: fits at the optimum, model selection.",
+        ),
+        Reduction(
+            "prism",
+            _P + "calculators:reduce_prism",
+            _P + "calculators:PrismOptions",
+            "optional",
+            "prism",
+            "prism",
+            method=(
+                "P_kmax = σ_b (1 − sin ρ)/(2 sin ρ) and h_c = P_kmax/γ_w from the break tension of a sand "
+                "prism and the friction angle of the sand (Bernatzik 1948).",
+            ),
+            references=("bernatzik1948",),
+            files_by_default=False,
+            summary="Capillary pressure and rise from the break tension of a sand prism.",
+        ),
+        Reduction(
+            "skempton-b",
+            _P + "calculators:reduce_skempton_b",
+            _P + "calculators:SkemptonOptions",
+            "optional",
+            "skempton-b",
+            "skempton",
+            method=(
+                "B = 1/(1 + p'0 e0 (1 − S_r)/(κ P_a0)) with p'0 = p0 − u0 (Morvan et al. 2016, eq. 10), or "
+                "its inverse; with suction equilibrium p'0 = p0 − u_a0 + s S_r and s from Brooks-Corey.",
+            ),
+            references=("morvan2016", "skempton1954", "brooks_corey1964"),
+            files_by_default=False,
+            summary="Skempton's B from S_r, or S_r from a measured B.",
+        ),
+        Reduction(
+            "rumpf",
+            _P + "calculators:reduce_rumpf",
+            _P + "calculators:RumpfOptions",
+            "optional",
+            "rumpf",
+            "rumpf",
+            method=("p_cap = −(6/φ)(S_r/e)(γ/d_p) cos θ (Prunier et al. 2024, eq. 19, after Rumpf).",),
+            references=("prunier2024",),
+            files_by_default=False,
+            summary="Rumpf's capillary pressure from S_r, void ratio and grain size.",
+        ),
+        Reduction(
+            "bridge solve",
+            _P + "bridge:solve_bridges",
+            _P + "bridge:BridgeOptions",
+            "required",
+            "bridge-solve",
+            "bridge",
+            method=(
+                "Exact pendular bridges between two equal spheres from the axisymmetric Young-Laplace "
+                "equation, its first integral evaluated by Gauss-Legendre quadrature; F_cap = π r0² Δu + 2π "
+                "r0 γ, S_R = 3V_w/(2πR³), σ' = F_cap/(πR²) (Evenepoel's unit cell; Lian et al. 1993).",
+            ),
+            references=("evenepoel", "lian1993"),
+            summary="Exact capillary bridges from a table of cases.",
+        ),
+        Reduction(
+            "bridge compare",
+            _P + "bridge:compare_measured",
+            _P + "bridge:BridgeOptions",
+            "required",
+            "bridge-compare",
+            "bridge_compare",
+            method=(
+                "Measured capillary forces of micro-tests beside the exact bridge of the same R, gap, contact "
+                "angle and volume, the toroidal approximation, Willett et al. (2000) and Israelachvili's 2πRγ "
+                "cos θ.",
+            ),
+            references=("willett2000", "israelachvili", "lian1993"),
+            summary="Measured capillary forces beside the exact bridge and approximations.",
+        ),
+        Reduction(
+            "bridge rupture",
+            _P + "bridge:rupture_distances",
+            _P + "bridge:BridgeOptions",
+            "required",
+            "bridge-rupture",
+            "bridge_rupture",
+            summary="Rupture distance of bridges at constant volume.",
+        ),
+        Reduction(
+            "bridge yade-files",
+            _P + "yade_files:reduce_yade_files",
+            _P + "yade_files:YadeOptions",
+            "none",
+            None,
+            "yade_files",
+            summary="Capillary files for YADE's capillary law.",
+        ),
+        Reduction(
+            "bridge curve",
+            _P + "bridge:reduce_curve",
+            _P + "bridge:CurveOptions",
+            "none",
+            None,
+            "bridge_curve",
+            method=(
+                "σ' = F_cap/(πR²) against S_R = 3V_w/(2πR³) for two spheres in contact, from exact bridges, "
+                "beside Israelachvili, Bishop (S_R Δu) and Evenepoel's Own 1 and Own 2.",
+            ),
+            references=("evenepoel", "israelachvili", "bishop1959"),
+            summary="The thesis's σ'-S_R comparison for spheres in contact.",
+        ),
+        Reduction(
+            "pt-volume",
+            _P + "pt_volume:run_pt_volume",
+            _P + "pt_volume:PTVolumeOptions",
+            "required",
+            "pt-volume",
+            "pt_volume",
+            method=(
+                "Volume change along a path of total stress σ, pore pressures u_w, u_a and degree of saturation "
+                "S_r with the model of Pedrotti & Tarantino (submitted): the water-saturated pores carry "
+                "σ'_W = (σ − u_w) S_r and the air-saturated pores σ'_A = (σ − u_a)(1 − S_r) (eq. 1-2, with u_w "
+                "and u_a as in their section 5.1). Pores that keep their fluid move on the url (eq. 6-7) or ncl "
+                "(eq. 10) of clay reconstituted from slurry (W: λ_W, κ_W) or compressed from dry powder (A: "
+                "λ_A, κ_A); pores that change fluid move from the equivalent pre-consolidation stress σ* onto "
+                "the lines of their new fluid (eq. 8-9). The sample's void ratio couples the parts through S_r "
+                "(eq. 5, read as e = e^W e^A/(e^W (1 − S_r) + e^A S_r), the form that returns e^W at S_r = 1 "
+                "and e^A at S_r = 0).",
+                "capred keeps the books of solids and voids of each part instead of adding the class changes "
+                "with the weights ΔS_r/S_r and −ΔS_r/(1 − S_r) of eq. 3-4 (which it reports as w_AW, w_WA): "
+                "the pores that change fluid are taken pro rata from the part they leave, in the amount that "
+                "makes the model's S_r equal the path's. Both parts start on their ncl at the first point "
+                "(the end of compaction, point A of Fig. 13) unless initial yield stresses are given; steps "
+                "are split into sub-steps (|ΔS_r| ≤ 0.002, |Δ ln σ'| ≤ 0.02 by default).",
+            ),
+            references=("pedrotti_tarantino",),
+            summary="Void ratio along a stress path with two effective stresses.",
+        ),
+    )
+}
 
 
 def run(command: str, source=None, options=None, **option_values):

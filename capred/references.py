@@ -3,6 +3,7 @@
 Code, docstrings, help texts, JSON notes, figures and the README cite a paper
 as ``cite("prunier2024", "eq. 27")`` -> "Prunier et al. (2024), eq. 27".
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -27,112 +28,202 @@ class Reference:
 
 REFERENCES: dict[str, Reference] = {
     "evenepoel": Reference(
-        "Evenepoel", None,
+        "Evenepoel",
+        None,
         "Micro-mechanical characterization of the capillary effective stress in granular materials",
-        "Master thesis, Vrije Universiteit Brussel"),
+        "Master thesis, Vrije Universiteit Brussel",
+    ),
     "bernatzik1948": Reference(
-        "Bernatzik", 1948,
+        "Bernatzik",
+        1948,
         "The determination of the capillary rise in sand by means of prism pressure tests",
-        "Proc. 2nd Int. Conf. Soil Mech. Found. Eng., Rotterdam, paper II b 6"),
+        "Proc. 2nd Int. Conf. Soil Mech. Found. Eng., Rotterdam, paper II b 6",
+    ),
     "prunier2024": Reference(
-        "Prunier et al.", 2024,
+        "Prunier et al.",
+        2024,
         "A method to evaluate the capillary stress tensor at failure in unsaturated soils",
-        "Eur. J. Environ. Civ. Eng., 1-26", "10.1080/19648189.2024.2314099"),
+        "Eur. J. Environ. Civ. Eng., 1-26",
+        "10.1080/19648189.2024.2314099",
+    ),
     "pedrotti_tarantino": Reference(
-        "Pedrotti & Tarantino", None,
+        "Pedrotti & Tarantino",
+        None,
         "Effective stresses for unsaturated states stemming from clay microstructure",
-        "Submitted to Geomechanics for Energy and the Environment"),
+        "Submitted to Geomechanics for Energy and the Environment",
+    ),
     "morvan2016": Reference(
-        "Morvan et al.", 2016, "Study of the variation of B with Sr",
-        "E-UNSAT 2016, E3S Web of Conferences"),
+        "Morvan et al.", 2016, "Study of the variation of B with Sr", "E-UNSAT 2016, E3S Web of Conferences"
+    ),
     "morvan_wong_branque2010": Reference(
-        "Morvan et al.", 2010, "An unsaturated soil model with minimal number of parameters based on bounding "
-        "surface plasticity", "Int. J. Numer. Anal. Meth. Geomech. 34:1512-1537"),
+        "Morvan et al.",
+        2010,
+        "An unsaturated soil model with minimal number of parameters based on bounding surface plasticity",
+        "Int. J. Numer. Anal. Meth. Geomech. 34:1512-1537",
+    ),
     "pedrotti_tarantino2019": Reference(
-        "Pedrotti & Tarantino", 2019, "A conceptual constitutive model unifying slurried (saturated), compacted "
-        "(unsaturated) and dry states", "Géotechnique 69(3):217-233"),
+        "Pedrotti & Tarantino",
+        2019,
+        "A conceptual constitutive model unifying slurried (saturated), compacted (unsaturated) and dry states",
+        "Géotechnique 69(3):217-233",
+    ),
     "astm_d4767": Reference(
-        "ASTM International", 2011, "Standard test method for consolidated undrained triaxial compression test "
-        "for cohesive soils", "ASTM D4767-11"),
+        "ASTM International",
+        2011,
+        "Standard test method for consolidated undrained triaxial compression test for cohesive soils",
+        "ASTM D4767-11",
+    ),
     "vangenuchten1980": Reference(
-        "van Genuchten", 1980,
+        "van Genuchten",
+        1980,
         "A closed-form equation for predicting the hydraulic conductivity of unsaturated soils",
-        "Soil Sci. Soc. Am. J. 44:892-898", "10.2136/sssaj1980.03615995004400050002x"),
+        "Soil Sci. Soc. Am. J. 44:892-898",
+        "10.2136/sssaj1980.03615995004400050002x",
+    ),
     "brooks_corey1964": Reference(
-        "Brooks & Corey", 1964, "Hydraulic properties of porous media",
-        "Hydrology Paper 3, Colorado State University"),
+        "Brooks & Corey", 1964, "Hydraulic properties of porous media", "Hydrology Paper 3, Colorado State University"
+    ),
     "kosugi1996": Reference(
-        "Kosugi", 1996, "Lognormal distribution model for unsaturated soil hydraulic properties",
-        "Water Resour. Res. 32(9):2697-2703", "10.1029/96WR01776"),
+        "Kosugi",
+        1996,
+        "Lognormal distribution model for unsaturated soil hydraulic properties",
+        "Water Resour. Res. 32(9):2697-2703",
+        "10.1029/96WR01776",
+    ),
     "fredlund_xing1994": Reference(
-        "Fredlund & Xing", 1994, "Equations for the soil-water characteristic curve",
-        "Can. Geotech. J. 31(4):521-532", "10.1139/t94-061"),
+        "Fredlund & Xing",
+        1994,
+        "Equations for the soil-water characteristic curve",
+        "Can. Geotech. J. 31(4):521-532",
+        "10.1139/t94-061",
+    ),
     "durner1994": Reference(
-        "Durner", 1994, "Hydraulic conductivity estimation for soils with heterogeneous pore structure",
-        "Water Resour. Res. 30(2):211-223", "10.1029/93WR02676"),
+        "Durner",
+        1994,
+        "Hydraulic conductivity estimation for soils with heterogeneous pore structure",
+        "Water Resour. Res. 30(2):211-223",
+        "10.1029/93WR02676",
+    ),
     "kool_parker1987": Reference(
-        "Kool & Parker", 1987, "Development and evaluation of closed-form expressions for hysteretic soil "
-        "hydraulic properties", "Water Resour. Res. 23(1):105-114", "10.1029/WR023i001p00105"),
+        "Kool & Parker",
+        1987,
+        "Development and evaluation of closed-form expressions for hysteretic soil hydraulic properties",
+        "Water Resour. Res. 23(1):105-114",
+        "10.1029/WR023i001p00105",
+    ),
     "vanapalli1996": Reference(
-        "Vanapalli et al.", 1996, "Model for the prediction of shear strength with respect to soil suction",
-        "Can. Geotech. J. 33(3):379-392", "10.1139/t96-060"),
+        "Vanapalli et al.",
+        1996,
+        "Model for the prediction of shear strength with respect to soil suction",
+        "Can. Geotech. J. 33(3):379-392",
+        "10.1139/t96-060",
+    ),
     "khalili_khabbaz1998": Reference(
-        "Khalili & Khabbaz", 1998,
+        "Khalili & Khabbaz",
+        1998,
         "A unique relationship for chi for the determination of the shear strength of unsaturated soils",
-        "Géotechnique 48(5):681-687", "10.1680/geot.1998.48.5.681"),
+        "Géotechnique 48(5):681-687",
+        "10.1680/geot.1998.48.5.681",
+    ),
     "lu_likos2006": Reference(
-        "Lu & Likos", 2006, "Suction stress characteristic curve for unsaturated soil",
-        "J. Geotech. Geoenviron. Eng. 132(2):131-142", "10.1061/(ASCE)1090-0241(2006)132:2(131)"),
+        "Lu & Likos",
+        2006,
+        "Suction stress characteristic curve for unsaturated soil",
+        "J. Geotech. Geoenviron. Eng. 132(2):131-142",
+        "10.1061/(ASCE)1090-0241(2006)132:2(131)",
+    ),
     "fredlund1978": Reference(
-        "Fredlund et al.", 1978, "The shear strength of unsaturated soils",
-        "Can. Geotech. J. 15(3):313-321", "10.1139/t78-029"),
-    "bishop1959": Reference(
-        "Bishop", 1959, "The principle of effective stress", "Teknisk Ukeblad 106(39):859-863"),
+        "Fredlund et al.",
+        1978,
+        "The shear strength of unsaturated soils",
+        "Can. Geotech. J. 15(3):313-321",
+        "10.1139/t78-029",
+    ),
+    "bishop1959": Reference("Bishop", 1959, "The principle of effective stress", "Teknisk Ukeblad 106(39):859-863"),
     "skempton1954": Reference(
-        "Skempton", 1954, "The pore-pressure coefficients A and B", "Géotechnique 4(4):143-147",
-        "10.1680/geot.1954.4.4.143"),
+        "Skempton",
+        1954,
+        "The pore-pressure coefficients A and B",
+        "Géotechnique 4(4):143-147",
+        "10.1680/geot.1954.4.4.143",
+    ),
     "lian1993": Reference(
-        "Lian et al.", 1993, "An analytical study of the liquid bridge between two rigid spheres",
-        "J. Colloid Interface Sci. 161:138-147", "10.1006/jcis.1993.1452"),
+        "Lian et al.",
+        1993,
+        "An analytical study of the liquid bridge between two rigid spheres",
+        "J. Colloid Interface Sci. 161:138-147",
+        "10.1006/jcis.1993.1452",
+    ),
     "willett2000": Reference(
-        "Willett et al.", 2000, "Capillary bridges between two spherical bodies",
-        "Langmuir 16:9396-9405", "10.1021/la000657y"),
-    "israelachvili": Reference(
-        "Israelachvili", 2011, "Intermolecular and Surface Forces", "3rd ed., Academic Press"),
+        "Willett et al.",
+        2000,
+        "Capillary bridges between two spherical bodies",
+        "Langmuir 16:9396-9405",
+        "10.1021/la000657y",
+    ),
+    "israelachvili": Reference("Israelachvili", 2011, "Intermolecular and Surface Forces", "3rd ed., Academic Press"),
     "orr1975": Reference(
-        "Orr et al.", 1975, "Pendular rings between solids: meniscus properties and capillary force",
-        "J. Fluid Mech. 67(4):723-742", "10.1017/S0022112075000572"),
+        "Orr et al.",
+        1975,
+        "Pendular rings between solids: meniscus properties and capillary force",
+        "J. Fluid Mech. 67(4):723-742",
+        "10.1017/S0022112075000572",
+    ),
     "fisher1926": Reference(
-        "Fisher", 1926, "On the capillary forces in an ideal soil; correction of formulae given by W. B. Haines",
-        "J. Agric. Sci. 16(3):492-505", "10.1017/S0021859600007838"),
+        "Fisher",
+        1926,
+        "On the capillary forces in an ideal soil; correction of formulae given by W. B. Haines",
+        "J. Agric. Sci. 16(3):492-505",
+        "10.1017/S0021859600007838",
+    ),
     "duriez_wan2017": Reference(
-        "Duriez & Wan", 2017, "Contact angle mechanical influence in wet granular soils",
-        "Acta Geotech. 12:67-83", "10.1007/s11440-016-0500-6"),
+        "Duriez & Wan",
+        2017,
+        "Contact angle mechanical influence in wet granular soils",
+        "Acta Geotech. 12:67-83",
+        "10.1007/s11440-016-0500-6",
+    ),
     "golub_pereyra1973": Reference(
-        "Golub & Pereyra", 1973, "The differentiation of pseudo-inverses and nonlinear least squares problems "
-        "whose variables separate", "SIAM J. Numer. Anal. 10(2):413-432", "10.1137/0710036"),
+        "Golub & Pereyra",
+        1973,
+        "The differentiation of pseudo-inverses and nonlinear least squares problems whose variables separate",
+        "SIAM J. Numer. Anal. 10(2):413-432",
+        "10.1137/0710036",
+    ),
     "marquardt1963": Reference(
-        "Marquardt", 1963, "An algorithm for least-squares estimation of nonlinear parameters",
-        "J. Soc. Ind. Appl. Math. 11(2):431-441", "10.1137/0111030"),
+        "Marquardt",
+        1963,
+        "An algorithm for least-squares estimation of nonlinear parameters",
+        "J. Soc. Ind. Appl. Math. 11(2):431-441",
+        "10.1137/0111030",
+    ),
     "bates_watts1988": Reference(
-        "Bates & Watts", 1988, "Nonlinear Regression Analysis and Its Applications", "Wiley",
-        "10.1002/9780470316757"),
+        "Bates & Watts", 1988, "Nonlinear Regression Analysis and Its Applications", "Wiley", "10.1002/9780470316757"
+    ),
     "efron_tibshirani1993": Reference(
-        "Efron & Tibshirani", 1993, "An Introduction to the Bootstrap", "Chapman & Hall",
-        "10.1007/978-1-4899-4541-9"),
+        "Efron & Tibshirani", 1993, "An Introduction to the Bootstrap", "Chapman & Hall", "10.1007/978-1-4899-4541-9"
+    ),
     "murphy_topel1985": Reference(
-        "Murphy & Topel", 1985, "Estimation and inference in two-step econometric models",
-        "J. Bus. Econ. Stat. 3(4):370-379", "10.1080/07350015.1985.10509470"),
+        "Murphy & Topel",
+        1985,
+        "Estimation and inference in two-step econometric models",
+        "J. Bus. Econ. Stat. 3(4):370-379",
+        "10.1080/07350015.1985.10509470",
+    ),
     "draper_smith1998": Reference(
-        "Draper & Smith", 1998, "Applied Regression Analysis", "3rd ed., Wiley", "10.1002/9781118625590"),
-    "seber_wild1989": Reference(
-        "Seber & Wild", 1989, "Nonlinear Regression", "Wiley", "10.1002/0471725315"),
+        "Draper & Smith", 1998, "Applied Regression Analysis", "3rd ed., Wiley", "10.1002/9781118625590"
+    ),
+    "seber_wild1989": Reference("Seber & Wild", 1989, "Nonlinear Regression", "Wiley", "10.1002/0471725315"),
     "burnham_anderson2002": Reference(
-        "Burnham & Anderson", 2002, "Model Selection and Multimodel Inference", "2nd ed., Springer",
-        "10.1007/b97636"),
+        "Burnham & Anderson", 2002, "Model Selection and Multimodel Inference", "2nd ed., Springer", "10.1007/b97636"
+    ),
     "seki2007": Reference(
-        "Seki", 2007, "SWRC fit - a nonlinear fitting program with a water retention curve for soils "
-        "having unimodal and bimodal pore structure", "Hydrol. Earth Syst. Sci. Discuss. 4:407-437"),
+        "Seki",
+        2007,
+        "SWRC fit - a nonlinear fitting program with a water retention curve for soils "
+        "having unimodal and bimodal pore structure",
+        "Hydrol. Earth Syst. Sci. Discuss. 4:407-437",
+    ),
 }
 
 

@@ -13,12 +13,13 @@ One writer (capred.io.writers.write_run) writes any Result, one renderer
 (capred.report.render.render) prints any Result, one CLI path runs any
 reduction on one file, many files or a manifest.
 """
+
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable
 
 from .errors import OptionError
 
@@ -185,8 +186,11 @@ def output(json: str | None, column=None, unit: str = "", scale: float = 1.0, pa
 
 def record_outputs(record) -> list[tuple[str, Output, object]]:
     """(field name, Output, value) of every output field of a record, in declaration order."""
-    return [(f.name, f.metadata["output"], getattr(record, f.name)) for f in dataclasses.fields(record)
-            if "output" in f.metadata and getattr(record, f.name) is not None]
+    return [
+        (f.name, f.metadata["output"], getattr(record, f.name))
+        for f in dataclasses.fields(record)
+        if "output" in f.metadata and getattr(record, f.name) is not None
+    ]
 
 
 def _scaled(values, scale: float):
@@ -213,8 +217,11 @@ def record_columns(records: dict, level: str = "95") -> dict:
             value = getattr(rec, name)
             if value is None:
                 continue
-            names = spec.column if isinstance(spec.column, tuple) else (
-                (spec.column + "_low", spec.column + "_high") if spec.pair else (spec.column,))
+            names = (
+                spec.column
+                if isinstance(spec.column, tuple)
+                else ((spec.column + "_low", spec.column + "_high") if spec.pair else (spec.column,))
+            )
             parts = value if spec.pair else (value,)
             for pattern, part in zip(names, parts):
                 head = pattern.format(model=model, level=level)
@@ -337,7 +344,7 @@ class Spool:
             lo, hi = max(start, first), min(stop, first + rows)
             if lo < hi:
                 block = self._block(k)
-                parts.append({name: v[lo - first:hi - first] for name, v in block.items()})
+                parts.append({name: v[lo - first : hi - first] for name, v in block.items()})
             first += rows
             if first >= stop:
                 break
@@ -403,7 +410,7 @@ class Result:
         """
         raise NotImplementedError
 
-    def tables(self) -> dict[str, "object"]:
+    def tables(self) -> dict[str, object]:
         """Output tables: file stem -> pandas DataFrame (first = the per-row table)."""
         raise NotImplementedError
 
@@ -461,11 +468,16 @@ class Result:
         return repr_html(self)
 
     def __repr__(self) -> str:
-        inputs = ", ".join(i.path.replace("\\", "/").rsplit("/", 1)[-1] for i in getattr(self, "inputs", [])) or "options"
+        inputs = (
+            ", ".join(i.path.replace("\\", "/").rsplit("/", 1)[-1] for i in getattr(self, "inputs", [])) or "options"
+        )
         n = self.row_count()
         w = len(self.all_warnings())
-        return (f"<capred {self.command} result: {inputs}; {n} rows"
-                + (f"; {w} warning{'s' if w != 1 else ''}" if w else "") + ">")
+        return (
+            f"<capred {self.command} result: {inputs}; {n} rows"
+            + (f"; {w} warning{'s' if w != 1 else ''}" if w else "")
+            + ">"
+        )
 
     # --- shared -------------------------------------------------------------------------------
     def row_count(self) -> int:

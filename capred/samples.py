@@ -1,4 +1,5 @@
 """Bundled sample data (synthetic; see sample_data/README.md)."""
+
 from __future__ import annotations
 
 from importlib.resources import files

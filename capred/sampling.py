@@ -4,6 +4,7 @@ run in memory) and report/ (which draws and prints them).
 Figures draw at most ``MAX_MARKERS`` markers per series (a seeded random sample above it), and per-row
 console tables list the first ``MAX_ROWS`` rows; every output file holds every row.
 """
+
 from __future__ import annotations
 
 import numpy as np

@@ -9,6 +9,7 @@ meaning gram-force and kilogram-force per cm^2. Where a pressure is expected and
 a mass per area is given, the value is multiplied by standard gravity
 (9.80665 m/s^2) and the conversion is reported back to the caller.
 """
+
 from __future__ import annotations
 
 import re
@@ -74,8 +75,10 @@ def check_unit_text(unit: str) -> None:
         raise UnitError(f"unit '{unit[:20]}...' is longer than {MAX_UNIT_LENGTH} characters")
     if not _UNIT_CHARS.fullmatch(unit):
         bad = sorted({ch for ch in unit if not _UNIT_CHARS.fullmatch(ch)})
-        raise UnitError(f"unknown unit '{unit}': it holds {' '.join(repr(b) for b in bad)} (a unit is made of "
-                        "unit names, numbers, * / ^ ( ) and spaces)")
+        raise UnitError(
+            f"unknown unit '{unit}': it holds {' '.join(repr(b) for b in bad)} (a unit is made of "
+            "unit names, numbers, * / ^ ( ) and spaces)"
+        )
     depth = 0
     for ch in unit:
         depth += {"(": 1, ")": -1}.get(ch, 0)
@@ -103,18 +106,37 @@ def _normalise(unit: str, kind: str | None = None) -> str:
 
 #: exact SI factors of the most common units, so that reading a plain lab file needs no pint registry
 _COMMON = {
-    ("m", "length"): 1.0, ("mm", "length"): 1e-3, ("cm", "length"): 1e-2, ("um", "length"): 1e-6,
+    ("m", "length"): 1.0,
+    ("mm", "length"): 1e-3,
+    ("cm", "length"): 1e-2,
+    ("um", "length"): 1e-6,
     ("µm", "length"): 1e-6,
-    ("Pa", "pressure"): 1.0, ("kPa", "pressure"): 1e3, ("MPa", "pressure"): 1e6,
-    ("N", "force"): 1.0, ("mN", "force"): 1e-3, ("kN", "force"): 1e3,
-    ("N/m", "surface_tension"): 1.0, ("mN/m", "surface_tension"): 1e-3,
-    ("m^3", "volume"): 1.0, ("mm^3", "volume"): 1e-9, ("cm^3", "volume"): 1e-6,
-    ("m^2", "area"): 1.0, ("mm^2", "area"): 1e-6, ("cm^2", "area"): 1e-4,
-    ("deg", "angle"): 1.0, ("kg", "mass"): 1.0, ("g", "mass"): 1e-3,
-    ("N/m^3", "unit_weight"): 1.0, ("kN/m^3", "unit_weight"): 1e3,
-    ("kg/m^3", "density"): 1.0, ("g/cm^3", "density"): 1e3, ("Mg/m^3", "density"): 1e3,
+    ("Pa", "pressure"): 1.0,
+    ("kPa", "pressure"): 1e3,
+    ("MPa", "pressure"): 1e6,
+    ("N", "force"): 1.0,
+    ("mN", "force"): 1e-3,
+    ("kN", "force"): 1e3,
+    ("N/m", "surface_tension"): 1.0,
+    ("mN/m", "surface_tension"): 1e-3,
+    ("m^3", "volume"): 1.0,
+    ("mm^3", "volume"): 1e-9,
+    ("cm^3", "volume"): 1e-6,
+    ("m^2", "area"): 1.0,
+    ("mm^2", "area"): 1e-6,
+    ("cm^2", "area"): 1e-4,
+    ("deg", "angle"): 1.0,
+    ("kg", "mass"): 1.0,
+    ("g", "mass"): 1e-3,
+    ("N/m^3", "unit_weight"): 1.0,
+    ("kN/m^3", "unit_weight"): 1e3,
+    ("kg/m^3", "density"): 1.0,
+    ("g/cm^3", "density"): 1e3,
+    ("Mg/m^3", "density"): 1e3,
     ("m/s^2", "acceleration"): 1.0,
-    ("dimensionless", "dimensionless"): 1.0, ("-", "dimensionless"): 1.0, ("%", "dimensionless"): 0.01,
+    ("dimensionless", "dimensionless"): 1.0,
+    ("-", "dimensionless"): 1.0,
+    ("%", "dimensionless"): 0.01,
 }
 
 
@@ -150,9 +172,7 @@ def conversion(unit: str, kind: str) -> tuple[float, str | None]:
         q = q * ureg.Quantity(_STANDARD_GRAVITY, "m/s**2")
         note = f"'{unit}' read as {unit.replace('kg', 'kgf').replace('g/', 'gf/')} (force per area, g = 9.80665 m/s^2)"
     if q.dimensionality != target.dimensionality:
-        raise UnitError(
-            f"unit '{unit}' is not a unit of {kind.replace('_', ' ')} (expected e.g. {_example(kind)})"
-        )
+        raise UnitError(f"unit '{unit}' is not a unit of {kind.replace('_', ' ')} (expected e.g. {_example(kind)})")
     try:
         return float(q.to(target).magnitude), note
     except Exception as exc:  # pragma: no cover - dimensions were checked above
@@ -233,8 +253,9 @@ def to_si(value, name: str, where: str | None = None, notes: list[str] | None = 
         except (UnitError, TypeError, ValueError) as exc:
             raise OptionError(f"{label}: {exc}") from None
     else:
-        raise OptionError(f"{label}: expected a number, a string such as '10 kN/m^3' or a pint Quantity, "
-                          f"got {type(value).__name__}")
+        raise OptionError(
+            f"{label}: expected a number, a string such as '10 kN/m^3' or a pint Quantity, got {type(value).__name__}"
+        )
     if si != si or si in (float("inf"), float("-inf")):
         raise OptionError(f"{label}: {value!r} is not a finite number")
     problem = range_problem(name, si)

@@ -11,6 +11,7 @@ repository small). With a Chromium on the PATH (``chromium`` or
 ``chromium-browser``), it also takes a screenshot of a report.html
 (docs/report_html.png); without one, that picture is left as it is.
 """
+
 from __future__ import annotations
 
 import shutil
@@ -38,18 +39,34 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         for name, args in RUNS.items():
-            subprocess.run([sys.executable, "-m", "capred", *args, "--out", str(tmp / name)], check=True,
-                           capture_output=True)
+            subprocess.run(
+                [sys.executable, "-m", "capred", *args, "--out", str(tmp / name)], check=True, capture_output=True
+            )
         for picture, (run, file) in PICTURES.items():
             shutil.copyfile(tmp / run / file, DOCS / picture)
             print(f"docs/{picture}")
         browser = shutil.which("chromium") or shutil.which("chromium-browser")
         if browser:
-            subprocess.run([browser, "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
-                            "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                            "--no-first-run", f"--user-data-dir={tmp / 'profile'}", "--window-size=1000,1400",
-                            f"--screenshot={DOCS / 'report_html.png'}",
-                            (tmp / "shear" / "report.html").as_uri()], check=True, capture_output=True, timeout=120)
+            subprocess.run(
+                [
+                    browser,
+                    "--headless",
+                    "--no-sandbox",
+                    "--disable-gpu",
+                    "--hide-scrollbars",
+                    "--disable-background-networking",
+                    "--disable-component-update",
+                    "--disable-sync",
+                    "--no-first-run",
+                    f"--user-data-dir={tmp / 'profile'}",
+                    "--window-size=1000,1400",
+                    f"--screenshot={DOCS / 'report_html.png'}",
+                    (tmp / "shear" / "report.html").as_uri(),
+                ],
+                check=True,
+                capture_output=True,
+                timeout=120,
+            )
             print("docs/report_html.png")
         else:
             print("no chromium: docs/report_html.png not updated", file=sys.stderr)

@@ -2,6 +2,7 @@
 
 Deterministic (fixed seed). The procedure is described in README.md here.
 """
+
 from __future__ import annotations
 
 import sys
@@ -62,8 +63,9 @@ def make_shear(rng) -> str:
                 sigma_eff = sigma + x**2 * suction + 2 * SURFACE_TENSION / (r_mm * 1e-3) * x
                 tau = (c * 1e3 + sigma_eff * tan_phi) / 1e3
                 tau += rng.normal(0.0, 0.03 + 0.04 * tau)
-                lines.append(f"{tag}-W{k:02d},{mat},wet,{z1},{z2},{v_v},{added},{CAP_MASS_G},{BOX_AREA_CM2},"
-                             f"{r_mm},{tau:.3f}")
+                lines.append(
+                    f"{tag}-W{k:02d},{mat},wet,{z1},{z2},{v_v},{added},{CAP_MASS_G},{BOX_AREA_CM2},{r_mm},{tau:.3f}"
+                )
     return "\n".join(lines) + "\n"
 
 
@@ -97,8 +99,10 @@ def make_triaxial() -> str:
 
 def make_triaxial_curves(rng) -> str:
     """Synthetic q(eps_a) curves peaking at the reconstructed failure deviators."""
-    lines = ["# capred sample: SYNTHETIC stress-strain curves (hyperbolic rise, softening after the peak).",
-             "test_id,axial_strain [%],q [kPa],vol_strain [%]"]
+    lines = [
+        "# capred sample: SYNTHETIC stress-strain curves (hyperbolic rise, softening after the peak).",
+        "test_id,axial_strain [%],q [kPa],vol_strain [%]",
+    ]
     for p0, q_f in GAVET_UNSAT_Q_KPA.items():
         eps_f = 2.0 + p0 / 100.0  # % axial strain at the peak
         for eps in np.round(np.arange(0.0, 2.0 * eps_f + 1e-9, 0.25), 2):
@@ -112,12 +116,16 @@ def make_triaxial_curves(rng) -> str:
 
 def make_retention(rng) -> str:
     """Hanging-column retention of the sand: drying then wetting branch (hysteresis)."""
-    lines = ["# capred sample: SYNTHETIC hanging-column retention data for sand 208-417 um (drying, then wetting).",
-             "# Made by sample_data/generate.py; see sample_data/README.md.",
-             "z1 [cm],z2 [cm^3],V_v [cm^3],branch"]
+    lines = [
+        "# capred sample: SYNTHETIC hanging-column retention data for sand 208-417 um (drying, then wetting).",
+        "# Made by sample_data/generate.py; see sample_data/README.md.",
+        "z1 [cm],z2 [cm^3],V_v [cm^3],branch",
+    ]
     v_v = 30.5
-    branches = (("drying", (2, 5, 10, 15, 20, 25, 30, 35, 40, 45, 50, 60, 70, 80, 100, 120), 0.028, 6.0),
-                ("wetting", (120, 100, 80, 60, 50, 40, 35, 30, 25, 20, 15, 10, 5), 0.045, 5.0))
+    branches = (
+        ("drying", (2, 5, 10, 15, 20, 25, 30, 35, 40, 45, 50, 60, 70, 80, 100, 120), 0.028, 6.0),
+        ("wetting", (120, 100, 80, 60, 50, 40, 35, 30, 25, 20, 15, 10, 5), 0.045, 5.0),
+    )
     for name, heads, alpha, n in branches:
         for z1 in heads:
             s_r = retention(z1, alpha, n, 0.04)

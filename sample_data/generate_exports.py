@@ -14,6 +14,7 @@
 
 Deterministic; every number derives from shear_tests.csv and triaxial_curves.csv.
 """
+
 from __future__ import annotations
 
 import csv
@@ -38,18 +39,47 @@ def shear_export_xlsx(rows: list[dict], out: Path) -> None:
     wb = Workbook()
     ws = wb.active
     ws.title = "Direct shear"
-    for line in (("Laboratory", "capred sample lab (synthetic data)"), ("Apparatus", "60 mm shear box"),
-                 ("Operator", "—"), ("Made by", "sample_data/generate_exports.py")):
+    for line in (
+        ("Laboratory", "capred sample lab (synthetic data)"),
+        ("Apparatus", "60 mm shear box"),
+        ("Operator", "—"),
+        ("Made by", "sample_data/generate_exports.py"),
+    ):
         ws.append(list(line))
     ws.append([])
-    ws.append(["Test ID", "Material", "Condition", "Suction head", "Air volume", "Void volume", "Added mass",
-               "Cap mass", "Box area", "Particle radius", "Peak shear stress"])
+    ws.append(
+        [
+            "Test ID",
+            "Material",
+            "Condition",
+            "Suction head",
+            "Air volume",
+            "Void volume",
+            "Added mass",
+            "Cap mass",
+            "Box area",
+            "Particle radius",
+            "Peak shear stress",
+        ]
+    )
     ws.append(["", "", "", "cm", "cm3", "cm3", "g", "g", "cm2", "mm", "kPa"])
-    keys = ["test_id", "material", "condition", "z1 [cm]", "z2 [cm^3]", "V_v [cm^3]", "added_mass [g]",
-            "cap_mass [g]", "box_area [cm^2]", "R [mm]", "tau_max [kPa]"]
+    keys = [
+        "test_id",
+        "material",
+        "condition",
+        "z1 [cm]",
+        "z2 [cm^3]",
+        "V_v [cm^3]",
+        "added_mass [g]",
+        "cap_mass [g]",
+        "box_area [cm^2]",
+        "R [mm]",
+        "tau_max [kPa]",
+    ]
     for r in rows:
-        ws.append([r[k] if k in ("test_id", "material", "condition") else (float(r[k]) if r[k] else None)
-                   for k in keys])
+        ws.append(
+            [r[k] if k in ("test_id", "material", "condition") else (float(r[k]) if r[k] else None) for k in keys]
+        )
     wb.properties.creator = "capred"
     buf = io.BytesIO()
     wb.save(buf)
@@ -57,12 +87,27 @@ def shear_export_xlsx(rows: list[dict], out: Path) -> None:
 
 
 def shear_export_eu(rows: list[dict]) -> str:
-    lines = ["Laboratoire;capred sample lab (synthetic data)", "Appareil;boîte de cisaillement 60 mm",
-             "Date;2026-11-21", "",
-             "test_id;material;condition;z1;z2;V_v;added_mass;cap_mass;box_area;R;tau_max",
-             ";;;cm;cm3;cm3;g;g;cm2;mm;kPa"]
-    keys = ["test_id", "material", "condition", "z1 [cm]", "z2 [cm^3]", "V_v [cm^3]", "added_mass [g]",
-            "cap_mass [g]", "box_area [cm^2]", "R [mm]", "tau_max [kPa]"]
+    lines = [
+        "Laboratoire;capred sample lab (synthetic data)",
+        "Appareil;boîte de cisaillement 60 mm",
+        "Date;2026-11-21",
+        "",
+        "test_id;material;condition;z1;z2;V_v;added_mass;cap_mass;box_area;R;tau_max",
+        ";;;cm;cm3;cm3;g;g;cm2;mm;kPa",
+    ]
+    keys = [
+        "test_id",
+        "material",
+        "condition",
+        "z1 [cm]",
+        "z2 [cm^3]",
+        "V_v [cm^3]",
+        "added_mass [g]",
+        "cap_mass [g]",
+        "box_area [cm^2]",
+        "R [mm]",
+        "tau_max [kPa]",
+    ]
     for r in rows:
         lines.append(";".join(r[k].replace(".", ",") for k in keys))
     return "\n".join(lines) + "\n"
@@ -70,9 +115,11 @@ def shear_export_eu(rows: list[dict]) -> str:
 
 def shear_curves(rows: list[dict]) -> str:
     """Hyperbolic rise to the peak at 1.5 mm, softening to 85 %; dilation after contraction."""
-    lines = ["# capred sample: SYNTHETIC raw direct-shear curves of the steel-sphere tests of shear_tests.csv;",
-             "# the peak of each curve (at 1.5 mm) is that test's tau_max. Made by sample_data/generate_exports.py.",
-             "test_id,displacement [mm],F [N],vertical_displacement [mm]"]
+    lines = [
+        "# capred sample: SYNTHETIC raw direct-shear curves of the steel-sphere tests of shear_tests.csv;",
+        "# the peak of each curve (at 1.5 mm) is that test's tau_max. Made by sample_data/generate_exports.py.",
+        "test_id,displacement [mm],F [N],vertical_displacement [mm]",
+    ]
     delta = np.round(np.arange(0.0, 6.0001, 0.25), 2)
     for r in rows:
         if r["material"] != "steel_2mm":
@@ -92,8 +139,13 @@ def triaxial_exports(curves: list[dict], folder: Path) -> None:
     for k, tid in enumerate(dict.fromkeys(r["test_id"] for r in curves)):
         mine = [r for r in curves if r["test_id"] == tid]
         force_only = k == 0
-        lines = [f"Test ID: {tid}", f"Initial diameter (mm): {D0_MM:g}", "Initial height (mm): 76",
-                 "Note: synthetic export made by sample_data/generate_exports.py from triaxial_curves.csv", ""]
+        lines = [
+            f"Test ID: {tid}",
+            f"Initial diameter (mm): {D0_MM:g}",
+            "Initial height (mm): 76",
+            "Note: synthetic export made by sample_data/generate_exports.py from triaxial_curves.csv",
+            "",
+        ]
         if force_only:
             lines.append("Axial Strain (%),Axial Force (kN),Volumetric Strain (%)")
             lines.append("%,kN,%")

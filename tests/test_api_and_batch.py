@@ -1,4 +1,5 @@
 """Issue 6: the Python API equals the CLI, DataFrames in, batches, manifests."""
+
 import json
 import shutil
 
@@ -18,18 +19,29 @@ def _cli_json(args, tmp_path):
     return json.loads(res.stdout)
 
 
-@pytest.mark.parametrize("command,api", [
-    ("shear", lambda: capred.run_shear(capred.sample_path("shear"))),
-    ("triaxial-bounds", lambda: capred.run_triaxial_bounds(capred.sample_path("triaxial-bounds"))),
-    ("retention", lambda: capred.run_retention(capred.sample_path("retention"))),
-    ("prism", lambda: capred.run_prism(capred.sample_path("prism"))),
-    ("skempton-b", lambda: capred.run_skempton_b(capred.sample_path("skempton-b"))),
-    ("rumpf", lambda: capred.run_rumpf(capred.sample_path("rumpf"))),
-])
+@pytest.mark.parametrize(
+    "command,api",
+    [
+        ("shear", lambda: capred.run_shear(capred.sample_path("shear"))),
+        ("triaxial-bounds", lambda: capred.run_triaxial_bounds(capred.sample_path("triaxial-bounds"))),
+        ("retention", lambda: capred.run_retention(capred.sample_path("retention"))),
+        ("prism", lambda: capred.run_prism(capred.sample_path("prism"))),
+        ("skempton-b", lambda: capred.run_skempton_b(capred.sample_path("skempton-b"))),
+        ("rumpf", lambda: capred.run_rumpf(capred.sample_path("rumpf"))),
+    ],
+)
 def test_every_command_equals_the_api(command, api, tmp_path):
-    assert _cli_json([command, "--sample", *(["--no-plots"] if command in ("shear", "triaxial-bounds", "retention",
-                                                                          "skempton-b") else [])], tmp_path) \
+    assert (
+        _cli_json(
+            [
+                command,
+                "--sample",
+                *(["--no-plots"] if command in ("shear", "triaxial-bounds", "retention", "skempton-b") else []),
+            ],
+            tmp_path,
+        )
         == api().to_json()
+    )
 
 
 def test_api_accepts_a_dataframe():
@@ -76,8 +88,18 @@ def test_batch_workers_give_the_same_files(tmp_path):
     for k in range(4):
         shutil.copy(capred.sample_path("shear"), runs / f"s{k}.csv")
     for w in (1, 2):
-        res = runner.invoke(app, ["shear", *map(str, sorted(runs.glob("*.csv"))), "--no-plots",
-                                  "--workers", str(w), "--out", str(tmp_path / f"w{w}")])
+        res = runner.invoke(
+            app,
+            [
+                "shear",
+                *map(str, sorted(runs.glob("*.csv"))),
+                "--no-plots",
+                "--workers",
+                str(w),
+                "--out",
+                str(tmp_path / f"w{w}"),
+            ],
+        )
         assert res.exit_code == 0, res.output
     for k in range(4):
         a = (tmp_path / "w1" / f"shear_s{k}" / "results.csv").read_bytes()
@@ -96,23 +118,28 @@ def test_batch_json_lists_every_file(tmp_path):
 def test_manifest_csv_and_toml(tmp_path):
     shutil.copy(capred.sample_path("shear"), tmp_path / "a.csv")
     shutil.copy(capred.sample_path("triaxial-bounds"), tmp_path / "t.csv")
-    (tmp_path / "m.csv").write_text("command,input,options\n# a comment\nshear,a.csv,--gamma-w 10 --no-plots\n"
-                                    "triaxial-bounds,t.csv,--no-plots\n")
+    (tmp_path / "m.csv").write_text(
+        "command,input,options\n# a comment\nshear,a.csv,--gamma-w 10 --no-plots\ntriaxial-bounds,t.csv,--no-plots\n"
+    )
     res = runner.invoke(app, ["batch", str(tmp_path / "m.csv"), "--out", str(tmp_path / "o")])
     assert res.exit_code == 0, res.output
     prov = json.loads((tmp_path / "o" / "shear_a" / "provenance.json").read_text())
     assert prov["options"]["gamma_w"] == pytest.approx(10_000.0)
     assert (tmp_path / "o" / "triaxial_t" / "summary.json").exists()
-    (tmp_path / "m.toml").write_text('[[run]]\ncommand = "retention"\ninput = "%s"\noptions = ["--model", "vg"]\n'
-                                     % capred.sample_path("retention"))
+    (tmp_path / "m.toml").write_text(
+        '[[run]]\ncommand = "retention"\ninput = "{}"\noptions = ["--model", "vg"]\n'.format(
+            capred.sample_path("retention")
+        )
+    )
     res = runner.invoke(app, ["batch", str(tmp_path / "m.toml"), "--out", str(tmp_path / "o2"), "--json"])
     assert res.exit_code == 0, res.output
     assert set(json.loads(res.stdout)["files"][0]["result"]["fits"]) == {"vg"}
 
 
 def test_manifest_errors_name_the_line(tmp_path):
-    (tmp_path / "m.csv").write_text("command,input,options\nshear,a.csv,\nfrobnicate,b.csv,\n"
-                                    "shear,x.csv,--no-such-option\n")
+    (tmp_path / "m.csv").write_text(
+        "command,input,options\nshear,a.csv,\nfrobnicate,b.csv,\nshear,x.csv,--no-such-option\n"
+    )
     res = runner.invoke(app, ["batch", str(tmp_path / "m.csv")])
     assert res.exit_code == 1
     assert "m.csv, line 3, column 'command'" in res.stderr

@@ -1,5 +1,6 @@
 """capred.batch: worker count, per-file refusals before computing, crashed folders a rerun may replace, the batch's
 record of its root files."""
+
 import json
 import os
 import shutil
@@ -39,8 +40,9 @@ def test_default_run_all_uses_the_cores_and_writes_the_same_files(tmp_path):
     jobs = _jobs(tmp_path, 3, "auto")
     outcomes, interrupted = batch.run_all(jobs)  # workers=None: one per core
     assert not interrupted and [o.status for o in outcomes] == ["ok"] * 3
-    serial = [batch.Job(j.command, j.source, tmp_path / "serial" / j.out_dir.name, j.options, plots=False)
-              for j in jobs]
+    serial = [
+        batch.Job(j.command, j.source, tmp_path / "serial" / j.out_dir.name, j.options, plots=False) for j in jobs
+    ]
     batch.run_all(serial, workers=1)
     for a, b in zip(jobs, serial):
         assert (a.out_dir / "results.csv").read_bytes() == (b.out_dir / "results.csv").read_bytes()
@@ -123,9 +125,11 @@ def test_season_counts_stay_whole_numbers_in_a_mixed_batch(tmp_path):
     none (they were written 12.0 because the retention rows have no n_dry). The sample's steel has 12 dry and
     14 wet tests (sample_data/shear_tests.csv, counted by hand); the retention sample's drying branch 16 points."""
     manifest = tmp_path / "runs.csv"
-    manifest.write_text("command,input,options\n"
-                        f"shear,{capred.sample_path('shear')},--no-plots --bootstrap 0\n"
-                        f"retention,{capred.sample_path('retention')},--no-plots\n")
+    manifest.write_text(
+        "command,input,options\n"
+        f"shear,{capred.sample_path('shear')},--no-plots --bootstrap 0\n"
+        f"retention,{capred.sample_path('retention')},--no-plots\n"
+    )
     res = CliRunner().invoke(app, ["batch", str(manifest), "--out", str(tmp_path / "out")])
     assert res.exit_code == 0, res.output
     season = pd.read_csv(tmp_path / "out" / "season.csv", dtype=str, keep_default_na=False)

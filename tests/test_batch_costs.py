@@ -1,6 +1,7 @@
 """What makes a batch fast without changing a byte: one BLAS thread per worker, report.html and season.html
 tables built column by column exactly as the template loops built them, the bootstrap's affine check in three
 predictions (issue 20, item 3)."""
+
 from __future__ import annotations
 
 import jinja2
@@ -45,7 +46,8 @@ _SUMMARY_LOOP = jinja2.Environment(autoescape=True).from_string(
     """{% for row in rows %}
   <tr>{% for cell in row %}<td class="{{ 'l' if columns[loop.index0][1] == 'left' else '' }}">{{ cell }}</td>"""
     """{% endfor %}</tr>
-  {% endfor %}""")
+  {% endfor %}"""
+)
 
 
 def test_summary_rows_are_the_bytes_of_the_template_loop():
@@ -64,17 +66,29 @@ def test_season_html_cells_are_escaped_and_a_missing_value_is_blank():
     '—'), text columns left-aligned, the report a link."""
     from capred.batch import season_columns
 
-    rows = [{"input": "a<1>.csv", "command": "shear", "status": "ok", "material": 'sand "x"', "c [kPa]": 1.23456,
-             "n_dry": 4, "report": "shear_a/report.html"},
-            {"input": "b&'c'.csv", "command": "retention", "status": "ok", "branch": "drying", "n_dry": None,
-             "report": ""}]
+    rows = [
+        {
+            "input": "a<1>.csv",
+            "command": "shear",
+            "status": "ok",
+            "material": 'sand "x"',
+            "c [kPa]": 1.23456,
+            "n_dry": 4,
+            "report": "shear_a/report.html",
+        },
+        {"input": "b&'c'.csv", "command": "retention", "status": "ok", "branch": "drying", "n_dry": None, "report": ""},
+    ]
     page = report_html.render_season(season_columns(rows))
-    assert ('<tr><td class="l">a&lt;1&gt;.csv</td>\n<td class="l">shear</td>\n<td class="l">ok</td>\n'
-            '<td class="l">sand &#34;x&#34;</td>\n<td class="">1.235</td>\n<td class="">4</td>\n'
-            '<td class=""><a href="shear_a/report.html">report</a></td>\n<td class="l"></td>\n</tr>') in page
-    assert ('<tr><td class="l">b&amp;&#39;c&#39;.csv</td>\n<td class="l">retention</td>\n<td class="l">ok</td>\n'
-            '<td class="l"></td>\n<td class=""></td>\n<td class=""></td>\n<td class=""></td>\n'
-            '<td class="l">drying</td>\n</tr>') in page
+    assert (
+        '<tr><td class="l">a&lt;1&gt;.csv</td>\n<td class="l">shear</td>\n<td class="l">ok</td>\n'
+        '<td class="l">sand &#34;x&#34;</td>\n<td class="">1.235</td>\n<td class="">4</td>\n'
+        '<td class=""><a href="shear_a/report.html">report</a></td>\n<td class="l"></td>\n</tr>'
+    ) in page
+    assert (
+        '<tr><td class="l">b&amp;&#39;c&#39;.csv</td>\n<td class="l">retention</td>\n<td class="l">ok</td>\n'
+        '<td class="l"></td>\n<td class=""></td>\n<td class=""></td>\n<td class=""></td>\n'
+        '<td class="l">drying</td>\n</tr>'
+    ) in page
 
 
 def _wet(n: int = 7) -> esm.ModelInputs:
@@ -83,8 +97,19 @@ def _wet(n: int = 7) -> esm.ModelInputs:
     suction = rng.uniform(0.5e3, 6e3, n)
     S_R = rng.uniform(0.05, 0.3, n)
     tau = 1e3 + 0.6 * (sigma + S_R * suction) + rng.normal(0, 100.0, n)
-    return esm.ModelInputs(sigma, suction, S_R, np.full(n, 1e-3), tau, np.ones(n, bool),
-                           np.array(["m"] * n, dtype=object), np.full(n, 1e3), np.full(n, 0.6), 0.0728, ModelParams())
+    return esm.ModelInputs(
+        sigma,
+        suction,
+        S_R,
+        np.full(n, 1e-3),
+        tau,
+        np.ones(n, bool),
+        np.array(["m"] * n, dtype=object),
+        np.full(n, 1e3),
+        np.full(n, 0.6),
+        0.0728,
+        ModelParams(),
+    )
 
 
 def test_pointwise_affine_gives_bishops_derivatives_by_hand():
@@ -107,6 +132,10 @@ def test_pointwise_affine_refuses_a_model_fitted_on_the_set():
 
 def test_all_close_is_allclose_with_equal_nan():
     a = np.array([1.0, np.nan, np.inf, -np.inf, 5.0])
-    for b, atol in ((a.copy(), 0.0), (a + np.array([1e-10, 0, 0, 0, -1e-10]), 1e-9),
-                    (a + np.array([1e-8, 0, 0, 0, 0]), 1e-9), (np.array([1.0, 2.0, np.inf, np.inf, 5.0]), 1.0)):
+    for b, atol in (
+        (a.copy(), 0.0),
+        (a + np.array([1e-10, 0, 0, 0, -1e-10]), 1e-9),
+        (a + np.array([1e-8, 0, 0, 0, 0]), 1e-9),
+        (np.array([1.0, 2.0, np.inf, np.inf, 5.0]), 1.0),
+    ):
         assert sa._all_close(a, b, atol) == np.allclose(a, b, rtol=0.0, atol=atol, equal_nan=True)

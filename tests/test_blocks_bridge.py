@@ -1,9 +1,9 @@
 """`capred bridge solve` on a file of several blocks: the same bridges as one whole table, written whole."""
+
 import json
 
 import numpy as np
 import pytest
-
 from typer.testing import CliRunner
 
 from capred.cli import app
@@ -21,7 +21,7 @@ def _cases(path, n=3000, bad_line=None):
         if i % 3:
             lines.append(f"{R:.5f},{th:.3f},{gap * R:.6f},{10 ** rng.uniform(-1, 1.5):.5f},")
         else:
-            lines.append(f"{R:.5f},{th:.3f},{gap * R:.6f},,{rng.uniform(1e-4, 1e-2) * R ** 3:.6g}")
+            lines.append(f"{R:.5f},{th:.3f},{gap * R:.6f},,{rng.uniform(1e-4, 1e-2) * R**3:.6g}")
     if bad_line is not None:
         cells = lines[bad_line - 1].split(",")
         cells[1] = "95"

@@ -1,5 +1,6 @@
 """Exact capillary bridges (issue 3): accuracy against an independent Young-Laplace integration,
 limits, consistency, approximations, and the `capred bridge` commands."""
+
 import json
 
 import numpy as np
@@ -22,6 +23,7 @@ def ode_reference(beta, theta, s):
     d psi/d sigma = -(s + cos psi / y), dx/d sigma = -cos psi, dy/d sigma = -sin psi (walking to the neck).
     Returns (half-length L, volume under the meridian, neck radius, psi at the end).
     """
+
     def rhs(_, u):
         x, y, psi, v = u
         return [-np.cos(psi), -np.sin(psi), -(s + np.cos(psi) / y), np.pi * y * y * np.cos(psi)]
@@ -139,8 +141,7 @@ def test_solve_command_json(tmp_path):
     res = runner.invoke(app, ["bridge", "solve", "--sample", "--json", "--out", str(tmp_path)])
     assert res.exit_code == 0, res.output
     rows = json.loads(res.stdout)["bridges"]
-    keys = {"r0_mm", "F_cap_mN", "F_L_mN", "F_T_mN", "V_w_mm3", "filling_angle_deg", "S_R", "sigma_prime_kPa",
-            "status"}
+    keys = {"r0_mm", "F_cap_mN", "F_L_mN", "F_T_mN", "V_w_mm3", "filling_angle_deg", "S_R", "sigma_prime_kPa", "status"}
     assert all(keys <= set(r) for r in rows)
     first = rows[0]  # steel spheres in contact at 1 kPa
     assert first["status"] == "ok"
@@ -198,8 +199,12 @@ def test_volume_controlled_scan_never_reports_a_wrong_bridge():
     every bridge reported ok reproduces its gap and volume when its geometry is computed forward."""
     from capred.physics import bridge as br
 
-    th, D, V = np.meshgrid(np.radians([0, 1, 5, 15, 30, 60]), np.r_[0.0, np.geomspace(1e-3, 0.2, 8)],
-                           np.geomspace(1e-6, 1.0, 13), indexing="ij")
+    th, D, V = np.meshgrid(
+        np.radians([0, 1, 5, 15, 30, 60]),
+        np.r_[0.0, np.geomspace(1e-3, 0.2, 8)],
+        np.geomspace(1e-6, 1.0, 13),
+        indexing="ij",
+    )
     th, D, V = th.ravel(), D.ravel(), V.ravel()
     beta, s, status = br.solve_for_volume(th, V, D)
     ok = status == 0
@@ -213,8 +218,9 @@ def test_volume_controlled_scan_never_reports_a_wrong_bridge():
 
 
 def test_issue_examples_are_never_wrong(tmp_path):
-    (tmp_path / "b.csv").write_text("R,contact_angle,gap,V_w\n1,0,0.2,0.008\n1,0,0.2,0.01\n1,0,0.01,1e-5\n"
-                                    "1,0,0.01,2.264e-6\n")
+    (tmp_path / "b.csv").write_text(
+        "R,contact_angle,gap,V_w\n1,0,0.2,0.008\n1,0,0.2,0.01\n1,0,0.01,1e-5\n1,0,0.01,2.264e-6\n"
+    )
     res = capred.solve_bridges(tmp_path / "b.csv")
     for row, (gap, vol) in zip(res.rows(), ((0.2, 0.008), (0.2, 0.01), (0.01, 1e-5), (0.01, 2.264e-6))):
         if row["status"] == "ok":  # a bridge reported is the bridge asked for
@@ -230,8 +236,9 @@ def test_volume_newton_path_matches_the_scan_of_the_arc():
     n = 160
     th = np.radians(rng.uniform(0, 60, n))
     s = 10 ** rng.uniform(-1, 2.5, n)
-    rho = np.where(rng.uniform(size=n) < 0.5, 1.0, np.where(rng.uniform(size=n) < 0.3, np.inf,
-                                                          10 ** rng.uniform(-0.5, 1, n)))
+    rho = np.where(
+        rng.uniform(size=n) < 0.5, 1.0, np.where(rng.uniform(size=n) < 0.3, np.inf, 10 ** rng.uniform(-0.5, 1, n))
+    )
     b0 = rng.uniform(0.05, 0.9, n) * (np.pi / 2 - th)
     D = np.where(np.arange(n) % 2 == 0, 0.0, np.clip(br.gap_of(b0, th, s, rho), 0, None) * rng.uniform(0.2, 1, n))
     b, st = br.solve_for_suction(th, s, D, rho)
@@ -251,8 +258,10 @@ def test_volume_newton_path_matches_the_scan_of_the_arc():
     assert_allclose(b_new, b, rtol=1e-9)  # the filling angle is well conditioned: 1e-9, the verify tolerance
 
 
-@pytest.mark.parametrize("gap,s,past_minimum", [(0.1, 0.01, True), (0.1, 0.1, True), (0.1, 0.5, True),
-                                                 (0.1, 2.0, False), (0.3, 0.1, False), (0.3, 0.5, False)])
+@pytest.mark.parametrize(
+    "gap,s,past_minimum",
+    [(0.1, 0.01, True), (0.1, 0.1, True), (0.1, 0.5, True), (0.1, 2.0, False), (0.3, 0.1, False), (0.3, 0.5, False)],
+)
 def test_volume_newton_certifies_only_the_branch_continuous_with_contact(gap, s, past_minimum):
     """Equal spheres, theta = 0. The thin bridge of a suction-controlled pair (smaller filling angle) lies on the
     arc of its gap either before the volume minimum (past the suction fold: the bridge at constant volume) or
@@ -268,8 +277,9 @@ def test_volume_newton_certifies_only_the_branch_continuous_with_contact(gap, s,
     b_thin = brentq(lambda x: float(br.gap_of(x, th, s, rho)) - gap, grid[0], grid[j], xtol=1e-15)
     thin = br.bridge(b_thin, th, s, rho)
     V = np.atleast_1d(thin.volume)
-    y0, _, found = br._newton_volume(np.array([th]), V, np.array([gap]), np.array([rho]),
-                                     start=(np.atleast_1d(thin.neck), np.array([s])))
+    y0, _, found = br._newton_volume(
+        np.array([th]), V, np.array([gap]), np.array([rho]), start=(np.atleast_1d(thin.neck), np.array([s]))
+    )
     assert y0[0] == pytest.approx(float(thin.neck), rel=1e-9)  # converged to the thin bridge (1e-12 residuals)
     assert found[0] == (not past_minimum)
     b_scan, s_scan, st_scan = br._scan_for_volume(np.array([th]), V, np.array([gap]), np.array([rho]))

@@ -1,5 +1,6 @@
 """Issue 20: the bulk verdicts of the suction-controlled solver (no bridge beyond rupture, too much water, a
 bridge) against an independent brute-force search of the rupture gap, row by row."""
+
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
@@ -17,8 +18,12 @@ def brute_rupture_gap(theta, s, rho):
     g = br._below(br.gap_of(b, theta[:, None], s[:, None], rho[:, None]))
     r = np.arange(theta.size)
     j = np.argmax(g, axis=1)
-    _, best = br._golden(lambda x, i: br.gap_of(x, theta[i], s[i], rho[i]), b[r, np.maximum(j - 1, 0)],
-                         b[r, np.minimum(j + 1, b.shape[1] - 1)], iters=60)
+    _, best = br._golden(
+        lambda x, i: br.gap_of(x, theta[i], s[i], rho[i]),
+        b[r, np.maximum(j - 1, 0)],
+        b[r, np.minimum(j + 1, b.shape[1] - 1)],
+        iters=60,
+    )
     return np.fmax(best, g[r, j]), g[:, -1]
 
 

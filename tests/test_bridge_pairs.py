@@ -1,5 +1,6 @@
 """Issue 13: unequal spheres and sphere-plane checked against an independent Young-Laplace integration,
 the interface tensor, volume control that is never wrong, rupture, and YADE's capillary files."""
+
 import json
 
 import numpy as np
@@ -21,19 +22,33 @@ def ode_pair(beta, theta, s, rho):
     theta)) until the meridian meets particle 2 (radius rho, or a plane when rho = inf) at the contact angle.
     No first integral is used. Returns gap, volume, delta2, area, nn11, nn33 accumulated along the way, or None
     when the meridian meets particle 2 nowhere (no crossing at the contact angle with y below rho)."""
+
     def rhs(_, u):
         y, p = u[0], u[1]
         q = 1 + p * p
-        return [p, q / y + s * q**1.5, np.pi * y * y, 2 * np.pi * y * np.sqrt(q), np.pi * y / np.sqrt(q),
-                2 * np.pi * y * p * p / np.sqrt(q)]
+        return [
+            p,
+            q / y + s * q**1.5,
+            np.pi * y * y,
+            2 * np.pi * y * np.sqrt(q),
+            np.pi * y / np.sqrt(q),
+            2 * np.pi * y * p * p / np.sqrt(q),
+        ]
 
     def meets(_, u):  # slope angle equals the one a contact on particle 2 needs: 90 deg - delta2 - theta
         d2 = 0.0 if np.isinf(rho) else np.arcsin(min(u[0] / rho, 1.0))
         return np.arctan(u[1]) - (0.5 * np.pi - d2 - theta)
 
     meets.terminal, meets.direction = True, 1
-    sol = solve_ivp(rhs, (0, 20), [np.sin(beta), -1 / np.tan(beta + theta), 0, 0, 0, 0], method="DOP853",
-                    rtol=1e-12, atol=1e-14, events=meets)
+    sol = solve_ivp(
+        rhs,
+        (0, 20),
+        [np.sin(beta), -1 / np.tan(beta + theta), 0, 0, 0, 0],
+        method="DOP853",
+        rtol=1e-12,
+        atol=1e-14,
+        events=meets,
+    )
     if len(sol.t_events[0]) == 0 or sol.y_events[0][0][0] >= rho:  # a contact circle is never wider than rho
         return None
     x = sol.t_events[0][0]
@@ -58,13 +73,25 @@ def more_force_than_particle_2_carries(beta, theta, s, rho):
     return 2 * np.sin(beta) * np.sin(beta + theta) + s * np.sin(beta) ** 2 > carried * (1 + 1e-8)
 
 
-CASES = [(rho, th, s, b) for rho in (1.5, 3.0, 10.0, 0.5, np.inf) for th in (0.0, 20.0, 50.0)
-         for s in (0.0, 0.5, 20.0) for b in (5.0, 20.0, 40.0)
-         if not (np.isinf(rho) and th == 0.0)]  # on a plane at theta = 0 the meridian ends vertical (y' infinite)
+CASES = [
+    (rho, th, s, b)
+    for rho in (1.5, 3.0, 10.0, 0.5, np.inf)
+    for th in (0.0, 20.0, 50.0)
+    for s in (0.0, 0.5, 20.0)
+    for b in (5.0, 20.0, 40.0)
+    if not (np.isinf(rho) and th == 0.0)
+]  # on a plane at theta = 0 the meridian ends vertical (y' infinite)
 # the cases without a bridge, as the two independent arguments above find them (a small sphere, rho = 0.5,
 # at beta = 40 deg would be engulfed): asserted "no bridge", and their count pinned so a change shows
-NO_BRIDGE = {(0.5, 0.0, 20.0, 40.0), (0.5, 20.0, 0.0, 40.0), (0.5, 20.0, 0.5, 40.0), (0.5, 20.0, 20.0, 40.0),
-             (0.5, 50.0, 0.0, 40.0), (0.5, 50.0, 0.5, 40.0), (0.5, 50.0, 20.0, 40.0)}
+NO_BRIDGE = {
+    (0.5, 0.0, 20.0, 40.0),
+    (0.5, 20.0, 0.0, 40.0),
+    (0.5, 20.0, 0.5, 40.0),
+    (0.5, 20.0, 20.0, 40.0),
+    (0.5, 50.0, 0.0, 40.0),
+    (0.5, 50.0, 0.5, 40.0),
+    (0.5, 50.0, 20.0, 40.0),
+}
 
 
 @pytest.mark.parametrize("rho,theta_deg,s,beta_deg", CASES)
@@ -159,8 +186,12 @@ def test_volume_solution_is_the_one_continuous_with_contact():
 
 @pytest.mark.parametrize("rho", [1.0, 2.0, 0.5, 10.0, np.inf])
 def test_scan_never_reports_a_wrong_bridge_unequal(rho):
-    th, D, V = np.meshgrid(np.radians([0, 5, 20, 45, 70]), np.r_[0.0, np.geomspace(1e-3, 0.3, 4)],
-                           np.geomspace(1e-12, 1e-1, 7), indexing="ij")
+    th, D, V = np.meshgrid(
+        np.radians([0, 5, 20, 45, 70]),
+        np.r_[0.0, np.geomspace(1e-3, 0.3, 4)],
+        np.geomspace(1e-12, 1e-1, 7),
+        indexing="ij",
+    )
     th, D, V = th.ravel(), D.ravel(), V.ravel()
     b, s, st = br.solve_for_volume(th, V, D, rho)
     ok = st == 0
@@ -211,8 +242,10 @@ def test_rupture_matches_brute_force_and_lian_at_zero_contact_angle():
 
 
 def test_solve_command_with_unequal_spheres_and_plane(tmp_path):
-    (tmp_path / "b.csv").write_text("case,R [mm],R2 [mm],contact_angle,gap [mm],suction [kPa]\n"
-                                    "pair,1,3,10,0.02,2\nplane,1,plane,10,0.02,2\nequal,1,1,10,0.02,2\n")
+    (tmp_path / "b.csv").write_text(
+        "case,R [mm],R2 [mm],contact_angle,gap [mm],suction [kPa]\n"
+        "pair,1,3,10,0.02,2\nplane,1,plane,10,0.02,2\nequal,1,1,10,0.02,2\n"
+    )
     res = runner.invoke(app, ["bridge", "solve", str(tmp_path / "b.csv"), "--json", "--out", str(tmp_path / "o")])
     assert res.exit_code == 0, res.output
     rows = {r["case"]: r for r in json.loads(res.stdout)["bridges"]}
@@ -224,8 +257,13 @@ def test_solve_command_with_unequal_spheres_and_plane(tmp_path):
     # a larger or flat partner pulls harder at the same gap and suction (Derjaguin: R* grows with R2)
     assert rows["equal"]["F_cap_mN"] < rows["pair"]["F_cap_mN"] < rows["plane"]["F_cap_mN"]
     # the same bridge by volume: re-solving each row forward from its volume gives back its suction
-    (tmp_path / "v.csv").write_text("case,R [mm],R2,contact_angle,gap [mm],V_w [mm^3]\n" + "".join(
-        f"{k},1,{ {'pair': 3, 'plane': 'plane', 'equal': 1}[k]},10,0.02,{r['V_w_mm3']!r}\n" for k, r in rows.items()))
+    (tmp_path / "v.csv").write_text(
+        "case,R [mm],R2,contact_angle,gap [mm],V_w [mm^3]\n"
+        + "".join(
+            f"{k},1,{ {'pair': 3, 'plane': 'plane', 'equal': 1}[k] },10,0.02,{r['V_w_mm3']!r}\n"
+            for k, r in rows.items()
+        )
+    )
     back = {r["case"]: r for r in capred.solve_bridges(tmp_path / "v.csv").rows()}
     for k, r in rows.items():
         assert back[k]["suction_kPa"] == pytest.approx(r["suction_kPa"], rel=1e-7)
@@ -252,13 +290,37 @@ def test_rupture_command(tmp_path):
 
 # Duriez's finite-difference estimates of the largest distance bridged at zero suction (theta = 0), from the
 # comments of the capillary-file generator distributed with YADE (writesCapFile.m): d* = D / R2
-DURIEZ_MAX_D = {1.0: 0.3995, 1.1: 0.3808, 1.25: 0.3567, 1.5: 0.3241, 1.75: 0.2983, 2.0: 0.2772, 3.0: 0.2199,
-                4.0: 0.1852, 5.0: 0.1615}
+DURIEZ_MAX_D = {
+    1.0: 0.3995,
+    1.1: 0.3808,
+    1.25: 0.3567,
+    1.5: 0.3241,
+    1.75: 0.2983,
+    2.0: 0.2772,
+    3.0: 0.2199,
+    4.0: 0.1852,
+    5.0: 0.1615,
+}
 
 
 def test_yade_files_layout_and_values(tmp_path):
-    res = runner.invoke(app, ["bridge", "yade-files", "--ratios", "1,2.0,3", "--theta", "0", "--distances", "6",
-                              "--suctions", "12", "--out", str(tmp_path / "y")])
+    res = runner.invoke(
+        app,
+        [
+            "bridge",
+            "yade-files",
+            "--ratios",
+            "1,2.0,3",
+            "--theta",
+            "0",
+            "--distances",
+            "6",
+            "--suctions",
+            "12",
+            "--out",
+            str(tmp_path / "y"),
+        ],
+    )
     assert res.exit_code == 0, res.output
     for r in (1.0, 2.0, 3.0):
         name = f"M(r={r:g})"
@@ -269,7 +331,7 @@ def test_yade_files_layout_and_values(tmp_path):
             head = lines[k].split(" ")
             count = int(head[0])
             assert head[1:] == ["0"] * 7 and count >= 1
-            block = np.array([[float(v) for v in line.split("\t")] for line in lines[k + 1:k + 1 + count]])
+            block = np.array([[float(v) for v in line.split("\t")] for line in lines[k + 1 : k + 1 + count]])
             assert block.shape == (count, 8)
             assert np.all(block[:, 0] == block[0, 0]) and np.all(np.diff(block[:, 1]) > 0)
             blocks.append(block)
@@ -300,7 +362,8 @@ def test_precision_at_any_scale(tmp_path):
     bridge at three scales scales exactly (lengths as R, volumes as R^3, forces as gamma R)."""
     scales = [0.001, 1.0, 10.0]  # R in mm
     text = "case,R [mm],R2,contact_angle,gap [mm],V_w [mm^3]\n" + "".join(
-        f"r{R},{R!r},{2 * R!r},10,{0.01 * R!r},{2e-4 * R**3!r}\n" for R in scales)
+        f"r{R},{R!r},{2 * R!r},10,{0.01 * R!r},{2e-4 * R**3!r}\n" for R in scales
+    )
     text += "tiny,10,10,0,0,1e-12\ntiny_plane,10,plane,20,0,1e-12\n"
     (tmp_path / "s.csv").write_text(text)
     rows = {r["case"]: r for r in capred.solve_bridges(tmp_path / "s.csv").rows()}

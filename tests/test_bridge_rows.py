@@ -1,5 +1,6 @@
 """Issue 20: `bridge solve`'s rows in one or two processes, and the note on volume-controlled bridges past the
 suction-controlled fold."""
+
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
@@ -101,4 +102,4 @@ def test_the_quadrature_sum_is_the_matrix_product():
     assert_allclose(br._quad(values, weights), values @ weights, rtol=4 * np.finfo(float).eps, atol=0)
     np.testing.assert_array_equal(br._quad(values[:32], weights), values[:32] @ weights)  # whole groups: as BLAS
     for k in range(37):  # a row alone, or in any company, is summed alike
-        assert br._quad(values[k:k + 1], weights)[0] == br._quad(values, weights)[k]
+        assert br._quad(values[k : k + 1], weights)[0] == br._quad(values, weights)[k]

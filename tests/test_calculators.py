@@ -1,4 +1,5 @@
 """Bernatzik prism (Bernatzik 1948), Skempton's B (Morvan et al. 2016), Rumpf (Prunier et al. 2024, eq. 19)."""
+
 import json
 
 import numpy as np
@@ -73,13 +74,18 @@ def test_skempton_b_inverse_round_trip():
 
 def test_skempton_suction_lowers_b_with_air_entry(tmp_path):
     # Morvan et al. (2016), Fig. 5: the higher s_e, the lower B
-    Bs = [_json(["skempton-b", "--sr", "0.9", "--se", str(se), "--bc-alpha", "0.8", "--no-plots",
-                 "--out", str(tmp_path)])["B"] for se in (5, 20, 100, 1000)]
+    Bs = [
+        _json(
+            ["skempton-b", "--sr", "0.9", "--se", str(se), "--bc-alpha", "0.8", "--no-plots", "--out", str(tmp_path)]
+        )["B"]
+        for se in (5, 20, 100, 1000)
+    ]
     assert all(a > b for a, b in zip(Bs, Bs[1:]))
     assert Bs[0] < 0.1223  # below the no-suction value at S_r = 0.9
     # inverse with suction: S_r back from B
-    js = _json(["skempton-b", "--b", str(Bs[1]), "--se", "20", "--bc-alpha", "0.8", "--no-plots",
-                "--out", str(tmp_path)])
+    js = _json(
+        ["skempton-b", "--b", str(Bs[1]), "--se", "20", "--bc-alpha", "0.8", "--no-plots", "--out", str(tmp_path)]
+    )
     assert js["S_r"] == pytest.approx(0.9, abs=1e-9)
 
 
@@ -90,24 +96,69 @@ def test_skempton_sample_writes_figure(tmp_path):
 
 def test_rumpf_by_hand(tmp_path):
     # -(6/1)(0.5/0.5)(0.0728 N/m / 1e-4 m) cos 0 = -4368 Pa
-    js = _json(["rumpf", "--shape-factor", "1", "--void-ratio", "0.5", "--sr", "0.5", "--diameter", "0.1",
-                "--out", str(tmp_path)])
+    js = _json(
+        [
+            "rumpf",
+            "--shape-factor",
+            "1",
+            "--void-ratio",
+            "0.5",
+            "--sr",
+            "0.5",
+            "--diameter",
+            "0.1",
+            "--out",
+            str(tmp_path),
+        ]
+    )
     assert js["p_cap_kPa"] == pytest.approx(-4.368, rel=1e-12)
     # 60 deg halves it
-    js = _json(["rumpf", "--shape-factor", "1", "--void-ratio", "0.5", "--sr", "0.5", "--diameter", "100 um",
-                "--contact-angle", "60", "--out", str(tmp_path)])
+    js = _json(
+        [
+            "rumpf",
+            "--shape-factor",
+            "1",
+            "--void-ratio",
+            "0.5",
+            "--sr",
+            "0.5",
+            "--diameter",
+            "100 um",
+            "--contact-angle",
+            "60",
+            "--out",
+            str(tmp_path),
+        ]
+    )
     assert js["p_cap_kPa"] == pytest.approx(-2.184, rel=1e-12)
 
 
-@pytest.mark.parametrize("args,message", [
-    (["prism", "--break-tension", "115"], "--friction-angle"),
-    (["prism", "--break-tension", "115 cm", "--friction-angle", "36"], "not a unit of pressure"),
-    (["prism", "--break-tension", "115", "--friction-angle", "95"], "between 0 and 90"),
-    (["skempton-b"], "exactly one of --S-R (or --sr) and --b"),
-    (["skempton-b", "--sr", "0.9", "--se", "20"], "both --se and --bc-lambda"),
-    (["rumpf", "--shape-factor", "1", "--void-ratio", "0.5", "--sr", "0.5", "--diameter", "0.1",
-      "--contact-angle", "95"], "contact angle must lie between 0 and 90 deg"),
-])
+@pytest.mark.parametrize(
+    "args,message",
+    [
+        (["prism", "--break-tension", "115"], "--friction-angle"),
+        (["prism", "--break-tension", "115 cm", "--friction-angle", "36"], "not a unit of pressure"),
+        (["prism", "--break-tension", "115", "--friction-angle", "95"], "between 0 and 90"),
+        (["skempton-b"], "exactly one of --S-R (or --sr) and --b"),
+        (["skempton-b", "--sr", "0.9", "--se", "20"], "both --se and --bc-lambda"),
+        (
+            [
+                "rumpf",
+                "--shape-factor",
+                "1",
+                "--void-ratio",
+                "0.5",
+                "--sr",
+                "0.5",
+                "--diameter",
+                "0.1",
+                "--contact-angle",
+                "95",
+            ],
+            "contact angle must lie between 0 and 90 deg",
+        ),
+    ],
+)
 def test_calculator_bad_options(args, message, tmp_path):
     res = runner.invoke(app, [*args, "--out", str(tmp_path / "o")])
     assert res.exit_code == 1 and message in res.stderr, res.stderr

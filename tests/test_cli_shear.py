@@ -1,22 +1,25 @@
 """capred shear end to end: CliRunner, a real subprocess, and every bad input."""
+
 import json
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
+from conftest import file_hash
 from typer.testing import CliRunner
 
 from capred.cli import app
-from conftest import file_hash
 
 runner = CliRunner()
 
-GOOD = ("test_id,material,condition,z1,z2,V_v,added_mass,cap_mass,box_area,R,tau_max\n"
-        "d1,sand,dry,,,30,0,120,36,0.156,0.30\n"
-        "d2,sand,dry,,,30,200,120,36,0.156,0.75\n"
-        "d3,sand,dry,,,30,400,120,36,0.156,1.15\n"
-        "w1,sand,wet,20,1.5,30,0,120,36,0.156,2.5\n")
+GOOD = (
+    "test_id,material,condition,z1,z2,V_v,added_mass,cap_mass,box_area,R,tau_max\n"
+    "d1,sand,dry,,,30,0,120,36,0.156,0.30\n"
+    "d2,sand,dry,,,30,200,120,36,0.156,0.75\n"
+    "d3,sand,dry,,,30,400,120,36,0.156,1.15\n"
+    "w1,sand,wet,20,1.5,30,0,120,36,0.156,2.5\n"
+)
 
 
 def test_shear_sample_writes_report_folder(tmp_path):
@@ -24,8 +27,14 @@ def test_shear_sample_writes_report_folder(tmp_path):
     res = runner.invoke(app, ["shear", "--sample", "--out", str(out)])
     assert res.exit_code == 0, res.output
     names = {p.name for p in out.iterdir()}
-    assert {"results.csv", "summary.csv", "summary.json", "provenance.json",
-            "report_steel_2mm.png", "report_sand_208-417um.png"} <= names
+    assert {
+        "results.csv",
+        "summary.csv",
+        "summary.json",
+        "provenance.json",
+        "report_steel_2mm.png",
+        "report_sand_208-417um.png",
+    } <= names
     assert "Dry envelope" in res.output and "best" in res.output
     prov = json.loads((out / "provenance.json").read_text())
     assert prov["inputs"][0]["sha256"] and prov["capred_version"]
@@ -38,8 +47,17 @@ def test_shear_json_has_the_documented_keys(tmp_path):
     m = js["materials"]["steel_2mm"]
     assert set(m) >= {"c_kPa", "phi_deg", "tan_phi", "c_se_kPa", "phi_se_deg", "r2", "n"}
     t = js["tests"][0]
-    assert set(t) >= {"test_id", "material", "condition", "sigma_N_kPa", "suction_kPa", "S_R",
-                      "tau_max_kPa", "tau_pred_kPa", "flags"}
+    assert set(t) >= {
+        "test_id",
+        "material",
+        "condition",
+        "sigma_N_kPa",
+        "suction_kPa",
+        "S_R",
+        "tau_max_kPa",
+        "tau_pred_kPa",
+        "flags",
+    }
     assert set(t["tau_pred_kPa"]) == {"no_suction", "bishop", "own1", "own2"}
     assert set(js["metrics"]["sand_208-417um"]["own2"]) >= {"rmse_kPa", "bias_kPa", "r2"}
     assert js["best_model"]["steel_2mm"] in {"no_suction", "bishop", "own1", "own2"}
@@ -59,8 +77,13 @@ def test_shear_rerun_is_byte_identical(tmp_path, write_csv):
 def test_shear_through_installed_entry_point(tmp_path):
     exe = Path(sys.executable).with_name("capred")
     cmd = [str(exe)] if exe.exists() else [sys.executable, "-m", "capred"]
-    res = subprocess.run(cmd + ["shear", "--sample", "--json", "--out", str(tmp_path / "o")],
-                         capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    res = subprocess.run(
+        cmd + ["shear", "--sample", "--json", "--out", str(tmp_path / "o")],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        timeout=120,
+    )
     assert res.returncode == 0, res.stderr
     assert json.loads(res.stdout)["best_model"]
 
@@ -71,9 +94,11 @@ def test_python_m_capred_help():
 
 
 def test_help_does_not_import_heavy_modules():
-    code = ("import sys\nfrom typer.testing import CliRunner\nfrom capred.cli import app\n"
-            "CliRunner().invoke(app, ['--help'])\nCliRunner().invoke(app, ['shear', '--help'])\n"
-            "print(sorted(m for m in ('pandas', 'scipy', 'matplotlib', 'pint') if m in sys.modules))")
+    code = (
+        "import sys\nfrom typer.testing import CliRunner\nfrom capred.cli import app\n"
+        "CliRunner().invoke(app, ['--help'])\nCliRunner().invoke(app, ['shear', '--help'])\n"
+        "print(sorted(m for m in ('pandas', 'scipy', 'matplotlib', 'pint') if m in sys.modules))"
+    )
     res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert res.stdout.strip() == "[]", res.stdout + res.stderr
 
@@ -101,24 +126,40 @@ def test_every_command_has_help_text_with_example():
 
 HEADER = "test_id,material,condition,z1,z2,V_v,added_mass,cap_mass,box_area,R,tau_max\n"
 BAD_CASES = {
-    "misspelt_column": ("test_id,material,condition,z1,z2,V_v,added_mas,cap_mass,box_area,R,tau_max\n"
-                        "d1,s,dry,,,30,0,120,36,0.156,0.3\n", ["line 1", "added_mass", "did you mean 'added_mas'"]),
-    "text_in_number": (HEADER + "d1,s,dry,,,30,0,120,36,0.156,abc\n", ["line 2", "column 'tau_max'", "'abc' is not a number"]),
+    "misspelt_column": (
+        "test_id,material,condition,z1,z2,V_v,added_mas,cap_mass,box_area,R,tau_max\n"
+        "d1,s,dry,,,30,0,120,36,0.156,0.3\n",
+        ["line 1", "added_mass", "did you mean 'added_mas'"],
+    ),
+    "text_in_number": (
+        HEADER + "d1,s,dry,,,30,0,120,36,0.156,abc\n",
+        ["line 2", "column 'tau_max'", "'abc' is not a number"],
+    ),
     "empty_file": ("", ["empty"]),
     "header_only": (HEADER, ["no data rows"]),
     "no_dry_test": (HEADER + "w1,s,wet,20,1.5,30,0,120,36,0.156,2.5\n", ["line 2", "no dry test"]),
-    "z2_exceeds_void_volume": (GOOD + "w2,sand,wet,20,31,30,0,120,36,0.156,2.5\n",
-                               ["line 6", "column 'z2'", "outside [0, 1]"]),
-    "S_R_above_one": ("test_id,condition,sigma_N,suction,S_R,tau_max\nd1,dry,1,,,1\nd2,dry,2,,,2\n"
-                      "d3,dry,3,,,3.1\nw1,wet,1,2,1.2,2\n", ["line 5", "column 'S_R'", "between 0 and 1"]),
+    "z2_exceeds_void_volume": (
+        GOOD + "w2,sand,wet,20,31,30,0,120,36,0.156,2.5\n",
+        ["line 6", "column 'z2'", "outside [0, 1]"],
+    ),
+    "S_R_above_one": (
+        "test_id,condition,sigma_N,suction,S_R,tau_max\nd1,dry,1,,,1\nd2,dry,2,,,2\nd3,dry,3,,,3.1\nw1,wet,1,2,1.2,2\n",
+        ["line 5", "column 'S_R'", "between 0 and 1"],
+    ),
     "negative_mass": (HEADER + "d1,s,dry,,,30,-5,120,36,0.156,0.3\n", ["line 2", "column 'added_mass'", "negative"]),
     "negative_head": (GOOD + "w2,sand,wet,-20,1.5,30,0,120,36,0.156,2.5\n", ["line 6", "column 'z1'", "negative"]),
-    "unknown_unit": (HEADER.replace("tau_max", "tau_max [blorps]") + "d1,s,dry,,,30,0,120,36,0.156,0.3\n",
-                     ["line 1", "column 'tau_max [blorps]'", "unknown unit 'blorps'"]),
-    "wrong_dimension": (HEADER.replace("z1,", "z1 [kPa],") + "d1,s,dry,,,30,0,120,36,0.156,0.3\n",
-                        ["line 1", "column 'z1 [kPa]'", "not a unit of length"]),
-    "duplicate_test_id": (GOOD + "d2,sand,dry,,,30,600,120,36,0.156,1.6\n",
-                          ["line 6", "duplicate test_id 'd2'", "first on line 3"]),
+    "unknown_unit": (
+        HEADER.replace("tau_max", "tau_max [blorps]") + "d1,s,dry,,,30,0,120,36,0.156,0.3\n",
+        ["line 1", "column 'tau_max [blorps]'", "unknown unit 'blorps'"],
+    ),
+    "wrong_dimension": (
+        HEADER.replace("z1,", "z1 [kPa],") + "d1,s,dry,,,30,0,120,36,0.156,0.3\n",
+        ["line 1", "column 'z1 [kPa]'", "not a unit of length"],
+    ),
+    "duplicate_test_id": (
+        GOOD + "d2,sand,dry,,,30,600,120,36,0.156,1.6\n",
+        ["line 6", "duplicate test_id 'd2'", "first on line 3"],
+    ),
     "unknown_condition": (GOOD.replace("w1,sand,wet", "w1,sand,moist"), ["line 5", "'moist' is not one of"]),
     "hook_case": ("test_id,z1\nA,not-a-number\n", ["'not-a-number' is not a number"]),
 }

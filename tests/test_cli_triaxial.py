@@ -1,18 +1,21 @@
 """capred triaxial-bounds end to end: outputs, JSON keys, curves, groups, bad input."""
+
 import json
 
 import numpy as np
 import pytest
+from conftest import file_hash
 from typer.testing import CliRunner
 
 import capred
 from capred.cli import app
 from capred.physics import triaxial as tx
-from conftest import file_hash
 
 runner = CliRunner()
-SAT = ("test_id,condition,sigma3,q_f\n"
-       "s1,saturated,30,75.7\ns2,saturated,50,119.6\ns3,saturated,100,229.1\ns4,saturated,150,338.7\n")
+SAT = (
+    "test_id,condition,sigma3,q_f\n"
+    "s1,saturated,30,75.7\ns2,saturated,50,119.6\ns3,saturated,100,229.1\ns4,saturated,150,338.7\n"
+)
 
 
 def test_triaxial_sample_writes_outputs(tmp_path):
@@ -38,8 +41,21 @@ def test_triaxial_json_keys(tmp_path):
 
 def test_triaxial_envelope_from_options_and_no_s0(write_csv):
     data = write_csv("test_id,condition,sigma3,sigma1\nu1,unsaturated,0,150.2\n")
-    res = runner.invoke(app, ["triaxial-bounds", str(data), "--c-eff", "2.795", "--phi-eff", "31.523", "--json",
-                              "--no-plots", "--out", str(data.parent / "o")])
+    res = runner.invoke(
+        app,
+        [
+            "triaxial-bounds",
+            str(data),
+            "--c-eff",
+            "2.795",
+            "--phi-eff",
+            "31.523",
+            "--json",
+            "--no-plots",
+            "--out",
+            str(data.parent / "o"),
+        ],
+    )
     assert res.exit_code == 0, res.output
     t = json.loads(res.stdout)["tests"][0]
     assert t["edtp"] is None
@@ -50,11 +66,26 @@ def test_triaxial_curves_give_peak_and_strain(tmp_path):
     tests = tmp_path / "t.csv"
     text = capred.sample_path("triaxial-bounds").read_text().splitlines()
     # drop q_f of the unsaturated tests: the curves must supply the peaks
-    out = [",".join(c if not (k == 3 and "unsaturated" in ln) else "" for k, c in enumerate(ln.split(",")))
-           if not ln.startswith("#") else ln for ln in text]
+    out = [
+        ",".join(c if not (k == 3 and "unsaturated" in ln) else "" for k, c in enumerate(ln.split(",")))
+        if not ln.startswith("#")
+        else ln
+        for ln in text
+    ]
     tests.write_text("\n".join(out) + "\n")
-    res = runner.invoke(app, ["triaxial-bounds", str(tests), "--curves", str(capred.sample_path("triaxial-curves")),
-                              "--json", "--no-plots", "--out", str(tmp_path / "o")])
+    res = runner.invoke(
+        app,
+        [
+            "triaxial-bounds",
+            str(tests),
+            "--curves",
+            str(capred.sample_path("triaxial-curves")),
+            "--json",
+            "--no-plots",
+            "--out",
+            str(tmp_path / "o"),
+        ],
+    )
     assert res.exit_code == 0, res.output
     js = {t["test_id"]: t for t in json.loads(res.stdout)["tests"]}
     # the synthetic curves peak at the failure deviators, at eps_a = 2 + p0/100 %
@@ -86,9 +117,14 @@ BAD = {
     "q_nonpositive": (SAT + "u1,unsaturated,0,-3\n", ["line 6", "column 'q_f'", "must be > 0"]),
     "sigma3_negative": (SAT + "u1,unsaturated,-10,100\n", ["line 6", "column 'sigma3'", "negative"]),
     "unknown_condition": (SAT + "u1,partly,0,100\n", ["line 6", "'partly' is not one of"]),
-    "group_of_one": (SAT.replace("q_f\n", "q_f,group\n") + "u1,unsaturated,0,150,A\n",
-                     ["line 6", "column 'group'", "group 'A' has one test"]),
-    "missing_sigma3": ("test_id,condition,sigam3,q_f\nu1,unsaturated,0,150\n", ["missing column 'sigma3'", "did you mean"]),
+    "group_of_one": (
+        SAT.replace("q_f\n", "q_f,group\n") + "u1,unsaturated,0,150,A\n",
+        ["line 6", "column 'group'", "group 'A' has one test"],
+    ),
+    "missing_sigma3": (
+        "test_id,condition,sigam3,q_f\nu1,unsaturated,0,150\n",
+        ["missing column 'sigma3'", "did you mean"],
+    ),
     "text_in_number": (SAT + "u1,unsaturated,zero,150\n", ["line 6", "'zero' is not a number"]),
 }
 
@@ -207,13 +243,16 @@ def test_triaxial_back_pressure_from_the_export(tmp_path, write_csv):
 
 def test_triaxial_membrane_correction_by_hand(tmp_path, write_csv):
     # ASTM D4767: dq = 4 E_m t_m eps_a / D = 4 * 1400 kPa * 0.2 mm * 0.05 / 38 mm = 1.47368 kPa
-    data = write_csv("test_id,condition,sigma3,q_f,strain_at_failure [%],D0 [mm]\n"
-                     "s1,saturated,30,75.7,5,38\ns2,saturated,50,119.6,5,38\ns3,saturated,100,229.1,5,38\n"
-                     "u1,unsaturated,0,150.2,5,38\n")
+    data = write_csv(
+        "test_id,condition,sigma3,q_f,strain_at_failure [%],D0 [mm]\n"
+        "s1,saturated,30,75.7,5,38\ns2,saturated,50,119.6,5,38\ns3,saturated,100,229.1,5,38\n"
+        "u1,unsaturated,0,150.2,5,38\n"
+    )
     res = runner.invoke(app, ["triaxial-bounds", str(data), "--json", "--no-plots", "--out", str(tmp_path / "o")])
     js0 = json.loads(res.stdout)
-    assert any("no membrane correction" in n for n in json.loads((tmp_path / "o" / "summary.json").read_text())
-               ["notes"])
+    assert any(
+        "no membrane correction" in n for n in json.loads((tmp_path / "o" / "summary.json").read_text())["notes"]
+    )
     opts = capred.pipelines.triaxial.TriaxialOptions(membrane_thickness="0.2 mm", membrane_modulus="1400 kPa")
     js = capred.run_triaxial_bounds(data, opts).to_json()
     dq = 4 * 1400 * 0.2 * 0.05 / 38
@@ -228,20 +267,27 @@ def test_triaxial_membrane_correction_of_curves_before_the_peak(tmp_path, write_
     # corrected peak is 100 - dq(5 %) (dq(6 %) = 1.768 kPa does not lift the 6 % reading above it)
     data = write_csv("test_id,condition,sigma3,q_f\nu1,unsaturated,30,\n", "t.csv")
     _export(tmp_path / "exp", "u1", 30.0)
-    opts = capred.pipelines.triaxial.TriaxialOptions(c_eff=2795.0, phi_eff=31.523, membrane_thickness=0.2e-3,
-                                                     membrane_modulus=1400e3)
+    opts = capred.pipelines.triaxial.TriaxialOptions(
+        c_eff=2795.0, phi_eff=31.523, membrane_thickness=0.2e-3, membrane_modulus=1400e3
+    )
     t = capred.run_triaxial_bounds(data, opts, curves=tmp_path / "exp").to_json()["tests"][0]
     assert t["q_kPa"] == pytest.approx(100 - 4 * 1400 * 0.2 * 0.05 / 38, rel=1e-12)
     assert t["strain_at_failure"] == pytest.approx(0.05, rel=1e-12)
 
 
 BAD_PORE = {
-    "u_a_on_saturated": (SAT.replace("q_f\n", "q_f,u_a\n").replace("75.7\n", "75.7,10\n"),
-                         ["line 2", "u_a is for unsaturated tests"]),
-    "back_pressure_unsat_without_u_a": (SAT.replace("q_f\n", "q_f,back_pressure\n") + "u1,unsaturated,0,150,50\n",
-                                        ["line 6", "give the pore-air pressure 'u_a'"]),
-    "negative_effective_sigma3": (SAT.replace("q_f\n", "q_f,back_pressure\n").replace("75.7\n", "75.7,50\n"),
-                                  ["line 2", "effective confining stress", "negative"]),
+    "u_a_on_saturated": (
+        SAT.replace("q_f\n", "q_f,u_a\n").replace("75.7\n", "75.7,10\n"),
+        ["line 2", "u_a is for unsaturated tests"],
+    ),
+    "back_pressure_unsat_without_u_a": (
+        SAT.replace("q_f\n", "q_f,back_pressure\n") + "u1,unsaturated,0,150,50\n",
+        ["line 6", "give the pore-air pressure 'u_a'"],
+    ),
+    "negative_effective_sigma3": (
+        SAT.replace("q_f\n", "q_f,back_pressure\n").replace("75.7\n", "75.7,50\n"),
+        ["line 2", "effective confining stress", "negative"],
+    ),
     "membrane_without_strain": (SAT, ["needs 'strain_at_failure' and 'D0'"]),
 }
 
@@ -251,8 +297,11 @@ def test_triaxial_pore_pressure_problems(case, tmp_path, write_csv):
     text, expected = BAD_PORE[case]
     data = write_csv(text, "bad.csv")
     extra = ["--c-eff", "1", "--phi-eff", "30"] if case != "membrane_without_strain" else []
-    opts = capred.pipelines.triaxial.TriaxialOptions(membrane_thickness=0.2e-3, membrane_modulus=1400e3) \
-        if case == "membrane_without_strain" else None
+    opts = (
+        capred.pipelines.triaxial.TriaxialOptions(membrane_thickness=0.2e-3, membrane_modulus=1400e3)
+        if case == "membrane_without_strain"
+        else None
+    )
     with pytest.raises(capred.CapredError) as exc:
         capred.run_triaxial_bounds(data, opts)
     for piece in expected:

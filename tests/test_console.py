@@ -1,5 +1,6 @@
 """Console tables (issue 21, item 3): folded tables keep their row labels, headers wrap before a table folds,
 numbers that are 0 within the computation's rounding print 0."""
+
 import pytest
 from rich.cells import cell_len
 from rich.console import Console
@@ -89,8 +90,11 @@ def test_headers_wrap_before_a_table_folds():
     assert render.column_groups(spec, 30) == [[0, 1]]  # 'difference' (10) fits beside 'material' in 30 columns
     assert render.wrap_header("RMSE difference [kPa]", 10) == "RMSE\ndifference\n[kPa]"
     # a table folded into groups: every column once, the labels in each
-    wide = TableSpec("t", [("test", "left"), ("bound", "left")] + [(f"c{k}", "right") for k in range(12)],
-                     [["T", "LB", *("-123.4" for _ in range(12))]])
+    wide = TableSpec(
+        "t",
+        [("test", "left"), ("bound", "left")] + [(f"c{k}", "right") for k in range(12)],
+        [["T", "LB", *("-123.4" for _ in range(12))]],
+    )
     groups = render.column_groups(wide, 40)
     assert all(g[:2] == [0, 1] for g in groups)
     assert sorted(j for g in groups for j in g[2:]) == list(range(2, 14))

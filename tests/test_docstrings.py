@@ -6,6 +6,7 @@ function takes any argument), "Returns" (or "Yields") and "References" -- the ho
 pvlib-python's pvlib/temperature.py (STYLE.md). Sections are found as numpydoc writes them: the title
 on its own line, underlined with dashes.
 """
+
 import importlib
 import inspect
 import pkgutil
@@ -93,9 +94,13 @@ def test_every_module_is_listed():
     assert set(NOT_YET_DONE) <= set(MODULES), "NOT_YET_DONE names a module that does not exist"
 
 
-@pytest.mark.parametrize("name", [
-    pytest.param(m, marks=pytest.mark.xfail(reason=NOT_YET_DONE[m], strict=False)) if m in NOT_YET_DONE else m
-    for m in MODULES])
+@pytest.mark.parametrize(
+    "name",
+    [
+        pytest.param(m, marks=pytest.mark.xfail(reason=NOT_YET_DONE[m], strict=False)) if m in NOT_YET_DONE else m
+        for m in MODULES
+    ],
+)
 def test_public_functions_have_numpydoc_sections(name):
     module = importlib.import_module(name)
     problems = {fname: miss for fname, f in public_functions(module) if (miss := missing_sections(f))}

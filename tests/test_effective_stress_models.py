@@ -1,8 +1,8 @@
 """Models beyond the thesis's four (issue 5): formulas by hand and through capred shear."""
+
 import json
 
 import numpy as np
-
 import pytest
 from numpy.testing import assert_allclose
 from typer.testing import CliRunner
@@ -51,15 +51,24 @@ def _csv(truth):
     return "\n".join(rows) + "\n"
 
 
-@pytest.mark.parametrize("name,truth,params", [
-    ("khalili", lambda s, u, sr: 0.2 + 0.7 * (s + esm.chi_khalili(u, 6.0) * u), ModelParams(air_entry=6e3)),
-    ("vanapalli", lambda s, u, sr: 0.2 + 0.7 * (s + esm.chi_vanapalli(sr, 0.05) * u), ModelParams(s_res=0.05)),
-    ("lu_likos", lambda s, u, sr: 0.2 + 0.7 * (s + esm.chi_lu_likos(u, 0.1, 3.0) * u),
-     ModelParams(vg_alpha=1e-4, vg_n=3.0)),
-    ("fredlund", lambda s, u, sr: 0.2 + 0.7 * s + 0.25 * u, ModelParams()),
-    ("pedrotti_tarantino", lambda s, u, sr: esm.pedrotti_tarantino_strength(s, u, sr, 0.2, 0.7, 0.2, 0.7),
-     ModelParams()),
-])
+@pytest.mark.parametrize(
+    "name,truth,params",
+    [
+        ("khalili", lambda s, u, sr: 0.2 + 0.7 * (s + esm.chi_khalili(u, 6.0) * u), ModelParams(air_entry=6e3)),
+        ("vanapalli", lambda s, u, sr: 0.2 + 0.7 * (s + esm.chi_vanapalli(sr, 0.05) * u), ModelParams(s_res=0.05)),
+        (
+            "lu_likos",
+            lambda s, u, sr: 0.2 + 0.7 * (s + esm.chi_lu_likos(u, 0.1, 3.0) * u),
+            ModelParams(vg_alpha=1e-4, vg_n=3.0),
+        ),
+        ("fredlund", lambda s, u, sr: 0.2 + 0.7 * s + 0.25 * u, ModelParams()),
+        (
+            "pedrotti_tarantino",
+            lambda s, u, sr: esm.pedrotti_tarantino_strength(s, u, sr, 0.2, 0.7, 0.2, 0.7),
+            ModelParams(),
+        ),
+    ],
+)
 def test_generating_model_wins(write_csv, name, truth, params):
     opts = ShearOptions(models=("bishop", "own1", name), model_params=params, bootstrap=0)
     r = run_shear(write_csv(_csv(truth)), opts)
@@ -79,8 +88,22 @@ def test_models_option_needs_parameters():
 @pytest.mark.slow
 def test_models_all_with_retention_fit(tmp_path):
     assert runner.invoke(app, ["retention", "--sample", "--out", str(tmp_path / "r"), "--no-plots"]).exit_code == 0
-    res = runner.invoke(app, ["shear", "--sample", "--models", "all", "--retention", str(tmp_path / "r" / "fits.json"),
-                              "--json", "--bootstrap", "50", "--out", str(tmp_path / "s")])
+    res = runner.invoke(
+        app,
+        [
+            "shear",
+            "--sample",
+            "--models",
+            "all",
+            "--retention",
+            str(tmp_path / "r" / "fits.json"),
+            "--json",
+            "--bootstrap",
+            "50",
+            "--out",
+            str(tmp_path / "s"),
+        ],
+    )
     assert res.exit_code == 0, res.output
     js = json.loads(res.stdout)
     n_models = len(capred_models())
@@ -116,10 +139,10 @@ def test_pedrotti_tarantino_takes_tau_w_from_saturated_tests(write_csv):
             tau = float(esm.pedrotti_tarantino_strength(s, u, sr, 0.5, 0.5, 0.2, 0.7))
             lines.append(f"W{k},wet,{s},{u},{sr},1,{tau!r}")
             k += 1
-    r = run_shear(write_csv("\n".join(lines) + "\n"), ShearOptions(models=("bishop", "pedrotti_tarantino"),
-                                                                    bootstrap=0))
+    r = run_shear(
+        write_csv("\n".join(lines) + "\n"), ShearOptions(models=("bishop", "pedrotti_tarantino"), bootstrap=0)
+    )
     assert r.metrics["(all)"]["pedrotti_tarantino"].rmse < 1e-9  # Pa: exact data
     mat = r.to_json()["materials"]["(all)"]
     assert mat["water_envelope"] == "saturated tests"
-    assert_allclose([mat["saturated_envelope"]["c_kPa"], mat["saturated_envelope"]["tan_phi"]], [0.5, 0.5],
-                    rtol=1e-12)
+    assert_allclose([mat["saturated_envelope"]["c_kPa"], mat["saturated_envelope"]["tan_phi"]], [0.5, 0.5], rtol=1e-12)

@@ -1,6 +1,7 @@
 """Figure files as a journal and a rerun see them (issues 19, 20, 21): printed sizes and dpi read back from the
 PNGs, single panels only when asked, report.html embedding the composite already drawn, byte-identical reruns,
 the same bytes from one process or two, and progress that stays silent off a terminal."""
+
 import base64
 import re
 
@@ -35,7 +36,7 @@ def default_run(shear_result, tmp_path_factory):
     """The README's first command's outputs (default options), drawn by this process alone."""
     out = tmp_path_factory.mktemp("default") / "o"
     old = outputs.PARALLEL_MIN_PANELS
-    outputs.PARALLEL_MIN_PANELS = 10 ** 9
+    outputs.PARALLEL_MIN_PANELS = 10**9
     try:
         capred.write_outputs(shear_result, out)
     finally:
@@ -94,8 +95,9 @@ def test_single_panels_are_one_or_two_columns_wide(shear_result, tmp_path):
 
 
 def test_panels_option_on_the_command_line(tmp_path):
-    res = CliRunner().invoke(app, ["retention", "--sample", "--panels", "--format", "png,svg", "--dpi", "100",
-                                   "--out", str(tmp_path / "o")])
+    res = CliRunner().invoke(
+        app, ["retention", "--sample", "--panels", "--format", "png,svg", "--dpi", "100", "--out", str(tmp_path / "o")]
+    )
     assert res.exit_code == 0, res.output
     names = sorted(p.name for p in (tmp_path / "o" / "figures").iterdir())
     assert names == ["retention_curves.png", "retention_curves.svg"]
@@ -161,14 +163,29 @@ def test_figures_must_be_main_or_all(shear_result, tmp_path):
 
 def test_figures_option_on_the_command_line_and_in_a_manifest(tmp_path):
     sample = capred.sample_path("shear")
-    res = CliRunner().invoke(app, ["shear", str(sample), "--figures", "all", "--dpi", "40", "--no-html", "--bootstrap",
-                                   "0", "--out", str(tmp_path / "o")])
+    res = CliRunner().invoke(
+        app,
+        [
+            "shear",
+            str(sample),
+            "--figures",
+            "all",
+            "--dpi",
+            "40",
+            "--no-html",
+            "--bootstrap",
+            "0",
+            "--out",
+            str(tmp_path / "o"),
+        ],
+    )
     assert res.exit_code == 0, res.output
     assert sorted(p.name.split("_")[0] for p in (tmp_path / "o").glob("*.png")) == ["capillary"] * 2 + ["report"] * 2
     res = CliRunner().invoke(app, ["shear", str(sample), "--figures", "some", "--out", str(tmp_path / "x")])
     assert res.exit_code != 0 and "--figures must be 'main' or 'all'" in res.output and not (tmp_path / "x").exists()
-    (tmp_path / "season.csv").write_text(f"command,input,options\nshear,{sample},--figures all --dpi 40 --no-html "
-                                         "--bootstrap 0\n", encoding="utf-8")
+    (tmp_path / "season.csv").write_text(
+        f"command,input,options\nshear,{sample},--figures all --dpi 40 --no-html --bootstrap 0\n", encoding="utf-8"
+    )
     res = CliRunner().invoke(app, ["batch", str(tmp_path / "season.csv"), "--out", str(tmp_path / "b")])
     assert res.exit_code == 0, res.output
     assert len(list((tmp_path / "b").glob("*/capillary_*.png"))) == 2
@@ -200,7 +217,7 @@ def test_report_embeds_the_svg_when_svg_is_asked(tmp_path):
     capred.write_outputs(result, tmp_path / "o", formats=("svg",))
     html = (tmp_path / "o" / "report.html").read_text(encoding="utf-8")
     svg = (tmp_path / "o" / "retention.svg").read_text(encoding="utf-8")
-    assert svg[svg.index("<svg"):] in html
+    assert svg[svg.index("<svg") :] in html
     assert "data:image/png" not in html and not list((tmp_path / "o").glob("*.png"))
 
 
@@ -221,6 +238,7 @@ def _light_sheets(result, n: int = 3):
             ax.set_title(f"panel {k}")
             ax.legend()
             return ax
+
         return draw
 
     return {f"s{j}": Sheet(f"sheet {j}", [Panel(f"p{k}", line(k + j)) for k in range(2)], 2) for j in range(n)}
@@ -258,7 +276,7 @@ def test_reruns_are_byte_identical(tmp_path, monkeypatch, light, formats):
 
 @pytest.mark.parametrize("panels", [True, False])
 def test_two_processes_write_the_same_bytes(tmp_path, monkeypatch, light, panels):
-    monkeypatch.setattr(outputs, "PARALLEL_MIN_PANELS", 10 ** 9)
+    monkeypatch.setattr(outputs, "PARALLEL_MIN_PANELS", 10**9)
     capred.write_outputs(light, tmp_path / "one", panels=panels)
     monkeypatch.setattr(outputs, "PARALLEL_MIN_PANELS", 1)
     monkeypatch.setenv("CAPRED_FIGURE_PROCESSES", "2")  # whatever the machine's load

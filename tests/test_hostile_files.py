@@ -6,6 +6,7 @@ cells repeated a million times, a header 10,000 columns wide. The bounds asserte
 several times what was measured on a loaded two-core machine, yet far below what the old reader took (150 s and
 3.4 GB for the stray cell; 115 s and 1.6 GB for the bomb; a hang for the wide header).
 """
+
 import struct
 import time
 import tracemalloc
@@ -21,8 +22,12 @@ from capred.io.table import read_table
 from capred.pipelines.retention import SCHEMA as RETENTION_SCHEMA
 
 MAIN = "http://schemas.openxmlformats.org/spreadsheetml/2006/main"
-TABLE = [["test_id", "condition", "sigma_N [kPa]", "tau_max [kPa]"], ["a", "dry", 1, 1.0452],
-         ["b", "dry", 2, 1.7598], ["c", "dry", 3, 2.4744]]
+TABLE = [
+    ["test_id", "condition", "sigma_N [kPa]", "tau_max [kPa]"],
+    ["a", "dry", 1, 1.0452],
+    ["b", "dry", 2, 1.7598],
+    ["c", "dry", 3, 2.4744],
+]
 
 
 def _measured(call):
@@ -54,8 +59,29 @@ def _zip(members):
         offset = len(out)
         out += struct.pack("<IHHHHHIIIHH", 0x04034B50, 20, 0, 8, 0, 0x21, crc, len(comp), size, len(nb), 0) + nb
         out += comp
-        central += struct.pack("<IHHHHHHIIIHHHHHII", 0x02014B50, 20, 20, 0, 8, 0, 0x21, crc, len(comp), size,
-                               len(nb), 0, 0, 0, 0, 0, offset) + nb
+        central += (
+            struct.pack(
+                "<IHHHHHHIIIHHHHHII",
+                0x02014B50,
+                20,
+                20,
+                0,
+                8,
+                0,
+                0x21,
+                crc,
+                len(comp),
+                size,
+                len(nb),
+                0,
+                0,
+                0,
+                0,
+                0,
+                offset,
+            )
+            + nb
+        )
     n = len(members)
     return bytes(out + central + struct.pack("<IHHHHIIH", 0x06054B50, 0, 0, n, n, len(central), len(out), 0))
 
@@ -98,8 +124,9 @@ def zip_bomb(tmp_path_factory):
     """A 1.5 MB .xlsx whose sheet expands to 1.5 GiB of white space inside <sheetData>, declared honestly."""
     folder = tmp_path_factory.mktemp("bomb")
     normal = _normal_xlsx(folder / "normal.xlsx")
-    sheet = _deflated_repeat(f'<worksheet xmlns="{MAIN}"><sheetData>'.encode(), b" " * 2**24, 96,
-                             b"</sheetData></worksheet>")
+    sheet = _deflated_repeat(
+        f'<worksheet xmlns="{MAIN}"><sheetData>'.encode(), b" " * 2**24, 96, b"</sheetData></worksheet>"
+    )
     path = folder / "bomb.xlsx"
     path.write_bytes(_zip(_with_sheet(normal, sheet)))
     return path, sheet
@@ -169,10 +196,12 @@ def test_decompression_stops_at_the_limit_whatever_the_zip_declares(zip_bomb):
 
 
 def test_xml_with_a_dtd_is_refused(tmp_path):
-    laughs = ('<?xml version="1.0"?><!DOCTYPE lolz [<!ENTITY lol "lol"><!ENTITY lol2 "&lol;&lol;&lol;&lol;">'
-              '<!ENTITY lol3 "&lol2;&lol2;&lol2;&lol2;">]>'
-              f'<worksheet xmlns="{MAIN}"><sheetData><row r="1"><c r="A1" t="inlineStr"><is><t>&lol3;</t></is></c>'
-              '</row></sheetData></worksheet>')
+    laughs = (
+        '<?xml version="1.0"?><!DOCTYPE lolz [<!ENTITY lol "lol"><!ENTITY lol2 "&lol;&lol;&lol;&lol;">'
+        '<!ENTITY lol3 "&lol2;&lol2;&lol2;&lol2;">]>'
+        f'<worksheet xmlns="{MAIN}"><sheetData><row r="1"><c r="A1" t="inlineStr"><is><t>&lol3;</t></is></c>'
+        "</row></sheetData></worksheet>"
+    )
     normal = _normal_xlsx(tmp_path / "normal.xlsx")
     path = tmp_path / "laughs.xlsx"
     path.write_bytes(_zip(_with_sheet(normal, laughs.encode())))
@@ -205,12 +234,16 @@ def test_wide_header_workbook_is_refused(tmp_path):
 
 
 def _ods(content_rows: str, name: str = "Tests") -> bytes:
-    ns = ('xmlns:office="urn:oasis:names:tc:opendocument:xmlns:office:1.0" '
-          'xmlns:table="urn:oasis:names:tc:opendocument:xmlns:table:1.0" '
-          'xmlns:text="urn:oasis:names:tc:opendocument:xmlns:text:1.0"')
-    content = (f'<?xml version="1.0" encoding="UTF-8"?><office:document-content {ns}><office:body>'
-               f'<office:spreadsheet><table:table table:name="{name}">{content_rows}</table:table>'
-               '</office:spreadsheet></office:body></office:document-content>')
+    ns = (
+        'xmlns:office="urn:oasis:names:tc:opendocument:xmlns:office:1.0" '
+        'xmlns:table="urn:oasis:names:tc:opendocument:xmlns:table:1.0" '
+        'xmlns:text="urn:oasis:names:tc:opendocument:xmlns:text:1.0"'
+    )
+    content = (
+        f'<?xml version="1.0" encoding="UTF-8"?><office:document-content {ns}><office:body>'
+        f'<office:spreadsheet><table:table table:name="{name}">{content_rows}</table:table>'
+        "</office:spreadsheet></office:body></office:document-content>"
+    )
     return _zip([("mimetype", b"application/vnd.oasis.opendocument.spreadsheet"), ("content.xml", content.encode())])
 
 
@@ -226,20 +259,26 @@ def _ods_row(*cells):
 
 def test_ods_repeated_rows_and_cells_are_expanded_only_where_they_hold_data(tmp_path):
     body = "".join(_ods_row(*r) for r in TABLE)
-    trailing = ('<table:table-row table:number-rows-repeated="1048572"><table:table-cell '
-                'table:number-columns-repeated="16384"/></table:table-row>')  # as LibreOffice writes
+    trailing = (
+        '<table:table-row table:number-rows-repeated="1048572"><table:table-cell '
+        'table:number-columns-repeated="16384"/></table:table-row>'
+    )  # as LibreOffice writes
     (tmp_path / "ok.ods").write_bytes(_ods(body + trailing))
     grid, seconds, peak = _measured(lambda: read_grid(TableSource(tmp_path / "ok.ods")))
     assert [r for _, r in grid.rows] == [[str(c) for c in r] for r in TABLE]
     assert seconds < 5 and peak < 20  # measured 0.01 s
-    rows = ('<table:table-row table:number-rows-repeated="1048576"><table:table-cell office:value-type="float" '
-            'office:value="1" table:number-columns-repeated="3"/></table:table-row>')
+    rows = (
+        '<table:table-row table:number-rows-repeated="1048576"><table:table-cell office:value-type="float" '
+        'office:value="1" table:number-columns-repeated="3"/></table:table-row>'
+    )
     (tmp_path / "rows.ods").write_bytes(_ods(body + rows))
     err, seconds, peak = _measured(lambda: read_grid(TableSource(tmp_path / "rows.ods")))
     assert isinstance(err, LimitError) and err.limit == "max_cells" and err.problems[0].line == 5
     assert seconds < 5 and peak < 20  # refused before the rows are made
-    cells = ('<table:table-row><table:table-cell office:value-type="float" office:value="1" '
-             'table:number-columns-repeated="16384"/></table:table-row>')
+    cells = (
+        '<table:table-row><table:table-cell office:value-type="float" office:value="1" '
+        'table:number-columns-repeated="16384"/></table:table-row>'
+    )
     (tmp_path / "cells.ods").write_bytes(_ods(body + cells))
     err = _measured(lambda: read_grid(TableSource(tmp_path / "cells.ods")))[0]
     assert isinstance(err, LimitError) and err.limit == "max_columns"
@@ -250,17 +289,27 @@ def _shared_strings_xlsx(path, rows, strings):
     rel = "http://schemas.openxmlformats.org/officeDocument/2006/relationships"
     sheet = f'<worksheet xmlns="{MAIN}"><sheetData>{rows}</sheetData></worksheet>'
     members = [
-        ("_rels/.rels", f'<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships">'
-                        f'<Relationship Id="rId1" Type="{rel}/officeDocument" Target="xl/workbook.xml"/>'
-                        '</Relationships>'),
-        ("xl/workbook.xml", f'<workbook xmlns="{MAIN}" xmlns:r="{rel}"><sheets><sheet name="Data" sheetId="1" '
-                            'r:id="rId1"/></sheets></workbook>'),
-        ("xl/_rels/workbook.xml.rels", '<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/'
-                                       f'relationships"><Relationship Id="rId1" Type="{rel}/worksheet" '
-                                       f'Target="worksheets/sheet1.xml"/><Relationship Id="rId2" '
-                                       f'Type="{rel}/sharedStrings" Target="sharedStrings.xml"/></Relationships>'),
+        (
+            "_rels/.rels",
+            f'<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships">'
+            f'<Relationship Id="rId1" Type="{rel}/officeDocument" Target="xl/workbook.xml"/>'
+            "</Relationships>",
+        ),
+        (
+            "xl/workbook.xml",
+            f'<workbook xmlns="{MAIN}" xmlns:r="{rel}"><sheets><sheet name="Data" sheetId="1" '
+            'r:id="rId1"/></sheets></workbook>',
+        ),
+        (
+            "xl/_rels/workbook.xml.rels",
+            '<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/'
+            f'relationships"><Relationship Id="rId1" Type="{rel}/worksheet" '
+            f'Target="worksheets/sheet1.xml"/><Relationship Id="rId2" '
+            f'Type="{rel}/sharedStrings" Target="sharedStrings.xml"/></Relationships>',
+        ),
         ("xl/worksheets/sheet1.xml", sheet),
-        ("xl/sharedStrings.xml", f'<sst xmlns="{MAIN}">{strings}</sst>')]
+        ("xl/sharedStrings.xml", f'<sst xmlns="{MAIN}">{strings}</sst>'),
+    ]
     path.write_bytes(_zip([(n, t.encode()) for n, t in members]))
     return path
 
@@ -312,9 +361,12 @@ def test_streamed_xlsx_reads_what_openpyxl_reads(tmp_path):
 
     wb = Workbook()
     ws = wb.active
-    values = [["Date", datetime.datetime(2026, 11, 21, 9, 30), None, "  padded  "],
-              ["t", 1, 1.0, 1 / 3, -2.5e-300, 12345678901234567890, True, False],
-              [None, None, "=not a formula", "x" * 300, "é µ ³"], [1e300, 0.1 + 0.2]]
+    values = [
+        ["Date", datetime.datetime(2026, 11, 21, 9, 30), None, "  padded  "],
+        ["t", 1, 1.0, 1 / 3, -2.5e-300, 12345678901234567890, True, False],
+        [None, None, "=not a formula", "x" * 300, "é µ ³"],
+        [1e300, 0.1 + 0.2],
+    ]
     for r in values:
         ws.append(r)
     ws["Z40"] = datetime.date(2026, 1, 2)
@@ -336,9 +388,15 @@ def test_streamed_ods_reads_what_pandas_reads(tmp_path):
 
     from capred.io.grid import _cell_text
 
-    frame = pd.DataFrame([["Operator", "  me  ", None, None], [None, None, None, None],
-                          ["t", 1.0, 0.1 + 0.2, -2.5e-300], ["x", True, "two words", 1e300],
-                          [None, None, None, "last"]])
+    frame = pd.DataFrame(
+        [
+            ["Operator", "  me  ", None, None],
+            [None, None, None, None],
+            ["t", 1.0, 0.1 + 0.2, -2.5e-300],
+            ["x", True, "two words", 1e300],
+            [None, None, None, "last"],
+        ]
+    )
     frame.to_excel(tmp_path / "v.ods", engine="odf", header=False, index=False)
     book = pd.read_excel(tmp_path / "v.ods", header=None, engine="odf", dtype=object)
     expect = []

@@ -1,14 +1,15 @@
 """Lab data in, as labs have it (issue 14): spreadsheets, exports, locale, units, unused columns, one round of
 problems, checked options, physical limits, raw shear and triaxial curves, sample state."""
+
 import io
 import json
 
 import numpy as np
-from numpy.testing import assert_allclose
 import pandas as pd
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from numpy.testing import assert_allclose
 from typer.testing import CliRunner
 
 import capred
@@ -19,7 +20,9 @@ from capred.pipelines.shear_curves import corrected_area
 
 runner = CliRunner()
 HEADER = "test_id,material,condition,sigma_N [kPa],tau_max [kPa],suction [kPa],S_R,R [mm]\n"
-DRY = "d1,m,dry,1,1.0452,,,1\nd2,m,dry,2,1.7598,,,1\nd3,m,dry,3,2.4744,,,1\nd4,m,dry,4,3.189,,,1\nd5,m,dry,5,3.9036,,,1\n"
+DRY = (
+    "d1,m,dry,1,1.0452,,,1\nd2,m,dry,2,1.7598,,,1\nd3,m,dry,3,2.4744,,,1\nd4,m,dry,4,3.189,,,1\nd5,m,dry,5,3.9036,,,1\n"
+)
 WET = "w1,m,wet,1,1.5,2,0.3,1\nw2,m,wet,2,2.2,2,0.3,1\n"
 
 
@@ -50,8 +53,14 @@ def test_xlsx_export_gives_the_same_fits_as_the_csv():
 
 
 def test_xlsx_problems_name_sheet_row_and_column(tmp_path):
-    rows = [["Lab", "x"], [], ["test_id", "condition", "sigma_N [kPa]", "tau_max [kPa]"],
-            ["a", "dry", 1, 1.0], ["b", "dry", "two", 1.7], ["c", "dry", 3, 2.4]]
+    rows = [
+        ["Lab", "x"],
+        [],
+        ["test_id", "condition", "sigma_N [kPa]", "tau_max [kPa]"],
+        ["a", "dry", 1, 1.0],
+        ["b", "dry", "two", 1.7],
+        ["c", "dry", 3, 2.4],
+    ]
     path = _xlsx(tmp_path / "t.xlsx", rows, "Run 2")
     with pytest.raises(InputError) as info:
         capred.run_shear(path)
@@ -68,8 +77,12 @@ def test_sheet_by_name_and_number(tmp_path):
     wb.active.title = "notes"
     wb.active.append(["nothing here"])
     ws = wb.create_sheet("data")
-    for r in [["test_id", "condition", "sigma_N [kPa]", "tau_max [kPa]"], ["a", "dry", 1, 1.0452],
-              ["b", "dry", 2, 1.7598], ["c", "dry", 3, 2.4744]]:
+    for r in [
+        ["test_id", "condition", "sigma_N [kPa]", "tau_max [kPa]"],
+        ["a", "dry", 1, 1.0452],
+        ["b", "dry", 2, 1.7598],
+        ["c", "dry", 3, 2.4744],
+    ]:
         ws.append(r)
     wb.save(tmp_path / "w.xlsx")
     for sheet in ("data", 2, "2"):
@@ -77,15 +90,23 @@ def test_sheet_by_name_and_number(tmp_path):
         assert m["(all)"]["tan_phi"] == pytest.approx(0.7146, rel=1e-9)
     res = runner.invoke(app, ["shear", str(tmp_path / "w.xlsx"), "--sheet", "nope", "--no-plots"])
     assert res.exit_code == 1 and "no sheet named 'nope'" in res.stderr and "data" in res.stderr
-    res = runner.invoke(app, ["shear", str(tmp_path / "w.xlsx"), "--sheet", "data", "--no-plots", "--bootstrap", "0",
-                              "--json"])
+    res = runner.invoke(
+        app, ["shear", str(tmp_path / "w.xlsx"), "--sheet", "data", "--no-plots", "--bootstrap", "0", "--json"]
+    )
     assert res.exit_code == 0, res.output
 
 
 def test_ods_with_metadata_block(tmp_path):
-    frame = pd.DataFrame([["Operator", "me", None, None], [None, None, None, None],
-                          ["test_id", "condition", "sigma_N [kPa]", "tau_max [kPa]"],
-                          ["a", "dry", 1.0, 1.0452], ["b", "dry", 2.0, 1.7598], ["c", "dry", 3.0, 2.4744]])
+    frame = pd.DataFrame(
+        [
+            ["Operator", "me", None, None],
+            [None, None, None, None],
+            ["test_id", "condition", "sigma_N [kPa]", "tau_max [kPa]"],
+            ["a", "dry", 1.0, 1.0452],
+            ["b", "dry", 2.0, 1.7598],
+            ["c", "dry", 3.0, 2.4744],
+        ]
+    )
     frame.to_excel(tmp_path / "t.ods", engine="odf", header=False, index=False)
     doc = capred.run_shear(tmp_path / "t.ods", capred.ShearOptions(bootstrap=0)).to_json()
     assert doc["materials"]["(all)"]["tan_phi"] == pytest.approx(0.7146, rel=1e-9)
@@ -93,8 +114,15 @@ def test_ods_with_metadata_block(tmp_path):
     assert [t["line"] for t in doc["tests"]] == [4, 5, 6]  # the spreadsheet's row numbers
 
 
-@pytest.mark.parametrize("magic,what", [(b"PK\x03\x04rest", "zip archive"), (b"\xd0\xcf\x11\xe0rest", ".xls"),
-                                        (b"%PDF-1.4", "PDF"), (b"ab\x00cd" * 10, "binary")])
+@pytest.mark.parametrize(
+    "magic,what",
+    [
+        (b"PK\x03\x04rest", "zip archive"),
+        (b"\xd0\xcf\x11\xe0rest", ".xls"),
+        (b"%PDF-1.4", "PDF"),
+        (b"ab\x00cd" * 10, "binary"),
+    ],
+)
 def test_binary_named_csv_is_named(tmp_path, magic, what):
     (tmp_path / "t.csv").write_bytes(magic)
     res = runner.invoke(app, ["shear", str(tmp_path / "t.csv"), "--no-plots"])
@@ -103,9 +131,11 @@ def test_binary_named_csv_is_named(tmp_path, magic, what):
 
 # --- exports: metadata block and units row ----------------------------------------------------------
 def test_metadata_block_and_units_row(tmp_path):
-    text = ("Instrument: ShearBox 3000\nOperator,Jane\n\n"
-            "test_id,condition,sigma_N,tau_max\n,,kPa,(Pa)\n"
-            "a,dry,1,1045.2\nb,dry,2,1759.8\nc,dry,3,2474.4\n")
+    text = (
+        "Instrument: ShearBox 3000\nOperator,Jane\n\n"
+        "test_id,condition,sigma_N,tau_max\n,,kPa,(Pa)\n"
+        "a,dry,1,1045.2\nb,dry,2,1759.8\nc,dry,3,2474.4\n"
+    )
     (tmp_path / "e.csv").write_text(text)
     doc = capred.run_shear(tmp_path / "e.csv", capred.ShearOptions(bootstrap=0)).to_json()
     assert doc["materials"]["(all)"]["tan_phi"] == pytest.approx(0.7146, rel=1e-9)
@@ -119,8 +149,10 @@ def test_european_sample_runs_as_the_csv():
 
 # --- locale and plain numbers -----------------------------------------------------------------------
 def test_thousands_separator_is_an_error_unless_told(tmp_path):
-    text = ("test_id;condition;added_mass [g];cap_mass [g];box_area [cm^2];tau_max [kPa]\n"
-            "a;dry;1.000;120;36;0,5\nb;dry;0;120;36;0,35\nc;dry;2.000;120;36;0,9\n")
+    text = (
+        "test_id;condition;added_mass [g];cap_mass [g];box_area [cm^2];tau_max [kPa]\n"
+        "a;dry;1.000;120;36;0,5\nb;dry;0;120;36;0,35\nc;dry;2.000;120;36;0,9\n"
+    )
     (tmp_path / "eu.csv").write_text(text)
     with pytest.raises(InputError) as info:
         capred.run_shear(tmp_path / "eu.csv")
@@ -142,8 +174,10 @@ def test_only_plain_decimal_numbers(tmp_path, cell):
 
 
 def test_quoted_field_over_two_lines(tmp_path):
-    text = ('test_id,condition,sigma_N [kPa],tau_max [kPa],notes\n'
-            'a,dry,1,1.0452,"first line\nsecond line"\nb,dry,2,x,ok\nc,dry,3,2.4744,\n')
+    text = (
+        "test_id,condition,sigma_N [kPa],tau_max [kPa],notes\n"
+        'a,dry,1,1.0452,"first line\nsecond line"\nb,dry,2,x,ok\nc,dry,3,2.4744,\n'
+    )
     (tmp_path / "t.csv").write_text(text)
     with pytest.raises(InputError) as info:
         capred.run_shear(tmp_path / "t.csv")
@@ -160,30 +194,48 @@ def test_bad_unit_strings_are_named_problems(tmp_path, unit):
     assert any(p.line == 1 and "unit" in p.message for p in info.value.problems)
 
 
-@pytest.mark.parametrize("header,value,si", [
-    ("suction [cmH2O]", "10", 980.665), ("suction [cm H2O]", "10", 980.665), ("suction [cm water]", "10", 980.665),
-    ("suction [mH2O]", "1", 9806.65), ("suction [kgf/cm^2]", "0.01", 980.665), ("suction [psi]", "1", 6894.757293),
-])
+@pytest.mark.parametrize(
+    "header,value,si",
+    [
+        ("suction [cmH2O]", "10", 980.665),
+        ("suction [cm H2O]", "10", 980.665),
+        ("suction [cm water]", "10", 980.665),
+        ("suction [mH2O]", "1", 9806.65),
+        ("suction [kgf/cm^2]", "0.01", 980.665),
+        ("suction [psi]", "1", 6894.757293),
+    ],
+)
 def test_lab_spellings_of_units(tmp_path, header, value, si):
-    (tmp_path / "t.csv").write_text(HEADER.replace("suction [kPa]", header) + DRY + WET.replace(",2,0.3", f",{value},0.3"))
+    (tmp_path / "t.csv").write_text(
+        HEADER.replace("suction [kPa]", header) + DRY + WET.replace(",2,0.3", f",{value},0.3")
+    )
     doc = capred.run_shear(tmp_path / "t.csv", capred.ShearOptions(bootstrap=0)).to_json()
     wet = [t for t in doc["tests"] if t["condition"] == "wet"]
     assert wet[0]["suction_kPa"] == pytest.approx(si / 1e3, rel=1e-9)
 
 
 def test_head_in_cm_of_water_and_percent_and_micrometres(tmp_path):
-    text = ("test_id,condition,sigma_N [kPa],tau_max [kPa],z1 [cm H2O],S_R [%],R [um]\n"
-            "d1,dry,1,1.0452,,,\nd2,dry,2,1.7598,,,\nd3,dry,3,2.4744,,,\nw1,wet,1,1.5,20,30,156\n")
+    text = (
+        "test_id,condition,sigma_N [kPa],tau_max [kPa],z1 [cm H2O],S_R [%],R [um]\n"
+        "d1,dry,1,1.0452,,,\nd2,dry,2,1.7598,,,\nd3,dry,3,2.4744,,,\nw1,wet,1,1.5,20,30,156\n"
+    )
     (tmp_path / "t.csv").write_text(text)
     w = capred.run_shear(tmp_path / "t.csv", capred.ShearOptions(bootstrap=0)).to_json()["tests"][3]
     assert w["suction_kPa"] == pytest.approx(0.2 * 9.81, rel=1e-12) and w["S_R"] == pytest.approx(0.3)
 
 
-@pytest.mark.parametrize("header,cell,name,si", [
-    ("V_v [cm³]", "27", "V_v", 27e-6), ("V_v [m³]", "2.7e-5", "V_v", 2.7e-5), ("V_v_mm³", "27000", "V_v", 27e-6),
-    ("box_area [cm²]", "36", "box_area", 36e-4), ("box_area [mm²]", "3600", "box_area", 36e-4),
-    ("box_area (m²)", "0.0036", "box_area", 36e-4), ("rho_d [g/cm³]", "1.65", "rho_d", 1650.0),
-])
+@pytest.mark.parametrize(
+    "header,cell,name,si",
+    [
+        ("V_v [cm³]", "27", "V_v", 27e-6),
+        ("V_v [m³]", "2.7e-5", "V_v", 2.7e-5),
+        ("V_v_mm³", "27000", "V_v", 27e-6),
+        ("box_area [cm²]", "36", "box_area", 36e-4),
+        ("box_area [mm²]", "3600", "box_area", 36e-4),
+        ("box_area (m²)", "0.0036", "box_area", 36e-4),
+        ("rho_d [g/cm³]", "1.65", "rho_d", 1650.0),
+    ],
+)
 def test_superscript_units_in_headers(tmp_path, header, cell, name, si):
     """Units as Excel users type them (issue 23): cm³ = 1e-6 m³, cm² = 1e-4 m², g/cm³ = 1000 kg/m³."""
     from capred.io.table import read_table
@@ -200,9 +252,11 @@ def test_superscript_units_row_is_a_units_row(tmp_path):
     from capred.io.table import read_table
     from capred.pipelines.shear import SCHEMA
 
-    text = ("test_id,condition,z1,z2,V_v,added_mass,cap_mass,box_area,R,tau_max\n"
-            "-,-,cm,cm³,cm³,g,g,cm²,mm,kPa\n"
-            "w1,wet,20,5,27,1000,120,36,0.5,2.2\n")
+    text = (
+        "test_id,condition,z1,z2,V_v,added_mass,cap_mass,box_area,R,tau_max\n"
+        "-,-,cm,cm³,cm³,g,g,cm²,mm,kPa\n"
+        "w1,wet,20,5,27,1000,120,36,0.5,2.2\n"
+    )
     (tmp_path / "t.csv").write_text(text, encoding="utf-8")
     t = read_table(tmp_path / "t.csv", SCHEMA)
     assert not t.problems and list(t.lines) == [3]
@@ -217,9 +271,14 @@ def test_superscript_units_row_is_a_units_row(tmp_path):
 @pytest.mark.parametrize("kind", ["csv", "xlsx"])
 def test_text_under_the_data_is_a_note(tmp_path, kind):
     """'Remarks: ...' under the data (first cell only) is reported as a note, not read as a test (issue 23)."""
-    rows = [["test_id", "condition", "sigma_N [kPa]", "tau_max [kPa]"], ["a", "dry", 1, 1.0452],
-            ["b", "dry", 2, 1.7598], ["c", "dry", 3, 2.4744], ["Remarks: sample b disturbed", None, None, None],
-            ["checked by the operator", None, None, None]]
+    rows = [
+        ["test_id", "condition", "sigma_N [kPa]", "tau_max [kPa]"],
+        ["a", "dry", 1, 1.0452],
+        ["b", "dry", 2, 1.7598],
+        ["c", "dry", 3, 2.4744],
+        ["Remarks: sample b disturbed", None, None, None],
+        ["checked by the operator", None, None, None],
+    ]
     if kind == "xlsx":
         path = _xlsx(tmp_path / "t.xlsx", rows)
     else:
@@ -241,8 +300,10 @@ def test_a_test_id_alone_is_still_a_row(tmp_path):
 
 # --- unused columns --------------------------------------------------------------------------------
 def test_unused_columns_are_warned_with_a_suggestion(tmp_path):
-    text = ("test_id,Materiaal,condition,sigma_N [kPa],tau_max [kPa],,remarks\n"
-            "a,m1,dry,1,1.0452,7,x\nb,m1,dry,2,1.7598,,\nc,m2,dry,3,2.4744,,\n")
+    text = (
+        "test_id,Materiaal,condition,sigma_N [kPa],tau_max [kPa],,remarks\n"
+        "a,m1,dry,1,1.0452,7,x\nb,m1,dry,2,1.7598,,\nc,m2,dry,3,2.4744,,\n"
+    )
     (tmp_path / "t.csv").write_text(text)
     # 'Materiaal' is a near miss of 'material', which groups the tests: an error (issue 23), not a warning
     with pytest.raises(InputError) as info:
@@ -260,11 +321,19 @@ def test_unused_columns_are_warned_with_a_suggestion(tmp_path):
     assert any("'Mat. type' is not used" in w for w in doc["warnings"])  # a warning, as before
 
 
-@pytest.mark.parametrize("schema_of,header,column", [
-    ("shear", "Conditon", "condition"), ("shear", "tset_id", "test_id"), ("shear", "Materials", "material"),
-    ("shear", "Radious [mm]", "R"), ("triaxial", "grup", "group"), ("retention", "Brnach", "branch"),
-    ("retention", "weigth", "weight"), ("bridge", "Radios", "R"),
-])
+@pytest.mark.parametrize(
+    "schema_of,header,column",
+    [
+        ("shear", "Conditon", "condition"),
+        ("shear", "tset_id", "test_id"),
+        ("shear", "Materials", "material"),
+        ("shear", "Radious [mm]", "R"),
+        ("triaxial", "grup", "group"),
+        ("retention", "Brnach", "branch"),
+        ("retention", "weigth", "weight"),
+        ("bridge", "Radios", "R"),
+    ],
+)
 def test_near_miss_of_a_decisive_column_is_an_error_in_every_schema(tmp_path, schema_of, header, column):
     import importlib
 
@@ -279,8 +348,10 @@ def test_near_miss_of_a_decisive_column_is_an_error_in_every_schema(tmp_path, sc
     assert not t.problems and f"column '{header}' ignored, as asked" in t.notes
 
 
-@pytest.mark.parametrize("schema_of,header", [("triaxial", "Stage"), ("shear", "soils"), ("shear", "Remark"),
-                                              ("shear", "test"), ("retention", "weights_old_2")])
+@pytest.mark.parametrize(
+    "schema_of,header",
+    [("triaxial", "Stage"), ("shear", "soils"), ("shear", "Remark"), ("shear", "test"), ("retention", "weights_old_2")],
+)
 def test_far_or_short_names_stay_warnings(tmp_path, schema_of, header):
     """'Stage' is one edit from the alias 'state' (of condition), but short aliases are too near everyday words."""
     import importlib
@@ -322,8 +393,14 @@ def test_all_problems_in_one_round(tmp_path):
     assert res.exit_code == 1
     errors = json.loads(res.stdout)["errors"]
     assert len(errors) == 60
-    assert errors[0] == {"file": str(tmp_path / "t.csv"), "sheet": None, "line": 2, "column": "sigma_N [kPa]",
-                         "value": "x0", "message": "'x0' is not a number"}
+    assert errors[0] == {
+        "file": str(tmp_path / "t.csv"),
+        "sheet": None,
+        "line": 2,
+        "column": "sigma_N [kPa]",
+        "value": "x0",
+        "message": "'x0' is not a number",
+    }
 
 
 def test_missing_column_and_bad_cells_reported_together(tmp_path):
@@ -336,16 +413,21 @@ def test_missing_column_and_bad_cells_reported_together(tmp_path):
 
 
 # --- options checked like columns --------------------------------------------------------------------
-@pytest.mark.parametrize("args,message", [
-    (["shear", "--sample", "--box-area", "-36"], "box area must be > 0"),
-    (["shear", "--sample", "--gamma-w", "0"], "unit weight of water must be > 0"),
-    (["shear", "--sample", "--radius", "0"], "particle radius must be > 0"),
-    (["skempton-b", "--sr", "1.5"], "degree of saturation must lie between 0 and 1"),
-    (["rumpf", "--shape-factor", "1", "--void-ratio", "0.5", "--sr", "2", "--diameter", "0.2"],
-     "degree of saturation must lie between 0 and 1"),
-    (["prism", "--break-tension", "-5", "--friction-angle", "30"], "break tension of a sand prism must be > 0"),
-    (["shear", "--sample", "--box-area", "36 kPa"], "not a unit of area"),
-])
+@pytest.mark.parametrize(
+    "args,message",
+    [
+        (["shear", "--sample", "--box-area", "-36"], "box area must be > 0"),
+        (["shear", "--sample", "--gamma-w", "0"], "unit weight of water must be > 0"),
+        (["shear", "--sample", "--radius", "0"], "particle radius must be > 0"),
+        (["skempton-b", "--sr", "1.5"], "degree of saturation must lie between 0 and 1"),
+        (
+            ["rumpf", "--shape-factor", "1", "--void-ratio", "0.5", "--sr", "2", "--diameter", "0.2"],
+            "degree of saturation must lie between 0 and 1",
+        ),
+        (["prism", "--break-tension", "-5", "--friction-angle", "30"], "break tension of a sand prism must be > 0"),
+        (["shear", "--sample", "--box-area", "36 kPa"], "not a unit of area"),
+    ],
+)
 def test_options_are_checked_like_columns(args, message, tmp_path):
     res = runner.invoke(app, [*args, "--out", str(tmp_path / "o")])
     assert res.exit_code == 1 and message in res.stderr, res.output
@@ -354,8 +436,10 @@ def test_options_are_checked_like_columns(args, message, tmp_path):
 
 # --- physics limits and plausibility -----------------------------------------------------------------
 def test_hanging_column_above_cavitation_is_an_error(tmp_path):
-    text = ("test_id,condition,sigma_N [kPa],tau_max [kPa],z1 [m],S_R,R [mm]\n"
-            "d1,dry,1,1.0452,,,\nd2,dry,2,1.7598,,,\nd3,dry,3,2.4744,,,\nw1,wet,1,1.5,50,0.3,1\nw2,wet,1,1.5,9,0.3,1\n")
+    text = (
+        "test_id,condition,sigma_N [kPa],tau_max [kPa],z1 [m],S_R,R [mm]\n"
+        "d1,dry,1,1.0452,,,\nd2,dry,2,1.7598,,,\nd3,dry,3,2.4744,,,\nw1,wet,1,1.5,50,0.3,1\nw2,wet,1,1.5,9,0.3,1\n"
+    )
     (tmp_path / "t.csv").write_text(text)
     with pytest.raises(InputError) as info:
         capred.run_shear(tmp_path / "t.csv")
@@ -385,8 +469,9 @@ def test_area_corrections_by_hand():
 
 
 def test_curves_give_the_peaks_residual_and_dilatancy():
-    doc = capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(
-        bootstrap=0, curves=capred.sample_path("shear-curves"))).to_json()
+    doc = capred.run_shear(
+        capred.sample_path("shear"), capred.ShearOptions(bootstrap=0, curves=capred.sample_path("shear-curves"))
+    ).to_json()
     plain = capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(bootstrap=0)).to_json()
     by_id = {t["test_id"]: t for t in plain["tests"]}
     steel = [t for t in doc["tests"] if t["material"] == "steel_2mm"]
@@ -402,21 +487,36 @@ def test_curves_give_the_peaks_residual_and_dilatancy():
 
 
 def test_curves_replace_a_missing_tau_and_warn_on_a_difference(tmp_path):
-    (tmp_path / "t.csv").write_text("test_id,condition,sigma_N [kPa],box_area [cm^2],tau_max [kPa]\n"
-                                    "a,dry,1,36,\nb,dry,2,36,1.7598\nc,dry,3,36,2.6\n")
+    (tmp_path / "t.csv").write_text(
+        "test_id,condition,sigma_N [kPa],box_area [cm^2],tau_max [kPa]\n"
+        "a,dry,1,36,\nb,dry,2,36,1.7598\nc,dry,3,36,2.6\n"
+    )
     lines = ["test_id,displacement [mm],F [N]"]
     for tid, tau in (("a", 1.0452), ("b", 1.7598), ("c", 2.4744)):
         for d, s in ((0, 0), (1, 0.8), (2, 1.0), (3, 0.9)):
             lines.append(f"{tid},{d},{tau * 1e3 * 36e-4 * s!r}")
     (tmp_path / "c.csv").write_text("\n".join(lines) + "\n")
-    res = runner.invoke(app, ["shear", str(tmp_path / "t.csv"), "--curves", str(tmp_path / "c.csv"), "--json",
-                              "--bootstrap", "0"])
+    res = runner.invoke(
+        app, ["shear", str(tmp_path / "t.csv"), "--curves", str(tmp_path / "c.csv"), "--json", "--bootstrap", "0"]
+    )
     assert res.exit_code == 0, res.output
     doc = json.loads(res.stdout)
     assert doc["materials"]["(all)"]["tan_phi"] == pytest.approx(0.7146, rel=1e-9)
     assert any("test 'c'" in w and "differs by more than 1 %" in w for w in doc["warnings"])
-    res = runner.invoke(app, ["shear", str(tmp_path / "t.csv"), "--curves", str(tmp_path / "c.csv"), "--json",
-                              "--bootstrap", "0", "--area-correction", "square"])
+    res = runner.invoke(
+        app,
+        [
+            "shear",
+            str(tmp_path / "t.csv"),
+            "--curves",
+            str(tmp_path / "c.csv"),
+            "--json",
+            "--bootstrap",
+            "0",
+            "--area-correction",
+            "square",
+        ],
+    )
     doc2 = json.loads(res.stdout)
     # at the peak (2 mm of 60 mm) the square area is 60 x 58 mm^2: tau higher by 60/58
     assert doc2["tests"][1]["tau_max_kPa"] == pytest.approx(1.7598 * 60 / 58, rel=1e-9)
@@ -452,9 +552,11 @@ def test_triaxial_force_without_diameter_is_an_error(tmp_path):
 
 # --- sample state ------------------------------------------------------------------------------------
 def test_void_volume_from_void_ratio_or_dry_density(tmp_path):
-    base = ("test_id,condition,sigma_N [kPa],tau_max [kPa],suction [kPa],z2 [cm^3],R [mm],box_area [cm^2],"
-            "height [mm],{extra}\nd1,dry,1,1.0452,,,1,36,20,{v}\nd2,dry,2,1.7598,,,1,36,20,{v}\n"
-            "d3,dry,3,2.4744,,,1,36,20,{v}\nw1,wet,1,1.5,2,10,1,36,20,{v}\n")
+    base = (
+        "test_id,condition,sigma_N [kPa],tau_max [kPa],suction [kPa],z2 [cm^3],R [mm],box_area [cm^2],"
+        "height [mm],{extra}\nd1,dry,1,1.0452,,,1,36,20,{v}\nd2,dry,2,1.7598,,,1,36,20,{v}\n"
+        "d3,dry,3,2.4744,,,1,36,20,{v}\nw1,wet,1,1.5,2,10,1,36,20,{v}\n"
+    )
     (tmp_path / "e.csv").write_text(base.format(extra="e", v="0.6"))
     w = capred.run_shear(tmp_path / "e.csv", capred.ShearOptions(bootstrap=0)).to_json()["tests"][3]
     v_v = 36 * 2.0 * 0.6 / 1.6  # cm^3 = A h e / (1 + e) = 27 cm^3
@@ -466,18 +568,41 @@ def test_void_volume_from_void_ratio_or_dry_density(tmp_path):
 
 
 # --- fuzzing the new paths ---------------------------------------------------------------------------
-CELL = st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.integers(-10**9, 10**9), st.none(),
-                 st.text(max_size=6), st.sampled_from(["1.000", "0,5", "kPa", "(g)", "-", "[cm]", "1_0"]))
-HEAD = st.sampled_from(["test_id", "condition", "sigma_N", "tau_max [kPa]", "z1 [cm]", "S_R", "Materiaal", "",
-                        "suction [1/0]", "R [um]", "tau [kPa # x]", "Key: value"])
+CELL = st.one_of(
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.integers(-(10**9), 10**9),
+    st.none(),
+    st.text(max_size=6),
+    st.sampled_from(["1.000", "0,5", "kPa", "(g)", "-", "[cm]", "1_0"]),
+)
+HEAD = st.sampled_from(
+    [
+        "test_id",
+        "condition",
+        "sigma_N",
+        "tau_max [kPa]",
+        "z1 [cm]",
+        "S_R",
+        "Materiaal",
+        "",
+        "suction [1/0]",
+        "R [um]",
+        "tau [kPa # x]",
+        "Key: value",
+    ]
+)
 SETTINGS = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 
 
 @pytest.mark.slow
 @SETTINGS
-@given(meta=st.lists(st.lists(CELL, max_size=3), max_size=3), header=st.lists(HEAD, min_size=1, max_size=6),
-       units=st.booleans(), rows=st.lists(st.lists(CELL, max_size=7), max_size=5),
-       kind=st.sampled_from(["xlsx", "ods", "csv"]))
+@given(
+    meta=st.lists(st.lists(CELL, max_size=3), max_size=3),
+    header=st.lists(HEAD, min_size=1, max_size=6),
+    units=st.booleans(),
+    rows=st.lists(st.lists(CELL, max_size=7), max_size=5),
+    kind=st.sampled_from(["xlsx", "ods", "csv"]),
+)
 def test_fuzzed_workbooks_read_or_explain(tmp_path, meta, header, units, rows, kind):
     grid = [*meta, header] + ([["kPa", "(g)", "-", "cm", "%", "um"][: len(header)]] if units else []) + rows
     if kind == "xlsx":
@@ -502,8 +627,15 @@ def test_fuzzed_workbooks_read_or_explain(tmp_path, meta, header, units, rows, k
     else:
         buf = io.StringIO()
         for r in grid:
-            buf.write(",".join('"' + str(c).replace('"', '""') + '"' if isinstance(c, str) and ("," in c or "\n" in c)
-                               else ("" if c is None else str(c)) for c in r) + "\n")
+            buf.write(
+                ",".join(
+                    '"' + str(c).replace('"', '""') + '"'
+                    if isinstance(c, str) and ("," in c or "\n" in c)
+                    else ("" if c is None else str(c))
+                    for c in r
+                )
+                + "\n"
+            )
         path = tmp_path / "f.csv"
         path.write_text(buf.getvalue())
     for run in (capred.run_shear, capred.run_triaxial_bounds, capred.run_retention):
@@ -527,10 +659,10 @@ def test_random_bytes_as_a_workbook_read_or_explain(tmp_path, data):
 @SETTINGS
 @given(unit=st.text(max_size=80))
 def test_fuzzed_unit_strings_never_crash(unit):
+    import math
+
     from capred.errors import UnitError
     from capred.units import conversion
-
-    import math
 
     for kind in ("pressure", "length", "dimensionless"):
         try:

@@ -1,6 +1,7 @@
 """Batch manifests (issue 19, item 4): every malformed manifest is one clear error naming the file, the line and
 the column, never a traceback; a manifest with no runs is an error; a Windows-1252 manifest is read as data
 files are."""
+
 import shutil
 
 import pytest
@@ -48,17 +49,20 @@ def test_read_manifest_latin1_is_read_like_a_data_file(tmp_path):
     assert read_manifest(path) == [(2, "shear", "résumé.csv", "--no-plots")]
 
 
-@pytest.mark.parametrize("text,line,column,words", [
-    ("run = 5\n", 1, "run", "not a number"),
-    ('title = "season"\nrun = "shear"\n', 2, "run", "not a string"),
-    ('[run]\ncommand = "shear"\ninput = "a.csv"\n', 1, "run", "[[run]]"),
-    ('[[run]]\ncommand = "shear"\n', 1, "input", "needs 'input'"),
-    ('[[run]]\ncommand = "shear"\ninput = 5\n', 3, "input", "non-empty string"),
-    ('[[run]]\ncommand = "shear"\ninput = "a.csv"\noptions = 3\n', 4, "options", "string or a list"),
-    ('[[run]]\ncommand = "shear"\ninput = "a.csv"\noption = "--no-plots"\n', 1, "option", "unknown key"),
-    ('[[run]]\ncommand = "shear"\ninput = "a.csv"\n[[run]]\ncommand = "shear"\n', 4, "input", "number 2"),
-    ('[[run]\n', 1, None, "not valid TOML"),
-])
+@pytest.mark.parametrize(
+    "text,line,column,words",
+    [
+        ("run = 5\n", 1, "run", "not a number"),
+        ('title = "season"\nrun = "shear"\n', 2, "run", "not a string"),
+        ('[run]\ncommand = "shear"\ninput = "a.csv"\n', 1, "run", "[[run]]"),
+        ('[[run]]\ncommand = "shear"\n', 1, "input", "needs 'input'"),
+        ('[[run]]\ncommand = "shear"\ninput = 5\n', 3, "input", "non-empty string"),
+        ('[[run]]\ncommand = "shear"\ninput = "a.csv"\noptions = 3\n', 4, "options", "string or a list"),
+        ('[[run]]\ncommand = "shear"\ninput = "a.csv"\noption = "--no-plots"\n', 1, "option", "unknown key"),
+        ('[[run]]\ncommand = "shear"\ninput = "a.csv"\n[[run]]\ncommand = "shear"\n', 4, "input", "number 2"),
+        ("[[run]\n", 1, None, "not valid TOML"),
+    ],
+)
 def test_read_manifest_toml_wrong_types_name_line_and_column(tmp_path, text, line, column, words):
     path = tmp_path / "m.toml"
     path.write_text(text)
@@ -66,8 +70,15 @@ def test_read_manifest_toml_wrong_types_name_line_and_column(tmp_path, text, lin
     assert (p.line, p.column) == (line, column) and words in p.message
 
 
-@pytest.mark.parametrize("name,text", [("m.csv", "command,input,options\n"), ("m.csv", "command,input,options\n# x\n"),
-                                       ("m.toml", "# nothing yet\n"), ("m.toml", "")])
+@pytest.mark.parametrize(
+    "name,text",
+    [
+        ("m.csv", "command,input,options\n"),
+        ("m.csv", "command,input,options\n# x\n"),
+        ("m.toml", "# nothing yet\n"),
+        ("m.toml", ""),
+    ],
+)
 def test_read_manifest_without_runs_is_an_error(tmp_path, name, text):
     (tmp_path / name).write_text(text)
     (p,) = _problems(tmp_path / name)
@@ -76,16 +87,21 @@ def test_read_manifest_without_runs_is_an_error(tmp_path, name, text):
 
 def test_read_manifest_toml_lines_are_those_of_the_runs(tmp_path):
     path = tmp_path / "m.toml"
-    path.write_text('# season\n\n[[run]]\ncommand = "shear"\ninput = "a.csv"\n\n[[run]]\ncommand = "retention"\n'
-                    'input = "r.csv"\noptions = ["--model", "vg", 2]\n')
+    path.write_text(
+        '# season\n\n[[run]]\ncommand = "shear"\ninput = "a.csv"\n\n[[run]]\ncommand = "retention"\n'
+        'input = "r.csv"\noptions = ["--model", "vg", 2]\n'
+    )
     assert read_manifest(path) == [(3, "shear", "a.csv", ""), (7, "retention", "r.csv", ["--model", "vg", "2"])]
 
 
-@pytest.mark.parametrize("name,text,expect", [
-    ("m.toml", "run = 5\n", "m.toml, line 1, column 'run'"),
-    ("m.csv", "command,input,options\nshear\n", "m.csv, line 2, column 'input'"),
-    ("m.csv", "command,input,options\n", "no runs"),
-])
+@pytest.mark.parametrize(
+    "name,text,expect",
+    [
+        ("m.toml", "run = 5\n", "m.toml, line 1, column 'run'"),
+        ("m.csv", "command,input,options\nshear\n", "m.csv, line 2, column 'input'"),
+        ("m.csv", "command,input,options\n", "no runs"),
+    ],
+)
 def test_batch_bad_manifest_is_one_message(tmp_path, name, text, expect):
     (tmp_path / name).write_text(text)
     res = runner.invoke(app, ["batch", str(tmp_path / name), "--out", str(tmp_path / "o")])
@@ -95,7 +111,8 @@ def test_batch_bad_manifest_is_one_message(tmp_path, name, text, expect):
 
 def test_batch_latin1_manifest_runs(tmp_path):
     shutil.copy(capred.sample_path("retention"), tmp_path / "rétention.csv")
-    (tmp_path / "m.csv").write_bytes("command,input,options\nretention,rétention.csv,--model vg --no-plots\n"
-                                     .encode("cp1252"))
+    (tmp_path / "m.csv").write_bytes(
+        "command,input,options\nretention,rétention.csv,--model vg --no-plots\n".encode("cp1252")
+    )
     res = runner.invoke(app, ["batch", str(tmp_path / "m.csv"), "--out", str(tmp_path / "o")])
     assert res.exit_code == 0, res.output

@@ -13,6 +13,7 @@ degree of saturation but the glossary's ``S_R`` (``sr``, ``Sr``, ``S_r``, also i
 capred/nomenclature.py: ``contact_angle``, ``filling_angle``, ``lode_angle``, ``water_content``,
 ``vg_alpha``, ``bc_lambda``, ``S_R``, ``kappa_elastic``, ``ncl_slope``, ``url_slope``, ``vanapalli_kappa``.
 """
+
 import dataclasses
 import importlib
 import inspect
@@ -102,8 +103,22 @@ def test_the_checker_flags_what_it_should():
     def old(theta, S_r, sr_max, kappa, alpha, lam, theta_deg):
         """Every name here is ambiguous."""
 
-    def new(contact_angle_rad, S_R, S_R_max, kappa_elastic, vg_alpha, bc_lambda, contact_angle_deg, lode_angle,
-            phi_deg, tan_phi, rho_w, kappa_W, S_res, vanapalli_kappa):
+    def new(
+        contact_angle_rad,
+        S_R,
+        S_R_max,
+        kappa_elastic,
+        vg_alpha,
+        bc_lambda,
+        contact_angle_deg,
+        lode_angle,
+        phi_deg,
+        tan_phi,
+        rho_w,
+        kappa_W,
+        S_res,
+        vanapalli_kappa,
+    ):
         """None is: glossary names and names with their unit or subscript."""
 
     assert [n for n in public_names(old) if is_ambiguous(n)] == list(inspect.signature(old).parameters)
@@ -120,19 +135,22 @@ def test_the_walk_covers_the_three_packages_and_the_api():
 
 def test_no_ambiguous_name_in_public_signatures():
     left = sorted(violations() - set(ALLOWED))
-    assert not left, ("ambiguous names (use the glossary of capred/nomenclature.py, or a name with its unit): "
-                      + ", ".join(f"{q}({n})" for q, n in left))
+    assert not left, (
+        "ambiguous names (use the glossary of capred/nomenclature.py, or a name with its unit): "
+        + ", ".join(f"{q}({n})" for q, n in left)
+    )
 
 
 def test_allowed_entries_exist_and_are_glossary_names():
     # an allow-list entry that no longer matches anything is stale; each allowed name is a glossary key
     found = violations()
-    for (q, n) in ALLOWED:
+    for q, n in ALLOWED:
         assert (q, n) in found, f"stale ALLOWED entry {q}({n})"
         assert n in QUANTITIES
 
 
 # --- the old keywords keep working for one release, and the output keys do not change ---------------------------
+
 
 def _quiet_run(f, **kw):
     with warnings.catch_warnings(record=True) as caught:

@@ -1,5 +1,6 @@
 """The API as a notebook or a lab script uses it: short repr, _repr_html_, plot(), Python warnings, dir(capred),
 callable retention fits, models="all", a missing file as FileNotFoundError."""
+
 import warnings
 
 import numpy as np

@@ -1,4 +1,5 @@
 """The one path of every command (issue 9): contract, transactional outputs, digits, console, API units."""
+
 import errno
 import json
 import re
@@ -11,11 +12,11 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
+from conftest import ROOT
 from typer.testing import CliRunner
 
 import capred
 from capred.cli import app
-from conftest import ROOT
 
 runner = CliRunner()
 SHARED_KEYS = {"command", "capred_version", "inputs", "options", "warnings", "notes"}
@@ -23,20 +24,34 @@ SHARED_KEYS = {"command", "capred_version", "inputs", "options", "warnings", "no
 # every command, its CLI arguments and the same run through the API
 COMMANDS = {
     "shear": (["shear", "--sample", "--no-plots"], lambda: capred.run_shear(capred.sample_path("shear"))),
-    "triaxial-bounds": (["triaxial-bounds", "--sample", "--no-plots"],
-                        lambda: capred.run_triaxial_bounds(capred.sample_path("triaxial-bounds"))),
-    "retention": (["retention", "--sample", "--no-plots"], lambda: capred.run_retention(capred.sample_path("retention"))),
+    "triaxial-bounds": (
+        ["triaxial-bounds", "--sample", "--no-plots"],
+        lambda: capred.run_triaxial_bounds(capred.sample_path("triaxial-bounds")),
+    ),
+    "retention": (
+        ["retention", "--sample", "--no-plots"],
+        lambda: capred.run_retention(capred.sample_path("retention")),
+    ),
     "prism": (["prism", "--sample"], lambda: capred.run_prism(capred.sample_path("prism"))),
-    "skempton-b": (["skempton-b", "--sample", "--no-plots"], lambda: capred.run_skempton_b(capred.sample_path("skempton-b"))),
+    "skempton-b": (
+        ["skempton-b", "--sample", "--no-plots"],
+        lambda: capred.run_skempton_b(capred.sample_path("skempton-b")),
+    ),
     "rumpf": (["rumpf", "--sample"], lambda: capred.run_rumpf(capred.sample_path("rumpf"))),
     "bridge solve": (["bridge", "solve", "--sample"], lambda: capred.solve_bridges(capred.sample_path("bridge-solve"))),
-    "bridge compare": (["bridge", "compare", "--sample", "--no-plots"],
-                       lambda: capred.compare_measured(capred.sample_path("bridge-compare"))),
+    "bridge compare": (
+        ["bridge", "compare", "--sample", "--no-plots"],
+        lambda: capred.compare_measured(capred.sample_path("bridge-compare")),
+    ),
     "bridge curve": (["bridge", "curve", "--points", "50", "--no-plots"], lambda: capred.bridge_curve(points=50)),
-    "bridge rupture": (["bridge", "rupture", "--sample", "--no-plots"],
-                       lambda: capred.rupture_distances(capred.sample_path("bridge-rupture"))),
-    "bridge yade-files": (["bridge", "yade-files", "--ratios", "1,2", "--distances", "4", "--suctions", "5"],
-                          lambda: capred.run("bridge yade-files", ratios=(1, 2), distances=4, suctions=5)),
+    "bridge rupture": (
+        ["bridge", "rupture", "--sample", "--no-plots"],
+        lambda: capred.rupture_distances(capred.sample_path("bridge-rupture")),
+    ),
+    "bridge yade-files": (
+        ["bridge", "yade-files", "--ratios", "1,2", "--distances", "4", "--suctions", "5"],
+        lambda: capred.run("bridge yade-files", ratios=(1, 2), distances=4, suctions=5),
+    ),
 }
 
 
@@ -110,8 +125,13 @@ def test_rerun_replaces_the_folder_whole(tmp_path):
     assert any(p.suffix == ".png" for p in out.iterdir())
     assert runner.invoke(app, ["shear", "--sample", "--no-plots", "--out", str(out)]).exit_code == 0
     # no stale figures of the earlier run, no hidden work folders left beside it
-    assert sorted(p.name for p in out.iterdir()) == ["provenance.json", "report.html", "results.csv", "summary.csv",
-                                                     "summary.json"]
+    assert sorted(p.name for p in out.iterdir()) == [
+        "provenance.json",
+        "report.html",
+        "results.csv",
+        "summary.csv",
+        "summary.json",
+    ]
     assert [p.name for p in tmp_path.iterdir()] == ["o"]
 
 
@@ -177,8 +197,11 @@ def test_killed_reruns_never_leave_a_mixed_folder(tmp_path):
     subprocess.run(_capred("shear", "--sample", "--out", str(out)), check=True, capture_output=True)
     first = json.loads((out / "provenance.json").read_text())["options"]["gamma_w"]
     for delay in (0.6, 0.9, 1.2, 1.5, 1.8):
-        proc = subprocess.Popen(_capred("shear", "--sample", "--gamma-w", "10", "--out", str(out)),
-                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        proc = subprocess.Popen(
+            _capred("shear", "--sample", "--gamma-w", "10", "--out", str(out)),
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
         time.sleep(delay)
         proc.send_signal(signal.SIGKILL)
         proc.wait()
@@ -194,8 +217,14 @@ def test_killed_reruns_never_leave_a_mixed_folder(tmp_path):
 @pytest.mark.slow
 def test_concurrent_runs_into_one_folder_do_not_mix(tmp_path):
     out = tmp_path / "o"
-    procs = [subprocess.Popen(_capred("shear", "--sample", "--gamma-w", g, "--out", str(out)),
-                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE) for g in ("9.81", "10")]
+    procs = [
+        subprocess.Popen(
+            _capred("shear", "--sample", "--gamma-w", g, "--out", str(out)),
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+        )
+        for g in ("9.81", "10")
+    ]
     for p in procs:
         assert p.wait() == 0, p.stderr.read()
     assert _complete(out)
@@ -331,14 +360,17 @@ def test_api_options_take_pint_quantities():
     assert opt.gamma_w == pytest.approx(10_000.0) and opt.radius == pytest.approx(156e-6)
 
 
-@pytest.mark.parametrize("kw,message", [
-    ({"gamma_w": "10 kPa"}, "not a unit of unit weight"),
-    ({"gamma_w": "ten"}, "not a number"),
-    ({"gamma_w": [1, 2]}, "expected a number"),
-    ({"gamma_w": -1.0}, "must be >"),
-    ({"radius": "0 mm"}, "particle radius must be >"),
-    ({"models": ("own3",)}, "unknown model"),
-])
+@pytest.mark.parametrize(
+    "kw,message",
+    [
+        ({"gamma_w": "10 kPa"}, "not a unit of unit weight"),
+        ({"gamma_w": "ten"}, "not a number"),
+        ({"gamma_w": [1, 2]}, "expected a number"),
+        ({"gamma_w": -1.0}, "must be >"),
+        ({"radius": "0 mm"}, "particle radius must be >"),
+        ({"models": ("own3",)}, "unknown model"),
+    ],
+)
 def test_api_option_errors_are_option_errors(kw, message):
     with pytest.raises(capred.OptionError, match=message):
         capred.ShearOptions(**kw)
@@ -370,7 +402,17 @@ def test_new_model_is_one_registry_entry():
 
 
 def test_every_command_has_help_with_an_example():
-    for args in (["shear"], ["triaxial-bounds"], ["retention"], ["prism"], ["skempton-b"], ["rumpf"],
-                 ["bridge", "solve"], ["bridge", "compare"], ["bridge", "curve"], ["batch"]):
+    for args in (
+        ["shear"],
+        ["triaxial-bounds"],
+        ["retention"],
+        ["prism"],
+        ["skempton-b"],
+        ["rumpf"],
+        ["bridge", "solve"],
+        ["bridge", "compare"],
+        ["bridge", "curve"],
+        ["batch"],
+    ):
         res = runner.invoke(app, [*args, "--help"])
         assert res.exit_code == 0 and "Example: capred" in res.stdout

@@ -1,5 +1,6 @@
 """Paper-ready output (issue 10): vector figures and single panels, honest curves, legends off the data,
 literal user text, report.html, spreadsheet-friendly tables, the batch season table."""
+
 import re
 import shutil
 from html.parser import HTMLParser
@@ -30,8 +31,12 @@ def test_vector_sheets_and_single_panels(tmp_path):
     assert (out / "report_steel_2mm.pdf").read_bytes().startswith(b"%PDF")
     ElementTree.parse(out / "report_steel_2mm.svg")  # well-formed SVG
     panels = sorted(p.name for p in (out / "figures").glob("report_steel_2mm_*.svg"))
-    assert panels == ["report_steel_2mm_dry_envelope.svg", "report_steel_2mm_measured_vs_predicted.svg",
-                      "report_steel_2mm_residuals.svg", "report_steel_2mm_strength_vs_saturation.svg"]
+    assert panels == [
+        "report_steel_2mm_dry_envelope.svg",
+        "report_steel_2mm_measured_vs_predicted.svg",
+        "report_steel_2mm_residuals.svg",
+        "report_steel_2mm_strength_vs_saturation.svg",
+    ]
     width = ElementTree.parse(out / "figures" / panels[0]).getroot().get("width")
     # one journal column, 85 mm = 240.9 pt, legend included
     assert float(width.rstrip("pt")) == pytest.approx(85 / 25.4 * 72, abs=0.5)
@@ -74,8 +79,9 @@ def test_legends_never_cover_data(shear_result, make):
 
 
 def test_user_text_is_drawn_literally(tmp_path):
-    text = capred.sample_path("shear").read_text().replace("steel_2mm", r"$\frac{a}{$").replace(
-        "sand_208-417um", "[/x]")
+    text = (
+        capred.sample_path("shear").read_text().replace("steel_2mm", r"$\frac{a}{$").replace("sand_208-417um", "[/x]")
+    )
     (tmp_path / "t.csv").write_text(text)
     res = runner.invoke(app, ["shear", str(tmp_path / "t.csv"), "--bootstrap", "0", "--out", str(tmp_path / "o")])
     assert res.exit_code == 0, res.output
@@ -88,15 +94,22 @@ def test_user_text_is_drawn_literally(tmp_path):
 
 
 def _model_lines(ax, labels):
-    return [ln for ln in ax.lines if ln.get_linestyle() not in ("None", "none", " ", "")
-            and len(ln.get_xdata()) > 2 and ln.get_color() not in ("k", "0.6")]
+    return [
+        ln
+        for ln in ax.lines
+        if ln.get_linestyle() not in ("None", "none", " ", "")
+        and len(ln.get_xdata()) > 2
+        and ln.get_color() not in ("k", "0.6")
+    ]
 
 
 def test_no_connecting_lines_without_a_retention_relation(tmp_path):
     # three wet tests at two suctions: no retention relation can be fitted, so markers only
-    text = ("test_id,condition,sigma_N [kPa],tau_max [kPa],suction [kPa],S_R,R [mm]\n"
-            "d1,dry,1,1.0452,,,\nd2,dry,2,1.7598,,,\nd3,dry,3,2.4744,,,\n"
-            "w1,wet,1,1.5,2,0.3,1\nw2,wet,2,2.2,2,0.3,1\nw3,wet,1,1.3,4,0.1,1\n")
+    text = (
+        "test_id,condition,sigma_N [kPa],tau_max [kPa],suction [kPa],S_R,R [mm]\n"
+        "d1,dry,1,1.0452,,,\nd2,dry,2,1.7598,,,\nd3,dry,3,2.4744,,,\n"
+        "w1,wet,1,1.5,2,0.3,1\nw2,wet,2,2.2,2,0.3,1\nw3,wet,1,1.3,4,0.1,1\n"
+    )
     (tmp_path / "t.csv").write_text(text)
     result = capred.run_shear(tmp_path / "t.csv", capred.ShearOptions(bootstrap=0))
     assert result.retention_relation("(all)") is None
@@ -114,8 +127,9 @@ def test_no_connecting_lines_without_a_retention_relation(tmp_path):
 
 
 def test_zero_suction_readings_are_in_a_marked_strip(tmp_path):
-    (tmp_path / "r.csv").write_text("suction [kPa],S_R\n0,1\n0,0.99\n1,0.98\n2,0.9\n4,0.6\n8,0.3\n16,0.15\n"
-                                    "32,0.1\n64,0.08\n")
+    (tmp_path / "r.csv").write_text(
+        "suction [kPa],S_R\n0,1\n0,0.99\n1,0.98\n2,0.9\n4,0.6\n8,0.3\n16,0.15\n32,0.1\n64,0.08\n"
+    )
     result = capred.run_retention(tmp_path / "r.csv")
     sheet = result.figures()["retention"]
     fig = single(sheet, sheet.panels[0])
@@ -140,9 +154,15 @@ class _Links(HTMLParser):
                 self.refs.append(v)
 
 
-@pytest.mark.parametrize("args", [["shear", "--sample", "--bootstrap", "0", "--models", "bishop,vanapalli", "--s-res", "0"],
-                                  ["triaxial-bounds", "--sample"],
-                                  ["retention", "--sample"], ["bridge", "compare", "--sample"]])
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["shear", "--sample", "--bootstrap", "0", "--models", "bishop,vanapalli", "--s-res", "0"],
+        ["triaxial-bounds", "--sample"],
+        ["retention", "--sample"],
+        ["bridge", "compare", "--sample"],
+    ],
+)
 def test_report_html_is_self_contained(tmp_path, args):
     res = runner.invoke(app, [*args, "--out", str(tmp_path / "o")])
     assert res.exit_code == 0, res.output
@@ -150,8 +170,9 @@ def test_report_html_is_self_contained(tmp_path, args):
     parser = _Links()
     parser.feed(html)
     # no network, no other file: only in-document references (#id) and embedded images (data:) are allowed
-    assert all(r.startswith(("#", "data:image/")) for r in parser.refs), \
-        [r[:40] for r in parser.refs if not r.startswith(("#", "data:image/"))][:3]
+    assert all(r.startswith(("#", "data:image/")) for r in parser.refs), [
+        r[:40] for r in parser.refs if not r.startswith(("#", "data:image/"))
+    ][:3]
     assert ("svg" in parser.tags or "img" in parser.tags) and "table" in parser.tags
     assert "link" not in parser.tags and "script" not in parser.tags
     assert "What was run" in html and "Warnings and flags" in html and "Methods" in html
@@ -161,14 +182,28 @@ def test_report_html_is_self_contained(tmp_path, args):
 
 
 def test_report_can_be_skipped(tmp_path):
-    res = runner.invoke(app, ["shear", "--sample", "--bootstrap", "0", "--no-plots", "--no-html", "--out",
-                              str(tmp_path / "o")])
+    res = runner.invoke(
+        app, ["shear", "--sample", "--bootstrap", "0", "--no-plots", "--no-html", "--out", str(tmp_path / "o")]
+    )
     assert res.exit_code == 0 and not (tmp_path / "o" / "report.html").exists()
 
 
 def test_excel_eu_csv_and_xlsx(tmp_path):
-    res = runner.invoke(app, ["shear", "--sample", "--bootstrap", "0", "--no-plots", "--csv-dialect", "excel-eu",
-                              "--xlsx", "--out", str(tmp_path / "eu")])
+    res = runner.invoke(
+        app,
+        [
+            "shear",
+            "--sample",
+            "--bootstrap",
+            "0",
+            "--no-plots",
+            "--csv-dialect",
+            "excel-eu",
+            "--xlsx",
+            "--out",
+            str(tmp_path / "eu"),
+        ],
+    )
     assert res.exit_code == 0, res.output
     runner.invoke(app, ["shear", "--sample", "--bootstrap", "0", "--no-plots", "--out", str(tmp_path / "std")])
     raw = (tmp_path / "eu" / "results.csv").read_bytes()
@@ -196,8 +231,9 @@ def test_results_csv_starts_with_the_raw_inputs():
 
 
 def test_no_python_repr_in_cells(tmp_path):
-    res = runner.invoke(app, ["triaxial-bounds", str(capred.sample_path("triaxial-bounds")), "--no-plots",
-                              "--out", str(tmp_path / "o")])
+    res = runner.invoke(
+        app, ["triaxial-bounds", str(capred.sample_path("triaxial-bounds")), "--no-plots", "--out", str(tmp_path / "o")]
+    )
     assert res.exit_code == 0
     for f in (tmp_path / "o").glob("*.csv"):
         assert "['" not in f.read_text() and "[]" not in f.read_text()
@@ -208,13 +244,22 @@ def test_batch_season_table(tmp_path):
     runs.mkdir()
     for k in range(2):
         shutil.copy(capred.sample_path("shear"), runs / f"s{k}.csv")
-    res = runner.invoke(app, ["shear", str(runs / "*.csv"), "--no-plots", "--bootstrap", "0", "--out",
-                              str(tmp_path / "o")])
+    res = runner.invoke(
+        app, ["shear", str(runs / "*.csv"), "--no-plots", "--bootstrap", "0", "--out", str(tmp_path / "o")]
+    )
     assert res.exit_code == 0, res.output
     season = pd.read_csv(tmp_path / "o" / "season.csv")
     assert len(season) == 4  # 2 files x 2 materials
-    assert {"c [kPa]", "phi [deg]", "c_se [kPa]", "phi_se [deg]", "best_model", "best_rmse [kPa]",
-            "flagged_tests", "report"} <= set(season.columns)
+    assert {
+        "c [kPa]",
+        "phi [deg]",
+        "c_se [kPa]",
+        "phi_se [deg]",
+        "best_model",
+        "best_rmse [kPa]",
+        "flagged_tests",
+        "report",
+    } <= set(season.columns)
     assert (tmp_path / "o" / season["report"][0]).exists()
     html = (tmp_path / "o" / "season.html").read_text()
     assert 'href="shear_s0/report.html"' in html
@@ -242,8 +287,9 @@ def _outside_math(text):
 
 @pytest.fixture(scope="module")
 def curves_result():
-    return capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(
-        bootstrap=0, curves=capred.sample_path("shear-curves")))
+    return capred.run_shear(
+        capred.sample_path("shear"), capred.ShearOptions(bootstrap=0, curves=capred.sample_path("shear-curves"))
+    )
 
 
 def _command_sheets(curves_result):
@@ -339,8 +385,10 @@ def test_retention_legend_from_the_registry():
         assert f"{MODELS[m].label}\n{MODELS[m].equation}" in legend
     handles = dict(zip(legend, ax.get_legend().legend_handles))
     for m in fitted:
-        assert handles[f"{MODELS[m].label}\n{MODELS[m].equation}"].get_linestyle() == \
-            ax.lines[0].__class__([], [], ls=MODELS[m].style["ls"]).get_linestyle()
+        assert (
+            handles[f"{MODELS[m].label}\n{MODELS[m].equation}"].get_linestyle()
+            == ax.lines[0].__class__([], [], ls=MODELS[m].style["ls"]).get_linestyle()
+        )
 
 
 def test_large_tables_draw_a_stated_sample(tmp_path):

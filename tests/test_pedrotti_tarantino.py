@@ -6,6 +6,7 @@ and plots), so the published content tested is its equations, its two limits
 (S_r = 1: slurry lines; S_r = 0: dry-powder lines) and the behaviour its
 section 4.2 describes for each stage of the path of Fig. 13.
 """
+
 from math import log
 from pathlib import Path
 
@@ -21,8 +22,7 @@ SAMPLE = Path(__file__).resolve().parents[1] / "sample_data" / "pt_volume_path.c
 
 # round lines for hand arithmetic: slurry lambda 0.2, kappa 0.02, e = 2.0 at 1 kPa;
 # dry powder lambda 0.1, kappa 0.01, e = 1.8 at 1 kPa
-HAND = pt.PTVolumeParameters(lambda_W=0.2, kappa_W=0.02, e_ncl_W=2.0,
-                             lambda_A=0.1, kappa_A=0.01, e_ncl_A=1.8)
+HAND = pt.PTVolumeParameters(lambda_W=0.2, kappa_W=0.02, e_ncl_W=2.0, lambda_A=0.1, kappa_A=0.01, e_ncl_A=1.8)
 
 
 # --- eq. 1-2 ---------------------------------------------------------------------------------
@@ -51,11 +51,11 @@ def test_lines_and_class_laws_by_hand():
     # ncl: e = 2.0 - 0.2 ln(100) = 2.0 - 0.921034 = 1.078966
     assert_allclose(pt.ncl_void_ratio(100 * kPa, 0.2, 2.0), 1.0789659628, rtol=1e-10)
     # url below a yield stress of 100 kPa, at 25 kPa: 1.078966 + 0.02 ln 4 = 1.106692
-    assert_allclose(pt.compression_void_ratio(25 * kPa, 100 * kPa, 0.2, 0.02, 2.0), 1.0789659628 + 0.02 * log(4),
-                    rtol=1e-10)  # the literal carries 11 digits
+    assert_allclose(
+        pt.compression_void_ratio(25 * kPa, 100 * kPa, 0.2, 0.02, 2.0), 1.0789659628 + 0.02 * log(4), rtol=1e-10
+    )  # the literal carries 11 digits
     # above the yield stress the pores are on the ncl
-    assert_allclose(pt.compression_void_ratio(400 * kPa, 100 * kPa, 0.2, 0.02, 2.0), 2.0 - 0.2 * log(400),
-                    rtol=1e-14)
+    assert_allclose(pt.compression_void_ratio(400 * kPa, 100 * kPa, 0.2, 0.02, 2.0), 2.0 - 0.2 * log(400), rtol=1e-14)
     # eq. 6/7: -kappa ln(50/100) = +0.02 ln 2 = 0.0138629; eq. 10: -lambda ln 2 = -0.1386294
     assert_allclose(pt.url_void_ratio_change(0.02, 100 * kPa, 50 * kPa), 0.0138629436, rtol=1e-9)
     assert_allclose(pt.ncl_void_ratio_change(0.2, 100 * kPa, 200 * kPa), -0.1386294361, rtol=1e-9)
@@ -117,8 +117,9 @@ def test_hand_worked_wetting_step():
       e = V_W + V_A = 1.170594; e_W = V_W / (M_W + x M_A) = 1.090192; e_A = 1.413906
       eq. 3 weight: x M_A 1.113837 / V_W = 0.251927 (dS_r / S_r = 0.2/0.7 = 0.2857 to first order)
     """
-    r = pt.simulate_volume_path([100 * kPa, 100 * kPa], [-100 * kPa, -20 * kPa], [0.0, 0.0], [0.5, 0.7],
-                                params=HAND, substeps=1)
+    r = pt.simulate_volume_path(
+        [100 * kPa, 100 * kPa], [-100 * kPa, -20 * kPa], [0.0, 0.0], [0.5, 0.7], params=HAND, substeps=1
+    )
     # rtol 1e-6: the hand values above carry 6-7 significant digits
     assert_allclose(r.e, [1.2220170181, 1.1705939572], rtol=1e-6)
     assert_allclose(r.e_W, [1.0789659628, 1.0901915540], rtol=1e-6)
@@ -158,8 +159,7 @@ def test_dry_path_follows_dry_powder_line():
     # S_r = 0: sigma'_A = sigma - u_a; pore-water pressure is irrelevant
     sigma = np.array([20, 100, 300, 60, 600]) * kPa
     u_a = np.full(sigma.size, 10 * kPa)
-    r = pt.simulate_volume_path(sigma, np.full(sigma.size, -1e6), u_a, np.zeros(sigma.size),
-                                params=HAND, substeps=1)
+    r = pt.simulate_volume_path(sigma, np.full(sigma.size, -1e6), u_a, np.zeros(sigma.size), params=HAND, substeps=1)
     s = (sigma - u_a) / kPa
     expect = 1.8 - 0.1 * np.log(s)
     expect[3] = expect[2] + 0.01 * np.log(s[2] / s[3])  # unloading on the dry-powder url
@@ -183,8 +183,7 @@ def test_loading_at_constant_suction_and_saturation_compresses(S_r):
     # monotone loading at constant S_r and suction: e never increases
     sigma = np.linspace(20, 800, 40) * kPa
     n = sigma.size
-    r = pt.simulate_volume_path(sigma, np.full(n, -100 * kPa), np.zeros(n), np.full(n, S_r),
-                                params=pt.EXAMPLE_KAOLIN)
+    r = pt.simulate_volume_path(sigma, np.full(n, -100 * kPa), np.zeros(n), np.full(n, S_r), params=pt.EXAMPLE_KAOLIN)
     assert np.all(np.diff(r.e) < 0)
 
 
@@ -228,7 +227,7 @@ def test_sample_path_reproduces_the_stages_of_the_paper():
     # C-D (Fig. 16): loading at constant suction; two classes of water-saturated pores, one on the ncl
     # (those that came from air) and one on the url (from compaction), and more AW collapse
     cd = slice(C + 1, D + 1)
-    assert np.all(r.de_AW[cd] < 0) and np.all(np.diff(r.e[C:D + 1]) < 0)
+    assert np.all(r.de_AW[cd] < 0) and np.all(np.diff(r.e[C : D + 1]) < 0)
     assert 0.0 < r.ncl_fraction_W[D] < 1.0
 
 
@@ -261,11 +260,13 @@ def test_parameters_rejected_with_all_problems():
 
 
 def test_path_problems_located():
-    probs = pt.path_problems([100 * kPa, 10 * kPa, 50 * kPa], [-50 * kPa, 0.0, 0.0], [0.0, 20 * kPa, 0.0],
-                             [0.5, 0.5, 1.2])
+    probs = pt.path_problems(
+        [100 * kPa, 10 * kPa, 50 * kPa], [-50 * kPa, 0.0, 0.0], [0.0, 20 * kPa, 0.0], [0.5, 0.5, 1.2]
+    )
     assert (2, "S_r", "degree of saturation must lie between 0 and 1 (got 1.2)") in probs
     assert any(i == 1 and c == "u_a" for i, c, _ in probs)  # sigma - u_a = -10 kPa with S_r < 1
     with pytest.raises(OptionError, match="point 3, S_r"):
-        pt.simulate_volume_path([100 * kPa, 10 * kPa, 50 * kPa], [-50 * kPa, 0.0, 0.0],
-                                [0.0, 20 * kPa, 0.0], [0.5, 0.5, 1.2], params=HAND)
+        pt.simulate_volume_path(
+            [100 * kPa, 10 * kPa, 50 * kPa], [-50 * kPa, 0.0, 0.0], [0.0, 20 * kPa, 0.0], [0.5, 0.5, 1.2], params=HAND
+        )
     assert pt.path_problems([1.0], [0.0, 1.0], [0.0], [0.5])[0][0] == -1  # unequal lengths

@@ -1,4 +1,5 @@
 """Thesis formulas (Evenepoel, VUB thesis) against values worked by hand."""
+
 import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st

@@ -5,6 +5,7 @@ The paper prints no numbers for Appendix 1 (its Tables 2-3, section 5, are teste
 test_triaxial_published.py); the group equations are tested on synthetic groups built from a known
 capillary tensor, on the identities the appendix states (eq. 34, 43, 49/51) and on hand-worked states.
 """
+
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
@@ -16,11 +17,15 @@ SQ3 = np.sqrt(3.0)
 
 # --- Lode angle and branch (Appendix 2) ------------------------------------------------------------
 
-@pytest.mark.parametrize("s1,s2,s3,theta", [
-    (300.0, 100.0, 100.0, 0.0),    # compression sigma2 = sigma3
-    (300.0, 300.0, 100.0, 60.0),   # extension sigma2 = sigma1
-    (300.0, 200.0, 100.0, 30.0),   # Q = 1/2: s = (1, 0, -1) 100, J3 = 0 -> cos 3theta = 0 (eq. 53)
-])
+
+@pytest.mark.parametrize(
+    "s1,s2,s3,theta",
+    [
+        (300.0, 100.0, 100.0, 0.0),  # compression sigma2 = sigma3
+        (300.0, 300.0, 100.0, 60.0),  # extension sigma2 = sigma1
+        (300.0, 200.0, 100.0, 30.0),  # Q = 1/2: s = (1, 0, -1) 100, J3 = 0 -> cos 3theta = 0 (eq. 53)
+    ],
+)
 def test_lode_angle_deg_hand_values(s1, s2, s3, theta):
     # arccos near +-1 loses half the digits: ~1e-8 rad in 3 theta -> 1e-6 deg
     assert_allclose(tx.lode_angle_deg(s1, s2, s3), theta, atol=1e-6)
@@ -61,13 +66,20 @@ def test_lode_branch():
     s2 = np.array([100.0, 300.0, 200.0, 103.0, 297.0, 105.0])
     s3 = np.full(6, 100.0)
     # Q = 0.985 -> theta = 0.87 deg (compression within 1 deg); Q = 0.975 -> 1.44 deg (general)
-    assert list(tx.lode_branch(s1, s2, s3)) == ["compression", "extension", "general", "compression",
-                                                "extension", "general"]
+    assert list(tx.lode_branch(s1, s2, s3)) == [
+        "compression",
+        "extension",
+        "general",
+        "compression",
+        "extension",
+        "general",
+    ]
     assert tx.lode_branch(300.0, 100.0, 100.0) == "compression"
     assert tx.lode_branch(200.0, 200.0, 200.0) == "general"  # isotropic: no Lode angle
 
 
 # --- Mohr-Coulomb in compression and extension ------------------------------------------------------
+
 
 def test_envelope_qp_compression_and_extension_by_hand():
     # phi = 30 deg, c = 10 kPa: M_c = 6(0.5)/2.5 = 1.2, M_e = 3/3.5 = 6/7; k = 6 c cos30 / (3 -+ 0.5)
@@ -92,6 +104,7 @@ def test_envelope_qp_is_mohr_coulomb_on_both_branches():
 # --- an extension test worked by hand: sigma1 = sigma2 = 300 kPa (radial), sigma3 = 80 kPa (axial) ---
 # c' = 10 kPa, phi' = 30 deg: K_p = 3, 2 c' sqrt(K_p) = 20 sqrt3 = 34.641 kPa, q = 220 kPa
 
+
 def test_extension_spherical_bound_by_hand():
     b = tx.spherical_bound(300.0, 80.0, 10.0, 30.0, "extension")
     # q' = q = 220 = 2 sigma'3 + 20 sqrt3 -> sigma'3 = 110 - 10 sqrt3 = 92.679; sigma_cap = 80 - 92.679
@@ -114,7 +127,7 @@ def test_extension_lower_bound_by_hand():
     assert_allclose([b.sigma1_cap, b.sigma2_cap], [0.0, 0.0], atol=0)
     assert_allclose(b.sigma3_cap, s3cap, rtol=1e-13)
     assert s3cap == pytest.approx(-8.4530, abs=5e-5)
-    assert_allclose(b.p_cap, s3cap / 3, rtol=1e-13)          # (0 + 0 + sigma3_cap)/3
+    assert_allclose(b.p_cap, s3cap / 3, rtol=1e-13)  # (0 + 0 + sigma3_cap)/3
     assert_allclose(b.p_prime, (600 + 80 - s3cap) / 3, rtol=1e-13)
 
 
@@ -210,8 +223,7 @@ def test_group_standard_errors_by_simulation():
     s1, s3, s1e, s3e = _group(-12e3, -30e3, (30e3, 60e3, 100e3, 150e3))
     hits = []
     for _ in range(2000):
-        g = tx.axisymmetric_group_tensor(s1 + rng.normal(0, 2e3, 4), s3, s1e + rng.normal(0, 2e3, 4), s3e,
-                                         C_EFF, PHI)
+        g = tx.axisymmetric_group_tensor(s1 + rng.normal(0, 2e3, 4), s3, s1e + rng.normal(0, 2e3, 4), s3e, C_EFF, PHI)
         assert g.dof == 3
         hits.append(abs(g.sigma3_cap + 30e3) <= 3.182 * g.sigma3_cap_se)
     assert np.mean(hits) == pytest.approx(0.95, abs=0.015)
@@ -224,6 +236,7 @@ def test_group_needs_two_tests():
 
 # --- eq. 50: true triaxial at constant Lode angle ------------------------------------------------------
 
+
 def _true_group(cap, Q=0.4):
     cap1, cap2, cap3 = cap
     s1e0, s3e0 = _group(0.0, 0.0)[2:]
@@ -232,8 +245,9 @@ def _true_group(cap, Q=0.4):
     return s1, s2, s3, s1e0, s2 - cap2, s3e0
 
 
-@pytest.mark.parametrize("cap,Q", [((-12e3, -20e3, -30e3), 0.4), ((-5e3, -5e3, -35e3), 0.7),
-                                   ((-10e3, -25e3, -25e3), 0.9)])
+@pytest.mark.parametrize(
+    "cap,Q", [((-12e3, -20e3, -30e3), 0.4), ((-5e3, -5e3, -35e3), 0.7), ((-10e3, -25e3, -25e3), 0.9)]
+)
 def test_true_triaxial_group_tensor_recovers_a_known_tensor(cap, Q):
     g = tx.true_triaxial_group_tensor(*_true_group(cap, Q), C_EFF, PHI)
     assert_allclose([g.sigma1_cap, g.sigma2_cap, g.sigma3_cap], cap, rtol=1e-9, atol=1e-9 * 1e5)
@@ -241,8 +255,12 @@ def test_true_triaxial_group_tensor_recovers_a_known_tensor(cap, Q):
     assert_allclose(g.lode_angle_deg, tx.lode_angle_from_ratio_deg(Q), atol=1e-9)
     assert g.branch == "general" and g.dof == 2
     # the cohesions reproduce eq. 50 (third line with the intermediate lines' own angle)
-    assert_allclose(tx.true_triaxial_group_cap(g.C_apparent, g.C_fictive, g.Ci_apparent, g.Ci_fictive, C_EFF, PHI,
-                                               g.phi_i_deg), cap, rtol=1e-9, atol=1e-4)
+    assert_allclose(
+        tx.true_triaxial_group_cap(g.C_apparent, g.C_fictive, g.Ci_apparent, g.Ci_fictive, C_EFF, PHI, g.phi_i_deg),
+        cap,
+        rtol=1e-9,
+        atol=1e-4,
+    )
 
 
 def test_intermediate_circles_lie_on_a_line_of_angle_phi_i():
@@ -270,15 +288,19 @@ def test_true_triaxial_rejects_a_varying_lode_angle():
 
 # --- published numbers: the default (compression) branch still gives Tables 2-3 --------------------------
 
-@pytest.mark.parametrize("p0,q_f,p_cap,gain_ub,tol_gain", [
-    # Prunier et al. (2024) Table 2 (p_cap, printed to 1 kPa) and Table 3 UB (q'/q'_sat, printed to 0.01);
-    # Gavet envelope c' = 2.795 kPa, phi' = 31.523 deg and q_f reconstructed from those tables
-    # (see test_triaxial_published.py); tolerance = half the last printed digit (0.01 at 100 kPa, whose
-    # reconstruction is the least consistent, see there)
-    (0.0, 150.2, -64.0, 15.04, 0.005),
-    (100.0, 317.6, -40.0, 1.38, 0.01),
-    (150.0, 396.7, -26.0, 1.17, 0.005),
-])
+
+@pytest.mark.parametrize(
+    "p0,q_f,p_cap,gain_ub,tol_gain",
+    [
+        # Prunier et al. (2024) Table 2 (p_cap, printed to 1 kPa) and Table 3 UB (q'/q'_sat, printed to 0.01);
+        # Gavet envelope c' = 2.795 kPa, phi' = 31.523 deg and q_f reconstructed from those tables
+        # (see test_triaxial_published.py); tolerance = half the last printed digit (0.01 at 100 kPa, whose
+        # reconstruction is the least consistent, see there)
+        (0.0, 150.2, -64.0, 15.04, 0.005),
+        (100.0, 317.6, -40.0, 1.38, 0.01),
+        (150.0, 396.7, -26.0, 1.17, 0.005),
+    ],
+)
 def test_spherical_bound_reproduces_prunier_tables_2_3(p0, q_f, p_cap, gain_ub, tol_gain):
     b = tx.spherical_bound(p0 + q_f, p0, 2.795, 31.523)
     assert b.p_cap == pytest.approx(p_cap, abs=0.5)

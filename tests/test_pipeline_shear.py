@@ -1,10 +1,10 @@
 """capred shear on constructed data whose answer is known by hand."""
+
 import numpy as np
 import pytest
-
-import capred
 from numpy.testing import assert_allclose
 
+import capred
 from capred.pipelines.shear import ShearOptions, run_shear
 
 # Noise-free file built from the thesis's dry envelopes (Evenepoel (VUB thesis), "Dry tests"):
@@ -73,8 +73,10 @@ def test_shear_derived_quantities_by_hand(write_csv):
 def test_shear_units_in_headers_give_same_result(write_csv):
     base = run_shear(write_csv(exact_csv(), "a.csv")).to_json()
     text = exact_csv().splitlines()
-    text[0] = ("test_id,material,condition,z1 (mm),z2 [mm^3],V_v [mL],added_mass [kg],cap_mass [kg],"
-               "box_area [mm^2],R [um],tau_max [Pa]")
+    text[0] = (
+        "test_id,material,condition,z1 (mm),z2 [mm^3],V_v [mL],added_mass [kg],cap_mass [kg],"
+        "box_area [mm^2],R [um],tau_max [Pa]"
+    )
     conv = [1, 1, 1, 10, 1000, 1, 1e-3, 1e-3, 100, 1000, 1000]
     out = [text[0]]
     for line in text[1:]:
@@ -91,11 +93,13 @@ def test_shear_units_in_headers_give_same_result(write_csv):
 
 def test_shear_reduced_columns_and_aliases(write_csv):
     # data reduced elsewhere: sigma_N, suction, S_R directly; alias spellings of headers
-    text = ("Test ID;Material;Condition;Sigma N (kPa);Suction [kPa];Sr [%];Tau max;R [mm]\n"
-            "d1;x;dry;1;;;1,0452;1\n"
-            "d2;x;dry;2;;;1,7598;1\n"
-            "d3;x;dry;3;;;2,4744;1\n"
-            "w1;x;wet;1;2;5;1,5;1\n")
+    text = (
+        "Test ID;Material;Condition;Sigma N (kPa);Suction [kPa];Sr [%];Tau max;R [mm]\n"
+        "d1;x;dry;1;;;1,0452;1\n"
+        "d2;x;dry;2;;;1,7598;1\n"
+        "d3;x;dry;3;;;2,4744;1\n"
+        "w1;x;wet;1;2;5;1,5;1\n"
+    )
     r = run_shear(write_csv(text))
     js = r.to_json()
     assert js["materials"]["x"]["c_kPa"] == pytest.approx(0.3306, abs=1e-9)
@@ -106,8 +110,7 @@ def test_shear_reduced_columns_and_aliases(write_csv):
 
 
 def test_shear_options_fill_blank_columns_but_file_wins(write_csv):
-    text = ("test_id,material,condition,added_mass,box_area,tau_max\n"
-            "a,m,dry,0,,1\nb,m,dry,100,,2\nc,m,dry,200,18,3\n")
+    text = "test_id,material,condition,added_mass,box_area,tau_max\na,m,dry,0,,1\nb,m,dry,100,,2\nc,m,dry,200,18,3\n"
     r = run_shear(write_csv(text), ShearOptions(box_area=36e-4, cap_mass=0.0))
     s = r.tests["sigma_N"]
     assert_allclose(s, [0.0, 0.1 * 9.81 / 36e-4, 0.2 * 9.81 / 18e-4], rtol=1e-12)

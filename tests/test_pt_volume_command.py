@@ -6,6 +6,7 @@ ncl/url; a dry path on the dry-powder lines), worked from Pedrotti &
 Tarantino (submitted), eq. 1-2, 5, 6-7 and 10; the rest is compared with
 capred.physics.pedrotti_tarantino.simulate_volume_path called directly.
 """
+
 import json
 from math import log
 
@@ -25,15 +26,31 @@ KPA = 1e3
 KAOLIN = pt.EXAMPLE_KAOLIN
 # round lines for hand arithmetic (as in test_pedrotti_tarantino): slurry lambda 0.2, kappa 0.02, e = 2.0 at
 # 1 kPa; dry powder lambda 0.1, kappa 0.01, e = 1.8 at 1 kPa
-HAND = ["--lambda-w", "0.2", "--kappa-w", "0.02", "--e-ncl-w", "2.0",
-        "--lambda-a", "0.1", "--kappa-a", "0.01", "--e-ncl-a", "1.8"]
+HAND = [
+    "--lambda-w",
+    "0.2",
+    "--kappa-w",
+    "0.02",
+    "--e-ncl-w",
+    "2.0",
+    "--lambda-a",
+    "0.1",
+    "--kappa-a",
+    "0.01",
+    "--e-ncl-a",
+    "1.8",
+]
 HAND_P = pt.PTVolumeParameters(lambda_W=0.2, kappa_W=0.02, e_ncl_W=2.0, lambda_A=0.1, kappa_A=0.01, e_ncl_A=1.8)
 
 
 def _sample_arrays():
     d = pd.read_csv(capred.sample_path("pt-volume"), comment="#")
-    return (d["sigma [kPa]"].to_numpy() * KPA, d["u_w [kPa]"].to_numpy() * KPA, d["u_a [kPa]"].to_numpy() * KPA,
-            d["S_r"].to_numpy())
+    return (
+        d["sigma [kPa]"].to_numpy() * KPA,
+        d["u_w [kPa]"].to_numpy() * KPA,
+        d["u_a [kPa]"].to_numpy() * KPA,
+        d["S_r"].to_numpy(),
+    )
 
 
 def _json(args):
@@ -57,15 +74,25 @@ def test_pt_volume_sample_writes_files_equal_to_the_physics(tmp_path):
     t = pd.read_csv(out / "results.csv")
     assert len(t) == 21
     # the CSV keeps every digit (shortest round-trip repr), so the kPa values differ from Pa/1000 by rounding only
-    for col, attr, scale in (("sigma_W [kPa]", "sigma_W", 1e-3), ("sigma_A [kPa]", "sigma_A", 1e-3),
-                             ("e [-]", "e", 1.0), ("e_W [-]", "e_W", 1.0), ("e_A [-]", "e_A", 1.0),
-                             ("de_WW [-]", "de_WW", 1.0), ("de_AA [-]", "de_AA", 1.0), ("de_AW [-]", "de_AW", 1.0),
-                             ("de_WA [-]", "de_WA", 1.0), ("w_AW [-]", "w_AW", 1.0), ("w_WA [-]", "w_WA", 1.0),
-                             ("sigma_star_W [kPa]", "sigma_star_W", 1e-3),
-                             ("ncl_fraction_W [-]", "ncl_fraction_W", 1.0),
-                             ("solid_fraction_W [-]", "solid_fraction_W", 1.0)):
-        assert_allclose(t[col].to_numpy(float), getattr(ref, attr) * scale, rtol=1e-14, atol=0, equal_nan=True,
-                        err_msg=col)
+    for col, attr, scale in (
+        ("sigma_W [kPa]", "sigma_W", 1e-3),
+        ("sigma_A [kPa]", "sigma_A", 1e-3),
+        ("e [-]", "e", 1.0),
+        ("e_W [-]", "e_W", 1.0),
+        ("e_A [-]", "e_A", 1.0),
+        ("de_WW [-]", "de_WW", 1.0),
+        ("de_AA [-]", "de_AA", 1.0),
+        ("de_AW [-]", "de_AW", 1.0),
+        ("de_WA [-]", "de_WA", 1.0),
+        ("w_AW [-]", "w_AW", 1.0),
+        ("w_WA [-]", "w_WA", 1.0),
+        ("sigma_star_W [kPa]", "sigma_star_W", 1e-3),
+        ("ncl_fraction_W [-]", "ncl_fraction_W", 1.0),
+        ("solid_fraction_W [-]", "solid_fraction_W", 1.0),
+    ):
+        assert_allclose(
+            t[col].to_numpy(float), getattr(ref, attr) * scale, rtol=1e-14, atol=0, equal_nan=True, err_msg=col
+        )
     for flag in ("loading_W", "loading_A", "yielding_W", "yielding_A"):
         assert t[flag].tolist() == getattr(ref, flag).tolist()
     # the sample's file lines: 5 comment lines, the header on line 6, points from line 7
@@ -91,8 +118,9 @@ def test_pt_volume_sample_json_equals_api_and_writes_nothing(tmp_path, monkeypat
 def test_pt_volume_first_point_by_hand_and_json_equals_api(tmp_path):
     path = capred.sample_path("pt-volume")
     doc = _json([str(path), *HAND])
-    api = run_pt_volume(str(path), PTVolumeOptions(lambda_W=0.2, kappa_W=0.02, e_ncl_W=2.0, lambda_A=0.1,
-                                                   kappa_A=0.01, e_ncl_A=1.8))
+    api = run_pt_volume(
+        str(path), PTVolumeOptions(lambda_W=0.2, kappa_W=0.02, e_ncl_W=2.0, lambda_A=0.1, kappa_A=0.01, e_ncl_A=1.8)
+    )
     assert doc == api.to_json()
     assert doc["command"] == "pt-volume" and doc["parameters"]["illustrative"] == []
     assert not any("EXAMPLE_KAOLIN" in w for w in doc["warnings"])
@@ -112,8 +140,9 @@ def test_pt_volume_first_point_by_hand_and_json_equals_api(tmp_path):
 
 def test_pt_volume_saturated_limit_follows_slurry_lines(write_csv):
     # S_r = 1, u_w = u_a = 0: sigma'_W = sigma (Terzaghi), the A part is empty, e = e^W (eq. 5 at S_r = 1)
-    data = write_csv("step,stage,sigma [MPa],u_w,u_a,S_r\n0,A,0.1,0,0,1\n1,load,0.2,0,0,1\n2,load,0.4,0,0,1\n"
-                     "3,unload,0.2,0,0,1\n")
+    data = write_csv(
+        "step,stage,sigma [MPa],u_w,u_a,S_r\n0,A,0.1,0,0,1\n1,load,0.2,0,0,1\n2,load,0.4,0,0,1\n3,unload,0.2,0,0,1\n"
+    )
     doc = _json([str(data), *HAND])
     e = [r["e"] for r in doc["points"]]
     # ncl e = 2.0 - 0.2 ln(sigma'/1 kPa) up to 400 kPa, then the url: + kappa_W ln(400/200) (eq. 7)

@@ -1,4 +1,5 @@
 """A long plain CSV read in blocks (capred.io.blocks) gives what the whole-file reader gives, block by block."""
+
 import random
 
 import numpy as np
@@ -15,8 +16,13 @@ def _lab_file(path, rows=6000, quote=False):
     rng = random.Random(4)
     lines = ["Operator: A. N. Other", "Date: 2026-11-23", "R,contact_angle,gap,suction,extra", "mm,deg,mm,kPa,-"]
     for i in range(rows):
-        cells = [f"{rng.uniform(.1, 2):.4f}", f"{rng.uniform(0, 60):.3f}", f"{rng.uniform(0, .05):.5f}",
-                 f"{rng.uniform(.1, 30):.4f}", "x"]
+        cells = [
+            f"{rng.uniform(0.1, 2):.4f}",
+            f"{rng.uniform(0, 60):.3f}",
+            f"{rng.uniform(0, 0.05):.5f}",
+            f"{rng.uniform(0.1, 30):.4f}",
+            "x",
+        ]
         if i in (5, rows // 2, rows - 3):
             cells[1] = "abc"
         if i == rows // 3:
@@ -58,10 +64,20 @@ def _numeric_file(path, rows=3000, units_row=False, cells=None):
     """A plain numeric bridge table (the usual long file): numbers only, every cell filled; ``cells`` replaces
     cells by (row, column): text."""
     rng = np.random.default_rng(11)
-    lines = ["R,contact_angle,gap,suction", "mm,deg,mm,kPa"] if units_row else [
-        "R [mm],contact_angle [deg],gap [mm],suction [kPa]"]
-    data = [[repr(rng.uniform(.1, 2)), repr(rng.uniform(0, 60)), repr(rng.uniform(0, .05)),
-             repr(10 ** rng.uniform(-1, 1.5))] for _ in range(rows)]
+    lines = (
+        ["R,contact_angle,gap,suction", "mm,deg,mm,kPa"]
+        if units_row
+        else ["R [mm],contact_angle [deg],gap [mm],suction [kPa]"]
+    )
+    data = [
+        [
+            repr(rng.uniform(0.1, 2)),
+            repr(rng.uniform(0, 60)),
+            repr(rng.uniform(0, 0.05)),
+            repr(10 ** rng.uniform(-1, 1.5)),
+        ]
+        for _ in range(rows)
+    ]
     for (i, j), text in (cells or {}).items():
         data[i][j] = text
     path.write_text("\n".join(lines + [",".join(r) for r in data]) + "\n", encoding="utf-8")
@@ -70,8 +86,9 @@ def _numeric_file(path, rows=3000, units_row=False, cells=None):
 
 def _same_tables(blocks, whole):
     for name, values in whole.columns.items():  # bit for bit: the same numbers, parsed another way
-        np.testing.assert_array_equal(np.concatenate([b.columns[name] for b in blocks]).view(np.int64),
-                                      values.view(np.int64))
+        np.testing.assert_array_equal(
+            np.concatenate([b.columns[name] for b in blocks]).view(np.int64), values.view(np.int64)
+        )
         np.testing.assert_array_equal(np.concatenate([b.as_read[name] for b in blocks]), whole.as_read[name])
         assert [b.raw[name][i] for b in blocks for i in range(len(b))] == list(whole.raw[name])
     np.testing.assert_array_equal(np.concatenate([b.lines for b in blocks]), whole.lines)
@@ -97,8 +114,16 @@ def test_plain_numeric_blocks_read_fast_give_the_whole_file(tmp_path, monkeypatc
 
 def test_cells_json_does_not_take_are_read_as_float_reads_them(tmp_path, monkeypatch):
     monkeypatch.setattr("capred.io.blocks.HEAD_LINES", 50)
-    odd = {(700, 0): "+1", (701, 1): ".5", (702, 2): "1.", (2500, 3): "-0", (704, 2): "1E-3", (705, 3): "007",
-           (706, 0): "1.2345678901234567890123456789", (707, 2): "0e5"}
+    odd = {
+        (700, 0): "+1",
+        (701, 1): ".5",
+        (702, 2): "1.",
+        (2500, 3): "-0",
+        (704, 2): "1E-3",
+        (705, 3): "007",
+        (706, 0): "1.2345678901234567890123456789",
+        (707, 2): "0e5",
+    }
     f = _numeric_file(tmp_path / "cases.csv", cells=odd)
     blocks = list(read_table_blocks(f, SOLVE_SCHEMA, block_bytes=20_000))
     _same_tables(blocks, read_table(f, SOLVE_SCHEMA))
@@ -108,8 +133,9 @@ def test_cells_json_does_not_take_are_read_as_float_reads_them(tmp_path, monkeyp
     assert suction[2500] == 0 and np.signbit(suction[2500])  # '-0' is -0.0, as float('-0') (JSON would say 0)
 
 
-@pytest.mark.parametrize("cell, message", [("-0.5", "must be > 0"), ("abc", "is not a number"),
-                                           ("", "blank"), ("1e400", "too large")])
+@pytest.mark.parametrize(
+    "cell, message", [("-0.5", "must be > 0"), ("abc", "is not a number"), ("", "blank"), ("1e400", "too large")]
+)
 def test_a_block_with_a_bad_cell_goes_to_the_usual_reader(tmp_path, monkeypatch, cell, message):
     """The fast reader takes only blocks without a problem; any other block is read (and its problem named)
     as before."""

@@ -1,4 +1,5 @@
 """The reader never crashes with a traceback: it reads the file or explains why (issue 6)."""
+
 import string
 
 from hypothesis import HealthCheck, given, settings
@@ -9,12 +10,33 @@ from capred.pipelines.retention import run_retention
 from capred.pipelines.shear import ShearOptions, run_shear
 from capred.pipelines.triaxial import run_triaxial_bounds
 
-NAMES = ["test_id", "material", "condition", "z1", "z2", "V_v", "added_mass", "cap_mass", "box_area", "R",
-         "tau_max", "sigma_N", "suction", "S_R", "Tau max", "tau_max_kPa", "Sr", "q_f", "sigma3", "head", "theta"]
+NAMES = [
+    "test_id",
+    "material",
+    "condition",
+    "z1",
+    "z2",
+    "V_v",
+    "added_mass",
+    "cap_mass",
+    "box_area",
+    "R",
+    "tau_max",
+    "sigma_N",
+    "suction",
+    "S_R",
+    "Tau max",
+    "tau_max_kPa",
+    "Sr",
+    "q_f",
+    "sigma3",
+    "head",
+    "theta",
+]
 UNITS = ["", " [kPa]", " (mm)", " [g]", " [cm^3]", " [%]", " [blorp]", " [kg/cm^2]", " [", " (]", " [m/s]"]
 CELLS = st.one_of(
     st.floats(allow_nan=True, allow_infinity=True).map(repr),
-    st.integers(-10**6, 10**6).map(str),
+    st.integers(-(10**6), 10**6).map(str),
     st.sampled_from(["", "dry", "wet", "saturated", "unsaturated", "NA", "1,5", "0,35", "-", "nan", "1e309", '"x"']),
     st.text(alphabet=string.printable + "µ°é²", max_size=8),
 )
@@ -86,8 +108,10 @@ def _reduced_or_explained(run, path):
 
 
 def test_european_export_semicolon_decimal_comma_bom(tmp_path):
-    text = ("\ufefftest_id;condition;sigma_N [kPa];tau_max [kPa]\r\n\r\n"
-            "a;dry;1,0;1,0452\r\nb;dry;2,0;1,7598\r\n\"c\";dry;3,0;2,4744\r\n")
+    text = (
+        "\ufefftest_id;condition;sigma_N [kPa];tau_max [kPa]\r\n\r\n"
+        'a;dry;1,0;1,0452\r\nb;dry;2,0;1,7598\r\n"c";dry;3,0;2,4744\r\n'
+    )
     path = tmp_path / "eu.csv"
     path.write_bytes(text.encode("utf-8"))
     js = run_shear(path).to_json()
@@ -105,13 +129,28 @@ def valid_header_tables(draw, header, text_cols):
     return ",".join(header) + "\n" + "\n".join(rows) + "\n"
 
 
-SHEAR_HEADER = ["test_id", "material", "condition", "z1", "z2", "V_v", "added_mass", "cap_mass", "box_area", "R", "tau_max"]
+SHEAR_HEADER = [
+    "test_id",
+    "material",
+    "condition",
+    "z1",
+    "z2",
+    "V_v",
+    "added_mass",
+    "cap_mass",
+    "box_area",
+    "R",
+    "tau_max",
+]
 TRI_HEADER = ["test_id", "condition", "sigma3", "q_f", "p0", "s0", "sigma2", "group"]
 
 
 @SETTINGS
-@given(text=valid_header_tables(SHEAR_HEADER, {"test_id": ["a", "b", "c", "d", "e"], "material": ["m", "n"],
-                                               "condition": ["dry", "wet"]}))
+@given(
+    text=valid_header_tables(
+        SHEAR_HEADER, {"test_id": ["a", "b", "c", "d", "e"], "material": ["m", "n"], "condition": ["dry", "wet"]}
+    )
+)
 def test_fuzzed_values_shear(tmp_path, text):
     path = tmp_path / "v.csv"
     path.write_text(text)
@@ -121,8 +160,12 @@ def test_fuzzed_values_shear(tmp_path, text):
 
 
 @SETTINGS
-@given(text=valid_header_tables(TRI_HEADER, {"test_id": ["a", "b", "c", "d", "e"], "group": ["", "A"],
-                                             "condition": ["saturated", "unsaturated"]}))
+@given(
+    text=valid_header_tables(
+        TRI_HEADER,
+        {"test_id": ["a", "b", "c", "d", "e"], "group": ["", "A"], "condition": ["saturated", "unsaturated"]},
+    )
+)
 def test_fuzzed_values_triaxial(tmp_path, text):
     path = tmp_path / "v.csv"
     path.write_text(text)
@@ -130,23 +173,55 @@ def test_fuzzed_values_triaxial(tmp_path, text):
 
 
 # --- manifests and spreadsheet XML (issue 19): fuzzed, they are read or explained -----------------------------------
-MANIFEST_CELLS = st.one_of(st.sampled_from(["shear", "retention", "triaxial-bounds", "frobnicate", "", "a.csv",
-                                            "runs/*.csv", "--no-plots", "--gamma-w 10", '"x,y"', "--model vg",
-                                            "r\u00e9sum\u00e9.csv", "#", "'", '"']),
-                           st.text(alphabet=string.printable + "é\x00", max_size=10))
+MANIFEST_CELLS = st.one_of(
+    st.sampled_from(
+        [
+            "shear",
+            "retention",
+            "triaxial-bounds",
+            "frobnicate",
+            "",
+            "a.csv",
+            "runs/*.csv",
+            "--no-plots",
+            "--gamma-w 10",
+            '"x,y"',
+            "--model vg",
+            "r\u00e9sum\u00e9.csv",
+            "#",
+            "'",
+            '"',
+        ]
+    ),
+    st.text(alphabet=string.printable + "é\x00", max_size=10),
+)
 
 
 @st.composite
 def manifests(draw):
     if draw(st.booleans()):  # CSV
-        header = draw(st.sampled_from(["command,input,options", "command,input", "command,input,option", "input",
-                                       "Command, Input ,Options", ""]))
+        header = draw(
+            st.sampled_from(
+                [
+                    "command,input,options",
+                    "command,input",
+                    "command,input,option",
+                    "input",
+                    "Command, Input ,Options",
+                    "",
+                ]
+            )
+        )
         rows = draw(st.lists(st.lists(MANIFEST_CELLS, max_size=5).map(",".join), max_size=5))
         text, name = "\n".join([header, *rows]) + "\n", "m.csv"
     else:  # TOML
         strings = MANIFEST_CELLS.map(repr).map(lambda r: r.replace("\\", ""))
-        values = st.one_of(st.integers(-5, 5), st.booleans(), strings,
-                           st.lists(MANIFEST_CELLS, max_size=3).map(lambda xs: "[" + ", ".join(map(repr, xs)) + "]"))
+        values = st.one_of(
+            st.integers(-5, 5),
+            st.booleans(),
+            strings,
+            st.lists(MANIFEST_CELLS, max_size=3).map(lambda xs: "[" + ", ".join(map(repr, xs)) + "]"),
+        )
         parts = []
         for _ in range(draw(st.integers(0, 3))):
             head = draw(st.sampled_from(["[[run]]", "[run]", "run = 5", "[[runs]]", ""]))
@@ -175,10 +250,30 @@ def test_fuzzed_manifests_read_or_explain(tmp_path, manifest):
         assert runs and all(isinstance(n, int) and c and i and isinstance(o, (str, list)) for n, c, i, o in runs)
 
 
-XML_PIECES = st.sampled_from(['<row r="2">', "</row>", '<row>', '<c r="A1">', '<c r="XFD3" t="s">', '<c t="b">',
-                              '<c t="inlineStr"><is><t>x</t></is>', "</c>", "<v>1.5</v>", "<v>-1</v>", "<v>99</v>",
-                              "<v>x</v>", '<c r="B2" t="e"><v>#DIV/0!</v>', "<f>SUM(A1)</f>", "<v>1e999</v>",
-                              '<c r="ZZZZ9">', "&amp;", "&lol;", "<!-- c -->", " "])
+XML_PIECES = st.sampled_from(
+    [
+        '<row r="2">',
+        "</row>",
+        "<row>",
+        '<c r="A1">',
+        '<c r="XFD3" t="s">',
+        '<c t="b">',
+        '<c t="inlineStr"><is><t>x</t></is>',
+        "</c>",
+        "<v>1.5</v>",
+        "<v>-1</v>",
+        "<v>99</v>",
+        "<v>x</v>",
+        '<c r="B2" t="e"><v>#DIV/0!</v>',
+        "<f>SUM(A1)</f>",
+        "<v>1e999</v>",
+        '<c r="ZZZZ9">',
+        "&amp;",
+        "&lol;",
+        "<!-- c -->",
+        " ",
+    ]
+)
 
 
 _BLANK_WORKBOOK: list = []  # the parts of an empty workbook, made once
@@ -188,9 +283,8 @@ _BLANK_WORKBOOK: list = []  # the parts of an empty workbook, made once
 @given(pieces=st.lists(XML_PIECES, max_size=30))
 def test_fuzzed_sheet_xml_reads_or_explains(tmp_path, pieces):
     """Any sheet XML inside a valid workbook: rows of text, or one clear InputError (never another exception)."""
-    from pathlib import Path
-
     import zipfile
+    from pathlib import Path
 
     from openpyxl import Workbook
 
@@ -202,8 +296,11 @@ def test_fuzzed_sheet_xml_reads_or_explains(tmp_path, pieces):
         with zipfile.ZipFile(path) as z:
             _BLANK_WORKBOOK.extend((n, z.read(n)) for n in z.namelist())
     members = _BLANK_WORKBOOK
-    sheet = ('<worksheet xmlns="http://schemas.openxmlformats.org/spreadsheetml/2006/main"><sheetData>'
-             + "".join(pieces) + "</sheetData></worksheet>").encode()
+    sheet = (
+        '<worksheet xmlns="http://schemas.openxmlformats.org/spreadsheetml/2006/main"><sheetData>'
+        + "".join(pieces)
+        + "</sheetData></worksheet>"
+    ).encode()
     with zipfile.ZipFile(path, "w") as z:
         for n, d in members:
             z.writestr(n, sheet if n == "xl/worksheets/sheet1.xml" else d)

@@ -1,14 +1,15 @@
 """Every capred command and the Python example in the README run as written (issue 6)."""
+
 import re
 import shlex
 import shutil
 
 import pytest
+from conftest import ROOT
 from typer.testing import CliRunner
 
 import capred
 from capred.cli import app
-from conftest import ROOT
 
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 BLOCKS = re.findall(r"```(\w+)\n(.*?)```", README, flags=re.S)
@@ -21,7 +22,7 @@ def _capred_lines():
         for line in body.splitlines():
             line = line.split("  #")[0].strip()
             if "capred " in line:
-                yield line[line.index("capred ") + len("capred "):]
+                yield line[line.index("capred ") + len("capred ") :]
 
 
 @pytest.fixture
@@ -29,8 +30,11 @@ def lab(tmp_path, monkeypatch):
     """A folder holding the files the README's examples name."""
     for name, sample in (("tests.csv", "shear"), ("triaxial.csv", "triaxial-bounds"), ("column.csv", "retention")):
         shutil.copy(capred.sample_path(sample), tmp_path / name)
-    for folder, sample, name in (("runs", "shear", "sand_1.csv"), ("triaxial", "triaxial-bounds", "gavet.csv"),
-                                 ("column", "retention", "c1.csv")):
+    for folder, sample, name in (
+        ("runs", "shear", "sand_1.csv"),
+        ("triaxial", "triaxial-bounds", "gavet.csv"),
+        ("column", "retention", "c1.csv"),
+    ):
         (tmp_path / folder).mkdir()
         shutil.copy(capred.sample_path(sample), tmp_path / folder / name)
     manifest = next(body for lang, body in BLOCKS if lang == "text" and body.startswith("command,input,options"))
@@ -74,4 +78,4 @@ def test_readme_example_values_hold(args, keys, value, lab):
     key = keys.split(",")[-1].strip()
     decimals = len(value.split(".")[1]) if "." in value else 0
     # printed value = computed value rounded to the printed digits: half a unit of the last digit
-    assert doc[key] == pytest.approx(float(value), abs=0.5 * 10 ** -decimals + 1e-12)
+    assert doc[key] == pytest.approx(float(value), abs=0.5 * 10**-decimals + 1e-12)

@@ -1,5 +1,6 @@
 """A model is one registry entry: a toy model of each family, added as one entry, runs end to end
 (API, CLI, JSON, results table, figure, report.html) with no other change."""
+
 import json
 from html import unescape
 
@@ -20,10 +21,15 @@ runner = CliRunner()
 def toy_stress_model(monkeypatch):
     """chi = S_R / 2: half of Bishop's capillary stress, registered as one entry."""
     entry = esm.EffectiveStressModel(
-        "toy_half", "Half Bishop", (), "bishop1959",
+        "toy_half",
+        "Half Bishop",
+        (),
+        "bishop1959",
         lambda d: d.sigma_N + 0.5 * d.S_R * d.suction,
-        style={"color": "yellow", "marker": "x"}, method="Toy: σ'_N = σ_N + S_R Δu/2.",
-        chi_of_saturation=lambda S, p, f: 0.5 * np.asarray(S, float))
+        style={"color": "yellow", "marker": "x"},
+        method="Toy: σ'_N = σ_N + S_R Δu/2.",
+        chi_of_saturation=lambda S, p, f: 0.5 * np.asarray(S, float),
+    )
     monkeypatch.setitem(esm.REGISTRY, "toy_half", entry)
     return entry
 
@@ -41,8 +47,9 @@ def test_toy_effective_stress_model_runs_end_to_end(toy_stress_model, tmp_path):
     assert "tau_pred_toy_half [kPa]" in r.table().columns
     assert "toy_half" in r.to_json()["metrics"][r.tests["material"][-1]]
 
-    res = runner.invoke(app, ["shear", "--sample", "--models", "bishop,toy_half", "--bootstrap", "0",
-                              "--out", str(tmp_path / "o")])
+    res = runner.invoke(
+        app, ["shear", "--sample", "--models", "bishop,toy_half", "--bootstrap", "0", "--out", str(tmp_path / "o")]
+    )
     assert res.exit_code == 0, res.output
     html = unescape((tmp_path / "o" / "report.html").read_text(encoding="utf-8"))
     assert "Toy: σ'_N = σ_N + S_R Δu/2." in html and "Half Bishop" in html
@@ -56,10 +63,17 @@ def toy_retention_model(monkeypatch):
     """S_e = exp(-a s): one parameter a [1/Pa], registered as one entry."""
     a = rm._p("a_exp", "$a$", "1/Pa", "decay rate", "inverse_suction", 1e-3, 1e3, 0.0, 6)
     entry = rm.RetentionModel(
-        "toy_exp", "Exponential", r"$S_e = e^{-a s}$", (rm.Y_R, rm.Y_S, a),
-        lambda s, a_exp: np.exp(-a_exp * s), ("vangenuchten1980",),
-        "Toy: θ = θ_r + (θ_s − θ_r) exp(−a s).", "toy_exp: exponential toy", dict(ls="-"),
-        inverse=lambda S, a_exp: -np.log(S) / a_exp)
+        "toy_exp",
+        "Exponential",
+        r"$S_e = e^{-a s}$",
+        (rm.Y_R, rm.Y_S, a),
+        lambda s, a_exp: np.exp(-a_exp * s),
+        ("vangenuchten1980",),
+        "Toy: θ = θ_r + (θ_s − θ_r) exp(−a s).",
+        "toy_exp: exponential toy",
+        dict(ls="-"),
+        inverse=lambda S, a_exp: -np.log(S) / a_exp,
+    )
     monkeypatch.setitem(rm.MODELS, "toy_exp", entry)
     return entry
 

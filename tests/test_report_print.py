@@ -5,9 +5,11 @@ once per process, the methods of the fitted retention models.
 The print test needs a Chromium and poppler-utils (pdftotext, pdfimages); without them it is skipped with the
 reason. On Debian: ``apt-get install -y chromium poppler-utils``.
 """
+
 import re
 import shutil
 import subprocess
+from datetime import UTC
 from html.parser import HTMLParser
 
 import pytest
@@ -51,11 +53,25 @@ def _print_pdf(html_path, pdf_path, tmp_path):
         pytest.skip("no Chromium on PATH (apt-get install -y chromium)")
     if not (PDFTOTEXT and PDFIMAGES):
         pytest.skip("no pdftotext/pdfimages on PATH (apt-get install -y poppler-utils)")
-    subprocess.run([CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-                    "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                    f"--user-data-dir={tmp_path / 'profile'}", "--no-pdf-header-footer",
-                    f"--print-to-pdf={pdf_path}", html_path.as_uri()],
-                   check=True, capture_output=True, timeout=120)
+    subprocess.run(
+        [
+            CHROMIUM,
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            f"--user-data-dir={tmp_path / 'profile'}",
+            "--no-pdf-header-footer",
+            f"--print-to-pdf={pdf_path}",
+            html_path.as_uri(),
+        ],
+        check=True,
+        capture_output=True,
+        timeout=120,
+    )
     assert pdf_path.read_bytes().startswith(b"%PDF")
 
 
@@ -65,8 +81,9 @@ def test_printed_report_keeps_every_column(tmp_path, shear_result):
     capred.write_outputs(shear_result, out)
     pdf = tmp_path / "report.pdf"
     _print_pdf(out / "report.html", pdf, tmp_path)
-    info = subprocess.run(["pdfinfo", str(pdf)], capture_output=True, text=True).stdout if shutil.which(
-        "pdfinfo") else ""
+    info = (
+        subprocess.run(["pdfinfo", str(pdf)], capture_output=True, text=True).stdout if shutil.which("pdfinfo") else ""
+    )
     if info:  # A4 portrait: 595 x 842 pt
         w, h = map(float, re.search(r"Page size:\s+([\d.]+) x ([\d.]+)", info).groups())
         assert (round(w), round(h)) == (595, 842)
@@ -81,8 +98,9 @@ def test_printed_report_keeps_every_column(tmp_path, shear_result):
     parser.feed((out / "report.html").read_text(encoding="utf-8"))
     labels = ["test_id", "material", "condition"]
     groups = [t for t in parser.tables if t[:3] == labels]
-    assert len(groups) >= 2 and sorted(sum((g[3:] for g in groups), [])) == sorted(c for c in columns
-                                                                                  if c not in labels)
+    assert len(groups) >= 2 and sorted(sum((g[3:] for g in groups), [])) == sorted(
+        c for c in columns if c not in labels
+    )
     # every summary-table header prints too
     from capred.report.presenters import console_tables
 
@@ -103,15 +121,16 @@ def test_column_groups_fit_the_page_and_repeat_the_test():
     assert sorted(j for g in groups for j in g[2:]) == list(range(2, 42))  # each column once
     # width of a column: its longest word ("column_10") or cell at 7 pt, plus padding; each group within 186 mm
     for g in groups:
-        width = sum(max(len(w) for w in columns[j].split() + [rows[0][j]]) * report_html.CHAR_MM
-                    + report_html.CELL_MM for j in g)
+        width = sum(
+            max(len(w) for w in columns[j].split() + [rows[0][j]]) * report_html.CHAR_MM + report_html.CELL_MM
+            for j in g
+        )
         assert width <= report_html.PRINT_WIDTH_MM
 
 
 def test_options_in_the_units_a_user_types(tmp_path, shear_result):
     html = report_html.render_html(shear_result, {}, False)
-    rows = re.findall(r"<tr><td class=\"l\">([^<]+)</td><td class=\"l\">([^<]*)</td><td class=\"l\">([^<]*)</td>",
-                      html)
+    rows = re.findall(r"<tr><td class=\"l\">([^<]+)</td><td class=\"l\">([^<]*)</td><td class=\"l\">([^<]*)</td>", html)
     options = {name: (value, unit) for name, value, unit in rows}
     assert options["gamma_w"] == ("9.81", "kN/m³")  # 9810 N/m³ as typed: 9.81 kN/m³
     assert options["ambient_pressure"] == ("101.325", "kPa")
@@ -119,21 +138,22 @@ def test_options_in_the_units_a_user_types(tmp_path, shear_result):
     # only the options in force: no model parameter of the thesis models, nothing that is None
     assert not [n for n in options if n.startswith("model_params.")]
     assert "box_area" not in options and "curves" not in options
-    vanapalli = capred.run_shear(capred.sample_path("shear"),
-                                 capred.ShearOptions(bootstrap=0, models=("bishop", "vanapalli"),
-                                                     model_params=capred.ModelParams(s_res=0.05)))
+    vanapalli = capred.run_shear(
+        capred.sample_path("shear"),
+        capred.ShearOptions(bootstrap=0, models=("bishop", "vanapalli"), model_params=capred.ModelParams(s_res=0.05)),
+    )
     html = report_html.render_html(vanapalli, {}, False)
-    assert ">model_params.s_res</td><td class=\"l\">0.05<" in html
+    assert '>model_params.s_res</td><td class="l">0.05<' in html
 
 
 def test_report_date_from_source_date_epoch(monkeypatch, shear_result):
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")  # 2023-11-14 22:13:20 UTC
     assert "2023-11-14T22:13:20+00:00" in report_html.render_html(shear_result, {}, False)
     monkeypatch.delenv("SOURCE_DATE_EPOCH")
-    from datetime import datetime, timezone
+    from datetime import datetime
 
     stamp = re.search(r"· (\d{4}-\d\d-\d\dT[\d:]+\+00:00)", report_html.render_html(shear_result, {}, False))
-    age = datetime.now(timezone.utc) - datetime.fromisoformat(stamp.group(1))
+    age = datetime.now(UTC) - datetime.fromisoformat(stamp.group(1))
     assert abs(age.total_seconds()) < 120  # now, within the test's own run time
 
 
@@ -163,8 +183,20 @@ def test_retention_methods_from_the_registry(tmp_path):
                 assert doi in text
 
 
-@pytest.mark.parametrize("command", ["triaxial-bounds", "retention", "prism", "skempton-b", "rumpf", "bridge solve",
-                                     "bridge compare", "bridge rupture", "bridge curve"])
+@pytest.mark.parametrize(
+    "command",
+    [
+        "triaxial-bounds",
+        "retention",
+        "prism",
+        "skempton-b",
+        "rumpf",
+        "bridge solve",
+        "bridge compare",
+        "bridge rupture",
+        "bridge curve",
+    ],
+)
 def test_every_command_renders_its_report(command):
     from capred.reductions import REDUCTIONS
 

@@ -1,16 +1,17 @@
 """capred retention at the peers' depth (issue 12): more models, hysteresis, weights, statistics, inputs."""
+
 import json
 
 import numpy as np
 import pandas as pd
 import pytest
+from conftest import RETENTION_DATA
 from typer.testing import CliRunner
 
 import capred
 from capred.cli import app
 from capred.fitting.retention_models import MODELS, confidence_band, fit_hysteresis, fit_model
 from capred.physics import retention as rp
-from conftest import RETENTION_DATA
 
 runner = CliRunner()
 CM = 98.1  # Pa per cm of water with gamma_w = 9.81 kN/m^3 (the same factor in and out: heads round-trip exactly)
@@ -47,12 +48,15 @@ def test_fredlund_xing_without_c_toyoura_published():
         assert f.params[k] == pytest.approx(v, rel=2e-3)
 
 
-@pytest.mark.parametrize("name,truth", [
-    ("durner", dict(y_r=0.05, y_s=0.42, w1=0.6, alpha1=1 / 300, n1=6.0, alpha2=1 / 30000, n2=1.6)),
-    ("fx", dict(y_s=0.40, a=2000.0, n=3.0, m=1.2, s_r=5e5)),
-    ("kosugi", dict(y_r=0.03, y_s=0.38, s_m=4000.0, sigma=0.8)),
-    ("vg_m_free", dict(y_r=0.02, y_s=0.45, alpha=1 / 2000, n=2.5, m=0.4)),
-])
+@pytest.mark.parametrize(
+    "name,truth",
+    [
+        ("durner", dict(y_r=0.05, y_s=0.42, w1=0.6, alpha1=1 / 300, n1=6.0, alpha2=1 / 30000, n2=1.6)),
+        ("fx", dict(y_s=0.40, a=2000.0, n=3.0, m=1.2, s_r=5e5)),
+        ("kosugi", dict(y_r=0.03, y_s=0.38, s_m=4000.0, sigma=0.8)),
+        ("vg_m_free", dict(y_r=0.02, y_s=0.45, alpha=1 / 2000, n=2.5, m=0.4)),
+    ],
+)
 def test_models_recover_noise_free_parameters(name, truth):
     s = np.geomspace(10, 1e6, 40)
     y = MODELS[name].water(s, **truth)
@@ -100,8 +104,9 @@ def test_hysteresis_kool_parker_recovers_the_two_alphas():
 
 
 def test_cli_all_models_selection_and_hysteresis(tmp_path):
-    res = runner.invoke(app, ["retention", "--sample", "--model", "all", "--hysteresis", "kool-parker", "--json",
-                              "--no-plots"])
+    res = runner.invoke(
+        app, ["retention", "--sample", "--model", "all", "--hysteresis", "kool-parker", "--json", "--no-plots"]
+    )
     assert res.exit_code == 0, res.output
     js = json.loads(res.stdout)
     for b, d in js["branches"].items():
@@ -118,11 +123,14 @@ def test_cli_all_models_selection_and_hysteresis(tmp_path):
 
 def test_pf_and_gravimetric_inputs(tmp_path):
     h, th = _toyoura()
-    (tmp_path / "head.csv").write_text("head [cm],theta\n" + "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(h, th)))
+    (tmp_path / "head.csv").write_text(
+        "head [cm],theta\n" + "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(h, th))
+    )
     pf = np.log10(h)
     rho_d = 1600.0  # w = theta rho_w / rho_d
-    (tmp_path / "pf.csv").write_text("pF,w,rho_d [kg/m^3]\n" + "".join(
-        f"{float(a)!r},{float(b) * 1000 / rho_d!r},{rho_d}\n" for a, b in zip(pf, th)))
+    (tmp_path / "pf.csv").write_text(
+        "pF,w,rho_d [kg/m^3]\n" + "".join(f"{float(a)!r},{float(b) * 1000 / rho_d!r},{rho_d}\n" for a, b in zip(pf, th))
+    )
     a = capred.run_retention(tmp_path / "head.csv", capred.RetentionOptions(models=("vg",))).to_json()["fits"]["vg"]
     b = capred.run_retention(tmp_path / "pf.csv", capred.RetentionOptions(models=("vg",))).to_json()["fits"]["vg"]
     for k in ("theta_s", "theta_r", "alpha_per_kPa", "n"):
@@ -130,8 +138,9 @@ def test_pf_and_gravimetric_inputs(tmp_path):
 
 
 def test_short_branch_is_skipped_with_a_warning(tmp_path):
-    rows = "".join(f"{s},{v},drying\n" for s, v in ((1, 0.99), (2, 0.9), (4, 0.6), (8, 0.3), (16, 0.15),
-                                                    (32, 0.1), (64, 0.08)))
+    rows = "".join(
+        f"{s},{v},drying\n" for s, v in ((1, 0.99), (2, 0.9), (4, 0.6), (8, 0.3), (16, 0.15), (32, 0.1), (64, 0.08))
+    )
     rows += "20,0.4,wetting\n10,0.7,wetting\n"
     (tmp_path / "r.csv").write_text("suction [kPa],S_R,branch\n" + rows)
     res = capred.run_retention(tmp_path / "r.csv", capred.RetentionOptions(models=("vg",)))
@@ -141,8 +150,12 @@ def test_short_branch_is_skipped_with_a_warning(tmp_path):
 
 
 def test_shear_reads_any_retention_model(tmp_path):
-    assert runner.invoke(app, ["retention", "--sample", "--model", "kosugi", "--no-plots", "--out",
-                               str(tmp_path / "r")]).exit_code == 0
+    assert (
+        runner.invoke(
+            app, ["retention", "--sample", "--model", "kosugi", "--no-plots", "--out", str(tmp_path / "r")]
+        ).exit_code
+        == 0
+    )
     from capred.pipelines.shear import model_params_from_retention
 
     opts = capred.ShearOptions(bootstrap=0, model_params=model_params_from_retention(tmp_path / "r" / "fits.json"))

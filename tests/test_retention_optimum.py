@@ -7,16 +7,17 @@ not above the reference's by more than 1e-6 relative (the reference itself conve
 relative, and an RSS 1e-6 above the optimum moves no parameter by more than ~0.1 % of its standard error).
 The reference may stop higher than capred (a random search has no guarantee); that is allowed.
 """
+
 import numpy as np
 import pandas as pd
 import pytest
+from conftest import RETENTION_DATA
 from numpy.testing import assert_allclose
 from scipy.optimize import least_squares
 
 from capred.fitting.retention_models import MODELS, RetentionFit, bounds_for, fit_model
 from capred.physics import retention as rp
 from capred.references import REFERENCES
-from conftest import RETENTION_DATA
 
 CM = 98.1  # Pa per cm of water (gamma_w = 9.81 kN/m^3)
 ROOT = RETENTION_DATA.parents[2]
@@ -39,11 +40,14 @@ def multistart(name, s, y, n_starts=30, seed=0):
 
     best = np.inf
     for _ in range(n_starts):
-        x0 = [o + np.exp(rng.uniform(np.log(a - o), np.log(c - o))) if (o := logp.get(k)) is not None
-              else rng.uniform(a, c) for k, a, c in zip(names, lo, hi)]
+        x0 = [
+            o + np.exp(rng.uniform(np.log(a - o), np.log(c - o)))
+            if (o := logp.get(k)) is not None
+            else rng.uniform(a, c)
+            for k, a, c in zip(names, lo, hi)
+        ]
         x0 = np.clip(x0, lo + 1e-9 * (hi - lo), hi - 1e-9 * (hi - lo))
-        r = least_squares(resid, x0, bounds=(lo, hi), x_scale="jac", ftol=1e-13, xtol=1e-13, gtol=1e-13,
-                          max_nfev=3000)
+        r = least_squares(resid, x0, bounds=(lo, hi), x_scale="jac", ftol=1e-13, xtol=1e-13, gtol=1e-13, max_nfev=3000)
         best = min(best, 2 * r.cost)
     return best
 
@@ -93,19 +97,23 @@ def test_optimum_hard_synthetic_cases(name, seed, rss):
     assert_allclose(f.rss, rss, rtol=1e-4)  # the optimum found when the case was built (5 printed digits)
 
 
-@pytest.mark.parametrize("data,name", [
-    ("swrc_vg1980_touchet_silt_loam_ge3", "bc"),  # optimum s_e in the interval left of the grid's best point
-    pytest.param("swrc_vg1980_hygiene_sandstone", "durner", marks=pytest.mark.slow),  # two systems, one alpha
-    pytest.param("swrc_vg1980_silt_loam_ge3", "fx", marks=pytest.mark.slow),  # s_r inside the data range
-    ("swrc_toyoura_sand_swrcfit", "fx_no_c"),  # flat (m, n, theta_r) ridge
-    pytest.param("swrc_toyoura_sand_swrcfit", "vg_m_free", marks=pytest.mark.slow),
-])
+@pytest.mark.parametrize(
+    "data,name",
+    [
+        ("swrc_vg1980_touchet_silt_loam_ge3", "bc"),  # optimum s_e in the interval left of the grid's best point
+        pytest.param("swrc_vg1980_hygiene_sandstone", "durner", marks=pytest.mark.slow),  # two systems, one alpha
+        pytest.param("swrc_vg1980_silt_loam_ge3", "fx", marks=pytest.mark.slow),  # s_r inside the data range
+        ("swrc_toyoura_sand_swrcfit", "fx_no_c"),  # flat (m, n, theta_r) ridge
+        pytest.param("swrc_toyoura_sand_swrcfit", "vg_m_free", marks=pytest.mark.slow),
+    ],
+)
 def test_optimum_public_sets_hard(data, name):
     _check(name, *_public(data))
 
 
-@pytest.mark.parametrize("name", [m if m in ("vg", "bc", "kosugi") else pytest.param(m, marks=pytest.mark.slow)
-                                  for m in MODELS])
+@pytest.mark.parametrize(
+    "name", [m if m in ("vg", "bc", "kosugi") else pytest.param(m, marks=pytest.mark.slow) for m in MODELS]
+)
 @pytest.mark.parametrize("branch", ["drying", "wetting"])
 def test_optimum_bundled_sample(branch, name):
     _check(name, *_sample(branch), n_starts=20)
@@ -130,10 +138,21 @@ def test_brooks_corey_air_entry_is_interior():
 
 def test_bound_warning_in_the_parameters_own_scale():
     """Kosugi's s_m = 7.9 kPa in 1e-4 ... 1.5e7 kPa is interior on a log scale (the linear test flagged it)."""
-    f = RetentionFit(params={"y_r": 0.1, "y_s": 0.4, "s_m": 7947.0, "sigma": 0.5}, stderr={}, fixed=(), n=20,
-                     rss=1.0, r2=0.9, aic=0.0, bic=0.0, converged=True, free=("y_r", "y_s", "s_m", "sigma"),
-                     bounds={"y_r": (0.0, 0.4), "y_s": (0.1, 1.0), "s_m": (0.1, 1.5e10), "sigma": (1e-3, 10.0)},
-                     log_params=MODELS["kosugi"].log_params, model="kosugi")
+    f = RetentionFit(
+        params={"y_r": 0.1, "y_s": 0.4, "s_m": 7947.0, "sigma": 0.5},
+        stderr={},
+        fixed=(),
+        n=20,
+        rss=1.0,
+        r2=0.9,
+        aic=0.0,
+        bic=0.0,
+        converged=True,
+        free=("y_r", "y_s", "s_m", "sigma"),
+        bounds={"y_r": (0.0, 0.4), "y_s": (0.1, 1.0), "s_m": (0.1, 1.5e10), "sigma": (1e-3, 10.0)},
+        log_params=MODELS["kosugi"].log_params,
+        model="kosugi",
+    )
     assert f.at_bounds() == []
     f.params["s_m"] = 0.1 * (1 + 1e-9)  # on its bound to 1e-9 of the log range
     f.params["y_r"] = 0.0
@@ -156,15 +175,18 @@ def test_residual_at_its_bound_keeps_the_other_standard_errors():
     assert f.t == pytest.approx(g.t)
 
 
-@pytest.mark.parametrize("name,truth", [
-    ("vg", dict(y_r=0.05, y_s=0.40, alpha=1 / 4000, n=2.5)),
-    ("vg_m_free", dict(y_r=0.02, y_s=0.45, alpha=1 / 2000, n=2.5, m=0.4)),
-    ("bc", dict(y_r=0.05, y_s=0.40, s_e=3000.0, lam=1.2)),
-    ("kosugi", dict(y_r=0.03, y_s=0.38, s_m=4000.0, sigma=0.8)),
-    ("fx", dict(y_s=0.40, a=2000.0, n=3.0, m=1.2, s_r=5e5)),
-    ("fx_no_c", dict(y_r=0.03, y_s=0.40, a=2000.0, n=3.0, m=1.2)),
-    ("durner", dict(y_r=0.05, y_s=0.42, w1=0.6, alpha1=1 / 300, n1=6.0, alpha2=1 / 30000, n2=1.6)),
-])
+@pytest.mark.parametrize(
+    "name,truth",
+    [
+        ("vg", dict(y_r=0.05, y_s=0.40, alpha=1 / 4000, n=2.5)),
+        ("vg_m_free", dict(y_r=0.02, y_s=0.45, alpha=1 / 2000, n=2.5, m=0.4)),
+        ("bc", dict(y_r=0.05, y_s=0.40, s_e=3000.0, lam=1.2)),
+        ("kosugi", dict(y_r=0.03, y_s=0.38, s_m=4000.0, sigma=0.8)),
+        ("fx", dict(y_s=0.40, a=2000.0, n=3.0, m=1.2, s_r=5e5)),
+        ("fx_no_c", dict(y_r=0.03, y_s=0.40, a=2000.0, n=3.0, m=1.2)),
+        ("durner", dict(y_r=0.05, y_s=0.42, w1=0.6, alpha1=1 / 300, n1=6.0, alpha2=1 / 30000, n2=1.6)),
+    ],
+)
 def test_fitted_curve_is_callable_and_invertible(name, truth):
     s = np.geomspace(100, 1e6, 30)
     f = fit_model(name, s, MODELS[name].water(s, **truth))

@@ -1,15 +1,15 @@
 """Retention fits against published parameters (data and sources: tests/data/retention/README.md)."""
+
 import json
 
 import numpy as np
 import pytest
+from conftest import RETENTION_DATA
 from typer.testing import CliRunner
 
 from capred.cli import app
-from capred.pipelines.retention import RetentionOptions, run_retention
 from capred.physics import retention as rp
-from conftest import RETENTION_DATA
-
+from capred.pipelines.retention import RetentionOptions, run_retention
 
 
 def _fit(name, **kw):
@@ -84,8 +84,13 @@ def test_bc_round_trip_exact_curve(write_csv):
 
 
 def test_branches_inferred_from_order(write_csv):
-    data = write_csv("z1,S_R\n" + "".join(f"{h},{float(rp.vg_water(h * 0.0981, 0.05, 1.0, 0.3, 4))!r}\n" for h in
-                                         (5, 10, 20, 30, 40, 60, 80, 60, 40, 30, 20, 10, 5)))
+    data = write_csv(
+        "z1,S_R\n"
+        + "".join(
+            f"{h},{float(rp.vg_water(h * 0.0981, 0.05, 1.0, 0.3, 4))!r}\n"
+            for h in (5, 10, 20, 30, 40, 60, 80, 60, 40, 30, 20, 10, 5)
+        )
+    )
     r = run_retention(data, RetentionOptions(models=("vg",)))
     assert list(r.branch) == ["drying"] * 7 + ["wetting"] * 6
     assert "inferred" in r.branch_source
@@ -102,11 +107,14 @@ def test_retention_cli_sample_json(tmp_path):
     assert (tmp_path / "retention.png").exists()
 
 
-@pytest.mark.parametrize("args,message", [
-    (["--fix", "theta_s"], "expected NAME=VALUE"),
-    (["--fix", "bogus=1"], "expected NAME=VALUE"),
-    (["--model", "xyz"], "--model: unknown model"),
-])
+@pytest.mark.parametrize(
+    "args,message",
+    [
+        (["--fix", "theta_s"], "expected NAME=VALUE"),
+        (["--fix", "bogus=1"], "expected NAME=VALUE"),
+        (["--model", "xyz"], "--model: unknown model"),
+    ],
+)
 def test_retention_bad_options(args, message):
     res = CliRunner().invoke(app, ["retention", "--sample", *args])
     assert res.exit_code == 1 and message in res.stderr

@@ -4,6 +4,7 @@ and the large-data shortcuts still end at the optimum.
 Every start-grid value, every batched residual and every mixture pair is computed from moments or in stacks of
 rows; these tests rebuild each from its definition (one curve at a time, the sum of squares written out).
 """
+
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose

@@ -4,6 +4,7 @@ The block size of capred.io.blocks is made small (monkeypatched) so that a table
 read in several blocks; results.csv, summary.csv and the JSON document must then be byte for byte those of the
 same table read whole, and the figures' and console tables' inputs the same numbers.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -72,7 +73,7 @@ def test_rows_across_seams(pair):
     assert long._test_rows(seam - 3, seam + 2) == whole._test_rows(seam - 3, seam + 2)
     cols = long.csv_tables()["results"].columns(seam - 3, seam + 2)
     for key, v in whole._results_columns().items():
-        assert_array_equal(cols[key], np.asarray(v)[seam - 3:seam + 2], err_msg=key)
+        assert_array_equal(cols[key], np.asarray(v)[seam - 3 : seam + 2], err_msg=key)
 
 
 def test_figure_and_table_inputs(pair):
@@ -86,8 +87,12 @@ def test_figure_and_table_inputs(pair):
     for m in whole.models:
         # the same numbers: the same computation on a slice of the tests (exact)
         assert_allclose(long.predictions[m].tau[rows], whole.predictions[m].tau[rows], rtol=0, atol=0)
-        assert_allclose(long.predictions[m].tau_prediction_interval[1][rows],
-                        whole.predictions[m].tau_prediction_interval[1][rows], rtol=0, atol=0)
+        assert_allclose(
+            long.predictions[m].tau_prediction_interval[1][rows],
+            whole.predictions[m].tau_prediction_interval[1][rows],
+            rtol=0,
+            atol=0,
+        )
     assert_allclose(long.back.chi_back[rows], whole.back.chi_back[rows], rtol=0, atol=0)
     assert long.test_ids(rows[:3]) == [str(x) for x in whole.tests["test_id"][rows[:3]]]
     with pytest.raises(IndexError):

@@ -1,5 +1,6 @@
 """capred shear answers "chi = ?" (issue 11): back-analysis, pendular scores, bootstrap ranking, bands,
 fitted chi laws, the exact-bridge model and the cohesionless envelope."""
+
 import json
 
 import numpy as np
@@ -37,8 +38,9 @@ def _table(wet_chi, sigma_levels=(1.0, 2.0, 3.0), c=0.2, tan_phi=0.7, R_mm=1.0, 
             rows.append(dict(test_id=f"W{k}", condition="wet", sigma_N=s_n, tau_max=tau, suction=u, S_R=S, R=R_mm))
             k += 1
     frame = pd.DataFrame(rows)
-    return frame.rename(columns={"sigma_N": "sigma_N [kPa]", "tau_max": "tau_max [kPa]", "suction": "suction [kPa]",
-                                 "R": "R [mm]"})
+    return frame.rename(
+        columns={"sigma_N": "sigma_N [kPa]", "tau_max": "tau_max [kPa]", "suction": "suction [kPa]", "R": "R [mm]"}
+    )
 
 
 def test_back_analysis_hand_worked():
@@ -47,8 +49,9 @@ def test_back_analysis_hand_worked():
     # var = (1/b)^2 var_c + ((tau-c)/b^2)^2 var_b + 2 (1/b)((tau-c)/b^2) cov + s2/b^2
     #     = 4*0.01 + 64*0.0004 + 2*2*8*(-0.001) + 0.04*4 = 0.04 + 0.0256 - 0.032 + 0.16 = 0.1936 -> se 0.44
     cov = np.array([[[0.01, -0.001], [-0.001, 0.0004]]])
-    cap, se, chi, chi_se = back_analysis(np.array([3.0]), np.array([2.0]), np.array([4.0]), np.array([1.0]),
-                                         np.array([0.5]), cov, np.array([0.04]))
+    cap, se, chi, chi_se = back_analysis(
+        np.array([3.0]), np.array([2.0]), np.array([4.0]), np.array([1.0]), np.array([0.5]), cov, np.array([0.04])
+    )
     assert cap[0] == pytest.approx(2.0, rel=1e-12)
     assert se[0] == pytest.approx(0.44, rel=1e-12)
     assert chi[0] == pytest.approx(0.5, rel=1e-12) and chi_se[0] == pytest.approx(0.11, rel=1e-12)
@@ -101,8 +104,9 @@ def test_bootstrap_goes_to_one_for_the_generating_model():
 
 def test_chi_power_recovers_kappa_of_noise_free_data():
     """Closed form: data made with chi = S_R^1.7 exactly give kappa = 1.7 and RSS = 0."""
-    res = capred.run_shear(_table(lambda S, u: S ** 1.7),
-                           capred.ShearOptions(models=("bishop", "chi_power"), bootstrap=0))
+    res = capred.run_shear(
+        _table(lambda S, u: S**1.7), capred.ShearOptions(models=("bishop", "chi_power"), bootstrap=0)
+    )
     js = res.to_json()
     mat = next(iter(js["fitted"]))
     law = js["fitted"][mat]["chi_power"]
@@ -120,8 +124,10 @@ def test_chi_power_single_test_closed_form():
 
 
 def test_khalili_fit_recovers_air_entry():
-    res = capred.run_shear(_table(lambda S, u: 1.0 if u <= 1.2 else (u / 1.2) ** -0.55),
-                           capred.ShearOptions(models=("bishop", "khalili_fit"), bootstrap=0))
+    res = capred.run_shear(
+        _table(lambda S, u: 1.0 if u <= 1.2 else (u / 1.2) ** -0.55),
+        capred.ShearOptions(models=("bishop", "khalili_fit"), bootstrap=0),
+    )
     law = next(iter(res.to_json()["fitted"].values()))["khalili_fit"]
     # s_b is identified only between the measured suctions that bracket it (1.0 and 1.5 kPa); noise-free
     # data make the RSS zero for s_b = 1.2 exactly
@@ -142,8 +148,10 @@ def test_aicc_by_hand():
 
 
 def test_model_selection_table_in_json():
-    res = capred.run_shear(_table(lambda S, u: S ** 1.7, noise=0.01),
-                           capred.ShearOptions(models=("bishop", "own1", "chi_power"), bootstrap=0))
+    res = capred.run_shear(
+        _table(lambda S, u: S**1.7, noise=0.01),
+        capred.ShearOptions(models=("bishop", "own1", "chi_power"), bootstrap=0),
+    )
     sel = next(iter(res.to_json()["model_selection"].values()))
     assert sel["chi_power"]["k"] == 2 and sel["bishop"]["k"] == 1
     assert sum(v["weight"] for v in sel.values()) == pytest.approx(1.0)
@@ -231,8 +239,22 @@ def test_dry_fit_through_origin():
 
 
 def test_cli_options_and_console(tmp_path):
-    res = runner.invoke(app, ["shear", "--sample", "--no-plots", "--bootstrap", "200", "--seed", "3",
-                              "--models", "thesis,chi_power", "--out", str(tmp_path / "o")])
+    res = runner.invoke(
+        app,
+        [
+            "shear",
+            "--sample",
+            "--no-plots",
+            "--bootstrap",
+            "200",
+            "--seed",
+            "3",
+            "--models",
+            "thesis,chi_power",
+            "--out",
+            str(tmp_path / "o"),
+        ],
+    )
     assert res.exit_code == 0, res.output
     assert "of resamples" in res.stdout and "Pendular wet tests only" in res.stdout
     assert "ΔAICc" in res.stdout and "Capillary stress carried" in res.stdout

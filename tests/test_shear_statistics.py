@@ -8,6 +8,7 @@ which a correct interval fails with probability 0.3 %. One interval per data set
 independent. The design is realistic for the hanging-column tests: 6 dry tests at sigma_N = 1, 2, 3 kPa,
 10 wet tests at suctions 0.5-8 kPa, c = 0.3 kPa, tan phi = 0.7, noise SD 10 Pa (0.01 kPa).
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -42,11 +43,23 @@ def _dry(rng):
 
 def _inputs(sigma_N, suction, S_R, tau, wet, fit, material="m"):
     n = sigma_N.size
-    return esm.ModelInputs(sigma_N, suction, S_R, np.full(n, 1e-3), tau, wet, np.array([material] * n, dtype=object),
-                           np.full(n, fit.intercept), np.full(n, fit.slope), 0.0728, ModelParams())
+    return esm.ModelInputs(
+        sigma_N,
+        suction,
+        S_R,
+        np.full(n, 1e-3),
+        tau,
+        wet,
+        np.array([material] * n, dtype=object),
+        np.full(n, fit.intercept),
+        np.full(n, fit.slope),
+        0.0728,
+        ModelParams(),
+    )
 
 
 # ---------------------------------------------------------------------------------------------------- laws
+
 
 def test_law_uncertainty_equals_the_exact_linear_two_step_covariance():
     """A law linear in theta (tau = c + b sigma + theta x): the two-step estimate is L y exactly, its covariance
@@ -86,8 +99,9 @@ def test_chi_power_ci95_covers_kappa():
     for _ in range(n):
         dry = _dry(rng)
         tau = C + TAN_PHI * (WET_SIGMA + WET_S_R**kappa * WET_SUCTION) + rng.normal(0, NOISE, 10)
-        law = fit_chi_power(WET_SIGMA, WET_SUCTION, WET_S_R, tau, dry.intercept, dry.slope, start={"kappa": kappa},
-                            dry=dry)
+        law = fit_chi_power(
+            WET_SIGMA, WET_SUCTION, WET_S_R, tau, dry.intercept, dry.slope, start={"kappa": kappa}, dry=dry
+        )
         lo, hi = law.ci95["kappa"]
         hits += lo <= kappa <= hi
         hits_cond += abs(law.params["kappa"] - kappa) <= t_quantile(0.975, 9) * law.se_conditional["kappa"]
@@ -108,8 +122,7 @@ def test_khalili_ci95_covers_s_b():
     for _ in range(n):
         dry = _dry(rng)
         tau = C + TAN_PHI * (WET_SIGMA + chi * suction) + rng.normal(0, NOISE, 10)
-        law = fit_khalili(WET_SIGMA, suction, WET_S_R, tau, dry.intercept, dry.slope, eta, start={"s_b": s_b},
-                          dry=dry)
+        law = fit_khalili(WET_SIGMA, suction, WET_S_R, tau, dry.intercept, dry.slope, eta, start={"s_b": s_b}, dry=dry)
         lo, hi = law.ci95["s_b"]
         hits += lo <= s_b <= hi
     COVERAGE["s_b"] = hits / n
@@ -122,8 +135,14 @@ def test_fit_laws_recomputes_the_dry_fit_when_not_given():
     dry_y = C + TAN_PHI * DRY_X + rng.normal(0, NOISE, 6)
     fit = fit_line(DRY_X, dry_y)
     tau = C + TAN_PHI * (WET_SIGMA + WET_S_R**1.5 * WET_SUCTION) + rng.normal(0, NOISE, 10)
-    d = _inputs(np.r_[DRY_X, WET_SIGMA], np.r_[np.zeros(6), WET_SUCTION], np.r_[np.zeros(6), WET_S_R],
-                np.r_[dry_y, tau], np.r_[np.zeros(6, bool), np.ones(10, bool)], fit)
+    d = _inputs(
+        np.r_[DRY_X, WET_SIGMA],
+        np.r_[np.zeros(6), WET_SUCTION],
+        np.r_[np.zeros(6), WET_S_R],
+        np.r_[dry_y, tau],
+        np.r_[np.zeros(6, bool), np.ones(10, bool)],
+        fit,
+    )
     a = sa.fit_laws(d, ["chi_power"], ["m"], ModelParams())["chi_power"]["m"]
     b = sa.fit_laws(d, ["chi_power"], ["m"], ModelParams(), fits={"m": fit})["chi_power"]["m"]
     assert a.ci95 == b.ci95 and a.dof == b.dof == 13  # the same dry fit, found from d's dry tests
@@ -134,18 +153,37 @@ def test_fit_laws_recomputes_the_dry_fit_when_not_given():
 
 # ------------------------------------------------------------------------------------------ back-analysis
 
+
 def test_back_analysis_intervals_hand_worked():
     # the case of test_shear_chi: sigma_cap = 2 kPa, se = 0.44; dof 4 -> t = 2.776445 (t table)
     cov = np.array([[[0.01, -0.001], [-0.001, 0.0004]]])
-    ba = sa.back_analysis_intervals(np.array([3.0]), np.array([2.0]), np.array([4.0]), np.array([1.0]),
-                                    np.array([0.5]), cov, np.array([0.04]), np.array([4]))
-    assert_allclose(np.ravel(ba.sigma_cap_ci), [2 - 2.776445 * 0.44, 2 + 2.776445 * 0.44],
-                    rtol=1e-6)  # t table to 7 digits
+    ba = sa.back_analysis_intervals(
+        np.array([3.0]),
+        np.array([2.0]),
+        np.array([4.0]),
+        np.array([1.0]),
+        np.array([0.5]),
+        cov,
+        np.array([0.04]),
+        np.array([4]),
+    )
+    assert_allclose(
+        np.ravel(ba.sigma_cap_ci), [2 - 2.776445 * 0.44, 2 + 2.776445 * 0.44], rtol=1e-6
+    )  # t table to 7 digits
     assert_allclose(np.ravel(ba.chi_back_ci), [(2 - 2.776445 * 0.44) / 4, (2 + 2.776445 * 0.44) / 4], rtol=1e-6)
     assert ba.dof[0] == 4
     # dry tests (wet = False) carry no capillary stress
-    ba = sa.back_analysis_intervals(np.array([3.0]), np.array([2.0]), np.array([0.0]), np.array([1.0]),
-                                    np.array([0.5]), cov, np.array([0.04]), np.array([4]), wet=np.array([False]))
+    ba = sa.back_analysis_intervals(
+        np.array([3.0]),
+        np.array([2.0]),
+        np.array([0.0]),
+        np.array([1.0]),
+        np.array([0.5]),
+        cov,
+        np.array([0.04]),
+        np.array([4]),
+        wet=np.array([False]),
+    )
     assert np.isnan(ba.sigma_cap[0]) and np.isnan(ba.sigma_cap_ci[0][0]) and np.isnan(ba.dof[0])
 
 
@@ -158,9 +196,16 @@ def test_sigma_cap_interval_covers_the_true_capillary_stress():
     for _ in range(n):
         dry = _dry(rng)
         tau = C + TAN_PHI * (1000.0 + truth) + rng.normal(0, NOISE)
-        ba = sa.back_analysis_intervals(np.array([tau]), np.array([1000.0]), np.array([2500.0]),
-                                        np.array([dry.intercept]), np.array([dry.slope]), dry.covariance[None],
-                                        np.array([dry.residual_variance]), np.array([dry.dof]))
+        ba = sa.back_analysis_intervals(
+            np.array([tau]),
+            np.array([1000.0]),
+            np.array([2500.0]),
+            np.array([dry.intercept]),
+            np.array([dry.slope]),
+            dry.covariance[None],
+            np.array([dry.residual_variance]),
+            np.array([dry.dof]),
+        )
         (lo,), (hi,) = ba.sigma_cap_ci
         hits += lo <= truth <= hi
         hits_z += abs(ba.sigma_cap[0] - truth) <= 1.96 * ba.sigma_cap_se[0]
@@ -174,6 +219,7 @@ def test_sigma_cap_interval_covers_the_true_capillary_stress():
 
 # ---------------------------------------------------------------------------------------------------- bands
 
+
 def test_tau_bands_bishop_equal_the_line_formulas():
     """Bishop: tau = c + b sigma' with sigma' fixed by the test, so the mean band and the prediction interval
     are those of the dry line at x = sigma' (Draper & Smith 1998, ch. 1)."""
@@ -185,8 +231,7 @@ def test_tau_bands_bishop_equal_the_line_formulas():
     x = WET_SIGMA + WET_S_R * WET_SUCTION
     # central differences of an affine model: exact to ~1e-9 relative
     assert_allclose(np.column_stack([b.mean_low, b.mean_high]), np.column_stack(dry.mean_band(x)), rtol=1e-8)
-    assert_allclose(np.column_stack([b.pred_low, b.pred_high]), np.column_stack(dry.prediction_interval(x)),
-                    rtol=1e-8)
+    assert_allclose(np.column_stack([b.pred_low, b.pred_high]), np.column_stack(dry.prediction_interval(x)), rtol=1e-8)
     assert np.all(b.dof == 4)
     # the old entry point is the mean band
     lo, hi = sa.prediction_band("bishop", d, cov, np.full(10, dry.t))
@@ -208,8 +253,9 @@ def test_tau_bands_cover_the_mean_and_new_tests(model):
         d = _inputs(WET_SIGMA, WET_SUCTION, WET_S_R, tau, np.ones(10, bool), dry)
         laws = None
         if model == "chi_power":  # warm-started at the truth: the search is not the subject here
-            law = fit_chi_power(WET_SIGMA, WET_SUCTION, WET_S_R, tau, dry.intercept, dry.slope,
-                                start={"kappa": kappa}, dry=dry)
+            law = fit_chi_power(
+                WET_SIGMA, WET_SUCTION, WET_S_R, tau, dry.intercept, dry.slope, start={"kappa": kappa}, dry=dry
+            )
             laws = {model: {"m": law}}
             d = dataclasses.replace(d, fitted={model: {"m": law.params}})
         cov, s2, _ = sa.fit_covariances({"m": dry}, d.material)
@@ -227,6 +273,7 @@ def test_tau_bands_cover_the_mean_and_new_tests(model):
 
 
 # ------------------------------------------------------------------------------------------------ bootstrap
+
 
 def _loop_ranking(d_mat, dry_x, dry_y, models, params, fitted, replicates, seed, through_origin=False):
     """The first (loop) version of the bootstrap, the reference: RMSE per replicate and model, scored one
@@ -246,8 +293,9 @@ def _loop_ranking(d_mat, dry_x, dry_y, models, params, fitted, replicates, seed,
             c = float(y.mean() - b * x.mean())
         w = d_mat.subset(idx[r])
         w = dataclasses.replace(w, c=np.full(nw, c), tan_phi=np.full(nw, b))
-        refit = {m: {"m": sa._fit_one(m, w, params, start=fitted[m]["m"]).params} for m in models
-                 if esm.REGISTRY[m].fitted}
+        refit = {
+            m: {"m": sa._fit_one(m, w, params, start=fitted[m]["m"]).params} for m in models if esm.REGISTRY[m].fitted
+        }
         w = dataclasses.replace(w, fitted={**fitted, **refit})
         for k, m in enumerate(models):
             with np.errstate(invalid="ignore"):
@@ -267,8 +315,11 @@ def test_bootstrap_ranking_reproduces_the_loop(monkeypatch, through_origin):
     dry_y = c + TAN_PHI * DRY_X + rng.normal(0, 3 * NOISE, 6)
     dry = (sa.fit_line_origin if through_origin else fit_line)(DRY_X, dry_y)
     suction = np.array([0.5, 0.8, 1.0, 1.3, 1.7, 2.2, 3.0, 4.0, 6.0, 8.0]) * 1e3
-    tau = C * (not through_origin) + TAN_PHI * (WET_SIGMA + 0.5 * (WET_S_R + WET_S_R**0.5) * suction) \
+    tau = (
+        C * (not through_origin)
+        + TAN_PHI * (WET_SIGMA + 0.5 * (WET_S_R + WET_S_R**0.5) * suction)
         + rng.normal(0, 30.0, 10)
+    )
     d = _inputs(WET_SIGMA, suction, WET_S_R, tau, np.ones(10, bool), dry)
     models = ["no_suction", "bishop", "own1", "chi_power", "khalili_fit", "fredlund", "pedrotti_tarantino"]
     laws = sa.fit_laws(d, models, ["m"], ModelParams(), fits={"m": dry})
@@ -280,8 +331,9 @@ def test_bootstrap_ranking_reproduces_the_loop(monkeypatch, through_origin):
     monkeypatch.setattr(sa, "_summarise", lambda s, *a: seen.setdefault("s", s) is not None and real(s, *a))
     # one block of 150 replicates, drawn as the reference draws them
     monkeypatch.setattr(sa, "BLOCK_ELEMENTS", 150 * max(DRY_X.size, 10))
-    out = sa.bootstrap_ranking(d, DRY_X, dry_y, models, ModelParams(), fitted, ["bishop", "own1"], 150, 4,
-                               through_origin)
+    out = sa.bootstrap_ranking(
+        d, DRY_X, dry_y, models, ModelParams(), fitted, ["bishop", "own1"], 150, 4, through_origin
+    )
     got = seen["s"]
     affine = [models.index(m) for m in ("no_suction", "bishop", "own1", "fredlund", "pedrotti_tarantino")]
     assert_allclose(got[:, affine], ref[:, affine], rtol=1e-9)
@@ -347,8 +399,18 @@ def test_bootstrap_memory_per_wet_test_is_bounded():
     for copies in (200, 400):  # 2,800 and 5,600 wet tests
         r, d, dry_x, dry_y = _sample_material(copies)
         tracemalloc.start()
-        sa.bootstrap_ranking(d, dry_x, dry_y, ["no_suction", "bishop", "own1", "own2"], ModelParams(),
-                             r.model_inputs.fitted, ["own2", "own1"], 200, 0, False)
+        sa.bootstrap_ranking(
+            d,
+            dry_x,
+            dry_y,
+            ["no_suction", "bishop", "own1", "own2"],
+            ModelParams(),
+            r.model_inputs.fitted,
+            ["own2", "own1"],
+            200,
+            0,
+            False,
+        )
         peaks.append(tracemalloc.get_traced_memory()[1])
         tracemalloc.stop()
     assert (peaks[1] - peaks[0]) / 2800 < 500

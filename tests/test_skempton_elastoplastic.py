@@ -4,6 +4,7 @@ The bounding-surface compliance of Morvan, Wong & Branque (2010) is not availabl
 published elasto-plastic values (Fig. 6) are not tested; the scheme is tested by hand-worked
 numbers, its elastic limit (eq. 10 with the effective stress of eq. 13) and its limits.
 """
+
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
@@ -33,8 +34,9 @@ def test_eq24_with_elastic_compliance_is_eq10():
     S = np.linspace(0.0, 1.0, 21)
     for p_eff, e, kappa in [(70e3, 0.8, 0.006), (70e3, 0.6, 0.06), (150e3, 1.2, 0.0006)]:
         A11 = sep.elastic_compliance(p_eff, e, kappa)
-        assert_allclose(sep.skempton_b_from_compliance(A11, S, e, 130e3),
-                        calc.skempton_b(S, p_eff, e, kappa, 130e3), rtol=1e-12)
+        assert_allclose(
+            sep.skempton_b_from_compliance(A11, S, e, 130e3), calc.skempton_b(S, p_eff, e, kappa, 130e3), rtol=1e-12
+        )
 
 
 def test_compliance_from_skempton_b_round_trip():
@@ -48,7 +50,10 @@ def test_saturated_gives_b_one():
     # S_R = 1: no air, V_a = 0, so du_w = dp whatever the skeleton (eq. 24 limit, Morvan et al. 2016 Fig. 6)
     assert sep.skempton_b_from_compliance(1e-9, 1.0, 0.8, 130e3) == 1.0
     assert sep.skempton_b_incremental(1.0, **TABLE3) == 1.0
-    assert sep.skempton_b_incremental(1.0, compliance=sep.ElasticCompliance(1e-6), **{**TABLE3, "kappa_elastic": 1e-6}) == 1.0
+    assert (
+        sep.skempton_b_incremental(1.0, compliance=sep.ElasticCompliance(1e-6), **{**TABLE3, "kappa_elastic": 1e-6})
+        == 1.0
+    )
 
 
 def test_drying_loop_follows_eq13():
@@ -86,8 +91,7 @@ def test_default_increment_within_one_percent_of_tangent():
     # the docstring's claim: dp = 1 kPa (secant) is within 1 % of eq. 24 (tangent) at Table 3 values,
     # since p' rises by (1 - B) dp ~ 1 % of 90 kPa during the increment
     S = np.array([0.5, 0.8, 0.9, 0.95, 0.99])
-    assert_allclose(sep.skempton_b_incremental(S, **TABLE3), sep.skempton_b_incremental(S, dp=1.0, **TABLE3),
-                    rtol=1e-2)
+    assert_allclose(sep.skempton_b_incremental(S, **TABLE3), sep.skempton_b_incremental(S, dp=1.0, **TABLE3), rtol=1e-2)
 
 
 def test_b_rises_with_saturation_and_stiffer_skeleton_gives_lower_b():

@@ -4,6 +4,7 @@ sample_data/triaxial_groups.csv is synthetic: every unsaturated failure state is
 test's effective state plus a known tensor (see its comment lines), so eq. 48 and 50 must give the
 tensors back to the rounding of the file (stresses written to 1e-12 kPa).
 """
+
 import json
 
 import numpy as np
@@ -52,8 +53,7 @@ def test_groups_sample_recovers_tensors_api():
     assert t["T-50"]["branch"] == "general" and t["T-50"]["lower"] is None  # bounds are for axisymmetric tests
     # extension tests built with sigma1_cap = 0: the lower bound (extension form) gives sigma3_cap = -30 kPa each
     for tid in ("E-150", "E-250", "E-350"):
-        assert_allclose([t[tid]["lower"]["sigma1_cap_kPa"], t[tid]["lower"]["sigma3_cap_kPa"]], [0.0, -30.0],
-                        atol=1e-8)
+        assert_allclose([t[tid]["lower"]["sigma1_cap_kPa"], t[tid]["lower"]["sigma3_cap_kPa"]], [0.0, -30.0], atol=1e-8)
 
 
 def test_groups_sample_through_the_cli_with_files(tmp_path):
@@ -68,8 +68,9 @@ def test_groups_sample_through_the_cli_with_files(tmp_path):
     results = pd.read_csv(out / "results.csv")
     assert {"lode_angle [deg]", "branch", "pair"} <= set(results.columns)
     groups = pd.read_csv(out / "groups.csv").set_index("group")
-    assert_allclose(groups.loc["T", ["sigma1_cap_kPa", "sigma2_cap_kPa", "sigma3_cap_kPa"]].astype(float),
-                    KNOWN["T"], atol=1e-8)
+    assert_allclose(
+        groups.loc["T", ["sigma1_cap_kPa", "sigma2_cap_kPa", "sigma3_cap_kPa"]].astype(float), KNOWN["T"], atol=1e-8
+    )
     assert {"sigma2_cap_ci95_low_kPa", "sigma2_cap_ci95_high_kPa"} <= set(groups.columns)
 
 
@@ -93,11 +94,17 @@ def test_extension_test_by_hand(write_csv):
     assert js["branch"] == "extension" and js["lode_angle_deg"] == pytest.approx(60.0, abs=1e-6)
     assert js["p_kPa"] == pytest.approx(650 / 3, rel=1e-12)
     tol = dict(rtol=1e-12, atol=1e-9)  # closed forms, floating point only
-    assert_allclose([js["lower"][k] for k in ("sigma1_cap_kPa", "sigma2_cap_kPa", "sigma3_cap_kPa", "gain")],
-                    [0.0, 0.0, -50.0, 1.0], **tol)
+    assert_allclose(
+        [js["lower"][k] for k in ("sigma1_cap_kPa", "sigma2_cap_kPa", "sigma3_cap_kPa", "gain")],
+        [0.0, 0.0, -50.0, 1.0],
+        **tol,
+    )
     assert_allclose([js["spherical"][k] for k in ("p_cap_kPa", "p_prime_kPa", "gain")], [-75.0, 875 / 3, 1.25], **tol)
-    assert_allclose([js["edtp"][k] for k in ("sigma1_cap_kPa", "sigma2_cap_kPa", "sigma3_cap_kPa")],
-                    [-20.0, -20.0, 50 - 320 / 3], **tol)
+    assert_allclose(
+        [js["edtp"][k] for k in ("sigma1_cap_kPa", "sigma2_cap_kPa", "sigma3_cap_kPa")],
+        [-20.0, -20.0, 50 - 320 / 3],
+        **tol,
+    )
     assert js["q_sat_kPa"] == pytest.approx(200.0, rel=1e-12)
     # the compression form would have projected on M_c = 1.2 instead: p' = 250/1.2 = 208.3, not 291.7
     assert js["spherical"]["p_prime_kPa"] != pytest.approx(250 / 1.2, rel=1e-3)
@@ -109,16 +116,20 @@ def test_branch_column_fills_sigma2(write_csv):
     assert t["sigma2_kPa"] == 300.0 and t["branch"] == "extension"
 
 
-GROUP_SAT = ("test_id,condition,sigma3,q_f,sigma2,group,pair,branch\n"
-             "s1,saturated,50,119.56,,,,\ns2,saturated,100,229.13,,,,\n")
+GROUP_SAT = (
+    "test_id,condition,sigma3,q_f,sigma2,group,pair,branch\ns1,saturated,50,119.56,,,,\ns2,saturated,100,229.13,,,,\n"
+)
 BAD = {
     "branch_disagrees": (GROUP_SAT + "u1,unsaturated,50,200,50,,,extension\n", ["line 4", "branch 'extension'"]),
-    "pair_not_saturated": (GROUP_SAT + "u1,unsaturated,10,150,,A,u2,\nu2,unsaturated,60,260,,A,s2,\n",
-                           ["line 4", "'u2' is not a saturated test"]),
-    "pair_unknown": (GROUP_SAT + "u1,unsaturated,10,150,,A,s9,\nu2,unsaturated,60,260,,A,s2,\n",
-                     ["no test 's9'"]),
-    "pairs_partial": (GROUP_SAT + "u1,unsaturated,10,150,,A,,\nu2,unsaturated,60,260,,A,s2,\n",
-                      ["group 'A': give a paired saturated test for every test"]),
+    "pair_not_saturated": (
+        GROUP_SAT + "u1,unsaturated,10,150,,A,u2,\nu2,unsaturated,60,260,,A,s2,\n",
+        ["line 4", "'u2' is not a saturated test"],
+    ),
+    "pair_unknown": (GROUP_SAT + "u1,unsaturated,10,150,,A,s9,\nu2,unsaturated,60,260,,A,s2,\n", ["no test 's9'"]),
+    "pairs_partial": (
+        GROUP_SAT + "u1,unsaturated,10,150,,A,,\nu2,unsaturated,60,260,,A,s2,\n",
+        ["group 'A': give a paired saturated test for every test"],
+    ),
 }
 
 
@@ -132,8 +143,10 @@ def test_group_input_problems(case, write_csv):
 
 
 def test_group_lode_spread_and_mixed_branches(write_csv):
-    rows = GROUP_SAT + ("t1,unsaturated,10,150,80,T,,\nt2,unsaturated,60,260,120,T,,\n"
-                        "m1,unsaturated,10,150,,M,,\nm2,unsaturated,60,260,,M,,extension\n")
+    rows = GROUP_SAT + (
+        "t1,unsaturated,10,150,80,T,,\nt2,unsaturated,60,260,120,T,,\n"
+        "m1,unsaturated,10,150,,M,,\nm2,unsaturated,60,260,,M,,extension\n"
+    )
     js = run_triaxial_bounds(write_csv(rows), TriaxialOptions(c_eff=2795.0, phi_eff=31.523)).to_json()
     g = {x["group"]: x for x in js["groups"]}
     # T: Q = (160 - 80)/150 and (320 - 120)/260; theta = atan(sqrt3 (1 - Q)/(1 + Q)) (eq. 49, 53): 26.6 vs 15.3 deg,

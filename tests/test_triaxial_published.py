@@ -17,6 +17,7 @@ LB ratios of about 1.265 and 1.118 at 100 and 150 kPa, not 1.28 and 1.13
 (the p0 = 0 ratio 10.64 is reproduced). The LB ratios are therefore checked to
 0.02, the others to their printing precision.
 """
+
 import numpy as np
 import pytest
 
@@ -135,6 +136,8 @@ def test_group_equations_recover_known_tensors():
     a1, a3 = tx.axisymmetric_group_cap(C, tx.fictive_cohesion_lower(C, c, phi), c, phi)
     assert a1 == pytest.approx(0.0, abs=1e-6) and a3 == pytest.approx(-20e3, rel=1e-9)
     # eq. 50 adds the intermediate direction: C_i - C_i'' = 5 kPa / cos phi' -> s1 - s2 = 10 kPa
-    t1, t2, t3 = tx.true_triaxial_group_cap(C, tx.fictive_cohesion_lower(C, c, phi), 5e3 / np.cos(np.radians(phi)), 0.0, c, phi)
+    t1, t2, t3 = tx.true_triaxial_group_cap(
+        C, tx.fictive_cohesion_lower(C, c, phi), 5e3 / np.cos(np.radians(phi)), 0.0, c, phi
+    )
     assert t1 - t2 == pytest.approx(10e3, rel=1e-12) and t3 == pytest.approx(a3)
     assert kp > 1

@@ -1,5 +1,6 @@
 """The writer's fast paths (float columns printed as one matrix, JSON rows encoded straight from columns, a
 forked half of a long solve) write the bytes of the plain cell-by-cell definitions."""
+
 import csv
 import io
 import json
@@ -49,14 +50,21 @@ def test_float_columns_printed_at_once_are_the_cells_one_by_one(dialect):
     for j, (k, v) in enumerate(cols.items()):
         if v.dtype.kind == "f":  # every float cell, exactly
             assert [r[j] for r in rows[1:]] == [_cell(x, eu) for x in v.astype(float).tolist()], k
-    assert [r[0] for r in rows[1:6]] == (["'=x0", "c,1", "c,2", "c,3", "c,4"] if eu else ["=x0", "c,1", "c,2", "c,3",
-                                                                                         "c,4"])
+    assert [r[0] for r in rows[1:6]] == (
+        ["'=x0", "c,1", "c,2", "c,3", "c,4"] if eu else ["=x0", "c,1", "c,2", "c,3", "c,4"]
+    )
 
 
 def test_float_matrix_rows_and_the_other_columns_line_up():
     """Runs of float columns between text and integer columns: each row's cells in header order."""
-    cols = {"a": np.array([1.5, np.nan]), "t": np.array(["p", "q"], dtype=object), "b": np.array([2.0, -1e-300]),
-            "c": np.array([np.inf, 3.25]), "i": np.array([7, 8]), "d": np.array([0.1, 0.2])}
+    cols = {
+        "a": np.array([1.5, np.nan]),
+        "t": np.array(["p", "q"], dtype=object),
+        "b": np.array([2.0, -1e-300]),
+        "c": np.array([np.inf, 3.25]),
+        "i": np.array([7, 8]),
+        "d": np.array([0.1, 0.2]),
+    }
     assert encode_csv(cols) == b"a,t,b,c,i,d\n1.5,p,2.0,,7,0.1\n,q,-1e-300,3.25,8,0.2\n"
     only = {"a": np.array([1.5, np.nan]), "b": np.array([np.nan, np.nan])}
     assert encode_csv(only) == b"a,b\n1.5,\n,\n"

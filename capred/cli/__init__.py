@@ -3,14 +3,15 @@
 Only typer is imported at start-up; a command imports its pipeline when it
 runs, so `capred --help` and `capred COMMAND --help` stay fast.
 """
+
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 
+from ..errors import CapredError
 from . import bridge_commands, calculator_commands, data_commands, pt_volume_command
 from .common import BUILDERS, JsonOpt, WorkersOpt, fail, run_batch
-from ..errors import CapredError
 
 app = typer.Typer(
     name="capred",
@@ -33,8 +34,9 @@ def _version(value: bool):
 
 @app.callback()
 def _root(
-    version: Annotated[bool, typer.Option("--version", callback=_version, is_eager=True,
-                                          help="Show the version and exit.")] = False,
+    version: Annotated[
+        bool, typer.Option("--version", callback=_version, is_eager=True, help="Show the version and exit.")
+    ] = False,
 ):
     """capred turns raw unsaturated-soil lab readings into effective stresses,
     strength parameters, model comparisons and report figures."""
@@ -48,9 +50,14 @@ pt_volume_command.register(app)
 
 @app.command(short_help="A season's runs from a CSV or TOML manifest.")
 def batch(
-    manifest: Annotated[Path, typer.Argument(help="CSV (command,input,options) or TOML ([[run]] command, input, "
-                                             "options) listing the runs.", show_default=False)],
-    out: Annotated[Optional[Path], typer.Option("--out", "-o", help="Root output folder [default: ./capred_out].")] = None,
+    manifest: Annotated[
+        Path,
+        typer.Argument(
+            help="CSV (command,input,options) or TOML ([[run]] command, input, options) listing the runs.",
+            show_default=False,
+        ),
+    ],
+    out: Annotated[Path | None, typer.Option("--out", "-o", help="Root output folder [default: ./capred_out].")] = None,
     json_out: JsonOpt = False,
     workers: WorkersOpt = None,
 ):
@@ -84,7 +91,6 @@ def _manifest_jobs(manifest: Path, out, json_out: bool):
     from .. import batch as batch_mod
     from ..errors import InputError, Problem
     from ..io.manifest import read_manifest
-
     from ..reductions import REDUCTIONS
 
     group = typer.main.get_command(app)
@@ -94,8 +100,7 @@ def _manifest_jobs(manifest: Path, out, json_out: bool):
     for line, command, pattern, options in read_manifest(manifest):
         cmd = _subcommand(group, command) if command in runnable else None
         if cmd is None:
-            problems.append(Problem(str(manifest), line, "command",
-                                    f"'{command}' is not one of {', '.join(runnable)}"))
+            problems.append(Problem(str(manifest), line, "command", f"'{command}' is not one of {', '.join(runnable)}"))
             continue
         target = pattern if Path(pattern).is_absolute() else str(manifest.parent / pattern)
         try:
@@ -119,8 +124,12 @@ def _manifest_jobs(manifest: Path, out, json_out: bool):
     root = out or Path.cwd() / "capred_out"
     flat = [(inv, src) for inv in invocations for src in inv.sources]
     dirs = batch_mod.output_dirs([inv.command for inv, _ in flat], [src for _, src in flat], root)
-    return [batch_mod.Job(inv.command, src, d if write else None, inv.options, inv.plots, keep_json=json_out,
-                          output=inv.output) for (inv, src), d in zip(flat, dirs)]
+    return [
+        batch_mod.Job(
+            inv.command, src, d if write else None, inv.options, inv.plots, keep_json=json_out, output=inv.output
+        )
+        for (inv, src), d in zip(flat, dirs)
+    ]
 
 
 def _subcommand(group, name: str):

@@ -1,5 +1,6 @@
 """`capred bridge curve | solve | compare | rupture | yade-files`: exact capillary bridges between two spheres or a
 sphere and a plane."""
+
 from typing import Annotated
 
 import typer
@@ -8,20 +9,35 @@ from .common import Invocation, command, quantity
 
 
 def register(app: typer.Typer) -> None:
-    bridge_app = typer.Typer(help="Exact capillary bridges between two spheres or a sphere and a plane "
-                                  "(Young-Laplace): solve, rupture, the thesis's analytical comparison, checks "
-                                  "against microscopic tests and YADE capillary files.",
-                             no_args_is_help=True, rich_markup_mode=None)
+    bridge_app = typer.Typer(
+        help="Exact capillary bridges between two spheres or a sphere and a plane "
+        "(Young-Laplace): solve, rupture, the thesis's analytical comparison, checks "
+        "against microscopic tests and YADE capillary files.",
+        no_args_is_help=True,
+        rich_markup_mode=None,
+    )
     app.add_typer(bridge_app, name="bridge")
     command(bridge_app, "curve", "bridge curve")(curve)
-    command(bridge_app, "solve", "bridge solve", data="CSV, one bridge per row: R (and R2: a radius or 'plane'), "
-                                                      "gamma, contact_angle, gap, and suction or V_w",
-            plots=False)(solve)
-    command(bridge_app, "rupture", "bridge rupture", data="CSV, one case per row: R, contact_angle, V_w (and R2: a "
-                                                          "radius or 'plane')")(rupture)
+    command(
+        bridge_app,
+        "solve",
+        "bridge solve",
+        data="CSV, one bridge per row: R (and R2: a radius or 'plane'), gamma, contact_angle, gap, and suction or V_w",
+        plots=False,
+    )(solve)
+    command(
+        bridge_app,
+        "rupture",
+        "bridge rupture",
+        data="CSV, one case per row: R, contact_angle, V_w (and R2: a radius or 'plane')",
+    )(rupture)
     command(bridge_app, "yade-files", "bridge yade-files", plots=False)(yade_files)
-    command(bridge_app, "compare", "bridge compare", data="CSV of microscopic tests: R (and R2), contact_angle, gap, "
-                                                          "V_w, measured F_cap (and filling_angle)")(compare)
+    command(
+        bridge_app,
+        "compare",
+        "bridge compare",
+        data="CSV of microscopic tests: R (and R2), contact_angle, gap, V_w, measured F_cap (and filling_angle)",
+    )(compare)
 
 
 def curve(
@@ -29,8 +45,10 @@ def curve(
     surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m].")] = "0.0728",
     contact_angle: Annotated[float, typer.Option(help="Contact angle [deg].")] = 0.0,
     points: Annotated[int, typer.Option(help="Number of S_R values.")] = 2000,
-    S_R_max: Annotated[float, typer.Option("--S-R-max", "--sr-max", help="Largest S_R of the sweep (bridges stop "
-                                                                       "where suction reaches 0).")] = 0.3,
+    S_R_max: Annotated[
+        float,
+        typer.Option("--S-R-max", "--sr-max", help="Largest S_R of the sweep (bridges stop where suction reaches 0)."),
+    ] = 0.3,
     pendular_limit: Annotated[float, typer.Option(help="S_R bound of the pendular regime panel.")] = 0.05,
 ) -> Invocation:
     """Evenepoel's analytical comparison: sigma' = F_cap/(pi R^2) against
@@ -42,15 +60,21 @@ def curve(
     """
     from ..pipelines.bridge import CurveOptions
 
-    opts = CurveOptions(quantity(radius, "mm", "R", "--radius"),
-                        quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
-                        quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"),
-                        points, S_R_max, quantity(repr(float(pendular_limit)), "", "pendular_limit", "--pendular-limit"))
+    opts = CurveOptions(
+        quantity(radius, "mm", "R", "--radius"),
+        quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
+        quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"),
+        points,
+        S_R_max,
+        quantity(repr(float(pendular_limit)), "", "pendular_limit", "--pendular-limit"),
+    )
     return Invocation("bridge curve", opts)
 
 
 def solve(
-    surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma'.")] = "0.0728",
+    surface_tension: Annotated[
+        str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma'.")
+    ] = "0.0728",
 ) -> Invocation:
     """Exact bridge per row between spheres of radii R and R2 (or a sphere and
     a plane): neck radius r0, F_cap = F_L + F_T, V_w, filling angles on both
@@ -68,7 +92,9 @@ def solve(
 
 
 def compare(
-    surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma'.")] = "0.0728",
+    surface_tension: Annotated[
+        str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma'.")
+    ] = "0.0728",
 ) -> Invocation:
     """Microscopic tests against theory: the measured force of each sphere pair
     beside the exact bridge of the same R, gap, contact angle and V_w, the
@@ -83,8 +109,12 @@ def compare(
 
 
 def rupture(
-    surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma' (for the "
-                                                      "suction and force at rupture).")] = "0.0728",
+    surface_tension: Annotated[
+        str,
+        typer.Option(
+            help="Surface tension gamma [N/m] of rows without 'gamma' (for the suction and force at rupture)."
+        ),
+    ] = "0.0728",
 ) -> Invocation:
     """Rupture distance at constant volume: the widest gap a bridge of volume
     V_w spans between particles of radii R and R2 (or a sphere and a plane),
@@ -100,13 +130,20 @@ def rupture(
 
 
 def yade_files(
-    ratios: Annotated[str, typer.Option(help="Radius ratios R2/R1 >= 1, comma-separated (YADE opens these ten).")]
-    = "1,1.1,1.25,1.5,1.75,2,3,4,5,10",
+    ratios: Annotated[
+        str, typer.Option(help="Radius ratios R2/R1 >= 1, comma-separated (YADE opens these ten).")
+    ] = "1,1.1,1.25,1.5,1.75,2,3,4,5,10",
     contact_angle: Annotated[float, typer.Option("--contact-angle", "--theta", help="Contact angle [deg].")] = 0.0,
-    distances: Annotated[int, typer.Option(help="Distances per file, 0 to the largest gap bridged at zero "
-                                                "suction.")] = 80,
-    suctions: Annotated[int, typer.Option(help="Suctions per distance: 0, then geometric from uc* = 0.002 to a "
-                                               "mean filling angle of 1 deg at contact.")] = 350,
+    distances: Annotated[
+        int, typer.Option(help="Distances per file, 0 to the largest gap bridged at zero suction.")
+    ] = 80,
+    suctions: Annotated[
+        int,
+        typer.Option(
+            help="Suctions per distance: 0, then geometric from uc* = 0.002 to a "
+            "mean filling angle of 1 deg at contact."
+        ),
+    ] = 350,
 ) -> Invocation:
     """Capillary files for YADE's Law2_ScGeom_CapillaryPhys_Capillarity: one
     file M(r=<ratio>) per radius ratio, in YADE's layout and dimensionless

@@ -8,9 +8,10 @@ exactly what it means on the command line.
 """
 
 import inspect
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Annotated, Callable, Optional
+from typing import Annotated
 
 import typer
 
@@ -21,30 +22,71 @@ BUILDERS: dict[str, Callable[..., "Invocation"]] = {}
 
 
 # --- option types shared by the commands ----------------------------------------------------------
-OutOpt = Annotated[Optional[Path], typer.Option(
-    "--out", "-o", help="Output folder, replaced as a whole by each run [default: ./capred_out/<command>_<input>; "
-                        "with --json, no files unless --out is given].")]
+OutOpt = Annotated[
+    Path | None,
+    typer.Option(
+        "--out",
+        "-o",
+        help="Output folder, replaced as a whole by each run [default: ./capred_out/<command>_<input>; "
+        "with --json, no files unless --out is given].",
+    ),
+]
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON document on stdout instead of tables.")]
 PlotOpt = Annotated[bool, typer.Option("--plots/--no-plots", help="Write the report figures.")]
 SampleOpt = Annotated[bool, typer.Option("--sample", help="Run on the bundled (synthetic) sample data.")]
-WorkersOpt = Annotated[Optional[int], typer.Option(min=1, help="Worker processes for a batch of files "
-                                                              "[default: one per core, at most one per file].",
-                                                   show_default=False)]
-SheetOpt = Annotated[Optional[str], typer.Option(help="Sheet of an .xlsx or .ods workbook: its name or its number "
-                                                      "(from 1) [default: the first].")]
-ThousandsOpt = Annotated[Optional[str], typer.Option(help="Thousands separator of the file, e.g. '.' to read 1.000 as "
-                                                          "one thousand in a file with decimal commas.")]
-IgnoreOpt = Annotated[Optional[list[str]], typer.Option(
-    "--ignore-column", help="A column of the file to leave out, as its header writes it (repeat for several); "
-                            "also lets a run go on past a header that looks like a misspelt known column.",
-    show_default=False)]
-MaxMbOpt = Annotated[Optional[int], typer.Option("--max-megabytes", min=1, help="Largest input the reader takes "
-                                                 "on: bytes of a CSV file or of a workbook once decompressed "
-                                                 "[MiB; default 256].", show_default=False)]
-MaxCellsOpt = Annotated[Optional[int], typer.Option("--max-cells", min=1, help="Most cells of a spreadsheet the "
-                                                    "reader visits [default 2,000,000].", show_default=False)]
-MaxColumnsOpt = Annotated[Optional[int], typer.Option("--max-columns", min=1, help="Widest table the reader takes "
-                                                      "on [columns; default 1,000].", show_default=False)]
+WorkersOpt = Annotated[
+    int | None,
+    typer.Option(
+        min=1,
+        help="Worker processes for a batch of files [default: one per core, at most one per file].",
+        show_default=False,
+    ),
+]
+SheetOpt = Annotated[
+    str | None,
+    typer.Option(help="Sheet of an .xlsx or .ods workbook: its name or its number (from 1) [default: the first]."),
+]
+ThousandsOpt = Annotated[
+    str | None,
+    typer.Option(
+        help="Thousands separator of the file, e.g. '.' to read 1.000 as one thousand in a file with decimal commas."
+    ),
+]
+IgnoreOpt = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--ignore-column",
+        help="A column of the file to leave out, as its header writes it (repeat for several); "
+        "also lets a run go on past a header that looks like a misspelt known column.",
+        show_default=False,
+    ),
+]
+MaxMbOpt = Annotated[
+    int | None,
+    typer.Option(
+        "--max-megabytes",
+        min=1,
+        help="Largest input the reader takes "
+        "on: bytes of a CSV file or of a workbook once decompressed "
+        "[MiB; default 256].",
+        show_default=False,
+    ),
+]
+MaxCellsOpt = Annotated[
+    int | None,
+    typer.Option(
+        "--max-cells",
+        min=1,
+        help="Most cells of a spreadsheet the reader visits [default 2,000,000].",
+        show_default=False,
+    ),
+]
+MaxColumnsOpt = Annotated[
+    int | None,
+    typer.Option(
+        "--max-columns", min=1, help="Widest table the reader takes on [columns; default 1,000].", show_default=False
+    ),
+]
 
 
 @dataclass(frozen=True)
@@ -69,9 +111,9 @@ class Invocation:
     options: object
     sources: list = field(default_factory=lambda: [None])  # paths (or None for a run from options only)
     plots: bool = True
-    out: Optional[Path] = None
+    out: Path | None = None
     json: bool = False
-    workers: Optional[int] = None  # None: one per core
+    workers: int | None = None  # None: one per core
     extra_inputs: list = field(default_factory=list)  # further files read (curves, a retention fit)
     output: OutputOptions = field(default_factory=OutputOptions)
 
@@ -83,25 +125,59 @@ def fail(exc: CapredError, code: int = 1) -> None:
 
 
 _OUTPUT_PARAMS = {
-    "formats": (Annotated[str, typer.Option("--format", help="Figure formats, comma separated: any of png, pdf, svg.")],
-                "png"),
+    "formats": (
+        Annotated[str, typer.Option("--format", help="Figure formats, comma separated: any of png, pdf, svg.")],
+        "png",
+    ),
     "dpi": (Annotated[int, typer.Option(help="Resolution of PNG figures [dots per inch].")], 300),
-    "html": (Annotated[bool, typer.Option("--html/--no-html", help="Write report.html, one self-contained "
-                                                                   "document of the run.")], True),
-    "csv_dialect": (Annotated[str, typer.Option(metavar="standard|excel-eu", help="CSV tables: 'standard' (comma, decimal point) or 'excel-eu' "
-                                                     "(semicolon, decimal comma, UTF-8 BOM).")], "standard"),
+    "html": (
+        Annotated[
+            bool, typer.Option("--html/--no-html", help="Write report.html, one self-contained document of the run.")
+        ],
+        True,
+    ),
+    "csv_dialect": (
+        Annotated[
+            str,
+            typer.Option(
+                metavar="standard|excel-eu",
+                help="CSV tables: 'standard' (comma, decimal point) or 'excel-eu' "
+                "(semicolon, decimal comma, UTF-8 BOM).",
+            ),
+        ],
+        "standard",
+    ),
     "xlsx": (Annotated[bool, typer.Option("--xlsx", help="Also write tables.xlsx, a sheet per table.")], False),
-    "panels": (Annotated[bool, typer.Option("--panels", help="Also write each panel of a figure alone, "
-                                                             "figures/<figure>_<panel>.<format>, one journal "
-                                                             "column (85 mm) or two (180 mm) wide.")], False),
-    "figures": (Annotated[str, typer.Option(metavar="main|all", help="Figure sheets: 'main', or 'all' to add "
-                                                                      "those drawn on request (shear: the "
-                                                                      "capillary-stress sheets).")], "main"),
+    "panels": (
+        Annotated[
+            bool,
+            typer.Option(
+                "--panels",
+                help="Also write each panel of a figure alone, "
+                "figures/<figure>_<panel>.<format>, one journal "
+                "column (85 mm) or two (180 mm) wide.",
+            ),
+        ],
+        False,
+    ),
+    "figures": (
+        Annotated[
+            str,
+            typer.Option(
+                metavar="main|all",
+                help="Figure sheets: 'main', or 'all' to add "
+                "those drawn on request (shear: the "
+                "capillary-stress sheets).",
+            ),
+        ],
+        "main",
+    ),
 }
 
 
-def _output_options(formats: str, dpi: int, html: bool, csv_dialect: str, xlsx: bool,
-                    panels: bool = False, figures: str = "main") -> OutputOptions:
+def _output_options(
+    formats: str, dpi: int, html: bool, csv_dialect: str, xlsx: bool, panels: bool = False, figures: str = "main"
+) -> OutputOptions:
     from ..errors import OptionError
 
     fmts = tuple(dict.fromkeys(f.strip().lower() for f in formats.split(",") if f.strip()))
@@ -121,8 +197,7 @@ def _param(name: str, annotation, default) -> inspect.Parameter:
     return inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=default, annotation=annotation)
 
 
-def command(app: typer.Typer, name: str, full_name: Optional[str] = None, data: Optional[str] = None,
-            plots: bool = True):
+def command(app: typer.Typer, name: str, full_name: str | None = None, data: str | None = None, plots: bool = True):
     """Register ``builder`` as the command ``name`` of ``app``; it runs through ``execute``.
 
     The builder parses the command's own options and returns an Invocation.
@@ -138,10 +213,18 @@ def command(app: typer.Typer, name: str, full_name: Optional[str] = None, data: 
     # every command takes --plots/--no-plots (a command without figures accepts and ignores it)
     shared = {"out": (OutOpt, None), "json_out": (JsonOpt, False), "plots": (PlotOpt, True)}
     if data is not None:
-        shared = {"data": (data_arg(data), None), **shared, "sample": (SampleOpt, False),
-                  "workers": (WorkersOpt, None), "sheet": (SheetOpt, None), "thousands": (ThousandsOpt, None),
-                  "ignore_column": (IgnoreOpt, None), "max_megabytes": (MaxMbOpt, None),
-                  "max_cells": (MaxCellsOpt, None), "max_columns": (MaxColumnsOpt, None)}
+        shared = {
+            "data": (data_arg(data), None),
+            **shared,
+            "sample": (SampleOpt, False),
+            "workers": (WorkersOpt, None),
+            "sheet": (SheetOpt, None),
+            "thousands": (ThousandsOpt, None),
+            "ignore_column": (IgnoreOpt, None),
+            "max_megabytes": (MaxMbOpt, None),
+            "max_cells": (MaxCellsOpt, None),
+            "max_columns": (MaxColumnsOpt, None),
+        }
 
     def deco(builder):
         sig = inspect.signature(builder)
@@ -153,8 +236,15 @@ def command(app: typer.Typer, name: str, full_name: Optional[str] = None, data: 
             out = _output_options(**{k: params.pop(k, d) for k, (_, d) in _OUTPUT_PARAMS.items()})
             inv = builder(**params)
             if data is not None:
-                inv.sources = sources(common["data"], common["sample"], full, common["sheet"], common["thousands"],
-                                      common["ignore_column"], _limits(common))
+                inv.sources = sources(
+                    common["data"],
+                    common["sample"],
+                    full,
+                    common["sheet"],
+                    common["thousands"],
+                    common["ignore_column"],
+                    _limits(common),
+                )
                 inv.workers = common["workers"]
             inv.out, inv.json, inv.output = common["out"], common["json_out"], out
             inv.plots = common["plots"] and plots
@@ -170,10 +260,13 @@ def command(app: typer.Typer, name: str, full_name: Optional[str] = None, data: 
         run.__name__, run.__doc__ = builder.__name__, builder.__doc__
         first = [p for p in extra if p.name == "data"]  # the DATA argument leads
         mine = [p.replace(kind=inspect.Parameter.KEYWORD_ONLY) for p in sig.parameters.values()]
-        run.__signature__ = sig.replace(parameters=[*first, *mine, *(p for p in extra if p.name != "data")],
-                                        return_annotation=None)
-        run.__annotations__ = {**{k: v for k, v in builder.__annotations__.items() if k != "return"},
-                               **{p.name: p.annotation for p in extra}}
+        run.__signature__ = sig.replace(
+            parameters=[*first, *mine, *(p for p in extra if p.name != "data")], return_annotation=None
+        )
+        run.__annotations__ = {
+            **{k: v for k, v in builder.__annotations__.items() if k != "return"},
+            **{p.name: p.annotation for p in extra},
+        }
         BUILDERS[full] = build
         from ..reductions import REDUCTIONS
 
@@ -185,11 +278,12 @@ def command(app: typer.Typer, name: str, full_name: Optional[str] = None, data: 
 
 
 def data_arg(what: str):
-    return Annotated[Optional[list[Path]], typer.Argument(
-        help=f"{what}; several files or globs run as a batch.", show_default=False)]
+    return Annotated[
+        list[Path] | None, typer.Argument(help=f"{what}; several files or globs run as a batch.", show_default=False)
+    ]
 
 
-def quantity(text: Optional[str], default_unit: str, name: str = "", option: str = "") -> Optional[str]:
+def quantity(text: str | None, default_unit: str, name: str = "", option: str = "") -> str | None:
     """An option as typed, with its default unit appended to a bare number; the Options convert and check it."""
     from ..units import with_unit
 
@@ -203,13 +297,23 @@ def _limits(common: dict):
         return None
     from ..io.grid import ReadLimits
 
-    kw = {"max_cells": given["max_cells"], "max_columns": given["max_columns"],
-          "max_bytes": None if given["max_megabytes"] is None else given["max_megabytes"] * 2**20}
+    kw = {
+        "max_cells": given["max_cells"],
+        "max_columns": given["max_columns"],
+        "max_bytes": None if given["max_megabytes"] is None else given["max_megabytes"] * 2**20,
+    }
     return ReadLimits(**{k: v for k, v in kw.items() if v is not None})
 
 
-def sources(data: Optional[list[Path]], sample: bool, command: str, sheet: Optional[str] = None,
-            thousands: Optional[str] = None, ignore_columns=None, limits=None) -> list:
+def sources(
+    data: list[Path] | None,
+    sample: bool,
+    command: str,
+    sheet: str | None = None,
+    thousands: str | None = None,
+    ignore_columns=None,
+    limits=None,
+) -> list:
     """Input files: the arguments with globs expanded (sorted), the bundled sample, or [None];
     as TableSources when a sheet, a thousands separator, columns to ignore or reading limits are given."""
     paths = _paths(data, sample, command)
@@ -217,11 +321,12 @@ def sources(data: Optional[list[Path]], sample: bool, command: str, sheet: Optio
         return paths
     from ..io.grid import TableSource
 
-    return [TableSource(p, sheet, thousands, tuple(ignore_columns or ()), limits) if p is not None else None
-            for p in paths]
+    return [
+        TableSource(p, sheet, thousands, tuple(ignore_columns or ()), limits) if p is not None else None for p in paths
+    ]
 
 
-def _paths(data: Optional[list[Path]], sample: bool, command: str) -> list:
+def _paths(data: list[Path] | None, sample: bool, command: str) -> list:
     import glob
 
     from ..errors import InputError, OptionError, Problem
@@ -280,8 +385,8 @@ def execute(inv: Invocation) -> None:
 
 def _single(inv: Invocation) -> None:
     from ..io.writers import check_target, encode_json
-    from ..report.outputs import write_outputs
     from ..reductions import REDUCTIONS
+    from ..report.outputs import write_outputs
 
     source = inv.sources[0]
     write = inv.out is not None or (not inv.json and REDUCTIONS[inv.command].files_by_default)
@@ -295,8 +400,22 @@ def _single(inv: Invocation) -> None:
     with showing(not inv.json and sys.stderr.isatty()):
         result = REDUCTIONS[inv.command].run(source, inv.options)
     o = inv.output
-    written = write_outputs(result, out_dir, plots=inv.plots, formats=o.formats, dpi=o.dpi, html=o.html,
-                        csv_dialect=o.csv_dialect, xlsx=o.xlsx, panels=o.panels, figures=o.figures) if write else None
+    written = (
+        write_outputs(
+            result,
+            out_dir,
+            plots=inv.plots,
+            formats=o.formats,
+            dpi=o.dpi,
+            html=o.html,
+            csv_dialect=o.csv_dialect,
+            xlsx=o.xlsx,
+            panels=o.panels,
+            figures=o.figures,
+        )
+        if write
+        else None
+    )
     if inv.json:
         from ..io.writers import stream_json
 
@@ -314,18 +433,19 @@ def _single(inv: Invocation) -> None:
 
 def _batch(inv: Invocation) -> None:
     from .. import batch
-
     from ..reductions import REDUCTIONS
 
     write = inv.out is not None or (not inv.json and REDUCTIONS[inv.command].files_by_default)
     root = inv.out or Path.cwd() / "capred_out"
     dirs = batch.output_dirs([inv.command] * len(inv.sources), inv.sources, root)
-    jobs = [batch.Job(inv.command, src, d if write else None, inv.options, inv.plots, keep_json=inv.json,
-                      output=inv.output) for src, d in zip(inv.sources, dirs)]
+    jobs = [
+        batch.Job(inv.command, src, d if write else None, inv.options, inv.plots, keep_json=inv.json, output=inv.output)
+        for src, d in zip(inv.sources, dirs)
+    ]
     run_batch(jobs, root if write else None, inv.json, inv.workers, extra_inputs=inv.extra_inputs)
 
 
-def run_batch(jobs, root: Optional[Path], json_out: bool, workers: Optional[int], extra_inputs=()) -> None:
+def run_batch(jobs, root: Path | None, json_out: bool, workers: int | None, extra_inputs=()) -> None:
     """Run jobs with a progress bar (on a terminal, not with --json), write index.csv, report, set the exit code."""
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
@@ -337,8 +457,15 @@ def run_batch(jobs, root: Optional[Path], json_out: bool, workers: Optional[int]
         check_target(root, [j.source for j in jobs] + list(extra_inputs), replace=False)
     err = Console(stderr=True)
     show = err.is_terminal and not json_out
-    with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeRemainingColumn(),
-                  console=err, disable=not show, transient=True) as progress:
+    with Progress(
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeRemainingColumn(),
+        console=err,
+        disable=not show,
+        transient=True,
+    ) as progress:
         task = progress.add_task(f"capred: {len(jobs)} files", total=len(jobs))
         outcomes, interrupted = batch.run_all(jobs, workers, on_done=lambda o: progress.advance(task))
     index = batch.write_index(root, outcomes) if root is not None else None
@@ -346,11 +473,23 @@ def run_batch(jobs, root: Optional[Path], json_out: bool, workers: Optional[int]
         batch.write_season(root, outcomes)
     bad = [o for o in outcomes if o.status in ("failed", "crashed")]
     if json_out:
-        doc = {"files": [{"input": o.source, "command": o.command, "status": o.status, "ok": o.ok,
-                          "error": o.message or None, "out_dir": o.out_dir if root is not None else None,
-                          "result": o.result_json} for o in outcomes],
-               "index": str(index) if index else None, "failed": len(bad),
-               "interrupted": sum(o.status == "interrupted" for o in outcomes)}
+        doc = {
+            "files": [
+                {
+                    "input": o.source,
+                    "command": o.command,
+                    "status": o.status,
+                    "ok": o.ok,
+                    "error": o.message or None,
+                    "out_dir": o.out_dir if root is not None else None,
+                    "result": o.result_json,
+                }
+                for o in outcomes
+            ],
+            "index": str(index) if index else None,
+            "failed": len(bad),
+            "interrupted": sum(o.status == "interrupted" for o in outcomes),
+        }
         typer.echo(encode_json(doc).decode("utf-8"), nl=False)
     else:
         _outcome_table(outcomes, index)
@@ -370,8 +509,10 @@ def _outcome_table(outcomes, index) -> None:
     from ..result import TableSpec
 
     done = sum(o.ok for o in outcomes)
-    spec = TableSpec(f"{done} of {len(outcomes)} files reduced",
-                     [("input", "left"), ("command", "left"), ("status", "left"), ("output / error", "left")])
+    spec = TableSpec(
+        f"{done} of {len(outcomes)} files reduced",
+        [("input", "left"), ("command", "left"), ("status", "left"), ("output / error", "left")],
+    )
     for o in outcomes:
         spec.rows.append([o.source, o.command, o.status, o.out_dir if o.ok else o.message.splitlines()[0]])
     con = Console()

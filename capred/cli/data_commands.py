@@ -1,7 +1,7 @@
 """`capred shear`, `capred triaxial-bounds`, `capred retention`: reductions of lab data tables."""
 
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 
@@ -11,55 +11,95 @@ from .common import Invocation, ThousandsOpt, command, quantity
 def register(app: typer.Typer) -> None:
     command(app, "shear", data="CSV, .xlsx or .ods files of direct-shear tests (one row per test)")(shear)
     command(app, "triaxial-bounds", data="CSV, .xlsx or .ods files of triaxial tests (one row per test)")(
-        triaxial_bounds)
-    command(app, "retention", data="CSV, .xlsx or .ods files of retention readings: suction, head or pF, and "
-                                   "S_R, theta, w with rho_d, or z2 + V_v")(retention)
+        triaxial_bounds
+    )
+    command(
+        app,
+        "retention",
+        data="CSV, .xlsx or .ods files of retention readings: suction, head or pF, and "
+        "S_R, theta, w with rho_d, or z2 + V_v",
+    )(retention)
 
 
 def shear(
     thousands: ThousandsOpt = None,
-    curves: Annotated[Optional[Path], typer.Option(help="Raw shear curves (CSV, .xlsx or .ods), long format: "
-                                                   "test_id, displacement [mm], F [N] or tau [kPa], optionally "
-                                                   "vertical_displacement [mm]; the peak gives tau_max.")] = None,
-    area_correction: Annotated[str, typer.Option(metavar="none|square|circular", help="Area of the curves' shear stress: none (nominal, as ASTM "
-                                                      "D3080 reports), square or circular box.")] = "none",
-    ambient_pressure: Annotated[str, typer.Option(help="Ambient air pressure [kPa]: a hanging-column head above "
-                                                       "(p_a - p_vapour)/gamma_w, about 10.1 m, is refused.")] = "101.325",
+    curves: Annotated[
+        Path | None,
+        typer.Option(
+            help="Raw shear curves (CSV, .xlsx or .ods), long format: "
+            "test_id, displacement [mm], F [N] or tau [kPa], optionally "
+            "vertical_displacement [mm]; the peak gives tau_max."
+        ),
+    ] = None,
+    area_correction: Annotated[
+        str,
+        typer.Option(
+            metavar="none|square|circular",
+            help="Area of the curves' shear stress: none (nominal, as ASTM D3080 reports), square or circular box.",
+        ),
+    ] = "none",
+    ambient_pressure: Annotated[
+        str,
+        typer.Option(
+            help="Ambient air pressure [kPa]: a hanging-column head above "
+            "(p_a - p_vapour)/gamma_w, about 10.1 m, is refused."
+        ),
+    ] = "101.325",
     rho_w: Annotated[str, typer.Option(help="Density of water [kg/m^3], for e = G_s rho_w/rho_d - 1.")] = "1000",
     gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3]; the thesis uses 10.")] = "9.81",
     surface_tension: Annotated[str, typer.Option(help="Surface tension of water [N/m].")] = "0.0728",
     gravity: Annotated[str, typer.Option("--g", help="Gravitational acceleration [m/s^2].")] = "9.81",
-    pendular_limit: Annotated[float, typer.Option(help="S_R above which a wet test is flagged outside the "
-                                                       "pendular regime.")] = 0.05,
-    box_area: Annotated[Optional[str], typer.Option(help="Shear box area [cm^2] for rows without 'box_area'.")] = None,
-    cap_mass: Annotated[Optional[str], typer.Option(help="Top-cap mass [g] for rows without 'cap_mass'.")] = None,
-    radius: Annotated[Optional[str], typer.Option(help="Particle radius R [mm] for rows without 'R'.")] = None,
-    void_volume: Annotated[Optional[str], typer.Option(help="Void volume V_v [cm^3] for rows without 'V_v'.")] = None,
-    models: Annotated[str, typer.Option(help="Models to compare, comma separated: no_suction, bishop, own1, own2 "
-                                        "(= 'thesis', the default), vanapalli, khalili, lu_likos, fredlund, "
-                                        "pedrotti_tarantino, exact_neck, and the laws fitted per material "
-                                        "chi_power (chi = S_e^kappa) and khalili_fit (s_b, and eta with "
-                                        "--fit-eta); 'all' for every one.")] = "thesis",
-    retention: Annotated[Optional[Path], typer.Option(help="fits.json from capred retention: S_res, s_e and van "
-                                                      "Genuchten parameters for the extra models.")] = None,
-    s_res: Annotated[Optional[float], typer.Option(help="Residual S_R (Vanapalli et al. 1996).")] = None,
+    pendular_limit: Annotated[
+        float, typer.Option(help="S_R above which a wet test is flagged outside the pendular regime.")
+    ] = 0.05,
+    box_area: Annotated[str | None, typer.Option(help="Shear box area [cm^2] for rows without 'box_area'.")] = None,
+    cap_mass: Annotated[str | None, typer.Option(help="Top-cap mass [g] for rows without 'cap_mass'.")] = None,
+    radius: Annotated[str | None, typer.Option(help="Particle radius R [mm] for rows without 'R'.")] = None,
+    void_volume: Annotated[str | None, typer.Option(help="Void volume V_v [cm^3] for rows without 'V_v'.")] = None,
+    models: Annotated[
+        str,
+        typer.Option(
+            help="Models to compare, comma separated: no_suction, bishop, own1, own2 "
+            "(= 'thesis', the default), vanapalli, khalili, lu_likos, fredlund, "
+            "pedrotti_tarantino, exact_neck, and the laws fitted per material "
+            "chi_power (chi = S_e^kappa) and khalili_fit (s_b, and eta with "
+            "--fit-eta); 'all' for every one."
+        ),
+    ] = "thesis",
+    retention: Annotated[
+        Path | None,
+        typer.Option(
+            help="fits.json from capred retention: S_res, s_e and van Genuchten parameters for the extra models."
+        ),
+    ] = None,
+    s_res: Annotated[float | None, typer.Option(help="Residual S_R (Vanapalli et al. 1996).")] = None,
     vanapalli_kappa: Annotated[float, typer.Option(help="Fitting exponent kappa of Vanapalli et al. (1996).")] = 1.0,
-    air_entry: Annotated[Optional[str], typer.Option(help="Air-entry suction s_e [kPa] (Khalili & Khabbaz 1998).")] = None,
-    vg_alpha: Annotated[Optional[str], typer.Option(help="van Genuchten alpha [1/kPa] (Lu & Likos 2006).")] = None,
-    vg_n: Annotated[Optional[float], typer.Option(help="van Genuchten n (Lu & Likos 2006); m = 1 - 1/n unless "
-                                                  "--vg-m.")] = None,
-    vg_m: Annotated[Optional[float], typer.Option(help="van Genuchten m (Lu & Likos 2006).")] = None,
-    water_envelope: Annotated[Optional[str], typer.Option(help="'c,phi' [kPa, deg] of the water-saturated soil "
-                                                          "(Pedrotti & Tarantino); default: the dry envelope.")] = None,
+    air_entry: Annotated[str | None, typer.Option(help="Air-entry suction s_e [kPa] (Khalili & Khabbaz 1998).")] = None,
+    vg_alpha: Annotated[str | None, typer.Option(help="van Genuchten alpha [1/kPa] (Lu & Likos 2006).")] = None,
+    vg_n: Annotated[
+        float | None, typer.Option(help="van Genuchten n (Lu & Likos 2006); m = 1 - 1/n unless --vg-m.")
+    ] = None,
+    vg_m: Annotated[float | None, typer.Option(help="van Genuchten m (Lu & Likos 2006).")] = None,
+    water_envelope: Annotated[
+        str | None,
+        typer.Option(
+            help="'c,phi' [kPa, deg] of the water-saturated soil (Pedrotti & Tarantino); default: the dry envelope."
+        ),
+    ] = None,
     contact_angle: Annotated[float, typer.Option(help="Contact angle [deg] of the exact bridge (exact_neck).")] = 0.0,
-    fit_eta: Annotated[bool, typer.Option("--fit-eta", help="khalili_fit: fit the exponent eta too "
-                                                            "(else eta = 0.55).")] = False,
-    dry_fit: Annotated[str, typer.Option(metavar="free|origin", help="Dry envelope: 'free' (c and phi) or 'origin' (c = 0, "
-                                              "cohesionless soil).")] = "free",
-    bootstrap: Annotated[int, typer.Option(help="Replicates of the paired bootstrap of the model ranking "
-                                                "(0: none).")] = 2000,
-    seed: Annotated[int, typer.Option(help="Seed of the bootstrap: the same seed gives the same "
-                                           "probabilities.")] = 0,
+    fit_eta: Annotated[
+        bool, typer.Option("--fit-eta", help="khalili_fit: fit the exponent eta too (else eta = 0.55).")
+    ] = False,
+    dry_fit: Annotated[
+        str,
+        typer.Option(
+            metavar="free|origin", help="Dry envelope: 'free' (c and phi) or 'origin' (c = 0, cohesionless soil)."
+        ),
+    ] = "free",
+    bootstrap: Annotated[
+        int, typer.Option(help="Replicates of the paired bootstrap of the model ranking (0: none).")
+    ] = 2000,
+    seed: Annotated[int, typer.Option(help="Seed of the bootstrap: the same seed gives the same probabilities.")] = 0,
 ) -> Invocation:
     """Direct-shear tests with hanging-column suction (Evenepoel, VUB thesis):
     dry envelope per material, the effective-stress models (No suction,
@@ -75,14 +115,22 @@ def shear(
     """
     from ..pipelines.shear import ModelParams, ShearOptions, model_params_from_retention
 
-    params = dict(s_res=s_res, vanapalli_kappa=vanapalli_kappa,
-                  air_entry=quantity(air_entry, "kPa", "air_entry", "--air-entry"),
-                  vg_alpha=quantity(vg_alpha, "1/kPa", "vg_alpha", "--vg-alpha"),
-                  vg_n=vg_n, vg_m=vg_m, water_envelope=_envelope_pair(water_envelope),
-                  contact_angle=quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"),
-                  fit_eta=fit_eta)
-    mp = (model_params_from_retention(retention, **params) if retention is not None
-          else ModelParams(**{k: v for k, v in params.items() if v is not None}))
+    params = dict(
+        s_res=s_res,
+        vanapalli_kappa=vanapalli_kappa,
+        air_entry=quantity(air_entry, "kPa", "air_entry", "--air-entry"),
+        vg_alpha=quantity(vg_alpha, "1/kPa", "vg_alpha", "--vg-alpha"),
+        vg_n=vg_n,
+        vg_m=vg_m,
+        water_envelope=_envelope_pair(water_envelope),
+        contact_angle=quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"),
+        fit_eta=fit_eta,
+    )
+    mp = (
+        model_params_from_retention(retention, **params)
+        if retention is not None
+        else ModelParams(**{k: v for k, v in params.items() if v is not None})
+    )
     opts = ShearOptions(
         gamma_w=quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"),
         surface_tension=quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
@@ -106,16 +154,30 @@ def shear(
 
 
 def triaxial_bounds(
-    curves: Annotated[Optional[Path], typer.Option(help="Long CSV of raw curves (test_id, axial_strain, q): "
-                                                   "failure = peak of q, for tests without q_f or sigma1.")] = None,
-    c_eff: Annotated[Optional[str], typer.Option(help="Effective cohesion c' [kPa], instead of fitting saturated "
-                                                 "tests.")] = None,
-    phi_eff: Annotated[Optional[float], typer.Option(help="Effective friction angle phi' [deg], with --c-eff.")] = None,
-    membrane_thickness: Annotated[Optional[str], typer.Option(
-        help="Membrane thickness t_m [mm]; with --membrane-modulus the deviator is corrected for the membrane "
-             "(ASTM D4767: 4 E_m t_m eps_a / D0). Off by default.")] = None,
-    membrane_modulus: Annotated[Optional[str], typer.Option(
-        help="Young's modulus of the membrane E_m [kPa] (latex: about 1400 kPa), with --membrane-thickness.")] = None,
+    curves: Annotated[
+        Path | None,
+        typer.Option(
+            help="Long CSV of raw curves (test_id, axial_strain, q): "
+            "failure = peak of q, for tests without q_f or sigma1."
+        ),
+    ] = None,
+    c_eff: Annotated[
+        str | None, typer.Option(help="Effective cohesion c' [kPa], instead of fitting saturated tests.")
+    ] = None,
+    phi_eff: Annotated[float | None, typer.Option(help="Effective friction angle phi' [deg], with --c-eff.")] = None,
+    membrane_thickness: Annotated[
+        str | None,
+        typer.Option(
+            help="Membrane thickness t_m [mm]; with --membrane-modulus the deviator is corrected for the membrane "
+            "(ASTM D4767: 4 E_m t_m eps_a / D0). Off by default."
+        ),
+    ] = None,
+    membrane_modulus: Annotated[
+        str | None,
+        typer.Option(
+            help="Young's modulus of the membrane E_m [kPa] (latex: about 1400 kPa), with --membrane-thickness."
+        ),
+    ] = None,
 ) -> Invocation:
     """Bounds of the capillary stress tensor at failure from triaxial tests
     (Prunier et al. 2024): effective envelope from saturated drained tests, then
@@ -127,25 +189,37 @@ def triaxial_bounds(
     """
     from ..pipelines.triaxial import TriaxialOptions
 
-    opts = TriaxialOptions(c_eff=quantity(c_eff, "kPa", "c_eff", "--c-eff"),
-                           phi_eff=quantity(None if phi_eff is None else str(phi_eff), "deg", "phi_eff", "--phi-eff"),
-                           curves=curves,
-                           membrane_thickness=quantity(membrane_thickness, "mm", "membrane_thickness",
-                                                       "--membrane-thickness"),
-                           membrane_modulus=quantity(membrane_modulus, "kPa", "membrane_modulus", "--membrane-modulus"))
+    opts = TriaxialOptions(
+        c_eff=quantity(c_eff, "kPa", "c_eff", "--c-eff"),
+        phi_eff=quantity(None if phi_eff is None else str(phi_eff), "deg", "phi_eff", "--phi-eff"),
+        curves=curves,
+        membrane_thickness=quantity(membrane_thickness, "mm", "membrane_thickness", "--membrane-thickness"),
+        membrane_modulus=quantity(membrane_modulus, "kPa", "membrane_modulus", "--membrane-modulus"),
+    )
     return Invocation("triaxial-bounds", opts, extra_inputs=[curves] if curves else [])
 
 
 def retention(
-    model: Annotated[str, typer.Option(help="Models, comma separated, or all: vg (m = 1 - 1/n), vg_m_free, bc, "
-                                            "kosugi, fx (Fredlund-Xing with C), fx_no_c, durner (bimodal).")
-                     ] = "vg,vg_m_free,bc",
-    hysteresis: Annotated[Optional[str], typer.Option(metavar="kool-parker", help="kool-parker: fit the drying and wetting branches "
-                                                      "jointly (shared theta_s, theta_r, n; alpha_d, alpha_w).")
-                          ] = None,
+    model: Annotated[
+        str,
+        typer.Option(
+            help="Models, comma separated, or all: vg (m = 1 - 1/n), vg_m_free, bc, "
+            "kosugi, fx (Fredlund-Xing with C), fx_no_c, durner (bimodal)."
+        ),
+    ] = "vg,vg_m_free,bc",
+    hysteresis: Annotated[
+        str | None,
+        typer.Option(
+            metavar="kool-parker",
+            help="kool-parker: fit the drying and wetting branches "
+            "jointly (shared theta_s, theta_r, n; alpha_d, alpha_w).",
+        ),
+    ] = None,
     rho_w: Annotated[str, typer.Option(help="Density of water [kg/m^3], for theta = w rho_d/rho_w.")] = "1000",
-    fix: Annotated[Optional[list[str]], typer.Option(help="Fix a parameter, e.g. --fix theta_s=0.25 "
-                                                     "(alpha in 1/kPa, s_e in kPa); repeatable.")] = None,
+    fix: Annotated[
+        list[str] | None,
+        typer.Option(help="Fix a parameter, e.g. --fix theta_s=0.25 (alpha in 1/kPa, s_e in kPa); repeatable."),
+    ] = None,
     gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3], to turn heads into suction.")] = "9.81",
 ) -> Invocation:
     """Fit water retention curves for every branch (drying, wetting): van
@@ -168,15 +242,20 @@ def retention(
         names = list(MODELS)
     bad = [m for m in names if m not in MODELS]
     if bad or not names:
-        raise OptionError(f"--model: unknown model '{bad[0] if bad else model}'; choose from "
-                          f"{', '.join(MODELS)} or all")
-    opts = RetentionOptions(models=tuple(dict.fromkeys(names)), fixed=parse_fixed(fix or []),
-                            gamma_w=quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"),
-                            rho_w=quantity(rho_w, "kg/m^3", "rho_w", "--rho-w"), hysteresis=hysteresis)
+        raise OptionError(
+            f"--model: unknown model '{bad[0] if bad else model}'; choose from {', '.join(MODELS)} or all"
+        )
+    opts = RetentionOptions(
+        models=tuple(dict.fromkeys(names)),
+        fixed=parse_fixed(fix or []),
+        gamma_w=quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"),
+        rho_w=quantity(rho_w, "kg/m^3", "rho_w", "--rho-w"),
+        hysteresis=hysteresis,
+    )
     return Invocation("retention", opts)
 
 
-def _curves_source(path: Optional[Path], thousands):
+def _curves_source(path: Path | None, thousands):
     if path is None or thousands is None:
         return path
     from ..io.grid import TableSource
@@ -194,7 +273,7 @@ def _model_list(text: str) -> tuple[str, ...]:
         raise OptionError(f"--models: {exc}") from None
 
 
-def _envelope_pair(text: Optional[str]):
+def _envelope_pair(text: str | None):
     from ..errors import OptionError
 
     if text is None:

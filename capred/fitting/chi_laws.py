@@ -44,10 +44,11 @@ References
 .. [5] Seber, G. A. F. & Wild, C. J. (1989). Nonlinear Regression. Wiley, doi:10.1002/0471725315
    (the linearised covariance s^2 (J^T J)^-1, t intervals, Gauss-Newton, ch. 14).
 """
+
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 import numpy as np
 
@@ -180,8 +181,16 @@ def _finite(x) -> float | None:
     return x if np.isfinite(x) else None
 
 
-def law_uncertainty(names, values, jac_law, jac_envelope, resid_wet, dry: LineFit | None = None,
-                    log_scale: tuple[str, ...] = (), confidence: float = 0.95) -> dict:
+def law_uncertainty(
+    names,
+    values,
+    jac_law,
+    jac_envelope,
+    resid_wet,
+    dry: LineFit | None = None,
+    log_scale: tuple[str, ...] = (),
+    confidence: float = 0.95,
+) -> dict:
     """Standard errors, t intervals and joint covariance of a law fitted with the dry envelope held.
 
     .. math:: V_\\theta = s^2\\,[A + G M G^T], \\quad A = (J_\\theta^T J_\\theta)^{-1}, \\quad
@@ -279,9 +288,14 @@ def law_uncertainty(names, values, jac_law, jac_envelope, resid_wet, dry: LineFi
             ci[name] = (float(v / f), float(v * f))
         else:
             ci[name] = (float(v - h), float(v + h))
-    return {"se": {k: _finite(se[i]) for i, k in enumerate(names)},
-            "se_conditional": {k: _finite(se_cond[i]) for i, k in enumerate(names)},
-            "ci": ci, "dof": int(dof), "covariance": joint, "residual_variance": _finite(s2)}
+    return {
+        "se": {k: _finite(se[i]) for i, k in enumerate(names)},
+        "se_conditional": {k: _finite(se_cond[i]) for i, k in enumerate(names)},
+        "ci": ci,
+        "dof": int(dof),
+        "covariance": joint,
+        "residual_variance": _finite(s2),
+    }
 
 
 def _with_uncertainty(law: FittedLaw, names, values, jac_law, jac_env, resid, dry, log_scale=()) -> FittedLaw:
@@ -324,8 +338,9 @@ def chi_power(S_R, vanapalli_kappa, S_res: float = 0.0):
     return S_e ** np.asarray(vanapalli_kappa, float)
 
 
-def fit_chi_power(sigma_N, suction, S_R, tau, c, tan_phi, S_res: float = 0.0, start: dict | None = None,
-                  dry: LineFit | None = None) -> FittedLaw:
+def fit_chi_power(
+    sigma_N, suction, S_R, tau, c, tan_phi, S_res: float = 0.0, start: dict | None = None, dry: LineFit | None = None
+) -> FittedLaw:
     """kappa > 0 of chi = S_e^kappa on the wet tests of one material, with its honest uncertainty.
 
     .. math:: \\min_\\kappa \\sum_i [c + (\\sigma_{N,i} + S_{e,i}^\\kappa\\,\\Delta u_i)\\tan\\phi - \\tau_i]^2,
@@ -371,8 +386,13 @@ def fit_chi_power(sigma_N, suction, S_R, tau, c, tan_phi, S_res: float = 0.0, st
         return (c + (sigma_N + S_e ** p[0] * suction) * tan_phi - tau) / scale
 
     lo, hi = 1e-6, 100.0
-    best = min((least_squares(resid, [k0], bounds=([lo], [hi]), xtol=1e-14, ftol=1e-14, gtol=1e-14)
-                for k0 in ((start["kappa"],) if start else (0.3, 1.0, 3.0))), key=lambda r: r.cost)
+    best = min(
+        (
+            least_squares(resid, [k0], bounds=([lo], [hi]), xtol=1e-14, ftol=1e-14, gtol=1e-14)
+            for k0 in ((start["kappa"],) if start else (0.3, 1.0, 3.0))
+        ),
+        key=lambda r: r.cost,
+    )
     kappa = float(best.x[0])
     r = resid(best.x) * scale
     rss = float(r @ r)
@@ -390,8 +410,18 @@ def _khalili_chi(s, s_b, eta):
         return np.where(s > s_b, (np.where(s > 0, s, 1.0) / s_b) ** -eta, 1.0)
 
 
-def fit_khalili(sigma_N, suction, S_R, tau, c, tan_phi, eta: float = 0.55, fit_eta: bool = False,
-                start: dict | None = None, dry: LineFit | None = None) -> FittedLaw:
+def fit_khalili(
+    sigma_N,
+    suction,
+    S_R,
+    tau,
+    c,
+    tan_phi,
+    eta: float = 0.55,
+    fit_eta: bool = False,
+    start: dict | None = None,
+    dry: LineFit | None = None,
+) -> FittedLaw:
     """s_b (and eta with ``fit_eta``) of chi = (s/s_b)^-eta for s > s_b, else 1, with its honest uncertainty.
 
     .. math:: \\chi = (s/s_b)^{-\\eta} \\; (s > s_b), \\quad \\chi = 1 \\; (s \\le s_b)
@@ -436,8 +466,14 @@ def fit_khalili(sigma_N, suction, S_R, tau, c, tan_phi, eta: float = 0.55, fit_e
     sigma_N, tau = np.asarray(sigma_N, float), np.asarray(tau, float)
     pos = s[s > 0]
     if pos.size == 0:
-        return FittedLaw({"s_b": float("nan"), "eta": eta}, {"s_b": None, "eta": None}, float("nan"), s.size, False,
-                         ci95={"s_b": None, "eta": None})
+        return FittedLaw(
+            {"s_b": float("nan"), "eta": eta},
+            {"s_b": None, "eta": None},
+            float("nan"),
+            s.size,
+            False,
+            ci95={"s_b": None, "eta": None},
+        )
     lo, hi = float(pos.min()) / 100.0, float(pos.max()) * 100.0
 
     def resid(p):
@@ -471,20 +507,38 @@ def fit_khalili(sigma_N, suction, S_R, tau, c, tan_phi, eta: float = 0.55, fit_e
             cols.append(np.where(above, -b * s * chi * np.log(np.where(above, s / s_b, 1.0)), 0.0))
         names.append("eta")
     jac_env = np.column_stack([np.ones(r.size), sigma_N + chi * s])
-    at_bound = [name for name, v, (a, bb) in (("s_b", s_b, (lo, hi)),) + ((("eta", e_hat, (1e-3, 10.0)),)
-                if fit_eta else ()) if v <= a * 1.001 or v >= bb * 0.999]
-    law = FittedLaw({"s_b": s_b, "eta": e_hat}, {"s_b": None, "eta": None}, rss, int(r.size), bool(res.success),
-                    () if fit_eta else ("eta",), at_bound)
-    return _with_uncertainty(law, names, [s_b, e_hat][: len(names)], np.column_stack(cols), jac_env, r,
-                             dry, log_scale=("s_b",))
+    at_bound = [
+        name
+        for name, v, (a, bb) in (("s_b", s_b, (lo, hi)),) + ((("eta", e_hat, (1e-3, 10.0)),) if fit_eta else ())
+        if v <= a * 1.001 or v >= bb * 0.999
+    ]
+    law = FittedLaw(
+        {"s_b": s_b, "eta": e_hat},
+        {"s_b": None, "eta": None},
+        rss,
+        int(r.size),
+        bool(res.success),
+        () if fit_eta else ("eta",),
+        at_bound,
+    )
+    return _with_uncertainty(
+        law, names, [s_b, e_hat][: len(names)], np.column_stack(cols), jac_env, r, dry, log_scale=("s_b",)
+    )
 
 
 # ----------------------------------------------------------------------------------------------------------
 # Many refits at once (the bootstrap): a damped Gauss-Newton over replicates, warm-started
 
 
-def batch_least_squares(resid_jac: Callable, x0: np.ndarray, lo: np.ndarray, hi: np.ndarray,
-                        weights: np.ndarray, max_iter: int = 100, xtol: float = 1e-12):
+def batch_least_squares(
+    resid_jac: Callable,
+    x0: np.ndarray,
+    lo: np.ndarray,
+    hi: np.ndarray,
+    weights: np.ndarray,
+    max_iter: int = 100,
+    xtol: float = 1e-12,
+):
     """Minimise sum_i w_ri r_i(x_r)^2 for every replicate r at once (Levenberg-Marquardt, box bounds).
 
     .. math:: (J^T W J + \\lambda\\,\\mathrm{diag}(J^T W J))\\,\\delta = -J^T W r
@@ -598,8 +652,9 @@ def refit_chi_power_batch(sigma_N, suction, S_R, tau, c, tan_phi, weights, kappa
     return {"kappa": kappa}, r
 
 
-def refit_khalili_batch(sigma_N, suction, S_R, tau, c, tan_phi, weights, s_b0: float, eta: float = 0.55,
-                        fit_eta: bool = False):
+def refit_khalili_batch(
+    sigma_N, suction, S_R, tau, c, tan_phi, weights, s_b0: float, eta: float = 0.55, fit_eta: bool = False
+):
     """s_b (and eta) of chi = (s/s_b)^-eta refitted in every bootstrap replicate at once.
 
     Works on ln s_b within each replicate's [min s / 100, max s * 100] (the bounds of `fit_khalili`,
@@ -684,14 +739,19 @@ class ChiLaw:
 
 LAWS: dict[str, ChiLaw] = {
     "chi_power": ChiLaw(
-        lambda w, mp, start=None, dry=None: fit_chi_power(w.sigma_N, w.suction, w.S_R, w.tau_max, w.c, w.tan_phi,
-                                                         mp.s_res or 0.0, start, dry),
-        lambda w, mp, c, b, weights, start: refit_chi_power_batch(w.sigma_N, w.suction, w.S_R, w.tau_max, c, b,
-                                                                  weights, start["kappa"], mp.s_res or 0.0)),
+        lambda w, mp, start=None, dry=None: fit_chi_power(
+            w.sigma_N, w.suction, w.S_R, w.tau_max, w.c, w.tan_phi, mp.s_res or 0.0, start, dry
+        ),
+        lambda w, mp, c, b, weights, start: refit_chi_power_batch(
+            w.sigma_N, w.suction, w.S_R, w.tau_max, c, b, weights, start["kappa"], mp.s_res or 0.0
+        ),
+    ),
     "khalili_fit": ChiLaw(
-        lambda w, mp, start=None, dry=None: fit_khalili(w.sigma_N, w.suction, w.S_R, w.tau_max, w.c, w.tan_phi,
-                                                       mp.eta, mp.fit_eta, start, dry),
-        lambda w, mp, c, b, weights, start: refit_khalili_batch(w.sigma_N, w.suction, w.S_R, w.tau_max, c, b,
-                                                                weights, start["s_b"], start.get("eta", mp.eta),
-                                                                mp.fit_eta)),
+        lambda w, mp, start=None, dry=None: fit_khalili(
+            w.sigma_N, w.suction, w.S_R, w.tau_max, w.c, w.tan_phi, mp.eta, mp.fit_eta, start, dry
+        ),
+        lambda w, mp, c, b, weights, start: refit_khalili_batch(
+            w.sigma_N, w.suction, w.S_R, w.tau_max, c, b, weights, start["s_b"], start.get("eta", mp.eta), mp.fit_eta
+        ),
+    ),
 }

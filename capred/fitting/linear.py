@@ -11,6 +11,7 @@ References
    estimates, their variances, the confidence band of the mean line and the
    prediction interval of a new observation, and the line through the origin).
 """
+
 from __future__ import annotations
 
 import math
@@ -69,8 +70,9 @@ def t_quantile(p, dof):
         values = np.array([_t_quantile_one(float(p), nu) for nu in distinct.tolist()])
         return values[np.searchsorted(distinct, dof_a)] if distinct.size else np.full(dof_a.shape, np.nan)
     p_a, dof_a = np.broadcast_arrays(np.asarray(p, dtype=float), dof_a)
-    return np.array([_t_quantile_one(q, nu) for q, nu in zip(p_a.ravel().tolist(), dof_a.ravel().tolist())],
-                    dtype=float).reshape(p_a.shape)
+    return np.array(
+        [_t_quantile_one(q, nu) for q, nu in zip(p_a.ravel().tolist(), dof_a.ravel().tolist())], dtype=float
+    ).reshape(p_a.shape)
 
 
 def _t_quantile_one(p: float, nu: float) -> float:
@@ -289,8 +291,20 @@ def fit_line(x, y, confidence: float = 0.95) -> LineFit:
     tss = float(np.sum((y - y.mean()) ** 2))
     r2 = 1.0 - rss / tss if tss > 0 else 1.0
     t = t_quantile(0.5 + confidence / 2.0, n - 2)
-    return LineFit(intercept, slope, float(np.sqrt(cov[0, 0])), float(np.sqrt(cov[1, 1])),
-                   cov, n, rss, r2, confidence, t, float(x_mean), sxx)
+    return LineFit(
+        intercept,
+        slope,
+        float(np.sqrt(cov[0, 0])),
+        float(np.sqrt(cov[1, 1])),
+        cov,
+        n,
+        rss,
+        r2,
+        confidence,
+        t,
+        float(x_mean),
+        sxx,
+    )
 
 
 def fit_line_origin(x, y, confidence: float = 0.95) -> LineFit:
@@ -343,5 +357,18 @@ def fit_line_origin(x, y, confidence: float = 0.95) -> LineFit:
     tss = float(np.sum((y - y.mean()) ** 2))
     r2 = 1.0 - rss / tss if tss > 0 else 1.0
     t = t_quantile(0.5 + confidence / 2.0, n - 1)
-    return LineFit(0.0, slope, 0.0, float(np.sqrt(cov[1, 1])), cov, n, rss, r2, confidence, t,
-                   float(x.mean()), float(np.sum((x - x.mean()) ** 2)), True)
+    return LineFit(
+        0.0,
+        slope,
+        0.0,
+        float(np.sqrt(cov[1, 1])),
+        cov,
+        n,
+        rss,
+        r2,
+        confidence,
+        t,
+        float(x.mean()),
+        float(np.sum((x - x.mean()) ** 2)),
+        True,
+    )

@@ -8,6 +8,7 @@ optimum, :math:`\\mathrm{Cov} = (J^T J)^{-1}\\, \\mathrm{RSS}/(n - k)`
 held there for the standard errors of the others (the same numbers as a refit
 with it fixed), and the fit's ``notes`` say so.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -116,8 +117,11 @@ class NonlinearFit:
         parameters of ``log_params``, the value itself otherwise) and compared with ``rel`` times the
         width of the range on that scale.
         """
-        return [k for k in self.free if _at_bound(self.params[k], self.bounds.get(k, (-np.inf, np.inf)),
-                                                  self.log_params.get(k), rel)]
+        return [
+            k
+            for k in self.free
+            if _at_bound(self.params[k], self.bounds.get(k, (-np.inf, np.inf)), self.log_params.get(k), rel)
+        ]
 
     @property
     def nfree(self) -> int:
@@ -139,6 +143,7 @@ def _at_bound(value: float, bounds, offset, rel: float) -> bool:
     """True when ``value`` lies within ``rel`` of the range width of a bound, on the parameter's own scale."""
     lo, hi = bounds
     if offset is not None:  # logarithmic scale ln(x - offset)
+
         def f(x):
             return float(np.log(x - offset)) if x > offset else -np.inf
 
@@ -214,20 +219,41 @@ def fit_curve(model, x, y, names, starts, bounds, fixed=None, weights=None, log_
     for start in starts:
         v0 = np.clip([start[k] for k in free], lo + 1e-12 * (hi - lo), hi - 1e-12 * (hi - lo))
         try:
-            r = least_squares(resid, v0, bounds=(lo, hi), method="trf", x_scale="jac",
-                              xtol=1e-14, ftol=1e-14, gtol=1e-14, max_nfev=4000)
+            r = least_squares(
+                resid,
+                v0,
+                bounds=(lo, hi),
+                method="trf",
+                x_scale="jac",
+                xtol=1e-14,
+                ftol=1e-14,
+                gtol=1e-14,
+                max_nfev=4000,
+            )
         except ValueError:
             continue
         if np.all(np.isfinite(r.fun)) and (best is None or r.cost < best.cost):
             best = r
     if best is None:
         raise FitError("the fit did not converge from any starting point")
-    return summarize_fit(model, x, y, names, full(best.x), bounds, fixed, weights, bool(best.success),
-                         log_params=log_params, message=str(best.message))
+    return summarize_fit(
+        model,
+        x,
+        y,
+        names,
+        full(best.x),
+        bounds,
+        fixed,
+        weights,
+        bool(best.success),
+        log_params=log_params,
+        message=str(best.message),
+    )
 
 
-def _assemble(names, params, fixed, free, y, sw, rss, jac, bounds, converged, message="", held=(),
-              log_params=None, notes=None) -> NonlinearFit:
+def _assemble(
+    names, params, fixed, free, y, sw, rss, jac, bounds, converged, message="", held=(), log_params=None, notes=None
+) -> NonlinearFit:
     """The fit statistics: weighted R², AIC/BIC, standard errors and covariance from the Jacobian.
 
     Columns of ``held`` parameters are left out of the covariance (their rows and columns are 0).
@@ -256,12 +282,23 @@ def _assemble(names, params, fixed, free, y, sw, rss, jac, bounds, converged, me
     stderr.update({name: (float(v) if name not in held else None) for name, v in zip(free, se)})
     rss_n = max(rss / n, 1e-300)
     return NonlinearFit(
-        params={name: float(params[name]) for name in names}, stderr=stderr, fixed=tuple(fixed), n=n, rss=rss,
+        params={name: float(params[name]) for name in names},
+        stderr=stderr,
+        fixed=tuple(fixed),
+        n=n,
+        rss=rss,
         r2=1.0 - rss / tss if tss > 0 else float("nan"),
-        aic=n * np.log(rss_n) + 2 * k, bic=n * np.log(rss_n) + k * np.log(n),
-        converged=converged, message=message, covariance=cov, free=tuple(free),
-        bounds={k_: tuple(bounds[k_]) for k_ in free}, t=_t95(dof_se), notes=list(notes or []),
-        log_params=dict(log_params or {}), held=tuple(held),
+        aic=n * np.log(rss_n) + 2 * k,
+        bic=n * np.log(rss_n) + k * np.log(n),
+        converged=converged,
+        message=message,
+        covariance=cov,
+        free=tuple(free),
+        bounds={k_: tuple(bounds[k_]) for k_ in free},
+        t=_t95(dof_se),
+        notes=list(notes or []),
+        log_params=dict(log_params or {}),
+        held=tuple(held),
     )
 
 
@@ -271,8 +308,20 @@ def _t95(dof: int) -> float:
     return t_quantile(0.975, dof) if dof > 0 else float("nan")
 
 
-def summarize_fit(model, x, y, names, params: dict, bounds, fixed=None, weights=None,
-                  converged: bool = True, log_params=None, message: str = "", notes=None) -> NonlinearFit:
+def summarize_fit(
+    model,
+    x,
+    y,
+    names,
+    params: dict,
+    bounds,
+    fixed=None,
+    weights=None,
+    converged: bool = True,
+    log_params=None,
+    message: str = "",
+    notes=None,
+) -> NonlinearFit:
     """The :class:`NonlinearFit` of given optimal parameters (no optimisation).
 
     RSS, R², the criteria, and standard errors from a central-difference Jacobian of the weighted residuals
@@ -325,8 +374,10 @@ def summarize_fit(model, x, y, names, params: dict, bounds, fixed=None, weights=
     for k in held:
         lo, hi = bounds[k]
         side = "lower" if abs(params[k] - lo) <= abs(params[k] - hi) else "upper"
-        notes.append(f"{k} ended on its {side} bound ({params[k]:.6g}); the standard errors of the other "
-                     "parameters are those of a fit with it held there, it has none")
+        notes.append(
+            f"{k} ended on its {side} bound ({params[k]:.6g}); the standard errors of the other "
+            "parameters are those of a fit with it held there, it has none"
+        )
     cols = []
     for k in free:
         lo, hi = bounds[k]
@@ -342,5 +393,6 @@ def summarize_fit(model, x, y, names, params: dict, bounds, fixed=None, weights=
             continue
         cols.append((model(x, **{**params, k: up}) - model(x, **{**params, k: dn})) * sw / (up - dn))
     jac = np.column_stack(cols) if cols else np.empty((x.size, 0))
-    return _assemble(names, params, fixed, free, y, sw, float(r @ r), jac, bounds, converged, message, held,
-                     log_params, notes)
+    return _assemble(
+        names, params, fixed, free, y, sw, float(r @ r), jac, bounds, converged, message, held, log_params, notes
+    )

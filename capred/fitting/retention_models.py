@@ -29,10 +29,11 @@ the bounds by
    air-entry suction) is refined within each interval between neighbouring
    data suctions separately, where the objective is smooth.
 """
+
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field, fields
-from typing import Callable
 
 import numpy as np
 
@@ -106,15 +107,28 @@ class Parameter:
     @property
     def range_text(self) -> str:
         """The valid range in words (s_min, s_max: the smallest and largest positive suction of the data)."""
-        return {"residual": "0 … max(y)", "saturated": "min(y) … max(1, max(y))",
-                "suction": f"{self.lower:g}·s_min … {self.upper:g}·s_max",
-                "inverse_suction": f"{self.lower:g}/s_max … {self.upper:g}/s_min",
-                "suction_to_absolute": f"{self.lower:g}·s_min … {self.upper:g} Pa",
-                }.get(self.kind, f"{self.lower:g} … {self.upper:g}")
+        return {
+            "residual": "0 … max(y)",
+            "saturated": "min(y) … max(1, max(y))",
+            "suction": f"{self.lower:g}·s_min … {self.upper:g}·s_max",
+            "inverse_suction": f"{self.lower:g}/s_max … {self.upper:g}/s_min",
+            "suction_to_absolute": f"{self.lower:g}·s_min … {self.upper:g} Pa",
+        }.get(self.kind, f"{self.lower:g} … {self.upper:g}")
 
 
-def _p(name, symbol, unit, description, kind="absolute", lower=-np.inf, upper=np.inf, log_offset=None, grid=0,
-       kinks=False, grid_span=100.0) -> Parameter:
+def _p(
+    name,
+    symbol,
+    unit,
+    description,
+    kind="absolute",
+    lower=-np.inf,
+    upper=np.inf,
+    log_offset=None,
+    grid=0,
+    kinks=False,
+    grid_span=100.0,
+) -> Parameter:
     return Parameter(name, symbol, unit, description, kind, lower, upper, log_offset, grid, kinks, grid_span)
 
 
@@ -123,8 +137,18 @@ Y_S = _p("y_s", r"$\theta_s$", "y", "saturated water content (or S_s)", "saturat
 
 
 def _alpha(name="alpha", symbol=r"$\alpha$", grid=4, grid_span=100.0):
-    return _p(name, symbol, "1/Pa", "inverse of a characteristic suction", "inverse_suction", 1e-3, 1e3, 0.0, grid,
-              grid_span=grid_span)
+    return _p(
+        name,
+        symbol,
+        "1/Pa",
+        "inverse of a characteristic suction",
+        "inverse_suction",
+        1e-3,
+        1e3,
+        0.0,
+        grid,
+        grid_span=grid_span,
+    )
 
 
 def _n(name="n", symbol="$n$", grid=12):
@@ -243,6 +267,7 @@ class RetentionModel:
 # ---------------------------------------------------------------------------------------------------------------
 # the registry
 
+
 def _durner_components(s, alpha1, n1, alpha2, n2):
     return rp.vg_effective_saturation(s, alpha1, n1), rp.vg_effective_saturation(s, alpha2, n2)
 
@@ -261,74 +286,140 @@ def _bc_inverse(S, s_e, lam):
 
 _M = _p("m", "$m$", "-", "shape exponent", "absolute", 1e-3, 20.0, 0.0, 10)
 
-MODELS: dict[str, RetentionModel] = {m.name: m for m in (
-    RetentionModel(
-        "vg", "van Genuchten, m = 1 - 1/n", r"$S_e = [1 + (\alpha s)^n]^{-(1 - 1/n)}$",
-        (Y_R, Y_S, _alpha(), _n()),
-        lambda s, alpha, n: rp.vg_effective_saturation(s, alpha, n), ("vangenuchten1980",),
-        "van Genuchten (1980, eq. 21) with Mualem's constraint: θ = θ_r + (θ_s − θ_r)[1 + (αs)^n]^−m, "
-        "m = 1 − 1/n.",
-        "vg: van Genuchten (1980), m = 1 - 1/n", dict(ls="-"),
-        inverse=lambda S, alpha, n: rp.vg_suction(S, alpha, n)),
-    RetentionModel(
-        "vg_m_free", "van Genuchten, m free", r"$S_e = [1 + (\alpha s)^n]^{-m}$",
-        (Y_R, Y_S, _alpha(), _n(grid=10), _M),
-        lambda s, alpha, n, m: rp.vg_effective_saturation(s, alpha, n, m), ("vangenuchten1980",),
-        "van Genuchten (1980, eq. 21) with m free: θ = θ_r + (θ_s − θ_r)[1 + (αs)^n]^−m.",
-        "vg_m_free: van Genuchten (1980) with m free", dict(ls="--"),
-        inverse=lambda S, alpha, n, m: rp.vg_suction(S, alpha, n, m)),
-    RetentionModel(
-        "bc", "Brooks-Corey", r"$S_e = (s_e/s)^{\lambda}\ (s > s_e)$, $1$ below",
-        (Y_R, Y_S,
-         _p("s_e", "$s_e$", "Pa", "air-entry suction", "suction", 1e-3, 1.0, 0.0, 4, kinks=True),
-         _p("lam", r"$\lambda$", "-", "pore-size distribution index", "absolute", 1e-3, 50.0, 0.0, 12)),
-        lambda s, s_e, lam: rp.bc_effective_saturation(s, s_e, lam), ("brooks_corey1964",),
-        "Brooks & Corey (1964): θ = θ_r + (θ_s − θ_r)(s_e/s)^λ above the air-entry suction s_e, θ_s below; "
-        "s_e is searched between each pair of neighbouring data suctions, where the fit is smooth.",
-        "bc: Brooks & Corey (1964) with the air-entry suction", dict(ls="-."), inverse=_bc_inverse),
-    RetentionModel(
-        "kosugi", "Kosugi (lognormal)", r"$S_e = Q\left(\ln(s/s_m)/\sigma\right)$",
-        (Y_R, Y_S,
-         _p("s_m", "$s_m$", "Pa", "median suction of the pore-size distribution", "suction", 1e-3, 1e3, 0.0, 4),
-         _p("sigma", r"$\sigma$", "-", "standard deviation of ln(pore radius)", "absolute", 1e-3, 10.0, 0.0, 12)),
-        lambda s, s_m, sigma: rp.kosugi_effective_saturation(s, s_m, sigma), ("kosugi1996",),
-        "Kosugi (1996), a lognormal pore-size distribution: θ = θ_r + (θ_s − θ_r) Q(ln(s/s_m)/σ), Q the "
-        "complementary standard normal distribution.",
-        "kosugi: Kosugi (1996), lognormal", dict(ls=":"),
-        inverse=lambda S, s_m, sigma: rp.kosugi_suction(S, s_m, sigma)),
-    RetentionModel(
-        "fx", "Fredlund-Xing with C(s)", r"$\theta = \theta_s\, C(s)\, [\ln(e + (s/a)^n)]^{-m}$",
-        (Y_S,
-         _p("a", "$a$", "Pa", "suction parameter (near the air entry)", "suction", 1e-3, 1e3, 0.0, 4),
-         _n(grid=8), _p("m", "$m$", "-", "shape exponent", "absolute", 1e-3, 20.0, 0.0, 8),
-         _p("s_r", "$s_r$", "Pa", "suction of the residual water content", "suction_to_absolute", 1.0, 1e9, 0.0, 1)),
-        lambda s, a, n, m, s_r: rp.fx_correction(s, s_r) * rp.fx_shape(s, a, n, m), ("fredlund_xing1994",),
-        "Fredlund & Xing (1994, eq. 26): θ = θ_s C(s)[ln(e + (s/a)^n)]^−m with "
-        "C(s) = 1 − ln(1 + s/s_r)/ln(1 + 10⁶ kPa/s_r).",
-        "fx: Fredlund & Xing (1994) with the correction factor C(s)", dict(ls=(0, (5, 1))),
-        residual_form=False),
-    RetentionModel(
-        "fx_no_c", "Fredlund-Xing without C(s)", r"$S_e = [\ln(e + (s/a)^n)]^{-m}$",
-        (Y_R, Y_S,
-         _p("a", "$a$", "Pa", "suction parameter (near the air entry)", "suction", 1e-3, 1e3, 0.0, 4),
-         _n(grid=10), _M),
-        lambda s, a, n, m: rp.fx_shape(s, a, n, m), ("fredlund_xing1994",),
-        "Fredlund & Xing (1994, eq. 26) without the correction factor: θ = θ_r + (θ_s − θ_r)"
-        "[ln(e + (s/a)^n)]^−m.",
-        "fx_no_c: Fredlund & Xing (1994) without C(s)", dict(ls=(0, (3, 1, 1, 1)))),
-    RetentionModel(
-        "durner", "Durner (bimodal van Genuchten)",
-        r"$S_e = w_1 [1 + (\alpha_1 s)^{n_1}]^{-m_1} + (1 - w_1)[1 + (\alpha_2 s)^{n_2}]^{-m_2}$",
-        (Y_R, Y_S, _p("w1", "$w_1$", "-", "weight of the first pore system", "absolute", 0.0, 1.0),
-         _alpha("alpha1", r"$\alpha_1$", 4, 3.0), _n("n1", "$n_1$", 10), _alpha("alpha2", r"$\alpha_2$", 4, 3.0),
-         _n("n2", "$n_2$", 10)),
-        lambda s, w1, alpha1, n1, alpha2, n2: rp.durner_effective_saturation(s, w1, alpha1, n1, alpha2, n2),
-        ("durner1994",),
-        "Durner (1994), two van Genuchten pore systems: S_e = w₁[1 + (α₁s)^n₁]^−m₁ + (1 − w₁)[1 + (α₂s)^n₂]^−m₂, "
-        "m_i = 1 − 1/n_i.",
-        "durner: Durner (1994), bimodal van Genuchten", dict(ls=(0, (1, 1))),
-        mixture=("w1", _durner_components), grid_order=("alpha1", "alpha2"), canonical=_durner_canonical),
-)}
+MODELS: dict[str, RetentionModel] = {
+    m.name: m
+    for m in (
+        RetentionModel(
+            "vg",
+            "van Genuchten, m = 1 - 1/n",
+            r"$S_e = [1 + (\alpha s)^n]^{-(1 - 1/n)}$",
+            (Y_R, Y_S, _alpha(), _n()),
+            lambda s, alpha, n: rp.vg_effective_saturation(s, alpha, n),
+            ("vangenuchten1980",),
+            "van Genuchten (1980, eq. 21) with Mualem's constraint: θ = θ_r + (θ_s − θ_r)[1 + (αs)^n]^−m, m = 1 − 1/n.",
+            "vg: van Genuchten (1980), m = 1 - 1/n",
+            dict(ls="-"),
+            inverse=lambda S, alpha, n: rp.vg_suction(S, alpha, n),
+        ),
+        RetentionModel(
+            "vg_m_free",
+            "van Genuchten, m free",
+            r"$S_e = [1 + (\alpha s)^n]^{-m}$",
+            (Y_R, Y_S, _alpha(), _n(grid=10), _M),
+            lambda s, alpha, n, m: rp.vg_effective_saturation(s, alpha, n, m),
+            ("vangenuchten1980",),
+            "van Genuchten (1980, eq. 21) with m free: θ = θ_r + (θ_s − θ_r)[1 + (αs)^n]^−m.",
+            "vg_m_free: van Genuchten (1980) with m free",
+            dict(ls="--"),
+            inverse=lambda S, alpha, n, m: rp.vg_suction(S, alpha, n, m),
+        ),
+        RetentionModel(
+            "bc",
+            "Brooks-Corey",
+            r"$S_e = (s_e/s)^{\lambda}\ (s > s_e)$, $1$ below",
+            (
+                Y_R,
+                Y_S,
+                _p("s_e", "$s_e$", "Pa", "air-entry suction", "suction", 1e-3, 1.0, 0.0, 4, kinks=True),
+                _p("lam", r"$\lambda$", "-", "pore-size distribution index", "absolute", 1e-3, 50.0, 0.0, 12),
+            ),
+            lambda s, s_e, lam: rp.bc_effective_saturation(s, s_e, lam),
+            ("brooks_corey1964",),
+            "Brooks & Corey (1964): θ = θ_r + (θ_s − θ_r)(s_e/s)^λ above the air-entry suction s_e, θ_s below; "
+            "s_e is searched between each pair of neighbouring data suctions, where the fit is smooth.",
+            "bc: Brooks & Corey (1964) with the air-entry suction",
+            dict(ls="-."),
+            inverse=_bc_inverse,
+        ),
+        RetentionModel(
+            "kosugi",
+            "Kosugi (lognormal)",
+            r"$S_e = Q\left(\ln(s/s_m)/\sigma\right)$",
+            (
+                Y_R,
+                Y_S,
+                _p("s_m", "$s_m$", "Pa", "median suction of the pore-size distribution", "suction", 1e-3, 1e3, 0.0, 4),
+                _p("sigma", r"$\sigma$", "-", "standard deviation of ln(pore radius)", "absolute", 1e-3, 10.0, 0.0, 12),
+            ),
+            lambda s, s_m, sigma: rp.kosugi_effective_saturation(s, s_m, sigma),
+            ("kosugi1996",),
+            "Kosugi (1996), a lognormal pore-size distribution: θ = θ_r + (θ_s − θ_r) Q(ln(s/s_m)/σ), Q the "
+            "complementary standard normal distribution.",
+            "kosugi: Kosugi (1996), lognormal",
+            dict(ls=":"),
+            inverse=lambda S, s_m, sigma: rp.kosugi_suction(S, s_m, sigma),
+        ),
+        RetentionModel(
+            "fx",
+            "Fredlund-Xing with C(s)",
+            r"$\theta = \theta_s\, C(s)\, [\ln(e + (s/a)^n)]^{-m}$",
+            (
+                Y_S,
+                _p("a", "$a$", "Pa", "suction parameter (near the air entry)", "suction", 1e-3, 1e3, 0.0, 4),
+                _n(grid=8),
+                _p("m", "$m$", "-", "shape exponent", "absolute", 1e-3, 20.0, 0.0, 8),
+                _p(
+                    "s_r",
+                    "$s_r$",
+                    "Pa",
+                    "suction of the residual water content",
+                    "suction_to_absolute",
+                    1.0,
+                    1e9,
+                    0.0,
+                    1,
+                ),
+            ),
+            lambda s, a, n, m, s_r: rp.fx_correction(s, s_r) * rp.fx_shape(s, a, n, m),
+            ("fredlund_xing1994",),
+            "Fredlund & Xing (1994, eq. 26): θ = θ_s C(s)[ln(e + (s/a)^n)]^−m with "
+            "C(s) = 1 − ln(1 + s/s_r)/ln(1 + 10⁶ kPa/s_r).",
+            "fx: Fredlund & Xing (1994) with the correction factor C(s)",
+            dict(ls=(0, (5, 1))),
+            residual_form=False,
+        ),
+        RetentionModel(
+            "fx_no_c",
+            "Fredlund-Xing without C(s)",
+            r"$S_e = [\ln(e + (s/a)^n)]^{-m}$",
+            (
+                Y_R,
+                Y_S,
+                _p("a", "$a$", "Pa", "suction parameter (near the air entry)", "suction", 1e-3, 1e3, 0.0, 4),
+                _n(grid=10),
+                _M,
+            ),
+            lambda s, a, n, m: rp.fx_shape(s, a, n, m),
+            ("fredlund_xing1994",),
+            "Fredlund & Xing (1994, eq. 26) without the correction factor: θ = θ_r + (θ_s − θ_r)[ln(e + (s/a)^n)]^−m.",
+            "fx_no_c: Fredlund & Xing (1994) without C(s)",
+            dict(ls=(0, (3, 1, 1, 1))),
+        ),
+        RetentionModel(
+            "durner",
+            "Durner (bimodal van Genuchten)",
+            r"$S_e = w_1 [1 + (\alpha_1 s)^{n_1}]^{-m_1} + (1 - w_1)[1 + (\alpha_2 s)^{n_2}]^{-m_2}$",
+            (
+                Y_R,
+                Y_S,
+                _p("w1", "$w_1$", "-", "weight of the first pore system", "absolute", 0.0, 1.0),
+                _alpha("alpha1", r"$\alpha_1$", 4, 3.0),
+                _n("n1", "$n_1$", 10),
+                _alpha("alpha2", r"$\alpha_2$", 4, 3.0),
+                _n("n2", "$n_2$", 10),
+            ),
+            lambda s, w1, alpha1, n1, alpha2, n2: rp.durner_effective_saturation(s, w1, alpha1, n1, alpha2, n2),
+            ("durner1994",),
+            "Durner (1994), two van Genuchten pore systems: S_e = w₁[1 + (α₁s)^n₁]^−m₁ + (1 − w₁)[1 + (α₂s)^n₂]^−m₂, "
+            "m_i = 1 − 1/n_i.",
+            "durner: Durner (1994), bimodal van Genuchten",
+            dict(ls=(0, (1, 1))),
+            mixture=("w1", _durner_components),
+            grid_order=("alpha1", "alpha2"),
+            canonical=_durner_canonical,
+        ),
+    )
+}
 
 #: the same registry under the name used by the other families
 REGISTRY = MODELS
@@ -372,6 +463,7 @@ def bounds_for(s, y, model: str | None = None) -> dict[str, tuple[float, float]]
 
 # ---------------------------------------------------------------------------------------------------------------
 # the fit record
+
 
 @dataclass
 class RetentionFit(NonlinearFit):
@@ -461,7 +553,8 @@ class RetentionFit(NonlinearFit):
 # ---------------------------------------------------------------------------------------------------------------
 # variable projection
 
-def _projected_rss(pb: "_Problem", W, Y, YY, mS, mSS, mSy):
+
+def _projected_rss(pb: _Problem, W, Y, YY, mS, mSS, mSy):
     """Projected RSS of curves S known by their weighted moments: the bounded weighted least-squares y_r, y_s
     of each curve, from its moments alone (every column of the linear problem is affine in S and y).
 
@@ -469,14 +562,24 @@ def _projected_rss(pb: "_Problem", W, Y, YY, mS, mSS, mSy):
     broadcastable shape). With two linear parameters the box-constrained quadratic is solved exactly: the
     unconstrained solution if it is feasible, else the best point on the four edges.
     """
+
     def dot(f, g):  # <f, g> for f = p + q S + r y
         (p1, q1, r1), (p2, q2, r2) = f, g
-        return (p1 * p2 * W + (p1 * q2 + q1 * p2) * mS + q1 * q2 * mSS + (p1 * r2 + r1 * p2) * Y
-                + (q1 * r2 + r1 * q2) * mSy + r1 * r2 * YY)
+        return (
+            p1 * p2 * W
+            + (p1 * q2 + q1 * p2) * mS
+            + q1 * q2 * mSS
+            + (p1 * r2 + r1 * p2) * Y
+            + (q1 * r2 + r1 * q2) * mSy
+            + r1 * r2 * YY
+        )
 
     cols = {"y_r": (1.0, -1.0, 0.0), "y_s": (0.0, 1.0, 0.0)} if pb.model.residual_form else {"y_s": (0.0, 1.0, 0.0)}
-    rhs = (-sum(v * cols[k][0] for k, v in pb.fixed_lin.items()),
-           -sum(v * cols[k][1] for k, v in pb.fixed_lin.items()), 1.0)
+    rhs = (
+        -sum(v * cols[k][0] for k, v in pb.fixed_lin.items()),
+        -sum(v * cols[k][1] for k, v in pb.fixed_lin.items()),
+        1.0,
+    )
     lin, b = pb.lin, pb.b
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         cc = dot(rhs, rhs)
@@ -644,8 +747,9 @@ class _Problem:
         """Weighted projected residuals (m, n) at rows ``U`` (m, k) of the fitting coordinates."""
         X = self.x_rows(U)
         with np.errstate(all="ignore"):
-            S = self.model.saturation(self.s[None, :], **self.fixed_shape,
-                                      **{name: X[:, j][:, None] for j, name in enumerate(self.shape)})
+            S = self.model.saturation(
+                self.s[None, :], **self.fixed_shape, **{name: X[:, j][:, None] for j, name in enumerate(self.shape)}
+            )
             S = np.broadcast_to(S, (X.shape[0], self.s.size))
             r = (self.fitted_rows(S) - self.y) * self.sw
         return np.where(np.isfinite(r), r, 1e10)
@@ -704,11 +808,11 @@ def _screen(pb: _Problem, idx):
     s, y, w2 = pb.s[idx], pb.y[idx], pb.w2[idx]
     pos = pb.s[pb.s > 0]
     knots = _knots(pb.s)
-    axes = [_grid_values(model.parameter(k), *pb.b[k], float(pos.min()), float(pos.max()), knots)
-            for k in grid_names]
+    axes = [_grid_values(model.parameter(k), *pb.b[k], float(pos.min()), float(pos.max()), knots) for k in grid_names]
     nd, shape = len(axes), tuple(len(a) for a in axes)
-    par = {k: a.reshape([-1 if i == j else 1 for i in range(nd)] + [1]) for j, (k, a) in enumerate(zip(grid_names,
-                                                                                                       axes))}
+    par = {
+        k: a.reshape([-1 if i == j else 1 for i in range(nd)] + [1]) for j, (k, a) in enumerate(zip(grid_names, axes))
+    }
     sb = s.reshape((1,) * nd + (-1,))
     wy = w2 * y
     W, Y, YY = w2.sum(), wy.sum(), wy @ y
@@ -750,10 +854,12 @@ def _cross(A, B, shape):
     ax_a = [i for i in range(nd) if A.shape[i] > 1]
     ax_b = [i for i in range(nd) if B.shape[i] > 1]
     out = sorted(set(ax_a) | set(ax_b))
-    spec = (f"{''.join(letters[i] for i in ax_a)}z,{''.join(letters[i] for i in ax_b)}z->"
-            f"{''.join(letters[i] for i in out)}")
-    C = np.einsum(spec, A.reshape([A.shape[i] for i in ax_a] + [-1]), B.reshape([B.shape[i] for i in ax_b] + [-1]),
-                  optimize=True)
+    spec = (
+        f"{''.join(letters[i] for i in ax_a)}z,{''.join(letters[i] for i in ax_b)}z->{''.join(letters[i] for i in out)}"
+    )
+    C = np.einsum(
+        spec, A.reshape([A.shape[i] for i in ax_a] + [-1]), B.reshape([B.shape[i] for i in ax_b] + [-1]), optimize=True
+    )
     return C.reshape([shape[i] if i in out else 1 for i in range(nd)])
 
 
@@ -762,8 +868,9 @@ def _mixture_weight(W, Y, m1, m2, G11, G12, G22, m1y, m2y):
     y = c0 + c1 S1 + c2 S2 (its normal equations from the moments, regularised by 1e-14 of their trace), clipped
     to [0, 1]; 0.5 where undefined."""
     m1, m2, G11, G12, G22, m1y, m2y = np.broadcast_arrays(m1, m2, G11, G12, G22, m1y, m2y)
-    A = np.stack([np.stack([np.full_like(m1, W), m1, m2], -1), np.stack([m1, G11, G12], -1),
-                  np.stack([m2, G12, G22], -1)], -2)
+    A = np.stack(
+        [np.stack([np.full_like(m1, W), m1, m2], -1), np.stack([m1, G11, G12], -1), np.stack([m2, G12, G22], -1)], -2
+    )
     rhs = np.stack([np.full_like(m1, Y), m1y, m2y], -1)
     A = A + np.eye(3) * (1e-14 * (W + G11 + G22))[..., None, None]
     with np.errstate(all="ignore"):
@@ -845,7 +952,7 @@ def _interval_starts(pb, names, axes, rss, weights, mix, axis, lo, hi, knots, n_
     ranked.sort()
     out = []
     other_shape = tuple(n for a, n in enumerate(rss.shape) if a != axis)
-    for v, i, g in ranked[:max(n_starts, 6)]:
+    for v, i, g in ranked[: max(n_starts, 6)]:
         rest = np.unravel_index(int(arg[g]), other_shape) if other_shape else ()
         pos = tuple(rest[:axis]) + (int(g),) + tuple(rest[axis:])
         blo, bhi = lo.copy(), hi.copy()
@@ -875,8 +982,7 @@ def _interval_walk(pb: _Problem, u, j: int, lo, hi):
     knots = np.unique(pb.s[pb.s > 0])
     knots = np.log(knots - o) if o is not None else knots
     lo_all, hi_all = pb.u_rows(np.array([[pb.b[k][0] for k in pb.shape], [pb.b[k][1] for k in pb.shape]]))
-    edges = np.unique(np.concatenate([[lo_all[j]], knots[(knots > lo_all[j]) & (knots < hi_all[j])],
-                                      [hi_all[j]]]))
+    edges = np.unique(np.concatenate([[lo_all[j]], knots[(knots > lo_all[j]) & (knots < hi_all[j])], [hi_all[j]]]))
     here = int(np.clip(np.searchsorted(edges, u[j], side="right") - 1, 0, edges.size - 2))
     start, cost, converged = u, np.inf, False
     done: set[int] = set()
@@ -971,8 +1077,9 @@ def _levenberg_marquardt(pb: _Problem, U, lo, hi, ftol: float, max_iter: int, pr
             active[i[~small[acc] & (steps[i] >= max_iter)]] = False
             if prune and converged.any() and active[a].any():
                 live = active[a]
-                floor = ca[live] - np.einsum("gk,gk->g", g[live], solve(A[live] + (1e-12 * d[live])[:, :, None] * eye,
-                                                                        g[live]))
+                floor = ca[live] - np.einsum(
+                    "gk,gk->g", g[live], solve(A[live] + (1e-12 * d[live])[:, :, None] * eye, g[live])
+                )
                 active[a[live][floor > prune * cost[converged].min()]] = False
             rej = ~acc
             if rej.any():
@@ -1090,8 +1197,9 @@ def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = 
     optimum = pb.full(best_x)
     if model.canonical is not None and not fixed:
         optimum = model.canonical(optimum)
-    nl = summarize_fit(model.water, s, y, model.names, optimum, b, fixed, weights, converged,
-                       log_params=model.log_params)
+    nl = summarize_fit(
+        model.water, s, y, model.names, optimum, b, fixed, weights, converged, log_params=model.log_params
+    )
     return RetentionFit(**{f.name: getattr(nl, f.name) for f in fields(nl)}, model=name)
 
 
@@ -1179,7 +1287,20 @@ def fit_hysteresis(s_d, y_d, s_w, y_w, fixed=None, weights=None) -> NonlinearFit
     pos = s[s > 0]
     mid = float(np.median(pos)) if pos.size else 1.0
     base = {"y_r": max(float(np.min(y)) * 0.5, 0.0), "y_s": float(np.max(y))}
-    starts = [{**base, "n": n, "alpha_d": a / mid, "alpha_w": a * r / mid} for a in (0.3, 1.0, 3.0)
-              for n in (1.5, 3.0, 8.0) for r in (1.0, 2.0)]
-    return fit_curve(water, s, y, ("y_r", "y_s", "n", "alpha_d", "alpha_w"), starts, b, fixed, weights,
-                     log_params={"n": 1.0, "alpha_d": 0.0, "alpha_w": 0.0})
+    starts = [
+        {**base, "n": n, "alpha_d": a / mid, "alpha_w": a * r / mid}
+        for a in (0.3, 1.0, 3.0)
+        for n in (1.5, 3.0, 8.0)
+        for r in (1.0, 2.0)
+    ]
+    return fit_curve(
+        water,
+        s,
+        y,
+        ("y_r", "y_s", "n", "alpha_d", "alpha_w"),
+        starts,
+        b,
+        fixed,
+        weights,
+        log_params={"n": 1.0, "alpha_d": 0.0, "alpha_w": 0.0},
+    )

@@ -12,12 +12,12 @@ without quotes, carriage returns, comment marks ('#') or the rarer line
 breaks (vertical tab, form feed, U+001C-001E, U+0085, U+2028/2029). Any
 other table is read whole (one block), exactly as ``read_table`` reads it.
 """
+
 from __future__ import annotations
 
 import codecs
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
-from typing import Iterator
 
 from ..errors import InputError
 from ..units import conversion
@@ -31,12 +31,25 @@ from .table import Column, Table, _check_rule, _grid_table, _with_options, read_
 BLOCK_BYTES = 4 * 2**20
 
 #: bytes that send a file to the whole-file reader (quoting, CR line ends, comments, other line breaks)
-_NOT_PLAIN = (b'"', b"\r", b"#", b"\x00", b"\x0b", b"\x0c", b"\x1c", b"\x1d", b"\x1e", b"\xc2\x85",
-              b"\xe2\x80\xa8", b"\xe2\x80\xa9")
+_NOT_PLAIN = (
+    b'"',
+    b"\r",
+    b"#",
+    b"\x00",
+    b"\x0b",
+    b"\x0c",
+    b"\x1c",
+    b"\x1d",
+    b"\x1e",
+    b"\xc2\x85",
+    b"\xe2\x80\xa8",
+    b"\xe2\x80\xa9",
+)
 
 
-def read_table_blocks(source, schema: list[Column], *, ignore_columns=(), limits: ReadLimits | None = None,
-                      block_bytes: int | None = None) -> Iterator[Table]:
+def read_table_blocks(
+    source, schema: list[Column], *, ignore_columns=(), limits: ReadLimits | None = None, block_bytes: int | None = None
+) -> Iterator[Table]:
     """Read ``source`` against ``schema`` one block of lines at a time.
 
     Parameters
@@ -77,8 +90,12 @@ def read_table_blocks(source, schema: list[Column], *, ignore_columns=(), limits
         size = p.stat().st_size if p.is_file() else 0
     except OSError:
         size = 0
-    if (size <= block_bytes + block_bytes // 4 or p.suffix.lower() in SPREADSHEET_SUFFIXES
-            or size > (src.limits or ReadLimits()).max_bytes or not _plain_utf8(p)):
+    if (
+        size <= block_bytes + block_bytes // 4
+        or p.suffix.lower() in SPREADSHEET_SUFFIXES
+        or size > (src.limits or ReadLimits()).max_bytes
+        or not _plain_utf8(p)
+    ):
         yield read_table(src, schema)  # read whole: its own checks and messages
         return
     seen: set[str] = set()
@@ -90,11 +107,11 @@ def read_table_blocks(source, schema: list[Column], *, ignore_columns=(), limits
             # when it can take it, joined as one block (the blocks, and so every number computed on them, stay
             # as they were); else the piece read whole
             head, rest = _split_head(text)
-            if rest and not rest[:rest.find("\n")].translate(_NUMERIC_CHARS):  # numbers after the head
+            if rest and not rest[: rest.find("\n")].translate(_NUMERIC_CHARS):  # numbers after the head
                 table = _grid_table(_csv_grid(str(path), head), src, schema)
                 prefix = _prefix(head, table)
                 fast = _numeric_block(str(path), src, schema, prefix, HEAD_LINES + 1, rest)
-                if fast is not None and _numeric_line(head[head.rfind("\n") + 1:], len(prefix[0].split(","))):
+                if fast is not None and _numeric_line(head[head.rfind("\n") + 1 :], len(prefix[0].split(","))):
                     tables = [_joined(table, fast)]
             if not tables:
                 table = _grid_table(_csv_grid(str(path), text), src, schema)
@@ -139,12 +156,12 @@ def _split_head(text: str) -> tuple[str, str]:
         cut = text.find("\n", cut + 1)
         if cut < 0:
             return text, ""
-    return text[:cut], text[cut + 1:]
+    return text[:cut], text[cut + 1 :]
 
 
 def _numeric_line(line: str, width: int) -> bool:
     """True for a line of ``width`` filled cells of plain-number characters."""
-    return (not line.translate(_NUMERIC_CHARS) and line.count(",") == width - 1 and "" not in line.split(","))
+    return not line.translate(_NUMERIC_CHARS) and line.count(",") == width - 1 and "" not in line.split(",")
 
 
 class _Cells(Sequence):
@@ -165,8 +182,9 @@ class _Cells(Sequence):
         return self._lines[i].split(",")[self._j]
 
 
-def _numeric_block(shown: str, src, schema: list[Column], prefix: list[str], first_line: int,
-                   text: str) -> Table | None:
+def _numeric_block(
+    shown: str, src, schema: list[Column], prefix: list[str], first_line: int, text: str
+) -> Table | None:
     """The Table the whole-file reader makes of a block whose every cell is a plain number, made without a
     Python object per cell; None where the block is anything else (or has any problem), for the usual reader.
 
@@ -182,19 +200,23 @@ def _numeric_block(shown: str, src, schema: list[Column], prefix: list[str], fir
 
     header = prefix[0]
     width = header.count(",") + 1
-    if (not text or text.translate(_NUMERIC_CHARS) or src.thousands is not None or ";" in "".join(prefix)
-            or "\t" in "".join(prefix) or any(not c.strip() for c in header.split(","))):
+    if (
+        not text
+        or text.translate(_NUMERIC_CHARS)
+        or src.thousands is not None
+        or ";" in "".join(prefix)
+        or "\t" in "".join(prefix)
+        or any(not c.strip() for c in header.split(","))
+    ):
         return None
-    if (text[0] in ",\n" or text[-1] in ",\n" or "\n\n" in text or ",," in text or ",\n" in text
-            or "\n," in text):
+    if text[0] in ",\n" or text[-1] in ",\n" or "\n\n" in text or ",," in text or ",\n" in text or "\n," in text:
         return None  # a blank line or a blank cell
     n = text.count("\n") + 1
     if text.count(",") != n * (width - 1):
         return None
-    first = text[:text.find("\n")] if n > 1 else text
+    first = text[: text.find("\n")] if n > 1 else text
     try:
-        table = _grid_table(_csv_grid(shown, "\n".join(prefix) + "\n" + first, first_line - len(prefix)), src,
-                            schema)
+        table = _grid_table(_csv_grid(shown, "\n".join(prefix) + "\n" + first, first_line - len(prefix)), src, schema)
     except InputError:
         return None
     cols = {c.name: c for c in schema}

@@ -26,6 +26,7 @@ the cell or line, the limit and how to raise it (the CLI options
 document type declaration are refused (no entity expansion, no external
 entities).
 """
+
 from __future__ import annotations
 
 import csv
@@ -91,13 +92,22 @@ class ReadLimits:
         value = getattr(self, name)
         return f"{value / 2**20:g} MiB" if name == "max_bytes" else f"{value:,}"
 
-    def error(self, name: str, what: str, file: str, line: int | None = None, column: str | None = None,
-              sheet: str | None = None) -> LimitError:
+    def error(
+        self,
+        name: str,
+        what: str,
+        file: str,
+        line: int | None = None,
+        column: str | None = None,
+        sheet: str | None = None,
+    ) -> LimitError:
         """The error for ``what`` going over limit ``name``, saying how to raise it."""
         unit = "N (MiB)" if name == "max_bytes" else "N"
-        message = (f"{what}: over the limit of {self.shown(name)} ({name}), so it is not read. If the file is "
-                   f"genuine, raise the limit with {LIMIT_OPTIONS[name]} {unit} (from Python: "
-                   f"limits=ReadLimits({name}=...))")
+        message = (
+            f"{what}: over the limit of {self.shown(name)} ({name}), so it is not read. If the file is "
+            f"genuine, raise the limit with {LIMIT_OPTIONS[name]} {unit} (from Python: "
+            f"limits=ReadLimits({name}=...))"
+        )
         return LimitError(Problem(file, line, column, message, sheet), name, getattr(self, name))
 
 
@@ -181,13 +191,20 @@ def read_grid(source: TableSource) -> Grid:
     if p.suffix.lower() in SPREADSHEET_SUFFIXES:
         return _spreadsheet_grid(shown, data, p.suffix.lower(), source.sheet, limits)
     if p.suffix.lower() == ".xls":
-        raise InputError(Problem(shown, None, None, "old binary Excel workbooks (.xls) cannot be read: save it as "
-                                                    ".xlsx or .csv"))
+        raise InputError(
+            Problem(shown, None, None, "old binary Excel workbooks (.xls) cannot be read: save it as .xlsx or .csv")
+        )
     for magic, what in _MAGIC:
         if data.startswith(magic):
-            raise InputError(Problem(shown, None, None, f"this file is {what}, not a CSV text table"
-                                     + (": give it its real extension (.xlsx or .ods)" if magic == b"PK\x03\x04"
-                                        else "")))
+            raise InputError(
+                Problem(
+                    shown,
+                    None,
+                    None,
+                    f"this file is {what}, not a CSV text table"
+                    + (": give it its real extension (.xlsx or .ods)" if magic == b"PK\x03\x04" else ""),
+                )
+            )
     text = _decode(data)
     if "\x00" in text[:4096]:
         raise InputError(Problem(shown, None, None, "this is a binary file, not a CSV text table"))
@@ -282,8 +299,9 @@ def _spreadsheet_grid(shown: str, data: bytes, suffix: str, sheet, limits: ReadL
     except InputError:
         raise
     except Exception as exc:  # a damaged or mislabelled workbook: one clear message
-        raise InputError(Problem(shown, None, None, f"cannot be read as a {suffix} workbook "
-                                                    f"({type(exc).__name__}: {exc})")) from None
+        raise InputError(
+            Problem(shown, None, None, f"cannot be read as a {suffix} workbook ({type(exc).__name__}: {exc})")
+        ) from None
     rows = [(n, cells) for n, cells in rows if any(cells) and not cells[0].startswith("#")]
     return Grid(shown, name, rows, ())
 
@@ -294,12 +312,20 @@ def _pick_sheet(shown: str, names: list[str], sheet) -> int:
         raise InputError(Problem(shown, None, None, "the workbook has no sheets"))
     if sheet is None:
         return 0
-    if isinstance(sheet, int) or (isinstance(sheet, str) and sheet.strip().lstrip("-").isdigit()
-                                  and sheet.strip() not in names):
+    if isinstance(sheet, int) or (
+        isinstance(sheet, str) and sheet.strip().lstrip("-").isdigit() and sheet.strip() not in names
+    ):
         k = int(sheet)
         if not 1 <= k <= len(names):
-            raise InputError(Problem(shown, None, None, f"there is no sheet number {k}: the workbook has "
-                                                        f"{len(names)} ({', '.join(names)}); sheets count from 1"))
+            raise InputError(
+                Problem(
+                    shown,
+                    None,
+                    None,
+                    f"there is no sheet number {k}: the workbook has "
+                    f"{len(names)} ({', '.join(names)}); sheets count from 1",
+                )
+            )
         return k - 1
     if sheet not in names:
         raise InputError(Problem(shown, None, None, f"no sheet named '{sheet}'; the sheets are {', '.join(names)}"))
@@ -320,16 +346,27 @@ class _Zip:
         self.shown, self.limits = shown, limits
         parts = _zip_parts(data)
         if parts is not None and parts > MAX_ZIP_PARTS:
-            raise InputError(Problem(shown, None, None, f"the zip archive holds {parts:,} parts; a spreadsheet "
-                                                        f"holds tens to hundreds (at most {MAX_ZIP_PARTS:,} are read)"))
+            raise InputError(
+                Problem(
+                    shown,
+                    None,
+                    None,
+                    f"the zip archive holds {parts:,} parts; a spreadsheet "
+                    f"holds tens to hundreds (at most {MAX_ZIP_PARTS:,} are read)",
+                )
+            )
         self.zip = zipfile.ZipFile(io.BytesIO(data))
         infos = self.zip.infolist()
         declared = sum(i.file_size for i in infos)
         if declared > limits.max_bytes:
             big = max(infos, key=lambda i: i.file_size)
-            raise limits.error("max_bytes", f"the workbook's {len(infos)} parts expand to {declared / 2**20:,.1f} MiB "
-                                            f"({big.filename}: {big.file_size / 2**20:,.1f} MiB, compressed "
-                                            f"{big.compress_size / 2**20:,.2f} MiB; a zip bomb?)", shown)
+            raise limits.error(
+                "max_bytes",
+                f"the workbook's {len(infos)} parts expand to {declared / 2**20:,.1f} MiB "
+                f"({big.filename}: {big.file_size / 2**20:,.1f} MiB, compressed "
+                f"{big.compress_size / 2**20:,.2f} MiB; a zip bomb?)",
+                shown,
+            )
         self.names = {i.filename for i in infos}
         self.used = 0  # bytes decompressed so far, across parts
 
@@ -345,9 +382,16 @@ class _Zip:
         parser.ordered_attributes = False
 
         def doctype(*_):
-            raise InputError(Problem(self.shown, None, None, f"part '{name}' declares a document type (DTD); a "
-                                                             "spreadsheet never does: refused (entity expansion)",
-                                     sheet))
+            raise InputError(
+                Problem(
+                    self.shown,
+                    None,
+                    None,
+                    f"part '{name}' declares a document type (DTD); a "
+                    "spreadsheet never does: refused (entity expansion)",
+                    sheet,
+                )
+            )
 
         parser.StartDoctypeDeclHandler = doctype
         parser.EntityDeclHandler = doctype
@@ -360,17 +404,27 @@ class _Zip:
                     chunk = stream.read(1 << 20)
                     self.used += len(chunk)
                     if self.used > self.limits.max_bytes:
-                        raise self.limits.error("max_bytes", f"the workbook's XML expands beyond what its zip "
-                                                             f"declares (at part '{name}')", self.shown, sheet=sheet)
+                        raise self.limits.error(
+                            "max_bytes",
+                            f"the workbook's XML expands beyond what its zip declares (at part '{name}')",
+                            self.shown,
+                            sheet=sheet,
+                        )
                     parser.Parse(chunk, not chunk)
                     if not chunk:
                         break
             except _Stop:
                 pass
             except expat.ExpatError as exc:
-                raise InputError(Problem(self.shown, None, None, f"part '{name}' is not valid XML "
-                                                                 f"({expat.ErrorString(exc.code)}, line {exc.lineno})",
-                                         sheet)) from None
+                raise InputError(
+                    Problem(
+                        self.shown,
+                        None,
+                        None,
+                        f"part '{name}' is not valid XML ({expat.ErrorString(exc.code)}, line {exc.lineno})",
+                        sheet,
+                    )
+                ) from None
 
 
 def _zip_parts(data: bytes) -> int | None:
@@ -378,11 +432,11 @@ def _zip_parts(data: bytes) -> int | None:
     k = data.rfind(b"PK\x05\x06", max(0, len(data) - 65_557))
     if k < 0 or k + 12 > len(data):
         return None
-    n = int.from_bytes(data[k + 10:k + 12], "little")
+    n = int.from_bytes(data[k + 10 : k + 12], "little")
     if n == 0xFFFF:  # zip64: the count is in the zip64 end record
         j = data.rfind(b"PK\x06\x06", 0, k)
         if j >= 0 and j + 40 <= len(data):
-            n = int.from_bytes(data[j + 32:j + 40], "little")
+            n = int.from_bytes(data[j + 32 : j + 40], "little")
     return n
 
 
@@ -427,14 +481,25 @@ class _Rows:
     def visit(self, n: int = 1, line: int | None = None) -> None:
         self.visited += n
         if self.visited > self.limits.max_cells:
-            raise self.limits.error("max_cells", f"the sheet holds more than {self.limits.max_cells:,} cells "
-                                                 f"(reached at row {line})", self.shown, line, sheet=self.sheet)
+            raise self.limits.error(
+                "max_cells",
+                f"the sheet holds more than {self.limits.max_cells:,} cells (reached at row {line})",
+                self.shown,
+                line,
+                sheet=self.sheet,
+            )
 
     def column_ok(self, col: int, line: int) -> None:
         if col > self.limits.max_columns:
             ref = f"{_column_letters(col)}{line}"
-            raise self.limits.error("max_columns", f"cell {ref} holds data in column {col:,}", self.shown, line,
-                                    _column_letters(col), self.sheet)
+            raise self.limits.error(
+                "max_columns",
+                f"cell {ref} holds data in column {col:,}",
+                self.shown,
+                line,
+                _column_letters(col),
+                self.sheet,
+            )
 
     def add(self, line: int, cells: dict[int, str], repeat: int = 1) -> None:
         if not cells:
@@ -503,8 +568,9 @@ def _xlsx_rows(book: _Zip, sheet) -> tuple[str, list]:
             book.parse(rel_path, c)
             for _, a in c.found:
                 target = a.get("Target", "")
-                full = target.lstrip("/") if target.startswith("/") else posixpath.normpath(posixpath.join(folder,
-                                                                                                          target))
+                full = (
+                    target.lstrip("/") if target.startswith("/") else posixpath.normpath(posixpath.join(folder, target))
+                )
                 out[a.get("Id", "")] = (a.get("Type", "").rpartition("/")[2], full)
         return out
 
@@ -520,8 +586,11 @@ def _xlsx_rows(book: _Zip, sheet) -> tuple[str, list]:
     wb_rels = rels(wb_path)
     kind, path = wb_rels.get(sheets[k][1], ("", ""))
     if kind != "worksheet" or not book.has(path):
-        raise InputError(Problem(book.shown, None, None, f"sheet '{name}' is not a table of cells "
-                                                         f"({kind or 'no worksheet part'})", name))
+        raise InputError(
+            Problem(
+                book.shown, None, None, f"sheet '{name}' is not a table of cells ({kind or 'no worksheet part'})", name
+            )
+        )
     strings_path = next((p for t, p in wb_rels.values() if t == "sharedStrings"), None)
     styles_path = next((p for t, p in wb_rels.values() if t == "styles"), None)
     strings = _xlsx_strings(book, strings_path, name) if strings_path and book.has(strings_path) else []
@@ -561,9 +630,12 @@ class _XlsxStrings:
             self.strings.append("".join(self.parts))
             self.parts = None
             if len(self.strings) > self.book.limits.max_cells:
-                raise self.book.limits.error("max_cells", f"the workbook holds more than "
-                                                          f"{self.book.limits.max_cells:,} shared strings",
-                                             self.book.shown, sheet=self.sheet)
+                raise self.book.limits.error(
+                    "max_cells",
+                    f"the workbook holds more than {self.book.limits.max_cells:,} shared strings",
+                    self.book.shown,
+                    sheet=self.sheet,
+                )
 
     def text(self, data):
         if self.in_t:
@@ -601,8 +673,9 @@ def _xlsx_date_styles(book: _Zip, path: str) -> dict[int, bool]:
                 except ValueError:
                     self.xfs.append(0)
                 if len(self.xfs) > book.limits.max_cells:
-                    raise book.limits.error("max_cells", "the workbook's styles hold more cell formats than the "
-                                                         "cells allowed", book.shown)
+                    raise book.limits.error(
+                        "max_cells", "the workbook's styles hold more cell formats than the cells allowed", book.shown
+                    )
 
         def end(self, name):
             if _local(name) == "cellXfs":
@@ -706,8 +779,11 @@ class _XlsxSheet:
             from openpyxl.utils.datetime import CALENDAR_MAC_1904, CALENDAR_WINDOWS_1900, from_excel
 
             try:
-                when = from_excel(float(v), CALENDAR_MAC_1904 if self.date1904 else CALENDAR_WINDOWS_1900,
-                                  timedelta=self.dates[self.style])
+                when = from_excel(
+                    float(v),
+                    CALENDAR_MAC_1904 if self.date1904 else CALENDAR_WINDOWS_1900,
+                    timedelta=self.dates[self.style],
+                )
                 return str(when) if self.dates[self.style] else when.isoformat()
             except (ValueError, OverflowError):
                 return _number_text(v)

@@ -8,6 +8,7 @@ Either is UTF-8 (with or without BOM), UTF-16 or Windows-1252 (as data
 files). Every problem of a manifest (a short row, a wrong type, no runs) is
 collected and raised once as an InputError naming the file, line and column.
 """
+
 from __future__ import annotations
 
 import re
@@ -37,8 +38,15 @@ def read_manifest(path: Path) -> list[tuple[int, str, str, list[str] | str]]:
         raise InputError(Problem(shown, None, None, "not a file"))
     size = path.stat().st_size
     if size > MAX_MANIFEST_BYTES:
-        raise InputError(Problem(shown, None, None, f"{size / 2**20:.1f} MiB is not a manifest (one run per line; at "
-                                                    f"most {MAX_MANIFEST_BYTES // 2**20} MiB are read)"))
+        raise InputError(
+            Problem(
+                shown,
+                None,
+                None,
+                f"{size / 2**20:.1f} MiB is not a manifest (one run per line; at "
+                f"most {MAX_MANIFEST_BYTES // 2**20} MiB are read)",
+            )
+        )
     data = path.read_bytes()
     if b"\x00" in data[:4096] and data[:2] not in (b"\xff\xfe", b"\xfe\xff"):
         raise InputError(Problem(shown, None, None, "this is a binary file, not a CSV or TOML manifest"))
@@ -47,8 +55,15 @@ def read_manifest(path: Path) -> list[tuple[int, str, str, list[str] | str]]:
     text = _decode(data)
     runs = _toml_runs(shown, text) if path.suffix.lower() == ".toml" else _csv_runs(shown, text)
     if not runs:
-        raise InputError(Problem(shown, None, None, "the manifest lists no runs (CSV: a line per run under the "
-                                                    "header command,input,options; TOML: [[run]] tables)"))
+        raise InputError(
+            Problem(
+                shown,
+                None,
+                None,
+                "the manifest lists no runs (CSV: a line per run under the "
+                "header command,input,options; TOML: [[run]] tables)",
+            )
+        )
     return runs
 
 
@@ -76,8 +91,14 @@ def _csv_runs(shown: str, text: str) -> list[tuple[int, str, str, str]]:
     for h in header:
         near = [w for w in ("command", "input", "options") if h != w and _edits_within(h, w, 2)]
         if near and near[0] not in header:
-            raise InputError(Problem(shown, header_line, h, f"the header has '{h}': did you mean '{near[0]}'? (the "
-                                                            "columns are command, input and options)"))
+            raise InputError(
+                Problem(
+                    shown,
+                    header_line,
+                    h,
+                    f"the header has '{h}': did you mean '{near[0]}'? (the columns are command, input and options)",
+                )
+            )
     ci, ii = header.index("command"), header.index("input")
     oi = header.index("options") if "options" in header else None
     width = len(header)
@@ -86,14 +107,28 @@ def _csv_runs(shown: str, text: str) -> list[tuple[int, str, str, str]]:
         if len(r) < width:
             missing = [h for j, h in enumerate(header) if j >= len(r) and h in ("command", "input")]
             if missing:
-                problems.append(Problem(shown, n, missing[0], f"the line has {len(r)} field{'s' * (len(r) != 1)} "
-                                                              f"but the header has {width} "
-                                                              f"({', '.join(header_cells)}): no {missing[0]}"))
+                problems.append(
+                    Problem(
+                        shown,
+                        n,
+                        missing[0],
+                        f"the line has {len(r)} field{'s' * (len(r) != 1)} "
+                        f"but the header has {width} "
+                        f"({', '.join(header_cells)}): no {missing[0]}",
+                    )
+                )
                 continue
         elif len(r) > width and any(c.strip() for c in r[width:]):
-            problems.append(Problem(shown, n, None, f"the line has {len(r)} fields but the header has {width}: "
-                                                    "quote the options if they hold a comma "
-                                                    "(shear,a.csv,\"--gamma-w 10, ...\")"))
+            problems.append(
+                Problem(
+                    shown,
+                    n,
+                    None,
+                    f"the line has {len(r)} fields but the header has {width}: "
+                    "quote the options if they hold a comma "
+                    '(shear,a.csv,"--gamma-w 10, ...")',
+                )
+            )
             continue
         command, source = r[ci].strip(), r[ii].strip()
         for name, value in (("command", command), ("input", source)):
@@ -118,22 +153,46 @@ def _toml_runs(shown: str, text: str) -> list[tuple[int, str, str, list[str] | s
     runs = doc.get("run", [])
     run_line = _line_of(text, r"^\s*run\s*=") or _line_of(text, r"^\s*\[\[\s*run\s*\]\]")
     if isinstance(runs, dict):
-        raise InputError(Problem(shown, _line_of(text, r"^\s*\[\s*run\s*\]"), "run",
-                                 "a single [run] table: write each run as [[run]] (double brackets)"))
+        raise InputError(
+            Problem(
+                shown,
+                _line_of(text, r"^\s*\[\s*run\s*\]"),
+                "run",
+                "a single [run] table: write each run as [[run]] (double brackets)",
+            )
+        )
     if not isinstance(runs, list):
-        raise InputError(Problem(shown, run_line, "run", f"'run' must be [[run]] tables (each with command, input "
-                                                         f"and options), not a {_toml_type(runs)}"))
+        raise InputError(
+            Problem(
+                shown,
+                run_line,
+                "run",
+                f"'run' must be [[run]] tables (each with command, input and options), not a {_toml_type(runs)}",
+            )
+        )
     unknown = sorted(k for k in doc if k != "run")
     if unknown and not runs:
-        raise InputError(Problem(shown, None, unknown[0], f"no [[run]] tables, but '{unknown[0]}': runs are written "
-                                                          "[[run]] with command, input and options"))
+        raise InputError(
+            Problem(
+                shown,
+                None,
+                unknown[0],
+                f"no [[run]] tables, but '{unknown[0]}': runs are written [[run]] with command, input and options",
+            )
+        )
     starts = [k + 1 for k, ln in enumerate(text.splitlines()) if re.match(r"^\s*\[\[\s*run\s*\]\]", ln)]
     problems, out = [], []
     for k, r in enumerate(runs, start=1):
         line = starts[k - 1] if len(starts) == len(runs) else run_line
         if not isinstance(r, dict):
-            problems.append(Problem(shown, line, "run", f"run number {k} is a {_toml_type(r)}, not a table with "
-                                                        "command, input and options"))
+            problems.append(
+                Problem(
+                    shown,
+                    line,
+                    "run",
+                    f"run number {k} is a {_toml_type(r)}, not a table with command, input and options",
+                )
+            )
             continue
         bad = False
         for key in ("command", "input"):
@@ -142,25 +201,45 @@ def _toml_runs(shown: str, text: str) -> list[tuple[int, str, str, list[str] | s
                 problems.append(Problem(shown, line, key, f"[[run]] number {k} needs '{key}'"))
                 bad = True
             elif not isinstance(value, str) or not value.strip():
-                problems.append(Problem(shown, _key_line(text, line, key), key,
-                                        f"'{key}' must be a non-empty string (got {value!r})"))
+                problems.append(
+                    Problem(
+                        shown, _key_line(text, line, key), key, f"'{key}' must be a non-empty string (got {value!r})"
+                    )
+                )
                 bad = True
         opts = r.get("options", "")
         if isinstance(opts, list):
             if not all(isinstance(o, (str, int, float)) and not isinstance(o, bool) for o in opts):
-                problems.append(Problem(shown, _key_line(text, line, "options"), "options",
-                                        "'options' must be a string or a list of strings and numbers "
-                                        f"(got {opts!r})"))
+                problems.append(
+                    Problem(
+                        shown,
+                        _key_line(text, line, "options"),
+                        "options",
+                        f"'options' must be a string or a list of strings and numbers (got {opts!r})",
+                    )
+                )
                 bad = True
             opts = [str(o) for o in opts]
         elif not isinstance(opts, str):
-            problems.append(Problem(shown, _key_line(text, line, "options"), "options",
-                                    f"'options' must be a string or a list of arguments (got {opts!r})"))
+            problems.append(
+                Problem(
+                    shown,
+                    _key_line(text, line, "options"),
+                    "options",
+                    f"'options' must be a string or a list of arguments (got {opts!r})",
+                )
+            )
             bad = True
         extra = sorted(set(r) - {"command", "input", "options"})
         if extra:
-            problems.append(Problem(shown, line, extra[0], f"[[run]] number {k}: unknown key '{extra[0]}' (a run has "
-                                                           "command, input and options)"))
+            problems.append(
+                Problem(
+                    shown,
+                    line,
+                    extra[0],
+                    f"[[run]] number {k}: unknown key '{extra[0]}' (a run has command, input and options)",
+                )
+            )
             bad = True
         if not bad:
             out.append((line if line is not None else k, r["command"].strip(), r["input"].strip(), opts))
@@ -191,4 +270,5 @@ def _key_line(text: str, start: int | None, key: str) -> int | None:
 
 def _toml_type(value) -> str:
     return {bool: "boolean", int: "number", float: "number", str: "string", list: "list", dict: "table"}.get(
-        type(value), type(value).__name__)
+        type(value), type(value).__name__
+    )

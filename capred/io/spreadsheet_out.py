@@ -14,10 +14,12 @@ Safe and reproducible:
   reproducible-builds convention) and are 1980-01-01 00:00 UTC (the earliest
   date a zip entry holds) otherwise, so a rerun writes the same bytes.
 """
+
 from __future__ import annotations
 
 import re
 import zipfile
+from datetime import UTC
 
 #: characters an XML 1.0 document (and so a workbook) cannot hold, as openpyxl checks them
 _ILLEGAL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f]")
@@ -56,11 +58,11 @@ def safe_text(text: str) -> str:
 def source_date_epoch():
     """The UTC datetime of ``SOURCE_DATE_EPOCH`` (reproducible builds), or None when unset or not a number."""
     import os
-    from datetime import datetime, timezone
+    from datetime import datetime
 
     value = os.environ.get("SOURCE_DATE_EPOCH", "").strip()
     try:
-        return datetime.fromtimestamp(int(value), timezone.utc) if value else None
+        return datetime.fromtimestamp(int(value), UTC) if value else None
     except (ValueError, OverflowError, OSError):
         return None
 
@@ -128,7 +130,7 @@ def write_workbook(path, tables: dict) -> None:
 
     wb = Workbook(write_only=True)
     when = source_date_epoch()
-    stamp = (when.replace(tzinfo=None) if when is not None else datetime(*_ZIP_EPOCH))
+    stamp = when.replace(tzinfo=None) if when is not None else datetime(*_ZIP_EPOCH)
     wb.properties.created = stamp
     wb.properties.modified = stamp
     wb.properties.creator = "capred"

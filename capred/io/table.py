@@ -29,12 +29,13 @@ while the column itself is absent, is an error naming both: read as a warning, i
 would silently pool two materials. ``ignore_columns`` (CLI
 ``--ignore-column NAME``) leaves such a column out and goes on.
 """
+
 from __future__ import annotations
 
 import difflib
 import re
-from functools import lru_cache
 from dataclasses import dataclass, field, replace
+from functools import lru_cache
 
 import numpy as np
 
@@ -250,7 +251,7 @@ def _find_header(rows: list[tuple[int, list[str]]], lookup, width: int = MAX_COL
     row are looked at (a wider header is refused afterwards), so the search is bounded."""
     first_one = None
     for k, (_, cells) in enumerate(rows[:60]):
-        hits = _header_hits(cells[:width + 1], lookup)
+        hits = _header_hits(cells[: width + 1], lookup)
         if hits >= 2:
             return k, hits
         if hits == 1 and first_one is None:
@@ -333,8 +334,9 @@ def read_table(source, schema: list[Column], *, ignore_columns=(), limits: ReadL
 def _with_options(src, ignore_columns, limits):
     if ignore_columns or limits is not None:
         extra = (ignore_columns,) if isinstance(ignore_columns, str) else tuple(ignore_columns or ())
-        src = replace(src, ignore_columns=src.ignore_columns + extra,
-                      limits=limits if limits is not None else src.limits)
+        src = replace(
+            src, ignore_columns=src.ignore_columns + extra, limits=limits if limits is not None else src.limits
+        )
     return src
 
 
@@ -347,13 +349,16 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
         found = {d: _find_header(grid.text_rows[d], lookup, width_cap) for d in grid.delimiters}
         best = max(grid.delimiters, key=lambda d: (found[d][1], -grid.delimiters.index(d)))
         if found[best][1] == 0:  # no known column at all: the widest first row
-            best = max(grid.delimiters, key=lambda d: (len(grid.text_rows[d][0][1]) if grid.text_rows[d] else 0,
-                                                       -grid.delimiters.index(d)))
+            best = max(
+                grid.delimiters,
+                key=lambda d: (len(grid.text_rows[d][0][1]) if grid.text_rows[d] else 0, -grid.delimiters.index(d)),
+            )
         head = grid.text_rows[best]
         k0 = found[best][0]
         if head and len(_trimmed(head[k0][1])) > width_cap:  # before the whole file is split
-            raise limits.error("max_columns", f"the header has {len(_trimmed(head[k0][1])):,} columns", grid.shown,
-                               head[k0][0])
+            raise limits.error(
+                "max_columns", f"the header has {len(_trimmed(head[k0][1])):,} columns", grid.shown, head[k0][0]
+            )
         tail = _plain_tail(grid, best, lookup)
         if tail is None:
             grid.parse_all(best)
@@ -371,13 +376,25 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
     k, _ = _find_header(rows, lookup, width_cap)
     header_line, headers = rows[k]
     if len(_trimmed(headers)) > width_cap:
-        raise limits.error("max_columns", f"the header has {len(_trimmed(headers)):,} columns", shown, header_line,
-                           sheet=sheet)
+        raise limits.error(
+            "max_columns", f"the header has {len(_trimmed(headers)):,} columns", shown, header_line, sheet=sheet
+        )
     metadata = _metadata(rows[:k])
-    body = rows[k + 1:]
+    body = rows[k + 1 :]
 
-    table = Table(shown, {}, {}, np.empty(0, dtype=int), {}, {}, header_line, [], sheet=sheet, metadata=metadata,
-                  known=tuple(dict.fromkeys(sp for col in schema for sp in (col.name, *col.aliases))))
+    table = Table(
+        shown,
+        {},
+        {},
+        np.empty(0, dtype=int),
+        {},
+        {},
+        header_line,
+        [],
+        sheet=sheet,
+        metadata=metadata,
+        known=tuple(dict.fromkeys(sp for col in schema for sp in (col.name, *col.aliases))),
+    )
     ignored = {_key(x): x for x in src.ignore_columns}
     used_ignores: set[str] = set()
     positions: dict[str, tuple[int, Column, str | None]] = {}
@@ -400,8 +417,9 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
             continue
         if col.name in positions:
             first = headers[positions[col.name][0]].strip()
-            table.problems.append(Problem(shown, header_line, h.strip(), f"names the same quantity as column '{first}'",
-                                          sheet))
+            table.problems.append(
+                Problem(shown, header_line, h.strip(), f"names the same quantity as column '{first}'", sheet)
+            )
             continue
         positions[col.name] = (j, col, unit)
         table.headers[col.name] = h.strip()
@@ -419,14 +437,22 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
             if col.kind == "text" or not cell or cell in ("-", "–") and col.kind != "dimensionless":
                 continue
             if unit is not None and unit != cell:
-                table.problems.append(Problem(shown, units_line, table.headers[name],
-                                              f"the header says '{unit}' but the units row says '{cell}'", sheet))
+                table.problems.append(
+                    Problem(
+                        shown,
+                        units_line,
+                        table.headers[name],
+                        f"the header says '{unit}' but the units row says '{cell}'",
+                        sheet,
+                    )
+                )
                 continue
             try:
                 conversion(cell, col.kind)
             except UnitError as exc:
-                table.problems.append(Problem(shown, units_line, table.headers[name], f"units row: {exc}", sheet,
-                                              body[0][1][j]))
+                table.problems.append(
+                    Problem(shown, units_line, table.headers[name], f"units row: {exc}", sheet, body[0][1][j])
+                )
                 continue
             positions[name] = (j, col, cell)
         table.notes.append(f"units read from the row under the header (line {units_line})")
@@ -455,15 +481,17 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
     lengths = list(map(len, cells_by_row))
     for n, cells in (body[k] for k, w in enumerate(lengths) if w > width):
         if any(c for c in cells[width:]):
-            table.problems.append(Problem(shown, int(n), None, f"{len(cells)} fields but the header has {width}",
-                                          sheet))
+            table.problems.append(
+                Problem(shown, int(n), None, f"{len(cells)} fields but the header has {width}", sheet)
+            )
     if all(w == width for w in lengths):  # the usual, rectangular table: columns by transposition
         transposed = list(zip(*cells_by_row))
         column_cells = {name: list(transposed[j]) for name, (j, _, _) in positions.items()}
         del transposed
     else:
-        column_cells = {name: [row[j] if j < len(row) else "" for row in cells_by_row]
-                        for name, (j, _, _) in positions.items()}
+        column_cells = {
+            name: [row[j] if j < len(row) else "" for row in cells_by_row] for name, (j, _, _) in positions.items()
+        }
     if tail is not None:  # the rows after the first 200: split at once, as columns
         first, lines = tail
         flat = delimiter.join(lines).split(delimiter)
@@ -477,7 +505,8 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
 
     numeric = [cells for name, cells in column_cells.items() if positions[name][1].kind != "text"]
     decimal_comma = delimiter not in (None, ",") and any(
-        _DECIMAL_COMMA.fullmatch(c) for cells in numeric for c in cells[:2000] if "," in c)
+        _DECIMAL_COMMA.fullmatch(c) for cells in numeric for c in cells[:2000] if "," in c
+    )
     for name, (j, col, unit) in positions.items():
         cells = _stripped(column_cells[name])
         table.raw[name] = cells
@@ -624,11 +653,17 @@ def _unused_columns(table: Table, schema: list[Column], lookup: dict[str, Column
         if col is None and told >= _UNUSED_SHOWN:
             continue
         if col is not None:
-            table.problems.append(Problem(
-                table.path, table.header_line, h,
-                f"column '{h}' is not used, but its name is close to '{col.name}' ({col.description}), which "
-                f"changes the analysis when it is absent. Rename the column '{col.name}' if that is what it holds, "
-                f"or leave it out with --ignore-column '{h}' (from Python: ignore_columns=('{h}',))", table.sheet))
+            table.problems.append(
+                Problem(
+                    table.path,
+                    table.header_line,
+                    h,
+                    f"column '{h}' is not used, but its name is close to '{col.name}' ({col.description}), which "
+                    f"changes the analysis when it is absent. Rename the column '{col.name}' if that is what it holds, "
+                    f"or leave it out with --ignore-column '{h}' (from Python: ignore_columns=('{h}',))",
+                    table.sheet,
+                )
+            )
             continue
         near = difflib.get_close_matches(_key(h), list(known_keys), n=1, cutoff=0.6) if len(h) <= 64 else []
         canonical = lookup[near[0]].name if near else None
@@ -681,8 +716,11 @@ def _plain_tail(grid, delimiter: str, lookup) -> tuple[int, list[str]] | None:
 
 _EDGE_SPACE = re.compile(r"\s\x00|\x00\s|^\s|\s$")
 #: every character str.isspace() (and so the regex \s) counts as white space: a column without any needs no strip
-_SPACES = ("\t\n\x0b\x0c\r\x1c\x1d\x1e\x1f \x85\xa0\u1680" + "".join(map(chr, range(0x2000, 0x200B)))
-           + "\u2028\u2029\u202f\u205f\u3000")
+_SPACES = (
+    "\t\n\x0b\x0c\r\x1c\x1d\x1e\x1f \x85\xa0\u1680"
+    + "".join(map(chr, range(0x2000, 0x200B)))
+    + "\u2028\u2029\u202f\u205f\u3000"
+)
 
 
 def _stripped(cells) -> list[str]:
@@ -702,10 +740,14 @@ def _thousands(table: Table, name: str, cells: list[str], decimal_comma: bool, t
     if decimal_comma:
         for i, c in enumerate(cells):
             if "." in c and _THOUSANDS_DOT.fullmatch(c):
-                table.add_problem(i, name, f"'{c}' is ambiguous in a file with decimal commas: a thousands "
-                                           f"separator ({c.replace('.', '')}) or a decimal point "
-                                           f"({c.replace('.', ',')})? Give --thousands . to read dots as "
-                                           f"thousands separators, or write the number without them")
+                table.add_problem(
+                    i,
+                    name,
+                    f"'{c}' is ambiguous in a file with decimal commas: a thousands "
+                    f"separator ({c.replace('.', '')}) or a decimal point "
+                    f"({c.replace('.', ',')})? Give --thousands . to read dots as "
+                    f"thousands separators, or write the number without them",
+                )
         return cells
     return cells
 
@@ -743,7 +785,8 @@ def _check_rule(table: Table, col: Column) -> None:
         bad = {"positive": v <= 0, "nonnegative": v < 0, "fraction": (v < 0) | (v > 1)}.get(col.rule)
     if bad is None:
         return
-    what = {"positive": "must be > 0", "nonnegative": "must not be negative",
-            "fraction": "must lie between 0 and 1"}[col.rule]
+    what = {"positive": "must be > 0", "nonnegative": "must not be negative", "fraction": "must lie between 0 and 1"}[
+        col.rule
+    ]
     for i in np.flatnonzero(bad):
         table.add_problem(i, col.name, f"{col.description} {what} (got {table.raw[col.name][i]} {unit})".rstrip())

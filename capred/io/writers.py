@@ -13,6 +13,7 @@ Numbers keep their digits: JSON floats are written in shortest round-trip
 form and CSV floats as Python's repr (at least 10 significant digits, exact
 round trip).
 """
+
 from __future__ import annotations
 
 import contextlib
@@ -25,6 +26,7 @@ import re
 import shutil
 import sys
 import tempfile
+from datetime import UTC
 from pathlib import Path
 
 from ..errors import OutputError
@@ -179,8 +181,9 @@ def _csv_column(values, sep: str = ",", joiner: str = ";", eu: bool = False) -> 
         except ImportError:  # pragma: no cover
             cells = ["" if not np.isfinite(x) else repr(x) for x in a.tolist()]
         else:
-            text = orjson.dumps(a.astype(float) if a.dtype.kind == "f" else a,
-                                option=orjson.OPT_SERIALIZE_NUMPY).decode("ascii")[1:-1]
+            text = orjson.dumps(
+                a.astype(float) if a.dtype.kind == "f" else a, option=orjson.OPT_SERIALIZE_NUMPY
+            ).decode("ascii")[1:-1]
             cells = text.replace("null", "").split(",")
         return [c.replace(".", ",") for c in cells] if eu else cells
     if a.dtype.kind == "b":
@@ -189,7 +192,8 @@ def _csv_column(values, sep: str = ",", joiner: str = ";", eu: bool = False) -> 
     if values and set(map(type, values)) == {str}:  # plain text: quote only if some cell needs it
         joined = "\x00".join(values)
         if not any(ch in joined for ch in (sep, '"', "\n", "\r")) and not (
-                eu and any(x.startswith(FORMULA_START) for x in values)):
+            eu and any(x.startswith(FORMULA_START) for x in values)
+        ):
             return values
     return [_csv_cell(x, sep, joiner, eu) for x in values]
 
@@ -209,8 +213,11 @@ def np_array(values):
     """``values`` as a numpy array (an extension array, e.g. nullable integers, through to_numpy)."""
     import numpy as np
 
-    return values if isinstance(values, np.ndarray) else np.asarray(values.to_numpy() if hasattr(values, "to_numpy")
-                                                                      else values)
+    return (
+        values
+        if isinstance(values, np.ndarray)
+        else np.asarray(values.to_numpy() if hasattr(values, "to_numpy") else values)
+    )
 
 
 def write_csv_file(path, frame, dialect: str = "standard") -> None:
@@ -234,8 +241,11 @@ def write_csv_file(path, frame, dialect: str = "standard") -> None:
             names = list(block) if isinstance(block, dict) else list(block.columns)
             arrays = list(block.values()) if isinstance(block, dict) else _column_arrays(block)
             if k == 0:
-                fh.write((sep.join(_csv_column(np.array([str(c) for c in names], dtype=object), sep, eu=eu))
-                          + "\n").encode("utf-8"))
+                fh.write(
+                    (sep.join(_csv_column(np.array([str(c) for c in names], dtype=object), sep, eu=eu)) + "\n").encode(
+                        "utf-8"
+                    )
+                )
             runs = _float_runs(arrays)
             for start in range(0, len(arrays[0]) if arrays else 0, 10_000):  # memory bounded by one chunk
                 stop = start + 10_000
@@ -246,7 +256,7 @@ def write_csv_file(path, frame, dialect: str = "standard") -> None:
                 while j < len(arrays):
                     run = next((r for r in runs if r[0] == j), None)
                     if run is not None:  # consecutive float columns: one string per row, printed at once
-                        columns.append(_float_lines(arrays[run[0]:run[1]], sep, eu, start, stop))
+                        columns.append(_float_lines(arrays[run[0] : run[1]], sep, eu, start, stop))
                         j = run[1]
                     else:
                         columns.append(_csv_column(arrays[j][start:stop], sep, joiner, eu))
@@ -380,13 +390,19 @@ def _foreign_message(out: Path, foreign: list[str]) -> str:
     shown = ", ".join(foreign[:5]) + (f" and {len(foreign) - 5} more" if len(foreign) > 5 else "")
     prov = _provenance(out)
     if prov is not None and prov.get("command") == "batch":
-        return (f"--out {out} is the folder of a batch (index.csv and one folder per input); a single run is "
-                "written into a folder of its own: give another --out")
+        return (
+            f"--out {out} is the folder of a batch (index.csv and one folder per input); a single run is "
+            "written into a folder of its own: give another --out"
+        )
     if prov is None:
-        return (f"--out {out} is a folder capred did not write (it holds {shown}); capred replaces its output "
-                "folder as a whole: give a new or empty folder")
-    return (f"--out {out} holds files capred did not write: {shown}; capred replaces its output folder as a "
-            "whole and never deletes a file it did not write: move them out or give another folder")
+        return (
+            f"--out {out} is a folder capred did not write (it holds {shown}); capred replaces its output "
+            "folder as a whole: give a new or empty folder"
+        )
+    return (
+        f"--out {out} holds files capred did not write: {shown}; capred replaces its output folder as a "
+        "whole and never deletes a file it did not write: move them out or give another folder"
+    )
 
 
 def _sha256(path: Path) -> str:
@@ -430,7 +446,7 @@ def foreign_batch_files(root) -> list[str]:
             foreign.append(name)
         elif _sha256(path) in record.get(name, ()):
             continue
-        elif name == "index.csv" and path.read_bytes()[:len(INDEX_HEADER) + 1] == (INDEX_HEADER + "\n").encode():
+        elif name == "index.csv" and path.read_bytes()[: len(INDEX_HEADER) + 1] == (INDEX_HEADER + "\n").encode():
             continue
         else:
             foreign.append(name)
@@ -466,14 +482,17 @@ def _check_target(out: Path, inputs, replace: bool) -> Path:
             continue
         s = Path(os.path.realpath(src))
         if s == real or real in s.parents:
-            raise OutputError(f"--out {out} holds the input {src}; capred never writes over its inputs: "
-                              "choose another output folder")
+            raise OutputError(
+                f"--out {out} holds the input {src}; capred never writes over its inputs: choose another output folder"
+            )
     if out.exists() and not out.is_dir():
         raise OutputError(f"--out {out} is a file, not a folder: choose a folder name")
     cwd = Path(os.path.realpath(Path.cwd()))
     if replace and (real == cwd or real in cwd.parents):
-        raise OutputError(f"--out {out} is the current folder or one of its parents; capred replaces its output "
-                          "folder as a whole: give a new folder name, e.g. --out report")
+        raise OutputError(
+            f"--out {out} is the current folder or one of its parents; capred replaces its output "
+            "folder as a whole: give a new folder name, e.g. --out report"
+        )
     if replace and out.is_dir():
         foreign = foreign_files(out)
         if foreign:
@@ -481,14 +500,17 @@ def _check_target(out: Path, inputs, replace: bool) -> Path:
     if not replace and out.is_dir():
         foreign = foreign_batch_files(out)
         if foreign == ["provenance.json"] and _provenance(out) is not None:
-            raise OutputError(f"--out {out} is the report folder of one run (capred {_provenance(out).get('command')}); "
-                              "a batch writes index.csv and one folder per input into a folder of its own: "
-                              "give another --out")
+            raise OutputError(
+                f"--out {out} is the report folder of one run (capred {_provenance(out).get('command')}); "
+                "a batch writes index.csv and one folder per input into a folder of its own: "
+                "give another --out"
+            )
         if foreign:
             raise OutputError(
                 f"--out {out} holds {', '.join(foreign)}, which capred did not write; a batch writes "
                 f"{', '.join(BATCH_FILES)} and provenance.json there and never writes over a file it did not "
-                "write (a manifest among them?): choose another --out or move the file")
+                "write (a manifest among them?): choose another --out or move the file"
+            )
     parent = out if not replace and out.is_dir() else out.parent
     while not parent.exists() and parent != parent.parent:
         parent = parent.parent
@@ -569,9 +591,13 @@ def _prefix(out: Path, kind: str) -> str:
 
 
 def _os_error(out: Path, exc: OSError) -> OutputError:
-    reason = {errno.ENOSPC: "no space left on the device", errno.EDQUOT: "disk quota exceeded",
-              errno.EACCES: "permission denied", errno.EROFS: "read-only file system",
-              errno.ENAMETOOLONG: "a file name is too long"}.get(exc.errno, exc.strerror or str(exc))
+    reason = {
+        errno.ENOSPC: "no space left on the device",
+        errno.EDQUOT: "disk quota exceeded",
+        errno.EACCES: "permission denied",
+        errno.EROFS: "read-only file system",
+        errno.ENAMETOOLONG: "a file name is too long",
+    }.get(exc.errno, exc.strerror or str(exc))
     return OutputError(f"cannot write the outputs to {out}: {reason}; nothing was written")
 
 
@@ -626,8 +652,9 @@ class RunFolder:
         shutil.rmtree(self.tmp, ignore_errors=True)
 
 
-def write_run(result, out, command_line: str | None = None, csv_dialect: str = "standard", xlsx: bool = False,
-              artifacts=None) -> list[Path]:
+def write_run(
+    result, out, command_line: str | None = None, csv_dialect: str = "standard", xlsx: bool = False, artifacts=None
+) -> list[Path]:
     """Write the files of ``result`` into the folder ``out``, whole or not at all.
 
     Files: each table as ``<name>.csv`` (``csv_dialect`` "standard" or
@@ -764,7 +791,7 @@ class _JsonWriter:
 
 def provenance(result, outputs: list[str], command_line: str | None = None) -> dict:
     """Record of a run: capred version, command line, input hashes, options, outputs."""
-    from datetime import datetime, timezone
+    from datetime import datetime
 
     doc = result.header()
     return {
@@ -777,7 +804,7 @@ def provenance(result, outputs: list[str], command_line: str | None = None) -> d
         "option_units": doc["option_units"],
         "warnings": doc["warnings"],
         "outputs": sorted(outputs + ["provenance.json"]),
-        "created_utc": datetime.now(timezone.utc).replace(microsecond=0).isoformat(),
+        "created_utc": datetime.now(UTC).replace(microsecond=0).isoformat(),
     }
 
 
@@ -811,8 +838,10 @@ def write_batch_file(root, name: str, data: bytes, runs=None, command_line: str 
         with _locked(root):
             foreign = [f for f in foreign_batch_files(root) if f in (name, "provenance.json")]
             if foreign:
-                raise OutputError(f"{root / foreign[0]} exists and capred did not write it; a batch never writes "
-                                  "over a file it did not write (a manifest?): move it or choose another --out")
+                raise OutputError(
+                    f"{root / foreign[0]} exists and capred did not write it; a batch never writes "
+                    "over a file it did not write (a manifest?): move it or choose another --out"
+                )
             record = batch_record(root)
             new = hashlib.sha256(data).hexdigest()
             current = _sha256(root / name) if (root / name).is_file() else None
@@ -828,20 +857,23 @@ def write_batch_file(root, name: str, data: bytes, runs=None, command_line: str 
 
 
 def _write_batch_provenance(root: Path, record: dict, runs, command_line) -> None:
-    from datetime import datetime, timezone
+    from datetime import datetime
 
     from .. import __version__
 
     before = _provenance(root) or {}
     if runs is None:
         runs = before.get("runs", [])
-    doc = {"capred_version": __version__, "command": "batch",
-           "command_line": command_line if command_line is not None else " ".join(sys.argv),
-           "python": sys.version.split()[0],
-           "outputs": sorted([*record, "provenance.json"]),
-           "runs": sorted(runs),
-           "batch_files": {k: record[k] for k in sorted(record)},
-           "created_utc": datetime.now(timezone.utc).replace(microsecond=0).isoformat()}
+    doc = {
+        "capred_version": __version__,
+        "command": "batch",
+        "command_line": command_line if command_line is not None else " ".join(sys.argv),
+        "python": sys.version.split()[0],
+        "outputs": sorted([*record, "provenance.json"]),
+        "runs": sorted(runs),
+        "batch_files": {k: record[k] for k in sorted(record)},
+        "created_utc": datetime.now(UTC).replace(microsecond=0).isoformat(),
+    }
     atomic_write_bytes(root / "provenance.json", encode_json(doc, True))
 
 

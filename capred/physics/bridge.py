@@ -38,6 +38,7 @@ holds with that r0 too.
 Only bridges with s* >= 0 (water at or below air pressure: concave,
 pendular) are treated.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -260,8 +261,8 @@ def _quad(values, weights):
     if k:
         out[:k] = values[:k] @ weights
     pad = np.zeros((_QUAD_ROWS, values.shape[1]))
-    pad[:n - k] = values[k:]
-    out[k:] = (pad @ weights)[:n - k]
+    pad[: n - k] = values[k:]
+    out[k:] = (pad @ weights)[: n - k]
     return out
 
 
@@ -449,6 +450,7 @@ def _pair(b, th, s, rho, full=True, coarse=False):
 
 # ---- root finding ------------------------------------------------------------
 
+
 def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100, ftol=None, ends=False):
     """Vectorised Illinois (modified regula falsi) root of f on brackets with f_lo >= 0 >= f_hi.
 
@@ -466,8 +468,9 @@ def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100, ftol=None, ends=False
         denom = f_lo[a] - f_hi[a]
         # bisect while an end carries the stand-in value of "no bridge here" (see _below)
         secant = (denom != 0) & (np.abs(f_lo[a]) < 1e299) & (np.abs(f_hi[a]) < 1e299)
-        xa = np.where(secant, (lo[a] * (-f_hi[a]) + hi[a] * f_lo[a]) / np.where(secant, denom, 1.0),
-                      0.5 * (lo[a] + hi[a]))
+        xa = np.where(
+            secant, (lo[a] * (-f_hi[a]) + hi[a] * f_lo[a]) / np.where(secant, denom, 1.0), 0.5 * (lo[a] + hi[a])
+        )
         # keep strictly inside the bracket (regula falsi can stall on an end)
         span = hi[a] - lo[a]
         xa = np.clip(xa, lo[a] + 1e-3 * span * (side[a] == 1), hi[a] - 1e-3 * span * (side[a] == -1))
@@ -517,6 +520,7 @@ def _below(v):
 
 
 # ---- bridges from their neck ----------------------------------------------------
+
 
 def from_neck(neck, contact_angle_rad, suction, ratio=1.0):
     r"""Filling angle on particle 1 and the bridge whose neck radius is y0, at s* >= 0.
@@ -592,6 +596,7 @@ def _catenoid_gap(y0, th, rho):
 
 def _suction_at_neck(y0, th, rho, target, field):
     """s* >= 0 at which the bridge of neck y0 has gap (or volume) = target; both fall as s* rises. NaN if none."""
+
     def value(q, i):
         s = q / (1.0 - q) / (y0[i] * y0[i])  # suction scale of a neck y0: 1 / y0^2
         if field == "gap":  # the gap alone: the fast path
@@ -610,8 +615,14 @@ def _suction_at_neck(y0, th, rho, target, field):
     out[(f0 < 0) & (f0 >= -1e-12 * np.maximum(np.abs(target), 1e-3))] = 0.0
     k = np.flatnonzero((f0 >= 0) & (f1 <= 0))
     if k.size:
-        q = _illinois(lambda x, i: value(x, k[i]), q0[k], q_hi[k], f0[k], f1[k],
-                      ftol=1e-3 * VERIFY_RTOL * np.maximum(np.abs(target[k]), 1e-3 if field == "gap" else 0.0))
+        q = _illinois(
+            lambda x, i: value(x, k[i]),
+            q0[k],
+            q_hi[k],
+            f0[k],
+            f1[k],
+            ftol=1e-3 * VERIFY_RTOL * np.maximum(np.abs(target[k]), 1e-3 if field == "gap" else 0.0),
+        )
         out[k] = q / (1.0 - q) / (y0[k] * y0[k])
     return out
 
@@ -715,8 +726,7 @@ def _chandrupatla(f, a, b, f_a, f_b, ftol, xtol=1e-14, iters=100):
             xi = (ak - bk) / (ck - bk)
             phi = (fak - fbk) / (fck - fbk)
             iqi = (phi * phi < xi) & ((1.0 - phi) ** 2 < 1.0 - xi)
-            tq = (fak / (fbk - fak) * fck / (fbk - fck)
-                  + (ck - ak) / (bk - ak) * fak / (fck - fak) * fbk / (fck - fbk))
+            tq = fak / (fbk - fak) * fck / (fbk - fck) + (ck - ak) / (bk - ak) * fak / (fck - fak) * fbk / (fck - fbk)
             tn = np.where(iqi & np.isfinite(tq), tq, 0.5)
             t[k] = np.clip(tn, np.minimum(tl, 0.5), np.maximum(1.0 - tl, 0.5))
             active[k[done]] = False
@@ -772,8 +782,9 @@ def _solve_for_suction(theta, suction, gap, ratio):
         # rows within 1 % of the gap are refined to 25 steps with the full quadrature, the rest are settled
         close = np.flatnonzero((dp >= 0.99 * Dm) & (dp < 1.01 * Dm))
         if close.size:
-            bp[close], dp[close] = _golden(lambda x, i: gap_of(x, thm[close][i], sm[close][i], rhom[close][i]),
-                                           a[close], c[close], iters=25)
+            bp[close], dp[close] = _golden(
+                lambda x, i: gap_of(x, thm[close][i], sm[close][i], rhom[close][i]), a[close], c[close], iters=25
+            )
         found = dp >= Dm
         has[miss[found]] = True
         lo[miss], f_lo[miss] = bp, dp - Dm
@@ -781,8 +792,14 @@ def _solve_for_suction(theta, suction, gap, ratio):
         f_hi[miss] = _below(gap_of(c, thm, sm, rhom)) - Dm
     good = np.flatnonzero(has)
     thg, sg, Dgd, rhog = th[good], s[good], D[good], rho[good]
-    root = _chandrupatla(lambda x, i: _below(gap_of(x, thg[i], sg[i], rhog[i])) - Dgd[i],
-                         lo[good], hi[good], f_lo[good], f_hi[good], ftol=1e-3 * VERIFY_RTOL * np.maximum(Dgd, 1e-3))
+    root = _chandrupatla(
+        lambda x, i: _below(gap_of(x, thg[i], sg[i], rhog[i])) - Dgd[i],
+        lo[good],
+        hi[good],
+        f_lo[good],
+        f_hi[good],
+        ftol=1e-3 * VERIFY_RTOL * np.maximum(Dgd, 1e-3),
+    )
     beta[k[good]] = root
     status[k] = np.where(has, 0, np.where(top, 3, 1))
     return beta, status
@@ -833,8 +850,7 @@ def _scan_for_volume(theta, volume, gap, ratio):
     # peak of the catenoid gap, refined (a narrow peak can hide between grid necks)
     j = np.argmax(gcat, axis=1)
     lo_j, hi_j = np.maximum(j - 1, 0), np.minimum(j + 1, y.shape[1] - 1)
-    ypk, gpk = _golden(lambda x, i: _catenoid_gap(np.exp(x), th[i], rho[i]), np.log(y[r, lo_j]),
-                       np.log(y[r, hi_j]))
+    ypk, gpk = _golden(lambda x, i: _catenoid_gap(np.exp(x), th[i], rho[i]), np.log(y[r, lo_j]), np.log(y[r, hi_j]))
     ypk = np.exp(ypk)
     reach = np.flatnonzero(gpk >= D)
 
@@ -884,18 +900,29 @@ def _scan_for_volume(theta, volume, gap, ratio):
             rr = np.arange(sub.size)
             a = np.log(yg[rr, np.maximum(jm - 1, 0)])
             c = np.log(yg[rr, np.minimum(jm + 1, nk - 1)])
-            x_min, v_sub = _golden(lambda x, i: _arc(np.exp(x), th[sub][i], rho[sub][i], D[sub][i])[0], a, c,
-                                   iters=40, sign=-1.0)
+            x_min, v_sub = _golden(
+                lambda x, i: _arc(np.exp(x), th[sub][i], rho[sub][i], D[sub][i])[0], a, c, iters=40, sign=-1.0
+            )
             y_min[apart], v_min[apart] = np.exp(x_min), v_sub
         inside = V[cand] >= v_min
         go = cand[inside]
         if go.size:
+
             def f(x, i):
                 return _below(_arc(np.exp(x), th[go][i], rho[go][i], D[go][i])[0]) - V[go][i]
+
             sel = inside
             lo, hi = np.log(y_min[sel]), np.log(y_hi[go])
-            root = np.exp(_illinois(lambda x, i: -f(x, i), lo, hi, -f(lo, np.arange(go.size)),
-                                    V[go] - v_top[go], ftol=1e-3 * VERIFY_RTOL * V[go]))
+            root = np.exp(
+                _illinois(
+                    lambda x, i: -f(x, i),
+                    lo,
+                    hi,
+                    -f(lo, np.arange(go.size)),
+                    V[go] - v_top[go],
+                    ftol=1e-3 * VERIFY_RTOL * V[go],
+                )
+            )
             s = _suction_at_neck(root, th[go], rho[go], D[go], "gap")
             b1 = from_neck(root, th[go], np.where(np.isfinite(s), s, 0.0), rho[go])[0]
             beta[k[go]], suction[k[go]] = b1, s
@@ -971,8 +998,12 @@ def _newton_volume(th, V, D, rho, iters=40, start=None, loose=False):
         if a.size == 0:
             break
         with np.errstate(all="ignore"):
-            g, v = _gap_volume_at_neck(np.concatenate([x[a], x[a] + h, x[a]]), np.concatenate([z[a], z[a], z[a] + h]),
-                                       np.tile(th[a], 3), np.tile(rho[a], 3))
+            g, v = _gap_volume_at_neck(
+                np.concatenate([x[a], x[a] + h, x[a]]),
+                np.concatenate([z[a], z[a], z[a] + h]),
+                np.tile(th[a], 3),
+                np.tile(rho[a], 3),
+            )
             g, lg = g.reshape(3, -1), np.log(v).reshape(3, -1)
             r1, r2 = g[0] - D[a], lg[0] - lv[a]
             ph = np.hypot(r1 / gscale[a], r2)
@@ -1054,7 +1085,7 @@ def _beyond_rupture(th, V, D, rho):
         return out
     yb = np.sqrt(V[cand] / (np.pi * D[cand]))
     g = _catenoid_gap(np.concatenate([yb, yb * (1.0 + 1e-3)]), np.tile(th[cand], 2), np.tile(rho[cand], 2))
-    g0, g1 = g[:cand.size], g[cand.size:]
+    g0, g1 = g[: cand.size], g[cand.size :]
     with np.errstate(invalid="ignore"):
         cand = cand[np.isfinite(g0) & np.isfinite(g1) & (g1 > g0) & (g0 < D[cand] * (1.0 - 1e-9))]
     if cand.size:
@@ -1149,7 +1180,6 @@ def _rupture(theta, volume, ratio):
 
 
 # ---- verified solvers ------------------------------------------------------------
-
 
 
 def _verify(status, beta, theta, s, ratio, gap=None, volume=None, found=None):
@@ -1408,6 +1438,7 @@ def lian_rupture_gap(contact_angle_rad, volume):
 
 
 # ---- approximations -------------------------------------------------------
+
 
 def israelachvili_force(R, surface_tension, contact_angle_rad):
     r"""Capillary force between two equal spheres in contact, small volume limit.

@@ -16,6 +16,7 @@ References
    J. Environ. Civ. Eng. doi:10.1080/19648189.2024.2314099, eq. 19, after
    Rumpf (1962).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -251,5 +252,9 @@ def rumpf_capillary_pressure(shape_factor, void_ratio, S_R, diameter, surface_te
        Eur. J. Environ. Civ. Eng. doi:10.1080/19648189.2024.2314099, eq. 19,
        after Rumpf, H. (1962).
     """
-    return -(6.0 / np.asarray(shape_factor, float)) * (np.asarray(S_R, float) / void_ratio) * (
-        surface_tension / np.asarray(diameter, float)) * np.cos(np.radians(contact_angle_deg))
+    return (
+        -(6.0 / np.asarray(shape_factor, float))
+        * (np.asarray(S_R, float) / void_ratio)
+        * (surface_tension / np.asarray(diameter, float))
+        * np.cos(np.radians(contact_angle_deg))
+    )

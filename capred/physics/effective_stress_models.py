@@ -15,11 +15,11 @@ References
 [12] Pedrotti & Tarantino, "Effective stresses for unsaturated states stemming
     from clay microstructure" (submitted), eq. [1], [2], [14].
 """
+
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Callable
 
 import numpy as np
 
@@ -285,13 +285,21 @@ class ModelInputs:
     c_sat: np.ndarray | None = None
     tan_phi_sat: np.ndarray | None = None
 
-    def subset(self, mask) -> "ModelInputs":
+    def subset(self, mask) -> ModelInputs:
         """The same inputs for the tests selected by ``mask`` (a boolean mask or indices)."""
-        arrays = {k: getattr(self, k)[mask] for k in ("sigma_N", "suction", "S_R", "R", "tau_max", "wet",
-                                                      "material", "c", "tan_phi")}
+        arrays = {
+            k: getattr(self, k)[mask]
+            for k in ("sigma_N", "suction", "S_R", "R", "tau_max", "wet", "material", "c", "tan_phi")
+        }
         sat = {k: getattr(self, k)[mask] for k in ("c_sat", "tan_phi_sat") if getattr(self, k) is not None}
-        return ModelInputs(**arrays, surface_tension=self.surface_tension, params=self.params, fitted=self.fitted,
-                           cache={k: v[mask] for k, v in self.cache.items()}, **sat)
+        return ModelInputs(
+            **arrays,
+            surface_tension=self.surface_tension,
+            params=self.params,
+            fitted=self.fitted,
+            cache={k: v[mask] for k, v in self.cache.items()},
+            **sat,
+        )
 
     def cached(self, key: str, compute) -> np.ndarray:
         """A per-test array computed once (e.g. exact bridges), kept through ``subset``."""
@@ -391,8 +399,11 @@ def _water_envelope(d: ModelInputs):
     """(c_W [Pa], tan phi_W, source) of each test [12, eq. 13]: its material's saturated tests where the run has
     them, else --water-envelope, else the dry envelope (a stand-in the result names)."""
     env = d.params.water_envelope
-    c_w, tan_w = (d.c, d.tan_phi) if env is None else (np.full(d.c.shape, env[0]),
-                                                         np.full(d.c.shape, np.tan(np.radians(env[1]))))
+    c_w, tan_w = (
+        (d.c, d.tan_phi)
+        if env is None
+        else (np.full(d.c.shape, env[0]), np.full(d.c.shape, np.tan(np.radians(env[1]))))
+    )
     if d.c_sat is None:
         return c_w, tan_w, np.full(d.c.shape, "dry envelope" if env is None else "--water-envelope")
     own = np.isfinite(d.c_sat)
@@ -409,68 +420,152 @@ def _thesis(model: str) -> Callable[[ModelInputs], np.ndarray]:
     return lambda d: ph.effective_normal_stress(model, d.sigma_N, d.suction, d.S_R, d.R, d.surface_tension)
 
 
-REGISTRY: dict[str, EffectiveStressModel] = {m.name: m for m in (
-    EffectiveStressModel("no_suction", "No suction", (), "evenepoel", _thesis("no_suction"), thesis=True,
-                         style={"color": "grey", "marker": "s"},
-                         method="No suction: σ'_N = σ_N, the dry envelope alone."),
-    EffectiveStressModel("bishop", "Bishop", (), "bishop1959", _thesis("bishop"), thesis=True,
-                         style={"color": "blue", "marker": "o"},
-                         method="Bishop: σ'_N = σ_N + S_R Δu (χ = S_R).",
-                         chi_of_saturation=lambda S, p, f: np.asarray(S, float)),
-    EffectiveStressModel("own1", "Own 1", (), "evenepoel", _thesis("own1"), thesis=True,
-                         style={"color": "orange", "marker": "^"},
-                         method="Own 1: σ'_N = σ_N + χ1 Δu with χ1 = (2π S_R/3)^(2/3).",
-                         chi_of_saturation=lambda S, p, f: ph.chi1(S)),
-    EffectiveStressModel("own2", "Own 2", (), "evenepoel", _thesis("own2"), thesis=True,
-                         style={"color": "green", "marker": "D"},
-                         method="Own 2: σ'_N = σ_N + χ1 Δu + (2γ/R)(2π S_R/3)^(1/3)."),
-    EffectiveStressModel("vanapalli", "Vanapalli", (("s_res", "--s-res"),), "vanapalli1996",
-                         lambda d: d.sigma_N + chi_vanapalli(d.S_R, d.params.s_res, d.params.vanapalli_kappa)
-                         * d.suction, style={"color": "purple", "marker": "v"},
-                         method="Vanapalli: χ = S_e^κ with S_e = (S_R − S_res)/(1 − S_res), κ from "
-                                "--vanapalli-kappa.",
-                         chi_of_saturation=lambda S, p, f: chi_vanapalli(S, p.s_res, p.vanapalli_kappa)),
-    EffectiveStressModel("khalili", "Khalili-Khabbaz", (("air_entry", "--air-entry"),), "khalili_khabbaz1998",
-                         lambda d: d.sigma_N + chi_khalili(d.suction, d.params.air_entry) * d.suction,
-                         style={"color": "vermillion", "marker": "<"},
-                         method="Khalili-Khabbaz: χ = (Δu/s_b)^−0.55 above the air-entry suction s_b, 1 below."),
-    EffectiveStressModel("lu_likos", "Lu-Likos", (("vg_alpha", "--vg-alpha"), ("vg_n", "--vg-n")), "lu_likos2006",
-                         lambda d: d.sigma_N + chi_lu_likos(d.suction, d.params.vg_alpha, d.params.vg_n,
-                                                            d.params.vg_m) * d.suction,
-                         style={"color": "sky", "marker": ">"},
-                         method="Lu-Likos: χ = S_e of van Genuchten's curve at the test's suction (suction stress)."),
-    EffectiveStressModel("fredlund", "Fredlund φ_b", (), "fredlund1978", _fredlund, wet_parameters=1,
-                         material_values=lambda d: {"phi_b_deg": float(np.degrees(np.arctan(_tan_phi_b(d)[0])))},
-                         along_retention=False, style={"color": "black", "marker": "p"},
-                         method="Fredlund: τ = c + σ_N tan φ + Δu tan φ_b, tan φ_b fitted per material on the wet "
-                                "tests."),
-    EffectiveStressModel("pedrotti_tarantino", "Pedrotti-Tarantino", (), "pedrotti_tarantino",
-                         tau=_pedrotti_tarantino, style={"color": "sky", "marker": "h"},
-                         material_values=lambda d: {"water_envelope": str(_water_envelope(d)[2][0])},
-                         method="Pedrotti-Tarantino: τ = S_R τ^W + (1 − S_R) τ^A with σ'_W = (σ − u_w) S_R on the "
-                                "saturated envelope and σ'_A = (σ − u_a)(1 − S_R) on the dry one."),
-    EffectiveStressModel("chi_power", "χ = S_e^κ (fitted)", (), "vanapalli1996",
-                         lambda d: d.sigma_N + chi_vanapalli(d.S_R, d.params.s_res or 0.0,
-                                                             d.per_test("chi_power", "kappa")) * d.suction,
-                         fitted=("kappa",), style={"color": "purple", "marker": "P"},
-                         method="χ = S_e^κ with κ fitted per material on the wet tests.",
-                         chi_of_saturation=lambda S, p, f: (np.full(np.shape(S), np.nan) if f is None else
-                                                            chi_vanapalli(S, p.s_res or 0.0, f["kappa"]))),
-    EffectiveStressModel("khalili_fit", "Khalili-Khabbaz (fitted)", (), "khalili_khabbaz1998",
-                         lambda d: d.sigma_N + chi_khalili(d.suction, d.per_test("khalili_fit", "s_b"),
-                                                           d.per_test("khalili_fit", "eta")) * d.suction,
-                         fitted=("s_b", "eta"), style={"color": "vermillion", "marker": "X"},
-                         method="Khalili-Khabbaz with the air-entry suction s_b (and optionally η) fitted per "
-                                "material on the wet tests."),
-    EffectiveStressModel("exact_neck", "Exact bridge", (), "evenepoel",
-                         lambda d: d.sigma_N + d.cached("exact_neck", lambda: exact_neck_capillary_stress(
-                             d.S_R, d.suction, d.R, d.surface_tension, d.params.contact_angle)[0]),
-                         no_prediction=Flag("no_concave_bridge", "hold more water than the last concave bridge at "
-                                                                 "contact"),
-                         style={"color": "black", "marker": "*"},
-                         method="Exact bridge: σ'_N = σ_N + F_cap/(πR²) of the exact pendular bridge between two "
-                                "spheres in contact holding the test's water at its suction."),
-)}
+REGISTRY: dict[str, EffectiveStressModel] = {
+    m.name: m
+    for m in (
+        EffectiveStressModel(
+            "no_suction",
+            "No suction",
+            (),
+            "evenepoel",
+            _thesis("no_suction"),
+            thesis=True,
+            style={"color": "grey", "marker": "s"},
+            method="No suction: σ'_N = σ_N, the dry envelope alone.",
+        ),
+        EffectiveStressModel(
+            "bishop",
+            "Bishop",
+            (),
+            "bishop1959",
+            _thesis("bishop"),
+            thesis=True,
+            style={"color": "blue", "marker": "o"},
+            method="Bishop: σ'_N = σ_N + S_R Δu (χ = S_R).",
+            chi_of_saturation=lambda S, p, f: np.asarray(S, float),
+        ),
+        EffectiveStressModel(
+            "own1",
+            "Own 1",
+            (),
+            "evenepoel",
+            _thesis("own1"),
+            thesis=True,
+            style={"color": "orange", "marker": "^"},
+            method="Own 1: σ'_N = σ_N + χ1 Δu with χ1 = (2π S_R/3)^(2/3).",
+            chi_of_saturation=lambda S, p, f: ph.chi1(S),
+        ),
+        EffectiveStressModel(
+            "own2",
+            "Own 2",
+            (),
+            "evenepoel",
+            _thesis("own2"),
+            thesis=True,
+            style={"color": "green", "marker": "D"},
+            method="Own 2: σ'_N = σ_N + χ1 Δu + (2γ/R)(2π S_R/3)^(1/3).",
+        ),
+        EffectiveStressModel(
+            "vanapalli",
+            "Vanapalli",
+            (("s_res", "--s-res"),),
+            "vanapalli1996",
+            lambda d: d.sigma_N + chi_vanapalli(d.S_R, d.params.s_res, d.params.vanapalli_kappa) * d.suction,
+            style={"color": "purple", "marker": "v"},
+            method="Vanapalli: χ = S_e^κ with S_e = (S_R − S_res)/(1 − S_res), κ from --vanapalli-kappa.",
+            chi_of_saturation=lambda S, p, f: chi_vanapalli(S, p.s_res, p.vanapalli_kappa),
+        ),
+        EffectiveStressModel(
+            "khalili",
+            "Khalili-Khabbaz",
+            (("air_entry", "--air-entry"),),
+            "khalili_khabbaz1998",
+            lambda d: d.sigma_N + chi_khalili(d.suction, d.params.air_entry) * d.suction,
+            style={"color": "vermillion", "marker": "<"},
+            method="Khalili-Khabbaz: χ = (Δu/s_b)^−0.55 above the air-entry suction s_b, 1 below.",
+        ),
+        EffectiveStressModel(
+            "lu_likos",
+            "Lu-Likos",
+            (("vg_alpha", "--vg-alpha"), ("vg_n", "--vg-n")),
+            "lu_likos2006",
+            lambda d: d.sigma_N + chi_lu_likos(d.suction, d.params.vg_alpha, d.params.vg_n, d.params.vg_m) * d.suction,
+            style={"color": "sky", "marker": ">"},
+            method="Lu-Likos: χ = S_e of van Genuchten's curve at the test's suction (suction stress).",
+        ),
+        EffectiveStressModel(
+            "fredlund",
+            "Fredlund φ_b",
+            (),
+            "fredlund1978",
+            _fredlund,
+            wet_parameters=1,
+            material_values=lambda d: {"phi_b_deg": float(np.degrees(np.arctan(_tan_phi_b(d)[0])))},
+            along_retention=False,
+            style={"color": "black", "marker": "p"},
+            method="Fredlund: τ = c + σ_N tan φ + Δu tan φ_b, tan φ_b fitted per material on the wet tests.",
+        ),
+        EffectiveStressModel(
+            "pedrotti_tarantino",
+            "Pedrotti-Tarantino",
+            (),
+            "pedrotti_tarantino",
+            tau=_pedrotti_tarantino,
+            style={"color": "sky", "marker": "h"},
+            material_values=lambda d: {"water_envelope": str(_water_envelope(d)[2][0])},
+            method="Pedrotti-Tarantino: τ = S_R τ^W + (1 − S_R) τ^A with σ'_W = (σ − u_w) S_R on the "
+            "saturated envelope and σ'_A = (σ − u_a)(1 − S_R) on the dry one.",
+        ),
+        EffectiveStressModel(
+            "chi_power",
+            "χ = S_e^κ (fitted)",
+            (),
+            "vanapalli1996",
+            lambda d: (
+                d.sigma_N + chi_vanapalli(d.S_R, d.params.s_res or 0.0, d.per_test("chi_power", "kappa")) * d.suction
+            ),
+            fitted=("kappa",),
+            style={"color": "purple", "marker": "P"},
+            method="χ = S_e^κ with κ fitted per material on the wet tests.",
+            chi_of_saturation=lambda S, p, f: (
+                np.full(np.shape(S), np.nan) if f is None else chi_vanapalli(S, p.s_res or 0.0, f["kappa"])
+            ),
+        ),
+        EffectiveStressModel(
+            "khalili_fit",
+            "Khalili-Khabbaz (fitted)",
+            (),
+            "khalili_khabbaz1998",
+            lambda d: (
+                d.sigma_N
+                + chi_khalili(d.suction, d.per_test("khalili_fit", "s_b"), d.per_test("khalili_fit", "eta")) * d.suction
+            ),
+            fitted=("s_b", "eta"),
+            style={"color": "vermillion", "marker": "X"},
+            method="Khalili-Khabbaz with the air-entry suction s_b (and optionally η) fitted per "
+            "material on the wet tests.",
+        ),
+        EffectiveStressModel(
+            "exact_neck",
+            "Exact bridge",
+            (),
+            "evenepoel",
+            lambda d: (
+                d.sigma_N
+                + d.cached(
+                    "exact_neck",
+                    lambda: exact_neck_capillary_stress(
+                        d.S_R, d.suction, d.R, d.surface_tension, d.params.contact_angle
+                    )[0],
+                )
+            ),
+            no_prediction=Flag("no_concave_bridge", "hold more water than the last concave bridge at contact"),
+            style={"color": "black", "marker": "*"},
+            method="Exact bridge: σ'_N = σ_N + F_cap/(πR²) of the exact pendular bridge between two "
+            "spheres in contact holding the test's water at its suction.",
+        ),
+    )
+}
 
 #: The thesis's four models in display order (the default of `capred shear --models`).
 THESIS_MODELS = tuple(m for m, e in REGISTRY.items() if e.thesis)

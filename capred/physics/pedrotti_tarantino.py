@@ -75,6 +75,7 @@ References
     unifying slurried (saturated), compacted (unsaturated) and dry states",
     Géotechnique 69(3):217-233 (online 2018): the model's derivation.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field, fields
@@ -255,8 +256,9 @@ class PTVolumeParameters:
 #: reported for Speswhite kaolin from slurry, and intercepts chosen so that a sample compacted
 #: to about 340 kPa mean stress at S_r = 0.55 and 800 kPa suction has e close to 1.2, like the
 #: samples of Sivakumar & Wheeler (2000) modelled in the paper. For sample runs and figures only.
-EXAMPLE_KAOLIN = PTVolumeParameters(lambda_W=0.18, kappa_W=0.03, e_ncl_W=2.23,
-                                    lambda_A=0.13, kappa_A=0.01, e_ncl_A=2.06)
+EXAMPLE_KAOLIN = PTVolumeParameters(
+    lambda_W=0.18, kappa_W=0.03, e_ncl_W=2.23, lambda_A=0.13, kappa_A=0.01, e_ncl_A=2.06
+)
 
 
 # --------------------------------------------------------------------------------------------
@@ -620,11 +622,32 @@ class PTVolumePath:
     substeps: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
 
     #: unit (SI) of each array attribute; the output layer converts Pa to kPa
-    UNITS = {"sigma": "Pa", "u_w": "Pa", "u_a": "Pa", "S_R": "-", "sigma_W": "Pa", "sigma_A": "Pa",
-             "e": "-", "e_W": "-", "e_A": "-", "solid_fraction_W": "-", "ncl_fraction_W": "-",
-             "ncl_fraction_A": "-", "de_WW": "-", "de_AA": "-", "de_AW": "-", "de_WA": "-",
-             "w_AW": "-", "w_WA": "-", "sigma_star_W": "Pa", "sigma_star_A": "Pa",
-             "loading_W": "bool", "loading_A": "bool", "yielding_W": "bool", "yielding_A": "bool"}
+    UNITS = {
+        "sigma": "Pa",
+        "u_w": "Pa",
+        "u_a": "Pa",
+        "S_R": "-",
+        "sigma_W": "Pa",
+        "sigma_A": "Pa",
+        "e": "-",
+        "e_W": "-",
+        "e_A": "-",
+        "solid_fraction_W": "-",
+        "ncl_fraction_W": "-",
+        "ncl_fraction_A": "-",
+        "de_WW": "-",
+        "de_AA": "-",
+        "de_AW": "-",
+        "de_WA": "-",
+        "w_AW": "-",
+        "w_WA": "-",
+        "sigma_star_W": "Pa",
+        "sigma_star_A": "Pa",
+        "loading_W": "bool",
+        "loading_A": "bool",
+        "yielding_W": "bool",
+        "yielding_A": "bool",
+    }
 
 
 def path_problems(sigma, u_w, u_a, S_R) -> list[tuple[int, str, str]]:
@@ -663,8 +686,15 @@ def path_problems(sigma, u_w, u_a, S_R) -> list[tuple[int, str, str]]:
     arrs = {k: np.atleast_1d(np.asarray(v, float)) for k, v in cols.items()}
     n = {k: a.size for k, a in arrs.items()}
     if len(set(n.values())) != 1:
-        return [(-1, "", "sigma, u_w, u_a and S_r must have the same length (got "
-                 + ", ".join(f"{k}: {v}" for k, v in n.items()) + ")")]
+        return [
+            (
+                -1,
+                "",
+                "sigma, u_w, u_a and S_r must have the same length (got "
+                + ", ".join(f"{k}: {v}" for k, v in n.items())
+                + ")",
+            )
+        ]
     if arrs["sigma"].size == 0:
         return [(-1, "", "the path is empty")]
     out: list[tuple[int, str, str]] = []
@@ -680,13 +710,25 @@ def path_problems(sigma, u_w, u_a, S_R) -> list[tuple[int, str, str]]:
         for i in np.flatnonzero((S < 0) | (S > 1)):
             out.append((int(i), "S_r", f"degree of saturation must lie between 0 and 1 (got {S[i]:.6g})"))
         for i in np.flatnonzero(wet_near & ~(s - uw > 0)):
-            out.append((int(i), "u_w", "sigma - u_w must be > 0 where S_r > 0 (here or at a neighbouring "
-                        "point): the water-saturated part "
-                        f"needs a positive effective stress (got {(s[i] - uw[i]) * 1e-3:.6g} kPa)"))
+            out.append(
+                (
+                    int(i),
+                    "u_w",
+                    "sigma - u_w must be > 0 where S_r > 0 (here or at a neighbouring "
+                    "point): the water-saturated part "
+                    f"needs a positive effective stress (got {(s[i] - uw[i]) * 1e-3:.6g} kPa)",
+                )
+            )
         for i in np.flatnonzero(dry_near & ~(s - ua > 0)):
-            out.append((int(i), "u_a", "sigma - u_a must be > 0 where S_r < 1 (here or at a neighbouring "
-                        "point): the air-saturated part "
-                        f"needs a positive effective stress (got {(s[i] - ua[i]) * 1e-3:.6g} kPa)"))
+            out.append(
+                (
+                    int(i),
+                    "u_a",
+                    "sigma - u_a must be > 0 where S_r < 1 (here or at a neighbouring "
+                    "point): the air-saturated part "
+                    f"needs a positive effective stress (got {(s[i] - ua[i]) * 1e-3:.6g} kPa)",
+                )
+            )
     return sorted(out)
 
 
@@ -735,9 +777,17 @@ class _Part:
         return float(self.m[self.lny <= ln_s + 1e-12].sum()) / M if M > 0 else float("nan")
 
 
-def simulate_volume_path(sigma, u_w, u_a, S_R, *, params: PTVolumeParameters,
-                         initial_yield_W=None, initial_yield_A=None,
-                         substeps: int | None = None) -> PTVolumePath:
+def simulate_volume_path(
+    sigma,
+    u_w,
+    u_a,
+    S_R,
+    *,
+    params: PTVolumeParameters,
+    initial_yield_W=None,
+    initial_yield_A=None,
+    substeps: int | None = None,
+) -> PTVolumePath:
     """Void ratio along a path of total stress, pore pressures and S_r (Pedrotti & Tarantino, eq. 1-10).
 
     At each step the two effective stresses follow from eq. 1-2. The pores
@@ -805,8 +855,9 @@ def simulate_volume_path(sigma, u_w, u_a, S_R, *, params: PTVolumeParameters,
     """
     problems = path_problems(sigma, u_w, u_a, S_R)
     if problems:
-        raise OptionError("path: " + "; ".join(
-            (f"point {i + 1}, {c}: " if i >= 0 else "") + m for i, c, m in problems[:20]))
+        raise OptionError(
+            "path: " + "; ".join((f"point {i + 1}, {c}: " if i >= 0 else "") + m for i, c, m in problems[:20])
+        )
     if substeps is not None and not (isinstance(substeps, (int, np.integer)) and substeps >= 1):
         raise OptionError(f"substeps must be None or an integer >= 1 (got {substeps!r})")
     sigma, u_w, u_a, S_R = (np.atleast_1d(np.asarray(x, float)) for x in (sigma, u_w, u_a, S_R))
@@ -842,9 +893,25 @@ def simulate_volume_path(sigma, u_w, u_a, S_R, *, params: PTVolumeParameters,
         A.add(1.0 - mW, yA)
 
     nan = np.full(n, np.nan)
-    rec = {k: nan.copy() for k in ("e", "e_W", "e_A", "solid_fraction_W", "ncl_fraction_W", "ncl_fraction_A",
-                                   "de_WW", "de_AA", "de_AW", "de_WA", "w_AW", "w_WA",
-                                   "sigma_star_W", "sigma_star_A")}
+    rec = {
+        k: nan.copy()
+        for k in (
+            "e",
+            "e_W",
+            "e_A",
+            "solid_fraction_W",
+            "ncl_fraction_W",
+            "ncl_fraction_A",
+            "de_WW",
+            "de_AA",
+            "de_AW",
+            "de_WA",
+            "w_AW",
+            "w_WA",
+            "sigma_star_W",
+            "sigma_star_A",
+        )
+    }
     flags = {k: np.zeros(n, bool) for k in ("loading_W", "loading_A", "yielding_W", "yielding_A")}
 
     def record(i, lnW, lnA):
@@ -903,18 +970,31 @@ def simulate_volume_path(sigma, u_w, u_a, S_R, *, params: PTVolumeParameters,
         flags["loading_A"][k] = bool(sA_path[k] > sA_path[k - 1])
         record(k, lnWk, lnAk)
 
-    return PTVolumePath(sigma=sigma, u_w=u_w, u_a=u_a, S_R=S_R, sigma_W=sW_path, sigma_A=sA_path,
-                        **rec, **flags, params=p, substeps=n_sub)
+    return PTVolumePath(
+        sigma=sigma,
+        u_w=u_w,
+        u_a=u_a,
+        S_R=S_R,
+        sigma_W=sW_path,
+        sigma_A=sA_path,
+        **rec,
+        **flags,
+        params=p,
+        substeps=n_sub,
+    )
 
 
 def _substeps(sW, sA, S, dS_max=0.002, dln_max=0.02, cap=2000) -> np.ndarray:
     """Sub-steps per path step: |ΔS_r| <= dS_max and |Δ ln σ'| <= dln_max of each existing part."""
+
     def dln(s):
         with np.errstate(divide="ignore", invalid="ignore"):
             d = np.abs(np.diff(np.log(np.where(s > 0, s, np.nan))))
         return np.where(np.isfinite(d), d, 0.0)
-    need = np.maximum.reduce([np.abs(np.diff(S)) / dS_max, dln(sW) / dln_max, dln(sA) / dln_max,
-                              np.ones(max(S.size - 1, 0))])
+
+    need = np.maximum.reduce(
+        [np.abs(np.diff(S)) / dS_max, dln(sW) / dln_max, dln(sA) / dln_max, np.ones(max(S.size - 1, 0))]
+    )
     return np.minimum(np.ceil(need), cap).astype(int)
 
 
@@ -924,8 +1004,18 @@ def _step(W: _Part, A: _Part, lnW_a, lnA_a, lnW, lnA, S, p: PTVolumeParameters) 
     ``lnW_a``/``lnA_a``: ln σ' at the start, ``lnW``/``lnA`` at the end (NaN where σ' = 0).
     Mutates W and A; returns the class changes of the step.
     """
-    out = dict(de_WW=np.nan, de_AA=np.nan, de_AW=np.nan, de_WA=np.nan, moved_AW=0.0, moved_WA=0.0,
-               e_T_AW=np.nan, e_T_WA=np.nan, sigma_star_W=np.nan, sigma_star_A=np.nan)
+    out = dict(
+        de_WW=np.nan,
+        de_AA=np.nan,
+        de_AW=np.nan,
+        de_WA=np.nan,
+        moved_AW=0.0,
+        moved_WA=0.0,
+        e_T_AW=np.nan,
+        e_T_WA=np.nan,
+        sigma_star_W=np.nan,
+        sigma_star_A=np.nan,
+    )
     MW, MA = W.mass, A.mass
     eW_old = W.mean_void_ratio(lnW_a) if MW > 0 else np.nan
     eA_old = A.mean_void_ratio(lnA_a) if MA > 0 else np.nan

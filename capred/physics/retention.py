@@ -29,6 +29,7 @@ References
 .. [6] Morvan, M., Vernay, M., Breul, P. (2016). Study of the variation of B
    with Sr. E-UNSAT 2016, E3S Web of Conferences (section 3).
 """
+
 from __future__ import annotations
 
 import numpy as np

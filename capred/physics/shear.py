@@ -11,6 +11,7 @@ References
    Universiteit Brussel (no DOI): sections "Apply suction", "Own
    approximation", "Shear strength".
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -233,8 +234,8 @@ def chi2(S_R, R, surface_tension=SURFACE_TENSION):
        capillary effective stress in granular materials. Master thesis, Vrije
        Universiteit Brussel (no DOI), section "Own approximation".
     """
-    return 2.0 * surface_tension / np.asarray(R, dtype=float) * np.cbrt(
-        2.0 * np.pi * np.asarray(S_R, dtype=float) / 3.0
+    return (
+        2.0 * surface_tension / np.asarray(R, dtype=float) * np.cbrt(2.0 * np.pi * np.asarray(S_R, dtype=float) / 3.0)
     )
 
 

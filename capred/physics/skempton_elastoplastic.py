@@ -37,10 +37,12 @@ References
 [3] R. H. Brooks, A. T. Corey (1964), Hydraulic properties of porous media,
     Hydrology Paper 3, Colorado State University.
 """
+
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable, Protocol
+from typing import Protocol
 
 import numpy as np
 
@@ -264,9 +266,22 @@ def _undrained_b(compliance: Compliance, p_eff, e, S_R, pa0, dp, n_dp):
     return (pa - pa0) / dp
 
 
-def skempton_b_incremental_path(S_R_min=0.5, *, compliance: Compliance | Callable[[float, float], float] | None = None,
-                                kappa_elastic=0.006, p0=100e3, u0=30e3, e0=0.8, pa0=130e3, air_entry=20e3,
-                                bc_lambda=0.8, dp=1e3, n_dp=10, S_R_step=1e-3, at=None) -> IncrementalBPath:
+def skempton_b_incremental_path(
+    S_R_min=0.5,
+    *,
+    compliance: Compliance | Callable[[float, float], float] | None = None,
+    kappa_elastic=0.006,
+    p0=100e3,
+    u0=30e3,
+    e0=0.8,
+    pa0=130e3,
+    air_entry=20e3,
+    bc_lambda=0.8,
+    dp=1e3,
+    n_dp=10,
+    S_R_step=1e-3,
+    at=None,
+) -> IncrementalBPath:
     r"""The two incremental loops of Morvan et al. (2016), section 4: B along a drying path.
 
     Loop 1 dries the sample from ``S_R = 1`` (suction ``s_e``, ``p' = p0 - u0 + s_e``)
@@ -375,9 +390,21 @@ def skempton_b_incremental_path(S_R_min=0.5, *, compliance: Compliance | Callabl
     return IncrementalBPath(**{k: np.asarray(v, float) for k, v in out.items()})
 
 
-def skempton_b_incremental(S_R, *, compliance: Compliance | Callable[[float, float], float] | None = None,
-                           kappa_elastic=0.006, p0=100e3, u0=30e3, e0=0.8, pa0=130e3, air_entry=20e3,
-                           bc_lambda=0.8, dp=1e3, n_dp=10, S_R_step=1e-3):
+def skempton_b_incremental(
+    S_R,
+    *,
+    compliance: Compliance | Callable[[float, float], float] | None = None,
+    kappa_elastic=0.006,
+    p0=100e3,
+    u0=30e3,
+    e0=0.8,
+    pa0=130e3,
+    air_entry=20e3,
+    bc_lambda=0.8,
+    dp=1e3,
+    n_dp=10,
+    S_R_step=1e-3,
+):
     r"""Skempton's B at each ``S_R`` by the two incremental loops of Morvan et al. (2016), eqs. 14-24.
 
     One drying path from ``S_R = 1`` down to ``min(S_R)`` (loop 1) and, at each
@@ -426,8 +453,20 @@ def skempton_b_incremental(S_R, *, compliance: Compliance | Callable[[float, flo
         return S.copy()
     if np.any(~np.isfinite(S)) or np.any(S <= 0.0) or np.any(S > 1.0):
         raise OptionError("S_R must lie in (0, 1]")
-    path = skempton_b_incremental_path(float(S.min()), compliance=compliance, kappa_elastic=kappa_elastic, p0=p0,
-                                       u0=u0, e0=e0, pa0=pa0, air_entry=air_entry, bc_lambda=bc_lambda, dp=dp,
-                                       n_dp=n_dp, S_R_step=S_R_step, at=S)
+    path = skempton_b_incremental_path(
+        float(S.min()),
+        compliance=compliance,
+        kappa_elastic=kappa_elastic,
+        p0=p0,
+        u0=u0,
+        e0=e0,
+        pa0=pa0,
+        air_entry=air_entry,
+        bc_lambda=bc_lambda,
+        dp=dp,
+        n_dp=n_dp,
+        S_R_step=S_R_step,
+        at=S,
+    )
     B = np.interp(S.ravel(), path.S_R[::-1], path.B[::-1]).reshape(S.shape)  # exact: every S_R is a path point
     return B if B.ndim else float(B)

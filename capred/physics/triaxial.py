@@ -20,6 +20,7 @@ References
    evaluate the capillary stress tensor at failure in unsaturated soils.
    Eur. J. Environ. Civ. Eng., 1-26. doi:10.1080/19648189.2024.2314099
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -48,8 +49,10 @@ def _axisymmetric_branch(branch):
     b = np.asarray(branch)
     bad = ~np.isin(b, _BRANCHES)
     if np.any(bad):
-        raise ValueError(f"branch must be 'compression' or 'extension' (the bounds of Prunier et al. 2024, "
-                         f"section 4, are for axisymmetric tests), got {np.unique(b[bad]).tolist()}")
+        raise ValueError(
+            f"branch must be 'compression' or 'extension' (the bounds of Prunier et al. 2024, "
+            f"section 4, are for axisymmetric tests), got {np.unique(b[bad]).tolist()}"
+        )
     return b == "extension"
 
 
@@ -866,6 +869,7 @@ def true_triaxial_group_cap(C_apparent, C_fictive, Ci_apparent, Ci_fictive, c_ef
 
 # --- Appendix 1 on data: the fictive state and the group regressions ---------------------------
 
+
 def fictive_state(sigma1, sigma3, sigma1_sat, sigma3_sat):
     r"""Fictive state :math:`\sigma''`: the unsaturated Mohr circle's centre with the saturated circle's radius.
 
@@ -1094,8 +1098,9 @@ def _check_group(*arrays):
     return arrs
 
 
-def axisymmetric_group_tensor(sigma1, sigma3, sigma1_sat, sigma3_sat, c_eff, phi_eff_deg,
-                              branch="compression") -> GroupTensor:
+def axisymmetric_group_tensor(
+    sigma1, sigma3, sigma1_sat, sigma3_sat, c_eff, phi_eff_deg, branch="compression"
+) -> GroupTensor:
     r"""Capillary tensor shared by a group of axisymmetric unsaturated tests with paired saturated tests (eq. 44-48).
 
     Parameters
@@ -1168,17 +1173,29 @@ def axisymmetric_group_tensor(sigma1, sigma3, sigma1_sat, sigma3_sat, c_eff, phi
     phi_app, phi_app_se = _apparent_friction(s1, s3)
     n = s1.size
     return GroupTensor(
-        n=n, dof=n - 1, branch="extension" if ext else "compression",
-        sigma1_cap=float(m1), sigma2_cap=float(m2), sigma3_cap=float(m3),
-        sigma1_cap_se=float(e1), sigma2_cap_se=float(e2), sigma3_cap_se=float(e3),
-        C_apparent=float(C), C_apparent_se=float(C_se), C_fictive=float(Cf), C_fictive_se=float(Cf_se),
-        phi_apparent_deg=phi_app, phi_apparent_se_deg=phi_app_se,
-        lode_angle_deg=lode_angle_deg(s1, s1 if ext else s3, s3), per_test=per,
+        n=n,
+        dof=n - 1,
+        branch="extension" if ext else "compression",
+        sigma1_cap=float(m1),
+        sigma2_cap=float(m2),
+        sigma3_cap=float(m3),
+        sigma1_cap_se=float(e1),
+        sigma2_cap_se=float(e2),
+        sigma3_cap_se=float(e3),
+        C_apparent=float(C),
+        C_apparent_se=float(C_se),
+        C_fictive=float(Cf),
+        C_fictive_se=float(Cf_se),
+        phi_apparent_deg=phi_app,
+        phi_apparent_se_deg=phi_app_se,
+        lode_angle_deg=lode_angle_deg(s1, s1 if ext else s3, s3),
+        per_test=per,
     )
 
 
-def true_triaxial_group_tensor(sigma1, sigma2, sigma3, sigma1_sat, sigma2_sat, sigma3_sat, c_eff, phi_eff_deg,
-                               lode_tol_deg=LODE_TOL_DEG) -> GroupTensor:
+def true_triaxial_group_tensor(
+    sigma1, sigma2, sigma3, sigma1_sat, sigma2_sat, sigma3_sat, c_eff, phi_eff_deg, lode_tol_deg=LODE_TOL_DEG
+) -> GroupTensor:
     r"""Capillary tensor shared by a true-triaxial group at constant Lode angle, with paired saturated tests (eq. 50).
 
     Parameters
@@ -1235,8 +1252,10 @@ def true_triaxial_group_tensor(sigma1, sigma2, sigma3, sigma1_sat, sigma2_sat, s
     theta = lode_angle_deg(s1, s2, s3)
     spread = float(np.ptp(theta))
     if not spread <= lode_tol_deg:
-        raise ValueError(f"the Lode angles of the group spread over {spread:.3g} deg > {lode_tol_deg:g} deg: "
-                         "eq. 50 needs a constant Lode angle (eq. 49)")
+        raise ValueError(
+            f"the Lode angles of the group spread over {spread:.3g} deg > {lode_tol_deg:g} deg: "
+            "eq. 50 needs a constant Lode angle (eq. 49)"
+        )
     axi = axisymmetric_group_tensor(s1, s3, s1s, s3s, c_eff, phi_eff_deg)
     Q = float(np.mean(lode_ratio(s1, s2, s3)))
     phi_i = float(intermediate_friction_angle_deg(Q, phi_eff_deg))
@@ -1247,9 +1266,17 @@ def true_triaxial_group_tensor(sigma1, sigma2, sigma3, sigma1_sat, sigma2_sat, s
     per = np.column_stack([a1, a1 - 2.0 * (Ci_j - Cif_j) * np.cos(np.radians(phi_i)), axi.per_test[:, 2]])
     (m1, m2, m3), (e1, e2, e3) = _mean_se(per)
     return dataclasses_replace(
-        axi, branch="general", sigma1_cap=float(m1), sigma2_cap=float(m2), sigma3_cap=float(m3),
-        sigma1_cap_se=float(e1), sigma2_cap_se=float(e2), sigma3_cap_se=float(e3),
-        Ci_apparent=float(np.mean(Ci_j)), Ci_fictive=float(np.mean(Cif_j)), phi_i_deg=phi_i,
-        lode_angle_deg=theta, per_test=per,
+        axi,
+        branch="general",
+        sigma1_cap=float(m1),
+        sigma2_cap=float(m2),
+        sigma3_cap=float(m3),
+        sigma1_cap_se=float(e1),
+        sigma2_cap_se=float(e2),
+        sigma3_cap_se=float(e3),
+        Ci_apparent=float(np.mean(Ci_j)),
+        Ci_fictive=float(np.mean(Cif_j)),
+        phi_i_deg=phi_i,
+        lode_angle_deg=theta,
+        per_test=per,
     )
-

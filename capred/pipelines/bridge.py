@@ -4,6 +4,7 @@ R and R2, or a sphere and a plane.
 The contact angle is ``contact_angle`` everywhere (input column ``contact_angle``,
 also accepted as ``theta``); both particles share it.
 """
+
 from __future__ import annotations
 
 import pickle
@@ -14,28 +15,44 @@ import numpy as np
 
 from ..errors import InputError, OptionError
 from ..io.table import Column, Table, read_table
+from ..nomenclature import StableJsonKeys, renamed_keywords
 from ..physics import bridge as br
 from ..physics import shear as ph
-from ..nomenclature import StableJsonKeys, renamed_keywords
-from ..result import InputFile, Options, Result, Rows, TableSpec, input_file, json_list, num
+from ..result import InputFile, Options, Result, Rows, input_file, json_list, num
 
 # 1: the gap is too wide for this suction or volume; 3: so much water that the bridge would be
 # convex (water above air pressure), outside the pendular model
-STATUS = {0: "ok", 1: "no bridge: beyond rupture", 2: "invalid input", 3: "no concave bridge: too much water",
-          4: "no bridge found: the solution did not reproduce the requested gap and volume (or suction) to 1e-9"}
+STATUS = {
+    0: "ok",
+    1: "no bridge: beyond rupture",
+    2: "invalid input",
+    3: "no concave bridge: too much water",
+    4: "no bridge found: the solution did not reproduce the requested gap and volume (or suction) to 1e-9",
+}
 #: every bridge reported ok reproduces the requested gap and volume (or suction) to this relative tolerance
 VERIFY_RTOL = br.VERIFY_RTOL
 _PLANE = (("plane", np.inf), ("inf", np.inf), ("infinity", np.inf), ("\u221e", np.inf))
 
 CASE = Column("case", "text", None, "case label", ("test_id", "id", "name"))
 RADIUS = Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius", "R1"), "positive")
-RADIUS2 = Column("R2", "length", "mm", "radius R2 of the second particle ('plane' or 'inf': a plane; "
-                 "absent: equal spheres)", ("radius2", "second_radius"), "positive", words=_PLANE)
+RADIUS2 = Column(
+    "R2",
+    "length",
+    "mm",
+    "radius R2 of the second particle ('plane' or 'inf': a plane; absent: equal spheres)",
+    ("radius2", "second_radius"),
+    "positive",
+    words=_PLANE,
+)
 GAMMA = Column("gamma", "surface_tension", "N/m", "surface tension", ("surface_tension",), "positive")
 ANGLE = Column("contact_angle", "angle", "deg", "contact angle", ("theta", "wetting_angle"), "nonnegative")
 VOLUME = Column("V_w", "volume", "mm^3", "water volume V_w", ("volume", "V", "Vw"), "positive")
 SOLVE_SCHEMA = [
-    CASE, RADIUS, RADIUS2, GAMMA, ANGLE,
+    CASE,
+    RADIUS,
+    RADIUS2,
+    GAMMA,
+    ANGLE,
     Column("gap", "length", "mm", "gap D", ("D", "separation", "distance"), "nonnegative"),
     Column("suction", "pressure", "kPa", "suction", ("delta_u", "ua_uw"), "nonnegative"),
     VOLUME,
@@ -105,13 +122,18 @@ class BridgeResult(Result):
             return np.where(ok, x, np.nan)
 
         return {
-            "r0_mm": out(self.neck * 1e3), "F_cap_mN": out(self.force * 1e3),
-            "F_L_mN": out(np.pi * self.neck**2 * self.suction * 1e3), "F_T_mN": out(2 * np.pi * self.neck * g * 1e3),
-            "V_w_mm3": out(self.volume * 1e9), "filling_angle_deg": out(np.degrees(self.beta)),
+            "r0_mm": out(self.neck * 1e3),
+            "F_cap_mN": out(self.force * 1e3),
+            "F_L_mN": out(np.pi * self.neck**2 * self.suction * 1e3),
+            "F_T_mN": out(2 * np.pi * self.neck * g * 1e3),
+            "V_w_mm3": out(self.volume * 1e9),
+            "filling_angle_deg": out(np.degrees(self.beta)),
             "filling_angle2_deg": out(np.degrees(b.delta2)),
-            "suction_kPa": out(self.suction / 1e3), "S_R": out(3 * self.volume / (2 * np.pi * R**3)),
+            "suction_kPa": out(self.suction / 1e3),
+            "S_R": out(3 * self.volume / (2 * np.pi * R**3)),
             "sigma_prime_kPa": out(self.force / (np.pi * R**2) / 1e3),
-            "area_mm2": out(b.area * R**2 * 1e6), "nn11_mm2": out(b.nn11 * R**2 * 1e6),
+            "area_mm2": out(b.area * R**2 * 1e6),
+            "nn11_mm2": out(b.nn11 * R**2 * 1e6),
             "nn33_mm2": out(b.nn33 * R**2 * 1e6),
         }
 
@@ -154,6 +176,7 @@ class BridgeResult(Result):
     def csv_tables(self) -> dict:
         return {"solve": self._cols()}
 
+
 def json_rows(cols: dict[str, np.ndarray], nan_as_none: bool = True) -> list[dict]:
     """JSON rows of output columns (an empty note left out), built column by column.
 
@@ -171,8 +194,7 @@ def json_rows(cols: dict[str, np.ndarray], nan_as_none: bool = True) -> list[dic
         One dict per row, keys in column order, ``note`` last and only where it is not empty.
     """
     keys = [k for k in cols if k != "note"]
-    values = [cols[k].tolist() if cols[k].dtype == object or not nan_as_none else json_list(cols[k])
-              for k in keys]
+    values = [cols[k].tolist() if cols[k].dtype == object or not nan_as_none else json_list(cols[k]) for k in keys]
     out = list(map(dict, map(zip, repeat(keys), zip(*values))))
     for r, note in zip(out, cols["note"].tolist()):
         if note:
@@ -233,8 +255,7 @@ def _records(frame, drop_empty: str | None = None) -> list[dict]:
     return out
 
 
-def _read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, ...], opt: BridgeOptions,
-                schema=None):
+def _read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, ...], opt: BridgeOptions, schema=None):
     """The table of cases (read from ``source``, or a Table already read) with its surface tension and radius
     ratio R2/R (1 without an R2 column)."""
     table = source if isinstance(source, Table) else read_table(source, schema or SOLVE_SCHEMA)
@@ -244,13 +265,18 @@ def _read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, .
     if required_one_of and not any(n in table.columns for n in required_one_of):
         table.missing_column(required_one_of[0], "".join(f" (or '{n}')" for n in required_one_of[1:]))
     if any(n not in table.columns for n in required) or (
-            required_one_of and not any(n in table.columns for n in required_one_of)):
+        required_one_of and not any(n in table.columns for n in required_one_of)
+    ):
         table.raise_if_problems()  # without its columns nothing else can be checked
     gamma = table.get("gamma").copy()
     gamma[np.isnan(gamma)] = opt.surface_tension
     for i in np.flatnonzero(table.columns["contact_angle"] >= 90):
-        table.add_problem(i, "contact_angle", f"contact angle {table.value_text('contact_angle', i)} deg: pendular "
-                                              "bridges need a contact angle below 90 deg")
+        table.add_problem(
+            i,
+            "contact_angle",
+            f"contact angle {table.value_text('contact_angle', i)} deg: pendular "
+            "bridges need a contact angle below 90 deg",
+        )
     reported = {(p.line, p.column) for p in table.problems}  # a cell already explained (text in a number)
     for name in required:
         for i in np.flatnonzero(np.isnan(table.columns[name])):
@@ -280,8 +306,18 @@ def solve_bridges(source, options: BridgeOptions | None = None) -> BridgeResult:
         table.add_problem(i, "V_w", "give suction or V_w, not both")
     table.raise_if_problems()
     R, th, D = table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["gap"]
-    res = _solve(table.path, R, gamma, th, D, ratio, s_in, v_in,
-                 list(table.columns["case"]) if "case" in table.columns else None, table.notes)
+    res = _solve(
+        table.path,
+        R,
+        gamma,
+        th,
+        D,
+        ratio,
+        s_in,
+        v_in,
+        list(table.columns["case"]) if "case" in table.columns else None,
+        table.notes,
+    )
     res.options, res.warnings = opt, opt.warnings + table.warnings  # inputs: set by solve_in_blocks
     return res
 
@@ -297,24 +333,39 @@ def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None) 
     fields = {k: np.full(n, np.nan) for k in br.Bridge.__dataclass_fields__}
     if by_s.size:
         s_star[by_s] = s_in[by_s] * R[by_s] / gamma[by_s]
-        beta[by_s], status[by_s], *values = _in_parallel(_suction_rows, th[by_s], s_star[by_s], D[by_s] / R[by_s],
-                                                         ratio[by_s])
+        beta[by_s], status[by_s], *values = _in_parallel(
+            _suction_rows, th[by_s], s_star[by_s], D[by_s] / R[by_s], ratio[by_s]
+        )
         for k, v in zip(fields, values):
             fields[k][by_s] = v
         if np.any((status[by_s] == 0) & (D[by_s] > 0)):
-            notes.append("At a given gap and suction two bridges fit; the stable one (larger filling angle and "
-                         "volume, continuous with the bridge at contact) is given.")
+            notes.append(
+                "At a given gap and suction two bridges fit; the stable one (larger filling angle and "
+                "volume, continuous with the bridge at contact) is given."
+            )
     if by_v.size:
         beta[by_v], s_star[by_v], status[by_v], past_fold, *values = _in_parallel(
-            _volume_rows, th[by_v], v_in[by_v] / R[by_v] ** 3, D[by_v] / R[by_v], ratio[by_v])
+            _volume_rows, th[by_v], v_in[by_v] / R[by_v] ** 3, D[by_v] / R[by_v], ratio[by_v]
+        )
         for k, v in zip(fields, values):
             fields[k][by_v] = v
         for i in by_v[past_fold > 0]:
-            note[i] = ("stable at constant volume only (past the suction-controlled fold): at this suction "
-                       "an open water supply would jump to a larger bridge; close to rupture")
+            note[i] = (
+                "stable at constant volume only (past the suction-controlled fold): at this suction "
+                "an open water supply would jump to a larger bridge; close to rupture"
+            )
     shape = br.Bridge(**fields)
-    return BridgeResult(source, {"R": R, "gamma": gamma, "contact_angle_rad": th, "gap": D, "ratio": ratio}, beta,
-                        s_star * gamma / R, shape, status, note, labels, notes)
+    return BridgeResult(
+        source,
+        {"R": R, "gamma": gamma, "contact_angle_rad": th, "gap": D, "ratio": ratio},
+        beta,
+        s_star * gamma / R,
+        shape,
+        status,
+        note,
+        labels,
+        notes,
+    )
 
 
 _PARALLEL_ROWS = 30_000  # below this, one process is faster than starting a second
@@ -474,12 +525,11 @@ def _send(fd: int, obj) -> None:
     data = pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
     view = memoryview(len(data).to_bytes(8, "little") + data)
     while view:
-        view = view[os.write(fd, view):]
+        view = view[os.write(fd, view) :]
 
 
 def _receive(fd: int):
     """The next message; None at the end of the pipe."""
-    import os
 
     head = _read_exactly(fd, 8)
     if head is None:
@@ -544,8 +594,12 @@ class CurveOptions(StableJsonKeys, Options):
     contact angle [deg], number of S_R values, largest S_R (``S_R_max``; the keyword ``sr_max`` still works
     with a DeprecationWarning, and the JSON keeps the key ``sr_max``), pendular limit."""
 
-    QUANTITIES = {"radius": "R", "surface_tension": "surface_tension", "contact_angle": "contact_angle",
-                  "pendular_limit": "pendular_limit"}
+    QUANTITIES = {
+        "radius": "R",
+        "surface_tension": "surface_tension",
+        "contact_angle": "contact_angle",
+        "pendular_limit": "pendular_limit",
+    }
     OPTION_NAMES = {"S_R_max": "--S-R-max"}
     JSON_NAMES = {"S_R_max": "sr_max"}
 
@@ -601,28 +655,46 @@ class CurveResult(Result):
         out = {}
         for regime, sel in (("inside", self.S_R < self.pendular_limit), ("outside", self.S_R >= self.pendular_limit)):
             ex = m["exact"][sel]
-            out[regime] = {k: num(np.sqrt(np.mean(((v[sel] - ex) / ex) ** 2))) if sel.any() else None
-                           for k, v in m.items() if k != "exact"}
+            out[regime] = {
+                k: num(np.sqrt(np.mean(((v[sel] - ex) / ex) ** 2))) if sel.any() else None
+                for k, v in m.items()
+                if k != "exact"
+            }
         return {"rms_relative_error_vs_exact": out}
 
     def payload(self, lazy: bool = False) -> dict:
-        return {"R_mm": self.R * 1e3, "gamma_N_per_m": self.gamma,
-                "contact_angle_deg": float(np.degrees(self.contact_angle_rad)),
-                "pendular_limit": self.pendular_limit, **self.summary(), "curve": self.rows()}
+        return {
+            "R_mm": self.R * 1e3,
+            "gamma_N_per_m": self.gamma,
+            "contact_angle_deg": float(np.degrees(self.contact_angle_rad)),
+            "pendular_limit": self.pendular_limit,
+            **self.summary(),
+            "curve": self.rows(),
+        }
 
     def tables(self) -> dict:
         import pandas as pd
 
         cached = self.__dict__.get("_tables")
         if cached is None:
-            cols = {"S_R": self.S_R, "suction_kPa": self.suction / 1e3,
-                    **{f"sigma_prime_{k}_kPa": v / 1e3 for k, v in self.models().items()}}
+            cols = {
+                "S_R": self.S_R,
+                "suction_kPa": self.suction / 1e3,
+                **{f"sigma_prime_{k}_kPa": v / 1e3 for k, v in self.models().items()},
+            }
             cached = self.__dict__["_tables"] = {"curve": pd.DataFrame(cols)}
         return cached
 
+
 @renamed_keywords(theta_deg="contact_angle_deg", sr_max="S_R_max")
-def bridge_curve(R=1e-3, gamma=ph.SURFACE_TENSION, contact_angle_deg: float = 0.0, points: int = 2000,
-                 pendular_limit: float = ph.PENDULAR_LIMIT, S_R_max: float = 0.3) -> CurveResult:
+def bridge_curve(
+    R=1e-3,
+    gamma=ph.SURFACE_TENSION,
+    contact_angle_deg: float = 0.0,
+    points: int = 2000,
+    pendular_limit: float = ph.PENDULAR_LIMIT,
+    S_R_max: float = 0.3,
+) -> CurveResult:
     """Exact sigma' = F/(pi R^2) against S_R = 3 V/(2 pi R^3) for spheres in contact (gap 0).
 
     ``R`` [m] and ``gamma`` [N/m] also take strings with units; ``contact_angle_deg``
@@ -641,8 +713,18 @@ def reduce_curve(source, opt: CurveOptions) -> CurveResult:
     beta, s_star, status = br.solve_for_volume(th, 2 * np.pi * S / 3, 0.0)
     ok = status == 0
     _, vol, f, _ = br.geometry(beta[ok], th, s_star[ok])
-    return CurveResult(R, gamma, th, 3 * vol / (2 * np.pi), s_star[ok] * gamma / R, f * gamma / R,
-                       opt.pendular_limit, opt, [], opt.warnings)
+    return CurveResult(
+        R,
+        gamma,
+        th,
+        3 * vol / (2 * np.pi),
+        s_star[ok] * gamma / R,
+        f * gamma / R,
+        opt.pendular_limit,
+        opt,
+        [],
+        opt.warnings,
+    )
 
 
 @dataclass(repr=False)
@@ -686,10 +768,12 @@ class CompareResult(Result):
         equal = rho == 1
         # Derjaguin's effective radius for unequal pairs: R* = 2 R R2 / (R + R2) (R for equal spheres, 2 R on a plane)
         r_eff = np.where(np.isinf(rho), 2.0 * R, 2.0 * R * rho / (1.0 + np.where(np.isinf(rho), 0.0, rho)))
-        models = {"exact": (b.force, ok),
-                  "toroidal": (br.toroidal(b.beta, th, D / R)[2] * np.pi * g * R, ok & equal),
-                  "willett": (br.willett_force(r_eff, g, th, self.volume_in, D), np.ones_like(ok)),
-                  "israelachvili": (br.israelachvili_force(r_eff, g, th), np.ones_like(ok))}
+        models = {
+            "exact": (b.force, ok),
+            "toroidal": (br.toroidal(b.beta, th, D / R)[2] * np.pi * g * R, ok & equal),
+            "willett": (br.willett_force(r_eff, g, th, self.volume_in, D), np.ones_like(ok)),
+            "israelachvili": (br.israelachvili_force(r_eff, g, th), np.ones_like(ok)),
+        }
         cols: dict = {"case": b.labels} if b.labels else {}
         cols["F_measured_mN"] = self.measured_force * 1e3
         for m, (F, good) in models.items():
@@ -713,6 +797,7 @@ class CompareResult(Result):
     def tables(self) -> dict:
         return {"compare": self._frame()}
 
+
 def compare_measured(source, options: BridgeOptions | None = None) -> CompareResult:
     """Micro-tests: the exact bridge of each measured (R, R2, gap, contact angle, V_w) beside the measured force,
     the toroidal approximation (equal spheres), Willett et al. (2000) and Israelachvili (with Derjaguin's
@@ -722,10 +807,24 @@ def compare_measured(source, options: BridgeOptions | None = None) -> CompareRes
     if "F_cap" not in table.columns:
         table.missing_column("F_cap")
     table.raise_if_problems()
-    R, th, D, V = (table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["gap"],
-                   table.columns["V_w"])
-    res = _solve(table.path, R, gamma, th, D, ratio, np.full(R.size, np.nan), V,
-                 list(table.columns["case"]) if "case" in table.columns else None, table.notes)
+    R, th, D, V = (
+        table.columns["R"],
+        np.radians(table.columns["contact_angle"]),
+        table.columns["gap"],
+        table.columns["V_w"],
+    )
+    res = _solve(
+        table.path,
+        R,
+        gamma,
+        th,
+        D,
+        ratio,
+        np.full(R.size, np.nan),
+        V,
+        list(table.columns["case"]) if "case" in table.columns else None,
+        table.notes,
+    )
     res.options, res.inputs, res.warnings = opt, [input_file(source, table)], opt.warnings + table.warnings
     return CompareResult(res, table.columns["F_cap"], np.radians(table.get("filling_angle")), V)
 
@@ -769,14 +868,21 @@ class RuptureResult(Result):
 
         lian = br.lian_rupture_gap(th, V / R**3) * R
         cols: dict = {"case": self.labels} if self.labels else {}
-        cols |= {"R_mm": R * 1e3, "R2_mm": np.where(np.isinf(rho), np.inf, rho * R * 1e3),
-                 "contact_angle_deg": np.degrees(th), "V_w_mm3": V * 1e9,
-                 "D_rupture_mm": out(self.gap * 1e3), "D_rupture_lian_mm": lian * 1e3,
-                 "ratio_to_lian": out(self.gap / lian),
-                 "filling_angle_deg": out(np.degrees(self.beta)), "filling_angle2_deg": out(np.degrees(self.shape.delta2)),
-                 "suction_kPa": out(self.suction / 1e3), "F_cap_mN": out(self.shape.force * np.pi * g * R * 1e3),
-                 "r0_mm": out(self.shape.neck * R * 1e3),
-                 "status": [STATUS[int(k)] for k in self.status]}
+        cols |= {
+            "R_mm": R * 1e3,
+            "R2_mm": np.where(np.isinf(rho), np.inf, rho * R * 1e3),
+            "contact_angle_deg": np.degrees(th),
+            "V_w_mm3": V * 1e9,
+            "D_rupture_mm": out(self.gap * 1e3),
+            "D_rupture_lian_mm": lian * 1e3,
+            "ratio_to_lian": out(self.gap / lian),
+            "filling_angle_deg": out(np.degrees(self.beta)),
+            "filling_angle2_deg": out(np.degrees(self.shape.delta2)),
+            "suction_kPa": out(self.suction / 1e3),
+            "F_cap_mN": out(self.shape.force * np.pi * g * R * 1e3),
+            "r0_mm": out(self.shape.neck * R * 1e3),
+            "status": [STATUS[int(k)] for k in self.status],
+        }
         cached = self.__dict__["_table"] = pd.DataFrame(cols)
         return cached
 
@@ -795,6 +901,7 @@ class RuptureResult(Result):
     def tables(self) -> dict:
         return {"rupture": self._frame()}
 
+
 def rupture_distances(source, options: BridgeOptions | None = None) -> RuptureResult:
     """Rupture distance of each (R, R2, contact_angle, V_w) row: the widest gap a bridge of that volume spans
     (Lian et al. 1993; pulled apart at constant volume), with the bridge at rupture."""
@@ -804,9 +911,17 @@ def rupture_distances(source, options: BridgeOptions | None = None) -> RuptureRe
     R, th, V = table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["V_w"]
     D, beta, s, status = br.rupture_gap(th, V / R**3, ratio)
     shape = br.bridge(beta, th, np.where(np.isfinite(s), s, 0.0), ratio)
-    res = RuptureResult(table.path, {"R": R, "gamma": gamma, "contact_angle_rad": th, "V_w": V, "ratio": ratio},
-                        D * R, beta, s * gamma / R, shape, status,
-                        list(table.columns["case"]) if "case" in table.columns else None, list(table.notes))
+    res = RuptureResult(
+        table.path,
+        {"R": R, "gamma": gamma, "contact_angle_rad": th, "V_w": V, "ratio": ratio},
+        D * R,
+        beta,
+        s * gamma / R,
+        shape,
+        status,
+        list(table.columns["case"]) if "case" in table.columns else None,
+        list(table.notes),
+    )
     res.options, res.inputs, res.warnings = opt, [input_file(source, table)], opt.warnings + table.warnings
     return res
 
@@ -816,5 +931,17 @@ def comparison_rows(res: CompareResult) -> list[dict]:
     return res.rows()
 
 
-__all__ = ["solve_bridges", "bridge_curve", "compare_measured", "rupture_distances", "RuptureResult", "comparison_rows", "BridgeResult", "CurveResult",
-           "CompareResult", "BridgeOptions", "CurveOptions", "InputError"]
+__all__ = [
+    "solve_bridges",
+    "bridge_curve",
+    "compare_measured",
+    "rupture_distances",
+    "RuptureResult",
+    "comparison_rows",
+    "BridgeResult",
+    "CurveResult",
+    "CompareResult",
+    "BridgeOptions",
+    "CurveOptions",
+    "InputError",
+]

@@ -6,6 +6,7 @@ is solved as a table of its own and its output columns go to a
 every row stay in memory. A file of one block gives the ordinary
 :class:`capred.pipelines.bridge.BridgeResult`.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -18,7 +19,6 @@ from ..io.blocks import read_table_blocks
 from ..progress import task
 from ..result import InputFile, Result, Spool, input_file
 from . import bridge as pb
-
 
 #: output columns that are text, not numbers (BridgeResult.columns leaves them out)
 _TEXT_COLUMNS = ("case", "status", "note")
@@ -153,5 +153,13 @@ def _solve_in_blocks(source, opt: pb.BridgeOptions):
     except BaseException:
         spool.close()
         raise
-    return BridgeBlocks(path, np.concatenate(status).astype(np.int8), {"ratio": np.concatenate(ratio)}, spool, opt,
-                        inputs, list(notes), list(warnings))
+    return BridgeBlocks(
+        path,
+        np.concatenate(status).astype(np.int8),
+        {"ratio": np.concatenate(ratio)},
+        spool,
+        opt,
+        inputs,
+        list(notes),
+        list(warnings),
+    )

@@ -4,6 +4,7 @@ Each takes one case from options, or many from a CSV (one case per row,
 units in headers as for `capred shear`); a value in the file wins over the
 option, an option fills absent columns and blank cells.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -16,8 +17,7 @@ from ..nomenclature import StableJsonKeys, renamed_keywords
 from ..physics import calculators as calc
 from ..physics.shear import GAMMA_W, SURFACE_TENSION
 from ..references import cite
-from ..result import InputFile, Options, Result, TableSpec, input_file, num
-
+from ..result import InputFile, Options, Result, input_file, num
 
 CASE = Column("case", "text", None, "case label", ("test_id", "id", "name", "sample_id"))
 
@@ -50,8 +50,10 @@ class CalcResult(Result):
         if cached is None:
             n = len(next(iter(self.outputs.values())))
             cols = {k: [num(x) for x in np.asarray(v, float)] for k, v in {**self.values, **self.outputs}.items()}
-            cached = self.__dict__["_rows"] = [{**({"case": self.labels[i]} if self.labels else {}),
-                                               **{k: c[i] for k, c in cols.items()}} for i in range(n)]
+            cached = self.__dict__["_rows"] = [
+                {**({"case": self.labels[i]} if self.labels else {}), **{k: c[i] for k, c in cols.items()}}
+                for i in range(n)
+            ]
         return cached
 
     def payload(self, lazy: bool = False) -> dict:
@@ -65,6 +67,7 @@ class CalcResult(Result):
         import pandas as pd
 
         return {"results": pd.DataFrame(self.rows())}
+
 
 def _labels(values: dict) -> list[str] | None:
     case = values.pop("case", None)
@@ -91,8 +94,11 @@ def _inputs(source, schema: list[Column], options: dict[str, float | None], opti
         if opt is not None:
             v[np.isnan(v)] = opt
         for i in np.flatnonzero(np.isnan(v) if col.name not in optional else []):
-            table.add_problem(i, col.name if col.name in table.columns else None,
-                              f"no value for '{col.name}' (column or --{col.name.replace('_', '-')})")
+            table.add_problem(
+                i,
+                col.name if col.name in table.columns else None,
+                f"no value for '{col.name}' (column or --{col.name.replace('_', '-')})",
+            )
         values[col.name] = v
     table.raise_if_problems()
     if "case" in table.columns:
@@ -101,11 +107,22 @@ def _inputs(source, schema: list[Column], options: dict[str, float | None], opti
     return values, table.notes, table.path
 
 
-def _finish(command: str, title: str, values, outputs, src, notes, labels, opt, source, table=None,
-            figure_data=None) -> CalcResult:
-    return CalcResult(command, values, outputs, src, notes, labels, opt,
-                      [input_file(source, table)] if source is not None else [],
-                      opt.warnings + (table.warnings if table is not None else []), title, figure_data)
+def _finish(
+    command: str, title: str, values, outputs, src, notes, labels, opt, source, table=None, figure_data=None
+) -> CalcResult:
+    return CalcResult(
+        command,
+        values,
+        outputs,
+        src,
+        notes,
+        labels,
+        opt,
+        [input_file(source, table)] if source is not None else [],
+        opt.warnings + (table.warnings if table is not None else []),
+        title,
+        figure_data,
+    )
 
 
 PRISM = [
@@ -127,17 +144,28 @@ class PrismOptions(Options):
 
 def reduce_prism(source, opt: PrismOptions) -> CalcResult:
     """Bernatzik (1948): maximal capillary pressure and capillary rise of a sand prism."""
-    v, notes, src = _inputs(source, PRISM, {"break_tension": opt.break_tension,
-                                            "friction_angle": opt.friction_angle})
+    v, notes, src = _inputs(source, PRISM, {"break_tension": opt.break_tension, "friction_angle": opt.friction_angle})
     table = v.pop("_table", None)
     labels = _labels(v)
     if np.any((v["friction_angle"] <= 0) | (v["friction_angle"] >= 90)):
         raise OptionError("the friction angle must lie between 0 and 90 deg")
     p = calc.prism_capillary_pressure(v["break_tension"], v["friction_angle"])
-    return _finish("prism", f"Prism test ({cite('bernatzik1948')})",
-                   {"break_tension_kPa": v["break_tension"] / 1e3, "friction_angle_deg": v["friction_angle"]},
-                   {"P_kmax_kPa": p / 1e3, "capillary_rise_cm": calc.capillary_rise(p, opt.gamma_w) * 100.0,
-                    "P_kmax_over_sigma_b": p / v["break_tension"]}, src, notes, labels, opt, source, table)
+    return _finish(
+        "prism",
+        f"Prism test ({cite('bernatzik1948')})",
+        {"break_tension_kPa": v["break_tension"] / 1e3, "friction_angle_deg": v["friction_angle"]},
+        {
+            "P_kmax_kPa": p / 1e3,
+            "capillary_rise_cm": calc.capillary_rise(p, opt.gamma_w) * 100.0,
+            "P_kmax_over_sigma_b": p / v["break_tension"],
+        },
+        src,
+        notes,
+        labels,
+        opt,
+        source,
+        table,
+    )
 
 
 def run_prism(source=None, break_tension=None, friction_angle=None, gamma_w=GAMMA_W) -> CalcResult:
@@ -169,8 +197,17 @@ class SkemptonOptions(StableJsonKeys, Options):
     the JSON keeps the option keys ``sr`` and ``kappa``.
     """
 
-    QUANTITIES = {"S_R": "S_R", "b": "B", "kappa_elastic": "kappa_elastic", "e0": "e0", "p0": "p0", "u0": "u0",
-                  "pa0": "pa0", "s_e": "air_entry", "bc_lambda": "bc_lambda"}
+    QUANTITIES = {
+        "S_R": "S_R",
+        "b": "B",
+        "kappa_elastic": "kappa_elastic",
+        "e0": "e0",
+        "p0": "p0",
+        "u0": "u0",
+        "pa0": "pa0",
+        "s_e": "air_entry",
+        "bc_lambda": "bc_lambda",
+    }
     OPTION_NAMES = {"S_R": "--S-R", "kappa_elastic": "--kappa-elastic", "s_e": "--se"}
     JSON_NAMES = {"S_R": "sr", "kappa_elastic": "kappa"}
 
@@ -195,14 +232,26 @@ class SkemptonOptions(StableJsonKeys, Options):
                 "--model elastoplastic: the elasto-plastic B of Morvan et al. (2016), section 4, needs the "
                 "bounding-surface model of Morvan, Wong & Branque (2010), whose equations capred does not have; "
                 "the elastic B (eq. 10), or with --se and --bc-lambda the elastic B with suction equilibrium, is "
-                "what capred computes")
+                "what capred computes"
+            )
         if self.model != "elastic":
             raise OptionError(f"--model must be elastic or elastoplastic (got '{self.model}')")
 
 
 @renamed_keywords(sr="S_R", kappa="kappa_elastic", bc_alpha="bc_lambda")
-def run_skempton_b(source=None, S_R=None, b=None, kappa_elastic=0.006, e0=0.8, p0=100e3, u0=30e3, pa0=130e3,
-                   s_e=None, bc_lambda=None, model="elastic") -> CalcResult:
+def run_skempton_b(
+    source=None,
+    S_R=None,
+    b=None,
+    kappa_elastic=0.006,
+    e0=0.8,
+    p0=100e3,
+    u0=30e3,
+    pa0=130e3,
+    s_e=None,
+    bc_lambda=None,
+    model="elastic",
+) -> CalcResult:
     """Morvan et al. (2016): B from the degree of saturation ``S_R`` [-] (eq. 10), or S_R from a measured B.
 
     ``kappa_elastic`` is the slope of the elastic line in e-ln p' [-]. With ``s_e`` [Pa] and ``bc_lambda``
@@ -211,8 +260,7 @@ def run_skempton_b(source=None, S_R=None, b=None, kappa_elastic=0.006, e0=0.8, p
     one release, with a DeprecationWarning. ``model="elastoplastic"`` (section 4 of the paper) raises
     OptionError: the bounding-surface model it needs (Morvan, Wong & Branque 2010) is not available.
     """
-    return reduce_skempton_b(source, SkemptonOptions(S_R, b, kappa_elastic, e0, p0, u0, pa0, s_e, bc_lambda,
-                                                     model))
+    return reduce_skempton_b(source, SkemptonOptions(S_R, b, kappa_elastic, e0, p0, u0, pa0, s_e, bc_lambda, model))
 
 
 def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
@@ -222,9 +270,12 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     S = np.asarray(res.values.get("S_r", res.outputs.get("S_r")), float)
     B = np.asarray(res.values.get("B", res.outputs.get("B")), float)
     n = S.size
-    params = [np.broadcast_to(np.asarray(res.values.get(k, kw[k.replace("_kPa", "")]), float)
-                              * (1e3 if k.endswith("_kPa") else 1.0), n)
-              for k in ("kappa", "e0", "p0_kPa", "u0_kPa", "pa0_kPa")]
+    params = [
+        np.broadcast_to(
+            np.asarray(res.values.get(k, kw[k.replace("_kPa", "")]), float) * (1e3 if k.endswith("_kPa") else 1.0), n
+        )
+        for k in ("kappa", "e0", "p0_kPa", "u0_kPa", "pa0_kPa")
+    ]
     cases: dict = {}
     for i in range(n):
         key = tuple(float(p[i]) for p in params)
@@ -238,8 +289,10 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
 
 def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda) -> CalcResult:
     """B or S_R per case; the dict keys are the CSV columns and JSON keys (``S_r``, ``kappa``), unchanged."""
-    schema = SKEMPTON + [Column("S_r", "dimensionless", "-", "S_r", ("Sr", "S_R"), "fraction"),
-                         Column("B", "dimensionless", "-", "B", ("skempton_b",), "fraction")]
+    schema = SKEMPTON + [
+        Column("S_r", "dimensionless", "-", "S_r", ("Sr", "S_R"), "fraction"),
+        Column("B", "dimensionless", "-", "B", ("skempton_b",), "fraction"),
+    ]
     given = {"kappa": kappa, "e0": e0, "p0": p0, "u0": u0, "pa0": pa0, "S_r": S_R, "B": b}
     if source is None and (S_R is None) == (b is None):
         raise OptionError("give exactly one of --S-R (or --sr) and --b")
@@ -248,8 +301,9 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda) -> CalcRes
     labels = _labels(v)
     forward = bool(np.all(np.isfinite(v["S_r"])))
     if not forward and not np.all(np.isfinite(v["B"])):
-        raise InputError(Problem(str(src), None, None, "every row needs 'S_r' (to compute B) or every row 'B' "
-                                                          "(to compute S_r)"))
+        raise InputError(
+            Problem(str(src), None, None, "every row needs 'S_r' (to compute B) or every row 'B' (to compute S_r)")
+        )
     v.pop("B" if forward else "S_r")
     suction = s_e is not None and bc_lambda is not None
     if (s_e is None) != (bc_lambda is None):
@@ -257,16 +311,27 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda) -> CalcRes
     p_eff = v["p0"] - v["u0"]
     if np.any(p_eff <= 0):
         raise OptionError("p0 - u0 (initial mean effective stress) must be > 0")
-    ins = {k + "_kPa" if k in ("p0", "u0", "pa0") else k: (x / 1e3 if k in ("p0", "u0", "pa0") else x)
-           for k, x in v.items() if k not in ("S_r", "B")}
+    ins = {
+        k + "_kPa" if k in ("p0", "u0", "pa0") else k: (x / 1e3 if k in ("p0", "u0", "pa0") else x)
+        for k, x in v.items()
+        if k not in ("S_r", "B")
+    }
     if forward:
         if suction:
             B = calc.skempton_b_suction(v["S_r"], v["p0"], v["u0"], v["e0"], v["kappa"], v["pa0"], s_e, bc_lambda)
         else:
             B = calc.skempton_b(v["S_r"], p_eff, v["e0"], v["kappa"], v["pa0"])
-        return CalcResult("skempton-b", {"S_r": v["S_r"], **ins}, {"B": B}, src, notes, labels, title=_B_TITLE,
-                          warnings=table.warnings if table is not None else [],
-                          inputs=[input_file(source, table)] if source is not None else [])
+        return CalcResult(
+            "skempton-b",
+            {"S_r": v["S_r"], **ins},
+            {"B": B},
+            src,
+            notes,
+            labels,
+            title=_B_TITLE,
+            warnings=table.warnings if table is not None else [],
+            inputs=[input_file(source, table)] if source is not None else [],
+        )
     if suction:
         from scipy.optimize import brentq
 
@@ -280,9 +345,17 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda) -> CalcRes
         S = calc.saturation_from_b(v["B"], p_eff, v["e0"], v["kappa"], v["pa0"])
     if np.any(~np.isfinite(S) | (S < 0)):
         notes.append("some B values are below what these parameters give for dry soil: S_r is outside [0, 1] there")
-    return CalcResult("skempton-b", {"B": v["B"], **ins}, {"S_r": S}, src, notes, labels, title=_B_TITLE,
-                      warnings=table.warnings if table is not None else [],
-                      inputs=[input_file(source, table)] if source is not None else [])
+    return CalcResult(
+        "skempton-b",
+        {"B": v["B"], **ins},
+        {"S_r": S},
+        src,
+        notes,
+        labels,
+        title=_B_TITLE,
+        warnings=table.warnings if table is not None else [],
+        inputs=[input_file(source, table)] if source is not None else [],
+    )
 
 
 _B_TITLE = f"Skempton's B and the degree of saturation ({cite('morvan2016', 'eq. 10')})"
@@ -305,8 +378,14 @@ class RumpfOptions(StableJsonKeys, Options):
     strings with units), contact angle [deg]. The keyword ``sr`` still works (DeprecationWarning); the JSON
     keeps the option key ``sr``."""
 
-    QUANTITIES = {"shape_factor": "shape_factor", "void_ratio": "void_ratio", "S_R": "S_R", "diameter": "diameter",
-                  "surface_tension": "surface_tension", "contact_angle": "contact_angle"}
+    QUANTITIES = {
+        "shape_factor": "shape_factor",
+        "void_ratio": "void_ratio",
+        "S_R": "S_R",
+        "diameter": "diameter",
+        "surface_tension": "surface_tension",
+        "contact_angle": "contact_angle",
+    }
     OPTION_NAMES = {"S_R": "--S-R"}
     JSON_NAMES = {"S_R": "sr"}
 
@@ -319,8 +398,15 @@ class RumpfOptions(StableJsonKeys, Options):
 
 
 @renamed_keywords(sr="S_R")
-def run_rumpf(source=None, shape_factor=None, void_ratio=None, S_R=None, diameter=None,
-              surface_tension=SURFACE_TENSION, contact_angle=0.0) -> CalcResult:
+def run_rumpf(
+    source=None,
+    shape_factor=None,
+    void_ratio=None,
+    S_R=None,
+    diameter=None,
+    surface_tension=SURFACE_TENSION,
+    contact_angle=0.0,
+) -> CalcResult:
     """Rumpf's capillary pressure p_cap = -(6/phi)(S_R/e)(gamma/d_p) cos(contact_angle) (Prunier et al. 2024,
     eq. 19); ``contact_angle`` in degrees. The former keyword ``sr`` still works for one release, with a
     DeprecationWarning."""
@@ -329,22 +415,55 @@ def run_rumpf(source=None, shape_factor=None, void_ratio=None, S_R=None, diamete
 
 def reduce_rumpf(source, opt: RumpfOptions) -> CalcResult:
     """p_cap per case (see run_rumpf)."""
-    v, notes, src = _inputs(source, RUMPF, {"shape_factor": opt.shape_factor, "void_ratio": opt.void_ratio,
-                                            "S_r": opt.S_R, "diameter": opt.diameter,
-                                            "surface_tension": opt.surface_tension,
-                                            "contact_angle": opt.contact_angle})
+    v, notes, src = _inputs(
+        source,
+        RUMPF,
+        {
+            "shape_factor": opt.shape_factor,
+            "void_ratio": opt.void_ratio,
+            "S_r": opt.S_R,
+            "diameter": opt.diameter,
+            "surface_tension": opt.surface_tension,
+            "contact_angle": opt.contact_angle,
+        },
+    )
     table = v.pop("_table", None)
     labels = _labels(v)
     if np.any(v["contact_angle"] >= 90):
         raise OptionError("the contact angle must be below 90 deg")
-    p = calc.rumpf_capillary_pressure(v["shape_factor"], v["void_ratio"], v["S_r"], v["diameter"],
-                                      v["surface_tension"], v["contact_angle"])
-    ins = {"shape_factor": v["shape_factor"], "void_ratio": v["void_ratio"], "S_r": v["S_r"],
-           "diameter_mm": v["diameter"] * 1e3, "surface_tension_N_per_m": v["surface_tension"],
-           "contact_angle_deg": v["contact_angle"]}
-    return _finish("rumpf", f"Rumpf's capillary pressure ({cite('prunier2024', 'eq. 19')})", ins,
-                   {"p_cap_kPa": p / 1e3}, src, notes, labels, opt, source, table)
+    p = calc.rumpf_capillary_pressure(
+        v["shape_factor"], v["void_ratio"], v["S_r"], v["diameter"], v["surface_tension"], v["contact_angle"]
+    )
+    ins = {
+        "shape_factor": v["shape_factor"],
+        "void_ratio": v["void_ratio"],
+        "S_r": v["S_r"],
+        "diameter_mm": v["diameter"] * 1e3,
+        "surface_tension_N_per_m": v["surface_tension"],
+        "contact_angle_deg": v["contact_angle"],
+    }
+    return _finish(
+        "rumpf",
+        f"Rumpf's capillary pressure ({cite('prunier2024', 'eq. 19')})",
+        ins,
+        {"p_cap_kPa": p / 1e3},
+        src,
+        notes,
+        labels,
+        opt,
+        source,
+        table,
+    )
 
 
-__all__ = ["run_prism", "run_skempton_b", "run_rumpf", "CalcResult", "PrismOptions", "SkemptonOptions",
-           "RumpfOptions", "InputError", "Problem"]
+__all__ = [
+    "run_prism",
+    "run_skempton_b",
+    "run_rumpf",
+    "CalcResult",
+    "PrismOptions",
+    "SkemptonOptions",
+    "RumpfOptions",
+    "InputError",
+    "Problem",
+]

@@ -14,6 +14,7 @@ References
 Pedrotti, M., Tarantino, A., "Effective stresses for unsaturated states stemming from clay
 microstructure", submitted to Geomechanics for Energy and the Environment: eq. 1-10, Fig. 13-17.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field, fields
@@ -32,14 +33,26 @@ SCHEMA = [
     Column("sigma", "pressure", "kPa", pt.PATH_COLUMNS["sigma"][1], ("total_stress", "mean_stress", "p")),
     Column("u_w", "pressure", "kPa", pt.PATH_COLUMNS["u_w"][1], ("uw", "pore_water_pressure")),
     Column("u_a", "pressure", "kPa", pt.PATH_COLUMNS["u_a"][1], ("ua", "pore_air_pressure")),
-    Column("suction", "pressure", "kPa", "matric suction u_a - u_w (instead of u_w)",
-           ("s", "matric_suction", "ua_uw"), "nonnegative"),
+    Column(
+        "suction",
+        "pressure",
+        "kPa",
+        "matric suction u_a - u_w (instead of u_w)",
+        ("s", "matric_suction", "ua_uw"),
+        "nonnegative",
+    ),
     Column("S_r", "dimensionless", "-", pt.PATH_COLUMNS["S_r"][1], ("Sr", "S_R", "degree_of_saturation")),
 ]
 
 #: the six line parameters: option field -> CLI option
-LINE_OPTIONS = {"lambda_W": "--lambda-w", "kappa_W": "--kappa-w", "e_ncl_W": "--e-ncl-w",
-                "lambda_A": "--lambda-a", "kappa_A": "--kappa-a", "e_ncl_A": "--e-ncl-a"}
+LINE_OPTIONS = {
+    "lambda_W": "--lambda-w",
+    "kappa_W": "--kappa-w",
+    "e_ncl_W": "--e-ncl-w",
+    "lambda_A": "--lambda-a",
+    "kappa_A": "--kappa-a",
+    "e_ncl_A": "--e-ncl-a",
+}
 
 
 @dataclass(frozen=True)
@@ -65,9 +78,17 @@ class PTVolumeOptions(Options):
         Sub-steps per step between two points; default: automatic (|ΔS_r| ≤ 0.002, |Δ ln σ'| ≤ 0.02).
     """
 
-    QUANTITIES = {"lambda_W": "lambda_W", "kappa_W": "kappa_W", "e_ncl_W": "e_ncl_W", "lambda_A": "lambda_A",
-                  "kappa_A": "kappa_A", "e_ncl_A": "e_ncl_A", "reference_stress": "reference_stress",
-                  "initial_yield_W": "initial_yield_W", "initial_yield_A": "initial_yield_A"}
+    QUANTITIES = {
+        "lambda_W": "lambda_W",
+        "kappa_W": "kappa_W",
+        "e_ncl_W": "e_ncl_W",
+        "lambda_A": "lambda_A",
+        "kappa_A": "kappa_A",
+        "e_ncl_A": "e_ncl_A",
+        "reference_stress": "reference_stress",
+        "initial_yield_W": "initial_yield_W",
+        "initial_yield_A": "initial_yield_A",
+    }
     OPTION_NAMES = {**LINE_OPTIONS, "initial_yield_W": "--initial-yield-w", "initial_yield_A": "--initial-yield-a"}
 
     lambda_W: float | None = None
@@ -84,9 +105,11 @@ class PTVolumeOptions(Options):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        if self.substeps is not None and (isinstance(self.substeps, bool)
-                                          or not isinstance(self.substeps, (int, np.integer))
-                                          or not 1 <= self.substeps <= 100_000):
+        if self.substeps is not None and (
+            isinstance(self.substeps, bool)
+            or not isinstance(self.substeps, (int, np.integer))
+            or not 1 <= self.substeps <= 100_000
+        ):
             raise OptionError(f"substeps (--substeps) must be a whole number from 1 to 100000 (got {self.substeps!r})")
         if not isinstance(self.example_kaolin, bool):
             raise OptionError(f"example_kaolin (--example-kaolin) must be True or False (got {self.example_kaolin!r})")
@@ -106,9 +129,12 @@ class PTVolumeOptions(Options):
                 "reconstituted from slurry (W) and compressed from dry powder (A); missing: "
                 + ", ".join(LINE_OPTIONS[k] for k in missing)
                 + " (natural-log slopes lambda, kappa and the ncl void ratio e_ncl at --reference-stress, "
-                  "default 1 kPa), or --example-kaolin for illustrative kaolin values")
-        values = {k: (getattr(self, k) if getattr(self, k) is not None else getattr(pt.EXAMPLE_KAOLIN, k))
-                  for k in LINE_OPTIONS}
+                "default 1 kPa), or --example-kaolin for illustrative kaolin values"
+            )
+        values = {
+            k: (getattr(self, k) if getattr(self, k) is not None else getattr(pt.EXAMPLE_KAOLIN, k))
+            for k in LINE_OPTIONS
+        }
         return pt.PTVolumeParameters(**values, reference_stress=self.reference_stress)
 
 
@@ -166,7 +192,7 @@ class PTVolumePoints:
     sigma_star_A: np.ndarray = output("sigma_star_A_kPa", "sigma_star_A", "kPa", 1e-3)
 
     @classmethod
-    def from_path(cls, path: pt.PTVolumePath) -> "PTVolumePoints":
+    def from_path(cls, path: pt.PTVolumePath) -> PTVolumePoints:
         names = {f.name for f in fields(cls)} - {"suction"}
         return cls(suction=path.u_a - path.u_w, **{k: getattr(path, k) for k in names})
 
@@ -205,8 +231,16 @@ def stage_runs(labels, e, e_W, e_A) -> list[Stage]:
     for i in range(1, len(labels) + 1):
         if i == len(labels) or labels[i] != labels[start]:
             before = max(start - 1, 0)
-            out.append(Stage(str(labels[start]), start, i - 1, float(e[i - 1] - e[before]),
-                             float(e_W[i - 1] - e_W[before]), float(e_A[i - 1] - e_A[before])))
+            out.append(
+                Stage(
+                    str(labels[start]),
+                    start,
+                    i - 1,
+                    float(e[i - 1] - e[before]),
+                    float(e_W[i - 1] - e_W[before]),
+                    float(e_A[i - 1] - e_A[before]),
+                )
+            )
             start = i
     return out
 
@@ -259,10 +293,16 @@ class PTVolumeResult(Result):
 
     def parameters_json(self) -> dict:
         p = self.params
-        return {"lambda_W": num(p.lambda_W), "kappa_W": num(p.kappa_W), "e_ncl_W": num(p.e_ncl_W),
-                "lambda_A": num(p.lambda_A), "kappa_A": num(p.kappa_A), "e_ncl_A": num(p.e_ncl_A),
-                "reference_stress_kPa": num(p.reference_stress / 1e3),
-                "illustrative": self.options.illustrative()}
+        return {
+            "lambda_W": num(p.lambda_W),
+            "kappa_W": num(p.kappa_W),
+            "e_ncl_W": num(p.e_ncl_W),
+            "lambda_A": num(p.lambda_A),
+            "kappa_A": num(p.kappa_A),
+            "e_ncl_A": num(p.e_ncl_A),
+            "reference_stress_kPa": num(p.reference_stress / 1e3),
+            "illustrative": self.options.illustrative(),
+        }
 
     def rows(self) -> list[dict]:
         """JSON rows of the points."""
@@ -286,15 +326,27 @@ class PTVolumeResult(Result):
             "model": f"{cite('pedrotti_tarantino')}, eq. 1-10",
             "parameters": self.parameters_json(),
             "n_points": len(self.step),
-            "e_initial": num(e[0]), "e_final": num(e[-1]),
+            "e_initial": num(e[0]),
+            "e_final": num(e[-1]),
             "substeps": [int(x) for x in self.path.substeps],
             "points": self.rows(),
-            "stages": [{"stage": s.label, "first_step": num(self.step[s.first]), "last_step": num(self.step[s.last]),
-                        "first_line": int(self.line[s.first]), "last_line": int(self.line[s.last]),
-                        "e_end": num(e[s.last]), "de": num(s.de), "de_W": num(s.de_W), "de_A": num(s.de_A),
-                        "S_r_end": num(self.points.S_R[s.last]),
-                        "sigma_W_end_kPa": num(self.points.sigma_W[s.last] / 1e3),
-                        "sigma_A_end_kPa": num(self.points.sigma_A[s.last] / 1e3)} for s in self.stages],
+            "stages": [
+                {
+                    "stage": s.label,
+                    "first_step": num(self.step[s.first]),
+                    "last_step": num(self.step[s.last]),
+                    "first_line": int(self.line[s.first]),
+                    "last_line": int(self.line[s.last]),
+                    "e_end": num(e[s.last]),
+                    "de": num(s.de),
+                    "de_W": num(s.de_W),
+                    "de_A": num(s.de_A),
+                    "S_r_end": num(self.points.S_R[s.last]),
+                    "sigma_W_end_kPa": num(self.points.sigma_W[s.last] / 1e3),
+                    "sigma_A_end_kPa": num(self.points.sigma_A[s.last] / 1e3),
+                }
+                for s in self.stages
+            ],
         }
 
     def tables(self) -> dict:
@@ -318,6 +370,7 @@ class PTVolumeResult(Result):
         cols["fluid_change"] = self.fluid_change()
         out = {"results": pd.DataFrame(cols)}
         if self.stages:
+
             def head(k: str) -> str:
                 if k.endswith("_kPa"):
                     return k[:-4] + " [kPa]"
@@ -328,12 +381,16 @@ class PTVolumeResult(Result):
 
     def method_notes(self) -> tuple[list[str], list[str]]:
         p = self.params
-        text = (f"Lines of this run: slurry (W) λ_W = {p.lambda_W:g}, κ_W = {p.kappa_W:g}, e_ncl,W = {p.e_ncl_W:g}; "
-                f"dry powder (A) λ_A = {p.lambda_A:g}, κ_A = {p.kappa_A:g}, e_ncl,A = {p.e_ncl_A:g}; intercepts at "
-                f"σ_ref = {p.reference_stress / 1e3:g} kPa.")
+        text = (
+            f"Lines of this run: slurry (W) λ_W = {p.lambda_W:g}, κ_W = {p.kappa_W:g}, e_ncl,W = {p.e_ncl_W:g}; "
+            f"dry powder (A) λ_A = {p.lambda_A:g}, κ_A = {p.kappa_A:g}, e_ncl,A = {p.e_ncl_A:g}; intercepts at "
+            f"σ_ref = {p.reference_stress / 1e3:g} kPa."
+        )
         if self.options.illustrative():
-            text += (" " + ", ".join(self.options.illustrative()) + " are the illustrative EXAMPLE_KAOLIN values "
-                     "(not from the paper, which prints none).")
+            text += (
+                " " + ", ".join(self.options.illustrative()) + " are the illustrative EXAMPLE_KAOLIN values "
+                "(not from the paper, which prints none)."
+            )
         return [text], ["pedrotti_tarantino"]
 
 
@@ -395,13 +452,20 @@ def run_pt_volume(source, options: PTVolumeOptions | None = None) -> PTVolumeRes
             table.add_problem(i, where, f"no value for '{name}'")
     table.raise_if_problems()
     for i, col, message in pt.path_problems(sigma, u_w, u_a, S_r):
-        shown = col if col in table.columns else ("suction" if col == "u_w" and "suction" in table.columns
-                                                  else None)
+        shown = col if col in table.columns else ("suction" if col == "u_w" and "suction" in table.columns else None)
         table.add_problem(i if i >= 0 else None, shown, message)
     table.raise_if_problems()
 
-    path = pt.simulate_volume_path(sigma, u_w, u_a, S_r, params=params, initial_yield_W=opt.initial_yield_W,
-                                   initial_yield_A=opt.initial_yield_A, substeps=opt.substeps)
+    path = pt.simulate_volume_path(
+        sigma,
+        u_w,
+        u_a,
+        S_r,
+        params=params,
+        initial_yield_W=opt.initial_yield_W,
+        initial_yield_A=opt.initial_yield_A,
+        substeps=opt.substeps,
+    )
     points = PTVolumePoints.from_path(path)
     n = len(sigma)
     step = table.get("step").copy() if "step" in table.columns else np.arange(n, dtype=float)
@@ -413,14 +477,29 @@ def run_pt_volume(source, options: PTVolumeOptions | None = None) -> PTVolumeRes
 
     warnings = list(opt.warnings) + list(table.warnings)
     if opt.illustrative():
-        warnings.append("lines " + ", ".join(opt.illustrative()) + " are EXAMPLE_KAOLIN: illustrative values for "
-                        "a kaolin, NOT from Pedrotti & Tarantino (who print none) nor from this soil; the void "
-                        "ratios show the model's behaviour, not a prediction")
+        warnings.append(
+            "lines " + ", ".join(opt.illustrative()) + " are EXAMPLE_KAOLIN: illustrative values for "
+            "a kaolin, NOT from Pedrotti & Tarantino (who print none) nor from this soil; the void "
+            "ratios show the model's behaviour, not a prediction"
+        )
     if opt.substeps is None and len(path.substeps):
-        notes.append(f"{int(path.substeps.sum())} sub-steps in all ({len(path.substeps)} steps; automatic: "
-                     "|ΔS_r| ≤ 0.002 and |Δ ln σ'| ≤ 0.02 in each)")
-    return PTVolumeResult(table.path, points, path, step, stage, np.asarray(table.lines, int), stages, opt, notes,
-                          [input_file(source, table)], warnings)
+        notes.append(
+            f"{int(path.substeps.sum())} sub-steps in all ({len(path.substeps)} steps; automatic: "
+            "|ΔS_r| ≤ 0.002 and |Δ ln σ'| ≤ 0.02 in each)"
+        )
+    return PTVolumeResult(
+        table.path,
+        points,
+        path,
+        step,
+        stage,
+        np.asarray(table.lines, int),
+        stages,
+        opt,
+        notes,
+        [input_file(source, table)],
+        warnings,
+    )
 
 
 __all__ = ["run_pt_volume", "PTVolumeOptions", "PTVolumeResult", "PTVolumePoints", "Stage", "SCHEMA"]

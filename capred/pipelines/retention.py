@@ -1,5 +1,6 @@
 """`capred retention`: water-retention models fitted per branch, with uncertainties and model selection,
 and hysteresis fitted jointly (Kool & Parker 1987)."""
+
 from __future__ import annotations
 
 import dataclasses
@@ -15,18 +16,36 @@ from ..fitting.retention_models import confidence_band, fit_hysteresis, fit_mode
 from ..io.table import Column, read_table
 from ..physics.shear import GAMMA_W
 from ..references import cite
-from ..result import InputFile, Options, Result, TableSpec, input_file, num
+from ..result import InputFile, Options, Result, input_file, num
 
 SCHEMA = [
     Column("suction", "pressure", "kPa", "suction", ("s", "matric_suction", "delta_u", "ua_uw"), "nonnegative"),
-    Column("head", "length", "cm", "suction head", ("h", "suction_head", "pressure_head", "z1", "matric_head"),
-           "nonnegative"),
+    Column(
+        "head",
+        "length",
+        "cm",
+        "suction head",
+        ("h", "suction_head", "pressure_head", "z1", "matric_head"),
+        "nonnegative",
+    ),
     Column("pF", "dimensionless", "-", "pF (log10 of the head in cm of water)", ("pf", "p_f"), None),
     Column("S_R", "dimensionless", "-", "S_R", ("Sr", "degree_of_saturation", "saturation"), "fraction"),
-    Column("theta", "dimensionless", "-", "theta", ("theta_vol", "vwc", "water_content_vol", "theta_vol_m3_per_m3",
-                                                     "volumetric_water_content"), "fraction"),
-    Column("w", "dimensionless", "-", "gravimetric water content w", ("gravimetric_water_content", "w_grav",
-                                                                      "water_content"), "nonnegative"),
+    Column(
+        "theta",
+        "dimensionless",
+        "-",
+        "theta",
+        ("theta_vol", "vwc", "water_content_vol", "theta_vol_m3_per_m3", "volumetric_water_content"),
+        "fraction",
+    ),
+    Column(
+        "w",
+        "dimensionless",
+        "-",
+        "gravimetric water content w",
+        ("gravimetric_water_content", "w_grav", "water_content"),
+        "nonnegative",
+    ),
     Column("rho_d", "density", "kg/m^3", "dry density", ("dry_density", "rhod"), "positive"),
     Column("z2", "volume", "cm^3", "air volume z2", ("air_volume", "burette", "V_a"), "nonnegative"),
     Column("V_v", "volume", "cm^3", "void volume V_v", ("Vv", "void_volume"), "positive"),
@@ -37,14 +56,36 @@ SCHEMA = [
 #: the models of `--model all`, in display order
 
 # internal parameter -> (report name, factor SI -> report unit); water quantities named by the data kind
-_REPORT = {"alpha": ("alpha_per_kPa", 1e3), "alpha1": ("alpha1_per_kPa", 1e3), "alpha2": ("alpha2_per_kPa", 1e3),
-           "alpha_d": ("alpha_d_per_kPa", 1e3), "alpha_w": ("alpha_w_per_kPa", 1e3),
-           "s_e": ("s_e_kPa", 1e-3), "s_m": ("s_m_kPa", 1e-3), "a": ("a_kPa", 1e-3), "s_r": ("s_r_kPa", 1e-3),
-           "lam": ("lambda", 1.0), "n": ("n", 1.0), "m": ("m", 1.0), "n1": ("n1", 1.0), "n2": ("n2", 1.0),
-           "w1": ("w1", 1.0), "sigma": ("sigma", 1.0)}
+_REPORT = {
+    "alpha": ("alpha_per_kPa", 1e3),
+    "alpha1": ("alpha1_per_kPa", 1e3),
+    "alpha2": ("alpha2_per_kPa", 1e3),
+    "alpha_d": ("alpha_d_per_kPa", 1e3),
+    "alpha_w": ("alpha_w_per_kPa", 1e3),
+    "s_e": ("s_e_kPa", 1e-3),
+    "s_m": ("s_m_kPa", 1e-3),
+    "a": ("a_kPa", 1e-3),
+    "s_r": ("s_r_kPa", 1e-3),
+    "lam": ("lambda", 1.0),
+    "n": ("n", 1.0),
+    "m": ("m", 1.0),
+    "n1": ("n1", 1.0),
+    "n2": ("n2", 1.0),
+    "w1": ("w1", 1.0),
+    "sigma": ("sigma", 1.0),
+}
 # the same as a head of water [cm] (SWRC Fit and RETC report these)
-_HEAD = {"alpha": "alpha_per_cm", "s_e": "h_b_cm", "s_m": "h_m_cm", "a": "a_cm", "s_r": "h_r_cm",
-         "alpha1": "alpha1_per_cm", "alpha2": "alpha2_per_cm", "alpha_d": "alpha_d_per_cm", "alpha_w": "alpha_w_per_cm"}
+_HEAD = {
+    "alpha": "alpha_per_cm",
+    "s_e": "h_b_cm",
+    "s_m": "h_m_cm",
+    "a": "a_cm",
+    "s_r": "h_r_cm",
+    "alpha1": "alpha1_per_cm",
+    "alpha2": "alpha2_per_cm",
+    "alpha_d": "alpha_d_per_cm",
+    "alpha_w": "alpha_w_per_cm",
+}
 
 
 def _names(quantity: str) -> dict[str, str]:
@@ -96,8 +137,9 @@ class RetentionOptions(Options):
             models = tuple(FITTERS)
         unknown = [m for m in models if m not in FITTERS]
         if unknown or not models:
-            raise OptionError(f"unknown model {unknown[0] if unknown else ''!r}; choose from {', '.join(FITTERS)} "
-                              "or all")
+            raise OptionError(
+                f"unknown model {unknown[0] if unknown else ''!r}; choose from {', '.join(FITTERS)} or all"
+            )
         object.__setattr__(self, "models", models)
         for name in self.fixed:
             try:
@@ -145,36 +187,60 @@ class RetentionResult(Result):
                 out[_HEAD[k]] = num(v * cm if k.startswith("alpha") else v / cm)
         if model in ("vg", "hysteresis") and "n" in f.params:
             out["m"] = num(1 - 1 / f.params["n"])
-        out.update({"r2": num(f.r2), "rmse": num(f.rmse), "aic": num(f.aic), "aicc": num(f.aicc), "bic": num(f.bic),
-                    "rss": num(f.rss), "n_points": f.n, "n_free": f.nfree, "converged": f.converged,
-                    "fixed": [report_name(k, self.quantity) for k in f.fixed],
-                    "at_bounds": [report_name(k, self.quantity) for k in f.at_bounds()],
-                    "correlation": {report_name(a, self.quantity): {report_name(b, self.quantity): num(v)
-                                                                    for b, v in row.items()}
-                                    for a, row in f.correlation().items()},
-                    "params_si": {k: num(v) for k, v in f.params.items()},
-                    "parameters": [report_name(k, self.quantity) for k in f.params],
-                    "held": [report_name(k, self.quantity) for k in getattr(f, "held", ())],
-                    "notes": list(getattr(f, "notes", [])),
-                    "model": FITTERS[model].label if model in FITTERS else model,
-                    "reference": cite(FITTERS[model].reference if model in FITTERS else "kool_parker1987")})
+        out.update(
+            {
+                "r2": num(f.r2),
+                "rmse": num(f.rmse),
+                "aic": num(f.aic),
+                "aicc": num(f.aicc),
+                "bic": num(f.bic),
+                "rss": num(f.rss),
+                "n_points": f.n,
+                "n_free": f.nfree,
+                "converged": f.converged,
+                "fixed": [report_name(k, self.quantity) for k in f.fixed],
+                "at_bounds": [report_name(k, self.quantity) for k in f.at_bounds()],
+                "correlation": {
+                    report_name(a, self.quantity): {report_name(b, self.quantity): num(v) for b, v in row.items()}
+                    for a, row in f.correlation().items()
+                },
+                "params_si": {k: num(v) for k, v in f.params.items()},
+                "parameters": [report_name(k, self.quantity) for k in f.params],
+                "held": [report_name(k, self.quantity) for k in getattr(f, "held", ())],
+                "notes": list(getattr(f, "notes", [])),
+                "model": FITTERS[model].label if model in FITTERS else model,
+                "reference": cite(FITTERS[model].reference if model in FITTERS else "kool_parker1987"),
+            }
+        )
         return out
 
     def model_selection(self, branch: str) -> dict:
         fits = self.fits.get(branch, {})
         weights = akaike_weights({m: f.aicc for m, f in fits.items()})
-        return {m: {"aicc": num(fits[m].aicc), "delta_aicc": num(d), "weight": num(w), "k": fits[m].nfree}
-                for m, (d, w) in weights.items()}
+        return {
+            m: {"aicc": num(fits[m].aicc), "delta_aicc": num(d), "weight": num(w), "k": fits[m].nfree}
+            for m, (d, w) in weights.items()
+        }
 
     def payload(self, lazy: bool = False) -> dict:
-        branches = {b: {"n_points": int(np.sum(self.branch == b)),
-                        "fits": {m: self.fit_json(f, m) for m, f in fits.items()},
-                        "model_selection": self.model_selection(b)}
-                    for b, fits in self.fits.items()}
+        branches = {
+            b: {
+                "n_points": int(np.sum(self.branch == b)),
+                "fits": {m: self.fit_json(f, m) for m, f in fits.items()},
+                "model_selection": self.model_selection(b),
+            }
+            for b, fits in self.fits.items()
+        }
         main = "drying" if "drying" in branches else next(iter(branches), None)
-        out = {"source": self.source, "quantity": self.quantity, "branch_source": self.branch_source,
-               "main_branch": main, "fits": branches[main]["fits"] if main else {}, "branches": branches,
-               "model_selection": branches[main]["model_selection"] if main else {}}
+        out = {
+            "source": self.source,
+            "quantity": self.quantity,
+            "branch_source": self.branch_source,
+            "main_branch": main,
+            "fits": branches[main]["fits"] if main else {},
+            "branches": branches,
+            "model_selection": branches[main]["model_selection"] if main else {},
+        }
         if self.hysteresis is not None:
             h = self.hysteresis
             js = self.fit_json(h, "hysteresis")
@@ -187,11 +253,16 @@ class RetentionResult(Result):
                 ind_aicc = n * np.log(rss / n) + 2 * k + (2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else np.nan)
             keys = [report_name(k, self.quantity) for k in h.params]
             out["hysteresis"] = {
-                "model": "kool-parker", "params": {k: js[k] for k in keys},
+                "model": "kool-parker",
+                "params": {k: js[k] for k in keys},
                 "se": {k: js[f"{k}_se"] for k in keys},
                 "alpha_ratio": num(h.params["alpha_w"] / h.params["alpha_d"]),
-                "rss": js["rss"], "r2": js["r2"], "aicc": js["aicc"], "independent_aicc": num(ind_aicc),
-                "reference": cite("kool_parker1987")}
+                "rss": js["rss"],
+                "r2": js["r2"],
+                "aicc": js["aicc"],
+                "independent_aicc": num(ind_aicc),
+                "reference": cite("kool_parker1987"),
+            }
         return out
 
     def season_rows(self) -> list[dict]:
@@ -204,8 +275,17 @@ class RetentionResult(Result):
             best = min(sel, key=lambda m: (sel[m]["aicc"] is None, sel[m]["aicc"] or 0.0))
             js = self.fit_json(fits[best], best)
             params = {name: js.get(name) for name in js["parameters"]}
-            rows.append({"branch": b, "best_model": best, "n_points": fits[best].n, "r2": js["r2"],
-                         "rmse": js["rmse"], "aicc": js["aicc"], **params})
+            rows.append(
+                {
+                    "branch": b,
+                    "best_model": best,
+                    "n_points": fits[best].n,
+                    "r2": js["r2"],
+                    "rmse": js["rmse"],
+                    "aicc": js["aicc"],
+                    **params,
+                }
+            )
         return rows
 
     def tables(self) -> dict:
@@ -221,8 +301,9 @@ class RetentionResult(Result):
         rows = []
         for b, d in self.payload()["branches"].items():
             for m, v in d["fits"].items():
-                rows.append({"branch": b, "model": m, **{k: x for k, x in v.items()
-                                                         if k not in ("correlation", "params_si")}})
+                rows.append(
+                    {"branch": b, "model": m, **{k: x for k, x in v.items() if k not in ("correlation", "params_si")}}
+                )
         return pd.DataFrame(rows)
 
     def curve(self, branch: str, model: str, s):
@@ -300,8 +381,10 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
     with np.errstate(over="ignore", divide="ignore"):
         span = positive.max() / positive.min() if positive.size else 1.0
     if positive.size and not (np.isfinite(span) and 1e-30 < positive.min() and positive.max() < 1e30):
-        raise FitError(f"{table.path}: suctions from {positive.min():.3g} to {positive.max():.3g} Pa cannot be "
-                       "fitted: check the units of the file and --gamma-w")
+        raise FitError(
+            f"{table.path}: suctions from {positive.min():.3g} to {positive.max():.3g} Pa cannot be "
+            "fitted: check the units of the file and --gamma-w"
+        )
     if "theta" in table.columns or "w" in table.columns:
         quantity = "theta"
         y = table.get("theta").copy()
@@ -339,8 +422,9 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
             fx = {k: v for k, v in fixed_internal.items() if k in FITTERS[m].names}
             n_free = len(FITTERS[m].names) - len(fx)
             if sel.sum() <= n_free:
-                warnings.append(f"branch '{b}': {int(sel.sum())} readings for the {n_free} free parameters of "
-                                f"{m}: not fitted")
+                warnings.append(
+                    f"branch '{b}': {int(sel.sum())} readings for the {n_free} free parameters of {m}: not fitted"
+                )
                 continue
             try:
                 f = dataclasses.replace(fit_model(m, s[sel], y[sel], fx, weights[sel]), quantity=quantity)
@@ -350,8 +434,9 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
             fits[b][m] = f
             for k in f.at_bounds():
                 scale = _report(k)[1] if k not in ("y_s", "y_r") else 1.0
-                warnings.append(f"branch '{b}', model {m}: {report_name(k, quantity)} = {f.params[k] * scale:.6g} "
-                                "lies at its bound")
+                warnings.append(
+                    f"branch '{b}', model {m}: {report_name(k, quantity)} = {f.params[k] * scale:.6g} lies at its bound"
+                )
     if not any(fits.values()):
         raise FitError(f"{table.path}: no model could be fitted to any branch ({'; '.join(warnings[-3:])})")
     fits = {b: f for b, f in fits.items() if f}
@@ -360,13 +445,31 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
         d, w = branch == "drying", branch == "wetting"
         if not (d.any() and w.any()):
             raise OptionError("--hysteresis kool-parker needs a drying and a wetting branch")
-        hyst = fit_hysteresis(s[d], y[d], s[w], y[w], {k: v for k, v in fixed_internal.items()
-                                                       if k in ("y_r", "y_s", "n")},
-                              np.concatenate([weights[d], weights[w]]))
+        hyst = fit_hysteresis(
+            s[d],
+            y[d],
+            s[w],
+            y[w],
+            {k: v for k, v in fixed_internal.items() if k in ("y_r", "y_s", "n")},
+            np.concatenate([weights[d], weights[w]]),
+        )
         if "vg" not in opt.models:
             for b in ("drying", "wetting"):
                 sel = branch == b
-                fits.setdefault(b, {})["vg"] = dataclasses.replace(fit_model("vg", s[sel], y[sel], {}, weights[sel]),
-                                                                   quantity=quantity)
-    return RetentionResult(table.path, quantity, s, y, branch, how, fits, opt, list(table.notes),
-                           [input_file(source, table)], warnings, hyst)
+                fits.setdefault(b, {})["vg"] = dataclasses.replace(
+                    fit_model("vg", s[sel], y[sel], {}, weights[sel]), quantity=quantity
+                )
+    return RetentionResult(
+        table.path,
+        quantity,
+        s,
+        y,
+        branch,
+        how,
+        fits,
+        opt,
+        list(table.notes),
+        [input_file(source, table)],
+        warnings,
+        hyst,
+    )

@@ -5,6 +5,7 @@ dry envelope per material, predicts every wet test with the effective-stress
 models of the registry (by default the four of Evenepoel's thesis) and scores
 them.
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -35,8 +36,14 @@ SCHEMA = [
     Column("cap_mass", "mass", "g", "cap mass", ("m_cap", "top_cap_mass", "cap_weight"), quantity="cap_mass"),
     Column("box_area", "area", "cm^2", "box area", ("A_box", "area", "shear_area"), quantity="box_area"),
     Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius", "r_particle"), quantity="R"),
-    Column("tau_max", "pressure", "kPa", "tau_max", ("tau", "taumax", "shear_strength", "peak_shear_stress"),
-           quantity="tau_max"),
+    Column(
+        "tau_max",
+        "pressure",
+        "kPa",
+        "tau_max",
+        ("tau", "taumax", "shear_strength", "peak_shear_stress"),
+        quantity="tau_max",
+    ),
     Column("F_max", "force", "N", "F_max", ("fmax", "peak_force", "max_force"), quantity="F_max"),
     Column("sigma_N", "pressure", "kPa", "sigma_N", ("sigma_n", "normal_stress", "sigman"), quantity="sigma_N"),
     Column("suction", "pressure", "kPa", "suction", ("delta_u", "matric_suction", "ua_uw"), quantity="suction"),
@@ -44,8 +51,7 @@ SCHEMA = [
     Column("e", "dimensionless", "-", "void ratio e", ("void_ratio", "e0"), quantity="void_ratio"),
     Column("height", "length", "mm", "sample height", ("h", "sample_height", "H0", "H"), quantity="height"),
     Column("rho_d", "density", "kg/m^3", "dry density", ("dry_density", "rhod"), quantity="rho_d"),
-    Column("G_s", "dimensionless", "-", "specific gravity of the solids", ("Gs", "specific_gravity"),
-           quantity="G_s"),
+    Column("G_s", "dimensionless", "-", "specific gravity of the solids", ("Gs", "specific_gravity"), quantity="G_s"),
 ]
 
 
@@ -63,9 +69,16 @@ class ModelParams(Options):
     ``air_entry`` [Pa] and ``vg_alpha`` [1/Pa] also take a unit: ``air_entry="5 kPa"``.
     """
 
-    QUANTITIES = {"air_entry": "air_entry", "vg_alpha": "vg_alpha", "contact_angle": "contact_angle",
-                  "s_res": "S_res", "vanapalli_kappa": "vanapalli_kappa", "vg_n": "vg_n", "vg_m": "vg_m",
-                  "eta": "khalili_eta"}
+    QUANTITIES = {
+        "air_entry": "air_entry",
+        "vg_alpha": "vg_alpha",
+        "contact_angle": "contact_angle",
+        "s_res": "S_res",
+        "vanapalli_kappa": "vanapalli_kappa",
+        "vg_n": "vg_n",
+        "vg_m": "vg_m",
+        "eta": "khalili_eta",
+    }
     OPTION_NAMES = {"s_res": "--s-res", "eta": "--eta"}
 
     s_res: float | None = None  # residual S_R (Vanapalli)
@@ -83,8 +96,9 @@ class ModelParams(Options):
     def require(self, model: str) -> None:
         missing = [opt for name, opt in esm.REGISTRY[model].requires if getattr(self, name) is None]
         if missing:
-            raise OptionError(f"model '{model}' needs {' and '.join(missing)} (or --retention FIT.json "
-                              "written by capred retention)")
+            raise OptionError(
+                f"model '{model}' needs {' and '.join(missing)} (or --retention FIT.json written by capred retention)"
+            )
 
 
 def model_params_from_retention(path: str | Path, **overrides) -> ModelParams:
@@ -109,8 +123,11 @@ def model_params_from_retention(path: str | Path, **overrides) -> ModelParams:
         if "s_res" not in p:
             p["s_res"] = bc["S_res"] if "S_res" in bc else bc["theta_r"] / bc["theta_s"]
     # the best fit (lowest AICc) of any model gives the S_R(s) relation of the shear figures
-    scored = [(f.get("aicc") if f.get("aicc") is not None else np.inf, m) for m, f in fits.items()
-              if isinstance(f, dict) and "params_si" in f]
+    scored = [
+        (f.get("aicc") if f.get("aicc") is not None else np.inf, m)
+        for m, f in fits.items()
+        if isinstance(f, dict) and "params_si" in f
+    ]
     if scored:
         best = min(scored)[1]
         p["retention_model"] = (best, tuple(sorted(fits[best]["params_si"].items())), js.get("quantity", "S_R"))
@@ -129,9 +146,18 @@ class ShearOptions(Options):
     the file wins.
     """
 
-    QUANTITIES = {"gamma_w": "gamma_w", "surface_tension": "surface_tension", "g": "g",
-                  "pendular_limit": "pendular_limit", "box_area": "box_area", "cap_mass": "cap_mass",
-                  "radius": "R", "void_volume": "V_v", "ambient_pressure": "ambient_pressure", "rho_w": "rho_w"}
+    QUANTITIES = {
+        "gamma_w": "gamma_w",
+        "surface_tension": "surface_tension",
+        "g": "g",
+        "pendular_limit": "pendular_limit",
+        "box_area": "box_area",
+        "cap_mass": "cap_mass",
+        "radius": "R",
+        "void_volume": "V_v",
+        "ambient_pressure": "ambient_pressure",
+        "rho_w": "rho_w",
+    }
 
     gamma_w: float = ph.GAMMA_W  # N/m^3
     surface_tension: float = ph.SURFACE_TENSION  # N/m
@@ -155,8 +181,9 @@ class ShearOptions(Options):
     def __post_init__(self) -> None:
         super().__post_init__()
         if self.area_correction not in ("none", "square", "circular"):
-            raise OptionError("area_correction (--area-correction) must be none, square or circular "
-                              f"(got '{self.area_correction}')")
+            raise OptionError(
+                f"area_correction (--area-correction) must be none, square or circular (got '{self.area_correction}')"
+            )
         if self.dry_fit not in ("free", "origin"):
             raise OptionError(f"dry_fit (--dry-fit) must be 'free' or 'origin' (got '{self.dry_fit}')")
         if isinstance(self.bootstrap, bool) or not isinstance(self.bootstrap, int) or self.bootstrap < 0:
@@ -237,16 +264,20 @@ class ShearResult(Result):
         if cached is None:
             import pandas as pd
 
-            cached = self.__dict__["_tables"] = {"results": pd.DataFrame(self._results_columns(), copy=False),
-                                                 "summary": _flat_summary(self)}
+            cached = self.__dict__["_tables"] = {
+                "results": pd.DataFrame(self._results_columns(), copy=False),
+                "summary": _flat_summary(self),
+            }
         return cached
 
     def csv_tables(self) -> dict:
         """The tables as CSV files take them: results as plain columns (no DataFrame is built); made once."""
         cached = self.__dict__.get("_tables") or self.__dict__.get("_csv_tables")
         if cached is None:
-            cached = self.__dict__["_csv_tables"] = {"results": self._results_columns(),
-                                                     "summary": _flat_summary(self, frame=False)}
+            cached = self.__dict__["_csv_tables"] = {
+                "results": self._results_columns(),
+                "summary": _flat_summary(self, frame=False),
+            }
         return cached
 
     def season_rows(self) -> list[dict]:
@@ -256,11 +287,20 @@ class ShearResult(Result):
             f = _fit_dict(fit)
             best = self.best_model.get(m)
             met = self.metrics.get(m, {}).get(best) if best else None
-            rows.append({"material": m, "c [kPa]": f["c_kPa"], "c_se [kPa]": f["c_se_kPa"], "phi [deg]": f["phi_deg"],
-                         "phi_se [deg]": f["phi_se_deg"], "n_dry": f["n"],
-                         "n_wet": int(np.sum((self.tests["material"] == m) & (self.tests["condition"] == "wet"))),
-                         "best_model": best, "best_rmse [kPa]": num(met.rmse / 1e3) if met else None,
-                         "flagged_tests": int(np.sum(flags & (self.tests["material"] == m)))})
+            rows.append(
+                {
+                    "material": m,
+                    "c [kPa]": f["c_kPa"],
+                    "c_se [kPa]": f["c_se_kPa"],
+                    "phi [deg]": f["phi_deg"],
+                    "phi_se [deg]": f["phi_se_deg"],
+                    "n_dry": f["n"],
+                    "n_wet": int(np.sum((self.tests["material"] == m) & (self.tests["condition"] == "wet"))),
+                    "best_model": best,
+                    "best_rmse [kPa]": num(met.rmse / 1e3) if met else None,
+                    "flagged_tests": int(np.sum(flags & (self.tests["material"] == m))),
+                }
+            )
         return rows
 
     def method_notes(self) -> tuple[list[str], list[str]]:
@@ -276,8 +316,9 @@ class ShearResult(Result):
         cache = self.__dict__.setdefault("_relations", {})
         if material not in cache:
             sel = (self.tests["material"] == material) & (self.tests["condition"] == "wet")
-            cache[material] = retention_relation(self.options.model_params, self.tests["suction"][sel],
-                                                 self.tests["S_R"][sel])
+            cache[material] = retention_relation(
+                self.options.model_params, self.tests["suction"][sel], self.tests["S_R"][sel]
+            )
         return cache[material]
 
     def model_curves(self, material: str, sigma_N: float, points: int = 120):
@@ -320,15 +361,27 @@ class ShearResult(Result):
         plain = {k: json_list(t[k][sl]) for k in ("S_R", "chi1")}
         flags = self._flag_texts()[sl]
         ids, mats, conds, lines = (t[k][sl].tolist() for k in ("test_id", "material", "condition", "line"))
-        curve = ({"displacement_at_peak_mm": json_list(t["displacement_at_peak"][sl] * 1e3),
-                  "tau_residual_kPa": json_list(t["tau_residual"][sl] / 1e3),
-                  "dilatancy_angle_deg": json_list(t["dilatancy_angle"][sl])} if "displacement_at_peak" in t else {})
+        curve = (
+            {
+                "displacement_at_peak_mm": json_list(t["displacement_at_peak"][sl] * 1e3),
+                "tau_residual_kPa": json_list(t["tau_residual"][sl] / 1e3),
+                "dilatancy_angle_deg": json_list(t["dilatancy_angle"][sl]),
+            }
+            if "displacement_at_peak" in t
+            else {}
+        )
         columns = {
             **curve,
-            "test_id": list(map(str, ids)), "material": list(map(str, mats)), "condition": list(map(str, conds)),
+            "test_id": list(map(str, ids)),
+            "material": list(map(str, mats)),
+            "condition": list(map(str, conds)),
             "line": list(map(int, lines)),
-            "sigma_N_kPa": kpa["sigma_N"], "suction_kPa": kpa["suction"], "S_R": plain["S_R"],
-            "tau_max_kPa": kpa["tau_max"], "chi1": plain["chi1"], "chi2_kPa": kpa["chi2"],
+            "sigma_N_kPa": kpa["sigma_N"],
+            "suction_kPa": kpa["suction"],
+            "S_R": plain["S_R"],
+            "tau_max_kPa": kpa["tau_max"],
+            "chi1": plain["chi1"],
+            "chi2_kPa": kpa["chi2"],
             **record_json_columns(self.predictions, start, stop, self.level),
             **record_json_columns({None: self.back}, start, stop, self.level),
             "flags": [f.split(";") if f else [] for f in flags],
@@ -342,7 +395,9 @@ class ShearResult(Result):
 
         t = self.tests
         cols: dict[str, object] = {
-            "test_id": t["test_id"], "material": t["material"], "condition": t["condition"],
+            "test_id": t["test_id"],
+            "material": t["material"],
+            "condition": t["condition"],
             "line": t["line"],
         }
         for name in RAW_INPUTS:  # the raw inputs as read, in their documented units
@@ -371,15 +426,18 @@ class ShearResult(Result):
         """(code of each test, text of each code): bit k of a code is the k-th flag (';'-joined in the text)."""
         wet = self.tests["condition"] == "wet"
         S = self.tests["S_R"]
-        parts = [("outside_pendular", wet & (S > self.options.pendular_limit)),
-                 ("chi1_gt_1", wet & (S > ph.CHI1_UNITY_SR))]
+        parts = [
+            ("outside_pendular", wet & (S > self.options.pendular_limit)),
+            ("chi1_gt_1", wet & (S > ph.CHI1_UNITY_SR)),
+        ]
         for model in self.models:
             flag = esm.REGISTRY[model].no_prediction
             if flag is not None:
                 parts.append((flag.name, wet & ~np.isfinite(self.predictions[model].tau)))
         code = sum(mask.astype(int) << k for k, (_, mask) in enumerate(parts))
-        names = np.array([";".join(n for k, (n, _) in enumerate(parts) if c >> k & 1) for c in range(1 << len(parts))],
-                         dtype=object)
+        names = np.array(
+            [";".join(n for k, (n, _) in enumerate(parts) if c >> k & 1) for c in range(1 << len(parts))], dtype=object
+        )
         return code, names
 
     def model_selection(self) -> dict:
@@ -403,8 +461,13 @@ class ShearResult(Result):
                 p = len(law.params) - len(law.fixed) if law is not None else 0
                 p += esm.REGISTRY[m].wet_parameters  # e.g. Fredlund's tan(phi_b), fitted on the wet tests
                 ic = information_criteria(float(r @ r), int(r.size), p)
-                rows[m] = {"k": p + 1, "n": int(r.size), "rss_kPa2": num(float(r @ r) / 1e6),
-                           "aicc": num(ic["aicc"]), "bic": num(ic["bic"])}
+                rows[m] = {
+                    "k": p + 1,
+                    "n": int(r.size),
+                    "rss_kPa2": num(float(r @ r) / 1e6),
+                    "aicc": num(ic["aicc"]),
+                    "bic": num(ic["bic"]),
+                }
             weights = akaike_weights({m: v["aicc"] for m, v in rows.items()})
             for m, (delta, w) in weights.items():
                 rows[m]["delta_aicc"], rows[m]["weight"] = num(delta), num(w)
@@ -417,11 +480,9 @@ class ShearResult(Result):
         for mat, fit in self.fits.items():
             rows.append({"material": mat, "model": "dry_fit", **_fit_dict(fit)})
             for m, met in self.metrics[mat].items():
-                rows.append({"material": mat, "model": m, **_metric_dict(met),
-                             "best": m == self.best_model[mat]})
+                rows.append({"material": mat, "model": m, **_metric_dict(met), "best": m == self.best_model[mat]})
         for m, met in self.metrics_overall.items():
-            rows.append({"material": "(all)", "model": m, **_metric_dict(met),
-                         "best": m == self.best_model_overall})
+            rows.append({"material": "(all)", "model": m, **_metric_dict(met), "best": m == self.best_model_overall})
         return rows
 
     def payload(self, lazy: bool = False) -> dict:
@@ -429,28 +490,38 @@ class ShearResult(Result):
         tests = Rows(n, self._test_rows)
         return {
             "source": self.source,
-            "materials": {m: {**_fit_dict(f),
-                              **({"saturated_envelope": _fit_dict(self.saturated_fits[m])}
-                                 if m in self.saturated_fits else {}),
-                              **{k: (v if isinstance(v, str) else num(v))
-                                 for k, v in self.per_material.get(m, {}).items()}}
-                          for m, f in self.fits.items()},
+            "materials": {
+                m: {
+                    **_fit_dict(f),
+                    **({"saturated_envelope": _fit_dict(self.saturated_fits[m])} if m in self.saturated_fits else {}),
+                    **{k: (v if isinstance(v, str) else num(v)) for k, v in self.per_material.get(m, {}).items()},
+                }
+                for m, f in self.fits.items()
+            },
             "models": list(self.models),
             "tests": tests if lazy else tests.tolist(),
             "metrics": {mat: {m: _metric_dict(v) for m, v in d.items()} for mat, d in self.metrics.items()},
             "metrics_overall": {m: _metric_dict(v) for m, v in self.metrics_overall.items()},
             "best_model": self.best_model,
             "best_model_overall": self.best_model_overall,
-            "metrics_pendular": {mat: {m: _metric_dict(v) for m, v in d.items()}
-                                 for mat, d in self.metrics_pendular.items()},
+            "metrics_pendular": {
+                mat: {m: _metric_dict(v) for m, v in d.items()} for mat, d in self.metrics_pendular.items()
+            },
             "metrics_pendular_overall": {m: _metric_dict(v) for m, v in self.metrics_pendular_overall.items()},
             "best_model_pendular": {m: best_of(v) for m, v in self.metrics_pendular.items()},
             "best_model_pendular_overall": best_of(self.metrics_pendular_overall),
             "best_model_probability": {m: r.probability for m, r in self.ranking.items()},
             "bootstrap": {m: _ranking_dict(r) for m, r in self.ranking.items()},
-            "fitted": {mat: {model: _law_dict(model, law) for model, by_mat in self.laws.items()
-                             for mm, law in by_mat.items() if mm == mat}
-                       for mat in self.materials if any(mat in v for v in self.laws.values())},
+            "fitted": {
+                mat: {
+                    model: _law_dict(model, law)
+                    for model, by_mat in self.laws.items()
+                    for mm, law in by_mat.items()
+                    if mm == mat
+                }
+                for mat in self.materials
+                if any(mat in v for v in self.laws.values())
+            },
             "model_selection": self.model_selection(),
             "dry_fit": self.options.dry_fit,
             "constants": {
@@ -469,24 +540,44 @@ def _law_dict(model: str, law) -> dict:
 
     scale = {"s_b": ("s_b_kPa", 1e-3)}
     params = {scale.get(k, (k, 1.0))[0]: num(v * scale.get(k, (k, 1.0))[1]) for k, v in law.params.items()}
-    se = {scale.get(k, (k, 1.0))[0]: (None if v is None else num(v * scale.get(k, (k, 1.0))[1]))
-          for k, v in law.se.items()}
+    se = {
+        scale.get(k, (k, 1.0))[0]: (None if v is None else num(v * scale.get(k, (k, 1.0))[1]))
+        for k, v in law.se.items()
+    }
     ic = information_criteria(law.rss, law.n, len(law.params) - len(law.fixed))
-    ci = {scale.get(k, (k, 1.0))[0]: (None if v is None else [num(v[0] * scale.get(k, (k, 1.0))[1]),
-                                                               num(v[1] * scale.get(k, (k, 1.0))[1])])
-          for k, v in law.ci95.items()}
-    return {"params": params, "se": se, "ci95": ci, "dof": law.dof, "fixed": list(law.fixed),
-            "rss_kPa2": num(law.rss / 1e6),
-            "aicc": num(ic["aicc"]), "bic": num(ic["bic"]), "n": law.n, "converged": law.converged}
+    ci = {
+        scale.get(k, (k, 1.0))[0]: (
+            None if v is None else [num(v[0] * scale.get(k, (k, 1.0))[1]), num(v[1] * scale.get(k, (k, 1.0))[1])]
+        )
+        for k, v in law.ci95.items()
+    }
+    return {
+        "params": params,
+        "se": se,
+        "ci95": ci,
+        "dof": law.dof,
+        "fixed": list(law.fixed),
+        "rss_kPa2": num(law.rss / 1e6),
+        "aicc": num(ic["aicc"]),
+        "bic": num(ic["bic"]),
+        "n": law.n,
+        "converged": law.converged,
+    }
 
 
 def _ranking_dict(r) -> dict:
     def kpa(pair):
         return None if pair is None else [num(pair[0] / 1e3), num(pair[1] / 1e3)]
 
-    return {"replicates": r.replicates, "seed": r.seed, "best_model_probability": r.probability,
-            "rmse_ci95_kPa": {m: kpa(v) for m, v in r.rmse_ci.items()},
-            "best": r.best, "runner_up": r.runner_up, "rmse_difference_ci95_kPa": kpa(r.difference_ci)}
+    return {
+        "replicates": r.replicates,
+        "seed": r.seed,
+        "best_model_probability": r.probability,
+        "rmse_ci95_kPa": {m: kpa(v) for m, v in r.rmse_ci.items()},
+        "best": r.best,
+        "runner_up": r.runner_up,
+        "rmse_difference_ci95_kPa": kpa(r.difference_ci),
+    }
 
 
 def _fit_dict(fit: LineFit) -> dict:
@@ -563,13 +654,17 @@ def _void_volume(table: Table, opt: ShearOptions, box: np.ndarray) -> np.ndarray
     with np.errstate(invalid="ignore"):
         v_v[from_e] = (box * height * e / (1.0 + e))[from_e]
     for i in np.flatnonzero(from_e & np.isnan(v_v)):
-        table.add_problem(i, "e" if "e" in table.columns else "rho_d",
-                          "V_v from the void ratio needs the sample 'height' and the box area")
+        table.add_problem(
+            i,
+            "e" if "e" in table.columns else "rho_d",
+            "V_v from the void ratio needs the sample 'height' and the box area",
+        )
     return v_v
 
 
-def _derive(table: Table, opt: ShearOptions, box: np.ndarray, tau_curve: np.ndarray | None = None
-            ) -> dict[str, np.ndarray]:
+def _derive(
+    table: Table, opt: ShearOptions, box: np.ndarray, tau_curve: np.ndarray | None = None
+) -> dict[str, np.ndarray]:
     """sigma_N, suction, S_R and tau_max per row; problems go into ``table``.
 
     ``tau_curve`` is the peak of each test's raw curve (NaN where it has none); it wins over tau_max.
@@ -599,10 +694,14 @@ def _derive(table: Table, opt: ShearOptions, box: np.ndarray, tau_curve: np.ndar
     suction[from_head] = ph.suction_from_head(z1, opt.gamma_w)[from_head]
     z_max = ph.cavitation_head(opt.gamma_w, opt.ambient_pressure)
     for i in np.flatnonzero(wet & from_head & (z1 > z_max)):
-        table.add_problem(i, "z1", f"a hanging-column head of {z1[i]:.4g} m is impossible: above "
-                                   f"{z_max:.3g} m the water at the sample would fall below its vapour pressure "
-                                   f"(20 °C, ambient {opt.ambient_pressure / 1e3:.5g} kPa) and cavitate; if the "
-                                   "suction was measured another way, give it in a 'suction' column")
+        table.add_problem(
+            i,
+            "z1",
+            f"a hanging-column head of {z1[i]:.4g} m is impossible: above "
+            f"{z_max:.3g} m the water at the sample would fall below its vapour pressure "
+            f"(20 °C, ambient {opt.ambient_pressure / 1e3:.5g} kPa) and cavitate; if the "
+            "suction was measured another way, give it in a 'suction' column",
+        )
 
     S_R = table.get("S_R").copy()
     from_burette = np.isnan(S_R)
@@ -619,20 +718,32 @@ def _derive(table: Table, opt: ShearOptions, box: np.ndarray, tau_curve: np.ndar
         table.add_problem(i, column, what)
 
     # only rows with something missing or out of range need a look (the rest are fine)
-    look = (np.isnan(sigma_N) | np.isnan(tau) | (wet & (np.isnan(suction) | np.isnan(S_R) | np.isnan(radius)
-                                                      | (from_burette & ((S_R < 0) | (S_R > 1))))))
+    look = (
+        np.isnan(sigma_N)
+        | np.isnan(tau)
+        | (wet & (np.isnan(suction) | np.isnan(S_R) | np.isnan(radius) | (from_burette & ((S_R < 0) | (S_R > 1)))))
+    )
     for i in np.flatnonzero(look):
         if np.isnan(sigma_N[i]):
-            parts = [c for c, v in (("added_mass", added[i]), ("cap_mass", cap[i]), ("box_area", box[i]))
-                     if np.isnan(v)]
+            parts = [
+                c for c, v in (("added_mass", added[i]), ("cap_mass", cap[i]), ("box_area", box[i])) if np.isnan(v)
+            ]
             col = parts[0] if parts and parts[0] in table.columns else None
-            missing(i, "no normal stress: give 'sigma_N', or 'added_mass' with 'cap_mass' and 'box_area' "
-                       f"(missing here: {', '.join(parts)}; cap mass and box area may come from "
-                       "--cap-mass and --box-area)", col)
+            missing(
+                i,
+                "no normal stress: give 'sigma_N', or 'added_mass' with 'cap_mass' and 'box_area' "
+                f"(missing here: {', '.join(parts)}; cap mass and box area may come from "
+                "--cap-mass and --box-area)",
+                col,
+            )
         if np.isnan(tau[i]):
             col = "tau_max" if "tau_max" in table.columns else None
-            missing(i, "no shear strength: give 'tau_max', or 'F_max' with 'box_area'"
-                       + (", or a curve for this test" if tau_curve is not None else ""), col)
+            missing(
+                i,
+                "no shear strength: give 'tau_max', or 'F_max' with 'box_area'"
+                + (", or a curve for this test" if tau_curve is not None else ""),
+                col,
+            )
         if not wet[i]:
             continue
         if np.isnan(suction[i]):
@@ -642,8 +753,12 @@ def _derive(table: Table, opt: ShearOptions, box: np.ndarray, tau_curve: np.ndar
             col = "z2" if "z2" in table.columns else None
             missing(i, "wet test without S_R: give 'S_R', or 'z2' with 'V_v' (or --void-volume)", col)
         elif from_burette[i] and not 0.0 <= S_R[i] <= 1.0:
-            table.add_problem(i, "z2", f"S_R = (V_v - z2)/V_v = {S_R[i]:.4g} lies outside [0, 1]: "
-                                       f"z2 = {table.value_text('z2', i)} exceeds V_v")
+            table.add_problem(
+                i,
+                "z2",
+                f"S_R = (V_v - z2)/V_v = {S_R[i]:.4g} lies outside [0, 1]: "
+                f"z2 = {table.value_text('z2', i)} exceeds V_v",
+            )
         if np.isnan(radius[i]):
             col = "R" if "R" in table.columns else None
             missing(i, "wet test without particle radius: give 'R' or --radius (needed by Own 2)", col)
@@ -726,8 +841,10 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
     if curves is not None and opt.area_correction != "none":
         # sigma_N on the corrected area at the peak, as tau (ASTM D3080 / BS 1377-7 practice)
         d["sigma_N"] = d["sigma_N"] * curves.area_ratio_at_peak
-        table.notes.append(f"--area-correction {opt.area_correction}: tau and sigma_N of the tests with a curve are "
-                           "taken on the corrected contact area at the peak (ASTM D3080, BS 1377-7)")
+        table.notes.append(
+            f"--area-correction {opt.area_correction}: tau and sigma_N of the tests with a curve are "
+            "taken on the corrected contact area at the peak (ASTM D3080, BS 1377-7)"
+        )
     if curves is not None:
         table.problems += curves.problems
     table.raise_if_problems()  # every problem of the file (and of the curves) at once
@@ -742,8 +859,12 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
 
     read = {f"in_{name}": _documented(table, name) for name in RAW_INPUTS if name in table.columns}
     tests: dict[str, np.ndarray] = {
-        "test_id": table.columns["test_id"], "material": mat, "condition": cond, "line": table.lines,
-        **read, **d,
+        "test_id": table.columns["test_id"],
+        "material": mat,
+        "condition": cond,
+        "line": table.lines,
+        **read,
+        **d,
         "chi1": np.where(wet, ph.chi1(d["S_R"]), 0.0),
         "chi2": np.where(wet, ph.chi2(d["S_R"], d["R"], opt.surface_tension), 0.0),
     }
@@ -754,13 +875,26 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         tests.update(curves.per_test())
     warnings = list(opt.warnings) + table.warnings + (curves.warnings if curves else []) + scored["warnings"]
     result = ShearResult(
-        source=table.path, options=opt, tests=tests, fits=fits, metrics=metrics,
-        metrics_overall=overall, best_model={m: best_of(v) for m, v in metrics.items()},
-        best_model_overall=best_of(overall), notes=table.notes, per_material=per_material,
+        source=table.path,
+        options=opt,
+        tests=tests,
+        fits=fits,
+        metrics=metrics,
+        metrics_overall=overall,
+        best_model={m: best_of(v) for m, v in metrics.items()},
+        best_model_overall=best_of(overall),
+        notes=table.notes,
+        per_material=per_material,
         inputs=[input_file(source, table)] + ([input_file(opt.curves, curves.table)] if curves else []),
-        warnings=warnings, metrics_pendular=scored["pendular"],
-        metrics_pendular_overall=scored["overall_pendular"], laws=laws, model_inputs=model_inputs, curves=curves,
-        predictions=predictions, back=back, saturated_fits=saturated_fits,
+        warnings=warnings,
+        metrics_pendular=scored["pendular"],
+        metrics_pendular_overall=scored["overall_pendular"],
+        laws=laws,
+        model_inputs=model_inputs,
+        curves=curves,
+        predictions=predictions,
+        back=back,
+        saturated_fits=saturated_fits,
     )
     if opt.bootstrap > 0:
         result.ranking = _bootstrap(result, wet, mat, cond, opt)
@@ -788,8 +922,16 @@ class _RowProblems:
 
         if value is None and column in self.text:
             value = str(self.text[column][row])
-        self.problems.append(Problem(self.path, int(self.lines[row]), self.headers.get(column, column) if column
-                                     else None, message, self.sheet, value))
+        self.problems.append(
+            Problem(
+                self.path,
+                int(self.lines[row]),
+                self.headers.get(column, column) if column else None,
+                message,
+                self.sheet,
+                value,
+            )
+        )
 
     def raise_if_problems(self) -> None:
         if self.problems:
@@ -865,7 +1007,7 @@ def _sample_rows(wet, mat, suction, materials) -> np.ndarray:
     return np.unique(np.concatenate(parts)).astype(np.int64)
 
 
-def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlocks":
+def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks:
     """`capred shear` on a table of several blocks (capred.io.blocks): memory flat in the number of tests.
 
     Pass 1 reads each block, checks and derives it, keeps the compact per-test arrays of ``_COMPACT`` (and the
@@ -916,10 +1058,12 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
                 mats.append(_interned(table.columns["material"], mat_names))
                 conds.append(_interned(table.columns["condition"], cond_names))
                 hashes.append(np.fromiter(map(hash, ids.tolist()), dtype=np.int64, count=len(ids)))
-                spooled = {"test_id": ids, **{f"in_{name}": _documented(table, name) for name in RAW_INPUTS
-                                              if name in table.columns}}
+                spooled = {
+                    "test_id": ids,
+                    **{f"in_{name}": _documented(table, name) for name in RAW_INPUTS if name in table.columns},
+                }
                 for lo in range(0, len(table), _SPOOL_ROWS):
-                    spool_in.append({k: v[lo:lo + _SPOOL_ROWS] for k, v in spooled.items()})
+                    spool_in.append({k: v[lo : lo + _SPOOL_ROWS] for k, v in spooled.items()})
                     sizes.append(min(_SPOOL_ROWS, len(table) - lo))
                 notes.update(dict.fromkeys(table.notes))
                 warnings.update(dict.fromkeys(table.warnings))
@@ -952,8 +1096,9 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
         tests = _LongTests({"material": mat, "condition": cond, "line": lines_all, **d})
         md = _model_inputs(tests, wet, mat, fits, opt, saturated_fits)
         laws = sa.fit_laws(md, opt.models, list(fits), opt.model_params, fits=fits)
-        md = dataclasses.replace(md, fitted={model: {m: law.params for m, law in by_mat.items()}
-                                             for model, by_mat in laws.items()})
+        md = dataclasses.replace(
+            md, fitted={model: {m: law.params for m, law in by_mat.items()} for model, by_mat in laws.items()}
+        )
         per_material = _material_values(md, wet, mat, fits, opt)
 
         rows = _sample_rows(wet, mat, d["suction"], list(fits))
@@ -966,9 +1111,12 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
             part = {name: d[name][sl] for name in ("sigma_N", "suction", "tau_max")}
             with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
                 preds, back = _predictions(part, wet[sl], md.subset(sl), fits, laws, opt)
-                cols = {"chi1": np.where(wet[sl], ph.chi1(d["S_R"][sl]), 0.0),
-                        "chi2": np.where(wet[sl], ph.chi2(d["S_R"][sl], d["R"][sl], opt.surface_tension), 0.0),
-                        **_flat(preds), **_flat({"back": back})}
+                cols = {
+                    "chi1": np.where(wet[sl], ph.chi1(d["S_R"][sl]), 0.0),
+                    "chi2": np.where(wet[sl], ph.chi2(d["S_R"][sl], d["R"][sl], opt.surface_tension), 0.0),
+                    **_flat(preds),
+                    **_flat({"back": back}),
+                }
             spool_out.append(cols)
             for m in opt.models:
                 taus[m][lo:hi] = preds[m].tau
@@ -986,13 +1134,30 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
         _trim()
         scored = _scores(d, wet, mat, fits, laws, predictions, opt)
         result = ShearBlocks(
-            source=path, options=opt, tests=tests, fits=fits, metrics=scored["metrics"],
-            metrics_overall=scored["overall"], best_model={m: best_of(v) for m, v in scored["metrics"].items()},
-            best_model_overall=best_of(scored["overall"]), notes=list(notes), per_material=per_material,
-            inputs=inputs, warnings=list(opt.warnings) + list(warnings) + scored["warnings"],
-            metrics_pendular=scored["pendular"], metrics_pendular_overall=scored["overall_pendular"], laws=laws,
-            model_inputs=None, curves=None, predictions=predictions, back=back, saturated_fits=saturated_fits,
-            spool_in=spool_in, spool_out=spool_out, starts=starts)
+            source=path,
+            options=opt,
+            tests=tests,
+            fits=fits,
+            metrics=scored["metrics"],
+            metrics_overall=scored["overall"],
+            best_model={m: best_of(v) for m, v in scored["metrics"].items()},
+            best_model_overall=best_of(scored["overall"]),
+            notes=list(notes),
+            per_material=per_material,
+            inputs=inputs,
+            warnings=list(opt.warnings) + list(warnings) + scored["warnings"],
+            metrics_pendular=scored["pendular"],
+            metrics_pendular_overall=scored["overall_pendular"],
+            laws=laws,
+            model_inputs=None,
+            curves=None,
+            predictions=predictions,
+            back=back,
+            saturated_fits=saturated_fits,
+            spool_in=spool_in,
+            spool_out=spool_out,
+            starts=starts,
+        )
         tests.result = result
         # what needs every test's prediction, made now; then the predictions are kept at the sampled rows only
         code, names = ShearResult._flag_codes(result)
@@ -1002,12 +1167,14 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> "ShearBlock
         del predictions, taus
         _trim()
         if opt.bootstrap > 0:
-            result.model_inputs = dataclasses.replace(_model_inputs(tests, wet, mat, fits, opt, saturated_fits),
-                                                      fitted=fitted)
+            result.model_inputs = dataclasses.replace(
+                _model_inputs(tests, wet, mat, fits, opt, saturated_fits), fitted=fitted
+            )
             result.ranking = _bootstrap(result, wet, mat, cond, opt)
         none = {k: d[k][:0] for k in _COMPACT}
         result.model_inputs = dataclasses.replace(  # the fitted laws, no tests
-            _model_inputs(none, wet[:0], mat[:0], fits, opt, saturated_fits), fitted=fitted)
+            _model_inputs(none, wet[:0], mat[:0], fits, opt, saturated_fits), fitted=fitted
+        )
         _trim()
         return result
     except BaseException:
@@ -1060,12 +1227,19 @@ def _scores(d: dict, wet, mat, fits, laws, predictions, opt: ShearOptions) -> di
     metrics, metrics_pend = scores(wet), scores(pend)
     for m in fits:
         metrics.setdefault(m, {})
-    overall = {mod: model_metrics(predictions[mod].tau[wet], d["tau_max"][wet]) for mod in opt.models} \
-        if wet.any() else {}
-    overall_pend = {mod: model_metrics(predictions[mod].tau[pend], d["tau_max"][pend]) for mod in opt.models} \
-        if pend.any() else {}
-    return {"metrics": metrics, "pendular": metrics_pend, "overall": overall, "overall_pendular": overall_pend,
-            "warnings": _warnings(wet, pend, mat, fits, laws, predictions, opt)}
+    overall = (
+        {mod: model_metrics(predictions[mod].tau[wet], d["tau_max"][wet]) for mod in opt.models} if wet.any() else {}
+    )
+    overall_pend = (
+        {mod: model_metrics(predictions[mod].tau[pend], d["tau_max"][pend]) for mod in opt.models} if pend.any() else {}
+    )
+    return {
+        "metrics": metrics,
+        "pendular": metrics_pend,
+        "overall": overall,
+        "overall_pendular": overall_pend,
+        "warnings": _warnings(wet, pend, mat, fits, laws, predictions, opt),
+    }
 
 
 class _LongTests(dict):
@@ -1091,7 +1265,7 @@ class _ResultsBlocks:
     """results.csv of a long run for capred.io.writers.write_csv_file: ``blocks()`` gives each block's columns,
     made from the spools one block at a time; ``columns(start, stop)`` as a Spool's."""
 
-    def __init__(self, result: "ShearBlocks"):
+    def __init__(self, result: ShearBlocks):
         self.result = result
         self.n = int(result.starts[-1])
 
@@ -1117,7 +1291,7 @@ class _LazyColumns(dict):
         if key not in self:
             raise KeyError(key)
         if key == "flags":
-            return np.asarray(self.result._flag_texts()[self.start:self.stop], dtype=object)
+            return np.asarray(self.result._flag_texts()[self.start : self.stop], dtype=object)
         return self.result._columns(self.start, self.stop, key)[key]
 
     def items(self):
@@ -1155,13 +1329,28 @@ class ShearBlocks(ShearResult):
         lo, hi = int(self.starts[k]), int(self.starts[k + 1])
         a, b = self.spool_in.block(k), self.spool_out.block(k)
         t = self.tests
-        tests = {"test_id": a["test_id"], "material": t["material"][lo:hi], "condition": t["condition"][lo:hi],
-                 "line": t["line"][lo:hi], **{key: v for key, v in a.items() if key != "test_id"},
-                 **{key: t[key][lo:hi] for key in _COMPACT}, "chi1": b["chi1"], "chi2": b["chi2"]}
-        part = ShearResult(source=self.source, options=self.options, tests=tests, fits=self.fits, metrics={},
-                           metrics_overall={}, best_model={}, best_model_overall=None,
-                           predictions={m: _record(ModelPrediction, m, b, model=m) for m in self.models},
-                           back=_record(BackAnalysis, "back", b))
+        tests = {
+            "test_id": a["test_id"],
+            "material": t["material"][lo:hi],
+            "condition": t["condition"][lo:hi],
+            "line": t["line"][lo:hi],
+            **{key: v for key, v in a.items() if key != "test_id"},
+            **{key: t[key][lo:hi] for key in _COMPACT},
+            "chi1": b["chi1"],
+            "chi2": b["chi2"],
+        }
+        part = ShearResult(
+            source=self.source,
+            options=self.options,
+            tests=tests,
+            fits=self.fits,
+            metrics={},
+            metrics_overall={},
+            best_model={},
+            best_model_overall=None,
+            predictions={m: _record(ModelPrediction, m, b, model=m) for m in self.models},
+            back=_record(BackAnalysis, "back", b),
+        )
         self.__dict__["_block_cache"] = (k, part)
         return part
 
@@ -1173,7 +1362,7 @@ class ShearBlocks(ShearResult):
             a, b = max(start, lo), min(stop, hi)
             if a < b:
                 cols = self._block(k)._results_columns()
-                parts.append({name: v[a - lo:b - lo] for name, v in cols.items() if key is None or name == key})
+                parts.append({name: v[a - lo : b - lo] for name, v in cols.items() if key is None or name == key})
         if len(parts) == 1:
             return parts[0]
         return {name: np.concatenate([p[name] for p in parts]) for name in parts[0]} if parts else {}
@@ -1204,8 +1393,10 @@ class ShearBlocks(ShearResult):
     def csv_tables(self) -> dict:
         cached = self.__dict__.get("_csv_tables")
         if cached is None:
-            cached = self.__dict__["_csv_tables"] = {"results": _ResultsBlocks(self),
-                                                     "summary": _flat_summary(self, frame=False)}
+            cached = self.__dict__["_csv_tables"] = {
+                "results": _ResultsBlocks(self),
+                "summary": _flat_summary(self, frame=False),
+            }
         return cached
 
     def tables(self) -> dict:
@@ -1216,7 +1407,8 @@ class ShearBlocks(ShearResult):
 
             cached = self.__dict__["_tables"] = {
                 "results": pd.DataFrame(self._columns(0, self.row_count()), copy=False),
-                "summary": _flat_summary(self)}
+                "summary": _flat_summary(self),
+            }
         return cached
 
     def close(self) -> None:
@@ -1243,20 +1435,26 @@ def _warnings(wet, pend, mat, fits, laws, predictions, opt) -> list[str]:
     out = []
     n_wet, n_pend = int(wet.sum()), int(pend.sum())
     if n_wet and n_wet - n_pend > n_wet / 2:
-        out.append(f"{n_wet - n_pend} of {n_wet} wet tests lie outside the pendular regime (S_R > "
-                   f"{opt.pendular_limit:g}) for which the chi approximations were derived; see metrics_pendular "
-                   f"({n_pend} tests)")
+        out.append(
+            f"{n_wet - n_pend} of {n_wet} wet tests lie outside the pendular regime (S_R > "
+            f"{opt.pendular_limit:g}) for which the chi approximations were derived; see metrics_pendular "
+            f"({n_pend} tests)"
+        )
     for m, fit in fits.items():
         k = int(np.sum(wet & (mat == m)))
         if 0 < k < 5:
             out.append(f"material '{m}': the model ranking rests on {k} wet tests (fewer than 5)")
         phi = float(np.degrees(np.arctan(fit.slope)))
         if not 15.0 <= phi <= 60.0:
-            out.append(f"material '{m}': the dry fit gives phi = {phi:.3g}°, outside the usual 15-60° of soils; "
-                       "check the normal stresses and their units")
+            out.append(
+                f"material '{m}': the dry fit gives phi = {phi:.3g}°, outside the usual 15-60° of soils; "
+                "check the normal stresses and their units"
+            )
         if fit.intercept < 0:
-            out.append(f"material '{m}': the dry fit gives c = {fit.intercept / 1e3:.4g} kPa < 0 "
-                       "(try --dry-fit origin for a cohesionless soil)")
+            out.append(
+                f"material '{m}': the dry fit gives c = {fit.intercept / 1e3:.4g} kPa < 0 "
+                "(try --dry-fit origin for a cohesionless soil)"
+            )
         if fit.r2 < 0.9:
             out.append(f"material '{m}': the dry fit has R² = {fit.r2:.3g} < 0.9")
         if fit.n < 5:
@@ -1264,8 +1462,9 @@ def _warnings(wet, pend, mat, fits, laws, predictions, opt) -> list[str]:
     for model, by_mat in laws.items():
         for m, law in by_mat.items():
             for name in law.at_bound:
-                out.append(f"material '{m}': fitted {model} parameter '{name}' = {law.params[name]:.6g} lies at "
-                           "its bound")
+                out.append(
+                    f"material '{m}': fitted {model} parameter '{name}' = {law.params[name]:.6g} lies at its bound"
+                )
     for model in opt.models:
         flag = esm.REGISTRY[model].no_prediction
         k = int(np.sum(wet & ~np.isfinite(predictions[model].tau))) if flag else 0
@@ -1286,10 +1485,22 @@ def _bootstrap(result: ShearResult, wet, mat, cond, opt: ShearOptions) -> dict:
         if not sel.any():
             continue
         dry = (mat == m) & (cond == "dry")
-        ranked = sorted((k for k, v in result.metrics[m].items() if np.isfinite(v.rmse)),
-                        key=lambda k: result.metrics[m][k].rmse)
-        out[m] = sa.bootstrap_ranking(d, t["sigma_N"][dry], t["tau_max"][dry], opt.models, opt.model_params,
-                                      d.fitted, ranked, opt.bootstrap, opt.seed, opt.dry_fit == "origin", rows=sel)
+        ranked = sorted(
+            (k for k, v in result.metrics[m].items() if np.isfinite(v.rmse)), key=lambda k: result.metrics[m][k].rmse
+        )
+        out[m] = sa.bootstrap_ranking(
+            d,
+            t["sigma_N"][dry],
+            t["tau_max"][dry],
+            opt.models,
+            opt.model_params,
+            d.fitted,
+            ranked,
+            opt.bootstrap,
+            opt.seed,
+            opt.dry_fit == "origin",
+            rows=sel,
+        )
     return out
 
 
@@ -1303,7 +1514,9 @@ def _dry_fits(table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[s
         dry = of_m & (cond == "dry")
         first = int(np.argmax(of_m))
         if not dry.any():
-            table.add_problem(first, "condition", f"material '{m}' has no dry test: its envelope c, phi cannot be fitted")
+            table.add_problem(
+                first, "condition", f"material '{m}' has no dry test: its envelope c, phi cannot be fitted"
+            )
             continue
         try:
             fits[m] = fit(d["sigma_N"][dry], d["tau_max"][dry], opt.confidence)
@@ -1324,8 +1537,11 @@ def _saturated_fits(table: Table, d: dict, mat, cond, materials, opt: ShearOptio
         try:
             out[m] = fit_line(d["sigma_N"][sat], d["tau_max"][sat], opt.confidence)
         except FitError as exc:
-            table.add_problem(int(np.flatnonzero(sat)[0]), "condition",
-                              f"material '{m}': the envelope of the saturated tests cannot be fitted: {exc}")
+            table.add_problem(
+                int(np.flatnonzero(sat)[0]),
+                "condition",
+                f"material '{m}': the envelope of the saturated tests cannot be fitted: {exc}",
+            )
     return out
 
 
@@ -1340,8 +1556,9 @@ def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions,
 
     d = _model_inputs(tests, wet, mat, fits, opt, saturated_fits)
     laws = sa.fit_laws(d, opt.models, list(fits), opt.model_params, fits=fits)
-    d = dataclasses.replace(d, fitted={model: {m: law.params for m, law in by_mat.items()}
-                                       for model, by_mat in laws.items()})
+    d = dataclasses.replace(
+        d, fitted={model: {m: law.params for m, law in by_mat.items()} for model, by_mat in laws.items()}
+    )
     predictions, back = _predictions(tests, wet, d, fits, laws, opt)
     return predictions, back, _material_values(d, wet, mat, fits, opt), laws, d
 
@@ -1355,17 +1572,34 @@ def _model_inputs(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOpt
         pad = lambda v: np.append(np.asarray(v, dtype=float), np.nan)[which]  # noqa: E731
         c, tan_phi = pad([fits[m].intercept for m in names]), pad([fits[m].slope for m in names])
         # no saturated envelope at all: None, which every model reads as NaN everywhere (16 bytes a test less)
-        c_sat = pad([saturated_fits[m].intercept if m in saturated_fits else np.nan for m in names]) \
-            if saturated_fits else None
-        tan_phi_sat = pad([saturated_fits[m].slope if m in saturated_fits else np.nan for m in names]) \
-            if saturated_fits else None
+        c_sat = (
+            pad([saturated_fits[m].intercept if m in saturated_fits else np.nan for m in names])
+            if saturated_fits
+            else None
+        )
+        tan_phi_sat = (
+            pad([saturated_fits[m].slope if m in saturated_fits else np.nan for m in names]) if saturated_fits else None
+        )
     else:
         c = np.array([fits[m].intercept for m in mat])
         tan_phi = np.array([fits[m].slope for m in mat])
         c_sat = np.array([saturated_fits[m].intercept if m in saturated_fits else np.nan for m in mat])
         tan_phi_sat = np.array([saturated_fits[m].slope if m in saturated_fits else np.nan for m in mat])
-    return esm.ModelInputs(tests["sigma_N"], tests["suction"], tests["S_R"], tests["R"], tests["tau_max"], wet, mat,
-                           c, tan_phi, opt.surface_tension, opt.model_params, c_sat=c_sat, tan_phi_sat=tan_phi_sat)
+    return esm.ModelInputs(
+        tests["sigma_N"],
+        tests["suction"],
+        tests["S_R"],
+        tests["R"],
+        tests["tau_max"],
+        wet,
+        mat,
+        c,
+        tan_phi,
+        opt.surface_tension,
+        opt.model_params,
+        c_sat=c_sat,
+        tan_phi_sat=tan_phi_sat,
+    )
 
 
 def _codes(values, names: list) -> np.ndarray:
@@ -1389,11 +1623,17 @@ def _predictions(tests: dict, wet, d, fits: dict[str, LineFit], laws: dict, opt:
         # mean band: the dry envelope's (and a fitted law's) uncertainty; prediction interval: plus one test's scatter
         b = sa.tau_bands(model, d, cov, s2, dof, laws, opt.confidence)
         predictions[model] = ModelPrediction(
-            model, sigma_eff=eff, tau=tau, residual=tau - tests["tau_max"], tau_mean_ci=(b.mean_low, b.mean_high),
+            model,
+            sigma_eff=eff,
+            tau=tau,
+            residual=tau - tests["tau_max"],
+            tau_mean_ci=(b.mean_low, b.mean_high),
             tau_prediction_interval=(b.pred_low, b.pred_high),
-            sigma_cap=np.where(wet, (tau - c) / tan_phi - tests["sigma_N"], np.nan))
-    back = sa.back_analysis_intervals(tests["tau_max"], tests["sigma_N"], tests["suction"], c, tan_phi, cov, s2,
-                                      dof, opt.confidence, wet=wet)
+            sigma_cap=np.where(wet, (tau - c) / tan_phi - tests["sigma_N"], np.nan),
+        )
+    back = sa.back_analysis_intervals(
+        tests["tau_max"], tests["sigma_N"], tests["suction"], c, tan_phi, cov, s2, dof, opt.confidence, wet=wet
+    )
     return predictions, back
 
 

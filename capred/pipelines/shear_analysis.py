@@ -23,6 +23,7 @@ References
    doi:10.1007/978-1-4899-4541-9 (ch. 6: bootstrap replications and their Monte-Carlo error; ch. 9:
    resampling cases of a regression).
 """
+
 from __future__ import annotations
 
 import dataclasses
@@ -82,8 +83,7 @@ def back_analysis(tau, sigma_N, suction, c, tan_phi, cov, s2):
     return cap, se, chi, chi_se
 
 
-def back_analysis_intervals(tau, sigma_N, suction, c, tan_phi, cov, s2, dof, confidence: float = 0.95,
-                            wet=None):
+def back_analysis_intervals(tau, sigma_N, suction, c, tan_phi, cov, s2, dof, confidence: float = 0.95, wet=None):
     r"""`back_analysis` with intervals, as the run's record: sigma_cap -/+ t se, chi_back -/+ t se/Delta_u.
 
     .. math:: \sigma_{cap} \mp t_{1-\alpha/2,\,\nu}\,\mathrm{se}(\sigma_{cap}), \qquad
@@ -125,9 +125,15 @@ def back_analysis_intervals(tau, sigma_N, suction, c, tan_phi, cov, s2, dof, con
     def on(v):
         return np.where(keep, v, np.nan)
 
-    return BackAnalysis(sigma_cap=on(cap), sigma_cap_se=on(se), sigma_cap_ci=(on(cap - t * se), on(cap + t * se)),
-                        chi_back=on(chi), chi_back_se=on(chi_se),
-                        chi_back_ci=(on(chi - t * chi_se), on(chi + t * chi_se)), dof=on(nu))
+    return BackAnalysis(
+        sigma_cap=on(cap),
+        sigma_cap_se=on(se),
+        sigma_cap_ci=(on(cap - t * se), on(cap + t * se)),
+        chi_back=on(chi),
+        chi_back_se=on(chi_se),
+        chi_back_ci=(on(chi - t * chi_se), on(chi + t * chi_se)),
+        dof=on(nu),
+    )
 
 
 def _dry_fit(d: esm.ModelInputs, material) -> LineFit | None:
@@ -150,8 +156,9 @@ def _dry_fit(d: esm.ModelInputs, material) -> LineFit | None:
     return fit
 
 
-def fit_laws(d: esm.ModelInputs, models, materials, params, fits: dict[str, LineFit] | None = None
-             ) -> dict[str, dict[str, chi_laws.FittedLaw]]:
+def fit_laws(
+    d: esm.ModelInputs, models, materials, params, fits: dict[str, LineFit] | None = None
+) -> dict[str, dict[str, chi_laws.FittedLaw]]:
     """The fitted chi laws among ``models``, per material, on its wet tests (dry c, phi held).
 
     Each law carries ``se`` and ``ci95`` with the dry fit's uncertainty propagated
@@ -278,8 +285,15 @@ class TauBands:
     confidence: float = 0.95
 
 
-def tau_bands(model: str, d: esm.ModelInputs, cov: np.ndarray, s2: np.ndarray, dof, laws: dict | None = None,
-              confidence: float = 0.95) -> TauBands:
+def tau_bands(
+    model: str,
+    d: esm.ModelInputs,
+    cov: np.ndarray,
+    s2: np.ndarray,
+    dof,
+    laws: dict | None = None,
+    confidence: float = 0.95,
+) -> TauBands:
     r"""Confidence band of the mean and prediction interval of a new test, per test, for one model.
 
     .. math:: \hat\tau \mp t_{1-\alpha/2,\,\nu}\sqrt{g^T V g} \;\;\text{(mean)}, \qquad
@@ -449,9 +463,9 @@ def _pointwise_affine(model: str, d: esm.ModelInputs, probes: dict | None = None
         env_c = np.repeat([c0, c0 + hc, c0], k)
         env_b = np.repeat([b0, b0, b0 + hb], k)
         a0, ac, ab = _tau(model, dataclasses.replace(chunk.subset(idx), c=env_c, tan_phi=env_b)).reshape(3, k)
-        e0[first:first + k] = a0 - chunk.tau_max
-        beta[first:first + k] = (ac - a0) / hc
-        gamma[first:first + k] = (ab - a0) / hb
+        e0[first : first + k] = a0 - chunk.tau_max
+        beta[first : first + k] = (ac - a0) / hc
+        gamma[first : first + k] = (ab - a0) / hb
     if not _all_close(e0[:n] + p["stacked"].tau_max[:n], t0, tol):
         return None  # a chunk predicts its first tests otherwise than the checked set did: it depends on the set
     return e0, beta, gamma
@@ -549,8 +563,19 @@ def _dry_refit(U, dry_x, dry_y, through_origin: bool):
     return ym + sy / n - b * (xm + sx / n), b
 
 
-def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitted: dict, ranked: list[str],
-                      replicates: int, seed: int, through_origin: bool, rows=None) -> RankingUncertainty:
+def bootstrap_ranking(
+    d_mat: esm.ModelInputs,
+    dry_x,
+    dry_y,
+    models,
+    params,
+    fitted: dict,
+    ranked: list[str],
+    replicates: int,
+    seed: int,
+    through_origin: bool,
+    rows=None,
+) -> RankingUncertainty:
     r"""Paired bootstrap over the wet tests of one material, refitting the dry envelope in every replicate.
 
     Each replicate resamples the dry tests (with replacement) and refits c and tan(phi) (redrawing a
@@ -666,18 +691,63 @@ def bootstrap_ranking(d_mat: esm.ModelInputs, dry_x, dry_y, models, params, fitt
             continue
         if kept.size < count:
             U, idx = U[kept], idx[kept]
-        _score_replicates(scores, first + kept, U, idx, nw, d_mat, dry_x, dry_y, through_origin, c0, b0, affine,
-                          affine_cols, F_once, chunks, laws, per_replicate, col, params, fitted, mat)
+        _score_replicates(
+            scores,
+            first + kept,
+            U,
+            idx,
+            nw,
+            d_mat,
+            dry_x,
+            dry_y,
+            through_origin,
+            c0,
+            b0,
+            affine,
+            affine_cols,
+            F_once,
+            chunks,
+            laws,
+            per_replicate,
+            col,
+            params,
+            fitted,
+            mat,
+        )
     return _summarise(scores, models, ranked, seed)
 
 
-def _score_replicates(scores, rows, U, idx, nw, d_mat, dry_x, dry_y, through_origin, c0, b0, affine, affine_cols,
-                      F_once, chunks, laws, per_replicate, col, params, fitted, mat) -> None:
+def _score_replicates(
+    scores,
+    rows,
+    U,
+    idx,
+    nw,
+    d_mat,
+    dry_x,
+    dry_y,
+    through_origin,
+    c0,
+    b0,
+    affine,
+    affine_cols,
+    F_once,
+    chunks,
+    laws,
+    per_replicate,
+    col,
+    params,
+    fitted,
+    mat,
+) -> None:
     """Each model's RMSE in the replicates ``rows`` (dry counts U, wet indices idx of ``nw`` tests) into
     ``scores``; ``d_mat`` (the wet tests) is needed only by fitted laws and models scored replicate by
     replicate."""
-    W = np.bincount((idx + nw * np.arange(idx.shape[0])[:, None]).ravel(),
-                    minlength=idx.shape[0] * nw).reshape(idx.shape).astype(float)
+    W = (
+        np.bincount((idx + nw * np.arange(idx.shape[0])[:, None]).ravel(), minlength=idx.shape[0] * nw)
+        .reshape(idx.shape)
+        .astype(float)
+    )
     c, b = _dry_refit(U, dry_x, dry_y, through_origin)
     dc, db = c - c0, b - b0
     if affine:  # every affine model at once: (replicates, models) arrays of its seven sums
@@ -693,8 +763,9 @@ def _score_replicates(scores, rows, U, idx, nw, d_mat, dry_x, dry_y, through_ori
         wo = np.where(ok, W, 0.0)
         n_ok = wo.sum(axis=1)
         with np.errstate(invalid="ignore", divide="ignore"):
-            scores[rows, col[m]] = np.where(n_ok > 0, np.sqrt((wo * np.where(ok, r, 0.0) ** 2).sum(axis=1)
-                                                              / n_ok), np.nan)
+            scores[rows, col[m]] = np.where(
+                n_ok > 0, np.sqrt((wo * np.where(ok, r, 0.0) ** 2).sum(axis=1) / n_ok), np.nan
+            )
     for k in range(idx.shape[0]) if per_replicate else ():
         w = d_mat.subset(idx[k])
         w = dataclasses.replace(w, c=np.full(nw, c[k]), tan_phi=np.full(nw, b[k]))
@@ -733,8 +804,11 @@ def _summarise(scores: np.ndarray, models: list[str], ranked: list[str], seed: i
         ci = {m: (float(bounds[0, k]), float(bounds[1, k])) for k, m in enumerate(models)}
         diff = (float(bounds[0, -1]), float(bounds[1, -1])) if paired else None
     else:
-        ci = {m: tuple(float(v) for v in _percentiles(scores[finite[:, k], k], (2.5, 97.5)))
-              for k, m in enumerate(models) if finite[:, k].any()}
+        ci = {
+            m: tuple(float(v) for v in _percentiles(scores[finite[:, k], k], (2.5, 97.5)))
+            for k, m in enumerate(models)
+            if finite[:, k].any()
+        }
         dd = dd[np.isfinite(dd)] if paired else None
         diff = tuple(float(v) for v in _percentiles(dd, (2.5, 97.5))) if paired and dd.size else None
     return RankingUncertainty(int(stack.shape[0]), seed, prob, ci, best, runner, diff)
@@ -803,6 +877,7 @@ def fit_dof(fits: dict[str, LineFit], material) -> np.ndarray:
     dof = {m: f.dof for m, f in fits.items()}
     return np.fromiter((dof[m] for m in material), dtype=int, count=len(material))
 
+
 @dataclass
 class RetentionRelation:
     """S_R(s) of a material, for drawing model curves along it."""
@@ -839,13 +914,14 @@ def retention_relation(params, suction, S_R) -> RetentionRelation | None:
         p = dict(items)
         model = MODELS[name]
         scale = 1.0 / p["y_s"] if quantity == "theta" else 1.0  # S_R = theta/theta_s
-        return RetentionRelation(lambda s: model.water(s, **p) * scale,
-                                 f"{model.label} fitted by capred retention")
+        return RetentionRelation(lambda s: model.water(s, **p) * scale, f"{model.label} fitted by capred retention")
     if params.vg_alpha is not None and params.vg_n is not None:
         s_res = params.s_res or 0.0
         a, n, m = params.vg_alpha, params.vg_n, params.vg_m
-        return RetentionRelation(lambda s: vg_water(s, s_res, 1.0, a, n, m),
-                                 f"van Genuchten from the options (α = {a * 1e3:.4g} 1/kPa, n = {n:.4g})")
+        return RetentionRelation(
+            lambda s: vg_water(s, s_res, 1.0, a, n, m),
+            f"van Genuchten from the options (α = {a * 1e3:.4g} 1/kPa, n = {n:.4g})",
+        )
     ok = (suction > 0) & np.isfinite(S_R)
     if ok.sum() < 4 or np.unique(suction[ok]).size < 3:
         return None
@@ -855,16 +931,19 @@ def retention_relation(params, suction, S_R) -> RetentionRelation | None:
     # the same least squares on the distinct (suction, S_R) pairs weighted by their counts: the cost stays that of
     # the distinct states however many tests repeat them (a 100,000-row file has a few dozen per material)
     pairs, counts = np.unique(np.column_stack([suction[ok], S_R[ok]]), axis=0, return_counts=True)
-    s_fit, y_fit, w_fit = ((pairs[:, 0], pairs[:, 1], counts.astype(float)) if pairs.shape[0] >= 5
-                           else (suction[ok], S_R[ok], None))
+    s_fit, y_fit, w_fit = (
+        (pairs[:, 0], pairs[:, 1], counts.astype(float)) if pairs.shape[0] >= 5 else (suction[ok], S_R[ok], None)
+    )
     try:
         f = fit_model("vg", s_fit, y_fit, weights=w_fit)
     except FitError:
         return None
     p = f.params
-    return RetentionRelation(lambda s: vg_water(s, p["y_r"], p["y_s"], p["alpha"], p["n"]),
-                             f"van Genuchten fitted to the tests' own (suction, S_R) pairs (α = "
-                             f"{p['alpha'] * 1e3:.4g} 1/kPa, n = {p['n']:.4g}, R² = {f.r2:.3f})")
+    return RetentionRelation(
+        lambda s: vg_water(s, p["y_r"], p["y_s"], p["alpha"], p["n"]),
+        f"van Genuchten fitted to the tests' own (suction, S_R) pairs (α = "
+        f"{p['alpha'] * 1e3:.4g} 1/kPa, n = {p['n']:.4g}, R² = {f.r2:.3f})",
+    )
 
 
 def model_curves(result, material, relation: RetentionRelation, sigma_N: float, points: int = 120):
@@ -877,10 +956,20 @@ def model_curves(result, material, relation: RetentionRelation, sigma_N: float, 
     S = np.clip(relation.S_R(s), 0.0, 1.0)
     fit = result.fits[material]
     n = s.size
-    d = esm.ModelInputs(np.full(n, sigma_N), s, S, np.full(n, float(np.nanmedian(t["R"][sel]))), np.full(n, np.nan),
-                        np.ones(n, bool), np.array([material] * n, dtype=object), np.full(n, fit.intercept),
-                        np.full(n, fit.slope), result.options.surface_tension, result.options.model_params,
-                        fitted=result.model_inputs.fitted)
+    d = esm.ModelInputs(
+        np.full(n, sigma_N),
+        s,
+        S,
+        np.full(n, float(np.nanmedian(t["R"][sel]))),
+        np.full(n, np.nan),
+        np.ones(n, bool),
+        np.array([material] * n, dtype=object),
+        np.full(n, fit.intercept),
+        np.full(n, fit.slope),
+        result.options.surface_tension,
+        result.options.model_params,
+        fitted=result.model_inputs.fitted,
+    )
     out = {}
     for m in result.models:
         if m == "fredlund":

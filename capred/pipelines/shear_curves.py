@@ -9,6 +9,7 @@ i.e. dilation). tau = F / A_c with the area correction of the box:
 - ``square`` box of side L = sqrt(A): A_c = L (L - delta),
 - ``circular`` box of diameter D: A_c = (D^2/2)(acos(delta/D) - (delta/D) sqrt(1 - (delta/D)^2)).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -19,12 +20,22 @@ from ..io.table import Column, Table, read_table
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier", ("id", "test", "test_no", "sample_id")),
-    Column("displacement", "length", "mm", "horizontal displacement",
-           ("horizontal_displacement", "shear_displacement", "dx", "delta", "disp")),
+    Column(
+        "displacement",
+        "length",
+        "mm",
+        "horizontal displacement",
+        ("horizontal_displacement", "shear_displacement", "dx", "delta", "disp"),
+    ),
     Column("F", "force", "N", "shear force", ("shear_force", "force", "horizontal_force")),
     Column("tau", "pressure", "kPa", "shear stress", ("shear_stress", "tau_kpa")),
-    Column("vertical_displacement", "length", "mm", "vertical displacement",
-           ("dy", "vertical", "dv", "normal_displacement", "vertical_disp")),
+    Column(
+        "vertical_displacement",
+        "length",
+        "mm",
+        "vertical displacement",
+        ("dy", "vertical", "dv", "normal_displacement", "vertical_disp"),
+    ),
 ]
 
 
@@ -68,8 +79,11 @@ class ShearCurves:
     area_ratio_at_peak: np.ndarray | None = None
 
     def per_test(self) -> dict[str, np.ndarray]:
-        return {"displacement_at_peak": self.displacement_at_peak, "tau_residual": self.tau_residual,
-                "dilatancy_angle": self.dilatancy_angle}
+        return {
+            "displacement_at_peak": self.displacement_at_peak,
+            "tau_residual": self.tau_residual,
+            "dilatancy_angle": self.dilatancy_angle,
+        }
 
 
 def pick_peaks(source, tests: Table, box_area: np.ndarray, area_correction: str = "none") -> ShearCurves:
@@ -82,8 +96,14 @@ def pick_peaks(source, tests: Table, box_area: np.ndarray, area_correction: str 
     if "F" not in table.columns and "tau" not in table.columns:
         table.missing_column("F", " (or 'tau')")
     n = len(tests)
-    out = ShearCurves(table, *(np.full(n, np.nan) for _ in range(4)), {}, table.problems, list(table.warnings),
-                      area_ratio_at_peak=np.ones(n))
+    out = ShearCurves(
+        table,
+        *(np.full(n, np.nan) for _ in range(4)),
+        {},
+        table.problems,
+        list(table.warnings),
+        area_ratio_at_peak=np.ones(n),
+    )
     if table.missing or "test_id" not in tests.columns:
         return out
     ids = tests.columns["test_id"]
@@ -102,8 +122,11 @@ def pick_peaks(source, tests: Table, box_area: np.ndarray, area_correction: str 
         else:
             F = table.get("F")[sel]
             if not np.isfinite(box_area[i]):
-                table.add_problem(int(sel[0]), "F", f"test '{tid}': a force curve needs the box area "
-                                                    "('box_area' in the tests table or --box-area)")
+                table.add_problem(
+                    int(sel[0]),
+                    "F",
+                    f"test '{tid}': a force curve needs the box area ('box_area' in the tests table or --box-area)",
+                )
                 continue
             area = corrected_area(box_area[i], d, area_correction)
             with np.errstate(divide="ignore", invalid="ignore"):
@@ -132,6 +155,8 @@ def pick_peaks(source, tests: Table, box_area: np.ndarray, area_correction: str 
             out.area_ratio_at_peak[i] = float(box_area[i] / corrected_area(box_area[i], d[k], area_correction))
         given = tests.get("tau_max")[i]
         if np.isfinite(given) and abs(given - tau[k]) > 0.01 * abs(tau[k]):
-            out.warnings.append(f"test '{tid}': tau_max {given / 1e3:.4g} kPa in the tests table differs by more "
-                                f"than 1 % from the peak of its curve, {tau[k] / 1e3:.4g} kPa (the curve is used)")
+            out.warnings.append(
+                f"test '{tid}': tau_max {given / 1e3:.4g} kPa in the tests table differs by more "
+                f"than 1 % from the peak of its curve, {tau[k] / 1e3:.4g} kPa (the curve is used)"
+            )
     return out

@@ -5,6 +5,7 @@ concerns wet tests only). Values are SI (Pa); JSON keys and results.csv
 columns come from each field's ``output`` metadata through the one mapping
 of capred.result (``record_columns``, ``record_json_columns``).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -42,11 +43,20 @@ class ModelPrediction:
     sigma_eff: np.ndarray = output(None, "sigma_eff_{model}", "kPa", 1e-3)
     tau: np.ndarray = output("tau_pred_kPa", "tau_pred_{model}", "kPa", 1e-3)
     residual: np.ndarray = output("residual_kPa", "residual_{model}", "kPa", 1e-3)
-    tau_prediction_interval: tuple = output("tau_pred_pi{level}_kPa",
-                                            ("tau_pred_{model}_low{level}", "tau_pred_{model}_high{level}"),
-                                            "kPa", 1e-3, pair=True)
-    tau_mean_ci: tuple = output("tau_mean_ci{level}_kPa", ("tau_mean_{model}_low{level}", "tau_mean_{model}_high{level}"),
-                                "kPa", 1e-3, pair=True)
+    tau_prediction_interval: tuple = output(
+        "tau_pred_pi{level}_kPa",
+        ("tau_pred_{model}_low{level}", "tau_pred_{model}_high{level}"),
+        "kPa",
+        1e-3,
+        pair=True,
+    )
+    tau_mean_ci: tuple = output(
+        "tau_mean_ci{level}_kPa",
+        ("tau_mean_{model}_low{level}", "tau_mean_{model}_high{level}"),
+        "kPa",
+        1e-3,
+        pair=True,
+    )
     sigma_cap: np.ndarray = output("sigma_cap_pred_kPa", "sigma_cap_pred_{model}", "kPa", 1e-3)
 
 
@@ -74,8 +84,9 @@ class BackAnalysis:
 
     sigma_cap: np.ndarray = output("sigma_cap_kPa", "sigma_cap", "kPa", 1e-3)
     sigma_cap_se: np.ndarray = output("sigma_cap_se_kPa", "sigma_cap_se", "kPa", 1e-3)
-    sigma_cap_ci: tuple = output("sigma_cap_ci{level}_kPa", ("sigma_cap_low{level}", "sigma_cap_high{level}"),
-                                 "kPa", 1e-3, pair=True)
+    sigma_cap_ci: tuple = output(
+        "sigma_cap_ci{level}_kPa", ("sigma_cap_low{level}", "sigma_cap_high{level}"), "kPa", 1e-3, pair=True
+    )
     chi_back: np.ndarray = output("chi_back", "chi_back")
     chi_back_se: np.ndarray = output("chi_back_se", "chi_back_se")
     chi_back_ci: tuple = output("chi_back_ci{level}", ("chi_back_low{level}", "chi_back_high{level}"), pair=True)
@@ -106,22 +117,28 @@ class Sampled:
         return self.n
 
     def __repr__(self) -> str:
-        return (f"Sampled({self.rows.size} of {self.n} tests kept, e.g. {self.values[:3].tolist()}; every test's "
-                "value is in results.csv or result.table())")
+        return (
+            f"Sampled({self.rows.size} of {self.n} tests kept, e.g. {self.values[:3].tolist()}; every test's "
+            "value is in results.csv or result.table())"
+        )
 
     @property
     def shape(self) -> tuple[int]:
         return (self.n,)
 
     def __array__(self, dtype=None, copy=None):
-        raise TypeError("a long run keeps this per-test array at sampled rows only (Sampled.rows, Sampled.values); "
-                        "every test's value is in results.csv, or in result.table()")
+        raise TypeError(
+            "a long run keeps this per-test array at sampled rows only (Sampled.rows, Sampled.values); "
+            "every test's value is in results.csv, or in result.table()"
+        )
 
     def __getitem__(self, index):
         idx = np.asarray(index)
         if idx.dtype == bool or idx.dtype.kind not in "iu":
-            raise IndexError("a long run keeps this per-test array at sampled rows only: index it with row numbers "
-                             "(the whole column is in results.csv)")
+            raise IndexError(
+                "a long run keeps this per-test array at sampled rows only: index it with row numbers "
+                "(the whole column is in results.csv)"
+            )
         pos = np.searchsorted(self.rows, idx)
         pos_ok = np.minimum(pos, max(self.rows.size - 1, 0))
         if self.rows.size == 0 or np.any(self.rows[pos_ok] != idx):

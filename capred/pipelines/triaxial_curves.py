@@ -19,6 +19,7 @@ pore pressures turn total stresses into effective (saturated) or net
 modulus E_m) the deviator of every reading is corrected before the peak is
 taken (:func:`membrane_correction`).
 """
+
 from __future__ import annotations
 
 import glob
@@ -35,20 +36,44 @@ from ..units import parse_quantity
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier", ("id", "test", "sample_id", "sample")),
-    Column("axial_strain", "dimensionless", "-", "axial strain",
-           ("eps_a", "eps1", "epsilon_1", "axial_strain_pct", "ea", "strain")),
-    Column("q", "pressure", "kPa", "q", ("deviator", "q_kpa", "deviatoric_stress", "deviator_stress",
-                                         "deviatoric_stress_q", "deviator_stress_q")),
-    Column("vol_strain", "dimensionless", "-", "volumetric strain",
-           ("eps_v", "epsilon_v", "volumetric_strain", "volume_strain", "ev")),
+    Column(
+        "axial_strain",
+        "dimensionless",
+        "-",
+        "axial strain",
+        ("eps_a", "eps1", "epsilon_1", "axial_strain_pct", "ea", "strain"),
+    ),
+    Column(
+        "q",
+        "pressure",
+        "kPa",
+        "q",
+        ("deviator", "q_kpa", "deviatoric_stress", "deviator_stress", "deviatoric_stress_q", "deviator_stress_q"),
+    ),
+    Column(
+        "vol_strain",
+        "dimensionless",
+        "-",
+        "volumetric strain",
+        ("eps_v", "epsilon_v", "volumetric_strain", "volume_strain", "ev"),
+    ),
     Column("axial_force", "force", "kN", "axial force", ("force", "axial_load", "load", "deviator_force")),
-    Column("radial_pressure", "pressure", "kPa", "radial (cell) pressure",
-           ("cell_pressure", "confining_pressure", "radial_stress", "sigma3", "radial_pressure_kpa")),
+    Column(
+        "radial_pressure",
+        "pressure",
+        "kPa",
+        "radial (cell) pressure",
+        ("cell_pressure", "confining_pressure", "radial_stress", "sigma3", "radial_pressure_kpa"),
+    ),
     Column("back_pressure", "pressure", "kPa", "back pressure", ("backpressure", "u_b", "back_pressure_kpa")),
-    Column("pore_pressure", "pressure", "kPa", "pore (water) pressure",
-           ("pore_water_pressure", "u_w", "pwp", "base_pore_pressure", "pore_pressure_kpa")),
-    Column("air_pressure", "pressure", "kPa", "pore-air pressure",
-           ("pore_air_pressure", "u_a", "air_pressure_kpa")),
+    Column(
+        "pore_pressure",
+        "pressure",
+        "kPa",
+        "pore (water) pressure",
+        ("pore_water_pressure", "u_w", "pwp", "base_pore_pressure", "pore_pressure_kpa"),
+    ),
+    Column("air_pressure", "pressure", "kPa", "pore-air pressure", ("pore_air_pressure", "u_a", "air_pressure_kpa")),
 ]
 #: the pressures read at the peak of a curve (an export's columns)
 PEAK_PRESSURES = ("radial_pressure", "back_pressure", "pore_pressure", "air_pressure")
@@ -192,9 +217,13 @@ def read_curves(spec, tests: Table | None = None, membrane: tuple[float, float] 
             D0 = np.nan if D0 is None or not np.isfinite(D0) or D0 <= 0 else float(D0)
             if not np.isfinite(q).any() and has_force:
                 if not np.isfinite(D0):
-                    table.add_problem(int(sel[0]), "axial_force", f"test '{tid}': q from the axial force needs the "
-                                      "initial diameter: a column 'D0' in the tests table or a metadata line "
-                                      "'Initial diameter (mm): ...'")
+                    table.add_problem(
+                        int(sel[0]),
+                        "axial_force",
+                        f"test '{tid}': q from the axial force needs the "
+                        "initial diameter: a column 'D0' in the tests table or a metadata line "
+                        "'Initial diameter (mm): ...'",
+                    )
                     continue
                 ea = eps[sel]
                 ev = table.get("vol_strain")[sel]
@@ -204,13 +233,20 @@ def read_curves(spec, tests: Table | None = None, membrane: tuple[float, float] 
             dq = np.zeros(len(sel))
             if membrane is not None:
                 if not np.isfinite(D0):
-                    table.add_problem(int(sel[0]), "axial_strain" if "axial_strain" in table.columns else None,
-                                      f"test '{tid}': the membrane correction needs the diameter: a column 'D0' in "
-                                      "the tests table or a metadata line 'Initial diameter (mm): ...'")
+                    table.add_problem(
+                        int(sel[0]),
+                        "axial_strain" if "axial_strain" in table.columns else None,
+                        f"test '{tid}': the membrane correction needs the diameter: a column 'D0' in "
+                        "the tests table or a metadata line 'Initial diameter (mm): ...'",
+                    )
                     continue
                 if "axial_strain" not in table.columns:
-                    table.add_problem(int(sel[0]), None, f"test '{tid}': the membrane correction needs the axial "
-                                                         "strain of every reading (column 'axial_strain')")
+                    table.add_problem(
+                        int(sel[0]),
+                        None,
+                        f"test '{tid}': the membrane correction needs the axial "
+                        "strain of every reading (column 'axial_strain')",
+                    )
                     continue
                 dq = membrane_correction(np.where(np.isfinite(eps[sel]), eps[sel], 0.0), D0, *membrane)
                 q = q - dq

@@ -13,6 +13,7 @@ F* = F / (2 pi gamma R2), filling angles in degrees (delta1 on the smaller
 particle). Every row is the exact stable bridge at its (d*, uc*): nothing is
 interpolated.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -21,7 +22,7 @@ import numpy as np
 
 from ..errors import OptionError
 from ..physics import bridge as br
-from ..result import InputFile, Options, Result, TableSpec
+from ..result import InputFile, Options, Result
 
 DEFAULT_RATIOS = (1.0, 1.1, 1.25, 1.5, 1.75, 2.0, 3.0, 4.0, 5.0, 10.0)
 #: the ratios YADE's law opens (its list is fixed in the C++ source)
@@ -46,8 +47,9 @@ class YadeOptions(Options):
         super().__post_init__()
         object.__setattr__(self, "ratios", tuple(float(r) for r in self.ratios))
         if not self.ratios or any(not np.isfinite(r) or r < 1 for r in self.ratios):
-            raise OptionError("--ratios: radius ratios R2/R1 must be finite numbers >= 1 (the larger over the "
-                              "smaller radius)")
+            raise OptionError(
+                "--ratios: radius ratios R2/R1 must be finite numbers >= 1 (the larger over the smaller radius)"
+            )
         if len(set(self.ratios)) != len(self.ratios):
             raise OptionError("--ratios: each ratio once")
         if not 0 <= self.contact_angle < 90:
@@ -79,7 +81,7 @@ class CapillaryFile:
         start = 0
         for c in self.counts:
             lines.append(f"{int(c)} 0 0 0 0 0 0 0")
-            lines.extend("\t".join(repr(float(v)) for v in row) for row in self.rows[start:start + c])
+            lines.extend("\t".join(repr(float(v)) for v in row) for row in self.rows[start : start + c])
             start += c
         return "\n".join(lines) + "\n"
 
@@ -112,13 +114,24 @@ def capillary_file(ratio: float, contact_angle_rad: float, n_dist: int = 80, n_s
         beta[-1, 0], status[-1, 0] = b_star, 0
     ok = status == 0
     b = br.bridge(beta[ok], theta, U_grid[ok], r)
-    rows = np.column_stack([D_grid[ok] / r, U_grid[ok] * r, b.volume / r**3, b.force / (2.0 * r),
-                            np.degrees(beta[ok]), np.degrees(b.delta2), b.nn11 / r**2, b.nn33 / r**2])
+    rows = np.column_stack(
+        [
+            D_grid[ok] / r,
+            U_grid[ok] * r,
+            b.volume / r**3,
+            b.force / (2.0 * r),
+            np.degrees(beta[ok]),
+            np.degrees(b.delta2),
+            b.nn11 / r**2,
+            b.nn33 / r**2,
+        ]
+    )
     return CapillaryFile(r, D_max / r, s_max * r, d, uc, rows, ok.sum(axis=1))
 
 
 def _suction_at_mean_filling_angle(theta: float, r: float, target: float) -> float:
     """s* (R1 units) of the bridge at contact with (delta1 + delta2) / 2 = target [rad]."""
+
     def mean_angle(log_y0):
         y0 = np.exp(np.atleast_1d(log_y0))
         n = y0.size
@@ -129,8 +142,13 @@ def _suction_at_mean_filling_angle(theta: float, r: float, target: float) -> flo
     logs = np.linspace(np.log(1e-6), np.log(0.5), 60)
     m, _ = mean_angle(logs)
     k = int(np.flatnonzero(np.isfinite(m) & (m >= target))[0])
-    root = br._illinois(lambda x, i: target - mean_angle(x)[0], np.array([logs[k - 1]]), np.array([logs[k]]),
-                        np.array([target - m[k - 1]]), np.array([target - m[k]]))
+    root = br._illinois(
+        lambda x, i: target - mean_angle(x)[0],
+        np.array([logs[k - 1]]),
+        np.array([logs[k]]),
+        np.array([target - m[k - 1]]),
+        np.array([target - m[k]]),
+    )
     return float(mean_angle(root)[1][0])
 
 
@@ -148,13 +166,21 @@ class YadeResult(Result):
     notes: list[str] = field(default_factory=list)
 
     def summary_rows(self) -> list[dict]:
-        return [{"file": file_name(f.ratio), "ratio": f.ratio, "d_star_max": f.d_max, "uc_star_max": f.uc_max,
-                 "distances": int(len(f.counts)), "bridges": int(f.rows.shape[0]),
-                 "smallest_block": int(f.counts.min())} for f in self.files]
+        return [
+            {
+                "file": file_name(f.ratio),
+                "ratio": f.ratio,
+                "d_star_max": f.d_max,
+                "uc_star_max": f.uc_max,
+                "distances": int(len(f.counts)),
+                "bridges": int(f.rows.shape[0]),
+                "smallest_block": int(f.counts.min()),
+            }
+            for f in self.files
+        ]
 
     def payload(self, lazy: bool = False) -> dict:
-        return {"contact_angle_deg": self.options.contact_angle if self.options else 0.0,
-                "files": self.summary_rows()}
+        return {"contact_angle_deg": self.options.contact_angle if self.options else 0.0, "files": self.summary_rows()}
 
     def tables(self) -> dict:
         import pandas as pd
@@ -164,16 +190,21 @@ class YadeResult(Result):
     def extra_files(self) -> dict[str, bytes]:
         return {file_name(f.ratio): f.text().encode("ascii") for f in self.files}
 
+
 def reduce_yade_files(source, opt: YadeOptions) -> YadeResult:
     """Every capillary file of ``opt.ratios`` (``source`` is unused: the files need no input)."""
     contact_angle_rad = np.radians(opt.contact_angle)
     from ..progress import steps
 
-    files = [capillary_file(r, contact_angle_rad, opt.distances, opt.suctions)
-             for r in steps(opt.ratios, "capred: capillary files", len(opt.ratios))]
+    files = [
+        capillary_file(r, contact_angle_rad, opt.distances, opt.suctions)
+        for r in steps(opt.ratios, "capred: capillary files", len(opt.ratios))
+    ]
     res = YadeResult(files, opt, [], list(opt.warnings))
     odd = [r for r in opt.ratios if r not in YADE_RATIOS]
     if odd:
-        res.warnings.append("YADE's capillary law opens only the files of r = 1, 1.1, 1.25, 1.5, 1.75, 2, 3, 4, 5 "
-                            f"and 10; the files of r = {', '.join(f'{r:g}' for r in odd)} are for other codes")
+        res.warnings.append(
+            "YADE's capillary law opens only the files of r = 1, 1.1, 1.25, 1.5, 1.75, 2, 3, 4, 5 "
+            f"and 10; the files of r = {', '.join(f'{r:g}' for r in odd)} are for other codes"
+        )
     return res

@@ -1,4 +1,5 @@
 """Figure sheets of `capred bridge`: Evenepoel's analytical comparison and the micro-test checks."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -31,18 +32,28 @@ def plot_curve(ax, curve, inside: bool):
 
 
 def sheet_curve(curve) -> Sheet:
-    return Sheet(f"Effective stress of a pendular bridge against the degree of saturation, spheres in contact "
-                 f"(R = {curve.R * 1e3:g} mm, γ = {curve.gamma:g} N/m, θ = {np.degrees(curve.contact_angle_rad):g}°)", [
-                     Panel("pendular", lambda ax: plot_curve(ax, curve, True),
-                           "σ' = F_cap/(πR²) against S_R = 3V_w/(2πR³) inside the pendular regime: the exact "
-                           "bridge against the approximations."),
-                     Panel("concave_range", lambda ax: plot_curve(ax, curve, False),
-                           "Over the whole range of concave bridges."),
-                 ], 2)
+    return Sheet(
+        f"Effective stress of a pendular bridge against the degree of saturation, spheres in contact "
+        f"(R = {curve.R * 1e3:g} mm, γ = {curve.gamma:g} N/m, θ = {np.degrees(curve.contact_angle_rad):g}°)",
+        [
+            Panel(
+                "pendular",
+                lambda ax: plot_curve(ax, curve, True),
+                "σ' = F_cap/(πR²) against S_R = 3V_w/(2πR³) inside the pendular regime: the exact "
+                "bridge against the approximations.",
+            ),
+            Panel("concave_range", lambda ax: plot_curve(ax, curve, False), "Over the whole range of concave bridges."),
+        ],
+        2,
+    )
 
 
-COMPARE_LABEL = {"exact": "exact bridge", "toroidal": "toroidal", "willett": "Willett et al. (2000)",
-                 "israelachvili": "Israelachvili"}
+COMPARE_LABEL = {
+    "exact": "exact bridge",
+    "toroidal": "toroidal",
+    "willett": "Willett et al. (2000)",
+    "israelachvili": "Israelachvili",
+}
 
 
 def plot_compare(ax, rows):
@@ -61,10 +72,18 @@ def plot_compare(ax, rows):
 
 
 def sheet_compare(rows) -> Sheet:
-    return Sheet("Measured capillary forces against theory", [
-        Panel("measured_vs_predicted", untitled(lambda ax: plot_compare(ax, rows)),
-              "Each sphere pair's measured force against the exact bridge of the same R, gap, contact angle and "
-              "volume, the toroidal approximation, Willett et al. (2000) and Israelachvili.")], 1)
+    return Sheet(
+        "Measured capillary forces against theory",
+        [
+            Panel(
+                "measured_vs_predicted",
+                untitled(lambda ax: plot_compare(ax, rows)),
+                "Each sphere pair's measured force against the exact bridge of the same R, gap, contact angle and "
+                "volume, the toroidal approximation, Willett et al. (2000) and Israelachvili.",
+            )
+        ],
+        1,
+    )
 
 
 def plot_rupture(ax, rows):
@@ -78,10 +97,19 @@ def plot_rupture(ax, rows):
         sel = [r for r in ok if r["contact_angle_deg"] == th]
         colour = palette[k % len(palette)]
         x = np.array([r["V_w_mm3"] for r in sel]) ** (1 / 3)
-        ax.plot(x, [r["D_rupture_mm"] for r in sel], ls="none", marker=markers[k % len(markers)], color=colour,
-                ms=5, label=rf"exact, $\theta$ = {th:g}°")
+        ax.plot(
+            x,
+            [r["D_rupture_mm"] for r in sel],
+            ls="none",
+            marker=markers[k % len(markers)],
+            color=colour,
+            ms=5,
+            label=rf"exact, $\theta$ = {th:g}°",
+        )
         xs = np.linspace(0, x_hi * 1.05, 50)
-        ax.plot(xs, (1 + np.radians(th) / 2) * xs, color=colour, lw=1.0, ls="--", label=rf"Lian et al., $\theta$ = {th:g}°")
+        ax.plot(
+            xs, (1 + np.radians(th) / 2) * xs, color=colour, lw=1.0, ls="--", label=rf"Lian et al., $\theta$ = {th:g}°"
+        )
     ax.set_xlabel(LABEL["V13"])
     ax.set_ylabel(LABEL["D_rupture"])
     ax.set_title("Rupture at constant volume")
@@ -92,7 +120,15 @@ def plot_rupture(ax, rows):
 
 
 def sheet_rupture(rows) -> Sheet:
-    return Sheet("Rupture distance of pendular bridges against Lian et al. (1993)", [
-        Panel("rupture_vs_lian", untitled(lambda ax: plot_rupture(ax, rows)),
-              "Exact rupture distance (widest gap spanned at constant volume) against the cube root of the water "
-              "volume, with Lian et al.'s estimate D = (1 + θ/2) V_w^(1/3) (θ in rad), one line style each.")], 1)
+    return Sheet(
+        "Rupture distance of pendular bridges against Lian et al. (1993)",
+        [
+            Panel(
+                "rupture_vs_lian",
+                untitled(lambda ax: plot_rupture(ax, rows)),
+                "Exact rupture distance (widest gap spanned at constant volume) against the cube root of the water "
+                "volume, with Lian et al.'s estimate D = (1 + θ/2) V_w^(1/3) (θ in rad), one line style each.",
+            )
+        ],
+        1,
+    )

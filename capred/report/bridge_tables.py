@@ -1,4 +1,5 @@
 """Console (and HTML) tables of `capred bridge ...`."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -6,9 +7,20 @@ import numpy as np
 from ..result import TableSpec
 from .render import MAX_ROWS, row_table, spec
 
+
 def bridge_solve_tables(result) -> list[TableSpec]:
-    keys = ["case", "r0_mm", "F_cap_mN", "V_w_mm3", "filling_angle_deg", "filling_angle2_deg", "suction_kPa", "S_R",
-            "sigma_prime_kPa", "status"]
+    keys = [
+        "case",
+        "r0_mm",
+        "F_cap_mN",
+        "V_w_mm3",
+        "filling_angle_deg",
+        "filling_angle2_deg",
+        "suction_kPa",
+        "S_R",
+        "sigma_prime_kPa",
+        "status",
+    ]
     rows = result.rows_range(0, MAX_ROWS)
     codes, counts = np.unique(result.status, return_counts=True)
     summary = spec("Bridges solved", ["status", "rows"])

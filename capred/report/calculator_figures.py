@@ -1,5 +1,6 @@
 """Figure sheet of `capred skempton-b`: B against S_r, and the parameter studies of Morvan et al. (2016),
 Fig. 2, 3 and 5. Each computed case is drawn on the curve of its own parameters."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -31,12 +32,20 @@ def plot_cases(ax, cases, s_e=None, bc_lambda=None):
     for k, (params, pts) in enumerate(cases.items()):
         kappa, e0, p0, u0, pa0 = params
         color = _COLORS[k % len(_COLORS)]
-        label = (rf"$\kappa$ = {kappa:g}, $e_0$ = {e0:g}, $p'_0$ = {(p0 - u0) / 1e3:g} kPa, "
-                 rf"$P_{{a0}}$ = {pa0 / 1e3:g} kPa")
+        label = (
+            rf"$\kappa$ = {kappa:g}, $e_0$ = {e0:g}, $p'_0$ = {(p0 - u0) / 1e3:g} kPa, "
+            rf"$P_{{a0}}$ = {pa0 / 1e3:g} kPa"
+        )
         ax.plot(S, calc.skempton_b(S, p0 - u0, e0, kappa, pa0), "-", color=color, lw=1.2, label=label)
         if s_e is not None:
-            ax.plot(S, calc.skempton_b_suction(S, p0, u0, e0, kappa, pa0, s_e, bc_lambda), "--", color=color, lw=1.0,
-                    label=rf"  with suction ($s_e$ = {s_e / 1e3:g} kPa, $\lambda$ = {bc_lambda:g})")
+            ax.plot(
+                S,
+                calc.skempton_b_suction(S, p0, u0, e0, kappa, pa0, s_e, bc_lambda),
+                "--",
+                color=color,
+                lw=1.0,
+                label=rf"  with suction ($s_e$ = {s_e / 1e3:g} kPa, $\lambda$ = {bc_lambda:g})",
+            )
         ax.plot(pts[0], pts[1], "o", color=color, ms=5, ls="none", label="  computed cases")
     return _axes(ax, "Computed cases on their own curves")
 
@@ -59,14 +68,25 @@ def sheet_skempton(cases: dict, kappa, e0, p0, u0, pa0, s_e=None, bc_lambda=None
 
     def se_study(ax):
         for j, se in enumerate((5e3, 20e3, 100e3, 1000e3)):
-            ax.plot(S, calc.skempton_b_suction(S, p0, u0, e0, kappa, pa0, se, lam), label=f"$s_e$ = {se / 1e3:g} kPa",
-                    **_line(j))
+            ax.plot(
+                S,
+                calc.skempton_b_suction(S, p0, u0, e0, kappa, pa0, se, lam),
+                label=f"$s_e$ = {se / 1e3:g} kPa",
+                **_line(j),
+            )
         return _axes(ax, rf"Effect of $s_e$, $\lambda$ = {lam:g} (Morvan et al. 2016, Fig. 5)")
 
-    return Sheet("Skempton's B against the degree of saturation", [
-        Panel("cases", lambda ax: plot_cases(ax, cases, s_e, bc_lambda), "B(S_r) of eq. 10 for each parameter set "
-              "of the computed cases, the cases on their own curve."),
-        Panel("kappa", kappa_study, "Effect of the slope κ of the elastic line."),
-        Panel("e0", e0_study, "Effect of the initial void ratio."),
-        Panel("air_entry", se_study, "With suction equilibrium: effect of the air-entry suction."),
-    ], 2)
+    return Sheet(
+        "Skempton's B against the degree of saturation",
+        [
+            Panel(
+                "cases",
+                lambda ax: plot_cases(ax, cases, s_e, bc_lambda),
+                "B(S_r) of eq. 10 for each parameter set of the computed cases, the cases on their own curve.",
+            ),
+            Panel("kappa", kappa_study, "Effect of the slope κ of the elastic line."),
+            Panel("e0", e0_study, "Effect of the initial void ratio."),
+            Panel("air_entry", se_study, "With suction equilibrium: effect of the air-entry suction."),
+        ],
+        2,
+    )

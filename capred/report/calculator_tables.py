@@ -1,8 +1,10 @@
 """Console (and HTML) tables of the calculators `capred prism`, `skempton-b` and `rumpf`."""
+
 from __future__ import annotations
 
 from ..result import TableSpec
 from .render import row_table
+
 
 def calc_tables(result) -> list[TableSpec]:
     """Inputs and results of a calculator, one row per case (at most 20 shown)."""

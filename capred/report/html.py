@@ -3,12 +3,13 @@
 Built with a jinja2 template (templates/report.html.j2) with autoescaping, so
 user text (material names, test ids) is shown literally.
 """
+
 from __future__ import annotations
 
 import re
 import sys
-from datetime import datetime, timezone
-from functools import lru_cache
+from datetime import UTC, datetime
+from functools import cache
 
 import numpy as np
 
@@ -27,6 +28,7 @@ FLAG_MEANING = {
     "edtp_positive_component": "EDTP bound with a positive capillary component",
     "spherical_negative_p_prime": "spherical bound gives p' < 0",
 }
+
 
 def _unit_text(unit: str) -> str:
     """A unit as printed: 'kN/m^3' -> 'kN/m³', '-' -> ''."""
@@ -78,8 +80,9 @@ def _options(result, doc: dict) -> list[tuple[str, str, str]]:
     options = getattr(result, "options", None)
     if options is None or not hasattr(options, "__dataclass_fields__"):  # a result without an Options record
         units = doc.get("option_units", {})
-        return [(k, _text(v), units.get(k, "")) for k, v in doc["options"].items()
-                if _shown(v) and not isinstance(v, dict)]
+        return [
+            (k, _text(v), units.get(k, "")) for k, v in doc["options"].items() if _shown(v) and not isinstance(v, dict)
+        ]
     used: set[str] = set()
     from ..physics.effective_stress_models import REGISTRY
 
@@ -212,8 +215,10 @@ def _per_row(result) -> dict:
     for j, k in enumerate(kinds):
         if k != "f":
             cells[j] = [_cell(v) for v in arrays[j].tolist()]
-    widths = [max([len(w) for w in h.split()] + [max(map(len, col), default=0)] + [1]) * CHAR_MM + CELL_MM
-              for h, col in zip(columns, cells)]
+    widths = [
+        max([len(w) for w in h.split()] + [max(map(len, col), default=0)] + [1]) * CHAR_MM + CELL_MM
+        for h, col in zip(columns, cells)
+    ]
     from .render import pack_columns
 
     groups = pack_columns(widths, _label_columns(columns), PRINT_WIDTH_MM)
@@ -223,10 +228,20 @@ def _per_row(result) -> dict:
     from html import escape
 
     cells = [[escape(c, quote=False) for c in col] if k not in "fiub" else col for col, k in zip(cells, kinds)]
-    parts = [{"head": _head_markup([(columns[j], left[j]) for j in g]),
-              "body": _rows_markup([cells[j] for j in g], [left[j] for j in g])} for g in groups]
-    return {"columns": columns, "parts": parts, "rows": range(len(arrays[0]) if arrays else 0), "total": total,
-            "file": f"{name}.csv"}
+    parts = [
+        {
+            "head": _head_markup([(columns[j], left[j]) for j in g]),
+            "body": _rows_markup([cells[j] for j in g], [left[j] for j in g]),
+        }
+        for g in groups
+    ]
+    return {
+        "columns": columns,
+        "parts": parts,
+        "rows": range(len(arrays[0]) if arrays else 0),
+        "total": total,
+        "file": f"{name}.csv",
+    }
 
 
 def _cell(value) -> str:
@@ -244,7 +259,7 @@ def _float_cells(values: np.ndarray) -> list[list[str]]:
     flat = (_FLOAT_FORMAT * values.size % tuple(values.ravel().tolist())).split("\x00")
     for k in np.flatnonzero(~np.isfinite(values.ravel())).tolist():
         flat[k] = "—"
-    return [flat[i * n:(i + 1) * n] for i in range(rows)]
+    return [flat[i * n : (i + 1) * n] for i in range(rows)]
 
 
 def _escape(text: str) -> str:
@@ -287,8 +302,12 @@ def _body(rows: list[list[str]], left: list[bool]):
     from markupsafe import Markup
 
     open_cell = ['<td class="l">' if is_left else "<td>" for is_left in left]
-    return Markup("\n".join("<tr>" + "".join(o + escape(cell, quote=False) + "</td>" for o, cell in zip(open_cell, row))
-                             + "</tr>" for row in rows))
+    return Markup(
+        "\n".join(
+            "<tr>" + "".join(o + escape(cell, quote=False) + "</td>" for o, cell in zip(open_cell, row)) + "</tr>"
+            for row in rows
+        )
+    )
 
 
 _LEFT = ("test_id", "case", "material", "condition", "flags", "status", "branch", "group", "source")
@@ -298,11 +317,11 @@ def _created() -> str:
     """The report's date: SOURCE_DATE_EPOCH when set (reproducible builds), else now (UTC, ISO 8601)."""
     from ..io.spreadsheet_out import source_date_epoch
 
-    when = source_date_epoch() or datetime.now(timezone.utc)
+    when = source_date_epoch() or datetime.now(UTC)
     return when.replace(microsecond=0).isoformat()
 
 
-@lru_cache(maxsize=None)
+@cache
 def _template(name: str):
     """A template of this package, compiled once per process (with its Environment)."""
     from importlib.resources import files
@@ -362,8 +381,9 @@ def render_html(result, figures: dict, plots: bool) -> str:
         title=f"capred {result.command}: {names}",
         doc=doc,
         created=_created(),
-        command_line=" ".join(["capred", *sys.argv[1:]]) if sys.argv and "capred" in sys.argv[0] else
-        f"capred {result.command}",
+        command_line=" ".join(["capred", *sys.argv[1:]])
+        if sys.argv and "capred" in sys.argv[0]
+        else f"capred {result.command}",
         options=_options(result, doc),
         warnings=doc["warnings"],
         notes=doc["notes"],
@@ -383,8 +403,10 @@ def _split_spec(spec) -> dict:
     from .render import label_columns
 
     labels = label_columns(spec)
-    widths = [max([len(w) for w in h.split()] + [len(r[j]) for r in spec.rows] + [1]) * CHAR_MM * 8.5 / 7 + CELL_MM
-              for j, h in enumerate(heads)]
+    widths = [
+        max([len(w) for w in h.split()] + [len(r[j]) for r in spec.rows] + [1]) * CHAR_MM * 8.5 / 7 + CELL_MM
+        for j, h in enumerate(heads)
+    ]
     groups, current, used = [], [], sum(widths[j] for j in labels)
     for j in range(len(heads)):
         if j in labels:
@@ -396,10 +418,16 @@ def _split_spec(spec) -> dict:
         used += widths[j]
     if current or not groups:
         groups.append(labels + current)
-    return {"spec": spec, "parts": [{"head": _head_markup([(spec.columns[j][0], spec.columns[j][1] == "left")
-                                                          for j in g]),
-                                     "body": _summary_rows(spec.rows, [spec.columns[j][1] == "left" for j in g], g)}
-                                    for g in groups]}
+    return {
+        "spec": spec,
+        "parts": [
+            {
+                "head": _head_markup([(spec.columns[j][0], spec.columns[j][1] == "left") for j in g]),
+                "body": _summary_rows(spec.rows, [spec.columns[j][1] == "left" for j in g], g),
+            }
+            for g in groups
+        ],
+    }
 
 
 def _summary_rows(rows, left: list[bool], columns: list[int]):
@@ -408,8 +436,14 @@ def _summary_rows(rows, left: list[bool], columns: list[int]):
     from markupsafe import Markup
 
     opens = ['<td class="l">' if is_left else '<td class="">' for is_left in left]
-    return Markup("".join(["\n  <tr>" + "".join([o + _escape(str(r[j])) + "</td>" for o, j in zip(opens, columns)])
-                           + "</tr>\n  " for r in rows]))
+    return Markup(
+        "".join(
+            [
+                "\n  <tr>" + "".join([o + _escape(str(r[j])) + "</td>" for o, j in zip(opens, columns)]) + "</tr>\n  "
+                for r in rows
+            ]
+        )
+    )
 
 
 _SEASON = """<!DOCTYPE html>
@@ -437,12 +471,15 @@ def render_season(frame) -> str:
     for c, name in zip(frame, columns):
         opened = '<td class="l">' if name in _SEASON_LEFT else '<td class="">'
         # a cell a run has no value for is blank whatever its column's type (NaN in a float column too)
-        texts = [("" if v != v else fmt(v)) if isinstance(v, float) else ("" if v is None else str(v))
-                 for v in frame[c].tolist()]
+        texts = [
+            ("" if v != v else fmt(v)) if isinstance(v, float) else ("" if v is None else str(v))
+            for v in frame[c].tolist()
+        ]
         if name == "report":
             cells.append([opened + (f'<a href="{_escape(v)}">report</a>' if v else "") + "</td>\n" for v in texts])
         else:
             cells.append([opened + _escape(v) + "</td>\n" for v in texts])
     body = Markup("".join(["<tr>" + "".join(row) + "</tr>" for row in zip(*cells)]))
     return _template("season").render(
-        n=len(set(frame["input"].tolist())) if "input" in frame else 0, columns=columns, body=body)
+        n=len(set(frame["input"].tolist())) if "input" in frame else 0, columns=columns, body=body
+    )

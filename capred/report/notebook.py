@@ -1,4 +1,5 @@
 """A result in a notebook: ``result.plot()`` draws figures, ``result._repr_html_()`` shows tables and the main figure."""
+
 from __future__ import annotations
 
 import base64
@@ -45,19 +46,28 @@ def plot(result, name: str | None = None):
 
 
 def _table_html(spec) -> str:
-    head = "".join(f"<th style='text-align:{'left' if a == 'left' else 'right'}'>{html.escape(h)}</th>"
-                   for h, a in spec.columns)
+    head = "".join(
+        f"<th style='text-align:{'left' if a == 'left' else 'right'}'>{html.escape(h)}</th>" for h, a in spec.columns
+    )
     body = []
     for row in spec.rows[:NOTEBOOK_ROWS]:
-        cells = "".join(f"<td style='text-align:{'left' if a == 'left' else 'right'}'>{html.escape(str(v))}</td>"
-                        for v, (_, a) in zip(row, spec.columns))
+        cells = "".join(
+            f"<td style='text-align:{'left' if a == 'left' else 'right'}'>{html.escape(str(v))}</td>"
+            for v, (_, a) in zip(row, spec.columns)
+        )
         body.append(f"<tr>{cells}</tr>")
     shown = min(len(spec.rows), NOTEBOOK_ROWS)
     total = spec.total_rows or len(spec.rows)
-    more = (f"<p><small>{shown} of {total} rows shown; all are in the result's tables "
-            f"(<code>result.table()</code>).</small></p>" if total > shown else "")
-    return (f"<p><b>{html.escape(spec.title)}</b></p><table><thead><tr>{head}</tr></thead>"
-            f"<tbody>{''.join(body)}</tbody></table>{more}")
+    more = (
+        f"<p><small>{shown} of {total} rows shown; all are in the result's tables "
+        f"(<code>result.table()</code>).</small></p>"
+        if total > shown
+        else ""
+    )
+    return (
+        f"<p><b>{html.escape(spec.title)}</b></p><table><thead><tr>{head}</tr></thead>"
+        f"<tbody>{''.join(body)}</tbody></table>{more}"
+    )
 
 
 def repr_html(result, figure: bool = True) -> str:

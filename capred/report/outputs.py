@@ -12,6 +12,7 @@ command draws only on request (``Sheet.on_request``, e.g. shear's capillary
 stress sheet) only with ``figures="all"``. Several sheets are drawn by two
 processes on a machine with two cores or more.
 """
+
 from __future__ import annotations
 
 import os
@@ -43,9 +44,19 @@ class FigureOptions:
     figures: str = "main"
 
 
-def write_outputs(result, out, plots: bool = True, formats=("png",), dpi: int = 300,
-                  command_line: str | None = None, html: bool = True, csv_dialect: str = "standard",
-                  xlsx: bool = False, panels: bool = False, figures: str = "main") -> list[Path]:
+def write_outputs(
+    result,
+    out,
+    plots: bool = True,
+    formats=("png",),
+    dpi: int = 300,
+    command_line: str | None = None,
+    html: bool = True,
+    csv_dialect: str = "standard",
+    xlsx: bool = False,
+    panels: bool = False,
+    figures: str = "main",
+) -> list[Path]:
     """Write every output of ``result`` into the folder ``out``, whole or not at all.
 
     Parameters
@@ -102,8 +113,9 @@ def write_outputs(result, out, plots: bool = True, formats=("png",), dpi: int = 
                 with task("writing report.html"):
                     folder.write_bytes("report.html", render_html(result, drawn, plots).encode("utf-8"))
 
-        return write_run(result, out, command_line=command_line, csv_dialect=csv_dialect, xlsx=xlsx,
-                         artifacts=artifacts)
+        return write_run(
+            result, out, command_line=command_line, csv_dialect=csv_dialect, xlsx=xlsx, artifacts=artifacts
+        )
 
 
 # --- one sheet ----------------------------------------------------------------------------------------------
@@ -112,14 +124,25 @@ def _img_markup(name: str, png: bytes, width_mm: float) -> str:
     import html
 
     data = base64.b64encode(png).decode("ascii")
-    return (f"<img alt='{html.escape(name)}' src='data:image/png;base64,{data}' "
-            f"style='width:100%;max-width:{width_mm:.0f}mm;height:auto'>")
+    return (
+        f"<img alt='{html.escape(name)}' src='data:image/png;base64,{data}' "
+        f"style='width:100%;max-width:{width_mm:.0f}mm;height:auto'>"
+    )
 
 
 def _draw_sheet(name: str, sheet, folder, opts: FigureOptions) -> tuple[dict, list[str]]:
     """Draw one sheet and write its files; returns (entry for report.html, names written)."""
-    from .sheets import (NO_STAMP, Sheet, compose, compose_raster, encode_png, journal_style, panel_figure,
-                         raster, sheet_figure, sheet_layout)
+    from .sheets import (
+        Sheet,
+        compose,
+        compose_raster,
+        encode_png,
+        journal_style,
+        panel_figure,
+        raster,
+        sheet_figure,
+        sheet_layout,
+    )
 
     written: list[str] = []
     entry = {"caption": getattr(sheet, "caption", "") or "", "panels": [], "svg": ""}
@@ -186,7 +209,7 @@ def _html_svg(entry: dict, name: str, folder, opts: FigureOptions) -> dict:
     """With ``svg`` among the formats, report.html shows the SVG just written (vector) instead of the PNG."""
     if opts.html and "svg" in opts.formats:
         text = folder.path_for(f"{name}.svg").read_text(encoding="utf-8")
-        entry["svg"] = text[text.index("<svg"):]  # without the XML declaration and DOCTYPE
+        entry["svg"] = text[text.index("<svg") :]  # without the XML declaration and DOCTYPE
     return entry
 
 
@@ -231,9 +254,12 @@ def _on_request_entry(sheet) -> dict:
     """report.html's entry of a sheet not drawn (drawn on request only): no picture, a caption saying how to
     have it."""
     what = getattr(sheet, "title", "") or ""
-    return {"svg": "", "panels": [],
-            "caption": f"Not drawn by default: {what} ({len(getattr(sheet, 'panels', ()))} panels) is drawn with "
-                       "--figures all (write_outputs(..., figures=\"all\")). " + (getattr(sheet, "caption", "") or "")}
+    return {
+        "svg": "",
+        "panels": [],
+        "caption": f"Not drawn by default: {what} ({len(getattr(sheet, 'panels', ()))} panels) is drawn with "
+        '--figures all (write_outputs(..., figures="all")). ' + (getattr(sheet, "caption", "") or ""),
+    }
 
 
 def _parallel(cost: list[int]) -> bool:

@@ -5,10 +5,11 @@ computes records and never imports this package; the CLI, the batch runner,
 the HTML report and a notebook (``result.plot()``, ``result._repr_html_()``)
 all come here.
 """
+
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 from ..result import TableSpec
 
@@ -49,8 +50,9 @@ def _shear_figures(result) -> dict:
         out[f"report_{name}"] = sheet_shear_report(result, m)
         if np.any(wet & (t["material"] == m)):
             out[f"capillary_{name}"] = sheet_capillary_stress(result, m)
-        if result.curves is not None and any(str(tid) in result.curves.curves
-                                             for tid in t["test_id"][t["material"] == m]):
+        if result.curves is not None and any(
+            str(tid) in result.curves.curves for tid in t["test_id"][t["material"] == m]
+        ):
             out[f"curves_{name}"] = sheet_curves(result, m)
     return out
 
@@ -83,8 +85,17 @@ def _calc_figures(result) -> dict:
 def _rupture_tables(result) -> list[TableSpec]:
     from .render import row_table
 
-    keys = ["case", "R_mm", "R2_mm", "contact_angle_deg", "V_w_mm3", "D_rupture_mm", "D_rupture_lian_mm",
-            "ratio_to_lian", "status"]
+    keys = [
+        "case",
+        "R_mm",
+        "R2_mm",
+        "contact_angle_deg",
+        "V_w_mm3",
+        "D_rupture_mm",
+        "D_rupture_lian_mm",
+        "ratio_to_lian",
+        "status",
+    ]
     rows = result.rows()
     present = [k for k in keys if rows and k in rows[0]]
     return [row_table("Rupture distance at constant volume", rows, present, "rupture.csv")]
@@ -94,29 +105,43 @@ def _yade_tables(result) -> list[TableSpec]:
     from .render import row_table
 
     rows = result.summary_rows()
-    return [row_table("YADE capillary files (exact bridges, YADE's dimensionless variables)", rows,
-                      list(rows[0]) if rows else [], "yade_files.csv")]
+    return [
+        row_table(
+            "YADE capillary files (exact bridges, YADE's dimensionless variables)",
+            rows,
+            list(rows[0]) if rows else [],
+            "yade_files.csv",
+        )
+    ]
 
 
 #: command -> Presenter: one entry per command
 PRESENTERS: dict[str, Presenter] = {
     "shear": Presenter(_shear_figures, _lazy("shear_tables", "shear_tables")),
-    "triaxial-bounds": Presenter(_one("triaxial_figures", "sheet_triaxial", "report"),
-                                 _lazy("triaxial_tables", "triaxial_tables")),
-    "retention": Presenter(_one("retention_figures", "sheet_retention", "retention"),
-                           _lazy("retention_tables", "retention_tables")),
+    "triaxial-bounds": Presenter(
+        _one("triaxial_figures", "sheet_triaxial", "report"), _lazy("triaxial_tables", "triaxial_tables")
+    ),
+    "retention": Presenter(
+        _one("retention_figures", "sheet_retention", "retention"), _lazy("retention_tables", "retention_tables")
+    ),
     "prism": Presenter(_calc_figures, _lazy("calculator_tables", "calc_tables")),
     "skempton-b": Presenter(_calc_figures, _lazy("calculator_tables", "calc_tables")),
     "rumpf": Presenter(_calc_figures, _lazy("calculator_tables", "calc_tables")),
     "bridge solve": Presenter(_none, _lazy("bridge_tables", "bridge_solve_tables")),
-    "bridge curve": Presenter(_one("bridge_figures", "sheet_curve", "curve"), _lazy("bridge_tables", "bridge_curve_tables")),
-    "bridge compare": Presenter(lambda r: {"compare": _lazy("bridge_figures", "sheet_compare")(r.rows())},
-                                _lazy("bridge_tables", "bridge_compare_tables")),
-    "bridge rupture": Presenter(lambda r: {"rupture": _lazy("bridge_figures", "sheet_rupture")(r.rows())},
-                                _rupture_tables),
+    "bridge curve": Presenter(
+        _one("bridge_figures", "sheet_curve", "curve"), _lazy("bridge_tables", "bridge_curve_tables")
+    ),
+    "bridge compare": Presenter(
+        lambda r: {"compare": _lazy("bridge_figures", "sheet_compare")(r.rows())},
+        _lazy("bridge_tables", "bridge_compare_tables"),
+    ),
+    "bridge rupture": Presenter(
+        lambda r: {"rupture": _lazy("bridge_figures", "sheet_rupture")(r.rows())}, _rupture_tables
+    ),
     "bridge yade-files": Presenter(_none, _yade_tables),
-    "pt-volume": Presenter(_one("pt_volume_figures", "sheet_pt_volume", "pt_volume"),
-                           _lazy("pt_volume_tables", "pt_volume_tables")),
+    "pt-volume": Presenter(
+        _one("pt_volume_figures", "sheet_pt_volume", "pt_volume"), _lazy("pt_volume_tables", "pt_volume_tables")
+    ),
 }
 
 

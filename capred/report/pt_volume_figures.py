@@ -6,6 +6,7 @@ of the clay compressed from dry powder, the whole sample in black; every
 curve comes from the run's records (nothing is recomputed but the straight
 ncl reference lines, from the run's own line parameters).
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -54,15 +55,15 @@ def _log_axis(ax, values) -> None:
 def _annotate(ax, result, x, y, color) -> None:
     for label, i in stage_marks(result):
         if np.isfinite(x[i]) and np.isfinite(y[i]) and x[i] > 0:
-            ax.annotate(literal(label), (x[i], y[i]), xytext=(4, 4), textcoords="offset points", fontsize=7,
-                        color=color)
+            ax.annotate(
+                literal(label), (x[i], y[i]), xytext=(4, 4), textcoords="offset points", fontsize=7, color=color
+            )
 
 
 def plot_e_ln_sigma(ax, result):
     """e^W against σ'_W and e^A against σ'_A (log axis), each with the ncl of its clay (Fig. 14-15)."""
     pts, p = result.points, result.params
-    positive = [v[np.isfinite(v) & (v > 0)] for v in (pts.sigma_W, pts.sigma_A, pts.sigma_star_W,
-                                                      pts.sigma_star_A)]
+    positive = [v[np.isfinite(v) & (v > 0)] for v in (pts.sigma_W, pts.sigma_A, pts.sigma_star_W, pts.sigma_star_A)]
     allv = np.concatenate(positive)
     lo, hi = (allv.min() / 2, allv.max() * 2) if allv.size else (1e3, 1e6)
     grid = np.geomspace(lo, hi, 100)
@@ -89,12 +90,20 @@ def plot_e_step(ax, result):
     ax.plot(x, pts.e, "-", color=SAMPLE["color"], marker=SAMPLE["marker"], ms=3, lw=1.2, label="sample $e$")
     for part in ("W", "A"):
         st = PART[part]
-        ax.plot(x, getattr(pts, f"e_{part}"), "-", color=st["color"], marker=st["marker"], ms=3, lw=1.0,
-                label=f"$e^{part}$")
+        ax.plot(
+            x, getattr(pts, f"e_{part}"), "-", color=st["color"], marker=st["marker"], ms=3, lw=1.0, label=f"$e^{part}$"
+        )
     for label, i in stage_marks(result):
         ax.axvline(x[i], color=OKABE_ITO["grey"], lw=0.6, ls=":")
-        ax.annotate(literal(label), (x[i], 1.0), xycoords=("data", "axes fraction"), xytext=(2, -10),
-                    textcoords="offset points", fontsize=7, color=OKABE_ITO["grey"])
+        ax.annotate(
+            literal(label),
+            (x[i], 1.0),
+            xycoords=("data", "axes fraction"),
+            xytext=(2, -10),
+            textcoords="offset points",
+            fontsize=7,
+            color=OKABE_ITO["grey"],
+        )
     ax.set_xlabel(LABEL["step"])
     ax.set_ylabel(LABEL["e"])
     ax.set_title("Void ratio along the path")
@@ -119,15 +128,29 @@ def plot_e_net_stress(ax, result):
 def sheet_pt_volume(result) -> Sheet:
     """The sheet of a run: the two parts in e–ln σ', e along the path, e against net stress."""
     illustrative = " Lines: EXAMPLE_KAOLIN, illustrative values." if result.options.illustrative() else ""
-    return Sheet("Volume change with two effective stresses (Pedrotti & Tarantino)", [
-        Panel("e_ln_sigma", lambda ax: plot_e_ln_sigma(ax, result),
-              "Void ratio of the water-saturated pores against σ'_W = (σ − u_w) S_r and of the air-saturated pores "
-              "against σ'_A = (σ − u_a)(1 − S_r) (eq. 1-2), with the ncl of clay reconstituted from slurry and "
-              "compressed from dry powder as reference lines, as in Fig. 14-15 of Pedrotti & Tarantino."
-              + illustrative),
-        Panel("e_step", lambda ax: plot_e_step(ax, result),
-              "Void ratio of the sample (eq. 5) and of its two parts at every point of the path." + illustrative),
-        Panel("e_net_stress", lambda ax: plot_e_net_stress(ax, result),
-              "Void ratio of the sample against the net stress σ − u_a." + illustrative),
-    ], 2, spans={"e_ln_sigma": 2},
-        caption="Pedrotti & Tarantino (submitted), eq. 1-10; stage labels from the path file." + illustrative)
+    return Sheet(
+        "Volume change with two effective stresses (Pedrotti & Tarantino)",
+        [
+            Panel(
+                "e_ln_sigma",
+                lambda ax: plot_e_ln_sigma(ax, result),
+                "Void ratio of the water-saturated pores against σ'_W = (σ − u_w) S_r and of the air-saturated pores "
+                "against σ'_A = (σ − u_a)(1 − S_r) (eq. 1-2), with the ncl of clay reconstituted from slurry and "
+                "compressed from dry powder as reference lines, as in Fig. 14-15 of Pedrotti & Tarantino."
+                + illustrative,
+            ),
+            Panel(
+                "e_step",
+                lambda ax: plot_e_step(ax, result),
+                "Void ratio of the sample (eq. 5) and of its two parts at every point of the path." + illustrative,
+            ),
+            Panel(
+                "e_net_stress",
+                lambda ax: plot_e_net_stress(ax, result),
+                "Void ratio of the sample against the net stress σ − u_a." + illustrative,
+            ),
+        ],
+        2,
+        spans={"e_ln_sigma": 2},
+        caption="Pedrotti & Tarantino (submitted), eq. 1-10; stage labels from the path file." + illustrative,
+    )

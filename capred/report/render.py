@@ -11,6 +11,7 @@ ids) is shown literally, never read as markup.
 Zero: a number whose magnitude is below ``ZERO_RTOL`` times the magnitude it
 was computed from (``scale``: the largest of its row or column) prints as 0.
 """
+
 from __future__ import annotations
 
 import math
@@ -73,8 +74,14 @@ def magnitude(values) -> float:
     return out
 
 
-def row_table(title: str, rows: list[dict], keys: list[str], full_table: str | None = None,
-              left: tuple[str, ...] = ("case", "test_id", "status", "material"), total: int | None = None) -> TableSpec:
+def row_table(
+    title: str,
+    rows: list[dict],
+    keys: list[str],
+    full_table: str | None = None,
+    left: tuple[str, ...] = ("case", "test_id", "status", "material"),
+    total: int | None = None,
+) -> TableSpec:
     """A per-row table of at most MAX_ROWS rows, saying how many there are (``total``, when ``rows`` holds only
     the first ones) and where the rest is."""
     spec = TableSpec(title, [(k, "left" if k in left else "right") for k in keys])
@@ -132,8 +139,9 @@ def plain_text(spec: TableSpec) -> str:
     w = _widths(spec)
 
     def line(cells):
-        return "  ".join(c.ljust(w[j]) if spec.columns[j][1] == "left" else c.rjust(w[j])
-                         for j, c in enumerate(cells)).rstrip()
+        return "  ".join(
+            c.ljust(w[j]) if spec.columns[j][1] == "left" else c.rjust(w[j]) for j, c in enumerate(cells)
+        ).rstrip()
 
     out = [spec.title, line([h for h, _ in spec.columns]), "  ".join("-" * x for x in w)]
     out += [line(r) for r in spec.rows]
@@ -190,8 +198,11 @@ def rich_tables(spec: TableSpec, width: int) -> list:
             head, justify = spec.columns[j]
             t.add_column(Text(wrap_header(head, widths[j])), justify=justify, no_wrap=True, min_width=widths[j])
         for i, row in enumerate(spec.rows):
-            t.add_row(*(Text(row[j]) for j in cols), style="bold" if i in spec.bold_rows else None,
-                      end_section=i in spec.sections)
+            t.add_row(
+                *(Text(row[j]) for j in cols),
+                style="bold" if i in spec.bold_rows else None,
+                end_section=i in spec.sections,
+            )
         out.append(t)
     return out
 

@@ -7,6 +7,7 @@ on a log axis; they are drawn in a grey strip at the left edge of the axes
 marked "s = 0" (placed in axes coordinates, outside the suction scale), never
 at an invented suction. Fitted parameters are in the tables, not in the legend.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -44,12 +45,21 @@ def plot_retention(ax, result):
         sel = result.branch == b
         st = style(b)
         keep, shown = thin(np.flatnonzero(sel & ~zero))
-        ax.plot(result.suction[keep] / 1e3, result.water[keep], ls="none", ms=3.5, color=st["color"],
-                marker=st["marker"])
+        ax.plot(
+            result.suction[keep] / 1e3, result.water[keep], ls="none", ms=3.5, color=st["color"], marker=st["marker"]
+        )
         if (sel & zero).any():
             z, _ = thin(np.flatnonzero(sel & zero))
-            ax.plot(np.full(z.size, STRIP / 2), result.water[z], ls="none", ms=3.5,
-                    color=st["color"], marker=st["marker"], transform=in_strip, clip_on=False)
+            ax.plot(
+                np.full(z.size, STRIP / 2),
+                result.water[z],
+                ls="none",
+                ms=3.5,
+                color=st["color"],
+                marker=st["marker"],
+                transform=in_strip,
+                clip_on=False,
+            )
         best = min(fits, key=lambda m: fits[m].aicc if np.isfinite(fits[m].aicc) else np.inf)
         lo_b, hi_b = result.band(b, best, grid)
         ax.fill_between(grid / 1e3, lo_b, hi_b, color=st["color"], alpha=0.18, lw=0)
@@ -57,16 +67,16 @@ def plot_retention(ax, result):
             ax.plot(grid / 1e3, result.curve(b, m, grid), color=st["color"], lw=1.1, ls=style(m).get("ls", "-"))
             if m not in models:
                 models.append(m)
-        handles.append(Line2D([], [], ls="none", marker=st["marker"], color=st["color"], ms=3.5,
-                              label=f"{literal(b)}: readings"))
+        handles.append(
+            Line2D([], [], ls="none", marker=st["marker"], color=st["color"], ms=3.5, label=f"{literal(b)}: readings")
+        )
     for m in models:
         handles.append(Line2D([], [], color="k", lw=1.1, ls=style(m).get("ls", "-"), label=model_key(m)))
     ax.set_xscale("log")
     if zero.any():  # leave the strip free of the suction scale
         ax.set_xlim(lo / 1e3 / (hi / lo) ** (STRIP / (1 - STRIP)), hi / 1e3)
         ax.add_patch(Rectangle((0, 0), STRIP, 1, transform=ax.transAxes, color="#e6e6e6", zorder=0, lw=0))
-        ax.text(STRIP / 2, 0.02, "s = 0", transform=ax.transAxes, ha="center", va="bottom", fontsize=6,
-                rotation=90)
+        ax.text(STRIP / 2, 0.02, "s = 0", transform=ax.transAxes, ha="center", va="bottom", fontsize=6, rotation=90)
     note(ax, shown)
     ax.set_xlabel(LABEL["suction_s"])
     ax.set_ylabel(LABEL["theta"] if result.quantity == "theta" else LABEL["S_R"])
@@ -77,9 +87,19 @@ def plot_retention(ax, result):
 
 def sheet_retention(result) -> Sheet:
     """One panel, two columns wide (the legend holds each model's equation)."""
-    return Sheet("Water retention curves", [
-        Panel("curves", untitled(lambda ax: plot_retention(ax, result)),
-              "Readings and fitted curves per branch (colour and marker) and model (line style, with its "
-              "equation in the legend) on a logarithmic suction axis, with the 95 % confidence band of the best "
-              "model (lowest AICc) of each branch; readings at zero suction are in the grey strip marked s = 0. "
-              "The fitted parameters are in the tables.")], 1, spans={"curves": 2}, panel_size=(5.5, 3.2))
+    return Sheet(
+        "Water retention curves",
+        [
+            Panel(
+                "curves",
+                untitled(lambda ax: plot_retention(ax, result)),
+                "Readings and fitted curves per branch (colour and marker) and model (line style, with its "
+                "equation in the legend) on a logarithmic suction axis, with the 95 % confidence band of the best "
+                "model (lowest AICc) of each branch; readings at zero suction are in the grey strip marked s = 0. "
+                "The fitted parameters are in the tables.",
+            )
+        ],
+        1,
+        spans={"curves": 2},
+        panel_size=(5.5, 3.2),
+    )

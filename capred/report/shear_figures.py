@@ -9,14 +9,27 @@ colour and marker everywhere; a normal stress its line style and marker
 a stated random sample of markers; fits and metrics in the legends use every
 test.
 """
+
 from __future__ import annotations
 
 import numpy as np
 
 from ..physics.effective_stress_models import MODEL_LABELS, REGISTRY
 from .sheets import Panel, Sheet
-from .style import (LABEL, MAX_MARKERS, OKABE_ITO, THIN_SEED, level_style, literal, note, series_style, symbol,
-                    tex, thin, untitled)
+from .style import (
+    LABEL,
+    MAX_MARKERS,
+    OKABE_ITO,
+    THIN_SEED,
+    level_style,
+    literal,
+    note,
+    series_style,
+    symbol,
+    tex,
+    thin,
+    untitled,
+)
 from .style import style as _style
 
 KPA = 1e-3
@@ -47,14 +60,27 @@ def plot_dry_envelope(ax, result, material):
     xs = np.linspace(0.0, max(x.max(initial=0.0), 1e-9) * 1.1, 100)
     lo, hi = fit.mean_band(xs)
     colour = OKABE_ITO["blue"]
-    ax.fill_between(xs * KPA, lo * KPA, hi * KPA, color=colour, alpha=0.2, lw=0,
-                    label=f"{fit.confidence:.0%} confidence band")
+    ax.fill_between(
+        xs * KPA, lo * KPA, hi * KPA, color=colour, alpha=0.2, lw=0, label=f"{fit.confidence:.0%} confidence band"
+    )
     phi = np.degrees(np.arctan(fit.slope))
-    ax.plot(xs * KPA, fit.predict(xs) * KPA, color=colour, ls="-",
-            label=rf"fit: $c$ = {fit.intercept * KPA:.4g} kPa, $\phi$ = {phi:.2f}°")
+    ax.plot(
+        xs * KPA,
+        fit.predict(xs) * KPA,
+        color=colour,
+        ls="-",
+        label=rf"fit: $c$ = {fit.intercept * KPA:.4g} kPa, $\phi$ = {phi:.2f}°",
+    )
     keep, shown = thin(np.flatnonzero(dry))
-    ax.plot(t["sigma_N"][keep] * KPA, t["tau_max"][keep] * KPA, ls="none", marker="o", color="k", ms=3.5,
-            label=f"dry tests ($n$ = {fit.n})")
+    ax.plot(
+        t["sigma_N"][keep] * KPA,
+        t["tau_max"][keep] * KPA,
+        ls="none",
+        marker="o",
+        color="k",
+        ms=3.5,
+        label=f"dry tests ($n$ = {fit.n})",
+    )
     note(ax, shown)
     ax.set_xlabel(LABEL["sigma_N"])
     ax.set_ylabel(LABEL["tau_max"])
@@ -90,8 +116,18 @@ def plot_measured_vs_predicted(ax, result, material):
         p = result.predictions[m]
         pred = p.tau[keep] * KPA
         hi = max(hi, float(np.nanmax(pred, initial=0.0)))
-        _points(ax, meas, pred, _band(p, keep, pred), ms=3.5, alpha=0.85, elinewidth=0.6, capsize=1.2,
-                label=_label(m), **_style(m))
+        _points(
+            ax,
+            meas,
+            pred,
+            _band(p, keep, pred),
+            ms=3.5,
+            alpha=0.85,
+            elinewidth=0.6,
+            capsize=1.2,
+            label=_label(m),
+            **_style(m),
+        )
     hi = hi * 1.05 or 1.0
     ax.plot([0, hi], [0, hi], color="k", ls="--", lw=0.8, label="1:1")
     note(ax, shown)
@@ -139,26 +175,53 @@ def plot_strength_vs_saturation(ax, result, material):
     for m in per_test:  # no curve: markers per test with the prediction interval
         p = result.predictions[m]
         pred = p.tau[keep] * KPA
-        _points(ax, t["S_R"][keep], pred, _band(p, keep, pred), ms=3.5, alpha=0.6, elinewidth=0.6,
-                markerfacecolor="none", **_style(m))
+        _points(
+            ax,
+            t["S_R"][keep],
+            pred,
+            _band(p, keep, pred),
+            ms=3.5,
+            alpha=0.6,
+            elinewidth=0.6,
+            markerfacecolor="none",
+            **_style(m),
+        )
     for m in result.models:
         st = _style(m)
-        handles.append(Line2D([], [], color=st["color"], marker=st.get("marker", "o"), ms=3.5,
-                              ls="-" if m in curves_drawn else "none",
-                              mfc=st["color"] if m in curves_drawn else "none", label=_label(m)))
+        handles.append(
+            Line2D(
+                [],
+                [],
+                color=st["color"],
+                marker=st.get("marker", "o"),
+                ms=3.5,
+                ls="-" if m in curves_drawn else "none",
+                mfc=st["color"] if m in curves_drawn else "none",
+                label=_label(m),
+            )
+        )
     sig = np.round(t["sigma_N"][keep], 6)
     for k, level in enumerate(levels):
         sel = keep[sig == level]
         ls = level_style(k)
         ax.plot(t["S_R"][sel], t["tau_max"][sel] * KPA, ls="none", marker=ls["marker"], color="k", ms=3.5)
-        handles.append(Line2D([], [], color="k", marker=ls["marker"], ms=3.5,
-                              ls=ls["ls"] if curves_drawn else "none",
-                              label=rf"$\sigma_N$ = {level * KPA:.3g} kPa"))
+        handles.append(
+            Line2D(
+                [],
+                [],
+                color="k",
+                marker=ls["marker"],
+                ms=3.5,
+                ls=ls["ls"] if curves_drawn else "none",
+                label=rf"$\sigma_N$ = {level * KPA:.3g} kPa",
+            )
+        )
     other = keep[~np.isin(sig, levels)]
     if other.size:
         ax.plot(t["S_R"][other], t["tau_max"][other] * KPA, ls="none", marker=".", color="0.6", ms=3)
-        handles.append(Line2D([], [], color="0.6", marker=".", ls="none",
-                              label=rf"{n_levels - levels.size} other $\sigma_N$"))
+        handles.append(
+            Line2D([], [], color="0.6", marker=".", ls="none", label=rf"{n_levels - levels.size} other $\sigma_N$")
+        )
     ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
     note(ax, shown)
     ax.set_xlabel(LABEL["S_R"])
@@ -173,8 +236,14 @@ def plot_residuals(ax, result, material):
     t = result.tests
     keep, shown = thin(np.flatnonzero(_wet(result, material)))
     for m in result.models:
-        ax.plot(t["S_R"][keep], result.predictions[m].residual[keep] * KPA, ms=3.5, alpha=0.85,
-                label=_label(m), **{**_style(m), "ls": "none"})
+        ax.plot(
+            t["S_R"][keep],
+            result.predictions[m].residual[keep] * KPA,
+            ms=3.5,
+            alpha=0.85,
+            label=_label(m),
+            **{**_style(m), "ls": "none"},
+        )
     ax.axhline(0.0, color="k", lw=0.8)
     note(ax, shown)
     ax.set_xlabel(LABEL["S_R"])
@@ -187,19 +256,27 @@ def plot_residuals(ax, result, material):
 def _strength_caption(result, material) -> str:
     relation = result.retention_relation(material)
     if relation is None:
-        return ("Measured strength and each model's prediction per test against S_R, as markers: no "
-                "water-retention relation is available to draw model curves.")
-    return ("Measured strength against S_R (black markers, one marker per normal stress) and each model's "
-            "strength (its colour) at each normal stress (the line style of that stress) along the water-retention "
-            f"relation: {relation.source}. Markers without lines: models predicted per test.")
+        return (
+            "Measured strength and each model's prediction per test against S_R, as markers: no "
+            "water-retention relation is available to draw model curves."
+        )
+    return (
+        "Measured strength against S_R (black markers, one marker per normal stress) and each model's "
+        "strength (its colour) at each normal stress (the line style of that stress) along the water-retention "
+        f"relation: {relation.source}. Markers without lines: models predicted per test."
+    )
 
 
 def _sample_caption(result, material, condition: str) -> str:
     """The note of a panel of the material's ``condition`` tests (dry or wet) drawn as a random sample."""
     t = result.tests
     n = int(np.sum((t["material"] == material) & (t["condition"] == condition)))
-    text = (f" Markers: a random sample of {MAX_MARKERS:,} of the {n:,} {condition} tests (seed {THIN_SEED}); fits "
-            "and metrics use every test." if n > MAX_MARKERS else "")
+    text = (
+        f" Markers: a random sample of {MAX_MARKERS:,} of the {n:,} {condition} tests (seed {THIN_SEED}); fits "
+        "and metrics use every test."
+        if n > MAX_MARKERS
+        else ""
+    )
     return text + (f" No error bars above {MAX_ERRORBARS} tests." if n > MAX_ERRORBARS else "")
 
 
@@ -207,17 +284,33 @@ def sheet_shear_report(result, material) -> Sheet:
     """The report sheet of one material: dry envelope, measured vs predicted, strength vs S_R, residuals."""
     best = result.best_model.get(material)
     more = _sample_caption(result, material, "wet")
-    panels = [Panel("dry_envelope", lambda ax: plot_dry_envelope(ax, result, material),
-                    "Dry tests and the fitted envelope with its 95 % confidence band."
-                    + _sample_caption(result, material, "dry"))]
+    panels = [
+        Panel(
+            "dry_envelope",
+            lambda ax: plot_dry_envelope(ax, result, material),
+            "Dry tests and the fitted envelope with its 95 % confidence band."
+            + _sample_caption(result, material, "dry"),
+        )
+    ]
     if _wet(result, material).any():
-        panels += [Panel("measured_vs_predicted", lambda ax: plot_measured_vs_predicted(ax, result, material),
-                         "Wet tests: each model's prediction, with the 95 % prediction interval of a new test, "
-                         "against the measured strength." + more),
-                   Panel("strength_vs_saturation", lambda ax: plot_strength_vs_saturation(ax, result, material),
-                         _strength_caption(result, material) + more),
-                   Panel("residuals", lambda ax: plot_residuals(ax, result, material),
-                         "Residual (predicted − measured) against S_R." + more)]
+        panels += [
+            Panel(
+                "measured_vs_predicted",
+                lambda ax: plot_measured_vs_predicted(ax, result, material),
+                "Wet tests: each model's prediction, with the 95 % prediction interval of a new test, "
+                "against the measured strength." + more,
+            ),
+            Panel(
+                "strength_vs_saturation",
+                lambda ax: plot_strength_vs_saturation(ax, result, material),
+                _strength_caption(result, material) + more,
+            ),
+            Panel(
+                "residuals",
+                lambda ax: plot_residuals(ax, result, material),
+                "Residual (predicted − measured) against S_R." + more,
+            ),
+        ]
     title = f"Direct shear, {material}" + (f": best model {MODEL_LABELS[best]}" if best else "")
     return Sheet(title, panels, 2)
 
@@ -229,11 +322,28 @@ def plot_capillary_stress(ax, result, material, x: str):
     keep, shown = thin(np.flatnonzero(_wet(result, material)))
     xs = t[x][keep] * (1.0 if x == "S_R" else KPA)
     for m in result.models:
-        ax.plot(xs, result.predictions[m].sigma_cap[keep] * KPA, ms=3.5, alpha=0.75, markerfacecolor="none",
-                label=_label(m), **{**_style(m), "ls": "none"})
+        ax.plot(
+            xs,
+            result.predictions[m].sigma_cap[keep] * KPA,
+            ms=3.5,
+            alpha=0.75,
+            markerfacecolor="none",
+            label=_label(m),
+            **{**_style(m), "ls": "none"},
+        )
     back = result.back
-    _points(ax, xs, back.sigma_cap[keep] * KPA, back.sigma_cap_se[keep] * KPA, marker="o", color="k", ms=3.5,
-            capsize=1.5, elinewidth=0.6, label=r"back-analysed ($\pm$ 1 se)")
+    _points(
+        ax,
+        xs,
+        back.sigma_cap[keep] * KPA,
+        back.sigma_cap_se[keep] * KPA,
+        marker="o",
+        color="k",
+        ms=3.5,
+        capsize=1.5,
+        elinewidth=0.6,
+        label=r"back-analysed ($\pm$ 1 se)",
+    )
     if x == "S_R":
         ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
     ax.axhline(0.0, color="k", lw=0.5)
@@ -262,8 +372,18 @@ def plot_chi_back(ax, result, material):
             st = _style(m)
             ax.plot(s, chi, color=st["color"], ls=st.get("ls", "-"), lw=1.2, label=_label(m) + extra)
     back = result.back
-    _points(ax, t["S_R"][keep], back.chi_back[keep], back.chi_back_se[keep], marker="o", color="k", ms=3.5,
-            capsize=1.5, elinewidth=0.6, label=r"$\chi$ back-analysed ($\pm$ 1 se)")
+    _points(
+        ax,
+        t["S_R"][keep],
+        back.chi_back[keep],
+        back.chi_back_se[keep],
+        marker="o",
+        color="k",
+        ms=3.5,
+        capsize=1.5,
+        elinewidth=0.6,
+        label=r"$\chi$ back-analysed ($\pm$ 1 se)",
+    )
     ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
     note(ax, shown)
     ax.set_xlabel(LABEL["S_R"])
@@ -276,15 +396,30 @@ def sheet_capillary_stress(result, material) -> Sheet:
     """What capillary stress each wet test carried and which χ law explains it: 3 panels, drawn on request
     (``figures="all"``)."""
     more = _sample_caption(result, material, "wet")
-    return Sheet(f"Back-analysed capillary stress, {material}", [
-        Panel("sigma_cap_vs_saturation", lambda ax: plot_capillary_stress(ax, result, material, "S_R"),
-              "σ_cap = (τ_max − c)/tan φ − σ_N of each wet test (± 1 standard uncertainty) and each model's "
-              "prediction, against S_R." + more),
-        Panel("sigma_cap_vs_suction", lambda ax: plot_capillary_stress(ax, result, material, "suction"),
-              "The same against the suction." + more),
-        Panel("chi", lambda ax: plot_chi_back(ax, result, material),
-              "χ_back = σ_cap/Δu against S_R with the χ(S_R) of each model of the run that has one." + more),
-    ], 3, panel_size=(4.2, 3.4), on_request=True)
+    return Sheet(
+        f"Back-analysed capillary stress, {material}",
+        [
+            Panel(
+                "sigma_cap_vs_saturation",
+                lambda ax: plot_capillary_stress(ax, result, material, "S_R"),
+                "σ_cap = (τ_max − c)/tan φ − σ_N of each wet test (± 1 standard uncertainty) and each model's "
+                "prediction, against S_R." + more,
+            ),
+            Panel(
+                "sigma_cap_vs_suction",
+                lambda ax: plot_capillary_stress(ax, result, material, "suction"),
+                "The same against the suction." + more,
+            ),
+            Panel(
+                "chi",
+                lambda ax: plot_chi_back(ax, result, material),
+                "χ_back = σ_cap/Δu against S_R with the χ(S_R) of each model of the run that has one." + more,
+            ),
+        ],
+        3,
+        panel_size=(4.2, 3.4),
+        on_request=True,
+    )
 
 
 def _curve_tests(result, material, condition: str):
@@ -310,8 +445,11 @@ def _vertical(result, tid):
 def has_vertical(result) -> bool:
     """True when the raw curves of the run give vertical displacements."""
     table = getattr(result.curves, "table", None)
-    return (table is not None and "vertical_displacement" in table.columns
-            and bool(np.isfinite(table.columns["vertical_displacement"]).any()))
+    return (
+        table is not None
+        and "vertical_displacement" in table.columns
+        and bool(np.isfinite(table.columns["vertical_displacement"]).any())
+    )
 
 
 def plot_curves(ax, result, material, condition: str):
@@ -323,8 +461,17 @@ def plot_curves(ax, result, material, condition: str):
         tid = str(t["test_id"][i])
         d, tau, peak = result.curves.curves[tid]
         st = series_style(k)
-        ax.plot(d * 1e3, tau * KPA, color=st["color"], ls=st["ls"], lw=1.0, marker=st["marker"], ms=3.5,
-                markevery=[int(peak)], label=literal(tid))
+        ax.plot(
+            d * 1e3,
+            tau * KPA,
+            color=st["color"],
+            ls=st["ls"],
+            lw=1.0,
+            marker=st["marker"],
+            ms=3.5,
+            markevery=[int(peak)],
+            label=literal(tid),
+        )
     note(ax, shown)
     ax.set_xlabel(LABEL["displacement"])
     ax.set_ylabel(LABEL["tau"])
@@ -347,8 +494,17 @@ def plot_vertical_displacement(ax, result, material, condition: str):
         st = series_style(k)
         dc, _, peak = result.curves.curves[tid]
         at = [int(np.argmin(np.abs(d - dc[peak])))]
-        ax.plot(d * 1e3, v * 1e3, color=st["color"], ls=st["ls"], lw=1.0, marker=st["marker"], ms=3.5,
-                markevery=at, label="_" + literal(tid))  # the key is the shear-stress panel's
+        ax.plot(
+            d * 1e3,
+            v * 1e3,
+            color=st["color"],
+            ls=st["ls"],
+            lw=1.0,
+            marker=st["marker"],
+            ms=3.5,
+            markevery=at,
+            label="_" + literal(tid),
+        )  # the key is the shear-stress panel's
     ax.axhline(0.0, color="k", lw=0.5)
     note(ax, shown)
     ax.set_xlabel(LABEL["displacement"])
@@ -366,8 +522,16 @@ def plot_dilatancy(ax, result, material):
     for cond, mk, colour in (("dry", "s", OKABE_ITO["black"]), ("wet", "o", OKABE_ITO["blue"])):
         keep, _ = thin(np.flatnonzero(mat & (t["condition"] == cond) & np.isfinite(psi)))
         if keep.size:
-            ax.plot(t["sigma_N"][keep] * KPA, psi[keep], ls="none", marker=mk, color=colour, ms=3.5,
-                    mfc="none" if cond == "dry" else colour, label=f"{cond} tests")
+            ax.plot(
+                t["sigma_N"][keep] * KPA,
+                psi[keep],
+                ls="none",
+                marker=mk,
+                color=colour,
+                ms=3.5,
+                mfc="none" if cond == "dry" else colour,
+                label=f"{cond} tests",
+            )
     ax.axhline(0.0, color="k", lw=0.5)
     ax.set_xlabel(LABEL["sigma_N"])
     ax.set_ylabel(LABEL["dilatancy_angle"])
@@ -386,19 +550,32 @@ def sheet_curves(result, material) -> Sheet:
         if not have.size:
             continue
         sampled = f" {shown[0].upper()}{shown[1:]}." if shown else ""
-        panels.append(Panel(f"curves_{cond}", lambda ax, c=cond: plot_curves(ax, result, material, c),
-                            f"Shear stress against horizontal displacement of the {cond} tests, each test in its own "
-                            "colour, line style and marker; the marker is on the picked peak." + sampled))
+        panels.append(
+            Panel(
+                f"curves_{cond}",
+                lambda ax, c=cond: plot_curves(ax, result, material, c),
+                f"Shear stress against horizontal displacement of the {cond} tests, each test in its own "
+                "colour, line style and marker; the marker is on the picked peak." + sampled,
+            )
+        )
         if vertical:
-            panels.append(Panel(f"vertical_{cond}",
-                                lambda ax, c=cond: plot_vertical_displacement(ax, result, material, c),
-                                f"Vertical displacement (positive: dilation) against horizontal displacement of the "
-                                f"{cond} tests, in the styles of the shear-stress panel; the marker is at the peak "
-                                "of shear stress." + sampled))
+            panels.append(
+                Panel(
+                    f"vertical_{cond}",
+                    lambda ax, c=cond: plot_vertical_displacement(ax, result, material, c),
+                    f"Vertical displacement (positive: dilation) against horizontal displacement of the "
+                    f"{cond} tests, in the styles of the shear-stress panel; the marker is at the peak "
+                    "of shear stress." + sampled,
+                )
+            )
     if vertical:
-        panels.append(Panel("dilatancy", lambda ax: plot_dilatancy(ax, result, material),
-                            "Dilatancy angle at the peak, ψ = atan(dδ_v/dδ_h), of each test against its normal "
-                            "stress."))
+        panels.append(
+            Panel(
+                "dilatancy",
+                lambda ax: plot_dilatancy(ax, result, material),
+                "Dilatancy angle at the peak, ψ = atan(dδ_v/dδ_h), of each test against its normal stress.",
+            )
+        )
     if len(panels) == 1:
         panels[0].draw = untitled(panels[0].draw)
     return Sheet(f"Shear curves, {material}", panels, 2)

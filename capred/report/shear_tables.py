@@ -1,4 +1,5 @@
 """Console (and HTML) tables of `capred shear`."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -7,47 +8,96 @@ from ..physics.effective_stress_models import MODEL_LABELS
 from ..result import TableSpec
 from .render import MAX_ROWS, fmt, row_table, spec
 
+
 def shear_tables(result) -> list[TableSpec]:
     """Dry fits; model metrics on all wet tests and on the pendular ones; how sure the ranking is;
     model selection; the back-analysed capillary stress of the wet tests."""
     js = result.json_lazy()
     phi_b = any("phi_b_deg" in f for f in js["materials"].values())
     origin = js["dry_fit"] == "origin"
-    fits = spec("Dry envelope τ = c + σ_N tan φ" + (" (through the origin, c = 0)" if origin else ""),
-                 ["material", "n", "c [kPa]", "± se", "φ [°]", "± se", "tan φ", "R²"] + (["φ_b [°]"] if phi_b else []))
+    fits = spec(
+        "Dry envelope τ = c + σ_N tan φ" + (" (through the origin, c = 0)" if origin else ""),
+        ["material", "n", "c [kPa]", "± se", "φ [°]", "± se", "tan φ", "R²"] + (["φ_b [°]"] if phi_b else []),
+    )
     for mat, f in js["materials"].items():
-        fits.rows.append([mat, fmt(f["n"]), fmt(f["c_kPa"]), fmt(f["c_se_kPa"]), fmt(f["phi_deg"]),
-                          fmt(f["phi_se_deg"]), fmt(f["tan_phi"]), fmt(f["r2"]),
-                          *([fmt(f.get("phi_b_deg"))] if phi_b else [])])
-    out = [fits, _metrics_table("Wet tests: model comparison (residual = predicted − measured)",
-                                js["metrics"], js["metrics_overall"], js["best_model"], js["best_model_overall"])]
+        fits.rows.append(
+            [
+                mat,
+                fmt(f["n"]),
+                fmt(f["c_kPa"]),
+                fmt(f["c_se_kPa"]),
+                fmt(f["phi_deg"]),
+                fmt(f["phi_se_deg"]),
+                fmt(f["tan_phi"]),
+                fmt(f["r2"]),
+                *([fmt(f.get("phi_b_deg"))] if phi_b else []),
+            ]
+        )
+    out = [
+        fits,
+        _metrics_table(
+            "Wet tests: model comparison (residual = predicted − measured)",
+            js["metrics"],
+            js["metrics_overall"],
+            js["best_model"],
+            js["best_model_overall"],
+        ),
+    ]
     if js["metrics_pendular"]:
         lim = result.options.pendular_limit
-        out.append(_metrics_table(f"Pendular wet tests only (S_R ≤ {lim:g})", js["metrics_pendular"],
-                                  js["metrics_pendular_overall"], js["best_model_pendular"],
-                                  js["best_model_pendular_overall"]))
+        out.append(
+            _metrics_table(
+                f"Pendular wet tests only (S_R ≤ {lim:g})",
+                js["metrics_pendular"],
+                js["metrics_pendular_overall"],
+                js["best_model_pendular"],
+                js["best_model_pendular_overall"],
+            )
+        )
     if js["bootstrap"]:
-        boot = spec("How sure is the ranking? (paired bootstrap of wet and dry tests; ΔRMSE = runner-up − best)",
-                     ["material", "best model", "best in % of resamples", "runner-up", "ΔRMSE 95 % CI [kPa]", "replicates"])
+        boot = spec(
+            "How sure is the ranking? (paired bootstrap of wet and dry tests; ΔRMSE = runner-up − best)",
+            ["material", "best model", "best in % of resamples", "runner-up", "ΔRMSE 95 % CI [kPa]", "replicates"],
+        )
         for mat, b in js["bootstrap"].items():
             best = b["best"]
             p = b["best_model_probability"].get(best) if best else None
             diff = b["rmse_difference_ci95_kPa"]
-            boot.rows.append([mat, MODEL_LABELS.get(best, "—"), "—" if p is None else f"{p:.0%}",
-                              MODEL_LABELS.get(b["runner_up"], "—"),
-                              "—" if diff is None else f"{fmt(diff[0])} to {fmt(diff[1])}", fmt(b["replicates"])])
+            boot.rows.append(
+                [
+                    mat,
+                    MODEL_LABELS.get(best, "—"),
+                    "—" if p is None else f"{p:.0%}",
+                    MODEL_LABELS.get(b["runner_up"], "—"),
+                    "—" if diff is None else f"{fmt(diff[0])} to {fmt(diff[1])}",
+                    fmt(b["replicates"]),
+                ]
+            )
         out.append(boot)
     sel = js["model_selection"]
     if sel and len(result.models) > 1:
-        t = spec("Model selection on the wet tests (Gaussian errors; k counts fitted parameters and the variance)",
-                  ["material", "model", "k", "n", "AICc", "ΔAICc", "weight"], left=2)
+        t = spec(
+            "Model selection on the wet tests (Gaussian errors; k counts fitted parameters and the variance)",
+            ["material", "model", "k", "n", "AICc", "ΔAICc", "weight"],
+            left=2,
+        )
         for mat, rows in sel.items():
-            for k, (m, v) in enumerate(sorted(rows.items(), key=lambda kv: (kv[1]["delta_aicc"] is None,
-                                                                            kv[1]["delta_aicc"] or 0.0))):
+            for k, (m, v) in enumerate(
+                sorted(rows.items(), key=lambda kv: (kv[1]["delta_aicc"] is None, kv[1]["delta_aicc"] or 0.0))
+            ):
                 if k == len(rows) - 1:
                     t.sections.add(len(t.rows))
-                t.rows.append([mat if k == 0 else "", MODEL_LABELS[m], fmt(v["k"]), fmt(v["n"]), fmt(v["aicc"]),
-                               fmt(v["delta_aicc"]), fmt(v["weight"])])
+                t.rows.append(
+                    [
+                        mat if k == 0 else "",
+                        MODEL_LABELS[m],
+                        fmt(v["k"]),
+                        fmt(v["n"]),
+                        fmt(v["aicc"]),
+                        fmt(v["delta_aicc"]),
+                        fmt(v["weight"]),
+                    ]
+                )
         out.append(t)
     if js["fitted"]:
         f = spec("Fitted χ laws (dry c, φ held)", ["material", "model", "parameter", "value", "± se", "n"], left=3)
@@ -62,9 +112,12 @@ def shear_tables(result) -> list[TableSpec]:
 
     n_wet = int(np.sum(result.tests["condition"] == "wet"))
     rows = list(itertools.islice(_wet_rows(result), MAX_ROWS))
-    table = row_table("Capillary stress carried by each wet test, σ_cap = (τ − c)/tan φ − σ_N [kPa]", rows,
-                      ["test_id", "material", "S_R", "suction [kPa]", "σ_cap [kPa]", "± se", "χ_back", "± se "],
-                      "results.csv")
+    table = row_table(
+        "Capillary stress carried by each wet test, σ_cap = (τ − c)/tan φ − σ_N [kPa]",
+        rows,
+        ["test_id", "material", "S_R", "suction [kPa]", "σ_cap [kPa]", "± se", "χ_back", "± se "],
+        "results.csv",
+    )
     if n_wet > MAX_ROWS:
         table.total_rows, table.full_table = n_wet, "results.csv"
     out.append(table)
@@ -77,9 +130,16 @@ def _wet_rows(result, limit: int = MAX_ROWS):
     rows = np.flatnonzero(t["condition"] == "wet")[:limit]
     b = result.back
     for i, tid in zip(rows.tolist(), result.test_ids(rows)):
-        yield {"test_id": tid, "material": str(t["material"][i]), "S_R": t["S_R"][i],
-               "suction [kPa]": t["suction"][i] / 1e3, "σ_cap [kPa]": b.sigma_cap[i] / 1e3,
-               "± se": b.sigma_cap_se[i] / 1e3, "χ_back": b.chi_back[i], "± se ": b.chi_back_se[i]}
+        yield {
+            "test_id": tid,
+            "material": str(t["material"][i]),
+            "S_R": t["S_R"][i],
+            "suction [kPa]": t["suction"][i] / 1e3,
+            "σ_cap [kPa]": b.sigma_cap[i] / 1e3,
+            "± se": b.sigma_cap_se[i] / 1e3,
+            "χ_back": b.chi_back[i],
+            "± se ": b.chi_back_se[i],
+        }
 
 
 def _metrics_table(title, metrics, overall, best_of_material, best_overall) -> TableSpec:
@@ -94,6 +154,15 @@ def _metrics_table(title, metrics, overall, best_of_material, best_overall) -> T
                 met.bold_rows.add(len(met.rows))
             if k == len(models) - 1:
                 met.sections.add(len(met.rows))
-            met.rows.append([mat if k == 0 else "", MODEL_LABELS[m], fmt(v["n"]), fmt(v["rmse_kPa"]),
-                             fmt(v["bias_kPa"], sign=True), fmt(v["r2"]), "best" if m == best else ""])
+            met.rows.append(
+                [
+                    mat if k == 0 else "",
+                    MODEL_LABELS[m],
+                    fmt(v["n"]),
+                    fmt(v["rmse_kPa"]),
+                    fmt(v["bias_kPa"], sign=True),
+                    fmt(v["r2"]),
+                    "best" if m == best else "",
+                ]
+            )
     return met

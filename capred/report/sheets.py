@@ -17,12 +17,13 @@ every axes placed exactly where the panel's own layout put it.
 Text is 7-9 pt at these sizes (``RC``), and the files carry no timestamp and
 no random id (``RC["svg.hashsalt"]``, ``NO_STAMP``): a rerun writes the same bytes.
 """
+
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Callable
 
 from .style import legend_outside, literal
 
@@ -70,8 +71,11 @@ RC = {
 }
 
 #: no timestamp or software version in figure files: reruns give the same bytes
-NO_STAMP = {"png": {"Software": None}, "pdf": {"CreationDate": None, "Producer": None, "Creator": None},
-            "svg": {"Date": None, "Creator": None}}
+NO_STAMP = {
+    "png": {"Software": None},
+    "pdf": {"CreationDate": None, "Producer": None, "Creator": None},
+    "svg": {"Date": None, "Creator": None},
+}
 
 
 @dataclass
@@ -218,9 +222,19 @@ def _dress(ax, width_px: float, renderer) -> None:
     leg.remove()
     drop = _below_axis_pt(ax) / 72 * ax.figure.dpi  # px from the axes' bottom to the legend's top
     ncol = 2 if len(labels) > 1 and 2.0 * side <= 0.95 * width_px else 1
-    ax.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=ncol, fontsize=fontsize,
-              bbox_transform=ax.transAxes + ScaledTranslation(0, -drop / ax.figure.dpi, ax.figure.dpi_scale_trans),
-              frameon=False, borderaxespad=0.0, columnspacing=1.2, handlelength=1.8)
+    ax.legend(
+        handles,
+        labels,
+        loc="upper center",
+        bbox_to_anchor=(0.5, 0.0),
+        ncol=ncol,
+        fontsize=fontsize,
+        bbox_transform=ax.transAxes + ScaledTranslation(0, -drop / ax.figure.dpi, ax.figure.dpi_scale_trans),
+        frameon=False,
+        borderaxespad=0.0,
+        columnspacing=1.2,
+        handlelength=1.8,
+    )
 
 
 def _below_axis_pt(ax) -> float:
@@ -230,8 +244,11 @@ def _below_axis_pt(ax) -> float:
 
     rc = mpl.rcParams
     label = 1.45 * rc["axes.labelsize"] + rc["axes.labelpad"] if ax.get_xlabel() else 0.0
-    ticks = (rc["xtick.major.size"] + rc["xtick.major.pad"] + 1.3 * rc["xtick.labelsize"]
-             if ax.xaxis.get_major_locator() is not None and ax.xaxis.get_visible() else 0.0)
+    ticks = (
+        rc["xtick.major.size"] + rc["xtick.major.pad"] + 1.3 * rc["xtick.labelsize"]
+        if ax.xaxis.get_major_locator() is not None and ax.xaxis.get_visible()
+        else 0.0
+    )
     return ticks + label + 2.0
 
 
@@ -265,8 +282,7 @@ def _fit(fig, renderer, pad_mm: float = PAD_MM, axes=None, region=None) -> None:
     sx, sy = (x1 - x0) / W / old.width, (y1 - y0) / H / old.height
     for ax in axes:
         p = ax.get_position(original=True)
-        ax.set_position((x0 / W + (p.x0 - old.x0) * sx, y0 / H + (p.y0 - old.y0) * sy, p.width * sx,
-                         p.height * sy))
+        ax.set_position((x0 / W + (p.x0 - old.x0) * sx, y0 / H + (p.y0 - old.y0) * sy, p.width * sx, p.height * sy))
 
 
 def _freeze_layout(fig) -> None:
@@ -358,8 +374,9 @@ def _title_raster(title: str, width_mm: float, dpi: float):
 
     with journal_style():
         fig = Figure(figsize=(_inches(width_mm, dpi), _inches(TITLE_MM, dpi)), dpi=dpi)
-        fig.text(0.5, 0.45, literal(title), ha="center", va="center", fontsize=RC["figure.titlesize"],
-                 wrap=len(title) > 80)
+        fig.text(
+            0.5, 0.45, literal(title), ha="center", va="center", fontsize=RC["figure.titlesize"], wrap=len(title) > 80
+        )
         return raster(fig)
 
 
@@ -390,7 +407,7 @@ def compose_raster(sheet: Sheet, panel_rasters: list, dpi: float):
     for img, s in zip(panel_rasters, slots):
         r0, c0 = _px(s.y, dpi), _px(s.x, dpi)
         h, w = min(img.shape[0], out.shape[0] - r0), min(img.shape[1], out.shape[1] - c0)
-        out[r0:r0 + h, c0:c0 + w] = img[:h, :w]
+        out[r0 : r0 + h, c0 : c0 + w] = img[:h, :w]
     return out
 
 
@@ -432,11 +449,15 @@ def encode_png(image, dpi: float, compress_level: int = 3) -> bytes:
         return struct.pack(">I", len(data)) + tag + data + struct.pack(">I", zlib.crc32(tag + data))
 
     ppm = int(dpi / 0.0254 + 0.5)  # pixels per metre, as PIL rounds them
-    return b"".join([b"\x89PNG\r\n\x1a\n",
-                     chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)),  # 8-bit RGB, no interlace
-                     chunk(b"pHYs", struct.pack(">IIB", ppm, ppm, 1)),  # unit: metre
-                     chunk(b"IDAT", zlib.compress(rows.tobytes(), compress_level)),
-                     chunk(b"IEND", b"")])
+    return b"".join(
+        [
+            b"\x89PNG\r\n\x1a\n",
+            chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)),  # 8-bit RGB, no interlace
+            chunk(b"pHYs", struct.pack(">IIB", ppm, ppm, 1)),  # unit: metre
+            chunk(b"IDAT", zlib.compress(rows.tobytes(), compress_level)),
+            chunk(b"IEND", b""),
+        ]
+    )
 
 
 # --- one figure per sheet ------------------------------------------------------------------------------------
@@ -468,15 +489,20 @@ def sheet_figure(sheet: Sheet, dpi: float = 300.0):
         renderer = _canvas(fig)
         W, H = fig.bbox.width, fig.bbox.height
         px = dpi / MM_PER_INCH
-        fig.suptitle(literal(sheet.title), y=1 - 0.55 * TITLE_MM * px / H, va="center",
-                     wrap=len(sheet.title) > 80)
+        fig.suptitle(literal(sheet.title), y=1 - 0.55 * TITLE_MM * px / H, va="center", wrap=len(sheet.title) > 80)
         for panel, slot in zip(sheet.panels, slots):
             x0, x1 = slot.x * px, (slot.x + slot.width) * px
             y1 = H - slot.y * px
             y0 = y1 - slot.height * px
             before = len(fig.axes)
-            ax = fig.add_axes((x0 / W + 0.15 * slot.width * px / W, y0 / H + 0.15 * slot.height * px / H,
-                               0.7 * slot.width * px / W, 0.7 * slot.height * px / H))
+            ax = fig.add_axes(
+                (
+                    x0 / W + 0.15 * slot.width * px / W,
+                    y0 / H + 0.15 * slot.height * px / H,
+                    0.7 * slot.width * px / W,
+                    0.7 * slot.height * px / H,
+                )
+            )
             panel.draw(ax)
             _dress(ax, x1 - x0, renderer)
             _fit(fig, renderer, axes=fig.axes[before:], region=(x0, y0, x1, y1))
@@ -512,8 +538,7 @@ def compose(sheet: Sheet, dpi: float = 300.0, panel_figures: list | None = None)
     with journal_style():
         fig = Figure(figsize=(width / MM_PER_INCH, height / MM_PER_INCH), dpi=dpi)
         renderer = _canvas(fig)
-        fig.suptitle(literal(sheet.title), y=1 - 0.45 * TITLE_MM / height, va="center",
-                     wrap=len(sheet.title) > 80)
+        fig.suptitle(literal(sheet.title), y=1 - 0.45 * TITLE_MM / height, va="center", wrap=len(sheet.title) > 80)
         for panel, slot, pfig in zip(sheet.panels, slots, panel_figures):
             before = len(fig.axes)
             x0, y1 = slot.x / width, 1 - slot.y / height

@@ -12,6 +12,7 @@ such as ``S_e^κ`` into mathtext). Panels of large tables draw a stated random
 sample of markers (``thin``) so that a figure's cost does not grow with the
 number of tests.
 """
+
 from __future__ import annotations
 
 import re
@@ -21,8 +22,15 @@ import numpy as np
 from ..sampling import MAX_MARKERS, THIN_SEED, sample_rows  # noqa: F401  (re-exported)
 
 OKABE_ITO = {
-    "black": "#000000", "orange": "#E69F00", "sky": "#56B4E9", "green": "#009E73",
-    "yellow": "#F0E442", "blue": "#0072B2", "vermillion": "#D55E00", "purple": "#CC79A7", "grey": "#7F7F7F",
+    "black": "#000000",
+    "orange": "#E69F00",
+    "sky": "#56B4E9",
+    "green": "#009E73",
+    "yellow": "#F0E442",
+    "blue": "#0072B2",
+    "vermillion": "#D55E00",
+    "purple": "#CC79A7",
+    "grey": "#7F7F7F",
 }
 _C = OKABE_ITO
 
@@ -127,8 +135,9 @@ def series_style(k: int) -> dict:
     marker runs through MARKERS as well.
     """
     nc = len(SERIES_COLOURS)
-    return dict(color=SERIES_COLOURS[k % nc], ls=LINESTYLES[(k // nc) % len(LINESTYLES)],
-                marker=MARKERS[k % len(MARKERS)])
+    return dict(
+        color=SERIES_COLOURS[k % nc], ls=LINESTYLES[(k // nc) % len(LINESTYLES)], marker=MARKERS[k % len(MARKERS)]
+    )
 
 
 def level_style(k: int) -> dict:
@@ -136,9 +145,24 @@ def level_style(k: int) -> dict:
     return dict(ls=LINESTYLES[k % len(LINESTYLES)], marker=MARKERS[k % len(MARKERS)])
 
 
-_GREEK = {"alpha": r"\alpha", "beta": r"\beta", "gamma": r"\gamma", "delta": r"\delta", "eta": r"\eta",
-          "theta": r"\theta", "kappa": r"\kappa", "lambda": r"\lambda", "lam": r"\lambda", "mu": r"\mu",
-          "rho": r"\rho", "sigma": r"\sigma", "tau": r"\tau", "phi": r"\phi", "chi": r"\chi", "psi": r"\psi"}
+_GREEK = {
+    "alpha": r"\alpha",
+    "beta": r"\beta",
+    "gamma": r"\gamma",
+    "delta": r"\delta",
+    "eta": r"\eta",
+    "theta": r"\theta",
+    "kappa": r"\kappa",
+    "lambda": r"\lambda",
+    "lam": r"\lambda",
+    "mu": r"\mu",
+    "rho": r"\rho",
+    "sigma": r"\sigma",
+    "tau": r"\tau",
+    "phi": r"\phi",
+    "chi": r"\chi",
+    "psi": r"\psi",
+}
 _WORD = r"[A-Za-z\u0370-\u03ff]+'*"
 _SCRIPT = r"[A-Za-z0-9\u0370-\u03ff,.]+"
 _TOKEN = re.compile(rf"({_WORD})(_\{{[^}}]*\}}|_{_SCRIPT})?(\^\([^)]*\)|\^\{{[^}}]*\}}|\^[-+]?{_SCRIPT})?")
@@ -159,12 +183,13 @@ def tex(text: str) -> str:
     """
     parts = str(text).split("$")
     for j in range(0, len(parts), 2):  # outside existing math only
+
         def sub(m):
             base, low, high = m.group(1), m.group(2), m.group(3)
             if not low and not high:
                 return m.group(0)
             bare = base.rstrip("'")
-            base = _GREEK.get(bare, bare) + base[len(bare):]
+            base = _GREEK.get(bare, bare) + base[len(bare) :]
             return "$" + base + (("_" + _script(low)) if low else "") + (("^" + _script(high)) if high else "") + "$"
 
         parts[j] = _TOKEN.sub(sub, parts[j])
@@ -212,8 +237,16 @@ def legend_outside(ax, ncol: int = 1) -> None:
     else:
         handles, labels = ax.get_legend_handles_labels()
     if handles:
-        ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=7,
-                  frameon=False, ncol=ncol)
+        ax.legend(
+            handles,
+            labels,
+            loc="upper left",
+            bbox_to_anchor=(1.02, 1.0),
+            borderaxespad=0.0,
+            fontsize=7,
+            frameon=False,
+            ncol=ncol,
+        )
 
 
 def untitled(draw):

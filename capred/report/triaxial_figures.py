@@ -1,4 +1,5 @@
 """Figures of `capred triaxial-bounds`, after Fig. 16-18 of Prunier et al. (2024)."""
+
 from __future__ import annotations
 
 import numpy as np
@@ -32,40 +33,82 @@ def plot_qp_plane(ax, result):
     p_all = np.concatenate([t["p"], *(b.p_prime[np.isfinite(b.p_prime)] for b in result.bounds.values())])
     p_max = max(float(np.nanmax(p_all)) * 1.1, 1.0)
     ps = np.linspace(0.0, p_max, 50)
-    ax.plot(ps * KPA, (env.M * ps + env.k) * KPA, "k-", lw=1.2,
-            label=rf"effective envelope ($c'$ = {env.c * KPA:.3g} kPa, $\phi'$ = {env.phi:.2f}°)")
+    ax.plot(
+        ps * KPA,
+        (env.M * ps + env.k) * KPA,
+        "k-",
+        lw=1.2,
+        label=rf"effective envelope ($c'$ = {env.c * KPA:.3g} kPa, $\phi'$ = {env.phi:.2f}°)",
+    )
     ext = t["branch"] == "extension"
     if ext.any():  # extension: M = 6 sin phi'/(3 + sin phi')
-        ax.plot(ps * KPA, (env.M_extension * ps + env.k_extension) * KPA, "k--", lw=1.0,
-                label=r"effective envelope, extension ($M = 6\sin\phi'/(3 + \sin\phi')$)")
-    ax.plot(t["p"][sat & ~ext] * KPA, t["q"][sat & ~ext] * KPA, "ks", mfc="white", label=r"saturated failure ($p'$, $q$)")
-    ax.plot(t["p"][uns & ~ext] * KPA, t["q"][uns & ~ext] * KPA, "k*", ms=9, label=r"unsaturated failure ($p$, $q$), total")
+        ax.plot(
+            ps * KPA,
+            (env.M_extension * ps + env.k_extension) * KPA,
+            "k--",
+            lw=1.0,
+            label=r"effective envelope, extension ($M = 6\sin\phi'/(3 + \sin\phi')$)",
+        )
+    ax.plot(
+        t["p"][sat & ~ext] * KPA, t["q"][sat & ~ext] * KPA, "ks", mfc="white", label=r"saturated failure ($p'$, $q$)"
+    )
+    ax.plot(
+        t["p"][uns & ~ext] * KPA, t["q"][uns & ~ext] * KPA, "k*", ms=9, label=r"unsaturated failure ($p$, $q$), total"
+    )
     if ext.any():
-        ax.plot(t["p"][sat & ext] * KPA, t["q"][sat & ext] * KPA, "kD", mfc="white", ms=5,
-                label="saturated failure, extension")
+        ax.plot(
+            t["p"][sat & ext] * KPA,
+            t["q"][sat & ext] * KPA,
+            "kD",
+            mfc="white",
+            ms=5,
+            label="saturated failure, extension",
+        )
         ax.plot(t["p"][uns & ext] * KPA, t["q"][uns & ext] * KPA, "kP", ms=7, label="unsaturated failure, extension")
     for name, style in BOUND_STYLE.items():
         b = result.bounds[name]
         ok = uns & np.isfinite(b.p_prime)
         if not ok.any():
             continue
-        ax.plot(b.p_prime[ok] * KPA, b.q_prime[ok] * KPA, ls="none", ms=7, color=style["color"],
-                marker=style["marker"], label=style["label"])
+        ax.plot(
+            b.p_prime[ok] * KPA,
+            b.q_prime[ok] * KPA,
+            ls="none",
+            ms=7,
+            color=style["color"],
+            marker=style["marker"],
+            label=style["label"],
+        )
         for i in np.flatnonzero(ok):
-            ax.annotate("", xy=(b.p_prime[i] * KPA, b.q_prime[i] * KPA), xytext=(t["p"][i] * KPA, t["q"][i] * KPA),
-                        arrowprops=dict(arrowstyle="->", color=style["color"], lw=0.8, alpha=0.7))
+            ax.annotate(
+                "",
+                xy=(b.p_prime[i] * KPA, b.q_prime[i] * KPA),
+                xytext=(t["p"][i] * KPA, t["q"][i] * KPA),
+                arrowprops=dict(arrowstyle="->", color=style["color"], lw=0.8, alpha=0.7),
+            )
     edtp = result.bounds["edtp"]
     for k, i in enumerate(np.flatnonzero(uns & np.isfinite(edtp.p_prime))):
         p0e = t["p0"][i] + t["s0"][i]
-        ax.plot([p0e * KPA, edtp.p_prime[i] * KPA], [0, edtp.q_prime[i] * KPA], "--", color=model_style("edtp")["color"],
-                lw=0.8, label=r"EDTP stress path (from $p_0 + s_0$)" if k == 0 else None)
+        ax.plot(
+            [p0e * KPA, edtp.p_prime[i] * KPA],
+            [0, edtp.q_prime[i] * KPA],
+            "--",
+            color=model_style("edtp")["color"],
+            lw=0.8,
+            label=r"EDTP stress path (from $p_0 + s_0$)" if k == 0 else None,
+        )
     for j, g in enumerate(result.groups):  # the apparent (total) envelope of each group sharing one tensor
         if g.get("apparent_M") is None:
             continue
-        ax.plot(ps * KPA, g["apparent_M"] * ps * KPA + g["apparent_k_kPa"], ":",
-                color=GROUP_COLOURS[j % len(GROUP_COLOURS)], lw=1.0,
-                label=f"group {literal(g['group'])}: apparent envelope ($C$ = {g['C_apparent_kPa']:.3g} kPa, "
-                      rf"$\phi$ = {g['phi_apparent_deg']:.3g}°)")
+        ax.plot(
+            ps * KPA,
+            g["apparent_M"] * ps * KPA + g["apparent_k_kPa"],
+            ":",
+            color=GROUP_COLOURS[j % len(GROUP_COLOURS)],
+            lw=1.0,
+            label=f"group {literal(g['group'])}: apparent envelope ($C$ = {g['C_apparent_kPa']:.3g} kPa, "
+            rf"$\phi$ = {g['phi_apparent_deg']:.3g}°)",
+        )
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
     ax.set_xlabel(LABEL["p"])
@@ -81,15 +124,26 @@ def plot_capillary_ranges(ax, result):
 
     t = result.tests
     idx = np.flatnonzero(result.unsaturated)
-    comps = (("sigma1_cap", r"$\sigma_{1,cap}$", ""), ("sigma3_cap", r"$\sigma_{3,cap}$", "///"),
-             ("p_cap", r"$p_{cap}$", "..."))
+    comps = (
+        ("sigma1_cap", r"$\sigma_{1,cap}$", ""),
+        ("sigma3_cap", r"$\sigma_{3,cap}$", "///"),
+        ("p_cap", r"$p_{cap}$", "..."),
+    )
     width = 0.8 / (len(BOUND_STYLE) * len(comps))
     for k, (name, st) in enumerate(BOUND_STYLE.items()):
         b = result.bounds[name]
         for j, (attr, _, hatch) in enumerate(comps):
             x = np.arange(len(idx)) - 0.4 + width * (k * len(comps) + j + 0.5)
-            ax.bar(x, getattr(b, attr)[idx] * KPA, width, color=st["color"], alpha=0.85, hatch=hatch,
-                   edgecolor="white", lw=0.3)
+            ax.bar(
+                x,
+                getattr(b, attr)[idx] * KPA,
+                width,
+                color=st["color"],
+                alpha=0.85,
+                hatch=hatch,
+                edgecolor="white",
+                lw=0.3,
+            )
     ax.set_xticks(np.arange(len(idx)), [literal(t["test_id"][i]) for i in idx], fontsize=7)
     ax.axhline(0, color="k", lw=0.8)
     handles = [Patch(color=st["color"], label=st["label"]) for st in BOUND_STYLE.values()]
@@ -119,8 +173,14 @@ def plot_mohr_circles(ax, result):
             ax.plot((c + r * np.cos(th)) * KPA, r * np.sin(th) * KPA, color=st["color"], ls=st["ls"], lw=0.9)
             hi = max(hi, b)
     s = np.linspace(0, hi, 20)
-    ax.plot(s * KPA, (env.c + s * np.tan(np.radians(env.phi))) * KPA, color=OKABE_ITO["blue"], ls="-", lw=1.0,
-            label=r"$\tau = c' + \sigma' \tan\phi'$")
+    ax.plot(
+        s * KPA,
+        (env.c + s * np.tan(np.radians(env.phi))) * KPA,
+        color=OKABE_ITO["blue"],
+        ls="-",
+        lw=1.0,
+        label=r"$\tau = c' + \sigma' \tan\phi'$",
+    )
     for st in MOHR.values():
         ax.plot([], [], color=st["color"], ls=st["ls"], label=st["label"])
     ax.set_aspect("equal", adjustable="datalim")
@@ -152,10 +212,18 @@ def plot_group_circles(ax, result):
         s_line = np.linspace(0.0, hi, 20)
         for key, ls, what in (("C_kPa", "-", "C"), ("C_fictive_kPa", "--", "C''")):
             if g.get(key) is not None:
-                ax.plot(s_line, g[key] + s_line * tan_phi, ls=ls, color=colour, lw=1.4,
-                        label=f"group {literal(g['group'])}: ${what}$ = {g[key]:.3g} kPa")
+                ax.plot(
+                    s_line,
+                    g[key] + s_line * tan_phi,
+                    ls=ls,
+                    color=colour,
+                    lw=1.4,
+                    label=f"group {literal(g['group'])}: ${what}$ = {g[key]:.3g} kPa",
+                )
     s_line = np.linspace(0.0, max(hi, 1.0), 20)
-    ax.plot(s_line, env.c * KPA + s_line * tan_phi, "k-", lw=1.0, label=f"effective envelope, $C'$ = {env.c * KPA:.3g} kPa")
+    ax.plot(
+        s_line, env.c * KPA + s_line * tan_phi, "k-", lw=1.0, label=f"effective envelope, $C'$ = {env.c * KPA:.3g} kPa"
+    )
     ax.plot([], [], "k-", lw=0.9, label="unsaturated circles (total)")
     ax.plot([], [], "k--", lw=0.9, label=r"fictive circles $\sigma''$ (saturated radius)")
     ax.set_xlim(left=0)
@@ -179,13 +247,25 @@ def plot_group_tensors(ax, result):
         x = np.arange(len(groups)) - 0.4 + width * (k + 0.5)
         values = [g[f"sigma{n}_cap_kPa"] for g in groups]
         errors = [g[f"sigma{n}_cap_se_kPa"] or 0.0 for g in groups]
-        ax.bar(x, values, width, yerr=errors, capsize=3, hatch=hatch, edgecolor="white", lw=0.3,
-               color=[GROUP_COLOURS[result.groups.index(g) % len(GROUP_COLOURS)] for g in groups], label=label)
+        ax.bar(
+            x,
+            values,
+            width,
+            yerr=errors,
+            capsize=3,
+            hatch=hatch,
+            edgecolor="white",
+            lw=0.3,
+            color=[GROUP_COLOURS[result.groups.index(g) % len(GROUP_COLOURS)] for g in groups],
+            label=label,
+        )
+
     def short(method):
         return r"eq. 48, $\sigma_{1,cap}$ = 0" if "closed" in method else method.split(" (")[0]
 
-    ax.set_xticks(np.arange(len(groups)), [f"{literal(g['group'])}\n{short(g['method'] or '')}" for g in groups],
-                  fontsize=7)
+    ax.set_xticks(
+        np.arange(len(groups)), [f"{literal(g['group'])}\n{short(g['method'] or '')}" for g in groups], fontsize=7
+    )
     ax.axhline(0, color="k", lw=0.8)
     ax.set_ylabel(LABEL["cap_component"])
     ax.set_title(r"Tensor shared by each group ($\pm$ se)")
@@ -194,18 +274,43 @@ def plot_group_tensors(ax, result):
 
 
 def sheet_triaxial(result) -> Sheet:
-    return Sheet("Capillary stress tensor at failure (after Prunier et al. 2024, Fig. 16-18)", [
-        Panel("qp_plane", lambda ax: plot_qp_plane(ax, result),
-              "Failure points in the q-p plane, the effective envelope, the image points of each bound and the "
-              "EDTP stress paths; groups' apparent envelopes dotted."),
-        Panel("capillary_stresses", lambda ax: plot_capillary_ranges(ax, result),
-              "σ1,cap, σ3,cap and p_cap of each bound for every unsaturated test."),
-        Panel("mohr_circles", lambda ax: plot_mohr_circles(ax, result),
-              "Mohr circles at failure: total (unsaturated), effective under the lower bound, and saturated."),
-    ] + ([
-        Panel("group_circles", lambda ax: plot_group_circles(ax, result),
-              "Groups sharing one tensor (Prunier et al. 2024, Appendix 1): unsaturated Mohr circles, fictive "
-              "circles σ'' with the paired saturated radius (eq. 44) and the lines of cohesion C and C'' (eq. 48)."),
-        Panel("group_tensors", lambda ax: plot_group_tensors(ax, result),
-              "σ1,cap, σ2,cap, σ3,cap of each group by eq. 48 or 50, with standard errors from the regression."),
-    ] if any(g.get("sigma1_cap_kPa") is not None for g in result.groups) else []), 2, spans={"qp_plane": 2})
+    return Sheet(
+        "Capillary stress tensor at failure (after Prunier et al. 2024, Fig. 16-18)",
+        [
+            Panel(
+                "qp_plane",
+                lambda ax: plot_qp_plane(ax, result),
+                "Failure points in the q-p plane, the effective envelope, the image points of each bound and the "
+                "EDTP stress paths; groups' apparent envelopes dotted.",
+            ),
+            Panel(
+                "capillary_stresses",
+                lambda ax: plot_capillary_ranges(ax, result),
+                "σ1,cap, σ3,cap and p_cap of each bound for every unsaturated test.",
+            ),
+            Panel(
+                "mohr_circles",
+                lambda ax: plot_mohr_circles(ax, result),
+                "Mohr circles at failure: total (unsaturated), effective under the lower bound, and saturated.",
+            ),
+        ]
+        + (
+            [
+                Panel(
+                    "group_circles",
+                    lambda ax: plot_group_circles(ax, result),
+                    "Groups sharing one tensor (Prunier et al. 2024, Appendix 1): unsaturated Mohr circles, fictive "
+                    "circles σ'' with the paired saturated radius (eq. 44) and the lines of cohesion C and C'' (eq. 48).",
+                ),
+                Panel(
+                    "group_tensors",
+                    lambda ax: plot_group_tensors(ax, result),
+                    "σ1,cap, σ2,cap, σ3,cap of each group by eq. 48 or 50, with standard errors from the regression.",
+                ),
+            ]
+            if any(g.get("sigma1_cap_kPa") is not None for g in result.groups)
+            else []
+        ),
+        2,
+        spans={"qp_plane": 2},
+    )
