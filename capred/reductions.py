@@ -23,10 +23,27 @@ class Reduction:
     #: write files without --out (into ./capred_out/...); a calculator only prints unless --out is given
     files_by_default: bool = True
     summary: str = ""  # one line of `capred --help`
+    #: options of a quick run, for a command without a sample (tests, docs): ``{"points": 50}``
+    example: tuple = ()
 
     def run(self, source, options):
         module, name = self.run_path.split(":")
         return getattr(import_module(module), name)(source, options)
+
+    def example_args(self) -> list[str]:
+        """The CLI arguments of a quick run: ``--sample``, or the ``example`` options spelled as flags.
+
+        Returns
+        -------
+        list of str
+            E.g. ``["bridge", "curve", "--points", "50"]``.
+        """
+        args = self.name.split() + (["--sample"] if self.sample is not None else [])
+        for key, value in self.example:
+            args.append("--" + key.replace("_", "-"))
+            if value is not True:  # a flag takes no value
+                args.append(",".join(map(str, value)) if isinstance(value, tuple) else str(value))
+        return args
 
     def options(self, **kw):
         module, name = self.options_path.split(":")
@@ -184,6 +201,7 @@ REDUCTIONS: dict[str, Reduction] = {
             None,
             "yade_files",
             summary="Capillary files for YADE's capillary law.",
+            example=(("ratios", (1, 2)), ("distances", 4), ("suctions", 5)),
         ),
         Reduction(
             "bridge curve",
@@ -198,6 +216,7 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("evenepoel", "israelachvili", "bishop1959"),
             summary="The thesis's σ'-S_R comparison for spheres in contact.",
+            example=(("points", 50),),
         ),
         Reduction(
             "pt-volume",
@@ -225,6 +244,7 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("pedrotti_tarantino",),
             summary="Void ratio along a stress path with two effective stresses.",
+            example=(("example_kaolin", True),),
         ),
     )
 }
