@@ -43,7 +43,9 @@ class Outcome:
     outputs: list[str] = field(default_factory=list)
     seconds: float = 0.0
     result_json: dict | None = None
-    season: list[dict] = field(default_factory=list)  # the result's season rows
+    season: list[dict] = field(default_factory=list)  # the result's season rows, model ids as their labels
+    headline: str = ""  # the run's main results in a line, with labels (season.csv)
+    warnings: int = 0  # how many warnings the run gave
 
     @property
     def ok(self) -> bool:
@@ -100,6 +102,7 @@ def run_safely(job: Job) -> Outcome:
             [log] if log else [],
             time.perf_counter() - t0,
         )
+    rows = labelled(result.season_rows())
     return Outcome(
         job.command,
         src,
@@ -109,7 +112,9 @@ def run_safely(job: Job) -> Outcome:
         [str(p) for p in written],
         time.perf_counter() - t0,
         result.to_json() if job.keep_json else None,
-        result.season_rows(),
+        rows,
+        headline(rows) or _count_line(result),
+        len(result.all_warnings()),
     )
 
 
@@ -360,56 +365,201 @@ def _runs(root: Path, outcomes: list[Outcome]) -> list[str]:
     return out
 
 
-def write_index(root: Path, outcomes: list[Outcome]) -> Path:
-    """index.csv: every input with its status, message and each output file written.
+def relative(path, root) -> str:
+    """A path as index.csv and season.csv write it: relative to the batch root, with '/' ("" for none)."""
+    import os
 
-    Refused (OutputError) where an index.csv exists that capred did not write;
-    recorded in the batch's provenance.json.
+    if not path:
+        return ""
+    try:
+        return Path(os.path.relpath(os.path.abspath(path), os.path.abspath(root))).as_posix()
+    except ValueError:  # pragma: no cover - another drive (Windows)
+        return Path(path).as_posix()
+
+
+def one_line(message: str) -> str:
+    """A message of several lines (one per problem) as one CSV cell: its lines stripped, joined by ' | '."""
+    return " | ".join(x.strip(" -") for x in message.splitlines() if x.strip())
+
+
+# --- labels and units of the season tables --------------------------------------------------------------
+def model_label(name):
+    """The label of a model, law or retention model as its registry gives it (``own1`` -> ``Own 1``, ``vg`` ->
+    ``van Genuchten, m = 1 - 1/n``); other values as they are."""
+    if not isinstance(name, str):
+        return name
+    from .fitting.retention_models import MODELS
+    from .physics.effective_stress_models import REGISTRY
+
+    for registry in (REGISTRY, MODELS):
+        entry = registry.get(name)
+        if entry is not None and getattr(entry, "label", None):
+            return entry.label
+    return name
+
+
+#: JSON-style unit suffixes of season keys and the unit they stand for (longest first)
+_SUFFIX_UNITS = (("_per_kPa", "1/kPa"), ("_kPa", "kPa"), ("_deg", "deg"), ("_mm", "mm"), ("_N_per_m", "N/m"))
+
+
+def unit_header(key: str, values) -> str:
+    """A season column's header in the ``name [unit]`` form of every capred CSV: a header that has one kept,
+    a JSON suffix read as its unit (``alpha_per_kPa`` -> ``alpha [1/kPa]``), other numbers ``[-]``, text
+    columns their name alone."""
+    import numbers
+
+    if key.endswith("]") and " [" in key:
+        return key
+    for suffix, unit in _SUFFIX_UNITS:
+        if key.endswith(suffix) and len(key) > len(suffix):
+            return f"{key[: -len(suffix)]} [{unit}]"
+    present = [v for v in values if v is not None]
+    if present and all(isinstance(v, numbers.Real) and not isinstance(v, bool) for v in present):
+        return f"{key} [-]"
+    return key
+
+
+def labelled(rows: list[dict]) -> list[dict]:
+    """Season rows with every model id (``best_model``, ``*_model``) replaced by its registry label."""
+    return [{k: (model_label(v) if k.endswith("model") else v) for k, v in r.items()} for r in rows]
+
+
+def headline(rows: list[dict]) -> str:
+    """The main results of a run in one line, from its season rows: per row its label (material, branch),
+    its first two measured values with units and its best model, e.g. ``steel_2mm: c 0.3701 kPa, phi 34.59
+    deg, best model: Own 2``; rows separated by `` | ``."""
+    from .report.render import fmt
+
+    parts = []
+    for r in rows:
+        label = next((v for k, v in r.items() if isinstance(v, str) and not k.endswith("model")), "")
+        values = []
+        for k, v in r.items():
+            if len(values) == 2:
+                break
+            if isinstance(v, float) and "_se" not in k and not k.startswith("n_"):
+                head = unit_header(k, [v])
+                name, _, unit = head.partition(" [")
+                unit = unit.rstrip("]")
+                values.append(f"{name} {fmt(v)}" + (f" {unit}" if unit and unit != "-" else ""))
+        best = next((v for k, v in r.items() if k.endswith("model") and v), None)
+        if best:
+            values.append(f"best model: {best}")
+        parts.append((f"{label}: " if label else "") + ", ".join(values))
+    return " | ".join(p for p in parts if p)
+
+
+def _count_line(result) -> str:
+    """The headline of a run without season rows: how many rows its table holds."""
+    try:
+        n = result.row_count()
+    except Exception:  # pragma: no cover - a result that cannot count its rows still gets its season row
+        return ""
+    return f"{n} row{'s' if n != 1 else ''}"
+
+
+def write_index(root: Path, outcomes: list[Outcome], batch_files=()) -> Path:
+    """index.csv: every input with its status, message and each output file written, then every file of the
+    batch root (``batch_files``: season.csv, season_<command>.csv, season.html; provenance.json) as rows of
+    command ``batch``: the one list of everything a batch wrote. Paths are relative to the batch root.
+
+    Refused (OutputError) where an index.csv exists that capred did not write (or a user edited since);
+    recorded with its hash in the batch's provenance.json.
     """
     import csv
     import io
 
     from .io.writers import INDEX_HEADER, write_batch_file
 
+    root = Path(root)
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(INDEX_HEADER.split(","))
     for o in outcomes:
-        message = o.message.replace("\n", " | ")
+        message = one_line(o.message)
+        src = relative(o.source, root)
         if o.outputs:
             for f in o.outputs:
-                w.writerow([o.command, o.source, o.status, message, f])
+                w.writerow([o.command, src, o.status, message, relative(f, root)])
         else:
-            w.writerow([o.command, o.source, o.status, message, ""])
-    return write_batch_file(root, "index.csv", buf.getvalue().encode("utf-8"), runs=_runs(Path(root), outcomes))
+            w.writerow([o.command, src, o.status, message, ""])
+    for name in [*(Path(p).name for p in batch_files), "index.csv", "provenance.json"]:
+        w.writerow(["batch", "", "ok", "", name])
+    return write_batch_file(root, "index.csv", buf.getvalue().encode("utf-8"), runs=_runs(root, outcomes))
+
+
+def season_tables(root: Path, outcomes: list[Outcome]) -> tuple[dict, dict]:
+    """(season, {command: details}) of a batch, each a mapping of ``name [unit]`` header to column.
+
+    ``season`` has one row per run with what every command shares: command, input (relative to the batch
+    root), status, the reason of a failure, the materials (or branches), the headline results with labels,
+    the number of warnings and its report. ``details`` holds each command's own rows
+    (``Result.season_rows``: per material, branch or envelope) with the input they come from: one kind of
+    record per table.
+    """
+    root = Path(root)
+    rows, details = [], {}
+    for o in outcomes:
+        report = Path(o.out_dir) / "report.html"
+        link = report.relative_to(root).as_posix() if o.ok and report.exists() and _under(report, root) else ""
+        labels = [next((v for v in r.values() if isinstance(v, str)), "") for r in o.season]
+        rows.append(
+            {
+                "command": o.command,
+                "input": relative(o.source, root),
+                "status": o.status,
+                "reason": one_line(o.message) if not o.ok else "",
+                "material": "; ".join(x for x in dict.fromkeys(labels) if x),
+                "headline": o.headline,
+                "warnings": o.warnings if o.ok else None,
+                "report": link,
+            }
+        )
+        for r in o.season:
+            details.setdefault(o.command, []).append({"input": relative(o.source, root), **r})
+    headers = {"warnings": "warnings [-]"}
+    table = {headers.get(k, k): v for k, v in season_columns(rows).items()}
+    return table, {c: _with_units(season_columns(r)) for c, r in details.items()}
+
+
+def _under(path: Path, root: Path) -> bool:
+    try:
+        path.relative_to(root)
+    except ValueError:
+        return False
+    return True
+
+
+def _with_units(columns: dict) -> dict:
+    return {unit_header(k, v.tolist()): v for k, v in columns.items()}
+
+
+def season_file(command: str) -> str:
+    """The file of one command's season details: ``season_<command>.csv`` (``bridge solve`` ->
+    ``season_bridge-solve.csv``)."""
+    return f"season_{command.replace(' ', '-')}.csv"
 
 
 def write_season(root: Path, outcomes: list[Outcome]) -> list[Path]:
-    """season.csv (one row per file and material: c, phi, their standard errors, n, the best model and its
-    RMSE, the number of flagged tests, the file's report) and a season report.html linking every run.
-
-    Each is refused (OutputError) where a file of that name exists that capred
-    did not write (a manifest called season.csv), and recorded in the batch's
+    """season.csv (one row per run: command, input, status, reason, material, headline, warnings, report), season_<command>.csv (each command's detail rows) and season.html (a section per command),
+    each protected as every batch root file is (refused where a file of that name exists that capred did
+    not write, e.g. a manifest called season.csv, or that a user edited since) and recorded in the batch's
     provenance.json.
     """
     from .io.writers import encode_csv, write_batch_file
     from .report.html import render_season
 
     root = Path(root)
-    rows = []
-    for o in outcomes:
-        report = Path(o.out_dir) / "report.html"
-        link = report.relative_to(root).as_posix() if o.ok and report.exists() else ""
-        if not o.season:
-            rows.append({"input": o.source, "command": o.command, "status": o.status, "material": None, "report": link})
-        for r in o.season:
-            rows.append({"input": o.source, "command": o.command, "status": o.status, **r, "report": link})
-    table = season_columns(rows)
+    table, details = season_tables(root, outcomes)
     runs = _runs(root, outcomes)
-    return [
-        write_batch_file(root, "season.csv", encode_csv(table), runs),
-        write_batch_file(root, "season.html", render_season(table).encode("utf-8"), runs),
-    ]
+    names = {c: season_file(c) for c in details}
+    written = [write_batch_file(root, "season.csv", encode_csv(table), runs)]
+    for command, columns in details.items():
+        written.append(write_batch_file(root, names[command], encode_csv(columns), runs))
+    files = [p.name for p in written] + ["season.html", "index.csv", "provenance.json"]
+    page = render_season(table, sections=details, files=files)
+    written.append(write_batch_file(root, "season.html", page.encode("utf-8"), runs))
+    return written
 
 
 def season_columns(rows: list[dict]) -> dict:

@@ -114,7 +114,7 @@ def test_batch_cli_writes_its_provenance_beside_the_index(tmp_path):
     res = runner.invoke(app, ["batch", str(tmp_path / "m.csv"), "--out", str(out)])
     assert res.exit_code == 0, res.output
     prov = json.loads((out / "provenance.json").read_text())
-    assert prov["outputs"] == ["index.csv", "provenance.json", "season.csv", "season.html"]
+    assert prov["outputs"] == ["index.csv", "provenance.json", "season.csv", "season.html", "season_shear.csv"]
     assert prov["runs"] == ["shear_s0", "shear_s1"]
     index = pd.read_csv(out / "index.csv")
     assert set(index["status"]) == {"ok"}
@@ -132,10 +132,11 @@ def test_season_counts_stay_whole_numbers_in_a_mixed_batch(tmp_path):
     )
     res = CliRunner().invoke(app, ["batch", str(manifest), "--out", str(tmp_path / "out")])
     assert res.exit_code == 0, res.output
-    season = pd.read_csv(tmp_path / "out" / "season.csv", dtype=str, keep_default_na=False)
-    steel = season[season["material"] == "steel_2mm"].iloc[0]
-    assert (steel["n_dry"], steel["n_wet"], steel["n_points"]) == ("12", "14", "")
-    drying = season[season["branch"] == "drying"].iloc[0]
-    assert (drying["n_points"], drying["n_dry"]) == ("16", "")
+    shear = pd.read_csv(tmp_path / "out" / "season_shear.csv", dtype=str, keep_default_na=False)
+    steel = shear[shear["material"] == "steel_2mm"].iloc[0]
+    assert (steel["n_dry [-]"], steel["n_wet [-]"]) == ("12", "14")
+    retention = pd.read_csv(tmp_path / "out" / "season_retention.csv", dtype=str, keep_default_na=False)
+    drying = retention[retention["branch"] == "drying"].iloc[0]
+    assert drying["n_points [-]"] == "16" and "n_dry [-]" not in retention  # one kind of record per table
     html = (tmp_path / "out" / "season.html").read_text()
     assert "12.0" not in html and "<NA>" not in html

@@ -80,12 +80,12 @@ def test_season_html_cells_are_escaped_and_a_missing_value_is_blank():
     ]
     page = report_html.render_season(season_columns(rows))
     assert (
-        '<tr><td class="l">a&lt;1&gt;.csv</td>\n<td class="l">shear</td>\n<td class="l">ok</td>\n'
+        '<tr><td class="l">a&lt;1&gt;.csv</td>\n<td class="l">shear</td>\n<td class="l ok">ok</td>\n'
         '<td class="l">sand &#34;x&#34;</td>\n<td class="">1.235</td>\n<td class="">4</td>\n'
         '<td class=""><a href="shear_a/report.html">report</a></td>\n<td class="l"></td>\n</tr>'
     ) in page
     assert (
-        '<tr><td class="l">b&amp;&#39;c&#39;.csv</td>\n<td class="l">retention</td>\n<td class="l">ok</td>\n'
+        '<tr><td class="l">b&amp;&#39;c&#39;.csv</td>\n<td class="l">retention</td>\n<td class="l ok">ok</td>\n'
         '<td class="l"></td>\n<td class=""></td>\n<td class=""></td>\n<td class=""></td>\n'
         '<td class="l">drying</td>\n</tr>'
     ) in page

@@ -56,33 +56,45 @@ def test_triaxial_spherical_bound_has_no_deviator(triaxial_specs):
     assert not any("e-1" in cell for row in tensor.rows for cell in row)
 
 
-def test_split_model_comparison_repeats_the_model(shear_specs):
+def test_model_comparison_stacks_each_row_with_its_material_and_model(shear_specs):
     spec = shear_specs["Wet tests"]
-    pieces = _pieces(spec, 60)
-    assert len(pieces) >= 2
+    text = "".join(_pieces(spec, 60))
     models = ("No suction", "Bishop", "Own 1", "Own 2")
-    for text in pieces:
-        for line in text.splitlines():
-            if " best " in line:
-                assert any(m in line for m in models), line  # the "best" mark stands beside its model
-        assert all(m in text for m in models)  # every piece names every model
-        assert all(cell_len(line) <= 60 for line in text.splitlines())
+    for material in ("steel_2mm", "sand_208-417um", "(all)"):
+        for m in models:  # a blank material cell carries the material above it
+            assert f"{material} · {m}" in text.splitlines()
+    assert "lowest RMSE: best" in text  # the mark stays in its own row's block
+    assert all(cell_len(line) <= 60 for line in text.splitlines())
 
 
-def test_bootstrap_table_folds_in_two_at_60_columns(shear_specs):
+def test_bootstrap_table_stacks_at_60_columns(shear_specs):
     spec = shear_specs["How sure is the ranking?"]
-    pieces = _pieces(spec, 60)
-    assert len(pieces) <= 2
-    for text in pieces:
-        assert "steel_2mm" in text and "sand_208-417um" in text
-        assert all(cell_len(line) <= 60 for line in text.splitlines())
+    text = "".join(_pieces(spec, 60))
+    assert "steel_2mm" in text.splitlines() and "sand_208-417um" in text.splitlines()
+    assert "replicates: 2000" in text or "replicates: 100" in text
+    assert all(cell_len(line) <= 60 for line in text.splitlines())
 
 
-def test_triaxial_tensor_table_repeats_test_and_bound(triaxial_specs):
+def test_triaxial_tensor_table_names_test_and_bound(triaxial_specs):
     tensor = next(s for s in triaxial_specs if s.title.startswith("Capillary stress tensor"))
-    for text in _pieces(tensor, 60):
-        assert "UNSAT-0" in text and "UB EDTP" in text
-        assert all(cell_len(line) <= 60 for line in text.splitlines())
+    text = "".join(_pieces(tensor, 60))
+    assert "UNSAT-0 · UB EDTP" in text.splitlines()
+    assert all(cell_len(line) <= 60 for line in text.splitlines())
+
+
+def test_a_table_that_fits_prints_as_one_table():
+    spec = TableSpec("t", [("material", "left"), ("c [kPa]", "right")], [["sand", "0.1234"]])
+    assert len(render.rich_tables(spec, 80)) == 1 and "│ sand     │  0.1234 │" in _pieces(spec, 80)[0]
+    assert "c [kPa]" in _pieces(spec, 80)[0]  # room enough: the header on one line
+
+
+def test_a_long_value_breaks_between_parameters_never_inside_a_number():
+    value = "; ".join(f"p{k} 0.123456 ± 0.0042" for k in range(8))
+    spec = TableSpec("fits", [("model", "left"), ("parameters", "left"), ("R²", "right")], [["vg", value, "0.99"]])
+    lines = _pieces(spec, 50)[0].splitlines()
+    assert lines[1].strip() == "vg"  # the long text column is a value, not a row label
+    assert all(cell_len(x) <= 50 for x in lines)
+    assert all("± 0.0042" in x for x in lines[2:-1])  # each piece ends with its error: broken after '; '
 
 
 def test_headers_wrap_before_a_table_folds():

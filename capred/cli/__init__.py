@@ -82,6 +82,11 @@ def batch(
         fail(exc)
 
 
+from .help import group_help  # noqa: E402 - after every command is registered
+
+group_help(app)
+
+
 def _manifest_jobs(manifest: Path, out, json_out: bool):
     """Jobs of every manifest line, each line parsed exactly as the command line would parse it."""
     import shlex

@@ -468,9 +468,8 @@ def run_batch(jobs, root: Path | None, json_out: bool, workers: int | None, extr
     ) as progress:
         task = progress.add_task(f"capred: {len(jobs)} files", total=len(jobs))
         outcomes, interrupted = batch.run_all(jobs, workers, on_done=lambda o: progress.advance(task))
-    index = batch.write_index(root, outcomes) if root is not None else None
-    if root is not None:
-        batch.write_season(root, outcomes)
+    season = batch.write_season(root, outcomes) if root is not None else []
+    index = batch.write_index(root, outcomes, season) if root is not None else None  # lists every batch file
     bad = [o for o in outcomes if o.status in ("failed", "crashed")]
     if json_out:
         doc = {

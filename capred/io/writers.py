@@ -335,6 +335,25 @@ def safe_name(name: str, taken: set[str], limit: int = 80) -> str:
 OS_LITTER = frozenset({".DS_Store", "Thumbs.db", "desktop.ini"})
 #: the files a batch writes into its root folder (beside one folder per input)
 BATCH_FILES = ("index.csv", "season.csv", "season.html")
+#: a batch's root files whose names depend on its commands (season_<command>.csv): protected as BATCH_FILES
+BATCH_FILE_PATTERNS = ("season_*.csv",)
+
+
+def batch_file_names(root) -> list[str]:
+    """Every root file name a batch writes or has written in ``root``: BATCH_FILES, the files there that
+    match BATCH_FILE_PATTERNS, and those its provenance.json records."""
+    import fnmatch
+
+    names = list(BATCH_FILES)
+    try:
+        present = sorted(os.listdir(root))
+    except OSError:
+        present = []
+    names += [n for n in present if any(fnmatch.fnmatch(n, p) for p in BATCH_FILE_PATTERNS)]
+    names += list(batch_record(root))
+    return list(dict.fromkeys(names))
+
+
 #: the header capred writes on a batch's index.csv
 INDEX_HEADER = "command,input,status,message,output"
 
@@ -438,7 +457,7 @@ def foreign_batch_files(root) -> list[str]:
     root = Path(root)
     record = batch_record(root)
     foreign = []
-    for name in BATCH_FILES:
+    for name in batch_file_names(root):
         path = root / name
         if not os.path.lexists(path):
             continue
@@ -446,7 +465,11 @@ def foreign_batch_files(root) -> list[str]:
             foreign.append(name)
         elif _sha256(path) in record.get(name, ()):
             continue
-        elif name == "index.csv" and path.read_bytes()[: len(INDEX_HEADER) + 1] == (INDEX_HEADER + "\n").encode():
+        elif (  # an index.csv of a batch before hashes were recorded (no record at all): known by its header
+            name == "index.csv"
+            and not record
+            and path.read_bytes()[: len(INDEX_HEADER) + 1] == (INDEX_HEADER + "\n").encode()
+        ):
             continue
         else:
             foreign.append(name)

@@ -59,6 +59,8 @@ SOLVE_SCHEMA = [
     Column("F_cap", "force", "mN", "measured force F_cap", ("F", "force", "F_measured"), "nonnegative"),
     Column("filling_angle", "angle", "deg", "measured filling angle", ("beta", "half_filling_angle"), "nonnegative"),
 ]
+#: `bridge compare` reads the cases as `bridge solve` does (its --help lists these columns)
+COMPARE_SCHEMA = SOLVE_SCHEMA
 
 
 @dataclass(frozen=True)

@@ -447,39 +447,124 @@ def _summary_rows(rows, left: list[bool], columns: list[int]):
 
 
 _SEASON = """<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8"><title>capred season</title>
-<style>@page { size: A4 landscape; margin: 12mm; } body { font-family: "DejaVu Sans", Arial, sans-serif;
-font-size: 9pt; margin: 1.5em; } table { border-collapse: collapse; } th, td { border-bottom: 1px solid #ccc;
-padding: 2px 6px; text-align: right; } th { background: #eee; } td.l, th.l { text-align: left; }</style></head>
-<body><h1>capred season: {{ n }} runs</h1>
-<table><tr>{% for c in columns %}<th class="l">{{ c }}</th>{% endfor %}</tr>
-{{ body }}</table></body></html>
+<html lang="en"><head><meta charset="utf-8"><meta name="viewport" content="width=device-width">
+<title>capred season</title>
+<style>@page { size: A4 landscape; margin: 10mm; }
+body { font-family: "DejaVu Sans", Arial, sans-serif; font-size: 9pt; margin: 1em auto; max-width: 1240px;
+padding: 0 10px; }
+table { border-collapse: collapse; width: 100%; margin-bottom: 1em; }
+th, td { border-bottom: 1px solid #ccc; padding: 2px 5px; text-align: right; vertical-align: top; }
+th { background: #eee; font-weight: 600; white-space: normal; }
+td { white-space: nowrap; } td.l, th.l { text-align: left; } td.l { white-space: normal; overflow-wrap: anywhere; }
+td.failed, td.crashed, td.interrupted { color: #a00000; font-weight: 600; }
+h1, h2, h3 { break-after: avoid; page-break-after: avoid; } tr { break-inside: avoid; }
+ul.files { columns: 3; font-family: monospace; }
+@media print { body { font-size: 7pt; margin: 0; max-width: none; padding: 0; } a { color: inherit; } }
+</style></head>
+<body><h1>capred season: {{ n }} runs, {{ n_ok }} ok{% if n_bad %}, {{ n_bad }} not{% endif %}</h1>
+<h2>Runs</h2>
+<table><thead><tr>{{ head }}</tr></thead>
+<tbody>{{ body }}</tbody></table>
+{% for section in sections %}<h2 id="{{ section.anchor }}">{{ section.command }}: {{ section.n }} rows
+(<a href="{{ section.file }}">{{ section.file }}</a>)</h2>
+{% for part in section.parts %}<table><thead><tr>{{ part.head }}</tr></thead><tbody>{{ part.body }}</tbody></table>
+{% endfor %}{% endfor %}
+<h2>Files of this batch</h2>
+<p>Each run's files are listed in index.csv; the batch root holds (each protected by its hash in
+provenance.json: a file edited since is never overwritten):</p>
+<ul class="files">{% for f in files %}<li><a href="{{ f }}">{{ f }}</a></li>{% endfor %}</ul>
+</body></html>
 """
-_SEASON_LEFT = ("input", "command", "status", "material", "best_model", "branch")
+_SEASON_LEFT = ("input", "command", "status", "reason", "material", "headline", "best_model", "branch")
+#: printable width of season.html on A4 landscape (297 mm − 2 × 10 mm) [mm] and of one 7 pt character [mm]
+SEASON_WIDTH_MM = 277.0
+SEASON_CHAR_MM = 0.64 * 7 * 25.4 / 72
+#: longest text a wrapping (left-aligned) cell of season.html is counted with when columns are packed
+SEASON_WRAP = 28
 
 
-def render_season(frame) -> str:
-    """The season table of a batch (a mapping of column name to array) as one HTML page linking each run's
-    report.html.
+def _season_cells(frame, columns: list[str]) -> list[list[str]]:
+    """Each column of a season table as printed: blank where a run has no value, numbers as ``fmt``."""
+    out = []
+    for c in frame:
+        out.append(
+            [
+                ("" if v != v else fmt(v)) if isinstance(v, float) else ("" if v is None else str(v))
+                for v in frame[c].tolist()
+            ]
+        )
+    return out
 
-    The rows are built here, column by column (a template loop per cell cost ~0.8 s for 1,000 files).
-    """
+
+def _season_markup(columns: list[str], texts: list[list[str]], group: list[int]):
+    """(header markup, rows markup) of the columns ``group`` of a season table; the report a link."""
     from markupsafe import Markup
 
-    columns = [str(c) for c in frame]
+    def cls(name: str) -> str:
+        return "l" if name.split(" [")[0] in _SEASON_LEFT else ""
+
+    head = Markup("".join(f'<th class="{cls(columns[j])}">{_escape(columns[j])}</th>' for j in group))
     cells = []
-    for c, name in zip(frame, columns):
-        opened = '<td class="l">' if name in _SEASON_LEFT else '<td class="">'
-        # a cell a run has no value for is blank whatever its column's type (NaN in a float column too)
-        texts = [
-            ("" if v != v else fmt(v)) if isinstance(v, float) else ("" if v is None else str(v))
-            for v in frame[c].tolist()
-        ]
+    for j in group:
+        name = columns[j]
+        opened = f'<td class="{cls(name)}">'
         if name == "report":
-            cells.append([opened + (f'<a href="{_escape(v)}">report</a>' if v else "") + "</td>\n" for v in texts])
+            cells.append([opened + (f'<a href="{_escape(v)}">report</a>' if v else "") + "</td>\n" for v in texts[j]])
+        elif name == "status":
+            cells.append([f'<td class="l {_escape(v)}">' + _escape(v) + "</td>\n" for v in texts[j]])
         else:
-            cells.append([opened + _escape(v) + "</td>\n" for v in texts])
+            cells.append([opened + _escape(v) + "</td>\n" for v in texts[j]])
     body = Markup("".join(["<tr>" + "".join(row) + "</tr>" for row in zip(*cells)]))
+    return head, body
+
+
+def _season_groups(columns: list[str], texts: list[list[str]]) -> list[list[int]]:
+    """Columns of a season table packed into groups that fit A4 landscape (the input and its labels repeated
+    in each): no column is lost in print."""
+    from .render import pack_columns
+
+    widths = []
+    for name, col in zip(columns, texts):
+        longest = max([len(w) for w in name.split()] + [len(x) for x in col] + [1])
+        if name.split(" [")[0] in _SEASON_LEFT:
+            longest = min(longest, SEASON_WRAP)
+        widths.append(longest * SEASON_CHAR_MM + CELL_MM)
+    labels = [j for j, c in enumerate(columns) if c in ("input", "material", "branch")][:2] or [0]
+    return pack_columns(widths, labels, SEASON_WIDTH_MM)
+
+
+def render_season(frame, sections: dict | None = None, files=()) -> str:
+    """The season page of a batch: its runs (``frame``, a mapping of column name to array), one section per
+    command (``sections``: {command: its detail columns}) and the list of the batch's files.
+
+    The page fits 1280 px and prints on A4 landscape without losing a column: wide tables are split into
+    column groups that repeat the input. Rows are built here, column by column (a template loop per cell
+    cost ~0.8 s for 1,000 files).
+    """
+    columns = [str(c) for c in frame]
+    texts = _season_cells(frame, columns)
+    head, body = _season_markup(columns, texts, list(range(len(columns))))
+    parts = []
+    for command, table in (sections or {}).items():
+        names = [str(c) for c in table]
+        cells = _season_cells(table, names)
+        groups = _season_groups(names, cells)
+        parts.append(
+            {
+                "command": command,
+                "anchor": "season-" + command.replace(" ", "-"),
+                "file": f"season_{command.replace(' ', '-')}.csv",
+                "n": len(cells[0]) if cells else 0,
+                "parts": [dict(zip(("head", "body"), _season_markup(names, cells, g))) for g in groups],
+            }
+        )
+    status = frame["status"].tolist() if "status" in frame else []
     return _template("season").render(
-        n=len(set(frame["input"].tolist())) if "input" in frame else 0, columns=columns, body=body
+        n=len(status),
+        n_ok=sum(1 for x in status if x == "ok"),
+        n_bad=sum(1 for x in status if x != "ok"),
+        head=head,
+        body=body,
+        sections=parts,
+        files=list(files),
     )

@@ -1,12 +1,15 @@
 """The one renderer of capred: any Result's console tables, warnings and notes.
 
-Numbers are never truncated or wrapped. On a terminal, tables are drawn with
-rich; a table wider than the terminal is folded into several tables of whole
-columns, each repeating the row labels (the leading left-aligned columns: a
-material and a model, a test and a bound), never shortened; headers wrap at
-their spaces before a table is folded. When stdout is not a terminal (a pipe,
-a file), tables are plain full-width text. User text (material names, test
-ids) is shown literally, never read as markup.
+Numbers are never truncated or wrapped. On a terminal, a table that fits the
+terminal's width (its headers wrapped at their spaces) is drawn with rich; a
+table wider than the terminal prints as stacked blocks, one per row: the row's
+labels (its leading short left-aligned columns, a blank label carrying the one
+above it: a material, then a model) on one line, then ``name: value`` pairs
+packed into lines of the terminal's width, a value broken only at its spaces.
+So every number stays whole, every row names itself, and no column is
+squeezed to nothing at 80, 100 or 120 columns. When stdout is not a terminal
+(a pipe, a file), tables are plain full-width text. User text (material names,
+test ids) is shown literally, never read as markup.
 
 Zero: a number whose magnitude is below ``ZERO_RTOL`` times the magnitude it
 was computed from (``scale``: the largest of its row or column) prints as 0.
@@ -29,6 +32,11 @@ SIGNIFICANT = 4
 ZERO_RTOL = 1e-9
 #: Row labels repeated in every piece of a folded table: at most this many leading left-aligned columns.
 MAX_LABEL_COLUMNS = 3
+#: A left-aligned column is a row label only while its cells are this short [characters]: a long text column
+#: (retention's "parameters (± se)") is a value, never repeated as a label.
+MAX_LABEL_WIDTH = 24
+#: Separator of the ``name: value`` pairs on one line of a stacked block.
+PAIR_GAP = "   "
 
 
 def fmt(x, sig: int = SIGNIFICANT, sign: bool = False, scale: float | None = None) -> str:
@@ -124,12 +132,17 @@ def wrap_header(head: str, width: int) -> str:
 
 
 def label_columns(spec: TableSpec) -> list[int]:
-    """The row labels of a table: its leading left-aligned columns (at most MAX_LABEL_COLUMNS; a table may set
-    ``label_columns`` to the number it wants), repeated in every piece when the table is folded."""
+    """The row labels of a table: its leading left-aligned columns whose cells are short (at most
+    MAX_LABEL_COLUMNS columns of at most MAX_LABEL_WIDTH characters; a table may set ``label_columns`` to the
+    number it wants), repeated in every piece when a table is split and heading each stacked block."""
     n = getattr(spec, "label_columns", None)
     if n is None:
         n = 0
-        while n < min(len(spec.columns) - 1, MAX_LABEL_COLUMNS) and spec.columns[n][1] == "left":
+        while (
+            n < min(len(spec.columns) - 1, MAX_LABEL_COLUMNS)
+            and spec.columns[n][1] == "left"
+            and max((len(r[n]) for r in spec.rows), default=0) <= MAX_LABEL_WIDTH
+        ):
             n += 1
     return list(range(max(1, min(n, len(spec.columns)))))
 
@@ -184,27 +197,123 @@ def pack_columns(widths, labels: list[int], limit: float, base: float = 0.0) -> 
 _column_groups = column_groups
 
 
+def table_width(spec: TableSpec, compact: bool = False) -> int:
+    """Characters a rich table of ``spec`` takes, its headers wrapped at their spaces (cells never wrap): with
+    borders (3 per column and 1), or ``compact`` (no border, a rule under the header, two spaces between
+    columns)."""
+    widths = _folded_widths(spec)
+    if compact:
+        return sum(w + 2 for w in widths) - 1
+    return sum(w + 3 for w in widths) + 1
+
+
+def row_labels(spec: TableSpec) -> list[str]:
+    """The label of each row as a stacked block heads it: its label cells joined by ' · ', a blank label cell
+    taking the value of the row above (a model row under its material)."""
+    labels = label_columns(spec)
+    last = [""] * len(spec.columns)
+    out = []
+    for row in spec.rows:
+        parts = []
+        for j in labels:
+            if row[j].strip():
+                last[j] = row[j]
+                for k in labels:  # a new outer label starts its inner labels afresh
+                    if k > j:
+                        last[k] = ""
+            parts.append(last[j] if not row[j].strip() else row[j])
+        out.append(" · ".join(p for p in parts if p))
+    return out
+
+
+def _pack(pairs: list[str], width: int, indent: str) -> list[str]:
+    """``name: value`` pairs packed into lines of at most ``width`` characters; a pair longer than a line is
+    broken at its spaces only (a number is never cut), a word longer than the line stays whole."""
+    lines: list[str] = []
+    current = ""
+    for pair in pairs:
+        if current and len(indent) + len(current) + len(PAIR_GAP) + len(pair) <= width:
+            current += PAIR_GAP + pair
+            continue
+        if current:
+            lines.append(indent + current)
+        current = ""
+        if len(indent) + len(pair) <= width:
+            current = pair
+            continue
+        # a long value (a list of parameters): broken after its '; ' where it can, else at its spaces
+        for word in _pieces(pair, width - len(indent)):
+            if current and len(indent) + len(current) + 1 + len(word) > width:
+                lines.append(indent + current)
+                current = "  " + word  # continuation lines indented under the pair
+            else:
+                current = f"{current} {word}" if current else word
+        lines.append(indent + current)
+        current = ""
+    if current:
+        lines.append(indent + current)
+    return lines
+
+
+def _pieces(text: str, width: int) -> list[str]:
+    """The words of ``text`` for line breaking: its '; '-separated parts kept whole where they fit ``width``
+    (a parameter with its value and error), else split at their spaces."""
+    out = []
+    parts = text.split("; ")
+    for k, part in enumerate(parts):
+        part = part + (";" if k < len(parts) - 1 else "")
+        out += [part] if len(part) <= width - 2 else part.split(" ")
+    return out
+
+
+def stacked_blocks(spec: TableSpec, width: int) -> list[tuple[str, bool]]:
+    """A table too wide for ``width`` as text lines: its title, then per row its label line and its other
+    cells as ``name: value`` pairs packed into lines of ``width`` (cells that are empty left out). Returns
+    (line, bold) pairs; a row of ``bold_rows`` is bold."""
+    labels = set(label_columns(spec))
+    heads = [" ".join(h.split()) for h, _ in spec.columns]
+    out: list[tuple[str, bool]] = [(line, False) for line in _pack([spec.title], width, "")]
+    for i, (row, label) in enumerate(zip(spec.rows, row_labels(spec))):
+        bold = i in spec.bold_rows
+        pairs = [f"{heads[j]}: {cell}" for j, cell in enumerate(row) if j not in labels and cell.strip()]
+        out.append((label or f"row {i + 1}", bold))
+        out += [(line, bold) for line in _pack(pairs, width, "  ")]
+    return out
+
+
 def rich_tables(spec: TableSpec, width: int) -> list:
+    """What a terminal of ``width`` columns prints for a table: one rich Table when it fits (headers wrapped
+    at spaces), with borders or else compact (no borders), else the stacked blocks (``stacked_blocks``) as one
+    rich Text."""
+    from rich import box
     from rich.table import Table
     from rich.text import Text
 
-    widths = _folded_widths(spec)
-    out = []
-    groups = column_groups(spec, width)
-    for k, cols in enumerate(groups):
-        title = spec.title + (f" ({k + 1}/{len(groups)})" if len(groups) > 1 else "")
-        t = Table(title=Text(title), title_justify="left")
-        for j in cols:
-            head, justify = spec.columns[j]
-            t.add_column(Text(wrap_header(head, widths[j])), justify=justify, no_wrap=True, min_width=widths[j])
-        for i, row in enumerate(spec.rows):
-            t.add_row(
-                *(Text(row[j]) for j in cols),
-                style="bold" if i in spec.bold_rows else None,
-                end_section=i in spec.sections,
-            )
-        out.append(t)
-    return out
+    whole = sum(w + 3 for w in _widths(spec)) + 1 <= width  # fits with its headers on one line each
+    widths = _widths(spec) if whole else _folded_widths(spec)
+    compact = table_width(spec) > width
+    if compact and table_width(spec, compact=True) > width:
+        text = Text(no_wrap=True, overflow="ignore")
+        for k, (line, bold) in enumerate(stacked_blocks(spec, width)):
+            if k:
+                text.append("\n")
+            style = "bold" if bold or k == 0 else None
+            text.append(line, style=style)
+        return [text]
+    t = (
+        Table(title=Text(spec.title), title_justify="left", box=box.SIMPLE_HEAD, show_edge=False, padding=(0, 1, 0, 0))
+        if compact
+        else Table(title=Text(spec.title), title_justify="left")
+    )
+    for j, (head, justify) in enumerate(spec.columns):
+        t.add_column(Text(wrap_header(head, widths[j])), justify=justify, no_wrap=True, min_width=widths[j])
+    for i, row in enumerate(spec.rows):
+        t.add_row(
+            *(Text(cell) for cell in row),
+            style="bold" if i in spec.bold_rows else None,
+            end_section=i in spec.sections,
+        )
+    return [t]
 
 
 def render(result, out_dir=None, written=None, console=None) -> None:

@@ -1,0 +1,116 @@
+"""`capred COMMAND --help` in groups: the command's own options, its input, its outputs, then its input columns.
+
+Help stays plain text (rendering it through rich would double the start-up time of `capred --help`); the
+groups are typer's ``rich_help_panel`` of each parameter where one is set, else the panel of the shared option
+(``INPUT_OPTIONS``, ``OUTPUT_OPTIONS``), else the command's own panel. The input columns are read from the
+command's schema (the ``Column`` list its pipeline reads the table with: names, units, descriptions and the
+aliases of the glossary), imported only when help is shown.
+"""
+
+from __future__ import annotations
+
+import typer.core
+
+#: the shared options about what is read (declared once in capred.cli.common)
+INPUT_OPTIONS = (
+    "sample",
+    "sheet",
+    "thousands",
+    "ignore_column",
+    "max_megabytes",
+    "max_cells",
+    "max_columns",
+    "workers",
+)
+#: the shared options about what is written
+OUTPUT_OPTIONS = ("out", "json_out", "plots", "formats", "dpi", "html", "csv_dialect", "xlsx", "panels", "figures")
+INPUT_PANEL = "Input"
+OUTPUT_PANEL = "Output"
+
+
+def panel_of(param, own: str) -> str:
+    """The help group of one click parameter: its ``rich_help_panel``, else Input / Output for the shared
+    options, else ``own`` (the command's options)."""
+    explicit = getattr(param, "rich_help_panel", None)
+    if explicit:
+        return explicit
+    if param.name in INPUT_OPTIONS:
+        return INPUT_PANEL
+    if param.name in OUTPUT_OPTIONS or param.name == "help":
+        return OUTPUT_PANEL if param.name != "help" else "Help"
+    return own
+
+
+def schema_of(command: str) -> list:
+    """The input columns (capred.io.table.Column) a command reads: the ``SCHEMA`` of its pipeline module, or
+    ``<LAST WORD>_SCHEMA`` for a command of a group (``bridge solve`` -> ``SOLVE_SCHEMA``); [] when none."""
+    from importlib import import_module
+
+    from ..reductions import REDUCTIONS
+
+    red = REDUCTIONS.get(command)
+    if red is None or red.source == "none":
+        return []
+    module = import_module(red.run_path.split(":")[0])
+    last = command.split()[-1].replace("-", "_").upper()
+    for name in (f"{last}_SCHEMA", "SCHEMA"):
+        schema = getattr(module, name, None)
+        if isinstance(schema, list) and schema:
+            return schema
+    return []
+
+
+def column_lines(schema: list) -> list[tuple[str, str]]:
+    """(``name [unit]``, description with its other accepted spellings) of each input column."""
+    out = []
+    for c in schema:
+        head = c.name + (f" [{c.unit}]" if c.unit and c.unit != "-" else "")
+        text = c.description
+        if c.choices:
+            text += f" ({'|'.join(c.choices)})"
+        if c.aliases:
+            text += "; also: " + ", ".join(c.aliases)
+        out.append((head, text))
+    return out
+
+
+class GroupedCommand(typer.core.TyperCommand):
+    """A typer command whose plain-text help groups its options and lists the input columns."""
+
+    def format_options(self, ctx, formatter) -> None:
+        args, panels = [], {}
+        own = f"{ctx.info_name or self.name} options"
+        for param in self.get_params(ctx):
+            rv = param.get_help_record(ctx)
+            if rv is None:
+                continue
+            if param.param_type_name == "argument":
+                args.append(rv)
+            else:
+                panels.setdefault(panel_of(param, own), []).append(rv)
+        if args:
+            with formatter.section("Arguments"):
+                formatter.write_dl(args)
+        order = [own, INPUT_PANEL, OUTPUT_PANEL]
+        for name in sorted(panels, key=lambda p: (order.index(p) if p in order else len(order), p == "Help")):
+            with formatter.section(name):
+                formatter.write_dl(panels[name])
+        command = " ".join(ctx.command_path.split()[1:]) if ctx.command_path else self.name
+        try:
+            lines = column_lines(schema_of(command))
+        except Exception:  # help never fails on a schema it cannot read  # pragma: no cover
+            lines = []
+        if lines:
+            with formatter.section("Input columns (in any order; a header may declare its unit: 'name [unit]')"):
+                formatter.write_dl(lines)
+
+
+def group_help(app) -> None:
+    """Give every command of ``app`` (and of its sub-apps: ``bridge``) the grouped help, unless it already
+    has a class of its own (other than typer's default)."""
+    for info in app.registered_commands:
+        if info.cls is None or info.cls is typer.core.TyperCommand:
+            info.cls = GroupedCommand
+    for group in app.registered_groups:
+        if group.typer_instance is not None:
+            group_help(group.typer_instance)
