@@ -182,6 +182,47 @@ QUANTITIES: dict[str, Quantity] = {
 }
 
 
+#: The spellings users type for an input column, by canonical column name: the one column vocabulary of every
+#: reader (:class:`capred.io.table.Column` adds them to its own aliases, so a column named ``test_id`` reads
+#: ``Test no``, ``Test No.``, ``sample`` or ``Sample ID`` in every command). Spellings are compared with case,
+#: spaces, '-', '.' and '/' ignored (``Test No.`` is ``test_no``).
+COLUMN_ALIASES: dict[str, tuple[str, ...]] = {
+    # a test is named by whoever ran it: a number, a sample or a specimen label
+    "test_id": (
+        "id",
+        "test",
+        "test_no",
+        "test_nr",
+        "test_number",
+        "test_name",
+        "sample",
+        "sample_id",
+        "sample_no",
+        "sample_name",
+        "specimen",
+        "specimen_id",
+    ),
+    # a case of a calculator or of a bridge table: a label, often a test or sample id
+    "case": ("case_id", "name", "label", "test_id", "id", "sample_id", "test_no", "sample"),
+}
+
+
+def column_aliases(name: str) -> tuple[str, ...]:
+    """The spellings a reader accepts for the input column ``name`` besides the name itself.
+
+    Parameters
+    ----------
+    name : str
+        Canonical column name (``test_id``, ``case``, ...).
+
+    Returns
+    -------
+    tuple of str
+        The aliases of :data:`COLUMN_ALIASES`, empty when the glossary lists none.
+    """
+    return COLUMN_ALIASES.get(name, ())
+
+
 def renamed_keywords(**old_to_new: str):
     """Decorator: a function or an options class also takes the old keyword of a renamed parameter.
 

@@ -40,6 +40,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..errors import InputError, Problem, UnitError
+from ..nomenclature import column_aliases
 from ..units import conversion
 from .grid import MAX_COLUMNS, ReadLimits, _parse, as_source, read_grid
 
@@ -65,6 +66,12 @@ class Column:
     quantity: str | None = None  # nomenclature name: its range rule is used (the same as for options)
     words: tuple[tuple[str, float], ...] = ()  # words a numeric column also accepts, e.g. ("plane", inf)
     decisive: bool | None = None  # its absence changes the analysis (None: text columns and DECISIVE_COLUMNS)
+
+    def __post_init__(self):
+        # the glossary's spellings of this column (capred.nomenclature.COLUMN_ALIASES) come with every schema
+        extra = tuple(a for a in column_aliases(self.name) if a not in self.aliases and a != self.name)
+        if extra:
+            object.__setattr__(self, "aliases", (*self.aliases, *extra))
 
     @property
     def is_decisive(self) -> bool:
