@@ -182,6 +182,182 @@ QUANTITIES: dict[str, Quantity] = {
 }
 
 
+@dataclass(frozen=True)
+class Magnitude:
+    """How large the magnitude |x| of a quantity can be in a soil test (SI).
+
+    ``error``: above is physically impossible for the material or the apparatus (an error: usually a unit slip
+    or a corrupt cell); ``warn``: above is implausible for a soil test (a warning: the run goes on, and says so).
+    ``why`` justifies both bounds.
+    """
+
+    warn: float
+    error: float
+    why: str
+
+
+#: stresses and pressures in a soil test (total, effective, deviator, shear, cohesion, pore pressures)
+# soil-testing cells and shear boxes work below a few MPa; high-pressure triaxial cells reach about 50-70 MPa, so a
+# stress above 50 MPa is implausible for a soil test. 1 GPa is above the crushing strength of the grains themselves
+# (uniaxial strength of quartzite about 0.2-0.4 GPa) and the working range of the steel platens: no soil test reaches it.
+STRESS_MAGNITUDE = Magnitude(50e6, 1e9, "no soil test reaches 1 GPa, above the crushing strength of its grains")
+#: the suction of a soil: up to about 1 GPa at oven-dryness (Fredlund & Xing 1994, doi:10.1139/t94-061: 10^6 kPa
+#: at zero water content); Kelvin's law, psi = -(RT/v_w) ln(RH), gives 0.93 GPa at a relative humidity of 0.1 % (20 °C) and 10 GPa only
+#: below RH = 10^-30
+SUCTION_MAGNITUDE = Magnitude(1e9, 10e9, "a soil's suction is at most about 1 GPa, when oven-dry")
+#: magnitude bounds by glossary name; input columns of kind "pressure" without an entry use STRESS_MAGNITUDE
+MAGNITUDES: dict[str, Magnitude] = {
+    **{
+        name: STRESS_MAGNITUDE
+        for name in (
+            "sigma_N",
+            "sigma_eff",
+            "tau_max",
+            "tau_pred",
+            "c",
+            "chi2",
+            "sigma1",
+            "sigma3",
+            "q_f",
+            "c_eff",
+            "p0",
+            "u0",
+            "sigma",
+            "u_w",
+            "u_a",
+            "sigma_W",
+            "sigma_A",
+            "break_tension",
+            "air_entry",
+            "reference_stress",
+            "initial_yield_W",
+            "initial_yield_A",
+        )
+    },
+    "suction": SUCTION_MAGNITUDE,
+}
+#: the default bound of a kind of quantity (capred.units kinds) where the name has none of its own
+MAGNITUDES_BY_KIND: dict[str, Magnitude] = {"pressure": STRESS_MAGNITUDE}
+
+
+def magnitude_of(name: str | None, kind: str | None = None) -> Magnitude | None:
+    """The magnitude bounds of quantity ``name`` (else of its ``kind``), or None where none is set.
+
+    Parameters
+    ----------
+    name : str or None
+        Glossary name (or input column name) of the quantity.
+    kind : str or None
+        Kind of quantity (a key of ``capred.units.SI_UNIT``), used when ``name`` has no entry.
+
+    Returns
+    -------
+    Magnitude or None
+        The bounds [SI], see :data:`MAGNITUDES`.
+    """
+    if name in MAGNITUDES:
+        return MAGNITUDES[name]
+    if name in ("s0", "s", "matric_suction"):  # a column of suction under another name
+        return SUCTION_MAGNITUDE
+    return MAGNITUDES_BY_KIND.get(kind) if kind else None
+
+
+def _magnitude_words(name: str, value: float, bound: float, unit: str, factor: float) -> str:
+    return f"|{name}| = {abs(value) * factor:.4g} {unit} is above {bound * factor:g} {unit}"
+
+
+def magnitude_problem(name: str, value: float, kind: str | None = None, unit: str | None = None) -> str | None:
+    """Why an SI value is physically impossible by its magnitude (None when it is not).
+
+    Parameters
+    ----------
+    name : str
+        Glossary name (or column name) of the quantity.
+    value : float
+        The value [SI].
+    kind, unit : str, optional
+        Kind of quantity, for names without bounds of their own; the unit the message uses (default: the
+        glossary's, else kPa for pressures).
+
+    Returns
+    -------
+    str or None
+        The message, with the bound and its justification.
+    """
+    m = magnitude_of(name, kind)
+    if m is None or not abs(value) > m.error:
+        return None
+    q = QUANTITIES.get(name)
+    unit, factor = (q.unit, q.factor) if q is not None and unit is None else (unit or "kPa", 1e-3)
+    return f"{_magnitude_words(name, value, m.error, unit, factor)}: physically impossible ({m.why})"
+
+
+def magnitude_warning(name: str, value: float, kind: str | None = None, unit: str | None = None) -> str | None:
+    """A warning when an SI value is implausibly large for a soil test (None when plausible or impossible).
+
+    Parameters
+    ----------
+    name : str
+        Glossary name (or column name) of the quantity.
+    value : float
+        The value [SI].
+    kind, unit : str, optional
+        As for :func:`magnitude_problem`.
+
+    Returns
+    -------
+    str or None
+        The warning.
+    """
+    m = magnitude_of(name, kind)
+    if m is None or not (m.warn < abs(value) <= m.error):
+        return None
+    q = QUANTITIES.get(name)
+    unit, factor = (q.unit, q.factor) if q is not None and unit is None else (unit or "kPa", 1e-3)
+    return f"{_magnitude_words(name, value, m.warn, unit, factor)}: implausible for a soil test; check its unit"
+
+
+#: The spellings users type for an input column, by canonical column name: the one column vocabulary of every
+#: reader (:class:`capred.io.table.Column` adds them to its own aliases, so a column named ``test_id`` reads
+#: ``Test no``, ``Test No.``, ``sample`` or ``Sample ID`` in every command). Spellings are compared with case,
+#: spaces, '-', '.' and '/' ignored (``Test No.`` is ``test_no``).
+COLUMN_ALIASES: dict[str, tuple[str, ...]] = {
+    # a test is named by whoever ran it: a number, a sample or a specimen label
+    "test_id": (
+        "id",
+        "test",
+        "test_no",
+        "test_nr",
+        "test_number",
+        "test_name",
+        "sample",
+        "sample_id",
+        "sample_no",
+        "sample_name",
+        "specimen",
+        "specimen_id",
+    ),
+    # a case of a calculator or of a bridge table: a label, often a test or sample id
+    "case": ("case_id", "name", "label", "test_id", "id", "sample_id", "test_no", "sample"),
+}
+
+
+def column_aliases(name: str) -> tuple[str, ...]:
+    """The spellings a reader accepts for the input column ``name`` besides the name itself.
+
+    Parameters
+    ----------
+    name : str
+        Canonical column name (``test_id``, ``case``, ...).
+
+    Returns
+    -------
+    tuple of str
+        The aliases of :data:`COLUMN_ALIASES`, empty when the glossary lists none.
+    """
+    return COLUMN_ALIASES.get(name, ())
+
+
 def renamed_keywords(**old_to_new: str):
     """Decorator: a function or an options class also takes the old keyword of a renamed parameter.
 
@@ -270,7 +446,7 @@ def range_problem(name: str, value: float) -> str | None:
     lo_bad = q.lower is not None and (value <= q.lower if q.lower_open else value < q.lower)
     hi_bad = q.upper is not None and (value >= q.upper if q.upper_open else value > q.upper)
     if not (lo_bad or hi_bad):
-        return None
+        return magnitude_problem(name, value)
     unit = "" if q.unit == "-" else f" {q.unit}"
     got = f"(got {value * q.factor:.6g}{unit})"
     if q.lower is not None and q.upper is not None:

@@ -421,3 +421,121 @@ def test_line_breaks_other_than_cr_lf_stay_inside_their_cell(tmp_path, odd):
     grid.parse_all(",")
     rows = [(line, [c.strip() for c in cells]) for line, cells in grid.rows]
     assert rows == [(2, ["material", "condition", "x"]), (3, [f"a{odd}b", "dry", "1"]), (4, ["c", "dry", "2"])]
+
+
+# --- issue 32, item 6: no traceback ---------------------------------------------------------------------------------
+def test_xlsx_row_number_beyond_64_bits_is_one_clear_message(tmp_path):
+    """A row number of 25 digits (was an OverflowError in io/table.py): refused, naming the row limit."""
+    normal = _normal_xlsx(tmp_path / "n.xlsx")
+    big = 10**24
+    sheet = (
+        f'<worksheet xmlns="{MAIN}"><sheetData>'
+        '<row r="1"><c r="A1" t="inlineStr"><is><t>test_id</t></is></c>'
+        '<c r="B1" t="inlineStr"><is><t>theta</t></is></c></row>'
+        f'<row r="{big}"><c t="inlineStr"><is><t>a</t></is></c><c><v>0.3</v></c></row>'
+        "</sheetData></worksheet>"
+    ).encode()
+    path = tmp_path / "huge_row.xlsx"
+    path.write_bytes(_zip(_with_sheet(normal, sheet)))
+    with pytest.raises(InputError, match="beyond the 1,048,576 rows a worksheet holds"):
+        read_table(TableSource(path), RETENTION_SCHEMA)
+    # a row number of thousands of digits (Python refuses to convert it) gets the same answer
+    path.write_bytes(_zip(_with_sheet(normal, sheet.replace(str(big).encode(), b"9" * 5000))))
+    with pytest.raises(InputError, match="beyond the 1,048,576 rows"):
+        read_table(TableSource(path), RETENTION_SCHEMA)
+
+
+def test_ods_rows_repeated_past_the_sheet_are_refused(tmp_path):
+    rows = (
+        _ods_row("suction [kPa]", "theta")
+        + '<table:table-row table:number-rows-repeated="99999999999999999999999"><table:table-cell/></table:table-row>'
+        + _ods_row(1, 0.3)
+    )
+    path = tmp_path / "rows.ods"
+    path.write_bytes(_ods(rows))
+    with pytest.raises(InputError, match="beyond the 1,048,576 rows"):
+        read_table(TableSource(path), RETENTION_SCHEMA)
+
+
+def _shear_result():
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return capred.run_shear(capred.sample_path("shear"))
+
+
+@pytest.mark.parametrize("how", ["oserror", "context", "child"])
+def test_full_disk_while_saving_figures_is_one_message_and_nothing_is_left(tmp_path, monkeypatch, how):
+    """ENOSPC raised while the figures are saved, as it arrives: an OSError, another error raised while
+    matplotlib handles it (the OSError in its context), or an error sent back by the drawing process (context
+    lost: the disk's free space tells)."""
+    import errno
+    import shutil
+    from collections import namedtuple
+
+    from capred.errors import OutputError
+    from capred.io import writers
+
+    def artifacts(folder):
+        folder.write_bytes("sheet.png", b"half")
+        if how == "oserror":
+            raise OSError(errno.ENOSPC, "No space left on device")
+        if how == "context":
+            try:
+                raise OSError(errno.ENOSPC, "No space left on device")
+            except OSError:
+                raise AttributeError("'NoneType' object has no attribute 'write'") from None
+        Usage = namedtuple("Usage", "total used free")
+        monkeypatch.setattr(shutil, "disk_usage", lambda p: Usage(10**9, 10**9, 0))
+        raise AttributeError("'NoneType' object has no attribute 'write'")
+
+    out = tmp_path / "out"
+    with pytest.raises(OutputError, match="no space left on the device; nothing was written"):
+        writers.write_run(_shear_result(), out, artifacts=artifacts)
+    assert list(tmp_path.iterdir()) == []  # neither the folder nor a hidden work folder
+
+
+def test_killed_figure_process_is_one_message(tmp_path):
+    from capred.errors import OutputError
+    from capred.io import writers
+
+    def artifacts(folder):
+        raise RuntimeError("the process drawing figures ended without a result (status 9)")
+
+    with pytest.raises(OutputError, match="drawing figures ended without a result.*nothing was written"):
+        writers.write_run(_shear_result(), tmp_path / "out", artifacts=artifacts)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_bug_while_drawing_keeps_its_traceback(tmp_path):
+    """Only failures of the disk or of the drawing process become messages: a bug stays a bug."""
+    from capred.io import writers
+
+    def artifacts(folder):
+        raise KeyError("a bug")
+
+    with pytest.raises(KeyError):
+        writers.write_run(_shear_result(), tmp_path / "out", artifacts=artifacts)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_read_only_disk_is_said_as_read_only(tmp_path, monkeypatch):
+    import os
+
+    from capred.errors import OutputError
+    from capred.io import writers
+
+    real = os.statvfs
+
+    class ReadOnly:
+        def __init__(self, st):
+            self.st = st
+
+        def __getattr__(self, name):
+            return os.ST_RDONLY if name == "f_flag" else getattr(self.st, name)
+
+    monkeypatch.setattr(os, "statvfs", lambda p: ReadOnly(real(p)))
+    with pytest.raises(OutputError, match="read-only file system") as err:
+        writers.check_target(tmp_path / "out")
+    assert "permission denied" not in str(err.value)

@@ -344,6 +344,7 @@ def _paths(data: list[Path] | None, sample: bool, command: str) -> list:
         return [None]
     out: list[Path] = []
     for p in data:
+        p = Path(p)  # older typer/click pass list arguments as str
         text = str(p)
         if any(ch in text for ch in "*?[") and not p.exists():
             hits = sorted(glob.glob(text, recursive=True))

@@ -43,6 +43,8 @@ MAX_BYTES = 256 * 2**20
 MAX_CELLS = 2_000_000
 #: default limit on the columns of a table (the header's width; a spreadsheet's last column holding data)
 MAX_COLUMNS = 1000
+#: the rows a worksheet holds in Excel and LibreOffice: a row number beyond is a damaged or hand-made file
+MAX_SHEET_ROWS = 1_048_576
 #: a spreadsheet is a zip of tens to hundreds of parts; more than this is not a spreadsheet capred reads
 MAX_ZIP_PARTS = 10_000
 #: the command-line option that raises each limit
@@ -506,6 +508,18 @@ class _Rows:
             return
         width = max(cells)
         self.visit((width - len(cells)) + (repeat - 1) * width, line)
+        if line + repeat - 1 > MAX_SHEET_ROWS:
+            shown = f"{line:,}" if line < 10**20 else "a number of 21 digits or more"
+            raise InputError(
+                Problem(
+                    self.shown,
+                    None,
+                    None,
+                    f"data in row {shown}, beyond the {MAX_SHEET_ROWS:,} rows a worksheet holds: "
+                    "a damaged or hand-made file (save it again from the spreadsheet program)",
+                    self.sheet,
+                )
+            )
         row = [""] * width
         for col, text in cells.items():
             row[col - 1] = text
@@ -724,7 +738,8 @@ class _XlsxSheet:
             self.buf = []
         elif local == "row":
             r = attrs.get("r")
-            self.line = int(r) if r and r.isdigit() else self.line + 1
+            # a row number of thousands of digits is not converted (Python refuses, and no sheet has it)
+            self.line = (int(r) if len(r) <= 20 else 10**20) if r and r.isdigit() else self.line + 1
             self.col = 0
             self.cells = {}
         elif local == "is":
@@ -902,7 +917,7 @@ class _OdsContent:
 def _count(text) -> int:
     """A repeat count attribute (1 when absent or not a whole number)."""
     if text and str(text).isdigit():
-        return max(1, int(text))
+        return max(1, int(text)) if len(text) <= 20 else 10**20  # beyond any sheet: refused where it holds data
     return 1
 
 

@@ -40,6 +40,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..errors import InputError, Problem, UnitError
+from ..nomenclature import column_aliases
 from ..units import conversion
 from .grid import MAX_COLUMNS, ReadLimits, _parse, as_source, read_grid
 
@@ -65,6 +66,12 @@ class Column:
     quantity: str | None = None  # nomenclature name: its range rule is used (the same as for options)
     words: tuple[tuple[str, float], ...] = ()  # words a numeric column also accepts, e.g. ("plane", inf)
     decisive: bool | None = None  # its absence changes the analysis (None: text columns and DECISIVE_COLUMNS)
+
+    def __post_init__(self):
+        # the glossary's spellings of this column (capred.nomenclature.COLUMN_ALIASES) come with every schema
+        extra = tuple(a for a in column_aliases(self.name) if a not in self.aliases and a != self.name)
+        if extra:
+            object.__setattr__(self, "aliases", (*self.aliases, *extra))
 
     @property
     def is_decisive(self) -> bool:
@@ -557,6 +564,7 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
             si[i] = values[i] = v
         table.columns[name] = si
         _check_rule(table, col)
+        _check_magnitude(table, col)
     return table
 
 
@@ -760,6 +768,37 @@ def _bad_unit_header(header: str, lookup) -> str | None:
     if lookup.get(_key(name)) is None:
         return None
     return f"cannot read the unit of '{header.strip()}': its brackets do not match (write e.g. 'name [kPa]')"
+
+
+def _check_magnitude(table: Table, col: Column) -> None:
+    """Magnitudes no soil test reaches are errors (one per cell), implausible ones one warning per column
+    (the bounds and their reasons: capred.nomenclature.MAGNITUDES)."""
+    from ..nomenclature import magnitude_of, magnitude_problem, magnitude_warning
+
+    name = col.quantity or col.name
+    m = magnitude_of(name, col.kind)
+    if m is None:
+        return
+    v = table.columns[col.name]
+    with np.errstate(invalid="ignore"):
+        a = np.abs(v)
+        too_big = np.flatnonzero(a > m.error)
+        odd = np.flatnonzero((a > m.warn) & (a <= m.error))
+    if too_big.size:
+        shown = table.headers.get(col.name, col.name)
+        told = {p.line for p in table.problems if p.column == shown}  # out of its range already: one message a cell
+        for i in too_big:
+            if int(table.lines[i]) not in told:
+                table.add_problem(int(i), col.name, magnitude_problem(name, float(v[i]), col.kind))
+    if odd.size:
+        first = int(odd[0])
+        what = magnitude_warning(name, float(v[first]), col.kind)
+        more = (
+            f" ({odd.size:,} values, the first on line {int(table.lines[first])})"
+            if odd.size > 1
+            else (f" (line {int(table.lines[first])})")
+        )
+        table.warnings.append(f"column '{table.headers.get(col.name, col.name)}'{more}: {what}")
 
 
 def _check_rule(table: Table, col: Column) -> None:

@@ -29,7 +29,7 @@ import tempfile
 from datetime import UTC
 from pathlib import Path
 
-from ..errors import OutputError
+from ..errors import CapredError, OutputError
 
 _UMASK = os.umask(0)
 os.umask(_UMASK)
@@ -537,9 +537,47 @@ def _check_target(out: Path, inputs, replace: bool) -> Path:
     parent = out if not replace and out.is_dir() else out.parent
     while not parent.exists() and parent != parent.parent:
         parent = parent.parent
+    if _read_only(parent):
+        raise OutputError(f"cannot write to {parent}: it is on a read-only file system; nothing was written")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise OutputError(f"cannot write to {parent}: permission denied")
     return out
+
+
+def _read_only(folder: Path) -> bool:
+    """True when ``folder`` lies on a file system mounted read-only (said so, not as 'permission denied')."""
+    try:
+        return bool(os.statvfs(folder).f_flag & os.ST_RDONLY)
+    except (OSError, AttributeError):  # no statvfs (Windows): the write itself will tell
+        return False
+
+
+#: free bytes below which a failure while saving figures is taken for a full disk
+_FULL_DISK_BYTES = 1 << 20
+
+
+def _drawing_error(out: Path, exc: BaseException) -> OutputError | None:
+    """The clear message for a failure while the figures and report were drawn and saved, or None for a bug.
+
+    A full disk can surface from matplotlib as another exception raised while it handles the OSError (e.g. an
+    AttributeError when closing a half-written file): the OSError is then in the exception's context. A killed
+    drawing process surfaces as a RuntimeError of capred.report.outputs.
+    """
+    seen = set()
+    e = exc
+    while e is not None and id(e) not in seen:
+        seen.add(id(e))
+        if isinstance(e, OSError) and e.errno is not None:
+            return _os_error(out, e)
+        e = e.__cause__ or e.__context__
+    try:  # an exception sent back by the drawing process has lost its context: the disk itself tells
+        if shutil.disk_usage(out.parent).free < _FULL_DISK_BYTES:
+            return _os_error(out, OSError(errno.ENOSPC, "no space left on the device"))
+    except OSError:
+        pass
+    if isinstance(exc, RuntimeError) and "process drawing figures" in str(exc):
+        return OutputError(f"cannot write the outputs to {out}: {exc} (killed, or out of memory?); nothing was written")
+    return None
 
 
 # --- the transaction ---------------------------------------------------------------------------------
@@ -706,7 +744,15 @@ def write_run(
         json_writer.finish()
         folder.done(result.json_name)
         if artifacts is not None:
-            artifacts(folder)
+            try:
+                artifacts(folder)
+            except (CapredError, OSError):
+                raise
+            except Exception as exc:
+                clear = _drawing_error(out, exc)
+                if clear is None:
+                    raise
+                raise clear from None
         folder.write_bytes("provenance.json", encode_json(provenance(result, folder.names, command_line), True))
         return folder.commit()
     except OSError as exc:

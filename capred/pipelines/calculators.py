@@ -19,7 +19,7 @@ from ..physics.shear import GAMMA_W, SURFACE_TENSION
 from ..references import cite
 from ..result import InputFile, Options, Result, input_file, num
 
-CASE = Column("case", "text", None, "case label", ("test_id", "id", "name", "sample_id"))
+CASE = Column("case", "text", None, "case label")  # aliases: nomenclature.COLUMN_ALIASES
 
 
 @dataclass(repr=False)

@@ -26,7 +26,7 @@ from ..result import InputFile, Options, Result, Rows, Spool, input_file, json_l
 from .shear_records import BackAnalysis, ModelPrediction, Sampled
 
 SCHEMA = [
-    Column("test_id", "text", None, "test identifier", ("id", "test", "test_no", "sample_id")),
+    Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
     Column("material", "text", None, "material name", ("soil", "material_name")),
     Column("condition", "text", None, "test condition", ("state", "dry_wet"), choices=("dry", "wet", "saturated")),
     Column("z1", "length", "cm", "suction head z1", ("suction_head", "head", "z_1"), quantity="z1"),

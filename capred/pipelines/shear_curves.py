@@ -19,7 +19,7 @@ import numpy as np
 from ..io.table import Column, Table, read_table
 
 SCHEMA = [
-    Column("test_id", "text", None, "test identifier", ("id", "test", "test_no", "sample_id")),
+    Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
     Column(
         "displacement",
         "length",

@@ -24,7 +24,7 @@ from ..result import InputFile, Options, Result, input_file, num
 from ..units import parse_quantity
 
 SCHEMA = [
-    Column("test_id", "text", None, "test identifier", ("id", "test", "sample_id")),
+    Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
     Column(
         "condition", "text", None, "test condition", ("state", "saturation_state"), choices=("saturated", "unsaturated")
     ),
@@ -73,7 +73,7 @@ SCHEMA = [
 ]
 
 CURVE_SCHEMA = [
-    Column("test_id", "text", None, "test identifier", ("id", "test", "sample_id")),
+    Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
     Column("axial_strain", "dimensionless", "-", "axial strain", ("eps_a", "eps1", "epsilon_1", "axial_strain_pct")),
     Column("q", "pressure", "kPa", "q", ("deviator", "q_kpa", "deviatoric_stress")),
     Column("vol_strain", "dimensionless", "-", "volumetric strain", ("eps_v", "epsilon_v")),

@@ -32,10 +32,11 @@ import numpy as np
 from ..errors import InputError, Problem
 from ..io.grid import SPREADSHEET_SUFFIXES, source_path
 from ..io.table import Column, Table, _key, read_table
+from ..nomenclature import column_aliases
 from ..units import parse_quantity
 
 SCHEMA = [
-    Column("test_id", "text", None, "test identifier", ("id", "test", "sample_id", "sample")),
+    Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
     Column(
         "axial_strain",
         "dimensionless",
@@ -77,7 +78,7 @@ SCHEMA = [
 ]
 #: the pressures read at the peak of a curve (an export's columns)
 PEAK_PRESSURES = ("radial_pressure", "back_pressure", "pore_pressure", "air_pressure")
-_ID_KEYS = ("test_id", "test", "sample", "sample_id", "specimen", "test_name")
+_ID_KEYS = tuple(_key(k) for k in ("test_id", *column_aliases("test_id")))
 _D0_KEYS = ("initial_diameter", "diameter", "d0", "sample_diameter", "specimen_diameter")
 _H0_KEYS = ("initial_height", "height", "h0", "sample_height", "specimen_height")
 _KEY_UNIT = re.compile(r"^(?P<name>.*?)\s*[\[(]\s*(?P<unit>[^\])]+?)\s*[\])]\s*$")
