@@ -322,7 +322,7 @@ def panel_figure(sheet: Sheet, panel: Panel, dpi: float = 300.0):
 
     The layout is fixed in one pass (``_fit``): the axes take the room their labels, title and legend leave.
     A legend below the axes that needs more than ``LEGEND_BELOW_MAX`` of the height makes the panel taller
-    (recorded in ``sheet.legend_room`` for the sheet's other layouts) and the panel is drawn again.
+    (recorded in ``sheet.legend_room`` for the sheet's other layouts) before the layout: nothing is drawn twice.
 
     Parameters
     ----------
@@ -347,9 +347,11 @@ def panel_figure(sheet: Sheet, panel: Panel, dpi: float = 300.0):
         ax = fig.add_axes((0.15, 0.15, 0.7, 0.7))
         panel.draw(ax)
         extra = _dress(ax, fig.bbox.width, renderer, fig.bbox.height)
-        if extra > 0 and panel.name not in sheet.legend_room:  # once more, taller by the legend's excess
+        if extra > 0 and panel.name not in sheet.legend_room:  # taller by the legend's excess
             sheet.legend_room[panel.name] = extra / dpi * MM_PER_INCH
-            return panel_figure(sheet, panel, dpi)
+            w, h = panel_size_mm(sheet, panel)
+            fig.set_size_inches(_inches(w, dpi), _inches(h, dpi))
+            renderer = _canvas(fig)  # the new size's renderer, with the shared mathtext parser
         _fit(fig, renderer)
     return fig
 
@@ -495,8 +497,9 @@ def sheet_figure(sheet: Sheet, dpi: float = 300.0):
     every panel's axes fitted to its slot in one pass (``_fit``), the layout then final.
 
     The panels share one renderer, so a text seen in several panels (axis labels, tick labels, legend
-    entries) is measured once; the figure is drawn once whatever is saved from it (PNG, PDF, SVG; twice
-    when a legend below its axes needs a taller panel: ``Sheet.legend_room``). Its pixels
+    entries) is measured once; the figure is drawn once whatever is saved from it (PNG, PDF, SVG); a
+    legend below its axes that needs a taller panel (``Sheet.legend_room``) makes the figure taller before the
+    layout. Its pixels
     at ``dpi`` are those of ``compose_raster`` of the panels' own figures (the same sizes and layout rule).
 
     Parameters
@@ -520,7 +523,10 @@ def sheet_figure(sheet: Sheet, dpi: float = 300.0):
         renderer = _canvas(fig)
         W, H = fig.bbox.width, fig.bbox.height
         px = dpi / MM_PER_INCH
-        fig.suptitle(literal(sheet.title), y=1 - 0.55 * TITLE_MM * px / H, va="center", wrap=len(sheet.title) > 80)
+        title = fig.suptitle(
+            literal(sheet.title), y=1 - 0.55 * TITLE_MM * px / H, va="center", wrap=len(sheet.title) > 80
+        )
+        groups = []
         for panel, slot in zip(sheet.panels, slots):
             x0, x1 = slot.x * px, (slot.x + slot.width) * px
             y1 = H - slot.y * px
@@ -538,10 +544,18 @@ def sheet_figure(sheet: Sheet, dpi: float = 300.0):
             extra = _dress(ax, x1 - x0, renderer, y1 - y0)
             if extra > 0 and panel.name not in sheet.legend_room:
                 grown[panel.name] = extra / dpi * MM_PER_INCH
-            _fit(fig, renderer, axes=fig.axes[before:], region=(x0, y0, x1, y1))
-    if grown:  # a legend needs more room below its axes: the sheet again, those panels taller
-        sheet.legend_room.update(grown)
-        return sheet_figure(sheet, dpi)
+            groups.append(fig.axes[before:])
+        if grown:  # a legend needs more room below its axes: those panels taller, the figure with them
+            sheet.legend_room.update(grown)
+            slots, width, height = sheet_layout(sheet)
+            fig.set_size_inches(_inches(width, dpi), _inches(height, dpi))
+            renderer = _canvas(fig)  # the new size's renderer, with the shared mathtext parser
+            W, H = fig.bbox.width, fig.bbox.height
+            title.set_y(1 - 0.55 * TITLE_MM * px / H)
+        for group, slot in zip(groups, slots):  # the layout, once, in the final slots
+            y1 = H - slot.y * px
+            region = (slot.x * px, y1 - slot.height * px, (slot.x + slot.width) * px, y1)
+            _fit(fig, renderer, axes=group, region=region)
     return fig
 
 
