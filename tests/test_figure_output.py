@@ -13,7 +13,7 @@ from typer.testing import CliRunner
 import capred
 from capred.cli import app
 from capred.report import outputs
-from capred.report.sheets import COLUMN_MM, PAGE_MM, journal_style, panel_figure, sheet_layout
+from capred.report.sheets import COLUMN_MM, PAGE_MM, journal_style, panel_figure, sheet_figure, sheet_layout
 
 MM = 25.4
 # a printed length [mm] read back from pixels at 300 dpi is exact to one pixel: 25.4/300 = 0.085 mm
@@ -64,6 +64,7 @@ def test_composites_fill_the_text_width_at_300_dpi(default_run, shear_result):
         width, height, dpi = _printed_mm(default_run / f"{name}.png")
         # 300 dpi by default; PNG stores whole pixels per metre (11811), off by <= 0.5/m = 0.0127 dpi
         assert_allclose(dpi, (300, 300), atol=PHYS_DPI)
+        sheet_figure(sheet)  # measures the room its legends need below their axes (Sheet.legend_room)
         _, w_mm, h_mm = sheet_layout(sheet)
         # two one-column panels and the 10 mm gap: the 180 mm text width of an A4 page, never a strip
         assert w_mm == PAGE_MM
@@ -363,3 +364,127 @@ def test_a_forked_child_parses_and_opens_its_own_fonts():
     _, status = os.waitpid(pid, 0)
     assert os.waitstatus_to_exitcode(status) == 0
     assert sheets._MATHTEXT  # the parent keeps its own
+
+
+# ------------------------------------------------------------------------------ what a person sees (issue 29.8)
+
+
+def _legend_texts(ax) -> list[str]:
+    leg = ax.get_legend()
+    return [t.get_text() for t in leg.get_texts()] if leg is not None else []
+
+
+def test_a_long_legend_makes_the_panel_taller_instead_of_squashing_the_axes():
+    """Twelve two-line entries (as `capred retention --model all` has): the legend goes below the axes and the
+    panel grows, so the axes keep at least half their panel's nominal height (before: ~15 %) and the legend
+    overlaps neither the axes nor the x label."""
+    import numpy as np
+
+    from capred.report.sheets import Panel, Sheet, panel_size_mm, sheet_figure
+
+    def draw(ax):
+        x = np.linspace(0, 1, 20)
+        for k in range(12):
+            ax.plot(
+                x,
+                x * k,
+                label=f"model number {k} with a rather long name for a legend\n$S_e = [1 + (\\alpha s)^n]^{{-m}}$ {k}",
+            )
+        ax.set_xlabel("suction $s$ [kPa]")
+        return ax
+
+    sheet = Sheet("A sheet", [Panel("p", draw)], 1, spans={"p": 2})
+    nominal_h = panel_size_mm(sheet, sheet.panels[0])[1]
+    fig = sheet_figure(sheet)
+    assert sheet.legend_room["p"] > 0
+    ax = fig.axes[0]
+    renderer = fig.canvas.get_renderer()
+    axes_h_mm = ax.bbox.height / fig.dpi * MM
+    assert axes_h_mm >= 0.5 * nominal_h, (axes_h_mm, nominal_h)
+    leg = ax.get_legend().get_window_extent(renderer)
+    below = ax.xaxis.get_tightbbox(renderer)
+    assert leg.y1 <= below.y0 + 1  # under the x label (1 px of rounding)
+    assert leg.y0 >= 0  # and inside the figure
+
+
+def test_at_least_nine_line_styles_that_differ_in_what_a_reader_sees():
+    """The house line styles: the sequence of dash kinds in one period (dot <= 1.5 pt, dash <= 4 pt, long
+    dash) differs between every two of them; ten of them. The retention models' styles differ likewise
+    (Kosugi dotted, Durner dash-dot-dot: both were dotted)."""
+    from capred.fitting.retention_models import MODELS
+    from capred.report.style import LINESTYLES
+
+    def kind(ls):
+        if ls == "-":
+            return ("solid",)
+        named = {"--": (0, (3.7, 1.6)), ":": (0, (1, 1.65)), "-.": (0, (6.4, 1.6, 1, 1.6))}
+        on = named.get(ls, ls)[1][::2]
+        return tuple("dot" if d <= 1.5 else "dash" if d <= 4 else "long" for d in on)
+
+    kinds = [kind(ls) for ls in LINESTYLES]
+    assert len(LINESTYLES) >= 9 and len(set(kinds)) == len(kinds), kinds
+    retention = [kind(m.style.get("ls", "-")) for m in MODELS.values() if "ls" in m.style]
+    assert len(set(retention)) == len(retention), retention
+
+
+def test_svg_text_is_text(tmp_path, monkeypatch, light):
+    """SVG files keep their text as <text> elements (editable), not glyph paths."""
+    out = tmp_path / "o"
+    capred.write_outputs(light, out, formats=("svg",))
+    svg = next(out.glob("*.svg")).read_text(encoding="utf-8")
+    assert "<text" in svg
+    assert ">sheet " in svg or "sheet 0" in svg  # the title, readable as text
+
+
+def test_every_error_bar_says_what_it_is(shear_result):
+    """The report sheet's bars are 95 % prediction intervals, the capillary sheet's ± 1 standard error: each
+    panel with bars says which in its legend (and the captions say it too)."""
+    from capred.report.shear_figures import PI_BARS, SE_BARS
+    from capred.report.sheets import sheet_figure
+
+    sheets = shear_result.figures()
+    report = next(s for k, s in sheets.items() if k.startswith("report_"))
+    capillary = next(s for k, s in sheets.items() if k.startswith("capillary_"))
+    fig = sheet_figure(report)
+    titles = {ax.get_title(): ax for ax in fig.axes}
+    assert PI_BARS in _legend_texts(titles["Measured and predicted strength"])
+    assert "95 % prediction interval" in PI_BARS
+    fig = sheet_figure(capillary)
+    for ax in fig.axes:
+        assert SE_BARS in _legend_texts(ax), ax.get_title()
+    assert "standard error" in SE_BARS
+    assert all("standard error" in p.caption for p in capillary.panels)
+
+
+def test_strength_curves_do_not_jump_and_the_pendular_regime_has_its_own_entry(shear_result):
+    """Model curves of strength against S_R are drawn over the S_R that the measured suctions give. Before,
+    they ran on to 3x the largest suction, into the fitted relation's residual plateau, where the suction (and
+    chi Delta u) grows while S_R stays put: the steel's Own 1 curve rose from 0.78 to 1.0 kPa between S_R =
+    0.0236 and 0.0197, a vertical stroke at the left edge. The pendular regime is a shaded band with its own
+    legend entry, not a line."""
+    import numpy as np
+
+    from capred.report.sheets import sheet_figure
+
+    t = shear_result.tests
+    for key, sheet in shear_result.figures().items():
+        if not key.startswith("report_"):
+            continue
+        material = key[len("report_") :]
+        wet = (t["material"] == material) & (t["condition"] == "wet")
+        relation = shear_result.retention_relation(material)
+        s = t["suction"][wet]
+        lo, hi = sorted(relation.S_R(np.array([s.max(), s.min()])))
+        fig = sheet_figure(sheet)
+        ax = next(a for a in fig.axes if a.get_title() == "Strength against saturation")
+        curves = [ln for ln in ax.get_lines() if len(ln.get_xdata()) > 20]
+        assert curves
+        for ln in curves:
+            S, tau = np.asarray(ln.get_xdata(), float), np.asarray(ln.get_ydata(), float)
+            drawn = S[np.isfinite(tau)]
+            assert drawn.size > 60  # about half of CURVE_POINTS: a smooth curve
+            assert drawn.min() >= lo - 1e-6 and drawn.max() <= hi + 1e-6, (key, drawn.min(), lo)
+        texts = _legend_texts(ax)
+        assert any(t.startswith("pendular") for t in texts), texts
+        band = [p for p in ax.patches if p.get_label().startswith("pendular")]
+        assert len(band) == 1 and not any(ln.get_label().startswith("pendular") for ln in ax.get_lines())

@@ -413,7 +413,7 @@ MODELS: dict[str, RetentionModel] = {
             "Durner (1994), two van Genuchten pore systems: S_e = w₁[1 + (α₁s)^n₁]^−m₁ + (1 − w₁)[1 + (α₂s)^n₂]^−m₂, "
             "m_i = 1 − 1/n_i.",
             "durner: Durner (1994), bimodal van Genuchten",
-            dict(ls=(0, (1, 1))),
+            dict(ls=(0, (7, 2, 1, 2, 1, 2))),  # dash-dot-dot: Kosugi is dotted
             mixture=("w1", _durner_components),
             grid_order=("alpha1", "alpha2"),
             canonical=_durner_canonical,

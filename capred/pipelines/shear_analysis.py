@@ -493,20 +493,12 @@ def _all_close(a: np.ndarray, b: np.ndarray, atol: float) -> bool:
         return bool(np.all((a == b) | (np.abs(a - b) <= atol) | (np.isnan(a) & np.isnan(b))))
 
 
-def _dry_groups(dry_x, through_origin: bool) -> np.ndarray | None:
-    """(nd, k) indicator of each dry test's distinct normal stress (through the origin: of a usable one, whose
-    square is not 0), or None where every stress is distinct: what `_draw` checks a sample's fit on."""
-    nd = dry_x.size
+def _dry_groups(dry_x, through_origin: bool) -> np.ndarray:
+    """(nd,) integer code of each dry test's group: its distinct normal stress (through the origin: 1 for a
+    usable test, whose square is not 0, else 0). What `_draw` checks a sample's fit on, in O(nd) memory."""
     if through_origin:
-        group, k = (dry_x * dry_x > 0).astype(int), 2
-    else:
-        _, group = np.unique(dry_x, return_inverse=True)
-        k = int(group.max()) + 1 if nd else 1
-        if k == nd:
-            return None
-    one_hot = np.zeros((nd, k))
-    one_hot[np.arange(nd), group.ravel()] = 1.0
-    return one_hot
+        return (dry_x * dry_x > 0).astype(np.intp)
+    return np.unique(dry_x, return_inverse=True)[1].ravel().astype(np.intp)
 
 
 def _draw(rng, dry_x, nw: int, count: int, through_origin: bool, groups="find"):
@@ -516,29 +508,36 @@ def _draw(rng, dry_x, nw: int, count: int, through_origin: bool, groups="find"):
     fit a line (all its normal stresses equal; all zero through the origin) is redrawn, up to 100 times.
     Returns dry counts (count, nd), wet indices (count, nw) and the valid rows. (Versions before 0.2 drew
     replicate by replicate in a Python loop: the same distribution, another random stream.)
+
+    A sample fits a line when the group codes of its draws (`_dry_groups`) are not all equal (through the
+    origin: one is 1), decided from the codes of the drawn indices: the cost is that of the draw, whatever the
+    number of distinct stresses (earlier versions multiplied the counts by a dense nd x k indicator matrix:
+    quadratic when nearly every dry test has its own stress; the same decisions, the same random stream).
     """
     nd = dry_x.size
-    # a sample fits a line when it holds two distinct normal stresses (through the origin: one whose square is
-    # not 0): decided from the counts of each distinct value (or of the usable ones); ``groups``: _dry_groups
-    one_hot = _dry_groups(dry_x, through_origin) if isinstance(groups, str) else groups
+    code = _dry_groups(dry_x, through_origin) if isinstance(groups, str) else groups
 
     def counts(di):
         rows = np.repeat(np.arange(di.shape[0]), nd)
         return np.bincount(rows * nd + di.ravel(), minlength=di.size).reshape(di.shape)
 
-    def fits(u):
-        g = u if one_hot is None else u @ one_hot  # counts per distinct value
-        return g[:, 1] > 0 if through_origin else np.count_nonzero(g, axis=1) >= 2
+    def fits(di):
+        g = code[di]  # (rows, nd) group codes of the drawn tests
+        if not nd:
+            return np.zeros(di.shape[0], bool)
+        return g.max(axis=1) > 0 if through_origin else g.min(axis=1) != g.max(axis=1)
 
     di = rng.integers(0, nd, (count, nd))
     U = counts(di)
-    valid = fits(U)
+    valid = fits(di)
+    del di
     for _ in range(100):
         bad = np.flatnonzero(~valid)
         if not bad.size:
             break
-        U[bad] = counts(rng.integers(0, nd, (bad.size, nd)))
-        valid[bad] = fits(U[bad])
+        di = rng.integers(0, nd, (bad.size, nd))
+        U[bad] = counts(di)
+        valid[bad] = fits(di)
     U = U.astype(float)
     idx = rng.integers(0, nw, (count, nw))
     U[~valid] = 0.0

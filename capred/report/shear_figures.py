@@ -24,6 +24,7 @@ from .style import (
     level_style,
     literal,
     note,
+    pendular_band,
     series_style,
     symbol,
     tex,
@@ -40,6 +41,18 @@ MAX_LEVELS = 5
 MAX_ERRORBARS = 300
 #: raw curves drawn per panel (a legend of more cannot be read); above it, a stated random sample of them
 MAX_CURVES = 16
+#: points of each model curve along the retention relation (``result.model_curves``); about half lie within
+#: the measured suctions, the part drawn
+CURVE_POINTS = 240
+#: what the error bars of the report sheet are (their legend entry)
+PI_BARS = "bars: 95 % prediction interval"
+#: what the error bars of the capillary sheet are (their legend entry)
+SE_BARS = r"bars: $\pm$ 1 standard error"
+
+
+def _bars_key(ax, text: str) -> None:
+    """A legend entry saying what the panel's error bars are: a vertical bar with caps, and ``text``."""
+    ax.plot([], [], ls="none", marker="$\u2336$", color="k", ms=6, label=text)
 
 
 def _label(model: str) -> str:
@@ -130,6 +143,8 @@ def plot_measured_vs_predicted(ax, result, material):
         )
     hi = hi * 1.05 or 1.0
     ax.plot([0, hi], [0, hi], color="k", ls="--", lw=0.8, label="1:1")
+    if result.models and keep.size <= MAX_ERRORBARS:
+        _bars_key(ax, PI_BARS)
     note(ax, shown)
     ax.set_xlim(0, hi)
     ax.set_ylim(0, hi)
@@ -165,9 +180,11 @@ def plot_strength_vs_saturation(ax, result, material):
     handles = []
     curves_drawn = set()
     if relation is not None:  # model curves along the water-retention relation, one line style per level
+        inside = _measured_span(result, material, relation)
         for k, level in enumerate(levels):
-            S, taus = result.model_curves(material, float(level))
+            S, taus = result.model_curves(material, float(level), CURVE_POINTS)
             for m, tau in taus.items():
+                tau = np.where(inside(S), tau, np.nan)
                 ax.plot(S, tau * KPA, color=_style(m)["color"], ls=level_style(k)["ls"], lw=1.0, alpha=0.9)
                 curves_drawn.add(m)
     per_test = [m for m in result.models if m not in curves_drawn]
@@ -222,13 +239,33 @@ def plot_strength_vs_saturation(ax, result, material):
         handles.append(
             Line2D([], [], color="0.6", marker=".", ls="none", label=rf"{n_levels - levels.size} other $\sigma_N$")
         )
-    ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
+    if per_test and keep.size <= MAX_ERRORBARS:
+        handles.append(Line2D([], [], ls="none", marker="$\u2336$", color="k", ms=6, label=PI_BARS))
+    handles.append(pendular_band(ax, result.options.pendular_limit))
     note(ax, shown)
     ax.set_xlabel(LABEL["S_R"])
     ax.set_ylabel(LABEL["tau_max"])
     ax.set_title("Strength against saturation")
     ax.legend(handles=handles, loc="upper right")
     return ax
+
+
+def _measured_span(result, material, relation):
+    """A test ``inside(S)``: S_R within what the relation gives over the material's measured suctions.
+
+    Model curves are drawn there only. Beyond the measured suctions a fitted relation runs into its
+    plateaus: near its residual S_R (e.g. 0.0197 for the sample's steel) the suction, and with it χ Δu,
+    grows by orders of magnitude while S_R hardly moves, so a model's strength rose almost vertically at
+    S_R ≈ 0.015-0.02: the "jump" of earlier versions (issue 29), an extrapolation no test supports.
+    """
+    t = result.tests
+    s = t["suction"][_wet(result, material)]
+    s = s[np.isfinite(s) & (s > 0)]
+    if not s.size:
+        return lambda S: np.ones(np.shape(S), bool)
+    lo, hi = sorted(float(v) for v in relation.S_R(np.array([s.max(), s.min()])))
+    pad = 1e-9 + 1e-6 * (hi - lo)
+    return lambda S: (S >= lo - pad) & (S <= hi + pad)
 
 
 def plot_residuals(ax, result, material):
@@ -263,7 +300,8 @@ def _strength_caption(result, material) -> str:
     return (
         "Measured strength against S_R (black markers, one marker per normal stress) and each model's "
         "strength (its colour) at each normal stress (the line style of that stress) along the water-retention "
-        f"relation: {relation.source}. Markers without lines: models predicted per test."
+        f"relation: {relation.source}, over the measured suctions. Markers without lines: models predicted per "
+        "test, with the 95 % prediction interval of a new test. Shaded: the pendular regime."
     )
 
 
@@ -342,10 +380,12 @@ def plot_capillary_stress(ax, result, material, x: str):
         ms=3.5,
         capsize=1.5,
         elinewidth=0.6,
-        label=r"back-analysed ($\pm$ 1 se)",
+        label="back-analysed",
     )
+    if keep.size <= MAX_ERRORBARS:
+        _bars_key(ax, SE_BARS)
     if x == "S_R":
-        ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
+        pendular_band(ax, result.options.pendular_limit)
     ax.axhline(0.0, color="k", lw=0.5)
     note(ax, shown)
     ax.set_xlabel(LABEL[x])
@@ -382,9 +422,11 @@ def plot_chi_back(ax, result, material):
         ms=3.5,
         capsize=1.5,
         elinewidth=0.6,
-        label=r"$\chi$ back-analysed ($\pm$ 1 se)",
+        label=r"$\chi$ back-analysed",
     )
-    ax.axvline(result.options.pendular_limit, color="0.6", lw=0.8, ls=":")
+    if keep.size <= MAX_ERRORBARS:
+        _bars_key(ax, SE_BARS)
+    pendular_band(ax, result.options.pendular_limit)
     note(ax, shown)
     ax.set_xlabel(LABEL["S_R"])
     ax.set_ylabel(LABEL["chi"])
@@ -402,18 +444,19 @@ def sheet_capillary_stress(result, material) -> Sheet:
             Panel(
                 "sigma_cap_vs_saturation",
                 lambda ax: plot_capillary_stress(ax, result, material, "S_R"),
-                "σ_cap = (τ_max − c)/tan φ − σ_N of each wet test (± 1 standard uncertainty) and each model's "
-                "prediction, against S_R." + more,
+                "σ_cap = (τ_max − c)/tan φ − σ_N of each wet test (error bars: ± 1 standard error) and each "
+                "model's prediction, against S_R; shaded: the pendular regime." + more,
             ),
             Panel(
                 "sigma_cap_vs_suction",
                 lambda ax: plot_capillary_stress(ax, result, material, "suction"),
-                "The same against the suction." + more,
+                "The same against the suction (error bars: ± 1 standard error)." + more,
             ),
             Panel(
                 "chi",
                 lambda ax: plot_chi_back(ax, result, material),
-                "χ_back = σ_cap/Δu against S_R with the χ(S_R) of each model of the run that has one." + more,
+                "χ_back = σ_cap/Δu (error bars: ± 1 standard error) against S_R with the χ(S_R) of each model of "
+                "the run that has one; shaded: the pendular regime." + more,
             ),
         ],
         3,

@@ -41,8 +41,8 @@ TITLE_MM = 7.0
 WIDE_HEIGHT = 1.25
 MM_PER_INCH = 25.4
 
-#: journal-sized text and lines (7-9 pt at the printed size), fonts embedded as TrueType in PDF (editable
-#: text, as journals ask), and a fixed salt for SVG ids (the same ids on every run)
+#: journal-sized text and lines (7-9 pt at the printed size), fonts embedded as TrueType in PDF and text kept
+#: as text in SVG (editable, as journals ask), and a fixed salt for SVG ids (the same ids on every run)
 RC = {
     "font.size": 8.0,
     "axes.titlesize": 8.0,
@@ -66,6 +66,7 @@ RC = {
     "figure.facecolor": "white",
     "savefig.facecolor": "white",
     "pdf.fonttype": 42,
+    "svg.fonttype": "none",  # SVG text as <text> elements: editable in Inkscape or Illustrator
     "ps.fonttype": 42,
     "svg.hashsalt": "capred",
 }
@@ -101,6 +102,10 @@ class Sheet:
     spans: dict[str, int] = field(default_factory=dict)  # panel name -> columns it spans (one row)
     panel_size: tuple[float, float] = (4.6, 3.4)  # only its aspect counts: height / width
     on_request: bool = False  # not among the sheets written by default
+    #: panel name -> room [mm] added below a panel whose legend, placed under the axes, would take more than
+    #: LEGEND_BELOW_MAX of its height: measured on the first draw, then every layout (``sheet_layout``,
+    #: ``panel_figure``, ``compose_raster``) gives the panel that much more height, so the axes keep theirs
+    legend_room: dict = field(default_factory=dict, repr=False, compare=False)
 
 
 @contextmanager
@@ -118,12 +123,14 @@ def journal_style(salt: str | None = None):
 # --- geometry -----------------------------------------------------------------------------------------------
 def panel_size_mm(sheet: Sheet, panel: Panel) -> tuple[float, float]:
     """Printed size of a panel [mm]: one column (85 mm) wide, or the page width (180 mm) when the sheet spans
-    it over two columns; its height from the sheet's aspect."""
+    it over two columns; its height from the sheet's aspect, plus any room its legend needs below the axes
+    (``Sheet.legend_room``)."""
     w, h = sheet.panel_size
     aspect = h / w if w > 0 else 0.75
+    extra = sheet.legend_room.get(panel.name, 0.0)
     if sheet.spans.get(panel.name, 1) >= 2:
-        return PAGE_MM, COLUMN_MM * aspect * WIDE_HEIGHT
-    return COLUMN_MM, COLUMN_MM * aspect
+        return PAGE_MM, COLUMN_MM * aspect * WIDE_HEIGHT + extra
+    return COLUMN_MM, COLUMN_MM * aspect + extra
 
 
 @dataclass(frozen=True)
@@ -159,6 +166,12 @@ def sheet_layout(sheet: Sheet) -> tuple[list[Slot], float, float]:
 # --- one panel ----------------------------------------------------------------------------------------------
 #: a legend wider than this share of its panel goes below the axes instead of beside them
 LEGEND_SIDE_MAX = 0.30
+#: a legend beside the axes may be this share of its panel's height at most (a taller one would push the axes
+#: up to make room for it below them): beyond, it goes below
+LEGEND_SIDE_HEIGHT = 0.80
+#: a legend below the axes may take this share of its panel's height; a longer one makes the panel taller
+#: (``Sheet.legend_room``) instead of squashing the axes
+LEGEND_BELOW_MAX = 0.30
 #: white margin kept around a panel's content [mm]
 PAD_MM = 1.0
 
@@ -200,19 +213,25 @@ def _canvas(fig):
     return renderer
 
 
-def _dress(ax, width_px: float, renderer) -> None:
+def _dress(ax, width_px: float, renderer, height_px: float | None = None) -> float:
     """Put the axes' legend outside its data: beside the axes (``style.legend_outside``), or, when that
-    would take more than ``LEGEND_SIDE_MAX`` of the panel's width, below the x-axis label, in one or two
-    columns."""
+    would take more than ``LEGEND_SIDE_MAX`` of the panel's width, below the x-axis label, in as many
+    columns as the panel's width holds (rows balanced).
+
+    Returns the height [px] the legend below needs beyond ``LEGEND_BELOW_MAX`` of ``height_px`` (the
+    panel's height; 0 when it fits or is beside the axes): the room to add to the panel so that the
+    legend never squashes the axes.
+    """
     from matplotlib.transforms import ScaledTranslation
 
     legend_outside(ax)
     leg = ax.get_legend()
     if leg is None:
-        return
-    side = leg.get_window_extent(renderer).width
-    if side <= LEGEND_SIDE_MAX * width_px:
-        return
+        return 0.0
+    box = leg.get_window_extent(renderer)
+    side = box.width
+    if side <= LEGEND_SIDE_MAX * width_px and (height_px is None or box.height <= LEGEND_SIDE_HEIGHT * height_px):
+        return 0.0
     handles = list(leg.legend_handles)
     labels = [t.get_text() for t in leg.get_texts()]
     artists, own = ax.get_legend_handles_labels()
@@ -221,8 +240,10 @@ def _dress(ax, width_px: float, renderer) -> None:
     fontsize = leg.get_texts()[0].get_fontsize() if labels else RC["legend.fontsize"]
     leg.remove()
     drop = _below_axis_pt(ax) / 72 * ax.figure.dpi  # px from the axes' bottom to the legend's top
-    ncol = 2 if len(labels) > 1 and 2.0 * side <= 0.95 * width_px else 1
-    ax.legend(
+    fits = max(1, min(len(labels), int(0.95 * width_px // max(side, 1.0))))
+    rows = -(-len(labels) // fits)
+    ncol = max(1, -(-len(labels) // max(rows, 1)))  # the fewest columns giving that many rows
+    leg = ax.legend(
         handles,
         labels,
         loc="upper center",
@@ -235,6 +256,9 @@ def _dress(ax, width_px: float, renderer) -> None:
         columnspacing=1.2,
         handlelength=1.8,
     )
+    if height_px is None:
+        return 0.0
+    return max(0.0, leg.get_window_extent(renderer).height + drop - LEGEND_BELOW_MAX * height_px)
 
 
 def _below_axis_pt(ax) -> float:
@@ -297,6 +321,8 @@ def panel_figure(sheet: Sheet, panel: Panel, dpi: float = 300.0):
     """A panel alone on its own figure at its printed size (``panel_size_mm``), laid out once.
 
     The layout is fixed in one pass (``_fit``): the axes take the room their labels, title and legend leave.
+    A legend below the axes that needs more than ``LEGEND_BELOW_MAX`` of the height makes the panel taller
+    (recorded in ``sheet.legend_room`` for the sheet's other layouts) before the layout: nothing is drawn twice.
 
     Parameters
     ----------
@@ -320,7 +346,12 @@ def panel_figure(sheet: Sheet, panel: Panel, dpi: float = 300.0):
         renderer = _canvas(fig)
         ax = fig.add_axes((0.15, 0.15, 0.7, 0.7))
         panel.draw(ax)
-        _dress(ax, fig.bbox.width, renderer)
+        extra = _dress(ax, fig.bbox.width, renderer, fig.bbox.height)
+        if extra > 0 and panel.name not in sheet.legend_room:  # taller by the legend's excess
+            sheet.legend_room[panel.name] = extra / dpi * MM_PER_INCH
+            w, h = panel_size_mm(sheet, panel)
+            fig.set_size_inches(_inches(w, dpi), _inches(h, dpi))
+            renderer = _canvas(fig)  # the new size's renderer, with the shared mathtext parser
         _fit(fig, renderer)
     return fig
 
@@ -466,7 +497,9 @@ def sheet_figure(sheet: Sheet, dpi: float = 300.0):
     every panel's axes fitted to its slot in one pass (``_fit``), the layout then final.
 
     The panels share one renderer, so a text seen in several panels (axis labels, tick labels, legend
-    entries) is measured once; the figure is drawn once whatever is saved from it (PNG, PDF, SVG). Its pixels
+    entries) is measured once; the figure is drawn once whatever is saved from it (PNG, PDF, SVG); a
+    legend below its axes that needs a taller panel (``Sheet.legend_room``) makes the figure taller before the
+    layout. Its pixels
     at ``dpi`` are those of ``compose_raster`` of the panels' own figures (the same sizes and layout rule).
 
     Parameters
@@ -484,12 +517,16 @@ def sheet_figure(sheet: Sheet, dpi: float = 300.0):
     from matplotlib.figure import Figure
 
     slots, width, height = sheet_layout(sheet)
+    grown: dict[str, float] = {}
     with journal_style():
         fig = Figure(figsize=(_inches(width, dpi), _inches(height, dpi)), dpi=dpi)
         renderer = _canvas(fig)
         W, H = fig.bbox.width, fig.bbox.height
         px = dpi / MM_PER_INCH
-        fig.suptitle(literal(sheet.title), y=1 - 0.55 * TITLE_MM * px / H, va="center", wrap=len(sheet.title) > 80)
+        title = fig.suptitle(
+            literal(sheet.title), y=1 - 0.55 * TITLE_MM * px / H, va="center", wrap=len(sheet.title) > 80
+        )
+        groups = []
         for panel, slot in zip(sheet.panels, slots):
             x0, x1 = slot.x * px, (slot.x + slot.width) * px
             y1 = H - slot.y * px
@@ -504,8 +541,21 @@ def sheet_figure(sheet: Sheet, dpi: float = 300.0):
                 )
             )
             panel.draw(ax)
-            _dress(ax, x1 - x0, renderer)
-            _fit(fig, renderer, axes=fig.axes[before:], region=(x0, y0, x1, y1))
+            extra = _dress(ax, x1 - x0, renderer, y1 - y0)
+            if extra > 0 and panel.name not in sheet.legend_room:
+                grown[panel.name] = extra / dpi * MM_PER_INCH
+            groups.append(fig.axes[before:])
+        if grown:  # a legend needs more room below its axes: those panels taller, the figure with them
+            sheet.legend_room.update(grown)
+            slots, width, height = sheet_layout(sheet)
+            fig.set_size_inches(_inches(width, dpi), _inches(height, dpi))
+            renderer = _canvas(fig)  # the new size's renderer, with the shared mathtext parser
+            W, H = fig.bbox.width, fig.bbox.height
+            title.set_y(1 - 0.55 * TITLE_MM * px / H)
+        for group, slot in zip(groups, slots):  # the layout, once, in the final slots
+            y1 = H - slot.y * px
+            region = (slot.x * px, y1 - slot.height * px, (slot.x + slot.width) * px, y1)
+            _fit(fig, renderer, axes=group, region=region)
     return fig
 
 

@@ -87,8 +87,26 @@ LABEL = {
 #: colours of series that are not models (tests, groups), in order: Okabe-Ito without yellow and grey,
 #: which print too pale on white
 SERIES_COLOURS = [OKABE_ITO[k] for k in ("black", "orange", "sky", "green", "blue", "vermillion", "purple")]
-#: line styles of series and of normal-stress levels, in order (solid first)
-LINESTYLES = ["-", "--", ":", "-.", (0, (5, 1)), (0, (3, 1, 1, 1)), (0, (1, 1)), (0, (5, 2, 1, 2, 1, 2))]
+#: line styles of series, models and normal-stress levels, in order (solid first): ten dash patterns that
+#: differ in what a reader sees, the sequence of dash lengths in one period (dot <= 1.5 pt, dash 3 pt, long
+#: dash 7 pt; every gap 2 pt): solid, dots, dashes, long dashes, long-dot, long-dot-dot, long-dash, dash-dot,
+#: long-dot-dot-dot, dash-dot-dot. No two share that sequence (``test_figure_output``), so a figure of up
+#: to ten curves in one colour never repeats a look.
+LINESTYLES = [
+    "-",
+    (0, (1, 2)),
+    (0, (3, 2)),
+    (0, (7, 2)),
+    (0, (7, 2, 1, 2)),
+    (0, (7, 2, 1, 2, 1, 2)),
+    (0, (7, 2, 3, 2)),
+    (0, (3, 2, 1, 2)),
+    (0, (7, 2, 1, 2, 1, 2, 1, 2)),
+    (0, (3, 2, 1, 2, 1, 2)),
+]
+#: the pendular regime (S_R up to the pendular limit) on S_R axes: a shaded band of its own, no line, so it is
+#: never taken for a curve; ``pendular_band`` draws it with its legend entry
+PENDULAR_STYLE = dict(color=OKABE_ITO["yellow"], alpha=0.35, lw=0, zorder=0)
 #: markers of series and of normal-stress levels, in order
 MARKERS = ["o", "s", "^", "D", "v", "<", ">", "p", "h", "X", "P", "*"]
 #: MAX_MARKERS, THIN_SEED: how many markers a panel draws per series (capred.sampling, shared with the pipelines)
@@ -216,6 +234,22 @@ def thin(index, limit: int = MAX_MARKERS, seed: int = THIN_SEED):
     n = int(index.sum()) if index.dtype == bool else index.size
     keep = sample_rows(index, limit, seed)
     return keep, (f"markers: random sample of {limit:,} of {n:,} tests (seed {seed})" if n > limit else "")
+
+
+def pendular_band(ax, limit: float):
+    """Shade the pendular regime, S_R from 0 to ``limit`` [-], with its legend entry (``PENDULAR_STYLE``).
+
+    The chi approximations of Own 1 and Own 2 are derived for that regime (one bridge per contact); the band
+    shows where a point or curve leaves it.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        An axes whose x axis is S_R [-].
+    limit : float
+        The pendular limit [-] (``ShearOptions.pendular_limit``).
+    """
+    return ax.axvspan(0.0, limit, label=rf"pendular, $S_R \leq$ {limit:g}", **PENDULAR_STYLE)
 
 
 def note(ax, text: str) -> None:
