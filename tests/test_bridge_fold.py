@@ -18,7 +18,7 @@ def brute_rupture_gap(theta, s, rho):
     g = br._below(br.gap_of(b, theta[:, None], s[:, None], rho[:, None]))
     r = np.arange(theta.size)
     j = np.argmax(g, axis=1)
-    _, best = br._golden(
+    _, best = br.golden(
         lambda x, i: br.gap_of(x, theta[i], s[i], rho[i]),
         b[r, np.maximum(j - 1, 0)],
         b[r, np.minimum(j + 1, b.shape[1] - 1)],

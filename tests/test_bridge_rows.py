@@ -7,6 +7,7 @@ from numpy.testing import assert_allclose
 from scipy.optimize import brentq
 
 import capred.pipelines.bridge as pb
+import capred.pipelines.bridge_solve as bs
 from capred.physics import bridge as br
 
 
@@ -59,7 +60,7 @@ def test_two_processes_give_the_rows_of_one(tmp_path, monkeypatch, control):
         fh.write(f"R [mm],contact_angle [deg],gap [mm],{control} [{unit}]\n")
         fh.writelines(",".join(map(repr, row)) + "\n" for row in zip(R.tolist(), th.tolist(), D.tolist(), x.tolist()))
     one = pb.solve_bridges(tmp_path / "in.csv")
-    monkeypatch.setattr(pb, "_PARALLEL_ROWS", 10)  # both halves of the 41 rows, the second in a forked process
+    monkeypatch.setattr(bs, "_PARALLEL_ROWS", 10)  # both halves of the 41 rows, the second in a forked process
     monkeypatch.setenv("CAPRED_PROCESSES", "2")  # whatever the machine's load
     two = pb.solve_bridges(tmp_path / "in.csv")
     assert 0 < np.sum(one.status == 0) < n  # bridges and rows without one

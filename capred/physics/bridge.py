@@ -451,11 +451,35 @@ def _pair(b, th, s, rho, full=True, coarse=False):
 # ---- root finding ------------------------------------------------------------
 
 
-def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100, ftol=None, ends=False):
+def illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100, ftol=None, ends=False):
     """Vectorised Illinois (modified regula falsi) root of f on brackets with f_lo >= 0 >= f_hi.
 
-    Stops when the bracket is ``tol`` (relative) narrow or, with ``ftol`` (per row), when |f| <= ftol.
-    With ``ends`` it returns (x, lo, hi): the final bracket too, lo on the side where f >= 0.
+    Parameters
+    ----------
+    f : callable
+        ``f(x, i)``: the function at points ``x`` of the rows ``i`` (an index array) [any unit].
+    lo, hi : array_like
+        Bracket ends, one per row [unit of x].
+    f_lo, f_hi : array_like
+        f at the ends, f_lo >= 0 >= f_hi (a non-finite value: bisection until the end moves).
+    tol : float, default 1e-14
+        Relative width of the bracket at which a row stops [-].
+    iters : int, default 100
+        Most iterations.
+    ftol : array_like, optional
+        Per row: a row stops when |f| <= ftol [unit of f].
+    ends : bool, default False
+        Return the final bracket too.
+
+    Returns
+    -------
+    numpy.ndarray or tuple
+        The roots [unit of x]; with ``ends``, (x, lo, hi), lo on the side where f >= 0.
+
+    References
+    ----------
+    .. [1] Dowell, M. & Jarratt, P. (1971). A modified regula falsi method for computing the root of an equation.
+       BIT 11, 168-174. doi:10.1007/BF01934364
     """
     lo, hi, f_lo, f_hi = (np.array(x, dtype=float) for x in (lo, hi, f_lo, f_hi))
     x = lo.copy()
@@ -489,8 +513,33 @@ def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100, ftol=None, ends=False
     return (x, lo, hi) if ends else x
 
 
-def _golden(f, a, c, iters=60, sign=1.0):
-    """Vectorised golden-section search of the maximum of sign * f on [a, c]; returns (x, f(x))."""
+def golden(f, a, c, iters=60, sign=1.0):
+    """Vectorised golden-section search of the maximum of sign * f on [a, c].
+
+    Parameters
+    ----------
+    f : callable
+        ``f(x, i)``: the function at points ``x`` of the rows ``i`` (an index array); non-finite values count
+        as -inf.
+    a, c : array_like
+        Ends of the interval, one per row [unit of x]; f unimodal between them.
+    iters : int, default 60
+        Golden-section steps (each shrinks the interval by 0.618).
+    sign : float, default 1.0
+        -1.0 to find the minimum.
+
+    Returns
+    -------
+    x : numpy.ndarray
+        The maximiser of each row [unit of x].
+    fx : numpy.ndarray
+        f there (not multiplied by ``sign``).
+
+    References
+    ----------
+    .. [1] Kiefer, J. (1953). Sequential minimax search for a maximum. Proc. Amer. Math. Soc. 4, 502-506.
+       doi:10.1090/S0002-9939-1953-0055639-3
+    """
     g = (np.sqrt(5.0) - 1.0) / 2.0
     a, c = np.array(a, float), np.array(c, float)
     idx = np.arange(a.size)
@@ -594,8 +643,37 @@ def _catenoid_gap(y0, th, rho):
     return g
 
 
-def _suction_at_neck(y0, th, rho, target, field):
-    """s* >= 0 at which the bridge of neck y0 has gap (or volume) = target; both fall as s* rises. NaN if none."""
+def suction_at_neck(y0, th, rho, target, field):
+    """The suction s* >= 0 at which the bridge of neck y0 has a given gap (or volume).
+
+    Parameters
+    ----------
+    y0 : numpy.ndarray
+        Neck radius r0 / R1 [-], 1-D.
+    th : numpy.ndarray
+        Contact angle θ [rad], one per row (see ``th2``).
+    rho : numpy.ndarray
+        R2 / R1 [-]; ``np.inf`` for a plane.
+    target : numpy.ndarray
+        The gap* D / R1 or volume* V / R1^3 to reach [-].
+    field : {"gap", "volume"}
+        Which field ``target`` is.
+
+    Returns
+    -------
+    numpy.ndarray
+        s* = Delta_u R1 / gamma [-]; NaN where no bridge of that neck reaches the target.
+
+    Notes
+    -----
+    At a fixed neck both the gap and the volume fall as s* rises, from the catenoid (s* = 0); the root is
+    found by Illinois iterations in q = s* y0^2 / (1 + s* y0^2).
+
+    References
+    ----------
+    .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
+       spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
+    """
 
     def value(q, i):
         s = q / (1.0 - q) / (y0[i] * y0[i])  # suction scale of a neck y0: 1 / y0^2
@@ -615,7 +693,7 @@ def _suction_at_neck(y0, th, rho, target, field):
     out[(f0 < 0) & (f0 >= -1e-12 * np.maximum(np.abs(target), 1e-3))] = 0.0
     k = np.flatnonzero((f0 >= 0) & (f1 <= 0))
     if k.size:
-        q = _illinois(
+        q = illinois(
             lambda x, i: value(x, k[i]),
             q0[k],
             q_hi[k],
@@ -629,7 +707,7 @@ def _suction_at_neck(y0, th, rho, target, field):
 
 def _arc(y0, th, rho, D, field="volume"):
     """Volume (or another field) of the bridge with neck y0 at gap D; NaN where none."""
-    s = _suction_at_neck(y0, th, rho, D, "gap")
+    s = suction_at_neck(y0, th, rho, D, "gap")
     ok = np.isfinite(s)
     out = np.full(y0.size, np.nan)
     if ok.any():
@@ -777,12 +855,12 @@ def _solve_for_suction(theta, suction, gap, ratio):
         miss = nob
     if miss.size:  # refine the maximum by golden sections (unimodal between a and c)
         thm, sm, rhom, Dm = th[miss], s[miss], rho[miss], D[miss]
-        bp, dp = _golden(lambda x, i: gap_of(x, thm[i], sm[i], rhom[i], coarse=True), a, c, iters=12)
+        bp, dp = golden(lambda x, i: gap_of(x, thm[i], sm[i], rhom[i], coarse=True), a, c, iters=12)
         # 12 steps leave the bracket at 0.3 % of its width: the maximum is then known to about 1e-4 relative;
         # rows within 1 % of the gap are refined to 25 steps with the full quadrature, the rest are settled
         close = np.flatnonzero((dp >= 0.99 * Dm) & (dp < 1.01 * Dm))
         if close.size:
-            bp[close], dp[close] = _golden(
+            bp[close], dp[close] = golden(
                 lambda x, i: gap_of(x, thm[close][i], sm[close][i], rhom[close][i]), a[close], c[close], iters=25
             )
         found = dp >= Dm
@@ -812,7 +890,7 @@ def _log_root(f, lo, hi):
     fa, fc = f(a, np.arange(a.size)), f(c, np.arange(a.size))
     flip = fa < fc  # Illinois wants f(lo) >= 0 >= f(hi)
     sign = np.where(flip, -1.0, 1.0)
-    _, lo_end, hi_end = _illinois(lambda x, i: sign[i] * f(x, i), a, c, sign * fa, sign * fc, ends=True)
+    _, lo_end, hi_end = illinois(lambda x, i: sign[i] * f(x, i), a, c, sign * fa, sign * fc, ends=True)
     # the end where f >= 0: inside the family even when the "root" is where the bridges stop existing
     return np.exp(np.where(flip, hi_end, lo_end))
 
@@ -850,7 +928,7 @@ def _scan_for_volume(theta, volume, gap, ratio):
     # peak of the catenoid gap, refined (a narrow peak can hide between grid necks)
     j = np.argmax(gcat, axis=1)
     lo_j, hi_j = np.maximum(j - 1, 0), np.minimum(j + 1, y.shape[1] - 1)
-    ypk, gpk = _golden(lambda x, i: _catenoid_gap(np.exp(x), th[i], rho[i]), np.log(y[r, lo_j]), np.log(y[r, hi_j]))
+    ypk, gpk = golden(lambda x, i: _catenoid_gap(np.exp(x), th[i], rho[i]), np.log(y[r, lo_j]), np.log(y[r, hi_j]))
     ypk = np.exp(ypk)
     reach = np.flatnonzero(gpk >= D)
 
@@ -900,7 +978,7 @@ def _scan_for_volume(theta, volume, gap, ratio):
             rr = np.arange(sub.size)
             a = np.log(yg[rr, np.maximum(jm - 1, 0)])
             c = np.log(yg[rr, np.minimum(jm + 1, nk - 1)])
-            x_min, v_sub = _golden(
+            x_min, v_sub = golden(
                 lambda x, i: _arc(np.exp(x), th[sub][i], rho[sub][i], D[sub][i])[0], a, c, iters=40, sign=-1.0
             )
             y_min[apart], v_min[apart] = np.exp(x_min), v_sub
@@ -914,7 +992,7 @@ def _scan_for_volume(theta, volume, gap, ratio):
             sel = inside
             lo, hi = np.log(y_min[sel]), np.log(y_hi[go])
             root = np.exp(
-                _illinois(
+                illinois(
                     lambda x, i: -f(x, i),
                     lo,
                     hi,
@@ -923,7 +1001,7 @@ def _scan_for_volume(theta, volume, gap, ratio):
                     ftol=1e-3 * VERIFY_RTOL * V[go],
                 )
             )
-            s = _suction_at_neck(root, th[go], rho[go], D[go], "gap")
+            s = suction_at_neck(root, th[go], rho[go], D[go], "gap")
             b1 = from_neck(root, th[go], np.where(np.isfinite(s), s, 0.0), rho[go])[0]
             beta[k[go]], suction[k[go]] = b1, s
             st[go] = 0
@@ -1072,7 +1150,7 @@ def _beyond_rupture(th, V, D, rho):
 
     The liquid between the axis and the neck radius y0 (the narrowest radius of the bridge, or less when the
     neck is virtual) spans at least the gap, so V* >= pi y0^2 D*: every bridge of the row has
-    y0 <= y_b = sqrt(V* / (pi D*)). At a fixed neck the gap falls as s* rises (see :func:`_suction_at_neck`),
+    y0 <= y_b = sqrt(V* / (pi D*)). At a fixed neck the gap falls as s* rises (see :func:`suction_at_neck`),
     so no bridge of neck y0 spans more than its catenoid (:func:`_catenoid_gap`); the catenoid gap rises with
     the neck up to its peak and falls after. Where it still rises at y_b and is below D* there, no neck
     y0 <= y_b reaches D*: beyond rupture. A row is settled only when some catenoid of the upper necks of
@@ -1155,7 +1233,7 @@ def _rupture(theta, volume, ratio):
 
     def gap_at(x, i):
         y0 = np.exp(x)
-        s = _suction_at_neck(y0, th[i], rho[i], V[i], "volume")
+        s = suction_at_neck(y0, th[i], rho[i], V[i], "volume")
         return from_neck(y0, th[i], np.where(np.isfinite(s), s, np.nan), rho[i])[1].gap
 
     ng = _NECK_GRID.size
@@ -1165,12 +1243,12 @@ def _rupture(theta, volume, ratio):
     found = np.isfinite(G[np.arange(m), j])
     a = np.log(_NECK_GRID[np.maximum(j - 1, 0)])
     c = np.log(_NECK_GRID[np.minimum(j + 1, ng - 1)])
-    x, g = _golden(gap_at, a, c)
+    x, g = golden(gap_at, a, c)
     g_grid = G[np.arange(m), j]
     worse = ~(np.isfinite(g) & (g >= g_grid))  # the refinement failed (an edge of the bridges): keep the grid's
     x, g = np.where(worse, np.log(_NECK_GRID[j]), x), np.where(worse, g_grid, g)
     y0 = np.exp(x)
-    s = _suction_at_neck(y0, th, rho, V, "volume")
+    s = suction_at_neck(y0, th, rho, V, "volume")
     b1 = from_neck(y0, th, s, rho)[0]
     good = found & np.isfinite(g) & (g >= 0)
     for o, v in zip(out, (g, b1, s)):
