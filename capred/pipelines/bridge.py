@@ -20,6 +20,7 @@ from ..result import InputFile, Options, Result, input_file, num
 from . import bridge_blocks
 from .bridge_solve import (  # noqa: F401  (re-exported: the names users and tests import from here)
     ANGLE,
+    ANGLE2,
     CASE,
     GAMMA,
     RADIUS,
@@ -233,15 +234,19 @@ class CompareResult(Result):
         b = self.bridges
         i_ = b.inputs_si
         R, g, th, D, rho = i_["R"], i_["gamma"], i_["contact_angle_rad"], i_["gap"], i_["ratio"]
+        th2 = i_.get("contact_angle2_rad", th)
         ok = b.status == 0
-        equal = rho == 1
+        equal = (rho == 1) & (th2 == th)  # the toroidal approximation: equal spheres, one contact angle
+        # two contact angles in the closed forms: cos(theta) -> (cos theta1 + cos theta2) / 2, their Derjaguin
+        # limit F = pi R* gamma (cos theta1 + cos theta2) (Willett et al. 2000, doi:10.1021/la000657y)
+        th_mean = np.where(th2 == th, th, np.arccos(0.5 * (np.cos(th) + np.cos(th2))))
         # Derjaguin's effective radius for unequal pairs: R* = 2 R R2 / (R + R2) (R for equal spheres, 2 R on a plane)
         r_eff = np.where(np.isinf(rho), 2.0 * R, 2.0 * R * rho / (1.0 + np.where(np.isinf(rho), 0.0, rho)))
         models = {
             "exact": (b.force, ok),
             "toroidal": (br.toroidal(b.beta, th, D / R)[2] * np.pi * g * R, ok & equal),
-            "willett": (br.willett_force(r_eff, g, th, self.volume_in, D), np.ones_like(ok)),
-            "israelachvili": (br.israelachvili_force(r_eff, g, th), np.ones_like(ok)),
+            "willett": (br.willett_force(r_eff, g, th_mean, self.volume_in, D), np.ones_like(ok)),
+            "israelachvili": (br.israelachvili_force(r_eff, g, th_mean), np.ones_like(ok)),
         }
         cols: dict = {"case": b.labels} if b.labels else {}
         cols["F_measured_mN"] = self.measured_force * 1e3
@@ -275,7 +280,7 @@ def compare_measured(source, options: BridgeOptions | None = None) -> CompareRes
     the toroidal approximation (equal spheres), Willett et al. (2000) and Israelachvili (with Derjaguin's
     effective radius 2 R R2 / (R + R2) for unequal pairs and a plane)."""
     opt = options or BridgeOptions()
-    table, gamma, ratio = _read_cases(source, ("R", "contact_angle", "gap", "V_w"), (), opt)
+    table, gamma, ratio, th2 = _read_cases(source, ("R", "contact_angle", "gap", "V_w"), (), opt)
     if "F_cap" not in table.columns:
         table.missing_column("F_cap")
     table.raise_if_problems()
@@ -296,12 +301,13 @@ def compare_measured(source, options: BridgeOptions | None = None) -> CompareRes
         V,
         list(table.columns["case"]) if "case" in table.columns else None,
         table.notes,
+        th2,
     )
     res.options, res.inputs, res.warnings = opt, [input_file(source, table)], opt.warnings + table.warnings
     return CompareResult(res, table.columns["F_cap"], np.radians(table.get("filling_angle")), V)
 
 
-RUPTURE_SCHEMA = [CASE, RADIUS, RADIUS2, GAMMA, ANGLE, VOLUME]
+RUPTURE_SCHEMA = [CASE, RADIUS, RADIUS2, GAMMA, ANGLE, ANGLE2, VOLUME]
 
 
 @dataclass(repr=False)
@@ -381,14 +387,14 @@ def rupture_distances(source, options: BridgeOptions | None = None) -> RuptureRe
     """Rupture distance of each (R, R2, contact_angle, V_w) row: the widest gap a bridge of that volume spans
     (Lian et al. 1993; pulled apart at constant volume), with the bridge at rupture."""
     opt = options or BridgeOptions()
-    table, gamma, ratio = _read_cases(source, ("R", "contact_angle", "V_w"), (), opt, RUPTURE_SCHEMA)
+    table, gamma, ratio, th2 = _read_cases(source, ("R", "contact_angle", "V_w"), (), opt, RUPTURE_SCHEMA)
     table.raise_if_problems()
     R, th, V = table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["V_w"]
-    D, beta, s, status = br.rupture_gap(th, V / R**3, ratio)
-    shape = br.bridge(beta, th, np.where(np.isfinite(s), s, 0.0), ratio)
+    D, beta, s, status = br.rupture_gap(th, V / R**3, ratio, th2)
+    shape = br.bridge(beta, th, np.where(np.isfinite(s), s, 0.0), ratio, th2)
     res = RuptureResult(
         table.path,
-        {"R": R, "gamma": gamma, "contact_angle_rad": th, "V_w": V, "ratio": ratio},
+        {"R": R, "gamma": gamma, "contact_angle_rad": th, "V_w": V, "ratio": ratio, "contact_angle2_rad": th2},
         D * R,
         beta,
         s * gamma / R,

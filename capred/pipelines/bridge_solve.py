@@ -11,6 +11,7 @@ from itertools import repeat
 
 import numpy as np
 
+from ..errors import OptionError
 from ..io.table import Column, Table, read_table
 from ..physics import bridge as br
 from ..physics import shear as ph
@@ -42,6 +43,14 @@ RADIUS2 = Column(
 )
 GAMMA = Column("gamma", "surface_tension", "N/m", "surface tension", ("surface_tension",), "positive")
 ANGLE = Column("contact_angle", "angle", "deg", "contact angle", ("theta", "wetting_angle"), "nonnegative")
+ANGLE2 = Column(
+    "contact_angle2",
+    "angle",
+    "deg",
+    "contact angle on the second particle (sphere R2 or plane; absent or blank: --contact-angle2, else contact_angle)",
+    ("theta2", "wetting_angle2", "contact_angle_2"),
+    "nonnegative",
+)
 VOLUME = Column("V_w", "volume", "mm^3", "water volume V_w", ("volume", "V", "Vw"), "positive")
 SOLVE_SCHEMA = [
     CASE,
@@ -49,6 +58,7 @@ SOLVE_SCHEMA = [
     RADIUS2,
     GAMMA,
     ANGLE,
+    ANGLE2,
     Column("gap", "length", "mm", "gap D", ("D", "separation", "distance"), "nonnegative"),
     Column("suction", "pressure", "kPa", "suction", ("delta_u", "ua_uw"), "nonnegative"),
     VOLUME,
@@ -59,12 +69,37 @@ SOLVE_SCHEMA = [
 
 @dataclass(frozen=True)
 class BridgeOptions(Options):
-    """Options of `capred bridge solve`, `compare` and `rupture`: the surface tension [N/m, or a string with a
-    unit] of rows without a ``gamma`` value."""
+    """Options of `capred bridge solve`, `compare` and `rupture`.
 
-    QUANTITIES = {"surface_tension": "surface_tension"}
+    Attributes
+    ----------
+    surface_tension : float
+        Surface tension [N/m, or a string with a unit] of rows without a ``gamma`` value.
+    contact_angle2 : float, optional
+        Contact angle on the second particle [deg] of rows without a ``contact_angle2`` value; None (the
+        default): the row's ``contact_angle`` (one angle on both particles).
+    workers : int, optional
+        Processes that solve the rows (``--workers``); None: ``CAPRED_PROCESSES`` when set, else the cores this
+        process may use that the load leaves idle. The results are the same, to the bit, for any number.
+    """
+
+    QUANTITIES = {"surface_tension": "surface_tension", "contact_angle2": "contact_angle"}
 
     surface_tension: float = ph.SURFACE_TENSION
+    contact_angle2: float | None = None
+    workers: int | None = None
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if self.contact_angle2 is not None and not 0 <= self.contact_angle2 < 90:
+            raise OptionError(
+                f"contact_angle2 (--contact-angle2): pendular bridges need a contact angle in [0, 90) deg "
+                f"(got {self.contact_angle2:g} deg)"
+            )
+        if self.workers is not None and (
+            isinstance(self.workers, bool) or int(self.workers) != self.workers or self.workers < 1
+        ):
+            raise OptionError(f"workers (--workers): a whole number of processes >= 1 (got {self.workers!r})")
 
 
 @dataclass(repr=False)
@@ -319,8 +354,8 @@ def _records(frame, drop_empty: str | None = None) -> list[dict]:
 
 
 def _read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, ...], opt: BridgeOptions, schema=None):
-    """The table of cases (read from ``source``, or a Table already read) with its surface tension and radius
-    ratio R2/R (1 without an R2 column)."""
+    """The table of cases (read from ``source``, or a Table already read) with its surface tension, radius
+    ratio R2/R (1 without an R2 column) and the contact angle on the second particle [rad]."""
     table = source if isinstance(source, Table) else read_table(source, schema or SOLVE_SCHEMA)
     for name in required:
         if name not in table.columns:
@@ -333,13 +368,13 @@ def _read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, .
         table.raise_if_problems()  # without its columns nothing else can be checked
     gamma = table.get("gamma").copy()
     gamma[np.isnan(gamma)] = opt.surface_tension
-    for i in np.flatnonzero(table.columns["contact_angle"] >= 90):
-        table.add_problem(
-            i,
-            "contact_angle",
-            f"contact angle {table.value_text('contact_angle', i)} deg: pendular "
-            "bridges need a contact angle below 90 deg",
-        )
+    for name in ("contact_angle", "contact_angle2"):
+        for i in np.flatnonzero(table.get(name) >= 90):
+            table.add_problem(
+                i,
+                name,
+                f"contact angle {table.value_text(name, i)} deg: pendular bridges need a contact angle below 90 deg",
+            )
     reported = {(p.line, p.column) for p in table.problems}  # a cell already explained (text in a number)
     for name in required:
         for i in np.flatnonzero(np.isnan(table.columns[name])):
@@ -350,14 +385,17 @@ def _read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, .
         for i in np.flatnonzero(np.isnan(table.columns["R2"])):
             table.add_problem(i, "R2", "blank R2 (give a radius, or 'plane')")
         ratio = table.columns["R2"] / table.columns["R"]
-    return table, gamma, ratio
+    angle2 = table.get("contact_angle2").copy()
+    blank = np.isnan(angle2)
+    angle2[blank] = table.columns["contact_angle"][blank] if opt.contact_angle2 is None else opt.contact_angle2
+    return table, gamma, ratio, np.radians(angle2)
 
 
 def solve_table(table: Table, options: BridgeOptions | None = None) -> BridgeResult:
     """One bridge per row of a table already read: R (and R2), gamma, contact_angle (and contact_angle2), gap and
     suction or V_w (the work of :func:`capred.pipelines.bridge.solve_bridges` on one table or block)."""
     opt = options or BridgeOptions()
-    table, gamma, ratio = _read_cases(table, ("R", "contact_angle", "gap"), ("suction", "V_w"), opt)
+    table, gamma, ratio, th2 = _read_cases(table, ("R", "contact_angle", "gap"), ("suction", "V_w"), opt)
     s_in, v_in = table.get("suction"), table.get("V_w")
     for i in np.flatnonzero(np.isnan(s_in) & np.isnan(v_in)):
         table.add_problem(i, "suction" if "suction" in table.columns else "V_w", "give suction or V_w")
@@ -376,13 +414,16 @@ def solve_table(table: Table, options: BridgeOptions | None = None) -> BridgeRes
         v_in,
         list(table.columns["case"]) if "case" in table.columns else None,
         table.notes,
+        th2,
     )
     res.options, res.warnings = opt, opt.warnings + table.warnings  # inputs: set by solve_in_blocks
     return res
 
 
-def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None) -> BridgeResult:
-    """Suction-controlled rows (s_in finite) and volume-controlled rows (v_in finite), SI in."""
+def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None, th2=None) -> BridgeResult:
+    """Suction-controlled rows (s_in finite) and volume-controlled rows (v_in finite), SI in; ``th2`` the contact
+    angle on the second particle [rad] (None: ``th``)."""
+    th2 = th if th2 is None else th2
     n = R.size
     beta, s_star, status = np.full(n, np.nan), np.full(n, np.nan), np.full(n, 2)
     by_s = np.flatnonzero(np.isfinite(s_in))
@@ -393,7 +434,7 @@ def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None) 
     if by_s.size:
         s_star[by_s] = s_in[by_s] * R[by_s] / gamma[by_s]
         beta[by_s], status[by_s], *values = _in_parallel(
-            _suction_rows, th[by_s], s_star[by_s], D[by_s] / R[by_s], ratio[by_s]
+            _suction_rows, th[by_s], s_star[by_s], D[by_s] / R[by_s], ratio[by_s], th2[by_s]
         )
         for k, v in zip(fields, values):
             fields[k][by_s] = v
@@ -404,7 +445,7 @@ def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None) 
             )
     if by_v.size:
         beta[by_v], s_star[by_v], status[by_v], past_fold, *values = _in_parallel(
-            _volume_rows, th[by_v], v_in[by_v] / R[by_v] ** 3, D[by_v] / R[by_v], ratio[by_v]
+            _volume_rows, th[by_v], v_in[by_v] / R[by_v] ** 3, D[by_v] / R[by_v], ratio[by_v], th2[by_v]
         )
         for k, v in zip(fields, values):
             fields[k][by_v] = v
@@ -416,7 +457,7 @@ def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None) 
     shape = br.Bridge(**fields)
     return BridgeResult(
         source,
-        {"R": R, "gamma": gamma, "contact_angle_rad": th, "gap": D, "ratio": ratio},
+        {"R": R, "gamma": gamma, "contact_angle_rad": th, "gap": D, "ratio": ratio, "contact_angle2_rad": th2},
         beta,
         s_star * gamma / R,
         shape,
@@ -430,27 +471,27 @@ def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None) 
 _PARALLEL_ROWS = 30_000  # below this, one process is faster than starting a second
 
 
-def _suction_rows(th, s, D, rho):
+def _suction_rows(th, s, D, rho, th2):
     """Suction-controlled rows: (beta, status, every field of the bridge) — one unit of parallel work."""
-    beta, status, b = br.bridge_at_suction(th, s, D, rho)
+    beta, status, b = br.bridge_at_suction(th, s, D, rho, th2)
     return (beta, status, *(getattr(b, k) for k in br.Bridge.__dataclass_fields__))
 
 
-def _volume_rows(th, V, D, rho):
+def _volume_rows(th, V, D, rho, th2):
     """Volume-controlled rows (V = V_w / R^3): (beta, s*, status, past the suction-controlled fold (1.0 or 0.0),
     every field of the bridge) — one unit of parallel work.
 
     A bridge is past the fold when the stable bridge at its own suction and gap (suction control) is not
     this one: an open water supply would make it jump to a larger bridge.
     """
-    beta, s, status = br.solve_for_volume(th, V, D, rho)
+    beta, s, status = br.solve_for_volume(th, V, D, rho, th2)
     ok = np.flatnonzero(status == 0)
     past = np.zeros(beta.size)
     if ok.size:
-        b_s, st_s = br.solve_for_suction(th[ok], s[ok], D[ok], rho[ok])
+        b_s, st_s = br.solve_for_suction(th[ok], s[ok], D[ok], rho[ok], th2[ok])
         with np.errstate(invalid="ignore"):
             past[ok] = (st_s != 0) | ~(np.abs(b_s - beta[ok]) <= 1e-6 * beta[ok])
-    b = br.bridge(beta, th, np.where(np.isfinite(s), s, 0.0), rho)
+    b = br.bridge(beta, th, np.where(np.isfinite(s), s, 0.0), rho, th2)
     return (beta, s, status, past, *(getattr(b, k) for k in br.Bridge.__dataclass_fields__))
 
 
