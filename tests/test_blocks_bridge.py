@@ -111,6 +111,6 @@ def test_one_helper_process_serves_every_block(tmp_path, small_blocks, monkeypat
     monkeypatch.setattr(bs, "_PARALLEL_ROWS", 100)  # every block of ~400 rows in two processes
     two = pb.solve_bridges(f)._all()
     assert len(forks) == 1  # one helper for the 8 blocks
-    assert bs._HELPER is None  # closed with the run
+    assert bs._HELPERS == []  # closed with the run
     for k, v in one.items():
         np.testing.assert_array_equal(two[k], v)  # exact: each row solved by the same operations

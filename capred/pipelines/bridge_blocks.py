@@ -107,7 +107,7 @@ def solve_in_blocks(source, opt: pb.BridgeOptions):
     InputError
         The problems of the first block that has any (nothing is returned).
     """
-    with pb.helper(start=_long(source)):  # one helper process (when two cores share the rows) for every block
+    with pb.helper(start=_long(source), workers=opt.workers):  # the same helper processes for every block
         return _solve_in_blocks(source, opt)
 
 

@@ -415,14 +415,15 @@ def solve_table(table: Table, options: BridgeOptions | None = None) -> BridgeRes
         list(table.columns["case"]) if "case" in table.columns else None,
         table.notes,
         th2,
+        opt.workers,
     )
     res.options, res.warnings = opt, opt.warnings + table.warnings  # inputs: set by solve_in_blocks
     return res
 
 
-def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None, th2=None) -> BridgeResult:
+def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None, th2=None, workers=None) -> BridgeResult:
     """Suction-controlled rows (s_in finite) and volume-controlled rows (v_in finite), SI in; ``th2`` the contact
-    angle on the second particle [rad] (None: ``th``)."""
+    angle on the second particle [rad] (None: ``th``); ``workers``: processes (None: see :func:`processes`)."""
     th2 = th if th2 is None else th2
     n = R.size
     beta, s_star, status = np.full(n, np.nan), np.full(n, np.nan), np.full(n, 2)
@@ -434,7 +435,7 @@ def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None, 
     if by_s.size:
         s_star[by_s] = s_in[by_s] * R[by_s] / gamma[by_s]
         beta[by_s], status[by_s], *values = _in_parallel(
-            _suction_rows, th[by_s], s_star[by_s], D[by_s] / R[by_s], ratio[by_s], th2[by_s]
+            _suction_rows, th[by_s], s_star[by_s], D[by_s] / R[by_s], ratio[by_s], th2[by_s], workers=workers
         )
         for k, v in zip(fields, values):
             fields[k][by_s] = v
@@ -445,7 +446,13 @@ def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None, 
             )
     if by_v.size:
         beta[by_v], s_star[by_v], status[by_v], past_fold, *values = _in_parallel(
-            _volume_rows, th[by_v], v_in[by_v] / R[by_v] ** 3, D[by_v] / R[by_v], ratio[by_v], th2[by_v]
+            _volume_rows,
+            th[by_v],
+            v_in[by_v] / R[by_v] ** 3,
+            D[by_v] / R[by_v],
+            ratio[by_v],
+            th2[by_v],
+            workers=workers,
         )
         for k, v in zip(fields, values):
             fields[k][by_v] = v
@@ -495,44 +502,108 @@ def _volume_rows(th, V, D, rho, th2):
     return (beta, s, status, past, *(getattr(b, k) for k in br.Bridge.__dataclass_fields__))
 
 
-def _in_parallel(solver, *columns):
-    """``solver(*columns)`` on both halves of the rows in two processes when there are many rows and two cores.
+def processes(requested: int | None = None) -> int:
+    """How many processes may solve the rows of this run.
 
-    The second half is solved by a forked child (the run's :class:`_Helper` when one is open, see
-    :func:`helper`; else one forked for this call), which sends its result back through a pipe; should the child
-    fail, the parent solves that half itself, so an error is raised where it can be reported.
+    Parameters
+    ----------
+    requested : int, optional
+        ``--workers`` / ``BridgeOptions.workers``: this many, whatever the load (one where fork is missing).
+
+    Returns
+    -------
+    int
+        ``requested``; else the environment's ``CAPRED_PROCESSES`` (any whole number >= 1); else one per core
+        this process may use (its CPU affinity) that the load average leaves idle, this run counting as one
+        (two cores and a load below 1.5: two; 16 cores and a load of 8: nine); one in a batch's worker process
+        (the batch already spreads its files over the cores) and where ``os.fork`` is missing.
+
+    Notes
+    -----
+    On a busy shared machine a second process's extra CPU buys no time: measured on ``capred bridge solve`` of
+    100,000 rows with the other core busy, 1.30 s CPU and 1.10 s wall in two processes against 1.22 s and 1.02 s
+    in one (benchmarks/bench_bridge_cli.py); hence the load rule.
     """
-    global _HELPER
-    from ..io.writers import second_core_free
+    import math
+    import os
+    import sys
 
+    if os.name != "posix" or not hasattr(os, "fork"):
+        return 1
+    if requested is not None:
+        return max(1, int(requested))
+    forced = os.environ.get("CAPRED_PROCESSES", "").strip()
+    if forced.isdigit() and int(forced) >= 1:
+        return int(forced)
+    mp = sys.modules.get("multiprocessing")  # a batch's worker has imported it; a plain run has not
+    if mp is not None and mp.current_process().daemon:
+        return 1
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # pragma: no cover - not Linux
+        cores = os.cpu_count() or 1
+    try:
+        load = os.getloadavg()[0]
+    except OSError:
+        load = 0.0
+    return max(1, min(cores, math.ceil(cores - 0.5 - load) + 1))
+
+
+def _parts(n: int, k: int) -> list[tuple[int, int]]:
+    """(start, stop) of ``k`` contiguous parts of ``n`` rows, as equal as can be, the first part the smallest."""
+    edges = [(n * j) // k for j in range(k + 1)]
+    return [(edges[j], edges[j + 1]) for j in range(k)]
+
+
+def _in_parallel(solver, *columns, workers: int | None = None):
+    """``solver(*columns)`` on contiguous parts of the rows in as many processes as the run may use.
+
+    Parts 2..k are solved by forked children (the run's helpers when a run is open, see :class:`helper`; else
+    ones forked for this call, which inherit their part instead of receiving it), each sending its result
+    back through a pipe, while this process solves part 1; should a child fail, this process solves its
+    part itself, so an error is raised where it can be reported. Each row is computed by the same operations
+    whatever part it falls in (see capred.physics.bridge._quad), so the result is the same to the bit for
+    any number of processes. A part holds at least _PARALLEL_ROWS / 2 rows (fewer rows: fewer processes).
+    """
     n = columns[0].size
-    if n < _PARALLEL_ROWS or not (_HELPER_WANTED if _IN_RUN else second_core_free()):
-        return solver(*columns)  # few rows, or no core free (decided once for a run of blocks)
-    half = n // 2
-    second_half = [c[half:] for c in columns]
-    if _HELPER_WANTED and _HELPER is None:
-        _HELPER = _Helper()
-    if _HELPER is not None and _HELPER.alive:
-        _HELPER.submit(solver, second_half)
-        first = solver(*(c[:half] for c in columns))
-        second = _HELPER.result()
+    wanted = _RUN_PROCESSES if _IN_RUN and workers is None else processes(workers)
+    k = max(1, min(wanted, n // max(1, _PARALLEL_ROWS // 2)))
+    if k == 1:
+        return solver(*columns)
+    parts = _parts(n, k)
+    jobs = [[c[a:b] for c in columns] for a, b in parts]
+    if _IN_RUN:
+        while len(_HELPERS) < k - 1:
+            _HELPERS.append(_Helper())
+        helpers = _HELPERS[: k - 1]
+        for h, job in zip(helpers, jobs[1:]):
+            h.submit(solver, job)
+        own = []
     else:
-        with _Helper((solver, second_half)) as one:  # the job inherited by the child, not sent
-            first = solver(*(c[:half] for c in columns))
-            second = one.result()
-    if second is None:  # the child failed: this process solves its half (and raises what it raises)
-        second = solver(*second_half)
-    return tuple(np.concatenate([a, b]) for a, b in zip(first, second))
+        own = helpers = [_Helper((solver, job)) for job in jobs[1:]]  # each job inherited by its child, not sent
+    try:
+        results = [solver(*jobs[0])]
+        for h, job in zip(helpers, jobs[1:]):
+            got = h.result()
+            results.append(solver(*job) if got is None else got)  # a child failed: solved (and raised) here
+    finally:
+        for h in own:
+            h.close()
+    return tuple(np.concatenate(parts_) for parts_ in zip(*results))
 
 
 class _Helper:
     """A forked process that solves what it is sent (``submit``, then ``result``) until it is closed.
+
+    ``live``: the helpers not yet closed (a child forked later closes its copies of their pipes).
 
     One helper serves every block of a long run (capred.pipelines.bridge_blocks): one fork per run instead of
     one per block. Messages are pickles behind their length, over two pipes. The cyclic garbage collector
     leaves the objects both processes share alone (``gc.freeze``) while the helper lives, so their pages stay
     shared.
     """
+
+    live: list = []
 
     def __init__(self, job=None) -> None:
         """Fork the helper; ``job`` ((solver, columns), optional) is its first, handed over by the fork."""
@@ -549,6 +620,12 @@ class _Helper:
                 gc.disable()  # numpy arrays only: nothing to collect
                 os.close(self._to_child)
                 os.close(self._from_child)
+                for other in _Helper.live:  # the parent's ends of the other helpers' pipes: theirs alone, so
+                    for fd in (other._to_child, other._from_child):  # that each sees its end of jobs
+                        try:
+                            os.close(fd)
+                        except OSError:
+                            pass
                 if job is not None:
                     _send(from_child, _run(job))
                 self._serve(to_child, from_child)
@@ -558,6 +635,7 @@ class _Helper:
         os.close(to_child)
         os.close(from_child)
         self.alive = True
+        _Helper.live.append(self)
 
     @staticmethod
     def _serve(inbox: int, outbox: int) -> None:
@@ -600,7 +678,10 @@ class _Helper:
             pass
         finally:
             self.pid, self.alive = None, False
-            gc.unfreeze()
+            if self in _Helper.live:
+                _Helper.live.remove(self)
+            if not _Helper.live:
+                gc.unfreeze()
 
     def __enter__(self):
         return self
@@ -652,36 +733,35 @@ def _read_exactly(fd: int, size: int) -> bytes | None:
     return bytes(buf)
 
 
-#: the helper process of the run under way (see :class:`helper`), else None; wanted inside such a run
-_HELPER: _Helper | None = None
-_HELPER_WANTED = False
+#: the helper processes of the run under way (see :class:`helper`); the processes the run may use
+_HELPERS: list = []
+_RUN_PROCESSES = 1
 _IN_RUN = False
 
 
 class helper:
-    """Context of a long run: the second halves of its blocks go to one helper process, forked at the first
-    block that needs it (or at once with ``start``) and closed at the end
-    (capred.pipelines.bridge_blocks.solve_in_blocks).
+    """Context of a long run: parts 2..k of its blocks go to the same k - 1 helper processes, forked at the
+    first block that needs them (or at once with ``start``) and closed at the end
+    (capred.pipelines.bridge_blocks.solve_in_blocks). The number of processes is decided once for the run
+    (:func:`processes`).
 
-    Forked before the run's data are read (``start``), the two processes share only what was there before:
+    Forked before the run's data are read (``start``), the processes share only what was there before:
     the pages the parent later fills are its own, not copies of shared ones.
     """
 
-    def __init__(self, start: bool = False) -> None:
-        self.start = start
+    def __init__(self, start: bool = False, workers: int | None = None) -> None:
+        self.start, self.workers = start, workers
 
     def __enter__(self):
-        from ..io.writers import second_core_free
-
-        global _HELPER, _HELPER_WANTED, _IN_RUN
-        _IN_RUN, _HELPER_WANTED = True, second_core_free()  # decided once for the run
-        if self.start and _HELPER_WANTED and _HELPER is None:
-            _HELPER = _Helper()
+        global _RUN_PROCESSES, _IN_RUN
+        _IN_RUN, _RUN_PROCESSES = True, processes(self.workers)  # decided once for the run
+        if self.start:
+            while len(_HELPERS) < _RUN_PROCESSES - 1:
+                _HELPERS.append(_Helper())
         return self
 
     def __exit__(self, *exc) -> None:
-        global _HELPER, _HELPER_WANTED, _IN_RUN
-        _IN_RUN = _HELPER_WANTED = False
-        if _HELPER is not None:
-            _HELPER.close()
-            _HELPER = None
+        global _RUN_PROCESSES, _IN_RUN
+        _IN_RUN, _RUN_PROCESSES = False, 1
+        while _HELPERS:
+            _HELPERS.pop().close()
