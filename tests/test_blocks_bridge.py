@@ -9,6 +9,7 @@ from typer.testing import CliRunner
 from capred.cli import app
 from capred.io.table import read_table
 from capred.pipelines import bridge as pb
+from capred.pipelines import bridge_solve as bs
 from capred.pipelines.bridge_blocks import BridgeBlocks
 
 
@@ -61,7 +62,7 @@ def test_cli_writes_every_row_once(tmp_path, small_blocks):
     code, text = res.exit_code, res.output
     assert code == 0, text
     rows = (out / "solve.csv").read_text().splitlines()
-    assert len(rows) == 3001 and rows[0].startswith("r0_mm,")  # one header, then every row once, in order
+    assert len(rows) == 3001 and rows[0].startswith("r0 [mm],")  # one header, then every row once, in order
     doc = json.loads((out / "solve.json").read_text())
     assert len(doc["bridges"]) == 3000
     whole = pb.solve_bridges(read_table(f, pb.SOLVE_SCHEMA))
@@ -107,9 +108,9 @@ def test_one_helper_process_serves_every_block(tmp_path, small_blocks, monkeypat
 
     monkeypatch.setattr(os, "fork", fork)
     monkeypatch.setenv("CAPRED_PROCESSES", "2")  # two processes whatever the machine's load
-    monkeypatch.setattr(pb, "_PARALLEL_ROWS", 100)  # every block of ~400 rows in two processes
+    monkeypatch.setattr(bs, "_PARALLEL_ROWS", 100)  # every block of ~400 rows in two processes
     two = pb.solve_bridges(f)._all()
     assert len(forks) == 1  # one helper for the 8 blocks
-    assert pb._HELPER is None  # closed with the run
+    assert bs._HELPERS == []  # closed with the run
     for k, v in one.items():
         np.testing.assert_array_equal(two[k], v)  # exact: each row solved by the same operations

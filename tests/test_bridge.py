@@ -245,9 +245,9 @@ def test_volume_newton_path_matches_the_scan_of_the_arc():
     ok = st == 0
     th, s, rho, D, b = th[ok], s[ok], rho[ok], D[ok], b[ok]
     V = br.bridge(b, th, s, rho).volume
-    y0, s_newton, found = br._newton_volume(th, V, D, rho)
+    y0, s_newton, found = br._newton_volume(th, V, D, rho, th)
     assert found.mean() > 0.97  # the rest (huge bridges) go through the continuation or the scan
-    b_scan, s_scan, st_scan = br._scan_for_volume(th[found], V[found], D[found], rho[found])
+    b_scan, s_scan, st_scan = br._scan_for_volume(th[found], V[found], D[found], rho[found], th[found])
     assert np.all(st_scan == 0)
     # both stop on gap and volume residuals of 1e-12 relative; the suction follows through a conditioning of
     # at most ~1e4 (near the fold): 1e-7
@@ -278,11 +278,16 @@ def test_volume_newton_certifies_only_the_branch_continuous_with_contact(gap, s,
     thin = br.bridge(b_thin, th, s, rho)
     V = np.atleast_1d(thin.volume)
     y0, _, found = br._newton_volume(
-        np.array([th]), V, np.array([gap]), np.array([rho]), start=(np.atleast_1d(thin.neck), np.array([s]))
+        np.array([th]),
+        V,
+        np.array([gap]),
+        np.array([rho]),
+        np.array([th]),
+        start=(np.atleast_1d(thin.neck), np.array([s])),
     )
     assert y0[0] == pytest.approx(float(thin.neck), rel=1e-9)  # converged to the thin bridge (1e-12 residuals)
     assert found[0] == (not past_minimum)
-    b_scan, s_scan, st_scan = br._scan_for_volume(np.array([th]), V, np.array([gap]), np.array([rho]))
+    b_scan, s_scan, st_scan = br._scan_for_volume(np.array([th]), V, np.array([gap]), np.array([rho]), np.array([th]))
     b, s_v, st = br.solve_for_volume(th, V, gap, rho)
     assert st[0] == st_scan[0] == 0
     assert_allclose(s_v, s_scan, rtol=1e-7)  # same bridge as the scan (see the test above for 1e-7)

@@ -18,7 +18,7 @@ def brute_rupture_gap(theta, s, rho):
     g = br._below(br.gap_of(b, theta[:, None], s[:, None], rho[:, None]))
     r = np.arange(theta.size)
     j = np.argmax(g, axis=1)
-    _, best = br._golden(
+    _, best = br.golden(
         lambda x, i: br.gap_of(x, theta[i], s[i], rho[i]),
         b[r, np.maximum(j - 1, 0)],
         b[r, np.minimum(j + 1, b.shape[1] - 1)],
@@ -93,8 +93,8 @@ def test_bulk_no_bridge_of_volume_rows_agrees_with_the_scan_of_the_arc():
     u = rng.uniform(size=n)
     rho = np.where(u < 0.4, 1.0, np.where(u < 0.6, np.inf, 10 ** rng.uniform(-1.0, 1.0, n)))
     D = br.lian_rupture_gap(th, V) * rng.uniform(0.5, 3.0, n)
-    far = br._beyond_rupture(th, V, D, rho)
-    _, _, st_scan = br._scan_for_volume(th, V, D, rho)
+    far = br._beyond_rupture(th, V, D, rho, th)
+    _, _, st_scan = br._scan_for_volume(th, V, D, rho, th)
     assert np.all(st_scan[far] == 1)
     assert far.sum() > 0.5 * np.sum(D > 2 * br.lian_rupture_gap(th, V))  # the bulk check does settle rows
     # and the solver's verdicts are the scan's wherever either finds no bridge

@@ -7,6 +7,7 @@ from numpy.testing import assert_allclose
 from scipy.optimize import brentq
 
 import capred.pipelines.bridge as pb
+import capred.pipelines.bridge_solve as bs
 from capred.physics import bridge as br
 
 
@@ -59,7 +60,7 @@ def test_two_processes_give_the_rows_of_one(tmp_path, monkeypatch, control):
         fh.write(f"R [mm],contact_angle [deg],gap [mm],{control} [{unit}]\n")
         fh.writelines(",".join(map(repr, row)) + "\n" for row in zip(R.tolist(), th.tolist(), D.tolist(), x.tolist()))
     one = pb.solve_bridges(tmp_path / "in.csv")
-    monkeypatch.setattr(pb, "_PARALLEL_ROWS", 10)  # both halves of the 41 rows, the second in a forked process
+    monkeypatch.setattr(bs, "_PARALLEL_ROWS", 10)  # both halves of the 41 rows, the second in a forked process
     monkeypatch.setenv("CAPRED_PROCESSES", "2")  # whatever the machine's load
     two = pb.solve_bridges(tmp_path / "in.csv")
     assert 0 < np.sum(one.status == 0) < n  # bridges and rows without one
@@ -103,3 +104,73 @@ def test_the_quadrature_sum_is_the_matrix_product():
     np.testing.assert_array_equal(br._quad(values[:32], weights), values[:32] @ weights)  # whole groups: as BLAS
     for k in range(37):  # a row alone, or in any company, is summed alike
         assert br._quad(values[k : k + 1], weights)[0] == br._quad(values, weights)[k]
+
+
+def _random_cases(path, n=61, seed=9):
+    rng = np.random.default_rng(seed)
+    R = rng.uniform(0.1, 2.0, n)
+    th = rng.uniform(0.0, 60.0, n)
+    th2 = rng.uniform(0.0, 60.0, n)
+    D = rng.uniform(0.0, 0.05, n) * R
+    V = 10 ** rng.uniform(-4, -1.5, n) * R**3
+    with open(path, "w") as fh:
+        fh.write("R [mm],R2 [mm],contact_angle [deg],contact_angle2 [deg],gap [mm],V_w [mm^3]\n")
+        fh.writelines(
+            ",".join(map(repr, row)) + "\n"
+            for row in zip(R.tolist(), (1.5 * R).tolist(), th.tolist(), th2.tolist(), D.tolist(), V.tolist())
+        )
+    return path
+
+
+@pytest.mark.parametrize("how", [("env", 3), ("env", 5), ("option", 4)])
+def test_any_number_of_processes_gives_the_rows_of_one(tmp_path, monkeypatch, how):
+    f = _random_cases(tmp_path / "in.csv")
+    monkeypatch.setenv("CAPRED_PROCESSES", "1")
+    one = pb.solve_bridges(f)
+    monkeypatch.setattr(bs, "_PARALLEL_ROWS", 10)  # parts of >= 5 rows: 61 rows take every process asked for
+    forks = []
+    real_fork = bs._Helper.__init__
+
+    def counting(self, job=None):
+        forks.append(1)
+        real_fork(self, job)
+
+    monkeypatch.setattr(bs._Helper, "__init__", counting)
+    kind, k = how
+    if kind == "env":
+        monkeypatch.setenv("CAPRED_PROCESSES", str(k))
+        many = pb.solve_bridges(f)
+    else:
+        many = pb.solve_bridges(f, pb.BridgeOptions(workers=k))  # the option wins over CAPRED_PROCESSES=1
+    assert len(forks) == k - 1  # k processes: this one and k - 1 helpers
+    assert bs._HELPERS == [] and bs._Helper.live == []  # every helper closed with the run
+    assert 0 < np.sum(one.status == 0)
+    assert np.array_equal(one.status, many.status) and one.note == many.note
+    for key, v in one.columns().items():
+        np.testing.assert_array_equal(many.columns()[key], v)  # exact: the same operations on every row
+
+
+def test_processes_rule(monkeypatch):
+    """--workers, then CAPRED_PROCESSES (any N), then the idle cores this process may use, this run counting as
+    one: 2 cores at a load of 1.4 -> 2, at 1.6 -> 1; 16 cores at a load of 8 -> 9, idle -> 16."""
+    import os
+
+    monkeypatch.delenv("CAPRED_PROCESSES", raising=False)
+    for cores, load, want in ((2, 1.4, 2), (2, 1.6, 1), (16, 8.0, 9), (16, 0.0, 16), (1, 0.0, 1)):
+        monkeypatch.setattr(os, "sched_getaffinity", lambda _pid, c=cores: set(range(c)))
+        monkeypatch.setattr(os, "getloadavg", lambda ld=load: (ld, ld, ld))
+        assert bs.processes() == want, (cores, load)
+    monkeypatch.setenv("CAPRED_PROCESSES", "7")
+    assert bs.processes() == 7
+    assert bs.processes(3) == 3
+    monkeypatch.setenv("CAPRED_PROCESSES", "many")  # not a number: the rule of the cores
+    assert bs.processes() == 1  # 1 core (the last of the loop above)
+    assert bs._parts(10, 3) == [(0, 3), (3, 6), (6, 10)]
+
+
+def test_workers_option_is_checked():
+    from capred.errors import OptionError
+
+    for bad in (0, -2, 1.5):
+        with pytest.raises(OptionError, match="workers"):
+            pb.BridgeOptions(workers=bad)

@@ -310,7 +310,7 @@ def test_numbers_keep_their_digits(tmp_path):
     assert exact < 1e-8  # a tiny volume in mm^3
     capred.write_outputs(res, tmp_path / "o")
     assert json.loads((tmp_path / "o" / "solve.json").read_text())["bridges"][0]["V_w_mm3"] == exact
-    assert pd.read_csv(tmp_path / "o" / "solve.csv")["V_w_mm3"][0] == exact
+    assert pd.read_csv(tmp_path / "o" / "solve.csv")["V_w [mm^3]"][0] == exact
 
 
 def test_piped_console_never_truncates_numbers(tmp_path, monkeypatch):

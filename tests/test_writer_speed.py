@@ -13,6 +13,7 @@ import pytest
 
 from capred.io.writers import encode_csv, stream_json, write_csv_file
 from capred.pipelines import bridge as pb
+from capred.pipelines import bridge_solve as bs
 
 
 def _cell(x, eu=False):
@@ -104,10 +105,10 @@ def test_a_forked_half_that_fails_is_solved_by_the_parent(monkeypatch):
         return (2.0 * x, x + 1.0)
 
     parent = os.getpid()
-    monkeypatch.setattr(pb, "_PARALLEL_ROWS", 4)
+    monkeypatch.setattr(bs, "_PARALLEL_ROWS", 4)
     monkeypatch.setenv("CAPRED_PROCESSES", "2")
     x = np.arange(10.0)
-    a, b = pb._in_parallel(solver, x)
+    a, b = bs._in_parallel(solver, x)
     np.testing.assert_array_equal(a, 2.0 * x)  # exact: the same arithmetic on every row
     np.testing.assert_array_equal(b, x + 1.0)
     assert calls == [parent, parent]  # the first half, then the half the child did not deliver

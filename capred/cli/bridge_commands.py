@@ -22,7 +22,8 @@ def register(app: typer.Typer) -> None:
         bridge_app,
         "solve",
         "bridge solve",
-        data="CSV, one bridge per row: R (and R2: a radius or 'plane'), gamma, contact_angle, gap, and suction or V_w",
+        data="CSV, one bridge per row: R (and R2: a radius or 'plane'), gamma, contact_angle (and contact_angle2), "
+        "gap, and suction or V_w",
         plots=False,
     )(solve)
     command(
@@ -75,19 +76,44 @@ def solve(
     surface_tension: Annotated[
         str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma'.")
     ] = "0.0728",
+    contact_angle2: Annotated[
+        float | None,
+        typer.Option(
+            "--contact-angle2",
+            help="Contact angle on the second particle (sphere R2 or plane) [deg] of rows without a "
+            "'contact_angle2' value [default: the row's contact_angle].",
+            show_default=False,
+        ),
+    ] = None,
+    workers: Annotated[
+        int | None,
+        typer.Option(
+            min=1,
+            help="Processes that solve the rows (results identical for any number) [default: CAPRED_PROCESSES, "
+            "else the cores this run may use that the load leaves idle]; with several files, worker processes "
+            "of the batch.",
+            show_default=False,
+        ),
+    ] = None,
 ) -> Invocation:
     """Exact bridge per row between spheres of radii R and R2 (or a sphere and
     a plane): neck radius r0, F_cap = F_L + F_T, V_w, filling angles on both
     particles, liquid-gas area and its n(x)n integrals (nn11, nn33),
-    S_R = 3V_w/(2 pi R^3) and sigma' = F_cap/(pi R^2). Every bridge is verified
-    to reproduce its gap and volume (or suction) to 1e-9; a row without one
-    (beyond rupture, too much water) gets a status, not an error.
+    S_R = 3V_w/(2 pi R^3) and sigma' = F_cap/(pi R^2). Each particle may have
+    its own contact angle (columns contact_angle and contact_angle2). Every
+    bridge is verified to reproduce its gap and volume (or suction) to 1e-9; a
+    row without one (beyond rupture, too much water) gets a status, not an
+    error.
 
     Example: capred bridge solve cases.csv --json
     """
     from ..pipelines.bridge import BridgeOptions
 
-    opts = BridgeOptions(quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"))
+    opts = BridgeOptions(
+        quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
+        None if contact_angle2 is None else quantity(repr(float(contact_angle2)), "deg"),
+        workers,
+    )
     return Invocation("bridge solve", opts)
 
 

@@ -106,11 +106,12 @@ def _arr(*xs):
     return [np.asarray(x, dtype=float) for x in np.broadcast_arrays(*xs)]
 
 
-def _blocks(beta, theta, suction, ratio, fields, **how):
+def _blocks(beta, theta, suction, ratio, fields, theta2=None, **how):
     """``fields`` outputs of :func:`_pair` over broadcast inputs, block by block (memory bounded by a block);
-    a case with any non-finite output is NaN throughout, with no warning."""
-    beta, theta, suction, ratio = _arr(beta, theta, suction, ratio)
-    cols = [a.ravel() for a in (beta, theta, suction, ratio)]
+    a case with any non-finite output is NaN throughout, with no warning. ``theta2``: the contact angle on
+    particle 2 (None: ``theta``)."""
+    beta, theta, suction, ratio, theta2 = _arr(beta, theta, suction, ratio, theta if theta2 is None else theta2)
+    cols = [a.ravel() for a in (beta, theta, suction, ratio, theta2)]
     out = np.full((fields, cols[0].size), np.nan)
     with np.errstate(all="ignore"):
         for start in range(0, cols[0].size, _CHUNK):
@@ -120,7 +121,7 @@ def _blocks(beta, theta, suction, ratio, fields, **how):
     return out.reshape((fields, *beta.shape))
 
 
-def bridge(beta, contact_angle_rad, suction, ratio=1.0) -> Bridge:
+def bridge(beta, contact_angle_rad, suction, ratio=1.0, contact_angle2_rad=None) -> Bridge:
     r"""Exact pendular bridge from its filling angle, contact angle and suction (zero gravity).
 
     Parameters
@@ -133,7 +134,9 @@ def bridge(beta, contact_angle_rad, suction, ratio=1.0) -> Bridge:
         Dimensionless suction s* = Delta_u R1 / gamma [-], >= 0.
     ratio : float or array_like, default 1.0
         rho = R2 / R1 [-]; ``np.inf`` for a plane.
-        Inputs broadcast against each other.
+    contact_angle2_rad : float or array_like, optional
+        Contact angle θ2 on particle 2 (sphere or plane) [rad], in [0, pi/2); default: ``contact_angle_rad``
+        (θ is then particle 1's alone). Inputs broadcast against each other.
 
     Returns
     -------
@@ -168,10 +171,15 @@ def bridge(beta, contact_angle_rad, suction, ratio=1.0) -> Bridge:
     .. [3] Duriez, J. & Wan, R. (2017). Contact angle mechanical influence in wet granular soils. Acta Geotech.
        12, 67-83. doi:10.1007/s11440-016-0500-6 (the interface tensor int n (x) n dS).
     """
-    return Bridge(*_blocks(beta, contact_angle_rad, suction, ratio, len(_FIELDS)))
+    return Bridge(*_blocks(beta, contact_angle_rad, suction, ratio, len(_FIELDS), contact_angle2_rad))
 
 
-def gap_of(beta, contact_angle_rad, suction, ratio=1.0, coarse=False) -> np.ndarray:
+def _bridge(beta, theta, suction, ratio, theta2):
+    """:func:`bridge` with the second contact angle positional (the solvers' calls)."""
+    return Bridge(*_blocks(beta, theta, suction, ratio, len(_FIELDS), theta2))
+
+
+def gap_of(beta, contact_angle_rad, suction, ratio=1.0, coarse=False, contact_angle2_rad=None) -> np.ndarray:
     r"""Gap* alone of the bridge (the fast path the solvers iterate on).
 
     Parameters
@@ -186,6 +194,8 @@ def gap_of(beta, contact_angle_rad, suction, ratio=1.0, coarse=False) -> np.ndar
         rho = R2 / R1 [-]; ``np.inf`` for a plane.
     coarse : bool, default False
         An 8-node rule (about 1e-8 relative on thick necks): enough to bracket a root.
+    contact_angle2_rad : float or array_like, optional
+        Contact angle on particle 2 [rad]; default: ``contact_angle_rad``.
 
     Returns
     -------
@@ -204,10 +214,15 @@ def gap_of(beta, contact_angle_rad, suction, ratio=1.0, coarse=False) -> np.ndar
     .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
        spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
     """
-    return _blocks(beta, contact_angle_rad, suction, ratio, 1, full=False, coarse=coarse)[0]
+    return _blocks(beta, contact_angle_rad, suction, ratio, 1, contact_angle2_rad, full=False, coarse=coarse)[0]
 
 
-def geometry(beta, contact_angle_rad, suction, ratio=1.0):
+def _gap(beta, theta, suction, ratio, theta2, coarse=False):
+    """:func:`gap_of` with the second contact angle positional (the solvers' calls)."""
+    return _blocks(beta, theta, suction, ratio, 1, theta2, full=False, coarse=coarse)[0]
+
+
+def geometry(beta, contact_angle_rad, suction, ratio=1.0, contact_angle2_rad=None):
     r"""(gap*, volume*, force*, neck*) of the bridge: the first four fields of :func:`bridge`.
 
     Parameters
@@ -220,6 +235,8 @@ def geometry(beta, contact_angle_rad, suction, ratio=1.0):
         Dimensionless suction s* = Delta_u R1 / gamma [-], >= 0.
     ratio : float or array_like, default 1.0
         rho = R2 / R1 [-]; ``np.inf`` for a plane.
+    contact_angle2_rad : float or array_like, optional
+        Contact angle on particle 2 [rad]; default: ``contact_angle_rad``.
 
     Returns
     -------
@@ -237,7 +254,7 @@ def geometry(beta, contact_angle_rad, suction, ratio=1.0):
     .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
        spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
     """
-    b = bridge(beta, contact_angle_rad, suction, ratio)
+    b = bridge(beta, contact_angle_rad, suction, ratio, contact_angle2_rad)
     return b.gap, b.volume, b.force, b.neck
 
 
@@ -376,37 +393,42 @@ def _gap_equal(b, th, s, coarse=False):
     return np.where(ok, gap, np.nan)
 
 
-def _pair(b, th, s, rho, full=True, coarse=False):
-    if full is False and np.all(rho == 1.0):
+def _pair(b, th, s, rho, th2, full=True, coarse=False):
+    """The bridge of filling angle b on particle 1 (contact angle th) and th2 on particle 2 (ratio rho): its
+    fields (see _FIELDS; ``full`` False: the gap alone, "gap volume": those two), NaN where there is none.
+    Each contact meets its solid at its own angle: particle 1 sets the force F* = 2 sin b sin(b + th) + s* sin^2 b,
+    particle 2 carries it at its own filling angle (sin(d2 + th2) there; sin th2 on a plane)."""
+    same = th2 is th or np.array_equal(th2, th)
+    if full is False and same and np.all(rho == 1.0):
         return [_gap_equal(b, th, s, coarse)]
     n = b.size
     nan = np.full(n, np.nan)
-    ok = (b > 0) & (th >= 0) & (th < HALF_PI) & (s >= 0) & (rho > 0)
+    ok = (b > 0) & (th >= 0) & (th < HALF_PI) & (s >= 0) & (rho > 0) & (th2 >= 0) & (th2 < HALF_PI)
     # the filling angle on particle 1 stays on the rising side of its contact relation (as delta2 does)
     ok &= 2.0 * b + np.arctan2(np.sin(th), np.cos(th) + 0.5 * s) <= np.pi
     y1 = np.sin(b)
     c1 = np.sin(b + th)
     F = 2.0 * y1 * c1 + s * y1 * y1
-    equal = rho == 1.0
+    equal = (rho == 1.0) if same else (rho == 1.0) & (th2 == th)  # both contacts alike: delta2 = beta
     plane = np.isinf(rho)
     d2 = np.where(equal, b, 0.0)
     y2 = y1.copy()
     c2 = c1.copy()
     sphere = ~equal & ~plane & ok
     if sphere.any():
-        d2[sphere] = _second_filling_angle(F[sphere], th[sphere], s[sphere], rho[sphere])
+        d2[sphere] = _second_filling_angle(F[sphere], th2[sphere], s[sphere], rho[sphere])
         y2[sphere] = rho[sphere] * np.sin(d2[sphere])
-        c2[sphere] = np.sin(d2[sphere] + th[sphere])
+        c2[sphere] = np.sin(d2[sphere] + th2[sphere])
     flat = plane & ok
     if flat.any():
-        sin_t = np.sin(th[flat])
+        sin_t = np.sin(th2[flat])
         with np.errstate(divide="ignore", invalid="ignore"):
             y2[flat] = F[flat] / (sin_t + np.sqrt(sin_t * sin_t + s[flat] * F[flat]))
         c2[flat] = sin_t
     ok &= np.isfinite(y2) & (y2 > 0) & np.isfinite(d2)
     # the meridian narrows from a contact towards the bridge when delta + theta < 90 deg (sign +1)
     sig1 = np.where(b + th <= HALF_PI, 1.0, -1.0)
-    sig2 = np.where(plane, 1.0, np.where(d2 + th <= HALF_PI, 1.0, -1.0))
+    sig2 = np.where(plane, 1.0, np.where(d2 + th2 <= HALF_PI, 1.0, -1.0))
     ok &= (sig1 > 0) | (sig2 > 0)
     ok &= ~((sig1 < 0) & (y2 < y1)) & ~((sig2 < 0) & (y1 < y2))
     k = np.flatnonzero(ok)
@@ -451,11 +473,35 @@ def _pair(b, th, s, rho, full=True, coarse=False):
 # ---- root finding ------------------------------------------------------------
 
 
-def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100, ftol=None, ends=False):
+def illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100, ftol=None, ends=False):
     """Vectorised Illinois (modified regula falsi) root of f on brackets with f_lo >= 0 >= f_hi.
 
-    Stops when the bracket is ``tol`` (relative) narrow or, with ``ftol`` (per row), when |f| <= ftol.
-    With ``ends`` it returns (x, lo, hi): the final bracket too, lo on the side where f >= 0.
+    Parameters
+    ----------
+    f : callable
+        ``f(x, i)``: the function at points ``x`` of the rows ``i`` (an index array) [any unit].
+    lo, hi : array_like
+        Bracket ends, one per row [unit of x].
+    f_lo, f_hi : array_like
+        f at the ends, f_lo >= 0 >= f_hi (a non-finite value: bisection until the end moves).
+    tol : float, default 1e-14
+        Relative width of the bracket at which a row stops [-].
+    iters : int, default 100
+        Most iterations.
+    ftol : array_like, optional
+        Per row: a row stops when |f| <= ftol [unit of f].
+    ends : bool, default False
+        Return the final bracket too.
+
+    Returns
+    -------
+    numpy.ndarray or tuple
+        The roots [unit of x]; with ``ends``, (x, lo, hi), lo on the side where f >= 0.
+
+    References
+    ----------
+    .. [1] Dowell, M. & Jarratt, P. (1971). A modified regula falsi method for computing the root of an equation.
+       BIT 11, 168-174. doi:10.1007/BF01934364
     """
     lo, hi, f_lo, f_hi = (np.array(x, dtype=float) for x in (lo, hi, f_lo, f_hi))
     x = lo.copy()
@@ -489,8 +535,33 @@ def _illinois(f, lo, hi, f_lo, f_hi, tol=1e-14, iters=100, ftol=None, ends=False
     return (x, lo, hi) if ends else x
 
 
-def _golden(f, a, c, iters=60, sign=1.0):
-    """Vectorised golden-section search of the maximum of sign * f on [a, c]; returns (x, f(x))."""
+def golden(f, a, c, iters=60, sign=1.0):
+    """Vectorised golden-section search of the maximum of sign * f on [a, c].
+
+    Parameters
+    ----------
+    f : callable
+        ``f(x, i)``: the function at points ``x`` of the rows ``i`` (an index array); non-finite values count
+        as -inf.
+    a, c : array_like
+        Ends of the interval, one per row [unit of x]; f unimodal between them.
+    iters : int, default 60
+        Golden-section steps (each shrinks the interval by 0.618).
+    sign : float, default 1.0
+        -1.0 to find the minimum.
+
+    Returns
+    -------
+    x : numpy.ndarray
+        The maximiser of each row [unit of x].
+    fx : numpy.ndarray
+        f there (not multiplied by ``sign``).
+
+    References
+    ----------
+    .. [1] Kiefer, J. (1953). Sequential minimax search for a maximum. Proc. Amer. Math. Soc. 4, 502-506.
+       doi:10.1090/S0002-9939-1953-0055639-3
+    """
     g = (np.sqrt(5.0) - 1.0) / 2.0
     a, c = np.array(a, float), np.array(c, float)
     idx = np.arange(a.size)
@@ -522,7 +593,7 @@ def _below(v):
 # ---- bridges from their neck ----------------------------------------------------
 
 
-def from_neck(neck, contact_angle_rad, suction, ratio=1.0):
+def from_neck(neck, contact_angle_rad, suction, ratio=1.0, contact_angle2_rad=None):
     r"""Filling angle on particle 1 and the bridge whose neck radius is y0, at s* >= 0.
 
     Parameters
@@ -535,6 +606,8 @@ def from_neck(neck, contact_angle_rad, suction, ratio=1.0):
         s* = Delta_u R1 / gamma [-], >= 0.
     ratio : float or array_like, default 1.0
         rho = R2 / R1 [-]; ``np.inf`` for a plane.
+    contact_angle2_rad : float or array_like, optional
+        Contact angle on particle 2 [rad]; default: ``contact_angle_rad``.
 
     Returns
     -------
@@ -558,54 +631,98 @@ def from_neck(neck, contact_angle_rad, suction, ratio=1.0):
     .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
        spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
     """
-    neck, th, suction, ratio = _arr(neck, contact_angle_rad, suction, ratio)
+    return _from_neck(neck, contact_angle_rad, suction, ratio, contact_angle2_rad)
+
+
+def _from_neck(neck, th, suction, ratio, th2):
+    """:func:`from_neck` with the second contact angle positional (None: ``th``)."""
+    neck, th, suction, ratio, th2 = _arr(neck, th, suction, ratio, th if th2 is None else th2)
     F = 2.0 * neck + suction * neck * neck
     beta = _second_filling_angle(F, th, suction, np.ones_like(F))
-    return beta, bridge(beta, th, suction, ratio)
+    return beta, _bridge(beta, th, suction, ratio, th2)
 
 
-def _neck_gap(y0, th, s, rho):
+def _neck_gap(y0, th, s, rho, th2):
     """gap* alone of the bridge with neck y0 at s* (the fast path of :func:`gap_of`); NaN where there is none."""
     F = 2.0 * y0 + s * y0 * y0
-    return gap_of(_second_filling_angle(F, th, s, np.ones_like(F)), th, s, rho)
+    return _gap(_second_filling_angle(F, th, s, np.ones_like(F)), th, s, rho, th2)
 
 
-def _floor_suction(y0, th, rho):
+def _floor_suction(y0, th, rho, th2):
     """The smallest suction of the bridges with neck y0: 0 (the catenoid), or 1e-9 / y0^2 where no catenoid
     exists (a plane at theta = 0: its bridge grows without bound as s* -> 0)."""
-    y0, th, rho = _arr(y0, th, rho)
-    g = _neck_gap(y0, th, 0.0, rho)
+    y0, th, rho, th2 = _arr(y0, th, rho, th2)
+    g = _neck_gap(y0, th, 0.0, rho, th2)
     return np.where(np.isfinite(g), 0.0, 1e-9 / (y0 * y0))
 
 
-def _catenoid(y0, th, rho):
+def _catenoid(y0, th, rho, th2):
     """The bridge of neck y0 at its smallest suction (see :func:`_floor_suction`)."""
-    y0, th, rho = _arr(y0, th, rho)
-    return from_neck(y0, th, _floor_suction(y0, th, rho), rho)[1]
+    y0, th, rho, th2 = _arr(y0, th, rho, th2)
+    return _from_neck(y0, th, _floor_suction(y0, th, rho, th2), rho, th2)[1]
 
 
-def _catenoid_gap(y0, th, rho):
+def _catenoid_gap(y0, th, rho, th2):
     """gap* alone of :func:`_catenoid` (one gap evaluation where the catenoid exists)."""
-    y0, th, rho = _arr(y0, th, rho)
-    g = _neck_gap(y0, th, 0.0, rho)
+    y0, th, rho, th2 = _arr(y0, th, rho, th2)
+    g = _neck_gap(y0, th, 0.0, rho, th2)
     none = ~np.isfinite(g)
     if none.any():
-        g[none] = _neck_gap(y0[none], th[none], 1e-9 / (y0[none] * y0[none]), rho[none])
+        g[none] = _neck_gap(y0[none], th[none], 1e-9 / (y0[none] * y0[none]), rho[none], th2[none])
     return g
 
 
-def _suction_at_neck(y0, th, rho, target, field):
-    """s* >= 0 at which the bridge of neck y0 has gap (or volume) = target; both fall as s* rises. NaN if none."""
+def suction_at_neck(y0, th, rho, target, field, th2=None):
+    """The suction s* >= 0 at which the bridge of neck y0 has a given gap (or volume).
+
+    Parameters
+    ----------
+    y0 : numpy.ndarray
+        Neck radius r0 / R1 [-], 1-D.
+    th : numpy.ndarray
+        Contact angle θ [rad], one per row (see ``th2``).
+    rho : numpy.ndarray
+        R2 / R1 [-]; ``np.inf`` for a plane.
+    target : numpy.ndarray
+        The gap* D / R1 or volume* V / R1^3 to reach [-].
+    field : {"gap", "volume"}
+        Which field ``target`` is.
+    th2 : numpy.ndarray, optional
+        Contact angle on particle 2 [rad]; default: ``th``.
+
+    Returns
+    -------
+    numpy.ndarray
+        s* = Delta_u R1 / gamma [-]; NaN where no bridge of that neck reaches the target.
+
+    Notes
+    -----
+    At a fixed neck both the gap and the volume fall as s* rises, from the catenoid (s* = 0); the root is
+    found by Illinois iterations in q = s* y0^2 / (1 + s* y0^2).
+
+    References
+    ----------
+    .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
+       spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
+    """
+    y0, th, rho, target = (np.asarray(x, dtype=float) for x in (y0, th, rho, target))
+    return _suction_at_neck(y0, th, rho, th if th2 is None else np.asarray(th2, dtype=float), target, field)
+
+
+def _suction_at_neck(y0, th, rho, th2, target, field):
+    """:func:`suction_at_neck` with the second contact angle positional."""
 
     def value(q, i):
         s = q / (1.0 - q) / (y0[i] * y0[i])  # suction scale of a neck y0: 1 / y0^2
         if field == "gap":  # the gap alone: the fast path
             F = 2.0 * y0[i] + s * y0[i] * y0[i]
-            return _below(gap_of(_second_filling_angle(F, th[i], s, np.ones_like(F)), th[i], s, rho[i])) - target[i]
-        return _below(getattr(from_neck(y0[i], th[i], s, rho[i])[1], field)) - target[i]
+            return (
+                _below(_gap(_second_filling_angle(F, th[i], s, np.ones_like(F)), th[i], s, rho[i], th2[i])) - target[i]
+            )
+        return _below(getattr(_from_neck(y0[i], th[i], s, rho[i], th2[i])[1], field)) - target[i]
 
     idx = np.arange(y0.size)
-    s_floor = _floor_suction(y0, th, rho) * y0 * y0
+    s_floor = _floor_suction(y0, th, rho, th2) * y0 * y0
     q0 = s_floor / (1.0 + s_floor)
     f0 = value(q0, idx)
     q_hi = np.full(y0.size, 1.0 - 1e-12)
@@ -615,7 +732,7 @@ def _suction_at_neck(y0, th, rho, target, field):
     out[(f0 < 0) & (f0 >= -1e-12 * np.maximum(np.abs(target), 1e-3))] = 0.0
     k = np.flatnonzero((f0 >= 0) & (f1 <= 0))
     if k.size:
-        q = _illinois(
+        q = illinois(
             lambda x, i: value(x, k[i]),
             q0[k],
             q_hi[k],
@@ -627,29 +744,29 @@ def _suction_at_neck(y0, th, rho, target, field):
     return out
 
 
-def _arc(y0, th, rho, D, field="volume"):
+def _arc(y0, th, rho, th2, D, field="volume"):
     """Volume (or another field) of the bridge with neck y0 at gap D; NaN where none."""
-    s = _suction_at_neck(y0, th, rho, D, "gap")
+    s = _suction_at_neck(y0, th, rho, th2, D, "gap")
     ok = np.isfinite(s)
     out = np.full(y0.size, np.nan)
     if ok.any():
-        out[ok] = getattr(from_neck(y0[ok], th[ok], s[ok], rho[ok])[1], field)
+        out[ok] = getattr(_from_neck(y0[ok], th[ok], s[ok], rho[ok], th2[ok])[1], field)
     return out, s
 
 
 _NECK_GRID = np.geomspace(1e-7, 1.0, 48)  # necks in units of R1
 
 
-def _neck_grid(th, rho):
+def _neck_grid(th, rho, th2):
     """Grid of necks with the largest bridge of each (see :func:`_catenoid`)."""
     y = np.tile(_NECK_GRID, (th.size, 1))
-    return y, _catenoid(y, th[:, None], rho[:, None])
+    return y, _catenoid(y, th[:, None], rho[:, None], th2[:, None])
 
 
 _SUCTION_GRID = np.geomspace(1e-4, 1.0, 8)  # filling angles of the bracketing scan, in units of the last one
 
 
-def _fold_scan(th, s, D, rho):
+def _fold_scan(th, s, D, rho, th2):
     """Scan of gap*(beta) at fixed s* down a grid of filling angles, from the last concave bridge.
 
     At fixed suction the gap rises from 0 to a maximum (the rupture gap at this
@@ -673,7 +790,7 @@ def _fold_scan(th, s, D, rho):
     for j in range(ng - 1, -1, -1):
         if live.size == 0:
             break
-        v = _below(gap_of(grid[live, j], th[live], s[live], rho[live], coarse=True))
+        v = _below(_gap(grid[live, j], th[live], s[live], rho[live], th2[live], coarse=True))
         Dg[live, j] = v
         up = v >= D[live]
         last[live[up]] = j
@@ -733,18 +850,19 @@ def _chandrupatla(f, a, b, f_a, f_b, ftol, xtol=1e-14, iters=100):
     return x
 
 
-def _solve_for_suction(theta, suction, gap, ratio):
+def _solve_for_suction(theta, suction, gap, ratio, theta2):
     """Stable bridge (larger filling angle) at given s*, gap*: (beta, status)."""
-    theta, suction, gap, ratio = (x.ravel() for x in _arr(theta, suction, gap, ratio))
+    theta, suction, gap, ratio, theta2 = (x.ravel() for x in _arr(theta, suction, gap, ratio, theta2))
     n = theta.size
     beta = np.full(n, np.nan)
     status = np.full(n, 2, dtype=int)
     ok = (theta >= 0) & (theta < HALF_PI) & (suction >= 0) & (gap >= 0) & (ratio > 0) & np.isfinite(suction)
+    ok &= (theta2 >= 0) & (theta2 < HALF_PI)
     k = np.flatnonzero(ok)
     if k.size == 0:
         return beta, status
-    th, s, D, rho = theta[k], suction[k], gap[k], ratio[k]
-    grid, Dg, last, peak, r = _fold_scan(th, s, D, rho)
+    th, s, D, rho, th2 = theta[k], suction[k], gap[k], ratio[k], theta2[k]
+    grid, Dg, last, peak, r = _fold_scan(th, s, D, rho, th2)
     ng = grid.shape[1]
     top = last == ng - 1  # the gap is above D* up to the last concave bridge: too much water at this suction
     has = (last >= 0) & ~top
@@ -762,7 +880,7 @@ def _solve_for_suction(theta, suction, gap, ratio):
         val[:, 2] = Dg[nob, j]
         val[:, 0] = np.where(j >= 1, Dg[nob, np.maximum(j - 1, 0)], -np.inf)
         val[:, 4] = np.where(j <= ng - 2, Dg[nob, np.minimum(j + 1, ng - 1)], -np.inf)
-        mids = _below(gap_of(pts[:, [1, 3]], th[nob, None], s[nob, None], rho[nob, None], coarse=True))
+        mids = _below(_gap(pts[:, [1, 3]], th[nob, None], s[nob, None], rho[nob, None], th2[nob, None], coarse=True))
         val[:, 1], val[:, 3] = mids[:, 0], mids[:, 1]
         best = np.clip(np.argmax(val, axis=1), 1, 3)
         rr = np.arange(nob.size)
@@ -776,24 +894,27 @@ def _solve_for_suction(theta, suction, gap, ratio):
     else:
         miss = nob
     if miss.size:  # refine the maximum by golden sections (unimodal between a and c)
-        thm, sm, rhom, Dm = th[miss], s[miss], rho[miss], D[miss]
-        bp, dp = _golden(lambda x, i: gap_of(x, thm[i], sm[i], rhom[i], coarse=True), a, c, iters=12)
+        thm, sm, rhom, th2m, Dm = th[miss], s[miss], rho[miss], th2[miss], D[miss]
+        bp, dp = golden(lambda x, i: _gap(x, thm[i], sm[i], rhom[i], th2m[i], coarse=True), a, c, iters=12)
         # 12 steps leave the bracket at 0.3 % of its width: the maximum is then known to about 1e-4 relative;
         # rows within 1 % of the gap are refined to 25 steps with the full quadrature, the rest are settled
         close = np.flatnonzero((dp >= 0.99 * Dm) & (dp < 1.01 * Dm))
         if close.size:
-            bp[close], dp[close] = _golden(
-                lambda x, i: gap_of(x, thm[close][i], sm[close][i], rhom[close][i]), a[close], c[close], iters=25
+            bp[close], dp[close] = golden(
+                lambda x, i: _gap(x, thm[close][i], sm[close][i], rhom[close][i], th2m[close][i]),
+                a[close],
+                c[close],
+                iters=25,
             )
         found = dp >= Dm
         has[miss[found]] = True
         lo[miss], f_lo[miss] = bp, dp - Dm
         hi[miss] = c
-        f_hi[miss] = _below(gap_of(c, thm, sm, rhom)) - Dm
+        f_hi[miss] = _below(_gap(c, thm, sm, rhom, th2m)) - Dm
     good = np.flatnonzero(has)
-    thg, sg, Dgd, rhog = th[good], s[good], D[good], rho[good]
+    thg, sg, Dgd, rhog, th2g = th[good], s[good], D[good], rho[good], th2[good]
     root = _chandrupatla(
-        lambda x, i: _below(gap_of(x, thg[i], sg[i], rhog[i])) - Dgd[i],
+        lambda x, i: _below(_gap(x, thg[i], sg[i], rhog[i], th2g[i])) - Dgd[i],
         lo[good],
         hi[good],
         f_lo[good],
@@ -812,12 +933,12 @@ def _log_root(f, lo, hi):
     fa, fc = f(a, np.arange(a.size)), f(c, np.arange(a.size))
     flip = fa < fc  # Illinois wants f(lo) >= 0 >= f(hi)
     sign = np.where(flip, -1.0, 1.0)
-    _, lo_end, hi_end = _illinois(lambda x, i: sign[i] * f(x, i), a, c, sign * fa, sign * fc, ends=True)
+    _, lo_end, hi_end = illinois(lambda x, i: sign[i] * f(x, i), a, c, sign * fa, sign * fc, ends=True)
     # the end where f >= 0: inside the family even when the "root" is where the bridges stop existing
     return np.exp(np.where(flip, hi_end, lo_end))
 
 
-def _scan_for_volume(theta, volume, gap, ratio):
+def _scan_for_volume(theta, volume, gap, ratio, theta2):
     """(beta, s*, status) of the bridge holding volume* at gap*, stable at constant volume, by a scan of the arc.
 
     The fallback of :func:`_solve_for_volume` for the rows its Newton iteration
@@ -830,18 +951,19 @@ def _scan_for_volume(theta, volume, gap, ratio):
     the requested volume met from the top, i.e. the one continuous with the
     bridge at contact when the spheres are pulled apart at constant volume.
     """
-    theta, volume, gap, ratio = (x.ravel() for x in _arr(theta, volume, gap, ratio))
+    theta, volume, gap, ratio, theta2 = (x.ravel() for x in _arr(theta, volume, gap, ratio, theta2))
     n = theta.size
     beta, suction = np.full(n, np.nan), np.full(n, np.nan)
     status = np.full(n, 2, dtype=int)
     ok = (theta >= 0) & (theta < HALF_PI) & (volume > 0) & (gap >= 0) & (ratio > 0) & np.isfinite(volume)
+    ok &= (theta2 >= 0) & (theta2 < HALF_PI)
     k = np.flatnonzero(ok)
     if k.size == 0:
         return beta, suction, status
-    th, V, D, rho = theta[k], volume[k], gap[k], ratio[k]
+    th, V, D, rho, th2 = theta[k], volume[k], gap[k], ratio[k], theta2[k]
     m = k.size
     st = np.full(m, 1)
-    y, cat = _neck_grid(th, rho)
+    y, cat = _neck_grid(th, rho, th2)
     gcat = _below(cat.gap)
     # no concave bridge at any gap holds more than the largest catenoid volume (the test rupture_gap uses too)
     too_much = V > np.nanmax(np.where(np.isfinite(cat.volume), cat.volume, -np.inf), axis=1)
@@ -850,12 +972,14 @@ def _scan_for_volume(theta, volume, gap, ratio):
     # peak of the catenoid gap, refined (a narrow peak can hide between grid necks)
     j = np.argmax(gcat, axis=1)
     lo_j, hi_j = np.maximum(j - 1, 0), np.minimum(j + 1, y.shape[1] - 1)
-    ypk, gpk = _golden(lambda x, i: _catenoid_gap(np.exp(x), th[i], rho[i]), np.log(y[r, lo_j]), np.log(y[r, hi_j]))
+    ypk, gpk = golden(
+        lambda x, i: _catenoid_gap(np.exp(x), th[i], rho[i], th2[i]), np.log(y[r, lo_j]), np.log(y[r, hi_j])
+    )
     ypk = np.exp(ypk)
     reach = np.flatnonzero(gpk >= D)
 
     def cat_gap(x, i, sel):
-        return _below(_catenoid_gap(np.exp(x), th[sel][i], rho[sel][i])) - D[sel][i]
+        return _below(_catenoid_gap(np.exp(x), th[sel][i], rho[sel][i], th2[sel][i])) - D[sel][i]
 
     y_lo, y_hi = np.full(m, np.nan), np.full(m, np.nan)
     if reach.size:
@@ -879,7 +1003,7 @@ def _scan_for_volume(theta, volume, gap, ratio):
     has = np.flatnonzero(np.isfinite(y_hi) & np.isfinite(y_lo))
     v_top = np.full(m, np.nan)
     if has.size:
-        v_top[has] = _catenoid(y_hi[has], th[has], rho[has]).volume
+        v_top[has] = _catenoid(y_hi[has], th[has], rho[has], th2[has]).volume
         st[has] = np.where(V[has] > v_top[has] * (1 + 1e-12), 3, 1)
         cand = has[V[has] <= v_top[has] * (1 + 1e-12)]
     else:
@@ -895,13 +1019,17 @@ def _scan_for_volume(theta, volume, gap, ratio):
             frac = np.linspace(0.0, 1.0, nk)
             yg = np.exp(np.log(y_lo[sub])[:, None] + frac * np.log(y_hi[sub] / y_lo[sub])[:, None])
             rep = np.repeat(sub, nk)
-            Vg = _arc(yg.ravel(), th[rep], rho[rep], D[rep])[0].reshape(sub.size, nk)
+            Vg = _arc(yg.ravel(), th[rep], rho[rep], th2[rep], D[rep])[0].reshape(sub.size, nk)
             jm = np.argmin(np.where(np.isfinite(Vg), Vg, np.inf), axis=1)
             rr = np.arange(sub.size)
             a = np.log(yg[rr, np.maximum(jm - 1, 0)])
             c = np.log(yg[rr, np.minimum(jm + 1, nk - 1)])
-            x_min, v_sub = _golden(
-                lambda x, i: _arc(np.exp(x), th[sub][i], rho[sub][i], D[sub][i])[0], a, c, iters=40, sign=-1.0
+            x_min, v_sub = golden(
+                lambda x, i: _arc(np.exp(x), th[sub][i], rho[sub][i], th2[sub][i], D[sub][i])[0],
+                a,
+                c,
+                iters=40,
+                sign=-1.0,
             )
             y_min[apart], v_min[apart] = np.exp(x_min), v_sub
         inside = V[cand] >= v_min
@@ -909,12 +1037,12 @@ def _scan_for_volume(theta, volume, gap, ratio):
         if go.size:
 
             def f(x, i):
-                return _below(_arc(np.exp(x), th[go][i], rho[go][i], D[go][i])[0]) - V[go][i]
+                return _below(_arc(np.exp(x), th[go][i], rho[go][i], th2[go][i], D[go][i])[0]) - V[go][i]
 
             sel = inside
             lo, hi = np.log(y_min[sel]), np.log(y_hi[go])
             root = np.exp(
-                _illinois(
+                illinois(
                     lambda x, i: -f(x, i),
                     lo,
                     hi,
@@ -923,8 +1051,8 @@ def _scan_for_volume(theta, volume, gap, ratio):
                     ftol=1e-3 * VERIFY_RTOL * V[go],
                 )
             )
-            s = _suction_at_neck(root, th[go], rho[go], D[go], "gap")
-            b1 = from_neck(root, th[go], np.where(np.isfinite(s), s, 0.0), rho[go])[0]
+            s = _suction_at_neck(root, th[go], rho[go], th2[go], D[go], "gap")
+            b1 = _from_neck(root, th[go], np.where(np.isfinite(s), s, 0.0), rho[go], th2[go])[0]
             beta[k[go]], suction[k[go]] = b1, s
             st[go] = 0
     st[(st == 1) & too_much] = 3
@@ -938,15 +1066,15 @@ _FD_STEP = 1e-7  # forward-difference step in log(neck) and log(s*) (derivatives
 _ARC_MARGIN = 1e-5  # smallest relative slope of the volume along the arc that certifies the branch
 
 
-def _gap_volume_at_neck(x, z, th, rho):
+def _gap_volume_at_neck(x, z, th, rho, th2):
     """(gap*, volume*) of the bridge with neck exp(x) at s* = exp(z); NaN where there is none."""
     y0, s = np.exp(x), np.exp(z)
     F = 2.0 * y0 + s * y0 * y0
     beta = _second_filling_angle(F, th, s, np.ones_like(F))
-    return _blocks(beta, th, s, rho, 2, full="gap volume")
+    return _blocks(beta, th, s, rho, 2, th2, full="gap volume")
 
 
-def _volume_guess(th, V, D, rho):
+def _volume_guess(th, V, D, rho, th2):
     """Starting (log neck, log s*) of the bridge holding V* at gap* D*: a thin film between paraboloids.
 
     The surfaces near the axis are h(r) = D + r^2 / R* apart (Derjaguin's
@@ -960,13 +1088,13 @@ def _volume_guess(th, V, D, rho):
     a = np.sqrt(a2)
     b1 = np.arcsin(np.minimum(a, 1.0))
     b2 = np.where(np.isinf(rho), 0.0, np.arcsin(np.minimum(a / rho, 1.0)))
-    r1 = (D + a2 / Rs) / np.maximum(np.cos(th + b1) + np.cos(th + b2), 0.05)
+    r1 = (D + a2 / Rs) / np.maximum(np.cos(th + b1) + np.cos(th2 + b2), 0.05)
     y0 = np.maximum(a - r1 * (1.0 - np.sin(th + b1)), 0.2 * a)
     s = np.maximum(1.0 / r1 - 1.0 / y0, 0.1 / y0)
     return np.log(y0), np.log(s)
 
 
-def _newton_volume(th, V, D, rho, iters=40, start=None, loose=False):
+def _newton_volume(th, V, D, rho, th2, iters=40, start=None, loose=False):
     """(neck, s*, found) of the bridge holding V* at gap* D*: damped Newton in (log neck, log s*).
 
     Residuals gap - D and log(volume / V), a forward-difference Jacobian, a
@@ -982,7 +1110,7 @@ def _newton_volume(th, V, D, rho, iters=40, start=None, loose=False):
     """
     m = th.size
     h = _FD_STEP
-    x, z = _volume_guess(th, V, D, rho) if start is None else (np.log(start[0]), np.log(start[1]))
+    x, z = _volume_guess(th, V, D, rho, th2) if start is None else (np.log(start[0]), np.log(start[1]))
     lv = np.log(V)
     gscale = D + np.cbrt(V)  # length scale of a bridge of volume V (its rupture distance, Lian et al. 1993)
     gtol = 1e-3 * VERIFY_RTOL * np.maximum(D, 1e-3)
@@ -1003,6 +1131,7 @@ def _newton_volume(th, V, D, rho, iters=40, start=None, loose=False):
                 np.concatenate([z[a], z[a], z[a] + h]),
                 np.tile(th[a], 3),
                 np.tile(rho[a], 3),
+                np.tile(th2[a], 3),
             )
             g, lg = g.reshape(3, -1), np.log(v).reshape(3, -1)
             r1, r2 = g[0] - D[a], lg[0] - lv[a]
@@ -1051,28 +1180,28 @@ def _newton_volume(th, V, D, rho, iters=40, start=None, loose=False):
     return y0, s, found
 
 
-def _continue_volume(th, V, D, rho, stages=8, factor=0.5):
+def _continue_volume(th, V, D, rho, th2, stages=8, factor=0.5):
     """:func:`_newton_volume` by continuation for rows it does not settle from its guess (large bridges):
     from (V, D) scaled by factor^stages, where the thin-film guess holds (and D / V^(1/3), the gap over the
     rupture distance, is smaller still), back to (V, D), each stage starting from the bridge of the last."""
-    y0, s = np.exp(_volume_guess(th, V * factor**stages, D * factor**stages, rho))
+    y0, s = np.exp(_volume_guess(th, V * factor**stages, D * factor**stages, rho, th2))
     alive = np.ones(th.size, dtype=bool)
     for j in range(stages - 1, -1, -1):
         a = np.flatnonzero(alive)
         if a.size == 0:
             break
         f = factor**j
-        y0[a], s[a], found = _newton_volume(th[a], V[a] * f, D[a] * f, rho[a], start=(y0[a], s[a]), loose=j > 0)
+        y0[a], s[a], found = _newton_volume(th[a], V[a] * f, D[a] * f, rho[a], th2[a], start=(y0[a], s[a]), loose=j > 0)
         alive[a[~found]] = False
     return y0, s, alive
 
 
-def _beyond_rupture(th, V, D, rho):
+def _beyond_rupture(th, V, D, rho, th2):
     """Rows whose volume V* cannot span the gap D* at all, settled for all rows at once (True: no bridge).
 
     The liquid between the axis and the neck radius y0 (the narrowest radius of the bridge, or less when the
     neck is virtual) spans at least the gap, so V* >= pi y0^2 D*: every bridge of the row has
-    y0 <= y_b = sqrt(V* / (pi D*)). At a fixed neck the gap falls as s* rises (see :func:`_suction_at_neck`),
+    y0 <= y_b = sqrt(V* / (pi D*)). At a fixed neck the gap falls as s* rises (see :func:`suction_at_neck`),
     so no bridge of neck y0 spans more than its catenoid (:func:`_catenoid_gap`); the catenoid gap rises with
     the neck up to its peak and falls after. Where it still rises at y_b and is below D* there, no neck
     y0 <= y_b reaches D*: beyond rupture. A row is settled only when some catenoid of the upper necks of
@@ -1084,18 +1213,20 @@ def _beyond_rupture(th, V, D, rho):
     if cand.size == 0:
         return out
     yb = np.sqrt(V[cand] / (np.pi * D[cand]))
-    g = _catenoid_gap(np.concatenate([yb, yb * (1.0 + 1e-3)]), np.tile(th[cand], 2), np.tile(rho[cand], 2))
+    g = _catenoid_gap(
+        np.concatenate([yb, yb * (1.0 + 1e-3)]), np.tile(th[cand], 2), np.tile(rho[cand], 2), np.tile(th2[cand], 2)
+    )
     g0, g1 = g[: cand.size], g[cand.size :]
     with np.errstate(invalid="ignore"):
         cand = cand[np.isfinite(g0) & np.isfinite(g1) & (g1 > g0) & (g0 < D[cand] * (1.0 - 1e-9))]
     if cand.size:
         necks = _NECK_GRID[-12:]
-        vol = _catenoid(np.tile(necks, (cand.size, 1)), th[cand, None], rho[cand, None]).volume
+        vol = _catenoid(np.tile(necks, (cand.size, 1)), th[cand, None], rho[cand, None], th2[cand, None]).volume
         out[cand] = V[cand] <= np.max(np.where(np.isfinite(vol), vol, -np.inf), axis=1)
     return out
 
 
-def _solve_for_volume(theta, volume, gap, ratio):
+def _solve_for_volume(theta, volume, gap, ratio, theta2):
     """(beta, s*, status) of the bridge holding volume* at gap*, stable at constant volume.
 
     At a fixed gap the concave bridges form one arc, parametrised by the neck
@@ -1108,21 +1239,22 @@ def _solve_for_volume(theta, volume, gap, ratio):
     Newton's method (:func:`_newton_volume`) settles most rows in a few
     iterations; the rest go through the scan of the arc (:func:`_scan_for_volume`).
     """
-    theta, volume, gap, ratio = (x.ravel() for x in _arr(theta, volume, gap, ratio))
+    theta, volume, gap, ratio, theta2 = (x.ravel() for x in _arr(theta, volume, gap, ratio, theta2))
     n = theta.size
     beta, suction = np.full(n, np.nan), np.full(n, np.nan)
     status = np.full(n, 2, dtype=int)
     ok = (theta >= 0) & (theta < HALF_PI) & (volume > 0) & (gap >= 0) & (ratio > 0) & np.isfinite(volume)
+    ok &= (theta2 >= 0) & (theta2 < HALF_PI)
     k = np.flatnonzero(ok)
     if k.size == 0:
         return beta, suction, status
-    far = _beyond_rupture(theta[k], volume[k], gap[k], ratio[k])
+    far = _beyond_rupture(theta[k], volume[k], gap[k], ratio[k], theta2[k])
     status[k[far]] = 1
     k = k[~far]
-    th, V, D, rho = theta[k], volume[k], gap[k], ratio[k]
+    th, V, D, rho, th2 = theta[k], volume[k], gap[k], ratio[k], theta2[k]
     for start in range(0, k.size, _CHUNK):
         sl = slice(start, start + _CHUNK)
-        y0, s, found = _newton_volume(th[sl], V[sl], D[sl], rho[sl])
+        y0, s, found = _newton_volume(th[sl], V[sl], D[sl], rho[sl], th2[sl])
         rows = k[sl][found]
         yf, sf = y0[found], s[found]
         beta[rows] = _second_filling_angle(2.0 * yf + sf * yf * yf, th[sl][found], sf, np.ones_like(yf))
@@ -1130,33 +1262,36 @@ def _solve_for_volume(theta, volume, gap, ratio):
     rest = k[status[k] != 0]
     big = rest[volume[rest] > 0.05]  # where the thin-film guess is poor: continuation from a small bridge
     if big.size:
-        y0, s, found = _continue_volume(theta[big], volume[big], gap[big], ratio[big])
+        y0, s, found = _continue_volume(theta[big], volume[big], gap[big], ratio[big], theta2[big])
         yf, sf, rows = y0[found], s[found], big[found]
         beta[rows] = _second_filling_angle(2.0 * yf + sf * yf * yf, theta[rows], sf, np.ones_like(yf))
         suction[rows], status[rows] = sf, 0
         rest = k[status[k] != 0]
     if rest.size:
-        beta[rest], suction[rest], status[rest] = _scan_for_volume(theta[rest], volume[rest], gap[rest], ratio[rest])
+        beta[rest], suction[rest], status[rest] = _scan_for_volume(
+            theta[rest], volume[rest], gap[rest], ratio[rest], theta2[rest]
+        )
     return beta, suction, status
 
 
-def _rupture(theta, volume, ratio):
+def _rupture(theta, volume, ratio, theta2):
     """(gap*, beta, s*, status) of the widest bridge holding volume* (rupture at constant volume)."""
-    theta, volume, ratio = (x.ravel() for x in _arr(theta, volume, ratio))
+    theta, volume, ratio, theta2 = (x.ravel() for x in _arr(theta, volume, ratio, theta2))
     n = theta.size
     out = [np.full(n, np.nan) for _ in range(3)]
     status = np.full(n, 2, dtype=int)
     ok = (theta >= 0) & (theta < HALF_PI) & (volume > 0) & (ratio > 0) & np.isfinite(volume)
+    ok &= (theta2 >= 0) & (theta2 < HALF_PI)
     k = np.flatnonzero(ok)
     if k.size == 0:
         return (*out, status)
-    th, V, rho = theta[k], volume[k], ratio[k]
+    th, V, rho, th2 = theta[k], volume[k], ratio[k], theta2[k]
     m = k.size
 
     def gap_at(x, i):
         y0 = np.exp(x)
-        s = _suction_at_neck(y0, th[i], rho[i], V[i], "volume")
-        return from_neck(y0, th[i], np.where(np.isfinite(s), s, np.nan), rho[i])[1].gap
+        s = _suction_at_neck(y0, th[i], rho[i], th2[i], V[i], "volume")
+        return _from_neck(y0, th[i], np.where(np.isfinite(s), s, np.nan), rho[i], th2[i])[1].gap
 
     ng = _NECK_GRID.size
     rep = np.repeat(np.arange(m), ng)
@@ -1165,13 +1300,13 @@ def _rupture(theta, volume, ratio):
     found = np.isfinite(G[np.arange(m), j])
     a = np.log(_NECK_GRID[np.maximum(j - 1, 0)])
     c = np.log(_NECK_GRID[np.minimum(j + 1, ng - 1)])
-    x, g = _golden(gap_at, a, c)
+    x, g = golden(gap_at, a, c)
     g_grid = G[np.arange(m), j]
     worse = ~(np.isfinite(g) & (g >= g_grid))  # the refinement failed (an edge of the bridges): keep the grid's
     x, g = np.where(worse, np.log(_NECK_GRID[j]), x), np.where(worse, g_grid, g)
     y0 = np.exp(x)
-    s = _suction_at_neck(y0, th, rho, V, "volume")
-    b1 = from_neck(y0, th, s, rho)[0]
+    s = _suction_at_neck(y0, th, rho, th2, V, "volume")
+    b1 = _from_neck(y0, th, s, rho, th2)[0]
     good = found & np.isfinite(g) & (g >= 0)
     for o, v in zip(out, (g, b1, s)):
         o[k[good]] = v[good]
@@ -1182,7 +1317,7 @@ def _rupture(theta, volume, ratio):
 # ---- verified solvers ------------------------------------------------------------
 
 
-def _verify(status, beta, theta, s, ratio, gap=None, volume=None, found=None):
+def _verify(status, beta, theta, s, ratio, theta2, gap=None, volume=None, found=None):
     """Status 4 for every 'ok' row whose bridge does not reproduce the requested gap (absolute 1e-12
     near contact) or volume to VERIFY_RTOL relative. ``found``: the bridges already computed (a Bridge)."""
     status = status.copy()
@@ -1192,9 +1327,9 @@ def _verify(status, beta, theta, s, ratio, gap=None, volume=None, found=None):
     if found is not None:
         g, v = found.gap, found.volume
     elif volume is None:  # the gap alone (the fast path, same quadrature accuracy)
-        g, v = gap_of(np.where(ok, beta, np.nan), theta, np.where(ok, s, 0.0), ratio), None
+        g, v = _gap(np.where(ok, beta, np.nan), theta, np.where(ok, s, 0.0), ratio, theta2), None
     else:
-        b = bridge(np.where(ok, beta, np.nan), theta, np.where(ok, s, 0.0), ratio)
+        b = _bridge(np.where(ok, beta, np.nan), theta, np.where(ok, s, 0.0), ratio, theta2)
         g, v = b.gap, b.volume
     good = np.isfinite(g)
     with np.errstate(invalid="ignore"):
@@ -1206,7 +1341,13 @@ def _verify(status, beta, theta, s, ratio, gap=None, volume=None, found=None):
     return status
 
 
-def solve_for_suction(contact_angle_rad, suction, gap, ratio=1.0):
+def _angles(theta, theta2, *others):
+    """(theta, *others, theta2) broadcast and flattened; theta2 None: a copy of theta's values (equal angles)."""
+    cols = [x.ravel() for x in _arr(theta, *others, theta if theta2 is None else theta2)]
+    return cols
+
+
+def solve_for_suction(contact_angle_rad, suction, gap, ratio=1.0, contact_angle2_rad=None):
     r"""Filling angle of the stable bridge at a given suction and gap (suction control), verified.
 
     Parameters
@@ -1219,6 +1360,9 @@ def solve_for_suction(contact_angle_rad, suction, gap, ratio=1.0):
         D / R1 [-], >= 0.
     ratio : float or array_like, default 1.0
         rho = R2 / R1 [-]; ``np.inf`` for a plane.
+    contact_angle2_rad : float or array_like, optional
+        Contact angle on particle 2 (sphere or plane) [rad]; default: ``contact_angle_rad``. Each contact line
+        meets its solid at its own angle.
 
     Returns
     -------
@@ -1244,12 +1388,12 @@ def solve_for_suction(contact_angle_rad, suction, gap, ratio=1.0):
     .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
        spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
     """
-    contact_angle_rad, suction, gap, ratio = (x.ravel() for x in _arr(contact_angle_rad, suction, gap, ratio))
-    beta, status = _solve_for_suction(contact_angle_rad, suction, gap, ratio)
-    return beta, _verify(status, beta, contact_angle_rad, suction, ratio, gap=gap)
+    th, suction, gap, ratio, th2 = _angles(contact_angle_rad, contact_angle2_rad, suction, gap, ratio)
+    beta, status = _solve_for_suction(th, suction, gap, ratio, th2)
+    return beta, _verify(status, beta, th, suction, ratio, th2, gap=gap)
 
 
-def bridge_at_suction(contact_angle_rad, suction, gap, ratio=1.0):
+def bridge_at_suction(contact_angle_rad, suction, gap, ratio=1.0, contact_angle2_rad=None):
     r"""The stable bridge at a given suction and gap, with every field, verified on those fields.
 
     Parameters
@@ -1262,6 +1406,9 @@ def bridge_at_suction(contact_angle_rad, suction, gap, ratio=1.0):
         D / R1 [-], >= 0.
     ratio : float or array_like, default 1.0
         rho = R2 / R1 [-]; ``np.inf`` for a plane.
+    contact_angle2_rad : float or array_like, optional
+        Contact angle on particle 2 (sphere or plane) [rad]; default: ``contact_angle_rad``. Each contact line
+        meets its solid at its own angle.
 
     Returns
     -------
@@ -1284,11 +1431,11 @@ def bridge_at_suction(contact_angle_rad, suction, gap, ratio=1.0):
     .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
        spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
     """
-    contact_angle_rad, suction, gap, ratio = (x.ravel() for x in _arr(contact_angle_rad, suction, gap, ratio))
-    beta, status = _solve_for_suction(contact_angle_rad, suction, gap, ratio)
+    th, suction, gap, ratio, th2 = _angles(contact_angle_rad, contact_angle2_rad, suction, gap, ratio)
+    beta, status = _solve_for_suction(th, suction, gap, ratio, th2)
     ok = status == 0
-    b = bridge(np.where(ok, beta, np.nan), contact_angle_rad, np.where(ok, suction, 0.0), ratio)
-    status = _verify(status, beta, contact_angle_rad, suction, ratio, gap=gap, found=b)
+    b = _bridge(np.where(ok, beta, np.nan), th, np.where(ok, suction, 0.0), ratio, th2)
+    status = _verify(status, beta, th, suction, ratio, th2, gap=gap, found=b)
     bad = status != 0
     beta[bad] = np.nan
     for k in _FIELDS:
@@ -1296,7 +1443,7 @@ def bridge_at_suction(contact_angle_rad, suction, gap, ratio=1.0):
     return beta, status, b
 
 
-def solve_for_volume(contact_angle_rad, volume, gap, ratio=1.0):
+def solve_for_volume(contact_angle_rad, volume, gap, ratio=1.0, contact_angle2_rad=None):
     r"""Filling angle and suction of the bridge holding a given volume at a given gap (volume control), verified.
 
     Parameters
@@ -1309,6 +1456,9 @@ def solve_for_volume(contact_angle_rad, volume, gap, ratio=1.0):
         D / R1 [-], >= 0.
     ratio : float or array_like, default 1.0
         rho = R2 / R1 [-]; ``np.inf`` for a plane.
+    contact_angle2_rad : float or array_like, optional
+        Contact angle on particle 2 (sphere or plane) [rad]; default: ``contact_angle_rad``. Each contact line
+        meets its solid at its own angle.
 
     Returns
     -------
@@ -1354,15 +1504,15 @@ def solve_for_volume(contact_angle_rad, volume, gap, ratio=1.0):
     .. [2] Orr, F. M., Scriven, L. E. & Rivas, A. P. (1975). Pendular rings between solids: meniscus properties and
        capillary force. J. Fluid Mech. 67, 723-742. doi:10.1017/S0022112075000572
     """
-    contact_angle_rad, volume, gap, ratio = (x.ravel() for x in _arr(contact_angle_rad, volume, gap, ratio))
-    beta, s, status = _solve_for_volume(contact_angle_rad, volume, gap, ratio)
-    status = _verify(status, beta, contact_angle_rad, s, ratio, gap=gap, volume=volume)
+    th, volume, gap, ratio, th2 = _angles(contact_angle_rad, contact_angle2_rad, volume, gap, ratio)
+    beta, s, status = _solve_for_volume(th, volume, gap, ratio, th2)
+    status = _verify(status, beta, th, s, ratio, th2, gap=gap, volume=volume)
     bad = status != 0
     beta[bad], s[bad] = np.nan, np.nan
     return beta, s, status
 
 
-def rupture_gap(contact_angle_rad, volume, ratio=1.0):
+def rupture_gap(contact_angle_rad, volume, ratio=1.0, contact_angle2_rad=None):
     r"""Rupture distance at constant volume: the widest gap any bridge of this volume spans, verified.
 
     Parameters
@@ -1373,6 +1523,9 @@ def rupture_gap(contact_angle_rad, volume, ratio=1.0):
         V / R1^3 [-], > 0.
     ratio : float or array_like, default 1.0
         rho = R2 / R1 [-]; ``np.inf`` for a plane.
+    contact_angle2_rad : float or array_like, optional
+        Contact angle on particle 2 (sphere or plane) [rad]; default: ``contact_angle_rad``. Each contact line
+        meets its solid at its own angle.
 
     Returns
     -------
@@ -1397,9 +1550,9 @@ def rupture_gap(contact_angle_rad, volume, ratio=1.0):
     .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
        spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452 (rupture distance).
     """
-    contact_angle_rad, volume, ratio = (x.ravel() for x in _arr(contact_angle_rad, volume, ratio))
-    D, beta, s, status = _rupture(contact_angle_rad, volume, ratio)
-    status = _verify(status, beta, contact_angle_rad, s, ratio, volume=volume)
+    th, volume, ratio, th2 = _angles(contact_angle_rad, contact_angle2_rad, volume, ratio)
+    D, beta, s, status = _rupture(th, volume, ratio, th2)
+    status = _verify(status, beta, th, s, ratio, th2, volume=volume)
     bad = status != 0
     D[bad], beta[bad], s[bad] = np.nan, np.nan, np.nan
     return D, beta, s, status

@@ -2,591 +2,59 @@
 R and R2, or a sphere and a plane.
 
 The contact angle is ``contact_angle`` everywhere (input column ``contact_angle``,
-also accepted as ``theta``); both particles share it.
+also accepted as ``theta``); ``contact_angle2`` (optional) is the second particle's, equal to the first by default.
 """
 
 from __future__ import annotations
 
-import pickle
 from dataclasses import dataclass, field
-from itertools import repeat
 
 import numpy as np
 
 from ..errors import InputError, OptionError
-from ..io.table import Column, Table, read_table
+from ..io.table import Table
 from ..nomenclature import StableJsonKeys, renamed_keywords
 from ..physics import bridge as br
 from ..physics import shear as ph
-from ..result import InputFile, Options, Result, Rows, input_file, json_list, num
-
-# 1: the gap is too wide for this suction or volume; 3: so much water that the bridge would be
-# convex (water above air pressure), outside the pendular model
-STATUS = {
-    0: "ok",
-    1: "no bridge: beyond rupture",
-    2: "invalid input",
-    3: "no concave bridge: too much water",
-    4: "no bridge found: the solution did not reproduce the requested gap and volume (or suction) to 1e-9",
-}
-#: every bridge reported ok reproduces the requested gap and volume (or suction) to this relative tolerance
-VERIFY_RTOL = br.VERIFY_RTOL
-_PLANE = (("plane", np.inf), ("inf", np.inf), ("infinity", np.inf), ("\u221e", np.inf))
-
-CASE = Column("case", "text", None, "case label")  # aliases: nomenclature.COLUMN_ALIASES
-RADIUS = Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius", "R1"), "positive")
-RADIUS2 = Column(
-    "R2",
-    "length",
-    "mm",
-    "radius R2 of the second particle ('plane' or 'inf': a plane; absent: equal spheres)",
-    ("radius2", "second_radius"),
-    "positive",
-    words=_PLANE,
-)
-GAMMA = Column("gamma", "surface_tension", "N/m", "surface tension", ("surface_tension",), "positive")
-ANGLE = Column("contact_angle", "angle", "deg", "contact angle", ("theta", "wetting_angle"), "nonnegative")
-VOLUME = Column("V_w", "volume", "mm^3", "water volume V_w", ("volume", "V", "Vw"), "positive")
-SOLVE_SCHEMA = [
+from ..result import InputFile, Options, Result, input_file, num
+from . import bridge_blocks
+from .bridge_solve import (  # noqa: F401  (re-exported: the names users and tests import from here)
+    ANGLE,
+    ANGLE2,
     CASE,
+    GAMMA,
     RADIUS,
     RADIUS2,
-    GAMMA,
-    ANGLE,
-    Column("gap", "length", "mm", "gap D", ("D", "separation", "distance"), "nonnegative"),
-    Column("suction", "pressure", "kPa", "suction", ("delta_u", "ua_uw"), "nonnegative"),
+    SOLVE_SCHEMA,
+    STATUS,
+    VERIFY_RTOL,
     VOLUME,
-    Column("F_cap", "force", "mN", "measured force F_cap", ("F", "force", "F_measured"), "nonnegative"),
-    Column("filling_angle", "angle", "deg", "measured filling angle", ("beta", "half_filling_angle"), "nonnegative"),
-]
+    BridgeOptions,
+    BridgeResult,
+    ColumnRows,
+    _read_cases,
+    _records,
+    _solve,
+    json_rows,
+    solve_table,
+    with_csv_headers,
+)
+
 #: `bridge compare` reads the cases as `bridge solve` does (its --help lists these columns)
 COMPARE_SCHEMA = SOLVE_SCHEMA
 
 
-@dataclass(frozen=True)
-class BridgeOptions(Options):
-    """Options of `capred bridge solve`, `compare` and `rupture`: the surface tension [N/m, or a string with a
-    unit] of rows without a ``gamma`` value."""
-
-    QUANTITIES = {"surface_tension": "surface_tension"}
-
-    surface_tension: float = ph.SURFACE_TENSION
-
-
-@dataclass(repr=False)
-class BridgeResult(Result):
-    """Bridges, one per case, SI inside; tables and JSON in mm, mN, kPa."""
-
-    command = "bridge solve"
-    json_name = "solve.json"
-
-    source: str
-    #: per case, SI: R and R2/R ratio [m, -], gamma [N/m], contact_angle_rad [rad], gap [m]
-    inputs_si: dict[str, np.ndarray]
-    beta: np.ndarray  # filling angle on particle 1 [rad]
-    suction: np.ndarray  # Pa
-    shape: br.Bridge  # dimensionless, units of R and gamma
-    status: np.ndarray
-    note: list[str]
-    labels: list[str] | None = None
-    notes: list[str] = field(default_factory=list)
-    options: BridgeOptions | None = None
-    inputs: list[InputFile] = field(default_factory=list)
-    warnings: list[str] = field(default_factory=list)
-
-    @property
-    def volume(self) -> np.ndarray:
-        """Water volume [m^3]."""
-        return self.shape.volume * self.inputs_si["R"] ** 3
-
-    @property
-    def force(self) -> np.ndarray:
-        """Capillary force [N]."""
-        return self.shape.force * np.pi * self.inputs_si["gamma"] * self.inputs_si["R"]
-
-    @property
-    def neck(self) -> np.ndarray:
-        """Neck radius r0 [m] (a virtual neck, behind one contact, when the meridian widens across the bridge)."""
-        return self.shape.neck * self.inputs_si["R"]
-
-    def columns(self) -> dict[str, np.ndarray]:
-        """Output columns (mm, mN, mm^3, mm^2, deg, kPa); NaN where no bridge was found.
-
-        S_R = 3 V_w / (2 pi R^3) and sigma' = F / (pi R^2) are the unit cell of the particle of radius R
-        (Evenepoel's thesis); nn11 = nn22 and nn33 are the transverse and axial components of the
-        integral of n (x) n over the liquid-gas interface (area = 2 nn11 + nn33).
-        """
-        R, g = self.inputs_si["R"], self.inputs_si["gamma"]
-        ok = self.status == 0
-        b = self.shape
-
-        def out(x):
-            return np.where(ok, x, np.nan)
-
-        return {
-            "r0_mm": out(self.neck * 1e3),
-            "F_cap_mN": out(self.force * 1e3),
-            "F_L_mN": out(np.pi * self.neck**2 * self.suction * 1e3),
-            "F_T_mN": out(2 * np.pi * self.neck * g * 1e3),
-            "V_w_mm3": out(self.volume * 1e9),
-            "filling_angle_deg": out(np.degrees(self.beta)),
-            "filling_angle2_deg": out(np.degrees(b.delta2)),
-            "suction_kPa": out(self.suction / 1e3),
-            "S_R": out(3 * self.volume / (2 * np.pi * R**3)),
-            "sigma_prime_kPa": out(self.force / (np.pi * R**2) / 1e3),
-            "area_mm2": out(b.area * R**2 * 1e6),
-            "nn11_mm2": out(b.nn11 * R**2 * 1e6),
-            "nn33_mm2": out(b.nn33 * R**2 * 1e6),
-        }
-
-    @staticmethod
-    def status_text(code: int) -> str:
-        return STATUS[int(code)]
-
-    def _cols(self) -> dict:
-        """Every output column (arrays; text as object arrays), computed once."""
-        cached = self.__dict__.get("_cols_cache")
-        if cached is None:
-            cached = ({"case": np.asarray(self.labels, dtype=object)} if self.labels else {}) | self.columns()
-            cached["status"] = np.array([STATUS[k] for k in range(len(STATUS))], dtype=object)[self.status.astype(int)]
-            cached["note"] = np.asarray(self.note, dtype=object)
-            self.__dict__["_cols_cache"] = cached
-        return cached
-
-    def _frame(self):
-        import pandas as pd
-
-        return pd.DataFrame(self._cols(), copy=False)
-
-    def rows_range(self, start: int, stop: int) -> list[dict]:
-        """JSON rows start..stop (NaN as None, an empty note left out), built column by column."""
-        return json_rows(self._cols_range(start, stop))
-
-    def _cols_range(self, start: int, stop: int) -> dict:
-        return {k: v[start:stop] for k, v in self._cols().items()}
-
-    def rows(self) -> list[dict]:
-        return self.rows_range(0, self.status.size)
-
-    def payload(self, lazy: bool = False) -> dict:
-        n = self.status.size
-        return {"source": self.source, "bridges": ColumnRows(n, self._cols_range) if lazy else self.rows()}
-
-    def tables(self) -> dict:
-        return {"solve": self._frame()}
-
-    def csv_tables(self) -> dict:
-        return {"solve": self._cols()}
-
-
-def json_rows(cols: dict[str, np.ndarray], nan_as_none: bool = True) -> list[dict]:
-    """JSON rows of output columns (an empty note left out), built column by column.
-
-    Parameters
-    ----------
-    cols : dict of str to numpy.ndarray
-        Output columns of equal length, with a ``note`` column (object arrays: text).
-    nan_as_none : bool, default True
-        Non-finite numbers as None; False keeps them as floats, for an encoder that writes them as null
-        (orjson, :func:`capred.io.writers.stream_json`): the same JSON, without an object array per column.
-
-    Returns
-    -------
-    list of dict
-        One dict per row, keys in column order, ``note`` last and only where it is not empty.
-    """
-    keys = [k for k in cols if k != "note"]
-    values = [cols[k].tolist() if cols[k].dtype == object or not nan_as_none else json_list(cols[k]) for k in keys]
-    out = list(map(dict, map(zip, repeat(keys), zip(*values))))
-    for r, note in zip(out, cols["note"].tolist()):
-        if note:
-            r["note"] = note
-    return out
-
-
-class ColumnRows(Rows):
-    """JSON rows made on demand from output columns (``columns(start, stop)``), which the writer encodes chunk
-    by chunk straight from the columns (:meth:`json_chunks`: no None per non-finite cell, the same bytes)."""
-
-    def __init__(self, n: int, columns) -> None:
-        super().__init__(n, lambda start, stop: json_rows(columns(start, stop)))
-        self.columns = columns
-
-    def json_chunks(self, size: int = 2000):
-        """The rows' JSON objects joined by commas, ``size`` rows per chunk (bytes, no brackets)."""
-        from ..io.writers import encode_rows
-
-        for start in range(0, self.n, size):
-            yield encode_rows(_json_chunk_rows(self.columns(start, min(self.n, start + size))))
-
-
-def _json_chunk_rows(cols: dict) -> list[dict]:
-    """``json_rows(cols, nan_as_none=False)`` for the writer: the rows without any number (no bridge) and
-    without a note share one dict per status, so only the rows with a bridge cost a dict of their own."""
-    n = len(cols["status"])
-    numeric = [k for k, v in cols.items() if v.dtype != object]
-    if not numeric or any(v.dtype == object and k not in ("status", "note") for k, v in cols.items()):
-        return json_rows(cols, nan_as_none=False)  # a case label per row: nothing to share
-    empty = cols["note"] == ""
-    for k in numeric:
-        empty &= ~np.isfinite(cols[k])
-    if not empty.any():
-        return json_rows(cols, nan_as_none=False)
-    rows = np.empty(n, dtype=object)
-    full = np.flatnonzero(~empty)
-    if full.size:
-        rows[full] = json_rows({k: v[full] for k, v in cols.items()}, nan_as_none=False)
-    status = cols["status"]
-    for text in dict.fromkeys(status[empty].tolist()):
-        same = np.flatnonzero(empty & (status == text))
-        shared = json_rows({k: v[same[:1]] for k, v in cols.items()}, nan_as_none=False)[0]
-        rows[same] = [shared] * same.size
-    return rows.tolist()
-
-
-def _records(frame, drop_empty: str | None = None) -> list[dict]:
-    """DataFrame rows as dicts, NaN as None, an empty ``drop_empty`` cell left out."""
-    keys = list(frame.columns)
-    cols = [[num(x) if isinstance(x, float) else x for x in frame[k].tolist()] for k in keys]
-    out = []
-    for values in zip(*cols):
-        r = dict(zip(keys, values))
-        if drop_empty is not None and not r.get(drop_empty):
-            r.pop(drop_empty, None)
-        out.append(r)
-    return out
-
-
-def _read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, ...], opt: BridgeOptions, schema=None):
-    """The table of cases (read from ``source``, or a Table already read) with its surface tension and radius
-    ratio R2/R (1 without an R2 column)."""
-    table = source if isinstance(source, Table) else read_table(source, schema or SOLVE_SCHEMA)
-    for name in required:
-        if name not in table.columns:
-            table.missing_column(name)
-    if required_one_of and not any(n in table.columns for n in required_one_of):
-        table.missing_column(required_one_of[0], "".join(f" (or '{n}')" for n in required_one_of[1:]))
-    if any(n not in table.columns for n in required) or (
-        required_one_of and not any(n in table.columns for n in required_one_of)
-    ):
-        table.raise_if_problems()  # without its columns nothing else can be checked
-    gamma = table.get("gamma").copy()
-    gamma[np.isnan(gamma)] = opt.surface_tension
-    for i in np.flatnonzero(table.columns["contact_angle"] >= 90):
-        table.add_problem(
-            i,
-            "contact_angle",
-            f"contact angle {table.value_text('contact_angle', i)} deg: pendular "
-            "bridges need a contact angle below 90 deg",
-        )
-    reported = {(p.line, p.column) for p in table.problems}  # a cell already explained (text in a number)
-    for name in required:
-        for i in np.flatnonzero(np.isnan(table.columns[name])):
-            if (int(table.lines[i]), table.headers.get(name, name)) not in reported:
-                table.add_problem(i, name, f"blank {name}")
-    ratio = np.ones(len(table))
-    if "R2" in table.columns:
-        for i in np.flatnonzero(np.isnan(table.columns["R2"])):
-            table.add_problem(i, "R2", "blank R2 (give a radius, or 'plane')")
-        ratio = table.columns["R2"] / table.columns["R"]
-    return table, gamma, ratio
-
-
 def solve_bridges(source, options: BridgeOptions | None = None) -> BridgeResult:
-    """One bridge per row of a table (CSV path or DataFrame): R (and R2), gamma, contact_angle, gap and
-    suction or V_w. A long plain CSV is read, solved and kept block by block (capred.pipelines.bridge_blocks)."""
+    """One bridge per row of a table (CSV path, DataFrame or a Table read): R (and R2), gamma, contact_angle (and
+    contact_angle2), gap and suction or V_w.
+
+    A long plain CSV is read, solved and kept block by block (:mod:`capred.pipelines.bridge_blocks`); a Table
+    already read is solved at once (:func:`capred.pipelines.bridge_solve.solve_table`).
+    """
     opt = options or BridgeOptions()
-    if not isinstance(source, Table):
-        from .bridge_blocks import solve_in_blocks
-
-        return solve_in_blocks(source, opt)
-    table, gamma, ratio = _read_cases(source, ("R", "contact_angle", "gap"), ("suction", "V_w"), opt)
-    s_in, v_in = table.get("suction"), table.get("V_w")
-    for i in np.flatnonzero(np.isnan(s_in) & np.isnan(v_in)):
-        table.add_problem(i, "suction" if "suction" in table.columns else "V_w", "give suction or V_w")
-    for i in np.flatnonzero(np.isfinite(s_in) & np.isfinite(v_in)):
-        table.add_problem(i, "V_w", "give suction or V_w, not both")
-    table.raise_if_problems()
-    R, th, D = table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["gap"]
-    res = _solve(
-        table.path,
-        R,
-        gamma,
-        th,
-        D,
-        ratio,
-        s_in,
-        v_in,
-        list(table.columns["case"]) if "case" in table.columns else None,
-        table.notes,
-    )
-    res.options, res.warnings = opt, opt.warnings + table.warnings  # inputs: set by solve_in_blocks
-    return res
-
-
-def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None) -> BridgeResult:
-    """Suction-controlled rows (s_in finite) and volume-controlled rows (v_in finite), SI in."""
-    n = R.size
-    beta, s_star, status = np.full(n, np.nan), np.full(n, np.nan), np.full(n, 2)
-    by_s = np.flatnonzero(np.isfinite(s_in))
-    by_v = np.flatnonzero(np.isfinite(v_in))
-    note = [""] * n
-    notes = list(notes or [])
-    fields = {k: np.full(n, np.nan) for k in br.Bridge.__dataclass_fields__}
-    if by_s.size:
-        s_star[by_s] = s_in[by_s] * R[by_s] / gamma[by_s]
-        beta[by_s], status[by_s], *values = _in_parallel(
-            _suction_rows, th[by_s], s_star[by_s], D[by_s] / R[by_s], ratio[by_s]
-        )
-        for k, v in zip(fields, values):
-            fields[k][by_s] = v
-        if np.any((status[by_s] == 0) & (D[by_s] > 0)):
-            notes.append(
-                "At a given gap and suction two bridges fit; the stable one (larger filling angle and "
-                "volume, continuous with the bridge at contact) is given."
-            )
-    if by_v.size:
-        beta[by_v], s_star[by_v], status[by_v], past_fold, *values = _in_parallel(
-            _volume_rows, th[by_v], v_in[by_v] / R[by_v] ** 3, D[by_v] / R[by_v], ratio[by_v]
-        )
-        for k, v in zip(fields, values):
-            fields[k][by_v] = v
-        for i in by_v[past_fold > 0]:
-            note[i] = (
-                "stable at constant volume only (past the suction-controlled fold): at this suction "
-                "an open water supply would jump to a larger bridge; close to rupture"
-            )
-    shape = br.Bridge(**fields)
-    return BridgeResult(
-        source,
-        {"R": R, "gamma": gamma, "contact_angle_rad": th, "gap": D, "ratio": ratio},
-        beta,
-        s_star * gamma / R,
-        shape,
-        status,
-        note,
-        labels,
-        notes,
-    )
-
-
-_PARALLEL_ROWS = 30_000  # below this, one process is faster than starting a second
-
-
-def _suction_rows(th, s, D, rho):
-    """Suction-controlled rows: (beta, status, every field of the bridge) — one unit of parallel work."""
-    beta, status, b = br.bridge_at_suction(th, s, D, rho)
-    return (beta, status, *(getattr(b, k) for k in br.Bridge.__dataclass_fields__))
-
-
-def _volume_rows(th, V, D, rho):
-    """Volume-controlled rows (V = V_w / R^3): (beta, s*, status, past the suction-controlled fold (1.0 or 0.0),
-    every field of the bridge) — one unit of parallel work.
-
-    A bridge is past the fold when the stable bridge at its own suction and gap (suction control) is not
-    this one: an open water supply would make it jump to a larger bridge.
-    """
-    beta, s, status = br.solve_for_volume(th, V, D, rho)
-    ok = np.flatnonzero(status == 0)
-    past = np.zeros(beta.size)
-    if ok.size:
-        b_s, st_s = br.solve_for_suction(th[ok], s[ok], D[ok], rho[ok])
-        with np.errstate(invalid="ignore"):
-            past[ok] = (st_s != 0) | ~(np.abs(b_s - beta[ok]) <= 1e-6 * beta[ok])
-    b = br.bridge(beta, th, np.where(np.isfinite(s), s, 0.0), rho)
-    return (beta, s, status, past, *(getattr(b, k) for k in br.Bridge.__dataclass_fields__))
-
-
-def _in_parallel(solver, *columns):
-    """``solver(*columns)`` on both halves of the rows in two processes when there are many rows and two cores.
-
-    The second half is solved by a forked child (the run's :class:`_Helper` when one is open, see
-    :func:`helper`; else one forked for this call), which sends its result back through a pipe; should the child
-    fail, the parent solves that half itself, so an error is raised where it can be reported.
-    """
-    global _HELPER
-    from ..io.writers import second_core_free
-
-    n = columns[0].size
-    if n < _PARALLEL_ROWS or not (_HELPER_WANTED if _IN_RUN else second_core_free()):
-        return solver(*columns)  # few rows, or no core free (decided once for a run of blocks)
-    half = n // 2
-    second_half = [c[half:] for c in columns]
-    if _HELPER_WANTED and _HELPER is None:
-        _HELPER = _Helper()
-    if _HELPER is not None and _HELPER.alive:
-        _HELPER.submit(solver, second_half)
-        first = solver(*(c[:half] for c in columns))
-        second = _HELPER.result()
-    else:
-        with _Helper((solver, second_half)) as one:  # the job inherited by the child, not sent
-            first = solver(*(c[:half] for c in columns))
-            second = one.result()
-    if second is None:  # the child failed: this process solves its half (and raises what it raises)
-        second = solver(*second_half)
-    return tuple(np.concatenate([a, b]) for a, b in zip(first, second))
-
-
-class _Helper:
-    """A forked process that solves what it is sent (``submit``, then ``result``) until it is closed.
-
-    One helper serves every block of a long run (capred.pipelines.bridge_blocks): one fork per run instead of
-    one per block. Messages are pickles behind their length, over two pipes. The cyclic garbage collector
-    leaves the objects both processes share alone (``gc.freeze``) while the helper lives, so their pages stay
-    shared.
-    """
-
-    def __init__(self, job=None) -> None:
-        """Fork the helper; ``job`` ((solver, columns), optional) is its first, handed over by the fork."""
-        import gc
-        import os
-
-        to_child, self._to_child = os.pipe()
-        self._from_child, from_child = os.pipe()
-        gc.freeze()
-        self.pid = os.fork()
-        if self.pid == 0:  # the child: serve, then leave without running the parent's clean-up
-            code = 1
-            try:
-                gc.disable()  # numpy arrays only: nothing to collect
-                os.close(self._to_child)
-                os.close(self._from_child)
-                if job is not None:
-                    _send(from_child, _run(job))
-                self._serve(to_child, from_child)
-                code = 0
-            finally:
-                os._exit(code)
-        os.close(to_child)
-        os.close(from_child)
-        self.alive = True
-
-    @staticmethod
-    def _serve(inbox: int, outbox: int) -> None:
-        while (job := _receive(inbox)) is not None:
-            _send(outbox, _run(job))
-
-    def submit(self, solver, columns) -> None:
-        """Send a job (``solver`` must pickle: a module's function)."""
-        try:
-            _send(self._to_child, (solver, columns))
-        except (OSError, pickle.PicklingError, AttributeError, TypeError):
-            self.alive = False
-
-    def result(self):
-        """The child's answer; None when it failed or is gone."""
-        if not self.alive:
-            return None
-        try:
-            out = _receive(self._from_child)
-        except (OSError, EOFError):
-            out = None
-        if out is None:
-            self.alive = False
-        return out
-
-    def close(self) -> None:
-        import gc
-        import os
-        import signal
-
-        if self.pid is None:
-            return
-        try:
-            os.close(self._to_child)  # end of the jobs: the child leaves
-            os.close(self._from_child)
-            if not self.alive:  # it failed, or may be stuck: it goes
-                os.kill(self.pid, signal.SIGKILL)
-            os.waitpid(self.pid, 0)
-        except OSError:
-            pass
-        finally:
-            self.pid, self.alive = None, False
-            gc.unfreeze()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self.close()
-
-
-def _run(job):
-    """A helper's answer to (solver, columns): the result, or None when it fails (the parent solves it again and
-    reports the error)."""
-    solver, columns = job
-    try:
-        return solver(*columns)
-    except Exception:
-        return None
-
-
-def _send(fd: int, obj) -> None:
-    import os
-
-    data = pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
-    view = memoryview(len(data).to_bytes(8, "little") + data)
-    while view:
-        view = view[os.write(fd, view) :]
-
-
-def _receive(fd: int):
-    """The next message; None at the end of the pipe."""
-
-    head = _read_exactly(fd, 8)
-    if head is None:
-        return None
-    body = _read_exactly(fd, int.from_bytes(head, "little"))
-    if body is None:
-        raise EOFError("the helper process left mid-message")
-    return pickle.loads(body)
-
-
-def _read_exactly(fd: int, size: int) -> bytes | None:
-    import os
-
-    buf = bytearray()
-    while len(buf) < size:
-        chunk = os.read(fd, min(size - len(buf), 1 << 20))
-        if not chunk:
-            return None
-        buf += chunk
-    return bytes(buf)
-
-
-#: the helper process of the run under way (see :class:`helper`), else None; wanted inside such a run
-_HELPER: _Helper | None = None
-_HELPER_WANTED = False
-_IN_RUN = False
-
-
-class helper:
-    """Context of a long run: the second halves of its blocks go to one helper process, forked at the first
-    block that needs it (or at once with ``start``) and closed at the end
-    (capred.pipelines.bridge_blocks.solve_in_blocks).
-
-    Forked before the run's data are read (``start``), the two processes share only what was there before:
-    the pages the parent later fills are its own, not copies of shared ones.
-    """
-
-    def __init__(self, start: bool = False) -> None:
-        self.start = start
-
-    def __enter__(self):
-        from ..io.writers import second_core_free
-
-        global _HELPER, _HELPER_WANTED, _IN_RUN
-        _IN_RUN, _HELPER_WANTED = True, second_core_free()  # decided once for the run
-        if self.start and _HELPER_WANTED and _HELPER is None:
-            _HELPER = _Helper()
-        return self
-
-    def __exit__(self, *exc) -> None:
-        global _HELPER, _HELPER_WANTED, _IN_RUN
-        _IN_RUN = _HELPER_WANTED = False
-        if _HELPER is not None:
-            _HELPER.close()
-            _HELPER = None
+    if isinstance(source, Table):
+        return solve_table(source, opt)
+    return bridge_blocks.solve_in_blocks(source, opt)
 
 
 @renamed_keywords(sr_max="S_R_max")
@@ -687,6 +155,9 @@ class CurveResult(Result):
             cached = self.__dict__["_tables"] = {"curve": pd.DataFrame(cols)}
         return cached
 
+    def csv_tables(self) -> dict:
+        return {"curve": with_csv_headers(self.tables()["curve"])}
+
 
 @renamed_keywords(theta_deg="contact_angle_deg", sr_max="S_R_max")
 def bridge_curve(
@@ -766,15 +237,19 @@ class CompareResult(Result):
         b = self.bridges
         i_ = b.inputs_si
         R, g, th, D, rho = i_["R"], i_["gamma"], i_["contact_angle_rad"], i_["gap"], i_["ratio"]
+        th2 = i_.get("contact_angle2_rad", th)
         ok = b.status == 0
-        equal = rho == 1
+        equal = (rho == 1) & (th2 == th)  # the toroidal approximation: equal spheres, one contact angle
+        # two contact angles in the closed forms: cos(theta) -> (cos theta1 + cos theta2) / 2, their Derjaguin
+        # limit F = pi R* gamma (cos theta1 + cos theta2) (Willett et al. 2000, doi:10.1021/la000657y)
+        th_mean = np.where(th2 == th, th, np.arccos(0.5 * (np.cos(th) + np.cos(th2))))
         # Derjaguin's effective radius for unequal pairs: R* = 2 R R2 / (R + R2) (R for equal spheres, 2 R on a plane)
         r_eff = np.where(np.isinf(rho), 2.0 * R, 2.0 * R * rho / (1.0 + np.where(np.isinf(rho), 0.0, rho)))
         models = {
             "exact": (b.force, ok),
             "toroidal": (br.toroidal(b.beta, th, D / R)[2] * np.pi * g * R, ok & equal),
-            "willett": (br.willett_force(r_eff, g, th, self.volume_in, D), np.ones_like(ok)),
-            "israelachvili": (br.israelachvili_force(r_eff, g, th), np.ones_like(ok)),
+            "willett": (br.willett_force(r_eff, g, th_mean, self.volume_in, D), np.ones_like(ok)),
+            "israelachvili": (br.israelachvili_force(r_eff, g, th_mean), np.ones_like(ok)),
         }
         cols: dict = {"case": b.labels} if b.labels else {}
         cols["F_measured_mN"] = self.measured_force * 1e3
@@ -799,13 +274,16 @@ class CompareResult(Result):
     def tables(self) -> dict:
         return {"compare": self._frame()}
 
+    def csv_tables(self) -> dict:
+        return {"compare": with_csv_headers(self._frame())}
+
 
 def compare_measured(source, options: BridgeOptions | None = None) -> CompareResult:
     """Micro-tests: the exact bridge of each measured (R, R2, gap, contact angle, V_w) beside the measured force,
     the toroidal approximation (equal spheres), Willett et al. (2000) and Israelachvili (with Derjaguin's
     effective radius 2 R R2 / (R + R2) for unequal pairs and a plane)."""
     opt = options or BridgeOptions()
-    table, gamma, ratio = _read_cases(source, ("R", "contact_angle", "gap", "V_w"), (), opt)
+    table, gamma, ratio, th2 = _read_cases(source, ("R", "contact_angle", "gap", "V_w"), (), opt)
     if "F_cap" not in table.columns:
         table.missing_column("F_cap")
     table.raise_if_problems()
@@ -826,12 +304,13 @@ def compare_measured(source, options: BridgeOptions | None = None) -> CompareRes
         V,
         list(table.columns["case"]) if "case" in table.columns else None,
         table.notes,
+        th2,
     )
     res.options, res.inputs, res.warnings = opt, [input_file(source, table)], opt.warnings + table.warnings
     return CompareResult(res, table.columns["F_cap"], np.radians(table.get("filling_angle")), V)
 
 
-RUPTURE_SCHEMA = [CASE, RADIUS, RADIUS2, GAMMA, ANGLE, VOLUME]
+RUPTURE_SCHEMA = [CASE, RADIUS, RADIUS2, GAMMA, ANGLE, ANGLE2, VOLUME]
 
 
 @dataclass(repr=False)
@@ -903,19 +382,22 @@ class RuptureResult(Result):
     def tables(self) -> dict:
         return {"rupture": self._frame()}
 
+    def csv_tables(self) -> dict:
+        return {"rupture": with_csv_headers(self._frame())}
+
 
 def rupture_distances(source, options: BridgeOptions | None = None) -> RuptureResult:
     """Rupture distance of each (R, R2, contact_angle, V_w) row: the widest gap a bridge of that volume spans
     (Lian et al. 1993; pulled apart at constant volume), with the bridge at rupture."""
     opt = options or BridgeOptions()
-    table, gamma, ratio = _read_cases(source, ("R", "contact_angle", "V_w"), (), opt, RUPTURE_SCHEMA)
+    table, gamma, ratio, th2 = _read_cases(source, ("R", "contact_angle", "V_w"), (), opt, RUPTURE_SCHEMA)
     table.raise_if_problems()
     R, th, V = table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["V_w"]
-    D, beta, s, status = br.rupture_gap(th, V / R**3, ratio)
-    shape = br.bridge(beta, th, np.where(np.isfinite(s), s, 0.0), ratio)
+    D, beta, s, status = br.rupture_gap(th, V / R**3, ratio, th2)
+    shape = br.bridge(beta, th, np.where(np.isfinite(s), s, 0.0), ratio, th2)
     res = RuptureResult(
         table.path,
-        {"R": R, "gamma": gamma, "contact_angle_rad": th, "V_w": V, "ratio": ratio},
+        {"R": R, "gamma": gamma, "contact_angle_rad": th, "V_w": V, "ratio": ratio, "contact_angle2_rad": th2},
         D * R,
         beta,
         s * gamma / R,

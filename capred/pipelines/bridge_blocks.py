@@ -18,7 +18,7 @@ from ..io import blocks as blocks_module
 from ..io.blocks import read_table_blocks
 from ..progress import task
 from ..result import InputFile, Result, Spool, input_file
-from . import bridge as pb
+from . import bridge_solve as pb
 
 #: output columns that are text, not numbers (BridgeResult.columns leaves them out)
 _TEXT_COLUMNS = ("case", "status", "note")
@@ -84,7 +84,7 @@ class BridgeBlocks(Result):
         return {"solve": pd.DataFrame(self._all(), copy=False)}  # tables.xlsx: every row in memory
 
     def csv_tables(self) -> dict:
-        return {"solve": self.spool}  # written block by block
+        return {"solve": pb.HeadedSpool(self.spool)}  # written block by block, under name [unit] headers
 
 
 def solve_in_blocks(source, opt: pb.BridgeOptions):
@@ -107,7 +107,7 @@ def solve_in_blocks(source, opt: pb.BridgeOptions):
     InputError
         The problems of the first block that has any (nothing is returned).
     """
-    with pb.helper(start=_long(source)):  # one helper process (when two cores share the rows) for every block
+    with pb.helper(start=_long(source), workers=opt.workers):  # the same helper processes for every block
         return _solve_in_blocks(source, opt)
 
 
@@ -123,7 +123,7 @@ def _long(source) -> bool:
 def _solve_in_blocks(source, opt: pb.BridgeOptions):
     blocks = read_table_blocks(source, pb.SOLVE_SCHEMA)
     table = next(blocks)
-    res = pb.solve_bridges(table, opt)
+    res = pb.solve_table(table, opt)
     res.inputs = [input_file(source, table)]
     path = str(table.path)
     del table  # one block in memory at a time: its cells go before the next is read
@@ -140,7 +140,7 @@ def _solve_in_blocks(source, opt: pb.BridgeOptions):
         with task("solving bridges, block by block", total=-(-size // blocks_module.BLOCK_BYTES)) as advance:
             advance(1)  # the first block, solved above
             while table is not None:
-                part = pb.solve_bridges(table, opt)
+                part = pb.solve_table(table, opt)
                 del table
                 spool.append(part._cols())
                 status.append(part.status)

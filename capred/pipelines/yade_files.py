@@ -100,7 +100,7 @@ def capillary_file(ratio: float, contact_angle_rad: float, n_dist: int = 80, n_s
     g = br.gap_of(grid, theta, 0.0, r)
     j = int(np.nanargmax(g))
     lo, hi = grid[max(j - 1, 0)], grid[min(j + 1, grid.size - 1)]
-    b_star, g_star = br._golden(lambda x, i: br.gap_of(x, theta, 0.0, r), np.array([lo]), np.array([hi]))
+    b_star, g_star = br.golden(lambda x, i: br.gap_of(x, theta, 0.0, r), np.array([lo]), np.array([hi]))
     b_star, D_max = float(b_star[0]), float(g_star[0])
     # largest suction: the bridge at contact whose mean filling angle is MIN_MEAN_FILLING_ANGLE
     s_max = _suction_at_mean_filling_angle(theta, r, np.radians(MIN_MEAN_FILLING_ANGLE))
@@ -135,14 +135,14 @@ def _suction_at_mean_filling_angle(theta: float, r: float, target: float) -> flo
     def mean_angle(log_y0):
         y0 = np.exp(np.atleast_1d(log_y0))
         n = y0.size
-        s = br._suction_at_neck(y0, np.full(n, theta), np.full(n, r), np.zeros(n), "gap")
+        s = br.suction_at_neck(y0, np.full(n, theta), np.full(n, r), np.zeros(n), "gap")
         beta, b = br.from_neck(y0, theta, s, r)
         return 0.5 * (beta + b.delta2), s
 
     logs = np.linspace(np.log(1e-6), np.log(0.5), 60)
     m, _ = mean_angle(logs)
     k = int(np.flatnonzero(np.isfinite(m) & (m >= target))[0])
-    root = br._illinois(
+    root = br.illinois(
         lambda x, i: target - mean_angle(x)[0],
         np.array([logs[k - 1]]),
         np.array([logs[k]]),

@@ -1,0 +1,767 @@
+"""`capred bridge solve` on one table: its columns, options, result record, and the solver spread over the
+processes the run may use. capred.pipelines.bridge (the commands) and capred.pipelines.bridge_blocks (a long file
+block by block) both build on it; it imports neither.
+"""
+
+from __future__ import annotations
+
+import pickle
+from dataclasses import dataclass, field
+from itertools import repeat
+
+import numpy as np
+
+from ..errors import OptionError
+from ..io.table import Column, Table, read_table
+from ..physics import bridge as br
+from ..physics import shear as ph
+from ..result import InputFile, Options, Result, Rows, json_list, num
+
+# 1: the gap is too wide for this suction or volume; 3: so much water that the bridge would be
+# convex (water above air pressure), outside the pendular model
+STATUS = {
+    0: "ok",
+    1: "no bridge: beyond rupture",
+    2: "invalid input",
+    3: "no concave bridge: too much water",
+    4: "no bridge found: the solution did not reproduce the requested gap and volume (or suction) to 1e-9",
+}
+#: every bridge reported ok reproduces the requested gap and volume (or suction) to this relative tolerance
+VERIFY_RTOL = br.VERIFY_RTOL
+_PLANE = (("plane", np.inf), ("inf", np.inf), ("infinity", np.inf), ("\u221e", np.inf))
+
+CASE = Column("case", "text", None, "case label")  # aliases: nomenclature.COLUMN_ALIASES
+RADIUS = Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius", "R1"), "positive")
+RADIUS2 = Column(
+    "R2",
+    "length",
+    "mm",
+    "radius R2 of the second particle ('plane' or 'inf': a plane; absent: equal spheres)",
+    ("radius2", "second_radius"),
+    "positive",
+    words=_PLANE,
+)
+GAMMA = Column("gamma", "surface_tension", "N/m", "surface tension", ("surface_tension",), "positive")
+ANGLE = Column("contact_angle", "angle", "deg", "contact angle", ("theta", "wetting_angle"), "nonnegative")
+ANGLE2 = Column(
+    "contact_angle2",
+    "angle",
+    "deg",
+    "contact angle on the second particle (sphere R2 or plane; absent or blank: --contact-angle2, else contact_angle)",
+    ("theta2", "wetting_angle2", "contact_angle_2"),
+    "nonnegative",
+)
+VOLUME = Column("V_w", "volume", "mm^3", "water volume V_w", ("volume", "V", "Vw"), "positive")
+SOLVE_SCHEMA = [
+    CASE,
+    RADIUS,
+    RADIUS2,
+    GAMMA,
+    ANGLE,
+    ANGLE2,
+    Column("gap", "length", "mm", "gap D", ("D", "separation", "distance"), "nonnegative"),
+    Column("suction", "pressure", "kPa", "suction", ("delta_u", "ua_uw"), "nonnegative"),
+    VOLUME,
+    Column("F_cap", "force", "mN", "measured force F_cap", ("F", "force", "F_measured"), "nonnegative"),
+    Column("filling_angle", "angle", "deg", "measured filling angle", ("beta", "half_filling_angle"), "nonnegative"),
+]
+
+
+@dataclass(frozen=True)
+class BridgeOptions(Options):
+    """Options of `capred bridge solve`, `compare` and `rupture`.
+
+    Attributes
+    ----------
+    surface_tension : float
+        Surface tension [N/m, or a string with a unit] of rows without a ``gamma`` value.
+    contact_angle2 : float, optional
+        Contact angle on the second particle [deg] of rows without a ``contact_angle2`` value; None (the
+        default): the row's ``contact_angle`` (one angle on both particles).
+    workers : int, optional
+        Processes that solve the rows (``--workers``); None: ``CAPRED_PROCESSES`` when set, else the cores this
+        process may use that the load leaves idle. The results are the same, to the bit, for any number.
+    """
+
+    QUANTITIES = {"surface_tension": "surface_tension", "contact_angle2": "contact_angle"}
+
+    surface_tension: float = ph.SURFACE_TENSION
+    contact_angle2: float | None = None
+    workers: int | None = None
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if self.contact_angle2 is not None and not 0 <= self.contact_angle2 < 90:
+            raise OptionError(
+                f"contact_angle2 (--contact-angle2): pendular bridges need a contact angle in [0, 90) deg "
+                f"(got {self.contact_angle2:g} deg)"
+            )
+        if self.workers is not None and (
+            isinstance(self.workers, bool) or int(self.workers) != self.workers or self.workers < 1
+        ):
+            raise OptionError(f"workers (--workers): a whole number of processes >= 1 (got {self.workers!r})")
+
+
+@dataclass(repr=False)
+class BridgeResult(Result):
+    """Bridges, one per case, SI inside; tables and JSON in mm, mN, kPa."""
+
+    command = "bridge solve"
+    json_name = "solve.json"
+
+    source: str
+    #: per case, SI: R and R2/R ratio [m, -], gamma [N/m], contact_angle_rad [rad], gap [m]
+    inputs_si: dict[str, np.ndarray]
+    beta: np.ndarray  # filling angle on particle 1 [rad]
+    suction: np.ndarray  # Pa
+    shape: br.Bridge  # dimensionless, units of R and gamma
+    status: np.ndarray
+    note: list[str]
+    labels: list[str] | None = None
+    notes: list[str] = field(default_factory=list)
+    options: BridgeOptions | None = None
+    inputs: list[InputFile] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def volume(self) -> np.ndarray:
+        """Water volume [m^3]."""
+        return self.shape.volume * self.inputs_si["R"] ** 3
+
+    @property
+    def force(self) -> np.ndarray:
+        """Capillary force [N]."""
+        return self.shape.force * np.pi * self.inputs_si["gamma"] * self.inputs_si["R"]
+
+    @property
+    def neck(self) -> np.ndarray:
+        """Neck radius r0 [m] (a virtual neck, behind one contact, when the meridian widens across the bridge)."""
+        return self.shape.neck * self.inputs_si["R"]
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """Output columns (mm, mN, mm^3, mm^2, deg, kPa); NaN where no bridge was found.
+
+        S_R = 3 V_w / (2 pi R^3) and sigma' = F / (pi R^2) are the unit cell of the particle of radius R
+        (Evenepoel's thesis); nn11 = nn22 and nn33 are the transverse and axial components of the
+        integral of n (x) n over the liquid-gas interface (area = 2 nn11 + nn33).
+        """
+        R, g = self.inputs_si["R"], self.inputs_si["gamma"]
+        ok = self.status == 0
+        b = self.shape
+
+        def out(x):
+            return np.where(ok, x, np.nan)
+
+        return {
+            "r0_mm": out(self.neck * 1e3),
+            "F_cap_mN": out(self.force * 1e3),
+            "F_L_mN": out(np.pi * self.neck**2 * self.suction * 1e3),
+            "F_T_mN": out(2 * np.pi * self.neck * g * 1e3),
+            "V_w_mm3": out(self.volume * 1e9),
+            "filling_angle_deg": out(np.degrees(self.beta)),
+            "filling_angle2_deg": out(np.degrees(b.delta2)),
+            "suction_kPa": out(self.suction / 1e3),
+            "S_R": out(3 * self.volume / (2 * np.pi * R**3)),
+            "sigma_prime_kPa": out(self.force / (np.pi * R**2) / 1e3),
+            "area_mm2": out(b.area * R**2 * 1e6),
+            "nn11_mm2": out(b.nn11 * R**2 * 1e6),
+            "nn33_mm2": out(b.nn33 * R**2 * 1e6),
+        }
+
+    @staticmethod
+    def status_text(code: int) -> str:
+        return STATUS[int(code)]
+
+    def _cols(self) -> dict:
+        """Every output column (arrays; text as object arrays), computed once."""
+        cached = self.__dict__.get("_cols_cache")
+        if cached is None:
+            cached = ({"case": np.asarray(self.labels, dtype=object)} if self.labels else {}) | self.columns()
+            cached["status"] = np.array([STATUS[k] for k in range(len(STATUS))], dtype=object)[self.status.astype(int)]
+            cached["note"] = np.asarray(self.note, dtype=object)
+            self.__dict__["_cols_cache"] = cached
+        return cached
+
+    def _frame(self):
+        import pandas as pd
+
+        return pd.DataFrame(self._cols(), copy=False)
+
+    def rows_range(self, start: int, stop: int) -> list[dict]:
+        """JSON rows start..stop (NaN as None, an empty note left out), built column by column."""
+        return json_rows(self._cols_range(start, stop))
+
+    def _cols_range(self, start: int, stop: int) -> dict:
+        return {k: v[start:stop] for k, v in self._cols().items()}
+
+    def rows(self) -> list[dict]:
+        return self.rows_range(0, self.status.size)
+
+    def payload(self, lazy: bool = False) -> dict:
+        n = self.status.size
+        return {"source": self.source, "bridges": ColumnRows(n, self._cols_range) if lazy else self.rows()}
+
+    def tables(self) -> dict:
+        return {"solve": self._frame()}
+
+    def csv_tables(self) -> dict:
+        return {"solve": with_csv_headers(self._cols())}
+
+
+#: unit suffixes of the JSON keys, longest first, and the unit each names in a CSV header
+_SUFFIXES = (
+    ("_N_per_m", "N/m"),
+    ("_mm3", "mm^3"),
+    ("_mm2", "mm^2"),
+    ("_mm", "mm"),
+    ("_mN", "mN"),
+    ("_deg", "deg"),
+    ("_kPa", "kPa"),
+)
+#: columns of text (no unit in their header)
+TEXT_COLUMNS = ("case", "status", "note", "model", "law", "region")
+
+
+def csv_header(key: str) -> str:
+    """The CSV header of a JSON key of a bridge table: ``name [unit]`` (``r0_mm`` -> ``r0 [mm]``, ``S_R`` ->
+    ``S_R [-]``); a text column keeps its name.
+
+    Parameters
+    ----------
+    key : str
+        The JSON key (unit suffix form, kept in JSON for compatibility).
+
+    Returns
+    -------
+    str
+        The header in the house's ``name [unit]`` form.
+    """
+    if key in TEXT_COLUMNS:
+        return key
+    for suffix, unit in _SUFFIXES:
+        if key.endswith(suffix):
+            return f"{key[: -len(suffix)]} [{unit}]"
+    return f"{key} [-]"
+
+
+class HeadedSpool:
+    """A :class:`capred.result.Spool` of JSON-keyed columns whose blocks the CSV writer reads under
+    ``name [unit]`` headers (the spool itself is not copied)."""
+
+    def __init__(self, spool) -> None:
+        self.spool = spool
+
+    def blocks(self):
+        """The spool's blocks with CSV headers."""
+        for block in self.spool.blocks():
+            yield with_csv_headers(block)
+
+
+def with_csv_headers(table):
+    """A table (dict of columns or DataFrame) with ``name [unit]`` headers (see :func:`csv_header`).
+
+    Parameters
+    ----------
+    table : dict or pandas.DataFrame
+        Columns under their JSON keys.
+
+    Returns
+    -------
+    dict or pandas.DataFrame
+        The same columns (not copied: a dict of the same arrays, or a renamed view) under CSV headers.
+    """
+    if isinstance(table, dict):
+        return {csv_header(k): v for k, v in table.items()}
+    return table.rename(columns=csv_header, copy=False)
+
+
+def json_rows(cols: dict[str, np.ndarray], nan_as_none: bool = True) -> list[dict]:
+    """JSON rows of output columns (an empty note left out), built column by column.
+
+    Parameters
+    ----------
+    cols : dict of str to numpy.ndarray
+        Output columns of equal length, with a ``note`` column (object arrays: text).
+    nan_as_none : bool, default True
+        Non-finite numbers as None; False keeps them as floats, for an encoder that writes them as null
+        (orjson, :func:`capred.io.writers.stream_json`): the same JSON, without an object array per column.
+
+    Returns
+    -------
+    list of dict
+        One dict per row, keys in column order, ``note`` last and only where it is not empty.
+    """
+    keys = [k for k in cols if k != "note"]
+    values = [cols[k].tolist() if cols[k].dtype == object or not nan_as_none else json_list(cols[k]) for k in keys]
+    out = list(map(dict, map(zip, repeat(keys), zip(*values))))
+    for r, note in zip(out, cols["note"].tolist()):
+        if note:
+            r["note"] = note
+    return out
+
+
+class ColumnRows(Rows):
+    """JSON rows made on demand from output columns (``columns(start, stop)``), which the writer encodes chunk
+    by chunk straight from the columns (:meth:`json_chunks`: no None per non-finite cell, the same bytes)."""
+
+    def __init__(self, n: int, columns) -> None:
+        super().__init__(n, lambda start, stop: json_rows(columns(start, stop)))
+        self.columns = columns
+
+    def json_chunks(self, size: int = 2000):
+        """The rows' JSON objects joined by commas, ``size`` rows per chunk (bytes, no brackets)."""
+        from ..io.writers import encode_rows
+
+        for start in range(0, self.n, size):
+            yield encode_rows(_json_chunk_rows(self.columns(start, min(self.n, start + size))))
+
+
+def _json_chunk_rows(cols: dict) -> list[dict]:
+    """``json_rows(cols, nan_as_none=False)`` for the writer: the rows without any number (no bridge) and
+    without a note share one dict per status, so only the rows with a bridge cost a dict of their own."""
+    n = len(cols["status"])
+    numeric = [k for k, v in cols.items() if v.dtype != object]
+    if not numeric or any(v.dtype == object and k not in ("status", "note") for k, v in cols.items()):
+        return json_rows(cols, nan_as_none=False)  # a case label per row: nothing to share
+    empty = cols["note"] == ""
+    for k in numeric:
+        empty &= ~np.isfinite(cols[k])
+    if not empty.any():
+        return json_rows(cols, nan_as_none=False)
+    rows = np.empty(n, dtype=object)
+    full = np.flatnonzero(~empty)
+    if full.size:
+        rows[full] = json_rows({k: v[full] for k, v in cols.items()}, nan_as_none=False)
+    status = cols["status"]
+    for text in dict.fromkeys(status[empty].tolist()):
+        same = np.flatnonzero(empty & (status == text))
+        shared = json_rows({k: v[same[:1]] for k, v in cols.items()}, nan_as_none=False)[0]
+        rows[same] = [shared] * same.size
+    return rows.tolist()
+
+
+def _records(frame, drop_empty: str | None = None) -> list[dict]:
+    """DataFrame rows as dicts, NaN as None, an empty ``drop_empty`` cell left out."""
+    keys = list(frame.columns)
+    cols = [[num(x) if isinstance(x, float) else x for x in frame[k].tolist()] for k in keys]
+    out = []
+    for values in zip(*cols):
+        r = dict(zip(keys, values))
+        if drop_empty is not None and not r.get(drop_empty):
+            r.pop(drop_empty, None)
+        out.append(r)
+    return out
+
+
+def _read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, ...], opt: BridgeOptions, schema=None):
+    """The table of cases (read from ``source``, or a Table already read) with its surface tension, radius
+    ratio R2/R (1 without an R2 column) and the contact angle on the second particle [rad]."""
+    table = source if isinstance(source, Table) else read_table(source, schema or SOLVE_SCHEMA)
+    for name in required:
+        if name not in table.columns:
+            table.missing_column(name)
+    if required_one_of and not any(n in table.columns for n in required_one_of):
+        table.missing_column(required_one_of[0], "".join(f" (or '{n}')" for n in required_one_of[1:]))
+    if any(n not in table.columns for n in required) or (
+        required_one_of and not any(n in table.columns for n in required_one_of)
+    ):
+        table.raise_if_problems()  # without its columns nothing else can be checked
+    gamma = table.get("gamma").copy()
+    gamma[np.isnan(gamma)] = opt.surface_tension
+    for name in ("contact_angle", "contact_angle2"):
+        for i in np.flatnonzero(table.get(name) >= 90):
+            table.add_problem(
+                i,
+                name,
+                f"contact angle {table.value_text(name, i)} deg: pendular bridges need a contact angle below 90 deg",
+            )
+    reported = {(p.line, p.column) for p in table.problems}  # a cell already explained (text in a number)
+    for name in required:
+        for i in np.flatnonzero(np.isnan(table.columns[name])):
+            if (int(table.lines[i]), table.headers.get(name, name)) not in reported:
+                table.add_problem(i, name, f"blank {name}")
+    ratio = np.ones(len(table))
+    if "R2" in table.columns:
+        for i in np.flatnonzero(np.isnan(table.columns["R2"])):
+            table.add_problem(i, "R2", "blank R2 (give a radius, or 'plane')")
+        ratio = table.columns["R2"] / table.columns["R"]
+    angle2 = table.get("contact_angle2").copy()
+    blank = np.isnan(angle2)
+    angle2[blank] = table.columns["contact_angle"][blank] if opt.contact_angle2 is None else opt.contact_angle2
+    return table, gamma, ratio, np.radians(angle2)
+
+
+def solve_table(table: Table, options: BridgeOptions | None = None) -> BridgeResult:
+    """One bridge per row of a table already read: R (and R2), gamma, contact_angle (and contact_angle2), gap and
+    suction or V_w (the work of :func:`capred.pipelines.bridge.solve_bridges` on one table or block)."""
+    opt = options or BridgeOptions()
+    table, gamma, ratio, th2 = _read_cases(table, ("R", "contact_angle", "gap"), ("suction", "V_w"), opt)
+    s_in, v_in = table.get("suction"), table.get("V_w")
+    for i in np.flatnonzero(np.isnan(s_in) & np.isnan(v_in)):
+        table.add_problem(i, "suction" if "suction" in table.columns else "V_w", "give suction or V_w")
+    for i in np.flatnonzero(np.isfinite(s_in) & np.isfinite(v_in)):
+        table.add_problem(i, "V_w", "give suction or V_w, not both")
+    table.raise_if_problems()
+    R, th, D = table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["gap"]
+    res = _solve(
+        table.path,
+        R,
+        gamma,
+        th,
+        D,
+        ratio,
+        s_in,
+        v_in,
+        list(table.columns["case"]) if "case" in table.columns else None,
+        table.notes,
+        th2,
+        opt.workers,
+    )
+    res.options, res.warnings = opt, opt.warnings + table.warnings  # inputs: set by solve_in_blocks
+    return res
+
+
+def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None, th2=None, workers=None) -> BridgeResult:
+    """Suction-controlled rows (s_in finite) and volume-controlled rows (v_in finite), SI in; ``th2`` the contact
+    angle on the second particle [rad] (None: ``th``); ``workers``: processes (None: see :func:`processes`)."""
+    th2 = th if th2 is None else th2
+    n = R.size
+    beta, s_star, status = np.full(n, np.nan), np.full(n, np.nan), np.full(n, 2)
+    by_s = np.flatnonzero(np.isfinite(s_in))
+    by_v = np.flatnonzero(np.isfinite(v_in))
+    note = [""] * n
+    notes = list(notes or [])
+    fields = {k: np.full(n, np.nan) for k in br.Bridge.__dataclass_fields__}
+    if by_s.size:
+        s_star[by_s] = s_in[by_s] * R[by_s] / gamma[by_s]
+        beta[by_s], status[by_s], *values = _in_parallel(
+            _suction_rows, th[by_s], s_star[by_s], D[by_s] / R[by_s], ratio[by_s], th2[by_s], workers=workers
+        )
+        for k, v in zip(fields, values):
+            fields[k][by_s] = v
+        if np.any((status[by_s] == 0) & (D[by_s] > 0)):
+            notes.append(
+                "At a given gap and suction two bridges fit; the stable one (larger filling angle and "
+                "volume, continuous with the bridge at contact) is given."
+            )
+    if by_v.size:
+        beta[by_v], s_star[by_v], status[by_v], past_fold, *values = _in_parallel(
+            _volume_rows,
+            th[by_v],
+            v_in[by_v] / R[by_v] ** 3,
+            D[by_v] / R[by_v],
+            ratio[by_v],
+            th2[by_v],
+            workers=workers,
+        )
+        for k, v in zip(fields, values):
+            fields[k][by_v] = v
+        for i in by_v[past_fold > 0]:
+            note[i] = (
+                "stable at constant volume only (past the suction-controlled fold): at this suction "
+                "an open water supply would jump to a larger bridge; close to rupture"
+            )
+    shape = br.Bridge(**fields)
+    return BridgeResult(
+        source,
+        {"R": R, "gamma": gamma, "contact_angle_rad": th, "gap": D, "ratio": ratio, "contact_angle2_rad": th2},
+        beta,
+        s_star * gamma / R,
+        shape,
+        status,
+        note,
+        labels,
+        notes,
+    )
+
+
+_PARALLEL_ROWS = 30_000  # below this, one process is faster than starting a second
+
+
+def _suction_rows(th, s, D, rho, th2):
+    """Suction-controlled rows: (beta, status, every field of the bridge) — one unit of parallel work."""
+    beta, status, b = br.bridge_at_suction(th, s, D, rho, th2)
+    return (beta, status, *(getattr(b, k) for k in br.Bridge.__dataclass_fields__))
+
+
+def _volume_rows(th, V, D, rho, th2):
+    """Volume-controlled rows (V = V_w / R^3): (beta, s*, status, past the suction-controlled fold (1.0 or 0.0),
+    every field of the bridge) — one unit of parallel work.
+
+    A bridge is past the fold when the stable bridge at its own suction and gap (suction control) is not
+    this one: an open water supply would make it jump to a larger bridge.
+    """
+    beta, s, status = br.solve_for_volume(th, V, D, rho, th2)
+    ok = np.flatnonzero(status == 0)
+    past = np.zeros(beta.size)
+    if ok.size:
+        b_s, st_s = br.solve_for_suction(th[ok], s[ok], D[ok], rho[ok], th2[ok])
+        with np.errstate(invalid="ignore"):
+            past[ok] = (st_s != 0) | ~(np.abs(b_s - beta[ok]) <= 1e-6 * beta[ok])
+    b = br.bridge(beta, th, np.where(np.isfinite(s), s, 0.0), rho, th2)
+    return (beta, s, status, past, *(getattr(b, k) for k in br.Bridge.__dataclass_fields__))
+
+
+def processes(requested: int | None = None) -> int:
+    """How many processes may solve the rows of this run.
+
+    Parameters
+    ----------
+    requested : int, optional
+        ``--workers`` / ``BridgeOptions.workers``: this many, whatever the load (one where fork is missing).
+
+    Returns
+    -------
+    int
+        ``requested``; else the environment's ``CAPRED_PROCESSES`` (any whole number >= 1); else one per core
+        this process may use (its CPU affinity) that the load average leaves idle, this run counting as one
+        (two cores and a load below 1.5: two; 16 cores and a load of 8: nine); one in a batch's worker process
+        (the batch already spreads its files over the cores) and where ``os.fork`` is missing.
+
+    Notes
+    -----
+    On a busy shared machine a second process's extra CPU buys no time: measured on ``capred bridge solve`` of
+    100,000 rows with the other core busy, 1.30 s CPU and 1.10 s wall in two processes against 1.22 s and 1.02 s
+    in one (benchmarks/bench_bridge_cli.py); hence the load rule.
+    """
+    import math
+    import os
+    import sys
+
+    if os.name != "posix" or not hasattr(os, "fork"):
+        return 1
+    if requested is not None:
+        return max(1, int(requested))
+    forced = os.environ.get("CAPRED_PROCESSES", "").strip()
+    if forced.isdigit() and int(forced) >= 1:
+        return int(forced)
+    mp = sys.modules.get("multiprocessing")  # a batch's worker has imported it; a plain run has not
+    if mp is not None and mp.current_process().daemon:
+        return 1
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # pragma: no cover - not Linux
+        cores = os.cpu_count() or 1
+    try:
+        load = os.getloadavg()[0]
+    except OSError:
+        load = 0.0
+    return max(1, min(cores, math.ceil(cores - 0.5 - load) + 1))
+
+
+def _parts(n: int, k: int) -> list[tuple[int, int]]:
+    """(start, stop) of ``k`` contiguous parts of ``n`` rows, as equal as can be, the first part the smallest."""
+    edges = [(n * j) // k for j in range(k + 1)]
+    return [(edges[j], edges[j + 1]) for j in range(k)]
+
+
+def _in_parallel(solver, *columns, workers: int | None = None):
+    """``solver(*columns)`` on contiguous parts of the rows in as many processes as the run may use.
+
+    Parts 2..k are solved by forked children (the run's helpers when a run is open, see :class:`helper`; else
+    ones forked for this call, which inherit their part instead of receiving it), each sending its result
+    back through a pipe, while this process solves part 1; should a child fail, this process solves its
+    part itself, so an error is raised where it can be reported. Each row is computed by the same operations
+    whatever part it falls in (see capred.physics.bridge._quad), so the result is the same to the bit for
+    any number of processes. A part holds at least _PARALLEL_ROWS / 2 rows (fewer rows: fewer processes).
+    """
+    n = columns[0].size
+    wanted = _RUN_PROCESSES if _IN_RUN and workers is None else processes(workers)
+    k = max(1, min(wanted, n // max(1, _PARALLEL_ROWS // 2)))
+    if k == 1:
+        return solver(*columns)
+    parts = _parts(n, k)
+    jobs = [[c[a:b] for c in columns] for a, b in parts]
+    if _IN_RUN:
+        while len(_HELPERS) < k - 1:
+            _HELPERS.append(_Helper())
+        helpers = _HELPERS[: k - 1]
+        for h, job in zip(helpers, jobs[1:]):
+            h.submit(solver, job)
+        own = []
+    else:
+        own = helpers = [_Helper((solver, job)) for job in jobs[1:]]  # each job inherited by its child, not sent
+    try:
+        results = [solver(*jobs[0])]
+        for h, job in zip(helpers, jobs[1:]):
+            got = h.result()
+            results.append(solver(*job) if got is None else got)  # a child failed: solved (and raised) here
+    finally:
+        for h in own:
+            h.close()
+    return tuple(np.concatenate(parts_) for parts_ in zip(*results))
+
+
+class _Helper:
+    """A forked process that solves what it is sent (``submit``, then ``result``) until it is closed.
+
+    ``live``: the helpers not yet closed (a child forked later closes its copies of their pipes).
+
+    One helper serves every block of a long run (capred.pipelines.bridge_blocks): one fork per run instead of
+    one per block. Messages are pickles behind their length, over two pipes. The cyclic garbage collector
+    leaves the objects both processes share alone (``gc.freeze``) while the helper lives, so their pages stay
+    shared.
+    """
+
+    live: list = []
+
+    def __init__(self, job=None) -> None:
+        """Fork the helper; ``job`` ((solver, columns), optional) is its first, handed over by the fork."""
+        import gc
+        import os
+
+        to_child, self._to_child = os.pipe()
+        self._from_child, from_child = os.pipe()
+        gc.freeze()
+        self.pid = os.fork()
+        if self.pid == 0:  # the child: serve, then leave without running the parent's clean-up
+            code = 1
+            try:
+                gc.disable()  # numpy arrays only: nothing to collect
+                os.close(self._to_child)
+                os.close(self._from_child)
+                for other in _Helper.live:  # the parent's ends of the other helpers' pipes: theirs alone, so
+                    for fd in (other._to_child, other._from_child):  # that each sees its end of jobs
+                        try:
+                            os.close(fd)
+                        except OSError:
+                            pass
+                if job is not None:
+                    _send(from_child, _run(job))
+                self._serve(to_child, from_child)
+                code = 0
+            finally:
+                os._exit(code)
+        os.close(to_child)
+        os.close(from_child)
+        self.alive = True
+        _Helper.live.append(self)
+
+    @staticmethod
+    def _serve(inbox: int, outbox: int) -> None:
+        while (job := _receive(inbox)) is not None:
+            _send(outbox, _run(job))
+
+    def submit(self, solver, columns) -> None:
+        """Send a job (``solver`` must pickle: a module's function)."""
+        try:
+            _send(self._to_child, (solver, columns))
+        except (OSError, pickle.PicklingError, AttributeError, TypeError):
+            self.alive = False
+
+    def result(self):
+        """The child's answer; None when it failed or is gone."""
+        if not self.alive:
+            return None
+        try:
+            out = _receive(self._from_child)
+        except (OSError, EOFError):
+            out = None
+        if out is None:
+            self.alive = False
+        return out
+
+    def close(self) -> None:
+        import gc
+        import os
+        import signal
+
+        if self.pid is None:
+            return
+        try:
+            os.close(self._to_child)  # end of the jobs: the child leaves
+            os.close(self._from_child)
+            if not self.alive:  # it failed, or may be stuck: it goes
+                os.kill(self.pid, signal.SIGKILL)
+            os.waitpid(self.pid, 0)
+        except OSError:
+            pass
+        finally:
+            self.pid, self.alive = None, False
+            if self in _Helper.live:
+                _Helper.live.remove(self)
+            if not _Helper.live:
+                gc.unfreeze()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+def _run(job):
+    """A helper's answer to (solver, columns): the result, or None when it fails (the parent solves it again and
+    reports the error)."""
+    solver, columns = job
+    try:
+        return solver(*columns)
+    except Exception:
+        return None
+
+
+def _send(fd: int, obj) -> None:
+    import os
+
+    data = pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
+    view = memoryview(len(data).to_bytes(8, "little") + data)
+    while view:
+        view = view[os.write(fd, view) :]
+
+
+def _receive(fd: int):
+    """The next message; None at the end of the pipe."""
+
+    head = _read_exactly(fd, 8)
+    if head is None:
+        return None
+    body = _read_exactly(fd, int.from_bytes(head, "little"))
+    if body is None:
+        raise EOFError("the helper process left mid-message")
+    return pickle.loads(body)
+
+
+def _read_exactly(fd: int, size: int) -> bytes | None:
+    import os
+
+    buf = bytearray()
+    while len(buf) < size:
+        chunk = os.read(fd, min(size - len(buf), 1 << 20))
+        if not chunk:
+            return None
+        buf += chunk
+    return bytes(buf)
+
+
+#: the helper processes of the run under way (see :class:`helper`); the processes the run may use
+_HELPERS: list = []
+_RUN_PROCESSES = 1
+_IN_RUN = False
+
+
+class helper:
+    """Context of a long run: parts 2..k of its blocks go to the same k - 1 helper processes, forked at the
+    first block that needs them (or at once with ``start``) and closed at the end
+    (capred.pipelines.bridge_blocks.solve_in_blocks). The number of processes is decided once for the run
+    (:func:`processes`).
+
+    Forked before the run's data are read (``start``), the processes share only what was there before:
+    the pages the parent later fills are its own, not copies of shared ones.
+    """
+
+    def __init__(self, start: bool = False, workers: int | None = None) -> None:
+        self.start, self.workers = start, workers
+
+    def __enter__(self):
+        global _RUN_PROCESSES, _IN_RUN
+        _IN_RUN, _RUN_PROCESSES = True, processes(self.workers)  # decided once for the run
+        if self.start:
+            while len(_HELPERS) < _RUN_PROCESSES - 1:
+                _HELPERS.append(_Helper())
+        return self
+
+    def __exit__(self, *exc) -> None:
+        global _RUN_PROCESSES, _IN_RUN
+        _IN_RUN, _RUN_PROCESSES = False, 1
+        while _HELPERS:
+            _HELPERS.pop().close()

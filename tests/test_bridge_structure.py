@@ -1,0 +1,46 @@
+"""The bridge modules' structure (issue 28): no import circle, no private name across modules, CSV headers."""
+
+import ast
+import re
+from pathlib import Path
+
+import numpy as np
+
+from capred.pipelines import bridge_solve as bs
+
+PKG = Path(__file__).resolve().parents[1] / "capred"
+
+
+def _imports(path: Path) -> set[str]:
+    """Modules a file imports (relative imports resolved inside capred.pipelines)."""
+    out = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.ImportFrom):
+            mod = node.module or ""
+            if node.level == 1:  # from . import x / from .x import y
+                out |= {f"pipelines.{mod}"} if mod else {f"pipelines.{a.name}" for a in node.names}
+            else:
+                out.add(mod)
+    return out
+
+
+def test_no_import_circle_between_the_bridge_pipelines():
+    solve = _imports(PKG / "pipelines" / "bridge_solve.py")
+    blocks = _imports(PKG / "pipelines" / "bridge_blocks.py")
+    assert "pipelines.bridge" not in solve and "pipelines.bridge_blocks" not in solve
+    assert "pipelines.bridge" not in blocks  # bridge -> bridge_blocks -> bridge_solve, never back
+
+
+def test_yade_files_uses_only_public_root_finders():
+    text = (PKG / "pipelines" / "yade_files.py").read_text()
+    assert re.findall(r"\bbr\._\w+", text) == []
+
+
+def test_csv_headers_name_their_unit():
+    assert bs.csv_header("r0_mm") == "r0 [mm]"
+    assert bs.csv_header("V_w_mm3") == "V_w [mm^3]"
+    assert bs.csv_header("area_mm2") == "area [mm^2]"
+    assert bs.csv_header("S_R") == "S_R [-]"
+    assert bs.csv_header("case") == "case"
+    cols = {"F_cap_mN": np.array([1.0]), "status": np.array(["ok"], dtype=object)}
+    assert list(bs.with_csv_headers(cols)) == ["F_cap [mN]", "status"]
