@@ -434,7 +434,59 @@ def sigma3_at_failure(sigma1_eff, c, phi_deg):
     return (np.asarray(sigma1_eff, float) - 2.0 * c * np.sqrt(kp)) / kp
 
 
-def drained_strength(p0_eff, c, phi_deg, branch="compression"):
+#: Stress paths of a drained extension test from the isotropic state, by their slope dq/dp in the (p, q) plane
+#: (q = sigma1 - sigma3 > 0): the axial stress falls at constant cell pressure (slope -3, the default) or the
+#: cell pressure rises at constant axial stress (slope 3/2).
+EXTENSION_PATHS = {"axial-unloading": -3.0, "radial-loading": 1.5}
+
+
+def extension_failure_on_path(p0_eff, c, phi_deg, slope=-3.0):
+    r"""Image point :math:`(p', q')` where a drained extension path from :math:`(p'_0, 0)` meets the envelope.
+
+    Parameters
+    ----------
+    p0_eff : numeric
+        Initial isotropic effective stress :math:`p'_0` [Pa].
+    c : numeric
+        Effective cohesion :math:`c'` [Pa].
+    phi_deg : numeric
+        Effective friction angle :math:`arphi'` [deg].
+    slope : float, default -3
+        Slope :math:`\eta = dq/dp` of the path [-]: -3 for axial unloading at constant cell pressure, 3/2
+        for radial loading at constant axial stress (:data:`EXTENSION_PATHS`); not 0 and not equal to
+        :math:`M_e`.
+
+    Returns
+    -------
+    p_prime, q_prime : numeric
+        Mean effective stress and deviator at failure [Pa].
+
+    Notes
+    -----
+    The path :math:`p' = p'_0 + q'/\eta` meets the extension envelope :math:`q' = M_e p' + k_e`
+    (:func:`envelope_qp`, eq. 25 in extension) at
+
+    .. math::
+
+       q' = rac{M_e p'_0 + k_e}{1 - M_e/\eta}
+
+    With :math:`\eta = -3` it is :math:`q' = p'_0 - (p'_0 - 2c'\sqrt{K_p})/K_p` (:math:`\sigma'_1 =
+    \sigma'_2 = p'_0`).
+
+    References
+    ----------
+    .. [1] Prunier, F., Branque, D., Duriez, J. & Darve, F. (2024). Eur. J.
+       Environ. Civ. Eng. doi:10.1080/19648189.2024.2314099, eq. 25.
+    """
+    M, k = envelope_qp(c, phi_deg, "extension")
+    if slope == 0 or slope == M:
+        raise ValueError(f"an extension path of slope {slope:g} never meets the envelope (slope {M:.4g})")
+    p0 = np.asarray(p0_eff, float)
+    q = (M * p0 + k) / (1.0 - M / slope)
+    return p0 + q / slope, q
+
+
+def drained_strength(p0_eff, c, phi_deg, branch="compression", extension_slope=-3.0):
     r"""Deviator at failure :math:`q'_{sat}` of a drained test from the isotropic state :math:`p'_0`.
 
     Parameters
@@ -449,7 +501,9 @@ def drained_strength(p0_eff, c, phi_deg, branch="compression"):
         The cell (radial) pressure is held at :math:`p'_0` in both: in
         compression the axial stress rises (:math:`\sigma'_3 = p'_0`, slope
         3 in the :math:`(p, q)` plane), in extension it falls
-        (:math:`\sigma'_1 = \sigma'_2 = p'_0`, slope -3).
+        (:math:`\sigma'_1 = \sigma'_2 = p'_0`, slope -3) unless ``extension_slope`` says otherwise.
+    extension_slope : float, default -3
+        Slope dq/dp of the extension path (:func:`extension_failure_on_path`) [-].
 
     Returns
     -------
@@ -475,7 +529,7 @@ def drained_strength(p0_eff, c, phi_deg, branch="compression"):
     comp = sigma1_at_failure(p0, c, phi_deg) - p0
     if not np.any(ext):
         return comp
-    return np.where(ext, p0 - sigma3_at_failure(p0, c, phi_deg), comp)
+    return np.where(ext, extension_failure_on_path(p0, c, phi_deg, extension_slope)[1], comp)
 
 
 @dataclass
@@ -632,7 +686,7 @@ def lower_bound(sigma1, sigma3, c, phi_deg, branch="compression") -> Bound:
     return _from_effective(s1, sigma3, s1, np.asarray(sigma3, float) - s3_cap, ext)
 
 
-def edtp_bound(sigma1, sigma3, p0, s0, c, phi_deg, branch="compression") -> Bound:
+def edtp_bound(sigma1, sigma3, p0, s0, c, phi_deg, branch="compression", extension_slope=-3.0) -> Bound:
     r"""Upper bound "EDTP": the effective stress path is a drained triaxial path from :math:`p'_0 = p_0 + s_0`.
 
     Parameters
@@ -653,7 +707,9 @@ def edtp_bound(sigma1, sigma3, p0, s0, c, phi_deg, branch="compression") -> Boun
         The effective cell (radial) stress stays at :math:`p'_0`: in
         compression :math:`\sigma'_3 = p'_0` (slope 3 in :math:`(p, q)`, the
         paper's path); in extension :math:`\sigma'_1 = \sigma'_2 = p'_0` and
-        the axial stress falls (slope -3).
+        the axial stress falls (slope -3), unless ``extension_slope`` says otherwise.
+    extension_slope : float, default -3
+        Slope dq/dp of the extension path (:func:`extension_failure_on_path`) [-].
 
     Returns
     -------
@@ -676,8 +732,9 @@ def edtp_bound(sigma1, sigma3, p0, s0, c, phi_deg, branch="compression") -> Boun
     """
     ext = _axisymmetric_branch(branch)
     p0_eff = np.asarray(p0, float) + np.asarray(s0, float)
-    s1_eff = np.where(ext, p0_eff, sigma1_at_failure(p0_eff, c, phi_deg))
-    s3_eff = np.where(ext, sigma3_at_failure(p0_eff, c, phi_deg), p0_eff)
+    pe, qe = extension_failure_on_path(p0_eff, c, phi_deg, extension_slope)
+    s1_eff = np.where(ext, pe + qe / 3.0, sigma1_at_failure(p0_eff, c, phi_deg))  # extension: sigma'1 = sigma'2
+    s3_eff = np.where(ext, pe - 2.0 * qe / 3.0, p0_eff)
     return _from_effective(sigma1, sigma3, s1_eff, s3_eff, ext)
 
 

@@ -75,6 +75,15 @@ SCHEMA = [
         "axial strain at failure",
         ("eps_f", "axial_strain_f", "axial_strain_at_failure", "strain_f"),
     ),
+    Column("D_c", "length", "mm", "diameter after consolidation", ("consolidated_diameter", "d_c"), "positive"),
+    Column("H_c", "length", "mm", "height after consolidation", ("consolidated_height", "h_c"), "positive"),
+    Column(
+        "dV_c",
+        "volume",
+        "cm^3",
+        "volume decrease during consolidation",
+        ("consolidation_volume_change", "volume_change_consolidation", "delta_v_c"),
+    ),
 ]
 
 CURVE_SCHEMA = [
@@ -290,6 +299,13 @@ class TriaxialOptions(Options):
     membrane_modulus : float or str, optional
         Young's modulus of the membrane E_m [Pa] (CLI in kPa; latex about
         1400 kPa).
+    extension_path : str
+        The drained path of an extension test from its isotropic state, for
+        its saturated reference strength q'_sat and its EDTP bound:
+        ``"axial-unloading"`` (the axial stress falls at constant cell
+        pressure, slope -3 in the q-p plane; the default) or
+        ``"radial-loading"`` (the cell pressure rises at constant axial
+        stress, slope 3/2) (capred.physics.triaxial.EXTENSION_PATHS).
     """
 
     QUANTITIES = {"c_eff": "c_eff", "phi_eff": "phi_eff", **{k: k for k in _MEMBRANE if k in _GLOSSARY}}
@@ -300,9 +316,15 @@ class TriaxialOptions(Options):
     curves: str | Path | None = None
     membrane_thickness: float | None = None  # m
     membrane_modulus: float | None = None  # Pa
+    extension_path: str = "axial-unloading"
 
     def __post_init__(self) -> None:
         super().__post_init__()
+        if self.extension_path not in tx.EXTENSION_PATHS:
+            raise OptionError(
+                f"{self.option_name('extension_path')} must be one of {', '.join(tx.EXTENSION_PATHS)} "
+                f"(got {self.extension_path!r})"
+            )
         if (self.c_eff is None) != (self.phi_eff is None):
             raise OptionError("give both --c-eff and --phi-eff, or neither")
         for name, (unit, kind) in _MEMBRANE.items():
@@ -320,6 +342,11 @@ class TriaxialOptions(Options):
             raise OptionError(
                 "give both --membrane-thickness and --membrane-modulus for the membrane correction, or neither"
             )
+
+    @property
+    def extension_slope(self) -> float:
+        """Slope dq/dp of the extension path in the q-p plane [-] (-3 or 3/2)."""
+        return tx.EXTENSION_PATHS[self.extension_path]
 
     @property
     def membrane(self) -> tuple[float, float] | None:
@@ -395,6 +422,28 @@ class TriaxialResult(Result):
     def q_sat(self) -> np.ndarray:
         """Deprecated: q'_sat [Pa]; use ``states.q_sat`` (kPa)."""
         return deprecated("TriaxialResult.q_sat [Pa]", "TriaxialResult.states.q_sat (kPa)", self.states.q_sat * KPA)
+
+    def method_notes(self) -> tuple[list[str], list[str]]:
+        """The run's choices the methods text states: the extension path, the membrane correction's diameter."""
+        opt = self.options or TriaxialOptions()
+        out = []
+        if (self.states.branch == "extension").any():
+            what = {
+                "axial-unloading": "the axial stress falls at constant cell pressure, slope −3 in the q-p plane",
+                "radial-loading": "the cell pressure rises at constant axial stress, slope 3/2 in the q-p plane",
+            }[opt.extension_path]
+            out.append(
+                "Extension tests: the saturated reference strength q'_sat and the EDTP bound assume the drained "
+                f"path '{opt.extension_path}' from the isotropic state ({what}; --extension-path); the failure "
+                "point is where that path meets the extension envelope M = 6 sin φ'/(3 + sin φ')."
+            )
+        if opt.membrane is not None:
+            out.append(
+                "The deviator is corrected for the membrane as ASTM D4767-11 does, Δq = 4 E_m t_m ε_a / D_c, with "
+                "D_c the diameter after consolidation (column D_c, or from the consolidation volume change dV_c); "
+                "tests without either use the initial diameter D0, as the notes say."
+            )
+        return out, (["astm_d4767"] if opt.membrane is not None else [])
 
     def flags(self, i: int) -> list[str]:
         """What test ``i``'s bounds contradict: a positive (compressive) capillary component, p' < 0."""
@@ -531,6 +580,42 @@ def load_triaxial_table(table: Table, curves: dict[str, tuple[float, float]] | N
         if unknown:
             table.notes.append(f"curves for tests not in the table ignored: {', '.join(unknown)}")
     return table, {"q": q, "strain": strain, "from_curve": from_curve}
+
+
+def consolidated_diameter(table: Table) -> tuple[np.ndarray, np.ndarray]:
+    """Diameter after consolidation D_c [m] of every test, for the membrane correction, and where it came from.
+
+    ASTM D4767-11 corrects the deviator with the specimen's diameter after consolidation. It is the column
+    ``D_c`` where given; else, from the volume decrease during consolidation ``dV_c`` and the initial
+    ``D0``, ``H0``: A_c = (V0 − ΔV_c)/H_c with V0 = π D0² H0/4 and H_c the column ``H_c``, or, without it,
+    H0 (1 − ΔV_c/V0)^(1/3) (isotropic consolidation: equal axial and radial strains); else the initial
+    diameter D0 (the source says so, and the run notes it).
+
+    Returns
+    -------
+    D_c : ndarray
+        Diameter [m] (NaN where neither is known).
+    source : ndarray of str
+        ``"D_c"``, ``"dV_c"``, ``"D0"`` or ``""`` per test.
+    """
+    n = len(table)
+    dc, d0, h0, hc, dv = (table.get(k) for k in ("D_c", "D0", "H0", "H_c", "dV_c"))
+    out, src = np.full(n, np.nan), np.array([""] * n, dtype=object)
+    for i in range(n):
+        if np.isfinite(dc[i]):
+            out[i], src[i] = dc[i], "D_c"
+        elif np.isfinite(dv[i]) and np.isfinite(d0[i]) and np.isfinite(h0[i]):
+            v0 = np.pi * d0[i] ** 2 / 4 * h0[i]
+            if not 0 <= dv[i] < v0:
+                table.add_problem(
+                    i, "dV_c", f"the volume decrease during consolidation must lie in [0, V0 = {v0 * 1e6:.4g} cm^3)"
+                )
+                continue
+            h = hc[i] if np.isfinite(hc[i]) else h0[i] * (1.0 - dv[i] / v0) ** (1.0 / 3.0)
+            out[i], src[i] = np.sqrt(4.0 * (v0 - dv[i]) / h / np.pi), "dV_c"
+        elif np.isfinite(d0[i]):
+            out[i], src[i] = d0[i], "D0"
+    return out, src
 
 
 def pressure_tolerance(pressure):
@@ -694,10 +779,16 @@ def run_triaxial_bounds(
     curves = opt.curves
     table = read_table(source, SCHEMA)
     raw_curves = None
+    D_c, D_c_source = consolidated_diameter(table) if opt.membrane is not None else (None, None)
     if curves is not None:
         from .triaxial_curves import read_curves
 
-        raw_curves = read_curves(curves, table, opt.membrane)
+        dc = (
+            None
+            if D_c is None
+            else {str(t): x for t, x, w in zip(table.columns["test_id"], D_c, D_c_source) if w in ("D_c", "dV_c")}
+        )
+        raw_curves = read_curves(curves, table, opt.membrane, dc)
         table.problems += raw_curves.problems  # reported with the table's own, in one round
         table.notes += raw_curves.notes
         table.warnings += raw_curves.warnings
@@ -716,15 +807,20 @@ def run_triaxial_bounds(
         from .triaxial_curves import membrane_correction
 
         at = raw_curves.at_peak if raw_curves else {}
-        D0 = table.get("D0")
+        initial = []
         for i in range(len(table)):
             tid = str(table.columns["test_id"][i])
             if d["from_curve"][i]:
                 dq[i] = at[tid]["membrane"]
+                if at[tid].get("diameter_source") == "D0":
+                    initial.append(tid)
                 continue
             need = [
                 w
-                for w, ok in (("'strain_at_failure'", np.isfinite(d["strain"][i])), ("'D0'", np.isfinite(D0[i])))
+                for w, ok in (
+                    ("'strain_at_failure'", np.isfinite(d["strain"][i])),
+                    ("'D_c' (or 'D0')", np.isfinite(D_c[i])),
+                )
                 if not ok
             ]
             if need:
@@ -734,15 +830,24 @@ def run_triaxial_bounds(
                     f"the membrane correction of '{tid}' needs {' and '.join(need)} (or its raw curve with --curves)",
                 )
                 continue
-            dq[i] = float(membrane_correction(d["strain"][i], D0[i], *opt.membrane))
+            dq[i] = float(membrane_correction(d["strain"][i], D_c[i], *opt.membrane))
+            if D_c_source[i] == "D0":
+                initial.append(tid)
         q = q - np.where(d["from_curve"], 0.0, dq)  # a curve's readings were corrected before its peak
         for i in np.flatnonzero(q <= 0):
             table.add_problem(int(i), "test_id", f"after the membrane correction ({dq[i] / 1e3:.4g} kPa) q_f <= 0")
         t_m, E_m = opt.membrane
         notes.append(
-            f"membrane correction of the deviator (ASTM D4767-11): Δq = 4 E_m t_m ε_a / D0 with "
-            f"t_m = {t_m * 1e3:.4g} mm, E_m = {E_m / 1e3:.4g} kPa; D0 for the diameter after consolidation"
+            f"membrane correction of the deviator (ASTM D4767-11): Δq = 4 E_m t_m ε_a / D_c with "
+            f"t_m = {t_m * 1e3:.4g} mm, E_m = {E_m / 1e3:.4g} kPa and D_c the diameter after consolidation "
+            "(column 'D_c', or from the volume decrease 'dV_c' with D0 and H0)"
         )
+        if initial:
+            notes.append(
+                "membrane correction with the initial diameter D0 for want of the diameter after consolidation "
+                f"(give 'D_c' or 'dV_c'): {', '.join(initial)}; a consolidation that reduces the diameter by "
+                "x % underestimates the correction by about x %"
+            )
     else:
         notes.append(
             "no membrane correction of the deviator (give --membrane-thickness and --membrane-modulus "
@@ -878,7 +983,7 @@ def run_triaxial_bounds(
     for name, b in (
         ("spherical", tx.spherical_bound(s1, s3, c_eff, phi_eff, phys_branch)),
         ("lower", tx.lower_bound(s1, s3, c_eff, phi_eff, phys_branch)),
-        ("edtp", tx.edtp_bound(s1, s3, p0, s0_or_0, c_eff, phi_eff, phys_branch)),
+        ("edtp", tx.edtp_bound(s1, s3, p0, s0_or_0, c_eff, phi_eff, phys_branch, opt.extension_slope)),
     ):
         keep = unsat & axi if name != "edtp" else unsat & axi & np.isfinite(s0)
         bounds[name] = tx.Bound(
@@ -898,9 +1003,11 @@ def run_triaxial_bounds(
     if (branch == "extension").any():
         notes.append(
             "extension tests (sigma2 = sigma1) use the extension form of the criterion, "
-            "M = 6 sin phi'/(3 + sin phi'), in the bounds, q'_sat and the figures"
+            "M = 6 sin phi'/(3 + sin phi'), in the bounds, q'_sat and the figures; their saturated reference "
+            f"strength q'_sat and EDTP bound follow the path '{opt.extension_path}' (slope "
+            f"{opt.extension_slope:g} in the q-p plane; --extension-path)"
         )
-    q_sat = tx.drained_strength(p0, c_eff, phi_eff, phys_branch)
+    q_sat = tx.drained_strength(p0, c_eff, phi_eff, phys_branch, opt.extension_slope)
     tests = {
         "test_id": table.columns["test_id"],
         "condition": cond,

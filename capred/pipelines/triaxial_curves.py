@@ -247,12 +247,17 @@ def _shear_stage(table: Table, sel: np.ndarray, tid: str, notes: list[str]) -> n
     return sel[stage == best]
 
 
-def read_curves(spec, tests: Table | None = None, membrane: tuple[float, float] | None = None) -> TriaxialCurves:
+def read_curves(
+    spec, tests: Table | None = None, membrane: tuple[float, float] | None = None, consolidated: dict | None = None
+) -> TriaxialCurves:
     """Peak q and the axial strain at the peak of every test's curve.
 
     ``membrane`` = (thickness [m], modulus [Pa]) corrects every reading's q
-    by :func:`membrane_correction` before the peak is taken; the diameter is
-    D0 of the tests table or of the file's metadata.
+    by :func:`membrane_correction` before the peak is taken, with the
+    diameter after consolidation ``consolidated[test_id]`` [m] (from the tests
+    table: capred.pipelines.triaxial.consolidated_diameter) where known, else
+    the initial D0 of the tests table or of the file's metadata (``at_peak``
+    records which: ``diameter_source`` "D_c" or "D0").
     """
     out = TriaxialCurves()
     d0_col = {str(t): d for t, d in zip(tests.columns.get("test_id", []), tests.get("D0"))} if tests is not None else {}
@@ -316,7 +321,12 @@ def read_curves(spec, tests: Table | None = None, membrane: tuple[float, float] 
                         "strain of every reading (column 'axial_strain')",
                     )
                     continue
-                dq = membrane_correction(np.where(np.isfinite(eps[sel]), eps[sel], 0.0), D0, *membrane)
+                dc = (consolidated or {}).get(str(tid), np.nan)
+                dc_known = dc is not None and np.isfinite(dc) and dc > 0
+                diameter_source = "D_c" if dc_known else "D0"
+                dq = membrane_correction(
+                    np.where(np.isfinite(eps[sel]), eps[sel], 0.0), dc if dc_known else D0, *membrane
+                )
                 q = q - dq
             ok = np.isfinite(q)
             if not ok.any():
@@ -330,6 +340,8 @@ def read_curves(spec, tests: Table | None = None, membrane: tuple[float, float] 
             state = {name: float(table.get(name)[k]) for name in PEAK_PRESSURES}
             state["membrane"] = float(dq[int(np.flatnonzero(sel == k)[0])])
             state["D0"] = D0
+            if membrane is not None:
+                state["diameter_source"] = diameter_source
             out.at_peak[str(tid)] = state
         out.problems += table.problems
     return out
