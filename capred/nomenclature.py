@@ -356,6 +356,49 @@ def column_aliases(name: str) -> tuple[str, ...]:
         The aliases of :data:`COLUMN_ALIASES`, empty when the glossary lists none.
     """
     return COLUMN_ALIASES.get(name, ())
+# triaxial outputs (Prunier et al. 2024): the fields of capred.pipelines.triaxial_records name these entries;
+# their JSON keys (name + _kPa/_deg), CSV headers (name [unit]) and console headers (symbol [unit]) follow
+QUANTITIES.update(
+    {
+        "sigma2": Quantity("σ2", "kPa", 1e-3, "pressure", "intermediate principal stress at failure"),
+        "p": Quantity("p", "kPa", 1e-3, "pressure", "mean stress at failure, (σ1 + σ2 + σ3)/3"),
+        "q": Quantity("q", "kPa", 1e-3, "pressure", "deviator stress at failure, σ1 − σ3"),
+        "s0": Quantity("s0", "kPa", 1e-3, "pressure", "initial matric suction of a triaxial test"),
+        "sigma3_total": Quantity("σ3,tot", "kPa", 1e-3, "pressure", "cell pressure as given (total σ3)"),
+        "back_pressure": Quantity("u_b", "kPa", 1e-3, "pressure", "back pressure (pore-water pressure)"),
+        "radial_pressure": Quantity("σ_r", "kPa", 1e-3, "pressure", "radial pressure of the export at failure"),
+        "membrane_correction": Quantity("Δq_m", "kPa", 1e-3, "pressure", "membrane correction of the deviator"),
+        "strain_at_failure": Quantity("ε_f", "-", 1.0, "dimensionless", "axial strain at failure"),
+        "q_sat": Quantity("q'_sat", "kPa", 1e-3, "pressure", "drained saturated strength at the same p0"),
+        "sigma1_cap": Quantity("σ1,cap", "kPa", 1e-3, "pressure", "capillary stress, major principal direction"),
+        "sigma2_cap": Quantity("σ2,cap", "kPa", 1e-3, "pressure", "capillary stress, intermediate direction"),
+        "sigma3_cap": Quantity("σ3,cap", "kPa", 1e-3, "pressure", "capillary stress, minor principal direction"),
+        "p_cap": Quantity("p_cap", "kPa", 1e-3, "pressure", "mean capillary stress"),
+        "q_cap": Quantity("q_cap", "kPa", 1e-3, "pressure", "capillary deviator σ1,cap − σ3,cap"),
+        "p_prime": Quantity("p'", "kPa", 1e-3, "pressure", "mean effective stress of the image point"),
+        "q_prime": Quantity("q'", "kPa", 1e-3, "pressure", "effective deviator of the image point"),
+        "gain": Quantity("q'/q'_sat", "-", 1.0, "dimensionless", "strength gain over the saturated strength"),
+        "M": Quantity("M", "-", 1.0, "dimensionless", "slope of the envelope in the q-p plane (compression)"),
+        "k": Quantity("k", "kPa", 1e-3, "pressure", "intercept of the envelope in the q-p plane (compression)"),
+        "M_extension": Quantity("M_e", "-", 1.0, "dimensionless", "slope of the envelope in the q-p plane (extension)"),
+        "k_extension": Quantity("k_e", "kPa", 1e-3, "pressure", "intercept of the envelope (extension)"),
+        "C": Quantity("C", "kPa", 1e-3, "pressure", "cohesion of the line through a group's circles"),
+        "C_apparent": Quantity("C", "kPa", 1e-3, "pressure", "apparent (total-stress) cohesion of a group"),
+        "C_fictive": Quantity("C''", "kPa", 1e-3, "pressure", "cohesion of the line through the fictive circles"),
+        "Ci": Quantity("C_i", "kPa", 1e-3, "pressure", "intermediate cohesion of a true-triaxial group (eq. 50)"),
+        "Ci_fictive": Quantity("C''_i", "kPa", 1e-3, "pressure", "intermediate fictive cohesion (eq. 50)"),
+        "phi_i": Quantity("φ_i", "deg", 1.0, "angle", "intermediate friction angle (eq. 50)"),
+        "phi_apparent": Quantity("φ", "deg", 1.0, "angle", "apparent friction angle of a group"),
+        "phi_difference": Quantity("φ − φ'", "deg", 1.0, "angle", "apparent minus effective friction angle"),
+        "eq37_sigma_cap": Quantity("σ_cap,37", "kPa", 1e-3, "pressure", "spherical group tensor of eq. 37"),
+        "apparent_M": Quantity("M_app", "-", 1.0, "dimensionless", "slope of a group's apparent envelope"),
+        "apparent_k": Quantity("k_app", "kPa", 1e-3, "pressure", "intercept of a group's apparent envelope"),
+        "lode_spread": Quantity("Δθ_L", "deg", 1.0, "angle", "spread of a group's Lode angles"),
+        "lode_tol": Quantity("tol θ_L", "deg", 1.0, "angle", "Lode angle tolerance of one branch"),
+        "fictive_sigma1": Quantity("σ''1", "kPa", 1e-3, "pressure", "major stress of the fictive state (eq. 44)"),
+        "fictive_sigma3": Quantity("σ''3", "kPa", 1e-3, "pressure", "minor stress of the fictive state (eq. 44)"),
+    }
+)
 
 
 def renamed_keywords(**old_to_new: str):

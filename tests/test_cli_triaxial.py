@@ -5,6 +5,7 @@ import json
 import numpy as np
 import pytest
 from conftest import file_hash
+from numpy.testing import assert_allclose
 from typer.testing import CliRunner
 
 import capred
@@ -288,7 +289,7 @@ BAD_PORE = {
         SAT.replace("q_f\n", "q_f,back_pressure\n").replace("75.7\n", "75.7,50\n"),
         ["line 2", "effective confining stress", "negative"],
     ),
-    "membrane_without_strain": (SAT, ["needs 'strain_at_failure' and 'D0'"]),
+    "membrane_without_strain": (SAT, ["needs 'strain_at_failure' and 'D_c' (or 'D0')"]),
 }
 
 
@@ -314,3 +315,66 @@ def test_triaxial_membrane_options_both_or_neither():
         capred.pipelines.triaxial.TriaxialOptions(membrane_thickness=0.2e-3)
     with pytest.raises(capred.CapredError, match="must be > 0"):
         capred.pipelines.triaxial.TriaxialOptions(membrane_thickness=-1.0, membrane_modulus=1e6)
+
+
+# --- the consolidated diameter of the membrane correction and the extension path (issue 30.7) ----------------
+MEMBRANE = "test_id,condition,sigma3,q_f,strain_at_failure [%],D0 [mm],H0 [mm],{extra}\n" + (
+    "s1,saturated,30,75.7,5,38,76,{a}\ns2,saturated,50,119.6,5,38,76,{b}\ns3,saturated,100,229.1,5,38,76,{c}\n"
+)
+
+
+def test_membrane_correction_uses_the_diameter_after_consolidation(write_csv):
+    opts = capred.pipelines.triaxial.TriaxialOptions(membrane_thickness="0.2 mm", membrane_modulus="1400 kPa")
+    # D_c given (s1), from dV_c = 5 cm^3 isotropically (s2), from dV_c with H_c = 75 mm (s3)
+    data = write_csv(MEMBRANE.format(extra="D_c [mm],dV_c [cm^3],H_c [mm]", a="36,,", b=",5,", c=",5,75"))
+    r = capred.run_triaxial_bounds(data, opts)
+    v0 = np.pi * 19.0**2 * 76.0 / 1e3  # initial volume [cm^3] = 86.19
+    d_c = [
+        36.0,
+        38.0 * (1 - 5 / v0) ** (1 / 3),  # isotropic: every length scales by the cube root of the volume
+        np.sqrt(4 * (v0 - 5) * 1e3 / (np.pi * 75.0)),  # A_c = V_c / H_c
+    ]
+    # ASTM D4767: dq = 4 E_m t_m eps_a / D_c [kPa]; arithmetic only
+    assert_allclose(r.states.membrane_correction, [4 * 1400 * 0.2 * 0.05 / d for d in d_c], rtol=1e-12)
+    assert not any("initial diameter D0" in n for n in r.notes)
+    # without D_c or dV_c the initial diameter is used, and the notes name the tests
+    bare = capred.run_triaxial_bounds(write_csv(MEMBRANE.format(extra="dV_c [cm^3]", a="", b="", c=""), "b.csv"), opts)
+    assert_allclose(bare.states.membrane_correction, 4 * 1400 * 0.2 * 0.05 / 38.0, rtol=1e-12)
+    assert any("initial diameter D0" in n and "s1, s2, s3" in n for n in bare.notes)
+    assert any("D_c" in p for p in bare.method_notes()[0])
+
+
+def test_membrane_volume_change_beyond_the_specimen_is_an_error(write_csv):
+    opts = capred.pipelines.triaxial.TriaxialOptions(membrane_thickness="0.2 mm", membrane_modulus="1400 kPa")
+    data = write_csv(MEMBRANE.format(extra="dV_c [cm^3]", a="90", b="1", c="1"))
+    with pytest.raises(capred.CapredError, match=r"line 2, column 'dV_c.*volume decrease during consolidation"):
+        capred.run_triaxial_bounds(data, opts)
+
+
+def test_extension_path_is_settable_by_hand(tmp_path, write_csv):
+    # c' = 0, phi' = 30 deg (K_p = 3), extension test from p'0 = 300 kPa, s0 = 20 kPa.
+    # axial-unloading (slope -3): sigma'1 = sigma'2 = 300, sigma'3 = 100 -> q'_sat = 200 kPa.
+    # radial-loading (slope 3/2): sigma'3 = 300 (axial), sigma'1 = sigma'2 = 900 -> q'_sat = 600 kPa;
+    #   q = (M_e p0 + k_e)/(1 - M_e/1.5) = (6/7 * 300)/(3/7) = 600. EDTP from p'0 = 320: sigma'3 = 320,
+    #   sigma'1 = 960 -> caps 300 - 960 = -660 (sigma1, sigma2), 50 - 320 = -270 (sigma3).
+    data = write_csv("test_id,condition,sigma3,sigma1,sigma2,p0,s0\nx1,unsaturated,50,300,300,300,20\n")
+    tol = dict(rtol=1e-12, atol=1e-9)  # closed forms, floating point only
+    for path, q_sat, edtp in (
+        ("axial-unloading", 200.0, [-20.0, -20.0, 50 - 320 / 3]),
+        ("radial-loading", 600.0, [-660.0, -660.0, -270.0]),
+    ):
+        opts = capred.pipelines.triaxial.TriaxialOptions(c_eff=0.0, phi_eff=30.0, extension_path=path)
+        r = capred.run_triaxial_bounds(data, opts)
+        t = r.to_json()["tests"][0]
+        assert_allclose(t["q_sat_kPa"], q_sat, **tol)
+        assert_allclose([t["edtp"][f"sigma{k}_cap_kPa"] for k in (1, 2, 3)], edtp, **tol)
+        assert any(path in p and "slope" in p for p in r.method_notes()[0])  # the methods text states it
+    res = runner.invoke(
+        app,
+        ["triaxial-bounds", str(data), "--c-eff", "0", "--phi-eff", "30", "--extension-path", "radial-loading"]
+        + ["--json", "--no-plots", "--out", str(tmp_path / "o")],
+    )
+    assert res.exit_code == 0, res.output
+    assert json.loads(res.stdout)["tests"][0]["q_sat_kPa"] == pytest.approx(600.0, rel=1e-12)
+    bad = runner.invoke(app, ["triaxial-bounds", str(data), "--extension-path", "sideways", "--out", str(tmp_path)])
+    assert bad.exit_code != 0 and "axial-unloading, radial-loading" in bad.output

@@ -19,13 +19,12 @@ from capred.pipelines.triaxial import TriaxialOptions, run_triaxial_bounds
 runner = CliRunner()
 # the tensors the sample was built from [kPa]: (sigma1_cap, sigma2_cap, sigma3_cap)
 KNOWN = {"A": (-10.0, -40.0, -40.0), "T": (-10.0, -25.0, -40.0), "E": (0.0, 0.0, -30.0)}
-METHOD = {"A": "eq. 48 (fictive", "T": "eq. 50", "E": "eq. 48 closed with sigma1_cap = 0"}
+METHOD = {"A": "eq. 48 (fictive", "T": "eq. 50", "E": "eq. 37: admissible range"}
 
 
 def _sample():
-    from pathlib import Path
-
-    return Path(capred.__file__).resolve().parents[1] / "sample_data" / "triaxial_groups.csv"
+    # through capred.sample_path, so that the tests pass against an installed wheel too (issue 32.8)
+    return capred.sample_path("triaxial-groups")
 
 
 def _check_groups(groups):
@@ -34,7 +33,16 @@ def _check_groups(groups):
     for name, tensor in KNOWN.items():
         g = by[name]
         assert g["method"].startswith(METHOD[name])
-        got = [g[f"sigma{k}_cap_kPa"] for k in (1, 2, 3)]
+        if name == "E":  # no pairs: the tensor is not determined; the chosen closure (sigma1_cap = 0) is the truth
+            assert [g[f"sigma{k}_cap_kPa"] for k in (1, 2, 3)] == [None] * 3
+            chosen = [c for c in g["closures"] if c["chosen"]]
+            assert [c["name"] for c in chosen] == ["sigma1_cap_zero"]
+            got = [chosen[0][f"sigma{k}_cap_kPa"] for k in (1, 2, 3)]
+            for k, v in zip((1, 2, 3), tensor):  # the truth lies in each component's admissible range
+                r = g["admissible"][f"sigma{k}_cap_kPa"]
+                assert r["lower"] - 1e-8 <= v <= r["upper"] + 1e-8
+        else:
+            got = [g[f"sigma{k}_cap_kPa"] for k in (1, 2, 3)]
         # file stresses carry 1e-12 kPa; the envelope fit and the means lose a few digits: 1e-8 kPa is ample
         assert_allclose(got, tensor, atol=1e-8)
     # an exact group: the regression's standard errors vanish (to rounding) and dof = n - 1
@@ -69,9 +77,18 @@ def test_groups_sample_through_the_cli_with_files(tmp_path):
     assert {"lode_angle [deg]", "branch", "pair"} <= set(results.columns)
     groups = pd.read_csv(out / "groups.csv").set_index("group")
     assert_allclose(
-        groups.loc["T", ["sigma1_cap_kPa", "sigma2_cap_kPa", "sigma3_cap_kPa"]].astype(float), KNOWN["T"], atol=1e-8
+        groups.loc["T", ["sigma1_cap [kPa]", "sigma2_cap [kPa]", "sigma3_cap [kPa]"]].astype(float),
+        KNOWN["T"],
+        atol=1e-8,
     )
-    assert {"sigma2_cap_ci95_low_kPa", "sigma2_cap_ci95_high_kPa"} <= set(groups.columns)
+    assert {"sigma2_cap_ci95_low [kPa]", "sigma2_cap_ci95_high [kPa]", "sigma3_cap_lower [kPa]"} <= set(groups.columns)
+    # every header of both tables has the 'name [unit]' form, text columns aside (issue 28.4)
+    text = {"test_id", "condition", "group", "line", "branch", "pair", "flags", "tests", "n", "eq49_holds"}
+    text |= {"pairs", "method", "needs", "dof"} | {c for c in results.columns if c.endswith("positive_component")}
+    for col in [*results.columns, *groups.columns]:
+        assert col in text or col.endswith("]"), col
+    # the console shows the range of group E, never its closure as the tensor, and names both closures
+    assert "eq. 37: range (no pairs)" in res.output and "* σ1,cap = 0 (the lower bound, eq. 24)" in res.output
 
 
 @pytest.mark.slow
@@ -155,3 +172,51 @@ def test_group_lode_spread_and_mixed_branches(write_csv):
     assert g["T"]["lode_spread_deg"] == pytest.approx(theta[0] - theta[1], abs=1e-9)  # closed form, rounding only
     assert not g["T"]["eq49_holds"] and "eq. 50 needs one Lode angle" in g["T"]["error"]
     assert g["M"]["branch"] == "mixed" and "mixes compression and extension" in g["M"]["error"]
+
+
+def test_group_without_pairs_gives_the_range_between_closures_by_hand(write_csv):
+    # c' = 0, phi' = 30 deg (K_p = 3); the group shares the spherical tensor -30 kPa: sigma'1 = 3 sigma'3 with
+    # sigma' = sigma + 30, so sigma1 = 3 sigma3 + 60 (q_f = 2 sigma3 + 60). Without pairs eq. 37 leaves one
+    # degree of freedom, (C - C') cos phi' = d - m sin phi' with C - C' = 30 tan 30 (A = 15):
+    # spherical closure: sigma_cap = -A/sin phi' = -30; sigma1_cap = 0 closure: sigma3_cap = -2A/(1 + sin phi') = -20
+    # (the issue's example: (0, -20, -20) where the truth is -30 spherical).
+    rows = "test_id,condition,sigma3,q_f,group\n" + "".join(
+        f"u{s3},unsaturated,{s3},{2 * s3 + 60},G\n" for s3 in (50, 100, 150)
+    )
+    g = run_triaxial_bounds(write_csv(rows), TriaxialOptions(c_eff=0.0, phi_eff=30.0)).to_json()["groups"][0]
+    tol = dict(atol=1e-9)  # closed forms, floating point only
+    assert g["sigma1_cap_kPa"] is None and g["p_cap_kPa"] is None  # the headline never shows a closure
+    by = {c["name"]: c for c in g["closures"]}
+    assert by["sigma1_cap_zero"]["chosen"] and not by["spherical"]["chosen"]
+    assert_allclose([by["spherical"][f"sigma{k}_cap_kPa"] for k in (1, 2, 3)], [-30.0] * 3, **tol)
+    assert_allclose([by["sigma1_cap_zero"][f"sigma{k}_cap_kPa"] for k in (1, 2, 3)], [0.0, -20.0, -20.0], **tol)
+    expected = {"sigma1_cap_kPa": (-30, 0), "sigma2_cap_kPa": (-30, -20), "sigma3_cap_kPa": (-30, -20)}
+    expected["p_cap_kPa"] = (-30, -40 / 3)
+    for k, (lo, hi) in expected.items():
+        assert_allclose([g["admissible"][k]["lower"], g["admissible"][k]["upper"]], [lo, hi], **tol)
+    assert g["eq37_sigma_cap_kPa"] == pytest.approx(-30.0, abs=1e-9)
+
+
+def test_effective_envelope_params_and_deprecated_pa_attributes(write_csv):
+    # saturated sigma'1 = 3 sigma'3 + 2 c' sqrt 3 with c' = 10 kPa, phi' = 30 deg, scatter +-1 kPa on sigma1
+    rows = "test_id,condition,sigma3,sigma1\n" + "".join(
+        f"s{k},saturated,{s3},{float(3 * s3 + 20 * np.sqrt(3) + e)!r}\n"
+        for k, (s3, e) in enumerate(zip((50, 100, 150, 200), (1.0, -1.0, -1.0, 1.0)))
+    )
+    r = run_triaxial_bounds(write_csv(rows))
+    env, js = r.envelope, r.to_json()["envelope"]
+    c, phi = env.params["c_kPa"], env.params["phi_deg"]
+    assert (c.value, c.stderr, c.unit) == (js["c_kPa"], js["c_se_kPa"], "kPa")  # the JSON's numbers, its units
+    assert (phi.value, phi.stderr) == (js["phi_deg"], js["phi_se_deg"])
+    # 95 % interval with Student t, n - 2 = 2 dof: t = 4.302653 (tables)
+    assert_allclose(c.ci95, (c.value - 4.302653 * c.stderr, c.value + 4.302653 * c.stderr), rtol=1e-6)
+    assert -1 <= env.params.correlation[("c_kPa", "phi_deg")] < 0  # intercept and slope of a line: negative
+    text = env.summary()
+    assert "c_kPa" in text and "phi_deg" in text and "C(c_kPa, phi_deg)" in text
+    with pytest.warns(DeprecationWarning, match=r'params\["c_kPa"\]'):
+        assert env.c == pytest.approx(c.value * 1e3, rel=1e-15)  # capred 0.x: Pa
+    with pytest.warns(DeprecationWarning, match="k_kPa"):
+        assert env.k == pytest.approx(env.k_kPa * 1e3, rel=1e-15)
+    with pytest.warns(DeprecationWarning, match="states"):
+        assert r.tests["sigma3"][0] == pytest.approx(50e3, rel=1e-15)
+    assert r.states.sigma3[0] == 50.0

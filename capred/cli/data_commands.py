@@ -178,6 +178,13 @@ def triaxial_bounds(
             help="Young's modulus of the membrane E_m [kPa] (latex: about 1400 kPa), with --membrane-thickness."
         ),
     ] = None,
+    extension_path: Annotated[
+        str,
+        typer.Option(
+            help="Drained path of extension tests for q'_sat and the EDTP bound: axial-unloading (slope -3 in "
+            "the q-p plane, constant cell pressure) or radial-loading (slope 3/2, constant axial stress)."
+        ),
+    ] = "axial-unloading",
 ) -> Invocation:
     """Bounds of the capillary stress tensor at failure from triaxial tests
     (Prunier et al. 2024): effective envelope from saturated drained tests, then
@@ -195,6 +202,7 @@ def triaxial_bounds(
         curves=curves,
         membrane_thickness=quantity(membrane_thickness, "mm", "membrane_thickness", "--membrane-thickness"),
         membrane_modulus=quantity(membrane_modulus, "kPa", "membrane_modulus", "--membrane-modulus"),
+        extension_path=extension_path,
     )
     return Invocation("triaxial-bounds", opts, extra_inputs=[curves] if curves else [])
 

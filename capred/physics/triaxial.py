@@ -41,6 +41,12 @@ import numpy as np
 #: circles leave the common line that defines C_i.
 LODE_TOL_DEG = 1.0
 
+#: Relative difference of two principal stresses [-] below which they are equal for the Lode angle: the
+#: round-off of the reduction that made them (sigma - u, sigma3 + q: a few units of 2.2e-16 of the largest
+#: stress; 1e-12 leaves a margin of 4500 ulps), far below any measured difference (a 1 kPa cell read to
+#: 0.1 kPa is 1e-4 of it). Exact compression tests then print 0 deg, not 5.69e-07 deg.
+LODE_ROUND_OFF = 1e-12
+
 _BRANCHES = ("compression", "extension")
 
 
@@ -133,7 +139,9 @@ def lode_angle_deg(sigma1, sigma2, sigma3):
     numeric
         Lode angle :math:`\theta` [deg], in [0, 60]; 0 for triaxial
         compression (:math:`\sigma_2 = \sigma_3`), 60 for triaxial extension
-        (:math:`\sigma_2 = \sigma_1`), NaN for an isotropic state.
+        (:math:`\sigma_2 = \sigma_1`), NaN for an isotropic state. Two
+        stresses within ``LODE_ROUND_OFF`` (1e-12) of the largest magnitude
+        count as equal: exact compression gives 0 exactly, exact extension 60.
 
     Notes
     -----
@@ -157,12 +165,17 @@ def lode_angle_deg(sigma1, sigma2, sigma3):
        eq. 51-53.
     """
     s = np.stack(np.broadcast_arrays(*(np.asarray(x, float) for x in (sigma1, sigma2, sigma3))))
-    s = s - s.mean(axis=0)
-    j2 = np.sum(s**2, axis=0)
-    j3 = np.sum(s**3, axis=0)
+    s1, s2, s3 = -np.sort(-s, axis=0)  # ordered, sigma1 >= sigma2 >= sigma3
     with np.errstate(invalid="ignore", divide="ignore"):
-        c3 = np.clip(np.sqrt(6.0) * j3 / j2**1.5, -1.0, 1.0)
-    return np.degrees(np.arccos(c3) / 3.0)
+        q = (s1 - s2) / (s1 - s3)  # Lode ratio (eq. 49)
+        # the arctan form, not arccos(cos 3 theta): arccos is ill-conditioned at 0 and 60 deg, where a
+        # round-off of 1e-16 in cos 3 theta becomes 4e-7 deg
+        theta = np.degrees(np.arctan2(np.sqrt(3.0) * (1.0 - q), 1.0 + q))
+    # round-off snapped: sigma2 within ROUND_OFF of sigma3 (sigma1) is compression (extension) exactly
+    tol = LODE_ROUND_OFF * np.max(np.abs(s), axis=0)
+    theta = np.where(s2 - s3 <= tol, 0.0, np.where(s1 - s2 <= tol, 60.0, theta))
+    theta = np.where(s1 - s3 > tol, theta, np.nan)  # isotropic: no Lode angle
+    return theta[()] if theta.ndim == 0 else theta
 
 
 #: Former name of :func:`lode_angle_deg` (same function), kept for existing callers.
@@ -421,7 +434,59 @@ def sigma3_at_failure(sigma1_eff, c, phi_deg):
     return (np.asarray(sigma1_eff, float) - 2.0 * c * np.sqrt(kp)) / kp
 
 
-def drained_strength(p0_eff, c, phi_deg, branch="compression"):
+#: Stress paths of a drained extension test from the isotropic state, by their slope dq/dp in the (p, q) plane
+#: (q = sigma1 - sigma3 > 0): the axial stress falls at constant cell pressure (slope -3, the default) or the
+#: cell pressure rises at constant axial stress (slope 3/2).
+EXTENSION_PATHS = {"axial-unloading": -3.0, "radial-loading": 1.5}
+
+
+def extension_failure_on_path(p0_eff, c, phi_deg, slope=-3.0):
+    r"""Image point :math:`(p', q')` where a drained extension path from :math:`(p'_0, 0)` meets the envelope.
+
+    Parameters
+    ----------
+    p0_eff : numeric
+        Initial isotropic effective stress :math:`p'_0` [Pa].
+    c : numeric
+        Effective cohesion :math:`c'` [Pa].
+    phi_deg : numeric
+        Effective friction angle :math:`arphi'` [deg].
+    slope : float, default -3
+        Slope :math:`\eta = dq/dp` of the path [-]: -3 for axial unloading at constant cell pressure, 3/2
+        for radial loading at constant axial stress (:data:`EXTENSION_PATHS`); not 0 and not equal to
+        :math:`M_e`.
+
+    Returns
+    -------
+    p_prime, q_prime : numeric
+        Mean effective stress and deviator at failure [Pa].
+
+    Notes
+    -----
+    The path :math:`p' = p'_0 + q'/\eta` meets the extension envelope :math:`q' = M_e p' + k_e`
+    (:func:`envelope_qp`, eq. 25 in extension) at
+
+    .. math::
+
+       q' = rac{M_e p'_0 + k_e}{1 - M_e/\eta}
+
+    With :math:`\eta = -3` it is :math:`q' = p'_0 - (p'_0 - 2c'\sqrt{K_p})/K_p` (:math:`\sigma'_1 =
+    \sigma'_2 = p'_0`).
+
+    References
+    ----------
+    .. [1] Prunier, F., Branque, D., Duriez, J. & Darve, F. (2024). Eur. J.
+       Environ. Civ. Eng. doi:10.1080/19648189.2024.2314099, eq. 25.
+    """
+    M, k = envelope_qp(c, phi_deg, "extension")
+    if slope == 0 or slope == M:
+        raise ValueError(f"an extension path of slope {slope:g} never meets the envelope (slope {M:.4g})")
+    p0 = np.asarray(p0_eff, float)
+    q = (M * p0 + k) / (1.0 - M / slope)
+    return p0 + q / slope, q
+
+
+def drained_strength(p0_eff, c, phi_deg, branch="compression", extension_slope=-3.0):
     r"""Deviator at failure :math:`q'_{sat}` of a drained test from the isotropic state :math:`p'_0`.
 
     Parameters
@@ -436,7 +501,9 @@ def drained_strength(p0_eff, c, phi_deg, branch="compression"):
         The cell (radial) pressure is held at :math:`p'_0` in both: in
         compression the axial stress rises (:math:`\sigma'_3 = p'_0`, slope
         3 in the :math:`(p, q)` plane), in extension it falls
-        (:math:`\sigma'_1 = \sigma'_2 = p'_0`, slope -3).
+        (:math:`\sigma'_1 = \sigma'_2 = p'_0`, slope -3) unless ``extension_slope`` says otherwise.
+    extension_slope : float, default -3
+        Slope dq/dp of the extension path (:func:`extension_failure_on_path`) [-].
 
     Returns
     -------
@@ -462,7 +529,7 @@ def drained_strength(p0_eff, c, phi_deg, branch="compression"):
     comp = sigma1_at_failure(p0, c, phi_deg) - p0
     if not np.any(ext):
         return comp
-    return np.where(ext, p0 - sigma3_at_failure(p0, c, phi_deg), comp)
+    return np.where(ext, extension_failure_on_path(p0, c, phi_deg, extension_slope)[1], comp)
 
 
 @dataclass
@@ -619,7 +686,7 @@ def lower_bound(sigma1, sigma3, c, phi_deg, branch="compression") -> Bound:
     return _from_effective(s1, sigma3, s1, np.asarray(sigma3, float) - s3_cap, ext)
 
 
-def edtp_bound(sigma1, sigma3, p0, s0, c, phi_deg, branch="compression") -> Bound:
+def edtp_bound(sigma1, sigma3, p0, s0, c, phi_deg, branch="compression", extension_slope=-3.0) -> Bound:
     r"""Upper bound "EDTP": the effective stress path is a drained triaxial path from :math:`p'_0 = p_0 + s_0`.
 
     Parameters
@@ -640,7 +707,9 @@ def edtp_bound(sigma1, sigma3, p0, s0, c, phi_deg, branch="compression") -> Boun
         The effective cell (radial) stress stays at :math:`p'_0`: in
         compression :math:`\sigma'_3 = p'_0` (slope 3 in :math:`(p, q)`, the
         paper's path); in extension :math:`\sigma'_1 = \sigma'_2 = p'_0` and
-        the axial stress falls (slope -3).
+        the axial stress falls (slope -3), unless ``extension_slope`` says otherwise.
+    extension_slope : float, default -3
+        Slope dq/dp of the extension path (:func:`extension_failure_on_path`) [-].
 
     Returns
     -------
@@ -663,8 +732,9 @@ def edtp_bound(sigma1, sigma3, p0, s0, c, phi_deg, branch="compression") -> Boun
     """
     ext = _axisymmetric_branch(branch)
     p0_eff = np.asarray(p0, float) + np.asarray(s0, float)
-    s1_eff = np.where(ext, p0_eff, sigma1_at_failure(p0_eff, c, phi_deg))
-    s3_eff = np.where(ext, sigma3_at_failure(p0_eff, c, phi_deg), p0_eff)
+    pe, qe = extension_failure_on_path(p0_eff, c, phi_deg, extension_slope)
+    s1_eff = np.where(ext, pe + qe / 3.0, sigma1_at_failure(p0_eff, c, phi_deg))  # extension: sigma'1 = sigma'2
+    s3_eff = np.where(ext, pe - 2.0 * qe / 3.0, p0_eff)
     return _from_effective(sigma1, sigma3, s1_eff, s3_eff, ext)
 
 

@@ -18,10 +18,15 @@ from ..errors import CapredError, FitError, OptionError
 from ..fitting.linear import LineFit, fit_line
 from ..io.table import Column, Table, read_table
 from ..nomenclature import QUANTITIES as _GLOSSARY
+from ..parameters import Parameter, Parameters, deprecated, fit_report
 from ..physics import triaxial as tx
 from ..references import cite
 from ..result import InputFile, Options, Result, input_file, num
 from ..units import parse_quantity
+from . import triaxial_records as rec
+
+#: Pa per kPa: the records hold the user's units, the physics SI
+KPA = 1e3
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
@@ -70,6 +75,15 @@ SCHEMA = [
         "axial strain at failure",
         ("eps_f", "axial_strain_f", "axial_strain_at_failure", "strain_f"),
     ),
+    Column("D_c", "length", "mm", "diameter after consolidation", ("consolidated_diameter", "d_c"), "positive"),
+    Column("H_c", "length", "mm", "height after consolidation", ("consolidated_height", "h_c"), "positive"),
+    Column(
+        "dV_c",
+        "volume",
+        "cm^3",
+        "volume decrease during consolidation",
+        ("consolidation_volume_change", "volume_change_consolidation", "delta_v_c"),
+    ),
 ]
 
 CURVE_SCHEMA = [
@@ -82,34 +96,128 @@ CURVE_SCHEMA = [
 BOUNDS = ("spherical", "lower", "edtp")
 
 
-@dataclass
+@dataclass(frozen=True, kw_only=True)
 class Envelope:
-    c: float  # Pa
-    phi: float  # deg
-    c_se: float | None
-    phi_se: float | None
-    source: str  # "fit" or "options"
+    """The effective (saturated drained) Mohr-Coulomb envelope c', φ' of a run, in the user's units.
+
+    A typed record (capred.pipelines.triaxial_records): each field names its glossary entry; the JSON
+    object ``envelope`` and the console table follow. ``params["c_kPa"]`` and ``params["phi_deg"]`` are the
+    fitted parameters with standard error and 95 % interval (capred.parameters); ``summary()`` reports them.
+
+    Attributes
+    ----------
+    c_kPa, c_se_kPa : float
+        Effective cohesion c' and its standard error [kPa] (SE None when given as options).
+    phi_deg, phi_se_deg : float
+        Effective friction angle φ' and its standard error [deg].
+    M, k_kPa : float
+        Slope [-] and intercept [kPa] of the envelope in the q-p plane, triaxial compression (eq. 25-26).
+    M_extension, k_extension_kPa : float
+        The same in triaxial extension, M = 6 sin φ'/(3 + sin φ') [-], [kPa].
+    source : str
+        ``"fit"`` (least squares of σ'1 on σ'3 of the saturated tests) or ``"options"``.
+    n : int or None
+        Saturated tests fitted.
+    r2 : float or None
+        R² of the fit [-].
+    method : str
+        How the envelope was obtained, with its reference.
+    fit : LineFit or None
+        The straight line σ'1 = K_p σ'3 + b in SI (Pa), for whoever needs its covariance.
+    c_phi_correlation : float
+        Correlation of c' and φ' (delta method) [-] (NaN when given as options).
+
+    References
+    ----------
+    .. [1] Prunier, F., Branque, D., Duriez, J. & Darve, F. (2024). Eur. J. Environ. Civ. Eng.
+       doi:10.1080/19648189.2024.2314099, eq. 25-26.
+    """
+
+    c_kPa: float = rec.quantity("c")
+    phi_deg: float = rec.quantity("phi")
+    M: float = rec.quantity("M", init=False)
+    k_kPa: float = rec.quantity("k", init=False)
+    M_extension: float = rec.quantity("M_extension", init=False)
+    k_extension_kPa: float = rec.quantity("k_extension", init=False)
+    c_se_kPa: float | None = rec.quantity("c", se=True)
+    phi_se_deg: float | None = rec.quantity("phi", se=True)
+    source: str = rec.text()
+    n: int | None = rec.text(kind="int")
+    r2: float | None = rec.text(kind="number")
+    method: str = rec.text(init=False)
     fit: LineFit | None = None
+    c_phi_correlation: float = float("nan")
+
+    def __post_init__(self) -> None:
+        c, phi = self.c_kPa * KPA, self.phi_deg
+        for attr, branch in (("", "compression"), ("_extension", "extension")):
+            M, k = tx.envelope_qp(c, phi, branch)
+            object.__setattr__(self, "M" + attr, float(M))
+            object.__setattr__(self, "k" + attr + "_kPa", float(k) / KPA)
+        object.__setattr__(
+            self,
+            "method",
+            f"least squares of sigma'_1 on sigma'_3 ({cite('prunier2024', 'eq. 25')})"
+            if self.fit
+            else "given as options",
+        )
 
     @property
-    def M(self) -> float:
-        """Slope of the envelope in the (p, q) plane, triaxial compression [-]."""
-        return float(tx.envelope_qp(self.c, self.phi)[0])
+    def params(self) -> Parameters:
+        """c_kPa and phi_deg with standard error and 95 % interval (t, n − 2 dof) [kPa], [deg]."""
+        from ..fitting.linear import t_quantile
+
+        fixed = self.fit is None
+        dof = (self.n or 0) - 2
+        t = float(t_quantile(0.975, dof)) if dof > 0 else float("nan")
+        out = []
+        for name, v, se, unit, q in (
+            ("c_kPa", self.c_kPa, self.c_se_kPa, "kPa", "c_eff"),
+            ("phi_deg", self.phi_deg, self.phi_se_deg, "deg", "phi_eff"),
+        ):
+            se = float("nan") if se is None else float(se)
+            ci = (v - t * se, v + t * se)
+            out.append(Parameter(name, float(v), se, ci, unit, _GLOSSARY[q].description, fixed))
+        corr = {} if fixed else {("c_kPa", "phi_deg"): self.c_phi_correlation}
+        return Parameters(tuple(out), corr)
+
+    def summary(self) -> str:
+        """A plain-text report of the envelope: c', φ' with SE and 95 % CI, their correlation, n, R²."""
+        stats = {"n": self.n, "dof": (self.n or 0) - 2, "R²": self.r2} if self.fit else {}
+        warn = [f"c' = {self.c_kPa:.4g} kPa < 0: a negative cohesion has no physical meaning"] if self.c_kPa < 0 else []
+        return fit_report(f"Effective envelope, {self.method}", self.params, stats, warn)
+
+    # --- the names of capred 0.x, in Pa (one release, with a DeprecationWarning) ---------------------
+    @property
+    def c(self) -> float:
+        """Deprecated: effective cohesion [Pa]; use ``params["c_kPa"]`` (kPa)."""
+        return deprecated("Envelope.c [Pa]", 'Envelope.params["c_kPa"] (or .c_kPa)', self.c_kPa * KPA)
+
+    @property
+    def c_se(self) -> float | None:
+        """Deprecated: standard error of c' [Pa]; use ``params["c_kPa"].stderr`` (kPa)."""
+        v = None if self.c_se_kPa is None else self.c_se_kPa * KPA
+        return deprecated("Envelope.c_se [Pa]", 'Envelope.params["c_kPa"].stderr (or .c_se_kPa)', v)
+
+    @property
+    def phi(self) -> float:
+        """Deprecated: effective friction angle [deg]; use ``params["phi_deg"]``."""
+        return deprecated("Envelope.phi", 'Envelope.params["phi_deg"] (or .phi_deg)', self.phi_deg)
+
+    @property
+    def phi_se(self) -> float | None:
+        """Deprecated: standard error of φ' [deg]; use ``params["phi_deg"].stderr``."""
+        return deprecated("Envelope.phi_se", 'Envelope.params["phi_deg"].stderr (or .phi_se_deg)', self.phi_se_deg)
 
     @property
     def k(self) -> float:
-        """Intercept of the envelope in the (p, q) plane, triaxial compression [Pa]."""
-        return float(tx.envelope_qp(self.c, self.phi)[1])
-
-    @property
-    def M_extension(self) -> float:
-        """Slope in the (p, q) plane in triaxial extension, 6 sin phi'/(3 + sin phi') [-]."""
-        return float(tx.envelope_qp(self.c, self.phi, "extension")[0])
+        """Deprecated: intercept in the q-p plane [Pa]; use ``k_kPa``."""
+        return deprecated("Envelope.k [Pa]", "Envelope.k_kPa", self.k_kPa * KPA)
 
     @property
     def k_extension(self) -> float:
-        """Intercept in the (p, q) plane in triaxial extension [Pa]."""
-        return float(tx.envelope_qp(self.c, self.phi, "extension")[1])
+        """Deprecated: intercept in the q-p plane in extension [Pa]; use ``k_extension_kPa``."""
+        return deprecated("Envelope.k_extension [Pa]", "Envelope.k_extension_kPa", self.k_extension_kPa * KPA)
 
 
 def fit_envelope(sigma3_eff, sigma1_eff, confidence=0.95) -> Envelope:
@@ -122,19 +230,47 @@ def fit_envelope(sigma3_eff, sigma1_eff, confidence=0.95) -> Envelope:
     measured q on both axes, since p = sigma3 + q/3). This is the exact
     Mohr-Coulomb criterion, i.e. the line tangent to the Mohr circles.
     Standard errors of c', phi' follow by the delta method.
+
+    Parameters
+    ----------
+    sigma3_eff, sigma1_eff : array_like
+        Effective principal stresses at failure of the saturated tests [Pa].
+    confidence : float
+        Level of the line's intervals [-].
+
+    Returns
+    -------
+    Envelope
+        c' [kPa], phi' [deg] with standard errors, the line fit and the c'-phi' correlation.
+
+    References
+    ----------
+    .. [1] Prunier, F., Branque, D., Duriez, J. & Darve, F. (2024). Eur. J. Environ. Civ. Eng.
+       doi:10.1080/19648189.2024.2314099, eq. 25.
     """
     f = fit_line(sigma3_eff, sigma1_eff, confidence)
     kp, b = f.slope, f.intercept
     if kp <= 1.0:
         raise FitError(f"saturated failure states give K_p = {kp:.3g} <= 1: no positive friction angle")
     c, phi = tx.envelope_from_principal_fit(kp, b)
-    # delta method: phi = asin((K-1)/(K+1)), c = b/(2 sqrt K)
+    # delta method: phi = asin((K-1)/(K+1)), c = b/(2 sqrt K); J rows (c, phi), columns (b, K)
     dphi_dk = np.degrees(1.0 / ((kp + 1.0) * np.sqrt(kp)))
     dc_db, dc_dk = 1.0 / (2.0 * np.sqrt(kp)), -b / (4.0 * kp**1.5)
-    cov = f.covariance  # [[var b, cov], [cov, var K]]
-    phi_se = abs(dphi_dk) * np.sqrt(cov[1, 1])
-    c_var = dc_db**2 * cov[0, 0] + dc_dk**2 * cov[1, 1] + 2 * dc_db * dc_dk * cov[0, 1]
-    return Envelope(float(c), float(phi), float(np.sqrt(max(c_var, 0.0))), float(phi_se), "fit", f)
+    jac = np.array([[dc_db, dc_dk], [0.0, dphi_dk]])
+    cov = jac @ f.covariance @ jac.T  # f.covariance: [[var b, cov], [cov, var K]]
+    c_se, phi_se = np.sqrt(max(cov[0, 0], 0.0)), np.sqrt(max(cov[1, 1], 0.0))
+    corr = float(cov[0, 1] / (c_se * phi_se)) if c_se > 0 and phi_se > 0 else float("nan")
+    return Envelope(
+        c_kPa=float(c) / KPA,
+        phi_deg=float(phi),
+        c_se_kPa=float(c_se) / KPA,
+        phi_se_deg=float(phi_se),
+        source="fit",
+        n=f.n,
+        r2=float(f.r2),
+        fit=f,
+        c_phi_correlation=corr,
+    )
 
 
 #: membrane options and their SI unit; their glossary names are used once capred.nomenclature has them
@@ -163,6 +299,13 @@ class TriaxialOptions(Options):
     membrane_modulus : float or str, optional
         Young's modulus of the membrane E_m [Pa] (CLI in kPa; latex about
         1400 kPa).
+    extension_path : str
+        The drained path of an extension test from its isotropic state, for
+        its saturated reference strength q'_sat and its EDTP bound:
+        ``"axial-unloading"`` (the axial stress falls at constant cell
+        pressure, slope -3 in the q-p plane; the default) or
+        ``"radial-loading"`` (the cell pressure rises at constant axial
+        stress, slope 3/2) (capred.physics.triaxial.EXTENSION_PATHS).
     """
 
     QUANTITIES = {"c_eff": "c_eff", "phi_eff": "phi_eff", **{k: k for k in _MEMBRANE if k in _GLOSSARY}}
@@ -173,9 +316,15 @@ class TriaxialOptions(Options):
     curves: str | Path | None = None
     membrane_thickness: float | None = None  # m
     membrane_modulus: float | None = None  # Pa
+    extension_path: str = "axial-unloading"
 
     def __post_init__(self) -> None:
         super().__post_init__()
+        if self.extension_path not in tx.EXTENSION_PATHS:
+            raise OptionError(
+                f"{self.option_name('extension_path')} must be one of {', '.join(tx.EXTENSION_PATHS)} "
+                f"(got {self.extension_path!r})"
+            )
         if (self.c_eff is None) != (self.phi_eff is None):
             raise OptionError("give both --c-eff and --phi-eff, or neither")
         for name, (unit, kind) in _MEMBRANE.items():
@@ -195,6 +344,11 @@ class TriaxialOptions(Options):
             )
 
     @property
+    def extension_slope(self) -> float:
+        """Slope dq/dp of the extension path in the q-p plane [-] (-3 or 3/2)."""
+        return tx.EXTENSION_PATHS[self.extension_path]
+
+    @property
     def membrane(self) -> tuple[float, float] | None:
         """(thickness [m], modulus [Pa]) of the membrane, or None (no correction)."""
         if self.membrane_thickness is None:
@@ -202,16 +356,38 @@ class TriaxialOptions(Options):
         return self.membrane_thickness, self.membrane_modulus
 
 
+#: the keys of capred 0.x's ``TriaxialResult.tests`` dict [Pa] and the TestStates fields they came from
+_OLD_TEST_KEYS = {"strain_f": "strain_at_failure", "lode": "lode_angle", "membrane": "membrane_correction"}
+_TEXT_FIELDS = ("test_id", "condition", "group", "line", "branch", "pair")
+
+
 @dataclass(repr=False)
 class TriaxialResult(Result):
+    """Result of `capred triaxial-bounds`: the envelope, every test's bounds and the groups, as typed records.
+
+    Attributes
+    ----------
+    source : str
+        The tests table.
+    envelope : Envelope
+        c', φ' (``envelope.params``, ``envelope.summary()``) [kPa], [deg].
+    states : TestStates
+        Every test's failure state [kPa], [deg].
+    bound_states : dict of str to BoundStates
+        The three bounds (``spherical``, ``lower``, ``edtp``) of every unsaturated test [kPa].
+    groups : list of GroupRecord
+        Appendix 1 of Prunier et al. (2024) per group.
+    notes, warnings : list of str
+        What the run did and what the user should check.
+    """
+
     command = "triaxial-bounds"
 
     source: str
     envelope: Envelope
-    tests: dict[str, np.ndarray]
-    bounds: dict[str, tx.Bound]  # for all rows (NaN on saturated rows / missing s0)
-    q_sat: np.ndarray
-    groups: list[dict]
+    states: rec.TestStates
+    bound_states: dict[str, rec.BoundStates]
+    groups: list[rec.GroupRecord]
     notes: list[str] = field(default_factory=list)
     options: TriaxialOptions | None = None
     inputs: list[InputFile] = field(default_factory=list)
@@ -219,114 +395,104 @@ class TriaxialResult(Result):
 
     @property
     def unsaturated(self) -> np.ndarray:
-        return self.tests["condition"] == "unsaturated"
+        """True for the unsaturated tests [-]."""
+        return self.states.condition == "unsaturated"
+
+    # --- the names of capred 0.x, in Pa (one release, with a DeprecationWarning) -------------------------
+    @property
+    def tests(self) -> dict[str, np.ndarray]:
+        """Deprecated: every test's state as a dict of arrays in Pa; use ``states`` (kPa, typed)."""
+        out = {}
+        for f in dataclasses.fields(self.states):
+            key = {v: k for k, v in _OLD_TEST_KEYS.items()}.get(f.name, f.name)
+            v = getattr(self.states, f.name)
+            out[key] = v if f.name in _TEXT_FIELDS or key == "lode" or key == "strain_f" else v * KPA
+        return deprecated("TriaxialResult.tests [Pa]", "TriaxialResult.states (kPa)", out)
+
+    @property
+    def bounds(self) -> dict[str, tx.Bound]:
+        """Deprecated: the bounds as physics records in Pa; use ``bound_states`` (kPa)."""
+        out = {
+            name: tx.Bound(b.sigma1_cap * KPA, b.sigma3_cap * KPA, b.p_prime * KPA, b.q_prime * KPA, b.sigma2_cap * KPA)
+            for name, b in self.bound_states.items()
+        }
+        return deprecated("TriaxialResult.bounds [Pa]", "TriaxialResult.bound_states (kPa)", out)
+
+    @property
+    def q_sat(self) -> np.ndarray:
+        """Deprecated: q'_sat [Pa]; use ``states.q_sat`` (kPa)."""
+        return deprecated("TriaxialResult.q_sat [Pa]", "TriaxialResult.states.q_sat (kPa)", self.states.q_sat * KPA)
+
+    def method_notes(self) -> tuple[list[str], list[str]]:
+        """The run's choices the methods text states: the extension path, the membrane correction's diameter."""
+        opt = self.options or TriaxialOptions()
+        out = []
+        if (self.states.branch == "extension").any():
+            what = {
+                "axial-unloading": "the axial stress falls at constant cell pressure, slope −3 in the q-p plane",
+                "radial-loading": "the cell pressure rises at constant axial stress, slope 3/2 in the q-p plane",
+            }[opt.extension_path]
+            out.append(
+                "Extension tests: the saturated reference strength q'_sat and the EDTP bound assume the drained "
+                f"path '{opt.extension_path}' from the isotropic state ({what}; --extension-path); the failure "
+                "point is where that path meets the extension envelope M = 6 sin φ'/(3 + sin φ')."
+            )
+        if opt.membrane is not None:
+            out.append(
+                "The deviator is corrected for the membrane as ASTM D4767-11 does, Δq = 4 E_m t_m ε_a / D_c, with "
+                "D_c the diameter after consolidation (column D_c, or from the consolidation volume change dV_c); "
+                "tests without either use the initial diameter D0, as the notes say."
+            )
+        return out, (["astm_d4767"] if opt.membrane is not None else [])
 
     def flags(self, i: int) -> list[str]:
+        """What test ``i``'s bounds contradict: a positive (compressive) capillary component, p' < 0."""
         out = []
         for name in BOUNDS:
-            b = self.bounds[name]
-            if np.isfinite(b.sigma1_cap[i]) and b.positive[i]:
+            b = self.bound_states[name]
+            if b.applies(i) and b.positive_component[i]:
                 out.append(f"{name}_positive_component")
-        if self.unsaturated[i] and self.bounds["spherical"].p_prime[i] < 0:
+        if self.unsaturated[i] and self.bound_states["spherical"].p_prime[i] < 0:
             out.append("spherical_negative_p_prime")
         return out
 
-    def _bound_json(self, name: str, i: int) -> dict | None:
-        b = self.bounds[name]
-        if not np.isfinite(b.sigma1_cap[i]):
-            return None
-        gain = b.q_prime[i] / self.q_sat[i]
-        return {
-            "sigma1_cap_kPa": _kpa(b.sigma1_cap[i]),
-            "sigma2_cap_kPa": _kpa((b.sigma3_cap if b.sigma2_cap is None else b.sigma2_cap)[i]),
-            "sigma3_cap_kPa": _kpa(b.sigma3_cap[i]),
-            "p_cap_kPa": _kpa(b.p_cap[i]),
-            "q_cap_kPa": _kpa(b.q_cap[i]),
-            "p_prime_kPa": _kpa(b.p_prime[i]),
-            "q_prime_kPa": _kpa(b.q_prime[i]),
-            "gain": num(gain),
-            "positive_component": bool(b.positive[i]),
-        }
-
     def payload(self, lazy: bool = False) -> dict:
-        e = self.envelope
-        t = self.tests
         tests = []
-        for i in range(len(t["test_id"])):
-            row = {
-                "test_id": str(t["test_id"][i]),
-                "condition": str(t["condition"][i]),
-                "group": t["group"][i] or None,
-                "line": int(t["line"][i]),
-                "sigma3_kPa": _kpa(t["sigma3"][i]),
-                "sigma2_kPa": _kpa(t["sigma2"][i]),
-                "sigma1_kPa": _kpa(t["sigma1"][i]),
-                "p_kPa": _kpa(t["p"][i]),
-                "q_kPa": _kpa(t["q"][i]),
-                "p0_kPa": _kpa(t["p0"][i]),
-                "s0_kPa": _kpa(t["s0"][i]),
-                "sigma3_total_kPa": _kpa(t["sigma3_total"][i]),
-                "back_pressure_kPa": _kpa(t["back_pressure"][i]),
-                "u_a_kPa": _kpa(t["u_a"][i]),
-                "radial_pressure_kPa": _kpa(t["radial_pressure"][i]),
-                "membrane_correction_kPa": _kpa(t["membrane"][i]),
-                "lode_angle_deg": num(t["lode"][i]),
-                "branch": str(t["branch"][i]),
-                "pair": t["pair"][i] or None,
-                "strain_at_failure": num(t["strain_f"][i]),
-                "q_sat_kPa": _kpa(self.q_sat[i]) if self.unsaturated[i] else None,
-            }
+        for i in range(len(self.states)):
+            row = rec.row_json(self.states, i)
+            row["q_sat_kPa"] = row["q_sat_kPa"] if self.unsaturated[i] else None
             for name in BOUNDS:
-                row[name] = self._bound_json(name, i) if self.unsaturated[i] else None
+                b = self.bound_states[name]
+                row[name] = rec.row_json(b, i) if self.unsaturated[i] and b.applies(i) else None
             row["flags"] = self.flags(i)
             tests.append(row)
-        return {
-            "source": self.source,
-            "envelope": {
-                "c_kPa": _kpa(e.c),
-                "phi_deg": num(e.phi),
-                "M": num(e.M),
-                "k_kPa": _kpa(e.k),
-                "M_extension": num(e.M_extension),
-                "k_extension_kPa": _kpa(e.k_extension),
-                "c_se_kPa": _kpa(e.c_se) if e.c_se is not None else None,
-                "phi_se_deg": num(e.phi_se) if e.phi_se is not None else None,
-                "source": e.source,
-                "n": e.fit.n if e.fit else None,
-                "r2": num(e.fit.r2) if e.fit else None,
-                "method": (
-                    f"least squares of sigma'_1 on sigma'_3 ({cite('prunier2024', 'eq. 25')})"
-                    if e.fit
-                    else "given as options"
-                ),
-            },
-            "tests": tests,
-            "groups": self.groups,
-        }
+        env = rec.to_json(self.envelope)
+        env = {k: env[k] for k in ENVELOPE_KEYS}  # the order of capred 0.x
+        return {"source": self.source, "envelope": env, "tests": tests, "groups": [rec.to_json(g) for g in self.groups]}
 
     def tables(self) -> dict:
         """results (one row per test, bounds side by side) and, with groups, groups."""
         cached = self.__dict__.get("_tables")
         if cached is None:
+            import pandas as pd
+
             cached = {"results": self._results_table()}
             if self.groups:
-                import pandas as pd
-
-                cached["groups"] = pd.json_normalize([_group_row(g) for g in self.to_json()["groups"]])
+                cached["groups"] = pd.DataFrame([rec.group_csv(g) for g in self.groups])
             self.__dict__["_tables"] = cached
         return cached
 
     def season_rows(self) -> list[dict]:
         e = self.envelope
-        n_flag = sum(1 for i in range(len(self.tests["test_id"])) if self.flags(i))
+        n_flag = sum(1 for i in range(len(self.states)) if self.flags(i))
         return [
             {
                 "material": "(envelope)",
-                "c [kPa]": num(e.c / 1e3),
-                "c_se [kPa]": num(e.c_se / 1e3) if e.c_se is not None else None,
-                "phi [deg]": num(e.phi),
-                "phi_se [deg]": num(e.phi_se),
-                "n_dry": e.fit.n if e.fit else None,
+                "c [kPa]": num(e.c_kPa),
+                "c_se [kPa]": num(e.c_se_kPa),
+                "phi [deg]": num(e.phi_deg),
+                "phi_se [deg]": num(e.phi_se_deg),
+                "n_dry": e.n,
                 "n_wet": int(self.unsaturated.sum()),
                 "best_model": None,
                 "best_rmse [kPa]": None,
@@ -337,31 +503,33 @@ class TriaxialResult(Result):
     def _results_table(self):
         import pandas as pd
 
-        js = self.to_json()
-        rows = []
-        for t in js["tests"]:
-            r = {k: v for k, v in t.items() if k not in BOUNDS and k != "flags"}
-            r = {(k.replace("_kPa", " [kPa]").replace("_deg", " [deg]")): v for k, v in r.items()}
-            for name in BOUNDS:
-                for key, v in (t[name] or {}).items():
-                    r[f"{name}_{key.replace('_kPa', '')}" + (" [kPa]" if key.endswith("_kPa") else "")] = v
-            r["flags"] = ";".join(t["flags"])
-            rows.append(r)
-        return pd.DataFrame(rows)
+        cols = rec.row_csv(self.states)
+        cols["q_sat [kPa]"] = np.where(self.unsaturated, cols["q_sat [kPa]"], np.nan)
+        for name in BOUNDS:
+            b = self.bound_states[name]
+            keep = self.unsaturated & np.isfinite(b.sigma1_cap)
+            for k, v in rec.row_csv(b, name + "_").items():
+                v = np.asarray(v)
+                cols[k] = np.where(keep, v, None) if v.dtype == bool else np.where(keep, v, np.nan)
+        cols["flags"] = [";".join(self.flags(i)) for i in range(len(self.states))]
+        return pd.DataFrame(cols)
 
 
-def _group_row(g: dict) -> dict:
-    """A group's JSON record as one flat CSV row: lists joined by ';', 95 % intervals as _low/_high columns."""
-    row = {}
-    for k, v in g.items():
-        if k.endswith("_ci95_kPa"):
-            base = k[: -len("_ci95_kPa")]
-            row[f"{base}_ci95_low_kPa"], row[f"{base}_ci95_high_kPa"] = v if v else (None, None)
-        elif isinstance(v, list):
-            row[k] = ";".join("" if x is None else (x if isinstance(x, str) else repr(x)) for x in v)
-        else:
-            row[k] = v
-    return row
+#: the keys of the JSON object ``envelope``, in their order
+ENVELOPE_KEYS = (
+    "c_kPa",
+    "phi_deg",
+    "M",
+    "k_kPa",
+    "M_extension",
+    "k_extension_kPa",
+    "c_se_kPa",
+    "phi_se_deg",
+    "source",
+    "n",
+    "r2",
+    "method",
+)
 
 
 def _kpa(x) -> float | None:
@@ -412,6 +580,42 @@ def load_triaxial_table(table: Table, curves: dict[str, tuple[float, float]] | N
         if unknown:
             table.notes.append(f"curves for tests not in the table ignored: {', '.join(unknown)}")
     return table, {"q": q, "strain": strain, "from_curve": from_curve}
+
+
+def consolidated_diameter(table: Table) -> tuple[np.ndarray, np.ndarray]:
+    """Diameter after consolidation D_c [m] of every test, for the membrane correction, and where it came from.
+
+    ASTM D4767-11 corrects the deviator with the specimen's diameter after consolidation. It is the column
+    ``D_c`` where given; else, from the volume decrease during consolidation ``dV_c`` and the initial
+    ``D0``, ``H0``: A_c = (V0 − ΔV_c)/H_c with V0 = π D0² H0/4 and H_c the column ``H_c``, or, without it,
+    H0 (1 − ΔV_c/V0)^(1/3) (isotropic consolidation: equal axial and radial strains); else the initial
+    diameter D0 (the source says so, and the run notes it).
+
+    Returns
+    -------
+    D_c : ndarray
+        Diameter [m] (NaN where neither is known).
+    source : ndarray of str
+        ``"D_c"``, ``"dV_c"``, ``"D0"`` or ``""`` per test.
+    """
+    n = len(table)
+    dc, d0, h0, hc, dv = (table.get(k) for k in ("D_c", "D0", "H0", "H_c", "dV_c"))
+    out, src = np.full(n, np.nan), np.array([""] * n, dtype=object)
+    for i in range(n):
+        if np.isfinite(dc[i]):
+            out[i], src[i] = dc[i], "D_c"
+        elif np.isfinite(dv[i]) and np.isfinite(d0[i]) and np.isfinite(h0[i]):
+            v0 = np.pi * d0[i] ** 2 / 4 * h0[i]
+            if not 0 <= dv[i] < v0:
+                table.add_problem(
+                    i, "dV_c", f"the volume decrease during consolidation must lie in [0, V0 = {v0 * 1e6:.4g} cm^3)"
+                )
+                continue
+            h = hc[i] if np.isfinite(hc[i]) else h0[i] * (1.0 - dv[i] / v0) ** (1.0 / 3.0)
+            out[i], src[i] = np.sqrt(4.0 * (v0 - dv[i]) / h / np.pi), "dV_c"
+        elif np.isfinite(d0[i]):
+            out[i], src[i] = d0[i], "D0"
+    return out, src
 
 
 def pressure_tolerance(pressure):
@@ -575,10 +779,16 @@ def run_triaxial_bounds(
     curves = opt.curves
     table = read_table(source, SCHEMA)
     raw_curves = None
+    D_c, D_c_source = consolidated_diameter(table) if opt.membrane is not None else (None, None)
     if curves is not None:
         from .triaxial_curves import read_curves
 
-        raw_curves = read_curves(curves, table, opt.membrane)
+        dc = (
+            None
+            if D_c is None
+            else {str(t): x for t, x, w in zip(table.columns["test_id"], D_c, D_c_source) if w in ("D_c", "dV_c")}
+        )
+        raw_curves = read_curves(curves, table, opt.membrane, dc)
         table.problems += raw_curves.problems  # reported with the table's own, in one round
         table.notes += raw_curves.notes
         table.warnings += raw_curves.warnings
@@ -597,15 +807,20 @@ def run_triaxial_bounds(
         from .triaxial_curves import membrane_correction
 
         at = raw_curves.at_peak if raw_curves else {}
-        D0 = table.get("D0")
+        initial = []
         for i in range(len(table)):
             tid = str(table.columns["test_id"][i])
             if d["from_curve"][i]:
                 dq[i] = at[tid]["membrane"]
+                if at[tid].get("diameter_source") == "D0":
+                    initial.append(tid)
                 continue
             need = [
                 w
-                for w, ok in (("'strain_at_failure'", np.isfinite(d["strain"][i])), ("'D0'", np.isfinite(D0[i])))
+                for w, ok in (
+                    ("'strain_at_failure'", np.isfinite(d["strain"][i])),
+                    ("'D_c' (or 'D0')", np.isfinite(D_c[i])),
+                )
                 if not ok
             ]
             if need:
@@ -615,15 +830,24 @@ def run_triaxial_bounds(
                     f"the membrane correction of '{tid}' needs {' and '.join(need)} (or its raw curve with --curves)",
                 )
                 continue
-            dq[i] = float(membrane_correction(d["strain"][i], D0[i], *opt.membrane))
+            dq[i] = float(membrane_correction(d["strain"][i], D_c[i], *opt.membrane))
+            if D_c_source[i] == "D0":
+                initial.append(tid)
         q = q - np.where(d["from_curve"], 0.0, dq)  # a curve's readings were corrected before its peak
         for i in np.flatnonzero(q <= 0):
             table.add_problem(int(i), "test_id", f"after the membrane correction ({dq[i] / 1e3:.4g} kPa) q_f <= 0")
         t_m, E_m = opt.membrane
         notes.append(
-            f"membrane correction of the deviator (ASTM D4767-11): Δq = 4 E_m t_m ε_a / D0 with "
-            f"t_m = {t_m * 1e3:.4g} mm, E_m = {E_m / 1e3:.4g} kPa; D0 for the diameter after consolidation"
+            f"membrane correction of the deviator (ASTM D4767-11): Δq = 4 E_m t_m ε_a / D_c with "
+            f"t_m = {t_m * 1e3:.4g} mm, E_m = {E_m / 1e3:.4g} kPa and D_c the diameter after consolidation "
+            "(column 'D_c', or from the volume decrease 'dV_c' with D0 and H0)"
         )
+        if initial:
+            notes.append(
+                "membrane correction with the initial diameter D0 for want of the diameter after consolidation "
+                f"(give 'D_c' or 'dV_c'): {', '.join(initial)}; a consolidation that reduces the diameter by "
+                "x % underestimates the correction by about x %"
+            )
     else:
         notes.append(
             "no membrane correction of the deviator (give --membrane-thickness and --membrane-modulus "
@@ -688,7 +912,7 @@ def run_triaxial_bounds(
         )
 
     if opt.c_eff is not None:
-        env = Envelope(opt.c_eff, opt.phi_eff, None, None, "options")
+        env = Envelope(c_kPa=opt.c_eff / KPA, phi_deg=opt.phi_eff, source="options")
         if sat.any():
             notes.append("envelope taken from --c-eff/--phi-eff; the saturated tests are only plotted")
     elif sat.sum() == 0:
@@ -740,7 +964,8 @@ def run_triaxial_bounds(
         elif not sat[j]:
             table.add_problem(int(i), "pair", f"'{pairs[i]}' is not a saturated test")
     table.raise_if_problems()
-    if env.c < 0:
+    c_eff, phi_eff = env.c_kPa * KPA, env.phi_deg  # SI for the physics
+    if c_eff < 0:
         hint = (
             "; if sigma3 is the cell pressure of back-pressured tests, give their 'back_pressure' "
             "(sigma' = sigma - u_b)"
@@ -748,7 +973,7 @@ def run_triaxial_bounds(
             else ""
         )
         warnings.append(
-            f"c' = {env.c / 1e3:.4g} kPa < 0 from the saturated tests: a negative cohesion has no "
+            f"c' = {env.c_kPa:.4g} kPa < 0 from the saturated tests: a negative cohesion has no "
             f"physical meaning and the bounds below rest on it{hint}"
         )
 
@@ -756,9 +981,9 @@ def run_triaxial_bounds(
     bounds = {}
     s0_or_0 = np.where(np.isnan(s0), 0.0, s0)
     for name, b in (
-        ("spherical", tx.spherical_bound(s1, s3, env.c, env.phi, phys_branch)),
-        ("lower", tx.lower_bound(s1, s3, env.c, env.phi, phys_branch)),
-        ("edtp", tx.edtp_bound(s1, s3, p0, s0_or_0, env.c, env.phi, phys_branch)),
+        ("spherical", tx.spherical_bound(s1, s3, c_eff, phi_eff, phys_branch)),
+        ("lower", tx.lower_bound(s1, s3, c_eff, phi_eff, phys_branch)),
+        ("edtp", tx.edtp_bound(s1, s3, p0, s0_or_0, c_eff, phi_eff, phys_branch, opt.extension_slope)),
     ):
         keep = unsat & axi if name != "edtp" else unsat & axi & np.isfinite(s0)
         bounds[name] = tx.Bound(
@@ -778,9 +1003,11 @@ def run_triaxial_bounds(
     if (branch == "extension").any():
         notes.append(
             "extension tests (sigma2 = sigma1) use the extension form of the criterion, "
-            "M = 6 sin phi'/(3 + sin phi'), in the bounds, q'_sat and the figures"
+            "M = 6 sin phi'/(3 + sin phi'), in the bounds, q'_sat and the figures; their saturated reference "
+            f"strength q'_sat and EDTP bound follow the path '{opt.extension_path}' (slope "
+            f"{opt.extension_slope:g} in the q-p plane; --extension-path)"
         )
-    q_sat = tx.drained_strength(p0, env.c, env.phi, phys_branch)
+    q_sat = tx.drained_strength(p0, c_eff, phi_eff, phys_branch, opt.extension_slope)
     tests = {
         "test_id": table.columns["test_id"],
         "condition": cond,
@@ -804,50 +1031,120 @@ def run_triaxial_bounds(
         "membrane": np.where(dq != 0, dq, np.nan) if opt.membrane is not None else nan,
     }
     inputs = [input_file(source, table)] + ([input_file(t.path, t) for t in raw_curves.tables] if raw_curves else [])
-    group_records = _group_analysis(tests, env)
+    group_records = _group_analysis(tests, c_eff, phi_eff)
     for g in group_records:
-        notes += [f"group {g['group']}: {g[k]}" for k in ("needs", "warning") if g.get(k)]
-    return TriaxialResult(table.path, env, tests, bounds, q_sat, group_records, notes, opt, inputs, warnings)
+        notes += [f"group {g.group}: {v}" for v in (g.needs, g.warning) if v]
+    states = rec.TestStates(
+        **{k: tests[k] for k in _TEXT_FIELDS},
+        **{
+            f.name: np.asarray(tests[{v: k for k, v in _OLD_TEST_KEYS.items()}.get(f.name, f.name)], float)
+            * (1.0 if f.name in ("lode_angle", "strain_at_failure") else 1 / KPA)
+            for f in dataclasses.fields(rec.TestStates)
+            if f.name not in _TEXT_FIELDS and f.name != "q_sat"
+        },
+        q_sat=np.where(unsat, q_sat, np.nan) / KPA,
+    )
+    bound_states = {}
+    for name, b in bounds.items():
+        s2c = b.sigma3_cap if b.sigma2_cap is None else b.sigma2_cap
+        with np.errstate(invalid="ignore", divide="ignore"):
+            gain = b.q_prime / q_sat
+        bound_states[name] = rec.BoundStates(
+            sigma1_cap=b.sigma1_cap / KPA,
+            sigma2_cap=s2c / KPA,
+            sigma3_cap=b.sigma3_cap / KPA,
+            p_cap=b.p_cap / KPA,
+            q_cap=b.q_cap / KPA,
+            p_prime=b.p_prime / KPA,
+            q_prime=b.q_prime / KPA,
+            gain=np.where(np.isfinite(b.sigma1_cap), gain, np.nan),
+            positive_component=np.asarray(b.positive, bool),
+        )
+    return TriaxialResult(table.path, env, states, bound_states, group_records, notes, opt, inputs, warnings)
 
 
-def _ci95(value: float, se: float, dof: int) -> list | None:
-    """[low, high] [kPa] of value +- t(0.975, dof) se (values in Pa), None without a finite se."""
+def _ci95(value: float, se: float, dof: int) -> tuple | None:
+    """(low, high) [kPa] of value +- t(0.975, dof) se (values in Pa), None without a finite se."""
     from scipy.stats import t as student
 
     if dof < 1 or not np.isfinite(se):
         return None
     h = float(student.ppf(0.975, dof)) * se
-    return [_kpa(value - h), _kpa(value + h)]
+    return (_kpa(value - h), _kpa(value + h))
 
 
-def _tensor_json(gt: tx.GroupTensor) -> dict:
-    """The keys of a group's capillary tensor (eq. 48 or 50) in a group's JSON record."""
+def _tensor_fields(gt: tx.GroupTensor) -> dict:
+    """The GroupRecord fields of a group's capillary tensor (eq. 48 or 50) [kPa], [deg]."""
     out = {}
     for k in ("sigma1_cap", "sigma2_cap", "sigma3_cap"):
         v, se = getattr(gt, k), getattr(gt, k + "_se")
-        out[f"{k}_kPa"], out[f"{k}_se_kPa"], out[f"{k}_ci95_kPa"] = _kpa(v), _kpa(se), _ci95(v, se, gt.dof)
+        out[k], out[f"{k}_se"], out[f"{k}_ci95"] = _kpa(v), _kpa(se), _ci95(v, se, gt.dof)
     out.update(
         {
-            "p_cap_kPa": _kpa(gt.p_cap),
-            "q_cap_kPa": _kpa(gt.q_cap),
+            "p_cap": _kpa(gt.p_cap),
+            "q_cap": _kpa(gt.q_cap),
             "dof": gt.dof,
-            "C_kPa": _kpa(gt.C_apparent),
-            "C_se_kPa": _kpa(gt.C_apparent_se),
-            "C_fictive_kPa": _kpa(gt.C_fictive),
-            "C_fictive_se_kPa": _kpa(gt.C_fictive_se),
-            "Ci_kPa": _kpa(gt.Ci_apparent),
-            "Ci_fictive_kPa": _kpa(gt.Ci_fictive),
-            "phi_i_deg": num(gt.phi_i_deg),
-            "phi_apparent_se_deg": num(gt.phi_apparent_se_deg),
+            "C": _kpa(gt.C_apparent),
+            "C_se": _kpa(gt.C_apparent_se),
+            "C_fictive": _kpa(gt.C_fictive),
+            "C_fictive_se": _kpa(gt.C_fictive_se),
+            "Ci": _kpa(gt.Ci_apparent),
+            "Ci_fictive": _kpa(gt.Ci_fictive),
+            "phi_i": num(gt.phi_i_deg),
+            "phi_apparent_se": num(gt.phi_apparent_se_deg),
         }
     )
     return out
 
 
-_TENSOR_KEYS = tuple(_tensor_json(tx.GroupTensor(2, 1, "compression", *([np.nan] * 10))))
+def closures(C_apparent: float, c_eff: float, phi_eff: float, branch: str) -> tuple[list, rec.Admissible]:
+    """The closures of eq. 48 a group without paired saturated tests allows, and the range between them.
+
+    Eq. 37 and 43 of Prunier et al. (2024) give one equation for an axisymmetric tensor (mean m, half
+    difference d of the axial and radial components, compression positive):
+    (C − C') cos φ' = d − m sin φ'. The paper closes it two ways, the group analogues of its bounds: the
+    lower bound σ1,cap = 0 (eq. 24; capillary stresses are tensile, eq. 20) and the spherical tensor
+    (eq. 37, the upper bound q = q'). Every tensor between the two satisfies eq. 37 with both components
+    tensile; each component's range runs between its values under the two closures.
+
+    Parameters
+    ----------
+    C_apparent, c_eff : float
+        Apparent cohesion C of the group and effective cohesion C' [Pa].
+    phi_eff : float
+        Effective friction angle φ' [deg].
+    branch : str
+        ``"compression"`` (σ2,cap = σ3,cap radial) or ``"extension"`` (σ2,cap = σ1,cap radial).
+
+    Returns
+    -------
+    list of Closure, Admissible
+        The closures (``sigma1_cap_zero`` chosen) and the per-component range [kPa].
+
+    References
+    ----------
+    .. [1] Prunier, F., Branque, D., Duriez, J. & Darve, F. (2024). Eur. J. Environ. Civ. Eng.
+       doi:10.1080/19648189.2024.2314099, eq. 20, 24, 37, 43, 48.
+    """
+    lower_c2 = tx.fictive_cohesion_lower(C_apparent, c_eff, phi_eff)
+    a1, a3 = tx.axisymmetric_group_cap(C_apparent, lower_c2, c_eff, phi_eff)
+    sph = float(tx.spherical_group_cap(C_apparent, c_eff, phi_eff))
+    out = []
+    for name, label, chosen, (s1c, s3c) in (
+        ("sigma1_cap_zero", "σ1,cap = 0 (the lower bound, eq. 24)", True, (float(a1), float(a3))),
+        ("spherical", "spherical tensor σ1,cap = σ2,cap = σ3,cap (eq. 37)", False, (sph, sph)),
+    ):
+        s2c = s1c if branch == "extension" else s3c
+        out.append(rec.Closure(name, label, chosen, _kpa(s1c), _kpa(s2c), _kpa(s3c), _kpa((s1c + s2c + s3c) / 3)))
+
+    def rng(comp: str) -> rec.Range:
+        a, b = (getattr(c, comp) for c in out)
+        return rec.Range(min(a, b), max(a, b))
+
+    return out, rec.Admissible(rng("sigma1_cap"), rng("sigma2_cap"), rng("sigma3_cap"), rng("p_cap"))
 
 
-def _group_analysis(t: dict, env: Envelope) -> list[dict]:
+def _group_analysis(t: dict, c_eff: float, phi_eff: float) -> list[rec.GroupRecord]:
     """Appendix 1 of Prunier et al. (2024) for every group of unsaturated tests sharing one tensor.
 
     Every group gets the free regression sigma1 = K sigma3 + b through its
@@ -857,8 +1154,11 @@ def _group_analysis(t: dict, env: Envelope) -> list[dict]:
     (eq. 44-47) and a true-triaxial group at one Lode angle (eq. 49, within
     ``tx.LODE_TOL_DEG``) eq. 50, by the least squares the paper recommends
     (section 7.3), with standard errors and 95 % intervals (t, n - 1 dof).
-    Without pairs eq. 48 is closed with sigma1_cap = 0 (the lower bound,
-    eq. 24) and eq. 50 is not available; ``needs`` says what is missing.
+    Without pairs the tensor is not determined: each component's admissible
+    range between the closures sigma1_cap = 0 (the lower bound, eq. 24) and
+    the spherical tensor (eq. 37) is given (:func:`closures`), and eq. 50 is
+    not available; ``needs`` says what is missing. ``t`` holds SI arrays,
+    ``c_eff`` [Pa] and ``phi_eff`` [deg] the effective envelope.
     """
     out = []
     index = {str(x): i for i, x in enumerate(t["test_id"])}
@@ -872,42 +1172,37 @@ def _group_analysis(t: dict, env: Envelope) -> list[dict]:
             "tests": [str(x) for x in t["test_id"][sel]],
             "n": int(sel.size),
             "branch": branches[0] if len(branches) == 1 else "mixed",
-            "lode_angles_deg": [num(x) for x in lode],
-            "lode_spread_deg": num(np.ptp(lode)),
-            "lode_tol_deg": tx.LODE_TOL_DEG,
+            "lode_angles": [num(x) for x in lode],
+            "lode_spread": num(np.ptp(lode)),
+            "lode_tol": tx.LODE_TOL_DEG,
             "eq49_holds": bool(np.ptp(lode) <= tx.LODE_TOL_DEG),
             "pairs": [t["pair"][i] or None for i in sel],
-            "method": None,
-            "needs": None,
-            **dict.fromkeys(_TENSOR_KEYS),
         }
         if len(branches) > 1:
             res["error"] = (
                 f"the group mixes {' and '.join(branches)} tests: one tensor is shared by tests of "
                 "one branch (and one Lode angle, eq. 49)"
             )
-            out.append(res)
+            out.append(rec.GroupRecord(**res))
             continue
         branch = branches[0]
+        C = None
         if np.ptp(s3) > 0:
             kp, b = np.polyfit(s3, s1, 1)
             if kp > 1.0:
                 C, phi = tx.envelope_from_principal_fit(kp, b)
                 M_app, k_app = tx.envelope_qp(C, phi, "extension" if branch == "extension" else "compression")
-                res.update({"apparent_M": num(M_app), "apparent_k_kPa": _kpa(k_app)})
-                c2 = tx.fictive_cohesion_lower(C, env.c, env.phi)
-                a1, a3 = tx.axisymmetric_group_cap(C, c2, env.c, env.phi)
+                c2 = tx.fictive_cohesion_lower(C, c_eff, phi_eff)
+                a1, a3 = tx.axisymmetric_group_cap(C, c2, c_eff, phi_eff)
                 res.update(
                     {
-                        "C_apparent_kPa": _kpa(C),
-                        "phi_apparent_deg": num(phi),
-                        "phi_difference_deg": num(phi - env.phi),
-                        "eq37_sigma_cap_kPa": _kpa(tx.spherical_group_cap(C, env.c, env.phi)),
-                        "eq48_lower": {
-                            "C_fictive_kPa": _kpa(c2),
-                            "sigma1_cap_kPa": _kpa(a1),
-                            "sigma3_cap_kPa": _kpa(a3),
-                        },
+                        "apparent_M": num(M_app),
+                        "apparent_k": _kpa(k_app),
+                        "C_apparent": _kpa(C),
+                        "phi_apparent": num(phi),
+                        "phi_difference": num(phi - phi_eff),
+                        "eq37_sigma_cap": _kpa(tx.spherical_group_cap(C, c_eff, phi_eff)),
+                        "eq48_lower": rec.Lower48(_kpa(c2), _kpa(a1), _kpa(a3)),
                     }
                 )
             else:
@@ -918,7 +1213,7 @@ def _group_analysis(t: dict, env: Envelope) -> list[dict]:
         p_idx = np.array([index[t["pair"][i]] for i in sel]) if paired else None
         if paired:  # the fictive state sigma'' (eq. 44): the unsaturated circle's centre, the saturated radius
             f1, f3 = tx.fictive_state(s1, s3, t["sigma1"][p_idx], t["sigma3"][p_idx])
-            res.update({"fictive_sigma1_kPa": [_kpa(x) for x in f1], "fictive_sigma3_kPa": [_kpa(x) for x in f3]})
+            res.update({"fictive_sigma1": [_kpa(x) for x in f1], "fictive_sigma3": [_kpa(x) for x in f3]})
         if branch == "general" and not res["eq49_holds"]:
             res["error"] = (
                 f"the Lode angles of the group spread over {np.ptp(lode):.3g} deg > "
@@ -926,10 +1221,10 @@ def _group_analysis(t: dict, env: Envelope) -> list[dict]:
             )
         elif branch == "general" and paired:
             gt = tx.true_triaxial_group_tensor(
-                s1, s2, s3, t["sigma1"][p_idx], t["sigma2"][p_idx], t["sigma3"][p_idx], env.c, env.phi
+                s1, s2, s3, t["sigma1"][p_idx], t["sigma2"][p_idx], t["sigma3"][p_idx], c_eff, phi_eff
             )
             res["method"] = "eq. 50 (fictive state of the paired saturated tests, constant Lode angle)"
-            res.update(_tensor_json(gt))
+            res.update(_tensor_fields(gt))
             off = np.abs(t["lode"][p_idx] - np.mean(lode)) > tx.LODE_TOL_DEG
             if off.any():
                 res["warning"] = "paired saturated tests at another Lode angle than the group: " + ", ".join(
@@ -942,31 +1237,24 @@ def _group_analysis(t: dict, env: Envelope) -> list[dict]:
             )
         elif paired:
             gt = tx.axisymmetric_group_tensor(
-                s1, s3, t["sigma1"][p_idx], t["sigma3"][p_idx], env.c, env.phi, branch=branch
+                s1, s3, t["sigma1"][p_idx], t["sigma3"][p_idx], c_eff, phi_eff, branch=branch
             )
             res["method"] = "eq. 48 (fictive state sigma'' of the paired saturated tests, eq. 44-47)"
-            res.update(_tensor_json(gt))
+            res.update(_tensor_fields(gt))
         else:
             res["needs"] = (
                 "eq. 48 with the fictive state sigma'' (eq. 44-47) needs, for each test, the saturated "
                 "test that reaches the same effective state at failure (column 'pair' naming its "
-                "test_id); without it eq. 48 is closed with sigma1_cap = 0 (the lower bound, eq. 24)"
+                "test_id); without it eq. 37 leaves one degree of freedom: each component's admissible "
+                "range is given between the closures sigma1_cap = 0 (the lower bound, eq. 24) and the "
+                "spherical tensor (eq. 37)"
             )
-            if "eq48_lower" in res:
-                e = res["eq48_lower"]
-                res["method"] = "eq. 48 closed with sigma1_cap = 0 (no paired saturated tests)"
-                # in extension the major direction is radial: sigma2_cap = sigma1_cap
-                res.update(
-                    {
-                        "sigma1_cap_kPa": e["sigma1_cap_kPa"],
-                        "sigma3_cap_kPa": e["sigma3_cap_kPa"],
-                        "sigma2_cap_kPa": e["sigma1_cap_kPa"] if branch == "extension" else e["sigma3_cap_kPa"],
-                        "C_kPa": res["C_apparent_kPa"],
-                        "C_fictive_kPa": e["C_fictive_kPa"],
-                    }
+            if C is not None:
+                res["method"] = (
+                    "eq. 37: admissible range between the closures sigma1_cap = 0 (chosen, eq. 24) and "
+                    "spherical (no paired saturated tests: the tensor itself is not determined)"
                 )
-                caps = [res[k] * 1e3 for k in ("sigma1_cap_kPa", "sigma2_cap_kPa", "sigma3_cap_kPa")]
-                res["p_cap_kPa"] = _kpa(sum(caps) / 3)
-                res["q_cap_kPa"] = _kpa(caps[0] - caps[2])
-        out.append(res)
+                res["closures"], res["admissible"] = closures(C, c_eff, phi_eff, branch)
+                res["C"] = res["C_apparent"]
+        out.append(rec.GroupRecord(**res))
     return out

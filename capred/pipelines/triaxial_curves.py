@@ -76,6 +76,46 @@ SCHEMA = [
     ),
     Column("air_pressure", "pressure", "kPa", "pore-air pressure", ("pore_air_pressure", "u_a", "air_pressure_kpa")),
 ]
+#: Standard columns of a GDS-style triaxial export (GDSLAB data files) that capred does not need: they are known,
+#: read as text and never warned about as "not used". This is the one list; a column capred uses (axial strain,
+#: deviator stress, axial force, radial, back and pore pressures, volumetric strain, stage number) is in SCHEMA.
+EXPORT_COLUMNS = (
+    "Time since start of test",
+    "Time since start of stage",
+    "Date and time",
+    "Radial Volume",
+    "Back Volume",
+    "Base Volume",
+    "Base Pressure",
+    "Load Cell",
+    "Axial Displacement",
+    "Axial Displacement 2",
+    "Av Diameter Change",
+    "Radial Strain",
+    "Axial Stress",
+    "Eff. Axial Stress",
+    "Eff. Radial Stress",
+    "Total Stress Ratio",
+    "Eff. Stress Ratio",
+    "Current Area",
+    "Shear Strain",
+    "Cambridge p",
+    "Eff. Cambridge p'",
+    "Max Shear Stress t",
+    "Mean Stress s",
+    "Eff. Mean Stress s'",
+    "Mean Stress s/Eff. Axial Stress 2",
+    "Volume Change",
+    "B Value",
+    "Local Axial 1",
+    "Local Axial 2",
+    "Local Radial",
+    "Lower Chamber Pressure",
+    "Lower Chamber Volume",
+)
+SCHEMA += [Column("stage", "text", None, "stage number of the export", ("stage_number", "stage_no", "stage_nr"))]
+SCHEMA += [Column(_key(name), "text", None, f"{name} (instrument export; not used)", ()) for name in EXPORT_COLUMNS]
+
 #: the pressures read at the peak of a curve (an export's columns)
 PEAK_PRESSURES = ("radial_pressure", "back_pressure", "pore_pressure", "air_pressure")
 _ID_KEYS = tuple(_key(k) for k in ("test_id", *column_aliases("test_id")))
@@ -182,12 +222,43 @@ def _length(value: str, unit: str) -> float | None:
         return None
 
 
-def read_curves(spec, tests: Table | None = None, membrane: tuple[float, float] | None = None) -> TriaxialCurves:
+def _shear_stage(table: Table, sel: np.ndarray, tid: str, notes: list[str]) -> np.ndarray:
+    """The rows of ``sel`` in the shear stage of an export with a ``Stage Number`` column.
+
+    An export logs every stage of a test (saturation, B check, consolidation, shear) in one file. The shear
+    stage is the one in which the deviator rises most (its largest q, or axial force, minus its first): the
+    other stages hold q near constant. Blank stage cells belong to no stage and are left out.
+    """
+    stage = np.array([str(x).strip() for x in table.columns["stage"][sel]], dtype=object)
+    names = [x for x in dict.fromkeys(stage) if x not in ("", "nan", "None")]
+    if len(names) <= 1:
+        return sel[stage != ""] if names else sel
+    load = table.get("q") if "q" in table.columns else table.get("axial_force")
+
+    def rise(name: str) -> float:
+        v = load[sel[stage == name]]
+        v = v[np.isfinite(v)]
+        return float(v.max() - v[0]) if v.size else -np.inf
+
+    best = max(names, key=lambda n: (rise(n), names.index(n)))  # ties: the later stage
+    notes.append(
+        f"test '{tid}': stage {best} of stages {', '.join(names)} taken as the shear stage "
+        "(the deviator rises most in it; column 'Stage Number')"
+    )
+    return sel[stage == best]
+
+
+def read_curves(
+    spec, tests: Table | None = None, membrane: tuple[float, float] | None = None, consolidated: dict | None = None
+) -> TriaxialCurves:
     """Peak q and the axial strain at the peak of every test's curve.
 
     ``membrane`` = (thickness [m], modulus [Pa]) corrects every reading's q
-    by :func:`membrane_correction` before the peak is taken; the diameter is
-    D0 of the tests table or of the file's metadata.
+    by :func:`membrane_correction` before the peak is taken, with the
+    diameter after consolidation ``consolidated[test_id]`` [m] (from the tests
+    table: capred.pipelines.triaxial.consolidated_diameter) where known, else
+    the initial D0 of the tests table or of the file's metadata (``at_peak``
+    records which: ``diameter_source`` "D_c" or "D0").
     """
     out = TriaxialCurves()
     d0_col = {str(t): d for t, d in zip(tests.columns.get("test_id", []), tests.get("D0"))} if tests is not None else {}
@@ -210,6 +281,8 @@ def read_curves(spec, tests: Table | None = None, membrane: tuple[float, float] 
         eps = table.get("axial_strain")
         for tid in dict.fromkeys(ids):
             sel = np.flatnonzero(ids == tid)
+            if "stage" in table.columns:
+                sel = _shear_stage(table, sel, str(tid), out.notes)
             q = table.get("q")[sel].copy()
             D0 = d0_col.get(str(tid), np.nan)
             if not np.isfinite(D0):
@@ -249,7 +322,12 @@ def read_curves(spec, tests: Table | None = None, membrane: tuple[float, float] 
                         "strain of every reading (column 'axial_strain')",
                     )
                     continue
-                dq = membrane_correction(np.where(np.isfinite(eps[sel]), eps[sel], 0.0), D0, *membrane)
+                dc = (consolidated or {}).get(str(tid), np.nan)
+                dc_known = dc is not None and np.isfinite(dc) and dc > 0
+                diameter_source = "D_c" if dc_known else "D0"
+                dq = membrane_correction(
+                    np.where(np.isfinite(eps[sel]), eps[sel], 0.0), dc if dc_known else D0, *membrane
+                )
                 q = q - dq
             ok = np.isfinite(q)
             if not ok.any():
@@ -263,6 +341,8 @@ def read_curves(spec, tests: Table | None = None, membrane: tuple[float, float] 
             state = {name: float(table.get(name)[k]) for name in PEAK_PRESSURES}
             state["membrane"] = float(dq[int(np.flatnonzero(sel == k)[0])])
             state["D0"] = D0
+            if membrane is not None:
+                state["diameter_source"] = diameter_source
             out.at_peak[str(tid)] = state
         out.problems += table.problems
     return out

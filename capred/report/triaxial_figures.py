@@ -8,7 +8,6 @@ from .sheets import Panel, Sheet
 from .style import LABEL, OKABE_ITO, literal
 from .style import style as model_style
 
-KPA = 1e-3
 #: one colour per group (Okabe-Ito, the bounds' vermillion, blue and green left to the bounds)
 GROUP_COLOURS = [OKABE_ITO[k] for k in ("orange", "sky", "purple", "yellow", "black", "grey")]
 #: Mohr circles: unsaturated total, unsaturated effective under the lower bound (the bound's colour), saturated
@@ -26,53 +25,49 @@ BOUND_STYLE = {
 
 def plot_qp_plane(ax, result):
     """Envelope, saturated and unsaturated failure points, image points and assumed paths."""
-    t = result.tests
+    t = result.states  # kPa
     env = result.envelope
-    sat = t["condition"] == "saturated"
+    sat = t.condition == "saturated"
     uns = result.unsaturated
-    p_all = np.concatenate([t["p"], *(b.p_prime[np.isfinite(b.p_prime)] for b in result.bounds.values())])
-    p_max = max(float(np.nanmax(p_all)) * 1.1, 1.0)
+    p_all = np.concatenate([t.p, *(b.p_prime[np.isfinite(b.p_prime)] for b in result.bound_states.values())])
+    p_max = max(float(np.nanmax(p_all)) * 1.1, 1e-3)
     ps = np.linspace(0.0, p_max, 50)
     ax.plot(
-        ps * KPA,
-        (env.M * ps + env.k) * KPA,
+        ps,
+        env.M * ps + env.k_kPa,
         "k-",
         lw=1.2,
-        label=rf"effective envelope ($c'$ = {env.c * KPA:.3g} kPa, $\phi'$ = {env.phi:.2f}°)",
+        label=rf"effective envelope ($c'$ = {env.c_kPa:.3g} kPa, $\phi'$ = {env.phi_deg:.2f}°)",
     )
-    ext = t["branch"] == "extension"
+    ext = t.branch == "extension"
     if ext.any():  # extension: M = 6 sin phi'/(3 + sin phi')
         ax.plot(
-            ps * KPA,
-            (env.M_extension * ps + env.k_extension) * KPA,
+            ps,
+            env.M_extension * ps + env.k_extension_kPa,
             "k--",
             lw=1.0,
             label=r"effective envelope, extension ($M = 6\sin\phi'/(3 + \sin\phi')$)",
         )
-    ax.plot(
-        t["p"][sat & ~ext] * KPA, t["q"][sat & ~ext] * KPA, "ks", mfc="white", label=r"saturated failure ($p'$, $q$)"
-    )
-    ax.plot(
-        t["p"][uns & ~ext] * KPA, t["q"][uns & ~ext] * KPA, "k*", ms=9, label=r"unsaturated failure ($p$, $q$), total"
-    )
+    ax.plot(t.p[sat & ~ext], t.q[sat & ~ext], "ks", mfc="white", label=r"saturated failure ($p'$, $q$)")
+    ax.plot(t.p[uns & ~ext], t.q[uns & ~ext], "k*", ms=9, label=r"unsaturated failure ($p$, $q$), total")
     if ext.any():
         ax.plot(
-            t["p"][sat & ext] * KPA,
-            t["q"][sat & ext] * KPA,
+            t.p[sat & ext],
+            t.q[sat & ext],
             "kD",
             mfc="white",
             ms=5,
             label="saturated failure, extension",
         )
-        ax.plot(t["p"][uns & ext] * KPA, t["q"][uns & ext] * KPA, "kP", ms=7, label="unsaturated failure, extension")
+        ax.plot(t.p[uns & ext], t.q[uns & ext], "kP", ms=7, label="unsaturated failure, extension")
     for name, style in BOUND_STYLE.items():
-        b = result.bounds[name]
+        b = result.bound_states[name]
         ok = uns & np.isfinite(b.p_prime)
         if not ok.any():
             continue
         ax.plot(
-            b.p_prime[ok] * KPA,
-            b.q_prime[ok] * KPA,
+            b.p_prime[ok],
+            b.q_prime[ok],
             ls="none",
             ms=7,
             color=style["color"],
@@ -82,38 +77,38 @@ def plot_qp_plane(ax, result):
         for i in np.flatnonzero(ok):
             ax.annotate(
                 "",
-                xy=(b.p_prime[i] * KPA, b.q_prime[i] * KPA),
-                xytext=(t["p"][i] * KPA, t["q"][i] * KPA),
+                xy=(b.p_prime[i], b.q_prime[i]),
+                xytext=(t.p[i], t.q[i]),
                 arrowprops=dict(arrowstyle="->", color=style["color"], lw=0.8, alpha=0.7),
             )
-    edtp = result.bounds["edtp"]
+    edtp = result.bound_states["edtp"]
     for k, i in enumerate(np.flatnonzero(uns & np.isfinite(edtp.p_prime))):
-        p0e = t["p0"][i] + t["s0"][i]
+        p0e = t.p0[i] + t.s0[i]
         ax.plot(
-            [p0e * KPA, edtp.p_prime[i] * KPA],
-            [0, edtp.q_prime[i] * KPA],
+            [p0e, edtp.p_prime[i]],
+            [0, edtp.q_prime[i]],
             "--",
             color=model_style("edtp")["color"],
             lw=0.8,
             label=r"EDTP stress path (from $p_0 + s_0$)" if k == 0 else None,
         )
     for j, g in enumerate(result.groups):  # the apparent (total) envelope of each group sharing one tensor
-        if g.get("apparent_M") is None:
+        if g.apparent_M is None:
             continue
         ax.plot(
-            ps * KPA,
-            g["apparent_M"] * ps * KPA + g["apparent_k_kPa"],
+            ps,
+            g.apparent_M * ps + g.apparent_k,
             ":",
             color=GROUP_COLOURS[j % len(GROUP_COLOURS)],
             lw=1.0,
-            label=f"group {literal(g['group'])}: apparent envelope ($C$ = {g['C_apparent_kPa']:.3g} kPa, "
-            rf"$\phi$ = {g['phi_apparent_deg']:.3g}°)",
+            label=f"group {literal(g.group)}: apparent envelope ($C$ = {g.C_apparent:.3g} kPa, "
+            rf"$\phi$ = {g.phi_apparent:.3g}°)",
         )
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
     ax.set_xlabel(LABEL["p"])
     ax.set_ylabel(LABEL["q"])
-    ax.set_title(r"$q$-$p$ plane: failure points and image points of the bounds")
+    ax.set_title(r"$q$-$p$ plane: failure and image points (Prunier et al. 2024, Fig. 16-17)")
     ax.legend()
     return ax
 
@@ -122,7 +117,7 @@ def plot_capillary_ranges(ax, result):
     """sigma1_cap, sigma3_cap and p_cap of every bound, per unsaturated test: colour = bound, hatch = component."""
     from matplotlib.patches import Patch
 
-    t = result.tests
+    t = result.states
     idx = np.flatnonzero(result.unsaturated)
     comps = (
         ("sigma1_cap", r"$\sigma_{1,cap}$", ""),
@@ -131,12 +126,12 @@ def plot_capillary_ranges(ax, result):
     )
     width = 0.8 / (len(BOUND_STYLE) * len(comps))
     for k, (name, st) in enumerate(BOUND_STYLE.items()):
-        b = result.bounds[name]
+        b = result.bound_states[name]
         for j, (attr, _, hatch) in enumerate(comps):
             x = np.arange(len(idx)) - 0.4 + width * (k * len(comps) + j + 0.5)
             ax.bar(
                 x,
-                getattr(b, attr)[idx] * KPA,
+                getattr(b, attr)[idx],
                 width,
                 color=st["color"],
                 alpha=0.85,
@@ -144,38 +139,37 @@ def plot_capillary_ranges(ax, result):
                 edgecolor="white",
                 lw=0.3,
             )
-    ax.set_xticks(np.arange(len(idx)), [literal(t["test_id"][i]) for i in idx], fontsize=7)
+    ax.set_xticks(np.arange(len(idx)), [literal(t.test_id[i]) for i in idx], fontsize=7)
     ax.axhline(0, color="k", lw=0.8)
     handles = [Patch(color=st["color"], label=st["label"]) for st in BOUND_STYLE.values()]
     handles += [Patch(facecolor="0.75", hatch=h, edgecolor="white", label=lab) for _, lab, h in comps]
     ax.legend(handles=handles)
     ax.set_ylabel(LABEL["cap_component"])
-    ax.set_title("Capillary stresses at failure, per test")
+    ax.set_title("Capillary stresses at failure, per test (Prunier et al. 2024, Fig. 18)")
     return ax
 
 
 def plot_mohr_circles(ax, result):
     """Total failure circles (unsaturated), lower-bound effective circles and the envelope."""
-    t = result.tests
+    t = result.states  # kPa
     env = result.envelope
     th = np.linspace(0, np.pi, 90)
     hi = 0.0
-    for i in range(len(t["test_id"])):
+    lb = result.bound_states["lower"]
+    for i in range(len(t)):
         if result.unsaturated[i]:
-            pairs = [(t["sigma3"][i], t["sigma1"][i], MOHR["total"])]
-            lb = result.bounds["lower"]
-            s3e = t["sigma3"][i] - lb.sigma3_cap[i]
-            pairs.append((s3e, t["sigma1"][i] - lb.sigma1_cap[i], MOHR["effective"]))
+            pairs = [(t.sigma3[i], t.sigma1[i], MOHR["total"])]
+            pairs.append((t.sigma3[i] - lb.sigma3_cap[i], t.sigma1[i] - lb.sigma1_cap[i], MOHR["effective"]))
         else:
-            pairs = [(t["sigma3"][i], t["sigma1"][i], MOHR["saturated"])]
+            pairs = [(t.sigma3[i], t.sigma1[i], MOHR["saturated"])]
         for a, b, st in pairs:
             c, r = (a + b) / 2, (b - a) / 2
-            ax.plot((c + r * np.cos(th)) * KPA, r * np.sin(th) * KPA, color=st["color"], ls=st["ls"], lw=0.9)
+            ax.plot(c + r * np.cos(th), r * np.sin(th), color=st["color"], ls=st["ls"], lw=0.9)
             hi = max(hi, b)
     s = np.linspace(0, hi, 20)
     ax.plot(
-        s * KPA,
-        (env.c + s * np.tan(np.radians(env.phi))) * KPA,
+        s,
+        env.c_kPa + s * np.tan(np.radians(env.phi_deg)),
         color=OKABE_ITO["blue"],
         ls="-",
         lw=1.0,
@@ -186,7 +180,7 @@ def plot_mohr_circles(ax, result):
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(LABEL["sigma"])
     ax.set_ylabel(LABEL["tau"])
-    ax.set_title("Mohr circles at failure")
+    ax.set_title("Mohr circles at failure (Prunier et al. 2024, Fig. 19-20)")
     ax.legend()
     return ax
 
@@ -194,36 +188,35 @@ def plot_mohr_circles(ax, result):
 def plot_group_circles(ax, result):
     """Each group's unsaturated Mohr circles (solid), fictive circles sigma'' (dashed, eq. 44) and the lines of
     cohesion C and C'' at the effective friction angle (eq. 43, 48)."""
-    t = result.tests
+    t = result.states  # kPa
     env = result.envelope
     th = np.linspace(0, np.pi, 90)
-    tan_phi = np.tan(np.radians(env.phi))
+    tan_phi = np.tan(np.radians(env.phi_deg))
     hi = 0.0
     for j, g in enumerate(result.groups):
         colour = GROUP_COLOURS[j % len(GROUP_COLOURS)]
-        sel = np.isin(t["test_id"], g["tests"])
-        pairs = [(a, b, "-") for a, b in zip(t["sigma3"][sel] * KPA, t["sigma1"][sel] * KPA)]
-        if g.get("fictive_sigma1_kPa"):
-            pairs += [(a, b, "--") for a, b in zip(g["fictive_sigma3_kPa"], g["fictive_sigma1_kPa"])]
+        sel = np.isin(t.test_id, g.tests)
+        pairs = [(a, b, "-") for a, b in zip(t.sigma3[sel], t.sigma1[sel])]
+        if g.fictive_sigma1:
+            pairs += [(a, b, "--") for a, b in zip(g.fictive_sigma3, g.fictive_sigma1)]
         for a, b, ls in pairs:
             c, r = (a + b) / 2, (b - a) / 2
             ax.plot(c + r * np.cos(th), r * np.sin(th), ls=ls, color=colour, lw=0.9)
             hi = max(hi, b)
         s_line = np.linspace(0.0, hi, 20)
-        for key, ls, what in (("C_kPa", "-", "C"), ("C_fictive_kPa", "--", "C''")):
-            if g.get(key) is not None:
+        for key, ls, what in (("C", "-", "C"), ("C_fictive", "--", "C''")):
+            value = getattr(g, key)
+            if value is not None:
                 ax.plot(
                     s_line,
-                    g[key] + s_line * tan_phi,
+                    value + s_line * tan_phi,
                     ls=ls,
                     color=colour,
                     lw=1.4,
-                    label=f"group {literal(g['group'])}: ${what}$ = {g[key]:.3g} kPa",
+                    label=f"group {literal(g.group)}: ${what}$ = {value:.3g} kPa",
                 )
     s_line = np.linspace(0.0, max(hi, 1.0), 20)
-    ax.plot(
-        s_line, env.c * KPA + s_line * tan_phi, "k-", lw=1.0, label=f"effective envelope, $C'$ = {env.c * KPA:.3g} kPa"
-    )
+    ax.plot(s_line, env.c_kPa + s_line * tan_phi, "k-", lw=1.0, label=f"effective envelope, $C'$ = {env.c_kPa:.3g} kPa")
     ax.plot([], [], "k-", lw=0.9, label="unsaturated circles (total)")
     ax.plot([], [], "k--", lw=0.9, label=r"fictive circles $\sigma''$ (saturated radius)")
     ax.set_xlim(left=0)
@@ -231,45 +224,64 @@ def plot_group_circles(ax, result):
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(LABEL["sigma"])
     ax.set_ylabel(LABEL["tau"])
-    ax.set_title(r"Groups: circles and the lines $C$, $C''$")
+    ax.set_title(r"Groups: circles and the lines $C$, $C''$ (Prunier et al. 2024, Fig. 21)")
     ax.legend()
     return ax
 
 
 def plot_group_tensors(ax, result):
-    """sigma1_cap, sigma2_cap, sigma3_cap of each group (eq. 48 or 50) with their standard errors."""
+    """sigma1_cap, sigma2_cap, sigma3_cap of each group: eq. 48 or 50 with standard errors, or, for a group
+    without paired saturated tests, the admissible range of each component between the closures (eq. 37)
+    with the chosen closure marked."""
+    from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
-    groups = [g for g in result.groups if g.get("sigma1_cap_kPa") is not None]
+    groups = [g for g in result.groups if g.determined or g.admissible is not None]
     comps = ((1, r"$\sigma_{1,cap}$", ""), (2, r"$\sigma_{2,cap}$", "///"), (3, r"$\sigma_{3,cap}$", "..."))
     width = 0.8 / len(comps)
+    ranged = False
     for k, (n, label, hatch) in enumerate(comps):
         x = np.arange(len(groups)) - 0.4 + width * (k + 0.5)
-        values = [g[f"sigma{n}_cap_kPa"] for g in groups]
-        errors = [g[f"sigma{n}_cap_se_kPa"] or 0.0 for g in groups]
-        ax.bar(
-            x,
-            values,
-            width,
-            yerr=errors,
-            capsize=3,
-            hatch=hatch,
-            edgecolor="white",
-            lw=0.3,
-            color=[GROUP_COLOURS[result.groups.index(g) % len(GROUP_COLOURS)] for g in groups],
-            label=label,
-        )
+        for xi, g in zip(x, groups):
+            colour = GROUP_COLOURS[result.groups.index(g) % len(GROUP_COLOURS)]
+            if g.determined:
+                value, se = getattr(g, f"sigma{n}_cap"), getattr(g, f"sigma{n}_cap_se") or 0.0
+                ax.bar(xi, value, width, yerr=se, capsize=3, hatch=hatch, edgecolor="white", lw=0.3, color=colour)
+                continue
+            ranged = True
+            r = getattr(g.admissible, f"sigma{n}_cap")
+            ax.bar(
+                xi,
+                r.upper - r.lower,
+                width,
+                bottom=r.lower,
+                hatch=hatch,
+                color=colour,
+                alpha=0.35,
+                lw=0.8,
+                edgecolor=colour,
+            )
+            chosen = next(c for c in g.closures if c.chosen)
+            ax.plot([xi], [getattr(chosen, f"sigma{n}_cap")], marker="_", ms=12, mew=2, color="k")
 
-    def short(method):
-        return r"eq. 48, $\sigma_{1,cap}$ = 0" if "closed" in method else method.split(" (")[0]
+    def short(g):
+        if not g.determined:
+            return "eq. 37: range"
+        return (g.method or "").split(" (")[0]
 
-    ax.set_xticks(
-        np.arange(len(groups)), [f"{literal(g['group'])}\n{short(g['method'] or '')}" for g in groups], fontsize=7
-    )
+    ax.set_xticks(np.arange(len(groups)), [f"{literal(g.group)}\n{short(g)}" for g in groups], fontsize=7)
     ax.axhline(0, color="k", lw=0.8)
     ax.set_ylabel(LABEL["cap_component"])
-    ax.set_title(r"Tensor shared by each group ($\pm$ se)")
-    ax.legend(handles=[Patch(facecolor="0.75", hatch=h, edgecolor="white", label=lab) for _, lab, h in comps])
+    ax.set_title(r"Tensor shared by each group ($\pm$ se; a range where the paper leaves it open)")
+    handles = [Patch(facecolor="0.75", hatch=h, edgecolor="white", label=lab) for _, lab, h in comps]
+    if ranged:
+        handles += [
+            Patch(facecolor="0.75", alpha=0.35, edgecolor="0.3", label="admissible range (no pairs)"),
+            Line2D(
+                [], [], marker="_", ms=12, mew=2, color="k", ls="none", label=r"chosen closure $\sigma_{1,cap}$ = 0"
+            ),
+        ]
+    ax.legend(handles=handles)
     return ax
 
 
@@ -281,17 +293,19 @@ def sheet_triaxial(result) -> Sheet:
                 "qp_plane",
                 lambda ax: plot_qp_plane(ax, result),
                 "Failure points in the q-p plane, the effective envelope, the image points of each bound and the "
-                "EDTP stress paths; groups' apparent envelopes dotted.",
+                "EDTP stress paths; groups' apparent envelopes dotted (after Prunier et al. 2024, Fig. 16-17).",
             ),
             Panel(
                 "capillary_stresses",
                 lambda ax: plot_capillary_ranges(ax, result),
-                "σ1,cap, σ3,cap and p_cap of each bound for every unsaturated test.",
+                "σ1,cap, σ3,cap and p_cap of each bound for every unsaturated test (after Prunier et al. 2024, "
+                "Fig. 18).",
             ),
             Panel(
                 "mohr_circles",
                 lambda ax: plot_mohr_circles(ax, result),
-                "Mohr circles at failure: total (unsaturated), effective under the lower bound, and saturated.",
+                "Mohr circles at failure: total (unsaturated), effective under the lower bound, and saturated "
+                "(after Prunier et al. 2024, Fig. 19-20).",
             ),
         ]
         + (
@@ -300,15 +314,19 @@ def sheet_triaxial(result) -> Sheet:
                     "group_circles",
                     lambda ax: plot_group_circles(ax, result),
                     "Groups sharing one tensor (Prunier et al. 2024, Appendix 1): unsaturated Mohr circles, fictive "
-                    "circles σ'' with the paired saturated radius (eq. 44) and the lines of cohesion C and C'' (eq. 48).",
+                    "circles σ'' with the paired saturated radius (eq. 44) and the lines of cohesion C and C'' (eq. 48; "
+                    "after Fig. 21).",
                 ),
                 Panel(
                     "group_tensors",
                     lambda ax: plot_group_tensors(ax, result),
-                    "σ1,cap, σ2,cap, σ3,cap of each group by eq. 48 or 50, with standard errors from the regression.",
+                    "σ1,cap, σ2,cap, σ3,cap of each group by eq. 48 or 50, with standard errors from the regression; "
+                    "without paired saturated tests the admissible range of eq. 37 between the closures σ1,cap = 0 "
+                    "(marked, the chosen one) and spherical (Prunier et al. 2024, Appendix 1; the paper has no "
+                    "such figure).",
                 ),
             ]
-            if any(g.get("sigma1_cap_kPa") is not None for g in result.groups)
+            if any(g.determined or g.admissible is not None for g in result.groups)
             else []
         ),
         2,

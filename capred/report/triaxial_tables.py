@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import numpy as np
+
+from ..nomenclature import QUANTITIES
+from ..nomenclature import label as header
 from ..references import cite
 from ..result import TableSpec
 from .render import fmt, magnitude, spec
@@ -16,27 +20,36 @@ def _pm(value, se, scale: float | None = None) -> str:
     return fmt(value, scale=scale) if se is None else f"{fmt(value, scale=scale)} ± {fmt(se, 2)}"
 
 
+def _range(r) -> str:
+    """'lower … upper' of an admissible range [kPa] (0 within rounding of the range's own magnitude)."""
+    scale = max(abs(r.lower), abs(r.upper)) or None
+    return f"{fmt(r.lower, scale=scale)} … {fmt(r.upper, scale=scale)}"
+
+
 def triaxial_tables(result) -> list[TableSpec]:
-    """Envelope, then one row per unsaturated test and bound, then groups (apparent envelope and shared tensor)."""
-    js = result.to_json()
-    e = js["envelope"]
+    """Envelope, then one row per unsaturated test and bound, then groups (apparent envelope and shared tensor).
+
+    Reads the run's records (capred.pipelines.triaxial_records); headers come from the glossary.
+    """
+    e = result.envelope
     env = spec(
         "Effective envelope (saturated drained tests)",
-        ["source", "n", "c' [kPa]", "± se", "φ' [°]", "± se", "M", "k [kPa]"],
+        ["source", "n", header("c_eff"), "± se", header("phi_eff"), "± se", header("M"), header("k")],
     )
     env.rows.append(
         [
-            e["source"],
-            fmt(e["n"]),
-            fmt(e["c_kPa"]),
-            fmt(e["c_se_kPa"]),
-            fmt(e["phi_deg"]),
-            fmt(e["phi_se_deg"]),
-            fmt(e["M"]),
-            fmt(e["k_kPa"]),
+            e.source,
+            fmt(e.n),
+            fmt(e.c_kPa),
+            fmt(e.c_se_kPa),
+            fmt(e.phi_deg),
+            fmt(e.phi_se_deg),
+            fmt(e.M),
+            fmt(e.k_kPa),
         ]
     )
     names = {"lower": "LB", "spherical": "UB q=q'", "edtp": "UB EDTP"}
+    comps = ("sigma1_cap", "sigma2_cap", "sigma3_cap", "p_cap", "q_cap", "p_prime", "q_prime")
     tb = spec(
         "Capillary stress tensor at failure [kPa], compression +; gain = q'/q'_sat; "
         "θ = Lode angle (0 compression, 60 extension); bound 'none': not axisymmetric (see groups)",
@@ -45,101 +58,124 @@ def triaxial_tables(result) -> list[TableSpec]:
             "bound",
             "branch",
             "θ [°]",
-            "σ3 [kPa]",
-            "q [kPa]",
-            "σ1,cap",
-            "σ2,cap",
-            "σ3,cap",
-            "p_cap",
-            "q_cap",
-            "p'",
-            "q'",
+            header("sigma3"),
+            header("q"),
+            *(QUANTITIES[c].symbol for c in comps),
             "gain",
             "σ_cap > 0",
         ],
         left=3,
     )
     tb.label_columns = 2  # test and bound name each row when the table is folded
-    for t in (t for t in js["tests"] if t["condition"] == "unsaturated"):
-        present = [n for n in ("lower", "spherical", "edtp") if t[n]]
+    t = result.states
+    for i in np.flatnonzero(result.unsaturated):
+        present = [n for n in ("lower", "spherical", "edtp") if result.bound_states[n].applies(i)]
         head = [
-            _BRANCH.get(t["branch"], t["branch"]),
-            fmt(t["lode_angle_deg"], 3),
-            fmt(t["sigma3_kPa"]),
-            fmt(t["q_kPa"]),
+            _BRANCH.get(t.branch[i], t.branch[i]),
+            fmt(t.lode_angle[i], 3),
+            fmt(t.sigma3[i]),
+            fmt(t.q[i]),
         ]
         if not present:
             tb.sections.add(len(tb.rows))
-            tb.rows.append([t["test_id"], "none", *head, *[""] * 9])
+            tb.rows.append([t.test_id[i], "none", *head, *[""] * 9])
             continue
         for k, name in enumerate(present):
-            b = t[name]
+            b = result.bound_states[name]
             if k == len(present) - 1:
                 tb.sections.add(len(tb.rows))
-            stresses = [
-                b[f"{c}_kPa"]
-                for c in ("sigma1_cap", "sigma2_cap", "sigma3_cap", "p_cap", "q_cap", "p_prime", "q_prime")
-            ]
+            stresses = [float(getattr(b, c)[i]) for c in comps]
             # 0 within rounding of the stresses the row was computed from (the test's and the bound's)
-            scale = magnitude([*stresses, t["sigma3_kPa"], t["q_kPa"]])
+            scale = magnitude([*stresses, float(t.sigma3[i]), float(t.q[i])])
             tb.rows.append(
                 [
-                    t["test_id"] if k == 0 else "",
+                    t.test_id[i] if k == 0 else "",
                     names[name],
                     *(head if k == 0 else [""] * 4),
                     *(fmt(v, scale=scale) for v in stresses),
-                    fmt(b["gain"]),
-                    "yes" if b["positive_component"] else "",
+                    fmt(b.gain[i]),
+                    "yes" if b.positive_component[i] else "",
                 ]
             )
     out = [env, tb]
-    if js["groups"]:
+    if result.groups:
         g = spec(
             f"Groups: apparent envelope ({cite('prunier2024', 'Appendix 1, eq. 35-37, 43')})",
             ["group", "n", "branch", "C [kPa]", "φ [°]", "φ − φ' [°]", "eq. 37 σ_cap", "θ spread [°]", "eq. 49"],
         )
         tensor = spec(
-            f"Groups: shared capillary tensor [kPa] ± se (n − 1 dof; 95 % intervals in the JSON) "
-            f"({cite('prunier2024', 'eq. 44-50')})",
+            "Groups: shared capillary tensor [kPa] ± se (n − 1 dof; 95 % intervals in the JSON); without "
+            "paired saturated tests, the admissible range lower … upper of each component "
+            f"({cite('prunier2024', 'eq. 37, 44-50')})",
             ["group", "method", "σ1,cap", "σ2,cap", "σ3,cap", "p_cap", "C [kPa]", "C'' [kPa]"],
             left=2,
         )
-        for r in js["groups"]:
+        closure_rows = []
+        for r in result.groups:
             apparent = [
-                fmt(r.get("C_apparent_kPa")),
-                fmt(r.get("phi_apparent_deg")),
-                fmt(r.get("phi_difference_deg"), sign=True),
-                fmt(r.get("eq37_sigma_cap_kPa")),
+                fmt(r.C_apparent),
+                fmt(r.phi_apparent),
+                fmt(r.phi_difference, sign=True),
+                fmt(r.eq37_sigma_cap),
             ]
-            if "C_apparent_kPa" not in r:
-                apparent = [r.get("apparent_error", "—"), "", "", ""]
+            if r.C_apparent is None:
+                apparent = [r.apparent_error or "—", "", "", ""]
             g.rows.append(
                 [
-                    r["group"],
-                    fmt(r["n"]),
-                    _BRANCH.get(r["branch"], r["branch"]),
+                    r.group,
+                    fmt(r.n),
+                    _BRANCH.get(r.branch, r.branch),
                     *apparent,
-                    fmt(r["lode_spread_deg"], 2),
-                    "holds" if r["eq49_holds"] else "fails",
+                    fmt(r.lode_spread, 2),
+                    "holds" if r.eq49_holds else "fails",
                 ]
             )
-            if "error" in r:
-                tensor.rows.append([r["group"], r["error"], *[""] * 6])
+            if r.error:
+                tensor.rows.append([r.group, r.error, *[""] * 6])
                 continue
-            method = (r["method"] or "— (see notes)").split(" (")[0]
-            if r["method"] and "closed" in r["method"]:
-                method = "eq. 48, σ1,cap = 0 closure"
-            caps = [abs(r[f"sigma{k}_cap_kPa"]) for k in (1, 2, 3) if r[f"sigma{k}_cap_kPa"] is not None]
-            scale = max(caps + [abs(r.get("C_kPa") or 0.0)]) or None  # the magnitudes the tensor came from
+            if r.admissible is not None:  # not determined: the range, never one closure's value as the tensor
+                a = r.admissible
+                tensor.rows.append(
+                    [
+                        r.group,
+                        "eq. 37: range (no pairs)",
+                        *(_range(getattr(a, c)) for c in ("sigma1_cap", "sigma2_cap", "sigma3_cap", "p_cap")),
+                        fmt(r.C),
+                        "",
+                    ]
+                )
+                closure_rows += [(r.group, c) for c in r.closures]
+                continue
+            method = (r.method or "— (see notes)").split(" (")[0]
+            caps = [abs(getattr(r, f"sigma{k}_cap")) for k in (1, 2, 3) if getattr(r, f"sigma{k}_cap") is not None]
+            scale = max(caps + [abs(r.C or 0.0)]) or None  # the magnitudes the tensor came from
             tensor.rows.append(
                 [
-                    r["group"],
+                    r.group,
                     method,
-                    *(_pm(r[f"sigma{k}_cap_kPa"], r[f"sigma{k}_cap_se_kPa"], scale) for k in (1, 2, 3)),
-                    fmt(r["p_cap_kPa"]),
-                    fmt(r["C_kPa"]),
-                    fmt(r["C_fictive_kPa"]),
+                    *(_pm(getattr(r, f"sigma{k}_cap"), getattr(r, f"sigma{k}_cap_se"), scale) for k in (1, 2, 3)),
+                    fmt(r.p_cap),
+                    fmt(r.C),
+                    fmt(r.C_fictive),
                 ]
             )
         out += [g, tensor]
+        if closure_rows:
+            cl = spec(
+                "Groups without paired saturated tests: the closures that bound the range [kPa] "
+                f"(* the one capred reports as its choice; {cite('prunier2024', 'eq. 24, 37, 48')})",
+                ["group", "closure", "σ1,cap", "σ2,cap", "σ3,cap", "p_cap"],
+                left=2,
+            )
+            for grp, c in closure_rows:
+                scale = max(abs(c.sigma1_cap), abs(c.sigma3_cap)) or None
+                cl.rows.append(
+                    [
+                        grp,
+                        ("* " if c.chosen else "") + c.label,
+                        *(fmt(getattr(c, k), scale=scale) for k in ("sigma1_cap", "sigma2_cap", "sigma3_cap")),
+                        fmt(c.p_cap, scale=scale),
+                    ]
+                )
+            out.append(cl)
     return out
