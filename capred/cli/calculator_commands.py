@@ -70,18 +70,43 @@ def skempton_b(
     model: Annotated[
         str,
         typer.Option(
-            metavar="elastic|elastoplastic",
-            help="Skeleton model: elastic (eq. 10, or with suction equilibrium); "
-            "elastoplastic (section 4) is not available, see the README.",
+            metavar="elastic|bounding-surface|elastoplastic",
+            help="Skeleton model: elastic (eq. 10, or with --se/--bc-lambda suction equilibrium, section 3); "
+            "bounding-surface (section 4 by capred's Cam-clay bounding-surface reconstruction, not the BDNS "
+            "model of the paper's ref. [16]; Table 3 defaults); elastoplastic is refused, with the reason.",
         ),
     ] = "elastic",
     a_ini: Annotated[
         str | None,
         typer.Option(
             "--a-ini",
-            help="Initial position A_ini of the bounding "
-            "surface [kPa] (Morvan et al. 2016, Table 3), with --model "
-            "elastoplastic.",
+            help="Initial distance A_ini of the bounding surface's apex above p'0 [kPa] (Morvan et al. 2016, "
+            "Table 3: 0 normally consolidated, 10 over-consolidated), with --model bounding-surface. Default 0.",
+        ),
+    ] = None,
+    interpolation_h: Annotated[
+        float | None,
+        typer.Option(
+            "--interpolation-h",
+            help="Dafalias-type interpolation constant h [-] of the reconstruction; required with --a-ini > 0 "
+            "(no published value: h = 336 meets the paper's Fig. 6 value 0.04 with --air-pressure gauge).",
+        ),
+    ] = None,
+    air_pressure: Annotated[
+        str,
+        typer.Option(
+            "--air-pressure",
+            metavar="absolute|gauge",
+            help="With --model bounding-surface: absolute (Boyle's law on pa0, p' = p0 - u0 + s S_r) or gauge "
+            "(u0 in Boyle's law, p' = p0 + s S_r: the convention under which the paper's Fig. 6 values come "
+            "out; Boyle's law needs absolute pressure, so this warns).",
+        ),
+    ] = "absolute",
+    lambda0: Annotated[
+        float | None,
+        typer.Option(
+            "--lambda0",
+            help="Slope lambda0 of the normal compression line [-] (Table 3: 0.2), with --model bounding-surface.",
         ),
     ] = None,
 ) -> Invocation:
@@ -89,9 +114,14 @@ def skempton_b(
     B = 1/(1 + p'0 e0 (1 - S_r)/(kappa P_a0)) with p'0 = p0 - u0, or its inverse
     S_r from a measured B; with --se and --bc-lambda, the simulation with suction
     equilibrium (p'0 = p0 - u_a0 + s S_r). Defaults are those of Morvan et al.
-    (2016), Table 1.
+    (2016), Table 1. With --model bounding-surface, the two incremental loops of
+    section 4 with capred's Cam-clay bounding-surface reconstruction (not the BDNS
+    model of the paper's ref. [16], whose equations are not published in a source
+    we could reach); Table 3 fills s_e = 20 kPa, lambda = 0.8, lambda0 = 0.2, A_ini = 0.
 
     Example: capred skempton-b --S-R 0.9 --kappa-elastic 0.06
+
+    Example: capred skempton-b --S-R 0.9 --model bounding-surface --a-ini 10 --interpolation-h 336
     """
     from ..pipelines.calculators import SkemptonOptions
 
@@ -107,6 +137,9 @@ def skempton_b(
         _number(bc_lambda, "bc_lambda", "--bc-lambda"),
         model=model,
         a_ini=quantity(a_ini, "kPa", "p0", "--a-ini"),
+        interpolation_h=interpolation_h,
+        air_pressure=air_pressure,
+        lambda0=lambda0,
     )
     return Invocation("skempton-b", opts)
 
