@@ -16,6 +16,9 @@ def register(app: typer.Typer) -> None:
         data="Optional CSV of cases (shape_factor, void_ratio, S_r, diameter, surface_tension, contact_angle)",
         plots=False,
     )(rumpf)
+    command(app, "history", data="The lab's store (SQLite), written by any command with --store or CAPRED_STORE")(
+        history
+    )
 
 
 def _number(value: float | None, name: str, option: str) -> float | None:
@@ -168,3 +171,34 @@ def rumpf(
         quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"),
     )
     return Invocation("rumpf", opts)
+
+
+def history(
+    material: Annotated[
+        str | None, typer.Option(help="Material as the runs name it (needed when the store holds several).")
+    ] = None,
+    quantity: Annotated[
+        str | None, typer.Option(help="Quantity: a key of the runs' JSON, e.g. phi_deg, c_kPa (shear).")
+    ] = None,
+    baseline: Annotated[int, typer.Option(help="First runs that set the centre line and the 3-sigma limits.")] = 8,
+    reference: Annotated[
+        float | None, typer.Option(help="Reference value of the quantity (its unit), instead of the baseline.")
+    ] = None,
+    spread: Annotated[
+        float | None, typer.Option(help="Standard deviation of the reference value (its unit), with --reference.")
+    ] = None,
+    of_command: Annotated[
+        str | None, typer.Option("--of-command", help="Only the runs of this command (e.g. shear).")
+    ] = None,
+) -> Invocation:
+    """A lab's history: one quantity of one material per recorded run, with its 95 %
+    interval, on an individuals chart with moving range (centre line and 3-sigma
+    limits from the first 8 runs, sigma = mean moving range / 1.128, or from
+    --reference and --spread); runs beyond the limits are flagged. Record runs
+    with --store lab.sqlite on any command (or CAPRED_STORE).
+
+    Example: capred history lab.sqlite --material "Toyoura sand" --quantity phi_deg --out chart
+    """
+    from ..pipelines.history import HistoryOptions
+
+    return Invocation("history", HistoryOptions(material, quantity, baseline, reference, spread, of_command))
