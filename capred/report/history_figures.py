@@ -16,6 +16,14 @@ _LIMIT = dict(color=OKABE_ITO["vermillion"], ls="--", lw=1.0)
 _CENTRE = dict(color=OKABE_ITO["grey"], ls="-", lw=1.0)
 
 
+def _runs_axis(ax, n: int) -> None:
+    from matplotlib.ticker import MaxNLocator
+
+    ax.set_xlim(0.5, n + 0.5)
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+    ax.set_xlabel("run (in test order)")
+
+
 def _label(result) -> str:
     unit = "" if result.unit == "-" else f" [{result.unit}]"
     return f"{result.quantity}{unit}"
@@ -47,7 +55,7 @@ def _individuals(ax, result):
     ax.axhline(lim.lcl, **_LIMIT)
     if result.baseline_runs:
         ax.axvspan(0.5, result.baseline_runs + 0.5, color=OKABE_ITO["grey"], alpha=0.12, lw=0, label="baseline runs")
-    ax.set_xlabel("run (in test order)")
+    _runs_axis(ax, len(k))
     ax.set_ylabel(_label(result))
     ax.set_title("Individuals")
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small")
@@ -64,7 +72,7 @@ def _moving_range(ax, result):
         ax.plot(k[out], mr[out], "s", color=OKABE_ITO["vermillion"], ms=7, mfc="none", mew=1.5, label="beyond limit")
     ax.axhline(lim.mr_centre, **_CENTRE, label=r"$\overline{MR}$")
     ax.axhline(lim.mr_ucl, **_LIMIT, label=r"$D_4\,\overline{MR}$")
-    ax.set_xlabel("run (in test order)")
+    _runs_axis(ax, len(k))
     ax.set_ylabel(f"moving range{'' if result.unit == '-' else f' [{result.unit}]'}")
     ax.set_title("Moving range")
     ax.set_ylim(bottom=0)
