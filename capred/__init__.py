@@ -41,6 +41,8 @@ _API = {
     "compare_measured": "capred.pipelines.bridge",
     "rupture_distances": "capred.pipelines.bridge",
     "sample_path": "capred.samples",
+    "history": "capred.lab_store",
+    "run_history": "capred.pipelines.history",
     "CapredError": "capred.errors",
     "InputError": "capred.errors",
     "OptionError": "capred.errors",

@@ -74,6 +74,7 @@ def run_job(job: Job):
             xlsx=o.xlsx,
             panels=o.panels,
             figures=o.figures,
+            store=getattr(o, "store", None),
         )
         if o
         else {}

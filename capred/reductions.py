@@ -246,6 +246,20 @@ REDUCTIONS: dict[str, Reduction] = {
             summary="Void ratio along a stress path with two effective stresses.",
             example=(("example_kaolin", True),),
         ),
+        Reduction(
+            "history",
+            _P + "history:reduce_history",
+            _P + "history:HistoryOptions",
+            "required",
+            None,
+            "history",
+            method=(
+                "Individuals chart with moving range (Montgomery 2013, section 6.4): MR_i = |x_i − x_(i−1)|; "
+                "centre line and σ = mean(MR)/1.128 from the first runs (8 by default) or from a reference "
+                "value and spread; limits centre ± 3σ, moving-range limit 3.267·mean(MR); runs beyond are flagged.",
+            ),
+            summary="A lab's recorded runs (--store): one quantity per run on a control chart.",
+        ),
     )
 }
 

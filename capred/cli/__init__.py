@@ -60,6 +60,10 @@ def batch(
     out: Annotated[Path | None, typer.Option("--out", "-o", help="Root output folder [default: ./capred_out].")] = None,
     json_out: JsonOpt = False,
     workers: WorkersOpt = None,
+    store: Annotated[
+        Path | None,
+        typer.Option("--store", help="Record every run in this lab store (SQLite; see `capred history`)."),
+    ] = None,
 ):
     """Run a season's worth of reductions listed in a manifest: one line per run,
     with the command (shear, triaxial-bounds, retention, prism, skempton-b,
@@ -75,6 +79,14 @@ def batch(
         jobs = _manifest_jobs(manifest, out, json_out)
     except CapredError as exc:
         fail(exc)
+    if store is not None:  # a line's own --store wins
+        import dataclasses
+
+        from .common import OutputOptions
+
+        for job in jobs:
+            o = job.output or OutputOptions()
+            job.output = o if o.store is not None else dataclasses.replace(o, store=str(store))
     root = (out or Path.cwd() / "capred_out") if (out is not None or not json_out) else None
     try:
         run_batch(jobs, root, json_out, workers, extra_inputs=[manifest])

@@ -16,6 +16,9 @@ def register(app: typer.Typer) -> None:
         data="Optional CSV of cases (shape_factor, void_ratio, S_r, diameter, surface_tension, contact_angle)",
         plots=False,
     )(rumpf)
+    command(app, "history", data="The lab's store (SQLite), written by any command with --store or CAPRED_STORE")(
+        history
+    )
 
 
 def _number(value: float | None, name: str, option: str) -> float | None:
@@ -70,18 +73,43 @@ def skempton_b(
     model: Annotated[
         str,
         typer.Option(
-            metavar="elastic|elastoplastic",
-            help="Skeleton model: elastic (eq. 10, or with suction equilibrium); "
-            "elastoplastic (section 4) is not available, see the README.",
+            metavar="elastic|bounding-surface|elastoplastic",
+            help="Skeleton model: elastic (eq. 10, or with --se/--bc-lambda suction equilibrium, section 3); "
+            "bounding-surface (section 4 by capred's Cam-clay bounding-surface reconstruction, not the BDNS "
+            "model of the paper's ref. [16]; Table 3 defaults); elastoplastic is refused, with the reason.",
         ),
     ] = "elastic",
     a_ini: Annotated[
         str | None,
         typer.Option(
             "--a-ini",
-            help="Initial position A_ini of the bounding "
-            "surface [kPa] (Morvan et al. 2016, Table 3), with --model "
-            "elastoplastic.",
+            help="Initial distance A_ini of the bounding surface's apex above p'0 [kPa] (Morvan et al. 2016, "
+            "Table 3: 0 normally consolidated, 10 over-consolidated), with --model bounding-surface. Default 0.",
+        ),
+    ] = None,
+    interpolation_h: Annotated[
+        float | None,
+        typer.Option(
+            "--interpolation-h",
+            help="Dafalias-type interpolation constant h [-] of the reconstruction; required with --a-ini > 0 "
+            "(no published value: h = 336 meets the paper's Fig. 6 value 0.04 with --air-pressure gauge).",
+        ),
+    ] = None,
+    air_pressure: Annotated[
+        str,
+        typer.Option(
+            "--air-pressure",
+            metavar="absolute|gauge",
+            help="With --model bounding-surface: absolute (Boyle's law on pa0, p' = p0 - u0 + s S_r) or gauge "
+            "(u0 in Boyle's law, p' = p0 + s S_r: the convention under which the paper's Fig. 6 values come "
+            "out; Boyle's law needs absolute pressure, so this warns).",
+        ),
+    ] = "absolute",
+    lambda0: Annotated[
+        float | None,
+        typer.Option(
+            "--lambda0",
+            help="Slope lambda0 of the normal compression line [-] (Table 3: 0.2), with --model bounding-surface.",
         ),
     ] = None,
 ) -> Invocation:
@@ -89,9 +117,14 @@ def skempton_b(
     B = 1/(1 + p'0 e0 (1 - S_r)/(kappa P_a0)) with p'0 = p0 - u0, or its inverse
     S_r from a measured B; with --se and --bc-lambda, the simulation with suction
     equilibrium (p'0 = p0 - u_a0 + s S_r). Defaults are those of Morvan et al.
-    (2016), Table 1.
+    (2016), Table 1. With --model bounding-surface, the two incremental loops of
+    section 4 with capred's Cam-clay bounding-surface reconstruction (not the BDNS
+    model of the paper's ref. [16], whose equations are not published in a source
+    we could reach); Table 3 fills s_e = 20 kPa, lambda = 0.8, lambda0 = 0.2, A_ini = 0.
 
     Example: capred skempton-b --S-R 0.9 --kappa-elastic 0.06
+
+    Example: capred skempton-b --S-R 0.9 --model bounding-surface --a-ini 10 --interpolation-h 336
     """
     from ..pipelines.calculators import SkemptonOptions
 
@@ -107,6 +140,9 @@ def skempton_b(
         _number(bc_lambda, "bc_lambda", "--bc-lambda"),
         model=model,
         a_ini=quantity(a_ini, "kPa", "p0", "--a-ini"),
+        interpolation_h=interpolation_h,
+        air_pressure=air_pressure,
+        lambda0=lambda0,
     )
     return Invocation("skempton-b", opts)
 
@@ -135,3 +171,34 @@ def rumpf(
         quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"),
     )
     return Invocation("rumpf", opts)
+
+
+def history(
+    material: Annotated[
+        str | None, typer.Option(help="Material as the runs name it (needed when the store holds several).")
+    ] = None,
+    quantity: Annotated[
+        str | None, typer.Option(help="Quantity: a key of the runs' JSON, e.g. phi_deg, c_kPa (shear).")
+    ] = None,
+    baseline: Annotated[int, typer.Option(help="First runs that set the centre line and the 3-sigma limits.")] = 8,
+    reference: Annotated[
+        float | None, typer.Option(help="Reference value of the quantity (its unit), instead of the baseline.")
+    ] = None,
+    spread: Annotated[
+        float | None, typer.Option(help="Standard deviation of the reference value (its unit), with --reference.")
+    ] = None,
+    of_command: Annotated[
+        str | None, typer.Option("--of-command", help="Only the runs of this command (e.g. shear).")
+    ] = None,
+) -> Invocation:
+    """A lab's history: one quantity of one material per recorded run, with its 95 %
+    interval, on an individuals chart with moving range (centre line and 3-sigma
+    limits from the first 8 runs, sigma = mean moving range / 1.128, or from
+    --reference and --spread); runs beyond the limits are flagged. Record runs
+    with --store lab.sqlite on any command (or CAPRED_STORE).
+
+    Example: capred history lab.sqlite --material "Toyoura sand" --quantity phi_deg --out chart
+    """
+    from ..pipelines.history import HistoryOptions
+
+    return Invocation("history", HistoryOptions(material, quantity, baseline, reference, spread, of_command))

@@ -100,6 +100,7 @@ class OutputOptions:
     xlsx: bool = False
     panels: bool = False
     figures: str = "main"
+    store: str | None = None  # a lab's store (capred history) to record the run in; None: $CAPRED_STORE
 
 
 @dataclass
@@ -172,11 +173,29 @@ _OUTPUT_PARAMS = {
         ],
         "main",
     ),
+    "store": (
+        Annotated[
+            Path | None,
+            typer.Option(
+                "--store",
+                help="Record the run in this lab store (SQLite, one file; see `capred history`). "
+                "Default: the environment variable CAPRED_STORE.",
+            ),
+        ],
+        None,
+    ),
 }
 
 
 def _output_options(
-    formats: str, dpi: int, html: bool, csv_dialect: str, xlsx: bool, panels: bool = False, figures: str = "main"
+    formats: str,
+    dpi: int,
+    html: bool,
+    csv_dialect: str,
+    xlsx: bool,
+    panels: bool = False,
+    figures: str = "main",
+    store: Path | None = None,
 ) -> OutputOptions:
     from ..errors import OptionError
 
@@ -190,7 +209,7 @@ def _output_options(
         raise OptionError(f"--csv-dialect must be 'standard' or 'excel-eu' (got '{csv_dialect}')")
     if figures not in ("main", "all"):
         raise OptionError(f"--figures must be 'main' or 'all' (got '{figures}')")
-    return OutputOptions(fmts, dpi, html, csv_dialect, xlsx, panels, figures)
+    return OutputOptions(fmts, dpi, html, csv_dialect, xlsx, panels, figures, None if store is None else str(store))
 
 
 def _param(name: str, annotation, default) -> inspect.Parameter:
@@ -413,6 +432,7 @@ def _single(inv: Invocation) -> None:
             xlsx=o.xlsx,
             panels=o.panels,
             figures=o.figures,
+            store=o.store,
         )
         if write
         else None

@@ -12,16 +12,30 @@ two nested incremental loops:
    ``du_a = du_w = (P_a V_0 / V_a) d eps_p`` (eq. 24).
 
 Both loops need only ``A11 = d eps_p / dp'`` (at ``dq = ds = 0``), the first entry
-of the constitutive matrix of eq. 14. This module runs the loops for any
-``A11`` supplied as a callable (:class:`Compliance`). The paper takes ``A11``
-from the bounding-surface model of its reference [16] (Morvan, Wong & Branque
-2010, Int. J. Numer. Anal. Meth. Geomech. 34:1512-1537; parameters lambda_0,
-Gamma, rho, M, A_ini of Table 3). Those equations are not restated in the 2016
-paper and could not be found in the material available to capred, so the only
-compliance shipped is the elastic one the paper does define, eq. 5:
-``A11 = kappa / ((1 + e) p')``. With it the scheme reproduces eq. 10 with the
-suction-equilibrium effective stress of section 3 (``skempton_b_suction`` in
-:mod:`capred.physics.calculators`), which the tests check.
+of the constitutive matrix of eq. 14 (and ``A13``, its suction entry, in the
+drying loop). This module runs the loops for any skeleton model: a plain
+callable ``A11(p', e)`` (:class:`Compliance`) or a :class:`SkeletonCompliance`
+carrying its state (the bounding surface's apex ``p_pi``, an ``A13`` slot).
+The paper takes ``A11`` from the bounding-surface model of its reference [16]
+(Morvan, Wong & Branque 2010, Int. J. Numer. Anal. Meth. Geomech. 34:1512-1537;
+parameters lambda_0, Gamma, rho, M, A_ini of Table 3). Those equations are not
+restated in the 2016 paper and could not be found in any source capred could
+reach, so two compliances are shipped:
+
+- :class:`ElasticCompliance`, eq. 5, ``A11 = kappa / ((1 + e) p')``, with which the
+  scheme reproduces eq. 10 with the suction-equilibrium effective stress of
+  section 3 (``skempton_b_suction`` in :mod:`capred.physics.calculators`);
+- :class:`BoundingSurfaceCompliance`, a *Cam-clay bounding-surface
+  reconstruction* (not the BDNS model of ref. [16]): for an isotropic state the
+  radial image point is the apex, so Gamma, rho and M drop out and B depends on
+  kappa, lambda_0, A_ini and the interpolation constant ``h`` only. At
+  ``S_R = 0.9`` with Table 3 it gives 0.097 (elastic) and 0.783 (normally
+  consolidated) with Boyle's law on the absolute air pressure; the paper's
+  Fig. 6 values (0.4 and 0.04) come out only with the gauge air pressure in
+  Boyle's law and ``p' = p0 + s S_R`` (0.386, and 0.040 at ``h = 336``, a value
+  of ``h`` chosen to meet 0.04). With absolute pressure, the over-consolidated
+  B cannot fall below the elastic bound 0.097, so the paper's 0.04 is out of
+  reach there.
 
 SI units throughout: pressures in Pa (``pa0`` absolute, ``p0`` and ``u0``
 gauge), compliances in 1/Pa.
@@ -40,6 +54,7 @@ References
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Protocol
@@ -50,6 +65,11 @@ from ..errors import OptionError
 from .retention import bc_suction
 
 __all__ = [
+    "AIR_PRESSURE_CONVENTIONS",
+    "BOUNDING_SURFACE_NAME",
+    "BoundingSurfaceCompliance",
+    "SkeletonCompliance",
+    "SkeletonState",
     "Compliance",
     "ElasticCompliance",
     "IncrementalBPath",
@@ -66,11 +86,86 @@ class Compliance(Protocol):
     """Isotropic compliance ``A11 = d eps_p / dp'`` [1/Pa] of eq. 14 of [1].
 
     Called with the current mean effective stress ``p_eff`` [Pa] (eq. 13) and
-    void ratio ``void_ratio`` [-]; returns ``A11`` [1/Pa], > 0. A model with
-    internal state (a bounding surface) keeps it itself.
+    void ratio ``void_ratio`` [-]; returns ``A11`` [1/Pa], > 0. A plain callable
+    of this form is an elastic-like skeleton (no surface, no hardening); a
+    model with a bounding surface is a :class:`SkeletonCompliance`, which
+    carries the state it needs (the apex ``p_pi``, an ``A13`` slot).
     """
 
     def __call__(self, p_eff: float, void_ratio: float) -> float: ...
+
+
+@dataclass
+class SkeletonState:
+    """State of the skeleton carried by the loops of [1], section 4.
+
+    Attributes
+    ----------
+    p_eff : float
+        Mean effective stress ``p'`` [Pa] (eq. 13).
+    void_ratio : float
+        Void ratio ``e`` [-].
+    p_pi : float
+        Apex of the bounding surface on the isotropic axis [Pa]; ``inf`` for a
+        skeleton without a surface.
+    """
+
+    p_eff: float
+    void_ratio: float
+    p_pi: float = math.inf
+
+
+class SkeletonCompliance:
+    """Base of a skeleton model with state: ``A11`` (total and plastic part), ``A13`` and apex hardening.
+
+    The loops of [1] call ``a11(state, loading)``, ``a11_plastic(state, loading)``,
+    ``a13(state)`` (``d eps_p / ds`` at constant ``p'``, [1/Pa]) and
+    ``harden(state, deps_plastic)``. This base is elastic-free and plastic-free:
+    subclasses override what they need. Calling an instance with
+    ``(p_eff, void_ratio)`` gives ``A11`` of a state on its own surface (the
+    :class:`Compliance` form).
+
+    References
+    ----------
+    [1] Morvan et al. (2016), eq. 14 (the matrix whose entries A11 and A13 these are).
+    """
+
+    def initial_apex(self, p_eff0: float) -> float:
+        """Apex ``p_pi`` [Pa] at the start of the drying path, where ``p' = p_eff0`` [Pa]."""
+        return math.inf
+
+    def a11(self, state: SkeletonState, loading: bool = True) -> float:
+        """Total ``A11 = d eps_p / dp'`` [1/Pa] at ``state``; ``loading``: ``dp' > 0``."""
+        raise NotImplementedError
+
+    def a11_plastic(self, state: SkeletonState, loading: bool = True) -> float:
+        """Plastic part of ``A11`` [1/Pa]; 0 for an elastic skeleton."""
+        return 0.0
+
+    def a13(self, state: SkeletonState) -> float:
+        """``A13 = d eps_p / ds`` at constant ``p'`` [1/Pa]; 0 (suction acts through ``p'`` alone, eq. 13)."""
+        return 0.0
+
+    def harden(self, state: SkeletonState, deps_plastic: float) -> float:
+        """Apex after a plastic volumetric strain ``deps_plastic`` [-] (compression positive) [Pa]."""
+        return state.p_pi
+
+    def __call__(self, p_eff: float, void_ratio: float) -> float:
+        return self.a11(SkeletonState(p_eff, void_ratio, self.initial_apex(p_eff)))
+
+
+class _CallableCompliance(SkeletonCompliance):
+    """A plain ``A11(p_eff, void_ratio)`` callable as a :class:`SkeletonCompliance` (no surface)."""
+
+    def __init__(self, fn):
+        self.fn = fn
+
+    def a11(self, state, loading=True):
+        return float(self.fn(state.p_eff, state.void_ratio))
+
+
+def _as_model(compliance) -> SkeletonCompliance:
+    return compliance if isinstance(compliance, SkeletonCompliance) else _CallableCompliance(compliance)
 
 
 def air_volume_ratio(S_R, void_ratio):
@@ -121,7 +216,7 @@ def elastic_compliance(p_eff, void_ratio, kappa_elastic):
 
 
 @dataclass(frozen=True)
-class ElasticCompliance:
+class ElasticCompliance(SkeletonCompliance):
     """:class:`Compliance` of eq. 5 of [1]: ``A11 = kappa_elastic / ((1 + e) p')``.
 
     Attributes
@@ -132,8 +227,108 @@ class ElasticCompliance:
 
     kappa_elastic: float
 
+    def a11(self, state: SkeletonState, loading: bool = True) -> float:
+        return float(elastic_compliance(state.p_eff, state.void_ratio, self.kappa_elastic))
+
     def __call__(self, p_eff: float, void_ratio: float) -> float:
         return float(elastic_compliance(p_eff, void_ratio, self.kappa_elastic))
+
+
+#: How the bounding-surface compliance is named in every output: a reconstruction, not the paper's model.
+BOUNDING_SURFACE_NAME = (
+    "Cam-clay bounding-surface reconstruction (not the BDNS model of ref. [16], whose equations are not "
+    "published in a source we could reach)"
+)
+
+
+@dataclass(frozen=True)
+class BoundingSurfaceCompliance(SkeletonCompliance):
+    r"""Cam-clay bounding-surface reconstruction of the isotropic compliance of [1], section 4 (not BDNS [2]).
+
+    For an isotropic state (``q = 0``) with the image point found by radial
+    projection from the origin, the image is the apex ``p_pi`` of the bounding
+    surface, so the surface's shape (Gamma, rho, M of Table 3) drops out and
+
+    .. math::
+
+        A_{11} = rac{\kappa}{(1+e) p'}
+               + rac{\lambda_0 - \kappa}{(1+e) p'}\,
+                 rac{1}{1 + h\, \delta / (p_\pi - \delta)},
+        \qquad \delta = p_\pi - p' \ge 0,
+
+    on loading (``dp' > 0``; elastic on unloading), with Cam-clay apex
+    hardening ``dp_pi / p_pi = (1 + e) d eps_p^p / (lambda_0 - kappa)`` and
+    ``p_pi0 = p'_0 + A_ini``. ``A_ini = 0`` is a normally consolidated sample
+    (``delta = 0``: the full Cam-clay compliance ``lambda_0 / ((1+e) p')``);
+    ``h -> inf`` makes an over-consolidated sample elastic (eq. 5). This is the
+    reconstruction of capred's SPEC (section 6b), *not* the BDNS model of
+    Morvan, Wong & Branque (2010), whose equations capred does not have.
+
+    Attributes
+    ----------
+    kappa_elastic : float
+        Slope of the elastic line in ``e - ln p'`` [-] (Table 3: 0.006).
+    lambda0 : float
+        Slope of the normal compression line (plastic isotropic modulus) [-] (Table 3: 0.2).
+    a_ini : float
+        Initial distance of the apex from the state, ``p_pi0 - p'_0`` [Pa] (Table 3: 0 or 10 kPa).
+    interpolation_h : float or None
+        Dafalias-type interpolation constant ``h`` [-], > 0; needed when ``a_ini > 0``. ``None``
+        (allowed for ``a_ini = 0`` only): the sharp Cam-clay surface, elastic inside it (``h -> inf``).
+
+    References
+    ----------
+    [1] Morvan et al. (2016), section 4, eq. 14, Table 3.
+    [2] Morvan, Wong & Branque (2010), IJNAMG 34:1512-1537 (BDNS; not implemented).
+    [4] Y. F. Dafalias, L. R. Herrmann (1982), "Bounding surface formulation of soil plasticity",
+        in Soil Mechanics - Transient and Cyclic Loads, Wiley, 253-282 (the interpolation rule).
+    [5] K. H. Roscoe, J. B. Burland (1968), "On the generalized stress-strain behaviour of wet clay",
+        Engineering Plasticity, Cambridge University Press, 535-609 (Cam-clay hardening).
+    """
+
+    kappa_elastic: float = 0.006
+    lambda0: float = 0.2
+    a_ini: float = 0.0
+    interpolation_h: float | None = None
+
+    def __post_init__(self) -> None:
+        if not 0.0 < self.kappa_elastic < self.lambda0:
+            raise OptionError(f"need 0 < kappa ({self.kappa_elastic}) < lambda0 ({self.lambda0})")
+        if not (self.a_ini >= 0.0 and math.isfinite(self.a_ini)):
+            raise OptionError(f"A_ini must be >= 0 (got {self.a_ini / 1e3:g} kPa)")
+        if self.a_ini > 0 and self.interpolation_h is None:
+            raise OptionError(
+                "--interpolation-h is required with --a-ini > 0: the Dafalias-type constant h of the "
+                "reconstruction has no published value (h = 336 meets the paper's Fig. 6 value 0.04 under the "
+                "gauge convention)"
+            )
+        if self.interpolation_h is not None and not self.interpolation_h > 0:
+            raise OptionError(f"--interpolation-h must be > 0 (got {self.interpolation_h})")
+
+    def initial_apex(self, p_eff0: float) -> float:
+        return p_eff0 + self.a_ini
+
+    def a11_plastic(self, state: SkeletonState, loading: bool = True) -> float:
+        if not loading:
+            return 0.0
+        p = state.p_eff
+        delta = max(state.p_pi - p, 0.0)
+        if delta <= 1e-9 * state.p_pi:  # on the surface (rounding of the hardening step)
+            ratio = 0.0
+        elif self.interpolation_h is None:  # no interpolation: the sharp Cam-clay surface, elastic inside
+            return 0.0
+        else:
+            ratio = self.interpolation_h * delta / p  # h delta / (p_pi - delta), p_pi - delta = p'
+        return (self.lambda0 - self.kappa_elastic) / ((1.0 + state.void_ratio) * p) / (1.0 + ratio)
+
+    def a11(self, state: SkeletonState, loading: bool = True) -> float:
+        elastic = self.kappa_elastic / ((1.0 + state.void_ratio) * state.p_eff)
+        return elastic + self.a11_plastic(state, loading)
+
+    def harden(self, state: SkeletonState, deps_plastic: float) -> float:
+        # explicit step of dp_pi / p_pi = (1 + e) d eps^p / (lambda0 - kappa): on the surface it moves the apex by
+        # exactly the step's dp', so a normally consolidated state stays on its surface up to rounding
+        return state.p_pi * (1.0 + (1.0 + state.void_ratio) * deps_plastic / (self.lambda0 - self.kappa_elastic))
 
 
 def skempton_b_from_compliance(A11, S_R, void_ratio, pa):
@@ -230,6 +425,8 @@ class IncrementalBPath:
     B : ndarray
         Skempton's B of the undrained increment ``dp`` applied at the state [-]
         (secant ``du_w / dp``, eqs. 22-24).
+    p_pi : ndarray
+        Apex of the bounding surface [Pa] (``inf`` for a skeleton without one).
     """
 
     S_R: np.ndarray
@@ -238,32 +435,41 @@ class IncrementalBPath:
     void_ratio: np.ndarray
     A11: np.ndarray
     B: np.ndarray
+    #: apex of the bounding surface [Pa] (``inf`` without a surface)
+    p_pi: np.ndarray | None = None
 
 
-def _undrained_b(compliance: Compliance, p_eff, e, S_R, pa0, dp, n_dp):
-    """Second loop of [1]: ``n_dp`` sub-increments of ``dp / n_dp``; returns the secant B.
+def _undrained_b(model: SkeletonCompliance, state: SkeletonState, S_R, pa0, dp, n_dp):
+    """Second loop of [1]: ``n_dp`` sub-increments of ``dp / n_dp`` on a copy of ``state``; the secant B.
 
     Per sub-increment (eqs. 22-23): ``d eps = A11 dp V_a / (V_a + A11 P_a V)``,
     ``du_a = P_a V d eps / V_a`` (written so that ``V_a = 0`` gives
     ``d eps = 0, du_a = dp``); then Boyle's law updates ``P_a`` and ``V_a``, the
     skeleton volume ``V`` shrinks by ``V d eps`` (water and grains
-    incompressible, eq. 19), and ``p'`` changes by ``dp - du_a`` (eq. 18 at
-    ``ds = 0``: suction and chi constant during the increment).
+    incompressible, eq. 19), ``p'`` changes by ``dp - du_a`` (eq. 18 at
+    ``ds = 0``: suction and chi constant during the increment) and the apex
+    hardens with the plastic part ``A11^p (dp - du_a)``.
     """
-    V = 1.0 + e  # per unit volume of grains
-    Va = e * (1.0 - S_R)
+    V = 1.0 + state.void_ratio  # per unit volume of grains
+    Va = state.void_ratio * (1.0 - S_R)
     pa = pa0
+    p_eff, p_pi = state.p_eff, state.p_pi
     h = dp / n_dp
     for _ in range(n_dp):
-        a11 = compliance(p_eff, V - 1.0)
+        st = SkeletonState(p_eff, V - 1.0, p_pi)
+        a11 = model.a11(st, True)
         den = Va + a11 * pa * V
         deps = a11 * h * Va / den
         du = a11 * pa * V * h / den
+        p_pi = max(model.harden(st, model.a11_plastic(st, True) * (h - du)), p_eff + h - du)
         pa += du
         Va -= V * deps
         V -= V * deps
         p_eff += h - du
     return (pa - pa0) / dp
+
+
+AIR_PRESSURE_CONVENTIONS = ("absolute", "gauge")
 
 
 def skempton_b_incremental_path(
@@ -281,6 +487,7 @@ def skempton_b_incremental_path(
     n_dp=10,
     S_R_step=1e-3,
     at=None,
+    air_pressure="absolute",
 ) -> IncrementalBPath:
     r"""The two incremental loops of Morvan et al. (2016), section 4: B along a drying path.
 
@@ -293,9 +500,9 @@ def skempton_b_incremental_path(
         s = s_e S_R^{-1/\lambda}, \qquad dp' = S_R (1 - \lambda)\, ds,
         \qquad d\varepsilon_p = A_{11}\, dp', \qquad de = -(1 + e)\, d\varepsilon_p
 
-    (eqs. 17-18; ``ds`` exact along the Brooks-Corey curve, ``S_R`` at the mid-step;
-    the drying strains use ``A11`` only, i.e. ``A13 = 0`` as for the elastic
-    law of eq. 5). Loop 2, at each recorded state, applies the undrained
+    (eqs. 17-18; ``ds`` exact along the Brooks-Corey curve, ``S_R`` and ``p'`` at the
+    mid-step; the drying strains are ``A11 dp' + A13 ds``, with ``A13 = 0`` for both
+    shipped models; the apex hardens with the plastic part of ``A11 dp'``). Loop 2, at each recorded state, applies the undrained
     isotropic increment ``dp`` in ``n_dp`` sub-increments (eqs. 19-24) on a copy
     of the state: the increment is a B check, not part of the drying history.
 
@@ -304,10 +511,9 @@ def skempton_b_incremental_path(
     S_R_min : float
         Lowest degree of saturation of the path [-], in (0, 1].
     compliance : Compliance, optional
-        ``A11(p_eff [Pa], void_ratio [-]) -> [1/Pa]``. Default: the elastic
-        compliance of eq. 5 with ``kappa_elastic`` (:class:`ElasticCompliance`). The
-        bounding-surface compliance of Morvan, Wong & Branque (2010) that the
-        paper uses is not available in capred.
+        ``A11(p_eff [Pa], void_ratio [-]) -> [1/Pa]``, or a :class:`SkeletonCompliance`
+        with state (:class:`BoundingSurfaceCompliance`). Default: the elastic
+        compliance of eq. 5 with ``kappa_elastic`` (:class:`ElasticCompliance`).
     kappa_elastic : float
         Slope of the elastic line in ``e - ln p'`` [-] (Table 3: 0.006).
     p0 : float
@@ -334,6 +540,13 @@ def skempton_b_incremental_path(
     at : array_like, optional
         Degrees of saturation at which to record the state (each in
         ``[S_R_min, 1]``); default: every step of loop 1.
+    air_pressure : {"absolute", "gauge"}
+        ``absolute`` (default): Boyle's law on the absolute air pressure ``pa0``
+        and ``p' = p0 - u0 + s S_R`` (eq. 13). ``gauge``: the gauge air pressure
+        ``u0`` in Boyle's law and ``p' = p0 + s S_R``, the convention under
+        which the paper's Fig. 6 values (0.4 and 0.04 at ``S_R = 0.9``) come out
+        with :class:`BoundingSurfaceCompliance`; Boyle's law needs the absolute
+        pressure, so this is for comparison with the paper only.
 
     Returns
     -------
@@ -351,8 +564,13 @@ def skempton_b_incremental_path(
     [1] Morvan et al. (2016), section 4, eqs. 13, 17-24; Table 3 (defaults).
     [3] Brooks & Corey (1964), retention curve ``S_R = (s_e / s)^lambda``.
     """
-    if compliance is None:
-        compliance = ElasticCompliance(kappa_elastic)
+    model = _as_model(ElasticCompliance(kappa_elastic) if compliance is None else compliance)
+    if air_pressure not in AIR_PRESSURE_CONVENTIONS:
+        raise OptionError(f"air_pressure must be absolute or gauge (got '{air_pressure}')")
+    if air_pressure == "gauge":
+        pa0, u0 = u0, 0.0
+    if not pa0 > 0:
+        raise OptionError(f"the air pressure in Boyle's law must be > 0 (got {pa0 / 1e3:g} kPa)")
     if not 0.0 < S_R_min <= 1.0:
         raise OptionError(f"S_R_min must be in (0, 1], got {S_R_min}")
     if dp <= 0 or n_dp < 1 or S_R_step <= 0:
@@ -368,24 +586,32 @@ def skempton_b_incremental_path(
         near = np.abs(grid[:, None] - stops[None, :]).min(axis=1) < 1e-9  # grid points a stop replaces
         grid = np.unique(np.concatenate([grid[~near], stops]))[::-1]
 
-    out = {k: [] for k in ("S_R", "suction", "p_eff", "void_ratio", "A11", "B")}
+    out = {k: [] for k in ("S_R", "suction", "p_eff", "void_ratio", "A11", "B", "p_pi")}
     p_eff = p0 - u0 + air_entry  # eq. 13 at S_R = 1, s = s_e
-    e = e0
+    if not p_eff > 0:
+        raise OptionError(f"the initial mean effective stress p0 - u0 + s_e must be > 0 (got {p_eff / 1e3:g} kPa)")
+    state = SkeletonState(p_eff, e0, model.initial_apex(p_eff))
     j = 0  # next recording point
     for i, sr in enumerate(grid):
         if i > 0:
             s_prev = bc_suction(grid[i - 1], air_entry, bc_lambda)
             s_now = bc_suction(sr, air_entry, bc_lambda)
-            dpe = 0.5 * (grid[i - 1] + sr) * (1.0 - bc_lambda) * (s_now - s_prev)  # eq. 18
-            e -= (1.0 + e) * compliance(p_eff + 0.5 * dpe, e) * dpe
-            p_eff += dpe
+            ds = s_now - s_prev
+            dpe = 0.5 * (grid[i - 1] + sr) * (1.0 - bc_lambda) * ds  # eq. 18
+            mid = SkeletonState(state.p_eff + 0.5 * dpe, state.void_ratio, state.p_pi)
+            loading = dpe > 0
+            deps = model.a11(mid, loading) * dpe + model.a13(mid) * ds  # eq. 14, first row, dq = 0
+            p_pi = model.harden(mid, model.a11_plastic(mid, loading) * dpe)
+            e = state.void_ratio - (1.0 + state.void_ratio) * deps
+            state = SkeletonState(state.p_eff + dpe, e, max(p_pi, state.p_eff + dpe))
         if j < stops.size and sr == stops[j]:
             out["S_R"].append(sr)
             out["suction"].append(float(bc_suction(sr, air_entry, bc_lambda)))
-            out["p_eff"].append(p_eff)
-            out["void_ratio"].append(e)
-            out["A11"].append(compliance(p_eff, e))
-            out["B"].append(_undrained_b(compliance, p_eff, e, sr, pa0, dp, n_dp))
+            out["p_eff"].append(state.p_eff)
+            out["void_ratio"].append(state.void_ratio)
+            out["A11"].append(model.a11(state, True))
+            out["B"].append(_undrained_b(model, state, sr, pa0, dp, n_dp))
+            out["p_pi"].append(state.p_pi)
             j += 1
     return IncrementalBPath(**{k: np.asarray(v, float) for k, v in out.items()})
 
@@ -404,6 +630,7 @@ def skempton_b_incremental(
     dp=1e3,
     n_dp=10,
     S_R_step=1e-3,
+    air_pressure="absolute",
 ):
     r"""Skempton's B at each ``S_R`` by the two incremental loops of Morvan et al. (2016), eqs. 14-24.
 
@@ -421,7 +648,7 @@ def skempton_b_incremental(
     ----------
     S_R : array_like
         Degrees of saturation [-], each in (0, 1].
-    compliance, kappa_elastic, p0, u0, e0, pa0, air_entry, bc_lambda, dp, n_dp, S_R_step
+    compliance, kappa_elastic, p0, u0, e0, pa0, air_entry, bc_lambda, dp, n_dp, S_R_step, air_pressure
         As in :func:`skempton_b_incremental_path` (SI units, Pa).
 
     Returns
@@ -467,6 +694,7 @@ def skempton_b_incremental(
         n_dp=n_dp,
         S_R_step=S_R_step,
         at=S,
+        air_pressure=air_pressure,
     )
     B = np.interp(S.ravel(), path.S_R[::-1], path.B[::-1]).reshape(S.shape)  # exact: every S_R is a path point
     return B if B.ndim else float(B)

@@ -38,6 +38,9 @@ class CalcResult(Result):
     title: str = ""
     #: what the figure of the run is drawn from (skempton-b: the cases by parameter set and the options), or None
     figure_data: dict | None = None
+    #: skempton-b: the skeleton model's name as every output gives it, and its inputs (JSON units)
+    model: str | None = None
+    model_inputs: dict | None = None
 
     json_name = "results.json"
 
@@ -61,12 +64,17 @@ class CalcResult(Result):
         out = {"source": self.source, "cases": rows}
         if len(rows) == 1:
             out = {**{k: rows[0][k] for k in self.outputs}, **out}
+        if self.model is not None:
+            out = {"model": self.model, "model_inputs": self.model_inputs or {}, **out}
         return out
 
     def tables(self) -> dict:
         import pandas as pd
 
-        return {"results": pd.DataFrame(self.rows())}
+        frame = pd.DataFrame(self.rows())
+        if self.model is not None:
+            frame.insert(0, "model", self.model)
+        return {"results": frame}
 
 
 def _labels(values: dict) -> list[str] | None:
@@ -186,6 +194,24 @@ SKEMPTON = [
 ]
 
 
+#: the skeleton models of `capred skempton-b --model` (Morvan et al. 2016, sections 2-4)
+SKEMPTON_MODELS = ("elastic", "bounding-surface", "elastoplastic")
+
+#: Morvan et al. (2016), Table 3: the defaults of --model bounding-surface where no option gives a value
+TABLE3 = {"s_e": 20e3, "bc_lambda": 0.8, "lambda0": 0.2, "a_ini": 0.0}
+
+ELASTOPLASTIC_REFUSAL = (
+    "--model elastoplastic: the elasto-plastic B of Morvan et al. (2016), section 4, needs the bounding-surface "
+    "model of Morvan, Wong & Branque (2010), whose equations capred does not have. A reconstruction cannot stand "
+    "in for it silently: with Boyle's law on the absolute air pressure (130 kPa, Table 3) every skeleton is at "
+    "least as compliant as the elastic one, so B at S_r = 0.9 cannot fall below the elastic bound 0.097, and the "
+    "paper's over-consolidated value 0.04 is below it (it comes out only with the gauge pressure, 30 kPa, in "
+    "Boyle's law). Use --model bounding-surface for capred's stated Cam-clay reconstruction (--a-ini, "
+    "--interpolation-h, --air-pressure absolute|gauge), or the elastic B (eq. 10, or with --se and --bc-lambda "
+    "the elastic B with suction equilibrium)"
+)
+
+
 @renamed_keywords(sr="S_R", kappa="kappa_elastic")
 @dataclass(frozen=True)
 class SkemptonOptions(StableJsonKeys, Options):
@@ -193,8 +219,12 @@ class SkemptonOptions(StableJsonKeys, Options):
 
     ``S_R`` is the degree of saturation [-] (compute B) and ``b`` a measured B [-] (compute S_R);
     ``kappa_elastic`` the slope of the elastic line in e-ln p' [-]; ``bc_lambda`` the Brooks-Corey pore-size
-    index (Morvan et al. call it alpha). The keywords ``sr`` and ``kappa`` still work (DeprecationWarning);
-    the JSON keeps the option keys ``sr`` and ``kappa``.
+    index (Morvan et al. call it alpha). ``model`` is ``elastic`` (eq. 10, or section 3 with ``s_e`` and
+    ``bc_lambda``) or ``bounding-surface`` (section 4 by capred's Cam-clay bounding-surface reconstruction, not
+    the BDNS model of the paper's ref. [16]: ``a_ini`` [Pa], ``interpolation_h`` [-] required when
+    ``a_ini > 0``, ``lambda0`` [-], ``air_pressure`` ``absolute`` or ``gauge``; Table 3 fills ``s_e``,
+    ``bc_lambda``, ``lambda0`` and ``a_ini = 0``). ``elastoplastic`` is refused with the reason. The keywords
+    ``sr`` and ``kappa`` still work (DeprecationWarning); the JSON keeps the option keys ``sr`` and ``kappa``.
     """
 
     QUANTITIES = {
@@ -207,6 +237,8 @@ class SkemptonOptions(StableJsonKeys, Options):
         "pa0": "pa0",
         "s_e": "air_entry",
         "bc_lambda": "bc_lambda",
+        "a_ini": "p0",
+        "lambda0": "kappa_elastic",
     }
     OPTION_NAMES = {"S_R": "--S-R", "kappa_elastic": "--kappa-elastic", "s_e": "--se"}
     JSON_NAMES = {"S_R": "sr", "kappa_elastic": "kappa"}
@@ -221,21 +253,51 @@ class SkemptonOptions(StableJsonKeys, Options):
     s_e: float | None = None
     bc_lambda: float | None = None
     model: str = "elastic"
-    a_ini: float | str | None = None  # Pa, initial position of the bounding surface (elastoplastic only)
+    a_ini: float | str | None = None  # Pa, initial distance of the bounding surface's apex (bounding-surface only)
+    interpolation_h: float | None = None  # Dafalias-type constant h of the reconstruction (bounding-surface only)
+    air_pressure: str = "absolute"  # Boyle's law on absolute or gauge air pressure (bounding-surface only)
+    lambda0: float | None = None  # slope of the normal compression line (bounding-surface only; Table 3: 0.2)
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        if self.a_ini is not None and self.model != "elastoplastic":
-            raise OptionError("--a-ini (the bounding surface's initial position) goes with --model elastoplastic")
         if self.model == "elastoplastic":
-            raise OptionError(
-                "--model elastoplastic: the elasto-plastic B of Morvan et al. (2016), section 4, needs the "
-                "bounding-surface model of Morvan, Wong & Branque (2010), whose equations capred does not have; "
-                "the elastic B (eq. 10), or with --se and --bc-lambda the elastic B with suction equilibrium, is "
-                "what capred computes"
+            raise OptionError(ELASTOPLASTIC_REFUSAL)
+        if self.model not in SKEMPTON_MODELS:
+            raise OptionError(f"--model must be one of {', '.join(SKEMPTON_MODELS)} (got '{self.model}')")
+        if self.air_pressure not in ("absolute", "gauge"):
+            raise OptionError(f"--air-pressure must be absolute or gauge (got '{self.air_pressure}')")
+        if self.model != "bounding-surface":
+            given = [
+                name
+                for name, v in (
+                    ("--a-ini", self.a_ini),
+                    ("--interpolation-h", self.interpolation_h),
+                    ("--lambda0", self.lambda0),
+                )
+                if v is not None
+            ] + (["--air-pressure gauge"] if self.air_pressure == "gauge" else [])
+            if given:
+                raise OptionError(f"{', '.join(given)} go(es) with --model bounding-surface")
+            return
+        from ..physics.skempton_elastoplastic import BoundingSurfaceCompliance
+
+        BoundingSurfaceCompliance(  # checks kappa < lambda0, A_ini >= 0 and h where it is needed
+            self.kappa_elastic, self.lambda0_or_default, self.a_ini_or_default, self.interpolation_h
+        )
+        if self.air_pressure == "gauge":
+            self._warnings.append(
+                "--air-pressure gauge: Boyle's law needs the absolute air pressure; the gauge pressure u0 in Boyle's "
+                "law with p' = p0 + s S_r is the convention under which Morvan et al.'s (2016) Fig. 6 values come "
+                "out, for comparison with the paper only (pa0 is not used)"
             )
-        if self.model != "elastic":
-            raise OptionError(f"--model must be elastic or elastoplastic (got '{self.model}')")
+
+    @property
+    def lambda0_or_default(self) -> float:
+        return TABLE3["lambda0"] if self.lambda0 is None else self.lambda0
+
+    @property
+    def a_ini_or_default(self) -> float:
+        return TABLE3["a_ini"] if self.a_ini is None else self.a_ini
 
 
 @renamed_keywords(sr="S_R", kappa="kappa_elastic", bc_alpha="bc_lambda")
@@ -251,22 +313,51 @@ def run_skempton_b(
     s_e=None,
     bc_lambda=None,
     model="elastic",
+    a_ini=None,
+    interpolation_h=None,
+    air_pressure="absolute",
+    lambda0=None,
 ) -> CalcResult:
     """Morvan et al. (2016): B from the degree of saturation ``S_R`` [-] (eq. 10), or S_R from a measured B.
 
     ``kappa_elastic`` is the slope of the elastic line in e-ln p' [-]. With ``s_e`` [Pa] and ``bc_lambda``
     (the Brooks-Corey index, alpha in Morvan et al.), B is computed with suction equilibrium (section 3);
-    its inverse is solved numerically. The former keywords ``sr``, ``kappa`` and ``bc_alpha`` still work for
-    one release, with a DeprecationWarning. ``model="elastoplastic"`` (section 4 of the paper) raises
-    OptionError: the bounding-surface model it needs (Morvan, Wong & Branque 2010) is not available.
+    its inverse is solved numerically. ``model="bounding-surface"`` runs the two incremental loops of
+    section 4 with capred's Cam-clay bounding-surface reconstruction (not the BDNS model of the paper's
+    ref. [16]): ``a_ini`` [Pa] (0: normally consolidated), ``interpolation_h`` [-] (required when
+    ``a_ini > 0``), ``lambda0`` [-] and ``air_pressure`` (``absolute``, or ``gauge`` to meet the paper's
+    Fig. 6); Table 3 gives the defaults. ``model="elastoplastic"`` raises OptionError with the reason. The
+    former keywords ``sr``, ``kappa`` and ``bc_alpha`` still work for one release, with a DeprecationWarning.
+
+    References
+    ----------
+    Morvan, Vernay & Breul (2016), Study of the variation of B with Sr, E-UNSAT 2016, E3S Web of Conferences;
+    eqs. 10, 13-24, Tables 1 and 3.
     """
-    return reduce_skempton_b(source, SkemptonOptions(S_R, b, kappa_elastic, e0, p0, u0, pa0, s_e, bc_lambda, model))
+    return reduce_skempton_b(
+        source,
+        SkemptonOptions(
+            S_R, b, kappa_elastic, e0, p0, u0, pa0, s_e, bc_lambda, model, a_ini, interpolation_h, air_pressure, lambda0
+        ),
+    )
 
 
 def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
-    """B or S_r per case (see run_skempton_b), with the figure of the B-S_r relation."""
+    """B or S_r per case (see run_skempton_b), with the figure of the B-S_r relation; the title, the tables and
+    the JSON name the skeleton model and its inputs."""
     kw = dict(kappa=opt.kappa_elastic, e0=opt.e0, p0=opt.p0, u0=opt.u0, pa0=opt.pa0)  # keys: the figure's
-    res = _skempton(source, opt.S_R, opt.b, s_e=opt.s_e, bc_lambda=opt.bc_lambda, **kw)
+    bounding = None
+    s_e, bc_lambda = opt.s_e, opt.bc_lambda
+    if opt.model == "bounding-surface":
+        s_e = TABLE3["s_e"] if s_e is None else s_e
+        bc_lambda = TABLE3["bc_lambda"] if bc_lambda is None else bc_lambda
+        bounding = dict(
+            lambda0=opt.lambda0_or_default,
+            a_ini=opt.a_ini_or_default,
+            interpolation_h=opt.interpolation_h,
+            air_pressure=opt.air_pressure,
+        )
+    res = _skempton(source, opt.S_R, opt.b, s_e=s_e, bc_lambda=bc_lambda, bounding=bounding, **kw)
     S = np.asarray(res.values.get("S_r", res.outputs.get("S_r")), float)
     B = np.asarray(res.values.get("B", res.outputs.get("B")), float)
     n = S.size
@@ -282,12 +373,93 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
         cases.setdefault(key, ([], []))
         cases[key][0].append(S[i])
         cases[key][1].append(B[i])
-    res.figure_data = dict(cases=cases, s_e=opt.s_e, bc_lambda=opt.bc_lambda, **kw)
+    if bounding is not None:
+        filled = [
+            text
+            for given, text in (
+                (opt.s_e, f"s_e = {s_e / 1e3:g} kPa"),
+                (opt.bc_lambda, f"λ = {bc_lambda:g}"),
+                (opt.lambda0, f"λ0 = {bounding['lambda0']:g}"),
+                (opt.a_ini, "A_ini = 0 (normally consolidated)"),
+            )
+            if given is None
+        ]
+        if filled:
+            res.notes.append(f"Morvan et al. (2016), Table 3 values used where no option gave one: {', '.join(filled)}")
+    res.figure_data = dict(cases=cases, s_e=s_e, bc_lambda=bc_lambda, bounding=bounding, **kw)
+    res.title, res.model, res.model_inputs = skempton_model_description(opt.model, s_e, bc_lambda, bounding)
     res.options, res.warnings = opt, opt.warnings + res.warnings
     return res
 
 
-def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda) -> CalcResult:
+def skempton_model_description(model: str, s_e, bc_lambda, bounding: dict | None) -> tuple[str, str, dict]:
+    """(title, model name, model inputs in JSON units) of a `skempton-b` run: what every output says it computed.
+
+    Parameters
+    ----------
+    model : str
+        ``elastic`` or ``bounding-surface``.
+    s_e : float or None
+        Brooks-Corey air-entry suction [Pa] (suction equilibrium; Table 3's 20 kPa with bounding-surface).
+    bc_lambda : float or None
+        Brooks-Corey pore-size index [-] (alpha in Morvan et al. 2016).
+    bounding : dict or None
+        ``lambda0`` [-], ``a_ini`` [Pa], ``interpolation_h`` [-] or None, ``air_pressure``.
+
+    References
+    ----------
+    Morvan et al. (2016), eq. 10 (elastic), section 3 (suction equilibrium), section 4 (elasto-plastic).
+    """
+    from ..physics.skempton_elastoplastic import BOUNDING_SURFACE_NAME
+
+    if model == "bounding-surface":
+        h = bounding["interpolation_h"]
+        inputs = {
+            "s_e_kPa": s_e / 1e3,
+            "bc_lambda": bc_lambda,
+            "lambda0": bounding["lambda0"],
+            "a_ini_kPa": bounding["a_ini"] / 1e3,
+            "interpolation_h": h,
+            "air_pressure": bounding["air_pressure"],
+        }
+        state = "normally consolidated" if bounding["a_ini"] == 0 else "over-consolidated"
+        text = (
+            f"{state}, A_ini = {bounding['a_ini'] / 1e3:g} kPa, h = {'-' if h is None else f'{h:g}'}, "
+            f"λ0 = {bounding['lambda0']:g}, s_e = {s_e / 1e3:g} kPa, λ = {bc_lambda:g}, "
+            f"{bounding['air_pressure']} air pressure"
+        )
+        title = f"Skempton's B, {BOUNDING_SURFACE_NAME}: {text} ({cite('morvan2016', 'section 4')})"
+        return title, BOUNDING_SURFACE_NAME, inputs
+    if s_e is not None:
+        name = f"elastic skeleton with suction equilibrium ({cite('morvan2016', 'section 3')})"
+        title = f"Skempton's B, {name}: s_e = {s_e / 1e3:g} kPa, λ = {bc_lambda:g}"
+        return title, name, {"s_e_kPa": s_e / 1e3, "bc_lambda": bc_lambda}
+    name = f"elastic skeleton ({cite('morvan2016', 'eq. 10')})"
+    return f"Skempton's B, {name}", name, {}
+
+
+def _bounding_b(S, k, e, p, u, pa, s_e, bc_lambda, bounding) -> float:
+    """B at S_r (or, with S None, the whole path) by the two loops of Morvan et al. (2016) section 4."""
+    from ..physics import skempton_elastoplastic as sep
+
+    comp = sep.BoundingSurfaceCompliance(k, bounding["lambda0"], bounding["a_ini"], bounding["interpolation_h"])
+    kw = dict(
+        compliance=comp,
+        kappa_elastic=k,
+        p0=p,
+        u0=u,
+        e0=e,
+        pa0=pa,
+        air_entry=s_e,
+        bc_lambda=bc_lambda,
+        air_pressure=bounding["air_pressure"],
+    )
+    if S is None:
+        return sep.skempton_b_incremental_path(0.01, **kw)
+    return sep.skempton_b_incremental(S, **kw)
+
+
+def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=None) -> CalcResult:
     """B or S_R per case; the dict keys are the CSV columns and JSON keys (``S_r``, ``kappa``), unchanged."""
     schema = SKEMPTON + [
         Column("S_r", "dimensionless", "-", "S_r", ("Sr", "S_R"), "fraction"),
@@ -311,13 +483,21 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda) -> CalcRes
     p_eff = v["p0"] - v["u0"]
     if np.any(p_eff <= 0):
         raise OptionError("p0 - u0 (initial mean effective stress) must be > 0")
+    if bounding is not None and np.any(v["kappa"] >= bounding["lambda0"]):
+        raise OptionError(f"kappa must be below lambda0 = {bounding['lambda0']:g} (--lambda0) in every case")
     ins = {
         k + "_kPa" if k in ("p0", "u0", "pa0") else k: (x / 1e3 if k in ("p0", "u0", "pa0") else x)
         for k, x in v.items()
         if k not in ("S_r", "B")
     }
+    if suction:  # the model's inputs in every row: the table and the CSV say what was computed
+        n = v["kappa"].size
+        ins["s_e_kPa"], ins["bc_lambda"] = np.full(n, s_e / 1e3), np.full(n, float(bc_lambda))
+    cases = list(zip(v["kappa"], v["e0"], v["p0"], v["u0"], v["pa0"]))
     if forward:
-        if suction:
+        if bounding is not None:
+            B = np.array([_bounding_b(sr, *c, s_e, bc_lambda, bounding) for sr, c in zip(v["S_r"], cases)])
+        elif suction:
             B = calc.skempton_b_suction(v["S_r"], v["p0"], v["u0"], v["e0"], v["kappa"], v["pa0"], s_e, bc_lambda)
         else:
             B = calc.skempton_b(v["S_r"], p_eff, v["e0"], v["kappa"], v["pa0"])
@@ -332,7 +512,17 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda) -> CalcRes
             warnings=table.warnings if table is not None else [],
             inputs=[input_file(source, table)] if source is not None else [],
         )
-    if suction:
+    if bounding is not None:
+
+        def solve(bi, *c):
+            path = _bounding_b(None, *c, s_e, bc_lambda, bounding)
+            Bp, Sp = path.B[::-1], path.S_R[::-1]  # increasing S_r
+            if np.any(np.diff(Bp) <= 0) or not Bp[0] <= bi <= Bp[-1]:
+                return np.nan
+            return float(np.interp(bi, Bp, Sp))
+
+        S = np.array([solve(bi, *c) for bi, c in zip(v["B"], cases)])
+    elif suction:
         from scipy.optimize import brentq
 
         def solve(bi, k, e, p, u, pa):
@@ -340,7 +530,7 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda) -> CalcRes
             lo, hi = 1e-9, 1.0
             return brentq(f, lo, hi, xtol=1e-14) if f(lo) * f(hi) < 0 else np.nan
 
-        S = np.array([solve(*args) for args in zip(v["B"], v["kappa"], v["e0"], v["p0"], v["u0"], v["pa0"])])
+        S = np.array([solve(*args) for args in zip(v["B"], *zip(*cases))])
     else:
         S = calc.saturation_from_b(v["B"], p_eff, v["e0"], v["kappa"], v["pa0"])
     if np.any(~np.isfinite(S) | (S < 0)):

@@ -26,12 +26,43 @@ def _axes(ax, title):
     return ax
 
 
-def plot_cases(ax, cases, s_e=None, bc_lambda=None):
+def _bounding_curve(S, params, s_e, bc_lambda, bounding):
+    """B(S_r) of the bounding-surface reconstruction along one drying path (Morvan et al. 2016, section 4)."""
+    from ..physics import skempton_elastoplastic as sep
+
+    kappa, e0, p0, u0, pa0 = params
+    comp = sep.BoundingSurfaceCompliance(kappa, bounding["lambda0"], bounding["a_ini"], bounding["interpolation_h"])
+    return sep.skempton_b_incremental(
+        S,
+        compliance=comp,
+        kappa_elastic=kappa,
+        p0=p0,
+        u0=u0,
+        e0=e0,
+        pa0=pa0,
+        air_entry=s_e,
+        bc_lambda=bc_lambda,
+        air_pressure=bounding["air_pressure"],
+        S_R_step=2e-3,
+    )
+
+
+def plot_cases(ax, cases, s_e=None, bc_lambda=None, bounding=None):
     """B(S_r) of every distinct parameter set among the cases, with the cases of that set on it."""
     S = np.linspace(0.5, 1.0, 400)
     for k, (params, pts) in enumerate(cases.items()):
         kappa, e0, p0, u0, pa0 = params
         color = _COLORS[k % len(_COLORS)]
+        if bounding is not None:
+            ax.plot(
+                S,
+                _bounding_curve(S, params, s_e, bc_lambda, bounding),
+                "-.",
+                color=color,
+                lw=1.2,
+                label=rf"  bounding-surface reconstruction ($A_{{ini}}$ = {bounding['a_ini'] / 1e3:g} kPa, "
+                f"{bounding['air_pressure']} $P_a$)",
+            )
         label = (
             rf"$\kappa$ = {kappa:g}, $e_0$ = {e0:g}, $p'_0$ = {(p0 - u0) / 1e3:g} kPa, "
             rf"$P_{{a0}}$ = {pa0 / 1e3:g} kPa"
@@ -50,7 +81,7 @@ def plot_cases(ax, cases, s_e=None, bc_lambda=None):
     return _axes(ax, "Computed cases on their own curves")
 
 
-def sheet_skempton(cases: dict, kappa, e0, p0, u0, pa0, s_e=None, bc_lambda=None) -> Sheet:
+def sheet_skempton(cases: dict, kappa, e0, p0, u0, pa0, s_e=None, bc_lambda=None, bounding=None) -> Sheet:
     """``cases``: (kappa, e0, p0, u0, pa0) -> (S_r values, B values); the studies use the options' parameters."""
     S = np.linspace(0.5, 1.0, 400)
     pe = p0 - u0
@@ -81,7 +112,7 @@ def sheet_skempton(cases: dict, kappa, e0, p0, u0, pa0, s_e=None, bc_lambda=None
         [
             Panel(
                 "cases",
-                lambda ax: plot_cases(ax, cases, s_e, bc_lambda),
+                lambda ax: plot_cases(ax, cases, s_e, bc_lambda, bounding),
                 "B(S_r) of eq. 10 for each parameter set of the computed cases, the cases on their own curve.",
             ),
             Panel("kappa", kappa_study, "Effect of the slope κ of the elastic line."),

@@ -56,6 +56,7 @@ def write_outputs(
     xlsx: bool = False,
     panels: bool = False,
     figures: str = "main",
+    store=None,
 ) -> list[Path]:
     """Write every output of ``result`` into the folder ``out``, whole or not at all.
 
@@ -86,6 +87,9 @@ def write_outputs(
         Which sheets: "main" (default) the command's main sheets (shear: the report sheet of each material,
         and its raw curves when they were read); "all" also the sheets drawn only on request (shear: the
         back-analysed capillary stress of each material). report.html names the sheets left out.
+    store : str or Path, optional
+        A lab's store (SQLite, capred.lab_store) to record the run in once its files are written; default
+        the environment variable ``CAPRED_STORE``, else nothing is recorded.
 
     Returns
     -------
@@ -113,9 +117,17 @@ def write_outputs(
                 with task("writing report.html"):
                     folder.write_bytes("report.html", render_html(result, drawn, plots).encode("utf-8"))
 
-        return write_run(
+        from ..lab_store import check_store, record_run, store_from
+
+        store = store_from(store) if result.command != "history" else None
+        if store is not None:
+            check_store(store)  # a foreign or damaged store stops the run before any file is written
+        written = write_run(
             result, out, command_line=command_line, csv_dialect=csv_dialect, xlsx=xlsx, artifacts=artifacts
         )
+        if store is not None:
+            record_run(store, result, out)
+        return written
 
 
 # --- one sheet ----------------------------------------------------------------------------------------------

@@ -127,6 +127,9 @@ PRESENTERS: dict[str, Presenter] = {
     "prism": Presenter(_calc_figures, _lazy("calculator_tables", "calc_tables")),
     "skempton-b": Presenter(_calc_figures, _lazy("calculator_tables", "calc_tables")),
     "rumpf": Presenter(_calc_figures, _lazy("calculator_tables", "calc_tables")),
+    "history": Presenter(
+        _one("history_figures", "sheet_history", "control_chart"), _lazy("history_figures", "history_tables")
+    ),
     "bridge solve": Presenter(_none, _lazy("bridge_tables", "bridge_solve_tables")),
     "bridge curve": Presenter(
         _one("bridge_figures", "sheet_curve", "curve"), _lazy("bridge_tables", "bridge_curve_tables")

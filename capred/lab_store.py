@@ -1,0 +1,441 @@
+"""A lab's history: every run recorded in one SQLite file, queried per material and quantity.
+
+``capred <command> --store lab.sqlite`` (or the environment variable
+``CAPRED_STORE``) records each run whose files are written: its provenance
+(inputs' SHA-256, options, capred version, date, the inputs' metadata block),
+its JSON document, and a long table ``records(run, material, quantity, value,
+ci_low, ci_high, unit)`` for querying. ``capred history lab.sqlite --material
+M --quantity Q`` draws the individuals and moving-range chart of the quantity
+(capred.pipelines.history); :func:`history` gives the records as a DataFrame.
+
+The file is protected like a user's data:
+
+- it is recognised by its SQLite header, ``PRAGMA application_id`` and
+  ``PRAGMA user_version`` (the schema version) before anything is written: a
+  file that is not SQLite, another application's database, a damaged file or
+  one written by a newer capred is a clear :class:`~capred.errors.InputError`
+  and is never modified;
+- an older schema is migrated in one transaction (:data:`MIGRATIONS`);
+- each run is one ``BEGIN IMMEDIATE`` transaction, in WAL mode with a busy
+  timeout, so that a batch's workers may record at the same time;
+- a run recorded twice (same command, inputs' SHA-256 and options) is stored once.
+
+References
+----------
+ISO/IEC 17025:2017, clause 7.7 (ensuring the validity of results: control charts).
+SQLite, "Write-Ahead Logging", https://www.sqlite.org/wal.html.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import sqlite3
+from pathlib import Path
+
+from .errors import InputError, Problem
+
+#: identifies a capred store (PRAGMA application_id): "CAPR" in ASCII
+APPLICATION_ID = 0x43415052
+#: the environment variable that names the store once for every command
+STORE_VARIABLE = "CAPRED_STORE"
+#: seconds a writer waits for another's transaction before giving up
+BUSY_TIMEOUT_S = 60.0
+
+#: schema migrations: MIGRATIONS[k] takes a store from version k to k + 1 (version 0: an empty file)
+MIGRATIONS: tuple[tuple[str, ...], ...] = (
+    (  # 0 -> 1: runs and their long records
+        """CREATE TABLE runs (
+            id INTEGER PRIMARY KEY,
+            run_key TEXT NOT NULL UNIQUE,
+            command TEXT NOT NULL,
+            created_utc TEXT NOT NULL,
+            capred_version TEXT NOT NULL,
+            inputs TEXT NOT NULL,
+            options TEXT NOT NULL,
+            metadata TEXT NOT NULL,
+            out_dir TEXT,
+            document TEXT NOT NULL
+        )""",
+        """CREATE TABLE records (
+            run INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
+            material TEXT,
+            quantity TEXT NOT NULL,
+            value REAL,
+            ci_low REAL,
+            ci_high REAL,
+            unit TEXT
+        )""",
+    ),
+    (  # 1 -> 2: the test date from the metadata block, and an index for the history query
+        "ALTER TABLE runs ADD COLUMN test_date TEXT",
+        "UPDATE runs SET test_date = COALESCE("
+        "json_extract(metadata, '$.date'), json_extract(metadata, '$.test_date'), substr(created_utc, 1, 10))",
+        "CREATE INDEX records_material_quantity ON records(material, quantity)",
+    ),
+)
+SCHEMA_VERSION = len(MIGRATIONS)
+
+_DATE_KEYS = ("date", "test_date", "test date", "test start", "test_start")
+
+
+def _problem(path, message: str) -> InputError:
+    return InputError(Problem(str(path), None, None, message))
+
+
+def _inspect(path: Path) -> tuple[int, int] | None:
+    """(application_id, user_version) of an existing file, read-only; None for a new (absent or empty) store.
+
+    Raises InputError for a file that is not a SQLite database, is damaged or belongs to another application.
+    """
+    if not path.exists():
+        return None
+    if path.is_dir():
+        raise _problem(path, "is a folder, not a capred store (give a file such as lab.sqlite)")
+    with open(path, "rb") as fh:
+        head = fh.read(100)
+    if not head:
+        return None  # an empty file: another writer is creating the store, or `touch lab.sqlite`
+    if not head.startswith(b"SQLite format 3\x00"):
+        raise _problem(path, "is not a SQLite database, so not a capred store; it was left untouched")
+    try:
+        con = sqlite3.connect(f"file:{path}?mode=ro", uri=True, timeout=BUSY_TIMEOUT_S)
+        try:
+            app = con.execute("PRAGMA application_id").fetchone()[0]
+            version = con.execute("PRAGMA user_version").fetchone()[0]
+            tables = [r[0] for r in con.execute("SELECT name FROM sqlite_master WHERE type = 'table'")]
+            check = con.execute("PRAGMA quick_check").fetchone()[0]
+        finally:
+            con.close()
+    except sqlite3.DatabaseError as exc:
+        raise _problem(path, f"is a damaged SQLite file ({exc}); it was left untouched") from None
+    if check != "ok":
+        raise _problem(path, f"is a damaged capred store (SQLite integrity check: {check}); it was left untouched")
+    if app == 0 and version == 0 and not tables:
+        return None  # an empty database
+    if app != APPLICATION_ID:
+        raise _problem(
+            path,
+            f"is another application's SQLite database (tables: {', '.join(tables[:5]) or 'none'}), not a "
+            "capred store; it was left untouched",
+        )
+    if version > SCHEMA_VERSION:
+        raise _problem(
+            path,
+            f"was written by a newer capred (schema {version}; this capred reads up to {SCHEMA_VERSION}); "
+            "it was left untouched",
+        )
+    return app, version
+
+
+def connect(path, create: bool = True) -> sqlite3.Connection:
+    """An open connection to the store at ``path``, created or migrated to :data:`SCHEMA_VERSION` as needed.
+
+    Parameters
+    ----------
+    path : str or Path
+        The store's file (e.g. ``lab.sqlite``).
+    create : bool
+        Create the store where there is none (recording); False: a missing store is an error (querying).
+
+    Returns
+    -------
+    sqlite3.Connection
+        In WAL mode, with a busy timeout of :data:`BUSY_TIMEOUT_S` and foreign keys on.
+
+    Raises
+    ------
+    InputError
+        The file is not a capred store, is damaged or newer (it is never modified), or is missing and
+        ``create`` is False.
+    """
+    path = Path(path)
+    state = _inspect(path)
+    if state is None and not create:
+        raise _problem(path, "no capred store here (record runs into it with --store or CAPRED_STORE)")
+    if state is None and not path.parent.exists():
+        raise _problem(path, f"the folder {path.parent} does not exist")
+    con = sqlite3.connect(str(path), timeout=BUSY_TIMEOUT_S, isolation_level=None)
+    try:
+        con.execute(f"PRAGMA busy_timeout = {int(BUSY_TIMEOUT_S * 1000)}")
+        if state is None or state[1] < SCHEMA_VERSION:
+            _migrate(con, path)
+        con.execute("PRAGMA journal_mode = WAL")
+        con.execute("PRAGMA foreign_keys = ON")
+    except sqlite3.DatabaseError as exc:
+        con.close()
+        raise _problem(path, f"cannot be opened as a capred store ({exc})") from None
+    return con
+
+
+def _migrate(con: sqlite3.Connection, path: Path) -> None:
+    """Bring the store to SCHEMA_VERSION in one transaction (another writer may have done it meanwhile)."""
+    con.execute("BEGIN IMMEDIATE")
+    try:
+        app = con.execute("PRAGMA application_id").fetchone()[0]
+        version = con.execute("PRAGMA user_version").fetchone()[0]
+        tables = con.execute("SELECT count(*) FROM sqlite_master WHERE type = 'table'").fetchone()[0]
+        if app != APPLICATION_ID and (app != 0 or version != 0 or tables):
+            raise _problem(path, "is not a capred store; it was left untouched")
+        for step in MIGRATIONS[version:]:
+            for sql in step:
+                con.execute(sql)
+        con.execute(f"PRAGMA application_id = {APPLICATION_ID}")
+        con.execute(f"PRAGMA user_version = {SCHEMA_VERSION}")
+        con.execute("COMMIT")
+    except BaseException:
+        con.execute("ROLLBACK")
+        raise
+
+
+# --- what a run records ---------------------------------------------------------------------------------------
+_UNITS = ("kPa", "Pa", "MPa", "deg", "mm", "m", "um", "cm", "mm3", "N", "mN", "kN", "percent", "s")
+
+
+def _unit(key: str) -> tuple[str, str]:
+    """(quantity stem, unit) of a JSON key such as ``phi_deg`` -> (``phi``, ``deg``); unitless: (key, "-")."""
+    stem, _, last = key.rpartition("_")
+    if stem and last in _UNITS:
+        return stem, last
+    return key, "-"
+
+
+def _number(x) -> float | None:
+    if isinstance(x, bool) or not isinstance(x, (int, float)):
+        return None
+    return float(x) if math.isfinite(x) else None
+
+
+def _interval(block: dict, key: str) -> tuple[float | None, float | None]:
+    """The 95 % interval of ``key`` in ``block``: ``<stem>_ci95_<unit>`` or ``<key>_ci95`` as [low, high]."""
+    stem, unit = _unit(key)
+    for k in (f"{stem}_ci95_{unit}", f"{key}_ci95", f"{stem}_ci95"):
+        ci = block.get(k)
+        if isinstance(ci, (list, tuple)) and len(ci) == 2:
+            return _number(ci[0]), _number(ci[1])
+    return None, None
+
+
+def _scalars(block: dict, material) -> list[tuple]:
+    rows = []
+    for key, value in block.items():
+        v = _number(value)
+        if v is None or "_ci95" in key or key in ("n", "line", "dof"):
+            continue
+        lo, hi = _interval(block, key)
+        rows.append((material, key, v, lo, hi, _unit(key)[1]))
+    return rows
+
+
+def records_of(doc: dict, metadata: dict | None = None) -> list[tuple]:
+    """The long records ``(material, quantity, value, ci_low, ci_high, unit)`` of a run's JSON document.
+
+    Per material (a ``materials`` mapping of the document: shear, triaxial, retention), every number with
+    its 95 % interval where the document gives one (``phi_deg`` with ``phi_ci95_deg``); and the document's
+    top-level numbers (a calculator's single case), for the material named in the inputs' metadata block
+    (``material``) or none.
+
+    Parameters
+    ----------
+    doc : dict
+        ``result.to_json()``.
+    metadata : dict, optional
+        The inputs' metadata block.
+
+    Returns
+    -------
+    list of tuple
+        One tuple per record; the quantity is the document's key, the unit its suffix (``-`` if none).
+    """
+    out = []
+    materials = doc.get("materials")
+    if isinstance(materials, dict):
+        for name, block in materials.items():
+            if isinstance(block, dict):
+                out += _scalars(block, str(name))
+    meta = metadata or {}
+    material = next((str(v) for k, v in meta.items() if str(k).strip().lower() == "material"), None)
+    out += _scalars({k: v for k, v in doc.items() if k != "materials"}, material)
+    return out
+
+
+def run_key(doc: dict) -> str:
+    """SHA-256 of what makes a run the same run: the command, the inputs' SHA-256 (and sheet) and the options."""
+    ident = {
+        "command": doc.get("command"),
+        "inputs": [(i.get("sha256"), i.get("sheet")) for i in doc.get("inputs", [])],
+        "options": doc.get("options"),
+    }
+    return hashlib.sha256(json.dumps(ident, sort_keys=True, default=str).encode()).hexdigest()
+
+
+def _metadata(doc: dict) -> dict:
+    meta: dict = {}
+    for i in doc.get("inputs", []):
+        meta.update(i.get("metadata") or {})
+    return meta
+
+
+def _test_date(meta: dict, created: str) -> str:
+    for k, v in meta.items():
+        if str(k).strip().lower() in _DATE_KEYS and str(v).strip():
+            return str(v).strip()
+    return created[:10]
+
+
+def check_store(store) -> None:
+    """Raise InputError where ``store`` exists and is not a capred store this capred can write (nothing changes).
+
+    Parameters
+    ----------
+    store : str or Path
+        The store's file.
+    """
+    path = Path(store)
+    _inspect(path)
+    if not path.exists() and not path.parent.exists():
+        raise _problem(path, f"the folder {path.parent} does not exist")
+
+
+def record_run(store, result, out_dir=None) -> tuple[int, bool]:
+    """Record one run in the store: provenance, JSON document and long records, in one transaction.
+
+    Parameters
+    ----------
+    store : str or Path
+        The store's file; created where absent.
+    result : capred.result.Result
+        Any command's result.
+    out_dir : str or Path, optional
+        The folder its files were written to (recorded).
+
+    Returns
+    -------
+    (int, bool)
+        The run's id and whether it was new (False: the same run was already recorded; nothing changed).
+
+    Raises
+    ------
+    InputError
+        The store is not a capred store, is damaged or newer (never modified).
+    """
+    from datetime import UTC, datetime
+
+    from .io.writers import encode_json
+
+    doc = json.loads(encode_json(result.to_json()).decode("utf-8"))  # the JSON the run wrote, NaN as null
+    key = run_key(doc)
+    meta = _metadata(doc)
+    created = datetime.now(UTC).replace(microsecond=0).isoformat()
+    con = connect(store)
+    try:
+        con.execute("BEGIN IMMEDIATE")
+        try:
+            row = con.execute("SELECT id FROM runs WHERE run_key = ?", (key,)).fetchone()
+            if row is not None:
+                con.execute("COMMIT")
+                return int(row[0]), False
+            cur = con.execute(
+                "INSERT INTO runs (run_key, command, created_utc, capred_version, inputs, options, metadata, "
+                "out_dir, document, test_date) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                (
+                    key,
+                    doc.get("command", ""),
+                    created,
+                    doc.get("capred_version", ""),
+                    json.dumps(doc.get("inputs", [])),
+                    json.dumps(doc.get("options", {})),
+                    json.dumps(meta),
+                    None if out_dir is None else os.path.abspath(out_dir),
+                    json.dumps(doc),
+                    _test_date(meta, created),
+                ),
+            )
+            run = cur.lastrowid
+            con.executemany(
+                "INSERT INTO records (run, material, quantity, value, ci_low, ci_high, unit) VALUES (?,?,?,?,?,?,?)",
+                [(run, *r) for r in records_of(doc, meta)],
+            )
+            con.execute("COMMIT")
+            return int(run), True
+        except BaseException:
+            con.execute("ROLLBACK")
+            raise
+    finally:
+        con.close()
+
+
+def store_from(store=None):
+    """The store to record into: ``store`` if given, else ``$CAPRED_STORE``, else None (nothing recorded)."""
+    if store is not None:
+        return store
+    return os.environ.get(STORE_VARIABLE) or None
+
+
+def history(store, material: str | None = None, quantity: str | None = None, command: str | None = None):
+    """The records of a store as a DataFrame, one row per (run, material, quantity), oldest run first.
+
+    Parameters
+    ----------
+    store : str or Path
+        The store's file (``--store`` of the commands).
+    material, quantity, command : str, optional
+        Keep only this material, quantity (a JSON key such as ``phi_deg``) or command.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``run, test_date, created_utc, command, input, sha256, material, quantity, value, ci_low,
+        ci_high, unit, out_dir``.
+
+    Raises
+    ------
+    InputError
+        No store at ``store``, or a file that is not a capred store (never modified).
+
+    References
+    ----------
+    ISO/IEC 17025:2017, clause 7.7.
+    """
+    import pandas as pd
+
+    con = connect(store, create=False)
+    try:
+        where, args = [], []
+        for col, val in (("r.material", material), ("r.quantity", quantity), ("u.command", command)):
+            if val is not None:
+                where.append(f"{col} = ?")
+                args.append(val)
+        sql = (
+            "SELECT u.id AS run, u.test_date, u.created_utc, u.command, u.inputs, r.material, r.quantity, "
+            "r.value, r.ci_low, r.ci_high, r.unit, u.out_dir FROM records r JOIN runs u ON u.id = r.run"
+            + (" WHERE " + " AND ".join(where) if where else "")
+            + " ORDER BY u.id, r.rowid"
+        )
+        rows = con.execute(sql, args).fetchall()
+    finally:
+        con.close()
+    cols = [
+        "run",
+        "test_date",
+        "created_utc",
+        "command",
+        "inputs",
+        "material",
+        "quantity",
+        "value",
+        "ci_low",
+        "ci_high",
+        "unit",
+        "out_dir",
+    ]
+    frame = pd.DataFrame(rows, columns=cols)
+    first = [json.loads(s)[0] if json.loads(s) else {} for s in frame["inputs"]]
+    frame.insert(4, "input", [i.get("path") for i in first])
+    frame.insert(5, "sha256", [i.get("sha256") for i in first])
+    frame = frame.drop(columns="inputs")
+    for c in ("value", "ci_low", "ci_high"):
+        frame[c] = frame[c].astype(float)
+    return frame

@@ -1,0 +1,334 @@
+"""`capred history`: one quantity of one material across the runs of a lab's store, on a control chart.
+
+The individuals chart with moving range (Shewhart; Montgomery 2013, section 6.4):
+moving ranges ``MR_i = |x_i - x_(i-1)|``; the centre line and the spread come
+from the first ``baseline`` runs (8 by default), ``sigma = mean(MR) / d2`` with
+``d2 = 1.128`` (subgroups of two), limits ``centre +- 3 sigma``; the moving-range
+chart has centre ``mean(MR)`` and upper limit ``D4 mean(MR)``, ``D4 = 3.267``.
+A reference value and spread (sigma) the user gives replace the baseline.
+Runs beyond the limits are flagged (warnings, JSON, table, figure).
+
+References
+----------
+D. C. Montgomery (2013), Introduction to Statistical Quality Control, 7th ed., Wiley, section 6.4
+(individuals and moving-range charts; d2 = 1.128, D4 = 3.267 for n = 2).
+ISO 7870-2:2013, Control charts - Part 2: Shewhart control charts.
+ISO/IEC 17025:2017, clause 7.7 (monitoring the validity of results).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import InputError, OptionError, Problem
+from ..result import InputFile, Options, Result, input_file, num
+
+#: control-chart constants for moving ranges of two consecutive values (Montgomery 2013, Appendix VI)
+D2 = 1.128
+D4 = 3.267
+
+
+@dataclass(frozen=True)
+class ControlLimits:
+    """Limits of an individuals chart and its moving-range chart (values in the quantity's unit).
+
+    Attributes
+    ----------
+    centre, sigma, lcl, ucl : float
+        Centre line, process standard deviation, lower and upper control limits (centre -+ 3 sigma).
+    mr_centre, mr_ucl : float
+        Centre line and upper control limit of the moving-range chart (``D4 mr_centre``).
+    basis : str
+        Where the limits come from (the first n runs, or the user's reference value and spread).
+    """
+
+    centre: float
+    sigma: float
+    lcl: float
+    ucl: float
+    mr_centre: float
+    mr_ucl: float
+    basis: str
+
+
+def individuals_chart(values, baseline: int = 8, reference: float | None = None, spread: float | None = None):
+    """Individuals and moving-range chart of ``values`` in run order.
+
+    Parameters
+    ----------
+    values : array_like
+        The quantity per run, in run order (finite).
+    baseline : int
+        Number of first runs that set the centre line and sigma (>= 2); ignored with ``reference``.
+    reference, spread : float, optional
+        A reference value and its standard deviation (both or neither), in the values' unit.
+
+    Returns
+    -------
+    limits : ControlLimits
+    moving_range : ndarray
+        ``|x_i - x_(i-1)|``, NaN for the first run.
+    beyond : ndarray of bool
+        Runs outside ``[lcl, ucl]``.
+    mr_beyond : ndarray of bool
+        Runs whose moving range exceeds ``mr_ucl``.
+
+    Raises
+    ------
+    OptionError
+        Only one of reference and spread, a spread <= 0, or fewer than 2 runs to set the limits.
+
+    References
+    ----------
+    Montgomery (2013), section 6.4, eqs. 6.33-6.34 (sigma = MR-bar / d2; limits x-bar -+ 3 MR-bar / d2).
+    """
+    x = np.asarray(values, float)
+    mr = np.full(x.size, np.nan)
+    if x.size > 1:
+        mr[1:] = np.abs(np.diff(x))
+    if (reference is None) != (spread is None):
+        raise OptionError(
+            "give both --reference and --spread (the reference value and its standard deviation), or neither"
+        )
+    if reference is not None:
+        if not spread > 0:
+            raise OptionError(f"--spread (the reference standard deviation) must be > 0 (got {spread})")
+        centre, sigma = float(reference), float(spread)
+        mr_centre = D2 * sigma
+        basis = f"reference value {reference:g} and standard deviation {spread:g} given by the user"
+    else:
+        if baseline < 2:
+            raise OptionError(f"--baseline must be at least 2 runs (got {baseline})")
+        n = min(baseline, x.size)
+        if n < 2:
+            raise OptionError("a control chart needs at least 2 runs to set its limits (or --reference and --spread)")
+        centre = float(np.mean(x[:n]))
+        mr_centre = float(np.mean(mr[1:n]))
+        sigma = mr_centre / D2
+        basis = f"the first {n} runs (sigma = mean moving range / {D2})"
+    limits = ControlLimits(centre, sigma, centre - 3 * sigma, centre + 3 * sigma, mr_centre, D4 * mr_centre, basis)
+    beyond = (x < limits.lcl) | (x > limits.ucl)
+    mr_beyond = np.nan_to_num(mr, nan=0.0) > limits.mr_ucl
+    return limits, mr, beyond, mr_beyond
+
+
+@dataclass(frozen=True)
+class HistoryOptions(Options):
+    """Options of `capred history`: the material and quantity (a JSON key such as ``phi_deg``) to chart, the
+    number of first runs that set the limits, or a reference value and spread in the quantity's unit."""
+
+    material: str | None = None
+    quantity: str | None = None
+    baseline: int = 8
+    reference: float | None = None
+    spread: float | None = None
+    command: str | None = None
+
+
+@dataclass(repr=False)
+class HistoryResult(Result):
+    """One quantity of one material per run of a store, with its control chart."""
+
+    material: str | None
+    quantity: str
+    unit: str
+    runs: dict[str, np.ndarray]  # run, test_date, input, value, ci_low, ci_high, moving_range, beyond, mr_beyond
+    limits: ControlLimits
+    baseline_runs: int
+    options: Options | None = None
+    inputs: list[InputFile] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+
+    command = "history"
+    json_name = "history.json"
+
+    @property
+    def flagged(self) -> list[int]:
+        """Ids of the runs beyond the control limits."""
+        return [int(r) for r, b in zip(self.runs["run"], self.runs["beyond"]) if b]
+
+    def rows(self) -> list[dict]:
+        r = self.runs
+        return [
+            {
+                "run": int(r["run"][i]),
+                "test_date": r["test_date"][i],
+                "input": r["input"][i],
+                "value": num(r["value"][i]),
+                "ci_low": num(r["ci_low"][i]),
+                "ci_high": num(r["ci_high"][i]),
+                "moving_range": num(r["moving_range"][i]),
+                "beyond_limits": bool(r["beyond"][i]),
+                "mr_beyond_limit": bool(r["mr_beyond"][i]),
+            }
+            for i in range(len(r["run"]))
+        ]
+
+    def payload(self, lazy: bool = False) -> dict:
+        lim = self.limits
+        return {
+            "material": self.material,
+            "quantity": self.quantity,
+            "unit": self.unit,
+            "limits": {
+                "centre": num(lim.centre),
+                "sigma": num(lim.sigma),
+                "lcl": num(lim.lcl),
+                "ucl": num(lim.ucl),
+                "mr_centre": num(lim.mr_centre),
+                "mr_ucl": num(lim.mr_ucl),
+                "basis": lim.basis,
+            },
+            "flagged_runs": self.flagged,
+            "runs": self.rows(),
+        }
+
+    def tables(self) -> dict:
+        import pandas as pd
+
+        return {"history": pd.DataFrame(self.rows())}
+
+
+def _choose(frame, column: str, given, what: str, store) -> str:
+    present = sorted({str(v) for v in frame[column].dropna()})
+    if given is not None:
+        if given not in present:
+            raise InputError(
+                Problem(
+                    str(store), None, None, f"no {what} '{given}' in this store; it holds: {', '.join(present[:30])}"
+                )
+            )
+        return given
+    if len(present) == 1:
+        return present[0]
+    option = "--" + what
+    raise OptionError(f"{option} is needed: this store holds {', '.join(present[:30]) or 'none'}")
+
+
+def reduce_history(source, opt: HistoryOptions) -> HistoryResult:
+    """The control chart of ``opt.quantity`` of ``opt.material`` over the runs of the store ``source``.
+
+    Parameters
+    ----------
+    source : str or Path
+        The store (``--store`` of the commands).
+    opt : HistoryOptions
+
+    Returns
+    -------
+    HistoryResult
+
+    Raises
+    ------
+    InputError
+        Not a capred store, or no such material or quantity in it.
+    OptionError
+        The quantity (or material) is needed to choose among several.
+
+    References
+    ----------
+    Montgomery (2013), section 6.4; ISO/IEC 17025:2017, clause 7.7.
+    """
+    from ..lab_store import history
+
+    path = getattr(source, "path", source)
+    frame = history(path, command=opt.command)
+    if frame.empty:
+        raise InputError(Problem(str(path), None, None, "this store holds no runs yet"))
+    if opt.quantity is None:
+        raise OptionError("--quantity is needed: this store holds " + ", ".join(sorted(set(frame["quantity"]))[:40]))
+    q = frame[frame["quantity"] == opt.quantity]
+    if q.empty:
+        _choose(frame, "quantity", opt.quantity, "quantity", path)
+    material = _choose(q, "material", opt.material, "material", path) if q["material"].notna().any() else None
+    rows = q[q["material"] == material] if material is not None else q[q["material"].isna()]
+    notes = []
+    dup = rows["run"].duplicated()
+    if dup.any():
+        notes.append(f"{int(dup.sum())} runs gave '{opt.quantity}' more than once: the first value of each is charted")
+        rows = rows[~dup]
+    missing = ~np.isfinite(rows["value"].to_numpy(float))
+    if missing.any():
+        notes.append(
+            f"{int(missing.sum())} runs have no value of '{opt.quantity}' (runs "
+            f"{', '.join(str(r) for r in rows['run'][missing])}): they are listed but not charted"
+        )
+        rows = rows[~missing]
+    import pandas as pd
+
+    dates = pd.to_datetime(rows["test_date"], errors="coerce", format="mixed")
+    if dates.notna().all():  # the chart's order is the order of the tests
+        rows = rows.assign(_d=dates).sort_values(["_d", "run"], kind="stable").drop(columns="_d")
+        order = "test date (the inputs' metadata 'date', else the day recorded), then order recorded"
+    else:
+        order = "order recorded (some test dates are not dates)"
+    notes.append(f"runs in order of {order}")
+    x = rows["value"].to_numpy(float)
+    limits, mr, beyond, mr_beyond = individuals_chart(x, opt.baseline, opt.reference, opt.spread)
+    unit = str(rows["unit"].iloc[0]) if len(rows) else "-"
+    runs = {
+        "run": rows["run"].to_numpy(int),
+        "test_date": [str(d) for d in rows["test_date"]],
+        "input": [str(p) for p in rows["input"]],
+        "value": x,
+        "ci_low": rows["ci_low"].to_numpy(float),
+        "ci_high": rows["ci_high"].to_numpy(float),
+        "moving_range": mr,
+        "beyond": beyond,
+        "mr_beyond": mr_beyond,
+    }
+    warnings = []
+    n_base = min(opt.baseline, x.size) if opt.reference is None else 0
+    if opt.reference is None and x.size < opt.baseline:
+        warnings.append(f"the limits rest on {x.size} runs only (the chart asks for {opt.baseline})")
+    label = f"{opt.quantity}" + (f" of {material}" if material is not None else "")
+    for i in np.flatnonzero(beyond):
+        side = "above the upper" if x[i] > limits.ucl else "below the lower"
+        bound = limits.ucl if x[i] > limits.ucl else limits.lcl
+        warnings.append(
+            f"run {runs['run'][i]} ({runs['test_date'][i]}, {runs['input'][i]}): {label} = {x[i]:.4g} {unit} lies "
+            f"{side} control limit {bound:.4g} {unit}"
+        )
+    for i in np.flatnonzero(mr_beyond & ~beyond):
+        warnings.append(
+            f"run {runs['run'][i]} ({runs['test_date'][i]}): the moving range {mr[i]:.4g} {unit} exceeds its "
+            f"control limit {limits.mr_ucl:.4g} {unit}"
+        )
+    return HistoryResult(
+        material,
+        opt.quantity,
+        unit,
+        runs,
+        limits,
+        n_base,
+        opt,
+        [input_file(path)],
+        opt.warnings + warnings,
+        notes,
+    )
+
+
+def run_history(store, material=None, quantity=None, baseline=8, reference=None, spread=None) -> HistoryResult:
+    """The control chart of one quantity of one material across the runs of a store (see reduce_history).
+
+    Parameters
+    ----------
+    store : str or Path
+        The store's file.
+    material : str, optional
+        The material (needed when the store holds several for the quantity).
+    quantity : str
+        A JSON key of the runs' documents, e.g. ``phi_deg`` (shear).
+    baseline : int
+        First runs that set the limits.
+    reference, spread : float, optional
+        Reference value and standard deviation, in the quantity's unit, instead of the baseline.
+
+    Returns
+    -------
+    HistoryResult
+    """
+    return reduce_history(store, HistoryOptions(material, quantity, baseline, reference, spread))

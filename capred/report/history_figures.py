@@ -1,0 +1,129 @@
+"""`capred history`: the individuals chart (with each run's 95 % interval) and the moving-range chart.
+
+Shewhart individuals and moving-range chart as in Montgomery (2013), Introduction to Statistical Quality
+Control, 7th ed., section 6.4, Fig. 6.18 (centre line, 3-sigma limits, out-of-control points marked).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..result import TableSpec
+from .sheets import Panel, Sheet
+from .style import OKABE_ITO
+
+_LIMIT = dict(color=OKABE_ITO["vermillion"], ls="--", lw=1.0)
+_CENTRE = dict(color=OKABE_ITO["grey"], ls="-", lw=1.0)
+
+
+def _runs_axis(ax, n: int) -> None:
+    from matplotlib.ticker import MaxNLocator
+
+    ax.set_xlim(0.5, n + 0.5)
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+    ax.set_xlabel("run (in test order)")
+
+
+def _label(result) -> str:
+    unit = "" if result.unit == "-" else f" [{result.unit}]"
+    return f"{result.quantity}{unit}"
+
+
+def _individuals(ax, result):
+    r, lim = result.runs, result.limits
+    k = np.arange(1, len(r["run"]) + 1)
+    x = np.asarray(r["value"], float)
+    lo, hi = np.asarray(r["ci_low"], float), np.asarray(r["ci_high"], float)
+    has_ci = np.isfinite(lo) & np.isfinite(hi)
+    if has_ci.any():
+        ax.errorbar(
+            k[has_ci],
+            x[has_ci],
+            yerr=[x[has_ci] - lo[has_ci], hi[has_ci] - x[has_ci]],
+            fmt="none",
+            ecolor=OKABE_ITO["sky"],
+            elinewidth=0.9,
+            capsize=2,
+            label="95 % interval of the run",
+        )
+    ax.plot(k, x, "-o", color=OKABE_ITO["black"], ms=3.5, lw=0.8, label="value per run")
+    out = np.asarray(r["beyond"], bool)
+    if out.any():
+        ax.plot(k[out], x[out], "s", color=OKABE_ITO["vermillion"], ms=7, mfc="none", mew=1.5, label="beyond limits")
+    ax.axhline(lim.centre, **_CENTRE, label="centre line")
+    ax.axhline(lim.ucl, **_LIMIT, label=r"$\pm 3\sigma$ limits")
+    ax.axhline(lim.lcl, **_LIMIT)
+    if result.baseline_runs:
+        ax.axvspan(0.5, result.baseline_runs + 0.5, color=OKABE_ITO["grey"], alpha=0.12, lw=0, label="baseline runs")
+    _runs_axis(ax, len(k))
+    ax.set_ylabel(_label(result))
+    ax.set_title("Individuals")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small")
+    return ax
+
+
+def _moving_range(ax, result):
+    r, lim = result.runs, result.limits
+    k = np.arange(1, len(r["run"]) + 1)
+    mr = np.asarray(r["moving_range"], float)
+    ax.plot(k[1:], mr[1:], "-o", color=OKABE_ITO["black"], ms=3.5, lw=0.8, label="moving range")
+    out = np.asarray(r["mr_beyond"], bool)
+    if out.any():
+        ax.plot(k[out], mr[out], "s", color=OKABE_ITO["vermillion"], ms=7, mfc="none", mew=1.5, label="beyond limit")
+    ax.axhline(lim.mr_centre, **_CENTRE, label=r"$\overline{MR}$")
+    ax.axhline(lim.mr_ucl, **_LIMIT, label=r"$D_4\,\overline{MR}$")
+    _runs_axis(ax, len(k))
+    ax.set_ylabel(f"moving range{'' if result.unit == '-' else f' [{result.unit}]'}")
+    ax.set_title("Moving range")
+    ax.set_ylim(bottom=0)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small")
+    return ax
+
+
+def sheet_history(result) -> Sheet:
+    """The control chart of a `capred history` result: individuals (with 95 % intervals) over moving range."""
+    what = f"{result.quantity}" + (f" of {result.material}" if result.material else "")
+    return Sheet(
+        f"Control chart: {what}",
+        [
+            Panel(
+                "individuals",
+                lambda ax: _individuals(ax, result),
+                f"Individuals chart of {what} per run with each run's 95 % interval (error bars); centre line and "
+                f"3σ limits from {result.limits.basis} (after Montgomery 2013, Fig. 6.18).",
+            ),
+            Panel(
+                "moving_range",
+                lambda ax: _moving_range(ax, result),
+                "Moving range of consecutive runs with its centre line and upper limit D4·MR̄, D4 = 3.267.",
+            ),
+        ],
+        1,
+        spans={"individuals": 2, "moving_range": 2},
+        panel_size=(6.0, 2.6),
+    )
+
+
+def history_tables(result) -> list[TableSpec]:
+    """The runs with their value, interval, moving range and flag; then the limits."""
+    from .render import fmt, row_table
+
+    rows = [
+        {**r, "flag": "OUT" if r["beyond_limits"] else ("MR" if r["mr_beyond_limit"] else "")} for r in result.rows()
+    ]
+    keys = ["run", "test_date", "value", "ci_low", "ci_high", "moving_range", "flag"]
+    what = f"{result.quantity}" + (f" of {result.material}" if result.material else "")
+    unit = "" if result.unit == "-" else f" [{result.unit}]"
+    lim = result.limits
+    runs = row_table(f"{what}{unit} per run", rows, keys, "history.csv")
+    limits = TableSpec("Control limits (" + lim.basis + ")", [("line", "left"), ("value", "right")])
+    for name, v in (
+        ("centre", lim.centre),
+        ("sigma", lim.sigma),
+        ("LCL", lim.lcl),
+        ("UCL", lim.ucl),
+        ("MR centre", lim.mr_centre),
+        ("MR UCL", lim.mr_ucl),
+    ):
+        limits.rows.append([name, fmt(v)])
+    return [runs, limits]
