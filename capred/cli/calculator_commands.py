@@ -84,6 +84,13 @@ def skempton_b(
             "elastoplastic.",
         ),
     ] = None,
+    retention: Annotated[
+        str | None,
+        typer.Option(
+            help="fits.json of capred retention (any model): s_e and lambda of Brooks-Corey from it (another "
+            "model is converted to Brooks-Corey, the misfit reported); instead of --se and --bc-lambda."
+        ),
+    ] = None,
 ) -> Invocation:
     """Skempton's B against degree of saturation (Morvan et al. 2016, eq. 10):
     B = 1/(1 + p'0 e0 (1 - S_r)/(kappa P_a0)) with p'0 = p0 - u0, or its inverse
@@ -107,8 +114,9 @@ def skempton_b(
         _number(bc_lambda, "bc_lambda", "--bc-lambda"),
         model=model,
         a_ini=quantity(a_ini, "kPa", "p0", "--a-ini"),
+        retention=retention,
     )
-    return Invocation("skempton-b", opts)
+    return Invocation("skempton-b", opts, extra_inputs=[retention] if retention else [])
 
 
 def rumpf(

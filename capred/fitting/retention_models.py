@@ -525,7 +525,27 @@ def json_name(internal: str, quantity: str = "S_R") -> tuple[str, float, str]:
 
 
 def internal_name(name: str) -> tuple[str, float]:
-    """JSON name (or internal name) -> (internal name, factor JSON unit -> SI); KeyError when unknown."""
+    """The internal name of a retention parameter given by its JSON (or internal) name.
+
+    Parameters
+    ----------
+    name : str
+        ``theta_r``, ``S_res``, ``alpha_per_kPa``, ``s_e_kPa``, ``lambda`` ... (or ``y_r``, ``alpha`` ...).
+
+    Returns
+    -------
+    tuple of (str, float)
+        Internal name and the factor JSON unit -> SI (1e-3 for 1/kPa -> 1/Pa).
+
+    Raises
+    ------
+    KeyError
+        Not a retention parameter.
+
+    References
+    ----------
+    The inverse of :func:`json_name`.
+    """
     lin = {"theta_s": "y_s", "S_s": "y_s", "theta_r": "y_r", "S_res": "y_r", "y_s": "y_s", "y_r": "y_r"}
     if name in lin:
         return lin[name], 1.0
@@ -640,6 +660,9 @@ class RetentionFit(NonlinearFit):
     -------------------------------------------
     model : str
         Key of :data:`MODELS` (``"kool_parker"`` for the joint hysteresis fit).
+    suction_points : tuple of float
+        The distinct positive suctions of the data [Pa] (at most 200, evenly chosen, the extremes kept): the
+        suction range over which the fit holds (``suction_range``).
     quantity : str
         ``"S_R"`` [-] or ``"theta"`` [m³/m³]: what was fitted.
     warnings : list of str
@@ -652,6 +675,12 @@ class RetentionFit(NonlinearFit):
     model: str = ""
     quantity: str = "S_R"  # what was fitted: "S_R" [-] or "theta" [m³/m³]
     warnings: list = field(default_factory=list)
+    suction_points: tuple = ()  # the distinct positive suctions fitted [Pa] (at most 200, evenly chosen)
+
+    @property
+    def suction_range(self) -> tuple[float, float] | None:
+        """(smallest, largest) positive suction of the data fitted [Pa]; None when unknown."""
+        return (float(self.suction_points[0]), float(self.suction_points[-1])) if self.suction_points else None
 
     # ``params`` of NonlinearFit is stored as ``params_si``; reading ``params`` gives the user's records
     def _get_params(self) -> RetentionParameters:
@@ -1477,7 +1506,9 @@ def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = 
     nl = summarize_fit(
         model.water, s, y, model.names, optimum, b, fixed, weights, converged, log_params=model.log_params
     )
-    return RetentionFit(**{f.name: getattr(nl, f.name) for f in fields(nl)}, model=name)
+    return RetentionFit(
+        **{f.name: getattr(nl, f.name) for f in fields(nl)}, model=name, suction_points=tuple(_knots(s, 200).tolist())
+    )
 
 
 def confidence_band(name: str, fit: NonlinearFit, s_grid, level_t: float | None = None):
@@ -1582,4 +1613,8 @@ def fit_hysteresis(s_d, y_d, s_w, y_w, fixed=None, weights=None) -> NonlinearFit
         weights,
         log_params={"n": 1.0, "alpha_d": 0.0, "alpha_w": 0.0},
     )
-    return RetentionFit(**{f.name: getattr(nl, f.name) for f in fields(nl)}, model="kool_parker")
+    return RetentionFit(
+        **{f.name: getattr(nl, f.name) for f in fields(nl)},
+        model="kool_parker",
+        suction_points=tuple(_knots(s, 200).tolist()),
+    )

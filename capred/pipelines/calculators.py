@@ -7,6 +7,7 @@ option, an option fills absent columns and blank cells.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -222,6 +223,7 @@ class SkemptonOptions(StableJsonKeys, Options):
     bc_lambda: float | None = None
     model: str = "elastic"
     a_ini: float | str | None = None  # Pa, initial position of the bounding surface (elastoplastic only)
+    retention: str | None = None  # a fits.json of capred retention: s_e and the Brooks-Corey index from it
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -251,6 +253,7 @@ def run_skempton_b(
     s_e=None,
     bc_lambda=None,
     model="elastic",
+    retention=None,
 ) -> CalcResult:
     """Morvan et al. (2016): B from the degree of saturation ``S_R`` [-] (eq. 10), or S_R from a measured B.
 
@@ -259,12 +262,24 @@ def run_skempton_b(
     its inverse is solved numerically. The former keywords ``sr``, ``kappa`` and ``bc_alpha`` still work for
     one release, with a DeprecationWarning. ``model="elastoplastic"`` (section 4 of the paper) raises
     OptionError: the bounding-surface model it needs (Morvan, Wong & Branque 2010) is not available.
+    ``retention``: a fits.json of `capred retention` (any model) instead of ``s_e`` and ``bc_lambda``: a
+    Brooks-Corey fit as it is, another model converted to Brooks-Corey (capred.convert_retention), the misfit
+    in the notes.
     """
-    return reduce_skempton_b(source, SkemptonOptions(S_R, b, kappa_elastic, e0, p0, u0, pa0, s_e, bc_lambda, model))
+    opt = SkemptonOptions(S_R, b, kappa_elastic, e0, p0, u0, pa0, s_e, bc_lambda, model, retention=retention)
+    return reduce_skempton_b(source, opt)
 
 
 def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     """B or S_r per case (see run_skempton_b), with the figure of the B-S_r relation."""
+    fit_notes, fit_warnings = [], []
+    if opt.retention is not None:  # any retention fit: Brooks-Corey as it is, another model converted to it
+        from .retention_convert import brooks_corey_for_skempton
+
+        if opt.s_e is not None or opt.bc_lambda is not None:
+            raise OptionError("give --retention or --se with --bc-lambda, not both")
+        s_e, lam, fit_notes, fit_warnings = brooks_corey_for_skempton(opt.retention)
+        opt = dataclasses.replace(opt, s_e=s_e, bc_lambda=lam)
     kw = dict(kappa=opt.kappa_elastic, e0=opt.e0, p0=opt.p0, u0=opt.u0, pa0=opt.pa0)  # keys: the figure's
     res = _skempton(source, opt.S_R, opt.b, s_e=opt.s_e, bc_lambda=opt.bc_lambda, **kw)
     S = np.asarray(res.values.get("S_r", res.outputs.get("S_r")), float)
@@ -284,6 +299,8 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
         cases[key][1].append(B[i])
     res.figure_data = dict(cases=cases, s_e=opt.s_e, bc_lambda=opt.bc_lambda, **kw)
     res.options, res.warnings = opt, opt.warnings + res.warnings
+    res.warnings += fit_warnings
+    res.notes = list(res.notes) + fit_notes
     return res
 
 

@@ -404,6 +404,7 @@ class RetentionResult(Result):
         )
         if getattr(f, "suction_range", None) is not None:
             out["suction_range_kPa"] = [num(f.suction_range[0] * 1e-3), num(f.suction_range[1] * 1e-3)]
+            out["suction_points_kPa"] = [num(x * 1e-3) for x in f.suction_points]
         return out
 
     def model_selection(self, branch: str) -> dict:

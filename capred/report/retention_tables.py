@@ -102,3 +102,27 @@ def retention_tables(result) -> list[TableSpec]:
         t.rows.append(["  AICc independent", fmt(js["independent_aicc"]), "", "", "-"])
         out.append(t)
     return out
+
+
+def convert_tables(result) -> list[TableSpec]:
+    """`capred retention-convert`: the conversion (from, to, misfit) and the parameters of both curves."""
+    src, new, m = result.source_fit, result.converted, result.misfit
+    unit = "m³/m³" if result.quantity == "theta" else "-"
+    t = spec(f"Conversion of {result.source}", ["", "value", "unit"])
+    t.rows += [
+        ["from", src.model, ""],
+        ["to", new.model, ""],
+        ["suction range", f"{fmt(m['suction_range_kPa'][0])} … {fmt(m['suction_range_kPa'][1])}", "kPa"],
+        ["points", str(m["n_points"]), ""],
+        ["RMSE", fmt(m["rmse"]), unit],
+        ["largest deviation", fmt(m["max_deviation"]), unit],
+        ["at suction", fmt(m["at_suction_kPa"]), "kPa"],
+    ]
+    b = next(iter(result.fits))
+    recs = [result.fit_record(b, new.model)]
+    out = [t, parameter_table("Converted parameters (standard errors do not apply)", recs)]
+    src_table = spec(f"Source: {src.label}", ["parameter", "value", "unit"])
+    for p in src.params.values():
+        src_table.rows.append([p.name, fmt(p.value), p.unit])
+    out.append(src_table)
+    return out
