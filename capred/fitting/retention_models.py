@@ -857,6 +857,137 @@ class RetentionFit(NonlinearFit):
 
 
 # ---------------------------------------------------------------------------------------------------------------
+# identifiability
+
+#: |correlation| of two estimates above which the data cannot tell them apart (issue 30: beyond 0.99)
+CORRELATION_LIMIT = 0.99
+#: standard error / |value| above which a strictly positive scale or shape parameter is not determined: its 68 %
+#: interval reaches zero, the edge of its domain
+RELATIVE_SE_LIMIT = 1.0
+#: condition number of the Jacobian (columns scaled to unit length) above which JᵀJ, whose condition number is
+#: its square, exceeds 1/ε in double precision: its inverse, the covariance, is not determined (where lmfit and
+#: scipy say the covariance could not be estimated)
+CONDITION_LIMIT = 1.0 / np.sqrt(np.finfo(float).eps)
+
+
+def conditioning(water, s, params: dict, free, weights=None) -> tuple[float, tuple[str, ...]]:
+    """Condition number of a fit's Jacobian and the parameters of its least determined direction.
+
+    Parameters
+    ----------
+    water : callable
+        ``water(s, **params)``, the model.
+    s : array_like
+        Suctions of the data [Pa].
+    params : dict
+        The optimum (internal names, SI).
+    free : sequence of str
+        The estimated parameters (not fixed, not held at a bound).
+    weights : array_like, optional
+        Weights of the readings.
+
+    Returns
+    -------
+    (float, tuple of str)
+        κ of the weighted Jacobian with unit-length columns (inf when a column vanishes), and the parameters
+        whose component in the right singular vector of the smallest singular value exceeds 0.3.
+
+    References
+    ----------
+    Belsley, D. A., Kuh, E., Welsch, R. E. (1980). Regression Diagnostics. Wiley, doi:10.1002/0471725153, ch. 3
+    (condition number of the column-scaled design matrix; the variance-decomposition of its weakest direction).
+    """
+    free = list(free)
+    if not free:
+        return 1.0, ()
+    s = np.asarray(s, float)
+    sw = np.ones_like(s) if weights is None else np.sqrt(np.asarray(weights, float))
+    cols = []
+    with np.errstate(all="ignore"):
+        for k in free:
+            h = 1e-6 * max(abs(params[k]), 1e-6)
+            up = water(s, **dict(params, **{k: params[k] + h}))
+            dn = water(s, **dict(params, **{k: params[k] - h}))
+            cols.append(sw * (up - dn) / (2 * h))
+    J = np.column_stack(cols)
+    norm = np.linalg.norm(J, axis=0)
+    if not np.all(np.isfinite(J)) or np.any(norm == 0):
+        return float("inf"), tuple(k for k, n in zip(free, norm) if not n > 0)
+    _, sv, vt = np.linalg.svd(J / norm, full_matrices=False)
+    kappa = float(sv[0] / sv[-1]) if sv[-1] > 0 else float("inf")
+    return kappa, tuple(k for k, v in zip(free, vt[-1]) if abs(v) > 0.3)
+
+
+def identifiability_warnings(fit) -> list[str]:
+    """Plain-language warnings on what a fit cannot determine (JSON names, the JSON's units).
+
+    A strictly positive scale or shape parameter (those on a logarithmic scale: n, α, λ, m, s_e, σ ...) whose
+    standard error exceeds its value (:data:`RELATIVE_SE_LIMIT`); two estimates correlated beyond
+    :data:`CORRELATION_LIMIT`; a Jacobian whose condition number exceeds :data:`CONDITION_LIMIT` (the
+    parameters of its weakest direction named). Parameters that may truly be near zero (θ_r, S_res, w1) are
+    judged by correlation and conditioning only. An AICc that cannot be computed (n − k − 1 ≤ 0) says why.
+
+    Parameters
+    ----------
+    fit : RetentionFit
+        The fit (``extra["condition_number"]`` and ``extra["weak_direction"]`` from :func:`fit_model`).
+
+    Returns
+    -------
+    list of str
+
+    References
+    ----------
+    Burnham, K. P., Anderson, D. R. (2002). Model Selection and Multimodel Inference, 2nd ed. Springer,
+    doi:10.1007/b97636, eq. 2.2 (AICc); Belsley et al. (1980), see :func:`conditioning`.
+    """
+
+    def name(k):
+        return json_name(k, fit.quantity)[0]
+
+    out = []
+    weak_se = []
+    for k in fit.free:
+        if k in fit.held or k not in fit.log_params:
+            continue
+        se = fit.stderr.get(k)
+        v = fit.params_si[k]
+        if se is not None and np.isfinite(se) and v != 0 and abs(se / v) > RELATIVE_SE_LIMIT:
+            weak_se.append(f"{name(k)} (± {100 * abs(se / v):.3g} %)")
+    if weak_se:
+        out.append(
+            f"not identifiable: the standard error of {', '.join(weak_se)} exceeds the value; the data do not "
+            "determine it (fix it, or choose a model with fewer parameters)"
+        )
+    corr = fit.correlation()
+    keys = list(corr)
+    pairs = [
+        f"{name(a)} and {name(b)} (r = {corr[a][b]:+.4f})"
+        for i, a in enumerate(keys)
+        for b in keys[i + 1 :]
+        if abs(corr[a][b]) > CORRELATION_LIMIT
+    ]
+    if pairs:
+        out.append(
+            f"parameters correlated beyond {CORRELATION_LIMIT:g}: {'; '.join(pairs)}; the data determine a "
+            "combination of them, not each"
+        )
+    kappa = fit.extra.get("condition_number")
+    if kappa is not None and not kappa <= CONDITION_LIMIT:
+        weak = ", ".join(name(k) for k in fit.extra.get("weak_direction", ())) or "some parameters"
+        out.append(
+            f"the fit cannot separate {weak}: the Jacobian's condition number is {kappa:.3g} (above "
+            f"1/√ε = {CONDITION_LIMIT:.3g}); their standard errors are not determined"
+        )
+    if not fit.n - fit.nfree - 1 > 0:
+        out.append(
+            f"AICc cannot be computed: n − k − 1 = {fit.n - fit.nfree - 1} ≤ 0 ({fit.n} readings, {fit.nfree} "
+            "free parameters); the model is not ranked by AICc"
+        )
+    return out
+
+
+# ---------------------------------------------------------------------------------------------------------------
 # variable projection
 
 
@@ -1506,9 +1637,14 @@ def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = 
     nl = summarize_fit(
         model.water, s, y, model.names, optimum, b, fixed, weights, converged, log_params=model.log_params
     )
-    return RetentionFit(
+    fit = RetentionFit(
         **{f.name: getattr(nl, f.name) for f in fields(nl)}, model=name, suction_points=tuple(_knots(s, 200).tolist())
     )
+    fit.extra["condition_number"], fit.extra["weak_direction"] = conditioning(
+        model.water, s, fit.params_si, [k for k in fit.free if k not in fit.held], weights
+    )
+    fit.warnings = identifiability_warnings(fit)
+    return fit
 
 
 def confidence_band(name: str, fit: NonlinearFit, s_grid, level_t: float | None = None):
@@ -1613,8 +1749,13 @@ def fit_hysteresis(s_d, y_d, s_w, y_w, fixed=None, weights=None) -> NonlinearFit
         weights,
         log_params={"n": 1.0, "alpha_d": 0.0, "alpha_w": 0.0},
     )
-    return RetentionFit(
+    fit = RetentionFit(
         **{f.name: getattr(nl, f.name) for f in fields(nl)},
         model="kool_parker",
         suction_points=tuple(_knots(s, 200).tolist()),
     )
+    fit.extra["condition_number"], fit.extra["weak_direction"] = conditioning(
+        water, s, fit.params_si, [k for k in fit.free if k not in fit.held], weights
+    )
+    fit.warnings = identifiability_warnings(fit)
+    return fit

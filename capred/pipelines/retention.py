@@ -11,7 +11,15 @@ import numpy as np
 from ..errors import FitError, OptionError
 from ..fitting.chi_laws import akaike_weights
 from ..fitting.nonlinear import NonlinearFit
-from ..fitting.retention_models import JSON_NAMES, confidence_band, fit_hysteresis, fit_model, internal_name, json_name
+from ..fitting.retention_models import (
+    JSON_NAMES,
+    confidence_band,
+    fit_hysteresis,
+    fit_model,
+    identifiability_warnings,
+    internal_name,
+    json_name,
+)
 from ..fitting.retention_models import MODELS as FITTERS
 from ..io.table import Column, read_table
 from ..parameters import Parameters
@@ -624,6 +632,8 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
             except FitError as exc:
                 warnings.append(f"branch '{b}', model {m}: not fitted ({exc})")
                 continue
+            f.warnings = identifiability_warnings(f)  # named by the data kind (theta_r or S_res)
+            warnings.extend(f"branch '{b}', model {m}: {w}" for w in f.warnings)
             fits[b][m] = f
             for k in f.at_bounds():
                 name, scale, _ = json_name(k, quantity)
@@ -650,6 +660,10 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
                 fits.setdefault(b, {})["vg"] = dataclasses.replace(
                     fit_model("vg", s[sel], y[sel], {}, weights[sel]), quantity=quantity
                 )
+    if hyst is not None:
+        hyst = dataclasses.replace(hyst, quantity=quantity)
+        hyst.warnings = identifiability_warnings(hyst)
+        warnings.extend(f"hysteresis (Kool & Parker): {w}" for w in hyst.warnings)
     return RetentionResult(
         table.path,
         quantity,
@@ -662,6 +676,6 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
         list(table.notes),
         [input_file(source, table)],
         warnings,
-        dataclasses.replace(hyst, quantity=quantity) if hyst is not None else None,
+        hyst,
         weights,
     )
