@@ -30,6 +30,7 @@ _API = {
     "run_retention": "capred.pipelines.retention",
     "RetentionOptions": "capred.pipelines.retention",
     "RetentionResult": "capred.pipelines.retention",
+    "convert_retention": "capred.pipelines.retention_convert",
     "run_prism": "capred.pipelines.calculators",
     "run_skempton_b": "capred.pipelines.calculators",
     "run_rumpf": "capred.pipelines.calculators",
@@ -84,7 +85,7 @@ def __getattr__(name: str):
         if (
             name == "run"
             or name.startswith("run_")
-            or name in ("solve_bridges", "bridge_curve", "compare_measured", "rupture_distances")
+            or name in ("solve_bridges", "bridge_curve", "compare_measured", "rupture_distances", "convert_retention")
         ):
             value = globals().setdefault(f"_public_{name}", _warning(value))
         return value

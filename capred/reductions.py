@@ -113,6 +113,24 @@ REDUCTIONS: dict[str, Reduction] = {
             summary="Water retention curves per branch: fits at the optimum, model selection.",
         ),
         Reduction(
+            "retention-convert",
+            _P + "retention_convert:run_retention_convert",
+            _P + "retention_convert:ConvertOptions",
+            "required",
+            None,
+            "retention_convert",
+            method=(
+                "A fitted retention curve is expressed in another model: the target's parameters are those that "
+                "best reproduce the fitted curve (least squares on S_R or θ, at the global optimum inside the "
+                "target's bounds) at the suctions of the original data and at a dense logarithmic grid between "
+                "the smallest and largest of them; the RMSE and the largest deviation say how closely the target "
+                "follows it. A closed-form correspondence (e.g. Lenhard et al. 1989 for Brooks-Corey and van "
+                "Genuchten) holds only in the limits; the fit holds over the data's range.",
+            ),
+            references=("lenhard1989",),
+            summary="A retention fit expressed in another model (fits.json --to MODEL), with the misfit.",
+        ),
+        Reduction(
             "prism",
             _P + "calculators:reduce_prism",
             _P + "calculators:PrismOptions",

@@ -83,6 +83,13 @@ REFERENCES: dict[str, Reference] = {
     "brooks_corey1964": Reference(
         "Brooks & Corey", 1964, "Hydraulic properties of porous media", "Hydrology Paper 3, Colorado State University"
     ),
+    "lenhard1989": Reference(
+        "Lenhard et al.",
+        1989,
+        "On the correspondence between Brooks-Corey and van Genuchten models",
+        "J. Irrig. Drain. Eng. 115(4):744-751",
+        "10.1061/(ASCE)0733-9437(1989)115:4(744)",
+    ),
     "kosugi1996": Reference(
         "Kosugi",
         1996,

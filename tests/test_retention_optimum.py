@@ -131,9 +131,9 @@ def test_brooks_corey_air_entry_is_interior():
     s, y = _sand(13)
     f = fit_model("bc", s, y)
     knots = np.unique(s)
-    i = np.searchsorted(knots, f.params["s_e"])
-    assert knots[i - 1] < f.params["s_e"] < knots[i]
-    assert_allclose(f.params["s_e"] / CM, 6.697, rtol=1e-3)  # 4 printed digits
+    i = np.searchsorted(knots, f.params_si["s_e"])
+    assert knots[i - 1] < f.params_si["s_e"] < knots[i]
+    assert_allclose(f.params_si["s_e"] / CM, 6.697, rtol=1e-3)  # 4 printed digits
 
 
 def test_bound_warning_in_the_parameters_own_scale():
@@ -154,8 +154,8 @@ def test_bound_warning_in_the_parameters_own_scale():
         model="kosugi",
     )
     assert f.at_bounds() == []
-    f.params["s_m"] = 0.1 * (1 + 1e-9)  # on its bound to 1e-9 of the log range
-    f.params["y_r"] = 0.0
+    f.params_si["s_m"] = 0.1 * (1 + 1e-9)  # on its bound to 1e-9 of the log range
+    f.params_si["y_r"] = 0.0
     assert f.at_bounds() == ["y_r", "s_m"]
 
 
@@ -165,7 +165,7 @@ def test_residual_at_its_bound_keeps_the_other_standard_errors():
     rng = np.random.default_rng(3)
     y = rp.vg_water(s, 0.0, 0.40, 1 / 5000, 2.0) - 0.02 * (s / 1e5) + rng.normal(0, 0.003, s.size)
     f = fit_model("vg", s, y)
-    assert f.params["y_r"] == 0.0 and f.held == ("y_r",) and f.stderr["y_r"] is None
+    assert f.params_si["y_r"] == 0.0 and f.held == ("y_r",) and f.stderr["y_r"] is None
     assert any("y_r ended on its lower bound" in n for n in f.notes)
     g = fit_model("vg", s, y, fixed={"y_r": 0.0})
     for k in ("y_s", "alpha", "n"):
@@ -192,12 +192,12 @@ def test_fitted_curve_is_callable_and_invertible(name, truth):
     f = fit_model(name, s, MODELS[name].water(s, **truth))
     grid = np.geomspace(300, 3e5, 7)
     grid = grid[MODELS[name].effective_saturation(grid, truth) < 1 - 1e-9]  # Brooks-Corey: S_e = 1 below s_e
-    assert_allclose(f(grid), MODELS[name].water(grid, **f.params), rtol=1e-15)  # the same function
+    assert_allclose(f(grid), MODELS[name].water(grid, **f.params_si), rtol=1e-15)  # the same function
     # noise-free data: the fitted curve is the true one (the fit converges to ~1e-7 relative)
     assert_allclose(f.water(grid), MODELS[name].water(grid, **truth), rtol=1e-6)
     # inverse: closed form (vg, kosugi, bc) or bisection on ln s to 2^-64 of the bracket
     assert_allclose(f.suction(f.water(grid)), grid, rtol=1e-7)
-    assert np.isnan(f.suction(np.array([f.params["y_s"] + 0.01]))[0])  # wetter than saturated: no suction
+    assert np.isnan(f.suction(np.array([f.params_si["y_s"] + 0.01]))[0])  # wetter than saturated: no suction
 
 
 def test_brooks_corey_inverse_at_saturation_is_the_air_entry():

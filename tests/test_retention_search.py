@@ -108,10 +108,10 @@ def test_brooks_corey_on_2000_points_reaches_the_interval_optimum():
     s, y = _synthetic_2000()
     f = rm.fit_model("bc", s, y)
     assert f.rss <= 0.2058022  # unsatfit's printed RSS rounded up in its last digit
-    assert_allclose(f.params["s_e"] / CM, 28.0495, rtol=2e-5)  # unsatfit 28.04942; both to ~1e-5
+    assert_allclose(f.params_si["s_e"] / CM, 28.0495, rtol=2e-5)  # unsatfit 28.04942; both to ~1e-5
     knots = np.unique(s)
-    i = np.searchsorted(knots, f.params["s_e"])
-    assert knots[i - 1] < f.params["s_e"] < knots[i]  # an interior, smooth minimum
+    i = np.searchsorted(knots, f.params_si["s_e"])
+    assert knots[i - 1] < f.params_si["s_e"] < knots[i]  # an interior, smooth minimum
 
 
 @pytest.mark.slow

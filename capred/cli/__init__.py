@@ -10,7 +10,7 @@ from typing import Annotated
 import typer
 
 from ..errors import CapredError
-from . import bridge_commands, calculator_commands, data_commands, pt_volume_command
+from . import bridge_commands, calculator_commands, data_commands, pt_volume_command, retention_convert_command
 from .common import BUILDERS, JsonOpt, WorkersOpt, fail, run_batch
 
 app = typer.Typer(
@@ -46,6 +46,7 @@ data_commands.register(app)
 bridge_commands.register(app)
 calculator_commands.register(app)
 pt_volume_command.register(app)
+retention_convert_command.register(app)
 
 
 @app.command(short_help="A season's runs from a CSV or TOML manifest.")

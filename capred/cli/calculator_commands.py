@@ -112,6 +112,13 @@ def skempton_b(
             help="Slope lambda0 of the normal compression line [-] (Table 3: 0.2), with --model bounding-surface.",
         ),
     ] = None,
+    retention: Annotated[
+        str | None,
+        typer.Option(
+            help="fits.json of capred retention (any model): s_e and lambda of Brooks-Corey from it (another "
+            "model is converted to Brooks-Corey, the misfit reported); instead of --se and --bc-lambda."
+        ),
+    ] = None,
 ) -> Invocation:
     """Skempton's B against degree of saturation (Morvan et al. 2016, eq. 10):
     B = 1/(1 + p'0 e0 (1 - S_r)/(kappa P_a0)) with p'0 = p0 - u0, or its inverse
@@ -143,8 +150,9 @@ def skempton_b(
         interpolation_h=interpolation_h,
         air_pressure=air_pressure,
         lambda0=lambda0,
+        retention=retention,
     )
-    return Invocation("skempton-b", opts)
+    return Invocation("skempton-b", opts, extra_inputs=[retention] if retention else [])
 
 
 def rumpf(

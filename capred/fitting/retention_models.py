@@ -32,12 +32,15 @@ the bounds by
 
 from __future__ import annotations
 
+import numbers
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields
 
 import numpy as np
 
 from ..errors import FitError
+from ..parameters import Parameter as _UserParameter
+from ..parameters import Parameters, deprecated, fit_report
 from ..physics import retention as rp
 from .nonlinear import NonlinearFit, fit_curve, summarize_fit
 
@@ -465,14 +468,205 @@ def bounds_for(s, y, model: str | None = None) -> dict[str, tuple[float, float]]
 # the fit record
 
 
+# ---------------------------------------------------------------------------------------------------------------
+# the user's names and units (the JSON's): one table, read by fits, records, JSON and tables
+
+#: internal parameter -> (JSON name, factor SI -> JSON unit, JSON unit); y_r and y_s are named by the data kind
+JSON_NAMES: dict[str, tuple[str, float, str]] = {
+    "alpha": ("alpha_per_kPa", 1e3, "1/kPa"),
+    "alpha1": ("alpha1_per_kPa", 1e3, "1/kPa"),
+    "alpha2": ("alpha2_per_kPa", 1e3, "1/kPa"),
+    "alpha_d": ("alpha_d_per_kPa", 1e3, "1/kPa"),
+    "alpha_w": ("alpha_w_per_kPa", 1e3, "1/kPa"),
+    "s_e": ("s_e_kPa", 1e-3, "kPa"),
+    "s_m": ("s_m_kPa", 1e-3, "kPa"),
+    "a": ("a_kPa", 1e-3, "kPa"),
+    "s_r": ("s_r_kPa", 1e-3, "kPa"),
+    "lam": ("lambda", 1.0, "-"),
+    "n": ("n", 1.0, "-"),
+    "m": ("m", 1.0, "-"),
+    "n1": ("n1", 1.0, "-"),
+    "n2": ("n2", 1.0, "-"),
+    "w1": ("w1", 1.0, "-"),
+    "sigma": ("sigma", 1.0, "-"),
+}
+
+
+def json_name(internal: str, quantity: str = "S_R") -> tuple[str, float, str]:
+    """The user's name of a retention parameter: (JSON name, factor SI -> JSON unit, JSON unit).
+
+    Parameters
+    ----------
+    internal : str
+        Internal name (``y_r``, ``alpha``, ``s_e`` ...).
+    quantity : str
+        ``"theta"`` (θ [m³/m³] fitted) or ``"S_R"`` [-]: names y_r, y_s (``theta_r``/``S_res``,
+        ``theta_s``/``S_s``).
+
+    Returns
+    -------
+    tuple of (str, float, str)
+        E.g. ``("alpha_per_kPa", 1e3, "1/kPa")`` for ``alpha`` [1/Pa].
+
+    References
+    ----------
+    The names of SWRC Fit (Seki 2007, Hydrol. Earth Syst. Sci. Discuss. 4:407-437) with the unit in the name.
+    """
+    if internal in ("y_r", "y_s"):
+        theta = quantity == "theta"
+        name = {"y_r": ("theta_r", "S_res"), "y_s": ("theta_s", "S_s")}[internal][0 if theta else 1]
+        return name, 1.0, "m³/m³" if theta else "-"
+    if internal in JSON_NAMES:
+        return JSON_NAMES[internal]
+    unit = next((p.unit for m in MODELS.values() for p in m.parameters if p.name == internal), "-")
+    return {"Pa": (f"{internal}_kPa", 1e-3, "kPa"), "1/Pa": (f"{internal}_per_kPa", 1e3, "1/kPa")}.get(
+        unit, (internal, 1.0, "-")
+    )
+
+
+def internal_name(name: str) -> tuple[str, float]:
+    """The internal name of a retention parameter given by its JSON (or internal) name.
+
+    Parameters
+    ----------
+    name : str
+        ``theta_r``, ``S_res``, ``alpha_per_kPa``, ``s_e_kPa``, ``lambda`` ... (or ``y_r``, ``alpha`` ...).
+
+    Returns
+    -------
+    tuple of (str, float)
+        Internal name and the factor JSON unit -> SI (1e-3 for 1/kPa -> 1/Pa).
+
+    Raises
+    ------
+    KeyError
+        Not a retention parameter.
+
+    References
+    ----------
+    The inverse of :func:`json_name`.
+    """
+    lin = {"theta_s": "y_s", "S_s": "y_s", "theta_r": "y_r", "S_res": "y_r", "y_s": "y_s", "y_r": "y_r"}
+    if name in lin:
+        return lin[name], 1.0
+    for internal, (rep, f, _) in JSON_NAMES.items():
+        if name in (rep, internal):
+            return internal, 1.0 / f
+    raise KeyError(name)
+
+
+def _description(internal: str) -> str:
+    for m in MODELS.values():
+        for p in m.parameters:
+            if p.name == internal:
+                return p.description
+    return {"alpha_d": "α of the drying branch", "alpha_w": "α of the wetting branch"}.get(internal, "")
+
+
+class _Number:
+    """Arithmetic and formatting of a parameter record through its value, so that a script's
+    ``fit.params["n"] * 2`` (a float before, a record now) keeps working."""
+
+    def __format__(self, spec):
+        return format(float(self.value), spec)
+
+    def __eq__(self, other):
+        if isinstance(other, _UserParameter):
+            return _UserParameter.__eq__(self, other)
+        try:
+            return float(self.value) == float(other)
+        except (TypeError, ValueError):
+            return NotImplemented
+
+    def __hash__(self):
+        return hash(float(self.value))
+
+    def __array__(self, dtype=None, copy=None):
+        return np.asarray(float(self.value), dtype=dtype)
+
+
+def _delegate(op):
+    def f(self, *other):
+        return getattr(float(self.value), op)(*(float(o) for o in other))
+
+    f.__name__ = op
+    return f
+
+
+for _op in (
+    "__add__", "__radd__", "__sub__", "__rsub__", "__mul__", "__rmul__", "__truediv__", "__rtruediv__",
+    "__pow__", "__rpow__", "__neg__", "__abs__", "__lt__", "__le__", "__gt__", "__ge__",
+):  # fmt: skip
+    setattr(_Number, _op, _delegate(_op))
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class FitParameter(_Number, _UserParameter):
+    """A :class:`capred.parameters.Parameter` that also computes like its value (``p * 2``, ``f"{p:.3g}"``)."""
+
+
+numbers.Real.register(FitParameter)  # pytest.approx, isinstance checks of old scripts
+
+
+class RetentionParameters(Parameters):
+    """The parameters of a retention fit by JSON name in the JSON's units (``theta_r``, ``alpha_per_kPa`` ...).
+
+    The old internal names (``y_r``, ``y_s``, ``alpha`` [1/Pa], ``s_e`` [Pa], ``lam`` ...) still work for one
+    release: they return the OLD value in the OLD (SI) unit as a float and raise a DeprecationWarning naming
+    the new key (:func:`capred.parameters.deprecated`).
+
+    Attributes
+    ----------
+    si : dict[str, float]
+        ``{internal name: value}`` in SI units (Pa, 1/Pa, -): what the models evaluate.
+    """
+
+    def __init__(self, items_, correlation, si: dict, renamed: dict):
+        object.__setattr__(self, "items_", tuple(items_))
+        object.__setattr__(self, "correlation", dict(correlation))
+        object.__setattr__(self, "si", dict(si))
+        object.__setattr__(self, "renamed", dict(renamed))
+
+    def __getitem__(self, name: str):
+        if name in self.renamed and all(p.name != name for p in self.items_):
+            new = self.renamed[name]
+            unit = json_name(name)[2]
+            return deprecated(
+                f"fit.params[{name!r}] (SI units)",
+                f"fit.params[{new!r}].value [{unit}]" if unit != "-" else f"fit.params[{new!r}].value",
+                self.si[name],
+            )
+        return super().__getitem__(name)
+
+    def __contains__(self, name) -> bool:
+        return any(p.name == name for p in self.items_) or name in self.renamed
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, Parameters) and self.items_ == other.items_
+
+    __hash__ = None
+
+
 @dataclass
 class RetentionFit(NonlinearFit):
     """A fitted retention curve: the :class:`~capred.fitting.nonlinear.NonlinearFit` of one model, callable.
 
+    ``fit.params`` is a :class:`RetentionParameters` keyed by the JSON names in the JSON's units
+    (``fit.params["alpha_per_kPa"].value``, ``.stderr``, ``.ci95``, ``.unit``); ``fit.params_si`` holds the
+    same values by internal name in SI units (Pa, 1/Pa), as the models take them. ``fit.summary()`` is a
+    plain-text report.
+
     Attributes (besides those of NonlinearFit)
     -------------------------------------------
     model : str
-        Key of :data:`MODELS`.
+        Key of :data:`MODELS` (``"kool_parker"`` for the joint hysteresis fit).
+    suction_points : tuple of float
+        The distinct positive suctions of the data [Pa] (at most 200, evenly chosen, the extremes kept): the
+        suction range over which the fit holds (``suction_range``).
+    quantity : str
+        ``"S_R"`` [-] or ``"theta"`` [m³/m³]: what was fitted.
+    warnings : list of str
+        Plain-language warnings on this fit (identifiability, AICc not computable ...).
 
     The methods evaluate the fitted curve: suction in Pa, water quantity in the unit of the data fitted
     (θ [m³/m³] or S_R [-]).
@@ -480,6 +674,115 @@ class RetentionFit(NonlinearFit):
 
     model: str = ""
     quantity: str = "S_R"  # what was fitted: "S_R" [-] or "theta" [m³/m³]
+    warnings: list = field(default_factory=list)
+    suction_points: tuple = ()  # the distinct positive suctions fitted [Pa] (at most 200, evenly chosen)
+
+    @property
+    def suction_range(self) -> tuple[float, float] | None:
+        """(smallest, largest) positive suction of the data fitted [Pa]; None when unknown."""
+        return (float(self.suction_points[0]), float(self.suction_points[-1])) if self.suction_points else None
+
+    # ``params`` of NonlinearFit is stored as ``params_si``; reading ``params`` gives the user's records
+    def _get_params(self) -> RetentionParameters:
+        si = self.__dict__["params_si"]
+        items, renamed = [], {}
+        for k, v in si.items():
+            name, f, unit = json_name(k, self.quantity)
+            if name != k:
+                renamed[k] = name
+            se = self.stderr.get(k)
+            se = float(se) * f if se is not None and np.isfinite(se) else float("nan")
+            ci = self.ci95(k)
+            items.append(
+                FitParameter(
+                    name,
+                    float(v) * f,
+                    se,
+                    (ci[0] * f, ci[1] * f) if ci is not None else (float("nan"), float("nan")),
+                    unit,
+                    _description(k),
+                    k in self.fixed,
+                )
+            )
+        corr = {
+            (json_name(a, self.quantity)[0], json_name(b, self.quantity)[0]): r
+            for a, row in self.correlation().items()
+            for b, r in row.items()
+            if list(si).index(a) < list(si).index(b)
+        }
+        return RetentionParameters(items, corr, si, renamed)
+
+    def _set_params(self, value) -> None:
+        self.__dict__["params_si"] = dict(value.si if isinstance(value, RetentionParameters) else value)
+
+    params = property(_get_params, _set_params)
+
+    @property
+    def params_si(self) -> dict[str, float]:
+        """``{internal name: value}`` in SI units (Pa, 1/Pa, -), the arguments of the model's functions."""
+        return self.__dict__["params_si"]
+
+    def ci95(self, name: str) -> tuple[float, float] | None:
+        """95 % interval of one parameter by internal name, in SI units (None without a standard error)."""
+        se = self.stderr.get(name)
+        if se is None or not np.isfinite(se):
+            return None
+        v = self.params_si[name]
+        return v - self.t * se, v + self.t * se
+
+    def at_bounds(self, rel: float = 1e-6) -> list[str]:
+        """Free parameters (internal names) that ended on one of their bounds, judged on their own scale."""
+        from .nonlinear import _at_bound
+
+        return [
+            k
+            for k in self.free
+            if _at_bound(self.params_si[k], self.bounds.get(k, (-np.inf, np.inf)), self.log_params.get(k), rel)
+        ]
+
+    @property
+    def label(self) -> str:
+        """Display name of the model."""
+        return MODELS[self.model].label if self.model in MODELS else "Kool & Parker (1987) hysteresis"
+
+    def statistics(self) -> dict:
+        """``{label: value}`` of the fit statistics shown by :meth:`summary` (n, k, RSS, R², AIC, AICc, BIC)."""
+        return {
+            "data points": self.n,
+            "free params": self.nfree,
+            "RSS": self.rss,
+            "RMSE": self.rmse,
+            "R²": self.r2,
+            "AIC": self.aic,
+            "AICc": self.aicc,
+            "BIC": self.bic,
+        }
+
+    def summary(self, title: str | None = None) -> str:
+        """A plain-text report of the fit (lmfit's ``fit_report`` in spirit).
+
+        Parameters
+        ----------
+        title : str, optional
+            First line (default: the model's label and the fitted quantity).
+
+        Returns
+        -------
+        str
+            Fit statistics, parameters in the JSON's units with SE and 95 % CI, correlations above 0.9,
+            warnings.
+
+        References
+        ----------
+        Newville, M. et al. (2014). LMFIT: Non-linear least-squares minimization and curve-fitting for Python,
+        doi:10.5281/zenodo.11813 (the layout of ``fit_report``).
+        """
+        return fit_report(
+            title or f"{self.label} fit of {'θ' if self.quantity == 'theta' else 'S_R'}",
+            self.params,
+            self.statistics(),
+            list(self.warnings) + [n for n in self.notes if n not in self.warnings],
+        )
 
     @property
     def entry(self) -> RetentionModel:
@@ -499,7 +802,10 @@ class RetentionFit(NonlinearFit):
         numpy.ndarray
             y [m³/m³ or -], the shape of ``suction``.
         """
-        return self.entry.water(np.asarray(suction, float), **self.params)
+        if self.model == "kool_parker":  # the joint hysteresis fit: its main (drying) branch
+            p = self.params_si
+            return rp.vg_water(np.asarray(suction, float), p["y_r"], p["y_s"], p["alpha_d"], p["n"])
+        return self.entry.water(np.asarray(suction, float), **self.params_si)
 
     __call__ = water
 
@@ -513,17 +819,17 @@ class RetentionFit(NonlinearFit):
 
             raise OptionError(f"suction must be >= 0 Pa (got {s[s < 0].flat[0]:g})")
         y = self.water(s)
-        return y if self.quantity == "S_R" else y / self.params["y_s"]
+        return y if self.quantity == "S_R" else y / self.params_si["y_s"]
 
     def suction_at_S_R(self, S_R):
         """Suction [Pa] at which the fitted curve gives the degree of saturation ``S_R`` [-] (inverse of S_R);
         NaN where S_R lies outside the fitted curve's range (S_res, S_s]."""
         S_R = np.asarray(S_R, float)
-        return self.suction(S_R if self.quantity == "S_R" else S_R * self.params["y_s"])
+        return self.suction(S_R if self.quantity == "S_R" else S_R * self.params_si["y_s"])
 
     def effective_saturation(self, suction):
         """Fitted S_e = (y - y_r)/(y_s - y_r) [-] at ``suction`` [Pa] (y/y_s for Fredlund-Xing with C)."""
-        return self.entry.effective_saturation(np.asarray(suction, float), self.params)
+        return self.entry.effective_saturation(np.asarray(suction, float), self.params_si)
 
     def suction(self, water):
         """Suction [Pa] at which the fitted curve gives ``water``, the inverse of :meth:`water`.
@@ -538,7 +844,7 @@ class RetentionFit(NonlinearFit):
         numpy.ndarray
             Suction [Pa]; 0 at y_s (the air-entry suction s_e for Brooks-Corey), NaN outside (y_r, y_s].
         """
-        p = self.params
+        p = self.params_si
         water = np.asarray(water, float)
         y_r = p.get("y_r", 0.0) if self.entry.residual_form else 0.0
         S = (water - y_r) / (p["y_s"] - y_r)
@@ -548,6 +854,137 @@ class RetentionFit(NonlinearFit):
     def band(self, suction, level_t: float | None = None):
         """95 % confidence band of the fitted curve at ``suction`` [Pa]: (lower, upper), see :func:`confidence_band`."""
         return confidence_band(self.model, self, suction, level_t)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# identifiability
+
+#: |correlation| of two estimates above which the data cannot tell them apart (issue 30: beyond 0.99)
+CORRELATION_LIMIT = 0.99
+#: standard error / |value| above which a strictly positive scale or shape parameter is not determined: its 68 %
+#: interval reaches zero, the edge of its domain
+RELATIVE_SE_LIMIT = 1.0
+#: condition number of the Jacobian (columns scaled to unit length) above which JᵀJ, whose condition number is
+#: its square, exceeds 1/ε in double precision: its inverse, the covariance, is not determined (where lmfit and
+#: scipy say the covariance could not be estimated)
+CONDITION_LIMIT = 1.0 / np.sqrt(np.finfo(float).eps)
+
+
+def conditioning(water, s, params: dict, free, weights=None) -> tuple[float, tuple[str, ...]]:
+    """Condition number of a fit's Jacobian and the parameters of its least determined direction.
+
+    Parameters
+    ----------
+    water : callable
+        ``water(s, **params)``, the model.
+    s : array_like
+        Suctions of the data [Pa].
+    params : dict
+        The optimum (internal names, SI).
+    free : sequence of str
+        The estimated parameters (not fixed, not held at a bound).
+    weights : array_like, optional
+        Weights of the readings.
+
+    Returns
+    -------
+    (float, tuple of str)
+        κ of the weighted Jacobian with unit-length columns (inf when a column vanishes), and the parameters
+        whose component in the right singular vector of the smallest singular value exceeds 0.3.
+
+    References
+    ----------
+    Belsley, D. A., Kuh, E., Welsch, R. E. (1980). Regression Diagnostics. Wiley, doi:10.1002/0471725153, ch. 3
+    (condition number of the column-scaled design matrix; the variance-decomposition of its weakest direction).
+    """
+    free = list(free)
+    if not free:
+        return 1.0, ()
+    s = np.asarray(s, float)
+    sw = np.ones_like(s) if weights is None else np.sqrt(np.asarray(weights, float))
+    cols = []
+    with np.errstate(all="ignore"):
+        for k in free:
+            h = 1e-6 * max(abs(params[k]), 1e-6)
+            up = water(s, **dict(params, **{k: params[k] + h}))
+            dn = water(s, **dict(params, **{k: params[k] - h}))
+            cols.append(sw * (up - dn) / (2 * h))
+    J = np.column_stack(cols)
+    norm = np.linalg.norm(J, axis=0)
+    if not np.all(np.isfinite(J)) or np.any(norm == 0):
+        return float("inf"), tuple(k for k, n in zip(free, norm) if not n > 0)
+    _, sv, vt = np.linalg.svd(J / norm, full_matrices=False)
+    kappa = float(sv[0] / sv[-1]) if sv[-1] > 0 else float("inf")
+    return kappa, tuple(k for k, v in zip(free, vt[-1]) if abs(v) > 0.3)
+
+
+def identifiability_warnings(fit) -> list[str]:
+    """Plain-language warnings on what a fit cannot determine (JSON names, the JSON's units).
+
+    A strictly positive scale or shape parameter (those on a logarithmic scale: n, α, λ, m, s_e, σ ...) whose
+    standard error exceeds its value (:data:`RELATIVE_SE_LIMIT`); two estimates correlated beyond
+    :data:`CORRELATION_LIMIT`; a Jacobian whose condition number exceeds :data:`CONDITION_LIMIT` (the
+    parameters of its weakest direction named). Parameters that may truly be near zero (θ_r, S_res, w1) are
+    judged by correlation and conditioning only. An AICc that cannot be computed (n − k − 1 ≤ 0) says why.
+
+    Parameters
+    ----------
+    fit : RetentionFit
+        The fit (``extra["condition_number"]`` and ``extra["weak_direction"]`` from :func:`fit_model`).
+
+    Returns
+    -------
+    list of str
+
+    References
+    ----------
+    Burnham, K. P., Anderson, D. R. (2002). Model Selection and Multimodel Inference, 2nd ed. Springer,
+    doi:10.1007/b97636, eq. 2.2 (AICc); Belsley et al. (1980), see :func:`conditioning`.
+    """
+
+    def name(k):
+        return json_name(k, fit.quantity)[0]
+
+    out = []
+    weak_se = []
+    for k in fit.free:
+        if k in fit.held or k not in fit.log_params:
+            continue
+        se = fit.stderr.get(k)
+        v = fit.params_si[k]
+        if se is not None and np.isfinite(se) and v != 0 and abs(se / v) > RELATIVE_SE_LIMIT:
+            weak_se.append(f"{name(k)} (± {100 * abs(se / v):.3g} %)")
+    if weak_se:
+        out.append(
+            f"not identifiable: the standard error of {', '.join(weak_se)} exceeds the value; the data do not "
+            "determine it (fix it, or choose a model with fewer parameters)"
+        )
+    corr = fit.correlation()
+    keys = list(corr)
+    pairs = [
+        f"{name(a)} and {name(b)} (r = {corr[a][b]:+.4f})"
+        for i, a in enumerate(keys)
+        for b in keys[i + 1 :]
+        if abs(corr[a][b]) > CORRELATION_LIMIT
+    ]
+    if pairs:
+        out.append(
+            f"parameters correlated beyond {CORRELATION_LIMIT:g}: {'; '.join(pairs)}; the data determine a "
+            "combination of them, not each"
+        )
+    kappa = fit.extra.get("condition_number")
+    if kappa is not None and not kappa <= CONDITION_LIMIT:
+        weak = ", ".join(name(k) for k in fit.extra.get("weak_direction", ())) or "some parameters"
+        out.append(
+            f"the fit cannot separate {weak}: the Jacobian's condition number is {kappa:.3g} (above "
+            f"1/√ε = {CONDITION_LIMIT:.3g}); their standard errors are not determined"
+        )
+    if not fit.n - fit.nfree - 1 > 0:
+        out.append(
+            f"AICc cannot be computed: n − k − 1 = {fit.n - fit.nfree - 1} ≤ 0 ({fit.n} readings, {fit.nfree} "
+            "free parameters); the model is not ranked by AICc"
+        )
+    return out
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -1200,7 +1637,14 @@ def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = 
     nl = summarize_fit(
         model.water, s, y, model.names, optimum, b, fixed, weights, converged, log_params=model.log_params
     )
-    return RetentionFit(**{f.name: getattr(nl, f.name) for f in fields(nl)}, model=name)
+    fit = RetentionFit(
+        **{f.name: getattr(nl, f.name) for f in fields(nl)}, model=name, suction_points=tuple(_knots(s, 200).tolist())
+    )
+    fit.extra["condition_number"], fit.extra["weak_direction"] = conditioning(
+        model.water, s, fit.params_si, [k for k in fit.free if k not in fit.held], weights
+    )
+    fit.warnings = identifiability_warnings(fit)
+    return fit
 
 
 def confidence_band(name: str, fit: NonlinearFit, s_grid, level_t: float | None = None):
@@ -1231,14 +1675,15 @@ def confidence_band(name: str, fit: NonlinearFit, s_grid, level_t: float | None 
     """
     model = MODELS[name]
     s_grid = np.asarray(s_grid, float)
-    base = model.water(s_grid, **fit.params)
+    p = getattr(fit, "params_si", fit.params)
+    base = model.water(s_grid, **p)
     if fit.covariance is None or not fit.free:
         return base, base
     cols = []
     for k in fit.free:
-        h = 1e-6 * max(abs(fit.params[k]), 1e-6)
-        up = dict(fit.params, **{k: fit.params[k] + h})
-        dn = dict(fit.params, **{k: fit.params[k] - h})
+        h = 1e-6 * max(abs(p[k]), 1e-6)
+        up = dict(p, **{k: p[k] + h})
+        dn = dict(p, **{k: p[k] - h})
         cols.append((model.water(s_grid, **up) - model.water(s_grid, **dn)) / (2 * h))
     J = np.column_stack(cols)
     var = np.einsum("ij,jk,ik->i", J, fit.covariance, J)
@@ -1266,8 +1711,8 @@ def fit_hysteresis(s_d, y_d, s_w, y_w, fixed=None, weights=None) -> NonlinearFit
 
     Returns
     -------
-    NonlinearFit
-        Parameters y_r, y_s, n, alpha_d [1/Pa], alpha_w [1/Pa].
+    RetentionFit
+        Parameters y_r, y_s, n, alpha_d [1/Pa], alpha_w [1/Pa] (``model`` "kool_parker"; ``params`` by JSON name).
 
     References
     ----------
@@ -1293,7 +1738,7 @@ def fit_hysteresis(s_d, y_d, s_w, y_w, fixed=None, weights=None) -> NonlinearFit
         for n in (1.5, 3.0, 8.0)
         for r in (1.0, 2.0)
     ]
-    return fit_curve(
+    nl = fit_curve(
         water,
         s,
         y,
@@ -1304,3 +1749,13 @@ def fit_hysteresis(s_d, y_d, s_w, y_w, fixed=None, weights=None) -> NonlinearFit
         weights,
         log_params={"n": 1.0, "alpha_d": 0.0, "alpha_w": 0.0},
     )
+    fit = RetentionFit(
+        **{f.name: getattr(nl, f.name) for f in fields(nl)},
+        model="kool_parker",
+        suction_points=tuple(_knots(s, 200).tolist()),
+    )
+    fit.extra["condition_number"], fit.extra["weak_direction"] = conditioning(
+        water, s, fit.params_si, [k for k in fit.free if k not in fit.held], weights
+    )
+    fit.warnings = identifiability_warnings(fit)
+    return fit

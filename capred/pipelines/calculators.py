@@ -7,6 +7,7 @@ option, an option fills absent columns and blank cells.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -257,6 +258,7 @@ class SkemptonOptions(StableJsonKeys, Options):
     interpolation_h: float | None = None  # Dafalias-type constant h of the reconstruction (bounding-surface only)
     air_pressure: str = "absolute"  # Boyle's law on absolute or gauge air pressure (bounding-surface only)
     lambda0: float | None = None  # slope of the normal compression line (bounding-surface only; Table 3: 0.2)
+    retention: str | None = None  # a fits.json of capred retention: s_e and the Brooks-Corey index from it
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -317,6 +319,7 @@ def run_skempton_b(
     interpolation_h=None,
     air_pressure="absolute",
     lambda0=None,
+    retention=None,
 ) -> CalcResult:
     """Morvan et al. (2016): B from the degree of saturation ``S_R`` [-] (eq. 10), or S_R from a measured B.
 
@@ -328,6 +331,9 @@ def run_skempton_b(
     ``a_ini > 0``), ``lambda0`` [-] and ``air_pressure`` (``absolute``, or ``gauge`` to meet the paper's
     Fig. 6); Table 3 gives the defaults. ``model="elastoplastic"`` raises OptionError with the reason. The
     former keywords ``sr``, ``kappa`` and ``bc_alpha`` still work for one release, with a DeprecationWarning.
+    ``retention``: a fits.json of `capred retention` (any model) instead of ``s_e`` and ``bc_lambda``: a
+    Brooks-Corey fit as it is, another model converted to Brooks-Corey (capred.convert_retention), the misfit
+    in the notes.
 
     References
     ----------
@@ -337,7 +343,21 @@ def run_skempton_b(
     return reduce_skempton_b(
         source,
         SkemptonOptions(
-            S_R, b, kappa_elastic, e0, p0, u0, pa0, s_e, bc_lambda, model, a_ini, interpolation_h, air_pressure, lambda0
+            S_R,
+            b,
+            kappa_elastic,
+            e0,
+            p0,
+            u0,
+            pa0,
+            s_e,
+            bc_lambda,
+            model,
+            a_ini,
+            interpolation_h,
+            air_pressure,
+            lambda0,
+            retention,
         ),
     )
 
@@ -345,6 +365,14 @@ def run_skempton_b(
 def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     """B or S_r per case (see run_skempton_b), with the figure of the B-S_r relation; the title, the tables and
     the JSON name the skeleton model and its inputs."""
+    fit_notes, fit_warnings = [], []
+    if opt.retention is not None:  # any retention fit: Brooks-Corey as it is, another model converted to it
+        from .retention_convert import brooks_corey_for_skempton
+
+        if opt.s_e is not None or opt.bc_lambda is not None:
+            raise OptionError("give --retention or --se with --bc-lambda, not both")
+        s_e, lam, fit_notes, fit_warnings = brooks_corey_for_skempton(opt.retention)
+        opt = dataclasses.replace(opt, s_e=s_e, bc_lambda=lam)
     kw = dict(kappa=opt.kappa_elastic, e0=opt.e0, p0=opt.p0, u0=opt.u0, pa0=opt.pa0)  # keys: the figure's
     bounding = None
     s_e, bc_lambda = opt.s_e, opt.bc_lambda
@@ -389,6 +417,8 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     res.figure_data = dict(cases=cases, s_e=s_e, bc_lambda=bc_lambda, bounding=bounding, **kw)
     res.title, res.model, res.model_inputs = skempton_model_description(opt.model, s_e, bc_lambda, bounding)
     res.options, res.warnings = opt, opt.warnings + res.warnings
+    res.warnings += fit_warnings
+    res.notes = list(res.notes) + fit_notes
     return res
 
 

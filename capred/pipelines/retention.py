@@ -11,9 +11,18 @@ import numpy as np
 from ..errors import FitError, OptionError
 from ..fitting.chi_laws import akaike_weights
 from ..fitting.nonlinear import NonlinearFit
+from ..fitting.retention_models import (
+    JSON_NAMES,
+    confidence_band,
+    fit_hysteresis,
+    fit_model,
+    identifiability_warnings,
+    internal_name,
+    json_name,
+)
 from ..fitting.retention_models import MODELS as FITTERS
-from ..fitting.retention_models import confidence_band, fit_hysteresis, fit_model
 from ..io.table import Column, read_table
+from ..parameters import Parameters
 from ..physics.shear import GAMMA_W
 from ..references import cite
 from ..result import InputFile, Options, Result, input_file, num
@@ -53,27 +62,6 @@ SCHEMA = [
     Column("branch", "text", None, "branch", ("path",), choices=("drying", "wetting")),
 ]
 
-#: the models of `--model all`, in display order
-
-# internal parameter -> (report name, factor SI -> report unit); water quantities named by the data kind
-_REPORT = {
-    "alpha": ("alpha_per_kPa", 1e3),
-    "alpha1": ("alpha1_per_kPa", 1e3),
-    "alpha2": ("alpha2_per_kPa", 1e3),
-    "alpha_d": ("alpha_d_per_kPa", 1e3),
-    "alpha_w": ("alpha_w_per_kPa", 1e3),
-    "s_e": ("s_e_kPa", 1e-3),
-    "s_m": ("s_m_kPa", 1e-3),
-    "a": ("a_kPa", 1e-3),
-    "s_r": ("s_r_kPa", 1e-3),
-    "lam": ("lambda", 1.0),
-    "n": ("n", 1.0),
-    "m": ("m", 1.0),
-    "n1": ("n1", 1.0),
-    "n2": ("n2", 1.0),
-    "w1": ("w1", 1.0),
-    "sigma": ("sigma", 1.0),
-}
 # the same as a head of water [cm] (SWRC Fit and RETC report these)
 _HEAD = {
     "alpha": "alpha_per_cm",
@@ -88,32 +76,24 @@ _HEAD = {
 }
 
 
-def _names(quantity: str) -> dict[str, str]:
-    return {"y_s": "theta_s" if quantity == "theta" else "S_s", "y_r": "theta_r" if quantity == "theta" else "S_res"}
-
-
 def report_name(internal: str, quantity: str) -> str:
-    return _names(quantity).get(internal) or _report(internal)[0]
+    """The JSON name of an internal retention parameter (``alpha`` -> ``alpha_per_kPa``, ``y_r`` -> ``theta_r``
+    or ``S_res``)."""
+    return json_name(internal, quantity)[0]
 
 
 def _report(internal: str) -> tuple[str, float]:
-    """(report name, factor SI -> report unit) of a parameter: from the table above, else from the unit its
-    registry entry gives (Pa -> '<name>_kPa', 1/Pa -> '<name>_per_kPa', dimensionless as it is)."""
-    if internal in _REPORT:
-        return _REPORT[internal]
-    unit = next((p.unit for m in FITTERS.values() for p in m.parameters if p.name == internal), "-")
-    return {"Pa": (f"{internal}_kPa", 1e-3), "1/Pa": (f"{internal}_per_kPa", 1e3)}.get(unit, (internal, 1.0))
+    """(JSON name, factor SI -> JSON unit) of a parameter."""
+    name, f, _ = json_name(internal)
+    return name, f
 
 
 def _to_internal(name: str) -> tuple[str, float]:
-    """Report name -> (internal name, factor report unit -> SI)."""
-    for k, v in {"theta_s": "y_s", "S_s": "y_s", "theta_r": "y_r", "S_res": "y_r"}.items():
-        if name == k:
-            return v, 1.0
-    for internal, (rep, f) in _REPORT.items():
-        if name in (rep, internal) and internal not in ("alpha_d", "alpha_w"):
-            return internal, 1.0 / f
-    raise KeyError(name)
+    """JSON name -> (internal name, factor JSON unit -> SI); the hysteresis α's are not options."""
+    internal, f = internal_name(name)
+    if internal in ("alpha_d", "alpha_w"):
+        raise KeyError(name)
+    return internal, f
 
 
 @dataclass(frozen=True)
@@ -150,8 +130,172 @@ class RetentionOptions(Options):
             raise OptionError(f"--hysteresis must be kool-parker (got '{self.hysteresis}')")
 
 
+# --- typed records: one per fit and one per reading; JSON keys and CSV headers follow from these declarations
+
+
+def _y_unit(quantity: str) -> str:
+    return "m³/m³" if quantity == "theta" else "-"
+
+
+#: fields of a RetentionFitRecord as they appear in the outputs: (attribute, JSON key, CSV column, unit);
+#: unit "y" is the unit of the fitted water quantity (m³/m³ for θ, - for S_R), None a text column
+FIT_OUTPUTS: tuple[tuple[str, str, str, str | None], ...] = (
+    ("branch", "branch", "branch", None),
+    ("model", "model_name", "model", None),
+    ("n_points", "n_points", "n_points", "-"),
+    ("n_free", "n_free", "n_free", "-"),
+    ("r2", "r2", "R²", "-"),
+    ("rmse", "rmse", "RMSE", "y"),
+    ("rss", "rss", "RSS", "y²"),
+    ("aic", "aic", "AIC", "-"),
+    ("aicc", "aicc", "AICc", "-"),
+    ("bic", "bic", "BIC", "-"),
+    ("delta_aicc", "delta_aicc", "ΔAICc", "-"),
+    ("weight", "weight", "Akaike weight", "-"),
+    ("converged", "converged", "converged", None),
+)
+#: columns of one parameter in parameters.csv: (attribute of capred.parameters.Parameter, CSV column)
+PARAMETER_COLUMNS = (("value", "value"), ("stderr", "standard error"), ("ci95", "95 % CI"))
+
+
+@dataclass(frozen=True)
+class RetentionFitRecord:
+    """One retention model fitted to one branch, in the user's units (the JSON's).
+
+    Attributes
+    ----------
+    branch : str
+        ``"drying"`` or ``"wetting"`` (``"both"`` for the joint hysteresis fit).
+    model : str
+        Registry key (``vg``, ``bc`` ...; ``kool_parker`` for the hysteresis fit).
+    label : str
+        Display name of the model.
+    quantity : str
+        ``"theta"`` (θ [m³/m³]) or ``"S_R"`` [-]: the fitted water quantity.
+    params : capred.parameters.Parameters
+        Fitted parameters by JSON name (``theta_r``, ``alpha_per_kPa``, ``n`` ...), value, stderr, ci95, unit.
+    n_points, n_free : int
+        Readings fitted and free parameters k [-].
+    r2 : float
+        Weighted coefficient of determination [-].
+    rmse : float
+        Root mean square residual [unit of the water quantity].
+    rss : float
+        Weighted residual sum of squares [unit squared].
+    aic, aicc, bic : float
+        Akaike (with the small-sample correction: AICc) and Bayesian information criteria [-]; AICc is NaN when
+        n − k − 1 ≤ 0 (a warning says so).
+    delta_aicc, weight : float
+        AICc minus the branch's lowest, and the Akaike weight exp(−Δ/2)/Σ [-] (Burnham & Anderson 2002).
+    converged : bool
+        The optimiser met its tolerances.
+    at_bounds, fixed, held : tuple of str
+        JSON names of parameters on a bound, fixed by the user, held at a bound for the standard errors.
+    warnings : tuple of str
+        Warnings on this fit (bounds, identifiability, AICc).
+    notes : tuple of str
+        Notes on this fit.
+    reference : str
+        The model's paper.
+    """
+
+    branch: str
+    model: str
+    label: str
+    quantity: str
+    params: Parameters
+    n_points: int
+    n_free: int
+    r2: float
+    rmse: float
+    rss: float
+    aic: float
+    aicc: float
+    bic: float
+    delta_aicc: float
+    weight: float
+    converged: bool
+    at_bounds: tuple = ()
+    fixed: tuple = ()
+    held: tuple = ()
+    warnings: tuple = ()
+    notes: tuple = ()
+    reference: str = ""
+
+    def row(self) -> dict:
+        """The record as one row of fits.csv: ``{"name [unit]": value}`` (text columns without a unit)."""
+        out = {}
+        for attr, _, column, unit in FIT_OUTPUTS:
+            if unit is None:
+                out[column] = getattr(self, attr)
+            else:
+                u = unit.replace("y", _y_unit(self.quantity)) if "y" in unit else unit
+                u = "(m³/m³)²" if u == "m³/m³²" else ("-" if u == "-²" else u)
+                out[f"{column} [{u}]"] = getattr(self, attr)
+        return out
+
+    def parameter_rows(self) -> list[dict]:
+        """One row of parameters.csv per parameter: branch, model, parameter, value, standard error, 95 % CI,
+        and the unit of those three (one table holds parameters of several units: the unit is a column)."""
+        rows = []
+        for p in self.params.values():
+            r = {"branch": self.branch, "model": self.model, "parameter": p.name}
+            r["value"] = p.value
+            r["standard error"] = p.stderr
+            r["95 % CI low"], r["95 % CI high"] = p.ci95
+            r["unit"] = p.unit
+            r["fixed"] = p.fixed
+            rows.append(r)
+        return rows
+
+
+@dataclass(frozen=True)
+class RetentionPoints:
+    """The readings of a retention run and each fitted curve at them (arrays over readings).
+
+    Attributes
+    ----------
+    suction : ndarray
+        Suction s [Pa] (output in kPa).
+    water : ndarray
+        θ [m³/m³] or S_R [-] as read.
+    branch : ndarray of str
+        The branch of each reading.
+    weight : ndarray
+        Weight of each reading in the least squares [-].
+    fitted : dict[str, ndarray]
+        ``{model: fitted value at each reading}`` (NaN where the model was not fitted to the reading's branch).
+    quantity : str
+        ``"theta"`` or ``"S_R"``.
+    """
+
+    suction: np.ndarray
+    water: np.ndarray
+    branch: np.ndarray
+    weight: np.ndarray
+    fitted: dict
+    quantity: str
+
+    def columns(self) -> dict:
+        """``{"name [unit]": array}`` of points.csv."""
+        y, unit = ("theta", "m³/m³") if self.quantity == "theta" else ("S_R", "-")
+        out = {"branch": np.asarray(self.branch, dtype=object), "suction [kPa]": self.suction * 1e-3}
+        out[f"{y} [{unit}]"] = self.water
+        out["weight [-]"] = self.weight
+        for m, v in self.fitted.items():
+            out[f"{y}_{m} [{unit}]"] = v
+        return out
+
+
 @dataclass(repr=False)
 class RetentionResult(Result):
+    """Result of `capred retention`: fits per branch and model, readings, hysteresis.
+
+    ``fits[branch][model]`` is a :class:`capred.fitting.retention_models.RetentionFit` (callable; ``.params`` by
+    JSON name in the JSON's units, ``.summary()``); :meth:`fit_records` and :meth:`points` are the typed
+    records the tables, CSV files and console read.
+    """
+
     command = "retention"
     json_name = "fits.json"
 
@@ -167,26 +311,78 @@ class RetentionResult(Result):
     inputs: list[InputFile] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
     hysteresis: NonlinearFit | None = None
+    weights: np.ndarray | None = None
 
     @property
     def names(self) -> tuple[str, str]:
         return ("theta_s", "theta_r") if self.quantity == "theta" else ("S_s", "S_res")
 
+    def fit_record(self, branch: str, model: str) -> RetentionFitRecord:
+        """The typed record of one fit (``branch`` ``"both"`` and ``model`` ``"kool_parker"``: the hysteresis)."""
+        if model == "kool_parker":
+            f, sel = self.hysteresis, {"kool_parker": (float("nan"), float("nan"))}
+        else:
+            f = self.fits[branch][model]
+            sel = akaike_weights({m: g.aicc for m, g in self.fits[branch].items()})
+        d, w = sel[model]
+
+        def names(keys):
+            return tuple(json_name(k, self.quantity)[0] for k in keys)
+
+        return RetentionFitRecord(
+            branch,
+            model,
+            f.label,
+            self.quantity,
+            f.params,
+            f.n,
+            f.nfree,
+            float(f.r2),
+            float(f.rmse),
+            float(f.rss),
+            float(f.aic),
+            float(f.aicc),
+            float(f.bic),
+            float(d) if d is not None else float("nan"),
+            float(w) if w is not None else float("nan"),
+            bool(f.converged),
+            names(f.at_bounds()),
+            names(f.fixed),
+            names(getattr(f, "held", ())),
+            tuple(getattr(f, "warnings", ())),
+            tuple(getattr(f, "notes", ())),
+            cite(FITTERS[model].reference if model in FITTERS else "kool_parker1987"),
+        )
+
+    def fit_records(self, branch: str | None = None) -> list[RetentionFitRecord]:
+        """Every fit's record, branch by branch, models in the order fitted (one branch with ``branch``)."""
+        return [self.fit_record(b, m) for b, fits in self.fits.items() if branch in (None, b) for m in fits]
+
+    def points(self) -> RetentionPoints:
+        """The readings and each model's fitted value at them."""
+        fitted = {}
+        for b, fits in self.fits.items():
+            sel = self.branch == b
+            for m, f in fits.items():
+                col = fitted.setdefault(m, np.full(self.suction.size, np.nan))
+                col[sel] = f.water(self.suction[sel])
+        w = self.weights if self.weights is not None else np.ones(self.suction.size)
+        return RetentionPoints(self.suction, self.water, self.branch, w, fitted, self.quantity)
+
     def fit_json(self, f: NonlinearFit, model: str) -> dict:
+        """The JSON of one fit: each parameter by JSON name with ``_se`` and ``_ci95``, its head form (cm),
+        statistics, correlations, SI values, warnings."""
         cm = self.options.gamma_w * 0.01  # Pa per cm of water head
+        si = f.params_si
         out: dict = {}
-        for k, v in f.params.items():
-            name = report_name(k, self.quantity)
-            scale = _report(k)[1] if k not in ("y_s", "y_r") else 1.0
-            se = f.stderr.get(k)
-            ci = f.ci95(k)
-            out[name] = num(v * scale)
-            out[f"{name}_se"] = None if se is None or not np.isfinite(se) else num(se * scale)
-            out[f"{name}_ci95"] = None if ci is None else [num(ci[0] * scale), num(ci[1] * scale)]
+        for k, p in zip(si, f.params.values()):
+            out[p.name] = num(p.value)
+            out[f"{p.name}_se"] = num(p.stderr) if np.isfinite(p.stderr) else None
+            out[f"{p.name}_ci95"] = None if not np.isfinite(p.ci95[0]) else [num(p.ci95[0]), num(p.ci95[1])]
             if k in _HEAD:
-                out[_HEAD[k]] = num(v * cm if k.startswith("alpha") else v / cm)
-        if model in ("vg", "hysteresis") and "n" in f.params:
-            out["m"] = num(1 - 1 / f.params["n"])
+                out[_HEAD[k]] = num(si[k] * cm if k.startswith("alpha") else si[k] / cm)
+        if model in ("vg", "hysteresis", "kool_parker") and "n" in si:
+            out["m"] = num(1 - 1 / si["n"])
         out.update(
             {
                 "r2": num(f.r2),
@@ -204,14 +400,19 @@ class RetentionResult(Result):
                     report_name(a, self.quantity): {report_name(b, self.quantity): num(v) for b, v in row.items()}
                     for a, row in f.correlation().items()
                 },
-                "params_si": {k: num(v) for k, v in f.params.items()},
-                "parameters": [report_name(k, self.quantity) for k in f.params],
+                "params_si": {k: num(v) for k, v in si.items()},
+                "parameters": [report_name(k, self.quantity) for k in si],
+                "units": {p.name: p.unit for p in f.params.values()},
                 "held": [report_name(k, self.quantity) for k in getattr(f, "held", ())],
                 "notes": list(getattr(f, "notes", [])),
-                "model": FITTERS[model].label if model in FITTERS else model,
+                "warnings": list(getattr(f, "warnings", [])),
+                "model": f.label,
                 "reference": cite(FITTERS[model].reference if model in FITTERS else "kool_parker1987"),
             }
         )
+        if getattr(f, "suction_range", None) is not None:
+            out["suction_range_kPa"] = [num(f.suction_range[0] * 1e-3), num(f.suction_range[1] * 1e-3)]
+            out["suction_points_kPa"] = [num(x * 1e-3) for x in f.suction_points]
         return out
 
     def model_selection(self, branch: str) -> dict:
@@ -251,12 +452,13 @@ class RetentionResult(Result):
                 k = sum(f.nfree for f in ind)
                 rss = sum(f.rss for f in ind)
                 ind_aicc = n * np.log(rss / n) + 2 * k + (2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else np.nan)
-            keys = [report_name(k, self.quantity) for k in h.params]
+            keys = list(h.params)
             out["hysteresis"] = {
                 "model": "kool-parker",
                 "params": {k: js[k] for k in keys},
                 "se": {k: js[f"{k}_se"] for k in keys},
-                "alpha_ratio": num(h.params["alpha_w"] / h.params["alpha_d"]),
+                "units": {k: h.params[k].unit for k in keys},
+                "alpha_ratio": num(h.params_si["alpha_w"] / h.params_si["alpha_d"]),
                 "rss": js["rss"],
                 "r2": js["r2"],
                 "aicc": js["aicc"],
@@ -271,45 +473,44 @@ class RetentionResult(Result):
         for b, fits in self.fits.items():
             if not fits:
                 continue
-            sel = self.model_selection(b)
-            best = min(sel, key=lambda m: (sel[m]["aicc"] is None, sel[m]["aicc"] or 0.0))
-            js = self.fit_json(fits[best], best)
-            params = {name: js.get(name) for name in js["parameters"]}
+            recs = self.fit_records(b)
+            best = min(recs, key=lambda r: (not np.isfinite(r.aicc), r.aicc if np.isfinite(r.aicc) else 0.0))
             rows.append(
                 {
                     "branch": b,
-                    "best_model": best,
-                    "n_points": fits[best].n,
-                    "r2": js["r2"],
-                    "rmse": js["rmse"],
-                    "aicc": js["aicc"],
-                    **params,
+                    "best_model": best.model,
+                    "n_points": best.n_points,
+                    "r2": num(best.r2),
+                    "rmse": num(best.rmse),
+                    "aicc": num(best.aicc),
+                    **{p.name: num(p.value) for p in best.params.values()},
                 }
             )
         return rows
 
     def tables(self) -> dict:
-        """fits: one row per branch and model (parameters with their standard errors)."""
+        """fits: one row per branch and model (statistics); parameters: one row per fitted parameter (value,
+        standard error, 95 % CI and unit); points: one row per reading with each model's fitted value."""
         cached = self.__dict__.get("_tables")
         if cached is None:
-            cached = self.__dict__["_tables"] = {"fits": self._fits_table()}
+            import pandas as pd
+
+            recs = self.fit_records()
+            if self.hysteresis is not None:
+                recs = recs + [self.fit_record("both", "kool_parker")]
+            cached = self.__dict__["_tables"] = {
+                "fits": pd.DataFrame([r.row() for r in recs]),
+                "parameters": pd.DataFrame([row for r in recs for row in r.parameter_rows()]),
+                "points": pd.DataFrame(self.points().columns()),
+            }
         return cached
 
-    def _fits_table(self):
-        import pandas as pd
-
-        rows = []
-        for b, d in self.payload()["branches"].items():
-            for m, v in d["fits"].items():
-                rows.append(
-                    {"branch": b, "model": m, **{k: x for k, x in v.items() if k not in ("correlation", "params_si")}}
-                )
-        return pd.DataFrame(rows)
-
     def curve(self, branch: str, model: str, s):
-        return FITTERS[model].water(s, **self.fits[branch][model].params)
+        """The fitted curve of one branch and model at suctions ``s`` [Pa] (θ [m³/m³] or S_R [-])."""
+        return self.fits[branch][model].water(s)
 
     def band(self, branch: str, model: str, s):
+        """95 % confidence band (lower, upper) of one fitted curve at ``s`` [Pa]."""
         return confidence_band(model, self.fits[branch][model], s)
 
 
@@ -322,7 +523,7 @@ def parse_fixed(items: list[str]) -> dict[str, float]:
         try:
             _to_internal(name)
         except KeyError:
-            known = ", ".join(["theta_s", "theta_r", "S_s", "S_res", *sorted({v[0] for v in _REPORT.values()})])
+            known = ", ".join(["theta_s", "theta_r", "S_s", "S_res", *sorted({v[0] for v in JSON_NAMES.values()})])
             raise OptionError(f"--fix '{item}': expected NAME=VALUE with NAME one of {known}") from None
         if not sep:
             raise OptionError(f"--fix '{item}': expected NAME=VALUE")
@@ -431,12 +632,12 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
             except FitError as exc:
                 warnings.append(f"branch '{b}', model {m}: not fitted ({exc})")
                 continue
+            f.warnings = identifiability_warnings(f)  # named by the data kind (theta_r or S_res)
+            warnings.extend(f"branch '{b}', model {m}: {w}" for w in f.warnings)
             fits[b][m] = f
             for k in f.at_bounds():
-                scale = _report(k)[1] if k not in ("y_s", "y_r") else 1.0
-                warnings.append(
-                    f"branch '{b}', model {m}: {report_name(k, quantity)} = {f.params[k] * scale:.6g} lies at its bound"
-                )
+                name, scale, _ = json_name(k, quantity)
+                warnings.append(f"branch '{b}', model {m}: {name} = {f.params_si[k] * scale:.6g} lies at its bound")
     if not any(fits.values()):
         raise FitError(f"{table.path}: no model could be fitted to any branch ({'; '.join(warnings[-3:])})")
     fits = {b: f for b, f in fits.items() if f}
@@ -459,6 +660,10 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
                 fits.setdefault(b, {})["vg"] = dataclasses.replace(
                     fit_model("vg", s[sel], y[sel], {}, weights[sel]), quantity=quantity
                 )
+    if hyst is not None:
+        hyst = dataclasses.replace(hyst, quantity=quantity)
+        hyst.warnings = identifiability_warnings(hyst)
+        warnings.extend(f"hysteresis (Kool & Parker): {w}" for w in hyst.warnings)
     return RetentionResult(
         table.path,
         quantity,
@@ -472,4 +677,5 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
         [input_file(source, table)],
         warnings,
         hyst,
+        weights,
     )

@@ -112,12 +112,20 @@ def model_params_from_retention(path: str | Path, **overrides) -> ModelParams:
         raise OptionError(f"--retention {path}: not a fits.json written by capred retention ({exc})") from None
     p: dict = {}
     vg = fits.get("vg") or fits.get("vg_m_free")
+    if not vg and isinstance(fits, dict) and fits:  # another model: converted over its data's suction range
+        from .retention_convert import converted_fit_json
+
+        vg = converted_fit_json(js, "vg")
     if vg:
         ys, yr = (vg.get("S_s"), vg.get("S_res")) if "S_s" in vg else (vg.get("theta_s"), vg.get("theta_r"))
         if ys:
             p["s_res"] = yr / ys if "theta_s" in vg else yr
         p.update(vg_alpha=vg["alpha_per_kPa"] / 1e3, vg_n=vg["n"], vg_m=vg.get("m"))
     bc = fits.get("bc")
+    if not bc and isinstance(fits, dict) and fits:
+        from .retention_convert import converted_fit_json
+
+        bc = converted_fit_json(js, "bc")
     if bc:
         p["air_entry"] = bc["s_e_kPa"] * 1e3
         if "s_res" not in p:

@@ -937,7 +937,7 @@ def retention_relation(params, suction, S_R) -> RetentionRelation | None:
         f = fit_model("vg", s_fit, y_fit, weights=w_fit)
     except FitError:
         return None
-    p = f.params
+    p = f.params_si
     return RetentionRelation(
         lambda s: vg_water(s, p["y_r"], p["y_s"], p["alpha"], p["n"]),
         f"van Genuchten fitted to the tests' own (suction, S_R) pairs (α = "

@@ -124,6 +124,9 @@ PRESENTERS: dict[str, Presenter] = {
     "retention": Presenter(
         _one("retention_figures", "sheet_retention", "retention"), _lazy("retention_tables", "retention_tables")
     ),
+    "retention-convert": Presenter(
+        _one("retention_figures", "sheet_convert", "retention_convert"), _lazy("retention_tables", "convert_tables")
+    ),
     "prism": Presenter(_calc_figures, _lazy("calculator_tables", "calc_tables")),
     "skempton-b": Presenter(_calc_figures, _lazy("calculator_tables", "calc_tables")),
     "rumpf": Presenter(_calc_figures, _lazy("calculator_tables", "calc_tables")),

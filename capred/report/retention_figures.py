@@ -14,7 +14,7 @@ import numpy as np
 
 from ..fitting.retention_models import MODELS
 from .sheets import Panel, Sheet
-from .style import LABEL, literal, note, style, thin, untitled
+from .style import LABEL, OKABE_ITO, literal, note, style, thin, untitled
 
 STRIP = 0.07  # width of the zero-suction strip, as a fraction of the axes
 
@@ -102,4 +102,77 @@ def sheet_retention(result) -> Sheet:
         1,
         spans={"curves": 2},
         panel_size=(5.5, 3.2),
+    )
+
+
+def plot_conversion(ax, result):
+    """The source curve and the converted one over the data's suction range (and a decade beyond, dotted)."""
+    src, new = result.source_fit, result.converted
+    lo, hi = src.suction_range
+    inside = np.geomspace(lo, hi, 300)
+    beyond_lo, beyond_hi = np.geomspace(lo / 10, lo, 60), np.geomspace(hi, hi * 10, 60)
+    for s, ls_src, ls_new, lab in (
+        (inside, "-", "--", True),
+        (beyond_lo, ":", ":", False),
+        (beyond_hi, ":", ":", False),
+    ):
+        ax.plot(
+            s / 1e3,
+            src.water(s),
+            color=OKABE_ITO["black"],
+            lw=1.4,
+            ls=ls_src,
+            label=f"{literal(src.label)} (source)" if lab else None,
+        )
+        ax.plot(
+            s / 1e3,
+            new.water(s),
+            color=OKABE_ITO["vermillion"],
+            lw=1.2,
+            ls=ls_new,
+            label=f"{literal(new.label)} (converted)" if lab else None,
+        )
+    pts = np.asarray(src.suction_points, float)
+    ax.plot(pts / 1e3, src.water(pts), ls="none", marker="|", ms=5, color="0.4", label="suctions of the data")
+    ax.axvspan(lo / 1e3, hi / 1e3, color="0.92", lw=0, zorder=0)
+    ax.set_xscale("log")
+    ax.set_xlabel(LABEL["suction_s"])
+    ax.set_ylabel(LABEL["theta"] if result.quantity == "theta" else LABEL["S_R"])
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.22), ncol=2, fontsize=7, frameon=False)
+    return ax
+
+
+def plot_conversion_misfit(ax, result):
+    """Converted minus source curve over the data's suction range."""
+    src, new = result.source_fit, result.converted
+    lo, hi = src.suction_range
+    s = np.geomspace(lo, hi, 400)
+    ax.plot(s / 1e3, new.water(s) - src.water(s), color=OKABE_ITO["vermillion"], lw=1.2)
+    ax.axhline(0.0, color="0.5", lw=0.6)
+    ax.set_xscale("log")
+    ax.set_xlabel(LABEL["suction_s"])
+    unit = "m³/m³" if result.quantity == "theta" else "-"
+    ax.set_ylabel(f"converted − source [{unit}]")
+    m = result.misfit
+    note(ax, f"RMSE {m['rmse']:.3g}, largest |deviation| {m['max_deviation']:.3g}")
+    return ax
+
+
+def sheet_convert(result) -> Sheet:
+    """Two panels: both curves, and their difference over the data's suction range."""
+    src, new = result.source_fit, result.converted
+    name = literal(str(result.source).replace("\\", "/").rsplit("/", 1)[-1])
+    return Sheet(
+        f"{literal(src.label)} converted to {literal(new.label)} ({name})",
+        [
+            Panel(
+                "curves",
+                lambda ax: plot_conversion(ax, result),
+                "The source fit (solid) and the converted curve (dashed) over the suctions of the data (grey band, "
+                "ticks: the data's suctions), dotted a decade beyond, where the conversion was not fitted.",
+            ),
+            Panel("misfit", lambda ax: plot_conversion_misfit(ax, result), "Converted minus source curve."),
+        ],
+        2,
+        panel_size=(4.6, 3.6),
     )

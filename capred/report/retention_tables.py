@@ -1,50 +1,128 @@
-"""Console (and HTML) tables of `capred retention`."""
+"""Console (and HTML) tables of `capred retention`, read from the run's typed records.
+
+Per branch two narrow tables that fit an 80-column terminal without folding: the model comparison (every
+model's name, R², RMSE, AICc, ΔAICc and Akaike weight, best first) and the parameters in long form (one row
+per model and parameter: value, standard error, 95 % interval, unit). A long parameter list never widens a
+row, so no number is cut and no column squeezed to nothing.
+"""
 
 from __future__ import annotations
+
+import math
 
 from ..result import TableSpec
 from .render import fmt, spec
 
 
-def retention_tables(result) -> list[TableSpec]:
-    """Per branch: every model's parameters (± se), R², RMSE, AICc, ΔAICc and Akaike weight; hysteresis."""
-    js = result.to_json()
-    out = []
-    for b, d in js["branches"].items():
-        t = spec(
-            f"Retention fits, branch {b} ({js['branch_source']})",
-            ["model", "parameters (± se)", "R²", "RMSE", "AICc", "ΔAICc", "weight"],
-            left=2,
+def _num(x):
+    return None if x is None or (isinstance(x, float) and not math.isfinite(x)) else x
+
+
+def _order(records):
+    return sorted(records, key=lambda r: (not math.isfinite(r.delta_aicc), _num(r.delta_aicc) or 0.0))
+
+
+def model_table(branch: str, records, how: str) -> TableSpec:
+    """Model comparison of one branch: model, k, R², RMSE, AICc, ΔAICc, Akaike weight (best first).
+
+    Parameters
+    ----------
+    branch : str
+        The branch name.
+    records : list of RetentionFitRecord
+        The fits of that branch.
+    how : str
+        How branches were told apart (shown in the title).
+
+    Returns
+    -------
+    TableSpec
+    """
+    t = spec(f"Retention models, branch {branch} ({how})", ["model", "k", "R²", "RMSE", "AICc", "ΔAICc", "weight"])
+    for r in _order(records):
+        t.rows.append(
+            [
+                r.model,
+                str(r.n_free),
+                fmt(_num(r.r2)),
+                fmt(_num(r.rmse)),
+                fmt(_num(r.aicc)) if math.isfinite(r.aicc) else "— (n−k−1≤0)",
+                fmt(_num(r.delta_aicc)),
+                fmt(_num(r.weight)),
+            ]
         )
-        sel = d["model_selection"]
-        order = sorted(d["fits"], key=lambda m: (sel[m]["delta_aicc"] is None, sel[m]["delta_aicc"] or 0.0))
-        for m in order:
-            v = d["fits"][m]
-            parts = []
-            for rn in v["parameters"]:
-                se = v.get(f"{rn}_se")
-                parts.append(
-                    f"{rn} {fmt(v[rn])}"
-                    + (f" ± {fmt(se, 2)}" if se is not None else (" (fixed)" if rn in v["fixed"] else ""))
-                )
-            t.rows.append(
-                [
-                    m,
-                    "; ".join(parts),
-                    fmt(v["r2"]),
-                    fmt(v["rmse"]),
-                    fmt(v["aicc"]),
-                    fmt(sel[m]["delta_aicc"]),
-                    fmt(sel[m]["weight"]),
-                ]
-            )
+    return t
+
+
+def parameter_table(title: str, records) -> TableSpec:
+    """Parameters of fits in long form: a bold row naming the model, then one row per parameter with its value,
+    ± standard error, 95 % interval and unit (narrow enough for an 80-column terminal).
+
+    Parameters
+    ----------
+    title : str
+        Table title.
+    records : list of RetentionFitRecord
+        The fits (models in the order given).
+
+    Returns
+    -------
+    TableSpec
+    """
+    t = spec(title, ["model / parameter", "value", "± se", "95 % CI", "unit"])
+    for i, r in enumerate(records):
+        t.bold_rows.add(len(t.rows))
+        t.rows.append([r.model, "", "", "", ""])
+        for p in r.params.values():
+            if p.fixed:
+                se, ci = "(fixed)", ""
+            else:
+                se = fmt(_num(p.stderr), 2)
+                ci = "—" if not math.isfinite(p.ci95[0]) else f"{fmt(p.ci95[0], 3)} … {fmt(p.ci95[1], 3)}"
+            t.rows.append(["  " + p.name, fmt(p.value), se, ci, p.unit])
+        if i < len(records) - 1:
+            t.sections.add(len(t.rows) - 1)
+    return t
+
+
+def retention_tables(result) -> list[TableSpec]:
+    """Per branch: the model comparison and the parameters (± se, 95 % CI); the joint hysteresis fit."""
+    out = []
+    for b in result.fits:
+        recs = result.fit_records(b)
+        out.append(model_table(b, recs, result.branch_source))
+        out.append(parameter_table(f"Retention parameters, branch {b}", _order(recs)))
+    if result.hysteresis is not None:
+        rec = result.fit_record("both", "kool_parker")
+        t = parameter_table("Hysteresis, Kool & Parker (1987): joint fit of both branches", [rec])
+        ratio = result.hysteresis.params_si["alpha_w"] / result.hysteresis.params_si["alpha_d"]
+        js = result.to_json()["hysteresis"]
+        t.rows.append(["  α_w/α_d", fmt(ratio), "", "", "-"])
+        t.rows.append(["  AICc joint", fmt(js["aicc"]), "", "", "-"])
+        t.rows.append(["  AICc independent", fmt(js["independent_aicc"]), "", "", "-"])
         out.append(t)
-    h = js.get("hysteresis")
-    if h:
-        t = spec("Hysteresis, Kool & Parker (1987): joint fit of both branches", ["parameter", "value", "± se"])
-        for k, v in h["params"].items():
-            t.rows.append([k, fmt(v), fmt(h["se"].get(k))])
-        t.rows.append(["α_w/α_d", fmt(h["alpha_ratio"]), ""])
-        t.rows.append(["AICc joint / independent", f"{fmt(h['aicc'])} / {fmt(h['independent_aicc'])}", ""])
-        out.append(t)
+    return out
+
+
+def convert_tables(result) -> list[TableSpec]:
+    """`capred retention-convert`: the conversion (from, to, misfit) and the parameters of both curves."""
+    src, new, m = result.source_fit, result.converted, result.misfit
+    unit = "m³/m³" if result.quantity == "theta" else "-"
+    t = spec(f"Conversion of {result.source}", ["", "value", "unit"])
+    t.rows += [
+        ["from", src.model, ""],
+        ["to", new.model, ""],
+        ["suction range", f"{fmt(m['suction_range_kPa'][0])} … {fmt(m['suction_range_kPa'][1])}", "kPa"],
+        ["points", str(m["n_points"]), ""],
+        ["RMSE", fmt(m["rmse"]), unit],
+        ["largest deviation", fmt(m["max_deviation"]), unit],
+        ["at suction", fmt(m["at_suction_kPa"]), "kPa"],
+    ]
+    b = next(iter(result.fits))
+    recs = [result.fit_record(b, new.model)]
+    out = [t, parameter_table("Converted parameters (standard errors do not apply)", recs)]
+    src_table = spec(f"Source: {src.label}", ["parameter", "value", "unit"])
+    for p in src.params.values():
+        src_table.rows.append([p.name, fmt(p.value), p.unit])
+    out.append(src_table)
     return out

@@ -1,0 +1,43 @@
+"""`capred retention-convert FIT.json --to MODEL`: a retention fit expressed in another model."""
+
+from typing import Annotated
+
+import typer
+
+from .common import Invocation, command, quantity
+
+
+def register(app: typer.Typer) -> None:
+    """Add `capred retention-convert` to the application."""
+    command(app, "retention-convert", data="fits.json written by capred retention")(retention_convert)
+
+
+def retention_convert(
+    to: Annotated[str, typer.Option("--to", help="Target model: vg, vg_m_free, bc, kosugi, fx, fx_no_c, durner.")],
+    model: Annotated[
+        str | None, typer.Option(help="Which fit of FIT.json to convert (default: the lowest AICc of the branch).")
+    ] = None,
+    branch: Annotated[str | None, typer.Option(help="Which branch of FIT.json (default: drying when present).")] = None,
+    points: Annotated[
+        int, typer.Option(help="Points of the logarithmic grid between the data's smallest and largest suction.")
+    ] = 100,
+    gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3] (heads in cm in the JSON).")] = "9.81",
+) -> Invocation:
+    """Express a retention fit in another model: the parameters of --to that best
+    reproduce the fitted curve (least squares on S_R or theta at the data's own
+    suctions and a dense grid between), with the misfit (RMSE, largest
+    deviation) and a figure of both curves. The output fits.json has the shape
+    of capred retention's, so --retention of shear and skempton-b reads it.
+
+    Example: capred retention-convert capred_out/retention_column/fits.json --to bc
+    """
+    from ..pipelines.retention_convert import ConvertOptions
+
+    opts = ConvertOptions(
+        to=to.strip().lower(),
+        model=model.strip().lower() if model else None,
+        branch=branch,
+        gamma_w=quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"),
+        points=points,
+    )
+    return Invocation("retention-convert", opts)

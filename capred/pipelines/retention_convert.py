@@ -1,0 +1,427 @@
+"""`capred retention-convert`: a fitted retention curve expressed in another retention model.
+
+The parameters of the target model are those that best reproduce the fitted curve over the suction range of
+the data it was fitted to: least squares on the fitted water quantity (S_R or θ) at the fit's own suctions
+and at a dense logarithmic grid between the smallest and largest of them, solved by capred's global retention
+fit (:func:`capred.fitting.retention_models.fit_model`). The misfit (RMSE and largest deviation, in the unit
+of the water quantity) says how well the target model can follow the curve; the converted fit is a fit like
+any other (callable, ``params`` by JSON name, a fits.json of the same shape as `capred retention` writes).
+
+It also serves the commands that need a given model: `skempton-b --retention FIT.json` takes Brooks-Corey's
+air-entry suction and index (:func:`brooks_corey_for_skempton`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import FitError, OptionError
+from ..fitting.retention_models import MODELS, RetentionFit, fit_model
+from ..physics.shear import GAMMA_W
+from ..result import Options, input_file, num
+from .retention import RetentionResult
+
+#: points of the logarithmic grid between the smallest and largest suction of the data (besides the data's own)
+GRID_POINTS = 100
+#: a conversion whose largest deviation exceeds this (in S_R, or θ/θ_s) is flagged: the curves differ visibly
+#: on a retention plot (0.02 is about the scatter of a careful hanging-column or pressure-plate series)
+MISFIT_WARNING = 0.02
+
+
+@dataclass(frozen=True)
+class ConvertOptions(Options):
+    """Options of `capred retention-convert`.
+
+    Attributes
+    ----------
+    to : str
+        Target model (a key of the retention registry).
+    model : str or None
+        Which fit of FIT.json to convert (default: the lowest AICc of the branch).
+    branch : str or None
+        Which branch (default: the file's main branch, drying when present).
+    gamma_w : float
+        Unit weight of water [N/m^3] (the heads in cm of the JSON).
+    points : int
+        Points of the dense grid between the data's smallest and largest suction.
+    """
+
+    QUANTITIES = {"gamma_w": "gamma_w"}
+
+    to: str = "bc"
+    model: str | None = None
+    branch: str | None = None
+    gamma_w: float = GAMMA_W
+    points: int = GRID_POINTS
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if self.to not in MODELS:
+            raise OptionError(f"--to: unknown retention model '{self.to}'; choose from {', '.join(MODELS)}")
+        if self.model is not None and self.model not in MODELS:
+            raise OptionError(f"--model: unknown retention model '{self.model}'; choose from {', '.join(MODELS)}")
+        if not 10 <= int(self.points) <= 100_000:
+            raise OptionError(f"--points must lie between 10 and 100000 (got {self.points})")
+
+
+@dataclass(repr=False)
+class RetentionConvertResult(RetentionResult):
+    """Result of `capred retention-convert`: the converted fit (``fits[branch][to]``), the source fit and the
+    misfit. ``suction`` and ``water`` hold the points the conversion was fitted to (the source curve)."""
+
+    command = "retention-convert"
+    json_name = "fits.json"
+
+    source_fit: RetentionFit | None = None
+    misfit: dict = field(default_factory=dict)
+
+    @property
+    def converted(self) -> RetentionFit:
+        """The converted fit."""
+        return next(iter(next(iter(self.fits.values())).values()))
+
+    def payload(self, lazy: bool = False) -> dict:
+        out = super().payload(lazy)
+        src = self.source_fit
+        out["conversion"] = {
+            "from_model": src.model,
+            "to_model": self.converted.model,
+            "from_params": {p.name: num(p.value) for p in src.params.values()},
+            "from_params_si": {k: num(v) for k, v in src.params_si.items()},
+            **{k: num(v) if isinstance(v, float) else v for k, v in self.misfit.items()},
+        }
+        return out
+
+    def tables(self) -> dict:
+        """fits and parameters of the converted fit (as `capred retention`), and points: the source curve and the
+        converted one at the conversion's points."""
+        t = dict(super().tables())
+        pts = t["points"]
+        t["points"] = pts.rename(columns={c: c.replace(f"_{self.converted.model} [", "_converted [") for c in pts})
+        return t
+
+    def season_rows(self) -> list[dict]:
+        return []
+
+
+def _fit_from_json(doc: dict, where: str, model: str | None, branch: str | None) -> RetentionFit:
+    """The RetentionFit a fits.json describes (its SI parameters, quantity and suction points)."""
+    try:
+        branches = doc.get("branches") or {doc.get("main_branch") or "drying": {"fits": doc["fits"]}}
+        b = branch or doc.get("main_branch") or next(iter(branches))
+        if b not in branches:
+            raise OptionError(f"{where}: no branch '{b}' (the file has {', '.join(branches)})")
+        fits = branches[b]["fits"]
+        if not fits:
+            raise OptionError(f"{where}: branch '{b}' holds no fit")
+        if model is None:
+            model = min(fits, key=lambda m: fits[m].get("aicc") if fits[m].get("aicc") is not None else np.inf)
+        if model not in fits:
+            raise OptionError(f"{where}: branch '{b}' has no {model} fit (it has {', '.join(fits)})")
+        f = fits[model]
+        si = {k: float(v) for k, v in f["params_si"].items()}
+    except (KeyError, TypeError, AttributeError, ValueError) as exc:
+        raise OptionError(f"{where}: not a fits.json written by capred retention ({exc})") from None
+    key = next((k for k, e in MODELS.items() if e.label == f.get("model")), model)
+    if key not in MODELS or set(si) != set(MODELS[key].names):
+        raise OptionError(f"{where}: the {model} fit is not one of capred's retention models")
+    points = f.get("suction_points_kPa") or f.get("suction_range_kPa")
+    if not points:
+        raise FitError(
+            f"{where}: the {model} fit of branch '{b}' has no suction range (suction_range_kPa): it was written by "
+            "an older capred, and a conversion holds only over the suctions of the data; run capred retention "
+            "on the data again"
+        )
+    fit = RetentionFit(
+        params=si,
+        stderr={},
+        fixed=(),
+        n=int(f.get("n_points") or len(points)),
+        rss=float(f.get("rss") or np.nan),
+        r2=float(f.get("r2") or np.nan),
+        aic=float(f.get("aic") or np.nan),
+        bic=float(f.get("bic") or np.nan),
+        converged=bool(f.get("converged", True)),
+        model=key,
+        quantity=doc.get("quantity", "S_R"),
+        suction_points=tuple(float(x) * 1e3 for x in points),
+    )
+    fit.extra["branch"] = b
+    return fit
+
+
+def load_retention_fit(fit, model: str | None = None, branch: str | None = None) -> tuple[RetentionFit, str, list]:
+    """A retention fit from what a user holds: a RetentionFit, a RetentionResult, a fits.json path or its dict.
+
+    Parameters
+    ----------
+    fit : RetentionFit, RetentionResult, str, pathlib.Path or dict
+        The fit; a result or a file gives the fit of ``model`` on ``branch`` (default: the lowest AICc of the
+        main branch).
+    model, branch : str, optional
+        Which fit of a result or file.
+
+    Returns
+    -------
+    (RetentionFit, str, list)
+        The fit, where it came from (a path or a description), and the input files read.
+
+    Raises
+    ------
+    FitError
+        The fit carries no suction range (a fits.json of an older capred).
+    OptionError
+        Not a fit, or no such model or branch.
+    """
+    if isinstance(fit, RetentionFit):
+        if fit.suction_range is None:
+            raise FitError(
+                f"the {fit.model} fit has no suction range (suction_points): a conversion holds only over the "
+                "suctions of the data it was fitted to; fit it with capred.run_retention or fit_model"
+            )
+        return fit, f"{fit.model} fit", []
+    if isinstance(fit, RetentionResult):
+        return load_retention_fit(fit.to_json(), model, branch)[0], fit.source, list(fit.inputs)
+    if isinstance(fit, dict):
+        return _fit_from_json(fit, "the fit", model, branch), "the fit", []
+    path = Path(fit)
+    try:
+        doc = json.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        from ..errors import MissingFileError
+
+        raise MissingFileError(str(path)) from None
+    except (OSError, ValueError) as exc:
+        raise OptionError(f"{path}: not a fits.json written by capred retention ({exc})") from None
+    if not isinstance(doc, dict):
+        raise OptionError(f"{path}: not a fits.json written by capred retention")
+    return _fit_from_json(doc, str(path), model, branch), str(path), [input_file(str(path))]
+
+
+def conversion_points(fit: RetentionFit, points: int = GRID_POINTS) -> np.ndarray:
+    """The suctions [Pa] a conversion is fitted at: the fit's own and ``points`` log-spaced between its extremes."""
+    lo, hi = fit.suction_range
+    return np.unique(np.concatenate([np.asarray(fit.suction_points, float), np.geomspace(lo, hi, points)]))
+
+
+def convert_fit(fit: RetentionFit, to: str, points: int = GRID_POINTS, fixed: dict | None = None):
+    """The ``to`` model that best reproduces a fitted curve over its data's suction range.
+
+    Least squares on the fit's water quantity (S_R or θ) at :func:`conversion_points`, at the global optimum
+    inside the target's bounds (:func:`capred.fitting.retention_models.fit_model`).
+
+    Parameters
+    ----------
+    fit : RetentionFit
+        The source fit (with ``suction_points``).
+    to : str
+        Target model.
+    points : int
+        Grid points between the extremes of the data's suctions.
+    fixed : dict, optional
+        Target parameters held (internal names, SI), e.g. ``{"y_r": 0, "y_s": 1}``.
+
+    Returns
+    -------
+    (RetentionFit, dict)
+        The converted fit (standard errors not applicable: NaN) and the misfit: ``rmse`` and
+        ``max_deviation`` [unit of the water quantity], ``at_suction_kPa`` where the deviation is largest,
+        ``n_points``, ``suction_range_kPa``.
+
+    References
+    ----------
+    Lenhard, R. J., Parker, J. C., Mishra, S. (1989). On the correspondence between Brooks-Corey and van
+    Genuchten models. J. Irrig. Drain. Eng. 115(4):744-751, doi:10.1061/(ASCE)0733-9437(1989)115:4(744)
+    (a closed-form correspondence; capred fits the target curve instead, over the data's range).
+    """
+    s = conversion_points(fit, points)
+    y = fit.water(s)
+    if not np.all(np.isfinite(y)):
+        raise FitError(f"the {fit.model} curve is not finite over its suction range: nothing to convert")
+    new = fit_model(to, s, y, fixed)
+    d = new.water(s) - y
+    i = int(np.argmax(np.abs(d)))
+    misfit = {
+        "rmse": float(np.sqrt(np.mean(d**2))),
+        "max_deviation": float(np.abs(d[i])),
+        "at_suction_kPa": float(s[i] * 1e-3),
+        "n_points": int(s.size),
+        "suction_range_kPa": [float(s[0] * 1e-3), float(s[-1] * 1e-3)],
+    }
+    unit = "m³/m³" if fit.quantity == "theta" else ""
+    note = (
+        f"converted from the {fit.model} fit by least squares at {s.size} suctions from {s[0] * 1e-3:.4g} to "
+        f"{s[-1] * 1e-3:.4g} kPa (the data's own and a logarithmic grid): RMSE {misfit['rmse']:.3g}{unit and ' '}"
+        f"{unit}, largest deviation {misfit['max_deviation']:.3g}{unit and ' '}{unit} at {s[i] * 1e-3:.4g} kPa; "
+        "standard errors do not apply to a converted curve"
+    )
+    scale = fit.params_si.get("y_s", 1.0) if fit.quantity == "theta" else 1.0
+    warns = []
+    if misfit["max_deviation"] / scale > MISFIT_WARNING:
+        warns.append(
+            f"{to} cannot follow the {fit.model} curve closely: largest deviation {misfit['max_deviation']:.3g}"
+            f"{unit and ' '}{unit} at {s[i] * 1e-3:.4g} kPa (above {MISFIT_WARNING:g} in S_R)"
+        )
+    new = dataclasses.replace(
+        new,
+        quantity=fit.quantity,
+        stderr={k: None for k in new.params_si},
+        covariance=None,
+        aic=float("nan"),
+        bic=float("nan"),
+        notes=[note],
+        warnings=warns,
+        suction_points=fit.suction_points,
+    )
+    return new, misfit
+
+
+def convert_retention(fit, to: str, model: str | None = None, branch: str | None = None, points: int = GRID_POINTS):
+    """Express a retention fit in another model: ``capred.convert_retention(fit, to="bc")``.
+
+    Parameters
+    ----------
+    fit : RetentionFit, RetentionResult, str, pathlib.Path or dict
+        A fit (``result.fits["drying"]["vg"]``), a result, or a fits.json written by `capred retention`.
+    to : str
+        Target model (``vg``, ``vg_m_free``, ``bc``, ``kosugi``, ``fx``, ``fx_no_c``, ``durner``).
+    model, branch : str, optional
+        Which fit of a result or file (default: the lowest AICc of the main branch).
+    points : int
+        Grid points between the data's smallest and largest suction.
+
+    Returns
+    -------
+    RetentionConvertResult
+        ``.converted`` is the new fit (callable, ``params`` by JSON name); ``.misfit`` the RMSE and largest
+        deviation; ``to_json()`` a fits.json of the same shape as `capred retention` writes, with a
+        ``conversion`` block.
+
+    References
+    ----------
+    See :func:`convert_fit`.
+    """
+    return run_retention_convert(fit, ConvertOptions(to=to, model=model, branch=branch, points=points))
+
+
+def run_retention_convert(source, options: ConvertOptions | None = None) -> RetentionConvertResult:
+    """The reduction of `capred retention-convert FIT.json --to MODEL` (see :func:`convert_retention`)."""
+    opt = options or ConvertOptions()
+    src, where, inputs = load_retention_fit(source, opt.model, opt.branch)
+    new, misfit = convert_fit(src, opt.to, int(opt.points))
+    s = conversion_points(src, int(opt.points))
+    branch = src.extra.get("branch") or opt.branch or "drying"
+    warnings = list(opt.warnings) + [f"branch '{branch}', model {opt.to}: {w}" for w in new.warnings]
+    return RetentionConvertResult(
+        where,
+        src.quantity,
+        s,
+        src.water(s),
+        np.full(s.size, branch, dtype=object),
+        f"converted from the {src.model} fit",
+        {branch: {opt.to: new}},
+        opt,
+        list(new.notes),
+        inputs,
+        warnings,
+        None,
+        None,
+        src,
+        misfit,
+    )
+
+
+def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W) -> tuple[float, float, list[str], list[str]]:
+    """Brooks-Corey s_e [Pa] and λ [-] of Morvan et al.'s suction equilibrium, s = s_e S_r^(−1/λ), from a fits.json.
+
+    A Brooks-Corey fit is taken as it is; any other model is converted to Brooks-Corey on S_R with S_res = 0
+    and S_s = 1 (the form the relation takes), and the misfit is reported.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        fits.json written by `capred retention` (or `capred retention-convert`).
+    gamma_w : float
+        Unit weight of water [N/m^3].
+
+    Returns
+    -------
+    (float, float, list of str, list of str)
+        s_e [Pa], λ [-], notes, warnings.
+
+    References
+    ----------
+    Morvan, M., Wong, H., Branque, D. (2016), E-UNSAT 2016, E3S Web of Conferences, eq. 13 (s from Brooks-Corey);
+    Brooks, R. H., Corey, A. T. (1964). Hydraulic properties of porous media. Hydrology Paper 3, Colorado State
+    University.
+    """
+    src, where, _ = load_retention_fit(path)
+    if src.model == "bc":
+        p = src.params_si
+        notes = [
+            f"--retention {where}: Brooks-Corey fit taken as it is: s_e = {p['s_e'] * 1e-3:.4g} kPa, λ = {p['lam']:.4g}"
+        ]
+        warns = []
+        s_res = p["y_r"] / p["y_s"] if src.quantity == "theta" else p["y_r"]
+        if s_res > 0.01 or (src.quantity == "S_R" and abs(p["y_s"] - 1) > 0.01):
+            warns.append(
+                f"--retention {where}: the Brooks-Corey fit has S_res = {s_res:.3g}"
+                + (f", S_s = {p['y_s']:.3g}" if src.quantity == "S_R" else "")
+                + "; Morvan et al.'s s = s_e S_r^(-1/λ) takes S_r itself (S_res = 0, S_s = 1)"
+            )
+        return p["s_e"], p["lam"], notes, warns
+    sr = _as_saturation(src) if src.quantity == "theta" else src  # the curve in S_R: θ/θ_s for a θ fit
+    new, misfit = convert_fit(sr, "bc", fixed={"y_r": 0.0, "y_s": 1.0})
+    p = new.params_si
+    notes = [
+        f"--retention {where}: the {src.model} fit converted to Brooks-Corey with S_res = 0, S_s = 1 "
+        f"(Morvan et al.'s s = s_e S_r^(-1/λ)): s_e = {p['s_e'] * 1e-3:.4g} kPa, λ = {p['lam']:.4g}; misfit in S_R: "
+        f"RMSE {misfit['rmse']:.3g}, largest deviation {misfit['max_deviation']:.3g} at "
+        f"{misfit['at_suction_kPa']:.4g} kPa"
+    ]
+    return p["s_e"], p["lam"], notes, [f"--retention {where}: {w}" for w in new.warnings]
+
+
+class _SaturationView(RetentionFit):
+    """A θ fit seen as S_R = θ/θ_s (the source of a conversion on S_R)."""
+
+    def water(self, suction):
+        return RetentionFit.water(self, suction) / self.params_si["y_s"]
+
+
+def _as_saturation(fit: RetentionFit) -> RetentionFit:
+    view = _SaturationView(
+        **{f.name: getattr(fit, f.name) for f in dataclasses.fields(fit) if f.name != "params"},
+        params=dict(fit.params_si),
+    )
+    view.quantity = "S_R"
+    return view
+
+
+def converted_fit_json(doc: dict, to: str) -> dict | None:
+    """The fits.json entry of a file's best fit (main branch) converted to ``to``, for readers that need one model
+    (`shear --retention`: van Genuchten for Lu & Likos, Brooks-Corey's air entry for Khalili); None when the file
+    cannot be converted (no suction range: a file of an older capred), so that the reader goes on without it.
+
+    Parameters
+    ----------
+    doc : dict
+        A fits.json document.
+    to : str
+        Target model.
+
+    Returns
+    -------
+    dict or None
+        The converted fit's JSON (parameters by JSON name, ``params_si``, ``notes`` with the misfit).
+    """
+    try:
+        res = run_retention_convert(doc, ConvertOptions(to=to))
+    except (FitError, OptionError):
+        return None
+    return res.to_json()["fits"][to]
