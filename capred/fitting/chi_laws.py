@@ -52,6 +52,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..parameters import Parameter, Parameters, correlation_from_covariance, deprecated, fit_report
 from .linear import LineFit, t_quantile
 
 
@@ -59,10 +60,14 @@ from .linear import LineFit, t_quantile
 class FittedLaw:
     """A chi law fitted on the wet tests of one material.
 
+    ``law.params[NAME]`` gives each parameter as the JSON and console name it (``kappa``, ``s_b_kPa``,
+    ``eta``) with its standard error and 95 % interval in the user's unit (`capred.parameters.Parameter`);
+    ``law.summary()`` a plain-text report. The SI values stay in ``values``.
+
     Attributes
     ----------
-    params : {name: value}
-        The law's parameters, SI (``kappa`` [-]; ``s_b`` [Pa]; ``eta`` [-]).
+    values : {name: value}
+        The law's parameters, SI (``kappa`` [-]; ``s_b`` [Pa]; ``eta`` [-]); what the models compute with.
     se : {name: value or None}
         Standard errors with the dry fit's uncertainty propagated (when the dry fit was given; else with
         c, tan phi taken as exact) [units of the parameter]; None for a fixed or unidentified parameter.
@@ -91,7 +96,7 @@ class FittedLaw:
         s^2 behind ``se`` [Pa^2]: pooled over dry and wet tests when the dry fit was given.
     """
 
-    params: dict[str, float]  # SI (s_b in Pa)
+    values: dict[str, float]  # SI (s_b in Pa)
     se: dict[str, float | None]
     rss: float  # Pa^2
     n: int
@@ -104,6 +109,86 @@ class FittedLaw:
     covariance: np.ndarray | None = None
     names: tuple[str, ...] = ()
     residual_variance: float | None = None
+    identifiability: list[str] = field(default_factory=list)
+
+    @property
+    def params(self):
+        """The parameters by JSON name in the user's units (``kappa`` [-], ``s_b_kPa`` [kPa], ``eta`` [-]).
+
+        Returns
+        -------
+        capred.parameters.Parameters
+            Each with ``value``, ``stderr``, ``ci95``, ``unit``; ``fixed`` for a parameter held (eta unless
+            fitted). Before this release ``params`` was the dict of SI values (``params["s_b"]`` in Pa): that
+            spelling still answers the old value for one release, with a DeprecationWarning naming ``values``.
+        """
+        items = []
+        for name, v in self.values.items():
+            json_name, factor, unit, desc = LAW_PARAMETERS.get(name, (name, 1.0, "-", name))
+            se = self.se.get(name)
+            ci = self.ci95.get(name)
+            items.append(
+                Parameter(
+                    json_name,
+                    float(v) * factor,
+                    np.nan if se is None else se * factor,
+                    (np.nan, np.nan) if ci is None else (ci[0] * factor, ci[1] * factor),
+                    unit,
+                    desc,
+                    name in self.fixed,
+                )
+            )
+        corr = {}
+        if self.covariance is not None and self.names:
+            json_names = [LAW_PARAMETERS.get(k, (k,))[0] for k in self.names]
+            json_names = ["c_kPa" if k == "c" else k for k in json_names]
+            corr = correlation_from_covariance(json_names, self.covariance)
+        return _LawParameters(tuple(items), corr, dict(self.values))
+
+    def summary(self, title: str = "fitted chi law") -> str:
+        """A plain-text report (lmfit's ``fit_report`` in spirit): parameters, SE, 95 % CI, correlations, warnings.
+
+        Parameters
+        ----------
+        title : str
+            First line, e.g. ``"chi_power of material 'sand'"``.
+
+        Returns
+        -------
+        str
+        """
+        ic = information_criteria(self.rss, self.n, len(self.values) - len(self.fixed))
+        stats = {"n (wet)": self.n, "dof": self.dof, "RSS [kPa²]": self.rss / 1e6, "AICc": ic["aicc"]}
+        warn = [f"{k} lies at its bound" for k in self.at_bound] + list(self.identifiability)
+        if ic["aicc"] is None:
+            warn.append(
+                f"AICc undefined: n - k - 1 = {self.n - (len(self.values) - len(self.fixed) + 1) - 1} <= 0 "
+                "(too few wet tests for the parameters and the error variance)"
+            )
+        return fit_report(title, self.params, stats, warn)
+
+
+#: SI name of a law parameter -> (JSON name, factor SI -> user unit, unit, description)
+LAW_PARAMETERS = {
+    "kappa": ("kappa", 1.0, "-", "exponent κ of χ = S_e^κ"),
+    "s_b": ("s_b_kPa", 1e-3, "kPa", "air-entry suction s_b of χ = (s/s_b)^−η"),
+    "eta": ("eta", 1.0, "-", "exponent η of χ = (s/s_b)^−η"),
+    "tan_phi": ("tan_phi", 1.0, "-", "dry friction coefficient"),
+}
+
+
+class _LawParameters(Parameters):
+    """Parameters of a law; an old SI key (``"s_b"``) answers its old SI value with a DeprecationWarning."""
+
+    def __init__(self, items, correlation, si):
+        super().__init__(items, correlation)
+        object.__setattr__(self, "_si", si)
+
+    def __getitem__(self, name):
+        if name in self._si and name not in {p.name for p in self.items_}:
+            new = LAW_PARAMETERS.get(name, (name,))[0]
+            return deprecated(f"law.params[{name!r}] (SI)", f"law.params[{new!r}].value or law.values", self._si[name])
+        return super().__getitem__(name)
 
 
 def information_criteria(rss: float, n: int, p: int) -> dict[str, float | None]:
@@ -301,8 +386,8 @@ def law_uncertainty(
 def _with_uncertainty(law: FittedLaw, names, values, jac_law, jac_env, resid, dry, log_scale=()) -> FittedLaw:
     u = law_uncertainty(names, values, jac_law, jac_env, resid, dry, log_scale)
     law.se.update(u["se"])
-    law.se_conditional = {**{k: None for k in law.params}, **u["se_conditional"]}
-    law.ci95 = {**{k: None for k in law.params}, **u["ci"]}
+    law.se_conditional = {**{k: None for k in law.values}, **u["se_conditional"]}
+    law.ci95 = {**{k: None for k in law.values}, **u["ci"]}
     law.dof = u["dof"]
     law.covariance = u["covariance"]
     law.names = ("c", "tan_phi", *names)

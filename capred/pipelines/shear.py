@@ -23,6 +23,7 @@ from ..physics import shear as ph
 from ..progress import steps, task
 from ..references import cite
 from ..result import InputFile, Options, Result, Rows, Spool, input_file, json_list, num
+from .shear_fits import envelope_fits, line_of
 from .shear_records import BackAnalysis, ModelPrediction, Sampled
 
 SCHEMA = [
@@ -179,7 +180,11 @@ class ShearOptions(Options):
     seed: int = 0  # of the bootstrap: the same seed gives the same probabilities
 
     def __post_init__(self) -> None:
-        super().__post_init__()
+        given = {name: getattr(self, name) for name in self.QUANTITIES}
+        try:
+            super().__post_init__()
+        except OptionError as exc:  # quote the value as the API caller gave it, beside its reading in SI
+            raise OptionError(_as_given(self, exc, given)) from None
         if self.area_correction not in ("none", "square", "circular"):
             raise OptionError(
                 f"area_correction (--area-correction) must be none, square or circular (got '{self.area_correction}')"
@@ -205,6 +210,28 @@ class ShearOptions(Options):
         return super().warnings + self.model_params.warnings
 
 
+def _as_given(options: Options, exc: Exception, given: dict) -> str:
+    """The message of ``exc`` (a range problem of an option) with the value quoted as the caller typed it.
+
+    A plain number is read in SI (``box_area=-3`` is -3 m^2, shown as -30000 cm^2 by the glossary's range
+    check): the message says so and how to give a unit.
+    """
+    from ..units import SI_UNIT
+
+    text = str(exc)
+    for name, value in given.items():
+        if value is None or not text.startswith(options.option_name(name)):
+            continue
+        q = nom.QUANTITIES[options.QUANTITIES[name]]
+        si = SI_UNIT[q.kind].replace("**", "^")
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            return (
+                f"{text}; you gave {name}={value!r}, a plain number read in {si} (give a unit: {name}='... {q.unit}')"
+            )
+        return f"{text}; you gave {name}={value!r}"
+    return text
+
+
 @dataclass
 class ModelMetrics:
     n: int
@@ -222,7 +249,7 @@ class ShearResult(Result):
     source: str
     options: ShearOptions
     tests: dict[str, np.ndarray]
-    fits: dict[str, LineFit]
+    fits: dict  # material -> EnvelopeFit (fit.params["c_kPa"], fit.summary(); the SI LineFit is fit.line)
     metrics: dict[str, dict[str, ModelMetrics]]
     metrics_overall: dict[str, ModelMetrics]
     best_model: dict[str, str | None]
@@ -267,6 +294,7 @@ class ShearResult(Result):
             cached = self.__dict__["_tables"] = {
                 "results": pd.DataFrame(self._results_columns(), copy=False),
                 "summary": _flat_summary(self),
+                "metrics": _flat_metrics(self),
             }
         return cached
 
@@ -277,6 +305,7 @@ class ShearResult(Result):
             cached = self.__dict__["_csv_tables"] = {
                 "results": self._results_columns(),
                 "summary": _flat_summary(self, frame=False),
+                "metrics": _flat_metrics(self, frame=False),
             }
         return cached
 
@@ -458,7 +487,7 @@ class ShearResult(Result):
                 r = self.predictions[m].tau[sel] - t["tau_max"][sel]  # the residual column, also in a long run
                 r = r[np.isfinite(r)]
                 law = self.laws.get(m, {}).get(mat)
-                p = len(law.params) - len(law.fixed) if law is not None else 0
+                p = len(law.values) - len(law.fixed) if law is not None else 0
                 p += esm.REGISTRY[m].wet_parameters  # e.g. Fredlund's tan(phi_b), fitted on the wet tests
                 ic = information_criteria(float(r @ r), int(r.size), p)
                 rows[m] = {
@@ -539,12 +568,12 @@ def _law_dict(model: str, law) -> dict:
     from ..fitting.chi_laws import information_criteria
 
     scale = {"s_b": ("s_b_kPa", 1e-3)}
-    params = {scale.get(k, (k, 1.0))[0]: num(v * scale.get(k, (k, 1.0))[1]) for k, v in law.params.items()}
+    params = {scale.get(k, (k, 1.0))[0]: num(v * scale.get(k, (k, 1.0))[1]) for k, v in law.values.items()}
     se = {
         scale.get(k, (k, 1.0))[0]: (None if v is None else num(v * scale.get(k, (k, 1.0))[1]))
         for k, v in law.se.items()
     }
-    ic = information_criteria(law.rss, law.n, len(law.params) - len(law.fixed))
+    ic = information_criteria(law.rss, law.n, len(law.values) - len(law.fixed))
     ci = {
         scale.get(k, (k, 1.0))[0]: (
             None if v is None else [num(v[0] * scale.get(k, (k, 1.0))[1]), num(v[1] * scale.get(k, (k, 1.0))[1])]
@@ -580,7 +609,8 @@ def _ranking_dict(r) -> dict:
     }
 
 
-def _fit_dict(fit: LineFit) -> dict:
+def _fit_dict(fit) -> dict:
+    fit = line_of(fit)
     slope = np.float64(fit.slope)  # numpy arithmetic: an absurd input overflows to inf (null in JSON), no exception
     phi = np.degrees(np.arctan(slope))
     # delta method: d(phi)/d(tan phi) = 1 / (1 + tan^2 phi)
@@ -878,7 +908,7 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         source=table.path,
         options=opt,
         tests=tests,
-        fits=fits,
+        fits=envelope_fits(fits, table.path),
         metrics=metrics,
         metrics_overall=overall,
         best_model={m: best_of(v) for m, v in metrics.items()},
@@ -1097,7 +1127,7 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks
         md = _model_inputs(tests, wet, mat, fits, opt, saturated_fits)
         laws = sa.fit_laws(md, opt.models, list(fits), opt.model_params, fits=fits)
         md = dataclasses.replace(
-            md, fitted={model: {m: law.params for m, law in by_mat.items()} for model, by_mat in laws.items()}
+            md, fitted={model: {m: law.values for m, law in by_mat.items()} for model, by_mat in laws.items()}
         )
         per_material = _material_values(md, wet, mat, fits, opt)
 
@@ -1137,7 +1167,7 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks
             source=path,
             options=opt,
             tests=tests,
-            fits=fits,
+            fits=envelope_fits(fits, path),
             metrics=scored["metrics"],
             metrics_overall=scored["overall"],
             best_model={m: best_of(v) for m, v in scored["metrics"].items()},
@@ -1396,6 +1426,7 @@ class ShearBlocks(ShearResult):
             cached = self.__dict__["_csv_tables"] = {
                 "results": _ResultsBlocks(self),
                 "summary": _flat_summary(self, frame=False),
+                "metrics": _flat_metrics(self, frame=False),
             }
         return cached
 
@@ -1408,6 +1439,7 @@ class ShearBlocks(ShearResult):
             cached = self.__dict__["_tables"] = {
                 "results": pd.DataFrame(self._columns(0, self.row_count()), copy=False),
                 "summary": _flat_summary(self),
+                "metrics": _flat_metrics(self),
             }
         return cached
 
@@ -1463,7 +1495,7 @@ def _warnings(wet, pend, mat, fits, laws, predictions, opt) -> list[str]:
         for m, law in by_mat.items():
             for name in law.at_bound:
                 out.append(
-                    f"material '{m}': fitted {model} parameter '{name}' = {law.params[name]:.6g} lies at its bound"
+                    f"material '{m}': fitted {model} parameter '{name}' = {law.values[name]:.6g} lies at its bound"
                 )
     for model in opt.models:
         flag = esm.REGISTRY[model].no_prediction
@@ -1557,7 +1589,7 @@ def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions,
     d = _model_inputs(tests, wet, mat, fits, opt, saturated_fits)
     laws = sa.fit_laws(d, opt.models, list(fits), opt.model_params, fits=fits)
     d = dataclasses.replace(
-        d, fitted={model: {m: law.params for m, law in by_mat.items()} for model, by_mat in laws.items()}
+        d, fitted={model: {m: law.values for m, law in by_mat.items()} for model, by_mat in laws.items()}
     )
     predictions, back = _predictions(tests, wet, d, fits, laws, opt)
     return predictions, back, _material_values(d, wet, mat, fits, opt), laws, d
@@ -1652,17 +1684,58 @@ def _material_values(d, wet, mat, fits: dict[str, LineFit], opt: ShearOptions) -
 
 
 def _flat_summary(result: ShearResult, frame: bool = True):
-    """Summary CSV: one row per material and model (dry fit rows carry c and phi); a DataFrame, or with
-    ``frame=False`` plain columns that write the same CSV without pandas."""
+    """summary.csv: one row per material, its dry envelope (``name [unit]`` headers); a DataFrame, or with
+    ``frame=False`` plain columns that write the same CSV without pandas. The models' scores are metrics.csv
+    (`_flat_metrics`): one kind of record per table."""
     rows = []
-    for r in result.summary_rows():
-        r = dict(r)
-        for key in ("c_ci95_kPa", "phi_ci95_deg"):
-            if key in r:
-                lo, hi = r.pop(key)
-                r[key.replace("ci95", "ci95_low")] = lo
-                r[key.replace("ci95", "ci95_high")] = hi
-        rows.append(r)
+    for mat, fit in result.fits.items():
+        f = _fit_dict(fit)
+        line = line_of(fit)
+        rows.append(
+            {
+                "material": mat,
+                "n_dry [-]": f["n"],
+                "c [kPa]": f["c_kPa"],
+                "c_se [kPa]": f["c_se_kPa"],
+                "c_ci95_low [kPa]": f["c_ci95_kPa"][0],
+                "c_ci95_high [kPa]": f["c_ci95_kPa"][1],
+                "phi [deg]": f["phi_deg"],
+                "phi_se [deg]": f["phi_se_deg"],
+                "phi_ci95_low [deg]": f["phi_ci95_deg"][0],
+                "phi_ci95_high [deg]": f["phi_ci95_deg"][1],
+                "tan_phi [-]": f["tan_phi"],
+                "tan_phi_se [-]": f["tan_phi_se"],
+                "r2 [-]": f["r2"],
+                "dry_fit": "origin" if line.through_origin else "free",
+                "errors": getattr(line, "errors", "constant"),
+                "dry_loss": getattr(line, "loss", "ols"),
+            }
+        )
+    return _rows_table(rows, frame)
+
+
+def _flat_metrics(result: ShearResult, frame: bool = True):
+    """metrics.csv: one row per material (and "(all)") and model: n, RMSE, bias, R² and the best flag."""
+    rows = []
+    for mat, by_model in list(result.metrics.items()) + [("(all)", result.metrics_overall)]:
+        best = result.best_model_overall if mat == "(all)" else result.best_model.get(mat)
+        for m, met in by_model.items():
+            d = _metric_dict(met)
+            rows.append(
+                {
+                    "material": mat,
+                    "model": m,
+                    "n [-]": d["n"],
+                    "rmse [kPa]": d["rmse_kPa"],
+                    "bias [kPa]": d["bias_kPa"],
+                    "r2 [-]": d["r2"],
+                    "best": m == best,
+                }
+            )
+    return _rows_table(rows, frame)
+
+
+def _rows_table(rows: list[dict], frame: bool):
     if not frame:
         from ..result import columns_of_rows
 

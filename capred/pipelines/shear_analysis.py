@@ -343,11 +343,11 @@ def tau_bands(
         w = d.subset(sel)
         g = [gc[sel], gb[sel]]
         for name in law.names[2:]:
-            v = law.params[name]
+            v = law.values[name]
             h = 1e-6 * max(abs(v), 1e-12)
             parts = []
             for sign in (1.0, -1.0):
-                fitted = {**w.fitted, model: {**w.fitted.get(model, {}), mat: {**law.params, name: v + sign * h}}}
+                fitted = {**w.fitted, model: {**w.fitted.get(model, {}), mat: {**law.values, name: v + sign * h}}}
                 parts.append(_tau(model, w, fitted=fitted))
             g.append((parts[0] - parts[1]) / (2 * h))
         G = np.column_stack(g)
@@ -954,7 +954,7 @@ def model_curves(result, material, relation: RetentionRelation, sigma_N: float, 
     s_pos = t["suction"][sel][t["suction"][sel] > 0]
     s = np.geomspace(s_pos.min() / 3, s_pos.max() * 3, points)
     S = np.clip(relation.S_R(s), 0.0, 1.0)
-    fit = result.fits[material]
+    fit = result.fits[material].line
     n = s.size
     d = esm.ModelInputs(
         np.full(n, sigma_N),
