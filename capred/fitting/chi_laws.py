@@ -343,6 +343,16 @@ def law_uncertainty(
         dof = n - p
         s2 = rss_wet / dof if dof > 0 else np.nan
         cov = s2 * A
+    elif getattr(dry, "errors", "constant") != "constant" or getattr(dry, "loss", "ols") != "ols":
+        # a weighted or robust dry fit: its own covariance V (not s^2 M) and the wet tests' variance,
+        # V_theta = s_wet^2 A + G V G^T (Murphy & Topel 1985, Theorem 1, with the first step's covariance as given)
+        je = np.asarray(jac_envelope, float).reshape(n, 2)
+        dof = n - p
+        s2 = rss_wet / dof if dof > 0 else np.nan
+        V = np.asarray(dry.covariance, float)
+        G = -A @ jt.T @ je
+        cov = s2 * A + G @ V @ G.T
+        joint = np.block([[V, V @ G.T], [G @ V, cov]])
     else:
         je = np.asarray(jac_envelope, float).reshape(n, 2)
         free = [1] if dry.through_origin else [0, 1]

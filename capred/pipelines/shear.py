@@ -16,7 +16,7 @@ import numpy as np
 
 from .. import nomenclature as nom
 from ..errors import FitError, OptionError
-from ..fitting.linear import LineFit, fit_line, fit_line_origin
+from ..fitting.linear import ERROR_MODELS, LOSSES, LineFit, breusch_pagan, fit_envelope, fit_line
 from ..io.table import Column, Table, read_table
 from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
@@ -176,6 +176,10 @@ class ShearOptions(Options):
     curves: object = None  # raw direct-shear curves (path or DataFrame): peaks give tau_max
     area_correction: str = "none"  # of the curves: none (nominal area, ASTM D3080), square or circular
     dry_fit: str = "free"  # "free" (c and phi) or "origin" (c = 0, cohesionless soil)
+    #: error model of the dry envelope: constant, proportional (sd proportional to the strength) or auto
+    #: (proportional when the Breusch-Pagan test of the least-squares residuals against sigma_N has p < 0.05)
+    errors: str = "auto"
+    dry_loss: str = "ols"  # loss of the dry fit: ols, huber or tukey (robust, sandwich standard errors)
     bootstrap: int = 2000  # replicates of the ranking bootstrap (0: none)
     seed: int = 0  # of the bootstrap: the same seed gives the same probabilities
 
@@ -191,6 +195,10 @@ class ShearOptions(Options):
             )
         if self.dry_fit not in ("free", "origin"):
             raise OptionError(f"dry_fit (--dry-fit) must be 'free' or 'origin' (got '{self.dry_fit}')")
+        if self.errors not in ERROR_MODELS:
+            raise OptionError(f"errors (--errors) must be {', '.join(ERROR_MODELS)} (got {self.errors!r})")
+        if self.dry_loss not in LOSSES:
+            raise OptionError(f"dry_loss (--dry-loss) must be {', '.join(LOSSES)} (got {self.dry_loss!r})")
         if isinstance(self.bootstrap, bool) or not isinstance(self.bootstrap, int) or self.bootstrap < 0:
             raise OptionError(f"bootstrap (--bootstrap) must be a whole number >= 0 (got {self.bootstrap!r})")
         if isinstance(self.seed, bool) or not isinstance(self.seed, int) or self.seed < 0:
@@ -267,6 +275,8 @@ class ShearResult(Result):
     predictions: dict = field(default_factory=dict)  # model -> ModelPrediction (every test)
     saturated_fits: dict = field(default_factory=dict)  # material -> LineFit of its saturated tests
     back: object = None  # BackAnalysis of the wet tests
+    #: material -> Breusch-Pagan tests of the dry fit and of each model's wet residuals, and the error model used
+    heteroscedasticity: dict = field(default_factory=dict)
 
     @property
     def level(self) -> str:
@@ -336,7 +346,32 @@ class ShearResult(Result):
         """The models of the run, one sentence each, and their references."""
         entries = [esm.REGISTRY[m] for m in self.models]
         text = "Models compared: " + " ".join(e.method for e in entries if e.method)
-        return [text], [e.reference for e in entries]
+        return [text, self._dry_method()], [e.reference for e in entries]
+
+    def _dry_method(self) -> str:
+        """The methods sentence of the dry envelope: error model (what auto chose), loss, outlier test."""
+        o = self.options
+        used = {m: line_of(f).errors for m, f in self.fits.items()}
+        chosen = ", ".join(f"{m}: {e}" for m, e in used.items())
+        errors = {
+            "constant": "the same scatter for every test",
+            "proportional": "a scatter proportional to the strength (weighted least squares with the variance "
+            "function s²(τ/τ_ref)², iterated; prediction and σ_cap intervals widen with the strength)",
+            "auto": "the error model chosen per material by a Breusch-Pagan test (Koenker's form) of the "
+            "least-squares residuals against σ_N: proportional when p < 0.05, else constant "
+            f"({chosen})",
+        }[o.errors]
+        loss = {
+            "ols": "least squares",
+            "huber": "Huber's loss (k = 1.345 s, MAD scale) with sandwich standard errors",
+            "tukey": "Tukey's biweight (c = 4.685 s, MAD scale) with sandwich standard errors",
+        }[o.dry_loss]
+        origin = "through the origin (c = 0)" if o.dry_fit == "origin" else "with c and φ free"
+        return (
+            f"Dry envelope τ = c + σ_N tan φ fitted per material {origin} by {loss}, assuming {errors}. "
+            "A dry test is flagged as an outlier when its externally studentized residual exceeds the Bonferroni "
+            "5 % limit t(1 − 0.025/n, n − p − 1)."
+        )
 
     def retention_relation(self, material: str):
         """The S_R(s) relation along which model curves are drawn (None: markers per test only)."""
@@ -459,6 +494,12 @@ class ShearResult(Result):
             ("outside_pendular", wet & (S > self.options.pendular_limit)),
             ("chi1_gt_1", wet & (S > ph.CHI1_UNITY_SR)),
         ]
+        outlier = np.zeros(S.shape, bool)
+        for fit in self.fits.values():
+            diag = line_of(fit).diagnostics or {}
+            if "rows" in diag:
+                outlier[diag["rows"][np.asarray(diag["outlier"], bool)]] = True
+        parts.append(("dry_outlier", outlier))
         for model in self.models:
             flag = esm.REGISTRY[model].no_prediction
             if flag is not None:
@@ -552,7 +593,10 @@ class ShearResult(Result):
                 if any(mat in v for v in self.laws.values())
             },
             "model_selection": self.model_selection(),
+            "heteroscedasticity": _json_ready(self.heteroscedasticity),
             "dry_fit": self.options.dry_fit,
+            "errors": self.options.errors,
+            "dry_loss": self.options.dry_loss,
             "constants": {
                 "gamma_w_kN_per_m3": self.options.gamma_w / 1e3,
                 "surface_tension_N_per_m": self.options.surface_tension,
@@ -629,7 +673,38 @@ def _fit_dict(fit) -> dict:
         "phi_ci95_deg": [num(np.degrees(np.arctan(lo))), num(np.degrees(np.arctan(hi)))],
         "r2": num(fit.r2),
         "n": fit.n,
+        "errors": fit.errors,
+        "dry_loss": fit.loss,
+        "scatter_kPa": num(np.sqrt(fit.residual_variance) / 1e3) if fit.dof > 0 else None,
+        "outliers": _outliers(fit),
     }
+
+
+def _outliers(fit: LineFit) -> list[dict]:
+    """The dry tests flagged as outliers: file line, externally studentized residual, Cook's distance."""
+    diag = fit.diagnostics or {}
+    out = []
+    for k in np.flatnonzero(np.asarray(diag.get("outlier", []), bool)):
+        out.append(
+            {
+                "line": int(diag["lines"][k]) if "lines" in diag else None,
+                "studentized_residual": num(diag["studentized"][k]),
+                "cooks_distance": num(diag["cooks"][k]),
+                "threshold": num(diag["threshold"]),
+            }
+        )
+    return out
+
+
+def _json_ready(v):
+    """Plain JSON values of a nested dict of test results (numpy scalars as numbers, NaN as None)."""
+    if isinstance(v, dict):
+        return {str(k): _json_ready(x) for k, x in v.items()}
+    if isinstance(v, (bool, np.bool_)):
+        return bool(v)
+    if isinstance(v, (int, float, np.integer, np.floating)):
+        return num(v)
+    return v
 
 
 def _metric_dict(m: ModelMetrics) -> dict:
@@ -925,6 +1000,7 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         predictions=predictions,
         back=back,
         saturated_fits=saturated_fits,
+        heteroscedasticity=scored["heteroscedasticity"],
     )
     if opt.bootstrap > 0:
         result.ranking = _bootstrap(result, wet, mat, cond, opt)
@@ -1184,6 +1260,7 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks
             predictions=predictions,
             back=back,
             saturated_fits=saturated_fits,
+            heteroscedasticity=scored["heteroscedasticity"],
             spool_in=spool_in,
             spool_out=spool_out,
             starts=starts,
@@ -1257,6 +1334,7 @@ def _scores(d: dict, wet, mat, fits, laws, predictions, opt: ShearOptions) -> di
     metrics, metrics_pend = scores(wet), scores(pend)
     for m in fits:
         metrics.setdefault(m, {})
+    hetero = _heteroscedasticity(d, wet, of_material, fits, predictions, opt)
     overall = (
         {mod: model_metrics(predictions[mod].tau[wet], d["tau_max"][wet]) for mod in opt.models} if wet.any() else {}
     )
@@ -1268,8 +1346,67 @@ def _scores(d: dict, wet, mat, fits, laws, predictions, opt: ShearOptions) -> di
         "pendular": metrics_pend,
         "overall": overall,
         "overall_pendular": overall_pend,
-        "warnings": _warnings(wet, pend, mat, fits, laws, predictions, opt),
+        "warnings": _warnings(wet, pend, mat, fits, laws, predictions, opt) + _scatter_warnings(fits, hetero),
+        "heteroscedasticity": hetero,
     }
+
+
+def _heteroscedasticity(d: dict, wet, of_material: dict, fits, predictions, opt: ShearOptions) -> dict:
+    """Per material: the Breusch-Pagan test of the dry fit's least-squares residuals and of each model's wet
+    residuals against sigma_N (capred.fitting.linear.breusch_pagan), and the error model used."""
+    out = {}
+    for m, fit in fits.items():
+        rows = np.flatnonzero(of_material[m] & wet)
+        models = {}
+        for mod in opt.models:
+            r = predictions[mod].tau[rows] - d["tau_max"][rows]
+            ok = np.isfinite(r)
+            scale = float(np.max(np.abs(d["tau_max"][rows]), initial=0.0))
+            models[mod] = breusch_pagan(d["sigma_N"][rows][ok], r[ok], scale)
+        out[m] = {
+            "dry_fit": fit.heteroscedasticity,
+            "errors": fit.errors,
+            "errors_option": opt.errors,
+            "models": models,
+        }
+    return out
+
+
+def _scatter_warnings(fits, hetero: dict) -> list[str]:
+    """Scatter growing with stress (dry fit, models) and outlying dry tests, one line each."""
+    out = []
+    for m, fit in fits.items():
+        bp = fit.heteroscedasticity or {}
+        if bp.get("significant"):
+            used = (
+                "the intervals use proportional errors (weighted least squares)"
+                if fit.errors == "proportional"
+                else "the intervals assume a constant scatter (--errors constant): use --errors proportional"
+            )
+            out.append(
+                f"material '{m}': the scatter of the dry tests grows with sigma_N (Breusch-Pagan "
+                f"LM = {bp['statistic']:.3g}, p = {bp['p_value']:.3g}); {used}"
+            )
+        grows = [mod for mod, t in hetero.get(m, {}).get("models", {}).items() if t.get("significant")]
+        if grows:
+            out.append(
+                f"material '{m}': the wet residuals of {', '.join(grows)} grow with sigma_N (Breusch-Pagan p < 0.05): "
+                "scatter growing with stress, or a model that misses a trend"
+            )
+        diag = fit.diagnostics or {}
+        for k in np.flatnonzero(diag.get("outlier", [])):
+            line = int(diag["lines"][k]) if "lines" in diag else None
+            where = f"the dry test on line {line}" if line is not None else f"dry test {k + 1}"
+            cure = (
+                f"--dry-loss {fit.loss} bounds its weight"
+                if fit.loss != "ols"
+                else "it drives the envelope and its intervals: check it, or fit with --dry-loss huber"
+            )
+            out.append(
+                f"material '{m}': {where} is an outlier of the dry envelope (externally studentized residual "
+                f"{diag['studentized'][k]:.3g}, beyond ±{diag['threshold']:.3g}, the Bonferroni 5 % limit); {cure}"
+            )
+    return out
 
 
 class _LongTests(dict):
@@ -1540,7 +1677,6 @@ def _dry_fits(table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[s
     """Per material, the dry envelope tau = c + sigma_N tan(phi) (through the origin with ``dry_fit='origin'``);
     a material without dry tests, or whose fit is impossible, is a problem of its first row in ``table``."""
     fits: dict[str, LineFit] = {}
-    fit = fit_line_origin if opt.dry_fit == "origin" else fit_line
     for m in materials:
         of_m = mat == m
         dry = of_m & (cond == "dry")
@@ -1551,9 +1687,14 @@ def _dry_fits(table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[s
             )
             continue
         try:
-            fits[m] = fit(d["sigma_N"][dry], d["tau_max"][dry], opt.confidence)
+            fits[m] = fit_envelope(
+                d["sigma_N"][dry], d["tau_max"][dry], opt.confidence, opt.dry_fit == "origin", opt.errors, opt.dry_loss
+            )
         except FitError as exc:
             table.add_problem(first, "condition", f"material '{m}': dry fit impossible: {exc}")
+            continue
+        rows = np.flatnonzero(dry)  # where each dry point lies in the table (flags, warnings)
+        fits[m].diagnostics.update(rows=rows, lines=np.asarray(table.lines)[rows])
     return fits
 
 
@@ -1650,10 +1791,14 @@ def _predictions(tests: dict, wet, d, fits: dict[str, LineFit], laws: dict, opt:
     cov, s2, t = sa.fit_covariances(fits, d.material)
     dof = sa.fit_dof(fits, d.material)
     predictions = {}
+
+    def scatter(level):  # the variance of one test of expected strength ``level`` (grows with it: --errors)
+        return _scatter_variance(fits, d.material, level)
+
     for model in opt.models:
         eff, tau = esm.predict(model, d)
         # mean band: the dry envelope's (and a fitted law's) uncertainty; prediction interval: plus one test's scatter
-        b = sa.tau_bands(model, d, cov, s2, dof, laws, opt.confidence)
+        b = sa.tau_bands(model, d, cov, s2, dof, laws, opt.confidence, scatter=scatter)
         predictions[model] = ModelPrediction(
             model,
             sigma_eff=eff,
@@ -1663,10 +1808,21 @@ def _predictions(tests: dict, wet, d, fits: dict[str, LineFit], laws: dict, opt:
             tau_prediction_interval=(b.pred_low, b.pred_high),
             sigma_cap=np.where(wet, (tau - c) / tan_phi - tests["sigma_N"], np.nan),
         )
+    s2_test = scatter(tests["tau_max"])  # the wet test's own scatter, at its measured strength
     back = sa.back_analysis_intervals(
-        tests["tau_max"], tests["sigma_N"], tests["suction"], c, tan_phi, cov, s2, dof, opt.confidence, wet=wet
+        tests["tau_max"], tests["sigma_N"], tests["suction"], c, tan_phi, cov, s2_test, dof, opt.confidence, wet=wet
     )
     return predictions, back
+
+
+def _scatter_variance(fits: dict[str, LineFit], material, level) -> np.ndarray:
+    """Per test: s^2 v(level) of its material's dry fit (`LineFit.scatter_variance`) [Pa^2]."""
+    level = np.asarray(level, dtype=float)
+    out = np.full(level.shape, np.nan)
+    for m, f in fits.items():
+        sel = material == m
+        out[sel] = f.scatter_variance(level[sel])
+    return out
 
 
 def _material_values(d, wet, mat, fits: dict[str, LineFit], opt: ShearOptions) -> dict[str, dict]:
