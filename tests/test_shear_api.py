@@ -85,3 +85,40 @@ def test_summary_and_metrics_tables_hold_one_kind_of_record(run, tmp_path):
     write_run(run, tmp_path / "out", xlsx=False)
     assert (tmp_path / "out" / "metrics.csv").exists()
     json.loads((tmp_path / "out" / "summary.json").read_text(encoding="utf-8"))
+
+
+def test_models_all_runs_what_the_inputs_allow_and_names_the_rest():
+    opts = capred.ShearOptions(models="all", bootstrap=0)
+    # the registry's requirements: vanapalli needs --s-res, khalili --air-entry, lu_likos --vg-alpha and --vg-n
+    assert opts.skipped_models == {
+        "vanapalli": "--s-res",
+        "khalili": "--air-entry",
+        "lu_likos": "--vg-alpha and --vg-n",
+    }
+    assert "vanapalli" not in opts.models and "bishop" in opts.models and "chi_power" in opts.models
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = capred.run_shear(capred.sample_path("shear"), opts)
+    notes = r.to_json()["notes"]
+    assert any("'vanapalli' skipped" in n and "--s-res" in n for n in notes)
+    # given what it needs, the model runs and is no longer skipped
+    full = capred.ShearOptions(models="all", bootstrap=0, model_params=capred.ModelParams(s_res=0.05))
+    assert "vanapalli" in full.models and "vanapalli" not in full.skipped_models
+    # a named model without its inputs still stops with the reason (the user asked for it by name)
+    with pytest.raises(OptionError, match="--s-res"):
+        capred.ShearOptions(models="bishop,vanapalli")
+
+
+def test_cli_models_all(tmp_path):
+    from typer.testing import CliRunner
+
+    from capred.cli import app
+
+    res = CliRunner().invoke(
+        app,
+        ["shear", "--sample", "--models", "thesis,all", "--bootstrap", "0", "--no-plots", "--out", str(tmp_path / "o")],
+    )
+    assert res.exit_code == 0, res.output
+    assert "'khalili' skipped" in res.output
+    js = json.loads((tmp_path / "o" / "summary.json").read_text(encoding="utf-8"))
+    assert "khalili" not in js["models"] and "bishop" in js["models"]

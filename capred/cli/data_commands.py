@@ -282,12 +282,13 @@ def _curves_source(path: Path | None, thousands):
 
 def _model_list(text: str) -> tuple[str, ...]:
     from ..errors import OptionError
-    from ..physics.effective_stress_models import resolve_models
+    from ..physics.effective_stress_models import asks_for_all, resolve_models
 
     try:
-        return resolve_models(text)
+        resolved = resolve_models(text)
     except ValueError as exc:
         raise OptionError(f"--models: {exc}") from None
+    return text if asks_for_all(text) else resolved  # 'all' reaches ShearOptions, which skips what it cannot run
 
 
 def _envelope_pair(text: str | None):

@@ -473,8 +473,20 @@ def _pedrotti_tarantino_wet_area(d: ModelInputs) -> np.ndarray:
     return pedrotti_tarantino_wet_area_strength(d.sigma_N, d.suction, d.S_R, c_w, tan_w, d.c, d.tan_phi)
 
 
-def _thesis(model: str) -> Callable[[ModelInputs], np.ndarray]:
-    return lambda d: ph.effective_normal_stress(model, d.sigma_N, d.suction, d.S_R, d.R, d.surface_tension)
+def _no_suction(d: ModelInputs) -> np.ndarray:
+    return d.sigma_N + 0.0 * d.suction
+
+
+def _bishop(d: ModelInputs) -> np.ndarray:
+    return d.sigma_N + np.asarray(d.S_R, dtype=float) * d.suction
+
+
+def _own1(d: ModelInputs) -> np.ndarray:
+    return d.sigma_N + ph.chi1(d.S_R) * d.suction
+
+
+def _own2(d: ModelInputs) -> np.ndarray:
+    return d.sigma_N + ph.chi1(d.S_R) * d.suction + ph.chi2(d.S_R, d.R, d.surface_tension)
 
 
 REGISTRY: dict[str, EffectiveStressModel] = {
@@ -485,7 +497,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {
             "No suction",
             (),
             "evenepoel",
-            _thesis("no_suction"),
+            _no_suction,
             thesis=True,
             style={"color": "grey", "marker": "s"},
             method="No suction: σ'_N = σ_N, the dry envelope alone.",
@@ -495,7 +507,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {
             "Bishop",
             (),
             "bishop1959",
-            _thesis("bishop"),
+            _bishop,
             thesis=True,
             style={"color": "blue", "marker": "o"},
             method="Bishop: σ'_N = σ_N + S_R Δu (χ = S_R).",
@@ -506,7 +518,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {
             "Own 1",
             (),
             "evenepoel",
-            _thesis("own1"),
+            _own1,
             thesis=True,
             style={"color": "orange", "marker": "^"},
             method="Own 1: σ'_N = σ_N + χ1 Δu with χ1 = (2π S_R/3)^(2/3).",
@@ -517,7 +529,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {
             "Own 2",
             (),
             "evenepoel",
-            _thesis("own2"),
+            _own2,
             thesis=True,
             style={"color": "green", "marker": "D"},
             method="Own 2: σ'_N = σ_N + χ1 Δu + (2γ/R)(2π S_R/3)^(1/3).",
@@ -694,6 +706,22 @@ def resolve_models(names) -> tuple[str, ...]:
     if not out:
         raise ValueError("no model named")
     return tuple(out)
+
+
+def asks_for_all(names) -> bool:
+    """True when a ``--models`` selection contains ``all`` (run every model the inputs allow).
+
+    Parameters
+    ----------
+    names : str or sequence of str
+        As for `resolve_models`.
+
+    Returns
+    -------
+    bool
+    """
+    items = names.split(",") if isinstance(names, str) else list(names)
+    return any(str(t).strip().lower() == "all" for t in items)
 
 
 def predict(model: str, d: ModelInputs) -> tuple[np.ndarray, np.ndarray]:

@@ -94,12 +94,14 @@ class ModelParams(Options):
     eta: float = 0.55  # exponent of khalili_fit (fixed unless fit_eta)
     fit_eta: bool = False
 
+    def missing(self, model: str) -> str:
+        """What ``model`` needs and is not given (its registry ``requires``), e.g. ``"--s-res"``; "" when nothing."""
+        return " and ".join(opt for name, opt in esm.REGISTRY[model].requires if getattr(self, name) is None)
+
     def require(self, model: str) -> None:
-        missing = [opt for name, opt in esm.REGISTRY[model].requires if getattr(self, name) is None]
+        missing = self.missing(model)
         if missing:
-            raise OptionError(
-                f"model '{model}' needs {' and '.join(missing)} (or --retention FIT.json written by capred retention)"
-            )
+            raise OptionError(f"model '{model}' needs {missing} (or --retention FIT.json written by capred retention)")
 
 
 def model_params_from_retention(path: str | Path, **overrides) -> ModelParams:
@@ -207,11 +209,29 @@ class ShearOptions(Options):
             models = esm.resolve_models(self.models)
         except (ValueError, TypeError) as exc:
             raise OptionError(f"models (--models): {exc}") from None
-        object.__setattr__(self, "models", models)
         if not 0.0 < self.confidence < 1.0:
             raise OptionError(f"confidence must lie between 0 and 1 (got {self.confidence})")
+        skipped = {}
+        if esm.asks_for_all(self.models):  # 'all': every model the inputs allow; the others named, with their needs
+            skipped = {m: need for m in models if (need := self.model_params.missing(m))}
+            models = tuple(m for m in models if m not in skipped)
+        object.__setattr__(self, "models", models)
+        object.__setattr__(self, "_skipped", skipped)
         for m in models:
             self.model_params.require(m)
+
+    @property
+    def skipped_models(self) -> dict[str, str]:
+        """Models that ``models="all"`` left out: {model: what it needs} (e.g. ``"--s-res"``)."""
+        return dict(getattr(self, "_skipped", {}))
+
+    @property
+    def notes(self) -> list[str]:
+        """One line per model ``all`` skipped, naming what it needs."""
+        return [
+            f"--models all: model '{m}' skipped: it needs {need} (or --retention FIT.json written by capred retention)"
+            for m, need in self.skipped_models.items()
+        ]
 
     @property
     def warnings(self) -> list[str]:
@@ -988,7 +1008,7 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         metrics_overall=overall,
         best_model={m: best_of(v) for m, v in metrics.items()},
         best_model_overall=best_of(overall),
-        notes=table.notes,
+        notes=opt.notes + table.notes,
         per_material=per_material,
         inputs=[input_file(source, table)] + ([input_file(opt.curves, curves.table)] if curves else []),
         warnings=warnings,
@@ -1248,7 +1268,7 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks
             metrics_overall=scored["overall"],
             best_model={m: best_of(v) for m, v in scored["metrics"].items()},
             best_model_overall=best_of(scored["overall"]),
-            notes=list(notes),
+            notes=opt.notes + list(notes),
             per_material=per_material,
             inputs=inputs,
             warnings=list(opt.warnings) + list(warnings) + scored["warnings"],

@@ -960,8 +960,8 @@ def retention_relation(params, suction, S_R) -> RetentionRelation | None:
 
 
 def model_curves(result, material, relation: RetentionRelation, sigma_N: float, points: int = 120):
-    """(S_R, {model: tau [Pa]}) along the retention relation at one normal stress; models fitted on the tests'
-    own strengths (fredlund) are left out."""
+    """(S_R, {model: tau [Pa]}) along the retention relation at one normal stress; models whose registry entry
+    says ``along_retention=False`` (fitted on the tests' own strengths) are left out."""
     t = result.tests
     sel = (t["material"] == material) & (t["condition"] == "wet")
     s_pos = t["suction"][sel][t["suction"][sel] > 0]
@@ -985,7 +985,7 @@ def model_curves(result, material, relation: RetentionRelation, sigma_N: float, 
     )
     out = {}
     for m in result.models:
-        if m == "fredlund":
+        if not esm.REGISTRY[m].along_retention:  # e.g. a model fitted on the tests' own strengths
             continue
         with np.errstate(invalid="ignore"):
             out[m] = esm.predict(m, d)[1]
