@@ -402,7 +402,80 @@ def _with_uncertainty(law: FittedLaw, names, values, jac_law, jac_env, resid, dr
     law.covariance = u["covariance"]
     law.names = ("c", "tan_phi", *names)
     law.residual_variance = u["residual_variance"]
+    law.identifiability = identifiability(law, jac_law)
     return law
+
+
+#: relative standard error above which a strictly positive parameter is not identified (its 68 % interval
+#: reaches zero); correlation and (column-scaled) Jacobian condition number beyond which two parameters cannot be
+#: told apart (lmfit reports correlations; 1e4 on J is 1e8 on J^T J: half the digits of the normal equations lost)
+RELATIVE_SE_LIMIT = 1.0
+CORRELATION_LIMIT = 0.99
+CONDITION_LIMIT = 1e4
+#: the laws' parameters that are strictly positive scales or shapes (judged by their relative SE)
+POSITIVE_PARAMETERS = ("kappa", "s_b", "eta")
+
+
+def identifiability(law: FittedLaw, jac_law=None) -> list[str]:
+    """Warnings naming the parameters a fit cannot determine (empty when every parameter is identified).
+
+    Three checks: a strictly positive parameter (κ, s_b, η) whose standard error exceeds its value (relative SE
+    > 1: the data cannot tell it from zero or from twice its value); two free parameters of the law correlated
+    beyond 0.99; the condition number of the law's Jacobian, columns scaled to unit length, above 1e4 (the
+    directions the data cannot separate, as lmfit and Seber & Wild 1989 ch. 3 judge ill-conditioning).
+
+    Parameters
+    ----------
+    law : FittedLaw
+        With ``se`` and ``covariance`` filled (`law_uncertainty`).
+    jac_law : (n, p) ndarray, optional
+        d tau / d theta at the optimum.
+
+    Returns
+    -------
+    list of str
+
+    References
+    ----------
+    .. [1] Seber, G. A. F. & Wild, C. J. (1989). Nonlinear Regression. Wiley, doi:10.1002/0471725315, ch. 3
+       (ill-conditioning and parameter redundancy).
+    """
+    out = []
+    free = [k for k in law.values if k not in law.fixed]
+    for k in free:
+        se, v = law.se.get(k), law.values.get(k)
+        if k in POSITIVE_PARAMETERS and se is not None and v and np.isfinite(v) and se / abs(v) > RELATIVE_SE_LIMIT:
+            name = LAW_PARAMETERS.get(k, (k,))[0]
+            out.append(
+                f"{name} is not identified: its standard error is {se / abs(v):.3g} times its value (> {RELATIVE_SE_LIMIT:g})"
+            )
+        if k in POSITIVE_PARAMETERS and law.se.get(k) is None and law.converged:
+            out.append(f"{LAW_PARAMETERS.get(k, (k,))[0]} has no standard error (singular fit): not identified")
+    if law.covariance is not None and law.names:
+        idx = [law.names.index(k) for k in free if k in law.names]
+        cov = np.asarray(law.covariance, float)
+        for a in range(len(idx)):
+            for b in range(a + 1, len(idx)):
+                i, j = idx[a], idx[b]
+                d = cov[i, i] * cov[j, j]
+                if d > 0 and abs(cov[i, j] / np.sqrt(d)) > CORRELATION_LIMIT:
+                    out.append(
+                        f"{LAW_PARAMETERS.get(law.names[i], (law.names[i],))[0]} and "
+                        f"{LAW_PARAMETERS.get(law.names[j], (law.names[j],))[0]} correlate at "
+                        f"{cov[i, j] / np.sqrt(d):+.4f} (|r| > {CORRELATION_LIMIT:g}): the data cannot separate them"
+                    )
+    if jac_law is not None:
+        J = np.asarray(jac_law, float)
+        if J.ndim == 2 and J.shape[1] > 1 and J.shape[0] >= J.shape[1] and np.all(np.isfinite(J)):
+            norms = np.linalg.norm(J, axis=0)
+            if np.all(norms > 0):
+                cond = float(np.linalg.cond(J / norms))
+                if cond > CONDITION_LIMIT:
+                    out.append(
+                        f"the Jacobian of {', '.join(LAW_PARAMETERS.get(k, (k,))[0] for k in free)} has condition "
+                        f"number {cond:.3g} (> {CONDITION_LIMIT:g}): the fit cannot separate them"
+                    )
+    return out
 
 
 def chi_power(S_R, vanapalli_kappa, S_res: float = 0.0):

@@ -558,6 +558,12 @@ class ShearResult(Result):
                     "aicc": num(ic["aicc"]),
                     "bic": num(ic["bic"]),
                 }
+                if ic["aicc"] is None:  # say why, rather than a bare blank
+                    rows[m]["aicc_note"] = (
+                        f"AICc undefined: n - k - 1 = {r.size - (p + 1) - 1} <= 0 (too few wet tests for k = {p + 1})"
+                        if r.size - (p + 1) - 1 <= 0
+                        else "AICc undefined: zero residual sum of squares"
+                    )
             weights = akaike_weights({m: v["aicc"] for m, v in rows.items()})
             for m, (delta, w) in weights.items():
                 rows[m]["delta_aicc"], rows[m]["weight"] = num(delta), num(w)
@@ -1650,6 +1656,8 @@ def _warnings(wet, pend, mat, fits, laws, predictions, opt) -> list[str]:
             out.append(f"material '{m}': the dry envelope rests on {fit.n} dry tests (fewer than 5)")
     for model, by_mat in laws.items():
         for m, law in by_mat.items():
+            for text in law.identifiability:
+                out.append(f"material '{m}': fitted {model}: {text}")
             for name in law.at_bound:
                 out.append(
                     f"material '{m}': fitted {model} parameter '{name}' = {law.values[name]:.6g} lies at its bound"
