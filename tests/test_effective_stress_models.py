@@ -146,3 +146,91 @@ def test_pedrotti_tarantino_takes_tau_w_from_saturated_tests(write_csv):
     mat = r.to_json()["materials"]["(all)"]
     assert mat["water_envelope"] == "saturated tests"
     assert_allclose([mat["saturated_envelope"]["c_kPa"], mat["saturated_envelope"]["tan_phi"]], [0.5, 0.5], rtol=1e-12)
+
+
+def test_pedrotti_tarantino_wet_area_by_hand():
+    # sigma_N = 10, s = 20, S_R = 0.5; W (c 0, tan 0.5) on the wet area at sigma - u_w = 30: tau_W = 15;
+    # A (c 1, tan 0.6) at sigma - u_a = 10: tau_A = 7; tau = 0.5 15 + 0.5 7 = 11 (Pedrotti & Tarantino eq. 11-14,
+    # each envelope at the stress on its own area); as printed (eq. 1 inside tau_W) the same state gives 5.75
+    assert_allclose(esm.pedrotti_tarantino_wet_area_strength(10.0, 20.0, 0.5, 0.0, 0.5, 1.0, 0.6), 11.0, rtol=1e-14)
+
+
+@pytest.mark.parametrize(
+    "strength", [esm.pedrotti_tarantino_strength, esm.pedrotti_tarantino_wet_area_strength], ids=["printed", "wet_area"]
+)
+def test_pedrotti_tarantino_both_readings_at_the_saturation_limits(strength):
+    rng = np.random.default_rng(4)
+    sig, s = rng.uniform(1e3, 300e3, 50), rng.uniform(0, 500e3, 50)
+    c_w, t_w, c_a, t_a = 5e3, 0.4, 20e3, 0.8
+    # S_R = 1: the saturated envelope at sigma - u_w = sigma_N + s; S_R = 0: the dry envelope at sigma_N
+    assert_allclose(strength(sig, s, 1.0, c_w, t_w, c_a, t_a), c_w + (sig + s) * t_w, rtol=1e-13)
+    assert_allclose(strength(sig, s, 0.0, c_w, t_w, c_a, t_a), c_a + sig * t_a, rtol=1e-13)
+
+
+def test_pedrotti_tarantino_wet_area_never_below_the_envelopes_without_suction():
+    rng = np.random.default_rng(5)
+    n = 2000
+    sig, s, S = rng.uniform(0, 500e3, n), rng.uniform(0, 1e6, n), rng.uniform(0, 1, n)
+    c_w, t_w, c_a, t_a = (
+        rng.uniform(0, 20e3, n),
+        rng.uniform(0.1, 1, n),
+        rng.uniform(0, 20e3, n),
+        rng.uniform(0.1, 1, n),
+    )
+    with_suction = esm.pedrotti_tarantino_wet_area_strength(sig, s, S, c_w, t_w, c_a, t_a)
+    weighted = S * (c_w + sig * t_w) + (1 - S) * (c_a + sig * t_a)  # the two envelopes at zero suction, weighted
+    assert np.all(with_suction >= weighted - 1e-9 * np.abs(weighted))
+    # the printed reading has no such guarantee: the kaolin state (S_R 0.26, s 5.9 kPa) falls below dry
+    printed = esm.pedrotti_tarantino_strength(sig, s, S, c_w, t_w, c_a, t_a)
+    assert np.any(printed < weighted)
+
+
+def test_both_pedrotti_tarantino_entries_quote_the_paper_and_say_their_reading():
+    for name in ("pedrotti_tarantino", "pedrotti_tarantino_wet_area"):
+        text = esm.REGISTRY[name].method
+        for eq in ("eq. 1", "eq. 11", "eq. 12", "eq. 13", "eq. 14"):
+            assert eq in text
+    assert "S_R²" in esm.REGISTRY["pedrotti_tarantino"].method
+    assert "σ − u_w" in esm.REGISTRY["pedrotti_tarantino_wet_area"].method
+    r = run_shear(
+        _pt_sample(),
+        ShearOptions(models=("pedrotti_tarantino", "pedrotti_tarantino_wet_area"), bootstrap=0),
+    )
+    wet = r.tests["condition"] == "wet"
+    a, b = r.predictions["pedrotti_tarantino"].tau[wet], r.predictions["pedrotti_tarantino_wet_area"].tau[wet]
+    assert np.all(b >= a - 1e-9)  # on the same envelopes the wet-area reading carries friction on S_R, not S_R²
+
+
+def _pt_sample():
+    import pandas as pd
+
+    rows = [
+        {"test_id": f"D{k}", "material": "kaolin", "condition": "dry", "sigma_N [kPa]": s, "tau_max [kPa]": 5 + 0.6 * s}
+        for k, s in enumerate((50.0, 100.0, 200.0, 400.0))
+    ]
+    rows += [
+        {
+            "test_id": f"S{k}",
+            "material": "kaolin",
+            "condition": "saturated",
+            "sigma_N [kPa]": s,
+            "tau_max [kPa]": 0.4 * s,
+        }
+        for k, s in enumerate((100.0, 300.0, 600.0))
+    ]
+    rows += [
+        {
+            "test_id": f"W{k}",
+            "material": "kaolin",
+            "condition": "wet",
+            "sigma_N [kPa]": s,
+            "tau_max [kPa]": 5 + 0.6 * s + u / 10,
+            "suction [kPa]": u,
+            "S_R": S,
+            "R [mm]": 0.001,
+        }
+        for k, (s, u, S) in enumerate(
+            ((100.0, 300.0, 0.6), (300.0, 600.0, 0.5), (600.0, 900.0, 0.4), (200.0, 100.0, 0.8))
+        )
+    ]
+    return pd.DataFrame(rows)

@@ -217,7 +217,7 @@ def test_excel_eu_csv_and_xlsx(tmp_path):
     from openpyxl import load_workbook
 
     wb = load_workbook(tmp_path / "eu" / "tables.xlsx")
-    assert wb.sheetnames == ["results", "summary"]
+    assert wb.sheetnames == ["results", "summary", "metrics"]
     ws = wb["results"]
     header = [c.value for c in ws[1]]
     assert "tau_max [kPa]" in header and "z1 [cm]" in header

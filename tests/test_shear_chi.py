@@ -120,7 +120,7 @@ def test_chi_power_single_test_closed_form():
     chi = 0.45
     tau = c + (s_n + chi * u) * b
     law = fit_chi_power(np.array([s_n]), np.array([u]), np.array([S]), np.array([tau]), c, b)
-    assert law.params["kappa"] == pytest.approx(np.log(chi) / np.log(S), rel=1e-8)
+    assert law.values["kappa"] == pytest.approx(np.log(chi) / np.log(S), rel=1e-8)
 
 
 def test_khalili_fit_recovers_air_entry():
@@ -205,7 +205,7 @@ def test_exact_neck_flags_tests_without_concave_bridge():
 def test_mean_band_and_prediction_interval_match_the_delta_method():
     res = capred.run_shear(_table(lambda S, u: S, noise=0.02), capred.ShearOptions(bootstrap=0))
     t = res.tests
-    fit = next(iter(res.fits.values()))
+    fit = next(iter(res.fits.values())).line
     i = int(np.flatnonzero(t["condition"] == "wet")[0])
     p = res.predictions["bishop"]
     sig = p.sigma_eff[i]

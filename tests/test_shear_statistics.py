@@ -104,7 +104,7 @@ def test_chi_power_ci95_covers_kappa():
         )
         lo, hi = law.ci95["kappa"]
         hits += lo <= kappa <= hi
-        hits_cond += abs(law.params["kappa"] - kappa) <= t_quantile(0.975, 9) * law.se_conditional["kappa"]
+        hits_cond += abs(law.values["kappa"] - kappa) <= t_quantile(0.975, 9) * law.se_conditional["kappa"]
         assert law.dof == 6 - 2 + 10 - 1
     COVERAGE["kappa"], COVERAGE["kappa_conditional"] = hits / n, hits_cond / n
     low, high = _limits(n)
@@ -257,7 +257,7 @@ def test_tau_bands_cover_the_mean_and_new_tests(model):
                 WET_SIGMA, WET_SUCTION, WET_S_R, tau, dry.intercept, dry.slope, start={"kappa": kappa}, dry=dry
             )
             laws = {model: {"m": law}}
-            d = dataclasses.replace(d, fitted={model: {"m": law.params}})
+            d = dataclasses.replace(d, fitted={model: {"m": law.values}})
         cov, s2, _ = sa.fit_covariances({"m": dry}, d.material)
         b = sa.tau_bands(model, d, cov, s2, sa.fit_dof({"m": dry}, d.material), laws)
         new = mean_true[k] + rng.normal(0, NOISE)
@@ -294,7 +294,7 @@ def _loop_ranking(d_mat, dry_x, dry_y, models, params, fitted, replicates, seed,
         w = d_mat.subset(idx[r])
         w = dataclasses.replace(w, c=np.full(nw, c), tan_phi=np.full(nw, b))
         refit = {
-            m: {"m": sa._fit_one(m, w, params, start=fitted[m]["m"]).params} for m in models if esm.REGISTRY[m].fitted
+            m: {"m": sa._fit_one(m, w, params, start=fitted[m]["m"]).values} for m in models if esm.REGISTRY[m].fitted
         }
         w = dataclasses.replace(w, fitted={**fitted, **refit})
         for k, m in enumerate(models):
@@ -323,7 +323,7 @@ def test_bootstrap_ranking_reproduces_the_loop(monkeypatch, through_origin):
     d = _inputs(WET_SIGMA, suction, WET_S_R, tau, np.ones(10, bool), dry)
     models = ["no_suction", "bishop", "own1", "chi_power", "khalili_fit", "fredlund", "pedrotti_tarantino"]
     laws = sa.fit_laws(d, models, ["m"], ModelParams(), fits={"m": dry})
-    fitted = {m: {"m": v["m"].params} for m, v in laws.items()}
+    fitted = {m: {"m": v["m"].values} for m, v in laws.items()}
     d = dataclasses.replace(d, fitted=fitted)
     ref = _loop_ranking(d, DRY_X, dry_y, models, ModelParams(), fitted, 150, 4, through_origin)
     seen = {}

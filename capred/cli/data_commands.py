@@ -96,6 +96,21 @@ def shear(
             metavar="free|origin", help="Dry envelope: 'free' (c and phi) or 'origin' (c = 0, cohesionless soil)."
         ),
     ] = "free",
+    errors: Annotated[
+        str,
+        typer.Option(
+            metavar="constant|proportional|auto",
+            help="Scatter of a test: constant, proportional to its strength (weighted least squares), or auto "
+            "(proportional when the Breusch-Pagan test of the dry residuals against sigma_N has p < 0.05).",
+        ),
+    ] = "auto",
+    dry_loss: Annotated[
+        str,
+        typer.Option(
+            metavar="ols|huber|tukey",
+            help="Loss of the dry fit: ols (least squares), huber or tukey (robust to an outlier, sandwich errors).",
+        ),
+    ] = "ols",
     bootstrap: Annotated[
         int, typer.Option(help="Replicates of the paired bootstrap of the model ranking (0: none).")
     ] = 2000,
@@ -143,6 +158,8 @@ def shear(
         models=_model_list(models),
         model_params=mp,
         dry_fit=dry_fit,
+        errors=errors,
+        dry_loss=dry_loss,
         bootstrap=bootstrap,
         seed=seed,
         ambient_pressure=quantity(ambient_pressure, "kPa", "ambient_pressure", "--ambient-pressure"),
@@ -273,12 +290,13 @@ def _curves_source(path: Path | None, thousands):
 
 def _model_list(text: str) -> tuple[str, ...]:
     from ..errors import OptionError
-    from ..physics.effective_stress_models import resolve_models
+    from ..physics.effective_stress_models import asks_for_all, resolve_models
 
     try:
-        return resolve_models(text)
+        resolved = resolve_models(text)
     except ValueError as exc:
         raise OptionError(f"--models: {exc}") from None
+    return text if asks_for_all(text) else resolved  # 'all' reaches ShearOptions, which skips what it cannot run
 
 
 def _envelope_pair(text: str | None):

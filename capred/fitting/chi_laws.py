@@ -52,6 +52,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..parameters import Parameter, Parameters, correlation_from_covariance, deprecated, fit_report
 from .linear import LineFit, t_quantile
 
 
@@ -59,10 +60,14 @@ from .linear import LineFit, t_quantile
 class FittedLaw:
     """A chi law fitted on the wet tests of one material.
 
+    ``law.params[NAME]`` gives each parameter as the JSON and console name it (``kappa``, ``s_b_kPa``,
+    ``eta``) with its standard error and 95 % interval in the user's unit (`capred.parameters.Parameter`);
+    ``law.summary()`` a plain-text report. The SI values stay in ``values``.
+
     Attributes
     ----------
-    params : {name: value}
-        The law's parameters, SI (``kappa`` [-]; ``s_b`` [Pa]; ``eta`` [-]).
+    values : {name: value}
+        The law's parameters, SI (``kappa`` [-]; ``s_b`` [Pa]; ``eta`` [-]); what the models compute with.
     se : {name: value or None}
         Standard errors with the dry fit's uncertainty propagated (when the dry fit was given; else with
         c, tan phi taken as exact) [units of the parameter]; None for a fixed or unidentified parameter.
@@ -91,7 +96,7 @@ class FittedLaw:
         s^2 behind ``se`` [Pa^2]: pooled over dry and wet tests when the dry fit was given.
     """
 
-    params: dict[str, float]  # SI (s_b in Pa)
+    values: dict[str, float]  # SI (s_b in Pa)
     se: dict[str, float | None]
     rss: float  # Pa^2
     n: int
@@ -104,6 +109,86 @@ class FittedLaw:
     covariance: np.ndarray | None = None
     names: tuple[str, ...] = ()
     residual_variance: float | None = None
+    identifiability: list[str] = field(default_factory=list)
+
+    @property
+    def params(self):
+        """The parameters by JSON name in the user's units (``kappa`` [-], ``s_b_kPa`` [kPa], ``eta`` [-]).
+
+        Returns
+        -------
+        capred.parameters.Parameters
+            Each with ``value``, ``stderr``, ``ci95``, ``unit``; ``fixed`` for a parameter held (eta unless
+            fitted). Before this release ``params`` was the dict of SI values (``params["s_b"]`` in Pa): that
+            spelling still answers the old value for one release, with a DeprecationWarning naming ``values``.
+        """
+        items = []
+        for name, v in self.values.items():
+            json_name, factor, unit, desc = LAW_PARAMETERS.get(name, (name, 1.0, "-", name))
+            se = self.se.get(name)
+            ci = self.ci95.get(name)
+            items.append(
+                Parameter(
+                    json_name,
+                    float(v) * factor,
+                    np.nan if se is None else se * factor,
+                    (np.nan, np.nan) if ci is None else (ci[0] * factor, ci[1] * factor),
+                    unit,
+                    desc,
+                    name in self.fixed,
+                )
+            )
+        corr = {}
+        if self.covariance is not None and self.names:
+            json_names = [LAW_PARAMETERS.get(k, (k,))[0] for k in self.names]
+            json_names = ["c_kPa" if k == "c" else k for k in json_names]
+            corr = correlation_from_covariance(json_names, self.covariance)
+        return _LawParameters(tuple(items), corr, dict(self.values))
+
+    def summary(self, title: str = "fitted chi law") -> str:
+        """A plain-text report (lmfit's ``fit_report`` in spirit): parameters, SE, 95 % CI, correlations, warnings.
+
+        Parameters
+        ----------
+        title : str
+            First line, e.g. ``"chi_power of material 'sand'"``.
+
+        Returns
+        -------
+        str
+        """
+        ic = information_criteria(self.rss, self.n, len(self.values) - len(self.fixed))
+        stats = {"n (wet)": self.n, "dof": self.dof, "RSS [kPa²]": self.rss / 1e6, "AICc": ic["aicc"]}
+        warn = [f"{k} lies at its bound" for k in self.at_bound] + list(self.identifiability)
+        if ic["aicc"] is None:
+            warn.append(
+                f"AICc undefined: n - k - 1 = {self.n - (len(self.values) - len(self.fixed) + 1) - 1} <= 0 "
+                "(too few wet tests for the parameters and the error variance)"
+            )
+        return fit_report(title, self.params, stats, warn)
+
+
+#: SI name of a law parameter -> (JSON name, factor SI -> user unit, unit, description)
+LAW_PARAMETERS = {
+    "kappa": ("kappa", 1.0, "-", "exponent κ of χ = S_e^κ"),
+    "s_b": ("s_b_kPa", 1e-3, "kPa", "air-entry suction s_b of χ = (s/s_b)^−η"),
+    "eta": ("eta", 1.0, "-", "exponent η of χ = (s/s_b)^−η"),
+    "tan_phi": ("tan_phi", 1.0, "-", "dry friction coefficient"),
+}
+
+
+class _LawParameters(Parameters):
+    """Parameters of a law; an old SI key (``"s_b"``) answers its old SI value with a DeprecationWarning."""
+
+    def __init__(self, items, correlation, si):
+        super().__init__(items, correlation)
+        object.__setattr__(self, "_si", si)
+
+    def __getitem__(self, name):
+        if name in self._si and name not in {p.name for p in self.items_}:
+            new = LAW_PARAMETERS.get(name, (name,))[0]
+            return deprecated(f"law.params[{name!r}] (SI)", f"law.params[{new!r}].value or law.values", self._si[name])
+        return super().__getitem__(name)
 
 
 def information_criteria(rss: float, n: int, p: int) -> dict[str, float | None]:
@@ -258,6 +343,16 @@ def law_uncertainty(
         dof = n - p
         s2 = rss_wet / dof if dof > 0 else np.nan
         cov = s2 * A
+    elif getattr(dry, "errors", "constant") != "constant" or getattr(dry, "loss", "ols") != "ols":
+        # a weighted or robust dry fit: its own covariance V (not s^2 M) and the wet tests' variance,
+        # V_theta = s_wet^2 A + G V G^T (Murphy & Topel 1985, Theorem 1, with the first step's covariance as given)
+        je = np.asarray(jac_envelope, float).reshape(n, 2)
+        dof = n - p
+        s2 = rss_wet / dof if dof > 0 else np.nan
+        V = np.asarray(dry.covariance, float)
+        G = -A @ jt.T @ je
+        cov = s2 * A + G @ V @ G.T
+        joint = np.block([[V, V @ G.T], [G @ V, cov]])
     else:
         je = np.asarray(jac_envelope, float).reshape(n, 2)
         free = [1] if dry.through_origin else [0, 1]
@@ -301,13 +396,86 @@ def law_uncertainty(
 def _with_uncertainty(law: FittedLaw, names, values, jac_law, jac_env, resid, dry, log_scale=()) -> FittedLaw:
     u = law_uncertainty(names, values, jac_law, jac_env, resid, dry, log_scale)
     law.se.update(u["se"])
-    law.se_conditional = {**{k: None for k in law.params}, **u["se_conditional"]}
-    law.ci95 = {**{k: None for k in law.params}, **u["ci"]}
+    law.se_conditional = {**{k: None for k in law.values}, **u["se_conditional"]}
+    law.ci95 = {**{k: None for k in law.values}, **u["ci"]}
     law.dof = u["dof"]
     law.covariance = u["covariance"]
     law.names = ("c", "tan_phi", *names)
     law.residual_variance = u["residual_variance"]
+    law.identifiability = identifiability(law, jac_law)
     return law
+
+
+#: relative standard error above which a strictly positive parameter is not identified (its 68 % interval
+#: reaches zero); correlation and (column-scaled) Jacobian condition number beyond which two parameters cannot be
+#: told apart (lmfit reports correlations; 1e4 on J is 1e8 on J^T J: half the digits of the normal equations lost)
+RELATIVE_SE_LIMIT = 1.0
+CORRELATION_LIMIT = 0.99
+CONDITION_LIMIT = 1e4
+#: the laws' parameters that are strictly positive scales or shapes (judged by their relative SE)
+POSITIVE_PARAMETERS = ("kappa", "s_b", "eta")
+
+
+def identifiability(law: FittedLaw, jac_law=None) -> list[str]:
+    """Warnings naming the parameters a fit cannot determine (empty when every parameter is identified).
+
+    Three checks: a strictly positive parameter (κ, s_b, η) whose standard error exceeds its value (relative SE
+    > 1: the data cannot tell it from zero or from twice its value); two free parameters of the law correlated
+    beyond 0.99; the condition number of the law's Jacobian, columns scaled to unit length, above 1e4 (the
+    directions the data cannot separate, as lmfit and Seber & Wild 1989 ch. 3 judge ill-conditioning).
+
+    Parameters
+    ----------
+    law : FittedLaw
+        With ``se`` and ``covariance`` filled (`law_uncertainty`).
+    jac_law : (n, p) ndarray, optional
+        d tau / d theta at the optimum.
+
+    Returns
+    -------
+    list of str
+
+    References
+    ----------
+    .. [1] Seber, G. A. F. & Wild, C. J. (1989). Nonlinear Regression. Wiley, doi:10.1002/0471725315, ch. 3
+       (ill-conditioning and parameter redundancy).
+    """
+    out = []
+    free = [k for k in law.values if k not in law.fixed]
+    for k in free:
+        se, v = law.se.get(k), law.values.get(k)
+        if k in POSITIVE_PARAMETERS and se is not None and v and np.isfinite(v) and se / abs(v) > RELATIVE_SE_LIMIT:
+            name = LAW_PARAMETERS.get(k, (k,))[0]
+            out.append(
+                f"{name} is not identified: its standard error is {se / abs(v):.3g} times its value (> {RELATIVE_SE_LIMIT:g})"
+            )
+        if k in POSITIVE_PARAMETERS and law.se.get(k) is None and law.converged:
+            out.append(f"{LAW_PARAMETERS.get(k, (k,))[0]} has no standard error (singular fit): not identified")
+    if law.covariance is not None and law.names:
+        idx = [law.names.index(k) for k in free if k in law.names]
+        cov = np.asarray(law.covariance, float)
+        for a in range(len(idx)):
+            for b in range(a + 1, len(idx)):
+                i, j = idx[a], idx[b]
+                d = cov[i, i] * cov[j, j]
+                if d > 0 and abs(cov[i, j] / np.sqrt(d)) > CORRELATION_LIMIT:
+                    out.append(
+                        f"{LAW_PARAMETERS.get(law.names[i], (law.names[i],))[0]} and "
+                        f"{LAW_PARAMETERS.get(law.names[j], (law.names[j],))[0]} correlate at "
+                        f"{cov[i, j] / np.sqrt(d):+.4f} (|r| > {CORRELATION_LIMIT:g}): the data cannot separate them"
+                    )
+    if jac_law is not None:
+        J = np.asarray(jac_law, float)
+        if J.ndim == 2 and J.shape[1] > 1 and J.shape[0] >= J.shape[1] and np.all(np.isfinite(J)):
+            norms = np.linalg.norm(J, axis=0)
+            if np.all(norms > 0):
+                cond = float(np.linalg.cond(J / norms))
+                if cond > CONDITION_LIMIT:
+                    out.append(
+                        f"the Jacobian of {', '.join(LAW_PARAMETERS.get(k, (k,))[0] for k in free)} has condition "
+                        f"number {cond:.3g} (> {CONDITION_LIMIT:g}): the fit cannot separate them"
+                    )
+    return out
 
 
 def chi_power(S_R, vanapalli_kappa, S_res: float = 0.0):

@@ -14,6 +14,7 @@ References
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from functools import lru_cache
@@ -154,6 +155,14 @@ class LineFit:
     t : Student-t quantile at ``confidence`` with ``dof`` degrees of freedom [-]
     x_mean, sxx : mean of x and sum of (x - x_mean)^2 [unit of x, its square]
     through_origin : True when a = 0 was imposed
+    errors : "constant" (one scatter s for every point) or "proportional" (standard deviation proportional to
+        the fitted strength, s being its value at ``ref``; weighted least squares, `fit_envelope`)
+    loss : "ols" (least squares), "huber" or "tukey" (robust M-estimate with sandwich covariance, `fit_envelope`)
+    scale : the scatter s behind the intervals [unit of y] when it is not sqrt(RSS/dof) (weighted or robust fits)
+    ref : level of y at which ``scale`` holds for ``errors="proportional"`` [unit of y]
+    heteroscedasticity : Breusch-Pagan test of the least-squares residuals against x (`breusch_pagan`)
+    diagnostics : per point ``studentized`` (externally studentized residual), ``cooks``, ``outlier`` (bool),
+        ``threshold`` (`outlier_diagnostics`)
     """
 
     intercept: float
@@ -169,6 +178,12 @@ class LineFit:
     x_mean: float
     sxx: float
     through_origin: bool = False  # True: intercept fixed at 0 (cohesionless soil)
+    errors: str = "constant"
+    loss: str = "ols"
+    scale: float | None = None
+    ref: float = 1.0
+    heteroscedasticity: dict | None = None
+    diagnostics: dict | None = None
 
     @property
     def dof(self) -> int:
@@ -177,8 +192,32 @@ class LineFit:
 
     @property
     def residual_variance(self) -> float:
-        """s^2 = RSS / dof, the variance of one measurement about the line."""
+        """s^2 = RSS / dof, the variance of one measurement about the line (at ``ref`` for proportional
+        errors; the robust scale squared for a robust fit)."""
+        if self.scale is not None:
+            return self.scale**2
         return self.rss / self.dof
+
+    def variance_factor(self, y):
+        """v(y) [-]: the variance of one measurement of level y is s^2 v(y); 1, or (y/ref)^2 for proportional errors.
+
+        Parameters
+        ----------
+        y : array_like
+            Level of the measurement (its expected value) [unit of y].
+
+        Returns
+        -------
+        ndarray
+        """
+        y = np.asarray(y, dtype=float)
+        if self.errors == "proportional":
+            return (y / self.ref) ** 2
+        return np.ones(y.shape)
+
+    def scatter_variance(self, y):
+        """s^2 v(y): the variance of one new measurement of expected level y [unit of y squared]."""
+        return self.residual_variance * self.variance_factor(y)
 
     @property
     def unscaled_covariance(self) -> np.ndarray:
@@ -227,11 +266,12 @@ class LineFit:
 
         .. math:: \\hat y(x) \\mp t_{1-\\alpha/2,\\,\\nu}\\sqrt{s^2 + V_{aa} + 2xV_{ab} + x^2V_{bb}}
 
-        The new observation's own scatter s^2 = RSS/nu is added to the variance of the fitted mean [1].
+        The new observation's own scatter s^2 = RSS/nu is added to the variance of the fitted mean [1]; with
+        proportional errors it is s^2 (y_hat(x)/ref)^2, growing with the strength (`fit_envelope`).
         """
         x = np.asarray(x, dtype=float)
         cov = self.covariance
-        var = self.residual_variance + cov[0, 0] + 2 * x * cov[0, 1] + x**2 * cov[1, 1]
+        var = self.scatter_variance(self.predict(x)) + cov[0, 0] + 2 * x * cov[0, 1] + x**2 * cov[1, 1]
         level = self.confidence if confidence is None else confidence
         t = t_quantile(0.5 + level / 2.0, self.dof)
         y = self.predict(x)
@@ -372,3 +412,373 @@ def fit_line_origin(x, y, confidence: float = 0.95) -> LineFit:
         float(np.sum((x - x.mean()) ** 2)),
         True,
     )
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Scatter that grows with stress, outliers and robust losses (capred issue 30)
+
+#: error models of `fit_envelope` (``auto`` chooses one of the first two by `choose_errors`)
+ERROR_MODELS = ("constant", "proportional", "auto")
+#: losses of `fit_envelope`
+LOSSES = ("ols", "huber", "tukey")
+#: tuning constants (in units of the scale s) giving 95 % efficiency at normal errors (Huber 1981; Beaton & Tukey 1974)
+HUBER_K = 1.345
+TUKEY_C = 4.685
+#: level of the Breusch-Pagan test behind ``errors="auto"`` and the heteroscedasticity warning
+BP_LEVEL = 0.05
+#: family-wise level of the outlier test (Bonferroni over the points of one fit)
+OUTLIER_LEVEL = 0.05
+
+
+def _exact(resid, y_scale) -> bool:
+    """The residuals are rounding noise (< 1e-9 of the data's scale): nothing to test."""
+    r = np.asarray(resid, dtype=float)
+    return y_scale is not None and r.size > 0 and float(np.max(np.abs(r))) <= 1e-9 * y_scale
+
+
+def breusch_pagan(x, resid, y_scale: float | None = None) -> dict:
+    """Breusch-Pagan test (Koenker's studentized form) of residuals whose variance grows with x.
+
+    .. math:: LM = n R^2_{e^2 \\sim x}, \\qquad p = P(\\chi^2_1 > LM) = \\mathrm{erfc}\\sqrt{LM/2}
+
+    with R² that of the least-squares regression of the squared residuals on (1, x). Koenker's form does not
+    assume normal errors (the original LM = ESS/(2 σ⁴) does).
+
+    Parameters
+    ----------
+    x : array_like
+        The regressor the variance may grow with (σ_N) [any unit].
+    resid : array_like
+        Least-squares residuals [unit of y].
+    y_scale : float, optional
+        Scale of the data [unit of y]: residuals below 1e-9 of it are rounding noise of an exact fit (not tested).
+
+    Returns
+    -------
+    dict
+        ``statistic`` LM [-], ``p_value`` [-], ``dof`` (1), ``n``, ``significant`` (p < ``BP_LEVEL``),
+        ``decision`` (text); statistic and p NaN with fewer than 3 points, a single x or an exact fit.
+
+    References
+    ----------
+    .. [1] Breusch, T. S. & Pagan, A. R. (1979). A simple test for heteroscedasticity and random coefficient
+       variation. Econometrica 47(5):1287-1294, doi:10.2307/1911963.
+    .. [2] Koenker, R. (1981). A note on studentizing a test for heteroscedasticity. J. Econometrics
+       17(1):107-112, doi:10.1016/0304-4076(81)90062-2.
+    """
+    x = np.asarray(x, dtype=float)
+    e2 = np.asarray(resid, dtype=float) ** 2
+    n = x.size
+    sxx = float(np.sum((x - x.mean()) ** 2)) if n else 0.0
+    tss = float(np.sum((e2 - e2.mean()) ** 2)) if n else 0.0
+    if n < 3 or sxx <= 0 or tss <= 0:
+        return {
+            "statistic": math.nan,
+            "p_value": math.nan,
+            "dof": 1,
+            "n": int(n),
+            "significant": False,
+            "decision": "not testable (fewer than 3 points, one normal stress, or no scatter)",
+        }
+    b = float(np.sum((x - x.mean()) * (e2 - e2.mean())) / sxx)
+    r2 = b * b * sxx / tss
+    lm = n * r2
+    p = math.erfc(math.sqrt(lm / 2.0))
+    sig = bool(p < BP_LEVEL and b > 0)
+    return {
+        "statistic": float(lm),
+        "p_value": float(p),
+        "dof": 1,
+        "n": int(n),
+        "significant": sig,
+        "decision": (
+            f"scatter grows with stress (p = {p:.3g} < {BP_LEVEL:g})" if sig else f"no significant trend (p = {p:.3g})"
+        ),
+    }
+
+
+def choose_errors(x, y, through_origin: bool = False) -> tuple[str, dict]:
+    """The rule of ``errors="auto"``: "proportional" when the Breusch-Pagan test of the least-squares residuals
+    against x is significant at ``BP_LEVEL`` with a variance that grows with x, else "constant".
+
+    Parameters
+    ----------
+    x, y : array_like
+        The points of the envelope [any consistent units].
+    through_origin : bool
+        Least squares through the origin.
+
+    Returns
+    -------
+    (str, dict)
+        The error model and the test (`breusch_pagan`).
+
+    References
+    ----------
+    Koenker (1981), doi:10.1016/0304-4076(81)90062-2 (the test).
+    """
+    ols = (fit_line_origin if through_origin else fit_line)(x, y)
+    y = np.asarray(y, float)
+    test = breusch_pagan(x, y - ols.predict(x), float(np.max(np.abs(y))))
+    return ("proportional" if test["significant"] else "constant"), test
+
+
+def outlier_diagnostics(x, y, weights=None, through_origin: bool = False, level: float = OUTLIER_LEVEL) -> dict:
+    """Externally studentized residuals, leverages and Cook's distances of a (weighted) least-squares line.
+
+    .. math:: t_i = \\frac{e_i}{s_{(i)}\\sqrt{1 - h_{ii}}}, \\quad
+              s_{(i)}^2 = \\frac{(n-p)s^2 - e_i^2/(1-h_{ii})}{n - p - 1}, \\quad
+              D_i = \\frac{e_i^2}{p s^2}\\frac{h_{ii}}{(1-h_{ii})^2}
+
+    (weighted residuals e_i = sqrt(w_i) r_i). Under normal errors t_i follows Student's t with n - p - 1 dof, so
+    a point is flagged when |t_i| exceeds the Bonferroni quantile t_{1 - level/(2n), n-p-1}: the chance that a fit
+    without an outlier flags any of its points is at most ``level`` (5 %), and an outlier of 8 standard
+    deviations among 6 tests is flagged (its t_i is far beyond the quantile, about 6.1 for n = 6).
+
+    Parameters
+    ----------
+    x, y : array_like
+        Points [any consistent units].
+    weights : array_like, optional
+        Weights w_i = 1/v_i of the fit (proportional errors).
+    through_origin : bool
+        Line through the origin (p = 1).
+    level : float
+        Family-wise level of the flags [-].
+
+    Returns
+    -------
+    dict
+        ``studentized``, ``leverage``, ``cooks`` (arrays), ``outlier`` (bool array), ``threshold`` [-].
+
+    References
+    ----------
+    .. [1] Cook, R. D. & Weisberg, S. (1982). Residuals and Influence in Regression. Chapman & Hall
+       (no DOI), ch. 2 (studentized residuals, the Bonferroni outlier test, Cook's distance).
+    """
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    n = x.size
+    w = np.ones(n) if weights is None else np.asarray(weights, dtype=float)
+    sw = np.sqrt(w)
+    X = (x[:, None] if through_origin else np.column_stack([np.ones(n), x])) * sw[:, None]
+    p = X.shape[1]
+    nan = np.full(n, np.nan)
+    out = {"studentized": nan, "leverage": nan, "cooks": nan, "outlier": np.zeros(n, bool), "threshold": math.nan}
+    if n - p - 1 < 1:
+        return out
+    XtX_inv = np.linalg.pinv(X.T @ X)
+    beta = XtX_inv @ X.T @ (y * sw)
+    e = y * sw - X @ beta
+    h = np.einsum("ij,jk,ik->i", X, XtX_inv, X)
+    if _exact(e, float(np.max(np.abs(y * sw)))):  # an exact fit: its rounding noise is no outlier
+        return {**out, "leverage": h}
+    s2 = float(e @ e) / (n - p)
+    one_minus_h = np.maximum(1.0 - h, 1e-12)
+    s2_i = np.maximum(((n - p) * s2 - e**2 / one_minus_h) / (n - p - 1), 1e-300)
+    t = e / np.sqrt(s2_i * one_minus_h)
+    cooks = e**2 / (p * s2) * h / one_minus_h**2 if s2 > 0 else nan
+    threshold = float(t_quantile(1.0 - level / (2.0 * n), n - p - 1))
+    return {"studentized": t, "leverage": h, "cooks": cooks, "outlier": np.abs(t) > threshold, "threshold": threshold}
+
+
+def _design(x, through_origin):
+    return x[:, None] if through_origin else np.column_stack([np.ones(x.size), x])
+
+
+def _wls(x, y, w, through_origin):
+    """(beta, (X^T W X)^-1) of weighted least squares."""
+    X = _design(x, through_origin)
+    XtW = X.T * w
+    inv = np.linalg.inv(XtW @ X)
+    return inv @ (XtW @ y), inv
+
+
+def _psi(u, loss):
+    """psi(u) and psi'(u) of the loss at standardised residuals u."""
+    if loss == "huber":
+        return np.clip(u, -HUBER_K, HUBER_K), (np.abs(u) <= HUBER_K).astype(float)
+    z = u / TUKEY_C
+    inside = np.abs(z) < 1
+    psi = np.where(inside, u * (1 - z * z) ** 2, 0.0)
+    dpsi = np.where(inside, (1 - z * z) * (1 - 5 * z * z), 0.0)
+    return psi, dpsi
+
+
+def _tukey_rho(z):
+    """scipy least_squares loss of Tukey's biweight: rho(z), rho'(z), rho''(z) with z = (f/f_scale)^2."""
+    inside = z < 1
+    zz = np.minimum(z, 1.0)
+    return np.vstack(
+        [
+            np.where(inside, (1 - (1 - zz) ** 3) / 3.0, 1 / 3.0),
+            np.where(inside, (1 - zz) ** 2, 0.0),
+            np.where(inside, -2 * (1 - zz), 0.0),
+        ]
+    )
+
+
+def _mad_scale(e, n, p):
+    """1.4826 median|e| with a small-sample factor sqrt(n/(n - p)) (the fit has used p degrees of freedom)."""
+    return 1.4826 * float(np.median(np.abs(e))) * math.sqrt(n / max(n - p, 1))
+
+
+def fit_envelope(
+    x, y, confidence: float = 0.95, through_origin: bool = False, errors: str = "constant", loss: str = "ols"
+) -> LineFit:
+    """The envelope y = a + b x under the chosen error model and loss, with intervals that hold under it.
+
+    **Error models.** ``constant``: ordinary least squares (`fit_line`, `fit_line_origin`). ``proportional``:
+    the standard deviation of a test is proportional to its expected strength, Var(y_i) = s² (ŷ_i/ref)²
+    (ref the mean of y): iteratively reweighted least squares with w_i = (ref/ŷ_i)² (a fitted variance
+    function, Carroll & Ruppert 1988, ch. 2), Cov(a, b) = s² (XᵀWX)⁻¹, s² = Σ w_i r_i²/(n - p), Student's t
+    with n - p dof. Chosen over HC3 sandwich errors because the prediction interval of a NEW test needs its
+    variance at that test's strength, which a variance function gives and HC3 does not, and because HC3 with 6
+    dry tests is itself very noisy. ``auto``: `choose_errors`.
+
+    **Losses.** ``huber`` / ``tukey``: the M-estimate minimising Σ ρ(√w_i r_i / s) (scipy.optimize.least_squares
+    with Huber's loss, k = 1.345 s, or Tukey's biweight, c = 4.685 s, started from the Huber fit), s the MAD
+    scale (1.4826 median |e|, re-estimated twice from the robust residuals, times sqrt(n/(n-p))); covariance by
+    the sandwich
+
+    .. math:: V = s^2 \\frac{n}{n-p} A^{-1} B A^{-1}, \\quad A = \\sum \\psi'(u_i) x_i x_i^T,
+              \\quad B = \\sum \\psi(u_i)^2 x_i x_i^T
+
+    (Huber 1981, ch. 7), and the scatter of a new test is s² (an outlier does not widen the intervals of
+    the regular tests). Student's t with n - p dof.
+
+    Parameters
+    ----------
+    x, y : array_like
+        σ_N and τ of the dry tests [Pa] (any consistent units).
+    confidence : float
+        Level of the intervals [-].
+    through_origin : bool
+        c = 0 imposed (``--dry-fit origin``).
+    errors : {"constant", "proportional", "auto"}
+        Error model (``--errors``).
+    loss : {"ols", "huber", "tukey"}
+        Loss (``--dry-loss``).
+
+    Returns
+    -------
+    LineFit
+        With ``errors``, ``loss``, ``scale``, ``ref``, ``heteroscedasticity`` (`breusch_pagan` of the
+        least-squares residuals) and ``diagnostics`` (`outlier_diagnostics`) filled.
+
+    Raises
+    ------
+    FitError
+        As `fit_line`; an unknown error model or loss.
+
+    References
+    ----------
+    .. [1] Carroll, R. J. & Ruppert, D. (1988). Transformation and Weighting in Regression. Chapman & Hall,
+       doi:10.1201/9780203735268, ch. 2 (variance functions, iteratively reweighted least squares).
+    .. [2] Huber, P. J. (1981). Robust Statistics. Wiley, doi:10.1002/0471725250, ch. 7 (regression
+       M-estimates and their asymptotic covariance).
+    .. [3] Beaton, A. E. & Tukey, J. W. (1974). The fitting of power series, meaning polynomials, illustrated
+       on band-spectroscopic data. Technometrics 16(2):147-185, doi:10.1080/00401706.1974.10489171 (biweight).
+    .. [4] Draper & Smith (1998), doi:10.1002/9781118625590, ch. 1 and 9 (weighted least squares).
+    """
+    if errors not in ERROR_MODELS:
+        raise FitError(f"errors must be one of {', '.join(ERROR_MODELS)} (got {errors!r})")
+    if loss not in LOSSES:
+        raise FitError(f"loss must be one of {', '.join(LOSSES)} (got {loss!r})")
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    ols = (fit_line_origin if through_origin else fit_line)(x, y, confidence)
+    bp = breusch_pagan(x, y - ols.predict(x), float(np.max(np.abs(y))))
+    if errors == "auto":
+        errors = "proportional" if bp["significant"] else "constant"
+    n, p = x.size, 1 if through_origin else 2
+    w = np.ones(n)
+    ref = float(np.mean(np.abs(y))) or 1.0
+    if errors == "proportional":
+        yhat = ols.predict(x)
+        for _ in range(50):  # IRLS on the variance function (ŷ/ref)²: converges in a handful of steps
+            level = np.maximum(np.abs(yhat), 1e-3 * ref)
+            w = (ref / level) ** 2
+            beta, _ = _wls(x, y, w, through_origin)
+            new = _design(x, through_origin) @ beta
+            if np.max(np.abs(new - yhat)) <= 1e-12 * ref:
+                yhat = new
+                break
+            yhat = new
+        level = np.maximum(np.abs(yhat), 1e-3 * ref)
+        w = (ref / level) ** 2
+    diagnostics = outlier_diagnostics(x, y, w, through_origin)
+    if errors == "constant" and loss == "ols":
+        return dataclasses.replace(ols, heteroscedasticity=bp, diagnostics=diagnostics)
+    beta, inv = _wls(x, y, w, through_origin)
+    X = _design(x, through_origin)
+    sw = np.sqrt(w)
+    if loss == "ols":
+        e = (y - X @ beta) * sw
+        scale = math.sqrt(float(e @ e) / (n - p)) if n > p else math.nan
+        V = scale**2 * inv
+    else:
+        beta, scale, V = _robust(X * sw[:, None], y * sw, beta, loss, n, p)
+    cov = np.zeros((2, 2))
+    if through_origin:
+        cov[1, 1] = V[0, 0]
+        a, b = 0.0, float(beta[0])
+    else:
+        cov[:, :] = V
+        a, b = float(beta[0]), float(beta[1])
+    resid = y - (a + b * x)
+    rss = float(resid @ resid)
+    tss = float(np.sum((y - y.mean()) ** 2))
+    dof = n - p
+    return LineFit(
+        a,
+        b,
+        float(np.sqrt(max(cov[0, 0], 0.0))),
+        float(np.sqrt(max(cov[1, 1], 0.0))),
+        cov,
+        n,
+        rss,
+        1.0 - rss / tss if tss > 0 else 1.0,
+        confidence,
+        t_quantile(0.5 + confidence / 2.0, dof),
+        float(x.mean()),
+        float(np.sum((x - x.mean()) ** 2)),
+        through_origin,
+        errors,
+        loss,
+        scale,
+        ref,
+        bp,
+        diagnostics,
+    )
+
+
+def _robust(Xw, yw, beta0, loss, n, p):
+    """(beta, scale, covariance) of the M-estimate on the (weighted) design Xw, yw; see `fit_envelope`."""
+    from scipy.optimize import least_squares
+
+    def resid(b):
+        return yw - Xw @ b
+
+    beta = np.asarray(beta0, float)
+    scale = _mad_scale(resid(beta), n, p)
+    if not scale > 0:
+        scale = math.sqrt(float(resid(beta) @ resid(beta)) / max(n - p, 1)) or 1.0
+    for _ in range(3):  # scale and fit alternately (the scale of the OLS residuals is inflated by the outlier)
+        beta = least_squares(resid, beta, loss="huber", f_scale=HUBER_K * scale, xtol=1e-14, ftol=1e-14).x
+        if loss == "tukey":
+            beta = least_squares(resid, beta, loss=_tukey_rho, f_scale=TUKEY_C * scale, xtol=1e-14, ftol=1e-14).x
+        new = _mad_scale(resid(beta), n, p)
+        if not new > 0:
+            break
+        scale = new
+    u = resid(beta) / scale
+    psi, dpsi = _psi(u, loss)
+    A = (Xw.T * dpsi) @ Xw
+    B = (Xw.T * psi**2) @ Xw
+    try:
+        Ainv = np.linalg.inv(A)
+    except np.linalg.LinAlgError:
+        Ainv = np.full(A.shape, np.nan)
+    V = scale**2 * n / max(n - p, 1) * Ainv @ B @ Ainv
+    return beta, scale, V

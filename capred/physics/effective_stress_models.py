@@ -264,6 +264,58 @@ def pedrotti_tarantino_strength(sigma_N, suction, S_R, c_w, tan_phi_w, c_a, tan_
     return S_R * tau_w + (1.0 - S_R) * tau_a
 
 
+def pedrotti_tarantino_wet_area_strength(sigma_N, suction, S_R, c_w, tan_phi_w, c_a, tan_phi_a):
+    r"""Shear strength of Pedrotti & Tarantino read consistently in area: each envelope at the stress on its own area.
+
+    .. math::
+
+                au = S_R\,	au^W(\sigma - u_w) + (1 - S_R)\,	au^A(\sigma - u_a), \qquad
+                au^W(x) = c_W + x 	an\phi_W, \quad 	au^A(x) = c_A + x 	an\phi_A
+
+    Their eq. 11-13 define τ^W = T^W/A^W, a shear stress on the wet area A^W, and eq. 14 weights it by
+    A^W/A = S_R. The effective stress of the wet part, σ'_W = (σ − u_w) S_R (their eq. 1), is its normal force
+    per TOTAL area; per wet area it is σ'_W / S_R = σ − u_w (and σ'_A / (1 − S_R) = σ − u_a for the dry part).
+    Reading τ^W at σ − u_w keeps both stresses on the same area; the printed reading
+    (`pedrotti_tarantino_strength`) evaluates τ^W at σ'_W itself, which weights friction by S_R².
+
+    Parameters
+    ----------
+    sigma_N : array_like
+        Total normal stress σ_N = σ − u_a (air at atmospheric pressure) [Pa].
+    suction : array_like
+        Matric suction s = u_a − u_w [Pa].
+    S_R : array_like
+        Degree of saturation [-].
+    c_w, tan_phi_w : float or array_like
+        Cohesion [Pa] and friction coefficient [-] of the water-saturated (reconstituted) soil.
+    c_a, tan_phi_a : float or array_like
+        Cohesion [Pa] and friction coefficient [-] of the dry soil.
+
+    Returns
+    -------
+    numpy.ndarray
+        τ [Pa].
+
+    References
+    ----------
+    .. [1] Pedrotti, M. & Tarantino, A. Effective stresses for unsaturated states stemming from clay
+       microstructure. Submitted to Geomechanics for Energy and the Environment (no DOI yet), eq. 1, 2, 11-14.
+    """
+    S_R = np.asarray(S_R, float)
+    sigma_N = np.asarray(sigma_N, float)
+    tau_w = c_w + (sigma_N + np.asarray(suction, float)) * tan_phi_w
+    tau_a = c_a + sigma_N * tan_phi_a
+    return S_R * tau_w + (1.0 - S_R) * tau_a
+
+
+#: what both Pedrotti-Tarantino entries quote of the paper (eq. 1 and 11-14)
+_PT_EQUATIONS = (
+    "Pedrotti & Tarantino: eq. 1 σ'_W = (σ − u_w) S_R; eq. 11 T = τA = T^W + T^A; eq. 12 τ^W = T^W/A^W, "
+    "τ^A = T^A/A^A; eq. 13 τ = τ^W A^W/A + τ^A A^A/A; eq. 14 τ = τ^W S_R + τ^A (1 − S_R) with A^W/A = S_R; "
+    "τ^W on the envelope of the saturated (reconstituted) soil, τ^A on that of the dry one."
+)
+
+
 @dataclass(frozen=True)
 class ModelInputs:
     """What a model may use, per test (arrays, SI): the dry envelope of each test's material included."""
@@ -416,8 +468,25 @@ def _pedrotti_tarantino(d: ModelInputs) -> np.ndarray:
     return pedrotti_tarantino_strength(d.sigma_N, d.suction, d.S_R, c_w, tan_w, d.c, d.tan_phi)
 
 
-def _thesis(model: str) -> Callable[[ModelInputs], np.ndarray]:
-    return lambda d: ph.effective_normal_stress(model, d.sigma_N, d.suction, d.S_R, d.R, d.surface_tension)
+def _pedrotti_tarantino_wet_area(d: ModelInputs) -> np.ndarray:
+    c_w, tan_w, _ = _water_envelope(d)
+    return pedrotti_tarantino_wet_area_strength(d.sigma_N, d.suction, d.S_R, c_w, tan_w, d.c, d.tan_phi)
+
+
+def _no_suction(d: ModelInputs) -> np.ndarray:
+    return d.sigma_N + 0.0 * d.suction
+
+
+def _bishop(d: ModelInputs) -> np.ndarray:
+    return d.sigma_N + np.asarray(d.S_R, dtype=float) * d.suction
+
+
+def _own1(d: ModelInputs) -> np.ndarray:
+    return d.sigma_N + ph.chi1(d.S_R) * d.suction
+
+
+def _own2(d: ModelInputs) -> np.ndarray:
+    return d.sigma_N + ph.chi1(d.S_R) * d.suction + ph.chi2(d.S_R, d.R, d.surface_tension)
 
 
 REGISTRY: dict[str, EffectiveStressModel] = {
@@ -428,7 +497,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {
             "No suction",
             (),
             "evenepoel",
-            _thesis("no_suction"),
+            _no_suction,
             thesis=True,
             style={"color": "grey", "marker": "s"},
             method="No suction: σ'_N = σ_N, the dry envelope alone.",
@@ -438,7 +507,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {
             "Bishop",
             (),
             "bishop1959",
-            _thesis("bishop"),
+            _bishop,
             thesis=True,
             style={"color": "blue", "marker": "o"},
             method="Bishop: σ'_N = σ_N + S_R Δu (χ = S_R).",
@@ -449,7 +518,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {
             "Own 1",
             (),
             "evenepoel",
-            _thesis("own1"),
+            _own1,
             thesis=True,
             style={"color": "orange", "marker": "^"},
             method="Own 1: σ'_N = σ_N + χ1 Δu with χ1 = (2π S_R/3)^(2/3).",
@@ -460,7 +529,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {
             "Own 2",
             (),
             "evenepoel",
-            _thesis("own2"),
+            _own2,
             thesis=True,
             style={"color": "green", "marker": "D"},
             method="Own 2: σ'_N = σ_N + χ1 Δu + (2γ/R)(2π S_R/3)^(1/3).",
@@ -513,8 +582,21 @@ REGISTRY: dict[str, EffectiveStressModel] = {
             tau=_pedrotti_tarantino,
             style={"color": "sky", "marker": "h"},
             material_values=lambda d: {"water_envelope": str(_water_envelope(d)[2][0])},
-            method="Pedrotti-Tarantino: τ = S_R τ^W + (1 − S_R) τ^A with σ'_W = (σ − u_w) S_R on the "
-            "saturated envelope and σ'_A = (σ − u_a)(1 − S_R) on the dry one.",
+            method=_PT_EQUATIONS + " Read as printed: τ^W is evaluated at σ'_W = (σ − u_w) S_R and τ^A at "
+            "σ'_A = (σ − u_a)(1 − S_R) (\"τ^W is controlled by ... σ'_W\", after eq. 14), so friction is "
+            "weighted by S_R².",
+        ),
+        EffectiveStressModel(
+            "pedrotti_tarantino_wet_area",
+            "Pedrotti-Tarantino (wet area)",
+            (),
+            "pedrotti_tarantino",
+            tau=_pedrotti_tarantino_wet_area,
+            style={"color": "yellow", "marker": "H"},
+            material_values=lambda d: {"water_envelope": str(_water_envelope(d)[2][0])},
+            method=_PT_EQUATIONS + " Read consistently in area: τ^W = T^W/A^W is a stress on the wet area, "
+            "where the wet part's normal stress is σ'_W/S_R = σ − u_w (eq. 1 is a force per total area), so "
+            "τ = S_R τ^W(σ − u_w) + (1 − S_R) τ^A(σ − u_a).",
         ),
         EffectiveStressModel(
             "chi_power",
@@ -624,6 +706,22 @@ def resolve_models(names) -> tuple[str, ...]:
     if not out:
         raise ValueError("no model named")
     return tuple(out)
+
+
+def asks_for_all(names) -> bool:
+    """True when a ``--models`` selection contains ``all`` (run every model the inputs allow).
+
+    Parameters
+    ----------
+    names : str or sequence of str
+        As for `resolve_models`.
+
+    Returns
+    -------
+    bool
+    """
+    items = names.split(",") if isinstance(names, str) else list(names)
+    return any(str(t).strip().lower() == "all" for t in items)
 
 
 def predict(model: str, d: ModelInputs) -> tuple[np.ndarray, np.ndarray]:

@@ -27,9 +27,15 @@ PENDULAR_LIMIT = 0.05
 #: S_R above which chi1 = (2 pi S_R / 3)^(2/3) exceeds 1: 3 / (2 pi).
 CHI1_UNITY_SR = 3.0 / (2.0 * np.pi)
 
-#: The four effective-stress models of the thesis [1], in display order (the registry of every
-#: model is capred.physics.effective_stress_models.REGISTRY).
-MODELS = ("no_suction", "bishop", "own1", "own2")
+
+def __getattr__(name):
+    """``MODELS``: the four effective-stress models of the thesis [1], in display order, read from the registry
+    (capred.physics.effective_stress_models.REGISTRY, the one place for model names)."""
+    if name == "MODELS":
+        from .effective_stress_models import THESIS_MODELS
+
+        return THESIS_MODELS
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def suction_from_head(z1, gamma_w=GAMMA_W):
@@ -285,17 +291,14 @@ def effective_normal_stress(model, sigma_N, suction, S_R, R=np.nan, surface_tens
        Universiteit Brussel (no DOI), section "Shear strength" (table of
        the four models).
     """
-    sigma_N = np.asarray(sigma_N, dtype=float)
-    suction = np.asarray(suction, dtype=float)
-    if model == "no_suction":
-        return sigma_N + 0.0 * suction
-    if model == "bishop":
-        return sigma_N + np.asarray(S_R, dtype=float) * suction
-    if model == "own1":
-        return sigma_N + chi1(S_R) * suction
-    if model == "own2":
-        return sigma_N + chi1(S_R) * suction + chi2(S_R, R, surface_tension)
-    raise ValueError(f"unknown model '{model}'; choose from {', '.join(MODELS)}")
+    from .effective_stress_models import REGISTRY, THESIS_MODELS, ModelInputs
+
+    if model not in THESIS_MODELS:
+        raise ValueError(f"unknown model '{model}'; choose from {', '.join(THESIS_MODELS)}")
+    sigma_N, suction, S_R, R = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (sigma_N, suction, S_R, R)))
+    nan = np.full(sigma_N.shape, np.nan)
+    d = ModelInputs(sigma_N, suction, S_R, R, nan, np.ones(sigma_N.shape, bool), nan, nan, nan, surface_tension, None)
+    return REGISTRY[model].sigma_eff(d)
 
 
 def mohr_coulomb_strength(c, tan_phi, sigma_eff):

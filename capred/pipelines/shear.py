@@ -16,13 +16,14 @@ import numpy as np
 
 from .. import nomenclature as nom
 from ..errors import FitError, OptionError
-from ..fitting.linear import LineFit, fit_line, fit_line_origin
+from ..fitting.linear import ERROR_MODELS, LOSSES, LineFit, breusch_pagan, fit_envelope, fit_line
 from ..io.table import Column, Table, read_table
 from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
 from ..progress import steps, task
 from ..references import cite
 from ..result import InputFile, Options, Result, Rows, Spool, input_file, json_list, num
+from .shear_fits import envelope_fits, line_of
 from .shear_records import BackAnalysis, ModelPrediction, Sampled
 
 SCHEMA = [
@@ -93,12 +94,14 @@ class ModelParams(Options):
     eta: float = 0.55  # exponent of khalili_fit (fixed unless fit_eta)
     fit_eta: bool = False
 
+    def missing(self, model: str) -> str:
+        """What ``model`` needs and is not given (its registry ``requires``), e.g. ``"--s-res"``; "" when nothing."""
+        return " and ".join(opt for name, opt in esm.REGISTRY[model].requires if getattr(self, name) is None)
+
     def require(self, model: str) -> None:
-        missing = [opt for name, opt in esm.REGISTRY[model].requires if getattr(self, name) is None]
+        missing = self.missing(model)
         if missing:
-            raise OptionError(
-                f"model '{model}' needs {' and '.join(missing)} (or --retention FIT.json written by capred retention)"
-            )
+            raise OptionError(f"model '{model}' needs {missing} (or --retention FIT.json written by capred retention)")
 
 
 def model_params_from_retention(path: str | Path, **overrides) -> ModelParams:
@@ -183,17 +186,29 @@ class ShearOptions(Options):
     curves: object = None  # raw direct-shear curves (path or DataFrame): peaks give tau_max
     area_correction: str = "none"  # of the curves: none (nominal area, ASTM D3080), square or circular
     dry_fit: str = "free"  # "free" (c and phi) or "origin" (c = 0, cohesionless soil)
+    #: error model of the dry envelope: constant, proportional (sd proportional to the strength) or auto
+    #: (proportional when the Breusch-Pagan test of the least-squares residuals against sigma_N has p < 0.05)
+    errors: str = "auto"
+    dry_loss: str = "ols"  # loss of the dry fit: ols, huber or tukey (robust, sandwich standard errors)
     bootstrap: int = 2000  # replicates of the ranking bootstrap (0: none)
     seed: int = 0  # of the bootstrap: the same seed gives the same probabilities
 
     def __post_init__(self) -> None:
-        super().__post_init__()
+        given = {name: getattr(self, name) for name in self.QUANTITIES}
+        try:
+            super().__post_init__()
+        except OptionError as exc:  # quote the value as the API caller gave it, beside its reading in SI
+            raise OptionError(_as_given(self, exc, given)) from None
         if self.area_correction not in ("none", "square", "circular"):
             raise OptionError(
                 f"area_correction (--area-correction) must be none, square or circular (got '{self.area_correction}')"
             )
         if self.dry_fit not in ("free", "origin"):
             raise OptionError(f"dry_fit (--dry-fit) must be 'free' or 'origin' (got '{self.dry_fit}')")
+        if self.errors not in ERROR_MODELS:
+            raise OptionError(f"errors (--errors) must be {', '.join(ERROR_MODELS)} (got {self.errors!r})")
+        if self.dry_loss not in LOSSES:
+            raise OptionError(f"dry_loss (--dry-loss) must be {', '.join(LOSSES)} (got {self.dry_loss!r})")
         if isinstance(self.bootstrap, bool) or not isinstance(self.bootstrap, int) or self.bootstrap < 0:
             raise OptionError(f"bootstrap (--bootstrap) must be a whole number >= 0 (got {self.bootstrap!r})")
         if isinstance(self.seed, bool) or not isinstance(self.seed, int) or self.seed < 0:
@@ -202,15 +217,55 @@ class ShearOptions(Options):
             models = esm.resolve_models(self.models)
         except (ValueError, TypeError) as exc:
             raise OptionError(f"models (--models): {exc}") from None
-        object.__setattr__(self, "models", models)
         if not 0.0 < self.confidence < 1.0:
             raise OptionError(f"confidence must lie between 0 and 1 (got {self.confidence})")
+        skipped = {}
+        if esm.asks_for_all(self.models):  # 'all': every model the inputs allow; the others named, with their needs
+            skipped = {m: need for m in models if (need := self.model_params.missing(m))}
+            models = tuple(m for m in models if m not in skipped)
+        object.__setattr__(self, "models", models)
+        object.__setattr__(self, "_skipped", skipped)
         for m in models:
             self.model_params.require(m)
 
     @property
+    def skipped_models(self) -> dict[str, str]:
+        """Models that ``models="all"`` left out: {model: what it needs} (e.g. ``"--s-res"``)."""
+        return dict(getattr(self, "_skipped", {}))
+
+    @property
+    def notes(self) -> list[str]:
+        """One line per model ``all`` skipped, naming what it needs."""
+        return [
+            f"--models all: model '{m}' skipped: it needs {need} (or --retention FIT.json written by capred retention)"
+            for m, need in self.skipped_models.items()
+        ]
+
+    @property
     def warnings(self) -> list[str]:
         return super().warnings + self.model_params.warnings
+
+
+def _as_given(options: Options, exc: Exception, given: dict) -> str:
+    """The message of ``exc`` (a range problem of an option) with the value quoted as the caller typed it.
+
+    A plain number is read in SI (``box_area=-3`` is -3 m^2, shown as -30000 cm^2 by the glossary's range
+    check): the message says so and how to give a unit.
+    """
+    from ..units import SI_UNIT
+
+    text = str(exc)
+    for name, value in given.items():
+        if value is None or not text.startswith(options.option_name(name)):
+            continue
+        q = nom.QUANTITIES[options.QUANTITIES[name]]
+        si = SI_UNIT[q.kind].replace("**", "^")
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            return (
+                f"{text}; you gave {name}={value!r}, a plain number read in {si} (give a unit: {name}='... {q.unit}')"
+            )
+        return f"{text}; you gave {name}={value!r}"
+    return text
 
 
 @dataclass
@@ -230,7 +285,7 @@ class ShearResult(Result):
     source: str
     options: ShearOptions
     tests: dict[str, np.ndarray]
-    fits: dict[str, LineFit]
+    fits: dict  # material -> EnvelopeFit (fit.params["c_kPa"], fit.summary(); the SI LineFit is fit.line)
     metrics: dict[str, dict[str, ModelMetrics]]
     metrics_overall: dict[str, ModelMetrics]
     best_model: dict[str, str | None]
@@ -248,6 +303,8 @@ class ShearResult(Result):
     predictions: dict = field(default_factory=dict)  # model -> ModelPrediction (every test)
     saturated_fits: dict = field(default_factory=dict)  # material -> LineFit of its saturated tests
     back: object = None  # BackAnalysis of the wet tests
+    #: material -> Breusch-Pagan tests of the dry fit and of each model's wet residuals, and the error model used
+    heteroscedasticity: dict = field(default_factory=dict)
 
     @property
     def level(self) -> str:
@@ -275,6 +332,7 @@ class ShearResult(Result):
             cached = self.__dict__["_tables"] = {
                 "results": pd.DataFrame(self._results_columns(), copy=False),
                 "summary": _flat_summary(self),
+                "metrics": _flat_metrics(self),
             }
         return cached
 
@@ -285,6 +343,7 @@ class ShearResult(Result):
             cached = self.__dict__["_csv_tables"] = {
                 "results": self._results_columns(),
                 "summary": _flat_summary(self, frame=False),
+                "metrics": _flat_metrics(self, frame=False),
             }
         return cached
 
@@ -315,7 +374,32 @@ class ShearResult(Result):
         """The models of the run, one sentence each, and their references."""
         entries = [esm.REGISTRY[m] for m in self.models]
         text = "Models compared: " + " ".join(e.method for e in entries if e.method)
-        return [text], [e.reference for e in entries]
+        return [text, self._dry_method()], [e.reference for e in entries]
+
+    def _dry_method(self) -> str:
+        """The methods sentence of the dry envelope: error model (what auto chose), loss, outlier test."""
+        o = self.options
+        used = {m: line_of(f).errors for m, f in self.fits.items()}
+        chosen = ", ".join(f"{m}: {e}" for m, e in used.items())
+        errors = {
+            "constant": "the same scatter for every test",
+            "proportional": "a scatter proportional to the strength (weighted least squares with the variance "
+            "function s²(τ/τ_ref)², iterated; prediction and σ_cap intervals widen with the strength)",
+            "auto": "the error model chosen per material by a Breusch-Pagan test (Koenker's form) of the "
+            "least-squares residuals against σ_N: proportional when p < 0.05, else constant "
+            f"({chosen})",
+        }[o.errors]
+        loss = {
+            "ols": "least squares",
+            "huber": "Huber's loss (k = 1.345 s, MAD scale) with sandwich standard errors",
+            "tukey": "Tukey's biweight (c = 4.685 s, MAD scale) with sandwich standard errors",
+        }[o.dry_loss]
+        origin = "through the origin (c = 0)" if o.dry_fit == "origin" else "with c and φ free"
+        return (
+            f"Dry envelope τ = c + σ_N tan φ fitted per material {origin} by {loss}, assuming {errors}. "
+            "A dry test is flagged as an outlier when its externally studentized residual exceeds the Bonferroni "
+            "5 % limit t(1 − 0.025/n, n − p − 1)."
+        )
 
     def retention_relation(self, material: str):
         """The S_R(s) relation along which model curves are drawn (None: markers per test only)."""
@@ -438,6 +522,12 @@ class ShearResult(Result):
             ("outside_pendular", wet & (S > self.options.pendular_limit)),
             ("chi1_gt_1", wet & (S > ph.CHI1_UNITY_SR)),
         ]
+        outlier = np.zeros(S.shape, bool)
+        for fit in self.fits.values():
+            diag = line_of(fit).diagnostics or {}
+            if "rows" in diag:
+                outlier[diag["rows"][np.asarray(diag["outlier"], bool)]] = True
+        parts.append(("dry_outlier", outlier))
         for model in self.models:
             flag = esm.REGISTRY[model].no_prediction
             if flag is not None:
@@ -466,7 +556,7 @@ class ShearResult(Result):
                 r = self.predictions[m].tau[sel] - t["tau_max"][sel]  # the residual column, also in a long run
                 r = r[np.isfinite(r)]
                 law = self.laws.get(m, {}).get(mat)
-                p = len(law.params) - len(law.fixed) if law is not None else 0
+                p = len(law.values) - len(law.fixed) if law is not None else 0
                 p += esm.REGISTRY[m].wet_parameters  # e.g. Fredlund's tan(phi_b), fitted on the wet tests
                 ic = information_criteria(float(r @ r), int(r.size), p)
                 rows[m] = {
@@ -476,6 +566,12 @@ class ShearResult(Result):
                     "aicc": num(ic["aicc"]),
                     "bic": num(ic["bic"]),
                 }
+                if ic["aicc"] is None:  # say why, rather than a bare blank
+                    rows[m]["aicc_note"] = (
+                        f"AICc undefined: n - k - 1 = {r.size - (p + 1) - 1} <= 0 (too few wet tests for k = {p + 1})"
+                        if r.size - (p + 1) - 1 <= 0
+                        else "AICc undefined: zero residual sum of squares"
+                    )
             weights = akaike_weights({m: v["aicc"] for m, v in rows.items()})
             for m, (delta, w) in weights.items():
                 rows[m]["delta_aicc"], rows[m]["weight"] = num(delta), num(w)
@@ -531,7 +627,10 @@ class ShearResult(Result):
                 if any(mat in v for v in self.laws.values())
             },
             "model_selection": self.model_selection(),
+            "heteroscedasticity": _json_ready(self.heteroscedasticity),
             "dry_fit": self.options.dry_fit,
+            "errors": self.options.errors,
+            "dry_loss": self.options.dry_loss,
             "constants": {
                 "gamma_w_kN_per_m3": self.options.gamma_w / 1e3,
                 "surface_tension_N_per_m": self.options.surface_tension,
@@ -547,12 +646,12 @@ def _law_dict(model: str, law) -> dict:
     from ..fitting.chi_laws import information_criteria
 
     scale = {"s_b": ("s_b_kPa", 1e-3)}
-    params = {scale.get(k, (k, 1.0))[0]: num(v * scale.get(k, (k, 1.0))[1]) for k, v in law.params.items()}
+    params = {scale.get(k, (k, 1.0))[0]: num(v * scale.get(k, (k, 1.0))[1]) for k, v in law.values.items()}
     se = {
         scale.get(k, (k, 1.0))[0]: (None if v is None else num(v * scale.get(k, (k, 1.0))[1]))
         for k, v in law.se.items()
     }
-    ic = information_criteria(law.rss, law.n, len(law.params) - len(law.fixed))
+    ic = information_criteria(law.rss, law.n, len(law.values) - len(law.fixed))
     ci = {
         scale.get(k, (k, 1.0))[0]: (
             None if v is None else [num(v[0] * scale.get(k, (k, 1.0))[1]), num(v[1] * scale.get(k, (k, 1.0))[1])]
@@ -588,7 +687,8 @@ def _ranking_dict(r) -> dict:
     }
 
 
-def _fit_dict(fit: LineFit) -> dict:
+def _fit_dict(fit) -> dict:
+    fit = line_of(fit)
     slope = np.float64(fit.slope)  # numpy arithmetic: an absurd input overflows to inf (null in JSON), no exception
     phi = np.degrees(np.arctan(slope))
     # delta method: d(phi)/d(tan phi) = 1 / (1 + tan^2 phi)
@@ -607,7 +707,38 @@ def _fit_dict(fit: LineFit) -> dict:
         "phi_ci95_deg": [num(np.degrees(np.arctan(lo))), num(np.degrees(np.arctan(hi)))],
         "r2": num(fit.r2),
         "n": fit.n,
+        "errors": fit.errors,
+        "dry_loss": fit.loss,
+        "scatter_kPa": num(np.sqrt(fit.residual_variance) / 1e3) if fit.dof > 0 else None,
+        "outliers": _outliers(fit),
     }
+
+
+def _outliers(fit: LineFit) -> list[dict]:
+    """The dry tests flagged as outliers: file line, externally studentized residual, Cook's distance."""
+    diag = fit.diagnostics or {}
+    out = []
+    for k in np.flatnonzero(np.asarray(diag.get("outlier", []), bool)):
+        out.append(
+            {
+                "line": int(diag["lines"][k]) if "lines" in diag else None,
+                "studentized_residual": num(diag["studentized"][k]),
+                "cooks_distance": num(diag["cooks"][k]),
+                "threshold": num(diag["threshold"]),
+            }
+        )
+    return out
+
+
+def _json_ready(v):
+    """Plain JSON values of a nested dict of test results (numpy scalars as numbers, NaN as None)."""
+    if isinstance(v, dict):
+        return {str(k): _json_ready(x) for k, x in v.items()}
+    if isinstance(v, (bool, np.bool_)):
+        return bool(v)
+    if isinstance(v, (int, float, np.integer, np.floating)):
+        return num(v)
+    return v
 
 
 def _metric_dict(m: ModelMetrics) -> dict:
@@ -886,12 +1017,12 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         source=table.path,
         options=opt,
         tests=tests,
-        fits=fits,
+        fits=envelope_fits(fits, table.path),
         metrics=metrics,
         metrics_overall=overall,
         best_model={m: best_of(v) for m, v in metrics.items()},
         best_model_overall=best_of(overall),
-        notes=table.notes,
+        notes=opt.notes + table.notes,
         per_material=per_material,
         inputs=[input_file(source, table)] + ([input_file(opt.curves, curves.table)] if curves else []),
         warnings=warnings,
@@ -903,6 +1034,7 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         predictions=predictions,
         back=back,
         saturated_fits=saturated_fits,
+        heteroscedasticity=scored["heteroscedasticity"],
     )
     if opt.bootstrap > 0:
         result.ranking = _bootstrap(result, wet, mat, cond, opt)
@@ -1105,7 +1237,7 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks
         md = _model_inputs(tests, wet, mat, fits, opt, saturated_fits)
         laws = sa.fit_laws(md, opt.models, list(fits), opt.model_params, fits=fits)
         md = dataclasses.replace(
-            md, fitted={model: {m: law.params for m, law in by_mat.items()} for model, by_mat in laws.items()}
+            md, fitted={model: {m: law.values for m, law in by_mat.items()} for model, by_mat in laws.items()}
         )
         per_material = _material_values(md, wet, mat, fits, opt)
 
@@ -1145,12 +1277,12 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks
             source=path,
             options=opt,
             tests=tests,
-            fits=fits,
+            fits=envelope_fits(fits, path),
             metrics=scored["metrics"],
             metrics_overall=scored["overall"],
             best_model={m: best_of(v) for m, v in scored["metrics"].items()},
             best_model_overall=best_of(scored["overall"]),
-            notes=list(notes),
+            notes=opt.notes + list(notes),
             per_material=per_material,
             inputs=inputs,
             warnings=list(opt.warnings) + list(warnings) + scored["warnings"],
@@ -1162,6 +1294,7 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks
             predictions=predictions,
             back=back,
             saturated_fits=saturated_fits,
+            heteroscedasticity=scored["heteroscedasticity"],
             spool_in=spool_in,
             spool_out=spool_out,
             starts=starts,
@@ -1235,6 +1368,7 @@ def _scores(d: dict, wet, mat, fits, laws, predictions, opt: ShearOptions) -> di
     metrics, metrics_pend = scores(wet), scores(pend)
     for m in fits:
         metrics.setdefault(m, {})
+    hetero = _heteroscedasticity(d, wet, of_material, fits, predictions, opt)
     overall = (
         {mod: model_metrics(predictions[mod].tau[wet], d["tau_max"][wet]) for mod in opt.models} if wet.any() else {}
     )
@@ -1246,8 +1380,67 @@ def _scores(d: dict, wet, mat, fits, laws, predictions, opt: ShearOptions) -> di
         "pendular": metrics_pend,
         "overall": overall,
         "overall_pendular": overall_pend,
-        "warnings": _warnings(wet, pend, mat, fits, laws, predictions, opt),
+        "warnings": _warnings(wet, pend, mat, fits, laws, predictions, opt) + _scatter_warnings(fits, hetero),
+        "heteroscedasticity": hetero,
     }
+
+
+def _heteroscedasticity(d: dict, wet, of_material: dict, fits, predictions, opt: ShearOptions) -> dict:
+    """Per material: the Breusch-Pagan test of the dry fit's least-squares residuals and of each model's wet
+    residuals against sigma_N (capred.fitting.linear.breusch_pagan), and the error model used."""
+    out = {}
+    for m, fit in fits.items():
+        rows = np.flatnonzero(of_material[m] & wet)
+        models = {}
+        for mod in opt.models:
+            r = predictions[mod].tau[rows] - d["tau_max"][rows]
+            ok = np.isfinite(r)
+            scale = float(np.max(np.abs(d["tau_max"][rows]), initial=0.0))
+            models[mod] = breusch_pagan(d["sigma_N"][rows][ok], r[ok], scale)
+        out[m] = {
+            "dry_fit": fit.heteroscedasticity,
+            "errors": fit.errors,
+            "errors_option": opt.errors,
+            "models": models,
+        }
+    return out
+
+
+def _scatter_warnings(fits, hetero: dict) -> list[str]:
+    """Scatter growing with stress (dry fit, models) and outlying dry tests, one line each."""
+    out = []
+    for m, fit in fits.items():
+        bp = fit.heteroscedasticity or {}
+        if bp.get("significant"):
+            used = (
+                "the intervals use proportional errors (weighted least squares)"
+                if fit.errors == "proportional"
+                else "the intervals assume a constant scatter (--errors constant): use --errors proportional"
+            )
+            out.append(
+                f"material '{m}': the scatter of the dry tests grows with sigma_N (Breusch-Pagan "
+                f"LM = {bp['statistic']:.3g}, p = {bp['p_value']:.3g}); {used}"
+            )
+        grows = [mod for mod, t in hetero.get(m, {}).get("models", {}).items() if t.get("significant")]
+        if grows:
+            out.append(
+                f"material '{m}': the wet residuals of {', '.join(grows)} grow with sigma_N (Breusch-Pagan p < 0.05): "
+                "scatter growing with stress, or a model that misses a trend"
+            )
+        diag = fit.diagnostics or {}
+        for k in np.flatnonzero(diag.get("outlier", [])):
+            line = int(diag["lines"][k]) if "lines" in diag else None
+            where = f"the dry test on line {line}" if line is not None else f"dry test {k + 1}"
+            cure = (
+                f"--dry-loss {fit.loss} bounds its weight"
+                if fit.loss != "ols"
+                else "it drives the envelope and its intervals: check it, or fit with --dry-loss huber"
+            )
+            out.append(
+                f"material '{m}': {where} is an outlier of the dry envelope (externally studentized residual "
+                f"{diag['studentized'][k]:.3g}, beyond ±{diag['threshold']:.3g}, the Bonferroni 5 % limit); {cure}"
+            )
+    return out
 
 
 class _LongTests(dict):
@@ -1404,6 +1597,7 @@ class ShearBlocks(ShearResult):
             cached = self.__dict__["_csv_tables"] = {
                 "results": _ResultsBlocks(self),
                 "summary": _flat_summary(self, frame=False),
+                "metrics": _flat_metrics(self, frame=False),
             }
         return cached
 
@@ -1416,6 +1610,7 @@ class ShearBlocks(ShearResult):
             cached = self.__dict__["_tables"] = {
                 "results": pd.DataFrame(self._columns(0, self.row_count()), copy=False),
                 "summary": _flat_summary(self),
+                "metrics": _flat_metrics(self),
             }
         return cached
 
@@ -1469,9 +1664,11 @@ def _warnings(wet, pend, mat, fits, laws, predictions, opt) -> list[str]:
             out.append(f"material '{m}': the dry envelope rests on {fit.n} dry tests (fewer than 5)")
     for model, by_mat in laws.items():
         for m, law in by_mat.items():
+            for text in law.identifiability:
+                out.append(f"material '{m}': fitted {model}: {text}")
             for name in law.at_bound:
                 out.append(
-                    f"material '{m}': fitted {model} parameter '{name}' = {law.params[name]:.6g} lies at its bound"
+                    f"material '{m}': fitted {model} parameter '{name}' = {law.values[name]:.6g} lies at its bound"
                 )
     for model in opt.models:
         flag = esm.REGISTRY[model].no_prediction
@@ -1516,7 +1713,6 @@ def _dry_fits(table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[s
     """Per material, the dry envelope tau = c + sigma_N tan(phi) (through the origin with ``dry_fit='origin'``);
     a material without dry tests, or whose fit is impossible, is a problem of its first row in ``table``."""
     fits: dict[str, LineFit] = {}
-    fit = fit_line_origin if opt.dry_fit == "origin" else fit_line
     for m in materials:
         of_m = mat == m
         dry = of_m & (cond == "dry")
@@ -1527,9 +1723,14 @@ def _dry_fits(table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[s
             )
             continue
         try:
-            fits[m] = fit(d["sigma_N"][dry], d["tau_max"][dry], opt.confidence)
+            fits[m] = fit_envelope(
+                d["sigma_N"][dry], d["tau_max"][dry], opt.confidence, opt.dry_fit == "origin", opt.errors, opt.dry_loss
+            )
         except FitError as exc:
             table.add_problem(first, "condition", f"material '{m}': dry fit impossible: {exc}")
+            continue
+        rows = np.flatnonzero(dry)  # where each dry point lies in the table (flags, warnings)
+        fits[m].diagnostics.update(rows=rows, lines=np.asarray(table.lines)[rows])
     return fits
 
 
@@ -1565,7 +1766,7 @@ def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions,
     d = _model_inputs(tests, wet, mat, fits, opt, saturated_fits)
     laws = sa.fit_laws(d, opt.models, list(fits), opt.model_params, fits=fits)
     d = dataclasses.replace(
-        d, fitted={model: {m: law.params for m, law in by_mat.items()} for model, by_mat in laws.items()}
+        d, fitted={model: {m: law.values for m, law in by_mat.items()} for model, by_mat in laws.items()}
     )
     predictions, back = _predictions(tests, wet, d, fits, laws, opt)
     return predictions, back, _material_values(d, wet, mat, fits, opt), laws, d
@@ -1626,10 +1827,14 @@ def _predictions(tests: dict, wet, d, fits: dict[str, LineFit], laws: dict, opt:
     cov, s2, t = sa.fit_covariances(fits, d.material)
     dof = sa.fit_dof(fits, d.material)
     predictions = {}
+
+    def scatter(level):  # the variance of one test of expected strength ``level`` (grows with it: --errors)
+        return _scatter_variance(fits, d.material, level)
+
     for model in opt.models:
         eff, tau = esm.predict(model, d)
         # mean band: the dry envelope's (and a fitted law's) uncertainty; prediction interval: plus one test's scatter
-        b = sa.tau_bands(model, d, cov, s2, dof, laws, opt.confidence)
+        b = sa.tau_bands(model, d, cov, s2, dof, laws, opt.confidence, scatter=scatter)
         predictions[model] = ModelPrediction(
             model,
             sigma_eff=eff,
@@ -1639,10 +1844,21 @@ def _predictions(tests: dict, wet, d, fits: dict[str, LineFit], laws: dict, opt:
             tau_prediction_interval=(b.pred_low, b.pred_high),
             sigma_cap=np.where(wet, (tau - c) / tan_phi - tests["sigma_N"], np.nan),
         )
+    s2_test = scatter(tests["tau_max"])  # the wet test's own scatter, at its measured strength
     back = sa.back_analysis_intervals(
-        tests["tau_max"], tests["sigma_N"], tests["suction"], c, tan_phi, cov, s2, dof, opt.confidence, wet=wet
+        tests["tau_max"], tests["sigma_N"], tests["suction"], c, tan_phi, cov, s2_test, dof, opt.confidence, wet=wet
     )
     return predictions, back
+
+
+def _scatter_variance(fits: dict[str, LineFit], material, level) -> np.ndarray:
+    """Per test: s^2 v(level) of its material's dry fit (`LineFit.scatter_variance`) [Pa^2]."""
+    level = np.asarray(level, dtype=float)
+    out = np.full(level.shape, np.nan)
+    for m, f in fits.items():
+        sel = material == m
+        out[sel] = f.scatter_variance(level[sel])
+    return out
 
 
 def _material_values(d, wet, mat, fits: dict[str, LineFit], opt: ShearOptions) -> dict[str, dict]:
@@ -1660,17 +1876,58 @@ def _material_values(d, wet, mat, fits: dict[str, LineFit], opt: ShearOptions) -
 
 
 def _flat_summary(result: ShearResult, frame: bool = True):
-    """Summary CSV: one row per material and model (dry fit rows carry c and phi); a DataFrame, or with
-    ``frame=False`` plain columns that write the same CSV without pandas."""
+    """summary.csv: one row per material, its dry envelope (``name [unit]`` headers); a DataFrame, or with
+    ``frame=False`` plain columns that write the same CSV without pandas. The models' scores are metrics.csv
+    (`_flat_metrics`): one kind of record per table."""
     rows = []
-    for r in result.summary_rows():
-        r = dict(r)
-        for key in ("c_ci95_kPa", "phi_ci95_deg"):
-            if key in r:
-                lo, hi = r.pop(key)
-                r[key.replace("ci95", "ci95_low")] = lo
-                r[key.replace("ci95", "ci95_high")] = hi
-        rows.append(r)
+    for mat, fit in result.fits.items():
+        f = _fit_dict(fit)
+        line = line_of(fit)
+        rows.append(
+            {
+                "material": mat,
+                "n_dry [-]": f["n"],
+                "c [kPa]": f["c_kPa"],
+                "c_se [kPa]": f["c_se_kPa"],
+                "c_ci95_low [kPa]": f["c_ci95_kPa"][0],
+                "c_ci95_high [kPa]": f["c_ci95_kPa"][1],
+                "phi [deg]": f["phi_deg"],
+                "phi_se [deg]": f["phi_se_deg"],
+                "phi_ci95_low [deg]": f["phi_ci95_deg"][0],
+                "phi_ci95_high [deg]": f["phi_ci95_deg"][1],
+                "tan_phi [-]": f["tan_phi"],
+                "tan_phi_se [-]": f["tan_phi_se"],
+                "r2 [-]": f["r2"],
+                "dry_fit": "origin" if line.through_origin else "free",
+                "errors": getattr(line, "errors", "constant"),
+                "dry_loss": getattr(line, "loss", "ols"),
+            }
+        )
+    return _rows_table(rows, frame)
+
+
+def _flat_metrics(result: ShearResult, frame: bool = True):
+    """metrics.csv: one row per material (and "(all)") and model: n, RMSE, bias, R² and the best flag."""
+    rows = []
+    for mat, by_model in list(result.metrics.items()) + [("(all)", result.metrics_overall)]:
+        best = result.best_model_overall if mat == "(all)" else result.best_model.get(mat)
+        for m, met in by_model.items():
+            d = _metric_dict(met)
+            rows.append(
+                {
+                    "material": mat,
+                    "model": m,
+                    "n [-]": d["n"],
+                    "rmse [kPa]": d["rmse_kPa"],
+                    "bias [kPa]": d["bias_kPa"],
+                    "r2 [-]": d["r2"],
+                    "best": m == best,
+                }
+            )
+    return _rows_table(rows, frame)
+
+
+def _rows_table(rows: list[dict], frame: bool):
     if not frame:
         from ..result import columns_of_rows
 

@@ -293,6 +293,7 @@ def tau_bands(
     dof,
     laws: dict | None = None,
     confidence: float = 0.95,
+    scatter=None,
 ) -> TauBands:
     r"""Confidence band of the mean and prediction interval of a new test, per test, for one model.
 
@@ -321,6 +322,10 @@ def tau_bands(
         The fitted laws (`fit_laws`).
     confidence : float
         Level [-].
+    scatter : callable, optional
+        ``scatter(tau) -> (n,) ndarray``: the variance of one test of expected strength tau [Pa^2] when the
+        scatter grows with the strength (``--errors proportional``); it replaces ``s2`` for the new test, and
+        scales a fitted law's pooled variance by scatter(tau_hat)/mean(scatter(tau)) over its wet tests.
 
     Returns
     -------
@@ -335,6 +340,9 @@ def tau_bands(
     gc, gb = _envelope_gradient(model, d)
     var = gc**2 * cov[:, 0, 0] + 2 * gc * gb * cov[:, 0, 1] + gb**2 * cov[:, 1, 1]
     s2 = np.array(s2, dtype=float, copy=True) * np.ones(base.shape)
+    if scatter is not None:
+        s2 = np.asarray(scatter(base), dtype=float)
+        s2_measured = np.asarray(scatter(d.tau_max), dtype=float)
     nu = np.asarray(dof, dtype=int) * np.ones(base.shape, dtype=int)
     for mat, law in ((laws or {}).get(model) or {}).items():
         sel = d.wet & (d.material == mat)
@@ -343,16 +351,21 @@ def tau_bands(
         w = d.subset(sel)
         g = [gc[sel], gb[sel]]
         for name in law.names[2:]:
-            v = law.params[name]
+            v = law.values[name]
             h = 1e-6 * max(abs(v), 1e-12)
             parts = []
             for sign in (1.0, -1.0):
-                fitted = {**w.fitted, model: {**w.fitted.get(model, {}), mat: {**law.params, name: v + sign * h}}}
+                fitted = {**w.fitted, model: {**w.fitted.get(model, {}), mat: {**law.values, name: v + sign * h}}}
                 parts.append(_tau(model, w, fitted=fitted))
             g.append((parts[0] - parts[1]) / (2 * h))
         G = np.column_stack(g)
         var[sel] = np.einsum("ip,pq,iq->i", G, law.covariance, G)
-        s2[sel] = law.residual_variance if law.residual_variance is not None else np.nan
+        pooled = law.residual_variance if law.residual_variance is not None else np.nan
+        if scatter is not None:
+            ratio = s2[sel] / np.nanmean(s2_measured[sel])
+            s2[sel] = pooled * ratio
+        else:
+            s2[sel] = pooled
         nu[sel] = law.dof
     t = t_quantile(0.5 + confidence / 2.0, nu)
     half_mean = t * np.sqrt(np.maximum(var, 0.0))
@@ -946,14 +959,14 @@ def retention_relation(params, suction, S_R) -> RetentionRelation | None:
 
 
 def model_curves(result, material, relation: RetentionRelation, sigma_N: float, points: int = 120):
-    """(S_R, {model: tau [Pa]}) along the retention relation at one normal stress; models fitted on the tests'
-    own strengths (fredlund) are left out."""
+    """(S_R, {model: tau [Pa]}) along the retention relation at one normal stress; models whose registry entry
+    says ``along_retention=False`` (fitted on the tests' own strengths) are left out."""
     t = result.tests
     sel = (t["material"] == material) & (t["condition"] == "wet")
     s_pos = t["suction"][sel][t["suction"][sel] > 0]
     s = np.geomspace(s_pos.min() / 3, s_pos.max() * 3, points)
     S = np.clip(relation.S_R(s), 0.0, 1.0)
-    fit = result.fits[material]
+    fit = result.fits[material].line
     n = s.size
     d = esm.ModelInputs(
         np.full(n, sigma_N),
@@ -971,7 +984,7 @@ def model_curves(result, material, relation: RetentionRelation, sigma_N: float, 
     )
     out = {}
     for m in result.models:
-        if m == "fredlund":
+        if not esm.REGISTRY[m].along_retention:  # e.g. a model fitted on the tests' own strengths
             continue
         with np.errstate(invalid="ignore"):
             out[m] = esm.predict(m, d)[1]

@@ -67,7 +67,7 @@ def _wet(result, material):
 def plot_dry_envelope(ax, result, material):
     """Dry tests, the fitted line τ = c + σ_N tan φ and its confidence band of the mean."""
     t = result.tests
-    fit = result.fits[material]
+    fit = result.fits[material].line
     dry = (t["material"] == material) & (t["condition"] == "dry")
     x = t["sigma_N"][dry]
     xs = np.linspace(0.0, max(x.max(initial=0.0), 1e-9) * 1.1, 100)
@@ -406,9 +406,9 @@ def plot_chi_back(ax, result, material):
         if entry.chi_of_saturation is None:
             continue
         law = result.laws.get(m, {}).get(material)
-        chi = entry.chi_of_saturation(s, params, law.params if law is not None else None)
+        chi = entry.chi_of_saturation(s, params, law.values if law is not None else None)
         if np.isfinite(chi).any():
-            extra = "".join(f", {symbol(k)} = {law.params[k]:.3g}" for k in entry.fitted) if law is not None else ""
+            extra = "".join(f", {symbol(k)} = {law.values[k]:.3g}" for k in entry.fitted) if law is not None else ""
             st = _style(m)
             ax.plot(s, chi, color=st["color"], ls=st.get("ls", "-"), lw=1.2, label=_label(m) + extra)
     back = result.back
