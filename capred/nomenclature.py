@@ -356,6 +356,8 @@ def column_aliases(name: str) -> tuple[str, ...]:
         The aliases of :data:`COLUMN_ALIASES`, empty when the glossary lists none.
     """
     return COLUMN_ALIASES.get(name, ())
+
+
 # triaxial outputs (Prunier et al. 2024): the fields of capred.pipelines.triaxial_records name these entries;
 # their JSON keys (name + _kPa/_deg), CSV headers (name [unit]) and console headers (symbol [unit]) follow
 QUANTITIES.update(

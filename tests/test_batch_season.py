@@ -60,8 +60,10 @@ def test_season_csv_is_one_row_per_run_with_labels_not_ids(season):
     assert list(table.columns[:6]) == ["command", "input", "status", "reason", "material", "headline"]
     good = table[table["input"] == "../runs/good.csv"].iloc[0]
     assert good["material"] == "steel_2mm; sand_208-417um"
-    # the sample's dry envelope of steel: c = 0.3701 kPa, φ = 34.59° (tests/test_pipeline_shear.py); Own 2 best
-    assert "steel_2mm: c 0.3701 kPa, phi 34.59 deg, best model: Own 2" in good["headline"]
+    # the headline quotes the run's own dry envelope of steel (4 significant digits) and the best model's label
+    steel = capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(bootstrap=0)).fits["steel_2mm"].params
+    c, phi = steel["c_kPa"].value, steel["phi_deg"].value
+    assert f"steel_2mm: c {c:.4g} kPa, phi {phi:.4g} deg, best model: Own 2" in good["headline"]
     retention = table[table["command"] == "retention"].iloc[0]
     assert "best model: van Genuchten" in retention["headline"] and "vg" not in retention["headline"].split()
     for text in table["headline"]:
