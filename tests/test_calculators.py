@@ -260,4 +260,4 @@ def test_skempton_titles_name_model_and_inputs(args, title, tmp_path):
     if args:
         assert "s_e = 20 kPa, λ = 0.8" in res.stdout
         row = (tmp_path / "results.csv").read_text().splitlines()
-        assert "s_e_kPa" in row[0] and "bc_lambda" in row[0]
+        assert "s_e [kPa]" in row[0] and "bc_lambda" in row[0]

@@ -16,6 +16,7 @@ from ..io.table import Column, Table, read_table
 from ..physics import bridge as br
 from ..physics import shear as ph
 from ..result import InputFile, Options, Result, Rows, json_list, num
+from ..result import csv_header as result_csv_header
 
 # 1: the gap is too wide for this suction or volume; 3: so much water that the bridge would be
 # convex (water above air pressure), outside the pendular model
@@ -208,16 +209,6 @@ class BridgeResult(Result):
         return {"solve": with_csv_headers(self._cols())}
 
 
-#: unit suffixes of the JSON keys, longest first, and the unit each names in a CSV header
-_SUFFIXES = (
-    ("_N_per_m", "N/m"),
-    ("_mm3", "mm^3"),
-    ("_mm2", "mm^2"),
-    ("_mm", "mm"),
-    ("_mN", "mN"),
-    ("_deg", "deg"),
-    ("_kPa", "kPa"),
-)
 #: columns of text (no unit in their header)
 TEXT_COLUMNS = ("case", "status", "note", "model", "law", "region")
 
@@ -238,10 +229,8 @@ def csv_header(key: str) -> str:
     """
     if key in TEXT_COLUMNS:
         return key
-    for suffix, unit in _SUFFIXES:
-        if key.endswith(suffix):
-            return f"{key[: -len(suffix)]} [{unit}]"
-    return f"{key} [-]"
+    header = result_csv_header(key)  # the one rule for unit suffixes (capred.result)
+    return header if header != key else f"{key} [-]"
 
 
 class HeadedSpool:
