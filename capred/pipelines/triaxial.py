@@ -379,6 +379,8 @@ class TriaxialResult(Result):
         Appendix 1 of Prunier et al. (2024) per group.
     notes, warnings : list of str
         What the run did and what the user should check.
+    curves : dict of str to Curve
+        The raw curves (``--curves``) that gave a test's failure deviator, by test id.
     """
 
     command = "triaxial-bounds"
@@ -392,6 +394,7 @@ class TriaxialResult(Result):
     options: TriaxialOptions | None = None
     inputs: list[InputFile] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
+    curves: dict[str, rec.Curve] = field(default_factory=dict)
 
     @property
     def unsaturated(self) -> np.ndarray:
@@ -1060,7 +1063,13 @@ def run_triaxial_bounds(
             gain=np.where(np.isfinite(b.sigma1_cap), gain, np.nan),
             positive_component=np.asarray(b.positive, bool),
         )
-    return TriaxialResult(table.path, env, states, bound_states, group_records, notes, opt, inputs, warnings)
+    curves_used = {}
+    if raw_curves:  # the curves that gave a test's failure deviator, for the q-eps1 and epsv-eps1 figures
+        used = {str(t) for t, f in zip(table.columns["test_id"], d["from_curve"]) if f}
+        curves_used = {t: c for t, c in raw_curves.curves.items() if t in used}
+    return TriaxialResult(
+        table.path, env, states, bound_states, group_records, notes, opt, inputs, warnings, curves_used
+    )
 
 
 def _ci95(value: float, se: float, dof: int) -> tuple | None:

@@ -33,6 +33,7 @@ from ..errors import InputError, Problem
 from ..io.grid import SPREADSHEET_SUFFIXES, source_path
 from ..io.table import Column, Table, _key, read_table
 from ..units import parse_quantity
+from .triaxial_records import Curve
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier", ("id", "test", "sample_id", "sample")),
@@ -182,6 +183,8 @@ class TriaxialCurves:
     problems: list[Problem] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
+    #: test id -> its shear-stage readings in kPa and strains [-] (capred.pipelines.triaxial_records.Curve)
+    curves: dict = field(default_factory=dict)
 
 
 def curve_files(spec) -> list:
@@ -337,6 +340,13 @@ def read_curves(
                 table.add_problem(int(sel[0]), "test_id", f"a second curve for test '{tid}'")
                 continue
             out.peaks[str(tid)] = (float(np.max(q[ok])), float(eps[k]))
+            out.curves[str(tid)] = Curve(
+                str(tid),
+                eps[sel].copy(),
+                q / 1e3,
+                table.get("vol_strain")[sel].copy(),
+                int(np.flatnonzero(sel == k)[0]),
+            )
             state = {name: float(table.get(name)[k]) for name in PEAK_PRESSURES}
             state["membrane"] = float(dq[int(np.flatnonzero(sel == k)[0])])
             state["D0"] = D0

@@ -442,3 +442,26 @@ def group_csv(g: GroupRecord) -> dict:
             else:
                 row[heads[0]] = v
     return row
+
+
+@dataclass(frozen=True)
+class Curve:
+    """One test's shear-stage curve as read (deviator corrected for the membrane where asked) and its peak.
+
+    Attributes
+    ----------
+    test_id : str
+        The test.
+    axial_strain, vol_strain : ndarray
+        Axial strain ε1 and volumetric strain εv of every reading [-] (compression positive; NaN where absent).
+    q : ndarray
+        Deviator stress of every reading [kPa].
+    peak : int
+        Index of the reading taken as failure (the largest q).
+    """
+
+    test_id: str
+    axial_strain: np.ndarray
+    q: np.ndarray
+    vol_strain: np.ndarray
+    peak: int
