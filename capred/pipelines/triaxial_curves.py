@@ -106,14 +106,16 @@ EXPORT_COLUMNS = (
     "Eff. Mean Stress s'",
     "Mean Stress s/Eff. Axial Stress 2",
     "Volume Change",
-    "B Value",
     "Local Axial 1",
     "Local Axial 2",
     "Local Radial",
     "Lower Chamber Pressure",
     "Lower Chamber Volume",
 )
-SCHEMA += [Column("stage", "text", None, "stage number of the export", ("stage_number", "stage_no", "stage_nr"))]
+SCHEMA += [
+    Column("stage", "text", None, "stage number of the export", ("stage_number", "stage_no", "stage_nr")),
+    Column("B", "dimensionless", "-", "Skempton's pore-pressure coefficient B", ("b_value", "skempton_b")),
+]
 SCHEMA += [Column(_key(name), "text", None, f"{name} (instrument export; not used)", ()) for name in EXPORT_COLUMNS]
 
 #: the pressures read at the peak of a curve (an export's columns)
@@ -348,6 +350,13 @@ def read_curves(
                 int(np.flatnonzero(sel == k)[0]),
             )
             state = {name: float(table.get(name)[k]) for name in PEAK_PRESSURES}
+            # changes over the stage, first reading to the peak, for Skempton's A (Skempton 1954)
+            first = int(sel[0])
+            state["du"] = float(table.get("pore_pressure")[k] - table.get("pore_pressure")[first])
+            state["dsigma3"] = float(table.get("radial_pressure")[k] - table.get("radial_pressure")[first])
+            state["dq"] = float(np.max(q[ok]) - q[0]) if np.isfinite(q[0]) else float("nan")
+            b = table.get("B")[np.flatnonzero(ids == tid)]  # logged in the B-check stage, not in the shear
+            state["B"] = float(b[np.isfinite(b)][-1]) if np.isfinite(b).any() else float("nan")
             state["membrane"] = float(dq[int(np.flatnonzero(sel == k)[0])])
             state["D0"] = D0
             if membrane is not None:

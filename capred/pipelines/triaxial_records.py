@@ -184,6 +184,9 @@ class TestStates:
         Axial strain at failure [-] (NaN when unknown).
     q_sat : ndarray
         Drained saturated strength at the test's p0 [kPa] (NaN on saturated tests).
+    skempton_A : ndarray
+        Skempton's A at failure, (Δu − B Δσ3)/(B (Δσ1 − Δσ3)) over the shear stage of the test's curve [-]
+        (NaN without a curve that logs the pore pressure; Skempton 1954).
     """
 
     test_id: np.ndarray = text()
@@ -207,6 +210,7 @@ class TestStates:
     pair: np.ndarray = text()
     strain_at_failure: np.ndarray = quantity("strain_at_failure")
     q_sat: np.ndarray = quantity("q_sat")
+    skempton_A: np.ndarray = quantity("skempton_A")
 
     def __len__(self) -> int:
         return len(self.test_id)
