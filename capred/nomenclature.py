@@ -399,6 +399,7 @@ QUANTITIES.update(
         "lode_tol": Quantity("tol θ_L", "deg", 1.0, "angle", "Lode angle tolerance of one branch"),
         "fictive_sigma1": Quantity("σ''1", "kPa", 1e-3, "pressure", "major stress of the fictive state (eq. 44)"),
         "fictive_sigma3": Quantity("σ''3", "kPa", 1e-3, "pressure", "minor stress of the fictive state (eq. 44)"),
+        "skempton_A": Quantity("A", "-", 1.0, "dimensionless", "Skempton's pore-pressure coefficient A at failure"),
     }
 )
 

@@ -25,14 +25,17 @@ HEAD = (
 )
 
 
-def _export(path, stages, extra=""):
-    """A GDS-style export: ``stages`` maps a stage number to its deviator readings [kPa]."""
+def _export(path, stages, extra="", du=0.0):
+    """A GDS-style export: ``stages`` maps a stage number to its deviator readings [kPa]; in the shear stage
+    (the last) the pore pressure rises by ``du`` times the rise of q."""
     rows, t = [], 0
     for stage, qs in stages.items():
         for k, q in enumerate(qs):
-            eps = 0.5 * k if stage == max(stages) else 0.0  # axial strain [%] moves in the shear stage only
+            shear = stage == max(stages)
+            eps = 0.5 * k if shear else 0.0  # axial strain [%] moves in the shear stage only
+            u = 200 + (du * (q - qs[0]) if shear else 0.0)
             rows.append(
-                f"{stage},{t},{k},300,0,200,0,0,200,0,{eps},0,0,{300 + q},{100 + q},100,{q},1,1,1134,0,"
+                f"{stage},{t},{k},300,0,200,0,0,{u},0,{eps},0,0,{300 + q},{100 + q},100,{q},1,1,1134,0,"
                 f"{300 + q / 3},{100 + q / 3},{q / 2},0,0.96" + (",x" if extra else "")
             )
             t += 60
@@ -106,3 +109,21 @@ def test_sample_compression_tests_print_lode_zero():
     t = pd.DataFrame(r.to_json()["tests"]).set_index("test_id")
     assert (t.loc[["A-50", "A-100", "A-150", "SAT-50"], "lode_angle_deg"] == 0.0).all()
     assert (t.loc[["E-150", "E-250", "E-350"], "lode_angle_deg"] == 60.0).all()
+
+
+def test_skempton_a_from_the_pore_pressure_of_the_shear_stage(tmp_path):
+    # shear stage: q from 6 to 150 kPa (dq = 144) at constant cell pressure, u rises by q/2 (du = 72 kPa);
+    # the export's B Value is 0.96: A = (du - B dsigma3)/(B dq) = 72/(0.96 * 144) = 0.52083 (Skempton 1954)
+    f = _export(tmp_path / "G1.csv", {1: [1, 2, 2], 4: [6, 80, 150, 120]}, du=0.5)
+    tests = tmp_path / "tests.csv"
+    head = "test_id,condition,sigma3,q_f,back_pressure{b}\ns1,saturated,100,200,0{x}\ns2,saturated,200,400,0{x}\n"
+    tests.write_text(head.format(b="", x="") + "G1,saturated,300,,200\n")
+    given = capred.TriaxialOptions(c_eff=0.0, phi_eff=30.0)  # the envelope is not the subject
+    r = capred.run_triaxial_bounds(tests, given, curves=f)
+    assert r.states.skempton_A[2] == pytest.approx(72 / (0.96 * 144), rel=1e-12)  # arithmetic only
+    assert np.isnan(r.states.skempton_A[:2]).all()  # no curve, no A
+    assert r.to_json()["tests"][2]["skempton_A"] == r.states.skempton_A[2]
+    assert "skempton_A [-]" in r.table().columns
+    # the tests table's B wins over the export's: B = 1 gives A = 72/144 = 0.5
+    tests.write_text(head.format(b=",B", x=",") + "G1,saturated,300,,200,1\n")
+    assert capred.run_triaxial_bounds(tests, given, curves=f).states.skempton_A[2] == pytest.approx(0.5, rel=1e-12)

@@ -220,3 +220,39 @@ def test_effective_envelope_params_and_deprecated_pa_attributes(write_csv):
     with pytest.warns(DeprecationWarning, match="states"):
         assert r.tests["sigma3"][0] == pytest.approx(50e3, rel=1e-15)
     assert r.states.sigma3[0] == 50.0
+
+
+@pytest.mark.parametrize(
+    "sigma3, sd",
+    [((50, 100, 150, 200), 5.0), ((30, 50, 100, 150, 200, 300), 10.0)],
+    ids=["4 tests, sd 5 kPa", "6 tests, sd 10 kPa"],
+)
+def test_envelope_intervals_cover_by_simulation(sigma3, sd):
+    # the 95 % intervals of params["c_kPa"], ["phi_deg"] (delta method, t with n - 2 dof) are claims: 400 data sets
+    # from c' = 10 kPa, phi' = 30 deg with normal scatter on sigma'1 (fixed seed). Coverage must lie within
+    # 3 binomial standard errors of 95 % (sqrt(0.95 * 0.05 / 400) = 1.09 %: 91.7-98.3 %).
+    from capred.physics import triaxial as tx
+    from capred.pipelines.triaxial import fit_envelope
+
+    rng = np.random.default_rng(20261126)
+    K = tx.passive_coefficient(30.0)
+    s3 = np.array(sigma3, float) * 1e3
+    hits, n = np.zeros(2), 400
+    for _ in range(n):
+        s1 = K * s3 + 2 * 10e3 * np.sqrt(K) + rng.normal(0.0, sd * 1e3, s3.size)
+        p = fit_envelope(s3, s1).params
+        hits += [p["c_kPa"].ci95[0] <= 10.0 <= p["c_kPa"].ci95[1], p["phi_deg"].ci95[0] <= 30.0 <= p["phi_deg"].ci95[1]]
+    half = 3 * np.sqrt(0.95 * 0.05 / n)
+    assert np.all(np.abs(hits / n - 0.95) <= half), hits / n
+
+
+def test_old_dict_access_of_groups_and_bounds_warns_and_keeps_its_unit():
+    r = run_triaxial_bounds(_sample())
+    g = r.groups[0]
+    with pytest.warns(DeprecationWarning, match="GroupRecord"):
+        assert g["sigma1_cap_kPa"] == g.sigma1_cap  # the JSON key, in kPa as it always was
+    i = int(np.flatnonzero(np.isfinite(r.bound_states["lower"].sigma3_cap))[0])  # an axisymmetric unsaturated test
+    with pytest.warns(DeprecationWarning, match="bound_states"):
+        assert r.bounds["lower"].sigma3_cap[i] == pytest.approx(r.bound_states["lower"].sigma3_cap[i] * 1e3, rel=1e-15)
+    with pytest.warns(DeprecationWarning, match="states.q_sat"):
+        assert np.nanmax(r.q_sat) == pytest.approx(np.nanmax(r.states.q_sat) * 1e3, rel=1e-15)

@@ -75,6 +75,7 @@ SCHEMA = [
         "axial strain at failure",
         ("eps_f", "axial_strain_f", "axial_strain_at_failure", "strain_f"),
     ),
+    Column("B", "dimensionless", "-", "Skempton's B of the test", ("b_value", "skempton_b"), "positive"),
     Column("D_c", "length", "mm", "diameter after consolidation", ("consolidated_diameter", "d_c"), "positive"),
     Column("H_c", "length", "mm", "height after consolidation", ("consolidated_height", "h_c"), "positive"),
     Column(
@@ -379,6 +380,8 @@ class TriaxialResult(Result):
         Appendix 1 of Prunier et al. (2024) per group.
     notes, warnings : list of str
         What the run did and what the user should check.
+    curves : dict of str to Curve
+        The raw curves (``--curves``) that gave a test's failure deviator, by test id.
     """
 
     command = "triaxial-bounds"
@@ -392,6 +395,7 @@ class TriaxialResult(Result):
     options: TriaxialOptions | None = None
     inputs: list[InputFile] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
+    curves: dict[str, rec.Curve] = field(default_factory=dict)
 
     @property
     def unsaturated(self) -> np.ndarray:
@@ -616,6 +620,55 @@ def consolidated_diameter(table: Table) -> tuple[np.ndarray, np.ndarray]:
         elif np.isfinite(d0[i]):
             out[i], src[i] = d0[i], "D0"
     return out, src
+
+
+def skempton_a_of_curves(table: Table, at_peak: dict) -> tuple[np.ndarray, list[str]]:
+    """Skempton's A at failure of every test whose curve logs the pore pressure, and the notes on B and Δσ3.
+
+    A = (Δu − B Δσ3)/(B (Δσ1 − Δσ3)) with the changes over the shear stage, from its first reading to the
+    peak (Skempton 1954; Morvan et al. 2016, eq. 1): Δσ1 − Δσ3 = Δq. B is the tests table's column ``B``,
+    else the export's last ``B Value``, else 1 (a saturated specimen; said in a note). Δσ3 is the change of
+    the export's radial pressure (0, said in a note, when it logs none).
+
+    Returns
+    -------
+    A : ndarray
+        Skempton's A per test [-] (NaN without pore pressures or without a rise of q).
+    notes : list of str
+
+    References
+    ----------
+    .. [1] Skempton, A. W. (1954). The pore-pressure coefficients A and B. Geotechnique 4(4), 143-147.
+       doi:10.1680/geot.1954.4.4.143
+    .. [2] Morvan, M., Vernay, M. & Breul, P. (2016). Study of the variation of B with Sr. E-UNSAT 2016,
+       E3S Web of Conferences, eq. 1.
+    """
+    n = len(table)
+    A = np.full(n, np.nan)
+    b_col = table.get("B")
+    assumed_b, assumed_s3 = [], []
+    for i in range(n):
+        tid = str(table.columns["test_id"][i])
+        st = at_peak.get(tid)
+        if not st or not np.isfinite(st.get("du", np.nan)) or not st.get("dq", np.nan) > 0:
+            continue
+        B = b_col[i] if np.isfinite(b_col[i]) else st.get("B", np.nan)
+        if not np.isfinite(B):
+            B = 1.0
+            assumed_b.append(tid)
+        ds3 = st["dsigma3"]
+        if not np.isfinite(ds3):
+            ds3 = 0.0
+            assumed_s3.append(tid)
+        A[i] = (st["du"] - B * ds3) / (B * st["dq"])
+    notes = []
+    if assumed_b:
+        notes.append(
+            f"Skempton's A with B = 1 (a saturated specimen; give a column 'B' to use another): {', '.join(assumed_b)}"
+        )
+    if assumed_s3:
+        notes.append(f"Skempton's A with Δσ3 = 0 (the export logs no radial pressure): {', '.join(assumed_s3)}")
+    return A, notes
 
 
 def pressure_tolerance(pressure):
@@ -1034,15 +1087,18 @@ def run_triaxial_bounds(
     group_records = _group_analysis(tests, c_eff, phi_eff)
     for g in group_records:
         notes += [f"group {g.group}: {v}" for v in (g.needs, g.warning) if v]
+    A, note_A = skempton_a_of_curves(table, raw_curves.at_peak if raw_curves else {})
+    notes += note_A
     states = rec.TestStates(
         **{k: tests[k] for k in _TEXT_FIELDS},
         **{
             f.name: np.asarray(tests[{v: k for k, v in _OLD_TEST_KEYS.items()}.get(f.name, f.name)], float)
             * (1.0 if f.name in ("lode_angle", "strain_at_failure") else 1 / KPA)
             for f in dataclasses.fields(rec.TestStates)
-            if f.name not in _TEXT_FIELDS and f.name != "q_sat"
+            if f.name not in _TEXT_FIELDS and f.name not in ("q_sat", "skempton_A")
         },
         q_sat=np.where(unsat, q_sat, np.nan) / KPA,
+        skempton_A=A,
     )
     bound_states = {}
     for name, b in bounds.items():
@@ -1060,7 +1116,13 @@ def run_triaxial_bounds(
             gain=np.where(np.isfinite(b.sigma1_cap), gain, np.nan),
             positive_component=np.asarray(b.positive, bool),
         )
-    return TriaxialResult(table.path, env, states, bound_states, group_records, notes, opt, inputs, warnings)
+    curves_used = {}
+    if raw_curves:  # the curves that gave a test's failure deviator, for the q-eps1 and epsv-eps1 figures
+        used = {str(t) for t, f in zip(table.columns["test_id"], d["from_curve"]) if f}
+        curves_used = {t: c for t, c in raw_curves.curves.items() if t in used}
+    return TriaxialResult(
+        table.path, env, states, bound_states, group_records, notes, opt, inputs, warnings, curves_used
+    )
 
 
 def _ci95(value: float, se: float, dof: int) -> tuple | None:

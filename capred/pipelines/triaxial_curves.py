@@ -34,6 +34,7 @@ from ..io.grid import SPREADSHEET_SUFFIXES, source_path
 from ..io.table import Column, Table, _key, read_table
 from ..nomenclature import column_aliases
 from ..units import parse_quantity
+from .triaxial_records import Curve
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
@@ -106,14 +107,16 @@ EXPORT_COLUMNS = (
     "Eff. Mean Stress s'",
     "Mean Stress s/Eff. Axial Stress 2",
     "Volume Change",
-    "B Value",
     "Local Axial 1",
     "Local Axial 2",
     "Local Radial",
     "Lower Chamber Pressure",
     "Lower Chamber Volume",
 )
-SCHEMA += [Column("stage", "text", None, "stage number of the export", ("stage_number", "stage_no", "stage_nr"))]
+SCHEMA += [
+    Column("stage", "text", None, "stage number of the export", ("stage_number", "stage_no", "stage_nr")),
+    Column("B", "dimensionless", "-", "Skempton's pore-pressure coefficient B", ("b_value", "skempton_b")),
+]
 SCHEMA += [Column(_key(name), "text", None, f"{name} (instrument export; not used)", ()) for name in EXPORT_COLUMNS]
 
 #: the pressures read at the peak of a curve (an export's columns)
@@ -183,6 +186,8 @@ class TriaxialCurves:
     problems: list[Problem] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
+    #: test id -> its shear-stage readings in kPa and strains [-] (capred.pipelines.triaxial_records.Curve)
+    curves: dict = field(default_factory=dict)
 
 
 def curve_files(spec) -> list:
@@ -338,7 +343,21 @@ def read_curves(
                 table.add_problem(int(sel[0]), "test_id", f"a second curve for test '{tid}'")
                 continue
             out.peaks[str(tid)] = (float(np.max(q[ok])), float(eps[k]))
+            out.curves[str(tid)] = Curve(
+                str(tid),
+                eps[sel].copy(),
+                q / 1e3,
+                table.get("vol_strain")[sel].copy(),
+                int(np.flatnonzero(sel == k)[0]),
+            )
             state = {name: float(table.get(name)[k]) for name in PEAK_PRESSURES}
+            # changes over the stage, first reading to the peak, for Skempton's A (Skempton 1954)
+            first = int(sel[0])
+            state["du"] = float(table.get("pore_pressure")[k] - table.get("pore_pressure")[first])
+            state["dsigma3"] = float(table.get("radial_pressure")[k] - table.get("radial_pressure")[first])
+            state["dq"] = float(np.max(q[ok]) - q[0]) if np.isfinite(q[0]) else float("nan")
+            b = table.get("B")[np.flatnonzero(ids == tid)]  # logged in the B-check stage, not in the shear
+            state["B"] = float(b[np.isfinite(b)][-1]) if np.isfinite(b).any() else float("nan")
             state["membrane"] = float(dq[int(np.flatnonzero(sel == k)[0])])
             state["D0"] = D0
             if membrane is not None:

@@ -184,6 +184,9 @@ class TestStates:
         Axial strain at failure [-] (NaN when unknown).
     q_sat : ndarray
         Drained saturated strength at the test's p0 [kPa] (NaN on saturated tests).
+    skempton_A : ndarray
+        Skempton's A at failure, (Δu − B Δσ3)/(B (Δσ1 − Δσ3)) over the shear stage of the test's curve [-]
+        (NaN without a curve that logs the pore pressure; Skempton 1954).
     """
 
     test_id: np.ndarray = text()
@@ -207,6 +210,7 @@ class TestStates:
     pair: np.ndarray = text()
     strain_at_failure: np.ndarray = quantity("strain_at_failure")
     q_sat: np.ndarray = quantity("q_sat")
+    skempton_A: np.ndarray = quantity("skempton_A")
 
     def __len__(self) -> int:
         return len(self.test_id)
@@ -442,3 +446,26 @@ def group_csv(g: GroupRecord) -> dict:
             else:
                 row[heads[0]] = v
     return row
+
+
+@dataclass(frozen=True)
+class Curve:
+    """One test's shear-stage curve as read (deviator corrected for the membrane where asked) and its peak.
+
+    Attributes
+    ----------
+    test_id : str
+        The test.
+    axial_strain, vol_strain : ndarray
+        Axial strain ε1 and volumetric strain εv of every reading [-] (compression positive; NaN where absent).
+    q : ndarray
+        Deviator stress of every reading [kPa].
+    peak : int
+        Index of the reading taken as failure (the largest q).
+    """
+
+    test_id: str
+    axial_strain: np.ndarray
+    q: np.ndarray
+    vol_strain: np.ndarray
+    peak: int

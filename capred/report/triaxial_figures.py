@@ -108,7 +108,7 @@ def plot_qp_plane(ax, result):
     ax.set_ylim(bottom=0)
     ax.set_xlabel(LABEL["p"])
     ax.set_ylabel(LABEL["q"])
-    ax.set_title(r"$q$-$p$ plane: failure and image points (Prunier et al. 2024, Fig. 16-17)")
+    ax.set_title(r"$q$-$p$ plane: failure and image points (Fig. 16-17)")
     ax.legend()
     return ax
 
@@ -145,7 +145,7 @@ def plot_capillary_ranges(ax, result):
     handles += [Patch(facecolor="0.75", hatch=h, edgecolor="white", label=lab) for _, lab, h in comps]
     ax.legend(handles=handles)
     ax.set_ylabel(LABEL["cap_component"])
-    ax.set_title("Capillary stresses at failure, per test (Prunier et al. 2024, Fig. 18)")
+    ax.set_title("Capillary stresses per test (Fig. 18)")
     return ax
 
 
@@ -180,7 +180,7 @@ def plot_mohr_circles(ax, result):
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(LABEL["sigma"])
     ax.set_ylabel(LABEL["tau"])
-    ax.set_title("Mohr circles at failure (Prunier et al. 2024, Fig. 19-20)")
+    ax.set_title("Mohr circles at failure (Fig. 19-20)")
     ax.legend()
     return ax
 
@@ -224,7 +224,7 @@ def plot_group_circles(ax, result):
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(LABEL["sigma"])
     ax.set_ylabel(LABEL["tau"])
-    ax.set_title(r"Groups: circles and the lines $C$, $C''$ (Prunier et al. 2024, Fig. 21)")
+    ax.set_title(r"Groups: circles, lines $C$ and $C''$ (Fig. 21)")
     ax.legend()
     return ax
 
@@ -272,7 +272,7 @@ def plot_group_tensors(ax, result):
     ax.set_xticks(np.arange(len(groups)), [f"{literal(g.group)}\n{short(g)}" for g in groups], fontsize=7)
     ax.axhline(0, color="k", lw=0.8)
     ax.set_ylabel(LABEL["cap_component"])
-    ax.set_title(r"Tensor shared by each group ($\pm$ se; a range where the paper leaves it open)")
+    ax.set_title(r"Tensor of each group ($\pm$ se; range without pairs)")
     handles = [Patch(facecolor="0.75", hatch=h, edgecolor="white", label=lab) for _, lab, h in comps]
     if ranged:
         handles += [
@@ -285,9 +285,74 @@ def plot_group_tensors(ax, result):
     return ax
 
 
+#: one colour per test of the curves, markers for a printed page in grey
+CURVE_COLOURS = [OKABE_ITO[k] for k in ("blue", "vermillion", "green", "orange", "sky", "purple", "black", "grey")]
+CURVE_MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*")
+
+
+def _curves_in_order(result):
+    """(index in the tests, Curve) of the tests whose failure came from a curve, saturated first, by sigma3."""
+    t = result.states
+    rows = [(i, result.curves[str(tid)]) for i, tid in enumerate(t.test_id) if str(tid) in result.curves]
+    return sorted(rows, key=lambda ic: (t.condition[ic[0]] != "saturated", t.sigma3[ic[0]]))
+
+
+def _curve_label(result, i: int) -> str:
+    t = result.states
+    state = "sat." if t.condition[i] == "saturated" else "unsat."
+    return rf"{literal(t.test_id[i])} ({state}, $\sigma_3$ = {t.sigma3[i]:.4g} kPa)"
+
+
+def plot_q_axial_strain(ax, result):
+    """Deviator q against axial strain ε1 of every curve, its picked peak marked (after Prunier et al. 2024,
+    Fig. 10 and 15): saturated tests dashed, unsaturated solid."""
+    for k, (i, c) in enumerate(_curves_in_order(result)):
+        colour, marker = CURVE_COLOURS[k % len(CURVE_COLOURS)], CURVE_MARKERS[k % len(CURVE_MARKERS)]
+        ls = "--" if result.states.condition[i] == "saturated" else "-"
+        ax.plot(c.axial_strain * 100, c.q, ls=ls, color=colour, lw=1.0, label=_curve_label(result, i))
+        ax.plot(c.axial_strain[c.peak] * 100, c.q[c.peak], marker, color=colour, mec="k", ms=6, ls="none")
+    ax.plot([], [], "o", color="white", mec="k", ls="none", label="peak taken as failure ($q_f$)")
+    ax.set_xlim(left=0)
+    ax.set_xlabel(r"axial strain $\varepsilon_1$ [%]")
+    ax.set_ylabel(r"$q$ [kPa]")
+    ax.set_title(r"$q$-$\varepsilon_1$, picked peaks (Fig. 10, 15)")
+    ax.legend()
+    return ax
+
+
+def plot_volumetric_strain(ax, result):
+    """Volumetric strain εv against axial strain ε1 of every curve (compression positive; the paper plots
+    contraction up), the reading at the picked peak marked (after Prunier et al. 2024, Fig. 10 and 15)."""
+    drawn = False
+    for k, (i, c) in enumerate(_curves_in_order(result)):
+        if not np.isfinite(c.vol_strain).any():
+            continue
+        drawn = True
+        colour, marker = CURVE_COLOURS[k % len(CURVE_COLOURS)], CURVE_MARKERS[k % len(CURVE_MARKERS)]
+        ls = "--" if result.states.condition[i] == "saturated" else "-"
+        ok = np.isfinite(c.vol_strain)
+        ax.plot(
+            c.axial_strain[ok] * 100, c.vol_strain[ok] * 100, ls=ls, color=colour, lw=1.0, label=_curve_label(result, i)
+        )
+        if np.isfinite(c.vol_strain[c.peak]):
+            ax.plot(c.axial_strain[c.peak] * 100, c.vol_strain[c.peak] * 100, marker, color=colour, mec="k", ms=6)
+    if not drawn:
+        ax.text(0.5, 0.5, "no volumetric strain in the curves", ha="center", va="center", transform=ax.transAxes)
+    ax.axhline(0, color="k", lw=0.6)
+    ax.set_xlim(left=0)
+    ax.set_xlabel(r"axial strain $\varepsilon_1$ [%]")
+    ax.set_ylabel(r"volumetric strain $\varepsilon_v$ [%] (contraction +)")
+    ax.set_title(r"$\varepsilon_v$-$\varepsilon_1$ at the peaks (Fig. 10, 15)")
+    if drawn:
+        ax.legend()
+    return ax
+
+
 def sheet_triaxial(result) -> Sheet:
     return Sheet(
-        "Capillary stress tensor at failure (after Prunier et al. 2024, Fig. 16-18)",
+        "Capillary stress tensor at failure (after Prunier et al. 2024, Fig. 10, 15-21)"
+        if result.curves
+        else "Capillary stress tensor at failure (after Prunier et al. 2024, Fig. 16-21)",
         [
             Panel(
                 "qp_plane",
@@ -327,6 +392,24 @@ def sheet_triaxial(result) -> Sheet:
                 ),
             ]
             if any(g.determined or g.admissible is not None for g in result.groups)
+            else []
+        )
+        + (
+            [
+                Panel(
+                    "q_axial_strain",
+                    lambda ax: plot_q_axial_strain(ax, result),
+                    "Deviator against axial strain of the raw curves, the peak taken as failure marked (after "
+                    "Prunier et al. 2024, Fig. 10 for saturated and Fig. 15 for unsaturated tests).",
+                ),
+                Panel(
+                    "vol_strain",
+                    lambda ax: plot_volumetric_strain(ax, result),
+                    "Volumetric against axial strain of the raw curves, the reading at the peak marked (after "
+                    "Prunier et al. 2024, Fig. 10 and 15).",
+                ),
+            ]
+            if result.curves
             else []
         ),
         2,

@@ -98,6 +98,15 @@ def triaxial_tables(result) -> list[TableSpec]:
                 ]
             )
     out = [env, tb]
+    has_a = np.isfinite(t.skempton_A)
+    if has_a.any():
+        a = spec(
+            "Skempton's A at failure over the shear stage, (Δu − B Δσ3)/(B (Δσ1 − Δσ3)) (Skempton 1954)",
+            ["test", "condition", header("q"), header("skempton_A")],
+        )
+        for i in np.flatnonzero(has_a):
+            a.rows.append([t.test_id[i], t.condition[i], fmt(t.q[i]), fmt(t.skempton_A[i], 3)])
+        out.append(a)
     if result.groups:
         g = spec(
             f"Groups: apparent envelope ({cite('prunier2024', 'Appendix 1, eq. 35-37, 43')})",

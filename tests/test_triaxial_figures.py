@@ -1,0 +1,54 @@
+"""Figures of `capred triaxial-bounds` drawn from capred's own numbers, each citing the figure of Prunier et al.
+(2024) it follows (issue 33.2): q-eps1 and epsv-eps1 with the picked peaks (their Fig. 10, 15), and the rest."""
+
+import re
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import capred
+
+
+def _with_curves():
+    tests = pd.read_csv(capred.sample_path("triaxial-bounds"), comment="#")
+    tests.loc[tests["condition"] == "unsaturated", "q_f [kPa]"] = np.nan  # the curves give the peaks
+    return capred.run_triaxial_bounds(tests, curves=capred.sample_path("triaxial-curves"))
+
+
+def test_curves_kept_for_the_figures_are_the_ones_that_gave_q_f():
+    r = _with_curves()
+    assert sorted(r.curves) == ["UNSAT-0", "UNSAT-100", "UNSAT-150"]
+    for tid, c in r.curves.items():
+        i = list(r.states.test_id).index(tid)
+        # the peak of the curve is the test's failure state, as read (no membrane correction here); kPa -> Pa ->
+        # kPa costs one rounding: 1e-15 relative
+        assert c.q[c.peak] == np.nanmax(c.q) == pytest.approx(r.states.q[i], rel=1e-15)
+        assert c.axial_strain[c.peak] == r.states.strain_at_failure[i]
+    # without --curves there are none, and no curve panels
+    assert capred.run_triaxial_bounds(capred.sample_path("triaxial-bounds")).curves == {}
+
+
+@pytest.mark.slow
+def test_every_panel_cites_the_figure_it_follows_and_marks_the_peaks():
+    r = _with_curves()
+    fig = r.plot("report")
+    titles = [ax.get_title() for ax in fig.axes if ax.get_title()]
+    assert "Prunier et al. 2024, Fig." in fig._suptitle.get_text()
+    for t in titles:
+        assert re.search(r"\(Fig\. \d", t), t  # each panel names the paper's figure
+    (q_ax,) = [ax for ax in fig.axes if ax.get_title().startswith(r"$q$-$\varepsilon_1$")]
+    # the peak markers sit at (strain at failure [%], q_f [kPa]) of each curve test
+    points = {
+        (round(float(x[0]), 9), round(float(y[0]), 9))
+        for ln in q_ax.get_lines()
+        for x, y in [ln.get_data()]
+        if len(x) == 1
+    }
+    for tid in r.curves:
+        i = list(r.states.test_id).index(tid)
+        assert (round(r.states.strain_at_failure[i] * 100, 9), round(r.states.q[i], 9)) in points
+    groups = capred.run_triaxial_bounds(capred.sample_path("triaxial-groups")).plot("report")
+    for ax in groups.axes:
+        if ax.get_title():
+            assert re.search(r"\(Fig\. \d|range without pairs", ax.get_title()), ax.get_title()
