@@ -231,6 +231,7 @@ def report_html(result, dpi: int = REPORT_DPI) -> str:
         drawn[name] = {
             "svg": _img_markup(name, _png(sheet, dpi), width),
             "caption": getattr(sheet, "caption", "") or "",
+            "title": str(getattr(sheet, "title", "") or ""),
             "panels": [(p.name, p.caption) for p in getattr(sheet, "panels", ())],
         }
     return render_html(result, drawn, True)
