@@ -431,16 +431,17 @@ class Result:
         """Files of the command's own format written beside the tables (name -> bytes); none by default."""
         return {}
 
-    # --- display: capred.report presents every result (imported at call time) ---------------------
+    # --- display: capred.report presents every result; its one entry, report.notebook, is imported when a
+    # display method is called (never when this module loads: result.py sits below report/) -------------
     def figures(self) -> dict:
         """The figure sheets of the run, {file stem: capred.report.sheets.Sheet} (nothing drawn yet)."""
-        from .report.presenters import figures
+        from .report.notebook import figures
 
         return figures(self)
 
     def console_tables(self) -> list[TableSpec]:
         """The summary tables of the run, as the console and report.html show them."""
-        from .report.presenters import console_tables
+        from .report.notebook import console_tables
 
         return console_tables(self)
 

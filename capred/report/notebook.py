@@ -11,6 +11,8 @@ from __future__ import annotations
 import base64
 import html
 
+from .presenters import console_tables, figures  # noqa: F401 - Result.figures() and console_tables() come here
+
 #: rows of each summary table shown in a notebook (the files hold them all)
 NOTEBOOK_ROWS = 8
 #: summary tables shown by ``_repr_html_`` (the first ones: the key results; all are in the report)
@@ -117,7 +119,6 @@ def plot(result, name: str | None = None):
         The named sheet, or every sheet by name.
     """
     from ..errors import OptionError
-    from .presenters import figures
     from .sheets import Sheet, compose
 
     sheets = figures(result)
@@ -172,7 +173,6 @@ def repr_html(result, figure: bool = True) -> str:
     str
         An HTML fragment.
     """
-    from .presenters import console_tables, figures
 
     parts = [f"<h4>capred {html.escape(result.command)}</h4>"]
     for w in result.all_warnings():
@@ -219,7 +219,6 @@ def report_html(result, dpi: int = REPORT_DPI) -> str:
     """
     from .html import render_html
     from .outputs import _img_markup, _on_request_entry
-    from .presenters import figures
     from .sheets import Sheet, sheet_layout
 
     drawn = {}
