@@ -480,7 +480,7 @@ h1, h2, h3 { break-after: avoid; page-break-after: avoid; } tr { break-inside: a
 ul.files { columns: 3; font-family: monospace; }
 @media print { body { font-size: 7pt; margin: 0; max-width: none; padding: 0; } a { color: inherit; } }
 </style></head>
-<body><h1>capred season: {{ n }} runs, {{ n_ok }} ok{% if n_bad %}, {{ n_bad }} not{% endif %}</h1>
+<body><h1>capred season: {{ n }} runs, {{ n_ok }} ok{% if n_bad %}, {{ n_bad }} failed, crashed or not run{% endif %}</h1>
 <h2>Runs</h2>
 <table><thead><tr>{{ head }}</tr></thead>
 <tbody>{{ body }}</tbody></table>
