@@ -72,7 +72,8 @@ def figure_png(fig) -> bytes:
 
 def register_figure_formatter() -> bool:
     """Let the running IPython kernel show a matplotlib Figure as PNG (what pyplot's inline backend does for
-    pyplot figures); True when a kernel is running and the formatter is registered, False elsewhere."""
+    pyplot figures), unless a formatter for Figure is registered already; True when a kernel is running (a
+    Figure then displays as an image), False elsewhere."""
     import sys
 
     if "IPython" not in sys.modules:
@@ -84,7 +85,11 @@ def register_figure_formatter() -> bool:
         return False
     from matplotlib.figure import Figure
 
-    shell.display_formatter.formatters["image/png"].for_type(Figure, figure_png)
+    formatter = shell.display_formatter.formatters["image/png"]
+    try:
+        formatter.lookup_by_type(Figure)  # one is there already (pyplot's inline backend): the user's, kept
+    except KeyError:
+        formatter.for_type(Figure, figure_png)
     return True
 
 
