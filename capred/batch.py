@@ -233,15 +233,59 @@ def single_threaded_blas():
             set_(n)
 
 
+#: prctl(2) option that sends a signal to this process when its parent dies (linux/prctl.h)
+PR_SET_PDEATHSIG = 1
+
+
+def die_with_parent(parent: int) -> None:
+    """Make this worker process end when ``parent`` (the batch) dies, even by ``kill -9``: Linux's
+    PR_SET_PDEATHSIG sends SIGKILL to the worker then. Elsewhere a thread watches the parent's pid twice a
+    second and ends the worker when it is gone. A parent already gone ends the worker at once.
+
+    Parameters
+    ----------
+    parent : int
+        Process id of the batch that started the worker.
+    """
+    import os
+    import signal
+    import sys
+
+    armed = False
+    if sys.platform.startswith("linux"):
+        import ctypes
+
+        try:
+            libc = ctypes.CDLL(None, use_errno=True)
+            armed = libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0) == 0
+        except (OSError, AttributeError):  # pragma: no cover - no prctl
+            armed = False
+    if os.getppid() != parent:  # the parent died before the signal was armed
+        os._exit(1)
+    if not armed:  # pragma: no cover - not Linux: a watchdog thread
+        import threading
+        import time
+
+        def watch() -> None:
+            while os.getppid() == parent:
+                time.sleep(0.5)
+            os._exit(1)
+
+        threading.Thread(target=watch, daemon=True, name="capred-parent-watch").start()
+
+
 def _pool(workers: int):
-    """A process pool; forked workers where the platform offers it (they start with capred imported)."""
+    """A process pool whose workers die with this process (``die_with_parent``); forked workers where the
+    platform offers it (they start with capred imported)."""
     import multiprocessing
+    import os
     import sys
     from concurrent.futures import ProcessPoolExecutor
 
+    kw = dict(max_workers=workers, initializer=die_with_parent, initargs=(os.getpid(),))
     if sys.platform.startswith("linux") and "fork" in multiprocessing.get_all_start_methods():
-        return ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("fork"))
-    return ProcessPoolExecutor(max_workers=workers)  # pragma: no cover
+        return ProcessPoolExecutor(mp_context=multiprocessing.get_context("fork"), **kw)
+    return ProcessPoolExecutor(**kw)  # pragma: no cover
 
 
 def run_all(jobs: list[Job], workers: int | None = None, on_done=None) -> tuple[list[Outcome], bool]:

@@ -493,16 +493,17 @@ class Result:
         """Files of the command's own format written beside the tables (name -> bytes); none by default."""
         return {}
 
-    # --- display: capred.report presents every result (imported at call time) ---------------------
+    # --- display: capred.report presents every result; its one entry, report.notebook, is imported when a
+    # display method is called (never when this module loads: result.py sits below report/) -------------
     def figures(self) -> dict:
         """The figure sheets of the run, {file stem: capred.report.sheets.Sheet} (nothing drawn yet)."""
-        from .report.presenters import figures
+        from .report.notebook import figures
 
         return figures(self)
 
     def console_tables(self) -> list[TableSpec]:
         """The summary tables of the run, as the console and report.html show them."""
-        from .report.presenters import console_tables
+        from .report.notebook import console_tables
 
         return console_tables(self)
 
@@ -517,17 +518,30 @@ class Result:
         Returns
         -------
         matplotlib.figure.Figure or dict of str to Figure
-            The named sheet, or every sheet by name.
+            The named sheet, or every sheet by name (a dict that a notebook shows sheet by sheet); in a
+            Jupyter kernel each Figure displays as a PNG image.
         """
         from .report.notebook import plot
 
         return plot(self, name)
 
     def _repr_html_(self) -> str:
-        """Notebook display: the summary tables and the main figure (small)."""
+        """Notebook display: a compact summary (key tables, one small figure, under 30 KB)."""
         from .report.notebook import repr_html
 
         return repr_html(self)
+
+    def report_html(self) -> str:
+        """The full report of the run (report.html, figures inlined) as an HTML string; nothing is written.
+
+        Returns
+        -------
+        str
+            A self-contained HTML document; in a notebook ``IPython.display.HTML(result.report_html())``.
+        """
+        from .report.notebook import report_html
+
+        return report_html(self)
 
     def __repr__(self) -> str:
         inputs = (

@@ -27,11 +27,27 @@ def test_repr_is_one_short_line(shear):
     assert "\n" not in text and len(text) < 200 and "shear" in text and "52 rows" in text
 
 
-def test_repr_html_holds_the_tables_and_one_small_figure(shear):
+def test_repr_html_is_a_compact_summary(shear):
     html = shear._repr_html_()
     assert "Dry envelope" in html and "<table>" in html
-    assert html.count("data:image/png;base64,") == 1
-    assert len(html) < 400_000  # a small figure (80 dpi), not the 300 dpi sheets
+    assert html.count("data:image/png;base64,") == 1  # one small figure
+    assert len(html.encode("utf-8")) < 30_000  # issue 29.2: under 30 KB (it was the full report, over 80 KB)
+    assert "result.report_html()" in html and "result.plot()" in html  # where the rest is
+
+
+@pytest.mark.parametrize("command", ["triaxial-bounds", "retention", "bridge rupture", "pt-volume"])
+def test_repr_html_of_every_drawing_command_stays_under_30_kb(command):
+    from test_console_widths import sample_result
+
+    html = sample_result(command)._repr_html_()
+    assert "<table>" in html and len(html.encode("utf-8")) < 30_000
+
+
+def test_report_html_is_the_full_report_with_its_figures(shear):
+    page = shear.report_html()
+    assert page.startswith("<!DOCTYPE html>") and "Per-row table" in page and "Options in force" in page
+    main = [k for k, sheet in shear.figures().items() if not getattr(sheet, "on_request", False)]
+    assert page.count("data:image/png;base64,") == len(main) == 2  # each main sheet inlined (steel, sand)
 
 
 def test_plot_returns_figures_without_writing(shear, tmp_path, monkeypatch):

@@ -206,3 +206,68 @@ def test_every_command_renders_its_report(command):
     html = report_html.render_html(result, {}, False)
     assert "Options in force" in html and "Per-row table" in html
     assert "N/m^3" not in html and "^" not in re.sub(r"<[^>]+>", "", html).split("Methods")[0]
+
+
+# --- issue 29.4: a lab report ----------------------------------------------------------------------------------
+def _workbook_with_metadata(path):
+    """The shear sample as a workbook under a lab's metadata block (operator, date, apparatus)."""
+    from openpyxl import Workbook
+
+    wb = Workbook()
+    ws = wb.active
+    ws.title = "Direct shear"
+    for row in (["Operator", "Jane Doe"], ["Date", "2026-03-14"], ["Apparatus", "60 mm shear box"], []):
+        ws.append(row)
+    lines = capred.sample_path("shear").read_text(encoding="utf-8").splitlines()
+    import csv
+
+    for row in csv.reader(x for x in lines if not x.startswith("#")):
+        ws.append([float(c) if c.replace(".", "", 1).replace("-", "", 1).isdigit() else c for c in row])
+    wb.save(path)
+    return path
+
+
+@pytest.fixture(scope="module")
+def lab_report(tmp_path_factory):
+    pytest.importorskip("openpyxl")
+    tmp = tmp_path_factory.mktemp("lab")
+    source = _workbook_with_metadata(tmp / "lab.xlsx")
+    result = capred.run_shear(source, capred.ShearOptions(bootstrap=0))
+    capred.write_outputs(result, tmp / "out", dpi=40)
+    return (tmp / "out" / "report.html").read_text(encoding="utf-8")
+
+
+def test_report_opens_with_the_inputs_metadata_block(lab_report):
+    head = lab_report.split("What was run")[0]  # before anything else of the run
+    assert "Jane Doe" in head and "Operator" in head and "2026-03-14" in head and "60 mm shear box" in head
+
+
+def test_figures_are_numbered_and_name_their_material(lab_report):
+    captions = re.findall(r"<figcaption>(.*?)</figcaption>", lab_report, flags=re.S)
+    assert len(captions) == 2  # the two report sheets drawn by default (steel, sand)
+    for k, (caption, material) in enumerate(zip(captions, ("steel_2mm", "sand_208-417um")), start=1):
+        assert f"<b>Figure {k}.</b>" in caption and material in caption and "lab.xlsx" in caption
+
+
+def test_headings_stay_with_what_follows_and_the_appendix_prints_landscape(lab_report):
+    css = lab_report.split("</style>")[0]
+    assert re.search(r"h1, h2, h3[^{]*\{[^}]*break-after: avoid", css)
+    assert "@page rows { size: A4 landscape" in css and "page: rows" in css
+    appendix = lab_report.split('<section class="appendix">')[1]
+    assert "Per-row table" in appendix
+
+
+def test_per_row_appendix_groups_fit_a_landscape_page():
+    """The per-row table of the shear sample (52 tests, ~100 columns) in groups of at most 273 mm of 7 pt
+    text: fewer groups than on portrait pages (186 mm), every column once."""
+    result = capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(bootstrap=0))
+    per_row = report_html._per_row(result)
+    columns = per_row["columns"]
+    _, head, _ = report_html._row_table(result, report_html.MAX_REPORT_ROWS)
+    rows = [
+        [report_html._cell(v) if not isinstance(v, float) else report_html.fmt(v) for v in r]
+        for r in zip(*head.values())
+    ]
+    portrait = report_html.column_groups(columns, rows, report_html.PRINT_WIDTH_MM)
+    landscape = report_html.column_groups(columns, rows, report_html.APPENDIX_WIDTH_MM)
+    assert len(per_row["parts"]) == len(landscape) < len(portrait)

@@ -666,6 +666,8 @@ class RunFolder:
     """A hidden work folder that becomes ``out`` on ``commit()``; removed if anything fails."""
 
     def __init__(self, out: Path):
+        if os.path.islink(out):  # a symlinked --out: the run goes where the link points, the link stays
+            out = Path(os.path.realpath(out))
         self.out = out
         self.names: list[str] = []
         try:

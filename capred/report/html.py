@@ -152,6 +152,9 @@ def _flags(result) -> list[tuple[str, int, str]]:
 
 #: printable width of the per-row table on an A4 portrait page (210 mm − 2 × 12 mm margins) [mm]
 PRINT_WIDTH_MM = 186.0
+#: printable width of the per-row appendix, printed on A4 landscape pages (297 mm − 2 × 10 mm margins, less
+#: 4 mm of slack for borders) [mm]: fewer, wider column groups than on portrait pages
+APPENDIX_WIDTH_MM = 273.0
 #: width of one character of the per-row table's 7 pt text [mm] (DejaVu Sans digits are 0.64 em; 7 pt = 2.47
 #: mm), and the cell padding and border [mm]
 CHAR_MM = 0.64 * 7 * 25.4 / 72
@@ -221,7 +224,7 @@ def _per_row(result) -> dict:
     ]
     from .render import pack_columns
 
-    groups = pack_columns(widths, _label_columns(columns), PRINT_WIDTH_MM)
+    groups = pack_columns(widths, _label_columns(columns), APPENDIX_WIDTH_MM)
     left = [c.split(" [")[0] in _LEFT for c in columns]
     # only text is escaped, once per column (the label columns repeat in every group): numbers and booleans as
     # printed have nothing to escape
@@ -389,12 +392,28 @@ def render_html(result, figures: dict, plots: bool) -> str:
         notes=doc["notes"],
         flags=_flags(result),
         tables=[_split_spec(t) for t in console_tables(result)],
-        figures=list(figures.items()),
+        figures=_numbered(result, figures),
         plots=plots or not draws_figures(result),  # no "not drawn" note for a command that draws none
         methods=paragraphs,
         references=bibliography(refs),
         per_row=_per_row(result),
     )
+
+
+def _numbered(result, figures: dict) -> list[tuple[str, dict, int | None, str]]:
+    """(sheet, entry, figure number, heading) of each figure of the report: the drawn ones numbered in order,
+    each heading the sheet's title (it names the material of a per-material sheet) and the input it shows."""
+    names = ", ".join(i.path.replace("\\", "/").rsplit("/", 1)[-1] for i in getattr(result, "inputs", ()))
+    out, number = [], 0
+    for name, entry in figures.items():
+        title = (entry.get("title") or "").strip()
+        heading = title + (f" ({names})." if names else ".") if title else (f"{names}." if names else "")
+        if entry.get("svg"):
+            number += 1
+            out.append((name, entry, number, heading))
+        else:
+            out.append((name, entry, None, heading or f"{name}."))
+    return out
 
 
 def _split_spec(spec) -> dict:
@@ -461,7 +480,7 @@ h1, h2, h3 { break-after: avoid; page-break-after: avoid; } tr { break-inside: a
 ul.files { columns: 3; font-family: monospace; }
 @media print { body { font-size: 7pt; margin: 0; max-width: none; padding: 0; } a { color: inherit; } }
 </style></head>
-<body><h1>capred season: {{ n }} runs, {{ n_ok }} ok{% if n_bad %}, {{ n_bad }} not{% endif %}</h1>
+<body><h1>capred season: {{ n }} runs, {{ n_ok }} ok{% if n_bad %}, {{ n_bad }} failed, crashed or not run{% endif %}</h1>
 <h2>Runs</h2>
 <table><thead><tr>{{ head }}</tr></thead>
 <tbody>{{ body }}</tbody></table>

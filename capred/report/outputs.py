@@ -131,6 +131,11 @@ def write_outputs(
 
 
 # --- one sheet ----------------------------------------------------------------------------------------------
+def _title(sheet) -> str:
+    """A sheet's title for report.html's caption (a per-material sheet names its material there)."""
+    return str(getattr(sheet, "title", "") or "")
+
+
 def _img_markup(name: str, png: bytes, width_mm: float) -> str:
     import base64
     import html
@@ -157,7 +162,7 @@ def _draw_sheet(name: str, sheet, folder, opts: FigureOptions) -> tuple[dict, li
     )
 
     written: list[str] = []
-    entry = {"caption": getattr(sheet, "caption", "") or "", "panels": [], "svg": ""}
+    entry = {"caption": getattr(sheet, "caption", "") or "", "panels": [], "svg": "", "title": _title(sheet)}
     vector = [f for f in opts.formats if f in ("pdf", "svg")]
     want_png = "png" in opts.formats or (opts.html and "svg" not in opts.formats)
 
@@ -268,6 +273,7 @@ def _on_request_entry(sheet) -> dict:
     what = getattr(sheet, "title", "") or ""
     return {
         "svg": "",
+        "title": _title(sheet),
         "panels": [],
         "caption": f"Not drawn by default: {what} ({len(getattr(sheet, 'panels', ()))} panels) is drawn with "
         '--figures all (write_outputs(..., figures="all")). ' + (getattr(sheet, "caption", "") or ""),

@@ -1,0 +1,175 @@
+"""No import circles, and imports go down the layers (issue 28.7): a static import graph of every capred module
+(ast, nothing executed), so a circle cannot come back unnoticed; and every module imports.
+
+Layers, top to bottom: cli -> batch -> pipelines -> io, report -> result -> fitting -> physics -> the base
+modules (errors, units, nomenclature, ...). A module may import from its own layer or below. Imports inside a
+function run only when it is called; the one that goes up is listed in ``LAZY_UP`` with its reason.
+"""
+
+import ast
+import importlib
+from pathlib import Path
+
+import pytest
+
+import capred
+
+PACKAGE = Path(capred.__file__).resolve().parent
+#: layer of each top-level part of capred (a higher layer may import a lower one, never the reverse)
+LAYERS = {
+    "cli": 7,
+    "batch": 6,
+    "pipelines": 5,
+    "io": 4,
+    "report": 4,
+    "result": 3,
+    "fitting": 2,
+    "physics": 1,
+    **{
+        base: 0
+        for base in (
+            "errors",
+            "units",
+            "nomenclature",
+            "references",
+            "parameters",
+            "sampling",
+            "progress",
+            "samples",
+            "reductions",
+        )
+    },
+}
+#: imports inside functions that go up a layer, with why
+LAZY_UP = {
+    # a Result's display methods (plot, _repr_html_, figures, console_tables, report_html) are the user's way
+    # into report/: imported when called, through report.notebook alone
+    ("capred.result", "capred.report.notebook"): "Result's display methods",
+}
+
+
+def _modules() -> dict[str, Path]:
+    out = {}
+    for path in PACKAGE.rglob("*.py"):
+        parts = ["capred", *path.relative_to(PACKAGE).with_suffix("").parts]
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        out[".".join(parts)] = path
+    return out
+
+
+MODULES = _modules()
+
+
+def _targets(module: str, node, package: bool) -> list[str]:
+    """The capred modules an import statement names (a name imported from a package that is a module counts
+    as that module)."""
+    if isinstance(node, ast.Import):
+        return [a.name for a in node.names if a.name.split(".")[0] == "capred"]
+    base = module.split(".") if package else module.split(".")[:-1]
+    if node.level:
+        base = base[: len(base) - (node.level - 1)]
+        target = ".".join(base + ([node.module] if node.module else []))
+    else:
+        target = node.module or ""
+    if target.split(".")[0] != "capred":
+        return []
+    return [f"{target}.{a.name}" if f"{target}.{a.name}" in MODULES else target for a in node.names]
+
+
+def graph() -> dict[str, tuple[set[str], set[str]]]:
+    """module -> (modules imported when it is imported, modules imported only inside its functions)."""
+    out = {}
+    for module, path in MODULES.items():
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        package = path.name == "__init__.py"
+        now: set[str] = set()
+        for node in tree.body:  # module level (also under if/try at module level)
+            for sub in ast.walk(node) if isinstance(node, (ast.If, ast.Try)) else [node]:
+                if isinstance(sub, (ast.Import, ast.ImportFrom)):
+                    now.update(_targets(module, sub, package))
+        every = {
+            t
+            for n in ast.walk(tree)
+            if isinstance(n, (ast.Import, ast.ImportFrom))
+            for t in _targets(module, n, package)
+        }
+        out[module] = (
+            {t for t in now if t in MODULES and t != module},
+            {t for t in every - now if t in MODULES and t != module},
+        )
+    return out
+
+
+def layer(module: str) -> int | None:
+    parts = module.split(".")
+    return LAYERS.get(parts[1]) if len(parts) > 1 else None  # capred itself (the API) stands above all
+
+
+def cycles(edges: dict[str, set[str]]) -> list[list[str]]:
+    """Strongly connected components of more than one module (Tarjan)."""
+    index, low, stack, on, out = {}, {}, [], set(), []
+
+    def visit(v):
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on.add(v)
+        for w in edges.get(v, ()):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            comp = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                comp.append(w)
+                if w == v:
+                    break
+            if len(comp) > 1:
+                out.append(sorted(comp))
+
+    for v in edges:
+        if v not in index:
+            visit(v)
+    return out
+
+
+def test_every_module_has_a_layer():
+    assert all(layer(m) is not None for m in MODULES if m not in ("capred", "capred.__main__")), [
+        m for m in MODULES if layer(m) is None and m not in ("capred", "capred.__main__")
+    ]
+
+
+def test_no_import_circle_when_modules_load():
+    g = graph()
+    assert cycles({m: now for m, (now, _) in g.items()}) == []
+
+
+def test_imports_go_down_the_layers():
+    up = []
+    for module, (now, later) in graph().items():
+        for target in now | later:
+            a, b = layer(module), layer(target)
+            if a is None or b is None or b <= a:
+                continue
+            if target in later and (module, target) in LAZY_UP:
+                continue
+            up.append((module, target, "at import" if target in now else "in a function"))
+    assert up == []
+
+
+def test_the_former_circles_are_gone():
+    """result.py -> report (only report.notebook, inside Result's display methods) and report.presenters ->
+    io.writers -> result.py: no module of report/ or io/ is imported by result.py when it loads."""
+    now, later = graph()["capred.result"]
+    assert not [t for t in now if t.startswith(("capred.report", "capred.io"))]
+    assert {t for t in later if t.startswith("capred.report")} <= {"capred.report.notebook"}
+    assert "capred.io.writers" not in graph()["capred.report.presenters"][0]
+
+
+@pytest.mark.parametrize("module", sorted(m for m in MODULES if m != "capred.__main__"))
+def test_every_module_imports(module):
+    importlib.import_module(module)
