@@ -36,6 +36,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import InputError, LimitError, Problem
+from ..text_safety import excerpt
 
 #: default limit on the bytes of an input: a CSV file's size, a workbook's decompressed parts (256 MiB)
 MAX_BYTES = 256 * 2**20
@@ -43,12 +44,25 @@ MAX_BYTES = 256 * 2**20
 MAX_CELLS = 2_000_000
 #: default limit on the columns of a table (the header's width; a spreadsheet's last column holding data)
 MAX_COLUMNS = 1000
+#: default limit on the characters of one cell, header or note once expanded (repeated spaces of an .ods, shared
+#: strings): 32,767, the most a cell of Excel or LibreOffice Calc holds
+MAX_CELL_CHARS = 32_767
+#: XML elements a part may hold per cell of ``max_cells`` (a cell is <c><v> or <c><is><t>, with rows, formats and
+#: rich-text runs around them); more is not a spreadsheet's structure
+ELEMENTS_PER_CELL = 6
+#: deepest nesting of XML elements in a part (spreadsheets nest about 10 deep)
+MAX_XML_DEPTH = 200
 #: the rows a worksheet holds in Excel and LibreOffice: a row number beyond is a damaged or hand-made file
 MAX_SHEET_ROWS = 1_048_576
 #: a spreadsheet is a zip of tens to hundreds of parts; more than this is not a spreadsheet capred reads
 MAX_ZIP_PARTS = 10_000
 #: the command-line option that raises each limit
-LIMIT_OPTIONS = {"max_bytes": "--max-megabytes", "max_cells": "--max-cells", "max_columns": "--max-columns"}
+LIMIT_OPTIONS = {
+    "max_bytes": "--max-megabytes",
+    "max_cells": "--max-cells",
+    "max_columns": "--max-columns",
+    "max_cell_chars": "--max-cell-chars",
+}
 
 SPREADSHEET_SUFFIXES = (".xlsx", ".xlsm", ".ods")
 _MAGIC = (
@@ -75,16 +89,21 @@ class ReadLimits:
     max_columns : int
         Columns of a table: the header's width, and the column of the last
         cell holding data in a spreadsheet [-].
+    max_cell_chars : int
+        Characters of one cell, header or note once expanded (an .ods's
+        repeated spaces, a workbook's shared strings, a CSV's longest line
+        split at its delimiter) [-].
     """
 
     max_bytes: int = MAX_BYTES
     max_cells: int = MAX_CELLS
     max_columns: int = MAX_COLUMNS
+    max_cell_chars: int = MAX_CELL_CHARS
 
     def __post_init__(self) -> None:
         from ..errors import OptionError
 
-        for name in ("max_bytes", "max_cells", "max_columns"):
+        for name in ("max_bytes", "max_cells", "max_columns", "max_cell_chars"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int) or value < 1:
                 raise OptionError(f"{LIMIT_OPTIONS[name]} ({name}) must be a whole number >= 1 (got {value!r})")
@@ -161,6 +180,11 @@ class Grid:
     text_rows: dict[str, list[tuple[int, list[str]]]] = field(default_factory=dict)  # first rows, per delimiter
     full_text: str | None = None  # a CSV's text (comment lines blanked), parsed once the delimiter is known
     first_line: int = 1  # the line number of the text's first line (a block of a long file starts later)
+    #: rows holding only delimiters (",,,," as spreadsheet exports leave them): how many, and the first lines
+    delimiter_rows: int = 0
+    delimiter_lines: list[int] = field(default_factory=list)
+    #: notes of the reading itself (lines of another encoding), for Table.notes
+    notes: list[str] = field(default_factory=list)
 
     def parse_all(self, delimiter: str) -> None:
         """Every row of a CSV with the chosen delimiter (spreadsheets: nothing to do)."""
@@ -208,11 +232,12 @@ def read_grid(source: TableSource) -> Grid:
                 )
             )
     text = _decode(data)
+    del data
     if "\x00" in text[:4096]:
         raise InputError(Problem(shown, None, None, "this is a binary file, not a CSV text table"))
     if source.sheet is not None:
         raise InputError(Problem(shown, None, None, "--sheet is for .xlsx and .ods workbooks, not CSV files"))
-    return _csv_grid(shown, text)
+    return _csv_grid(shown, text, limits=limits)
 
 
 def _decode(data: bytes) -> str:
@@ -228,7 +253,72 @@ def _decode(data: bytes) -> str:
 _LINE_END = re.compile("\r\n|\r|\n")
 
 
-def _csv_grid(shown: str, text: str, first_line: int = 1) -> Grid:
+#: a run of CSV lines that hold only delimiters (and blanks): empty rows, as spreadsheet exports leave them
+_DELIMITER_ROWS = re.compile(r"^(?:[ \t]*+[,;][,;\t ]*+(?:\n|\Z)){1,4096}+", re.M)
+
+
+def _blank_delimiter_rows(grid: Grid, text: str) -> str:
+    """``text`` with its rows of delimiters only blanked (their line numbers kept); counts them on ``grid``.
+    Runs of such rows are matched whole, so a file of millions of them costs one pass."""
+    if _DELIMITER_ROWS.search(text) is None:
+        return text
+    where = [grid.first_line, 0]  # line number at position
+
+    def blank(m) -> str:
+        run = m.group()
+        n = run.count("\n")
+        rows = n + (not run.endswith("\n"))
+        if len(grid.delimiter_lines) < 3:
+            where[0] += text.count("\n", where[1], m.start())
+            where[1] = m.start()
+            grid.delimiter_lines += range(where[0], where[0] + min(rows, 3 - len(grid.delimiter_lines)))
+        grid.delimiter_rows += rows
+        return "\n" * n
+
+    return _DELIMITER_ROWS.sub(blank, text).rstrip("\n")
+
+
+def _check_long_lines(shown: str, text: str, first_line: int, limits: ReadLimits) -> None:
+    """Refuse a CSV one of whose cells (or headers, or notes) holds more than ``limits.max_cell_chars``
+    characters, before any line is split. Stretches of max_cell_chars/2 characters are probed for a line end:
+    only a line longer than that is split, at each candidate delimiter, and it is refused when even the
+    delimiter that cuts it finest leaves a cell over the limit."""
+    limit = limits.max_cell_chars
+    step = max(1, limit // 2)
+    end = -1
+    for pos in range(0, len(text), step):
+        if pos < end or text.find("\n", pos, pos + step) >= 0 or pos + step > len(text):
+            continue
+        start = text.rfind("\n", 0, pos) + 1
+        end = text.find("\n", pos)
+        end = len(text) if end < 0 else end
+        widest, at = min(_widest_field(text, start, end, d, step) for d in (",", ";", "\t"))
+        if widest > limit:
+            line = first_line + text.count("\n", 0, start)
+            raise limits.error(
+                "max_cell_chars",
+                f"a cell of {widest:,} characters ({excerpt(text[at : at + 60], 30)})",
+                shown,
+                line,
+            )
+
+
+def _widest_field(text: str, start: int, end: int, delim: str, step: int) -> int:
+    """(length, start) of the longest run between ``delim``s in text[start:end], looked for where a stretch of
+    ``step`` characters holds none."""
+    widest, at, last = 0, start, -1
+    for pos in range(start, end, step):
+        if pos < last or text.find(delim, pos, min(end, pos + step)) >= 0:
+            continue
+        a = max(text.rfind(delim, start, pos) + 1, start)
+        last = text.find(delim, pos, end)
+        last = end if last < 0 else last
+        if last - a > widest:
+            widest, at = last - a, a
+    return widest, at
+
+
+def _csv_grid(shown: str, text: str, first_line: int = 1, limits: ReadLimits | None = None) -> Grid:
     """Rows of a CSV text for each candidate delimiter (the table reader picks the one whose header fits).
 
     Parsed as a whole (not line by line), so quoted fields may span lines; a
@@ -247,6 +337,8 @@ def _csv_grid(shown: str, text: str, first_line: int = 1) -> Grid:
     else:  # the usual file: nothing to blank, lines already end in '\n'
         kept = text[:-1] if text.endswith("\n") else text
     grid = Grid(shown, None, [], (",", ";", "\t"), first_line=first_line)
+    _check_long_lines(shown, kept, first_line, limits or ReadLimits())
+    kept = _blank_delimiter_rows(grid, kept)
     head = "\n".join(kept.split("\n", 200)[:200])
     for delim in grid.delimiters:
         grid.text_rows[delim] = _parse(head, delim, first_line)
@@ -397,8 +489,40 @@ class _Zip:
 
         parser.StartDoctypeDeclHandler = doctype
         parser.EntityDeclHandler = doctype
-        parser.StartElementHandler = handler.start
-        parser.EndElementHandler = handler.end
+        # every element counts, and its depth: a hostile part may nest or repeat elements no cell holds
+        budget = [ELEMENTS_PER_CELL * self.limits.max_cells + 100_000, 0]  # elements left, depth
+        start, end = handler.start, handler.end
+
+        def counted_start(name, attrs):
+            budget[0] -= 1
+            budget[1] += 1
+            if budget[1] > MAX_XML_DEPTH:
+                raise InputError(
+                    Problem(
+                        self.shown,
+                        None,
+                        None,
+                        f"part '{name_}' nests XML elements more than {MAX_XML_DEPTH} deep; a spreadsheet nests "
+                        "about 10: refused (a damaged or hostile file)",
+                        sheet,
+                    )
+                )
+            if budget[0] < 0:
+                raise self.limits.error(
+                    "max_cells",
+                    f"part '{name_}' holds more XML elements than {ELEMENTS_PER_CELL} per cell allowed",
+                    self.shown,
+                    sheet=sheet,
+                )
+            start(name, attrs)
+
+        def counted_end(name):
+            budget[1] -= 1
+            end(name)
+
+        name_ = name
+        parser.StartElementHandler = counted_start
+        parser.EndElementHandler = counted_end
         parser.CharacterDataHandler = handler.text
         with self.zip.open(name) as stream:
             try:
@@ -479,6 +603,33 @@ class _Rows:
         self.sheet: str | None = None
         self.rows: list[tuple[int, list[str]]] = []
         self.visited = 0
+        self.chars = 0  # characters of cell text made so far (expanded), against max_bytes
+
+    def cell_chars(self, n: int, line: int | None, col: int | None = None) -> None:
+        """Refuse the file when one cell's text, expanded, holds ``n`` > ``max_cell_chars`` characters."""
+        if n > self.limits.max_cell_chars:
+            ref = f"cell {_column_letters(col)}{line}" if col and line else f"a cell of row {line}"
+            raise self.limits.error(
+                "max_cell_chars",
+                f"{ref} holds more than {self.limits.max_cell_chars:,} characters once expanded",
+                self.shown,
+                line,
+                _column_letters(col) if col else None,
+                self.sheet,
+            )
+
+    def more_text(self, n: int, line: int | None) -> None:
+        """Count ``n`` more characters of expanded text against ``max_bytes`` (what the XML's bytes do not bound:
+        an .ods's repeated spaces)."""
+        self.chars += n
+        if self.chars > self.limits.max_bytes:
+            raise self.limits.error(
+                "max_bytes",
+                f"the sheet's text expands beyond {self.limits.shown('max_bytes')} (at row {line})",
+                self.shown,
+                line,
+                sheet=self.sheet,
+            )
 
     def visit(self, n: int = 1, line: int | None = None) -> None:
         self.visited += n
@@ -629,6 +780,7 @@ class _XlsxStrings:
         local = _local(name)
         if local == "si":
             self.parts = []
+            self.chars = 0
         elif local == "t" and self.parts is not None and not self.phonetic:
             self.in_t = True
         elif local == "rPh":
@@ -654,6 +806,15 @@ class _XlsxStrings:
     def text(self, data):
         if self.in_t:
             self.parts.append(data)
+            self.chars = getattr(self, "chars", 0) + len(data)
+            if self.chars > self.book.limits.max_cell_chars:
+                raise self.book.limits.error(
+                    "max_cell_chars",
+                    f"shared string {len(self.strings) + 1:,} holds more than "
+                    f"{self.book.limits.max_cell_chars:,} characters",
+                    self.book.shown,
+                    sheet=self.sheet,
+                )
 
 
 def _xlsx_strings(book: _Zip, path: str, sheet: str) -> list[str]:
@@ -722,6 +883,7 @@ class _XlsxSheet:
         self.value: str | None = None
         self.inline: list[str] | None = None
         self.phonetic = 0
+        self.chars = 0  # characters of the current cell's text
 
     def start(self, name, attrs):
         local = _local(name)
@@ -733,6 +895,7 @@ class _XlsxSheet:
             self.style = int(style) if style and style.isdigit() else 0
             self.value = None
             self.inline = None
+            self.chars = 0
             self.out.visit(1, self.line)
         elif local == "v":
             self.buf = []
@@ -774,6 +937,9 @@ class _XlsxSheet:
     def text(self, data):
         if self.buf is not None:
             self.buf.append(data)
+            self.chars += len(data)
+            if self.chars > self.out.limits.max_cell_chars:
+                self.out.cell_chars(self.chars, self.line, self.col)
 
     def _cell(self) -> str:
         t, v = self.ctype, self.value
@@ -834,6 +1000,7 @@ class _OdsContent:
             if local == "table-cell" or local == "covered-table-cell":
                 self.cell = attrs
                 self.parts = []
+                self.chars = 0
                 self.paragraphs = 0
                 self.out.visit(1, self.line + 1)
                 return
@@ -847,11 +1014,15 @@ class _OdsContent:
                     if self.paragraphs:
                         self.parts.append("\n")
                     self.paragraphs += 1
-                elif local == "s":
-                    self.parts.append(" " * min(_count(_attr(attrs, "c")), 1000))
+                elif local == "s":  # spaces: counted as expanded, before they are made
+                    n = min(_count(_attr(attrs, "c")), self.out.limits.max_cell_chars + 1)
+                    self._count_text(n)
+                    self.parts.append(" " * n)
                 elif local == "tab":
+                    self._count_text(1)
                     self.parts.append("\t")
                 elif local == "line-break":
+                    self._count_text(1)
                     self.parts.append("\n")
             if local == "annotation":
                 self.skip += 1
@@ -892,7 +1063,13 @@ class _OdsContent:
 
     def text(self, data):
         if self.parts is not None and self.paragraphs and not self.skip:
+            self._count_text(len(data))
             self.parts.append(data)
+
+    def _count_text(self, n: int) -> None:
+        self.chars += n
+        self.out.cell_chars(self.chars, self.line + 1, self.col + 1)
+        self.out.more_text(n, self.line + 1)
 
     def _value(self) -> str:
         a = self.cell
