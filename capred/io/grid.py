@@ -183,8 +183,10 @@ class Grid:
     #: rows holding only delimiters (",,,," as spreadsheet exports leave them): how many, and the first lines
     delimiter_rows: int = 0
     delimiter_lines: list[int] = field(default_factory=list)
-    #: notes of the reading itself (lines of another encoding), for Table.notes
+    #: notes of the reading itself (lines of another encoding, merged cells), for Table.notes
     notes: list[str] = field(default_factory=list)
+    #: warnings of the reading itself (hidden sheets passed over), for Table.warnings
+    warnings: list[str] = field(default_factory=list)
 
     def parse_all(self, delimiter: str) -> None:
         """Every row of a CSV with the chosen delimiter (spreadsheets: nothing to do)."""
@@ -397,15 +399,35 @@ def _spreadsheet_grid(shown: str, data: bytes, suffix: str, sheet, limits: ReadL
             Problem(shown, None, None, f"cannot be read as a {suffix} workbook ({type(exc).__name__}: {exc})")
         ) from None
     rows = [(n, cells) for n, cells in rows if any(cells) and not cells[0].startswith("#")]
-    return Grid(shown, name, rows, ())
+    return Grid(shown, name, rows, (), notes=book.notes, warnings=book.warnings)
 
 
-def _pick_sheet(shown: str, names: list[str], sheet) -> int:
-    """Index (from 0) of the sheet asked for: the first when None, a name, or a number counted from 1."""
+def _pick_sheet(shown: str, names: list[str], sheet, hidden: set[int] = frozenset(), book=None) -> int:
+    """Index (from 0) of the sheet asked for: the first *visible* one when None, a name, or a number counted
+    from 1. ``hidden`` holds the indices of hidden sheets: one passed over, or one asked for, is said on
+    ``book.warnings``."""
     if not names:
         raise InputError(Problem(shown, None, None, "the workbook has no sheets"))
     if sheet is None:
-        return 0
+        k = next((i for i in range(len(names)) if i not in hidden), 0)
+        if k > 0 and book is not None:
+            before = ", ".join(f"'{names[i]}'" for i in range(k))
+            book.warnings.append(
+                f"{shown}: the workbook's first sheet{'s' if k > 1 else ''} {before} "
+                f"{'are' if k > 1 else 'is'} hidden: sheet '{names[k]}', the first visible one, is read "
+                f"(--sheet '{names[0]}' reads a hidden one)"
+            )
+        elif k in hidden and book is not None:
+            book.warnings.append(f"{shown}: every sheet of the workbook is hidden: the first, '{names[0]}', is read")
+        return k
+    k = _pick_named_sheet(shown, names, sheet)
+    if k in hidden and book is not None:
+        book.notes.append(f"sheet '{names[k]}' is hidden in the workbook; read as asked (--sheet)")
+    return k
+
+
+def _pick_named_sheet(shown: str, names: list[str], sheet) -> int:
+    """Index (from 0) of the sheet asked for by name or by number counted from 1."""
     if isinstance(sheet, int) or (
         isinstance(sheet, str) and sheet.strip().lstrip("-").isdigit() and sheet.strip() not in names
     ):
@@ -463,6 +485,8 @@ class _Zip:
             )
         self.names = {i.filename for i in infos}
         self.used = 0  # bytes decompressed so far, across parts
+        self.notes: list[str] = []  # what the reading of the workbook tells (merged cells, a hidden sheet read)
+        self.warnings: list[str] = []  # hidden sheets passed over
 
     def has(self, name: str) -> bool:
         return name in self.names
@@ -604,6 +628,75 @@ class _Rows:
         self.rows: list[tuple[int, list[str]]] = []
         self.visited = 0
         self.chars = 0  # characters of cell text made so far (expanded), against max_bytes
+        self.merges: list[tuple[int, int, int, int]] = []  # merged ranges: first row, column, last row, column
+        self.formulas: list[str] = []  # cells holding a formula without a saved value
+
+    def merge(self, ref: str, rows: int | None = None, cols: int | None = None, line: int = 0, col: int = 0) -> None:
+        """Record a merged range: ``ref`` as 'B2:B8' (.xlsx), or its size from the top-left cell (.ods)."""
+        if rows is None:
+            a, _, b = ref.partition(":")
+            m1, m2 = _CELL_REF.fullmatch(a.replace("$", "")), _CELL_REF.fullmatch(b.replace("$", ""))
+            if not (m1 and m2):
+                return
+            c1, r1, c2, r2 = _column_number(m1[1]), int(m1[2]), _column_number(m2[1]), int(m2[2])
+        else:
+            c1, r1, c2, r2 = col, line, col + cols - 1, line + rows - 1
+        self.visit((r2 - r1 + 1) * (c2 - c1 + 1), r1)  # the cells a merge fills count
+        self.column_ok(c2, r1)
+        self.merges.append((r1, c1, r2, c2))
+
+    def formula(self, col: int, line: int, text: str) -> None:
+        """Record a cell holding a formula without the value it computes."""
+        if len(self.formulas) < 1000:
+            self.formulas.append(f"{_column_letters(col)}{line} (={text[:40]})")
+
+    def refuse_formulas(self) -> None:
+        """A sheet with formulas whose values were never saved cannot be read as it looks: refused, naming them."""
+        if self.formulas:
+            shown = ", ".join(self.formulas[:5]) + (
+                f" and {len(self.formulas) - 5:,} more" if len(self.formulas) > 5 else ""
+            )
+            raise InputError(
+                Problem(
+                    self.shown,
+                    None,
+                    None,
+                    f"{'cells' if len(self.formulas) > 1 else 'cell'} {shown} "
+                    f"{'hold formulas' if len(self.formulas) > 1 else 'holds a formula'} without a saved value "
+                    "(the workbook was written by a program "
+                    "that does not compute formulas): capred reads values, not formulas. Open and save the "
+                    "workbook in Excel or LibreOffice, or paste the values",
+                    self.sheet,
+                )
+            )
+
+    def fill_merges(self, book) -> None:
+        """Each merged range takes the value of its top-left cell in every row holding data (as it looks); the
+        fill is said once in ``book.notes``."""
+        if not self.merges:
+            return
+        at = {line: k for k, (line, _) in enumerate(self.rows)}
+        filled = []
+        for r1, c1, r2, c2 in self.merges:
+            k = at.get(r1)
+            cells = self.rows[k][1] if k is not None else []
+            value = cells[c1 - 1] if c1 - 1 < len(cells) else ""
+            if not value or (r1 == r2 and c1 == c2):
+                continue
+            for line in range(r1, r2 + 1):
+                j = at.get(line)
+                if j is None:
+                    continue
+                row = self.rows[j][1]
+                if len(row) < c2:
+                    row.extend([""] * (c2 - len(row)))
+                for c in range(c1, c2 + 1):
+                    if not row[c - 1]:
+                        row[c - 1] = value
+            filled.append(f"{_column_letters(c1)}{r1}:{_column_letters(c2)}{r2} ('{value[:30]}')")
+        if filled:
+            more = f" and {len(filled) - 5:,} more" if len(filled) > 5 else ""
+            book.notes.append(f"merged cells take the value of their first cell: {', '.join(filled[:5])}{more}")
 
     def cell_chars(self, n: int, line: int | None, col: int | None = None) -> None:
         """Refuse the file when one cell's text, expanded, holds ``n`` > ``max_cell_chars`` characters."""
@@ -679,6 +772,9 @@ class _Rows:
             self.rows.append((line + k, list(row)))
 
 
+_CELL_REF = re.compile(r"([A-Za-z]{1,3})([0-9]{1,7})")
+
+
 def _column_letters(col: int) -> str:
     letters = ""
     while col > 0:
@@ -743,10 +839,12 @@ def _xlsx_rows(book: _Zip, sheet) -> tuple[str, list]:
     wb_path = next((p for t, p in root.values() if t == "officeDocument"), "xl/workbook.xml")
     c = _Collect({"sheet", "workbookPr"})
     book.parse(wb_path, c)
-    sheets = [(a.get("name", ""), _attr(a, "id", "")) for tag, a in c.found if tag == "sheet"]
+    found = [a for tag, a in c.found if tag == "sheet"]
+    sheets = [(a.get("name", ""), _attr(a, "id", "")) for a in found]
+    hidden = {k for k, a in enumerate(found) if a.get("state", "visible") in ("hidden", "veryHidden")}
     date1904 = any(tag == "workbookPr" and a.get("date1904", "").lower() in ("1", "true") for tag, a in c.found)
     names = [n for n, _ in sheets]
-    k = _pick_sheet(book.shown, names, sheet)
+    k = _pick_sheet(book.shown, names, sheet, hidden, book)
     name = names[k]
     wb_rels = rels(wb_path)
     kind, path = wb_rels.get(sheets[k][1], ("", ""))
@@ -762,7 +860,10 @@ def _xlsx_rows(book: _Zip, sheet) -> tuple[str, list]:
     dates = _xlsx_date_styles(book, styles_path) if styles_path and book.has(styles_path) else {}
     rows = _Rows(book.shown, book.limits)
     rows.sheet = name
-    book.parse(path, _XlsxSheet(rows, strings, dates, date1904), name)
+    handler = _XlsxSheet(rows, strings, dates, date1904)
+    book.parse(path, handler, name)
+    rows.refuse_formulas()
+    rows.fill_merges(book)
     return name, rows.rows
 
 
@@ -884,6 +985,7 @@ class _XlsxSheet:
         self.inline: list[str] | None = None
         self.phonetic = 0
         self.chars = 0  # characters of the current cell's text
+        self.formula: list[str] | str | None = None  # the current cell's formula (its text while read)
 
     def start(self, name, attrs):
         local = _local(name)
@@ -895,10 +997,15 @@ class _XlsxSheet:
             self.style = int(style) if style and style.isdigit() else 0
             self.value = None
             self.inline = None
+            self.formula = None
             self.chars = 0
             self.out.visit(1, self.line)
         elif local == "v":
             self.buf = []
+        elif local == "f":
+            self.formula = []
+        elif local == "mergeCell":
+            self.out.merge(attrs.get("ref", ""))
         elif local == "row":
             r = attrs.get("r")
             # a row number of thousands of digits is not converted (Python refuses, and no sheet has it)
@@ -922,8 +1029,12 @@ class _XlsxSheet:
             self.buf = None
         elif local == "rPh":
             self.phonetic -= 1
+        elif local == "f" and self.formula is not None:
+            self.formula = "".join(self.formula) or "(shared)"
         elif local == "c":
             text = self._cell()
+            if not text and self.formula is not None and not self.value:
+                self.out.formula(self.col, self.line, self.formula)
             if text:
                 self.out.column_ok(self.col, self.line)
                 if self.cells is None:  # a cell outside any row: its own row
@@ -935,6 +1046,8 @@ class _XlsxSheet:
             self.cells = None
 
     def text(self, data):
+        if isinstance(self.formula, list) and len(self.formula) < 64:
+            self.formula.append(data)
         if self.buf is not None:
             self.buf.append(data)
             self.chars += len(data)
@@ -990,7 +1103,11 @@ class _OdsContent:
         self.paragraphs = 0
         self.skip = 0  # inside an annotation (a comment on the cell): its text is not the cell's
         digits = isinstance(sheet, str) and sheet.strip().lstrip("-").isdigit()
-        self.by_number = int(sheet) if isinstance(sheet, int) or digits else (1 if sheet is None else None)
+        self.by_number = int(sheet) if isinstance(sheet, int) or digits else None
+        self.first_visible = sheet is None  # the default: the first sheet not hidden
+        self.hidden: set[int] = set()  # indices (from 0) of hidden sheets seen
+        self.hidden_styles: set[str] = set()  # table styles that hide a sheet (table:display="false")
+        self.style: str | None = None
         self.by_name = sheet if isinstance(sheet, str) else None
         self.final = not digits  # a sheet asked for by a name or a number: stop once it is read
 
@@ -1003,6 +1120,12 @@ class _OdsContent:
                 self.chars = 0
                 self.paragraphs = 0
                 self.out.visit(1, self.line + 1)
+                spans = _count(_attr(attrs, "number-rows-spanned")), _count(_attr(attrs, "number-columns-spanned"))
+                if spans != (1, 1):
+                    self.out.merge("", spans[0], spans[1], self.line + 1, self.col + 1)
+                formula = _attr(attrs, "formula")
+                if formula is not None and _attr(attrs, "value-type") is None:
+                    self.out.formula(self.col + 1, self.line + 1, (formula.partition(":")[2] or formula).lstrip("="))
                 return
             if local == "table-row":
                 self.cells = {}
@@ -1027,10 +1150,21 @@ class _OdsContent:
             if local == "annotation":
                 self.skip += 1
             return
+        if local == "style":
+            self.style = _attr(attrs, "name") if _attr(attrs, "family") == "table" else None
+        elif local == "table-properties" and self.style and _attr(attrs, "display", "true") == "false":
+            self.hidden_styles.add(self.style)
         if local == "table":
             self.names.append(_attr(attrs, "name", f"Sheet{len(self.names) + 1}"))
             k = len(self.names)
-            if k == self.by_number or (self.by_name is not None and self.names[-1] == self.by_name):
+            if _attr(attrs, "style-name") in self.hidden_styles:
+                self.hidden.add(k - 1)
+            if (
+                k == self.by_number
+                or (self.by_name is not None and self.names[-1] == self.by_name)
+                or (self.first_visible and k - 1 not in self.hidden)
+            ):
+                self.first_visible = False
                 self.active = True
                 self.line = 0
                 self.out.rows = self.kept.setdefault(k, [])
@@ -1104,9 +1238,12 @@ def _ods_rows(book: _Zip, sheet) -> tuple[str, list]:
     rows = _Rows(book.shown, book.limits)
     content = _OdsContent(rows, sheet)
     book.parse("content.xml", content)
+    rows.refuse_formulas()
+    rows.fill_merges(book)
     names = content.names
     if content.final and content.kept:  # found (names of later sheets were not read)
         k = next(iter(content.kept))
+        _pick_sheet(book.shown, names[:k], sheet, content.hidden, book)  # what is said of hidden sheets
         return names[k - 1], content.kept[k]
-    k = _pick_sheet(book.shown, names, sheet) + 1
+    k = _pick_sheet(book.shown, names, sheet, content.hidden, book) + 1
     return names[k - 1], content.kept.get(k, [])

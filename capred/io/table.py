@@ -403,6 +403,7 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
         known=tuple(dict.fromkeys(sp for col in schema for sp in (col.name, *col.aliases))),
     )
     table.notes += grid.notes
+    table.warnings += grid.warnings
     if grid.delimiter_rows:
         first = ", ".join(map(str, grid.delimiter_lines))
         more = ", ..." if grid.delimiter_rows > len(grid.delimiter_lines) else ""
