@@ -233,13 +233,56 @@ def read_grid(source: TableSource) -> Grid:
                     + (": give it its real extension (.xlsx or .ods)" if magic == b"PK\x03\x04" else ""),
                 )
             )
-    text = _decode(data)
+    text, other = _decode_mixed(data)
     del data
     if "\x00" in text[:4096]:
         raise InputError(Problem(shown, None, None, "this is a binary file, not a CSV text table"))
     if source.sheet is not None:
         raise InputError(Problem(shown, None, None, "--sheet is for .xlsx and .ods workbooks, not CSV files"))
-    return _csv_grid(shown, text, limits=limits)
+    grid = _csv_grid(shown, text, limits=limits)
+    if other:
+        shown_lines = ", ".join(map(str, other[:5])) + (f" and {len(other) - 5:,} more" if len(other) > 5 else "")
+        grid.notes.append(
+            f"the file mixes encodings: line{'s' if len(other) > 1 else ''} {shown_lines} "
+            f"{'are' if len(other) > 1 else 'is'} not UTF-8 and {'were' if len(other) > 1 else 'was'} read as "
+            "Windows-1252 (the rest as UTF-8); check those lines' accented letters"
+        )
+    return grid
+
+
+def _decode_mixed(data: bytes) -> tuple[str, list[int]]:
+    """(text, lines read as Windows-1252): UTF-8 (or UTF-16 with a BOM) as a whole where it can be; a file whose
+    lines mix UTF-8 and Windows-1252 (one pasted from another program) line by line, each in its own encoding,
+    never garbled silently; a file of Windows-1252 alone as a whole."""
+    if data[:2] in (b"\xff\xfe", b"\xfe\xff"):
+        return _decode(data), []
+    try:
+        return data.decode("utf-8-sig"), []
+    except UnicodeDecodeError:
+        pass
+    lines = data.split(b"\n")
+    utf8_text = False
+    for ln in lines:
+        if not ln.isascii():
+            try:
+                ln.decode("utf-8")
+                utf8_text = True
+                break
+            except UnicodeDecodeError:
+                continue
+    if not utf8_text:  # no UTF-8 beyond ASCII: one legacy encoding throughout
+        return _decode(data), []
+    out, other = [], []
+    for k, ln in enumerate(lines, start=1):
+        try:
+            out.append(ln.decode("utf-8-sig" if k == 1 else "utf-8"))
+        except UnicodeDecodeError:
+            try:
+                out.append(ln.decode("cp1252"))
+            except UnicodeDecodeError:
+                out.append(ln.decode("latin-1"))
+            other.append(k)
+    return "\n".join(out), other
 
 
 def _decode(data: bytes) -> str:
