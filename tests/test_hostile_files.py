@@ -364,7 +364,7 @@ def test_streamed_xlsx_reads_what_openpyxl_reads(tmp_path):
     values = [
         ["Date", datetime.datetime(2026, 11, 21, 9, 30), None, "  padded  "],
         ["t", 1, 1.0, 1 / 3, -2.5e-300, 12345678901234567890, True, False],
-        [None, None, "=not a formula", "x" * 300, "é µ ³"],
+        [None, None, "a = b", "x" * 300, "é µ ³"],  # a formula without a value: test_workbooks_as_they_look
         [1e300, 0.1 + 0.2],
     ]
     for r in values:
@@ -539,3 +539,92 @@ def test_read_only_disk_is_said_as_read_only(tmp_path, monkeypatch):
     with pytest.raises(OutputError, match="read-only file system") as err:
         writers.check_target(tmp_path / "out")
     assert "permission denied" not in str(err.value)
+
+
+# --- issue 32, item 1: every limit counts what is expanded ----------------------------------------------------------
+# Smaller than the audit's files (114 KB .ods with 2,000,000 <text:s text:c="1000"/>, 144 KB .xlsx with 20 M nested
+# elements, 110 MB of comma rows, 100 MB cells), with the same structure; the full-size files were measured once
+# (the report of this change): each answered in under 5 s and 600 MB.
+def _ods_text_cell(inner: str) -> str:
+    return (
+        '<table:table-row><table:table-cell office:value-type="string"><text:p>suction [kPa]</text:p>'
+        f'</table:table-cell><table:table-cell office:value-type="string"><text:p>{inner}</text:p>'
+        "</table:table-cell></table:table-row>"
+    )
+
+
+def test_ods_repeated_spaces_count_as_the_text_they_make(tmp_path):
+    path = tmp_path / "spaces.ods"
+    path.write_bytes(_ods(_ods_text_cell('<text:s text:c="1000"/>' * 20_000)))  # 20 M spaces in one cell
+    err, seconds, peak = _measured(lambda: read_grid(TableSource(path)))
+    assert isinstance(err, LimitError) and err.limit == "max_cell_chars", err
+    assert "cell B1" in str(err) and seconds < 5 and peak < 50  # refused at the 33rd element, not expanded
+
+
+def test_ods_text_of_many_cells_counts_against_the_byte_limit(tmp_path):
+    rows = "".join(_ods_text_cell('<text:s text:c="1000"/>' * 30) for _ in range(100))  # 100 x 30,000 spaces
+    path = tmp_path / "many.ods"
+    path.write_bytes(_ods(rows))
+    err, seconds, peak = _measured(lambda: read_grid(TableSource(path, limits=ReadLimits(max_bytes=2**20))))
+    assert isinstance(err, LimitError) and err.limit == "max_bytes" and "expands beyond" in str(err), err
+
+
+def test_xlsx_elements_nested_after_sheet_data_are_refused_at_once(tmp_path):
+    normal = _normal_xlsx(tmp_path / "n.xlsx")
+    sheet = f'<worksheet xmlns="{MAIN}"><sheetData></sheetData>'.encode() + b"<x>" * 200_000 + b"</worksheet>"
+    path = tmp_path / "nested.xlsx"
+    path.write_bytes(_zip(_with_sheet(normal, sheet)))
+    err, seconds, peak = _measured(lambda: read_grid(TableSource(path)))
+    assert isinstance(err, InputError) and "nests XML elements more than 200 deep" in str(err), err
+    assert seconds < 5 and peak < 50
+
+
+def test_xlsx_elements_after_sheet_data_count_against_the_cell_limit(tmp_path):
+    normal = _normal_xlsx(tmp_path / "n.xlsx")
+    sheet = f'<worksheet xmlns="{MAIN}"><sheetData></sheetData>'.encode() + b"<x/>" * 200_000 + b"</worksheet>"
+    path = tmp_path / "wide.xlsx"
+    path.write_bytes(_zip(_with_sheet(normal, sheet)))
+    err, seconds, peak = _measured(lambda: read_grid(TableSource(path, limits=ReadLimits(max_cells=1000))))
+    assert isinstance(err, LimitError) and err.limit == "max_cells" and "XML elements" in str(err), err
+
+
+HEAD = "test_id,condition,sigma_N [kPa],tau_max [kPa]\na,dry,1,1.0452\nb,dry,2,1.7598\nc,dry,3,2.4744\n"
+
+
+@pytest.mark.parametrize("quote", ["", '"'])
+def test_rows_of_commas_are_skipped_and_counted_on_every_path(tmp_path, quote):
+    """200,000 rows of commas (an export's empty rows; the audit's 110 MB file had 22 M): one note, no problem;
+    with a quote anywhere (the csv module's path) the same."""
+    from capred.pipelines.shear import SCHEMA
+
+    path = tmp_path / "commas.csv"
+    path.write_text(HEAD.replace("a,dry", f"{quote}a{quote},dry") + ",,,\n" * 200_000)
+    table, seconds, peak = _measured(lambda: read_table(TableSource(path), SCHEMA))
+    assert not isinstance(table, Exception), table
+    assert len(table) == 3 and not table.problems
+    assert table.notes == [
+        "200,000 rows holding only delimiters (as spreadsheet exports leave them) skipped: lines 5, 6, 7, ..."
+    ]
+    assert seconds < 5 and peak < 100  # measured 0.1 s and 12 MiB
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        HEAD.replace("a,dry,1", "a,dry,1" + "9" * 1_000_000),  # a long cell
+        "test_id,condition,sigma_N [kPa],tau_max [kPa]," + "h" * 1_000_000 + "\n" + HEAD.split("\n", 1)[1],  # header
+        HEAD + "Remarks: " + "disturbed " * 100_000 + "\n",  # a note
+    ],
+    ids=["cell", "header", "note"],
+)
+def test_a_huge_cell_header_or_note_is_refused_with_a_short_excerpt(tmp_path, text):
+    from capred.pipelines.shear import SCHEMA
+
+    path = tmp_path / "long.csv"
+    path.write_text(text)
+    err, seconds, peak = _measured(lambda: read_table(TableSource(path), SCHEMA))
+    assert isinstance(err, LimitError) and err.limit == "max_cell_chars", err
+    assert len(str(err)) < 600 and "characters)" in str(err)  # an excerpt and the length, never the cell
+    assert seconds < 5 and peak < 100
+    ok = read_table(TableSource(path, limits=ReadLimits(max_cell_chars=2_000_000)), SCHEMA)  # raised: read
+    assert len(ok) >= 2

@@ -81,6 +81,16 @@ MaxCellsOpt = Annotated[
         show_default=False,
     ),
 ]
+MaxCellCharsOpt = Annotated[
+    int | None,
+    typer.Option(
+        "--max-cell-chars",
+        min=1,
+        help="Longest cell, header or note the reader takes on, once expanded [characters; default 32,767, "
+        "the most a spreadsheet cell holds].",
+        show_default=False,
+    ),
+]
 MaxColumnsOpt = Annotated[
     int | None,
     typer.Option(
@@ -121,7 +131,9 @@ class Invocation:
 
 def fail(exc: CapredError, code: int = 1) -> None:
     """One clean message on stderr and a non-zero exit (no traceback)."""
-    typer.echo(f"Error: {exc}", err=True)
+    from ..text_safety import visible
+
+    typer.echo(f"Error: {visible(str(exc))}", err=True)  # a cell quoted in a message never acts on the terminal
     raise typer.Exit(code)
 
 
@@ -243,6 +255,7 @@ def command(app: typer.Typer, name: str, full_name: str | None = None, data: str
             "max_megabytes": (MaxMbOpt, None),
             "max_cells": (MaxCellsOpt, None),
             "max_columns": (MaxColumnsOpt, None),
+            "max_cell_chars": (MaxCellCharsOpt, None),
         }
 
     def deco(builder):
@@ -311,7 +324,7 @@ def quantity(text: str | None, default_unit: str, name: str = "", option: str = 
 
 def _limits(common: dict):
     """The reading limits the options ask for (None: the reader's defaults)."""
-    given = {k: common.get(k) for k in ("max_megabytes", "max_cells", "max_columns")}
+    given = {k: common.get(k) for k in ("max_megabytes", "max_cells", "max_columns", "max_cell_chars")}
     if all(v is None for v in given.values()):
         return None
     from ..io.grid import ReadLimits
@@ -319,6 +332,7 @@ def _limits(common: dict):
     kw = {
         "max_cells": given["max_cells"],
         "max_columns": given["max_columns"],
+        "max_cell_chars": given["max_cell_chars"],
         "max_bytes": None if given["max_megabytes"] is None else given["max_megabytes"] * 2**20,
     }
     return ReadLimits(**{k: v for k, v in kw.items() if v is not None})

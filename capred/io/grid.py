@@ -36,6 +36,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import InputError, LimitError, Problem
+from ..text_safety import excerpt
 
 #: default limit on the bytes of an input: a CSV file's size, a workbook's decompressed parts (256 MiB)
 MAX_BYTES = 256 * 2**20
@@ -43,12 +44,25 @@ MAX_BYTES = 256 * 2**20
 MAX_CELLS = 2_000_000
 #: default limit on the columns of a table (the header's width; a spreadsheet's last column holding data)
 MAX_COLUMNS = 1000
+#: default limit on the characters of one cell, header or note once expanded (repeated spaces of an .ods, shared
+#: strings): 32,767, the most a cell of Excel or LibreOffice Calc holds
+MAX_CELL_CHARS = 32_767
+#: XML elements a part may hold per cell of ``max_cells`` (a cell is <c><v> or <c><is><t>, with rows, formats and
+#: rich-text runs around them); more is not a spreadsheet's structure
+ELEMENTS_PER_CELL = 6
+#: deepest nesting of XML elements in a part (spreadsheets nest about 10 deep)
+MAX_XML_DEPTH = 200
 #: the rows a worksheet holds in Excel and LibreOffice: a row number beyond is a damaged or hand-made file
 MAX_SHEET_ROWS = 1_048_576
 #: a spreadsheet is a zip of tens to hundreds of parts; more than this is not a spreadsheet capred reads
 MAX_ZIP_PARTS = 10_000
 #: the command-line option that raises each limit
-LIMIT_OPTIONS = {"max_bytes": "--max-megabytes", "max_cells": "--max-cells", "max_columns": "--max-columns"}
+LIMIT_OPTIONS = {
+    "max_bytes": "--max-megabytes",
+    "max_cells": "--max-cells",
+    "max_columns": "--max-columns",
+    "max_cell_chars": "--max-cell-chars",
+}
 
 SPREADSHEET_SUFFIXES = (".xlsx", ".xlsm", ".ods")
 _MAGIC = (
@@ -75,16 +89,21 @@ class ReadLimits:
     max_columns : int
         Columns of a table: the header's width, and the column of the last
         cell holding data in a spreadsheet [-].
+    max_cell_chars : int
+        Characters of one cell, header or note once expanded (an .ods's
+        repeated spaces, a workbook's shared strings, a CSV's longest line
+        split at its delimiter) [-].
     """
 
     max_bytes: int = MAX_BYTES
     max_cells: int = MAX_CELLS
     max_columns: int = MAX_COLUMNS
+    max_cell_chars: int = MAX_CELL_CHARS
 
     def __post_init__(self) -> None:
         from ..errors import OptionError
 
-        for name in ("max_bytes", "max_cells", "max_columns"):
+        for name in ("max_bytes", "max_cells", "max_columns", "max_cell_chars"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int) or value < 1:
                 raise OptionError(f"{LIMIT_OPTIONS[name]} ({name}) must be a whole number >= 1 (got {value!r})")
@@ -161,6 +180,13 @@ class Grid:
     text_rows: dict[str, list[tuple[int, list[str]]]] = field(default_factory=dict)  # first rows, per delimiter
     full_text: str | None = None  # a CSV's text (comment lines blanked), parsed once the delimiter is known
     first_line: int = 1  # the line number of the text's first line (a block of a long file starts later)
+    #: rows holding only delimiters (",,,," as spreadsheet exports leave them): how many, and the first lines
+    delimiter_rows: int = 0
+    delimiter_lines: list[int] = field(default_factory=list)
+    #: notes of the reading itself (lines of another encoding, merged cells), for Table.notes
+    notes: list[str] = field(default_factory=list)
+    #: warnings of the reading itself (hidden sheets passed over), for Table.warnings
+    warnings: list[str] = field(default_factory=list)
 
     def parse_all(self, delimiter: str) -> None:
         """Every row of a CSV with the chosen delimiter (spreadsheets: nothing to do)."""
@@ -207,12 +233,56 @@ def read_grid(source: TableSource) -> Grid:
                     + (": give it its real extension (.xlsx or .ods)" if magic == b"PK\x03\x04" else ""),
                 )
             )
-    text = _decode(data)
+    text, other = _decode_mixed(data)
+    del data
     if "\x00" in text[:4096]:
         raise InputError(Problem(shown, None, None, "this is a binary file, not a CSV text table"))
     if source.sheet is not None:
         raise InputError(Problem(shown, None, None, "--sheet is for .xlsx and .ods workbooks, not CSV files"))
-    return _csv_grid(shown, text)
+    grid = _csv_grid(shown, text, limits=limits)
+    if other:
+        shown_lines = ", ".join(map(str, other[:5])) + (f" and {len(other) - 5:,} more" if len(other) > 5 else "")
+        grid.notes.append(
+            f"the file mixes encodings: line{'s' if len(other) > 1 else ''} {shown_lines} "
+            f"{'are' if len(other) > 1 else 'is'} not UTF-8 and {'were' if len(other) > 1 else 'was'} read as "
+            "Windows-1252 (the rest as UTF-8); check those lines' accented letters"
+        )
+    return grid
+
+
+def _decode_mixed(data: bytes) -> tuple[str, list[int]]:
+    """(text, lines read as Windows-1252): UTF-8 (or UTF-16 with a BOM) as a whole where it can be; a file whose
+    lines mix UTF-8 and Windows-1252 (one pasted from another program) line by line, each in its own encoding,
+    never garbled silently; a file of Windows-1252 alone as a whole."""
+    if data[:2] in (b"\xff\xfe", b"\xfe\xff"):
+        return _decode(data), []
+    try:
+        return data.decode("utf-8-sig"), []
+    except UnicodeDecodeError:
+        pass
+    lines = data.split(b"\n")
+    utf8_text = False
+    for ln in lines:
+        if not ln.isascii():
+            try:
+                ln.decode("utf-8")
+                utf8_text = True
+                break
+            except UnicodeDecodeError:
+                continue
+    if not utf8_text:  # no UTF-8 beyond ASCII: one legacy encoding throughout
+        return _decode(data), []
+    out, other = [], []
+    for k, ln in enumerate(lines, start=1):
+        try:
+            out.append(ln.decode("utf-8-sig" if k == 1 else "utf-8"))
+        except UnicodeDecodeError:
+            try:
+                out.append(ln.decode("cp1252"))
+            except UnicodeDecodeError:
+                out.append(ln.decode("latin-1"))
+            other.append(k)
+    return "\n".join(out), other
 
 
 def _decode(data: bytes) -> str:
@@ -228,7 +298,72 @@ def _decode(data: bytes) -> str:
 _LINE_END = re.compile("\r\n|\r|\n")
 
 
-def _csv_grid(shown: str, text: str, first_line: int = 1) -> Grid:
+#: a run of CSV lines that hold only delimiters (and blanks): empty rows, as spreadsheet exports leave them
+_DELIMITER_ROWS = re.compile(r"^(?:[ \t]*+[,;][,;\t ]*+(?:\n|\Z)){1,4096}+", re.M)
+
+
+def _blank_delimiter_rows(grid: Grid, text: str) -> str:
+    """``text`` with its rows of delimiters only blanked (their line numbers kept); counts them on ``grid``.
+    Runs of such rows are matched whole, so a file of millions of them costs one pass."""
+    if _DELIMITER_ROWS.search(text) is None:
+        return text
+    where = [grid.first_line, 0]  # line number at position
+
+    def blank(m) -> str:
+        run = m.group()
+        n = run.count("\n")
+        rows = n + (not run.endswith("\n"))
+        if len(grid.delimiter_lines) < 3:
+            where[0] += text.count("\n", where[1], m.start())
+            where[1] = m.start()
+            grid.delimiter_lines += range(where[0], where[0] + min(rows, 3 - len(grid.delimiter_lines)))
+        grid.delimiter_rows += rows
+        return "\n" * n
+
+    return _DELIMITER_ROWS.sub(blank, text).rstrip("\n")
+
+
+def _check_long_lines(shown: str, text: str, first_line: int, limits: ReadLimits) -> None:
+    """Refuse a CSV one of whose cells (or headers, or notes) holds more than ``limits.max_cell_chars``
+    characters, before any line is split. Stretches of max_cell_chars/2 characters are probed for a line end:
+    only a line longer than that is split, at each candidate delimiter, and it is refused when even the
+    delimiter that cuts it finest leaves a cell over the limit."""
+    limit = limits.max_cell_chars
+    step = max(1, limit // 2)
+    end = -1
+    for pos in range(0, len(text), step):
+        if pos < end or text.find("\n", pos, pos + step) >= 0 or pos + step > len(text):
+            continue
+        start = text.rfind("\n", 0, pos) + 1
+        end = text.find("\n", pos)
+        end = len(text) if end < 0 else end
+        widest, at = min(_widest_field(text, start, end, d, step) for d in (",", ";", "\t"))
+        if widest > limit:
+            line = first_line + text.count("\n", 0, start)
+            raise limits.error(
+                "max_cell_chars",
+                f"a cell of {widest:,} characters ({excerpt(text[at : at + 60], 30)})",
+                shown,
+                line,
+            )
+
+
+def _widest_field(text: str, start: int, end: int, delim: str, step: int) -> int:
+    """(length, start) of the longest run between ``delim``s in text[start:end], looked for where a stretch of
+    ``step`` characters holds none."""
+    widest, at, last = 0, start, -1
+    for pos in range(start, end, step):
+        if pos < last or text.find(delim, pos, min(end, pos + step)) >= 0:
+            continue
+        a = max(text.rfind(delim, start, pos) + 1, start)
+        last = text.find(delim, pos, end)
+        last = end if last < 0 else last
+        if last - a > widest:
+            widest, at = last - a, a
+    return widest, at
+
+
+def _csv_grid(shown: str, text: str, first_line: int = 1, limits: ReadLimits | None = None) -> Grid:
     """Rows of a CSV text for each candidate delimiter (the table reader picks the one whose header fits).
 
     Parsed as a whole (not line by line), so quoted fields may span lines; a
@@ -247,6 +382,8 @@ def _csv_grid(shown: str, text: str, first_line: int = 1) -> Grid:
     else:  # the usual file: nothing to blank, lines already end in '\n'
         kept = text[:-1] if text.endswith("\n") else text
     grid = Grid(shown, None, [], (",", ";", "\t"), first_line=first_line)
+    _check_long_lines(shown, kept, first_line, limits or ReadLimits())
+    kept = _blank_delimiter_rows(grid, kept)
     head = "\n".join(kept.split("\n", 200)[:200])
     for delim in grid.delimiters:
         grid.text_rows[delim] = _parse(head, delim, first_line)
@@ -305,15 +442,35 @@ def _spreadsheet_grid(shown: str, data: bytes, suffix: str, sheet, limits: ReadL
             Problem(shown, None, None, f"cannot be read as a {suffix} workbook ({type(exc).__name__}: {exc})")
         ) from None
     rows = [(n, cells) for n, cells in rows if any(cells) and not cells[0].startswith("#")]
-    return Grid(shown, name, rows, ())
+    return Grid(shown, name, rows, (), notes=book.notes, warnings=book.warnings)
 
 
-def _pick_sheet(shown: str, names: list[str], sheet) -> int:
-    """Index (from 0) of the sheet asked for: the first when None, a name, or a number counted from 1."""
+def _pick_sheet(shown: str, names: list[str], sheet, hidden: set[int] = frozenset(), book=None) -> int:
+    """Index (from 0) of the sheet asked for: the first *visible* one when None, a name, or a number counted
+    from 1. ``hidden`` holds the indices of hidden sheets: one passed over, or one asked for, is said on
+    ``book.warnings``."""
     if not names:
         raise InputError(Problem(shown, None, None, "the workbook has no sheets"))
     if sheet is None:
-        return 0
+        k = next((i for i in range(len(names)) if i not in hidden), 0)
+        if k > 0 and book is not None:
+            before = ", ".join(f"'{names[i]}'" for i in range(k))
+            book.warnings.append(
+                f"{shown}: the workbook's first sheet{'s' if k > 1 else ''} {before} "
+                f"{'are' if k > 1 else 'is'} hidden: sheet '{names[k]}', the first visible one, is read "
+                f"(--sheet '{names[0]}' reads a hidden one)"
+            )
+        elif k in hidden and book is not None:
+            book.warnings.append(f"{shown}: every sheet of the workbook is hidden: the first, '{names[0]}', is read")
+        return k
+    k = _pick_named_sheet(shown, names, sheet)
+    if k in hidden and book is not None:
+        book.notes.append(f"sheet '{names[k]}' is hidden in the workbook; read as asked (--sheet)")
+    return k
+
+
+def _pick_named_sheet(shown: str, names: list[str], sheet) -> int:
+    """Index (from 0) of the sheet asked for by name or by number counted from 1."""
     if isinstance(sheet, int) or (
         isinstance(sheet, str) and sheet.strip().lstrip("-").isdigit() and sheet.strip() not in names
     ):
@@ -371,6 +528,8 @@ class _Zip:
             )
         self.names = {i.filename for i in infos}
         self.used = 0  # bytes decompressed so far, across parts
+        self.notes: list[str] = []  # what the reading of the workbook tells (merged cells, a hidden sheet read)
+        self.warnings: list[str] = []  # hidden sheets passed over
 
     def has(self, name: str) -> bool:
         return name in self.names
@@ -397,8 +556,40 @@ class _Zip:
 
         parser.StartDoctypeDeclHandler = doctype
         parser.EntityDeclHandler = doctype
-        parser.StartElementHandler = handler.start
-        parser.EndElementHandler = handler.end
+        # every element counts, and its depth: a hostile part may nest or repeat elements no cell holds
+        budget = [ELEMENTS_PER_CELL * self.limits.max_cells + 100_000, 0]  # elements left, depth
+        start, end = handler.start, handler.end
+
+        def counted_start(name, attrs):
+            budget[0] -= 1
+            budget[1] += 1
+            if budget[1] > MAX_XML_DEPTH:
+                raise InputError(
+                    Problem(
+                        self.shown,
+                        None,
+                        None,
+                        f"part '{name_}' nests XML elements more than {MAX_XML_DEPTH} deep; a spreadsheet nests "
+                        "about 10: refused (a damaged or hostile file)",
+                        sheet,
+                    )
+                )
+            if budget[0] < 0:
+                raise self.limits.error(
+                    "max_cells",
+                    f"part '{name_}' holds more XML elements than {ELEMENTS_PER_CELL} per cell allowed",
+                    self.shown,
+                    sheet=sheet,
+                )
+            start(name, attrs)
+
+        def counted_end(name):
+            budget[1] -= 1
+            end(name)
+
+        name_ = name
+        parser.StartElementHandler = counted_start
+        parser.EndElementHandler = counted_end
         parser.CharacterDataHandler = handler.text
         with self.zip.open(name) as stream:
             try:
@@ -479,6 +670,102 @@ class _Rows:
         self.sheet: str | None = None
         self.rows: list[tuple[int, list[str]]] = []
         self.visited = 0
+        self.chars = 0  # characters of cell text made so far (expanded), against max_bytes
+        self.merges: list[tuple[int, int, int, int]] = []  # merged ranges: first row, column, last row, column
+        self.formulas: list[str] = []  # cells holding a formula without a saved value
+
+    def merge(self, ref: str, rows: int | None = None, cols: int | None = None, line: int = 0, col: int = 0) -> None:
+        """Record a merged range: ``ref`` as 'B2:B8' (.xlsx), or its size from the top-left cell (.ods)."""
+        if rows is None:
+            a, _, b = ref.partition(":")
+            m1, m2 = _CELL_REF.fullmatch(a.replace("$", "")), _CELL_REF.fullmatch(b.replace("$", ""))
+            if not (m1 and m2):
+                return
+            c1, r1, c2, r2 = _column_number(m1[1]), int(m1[2]), _column_number(m2[1]), int(m2[2])
+        else:
+            c1, r1, c2, r2 = col, line, col + cols - 1, line + rows - 1
+        self.visit((r2 - r1 + 1) * (c2 - c1 + 1), r1)  # the cells a merge fills count
+        self.column_ok(c2, r1)
+        self.merges.append((r1, c1, r2, c2))
+
+    def formula(self, col: int, line: int, text: str) -> None:
+        """Record a cell holding a formula without the value it computes."""
+        if len(self.formulas) < 1000:
+            self.formulas.append(f"{_column_letters(col)}{line} (={text[:40]})")
+
+    def refuse_formulas(self) -> None:
+        """A sheet with formulas whose values were never saved cannot be read as it looks: refused, naming them."""
+        if self.formulas:
+            shown = ", ".join(self.formulas[:5]) + (
+                f" and {len(self.formulas) - 5:,} more" if len(self.formulas) > 5 else ""
+            )
+            raise InputError(
+                Problem(
+                    self.shown,
+                    None,
+                    None,
+                    f"{'cells' if len(self.formulas) > 1 else 'cell'} {shown} "
+                    f"{'hold formulas' if len(self.formulas) > 1 else 'holds a formula'} without a saved value "
+                    "(the workbook was written by a program "
+                    "that does not compute formulas): capred reads values, not formulas. Open and save the "
+                    "workbook in Excel or LibreOffice, or paste the values",
+                    self.sheet,
+                )
+            )
+
+    def fill_merges(self, book) -> None:
+        """Each merged range takes the value of its top-left cell in every row holding data (as it looks); the
+        fill is said once in ``book.notes``."""
+        if not self.merges:
+            return
+        at = {line: k for k, (line, _) in enumerate(self.rows)}
+        filled = []
+        for r1, c1, r2, c2 in self.merges:
+            k = at.get(r1)
+            cells = self.rows[k][1] if k is not None else []
+            value = cells[c1 - 1] if c1 - 1 < len(cells) else ""
+            if not value or (r1 == r2 and c1 == c2):
+                continue
+            for line in range(r1, r2 + 1):
+                j = at.get(line)
+                if j is None:
+                    continue
+                row = self.rows[j][1]
+                if len(row) < c2:
+                    row.extend([""] * (c2 - len(row)))
+                for c in range(c1, c2 + 1):
+                    if not row[c - 1]:
+                        row[c - 1] = value
+            filled.append(f"{_column_letters(c1)}{r1}:{_column_letters(c2)}{r2} ('{value[:30]}')")
+        if filled:
+            more = f" and {len(filled) - 5:,} more" if len(filled) > 5 else ""
+            book.notes.append(f"merged cells take the value of their first cell: {', '.join(filled[:5])}{more}")
+
+    def cell_chars(self, n: int, line: int | None, col: int | None = None) -> None:
+        """Refuse the file when one cell's text, expanded, holds ``n`` > ``max_cell_chars`` characters."""
+        if n > self.limits.max_cell_chars:
+            ref = f"cell {_column_letters(col)}{line}" if col and line else f"a cell of row {line}"
+            raise self.limits.error(
+                "max_cell_chars",
+                f"{ref} holds more than {self.limits.max_cell_chars:,} characters once expanded",
+                self.shown,
+                line,
+                _column_letters(col) if col else None,
+                self.sheet,
+            )
+
+    def more_text(self, n: int, line: int | None) -> None:
+        """Count ``n`` more characters of expanded text against ``max_bytes`` (what the XML's bytes do not bound:
+        an .ods's repeated spaces)."""
+        self.chars += n
+        if self.chars > self.limits.max_bytes:
+            raise self.limits.error(
+                "max_bytes",
+                f"the sheet's text expands beyond {self.limits.shown('max_bytes')} (at row {line})",
+                self.shown,
+                line,
+                sheet=self.sheet,
+            )
 
     def visit(self, n: int = 1, line: int | None = None) -> None:
         self.visited += n
@@ -526,6 +813,9 @@ class _Rows:
         self.rows.append((line, row))
         for k in range(1, repeat):
             self.rows.append((line + k, list(row)))
+
+
+_CELL_REF = re.compile(r"([A-Za-z]{1,3})([0-9]{1,7})")
 
 
 def _column_letters(col: int) -> str:
@@ -592,10 +882,12 @@ def _xlsx_rows(book: _Zip, sheet) -> tuple[str, list]:
     wb_path = next((p for t, p in root.values() if t == "officeDocument"), "xl/workbook.xml")
     c = _Collect({"sheet", "workbookPr"})
     book.parse(wb_path, c)
-    sheets = [(a.get("name", ""), _attr(a, "id", "")) for tag, a in c.found if tag == "sheet"]
+    found = [a for tag, a in c.found if tag == "sheet"]
+    sheets = [(a.get("name", ""), _attr(a, "id", "")) for a in found]
+    hidden = {k for k, a in enumerate(found) if a.get("state", "visible") in ("hidden", "veryHidden")}
     date1904 = any(tag == "workbookPr" and a.get("date1904", "").lower() in ("1", "true") for tag, a in c.found)
     names = [n for n, _ in sheets]
-    k = _pick_sheet(book.shown, names, sheet)
+    k = _pick_sheet(book.shown, names, sheet, hidden, book)
     name = names[k]
     wb_rels = rels(wb_path)
     kind, path = wb_rels.get(sheets[k][1], ("", ""))
@@ -611,7 +903,10 @@ def _xlsx_rows(book: _Zip, sheet) -> tuple[str, list]:
     dates = _xlsx_date_styles(book, styles_path) if styles_path and book.has(styles_path) else {}
     rows = _Rows(book.shown, book.limits)
     rows.sheet = name
-    book.parse(path, _XlsxSheet(rows, strings, dates, date1904), name)
+    handler = _XlsxSheet(rows, strings, dates, date1904)
+    book.parse(path, handler, name)
+    rows.refuse_formulas()
+    rows.fill_merges(book)
     return name, rows.rows
 
 
@@ -629,6 +924,7 @@ class _XlsxStrings:
         local = _local(name)
         if local == "si":
             self.parts = []
+            self.chars = 0
         elif local == "t" and self.parts is not None and not self.phonetic:
             self.in_t = True
         elif local == "rPh":
@@ -654,6 +950,15 @@ class _XlsxStrings:
     def text(self, data):
         if self.in_t:
             self.parts.append(data)
+            self.chars = getattr(self, "chars", 0) + len(data)
+            if self.chars > self.book.limits.max_cell_chars:
+                raise self.book.limits.error(
+                    "max_cell_chars",
+                    f"shared string {len(self.strings) + 1:,} holds more than "
+                    f"{self.book.limits.max_cell_chars:,} characters",
+                    self.book.shown,
+                    sheet=self.sheet,
+                )
 
 
 def _xlsx_strings(book: _Zip, path: str, sheet: str) -> list[str]:
@@ -722,6 +1027,8 @@ class _XlsxSheet:
         self.value: str | None = None
         self.inline: list[str] | None = None
         self.phonetic = 0
+        self.chars = 0  # characters of the current cell's text
+        self.formula: list[str] | str | None = None  # the current cell's formula (its text while read)
 
     def start(self, name, attrs):
         local = _local(name)
@@ -733,9 +1040,15 @@ class _XlsxSheet:
             self.style = int(style) if style and style.isdigit() else 0
             self.value = None
             self.inline = None
+            self.formula = None
+            self.chars = 0
             self.out.visit(1, self.line)
         elif local == "v":
             self.buf = []
+        elif local == "f":
+            self.formula = []
+        elif local == "mergeCell":
+            self.out.merge(attrs.get("ref", ""))
         elif local == "row":
             r = attrs.get("r")
             # a row number of thousands of digits is not converted (Python refuses, and no sheet has it)
@@ -759,8 +1072,12 @@ class _XlsxSheet:
             self.buf = None
         elif local == "rPh":
             self.phonetic -= 1
+        elif local == "f" and self.formula is not None:
+            self.formula = "".join(self.formula) or "(shared)"
         elif local == "c":
             text = self._cell()
+            if not text and self.formula is not None and not self.value:
+                self.out.formula(self.col, self.line, self.formula)
             if text:
                 self.out.column_ok(self.col, self.line)
                 if self.cells is None:  # a cell outside any row: its own row
@@ -772,8 +1089,13 @@ class _XlsxSheet:
             self.cells = None
 
     def text(self, data):
+        if isinstance(self.formula, list) and len(self.formula) < 64:
+            self.formula.append(data)
         if self.buf is not None:
             self.buf.append(data)
+            self.chars += len(data)
+            if self.chars > self.out.limits.max_cell_chars:
+                self.out.cell_chars(self.chars, self.line, self.col)
 
     def _cell(self) -> str:
         t, v = self.ctype, self.value
@@ -824,7 +1146,11 @@ class _OdsContent:
         self.paragraphs = 0
         self.skip = 0  # inside an annotation (a comment on the cell): its text is not the cell's
         digits = isinstance(sheet, str) and sheet.strip().lstrip("-").isdigit()
-        self.by_number = int(sheet) if isinstance(sheet, int) or digits else (1 if sheet is None else None)
+        self.by_number = int(sheet) if isinstance(sheet, int) or digits else None
+        self.first_visible = sheet is None  # the default: the first sheet not hidden
+        self.hidden: set[int] = set()  # indices (from 0) of hidden sheets seen
+        self.hidden_styles: set[str] = set()  # table styles that hide a sheet (table:display="false")
+        self.style: str | None = None
         self.by_name = sheet if isinstance(sheet, str) else None
         self.final = not digits  # a sheet asked for by a name or a number: stop once it is read
 
@@ -834,8 +1160,15 @@ class _OdsContent:
             if local == "table-cell" or local == "covered-table-cell":
                 self.cell = attrs
                 self.parts = []
+                self.chars = 0
                 self.paragraphs = 0
                 self.out.visit(1, self.line + 1)
+                spans = _count(_attr(attrs, "number-rows-spanned")), _count(_attr(attrs, "number-columns-spanned"))
+                if spans != (1, 1):
+                    self.out.merge("", spans[0], spans[1], self.line + 1, self.col + 1)
+                formula = _attr(attrs, "formula")
+                if formula is not None and _attr(attrs, "value-type") is None:
+                    self.out.formula(self.col + 1, self.line + 1, (formula.partition(":")[2] or formula).lstrip("="))
                 return
             if local == "table-row":
                 self.cells = {}
@@ -847,19 +1180,34 @@ class _OdsContent:
                     if self.paragraphs:
                         self.parts.append("\n")
                     self.paragraphs += 1
-                elif local == "s":
-                    self.parts.append(" " * min(_count(_attr(attrs, "c")), 1000))
+                elif local == "s":  # spaces: counted as expanded, before they are made
+                    n = min(_count(_attr(attrs, "c")), self.out.limits.max_cell_chars + 1)
+                    self._count_text(n)
+                    self.parts.append(" " * n)
                 elif local == "tab":
+                    self._count_text(1)
                     self.parts.append("\t")
                 elif local == "line-break":
+                    self._count_text(1)
                     self.parts.append("\n")
             if local == "annotation":
                 self.skip += 1
             return
+        if local == "style":
+            self.style = _attr(attrs, "name") if _attr(attrs, "family") == "table" else None
+        elif local == "table-properties" and self.style and _attr(attrs, "display", "true") == "false":
+            self.hidden_styles.add(self.style)
         if local == "table":
             self.names.append(_attr(attrs, "name", f"Sheet{len(self.names) + 1}"))
             k = len(self.names)
-            if k == self.by_number or (self.by_name is not None and self.names[-1] == self.by_name):
+            if _attr(attrs, "style-name") in self.hidden_styles:
+                self.hidden.add(k - 1)
+            if (
+                k == self.by_number
+                or (self.by_name is not None and self.names[-1] == self.by_name)
+                or (self.first_visible and k - 1 not in self.hidden)
+            ):
+                self.first_visible = False
                 self.active = True
                 self.line = 0
                 self.out.rows = self.kept.setdefault(k, [])
@@ -892,7 +1240,13 @@ class _OdsContent:
 
     def text(self, data):
         if self.parts is not None and self.paragraphs and not self.skip:
+            self._count_text(len(data))
             self.parts.append(data)
+
+    def _count_text(self, n: int) -> None:
+        self.chars += n
+        self.out.cell_chars(self.chars, self.line + 1, self.col + 1)
+        self.out.more_text(n, self.line + 1)
 
     def _value(self) -> str:
         a = self.cell
@@ -927,9 +1281,12 @@ def _ods_rows(book: _Zip, sheet) -> tuple[str, list]:
     rows = _Rows(book.shown, book.limits)
     content = _OdsContent(rows, sheet)
     book.parse("content.xml", content)
+    rows.refuse_formulas()
+    rows.fill_merges(book)
     names = content.names
     if content.final and content.kept:  # found (names of later sheets were not read)
         k = next(iter(content.kept))
+        _pick_sheet(book.shown, names[:k], sheet, content.hidden, book)  # what is said of hidden sheets
         return names[k - 1], content.kept[k]
-    k = _pick_sheet(book.shown, names, sheet) + 1
+    k = _pick_sheet(book.shown, names, sheet, content.hidden, book) + 1
     return names[k - 1], content.kept.get(k, [])

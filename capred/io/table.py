@@ -402,6 +402,15 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
         metadata=metadata,
         known=tuple(dict.fromkeys(sp for col in schema for sp in (col.name, *col.aliases))),
     )
+    table.notes += grid.notes
+    table.warnings += grid.warnings
+    if grid.delimiter_rows:
+        first = ", ".join(map(str, grid.delimiter_lines))
+        more = ", ..." if grid.delimiter_rows > len(grid.delimiter_lines) else ""
+        table.notes.append(
+            f"{grid.delimiter_rows:,} row{'s' if grid.delimiter_rows > 1 else ''} holding only delimiters "
+            f"(as spreadsheet exports leave them) skipped: line{'s' if grid.delimiter_rows > 1 else ''} {first}{more}"
+        )
     ignored = {_key(x): x for x in src.ignore_columns}
     used_ignores: set[str] = set()
     positions: dict[str, tuple[int, Column, str | None]] = {}
@@ -565,7 +574,30 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
         table.columns[name] = si
         _check_rule(table, col)
         _check_magnitude(table, col)
+    _flag_controls(table)
     return table
+
+
+def _flag_controls(table: Table) -> None:
+    """One warning when the table's text (headers, text cells, notes, metadata) holds control or bidi characters:
+    they are kept, and shown as escapes wherever text meets a reader (capred.text_safety)."""
+    from ..text_safety import controls_warning, has_unsafe
+
+    for name, header in table.headers.items():
+        if has_unsafe(header):
+            table.warnings.append(controls_warning(f"{table.path}, line {table.header_line}, a header", header))
+            return
+    for name, values in table.columns.items():
+        if values.dtype != object or not has_unsafe("\n".join(map(str, values))):
+            continue
+        i = next(i for i, v in enumerate(values) if has_unsafe(str(v)))
+        where = f"{table.path}, line {int(table.lines[i])}, column '{table.headers.get(name, name)}'"
+        table.warnings.append(controls_warning(where, str(values[i])))
+        return
+    for text in [*table.notes, *table.metadata.keys(), *table.metadata.values()]:
+        if has_unsafe(text):
+            table.warnings.append(controls_warning(f"{table.path}, a note or metadata line", text))
+            return
 
 
 def _trimmed(cells: list[str]) -> list[str]:

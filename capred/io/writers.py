@@ -75,18 +75,20 @@ def _dumps(obj, indent: bool = False) -> bytes:
     Never fails on a number: NaN, infinities and integers too large for JSON
     readers are written as null (see ``_finite``).
     """
+    from ..text_safety import json_escape  # C1 and bidi controls as \u escapes: the same text, inert
+
     try:
         import orjson
     except ImportError:  # pragma: no cover - orjson is a dependency; kept for a minimal install
         obj = _finite(obj)
         if indent:
-            return json.dumps(obj, ensure_ascii=False, indent=2, allow_nan=False).encode("utf-8")
-        return json.dumps(obj, ensure_ascii=False, separators=(",", ":"), allow_nan=False).encode("utf-8")
+            return json_escape(json.dumps(obj, ensure_ascii=False, indent=2, allow_nan=False).encode("utf-8"))
+        return json_escape(json.dumps(obj, ensure_ascii=False, separators=(",", ":"), allow_nan=False).encode("utf-8"))
     option = orjson.OPT_SERIALIZE_NUMPY | (orjson.OPT_INDENT_2 if indent else 0)
     try:
-        return orjson.dumps(obj, option=option)  # NaN and infinities already become null
+        return json_escape(orjson.dumps(obj, option=option))  # NaN and infinities already become null
     except (orjson.JSONEncodeError, OverflowError):  # an integer beyond 64 bits, a numpy type orjson lacks
-        return orjson.dumps(_finite(obj), option=option)
+        return json_escape(orjson.dumps(_finite(obj), option=option))
 
 
 def encode_json(doc, indent: bool | None = None) -> bytes:
@@ -662,6 +664,15 @@ def _os_error(out: Path, exc: OSError) -> OutputError:
     return OutputError(f"cannot write the outputs to {out}: {reason}; nothing was written")
 
 
+def _safe_svg(path: Path) -> None:
+    """Rewrite an SVG file whose text holds control or bidi characters with them shown (capred.text_safety)."""
+    from ..text_safety import has_unsafe, xml_safe
+
+    text = path.read_text(encoding="utf-8", errors="surrogateescape")
+    if has_unsafe(text):
+        path.write_text(xml_safe(text), encoding="utf-8", errors="surrogateescape")
+
+
 class RunFolder:
     """A hidden work folder that becomes ``out`` on ``commit()``; removed if anything fails."""
 
@@ -687,7 +698,10 @@ class RunFolder:
         return self.tmp / name
 
     def done(self, name: str) -> None:
-        """Record a file written into the work folder (with the usual permissions)."""
+        """Record a file written into the work folder (with the usual permissions); an SVG is made well-formed
+        (a control character in a label, which XML forbids, is shown as its control picture)."""
+        if name.endswith(".svg"):
+            _safe_svg(self.tmp / name)
         os.chmod(self.tmp / name, 0o666 & ~_UMASK)
         self.names.append(name)
 

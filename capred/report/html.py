@@ -331,7 +331,9 @@ def _template(name: str):
 
     import jinja2
 
-    env = jinja2.Environment(autoescape=True, undefined=jinja2.StrictUndefined)
+    from ..text_safety import html_finalize
+
+    env = jinja2.Environment(autoescape=True, undefined=jinja2.StrictUndefined, finalize=html_finalize)
     if name == "season":
         return env.from_string(_SEASON)
     return env.from_string(files("capred.report").joinpath(f"templates/{name}").read_text(encoding="utf-8"))

@@ -337,7 +337,9 @@ def render_tables(specs: list[TableSpec], con) -> None:
     """Print tables: rich and folded to the width on a terminal, plain full-width text otherwise."""
     from rich.text import Text
 
-    for spec in specs:
+    from ..text_safety import safe_spec
+
+    for spec in map(safe_spec, specs):  # a cell's control characters never reach the terminal
         if con.is_terminal:
             for t in rich_tables(spec, con.width):
                 con.print(t)
@@ -351,6 +353,9 @@ def render_tables(specs: list[TableSpec], con) -> None:
 def _line(con, terminal: bool, prefix: str, style: str, text: str) -> None:
     from rich.text import Text
 
+    from ..text_safety import visible
+
+    text = visible(text)  # a warning or note quoting a cell never acts on the terminal
     if terminal:
         con.print(Text(prefix, style=style) + Text(text), soft_wrap=True)
     else:

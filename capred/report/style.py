@@ -116,8 +116,11 @@ SINGLE_PANEL_SIZE = (3.5, 2.8)
 
 
 def literal(text) -> str:
-    """User text (a material name, a test id) as drawn: '$' escaped, so no mathtext is read into it."""
-    return str(text).replace("$", r"\$")
+    """User text (a material name, a test id) as drawn: '$' escaped, so no mathtext is read into it; control and
+    bidi characters shown (capred.text_safety.visible)."""
+    from ..text_safety import visible
+
+    return visible(str(text), pictures=False).replace("$", r"\$")
 
 
 def style(name: str, **over) -> dict:
