@@ -448,11 +448,11 @@ def test_every_error_bar_says_what_it_is(shear_result):
     fig = sheet_figure(report)
     titles = {ax.get_title(): ax for ax in fig.axes}
     assert PI_BARS in _legend_texts(titles["Measured and predicted strength"])
-    assert "95 % prediction interval" in PI_BARS
+    assert "95 %\nprediction interval" in PI_BARS
     fig = sheet_figure(capillary)
     for ax in fig.axes:
         assert SE_BARS in _legend_texts(ax), ax.get_title()
-    assert "standard error" in SE_BARS
+    assert "± 1\nstandard error" in SE_BARS
     assert all("standard error" in p.caption for p in capillary.panels)
 
 

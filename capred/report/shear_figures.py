@@ -45,9 +45,9 @@ MAX_CURVES = 16
 #: the measured suctions, the part drawn
 CURVE_POINTS = 240
 #: what the error bars of the report sheet are (their legend entry)
-PI_BARS = "bars: 95 % prediction interval"
+PI_BARS = "bars: 95 %\nprediction interval"  # two lines: the legend stays narrow
 #: what the error bars of the capillary sheet are (their legend entry)
-SE_BARS = r"bars: $\pm$ 1 standard error"
+SE_BARS = "bars: ± 1\nstandard error"
 
 
 def _bars_key(ax, text: str) -> None:

@@ -177,6 +177,10 @@ PAD_MM = 1.0
 
 
 _MATHTEXT = []  # the one mathtext parser of every capred figure drawn by Agg (made on first use)
+#: Agg renderers by (width px, height px, dpi), shared by every figure of that size (``_canvas``)
+_RENDERERS: dict = {}
+#: sizes of figure whose renderer is kept (a run draws two or three sizes: sheets of 2 and 1 rows, a title)
+KEEP_RENDERERS = 4
 
 
 def _forget_fonts_after_fork() -> None:
@@ -187,6 +191,7 @@ def _forget_fonts_after_fork() -> None:
     import sys
 
     _MATHTEXT.clear()
+    _RENDERERS.clear()  # they hold the parent's parser
     mathtext = sys.modules.get("matplotlib.mathtext")
     if mathtext is not None:
         mathtext.MathTextParser._parse_cached.cache_clear()
@@ -201,30 +206,58 @@ def _canvas(fig):
 
     Every such renderer also shares one mathtext parser, whose cache keeps each parsed label (a label such
     as ``$\\tau_{max}$ [kPa]`` costs 10-50 ms to parse): a label repeated in another panel or sheet at the
-    same size and dpi is parsed once.
+    same size and dpi is parsed once. Figures of one size share one renderer (``_RENDERERS``): its pixel
+    buffer is allocated once and its text-size cache (tick labels, legend entries, titles) serves every
+    sheet of a run and every file of a batch. A draw clears the buffer first, and ``raster`` copies it.
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-    FigureCanvasAgg(fig)
-    renderer = fig.canvas.get_renderer()
+    canvas = FigureCanvasAgg(fig)
+    key = (*canvas.get_width_height(physical=True), fig.dpi)
+    renderer = _RENDERERS.get(key)
+    if renderer is None:
+        renderer = canvas.get_renderer()
+        if len(_RENDERERS) >= KEEP_RENDERERS:
+            _RENDERERS.pop(next(iter(_RENDERERS)))
+        _RENDERERS[key] = renderer
+    canvas.renderer, canvas._lastKey = renderer, key  # what FigureCanvasAgg.get_renderer reuses
     if not _MATHTEXT:
         _MATHTEXT.append(renderer.mathtext_parser)
     renderer.mathtext_parser = _MATHTEXT[0]
     return renderer
 
 
-def _dress(ax, width_px: float, renderer, height_px: float | None = None) -> float:
+def _draw_panel(panel, ax):
+    """``panel.draw(ax)`` with its ``ax.legend(...)`` call recorded instead of run: the legend is then built
+    once, where ``_dress`` puts it, not also where the panel asked. Returns (handles, labels) the panel gave
+    (None, None: the axes' labelled artists)."""
+    asked = {}
+
+    def legend(*args, **kwargs):
+        asked["handles"] = kwargs.get("handles", args[0] if args else None)
+        asked["labels"] = kwargs.get("labels", args[1] if len(args) > 1 else None)
+
+    ax.legend = legend
+    try:
+        panel.draw(ax)
+    finally:
+        del ax.legend
+    return asked.get("handles"), asked.get("labels")
+
+
+def _dress(ax, width_px: float, renderer, height_px: float | None = None, handles=None, labels=None) -> float:
     """Put the axes' legend outside its data: beside the axes (``style.legend_outside``), or, when that
     would take more than ``LEGEND_SIDE_MAX`` of the panel's width, below the x-axis label, in as many
     columns as the panel's width holds (rows balanced).
 
     Returns the height [px] the legend below needs beyond ``LEGEND_BELOW_MAX`` of ``height_px`` (the
     panel's height; 0 when it fits or is beside the axes): the room to add to the panel so that the
-    legend never squashes the axes.
+    legend never squashes the axes. ``handles``, ``labels``: what the panel asked its legend to show
+    (``_draw_panel``), else its labelled artists or its legend.
     """
     from matplotlib.transforms import ScaledTranslation
 
-    legend_outside(ax)
+    legend_outside(ax, handles=handles, labels=labels)
     leg = ax.get_legend()
     if leg is None:
         return 0.0
@@ -345,8 +378,8 @@ def panel_figure(sheet: Sheet, panel: Panel, dpi: float = 300.0):
         fig = Figure(figsize=(_inches(w, dpi), _inches(h, dpi)), dpi=dpi)
         renderer = _canvas(fig)
         ax = fig.add_axes((0.15, 0.15, 0.7, 0.7))
-        panel.draw(ax)
-        extra = _dress(ax, fig.bbox.width, renderer, fig.bbox.height)
+        handles, labels = _draw_panel(panel, ax)
+        extra = _dress(ax, fig.bbox.width, renderer, fig.bbox.height, handles, labels)
         if extra > 0 and panel.name not in sheet.legend_room:  # taller by the legend's excess
             sheet.legend_room[panel.name] = extra / dpi * MM_PER_INCH
             w, h = panel_size_mm(sheet, panel)
@@ -540,8 +573,8 @@ def sheet_figure(sheet: Sheet, dpi: float = 300.0):
                     0.7 * slot.height * px / H,
                 )
             )
-            panel.draw(ax)
-            extra = _dress(ax, x1 - x0, renderer, y1 - y0)
+            handles, labels = _draw_panel(panel, ax)
+            extra = _dress(ax, x1 - x0, renderer, y1 - y0, handles, labels)
             if extra > 0 and panel.name not in sheet.legend_room:
                 grown[panel.name] = extra / dpi * MM_PER_INCH
             groups.append(fig.axes[before:])
@@ -594,9 +627,9 @@ def compose(sheet: Sheet, dpi: float = 300.0, panel_figures: list | None = None)
             x0, y1 = slot.x / width, 1 - slot.y / height
             sx, sy = slot.width / width, slot.height / height
             ax = fig.add_axes((x0, y1 - sy, sx, sy))
-            panel.draw(ax)
+            handles, labels = _draw_panel(panel, ax)
             for mine, theirs in zip(fig.axes[before:], pfig.axes):  # the panel's axes, colour bars, twins
                 p = theirs.get_position(original=True)
                 mine.set_position((x0 + p.x0 * sx, y1 - sy + p.y0 * sy, p.width * sx, p.height * sy))
-            _dress(ax, pfig.bbox.width, renderer)  # the same legend placement as in the panel
+            _dress(ax, pfig.bbox.width, renderer, None, handles, labels)  # the legend placed as in the panel
     return fig

@@ -261,10 +261,18 @@ def note(ax, text: str) -> None:
         ax.text(0.99, 0.01, text, transform=ax.transAxes, ha="right", va="bottom", fontsize=6, color="0.3")
 
 
-def legend_outside(ax, ncol: int = 1) -> None:
-    """Move an axes' legend outside its data area (to the right), so that it never covers a point."""
+def legend_outside(ax, ncol: int = 1, handles=None, labels=None) -> None:
+    """Move an axes' legend outside its data area (to the right), so that it never covers a point.
+
+    ``handles`` (and ``labels``, default: the handles' labels): the entries to show, when the legend was not
+    built yet; else those of the axes' legend, or its labelled artists."""
     old = ax.get_legend()
-    if old is not None:  # keep what the panel put in its legend (also proxy handles)
+    if handles is not None:
+        handles = list(handles)
+        labels = list(labels) if labels is not None else [h.get_label() for h in handles]
+        if old is not None:
+            old.remove()
+    elif old is not None:  # keep what the panel put in its legend (also proxy handles)
         handles = list(getattr(old, "legend_handles", None) or old.legendHandles)
         labels = [t.get_text() for t in old.get_texts()]
         artists, own = ax.get_legend_handles_labels()
