@@ -25,6 +25,15 @@ def bridge_solve_tables(result) -> list[TableSpec]:
     codes, counts = np.unique(result.status, return_counts=True)
     summary = spec("Bridges solved", ["status", "rows"])
     summary.rows = [[result.status_text(k), str(v)] for k, v in zip(codes, counts)]
+    context = result.row_context(0, len(rows)) if hasattr(result, "row_context") else {}
+    named = bool(rows) and "case" in rows[0]
+    extra = [] if named else ["R_mm", "gap_mm"]  # no case label: the row is named by its radius and gap
+    if np.any(np.isfinite(context.get("D_rupture_mm", []))):
+        extra.append("D_rupture_mm")  # where a row beyond rupture would have had its bridge
+    for j, r in enumerate(rows):
+        for k in extra:
+            r[k] = float(context[k][j])
+    keys = keys[:1] + [k for k in extra if k != "D_rupture_mm"] + keys[1:] + [k for k in extra if k == "D_rupture_mm"]
     present = [k for k in keys if rows and k in rows[0]]
     if "filling_angle2_deg" in present and np.all(result.inputs_si["ratio"] == 1):
         present.remove("filling_angle2_deg")  # equal spheres: the same angle twice
