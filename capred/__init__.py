@@ -40,6 +40,7 @@ _API = {
     "bridge_curve": "capred.pipelines.bridge",
     "compare_measured": "capred.pipelines.bridge",
     "rupture_distances": "capred.pipelines.bridge",
+    "compare_laws": "capred.pipelines.bridge_laws",
     "sample_path": "capred.samples",
     "CapredError": "capred.errors",
     "InputError": "capred.errors",
