@@ -41,6 +41,7 @@ _API = {
     "bridge_curve": "capred.pipelines.bridge",
     "compare_measured": "capred.pipelines.bridge",
     "rupture_distances": "capred.pipelines.bridge",
+    "compare_laws": "capred.pipelines.bridge_laws",
     "sample_path": "capred.samples",
     "history": "capred.lab_store",
     "run_history": "capred.pipelines.history",

@@ -212,6 +212,23 @@ REDUCTIONS: dict[str, Reduction] = {
             summary="Rupture distance of bridges at constant volume.",
         ),
         Reduction(
+            "bridge laws",
+            _P + "bridge_laws:compare_laws",
+            _P + "bridge_laws:LawsOptions",
+            "optional",
+            "bridge-laws",
+            "bridge_laws",
+            method=(
+                "The closed-form capillary forces of DEM codes (Willett et al. 2000, simple and full; Rabinovich "
+                "et al. 2005; Lambert et al. 2008; Soulié et al. 2006; Weigert & Ripperger 1999) against the exact "
+                "Young-Laplace bridge at equal contact angle, volume and gap, the exact bridge on the stable branch "
+                "at constant volume; forces in units of 2πRγ, relative errors per region of gap × volume × angle "
+                "× geometry.",
+            ),
+            references=("willett2000", "lian1993"),
+            summary="Closed-form capillary-force laws of DEM codes against the exact bridge.",
+        ),
+        Reduction(
             "bridge yade-files",
             _P + "yade_files:reduce_yade_files",
             _P + "yade_files:YadeOptions",

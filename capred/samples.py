@@ -16,6 +16,7 @@ SAMPLES = {
     "bridge-solve": "bridge_cases.csv",
     "bridge-compare": "bridge_micro_tests.csv",
     "bridge-rupture": "bridge_rupture.csv",
+    "bridge-laws": "bridge_laws_grid.csv",
     "shear-export": "shear_tests_export.xlsx",
     "shear-eu": "shear_tests_eu.csv",
     "shear-curves": "shear_curves.csv",

@@ -1,4 +1,4 @@
-"""`capred bridge curve | solve | compare | rupture | yade-files`: exact capillary bridges between two spheres or a
+"""`capred bridge curve | solve | compare | rupture | laws | yade-files`: exact capillary bridges between two spheres or a
 sphere and a plane."""
 
 from typing import Annotated
@@ -33,6 +33,13 @@ def register(app: typer.Typer) -> None:
         data="CSV, one case per row: R, contact_angle, V_w (and R2: a radius or 'plane')",
     )(rupture)
     command(bridge_app, "yade-files", "bridge yade-files", plots=False)(yade_files)
+    command(
+        bridge_app,
+        "laws",
+        "bridge laws",
+        data="CSV grid, one point per row: D_over_R, V_over_R3, contact_angle (and R2_over_R: a ratio or 'plane'); "
+        "without it, the grid of the options",
+    )(laws)
     command(
         bridge_app,
         "compare",
@@ -187,3 +194,36 @@ def yade_files(
     except ValueError:
         raise OptionError(f"--ratios: '{ratios}' is not a comma-separated list of numbers") from None
     return Invocation("bridge yade-files", YadeOptions(values, contact_angle, distances, suctions))
+
+
+def laws(
+    gaps: Annotated[str, typer.Option(help="Gaps D/R of the default grid, comma-separated.")] = (
+        "0,0.002,0.005,0.01,0.02,0.05,0.1,0.2"
+    ),
+    volumes: Annotated[str, typer.Option(help="Volumes V/R^3 of the default grid, comma-separated.")] = (
+        "1e-4,3e-4,1e-3,3e-3,1e-2,3e-2,0.1"
+    ),
+    angles: Annotated[str, typer.Option(help="Contact angles [deg] of the default grid, comma-separated.")] = (
+        "0,20,40"
+    ),
+    ratios: Annotated[
+        str, typer.Option(help="R2/R of the default grid, comma-separated ('plane': a sphere and a plane).")
+    ] = "1,2,plane",
+    tolerance: Annotated[
+        float, typer.Option(help="Relative error under which a law counts as within, everywhere in a region.")
+    ] = 0.05,
+) -> Invocation:
+    """Which closed-form capillary force a DEM code should use: Willett et al.
+    (2000, simple and full), Rabinovich et al. (2005), Lambert et al. (2008),
+    Soulié et al. (2006) and Weigert & Ripperger (1999) against the exact
+    Young-Laplace bridge at the same contact angle, volume and gap (the stable
+    bridge at constant volume), forces in units of 2 pi R gamma; per region of
+    gap x volume x angle x geometry each law's median and largest relative
+    error and which laws stay within the tolerance; error maps, one panel per
+    law.
+
+    Example: capred bridge laws --sample --out laws
+    """
+    from ..pipelines.bridge_laws import LawsOptions
+
+    return Invocation("bridge laws", LawsOptions(gaps, volumes, angles, ratios, tolerance))

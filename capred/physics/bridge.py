@@ -1558,6 +1558,63 @@ def rupture_gap(contact_angle_rad, volume, ratio=1.0, contact_angle2_rad=None):
     return D, beta, s, status
 
 
+def rupture_gap_at_suction(contact_angle_rad, suction, ratio=1.0, contact_angle2_rad=None):
+    r"""Rupture distance at constant suction: the widest gap any bridge spans at this suction.
+
+    Parameters
+    ----------
+    contact_angle_rad : float or array_like
+        Contact angle θ on particle 1 [rad].
+    suction : float or array_like
+        s* = Delta_u R1 / gamma [-], >= 0.
+    ratio : float or array_like, default 1.0
+        rho = R2 / R1 [-]; ``np.inf`` for a plane.
+    contact_angle2_rad : float or array_like, optional
+        Contact angle on particle 2 [rad]; default: ``contact_angle_rad``.
+
+    Returns
+    -------
+    gap : numpy.ndarray
+        D_rupt / R1 [-], 1-D; NaN where no concave bridge exists at this suction.
+    beta : numpy.ndarray
+        Filling angle on particle 1 of the bridge at rupture [rad].
+
+    Notes
+    -----
+    At fixed s* the gap :math:`D^*(\beta)` (:func:`gap_of`) rises from 0 to a maximum and falls [1]_: the
+    maximum is located on a grid of 64 filling angles up to the last concave bridge and refined by 60
+    golden-section steps (the bracket then 1e-12 of the grid step: the gap to about 1e-15 relative, the
+    maximum being flat). A gap wider than this has no bridge at this suction (status 1 of
+    :func:`solve_for_suction`).
+
+    References
+    ----------
+    .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
+       spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
+    """
+    th, s, rho, th2 = _angles(contact_angle_rad, contact_angle2_rad, suction, ratio)
+    n = th.size
+    gap, beta = np.full(n, np.nan), np.full(n, np.nan)
+    k = np.flatnonzero(
+        (th >= 0) & (th < HALF_PI) & (th2 >= 0) & (th2 < HALF_PI) & (s >= 0) & np.isfinite(s) & (rho > 0)
+    )
+    if k.size == 0:
+        return gap, beta
+    th, s, rho, th2 = th[k], s[k], rho[k], th2[k]
+    b_end = 0.5 * (np.pi - np.arctan2(np.sin(th), np.cos(th) + 0.5 * s))
+    grid = b_end[:, None] * np.geomspace(1e-4, 1.0, 64)[None, :]
+    G = _below(_gap(grid, th[:, None], s[:, None], rho[:, None], th2[:, None]))
+    j = np.argmax(G, axis=1)
+    r = np.arange(k.size)
+    found = G[r, j] > -1e299
+    a, c = grid[r, np.maximum(j - 1, 0)], grid[r, np.minimum(j + 1, grid.shape[1] - 1)]
+    bx, gx = golden(lambda x, i: _gap(x, th[i], s[i], rho[i], th2[i]), a, c)
+    better = np.isfinite(gx) & (gx >= G[r, j])
+    gap[k] = np.where(found, np.where(better, gx, G[r, j]), np.nan)
+    beta[k] = np.where(found, np.where(better, bx, grid[r, j]), np.nan)
+    return gap, beta
+
+
 def lian_rupture_gap(contact_angle_rad, volume):
     r"""Lian et al. (1993) estimate of the rupture distance of equal spheres.
 

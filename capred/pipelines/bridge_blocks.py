@@ -40,7 +40,8 @@ class BridgeBlocks(Result):
     status : ndarray of int
         Per row: 0 a verified bridge, else the code of :data:`capred.pipelines.bridge.STATUS`.
     inputs_si : dict
-        ``ratio``: R2/R per row [-].
+        ``ratio``: R2/R per row [-]; the other inputs of :class:`BridgeResult` for the first
+        :data:`capred.pipelines.bridge_solve.HEAD_ROWS` rows (what names them in the tables).
     spool : Spool
         The output columns (mm, mN, mm^3, mm^2, deg, kPa), as ``BridgeResult`` writes them.
     """
@@ -65,6 +66,10 @@ class BridgeBlocks(Result):
 
     def rows(self) -> list[dict]:
         return self.rows_range(0, self.status.size)
+
+    def row_context(self, start: int, stop: int) -> dict[str, np.ndarray]:
+        """As :meth:`capred.pipelines.bridge_solve.BridgeResult.row_context` (NaN past the first HEAD_ROWS)."""
+        return pb.row_context(self.inputs_si, self.status, start, stop)
 
     def columns(self) -> dict[str, np.ndarray]:
         """The numeric output columns of every row, as :meth:`BridgeResult.columns` gives them (mm, mN, mm^3,
@@ -133,6 +138,7 @@ def _solve_in_blocks(source, opt: pb.BridgeOptions):
     spool = Spool()
     try:
         status, ratio = [res.status], [res.inputs_si["ratio"]]
+        head = {k: v[: pb.HEAD_ROWS] for k, v in res.inputs_si.items() if k != "ratio"}
         notes, warnings, inputs = dict.fromkeys(res.notes), dict.fromkeys(res.warnings), res.inputs
         spool.append(res._cols())
         del res
@@ -156,7 +162,7 @@ def _solve_in_blocks(source, opt: pb.BridgeOptions):
     return BridgeBlocks(
         path,
         np.concatenate(status).astype(np.int8),
-        {"ratio": np.concatenate(ratio)},
+        {"ratio": np.concatenate(ratio), **head},
         spool,
         opt,
         inputs,

@@ -198,6 +198,23 @@ class BridgeResult(Result):
     def rows(self) -> list[dict]:
         return self.rows_range(0, self.status.size)
 
+    def row_context(self, start: int, stop: int) -> dict[str, np.ndarray]:
+        """What names rows start..stop in a table, and where a row beyond rupture would have had a bridge.
+
+        Parameters
+        ----------
+        start, stop : int
+            The rows (as :meth:`rows_range`).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            ``R_mm`` and ``gap_mm`` (the row's radius and gap [mm]) and ``D_rupture_mm``: on a row beyond
+            rupture, the widest gap any bridge of its volume (volume control) or suction (suction control)
+            spans [mm] (:func:`rupture_gap_of_rows`); NaN on the other rows.
+        """
+        return row_context(self.inputs_si, self.status, start, stop)
+
     def payload(self, lazy: bool = False) -> dict:
         n = self.status.size
         return {"source": self.source, "bridges": ColumnRows(n, self._cols_range) if lazy else self.rows()}
@@ -262,6 +279,65 @@ def with_csv_headers(table):
     if isinstance(table, dict):
         return {csv_header(k): v for k, v in table.items()}
     return table.rename(columns=csv_header, copy=False)
+
+
+#: rows of a long run whose inputs are kept to name them in the console and report tables
+HEAD_ROWS = 100
+
+
+def rupture_gap_of_rows(inputs_si: dict, rows: np.ndarray) -> np.ndarray:
+    """The rupture distance [m] of some rows: at their volume (rows given V_w) or suction (rows given one).
+
+    Parameters
+    ----------
+    inputs_si : dict
+        A result's inputs (``R`` [m], ``contact_angle_rad``, ``contact_angle2_rad`` [rad], ``ratio`` [-],
+        ``gamma`` [N/m], ``suction`` [Pa] and ``V_w`` [m^3], NaN where the row gave the other).
+    rows : numpy.ndarray of int
+        The rows.
+
+    Returns
+    -------
+    numpy.ndarray
+        D_rupture [m] per row: :func:`capred.physics.bridge.rupture_gap` at constant volume,
+        :func:`capred.physics.bridge.rupture_gap_at_suction` at constant suction; NaN where no bridge holds
+        the volume or exists at the suction.
+
+    References
+    ----------
+    .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
+       spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
+    """
+    i = inputs_si
+    R, th, rho = i["R"][rows], i["contact_angle_rad"][rows], i["ratio"][rows]
+    th2 = i.get("contact_angle2_rad", i["contact_angle_rad"])[rows]
+    out = np.full(rows.size, np.nan)
+    V = i["V_w"][rows] if "V_w" in i else np.full(rows.size, np.nan)
+    s = i["suction"][rows] if "suction" in i else np.full(rows.size, np.nan)
+    v = np.flatnonzero(np.isfinite(V))
+    if v.size:
+        out[v] = br.rupture_gap(th[v], V[v] / R[v] ** 3, rho[v], th2[v])[0] * R[v]
+    u = np.flatnonzero(np.isfinite(s) & ~np.isfinite(V))
+    if u.size:
+        s_star = s[u] * R[u] / i["gamma"][rows][u]
+        out[u] = br.rupture_gap_at_suction(th[u], s_star, rho[u], th2[u])[0] * R[u]
+    return out
+
+
+def row_context(inputs_si: dict, status: np.ndarray, start: int, stop: int) -> dict[str, np.ndarray]:
+    """``R_mm``, ``gap_mm`` and, on rows beyond rupture, ``D_rupture_mm`` of rows start..stop (NaN where the
+    inputs are not kept: past the HEAD_ROWS of a long run); see :meth:`BridgeResult.row_context`."""
+    n = max(0, min(stop, status.size) - start)
+    kept = max(0, min(n, inputs_si["R"].size - start)) if "R" in inputs_si else 0
+    out = {k: np.full(n, np.nan) for k in ("R_mm", "gap_mm", "D_rupture_mm")}
+    if kept:
+        sl = slice(start, start + kept)
+        out["R_mm"][:kept] = inputs_si["R"][sl] * 1e3
+        out["gap_mm"][:kept] = inputs_si["gap"][sl] * 1e3
+        far = np.flatnonzero(status[sl] == 1)
+        if far.size:
+            out["D_rupture_mm"][far] = rupture_gap_of_rows(inputs_si, start + far) * 1e3
+    return out
 
 
 def json_rows(cols: dict[str, np.ndarray], nan_as_none: bool = True) -> list[dict]:
@@ -453,7 +529,16 @@ def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None, 
     shape = br.Bridge(**fields)
     return BridgeResult(
         source,
-        {"R": R, "gamma": gamma, "contact_angle_rad": th, "gap": D, "ratio": ratio, "contact_angle2_rad": th2},
+        {
+            "R": R,
+            "gamma": gamma,
+            "contact_angle_rad": th,
+            "gap": D,
+            "ratio": ratio,
+            "contact_angle2_rad": th2,
+            "suction": s_in,  # Pa, NaN on volume-controlled rows
+            "V_w": v_in,  # m^3, NaN on suction-controlled rows
+        },
         beta,
         s_star * gamma / R,
         shape,

@@ -121,7 +121,7 @@ def plot_rupture(ax, rows):
 
 def sheet_rupture(rows) -> Sheet:
     return Sheet(
-        "Rupture distance of pendular bridges against Lian et al. (1993)",
+        "Rupture distance against Lian et al. (1993)",
         [
             Panel(
                 "rupture_vs_lian",

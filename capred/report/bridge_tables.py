@@ -25,6 +25,15 @@ def bridge_solve_tables(result) -> list[TableSpec]:
     codes, counts = np.unique(result.status, return_counts=True)
     summary = spec("Bridges solved", ["status", "rows"])
     summary.rows = [[result.status_text(k), str(v)] for k, v in zip(codes, counts)]
+    context = result.row_context(0, len(rows)) if hasattr(result, "row_context") else {}
+    named = bool(rows) and "case" in rows[0]
+    extra = [] if named else ["R_mm", "gap_mm"]  # no case label: the row is named by its radius and gap
+    if np.any(np.isfinite(context.get("D_rupture_mm", []))):
+        extra.append("D_rupture_mm")  # where a row beyond rupture would have had its bridge
+    for j, r in enumerate(rows):
+        for k in extra:
+            r[k] = float(context[k][j])
+    keys = keys[:1] + [k for k in extra if k != "D_rupture_mm"] + keys[1:] + [k for k in extra if k == "D_rupture_mm"]
     present = [k for k in keys if rows and k in rows[0]]
     if "filling_angle2_deg" in present and np.all(result.inputs_si["ratio"] == 1):
         present.remove("filling_angle2_deg")  # equal spheres: the same angle twice
@@ -45,3 +54,60 @@ def bridge_curve_tables(result) -> list[TableSpec]:
     for m in ("israelachvili", "bishop", "own1", "own2"):
         t.rows.append([m, *(f"{err[r][m]:.1%}" if err[r][m] is not None else "—" for r in ("inside", "outside"))])
     return [t]
+
+
+def bridge_laws_tables(result) -> list[TableSpec]:
+    """`bridge laws`: each law over every point, the headline (geometry x gap), and the regions with the laws
+    within the tolerance."""
+    from ..physics.bridge_laws import LAWS
+
+    tol = f"{result.tolerance:.0%}"
+    overall = spec(
+        "Closed-form laws against the exact bridge (|F_law/F_exact − 1|)",
+        ["law", "points", "median", "max", f"regions within {tol}"],
+    )
+    for r in result.overall():
+        overall.rows.append(
+            [
+                LAWS[r["law"]].label,
+                str(r["n"]),
+                "—" if r["median_error"] is None else f"{r['median_error']:.1%}",
+                "—" if r["max_error"] is None else f"{r['max_error']:.0%}",
+                f"{r['regions_within']} of {r['regions']}",
+            ]
+        )
+    head = spec(
+        "Median |error| by geometry and gap (over volumes and angles)",
+        ["geometry", "D/R", *[law.label for law in LAWS.values()]],
+        2,
+    )
+    for r in result.headline():
+        head.rows.append(
+            [
+                r["geometry"],
+                r["D_over_R"],
+                *("—" if r[f"{k}_median"] is None else f"{r[f'{k}_median']:.1%}" for k in LAWS),
+            ]
+        )
+    rows = []
+    by_region: dict = {}
+    for r in result.regions():
+        by_region.setdefault(r["region"], []).append(r)
+    for region, items in by_region.items():
+        good = [LAWS[i["law"]].label for i in items if i["within"]]
+        best = min((i for i in items if i["max_error"] is not None), key=lambda i: i["max_error"], default=None)
+        rows.append(
+            {
+                "region": region,
+                "within": ", ".join(good) or "none",
+                "best": "—" if best is None else f"{LAWS[best['law']].label} ({best['max_error']:.1%})",
+            }
+        )
+    where = row_table(
+        f"Laws within {tol} at every point of a region (best: smallest largest error)",
+        rows,
+        ["region", "within", "best"],
+        "regions.csv",
+        left=("region", "within", "best"),
+    )
+    return [overall, head, where]

@@ -145,6 +145,9 @@ PRESENTERS: dict[str, Presenter] = {
         lambda r: {"rupture": _lazy("bridge_figures", "sheet_rupture")(r.rows())}, _rupture_tables
     ),
     "bridge yade-files": Presenter(_none, _yade_tables),
+    "bridge laws": Presenter(
+        _one("bridge_laws_figures", "sheet_laws", "laws"), _lazy("bridge_tables", "bridge_laws_tables")
+    ),
     "pt-volume": Presenter(
         _one("pt_volume_figures", "sheet_pt_volume", "pt_volume"), _lazy("pt_volume_tables", "pt_volume_tables")
     ),
