@@ -68,6 +68,19 @@ class CalcResult(Result):
             out = {"model": self.model, "model_inputs": self.model_inputs or {}, **out}
         return out
 
+    def method_notes(self) -> tuple[list[str], list[str]]:
+        """The skeleton model of a `skempton-b` run, for the methods section of report.html."""
+        if self.model is None or "bounding-surface" not in self.model:
+            return [], []
+        return [
+            f"Elasto-plastic B by the two incremental loops of Morvan et al. (2016), section 4, with the {self.model}: "
+            "for an isotropic state the image point is the apex p_π of the bounding surface, so Γ, ρ and M drop "
+            "out; A11 = κ/((1+e)p') + (λ0 − κ)/((1+e)p') / (1 + h δ/p'), δ = p_π − p', with Cam-clay apex "
+            "hardening dp_π/p_π = (1+e) dε_v^p/(λ0 − κ) and p_π0 = p'0 + A_ini. The constant h has no published "
+            "value. Morvan et al.'s Fig. 6 values (0.4 and 0.04 at S_r = 0.9) come out only with the gauge air "
+            "pressure in Boyle's law and p' = p0 + s S_r (h = 336 chosen to meet 0.04)."
+        ], ["morvan2016", "morvan_wong_branque2010"]
+
     def tables(self) -> dict:
         import pandas as pd
 
