@@ -311,3 +311,18 @@ def test_prism_mohr_diagram_touches_the_envelope(tmp_path):
     js = _json(["prism", "--sample", "--out", str(tmp_path)])
     assert len(js["cases"]) == 3 and (tmp_path / "prism.png").exists()
     assert "Bernatzik (1948)" in (tmp_path / "report.html").read_text()
+
+
+def test_skempton_bounding_surface_api():
+    # the Python API takes the same options (SI): the gauge OC value 0.040 at h = 336 (SPEC 6b) and a CapredWarning
+    # for the gauge convention
+    import capred
+    from capred.errors import CapredWarning
+
+    with pytest.warns(CapredWarning, match="Boyle's law needs the absolute air pressure"):
+        res = capred.run_skempton_b(
+            S_R=0.9, model="bounding-surface", a_ini="10 kPa", interpolation_h=336, air_pressure="gauge"
+        )
+    assert round(res.outputs["B"][0], 3) == 0.040
+    assert res.model_inputs["a_ini_kPa"] == 10 and res.model_inputs["interpolation_h"] == 336
+    assert res.to_json()["model"] == BS_NAME
