@@ -261,3 +261,68 @@ def test_skempton_titles_name_model_and_inputs(args, title, tmp_path):
         assert "s_e = 20 kPa, λ = 0.8" in res.stdout
         row = (tmp_path / "results.csv").read_text().splitlines()
         assert "s_e [kPa]" in row[0] and "bc_lambda" in row[0]
+
+
+def test_skempton_curve_models_as_morvan_figures(tmp_path):
+    # --curve: B over S_r = 0.5..1 for each model asked; at S_r = 0.9 the curves equal the single-case values
+    # (eq. 10 exactly; the reconstruction's NC 0.386 and OC 0.040 at h = 336 with gauge P_a, SPEC 6b)
+    args = ["skempton-b", "--curve", "--model", "bounding-surface", "--a-ini", "10", "--interpolation-h", "336"]
+    js = _json([*args, "--air-pressure", "gauge", "--out", str(tmp_path)])
+    rows = {round(r["S_r"], 3): r for r in js["cases"]}
+    assert len(rows) == 101 and min(rows) == 0.5 and max(rows) == 1.0
+    assert rows[0.9]["B_eq10"] == pytest.approx(calc.skempton_b(0.9, 70e3, 0.8, 0.006, 130e3), rel=1e-12)
+    assert round(rows[0.9]["B_bounding_NC"], 3) == 0.386 and round(rows[0.9]["B_bounding_OC"], 3) == 0.040
+    assert rows[0.9]["B_suction"] == pytest.approx(0.09722, rel=1e-4)  # eq. 10 at p' = 90.534 kPa, by hand
+    assert all(r["B_eq10"] == 1.0 for r in js["cases"] if r["S_r"] == 1.0)
+    # NC above eq. 10 above OC over the whole range below saturation (Morvan et al. 2016, Fig. 6 ordering)
+    below = [r for r in js["cases"] if r["S_r"] < 1]
+    assert all(r["B_bounding_NC"] > r["B_bounding_OC"] for r in below)
+    assert (tmp_path / "skempton-b.png").exists() and js["model"] == BS_NAME
+
+
+def test_skempton_curve_sheet_cites_the_papers_figures():
+    from capred.errors import OptionError
+    from capred.pipelines.calculators import SkemptonOptions, reduce_skempton_b
+
+    res = reduce_skempton_b(None, SkemptonOptions(curve=True, s_e=20e3, bc_lambda=0.8))
+    assert list(res.outputs) == ["B_eq10", "B_suction"]  # the models asked: no bounding surface here
+    sheet = res.figures()["skempton-b"]
+    captions = " ".join(p.caption for p in sheet.panels)
+    for fig in ("Fig. 1", "Fig. 5", "Fig. 6"):
+        assert fig in captions
+    with pytest.raises(OptionError, match="--curve"):
+        reduce_skempton_b(None, SkemptonOptions(S_R=0.9, curve=True))
+
+
+def test_prism_mohr_diagram_touches_the_envelope(tmp_path):
+    # Bernatzik (1948): the circle from P_kmax to P_kmax + sigma_b is tangent to tau = sigma tan rho. The drawn
+    # tangent point (x marker) lies on both the circle and the envelope: rounding only.
+    import matplotlib.figure
+
+    from capred.report.calculator_figures import plot_prism_mohr
+
+    P = calc.prism_capillary_pressure(11.28, 36.0)
+    ax = matplotlib.figure.Figure().add_subplot()
+    plot_prism_mohr(ax, [11.28], [36.0], [P])
+    (xt,), (yt,) = next(line.get_data() for line in ax.lines if line.get_marker() == "x" and len(line.get_xdata()))
+    assert yt == pytest.approx(xt * np.tan(np.radians(36.0)), rel=1e-12)
+    c, r = P + 11.28 / 2, 11.28 / 2
+    assert np.hypot(xt - c, yt) == pytest.approx(r, rel=1e-12)
+    js = _json(["prism", "--sample", "--out", str(tmp_path)])
+    assert len(js["cases"]) == 3 and (tmp_path / "prism.png").exists()
+    assert "Bernatzik (1948)" in (tmp_path / "report.html").read_text()
+
+
+def test_skempton_bounding_surface_api():
+    # the Python API takes the same options (SI): the gauge OC value 0.040 at h = 336 (SPEC 6b) and a CapredWarning
+    # for the gauge convention
+    import capred
+    from capred.errors import CapredWarning
+
+    with pytest.warns(CapredWarning, match="Boyle's law needs the absolute air pressure"):
+        res = capred.run_skempton_b(
+            S_R=0.9, model="bounding-surface", a_ini="10 kPa", interpolation_h=336, air_pressure="gauge"
+        )
+    assert round(res.outputs["B"][0], 3) == 0.040
+    assert res.model_inputs["a_ini_kPa"] == 10 and res.model_inputs["interpolation_h"] == 336
+    assert res.to_json()["model"] == BS_NAME

@@ -292,3 +292,18 @@ def test_history_errors_name_what_the_store_holds(season):
     assert res.exit_code == 1 and "--quantity is needed" in res.stderr and "phi_deg" in res.stderr
     with pytest.raises(InputError, match="no capred store"):
         capred.history(store.parent / "none.sqlite")
+
+
+def test_known_sigma_limits_false_alarm_rate_by_simulation():
+    # In control, N(mu, sigma) with the reference mu and sigma given: P(|x - mu| > 3 sigma) = 2 (1 - Phi(3)) =
+    # 0.0026998. 200,000 runs (fixed seed): the count's binomial sd is sqrt(n p (1-p)) = 23.2; 4 sd tolerance.
+    rng = np.random.default_rng(7)
+    n, p = 200_000, 0.0026998
+    x = rng.normal(35.0, 0.4, n)
+    _, _, beyond, _ = individuals_chart(x, reference=35.0, spread=0.4)
+    assert abs(beyond.sum() - n * p) < 4 * math.sqrt(n * p * (1 - p))
+    # the moving-range estimate is unbiased for sigma: E[MR] = d2 sigma = 1.128 sigma for n = 2 (Montgomery 2013)
+    lim, *_ = individuals_chart(x, baseline=n)
+    # relative sd of the estimate: (0.8525/1.128) sqrt(1 + 2 rho) / sqrt(n) ~ 0.2 % (rho ~ 0.22, overlapping ranges);
+    # 1 % is 5 sd
+    assert lim.sigma == pytest.approx(0.4, rel=1e-2)

@@ -8,7 +8,7 @@ from .common import Invocation, command, quantity
 
 
 def register(app: typer.Typer) -> None:
-    command(app, "prism", data="Optional CSV of cases: break_tension, friction_angle", plots=False)(prism)
+    command(app, "prism", data="Optional CSV of cases: break_tension, friction_angle")(prism)
     command(app, "skempton-b", data="Optional CSV of cases: S_r (or B), and any of kappa, e0, p0, u0, pa0")(skempton_b)
     command(
         app,
@@ -119,6 +119,15 @@ def skempton_b(
             "model is converted to Brooks-Corey, the misfit reported); instead of --se and --bc-lambda."
         ),
     ] = None,
+    curve: Annotated[
+        bool,
+        typer.Option(
+            "--curve",
+            help="B against S_r (0.5-1) for the models asked instead of cases: eq. 10; with --se/--bc-lambda "
+            "suction equilibrium; with --model bounding-surface NC and (with --a-ini) OC; as Morvan et al. "
+            "(2016) Fig. 1-3, 5, 6. Give --out for the figure.",
+        ),
+    ] = False,
 ) -> Invocation:
     """Skempton's B against degree of saturation (Morvan et al. 2016, eq. 10):
     B = 1/(1 + p'0 e0 (1 - S_r)/(kappa P_a0)) with p'0 = p0 - u0, or its inverse
@@ -132,6 +141,8 @@ def skempton_b(
     Example: capred skempton-b --S-R 0.9 --kappa-elastic 0.06
 
     Example: capred skempton-b --S-R 0.9 --model bounding-surface --a-ini 10 --interpolation-h 336
+
+    Example: capred skempton-b --curve --model bounding-surface --a-ini 10 --interpolation-h 336 --out fig6
     """
     from ..pipelines.calculators import SkemptonOptions
 
@@ -151,6 +162,7 @@ def skempton_b(
         air_pressure=air_pressure,
         lambda0=lambda0,
         retention=retention,
+        curve=curve,
     )
     return Invocation("skempton-b", opts, extra_inputs=[retention] if retention else [])
 

@@ -190,8 +190,8 @@ _OUTPUT_PARAMS = {
             Path | None,
             typer.Option(
                 "--store",
-                help="Record the run in this lab store (SQLite, one file; see `capred history`). "
-                "Default: the environment variable CAPRED_STORE.",
+                help="Record the run in this lab store (SQLite, one file; see `capred history`) once its files "
+                "are written. Default: the environment variable CAPRED_STORE.",
             ),
         ],
         None,

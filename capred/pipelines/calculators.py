@@ -69,6 +69,19 @@ class CalcResult(Result):
             out = {"model": self.model, "model_inputs": self.model_inputs or {}, **out}
         return out
 
+    def method_notes(self) -> tuple[list[str], list[str]]:
+        """The skeleton model of a `skempton-b` run, for the methods section of report.html."""
+        if self.model is None or "bounding-surface" not in self.model:
+            return [], []
+        return [
+            f"Elasto-plastic B by the two incremental loops of Morvan et al. (2016), section 4, with the {self.model}: "
+            "for an isotropic state the image point is the apex p_π of the bounding surface, so Γ, ρ and M drop "
+            "out; A11 = κ/((1+e)p') + (λ0 − κ)/((1+e)p') / (1 + h δ/p'), δ = p_π − p', with Cam-clay apex "
+            "hardening dp_π/p_π = (1+e) dε_v^p/(λ0 − κ) and p_π0 = p'0 + A_ini. The constant h has no published "
+            "value. Morvan et al.'s Fig. 6 values (0.4 and 0.04 at S_r = 0.9) come out only with the gauge air "
+            "pressure in Boyle's law and p' = p0 + s S_r (h = 336 chosen to meet 0.04)."
+        ], ["morvan2016", "morvan_wong_branque2010"]
+
     def tables(self) -> dict:
         import pandas as pd
 
@@ -159,6 +172,12 @@ def reduce_prism(source, opt: PrismOptions) -> CalcResult:
     if np.any((v["friction_angle"] <= 0) | (v["friction_angle"] >= 90)):
         raise OptionError("the friction angle must lie between 0 and 90 deg")
     p = calc.prism_capillary_pressure(v["break_tension"], v["friction_angle"])
+    figure = dict(
+        break_tension_kPa=v["break_tension"] / 1e3,
+        friction_angle_deg=v["friction_angle"],
+        P_kmax_kPa=p / 1e3,
+        labels=labels,
+    )
     return _finish(
         "prism",
         f"Prism test ({cite('bernatzik1948')})",
@@ -174,6 +193,7 @@ def reduce_prism(source, opt: PrismOptions) -> CalcResult:
         opt,
         source,
         table,
+        figure,
     )
 
 
@@ -259,6 +279,7 @@ class SkemptonOptions(StableJsonKeys, Options):
     air_pressure: str = "absolute"  # Boyle's law on absolute or gauge air pressure (bounding-surface only)
     lambda0: float | None = None  # slope of the normal compression line (bounding-surface only; Table 3: 0.2)
     retention: str | None = None  # a fits.json of capred retention: s_e and the Brooks-Corey index from it
+    curve: bool = False  # B against S_r over 0.5-1 for every model the options ask for, instead of cases
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -320,6 +341,7 @@ def run_skempton_b(
     air_pressure="absolute",
     lambda0=None,
     retention=None,
+    curve=False,
 ) -> CalcResult:
     """Morvan et al. (2016): B from the degree of saturation ``S_R`` [-] (eq. 10), or S_R from a measured B.
 
@@ -329,7 +351,9 @@ def run_skempton_b(
     section 4 with capred's Cam-clay bounding-surface reconstruction (not the BDNS model of the paper's
     ref. [16]): ``a_ini`` [Pa] (0: normally consolidated), ``interpolation_h`` [-] (required when
     ``a_ini > 0``), ``lambda0`` [-] and ``air_pressure`` (``absolute``, or ``gauge`` to meet the paper's
-    Fig. 6); Table 3 gives the defaults. ``model="elastoplastic"`` raises OptionError with the reason. The
+    Fig. 6); Table 3 gives the defaults. ``curve=True`` gives B against S_r (0.5 to 1) for every model the
+    options ask for (see :func:`skempton_curves`) instead of cases. ``model="elastoplastic"`` raises
+    OptionError with the reason. The
     former keywords ``sr``, ``kappa`` and ``bc_alpha`` still work for one release, with a DeprecationWarning.
     ``retention``: a fits.json of `capred retention` (any model) instead of ``s_e`` and ``bc_lambda``: a
     Brooks-Corey fit as it is, another model converted to Brooks-Corey (capred.convert_retention), the misfit
@@ -358,6 +382,7 @@ def run_skempton_b(
             air_pressure,
             lambda0,
             retention,
+            curve,
         ),
     )
 
@@ -374,6 +399,8 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
         s_e, lam, fit_notes, fit_warnings = brooks_corey_for_skempton(opt.retention)
         opt = dataclasses.replace(opt, s_e=s_e, bc_lambda=lam)
     kw = dict(kappa=opt.kappa_elastic, e0=opt.e0, p0=opt.p0, u0=opt.u0, pa0=opt.pa0)  # keys: the figure's
+    if opt.curve:
+        return skempton_curves(source, opt)
     bounding = None
     s_e, bc_lambda = opt.s_e, opt.bc_lambda
     if opt.model == "bounding-surface":
@@ -419,6 +446,102 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     res.options, res.warnings = opt, opt.warnings + res.warnings
     res.warnings += fit_warnings
     res.notes = list(res.notes) + fit_notes
+    return res
+
+
+#: degrees of saturation of `skempton-b --curve` (the range of Morvan et al.'s 2016 figures)
+CURVE_S_R = np.round(np.linspace(0.5, 1.0, 101), 10)
+
+
+def skempton_curves(source, opt: SkemptonOptions) -> CalcResult:
+    """B against S_r (0.5 to 1, step 0.005) for every model the options ask for, as Morvan et al. (2016) draw it.
+
+    Always eq. 10 (their Fig. 1-3); with ``s_e`` and ``bc_lambda``, or with ``model="bounding-surface"``
+    (Table 3's s_e and lambda), the elastic B with suction equilibrium (section 3, Fig. 5); with
+    ``model="bounding-surface"``, the Cam-clay bounding-surface reconstruction normally consolidated
+    (A_ini = 0) and, with ``a_ini > 0``, over-consolidated (section 4, Fig. 6).
+
+    Parameters
+    ----------
+    source : None
+        A curve is drawn from the options alone (a file of cases is refused).
+    opt : SkemptonOptions
+        With ``curve=True``; ``S_R`` and ``b`` must be None.
+
+    Returns
+    -------
+    CalcResult
+        One row per S_r; one output column per model (``B_eq10``, ``B_suction``, ``B_bounding_NC``,
+        ``B_bounding_OC``).
+
+    References
+    ----------
+    Morvan et al. (2016), eqs. 10, 13-24; Fig. 1-3, 5, 6; Tables 1 and 3.
+    """
+    from ..physics.skempton_elastoplastic import BOUNDING_SURFACE_NAME
+
+    if source is not None or opt.S_R is not None or opt.b is not None:
+        raise OptionError("--curve draws B against S_r from the options: give no data file, --S-R or --b with it")
+    S = CURVE_S_R
+    k, e0, p0, u0, pa0 = opt.kappa_elastic, opt.e0, opt.p0, opt.u0, opt.pa0
+    if p0 - u0 <= 0:
+        raise OptionError("p0 - u0 (initial mean effective stress) must be > 0")
+    bs = opt.model == "bounding-surface"
+    s_e = opt.s_e if opt.s_e is not None or not bs else TABLE3["s_e"]
+    bc_lambda = opt.bc_lambda if opt.bc_lambda is not None or not bs else TABLE3["bc_lambda"]
+    if (s_e is None) != (bc_lambda is None):
+        raise OptionError("give both --se and --bc-lambda for the suction-equilibrium simulation, or neither")
+    outputs = {"B_eq10": calc.skempton_b(S, p0 - u0, e0, k, pa0)}
+    names = [f"B_eq10: elastic skeleton ({cite('morvan2016', 'eq. 10')})"]
+    if s_e is not None:
+        outputs["B_suction"] = calc.skempton_b_suction(S, p0, u0, e0, k, pa0, s_e, bc_lambda)
+        names.append(
+            f"B_suction: elastic skeleton with suction equilibrium, s_e = {s_e / 1e3:g} kPa, λ = {bc_lambda:g}"
+        )
+    bounding = None
+    if bs:
+        bounding = dict(
+            lambda0=opt.lambda0_or_default,
+            a_ini=opt.a_ini_or_default,
+            interpolation_h=opt.interpolation_h,
+            air_pressure=opt.air_pressure,
+        )
+        states = [("NC", 0.0)] + ([("OC", bounding["a_ini"])] if bounding["a_ini"] > 0 else [])
+        for label, a in states:
+            b = {**bounding, "a_ini": a}
+            outputs[f"B_bounding_{label}"] = _bounding_b(S, k, e0, p0, u0, pa0, s_e, bc_lambda, b)
+            names.append(
+                f"B_bounding_{label}: {BOUNDING_SURFACE_NAME}, A_ini = {a / 1e3:g} kPa"
+                + (f", h = {bounding['interpolation_h']:g}" if a > 0 else "")
+                + f", {bounding['air_pressure']} air pressure"
+            )
+    _, model, inputs = skempton_model_description(opt.model, s_e, bc_lambda, bounding)
+    res = CalcResult(
+        "skempton-b",
+        {"S_r": S.copy()},
+        outputs,
+        None,
+        ["curves: " + "; ".join(names)],
+        None,
+        opt,
+        [],
+        list(opt.warnings),
+        "Skempton's B against S_r: " + ", ".join(outputs) + f" ({cite('morvan2016', 'Fig. 1-3, 5, 6')})",
+        dict(
+            curves={"S_r": S, **outputs},
+            curve_names=names,
+            kappa=k,
+            e0=e0,
+            p0=p0,
+            u0=u0,
+            pa0=pa0,
+            s_e=s_e,
+            bc_lambda=bc_lambda,
+            bounding=bounding,
+        ),
+        model,
+        inputs,
+    )
     return res
 
 

@@ -81,8 +81,45 @@ def plot_cases(ax, cases, s_e=None, bc_lambda=None, bounding=None):
     return _axes(ax, "Computed cases on their own curves")
 
 
-def sheet_skempton(cases: dict, kappa, e0, p0, u0, pa0, s_e=None, bc_lambda=None, bounding=None) -> Sheet:
-    """``cases``: (kappa, e0, p0, u0, pa0) -> (S_r values, B values); the studies use the options' parameters."""
+_CURVE_STYLE = {
+    "B_eq10": dict(color=OKABE_ITO["black"], ls="-"),
+    "B_suction": dict(color=OKABE_ITO["blue"], ls="--"),
+    "B_bounding_NC": dict(color=OKABE_ITO["vermillion"], ls="-."),
+    "B_bounding_OC": dict(color=OKABE_ITO["green"], ls=":"),
+}
+_CURVE_LABEL = {
+    "B_eq10": "eq. 10, elastic (Fig. 1)",
+    "B_suction": "suction equilibrium (Fig. 5)",
+    "B_bounding_NC": "bounding-surface reconstr., NC (Fig. 6)",
+    "B_bounding_OC": "bounding-surface reconstr., OC (Fig. 6)",
+}
+
+
+def plot_curves(ax, curves: dict):
+    """B(S_r) of each model of `skempton-b --curve`, as Morvan et al. (2016) Fig. 1, 5 and 6 draw it."""
+    S = curves["S_r"]
+    for key, B in curves.items():
+        if key != "S_r":
+            ax.plot(S, B, label=_CURVE_LABEL.get(key, key), lw=1.3, **_CURVE_STYLE.get(key, {}))
+    ax.set_xlim(0.5, 1.0)
+    return _axes(ax, r"B against $S_r$ by model (Morvan et al. 2016, Fig. 1, 5, 6)")
+
+
+def sheet_skempton(
+    cases: dict | None = None,
+    kappa=0.006,
+    e0=0.8,
+    p0=100e3,
+    u0=30e3,
+    pa0=130e3,
+    s_e=None,
+    bc_lambda=None,
+    bounding=None,
+    curves: dict | None = None,
+    curve_names: list[str] | None = None,
+) -> Sheet:
+    """``cases``: (kappa, e0, p0, u0, pa0) -> (S_r values, B values); or ``curves`` (``skempton-b --curve``):
+    S_r and B per model. The parameter studies (Morvan et al. 2016, Fig. 2, 3, 5) use the options' values."""
     S = np.linspace(0.5, 1.0, 400)
     pe = p0 - u0
     lam = bc_lambda if bc_lambda is not None else 0.8
@@ -107,17 +144,85 @@ def sheet_skempton(cases: dict, kappa, e0, p0, u0, pa0, s_e=None, bc_lambda=None
             )
         return _axes(ax, rf"Effect of $s_e$, $\lambda$ = {lam:g} (Morvan et al. 2016, Fig. 5)")
 
+    if curves is not None:
+        first = Panel(
+            "models",
+            lambda ax: plot_curves(ax, curves),
+            "B against S_r for each model asked: " + "; ".join(curve_names or []) + ". After Morvan et al. (2016), "
+            "Fig. 1 (eq. 10), Fig. 5 (suction equilibrium) and Fig. 6 (elasto-plastic; here capred's Cam-clay "
+            "bounding-surface reconstruction, not the BDNS model of their ref. [16]).",
+        )
+    else:
+        first = Panel(
+            "cases",
+            lambda ax: plot_cases(ax, cases, s_e, bc_lambda, bounding),
+            "B(S_r) of eq. 10 for each parameter set of the computed cases, the cases on their own curve.",
+        )
     return Sheet(
         "Skempton's B against the degree of saturation",
         [
-            Panel(
-                "cases",
-                lambda ax: plot_cases(ax, cases, s_e, bc_lambda, bounding),
-                "B(S_r) of eq. 10 for each parameter set of the computed cases, the cases on their own curve.",
-            ),
+            first,
             Panel("kappa", kappa_study, "Effect of the slope κ of the elastic line."),
             Panel("e0", e0_study, "Effect of the initial void ratio."),
             Panel("air_entry", se_study, "With suction equilibrium: effect of the air-entry suction."),
         ],
         2,
+    )
+
+
+def plot_prism_mohr(ax, break_tension_kPa, friction_angle_deg, P_kmax_kPa, labels=None):
+    """Mohr's diagram of the prism break (Bernatzik 1948): the circle from P_kmax to P_kmax + sigma_b touches
+    the envelope tau = sigma tan rho; the isotropic capillary pressure P_kmax is where the circle starts."""
+    sb = np.asarray(break_tension_kPa, float)
+    rho = np.asarray(friction_angle_deg, float)
+    P = np.asarray(P_kmax_kPa, float)
+    t = np.linspace(0.0, np.pi, 181)
+    right = float(np.max(P + sb)) * 1.1
+    for i in range(sb.size):
+        color = _COLORS[i % len(_COLORS)]
+        name = labels[i] if labels else f"case {i + 1}"
+        c, r = P[i] + sb[i] / 2, sb[i] / 2
+        ax.plot(
+            c + r * np.cos(t),
+            r * np.sin(t),
+            "-",
+            color=color,
+            lw=1.3,
+            label=rf"{name}: $\sigma_b$ = {sb[i]:.3g} kPa, $\rho$ = {rho[i]:g}°, $P_{{k,max}}$ = {P[i]:.3g} kPa",
+        )
+        s = np.array([0.0, right])
+        ax.plot(s, s * np.tan(np.radians(rho[i])), "--", color=color, lw=0.9)
+        ax.plot([P[i]], [0.0], "o", color=color, ms=5, clip_on=False)
+        a = np.radians(rho[i])  # the tangent point: the radius to it is normal to the envelope
+        ax.plot([c - r * np.sin(a)], [r * np.cos(a)], "x", color=color, ms=6)
+    ax.plot([], [], "k--", lw=0.9, label=r"envelope $\tau = \sigma' \tan\rho$")
+    ax.plot([], [], "ko", ms=5, label=r"$P_{k,max}$ (isotropic, $\sigma'_3$)")
+    ax.plot([], [], "kx", ms=6, label="tangent point")
+    ax.set_xlim(0.0, right)
+    ax.set_ylim(0.0, right / 2)
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_xlabel(r"$\sigma'$ [kPa]")
+    ax.set_ylabel(r"$\tau$ [kPa]")
+    ax.set_title("Mohr's diagram of the prism break (Bernatzik 1948)")
+    ax.legend(loc="upper left", fontsize="x-small", frameon=False)
+    return ax
+
+
+def sheet_prism(break_tension_kPa, friction_angle_deg, P_kmax_kPa, labels=None) -> Sheet:
+    """The figure of `capred prism`: Mohr's diagram of each case at break (Bernatzik 1948, the text's figure)."""
+    return Sheet(
+        "Prism test: Mohr's diagram at break",
+        [
+            Panel(
+                "mohr",
+                lambda ax: plot_prism_mohr(ax, break_tension_kPa, friction_angle_deg, P_kmax_kPa, labels),
+                "At break the prism's effective stresses are the isotropic capillary pressure P_k,max (σ'_3) and "
+                "P_k,max + σ_b (σ'_1); their Mohr circle touches the envelope τ = σ' tan ρ (× marks the "
+                "tangent point), so sin ρ = σ_b/(2 P_k,max + σ_b). After Bernatzik (1948), Mohr's diagram of the "
+                "text ('see fig.').",
+            )
+        ],
+        1,
+        spans={"mohr": 2},
+        panel_size=(6.0, 3.0),
     )

@@ -75,6 +75,10 @@ def _one(module: str, name: str, stem: str) -> Callable:
 
 
 def _calc_figures(result) -> dict:
+    if result.command == "prism" and getattr(result, "figure_data", None) is not None:
+        from .calculator_figures import sheet_prism
+
+        return {"prism": sheet_prism(**result.figure_data)}
     if result.command != "skempton-b" or getattr(result, "figure_data", None) is None:
         return {}
     from .calculator_figures import sheet_skempton
