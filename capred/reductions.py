@@ -117,7 +117,7 @@ REDUCTIONS: dict[str, Reduction] = {
             _P + "retention_convert:run_retention_convert",
             _P + "retention_convert:ConvertOptions",
             "required",
-            None,
+            "retention",
             "retention_convert",
             method=(
                 "A fitted retention curve is expressed in another model: the target's parameters are those that "

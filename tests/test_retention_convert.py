@@ -149,3 +149,17 @@ def _bc_file(sample, tmp_path):
     p = tmp_path / "bc.json"
     p.write_text(json.dumps(doc), encoding="utf-8")
     return p
+
+
+def test_readings_are_fitted_first_and_the_sample_runs(tmp_path):
+    """`retention-convert --sample`: the sample's readings fitted with capred retention's defaults, the best fit of
+    the drying branch converted; the same as converting that fit."""
+    res = runner.invoke(app, ["retention-convert", "--sample", "--to", "bc", "--out", str(tmp_path / "o"), "--json"])
+    assert res.exit_code == 0, res.output
+    js = json.loads(res.stdout)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", capred.CapredWarning)
+        r = capred.run_retention(capred.sample_path("retention"))
+        direct = capred.convert_retention(r, to="bc")
+    assert js["conversion"]["from_model"] == direct.source_fit.model
+    assert js["fits"]["bc"]["params_si"] == pytest.approx(direct.converted.params_si, rel=1e-12)

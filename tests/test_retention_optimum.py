@@ -212,5 +212,8 @@ def test_registry_entries_are_complete():
         assert "=" in m.method and m.style.get("ls") is not None
         for p in m.parameters:
             assert p.unit in ("Pa", "1/Pa", "-", "y") and p.description and p.range_text
+            # the natural domain with its paper (issue 30, item 4): one of the entry's references, or van Genuchten's
+            cited = [REFERENCES[k].authors.split(" ")[0] for k in m.references] + ["van Genuchten"]
+            assert p.domain and any(a in p.domain for a in cited), (name, p.name)
             assert p.symbol.startswith("$")
         assert m.names == tuple(p.name for p in m.parameters)

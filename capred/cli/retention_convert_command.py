@@ -9,7 +9,11 @@ from .common import Invocation, command, quantity
 
 def register(app: typer.Typer) -> None:
     """Add `capred retention-convert` to the application."""
-    command(app, "retention-convert", data="fits.json written by capred retention")(retention_convert)
+    command(
+        app,
+        "retention-convert",
+        data="fits.json written by capred retention (or a table of retention readings, fitted first)",
+    )(retention_convert)
 
 
 def retention_convert(

@@ -32,6 +32,7 @@ the bounds by
 
 from __future__ import annotations
 
+import dataclasses
 import numbers
 from collections.abc import Callable
 from dataclasses import dataclass, field, fields
@@ -79,6 +80,9 @@ class Parameter:
     grid_span : float
         Suction-like kinds: the start grid covers the data's suction range widened by this factor each way
         (plus the two bounds).
+    domain : str
+        The parameter's natural domain in its model's paper, with the reference (the search range lies inside
+        it: capred's bounds only keep the search finite).
     """
 
     name: str
@@ -92,6 +96,7 @@ class Parameter:
     grid: int = 0
     kinks_at_data: bool = False
     grid_span: float = 100.0
+    domain: str = ""
 
     def bounds(self, s_min: float, s_max: float, y_min: float, y_max: float) -> tuple[float, float]:
         """Search bounds [unit] for data with positive suctions in [s_min, s_max] [Pa] and y in [y_min, y_max]."""
@@ -135,11 +140,26 @@ def _p(
     return Parameter(name, symbol, unit, description, kind, lower, upper, log_offset, grid, kinks, grid_span)
 
 
-Y_R = _p("y_r", r"$\theta_r$", "y", "residual water content (or S_res)", "residual")
-Y_S = _p("y_s", r"$\theta_s$", "y", "saturated water content (or S_s)", "saturated")
+def _dom(p: Parameter, text: str) -> Parameter:
+    """``p`` with its natural domain and the paper that sets it."""
+    return dataclasses.replace(p, domain=text)
 
 
-def _alpha(name="alpha", symbol=r"$\alpha$", grid=4, grid_span=100.0):
+Y_R = _dom(
+    _p("y_r", r"$\theta_r$", "y", "residual water content (or S_res)", "residual"),
+    "0 ≤ θ_r < θ_s (van Genuchten 1980, eq. 21; Brooks & Corey 1964)",
+)
+Y_S = _dom(
+    _p("y_s", r"$\theta_s$", "y", "saturated water content (or S_s)", "saturated"),
+    "θ_r < θ_s ≤ porosity (S_s ≤ 1 up to scatter) (van Genuchten 1980, eq. 21)",
+)
+
+
+def _alpha(name="alpha", symbol=r"$\alpha$", grid=4, grid_span=100.0, domain="α > 0 (van Genuchten 1980, eq. 21)"):
+    return _dom(_alpha_p(name, symbol, grid, grid_span), domain)
+
+
+def _alpha_p(name, symbol, grid, grid_span):
     return _p(
         name,
         symbol,
@@ -154,8 +174,17 @@ def _alpha(name="alpha", symbol=r"$\alpha$", grid=4, grid_span=100.0):
     )
 
 
-def _n(name="n", symbol="$n$", grid=12):
-    return _p(name, symbol, "-", "pore-size index", "absolute", 1.005, 100.0, 1.0, grid)
+def _n(
+    name="n", symbol="$n$", grid=12, domain="n > 1, so that m = 1 − 1/n > 0 (van Genuchten 1980, eq. 21)", lower=1.005
+):
+    """The shape index n: n > 1 where m = 1 − 1/n (searched on ln(n − 1)), n > 0 where m is free (on ln n)."""
+    offset = 1.0 if lower > 1 else 0.0
+    return _dom(_p(name, symbol, "-", "pore-size index", "absolute", lower, 100.0, offset, grid), domain)
+
+
+#: n > 0 where m is its own parameter (Fredlund & Xing 1994; van Genuchten 1980 with m free): the search reaches
+#: 0.01, a curve flatter than any soil's over twelve decades of suction
+N_POSITIVE = 0.01
 
 
 @dataclass(frozen=True)
@@ -287,7 +316,17 @@ def _bc_inverse(S, s_e, lam):
         return np.where(ok, rp.bc_suction(np.where(ok, S, 1.0), s_e, lam), np.nan)
 
 
-_M = _p("m", "$m$", "-", "shape exponent", "absolute", 1e-3, 20.0, 0.0, 10)
+_M = _dom(
+    _p("m", "$m$", "-", "shape exponent", "absolute", 1e-3, 20.0, 0.0, 10),
+    "m > 0 (van Genuchten 1980, eq. 21 with m free; Fredlund & Xing 1994, eq. 26)",
+)
+
+_FX_A = _dom(
+    _p("a", "$a$", "Pa", "suction parameter (near the air entry)", "suction", 1e-3, 1e3, 0.0, 4),
+    "a > 0 (Fredlund & Xing 1994, eq. 26)",
+)
+_FX_N = "n > 0 (Fredlund & Xing 1994, eq. 26: n controls the slope; they require n > 0, not n > 1)"
+_FX_M = "m > 0 (Fredlund & Xing 1994, eq. 26)"
 
 MODELS: dict[str, RetentionModel] = {
     m.name: m
@@ -308,7 +347,13 @@ MODELS: dict[str, RetentionModel] = {
             "vg_m_free",
             "van Genuchten, m free",
             r"$S_e = [1 + (\alpha s)^n]^{-m}$",
-            (Y_R, Y_S, _alpha(), _n(grid=10), _M),
+            (
+                Y_R,
+                Y_S,
+                _alpha(),
+                _n(grid=10, domain="n > 0 with m free (van Genuchten 1980, eq. 21)", lower=N_POSITIVE),
+                _M,
+            ),
             lambda s, alpha, n, m: rp.vg_effective_saturation(s, alpha, n, m),
             ("vangenuchten1980",),
             "van Genuchten (1980, eq. 21) with m free: θ = θ_r + (θ_s − θ_r)[1 + (αs)^n]^−m.",
@@ -323,8 +368,14 @@ MODELS: dict[str, RetentionModel] = {
             (
                 Y_R,
                 Y_S,
-                _p("s_e", "$s_e$", "Pa", "air-entry suction", "suction", 1e-3, 1.0, 0.0, 4, kinks=True),
-                _p("lam", r"$\lambda$", "-", "pore-size distribution index", "absolute", 1e-3, 50.0, 0.0, 12),
+                _dom(
+                    _p("s_e", "$s_e$", "Pa", "air-entry suction", "suction", 1e-3, 1.0, 0.0, 4, kinks=True),
+                    "s_e > 0 (Brooks & Corey 1964)",
+                ),
+                _dom(
+                    _p("lam", r"$\lambda$", "-", "pore-size distribution index", "absolute", 1e-3, 50.0, 0.0, 12),
+                    "λ > 0 (Brooks & Corey 1964)",
+                ),
             ),
             lambda s, s_e, lam: rp.bc_effective_saturation(s, s_e, lam),
             ("brooks_corey1964",),
@@ -341,15 +392,41 @@ MODELS: dict[str, RetentionModel] = {
             (
                 Y_R,
                 Y_S,
-                _p("s_m", "$s_m$", "Pa", "median suction of the pore-size distribution", "suction", 1e-3, 1e3, 0.0, 4),
-                _p("sigma", r"$\sigma$", "-", "standard deviation of ln(pore radius)", "absolute", 1e-3, 10.0, 0.0, 12),
+                _dom(
+                    _p(
+                        "s_m",
+                        "$s_m$",
+                        "Pa",
+                        "median suction of the pore-size distribution",
+                        "suction",
+                        1e-3,
+                        1e3,
+                        0.0,
+                        4,
+                    ),
+                    "s_m > 0 (Kosugi 1996)",
+                ),
+                _dom(
+                    _p(
+                        "sigma",
+                        r"$\sigma$",
+                        "-",
+                        "standard deviation of ln(pore radius)",
+                        "absolute",
+                        1e-3,
+                        10.0,
+                        0.0,
+                        12,
+                    ),
+                    "σ > 0 (Kosugi 1996)",
+                ),
             ),
             lambda s, s_m, sigma: rp.kosugi_effective_saturation(s, s_m, sigma),
             ("kosugi1996",),
             "Kosugi (1996), a lognormal pore-size distribution: θ = θ_r + (θ_s − θ_r) Q(ln(s/s_m)/σ), Q the "
             "complementary standard normal distribution.",
             "kosugi: Kosugi (1996), lognormal",
-            dict(ls=":"),
+            dict(ls=":", marker="o"),
             inverse=lambda S, s_m, sigma: rp.kosugi_suction(S, s_m, sigma),
         ),
         RetentionModel(
@@ -358,19 +435,22 @@ MODELS: dict[str, RetentionModel] = {
             r"$\theta = \theta_s\, C(s)\, [\ln(e + (s/a)^n)]^{-m}$",
             (
                 Y_S,
-                _p("a", "$a$", "Pa", "suction parameter (near the air entry)", "suction", 1e-3, 1e3, 0.0, 4),
-                _n(grid=8),
-                _p("m", "$m$", "-", "shape exponent", "absolute", 1e-3, 20.0, 0.0, 8),
-                _p(
-                    "s_r",
-                    "$s_r$",
-                    "Pa",
-                    "suction of the residual water content",
-                    "suction_to_absolute",
-                    1.0,
-                    1e9,
-                    0.0,
-                    1,
+                _FX_A,
+                _n(grid=8, domain=_FX_N, lower=N_POSITIVE),
+                _dom(_p("m", "$m$", "-", "shape exponent", "absolute", 1e-3, 20.0, 0.0, 8), _FX_M),
+                _dom(
+                    _p(
+                        "s_r",
+                        "$s_r$",
+                        "Pa",
+                        "suction of the residual water content",
+                        "suction_to_absolute",
+                        1.0,
+                        1e9,
+                        0.0,
+                        1,
+                    ),
+                    "s_r > 0 (Fredlund & Xing 1994, eq. 26: C(s) = 1 − ln(1 + s/s_r)/ln(1 + 10⁶ kPa/s_r))",
                 ),
             ),
             lambda s, a, n, m, s_r: rp.fx_correction(s, s_r) * rp.fx_shape(s, a, n, m),
@@ -378,7 +458,7 @@ MODELS: dict[str, RetentionModel] = {
             "Fredlund & Xing (1994, eq. 26): θ = θ_s C(s)[ln(e + (s/a)^n)]^−m with "
             "C(s) = 1 − ln(1 + s/s_r)/ln(1 + 10⁶ kPa/s_r).",
             "fx: Fredlund & Xing (1994) with the correction factor C(s)",
-            dict(ls=(0, (5, 1))),
+            dict(ls=(0, (5, 1)), marker="s"),
             residual_form=False,
         ),
         RetentionModel(
@@ -388,15 +468,15 @@ MODELS: dict[str, RetentionModel] = {
             (
                 Y_R,
                 Y_S,
-                _p("a", "$a$", "Pa", "suction parameter (near the air entry)", "suction", 1e-3, 1e3, 0.0, 4),
-                _n(grid=10),
-                _M,
+                _FX_A,
+                _n(grid=10, domain=_FX_N, lower=N_POSITIVE),
+                _dom(_M, _FX_M),
             ),
             lambda s, a, n, m: rp.fx_shape(s, a, n, m),
             ("fredlund_xing1994",),
             "Fredlund & Xing (1994, eq. 26) without the correction factor: θ = θ_r + (θ_s − θ_r)[ln(e + (s/a)^n)]^−m.",
             "fx_no_c: Fredlund & Xing (1994) without C(s)",
-            dict(ls=(0, (3, 1, 1, 1))),
+            dict(ls=(0, (3, 1, 1, 1)), marker="^"),
         ),
         RetentionModel(
             "durner",
@@ -405,18 +485,21 @@ MODELS: dict[str, RetentionModel] = {
             (
                 Y_R,
                 Y_S,
-                _p("w1", "$w_1$", "-", "weight of the first pore system", "absolute", 0.0, 1.0),
-                _alpha("alpha1", r"$\alpha_1$", 4, 3.0),
-                _n("n1", "$n_1$", 10),
-                _alpha("alpha2", r"$\alpha_2$", 4, 3.0),
-                _n("n2", "$n_2$", 10),
+                _dom(
+                    _p("w1", "$w_1$", "-", "weight of the first pore system", "absolute", 0.0, 1.0),
+                    "0 ≤ w₁ ≤ 1 (Durner 1994)",
+                ),
+                _alpha("alpha1", r"$\alpha_1$", 4, 3.0, "α₁ > 0 (Durner 1994)"),
+                _n("n1", "$n_1$", 10, "n₁ > 1, m₁ = 1 − 1/n₁ (Durner 1994)"),
+                _alpha("alpha2", r"$\alpha_2$", 4, 3.0, "α₂ > 0 (Durner 1994)"),
+                _n("n2", "$n_2$", 10, "n₂ > 1, m₂ = 1 − 1/n₂ (Durner 1994)"),
             ),
             lambda s, w1, alpha1, n1, alpha2, n2: rp.durner_effective_saturation(s, w1, alpha1, n1, alpha2, n2),
             ("durner1994",),
             "Durner (1994), two van Genuchten pore systems: S_e = w₁[1 + (α₁s)^n₁]^−m₁ + (1 − w₁)[1 + (α₂s)^n₂]^−m₂, "
             "m_i = 1 − 1/n_i.",
             "durner: Durner (1994), bimodal van Genuchten",
-            dict(ls=(0, (7, 2, 1, 2, 1, 2))),  # dash-dot-dot: Kosugi is dotted
+            dict(ls=(0, (7, 2, 1, 2, 1, 2)), marker="D"),  # dash-dot-dot (Kosugi is dotted), diamonds
             mixture=("w1", _durner_components),
             grid_order=("alpha1", "alpha2"),
             canonical=_durner_canonical,

@@ -445,13 +445,7 @@ class RetentionResult(Result):
         if self.hysteresis is not None:
             h = self.hysteresis
             js = self.fit_json(h, "hysteresis")
-            ind = [self.fits[b]["vg"] for b in ("drying", "wetting") if "vg" in self.fits.get(b, {})]
-            ind_aicc = None
-            if len(ind) == 2:
-                n = sum(f.n for f in ind)
-                k = sum(f.nfree for f in ind)
-                rss = sum(f.rss for f in ind)
-                ind_aicc = n * np.log(rss / n) + 2 * k + (2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else np.nan)
+            ind_aicc = self.independent_aicc()
             keys = list(h.params)
             out["hysteresis"] = {
                 "model": "kool-parker",
@@ -466,6 +460,17 @@ class RetentionResult(Result):
                 "reference": cite("kool_parker1987"),
             }
         return out
+
+    def independent_aicc(self) -> float | None:
+        """AICc of van Genuchten fitted to each branch on its own (to compare with the joint hysteresis fit);
+        None without a van Genuchten fit of both branches, NaN where n − k − 1 ≤ 0."""
+        ind = [self.fits[b]["vg"] for b in ("drying", "wetting") if "vg" in self.fits.get(b, {})]
+        if len(ind) != 2:
+            return None
+        n = sum(f.n for f in ind)
+        k = sum(f.nfree for f in ind)
+        rss = sum(f.rss for f in ind)
+        return float(n * np.log(rss / n) + 2 * k + (2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else np.nan))
 
     def season_rows(self) -> list[dict]:
         """One row per branch for a batch's season.csv: the best model (lowest AICc) and its parameters."""

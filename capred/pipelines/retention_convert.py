@@ -162,7 +162,7 @@ def load_retention_fit(fit, model: str | None = None, branch: str | None = None)
     ----------
     fit : RetentionFit, RetentionResult, str, pathlib.Path or dict
         The fit; a result or a file gives the fit of ``model`` on ``branch`` (default: the lowest AICc of the
-        main branch).
+        main branch); a table of readings (CSV, .xlsx, .ods) is fitted first with `capred retention`'s defaults.
     model, branch : str, optional
         Which fit of a result or file.
 
@@ -189,6 +189,15 @@ def load_retention_fit(fit, model: str | None = None, branch: str | None = None)
         return load_retention_fit(fit.to_json(), model, branch)[0], fit.source, list(fit.inputs)
     if isinstance(fit, dict):
         return _fit_from_json(fit, "the fit", model, branch), "the fit", []
+    if fit is None:
+        raise OptionError("no fit given: a fits.json written by capred retention, or a table of retention readings")
+    from ..io.grid import source_path
+
+    where = source_path(fit)
+    if not isinstance(where, (str, Path)) or Path(where).suffix.lower() != ".json":  # readings: fitted first
+        from .retention import run_retention
+
+        return load_retention_fit(run_retention(fit), model, branch)
     path = Path(fit)
     try:
         doc = json.loads(path.read_text(encoding="utf-8"))

@@ -64,14 +64,14 @@ def plot_retention(ax, result):
         lo_b, hi_b = result.band(b, best, grid)
         ax.fill_between(grid / 1e3, lo_b, hi_b, color=st["color"], alpha=0.18, lw=0)
         for m in fits:
-            ax.plot(grid / 1e3, result.curve(b, m, grid), color=st["color"], lw=1.1, ls=style(m).get("ls", "-"))
+            ax.plot(grid / 1e3, result.curve(b, m, grid), color=st["color"], lw=1.1, **_curve_style(m))
             if m not in models:
                 models.append(m)
         handles.append(
             Line2D([], [], ls="none", marker=st["marker"], color=st["color"], ms=3.5, label=f"{literal(b)}: readings")
         )
     for m in models:
-        handles.append(Line2D([], [], color="k", lw=1.1, ls=style(m).get("ls", "-"), label=model_key(m)))
+        handles.append(Line2D([], [], color="k", lw=1.1, **_curve_style(m, legend=True), label=model_key(m)))
     ax.set_xscale("log")
     if zero.any():  # leave the strip free of the suction scale
         ax.set_xlim(lo / 1e3 / (hi / lo) ** (STRIP / (1 - STRIP)), hi / 1e3)
@@ -81,14 +81,47 @@ def plot_retention(ax, result):
     ax.set_xlabel(LABEL["suction_s"])
     ax.set_ylabel(LABEL["theta"] if result.quantity == "theta" else LABEL["S_R"])
     ax.set_title("Water retention")
-    ax.legend(handles=handles)
+    ax.legend(handles=handles, ncol=2 if len(models) > 3 else 1)
     return ax
 
 
+def _curve_style(model: str, legend: bool = False) -> dict:
+    """Line style and marker of a retention model's curve: its registry entry's, else the next free pair of
+    RETENTION_STYLES (markers every 60 of 300 grid points on the curve, offset per model; one in the legend)."""
+    st = MODELS[model].style if model in MODELS else RETENTION_STYLES[hash(model) % len(RETENTION_STYLES)]
+    out = {"ls": st.get("ls", "-")}
+    if st.get("marker"):
+        out.update(marker=st["marker"], ms=3.0, mfc="white", mew=0.8)
+        if not legend:
+            k = list(MODELS).index(model) if model in MODELS else 0
+            out["markevery"] = (12 + 9 * k % 48, 60)  # each model's markers at their own suctions
+    return out
+
+
+#: distinguishable styles of retention curves (line style, marker), the registry's first: every pair differs in its
+#: marker or in a dash pattern of another kind (solid, dashed, dash-dot, dotted, dash-dot-dot)
+RETENTION_STYLES = [
+    dict(ls="-"),
+    dict(ls="--"),
+    dict(ls="-."),
+    dict(ls=":", marker="o"),
+    dict(ls=(0, (5, 1)), marker="s"),
+    dict(ls=(0, (3, 1, 1, 1)), marker="^"),
+    dict(ls=(0, (3, 1, 1, 1, 1, 1)), marker="D"),
+    dict(ls="-", marker="v"),
+    dict(ls="--", marker="x"),
+    dict(ls="-.", marker="P"),
+]
+
+
 def sheet_retention(result) -> Sheet:
-    """One panel, two columns wide (the legend holds each model's equation)."""
+    """One panel, two columns wide; its height grows with the legend (each model's name and equation, two
+    lines, two entries a row, below the axes), so that the axes keep their height however many models."""
+    models = list(dict.fromkeys(m for fits in result.fits.values() for m in fits))
+    rows = -(-(len(models) + len(result.fits)) // 2)  # legend entries, two a row
+    name = literal(str(result.source).replace("\\", "/").rsplit("/", 1)[-1])
     return Sheet(
-        "Water retention curves",
+        f"Water retention curves ({name})",
         [
             Panel(
                 "curves",
@@ -101,7 +134,7 @@ def sheet_retention(result) -> Sheet:
         ],
         1,
         spans={"curves": 2},
-        panel_size=(5.5, 3.2),
+        panel_size=(5.5, 3.2 + (0.5 * rows if len(models) > 3 else 0.0)),
     )
 
 

@@ -96,10 +96,9 @@ def retention_tables(result) -> list[TableSpec]:
         rec = result.fit_record("both", "kool_parker")
         t = parameter_table("Hysteresis, Kool & Parker (1987): joint fit of both branches", [rec])
         ratio = result.hysteresis.params_si["alpha_w"] / result.hysteresis.params_si["alpha_d"]
-        js = result.to_json()["hysteresis"]
         t.rows.append(["  α_w/α_d", fmt(ratio), "", "", "-"])
-        t.rows.append(["  AICc joint", fmt(js["aicc"]), "", "", "-"])
-        t.rows.append(["  AICc independent", fmt(js["independent_aicc"]), "", "", "-"])
+        t.rows.append(["  AICc joint", fmt(_num(rec.aicc)), "", "", "-"])
+        t.rows.append(["  AICc independent", fmt(_num(result.independent_aicc())), "", "", "-"])
         out.append(t)
     return out
 
