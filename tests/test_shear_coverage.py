@@ -169,6 +169,7 @@ if __name__ == "__main__":  # the coverage table of the report (more sets than t
         "pred_third2",
         "pred_third3",
         "kappa_se_ratio",
+        "kappa_se_ratio_median",
         "chose_proportional",
     ]
     print("scenario | " + " | ".join(keys))
