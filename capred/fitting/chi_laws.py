@@ -343,9 +343,10 @@ def law_uncertainty(
         dof = n - p
         s2 = rss_wet / dof if dof > 0 else np.nan
         cov = s2 * A
-    elif getattr(dry, "errors", "constant") != "constant" or getattr(dry, "loss", "ols") != "ols":
-        # a weighted or robust dry fit: its own covariance V (not s^2 M) and the wet tests' variance,
-        # V_theta = s_wet^2 A + G V G^T (Murphy & Topel 1985, Theorem 1, with the first step's covariance as given)
+    elif getattr(dry, "errors", "constant") != "constant":
+        # a weighted dry fit (scatter proportional to the strength): its own covariance V (not s^2 M) and the wet
+        # tests' variance, V_theta = s_wet^2 A + G V G^T (Murphy & Topel 1985, Theorem 1, the first step's
+        # covariance as given); the dry and wet scatters are not pooled (they hold at different strengths)
         je = np.asarray(jac_envelope, float).reshape(n, 2)
         dof = n - p
         s2 = rss_wet / dof if dof > 0 else np.nan
@@ -356,7 +357,11 @@ def law_uncertainty(
     else:
         je = np.asarray(jac_envelope, float).reshape(n, 2)
         free = [1] if dry.through_origin else [0, 1]
-        M = dry.unscaled_covariance
+        # a robust dry fit: its sandwich covariance per unit scale^2 stands for (X^T X)^-1 and dof scale^2 for
+        # its RSS (the outlier's residual does not inflate the pooled variance)
+        robust = getattr(dry, "loss", "ols") != "ols"
+        M = np.asarray(dry.covariance, float) / dry.residual_variance if robust else dry.unscaled_covariance
+        rss_dry = dry.dof * dry.residual_variance if robust else dry.rss
         dof = dry.n - len(free) + n - p
         jc = je[:, free]
         xtx = _inv(M[np.ix_(free, free)])
@@ -366,7 +371,7 @@ def law_uncertainty(
             drop = float(g @ np.linalg.solve(JtJ, g))
         except np.linalg.LinAlgError:
             drop = 0.0
-        rss_joint = max(dry.rss + rss_wet - (drop if np.isfinite(drop) else 0.0), 0.0)
+        rss_joint = max(rss_dry + rss_wet - (drop if np.isfinite(drop) else 0.0), 0.0)
         s2 = rss_joint / dof if dof > 0 else np.nan
         G = -A @ jt.T @ je
         cov = s2 * (A + G @ M @ G.T)

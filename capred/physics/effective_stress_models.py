@@ -719,6 +719,10 @@ def asks_for_all(names) -> bool:
     Returns
     -------
     bool
+
+    References
+    ----------
+    .. [1] capred issue 29.6 (no paper: a selection rule): ``all`` runs every model the inputs allow.
     """
     items = names.split(",") if isinstance(names, str) else list(names)
     return any(str(t).strip().lower() == "all" for t in items)

@@ -15,10 +15,16 @@ def shear_tables(result) -> list[TableSpec]:
     js = result.json_lazy()
     phi_b = any("phi_b_deg" in f for f in js["materials"].values())
     origin = js["dry_fit"] == "origin"
+    loss = js.get("dry_loss", "ols")
     fits = spec(
-        "Dry envelope τ = c + σ_N tan φ" + (" (through the origin, c = 0)" if origin else ""),
-        ["material", "n", "c [kPa]", "± se", "φ [°]", "± se", "tan φ", "R²"] + (["φ_b [°]"] if phi_b else []),
+        "Dry envelope τ = c + σ_N tan φ"
+        + (" (through the origin, c = 0)" if origin else "")
+        + (f", {loss} loss" if loss != "ols" else "")
+        + "; scatter: constant or proportional to τ (--errors), BP p: Breusch-Pagan test of growing scatter",
+        ["material", "n", "c [kPa]", "± se", "φ [°]", "± se", "tan φ", "R²", "scatter", "BP p", "outliers"]
+        + (["φ_b [°]"] if phi_b else []),
     )
+    hetero = js.get("heteroscedasticity", {})
     for mat, f in js["materials"].items():
         fits.rows.append(
             [
@@ -30,6 +36,9 @@ def shear_tables(result) -> list[TableSpec]:
                 fmt(f["phi_se_deg"]),
                 fmt(f["tan_phi"]),
                 fmt(f["r2"]),
+                f.get("errors", "constant"),
+                fmt(((hetero.get(mat) or {}).get("dry_fit") or {}).get("p_value")),
+                ", ".join(f"line {o['line']}" for o in f.get("outliers", [])) or "none",
                 *([fmt(f.get("phi_b_deg"))] if phi_b else []),
             ]
         )
