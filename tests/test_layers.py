@@ -22,6 +22,7 @@ LAYERS = {
     "pipelines": 5,
     "io": 4,
     "report": 4,
+    "lab_store": 4,  # the SQLite store of a lab's runs: files, as io/
     "result": 3,
     "fitting": 2,
     "physics": 1,
@@ -37,6 +38,7 @@ LAYERS = {
             "progress",
             "samples",
             "reductions",
+            "text_safety",  # pure string rules for terminals, HTML and SVG
         )
     },
 }
