@@ -21,9 +21,9 @@ def _pm(value, se, scale: float | None = None) -> str:
 
 
 def _range(r) -> str:
-    """'lower … upper' of an admissible range [kPa] (0 within rounding of the range's own magnitude)."""
+    """'lower to upper' of an admissible range [kPa] (0 within rounding of the range's own magnitude)."""
     scale = max(abs(r.lower), abs(r.upper)) or None
-    return f"{fmt(r.lower, scale=scale)} … {fmt(r.upper, scale=scale)}"
+    return f"{fmt(r.lower, scale=scale)} to {fmt(r.upper, scale=scale)}"
 
 
 def triaxial_tables(result) -> list[TableSpec]:
@@ -114,7 +114,7 @@ def triaxial_tables(result) -> list[TableSpec]:
         )
         tensor = spec(
             "Groups: shared capillary tensor [kPa] ± se (n − 1 dof; 95 % intervals in the JSON); without "
-            "paired saturated tests, the admissible range lower … upper of each component "
+            "paired saturated tests, the admissible range lower to upper of each component "
             f"({cite('prunier2024', 'eq. 37, 44-50')})",
             ["group", "method", "σ1,cap", "σ2,cap", "σ3,cap", "p_cap", "C [kPa]", "C'' [kPa]"],
             left=2,
