@@ -107,3 +107,24 @@ def test_sample_store_values_match_the_recorded_documents():
     for value, document in rows:
         assert value == json.loads(document)["materials"]["Toyoura sand"]["phi_deg"]
     assert np.isfinite([v for v, _ in rows]).all()
+
+
+def test_every_sample_file_ships_in_the_wheel():
+    """Each bundled sample matches a package-data pattern of capred.sample_data (pyproject.toml), so that
+    `capred COMMAND --sample` works from an installed wheel, not only from this checkout."""
+    import fnmatch
+    import tomllib
+
+    from conftest import ROOT
+
+    from capred.samples import SAMPLES, sample_path
+
+    data = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["tool"]["setuptools"]["package-data"]
+    for key, name in SAMPLES.items():
+        path = sample_path(key)
+        if path.is_dir():  # a folder of files: its own package (capred.sample_data.<folder>)
+            patterns, files = data[f"capred.sample_data.{name}"], [p.name for p in path.iterdir() if p.is_file()]
+        else:
+            patterns, files = data["capred.sample_data"], [name]
+        for f in files:
+            assert any(fnmatch.fnmatch(f, pat) for pat in patterns), (key, f)
