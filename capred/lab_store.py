@@ -101,7 +101,7 @@ def _inspect(path: Path) -> tuple[int, int] | None:
     if not head.startswith(b"SQLite format 3\x00"):
         raise _problem(path, "is not a SQLite database, so not a capred store; it was left untouched")
     try:
-        con = sqlite3.connect(f"file:{path}?mode=ro", uri=True, timeout=BUSY_TIMEOUT_S)
+        con = sqlite3.connect(_readonly_uri(path), uri=True, timeout=BUSY_TIMEOUT_S)
         try:
             app = con.execute("PRAGMA application_id").fetchone()[0]
             version = con.execute("PRAGMA user_version").fetchone()[0]
@@ -167,6 +167,63 @@ def connect(path, create: bool = True) -> sqlite3.Connection:
     except sqlite3.DatabaseError as exc:
         con.close()
         raise _problem(path, f"cannot be opened as a capred store ({exc})") from None
+    return con
+
+
+def _readonly_uri(path: Path) -> str:
+    """The URI that opens ``path`` read-only: ``mode=ro``, and ``immutable=1`` where neither the file nor its
+    folder can be written (a store shipped inside an installed package), so that SQLite creates no side file."""
+    from urllib.parse import quote
+
+    uri = f"file:{quote(str(path.resolve()))}?mode=ro"
+    if not (os.access(path, os.W_OK) and os.access(path.parent, os.W_OK)):
+        uri += "&immutable=1"
+    return uri
+
+
+def connect_readonly(path) -> sqlite3.Connection:
+    """A read-only connection to the store at ``path`` (querying): nothing in the file is ever changed.
+
+    A store of an older schema is copied into memory and migrated there, so that it reads like a current one
+    while the file keeps its schema (the next run recorded into it migrates it in place).
+
+    Parameters
+    ----------
+    path : str or Path
+        The store's file (e.g. ``lab.sqlite``, or the bundled sample store).
+
+    Returns
+    -------
+    sqlite3.Connection
+        Read-only (``mode=ro``), or an in-memory copy at :data:`SCHEMA_VERSION`.
+
+    Raises
+    ------
+    InputError
+        No store at ``path``, or a file that is not a capred store, is damaged or newer.
+
+    References
+    ----------
+    SQLite, "Uniform Resource Identifiers" (``mode=ro``, ``immutable``), https://www.sqlite.org/uri.html.
+    """
+    path = Path(path)
+    state = _inspect(path)
+    if state is None:
+        raise _problem(path, "no capred store here (record runs into it with --store or CAPRED_STORE)")
+    con = None
+    try:
+        con = sqlite3.connect(_readonly_uri(path), uri=True, timeout=BUSY_TIMEOUT_S, isolation_level=None)
+        con.execute(f"PRAGMA busy_timeout = {int(BUSY_TIMEOUT_S * 1000)}")
+        if state[1] < SCHEMA_VERSION:
+            memory = sqlite3.connect(":memory:", isolation_level=None)
+            con.backup(memory)
+            con.close()
+            con = memory
+            _migrate(con, path)
+    except sqlite3.DatabaseError as exc:
+        if con is not None:
+            con.close()
+        raise _problem(path, f"cannot be read as a capred store ({exc}); it was left untouched") from None
     return con
 
 
@@ -395,13 +452,17 @@ def history(store, material: str | None = None, quantity: str | None = None, com
     InputError
         No store at ``store``, or a file that is not a capred store (never modified).
 
+    Notes
+    -----
+    The store is opened read-only (:func:`connect_readonly`): a query never changes it, not even its schema.
+
     References
     ----------
     ISO/IEC 17025:2017, clause 7.7.
     """
     import pandas as pd
 
-    con = connect(store, create=False)
+    con = connect_readonly(store)
     try:
         where, args = [], []
         for col, val in (("r.material", material), ("r.quantity", quantity), ("u.command", command)):

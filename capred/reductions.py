@@ -25,6 +25,8 @@ class Reduction:
     summary: str = ""  # one line of `capred --help`
     #: options of a quick run, for a command without a sample (tests, docs): ``{"points": 50}``
     example: tuple = ()
+    #: what the input is, for a command whose input is not a table of columns (`--help` shows it in their place)
+    input_description: str = ""
 
     def run(self, source, options):
         module, name = self.run_path.split(":")
@@ -117,7 +119,7 @@ REDUCTIONS: dict[str, Reduction] = {
             _P + "retention_convert:run_retention_convert",
             _P + "retention_convert:ConvertOptions",
             "required",
-            "retention",
+            "retention-convert",
             "retention_convert",
             method=(
                 "A fitted retention curve is expressed in another model: the target's parameters are those that "
@@ -129,6 +131,12 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("lenhard1989",),
             summary="A retention fit expressed in another model (fits.json --to MODEL), with the misfit.",
+            example=(("to", "bc"),),
+            input_description=(
+                "FIT.json: the fits.json written by `capred retention` (or by `capred retention-convert`): per "
+                "branch (drying, wetting), each model's fitted parameters and the suctions of the data they were "
+                "fitted to. --branch and --model choose the fit to convert (default: drying, lowest AICc)."
+            ),
         ),
         Reduction(
             "prism",
@@ -286,7 +294,7 @@ REDUCTIONS: dict[str, Reduction] = {
             _P + "history:reduce_history",
             _P + "history:HistoryOptions",
             "required",
-            None,
+            "history",
             "history",
             method=(
                 "Individuals chart with moving range (Montgomery 2013, section 6.4): MR_i = |x_i − x_(i−1)|; "
@@ -294,6 +302,12 @@ REDUCTIONS: dict[str, Reduction] = {
                 "value and spread; limits centre ± 3σ, moving-range limit 3.267·mean(MR); runs beyond are flagged.",
             ),
             summary="A lab's recorded runs (--store): one quantity per run on a control chart.",
+            example=(("quantity", "phi_deg"),),
+            input_description=(
+                "STORE: a lab store (one SQLite file) that any command fills with --store STORE or CAPRED_STORE: "
+                "per recorded run its date, inputs and options, and one record per material and quantity (a key of "
+                "the run's JSON such as phi_deg, with its 95 % interval and unit). It is opened read-only."
+            ),
         ),
     )
 }

@@ -23,6 +23,8 @@ SAMPLES = {
     "triaxial-export": "triaxial_export",
     "pt-volume": "pt_volume_path.csv",
     "triaxial-groups": "triaxial_groups.csv",
+    "retention-convert": "retention_fits.json",
+    "history": "lab_history.sqlite",
 }
 
 

@@ -10,7 +10,7 @@ from typer.testing import CliRunner
 
 import capred
 from capred.cli import app
-from capred.cli.help import INPUT_PANEL, OUTPUT_PANEL, schema_of
+from capred.cli.help import INPUT_FILE_SECTION, INPUT_PANEL, OUTPUT_PANEL, input_description, schema_of
 from capred.reductions import REDUCTIONS
 
 README = (ROOT / "README.md").read_text(encoding="utf-8")
@@ -52,8 +52,12 @@ def test_help_groups_options_and_lists_input_columns(command):
     assert {f"{command.split()[-1]} options", OUTPUT_PANEL} <= set(sections), sections
     assert "Options" not in sections  # no ungrouped remainder
     schema = schema_of(command)
+    described = input_description(command)  # an input that is not a table (a fits.json, a lab store)
     if REDUCTIONS[command].source == "required":
-        assert schema, f"{command}: no input columns found"
+        assert schema or described, f"{command}: no input columns found, nor a description of its input"
+    if described and not schema:  # said in the columns' place, whole (click wraps it: compare word by word)
+        assert INPUT_FILE_SECTION in sections, sections
+        assert " ".join(described.split()) in " ".join(text.split()), command
     if REDUCTIONS[command].source != "none":
         assert INPUT_PANEL in sections
     for column in schema:  # each column with its unit, as the glossary of the schema says

@@ -21,6 +21,7 @@ import pkgutil
 import re
 import warnings
 
+import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
@@ -192,3 +193,24 @@ def test_renamed_keywords_refuses_both_spellings():
     with pytest.raises(TypeError, match="both 'sr' and its new name 'S_R'"):
         f(sr=0.4, S_R=0.5)
     assert list(inspect.signature(f).parameters) == ["S_R"]
+
+
+def test_suction_at_neck_takes_ratio_and_still_the_old_rho():
+    """R2/R1 is ``ratio`` as in bridge(), from_neck() and the solvers; ``rho=`` keeps working with a warning.
+    The suction is recovered from the gap (and the volume) of the bridges from_neck builds at a known s*:
+    a root found by Illinois iterations against a closed-form filling angle, so rtol 1e-9 (the root's tol is
+    1e-14 in q = s* y0^2/(1 + s* y0^2); the quadrature of gap and volume is the same on both sides)."""
+    from capred.physics import bridge as br
+
+    neck, angle, s_true, ratio = [0.3, 0.2], [0.3, 0.3], [5.0, 20.0], [1.0, 2.0]
+    _, b = br.from_neck(np.array(neck), np.array(angle), np.array(s_true), np.array(ratio))
+    new, w_new = _quiet_run(
+        br.suction_at_neck, y0=np.array(neck), th=np.array(angle), ratio=np.array(ratio), target=b.gap, field="gap"
+    )
+    old, w_old = _quiet_run(
+        br.suction_at_neck, y0=np.array(neck), th=np.array(angle), rho=np.array(ratio), target=b.volume, field="volume"
+    )
+    assert_allclose(new, s_true, rtol=1e-9)
+    assert_allclose(old, s_true, rtol=1e-9)
+    assert not w_new and len(w_old) == 1 and "use 'ratio'" in str(w_old[0].message)
+    assert "rho" not in inspect.signature(br.suction_at_neck).parameters

@@ -1,4 +1,5 @@
-"""`capred COMMAND --help` in groups: the command's own options, its input, its outputs, then its input columns.
+"""`capred COMMAND --help` in groups: the command's own options, its input, its outputs, then its input columns
+(or, for a command whose input is not a table, what that input is: the reduction's ``input_description``).
 
 Help stays plain text (rendering it through rich would double the start-up time of `capred --help`); the
 groups are typer's ``rich_help_panel`` of each parameter where one is set, else the panel of the shared option
@@ -60,6 +61,19 @@ def schema_of(command: str) -> list:
     return []
 
 
+def input_description(command: str) -> str:
+    """What a command reads when it is not a table of columns (a fits.json, a lab store): the
+    ``input_description`` of its reduction; "" when none."""
+    from ..reductions import REDUCTIONS
+
+    red = REDUCTIONS.get(command)
+    return red.input_description if red is not None else ""
+
+
+#: the help section of a command whose input is not a table (in place of the input columns)
+INPUT_FILE_SECTION = "Input file (not a table)"
+
+
 def column_lines(schema: list) -> list[tuple[str, str]]:
     """(``name [unit]``, description with its other accepted spellings) of each input column."""
     out = []
@@ -103,6 +117,9 @@ class GroupedCommand(typer.core.TyperCommand):
         if lines:
             with formatter.section("Input columns (in any order; a header may declare its unit: 'name [unit]')"):
                 formatter.write_dl(lines)
+        elif input_description(command):
+            with formatter.section(INPUT_FILE_SECTION):
+                formatter.write_text(input_description(command))
 
 
 def group_help(app) -> None:
