@@ -19,7 +19,6 @@ WIDTHS = (80, 100, 120)
 ZERO_WIDTH = re.compile("[┃│][┃│]|[┏┳┡╇┗┻┌┬├┼└┴][┳╇┻┬┼┴]")
 _SPLIT = re.compile(r"[\s┃│]+")
 #: the range separator of the presenters ('0.0383 … 0.0591'): a value on either side, not a border
-RANGE = re.compile(r"(?<=[^\s┃│]) … (?=[^\s┃│])")
 
 
 def sample_result(command: str):
@@ -59,7 +58,7 @@ def test_every_command_fits_80_100_and_120_columns(samples, command):
         assert all(cell_len(line) <= width for line in lines), (command, width, max(map(cell_len, lines)))
         assert not ZERO_WIDTH.search(text), (command, width, ZERO_WIDTH.search(text).group(0))
         # nothing cut by rich (its ellipsis ends a cell; a range 'low … high' of a presenter has a value after it)
-        assert "…" not in RANGE.sub(" ", text)
+        assert "…" not in text  # a cut value; ranges print "low to high"
         words = _SPLIT.split(text)
         tokens = set(words) | {w[:-1] for w in words if w.endswith(":")}  # 'name:' of a stacked pair
         for spec in specs:
