@@ -62,6 +62,61 @@ class Parameter:
     def __float__(self) -> float:
         return float(self.value)
 
+    # A Parameter reads as its value in arithmetic, comparisons and numpy (as lmfit's Parameter does), so a lab
+    # script written against a plain float keeps working where the unit did not change.
+    def __array__(self, dtype=None, copy=None):
+        import numpy as np
+
+        return np.asarray(self.value, dtype=dtype)
+
+    def __add__(self, other):
+        return self.value + other
+
+    def __radd__(self, other):
+        return other + self.value
+
+    def __sub__(self, other):
+        return self.value - other
+
+    def __rsub__(self, other):
+        return other - self.value
+
+    def __mul__(self, other):
+        return self.value * other
+
+    def __rmul__(self, other):
+        return other * self.value
+
+    def __truediv__(self, other):
+        return self.value / other
+
+    def __rtruediv__(self, other):
+        return other / self.value
+
+    def __pow__(self, other):
+        return self.value**other
+
+    def __rpow__(self, other):
+        return other**self.value
+
+    def __neg__(self):
+        return -self.value
+
+    def __abs__(self):
+        return abs(self.value)
+
+    def __lt__(self, other):
+        return self.value < other
+
+    def __le__(self, other):
+        return self.value <= other
+
+    def __gt__(self, other):
+        return self.value > other
+
+    def __ge__(self, other):
+        return self.value >= other
+
     def __repr__(self) -> str:
         return f"<Parameter {self.name} = {_fmt(self.value)} ± {_fmt(self.stderr)} {self.unit}>"
 
