@@ -126,6 +126,7 @@ def test_rerun_replaces_the_folder_whole(tmp_path):
     assert runner.invoke(app, ["shear", "--sample", "--no-plots", "--out", str(out)]).exit_code == 0
     # no stale figures of the earlier run, no hidden work folders left beside it
     assert sorted(p.name for p in out.iterdir()) == [
+        "metrics.csv",
         "provenance.json",
         "report.html",
         "results.csv",

@@ -16,7 +16,7 @@ import numpy as np
 
 from .. import nomenclature as nom
 from ..errors import FitError, OptionError
-from ..fitting.linear import ERROR_MODELS, LOSSES, LineFit, breusch_pagan, fit_envelope, fit_line
+from ..fitting.linear import ERROR_MODELS, LOSSES, LineFit, breusch_pagan, fit_envelope
 from ..io.table import Column, Table, read_table
 from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
@@ -1735,8 +1735,10 @@ def _saturated_fits(table: Table, d: dict, mat, cond, materials, opt: ShearOptio
         sat = (mat == m) & (cond == "saturated")
         if not sat.any():
             continue
-        try:
-            out[m] = fit_line(d["sigma_N"][sat], d["tau_max"][sat], opt.confidence)
+        try:  # the same error model and loss as the dry envelope (tested, flagged, reported alike)
+            out[m] = fit_envelope(d["sigma_N"][sat], d["tau_max"][sat], opt.confidence, False, opt.errors, opt.dry_loss)
+            rows = np.flatnonzero(sat)
+            out[m].diagnostics.update(rows=rows, lines=np.asarray(table.lines)[rows])
         except FitError as exc:
             table.add_problem(
                 int(np.flatnonzero(sat)[0]),
