@@ -94,6 +94,13 @@ class ModelParams(Options):
     eta: float = 0.55  # exponent of khalili_fit (fixed unless fit_eta)
     fit_eta: bool = False
 
+    def __post_init__(self) -> None:
+        given = {name: getattr(self, name) for name in self.QUANTITIES}
+        try:
+            super().__post_init__()
+        except OptionError as exc:  # quote the value as the API caller gave it, beside its reading in SI
+            raise OptionError(_as_given(self, exc, given)) from None
+
     def missing(self, model: str) -> str:
         """What ``model`` needs and is not given (its registry ``requires``), e.g. ``"--s-res"``; "" when nothing."""
         return " and ".join(opt for name, opt in esm.REGISTRY[model].requires if getattr(self, name) is None)
