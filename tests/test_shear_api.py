@@ -68,6 +68,8 @@ def test_api_error_quotes_the_value_as_given():
         capred.ShearOptions(box_area=-3)
     msg = str(e.value)
     assert "box_area=-3" in msg and "m^2" in msg
+    with pytest.raises(OptionError, match="air_entry=-5, a plain number read in Pa"):
+        capred.ModelParams(air_entry=-5)
     with pytest.raises(OptionError, match="box_area='-3 cm\\^2'"):
         capred.ShearOptions(box_area="-3 cm^2")
 

@@ -16,7 +16,7 @@ import numpy as np
 
 from .. import nomenclature as nom
 from ..errors import FitError, OptionError
-from ..fitting.linear import ERROR_MODELS, LOSSES, LineFit, breusch_pagan, fit_envelope, fit_line
+from ..fitting.linear import ERROR_MODELS, LOSSES, LineFit, breusch_pagan, fit_envelope
 from ..io.table import Column, Table, read_table
 from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
@@ -93,6 +93,13 @@ class ModelParams(Options):
     contact_angle: float = 0.0  # deg, of the exact bridge (exact_neck)
     eta: float = 0.55  # exponent of khalili_fit (fixed unless fit_eta)
     fit_eta: bool = False
+
+    def __post_init__(self) -> None:
+        given = {name: getattr(self, name) for name in self.QUANTITIES}
+        try:
+            super().__post_init__()
+        except OptionError as exc:  # quote the value as the API caller gave it, beside its reading in SI
+            raise OptionError(_as_given(self, exc, given)) from None
 
     def missing(self, model: str) -> str:
         """What ``model`` needs and is not given (its registry ``requires``), e.g. ``"--s-res"``; "" when nothing."""
@@ -1743,8 +1750,10 @@ def _saturated_fits(table: Table, d: dict, mat, cond, materials, opt: ShearOptio
         sat = (mat == m) & (cond == "saturated")
         if not sat.any():
             continue
-        try:
-            out[m] = fit_line(d["sigma_N"][sat], d["tau_max"][sat], opt.confidence)
+        try:  # the same error model and loss as the dry envelope (tested, flagged, reported alike)
+            out[m] = fit_envelope(d["sigma_N"][sat], d["tau_max"][sat], opt.confidence, False, opt.errors, opt.dry_loss)
+            rows = np.flatnonzero(sat)
+            out[m].diagnostics.update(rows=rows, lines=np.asarray(table.lines)[rows])
         except FitError as exc:
             table.add_problem(
                 int(np.flatnonzero(sat)[0]),
