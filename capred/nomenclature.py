@@ -411,6 +411,16 @@ def renamed_keywords(**old_to_new: str):
     DeprecationWarning naming the new keyword; giving both raises TypeError. The signature seen by
     :func:`inspect.signature` (and by help and tab completion) is the new one. On a class, its
     ``__init__`` is wrapped.
+
+    Parameters
+    ----------
+    **old_to_new : str
+        Old keyword -> new keyword.
+
+    Returns
+    -------
+    callable
+        The decorator.
     """
     import functools
     import inspect
@@ -459,6 +469,13 @@ class StableJsonKeys:
     JSON_NAMES: dict[str, str] = {}
 
     def record(self) -> tuple[dict, dict]:
+        """(values, units) of the options as the base class gives them, each key renamed by ``JSON_NAMES``.
+
+        Returns
+        -------
+        tuple of dict
+            Option JSON name -> SI value, and -> SI unit.
+        """
         values, units = super().record()
 
         def keyed(d: dict) -> dict:
@@ -468,18 +485,54 @@ class StableJsonKeys:
 
 
 def label(name: str) -> str:
-    """Axis label 'symbol [unit]' for a quantity."""
+    """Axis label 'symbol [unit]' for a quantity.
+
+    Parameters
+    ----------
+    name : str
+        A key of ``QUANTITIES``.
+
+    Returns
+    -------
+    str
+        E.g. ``'τ [kPa]'``.
+    """
     q = QUANTITIES[name]
     return f"{q.symbol} [{q.unit}]"
 
 
 def column(name: str, suffix: str = "") -> str:
-    """Output column name with its unit, e.g. 'tau_pred_bishop [kPa]'."""
+    """Output column name with its unit, e.g. 'tau_pred_bishop [kPa]'.
+
+    Parameters
+    ----------
+    name : str
+        A key of ``QUANTITIES``.
+    suffix : str, optional
+        Appended to the name before the unit, e.g. "_pred_bishop".
+
+    Returns
+    -------
+    str
+    """
     return f"{name}{suffix} [{QUANTITIES[name].unit}]"
 
 
 def to_output(name: str, value):
-    """Convert an SI value of a quantity to its output unit."""
+    """Convert an SI value of a quantity to its output unit.
+
+    Parameters
+    ----------
+    name : str
+        A key of ``QUANTITIES``.
+    value : float or array_like
+        Value in SI units.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        ``value`` times the quantity's factor, in its output unit (e.g. Pa -> kPa).
+    """
     return value * QUANTITIES[name].factor
 
 
@@ -487,6 +540,18 @@ def range_problem(name: str, value: float) -> str | None:
     """Why an SI value lies outside the physical range of quantity ``name`` (None when inside).
 
     The one wording of range errors, for file columns and options alike.
+
+    Parameters
+    ----------
+    name : str
+        A key of ``QUANTITIES``.
+    value : float
+        Value in SI units.
+
+    Returns
+    -------
+    str or None
+        The message, the value shown in the output unit.
     """
     q = QUANTITIES[name]
     lo_bad = q.lower is not None and (value <= q.lower if q.lower_open else value < q.lower)
@@ -520,7 +585,22 @@ PLAUSIBLE: dict[str, tuple[float, float]] = {
 
 
 def plausibility_warning(name: str, value: float, where: str | None = None) -> str | None:
-    """A warning when an SI value lies outside the plausible range of a constant (None when plausible)."""
+    """A warning when an SI value lies outside the plausible range of a constant (None when plausible).
+
+    Parameters
+    ----------
+    name : str
+        A key of ``QUANTITIES`` (constants without a plausible range: never a warning).
+    value : float
+        Value in SI units.
+    where : str or None, optional
+        How the message names the value (default: ``name``).
+
+    Returns
+    -------
+    str or None
+        The warning text, the value shown in the output unit.
+    """
     if name not in PLAUSIBLE:
         return None
     lo, hi = PLAUSIBLE[name]

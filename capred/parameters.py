@@ -160,6 +160,18 @@ def correlation_from_covariance(names, covariance) -> dict:
     """``{(a, b): r_ab}`` of every pair of ``names`` from a covariance matrix (any consistent units).
 
     Pairs involving a parameter with zero or undefined variance are left out.
+
+    Parameters
+    ----------
+    names : sequence of str
+        Parameter names, in the order of the matrix's rows.
+    covariance : array_like, shape (n, n)
+        Covariance matrix.
+
+    Returns
+    -------
+    dict
+        ``(a, b)`` (``a`` before ``b`` in ``names``) -> correlation coefficient [-].
     """
     import numpy as np
 
@@ -235,6 +247,20 @@ def deprecated(old: str, new: str, value):
     The one rule for renamed Python attributes (README, "Renamed"): an old name keeps its old value and unit
     for one release and raises a DeprecationWarning naming its replacement, so that a lab script never reads
     kPa where it read Pa without being told.
+
+    Parameters
+    ----------
+    old : str
+        The deprecated attribute, e.g. "fit.c".
+    new : str
+        Its replacement, e.g. "fit.params['c']".
+    value : object
+        The old attribute's value.
+
+    Returns
+    -------
+    object
+        ``value``, unchanged.
     """
     warnings.warn(
         f"{old} is deprecated and will be removed in the next release; use {new} (in the units of the JSON)",

@@ -21,7 +21,22 @@ _wanted = False  # set once a command line on a terminal asked for progress (see
 
 
 def steps(items: Iterable[T], description: str, total: int | None = None) -> Iterator[T]:
-    """Iterate over ``items``, advancing a progress bar when one is showing."""
+    """Iterate over ``items``, advancing a progress bar when one is showing.
+
+    Parameters
+    ----------
+    items : iterable
+        What to iterate over.
+    description : str
+        Text of the bar.
+    total : int or None, optional
+        Number of items (default ``len(items)``).
+
+    Yields
+    ------
+    object
+        Each item of ``items``.
+    """
     progress = _PROGRESS.get()
     if progress is None:
         yield from items
@@ -40,6 +55,18 @@ def task(description: str, total: int | None = None) -> Iterator[Callable[[int],
     """A bar for one stage of a run (``total`` steps; None: a stage of unknown length); yields ``advance(n=1)``.
 
     Without a progress display (a script, a pipe, ``--json``) ``advance`` does nothing.
+
+    Parameters
+    ----------
+    description : str
+        Text of the bar.
+    total : int or None, optional
+        Number of steps; None: unknown.
+
+    Yields
+    ------
+    callable
+        ``advance(n=1)``, to call as steps are done.
     """
     progress = _PROGRESS.get()
     if progress is None:
@@ -65,7 +92,15 @@ def detach() -> None:
 @contextmanager
 def showing(enabled: bool, delay: float = DELAY):
     """Show the progress of ``steps()`` and ``task()`` on standard error while the block runs (when
-    ``enabled``), from ``delay`` seconds on; inside another ``showing`` block, its display is reused."""
+    ``enabled``), from ``delay`` seconds on; inside another ``showing`` block, its display is reused.
+
+    Parameters
+    ----------
+    enabled : bool
+        Show a display (False: the block runs without one).
+    delay : float, optional
+        Seconds before the display appears [s] (a short run shows none).
+    """
     global _wanted
     if not enabled:
         yield

@@ -29,6 +29,19 @@ class Reduction:
     input_description: str = ""
 
     def run(self, source, options):
+        """Run the command: call its run function (``run_path``, imported on first use).
+
+        Parameters
+        ----------
+        source : str, pathlib.Path, pandas.DataFrame or None
+            The input table.
+        options : object
+            The command's options object.
+
+        Returns
+        -------
+        capred.result.Result
+        """
         module, name = self.run_path.split(":")
         return getattr(import_module(module), name)(source, options)
 
@@ -48,6 +61,18 @@ class Reduction:
         return args
 
     def options(self, **kw):
+        """The command's options object (``options_path``, imported on first use) built from keywords.
+
+        Parameters
+        ----------
+        **kw
+            Options by keyword.
+
+        Returns
+        -------
+        object
+            The options object (a capred.result.Options).
+        """
         module, name = self.options_path.split(":")
         return getattr(import_module(module), name)(**kw)
 
@@ -314,7 +339,24 @@ REDUCTIONS: dict[str, Reduction] = {
 
 
 def run(command: str, source=None, options=None, **option_values):
-    """Run any command from a script: ``capred.run("shear", "tests.csv", gamma_w="10 kN/m^3")``."""
+    """Run any command from a script: ``capred.run("shear", "tests.csv", gamma_w="10 kN/m^3")``.
+
+    Parameters
+    ----------
+    command : str
+        A command's name, a key of ``REDUCTIONS`` (e.g. "shear", "bridge solve").
+    source : str, pathlib.Path, pandas.DataFrame or None, optional
+        The input table (None for a command without one).
+    options : object or None, optional
+        The command's options object; None: built from ``option_values``.
+    **option_values
+        Options by keyword, when ``options`` is None.
+
+    Returns
+    -------
+    capred.result.Result
+        The command's result.
+    """
     red = REDUCTIONS[command]
     if options is None:
         options = red.options(**option_values)

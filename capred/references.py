@@ -22,6 +22,12 @@ class Reference:
         return f"{self.authors} ({self.year})" if self.year else f"{self.authors} (n.d.)"
 
     def full(self) -> str:
+        """The full bibliography entry: authors (year). Title. Source, doi.
+
+        Returns
+        -------
+        str
+        """
         doi = f", doi:{self.doi}" if self.doi else ""
         return f"{self.short}. {self.title}. {self.source}{doi}."
 
@@ -235,11 +241,33 @@ REFERENCES: dict[str, Reference] = {
 
 
 def cite(key: str, where: str | None = None) -> str:
-    """In-text citation, e.g. ``cite("prunier2024", "eq. 27")`` -> 'Prunier et al. (2024), eq. 27'."""
+    """In-text citation, e.g. ``cite("prunier2024", "eq. 27")`` -> 'Prunier et al. (2024), eq. 27'.
+
+    Parameters
+    ----------
+    key : str
+        A key of ``REFERENCES``.
+    where : str or None, optional
+        Equation, table or figure cited.
+
+    Returns
+    -------
+    str
+    """
     ref = REFERENCES[key]
     return f"{ref.short}, {where}" if where else ref.short
 
 
 def bibliography(keys) -> list[str]:
-    """Full entries of the given keys, in the order given, without repeats."""
+    """Full entries of the given keys, in the order given, without repeats.
+
+    Parameters
+    ----------
+    keys : iterable of str
+        Keys of ``REFERENCES``.
+
+    Returns
+    -------
+    list of str
+    """
     return [REFERENCES[k].full() for k in dict.fromkeys(keys)]

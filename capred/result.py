@@ -34,6 +34,12 @@ class InputFile:
     metadata: tuple = ()  # (key, value) pairs of the metadata block above the header
 
     def as_dict(self) -> dict:
+        """The input as the JSON document and provenance.json record it: path, sha256, and sheet and metadata when present.
+
+        Returns
+        -------
+        dict
+        """
         out = {"path": self.path, "sha256": self.sha256}
         if self.sheet is not None:
             out["sheet"] = self.sheet
@@ -44,7 +50,20 @@ class InputFile:
 
 def input_file(source, table=None) -> InputFile:
     """InputFile of a path, a TableSource or a DataFrame (hash of its CSV text); with the sheet and the
-    metadata block of the ``table`` read from it."""
+    metadata block of the ``table`` read from it.
+
+    Parameters
+    ----------
+    source : str, pathlib.Path, TableSource or pandas.DataFrame
+        The input as the caller gave it.
+    table : capred.io.table.Table or None, optional
+        The table read from it, for its sheet and metadata block.
+
+    Returns
+    -------
+    InputFile
+        Path (``"<DataFrame>"`` for a DataFrame) and SHA-256 of the bytes read.
+    """
     import dataclasses
     import hashlib
 
@@ -79,6 +98,18 @@ class Options:
     OPTION_NAMES: dict[str, str] = {}
 
     def option_name(self, field_name: str) -> str:
+        """An option's name for messages: the Python keyword and the command-line option.
+
+        Parameters
+        ----------
+        field_name : str
+            The field of the options class, e.g. "gamma_w".
+
+        Returns
+        -------
+        str
+            E.g. ``"gamma_w (--gamma-w)"``.
+        """
         cli = self.OPTION_NAMES.get(field_name, "--" + field_name.replace("_", "-"))
         return f"{field_name} ({cli})"
 
@@ -180,12 +211,42 @@ class Output:
 
 
 def output(json: str | None, column=None, unit: str = "", scale: float = 1.0, pair: bool = False):
-    """Field metadata of a record attribute (see Output); use as ``x: np.ndarray = output(...)``."""
+    """Field metadata of a record attribute (see Output); use as ``x: np.ndarray = output(...)``.
+
+    Parameters
+    ----------
+    json : str or None
+        Key pattern in the JSON rows (``{model}``, ``{level}`` replaced); None: not in the JSON.
+    column : str, tuple of str or None, optional
+        Column header pattern in the tables; None: not in the tables.
+    unit : str, optional
+        Output unit shown in the header, e.g. "kPa" ("" for dimensionless).
+    scale : float, optional
+        Factor from the SI value to ``unit`` (1000 Pa -> 1 kPa: 1e-3).
+    pair : bool, optional
+        The field holds (low, high) arrays.
+
+    Returns
+    -------
+    dataclasses.Field
+        A field defaulting to None, with the :class:`Output` in its metadata.
+    """
     return field(default=None, metadata={"output": Output(json, column, unit, scale, pair)})
 
 
 def record_outputs(record) -> list[tuple[str, Output, object]]:
-    """(field name, Output, value) of every output field of a record, in declaration order."""
+    """(field name, Output, value) of every output field of a record, in declaration order.
+
+    Parameters
+    ----------
+    record : dataclass instance
+        A typed record whose fields were declared with :func:`output`.
+
+    Returns
+    -------
+    list of tuple
+        Fields that are None are left out.
+    """
     return [
         (f.name, f.metadata["output"], getattr(record, f.name))
         for f in dataclasses.fields(record)
@@ -205,6 +266,18 @@ def record_columns(records: dict, level: str = "95") -> dict:
 
     ``records`` maps a model name to its record (model-indexed records) or
     ``None`` to a single record. Columns come field by field, models inner.
+
+    Parameters
+    ----------
+    records : dict
+        Model name (or None) -> record.
+    level : str, optional
+        Confidence level in percent, put into the ``{level}`` patterns (default "95").
+
+    Returns
+    -------
+    dict
+        Header (with unit) -> array in output units.
     """
     out: dict = {}
     first = next(iter(records.values()), None)
@@ -231,7 +304,22 @@ def record_columns(records: dict, level: str = "95") -> dict:
 
 def record_json_columns(records: dict, start: int, stop: int, level: str = "95") -> dict:
     """Per-row JSON values of records for rows start..stop-1: ``{key: list}``; a model-indexed field gives a
-    list of ``{model: value}`` dicts, a pair a list of ``[low, high]``."""
+    list of ``{model: value}`` dicts, a pair a list of ``[low, high]``.
+
+    Parameters
+    ----------
+    records : dict
+        Model name (or None) -> record.
+    start, stop : int
+        The rows, ``start`` included, ``stop`` excluded.
+    level : str, optional
+        Confidence level in percent, put into the ``{level}`` patterns (default "95").
+
+    Returns
+    -------
+    dict
+        JSON key -> list of per-row values in output units (None where not finite).
+    """
     out: dict = {}
     first = next(iter(records.values()), None)
     if first is None:
@@ -274,10 +362,28 @@ class Rows:
         self.make = make  # (start, stop) -> list of rows
 
     def chunks(self, size: int = 2000):
+        """The rows, ``size`` at a time (the last chunk may be shorter).
+
+        Parameters
+        ----------
+        size : int, optional
+            Rows per chunk (default 2000).
+
+        Yields
+        ------
+        list of dict
+            The rows of one chunk.
+        """
         for start in range(0, self.n, size):
             yield self.make(start, min(self.n, start + size))
 
     def tolist(self) -> list:
+        """Every row at once, as a plain list.
+
+        Returns
+        -------
+        list of dict
+        """
         return self.make(0, self.n)
 
 
@@ -303,7 +409,13 @@ class Spool:
         self.n = 0
 
     def append(self, columns: dict) -> None:
-        """Add one block: every column an array of the same length."""
+        """Add one block: every column an array of the same length.
+
+        Parameters
+        ----------
+        columns : dict
+            Column name -> array; every block has the same columns.
+        """
         import pickle
 
         data = pickle.dumps(columns, protocol=pickle.HIGHEST_PROTOCOL)
@@ -316,7 +428,18 @@ class Spool:
         self.n += rows
 
     def block(self, k: int) -> dict:
-        """The columns of block ``k`` (the last block read is kept: reading it again costs nothing)."""
+        """The columns of block ``k`` (the last block read is kept: reading it again costs nothing).
+
+        Parameters
+        ----------
+        k : int
+            Index of the block, from 0.
+
+        Returns
+        -------
+        dict
+            Column name -> array.
+        """
         return self._block(k)
 
     def _block(self, k: int) -> dict:
@@ -336,7 +459,18 @@ class Spool:
             yield self._block(k)
 
     def columns(self, start: int, stop: int) -> dict:
-        """Every column of rows ``start`` .. ``stop - 1`` (possibly across blocks)."""
+        """Every column of rows ``start`` .. ``stop - 1`` (possibly across blocks).
+
+        Parameters
+        ----------
+        start, stop : int
+            The rows, ``start`` included, ``stop`` excluded.
+
+        Returns
+        -------
+        dict
+            Column name -> array.
+        """
         import numpy as np
 
         parts, first = [], 0
@@ -354,6 +488,7 @@ class Spool:
         return {name: np.concatenate([p[name] for p in parts]) if parts else np.empty(0) for name in names}
 
     def close(self) -> None:
+        """Close the spool's temporary file (an unnamed file: closing it frees its disk space)."""
         self._closer()
 
 
@@ -361,7 +496,18 @@ def columns_of_rows(rows: list[dict]) -> dict:
     """Rows (dicts, some keys absent) as columns in order of first appearance, typed as pandas would type
     them, so that capred.io.writers.write_csv_file writes the bytes it writes for ``pandas.DataFrame(rows)``:
     whole numbers stay integers unless a row lacks them, numbers with a gap are floats with NaN there,
-    anything else is an object column (None where absent)."""
+    anything else is an object column (None where absent).
+
+    Parameters
+    ----------
+    rows : list of dict
+        The rows.
+
+    Returns
+    -------
+    dict
+        Key -> numpy array.
+    """
     import numpy as np
 
     keys = list(dict.fromkeys(k for r in rows for k in r))
@@ -380,7 +526,18 @@ def columns_of_rows(rows: list[dict]) -> dict:
 
 
 def json_list(values) -> list:
-    """A float array as a JSON list: every digit kept, None where not finite."""
+    """A float array as a JSON list: every digit kept, None where not finite.
+
+    Parameters
+    ----------
+    values : array_like
+        Numbers.
+
+    Returns
+    -------
+    list
+        Python floats and None.
+    """
     import numpy as np
 
     a = np.asarray(values, dtype=float)
@@ -468,6 +625,16 @@ class Result:
         """The command's own result keys of the JSON document.
 
         With ``lazy``, long per-row lists may be Rows (made on demand).
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Allow :class:`Rows` in place of long lists (default False: plain lists).
+
+        Returns
+        -------
+        dict
+            JSON key -> value.
         """
         raise NotImplementedError
 
@@ -608,13 +775,39 @@ class Result:
 
 
 def check_choice(value: str, choices, option: str) -> str:
+    """An option's value when it is one of ``choices``; else OptionError naming the option and the choices.
+
+    Parameters
+    ----------
+    value : str
+        The value given.
+    choices : sequence of str
+        The allowed values.
+    option : str
+        The option as the user typed it, e.g. "--csv-dialect".
+
+    Returns
+    -------
+    str
+        ``value``.
+    """
     if value not in choices:
         raise OptionError(f"{option} must be one of {', '.join(choices)} (got '{value}')")
     return value
 
 
 def num(x) -> float | None:
-    """A float for JSON: every digit kept (shortest round-trip form on output), None when not finite."""
+    """A float for JSON: every digit kept (shortest round-trip form on output), None when not finite.
+
+    Parameters
+    ----------
+    x : float, numpy scalar or None
+        A number.
+
+    Returns
+    -------
+    float or None
+    """
     if x is None:
         return None
     x = float(x)

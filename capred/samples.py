@@ -29,7 +29,17 @@ SAMPLES = {
 
 
 def sample_path(name: str) -> Path:
-    """Path of a bundled sample file, by command name (e.g. 'shear')."""
+    """Path of a bundled sample file, by command name (e.g. 'shear').
+
+    Parameters
+    ----------
+    name : str
+        A key of ``SAMPLES``; another name raises OptionError.
+
+    Returns
+    -------
+    pathlib.Path
+    """
     from .errors import OptionError
 
     if name not in SAMPLES:

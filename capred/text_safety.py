@@ -71,7 +71,17 @@ def visible(text: str, pictures: bool = True) -> str:
 
 
 def has_unsafe(text: str) -> bool:
-    """True when ``text`` holds a control or bidi character that :func:`visible` would show."""
+    """True when ``text`` holds a control or bidi character that :func:`visible` would show.
+
+    Parameters
+    ----------
+    text : str
+        Any text (not a str: False).
+
+    Returns
+    -------
+    bool
+    """
     return isinstance(text, str) and _UNSAFE.search(text) is not None
 
 
@@ -131,7 +141,17 @@ def excerpt(text: str, limit: int = EXCERPT) -> str:
 def xml_safe(text: str) -> str:
     """``text`` fit for an XML 1.0 document (SVG): every control character shown (XML forbids C0 but tab, line
     feed and carriage return), bidi controls shown, as ASCII escapes (``\x1b``: the fonts of figures lack the
-    control pictures)."""
+    control pictures).
+
+    Parameters
+    ----------
+    text : str
+        Text for an SVG.
+
+    Returns
+    -------
+    str
+    """
     return visible(text, pictures=False)
 
 
@@ -139,6 +159,15 @@ def json_escape(data: bytes) -> bytes:
     """UTF-8 JSON bytes with C1 and bidi controls written as ``\\u`` escapes (the same characters, inert).
 
     JSON's structure is ASCII, so these bytes occur only inside strings.
+
+    Parameters
+    ----------
+    data : bytes
+        UTF-8 JSON.
+
+    Returns
+    -------
+    bytes
     """
     if b"\xc2" not in data and b"\xe2" not in data:
         return data
@@ -146,7 +175,18 @@ def json_escape(data: bytes) -> bytes:
 
 
 def safe_spec(spec):
-    """A console table (capred.result.TableSpec) with its title, headers and cells made :func:`visible`."""
+    """A console table (capred.result.TableSpec) with its title, headers and cells made :func:`visible`.
+
+    Parameters
+    ----------
+    spec : capred.result.TableSpec
+        A console table.
+
+    Returns
+    -------
+    capred.result.TableSpec
+        ``spec`` itself when nothing needs to be shown.
+    """
     import dataclasses
 
     cells = [spec.title, *(h for h, _ in spec.columns), *(c for row in spec.rows for c in row)]
@@ -162,7 +202,18 @@ def safe_spec(spec):
 
 def html_finalize(value):
     """The jinja ``finalize`` of capred's HTML templates: every value shown is made :func:`visible` (markup
-    stays markup; text is escaped afterwards by autoescape)."""
+    stays markup; text is escaped afterwards by autoescape).
+
+    Parameters
+    ----------
+    value : object
+        A value the template shows.
+
+    Returns
+    -------
+    object
+        ``value``, or its visible form when it is text holding control or bidi characters.
+    """
     if isinstance(value, str) and has_unsafe(value):
         from markupsafe import Markup
 

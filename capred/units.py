@@ -62,7 +62,17 @@ _WATER_HEAD = re.compile(r"^\s*(?P<len>[a-zµμ]*m)\s*(?:_?H2O|water|of water|wc
 
 def ascii_unit(unit: str) -> str:
     """A unit as typed with superscripts and product signs, in plain text: ``'cm³'`` -> ``'cm^3'``,
-    ``'kN·m⁻³'`` -> ``'kN*m^-3'``. Other text is returned unchanged."""
+    ``'kN·m⁻³'`` -> ``'kN*m^-3'``. Other text is returned unchanged.
+
+    Parameters
+    ----------
+    unit : str
+        A unit as typed.
+
+    Returns
+    -------
+    str
+    """
     if unit.isascii():
         return unit
     unit = _SUPERSCRIPT_RUN.sub(lambda m: "^" + m.group(0).translate(_SUPERSCRIPT), unit)
@@ -70,7 +80,15 @@ def ascii_unit(unit: str) -> str:
 
 
 def check_unit_text(unit: str) -> None:
-    """Refuse a unit string before pint sees it: too long, odd characters, unbalanced parentheses."""
+    """Refuse a unit string before pint sees it: too long, odd characters, unbalanced parentheses.
+
+    Raises UnitError saying what is wrong; returns None for an acceptable unit text.
+
+    Parameters
+    ----------
+    unit : str
+        The unit text, e.g. "kN/m^3".
+    """
     if len(unit) > MAX_UNIT_LENGTH:
         raise UnitError(f"unit '{unit[:20]}...' is longer than {MAX_UNIT_LENGTH} characters")
     if not _UNIT_CHARS.fullmatch(unit):
@@ -201,6 +219,22 @@ def parse_quantity(text: str, default_unit: str, kind: str, notes: list[str] | N
     """Read an option such as ``"115 g/cm^2"`` or ``"0.5"`` (in ``default_unit``) to SI.
 
     A note on how the unit was read (g/cm^2 as gram-force) is appended to ``notes``.
+
+    Parameters
+    ----------
+    text : str
+        A number, optionally followed by a unit.
+    default_unit : str
+        Unit of a bare number.
+    kind : str
+        The dimension expected, a key of ``SI_UNIT`` (e.g. "pressure"); another dimension raises UnitError.
+    notes : list of str or None, optional
+        Receives a note on an ambiguous unit.
+
+    Returns
+    -------
+    float
+        The value in SI units.
     """
     m = re.fullmatch(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*", str(text))
     if not m:
@@ -213,7 +247,19 @@ def parse_quantity(text: str, default_unit: str, kind: str, notes: list[str] | N
 
 
 def with_unit(text: str | None, default_unit: str) -> str | None:
-    """An option as typed, with ``default_unit`` appended when it is a bare number ("9.81" -> "9.81 kN/m^3")."""
+    """An option as typed, with ``default_unit`` appended when it is a bare number ("9.81" -> "9.81 kN/m^3").
+
+    Parameters
+    ----------
+    text : str or None
+        The option as typed (None: None).
+    default_unit : str
+        Unit of a bare number ("" for none).
+
+    Returns
+    -------
+    str or None
+    """
     if text is None:
         return None
     text = str(text).strip()
@@ -230,6 +276,22 @@ def to_si(value, name: str, where: str | None = None, notes: list[str] | None = 
     length), a string with a unit (``"10 kN/m^3"``), or a pint Quantity. A value
     of the wrong dimension, not a number, or outside the physical range of the
     quantity raises OptionError naming ``where`` (the option).
+
+    Parameters
+    ----------
+    value : float, str or pint.Quantity
+        The option's value.
+    name : str
+        The quantity, a key of ``capred.nomenclature.QUANTITIES``.
+    where : str or None, optional
+        The option as messages name it (default: ``name``).
+    notes : list of str or None, optional
+        Receives a note on an ambiguous unit.
+
+    Returns
+    -------
+    float
+        The value in SI units.
     """
     import numbers
 

@@ -216,7 +216,18 @@ class LineFit:
         return np.ones(y.shape)
 
     def scatter_variance(self, y):
-        """s^2 v(y): the variance of one new measurement of expected level y [unit of y squared]."""
+        """s^2 v(y): the variance of one new measurement of expected level y [unit of y squared].
+
+        Parameters
+        ----------
+        y : float or array_like
+            Expected level [unit of y] (matters only with proportional errors).
+
+        Returns
+        -------
+        float or numpy.ndarray
+            ``residual_variance * variance_factor(y)`` [unit of y squared].
+        """
         return self.residual_variance * self.variance_factor(y)
 
     @property
@@ -244,7 +255,18 @@ class LineFit:
         return self.slope - h, self.slope + h
 
     def predict(self, x):
-        """a + b x [unit of y] at ``x`` [unit of x]."""
+        """a + b x [unit of y] at ``x`` [unit of x].
+
+        Parameters
+        ----------
+        x : float or array_like
+            Abscissa [unit of x].
+
+        Returns
+        -------
+        numpy.ndarray
+            The fitted line [unit of y].
+        """
         return self.intercept + self.slope * np.asarray(x, dtype=float)
 
     def mean_band(self, x):
@@ -254,6 +276,16 @@ class LineFit:
 
         with V the covariance of (a, b) and nu = ``dof`` [1]. It covers the true mean line, not a new point:
         see :meth:`prediction_interval`.
+
+        Parameters
+        ----------
+        x : float or array_like
+            Abscissa [unit of x].
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            (lower, upper) [unit of y].
         """
         x = np.asarray(x, dtype=float)
         cov = self.covariance
@@ -268,6 +300,18 @@ class LineFit:
 
         The new observation's own scatter s^2 = RSS/nu is added to the variance of the fitted mean [1]; with
         proportional errors it is s^2 (y_hat(x)/ref)^2, growing with the strength (`fit_envelope`).
+
+        Parameters
+        ----------
+        x : float or array_like
+            Abscissa [unit of x].
+        confidence : float or None, optional
+            Level in (0, 1) (default: the fit's ``confidence``).
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            (lower, upper) [unit of y].
         """
         x = np.asarray(x, dtype=float)
         cov = self.covariance

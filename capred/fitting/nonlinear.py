@@ -93,7 +93,18 @@ class NonlinearFit:
         return float(np.sqrt(self.rss / self.n))
 
     def ci95(self, name: str) -> tuple[float, float] | None:
-        """95 % interval of one parameter, estimate ± t·SE (None without a standard error)."""
+        """95 % interval of one parameter, estimate ± t·SE (None without a standard error).
+
+        Parameters
+        ----------
+        name : str
+            A parameter of the fit.
+
+        Returns
+        -------
+        tuple of float or None
+            (lower, upper) in the parameter's unit.
+        """
         se = self.stderr.get(name)
         if se is None or not np.isfinite(se):
             return None
@@ -116,6 +127,16 @@ class NonlinearFit:
         The distance to a bound is measured in the parameter's own scale (ln(value - offset) for the
         parameters of ``log_params``, the value itself otherwise) and compared with ``rel`` times the
         width of the range on that scale.
+
+        Parameters
+        ----------
+        rel : float, optional
+            Tolerance, as a share of the range's width on the parameter's scale [-] (default 1e-6).
+
+        Returns
+        -------
+        list of str
+            Names of the parameters at a bound.
         """
         return [
             k

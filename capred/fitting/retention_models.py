@@ -99,7 +99,20 @@ class Parameter:
     domain: str = ""
 
     def bounds(self, s_min: float, s_max: float, y_min: float, y_max: float) -> tuple[float, float]:
-        """Search bounds [unit] for data with positive suctions in [s_min, s_max] [Pa] and y in [y_min, y_max]."""
+        """Search bounds [unit] for data with positive suctions in [s_min, s_max] [Pa] and y in [y_min, y_max].
+
+        Parameters
+        ----------
+        s_min, s_max : float
+            Smallest and largest positive suction of the data [Pa].
+        y_min, y_max : float
+            Smallest and largest water quantity of the data [unit of y].
+
+        Returns
+        -------
+        tuple of float
+            (lower, upper) in the parameter's SI unit.
+        """
         if self.kind == "residual":
             return 0.0, y_max
         if self.kind == "saturated":
@@ -257,7 +270,17 @@ class RetentionModel:
         return {p.name: p.log_offset for p in self.parameters if p.log_offset is not None}
 
     def parameter(self, name: str) -> Parameter:
-        """The :class:`Parameter` called ``name``."""
+        """The :class:`Parameter` called ``name``.
+
+        Parameters
+        ----------
+        name : str
+            Internal name, e.g. "alpha".
+
+        Returns
+        -------
+        Parameter
+        """
         return next(p for p in self.parameters if p.name == name)
 
     def water(self, s, **params):
@@ -283,13 +306,39 @@ class RetentionModel:
         return params["y_s"] * S
 
     def effective_saturation(self, s, p: dict):
-        """S_e(s) in [0, 1]: (y - y_r)/(y_s - y_r) (for Fredlund-Xing with C: y/y_s)."""
+        """S_e(s) in [0, 1]: (y - y_r)/(y_s - y_r) (for Fredlund-Xing with C: y/y_s).
+
+        Parameters
+        ----------
+        s : array_like
+            Suction [Pa].
+        p : dict
+            Every parameter of the model by internal name, in SI units (``y_s`` included).
+
+        Returns
+        -------
+        numpy.ndarray
+            Effective saturation [-].
+        """
         y = self.water(s, **p)
         y_r = p.get("y_r", 0.0)
         return (y - y_r) / (p["y_s"] - y_r)
 
     def suction(self, S, **shape):
-        """Suction [Pa] at which the model's S(s) equals ``S`` [-] (NaN where no suction gives it)."""
+        """Suction [Pa] at which the model's S(s) equals ``S`` [-] (NaN where no suction gives it).
+
+        Parameters
+        ----------
+        S : array_like
+            Value of the model's ``saturation`` [-] (S_e, or C·S_e for Fredlund-Xing with C).
+        **shape
+            The shape parameters by internal name, in SI units.
+
+        Returns
+        -------
+        numpy.ndarray
+            Suction [Pa]: the closed-form inverse where the model has one, else a monotone root search.
+        """
         S = np.asarray(S, float)
         if self.inverse is not None:
             return self.inverse(S, **shape)
@@ -806,7 +855,18 @@ class RetentionFit(NonlinearFit):
         return self.__dict__["params_si"]
 
     def ci95(self, name: str) -> tuple[float, float] | None:
-        """95 % interval of one parameter by internal name, in SI units (None without a standard error)."""
+        """95 % interval of one parameter by internal name, in SI units (None without a standard error).
+
+        Parameters
+        ----------
+        name : str
+            Internal name, e.g. "alpha".
+
+        Returns
+        -------
+        tuple of float or None
+            (lower, upper) in SI units (1/Pa, Pa, [-]).
+        """
         se = self.stderr.get(name)
         if se is None or not np.isfinite(se):
             return None
@@ -814,7 +874,18 @@ class RetentionFit(NonlinearFit):
         return v - self.t * se, v + self.t * se
 
     def at_bounds(self, rel: float = 1e-6) -> list[str]:
-        """Free parameters (internal names) that ended on one of their bounds, judged on their own scale."""
+        """Free parameters (internal names) that ended on one of their bounds, judged on their own scale.
+
+        Parameters
+        ----------
+        rel : float, optional
+            Tolerance, as a share of the range's width on the parameter's scale [-] (default 1e-6).
+
+        Returns
+        -------
+        list of str
+            Internal names of the parameters at a bound.
+        """
         from .nonlinear import _at_bound
 
         return [
@@ -895,7 +966,18 @@ class RetentionFit(NonlinearFit):
     def S_R(self, suction):
         """Degree of saturation S_R [-] at ``suction`` [Pa] (>= 0): the fitted curve itself when S_R was fitted,
         θ/θ_s when a volumetric water content was (θ_s taken as the porosity: the soil saturated at zero
-        suction). A negative suction raises OptionError."""
+        suction). A negative suction raises OptionError.
+
+        Parameters
+        ----------
+        suction : float or array_like
+            Suction [Pa], >= 0.
+
+        Returns
+        -------
+        numpy.ndarray
+            Degree of saturation [-].
+        """
         s = np.asarray(suction, float)
         if np.any(s < 0):
             from ..errors import OptionError
@@ -906,12 +988,34 @@ class RetentionFit(NonlinearFit):
 
     def suction_at_S_R(self, S_R):
         """Suction [Pa] at which the fitted curve gives the degree of saturation ``S_R`` [-] (inverse of S_R);
-        NaN where S_R lies outside the fitted curve's range (S_res, S_s]."""
+        NaN where S_R lies outside the fitted curve's range (S_res, S_s].
+
+        Parameters
+        ----------
+        S_R : float or array_like
+            Degree of saturation [-].
+
+        Returns
+        -------
+        numpy.ndarray
+            Suction [Pa].
+        """
         S_R = np.asarray(S_R, float)
         return self.suction(S_R if self.quantity == "S_R" else S_R * self.params_si["y_s"])
 
     def effective_saturation(self, suction):
-        """Fitted S_e = (y - y_r)/(y_s - y_r) [-] at ``suction`` [Pa] (y/y_s for Fredlund-Xing with C)."""
+        """Fitted S_e = (y - y_r)/(y_s - y_r) [-] at ``suction`` [Pa] (y/y_s for Fredlund-Xing with C).
+
+        Parameters
+        ----------
+        suction : float or array_like
+            Suction [Pa].
+
+        Returns
+        -------
+        numpy.ndarray
+            Effective saturation [-].
+        """
         return self.entry.effective_saturation(np.asarray(suction, float), self.params_si)
 
     def suction(self, water):
@@ -935,7 +1039,20 @@ class RetentionFit(NonlinearFit):
         return self.entry.suction(S, **shape)
 
     def band(self, suction, level_t: float | None = None):
-        """95 % confidence band of the fitted curve at ``suction`` [Pa]: (lower, upper), see :func:`confidence_band`."""
+        """95 % confidence band of the fitted curve at ``suction`` [Pa]: (lower, upper), see :func:`confidence_band`.
+
+        Parameters
+        ----------
+        suction : float or array_like
+            Suction [Pa].
+        level_t : float or None, optional
+            The multiplier t (default: the fit's Student t of 95 %).
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            (lower, upper) [unit of the water quantity fitted].
+        """
         return confidence_band(self.model, self, suction, level_t)
 
 

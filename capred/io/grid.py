@@ -109,7 +109,18 @@ class ReadLimits:
                 raise OptionError(f"{LIMIT_OPTIONS[name]} ({name}) must be a whole number >= 1 (got {value!r})")
 
     def shown(self, name: str) -> str:
-        """The setting of limit ``name`` as a person reads it (MiB for bytes)."""
+        """The setting of limit ``name`` as a person reads it (MiB for bytes).
+
+        Parameters
+        ----------
+        name : str
+            A limit, e.g. ``"max_bytes"`` or ``"max_rows"``.
+
+        Returns
+        -------
+        str
+            E.g. ``"64 MiB"`` or ``"1,000,000"``.
+        """
         value = getattr(self, name)
         return f"{value / 2**20:g} MiB" if name == "max_bytes" else f"{value:,}"
 
@@ -122,7 +133,28 @@ class ReadLimits:
         column: str | None = None,
         sheet: str | None = None,
     ) -> LimitError:
-        """The error for ``what`` going over limit ``name``, saying how to raise it."""
+        """The error for ``what`` going over limit ``name``, saying how to raise it.
+
+        Parameters
+        ----------
+        name : str
+            The limit exceeded.
+        what : str
+            What went over it, e.g. "the file holds 70.0 MiB".
+        file : str
+            The file as shown in messages.
+        line : int or None, optional
+            Line of the input where the limit was reached.
+        column : str or None, optional
+            Column of the input.
+        sheet : str or None, optional
+            Sheet of a workbook.
+
+        Returns
+        -------
+        LimitError
+            The error to raise (not raised here).
+        """
         unit = "N (MiB)" if name == "max_bytes" else "N"
         message = (
             f"{what}: over the limit of {self.shown(name)} ({name}), so it is not read. If the file is "
@@ -163,11 +195,34 @@ class TableSource:
 
 
 def source_path(source):
-    """The path (or DataFrame) behind a source given as a path, a DataFrame or a TableSource."""
+    """The path (or DataFrame) behind a source given as a path, a DataFrame or a TableSource.
+
+    Parameters
+    ----------
+    source : str, pathlib.Path, pandas.DataFrame or TableSource
+        The table as the caller gave it.
+
+    Returns
+    -------
+    str, pathlib.Path or pandas.DataFrame
+        ``source.path`` for a TableSource, else ``source`` itself.
+    """
     return source.path if isinstance(source, TableSource) else source
 
 
 def as_source(source) -> TableSource:
+    """A TableSource of a source given as a path, a DataFrame or a TableSource (returned as is).
+
+    Parameters
+    ----------
+    source : str, pathlib.Path, pandas.DataFrame or TableSource
+        The table as the caller gave it.
+
+    Returns
+    -------
+    TableSource
+        ``source`` when it already is one, else ``TableSource(source)`` (default sheet, limits).
+    """
     return source if isinstance(source, TableSource) else TableSource(source)
 
 
@@ -189,17 +244,41 @@ class Grid:
     warnings: list[str] = field(default_factory=list)
 
     def parse_all(self, delimiter: str) -> None:
-        """Every row of a CSV with the chosen delimiter (spreadsheets: nothing to do)."""
+        """Every row of a CSV with the chosen delimiter (spreadsheets: nothing to do).
+
+        Parameters
+        ----------
+        delimiter : str
+            The CSV delimiter detected or given.
+        """
         if self.full_text is not None:
             self.rows = _parse(self.full_text, delimiter, self.first_line)
             self.full_text = None
 
     def where(self) -> str:
+        """The file as messages name it, with its sheet when it has one.
+
+        Returns
+        -------
+        str
+            E.g. ``"tests.xlsx, sheet 'dry'"``.
+        """
         return f"{self.shown}, sheet '{self.sheet}'" if self.sheet is not None else self.shown
 
 
 def read_grid(source: TableSource) -> Grid:
-    """Rows of cells of a CSV file, a spreadsheet or a DataFrame. Raises InputError when it cannot be read."""
+    """Rows of cells of a CSV file, a spreadsheet or a DataFrame. Raises InputError when it cannot be read.
+
+    Parameters
+    ----------
+    source : TableSource
+        The file or DataFrame, its sheet and its reading limits.
+
+    Returns
+    -------
+    Grid
+        The rows of text cells, with the file name and sheet shown in messages.
+    """
     path = source.path
     if hasattr(path, "to_csv"):  # a pandas DataFrame from a lab script: read like the same table in a file
         return _csv_grid("<DataFrame>", path.to_csv(index=False))

@@ -27,6 +27,16 @@ def read_manifest(path: Path) -> list[tuple[int, str, str, list[str] | str]]:
     or a list of arguments (a TOML list). Raises InputError (every problem of
     the file, each with its line and column) when a run cannot be read or the
     manifest holds no run.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The manifest, a ``.csv`` or ``.toml`` file.
+
+    Returns
+    -------
+    list of tuple
+        ``(line, command, input, options)`` of each run, in the manifest's order.
     """
     path = Path(path)
     if not path.exists():

@@ -114,22 +114,65 @@ class Table:
         return len(self.lines)
 
     def has(self, name: str) -> bool:
+        """True when the table has column ``name``.
+
+        Parameters
+        ----------
+        name : str
+            A canonical column name.
+
+        Returns
+        -------
+        bool
+        """
         return name in self.columns
 
     def get(self, name: str, default: float = np.nan) -> np.ndarray:
-        """Column values, or ``default`` everywhere when the column is absent."""
+        """Column values, or ``default`` everywhere when the column is absent.
+
+        Parameters
+        ----------
+        name : str
+            A canonical column name.
+        default : float, optional
+            Value of every row when the column is absent (default NaN).
+
+        Returns
+        -------
+        numpy.ndarray
+            The column's values, in the units of the table (no conversion here).
+        """
         if name in self.columns:
             return self.columns[name]
         return np.full(len(self), default, dtype=float)
 
     def add_problem(self, row: int | None, column: str | None, message: str) -> None:
+        """Record a problem of one cell (or of the header when ``row`` is None), with its file, sheet, line and value.
+
+        Parameters
+        ----------
+        row : int or None
+            Row index in the table (0 = first data row), None for the header line.
+        column : str or None
+            Canonical column name (shown as the header writes it), None for a whole row.
+        message : str
+            What is wrong.
+        """
         line = self.header_line if row is None else int(self.lines[row])
         shown = self.headers.get(column, column) if column else None
         value = self.raw[column][row] if (row is not None and column in self.raw) else None
         self.problems.append(Problem(self.path, line, shown, message, self.sheet, value))
 
     def missing_column(self, name: str, why: str = "") -> None:
-        """Record a required column that is absent, suggesting the nearest header."""
+        """Record a required column that is absent, suggesting the nearest header.
+
+        Parameters
+        ----------
+        name : str
+            The canonical column name.
+        why : str, optional
+            Appended to the message (e.g. why the column is needed).
+        """
         near = difflib.get_close_matches(_key(name), [_key(h) for h in self.unmatched], n=1, cutoff=0.6)
         hint = ""
         if near:
@@ -141,7 +184,13 @@ class Table:
         self.missing.add(name)
 
     def check_unique(self, name: str) -> None:
-        """Record blank and repeated identifiers in a text column (e.g. test_id)."""
+        """Record blank and repeated identifiers in a text column (e.g. test_id).
+
+        Parameters
+        ----------
+        name : str
+            A text column.
+        """
         seen: dict[str, int] = {}
         for i, v in enumerate(self.columns[name]):
             if not v:
@@ -152,9 +201,23 @@ class Table:
                 seen[v] = int(self.lines[i])
 
     def value_text(self, name: str, row: int) -> str:
+        """The cell of column ``name`` on row ``row`` as the file writes it ("" when the column is absent).
+
+        Parameters
+        ----------
+        name : str
+            A canonical column name.
+        row : int
+            Row index in the table (0 = first data row).
+
+        Returns
+        -------
+        str
+        """
         return self.raw[name][row] if name in self.raw else ""
 
     def raise_if_problems(self) -> None:
+        """Raise InputError listing every problem recorded so far; do nothing when there is none."""
         if self.problems:
             raise InputError(self.problems)
 

@@ -95,6 +95,18 @@ def encode_json(doc, indent: bool | None = None) -> bytes:
     """JSON bytes of ``doc``: indented for small documents, compact for large ones.
 
     Floats are written in shortest round-trip form (every digit kept).
+
+    Parameters
+    ----------
+    doc : dict
+        The JSON document (NaN and infinities are written as null).
+    indent : bool or None, optional
+        True: indented, False: compact; None (default): indented below ``INDENT_LIMIT`` bytes.
+
+    Returns
+    -------
+    bytes
+        UTF-8 JSON followed by a newline.
     """
     compact = _dumps(doc)
     if indent is False or (indent is None and len(compact) > INDENT_LIMIT):
@@ -107,6 +119,13 @@ def stream_json(doc: dict, write) -> None:
 
     Memory stays bounded by one chunk of rows. A document without Rows that
     is small is written indented, like encode_json.
+
+    Parameters
+    ----------
+    doc : dict
+        The JSON document; a value may be a :class:`capred.result.Rows`.
+    write : callable
+        Takes each chunk of bytes in order (e.g. a binary file's ``write``).
     """
     from ..result import Rows
 
@@ -133,7 +152,18 @@ def stream_json(doc: dict, write) -> None:
 
 def encode_rows(rows: list) -> bytes:
     """The JSON of a list of rows without its brackets (what stream_json writes of each chunk of Rows): NaN and
-    infinities as null, floats in shortest round-trip form; empty for no rows."""
+    infinities as null, floats in shortest round-trip form; empty for no rows.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The rows to encode.
+
+    Returns
+    -------
+    bytes
+        The comma-separated JSON objects (no brackets).
+    """
     return _dumps(rows)[1:-1] if rows else b""
 
 
@@ -149,6 +179,16 @@ def defuse(text: str) -> str:
     prefixed with a single quote, which Excel and LibreOffice show as a text
     cell and never evaluate. Used for the ``excel-eu`` CSV dialect (made to be
     opened in Excel); the standard CSV keeps text verbatim (it is data).
+
+    Parameters
+    ----------
+    text : str
+        A text cell.
+
+    Returns
+    -------
+    str
+        ``text``, prefixed with ``'`` when it starts with a formula character.
     """
     return "'" + text if text.startswith(FORMULA_START) else text
 
@@ -212,7 +252,18 @@ def _column_arrays(frame) -> list:
 
 
 def np_array(values):
-    """``values`` as a numpy array (an extension array, e.g. nullable integers, through to_numpy)."""
+    """``values`` as a numpy array (an extension array, e.g. nullable integers, through to_numpy).
+
+    Parameters
+    ----------
+    values : array_like
+        A numpy array, a pandas Series or extension array, or a sequence.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``values`` itself when it already is one (no copy).
+    """
     import numpy as np
 
     return (
@@ -229,6 +280,15 @@ def write_csv_file(path, frame, dialect: str = "standard") -> None:
     ``dialect="excel-eu"``: what a Belgian, French or German Excel opens as columns: ';' separators,
     decimal commas, lists joined with '|', a UTF-8 byte-order mark (so 'µ' and '°' survive), and text that
     would start a formula prefixed with ``'`` (see ``defuse``). The standard dialect writes text verbatim.
+
+    Parameters
+    ----------
+    path : str, pathlib.Path or binary file
+        Where to write.
+    frame : mapping or capred.result.Spool
+        Column name -> array (all of one length), or a Spool of such blocks.
+    dialect : {"standard", "excel-eu"}, optional
+        The CSV dialect (default "standard").
     """
     import numpy as np
 
@@ -315,14 +375,40 @@ def _float_lines(arrays, sep: str, eu: bool, start: int, stop: int) -> list[str]
 
 
 def encode_csv(frame) -> bytes:
-    """The bytes write_csv_file writes (for tests and small tables)."""
+    """The bytes write_csv_file writes (for tests and small tables).
+
+    Parameters
+    ----------
+    frame : mapping
+        Column name -> array (all of one length).
+
+    Returns
+    -------
+    bytes
+        The standard-dialect CSV.
+    """
     buf = io.BytesIO()
     write_csv_file(buf, frame)
     return buf.getvalue()
 
 
 def safe_name(name: str, taken: set[str], limit: int = 80) -> str:
-    """A file-name stem for a user label (material, sheet), unique among ``taken`` (which it joins)."""
+    """A file-name stem for a user label (material, sheet), unique among ``taken`` (which it joins).
+
+    Parameters
+    ----------
+    name : str
+        The user's label.
+    taken : set of str
+        Stems already used (lower case); the new stem is added to it.
+    limit : int, optional
+        Most characters of the stem before a ``_2``, ``_3`` suffix (default 80).
+
+    Returns
+    -------
+    str
+        ``name`` with every character but letters, digits, ``.``, ``-`` and ``_`` replaced by ``_``.
+    """
     stem = re.sub(r"[^\w.-]", "_", name, flags=re.ASCII).strip(".") or "unnamed"
     stem = stem[:limit]
     candidate, k = stem, 2
@@ -343,7 +429,18 @@ BATCH_FILE_PATTERNS = ("season_*.csv",)
 
 def batch_file_names(root) -> list[str]:
     """Every root file name a batch writes or has written in ``root``: BATCH_FILES, the files there that
-    match BATCH_FILE_PATTERNS, and those its provenance.json records."""
+    match BATCH_FILE_PATTERNS, and those its provenance.json records.
+
+    Parameters
+    ----------
+    root : str or pathlib.Path
+        A batch's output folder.
+
+    Returns
+    -------
+    list of str
+        File names, without repeats, in that order.
+    """
     import fnmatch
 
     names = list(BATCH_FILES)
@@ -393,6 +490,16 @@ def foreign_files(folder) -> list[str]:
     in it was written by the run its provenance.json records (the files
     browsers leave, ``OS_LITTER``, do not count). A folder without a capred
     provenance.json has only foreign files.
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        A run folder (none there: no foreign file).
+
+    Returns
+    -------
+    list of str
+        Relative paths; a folder ends with ``/``.
     """
     folder = Path(folder)
     if not folder.is_dir():
@@ -438,6 +545,16 @@ def batch_record(root) -> dict:
     A name holds two hashes only while its file is being replaced (the one
     before and the one after), so a batch killed at any moment leaves a file
     the record still recognises.
+
+    Parameters
+    ----------
+    root : str or pathlib.Path
+        A batch's output folder.
+
+    Returns
+    -------
+    dict
+        File name -> list of SHA-256 hex digests; empty without a batch's provenance.json.
     """
     prov = _provenance(Path(root))
     files = prov.get("batch_files") if prov is not None and prov.get("command") == "batch" else None
@@ -455,6 +572,16 @@ def foreign_batch_files(root) -> list[str]:
     index.csv also by its header (folders of earlier versions). A
     provenance.json that is not a batch's (a single run's report) is foreign
     too: a batch root is not a report folder.
+
+    Parameters
+    ----------
+    root : str or pathlib.Path
+        A batch's output folder.
+
+    Returns
+    -------
+    list of str
+        Names of the root files capred did not write.
     """
     root = Path(root)
     record = batch_record(root)
@@ -490,6 +617,20 @@ def check_target(out, inputs=(), replace: bool = True) -> Path:
     folder per input are written: refused where one of those root files
     exists that capred did not write, e.g. a manifest named season.csv).
     Raises OutputError with one clear message.
+
+    Parameters
+    ----------
+    out : str or pathlib.Path
+        The output folder (``--out``).
+    inputs : sequence of str or pathlib.Path, optional
+        The input files, which the output folder must not hold or replace.
+    replace : bool, optional
+        True (default) for a run folder, False for a batch root.
+
+    Returns
+    -------
+    pathlib.Path
+        The absolute path of ``out``.
     """
     try:
         return _check_target(Path(os.path.abspath(out)), inputs, replace)
@@ -689,23 +830,59 @@ class RunFolder:
             raise _os_error(out, exc) from None
 
     def write_bytes(self, name: str, data: bytes) -> None:
+        """Write file ``name`` of the run into the work folder and record it (see ``done``).
+
+        Parameters
+        ----------
+        name : str
+            File name, relative to the run folder.
+        data : bytes
+            The whole content.
+        """
         with open(self.tmp / name, "wb") as fh:
             fh.write(data)
         self.done(name)
 
     def path_for(self, name: str) -> Path:
-        """Path to write ``name`` to directly (call ``done(name)`` afterwards)."""
+        """Path to write ``name`` to directly (call ``done(name)`` afterwards).
+
+        Parameters
+        ----------
+        name : str
+            File name, relative to the run folder.
+
+        Returns
+        -------
+        pathlib.Path
+            Its path in the work folder.
+        """
         return self.tmp / name
 
     def done(self, name: str) -> None:
         """Record a file written into the work folder (with the usual permissions); an SVG is made well-formed
-        (a control character in a label, which XML forbids, is shown as its control picture)."""
+        (a control character in a label, which XML forbids, is shown as its control picture).
+
+        Parameters
+        ----------
+        name : str
+            File name, relative to the run folder.
+        """
         if name.endswith(".svg"):
             _safe_svg(self.tmp / name)
         os.chmod(self.tmp / name, 0o666 & ~_UMASK)
         self.names.append(name)
 
     def commit(self) -> list[Path]:
+        """Move the work folder into place as the output folder, replacing an earlier run of capred's (under a lock).
+
+        Raises OutputError, leaving the earlier run intact, when the output folder is a file or now holds a file
+        its provenance.json does not list.
+
+        Returns
+        -------
+        list of pathlib.Path
+            The files written, in the output folder.
+        """
         out = self.out
         with _locked(out.parent):
             _sweep_stale(out.parent, out.name[:100])
@@ -726,6 +903,7 @@ class RunFolder:
         return [out / n for n in self.names]
 
     def abort(self) -> None:
+        """Remove the work folder and what was written into it (the output folder is left as it was)."""
         shutil.rmtree(self.tmp, ignore_errors=True)
 
 
@@ -740,6 +918,26 @@ def write_run(
     figures and report.html drawn by capred.report.outputs; this module never
     draws), and ``provenance.json``. Returns the paths written.
     Raises OutputError (nothing written, an earlier run in ``out`` intact).
+
+    Parameters
+    ----------
+    result : capred.result.Result
+        The run to write.
+    out : str or pathlib.Path
+        The output folder.
+    command_line : str or None, optional
+        Recorded in provenance.json (default: ``sys.argv`` joined).
+    csv_dialect : {"standard", "excel-eu"}, optional
+        Dialect of the CSV tables.
+    xlsx : bool, optional
+        Also write every table into ``tables.xlsx``.
+    artifacts : callable or None, optional
+        ``artifacts(folder)`` writes further files (figures, report) into the :class:`RunFolder`.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written, in ``out``.
     """
     out = check_target(out, [i.path for i in result.inputs if i.path != "<DataFrame>"])
     folder = RunFolder(out)
@@ -796,6 +994,16 @@ def second_core_free(variable: str = "CAPRED_PROCESSES") -> bool:
     ``capred bridge solve`` of 100,000 rows with the other core busy, 1.30 s CPU and 1.10 s wall in two processes
     against 1.22 s and 1.02 s in one (benchmarks/bench_bridge_cli.py). The bridge solver and the JSON writer ask
     with CAPRED_PROCESSES, the figure sheets with CAPRED_FIGURE_PROCESSES.
+
+    Parameters
+    ----------
+    variable : str, optional
+        Environment variable that forces the answer ("1": one process, "2": two).
+
+    Returns
+    -------
+    bool
+        True when a second process is worth starting.
     """
     if os.name != "posix" or not hasattr(os, "fork"):
         return False
@@ -875,7 +1083,22 @@ class _JsonWriter:
 
 
 def provenance(result, outputs: list[str], command_line: str | None = None) -> dict:
-    """Record of a run: capred version, command line, input hashes, options, outputs."""
+    """Record of a run: capred version, command line, input hashes, options, outputs.
+
+    Parameters
+    ----------
+    result : capred.result.Result
+        The run.
+    outputs : list of str
+        Names of the files written (provenance.json is added).
+    command_line : str or None, optional
+        The command line to record (default: ``sys.argv`` joined).
+
+    Returns
+    -------
+    dict
+        The provenance.json document (creation time in UTC).
+    """
     from datetime import datetime
 
     doc = result.header()
@@ -963,7 +1186,20 @@ def _write_batch_provenance(root: Path, record: dict, runs, command_line) -> Non
 
 
 def atomic_write_bytes(path: Path, data: bytes) -> Path:
-    """One file written under a temporary name and renamed into place (used for a batch's index.csv)."""
+    """One file written under a temporary name and renamed into place (used for a batch's index.csv).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file to write (its folder is created when absent).
+    data : bytes
+        The whole content.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     path = Path(path)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)

@@ -338,7 +338,18 @@ class ModelInputs:
     tan_phi_sat: np.ndarray | None = None
 
     def subset(self, mask) -> ModelInputs:
-        """The same inputs for the tests selected by ``mask`` (a boolean mask or indices)."""
+        """The same inputs for the tests selected by ``mask`` (a boolean mask or indices).
+
+        Parameters
+        ----------
+        mask : array_like of bool or int
+            Which tests to keep.
+
+        Returns
+        -------
+        ModelInputs
+            Per-test arrays (and cached arrays) subset; constants and fitted parameters shared.
+        """
         arrays = {
             k: getattr(self, k)[mask]
             for k in ("sigma_N", "suction", "S_R", "R", "tau_max", "wet", "material", "c", "tan_phi")
@@ -354,13 +365,39 @@ class ModelInputs:
         )
 
     def cached(self, key: str, compute) -> np.ndarray:
-        """A per-test array computed once (e.g. exact bridges), kept through ``subset``."""
+        """A per-test array computed once (e.g. exact bridges), kept through ``subset``.
+
+        Parameters
+        ----------
+        key : str
+            Name of the array in the cache.
+        compute : callable
+            ``compute()`` returns the per-test array; called only when ``key`` is not cached yet.
+
+        Returns
+        -------
+        numpy.ndarray
+            The per-test array (SI units of what ``compute`` returns).
+        """
         if key not in self.cache:
             self.cache[key] = compute()
         return self.cache[key]
 
     def per_test(self, model: str, name: str) -> np.ndarray:
-        """A fitted parameter of ``model`` for every test (from its material's fit; NaN where not fitted)."""
+        """A fitted parameter of ``model`` for every test (from its material's fit; NaN where not fitted).
+
+        Parameters
+        ----------
+        model : str
+            A model's registry name.
+        name : str
+            The parameter's internal name (SI units).
+
+        Returns
+        -------
+        numpy.ndarray
+            One value per test [SI unit of the parameter].
+        """
         fits = self.fitted.get(model, {})
         return np.array([fits[m][name] if m in fits else np.nan for m in self.material], dtype=float)
 

@@ -241,13 +241,41 @@ class PTVolumeParameters:
             raise OptionError("Pedrotti-Tarantino parameters: " + "; ".join(problems))
 
     def line(self, part: str) -> tuple[float, float, float]:
-        """(λ, κ, e_ncl) of part ``"W"`` (slurry) or ``"A"`` (dry powder)."""
+        """(λ, κ, e_ncl) of part ``"W"`` (slurry) or ``"A"`` (dry powder).
+
+        Parameters
+        ----------
+        part : {"W", "A"}
+            The clay part; another value raises ValueError.
+
+        Returns
+        -------
+        tuple of float
+            Compression index λ [-], swelling index κ [-] and void ratio of the ncl at the reference stress [-].
+        """
         if part not in ("W", "A"):
             raise ValueError(f"part must be 'W' or 'A', not {part!r}")
         return getattr(self, f"lambda_{part}"), getattr(self, f"kappa_{part}"), getattr(self, f"e_ncl_{part}")
 
     def ncl(self, part: str, sigma_eff):
-        """Void ratio on the ncl of part ``"W"`` or ``"A"`` at effective stress ``sigma_eff`` [Pa]."""
+        """Void ratio on the ncl of part ``"W"`` or ``"A"`` at effective stress ``sigma_eff`` [Pa].
+
+        Parameters
+        ----------
+        part : {"W", "A"}
+            The clay part.
+        sigma_eff : float or array_like
+            Effective stress of the part [Pa], > 0.
+
+        Returns
+        -------
+        numpy.ndarray
+            Void ratio [-] ``e_ncl - λ ln(σ'/σ_ref)`` (``ncl_void_ratio``).
+
+        References
+        ----------
+        Pedrotti & Tarantino (submitted), eq. 10 integrated: (Δe)_ncl = −λ Δ(ln σ').
+        """
         lam, _, e0 = self.line(part)
         return ncl_void_ratio(sigma_eff, lam, e0, self.reference_stress)
 

@@ -131,23 +131,84 @@ class SkeletonCompliance:
     """
 
     def initial_apex(self, p_eff0: float) -> float:
-        """Apex ``p_pi`` [Pa] at the start of the drying path, where ``p' = p_eff0`` [Pa]."""
+        """Apex ``p_pi`` [Pa] at the start of the drying path, where ``p' = p_eff0`` [Pa].
+
+        Parameters
+        ----------
+        p_eff0 : float
+            Mean effective stress at the start [Pa].
+
+        Returns
+        -------
+        float
+            ``inf`` here (no yield surface); subclasses with a surface override it.
+        """
         return math.inf
 
     def a11(self, state: SkeletonState, loading: bool = True) -> float:
-        """Total ``A11 = d eps_p / dp'`` [1/Pa] at ``state``; ``loading``: ``dp' > 0``."""
+        """Total ``A11 = d eps_p / dp'`` [1/Pa] at ``state``; ``loading``: ``dp' > 0``.
+
+        Parameters
+        ----------
+        state : SkeletonState
+            Current ``p'`` [Pa], void ratio [-] and apex ``p_pi`` [Pa].
+        loading : bool, optional
+            True when ``dp' > 0`` (default).
+
+        Returns
+        -------
+        float
+            ``A11`` [1/Pa] (eq. 14 of Morvan et al. 2016).
+        """
         raise NotImplementedError
 
     def a11_plastic(self, state: SkeletonState, loading: bool = True) -> float:
-        """Plastic part of ``A11`` [1/Pa]; 0 for an elastic skeleton."""
+        """Plastic part of ``A11`` [1/Pa]; 0 for an elastic skeleton.
+
+        Parameters
+        ----------
+        state : SkeletonState
+            Current ``p'`` [Pa], void ratio [-] and apex ``p_pi`` [Pa].
+        loading : bool, optional
+            True when ``dp' > 0`` (default).
+
+        Returns
+        -------
+        float
+            Plastic compliance [1/Pa].
+        """
         return 0.0
 
     def a13(self, state: SkeletonState) -> float:
-        """``A13 = d eps_p / ds`` at constant ``p'`` [1/Pa]; 0 (suction acts through ``p'`` alone, eq. 13)."""
+        """``A13 = d eps_p / ds`` at constant ``p'`` [1/Pa]; 0 (suction acts through ``p'`` alone, eq. 13).
+
+        Parameters
+        ----------
+        state : SkeletonState
+            Current ``p'`` [Pa], void ratio [-] and apex ``p_pi`` [Pa].
+
+        Returns
+        -------
+        float
+            ``A13`` [1/Pa].
+        """
         return 0.0
 
     def harden(self, state: SkeletonState, deps_plastic: float) -> float:
-        """Apex after a plastic volumetric strain ``deps_plastic`` [-] (compression positive) [Pa]."""
+        """Apex after a plastic volumetric strain ``deps_plastic`` [-] (compression positive) [Pa].
+
+        Parameters
+        ----------
+        state : SkeletonState
+            State before the step.
+        deps_plastic : float
+            Plastic volumetric strain increment [-], compression positive.
+
+        Returns
+        -------
+        float
+            The apex ``p_pi`` [Pa]; unchanged here (no hardening).
+        """
         return state.p_pi
 
     def __call__(self, p_eff: float, void_ratio: float) -> float:
@@ -228,6 +289,20 @@ class ElasticCompliance(SkeletonCompliance):
     kappa_elastic: float
 
     def a11(self, state: SkeletonState, loading: bool = True) -> float:
+        """Elastic ``A11 = kappa_elastic / ((1 + e) p')`` [1/Pa] at ``state`` (eq. 5 of Morvan et al. 2016).
+
+        Parameters
+        ----------
+        state : SkeletonState
+            Current ``p'`` [Pa] and void ratio [-].
+        loading : bool, optional
+            Ignored: the same on loading and unloading.
+
+        Returns
+        -------
+        float
+            ``A11`` [1/Pa].
+        """
         return float(elastic_compliance(state.p_eff, state.void_ratio, self.kappa_elastic))
 
     def __call__(self, p_eff: float, void_ratio: float) -> float:
@@ -306,9 +381,37 @@ class BoundingSurfaceCompliance(SkeletonCompliance):
             raise OptionError(f"--interpolation-h must be > 0 (got {self.interpolation_h})")
 
     def initial_apex(self, p_eff0: float) -> float:
+        """Apex ``p_pi0 = p'_0 + A_ini`` [Pa] of the bounding surface at the start of the drying path.
+
+        Parameters
+        ----------
+        p_eff0 : float
+            Mean effective stress at the start [Pa].
+
+        Returns
+        -------
+        float
+            ``p_pi0`` [Pa].
+        """
         return p_eff0 + self.a_ini
 
     def a11_plastic(self, state: SkeletonState, loading: bool = True) -> float:
+        """Plastic part of ``A11`` [1/Pa]: ``(lambda0 - kappa) / ((1 + e) p') / (1 + h delta / p')``, ``delta = p_pi - p'``.
+
+        Zero on unloading and, without ``h``, inside the surface (the sharp Cam-clay surface).
+
+        Parameters
+        ----------
+        state : SkeletonState
+            Current ``p'`` [Pa], void ratio [-] and apex ``p_pi`` [Pa].
+        loading : bool, optional
+            True when ``dp' > 0`` (default).
+
+        Returns
+        -------
+        float
+            Plastic compliance [1/Pa].
+        """
         if not loading:
             return 0.0
         p = state.p_eff
@@ -322,10 +425,38 @@ class BoundingSurfaceCompliance(SkeletonCompliance):
         return (self.lambda0 - self.kappa_elastic) / ((1.0 + state.void_ratio) * p) / (1.0 + ratio)
 
     def a11(self, state: SkeletonState, loading: bool = True) -> float:
+        """Total ``A11`` [1/Pa]: elastic ``kappa / ((1 + e) p')`` plus :meth:`a11_plastic`.
+
+        Parameters
+        ----------
+        state : SkeletonState
+            Current ``p'`` [Pa], void ratio [-] and apex ``p_pi`` [Pa].
+        loading : bool, optional
+            True when ``dp' > 0`` (default).
+
+        Returns
+        -------
+        float
+            ``A11`` [1/Pa].
+        """
         elastic = self.kappa_elastic / ((1.0 + state.void_ratio) * state.p_eff)
         return elastic + self.a11_plastic(state, loading)
 
     def harden(self, state: SkeletonState, deps_plastic: float) -> float:
+        """Apex after a plastic step: ``p_pi (1 + (1 + e) deps_plastic / (lambda0 - kappa))`` [Pa] (explicit Cam-clay hardening).
+
+        Parameters
+        ----------
+        state : SkeletonState
+            State before the step.
+        deps_plastic : float
+            Plastic volumetric strain increment [-], compression positive.
+
+        Returns
+        -------
+        float
+            The new apex ``p_pi`` [Pa].
+        """
         # explicit step of dp_pi / p_pi = (1 + e) d eps^p / (lambda0 - kappa): on the surface it moves the apex by
         # exactly the step's dp', so a normally consolidated state stays on its surface up to rounding
         return state.p_pi * (1.0 + (1.0 + state.void_ratio) * deps_plastic / (self.lambda0 - self.kappa_elastic))

@@ -17,6 +17,22 @@ LINES = {
 
 
 def plot_curve(ax, curve, inside: bool):
+    """Effective stress σ' [kPa] of each model against S_R [-] of a pendular bridge between spheres in contact.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    curve : capred.pipelines.bridge.CurveResult
+        A ``capred bridge curve`` run (SI units).
+    inside : bool
+        True: the pendular regime only (S_R below the pendular limit); False: the whole concave range, the limit dotted.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
+    """
     sel = curve.S_R < curve.pendular_limit if inside else np.ones(curve.S_R.size, bool)
     for name, v in curve.models().items():
         ax.plot(curve.S_R[sel], v[sel] / 1e3, color=style(name)["color"], **LINES[name])
@@ -32,6 +48,17 @@ def plot_curve(ax, curve, inside: bool):
 
 
 def sheet_curve(curve) -> Sheet:
+    """The sheet of ``capred bridge curve``: the pendular regime and the whole concave range, two panels.
+
+    Parameters
+    ----------
+    curve : capred.pipelines.bridge.CurveResult
+        A ``capred bridge curve`` run (SI units).
+
+    Returns
+    -------
+    capred.report.sheets.Sheet
+    """
     return Sheet(
         f"Effective stress of a pendular bridge against the degree of saturation, spheres in contact "
         f"(R = {curve.R * 1e3:g} mm, γ = {curve.gamma:g} N/m, θ = {np.degrees(curve.contact_angle_rad):g}°)",
@@ -57,6 +84,21 @@ COMPARE_LABEL = {
 
 
 def plot_compare(ax, rows):
+    """Predicted against measured capillary force [mN] of each sphere pair: exact bridge, toroidal, Willett et al. (2000)
+    and Israelachvili, with the 1:1 line.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    rows : list of dict
+        The JSON rows of a ``capred bridge compare`` run (forces in mN; None where a model has no bridge).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
+    """
     meas = np.array([r["F_measured_mN"] for r in rows], float)
     hi = 0.0
     for name in ("exact", "toroidal", "willett", "israelachvili"):
@@ -72,6 +114,17 @@ def plot_compare(ax, rows):
 
 
 def sheet_compare(rows) -> Sheet:
+    """The sheet of ``capred bridge compare``: measured against predicted forces, one panel.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The JSON rows of a ``capred bridge compare`` run (forces in mN; None where a model has no bridge).
+
+    Returns
+    -------
+    capred.report.sheets.Sheet
+    """
     return Sheet(
         "Measured capillary forces against theory",
         [
@@ -87,7 +140,15 @@ def sheet_compare(rows) -> Sheet:
 
 
 def plot_rupture(ax, rows):
-    """Exact rupture distance against V^(1/3), one marker per contact angle, Lian's line for each."""
+    """Exact rupture distance against V^(1/3), one marker per contact angle, Lian's line for each.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    rows : list of dict
+        The JSON rows of a ``capred bridge rupture`` run (volumes in mm³, distances in mm, angles in deg).
+    """
     palette = [OKABE_ITO[c] for c in ("black", "blue", "vermillion", "green", "purple", "orange", "sky")]
     ok = [r for r in rows if r["status"] == "ok"]
     angles = sorted({r["contact_angle_deg"] for r in ok})
@@ -120,6 +181,17 @@ def plot_rupture(ax, rows):
 
 
 def sheet_rupture(rows) -> Sheet:
+    """The sheet of ``capred bridge rupture``: rupture distance against Lian et al. (1993), one panel.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The JSON rows of a ``capred bridge rupture`` run (volumes in mm³, distances in mm, angles in deg).
+
+    Returns
+    -------
+    capred.report.sheets.Sheet
+    """
     return Sheet(
         "Rupture distance against Lian et al. (1993)",
         [

@@ -39,7 +39,17 @@ def error_map(result, name: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def plot_error_map(ax, result, name: str):
     """Squares at the grid's (D/R, V/R^3) coloured by the law's worst |error| there; open circles: within the
-    tolerance at every angle and geometry."""
+    tolerance at every angle and geometry.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.bridge_laws.LawsResult
+        A ``capred bridge laws`` run.
+    name : str
+        A key of ``capred.physics.bridge_laws.LAWS``.
+    """
     from matplotlib.colors import LogNorm
 
     from ..physics.bridge_laws import LAWS
@@ -65,7 +75,17 @@ def plot_error_map(ax, result, name: str):
 
 
 def sheet_laws(result) -> Sheet:
-    """One error map per registered law, two per row."""
+    """One error map per registered law, two per row.
+
+    Parameters
+    ----------
+    result : capred.pipelines.bridge_laws.LawsResult
+        A ``capred bridge laws`` run.
+
+    Returns
+    -------
+    capred.report.sheets.Sheet
+    """
     from ..physics.bridge_laws import LAWS
 
     tol = f"{result.tolerance:.0%}"

@@ -9,6 +9,17 @@ from .render import MAX_ROWS, row_table, spec
 
 
 def bridge_solve_tables(result) -> list[TableSpec]:
+    """Console tables of ``capred bridge solve``: the summary, then the first rows of the exact bridges (all in solve.csv).
+
+    Parameters
+    ----------
+    result : capred.pipelines.bridge_solve.BridgeResult
+        A ``capred bridge solve`` run.
+
+    Returns
+    -------
+    list of capred.result.TableSpec
+    """
     keys = [
         "case",
         "r0_mm",
@@ -41,6 +52,17 @@ def bridge_solve_tables(result) -> list[TableSpec]:
 
 
 def bridge_compare_tables(result) -> list[TableSpec]:
+    """Console table of ``capred bridge compare``: measured against predicted force [mN] per pair (all in compare.csv).
+
+    Parameters
+    ----------
+    result : capred.pipelines.bridge.CompareResult
+        A ``capred bridge compare`` run.
+
+    Returns
+    -------
+    list of capred.result.TableSpec
+    """
     keys = ["case", "F_measured_mN", "F_exact_mN", "F_toroidal_mN", "F_willett_mN", "F_israelachvili_mN", "status"]
     rows = result.rows()
     present = [k for k in keys if rows and k in rows[0]]
@@ -48,6 +70,18 @@ def bridge_compare_tables(result) -> list[TableSpec]:
 
 
 def bridge_curve_tables(result) -> list[TableSpec]:
+    """Console table of ``capred bridge curve``: each model's RMS relative error of σ' against the exact bridge,
+    inside and outside the pendular regime.
+
+    Parameters
+    ----------
+    result : capred.pipelines.bridge.CurveResult
+        A ``capred bridge curve`` run.
+
+    Returns
+    -------
+    list of capred.result.TableSpec
+    """
     err = result.to_json()["rms_relative_error_vs_exact"]
     lim = result.pendular_limit
     t = spec("RMS relative error of σ' against the exact bridge", ["model", f"S_R < {lim:g}", f"S_R >= {lim:g}"])
@@ -58,7 +92,17 @@ def bridge_curve_tables(result) -> list[TableSpec]:
 
 def bridge_laws_tables(result) -> list[TableSpec]:
     """`bridge laws`: each law over every point, the headline (geometry x gap), and the regions with the laws
-    within the tolerance."""
+    within the tolerance.
+
+    Parameters
+    ----------
+    result : capred.pipelines.bridge_laws.LawsResult
+        A ``capred bridge laws`` run.
+
+    Returns
+    -------
+    list of capred.result.TableSpec
+    """
     from ..physics.bridge_laws import LAWS
 
     tol = f"{result.tolerance:.0%}"

@@ -48,7 +48,22 @@ def _bounding_curve(S, params, s_e, bc_lambda, bounding):
 
 
 def plot_cases(ax, cases, s_e=None, bc_lambda=None, bounding=None):
-    """B(S_r) of every distinct parameter set among the cases, with the cases of that set on it."""
+    """B(S_r) of every distinct parameter set among the cases, with the cases of that set on it.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    cases : dict
+        (kappa [-], e0 [-], p0 [Pa], u0 [Pa], pa0 [Pa]) -> (S_r values [-], B values [-]).
+    s_e : float or None, optional
+        Air-entry suction [Pa]: also draw B with suction equilibrium (Morvan et al. 2016, section 3).
+    bc_lambda : float or None, optional
+        Brooks-Corey index λ [-] of that curve.
+    bounding : dict or None, optional
+        ``lambda0``, ``a_ini`` [Pa], ``interpolation_h``, ``air_pressure``: also draw the bounding-surface
+        reconstruction's B (Morvan et al. 2016, section 4).
+    """
     S = np.linspace(0.5, 1.0, 400)
     for k, (params, pts) in enumerate(cases.items()):
         kappa, e0, p0, u0, pa0 = params
@@ -96,7 +111,15 @@ _CURVE_LABEL = {
 
 
 def plot_curves(ax, curves: dict):
-    """B(S_r) of each model of `skempton-b --curve`, as Morvan et al. (2016) Fig. 1, 5 and 6 draw it."""
+    """B(S_r) of each model of `skempton-b --curve`, as Morvan et al. (2016) Fig. 1, 5 and 6 draw it.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    curves : dict
+        ``"S_r"`` -> degrees of saturation [-], and each model's key -> its B values [-].
+    """
     S = curves["S_r"]
     for key, B in curves.items():
         if key != "S_r":
@@ -119,7 +142,38 @@ def sheet_skempton(
     curve_names: list[str] | None = None,
 ) -> Sheet:
     """``cases``: (kappa, e0, p0, u0, pa0) -> (S_r values, B values); or ``curves`` (``skempton-b --curve``):
-    S_r and B per model. The parameter studies (Morvan et al. 2016, Fig. 2, 3, 5) use the options' values."""
+    S_r and B per model. The parameter studies (Morvan et al. 2016, Fig. 2, 3, 5) use the options' values.
+
+    Parameters
+    ----------
+    cases : dict or None, optional
+        See :func:`plot_cases` (used when ``curves`` is None).
+    kappa : float, optional
+        Slope of the elastic line [-] of the parameter studies.
+    e0 : float, optional
+        Initial void ratio [-].
+    p0 : float, optional
+        Total mean stress [Pa].
+    u0 : float, optional
+        Initial pore pressure [Pa].
+    pa0 : float, optional
+        Absolute initial air pressure [Pa].
+    s_e : float or None, optional
+        Air-entry suction [Pa]: also draw B with suction equilibrium (Morvan et al. 2016, section 3).
+    bc_lambda : float or None, optional
+        Brooks-Corey index λ [-] of that curve.
+    bounding : dict or None, optional
+        ``lambda0``, ``a_ini`` [Pa], ``interpolation_h``, ``air_pressure``: also draw the bounding-surface
+        reconstruction's B (Morvan et al. 2016, section 4).
+    curves : dict or None, optional
+        See :func:`plot_curves`.
+    curve_names : list of str or None, optional
+        The models of ``curves`` as the caption names them.
+
+    Returns
+    -------
+    capred.report.sheets.Sheet
+    """
     S = np.linspace(0.5, 1.0, 400)
     pe = p0 - u0
     lam = bc_lambda if bc_lambda is not None else 0.8
@@ -172,7 +226,21 @@ def sheet_skempton(
 
 def plot_prism_mohr(ax, break_tension_kPa, friction_angle_deg, P_kmax_kPa, labels=None):
     """Mohr's diagram of the prism break (Bernatzik 1948): the circle from P_kmax to P_kmax + sigma_b touches
-    the envelope tau = sigma tan rho; the isotropic capillary pressure P_kmax is where the circle starts."""
+    the envelope tau = sigma tan rho; the isotropic capillary pressure P_kmax is where the circle starts.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    break_tension_kPa : array_like
+        Break tension σ_b of each case [kPa].
+    friction_angle_deg : array_like
+        Friction angle ρ of each case [deg].
+    P_kmax_kPa : array_like
+        Isotropic capillary pressure P_kmax of each case [kPa].
+    labels : list of str or None, optional
+        Legend name of each case (default "case 1", ...).
+    """
     sb = np.asarray(break_tension_kPa, float)
     rho = np.asarray(friction_angle_deg, float)
     P = np.asarray(P_kmax_kPa, float)
@@ -209,7 +277,23 @@ def plot_prism_mohr(ax, break_tension_kPa, friction_angle_deg, P_kmax_kPa, label
 
 
 def sheet_prism(break_tension_kPa, friction_angle_deg, P_kmax_kPa, labels=None) -> Sheet:
-    """The figure of `capred prism`: Mohr's diagram of each case at break (Bernatzik 1948, the text's figure)."""
+    """The figure of `capred prism`: Mohr's diagram of each case at break (Bernatzik 1948, the text's figure).
+
+    Parameters
+    ----------
+    break_tension_kPa : array_like
+        Break tension σ_b of each case [kPa].
+    friction_angle_deg : array_like
+        Friction angle ρ of each case [deg].
+    P_kmax_kPa : array_like
+        Isotropic capillary pressure P_kmax of each case [kPa].
+    labels : list of str or None, optional
+        Legend name of each case (default "case 1", ...).
+
+    Returns
+    -------
+    capred.report.sheets.Sheet
+    """
     return Sheet(
         "Prism test: Mohr's diagram at break",
         [

@@ -81,7 +81,17 @@ def _moving_range(ax, result):
 
 
 def sheet_history(result) -> Sheet:
-    """The control chart of a `capred history` result: individuals (with 95 % intervals) over moving range."""
+    """The control chart of a `capred history` result: individuals (with 95 % intervals) over moving range.
+
+    Parameters
+    ----------
+    result : capred.pipelines.history.HistoryResult
+        A ``capred history`` run.
+
+    Returns
+    -------
+    capred.report.sheets.Sheet
+    """
     what = f"{result.quantity}" + (f" of {result.material}" if result.material else "")
     return Sheet(
         f"Control chart: {what}",
@@ -105,7 +115,17 @@ def sheet_history(result) -> Sheet:
 
 
 def history_tables(result) -> list[TableSpec]:
-    """The runs with their value, interval, moving range and flag; then the limits."""
+    """The runs with their value, interval, moving range and flag; then the limits.
+
+    Parameters
+    ----------
+    result : capred.pipelines.history.HistoryResult
+        A ``capred history`` run.
+
+    Returns
+    -------
+    list of capred.result.TableSpec
+    """
     from .render import fmt, row_table
 
     rows = [

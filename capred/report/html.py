@@ -561,6 +561,20 @@ def render_season(frame, sections: dict | None = None, files=()) -> str:
     The page fits 1280 px and prints on A4 landscape without losing a column: wide tables are split into
     column groups that repeat the input. Rows are built here, column by column (a template loop per cell
     cost ~0.8 s for 1,000 files).
+
+    Parameters
+    ----------
+    frame : mapping
+        Column name -> array, one row per run of the batch.
+    sections : dict or None, optional
+        Command -> its detail columns.
+    files : sequence of str, optional
+        The batch's files, listed on the page.
+
+    Returns
+    -------
+    str
+        The HTML page.
     """
     columns = [str(c) for c in frame]
     texts = _season_cells(frame, columns)

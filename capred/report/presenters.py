@@ -159,20 +159,61 @@ PRESENTERS: dict[str, Presenter] = {
 
 
 def presenter(result) -> Presenter:
-    """The Presenter of a result's command (a result of an unknown command shows no figure and no table)."""
+    """The Presenter of a result's command (a result of an unknown command shows no figure and no table).
+
+    Parameters
+    ----------
+    result : capred.result.Result
+        Any command's result.
+
+    Returns
+    -------
+    Presenter
+    """
     return PRESENTERS.get(result.command, Presenter(_none, lambda r: []))
 
 
 def figures(result) -> dict:
-    """Figure sheets of a result: {file stem: Sheet}."""
+    """Figure sheets of a result: {file stem: Sheet}.
+
+    Parameters
+    ----------
+    result : capred.result.Result
+        Any command's result.
+
+    Returns
+    -------
+    dict
+        File stem -> capred.report.sheets.Sheet.
+    """
     return presenter(result).figures(result)
 
 
 def draws_figures(result) -> bool:
-    """False for a command that never draws a figure (``bridge solve``, ``bridge yade-files``)."""
+    """False for a command that never draws a figure (``bridge solve``, ``bridge yade-files``).
+
+    Parameters
+    ----------
+    result : capred.result.Result
+        Any command's result.
+
+    Returns
+    -------
+    bool
+    """
     return presenter(result).figures is not _none
 
 
 def console_tables(result) -> list[TableSpec]:
-    """Summary tables of a result, for the console and report.html."""
+    """Summary tables of a result, for the console and report.html.
+
+    Parameters
+    ----------
+    result : capred.result.Result
+        Any command's result.
+
+    Returns
+    -------
+    list of capred.result.TableSpec
+    """
     return presenter(result).tables(result)

@@ -30,7 +30,17 @@ LABEL = {
 
 def stage_marks(result) -> list[tuple[str, int]]:
     """(label, point index) to annotate: points with a label of their own (A, B, C, D), else the first point
-    of every run of labels."""
+    of every run of labels.
+
+    Parameters
+    ----------
+    result : capred.pipelines.pt_volume.PTVolumeResult
+        A ``capred pt-volume`` run.
+
+    Returns
+    -------
+    list of tuple of (str, int)
+    """
     runs = result.stages
     single = [(s.label, s.first) for s in runs if s.first == s.last]
     return single or [(s.label, s.first) for s in runs]
@@ -61,7 +71,15 @@ def _annotate(ax, result, x, y, color) -> None:
 
 
 def plot_e_ln_sigma(ax, result):
-    """e^W against σ'_W and e^A against σ'_A (log axis), each with the ncl of its clay (Fig. 14-15)."""
+    """e^W against σ'_W and e^A against σ'_A (log axis), each with the ncl of its clay (Fig. 14-15).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.pt_volume.PTVolumeResult
+        A ``capred pt-volume`` run.
+    """
     pts, p = result.points, result.params
     positive = [v[np.isfinite(v) & (v > 0)] for v in (pts.sigma_W, pts.sigma_A, pts.sigma_star_W, pts.sigma_star_A)]
     allv = np.concatenate(positive)
@@ -84,7 +102,15 @@ def plot_e_ln_sigma(ax, result):
 
 
 def plot_e_step(ax, result):
-    """e, e^W and e^A against the step, stage labels on top."""
+    """e, e^W and e^A against the step, stage labels on top.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.pt_volume.PTVolumeResult
+        A ``capred pt-volume`` run.
+    """
     pts = result.points
     x = result.step
     ax.plot(x, pts.e, "-", color=SAMPLE["color"], marker=SAMPLE["marker"], ms=3, lw=1.2, label="sample $e$")
@@ -112,7 +138,15 @@ def plot_e_step(ax, result):
 
 
 def plot_e_net_stress(ax, result):
-    """e of the sample against the net stress σ − u_a (log axis), as the paper's Fig. 17 compares with tests."""
+    """e of the sample against the net stress σ − u_a (log axis), as the paper's Fig. 17 compares with tests.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.pt_volume.PTVolumeResult
+        A ``capred pt-volume`` run.
+    """
     pts = result.points
     net = pts.sigma - pts.u_a
     ok = net > 0
@@ -126,7 +160,17 @@ def plot_e_net_stress(ax, result):
 
 
 def sheet_pt_volume(result) -> Sheet:
-    """The sheet of a run: the two parts in e–ln σ', e along the path, e against net stress."""
+    """The sheet of a run: the two parts in e–ln σ', e along the path, e against net stress.
+
+    Parameters
+    ----------
+    result : capred.pipelines.pt_volume.PTVolumeResult
+        A ``capred pt-volume`` run.
+
+    Returns
+    -------
+    capred.report.sheets.Sheet
+    """
     illustrative = " Lines: EXAMPLE_KAOLIN, illustrative values." if result.options.illustrative() else ""
     return Sheet(
         "Volume change with two effective stresses (Pedrotti & Tarantino)",

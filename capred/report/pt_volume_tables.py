@@ -7,7 +7,17 @@ from .render import MAX_ROWS, fmt, spec
 
 
 def pt_volume_tables(result) -> list[TableSpec]:
-    """The lines used, the path points (at most 20 shown; all in results.csv) and the stages (label runs)."""
+    """The lines used, the path points (at most 20 shown; all in results.csv) and the stages (label runs).
+
+    Parameters
+    ----------
+    result : capred.pipelines.pt_volume.PTVolumeResult
+        A ``capred pt-volume`` run.
+
+    Returns
+    -------
+    list of capred.result.TableSpec
+    """
     js = result.to_json()
     p = js["parameters"]
     lines = spec(

@@ -74,7 +74,17 @@ def fmt(x, sig: int = SIGNIFICANT, sign: bool = False, scale: float | None = Non
 
 def magnitude(values) -> float:
     """The largest finite magnitude among ``values`` (numbers, None and text ignored), 0 when there is none:
-    the ``scale`` of ``fmt`` for a row or a column of one quantity."""
+    the ``scale`` of ``fmt`` for a row or a column of one quantity.
+
+    Parameters
+    ----------
+    values : iterable
+        Cells of a row or column.
+
+    Returns
+    -------
+    float
+    """
     out = 0.0
     for v in values:
         if isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v):
@@ -91,7 +101,27 @@ def row_table(
     total: int | None = None,
 ) -> TableSpec:
     """A per-row table of at most MAX_ROWS rows, saying how many there are (``total``, when ``rows`` holds only
-    the first ones) and where the rest is."""
+    the first ones) and where the rest is.
+
+    Parameters
+    ----------
+    title : str
+        The table's title.
+    rows : list of dict
+        The rows (at most MAX_ROWS are shown), values already formatted or numbers.
+    keys : list of str
+        The keys shown, in order; each key is the column header.
+    full_table : str or None, optional
+        The file that holds every row, named under the title when rows are left out.
+    left : tuple of str, optional
+        Keys whose columns are left-aligned.
+    total : int or None, optional
+        Number of rows in all (default ``len(rows)``).
+
+    Returns
+    -------
+    capred.result.TableSpec
+    """
     spec = TableSpec(title, [(k, "left" if k in left else "right") for k in keys])
     shown = rows[:MAX_ROWS]
     scale = {k: magnitude(r.get(k) for r in shown) for k in keys}  # per column: one quantity, one unit
@@ -121,7 +151,20 @@ def _folded_widths(spec: TableSpec) -> list[int]:
 
 
 def wrap_header(head: str, width: int) -> str:
-    """A header broken at its spaces into lines of at most ``width`` characters (a word longer stays whole)."""
+    """A header broken at its spaces into lines of at most ``width`` characters (a word longer stays whole).
+
+    Parameters
+    ----------
+    head : str
+        The header.
+    width : int
+        Most characters per line.
+
+    Returns
+    -------
+    str
+        Lines joined by newlines.
+    """
     lines: list[str] = []
     for word in head.split(" "):
         if lines and len(lines[-1]) + 1 + len(word) <= width:
@@ -134,7 +177,18 @@ def wrap_header(head: str, width: int) -> str:
 def label_columns(spec: TableSpec) -> list[int]:
     """The row labels of a table: its leading left-aligned columns whose cells are short (at most
     MAX_LABEL_COLUMNS columns of at most MAX_LABEL_WIDTH characters; a table may set ``label_columns`` to the
-    number it wants), repeated in every piece when a table is split and heading each stacked block."""
+    number it wants), repeated in every piece when a table is split and heading each stacked block.
+
+    Parameters
+    ----------
+    spec : capred.result.TableSpec
+        A console table.
+
+    Returns
+    -------
+    list of int
+        Column indices.
+    """
     n = getattr(spec, "label_columns", None)
     if n is None:
         n = 0
@@ -148,7 +202,18 @@ def label_columns(spec: TableSpec) -> list[int]:
 
 
 def plain_text(spec: TableSpec) -> str:
-    """The table as aligned plain text of its full width."""
+    """The table as aligned plain text of its full width.
+
+    Parameters
+    ----------
+    spec : capred.result.TableSpec
+        A console table.
+
+    Returns
+    -------
+    str
+        Title, header, rule and rows, one per line.
+    """
     w = _widths(spec)
 
     def line(cells):
@@ -171,14 +236,44 @@ def _more(spec: TableSpec) -> str:
 
 def column_groups(spec: TableSpec, width: int) -> list[list[int]]:
     """Columns packed into groups that fit ``width`` characters, the row labels (``label_columns``) repeated
-    in each group; headers wrap at spaces before a column moves to the next group."""
+    in each group; headers wrap at spaces before a column moves to the next group.
+
+    Parameters
+    ----------
+    spec : capred.result.TableSpec
+        A console table.
+    width : int
+        Terminal width [characters].
+
+    Returns
+    -------
+    list of list of int
+        Column indices of each group.
+    """
     w = [x + 3 for x in _folded_widths(spec)]  # rich: padding and border per column
     return pack_columns(w, label_columns(spec), width, base=1)
 
 
 def pack_columns(widths, labels: list[int], limit: float, base: float = 0.0) -> list[list[int]]:
     """Column indices packed in order into groups whose widths (the label columns', repeated in each group,
-    included; plus ``base``) fit ``limit``; every other column is in exactly one group."""
+    included; plus ``base``) fit ``limit``; every other column is in exactly one group.
+
+    Parameters
+    ----------
+    widths : sequence of float
+        Width of each column [characters].
+    labels : list of int
+        Indices of the label columns.
+    limit : float
+        Most width of a group [characters].
+    base : float, optional
+        Width a group takes besides its columns (a border).
+
+    Returns
+    -------
+    list of list of int
+        Column indices of each group, label columns first.
+    """
     start = base + sum(widths[j] for j in labels)
     groups, current, used = [], [], start
     for j in range(len(widths)):
@@ -200,7 +295,20 @@ _column_groups = column_groups
 def table_width(spec: TableSpec, compact: bool = False) -> int:
     """Characters a rich table of ``spec`` takes, its headers wrapped at their spaces (cells never wrap): with
     borders (3 per column and 1), or ``compact`` (no border, a rule under the header, two spaces between
-    columns)."""
+    columns).
+
+    Parameters
+    ----------
+    spec : capred.result.TableSpec
+        A console table.
+    compact : bool, optional
+        Without borders.
+
+    Returns
+    -------
+    int
+        Width [characters].
+    """
     widths = _folded_widths(spec)
     if compact:
         return sum(w + 2 for w in widths) - 1
@@ -209,7 +317,18 @@ def table_width(spec: TableSpec, compact: bool = False) -> int:
 
 def row_labels(spec: TableSpec) -> list[str]:
     """The label of each row as a stacked block heads it: its label cells joined by ' · ', a blank label cell
-    taking the value of the row above (a model row under its material)."""
+    taking the value of the row above (a model row under its material).
+
+    Parameters
+    ----------
+    spec : capred.result.TableSpec
+        A console table.
+
+    Returns
+    -------
+    list of str
+        One label per row.
+    """
     labels = label_columns(spec)
     last = [""] * len(spec.columns)
     out = []
@@ -269,7 +388,19 @@ def _pieces(text: str, width: int) -> list[str]:
 def stacked_blocks(spec: TableSpec, width: int) -> list[tuple[str, bool]]:
     """A table too wide for ``width`` as text lines: its title, then per row its label line and its other
     cells as ``name: value`` pairs packed into lines of ``width`` (cells that are empty left out). Returns
-    (line, bold) pairs; a row of ``bold_rows`` is bold."""
+    (line, bold) pairs; a row of ``bold_rows`` is bold.
+
+    Parameters
+    ----------
+    spec : capred.result.TableSpec
+        A console table.
+    width : int
+        Terminal width [characters].
+
+    Returns
+    -------
+    list of tuple of (str, bool)
+    """
     labels = set(label_columns(spec))
     heads = [" ".join(h.split()) for h, _ in spec.columns]
     out: list[tuple[str, bool]] = [(line, False) for line in _pack([spec.title], width, "")]
@@ -284,7 +415,20 @@ def stacked_blocks(spec: TableSpec, width: int) -> list[tuple[str, bool]]:
 def rich_tables(spec: TableSpec, width: int) -> list:
     """What a terminal of ``width`` columns prints for a table: one rich Table when it fits (headers wrapped
     at spaces), with borders or else compact (no borders), else the stacked blocks (``stacked_blocks``) as one
-    rich Text."""
+    rich Text.
+
+    Parameters
+    ----------
+    spec : capred.result.TableSpec
+        A console table.
+    width : int
+        Terminal width [characters].
+
+    Returns
+    -------
+    list
+        rich renderables (Table or Text), printed in order.
+    """
     from rich import box
     from rich.table import Table
     from rich.text import Text
@@ -317,7 +461,19 @@ def rich_tables(spec: TableSpec, width: int) -> list:
 
 
 def render(result, out_dir=None, written=None, console=None) -> None:
-    """Print a result's summary tables, then its warnings and notes, then where its files are."""
+    """Print a result's summary tables, then its warnings and notes, then where its files are.
+
+    Parameters
+    ----------
+    result : capred.result.Result
+        The run.
+    out_dir : str, pathlib.Path or None, optional
+        The output folder, named in the last line.
+    written : list of pathlib.Path or None, optional
+        The files written (None: no line about files).
+    console : rich.console.Console or None, optional
+        Where to print (default: a new Console on standard output).
+    """
     from rich.console import Console
 
     con = console or Console()
@@ -334,7 +490,15 @@ def render(result, out_dir=None, written=None, console=None) -> None:
 
 
 def render_tables(specs: list[TableSpec], con) -> None:
-    """Print tables: rich and folded to the width on a terminal, plain full-width text otherwise."""
+    """Print tables: rich and folded to the width on a terminal, plain full-width text otherwise.
+
+    Parameters
+    ----------
+    specs : list of capred.result.TableSpec
+        The tables.
+    con : rich.console.Console
+        Where to print.
+    """
     from rich.text import Text
 
     from ..text_safety import safe_spec
@@ -363,5 +527,20 @@ def _line(con, terminal: bool, prefix: str, style: str, text: str) -> None:
 
 
 def spec(title: str, headers: list[str], left: int = 1) -> TableSpec:
-    """An empty console table: the first ``left`` columns left-aligned, the others right-aligned."""
+    """An empty console table: the first ``left`` columns left-aligned, the others right-aligned.
+
+    Parameters
+    ----------
+    title : str
+        The table's title.
+    headers : list of str
+        Column headers.
+    left : int, optional
+        Number of left-aligned columns (default 1).
+
+    Returns
+    -------
+    capred.result.TableSpec
+        With no rows yet.
+    """
     return TableSpec(title, [(h, "left" if j < left else "right") for j, h in enumerate(headers)])

@@ -20,7 +20,17 @@ STRIP = 0.07  # width of the zero-suction strip, as a fraction of the axes
 
 
 def model_key(name: str) -> str:
-    """Legend text of a retention model: its registry label and equation (mathtext)."""
+    """Legend text of a retention model: its registry label and equation (mathtext).
+
+    Parameters
+    ----------
+    name : str
+        A key of ``capred.fitting.retention_models.MODELS`` (another name: shown as text).
+
+    Returns
+    -------
+    str
+    """
     entry = MODELS.get(name)
     if entry is None:
         return literal(name)
@@ -28,7 +38,15 @@ def model_key(name: str) -> str:
 
 
 def plot_retention(ax, result):
-    """Readings of every branch and each fitted model's curve, with the best model's 95 % confidence band."""
+    """Readings of every branch and each fitted model's curve, with the best model's 95 % confidence band.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.retention.RetentionResult
+        A ``capred retention`` run.
+    """
     from matplotlib.lines import Line2D
     from matplotlib.patches import Rectangle
     from matplotlib.transforms import blended_transform_factory
@@ -116,7 +134,17 @@ RETENTION_STYLES = [
 
 def sheet_retention(result) -> Sheet:
     """One panel, two columns wide; its height grows with the legend (each model's name and equation, two
-    lines, two entries a row, below the axes), so that the axes keep their height however many models."""
+    lines, two entries a row, below the axes), so that the axes keep their height however many models.
+
+    Parameters
+    ----------
+    result : capred.pipelines.retention.RetentionResult
+        A ``capred retention`` run.
+
+    Returns
+    -------
+    capred.report.sheets.Sheet
+    """
     models = list(dict.fromkeys(m for fits in result.fits.values() for m in fits))
     rows = -(-(len(models) + len(result.fits)) // 2)  # legend entries, two a row
     name = literal(str(result.source).replace("\\", "/").rsplit("/", 1)[-1])
@@ -139,7 +167,15 @@ def sheet_retention(result) -> Sheet:
 
 
 def plot_conversion(ax, result):
-    """The source curve and the converted one over the data's suction range (and a decade beyond, dotted)."""
+    """The source curve and the converted one over the data's suction range (and a decade beyond, dotted).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.retention_convert.RetentionConvertResult
+        A ``capred retention-convert`` run.
+    """
     src, new = result.source_fit, result.converted
     lo, hi = src.suction_range
     inside = np.geomspace(lo, hi, 300)
@@ -176,7 +212,15 @@ def plot_conversion(ax, result):
 
 
 def plot_conversion_misfit(ax, result):
-    """Converted minus source curve over the data's suction range."""
+    """Converted minus source curve over the data's suction range.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.retention_convert.RetentionConvertResult
+        A ``capred retention-convert`` run.
+    """
     src, new = result.source_fit, result.converted
     lo, hi = src.suction_range
     s = np.geomspace(lo, hi, 400)
@@ -192,7 +236,17 @@ def plot_conversion_misfit(ax, result):
 
 
 def sheet_convert(result) -> Sheet:
-    """Two panels: both curves, and their difference over the data's suction range."""
+    """Two panels: both curves, and their difference over the data's suction range.
+
+    Parameters
+    ----------
+    result : capred.pipelines.retention_convert.RetentionConvertResult
+        A ``capred retention-convert`` run.
+
+    Returns
+    -------
+    capred.report.sheets.Sheet
+    """
     src, new = result.source_fit, result.converted
     name = literal(str(result.source).replace("\\", "/").rsplit("/", 1)[-1])
     return Sheet(

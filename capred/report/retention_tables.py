@@ -86,7 +86,17 @@ def parameter_table(title: str, records) -> TableSpec:
 
 
 def retention_tables(result) -> list[TableSpec]:
-    """Per branch: the model comparison and the parameters (± se, 95 % CI); the joint hysteresis fit."""
+    """Per branch: the model comparison and the parameters (± se, 95 % CI); the joint hysteresis fit.
+
+    Parameters
+    ----------
+    result : capred.pipelines.retention.RetentionResult
+        A ``capred retention`` run.
+
+    Returns
+    -------
+    list of capred.result.TableSpec
+    """
     out = []
     for b in result.fits:
         recs = result.fit_records(b)
@@ -104,7 +114,17 @@ def retention_tables(result) -> list[TableSpec]:
 
 
 def convert_tables(result) -> list[TableSpec]:
-    """`capred retention-convert`: the conversion (from, to, misfit) and the parameters of both curves."""
+    """`capred retention-convert`: the conversion (from, to, misfit) and the parameters of both curves.
+
+    Parameters
+    ----------
+    result : capred.pipelines.retention_convert.RetentionConvertResult
+        A ``capred retention-convert`` run.
+
+    Returns
+    -------
+    list of capred.result.TableSpec
+    """
     src, new, m = result.source_fit, result.converted, result.misfit
     unit = "m³/m³" if result.quantity == "theta" else "-"
     t = spec(f"Conversion of {result.source}", ["", "value", "unit"])

@@ -65,7 +65,17 @@ def _wet(result, material):
 
 
 def plot_dry_envelope(ax, result, material):
-    """Dry tests, the fitted line τ = c + σ_N tan φ and its confidence band of the mean."""
+    """Dry tests, the fitted line τ = c + σ_N tan φ and its confidence band of the mean.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.shear.ShearResult
+        A ``capred shear`` run.
+    material : str
+        The material drawn.
+    """
     t = result.tests
     fit = result.fits[material].line
     dry = (t["material"] == material) & (t["condition"] == "dry")
@@ -120,7 +130,17 @@ def _points(ax, x, y, yerr, **kw):
 
 
 def plot_measured_vs_predicted(ax, result, material):
-    """Predicted against measured τ of the wet tests, each model with its 95 % prediction interval, and 1:1."""
+    """Predicted against measured τ of the wet tests, each model with its 95 % prediction interval, and 1:1.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.shear.ShearResult
+        A ``capred shear`` run.
+    material : str
+        The material drawn.
+    """
     t = result.tests
     keep, shown = thin(np.flatnonzero(_wet(result, material)))
     meas = t["tau_max"][keep] * KPA
@@ -170,6 +190,15 @@ def plot_strength_vs_saturation(ax, result, material):
 
     Colour and marker say which model, line style and marker of the black measured points which normal
     stress; the legend lists both.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.shear.ShearResult
+        A ``capred shear`` run.
+    material : str
+        The material drawn.
     """
     from matplotlib.lines import Line2D
 
@@ -269,7 +298,17 @@ def _measured_span(result, material, relation):
 
 
 def plot_residuals(ax, result, material):
-    """Residual (predicted − measured) against S_R for each model."""
+    """Residual (predicted − measured) against S_R for each model.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.shear.ShearResult
+        A ``capred shear`` run.
+    material : str
+        The material drawn.
+    """
     t = result.tests
     keep, shown = thin(np.flatnonzero(_wet(result, material)))
     for m in result.models:
@@ -319,7 +358,19 @@ def _sample_caption(result, material, condition: str) -> str:
 
 
 def sheet_shear_report(result, material) -> Sheet:
-    """The report sheet of one material: dry envelope, measured vs predicted, strength vs S_R, residuals."""
+    """The report sheet of one material: dry envelope, measured vs predicted, strength vs S_R, residuals.
+
+    Parameters
+    ----------
+    result : capred.pipelines.shear.ShearResult
+        A ``capred shear`` run.
+    material : str
+        The material drawn.
+
+    Returns
+    -------
+    capred.report.sheets.Sheet
+    """
     best = result.best_model.get(material)
     more = _sample_caption(result, material, "wet")
     panels = [
@@ -355,7 +406,19 @@ def sheet_shear_report(result, material) -> Sheet:
 
 def plot_capillary_stress(ax, result, material, x: str):
     """Back-analysed capillary stress of the wet tests (error bars: standard uncertainty) against S_R or
-    suction, with each model's predicted capillary stress per test."""
+    suction, with each model's predicted capillary stress per test.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.shear.ShearResult
+        A ``capred shear`` run.
+    material : str
+        The material drawn.
+    x : {"S_R", "suction"}
+        The abscissa: degree of saturation [-] or suction (drawn in kPa).
+    """
     t = result.tests
     keep, shown = thin(np.flatnonzero(_wet(result, material)))
     xs = t[x][keep] * (1.0 if x == "S_R" else KPA)
@@ -396,7 +459,17 @@ def plot_capillary_stress(ax, result, material, x: str):
 
 def plot_chi_back(ax, result, material):
     """χ_back = σ_cap/Δu of the wet tests against S_R, with the χ(S_R) of every model of the run that has one
-    (Bishop's S_R, Own 1's χ1, a fitted S_e^κ ...)."""
+    (Bishop's S_R, Own 1's χ1, a fitted S_e^κ ...).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.shear.ShearResult
+        A ``capred shear`` run.
+    material : str
+        The material drawn.
+    """
     t = result.tests
     keep, shown = thin(np.flatnonzero(_wet(result, material) & (t["suction"] > 0)))
     s = np.linspace(0.0, 1.0, 201)
@@ -436,7 +509,19 @@ def plot_chi_back(ax, result, material):
 
 def sheet_capillary_stress(result, material) -> Sheet:
     """What capillary stress each wet test carried and which χ law explains it: 3 panels, drawn on request
-    (``figures="all"``)."""
+    (``figures="all"``).
+
+    Parameters
+    ----------
+    result : capred.pipelines.shear.ShearResult
+        A ``capred shear`` run.
+    material : str
+        The material drawn.
+
+    Returns
+    -------
+    capred.report.sheets.Sheet
+    """
     more = _sample_caption(result, material, "wet")
     return Sheet(
         f"Back-analysed capillary stress, {material}",
@@ -486,7 +571,17 @@ def _vertical(result, tid):
 
 
 def has_vertical(result) -> bool:
-    """True when the raw curves of the run give vertical displacements."""
+    """True when the raw curves of the run give vertical displacements.
+
+    Parameters
+    ----------
+    result : capred.pipelines.shear.ShearResult
+        A ``capred shear`` run.
+
+    Returns
+    -------
+    bool
+    """
     table = getattr(result.curves, "table", None)
     return (
         table is not None
@@ -497,7 +592,19 @@ def has_vertical(result) -> bool:
 
 def plot_curves(ax, result, material, condition: str):
     """The raw shear curves of one material's dry or wet tests (τ against horizontal displacement), each test
-    in its own colour, line style and marker; the marker sits on the picked peak."""
+    in its own colour, line style and marker; the marker sits on the picked peak.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.shear.ShearResult
+        A ``capred shear`` run.
+    material : str
+        The material drawn.
+    condition : {"dry", "wet"}
+        Which tests.
+    """
     t = result.tests
     _, keep, shown = _curve_tests(result, material, condition)
     for k, i in enumerate(keep):
@@ -526,7 +633,19 @@ def plot_curves(ax, result, material, condition: str):
 
 def plot_vertical_displacement(ax, result, material, condition: str):
     """Vertical against horizontal displacement of one material's dry or wet tests (positive: dilation), in
-    the tests' styles of ``plot_curves``; the marker is at the peak of shear stress."""
+    the tests' styles of ``plot_curves``; the marker is at the peak of shear stress.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.shear.ShearResult
+        A ``capred shear`` run.
+    material : str
+        The material drawn.
+    condition : {"dry", "wet"}
+        Which tests.
+    """
     t = result.tests
     _, keep, shown = _curve_tests(result, material, condition)
     for k, i in enumerate(keep):
@@ -558,7 +677,17 @@ def plot_vertical_displacement(ax, result, material, condition: str):
 
 
 def plot_dilatancy(ax, result, material):
-    """Dilatancy angle at the peak, ψ = atan(dδ_v/dδ_h), of each test against its normal stress (dry and wet)."""
+    """Dilatancy angle at the peak, ψ = atan(dδ_v/dδ_h), of each test against its normal stress (dry and wet).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.shear.ShearResult
+        A ``capred shear`` run.
+    material : str
+        The material drawn.
+    """
     t = result.tests
     psi = t.get("dilatancy_angle")
     mat = t["material"] == material
@@ -585,7 +714,19 @@ def plot_dilatancy(ax, result, material):
 
 def sheet_curves(result, material) -> Sheet:
     """Raw curves of one material, dry and wet tests apart: τ-δ and, when vertical displacements are given,
-    δ_v-δ of the same tests in the same styles and the dilatancy angle at the peak."""
+    δ_v-δ of the same tests in the same styles and the dilatancy angle at the peak.
+
+    Parameters
+    ----------
+    result : capred.pipelines.shear.ShearResult
+        A ``capred shear`` run.
+    material : str
+        The material drawn.
+
+    Returns
+    -------
+    capred.report.sheets.Sheet
+    """
     vertical = has_vertical(result)
     panels = []
     for cond in ("dry", "wet"):

@@ -11,7 +11,17 @@ from .render import MAX_ROWS, fmt, row_table, spec
 
 def shear_tables(result) -> list[TableSpec]:
     """Dry fits; model metrics on all wet tests and on the pendular ones; how sure the ranking is;
-    model selection; the back-analysed capillary stress of the wet tests."""
+    model selection; the back-analysed capillary stress of the wet tests.
+
+    Parameters
+    ----------
+    result : capred.pipelines.shear.ShearResult
+        A ``capred shear`` run.
+
+    Returns
+    -------
+    list of capred.result.TableSpec
+    """
     js = result.json_lazy()
     phi_b = any("phi_b_deg" in f for f in js["materials"].values())
     origin = js["dry_fit"] == "origin"

@@ -110,7 +110,13 @@ class Sheet:
 
 @contextmanager
 def journal_style(salt: str | None = None):
-    """Matplotlib settings of every capred figure while the block runs (``salt``: the SVG id salt)."""
+    """Matplotlib settings of every capred figure while the block runs (``salt``: the SVG id salt).
+
+    Parameters
+    ----------
+    salt : str or None, optional
+        Salt of the SVG element ids (same salt, same ids: reproducible files).
+    """
     import matplotlib as mpl
 
     rc = dict(RC)
@@ -124,7 +130,20 @@ def journal_style(salt: str | None = None):
 def panel_size_mm(sheet: Sheet, panel: Panel) -> tuple[float, float]:
     """Printed size of a panel [mm]: one column (85 mm) wide, or the page width (180 mm) when the sheet spans
     it over two columns; its height from the sheet's aspect, plus any room its legend needs below the axes
-    (``Sheet.legend_room``)."""
+    (``Sheet.legend_room``).
+
+    Parameters
+    ----------
+    sheet : Sheet
+        The sheet.
+    panel : Panel
+        One of its panels.
+
+    Returns
+    -------
+    tuple of float
+        (width, height) [mm].
+    """
     w, h = sheet.panel_size
     aspect = h / w if w > 0 else 0.75
     extra = sheet.legend_room.get(panel.name, 0.0)
@@ -145,7 +164,18 @@ class Slot:
 
 def sheet_layout(sheet: Sheet) -> tuple[list[Slot], float, float]:
     """Slots of the panels and the sheet's (width, height) [mm]: rows of at most two one-column panels
-    (``min(columns, 2)``), a spanned panel alone in its row, the title band on top."""
+    (``min(columns, 2)``), a spanned panel alone in its row, the title band on top.
+
+    Parameters
+    ----------
+    sheet : Sheet
+        The sheet.
+
+    Returns
+    -------
+    tuple
+        (slots, width [mm], height [mm]).
+    """
     columns = max(1, min(int(sheet.columns), 2))
     slots: list[Slot] = []
     y, x, row_h, used = TITLE_MM, 0.0, 0.0, 0
@@ -390,13 +420,33 @@ def panel_figure(sheet: Sheet, panel: Panel, dpi: float = 300.0):
 
 
 def single(sheet: Sheet, panel: Panel, dpi: float = 300.0):
-    """One panel as its own figure, one journal column (85 mm) or two (180 mm) wide (see ``panel_figure``)."""
+    """One panel as its own figure, one journal column (85 mm) or two (180 mm) wide (see ``panel_figure``).
+
+    Parameters
+    ----------
+    sheet : Sheet
+        The sheet.
+    panel : Panel
+        One of its panels.
+    dpi : float, optional
+        Resolution of raster output [dots per inch].
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     return panel_figure(sheet, panel, dpi)
 
 
 def warm_up(dpi: float = 300.0) -> None:
     """Draw a tiny panel (title, mathtext labels, ticks, legend, markers) so that fonts, glyph caches and
-    the mathtext parser are loaded: a process forked afterwards inherits them instead of loading its own."""
+    the mathtext parser are loaded: a process forked afterwards inherits them instead of loading its own.
+
+    Parameters
+    ----------
+    dpi : float, optional
+        Resolution of the tiny figure [dots per inch].
+    """
     from matplotlib.figure import Figure
 
     with journal_style():
@@ -414,7 +464,18 @@ def warm_up(dpi: float = 300.0) -> None:
 
 # --- rasters ------------------------------------------------------------------------------------------------
 def raster(fig):
-    """The figure drawn once by Agg at its own dpi: an (rows, columns, 3) uint8 RGB array."""
+    """The figure drawn once by Agg at its own dpi: an (rows, columns, 3) uint8 RGB array.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (rows, columns, 3), dtype uint8.
+    """
     import numpy as np
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 

@@ -117,7 +117,17 @@ SINGLE_PANEL_SIZE = (3.5, 2.8)
 
 def literal(text) -> str:
     """User text (a material name, a test id) as drawn: '$' escaped, so no mathtext is read into it; control and
-    bidi characters shown (capred.text_safety.visible)."""
+    bidi characters shown (capred.text_safety.visible).
+
+    Parameters
+    ----------
+    text : object
+        User text (converted with str).
+
+    Returns
+    -------
+    str
+    """
     from ..text_safety import visible
 
     return visible(str(text), pictures=False).replace("$", r"\$")
@@ -130,6 +140,18 @@ def style(name: str, **over) -> dict:
     ``capred.physics.effective_stress_models.REGISTRY``, a retention model's line style from its entry of
     ``capred.fitting.retention_models.MODELS`` (its colour is the branch's), the others' from MODEL_STYLE.
     Colour names of the registries are names of OKABE_ITO.
+
+    Parameters
+    ----------
+    name : str
+        A model's or curve's name.
+    **over
+        Matplotlib keywords that replace the style's.
+
+    Returns
+    -------
+    dict
+        Matplotlib keywords (color, ls, marker ...).
     """
     from ..fitting.retention_models import MODELS
     from ..physics.effective_stress_models import REGISTRY
@@ -154,6 +176,16 @@ def series_style(k: int) -> dict:
     The colour runs through SERIES_COLOURS and the line style changes after each round of colours, so that
     the first ``len(SERIES_COLOURS) * len(LINESTYLES)`` (56) series all differ in colour or line style; the
     marker runs through MARKERS as well.
+
+    Parameters
+    ----------
+    k : int
+        Index of the series, from 0.
+
+    Returns
+    -------
+    dict
+        Matplotlib keywords (color, ls, marker).
     """
     nc = len(SERIES_COLOURS)
     return dict(
@@ -162,7 +194,18 @@ def series_style(k: int) -> dict:
 
 
 def level_style(k: int) -> dict:
-    """Line style and marker of the k-th normal-stress level (the colour stays the model's)."""
+    """Line style and marker of the k-th normal-stress level (the colour stays the model's).
+
+    Parameters
+    ----------
+    k : int
+        Index of the normal-stress level, from 0.
+
+    Returns
+    -------
+    dict
+        Matplotlib keywords (ls, marker).
+    """
     return dict(ls=LINESTYLES[k % len(LINESTYLES)], marker=MARKERS[k % len(MARKERS)])
 
 
@@ -201,6 +244,15 @@ def tex(text: str) -> str:
 
     Only words that carry a ``_`` or ``^`` are set in math (``S_e^κ`` becomes ``$S_{e}^{κ}$``); the rest of
     the text, and any part already between ``$``, is left as it is.
+
+    Parameters
+    ----------
+    text : str
+        Plain text.
+
+    Returns
+    -------
+    str
     """
     parts = str(text).split("$")
     for j in range(0, len(parts), 2):  # outside existing math only
@@ -219,7 +271,18 @@ def tex(text: str) -> str:
 
 
 def symbol(name: str) -> str:
-    """A parameter name (``kappa``, ``s_b``, ``alpha1``) as mathtext (``$\\kappa$``, ``$s_{b}$``, ``$\\alpha_1$``)."""
+    """A parameter name (``kappa``, ``s_b``, ``alpha1``) as mathtext (``$\\kappa$``, ``$s_{b}$``, ``$\\alpha_1$``).
+
+    Parameters
+    ----------
+    name : str
+        A parameter name.
+
+    Returns
+    -------
+    str
+        Mathtext; a name of another form is returned as :func:`literal` text.
+    """
     m = re.fullmatch(r"([A-Za-z]+?)(\d*)(?:_(\w+))?", name)
     if not m:
         return literal(name)
@@ -232,7 +295,22 @@ def symbol(name: str) -> str:
 def thin(index, limit: int = MAX_MARKERS, seed: int = THIN_SEED):
     """At most ``limit`` of the row indices ``index`` (a random sample without replacement, in order), and a
     note saying so ("" when all are kept). Figures of large tables draw this sample so that their cost does
-    not grow with the number of tests; statistics in legends and tables use every test."""
+    not grow with the number of tests; statistics in legends and tables use every test.
+
+    Parameters
+    ----------
+    index : array_like of bool or int
+        A boolean mask or row indices.
+    limit : int, optional
+        Most rows kept (default MAX_MARKERS).
+    seed : int, optional
+        Seed of the sample (default THIN_SEED).
+
+    Returns
+    -------
+    tuple
+        (kept row indices as a numpy array, note).
+    """
     index = np.asarray(index)
     n = int(index.sum()) if index.dtype == bool else index.size
     keep = sample_rows(index, limit, seed)
@@ -256,7 +334,15 @@ def pendular_band(ax, limit: float):
 
 
 def note(ax, text: str) -> None:
-    """A small note in the lower right corner of an axes (e.g. which markers a panel shows)."""
+    """A small note in the lower right corner of an axes (e.g. which markers a panel shows).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes.
+    text : str
+        The note ("": nothing drawn).
+    """
     if text:
         ax.text(0.99, 0.01, text, transform=ax.transAxes, ha="right", va="bottom", fontsize=6, color="0.3")
 
@@ -265,7 +351,19 @@ def legend_outside(ax, ncol: int = 1, handles=None, labels=None) -> None:
     """Move an axes' legend outside its data area (to the right), so that it never covers a point.
 
     ``handles`` (and ``labels``, default: the handles' labels): the entries to show, when the legend was not
-    built yet; else those of the axes' legend, or its labelled artists."""
+    built yet; else those of the axes' legend, or its labelled artists.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes.
+    ncol : int, optional
+        Columns of the legend.
+    handles : sequence of matplotlib artists or None, optional
+        The entries to show.
+    labels : sequence of str or None, optional
+        Their labels.
+    """
     old = ax.get_legend()
     if handles is not None:
         handles = list(handles)
@@ -296,7 +394,18 @@ def legend_outside(ax, ncol: int = 1, handles=None, labels=None) -> None:
 
 def untitled(draw):
     """A panel's draw function without its axes title: for a sheet of one panel, whose figure title (and the
-    report's caption) already names it, so that no figure carries two titles."""
+    report's caption) already names it, so that no figure carries two titles.
+
+    Parameters
+    ----------
+    draw : callable
+        ``draw(ax)``, a panel's draw function.
+
+    Returns
+    -------
+    callable
+        ``draw(ax)`` that clears the axes title after drawing (returns what ``draw`` returns).
+    """
 
     def draw_untitled(ax):
         out = draw(ax)

@@ -24,7 +24,15 @@ BOUND_STYLE = {
 
 
 def plot_qp_plane(ax, result):
-    """Envelope, saturated and unsaturated failure points, image points and assumed paths."""
+    """Envelope, saturated and unsaturated failure points, image points and assumed paths.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.triaxial.TriaxialResult
+        A ``capred triaxial`` run.
+    """
     t = result.states  # kPa
     env = result.envelope
     sat = t.condition == "saturated"
@@ -114,7 +122,15 @@ def plot_qp_plane(ax, result):
 
 
 def plot_capillary_ranges(ax, result):
-    """sigma1_cap, sigma3_cap and p_cap of every bound, per unsaturated test: colour = bound, hatch = component."""
+    """sigma1_cap, sigma3_cap and p_cap of every bound, per unsaturated test: colour = bound, hatch = component.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.triaxial.TriaxialResult
+        A ``capred triaxial`` run.
+    """
     from matplotlib.patches import Patch
 
     t = result.states
@@ -150,7 +166,15 @@ def plot_capillary_ranges(ax, result):
 
 
 def plot_mohr_circles(ax, result):
-    """Total failure circles (unsaturated), lower-bound effective circles and the envelope."""
+    """Total failure circles (unsaturated), lower-bound effective circles and the envelope.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.triaxial.TriaxialResult
+        A ``capred triaxial`` run.
+    """
     t = result.states  # kPa
     env = result.envelope
     th = np.linspace(0, np.pi, 90)
@@ -187,7 +211,15 @@ def plot_mohr_circles(ax, result):
 
 def plot_group_circles(ax, result):
     """Each group's unsaturated Mohr circles (solid), fictive circles sigma'' (dashed, eq. 44) and the lines of
-    cohesion C and C'' at the effective friction angle (eq. 43, 48)."""
+    cohesion C and C'' at the effective friction angle (eq. 43, 48).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.triaxial.TriaxialResult
+        A ``capred triaxial`` run.
+    """
     t = result.states  # kPa
     env = result.envelope
     th = np.linspace(0, np.pi, 90)
@@ -232,7 +264,15 @@ def plot_group_circles(ax, result):
 def plot_group_tensors(ax, result):
     """sigma1_cap, sigma2_cap, sigma3_cap of each group: eq. 48 or 50 with standard errors, or, for a group
     without paired saturated tests, the admissible range of each component between the closures (eq. 37)
-    with the chosen closure marked."""
+    with the chosen closure marked.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.triaxial.TriaxialResult
+        A ``capred triaxial`` run.
+    """
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
@@ -305,7 +345,15 @@ def _curve_label(result, i: int) -> str:
 
 def plot_q_axial_strain(ax, result):
     """Deviator q against axial strain ε1 of every curve, its picked peak marked (after Prunier et al. 2024,
-    Fig. 10 and 15): saturated tests dashed, unsaturated solid."""
+    Fig. 10 and 15): saturated tests dashed, unsaturated solid.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.triaxial.TriaxialResult
+        A ``capred triaxial`` run.
+    """
     for k, (i, c) in enumerate(_curves_in_order(result)):
         colour, marker = CURVE_COLOURS[k % len(CURVE_COLOURS)], CURVE_MARKERS[k % len(CURVE_MARKERS)]
         ls = "--" if result.states.condition[i] == "saturated" else "-"
@@ -322,7 +370,15 @@ def plot_q_axial_strain(ax, result):
 
 def plot_volumetric_strain(ax, result):
     """Volumetric strain εv against axial strain ε1 of every curve (compression positive; the paper plots
-    contraction up), the reading at the picked peak marked (after Prunier et al. 2024, Fig. 10 and 15)."""
+    contraction up), the reading at the picked peak marked (after Prunier et al. 2024, Fig. 10 and 15).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel to draw on.
+    result : capred.pipelines.triaxial.TriaxialResult
+        A ``capred triaxial`` run.
+    """
     drawn = False
     for k, (i, c) in enumerate(_curves_in_order(result)):
         if not np.isfinite(c.vol_strain).any():
@@ -349,6 +405,18 @@ def plot_volumetric_strain(ax, result):
 
 
 def sheet_triaxial(result) -> Sheet:
+    """The sheet of ``capred triaxial``: q-p plane, capillary stresses, Mohr circles; the groups' circles and tensors
+    when a group's tensor is determined or bounded; the q-ε1 and εv-ε1 curves when it has curves (after Prunier et al. 2024, Fig. 10, 15-21).
+
+    Parameters
+    ----------
+    result : capred.pipelines.triaxial.TriaxialResult
+        A ``capred triaxial`` run.
+
+    Returns
+    -------
+    capred.report.sheets.Sheet
+    """
     return Sheet(
         "Capillary stress tensor at failure (after Prunier et al. 2024, Fig. 10, 15-21)"
         if result.curves

@@ -30,6 +30,15 @@ def triaxial_tables(result) -> list[TableSpec]:
     """Envelope, then one row per unsaturated test and bound, then groups (apparent envelope and shared tensor).
 
     Reads the run's records (capred.pipelines.triaxial_records); headers come from the glossary.
+
+    Parameters
+    ----------
+    result : capred.pipelines.triaxial.TriaxialResult
+        A ``capred triaxial`` run.
+
+    Returns
+    -------
+    list of capred.result.TableSpec
     """
     e = result.envelope
     env = spec(
