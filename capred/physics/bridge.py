@@ -672,7 +672,7 @@ def _catenoid_gap(y0, th, rho, th2):
     return g
 
 
-def suction_at_neck(y0, th, rho, target, field, th2=None):
+def suction_at_neck(y0, th, ratio, target, field, th2=None):
     """The suction s* >= 0 at which the bridge of neck y0 has a given gap (or volume).
 
     Parameters
@@ -681,7 +681,7 @@ def suction_at_neck(y0, th, rho, target, field, th2=None):
         Neck radius r0 / R1 [-], 1-D.
     th : numpy.ndarray
         Contact angle θ [rad], one per row (see ``th2``).
-    rho : numpy.ndarray
+    ratio : numpy.ndarray
         R2 / R1 [-]; ``np.inf`` for a plane.
     target : numpy.ndarray
         The gap* D / R1 or volume* V / R1^3 to reach [-].
@@ -705,7 +705,7 @@ def suction_at_neck(y0, th, rho, target, field, th2=None):
     .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). An analytical study of the liquid bridge between two rigid
        spheres. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
     """
-    y0, th, rho, target = (np.asarray(x, dtype=float) for x in (y0, th, rho, target))
+    y0, th, rho, target = (np.asarray(x, dtype=float) for x in (y0, th, ratio, target))
     return _suction_at_neck(y0, th, rho, th if th2 is None else np.asarray(th2, dtype=float), target, field)
 
 
