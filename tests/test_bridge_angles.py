@@ -182,3 +182,18 @@ def test_solve_command_reads_contact_angle2_and_the_option(tmp_path):
     f.write_text("R [mm],contact_angle,contact_angle2,gap,V_w\n1,0,91,0,0.01\n")
     bad = runner.invoke(app, ["bridge", "solve", str(f)])
     assert bad.exit_code != 0 and "line 2" in bad.output and "contact_angle2" in bad.output
+
+
+def test_compare_uses_both_angles_in_the_closed_forms(tmp_path):
+    """bridge compare with two angles: Israelachvili's force is pi R* gamma (cos t1 + cos t2) (the Derjaguin limit
+    with two angles), the toroidal approximation (one angle) is left out, the exact bridge uses both."""
+    f = tmp_path / "m.csv"
+    f.write_text("R [mm],contact_angle,contact_angle2,gap [mm],V_w [mm^3],F_cap [mN]\n1,10,50,0.01,0.005,0.4\n")
+    res = pb.compare_measured(f)
+    row = res.rows()[0]
+    want = np.pi * 1e-3 * 0.0728 * (np.cos(np.radians(10.0)) + np.cos(np.radians(50.0))) * 1e3  # mN, R* = R
+    assert row["F_israelachvili_mN"] == pytest.approx(want, rel=1e-12)
+    assert row["F_toroidal_mN"] is None
+    b, s, st = br.solve_for_volume(np.radians(10.0), 0.005, 0.01, 1.0, np.radians(50.0))
+    F = br.bridge(b, np.radians(10.0), s, 1.0, np.radians(50.0)).force[0] * np.pi * 0.0728 * 1e-3 * 1e3
+    assert row["F_exact_mN"] == pytest.approx(F, rel=1e-12)

@@ -44,3 +44,22 @@ def test_csv_headers_name_their_unit():
     assert bs.csv_header("case") == "case"
     cols = {"F_cap_mN": np.array([1.0]), "status": np.array(["ok"], dtype=object)}
     assert list(bs.with_csv_headers(cols)) == ["F_cap [mN]", "status"]
+
+
+def test_solve_columns_and_headers_come_from_the_typed_record():
+    import dataclasses
+
+    from capred.pipelines import bridge as pb
+    from capred.pipelines.bridge_records import BridgeRecord
+    from capred.samples import sample_path
+
+    res = pb.solve_bridges(sample_path("bridge-solve"))
+    rec = res.record()
+    assert isinstance(rec, BridgeRecord)
+    keys = [f.metadata["output"].json for f in dataclasses.fields(BridgeRecord)]
+    assert list(res.columns()) == keys  # the JSON keys, in the record's order
+    np.testing.assert_array_equal(res.columns()["F_cap_mN"], rec.F_cap)
+    assert [h for h in res.csv_tables()["solve"] if h not in ("case", "status", "note")] == [
+        BridgeRecord.csv_headers()[k] for k in keys
+    ]
+    assert "V_w [mm^3]" in res.csv_tables()["solve"] and "S_R [-]" in res.csv_tables()["solve"]

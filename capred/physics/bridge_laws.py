@@ -60,12 +60,12 @@ class Law:
     force: Callable
 
 
-def effective_radius(rho):
+def effective_radius(ratio):
     """Derjaguin's effective radius R* / R1 = 2 rho / (1 + rho) [-]; 2 on a plane (rho = inf), 1 for equal spheres.
 
     Parameters
     ----------
-    rho : float or array_like
+    ratio : float or array_like
         R2 / R1 [-]; ``np.inf`` for a plane.
 
     Returns
@@ -78,7 +78,7 @@ def effective_radius(rho):
     .. [1] Derjaguin, B. (1934). Untersuchungen über die Reibung und Adhäsion, IV. Kolloid-Z. 69, 155-164.
        doi:10.1007/BF01433225
     """
-    rho = np.asarray(rho, dtype=float)
+    rho = np.asarray(ratio, dtype=float)
     with np.errstate(invalid="ignore"):
         return np.where(np.isinf(rho), 2.0, 2.0 * rho / (1.0 + np.where(np.isinf(rho), 1.0, rho)))
 
@@ -87,18 +87,18 @@ def _args(theta, V, D, rho):
     return [np.asarray(x, dtype=float) for x in np.broadcast_arrays(theta, V, D, rho)]
 
 
-def willett_simple(theta, V, D, rho=1.0):
+def willett_simple(contact_angle_rad, V, D, ratio=1.0):
     r"""Willett et al. (2000), the simple closed form (their eqs. 12-13), with Derjaguin's R*.
 
     Parameters
     ----------
-    theta : float or array_like
+    contact_angle_rad : float or array_like
         Contact angle [rad].
     V : float or array_like
         Bridge volume V / R1^3 [-].
     D : float or array_like
         Gap D / R1 [-] (the full separation of the surfaces).
-    rho : float or array_like, default 1.0
+    ratio : float or array_like, default 1.0
         R2 / R1 [-]; ``np.inf`` for a plane.
 
     Returns
@@ -117,24 +117,24 @@ def willett_simple(theta, V, D, rho=1.0):
     .. [1] Willett, C. D., Adams, M. J., Johnson, S. A. & Seville, J. P. K. (2000). Capillary bridges between two
        spherical bodies. Langmuir 16, 9396-9405. doi:10.1021/la000657y
     """
-    theta, V, D, rho = _args(theta, V, D, rho)
+    theta, V, D, rho = _args(contact_angle_rad, V, D, ratio)
     Rs = effective_radius(rho)
     S = 0.5 * D / np.sqrt(V / Rs)
     return Rs * np.cos(theta) / (1.0 + 2.1 * S + 10.0 * S * S)
 
 
-def willett_full(theta, V, D, rho=1.0):
+def willett_full(contact_angle_rad, V, D, ratio=1.0):
     r"""Willett et al. (2000), the full regression of the exact force (their appendix), with Derjaguin's R*.
 
     Parameters
     ----------
-    theta : float or array_like
+    contact_angle_rad : float or array_like
         Contact angle [rad] (fitted for 0-50 deg).
     V : float or array_like
         Bridge volume V / R1^3 [-].
     D : float or array_like
         Gap D / R1 [-], > 0 (the regression is in ln S+).
-    rho : float or array_like, default 1.0
+    ratio : float or array_like, default 1.0
         R2 / R1 [-]; ``np.inf`` for a plane.
 
     Returns
@@ -157,7 +157,7 @@ def willett_full(theta, V, D, rho=1.0):
     .. [1] Willett, C. D., Adams, M. J., Johnson, S. A. & Seville, J. P. K. (2000). Capillary bridges between two
        spherical bodies. Langmuir 16, 9396-9405. doi:10.1021/la000657y
     """
-    theta, V, D, rho = _args(theta, V, D, rho)
+    theta, V, D, rho = _args(contact_angle_rad, V, D, ratio)
     Rs = effective_radius(rho)
     t, t2 = theta, theta * theta
     L = np.log(V / Rs**3)
@@ -195,18 +195,18 @@ def _immersion(V, D, Rs):
         return np.sqrt(1.0 + 2.0 * V / (np.pi * Rs * D * D))
 
 
-def lambert(theta, V, D, rho=1.0):
+def lambert(contact_angle_rad, V, D, ratio=1.0):
     r"""Lambert et al. (2008), eq. 65 (the first term of Rabinovich et al. 2005), with Derjaguin's R*.
 
     Parameters
     ----------
-    theta : float or array_like
+    contact_angle_rad : float or array_like
         Contact angle [rad].
     V : float or array_like
         Bridge volume V / R1^3 [-].
     D : float or array_like
         Gap D / R1 [-].
-    rho : float or array_like, default 1.0
+    ratio : float or array_like, default 1.0
         R2 / R1 [-]; ``np.inf`` for a plane.
 
     Returns
@@ -230,24 +230,24 @@ def lambert(theta, V, D, rho=1.0):
     .. [2] Rabinovich, Y. I., Esayanur, M. S. & Moudgil, B. M. (2005). Capillary forces between two spheres with a
        fixed volume liquid bridge: theory and experiment. Langmuir 21, 10992-10997. doi:10.1021/la0517639
     """
-    theta, V, D, rho = _args(theta, V, D, rho)
+    theta, V, D, rho = _args(contact_angle_rad, V, D, ratio)
     Rs = effective_radius(rho)
     return Rs * np.cos(theta) * (1.0 - 1.0 / _immersion(V, D, Rs))
 
 
-def rabinovich(theta, V, D, rho=1.0):
+def rabinovich(contact_angle_rad, V, D, ratio=1.0):
     r"""Rabinovich et al. (2005), eqs. 19, 20 and A3 (the force at the neck with its surface-tension term),
     with Derjaguin's R*.
 
     Parameters
     ----------
-    theta : float or array_like
+    contact_angle_rad : float or array_like
         Contact angle [rad].
     V : float or array_like
         Bridge volume V / R1^3 [-].
     D : float or array_like
         Gap D / R1 [-].
-    rho : float or array_like, default 1.0
+    ratio : float or array_like, default 1.0
         R2 / R1 [-]; ``np.inf`` for a plane.
 
     Returns
@@ -269,7 +269,7 @@ def rabinovich(theta, V, D, rho=1.0):
     .. [1] Rabinovich, Y. I., Esayanur, M. S. & Moudgil, B. M. (2005). Capillary forces between two spheres with a
        fixed volume liquid bridge: theory and experiment. Langmuir 21, 10992-10997. doi:10.1021/la0517639
     """
-    theta, V, D, rho = _args(theta, V, D, rho)
+    theta, V, D, rho = _args(contact_angle_rad, V, D, ratio)
     Rs = effective_radius(rho)
     q = _immersion(V, D, Rs)
     with np.errstate(invalid="ignore"):
@@ -277,18 +277,18 @@ def rabinovich(theta, V, D, rho=1.0):
     return Rs * (np.cos(theta) * (1.0 - 1.0 / q) + np.sin(alpha) * np.sin(theta + alpha))
 
 
-def soulie(theta, V, D, rho=1.0):
+def soulie(contact_angle_rad, V, D, ratio=1.0):
     r"""Soulié et al. (2006): the regression of the exact force between two spheres of radii R1 and R2.
 
     Parameters
     ----------
-    theta : float or array_like
+    contact_angle_rad : float or array_like
         Contact angle [rad].
     V : float or array_like
         Bridge volume V / R1^3 [-].
     D : float or array_like
         Gap D / R1 [-].
-    rho : float or array_like, default 1.0
+    ratio : float or array_like, default 1.0
         R2 / R1 [-] (spheres only: NaN on a plane).
 
     Returns
@@ -312,7 +312,7 @@ def soulie(theta, V, D, rho=1.0):
        mechanical behaviour of polydisperse granular materials. Int. J. Numer. Anal. Methods Geomech. 30,
        213-228. doi:10.1002/nag.476
     """
-    theta, V, D, rho = _args(theta, V, D, rho)
+    theta, V, D, rho = _args(contact_angle_rad, V, D, ratio)
     with np.errstate(invalid="ignore", divide="ignore"):
         big = np.where(np.isinf(rho), np.nan, np.maximum(rho, 1.0))  # the larger radius / R1
         Vp = V / big**3
@@ -323,19 +323,19 @@ def soulie(theta, V, D, rho=1.0):
         return 0.5 * np.sqrt(rho) * (c + np.exp(a * D / big + b))
 
 
-def weigert_ripperger(theta, V, D, rho=1.0):
+def weigert_ripperger(contact_angle_rad, V, D, ratio=1.0):
     r"""Weigert & Ripperger (1999): the toroidal bridge whose filling angle follows the volume by their fit
     (eqs. 5, 6, 15-17, 21, 22), with Derjaguin's R* as the sphere radius.
 
     Parameters
     ----------
-    theta : float or array_like
+    contact_angle_rad : float or array_like
         Contact angle [rad].
     V : float or array_like
         Bridge volume V / R1^3 [-].
     D : float or array_like
         Gap D / R1 [-].
-    rho : float or array_like, default 1.0
+    ratio : float or array_like, default 1.0
         R2 / R1 [-]; ``np.inf`` for a plane.
 
     Returns
@@ -360,7 +360,7 @@ def weigert_ripperger(theta, V, D, rho=1.0):
        the half-filling angle. Part. Part. Syst. Charact. 16, 238-242.
        doi:10.1002/(SICI)1521-4117(199910)16:5<238::AID-PPSC238>3.0.CO;2-E
     """
-    theta, V, D, rho = _args(theta, V, D, rho)
+    theta, V, D, rho = _args(contact_angle_rad, V, D, ratio)
     Rs = effective_radius(rho)
     d = 2.0 * Rs
     Ca = 1.0 + 6.0 * D / d
@@ -442,12 +442,12 @@ LAWS: dict[str, Law] = {
 }
 
 
-def geometry_of(rho) -> np.ndarray:
+def geometry_of(ratio) -> np.ndarray:
     """ "equal", "unequal" or "plane" per pair (the key of :attr:`Law.geometries`).
 
     Parameters
     ----------
-    rho : array_like
+    ratio : array_like
         R2 / R1 [-]; ``np.inf`` for a plane.
 
     Returns
@@ -460,18 +460,18 @@ def geometry_of(rho) -> np.ndarray:
     .. [1] Willett, C. D., Adams, M. J., Johnson, S. A. & Seville, J. P. K. (2000). Capillary bridges between two
        spherical bodies. Langmuir 16, 9396-9405. doi:10.1021/la000657y (equal spheres, unequal ones through R*)
     """
-    rho = np.asarray(rho, dtype=float)
+    rho = np.asarray(ratio, dtype=float)
     return np.where(np.isinf(rho), "plane", np.where(rho == 1.0, "equal", "unequal"))
 
 
-def law_force(name: str, theta, V, D, rho=1.0) -> np.ndarray:
+def law_force(name: str, contact_angle_rad, V, D, ratio=1.0) -> np.ndarray:
     """The force of a registered law, NaN where the law does not apply to the geometry.
 
     Parameters
     ----------
     name : str
         A key of :data:`LAWS`.
-    theta, V, D, rho : array_like
+    contact_angle_rad, V, D, ratio : array_like
         Contact angle [rad], V / R1^3, D / R1, R2 / R1 (``inf``: a plane) [-].
 
     Returns
@@ -484,6 +484,6 @@ def law_force(name: str, theta, V, D, rho=1.0) -> np.ndarray:
     .. [1] The law's own paper: ``LAWS[name].citation``, doi ``LAWS[name].doi``.
     """
     law = LAWS[name]
-    theta, V, D, rho = _args(theta, V, D, rho)
+    theta, V, D, rho = _args(contact_angle_rad, V, D, ratio)
     F = law.force(theta, V, D, rho)
     return np.where(np.isin(geometry_of(rho), law.geometries), F, np.nan)

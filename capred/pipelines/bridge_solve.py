@@ -17,6 +17,7 @@ from ..physics import bridge as br
 from ..physics import shear as ph
 from ..result import InputFile, Options, Result, Rows, json_list, num
 from ..result import csv_header as result_csv_header
+from .bridge_records import BridgeRecord
 
 # 1: the gap is too wide for this suction or volume; 3: so much water that the bridge would be
 # convex (water above air pressure), outside the pendular model
@@ -139,12 +140,18 @@ class BridgeResult(Result):
         """Neck radius r0 [m] (a virtual neck, behind one contact, when the meridian widens across the bridge)."""
         return self.shape.neck * self.inputs_si["R"]
 
-    def columns(self) -> dict[str, np.ndarray]:
-        """Output columns (mm, mN, mm^3, mm^2, deg, kPa); NaN where no bridge was found.
+    def record(self) -> BridgeRecord:
+        """The bridges as a typed record in output units (mm, mN, mm^3, mm^2, deg, kPa); NaN where no bridge was
+        found.
 
         S_R = 3 V_w / (2 pi R^3) and sigma' = F / (pi R^2) are the unit cell of the particle of radius R
         (Evenepoel's thesis); nn11 = nn22 and nn33 are the transverse and axial components of the
         integral of n (x) n over the liquid-gas interface (area = 2 nn11 + nn33).
+
+        Returns
+        -------
+        BridgeRecord
+            One array per output quantity, one value per row.
         """
         R, g = self.inputs_si["R"], self.inputs_si["gamma"]
         ok = self.status == 0
@@ -153,21 +160,25 @@ class BridgeResult(Result):
         def out(x):
             return np.where(ok, x, np.nan)
 
-        return {
-            "r0_mm": out(self.neck * 1e3),
-            "F_cap_mN": out(self.force * 1e3),
-            "F_L_mN": out(np.pi * self.neck**2 * self.suction * 1e3),
-            "F_T_mN": out(2 * np.pi * self.neck * g * 1e3),
-            "V_w_mm3": out(self.volume * 1e9),
-            "filling_angle_deg": out(np.degrees(self.beta)),
-            "filling_angle2_deg": out(np.degrees(b.delta2)),
-            "suction_kPa": out(self.suction / 1e3),
-            "S_R": out(3 * self.volume / (2 * np.pi * R**3)),
-            "sigma_prime_kPa": out(self.force / (np.pi * R**2) / 1e3),
-            "area_mm2": out(b.area * R**2 * 1e6),
-            "nn11_mm2": out(b.nn11 * R**2 * 1e6),
-            "nn33_mm2": out(b.nn33 * R**2 * 1e6),
-        }
+        return BridgeRecord(
+            r0=out(self.neck * 1e3),
+            F_cap=out(self.force * 1e3),
+            F_L=out(np.pi * self.neck**2 * self.suction * 1e3),
+            F_T=out(2 * np.pi * self.neck * g * 1e3),
+            V_w=out(self.volume * 1e9),
+            filling_angle=out(np.degrees(self.beta)),
+            filling_angle2=out(np.degrees(b.delta2)),
+            suction=out(self.suction / 1e3),
+            S_R=out(3 * self.volume / (2 * np.pi * R**3)),
+            sigma_prime=out(self.force / (np.pi * R**2) / 1e3),
+            area=out(b.area * R**2 * 1e6),
+            nn11=out(b.nn11 * R**2 * 1e6),
+            nn33=out(b.nn33 * R**2 * 1e6),
+        )
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """Output columns under their JSON keys (:meth:`record`, :meth:`BridgeRecord.columns`)."""
+        return self.record().columns()
 
     @staticmethod
     def status_text(code: int) -> str:
@@ -226,13 +237,15 @@ class BridgeResult(Result):
         return {"solve": with_csv_headers(self._cols())}
 
 
+_RECORD_HEADERS = BridgeRecord.csv_headers()
 #: columns of text (no unit in their header)
 TEXT_COLUMNS = ("case", "status", "note", "model", "law", "region")
 
 
 def csv_header(key: str) -> str:
     """The CSV header of a JSON key of a bridge table: ``name [unit]`` (``r0_mm`` -> ``r0 [mm]``, ``S_R`` ->
-    ``S_R [-]``); a text column keeps its name.
+    ``S_R [-]``); a text column keeps its name. The columns of `bridge solve` take theirs from
+    :class:`BridgeRecord`; the other bridge tables' keys end in their unit.
 
     Parameters
     ----------
@@ -246,6 +259,9 @@ def csv_header(key: str) -> str:
     """
     if key in TEXT_COLUMNS:
         return key
+    declared = _RECORD_HEADERS.get(key)
+    if declared is not None:
+        return declared
     header = result_csv_header(key)  # the one rule for unit suffixes (capred.result)
     return header if header != key else f"{key} [-]"
 
