@@ -17,6 +17,7 @@ reduction on one file, many files or a manifest.
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -168,6 +169,8 @@ def _plain(v):
         return {str(k): _plain(x) for k, x in v.items()}
     if isinstance(v, Path):
         return str(v)
+    if isinstance(v, float) and not math.isfinite(v):
+        return None  # as every JSON file writes it (null): the API's document equals the file's
     return v
 
 
