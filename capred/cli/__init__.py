@@ -12,6 +12,7 @@ import typer
 from ..errors import CapredError
 from . import bridge_commands, calculator_commands, data_commands, pt_volume_command, retention_convert_command
 from .common import BUILDERS, JsonOpt, WorkersOpt, fail, run_batch
+from .generated import register_generated
 
 app = typer.Typer(
     name="capred",
@@ -47,6 +48,8 @@ bridge_commands.register(app)
 calculator_commands.register(app)
 pt_volume_command.register(app)
 retention_convert_command.register(app)
+# every other registered command: a CLI built from its Options (capred/cli/generated.py)
+register_generated(app, BUILDERS)
 
 
 @app.command(short_help="A season's runs from a CSV or TOML manifest.")

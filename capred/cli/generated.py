@@ -1,0 +1,195 @@
+"""A command's CLI built from its Options: each option declared once, by its Options field and the glossary.
+
+A reduction (capred/reductions.py) whose command has no hand-written builder gets one here: every public
+field of its Options dataclass becomes an option ``--field-name`` with
+
+- its help from the Options docstring's numpydoc ``Attributes`` section,
+- its unit from the glossary (``Options.QUANTITIES`` names the glossary entry of a dimensional field): the
+  option takes a number in the glossary's output unit (kPa, kN/m^3, mm ...), converted to SI here, once,
+  so a value stays a number from the command line to the physics,
+- its type and default from the field (bool fields are ``--flag/--no-flag``; tuples are comma separated).
+
+So a new command is its Reduction entry (with its Options and records) and its presenter: nothing in cli/.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import inspect
+import re
+import typing
+from typing import Annotated
+
+import typer
+
+from .common import Invocation, command
+
+
+def attribute_help(cls) -> dict[str, str]:
+    """The numpydoc ``Attributes`` section of a class docstring, as ``{name: first sentence of its text}``.
+
+    Parameters
+    ----------
+    cls : type
+        A documented dataclass (an Options class).
+
+    Returns
+    -------
+    dict
+        Field name -> its description (one line).
+    """
+    doc = inspect.cleandoc(cls.__doc__ or "")
+    m = re.search(r"^Attributes\n-+\n(.*?)(?:\n\n[A-Z][A-Za-z ]+\n-+\n|\Z)", doc, re.S | re.M)
+    out: dict[str, str] = {}
+    if not m:
+        return out
+    name = None
+    for line in m.group(1).splitlines():
+        head = re.match(r"^([A-Za-z_][A-Za-z0-9_]*)\s*(?::.*)?$", line)
+        if head and not line.startswith(" "):
+            name = head.group(1)
+            out[name] = ""
+        elif name is not None and line.strip():
+            out[name] = (out[name] + " " + line.strip()).strip()
+    return out
+
+
+def _base_type(annotation):
+    """(python type, optional?) of a field annotation such as ``float | None`` or ``tuple``."""
+    args = typing.get_args(annotation)
+    optional = type(None) in args
+    if args and typing.get_origin(annotation) in (typing.Union, getattr(__import__("types"), "UnionType", None)):
+        rest = [a for a in args if a is not type(None)]
+        annotation = rest[0] if len(rest) == 1 else str
+    origin = typing.get_origin(annotation) or annotation
+    return origin, optional
+
+
+def option_parameters(options_cls) -> list[tuple[str, inspect.Parameter, object]]:
+    """The typer parameters of an Options class: ``(field name, parameter, converter)`` per public field.
+
+    Parameters
+    ----------
+    options_cls : type
+        The Options dataclass of a reduction.
+
+    Returns
+    -------
+    list of tuple
+        The field's name, its ``inspect.Parameter`` (annotated with ``typer.Option``) and a function that turns
+        the parsed value into the Options' value (SI for a dimensional field).
+    """
+    from ..nomenclature import QUANTITIES
+
+    hints = typing.get_type_hints(options_cls)
+    helps = attribute_help(options_cls)
+    dims = getattr(options_cls, "QUANTITIES", {}) or {}
+    out = []
+    for f in dataclasses.fields(options_cls):
+        if f.name.startswith("_") or not f.init:
+            continue
+        default = f.default if f.default is not dataclasses.MISSING else None
+        if f.default is dataclasses.MISSING and f.default_factory is not dataclasses.MISSING:
+            default = f.default_factory()
+        typ, _ = _base_type(hints.get(f.name, str))
+        flag = "--" + f.name.replace("_", "-")
+        text = helps.get(f.name, f.name.replace("_", " "))
+        convert = _identity
+        if f.name in dims:  # a number in the glossary's unit, converted to SI once
+            q = QUANTITIES[dims[f.name]]
+            text = re.sub(r"\s*\[[^\]]*\]", "", text) + f" [{q.unit}]"
+            shown = None if default is None else float(default) * q.factor
+            annotation = Annotated[float | None, typer.Option(flag, help=text, show_default=shown is not None)]
+            default, convert = shown, _to_si(q.factor)
+        elif typ is bool:
+            annotation = Annotated[bool, typer.Option(f"{flag}/--no-{f.name.replace('_', '-')}", help=text)]
+        elif typ in (tuple, list):
+            shown = None if default is None else ",".join(map(str, default))
+            annotation = Annotated[str | None, typer.Option(flag, help=text + " (comma separated)")]
+            default, convert = shown, _split
+        elif typ in (int, float):
+            annotation = Annotated[typ | None, typer.Option(flag, help=text)]
+        else:
+            annotation = Annotated[str | None, typer.Option(flag, help=text)]
+        param = inspect.Parameter(f.name, inspect.Parameter.KEYWORD_ONLY, default=default, annotation=annotation)
+        out.append((f.name, param, convert))
+    return out
+
+
+def _identity(value):
+    return value
+
+
+def _to_si(factor: float):
+    return lambda value: None if value is None else value / factor
+
+
+def _split(text):
+    if text is None:
+        return None
+    items = [t.strip() for t in str(text).split(",") if t.strip()]
+    try:
+        return tuple(float(t) for t in items)
+    except ValueError:
+        return tuple(items)
+
+
+def register_generated(app: typer.Typer, builders: dict) -> list[str]:
+    """Give every registered reduction without a hand-written builder a CLI built from its Options.
+
+    Parameters
+    ----------
+    app : typer.Typer
+        The application (a command of a group, "bridge laws", goes to that group when it exists).
+    builders : dict
+        The command name -> builder registry of capred.cli.common (commands already there are left alone).
+
+    Returns
+    -------
+    list of str
+        The commands registered here.
+    """
+    from ..reductions import REDUCTIONS
+
+    done = []
+    for name, red in REDUCTIONS.items():
+        if name in builders or " " in name:  # hand-written, or a subcommand of a group with its own app
+            continue
+        command(app, name, data=_data_help(red))(generated_builder(red))
+        done.append(name)
+    return done
+
+
+def _data_help(red) -> str | None:
+    if red.source == "none":
+        return None
+    return red.input_description or f"Input files of `capred {red.name}`"
+
+
+def generated_builder(red):
+    """The builder of one reduction: keyword arguments from its Options' fields, returning an Invocation.
+
+    Parameters
+    ----------
+    red : capred.reductions.Reduction
+        The command.
+
+    Returns
+    -------
+    callable
+        ``builder(**parsed) -> Invocation`` with a signature typer reads.
+    """
+    from importlib import import_module
+
+    module, cls_name = red.options_path.split(":")
+    options_cls = getattr(import_module(module), cls_name)
+    params = option_parameters(options_cls)
+
+    def builder(**parsed) -> Invocation:
+        values = {name: convert(parsed[name]) for name, _, convert in params if parsed.get(name) is not None}
+        return Invocation(red.name, options_cls(**values))
+
+    builder.__signature__ = inspect.Signature([p for _, p, _ in params], return_annotation=Invocation)
+    builder.__name__ = red.name.replace("-", "_")
+    builder.__doc__ = red.summary or red.name
+    return builder
