@@ -78,7 +78,7 @@ def parameter_table(title: str, records) -> TableSpec:
                 se, ci = "(fixed)", ""
             else:
                 se = fmt(_num(p.stderr), 2)
-                ci = "—" if not math.isfinite(p.ci95[0]) else f"{fmt(p.ci95[0], 3)} … {fmt(p.ci95[1], 3)}"
+                ci = "—" if not math.isfinite(p.ci95[0]) else f"[{fmt(p.ci95[0], 3)}, {fmt(p.ci95[1], 3)}]"
             t.rows.append(["  " + p.name, fmt(p.value), se, ci, p.unit])
         if i < len(records) - 1:
             t.sections.add(len(t.rows) - 1)
@@ -111,7 +111,7 @@ def convert_tables(result) -> list[TableSpec]:
     t.rows += [
         ["from", src.model, ""],
         ["to", new.model, ""],
-        ["suction range", f"{fmt(m['suction_range_kPa'][0])} … {fmt(m['suction_range_kPa'][1])}", "kPa"],
+        ["suction range", f"{fmt(m['suction_range_kPa'][0])} to {fmt(m['suction_range_kPa'][1])}", "kPa"],
         ["points", str(m["n_points"]), ""],
         ["RMSE", fmt(m["rmse"]), unit],
         ["largest deviation", fmt(m["max_deviation"]), unit],
