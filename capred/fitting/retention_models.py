@@ -815,13 +815,10 @@ class RetentionFit(NonlinearFit):
 
     def at_bounds(self, rel: float = 1e-6) -> list[str]:
         """Free parameters (internal names) that ended on one of their bounds, judged on their own scale."""
-        from .nonlinear import _at_bound
+        from types import SimpleNamespace
 
-        return [
-            k
-            for k in self.free
-            if _at_bound(self.params_si[k], self.bounds.get(k, (-np.inf, np.inf)), self.log_params.get(k), rel)
-        ]
+        si = SimpleNamespace(free=self.free, params=self.params_si, bounds=self.bounds, log_params=self.log_params)
+        return NonlinearFit.at_bounds(si, rel)  # the same rule on the SI values
 
     @property
     def label(self) -> str:
