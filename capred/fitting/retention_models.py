@@ -237,6 +237,9 @@ class RetentionModel:
     canonical : callable or None
         ``canonical(params) -> params``: one labelling of a symmetric model's optimum (Durner: the pore system
         of larger α first).
+    steps : tuple of (str, str)
+        ``(α, n)`` pairs of a pore system that may fit as a step (n at its upper bound), where the objective is
+        piecewise flat in α between data suctions: α is then searched in every interval (Durner's second system).
     """
 
     name: str
@@ -253,6 +256,7 @@ class RetentionModel:
     inverse: Callable | None = None
     grid_order: tuple[str, str] | None = None
     canonical: Callable | None = None
+    steps: tuple[tuple[str, str], ...] = ()
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -552,6 +556,7 @@ MODELS: dict[str, RetentionModel] = {
             mixture=("w1", _durner_components),
             grid_order=("alpha1", "alpha2"),
             canonical=_durner_canonical,
+            steps=(("alpha2", "n2"), ("alpha1", "n1")),
         ),
     )
 }
@@ -886,13 +891,10 @@ class RetentionFit(NonlinearFit):
         list of str
             Internal names of the parameters at a bound.
         """
-        from .nonlinear import _at_bound
+        from types import SimpleNamespace
 
-        return [
-            k
-            for k in self.free
-            if _at_bound(self.params_si[k], self.bounds.get(k, (-np.inf, np.inf)), self.log_params.get(k), rel)
-        ]
+        si = SimpleNamespace(free=self.free, params=self.params_si, bounds=self.bounds, log_params=self.log_params)
+        return NonlinearFit.at_bounds(si, rel)  # the same rule on the SI values
 
     @property
     def label(self) -> str:
@@ -1640,6 +1642,37 @@ def _interval_walk(pb: _Problem, u, j: int, lo, hi):
             u, cost, converged, here = Ut[b], float(ct[b]), bool(okt[b]), int(todo[b])
 
 
+def _step_search(pb: _Problem, model: RetentionModel, u, converged: bool):
+    """Search a pore system as a step: its n at the upper bound and its α in every interval between neighbouring
+    data suctions (the objective is piecewise flat in α there, so a local fit stays where it starts), each
+    refined within its interval, the best then refined in the whole box; kept when it lowers the cost.
+    Returns (u, converged)."""
+    lo_all, hi_all = pb.u_rows(np.array([[pb.b[k][0] for k in pb.shape], [pb.b[k][1] for k in pb.shape]]))
+    R, _ = pb.resid_jac_rows(u[None, :], hi_all[None, :])
+    best_c = float(R[0] @ R[0])
+    for a, n in model.steps:
+        if a not in pb.shape or n not in pb.shape:
+            continue
+        ja, jn = pb.shape.index(a), pb.shape.index(n)
+        knots = _knots(pb.s)
+        x = 1.0 / knots if model.parameter(a).kind == "inverse_suction" else knots
+        o = pb.offset[ja]
+        ek = np.log(x - o) if o is not None else x
+        edges = np.unique(np.concatenate([[lo_all[ja]], ek[(ek > lo_all[ja]) & (ek < hi_all[ja])], [hi_all[ja]]]))
+        rows = edges.size - 1
+        U0 = np.repeat(u[None, :], rows, axis=0)
+        LO, HI = np.repeat(lo_all[None, :], rows, axis=0), np.repeat(hi_all[None, :], rows, axis=0)
+        LO[:, ja], HI[:, ja] = edges[:-1], edges[1:]
+        U0[:, ja] = 0.5 * (edges[:-1] + edges[1:])
+        U0[:, jn] = hi_all[jn]
+        Ut, ct, _ = _levenberg_marquardt(pb, U0, LO, HI, ftol=1e-12, max_iter=100)
+        i = int(np.argmin(ct))
+        U2, c2, ok2 = _levenberg_marquardt(pb, Ut[i : i + 1], lo_all[None, :], hi_all[None, :], 1e-14, 200)
+        if c2[0] < best_c * (1 - 1e-12):
+            u, best_c, converged = U2[0], float(c2[0]), bool(ok2[0])
+    return u, converged
+
+
 def _knots(s, most: int = 150) -> np.ndarray:
     """The distinct positive data suctions where a kinked model changes form (at most ``most``, evenly chosen)."""
     knots = np.unique(s[s > 0])
@@ -1830,6 +1863,8 @@ def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = 
             U2, cost2, ok2 = _levenberg_marquardt(pb, U1[keep], ulo[order], uhi[order], ftol=1e-14, max_iter=200)
             i = int(np.argmin(cost2))
             u, converged = U2[i], bool(ok2[i])
+        if model.steps and not any(k in fixed for pair in model.steps for k in pair):
+            u, converged = _step_search(pb, model, u, converged)
         best_x = pb.x_rows(u[None, :])[0]
     optimum = pb.full(best_x)
     if model.canonical is not None and not fixed:
