@@ -144,7 +144,8 @@ class CurveResult(Result):
         }
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (the table ``curve``: S_R, suction, sigma' of each model), NaN written as None.
+        """The per-row records of the JSON document (the table ``curve``: S_R, suction, sigma' of each model), NaN
+        written as None.
 
         Returns
         -------
@@ -160,7 +161,8 @@ class CurveResult(Result):
         Returns
         -------
         dict
-            ``{"inside": {model: error}, "outside": {...}}`` [-] (None where a regime has no point).
+            ``{"rms_relative_error_vs_exact": {"inside": {model: error}, "outside": {...}}}`` [-], the exact
+            bridges left out (None where a regime has no point).
         """
         m = self.models()
         out = {}
@@ -174,7 +176,8 @@ class CurveResult(Result):
         return {"rms_relative_error_vs_exact": out}
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: R_mm, gamma_N_per_m, contact_angle_deg, the error summary and the curve rows.
+        """The command's own keys of the JSON document: R_mm, gamma_N_per_m, contact_angle_deg, the error summary and
+        the curve rows.
 
         Parameters
         ----------
@@ -363,7 +366,8 @@ class CompareResult(Result):
         return cached
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (per micro-test: measured and modelled forces and residuals [mN], filling angles [deg], status), NaN written as None.
+        """The per-row records of the JSON document (per micro-test: measured and modelled forces and residuals [mN],
+        filling angles [deg], status), NaN written as None.
 
         Returns
         -------
@@ -519,7 +523,8 @@ class RuptureResult(Result):
         return cached
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (per case: rupture distance and the bridge at rupture; a plane's R2_mm is 'plane'), NaN written as None.
+        """The per-row records of the JSON document (per case: rupture distance and the bridge at rupture; a plane's
+        R2_mm is 'plane'), NaN written as None.
 
         Returns
         -------

@@ -76,7 +76,8 @@ class BridgeBlocks(Result):
         return pb.json_rows(self.spool.columns(start, stop))
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (every row of the run, read back from the spool), NaN written as None.
+        """The per-row records of the JSON document (every row of the run, read back from the spool), NaN written as
+        None.
 
         Returns
         -------
@@ -137,7 +138,8 @@ class BridgeBlocks(Result):
         return {"solve": pd.DataFrame(self._all(), copy=False)}  # tables.xlsx: every row in memory
 
     def csv_tables(self) -> dict:
-        """The tables as the CSV writer takes them (``solve``: a HeadedSpool written block by block), under ``name [unit]`` headers.
+        """The tables as the CSV writer takes them (``solve``: a HeadedSpool written block by block), under ``name
+        [unit]`` headers.
 
         Returns
         -------

@@ -250,7 +250,8 @@ class LawsResult(Result):
         return cols
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (per grid point: gap, volume, angle, R2_over_R ('plane' for a plane) and each law's relative error), NaN written as None.
+        """The per-row records of the JSON document (per grid point: gap, volume, angle, R2_over_R ('plane' for a plane)
+        and each law's relative error), NaN written as None.
 
         Returns
         -------
@@ -266,7 +267,8 @@ class LawsResult(Result):
         return out
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: the source, the tolerance, each law with its citation, the regions and the points.
+        """The command's own keys of the JSON document: the source, the tolerance, each law with its citation, the
+        regions and the points.
 
         Parameters
         ----------
@@ -299,7 +301,8 @@ class LawsResult(Result):
         }
 
     def tables(self) -> dict:
-        """Output tables: file stem -> pandas DataFrame (``laws``: one row per grid point; ``regions``: each law's median and largest error per region).
+        """Output tables: file stem -> pandas DataFrame (``laws``: one row per grid point; ``regions``: each law's
+        median and largest error per region).
 
         Returns
         -------
@@ -313,7 +316,8 @@ class LawsResult(Result):
         return {"laws": points, "regions": pd.DataFrame(self.regions())}
 
     def csv_tables(self) -> dict:
-        """The tables as the CSV writer takes them (``laws`` and ``regions``, dimensionless columns headed ``[-]``), under ``name [unit]`` headers.
+        """The tables as the CSV writer takes them (``laws`` and ``regions``, dimensionless columns headed ``[-]``),
+        under ``name [unit]`` headers.
 
         Returns
         -------

@@ -207,7 +207,8 @@ class BridgeResult(Result):
         return {k: v[start:stop] for k, v in self._cols().items()}
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (every bridge: inputs, r0, forces, V_w, filling angles, area, S_R, sigma', status), NaN written as None.
+        """The per-row records of the JSON document (every bridge: inputs, r0, forces, V_w, filling angles, area, S_R,
+        sigma', status), NaN written as None.
 
         Returns
         -------
@@ -260,7 +261,8 @@ class BridgeResult(Result):
         return {"solve": self._frame()}
 
     def csv_tables(self) -> dict:
-        """The tables as the CSV writer takes them (``solve``, built from the output columns), under ``name [unit]`` headers.
+        """The tables as the CSV writer takes them (``solve``, built from the output columns), under ``name [unit]``
+        headers.
 
         Returns
         -------

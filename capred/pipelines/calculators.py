@@ -50,7 +50,8 @@ class CalcResult(Result):
         return self.calculator
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (per case: its label (if any), inputs and results in output units), NaN written as None.
+        """The per-row records of the JSON document (per case: its label (if any), inputs and results in output units),
+        NaN written as None.
 
         Returns
         -------
@@ -68,7 +69,8 @@ class CalcResult(Result):
         return cached
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: the source and the cases (a single case's results also at the top; the skeleton model and its inputs where one applies).
+        """The command's own keys of the JSON document: the source and the cases (a single case's results also at the
+        top; the skeleton model and its inputs where one applies).
 
         Parameters
         ----------
@@ -102,7 +104,8 @@ class CalcResult(Result):
         ], ["morvan2016", "morvan_wong_branque2010"]
 
     def tables(self) -> dict:
-        """Output tables: file stem -> pandas DataFrame (``results``: one row per case, led by the model where one applies).
+        """Output tables: file stem -> pandas DataFrame (``results``: one row per case, led by the model where one
+        applies).
 
         Returns
         -------

@@ -151,7 +151,8 @@ class HistoryResult(Result):
         return [int(r) for r, b in zip(self.runs["run"], self.runs["beyond"]) if b]
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (per run: run id, test date, input, value with its 95 % interval, moving range, beyond_limits), NaN written as None.
+        """The per-row records of the JSON document (per run: run id, test date, input, value with its 95 % interval,
+        moving range, beyond_limits), NaN written as None.
 
         Returns
         -------
@@ -175,7 +176,8 @@ class HistoryResult(Result):
         ]
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: material, quantity, unit, the control limits (centre, sigma, lcl, ucl, moving-range centre) and the runs.
+        """The command's own keys of the JSON document: material, quantity, unit, the control limits (centre, sigma,
+        lcl, ucl, moving-range centre) and the runs.
 
         Parameters
         ----------

@@ -341,7 +341,8 @@ class PTVolumeResult(Result):
         return [dict(zip(keys, vals)) for vals in zip(*cols.values())]
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: source, model, parameters, number of points, initial and final e, sub-steps, points and stages.
+        """The command's own keys of the JSON document: source, model, parameters, number of points, initial and final
+        e, sub-steps, points and stages.
 
         Parameters
         ----------

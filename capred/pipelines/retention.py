@@ -487,7 +487,8 @@ class RetentionResult(Result):
         }
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: source, quantity, branch source, main branch and its fits, every branch with its fits and model selection, the hysteresis fit if any.
+        """The command's own keys of the JSON document: source, quantity, branch source, main branch and its fits, every
+        branch with its fits and model selection, the hysteresis fit if any.
 
         Parameters
         ----------

@@ -86,7 +86,8 @@ class RetentionConvertResult(RetentionResult):
         return next(iter(next(iter(self.fits.values())).values()))
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: those of ``capred retention`` plus ``conversion``: source and target models, the source parameters (report units and SI) and the misfit.
+        """The command's own keys of the JSON document: those of ``capred retention`` plus ``conversion``: source and
+        target models, the source parameters (report units and SI) and the misfit.
 
         Parameters
         ----------
