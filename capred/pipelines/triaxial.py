@@ -689,7 +689,8 @@ def skempton_a_of_curves(table: Table, at_peak: dict) -> tuple[np.ndarray, list[
     table : Table
         The tests table (test_id, optional B).
     at_peak : dict
-        Test id -> the export's pressures at the peak [Pa] and its shear-stage readings.
+        Test id -> changes over the shear stage up to the peak: ``du``, ``dq``, ``dsigma3`` [Pa] and the
+        export's last ``B`` [-].
 
     Returns
     -------
