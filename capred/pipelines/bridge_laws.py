@@ -250,8 +250,9 @@ class LawsResult(Result):
         return cols
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (per grid point: gap, volume, angle, R2_over_R ('plane' for a plane)
-        and each law's relative error), NaN written as None.
+        """The per-row records of the JSON document (per grid point: D_over_R, V_over_R3, contact_angle_deg,
+        R2_over_R ('plane' for a plane), F_exact, and each law's force F_<law> and relative error error_<law>;
+        forces in units of 2 pi R gamma), NaN written as None.
 
         Returns
         -------
