@@ -53,7 +53,24 @@ class Outcome:
 
 
 def run_job(job: Job):
-    """(result, written paths) of one job; raises CapredError on bad input or unwritable output."""
+    """(result, written paths) of one job; raises CapredError on bad input or unwritable output.
+
+    Parameters
+    ----------
+    job : Job
+        The command, its input, output folder, options and output settings.
+
+    Returns
+    -------
+    tuple
+        ``(result, written)``: the command's Result and the list of paths written (empty when
+        ``job.out_dir`` is None).
+
+    Raises
+    ------
+    CapredError
+        On bad input, or where the output folder may not be written.
+    """
     from .reductions import REDUCTIONS
     from .report.outputs import write_outputs
 
@@ -83,7 +100,18 @@ def run_job(job: Job):
 
 
 def run_safely(job: Job) -> Outcome:
-    """Outcome of one job: ok, failed (CapredError) or crashed (any other exception)."""
+    """Outcome of one job: ok, failed (CapredError) or crashed (any other exception).
+
+    Parameters
+    ----------
+    job : Job
+        The job to run.
+
+    Returns
+    -------
+    Outcome
+        Its status, message, files written, duration [s], season rows, headline and warning count.
+    """
     t0 = time.perf_counter()
     from .io.grid import source_path
 
@@ -154,7 +182,18 @@ def _save_traceback(job: Job, text: str) -> str:
 
 
 def default_workers(n_jobs: int) -> int:
-    """Worker processes for ``n_jobs`` jobs: one per core this process may use, never more than the jobs."""
+    """Worker processes for ``n_jobs`` jobs: one per core this process may use, never more than the jobs.
+
+    Parameters
+    ----------
+    n_jobs : int
+        Number of jobs to run [-].
+
+    Returns
+    -------
+    int
+        Number of worker processes, at least 1 [-].
+    """
     import os
 
     try:
@@ -376,7 +415,22 @@ def _run(jobs: list[Job], workers: int, outcomes: dict, on_done) -> None:
 
 
 def output_dirs(commands: list[str], sources: list[Path], root: Path) -> list[Path]:
-    """One folder per input under ``root``: <prefix>_<stem>, made unique with parent names or a number."""
+    """One folder per input under ``root``: <prefix>_<stem>, made unique with parent names or a number.
+
+    Parameters
+    ----------
+    commands : list of str
+        The command of each job (its registry entry gives the folder prefix).
+    sources : list of Path
+        The input of each job (None where a command reads no file: stem ``options``).
+    root : Path
+        The batch output folder.
+
+    Returns
+    -------
+    list of Path
+        One output folder per job, in the order of ``sources``.
+    """
     from .io.grid import source_path
     from .reductions import REDUCTIONS
 
@@ -411,7 +465,20 @@ def _runs(root: Path, outcomes: list[Outcome]) -> list[str]:
 
 
 def relative(path, root) -> str:
-    """A path as index.csv and season.csv write it: relative to the batch root, with '/' ("" for none)."""
+    """A path as index.csv and season.csv write it: relative to the batch root, with '/' ("" for none).
+
+    Parameters
+    ----------
+    path : str or Path or None
+        The path to write.
+    root : str or Path
+        The batch root.
+
+    Returns
+    -------
+    str
+        The POSIX path relative to ``root``; "" when ``path`` is empty.
+    """
     import os
 
     if not path:
@@ -423,14 +490,36 @@ def relative(path, root) -> str:
 
 
 def one_line(message: str) -> str:
-    """A message of several lines (one per problem) as one CSV cell: its lines stripped, joined by ' | '."""
+    """A message of several lines (one per problem) as one CSV cell: its lines stripped, joined by ' | '.
+
+    Parameters
+    ----------
+    message : str
+        A message, possibly of several lines.
+
+    Returns
+    -------
+    str
+        The message on one line.
+    """
     return " | ".join(x.strip(" -") for x in message.splitlines() if x.strip())
 
 
 # --- labels and units of the season tables --------------------------------------------------------------
 def model_label(name):
     """The label of a model, law or retention model as its registry gives it (``own1`` -> ``Own 1``, ``vg`` ->
-    ``van Genuchten, m = 1 - 1/n``); other values as they are."""
+    ``van Genuchten, m = 1 - 1/n``); other values as they are.
+
+    Parameters
+    ----------
+    name : str or object
+        A model, law or retention-model id; any other value is returned unchanged.
+
+    Returns
+    -------
+    str or object
+        The registry label, or ``name`` itself where no registry knows it.
+    """
     if not isinstance(name, str):
         return name
     from .fitting.retention_models import MODELS
@@ -450,7 +539,20 @@ _SUFFIX_UNITS = (("_per_kPa", "1/kPa"), ("_kPa", "kPa"), ("_deg", "deg"), ("_mm"
 def unit_header(key: str, values) -> str:
     """A season column's header in the ``name [unit]`` form of every capred CSV: a header that has one kept,
     a JSON suffix read as its unit (``alpha_per_kPa`` -> ``alpha [1/kPa]``), other numbers ``[-]``, text
-    columns their name alone."""
+    columns their name alone.
+
+    Parameters
+    ----------
+    key : str
+        The season column's key.
+    values : iterable
+        The column's values (decide ``[-]`` for numbers or no unit for text).
+
+    Returns
+    -------
+    str
+        The CSV header.
+    """
     import numbers
 
     if key.endswith("]") and " [" in key:
@@ -465,14 +567,36 @@ def unit_header(key: str, values) -> str:
 
 
 def labelled(rows: list[dict]) -> list[dict]:
-    """Season rows with every model id (``best_model``, ``*_model``) replaced by its registry label."""
+    """Season rows with every model id (``best_model``, ``*_model``) replaced by its registry label.
+
+    Parameters
+    ----------
+    rows : list of dict
+        Season rows of a result.
+
+    Returns
+    -------
+    list of dict
+        New rows (the input is not modified) with model ids as labels.
+    """
     return [{k: (model_label(v) if k.endswith("model") else v) for k, v in r.items()} for r in rows]
 
 
 def headline(rows: list[dict]) -> str:
     """The main results of a run in one line, from its season rows: per row its label (material, branch),
     its first two measured values with units and its best model, e.g. ``steel_2mm: c 0.3701 kPa, phi 34.59
-    deg, best model: Own 2``; rows separated by `` | ``."""
+    deg, best model: Own 2``; rows separated by `` | ``.
+
+    Parameters
+    ----------
+    rows : list of dict
+        Season rows of a result, model ids already labelled.
+
+    Returns
+    -------
+    str
+        The headline ("" when no row gives anything).
+    """
     from .report.render import fmt
 
     parts = []
@@ -510,6 +634,20 @@ def write_index(root: Path, outcomes: list[Outcome], batch_files=()) -> Path:
 
     Refused (OutputError) where an index.csv exists that capred did not write (or a user edited since);
     recorded with its hash in the batch's provenance.json.
+
+    Parameters
+    ----------
+    root : Path
+        The batch root folder.
+    outcomes : list of Outcome
+        The outcome of every job.
+    batch_files : sequence of path, optional
+        The other files written at the batch root.
+
+    Returns
+    -------
+    Path
+        The index.csv written.
     """
     import csv
     import io
@@ -541,6 +679,18 @@ def season_tables(root: Path, outcomes: list[Outcome]) -> tuple[dict, dict]:
     the number of warnings and its report. ``details`` holds each command's own rows
     (``Result.season_rows``: per material, branch or envelope) with the input they come from: one kind of
     record per table.
+
+    Parameters
+    ----------
+    root : Path
+        The batch root folder.
+    outcomes : list of Outcome
+        The outcome of every job.
+
+    Returns
+    -------
+    tuple of dict
+        ``(season, details)``: the table of runs and, per command, its table of detail rows.
     """
     root = Path(root)
     rows, details = [], {}
@@ -581,7 +731,18 @@ def _with_units(columns: dict) -> dict:
 
 def season_file(command: str) -> str:
     """The file of one command's season details: ``season_<command>.csv`` (``bridge solve`` ->
-    ``season_bridge-solve.csv``)."""
+    ``season_bridge-solve.csv``).
+
+    Parameters
+    ----------
+    command : str
+        The command's name.
+
+    Returns
+    -------
+    str
+        The file name.
+    """
     return f"season_{command.replace(' ', '-')}.csv"
 
 
@@ -590,6 +751,18 @@ def write_season(root: Path, outcomes: list[Outcome]) -> list[Path]:
     each protected as every batch root file is (refused where a file of that name exists that capred did
     not write, e.g. a manifest called season.csv, or that a user edited since) and recorded in the batch's
     provenance.json.
+
+    Parameters
+    ----------
+    root : Path
+        The batch root folder.
+    outcomes : list of Outcome
+        The outcome of every job.
+
+    Returns
+    -------
+    list of Path
+        The files written: season.csv, one season_<command>.csv per command with details, season.html.
     """
     from .io.writers import encode_csv, write_batch_file
     from .report.html import render_season
@@ -610,7 +783,18 @@ def write_season(root: Path, outcomes: list[Outcome]) -> list[Path]:
 def season_columns(rows: list[dict]) -> dict:
     """The season table's columns (every key of any row, in order of first appearance) as arrays: counts stay
     whole numbers (Python ints, None where a run has none: ``n_dry`` of a retention row), other numbers floats
-    (NaN where a run has none), text and mixed columns objects (None where missing)."""
+    (NaN where a run has none), text and mixed columns objects (None where missing).
+
+    Parameters
+    ----------
+    rows : list of dict
+        The season rows.
+
+    Returns
+    -------
+    dict
+        Column name -> numpy array (object for counts and text, float otherwise).
+    """
     import numbers
 
     import numpy as np

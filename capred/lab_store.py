@@ -319,7 +319,18 @@ def records_of(doc: dict, metadata: dict | None = None) -> list[tuple]:
 
 
 def run_key(doc: dict) -> str:
-    """SHA-256 of what makes a run the same run: the command, the inputs' SHA-256 (and sheet) and the options."""
+    """SHA-256 of what makes a run the same run: the command, the inputs' SHA-256 (and sheet) and the options.
+
+    Parameters
+    ----------
+    doc : dict
+        A run's provenance document (``command``, ``inputs`` with ``sha256`` and ``sheet``, ``options``).
+
+    Returns
+    -------
+    str
+        Hex digest.
+    """
     ident = {
         "command": doc.get("command"),
         "inputs": [(i.get("sha256"), i.get("sheet")) for i in doc.get("inputs", [])],
@@ -425,7 +436,17 @@ def record_run(store, result, out_dir=None) -> tuple[int, bool]:
 
 
 def store_from(store=None):
-    """The store to record into: ``store`` if given, else ``$CAPRED_STORE``, else None (nothing recorded)."""
+    """The store to record into: ``store`` if given, else ``$CAPRED_STORE``, else None (nothing recorded).
+
+    Parameters
+    ----------
+    store : str or Path, optional
+        The store given by option.
+
+    Returns
+    -------
+    str or Path or None
+    """
     if store is not None:
         return store
     return os.environ.get(STORE_VARIABLE) or None

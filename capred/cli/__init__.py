@@ -78,6 +78,21 @@ def batch(
 
     Example: capred batch season.csv --out results   (season.csv: command,input,options /
     shear,runs/*.csv,--gamma-w 10 --no-plots)
+
+    \f
+
+    Parameters
+    ----------
+    manifest : Path
+        CSV (command,input,options) or TOML ([[run]]) listing the runs.
+    out : Path, optional
+        Root output folder (default ./capred_out).
+    json_out : bool, optional
+        Print one JSON document on stdout instead of tables.
+    workers : int, optional
+        Worker processes (default: one per core, at most one per file).
+    store : Path, optional
+        Lab store (SQLite) that records every run.
     """
     try:
         jobs = _manifest_jobs(manifest, out, json_out)
@@ -188,6 +203,7 @@ def _fast_help() -> None:
 
 
 def main() -> None:
+    """The console entry point `capred`: OpenBLAS on one thread unless the user chose, then the application."""
     import os
 
     # OpenBLAS on one thread unless the user chose: capred's matrix products are small (a bootstrap's counts times

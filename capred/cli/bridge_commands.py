@@ -9,6 +9,13 @@ from .common import Invocation, command, quantity
 
 
 def register(app: typer.Typer) -> None:
+    """Register the commands of `capred bridge` (curve, solve, compare, rupture, yade-files, laws) on the application.
+
+    Parameters
+    ----------
+    app : typer.Typer
+        The capred application.
+    """
     bridge_app = typer.Typer(
         help="Exact capillary bridges between two spheres or a sphere and a plane "
         "(Young-Laplace): solve, rupture, the thesis's analytical comparison, checks "
@@ -65,6 +72,28 @@ def curve(
     pendular regime and one over the whole concave range.
 
     Example: capred bridge curve --radius 1 --contact-angle 0 --points 2000
+
+    \f
+
+    Parameters
+    ----------
+    radius : str, optional
+        Particle radius R [mm], as typed: a number in the unit given, or with a unit of its own.
+    surface_tension : str, optional
+        Surface tension gamma [N/m].
+    contact_angle : float, optional
+        Contact angle [deg].
+    points : int, optional
+        Number of S_R values [-].
+    S_R_max : float, optional
+        Largest S_R of the sweep [-].
+    pendular_limit : float, optional
+        S_R bound of the pendular regime panel [-].
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..pipelines.bridge import CurveOptions
 
@@ -113,6 +142,22 @@ def solve(
     error.
 
     Example: capred bridge solve cases.csv --json
+
+    \f
+
+    Parameters
+    ----------
+    surface_tension : str, optional
+        Surface tension gamma [N/m] of rows without 'gamma'.
+    contact_angle2 : float, optional
+        Contact angle on the second particle [deg] of rows without one.
+    workers : int, optional
+        Processes that solve the rows [-].
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..pipelines.bridge import BridgeOptions
 
@@ -134,6 +179,18 @@ def compare(
     toroidal approximation, Willett et al. (2000) and Israelachvili, with residuals.
 
     Example: capred bridge compare micro_tests.csv --out micro
+
+    \f
+
+    Parameters
+    ----------
+    surface_tension : str, optional
+        Surface tension gamma [N/m] of rows without 'gamma'.
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..pipelines.bridge import BridgeOptions
 
@@ -155,6 +212,18 @@ def rupture(
     bridge at rupture; figure of both against V^(1/3).
 
     Example: capred bridge rupture volumes.csv --out rupture
+
+    \f
+
+    Parameters
+    ----------
+    surface_tension : str, optional
+        Surface tension gamma [N/m] of rows without 'gamma'.
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..pipelines.bridge import BridgeOptions
 
@@ -185,6 +254,24 @@ def yade_files(
     to your script).
 
     Example: capred bridge yade-files --contact-angle 0 --out capillary_files
+
+    \f
+
+    Parameters
+    ----------
+    ratios : str, optional
+        Radius ratios R2/R1 >= 1, comma-separated [-].
+    contact_angle : float, optional
+        Contact angle [deg].
+    distances : int, optional
+        Distances per file [-].
+    suctions : int, optional
+        Suctions per distance [-].
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..errors import OptionError
     from ..pipelines.yade_files import YadeOptions
@@ -223,6 +310,26 @@ def laws(
     law.
 
     Example: capred bridge laws --sample --out laws
+
+    \f
+
+    Parameters
+    ----------
+    gaps : str, optional
+        Gaps D/R of the grid, comma-separated [-].
+    volumes : str, optional
+        Volumes V/R^3 of the grid, comma-separated [-].
+    angles : str, optional
+        Contact angles of the grid, comma-separated [deg].
+    ratios : str, optional
+        R2/R of the grid, comma-separated ('plane': a sphere and a plane) [-].
+    tolerance : float, optional
+        Relative error under which a law counts as within [-].
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..pipelines.bridge_laws import LawsOptions
 

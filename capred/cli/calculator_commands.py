@@ -8,6 +8,13 @@ from .common import Invocation, command, quantity
 
 
 def register(app: typer.Typer) -> None:
+    """Register the commands of prism, skempton-b, rumpf and history on the application.
+
+    Parameters
+    ----------
+    app : typer.Typer
+        The capred application.
+    """
     command(app, "prism", data="Optional CSV of cases: break_tension, friction_angle")(prism)
     command(app, "skempton-b", data="Optional CSV of cases: S_r (or B), and any of kappa, e0, p0, u0, pa0")(skempton_b)
     command(
@@ -37,6 +44,23 @@ def prism(
     P_kmax = sigma_b (1 - sin rho)/(2 sin rho) and capillary rise h_c = P_kmax/gamma_w.
 
     Example: capred prism --break-tension "115 g/cm^2" --friction-angle 36
+
+    \f
+
+    Parameters
+    ----------
+    break_tension : str, optional
+        Break tension sigma_b [kPa], as typed: a number in the unit given, or with a unit of its own (g/cm^2 read as
+        gram-force).
+    friction_angle : float, optional
+        Friction angle rho [deg].
+    gamma_w : str, optional
+        Unit weight of water [kN/m^3].
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..pipelines.calculators import PrismOptions
 
@@ -143,6 +167,44 @@ def skempton_b(
     Example: capred skempton-b --S-R 0.9 --model bounding-surface --a-ini 10 --interpolation-h 336
 
     Example: capred skempton-b --curve --model bounding-surface --a-ini 10 --interpolation-h 336 --out fig6
+
+    \f
+
+    Parameters
+    ----------
+    S_R : float, optional
+        Degree of saturation [-]: compute B.
+    b : float, optional
+        Measured B [-]: compute S_R.
+    kappa_elastic : float, optional
+        Slope of the elastic line in e-ln p' [-].
+    e0 : float, optional
+        Initial void ratio [-].
+    p0, u0, pa0 : str, optional
+        Mean total stress, initial pore pressure, absolute initial air pressure [kPa].
+    se : str, optional
+        Air-entry suction s_e of Brooks-Corey [kPa].
+    bc_lambda : float, optional
+        Brooks-Corey pore-size index [-].
+    model : str, optional
+        elastic, bounding-surface or elastoplastic (refused).
+    a_ini : str, optional
+        Initial distance of the bounding surface's apex above p'0 [kPa].
+    interpolation_h : float, optional
+        Interpolation constant h of the reconstruction [-].
+    air_pressure : str, optional
+        absolute or gauge (bounding-surface).
+    lambda0 : float, optional
+        Slope of the normal compression line [-].
+    retention : Path, optional
+        A fits.json of `capred retention` instead of --se and --bc-lambda.
+    curve : bool, optional
+        B against S_r for every model asked instead of cases.
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..pipelines.calculators import SkemptonOptions
 
@@ -179,6 +241,28 @@ def rumpf(
     (Prunier et al. 2024, eq. 19); negative means tension.
 
     Example: capred rumpf --shape-factor 1 --void-ratio 0.5 --S-R 0.3 --diameter 0.2
+
+    \f
+
+    Parameters
+    ----------
+    shape_factor : float, optional
+        Particle shape factor phi [-].
+    void_ratio : float, optional
+        Void ratio e [-].
+    S_R : float, optional
+        Degree of saturation [-].
+    diameter : str, optional
+        Apparent particle diameter d_p [mm].
+    surface_tension : str, optional
+        Surface tension gamma [N/m].
+    contact_angle : float, optional
+        Contact angle [deg].
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..pipelines.calculators import RumpfOptions
 
@@ -218,6 +302,28 @@ def history(
     with --store lab.sqlite on any command (or CAPRED_STORE).
 
     Example: capred history lab.sqlite --material "Toyoura sand" --quantity phi_deg --out chart
+
+    \f
+
+    Parameters
+    ----------
+    material : str, optional
+        Material as the runs name it.
+    quantity : str, optional
+        A key of the runs' JSON, e.g. phi_deg.
+    baseline : int, optional
+        Number of first runs that set the centre line and limits [-].
+    reference : float, optional
+        Reference value of the quantity (its unit), instead of the baseline.
+    spread : float, optional
+        Standard deviation of the reference value (its unit).
+    of_command : str, optional
+        Only the runs of this command.
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..pipelines.history import HistoryOptions
 

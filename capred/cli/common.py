@@ -130,7 +130,20 @@ class Invocation:
 
 
 def fail(exc: CapredError, code: int = 1) -> None:
-    """One clean message on stderr and a non-zero exit (no traceback)."""
+    """One clean message on stderr and a non-zero exit (no traceback).
+
+    Parameters
+    ----------
+    exc : CapredError
+        The error; its message is printed after ``Error:``, control characters made visible.
+    code : int, optional
+        Exit status [-].
+
+    Raises
+    ------
+    typer.Exit
+        Always, with ``code``.
+    """
     from ..text_safety import visible
 
     typer.echo(f"Error: {visible(str(exc))}", err=True)  # a cell quoted in a message never acts on the terminal
@@ -239,6 +252,24 @@ def command(app: typer.Typer, name: str, full_name: str | None = None, data: str
     (--format, --dpi, --html/--no-html, --csv-dialect, --xlsx). A builder that
     needs one of them (shear reads --thousands for its curves) declares it
     in its own signature and gets it too.
+
+    Parameters
+    ----------
+    app : typer.Typer
+        The application or command group.
+    name : str
+        The command's name in ``app`` (``solve`` in ``bridge``).
+    full_name : str, optional
+        Its name in capred's registry of reductions (``bridge solve``; default ``name``).
+    data : str, optional
+        Help of the DATA argument; None for a command without input files.
+    plots : bool, optional
+        The command writes figures (else --plots is accepted and ignored).
+
+    Returns
+    -------
+    callable
+        The decorator; it returns the builder unchanged.
     """
     full = full_name or name
     # every command takes --plots/--no-plots (a command without figures accepts and ignores it)
@@ -310,13 +341,42 @@ def command(app: typer.Typer, name: str, full_name: str | None = None, data: str
 
 
 def data_arg(what: str):
+    """The annotation of the DATA argument: input files or globs, several run as a batch.
+
+    Parameters
+    ----------
+    what : str
+        What the files hold (the help's first words).
+
+    Returns
+    -------
+    typing.Annotated
+        ``list[Path] | None`` with its typer.Argument.
+    """
     return Annotated[
         list[Path] | None, typer.Argument(help=f"{what}; several files or globs run as a batch.", show_default=False)
     ]
 
 
 def quantity(text: str | None, default_unit: str, name: str = "", option: str = "") -> str | None:
-    """An option as typed, with its default unit appended to a bare number; the Options convert and check it."""
+    """An option as typed, with its default unit appended to a bare number; the Options convert and check it.
+
+    Parameters
+    ----------
+    text : str or None
+        The option as typed (None: not given).
+    default_unit : str
+        Unit of a bare number, e.g. ``kPa``.
+    name : str, optional
+        Unused (kept for callers that name the quantity).
+    option : str, optional
+        Unused (kept for callers that name the option).
+
+    Returns
+    -------
+    str or None
+        ``"<number> <unit>"`` for a bare number, else ``text`` as typed.
+    """
     from ..units import with_unit
 
     return with_unit(text, default_unit)
@@ -348,7 +408,35 @@ def sources(
     limits=None,
 ) -> list:
     """Input files: the arguments with globs expanded (sorted), the bundled sample, or [None];
-    as TableSources when a sheet, a thousands separator, columns to ignore or reading limits are given."""
+    as TableSources when a sheet, a thousands separator, columns to ignore or reading limits are given.
+
+    Parameters
+    ----------
+    data : list of Path or None
+        The DATA arguments (files or globs).
+    sample : bool
+        Run on the command's bundled sample.
+    command : str
+        The command's registry name.
+    sheet : str, optional
+        Sheet of a workbook (name or number from 1).
+    thousands : str, optional
+        Thousands separator.
+    ignore_columns : sequence of str, optional
+        Columns to leave out.
+    limits : optional
+        Reading limits (megabytes, cells, columns, cell characters).
+
+    Returns
+    -------
+    list
+        Paths (or TableSources), or ``[None]`` for a run from options only.
+
+    Raises
+    ------
+    OptionError, InputError
+        Both a file and --sample, no file where one is required, or a glob that matches nothing.
+    """
     paths = _paths(data, sample, command)
     if sheet is None and thousands is None and not ignore_columns and limits is None:
         return paths
@@ -390,6 +478,19 @@ def _paths(data: list[Path] | None, sample: bool, command: str) -> list:
 
 
 def default_out(command: str, source) -> Path:
+    """Default output folder of one run: ``./capred_out/<prefix>_<input stem>`` (``options`` without input).
+
+    Parameters
+    ----------
+    command : str
+        The command's registry name.
+    source : path or TableSource or None
+        The run's input.
+
+    Returns
+    -------
+    Path
+    """
     from ..io.grid import source_path
     from ..reductions import REDUCTIONS
 
@@ -398,7 +499,18 @@ def default_out(command: str, source) -> Path:
 
 
 def execute(inv: Invocation) -> None:
-    """Run an invocation: one file (tables or JSON) or several (a batch)."""
+    """Run an invocation: one file (tables or JSON) or several (a batch).
+
+    Parameters
+    ----------
+    inv : Invocation
+        The parsed command.
+
+    Raises
+    ------
+    typer.Exit
+        With status 1 on a CapredError (message on stderr; with --json, the problems as JSON on stdout).
+    """
     from ..errors import InputError
 
     try:
@@ -481,7 +593,26 @@ def _batch(inv: Invocation) -> None:
 
 
 def run_batch(jobs, root: Path | None, json_out: bool, workers: int | None, extra_inputs=()) -> None:
-    """Run jobs with a progress bar (on a terminal, not with --json), write index.csv, report, set the exit code."""
+    """Run jobs with a progress bar (on a terminal, not with --json), write index.csv, report, set the exit code.
+
+    Parameters
+    ----------
+    jobs : list of capred.batch.Job
+        The runs.
+    root : Path or None
+        Batch output folder (None: nothing written, --json only).
+    json_out : bool
+        Print one JSON document on stdout instead of the table.
+    workers : int or None
+        Worker processes (None: one per core, at most one per job).
+    extra_inputs : sequence of path, optional
+        Further inputs the batch root must not replace (the manifest).
+
+    Raises
+    ------
+    typer.Exit
+        130 when interrupted, 1 when a run failed.
+    """
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 

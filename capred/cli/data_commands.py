@@ -9,6 +9,13 @@ from .common import Invocation, ThousandsOpt, command, quantity
 
 
 def register(app: typer.Typer) -> None:
+    """Register the commands of shear, triaxial-bounds and retention on the application.
+
+    Parameters
+    ----------
+    app : typer.Typer
+        The capred application.
+    """
     command(app, "shear", data="CSV, .xlsx or .ods files of direct-shear tests (one row per test)")(shear)
     command(app, "triaxial-bounds", data="CSV, .xlsx or .ods files of triaxial tests (one row per test)")(
         triaxial_bounds
@@ -127,6 +134,66 @@ def shear(
     blank cells. Any option may carry a unit: --box-area "36 cm^2".
 
     Example: capred shear tests.csv --out report --gamma-w 10
+
+    \f
+
+    Parameters
+    ----------
+    thousands : str, optional
+        Thousands separator of the curves file.
+    curves : Path, optional
+        Raw shear curves, long format.
+    area_correction : str, optional
+        none, square or circular.
+    ambient_pressure : str, optional
+        Ambient air pressure [kPa].
+    rho_w : str, optional
+        Density of water [kg/m^3].
+    gamma_w : str, optional
+        Unit weight of water [kN/m^3].
+    surface_tension : str, optional
+        Surface tension of water [N/m].
+    gravity : str, optional
+        Gravitational acceleration [m/s^2].
+    pendular_limit : float, optional
+        S_R above which a wet test is outside the pendular regime [-].
+    box_area, cap_mass, radius, void_volume : str, optional
+        Defaults of rows without them: box area [cm^2], cap mass [g], R [mm], V_v [cm^3].
+    models : str, optional
+        Effective-stress models, comma-separated, or a named set.
+    retention : Path, optional
+        fits.json of `capred retention` for the extra models.
+    s_res : float, optional
+        Residual S_R [-].
+    vanapalli_kappa : float, optional
+        Fitting exponent kappa of Vanapalli et al. (1996) [-].
+    air_entry : str, optional
+        Air-entry suction s_e [kPa].
+    vg_alpha : str, optional
+        van Genuchten alpha [1/kPa].
+    vg_n, vg_m : float, optional
+        van Genuchten n and m [-].
+    water_envelope : str, optional
+        'c,phi' [kPa, deg] of the water-saturated soil.
+    contact_angle : float, optional
+        Contact angle of the exact bridge [deg].
+    fit_eta : bool, optional
+        Fit Khalili's exponent eta too.
+    dry_fit : str, optional
+        free or origin.
+    errors : str, optional
+        constant, proportional or auto.
+    dry_loss : str, optional
+        ols, huber or tukey.
+    bootstrap : int, optional
+        Replicates of the bootstrap of the model ranking [-].
+    seed : int, optional
+        Seed of the bootstrap.
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..pipelines.shear import ModelParams, ShearOptions, model_params_from_retention
 
@@ -210,6 +277,28 @@ def triaxial_bounds(
     strength gain q'/q'_sat; groups sharing one tensor get the Appendix 1 analysis.
 
     Example: capred triaxial-bounds tests.csv --out bounds
+
+    \f
+
+    Parameters
+    ----------
+    curves : Path, optional
+        Long CSV of raw curves (test_id, axial_strain, q).
+    c_eff : str, optional
+        Effective cohesion c' [kPa], instead of fitting saturated tests.
+    phi_eff : float, optional
+        Effective friction angle phi' [deg].
+    membrane_thickness : str, optional
+        Membrane thickness t_m [mm].
+    membrane_modulus : str, optional
+        Young's modulus of the membrane E_m [kPa].
+    extension_path : str, optional
+        axial-unloading or radial-loading.
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..pipelines.triaxial import TriaxialOptions
 
@@ -257,6 +346,26 @@ def retention(
     column or, without one, from the order of readings (rising suction = drying).
 
     Example: capred retention column.csv --model vg,bc,kosugi --fix theta_r=0
+
+    \f
+
+    Parameters
+    ----------
+    model : str, optional
+        Models, comma separated, or all.
+    hysteresis : str, optional
+        kool-parker, or None.
+    rho_w : str, optional
+        Density of water [kg/m^3].
+    fix : list of str, optional
+        NAME=VALUE of fixed parameters (kPa, 1/kPa).
+    gamma_w : str, optional
+        Unit weight of water [kN/m^3].
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..errors import OptionError
     from ..fitting.retention_models import MODELS

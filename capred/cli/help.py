@@ -31,7 +31,20 @@ OUTPUT_PANEL = "Output"
 
 def panel_of(param, own: str) -> str:
     """The help group of one click parameter: its ``rich_help_panel``, else Input / Output for the shared
-    options, else ``own`` (the command's options)."""
+    options, else ``own`` (the command's options).
+
+    Parameters
+    ----------
+    param : click.Parameter
+        An option or argument of the command.
+    own : str
+        Title of the command's own options panel.
+
+    Returns
+    -------
+    str
+        The panel's title.
+    """
     explicit = getattr(param, "rich_help_panel", None)
     if explicit:
         return explicit
@@ -44,7 +57,17 @@ def panel_of(param, own: str) -> str:
 
 def schema_of(command: str) -> list:
     """The input columns (capred.io.table.Column) a command reads: the ``SCHEMA`` of its pipeline module, or
-    ``<LAST WORD>_SCHEMA`` for a command of a group (``bridge solve`` -> ``SOLVE_SCHEMA``); [] when none."""
+    ``<LAST WORD>_SCHEMA`` for a command of a group (``bridge solve`` -> ``SOLVE_SCHEMA``); [] when none.
+
+    Parameters
+    ----------
+    command : str
+        The command's registry name.
+
+    Returns
+    -------
+    list of Column
+    """
     from importlib import import_module
 
     from ..reductions import REDUCTIONS
@@ -75,7 +98,17 @@ INPUT_FILE_SECTION = "Input file (not a table)"
 
 
 def column_lines(schema: list) -> list[tuple[str, str]]:
-    """(``name [unit]``, description with its other accepted spellings) of each input column."""
+    """(``name [unit]``, description with its other accepted spellings) of each input column.
+
+    Parameters
+    ----------
+    schema : list of Column
+        Input columns (capred.io.table.Column).
+
+    Returns
+    -------
+    list of tuple of str
+    """
     out = []
     for c in schema:
         head = c.name + (f" [{c.unit}]" if c.unit and c.unit != "-" else "")
@@ -92,6 +125,16 @@ class GroupedCommand(typer.core.TyperCommand):
     """A typer command whose plain-text help groups its options and lists the input columns."""
 
     def format_options(self, ctx, formatter) -> None:
+        """Write the arguments, then the options panel by panel (the command's own, Input, Output,
+        Help), then the input columns the command reads.
+
+        Parameters
+        ----------
+        ctx : click.Context
+            The command's context.
+        formatter : click.HelpFormatter
+            The formatter written to.
+        """
         args, panels = [], {}
         own = f"{ctx.info_name or self.name} options"
         for param in self.get_params(ctx):
@@ -124,7 +167,13 @@ class GroupedCommand(typer.core.TyperCommand):
 
 def group_help(app) -> None:
     """Give every command of ``app`` (and of its sub-apps: ``bridge``) the grouped help, unless it already
-    has a class of its own (other than typer's default)."""
+    has a class of its own (other than typer's default).
+
+    Parameters
+    ----------
+    app : typer.Typer
+        The application; changed in place.
+    """
     for info in app.registered_commands:
         if info.cls is None or info.cls is typer.core.TyperCommand:
             info.cls = GroupedCommand

@@ -8,6 +8,13 @@ from .common import Invocation, SampleOpt, command, quantity
 
 
 def register(app: typer.Typer) -> None:
+    """Register the commands of `capred pt-volume` on the application.
+
+    Parameters
+    ----------
+    app : typer.Typer
+        The capred application.
+    """
     command(
         app,
         "pt-volume",
@@ -85,6 +92,30 @@ def pt_volume(
     EXAMPLE_KAOLIN unless lines are given.
 
     Example: capred pt-volume path.csv --lambda-w 0.18 --kappa-w 0.03 --e-ncl-w 2.23 --lambda-a 0.13 --kappa-a 0.01 --e-ncl-a 2.06
+
+    \f
+
+    Parameters
+    ----------
+    lambda_w, kappa_w, e_ncl_w : float, optional
+        Slopes of the ncl and url and ncl void ratio of the clay reconstituted from slurry [-].
+    lambda_a, kappa_a, e_ncl_a : float, optional
+        The same for the clay compressed from dry powder [-].
+    reference_stress : str, optional
+        Stress at which the ncl void ratios are read [kPa].
+    example_kaolin : bool, optional
+        Take the lines not given from EXAMPLE_KAOLIN (illustrative).
+    initial_yield_w, initial_yield_a : str, optional
+        Largest sigma'_W, sigma'_A carried before the first point [kPa].
+    substeps : int, optional
+        Sub-steps per step [-] (default automatic).
+    sample : bool, optional
+        Run the bundled illustrative path.
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..pipelines.pt_volume import PTVolumeOptions
 

@@ -8,7 +8,13 @@ from .common import Invocation, command, quantity
 
 
 def register(app: typer.Typer) -> None:
-    """Add `capred retention-convert` to the application."""
+    """Add `capred retention-convert` to the application.
+
+    Parameters
+    ----------
+    app : typer.Typer
+        The capred application.
+    """
     command(
         app,
         "retention-convert",
@@ -34,6 +40,26 @@ def retention_convert(
     of capred retention's, so --retention of shear and skempton-b reads it.
 
     Example: capred retention-convert capred_out/retention_column/fits.json --to bc
+
+    \f
+
+    Parameters
+    ----------
+    to : str
+        Target model.
+    model : str, optional
+        Which fit of FIT.json to convert.
+    branch : str, optional
+        Which branch of FIT.json.
+    points : int, optional
+        Points of the logarithmic suction grid [-].
+    gamma_w : str, optional
+        Unit weight of water [kN/m^3].
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..pipelines.retention_convert import ConvertOptions
 

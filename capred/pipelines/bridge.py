@@ -50,6 +50,24 @@ def solve_bridges(source, options: BridgeOptions | None = None) -> BridgeResult:
 
     A long plain CSV is read, solved and kept block by block (:mod:`capred.pipelines.bridge_blocks`); a Table
     already read is solved at once (:func:`capred.pipelines.bridge_solve.solve_table`).
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame or Table
+        The cases: R [mm], optional R2 [mm] or 'plane', gamma [N/m], contact_angle (and contact_angle2) [deg],
+        gap [mm] and suction [kPa] or V_w [mm^3] (units in the headers win).
+    options : BridgeOptions, optional
+        Surface tension and second contact angle for rows without them (default: water, the row's angle).
+
+    Returns
+    -------
+    BridgeResult
+        One bridge (or a status saying why none) per row.
+
+    References
+    ----------
+    .. [1] Lian, G., Thornton, C., Adams, M. J. (1993). A theoretical study of the liquid bridge forces
+       between two rigid spherical bodies. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
     """
     opt = options or BridgeOptions()
     if isinstance(source, Table):
@@ -108,6 +126,14 @@ class CurveResult(Result):
     notes: list[str] = field(default_factory=list)
 
     def models(self) -> dict[str, np.ndarray]:
+        """Capillary stress of every model at the curve's S_R: the exact bridges, Israelachvili
+        (2 gamma cos(theta) / R), Bishop (S_R s), Own 1 (chi1 s) and Own 2 (chi1 s + chi2).
+
+        Returns
+        -------
+        dict
+            Model name -> sigma' [Pa], one value per S_R.
+        """
         S, s = self.S_R, self.suction
         return {
             "exact": self.sigma_exact,
@@ -118,9 +144,26 @@ class CurveResult(Result):
         }
 
     def rows(self) -> list[dict]:
+        """The per-row records of the JSON document (the table ``curve``: S_R, suction, sigma' of each model), NaN
+        written as None.
+
+        Returns
+        -------
+        list of dict
+            One dict per row, JSON keys with units in their suffix.
+        """
         return _records(self.tables()["curve"])
 
     def summary(self) -> dict:
+        """Relative RMS error of each model against the exact bridges, inside and outside the
+        pendular regime (S_R below or above ``pendular_limit``).
+
+        Returns
+        -------
+        dict
+            ``{"rms_relative_error_vs_exact": {"inside": {model: error}, "outside": {...}}}`` [-], the exact
+            bridges left out (None where a regime has no point).
+        """
         m = self.models()
         out = {}
         for regime, sel in (("inside", self.S_R < self.pendular_limit), ("outside", self.S_R >= self.pendular_limit)):
@@ -133,6 +176,19 @@ class CurveResult(Result):
         return {"rms_relative_error_vs_exact": out}
 
     def payload(self, lazy: bool = False) -> dict:
+        """The command's own keys of the JSON document: R_mm, gamma_N_per_m, contact_angle_deg, the error summary and
+        the curve rows.
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Give long per-row lists as Rows made on demand (the writer streams them) instead of lists.
+
+        Returns
+        -------
+        dict
+            JSON key -> value (JSON units: mm, kPa, deg, mN).
+        """
         return {
             "R_mm": self.R * 1e3,
             "gamma_N_per_m": self.gamma,
@@ -143,6 +199,13 @@ class CurveResult(Result):
         }
 
     def tables(self) -> dict:
+        """Output tables: file stem -> pandas DataFrame (``curve``: S_R, suction [kPa] and sigma' [kPa] of each model).
+
+        Returns
+        -------
+        dict
+            Stem -> DataFrame, the per-row table first.
+        """
         import pandas as pd
 
         cached = self.__dict__.get("_tables")
@@ -156,6 +219,13 @@ class CurveResult(Result):
         return cached
 
     def csv_tables(self) -> dict:
+        """The tables as the CSV writer takes them (``curve``), under ``name [unit]`` headers.
+
+        Returns
+        -------
+        dict
+            Stem -> table (DataFrame or column mapping).
+        """
         return {"curve": with_csv_headers(self.tables()["curve"])}
 
 
@@ -174,12 +244,45 @@ def bridge_curve(
     is the contact angle [deg]. S_R is swept evenly from 1e-4 to ``S_R_max``;
     points beyond the last concave bridge (suction down to zero) are left out.
     The former keywords ``theta_deg`` and ``sr_max`` still work for one release, with a DeprecationWarning.
+
+    Parameters
+    ----------
+    R : float or str, optional
+        Particle radius [m] (a string may carry a unit, e.g. "1 mm").
+    gamma : float or str, optional
+        Surface tension [N/m].
+    contact_angle_deg : float, optional
+        Contact angle [deg].
+    points : int, optional
+        Number of S_R values of the sweep [-].
+    pendular_limit : float, optional
+        S_R bound of the pendular regime, for the error summary per regime [-].
+    S_R_max : float, optional
+        Largest S_R of the sweep [-].
+
+    Returns
+    -------
+    CurveResult
+        S_R, suction [Pa] and exact sigma' [Pa], with the models beside it.
     """
     return reduce_curve(None, CurveOptions(R, gamma, contact_angle_deg, points, S_R_max, pendular_limit))
 
 
 def reduce_curve(source, opt: CurveOptions) -> CurveResult:
-    """The sweep of bridge_curve for an options record (``source`` is unused: the curve needs no file)."""
+    """The sweep of bridge_curve for an options record (``source`` is unused: the curve needs no file).
+
+    Parameters
+    ----------
+    source : None
+        Unused.
+    opt : CurveOptions
+        Radius [m], surface tension [N/m], contact angle [deg], points, S_R_max and pendular limit [-].
+
+    Returns
+    -------
+    CurveResult
+        The concave bridges of the sweep.
+    """
     R, gamma, points, S_R_max = opt.radius, opt.surface_tension, opt.points, opt.S_R_max
     th = np.radians(opt.contact_angle)
     S = np.linspace(1e-4, S_R_max, points)
@@ -263,25 +366,77 @@ class CompareResult(Result):
         return cached
 
     def rows(self) -> list[dict]:
+        """The per-row records of the JSON document (per micro-test: measured and modelled forces and residuals [mN],
+        filling angles [deg], status), NaN written as None.
+
+        Returns
+        -------
+        list of dict
+            One dict per row, JSON keys with units in their suffix.
+        """
         cached = self.__dict__.get("_rows")
         if cached is None:
             cached = self.__dict__["_rows"] = _records(self._frame())
         return cached
 
     def payload(self, lazy: bool = False) -> dict:
+        """The command's own keys of the JSON document: the source and the comparison rows.
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Give long per-row lists as Rows made on demand (the writer streams them) instead of lists.
+
+        Returns
+        -------
+        dict
+            JSON key -> value (JSON units: mm, kPa, deg, mN).
+        """
         return {"source": self.bridges.source, "comparison": self.rows()}
 
     def tables(self) -> dict:
+        """Output tables: file stem -> pandas DataFrame (``compare``: one row per micro-test).
+
+        Returns
+        -------
+        dict
+            Stem -> DataFrame, the per-row table first.
+        """
         return {"compare": self._frame()}
 
     def csv_tables(self) -> dict:
+        """The tables as the CSV writer takes them (``compare``), under ``name [unit]`` headers.
+
+        Returns
+        -------
+        dict
+            Stem -> table (DataFrame or column mapping).
+        """
         return {"compare": with_csv_headers(self._frame())}
 
 
 def compare_measured(source, options: BridgeOptions | None = None) -> CompareResult:
     """Micro-tests: the exact bridge of each measured (R, R2, gap, contact angle, V_w) beside the measured force,
     the toroidal approximation (equal spheres), Willett et al. (2000) and Israelachvili (with Derjaguin's
-    effective radius 2 R R2 / (R + R2) for unequal pairs and a plane)."""
+    effective radius 2 R R2 / (R + R2) for unequal pairs and a plane).
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame or Table
+        The micro-tests: R, R2, gap [mm], contact_angle [deg], V_w [mm^3] and the measured F_cap [mN].
+    options : BridgeOptions, optional
+        Surface tension [N/m] for rows without gamma.
+
+    Returns
+    -------
+    CompareResult
+        The exact bridges and the measured forces; ``rows()`` gives the comparison with residuals [mN].
+
+    References
+    ----------
+    .. [1] Willett, C. D., Adams, M. J., Johnson, S. A., Seville, J. P. K. (2000). Capillary bridges
+       between two spherical bodies. Langmuir 16, 9396-9405. doi:10.1021/la000657y
+    """
     opt = options or BridgeOptions()
     table, gamma, ratio, th2 = _read_cases(source, ("R", "contact_angle", "gap", "V_w"), (), opt)
     if "F_cap" not in table.columns:
@@ -368,6 +523,14 @@ class RuptureResult(Result):
         return cached
 
     def rows(self) -> list[dict]:
+        """The per-row records of the JSON document (per case: rupture distance and the bridge at rupture; a plane's
+        R2_mm is 'plane'), NaN written as None.
+
+        Returns
+        -------
+        list of dict
+            One dict per row, JSON keys with units in their suffix.
+        """
         cached = self.__dict__.get("_rows")
         if cached is None:
             cached = self.__dict__["_rows"] = _records(self._frame())
@@ -377,18 +540,62 @@ class RuptureResult(Result):
         return cached
 
     def payload(self, lazy: bool = False) -> dict:
+        """The command's own keys of the JSON document: the source and the rupture rows.
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Give long per-row lists as Rows made on demand (the writer streams them) instead of lists.
+
+        Returns
+        -------
+        dict
+            JSON key -> value (JSON units: mm, kPa, deg, mN).
+        """
         return {"source": self.source, "rupture": self.rows()}
 
     def tables(self) -> dict:
+        """Output tables: file stem -> pandas DataFrame (``rupture``: one row per case).
+
+        Returns
+        -------
+        dict
+            Stem -> DataFrame, the per-row table first.
+        """
         return {"rupture": self._frame()}
 
     def csv_tables(self) -> dict:
+        """The tables as the CSV writer takes them (``rupture``), under ``name [unit]`` headers.
+
+        Returns
+        -------
+        dict
+            Stem -> table (DataFrame or column mapping).
+        """
         return {"rupture": with_csv_headers(self._frame())}
 
 
 def rupture_distances(source, options: BridgeOptions | None = None) -> RuptureResult:
     """Rupture distance of each (R, R2, contact_angle, V_w) row: the widest gap a bridge of that volume spans
-    (Lian et al. 1993; pulled apart at constant volume), with the bridge at rupture."""
+    (Lian et al. 1993; pulled apart at constant volume), with the bridge at rupture.
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame or Table
+        The cases: R, R2 [mm] (or 'plane'), contact_angle [deg] and V_w [mm^3].
+    options : BridgeOptions, optional
+        Surface tension [N/m] for rows without gamma, and the second contact angle.
+
+    Returns
+    -------
+    RuptureResult
+        Per row the rupture distance [mm], beside Lian et al.'s estimate, and the bridge at rupture.
+
+    References
+    ----------
+    .. [1] Lian, G., Thornton, C., Adams, M. J. (1993). A theoretical study of the liquid bridge forces
+       between two rigid spherical bodies. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
+    """
     opt = options or BridgeOptions()
     table, gamma, ratio, th2 = _read_cases(source, ("R", "contact_angle", "V_w"), (), opt, RUPTURE_SCHEMA)
     table.raise_if_problems()
@@ -411,7 +618,18 @@ def rupture_distances(source, options: BridgeOptions | None = None) -> RuptureRe
 
 
 def comparison_rows(res: CompareResult) -> list[dict]:
-    """Measured force against exact, toroidal, Willett and Israelachvili (mN) with residuals."""
+    """Measured force against exact, toroidal, Willett and Israelachvili (mN) with residuals.
+
+    Parameters
+    ----------
+    res : CompareResult
+        The result of :func:`compare_measured`.
+
+    Returns
+    -------
+    list of dict
+        One row per micro-test, as ``res.rows()``.
+    """
     return res.rows()
 
 

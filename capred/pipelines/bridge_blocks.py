@@ -61,14 +61,44 @@ class BridgeBlocks(Result):
     status_text = staticmethod(pb.BridgeResult.status_text)
 
     def rows_range(self, start: int, stop: int) -> list[dict]:
-        """JSON rows start..stop, read back from the spool."""
+        """JSON rows start..stop, read back from the spool.
+
+        Parameters
+        ----------
+        start, stop : int
+            First row and one past the last row (0-based) [-].
+
+        Returns
+        -------
+        list of dict
+            The JSON rows.
+        """
         return pb.json_rows(self.spool.columns(start, stop))
 
     def rows(self) -> list[dict]:
+        """The per-row records of the JSON document (every row of the run, read back from the spool), NaN written as
+        None.
+
+        Returns
+        -------
+        list of dict
+            One dict per row, JSON keys with units in their suffix.
+        """
         return self.rows_range(0, self.status.size)
 
     def row_context(self, start: int, stop: int) -> dict[str, np.ndarray]:
-        """As :meth:`capred.pipelines.bridge_solve.BridgeResult.row_context` (NaN past the first HEAD_ROWS)."""
+        """As :meth:`capred.pipelines.bridge_solve.BridgeResult.row_context` (NaN past the first HEAD_ROWS).
+
+        Parameters
+        ----------
+        start, stop : int
+            First row and one past the last row (0-based) [-].
+
+        Returns
+        -------
+        dict
+            ``R_mm``, ``gap_mm``, ``D_rupture_mm`` -> array [mm].
+        """
         return pb.row_context(self.inputs_si, self.status, start, stop)
 
     def columns(self) -> dict[str, np.ndarray]:
@@ -80,15 +110,42 @@ class BridgeBlocks(Result):
         return self.spool.columns(0, self.status.size)
 
     def payload(self, lazy: bool = False) -> dict:
+        """The command's own keys of the JSON document: the source and the bridges (a ColumnRows when lazy).
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Give long per-row lists as Rows made on demand (the writer streams them) instead of lists.
+
+        Returns
+        -------
+        dict
+            JSON key -> value (JSON units: mm, kPa, deg, mN).
+        """
         n = self.status.size
         return {"source": self.source, "bridges": pb.ColumnRows(n, self.spool.columns) if lazy else self.rows()}
 
     def tables(self) -> dict:
+        """Output tables: file stem -> pandas DataFrame (``solve``: every row, all in memory, for tables.xlsx).
+
+        Returns
+        -------
+        dict
+            Stem -> DataFrame, the per-row table first.
+        """
         import pandas as pd
 
         return {"solve": pd.DataFrame(self._all(), copy=False)}  # tables.xlsx: every row in memory
 
     def csv_tables(self) -> dict:
+        """The tables as the CSV writer takes them (``solve``: a HeadedSpool written block by block), under ``name
+        [unit]`` headers.
+
+        Returns
+        -------
+        dict
+            Stem -> table (DataFrame or column mapping).
+        """
         return {"solve": pb.HeadedSpool(self.spool)}  # written block by block, under name [unit] headers
 
 

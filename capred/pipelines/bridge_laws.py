@@ -250,6 +250,15 @@ class LawsResult(Result):
         return cols
 
     def rows(self) -> list[dict]:
+        """The per-row records of the JSON document (per grid point: D_over_R, V_over_R3, contact_angle_deg,
+        R2_over_R ('plane' for a plane), F_exact, and each law's force F_<law> and relative error error_<law>;
+        forces in units of 2 pi R gamma), NaN written as None.
+
+        Returns
+        -------
+        list of dict
+            One dict per row, JSON keys with units in their suffix.
+        """
         cols = self.point_columns()
         keys = list(cols)
         out = []
@@ -259,6 +268,19 @@ class LawsResult(Result):
         return out
 
     def payload(self, lazy: bool = False) -> dict:
+        """The command's own keys of the JSON document: the source, the tolerance, each law with its citation, the
+        regions and the points.
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Give long per-row lists as Rows made on demand (the writer streams them) instead of lists.
+
+        Returns
+        -------
+        dict
+            JSON key -> value (JSON units: mm, kPa, deg, mN).
+        """
         return {
             "source": self.source,
             "tolerance": self.tolerance,
@@ -280,6 +302,14 @@ class LawsResult(Result):
         }
 
     def tables(self) -> dict:
+        """Output tables: file stem -> pandas DataFrame (``laws``: one row per grid point; ``regions``: each law's
+        median and largest error per region).
+
+        Returns
+        -------
+        dict
+            Stem -> DataFrame, the per-row table first.
+        """
         import pandas as pd
 
         points = pd.DataFrame(self.point_columns())
@@ -287,6 +317,14 @@ class LawsResult(Result):
         return {"laws": points, "regions": pd.DataFrame(self.regions())}
 
     def csv_tables(self) -> dict:
+        """The tables as the CSV writer takes them (``laws`` and ``regions``, dimensionless columns headed ``[-]``),
+        under ``name [unit]`` headers.
+
+        Returns
+        -------
+        dict
+            Stem -> table (DataFrame or column mapping).
+        """
         t = self.tables()
         return {
             "laws": t["laws"].rename(columns=lambda k: k if k == "R2_over_R" else f"{k} [-]"),

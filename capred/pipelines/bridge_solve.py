@@ -200,13 +200,32 @@ class BridgeResult(Result):
         return pd.DataFrame(self._cols(), copy=False)
 
     def rows_range(self, start: int, stop: int) -> list[dict]:
-        """JSON rows start..stop (NaN as None, an empty note left out), built column by column."""
+        """JSON rows start..stop (NaN as None, an empty note left out), built column by column.
+
+        Parameters
+        ----------
+        start, stop : int
+            First row and one past the last row (0-based) [-].
+
+        Returns
+        -------
+        list of dict
+            The JSON rows.
+        """
         return json_rows(self._cols_range(start, stop))
 
     def _cols_range(self, start: int, stop: int) -> dict:
         return {k: v[start:stop] for k, v in self._cols().items()}
 
     def rows(self) -> list[dict]:
+        """The per-row records of the JSON document (every bridge: inputs, r0, forces, V_w, filling angles, area, S_R,
+        sigma', status), NaN written as None.
+
+        Returns
+        -------
+        list of dict
+            One dict per row, JSON keys with units in their suffix.
+        """
         return self.rows_range(0, self.status.size)
 
     def row_context(self, start: int, stop: int) -> dict[str, np.ndarray]:
@@ -227,13 +246,40 @@ class BridgeResult(Result):
         return row_context(self.inputs_si, self.status, start, stop)
 
     def payload(self, lazy: bool = False) -> dict:
+        """The command's own keys of the JSON document: the source and the bridges (a ColumnRows when lazy).
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Give long per-row lists as Rows made on demand (the writer streams them) instead of lists.
+
+        Returns
+        -------
+        dict
+            JSON key -> value (JSON units: mm, kPa, deg, mN).
+        """
         n = self.status.size
         return {"source": self.source, "bridges": ColumnRows(n, self._cols_range) if lazy else self.rows()}
 
     def tables(self) -> dict:
+        """Output tables: file stem -> pandas DataFrame (``solve``: one row per bridge).
+
+        Returns
+        -------
+        dict
+            Stem -> DataFrame, the per-row table first.
+        """
         return {"solve": self._frame()}
 
     def csv_tables(self) -> dict:
+        """The tables as the CSV writer takes them (``solve``, built from the output columns), under ``name [unit]``
+        headers.
+
+        Returns
+        -------
+        dict
+            Stem -> table (DataFrame or column mapping).
+        """
         return {"solve": with_csv_headers(self._cols())}
 
 
@@ -342,7 +388,22 @@ def rupture_gap_of_rows(inputs_si: dict, rows: np.ndarray) -> np.ndarray:
 
 def row_context(inputs_si: dict, status: np.ndarray, start: int, stop: int) -> dict[str, np.ndarray]:
     """``R_mm``, ``gap_mm`` and, on rows beyond rupture, ``D_rupture_mm`` of rows start..stop (NaN where the
-    inputs are not kept: past the HEAD_ROWS of a long run); see :meth:`BridgeResult.row_context`."""
+    inputs are not kept: past the HEAD_ROWS of a long run); see :meth:`BridgeResult.row_context`.
+
+    Parameters
+    ----------
+    inputs_si : dict
+        The run's inputs in SI (``R``, ``gap`` [m], ``ratio`` [-], ...), kept for the first HEAD_ROWS rows.
+    status : ndarray of int
+        Status code per row (0: a verified bridge).
+    start, stop : int
+        First row and one past the last row (0-based) [-].
+
+    Returns
+    -------
+    dict
+        ``R_mm``, ``gap_mm``, ``D_rupture_mm`` -> array [mm].
+    """
     n = max(0, min(stop, status.size) - start)
     kept = max(0, min(n, inputs_si["R"].size - start)) if "R" in inputs_si else 0
     out = {k: np.full(n, np.nan) for k in ("R_mm", "gap_mm", "D_rupture_mm")}
@@ -390,7 +451,18 @@ class ColumnRows(Rows):
         self.columns = columns
 
     def json_chunks(self, size: int = 2000):
-        """The rows' JSON objects joined by commas, ``size`` rows per chunk (bytes, no brackets)."""
+        """The rows' JSON objects joined by commas, ``size`` rows per chunk (bytes, no brackets).
+
+        Parameters
+        ----------
+        size : int, optional
+            Rows per chunk [-].
+
+        Yields
+        ------
+        bytes
+            The encoded rows of one chunk.
+        """
         from ..io.writers import encode_rows
 
         for start in range(0, self.n, size):
@@ -474,7 +546,20 @@ def _read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, .
 
 def solve_table(table: Table, options: BridgeOptions | None = None) -> BridgeResult:
     """One bridge per row of a table already read: R (and R2), gamma, contact_angle (and contact_angle2), gap and
-    suction or V_w (the work of :func:`capred.pipelines.bridge.solve_bridges` on one table or block)."""
+    suction or V_w (the work of :func:`capred.pipelines.bridge.solve_bridges` on one table or block).
+
+    Parameters
+    ----------
+    table : Table
+        The cases, read (capred.io.table.Table).
+    options : BridgeOptions, optional
+        Surface tension [N/m] and second contact angle [deg] for rows without them.
+
+    Returns
+    -------
+    BridgeResult
+        One bridge (or a status) per row.
+    """
     opt = options or BridgeOptions()
     table, gamma, ratio, th2 = _read_cases(table, ("R", "contact_angle", "gap"), ("suction", "V_w"), opt)
     s_in, v_in = table.get("suction"), table.get("V_w")

@@ -50,6 +50,14 @@ class CalcResult(Result):
         return self.calculator
 
     def rows(self) -> list[dict]:
+        """The per-row records of the JSON document (per case: its label (if any), inputs and results in output units),
+        NaN written as None.
+
+        Returns
+        -------
+        list of dict
+            One dict per row, JSON keys with units in their suffix.
+        """
         cached = self.__dict__.get("_rows")
         if cached is None:
             n = len(next(iter(self.outputs.values())))
@@ -61,6 +69,19 @@ class CalcResult(Result):
         return cached
 
     def payload(self, lazy: bool = False) -> dict:
+        """The command's own keys of the JSON document: the source and the cases (a single case's results also at the
+        top; the skeleton model and its inputs where one applies).
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Give long per-row lists as Rows made on demand (the writer streams them) instead of lists.
+
+        Returns
+        -------
+        dict
+            JSON key -> value (JSON units: mm, kPa, deg, mN).
+        """
         rows = self.rows()
         out = {"source": self.source, "cases": rows}
         if len(rows) == 1:
@@ -83,6 +104,14 @@ class CalcResult(Result):
         ], ["morvan2016", "morvan_wong_branque2010"]
 
     def tables(self) -> dict:
+        """Output tables: file stem -> pandas DataFrame (``results``: one row per case, led by the model where one
+        applies).
+
+        Returns
+        -------
+        dict
+            Stem -> DataFrame, the per-row table first.
+        """
         import pandas as pd
 
         frame = pd.DataFrame(self.rows())
@@ -165,7 +194,30 @@ class PrismOptions(Options):
 
 
 def reduce_prism(source, opt: PrismOptions) -> CalcResult:
-    """Bernatzik (1948): maximal capillary pressure and capillary rise of a sand prism."""
+    """Bernatzik (1948): maximal capillary pressure and capillary rise of a sand prism.
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame or None
+        Optional table of cases (break_tension, friction_angle).
+    opt : PrismOptions
+        Break tension [Pa], friction angle [deg] and unit weight of water [N/m^3] for cases without them.
+
+    Returns
+    -------
+    CalcResult
+        Per case P_kmax [kPa] and the capillary rise h_c.
+
+    Raises
+    ------
+    OptionError
+        Where a friction angle is not between 0 and 90 deg.
+
+    References
+    ----------
+    .. [1] Bernatzik, W. (1948). The determination of the capillary rise in sand by means of prism pressure
+       tests. Proc. 2nd Int. Conf. Soil Mech. Found. Eng., Rotterdam, paper II b 6.
+    """
     v, notes, src = _inputs(source, PRISM, {"break_tension": opt.break_tension, "friction_angle": opt.friction_angle})
     table = v.pop("_table", None)
     labels = _labels(v)
@@ -202,6 +254,27 @@ def run_prism(source=None, break_tension=None, friction_angle=None, gamma_w=GAMM
 
     Cases come from ``source`` (CSV path or DataFrame) and/or the options
     (``break_tension`` [Pa or a string with a unit], ``friction_angle`` [deg]).
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame, optional
+        Table of cases (break_tension, friction_angle).
+    break_tension : float or str, optional
+        Break tension sigma_b of the prism [Pa] (a string may carry a unit, e.g. "115 g/cm^2").
+    friction_angle : float, optional
+        Friction angle rho of the sand [deg].
+    gamma_w : float or str, optional
+        Unit weight of water [N/m^3].
+
+    Returns
+    -------
+    CalcResult
+        Per case P_kmax [kPa] and the capillary rise h_c.
+
+    References
+    ----------
+    .. [1] Bernatzik, W. (1948). The determination of the capillary rise in sand by means of prism pressure
+       tests. Proc. 2nd Int. Conf. Soil Mech. Found. Eng., Rotterdam, paper II b 6.
     """
     return reduce_prism(source, PrismOptions(break_tension, friction_angle, gamma_w))
 
@@ -359,6 +432,44 @@ def run_skempton_b(
     Brooks-Corey fit as it is, another model converted to Brooks-Corey (capred.convert_retention), the misfit
     in the notes.
 
+    Parameters
+    ----------
+    source : str or Path or DataFrame, optional
+        Table of cases (S_r or B, and any of kappa, e0, p0, u0, pa0).
+    S_R : float, optional
+        Degree of saturation [-]: compute B.
+    b : float, optional
+        Measured B [-]: compute S_R.
+    kappa_elastic : float, optional
+        Slope of the elastic line in e-ln p' [-].
+    e0 : float, optional
+        Initial void ratio [-].
+    p0, u0, pa0 : float or str, optional
+        Mean total stress, initial pore pressure and absolute initial air pressure [Pa].
+    s_e : float or str, optional
+        Air-entry suction of Brooks-Corey [Pa] (suction equilibrium, with ``bc_lambda``).
+    bc_lambda : float, optional
+        Brooks-Corey pore-size index [-].
+    model : str, optional
+        ``elastic``, ``bounding-surface`` or ``elastoplastic`` (refused).
+    a_ini : float or str, optional
+        Initial distance of the bounding surface's apex above p'0 [Pa].
+    interpolation_h : float, optional
+        Interpolation constant h of the reconstruction [-].
+    air_pressure : str, optional
+        ``absolute`` or ``gauge``.
+    lambda0 : float, optional
+        Slope of the normal compression line [-].
+    retention : str or Path, optional
+        A fits.json of `capred retention`.
+    curve : bool, optional
+        Give B against S_r for every model asked instead of the cases.
+
+    Returns
+    -------
+    CalcResult
+        B or S_R per case (or the curves), with the skeleton model and its inputs.
+
     References
     ----------
     Morvan, Vernay & Breul (2016), Study of the variation of B with Sr, E-UNSAT 2016, E3S Web of Conferences;
@@ -389,7 +500,25 @@ def run_skempton_b(
 
 def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     """B or S_r per case (see run_skempton_b), with the figure of the B-S_r relation; the title, the tables and
-    the JSON name the skeleton model and its inputs."""
+    the JSON name the skeleton model and its inputs.
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame or None
+        Optional table of cases.
+    opt : SkemptonOptions
+        The options of :func:`run_skempton_b` (pressures in Pa).
+
+    Returns
+    -------
+    CalcResult
+        B or S_R per case, with the figure data of the B-S_r relation.
+
+    References
+    ----------
+    .. [1] Morvan, M., Vernay, M., Breul, P. (2016). Study of the variation of B with Sr. E-UNSAT 2016,
+       E3S Web of Conferences; eqs. 10, 13-24.
+    """
     fit_notes, fit_warnings = [], []
     if opt.retention is not None:  # any retention fit: Brooks-Corey as it is, another model converted to it
         from .retention_convert import brooks_corey_for_skempton
@@ -752,12 +881,60 @@ def run_rumpf(
 ) -> CalcResult:
     """Rumpf's capillary pressure p_cap = -(6/phi)(S_R/e)(gamma/d_p) cos(contact_angle) (Prunier et al. 2024,
     eq. 19); ``contact_angle`` in degrees. The former keyword ``sr`` still works for one release, with a
-    DeprecationWarning."""
+    DeprecationWarning.
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame, optional
+        Table of cases (shape_factor, void_ratio, S_r, diameter, surface_tension, contact_angle).
+    shape_factor : float, optional
+        Shape factor phi of the grains [-].
+    void_ratio : float, optional
+        Void ratio e [-].
+    S_R : float, optional
+        Degree of saturation [-].
+    diameter : float or str, optional
+        Grain diameter d_p [m].
+    surface_tension : float or str, optional
+        Surface tension gamma [N/m].
+    contact_angle : float, optional
+        Contact angle [deg].
+
+    Returns
+    -------
+    CalcResult
+        Per case p_cap [kPa] (negative: tensile).
+
+    References
+    ----------
+    .. [1] Prunier, F., Branque, D., Duriez, J., Darve, F. (2024). A method to evaluate the capillary stress
+       tensor at failure in unsaturated soils. Eur. J. Environ. Civ. Eng. doi:10.1080/19648189.2024.2314099,
+       eq. 19.
+    """
     return reduce_rumpf(source, RumpfOptions(shape_factor, void_ratio, S_R, diameter, surface_tension, contact_angle))
 
 
 def reduce_rumpf(source, opt: RumpfOptions) -> CalcResult:
-    """p_cap per case (see run_rumpf)."""
+    """p_cap per case (see run_rumpf).
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame or None
+        Optional table of cases.
+    opt : RumpfOptions
+        Shape factor [-], void ratio [-], S_R [-], diameter [m], surface tension [N/m], contact angle [deg].
+
+    Returns
+    -------
+    CalcResult
+        Per case p_cap [kPa].
+
+    References
+    ----------
+    .. [1] Prunier, F., Branque, D., Duriez, J., Darve, F. (2024). A method to evaluate the capillary stress
+       tensor at failure in unsaturated soils. Eur. J. Environ. Civ. Eng. doi:10.1080/19648189.2024.2314099,
+       eq. 19.
+    """
     v, notes, src = _inputs(
         source,
         RUMPF,

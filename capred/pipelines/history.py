@@ -151,6 +151,14 @@ class HistoryResult(Result):
         return [int(r) for r, b in zip(self.runs["run"], self.runs["beyond"]) if b]
 
     def rows(self) -> list[dict]:
+        """The per-row records of the JSON document (per run: run id, test date, input, value with its 95 % interval,
+        moving range, beyond_limits), NaN written as None.
+
+        Returns
+        -------
+        list of dict
+            One dict per row, JSON keys with units in their suffix.
+        """
         r = self.runs
         return [
             {
@@ -168,6 +176,19 @@ class HistoryResult(Result):
         ]
 
     def payload(self, lazy: bool = False) -> dict:
+        """The command's own keys of the JSON document: material, quantity, unit, the control limits (centre, sigma,
+        lcl, ucl, moving-range centre) and the runs.
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Give long per-row lists as Rows made on demand (the writer streams them) instead of lists.
+
+        Returns
+        -------
+        dict
+            JSON key -> value (JSON units: mm, kPa, deg, mN).
+        """
         lim = self.limits
         return {
             "material": self.material,
@@ -187,6 +208,13 @@ class HistoryResult(Result):
         }
 
     def tables(self) -> dict:
+        """Output tables: file stem -> pandas DataFrame (``history``: one row per run).
+
+        Returns
+        -------
+        dict
+            Stem -> DataFrame, the per-row table first.
+        """
         import pandas as pd
 
         return {"history": pd.DataFrame(self.rows())}

@@ -225,7 +225,20 @@ class Stage:
 
 
 def stage_runs(labels, e, e_W, e_A) -> list[Stage]:
-    """Runs of consecutive equal stage labels with the changes of e, e^W and e^A over each (see Stage)."""
+    """Runs of consecutive equal stage labels with the changes of e, e^W and e^A over each (see Stage).
+
+    Parameters
+    ----------
+    labels : sequence
+        Stage label of each point.
+    e, e_W, e_A : ndarray
+        Void ratio of the sample, of the water-saturated and of the air-saturated pores per point [-].
+
+    Returns
+    -------
+    list of Stage
+        One Stage per run of equal labels, in order.
+    """
     out: list[Stage] = []
     start = 0
     for i in range(1, len(labels) + 1):
@@ -292,6 +305,14 @@ class PTVolumeResult(Result):
         return ["air_to_water" if a else ("water_to_air" if w else "") for a, w in zip(aw, wa)]
 
     def parameters_json(self) -> dict:
+        """The six line parameters of the run, its reference stress and which were illustrative.
+
+        Returns
+        -------
+        dict
+            lambda_W, kappa_W, e_ncl_W, lambda_A, kappa_A, e_ncl_A [-], reference_stress_kPa [kPa] and
+            ``illustrative`` (the names taken from EXAMPLE_KAOLIN).
+        """
         p = self.params
         return {
             "lambda_W": num(p.lambda_W),
@@ -320,6 +341,19 @@ class PTVolumeResult(Result):
         return [dict(zip(keys, vals)) for vals in zip(*cols.values())]
 
     def payload(self, lazy: bool = False) -> dict:
+        """The command's own keys of the JSON document: source, model, parameters, number of points, initial and final
+        e, sub-steps, points and stages.
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Give long per-row lists as Rows made on demand (the writer streams them) instead of lists.
+
+        Returns
+        -------
+        dict
+            JSON key -> value (JSON units: mm, kPa, deg, mN).
+        """
         e = self.points.e
         return {
             "source": self.source,
@@ -380,6 +414,19 @@ class PTVolumeResult(Result):
         return out
 
     def method_notes(self) -> tuple[list[str], list[str]]:
+        """The run's lines for the methods text (and, where used, that they are the illustrative
+        EXAMPLE_KAOLIN values).
+
+        Returns
+        -------
+        tuple
+            (paragraphs, reference keys).
+
+        References
+        ----------
+        .. [1] Pedrotti, M., Tarantino, A. Effective stresses for unsaturated states stemming from clay
+           microstructure. Submitted to Geomechanics for Energy and the Environment; eq. 1-10.
+        """
         p = self.params
         text = (
             f"Lines of this run: slurry (W) λ_W = {p.lambda_W:g}, κ_W = {p.kappa_W:g}, e_ncl,W = {p.e_ncl_W:g}; "

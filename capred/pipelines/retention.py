@@ -78,7 +78,20 @@ _HEAD = {
 
 def report_name(internal: str, quantity: str) -> str:
     """The JSON name of an internal retention parameter (``alpha`` -> ``alpha_per_kPa``, ``y_r`` -> ``theta_r``
-    or ``S_res``)."""
+    or ``S_res``).
+
+    Parameters
+    ----------
+    internal : str
+        The parameter's internal name (``alpha``, ``n``, ``y_s``, ``y_r``, ...).
+    quantity : str
+        What the fit is of: ``theta`` or ``S_R``.
+
+    Returns
+    -------
+    str
+        The JSON name.
+    """
     return json_name(internal, quantity)[0]
 
 
@@ -318,7 +331,21 @@ class RetentionResult(Result):
         return ("theta_s", "theta_r") if self.quantity == "theta" else ("S_s", "S_res")
 
     def fit_record(self, branch: str, model: str) -> RetentionFitRecord:
-        """The typed record of one fit (``branch`` ``"both"`` and ``model`` ``"kool_parker"``: the hysteresis)."""
+        """The typed record of one fit (``branch`` ``"both"`` and ``model`` ``"kool_parker"``: the hysteresis).
+
+        Parameters
+        ----------
+        branch : str
+            ``drying`` or ``wetting`` (a key of ``fits``).
+        model : str
+            The model's name (``vg``, ``vg_m_free``, ``bc``, ``kosugi``, ``fx``, ``fx_no_c``, ``durner``).
+            ``kool_parker`` (with any ``branch``) gives the joint hysteresis fit.
+
+        Returns
+        -------
+        RetentionFitRecord
+            Parameters in JSON units with their errors, statistics and Akaike weight.
+        """
         if model == "kool_parker":
             f, sel = self.hysteresis, {"kool_parker": (float("nan"), float("nan"))}
         else:
@@ -355,7 +382,18 @@ class RetentionResult(Result):
         )
 
     def fit_records(self, branch: str | None = None) -> list[RetentionFitRecord]:
-        """Every fit's record, branch by branch, models in the order fitted (one branch with ``branch``)."""
+        """Every fit's record, branch by branch, models in the order fitted (one branch with ``branch``).
+
+        Parameters
+        ----------
+        branch : str, optional
+            Only this branch (default: all).
+
+        Returns
+        -------
+        list of RetentionFitRecord
+            The records, in order.
+        """
         return [self.fit_record(b, m) for b, fits in self.fits.items() if branch in (None, b) for m in fits]
 
     def points(self) -> RetentionPoints:
@@ -371,7 +409,20 @@ class RetentionResult(Result):
 
     def fit_json(self, f: NonlinearFit, model: str) -> dict:
         """The JSON of one fit: each parameter by JSON name with ``_se`` and ``_ci95``, its head form (cm),
-        statistics, correlations, SI values, warnings."""
+        statistics, correlations, SI values, warnings.
+
+        Parameters
+        ----------
+        f : NonlinearFit
+            One fit of this result.
+        model : str
+            Its model name (``hysteresis`` or ``kool_parker`` for the joint fit).
+
+        Returns
+        -------
+        dict
+            JSON key -> value (kPa, 1/kPa, cm of head, -).
+        """
         cm = self.options.gamma_w * 0.01  # Pa per cm of water head
         si = f.params_si
         out: dict = {}
@@ -416,6 +467,18 @@ class RetentionResult(Result):
         return out
 
     def model_selection(self, branch: str) -> dict:
+        """AICc, its difference to the best and the Akaike weight of every model fitted to one branch.
+
+        Parameters
+        ----------
+        branch : str
+            ``drying`` or ``wetting``.
+
+        Returns
+        -------
+        dict
+            Model -> {``aicc``, ``delta_aicc``, ``weight``, ``k``} ({} for a branch without fits).
+        """
         fits = self.fits.get(branch, {})
         weights = akaike_weights({m: f.aicc for m, f in fits.items()})
         return {
@@ -424,6 +487,19 @@ class RetentionResult(Result):
         }
 
     def payload(self, lazy: bool = False) -> dict:
+        """The command's own keys of the JSON document: source, quantity, branch source, main branch and its fits, every
+        branch with its fits and model selection, the hysteresis fit if any.
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Give long per-row lists as Rows made on demand (the writer streams them) instead of lists.
+
+        Returns
+        -------
+        dict
+            JSON key -> value (JSON units: mm, kPa, deg, mN).
+        """
         branches = {
             b: {
                 "n_points": int(np.sum(self.branch == b)),
@@ -511,16 +587,62 @@ class RetentionResult(Result):
         return cached
 
     def curve(self, branch: str, model: str, s):
-        """The fitted curve of one branch and model at suctions ``s`` [Pa] (θ [m³/m³] or S_R [-])."""
+        """The fitted curve of one branch and model at suctions ``s`` [Pa] (θ [m³/m³] or S_R [-]).
+
+        Parameters
+        ----------
+        branch : str
+            ``drying`` or ``wetting`` (a key of ``fits``).
+        model : str
+            The model's name (``vg``, ``vg_m_free``, ``bc``, ``kosugi``, ``fx``, ``fx_no_c``, ``durner``).
+        s : array_like
+            Suction [Pa].
+
+        Returns
+        -------
+        ndarray
+            The fitted water content at ``s``.
+        """
         return self.fits[branch][model].water(s)
 
     def band(self, branch: str, model: str, s):
-        """95 % confidence band (lower, upper) of one fitted curve at ``s`` [Pa]."""
+        """95 % confidence band (lower, upper) of one fitted curve at ``s`` [Pa].
+
+        Parameters
+        ----------
+        branch : str
+            ``drying`` or ``wetting`` (a key of ``fits``).
+        model : str
+            The model's name (``vg``, ``vg_m_free``, ``bc``, ``kosugi``, ``fx``, ``fx_no_c``, ``durner``).
+        s : array_like
+            Suction [Pa].
+
+        Returns
+        -------
+        tuple of ndarray
+            (lower, upper), in the fit's quantity.
+        """
         return confidence_band(model, self.fits[branch][model], s)
 
 
 def parse_fixed(items: list[str]) -> dict[str, float]:
-    """'theta_s=0.25' -> {'theta_s': 0.25}; values in the report units (kPa, 1/kPa)."""
+    """'theta_s=0.25' -> {'theta_s': 0.25}; values in the report units (kPa, 1/kPa).
+
+    Parameters
+    ----------
+    items : list of str
+        The values of --fix, each ``NAME=VALUE``.
+
+    Returns
+    -------
+    dict
+        Report name -> value [kPa, 1/kPa or -].
+
+    Raises
+    ------
+    OptionError
+        On an unknown name or a value that is not a number.
+    """
     out = {}
     for item in items:
         name, sep, value = item.partition("=")
@@ -570,7 +692,31 @@ def _suction(table, opt) -> np.ndarray:
 
 
 def run_retention(source, options: RetentionOptions | None = None) -> RetentionResult:
-    """Fit the chosen retention models to every branch of a retention table (CSV path, spreadsheet or DataFrame)."""
+    """Fit the chosen retention models to every branch of a retention table (CSV path, spreadsheet or DataFrame).
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame
+        Retention readings: suction (or head, pF) and water (S_R, theta, or w with rho_d), optional branch and
+        weight columns.
+    options : RetentionOptions, optional
+        Models, fixed parameters, unit weight [N/m^3] and density [kg/m^3] of water, hysteresis.
+
+    Returns
+    -------
+    RetentionResult
+        Every fit per branch with standard errors, 95 % intervals, statistics and model selection.
+
+    References
+    ----------
+    .. [1] van Genuchten, M. Th. (1980). Soil Sci. Soc. Am. J. 44, 892-898. doi:10.2136/sssaj1980.03615995004400050002x
+    .. [2] Brooks, R. H., Corey, A. T. (1964). Hydraulic properties of porous media. Hydrology Paper 3,
+       Colorado State University.
+    .. [3] Kosugi, K. (1996). Water Resour. Res. 32(9), 2697-2703. doi:10.1029/96WR01776
+    .. [4] Fredlund, D. G., Xing, A. (1994). Can. Geotech. J. 31(4), 521-532. doi:10.1139/t94-061
+    .. [5] Durner, W. (1994). Water Resour. Res. 30(2), 211-223. doi:10.1029/93WR02676
+    .. [6] Kool, J. B., Parker, J. C. (1987). Water Resour. Res. 23(1), 105-114. doi:10.1029/WR023i001p00105
+    """
     opt = options or RetentionOptions()
     table = read_table(source, SCHEMA)
     if not any(c in table.columns for c in ("suction", "head", "pF")):

@@ -86,6 +86,19 @@ class RetentionConvertResult(RetentionResult):
         return next(iter(next(iter(self.fits.values())).values()))
 
     def payload(self, lazy: bool = False) -> dict:
+        """The command's own keys of the JSON document: those of ``capred retention`` plus ``conversion``: source and
+        target models, the source parameters (report units and SI) and the misfit.
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Give long per-row lists as Rows made on demand (the writer streams them) instead of lists.
+
+        Returns
+        -------
+        dict
+            JSON key -> value (JSON units: mm, kPa, deg, mN).
+        """
         out = super().payload(lazy)
         src = self.source_fit
         out["conversion"] = {
@@ -106,6 +119,13 @@ class RetentionConvertResult(RetentionResult):
         return t
 
     def season_rows(self) -> list[dict]:
+        """Rows of a batch's season.csv: none (a conversion is not a measurement).
+
+        Returns
+        -------
+        list
+            Empty.
+        """
         return []
 
 
@@ -213,7 +233,20 @@ def load_retention_fit(fit, model: str | None = None, branch: str | None = None)
 
 
 def conversion_points(fit: RetentionFit, points: int = GRID_POINTS) -> np.ndarray:
-    """The suctions [Pa] a conversion is fitted at: the fit's own and ``points`` log-spaced between its extremes."""
+    """The suctions [Pa] a conversion is fitted at: the fit's own and ``points`` log-spaced between its extremes.
+
+    Parameters
+    ----------
+    fit : RetentionFit
+        The source fit (its suction points and range [Pa]).
+    points : int, optional
+        Number of log-spaced suctions added [-].
+
+    Returns
+    -------
+    ndarray
+        Sorted unique suctions [Pa].
+    """
     lo, hi = fit.suction_range
     return np.unique(np.concatenate([np.asarray(fit.suction_points, float), np.geomspace(lo, hi, points)]))
 
@@ -319,7 +352,20 @@ def convert_retention(fit, to: str, model: str | None = None, branch: str | None
 
 
 def run_retention_convert(source, options: ConvertOptions | None = None) -> RetentionConvertResult:
-    """The reduction of `capred retention-convert FIT.json --to MODEL` (see :func:`convert_retention`)."""
+    """The reduction of `capred retention-convert FIT.json --to MODEL` (see :func:`convert_retention`).
+
+    Parameters
+    ----------
+    source : str or Path
+        A fits.json of `capred retention` (or a table of readings, fitted first).
+    options : ConvertOptions, optional
+        Target model, which fit and branch to convert, grid points, unit weight of water [N/m^3].
+
+    Returns
+    -------
+    RetentionConvertResult
+        The converted fit, the source fit and the misfit.
+    """
     opt = options or ConvertOptions()
     src, where, inputs = load_retention_fit(source, opt.model, opt.branch)
     new, misfit = convert_fit(src, opt.to, int(opt.points))

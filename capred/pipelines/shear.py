@@ -102,17 +102,59 @@ class ModelParams(Options):
             raise OptionError(_as_given(self, exc, given)) from None
 
     def missing(self, model: str) -> str:
-        """What ``model`` needs and is not given (its registry ``requires``), e.g. ``"--s-res"``; "" when nothing."""
+        """What ``model`` needs and is not given (its registry ``requires``), e.g. ``"--s-res"``; "" when nothing.
+
+        Parameters
+        ----------
+        model : str
+            An effective-stress model of the registry.
+
+        Returns
+        -------
+        str
+            The missing options, joined by " and ".
+        """
         return " and ".join(opt for name, opt in esm.REGISTRY[model].requires if getattr(self, name) is None)
 
     def require(self, model: str) -> None:
+        """Refuse a model that lacks a parameter it needs.
+
+        Parameters
+        ----------
+        model : str
+            An effective-stress model of the registry.
+
+        Raises
+        ------
+        OptionError
+            Naming the missing options (see :meth:`missing`).
+        """
         missing = self.missing(model)
         if missing:
             raise OptionError(f"model '{model}' needs {missing} (or --retention FIT.json written by capred retention)")
 
 
 def model_params_from_retention(path: str | Path, **overrides) -> ModelParams:
-    """Retention parameters from a `capred retention` fits.json; options in ``overrides`` win."""
+    """Retention parameters from a `capred retention` fits.json; options in ``overrides`` win.
+
+    Parameters
+    ----------
+    path : str or Path
+        A fits.json written by `capred retention` (or `capred retention-convert`).
+    **overrides
+        ModelParams fields given as options (SI: vg_alpha [1/Pa], air_entry [Pa]); None values are ignored.
+
+    Returns
+    -------
+    ModelParams
+        s_res, vg_alpha [1/Pa], vg_n, vg_m, air_entry [Pa] and the best fit's S_R(s) relation, from the van
+        Genuchten and Brooks-Corey fits (another model converted to them).
+
+    Raises
+    ------
+    OptionError
+        Where ``path`` cannot be read as a fits.json.
+    """
     import json
 
     try:
@@ -327,6 +369,18 @@ class ShearResult(Result):
         return list(self.fits)
 
     def flags(self, i: int) -> list[str]:
+        """The warning flags of one test (e.g. a dry test flagged as an outlier).
+
+        Parameters
+        ----------
+        i : int
+            Row of the test (0-based).
+
+        Returns
+        -------
+        list of str
+            Its flags (empty when none).
+        """
         text = self._flag_texts()[i]
         return text.split(";") if text else []
 
@@ -355,6 +409,14 @@ class ShearResult(Result):
         return cached
 
     def season_rows(self) -> list[dict]:
+        """Rows of a batch's season.csv: one per material with c and phi [kPa, deg] and their standard
+        errors, the numbers of dry and wet tests, the best model and its RMSE [kPa] and the number of flagged tests.
+
+        Returns
+        -------
+        list of dict
+            ``name [unit]`` -> value.
+        """
         rows = []
         flags = np.array([bool(f) for f in self._flag_texts()])
         for m, fit in self.fits.items():
@@ -409,7 +471,18 @@ class ShearResult(Result):
         )
 
     def retention_relation(self, material: str):
-        """The S_R(s) relation along which model curves are drawn (None: markers per test only)."""
+        """The S_R(s) relation along which model curves are drawn (None: markers per test only).
+
+        Parameters
+        ----------
+        material : str
+            A material of the run.
+
+        Returns
+        -------
+        RetentionRelation or None
+            The relation (computed once per material).
+        """
         from .shear_analysis import retention_relation
 
         cache = self.__dict__.setdefault("_relations", {})
@@ -447,7 +520,18 @@ class ShearResult(Result):
         return model_curves(self, material, relation, sigma_N, points)
 
     def test_ids(self, rows) -> list[str]:
-        """The test_id of each of ``rows`` (row numbers), as read."""
+        """The test_id of each of ``rows`` (row numbers), as read.
+
+        Parameters
+        ----------
+        rows : array_like of int
+            Row numbers (0-based).
+
+        Returns
+        -------
+        list of str
+            The test ids.
+        """
         return [str(x) for x in self.tests["test_id"][np.asarray(rows, dtype=int)]]
 
     def _test_rows(self, start: int, stop: int) -> list[dict]:
@@ -597,6 +681,20 @@ class ShearResult(Result):
         return rows
 
     def payload(self, lazy: bool = False) -> dict:
+        """The command's own keys of the JSON document: source, per material its envelope (and saturated envelope),
+        models, tests, the metrics (all wet tests and pendular ones, per material and overall), the best models, the
+        bootstrap ranking, the fitted laws and the back-analysis.
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Give long per-row lists as Rows made on demand (the writer streams them) instead of lists.
+
+        Returns
+        -------
+        dict
+            JSON key -> value (JSON units: mm, kPa, deg, mN).
+        """
         n = len(self.tests["line"])
         tests = Rows(n, self._test_rows)
         return {
@@ -757,6 +855,18 @@ def model_metrics(predicted, measured) -> ModelMetrics:
 
     Tests without a prediction (NaN, e.g. no concave bridge for exact_neck) are
     left out; ``n`` counts the tests used.
+
+    Parameters
+    ----------
+    predicted : array_like
+        Predicted shear strength per test [Pa] (NaN: no prediction).
+    measured : array_like
+        Measured shear strength per test [Pa].
+
+    Returns
+    -------
+    ModelMetrics
+        n [-], rmse [Pa], bias [Pa] and r2 [-] (NaN where undefined).
     """
     p = np.asarray(predicted, dtype=float)
     y = np.asarray(measured, dtype=float)
@@ -771,7 +881,18 @@ def model_metrics(predicted, measured) -> ModelMetrics:
 
 
 def best_of(metrics: dict[str, ModelMetrics]) -> str | None:
-    """Model with the lowest RMSE (None when there is nothing to compare)."""
+    """Model with the lowest RMSE (None when there is nothing to compare).
+
+    Parameters
+    ----------
+    metrics : dict
+        Model name -> ModelMetrics.
+
+    Returns
+    -------
+    str or None
+        The model's name.
+    """
     scored = {m: v.rmse for m, v in metrics.items() if np.isfinite(v.rmse)}
     return min(scored, key=scored.get) if scored else None
 
@@ -915,7 +1036,20 @@ def _derive(
 
 
 def load_shear_table(source, with_curves: bool = False) -> Table:
-    """The tests table with its required columns checked (problems collected, not raised)."""
+    """The tests table with its required columns checked (problems collected, not raised).
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame
+        The direct-shear tests table.
+    with_curves : bool, optional
+        Raw curves are given: tau or sigma_N may come from them.
+
+    Returns
+    -------
+    Table
+        The table read, its problems in ``table.problems``.
+    """
     table = read_table(source, SCHEMA)
     _check_table(table, with_curves)
     return table
@@ -955,6 +1089,24 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
     in the number of tests, the same output files); its problems are raised
     block by block (the first block that has any), repeated test ids after
     the last. With raw curves (``options.curves``) a table is read whole.
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame
+        The direct-shear tests (one row per test).
+    options : ShearOptions, optional
+        Constants, per-test defaults, models and fitting choices (SI).
+
+    Returns
+    -------
+    ShearResult
+        The dry envelopes, each model's predictions and scores, the ranking and the back-analysis (a
+        ShearBlocks for a long plain CSV).
+
+    References
+    ----------
+    .. [1] Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular
+       materials. Master thesis, Vrije Universiteit Brussel.
 
     Example
     -------
@@ -1585,6 +1737,18 @@ class ShearBlocks(ShearResult):
         return rows
 
     def test_ids(self, rows) -> list[str]:
+        """The test_id of each of ``rows``, read back from the spooled inputs.
+
+        Parameters
+        ----------
+        rows : array_like of int
+            Row numbers (0-based, over all blocks).
+
+        Returns
+        -------
+        list of str
+            The test ids.
+        """
         return [str(x) for x in _spooled(self.spool_in, self.starts, "test_id", np.asarray(rows, dtype=np.int64))]
 
     def _flag_codes(self) -> tuple[np.ndarray, np.ndarray]:
@@ -1596,9 +1760,24 @@ class ShearBlocks(ShearResult):
         return names[code]
 
     def row_count(self) -> int:
+        """Number of tests of the run, over all blocks.
+
+        Returns
+        -------
+        int
+            The count [-].
+        """
         return int(self.starts[-1])
 
     def csv_tables(self) -> dict:
+        """The tables as the CSV writer takes them (``results`` written block by block, ``summary`` and ``metrics``),
+        under ``name [unit]`` headers.
+
+        Returns
+        -------
+        dict
+            Stem -> table (DataFrame or column mapping).
+        """
         cached = self.__dict__.get("_csv_tables")
         if cached is None:
             cached = self.__dict__["_csv_tables"] = {

@@ -901,6 +901,18 @@ class RetentionRelation:
         """The inverse: suction [Pa] at which the relation gives ``S_R`` (NaN outside its range).
 
         S_R(s) falls monotonically, so the root is bracketed on log s by bisection (vectorised).
+
+        Parameters
+        ----------
+        S_R : array_like
+            Degree of saturation [-].
+        lo, hi : float, optional
+            Bracket of the search [Pa].
+
+        Returns
+        -------
+        ndarray
+            Suction [Pa], NaN where ``S_R`` is outside the relation's values on the bracket.
         """
         target = np.atleast_1d(np.asarray(S_R, float))
         a = np.full(target.shape, np.log(lo))
@@ -916,7 +928,27 @@ class RetentionRelation:
 def retention_relation(params, suction, S_R) -> RetentionRelation | None:
     """The water-retention relation of a material's wet tests: van Genuchten from the options (--retention
     or --vg-alpha/--vg-n), else a van Genuchten fit (m = 1 - 1/n) of the tests' own (suction, S_R) pairs;
-    None when neither is possible (fewer than 4 tests at 3 suctions)."""
+    None when neither is possible (fewer than 4 tests at 3 suctions).
+
+    Parameters
+    ----------
+    params : ModelParams
+        The run's retention parameters (SI).
+    suction : array_like
+        Suction of the material's wet tests [Pa].
+    S_R : array_like
+        Their degree of saturation [-].
+
+    Returns
+    -------
+    RetentionRelation or None
+        S_R(s) with the caption saying where it comes from.
+
+    References
+    ----------
+    .. [1] van Genuchten, M. Th. (1980). Soil Sci. Soc. Am. J. 44, 892-898.
+       doi:10.2136/sssaj1980.03615995004400050002x
+    """
     from ..physics.retention import vg_water
 
     if params.retention_model is not None and params.vg_alpha is None:
@@ -960,7 +992,26 @@ def retention_relation(params, suction, S_R) -> RetentionRelation | None:
 
 def model_curves(result, material, relation: RetentionRelation, sigma_N: float, points: int = 120):
     """(S_R, {model: tau [Pa]}) along the retention relation at one normal stress; models whose registry entry
-    says ``along_retention=False`` (fitted on the tests' own strengths) are left out."""
+    says ``along_retention=False`` (fitted on the tests' own strengths) are left out.
+
+    Parameters
+    ----------
+    result : ShearResult
+        The run.
+    material : str
+        One of its materials.
+    relation : RetentionRelation
+        The S_R(s) relation to follow.
+    sigma_N : float
+        Normal stress [Pa].
+    points : int, optional
+        Number of suctions, log-spaced from a third of the smallest to three times the largest test suction [-].
+
+    Returns
+    -------
+    tuple
+        (S_R [-], {model: tau [Pa]}).
+    """
     t = result.tests
     sel = (t["material"] == material) & (t["condition"] == "wet")
     s_pos = t["suction"][sel][t["suction"][sel] > 0]

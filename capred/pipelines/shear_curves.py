@@ -79,6 +79,13 @@ class ShearCurves:
     area_ratio_at_peak: np.ndarray | None = None
 
     def per_test(self) -> dict[str, np.ndarray]:
+        """The per-test outputs of the curves beside the tests table.
+
+        Returns
+        -------
+        dict
+            ``displacement_at_peak`` [m], ``tau_residual`` [Pa], ``dilatancy_angle`` [deg] -> array per test.
+        """
         return {
             "displacement_at_peak": self.displacement_at_peak,
             "tau_residual": self.tau_residual,
@@ -88,7 +95,25 @@ class ShearCurves:
 
 def pick_peaks(source, tests: Table, box_area: np.ndarray, area_correction: str = "none") -> ShearCurves:
     """Peak tau of every test's curve, its displacement, the residual tau (mean over the last 10 % of the
-    displacement) and, with vertical displacements, the dilatancy angle at the peak (atan of dv/dh)."""
+    displacement) and, with vertical displacements, the dilatancy angle at the peak (atan of dv/dh).
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame
+        Long table of raw curves: test_id, displacement, F or tau (optional vertical displacement).
+    tests : Table
+        The tests table the curves belong to.
+    box_area : ndarray
+        Nominal box area of each test [m^2].
+    area_correction : str, optional
+        ``none``, ``square`` or ``circular`` (see :func:`corrected_area`).
+
+    Returns
+    -------
+    ShearCurves
+        Per test: tau at peak [Pa], displacement at peak [m], residual tau [Pa], dilatancy angle [deg]; the
+        problems of the file collected, not raised.
+    """
     table = read_table(source, SCHEMA)
     for name in ("test_id", "displacement"):
         if name not in table.columns:

@@ -148,7 +148,18 @@ def envelope_fits(lines: dict, source: str = "", warnings: dict | None = None) -
 
 
 def line_of(fit) -> LineFit:
-    """The SI LineFit of ``fit`` (an EnvelopeFit or already a LineFit)."""
+    """The SI LineFit of ``fit`` (an EnvelopeFit or already a LineFit).
+
+    Parameters
+    ----------
+    fit : EnvelopeFit or LineFit
+        A fitted envelope.
+
+    Returns
+    -------
+    LineFit
+        The line fit, in SI.
+    """
     return fit.line if isinstance(fit, EnvelopeFit) else fit
 
 

@@ -450,7 +450,18 @@ class TriaxialResult(Result):
         return out, (["astm_d4767"] if opt.membrane is not None else [])
 
     def flags(self, i: int) -> list[str]:
-        """What test ``i``'s bounds contradict: a positive (compressive) capillary component, p' < 0."""
+        """What test ``i``'s bounds contradict: a positive (compressive) capillary component, p' < 0.
+
+        Parameters
+        ----------
+        i : int
+            Row of the test (0-based).
+
+        Returns
+        -------
+        list of str
+            ``<bound>_positive_component`` per bound concerned, ``spherical_negative_p_prime``; empty when none.
+        """
         out = []
         for name in BOUNDS:
             b = self.bound_states[name]
@@ -461,6 +472,19 @@ class TriaxialResult(Result):
         return out
 
     def payload(self, lazy: bool = False) -> dict:
+        """The command's own keys of the JSON document: source, envelope, per test its state and bounds (None where a
+        bound does not apply) with its flags, and the groups.
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Give long per-row lists as Rows made on demand (the writer streams them) instead of lists.
+
+        Returns
+        -------
+        dict
+            JSON key -> value (JSON units: mm, kPa, deg, mN).
+        """
         tests = []
         for i in range(len(self.states)):
             row = rec.row_json(self.states, i)
@@ -487,6 +511,14 @@ class TriaxialResult(Result):
         return cached
 
     def season_rows(self) -> list[dict]:
+        """Rows of a batch's season.csv: one, the effective envelope c and phi [kPa, deg] with their
+        standard errors, the numbers of saturated and unsaturated tests and of flagged tests.
+
+        Returns
+        -------
+        list of dict
+            ``name [unit]`` -> value.
+        """
         e = self.envelope
         n_flag = sum(1 for i in range(len(self.states)) if self.flags(i))
         return [
@@ -546,6 +578,23 @@ def load_triaxial_table(table: Table, curves: dict[str, tuple[float, float]] | N
     Returns the table and a dict with ``q`` [Pa], ``strain`` (axial strain at
     failure [-], from the curve or the column ``strain_at_failure``) and
     ``from_curve`` (True where the curve gave q).
+
+    Parameters
+    ----------
+    table : Table
+        The tests table read (test_id, condition, sigma3, q_f or sigma1, ...).
+    curves : dict or None
+        Test id -> (q at the peak [Pa], axial strain at the peak [-]) from the raw curves.
+
+    Returns
+    -------
+    tuple
+        (``table``, {``q`` [Pa], ``strain`` [-], ``from_curve``}), one value per test.
+
+    Raises
+    ------
+    InputError
+        Where a required column is missing.
     """
     for name in ("test_id", "condition", "sigma3"):
         if name not in table.columns:
@@ -595,6 +644,11 @@ def consolidated_diameter(table: Table) -> tuple[np.ndarray, np.ndarray]:
     H0 (1 − ΔV_c/V0)^(1/3) (isotropic consolidation: equal axial and radial strains); else the initial
     diameter D0 (the source says so, and the run notes it).
 
+    Parameters
+    ----------
+    table : Table
+        The tests table (columns D_c, or dV_c with D0, H0 and optional H_c) [m, m^3].
+
     Returns
     -------
     D_c : ndarray
@@ -629,6 +683,14 @@ def skempton_a_of_curves(table: Table, at_peak: dict) -> tuple[np.ndarray, list[
     peak (Skempton 1954; Morvan et al. 2016, eq. 1): Δσ1 − Δσ3 = Δq. B is the tests table's column ``B``,
     else the export's last ``B Value``, else 1 (a saturated specimen; said in a note). Δσ3 is the change of
     the export's radial pressure (0, said in a note, when it logs none).
+
+    Parameters
+    ----------
+    table : Table
+        The tests table (test_id, optional B).
+    at_peak : dict
+        Test id -> changes over the shear stage up to the peak: ``du``, ``dq``, ``dsigma3`` [Pa] and the
+        export's last ``B`` [-].
 
     Returns
     -------
@@ -678,6 +740,16 @@ def pressure_tolerance(pressure):
     doi:10.1520/D4767-11) asks of the devices that apply the chamber and back
     pressures; two readings of one pressure that differ by more are two
     different pressures.
+
+    Parameters
+    ----------
+    pressure : float or array_like
+        Cell or back pressure [Pa].
+
+    Returns
+    -------
+    float or ndarray
+        Tolerance [Pa], same shape.
     """
     return np.maximum(2e3, 0.01 * np.abs(pressure))
 
@@ -695,6 +767,17 @@ def pore_pressures(table: Table, at_peak: dict[str, dict[str, float]], q, ext=No
     :func:`pressure_tolerance`: equal -> total stresses (the pore pressure is
     subtracted); equal to radial - u -> already effective (not subtracted
     again); otherwise a warning. Problems are added to ``table``.
+
+    Parameters
+    ----------
+    table : Table
+        The tests table (test_id, condition, sigma3, s0, back_pressure, u_a) [Pa].
+    at_peak : dict
+        Test id -> the export's pressures at the peak [Pa] (radial, back, pore and air pressure).
+    q : ndarray
+        Deviator at failure of each test [Pa].
+    ext : ndarray of bool, optional
+        Extension tests (their cell pressure is sigma1); default none.
 
     Returns
     -------
@@ -820,6 +903,25 @@ def run_triaxial_bounds(
     pressure says otherwise: ``back_pressure`` (saturated tests,
     sigma' = sigma - u_b) and ``u_a`` (unsaturated tests, net stress
     sigma - u_a) are subtracted from sigma3, sigma1, sigma2 and p0.
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame
+        The triaxial tests (test_id, condition, sigma3, q_f or sigma1, S_r, e, ... ).
+    options : TriaxialOptions, optional
+        Effective envelope, membrane correction, extension path (SI).
+    curves : str or Path, optional
+        Raw curves: a file, a folder or a glob (default: ``options.curves``).
+
+    Returns
+    -------
+    TriaxialResult
+        The effective envelope, per test the spherical, lower and EDTP bounds, and the groups.
+
+    References
+    ----------
+    .. [1] Prunier, F., Branque, D., Duriez, J., Darve, F. (2024). A method to evaluate the capillary stress
+       tensor at failure in unsaturated soils. Eur. J. Environ. Civ. Eng. doi:10.1080/19648189.2024.2314099
 
     Example
     -------

@@ -191,7 +191,23 @@ class TriaxialCurves:
 
 
 def curve_files(spec) -> list:
-    """The files a --curves value names: a file, a folder (its .csv, .xlsx, .ods files) or a glob."""
+    """The files a --curves value names: a file, a folder (its .csv, .xlsx, .ods files) or a glob.
+
+    Parameters
+    ----------
+    spec : str or Path or DataFrame
+        The value of --curves (a DataFrame is returned as it is).
+
+    Returns
+    -------
+    list
+        The files, sorted.
+
+    Raises
+    ------
+    InputError
+        Where a folder or glob names no curve file.
+    """
     path = source_path(spec)
     if hasattr(path, "to_csv"):
         return [spec]
@@ -264,6 +280,27 @@ def read_curves(
     table: capred.pipelines.triaxial.consolidated_diameter) where known, else
     the initial D0 of the tests table or of the file's metadata (``at_peak``
     records which: ``diameter_source`` "D_c" or "D0").
+
+    Parameters
+    ----------
+    spec : str or Path or DataFrame
+        The curves: a file, a folder or a glob (see :func:`curve_files`).
+    tests : Table, optional
+        The tests table (its D0 per test).
+    membrane : tuple of float, optional
+        (thickness [m], Young's modulus [Pa]) of the membrane; None: no correction.
+    consolidated : dict, optional
+        Test id -> diameter after consolidation [m].
+
+    Returns
+    -------
+    TriaxialCurves
+        Per test the peak (q [Pa], axial strain [-]), the pressures at the peak [Pa] and the readings.
+
+    References
+    ----------
+    .. [1] ASTM D4767-11, Standard test method for consolidated undrained triaxial compression test for
+       cohesive soils. doi:10.1520/D4767-11
     """
     out = TriaxialCurves()
     d0_col = {str(t): d for t, d in zip(tests.columns.get("test_id", []), tests.get("D0"))} if tests is not None else {}

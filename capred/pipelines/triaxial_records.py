@@ -52,12 +52,40 @@ def quantity(
 
 def text(json: str | None = None, *, optional: bool = False, kind: str = "text", init: bool = True):
     """A record field of text (or ``kind`` "int", "bool", "number", "list", "record", "records"); ``json``
-    overrides its JSON key (the field's name by default)."""
+    overrides its JSON key (the field's name by default).
+
+    Parameters
+    ----------
+    json : str, optional
+        JSON key (default: the field's name).
+    optional : bool, optional
+        Left out of the JSON when None.
+    kind : str, optional
+        ``text``, ``int``, ``bool``, ``number``, ``list``, ``record`` or ``records``.
+    init : bool, optional
+        The field is an argument of the record's constructor.
+
+    Returns
+    -------
+    dataclasses.Field
+        The field, default None.
+    """
     return field(default=None, metadata={"text": kind, "json": json, "optional": optional}, init=init)
 
 
 def json_key(f: dataclasses.Field) -> str:
-    """The JSON key of a record field (see the module docstring)."""
+    """The JSON key of a record field (see the module docstring).
+
+    Parameters
+    ----------
+    f : dataclasses.Field
+        A field of a record.
+
+    Returns
+    -------
+    str
+        Its JSON key (a quantity's name with its unit's suffix, e.g. ``_kPa``).
+    """
     m = f.metadata
     if "quantity" not in m:
         return m.get("json") or f.name
@@ -66,7 +94,20 @@ def json_key(f: dataclasses.Field) -> str:
 
 
 def csv_headers(f: dataclasses.Field, prefix: str = "") -> tuple[str, ...]:
-    """The CSV header(s) of a record field: ``name [unit]`` (two for an interval), the name for text."""
+    """The CSV header(s) of a record field: ``name [unit]`` (two for an interval), the name for text.
+
+    Parameters
+    ----------
+    f : dataclasses.Field
+        A field of a record.
+    prefix : str, optional
+        Put before the name (a nested record's ``name.``).
+
+    Returns
+    -------
+    tuple of str
+        The header(s).
+    """
     m = f.metadata
     if "quantity" not in m:
         return (prefix + (m.get("json") or f.name),)
@@ -104,7 +145,18 @@ def _number(value, m) -> object:
 
 
 def to_json(record) -> dict:
-    """A scalar record (envelope, group, one test's bound) as its JSON object, keys in declaration order."""
+    """A scalar record (envelope, group, one test's bound) as its JSON object, keys in declaration order.
+
+    Parameters
+    ----------
+    record : dataclass
+        A record of this module.
+
+    Returns
+    -------
+    dict
+        JSON key -> value (numbers in the glossary's units; None left out of optional fields).
+    """
     out = {}
     for f in dataclasses.fields(record):
         if not f.metadata:
@@ -124,7 +176,20 @@ def to_json(record) -> dict:
 
 
 def row_json(record, i: int) -> dict:
-    """Row ``i`` of a per-test record (arrays over the tests) as its JSON object."""
+    """Row ``i`` of a per-test record (arrays over the tests) as its JSON object.
+
+    Parameters
+    ----------
+    record : dataclass
+        A per-test record.
+    i : int
+        Row of the test (0-based).
+
+    Returns
+    -------
+    dict
+        JSON key -> value.
+    """
     out = {}
     for f in dataclasses.fields(record):
         if not f.metadata:
@@ -135,7 +200,20 @@ def row_json(record, i: int) -> dict:
 
 
 def row_csv(record, prefix: str = "") -> dict:
-    """A record's CSV columns ``{header: value}`` (a scalar record: one row; a per-test record: arrays)."""
+    """A record's CSV columns ``{header: value}`` (a scalar record: one row; a per-test record: arrays).
+
+    Parameters
+    ----------
+    record : dataclass
+        A record of this module.
+    prefix : str, optional
+        Put before each header (a nested record's ``name.``).
+
+    Returns
+    -------
+    dict
+        ``name [unit]`` header -> value (or array of values).
+    """
     out = {}
     for f in dataclasses.fields(record):
         if not f.metadata:
@@ -245,7 +323,17 @@ class BoundStates:
     positive_component: np.ndarray = text(kind="bool")
 
     def applies(self, i: int) -> bool:
-        """True when the bound was computed for test ``i``."""
+        """True when the bound was computed for test ``i``.
+
+        Parameters
+        ----------
+        i : int
+            Row of the test (0-based).
+
+        Returns
+        -------
+        bool
+        """
         return bool(np.isfinite(self.sigma1_cap[i]))
 
 
@@ -408,7 +496,20 @@ class GroupRecord:
         return to_json(self)[key]
 
     def get(self, key: str, default=None):
-        """Deprecated: dict-style access of capred 0.x (see ``__getitem__``)."""
+        """Deprecated: dict-style access of capred 0.x (see ``__getitem__``).
+
+        Parameters
+        ----------
+        key : str
+            A key of capred 0.x's group dict.
+        default : object, optional
+            Returned where ``key`` is unknown.
+
+        Returns
+        -------
+        object
+            The value.
+        """
         try:
             return self[key]
         except KeyError:
@@ -422,7 +523,18 @@ class GroupRecord:
 
 def group_csv(g: GroupRecord) -> dict:
     """A group as one flat CSV row: lists joined by ';', intervals and ranges as _low/_high (_lower/_upper)
-    columns, the closures' tensors as ``<closure>.<component> [kPa]``."""
+    columns, the closures' tensors as ``<closure>.<component> [kPa]``.
+
+    Parameters
+    ----------
+    g : GroupRecord
+        A group of tests sharing one capillary tensor.
+
+    Returns
+    -------
+    dict
+        Header -> value.
+    """
     row = {}
     for f in dataclasses.fields(g):
         v = getattr(g, f.name)

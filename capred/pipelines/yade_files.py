@@ -59,7 +59,17 @@ class YadeOptions(Options):
 
 
 def file_name(ratio: float) -> str:
-    """YADE's file name for a ratio: ``M(r=1)``, ``M(r=1.1)``, ``M(r=10)``."""
+    """YADE's file name for a ratio: ``M(r=1)``, ``M(r=1.1)``, ``M(r=10)``.
+
+    Parameters
+    ----------
+    ratio : float
+        Radius ratio R2/R1 [-].
+
+    Returns
+    -------
+    str
+    """
     return f"M(r={ratio:g})"
 
 
@@ -91,6 +101,22 @@ def capillary_file(ratio: float, contact_angle_rad: float, n_dist: int = 80, n_s
 
     Internally lengths are in units of the smaller radius R1 (rho = r); the
     table is converted to YADE's R2 units on the way out.
+
+    Parameters
+    ----------
+    ratio : float
+        Radius ratio r = R2/R1 >= 1 [-].
+    contact_angle_rad : float
+        Contact angle [rad].
+    n_dist : int, optional
+        Number of distances, from 0 to the largest gap bridged at zero suction [-].
+    n_suct : int, optional
+        Number of suctions per distance [-].
+
+    Returns
+    -------
+    CapillaryFile
+        The table in YADE's dimensionless variables (d*, uc*, V*, F*, delta1, delta2, nn11, nn33).
     """
     r = float(ratio)
     theta = float(contact_angle_rad)
@@ -166,6 +192,13 @@ class YadeResult(Result):
     notes: list[str] = field(default_factory=list)
 
     def summary_rows(self) -> list[dict]:
+        """One row per capillary file: its name, ratio, largest d* and uc*, numbers of distances and
+        bridges and the smallest block.
+
+        Returns
+        -------
+        list of dict
+        """
         return [
             {
                 "file": file_name(f.ratio),
@@ -180,19 +213,58 @@ class YadeResult(Result):
         ]
 
     def payload(self, lazy: bool = False) -> dict:
+        """The command's own keys of the JSON document: contact_angle_deg and the summary row of each file.
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Give long per-row lists as Rows made on demand (the writer streams them) instead of lists.
+
+        Returns
+        -------
+        dict
+            JSON key -> value (JSON units: mm, kPa, deg, mN).
+        """
         return {"contact_angle_deg": self.options.contact_angle if self.options else 0.0, "files": self.summary_rows()}
 
     def tables(self) -> dict:
+        """Output tables: file stem -> pandas DataFrame (``yade_files``: the summary rows).
+
+        Returns
+        -------
+        dict
+            Stem -> DataFrame, the per-row table first.
+        """
         import pandas as pd
 
         return {"yade_files": pd.DataFrame(self.summary_rows())}
 
     def extra_files(self) -> dict[str, bytes]:
+        """The capillary files themselves, ``M(r=<ratio>)``, in YADE's layout (ASCII).
+
+        Returns
+        -------
+        dict
+            File name -> bytes.
+        """
         return {file_name(f.ratio): f.text().encode("ascii") for f in self.files}
 
 
 def reduce_yade_files(source, opt: YadeOptions) -> YadeResult:
-    """Every capillary file of ``opt.ratios`` (``source`` is unused: the files need no input)."""
+    """Every capillary file of ``opt.ratios`` (``source`` is unused: the files need no input).
+
+    Parameters
+    ----------
+    source : None
+        Unused.
+    opt : YadeOptions
+        Ratios [-], contact angle [deg], distances and suctions per file [-].
+
+    Returns
+    -------
+    YadeResult
+        One CapillaryFile per ratio (a warning for ratios YADE does not open).
+    """
     contact_angle_rad = np.radians(opt.contact_angle)
     from ..progress import steps
 
