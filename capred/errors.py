@@ -48,13 +48,37 @@ class InputError(CapredError):
     #: the console lists this many problems, then says how many more there are
     SHOWN = 20
 
+    #: the same message in this many lines of one column is shown once, with the count and the first lines
+    SAME = 3
+
+    def _grouped(self) -> list[str]:
+        """The problems as shown: one line each, but the same message in many lines of a column once."""
+        groups: dict[tuple, list[Problem]] = {}
+        for p in self.problems:
+            groups.setdefault((p.file, p.sheet, p.column, p.message), []).append(p)
+        out, done = [], set()
+        for p in self.problems:
+            key = (p.file, p.sheet, p.column, p.message)
+            same = groups[key]
+            if len(same) < self.SAME or p.line is None:
+                out.append(str(p))
+            elif key not in done:
+                done.add(key)
+                lines = ", ".join(str(q.line) for q in same[:5]) + (", ..." if len(same) > 5 else "")
+                first = Problem(p.file, None, p.column, p.message, p.sheet)
+                out.append(f"{first} (in {len(same):,} lines: {lines})")
+        return out
+
     def _text(self) -> str:
         if len(self.problems) == 1:
             return str(self.problems[0])
+        shown = self._grouped()
+        if len(shown) == 1:
+            return shown[0]
         head = f"{len(self.problems)} problems in the input:"
-        lines = [head, *("  - " + str(p) for p in self.problems[: self.SHOWN])]
-        if len(self.problems) > self.SHOWN:
-            lines.append(f"  ... and {len(self.problems) - self.SHOWN} more (--json lists them all)")
+        lines = [head, *("  - " + t for t in shown[: self.SHOWN])]
+        if len(shown) > self.SHOWN:
+            lines.append(f"  ... and {len(shown) - self.SHOWN} more (--json lists them all)")
         return "\n".join(lines)
 
     def as_json(self) -> dict:
