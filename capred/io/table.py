@@ -41,9 +41,12 @@ import numpy as np
 
 from ..errors import InputError, Problem, UnitError
 from ..nomenclature import column_aliases
+from ..text_safety import excerpt
 from ..units import conversion
 from .grid import MAX_COLUMNS, ReadLimits, _parse, as_source, read_grid
 
+#: the most characters of a note under the data that messages quote
+NOTE_CHARS = 500
 #: numeric columns whose absence changes what is computed (a default radius, equal spheres, no back pressure,
 #: equal weights); text columns (identities and groups) are decisive too. A near miss of one stops the run.
 DECISIVE_COLUMNS = frozenset({"R", "R2", "back_pressure", "u_a", "weight"})
@@ -486,8 +489,9 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
     while tail is None and body and (text := _note_text(body[-1][1], positions)):
         notes.append((body[-1][0], text))
         body.pop()
-    for n, text in reversed(notes):
-        table.notes.append(f"note under the data (line {n}): {text}")
+    for n, text in reversed(notes):  # a long note is quoted in part (its length said); the file keeps it whole
+        shown = text if len(text) <= NOTE_CHARS else f"{text[:NOTE_CHARS]}… ({len(text):,} characters)"
+        table.notes.append(f"note under the data (line {n}): {shown}")
     if not body:
         raise InputError(Problem(shown, header_line, None, "the file has a header but no data rows", sheet))
     table.lines = np.array([n for n, _ in body], dtype=int)
@@ -763,7 +767,7 @@ def _unused_columns(table: Table, schema: list[Column], lookup: dict[str, Column
                     table.path,
                     table.header_line,
                     h,
-                    f"column '{h}' is not used, but its name is close to '{col.name}' ({col.description}), which "
+                    f"column {excerpt(h)} is not used, but its name is close to '{col.name}' ({col.description}), which "
                     f"changes the analysis when it is absent. Rename the column '{col.name}' if that is what it holds, "
                     f"or leave it out with --ignore-column '{h}' (from Python: ignore_columns=('{h}',))",
                     table.sheet,
@@ -774,7 +778,9 @@ def _unused_columns(table: Table, schema: list[Column], lookup: dict[str, Column
         canonical = lookup[near[0]].name if near else None
         if canonical and canonical in positions:
             canonical = None  # the column it resembles is there already
-        table.warnings.append(f"column '{h}' is not used" + (f" — did you mean '{canonical}'?" if canonical else ""))
+        table.warnings.append(
+            f"column {excerpt(h)} is not used" + (f" — did you mean '{canonical}'?" if canonical else "")
+        )
         told += 1
     if len(table.unmatched) - told > 0 and told >= _UNUSED_SHOWN:
         more = len(table.unmatched) - told - sum(1 for p in table.problems if "is not used, but" in p.message)
