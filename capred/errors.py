@@ -52,21 +52,36 @@ class InputError(CapredError):
     SAME = 3
 
     def _grouped(self) -> list[str]:
-        """The problems as shown: one line each, but the same message in many lines of a column once."""
+        """The problems as shown: one line each, but the same problem in many lines of a column once, with the
+        count and the first lines (cells that are not numbers: with their first values)."""
+        import re
+
+        def key(p: Problem):
+            m = re.fullmatch(r"('.*') is not a number(.*)", p.message, re.S)
+            return (p.file, p.sheet, p.column, "not a number" + m.group(2) if m else p.message), m
+
         groups: dict[tuple, list[Problem]] = {}
         for p in self.problems:
-            groups.setdefault((p.file, p.sheet, p.column, p.message), []).append(p)
+            groups.setdefault(key(p)[0], []).append(p)
         out, done = [], set()
         for p in self.problems:
-            key = (p.file, p.sheet, p.column, p.message)
-            same = groups[key]
+            k, m = key(p)
+            same = groups[k]
             if len(same) < self.SAME or p.line is None:
                 out.append(str(p))
-            elif key not in done:
-                done.add(key)
-                lines = ", ".join(str(q.line) for q in same[:5]) + (", ..." if len(same) > 5 else "")
-                first = Problem(p.file, None, p.column, p.message, p.sheet)
-                out.append(f"{first} (in {len(same):,} lines: {lines})")
+                continue
+            if k in done:
+                continue
+            done.add(k)
+            lines = ", ".join(str(q.line) for q in same[:5]) + (", ..." if len(same) > 5 else "")
+            if m is not None:  # values differ: the count, the first lines and values
+                firsts = ", ".join(
+                    dict.fromkeys(re.match(r"('.*') is not a number", q.message, re.S)[1] for q in same[:5])
+                )
+                text = f"{len(same):,} cells are not numbers (lines {lines}: {firsts}){m.group(2)}"
+                out.append(str(Problem(p.file, None, p.column, text, p.sheet)))
+            else:
+                out.append(f"{Problem(p.file, None, p.column, p.message, p.sheet)} (in {len(same):,} lines: {lines})")
         return out
 
     def _text(self) -> str:

@@ -190,7 +190,7 @@ def test_t_quantile_matches_cephes_for_every_whole_dof_and_scipy_beyond():
         assert_allclose(t_quantile(p, nu), stdtrit(nu, p), rtol=1e-10)
     assert_allclose(t_quantile(0.975, 2.5), stdtrit(2.5, 0.975), rtol=1e-15)  # a fraction: scipy
     got = t_quantile(0.975, np.array([3, 0, -1, np.nan, 3]))
-    assert_allclose(got[[0, 4]], stdtrit(3, 0.975), rtol=1e-14) and np.isnan(got[1:4]).all()
+    assert_allclose(got[[0, 4]], stdtrit(3, 0.975), rtol=1e-10) and np.isnan(got[1:4]).all()
     assert isinstance(t_quantile(0.975, 5), float) and isinstance(t_quantile(0.975, np.int64(5)), float)
 
 

@@ -426,7 +426,7 @@ def _schema_of(command: str):
 
 def _looks_like(command: str, source, n_problems: int = 0):
     """A Problem saying which command to try when the table that failed is clearly another command's input (its
-    header names at least two more of that command's columns than of this one's), else None."""
+    header names at least two more of that command's columns than of this one's, three it lacks), else None."""
     from ..errors import Problem
     from ..io.grid import TableSource, read_grid, source_path
     from ..io.table import _find_header, _lookup, _match_header
@@ -451,13 +451,15 @@ def _looks_like(command: str, source, n_problems: int = 0):
         return best
 
     own_schema = _schema_of(command)
-    own = named(own_schema) if own_schema else set()
+    if own_schema is None:  # a command without a table schema of its own (bridges, calculators): no comparison
+        return None
+    own = named(own_schema)
     best, best_cols = None, own
     for other in _TABLE_KINDS:
         schema = _schema_of(other) if other != command else None
         if schema:
             cols = named(schema)
-            if len(cols) >= len(best_cols) + 2 and len(cols - own) >= 2:
+            if len(cols) >= len(best_cols) + 2 and len(cols - own) >= 3:
                 best, best_cols = other, cols
     if best is None:
         return None

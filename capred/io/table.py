@@ -583,68 +583,36 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
     return table
 
 
-#: the same problem in at least this many cells of a column is one message (with the count and the first lines)
-SAME_PROBLEM_CELLS = 3
-
-
-def _lines_text(table: Table, rows: list[int], shown: int = 5) -> str:
-    lines = [str(int(table.lines[i])) for i in rows[:shown]]
-    return ", ".join(lines) + (", ..." if len(rows) > shown else "")
-
-
 def _choice_problems(table: Table, name: str, col: Column, cells: list[str], bad: list[int]) -> None:
-    """Values of a text column outside its choices: one problem per cell, or per value when the same value is in
-    many cells (with the count and the first lines), each with a hint when it is a known word of another
-    language (capred.nomenclature.VALUE_TRANSLATIONS)."""
+    """Values of a text column outside its choices: one problem per cell (the console shows the same value in many
+    cells once, capred.errors.InputError), with a hint when it is a known word of another language
+    (capred.nomenclature.VALUE_TRANSLATIONS)."""
     from ..nomenclature import VALUE_TRANSLATIONS
-    from ..text_safety import excerpt
 
     allowed = " or ".join(f"'{x}'" for x in col.choices)
     words = VALUE_TRANSLATIONS.get(col.name, {})
-    by_value: dict[str, list[int]] = {}
     for i in bad:
-        by_value.setdefault(cells[i], []).append(i)
-    for value, rows in by_value.items():
+        value = cells[i]
         known = words.get(value.strip().lower())
         hint = f" ('{value}' is {known[1]} for '{known[0]}': write '{known[0]}')" if known else ""
-        if len(rows) < SAME_PROBLEM_CELLS:
-            for i in rows:
-                table.add_problem(i, name, f"{excerpt(value)} is not one of {allowed}{hint}")
-            continue
-        table.add_problem(
-            rows[0],
-            name,
-            f"{excerpt(value)} in {len(rows):,} cells (lines {_lines_text(table, rows)}) is not one of {allowed}{hint}",
-        )
+        table.add_problem(i, name, f"{excerpt(value)} is not one of {allowed}{hint}")
 
 
 _DECIMAL_COMMA_CELL = re.compile(r"\s*[-+]?\d+,\d+\s*")
 
 
 def _number_problems(table: Table, name: str, cells: list[str], rows: list[int], delimiter: str | None) -> None:
-    """Cells that are not numbers: one problem per cell, or one for the column when they are many (the count,
-    the first lines and values); a decimal comma in a comma-delimited file suggests ';'."""
-    from ..text_safety import excerpt
-
-    if not rows:
-        return
-    comma = [i for i in rows if _DECIMAL_COMMA_CELL.fullmatch(cells[i])]
+    """Cells that are not numbers, one problem each (the console shows many of a column as one line,
+    capred.errors.InputError); a decimal comma in a comma-delimited file suggests ';'."""
+    comma = any(_DECIMAL_COMMA_CELL.fullmatch(cells[i]) for i in rows)
     hint = (
         " — decimal commas in a comma-delimited file: save it with ';' as the delimiter (capred then reads "
         "'10,5' as 10.5)"
         if comma and delimiter == ","
         else ""
     )
-    if len(rows) < SAME_PROBLEM_CELLS:
-        for i in rows:
-            table.add_problem(i, name, f"{excerpt(cells[i])} is not a number{hint}")
-        return
-    values = ", ".join(dict.fromkeys(excerpt(cells[i], 20) for i in rows[:5]))
-    table.add_problem(
-        rows[0],
-        name,
-        f"{len(rows):,} cells are not numbers (lines {_lines_text(table, rows)}: {values}){hint}",
-    )
+    for i in rows:
+        table.add_problem(i, name, f"{excerpt(cells[i])} is not a number{hint}")
 
 
 def _flag_controls(table: Table) -> None:
