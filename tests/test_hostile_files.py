@@ -634,7 +634,7 @@ def test_a_huge_cell_header_or_note_is_refused_with_a_short_excerpt(tmp_path, te
     path.write_text(text)
     err, seconds, peak = _measured(lambda: read_table(TableSource(path), SCHEMA))
     assert isinstance(err, LimitError) and err.limit == "max_cell_chars", err
-    assert len(str(err)) < 600 and "characters)" in str(err)  # an excerpt and the length, never the cell
+    assert len(str(err)) < 600 and "characters ('" in str(err)  # an excerpt and the length, never the cell
     assert seconds < 5 and peak < 100
     ok = read_table(TableSource(path, limits=ReadLimits(max_cell_chars=2_000_000)), SCHEMA)  # raised: read
     assert len(ok) >= 2

@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import InputError, LimitError, Problem
-from ..text_safety import excerpt
+from ..text_safety import visible
 
 #: default limit on the bytes of an input: a CSV file's size, a workbook's decompressed parts (256 MiB)
 MAX_BYTES = 256 * 2**20
@@ -344,7 +344,7 @@ def _check_long_lines(shown: str, text: str, first_line: int, limits: ReadLimits
             line = first_line + text.count("\n", 0, start)
             raise limits.error(
                 "max_cell_chars",
-                f"a cell of {widest:,} characters ({excerpt(text[at : at + 60], 30)})",
+                f"a cell of {widest:,} characters ('{visible(text[at : at + 30])}…')",
                 shown,
                 line,
             )
