@@ -32,7 +32,9 @@ class Problem:
             where += f", line {self.line}"
         if self.column is not None:
             where += f", column '{self.column}'"
-        return f"{where}: {self.message}"
+        from .text_safety import visible  # a message reaches a terminal: a cell's control characters as escapes
+
+        return visible(f"{where}: {self.message}")
 
 
 class InputError(CapredError):
