@@ -64,10 +64,11 @@ def _warning(run):
         import warnings
 
         from .errors import CapredWarning
+        from .text_safety import visible
 
         result = run(*args, **kwargs)
-        for text in result.all_warnings():
-            warnings.warn(text, CapredWarning, stacklevel=2)
+        for text in result.all_warnings():  # shown on a terminal: control characters as escapes
+            warnings.warn(visible(text), CapredWarning, stacklevel=2)
         return result
 
     return public

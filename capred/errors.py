@@ -32,7 +32,9 @@ class Problem:
             where += f", line {self.line}"
         if self.column is not None:
             where += f", column '{self.column}'"
-        return f"{where}: {self.message}"
+        from .text_safety import visible  # a message reaches a terminal: a cell's control characters as escapes
+
+        return visible(f"{where}: {self.message}")
 
 
 class InputError(CapredError):
@@ -48,13 +50,52 @@ class InputError(CapredError):
     #: the console lists this many problems, then says how many more there are
     SHOWN = 20
 
+    #: the same message in this many lines of one column is shown once, with the count and the first lines
+    SAME = 3
+
+    def _grouped(self) -> list[str]:
+        """The problems as shown: one line each, but the same problem in many lines of a column once, with the
+        count and the first lines (cells that are not numbers: with their first values)."""
+        import re
+
+        def key(p: Problem):
+            m = re.fullmatch(r"('.*') is not a number(.*)", p.message, re.S)
+            return (p.file, p.sheet, p.column, "not a number" + m.group(2) if m else p.message), m
+
+        groups: dict[tuple, list[Problem]] = {}
+        for p in self.problems:
+            groups.setdefault(key(p)[0], []).append(p)
+        out, done = [], set()
+        for p in self.problems:
+            k, m = key(p)
+            same = groups[k]
+            if len(same) < self.SAME or p.line is None:
+                out.append(str(p))
+                continue
+            if k in done:
+                continue
+            done.add(k)
+            lines = ", ".join(str(q.line) for q in same[:5]) + (", ..." if len(same) > 5 else "")
+            if m is not None:  # values differ: the count, the first lines and values
+                firsts = ", ".join(
+                    dict.fromkeys(re.match(r"('.*') is not a number", q.message, re.S)[1] for q in same[:5])
+                )
+                text = f"{len(same):,} cells are not numbers (lines {lines}: {firsts}){m.group(2)}"
+                out.append(str(Problem(p.file, None, p.column, text, p.sheet)))
+            else:
+                out.append(f"{Problem(p.file, None, p.column, p.message, p.sheet)} (in {len(same):,} lines: {lines})")
+        return out
+
     def _text(self) -> str:
         if len(self.problems) == 1:
             return str(self.problems[0])
+        shown = self._grouped()
+        if len(shown) == 1:
+            return shown[0]
         head = f"{len(self.problems)} problems in the input:"
-        lines = [head, *("  - " + str(p) for p in self.problems[: self.SHOWN])]
-        if len(self.problems) > self.SHOWN:
-            lines.append(f"  ... and {len(self.problems) - self.SHOWN} more (--json lists them all)")
+        lines = [head, *("  - " + t for t in shown[: self.SHOWN])]
+        if len(shown) > self.SHOWN:
+            lines.append(f"  ... and {len(shown) - self.SHOWN} more (--json lists them all)")
         return "\n".join(lines)
 
     def as_json(self) -> dict:

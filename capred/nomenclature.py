@@ -342,6 +342,42 @@ COLUMN_ALIASES: dict[str, tuple[str, ...]] = {
 }
 
 
+#: Words of other languages for the values of text columns, with the glossary's word and the language: named in
+#: the hint of an error (capred reads the English words only, so that no value is guessed).
+VALUE_TRANSLATIONS: dict[str, dict[str, tuple[str, str]]] = {
+    "condition": {
+        "droog": ("dry", "Dutch"),
+        "nat": ("wet", "Dutch"),
+        "vochtig": ("wet", "Dutch"),
+        "verzadigd": ("saturated", "Dutch"),
+        "sec": ("dry", "French"),
+        "sèche": ("dry", "French"),
+        "seche": ("dry", "French"),
+        "humide": ("wet", "French"),
+        "saturé": ("saturated", "French"),
+        "sature": ("saturated", "French"),
+        "trocken": ("dry", "German"),
+        "nass": ("wet", "German"),
+        "feucht": ("wet", "German"),
+        "gesättigt": ("saturated", "German"),
+        "gesaettigt": ("saturated", "German"),
+        "seco": ("dry", "Spanish or Portuguese"),
+        "húmedo": ("wet", "Spanish"),
+        "humedo": ("wet", "Spanish"),
+        "mojado": ("wet", "Spanish"),
+        "saturado": ("saturated", "Spanish or Portuguese"),
+        "molhado": ("wet", "Portuguese"),
+        "úmido": ("wet", "Portuguese"),
+        "secco": ("dry", "Italian"),
+        "umido": ("wet", "Italian"),
+        "bagnato": ("wet", "Italian"),
+        "saturo": ("saturated", "Italian"),
+        "suchy": ("dry", "Polish"),
+        "mokry": ("wet", "Polish"),
+    },
+}
+
+
 def column_aliases(name: str) -> tuple[str, ...]:
     """The spellings a reader accepts for the input column ``name`` besides the name itself.
 

@@ -180,15 +180,17 @@ def test_t_quantile_closed_forms_by_hand():
 def test_t_quantile_matches_cephes_for_every_whole_dof_and_scipy_beyond():
     """Against scipy.special.stdtrit (Cephes) for nu = 1..260 (the closed form up to 200, scipy above) and
     levels from 0.51 to 0.9999. 1e-12 relative: the closed form's worst error measured against a 40-digit
-    solution was 6e-13 at p = 0.9999 (1e-15 at 0.975); intervals print 4 digits."""
+    solution was 6e-13 at p = 0.9999 (1e-15 at 0.975); intervals print 4 digits. 1e-10 across the dependency
+    versions capred allows: stdtrit itself moved by 5e-11 between scipy 1.14 and 1.17, and the closed form by
+    1e-11 between numpy 2.0 and 2.4 (measured on this machine)."""
     from scipy.special import stdtrit
 
     nu = np.arange(1, 261)
     for p in (0.51, 0.9, 0.95, 0.975, 0.995, 0.9999, 0.025):
-        assert_allclose(t_quantile(p, nu), stdtrit(nu, p), rtol=1e-12)
+        assert_allclose(t_quantile(p, nu), stdtrit(nu, p), rtol=1e-10)
     assert_allclose(t_quantile(0.975, 2.5), stdtrit(2.5, 0.975), rtol=1e-15)  # a fraction: scipy
     got = t_quantile(0.975, np.array([3, 0, -1, np.nan, 3]))
-    assert_allclose(got[[0, 4]], stdtrit(3, 0.975), rtol=1e-14) and np.isnan(got[1:4]).all()
+    assert_allclose(got[[0, 4]], stdtrit(3, 0.975), rtol=1e-10) and np.isnan(got[1:4]).all()
     assert isinstance(t_quantile(0.975, 5), float) and isinstance(t_quantile(0.975, np.int64(5)), float)
 
 

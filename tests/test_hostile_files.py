@@ -406,6 +406,8 @@ def test_streamed_ods_reads_what_pandas_reads(tmp_path):
             cells.pop()
         if any(cells):
             expect.append((k, cells))
+    if int(pd.__version__.split(".")[0]) < 3:  # pandas 2's odf reader gives 1 for the boolean cell of a column of
+        expect[2][1][1] = "TRUE"  # numbers; the file says office:boolean-value="true", as pandas 3 reads it
     assert read_grid(TableSource(tmp_path / "v.ods")).rows == expect
 
 
@@ -579,13 +581,21 @@ def test_xlsx_elements_nested_after_sheet_data_are_refused_at_once(tmp_path):
     assert seconds < 5 and peak < 50
 
 
-def test_xlsx_elements_after_sheet_data_count_against_the_cell_limit(tmp_path):
+def test_xlsx_elements_in_and_after_sheet_data_are_bounded(tmp_path):
+    """Elements inside <sheetData> count against the cell limit; after it, only the merged ranges are read and the
+    rest (formatting) is left unread: 20 M elements there took 37 s and 2.5 GB before (0.6 s and 45 MB now)."""
     normal = _normal_xlsx(tmp_path / "n.xlsx")
-    sheet = f'<worksheet xmlns="{MAIN}"><sheetData></sheetData>'.encode() + b"<x/>" * 200_000 + b"</worksheet>"
-    path = tmp_path / "wide.xlsx"
-    path.write_bytes(_zip(_with_sheet(normal, sheet)))
+    inside = f'<worksheet xmlns="{MAIN}"><sheetData>'.encode() + b"<x/>" * 200_000 + b"</sheetData></worksheet>"
+    path = tmp_path / "inside.xlsx"
+    path.write_bytes(_zip(_with_sheet(normal, inside)))
     err, seconds, peak = _measured(lambda: read_grid(TableSource(path, limits=ReadLimits(max_cells=1000))))
     assert isinstance(err, LimitError) and err.limit == "max_cells" and "XML elements" in str(err), err
+    row = b'<row r="1"><c r="A1" t="inlineStr"><is><t>test_id</t></is></c></row>'
+    after = f'<worksheet xmlns="{MAIN}"><sheetData>'.encode() + row + b"</sheetData>" + b"<x/>" * 1_000_000
+    path = tmp_path / "after.xlsx"
+    path.write_bytes(_zip(_with_sheet(normal, after + b"</worksheet>")))
+    grid, seconds, peak = _measured(lambda: read_grid(TableSource(path)))
+    assert grid.rows == [(1, ["test_id"])] and seconds < 5 and peak < 50
 
 
 HEAD = "test_id,condition,sigma_N [kPa],tau_max [kPa]\na,dry,1,1.0452\nb,dry,2,1.7598\nc,dry,3,2.4744\n"
@@ -624,7 +634,7 @@ def test_a_huge_cell_header_or_note_is_refused_with_a_short_excerpt(tmp_path, te
     path.write_text(text)
     err, seconds, peak = _measured(lambda: read_table(TableSource(path), SCHEMA))
     assert isinstance(err, LimitError) and err.limit == "max_cell_chars", err
-    assert len(str(err)) < 600 and "characters)" in str(err)  # an excerpt and the length, never the cell
+    assert len(str(err)) < 600 and "characters ('" in str(err)  # an excerpt and the length, never the cell
     assert seconds < 5 and peak < 100
     ok = read_table(TableSource(path, limits=ReadLimits(max_cell_chars=2_000_000)), SCHEMA)  # raised: read
     assert len(ok) >= 2

@@ -384,12 +384,15 @@ def test_header_with_unbalanced_brackets_is_a_problem(tmp_path):
 
 # --- one round of problems ---------------------------------------------------------------------------
 def test_all_problems_in_one_round(tmp_path):
+    """60 bad cells in one pass: every one in the JSON; the console shows the same problem in many cells of a
+    column as one line (issue 29, item 6)."""
     rows = "".join(f"t{k},dry,x{k},-1\n" for k in range(30))
     (tmp_path / "t.csv").write_text("test_id,condition,sigma_N [kPa],tau_max [kPa]\n" + rows)
     res = runner.invoke(app, ["shear", str(tmp_path / "t.csv"), "--no-plots"])
     assert res.exit_code == 1
-    assert "60 problems" in res.stderr and "and 40 more" in res.stderr
-    assert res.stderr.count("  - ") == 20
+    assert "60 problems" in res.stderr and res.stderr.count("  - ") == 2
+    assert "30 cells are not numbers (lines 2, 3, 4, 5, 6, ...: 'x0', 'x1', 'x2', 'x3', 'x4')" in res.stderr
+    assert "must not be negative (got -1 kPa) (in 30 lines: 2, 3, 4, 5, 6, ...)" in res.stderr
     res = runner.invoke(app, ["shear", str(tmp_path / "t.csv"), "--no-plots", "--json"])
     assert res.exit_code == 1
     errors = json.loads(res.stdout)["errors"]

@@ -90,8 +90,10 @@ def test_pt_volume_sample_writes_files_equal_to_the_physics(tmp_path):
         ("ncl_fraction_W [-]", "ncl_fraction_W", 1.0),
         ("solid_fraction_W [-]", "solid_fraction_W", 1.0),
     ):
+        # atol 1e-15: the increments de are differences of void ratios near 1, where numpy's libm differs by a
+        # few ulps between releases (3e-13 relative to an increment of 3e-4 with numpy 2.0, the floor)
         assert_allclose(
-            t[col].to_numpy(float), getattr(ref, attr) * scale, rtol=1e-14, atol=0, equal_nan=True, err_msg=col
+            t[col].to_numpy(float), getattr(ref, attr) * scale, rtol=1e-14, atol=1e-15, equal_nan=True, err_msg=col
         )
     for flag in ("loading_W", "loading_A", "yielding_W", "yielding_A"):
         assert t[flag].tolist() == getattr(ref, flag).tolist()

@@ -310,3 +310,189 @@ def test_fuzzed_sheet_xml_reads_or_explains(tmp_path, pieces):
         assert str(path) in str(exc)
     else:
         assert all(isinstance(n, int) and all(isinstance(c, str) for c in cells) for n, cells in grid.rows)
+
+
+# --- issue 32, item 9: workbook structure and control characters -----------------------------------------------------
+SHEET_PIECES = st.sampled_from(
+    [
+        '<row r="2">',
+        '<row r="99999999999999999999999">',
+        '<row r="1048577">',
+        "</row>",
+        '<c r="A1" t="inlineStr"><is><t>test_id</t></is></c>',
+        '<c r="B1" t="inlineStr"><is><t>material</t></is></c>',
+        '<c r="B2" t="inlineStr"><is><t>m\x1b[2J\u202e</t></is></c>',
+        '<c r="C2"><f>A1*2</f><v/></c>',
+        '<c r="C3"><f>A1*2</f><v>4</v></c>',
+        '<c r="A3"><v>1.5</v></c>',
+        "<x><x><x>",
+        "</x></x></x>",
+    ]
+)
+AFTER_DATA = st.sampled_from(
+    [
+        "",
+        '<mergeCells><mergeCell ref="B2:B4"/></mergeCells>',
+        '<mergeCells><mergeCell ref="A1:XFD1048576"/></mergeCells>',
+        '<mergeCells><mergeCell ref="B2"/><mergeCell ref="Q:Z"/></mergeCells>',
+        "<y/>" * 50,
+    ]
+)
+
+
+@SETTINGS
+@given(
+    pieces=st.lists(SHEET_PIECES, max_size=25),
+    after=AFTER_DATA,
+    states=st.lists(st.sampled_from(["visible", "hidden", "veryHidden"]), min_size=2, max_size=2),
+    sheet=st.sampled_from([None, "1", "2", "S2", "nope"]),
+)
+def test_fuzzed_workbook_structure_reads_or_explains(tmp_path, pieces, after, states, sheet):
+    """Hidden sheets, merged ranges (sane and absurd), formulas with and without values, huge row numbers and
+    nesting in a two-sheet workbook: rows of text, or one clear CapredError."""
+    import zipfile
+    from pathlib import Path
+
+    from openpyxl import Workbook
+
+    from capred.io.grid import TableSource, read_grid
+
+    path = Path(tmp_path) / "w.xlsx"
+    wb = Workbook()
+    wb.active.title = "S1"
+    wb.create_sheet("S2")
+    wb.save(path)
+    with zipfile.ZipFile(path) as z:
+        members = [(n, z.read(n)) for n in z.namelist()]
+    sheet_xml = (
+        '<worksheet xmlns="http://schemas.openxmlformats.org/spreadsheetml/2006/main"><sheetData>'
+        + "".join(pieces)
+        + "</sheetData>"
+        + after
+        + "</worksheet>"
+    ).encode()
+    with zipfile.ZipFile(path, "w") as z:
+        for n, d in members:
+            if n == "xl/workbook.xml":
+                for name, state in zip(("S1", "S2"), states):
+                    d = d.replace(f'name="{name}"'.encode(), f'name="{name}" state="{state}"'.encode())
+            z.writestr(n, sheet_xml if n.startswith("xl/worksheets/sheet") else d)
+    try:
+        grid = read_grid(TableSource(path, sheet))
+    except CapredError as exc:
+        assert str(path) in str(exc)
+    else:
+        assert all(isinstance(n, int) and 1 <= n <= 1_048_576 for n, _ in grid.rows)
+        assert all(isinstance(c, str) for _, cells in grid.rows for c in cells)
+
+
+ODS_PIECES = st.sampled_from(
+    [
+        "<table:table-row>",
+        '<table:table-row table:number-rows-repeated="1048576">',
+        '<table:table-row table:number-rows-repeated="99999999999999999999">',
+        "</table:table-row>",
+        '<table:table-cell office:value-type="string"><text:p>test_id</text:p></table:table-cell>',
+        '<table:table-cell office:value-type="float" office:value="1.5"/>',
+        '<table:table-cell table:number-rows-spanned="3" office:value-type="string"><text:p>m</text:p>'
+        "</table:table-cell>",
+        '<table:table-cell table:number-columns-spanned="5000" office:value-type="string"><text:p>w</text:p>'
+        "</table:table-cell>",
+        "<table:covered-table-cell/>",
+        '<table:table-cell table:formula="of:=1+2"/>',
+        '<table:table-cell office:value-type="string"><text:p>a<text:s text:c="40000"/>b</text:p></table:table-cell>',
+        '<table:table-cell office:value-type="string"><text:p>\x1b]0;t\x07\u2066x</text:p></table:table-cell>',
+        '<table:table-cell table:number-columns-repeated="3" office:value-type="float" office:value="2"/>',
+    ]
+)
+
+
+@SETTINGS
+@given(
+    pieces=st.lists(ODS_PIECES, max_size=20),
+    hidden_first=st.booleans(),
+    sheet=st.sampled_from([None, "1", "2", "B", "nope"]),
+)
+def test_fuzzed_ods_structure_reads_or_explains(tmp_path, pieces, hidden_first, sheet):
+    """Repeats, spans, covered cells, formulas, expanded spaces and control characters in an .ods with a
+    hidden first sheet or not: rows of text, or one clear CapredError."""
+    import zipfile
+    from pathlib import Path
+
+    from capred.io.grid import TableSource, read_grid
+
+    ns = (
+        'xmlns:office="urn:oasis:names:tc:opendocument:xmlns:office:1.0" '
+        'xmlns:style="urn:oasis:names:tc:opendocument:xmlns:style:1.0" '
+        'xmlns:table="urn:oasis:names:tc:opendocument:xmlns:table:1.0" '
+        'xmlns:text="urn:oasis:names:tc:opendocument:xmlns:text:1.0"'
+    )
+    body = "".join(pieces)
+    style = ' table:style-name="h"' if hidden_first else ""
+    content = (
+        f'<?xml version="1.0" encoding="UTF-8"?><office:document-content {ns}><office:automatic-styles>'
+        '<style:style style:name="h" style:family="table"><style:table-properties table:display="false"/>'
+        "</style:style></office:automatic-styles><office:body><office:spreadsheet>"
+        f'<table:table table:name="A"{style}>{body}</table:table><table:table table:name="B">{body}</table:table>'
+        "</office:spreadsheet></office:body></office:document-content>"
+    )
+    path = Path(tmp_path) / "w.ods"
+    with zipfile.ZipFile(path, "w") as z:
+        z.writestr("mimetype", "application/vnd.oasis.opendocument.spreadsheet")
+        z.writestr("content.xml", content.encode())
+    try:
+        grid = read_grid(TableSource(path, sheet))
+    except CapredError as exc:
+        assert str(path) in str(exc)
+    else:
+        assert all(isinstance(n, int) and 1 <= n <= 1_048_576 for n, _ in grid.rows)
+        assert all(len(c) <= 32_767 for _, cells in grid.rows for c in cells)
+
+
+CONTROL_TEXT = st.text(
+    alphabet=st.sampled_from(
+        list("ab ,;\t")
+        + ["\x1b", "\x07", "\x00", "\x08", "\x7f", "\x85", "\x9b", "\u202a", "\u202e", "\u2066", "\u2069"]
+    ),
+    min_size=1,
+    max_size=12,
+)
+
+
+@SETTINGS
+@given(name=CONTROL_TEXT)
+def test_fuzzed_control_characters_never_leave_raw(tmp_path, name):
+    """A material named with any mix of C0, C1 and bidi controls: the JSON keeps it exactly (escaped bytes
+    only), the console and the visible form hold none of them raw."""
+    import io
+    import json
+    import warnings
+
+    from rich.console import Console
+
+    from capred.io.writers import encode_json
+    from capred.report.render import render
+    from capred.text_safety import visible
+
+    raw = set("\x1b\x07\x00\x08\x7f\x85\x9b\u202a\u202e\u2066\u2069")
+    assert not raw & set(visible(name))
+    cell = '"' + name.replace('"', '""') + '"'
+    path = tmp_path / "c.csv"
+    path.write_text(
+        "test_id,material,condition,sigma_N [kPa],tau_max [kPa]\n"
+        + "".join(f"t{i},{cell},dry,{10 * i},{0.37 + 5 * i}\n" for i in range(1, 4)),
+        encoding="utf-8",
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            result = run_shear(path, ShearOptions(bootstrap=0))
+        except CapredError as exc:
+            assert not raw & set(visible(str(exc)))
+            return
+    data = encode_json(result.to_json())
+    assert not any(c.encode() in data for c in ("\x85", "\x9b", "\u202a", "\u202e", "\u2066", "\u2069"))
+    json.loads(data)
+    out = io.StringIO()
+    render(result, console=Console(file=out, width=120, force_terminal=False))
+    assert not raw & set(out.getvalue())

@@ -98,3 +98,26 @@ def test_error_messages_quote_cells_visibly(tmp_path):
     p.write_text("test_id,material,condition,sigma_N [kPa],tau_max [kPa]\na,m,dry,1,\x1b[2Jx\n")
     res = runner.invoke(app, ["shear", str(p), "--no-plots", "--out", str(tmp_path / "o")])
     assert res.exit_code != 0 and "\x1b" not in res.output and "\u241b[2Jx" in res.output
+
+
+def test_python_api_warnings_and_errors_show_controls_as_escapes(tmp_path):
+    """A lab script's terminal gets the same protection: CapredWarning texts and InputError messages."""
+    import warnings
+
+    from capred.errors import CapredWarning, InputError
+
+    lines = capred.sample_path("shear").read_text().splitlines()
+    src = tmp_path / "evil.csv"
+    src.write_text("\n".join(ln.replace("steel_2mm", EVIL) for ln in lines) + "\n")
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        r = capred.run_shear(src)
+    texts = [str(w.message) for w in seen if issubclass(w.category, CapredWarning)]
+    assert texts and not any(c in t for t in texts for c in RAW)
+    assert any(EVIL in w for w in r.warnings) or any("U+202E" in w for w in r.warnings)  # the result keeps text
+    bad = tmp_path / "bad.csv"
+    bad.write_text("test_id,material,condition,sigma_N [kPa],tau_max [kPa]\na,m,dry,1,\x1b[2J\na,m,dry,2,3\n")
+    with pytest.raises(InputError) as err:
+        capred.run_shear(bad)
+    assert "\x1b" not in str(err.value) and "\u241b[2J" in str(err.value)
+    assert err.value.as_json()["errors"][0]["value"] == "\x1b[2J"  # scripts get the exact cell

@@ -519,6 +519,11 @@ def execute(inv: Invocation) -> None:
         else:
             _batch(inv)
     except InputError as exc:
+        hint = _looks_like(inv.command, inv.sources[0], len(exc.problems)) if len(inv.sources) == 1 else None
+        if hint is not None:  # the one message that helps; every problem stays in the JSON
+            problems = exc.problems
+            exc = InputError(hint)
+            exc.problems = [hint, *problems]
         if inv.json:  # scripts get every problem, as data
             from ..io.writers import encode_json
 
@@ -527,6 +532,77 @@ def execute(inv: Invocation) -> None:
         fail(exc)
     except CapredError as exc:
         fail(exc)
+
+
+#: what each command's input is, for "this looks like ..." (commands whose table has a schema of its own)
+_TABLE_KINDS = {
+    "shear": "a direct-shear table",
+    "triaxial-bounds": "a triaxial table (one row per test)",
+    "retention": "a retention table",
+    "pt-volume": "a stress path for pt-volume",
+}
+
+
+def _schema_of(command: str):
+    """The columns the command reads from its table (the SCHEMA of its pipeline module), or None."""
+    from importlib import import_module
+
+    from ..reductions import REDUCTIONS
+
+    red = REDUCTIONS.get(command)
+    if red is None:
+        return None
+    return getattr(import_module(red.run_path.split(":")[0]), "SCHEMA", None)
+
+
+def _looks_like(command: str, source, n_problems: int = 0):
+    """A Problem saying which command to try when the table that failed is clearly another command's input (its
+    header names at least two more of that command's columns than of this one's, three it lacks), else None."""
+    from ..errors import Problem
+    from ..io.grid import TableSource, read_grid, source_path
+    from ..io.table import _find_header, _lookup, _match_header
+
+    path = source_path(source)
+    if path is None or hasattr(path, "to_csv"):
+        return None
+    try:
+        grid = read_grid(source if isinstance(source, TableSource) else TableSource(path))
+    except CapredError:
+        return None
+    candidates = list(grid.text_rows.values()) or [grid.rows]  # a CSV: the first rows split at each delimiter
+
+    def named(schema) -> set[str]:
+        lookup = _lookup(schema)
+        best: set[str] = set()
+        for rows in candidates:
+            if rows:
+                k, _ = _find_header(rows, lookup)
+                cols = {c.name for c in (_match_header(h, lookup)[0] for h in rows[k][1]) if c is not None}
+                best = max(best, cols, key=len)
+        return best
+
+    own_schema = _schema_of(command)
+    if own_schema is None:  # a command without a table schema of its own (bridges, calculators): no comparison
+        return None
+    own = named(own_schema)
+    best, best_cols = None, own
+    for other in _TABLE_KINDS:
+        schema = _schema_of(other) if other != command else None
+        if schema:
+            cols = named(schema)
+            if len(cols) >= len(best_cols) + 2 and len(cols - own) >= 3:
+                best, best_cols = other, cols
+    if best is None:
+        return None
+    shown = ", ".join(sorted(best_cols - own)[:6])
+    more = f" ({n_problems:,} problems reading it as the input of capred {command}: --json lists them)"
+    return Problem(
+        str(path),
+        None,
+        None,
+        f"this looks like {_TABLE_KINDS[best]} (it has {shown}), not an input of capred {command}: "
+        f"try capred {best} {path}" + (more if n_problems else ""),
+    )
 
 
 def _single(inv: Invocation) -> None:

@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import InputError, LimitError, Problem
-from ..text_safety import excerpt
+from ..text_safety import visible
 
 #: default limit on the bytes of an input: a CSV file's size, a workbook's decompressed parts (256 MiB)
 MAX_BYTES = 256 * 2**20
@@ -49,7 +49,9 @@ MAX_COLUMNS = 1000
 MAX_CELL_CHARS = 32_767
 #: XML elements a part may hold per cell of ``max_cells`` (a cell is <c><v> or <c><is><t>, with rows, formats and
 #: rich-text runs around them); more is not a spreadsheet's structure
-ELEMENTS_PER_CELL = 6
+ELEMENTS_PER_CELL = 4
+#: elements read after a worksheet's <sheetData> (where its merged ranges are) before the rest is left unread
+AFTER_DATA_ELEMENTS = 100_000
 #: deepest nesting of XML elements in a part (spreadsheets nest about 10 deep)
 MAX_XML_DEPTH = 200
 #: the rows a worksheet holds in Excel and LibreOffice: a row number beyond is a damaged or hand-made file
@@ -421,7 +423,7 @@ def _check_long_lines(shown: str, text: str, first_line: int, limits: ReadLimits
             line = first_line + text.count("\n", 0, start)
             raise limits.error(
                 "max_cell_chars",
-                f"a cell of {widest:,} characters ({excerpt(text[at : at + 60], 30)})",
+                f"a cell of {widest:,} characters ('{visible(text[at : at + 30])}…')",
                 shown,
                 line,
             )
@@ -1108,9 +1110,17 @@ class _XlsxSheet:
         self.phonetic = 0
         self.chars = 0  # characters of the current cell's text
         self.formula: list[str] | str | None = None  # the current cell's formula (its text while read)
+        self.after_data: int | None = None  # elements seen after </sheetData> (None: not yet there)
 
     def start(self, name, attrs):
         local = _local(name)
+        if self.after_data is not None:  # past <sheetData>: only the merged ranges are read, the rest is formatting
+            self.after_data += 1
+            if self.after_data > AFTER_DATA_ELEMENTS:
+                raise _Stop
+            if local == "mergeCell":
+                self.out.merge(attrs.get("ref", ""))
+            return
         if local == "c":
             ref = attrs.get("r")
             self.col = _column_number(ref) if ref else self.col + 1
@@ -1126,8 +1136,6 @@ class _XlsxSheet:
             self.buf = []
         elif local == "f":
             self.formula = []
-        elif local == "mergeCell":
-            self.out.merge(attrs.get("ref", ""))
         elif local == "row":
             r = attrs.get("r")
             # a row number of thousands of digits is not converted (Python refuses, and no sheet has it)
@@ -1143,7 +1151,13 @@ class _XlsxSheet:
 
     def end(self, name):
         local = _local(name)
-        if local == "v":
+        if self.after_data is not None:
+            if local == "mergeCells":
+                raise _Stop  # nothing after it is read
+            return
+        if local == "sheetData":
+            self.after_data = 0
+        elif local == "v":
             self.value = "".join(self.buf)
             self.buf = None
         elif local == "t" and self.buf is not None and self.inline is not None:

@@ -41,9 +41,12 @@ import numpy as np
 
 from ..errors import InputError, Problem, UnitError
 from ..nomenclature import column_aliases
+from ..text_safety import excerpt
 from ..units import conversion
 from .grid import MAX_COLUMNS, ReadLimits, _parse, as_source, read_grid
 
+#: the most characters of a note under the data that messages quote
+NOTE_CHARS = 500
 #: numeric columns whose absence changes what is computed (a default radius, equal spheres, no back pressure,
 #: equal weights); text columns (identities and groups) are decisive too. A near miss of one stops the run.
 DECISIVE_COLUMNS = frozenset({"R", "R2", "back_pressure", "u_a", "weight"})
@@ -549,8 +552,9 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
     while tail is None and body and (text := _note_text(body[-1][1], positions)):
         notes.append((body[-1][0], text))
         body.pop()
-    for n, text in reversed(notes):
-        table.notes.append(f"note under the data (line {n}): {text}")
+    for n, text in reversed(notes):  # a long note is quoted in part (its length said); the file keeps it whole
+        shown = text if len(text) <= NOTE_CHARS else f"{text[:NOTE_CHARS]}… ({len(text):,} characters)"
+        table.notes.append(f"note under the data (line {n}): {shown}")
     if not body:
         raise InputError(Problem(shown, header_line, None, "the file has a header but no data rows", sheet))
     table.lines = np.array([n for n, _ in body], dtype=int)
@@ -592,10 +596,9 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
         if col.kind == "text":
             values = np.array(cells, dtype=object)
             if col.choices:
-                for i, c in enumerate(cells):
-                    if c.lower() not in col.choices:
-                        allowed = " or ".join(f"'{x}'" for x in col.choices)
-                        table.add_problem(i, name, f"'{c}' is not one of {allowed}")
+                bad = [i for i, c in enumerate(cells) if c.lower() not in col.choices]
+                if bad:
+                    _choice_problems(table, name, col, cells, bad)
                 values = np.array([c.lower() for c in cells], dtype=object)
             table.columns[name] = values
             continue
@@ -617,15 +620,17 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
         values = _parse_column(cells, decimal_comma)
         if values is None:  # some cell is not a plain number: cell by cell, naming the bad ones
             values = np.empty(len(cells))
+            not_numbers = []
             for i, c in enumerate(cells):
                 v = _parse_number(c, decimal_comma)
                 if v is None:
                     if c.strip().lower() in ("inf", "-inf", "+inf", "infinity"):
                         table.add_problem(i, name, f"'{c}' is not a finite number")
                     else:
-                        table.add_problem(i, name, f"'{c}' is not a number")
+                        not_numbers.append(i)
                     v = float("nan")
                 values[i] = v
+            _number_problems(table, name, cells, not_numbers, delimiter)
         table.as_read[name] = values
         with np.errstate(over="ignore", invalid="ignore"):
             si = values * factor
@@ -639,6 +644,38 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
         _check_magnitude(table, col)
     _flag_controls(table)
     return table
+
+
+def _choice_problems(table: Table, name: str, col: Column, cells: list[str], bad: list[int]) -> None:
+    """Values of a text column outside its choices: one problem per cell (the console shows the same value in many
+    cells once, capred.errors.InputError), with a hint when it is a known word of another language
+    (capred.nomenclature.VALUE_TRANSLATIONS)."""
+    from ..nomenclature import VALUE_TRANSLATIONS
+
+    allowed = " or ".join(f"'{x}'" for x in col.choices)
+    words = VALUE_TRANSLATIONS.get(col.name, {})
+    for i in bad:
+        value = cells[i]
+        known = words.get(value.strip().lower())
+        hint = f" ('{value}' is {known[1]} for '{known[0]}': write '{known[0]}')" if known else ""
+        table.add_problem(i, name, f"{excerpt(value)} is not one of {allowed}{hint}")
+
+
+_DECIMAL_COMMA_CELL = re.compile(r"\s*[-+]?\d+,\d+\s*")
+
+
+def _number_problems(table: Table, name: str, cells: list[str], rows: list[int], delimiter: str | None) -> None:
+    """Cells that are not numbers, one problem each (the console shows many of a column as one line,
+    capred.errors.InputError); a decimal comma in a comma-delimited file suggests ';'."""
+    comma = any(_DECIMAL_COMMA_CELL.fullmatch(cells[i]) for i in rows)
+    hint = (
+        " — decimal commas in a comma-delimited file: save it with ';' as the delimiter (capred then reads "
+        "'10,5' as 10.5)"
+        if comma and delimiter == ","
+        else ""
+    )
+    for i in rows:
+        table.add_problem(i, name, f"{excerpt(cells[i])} is not a number{hint}")
 
 
 def _flag_controls(table: Table) -> None:
@@ -761,7 +798,7 @@ def _unused_columns(table: Table, schema: list[Column], lookup: dict[str, Column
                     table.path,
                     table.header_line,
                     h,
-                    f"column '{h}' is not used, but its name is close to '{col.name}' ({col.description}), which "
+                    f"column {excerpt(h)} is not used, but its name is close to '{col.name}' ({col.description}), which "
                     f"changes the analysis when it is absent. Rename the column '{col.name}' if that is what it holds, "
                     f"or leave it out with --ignore-column '{h}' (from Python: ignore_columns=('{h}',))",
                     table.sheet,
@@ -772,7 +809,9 @@ def _unused_columns(table: Table, schema: list[Column], lookup: dict[str, Column
         canonical = lookup[near[0]].name if near else None
         if canonical and canonical in positions:
             canonical = None  # the column it resembles is there already
-        table.warnings.append(f"column '{h}' is not used" + (f" — did you mean '{canonical}'?" if canonical else ""))
+        table.warnings.append(
+            f"column {excerpt(h)} is not used" + (f" — did you mean '{canonical}'?" if canonical else "")
+        )
         told += 1
     if len(table.unmatched) - told > 0 and told >= _UNUSED_SHOWN:
         more = len(table.unmatched) - told - sum(1 for p in table.problems if "is not used, but" in p.message)
