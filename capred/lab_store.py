@@ -255,6 +255,8 @@ def _unit(key: str) -> tuple[str, str]:
     """(quantity stem, unit) of a JSON key such as ``phi_deg`` -> (``phi``, ``deg``); unitless: (key, "-")."""
     stem, _, last = key.rpartition("_")
     if stem and last in _UNITS:
+        if stem.endswith("_per") and len(stem) > 4:  # alpha_per_kPa: a reciprocal unit, 1/kPa
+            return stem[:-4], f"1/{last}"
         return stem, last
     return key, "-"
 
@@ -275,22 +277,39 @@ def _interval(block: dict, key: str) -> tuple[float | None, float | None]:
     return None, None
 
 
-def _scalars(block: dict, material) -> list[tuple]:
+def _scalars(block: dict, material, skip=("n", "line", "dof"), prefix: str = "") -> list[tuple]:
     rows = []
     for key, value in block.items():
         v = _number(value)
-        if v is None or "_ci95" in key or key in ("n", "line", "dof"):
+        if v is None or "_ci95" in key or key in skip:
             continue
         lo, hi = _interval(block, key)
-        rows.append((material, key, v, lo, hi, _unit(key)[1]))
+        rows.append((material, prefix + key, v, lo, hi, _unit(key)[1]))
     return rows
+
+
+def _retention_records(branches: dict, material) -> list[tuple]:
+    """The records of a retention document: per branch (the record's material: the branch, after the inputs'
+    material where the metadata names one) every fitted model's numbers as ``<model>.<key>`` (``vg.alpha_per_kPa``
+    with its interval, ``vg.n``, ``vg.r2``)."""
+    out = []
+    for branch, block in branches.items():
+        fits = block.get("fits") if isinstance(block, dict) else None
+        if not isinstance(fits, dict):
+            continue
+        label = f"{material} ({branch})" if material else str(branch)
+        for model, fit in fits.items():
+            if isinstance(fit, dict):  # 'n' is van Genuchten's exponent here, not a count
+                out += _scalars(fit, label, skip=("n_points", "n_free"), prefix=f"{model}.")
+    return out
 
 
 def records_of(doc: dict, metadata: dict | None = None) -> list[tuple]:
     """The long records ``(material, quantity, value, ci_low, ci_high, unit)`` of a run's JSON document.
 
     Per material (a ``materials`` mapping of the document: shear, triaxial, retention), every number with
-    its 95 % interval where the document gives one (``phi_deg`` with ``phi_ci95_deg``); and the document's
+    its 95 % interval where the document gives one (``phi_deg`` with ``phi_ci95_deg``); of a retention
+    document (``branches``), each branch's fits as ``<model>.<key>`` for the branch; and the document's
     top-level numbers (a calculator's single case), for the material named in the inputs' metadata block
     (``material``) or none.
 
@@ -314,6 +333,9 @@ def records_of(doc: dict, metadata: dict | None = None) -> list[tuple]:
                 out += _scalars(block, str(name))
     meta = metadata or {}
     material = next((str(v) for k, v in meta.items() if str(k).strip().lower() == "material"), None)
+    branches = doc.get("branches")
+    if isinstance(branches, dict):  # capred retention: the fits of each branch
+        out += _retention_records(branches, material)
     out += _scalars({k: v for k, v in doc.items() if k != "materials"}, material)
     return out
 

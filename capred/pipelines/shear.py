@@ -729,6 +729,7 @@ def _outliers(fit: LineFit) -> list[dict]:
         out.append(
             {
                 "line": int(diag["lines"][k]) if "lines" in diag else None,
+                "test_id": str(diag["test_ids"][k]) if "test_ids" in diag else None,
                 "studentized_residual": num(diag["studentized"][k]),
                 "cooks_distance": num(diag["cooks"][k]),
                 "threshold": num(diag["threshold"]),
@@ -1438,6 +1439,8 @@ def _scatter_warnings(fits, hetero: dict) -> list[str]:
         for k in np.flatnonzero(diag.get("outlier", [])):
             line = int(diag["lines"][k]) if "lines" in diag else None
             where = f"the dry test on line {line}" if line is not None else f"dry test {k + 1}"
+            if "test_ids" in diag:
+                where = f"the dry test '{diag['test_ids'][k]}'" + (f" (line {line})" if line is not None else "")
             cure = (
                 f"--dry-loss {fit.loss} bounds its weight"
                 if fit.loss != "ols"
@@ -1738,6 +1741,9 @@ def _dry_fits(table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[s
             continue
         rows = np.flatnonzero(dry)  # where each dry point lies in the table (flags, warnings)
         fits[m].diagnostics.update(rows=rows, lines=np.asarray(table.lines)[rows])
+        ids = getattr(table, "columns", {}).get("test_id")
+        if ids is not None:  # an outlier is named by the id the lab gave it, not only by its line
+            fits[m].diagnostics["test_ids"] = np.asarray(ids, dtype=object)[rows]
     return fits
 
 

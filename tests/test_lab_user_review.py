@@ -1,0 +1,104 @@
+"""Defects found by trying capred as a new lab user would, on tables shaped as labs keep them (a 'Test no' id
+column, a metadata block, every dry test at its own normal stress, one dry outlier): each test fails without
+its fix."""
+
+from __future__ import annotations
+
+import logging
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import capred
+
+
+def _shear_file(tmp_path):
+    """Dry tests each at its own sigma_N on tau = 2 + sigma_N tan 33 deg (4 % scatter), test 8 sheared 60 %
+    high; wet tests with suction and S_R given; a metadata block above the header."""
+    rng = np.random.default_rng(1)
+    tan_phi = np.tan(np.radians(33.0))
+    lines = ["Project:,Dike A", "Operator:,J. Doe", "", "Test no,material,condition,sigma_N [kPa],tau_max [kPa],"]
+    lines[-1] += "suction [kPa],S_R,R [mm]"
+    for i, s in enumerate(np.linspace(10, 200, 12)):
+        tau = (2.0 + s * tan_phi) * (1 + 0.04 * rng.standard_normal()) * (1.6 if i == 7 else 1.0)
+        lines.append(f"{i + 1},silty sand,dry,{s:.2f},{tau:.3f},,,0.1")
+    for k, (s, u, S) in enumerate([(25, 5, 0.8), (50, 10, 0.6), (100, 20, 0.4), (150, 40, 0.2)]):
+        tau = (2.0 + (s + S * u) * tan_phi) * (1 + 0.04 * rng.standard_normal())
+        lines.append(f"{13 + k},silty sand,wet,{s},{tau:.3f},{u},{S},0.1")
+    path = tmp_path / "shear.csv"
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def _huber_run(tmp_path):
+    opts = capred.ShearOptions(models=("bishop",), bootstrap=0, dry_loss="huber", errors="proportional")
+    with pytest.warns(capred.CapredWarning):
+        return capred.run_shear(_shear_file(tmp_path), opts)
+
+
+def test_dry_outlier_is_named_by_the_labs_test_id(tmp_path):
+    # the console, the JSON and the warnings named the outlier by its file line only; the lab knows it as
+    # test no. 8
+    r = _huber_run(tmp_path)
+    out = r.to_json()["materials"]["silty sand"]["outliers"]
+    assert [o["test_id"] for o in out] == ["8"]
+    line = out[0]["line"]
+    assert any(f"dry test '8' (line {line})" in w for w in r.warnings)
+    from capred.report.shear_tables import shear_tables
+
+    dry = shear_tables(r)[0]
+    assert dry.rows[0][[h for h, _ in dry.columns].index("outliers")] == f"8 (line {line})"
+
+
+def test_report_explains_the_dry_outlier_flag_and_the_loss(tmp_path):
+    from capred.report.html import _flags
+
+    r = _huber_run(tmp_path)
+    meaning = dict((f, m) for f, _, m in _flags(r))
+    assert meaning["dry_outlier"]  # the flag table of report.html had an empty meaning for it
+    methods = " ".join(" ".join(p) for p in r.method_notes())
+    assert "fitted by least squares with standard errors" not in methods  # it was fitted by Huber's loss
+    assert "Huber" in methods
+
+
+def test_group_mohr_circles_log_nothing_on_the_console(caplog):
+    # matplotlib logged "Ignoring fixed x limits to fulfill fixed data aspect ..." on every run with groups
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    from capred.report.triaxial_figures import plot_group_circles
+
+    r = capred.run_triaxial_bounds(capred.sample_path("triaxial-groups"))
+    fig = Figure()
+    ax = fig.add_subplot()
+    with caplog.at_level(logging.WARNING, logger="matplotlib"):
+        plot_group_circles(ax, r)
+        FigureCanvasAgg(fig).draw()  # the aspect is applied, and logged, at drawing
+    assert not [rec for rec in caplog.records if "Ignoring fixed" in rec.getMessage()]
+    assert ax.get_xlim()[0] == 0 and ax.get_ylim()[0] == 0  # the limits kept
+
+
+def test_retention_runs_are_recorded_in_the_lab_store(tmp_path):
+    from capred.lab_store import history, record_run
+
+    def vg(s, a, n, tr=0.05, ts=0.38):
+        return tr + (ts - tr) * (1 + (a * s) ** n) ** -(1 - 1 / n)
+
+    s = np.array([0.5, 1, 2, 4, 6, 8, 10, 15, 20, 30, 50, 80, 120, 200, 500])
+    frame = pd.DataFrame({"suction [kPa]": s, "theta": vg(s, 0.12, 1.9), "branch": "drying"})
+    r = capred.run_retention(frame, capred.RetentionOptions(models=("vg",)))
+    store = tmp_path / "lab.sqlite"
+    record_run(store, r)
+    rec = history(store)
+    vg_fit = r.to_json()["branches"]["drying"]["fits"]["vg"]
+    alpha = rec[(rec["material"] == "drying") & (rec["quantity"] == "vg.alpha_per_kPa")]
+    assert len(alpha) == 1  # retention runs recorded no quantity at all
+    # the stored number is the JSON's, to the last bit
+    assert alpha["value"].iloc[0] == vg_fit["alpha_per_kPa"]
+    assert alpha["unit"].iloc[0] == "1/kPa"  # not 'kPa'
+    assert (alpha["ci_low"].iloc[0], alpha["ci_high"].iloc[0]) == tuple(vg_fit["alpha_per_kPa_ci95"])
+    n = rec[rec["quantity"] == "vg.n"]  # van Genuchten's n is a parameter here, not a count
+    assert n["value"].iloc[0] == vg_fit["n"]
+    # exact synthetic curve: the fit returns the generating alpha to the optimiser's tolerance (1e-6 relative)
+    assert alpha["value"].iloc[0] == pytest.approx(0.12, rel=1e-4)
