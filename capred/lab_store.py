@@ -171,14 +171,19 @@ def connect(path, create: bool = True) -> sqlite3.Connection:
 
 
 def _readonly_uri(path: Path) -> str:
-    """The URI that opens ``path`` read-only: ``mode=ro``, and ``immutable=1`` where neither the file nor its
-    folder can be written (a store shipped inside an installed package), so that SQLite creates no side file."""
+    """The URI that opens ``path`` for reading only: ``mode=rw`` where the file and its folder can be written
+    (the connection is then made ``query_only``), else ``mode=ro&immutable=1`` (a store shipped inside an
+    installed package), so that SQLite leaves no side file.
+
+    A ``mode=ro`` connection to a store in WAL mode (every store capred records into) creates ``-wal`` and
+    ``-shm`` beside it and, being read-only, cannot remove them when it closes: every ``capred history`` left
+    two files behind. A read-write connection that only queries removes them as the last one to close."""
     from urllib.parse import quote
 
-    uri = f"file:{quote(str(path.resolve()))}?mode=ro"
-    if not (os.access(path, os.W_OK) and os.access(path.parent, os.W_OK)):
-        uri += "&immutable=1"
-    return uri
+    uri = f"file:{quote(str(path.resolve()))}"
+    if os.access(path, os.W_OK) and os.access(path.parent, os.W_OK):
+        return uri + "?mode=rw"
+    return uri + "?mode=ro&immutable=1"
 
 
 def connect_readonly(path) -> sqlite3.Connection:
@@ -195,7 +200,8 @@ def connect_readonly(path) -> sqlite3.Connection:
     Returns
     -------
     sqlite3.Connection
-        Read-only (``mode=ro``), or an in-memory copy at :data:`SCHEMA_VERSION`.
+        Query-only (``PRAGMA query_only``; ``mode=ro`` where the store cannot be written), or an in-memory
+        copy at :data:`SCHEMA_VERSION`.
 
     Raises
     ------
@@ -213,6 +219,7 @@ def connect_readonly(path) -> sqlite3.Connection:
     con = None
     try:
         con = sqlite3.connect(_readonly_uri(path), uri=True, timeout=BUSY_TIMEOUT_S, isolation_level=None)
+        con.execute("PRAGMA query_only = ON")  # no statement of this connection can change the store
         con.execute(f"PRAGMA busy_timeout = {int(BUSY_TIMEOUT_S * 1000)}")
         if state[1] < SCHEMA_VERSION:
             memory = sqlite3.connect(":memory:", isolation_level=None)

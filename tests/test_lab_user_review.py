@@ -102,3 +102,29 @@ def test_retention_runs_are_recorded_in_the_lab_store(tmp_path):
     assert n["value"].iloc[0] == vg_fit["n"]
     # exact synthetic curve: the fit returns the generating alpha to the optimiser's tolerance (1e-6 relative)
     assert alpha["value"].iloc[0] == pytest.approx(0.12, rel=1e-4)
+
+
+def test_querying_a_store_leaves_no_side_files(tmp_path):
+    # a store capred records into is in WAL mode; the read-only (mode=ro) connection of `capred history`
+    # created lab.sqlite-wal and lab.sqlite-shm and could not remove them
+    import hashlib
+
+    from capred.lab_store import history, record_run
+
+    store = tmp_path / "lab.sqlite"
+    opts = capred.ShearOptions(models=("bishop",), bootstrap=0)
+    with pytest.warns(capred.CapredWarning):
+        record_run(store, capred.run_shear(_shear_file(tmp_path), opts))
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert names == ["lab.sqlite", "shear.csv"]
+    before = hashlib.sha256(store.read_bytes()).hexdigest()
+    frame = history(store, quantity="phi_deg")
+    assert len(frame) == 1
+    assert sorted(p.name for p in tmp_path.iterdir()) == names
+    assert hashlib.sha256(store.read_bytes()).hexdigest() == before  # a query changes nothing
+    from capred.lab_store import connect_readonly
+
+    con = connect_readonly(store)
+    with pytest.raises(Exception, match="readonly|read-only|query_only"):
+        con.execute("DELETE FROM runs")
+    con.close()
