@@ -128,3 +128,15 @@ def test_querying_a_store_leaves_no_side_files(tmp_path):
     with pytest.raises(Exception, match="readonly|read-only|query_only"):
         con.execute("DELETE FROM runs")
     con.close()
+
+
+def test_missing_retention_file_is_reported_as_missing(tmp_path):
+    # it said "not a fits.json written by capred retention ([Errno 2] No such file or directory ...)"
+    from capred.pipelines.shear import model_params_from_retention
+
+    with pytest.raises(capred.MissingFileError, match="file not found"):
+        model_params_from_retention(tmp_path / "fits.json")
+    table = tmp_path / "readings.csv"
+    table.write_text("suction [kPa],theta\n1,0.3\n")
+    with pytest.raises(capred.OptionError, match=r"not JSON: Expecting value, line 1"):
+        model_params_from_retention(table)

@@ -118,6 +118,14 @@ def model_params_from_retention(path: str | Path, **overrides) -> ModelParams:
     try:
         js = json.loads(Path(path).read_text(encoding="utf-8"))
         fits = js["fits"]
+    except FileNotFoundError:  # the file is missing: say so, not that it is the wrong kind of file
+        from ..errors import MissingFileError
+
+        raise MissingFileError(str(path), "file not found (--retention)") from None
+    except json.JSONDecodeError as exc:
+        raise OptionError(
+            f"--retention {path}: not a fits.json written by capred retention (not JSON: {exc.msg}, line {exc.lineno})"
+        ) from None
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise OptionError(f"--retention {path}: not a fits.json written by capred retention ({exc})") from None
     p: dict = {}
