@@ -140,3 +140,18 @@ def test_missing_retention_file_is_reported_as_missing(tmp_path):
     table.write_text("suction [kPa],theta\n1,0.3\n")
     with pytest.raises(capred.OptionError, match=r"not JSON: Expecting value, line 1"):
         model_params_from_retention(table)
+
+
+def test_figure_heading_names_its_input_once(tmp_path):
+    # report.html of capred retention read "Figure 1. Water retention curves (ret.csv) (ret.csv)."
+    import re
+
+    s = np.array([1.0, 3, 10, 30, 100, 300])
+    path = tmp_path / "ret.csv"
+    theta = 0.05 + 0.33 * (1 + (0.1 * s) ** 2) ** -0.5  # van Genuchten, n = 2
+    path.write_text("suction [kPa],theta\n" + "".join(f"{a},{b:.5f}\n" for a, b in zip(s, theta)))
+    r = capred.run_retention(path, capred.RetentionOptions(models=("vg",)))
+    capred.write_outputs(r, tmp_path / "out", dpi=50)
+    page = (tmp_path / "out" / "report.html").read_text(encoding="utf-8")
+    heading = re.search(r"<b>Figure 1\.</b>([^<]*)", page).group(1)
+    assert heading.count("ret.csv") == 1, heading

@@ -410,7 +410,8 @@ def _numbered(result, figures: dict) -> list[tuple[str, dict, int | None, str]]:
     out, number = [], 0
     for name, entry in figures.items():
         title = (entry.get("title") or "").strip()
-        heading = title + (f" ({names})." if names else ".") if title else (f"{names}." if names else "")
+        shown = names and f"({names})" not in title  # a sheet whose title names its input already: once
+        heading = title + (f" ({names})." if shown else ".") if title else (f"{names}." if names else "")
         if entry.get("svg"):
             number += 1
             out.append((name, entry, number, heading))
