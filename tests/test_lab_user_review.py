@@ -155,3 +155,11 @@ def test_figure_heading_names_its_input_once(tmp_path):
     page = (tmp_path / "out" / "report.html").read_text(encoding="utf-8")
     heading = re.search(r"<b>Figure 1\.</b>([^<]*)", page).group(1)
     assert heading.count("ret.csv") == 1, heading
+
+
+def test_skempton_effective_stress_error_shows_the_values_and_units():
+    # p0=100 from a script is 100 Pa: the error said only "p0 - u0 ... must be > 0"
+    with pytest.raises(capred.OptionError, match=r"read p0 = 0\.1 kPa, u0 = 30 kPa.*in Pa"):
+        capred.run_skempton_b(S_R=0.9, p0=100)
+    with pytest.raises(capred.OptionError, match=r"read p0 = 20 kPa, u0 = 30 kPa$"):
+        capred.run_skempton_b(S_R=0.9, p0="20 kPa")
