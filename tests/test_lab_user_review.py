@@ -163,3 +163,17 @@ def test_skempton_effective_stress_error_shows_the_values_and_units():
         capred.run_skempton_b(S_R=0.9, p0=100)
     with pytest.raises(capred.OptionError, match=r"read p0 = 20 kPa, u0 = 30 kPa$"):
         capred.run_skempton_b(S_R=0.9, p0="20 kPa")
+
+
+def test_dry_tests_only_give_the_envelope_without_empty_tables(tmp_path):
+    # a file of dry tests printed two empty wet-test tables (headers, no rows) and said nothing about why
+    from capred.report.shear_tables import shear_tables
+
+    lines = _shear_file(tmp_path).read_text().splitlines()
+    path = tmp_path / "dry.csv"
+    path.write_text("\n".join(line for line in lines if ",wet," not in line) + "\n")
+    r = capred.run_shear(path, capred.ShearOptions(bootstrap=0))
+    tables = shear_tables(r)
+    assert [t.title.split(" ")[0] for t in tables] == ["Dry"]
+    assert tables[0].rows[0][1] == "12"  # its 12 dry tests
+    assert any("no wet tests" in n for n in r.all_notes())

@@ -1003,6 +1003,8 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
     if curves is not None:
         table.problems += curves.problems
     table.raise_if_problems()  # every problem of the file (and of the curves) at once
+    if "condition" in table.columns and not np.any(table.columns["condition"] == "wet"):
+        table.notes.append("no wet tests in the file: the dry envelope alone (no effective-stress model is compared)")
 
     materials = list(dict.fromkeys(table.columns["material"]))
     mat = table.columns["material"]

@@ -60,6 +60,9 @@ def shear_tables(result) -> list[TableSpec]:
                 *([fmt(f.get("phi_b_deg"))] if phi_b else []),
             ]
         )
+    n_wet = int(np.sum(result.tests["condition"] == "wet"))
+    if n_wet == 0:  # a file of dry tests: the envelope alone, no empty wet-test tables (the notes say why)
+        return [fits]
     out = [
         fits,
         _metrics_table(
@@ -137,7 +140,6 @@ def shear_tables(result) -> list[TableSpec]:
         out.append(f)
     import itertools
 
-    n_wet = int(np.sum(result.tests["condition"] == "wet"))
     rows = list(itertools.islice(_wet_rows(result), MAX_ROWS))
     table = row_table(
         "Capillary stress carried by each wet test, σ_cap = (τ − c)/tan φ − σ_N [kPa]",
