@@ -316,7 +316,9 @@ def records_of(doc: dict, metadata: dict | None = None) -> list[tuple]:
 
     Per material (a ``materials`` mapping of the document: shear, triaxial, retention), every number with
     its 95 % interval where the document gives one (``phi_deg`` with ``phi_ci95_deg``); of a retention
-    document (``branches``), each branch's fits as ``<model>.<key>`` for the branch; and the document's
+    document (``branches``), each branch's fits as ``<model>.<key>`` for the branch; of a triaxial one, its
+    effective ``envelope`` (``c_kPa``, ``phi_deg`` with their intervals) for the material of the inputs'
+    metadata block (or none); and the document's
     top-level numbers (a calculator's single case), for the material named in the inputs' metadata block
     (``material``) or none.
 
@@ -343,6 +345,9 @@ def records_of(doc: dict, metadata: dict | None = None) -> list[tuple]:
     branches = doc.get("branches")
     if isinstance(branches, dict):  # capred retention: the fits of each branch
         out += _retention_records(branches, material)
+    envelope = doc.get("envelope")
+    if isinstance(envelope, dict):  # capred triaxial-bounds: the effective envelope c', phi' (and M, k)
+        out += _scalars(envelope, material)
     out += _scalars({k: v for k, v in doc.items() if k != "materials"}, material)
     return out
 

@@ -177,3 +177,25 @@ def test_dry_tests_only_give_the_envelope_without_empty_tables(tmp_path):
     assert [t.title.split(" ")[0] for t in tables] == ["Dry"]
     assert tables[0].rows[0][1] == "12"  # its 12 dry tests
     assert any("no wet tests" in n for n in r.all_notes())
+
+
+def test_triaxial_envelope_intervals_in_json_and_in_the_lab_store(tmp_path):
+    # Python's envelope.params gave c' and phi' with 95 % intervals, the JSON had none, and a triaxial run
+    # recorded nothing in the lab store (its document has no 'materials' block)
+    from capred.lab_store import history, record_run
+
+    r = capred.run_triaxial_bounds(capred.sample_path("triaxial-bounds"))
+    env = r.to_json()["envelope"]
+    par = r.envelope.params
+    assert env["c_ci95_kPa"] == list(par["c_kPa"].ci95)
+    assert env["phi_ci95_deg"] == list(par["phi_deg"].ci95)
+    # the interval is c' -/+ t(0.975, n - 2) se, by hand from the JSON's own se
+    from scipy import stats
+
+    t = stats.t.ppf(0.975, env["n"] - 2)  # capred takes t from its own quantile routine: rel 1e-6 covers both
+    assert env["c_ci95_kPa"] == pytest.approx([env["c_kPa"] - t * env["c_se_kPa"], env["c_kPa"] + t * env["c_se_kPa"]])
+    store = tmp_path / "lab.sqlite"
+    record_run(store, r)
+    phi = history(store, quantity="phi_deg")
+    assert phi["value"].tolist() == [env["phi_deg"]]
+    assert (phi["ci_low"].iloc[0], phi["ci_high"].iloc[0]) == tuple(env["phi_ci95_deg"])
