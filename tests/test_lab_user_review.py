@@ -199,3 +199,14 @@ def test_triaxial_envelope_intervals_in_json_and_in_the_lab_store(tmp_path):
     phi = history(store, quantity="phi_deg")
     assert phi["value"].tolist() == [env["phi_deg"]]
     assert (phi["ci_low"].iloc[0], phi["ci_high"].iloc[0]) == tuple(env["phi_ci95_deg"])
+
+
+def test_one_dry_test_error_reads_in_the_singular():
+    # "dry fit impossible: 1 points: at least 3 are needed"
+    from capred.errors import FitError
+    from capred.fitting.linear import fit_line
+
+    with pytest.raises(FitError, match=r"^1 point: at least 3"):
+        fit_line(np.array([10.0]), np.array([8.0]))
+    with pytest.raises(FitError, match=r"^2 points: at least 3"):
+        fit_line(np.array([10.0, 20.0]), np.array([8.0, 15.0]))
