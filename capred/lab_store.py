@@ -171,14 +171,19 @@ def connect(path, create: bool = True) -> sqlite3.Connection:
 
 
 def _readonly_uri(path: Path) -> str:
-    """The URI that opens ``path`` read-only: ``mode=ro``, and ``immutable=1`` where neither the file nor its
-    folder can be written (a store shipped inside an installed package), so that SQLite creates no side file."""
+    """The URI that opens ``path`` for reading only: ``mode=rw`` where the file and its folder can be written
+    (the connection is then made ``query_only``), else ``mode=ro&immutable=1`` (a store shipped inside an
+    installed package), so that SQLite leaves no side file.
+
+    A ``mode=ro`` connection to a store in WAL mode (every store capred records into) creates ``-wal`` and
+    ``-shm`` beside it and, being read-only, cannot remove them when it closes: every ``capred history`` left
+    two files behind. A read-write connection that only queries removes them as the last one to close."""
     from urllib.parse import quote
 
-    uri = f"file:{quote(str(path.resolve()))}?mode=ro"
-    if not (os.access(path, os.W_OK) and os.access(path.parent, os.W_OK)):
-        uri += "&immutable=1"
-    return uri
+    uri = f"file:{quote(str(path.resolve()))}"
+    if os.access(path, os.W_OK) and os.access(path.parent, os.W_OK):
+        return uri + "?mode=rw"
+    return uri + "?mode=ro&immutable=1"
 
 
 def connect_readonly(path) -> sqlite3.Connection:
@@ -195,7 +200,8 @@ def connect_readonly(path) -> sqlite3.Connection:
     Returns
     -------
     sqlite3.Connection
-        Read-only (``mode=ro``), or an in-memory copy at :data:`SCHEMA_VERSION`.
+        Query-only (``PRAGMA query_only``; ``mode=ro`` where the store cannot be written), or an in-memory
+        copy at :data:`SCHEMA_VERSION`.
 
     Raises
     ------
@@ -213,6 +219,7 @@ def connect_readonly(path) -> sqlite3.Connection:
     con = None
     try:
         con = sqlite3.connect(_readonly_uri(path), uri=True, timeout=BUSY_TIMEOUT_S, isolation_level=None)
+        con.execute("PRAGMA query_only = ON")  # no statement of this connection can change the store
         con.execute(f"PRAGMA busy_timeout = {int(BUSY_TIMEOUT_S * 1000)}")
         if state[1] < SCHEMA_VERSION:
             memory = sqlite3.connect(":memory:", isolation_level=None)
@@ -255,6 +262,8 @@ def _unit(key: str) -> tuple[str, str]:
     """(quantity stem, unit) of a JSON key such as ``phi_deg`` -> (``phi``, ``deg``); unitless: (key, "-")."""
     stem, _, last = key.rpartition("_")
     if stem and last in _UNITS:
+        if stem.endswith("_per") and len(stem) > 4:  # alpha_per_kPa: a reciprocal unit, 1/kPa
+            return stem[:-4], f"1/{last}"
         return stem, last
     return key, "-"
 
@@ -275,22 +284,41 @@ def _interval(block: dict, key: str) -> tuple[float | None, float | None]:
     return None, None
 
 
-def _scalars(block: dict, material) -> list[tuple]:
+def _scalars(block: dict, material, skip=("n", "line", "dof"), prefix: str = "") -> list[tuple]:
     rows = []
     for key, value in block.items():
         v = _number(value)
-        if v is None or "_ci95" in key or key in ("n", "line", "dof"):
+        if v is None or "_ci95" in key or key in skip:
             continue
         lo, hi = _interval(block, key)
-        rows.append((material, key, v, lo, hi, _unit(key)[1]))
+        rows.append((material, prefix + key, v, lo, hi, _unit(key)[1]))
     return rows
+
+
+def _retention_records(branches: dict, material) -> list[tuple]:
+    """The records of a retention document: per branch (the record's material: the branch, after the inputs'
+    material where the metadata names one) every fitted model's numbers as ``<model>.<key>`` (``vg.alpha_per_kPa``
+    with its interval, ``vg.n``, ``vg.r2``)."""
+    out = []
+    for branch, block in branches.items():
+        fits = block.get("fits") if isinstance(block, dict) else None
+        if not isinstance(fits, dict):
+            continue
+        label = f"{material} ({branch})" if material else str(branch)
+        for model, fit in fits.items():
+            if isinstance(fit, dict):  # 'n' is van Genuchten's exponent here, not a count
+                out += _scalars(fit, label, skip=("n_points", "n_free"), prefix=f"{model}.")
+    return out
 
 
 def records_of(doc: dict, metadata: dict | None = None) -> list[tuple]:
     """The long records ``(material, quantity, value, ci_low, ci_high, unit)`` of a run's JSON document.
 
     Per material (a ``materials`` mapping of the document: shear, triaxial, retention), every number with
-    its 95 % interval where the document gives one (``phi_deg`` with ``phi_ci95_deg``); and the document's
+    its 95 % interval where the document gives one (``phi_deg`` with ``phi_ci95_deg``); of a retention
+    document (``branches``), each branch's fits as ``<model>.<key>`` for the branch; of a triaxial one, its
+    effective ``envelope`` (``c_kPa``, ``phi_deg`` with their intervals) for the material of the inputs'
+    metadata block (or none); and the document's
     top-level numbers (a calculator's single case), for the material named in the inputs' metadata block
     (``material``) or none.
 
@@ -314,6 +342,12 @@ def records_of(doc: dict, metadata: dict | None = None) -> list[tuple]:
                 out += _scalars(block, str(name))
     meta = metadata or {}
     material = next((str(v) for k, v in meta.items() if str(k).strip().lower() == "material"), None)
+    branches = doc.get("branches")
+    if isinstance(branches, dict):  # capred retention: the fits of each branch
+        out += _retention_records(branches, material)
+    envelope = doc.get("envelope")
+    if isinstance(envelope, dict):  # capred triaxial-bounds: the effective envelope c', phi' (and M, k)
+        out += _scalars(envelope, material)
     out += _scalars({k: v for k, v in doc.items() if k != "materials"}, material)
     return out
 

@@ -92,8 +92,8 @@ REDUCTIONS: dict[str, Reduction] = {
                 "Suction Δu = γ_w z1 from the hanging-column head, degree of saturation S_R = (V_v − z2)/V_v "
                 'from the burette, normal stress σ_N = (m_cap + m_added) g/A (Evenepoel, VUB thesis, "Apply '
                 'suction").',
-                "Per material, the dry envelope τ = c + σ_N tan φ is fitted by least squares with standard "
-                "errors and Student-t 95 % intervals. Every wet test is predicted with the dry c, φ and σ'_N "
+                "Per material, the dry envelope τ = c + σ_N tan φ is fitted (by least squares unless --dry-loss "
+                "says otherwise, see below) with standard errors and Student-t 95 % intervals. Every wet test is predicted with the dry c, φ and σ'_N "
                 "= σ_N + χ Δu of each model: χ = S_R (Bishop 1959), χ1 = (2π S_R/3)^(2/3) and χ1 Δu + "
                 "(2γ/R)(2π S_R/3)^(1/3) (Evenepoel's Own 1 and Own 2), and the others chosen with --models. "
                 "Scores: RMSE, bias and R² of predicted − measured, on all wet tests and on the pendular "

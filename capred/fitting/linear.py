@@ -361,7 +361,7 @@ def fit_line(x, y, confidence: float = 0.95) -> LineFit:
         raise FitError("the data to fit contain NaN or infinite values")
     n = x.size
     if n < 3:
-        raise FitError(f"{n} points: at least 3 are needed to fit a line with standard errors")
+        raise FitError(f"{n} point{'' if n == 1 else 's'}: at least 3 are needed to fit a line with standard errors")
     x_mean = x.mean()
     sxx = float(np.sum((x - x_mean) ** 2))
     if sxx <= 1e-12 * max(1.0, float(np.sum(x**2))):
@@ -430,7 +430,9 @@ def fit_line_origin(x, y, confidence: float = 0.95) -> LineFit:
         raise FitError("the data to fit contain NaN or infinite values")
     n = x.size
     if n < 2:
-        raise FitError(f"{n} points: at least 2 are needed to fit a line through the origin with a standard error")
+        raise FitError(
+            f"{n} point{'' if n == 1 else 's'}: at least 2 are needed to fit a line through the origin with a standard error"
+        )
     sxx0 = float(x @ x)
     if sxx0 <= 0:
         raise FitError("all points lie at x = 0: the slope cannot be fitted")

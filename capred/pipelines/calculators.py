@@ -396,6 +396,15 @@ class SkemptonOptions(StableJsonKeys, Options):
         return TABLE3["a_ini"] if self.a_ini is None else self.a_ini
 
 
+def _p_eff_message(p0: float, u0: float) -> str:
+    """The error of a non-positive p0 - u0 with the values as read [kPa]; a p0 below 1 kPa is most likely kPa
+    typed as a script's plain number, which is in Pa."""
+    text = f"p0 - u0 (initial mean effective stress) must be > 0; read p0 = {p0 / 1e3:g} kPa, u0 = {u0 / 1e3:g} kPa"
+    if p0 < 1e3:
+        text += " (a plain number given to run_skempton_b is in Pa: write p0='100 kPa' or 100e3)"
+    return text
+
+
 @renamed_keywords(sr="S_R", kappa="kappa_elastic", bc_alpha="bc_lambda")
 def run_skempton_b(
     source=None,
@@ -614,7 +623,7 @@ def skempton_curves(source, opt: SkemptonOptions) -> CalcResult:
     S = CURVE_S_R
     k, e0, p0, u0, pa0 = opt.kappa_elastic, opt.e0, opt.p0, opt.u0, opt.pa0
     if p0 - u0 <= 0:
-        raise OptionError("p0 - u0 (initial mean effective stress) must be > 0")
+        raise OptionError(_p_eff_message(p0, u0))
     bs = opt.model == "bounding-surface"
     s_e = opt.s_e if opt.s_e is not None or not bs else TABLE3["s_e"]
     bc_lambda = opt.bc_lambda if opt.bc_lambda is not None or not bs else TABLE3["bc_lambda"]
@@ -764,7 +773,8 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
         raise OptionError("give both --se and --bc-lambda for the suction-equilibrium simulation, or neither")
     p_eff = v["p0"] - v["u0"]
     if np.any(p_eff <= 0):
-        raise OptionError("p0 - u0 (initial mean effective stress) must be > 0")
+        i = int(np.flatnonzero(p_eff <= 0)[0])
+        raise OptionError(_p_eff_message(v["p0"][i], v["u0"][i]))
     if bounding is not None and np.any(v["kappa"] >= bounding["lambda0"]):
         raise OptionError(f"kappa must be below lambda0 = {bounding['lambda0']:g} (--lambda0) in every case")
     ins = {

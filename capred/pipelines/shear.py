@@ -160,6 +160,14 @@ def model_params_from_retention(path: str | Path, **overrides) -> ModelParams:
     try:
         js = json.loads(Path(path).read_text(encoding="utf-8"))
         fits = js["fits"]
+    except FileNotFoundError:  # the file is missing: say so, not that it is the wrong kind of file
+        from ..errors import MissingFileError
+
+        raise MissingFileError(str(path), "file not found (--retention)") from None
+    except json.JSONDecodeError as exc:
+        raise OptionError(
+            f"--retention {path}: not a fits.json written by capred retention (not JSON: {exc.msg}, line {exc.lineno})"
+        ) from None
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise OptionError(f"--retention {path}: not a fits.json written by capred retention ({exc})") from None
     p: dict = {}
@@ -827,6 +835,7 @@ def _outliers(fit: LineFit) -> list[dict]:
         out.append(
             {
                 "line": int(diag["lines"][k]) if "lines" in diag else None,
+                "test_id": str(diag["test_ids"][k]) if "test_ids" in diag else None,
                 "studentized_residual": num(diag["studentized"][k]),
                 "cooks_distance": num(diag["cooks"][k]),
                 "threshold": num(diag["threshold"]),
@@ -1146,6 +1155,8 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
     if curves is not None:
         table.problems += curves.problems
     table.raise_if_problems()  # every problem of the file (and of the curves) at once
+    if "condition" in table.columns and not np.any(table.columns["condition"] == "wet"):
+        table.notes.append("no wet tests in the file: the dry envelope alone (no effective-stress model is compared)")
 
     materials = list(dict.fromkeys(table.columns["material"]))
     mat = table.columns["material"]
@@ -1590,6 +1601,8 @@ def _scatter_warnings(fits, hetero: dict) -> list[str]:
         for k in np.flatnonzero(diag.get("outlier", [])):
             line = int(diag["lines"][k]) if "lines" in diag else None
             where = f"the dry test on line {line}" if line is not None else f"dry test {k + 1}"
+            if "test_ids" in diag:
+                where = f"the dry test '{diag['test_ids'][k]}'" + (f" (line {line})" if line is not None else "")
             cure = (
                 f"--dry-loss {fit.loss} bounds its weight"
                 if fit.loss != "ols"
@@ -1917,6 +1930,9 @@ def _dry_fits(table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[s
             continue
         rows = np.flatnonzero(dry)  # where each dry point lies in the table (flags, warnings)
         fits[m].diagnostics.update(rows=rows, lines=np.asarray(table.lines)[rows])
+        ids = getattr(table, "columns", {}).get("test_id")
+        if ids is not None:  # an outlier is named by the id the lab gave it, not only by its line
+            fits[m].diagnostics["test_ids"] = np.asarray(ids, dtype=object)[rows]
     return fits
 
 

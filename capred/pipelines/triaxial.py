@@ -496,6 +496,10 @@ class TriaxialResult(Result):
             tests.append(row)
         env = rec.to_json(self.envelope)
         env = {k: env[k] for k in ENVELOPE_KEYS}  # the order of capred 0.x
+        if self.envelope.fit is not None:  # the 95 % intervals that params (Python) and the summary give
+            par = self.envelope.params
+            env["c_ci95_kPa"] = [num(x) for x in par["c_kPa"].ci95]
+            env["phi_ci95_deg"] = [num(x) for x in par["phi_deg"].ci95]
         return {"source": self.source, "envelope": env, "tests": tests, "groups": [rec.to_json(g) for g in self.groups]}
 
     def tables(self) -> dict:

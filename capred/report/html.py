@@ -22,6 +22,7 @@ MAX_REPORT_ROWS = 500
 FLAG_MEANING = {
     "outside_pendular": "S_R above the pendular limit, for which the χ approximations were derived",
     "chi1_gt_1": "S_R > 3/(2π): χ1 = (2π S_R/3)^(2/3) exceeds 1",
+    "dry_outlier": "dry test beyond the Bonferroni 5 % limit of the externally studentized residuals of its envelope",
     "no_concave_bridge": "more water than the last concave bridge at contact: no exact_neck prediction",
     "lower_positive_component": "lower bound with a positive (compressive) capillary component",
     "spherical_positive_component": "spherical bound with a positive capillary component",
@@ -409,7 +410,8 @@ def _numbered(result, figures: dict) -> list[tuple[str, dict, int | None, str]]:
     out, number = [], 0
     for name, entry in figures.items():
         title = (entry.get("title") or "").strip()
-        heading = title + (f" ({names})." if names else ".") if title else (f"{names}." if names else "")
+        shown = names and f"({names})" not in title  # a sheet whose title names its input already: once
+        heading = title + (f" ({names})." if shown else ".") if title else (f"{names}." if names else "")
         if entry.get("svg"):
             number += 1
             out.append((name, entry, number, heading))

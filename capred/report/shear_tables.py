@@ -9,6 +9,14 @@ from ..result import TableSpec
 from .render import MAX_ROWS, fmt, row_table, spec
 
 
+def _outlier_label(outlier: dict) -> str:
+    """A dry outlier as the lab names it: its test id with its line ("D8 (line 13)"), or its line alone."""
+    line = f"line {outlier['line']}" if outlier.get("line") is not None else ""
+    if outlier.get("test_id") is None:
+        return line or "?"
+    return f"{outlier['test_id']} ({line})" if line else str(outlier["test_id"])
+
+
 def shear_tables(result) -> list[TableSpec]:
     """Dry fits; model metrics on all wet tests and on the pendular ones; how sure the ranking is;
     model selection; the back-analysed capillary stress of the wet tests.
@@ -48,10 +56,13 @@ def shear_tables(result) -> list[TableSpec]:
                 fmt(f["r2"]),
                 f.get("errors", "constant"),
                 fmt(((hetero.get(mat) or {}).get("dry_fit") or {}).get("p_value")),
-                ", ".join(f"line {o['line']}" for o in f.get("outliers", [])) or "none",
+                ", ".join(_outlier_label(o) for o in f.get("outliers", [])) or "none",
                 *([fmt(f.get("phi_b_deg"))] if phi_b else []),
             ]
         )
+    n_wet = int(np.sum(result.tests["condition"] == "wet"))
+    if n_wet == 0:  # a file of dry tests: the envelope alone, no empty wet-test tables (the notes say why)
+        return [fits]
     out = [
         fits,
         _metrics_table(
@@ -129,7 +140,6 @@ def shear_tables(result) -> list[TableSpec]:
         out.append(f)
     import itertools
 
-    n_wet = int(np.sum(result.tests["condition"] == "wet"))
     rows = list(itertools.islice(_wet_rows(result), MAX_ROWS))
     table = row_table(
         "Capillary stress carried by each wet test, σ_cap = (τ − c)/tan φ − σ_N [kPa]",

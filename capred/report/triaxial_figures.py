@@ -253,7 +253,9 @@ def plot_group_circles(ax, result):
     ax.plot([], [], "k--", lw=0.9, label=r"fictive circles $\sigma''$ (saturated radius)")
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
-    ax.set_aspect("equal", adjustable="datalim")
+    # equal scales by the panel's box: with the limits fixed at 0, "datalim" made matplotlib log "Ignoring fixed
+    # x limits ..." on the console of every run with groups
+    ax.set_aspect("equal", adjustable="box")
     ax.set_xlabel(LABEL["sigma"])
     ax.set_ylabel(LABEL["tau"])
     ax.set_title(r"Groups: circles, lines $C$ and $C''$ (Fig. 21)")
