@@ -14,11 +14,15 @@ repeats are not identical points), both materials kept.
 
 Contestants run in turn (A B C, A B C, ...), medians of the repeats.
 
-Run from the repository root: python benchmarks/bench_shear.py [repeats=3] [rows=100000]
+With ``--lab`` the rows are shaped as a lab's season instead (``common.lab_shear_rows``: every dry test at its
+own normal stress, wet tests at scattered suctions, heteroscedastic scatter; issue 31: <= 2x).
+
+Run from the repository root: python benchmarks/bench_shear.py [repeats=3] [rows=100000] [--lab]
 """
 
 from __future__ import annotations
 
+import os
 import shutil
 import sys
 import tempfile
@@ -49,11 +53,17 @@ def make_rows(path: Path, n: int, seed: int = 20) -> None:
     path.write_text("\n".join(out) + "\n")
 
 
-def main(repeats: int = 3, n: int = 100_000) -> None:
+def main(repeats: int = 3, n: int = 100_000, lab: bool = False) -> None:
     py = sys.executable
     with tempfile.TemporaryDirectory() as tmp:
         data = Path(tmp) / "shear_100k.csv"
-        make_rows(data, n)
+        if lab:  # every dry test at its own stress, a pooled season (issue 31)
+            from common import lab_shear_rows
+
+            lab_shear_rows(data, n)
+        else:
+            make_rows(data, n)
+        print(f"load {os.getloadavg()}, {'lab-shaped rows (common.lab_shear_rows)' if lab else 'the sample repeated'}")
 
         def shear(*args):
             out = Path(tmp) / "o"
@@ -86,4 +96,5 @@ def main(repeats: int = 3, n: int = 100_000) -> None:
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 3, int(sys.argv[2]) if len(sys.argv) > 2 else 100_000)
+    args = [a for a in sys.argv[1:] if a != "--lab"]
+    main(int(args[0]) if args else 3, int(args[1]) if len(args) > 1 else 100_000, "--lab" in sys.argv)

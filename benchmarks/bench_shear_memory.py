@@ -11,7 +11,10 @@ The rows repeat sample_data/shear_tests.csv with unique test ids and 2 % noise o
 (``bench_shear.make_rows``). Printed: the peaks, their ratio against the 1.5x target, and the peak
 per test at n, (peak(n) - peak(n/10)) / (0.9 n), the memory each further test costs.
 
-Run from the repository root: python benchmarks/bench_shear_memory.py [rows=1000000]
+``--lab``: rows shaped as a lab's season (``common.lab_shear_rows``: every dry test at its own stress);
+``--only=defaults`` (repeatable): only those contestants.
+
+Run from the repository root: python benchmarks/bench_shear_memory.py [rows=1000000] [--lab] [--only=NAME]
 """
 
 from __future__ import annotations
@@ -49,7 +52,7 @@ def peak_mb(data: Path, out: Path, args: tuple[str, ...]) -> tuple[float, float]
     return usage.ru_maxrss / 1024, time.perf_counter() - t  # ru_maxrss in kB on Linux
 
 
-def main(n: int = 1_000_000) -> None:
+def main(n: int = 1_000_000, lab: bool = False, only: tuple[str, ...] = ()) -> None:
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         small, big = tmp / "small.csv", tmp / "big.csv"
@@ -61,13 +64,17 @@ def main(n: int = 1_000_000) -> None:
                 [
                     sys.executable,
                     "-c",
-                    f"import sys; sys.path.insert(0, {here!r}); from bench_shear import "
-                    f"make_rows; from pathlib import Path; make_rows(Path({str(path)!r}), {rows})",
+                    f"import sys; sys.path.insert(0, {here!r}); from bench_shear import make_rows; "
+                    f"from common import lab_shear_rows; from pathlib import Path; "
+                    f"{'lab_shear_rows' if lab else 'make_rows'}(Path({str(path)!r}), {rows})",
                 ],
                 check=True,
             )
         peak_mb(small, tmp / "warm", ("--no-plots", "--bootstrap", "0"))  # file cache and bytecode warm
+        print(f"load {os.getloadavg()}, {'lab-shaped rows (common.lab_shear_rows)' if lab else 'the sample repeated'}")
         for name, args in CONTESTANTS.items():
+            if only and name not in only:
+                continue
             lo, t_lo = peak_mb(small, tmp / "o_small", args)
             hi, t_hi = peak_mb(big, tmp / "o_big", args)
             print(
@@ -78,4 +85,6 @@ def main(n: int = 1_000_000) -> None:
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 1_000_000)
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    only = tuple(a[len("--only=") :] for a in sys.argv[1:] if a.startswith("--only="))
+    main(int(args[0]) if args else 1_000_000, "--lab" in sys.argv, only)

@@ -19,6 +19,7 @@ import subprocess
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 
@@ -79,3 +80,89 @@ def interleaved(contestants: dict[str, Callable[[], Any]], repeats: int = 5) -> 
 def ratio_line(label: str, num: float, den: float, target: str = "") -> str:
     """``label: 12.3x (target ...)``: the ratio a benchmark claims, printed as it is computed."""
     return f"{label}: {num / den:,.2f}x" + (f" (target {target})" if target else "")
+
+
+# --- data shaped as labs have it --------------------------------------------------------------------------------
+# The bundled samples have six distinct normal stresses per material and wet tests at a few suctions: a cost
+# that grows with the number of distinct stresses (issue 31: the bootstrap's dense indicator) never shows on
+# them. These generators give what a lab's season gives: every dry test at its own stress (weights to 0.01 g),
+# campaigns pooled into one file, wet tests at scattered suctions, scatter that grows with the strength.
+
+
+def _sample_rows(kind: str) -> tuple[str, list[list[str]]]:
+    from capred.samples import sample_path
+
+    lines = [ln for ln in sample_path(kind).read_text().splitlines() if ln and not ln.startswith("#")]
+    return lines[0], [ln.split(",") for ln in lines[1:]]
+
+
+def lab_shear_rows(path, n: int, distinct_dry: int | None = None, seed: int = 31, scatter: float = 0.03) -> None:
+    """Write ``n`` direct-shear rows (the sample's columns) shaped as a lab's pooled season.
+
+    Campaign k repeats the sample's tests with ids ``<id>-k``. Dry tests: the added mass runs through
+    ``distinct_dry`` values per material (None: every dry test its own, 0.01 g apart), tau_max on the
+    material's dry line (fitted to the sample in mass units). Wet tests: the column height z1 scattered
+    log-normally (SD 20 %) within the material's range, z2 and tau_max interpolated along the sample's own
+    (z1, z2, tau) of that material. Every tau_max times (1 + ``scatter`` N(0, 1)): heteroscedastic, its SD
+    proportional to the strength.
+    """
+    import numpy as np
+
+    header, rows = _sample_rows("shear")
+    col = {c: k for k, c in enumerate(header.split(","))}
+    i_mat, i_cond, i_z1, i_z2 = col["material"], col["condition"], col["z1 [cm]"], col["z2 [cm^3]"]
+    i_add, i_cap, i_tau = col["added_mass [g]"], col["cap_mass [g]"], col["tau_max [kPa]"]
+    dry_line, wet_curve, dry_levels = {}, {}, {}
+    for mat in {r[i_mat] for r in rows}:
+        d = [r for r in rows if r[i_mat] == mat and r[i_cond] == "dry"]
+        m = np.array([float(r[i_add]) + float(r[i_cap]) for r in d])
+        dry_line[mat] = np.polyfit(m, [float(r[i_tau]) for r in d], 1)
+        dry_levels[mat] = np.unique([float(r[i_add]) for r in d])
+        w = sorted(
+            (float(r[i_z1]), float(r[i_z2]), float(r[i_tau])) for r in rows if r[i_mat] == mat and r[i_cond] == "wet"
+        )
+        wet_curve[mat] = np.array(w).T
+    rng = np.random.default_rng(seed)
+    noise = 1.0 + scatter * rng.standard_normal(n)
+    spread = np.exp(0.2 * rng.standard_normal(n))
+    seen_dry = {m: 0 for m in dry_line}
+    out = [header]
+    for k in range(n):
+        cells = list(rows[k % len(rows)])
+        mat = cells[i_mat]
+        cells[0] = f"{cells[0]}-{k // len(rows)}"
+        if cells[i_cond] == "dry":
+            j = seen_dry[mat] if distinct_dry is None else seen_dry[mat] % distinct_dry
+            seen_dry[mat] += 1
+            levels = dry_levels[mat]
+            added = levels[j % levels.size] + 0.01 * (j // levels.size)
+            cells[i_add] = f"{added:.2f}"
+            tau = np.polyval(dry_line[mat], added + float(cells[i_cap]))
+        else:
+            z1s, z2s, taus = wet_curve[mat]
+            z1 = float(np.clip(float(cells[i_z1]) * spread[k], z1s[0], z1s[-1]))
+            cells[i_z1] = f"{z1:.3f}"
+            cells[i_z2] = f"{np.interp(z1, z1s, z2s):.3f}"
+            tau = np.interp(z1, z1s, taus)
+        cells[i_tau] = f"{tau * noise[k]:.4f}"
+        out.append(",".join(cells))
+    Path(path).write_text("\n".join(out) + "\n")
+
+
+def lab_retention_rows(path, n: int, seed: int = 31, scatter: float = 0.02) -> None:
+    """Write ``n`` retention readings (the sample's columns, drying branch) at scattered column heights: z1
+    log-uniform over the sample's range, z2 along the sample's drying curve plus a scatter of ``scatter`` V_v
+    (N(0, 1), clipped to 0..V_v)."""
+    import numpy as np
+
+    header, rows = _sample_rows("retention")
+    col = {c: k for k, c in enumerate(header.split(","))}
+    dry = sorted((float(r[col["z1 [cm]"]]), float(r[col["z2 [cm^3]"]])) for r in rows if r[col["branch"]] == "drying")
+    z1s, z2s = np.array(dry).T
+    z2s = np.maximum.accumulate(z2s)  # drained volume grows with the column height
+    v_v = float(rows[0][col["V_v [cm^3]"]])
+    rng = np.random.default_rng(seed)
+    z1 = np.exp(rng.uniform(np.log(z1s[0]), np.log(z1s[-1]), n))
+    z2 = np.clip(np.interp(z1, z1s, z2s) + scatter * v_v * rng.standard_normal(n), 0.0, v_v)
+    lines = ["z1 [cm],z2 [cm^3],V_v [cm^3],branch"] + [f"{a:.3f},{b:.3f},{v_v},drying" for a, b in zip(z1, z2)]
+    Path(path).write_text("\n".join(lines) + "\n")

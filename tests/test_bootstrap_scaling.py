@@ -24,12 +24,12 @@ N_DRY = 4000  # dry tests: 2,000 distinct stresses means every stress tested twi
 MODELS = ["no_suction", "bishop", "own1"]
 
 
-def _material(distinct: int, seed: int = 0):
-    """N_DRY dry tests at ``distinct`` normal stresses spread over 1-3 kPa, and 10 wet tests."""
+def _material(distinct: int, seed: int = 0, n_dry: int = N_DRY):
+    """``n_dry`` dry tests at ``distinct`` normal stresses spread over 1-3 kPa, and 10 wet tests."""
     rng = np.random.default_rng(seed)
     levels = np.linspace(1e3, 3e3, distinct)
-    dry_x = levels[np.arange(N_DRY) % distinct]
-    dry_y = C + TAN_PHI * dry_x + rng.normal(0, 10.0, N_DRY)
+    dry_x = levels[np.arange(n_dry) % distinct]
+    dry_y = C + TAN_PHI * dry_x + rng.normal(0, 10.0, n_dry)
     fit = fit_line(dry_x, dry_y)
     sigma = np.array([1, 2, 3, 1, 2, 3, 1, 2, 3, 2.0]) * 1e3
     S_R = np.linspace(0.05, 0.9, 10)
