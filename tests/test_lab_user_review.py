@@ -210,3 +210,19 @@ def test_one_dry_test_error_reads_in_the_singular():
         fit_line(np.array([10.0]), np.array([8.0]))
     with pytest.raises(FitError, match=r"^2 points: at least 3"):
         fit_line(np.array([10.0, 20.0]), np.array([8.0, 15.0]))
+
+
+def test_history_warns_when_one_input_is_charted_twice(tmp_path):
+    # the same file reduced twice (another --bootstrap) is two runs of the store: the chart counted one
+    # measurement twice, with a moving range of 0, and said nothing
+    from capred.lab_store import record_run
+
+    path = _shear_file(tmp_path)
+    store = tmp_path / "lab.sqlite"
+    for reps in (0, 20):
+        with pytest.warns(capred.CapredWarning):
+            record_run(store, capred.run_shear(path, capred.ShearOptions(models=("bishop",), bootstrap=reps)))
+    r = capred.run_history(store, quantity="phi_deg")
+    assert list(r.runs["run"]) == [1, 2]
+    assert r.runs["moving_range"][1] == 0  # the same phi twice
+    assert any("runs 1, 2 reduce the same input" in w for w in r.warnings)

@@ -313,6 +313,15 @@ def reduce_history(source, opt: HistoryOptions) -> HistoryResult:
     if opt.reference is None and x.size < opt.baseline:
         warnings.append(f"the limits rest on {x.size} runs only (the chart asks for {opt.baseline})")
     label = f"{opt.quantity}" + (f" of {material}" if material is not None else "")
+    if "sha256" in rows:  # the same file reduced again (other options): one measurement charted twice
+        sha = rows["sha256"].astype(str).to_numpy()
+        for digest in dict.fromkeys(d for d in sha[pd.Series(sha).duplicated().to_numpy()] if d not in ("", "None")):
+            same = rows["run"].to_numpy(int)[sha == digest]
+            warnings.append(
+                f"runs {', '.join(map(str, same))} reduce the same input ({rows['input'].to_numpy()[sha == digest][0]}, "
+                f"sha256 {digest[:12]}…): one measurement charted {len(same)} times, which shrinks the moving range "
+                "and the limits"
+            )
     for i in np.flatnonzero(beyond):
         side = "above the upper" if x[i] > limits.ucl else "below the lower"
         bound = limits.ucl if x[i] > limits.ucl else limits.lcl
