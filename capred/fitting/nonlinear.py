@@ -294,7 +294,10 @@ def _assemble(
             if np.all(np.isfinite(sub)):
                 cov = np.zeros((k, k))
                 cov[np.ix_(keep, keep)] = sub
-                se[keep] = np.sqrt(np.clip(np.diag(sub), 0.0, None))
+                d = np.diag(sub)
+                # a variance <= 0 with scatter left (rss > 0) is a singular J^T J: the data do not determine
+                # that parameter, so its SE is undefined (NaN, printed "—"), not a zero-width interval
+                se[keep] = np.where(d > 0, np.sqrt(np.abs(d)), 0.0 if rss == 0 else np.nan)
         except np.linalg.LinAlgError:
             pass
     elif not keep:
