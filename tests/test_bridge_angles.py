@@ -71,24 +71,29 @@ def test_two_angles_match_independent_integration(rho, t1, t2, s, beta):
 
 
 def test_equal_angles_give_todays_results_bit_for_bit():
-    """Values of capred at 49a77fb (before two angles), as float.hex: the same bits with theta2 omitted,
-    or given equal to theta1."""
+    """theta2 omitted and theta2 given equal to theta1 give the same bits; both equal capred at 49a77fb (before two
+    angles, float.hex below, computed with numpy 2.3) to a few ulps: numpy's own elementary functions may differ in
+    the last bit between the numpy versions capred allows (the floors of constraints-floors.txt), so across
+    versions the pins hold to 1e-14 relative, within one environment to the bit."""
     th = np.radians([0.0, 20.0, 40.0, 10.0])
     V, D = np.array([1e-3, 2e-3, 5e-3, 1e-2]), np.array([0.0, 0.05, 0.02, 0.1])
     rho = np.array([1.0, 2.0, np.inf, 0.5])
     beta0 = ["0x1.5abbd9f8d4e5dp-3", "0x1.f45f4b31d146ep-4", "0x1.d19ddfebbfc06p-3", "0x1.b903ec3080f65p-3"]
     s0 = ["0x1.ff93dafa6fedep+5", "0x1.5c03556ef2dd2p+4", "0x1.9cb105ab09a88p+4", "0x1.70a0f7ce2cc2fp+2"]
     F0 = ["0x1.df4f038b8f72cp+0", "0x1.bc0850be0c80ap-2", "0x1.aba994cf5f79ap+0", "0x1.b39f62afdb8a7p-2"]
+    b20 = ["0x1.8e44e21538c0ep-1", "0x1.48de12141ced4p-2", "0x1.4a74e94356fa2p-1"]
+    runs = []
     for th2 in (None, th.copy()):
         b, s, st = br.solve_for_volume(th, V, D, rho, th2)
         assert st.tolist() == [0, 0, 0, 0]
-        assert [x.hex() for x in b] == beta0
-        assert [x.hex() for x in s] == s0
-        assert [x.hex() for x in br.bridge(b, th, s, rho, th2).force] == F0
+        F = br.bridge(b, th, s, rho, th2).force
         S = np.array([1.0, 10.0, 3.0, 30.0])
         b2, st2 = br.solve_for_suction(th, S, D, rho, th2)
         assert st2.tolist() == [0, 0, 0, 1]
-        assert [x.hex() for x in b2[:3]] == ["0x1.8e44e21538c0ep-1", "0x1.48de12141ced4p-2", "0x1.4a74e94356fa2p-1"]
+        runs.append([x.hex() for x in (*b, *s, *F, *b2[:3])])
+        for got, pins in ((b, beta0), (s, s0), (F, F0), (b2[:3], b20)):
+            np.testing.assert_allclose(got, [float.fromhex(h) for h in pins], rtol=1e-14, atol=0)
+    assert runs[0] == runs[1]  # the same bits with theta2 omitted or equal to theta1
 
 
 def test_swapping_the_particles_and_their_angles_gives_the_same_bridge():
