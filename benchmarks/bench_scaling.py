@@ -27,15 +27,20 @@ Run from the repository root: python benchmarks/bench_scaling.py [--full] [--fig
 
 from __future__ import annotations
 
-import math
 import os
-import shutil
-import subprocess
-import sys
-import tempfile
-import time
-import warnings
-from pathlib import Path
+
+# one BLAS thread, as the command line runs (capred.cli): spinning BLAS threads would count as CPU time here
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+import math  # noqa: E402
+import shutil  # noqa: E402
+import subprocess  # noqa: E402
+import sys  # noqa: E402
+import tempfile  # noqa: E402
+import time  # noqa: E402
+import warnings  # noqa: E402
+from pathlib import Path  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from common import lab_retention_rows, lab_shear_rows, timed  # noqa: E402
