@@ -374,6 +374,20 @@ VALUE_TRANSLATIONS: dict[str, dict[str, tuple[str, str]]] = {
         "saturo": ("saturated", "Italian"),
         "suchy": ("dry", "Polish"),
         "mokry": ("wet", "Polish"),
+        # the words of other commands and papers for the same tests
+        "unsaturated": ("wet", "another word"),
+        "partially saturated": ("wet", "another word"),
+        "moist": ("wet", "another word"),
+        "oven-dry": ("dry", "another word"),
+    },
+    # retention branches as the literature names them
+    "branch": {
+        "desorption": ("drying", "another word"),
+        "drainage": ("drying", "another word"),
+        "adsorption": ("wetting", "another word"),
+        "absorption": ("wetting", "another word"),
+        "imbibition": ("wetting", "another word"),
+        "sorption": ("wetting", "another word"),
     },
 }
 

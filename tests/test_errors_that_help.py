@@ -73,3 +73,14 @@ def test_a_right_table_with_a_bad_cell_gets_no_such_hint(tmp_path):
     p.write_text(HEAD + "a,m,dry,10,x\nb,m,dry,20,11\n")
     res = runner.invoke(app, ["shear", str(p), "--no-plots", "--out", str(tmp_path / "o")])
     assert res.exit_code == 1 and "looks like" not in res.output
+
+
+def test_a_retention_branch_named_as_the_literature_names_it_gets_a_hint(tmp_path):
+    # 'Desorption' is the drying branch (and 'Adsorption' the wetting one): one message for the column, with the word
+    path = tmp_path / "ret.csv"
+    rows = "".join(f"{s},{t},Desorption\n" for s, t in [(1, 0.3), (2, 0.28), (5, 0.2), (10, 0.15), (20, 0.1)])
+    path.write_text("suction [kPa],theta,branch\n" + rows, encoding="utf-8")
+    res = CliRunner().invoke(app, ["retention", str(path), "--out", str(tmp_path / "o")])
+    assert res.exit_code == 1
+    assert "'Desorption' is another word for 'drying': write 'drying'" in res.output
+    assert res.output.count("Desorption") <= 2 and not (tmp_path / "o").exists()
