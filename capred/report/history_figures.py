@@ -10,7 +10,7 @@ import numpy as np
 
 from ..result import TableSpec
 from .sheets import Panel, Sheet
-from .style import OKABE_ITO
+from .style import OKABE_ITO, legend_outside
 
 _LIMIT = dict(color=OKABE_ITO["vermillion"], ls="--", lw=1.0)
 _CENTRE = dict(color=OKABE_ITO["grey"], ls="-", lw=1.0)
@@ -75,8 +75,45 @@ def _moving_range(ax, result):
     _runs_axis(ax, len(k))
     ax.set_ylabel(f"moving range{'' if result.unit == '-' else f' [{result.unit}]'}")
     ax.set_title("Moving range")
-    ax.set_ylim(bottom=0)
+    top = np.nanmax(np.append(mr[1:], lim.mr_ucl)) if len(mr) > 1 else lim.mr_ucl
+    ax.set_ylim(0, 1.12 * top if np.isfinite(top) and top > 0 else None)  # room for the marks of the highest
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize="small")
+    return ax
+
+
+#: share of the panel's axes height given to the individuals chart, the gap under it (its tick labels, the moving
+#: range's title) and the moving-range chart [-]
+_SPLIT = (0.57, 0.14, 0.29)
+
+
+def plot_control_chart(ax, result):
+    """The individuals chart over the moving-range chart, as one panel: two axes laid out as one group, so that
+    both span the same width and run k sits at the same x in both (as Montgomery 2013 draws them, Fig. 6.18).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel's axes: the individuals chart; the moving-range chart is added below it, on the same figure.
+    result : capred.pipelines.history.HistoryResult
+        A ``capred history`` run.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The individuals axes.
+
+    References
+    ----------
+    Montgomery, D. C. (2013). Introduction to Statistical Quality Control, 7th ed., Wiley, section 6.4.
+    """
+    p = ax.get_position()
+    top, gap, low = _SPLIT
+    ax.set_position((p.x0, p.y0 + (low + gap) * p.height, p.width, top * p.height))
+    mr = ax.figure.add_axes((p.x0, p.y0, p.width, low * p.height))
+    _individuals(ax, result)  # its legend is placed by the sheet, beside the axes
+    ax.set_xlabel("")  # the runs axis is labelled once, under the moving range
+    _moving_range(mr, result)
+    legend_outside(mr)  # the house legend, beside the axes like the individuals'
     return ax
 
 
@@ -97,20 +134,17 @@ def sheet_history(result) -> Sheet:
         f"Control chart: {what}",
         [
             Panel(
-                "individuals",
-                lambda ax: _individuals(ax, result),
+                "control_chart",
+                lambda ax: plot_control_chart(ax, result),
                 f"Individuals chart of {what} per run with each run's 95 % interval (error bars); centre line and "
-                f"3σ limits from {result.limits.basis} (after Montgomery 2013, Fig. 6.18).",
-            ),
-            Panel(
-                "moving_range",
-                lambda ax: _moving_range(ax, result),
-                "Moving range of consecutive runs with its centre line and upper limit D4·MR̄, D4 = 3.267.",
+                f"3σ limits from {result.limits.basis}; below, the moving range of consecutive runs with its centre "
+                "line and upper limit D4·MR̄, D4 = 3.267; squares: beyond the limits (after Montgomery 2013, "
+                "Fig. 6.18).",
             ),
         ],
         1,
-        spans={"individuals": 2, "moving_range": 2},
-        panel_size=(6.0, 2.6),
+        spans={"control_chart": 2},
+        panel_size=(6.0, 5.2),
     )
 
 
