@@ -40,6 +40,33 @@ def test_control_chart_individuals_and_moving_range_share_the_runs_axis():
     assert mr.get_ylim()[1] > max(v for v in result.runs["moving_range"][1:] if v == v)
 
 
+def test_reading_stops_at_max_problems_with_every_problem_so_far(tmp_path, monkeypatch):
+    """Issue 32.1 (time and memory bounded whatever the structure): a small file of many rows, each wrong, recorded
+    one Problem per cell without end (a 3 MB CSV of 1,000,000 rows '1,' under 'test_id,condition', or a 512-byte
+    .ods repeating such a row 1,000,000 times: 2,000,000 problems, past 120 s and 900 MB). Reading now stops at
+    MAX_PROBLEMS (100,000; 1,000 here to keep the test short) and says so; every problem found is listed."""
+    from capred.errors import InputError
+    from capred.io import table
+
+    monkeypatch.setattr(table, "MAX_PROBLEMS", 1000)
+    path = tmp_path / "rows.csv"
+    path.write_text("test_id,condition\n" + "".join(f"t{i},\n" for i in range(5000)))
+    with pytest.raises(InputError) as err:
+        capred.run_shear(path, capred.ShearOptions(bootstrap=0))
+    problems = err.value.problems
+    assert len(problems) == 1001  # the 1,000 recorded (lines 2 to 1001: condition '' each) and the stop
+    assert "1,000 problems found by line 1001: reading stopped there" in str(err.value)
+    assert sum("is not one of" in p.message for p in problems) == 1000
+    # under the limit every problem is still recorded (and a run's problems are not cut)
+    small = tmp_path / "small.csv"
+    small.write_text("test_id,condition\n" + "".join(f"t{i},\n" for i in range(900)))
+    with pytest.raises(InputError) as err:
+        capred.run_shear(small, capred.ShearOptions(bootstrap=0))
+    assert (
+        "reading stopped" not in str(err.value) and sum("is not one of" in p.message for p in err.value.problems) == 900
+    )
+
+
 # --- gaps in files the review could not edit ----------------------------------------------------------------------
 
 

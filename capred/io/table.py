@@ -47,6 +47,10 @@ from .grid import MAX_COLUMNS, ReadLimits, _parse, as_source, read_grid
 
 #: the most characters of a note under the data that messages quote
 NOTE_CHARS = 500
+#: problems recorded in one table before reading stops: a table with more is not this command's input, or damaged,
+#: and recording every one of its cells' problems made time and memory grow without bound (a 3 MB file of 1,000,000
+#: rows '1,' under 'test_id,condition': 2,000,000 problems, over 120 s and 900 MB); the first ones are all listed
+MAX_PROBLEMS = 100_000
 #: numeric columns whose absence changes what is computed (a default radius, equal spheres, no back pressure,
 #: equal weights); text columns (identities and groups) are decisive too. A near miss of one stops the run.
 DECISIVE_COLUMNS = frozenset({"R", "R2", "back_pressure", "u_a", "weight"})
@@ -160,11 +164,22 @@ class Table:
             Canonical column name (shown as the header writes it), None for a whole row.
         message : str
             What is wrong.
+
+        Raises
+        ------
+        InputError
+            When the table reaches :data:`MAX_PROBLEMS` problems: reading stops there, every problem so far listed.
         """
         line = self.header_line if row is None else int(self.lines[row])
         shown = self.headers.get(column, column) if column else None
         value = self.raw[column][row] if (row is not None and column in self.raw) else None
         self.problems.append(Problem(self.path, line, shown, message, self.sheet, value))
+        if len(self.problems) >= MAX_PROBLEMS:
+            stop = (
+                f"{len(self.problems):,} problems found by line {line}: reading stopped there (a table with this "
+                "many is not this command's input, or is damaged)"
+            )
+            raise InputError([*self.problems, Problem(self.path, None, None, stop, self.sheet)])
 
     def missing_column(self, name: str, why: str = "") -> None:
         """Record a required column that is absent, suggesting the nearest header.
