@@ -692,6 +692,8 @@ def bootstrap_ranking(
         d_mat = d_mat.subset(slice(None)) if per_replicate else None
     col = {m: k for k, m in enumerate(models)}
     affine_cols = np.array([col[m] for m in affine], dtype=int)
+    material = _Material(d_mat, nw, dry_x, dry_y, through_origin, c0, b0, mat)
+    scoring = _Scoring(affine, affine_cols, F_once, chunks, laws, per_replicate, col, params, fitted)
     scores = np.full((replicates, len(models)), np.nan)
     block = max(1, BLOCK_ELEMENTS // max(nw, dry_x.size, 1))
     groups = _dry_groups(dry_x, through_origin)
@@ -703,74 +705,69 @@ def bootstrap_ranking(
             continue
         if kept.size < count:
             U, idx = U[kept], idx[kept]
-        _score_replicates(
-            scores,
-            first + kept,
-            U,
-            idx,
-            nw,
-            d_mat,
-            dry_x,
-            dry_y,
-            through_origin,
-            c0,
-            b0,
-            affine,
-            affine_cols,
-            F_once,
-            chunks,
-            laws,
-            per_replicate,
-            col,
-            params,
-            fitted,
-            mat,
-        )
+        _score_replicates(scores, first + kept, U, idx, material, scoring)
     return _summarise(scores, models, ranked, seed)
 
 
-def _score_replicates(
-    scores,
-    rows,
-    U,
-    idx,
-    nw,
-    d_mat,
-    dry_x,
-    dry_y,
-    through_origin,
-    c0,
-    b0,
-    affine,
-    affine_cols,
-    F_once,
-    chunks,
-    laws,
-    per_replicate,
-    col,
-    params,
-    fitted,
-    mat,
-) -> None:
-    """Each model's RMSE in the replicates ``rows`` (dry counts U, wet indices idx of ``nw`` tests) into
-    ``scores``; ``d_mat`` (the wet tests) is needed only by fitted laws and models scored replicate by
+@dataclass(frozen=True)
+class _Material:
+    """One material as the bootstrap resamples it: its wet tests (``wet``, a ModelInputs or `_Selected`; None
+    when no model needs their inputs in every replicate), their number ``nw``, its dry tests ``dry_x``,
+    ``dry_y`` [Pa], whether its dry envelope goes through the origin, the full-data envelope ``c0`` [Pa],
+    ``b0`` [-] and its name."""
+
+    wet: object
+    nw: int
+    dry_x: np.ndarray
+    dry_y: np.ndarray
+    through_origin: bool
+    c0: float
+    b0: float
+    name: str
+
+
+@dataclass(frozen=True)
+class _Scoring:
+    """How the bootstrap scores each model: the affine models' coefficients (``affine``: model -> (e, beta,
+    gamma, ok)) and their columns in the scores, their products kept once (``features``; None beyond
+    KEEP_FEATURES_TESTS wet tests, then formed a chunk of tests at a time, ``chunks``), the fitted laws and the
+    models scored replicate by replicate, each model's column, the run's ModelParams and the full-data fitted
+    laws (warm starts)."""
+
+    affine: dict
+    affine_cols: np.ndarray
+    features: np.ndarray | None
+    chunks: list
+    laws: list
+    per_replicate: list
+    col: dict
+    params: object
+    fitted: dict
+
+
+def _score_replicates(scores, rows, U, idx, material: _Material, scoring: _Scoring) -> None:
+    """Each model's RMSE in the replicates ``rows`` (dry counts U, wet indices idx of ``material.nw`` tests)
+    into ``scores``; the wet tests' inputs are needed only by fitted laws and models scored replicate by
     replicate."""
+    nw, d_mat, mat = material.nw, material.wet, material.name
+    affine, F_once, chunks = scoring.affine, scoring.features, scoring.chunks
+    laws, per_replicate, col = scoring.laws, scoring.per_replicate, scoring.col
     W = (
         np.bincount((idx + nw * np.arange(idx.shape[0])[:, None]).ravel(), minlength=idx.shape[0] * nw)
         .reshape(idx.shape)
         .astype(float)
     )
-    c, b = _dry_refit(U, dry_x, dry_y, through_origin)
-    dc, db = c - c0, b - b0
+    c, b = _dry_refit(U, material.dry_x, material.dry_y, material.through_origin)
+    dc, db = c - material.c0, b - material.b0
     if affine:  # every affine model at once: (replicates, models) arrays of its seven sums
         WF = W @ F_once if F_once is not None else sum(W[:, ch] @ _affine_features_t(affine, ch).T for ch in chunks)
         n_ok, ee, eb, eg, bb, bg, gg = np.moveaxis(WF.reshape(-1, len(affine), 7), 2, 0)
         dcm, dbm = dc[:, None], db[:, None]
         ss = ee + 2 * dcm * eb + 2 * dbm * eg + dcm * dcm * bb + 2 * dcm * dbm * bg + dbm * dbm * gg
         with np.errstate(invalid="ignore", divide="ignore"):
-            scores[rows[:, None], affine_cols] = np.where(n_ok > 0, np.sqrt(np.maximum(ss, 0.0) / n_ok), np.nan)
+            scores[rows[:, None], scoring.affine_cols] = np.where(n_ok > 0, np.sqrt(np.maximum(ss, 0.0) / n_ok), np.nan)
     for m in laws:
-        _, r = chi_laws.LAWS[m].refit_batch(d_mat, params, c, b, W, fitted[m][mat])
+        _, r = chi_laws.LAWS[m].refit_batch(d_mat, scoring.params, c, b, W, scoring.fitted[m][mat])
         ok = np.isfinite(r)
         wo = np.where(ok, W, 0.0)
         n_ok = wo.sum(axis=1)
