@@ -560,7 +560,7 @@ def _looks_like(command: str, source, n_problems: int = 0):
     header names at least two more of that command's columns than of this one's, three it lacks), else None."""
     from ..errors import Problem
     from ..io.grid import TableSource, read_grid, source_path
-    from ..io.table import _find_header, _lookup, _match_header
+    from ..io.table import column_lookup, find_header, match_header
 
     path = source_path(source)
     if path is None or hasattr(path, "to_csv"):
@@ -572,12 +572,12 @@ def _looks_like(command: str, source, n_problems: int = 0):
     candidates = list(grid.text_rows.values()) or [grid.rows]  # a CSV: the first rows split at each delimiter
 
     def named(schema) -> set[str]:
-        lookup = _lookup(schema)
+        lookup = column_lookup(schema)
         best: set[str] = set()
         for rows in candidates:
             if rows:
-                k, _ = _find_header(rows, lookup)
-                cols = {c.name for c in (_match_header(h, lookup)[0] for h in rows[k][1]) if c is not None}
+                k, _ = find_header(rows, lookup)
+                cols = {c.name for c in (match_header(h, lookup)[0] for h in rows[k][1]) if c is not None}
                 best = max(best, cols, key=len)
         return best
 

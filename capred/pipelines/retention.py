@@ -95,12 +95,6 @@ def report_name(internal: str, quantity: str) -> str:
     return json_name(internal, quantity)[0]
 
 
-def _report(internal: str) -> tuple[str, float]:
-    """(JSON name, factor SI -> JSON unit) of a parameter."""
-    name, f, _ = json_name(internal)
-    return name, f
-
-
 def _to_internal(name: str) -> tuple[str, float]:
     """JSON name -> (internal name, factor JSON unit -> SI); the hysteresis α's are not options."""
     internal, f = internal_name(name)
