@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError, OptionError
-from ..io.table import Table
+from ..io import Table
 from ..nomenclature import StableJsonKeys, renamed_keywords
 from ..physics import bridge as br
 from ..physics import shear as ph

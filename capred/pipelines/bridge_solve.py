@@ -12,7 +12,7 @@ from itertools import repeat
 import numpy as np
 
 from ..errors import OptionError
-from ..io.table import Column, Table, read_table
+from ..io import Column, Table, read_table
 from ..physics import bridge as br
 from ..physics import shear as ph
 from ..result import InputFile, Options, Result, Rows, json_list, num
@@ -463,7 +463,7 @@ class ColumnRows(Rows):
         bytes
             The encoded rows of one chunk.
         """
-        from ..io.writers import encode_rows
+        from ..io import encode_rows
 
         for start in range(0, self.n, size):
             yield encode_rows(_json_chunk_rows(self.columns(start, min(self.n, start + size))))

@@ -21,7 +21,7 @@ from ..fitting.retention_models import (
     json_name,
 )
 from ..fitting.retention_models import MODELS as FITTERS
-from ..io.table import Column, read_table
+from ..io import Column, read_table
 from ..parameters import Parameters
 from ..physics.shear import GAMMA_W
 from ..references import cite

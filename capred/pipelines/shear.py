@@ -17,7 +17,7 @@ import numpy as np
 from .. import nomenclature as nom
 from ..errors import FitError, OptionError
 from ..fitting.linear import ERROR_MODELS, LOSSES, LineFit, breusch_pagan, fit_envelope
-from ..io.table import Column, Table, read_table
+from ..io import Column, Table, read_table
 from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
 from ..progress import steps
@@ -1182,7 +1182,7 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
     """
     opt = options or ShearOptions()
     if opt.curves is None:  # a long plain CSV is read, computed and kept block by block (issue 20)
-        from ..io.blocks import read_table_blocks
+        from ..io import read_table_blocks
 
         blocks = read_table_blocks(source, SCHEMA)
         table = next(blocks)

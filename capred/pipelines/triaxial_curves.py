@@ -30,8 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError, Problem
-from ..io.grid import SPREADSHEET_SUFFIXES, source_path
-from ..io.table import Column, Table, header_key, read_table
+from ..io import SPREADSHEET_SUFFIXES, Column, Table, header_key, read_table, source_path
 from ..nomenclature import column_aliases
 from ..units import parse_quantity
 from .triaxial_records import Curve

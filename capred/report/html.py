@@ -303,7 +303,7 @@ _LEFT = ("test_id", "case", "material", "condition", "flags", "status", "branch"
 
 def _created() -> str:
     """The report's date: SOURCE_DATE_EPOCH when set (reproducible builds), else now (UTC, ISO 8601)."""
-    from ..io.spreadsheet_out import source_date_epoch
+    from ..io import source_date_epoch
 
     when = source_date_epoch() or datetime.now(UTC)
     return when.replace(microsecond=0).isoformat()

@@ -96,7 +96,7 @@ def write_outputs(
     list of Path
         The files written.
     """
-    from ..io.writers import write_run
+    from ..io import write_run
     from ..progress import showing, task, wanted
 
     if figures not in FIGURE_SETS:
@@ -317,7 +317,7 @@ def _parallel(cost: list[int]) -> bool:
     """Two processes for several sheets with enough panels (PARALLEL_MIN_PANELS), when a second core is free
     (`capred.io.writers.second_core_free`: on a busy shared machine the fork's extra CPU buys no time,
     benchmarks/bench_one_path.py). CAPRED_FIGURE_PROCESSES=1 or 2 decides instead."""
-    from ..io.writers import second_core_free
+    from ..io import second_core_free
 
     if len(cost) < 2:
         return False
