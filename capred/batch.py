@@ -75,7 +75,7 @@ def run_job(job: Job):
     from .report.outputs import write_outputs
 
     if job.out_dir is not None:  # refuse a folder capred may not replace before computing anything
-        from .io.writers import check_target
+        from .io import check_target
 
         check_target(job.out_dir, [job.source] if job.source is not None else [])
     result = REDUCTIONS[job.command].run(job.source, job.options)
@@ -113,7 +113,7 @@ def run_safely(job: Job) -> Outcome:
         Its status, message, files written, duration [s], season rows, headline and warning count.
     """
     t0 = time.perf_counter()
-    from .io.grid import source_path
+    from .io import source_path
 
     src = str(source_path(job.source)) if job.source is not None else ""
     try:
@@ -153,7 +153,7 @@ def _save_traceback(job: Job, text: str) -> str:
     from datetime import datetime
 
     from . import __version__
-    from .io.writers import RunFolder, check_target, encode_json
+    from .io import RunFolder, check_target, encode_json
 
     try:
         if job.out_dir is None:
@@ -431,7 +431,7 @@ def output_dirs(commands: list[str], sources: list[Path], root: Path) -> list[Pa
     list of Path
         One output folder per job, in the order of ``sources``.
     """
-    from .io.grid import source_path
+    from .io import source_path
     from .reductions import REDUCTIONS
 
     sources = [source_path(p) for p in sources]
@@ -652,7 +652,7 @@ def write_index(root: Path, outcomes: list[Outcome], batch_files=()) -> Path:
     import csv
     import io
 
-    from .io.writers import INDEX_HEADER, write_batch_file
+    from .io import INDEX_HEADER, write_batch_file
 
     root = Path(root)
     buf = io.StringIO()
@@ -764,7 +764,7 @@ def write_season(root: Path, outcomes: list[Outcome]) -> list[Path]:
     list of Path
         The files written: season.csv, one season_<command>.csv per command with details, season.html.
     """
-    from .io.writers import encode_csv, write_batch_file
+    from .io import encode_csv, write_batch_file
     from .report.html import render_season
 
     root = Path(root)

@@ -425,7 +425,7 @@ def record_run(store, result, out_dir=None) -> tuple[int, bool]:
     """
     from datetime import UTC, datetime
 
-    from .io.writers import encode_json
+    from .io import encode_json
 
     doc = json.loads(encode_json(result.to_json()).decode("utf-8"))  # the JSON the run wrote, NaN as null
     key = run_key(doc)

@@ -22,8 +22,6 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .errors import OptionError
-
 
 @dataclass(frozen=True)
 class InputFile:
@@ -775,28 +773,6 @@ class Result:
             cached = {k: (v.tolist() if isinstance(v, Rows) else v) for k, v in self.json_lazy().items()}
             self.__dict__["_json_cache"] = cached
         return cached
-
-
-def check_choice(value: str, choices, option: str) -> str:
-    """An option's value when it is one of ``choices``; else OptionError naming the option and the choices.
-
-    Parameters
-    ----------
-    value : str
-        The value given.
-    choices : sequence of str
-        The allowed values.
-    option : str
-        The option as the user typed it, e.g. "--csv-dialect".
-
-    Returns
-    -------
-    str
-        ``value``.
-    """
-    if value not in choices:
-        raise OptionError(f"{option} must be one of {', '.join(choices)} (got '{value}')")
-    return value
 
 
 def num(x) -> float | None:

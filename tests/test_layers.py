@@ -13,6 +13,7 @@ from pathlib import Path
 import pytest
 
 import capred
+import capred.io
 
 PACKAGE = Path(capred.__file__).resolve().parent
 #: layer of each top-level part of capred (a higher layer may import a lower one, never the reverse)
@@ -61,6 +62,8 @@ def _modules() -> dict[str, Path]:
 
 
 MODULES = _modules()
+#: capred.io's public names and the submodule of each (capred/io/__init__.py)
+IO_API = capred.io._WHERE
 
 
 def _targets(module: str, node, package: bool) -> list[str]:
@@ -76,7 +79,17 @@ def _targets(module: str, node, package: bool) -> list[str]:
         target = node.module or ""
     if target.split(".")[0] != "capred":
         return []
-    return [f"{target}.{a.name}" if f"{target}.{a.name}" in MODULES else target for a in node.names]
+    return [_where(target, a.name) for a in node.names]
+
+
+def _where(target: str, name: str) -> str:
+    """The module ``from target import name`` loads: a submodule of that name, or for a name of capred.io's
+    public API (imported from its submodule on first use) that submodule, else ``target`` itself."""
+    if f"{target}.{name}" in MODULES:
+        return f"{target}.{name}"
+    if target == "capred.io" and name in IO_API:
+        return f"capred.io.{IO_API[name]}"
+    return target
 
 
 def graph() -> dict[str, tuple[set[str], set[str]]]:
@@ -175,3 +188,77 @@ def test_the_former_circles_are_gone():
 @pytest.mark.parametrize("module", sorted(m for m in MODULES if m != "capred.__main__"))
 def test_every_module_imports(module):
     importlib.import_module(module)
+
+
+#: cross-module uses of a private name that are allowed, with why (keep it empty or tiny)
+PRIVATE_ALLOWED: dict[tuple[str, str, str], str] = {}
+
+
+def private_uses(sources: dict[str, str] | None = None) -> list[tuple[str, str, str, int]]:
+    """(module, module it uses, private name, line) of every private name (one leading underscore, not a dunder)
+    that a capred module imports from another (``from X import _name``) or reads off another module it imported
+    (``X._name``). ``sources``: module -> source text (default: every capred module, read from disk)."""
+    if sources is None:
+        sources = {m: p.read_text(encoding="utf-8") for m, p in MODULES.items()}
+    out = []
+    for module, text in sources.items():
+        tree = ast.parse(text)
+        package = module in MODULES and MODULES[module].name == "__init__.py"
+        bound: dict[str, str] = {}  # local name -> capred module it stands for
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Import):
+                bound.update({a.asname or a.name: a.name for a in node.names if a.name in MODULES})
+            elif isinstance(node, ast.ImportFrom):
+                for a, target in zip(node.names, _targets(module, node, package)):
+                    if target in MODULES and target.endswith("." + a.name):
+                        bound[a.asname or a.name] = target
+                    elif a.name.startswith("_") and not a.name.startswith("__") and target != module:
+                        out.append((module, target, a.name, node.lineno))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in bound:
+                name, target = node.attr, bound[node.value.id]
+                if name.startswith("_") and not name.startswith("__") and target != module:
+                    out.append((module, target, name, node.lineno))
+    return out
+
+
+def test_no_private_name_is_used_across_modules():
+    """Issue 28.7: a helper another module needs is public (with its numpydoc docstring) or lives there."""
+    assert len(PRIVATE_ALLOWED) <= 3  # tiny, each with its reason
+    used = [u for u in private_uses() if u[:3] not in PRIVATE_ALLOWED]
+    assert used == [], used
+
+
+def test_the_private_name_scan_finds_what_it_should():
+    """The scan itself: both spellings of a cross-module private use are caught (relative and absolute
+    imports); a module's own private names and dunders are not."""
+    probe = (
+        "from capred.io import table\nfrom . import grid as g\nfrom .table import _x, read_table\n"
+        "table._y\ng._z\ng.__doc__\n_own = 1\n"
+    )
+    found = {(t, n) for m, t, n, _ in private_uses({"capred.io.probe": probe})}
+    assert found == {("capred.io.table", "_x"), ("capred.io.table", "_y"), ("capred.io.grid", "_z")}
+
+
+def test_io_has_a_small_public_api():
+    """Issue 28.7: capred.io's ``__all__`` names what the other layers use, each from its one submodule, loaded on
+    first use; and every name another layer imports from a submodule of io is in that API."""
+    import capred.io as io
+
+    assert sorted(io.__all__) == sorted(IO_API)
+    for name in io.__all__:
+        sub = importlib.import_module(f"capred.io.{IO_API[name]}")
+        assert getattr(io, name) is getattr(sub, name), name
+    with pytest.raises(AttributeError):
+        io.not_a_name  # noqa: B018
+    outside = set()
+    for module, path in MODULES.items():
+        if module.startswith("capred.io"):
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom):
+                for a, target in zip(node.names, _targets(module, node, path.name == "__init__.py")):
+                    if target.startswith("capred.io.") and not target.endswith("." + a.name):
+                        outside.add(a.name)
+    assert outside <= set(io.__all__), outside - set(io.__all__)

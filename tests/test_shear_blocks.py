@@ -12,7 +12,7 @@ import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
 import capred.io.blocks as blocks_module
-import capred.pipelines.shear as shear_module
+import capred.pipelines.shear_long as shear_long_module
 from capred.io.writers import encode_csv, encode_json
 from capred.pipelines.shear import ShearBlocks, ShearOptions, ShearResult, run_shear
 from capred.samples import sample_path
@@ -42,7 +42,7 @@ def pair(tmp_path_factory):
     whole = run_shear(path, opt)
     mp = pytest.MonkeyPatch()
     mp.setattr(blocks_module, "BLOCK_BYTES", 30_000)  # ~450 rows a block: 6 blocks of the ~180 kB file
-    mp.setattr(shear_module, "_SPOOL_ROWS", 200)  # and each spooled in pieces of 200 tests
+    mp.setattr(shear_long_module, "_SPOOL_ROWS", 200)  # and each spooled in pieces of 200 tests
     try:
         long = run_shear(path, opt)
     finally:

@@ -126,7 +126,7 @@ def _manifest_jobs(manifest: Path, out, json_out: bool):
 
     from .. import batch as batch_mod
     from ..errors import InputError, Problem
-    from ..io.manifest import read_manifest
+    from ..io import read_manifest
     from ..reductions import REDUCTIONS
 
     group = typer.main.get_command(app)

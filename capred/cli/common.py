@@ -387,7 +387,7 @@ def _limits(common: dict):
     given = {k: common.get(k) for k in ("max_megabytes", "max_cells", "max_columns", "max_cell_chars")}
     if all(v is None for v in given.values()):
         return None
-    from ..io.grid import ReadLimits
+    from ..io import ReadLimits
 
     kw = {
         "max_cells": given["max_cells"],
@@ -440,7 +440,7 @@ def sources(
     paths = _paths(data, sample, command)
     if sheet is None and thousands is None and not ignore_columns and limits is None:
         return paths
-    from ..io.grid import TableSource
+    from ..io import TableSource
 
     return [
         TableSource(p, sheet, thousands, tuple(ignore_columns or ()), limits) if p is not None else None for p in paths
@@ -491,7 +491,7 @@ def default_out(command: str, source) -> Path:
     -------
     Path
     """
-    from ..io.grid import source_path
+    from ..io import source_path
     from ..reductions import REDUCTIONS
 
     stem = Path(source_path(source)).stem if source is not None else "options"
@@ -525,7 +525,7 @@ def execute(inv: Invocation) -> None:
             exc = InputError(hint)
             exc.problems = [hint, *problems]
         if inv.json:  # scripts get every problem, as data
-            from ..io.writers import encode_json
+            from ..io import encode_json
 
             typer.echo(encode_json(exc.as_json()).decode("utf-8"), nl=False)
             raise typer.Exit(1) from None
@@ -559,8 +559,7 @@ def _looks_like(command: str, source, n_problems: int = 0):
     """A Problem saying which command to try when the table that failed is clearly another command's input (its
     header names at least two more of that command's columns than of this one's, three it lacks), else None."""
     from ..errors import Problem
-    from ..io.grid import TableSource, read_grid, source_path
-    from ..io.table import _find_header, _lookup, _match_header
+    from ..io import TableSource, column_lookup, find_header, match_header, read_grid, source_path
 
     path = source_path(source)
     if path is None or hasattr(path, "to_csv"):
@@ -572,12 +571,12 @@ def _looks_like(command: str, source, n_problems: int = 0):
     candidates = list(grid.text_rows.values()) or [grid.rows]  # a CSV: the first rows split at each delimiter
 
     def named(schema) -> set[str]:
-        lookup = _lookup(schema)
+        lookup = column_lookup(schema)
         best: set[str] = set()
         for rows in candidates:
             if rows:
-                k, _ = _find_header(rows, lookup)
-                cols = {c.name for c in (_match_header(h, lookup)[0] for h in rows[k][1]) if c is not None}
+                k, _ = find_header(rows, lookup)
+                cols = {c.name for c in (match_header(h, lookup)[0] for h in rows[k][1]) if c is not None}
                 best = max(best, cols, key=len)
         return best
 
@@ -606,7 +605,7 @@ def _looks_like(command: str, source, n_problems: int = 0):
 
 
 def _single(inv: Invocation) -> None:
-    from ..io.writers import check_target, encode_json
+    from ..io import check_target, encode_json
     from ..reductions import REDUCTIONS
     from ..report.outputs import write_outputs
 
@@ -640,7 +639,7 @@ def _single(inv: Invocation) -> None:
         else None
     )
     if inv.json:
-        from ..io.writers import stream_json
+        from ..io import stream_json
 
         out = sys.stdout.buffer if hasattr(sys.stdout, "buffer") else None
         if out is None:  # a text-only stream (as in some test runners)
@@ -693,7 +692,7 @@ def run_batch(jobs, root: Path | None, json_out: bool, workers: int | None, extr
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
     from .. import batch
-    from ..io.writers import check_target, encode_json
+    from ..io import check_target, encode_json
 
     if root is not None:
         check_target(root, [j.source for j in jobs] + list(extra_inputs), replace=False)

@@ -392,7 +392,7 @@ def retention(
 def _curves_source(path: Path | None, thousands):
     if path is None or thousands is None:
         return path
-    from ..io.grid import TableSource
+    from ..io import TableSource
 
     return TableSource(path, None, thousands)
 

@@ -1305,11 +1305,6 @@ class _Problem:
         _, x1, x2 = min(cands)
         return {lin[0]: x1, lin[1]: x2}
 
-    def resid_x(self, x):
-        with np.errstate(all="ignore"):
-            S = self.model.saturation(self.s, **self.fixed_shape, **dict(zip(self.shape, x)))
-        return self._resid_S(S)
-
     def _resid_S(self, S):
         p = {**self.fixed_lin, **self.linear(S)}
         if self.model.residual_form:

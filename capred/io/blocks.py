@@ -21,8 +21,8 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..units import conversion
-from .grid import SPREADSHEET_SUFFIXES, ReadLimits, _csv_grid, as_source
-from .table import Column, Table, _check_rule, _grid_table, _with_options, read_table
+from .grid import SPREADSHEET_SUFFIXES, ReadLimits, as_source, csv_grid
+from .table import Column, Table, check_column_rule, grid_table, read_table, source_with_options
 
 #: bytes of CSV text per block: about 50,000 rows of a four-column bridge table, enough for two processes to share
 #: a block (capred.pipelines.bridge), small enough that 1M rows peak at 1.27x the memory of 100,000 (measured:
@@ -79,7 +79,7 @@ def read_table_blocks(
     row and delimiter, each block's problems named by file, line and column.
     A table that cannot be split (see the module docstring) is one block.
     """
-    src = _with_options(as_source(source), ignore_columns, limits)
+    src = source_with_options(as_source(source), ignore_columns, limits)
     block_bytes = block_bytes or BLOCK_BYTES
     path = src.path
     if hasattr(path, "to_csv") or src.sheet is not None:
@@ -108,13 +108,13 @@ def read_table_blocks(
             # as they were); else the piece read whole
             head, rest = _split_head(text)
             if rest and not rest[: rest.find("\n")].translate(_NUMERIC_CHARS):  # numbers after the head
-                table = _grid_table(_csv_grid(str(path), head), src, schema)
+                table = grid_table(csv_grid(str(path), head), src, schema)
                 prefix = _prefix(head, table)
                 fast = _numeric_block(str(path), src, schema, prefix, HEAD_LINES + 1, rest)
                 if fast is not None and _numeric_line(head[head.rfind("\n") + 1 :], len(prefix[0].split(","))):
                     tables = [_joined(table, fast)]
             if not tables:
-                table = _grid_table(_csv_grid(str(path), text), src, schema)
+                table = grid_table(csv_grid(str(path), text), src, schema)
                 prefix = _prefix(text, table)
                 tables = [table]
         else:
@@ -123,8 +123,8 @@ def read_table_blocks(
             table = _numeric_block(str(path), src, schema, prefix, first_line, text)
             if table is None:
                 # the header (and units row) just above the block's lines, which keep their line numbers
-                grid = _csv_grid(str(path), "\n".join(prefix) + "\n" + text, first_line - len(prefix))
-                table = _grid_table(grid, src, schema)
+                grid = csv_grid(str(path), "\n".join(prefix) + "\n" + text, first_line - len(prefix))
+                table = grid_table(grid, src, schema)
             tables = [table]
         for table in tables:
             if table.units_line is not None and first_line > 1:
@@ -216,7 +216,7 @@ def _numeric_block(
         return None
     first = text[: text.find("\n")] if n > 1 else text
     try:
-        table = _grid_table(_csv_grid(shown, "\n".join(prefix) + "\n" + first, first_line - len(prefix)), src, schema)
+        table = grid_table(csv_grid(shown, "\n".join(prefix) + "\n" + first, first_line - len(prefix)), src, schema)
     except InputError:
         return None
     cols = {c.name: c for c in schema}
@@ -239,7 +239,7 @@ def _numeric_block(
         table.raw[name] = _Cells(text, width, j, n)
         table.as_read[name] = as_read
         table.columns[name] = si
-        _check_rule(table, col)
+        check_column_rule(table, col)
         if table.problems:
             return None
     return table

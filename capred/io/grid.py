@@ -254,7 +254,7 @@ class Grid:
             The CSV delimiter detected or given.
         """
         if self.full_text is not None:
-            self.rows = _parse(self.full_text, delimiter, self.first_line)
+            self.rows = parse_rows(self.full_text, delimiter, self.first_line)
             self.full_text = None
 
     def where(self) -> str:
@@ -283,7 +283,7 @@ def read_grid(source: TableSource) -> Grid:
     """
     path = source.path
     if hasattr(path, "to_csv"):  # a pandas DataFrame from a lab script: read like the same table in a file
-        return _csv_grid("<DataFrame>", path.to_csv(index=False))
+        return csv_grid("<DataFrame>", path.to_csv(index=False))
     p = Path(path)
     shown = str(path)
     if not p.exists():
@@ -320,7 +320,7 @@ def read_grid(source: TableSource) -> Grid:
         raise InputError(Problem(shown, None, None, "this is a binary file, not a CSV text table"))
     if source.sheet is not None:
         raise InputError(Problem(shown, None, None, "--sheet is for .xlsx and .ods workbooks, not CSV files"))
-    grid = _csv_grid(shown, text, limits=limits)
+    grid = csv_grid(shown, text, limits=limits)
     if other:
         shown_lines = ", ".join(map(str, other[:5])) + (f" and {len(other) - 5:,} more" if len(other) > 5 else "")
         grid.notes.append(
@@ -336,7 +336,7 @@ def _decode_mixed(data: bytes) -> tuple[str, list[int]]:
     lines mix UTF-8 and Windows-1252 (one pasted from another program) line by line, each in its own encoding,
     never garbled silently; a file of Windows-1252 alone as a whole."""
     if data[:2] in (b"\xff\xfe", b"\xfe\xff"):
-        return _decode(data), []
+        return decode_text(data), []
     try:
         return data.decode("utf-8-sig"), []
     except UnicodeDecodeError:
@@ -352,7 +352,7 @@ def _decode_mixed(data: bytes) -> tuple[str, list[int]]:
             except UnicodeDecodeError:
                 continue
     if not utf8_text:  # no UTF-8 beyond ASCII: one legacy encoding throughout
-        return _decode(data), []
+        return decode_text(data), []
     out, other = [], []
     for k, ln in enumerate(lines, start=1):
         try:
@@ -366,7 +366,21 @@ def _decode_mixed(data: bytes) -> tuple[str, list[int]]:
     return "\n".join(out), other
 
 
-def _decode(data: bytes) -> str:
+def decode_text(data: bytes) -> str:
+    """Text of a file's bytes: UTF-8 (with or without BOM), UTF-16 with a BOM, else Windows-1252.
+
+    Parameters
+    ----------
+    data : bytes
+        The file's content.
+
+    Returns
+    -------
+    str
+
+    References
+    ----------
+    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
     encodings = ("utf-8-sig", "utf-16") if data[:2] in (b"\xff\xfe", b"\xfe\xff") else ("utf-8-sig", "cp1252")
     for enc in encodings:
         try:
@@ -444,14 +458,32 @@ def _widest_field(text: str, start: int, end: int, delim: str, step: int) -> int
     return widest, at
 
 
-def _csv_grid(shown: str, text: str, first_line: int = 1, limits: ReadLimits | None = None) -> Grid:
+def csv_grid(shown: str, text: str, first_line: int = 1, limits: ReadLimits | None = None) -> Grid:
     """Rows of a CSV text for each candidate delimiter (the table reader picks the one whose header fits).
 
     Parsed as a whole (not line by line), so quoted fields may span lines; a
     row's number is the line it starts on. Only the first rows are parsed
     for each candidate; the whole text is parsed once, with the delimiter
     chosen (``Grid.parse_all``).
-    """
+
+    Parameters
+    ----------
+    shown : str
+        The file's name as messages show it.
+    text : str
+        The CSV text.
+    first_line : int, optional
+        Line number of the text's first line in its file.
+    limits : ReadLimits, optional
+        Read limits (None: the defaults).
+
+    Returns
+    -------
+    Grid
+
+    References
+    ----------
+    RFC 4180, Common Format and MIME Type for Comma-Separated Values (CSV) Files, doi:10.17487/RFC4180."""
     if "#" in text or "\r" in text:
         # comment lines become blank (keeping the numbering); a '#' inside a quoted field is left alone. Lines
         # end only at \n, \r\n or \r, as for the csv module (str.splitlines would also split at \v, \f, \x1c-\x1e,
@@ -467,16 +499,33 @@ def _csv_grid(shown: str, text: str, first_line: int = 1, limits: ReadLimits | N
     kept = _blank_delimiter_rows(grid, kept)
     head = "\n".join(kept.split("\n", 200)[:200])
     for delim in grid.delimiters:
-        grid.text_rows[delim] = _parse(head, delim, first_line)
+        grid.text_rows[delim] = parse_rows(head, delim, first_line)
     grid.full_text = kept
     grid.rows = grid.text_rows[","]
     return grid
 
 
-def _parse(text: str, delim: str, first_line: int = 1) -> list[tuple[int, list[str]]]:
+def parse_rows(text: str, delim: str, first_line: int = 1) -> list[tuple[int, list[str]]]:
     """Rows with their first line number (the text's first line is ``first_line``); the cells of the first
     200 rows stripped (the header and the metadata are searched there), later cells as written (the table
-    reader strips columns where needed)."""
+    reader strips columns where needed).
+
+    Parameters
+    ----------
+    text : str
+        The CSV text.
+    delim : str
+        The delimiter.
+    first_line : int, optional
+        Line number of the text's first line.
+
+    Returns
+    -------
+    list of (int, list of str)
+
+    References
+    ----------
+    RFC 4180, Common Format and MIME Type for Comma-Separated Values (CSV) Files, doi:10.17487/RFC4180."""
     rows = []
     if '"' not in text and "\r" not in text:  # no quoting: a line is a row, split on the delimiter (fast)
         lines = text.split("\n")

@@ -60,9 +60,9 @@ def read_manifest(path: Path) -> list[tuple[int, str, str, list[str] | str]]:
     data = path.read_bytes()
     if b"\x00" in data[:4096] and data[:2] not in (b"\xff\xfe", b"\xfe\xff"):
         raise InputError(Problem(shown, None, None, "this is a binary file, not a CSV or TOML manifest"))
-    from .grid import _decode
+    from .grid import decode_text
 
-    text = _decode(data)
+    text = decode_text(data)
     runs = _toml_runs(shown, text) if path.suffix.lower() == ".toml" else _csv_runs(shown, text)
     if not runs:
         raise InputError(
@@ -96,10 +96,10 @@ def _csv_runs(shown: str, text: str) -> list[tuple[int, str, str, str]]:
     header = [h.strip().lower() for h in header_cells]
     if "command" not in header or "input" not in header:
         raise InputError(Problem(shown, header_line, None, "the header needs 'command' and 'input' (and 'options')"))
-    from .table import _edits_within
+    from .table import edits_within
 
     for h in header:
-        near = [w for w in ("command", "input", "options") if h != w and _edits_within(h, w, 2)]
+        near = [w for w in ("command", "input", "options") if h != w and edits_within(h, w, 2)]
         if near and near[0] not in header:
             raise InputError(
                 Problem(

@@ -43,7 +43,7 @@ from ..errors import InputError, Problem, UnitError
 from ..nomenclature import column_aliases
 from ..text_safety import excerpt
 from ..units import conversion
-from .grid import MAX_COLUMNS, ReadLimits, _parse, as_source, read_grid
+from .grid import MAX_COLUMNS, ReadLimits, as_source, parse_rows, read_grid
 
 #: the most characters of a note under the data that messages quote
 NOTE_CHARS = 500
@@ -89,8 +89,22 @@ class Column:
 
 
 @lru_cache(maxsize=4096)
-def _key(text: str) -> str:
-    """Normalised spelling used to match headers: lower case, '_' between words."""
+def header_key(text: str) -> str:
+    """Normalised spelling used to match headers: lower case, '_' between words.
+
+    Parameters
+    ----------
+    text : str
+        A header or alias as written.
+
+    Returns
+    -------
+    str
+        The key that `column_lookup` maps to a column.
+
+    References
+    ----------
+    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
     k = re.sub(r"[\s\-./]+", "_", text.strip().lower())
     return re.sub(r"_+", "_", k).strip("_")
 
@@ -191,10 +205,10 @@ class Table:
         why : str, optional
             Appended to the message (e.g. why the column is needed).
         """
-        near = difflib.get_close_matches(_key(name), [_key(h) for h in self.unmatched], n=1, cutoff=0.6)
+        near = difflib.get_close_matches(header_key(name), [header_key(h) for h in self.unmatched], n=1, cutoff=0.6)
         hint = ""
         if near:
-            original = next(h for h in self.unmatched if _key(h) == near[0])
+            original = next(h for h in self.unmatched if header_key(h) == near[0])
             hint = f"; did you mean '{original}'?"
         self.problems.append(
             Problem(self.path, self.header_line, None, f"missing column '{name}'{why}{hint}", self.sheet)
@@ -291,8 +305,24 @@ def _parse_column(cells: list[str], decimal_comma: bool) -> np.ndarray | None:
         return None
 
 
-def _match_header(header: str, lookup: dict[str, Column]) -> tuple[Column | None, str | None]:
-    """Column a header names, and the unit it declares (None = default)."""
+def match_header(header: str, lookup: dict[str, Column]) -> tuple[Column | None, str | None]:
+    """Column a header names, and the unit it declares (None = default).
+
+    Parameters
+    ----------
+    header : str
+        A header cell as written (e.g. ``tau_max [kPa]``).
+    lookup : dict of str to Column
+        Spellings of the known columns (`column_lookup`).
+
+    Returns
+    -------
+    (Column or None, str or None)
+        The column named (None: unknown) and the unit written in brackets (None: the column's default unit).
+
+    References
+    ----------
+    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
     declared, key, unit, stem, suffix = _header_spellings(header)
     col = lookup.get(key)
     if declared:
@@ -309,34 +339,67 @@ def _match_header(header: str, lookup: dict[str, Column]) -> tuple[Column | None
 @lru_cache(maxsize=8192)
 def _header_spellings(header: str) -> tuple[bool, str, str | None, str | None, str | None]:
     """(declares a unit in brackets, key of the name, that unit, key of the stem before a last '_', the suffix)
-    of a header cell: what _match_header looks up (cached: the first rows of a file are searched for every
+    of a header cell: what match_header looks up (cached: the first rows of a file are searched for every
     candidate delimiter)."""
     text = header.strip()
     m = _UNIT_IN_HEADER.match(text)
     if m and m.group("name"):
-        return True, _key(m.group("name")), m.group("unit"), None, None
+        return True, header_key(m.group("name")), m.group("unit"), None, None
     if "_" in text:
         stem, suffix = text.rsplit("_", 1)
-        return False, _key(text), None, _key(stem), suffix
-    return False, _key(text), None, None, None
+        return False, header_key(text), None, header_key(stem), suffix
+    return False, header_key(text), None, None, None
 
 
-def _lookup(schema: list[Column]) -> dict[str, Column]:
+def column_lookup(schema: list[Column]) -> dict[str, Column]:
+    """Every spelling (name and aliases, as `header_key` normalises them) of a schema's columns.
+
+    Parameters
+    ----------
+    schema : list of Column
+        The columns a command reads.
+
+    Returns
+    -------
+    dict of str to Column
+        Normalised spelling -> column.
+
+    References
+    ----------
+    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
     lookup: dict[str, Column] = {}
     for col in schema:
         for spelling in (col.name, *col.aliases):
-            lookup[_key(spelling)] = col
+            lookup[header_key(spelling)] = col
     return lookup
 
 
 def _header_hits(cells: list[str], lookup) -> int:
-    return sum(1 for c in cells if c and _match_header(c, lookup)[0] is not None)
+    return sum(1 for c in cells if c and match_header(c, lookup)[0] is not None)
 
 
-def _find_header(rows: list[tuple[int, list[str]]], lookup, width: int = MAX_COLUMNS) -> tuple[int, int]:
+def find_header(rows: list[tuple[int, list[str]]], lookup, width: int = MAX_COLUMNS) -> tuple[int, int]:
     """(index of the header row, known columns it names): the first row naming two known columns
     (or, failing that, the first naming one; else the first row). Only the first ``width`` + 1 cells of a
-    row are looked at (a wider header is refused afterwards), so the search is bounded."""
+    row are looked at (a wider header is refused afterwards), so the search is bounded.
+
+    Parameters
+    ----------
+    rows : list of (int, list of str)
+        Rows with their line numbers, as `capred.io.grid.parse_rows` gives them.
+    lookup : dict of str to Column
+        Spellings of the known columns (`column_lookup`).
+    width : int, optional
+        The most columns a table may have.
+
+    Returns
+    -------
+    (int, int)
+        Index of the header row in ``rows`` and the number of known columns it names.
+
+    References
+    ----------
+    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
     first_one = None
     for k, (_, cells) in enumerate(rows[:60]):
         hits = _header_hits(cells[: width + 1], lookup)
@@ -415,11 +478,30 @@ def read_table(source, schema: list[Column], *, ignore_columns=(), limits: ReadL
     all (missing, binary, empty, no data rows), and LimitError (an InputError)
     when it is over a reading limit.
     """
-    src = _with_options(as_source(source), ignore_columns, limits)
-    return _grid_table(read_grid(src), src, schema)
+    src = source_with_options(as_source(source), ignore_columns, limits)
+    return grid_table(read_grid(src), src, schema)
 
 
-def _with_options(src, ignore_columns, limits):
+def source_with_options(src, ignore_columns, limits):
+    """A table source with columns to ignore and read limits added.
+
+    Parameters
+    ----------
+    src : TableSource
+        Where a table is read from.
+    ignore_columns : str or sequence of str or None
+        Columns to leave unread, added to the source's own.
+    limits : ReadLimits or None
+        Read limits replacing the source's (None: keep them).
+
+    Returns
+    -------
+    TableSource
+        ``src`` itself when nothing is added, else a copy.
+
+    References
+    ----------
+    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
     if ignore_columns or limits is not None:
         extra = (ignore_columns,) if isinstance(ignore_columns, str) else tuple(ignore_columns or ())
         src = replace(
@@ -428,13 +510,31 @@ def _with_options(src, ignore_columns, limits):
     return src
 
 
-def _grid_table(grid, src, schema: list[Column]) -> Table:
-    """The table of a grid read from ``src`` (see read_table)."""
+def grid_table(grid, src, schema: list[Column]) -> Table:
+    """The table of a grid read from ``src`` (see read_table).
+
+    Parameters
+    ----------
+    grid : Grid
+        The cells read (`capred.io.grid.read_grid` or `capred.io.grid.csv_grid`).
+    src : TableSource
+        Where the grid was read from (its name, sheet, options and limits).
+    schema : list of Column
+        The columns the command reads.
+
+    Returns
+    -------
+    Table
+        Columns in SI with their units, line numbers and metadata.
+
+    References
+    ----------
+    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
     limits = src.limits or ReadLimits()
     width_cap = limits.max_columns
-    lookup = _lookup(schema)
+    lookup = column_lookup(schema)
     if grid.text_rows:  # CSV: the delimiter whose header names most known columns (ties: , ; tab)
-        found = {d: _find_header(grid.text_rows[d], lookup, width_cap) for d in grid.delimiters}
+        found = {d: find_header(grid.text_rows[d], lookup, width_cap) for d in grid.delimiters}
         best = max(grid.delimiters, key=lambda d: (found[d][1], -grid.delimiters.index(d)))
         if found[best][1] == 0:  # no known column at all: the widest first row
             best = max(
@@ -461,7 +561,7 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
     broken = [(n, cells[0]) for n, cells in rows if cells and cells[0].startswith("\x00csv error")]
     if broken:
         raise InputError(Problem(shown, broken[0][0], None, broken[0][1][1:] + " (a quote is not closed?)", sheet))
-    k, _ = _find_header(rows, lookup, width_cap)
+    k, _ = find_header(rows, lookup, width_cap)
     header_line, headers = rows[k]
     if len(_trimmed(headers)) > width_cap:
         raise limits.error(
@@ -492,7 +592,7 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
             f"{grid.delimiter_rows:,} row{'s' if grid.delimiter_rows > 1 else ''} holding only delimiters "
             f"(as spreadsheet exports leave them) skipped: line{'s' if grid.delimiter_rows > 1 else ''} {first}{more}"
         )
-    ignored = {_key(x): x for x in src.ignore_columns}
+    ignored = {header_key(x): x for x in src.ignore_columns}
     used_ignores: set[str] = set()
     positions: dict[str, tuple[int, Column, str | None]] = {}
     blank_headers = []
@@ -502,7 +602,7 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
             used_ignores.add(hit)
             table.notes.append(f"column '{h.strip()}' ignored, as asked")
             continue
-        col, unit = _match_header(h, lookup)
+        col, unit = match_header(h, lookup)
         if col is None:
             if h.strip():
                 table.unmatched.append(h.strip())
@@ -556,7 +656,7 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
         table.units_line = units_line
         body = body[1:]
     if tail is not None and any(ln.count(delimiter) != len(headers) - 1 for ln in tail[1]):
-        body = body + _parse("\n".join(tail[1]), delimiter, tail[0])  # ragged: row by row
+        body = body + parse_rows("\n".join(tail[1]), delimiter, tail[0])  # ragged: row by row
         tail = None
     notes = []  # text lines under the data ("Remarks: ..."): notes, not tests
     while tail is not None and tail[1] and (text := _note_text(tail[1][-1].split(delimiter), positions)):
@@ -655,7 +755,7 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
         for i, v in worded.items():
             si[i] = values[i] = v
         table.columns[name] = si
-        _check_rule(table, col)
+        check_column_rule(table, col)
         _check_magnitude(table, col)
     _flag_controls(table)
     return table
@@ -733,7 +833,7 @@ def _ignored(header: str, ignored: dict[str, str]) -> str | None:
     """The key of ``ignored`` naming this header (as written, or without its unit), else None."""
     if not ignored or not header.strip():
         return None
-    for k in (_key(header), _key(_name_part(header))):
+    for k in (header_key(header), header_key(_name_part(header))):
         if k in ignored:
             return k
     return None
@@ -751,9 +851,25 @@ def _with_data(columns: list[int], body, rows: int = 10_000) -> list[int]:
     return sorted(found)
 
 
-def _edits_within(a: str, b: str, limit: int) -> bool:
+def edits_within(a: str, b: str, limit: int) -> bool:
     """True when ``a`` becomes ``b`` with at most ``limit`` insertions, deletions, substitutions or swaps of
-    neighbours (optimal string alignment distance), computed in a band of width ``limit``."""
+    neighbours (optimal string alignment distance), computed in a band of width ``limit``.
+
+    Parameters
+    ----------
+    a, b : str
+        The two spellings.
+    limit : int
+        The most edits allowed.
+
+    Returns
+    -------
+    bool
+
+    References
+    ----------
+    Damerau, F. J. (1964). A technique for computer detection and correction of spelling errors.
+    Commun. ACM 7(3):171-176, doi:10.1145/363958.363994 (the edit operations counted here)."""
     if abs(len(a) - len(b)) > limit:
         return False
     prev2, prev = None, list(range(len(b) + 1))
@@ -774,11 +890,11 @@ def _edits_within(a: str, b: str, limit: int) -> bool:
 def _near_miss(header: str, spellings: dict[str, Column]) -> Column | None:
     """The decisive column one of whose ``spellings`` is one edit from the header (two edits for spellings of 8 or
     more letters), case, spaces and '_' ignored; None when there is none."""
-    h = _key(_name_part(header)).replace("_", "")
+    h = header_key(_name_part(header)).replace("_", "")
     if len(h) < 4:
         return None
     for spelling, col in spellings.items():
-        if h != spelling and _edits_within(h, spelling, 2 if len(spelling) >= 8 else 1):
+        if h != spelling and edits_within(h, spelling, 2 if len(spelling) >= 8 else 1):
             return col
     return None
 
@@ -796,12 +912,12 @@ def _unused_columns(table: Table, schema: list[Column], lookup: dict[str, Column
     for col in schema:
         if col.is_decisive and col.name not in positions:
             for sp in (col.name, *col.aliases):  # short aliases ('state', 'soil') are too near everyday words
-                compact = _key(sp).replace("_", "")
+                compact = header_key(sp).replace("_", "")
                 if len(compact) >= (5 if sp == col.name else 6):
                     spellings.setdefault(compact, col)
     known_keys = {}
     for x in table.known:
-        known_keys.setdefault(_key(x), x)
+        known_keys.setdefault(header_key(x), x)
     told = 0
     for h in table.unmatched:
         col = _near_miss(h, spellings) if spellings else None
@@ -820,7 +936,7 @@ def _unused_columns(table: Table, schema: list[Column], lookup: dict[str, Column
                 )
             )
             continue
-        near = difflib.get_close_matches(_key(h), list(known_keys), n=1, cutoff=0.6) if len(h) <= 64 else []
+        near = difflib.get_close_matches(header_key(h), list(known_keys), n=1, cutoff=0.6) if len(h) <= 64 else []
         canonical = lookup[near[0]].name if near else None
         if canonical and canonical in positions:
             canonical = None  # the column it resembles is there already
@@ -856,7 +972,7 @@ def _plain_tail(grid, delimiter: str, lookup) -> tuple[int, list[str]] | None:
     if text is None or '"' in text or "\r" in text:
         return None
     head = grid.text_rows[delimiter]
-    k, found = _find_header(head, lookup)
+    k, found = find_header(head, lookup)
     if not found or k > len(head) - 3 or any(not h.strip() for h in head[k][1]):
         return None
     lines = text.split("\n")
@@ -914,7 +1030,7 @@ def _bad_unit_header(header: str, lookup) -> str | None:
     if not any(ch in header for ch in "[]()"):
         return None
     name = re.split(r"[\[\]()]", header, maxsplit=1)[0]
-    if lookup.get(_key(name)) is None:
+    if lookup.get(header_key(name)) is None:
         return None
     return f"cannot read the unit of '{header.strip()}': its brackets do not match (write e.g. 'name [kPa]')"
 
@@ -950,8 +1066,23 @@ def _check_magnitude(table: Table, col: Column) -> None:
         table.warnings.append(f"column '{table.headers.get(col.name, col.name)}'{more}: {what}")
 
 
-def _check_rule(table: Table, col: Column) -> None:
-    """Values outside the column's range: the quantity's range (the same rule as options) or ``col.rule``."""
+def check_column_rule(table: Table, col: Column) -> None:
+    """Values outside the column's range: the quantity's range (the same rule as options) or ``col.rule``.
+
+    Parameters
+    ----------
+    table : Table
+        The table read; its problems are collected there.
+    col : Column
+        The column checked.
+
+    Returns
+    -------
+    None
+
+    References
+    ----------
+    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
     v = table.columns[col.name]
     unit = table.units.get(col.name, "")
     if col.quantity is not None:

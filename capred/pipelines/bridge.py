@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError, OptionError
-from ..io.table import Table
+from ..io import Table
 from ..nomenclature import StableJsonKeys, renamed_keywords
 from ..physics import bridge as br
 from ..physics import shear as ph
@@ -32,10 +32,10 @@ from .bridge_solve import (  # noqa: F401  (re-exported: the names users and tes
     BridgeOptions,
     BridgeResult,
     ColumnRows,
-    _read_cases,
-    _records,
-    _solve,
+    frame_records,
     json_rows,
+    read_cases,
+    solve_arrays,
     solve_table,
     with_csv_headers,
 )
@@ -152,7 +152,7 @@ class CurveResult(Result):
         list of dict
             One dict per row, JSON keys with units in their suffix.
         """
-        return _records(self.tables()["curve"])
+        return frame_records(self.tables()["curve"])
 
     def summary(self) -> dict:
         """Relative RMS error of each model against the exact bridges, inside and outside the
@@ -376,7 +376,7 @@ class CompareResult(Result):
         """
         cached = self.__dict__.get("_rows")
         if cached is None:
-            cached = self.__dict__["_rows"] = _records(self._frame())
+            cached = self.__dict__["_rows"] = frame_records(self._frame())
         return cached
 
     def payload(self, lazy: bool = False) -> dict:
@@ -438,7 +438,7 @@ def compare_measured(source, options: BridgeOptions | None = None) -> CompareRes
        between two spherical bodies. Langmuir 16, 9396-9405. doi:10.1021/la000657y
     """
     opt = options or BridgeOptions()
-    table, gamma, ratio, th2 = _read_cases(source, ("R", "contact_angle", "gap", "V_w"), (), opt)
+    table, gamma, ratio, th2 = read_cases(source, ("R", "contact_angle", "gap", "V_w"), (), opt)
     if "F_cap" not in table.columns:
         table.missing_column("F_cap")
     table.raise_if_problems()
@@ -448,7 +448,7 @@ def compare_measured(source, options: BridgeOptions | None = None) -> CompareRes
         table.columns["gap"],
         table.columns["V_w"],
     )
-    res = _solve(
+    res = solve_arrays(
         table.path,
         R,
         gamma,
@@ -533,7 +533,7 @@ class RuptureResult(Result):
         """
         cached = self.__dict__.get("_rows")
         if cached is None:
-            cached = self.__dict__["_rows"] = _records(self._frame())
+            cached = self.__dict__["_rows"] = frame_records(self._frame())
             for r in cached:  # a plane is written as the word, JSON has no infinity
                 if r["R2_mm"] is None or r["R2_mm"] == float("inf"):
                     r["R2_mm"] = "plane"
@@ -597,7 +597,7 @@ def rupture_distances(source, options: BridgeOptions | None = None) -> RuptureRe
        between two rigid spherical bodies. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
     """
     opt = options or BridgeOptions()
-    table, gamma, ratio, th2 = _read_cases(source, ("R", "contact_angle", "V_w"), (), opt, RUPTURE_SCHEMA)
+    table, gamma, ratio, th2 = read_cases(source, ("R", "contact_angle", "V_w"), (), opt, RUPTURE_SCHEMA)
     table.raise_if_problems()
     R, th, V = table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["V_w"]
     D, beta, s, status = br.rupture_gap(th, V / R**3, ratio, th2)

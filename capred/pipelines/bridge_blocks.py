@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io import blocks as blocks_module
-from ..io.blocks import read_table_blocks
+from ..io import read_table_blocks
 from ..progress import task
 from ..result import InputFile, Result, Spool, input_file
 from . import bridge_solve as pb

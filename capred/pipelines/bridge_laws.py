@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import OptionError
-from ..io.table import Column, Table, read_table
+from ..io import Column, Table, read_table
 from ..physics import bridge as br
 from ..physics import bridge_laws as bl
 from ..result import InputFile, Options, Result, input_file, num

@@ -12,7 +12,7 @@ from itertools import repeat
 import numpy as np
 
 from ..errors import OptionError
-from ..io.table import Column, Table, read_table
+from ..io import Column, Table, read_table
 from ..physics import bridge as br
 from ..physics import shear as ph
 from ..result import InputFile, Options, Result, Rows, json_list, num
@@ -463,7 +463,7 @@ class ColumnRows(Rows):
         bytes
             The encoded rows of one chunk.
         """
-        from ..io.writers import encode_rows
+        from ..io import encode_rows
 
         for start in range(0, self.n, size):
             yield encode_rows(_json_chunk_rows(self.columns(start, min(self.n, start + size))))
@@ -493,8 +493,23 @@ def _json_chunk_rows(cols: dict) -> list[dict]:
     return rows.tolist()
 
 
-def _records(frame, drop_empty: str | None = None) -> list[dict]:
-    """DataFrame rows as dicts, NaN as None, an empty ``drop_empty`` cell left out."""
+def frame_records(frame, drop_empty: str | None = None) -> list[dict]:
+    """DataFrame rows as dicts, NaN as None, an empty ``drop_empty`` cell left out.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        A result table.
+    drop_empty : str, optional
+        A column whose empty (None) cells are left out of their row's dict.
+
+    Returns
+    -------
+    list of dict
+
+    References
+    ----------
+    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
     keys = list(frame.columns)
     cols = [[num(x) if isinstance(x, float) else x for x in frame[k].tolist()] for k in keys]
     out = []
@@ -506,9 +521,31 @@ def _records(frame, drop_empty: str | None = None) -> list[dict]:
     return out
 
 
-def _read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, ...], opt: BridgeOptions, schema=None):
+def read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, ...], opt: BridgeOptions, schema=None):
     """The table of cases (read from ``source``, or a Table already read) with its surface tension, radius
-    ratio R2/R (1 without an R2 column) and the contact angle on the second particle [rad]."""
+    ratio R2/R (1 without an R2 column) and the contact angle on the second particle [rad].
+
+    Parameters
+    ----------
+    source : path, file or Table
+        The cases.
+    required : tuple of str
+        Columns every case needs.
+    required_one_of : tuple of str
+        Columns of which a case needs at least one.
+    opt : BridgeOptions
+        The run's options (defaults of columns left out).
+    schema : list of Column, optional
+        The columns read (default: `bridge solve`'s).
+
+    Returns
+    -------
+    (Table, ndarray, ndarray, ndarray)
+        The table, surface tension [N/m], radius ratio [-] and second contact angle [rad] per case.
+
+    References
+    ----------
+    Lian, G., Thornton, C. & Adams, M. J. (1993). A theoretical study of the liquid bridge forces between two rigid spherical bodies. J. Colloid Interface Sci. 161:138-147, doi:10.1006/jcis.1993.1452."""
     table = source if isinstance(source, Table) else read_table(source, schema or SOLVE_SCHEMA)
     for name in required:
         if name not in table.columns:
@@ -561,7 +598,7 @@ def solve_table(table: Table, options: BridgeOptions | None = None) -> BridgeRes
         One bridge (or a status) per row.
     """
     opt = options or BridgeOptions()
-    table, gamma, ratio, th2 = _read_cases(table, ("R", "contact_angle", "gap"), ("suction", "V_w"), opt)
+    table, gamma, ratio, th2 = read_cases(table, ("R", "contact_angle", "gap"), ("suction", "V_w"), opt)
     s_in, v_in = table.get("suction"), table.get("V_w")
     for i in np.flatnonzero(np.isnan(s_in) & np.isnan(v_in)):
         table.add_problem(i, "suction" if "suction" in table.columns else "V_w", "give suction or V_w")
@@ -569,7 +606,7 @@ def solve_table(table: Table, options: BridgeOptions | None = None) -> BridgeRes
         table.add_problem(i, "V_w", "give suction or V_w, not both")
     table.raise_if_problems()
     R, th, D = table.columns["R"], np.radians(table.columns["contact_angle"]), table.columns["gap"]
-    res = _solve(
+    res = solve_arrays(
         table.path,
         R,
         gamma,
@@ -587,9 +624,33 @@ def solve_table(table: Table, options: BridgeOptions | None = None) -> BridgeRes
     return res
 
 
-def _solve(source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None, th2=None, workers=None) -> BridgeResult:
+def solve_arrays(
+    source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None, th2=None, workers=None
+) -> BridgeResult:
     """Suction-controlled rows (s_in finite) and volume-controlled rows (v_in finite), SI in; ``th2`` the contact
-    angle on the second particle [rad] (None: ``th``); ``workers``: processes (None: see :func:`processes`)."""
+    angle on the second particle [rad] (None: ``th``); ``workers``: processes (None: see :func:`processes`).
+
+    Parameters
+    ----------
+    source : InputFile or None
+        Where the cases came from (provenance).
+    R, gamma, th, D, ratio, s_in, v_in : ndarray
+        Per case: radius [m], surface tension [N/m], contact angle [rad], gap [m], radius ratio [-],
+        suction [Pa] and water volume [m^3] (NaN where the case is controlled by the other).
+    labels, notes : sequence, optional
+        Case labels and notes carried to the result.
+    th2 : ndarray, optional
+        Contact angle on the second particle [rad].
+    workers : int, optional
+        Processes to use.
+
+    Returns
+    -------
+    BridgeResult
+
+    References
+    ----------
+    Lian, G., Thornton, C. & Adams, M. J. (1993). A theoretical study of the liquid bridge forces between two rigid spherical bodies. J. Colloid Interface Sci. 161:138-147, doi:10.1006/jcis.1993.1452."""
     th2 = th if th2 is None else th2
     n = R.size
     beta, s_star, status = np.full(n, np.nan), np.full(n, np.nan), np.full(n, 2)

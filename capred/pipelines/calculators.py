@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError, OptionError, Problem
-from ..io.table import Column, read_table
+from ..io import Column, read_table
 from ..nomenclature import StableJsonKeys, renamed_keywords
 from ..physics import calculators as calc
 from ..physics.shear import GAMMA_W, SURFACE_TENSION

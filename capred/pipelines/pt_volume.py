@@ -22,7 +22,7 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 
 from ..errors import OptionError
-from ..io.table import Column, read_table
+from ..io import Column, read_table
 from ..physics import pedrotti_tarantino as pt
 from ..references import cite
 from ..result import InputFile, Options, Result, input_file, json_list, num, output

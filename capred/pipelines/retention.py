@@ -21,7 +21,7 @@ from ..fitting.retention_models import (
     json_name,
 )
 from ..fitting.retention_models import MODELS as FITTERS
-from ..io.table import Column, read_table
+from ..io import Column, read_table
 from ..parameters import Parameters
 from ..physics.shear import GAMMA_W
 from ..references import cite
@@ -93,12 +93,6 @@ def report_name(internal: str, quantity: str) -> str:
         The JSON name.
     """
     return json_name(internal, quantity)[0]
-
-
-def _report(internal: str) -> tuple[str, float]:
-    """(JSON name, factor SI -> JSON unit) of a parameter."""
-    name, f, _ = json_name(internal)
-    return name, f
 
 
 def _to_internal(name: str) -> tuple[str, float]:

@@ -211,7 +211,7 @@ def load_retention_fit(fit, model: str | None = None, branch: str | None = None)
         return _fit_from_json(fit, "the fit", model, branch), "the fit", []
     if fit is None:
         raise OptionError("no fit given: a fits.json written by capred retention, or a table of retention readings")
-    from ..io.grid import source_path
+    from ..io import source_path
 
     where = source_path(fit)
     if not isinstance(where, (str, Path)) or Path(where).suffix.lower() != ".json":  # readings: fitted first

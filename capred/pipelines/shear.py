@@ -17,14 +17,14 @@ import numpy as np
 from .. import nomenclature as nom
 from ..errors import FitError, OptionError
 from ..fitting.linear import ERROR_MODELS, LOSSES, LineFit, breusch_pagan, fit_envelope
-from ..io.table import Column, Table, read_table
+from ..io import Column, Table, read_table
 from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
-from ..progress import steps, task
+from ..progress import steps
 from ..references import cite
-from ..result import InputFile, Options, Result, Rows, Spool, input_file, json_list, num
+from ..result import InputFile, Options, Result, Rows, input_file, json_list, num
 from .shear_fits import envelope_fits, line_of
-from .shear_records import BackAnalysis, ModelPrediction, Sampled
+from .shear_records import ModelPrediction
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
@@ -400,8 +400,8 @@ class ShearResult(Result):
 
             cached = self.__dict__["_tables"] = {
                 "results": pd.DataFrame(self._results_columns(), copy=False),
-                "summary": _flat_summary(self),
-                "metrics": _flat_metrics(self),
+                "summary": summary_table(self),
+                "metrics": metrics_table(self),
             }
         return cached
 
@@ -411,8 +411,8 @@ class ShearResult(Result):
         if cached is None:
             cached = self.__dict__["_csv_tables"] = {
                 "results": self._results_columns(),
-                "summary": _flat_summary(self, frame=False),
-                "metrics": _flat_metrics(self, frame=False),
+                "summary": summary_table(self, frame=False),
+                "metrics": metrics_table(self, frame=False),
             }
         return cached
 
@@ -906,8 +906,27 @@ def best_of(metrics: dict[str, ModelMetrics]) -> str | None:
     return min(scored, key=scored.get) if scored else None
 
 
-def _fill(table: Table, name: str, option: float | None) -> np.ndarray:
-    """Column values with blanks (or an absent column) filled from an option."""
+def filled_column(table: Table, name: str, option: float | None) -> np.ndarray:
+    """Column values with blanks (or an absent column) filled from an option.
+
+    Parameters
+    ----------
+    table : Table
+        The shear table read (its problems are collected there).
+    name : str
+        The column.
+    option : float or None
+        The option's value (SI) filling blanks; None fills nothing.
+
+    Returns
+    -------
+    ndarray
+        The column (SI), NaN where blank and no option is given.
+
+    References
+    ----------
+    Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
     v = table.get(name).copy()
     if option is not None:
         v[np.isnan(v)] = option
@@ -917,7 +936,7 @@ def _fill(table: Table, name: str, option: float | None) -> np.ndarray:
 def _void_volume(table: Table, opt: ShearOptions, box: np.ndarray) -> np.ndarray:
     """V_v per row [m^3]: the column (or --void-volume), else A h e/(1 + e) from a void ratio e and the
     sample height, with e = G_s rho_w / rho_d - 1 from a dry density."""
-    v_v = _fill(table, "V_v", opt.void_volume)
+    v_v = filled_column(table, "V_v", opt.void_volume)
     e = table.get("e").copy()
     from_density = np.isnan(e) & np.isfinite(table.get("rho_d"))
     e[from_density] = (table.get("G_s") * opt.rho_w / table.get("rho_d"))[from_density] - 1.0
@@ -938,19 +957,39 @@ def _void_volume(table: Table, opt: ShearOptions, box: np.ndarray) -> np.ndarray
     return v_v
 
 
-def _derive(
+def derive_tests(
     table: Table, opt: ShearOptions, box: np.ndarray, tau_curve: np.ndarray | None = None
 ) -> dict[str, np.ndarray]:
     """sigma_N, suction, S_R and tau_max per row; problems go into ``table``.
 
     ``tau_curve`` is the peak of each test's raw curve (NaN where it has none); it wins over tau_max.
-    """
+
+    Parameters
+    ----------
+    table : Table
+        The shear table read (its problems are collected there).
+    opt : ShearOptions
+        The run's options.
+    box : ndarray
+        Box area of each test [m^2].
+    tau_curve : ndarray, optional
+        Peak shear stress of each test's raw curve [Pa].
+
+    Returns
+    -------
+    dict of str to ndarray
+        The derived per-test arrays (SI).
+
+    References
+    ----------
+    Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
     n = len(table)
     cond = table.columns.get("condition", np.array([""] * n, dtype=object))
     wet = cond == "wet"
-    cap = _fill(table, "cap_mass", opt.cap_mass)
+    cap = filled_column(table, "cap_mass", opt.cap_mass)
     added = table.get("added_mass")
-    radius = _fill(table, "R", opt.radius)
+    radius = filled_column(table, "R", opt.radius)
     v_v = _void_volume(table, opt, box)
 
     sigma_N = table.get("sigma_N").copy()
@@ -1060,12 +1099,30 @@ def load_shear_table(source, with_curves: bool = False) -> Table:
         The table read, its problems in ``table.problems``.
     """
     table = read_table(source, SCHEMA)
-    _check_table(table, with_curves)
+    check_shear_table(table, with_curves)
     return table
 
 
-def _check_table(table: Table, with_curves: bool = False, unique: bool = True) -> None:
-    """The checks of load_shear_table on a table read (``unique``: also blank and repeated test ids)."""
+def check_shear_table(table: Table, with_curves: bool = False, unique: bool = True) -> None:
+    """The checks of load_shear_table on a table read (``unique``: also blank and repeated test ids).
+
+    Parameters
+    ----------
+    table : Table
+        The shear table read (its problems are collected there).
+    with_curves : bool, optional
+        The table comes with raw curves.
+    unique : bool, optional
+        Also check blank and repeated test ids.
+
+    Returns
+    -------
+    None
+
+    References
+    ----------
+    Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
     for name in ("test_id", "condition"):
         if name not in table.columns:
             table.missing_column(name)
@@ -1125,26 +1182,28 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
     """
     opt = options or ShearOptions()
     if opt.curves is None:  # a long plain CSV is read, computed and kept block by block (issue 20)
-        from ..io.blocks import read_table_blocks
+        from ..io import read_table_blocks
 
         blocks = read_table_blocks(source, SCHEMA)
         table = next(blocks)
         more = next(blocks, None)
         if more is not None:
             pending = [table, more]
-            del table, more  # _run_blocks lets go of each block once read
-            return _run_blocks(source, opt, pending, blocks)
-        _check_table(table)
+            del table, more  # run_blocks lets go of each block once read
+            from .shear_long import run_blocks
+
+            return run_blocks(source, opt, pending, blocks)
+        check_shear_table(table)
     else:
         table = load_shear_table(source, True)
-    box = _fill(table, "box_area", opt.box_area)
+    box = filled_column(table, "box_area", opt.box_area)
     curves = None
     if opt.curves is not None:
         from .shear_curves import pick_peaks
 
         curves = pick_peaks(opt.curves, table, box, opt.area_correction)
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # NaN and overflow are reported below
-        d = _derive(table, opt, box, curves.tau_peak if curves else None)
+        d = derive_tests(table, opt, box, curves.tau_peak if curves else None)
     if curves is not None and opt.area_correction != "none":
         # sigma_N on the corrected area at the peak, as tau (ASTM D3080 / BS 1377-7 practice)
         d["sigma_N"] = d["sigma_N"] * curves.area_ratio_at_peak
@@ -1162,11 +1221,11 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
     mat = table.columns["material"]
     cond = table.columns["condition"]
     wet = cond == "wet"
-    fits = _dry_fits(table, d, mat, cond, materials, opt)
-    saturated_fits = _saturated_fits(table, d, mat, cond, materials, opt)
+    fits = fit_dry_envelopes(table, d, mat, cond, materials, opt)
+    saturated_fits = fit_saturated_envelopes(table, d, mat, cond, materials, opt)
     table.raise_if_problems()
 
-    read = {f"in_{name}": _documented(table, name) for name in RAW_INPUTS if name in table.columns}
+    read = {f"in_{name}": documented_column(table, name) for name in RAW_INPUTS if name in table.columns}
     tests: dict[str, np.ndarray] = {
         "test_id": table.columns["test_id"],
         "material": mat,
@@ -1178,7 +1237,7 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         "chi2": np.where(wet, ph.chi2(d["S_R"], d["R"], opt.surface_tension), 0.0),
     }
     predictions, back, per_material, laws, model_inputs = _predict(tests, wet, mat, fits, opt, saturated_fits)
-    scored = _scores(d, wet, mat, fits, laws, predictions, opt)
+    scored = score_models(d, wet, mat, fits, laws, predictions, opt)
     metrics, overall = scored["metrics"], scored["overall"]
     if curves is not None:
         tests.update(curves.per_test())
@@ -1207,323 +1266,37 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         heteroscedasticity=scored["heteroscedasticity"],
     )
     if opt.bootstrap > 0:
-        result.ranking = _bootstrap(result, wet, mat, cond, opt)
+        result.ranking = bootstrap_materials(result, wet, mat, cond, opt)
     return result
 
 
-# --- a long table, block by block (issue 20) ---------------------------------------------------------------------
-#: per-test arrays a long run keeps in memory for every test: what the fits, metrics, flags, bootstrap and figures
-#: read (about 60 bytes a test with the material and condition, which refer to one str object per name)
-_COMPACT = ("sigma_N", "suction", "S_R", "tau_max", "R")
-#: tests per piece of the spools: a block read (capred.io.blocks, ~60,000 tests) is predicted, spooled and written
-#: in pieces of this many, so that predicting and writing take a quarter of the memory reading takes
-_SPOOL_ROWS = 16_384
+def score_models(d: dict, wet, mat, fits, laws, predictions, opt: ShearOptions) -> dict:
+    """Metrics of every model per material and overall, on all wet tests and on the pendular ones; warnings.
 
+    Parameters
+    ----------
+    d : dict of str to ndarray
+        The derived per-test arrays (`derive_tests`).
+    wet, mat : ndarray
+        Per test: whether it is a wet test, and its material.
+    fits : dict of str to LineFit
+        Each material's dry envelope.
+    laws : dict
+        The fitted chi laws per model and material.
+    predictions : dict of str to ModelPrediction
+        Each model's predictions.
+    opt : ShearOptions
+        The run's options.
 
-class _RowProblems:
-    """Problems of a long table, located by row over all its blocks (as Table.add_problem locates them)."""
+    Returns
+    -------
+    dict
+        ``metrics``, ``metrics_pendular``, ``heteroscedasticity`` and ``warnings``.
 
-    def __init__(self, path: str, sheet, headers: dict, lines: np.ndarray, text: dict):
-        self.path, self.sheet, self.headers, self.lines, self.text = path, sheet, headers, lines, text
-        self.problems: list = []
-
-    def add_problem(self, row: int, column: str | None, message: str, value: str | None = None) -> None:
-        from ..errors import Problem
-
-        if value is None and column in self.text:
-            value = str(self.text[column][row])
-        self.problems.append(
-            Problem(
-                self.path,
-                int(self.lines[row]),
-                self.headers.get(column, column) if column else None,
-                message,
-                self.sheet,
-                value,
-            )
-        )
-
-    def raise_if_problems(self) -> None:
-        if self.problems:
-            from ..errors import InputError
-
-            raise InputError(self.problems)
-
-
-def _trim() -> None:
-    """Hand the heap memory freed by a block back to the system (glibc's malloc_trim; nothing elsewhere).
-
-    glibc raises its mmap threshold once a large array is freed, so later block-sized arrays come from the
-    heap, which it keeps after they are freed: without this a million-test run held ~110 MB it no longer used
-    (measured: 244 MB resident after run_shear, 133 MB after a trim).
-    """
-    trim = _TRIM[0]
-    if trim is None:
-        try:
-            import ctypes
-
-            trim = ctypes.CDLL(None).malloc_trim
-        except (OSError, AttributeError):
-            trim = False
-        _TRIM[0] = trim
-    if trim:
-        trim(0)
-
-
-_TRIM: list = [None]
-
-
-def _interned(values, names: dict) -> np.ndarray:
-    """An object array of ``values`` in which equal strings are one object (the first seen, kept in ``names``)."""
-    return np.array([names.setdefault(v, v) for v in values.tolist()], dtype=object)
-
-
-def _flat(records: dict) -> dict:
-    """The output arrays of records ({prefix: record}) as one flat dict (pairs as two arrays), for a Spool."""
-    out = {}
-    for prefix, rec in records.items():
-        for f in dataclasses.fields(rec):
-            v = getattr(rec, f.name)
-            if "output" not in f.metadata or v is None:
-                continue
-            if isinstance(v, tuple):
-                out[f"{prefix}|{f.name}|0"], out[f"{prefix}|{f.name}|1"] = v
-            else:
-                out[f"{prefix}|{f.name}"] = v
-    return out
-
-
-def _record(cls, prefix: str, arrays: dict, **fixed):
-    """A record of ``cls`` rebuilt from the flat arrays of ``_flat`` (any mapping of key to array-like)."""
-    values = {}
-    for f in dataclasses.fields(cls):
-        key = f"{prefix}|{f.name}"
-        if key in arrays:
-            values[f.name] = arrays[key]
-        elif key + "|0" in arrays:
-            values[f.name] = (arrays[key + "|0"], arrays[key + "|1"])
-    return cls(**fixed, **values)
-
-
-def _sample_rows(wet, mat, suction, materials) -> np.ndarray:
-    """Rows whose per-test outputs a long run keeps in memory: the samples its figures draw (capred.sampling of the
-    same index sets as the report's figures) and the first wet tests its console table lists."""
-    from ..sampling import MAX_ROWS, sample_rows
-
-    parts = [np.flatnonzero(wet)[:MAX_ROWS]]
-    for m in materials:
-        wet_m = wet & (mat == m)
-        parts += [sample_rows(np.flatnonzero(wet_m)), sample_rows(np.flatnonzero(wet_m & (suction > 0)))]
-    return np.unique(np.concatenate(parts)).astype(np.int64)
-
-
-def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks:
-    """`capred shear` on a table of several blocks (capred.io.blocks): memory flat in the number of tests.
-
-    Pass 1 reads each block, checks and derives it, keeps the compact per-test arrays of ``_COMPACT`` (and the
-    material and condition) and spools the test ids and raw inputs; then the dry fits and chi laws are fitted on
-    every test. Pass 2 predicts block by block and spools every per-test output; the writer reads both spools
-    back block by block. Outputs are those of the whole-table run, byte for byte.
-    """
-    import itertools
-
-    from . import shear_analysis as sa
-
-    first = pending[0]
-    inputs = [input_file(source, first)]
-    path, sheet, headers = first.path, first.sheet, dict(first.headers)
-    del first
-    spool_in, spool_out = Spool(), Spool()
-    try:
-        keep: dict[str, list] = {k: [] for k in _COMPACT}
-        lines, mats, conds, hashes, sizes = [], [], [], [], []
-        mat_names: dict[str, str] = {}
-        cond_names: dict[str, str] = {}
-        notes: dict[str, None] = {}
-        warnings: dict[str, None] = {}
-
-        def tables():
-            while pending:
-                yield pending.pop(0)  # the caller keeps no reference: one block's cells in memory at a time
-
-        found: list = []  # the problems of every block
-        with task("reading tests, block by block") as advance_read:  # a bar on a terminal
-            for table in itertools.chain(tables(), blocks):
-                _check_table(table, unique=False)
-                if "test_id" in table.columns:
-                    for i in np.flatnonzero(table.columns["test_id"] == ""):
-                        table.add_problem(int(i), "test_id", "empty test_id")
-                box = _fill(table, "box_area", opt.box_area)
-                with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-                    d = _derive(table, opt, box)
-                if table.problems:  # every block is read: the file's problems are reported at once
-                    found += table.problems
-                    del table, d, box
-                    advance_read()
-                    continue
-                ids = table.columns["test_id"]
-                for k in _COMPACT:
-                    keep[k].append(d[k])
-                lines.append(table.lines.astype(np.int32))  # line numbers of a file below max_bytes fit
-                mats.append(_interned(table.columns["material"], mat_names))
-                conds.append(_interned(table.columns["condition"], cond_names))
-                hashes.append(np.fromiter(map(hash, ids.tolist()), dtype=np.int64, count=len(ids)))
-                spooled = {
-                    "test_id": ids,
-                    **{f"in_{name}": _documented(table, name) for name in RAW_INPUTS if name in table.columns},
-                }
-                for lo in range(0, len(table), _SPOOL_ROWS):
-                    spool_in.append({k: v[lo : lo + _SPOOL_ROWS] for k, v in spooled.items()})
-                    sizes.append(min(_SPOOL_ROWS, len(table) - lo))
-                notes.update(dict.fromkeys(table.notes))
-                warnings.update(dict.fromkeys(table.warnings))
-                del table, d, ids, box, spooled
-                _trim()
-                advance_read()
-        if found and not sizes:  # no block without problems
-            from ..errors import InputError
-
-            raise InputError(found)
-        starts = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
-        lines_all = np.concatenate(lines)
-        mat, cond = np.concatenate(mats), np.concatenate(conds)
-        del lines, mats, conds
-        d = {k: np.concatenate(v) for k, v in keep.items()}
-        del keep
-        problems = _RowProblems(path, sheet, headers, lines_all, {"condition": cond, "material": mat})
-        problems.problems += found  # with the repeated test ids among the blocks without problems
-        _duplicate_ids(np.concatenate(hashes) if hashes else np.zeros(0, np.int64), spool_in, starts, problems)
-        del hashes
-        _trim()
-        problems.raise_if_problems()
-
-        materials = list(mat_names)
-        wet = cond == "wet"
-        fits = _dry_fits(problems, d, mat, cond, materials, opt)
-        saturated_fits = _saturated_fits(problems, d, mat, cond, materials, opt)
-        problems.raise_if_problems()
-
-        tests = _LongTests({"material": mat, "condition": cond, "line": lines_all, **d})
-        md = _model_inputs(tests, wet, mat, fits, opt, saturated_fits)
-        laws = sa.fit_laws(md, opt.models, list(fits), opt.model_params, fits=fits)
-        md = dataclasses.replace(
-            md, fitted={model: {m: law.values for m, law in by_mat.items()} for model, by_mat in laws.items()}
-        )
-        per_material = _material_values(md, wet, mat, fits, opt)
-
-        rows = _sample_rows(wet, mat, d["suction"], list(fits))
-        n = int(starts[-1])
-        taus = {m: np.empty(n) for m in opt.models}
-        samples: dict[str, list] = {}
-        for k in steps(range(len(sizes)), "predicting, piece by piece"):
-            lo, hi = int(starts[k]), int(starts[k + 1])
-            sl = slice(lo, hi)
-            part = {name: d[name][sl] for name in ("sigma_N", "suction", "tau_max")}
-            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-                preds, back = _predictions(part, wet[sl], md.subset(sl), fits, laws, opt)
-                cols = {
-                    "chi1": np.where(wet[sl], ph.chi1(d["S_R"][sl]), 0.0),
-                    "chi2": np.where(wet[sl], ph.chi2(d["S_R"][sl], d["R"][sl], opt.surface_tension), 0.0),
-                    **_flat(preds),
-                    **_flat({"back": back}),
-                }
-            spool_out.append(cols)
-            for m in opt.models:
-                taus[m][lo:hi] = preds[m].tau
-            here = rows[(rows >= lo) & (rows < hi)] - lo
-            for key, v in cols.items():
-                samples.setdefault(key, []).append(v[here])
-            del preds, back, cols, part
-            _trim()
-        sampled = {key: Sampled(rows, np.concatenate(v), n) for key, v in samples.items()}
-        del samples
-        predictions = {m: _record(ModelPrediction, m, {**sampled, f"{m}|tau": taus[m]}, model=m) for m in opt.models}
-        back = _record(BackAnalysis, "back", sampled)
-        fitted = md.fitted
-        del md  # its per-test envelope arrays: made again for the bootstrap, after the predictions go
-        _trim()
-        scored = _scores(d, wet, mat, fits, laws, predictions, opt)
-        result = ShearBlocks(
-            source=path,
-            options=opt,
-            tests=tests,
-            fits=envelope_fits(fits, path),
-            metrics=scored["metrics"],
-            metrics_overall=scored["overall"],
-            best_model={m: best_of(v) for m, v in scored["metrics"].items()},
-            best_model_overall=best_of(scored["overall"]),
-            notes=opt.notes + list(notes),
-            per_material=per_material,
-            inputs=inputs,
-            warnings=list(opt.warnings) + list(warnings) + scored["warnings"],
-            metrics_pendular=scored["pendular"],
-            metrics_pendular_overall=scored["overall_pendular"],
-            laws=laws,
-            model_inputs=None,
-            curves=None,
-            predictions=predictions,
-            back=back,
-            saturated_fits=saturated_fits,
-            heteroscedasticity=scored["heteroscedasticity"],
-            spool_in=spool_in,
-            spool_out=spool_out,
-            starts=starts,
-        )
-        tests.result = result
-        # what needs every test's prediction, made now; then the predictions are kept at the sampled rows only
-        code, names = ShearResult._flag_codes(result)
-        result.__dict__["_flag_code"] = (code.astype(np.uint8 if len(names) <= 256 else np.int64), names)
-        result.model_selection()
-        result.predictions = {m: dataclasses.replace(p, tau=sampled[f"{m}|tau"]) for m, p in predictions.items()}
-        del predictions, taus
-        _trim()
-        if opt.bootstrap > 0:
-            result.model_inputs = dataclasses.replace(
-                _model_inputs(tests, wet, mat, fits, opt, saturated_fits), fitted=fitted
-            )
-            result.ranking = _bootstrap(result, wet, mat, cond, opt)
-        none = {k: d[k][:0] for k in _COMPACT}
-        result.model_inputs = dataclasses.replace(  # the fitted laws, no tests
-            _model_inputs(none, wet[:0], mat[:0], fits, opt, saturated_fits), fitted=fitted
-        )
-        _trim()
-        return result
-    except BaseException:
-        spool_in.close()
-        spool_out.close()
-        raise
-
-
-def _duplicate_ids(hashes: np.ndarray, spool: Spool, starts: np.ndarray, problems: _RowProblems) -> None:
-    """Repeated test ids of a long table (as Table.check_unique words them), found by their hashes and confirmed
-    on the ids themselves, read back from the spool (no Python str per test held at once)."""
-    sorted_h = np.sort(hashes)
-    repeated = np.unique(sorted_h[1:][sorted_h[1:] == sorted_h[:-1]])
-    del sorted_h
-    if not repeated.size:
-        return
-    rows = np.flatnonzero(np.isin(hashes, repeated))
-    seen: dict[str, int] = {}
-    for i, v in zip(rows.tolist(), _spooled(spool, starts, "test_id", rows)):
-        if v in seen:
-            problems.add_problem(i, "test_id", f"duplicate test_id '{v}' (first on line {seen[v]})", v)
-        else:
-            seen[v] = int(problems.lines[i])
-
-
-def _spooled(spool: Spool, starts: np.ndarray, key: str, rows: np.ndarray) -> list:
-    """The values of one spooled column at ``rows`` (increasing row numbers)."""
-    out: list = []
-    for k in range(len(starts) - 1):
-        lo, hi = starts[k], starts[k + 1]
-        here = rows[(rows >= lo) & (rows < hi)]
-        if here.size:
-            out += spool.block(k)[key][here - lo].tolist()
-    return out
-
-
-def _scores(d: dict, wet, mat, fits, laws, predictions, opt: ShearOptions) -> dict:
-    """Metrics of every model per material and overall, on all wet tests and on the pendular ones; warnings."""
+    References
+    ----------
+    Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
     pend = wet & (d["S_R"] <= opt.pendular_limit)
     of_material = {m: mat == m for m in fits}
 
@@ -1550,7 +1323,7 @@ def _scores(d: dict, wet, mat, fits, laws, predictions, opt: ShearOptions) -> di
         "pendular": metrics_pend,
         "overall": overall,
         "overall_pendular": overall_pend,
-        "warnings": _warnings(wet, pend, mat, fits, laws, predictions, opt) + _scatter_warnings(fits, hetero),
+        "warnings": run_warnings(wet, pend, mat, fits, laws, predictions, opt) + _scatter_warnings(fits, hetero),
         "heteroscedasticity": hetero,
     }
 
@@ -1615,212 +1388,24 @@ def _scatter_warnings(fits, hetero: dict) -> list[str]:
     return out
 
 
-class _LongTests(dict):
-    """``ShearBlocks.tests``: the compact per-test arrays in memory; any other column (test_id, the raw inputs,
-    chi1, chi2) is read back from the spools, whole, when asked for."""
+def documented_column(table: Table, name: str) -> np.ndarray:
+    """A column in its documented unit: the numbers as typed when the file uses that unit, else converted.
 
-    result = None
+    Parameters
+    ----------
+    table : Table
+        The shear table read (its problems are collected there).
+    name : str
+        The column.
 
-    def __missing__(self, key):
-        r = self.result
-        if r is None:
-            raise KeyError(key)
-        if key in ("chi1", "chi2"):
-            spool = r.spool_out
-        elif key in r.spool_in.block(0):
-            spool = r.spool_in
-        else:
-            raise KeyError(key)
-        return np.concatenate([b[key] for b in spool.blocks()])
+    Returns
+    -------
+    ndarray
 
-
-class _ResultsBlocks:
-    """results.csv of a long run for capred.io.writers.write_csv_file: ``blocks()`` gives each block's columns,
-    made from the spools one block at a time; ``columns(start, stop)`` as a Spool's."""
-
-    def __init__(self, result: ShearBlocks):
-        self.result = result
-        self.n = int(result.starts[-1])
-
-    def blocks(self):
-        for k in range(len(self.result.starts) - 1):
-            yield self.result._block(k)._results_columns()
-
-    def columns(self, start: int, stop: int):
-        """Every column of rows start..stop-1; more than one block's rows: columns made when looked up."""
-        if stop - start > int(np.max(np.diff(self.result.starts))):
-            return _LazyColumns(self.result, start, stop)
-        return self.result._columns(start, stop)
-
-
-class _LazyColumns(dict):
-    """Columns of many rows of a long run, each made only when looked up (``flags`` from memory)."""
-
-    def __init__(self, result, start: int, stop: int):
-        super().__init__(dict.fromkeys(result._block(0)._results_columns()))
-        self.result, self.start, self.stop = result, start, stop
-
-    def __getitem__(self, key):
-        if key not in self:
-            raise KeyError(key)
-        if key == "flags":
-            return np.asarray(self.result._flag_texts()[self.start : self.stop], dtype=object)
-        return self.result._columns(self.start, self.stop, key)[key]
-
-    def items(self):
-        return ((k, self[k]) for k in self)
-
-    def values(self):
-        return (self[k] for k in self)
-
-
-@dataclass(repr=False)
-class ShearBlocks(ShearResult):
-    """The result of `capred shear` on a long table (several blocks of capred.io.blocks): a ShearResult whose
-    per-test outputs stay on disk.
-
-    In memory, for every test: ``tests`` sigma_N, suction, S_R, tau_max, R, material, condition, line, and
-    a flag code. Every per-test array of ``predictions`` and ``back`` is a
-    :class:`capred.pipelines.shear_records.Sampled`: kept at the rows the figures and console tables show;
-    ``model_inputs`` holds the fitted laws and no tests; ``tests["test_id"]`` and the raw inputs are read back whole
-    when asked for, ``table()`` builds the whole DataFrame. results.csv and the JSON are written block by
-    block from the spools, the same bytes as the whole-table run.
-    """
-
-    spool_in: object = None  # Spool: test_id and the raw inputs of each block
-    spool_out: object = None  # Spool: chi1, chi2, every model's prediction and the back-analysis of each block
-    starts: np.ndarray | None = None  # first row of each block, and the number of tests last
-
-    def _block(self, k: int) -> ShearResult:
-        """Block ``k`` as a ShearResult of its own tests (what _results_columns and _test_rows read)."""
-        cached = self.__dict__.get("_block_cache")
-        if cached is not None and cached[0] == k:
-            return cached[1]
-        if cached is not None:  # the block before goes first (the writer and the JSON child read in order)
-            del self.__dict__["_block_cache"], cached
-            _trim()
-        lo, hi = int(self.starts[k]), int(self.starts[k + 1])
-        a, b = self.spool_in.block(k), self.spool_out.block(k)
-        t = self.tests
-        tests = {
-            "test_id": a["test_id"],
-            "material": t["material"][lo:hi],
-            "condition": t["condition"][lo:hi],
-            "line": t["line"][lo:hi],
-            **{key: v for key, v in a.items() if key != "test_id"},
-            **{key: t[key][lo:hi] for key in _COMPACT},
-            "chi1": b["chi1"],
-            "chi2": b["chi2"],
-        }
-        part = ShearResult(
-            source=self.source,
-            options=self.options,
-            tests=tests,
-            fits=self.fits,
-            metrics={},
-            metrics_overall={},
-            best_model={},
-            best_model_overall=None,
-            predictions={m: _record(ModelPrediction, m, b, model=m) for m in self.models},
-            back=_record(BackAnalysis, "back", b),
-        )
-        self.__dict__["_block_cache"] = (k, part)
-        return part
-
-    def _columns(self, start: int, stop: int, key: str | None = None) -> dict:
-        """results.csv columns (or one) of rows start..stop-1, across blocks."""
-        parts = []
-        for k in range(len(self.starts) - 1):
-            lo, hi = int(self.starts[k]), int(self.starts[k + 1])
-            a, b = max(start, lo), min(stop, hi)
-            if a < b:
-                cols = self._block(k)._results_columns()
-                parts.append({name: v[a - lo : b - lo] for name, v in cols.items() if key is None or name == key})
-        if len(parts) == 1:
-            return parts[0]
-        return {name: np.concatenate([p[name] for p in parts]) for name in parts[0]} if parts else {}
-
-    def _test_rows(self, start: int, stop: int) -> list[dict]:
-        rows: list[dict] = []
-        for k in range(len(self.starts) - 1):
-            lo, hi = int(self.starts[k]), int(self.starts[k + 1])
-            a, b = max(start, lo), min(stop, hi)
-            if a < b:
-                rows += self._block(k)._test_rows(a - lo, b - lo)
-        return rows
-
-    def test_ids(self, rows) -> list[str]:
-        """The test_id of each of ``rows``, read back from the spooled inputs.
-
-        Parameters
-        ----------
-        rows : array_like of int
-            Row numbers (0-based, over all blocks).
-
-        Returns
-        -------
-        list of str
-            The test ids.
-        """
-        return [str(x) for x in _spooled(self.spool_in, self.starts, "test_id", np.asarray(rows, dtype=np.int64))]
-
-    def _flag_codes(self) -> tuple[np.ndarray, np.ndarray]:
-        return self.__dict__["_flag_code"]
-
-    def _flag_texts(self) -> np.ndarray:
-        """Flags of every test, ';'-joined (an object array made on each call: nothing per test is kept)."""
-        code, names = self._flag_codes()
-        return names[code]
-
-    def row_count(self) -> int:
-        """Number of tests of the run, over all blocks.
-
-        Returns
-        -------
-        int
-            The count [-].
-        """
-        return int(self.starts[-1])
-
-    def csv_tables(self) -> dict:
-        """The tables as the CSV writer takes them (``results`` written block by block, ``summary`` and ``metrics``),
-        under ``name [unit]`` headers.
-
-        Returns
-        -------
-        dict
-            Stem -> table (DataFrame or column mapping).
-        """
-        cached = self.__dict__.get("_csv_tables")
-        if cached is None:
-            cached = self.__dict__["_csv_tables"] = {
-                "results": _ResultsBlocks(self),
-                "summary": _flat_summary(self, frame=False),
-                "metrics": _flat_metrics(self, frame=False),
-            }
-        return cached
-
-    def tables(self) -> dict:
-        """results (every test, in memory: for tables.xlsx or a script) and summary."""
-        cached = self.__dict__.get("_tables")
-        if cached is None:
-            import pandas as pd
-
-            cached = self.__dict__["_tables"] = {
-                "results": pd.DataFrame(self._columns(0, self.row_count()), copy=False),
-                "summary": _flat_summary(self),
-                "metrics": _flat_metrics(self),
-            }
-        return cached
-
-    def close(self) -> None:
-        """Remove the spool files now (they also go when the result is garbage collected)."""
-        self.spool_in.close()
-        self.spool_out.close()
-
-
-def _documented(table: Table, name: str) -> np.ndarray:
-    """A column in its documented unit: the numbers as typed when the file uses that unit, else converted."""
+    References
+    ----------
+    Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
     from ..units import conversion
 
     q = nom.QUANTITIES.get(name)
@@ -1833,7 +1418,30 @@ def _documented(table: Table, name: str) -> np.ndarray:
     return table.as_read[name] if same and name in table.as_read else table.columns[name] * q.factor
 
 
-def _warnings(wet, pend, mat, fits, laws, predictions, opt) -> list[str]:
+def run_warnings(wet, pend, mat, fits, laws, predictions, opt) -> list[str]:
+    """The run's warnings on its wet tests, fits and predictions (implausible values, models left out).
+
+    Parameters
+    ----------
+    wet, pend, mat : ndarray
+        Per test: whether it is wet, whether pendular, and its material.
+    fits : dict of str to LineFit
+        Each material's dry envelope.
+    laws : dict
+        The fitted chi laws per model and material.
+    predictions : dict of str to ModelPrediction
+        Each model's predictions.
+    opt : ShearOptions
+        The run's options.
+
+    Returns
+    -------
+    list of str
+
+    References
+    ----------
+    Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
     out = []
     n_wet, n_pend = int(wet.sum()), int(pend.sum())
     if n_wet and n_wet - n_pend > n_wet / 2:
@@ -1877,8 +1485,27 @@ def _warnings(wet, pend, mat, fits, laws, predictions, opt) -> list[str]:
     return out
 
 
-def _bootstrap(result: ShearResult, wet, mat, cond, opt: ShearOptions) -> dict:
-    """Ranking uncertainty per material (see capred.pipelines.shear_analysis.bootstrap_ranking)."""
+def bootstrap_materials(result: ShearResult, wet, mat, cond, opt: ShearOptions) -> dict:
+    """Ranking uncertainty per material (see capred.pipelines.shear_analysis.bootstrap_ranking).
+
+    Parameters
+    ----------
+    result : ShearResult
+        The run (its inputs, fits, laws and ranking).
+    wet, mat : ndarray
+        Per test: whether it is a wet test, and its material.
+    cond : ndarray
+        Condition of each test.
+    opt : ShearOptions
+        The run's options.
+
+    Returns
+    -------
+    dict of str to RankingUncertainty
+
+    References
+    ----------
+    Efron & Tibshirani (1993), doi:10.1007/978-1-4899-4541-9, ch. 9."""
     from . import shear_analysis as sa
 
     t = result.tests
@@ -1908,9 +1535,31 @@ def _bootstrap(result: ShearResult, wet, mat, cond, opt: ShearOptions) -> dict:
     return out
 
 
-def _dry_fits(table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[str, LineFit]:
+def fit_dry_envelopes(table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[str, LineFit]:
     """Per material, the dry envelope tau = c + sigma_N tan(phi) (through the origin with ``dry_fit='origin'``);
-    a material without dry tests, or whose fit is impossible, is a problem of its first row in ``table``."""
+    a material without dry tests, or whose fit is impossible, is a problem of its first row in ``table``.
+
+    Parameters
+    ----------
+    table : Table
+        The shear table read (its problems are collected there).
+    d : dict of str to ndarray
+        The derived per-test arrays.
+    mat, cond : ndarray
+        Material and condition of each test.
+    materials : list of str
+        The materials.
+    opt : ShearOptions
+        The run's options.
+
+    Returns
+    -------
+    dict of str to LineFit
+
+    References
+    ----------
+    Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
     fits: dict[str, LineFit] = {}
     for m in materials:
         of_m = mat == m
@@ -1936,10 +1585,31 @@ def _dry_fits(table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[s
     return fits
 
 
-def _saturated_fits(table: Table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[str, LineFit]:
+def fit_saturated_envelopes(table: Table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[str, LineFit]:
     """Per material, the envelope tau = c_W + sigma_N tan(phi_W) of its saturated tests (clay reconstituted from
     slurry and sheared saturated, drained: sigma'_W = sigma_N), the tau^W envelope of Pedrotti & Tarantino
-    (submitted), eq. 13; problems go into ``table``."""
+    (submitted), eq. 13; problems go into ``table``.
+
+    Parameters
+    ----------
+    table : Table
+        The shear table read (its problems are collected there).
+    d : dict of str to ndarray
+        The derived per-test arrays.
+    mat, cond : ndarray
+        Material and condition of each test.
+    materials : list of str
+        The materials.
+    opt : ShearOptions
+        The run's options.
+
+    Returns
+    -------
+    dict of str to LineFit
+
+    References
+    ----------
+    Pedrotti & Tarantino (submitted), eq. 13."""
     out: dict[str, LineFit] = {}
     for m in materials:
         sat = (mat == m) & (cond == "saturated")
@@ -1967,17 +1637,39 @@ def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions,
     """
     from . import shear_analysis as sa
 
-    d = _model_inputs(tests, wet, mat, fits, opt, saturated_fits)
+    d = model_inputs_of(tests, wet, mat, fits, opt, saturated_fits)
     laws = sa.fit_laws(d, opt.models, list(fits), opt.model_params, fits=fits)
     d = dataclasses.replace(
         d, fitted={model: {m: law.values for m, law in by_mat.items()} for model, by_mat in laws.items()}
     )
-    predictions, back = _predictions(tests, wet, d, fits, laws, opt)
-    return predictions, back, _material_values(d, wet, mat, fits, opt), laws, d
+    predictions, back = predict_models(tests, wet, d, fits, laws, opt)
+    return predictions, back, values_by_material(d, wet, mat, fits, opt), laws, d
 
 
-def _model_inputs(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions, saturated_fits=None):
-    """The esm.ModelInputs of every test: its state and its material's dry (and saturated) envelope."""
+def model_inputs_of(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions, saturated_fits=None):
+    """The esm.ModelInputs of every test: its state and its material's dry (and saturated) envelope.
+
+    Parameters
+    ----------
+    tests : dict of str to ndarray
+        The derived per-test arrays.
+    wet, mat : ndarray
+        Per test: whether it is a wet test, and its material.
+    fits : dict of str to LineFit
+        Each material's dry envelope.
+    opt : ShearOptions
+        The run's options.
+    saturated_fits : dict of str to LineFit, optional
+        Each material's saturated envelope.
+
+    Returns
+    -------
+    ModelInputs
+
+    References
+    ----------
+    Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
     names = list(fits)
     saturated_fits = saturated_fits or {}
     if len(mat) > 10_000:  # a long table: by material code (a Python list of a million floats is ~30 MB)
@@ -2023,8 +1715,32 @@ def _codes(values, names: list) -> np.ndarray:
     return out
 
 
-def _predictions(tests: dict, wet, d, fits: dict[str, LineFit], laws: dict, opt: ShearOptions):
-    """Each model's ModelPrediction and the BackAnalysis of the tests of ``d`` (rows of ``tests``)."""
+def predict_models(tests: dict, wet, d, fits: dict[str, LineFit], laws: dict, opt: ShearOptions):
+    """Each model's ModelPrediction and the BackAnalysis of the tests of ``d`` (rows of ``tests``).
+
+    Parameters
+    ----------
+    tests : dict of str to ndarray
+        The derived per-test arrays.
+    wet : ndarray of bool
+        Which tests are wet.
+    d : ModelInputs
+        The tests predicted.
+    fits : dict of str to LineFit
+        Each material's dry envelope.
+    laws : dict
+        The fitted chi laws per model and material.
+    opt : ShearOptions
+        The run's options.
+
+    Returns
+    -------
+    (dict of str to ModelPrediction, BackAnalysis)
+
+    References
+    ----------
+    Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
     from . import shear_analysis as sa
 
     c, tan_phi = d.c, d.tan_phi
@@ -2065,8 +1781,28 @@ def _scatter_variance(fits: dict[str, LineFit], material, level) -> np.ndarray:
     return out
 
 
-def _material_values(d, wet, mat, fits: dict[str, LineFit], opt: ShearOptions) -> dict[str, dict]:
-    """What a model reports per material beside the dry fit (Fredlund's phi_b), from its wet tests."""
+def values_by_material(d, wet, mat, fits: dict[str, LineFit], opt: ShearOptions) -> dict[str, dict]:
+    """What a model reports per material beside the dry fit (Fredlund's phi_b), from its wet tests.
+
+    Parameters
+    ----------
+    d : ModelInputs
+        The tests.
+    wet, mat : ndarray
+        Per test: whether it is a wet test, and its material.
+    fits : dict of str to LineFit
+        Each material's dry envelope.
+    opt : ShearOptions
+        The run's options.
+
+    Returns
+    -------
+    dict of str to dict
+
+    References
+    ----------
+    Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
     extra: dict[str, dict] = {}  # per material: what a model reports beside the dry fit (Fredlund's phi_b)
     for model in opt.models:
         per_material = esm.REGISTRY[model].material_values
@@ -2079,10 +1815,25 @@ def _material_values(d, wet, mat, fits: dict[str, LineFit], opt: ShearOptions) -
     return extra
 
 
-def _flat_summary(result: ShearResult, frame: bool = True):
+def summary_table(result: ShearResult, frame: bool = True):
     """summary.csv: one row per material, its dry envelope (``name [unit]`` headers); a DataFrame, or with
     ``frame=False`` plain columns that write the same CSV without pandas. The models' scores are metrics.csv
-    (`_flat_metrics`): one kind of record per table."""
+    (`metrics_table`): one kind of record per table.
+
+    Parameters
+    ----------
+    result : ShearResult
+    frame : bool, optional
+        A DataFrame (True) or plain columns.
+
+    Returns
+    -------
+    DataFrame or dict
+
+    References
+    ----------
+    Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
     rows = []
     for mat, fit in result.fits.items():
         f = _fit_dict(fit)
@@ -2110,8 +1861,23 @@ def _flat_summary(result: ShearResult, frame: bool = True):
     return _rows_table(rows, frame)
 
 
-def _flat_metrics(result: ShearResult, frame: bool = True):
-    """metrics.csv: one row per material (and "(all)") and model: n, RMSE, bias, R² and the best flag."""
+def metrics_table(result: ShearResult, frame: bool = True):
+    """metrics.csv: one row per material (and "(all)") and model: n, RMSE, bias, R² and the best flag.
+
+    Parameters
+    ----------
+    result : ShearResult
+    frame : bool, optional
+        A DataFrame (True) or plain columns.
+
+    Returns
+    -------
+    DataFrame or dict
+
+    References
+    ----------
+    Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
     rows = []
     for mat, by_model in list(result.metrics.items()) + [("(all)", result.metrics_overall)]:
         best = result.best_model_overall if mat == "(all)" else result.best_model.get(mat)
@@ -2141,4 +1907,14 @@ def _rows_table(rows: list[dict], frame: bool):
     return pd.DataFrame(rows)
 
 
-__all__ = ["SCHEMA", "ModelParams", "ShearBlocks", "ShearOptions", "ShearResult", "run_shear"]
+__all__ = ["SCHEMA", "ModelParams", "ShearBlocks", "ShearOptions", "ShearResult", "run_shear"]  # noqa: F822 (ShearBlocks: __getattr__)
+
+
+def __getattr__(name: str):
+    """``ShearBlocks`` (the result of a long table) lives in `capred.pipelines.shear_long`, which imports this
+    module: named here on first use, as before."""
+    if name == "ShearBlocks":
+        from .shear_long import ShearBlocks
+
+        return ShearBlocks
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

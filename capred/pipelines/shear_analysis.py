@@ -411,8 +411,12 @@ BLOCK_ELEMENTS = 262_144
 #: per wet test stays a few floats per model.
 CHECK_TESTS = 2048
 CHUNK_TESTS = 16384
-#: Wet tests of a material up to which the affine models' products are formed once and kept (~0.2 KB a test):
-#: beyond, they are formed CHUNK_TESTS tests at a time in every block (slower, memory flat).
+#: Wet tests of a material up to which the affine models' products are formed once and kept (~0.2 KB a test)
+#: and the replicates drawn and scored a block at a time. Beyond, when every model is affine, the loop turns
+#: round (`_score_long`): each chunk of CHUNK_TESTS tests forms its products once and every replicate's counts
+#: of that chunk are drawn there (memory flat, cost linear in the tests; another random stream than the block
+#: loop's, the same distribution); with a fitted law or a model scored replicate by replicate, the products are
+#: formed CHUNK_TESTS tests at a time in every block.
 KEEP_FEATURES_TESTS = 65536
 
 
@@ -527,6 +531,15 @@ def _draw(rng, dry_x, nw: int, count: int, through_origin: bool, groups="find"):
     number of distinct stresses (earlier versions multiplied the counts by a dense nd x k indicator matrix:
     quadratic when nearly every dry test has its own stress; the same decisions, the same random stream).
     """
+    U, valid = _draw_dry(rng, dry_x, count, through_origin, groups)
+    idx = rng.integers(0, nw, (count, nw))
+    U[~valid] = 0.0
+    return U, idx, valid
+
+
+def _draw_dry(rng, dry_x, count: int, through_origin: bool, groups="find"):
+    """The dry part of `_draw`: counts (count, nd) as floats and the rows whose sample fits a line (the same
+    draws, in the same order, as `_draw` makes before its wet indices)."""
     nd = dry_x.size
     code = _dry_groups(dry_x, through_origin) if isinstance(groups, str) else groups
 
@@ -551,10 +564,7 @@ def _draw(rng, dry_x, nw: int, count: int, through_origin: bool, groups="find"):
         di = rng.integers(0, nd, (bad.size, nd))
         U[bad] = counts(di)
         valid[bad] = fits(di)
-    U = U.astype(float)
-    idx = rng.integers(0, nw, (count, nw))
-    U[~valid] = 0.0
-    return U, idx, valid
+    return U.astype(float), valid
 
 
 def _dry_refit(U, dry_x, dry_y, through_origin: bool):
@@ -606,9 +616,12 @@ def bootstrap_ranking(
     expanded into six weighted sums (one matrix product for all replicates); the fitted laws are refitted
     by a damped Gauss-Newton over all replicates at once (`capred.fitting.chi_laws.batch_least_squares`);
     other models are scored replicate by replicate. Replicates are drawn and scored in blocks of
-    ``BLOCK_ELEMENTS`` counts; the affine models' coefficients are formed ``CHUNK_TESTS`` tests at a time, and
-    their weighted sums too beyond ``KEEP_FEATURES_TESTS`` wet tests, so memory stays flat (about 0.1 KB
-    per wet test beyond that, plus the material's inputs).
+    ``BLOCK_ELEMENTS`` counts; the affine models' coefficients are formed ``CHUNK_TESTS`` tests at a time.
+    Beyond ``KEEP_FEATURES_TESTS`` wet tests, when every model is affine, the loop runs over chunks of tests
+    instead (`_score_long`: each chunk's products formed once, every replicate's counts of it drawn there;
+    cost linear in the tests, memory flat, about 0.1 KB per wet test plus the material's inputs; another
+    random stream than the block loop, the same distribution); with a fitted law or a model scored
+    replicate by replicate, the products are formed a chunk at a time in every block.
 
     The same seed gives the same resamples and the same numbers; the numbers are those of the replicate-by-
     replicate computation to rounding (RMSEs to ~1e-9 relative; fitted laws to their solver tolerance).
@@ -692,9 +705,14 @@ def bootstrap_ranking(
         d_mat = d_mat.subset(slice(None)) if per_replicate else None
     col = {m: k for k, m in enumerate(models)}
     affine_cols = np.array([col[m] for m in affine], dtype=int)
+    material = _Material(d_mat, nw, dry_x, dry_y, through_origin, c0, b0, mat)
+    scoring = _Scoring(affine, affine_cols, F_once, chunks, laws, per_replicate, col, params, fitted)
     scores = np.full((replicates, len(models)), np.nan)
-    block = max(1, BLOCK_ELEMENTS // max(nw, dry_x.size, 1))
     groups = _dry_groups(dry_x, through_origin)
+    if affine and not laws and not per_replicate and nw > KEEP_FEATURES_TESTS:
+        _score_long(rng, scores, material, scoring, groups)
+        return _summarise(scores, models, ranked, seed)
+    block = max(1, BLOCK_ELEMENTS // max(nw, dry_x.size, 1))
     for first in range(0, replicates, block):
         count = min(block, replicates - first)
         U, idx, valid = _draw(rng, dry_x, nw, count, through_origin, groups)
@@ -703,74 +721,65 @@ def bootstrap_ranking(
             continue
         if kept.size < count:
             U, idx = U[kept], idx[kept]
-        _score_replicates(
-            scores,
-            first + kept,
-            U,
-            idx,
-            nw,
-            d_mat,
-            dry_x,
-            dry_y,
-            through_origin,
-            c0,
-            b0,
-            affine,
-            affine_cols,
-            F_once,
-            chunks,
-            laws,
-            per_replicate,
-            col,
-            params,
-            fitted,
-            mat,
-        )
+        _score_replicates(scores, first + kept, U, idx, material, scoring)
     return _summarise(scores, models, ranked, seed)
 
 
-def _score_replicates(
-    scores,
-    rows,
-    U,
-    idx,
-    nw,
-    d_mat,
-    dry_x,
-    dry_y,
-    through_origin,
-    c0,
-    b0,
-    affine,
-    affine_cols,
-    F_once,
-    chunks,
-    laws,
-    per_replicate,
-    col,
-    params,
-    fitted,
-    mat,
-) -> None:
-    """Each model's RMSE in the replicates ``rows`` (dry counts U, wet indices idx of ``nw`` tests) into
-    ``scores``; ``d_mat`` (the wet tests) is needed only by fitted laws and models scored replicate by
+@dataclass(frozen=True)
+class _Material:
+    """One material as the bootstrap resamples it: its wet tests (``wet``, a ModelInputs or `_Selected`; None
+    when no model needs their inputs in every replicate), their number ``nw``, its dry tests ``dry_x``,
+    ``dry_y`` [Pa], whether its dry envelope goes through the origin, the full-data envelope ``c0`` [Pa],
+    ``b0`` [-] and its name."""
+
+    wet: object
+    nw: int
+    dry_x: np.ndarray
+    dry_y: np.ndarray
+    through_origin: bool
+    c0: float
+    b0: float
+    name: str
+
+
+@dataclass(frozen=True)
+class _Scoring:
+    """How the bootstrap scores each model: the affine models' coefficients (``affine``: model -> (e, beta,
+    gamma, ok)) and their columns in the scores, their products kept once (``features``; None beyond
+    KEEP_FEATURES_TESTS wet tests, then formed a chunk of tests at a time, ``chunks``), the fitted laws and the
+    models scored replicate by replicate, each model's column, the run's ModelParams and the full-data fitted
+    laws (warm starts)."""
+
+    affine: dict
+    affine_cols: np.ndarray
+    features: np.ndarray | None
+    chunks: list
+    laws: list
+    per_replicate: list
+    col: dict
+    params: object
+    fitted: dict
+
+
+def _score_replicates(scores, rows, U, idx, material: _Material, scoring: _Scoring) -> None:
+    """Each model's RMSE in the replicates ``rows`` (dry counts U, wet indices idx of ``material.nw`` tests)
+    into ``scores``; the wet tests' inputs are needed only by fitted laws and models scored replicate by
     replicate."""
+    nw, d_mat, mat = material.nw, material.wet, material.name
+    affine, F_once, chunks = scoring.affine, scoring.features, scoring.chunks
+    laws, per_replicate, col = scoring.laws, scoring.per_replicate, scoring.col
     W = (
         np.bincount((idx + nw * np.arange(idx.shape[0])[:, None]).ravel(), minlength=idx.shape[0] * nw)
         .reshape(idx.shape)
         .astype(float)
     )
-    c, b = _dry_refit(U, dry_x, dry_y, through_origin)
-    dc, db = c - c0, b - b0
+    c, b = _dry_refit(U, material.dry_x, material.dry_y, material.through_origin)
+    dc, db = c - material.c0, b - material.b0
     if affine:  # every affine model at once: (replicates, models) arrays of its seven sums
         WF = W @ F_once if F_once is not None else sum(W[:, ch] @ _affine_features_t(affine, ch).T for ch in chunks)
-        n_ok, ee, eb, eg, bb, bg, gg = np.moveaxis(WF.reshape(-1, len(affine), 7), 2, 0)
-        dcm, dbm = dc[:, None], db[:, None]
-        ss = ee + 2 * dcm * eb + 2 * dbm * eg + dcm * dcm * bb + 2 * dcm * dbm * bg + dbm * dbm * gg
-        with np.errstate(invalid="ignore", divide="ignore"):
-            scores[rows[:, None], affine_cols] = np.where(n_ok > 0, np.sqrt(np.maximum(ss, 0.0) / n_ok), np.nan)
+        scores[rows[:, None], scoring.affine_cols] = _affine_rmse(WF, dc, db, len(affine))
     for m in laws:
-        _, r = chi_laws.LAWS[m].refit_batch(d_mat, params, c, b, W, fitted[m][mat])
+        _, r = chi_laws.LAWS[m].refit_batch(d_mat, scoring.params, c, b, W, scoring.fitted[m][mat])
         ok = np.isfinite(r)
         wo = np.where(ok, W, 0.0)
         n_ok = wo.sum(axis=1)
@@ -786,6 +795,73 @@ def _score_replicates(
             ok = np.isfinite(pred)
             if ok.any():
                 scores[rows[k], col[m]] = float(np.sqrt(np.mean((pred[ok] - w.tau_max[ok]) ** 2)))
+
+
+def _affine_rmse(WF: np.ndarray, dc: np.ndarray, db: np.ndarray, models: int) -> np.ndarray:
+    """(replicates, models) RMSEs of the affine models from their seven weighted sums per replicate (``WF``,
+    replicates x 7 models, as `_affine_features` orders them) and each replicate's envelope shift ``dc`` [Pa],
+    ``db`` [-] from the full-data one; NaN where a replicate holds no test a model predicts."""
+    n_ok, ee, eb, eg, bb, bg, gg = np.moveaxis(WF.reshape(-1, models, 7), 2, 0)
+    dcm, dbm = dc[:, None], db[:, None]
+    ss = ee + 2 * dcm * eb + 2 * dbm * eg + dcm * dcm * bb + 2 * dcm * dbm * bg + dbm * dbm * gg
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(n_ok > 0, np.sqrt(np.maximum(ss, 0.0) / n_ok), np.nan)
+
+
+def _score_long(rng, scores: np.ndarray, material: _Material, scoring: _Scoring, groups) -> None:
+    """The affine models' RMSEs of every replicate of a long material (beyond KEEP_FEATURES_TESTS wet tests, every
+    model affine) into ``scores``, chunk by chunk of wet tests: linear in the tests, memory flat.
+
+    First the dry refit of every replicate (`_draw_dry`, a block of replicates at a time). Then each
+    replicate's ``nw`` wet draws are split among the chunks of CHUNK_TESTS tests by a multinomial draw with
+    probabilities proportional to the chunks' sizes, and drawn uniformly within each chunk: jointly the same
+    multinomial(nw, 1/nw) counts per test as ``nw`` uniform draws over all tests (`_draw`). Each chunk forms
+    its products (`_affine_features_t`) once and adds, for a group of replicates at a time, their counts
+    times the products to the replicates' seven sums per model; the RMSEs follow from the sums
+    (`_affine_rmse`). The block loop of `bootstrap_ranking` formed every chunk's products again in every block
+    of one to four replicates: a cost step of 2-4x per test beyond KEEP_FEATURES_TESTS (README, Performance).
+    """
+    replicates = scores.shape[0]
+    dry_x, nw = material.dry_x, material.nw
+    dc, db = np.full(replicates, np.nan), np.full(replicates, np.nan)
+    valid = np.zeros(replicates, bool)
+    block = max(1, BLOCK_ELEMENTS // max(dry_x.size, 1))
+    for first in range(0, replicates, block):
+        count = min(block, replicates - first)
+        U, ok = _draw_dry(rng, dry_x, count, material.through_origin, groups)
+        kept = np.flatnonzero(ok)
+        if kept.size:
+            c, b = _dry_refit(U[kept], dry_x, material.dry_y, material.through_origin)
+            dc[first + kept], db[first + kept] = c - material.c0, b - material.b0
+            valid[first + kept] = True
+    WF = np.zeros((replicates, 7 * len(scoring.affine)))
+    for chunk, first, W in _wet_counts(rng, nw, replicates, scoring.chunks):
+        if first == 0:
+            F_t = _affine_features_t(scoring.affine, chunk)
+        WF[first : first + W.shape[0]] += W @ F_t.T
+    rows = np.flatnonzero(valid)
+    scores[rows[:, None], scoring.affine_cols] = _affine_rmse(WF[rows], dc[rows], db[rows], len(scoring.affine))
+
+
+def _wet_counts(rng, nw: int, replicates: int, chunks: list):
+    """Each replicate's counts of the wet tests (nw draws with replacement), chunk by chunk.
+
+    Yields (chunk, first replicate, W): W (group, tests of the chunk) holds the counts of the replicates
+    ``first`` .. ``first + group - 1`` in the chunk, for every chunk in turn and, within it, groups of
+    BLOCK_ELEMENTS // CHUNK_TESTS replicates from the first. A replicate's counts over all chunks sum to
+    ``nw``: how many of its draws fall in each chunk is multinomial (chunk sizes / nw), then drawn uniformly
+    within the chunk.
+    """
+    sizes = np.array([ch.stop - ch.start for ch in chunks], dtype=np.int64)
+    in_chunk = rng.multinomial(nw, sizes / nw, size=replicates)  # (replicates, chunks)
+    group = max(1, BLOCK_ELEMENTS // int(sizes.max()))
+    for j, chunk in enumerate(chunks):
+        k = int(sizes[j])
+        for first in range(0, replicates, group):
+            n = in_chunk[first : first + group, j]
+            draws = rng.integers(0, k, int(n.sum()))
+            draws += np.repeat(np.arange(n.size) * k, n)
+            yield chunk, first, np.bincount(draws, minlength=n.size * k).reshape(n.size, k).astype(float)
 
 
 def _affine_features(affine: dict, rows: slice) -> np.ndarray:

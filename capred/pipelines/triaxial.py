@@ -16,7 +16,7 @@ import numpy as np
 
 from ..errors import CapredError, FitError, OptionError
 from ..fitting.linear import LineFit, fit_line
-from ..io.table import Column, Table, read_table
+from ..io import Column, Table, read_table
 from ..nomenclature import QUANTITIES as _GLOSSARY
 from ..parameters import Parameter, Parameters, deprecated, fit_report
 from ..physics import triaxial as tx

@@ -30,8 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError, Problem
-from ..io.grid import SPREADSHEET_SUFFIXES, source_path
-from ..io.table import Column, Table, _key, read_table
+from ..io import SPREADSHEET_SUFFIXES, Column, Table, header_key, read_table, source_path
 from ..nomenclature import column_aliases
 from ..units import parse_quantity
 from .triaxial_records import Curve
@@ -117,11 +116,13 @@ SCHEMA += [
     Column("stage", "text", None, "stage number of the export", ("stage_number", "stage_no", "stage_nr")),
     Column("B", "dimensionless", "-", "Skempton's pore-pressure coefficient B", ("b_value", "skempton_b")),
 ]
-SCHEMA += [Column(_key(name), "text", None, f"{name} (instrument export; not used)", ()) for name in EXPORT_COLUMNS]
+SCHEMA += [
+    Column(header_key(name), "text", None, f"{name} (instrument export; not used)", ()) for name in EXPORT_COLUMNS
+]
 
 #: the pressures read at the peak of a curve (an export's columns)
 PEAK_PRESSURES = ("radial_pressure", "back_pressure", "pore_pressure", "air_pressure")
-_ID_KEYS = tuple(_key(k) for k in ("test_id", *column_aliases("test_id")))
+_ID_KEYS = tuple(header_key(k) for k in ("test_id", *column_aliases("test_id")))
 _D0_KEYS = ("initial_diameter", "diameter", "d0", "sample_diameter", "specimen_diameter")
 _H0_KEYS = ("initial_height", "height", "h0", "sample_height", "specimen_height")
 _KEY_UNIT = re.compile(r"^(?P<name>.*?)\s*[\[(]\s*(?P<unit>[^\])]+?)\s*[\])]\s*$")
@@ -231,7 +232,7 @@ def _meta(metadata: dict[str, str], keys) -> tuple[str, str] | None:
     for key, value in metadata.items():
         m = _KEY_UNIT.match(key)
         name, unit = (m.group("name"), m.group("unit")) if m else (key, "")
-        if _key(name) in keys:
+        if header_key(name) in keys:
             return value, unit
     return None
 

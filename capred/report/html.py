@@ -298,28 +298,12 @@ def _rows_markup(columns: list[list[str]], left: list[bool]):
 _FLOAT_FORMAT = f"%.{SIGNIFICANT}g\x00"
 
 
-def _body(rows: list[list[str]], left: list[bool]):
-    """The <tr> rows of a table as one escaped HTML string (built here: a template loop per cell costs ~35 ms
-    a report)."""
-    from html import escape
-
-    from markupsafe import Markup
-
-    open_cell = ['<td class="l">' if is_left else "<td>" for is_left in left]
-    return Markup(
-        "\n".join(
-            "<tr>" + "".join(o + escape(cell, quote=False) + "</td>" for o, cell in zip(open_cell, row)) + "</tr>"
-            for row in rows
-        )
-    )
-
-
 _LEFT = ("test_id", "case", "material", "condition", "flags", "status", "branch", "group", "source")
 
 
 def _created() -> str:
     """The report's date: SOURCE_DATE_EPOCH when set (reproducible builds), else now (UTC, ISO 8601)."""
-    from ..io.spreadsheet_out import source_date_epoch
+    from ..io import source_date_epoch
 
     when = source_date_epoch() or datetime.now(UTC)
     return when.replace(microsecond=0).isoformat()

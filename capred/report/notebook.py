@@ -30,12 +30,12 @@ REPR_HTML_LIMIT = 30_000
 
 def _png(sheet, dpi: int) -> bytes:
     """PNG bytes of a sheet's composite: each panel drawn once at ``dpi``, pasted under the title."""
-    from .sheets import Sheet, _freeze_layout, compose_raster, encode_png, journal_style, panel_figure, raster
+    from .sheets import Sheet, compose_raster, encode_png, freeze_layout, journal_style, panel_figure, raster
 
     if not isinstance(sheet, Sheet):  # a plain figure function
         with journal_style():
             fig = sheet()
-            _freeze_layout(fig)
+            freeze_layout(fig)
         return encode_png(raster(fig), fig.dpi)
     images = [raster(panel_figure(sheet, p, dpi)) for p in sheet.panels]
     return encode_png(compose_raster(sheet, images, dpi), dpi)
@@ -223,17 +223,17 @@ def report_html(result, dpi: int = REPORT_DPI) -> str:
         The self-contained HTML document ``write_outputs`` writes as report.html.
     """
     from .html import render_html
-    from .outputs import _img_markup, _on_request_entry
+    from .outputs import img_markup, on_request_entry
     from .sheets import Sheet, sheet_layout
 
     drawn = {}
     for name, sheet in figures(result).items():
         if getattr(sheet, "on_request", False):
-            drawn[name] = _on_request_entry(sheet)
+            drawn[name] = on_request_entry(sheet)
             continue
         width = sheet_layout(sheet)[1] if isinstance(sheet, Sheet) else 180.0
         drawn[name] = {
-            "svg": _img_markup(name, _png(sheet, dpi), width),
+            "svg": img_markup(name, _png(sheet, dpi), width),
             "caption": getattr(sheet, "caption", "") or "",
             "title": str(getattr(sheet, "title", "") or ""),
             "panels": [(p.name, p.caption) for p in getattr(sheet, "panels", ())],

@@ -96,7 +96,7 @@ def write_outputs(
     list of Path
         The files written.
     """
-    from ..io.writers import write_run
+    from ..io import write_run
     from ..progress import showing, task, wanted
 
     if figures not in FIGURE_SETS:
@@ -136,7 +136,26 @@ def _title(sheet) -> str:
     return str(getattr(sheet, "title", "") or "")
 
 
-def _img_markup(name: str, png: bytes, width_mm: float) -> str:
+def img_markup(name: str, png: bytes, width_mm: float) -> str:
+    """An ``<img>`` element holding a PNG inline (base64 data URI) at a width in millimetres.
+
+    Parameters
+    ----------
+    name : str
+        Alternative text.
+    png : bytes
+        The PNG file.
+    width_mm : float
+        Displayed width [mm].
+
+    Returns
+    -------
+    str
+        HTML.
+
+    References
+    ----------
+    RFC 2397, The "data" URL scheme, doi:10.17487/RFC2397."""
     import base64
     import html
 
@@ -172,17 +191,17 @@ def _draw_sheet(name: str, sheet, folder, opts: FigureOptions) -> tuple[dict, li
         written.append(fname)
 
     if not isinstance(sheet, Sheet):  # a plain figure function: one composite, no panels
-        from .sheets import _freeze_layout
+        from .sheets import freeze_layout
 
         with journal_style():
             fig = sheet()
-            _freeze_layout(fig)
+            freeze_layout(fig)
         if want_png:
             png = encode_png(raster(fig), fig.dpi)
             if "png" in opts.formats:
                 folder.path_for(f"{name}.png").write_bytes(png)
                 written.append(f"{name}.png")
-            entry["svg"] = _img_markup(name, png, fig.get_figwidth() * 25.4)
+            entry["svg"] = img_markup(name, png, fig.get_figwidth() * 25.4)
         for fmt in vector:
             save(fig, f"{name}.{fmt}", fmt)
         return _html_svg(entry, name, folder, opts), written
@@ -195,7 +214,7 @@ def _draw_sheet(name: str, sheet, folder, opts: FigureOptions) -> tuple[dict, li
             if "png" in opts.formats:
                 folder.path_for(f"{name}.png").write_bytes(png)
                 written.append(f"{name}.png")
-            entry["svg"] = _img_markup(name, png, sheet_layout(sheet)[1])
+            entry["svg"] = img_markup(name, png, sheet_layout(sheet)[1])
         for fmt in vector:
             save(fig, f"{name}.{fmt}", fmt)
         return _html_svg(entry, name, folder, opts), written
@@ -212,7 +231,7 @@ def _draw_sheet(name: str, sheet, folder, opts: FigureOptions) -> tuple[dict, li
                 fname = f"figures/{name}_{p.name}.png"
                 folder.path_for(fname).write_bytes(encode_png(img, opts.dpi))
                 written.append(fname)
-        entry["svg"] = _img_markup(name, png, sheet_layout(sheet)[1])
+        entry["svg"] = img_markup(name, png, sheet_layout(sheet)[1])
     if vector:
         composite = compose(sheet, opts.dpi, pfigs)
         for fmt in vector:
@@ -243,7 +262,7 @@ def _write_figures(result, folder, opts: FigureOptions) -> dict:
 
     every = list(figures(result).items())
     sheets = [(k, s) for k, s in every if opts.figures == "all" or not getattr(s, "on_request", False)]
-    skipped = {k: _on_request_entry(s) for k, s in every if (k, s) not in sheets}
+    skipped = {k: on_request_entry(s) for k, s in every if (k, s) not in sheets}
     if not sheets:
         return skipped
     if opts.panels:
@@ -267,9 +286,23 @@ def _write_figures(result, folder, opts: FigureOptions) -> dict:
     return {name: drawn.get(name) or skipped[name] for name, _ in every}
 
 
-def _on_request_entry(sheet) -> dict:
+def on_request_entry(sheet) -> dict:
     """report.html's entry of a sheet not drawn (drawn on request only): no picture, a caption saying how to
-    have it."""
+    have it.
+
+    Parameters
+    ----------
+    sheet : Sheet
+        The sheet left undrawn.
+
+    Returns
+    -------
+    dict
+        The entry, as the report's template reads it.
+
+    References
+    ----------
+    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
     what = getattr(sheet, "title", "") or ""
     return {
         "svg": "",
@@ -284,7 +317,7 @@ def _parallel(cost: list[int]) -> bool:
     """Two processes for several sheets with enough panels (PARALLEL_MIN_PANELS), when a second core is free
     (`capred.io.writers.second_core_free`: on a busy shared machine the fork's extra CPU buys no time,
     benchmarks/bench_one_path.py). CAPRED_FIGURE_PROCESSES=1 or 2 decides instead."""
-    from ..io.writers import second_core_free
+    from ..io import second_core_free
 
     if len(cost) < 2:
         return False

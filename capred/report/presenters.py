@@ -38,7 +38,7 @@ def _none(result) -> dict:
 def _shear_figures(result) -> dict:
     import numpy as np
 
-    from ..io.writers import safe_name
+    from ..io import safe_name
     from .shear_figures import sheet_capillary_stress, sheet_curves, sheet_shear_report
 
     taken: set[str] = set()

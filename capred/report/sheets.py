@@ -372,8 +372,20 @@ def _fit(fig, renderer, pad_mm: float = PAD_MM, axes=None, region=None) -> None:
         ax.set_position((x0 / W + (p.x0 - old.x0) * sx, y0 / H + (p.y0 - old.y0) * sy, p.width * sx, p.height * sy))
 
 
-def _freeze_layout(fig) -> None:
-    """Run the figure's layout engine once, then switch it off: later draws and saves keep these positions."""
+def freeze_layout(fig) -> None:
+    """Run the figure's layout engine once, then switch it off: later draws and saves keep these positions.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+
+    Returns
+    -------
+    None
+
+    References
+    ----------
+    Matplotlib layout engines, https://matplotlib.org/stable/api/layout_engine_api.html."""
     engine = fig.get_layout_engine()
     if engine is not None:
         engine.execute(fig)
