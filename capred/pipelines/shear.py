@@ -630,7 +630,7 @@ class ShearResult(Result):
         for model in self.models:
             flag = esm.REGISTRY[model].no_prediction
             if flag is not None:
-                parts.append((flag.name, wet & ~np.isfinite(self.predictions[model].tau)))
+                parts.append((flag.name, wet & ~np.isfinite(self.predictions[model].si.tau)))
         code = sum(mask.astype(int) << k for k, (_, mask) in enumerate(parts))
         names = np.array(
             [";".join(n for k, (n, _) in enumerate(parts) if c >> k & 1) for c in range(1 << len(parts))], dtype=object
@@ -652,7 +652,7 @@ class ShearResult(Result):
                 continue
             rows = {}
             for m in self.models:
-                r = self.predictions[m].tau[sel] - t["tau_max"][sel]  # the residual column, also in a long run
+                r = self.predictions[m].si.tau[sel] - t["tau_max"][sel]  # the residual column, also in a long run
                 r = r[np.isfinite(r)]
                 law = self.laws.get(m, {}).get(mat)
                 p = len(law.values) - len(law.fixed) if law is not None else 0
@@ -1283,7 +1283,7 @@ def _flat(records: dict) -> dict:
     out = {}
     for prefix, rec in records.items():
         for f in dataclasses.fields(rec):
-            v = getattr(rec, f.name)
+            v = vars(rec)[f.name]  # the stored (SI) value, past a renamed attribute's warning
             if "output" not in f.metadata or v is None:
                 continue
             if isinstance(v, tuple):
@@ -1429,7 +1429,7 @@ def _run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks
                 }
             spool_out.append(cols)
             for m in opt.models:
-                taus[m][lo:hi] = preds[m].tau
+                taus[m][lo:hi] = preds[m].si.tau
             here = rows[(rows >= lo) & (rows < hi)] - lo
             for key, v in cols.items():
                 samples.setdefault(key, []).append(v[here])
@@ -1532,7 +1532,7 @@ def _scores(d: dict, wet, mat, fits, laws, predictions, opt: ShearOptions) -> di
         for m in fits:
             rows = np.flatnonzero(of_material[m] & sel)
             if rows.size:
-                out[m] = {mod: model_metrics(predictions[mod].tau[rows], d["tau_max"][rows]) for mod in opt.models}
+                out[m] = {mod: model_metrics(predictions[mod].si.tau[rows], d["tau_max"][rows]) for mod in opt.models}
         return out
 
     metrics, metrics_pend = scores(wet), scores(pend)
@@ -1540,10 +1540,12 @@ def _scores(d: dict, wet, mat, fits, laws, predictions, opt: ShearOptions) -> di
         metrics.setdefault(m, {})
     hetero = _heteroscedasticity(d, wet, of_material, fits, predictions, opt)
     overall = (
-        {mod: model_metrics(predictions[mod].tau[wet], d["tau_max"][wet]) for mod in opt.models} if wet.any() else {}
+        {mod: model_metrics(predictions[mod].si.tau[wet], d["tau_max"][wet]) for mod in opt.models} if wet.any() else {}
     )
     overall_pend = (
-        {mod: model_metrics(predictions[mod].tau[pend], d["tau_max"][pend]) for mod in opt.models} if pend.any() else {}
+        {mod: model_metrics(predictions[mod].si.tau[pend], d["tau_max"][pend]) for mod in opt.models}
+        if pend.any()
+        else {}
     )
     return {
         "metrics": metrics,
@@ -1563,7 +1565,7 @@ def _heteroscedasticity(d: dict, wet, of_material: dict, fits, predictions, opt:
         rows = np.flatnonzero(of_material[m] & wet)
         models = {}
         for mod in opt.models:
-            r = predictions[mod].tau[rows] - d["tau_max"][rows]
+            r = predictions[mod].si.tau[rows] - d["tau_max"][rows]
             ok = np.isfinite(r)
             scale = float(np.max(np.abs(d["tau_max"][rows]), initial=0.0))
             models[mod] = breusch_pagan(d["sigma_N"][rows][ok], r[ok], scale)
@@ -1871,7 +1873,7 @@ def _warnings(wet, pend, mat, fits, laws, predictions, opt) -> list[str]:
                 )
     for model in opt.models:
         flag = esm.REGISTRY[model].no_prediction
-        k = int(np.sum(wet & ~np.isfinite(predictions[model].tau))) if flag else 0
+        k = int(np.sum(wet & ~np.isfinite(predictions[model].si.tau))) if flag else 0
         if k:
             out.append(f"{model}: {k} wet tests {flag.meaning} (flag {flag.name}) and are left out of its metrics")
     return out
