@@ -125,7 +125,10 @@ class Options:
             if value is None:
                 continue
             where = self.option_name(name)
-            si = to_si(value, quantity, where, notes)
+            try:
+                si = to_si(value, quantity, where, notes)
+            except OptionError as exc:  # quote the value as the API caller gave it, not its SI reading
+                raise OptionError(as_given(str(exc), name, value, quantity)) from None
             object.__setattr__(self, name, si)
             w = plausibility_warning(quantity, si, where)
             if w:
@@ -157,6 +160,54 @@ class Options:
             if f.name in self.QUANTITIES:
                 units[f.name] = SI_UNIT[QUANTITIES[self.QUANTITIES[f.name]].kind].replace("**", "^")
         return values, units
+
+
+def as_given(message: str, name: str, value, quantity: str) -> str:
+    """An option's error message with its value quoted as the caller gave it (issue 28).
+
+    The glossary's range check shows the SI reading in the output unit (``box_area=-3`` is -3 m^2, "got -30000
+    cm^2"); a caller who typed ``-3`` must read ``-3`` back, with the unit it was read in and how to give one.
+
+    Parameters
+    ----------
+    message : str
+        The message of capred.units.to_si, starting with the option's name.
+    name : str
+        The options field (the API keyword), e.g. "box_area".
+    value : object
+        The value as given.
+    quantity : str
+        Its glossary entry (a key of capred.nomenclature.QUANTITIES).
+
+    Returns
+    -------
+    str
+        E.g. ``"box_area (--box-area): shear box area must be > 0 cm^2; you gave box_area=-3, a plain number
+        read in m^2 (-30000 cm^2); give a unit: box_area='... cm^2'"``.
+    """
+    import numbers
+    import re
+
+    from .nomenclature import QUANTITIES
+    from .units import SI_UNIT
+
+    if "you gave" in message:
+        return message
+    q = QUANTITIES[quantity]
+    m = re.search(r" \(got ([^()]*)\)$", message)
+    reading = m.group(1) if m else None
+    if m:
+        message = message[: m.start()]
+    shown = repr(value) if isinstance(value, (str, numbers.Real)) else str(value)  # a pint Quantity: "-3 cm ** 2"
+    text = f"{message}; you gave {name}={shown}"
+    plain = isinstance(value, numbers.Real) and not isinstance(value, bool)
+    si = SI_UNIT[q.kind].replace("**", "^")
+    if plain and math.isfinite(value) and q.unit not in ("-", "", si):
+        read = f" ({reading})" if reading and si != q.unit else ""
+        text += f", a plain number read in {si}{read}; give a unit: {name}='... {q.unit}'"
+    elif reading and isinstance(value, str):
+        text += f" ({reading})" if reading.replace(" ", "") != value.replace(" ", "") else ""
+    return text
 
 
 def _plain(v):
