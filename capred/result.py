@@ -128,7 +128,9 @@ class Options:
             try:
                 si = to_si(value, quantity, where, notes)
             except OptionError as exc:  # quote the value as the API caller gave it, not its SI reading
-                raise OptionError(as_given(str(exc), name, value, quantity)) from None
+                err = OptionError(as_given(str(exc), name, value, quantity))
+                err.as_given = True  # quoted: a subclass's own quoting leaves it as it is
+                raise err from None
             object.__setattr__(self, name, si)
             w = plausibility_warning(quantity, si, where)
             if w:
@@ -165,8 +167,10 @@ class Options:
 def as_given(message: str, name: str, value, quantity: str) -> str:
     """An option's error message with its value quoted as the caller gave it (issue 28).
 
-    The glossary's range check shows the SI reading in the output unit (``box_area=-3`` is -3 m^2, "got -30000
-    cm^2"); a caller who typed ``-3`` must read ``-3`` back, with the unit it was read in and how to give one.
+    The glossary's range check shows the SI reading in the output unit: ``box_area=-3`` (a plain number, read in
+    m^2) reads "(got -30000 cm^2)", a value the caller never typed. The message keeps that reading beside the
+    value as given, says which unit a plain number is read in and how to give one; a string is quoted as typed
+    (with its reading where its unit is not the output unit).
 
     Parameters
     ----------
@@ -182,8 +186,8 @@ def as_given(message: str, name: str, value, quantity: str) -> str:
     Returns
     -------
     str
-        E.g. ``"box_area (--box-area): shear box area must be > 0 cm^2; you gave box_area=-3, a plain number
-        read in m^2 (-30000 cm^2); give a unit: box_area='... cm^2'"``.
+        E.g. ``"box_area (--box-area): shear box area must be > 0 cm^2 (got box_area=-3, a plain number read in
+        m^2, that is -30000 cm^2; give a unit, e.g. box_area='-3 cm^2')"``.
     """
     import numbers
     import re
@@ -191,23 +195,24 @@ def as_given(message: str, name: str, value, quantity: str) -> str:
     from .nomenclature import QUANTITIES
     from .units import SI_UNIT
 
-    if "you gave" in message:
-        return message
     q = QUANTITIES[quantity]
     m = re.search(r" \(got ([^()]*)\)$", message)
     reading = m.group(1) if m else None
-    if m:
-        message = message[: m.start()]
-    shown = repr(value) if isinstance(value, (str, numbers.Real)) else str(value)  # a pint Quantity: "-3 cm ** 2"
-    text = f"{message}; you gave {name}={shown}"
-    plain = isinstance(value, numbers.Real) and not isinstance(value, bool)
-    si = SI_UNIT[q.kind].replace("**", "^")
-    if plain and math.isfinite(value) and q.unit not in ("-", "", si):
-        read = f" ({reading})" if reading and si != q.unit else ""
-        text += f", a plain number read in {si}{read}; give a unit: {name}='... {q.unit}'"
-    elif reading and isinstance(value, str):
-        text += f" ({reading})" if reading.replace(" ", "") != value.replace(" ", "") else ""
-    return text
+    base = message[: m.start()] if m else message
+    that = f", that is {reading}" if reading else ""
+    if isinstance(value, str):
+        if reading is not None and reading.replace(" ", "") == value.strip().replace(" ", ""):
+            that = ""  # the reading is the value as typed
+        return f"{base} (got {name}={value!r}{that})"
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        si = SI_UNIT[q.kind].replace("**", "^")
+        if not math.isfinite(value) or q.unit in ("-", "", si):
+            return f"{base} (got {name}={value!r})"
+        return (
+            f"{base} (got {name}={value!r}, a plain number read in {si}{that}; give a unit, "
+            f"e.g. {name}='{value!r} {q.unit}')"
+        )
+    return f"{base} (got {value}{that})"  # a pint Quantity, as it prints
 
 
 def _plain(v):

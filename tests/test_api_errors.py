@@ -2,7 +2,7 @@
 
 ``ShearOptions(box_area=-3)`` used to answer "... (got -30000 cm^2)": the SI reading of a plain number, which
 the caller never typed. Every Options class now says ``box_area=-3`` (what was typed), the unit a plain number
-is read in, and how to give a unit; a string keeps its own spelling.
+is read in (with the reading), and how to give a unit; a string is quoted in its own spelling.
 """
 
 from __future__ import annotations
@@ -51,7 +51,7 @@ def test_value_quoted_as_given(cls, name):
         except OptionError as exc:
             text = str(exc)
             assert text.startswith(name), text
-            assert f"you gave {name}={bad!r}" in text, text
+            assert f"(got {name}={bad!r}" in text, text
             return
     pytest.fail(f"{cls.__name__}({name}=...) accepted -3, 3.5e12 and -3.5e12")
 
@@ -62,24 +62,27 @@ def test_box_area_plain_number():
     with pytest.raises(OptionError) as err:
         ShearOptions(box_area=-3)
     text = str(err.value)
-    assert text.startswith("box_area (--box-area): shear box area must be > 0 cm^2; you gave box_area=-3")
-    assert "a plain number read in m^2 (-30000 cm^2)" in text
-    assert "give a unit: box_area='... cm^2'" in text
+    assert text == (
+        "box_area (--box-area): shear box area must be > 0 cm^2 (got box_area=-3, a plain number read in m^2, "
+        "that is -30000 cm^2; give a unit, e.g. box_area='-3 cm^2')"
+    )
     assert "got -30000" not in text  # the SI reading is never presented as what the caller gave
 
 
 def test_string_kept_as_typed():
-    """A value with a unit is quoted in the caller's spelling; nothing about plain numbers is added."""
+    """A value with a unit is quoted in the caller's spelling, with its reading where the units differ."""
     with pytest.raises(OptionError) as err:
         ShearOptions(box_area="-3 cm^2")
-    text = str(err.value)
-    assert text.endswith("you gave box_area='-3 cm^2'") and "plain number" not in text
-    with pytest.raises(OptionError, match=r"gamma_w \(--gamma-w\): .*you gave gamma_w='-9.81 kN/m\^3'$"):
+    assert str(err.value) == "box_area (--box-area): shear box area must be > 0 cm^2 (got box_area='-3 cm^2')"
+    with pytest.raises(OptionError) as err:
+        ShearOptions(box_area="-3 m^2")
+    assert str(err.value).endswith("(got box_area='-3 m^2', that is -30000 cm^2)")
+    with pytest.raises(OptionError, match=r"gamma_w \(--gamma-w\): .*\(got gamma_w='-9.81 kN/m\^3'\)$"):
         ShearOptions(gamma_w="-9.81 kN/m^3")
 
 
 def test_unit_of_wrong_kind_quoted():
-    with pytest.raises(OptionError, match=r"not a unit of area.*you gave box_area='3 kPa'"):
+    with pytest.raises(OptionError, match=r"not a unit of area.*\(got box_area='3 kPa'\)$"):
         ShearOptions(box_area="3 kPa")
 
 
@@ -87,7 +90,7 @@ def test_plain_number_in_output_unit_gets_no_hint():
     """An angle's plain number is read in degrees, the unit users type: no 'give a unit' advice."""
     with pytest.raises(OptionError) as err:
         TriaxialOptions(c_eff=0, phi_eff=95)
-    assert str(err.value).endswith("you gave phi_eff=95")
+    assert str(err.value).endswith("(got phi_eff=95)")
 
 
 def test_triaxial_confidence_and_pairs():

@@ -312,7 +312,7 @@ def _as_given(options: Options, exc: Exception, given: dict) -> str:
     from ..units import SI_UNIT
 
     text = str(exc)
-    if "; you gave " in text:  # quoted already by capred.result.Options (as_given)
+    if getattr(exc, "as_given", False):  # quoted already by capred.result.Options (as_given)
         return text
     for name, value in given.items():
         if value is None or not text.startswith(options.option_name(name)):
