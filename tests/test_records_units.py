@@ -158,3 +158,28 @@ def test_cli_reads_no_deprecated_name(tmp_path):
         res = CliRunner().invoke(app, ["shear", "--sample", "--figures", "all", "--out", str(tmp_path / "o")])
     assert res.exit_code == 0, res.output
     assert (tmp_path / "o" / "results.csv").exists()
+
+
+def test_user_units_on_any_record():
+    """The decorator derives the attribute from the declared unit for any record: 1/kPa -> ``_per_kPa``, mm ->
+    ``_mm``; a field without a scale keeps its one name. 2e-4 1/Pa = 0.2 1/kPa; 0.002 m = 2 mm (factors of the
+    declarations)."""
+    from capred.result import output, unit_suffix, user_units
+
+    @user_units
+    @dataclasses.dataclass(frozen=True, eq=False)
+    class Toy:
+        alpha: np.ndarray = output("alpha_per_kPa", "alpha", "1/kPa", 1e3)
+        radius: np.ndarray = output("radius_mm", "radius", "mm", 1e3)
+        n: np.ndarray = output("n", "n")
+
+    t = Toy(alpha=np.array([2e-4]), radius=np.array([0.002]), n=np.array([1.5]))
+    assert Toy.RENAMED == {"alpha": "alpha_per_kPa", "radius": "radius_mm"}
+    assert_allclose(t.alpha_per_kPa, [0.2], rtol=1e-15)
+    assert_allclose(t.radius_mm, [2.0], rtol=1e-15)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", DeprecationWarning)
+        assert t.n[0] == 1.5  # not renamed: no warning
+    with pytest.warns(DeprecationWarning, match=r"Toy\.alpha \[1/Pa\].*Toy\.alpha_per_kPa \[1/kPa\]"):
+        assert t.alpha[0] == 2e-4
+    assert unit_suffix("cm^3") == "cm3" and unit_suffix("N/m") == "N_per_m"
