@@ -693,28 +693,136 @@ def season_tables(root: Path, outcomes: list[Outcome]) -> tuple[dict, dict]:
         ``(season, details)``: the table of runs and, per command, its table of detail rows.
     """
     root = Path(root)
-    rows, details = [], {}
+    details = {}
+    for o in outcomes:
+        for r in o.season:
+            details.setdefault(o.command, []).append({"input": relative(o.source, root), **r})
+    return season_table(season_runs(root, outcomes)), {c: _with_units(season_columns(r)) for c, r in details.items()}
+
+
+# --- season.csv as typed records: one SeasonRun per run, each field declaring its header once ------------
+def season_field(unit: str | None = None, description: str = ""):
+    """A field of :class:`SeasonRun`: its header is the field's name, with ``[unit]`` for a number.
+
+    Parameters
+    ----------
+    unit : str or None, optional
+        Unit of a numeric column (``"-"`` for a count); None for text.
+    description : str, optional
+        What the column holds (the README's season.csv table).
+
+    Returns
+    -------
+    dataclasses.Field
+    """
+    return field(default=None, metadata={"unit": unit, "description": description})
+
+
+@dataclass(frozen=True)
+class SeasonRun:
+    """One run of a batch as season.csv gives it: what every command shares.
+
+    Attributes
+    ----------
+    command : str
+        The command run.
+    input : str
+        Its input, relative to the batch root.
+    status : str
+        ``ok``, ``failed``, ``crashed`` or ``interrupted``.
+    reason : str
+        Why a run did not succeed, on one line ("" when ok).
+    material : str
+        The materials (or branches, envelopes) of its season rows, ``; ``-separated.
+    headline : str
+        The run's main results in a line, with labels and units.
+    warnings : int or None
+        How many warnings the run gave [-] (None unless ok).
+    report : str
+        Its report.html, relative to the batch root ("" when none).
+    """
+
+    command: str = season_field(description="the command run")
+    input: str = season_field(description="its input, relative to the batch root")
+    status: str = season_field(description="ok, failed, crashed or interrupted")
+    reason: str = season_field(description="why a run did not succeed")
+    material: str = season_field(description="the materials, branches or envelopes of its results")
+    headline: str = season_field(description="its main results in a line")
+    warnings: int | None = season_field("-", "how many warnings the run gave")
+    report: str = season_field(description="its report.html, relative to the batch root")
+
+    @classmethod
+    def header(cls, f) -> str:
+        """The CSV and season.html header of field ``f``: ``name`` (text) or ``name [unit]`` (a number).
+
+        Parameters
+        ----------
+        f : dataclasses.Field
+            A field of SeasonRun.
+
+        Returns
+        -------
+        str
+        """
+        unit = f.metadata.get("unit")
+        return f.name if unit is None else f"{f.name} [{unit}]"
+
+
+def season_runs(root: Path, outcomes: list[Outcome]) -> list[SeasonRun]:
+    """The season record of every run of a batch, in the order of ``outcomes``.
+
+    Parameters
+    ----------
+    root : Path
+        The batch root folder (paths are written relative to it).
+    outcomes : list of Outcome
+        The outcome of every job.
+
+    Returns
+    -------
+    list of SeasonRun
+    """
+    root = Path(root)
+    runs = []
     for o in outcomes:
         report = Path(o.out_dir) / "report.html"
         link = report.relative_to(root).as_posix() if o.ok and report.exists() and _under(report, root) else ""
         labels = [next((v for v in r.values() if isinstance(v, str)), "") for r in o.season]
-        rows.append(
-            {
-                "command": o.command,
-                "input": relative(o.source, root),
-                "status": o.status,
-                "reason": one_line(o.message) if not o.ok else "",
-                "material": "; ".join(x for x in dict.fromkeys(labels) if x),
-                "headline": o.headline,
-                "warnings": o.warnings if o.ok else None,
-                "report": link,
-            }
+        runs.append(
+            SeasonRun(
+                command=o.command,
+                input=relative(o.source, root),
+                status=o.status,
+                reason=one_line(o.message) if not o.ok else "",
+                material="; ".join(x for x in dict.fromkeys(labels) if x),
+                headline=o.headline,
+                warnings=o.warnings if o.ok else None,
+                report=link,
+            )
         )
-        for r in o.season:
-            details.setdefault(o.command, []).append({"input": relative(o.source, root), **r})
-    headers = {"warnings": "warnings [-]"}
-    table = {headers.get(k, k): v for k, v in season_columns(rows).items()}
-    return table, {c: _with_units(season_columns(r)) for c, r in details.items()}
+    return runs
+
+
+def season_table(runs: list[SeasonRun]) -> dict:
+    """season.csv's columns from its records: ``{header: array}``, headers from the fields' declarations.
+
+    Parameters
+    ----------
+    runs : list of SeasonRun
+        The runs.
+
+    Returns
+    -------
+    dict
+        Header -> column (as :func:`season_columns` types it); every field's column, even for no run.
+    """
+    import dataclasses
+
+    import numpy as np
+
+    fields = dataclasses.fields(SeasonRun)
+    cols = season_columns([{f.name: getattr(r, f.name) for f in fields} for r in runs])
+    return {SeasonRun.header(f): cols.get(f.name, np.array([], dtype=object)) for f in fields}
 
 
 def _under(path: Path, root: Path) -> bool:

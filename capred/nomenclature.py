@@ -89,6 +89,9 @@ QUANTITIES: dict[str, Quantity] = {
     # calculators
     "break_tension": Quantity("σ_b", "kPa", 1e-3, "pressure", "break tension of a sand prism", 0.0, None, True),
     "friction_angle": Quantity("ρ", "deg", 1.0, "angle", "friction angle of the sand", 0.0, 90.0, True, True),
+    "P_kmax": Quantity("P_kmax", "kPa", 1e-3, "pressure", "maximal capillary pressure of a sand prism (Bernatzik)"),
+    "capillary_rise": Quantity("h_c", "cm", 1e2, "length", "capillary rise P_kmax/γ_w"),
+    "P_kmax_over_sigma_b": Quantity("P_kmax/σ_b", "-", 1.0, "dimensionless", "P_kmax over the break tension"),
     "kappa": Quantity("κ", "-", 1.0, "dimensionless", "slope of the elastic line in e-ln p'", 0.0, None, True),
     # the Python name of that slope (``kappa`` stays the CSV column and JSON key of `capred skempton-b`)
     "kappa_elastic": Quantity("κ", "-", 1.0, "dimensionless", "slope of the elastic line in e-ln p'", 0.0, None, True),

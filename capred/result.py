@@ -123,7 +123,12 @@ class Options:
             if value is None:
                 continue
             where = self.option_name(name)
-            si = to_si(value, quantity, where, notes)
+            try:
+                si = to_si(value, quantity, where, notes)
+            except OptionError as exc:  # quote the value as the API caller gave it, not its SI reading
+                err = OptionError(as_given(str(exc), name, value, quantity))
+                err.as_given = True  # quoted: a subclass's own quoting leaves it as it is
+                raise err from None
             object.__setattr__(self, name, si)
             w = plausibility_warning(quantity, si, where)
             if w:
@@ -155,6 +160,57 @@ class Options:
             if f.name in self.QUANTITIES:
                 units[f.name] = SI_UNIT[QUANTITIES[self.QUANTITIES[f.name]].kind].replace("**", "^")
         return values, units
+
+
+def as_given(message: str, name: str, value, quantity: str) -> str:
+    """An option's error message with its value quoted as the caller gave it (issue 28).
+
+    The glossary's range check shows the SI reading in the output unit: ``box_area=-3`` (a plain number, read in
+    m^2) reads "(got -30000 cm^2)", a value the caller never typed. The message keeps that reading beside the
+    value as given, says which unit a plain number is read in and how to give one; a string is quoted as typed
+    (with its reading where its unit is not the output unit).
+
+    Parameters
+    ----------
+    message : str
+        The message of capred.units.to_si, starting with the option's name.
+    name : str
+        The options field (the API keyword), e.g. "box_area".
+    value : object
+        The value as given.
+    quantity : str
+        Its glossary entry (a key of capred.nomenclature.QUANTITIES).
+
+    Returns
+    -------
+    str
+        E.g. ``"box_area (--box-area): shear box area must be > 0 cm^2 (got box_area=-3, a plain number read in
+        m^2, that is -30000 cm^2; give a unit, e.g. box_area='-3 cm^2')"``.
+    """
+    import numbers
+    import re
+
+    from .nomenclature import QUANTITIES
+    from .units import SI_UNIT
+
+    q = QUANTITIES[quantity]
+    m = re.search(r" \(got ([^()]*)\)$", message)
+    reading = m.group(1) if m else None
+    base = message[: m.start()] if m else message
+    that = f", that is {reading}" if reading else ""
+    if isinstance(value, str):
+        if reading is not None and reading.replace(" ", "") == value.strip().replace(" ", ""):
+            that = ""  # the reading is the value as typed
+        return f"{base} (got {name}={value!r}{that})"
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        si = SI_UNIT[q.kind].replace("**", "^")
+        if not math.isfinite(value) or q.unit in ("-", "", si):
+            return f"{base} (got {name}={value!r})"
+        return (
+            f"{base} (got {name}={value!r}, a plain number read in {si}{that}; give a unit, "
+            f"e.g. {name}='{value!r} {q.unit}')"
+        )
+    return f"{base} (got {value}{that})"  # a pint Quantity, as it prints
 
 
 def _plain(v):
@@ -249,10 +305,180 @@ def record_outputs(record) -> list[tuple[str, Output, object]]:
         Fields that are None are left out.
     """
     return [
-        (f.name, f.metadata["output"], getattr(record, f.name))
+        (f.name, f.metadata["output"], field_value(record, f.name))
         for f in dataclasses.fields(record)
-        if "output" in f.metadata and getattr(record, f.name) is not None
+        if "output" in f.metadata and field_value(record, f.name) is not None
     ]
+
+
+def field_value(record, name: str):
+    """The stored value of a record's field, as the pipeline put it there (SI for a field with a ``scale``).
+
+    Reads past a renamed attribute's deprecation (see :func:`user_units`): capred's own writers use it, a
+    lab script reads the attribute in the output unit instead (``rec.tau_kPa``).
+
+    Parameters
+    ----------
+    record : dataclass instance
+        A typed record.
+    name : str
+        One of its field names.
+
+    Returns
+    -------
+    object
+        The field's value.
+    """
+    try:
+        return vars(record)[name]
+    except (KeyError, TypeError):
+        return getattr(record, name)
+
+
+def unit_suffix(unit: str) -> str:
+    """The Python-name form of an output unit: ``kPa`` -> ``kPa``, ``1/kPa`` -> ``per_kPa``, ``cm^3`` -> ``cm3``.
+
+    Parameters
+    ----------
+    unit : str
+        An output unit as headers show it.
+
+    Returns
+    -------
+    str
+        The suffix of the attribute that holds a value in that unit (``tau_kPa``).
+    """
+    s = unit.replace("1/", "per_").replace("/", "_per_").replace("^", "").replace(" ", "")
+    return s.replace("%", "pct").replace("°", "deg")
+
+
+def scale_value(value, scale: float):
+    """A field's value times ``scale``: arrays, (low, high) pairs and sampled columns alike (None stays None).
+
+    Parameters
+    ----------
+    value : ndarray, tuple of ndarray, object with ``scaled(factor)`` or None
+        A record field's value.
+    scale : float
+        Factor from the stored unit to the output unit.
+
+    Returns
+    -------
+    object
+        The value in the output unit, of the same kind.
+    """
+    import numpy as np
+
+    if value is None:
+        return None
+    if isinstance(value, tuple):
+        return tuple(scale_value(v, scale) for v in value)
+    if hasattr(value, "scaled"):
+        return value.scaled(scale)
+    return np.asarray(value, dtype=float) * scale
+
+
+class _RenamedField:
+    """The old attribute of a field stored in SI: reads warn (capred.parameters.deprecated) and give the SI value.
+
+    A data descriptor, so that the dataclass's ``__init__`` stores through it and ``dataclasses.replace`` (which
+    reads every field) stays silent.
+    """
+
+    def __init__(self, name: str, new: str, unit: str):
+        self.name, self.new, self.unit = name, new, unit
+
+    def __get__(self, obj, cls=None):
+        if obj is None:
+            return self
+        import sys
+
+        value = obj.__dict__.get(self.name)
+        if sys._getframe(1).f_code.co_filename == dataclasses.__file__:
+            return value
+        from .parameters import deprecated
+
+        owner = type(obj).__name__
+        si = {"kPa": "Pa", "MPa": "Pa", "mm": "m", "1/kPa": "1/Pa", "kPa^2": "Pa^2"}.get(self.unit, "SI")
+        return deprecated(f"{owner}.{self.name} [{si}]", f"{owner}.{self.new} [{self.unit}]", value)
+
+    def __set__(self, obj, value):
+        obj.__dict__[self.name] = value
+
+
+class SIValues:
+    """The SI values of a record's fields, read without deprecation warnings: ``rec.si.tau`` [Pa].
+
+    For code that hands a record's values to capred.physics (which works in SI). A lab script reads the
+    attributes in the JSON's units (``rec.tau_kPa``).
+
+    Parameters
+    ----------
+    record : dataclass instance
+        A record decorated with :func:`user_units`.
+    """
+
+    def __init__(self, record):
+        object.__setattr__(self, "_record", record)
+
+    def __getattr__(self, name: str):
+        try:
+            return vars(self._record)[name]
+        except KeyError:
+            raise AttributeError(f"{type(self._record).__name__} has no field {name!r}") from None
+
+    def __repr__(self) -> str:
+        return f"<SI values of {type(self._record).__name__}: {', '.join(vars(self._record))}>"
+
+
+def user_units(cls):
+    """Class decorator: a record whose fields hold SI values offers each one in its output unit.
+
+    For every output field with a unit and a scale (``output("sigma_cap_kPa", ..., "kPa", 1e-3)``) the record
+    gains the attribute ``<field>_<unit>`` (``sigma_cap_kPa``) in the unit of the JSON and console, derived from
+    the one declaration; the field's own name keeps its SI value for one release and raises a
+    DeprecationWarning naming the new attribute (README, "Renamed in this release"). ``rec.si.<field>`` reads
+    the SI value without a warning (for code that calls capred.physics). Apply above ``@dataclass``.
+
+    Parameters
+    ----------
+    cls : type
+        A dataclass whose fields were declared with :func:`output`.
+
+    Returns
+    -------
+    type
+        ``cls``, with the new attributes, a ``si`` view and a short ``repr``.
+    """
+    renamed = {}
+    for f in dataclasses.fields(cls):
+        spec = f.metadata.get("output")
+        if spec is None or spec.scale == 1.0 or not spec.unit:
+            continue
+        new = f"{f.name}_{unit_suffix(spec.unit)}"
+        renamed[f.name] = new
+        setattr(cls, f.name, _RenamedField(f.name, new, spec.unit))
+
+        def getter(self, _name=f.name, _scale=spec.scale):
+            return scale_value(self.__dict__.get(_name), _scale)
+
+        getter.__doc__ = f"``{f.name}`` in [{spec.unit}], the unit of the JSON and console (None if not computed)."
+        setattr(cls, new, property(getter, doc=getter.__doc__))
+    cls.RENAMED = renamed
+
+    def si(self):
+        return SIValues(self)
+
+    si.__doc__ = "The fields' SI values, read without deprecation warnings (:class:`capred.result.SIValues`)."
+    cls.si = property(si, doc=si.__doc__)
+
+    def __repr__(self):
+        head = [f"{k}={v!r}" for k, v in vars(self).items() if isinstance(v, str)]
+        shown = [renamed.get(k, k) for k, v in vars(self).items() if v is not None and not isinstance(v, str)]
+        return f"{cls.__name__}({', '.join(head + shown)})"
+
+    cls.__repr__ = __repr__
+    return cls
 
 
 def _scaled(values, scale: float):
@@ -288,7 +514,7 @@ def record_columns(records: dict, level: str = "95") -> dict:
         if spec.column is None:
             continue
         for model, rec in records.items():
-            value = getattr(rec, name)
+            value = field_value(rec, name)
             if value is None:
                 continue
             names = (
@@ -332,7 +558,7 @@ def record_json_columns(records: dict, start: int, stop: int, level: str = "95")
         key = spec.json.format(level=level)
         per_model = {}
         for model, rec in records.items():
-            value = getattr(rec, name)
+            value = field_value(rec, name)
             if value is None:
                 continue
             if spec.pair:

@@ -18,18 +18,23 @@ from ..nomenclature import StableJsonKeys, renamed_keywords
 from ..physics import calculators as calc
 from ..physics.shear import GAMMA_W, SURFACE_TENSION
 from ..references import cite
-from ..result import InputFile, Options, Result, input_file, num
+from ..result import InputFile, Options, Result, input_file
+from .calculator_records import Cases, PrismCases, RumpfCases, SkemptonCases, SkemptonCurves
 
 CASE = Column("case", "text", None, "case label")  # aliases: nomenclature.COLUMN_ALIASES
 
 
 @dataclass(repr=False)
 class CalcResult(Result):
-    """Result of a calculator: per-case inputs and outputs (output units, keys carry the unit)."""
+    """Result of a calculator: its cases as a typed record (capred.pipelines.calculator_records), output units.
+
+    ``cases.P_kmax`` (prism), ``cases.B`` (skempton-b), ``cases.p_cap`` (rumpf) ...: one array per field over the
+    cases, in the units of the JSON and console; ``values`` and ``outputs`` give the inputs and the results as
+    ``{JSON key: array}``.
+    """
 
     calculator: str  # the command: prism, skempton-b or rumpf
-    values: dict[str, np.ndarray]  # inputs per case, output units
-    outputs: dict[str, np.ndarray]  # results per case, output units
+    cases: Cases  # the typed per-case record: inputs and results, output units
     source: str | None
     notes: list[str] = field(default_factory=list)
     labels: list[str] | None = None
@@ -49,6 +54,16 @@ class CalcResult(Result):
     def command(self) -> str:
         return self.calculator
 
+    @property
+    def values(self) -> dict[str, np.ndarray]:
+        """The cases' inputs, ``{JSON key: array}`` in output units (from ``cases``)."""
+        return self.cases.json_columns(outputs=False)
+
+    @property
+    def outputs(self) -> dict[str, np.ndarray]:
+        """The cases' results, ``{JSON key: array}`` in output units (from ``cases``)."""
+        return self.cases.json_columns(outputs=True)
+
     def rows(self) -> list[dict]:
         """The per-row records of the JSON document (per case: its label (if any), inputs and results in output units),
         NaN written as None.
@@ -60,12 +75,7 @@ class CalcResult(Result):
         """
         cached = self.__dict__.get("_rows")
         if cached is None:
-            n = len(next(iter(self.outputs.values())))
-            cols = {k: [num(x) for x in np.asarray(v, float)] for k, v in {**self.values, **self.outputs}.items()}
-            cached = self.__dict__["_rows"] = [
-                {**({"case": self.labels[i]} if self.labels else {}), **{k: c[i] for k, c in cols.items()}}
-                for i in range(n)
-            ]
+            cached = self.__dict__["_rows"] = self.cases.json_rows(self.labels)
         return cached
 
     def payload(self, lazy: bool = False) -> dict:
@@ -114,7 +124,8 @@ class CalcResult(Result):
         """
         import pandas as pd
 
-        frame = pd.DataFrame(self.rows())
+        cols = {**({"case": list(self.labels)} if self.labels else {}), **self.cases.csv_columns()}
+        frame = pd.DataFrame(cols)
         if self.model is not None:
             frame.insert(0, "model", self.model)
         return {"results": frame}
@@ -158,13 +169,10 @@ def _inputs(source, schema: list[Column], options: dict[str, float | None], opti
     return values, table.notes, table.path
 
 
-def _finish(
-    command: str, title: str, values, outputs, src, notes, labels, opt, source, table=None, figure_data=None
-) -> CalcResult:
+def _finish(command: str, title: str, cases: Cases, src, notes, labels, opt, source, table=None, figure_data=None):
     return CalcResult(
         command,
-        values,
-        outputs,
+        cases,
         src,
         notes,
         labels,
@@ -224,21 +232,23 @@ def reduce_prism(source, opt: PrismOptions) -> CalcResult:
     if np.any((v["friction_angle"] <= 0) | (v["friction_angle"] >= 90)):
         raise OptionError("the friction angle must lie between 0 and 90 deg")
     p = calc.prism_capillary_pressure(v["break_tension"], v["friction_angle"])
-    figure = dict(
-        break_tension_kPa=v["break_tension"] / 1e3,
-        friction_angle_deg=v["friction_angle"],
-        P_kmax_kPa=p / 1e3,
+    cases = PrismCases(
+        break_tension=v["break_tension"] / 1e3,
+        friction_angle=v["friction_angle"],
+        P_kmax=p / 1e3,
+        capillary_rise=calc.capillary_rise(p, opt.gamma_w) * 100.0,
+        P_kmax_over_sigma_b=p / v["break_tension"],
+    )
+    figure = dict(  # the Mohr diagram, drawn from the record (kPa, deg)
+        break_tension_kPa=cases.break_tension,
+        friction_angle_deg=cases.friction_angle,
+        P_kmax_kPa=cases.P_kmax,
         labels=labels,
     )
     return _finish(
         "prism",
         f"Prism test ({cite('bernatzik1948')})",
-        {"break_tension_kPa": v["break_tension"] / 1e3, "friction_angle_deg": v["friction_angle"]},
-        {
-            "P_kmax_kPa": p / 1e3,
-            "capillary_rise_cm": calc.capillary_rise(p, opt.gamma_w) * 100.0,
-            "P_kmax_over_sigma_b": p / v["break_tension"],
-        },
+        cases,
         src,
         notes,
         labels,
@@ -656,8 +666,7 @@ def skempton_curves(source, opt: SkemptonOptions) -> CalcResult:
     _, model, inputs = skempton_model_description(opt.model, s_e, bc_lambda, bounding)
     res = CalcResult(
         "skempton-b",
-        {"S_r": S.copy()},
-        outputs,
+        SkemptonCurves(S_R=S.copy(), **outputs),
         None,
         ["curves: " + "; ".join(names)],
         None,
@@ -777,14 +786,11 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
         raise OptionError(_p_eff_message(v["p0"][i], v["u0"][i]))
     if bounding is not None and np.any(v["kappa"] >= bounding["lambda0"]):
         raise OptionError(f"kappa must be below lambda0 = {bounding['lambda0']:g} (--lambda0) in every case")
-    ins = {
-        k + "_kPa" if k in ("p0", "u0", "pa0") else k: (x / 1e3 if k in ("p0", "u0", "pa0") else x)
-        for k, x in v.items()
-        if k not in ("S_r", "B")
-    }
+    ins = {k: (x / 1e3 if k in ("p0", "u0", "pa0") else x) for k, x in v.items() if k not in ("S_r", "B", "kappa")}
+    ins["kappa_elastic"] = v["kappa"]
     if suction:  # the model's inputs in every row: the table and the CSV say what was computed
         n = v["kappa"].size
-        ins["s_e_kPa"], ins["bc_lambda"] = np.full(n, s_e / 1e3), np.full(n, float(bc_lambda))
+        ins["s_e"], ins["bc_lambda"] = np.full(n, s_e / 1e3), np.full(n, float(bc_lambda))
     cases = list(zip(v["kappa"], v["e0"], v["p0"], v["u0"], v["pa0"]))
     if forward:
         if bounding is not None:
@@ -795,8 +801,7 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
             B = calc.skempton_b(v["S_r"], p_eff, v["e0"], v["kappa"], v["pa0"])
         return CalcResult(
             "skempton-b",
-            {"S_r": v["S_r"], **ins},
-            {"B": B},
+            SkemptonCases(S_R=v["S_r"], B=B, solved="B", **ins),
             src,
             notes,
             labels,
@@ -829,8 +834,7 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
         notes.append("some B values are below what these parameters give for dry soil: S_r is outside [0, 1] there")
     return CalcResult(
         "skempton-b",
-        {"B": v["B"], **ins},
-        {"S_r": S},
+        SkemptonCases(B=v["B"], S_R=S, solved="S_R", **ins),
         src,
         notes,
         labels,
@@ -964,19 +968,19 @@ def reduce_rumpf(source, opt: RumpfOptions) -> CalcResult:
     p = calc.rumpf_capillary_pressure(
         v["shape_factor"], v["void_ratio"], v["S_r"], v["diameter"], v["surface_tension"], v["contact_angle"]
     )
-    ins = {
-        "shape_factor": v["shape_factor"],
-        "void_ratio": v["void_ratio"],
-        "S_r": v["S_r"],
-        "diameter_mm": v["diameter"] * 1e3,
-        "surface_tension_N_per_m": v["surface_tension"],
-        "contact_angle_deg": v["contact_angle"],
-    }
+    cases = RumpfCases(
+        shape_factor=v["shape_factor"],
+        void_ratio=v["void_ratio"],
+        S_R=v["S_r"],
+        diameter=v["diameter"] * 1e3,
+        surface_tension=v["surface_tension"],
+        contact_angle=v["contact_angle"],
+        p_cap=p / 1e3,
+    )
     return _finish(
         "rumpf",
         f"Rumpf's capillary pressure ({cite('prunier2024', 'eq. 19')})",
-        ins,
-        {"p_cap_kPa": p / 1e3},
+        cases,
         src,
         notes,
         labels,

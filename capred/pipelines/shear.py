@@ -312,6 +312,8 @@ def _as_given(options: Options, exc: Exception, given: dict) -> str:
     from ..units import SI_UNIT
 
     text = str(exc)
+    if getattr(exc, "as_given", False):  # quoted already by capred.result.Options (as_given)
+        return text
     for name, value in given.items():
         if value is None or not text.startswith(options.option_name(name)):
             continue
@@ -630,7 +632,7 @@ class ShearResult(Result):
         for model in self.models:
             flag = esm.REGISTRY[model].no_prediction
             if flag is not None:
-                parts.append((flag.name, wet & ~np.isfinite(self.predictions[model].tau)))
+                parts.append((flag.name, wet & ~np.isfinite(self.predictions[model].si.tau)))
         code = sum(mask.astype(int) << k for k, (_, mask) in enumerate(parts))
         names = np.array(
             [";".join(n for k, (n, _) in enumerate(parts) if c >> k & 1) for c in range(1 << len(parts))], dtype=object
@@ -652,7 +654,7 @@ class ShearResult(Result):
                 continue
             rows = {}
             for m in self.models:
-                r = self.predictions[m].tau[sel] - t["tau_max"][sel]  # the residual column, also in a long run
+                r = self.predictions[m].si.tau[sel] - t["tau_max"][sel]  # the residual column, also in a long run
                 r = r[np.isfinite(r)]
                 law = self.laws.get(m, {}).get(mat)
                 p = len(law.values) - len(law.fixed) if law is not None else 0
@@ -1305,7 +1307,7 @@ def score_models(d: dict, wet, mat, fits, laws, predictions, opt: ShearOptions) 
         for m in fits:
             rows = np.flatnonzero(of_material[m] & sel)
             if rows.size:
-                out[m] = {mod: model_metrics(predictions[mod].tau[rows], d["tau_max"][rows]) for mod in opt.models}
+                out[m] = {mod: model_metrics(predictions[mod].si.tau[rows], d["tau_max"][rows]) for mod in opt.models}
         return out
 
     metrics, metrics_pend = scores(wet), scores(pend)
@@ -1313,10 +1315,12 @@ def score_models(d: dict, wet, mat, fits, laws, predictions, opt: ShearOptions) 
         metrics.setdefault(m, {})
     hetero = _heteroscedasticity(d, wet, of_material, fits, predictions, opt)
     overall = (
-        {mod: model_metrics(predictions[mod].tau[wet], d["tau_max"][wet]) for mod in opt.models} if wet.any() else {}
+        {mod: model_metrics(predictions[mod].si.tau[wet], d["tau_max"][wet]) for mod in opt.models} if wet.any() else {}
     )
     overall_pend = (
-        {mod: model_metrics(predictions[mod].tau[pend], d["tau_max"][pend]) for mod in opt.models} if pend.any() else {}
+        {mod: model_metrics(predictions[mod].si.tau[pend], d["tau_max"][pend]) for mod in opt.models}
+        if pend.any()
+        else {}
     )
     return {
         "metrics": metrics,
@@ -1336,7 +1340,7 @@ def _heteroscedasticity(d: dict, wet, of_material: dict, fits, predictions, opt:
         rows = np.flatnonzero(of_material[m] & wet)
         models = {}
         for mod in opt.models:
-            r = predictions[mod].tau[rows] - d["tau_max"][rows]
+            r = predictions[mod].si.tau[rows] - d["tau_max"][rows]
             ok = np.isfinite(r)
             scale = float(np.max(np.abs(d["tau_max"][rows]), initial=0.0))
             models[mod] = breusch_pagan(d["sigma_N"][rows][ok], r[ok], scale)
@@ -1479,7 +1483,7 @@ def run_warnings(wet, pend, mat, fits, laws, predictions, opt) -> list[str]:
                 )
     for model in opt.models:
         flag = esm.REGISTRY[model].no_prediction
-        k = int(np.sum(wet & ~np.isfinite(predictions[model].tau))) if flag else 0
+        k = int(np.sum(wet & ~np.isfinite(predictions[model].si.tau))) if flag else 0
         if k:
             out.append(f"{model}: {k} wet tests {flag.meaning} (flag {flag.name}) and are left out of its metrics")
     return out

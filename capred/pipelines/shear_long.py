@@ -111,7 +111,7 @@ def _flat(records: dict) -> dict:
     out = {}
     for prefix, rec in records.items():
         for f in dataclasses.fields(rec):
-            v = getattr(rec, f.name)
+            v = vars(rec)[f.name]  # the stored (SI) value, past a renamed attribute's warning
             if "output" not in f.metadata or v is None:
                 continue
             if isinstance(v, tuple):
@@ -257,7 +257,7 @@ def run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks:
                 }
             spool_out.append(cols)
             for m in opt.models:
-                taus[m][lo:hi] = preds[m].tau
+                taus[m][lo:hi] = preds[m].si.tau
             here = rows[(rows >= lo) & (rows < hi)] - lo
             for key, v in cols.items():
                 samples.setdefault(key, []).append(v[here])

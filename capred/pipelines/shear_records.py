@@ -1,9 +1,14 @@
 """Typed records of `capred shear`: one per concept, each field with its unit, meaning and output names.
 
 Arrays run over the tests of the run (dry tests included: NaN where a value
-concerns wet tests only). Values are SI (Pa); JSON keys and results.csv
-columns come from each field's ``output`` metadata through the one mapping
-of capred.result (``record_columns``, ``record_json_columns``).
+concerns wet tests only). JSON keys and results.csv columns come from each
+field's ``output`` metadata through the one mapping of capred.result
+(``record_columns``, ``record_json_columns``), and so do the Python
+attributes a user reads (``capred.result.user_units``): a stress is
+``tau_kPa``, ``sigma_cap_kPa`` ... [kPa], as in the JSON and console. The
+pipeline stores SI values; the field's own name (``tau`` [Pa]) keeps them
+for one release with a DeprecationWarning, and ``rec.si.tau`` reads them
+silently for code that calls capred.physics.
 """
 
 from __future__ import annotations
@@ -12,10 +17,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..result import output
+from ..result import output, user_units
 
 
-@dataclass(frozen=True)
+@user_units
+@dataclass(frozen=True, eq=False)
 class ModelPrediction:
     """One effective-stress model's prediction of every test.
 
@@ -23,20 +29,23 @@ class ModelPrediction:
     ----------
     model : str
         Name of the model (a key of capred.physics.effective_stress_models.REGISTRY).
-    sigma_eff : ndarray
-        Effective normal stress σ'_N [Pa] (NaN for a model that predicts τ directly).
-    tau : ndarray
-        Predicted peak shear strength τ_pred [Pa] (dry tests: the dry envelope).
-    residual : ndarray
-        τ_pred − τ_max [Pa].
-    tau_mean_ci : (ndarray, ndarray)
-        Confidence band of the mean prediction at the test's state [Pa]: where the model's τ lies given the
+    sigma_eff_kPa : ndarray
+        Effective normal stress σ'_N [kPa] (NaN for a model that predicts τ directly).
+    tau_kPa : ndarray
+        Predicted peak shear strength τ_pred [kPa] (dry tests: the dry envelope); JSON ``tau_pred_kPa``.
+    residual_kPa : ndarray
+        τ_pred − τ_max [kPa].
+    tau_mean_ci_kPa : (ndarray, ndarray)
+        Confidence band of the mean prediction at the test's state [kPa]: where the model's τ lies given the
         uncertainty of the dry envelope (and of a fitted χ law's parameters).
-    tau_prediction_interval : (ndarray, ndarray)
-        Prediction interval of a new test at the same state [Pa]: the mean band widened by the scatter of a
+    tau_prediction_interval_kPa : (ndarray, ndarray)
+        Prediction interval of a new test at the same state [kPa]: the mean band widened by the scatter of a
         single test (the dry fit's residual variance), so it covers new tests at the stated level.
-    sigma_cap : ndarray
-        Capillary stress the model ascribes to each wet test, (τ_pred − c)/tan φ − σ_N [Pa].
+    sigma_cap_kPa : ndarray
+        Capillary stress the model ascribes to each wet test, (τ_pred − c)/tan φ − σ_N [kPa].
+    sigma_eff, tau, residual, tau_mean_ci, tau_prediction_interval, sigma_cap
+        The same in Pa (the fields, as the pipeline stores them): deprecated names, kept for one release with a
+        DeprecationWarning; ``.si.tau`` reads them without one.
     """
 
     model: str
@@ -60,7 +69,8 @@ class ModelPrediction:
     sigma_cap: np.ndarray = output("sigma_cap_pred_kPa", "sigma_cap_pred_{model}", "kPa", 1e-3)
 
 
-@dataclass(frozen=True)
+@user_units
+@dataclass(frozen=True, eq=False)
 class BackAnalysis:
     """The capillary stress each wet test carried, back-analysed from the dry envelope.
 
@@ -70,10 +80,13 @@ class BackAnalysis:
 
     Attributes
     ----------
-    sigma_cap, sigma_cap_se : ndarray
-        Back-analysed capillary stress and its standard uncertainty [Pa] (NaN on dry tests).
-    sigma_cap_ci : (ndarray, ndarray)
-        Its confidence interval [Pa] (``confidence`` of the run, 95 % by default).
+    sigma_cap_kPa, sigma_cap_se_kPa : ndarray
+        Back-analysed capillary stress and its standard uncertainty [kPa] (NaN on dry tests).
+    sigma_cap_ci_kPa : (ndarray, ndarray)
+        Its confidence interval [kPa] (``confidence`` of the run, 95 % by default).
+    sigma_cap, sigma_cap_se, sigma_cap_ci
+        The same in Pa (the fields, as the pipeline stores them): deprecated names, kept for one release with a
+        DeprecationWarning; ``.si.sigma_cap`` reads them without one.
     chi_back, chi_back_se : ndarray
         χ_back = σ_cap/Δu and its standard uncertainty [-] (NaN where Δu = 0).
     chi_back_ci : (ndarray, ndarray)
@@ -125,6 +138,21 @@ class Sampled:
     @property
     def shape(self) -> tuple[int]:
         return (self.n,)
+
+    def scaled(self, factor: float) -> Sampled:
+        """The same rows with every value times ``factor`` (Pa -> kPa: 1e-3).
+
+        Parameters
+        ----------
+        factor : float
+            The factor.
+
+        Returns
+        -------
+        Sampled
+            A new sample of the same rows.
+        """
+        return Sampled(self.rows, self.values * factor, self.n)
 
     def __array__(self, dtype=None, copy=None):
         raise TypeError(

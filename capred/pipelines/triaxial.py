@@ -320,14 +320,24 @@ class TriaxialOptions(Options):
     extension_path: str = "axial-unloading"
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "_given", {"c_eff": self.c_eff, "phi_eff": self.phi_eff})  # as the caller typed
         super().__post_init__()
         if self.extension_path not in tx.EXTENSION_PATHS:
             raise OptionError(
                 f"{self.option_name('extension_path')} must be one of {', '.join(tx.EXTENSION_PATHS)} "
                 f"(got {self.extension_path!r})"
             )
+        if not (isinstance(self.confidence, (int, float)) and 0.0 < self.confidence < 1.0):
+            raise OptionError(
+                "confidence (Python API): the confidence level must lie between 0 and 1, both excluded "
+                f"(got {self.confidence!r}; 0.95 for 95 %)"
+            )
         if (self.c_eff is None) != (self.phi_eff is None):
-            raise OptionError("give both --c-eff and --phi-eff, or neither")
+            given = "c_eff" if self.phi_eff is None else "phi_eff"
+            raise OptionError(
+                f"give both --c-eff and --phi-eff (Python: c_eff and phi_eff), or neither; you gave "
+                f"{given}={self._given[given]!r} alone"
+            )
         for name, (unit, kind) in _MEMBRANE.items():
             value = getattr(self, name)
             if value is None or name in self.QUANTITIES:

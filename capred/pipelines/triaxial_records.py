@@ -520,6 +520,85 @@ class GroupRecord:
         """True when the paper determines the tensor (eq. 48 with pairs, or eq. 50)."""
         return self.sigma1_cap is not None
 
+    #: the fitted quantities of a group (attribute, its standard error's attribute or None), in report order
+    FITTED = (
+        ("sigma1_cap", "sigma1_cap_se"),
+        ("sigma2_cap", "sigma2_cap_se"),
+        ("sigma3_cap", "sigma3_cap_se"),
+        ("C", "C_se"),
+        ("C_fictive", "C_fictive_se"),
+        ("phi_apparent", "phi_apparent_se"),
+        ("Ci", None),
+        ("Ci_fictive", None),
+        ("phi_i", None),
+    )
+
+    @property
+    def params(self):
+        """The group's fitted quantities by JSON name, with standard error and 95 % interval, in kPa and deg.
+
+        ``params["sigma1_cap_kPa"]``, ``["sigma2_cap_kPa"]``, ``["sigma3_cap_kPa"]`` (the shared capillary
+        tensor, eq. 48 or 50), ``["C_kPa"]`` and ``["C_fictive_kPa"]`` (cohesions of the group's lines),
+        ``["phi_apparent_deg"]`` (the free line's friction angle), and for eq. 50 ``["Ci_kPa"]``,
+        ``["Ci_fictive_kPa"]``, ``["phi_i_deg"]`` (no standard error). Only the quantities the group has: a
+        group without pairs has no tensor (see ``admissible``). Intervals are value ± t(0.975, dof) SE: dof =
+        n − 1 for the tensor and the cohesions (means of per-test values; the JSON's ``*_ci95_kPa``), n − 2 for
+        ``phi_apparent_deg`` (a free straight line).
+
+        Returns
+        -------
+        capred.parameters.Parameters
+            By JSON name; no correlations (the group's fits give none).
+
+        References
+        ----------
+        Prunier, F., Branque, D., Duriez, J. & Darve, F. (2024). Eur. J. Environ. Civ. Eng.
+        doi:10.1080/19648189.2024.2314099, Appendix 1, eq. 48-50.
+        """
+        import math
+
+        from scipy.stats import t as student
+
+        from ..parameters import Parameter, Parameters
+
+        by_name = {f.name: f for f in dataclasses.fields(self)}
+        # the tensor and the cohesions are means of per-test values (dof n - 1); the apparent angle comes from a
+        # free straight line (slope and intercept: dof n - 2)
+        dofs = {"phi_apparent": None if self.n is None else self.n - 2}
+        out = []
+        for name, se_name in self.FITTED:
+            value = getattr(self, name)
+            if value is None or not np.isfinite(value):
+                continue
+            f = by_name[name]
+            q = QUANTITIES[f.metadata["quantity"]]
+            se = getattr(self, se_name) if se_name else None
+            se = math.nan if se is None else float(se)
+            ci = getattr(self, name + "_ci95", None)
+            dof = dofs.get(name, self.dof)
+            if ci is None and dof is not None and dof >= 1 and math.isfinite(se):
+                h = float(student.ppf(0.975, dof)) * se
+                ci = (value - h, value + h)
+            ci = (math.nan, math.nan) if ci is None else ci
+            out.append(Parameter(json_key(f), float(value), se, tuple(float(x) for x in ci), q.unit, q.description))
+        return Parameters(tuple(out))
+
+    def summary(self) -> str:
+        """A plain-text report of the group: its fitted quantities with SE and 95 % CI, n, dof, and what is missing.
+
+        Returns
+        -------
+        str
+            capred.parameters.fit_report of ``params``, titled with the group and its method.
+        """
+        from ..parameters import fit_report
+
+        stats = {k: v for k, v in (("n", self.n), ("dof", self.dof), ("branch", self.branch)) if v is not None}
+        notes = [x for x in (self.error, self.apparent_error, self.warning) if x]
+        if not self.determined and self.needs:
+            notes.append(f"tensor not determined: {self.needs}")
+        return fit_report(f"Capillary tensor of group {self.group}, {self.method}", self.params, stats, notes)
+
 
 def group_csv(g: GroupRecord) -> dict:
     """A group as one flat CSV row: lists joined by ';', intervals and ranges as _low/_high (_lower/_upper)

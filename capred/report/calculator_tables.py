@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
-from ..result import TableSpec
+from ..result import TableSpec, num
 from .render import row_table
 
 
 def calc_tables(result) -> list[TableSpec]:
-    """Inputs and results of a calculator, one row per case (at most 20 shown).
+    """Inputs and results of a calculator, one row per case (at most 20 shown), under ``symbol [unit]`` headers.
+
+    The columns come from the run's typed record (``result.cases``, capred.pipelines.calculator_records): each
+    header is its field's glossary label, the values its output-unit numbers.
 
     Parameters
     ----------
@@ -18,5 +21,15 @@ def calc_tables(result) -> list[TableSpec]:
     -------
     list of capred.result.TableSpec
     """
-    rows = result.rows()
+    cols = result.cases.console_columns()
+    labels = result.labels
+    n = len(result.cases)
+    rows = [
+        {**({"case": labels[i]} if labels else {}), **{h: _number(v[i]) for h, v in cols.items()}} for i in range(n)
+    ]
     return [row_table(f"{result.title}", rows, list(rows[0]), "results.csv")]
+
+
+def _number(x):
+    """A float for the table, None where not finite (as the JSON writes it)."""
+    return num(x)

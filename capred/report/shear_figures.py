@@ -115,8 +115,8 @@ def plot_dry_envelope(ax, result, material):
 
 
 def _band(p, keep, pred):
-    lo_pi, hi_pi = p.tau_prediction_interval
-    return np.abs(np.vstack([pred - lo_pi[keep] * KPA, hi_pi[keep] * KPA - pred]))
+    lo_pi, hi_pi = p.tau_prediction_interval_kPa
+    return np.abs(np.vstack([pred - lo_pi[keep], hi_pi[keep] - pred]))
 
 
 def _points(ax, x, y, yerr, **kw):
@@ -147,7 +147,7 @@ def plot_measured_vs_predicted(ax, result, material):
     hi = float(np.nanmax(meas, initial=0.0))
     for m in result.models:
         p = result.predictions[m]
-        pred = p.tau[keep] * KPA
+        pred = p.tau_kPa[keep]
         hi = max(hi, float(np.nanmax(pred, initial=0.0)))
         _points(
             ax,
@@ -220,7 +220,7 @@ def plot_strength_vs_saturation(ax, result, material):
     keep, shown = thin(np.flatnonzero(wet))
     for m in per_test:  # no curve: markers per test with the prediction interval
         p = result.predictions[m]
-        pred = p.tau[keep] * KPA
+        pred = p.tau_kPa[keep]
         _points(
             ax,
             t["S_R"][keep],
@@ -314,7 +314,7 @@ def plot_residuals(ax, result, material):
     for m in result.models:
         ax.plot(
             t["S_R"][keep],
-            result.predictions[m].residual[keep] * KPA,
+            result.predictions[m].residual_kPa[keep],
             ms=3.5,
             alpha=0.85,
             label=_label(m),
@@ -425,7 +425,7 @@ def plot_capillary_stress(ax, result, material, x: str):
     for m in result.models:
         ax.plot(
             xs,
-            result.predictions[m].sigma_cap[keep] * KPA,
+            result.predictions[m].sigma_cap_kPa[keep],
             ms=3.5,
             alpha=0.75,
             markerfacecolor="none",
@@ -436,8 +436,8 @@ def plot_capillary_stress(ax, result, material, x: str):
     _points(
         ax,
         xs,
-        back.sigma_cap[keep] * KPA,
-        back.sigma_cap_se[keep] * KPA,
+        back.sigma_cap_kPa[keep],
+        back.sigma_cap_se_kPa[keep],
         marker="o",
         color="k",
         ms=3.5,

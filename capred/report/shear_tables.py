@@ -164,8 +164,8 @@ def _wet_rows(result, limit: int = MAX_ROWS):
             "material": str(t["material"][i]),
             "S_R": t["S_R"][i],
             "suction [kPa]": t["suction"][i] / 1e3,
-            "σ_cap [kPa]": b.sigma_cap[i] / 1e3,
-            "± se": b.sigma_cap_se[i] / 1e3,
+            "σ_cap [kPa]": b.sigma_cap_kPa[i],
+            "± se": b.sigma_cap_se_kPa[i],
             "χ_back": b.chi_back[i],
             "± se ": b.chi_back_se[i],
         }
