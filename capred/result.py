@@ -22,6 +22,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .errors import OptionError
+
 
 @dataclass(frozen=True)
 class InputFile:
