@@ -92,6 +92,11 @@ def test_a_toy_command_is_two_entries_and_gets_its_cli(tmp_path, monkeypatch):
     res = runner.invoke(app, ["toy-suction", "--gamma-w", "10", "--heights", "0.5,1", "--json"])
     assert res.exit_code == 0, res.output
     assert json.loads(res.stdout)["suction_kPa"] == [5.0, 10.0]
+    # a value with a unit of its own, as on every hand-written command: 10000 N/m^3 = 10 kN/m^3
+    res = runner.invoke(app, ["toy-suction", "--gamma-w", "10000 N/m^3", "--heights", "0.5,1", "--json"])
+    assert res.exit_code == 0, res.output
+    assert json.loads(res.stdout)["suction_kPa"] == [5.0, 10.0]
+    assert "kN/m^3" in help_text and "9.81" in help_text  # the glossary's unit; the default in it
     res = runner.invoke(app, ["toy-suction", "--out", str(tmp_path / "o")])
     assert res.exit_code == 0, res.output
     assert "0.981" in res.output  # its presenter's console table: 9.81 kN/m^3 x 0.1 m = 0.981 kPa

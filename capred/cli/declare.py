@@ -198,22 +198,72 @@ def si_values(options: str, **given) -> dict:
     OptionError
         A bare number outside the quantity's physical range.
     """
-    from ..errors import OptionError
-    from ..nomenclature import QUANTITIES, range_problem
-
     out = {}
     for name, value in given.items():
         if value is None:
             continue
         f = field_facts(options, name)
-        if f["quantity"] is not None and isinstance(value, str) and _NUMBER.fullmatch(value):
-            q = QUANTITIES[f["quantity"]]
-            value = float(value) * _factor(q.unit, q.kind)
-            problem = range_problem(f["quantity"], value)
-            if problem:
-                raise OptionError(f"{name} ({f['option']}): {problem}")
-        out[name] = value
+        out[name] = value if f["quantity"] is None else read_number(value, f["quantity"], f"{name} ({f['option']})")
     return out
+
+
+def read_number(value, quantity: str, where: str):
+    """One option of a dimensional field as the command line gives it: a bare number is read once, in the
+    glossary's output unit (the unit ``--help`` shows), to SI and range checked; text with a unit of its own
+    is returned as typed (the Options read it once).
+
+    Parameters
+    ----------
+    value : str or float
+        The option as parsed.
+    quantity : str
+        Its glossary entry, a key of ``capred.nomenclature.QUANTITIES``.
+    where : str
+        The option as messages name it, e.g. ``"gamma_w (--gamma-w)"``.
+
+    Returns
+    -------
+    float or str
+        The SI value [SI unit of the quantity's kind], or the text with its unit.
+
+    Raises
+    ------
+    OptionError
+        A bare number outside the quantity's physical range (the glossary's wording).
+    """
+    from ..errors import OptionError
+    from ..nomenclature import QUANTITIES, range_problem
+
+    if isinstance(value, str) and not _NUMBER.fullmatch(value):
+        return value
+    if isinstance(value, bool) or not isinstance(value, (str, int, float)):
+        return value
+    q = QUANTITIES[quantity]
+    si = float(value) * _factor(q.unit, q.kind)
+    problem = range_problem(quantity, si)
+    if problem:
+        raise OptionError(f"{where}: {problem}")
+    return si
+
+
+def unit_and_range(quantity: str) -> str:
+    """The bracket of an option's help: the glossary's output unit and hard limits, e.g. ``"[kPa; > 0]"``.
+
+    Parameters
+    ----------
+    quantity : str
+        A key of ``capred.nomenclature.QUANTITIES``.
+
+    Returns
+    -------
+    str
+        ``""`` for a dimensionless quantity without limits.
+    """
+    from ..nomenclature import QUANTITIES
+
+    q = QUANTITIES[quantity]
+    inside = "; ".join(x for x in ("" if q.unit == "-" else q.unit, _range_text(q)) if x)
+    return f"[{inside}]" if inside else ""
 
 
 def _factor(unit: str, kind: str) -> float:
