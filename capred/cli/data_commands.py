@@ -241,11 +241,7 @@ def shear(
 
 
 def triaxial_bounds(
-    curves: option(
-        TRIAXIAL,
-        "curves",
-        help="Long CSV of raw curves (test_id, axial_strain, q): failure = peak of q, for tests without q_f or sigma1.",
-    ) = None,
+    curves: option(TRIAXIAL, "curves", note="for tests without q_f or sigma1") = None,
     c_eff: option(TRIAXIAL, "c_eff", note="instead of fitting saturated tests") = None,
     phi_eff: option(TRIAXIAL, "phi_eff", note="with --c-eff") = None,
     membrane_thickness: option(
@@ -257,12 +253,7 @@ def triaxial_bounds(
     membrane_modulus: option(
         TRIAXIAL, "membrane_modulus", note="(latex: about 1400 kPa), with --membrane-thickness"
     ) = None,
-    extension_path: option(
-        TRIAXIAL,
-        "extension_path",
-        help="Drained path of extension tests for q'_sat and the EDTP bound: axial-unloading (slope -3 in "
-        "the q-p plane, constant cell pressure) or radial-loading (slope 3/2, constant axial stress).",
-    ) = None,
+    extension_path: option(TRIAXIAL, "extension_path") = None,
 ) -> Invocation:
     """Bounds of the capillary stress tensor at failure from triaxial tests
     (Prunier et al. 2024): effective envelope from saturated drained tests, then

@@ -362,19 +362,11 @@ def _glossary_text(q) -> str:
 
 
 def _attribute_help(cls, reader) -> dict[str, str]:
-    """A class's ``Attributes`` texts, a line shared by several names (``a, b : float``) given to each, with
-    the SI units in brackets dropped (the option shows the glossary's unit)."""
+    """A class's ``Attributes`` texts with the SI units in brackets dropped (the option shows the glossary's
+    unit) and the reST literal quotes."""
     out = {}
     for name, text in reader(cls).items():
         out[name] = re.sub(r"\s*\[[^\]]*\]", "", text).replace("``", "").strip()
-    import inspect
-
-    doc = inspect.cleandoc(cls.__doc__ or "")
-    for m in re.finditer(r"^([A-Za-z_]\w*(?:, [A-Za-z_]\w*)+) :.*\n((?:    .*\n?)+)", doc, re.M):
-        text = re.sub(r"\s*\[[^\]]*\]", "", " ".join(x.strip() for x in m.group(2).splitlines()))
-        text = text.replace("``", "").strip()
-        for name in m.group(1).split(", "):
-            out.setdefault(name, text)
     return out
 
 

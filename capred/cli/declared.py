@@ -753,7 +753,7 @@ SNAPSHOT = {
                 "quantity": None,
                 "unit": "",
                 "range": "",
-                "text": "Take the lines not given from EXAMPLE_KAOLIN (illustrative values, not from the paper; the run says so in a warning). initial_yield_W, initial_yield_A : float, optional Largest σ'_W (σ'_A) carried before the first point; default: the first point's own stress (both parts on their ncl, the end of compaction).",
+                "text": "Take the lines not given from EXAMPLE_KAOLIN (illustrative values, not from the paper; the run says so in a warning).",
                 "default": False,
                 "type": "bool",
                 "option": "--example-kaolin",

@@ -45,14 +45,15 @@ def attribute_help(cls) -> dict[str, str]:
     out: dict[str, str] = {}
     if not m:
         return out
-    name = None
+    names: list[str] = []
     for line in m.group(1).splitlines():
-        head = re.match(r"^([A-Za-z_][A-Za-z0-9_]*)\s*(?::.*)?$", line)
-        if head and not line.startswith(" "):
-            name = head.group(1)
-            out[name] = ""
-        elif name is not None and line.strip():
-            out[name] = (out[name] + " " + line.strip()).strip()
+        head = re.match(r"^([A-Za-z_]\w*(?:\s*,\s*[A-Za-z_]\w*)*)\s*(?::.*)?$", line)
+        if head and not line.startswith(" "):  # "name : type" or "a, b : type" (one text for each)
+            names = [n.strip() for n in head.group(1).split(",")]
+            out.update(dict.fromkeys(names, ""))
+        elif names and line.strip():
+            for name in names:
+                out[name] = (out[name] + " " + line.strip()).strip()
     return out
 
 

@@ -32,21 +32,10 @@ def pt_volume(
     kappa_a: option(PT, "kappa_A") = None,
     e_ncl_a: option(PT, "e_ncl_A", note="(--reference-stress)") = None,
     reference_stress: option(PT, "reference_stress") = None,
-    example_kaolin: option(
-        PT,
-        "example_kaolin",
-        "--example-kaolin",
-        help="Take the lines not given from EXAMPLE_KAOLIN: illustrative kaolin values, NOT from the paper "
-        "(said in a warning).",
-    ) = False,
+    example_kaolin: option(PT, "example_kaolin", "--example-kaolin") = False,
     initial_yield_w: option(PT, "initial_yield_W", note="default: the first point's (on the ncl)") = None,
     initial_yield_a: option(PT, "initial_yield_A", note="default: the first point's (on the ncl)") = None,
-    substeps: option(
-        PT,
-        "substeps",
-        help="Sub-steps per step between two points [default: automatic, |dS_r| <= 0.002 and |d ln sigma'| <= "
-        "0.02]; 1 takes the path as given.",
-    ) = None,
+    substeps: option(PT, "substeps", note="1 takes the path as given") = None,
     sample: SampleOpt = False,
 ) -> Invocation:
     """Void ratio along a path of total stress, pore pressures and degree of

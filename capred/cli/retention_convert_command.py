@@ -34,9 +34,7 @@ def retention_convert(
     ],
     model: option(CONVERT, "model") = None,
     branch: option(CONVERT, "branch") = None,
-    points: option(
-        CONVERT, "points", help="Points of the logarithmic grid between the data's smallest and largest suction."
-    ) = None,
+    points: option(CONVERT, "points") = None,
     gamma_w: option(CONVERT, "gamma_w", note="(heads in cm in the JSON)") = None,
 ) -> Invocation:
     """Express a retention fit in another model: the parameters of --to that best
