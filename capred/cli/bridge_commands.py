@@ -292,14 +292,13 @@ def laws(
         LAWS, "tolerance", help="Relative error under which a law counts as within, everywhere in a region."
     ) = None,
 ) -> Invocation:
-    """Which closed-form capillary force a DEM code should use: Willett et al.
-    (2000, simple and full), Rabinovich et al. (2005), Lambert et al. (2008),
-    Soulié et al. (2006) and Weigert & Ripperger (1999) against the exact
+    """Which closed-form capillary force a DEM code should use: each law of
+    the registry ({laws}) against the exact
     Young-Laplace bridge at the same contact angle, volume and gap (the stable
     bridge at constant volume), forces in units of 2 pi R gamma; per region of
     gap x volume x angle x geometry each law's median and largest relative
     error and which laws stay within the tolerance; error maps, one panel per
-    law. The laws (capred.physics.bridge_laws.LAWS): {laws}.
+    law.
 
     Example: capred bridge laws --sample --out laws
 
@@ -330,6 +329,4 @@ def laws(
 
 
 # the laws as the registry lists them (from the CLI's snapshot: `--help` imports no numerical module)
-laws.__doc__ = laws.__doc__.replace(
-    "{laws}", ", ".join(f"{name} ({label})" for name, label in registry_help("bridge_laws"))
-)
+laws.__doc__ = laws.__doc__.replace("{laws}", "; ".join(registry_help("bridge_laws")))

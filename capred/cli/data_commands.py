@@ -15,18 +15,17 @@ RETENTION = "capred.pipelines.retention:RetentionOptions"
 
 
 def _models_help() -> str:
-    """--models of shear: every model of the effective-stress registry, then the named sets."""
+    """--models of shear: every model of the effective-stress registry, its named sets and its fitted laws."""
     return (
-        "Models to compare, comma separated: "
-        + ", ".join(registry_names("effective_stress_models"))
-        + "; 'thesis' for the thesis's four (no_suction, bishop, own1, own2), 'all' for every one. The laws "
-        "fitted per material: chi_power (chi = S_e^kappa) and khalili_fit (s_b, and eta with --fit-eta)."
+        f"Models to compare, comma separated: {', '.join(registry_names('effective_stress_models'))}; "
+        f"'thesis' for the thesis's {', '.join(registry_names('effective_stress_models', 'thesis'))}, 'all' for "
+        f"every one. Fitted per material: {', '.join(registry_names('effective_stress_models', 'fitted'))}."
     )
 
 
 def _retention_models_help() -> str:
     """--model of retention: every model of the retention registry with its one-line help."""
-    return "Models, comma separated, or all: " + "; ".join(h or n for n, h in registry_help("retention_models")) + "."
+    return "Models, comma separated, or all: " + "; ".join(registry_help("retention_models")) + "."
 
 
 def register(app: typer.Typer) -> None:

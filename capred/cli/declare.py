@@ -19,6 +19,7 @@ read it once.
 from __future__ import annotations
 
 import re
+from functools import lru_cache
 from typing import Annotated
 
 import typer
@@ -41,20 +42,38 @@ OPTIONS_CLASSES = (
     "capred.pipelines.history:HistoryOptions",
 )
 
-#: the registries whose entries the help lists: name -> (module:mapping, attribute giving an entry's help)
+#: the registries whose entries the help lists: name -> (module:mapping, attribute giving an entry's help,
+#: flags naming subsets of the entries: ``thesis`` -> the entries whose ``thesis`` is true)
 REGISTRIES = {
-    "effective_stress_models": ("capred.physics.effective_stress_models:REGISTRY", None),
-    "retention_models": ("capred.fitting.retention_models:MODELS", "help"),
-    "bridge_laws": ("capred.physics.bridge_laws:LAWS", "label"),
+    "effective_stress_models": ("capred.physics.effective_stress_models:REGISTRY", "label", ("thesis", "fitted")),
+    "retention_models": ("capred.fitting.retention_models:MODELS", "help", ()),
+    "bridge_laws": ("capred.physics.bridge_laws:LAWS", "label", ()),
 }
 
 _NUMBER = re.compile(r"\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*")
 
 
-def _snapshot() -> dict:
-    from .declared import SNAPSHOT
+#: the layout of the snapshot (a snapshot of another layout is read afresh from the Options)
+LAYOUT = 2
 
-    return SNAPSHOT
+
+def _snapshot(fresh: bool = False) -> dict:
+    """The snapshot of capred/cli/declared.py; where it is missing, of another layout or lacks an entry
+    (``fresh``), what the Options, glossary and registries say now (slower: imports every pipeline; the CLI
+    still starts, and ``python -m capred.cli.declare`` can rewrite the snapshot)."""
+    if not fresh:
+        try:
+            from .declared import SNAPSHOT
+        except ImportError:
+            SNAPSHOT = {}
+        if SNAPSHOT.get("layout") == LAYOUT:
+            return SNAPSHOT
+    return _live()
+
+
+@lru_cache(maxsize=1)
+def _live() -> dict:
+    return facts()
 
 
 def field_facts(options: str, field: str) -> dict:
@@ -74,14 +93,30 @@ def field_facts(options: str, field: str) -> dict:
     """
     try:
         return _snapshot()["options"][options][field]
-    except KeyError:
-        raise KeyError(
-            f"{options}.{field} is not in capred/cli/declared.py: run python -m capred.cli.declare"
-        ) from None
+    except KeyError:  # a field the snapshot does not know yet: read the Options now
+        return _snapshot(fresh=True)["options"][options][field]
 
 
-def registry_names(name: str) -> list[str]:
-    """The entries of a registry (from the snapshot, so that `--help` imports no numerical module).
+def registry_names(name: str, subset: str | None = None) -> list[str]:
+    """The entries of a registry, in its order (from the snapshot, so that `--help` imports no numerical module).
+
+    Parameters
+    ----------
+    name : str
+        A key of `REGISTRIES`.
+    subset : str, optional
+        One of the registry's flags (``thesis``): only the entries with that attribute true.
+
+    Returns
+    -------
+    list of str
+    """
+    entry = _snapshot()["registries"].get(name) or _snapshot(fresh=True)["registries"][name]
+    return entry[subset or "names"].split(", ")
+
+
+def registry_help(name: str) -> list[str]:
+    """One line per entry of a registry, ``"name: its help"`` (from the snapshot).
 
     Parameters
     ----------
@@ -92,22 +127,8 @@ def registry_names(name: str) -> list[str]:
     -------
     list of str
     """
-    return [n for n, _ in _snapshot()["registries"][name]]
-
-
-def registry_help(name: str) -> list[tuple[str, str]]:
-    """``(entry, its one-line help)`` of a registry, from the snapshot.
-
-    Parameters
-    ----------
-    name : str
-        A key of `REGISTRIES`.
-
-    Returns
-    -------
-    list of tuple of str
-    """
-    return [tuple(e) for e in _snapshot()["registries"][name]]
+    entry = _snapshot()["registries"].get(name) or _snapshot(fresh=True)["registries"][name]
+    return list(entry["help"])
 
 
 def option(options: str, field: str, *flags: str, note: str = "", help: str | None = None, **kw):
@@ -151,14 +172,13 @@ def option(options: str, field: str, *flags: str, note: str = "", help: str | No
         text = f"{text} {note}" if note[0] == "(" else f"{text}{note}" if note[0] in ":," else f"{text}; {note}"
     text = text if text.endswith((".", "?", "!")) else text + "."
     names = flags or (f["option"],)  # the Options' OPTION_NAMES, else --field-name
-    default = f["default"]
     if f["type"] == "bool":
         if not flags:
             names = (f"{names[0]}/--no-{names[0][2:]}",)
         return Annotated[bool, typer.Option(*names, help=text, **kw)]
-    if default is not None and "show_default" not in kw:  # the Options default (the signature's is None)
-        text = f"{text}  [default: {kw.pop('shown', None) or _shown(default)}]"
-    kw.pop("shown", None)
+    shown = kw.pop("shown", None)
+    if f["default"] and "show_default" not in kw:  # the Options default (the signature's default is None)
+        text = f"{text}  [default: {shown}]" if shown else f"{text}  {f['default']}"
     kw.setdefault("show_default", False)
     if f["quantity"] is not None:
         kw.setdefault("metavar", "NUMBER")
@@ -302,8 +322,8 @@ def facts() -> dict:
         ``{"options": {class: {field: {...}}}, "registries": {name: [(entry, help), ...]}}``; a field holds
         ``quantity`` (its glossary name or None), ``unit`` (the glossary's output unit, "" for none or "-"),
         ``range`` (its hard limits in that unit), ``text`` (the Options ``Attributes`` text, else the glossary
-        description and symbol), ``default`` (the Options default, in that unit), ``type`` and ``option``
-        (its command-line spelling in messages).
+        description and symbol), ``default`` (the Options default as ``--help`` shows it, in that unit:
+        ``"[default: 9.81]"``), ``type`` and ``option`` (its command-line spelling in messages).
     """
     import dataclasses
     import typing
@@ -332,7 +352,7 @@ def facts() -> dict:
                 "unit": "",
                 "range": "",
                 "text": docs.get(f.name, ""),
-                "default": _plain(default),
+                "default": None if default is None else f"[default: {_shown(default)}]",
                 "type": kind,
                 "option": names.get(f.name, "--" + f.name.replace("_", "-")),
             }
@@ -341,17 +361,22 @@ def facts() -> dict:
                 entry["unit"] = "" if q.unit == "-" else q.unit
                 entry["range"] = _range_text(q)
                 entry["text"] = _glossary_text(q)
-                if isinstance(default, (int, float)) and not isinstance(default, bool):
-                    entry["default"] = float(f"{default * q.factor:.12g}")
+                if isinstance(default, (int, float)) and not isinstance(default, bool):  # in the glossary's unit
+                    entry["default"] = f"[default: {_shown(float(f'{default * q.factor:.12g}'))}]"
                 entry["type"] = "float"
             fields[f.name] = entry
         options[path] = fields
-    registries = {}
-    for key, (path, attr) in REGISTRIES.items():
+    registries = {}  # names joined, never one name alone: the names live in their registry's module only
+    for key, (path, attr, subsets) in REGISTRIES.items():
         module, name = path.split(":")
         reg = getattr(import_module(module), name)
-        registries[key] = [[k, str(getattr(v, attr, "")) if attr else ""] for k, v in reg.items()]
-    return {"options": options, "registries": registries}
+        helps = [str(getattr(v, attr, "")) if attr else "" for v in reg.values()]
+        registries[key] = {
+            "names": ", ".join(reg),
+            "help": [h if h.startswith(f"{k}:") else f"{k}: {h}" if h else k for k, h in zip(reg, helps)],
+            **{flag: ", ".join(k for k, v in reg.items() if getattr(v, flag, None)) for flag in subsets},
+        }
+    return {"layout": LAYOUT, "options": options, "registries": registries}
 
 
 def _glossary_text(q) -> str:
@@ -368,16 +393,6 @@ def _attribute_help(cls, reader) -> dict[str, str]:
     for name, text in reader(cls).items():
         out[name] = re.sub(r"\s*\[[^\]]*\]", "", text).replace("``", "").strip()
     return out
-
-
-def _plain(value):
-    if isinstance(value, tuple):
-        return [_plain(v) for v in value]
-    if isinstance(value, float) and not abs(value) < float("inf"):
-        return repr(value)  # inf, nan: the snapshot is Python source
-    if isinstance(value, (bool, int, float, str)) or value is None:
-        return value
-    return None
 
 
 def _literal(value, indent: int = 0) -> str:
