@@ -17,42 +17,20 @@ from typer.testing import CliRunner
 
 import capred
 from capred.cli import app
+from capred.reductions import REDUCTIONS
 
 runner = CliRunner()
 SHARED_KEYS = {"command", "capred_version", "inputs", "options", "warnings", "notes"}
 
-# every command, its CLI arguments and the same run through the API
-COMMANDS = {
-    "shear": (["shear", "--sample", "--no-plots"], lambda: capred.run_shear(capred.sample_path("shear"))),
-    "triaxial-bounds": (
-        ["triaxial-bounds", "--sample", "--no-plots"],
-        lambda: capred.run_triaxial_bounds(capred.sample_path("triaxial-bounds")),
-    ),
-    "retention": (
-        ["retention", "--sample", "--no-plots"],
-        lambda: capred.run_retention(capred.sample_path("retention")),
-    ),
-    "prism": (["prism", "--sample"], lambda: capred.run_prism(capred.sample_path("prism"))),
-    "skempton-b": (
-        ["skempton-b", "--sample", "--no-plots"],
-        lambda: capred.run_skempton_b(capred.sample_path("skempton-b")),
-    ),
-    "rumpf": (["rumpf", "--sample"], lambda: capred.run_rumpf(capred.sample_path("rumpf"))),
-    "bridge solve": (["bridge", "solve", "--sample"], lambda: capred.solve_bridges(capred.sample_path("bridge-solve"))),
-    "bridge compare": (
-        ["bridge", "compare", "--sample", "--no-plots"],
-        lambda: capred.compare_measured(capred.sample_path("bridge-compare")),
-    ),
-    "bridge curve": (["bridge", "curve", "--points", "50", "--no-plots"], lambda: capred.bridge_curve(points=50)),
-    "bridge rupture": (
-        ["bridge", "rupture", "--sample", "--no-plots"],
-        lambda: capred.rupture_distances(capred.sample_path("bridge-rupture")),
-    ),
-    "bridge yade-files": (
-        ["bridge", "yade-files", "--ratios", "1,2", "--distances", "4", "--suctions", "5"],
-        lambda: capred.run("bridge yade-files", ratios=(1, 2), distances=4, suctions=5),
-    ),
-}
+
+def _api_run(red):
+    """The registry's quick run of a command through the API: its sample (if any) and its example options."""
+    return lambda: capred.run(red.name, capred.sample_path(red.sample) if red.sample else None, **dict(red.example))
+
+
+# every command of the registry (capred.reductions.REDUCTIONS, so a new command is tested without editing this
+# file): its quick run on the command line (Reduction.example_args) and the same run through the API
+COMMANDS = {name: ([*red.example_args(), "--no-plots"], _api_run(red)) for name, red in REDUCTIONS.items()}
 
 
 @pytest.mark.parametrize("command", list(COMMANDS))
@@ -389,7 +367,7 @@ def test_implausible_unit_weight_warns_in_json():
 def test_no_user_facing_text_names_a_seed_file():
     texts = [p.read_text(encoding="utf-8") for p in (ROOT / "capred").rglob("*.py")]
     texts.append((ROOT / "README.md").read_text(encoding="utf-8"))
-    for name in ("shear", "triaxial-bounds", "retention", "prism", "skempton-b", "rumpf", "bridge", "batch"):
+    for name in [*dict.fromkeys(n.split()[0] for n in REDUCTIONS), "batch"]:  # every command and group
         texts.append(runner.invoke(app, [name, "--help"]).stdout)
     pattern = re.compile(r"seed\s*0\d\d|seed's|the seeds?\b|0b13a170|65a0ce3c|5775559b", re.I)
     for text in texts:
@@ -405,17 +383,6 @@ def test_new_model_is_one_registry_entry():
 
 
 def test_every_command_has_help_with_an_example():
-    for args in (
-        ["shear"],
-        ["triaxial-bounds"],
-        ["retention"],
-        ["prism"],
-        ["skempton-b"],
-        ["rumpf"],
-        ["bridge", "solve"],
-        ["bridge", "compare"],
-        ["bridge", "curve"],
-        ["batch"],
-    ):
+    for args in [*(name.split() for name in REDUCTIONS), ["batch"]]:
         res = runner.invoke(app, [*args, "--help"])
         assert res.exit_code == 0 and "Example: capred" in res.stdout

@@ -82,16 +82,22 @@ def test_a_toy_command_is_two_entries_and_gets_its_cli(tmp_path, monkeypatch):
         presenters.Presenter(lambda r: {}, lambda r: __import__("toy_suction").toy_tables(r)),
     )
     monkeypatch.setattr(common, "BUILDERS", dict(common.BUILDERS))
-    app = typer.Typer()
+    app = typer.Typer(rich_markup_mode=None)  # plain help, as capred's app (rich would read [kN/m^3] as markup)
     app.callback()(lambda: None)
     assert register_generated(app, common.BUILDERS) == ["toy-suction"]
     runner = CliRunner()
-    help_text = runner.invoke(app, ["toy-suction", "--help"]).output
+    help_text = " ".join(runner.invoke(app, ["toy-suction", "--help"]).output.split())  # wrapped lines joined
     assert "--gamma-w" in help_text and "--heights" in help_text and "Unit weight of water" in help_text
     # --gamma-w in the glossary's unit (kN/m^3): 10 kN/m^3 x 0.5 m = 5 kPa, by hand
     res = runner.invoke(app, ["toy-suction", "--gamma-w", "10", "--heights", "0.5,1", "--json"])
     assert res.exit_code == 0, res.output
     assert json.loads(res.stdout)["suction_kPa"] == [5.0, 10.0]
+    # a value with a unit of its own, as on every hand-written command: 10000 N/m^3 = 10 kN/m^3
+    res = runner.invoke(app, ["toy-suction", "--gamma-w", "10000 N/m^3", "--heights", "0.5,1", "--json"])
+    assert res.exit_code == 0, res.output
+    assert json.loads(res.stdout)["suction_kPa"] == [5.0, 10.0]
+    # the glossary's unit and range, and the Options default in that unit
+    assert "[kN/m^3; > 0]" in help_text and "[default: 9.81]" in help_text
     res = runner.invoke(app, ["toy-suction", "--out", str(tmp_path / "o")])
     assert res.exit_code == 0, res.output
     assert "0.981" in res.output  # its presenter's console table: 9.81 kN/m^3 x 0.1 m = 0.981 kPa

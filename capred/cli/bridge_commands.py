@@ -1,11 +1,15 @@
 """`capred bridge curve | solve | compare | rupture | laws | yade-files`: exact capillary bridges between two spheres or a
 sphere and a plane."""
 
-from typing import Annotated
-
 import typer
 
-from .common import Invocation, command, quantity
+from .common import Invocation, command
+from .declare import option, registry_help, si_values
+
+CURVE = "capred.pipelines.bridge:CurveOptions"
+BRIDGE = "capred.pipelines.bridge_solve:BridgeOptions"
+YADE = "capred.pipelines.yade_files:YadeOptions"
+LAWS = "capred.pipelines.bridge_laws:LawsOptions"
 
 
 def register(app: typer.Typer) -> None:
@@ -56,15 +60,18 @@ def register(app: typer.Typer) -> None:
 
 
 def curve(
-    radius: Annotated[str, typer.Option(help="Particle radius R [mm] (2 mm steel spheres: 1).")] = "1",
-    surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m].")] = "0.0728",
-    contact_angle: Annotated[float, typer.Option(help="Contact angle [deg].")] = 0.0,
-    points: Annotated[int, typer.Option(help="Number of S_R values.")] = 2000,
-    S_R_max: Annotated[
-        float,
-        typer.Option("--S-R-max", "--sr-max", help="Largest S_R of the sweep (bridges stop where suction reaches 0)."),
-    ] = 0.3,
-    pendular_limit: Annotated[float, typer.Option(help="S_R bound of the pendular regime panel.")] = 0.05,
+    radius: option(CURVE, "radius", note="(2 mm steel spheres: 1)") = None,
+    surface_tension: option(CURVE, "surface_tension") = None,
+    contact_angle: option(CURVE, "contact_angle") = None,
+    points: option(CURVE, "points", help="Number of S_R values.") = None,
+    S_R_max: option(
+        CURVE,
+        "S_R_max",
+        "--S-R-max",
+        "--sr-max",
+        help="Largest S_R of the sweep (bridges stop where suction reaches 0).",
+    ) = None,
+    pendular_limit: option(CURVE, "pendular_limit", note="the bound of the pendular regime panel") = None,
 ) -> Invocation:
     """Evenepoel's analytical comparison: sigma' = F_cap/(pi R^2) against
     S_R = 3 V_w/(2 pi R^3) for two spheres in contact, from exact bridges,
@@ -98,39 +105,36 @@ def curve(
     from ..pipelines.bridge import CurveOptions
 
     opts = CurveOptions(
-        quantity(radius, "mm", "R", "--radius"),
-        quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
-        quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"),
-        points,
-        S_R_max,
-        quantity(repr(float(pendular_limit)), "", "pendular_limit", "--pendular-limit"),
+        **si_values(
+            CURVE,
+            radius=radius,
+            surface_tension=surface_tension,
+            contact_angle=contact_angle,
+            points=points,
+            S_R_max=S_R_max,
+            pendular_limit=pendular_limit,
+        )
     )
     return Invocation("bridge curve", opts)
 
 
 def solve(
-    surface_tension: Annotated[
-        str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma'.")
-    ] = "0.0728",
-    contact_angle2: Annotated[
-        float | None,
-        typer.Option(
-            "--contact-angle2",
-            help="Contact angle on the second particle (sphere R2 or plane) [deg] of rows without a "
-            "'contact_angle2' value [default: the row's contact_angle].",
-            show_default=False,
-        ),
-    ] = None,
-    workers: Annotated[
-        int | None,
-        typer.Option(
-            min=1,
-            help="Processes that solve the rows (results identical for any number) [default: CAPRED_PROCESSES, "
-            "else the cores this run may use that the load leaves idle]; with several files, worker processes "
-            "of the batch.",
-            show_default=False,
-        ),
-    ] = None,
+    surface_tension: option(BRIDGE, "surface_tension", note="of rows without 'gamma'") = None,
+    contact_angle2: option(
+        BRIDGE,
+        "contact_angle2",
+        "--contact-angle2",
+        note="on the second particle (sphere R2 or plane) of rows without a 'contact_angle2' value "
+        "[default: the row's contact_angle]",
+    ) = None,
+    workers: option(
+        BRIDGE,
+        "workers",
+        min=1,
+        help="Processes that solve the rows (results identical for any number) [default: CAPRED_PROCESSES, "
+        "else the cores this run may use that the load leaves idle]; with several files, worker processes "
+        "of the batch.",
+    ) = None,
 ) -> Invocation:
     """Exact bridge per row between spheres of radii R and R2 (or a sphere and
     a plane): neck radius r0, F_cap = F_L + F_T, V_w, filling angles on both
@@ -162,17 +166,13 @@ def solve(
     from ..pipelines.bridge import BridgeOptions
 
     opts = BridgeOptions(
-        quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
-        None if contact_angle2 is None else quantity(repr(float(contact_angle2)), "deg"),
-        workers,
+        **si_values(BRIDGE, surface_tension=surface_tension, contact_angle2=contact_angle2, workers=workers)
     )
     return Invocation("bridge solve", opts)
 
 
 def compare(
-    surface_tension: Annotated[
-        str, typer.Option(help="Surface tension gamma [N/m] of rows without 'gamma'.")
-    ] = "0.0728",
+    surface_tension: option(BRIDGE, "surface_tension", note="of rows without 'gamma'") = None,
 ) -> Invocation:
     """Microscopic tests against theory: the measured force of each sphere pair
     beside the exact bridge of the same R, gap, contact angle and V_w, the
@@ -194,17 +194,14 @@ def compare(
     """
     from ..pipelines.bridge import BridgeOptions
 
-    opts = BridgeOptions(quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"))
+    opts = BridgeOptions(**si_values(BRIDGE, surface_tension=surface_tension))
     return Invocation("bridge compare", opts)
 
 
 def rupture(
-    surface_tension: Annotated[
-        str,
-        typer.Option(
-            help="Surface tension gamma [N/m] of rows without 'gamma' (for the suction and force at rupture)."
-        ),
-    ] = "0.0728",
+    surface_tension: option(
+        BRIDGE, "surface_tension", note="of rows without 'gamma' (for the suction and force at rupture)"
+    ) = None,
 ) -> Invocation:
     """Rupture distance at constant volume: the widest gap a bridge of volume
     V_w spans between particles of radii R and R2 (or a sphere and a plane),
@@ -227,25 +224,21 @@ def rupture(
     """
     from ..pipelines.bridge import BridgeOptions
 
-    opts = BridgeOptions(quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"))
+    opts = BridgeOptions(**si_values(BRIDGE, surface_tension=surface_tension))
     return Invocation("bridge rupture", opts)
 
 
 def yade_files(
-    ratios: Annotated[
-        str, typer.Option(help="Radius ratios R2/R1 >= 1, comma-separated (YADE opens these ten).")
-    ] = "1,1.1,1.25,1.5,1.75,2,3,4,5,10",
-    contact_angle: Annotated[float, typer.Option("--contact-angle", "--theta", help="Contact angle [deg].")] = 0.0,
-    distances: Annotated[
-        int, typer.Option(help="Distances per file, 0 to the largest gap bridged at zero suction.")
-    ] = 80,
-    suctions: Annotated[
-        int,
-        typer.Option(
-            help="Suctions per distance: 0, then geometric from uc* = 0.002 to a "
-            "mean filling angle of 1 deg at contact."
-        ),
-    ] = 350,
+    ratios: option(YADE, "ratios", help="Radius ratios R2/R1 >= 1, comma-separated (YADE opens these ten).") = None,
+    contact_angle: option(YADE, "contact_angle", "--contact-angle", "--theta") = None,
+    distances: option(
+        YADE, "distances", help="Distances per file, 0 to the largest gap bridged at zero suction."
+    ) = None,
+    suctions: option(
+        YADE,
+        "suctions",
+        help="Suctions per distance: 0, then geometric from uc* = 0.002 to a mean filling angle of 1 deg at contact.",
+    ) = None,
 ) -> Invocation:
     """Capillary files for YADE's Law2_ScGeom_CapillaryPhys_Capillarity: one
     file M(r=<ratio>) per radius ratio, in YADE's layout and dimensionless
@@ -276,33 +269,31 @@ def yade_files(
     from ..errors import OptionError
     from ..pipelines.yade_files import YadeOptions
 
-    try:
-        values = tuple(float(x) for x in ratios.split(",") if x.strip())
-    except ValueError:
-        raise OptionError(f"--ratios: '{ratios}' is not a comma-separated list of numbers") from None
-    return Invocation("bridge yade-files", YadeOptions(values, contact_angle, distances, suctions))
+    given = si_values(YADE, contact_angle=contact_angle, distances=distances, suctions=suctions)
+    if ratios is not None:
+        try:
+            given["ratios"] = tuple(float(x) for x in ratios.split(",") if x.strip())
+        except ValueError:
+            raise OptionError(f"--ratios: '{ratios}' is not a comma-separated list of numbers") from None
+    return Invocation("bridge yade-files", YadeOptions(**given))
 
 
 def laws(
-    gaps: Annotated[str, typer.Option(help="Gaps D/R of the default grid, comma-separated.")] = (
-        "0,0.002,0.005,0.01,0.02,0.05,0.1,0.2"
-    ),
-    volumes: Annotated[str, typer.Option(help="Volumes V/R^3 of the default grid, comma-separated.")] = (
-        "1e-4,3e-4,1e-3,3e-3,1e-2,3e-2,0.1"
-    ),
-    angles: Annotated[str, typer.Option(help="Contact angles [deg] of the default grid, comma-separated.")] = (
-        "0,20,40"
-    ),
-    ratios: Annotated[
-        str, typer.Option(help="R2/R of the default grid, comma-separated ('plane': a sphere and a plane).")
-    ] = "1,2,plane",
-    tolerance: Annotated[
-        float, typer.Option(help="Relative error under which a law counts as within, everywhere in a region.")
-    ] = 0.05,
+    gaps: option(LAWS, "gaps", help="Gaps D/R of the default grid, comma-separated.") = None,
+    volumes: option(LAWS, "volumes", help="Volumes V/R^3 of the default grid, comma-separated.") = None,
+    angles: option(LAWS, "angles", help="Contact angles [deg] of the default grid, comma-separated.") = None,
+    ratios: option(
+        LAWS,
+        "ratios",
+        help="R2/R of the default grid, comma-separated ('plane': a sphere and a plane).",
+        shown="1,2,plane",
+    ) = None,
+    tolerance: option(
+        LAWS, "tolerance", help="Relative error under which a law counts as within, everywhere in a region."
+    ) = None,
 ) -> Invocation:
-    """Which closed-form capillary force a DEM code should use: Willett et al.
-    (2000, simple and full), Rabinovich et al. (2005), Lambert et al. (2008),
-    Soulié et al. (2006) and Weigert & Ripperger (1999) against the exact
+    """Which closed-form capillary force a DEM code should use: each law of
+    the registry ({laws}) against the exact
     Young-Laplace bridge at the same contact angle, volume and gap (the stable
     bridge at constant volume), forces in units of 2 pi R gamma; per region of
     gap x volume x angle x geometry each law's median and largest relative
@@ -333,4 +324,9 @@ def laws(
     """
     from ..pipelines.bridge_laws import LawsOptions
 
-    return Invocation("bridge laws", LawsOptions(gaps, volumes, angles, ratios, tolerance))
+    given = si_values(LAWS, gaps=gaps, volumes=volumes, angles=angles, ratios=ratios, tolerance=tolerance)
+    return Invocation("bridge laws", LawsOptions(**given))
+
+
+# the laws as the registry lists them (from the CLI's snapshot: `--help` imports no numerical module)
+laws.__doc__ = laws.__doc__.replace("{laws}", "; ".join(registry_help("bridge_laws")))

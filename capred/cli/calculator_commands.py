@@ -1,10 +1,14 @@
 """`capred prism`, `capred skempton-b`, `capred rumpf`: closed-form calculators, from options or a table of cases."""
 
-from typing import Annotated
-
 import typer
 
-from .common import Invocation, command, quantity
+from .common import Invocation, command
+from .declare import option, si_values
+
+PRISM = "capred.pipelines.calculators:PrismOptions"
+SKEMPTON = "capred.pipelines.calculators:SkemptonOptions"
+RUMPF = "capred.pipelines.calculators:RumpfOptions"
+HISTORY = "capred.pipelines.history:HistoryOptions"
 
 
 def register(app: typer.Typer) -> None:
@@ -28,17 +32,10 @@ def register(app: typer.Typer) -> None:
     )
 
 
-def _number(value: float | None, name: str, option: str) -> float | None:
-    return quantity(None if value is None else repr(float(value)), "", name, option)
-
-
 def prism(
-    break_tension: Annotated[
-        str | None,
-        typer.Option(help="Break tension sigma_b of the prism [kPa]; any pressure unit, g/cm^2 read as gram-force."),
-    ] = None,
-    friction_angle: Annotated[float | None, typer.Option(help="Friction angle rho of the sand [deg].")] = None,
-    gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3].")] = "9.81",
+    break_tension: option(PRISM, "break_tension", note="any pressure unit, g/cm^2 read as gram-force") = None,
+    friction_angle: option(PRISM, "friction_angle") = None,
+    gamma_w: option(PRISM, "gamma_w") = None,
 ) -> Invocation:
     """Bernatzik's (1948) prism test: maximal capillary pressure
     P_kmax = sigma_b (1 - sin rho)/(2 sin rho) and capillary rise h_c = P_kmax/gamma_w.
@@ -64,94 +61,75 @@ def prism(
     """
     from ..pipelines.calculators import PrismOptions
 
-    opts = PrismOptions(
-        quantity(break_tension, "kPa", "break_tension", "--break-tension"),
-        quantity(None if friction_angle is None else str(friction_angle), "deg", "friction_angle", "--friction-angle"),
-        quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"),
-    )
+    opts = PrismOptions(**si_values(PRISM, break_tension=break_tension, friction_angle=friction_angle, gamma_w=gamma_w))
     return Invocation("prism", opts)
 
 
 def skempton_b(
-    S_R: Annotated[float | None, typer.Option("--S-R", "--sr", help="Degree of saturation S_R [-]: compute B.")] = None,
-    b: Annotated[float | None, typer.Option("--b", help="Measured B [-]: compute S_R.")] = None,
-    kappa_elastic: Annotated[
-        float, typer.Option("--kappa-elastic", "--kappa", help="Slope kappa of the elastic line in e-ln p' [-].")
-    ] = 0.006,
-    e0: Annotated[float, typer.Option(help="Initial void ratio.")] = 0.8,
-    p0: Annotated[str, typer.Option(help="Mean total stress [kPa].")] = "100",
-    u0: Annotated[str, typer.Option(help="Initial pore pressure [kPa].")] = "30",
-    pa0: Annotated[str, typer.Option(help="Absolute initial air pressure [kPa].")] = "130",
-    se: Annotated[
-        str | None,
-        typer.Option("--se", help="Air-entry suction s_e [kPa] (Brooks-Corey): simulation with suction equilibrium."),
-    ] = None,
-    bc_lambda: Annotated[
-        float | None,
-        typer.Option(
-            "--bc-lambda",
-            "--bc-alpha",
-            help="Brooks-Corey pore-size index lambda (alpha in Morvan et al. 2016), with --se.",
-        ),
-    ] = None,
-    model: Annotated[
-        str,
-        typer.Option(
-            metavar="elastic|bounding-surface|elastoplastic",
-            help="Skeleton model: elastic (eq. 10, or with --se/--bc-lambda suction equilibrium, section 3); "
-            "bounding-surface (section 4 by capred's Cam-clay bounding-surface reconstruction, not the BDNS "
-            "model of the paper's ref. [16]; Table 3 defaults); elastoplastic is refused, with the reason.",
-        ),
-    ] = "elastic",
-    a_ini: Annotated[
-        str | None,
-        typer.Option(
-            "--a-ini",
-            help="Initial distance A_ini of the bounding surface's apex above p'0 [kPa] (Morvan et al. 2016, "
-            "Table 3: 0 normally consolidated, 10 over-consolidated), with --model bounding-surface. Default 0.",
-        ),
-    ] = None,
-    interpolation_h: Annotated[
-        float | None,
-        typer.Option(
-            "--interpolation-h",
-            help="Dafalias-type interpolation constant h [-] of the reconstruction; required with --a-ini > 0 "
-            "(no published value: h = 336 meets the paper's Fig. 6 value 0.04 with --air-pressure gauge).",
-        ),
-    ] = None,
-    air_pressure: Annotated[
-        str,
-        typer.Option(
-            "--air-pressure",
-            metavar="absolute|gauge",
-            help="With --model bounding-surface: absolute (Boyle's law on pa0, p' = p0 - u0 + s S_r) or gauge "
-            "(u0 in Boyle's law, p' = p0 + s S_r: the convention under which the paper's Fig. 6 values come "
-            "out; Boyle's law needs absolute pressure, so this warns).",
-        ),
-    ] = "absolute",
-    lambda0: Annotated[
-        float | None,
-        typer.Option(
-            "--lambda0",
-            help="Slope lambda0 of the normal compression line [-] (Table 3: 0.2), with --model bounding-surface.",
-        ),
-    ] = None,
-    retention: Annotated[
-        str | None,
-        typer.Option(
-            help="fits.json of capred retention (any model): s_e and lambda of Brooks-Corey from it (another "
-            "model is converted to Brooks-Corey, the misfit reported); instead of --se and --bc-lambda."
-        ),
-    ] = None,
-    curve: Annotated[
-        bool,
-        typer.Option(
-            "--curve",
-            help="B against S_r (0.5-1) for the models asked instead of cases: eq. 10; with --se/--bc-lambda "
-            "suction equilibrium; with --model bounding-surface NC and (with --a-ini) OC; as Morvan et al. "
-            "(2016) Fig. 1-3, 5, 6. Give --out for the figure.",
-        ),
-    ] = False,
+    S_R: option(SKEMPTON, "S_R", "--S-R", "--sr", note=": compute B") = None,
+    b: option(SKEMPTON, "b", "--b", help="Measured B", note=": compute S_R") = None,
+    kappa_elastic: option(SKEMPTON, "kappa_elastic", "--kappa-elastic", "--kappa") = None,
+    e0: option(SKEMPTON, "e0") = None,
+    p0: option(SKEMPTON, "p0") = None,
+    u0: option(SKEMPTON, "u0") = None,
+    pa0: option(SKEMPTON, "pa0") = None,
+    se: option(SKEMPTON, "s_e", "--se", note=": simulation with suction equilibrium") = None,
+    bc_lambda: option(
+        SKEMPTON, "bc_lambda", "--bc-lambda", "--bc-alpha", note="(alpha in Morvan et al. 2016), with --se"
+    ) = None,
+    model: option(
+        SKEMPTON,
+        "model",
+        metavar="elastic|bounding-surface|elastoplastic",
+        help="Skeleton model: elastic (eq. 10, or with --se/--bc-lambda suction equilibrium, section 3); "
+        "bounding-surface (section 4 by capred's Cam-clay bounding-surface reconstruction, not the BDNS "
+        "model of the paper's ref. [16]; Table 3 defaults); elastoplastic is refused, with the reason.",
+    ) = None,
+    a_ini: option(
+        SKEMPTON,
+        "a_ini",
+        "--a-ini",
+        help="Initial distance A_ini of the bounding surface's apex above p'0",
+        note="(Morvan et al. 2016, Table 3: 0 normally consolidated, 10 over-consolidated), with --model "
+        "bounding-surface. Default 0",
+    ) = None,
+    interpolation_h: option(
+        SKEMPTON,
+        "interpolation_h",
+        "--interpolation-h",
+        help="Dafalias-type interpolation constant h [-] of the reconstruction; required with --a-ini > 0 "
+        "(no published value: h = 336 meets the paper's Fig. 6 value 0.04 with --air-pressure gauge).",
+    ) = None,
+    air_pressure: option(
+        SKEMPTON,
+        "air_pressure",
+        "--air-pressure",
+        metavar="absolute|gauge",
+        help="With --model bounding-surface: absolute (Boyle's law on pa0, p' = p0 - u0 + s S_r) or gauge "
+        "(u0 in Boyle's law, p' = p0 + s S_r: the convention under which the paper's Fig. 6 values come "
+        "out; Boyle's law needs absolute pressure, so this warns).",
+    ) = None,
+    lambda0: option(
+        SKEMPTON,
+        "lambda0",
+        "--lambda0",
+        help="Slope lambda0 of the normal compression line",
+        note="(Table 3: 0.2), with --model bounding-surface",
+    ) = None,
+    retention: option(
+        SKEMPTON,
+        "retention",
+        help="fits.json of capred retention (any model): s_e and lambda of Brooks-Corey from it (another "
+        "model is converted to Brooks-Corey, the misfit reported); instead of --se and --bc-lambda.",
+    ) = None,
+    curve: option(
+        SKEMPTON,
+        "curve",
+        "--curve",
+        help="B against S_r (0.5-1) for the models asked instead of cases: eq. 10; with --se/--bc-lambda "
+        "suction equilibrium; with --model bounding-surface NC and (with --a-ini) OC; as Morvan et al. "
+        "(2016) Fig. 1-3, 5, 6. Give --out for the figure.",
+    ) = False,
 ) -> Invocation:
     """Skempton's B against degree of saturation (Morvan et al. 2016, eq. 10):
     B = 1/(1 + p'0 e0 (1 - S_r)/(kappa P_a0)) with p'0 = p0 - u0, or its inverse
@@ -208,34 +186,36 @@ def skempton_b(
     """
     from ..pipelines.calculators import SkemptonOptions
 
-    opts = SkemptonOptions(
-        _number(S_R, "S_R", "--S-R"),
-        _number(b, "B", "--b"),
-        _number(kappa_elastic, "kappa_elastic", "--kappa-elastic"),
-        _number(e0, "e0", "--e0"),
-        quantity(p0, "kPa", "p0", "--p0"),
-        quantity(u0, "kPa", "u0", "--u0"),
-        quantity(pa0, "kPa", "pa0", "--pa0"),
-        quantity(se, "kPa", "air_entry", "--se"),
-        _number(bc_lambda, "bc_lambda", "--bc-lambda"),
+    given = si_values(
+        SKEMPTON,
+        S_R=S_R,
+        b=b,
+        kappa_elastic=kappa_elastic,
+        e0=e0,
+        p0=p0,
+        u0=u0,
+        pa0=pa0,
+        s_e=se,
+        bc_lambda=bc_lambda,
+        a_ini=a_ini,
+        lambda0=lambda0,
         model=model,
-        a_ini=quantity(a_ini, "kPa", "p0", "--a-ini"),
         interpolation_h=interpolation_h,
         air_pressure=air_pressure,
-        lambda0=lambda0,
         retention=retention,
         curve=curve,
     )
+    opts = SkemptonOptions(**given)
     return Invocation("skempton-b", opts, extra_inputs=[retention] if retention else [])
 
 
 def rumpf(
-    shape_factor: Annotated[float | None, typer.Option(help="Particle shape factor phi [-].")] = None,
-    void_ratio: Annotated[float | None, typer.Option(help="Void ratio e [-].")] = None,
-    S_R: Annotated[float | None, typer.Option("--S-R", "--sr", help="Degree of saturation S_R [-].")] = None,
-    diameter: Annotated[str | None, typer.Option(help="Apparent particle diameter d_p [mm].")] = None,
-    surface_tension: Annotated[str, typer.Option(help="Surface tension gamma [N/m].")] = "0.0728",
-    contact_angle: Annotated[float, typer.Option(help="Contact angle [deg].")] = 0.0,
+    shape_factor: option(RUMPF, "shape_factor") = None,
+    void_ratio: option(RUMPF, "void_ratio") = None,
+    S_R: option(RUMPF, "S_R", "--S-R", "--sr") = None,
+    diameter: option(RUMPF, "diameter") = None,
+    surface_tension: option(RUMPF, "surface_tension") = None,
+    contact_angle: option(RUMPF, "contact_angle") = None,
 ) -> Invocation:
     """Rumpf's capillary pressure p_cap = -(6/phi)(S_r/e)(gamma/d_p) cos(theta)
     (Prunier et al. 2024, eq. 19); negative means tension.
@@ -267,33 +247,34 @@ def rumpf(
     from ..pipelines.calculators import RumpfOptions
 
     opts = RumpfOptions(
-        _number(shape_factor, "shape_factor", "--shape-factor"),
-        _number(void_ratio, "void_ratio", "--void-ratio"),
-        _number(S_R, "S_R", "--S-R"),
-        quantity(diameter, "mm", "diameter", "--diameter"),
-        quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
-        quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"),
+        **si_values(
+            RUMPF,
+            shape_factor=shape_factor,
+            void_ratio=void_ratio,
+            S_R=S_R,
+            diameter=diameter,
+            surface_tension=surface_tension,
+            contact_angle=contact_angle,
+        )
     )
     return Invocation("rumpf", opts)
 
 
 def history(
-    material: Annotated[
-        str | None, typer.Option(help="Material as the runs name it (needed when the store holds several).")
-    ] = None,
-    quantity: Annotated[
-        str | None, typer.Option(help="Quantity: a key of the runs' JSON, e.g. phi_deg, c_kPa (shear).")
-    ] = None,
-    baseline: Annotated[int, typer.Option(help="First runs that set the centre line and the 3-sigma limits.")] = 8,
-    reference: Annotated[
-        float | None, typer.Option(help="Reference value of the quantity (its unit), instead of the baseline.")
-    ] = None,
-    spread: Annotated[
-        float | None, typer.Option(help="Standard deviation of the reference value (its unit), with --reference.")
-    ] = None,
-    of_command: Annotated[
-        str | None, typer.Option("--of-command", help="Only the runs of this command (e.g. shear).")
-    ] = None,
+    material: option(
+        HISTORY, "material", help="Material as the runs name it (needed when the store holds several)."
+    ) = None,
+    quantity: option(
+        HISTORY, "quantity", help="Quantity: a key of the runs' JSON, e.g. phi_deg, c_kPa (shear)."
+    ) = None,
+    baseline: option(HISTORY, "baseline", help="First runs that set the centre line and the 3-sigma limits.") = None,
+    reference: option(
+        HISTORY, "reference", help="Reference value of the quantity (its unit), instead of the baseline."
+    ) = None,
+    spread: option(
+        HISTORY, "spread", help="Standard deviation of the reference value (its unit), with --reference."
+    ) = None,
+    of_command: option(HISTORY, "command", "--of-command", help="Only the runs of this command (e.g. shear).") = None,
 ) -> Invocation:
     """A lab's history: one quantity of one material per recorded run, with its 95 %
     interval, on an individuals chart with moving range (centre line and 3-sigma
@@ -327,4 +308,13 @@ def history(
     """
     from ..pipelines.history import HistoryOptions
 
-    return Invocation("history", HistoryOptions(material, quantity, baseline, reference, spread, of_command))
+    given = si_values(
+        HISTORY,
+        material=material,
+        quantity=quantity,
+        baseline=baseline,
+        reference=reference,
+        spread=spread,
+        command=of_command,
+    )
+    return Invocation("history", HistoryOptions(**given))

@@ -358,30 +358,6 @@ def data_arg(what: str):
     ]
 
 
-def quantity(text: str | None, default_unit: str, name: str = "", option: str = "") -> str | None:
-    """An option as typed, with its default unit appended to a bare number; the Options convert and check it.
-
-    Parameters
-    ----------
-    text : str or None
-        The option as typed (None: not given).
-    default_unit : str
-        Unit of a bare number, e.g. ``kPa``.
-    name : str, optional
-        Unused (kept for callers that name the quantity).
-    option : str, optional
-        Unused (kept for callers that name the option).
-
-    Returns
-    -------
-    str or None
-        ``"<number> <unit>"`` for a bare number, else ``text`` as typed.
-    """
-    from ..units import with_unit
-
-    return with_unit(text, default_unit)
-
-
 def _limits(common: dict):
     """The reading limits the options ask for (None: the reader's defaults)."""
     given = {k: common.get(k) for k in ("max_megabytes", "max_cells", "max_columns", "max_cell_chars")}

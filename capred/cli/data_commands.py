@@ -5,7 +5,27 @@ from typing import Annotated
 
 import typer
 
-from .common import Invocation, ThousandsOpt, command, quantity
+from .common import Invocation, ThousandsOpt, command
+from .declare import option, registry_help, registry_names, si_values
+
+SHEAR = "capred.pipelines.shear:ShearOptions"
+PARAMS = "capred.pipelines.shear:ModelParams"
+TRIAXIAL = "capred.pipelines.triaxial:TriaxialOptions"
+RETENTION = "capred.pipelines.retention:RetentionOptions"
+
+
+def _models_help() -> str:
+    """--models of shear: every model of the effective-stress registry, its named sets and its fitted laws."""
+    return (
+        f"Models to compare, comma separated: {', '.join(registry_names('effective_stress_models'))}; "
+        f"'thesis' for the thesis's {', '.join(registry_names('effective_stress_models', 'thesis'))}, 'all' for "
+        f"every one. Fitted per material: {', '.join(registry_names('effective_stress_models', 'fitted'))}."
+    )
+
+
+def _retention_models_help() -> str:
+    """--model of retention: every model of the retention registry with its one-line help."""
+    return "Models, comma separated, or all: " + "; ".join(registry_help("retention_models")) + "."
 
 
 def register(app: typer.Typer) -> None:
@@ -38,90 +58,72 @@ def shear(
             "vertical_displacement [mm]; the peak gives tau_max."
         ),
     ] = None,
-    area_correction: Annotated[
-        str,
-        typer.Option(
-            metavar="none|square|circular",
-            help="Area of the curves' shear stress: none (nominal, as ASTM D3080 reports), square or circular box.",
-        ),
-    ] = "none",
-    ambient_pressure: Annotated[
-        str,
-        typer.Option(
-            help="Ambient air pressure [kPa]: a hanging-column head above "
-            "(p_a - p_vapour)/gamma_w, about 10.1 m, is refused."
-        ),
-    ] = "101.325",
-    rho_w: Annotated[str, typer.Option(help="Density of water [kg/m^3], for e = G_s rho_w/rho_d - 1.")] = "1000",
-    gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3]; the thesis uses 10.")] = "9.81",
-    surface_tension: Annotated[str, typer.Option(help="Surface tension of water [N/m].")] = "0.0728",
-    gravity: Annotated[str, typer.Option("--g", help="Gravitational acceleration [m/s^2].")] = "9.81",
-    pendular_limit: Annotated[
-        float, typer.Option(help="S_R above which a wet test is flagged outside the pendular regime.")
-    ] = 0.05,
-    box_area: Annotated[str | None, typer.Option(help="Shear box area [cm^2] for rows without 'box_area'.")] = None,
-    cap_mass: Annotated[str | None, typer.Option(help="Top-cap mass [g] for rows without 'cap_mass'.")] = None,
-    radius: Annotated[str | None, typer.Option(help="Particle radius R [mm] for rows without 'R'.")] = None,
-    void_volume: Annotated[str | None, typer.Option(help="Void volume V_v [cm^3] for rows without 'V_v'.")] = None,
-    models: Annotated[
-        str,
-        typer.Option(
-            help="Models to compare, comma separated: no_suction, bishop, own1, own2 "
-            "(= 'thesis', the default), vanapalli, khalili, lu_likos, fredlund, "
-            "pedrotti_tarantino, exact_neck, and the laws fitted per material "
-            "chi_power (chi = S_e^kappa) and khalili_fit (s_b, and eta with "
-            "--fit-eta); 'all' for every one."
-        ),
-    ] = "thesis",
+    area_correction: option(
+        SHEAR,
+        "area_correction",
+        metavar="none|square|circular",
+        help="Area of the curves' shear stress: none (nominal, as ASTM D3080 reports), square or circular box.",
+    ) = None,
+    ambient_pressure: option(
+        SHEAR, "ambient_pressure", note="a hanging-column head above (p_a - p_vapour)/gamma_w, about 10.1 m, is refused"
+    ) = None,
+    rho_w: option(SHEAR, "rho_w", note="for e = G_s rho_w/rho_d - 1") = None,
+    gamma_w: option(SHEAR, "gamma_w", note="the thesis uses 10") = None,
+    surface_tension: option(SHEAR, "surface_tension") = None,
+    gravity: option(SHEAR, "g") = None,
+    pendular_limit: option(
+        SHEAR, "pendular_limit", note="above it a wet test is flagged outside the pendular regime"
+    ) = None,
+    box_area: option(SHEAR, "box_area", note="for rows without 'box_area'") = None,
+    cap_mass: option(SHEAR, "cap_mass", note="for rows without 'cap_mass'") = None,
+    radius: option(SHEAR, "radius", note="for rows without 'R'") = None,
+    void_volume: option(SHEAR, "void_volume", note="for rows without 'V_v'") = None,
+    models: option(SHEAR, "models", help=_models_help(), shown="thesis") = None,
     retention: Annotated[
         Path | None,
         typer.Option(
             help="fits.json from capred retention: S_res, s_e and van Genuchten parameters for the extra models."
         ),
     ] = None,
-    s_res: Annotated[float | None, typer.Option(help="Residual S_R (Vanapalli et al. 1996).")] = None,
-    vanapalli_kappa: Annotated[float, typer.Option(help="Fitting exponent kappa of Vanapalli et al. (1996).")] = 1.0,
-    air_entry: Annotated[str | None, typer.Option(help="Air-entry suction s_e [kPa] (Khalili & Khabbaz 1998).")] = None,
-    vg_alpha: Annotated[str | None, typer.Option(help="van Genuchten alpha [1/kPa] (Lu & Likos 2006).")] = None,
-    vg_n: Annotated[
-        float | None, typer.Option(help="van Genuchten n (Lu & Likos 2006); m = 1 - 1/n unless --vg-m.")
-    ] = None,
-    vg_m: Annotated[float | None, typer.Option(help="van Genuchten m (Lu & Likos 2006).")] = None,
+    s_res: option(PARAMS, "s_res", note="(Vanapalli et al. 1996)") = None,
+    vanapalli_kappa: option(PARAMS, "vanapalli_kappa", note="(Vanapalli et al. 1996)") = None,
+    air_entry: option(PARAMS, "air_entry", note="(Khalili & Khabbaz 1998)") = None,
+    vg_alpha: option(PARAMS, "vg_alpha", note="(Lu & Likos 2006)") = None,
+    vg_n: option(PARAMS, "vg_n", note="(Lu & Likos 2006); m = 1 - 1/n unless --vg-m") = None,
+    vg_m: option(PARAMS, "vg_m", note="(Lu & Likos 2006)") = None,
     water_envelope: Annotated[
         str | None,
         typer.Option(
             help="'c,phi' [kPa, deg] of the water-saturated soil (Pedrotti & Tarantino); default: the dry envelope."
         ),
     ] = None,
-    contact_angle: Annotated[float, typer.Option(help="Contact angle [deg] of the exact bridge (exact_neck).")] = 0.0,
-    fit_eta: Annotated[
-        bool, typer.Option("--fit-eta", help="khalili_fit: fit the exponent eta too (else eta = 0.55).")
-    ] = False,
-    dry_fit: Annotated[
-        str,
-        typer.Option(
-            metavar="free|origin", help="Dry envelope: 'free' (c and phi) or 'origin' (c = 0, cohesionless soil)."
-        ),
-    ] = "free",
-    errors: Annotated[
-        str,
-        typer.Option(
-            metavar="constant|proportional|auto",
-            help="Scatter of a test: constant, proportional to its strength (weighted least squares), or auto "
-            "(proportional when the Breusch-Pagan test of the dry residuals against sigma_N has p < 0.05).",
-        ),
-    ] = "auto",
-    dry_loss: Annotated[
-        str,
-        typer.Option(
-            metavar="ols|huber|tukey",
-            help="Loss of the dry fit: ols (least squares), huber or tukey (robust to an outlier, sandwich errors).",
-        ),
-    ] = "ols",
-    bootstrap: Annotated[
-        int, typer.Option(help="Replicates of the paired bootstrap of the model ranking (0: none).")
-    ] = 2000,
-    seed: Annotated[int, typer.Option(help="Seed of the bootstrap: the same seed gives the same probabilities.")] = 0,
+    contact_angle: option(PARAMS, "contact_angle", note="of the exact bridge (exact_neck)") = None,
+    fit_eta: option(
+        PARAMS, "fit_eta", "--fit-eta", help="khalili_fit: fit the exponent eta too (else eta = 0.55)"
+    ) = False,
+    dry_fit: option(
+        SHEAR,
+        "dry_fit",
+        metavar="free|origin",
+        help="Dry envelope: 'free' (c and phi) or 'origin' (c = 0, cohesionless soil).",
+    ) = None,
+    errors: option(
+        SHEAR,
+        "errors",
+        metavar="constant|proportional|auto",
+        help="Scatter of a test: constant, proportional to its strength (weighted least squares), or auto "
+        "(proportional when the Breusch-Pagan test of the dry residuals against sigma_N has p < 0.05).",
+    ) = None,
+    dry_loss: option(
+        SHEAR,
+        "dry_loss",
+        metavar="ols|huber|tukey",
+        help="Loss of the dry fit: ols (least squares), huber or tukey (robust to an outlier, sandwich errors).",
+    ) = None,
+    bootstrap: option(
+        SHEAR, "bootstrap", help="Replicates of the paired bootstrap of the model ranking (0: none)."
+    ) = None,
+    seed: option(SHEAR, "seed", help="Seed of the bootstrap: the same seed gives the same probabilities.") = None,
 ) -> Invocation:
     """Direct-shear tests with hanging-column suction (Evenepoel, VUB thesis):
     dry envelope per material, the effective-stress models (No suction,
@@ -197,78 +199,60 @@ def shear(
     """
     from ..pipelines.shear import ModelParams, ShearOptions, model_params_from_retention
 
-    params = dict(
+    params = si_values(
+        PARAMS,
         s_res=s_res,
         vanapalli_kappa=vanapalli_kappa,
-        air_entry=quantity(air_entry, "kPa", "air_entry", "--air-entry"),
-        vg_alpha=quantity(vg_alpha, "1/kPa", "vg_alpha", "--vg-alpha"),
+        air_entry=air_entry,
+        vg_alpha=vg_alpha,
         vg_n=vg_n,
         vg_m=vg_m,
-        water_envelope=_envelope_pair(water_envelope),
-        contact_angle=quantity(repr(float(contact_angle)), "deg", "contact_angle", "--contact-angle"),
+        contact_angle=contact_angle,
         fit_eta=fit_eta,
     )
-    mp = (
-        model_params_from_retention(retention, **params)
-        if retention is not None
-        else ModelParams(**{k: v for k, v in params.items() if v is not None})
-    )
-    opts = ShearOptions(
-        gamma_w=quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"),
-        surface_tension=quantity(surface_tension, "N/m", "surface_tension", "--surface-tension"),
-        g=quantity(gravity, "m/s^2", "g", "--g"),
-        pendular_limit=quantity(str(pendular_limit), "", "pendular_limit", "--pendular-limit"),
-        box_area=quantity(box_area, "cm^2", "box_area", "--box-area"),
-        cap_mass=quantity(cap_mass, "g", "cap_mass", "--cap-mass"),
-        radius=quantity(radius, "mm", "R", "--radius"),
-        void_volume=quantity(void_volume, "cm^3", "V_v", "--void-volume"),
-        models=_model_list(models),
-        model_params=mp,
+    envelope = _envelope_pair(water_envelope)
+    if envelope is not None:
+        params["water_envelope"] = envelope
+    mp = model_params_from_retention(retention, **params) if retention is not None else ModelParams(**params)
+    given = si_values(
+        SHEAR,
+        gamma_w=gamma_w,
+        surface_tension=surface_tension,
+        g=gravity,
+        pendular_limit=pendular_limit,
+        box_area=box_area,
+        cap_mass=cap_mass,
+        radius=radius,
+        void_volume=void_volume,
         dry_fit=dry_fit,
         errors=errors,
         dry_loss=dry_loss,
         bootstrap=bootstrap,
         seed=seed,
-        ambient_pressure=quantity(ambient_pressure, "kPa", "ambient_pressure", "--ambient-pressure"),
-        rho_w=quantity(rho_w, "kg/m^3", "rho_w", "--rho-w"),
-        curves=_curves_source(curves, thousands),
+        ambient_pressure=ambient_pressure,
+        rho_w=rho_w,
         area_correction=area_correction,
     )
+    if models is not None:
+        given["models"] = _model_list(models)
+    opts = ShearOptions(**given, model_params=mp, curves=_curves_source(curves, thousands))
     return Invocation("shear", opts, extra_inputs=[p for p in (retention, curves) if p])
 
 
 def triaxial_bounds(
-    curves: Annotated[
-        Path | None,
-        typer.Option(
-            help="Long CSV of raw curves (test_id, axial_strain, q): "
-            "failure = peak of q, for tests without q_f or sigma1."
-        ),
-    ] = None,
-    c_eff: Annotated[
-        str | None, typer.Option(help="Effective cohesion c' [kPa], instead of fitting saturated tests.")
-    ] = None,
-    phi_eff: Annotated[float | None, typer.Option(help="Effective friction angle phi' [deg], with --c-eff.")] = None,
-    membrane_thickness: Annotated[
-        str | None,
-        typer.Option(
-            help="Membrane thickness t_m [mm]; with --membrane-modulus the deviator is corrected for the membrane "
-            "(ASTM D4767: 4 E_m t_m eps_a / D0). Off by default."
-        ),
-    ] = None,
-    membrane_modulus: Annotated[
-        str | None,
-        typer.Option(
-            help="Young's modulus of the membrane E_m [kPa] (latex: about 1400 kPa), with --membrane-thickness."
-        ),
-    ] = None,
-    extension_path: Annotated[
-        str,
-        typer.Option(
-            help="Drained path of extension tests for q'_sat and the EDTP bound: axial-unloading (slope -3 in "
-            "the q-p plane, constant cell pressure) or radial-loading (slope 3/2, constant axial stress)."
-        ),
-    ] = "axial-unloading",
+    curves: option(TRIAXIAL, "curves", note="for tests without q_f or sigma1") = None,
+    c_eff: option(TRIAXIAL, "c_eff", note="instead of fitting saturated tests") = None,
+    phi_eff: option(TRIAXIAL, "phi_eff", note="with --c-eff") = None,
+    membrane_thickness: option(
+        TRIAXIAL,
+        "membrane_thickness",
+        note="with --membrane-modulus the deviator is corrected for the membrane (ASTM D4767: 4 E_m t_m eps_a / D0). "
+        "Off by default",
+    ) = None,
+    membrane_modulus: option(
+        TRIAXIAL, "membrane_modulus", note="(latex: about 1400 kPa), with --membrane-thickness"
+    ) = None,
+    extension_path: option(TRIAXIAL, "extension_path") = None,
 ) -> Invocation:
     """Bounds of the capillary stress tensor at failure from triaxial tests
     (Prunier et al. 2024): effective envelope from saturated drained tests, then
@@ -303,38 +287,33 @@ def triaxial_bounds(
     from ..pipelines.triaxial import TriaxialOptions
 
     opts = TriaxialOptions(
-        c_eff=quantity(c_eff, "kPa", "c_eff", "--c-eff"),
-        phi_eff=quantity(None if phi_eff is None else str(phi_eff), "deg", "phi_eff", "--phi-eff"),
-        curves=curves,
-        membrane_thickness=quantity(membrane_thickness, "mm", "membrane_thickness", "--membrane-thickness"),
-        membrane_modulus=quantity(membrane_modulus, "kPa", "membrane_modulus", "--membrane-modulus"),
-        extension_path=extension_path,
+        **si_values(
+            TRIAXIAL,
+            c_eff=c_eff,
+            phi_eff=phi_eff,
+            curves=curves,
+            membrane_thickness=membrane_thickness,
+            membrane_modulus=membrane_modulus,
+            extension_path=extension_path,
+        )
     )
     return Invocation("triaxial-bounds", opts, extra_inputs=[curves] if curves else [])
 
 
 def retention(
-    model: Annotated[
-        str,
-        typer.Option(
-            help="Models, comma separated, or all: vg (m = 1 - 1/n), vg_m_free, bc, "
-            "kosugi, fx (Fredlund-Xing with C), fx_no_c, durner (bimodal)."
-        ),
-    ] = "vg,vg_m_free,bc",
-    hysteresis: Annotated[
-        str | None,
-        typer.Option(
-            metavar="kool-parker",
-            help="kool-parker: fit the drying and wetting branches "
-            "jointly (shared theta_s, theta_r, n; alpha_d, alpha_w).",
-        ),
-    ] = None,
-    rho_w: Annotated[str, typer.Option(help="Density of water [kg/m^3], for theta = w rho_d/rho_w.")] = "1000",
+    model: option(RETENTION, "models", "--model", help=_retention_models_help()) = None,
+    hysteresis: option(
+        RETENTION,
+        "hysteresis",
+        metavar="kool-parker",
+        help="kool-parker: fit the drying and wetting branches jointly (shared theta_s, theta_r, n; alpha_d, alpha_w).",
+    ) = None,
+    rho_w: option(RETENTION, "rho_w", note="for theta = w rho_d/rho_w") = None,
     fix: Annotated[
         list[str] | None,
         typer.Option(help="Fix a parameter, e.g. --fix theta_s=0.25 (alpha in 1/kPa, s_e in kPa); repeatable."),
     ] = None,
-    gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3], to turn heads into suction.")] = "9.81",
+    gamma_w: option(RETENTION, "gamma_w", note="to turn heads into suction") = None,
 ) -> Invocation:
     """Fit water retention curves for every branch (drying, wetting): van
     Genuchten (1980) (m = 1 - 1/n, m free), Brooks & Corey (1964), Kosugi
@@ -371,21 +350,18 @@ def retention(
     from ..fitting.retention_models import MODELS
     from ..pipelines.retention import RetentionOptions, parse_fixed
 
-    names = [m.strip().lower() for m in model.split(",") if m.strip()]
-    if names == ["all"]:
-        names = list(MODELS)
-    bad = [m for m in names if m not in MODELS]
-    if bad or not names:
-        raise OptionError(
-            f"--model: unknown model '{bad[0] if bad else model}'; choose from {', '.join(MODELS)} or all"
-        )
-    opts = RetentionOptions(
-        models=tuple(dict.fromkeys(names)),
-        fixed=parse_fixed(fix or []),
-        gamma_w=quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"),
-        rho_w=quantity(rho_w, "kg/m^3", "rho_w", "--rho-w"),
-        hysteresis=hysteresis,
-    )
+    given = si_values(RETENTION, gamma_w=gamma_w, rho_w=rho_w, hysteresis=hysteresis)
+    if model is not None:
+        names = [m.strip().lower() for m in model.split(",") if m.strip()]
+        if names == ["all"]:
+            names = list(MODELS)
+        bad = [m for m in names if m not in MODELS]
+        if bad or not names:
+            raise OptionError(
+                f"--model: unknown model '{bad[0] if bad else model}'; choose from {', '.join(MODELS)} or all"
+            )
+        given["models"] = tuple(dict.fromkeys(names))
+    opts = RetentionOptions(fixed=parse_fixed(fix or []), **given)
     return Invocation("retention", opts)
 
 

@@ -4,9 +4,10 @@ A reduction (capred/reductions.py) whose command has no hand-written builder get
 field of its Options dataclass becomes an option ``--field-name`` with
 
 - its help from the Options docstring's numpydoc ``Attributes`` section,
-- its unit from the glossary (``Options.QUANTITIES`` names the glossary entry of a dimensional field): the
-  option takes a number in the glossary's output unit (kPa, kN/m^3, mm ...), converted to SI here, once,
-  so a value stays a number from the command line to the physics,
+- its unit and range from the glossary (``Options.QUANTITIES`` names the glossary entry of a dimensional
+  field): the option takes a number in the glossary's output unit (kPa, kN/m^3, mm ...), read once to SI
+  (capred.cli.declare.read_number, as the hand-written commands read theirs), or a number with a unit of
+  its own, which the Options read once,
 - its type and default from the field (bool fields are ``--flag/--no-flag``; tuples are comma separated).
 
 So a new command is its Reduction entry (with its Options and records) and its presenter: nothing in cli/.
@@ -23,6 +24,7 @@ from typing import Annotated
 import typer
 
 from .common import Invocation, command
+from .declare import read_number, unit_and_range
 
 
 def attribute_help(cls) -> dict[str, str]:
@@ -43,14 +45,15 @@ def attribute_help(cls) -> dict[str, str]:
     out: dict[str, str] = {}
     if not m:
         return out
-    name = None
+    names: list[str] = []
     for line in m.group(1).splitlines():
-        head = re.match(r"^([A-Za-z_][A-Za-z0-9_]*)\s*(?::.*)?$", line)
-        if head and not line.startswith(" "):
-            name = head.group(1)
-            out[name] = ""
-        elif name is not None and line.strip():
-            out[name] = (out[name] + " " + line.strip()).strip()
+        head = re.match(r"^([A-Za-z_]\w*(?:\s*,\s*[A-Za-z_]\w*)*)\s*(?::.*)?$", line)
+        if head and not line.startswith(" "):  # "name : type" or "a, b : type" (one text for each)
+            names = [n.strip() for n in head.group(1).split(",")]
+            out.update(dict.fromkeys(names, ""))
+        elif names and line.strip():
+            for name in names:
+                out[name] = (out[name] + " " + line.strip()).strip()
     return out
 
 
@@ -95,12 +98,13 @@ def option_parameters(options_cls) -> list[tuple[str, inspect.Parameter, object]
         flag = "--" + f.name.replace("_", "-")
         text = helps.get(f.name, f.name.replace("_", " "))
         convert = _identity
-        if f.name in dims:  # a number in the glossary's unit, converted to SI once
+        if f.name in dims:  # a number in the glossary's unit (or with a unit of its own), read once
             q = QUANTITIES[dims[f.name]]
-            text = re.sub(r"\s*\[[^\]]*\]", "", text) + f" [{q.unit}]"
-            shown = None if default is None else float(default) * q.factor
-            annotation = Annotated[float | None, typer.Option(flag, help=text, show_default=shown is not None)]
-            default, convert = shown, _to_si(q.factor)
+            text = re.sub(r"\s*\[[^\]]*\]", "", text).rstrip(".") + " " + unit_and_range(dims[f.name])
+            if default is not None:
+                text += f".  [default: {float(default) * q.factor:.12g}]"
+            annotation = Annotated[str | None, typer.Option(flag, help=text, metavar="NUMBER", show_default=False)]
+            default, convert = None, _reader(dims[f.name], f"{f.name} ({flag})")
         elif typ is bool:
             annotation = Annotated[bool, typer.Option(f"{flag}/--no-{f.name.replace('_', '-')}", help=text)]
         elif typ in (tuple, list):
@@ -120,8 +124,9 @@ def _identity(value):
     return value
 
 
-def _to_si(factor: float):
-    return lambda value: None if value is None else value / factor
+def _reader(quantity: str, where: str):
+    """The converter of a dimensional option: the same reading as the hand-written commands'."""
+    return lambda value: None if value is None else read_number(value, quantity, where)
 
 
 def _split(text):

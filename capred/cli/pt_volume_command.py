@@ -1,10 +1,11 @@
 """`capred pt-volume`: the volume-change model of Pedrotti & Tarantino along a path read from a table."""
 
-from typing import Annotated
-
 import typer
 
-from .common import Invocation, SampleOpt, command, quantity
+from .common import Invocation, SampleOpt, command
+from .declare import option, si_values
+
+PT = "capred.pipelines.pt_volume:PTVolumeOptions"
 
 
 def register(app: typer.Typer) -> None:
@@ -23,61 +24,18 @@ def register(app: typer.Typer) -> None:
     )(pt_volume)
 
 
-def _line(value: float | None, name: str, option: str) -> str | None:
-    return quantity(None if value is None else repr(float(value)), "", name, option)
-
-
 def pt_volume(
-    lambda_w: Annotated[
-        float | None,
-        typer.Option(
-            "--lambda-w", help="Slope lambda_W of the ncl of the clay reconstituted from slurry, in e-ln sigma' [-]."
-        ),
-    ] = None,
-    kappa_w: Annotated[float | None, typer.Option("--kappa-w", help="Slope kappa_W of its url [-].")] = None,
-    e_ncl_w: Annotated[
-        float | None, typer.Option("--e-ncl-w", help="Void ratio on the slurry ncl at --reference-stress [-].")
-    ] = None,
-    lambda_a: Annotated[
-        float | None,
-        typer.Option("--lambda-a", help="Slope lambda_A of the ncl of the clay compressed from dry powder [-]."),
-    ] = None,
-    kappa_a: Annotated[float | None, typer.Option("--kappa-a", help="Slope kappa_A of its url [-].")] = None,
-    e_ncl_a: Annotated[
-        float | None, typer.Option("--e-ncl-a", help="Void ratio on the dry-powder ncl at --reference-stress [-].")
-    ] = None,
-    reference_stress: Annotated[str, typer.Option(help="Stress at which the ncl void ratios are read [kPa].")] = "1",
-    example_kaolin: Annotated[
-        bool,
-        typer.Option(
-            "--example-kaolin",
-            help="Take the lines not given from "
-            "EXAMPLE_KAOLIN: illustrative kaolin values, NOT from the paper "
-            "(said in a warning).",
-        ),
-    ] = False,
-    initial_yield_w: Annotated[
-        str | None,
-        typer.Option(
-            "--initial-yield-w",
-            help="Largest sigma'_W carried before the first point [kPa]; default: the first point's (on the ncl).",
-        ),
-    ] = None,
-    initial_yield_a: Annotated[
-        str | None,
-        typer.Option(
-            "--initial-yield-a",
-            help="Largest sigma'_A carried before the first point [kPa]; default: the first point's (on the ncl).",
-        ),
-    ] = None,
-    substeps: Annotated[
-        int | None,
-        typer.Option(
-            help="Sub-steps per step between two points [default: "
-            "automatic, |dS_r| <= 0.002 and |d ln sigma'| <= 0.02]; 1 takes "
-            "the path as given."
-        ),
-    ] = None,
+    lambda_w: option(PT, "lambda_W") = None,
+    kappa_w: option(PT, "kappa_W") = None,
+    e_ncl_w: option(PT, "e_ncl_W", note="(--reference-stress)") = None,
+    lambda_a: option(PT, "lambda_A") = None,
+    kappa_a: option(PT, "kappa_A") = None,
+    e_ncl_a: option(PT, "e_ncl_A", note="(--reference-stress)") = None,
+    reference_stress: option(PT, "reference_stress") = None,
+    example_kaolin: option(PT, "example_kaolin", "--example-kaolin") = False,
+    initial_yield_w: option(PT, "initial_yield_W", note="default: the first point's (on the ncl)") = None,
+    initial_yield_a: option(PT, "initial_yield_A", note="default: the first point's (on the ncl)") = None,
+    substeps: option(PT, "substeps", note="1 takes the path as given") = None,
     sample: SampleOpt = False,
 ) -> Invocation:
     """Void ratio along a path of total stress, pore pressures and degree of
@@ -119,22 +77,23 @@ def pt_volume(
     """
     from ..pipelines.pt_volume import PTVolumeOptions
 
-    lines = {
-        "lambda_W": _line(lambda_w, "lambda_W", "--lambda-w"),
-        "kappa_W": _line(kappa_w, "kappa_W", "--kappa-w"),
-        "e_ncl_W": _line(e_ncl_w, "e_ncl_W", "--e-ncl-w"),
-        "lambda_A": _line(lambda_a, "lambda_A", "--lambda-a"),
-        "kappa_A": _line(kappa_a, "kappa_A", "--kappa-a"),
-        "e_ncl_A": _line(e_ncl_a, "e_ncl_A", "--e-ncl-a"),
-    }
+    lines = si_values(
+        PT,
+        lambda_W=lambda_w,
+        kappa_W=kappa_w,
+        e_ncl_W=e_ncl_w,
+        lambda_A=lambda_a,
+        kappa_A=kappa_a,
+        e_ncl_A=e_ncl_a,
+    )
     # the bundled path is drawn for EXAMPLE_KAOLIN (its header says so): --sample alone runs with it
-    example = example_kaolin or (sample and all(v is None for v in lines.values()))
-    opts = PTVolumeOptions(
-        **lines,
-        reference_stress=quantity(reference_stress, "kPa", "reference_stress", "--reference-stress"),
-        example_kaolin=example,
-        initial_yield_W=quantity(initial_yield_w, "kPa", "initial_yield_W", "--initial-yield-w"),
-        initial_yield_A=quantity(initial_yield_a, "kPa", "initial_yield_A", "--initial-yield-a"),
+    example = example_kaolin or (sample and not lines)
+    given = si_values(
+        PT,
+        reference_stress=reference_stress,
+        initial_yield_W=initial_yield_w,
+        initial_yield_A=initial_yield_a,
         substeps=substeps,
     )
+    opts = PTVolumeOptions(**lines, **given, example_kaolin=example)
     return Invocation("pt-volume", opts)

@@ -4,7 +4,10 @@ from typing import Annotated
 
 import typer
 
-from .common import Invocation, command, quantity
+from .common import Invocation, command
+from .declare import option, registry_names, si_values
+
+CONVERT = "capred.pipelines.retention_convert:ConvertOptions"
 
 
 def register(app: typer.Typer) -> None:
@@ -23,15 +26,16 @@ def register(app: typer.Typer) -> None:
 
 
 def retention_convert(
-    to: Annotated[str, typer.Option("--to", help="Target model: vg, vg_m_free, bc, kosugi, fx, fx_no_c, durner.")],
-    model: Annotated[
-        str | None, typer.Option(help="Which fit of FIT.json to convert (default: the lowest AICc of the branch).")
-    ] = None,
-    branch: Annotated[str | None, typer.Option(help="Which branch of FIT.json (default: drying when present).")] = None,
-    points: Annotated[
-        int, typer.Option(help="Points of the logarithmic grid between the data's smallest and largest suction.")
-    ] = 100,
-    gamma_w: Annotated[str, typer.Option(help="Unit weight of water [kN/m^3] (heads in cm in the JSON).")] = "9.81",
+    to: Annotated[
+        str,
+        typer.Option(
+            "--to", help="Target model: " + ", ".join(registry_names("retention_models")) + ".", show_default=False
+        ),
+    ],
+    model: option(CONVERT, "model") = None,
+    branch: option(CONVERT, "branch") = None,
+    points: option(CONVERT, "points") = None,
+    gamma_w: option(CONVERT, "gamma_w", note="(heads in cm in the JSON)") = None,
 ) -> Invocation:
     """Express a retention fit in another model: the parameters of --to that best
     reproduce the fitted curve (least squares on S_R or theta at the data's own
@@ -65,9 +69,8 @@ def retention_convert(
 
     opts = ConvertOptions(
         to=to.strip().lower(),
-        model=model.strip().lower() if model else None,
-        branch=branch,
-        gamma_w=quantity(gamma_w, "kN/m^3", "gamma_w", "--gamma-w"),
-        points=points,
+        **si_values(
+            CONVERT, model=model.strip().lower() if model else None, branch=branch, gamma_w=gamma_w, points=points
+        ),
     )
     return Invocation("retention-convert", opts)
