@@ -330,7 +330,7 @@ def facts() -> dict:
     from importlib import import_module
 
     from ..nomenclature import QUANTITIES
-    from .generated import _base_type, attribute_help
+    from .generated import base_type, attribute_help
 
     options: dict = {}
     for path in OPTIONS_CLASSES:
@@ -345,7 +345,7 @@ def facts() -> dict:
             if f.name.startswith("_") or not f.init:
                 continue
             default = f.default if f.default is not dataclasses.MISSING else None
-            typ, _ = _base_type(hints.get(f.name, str))
+            typ, _ = base_type(hints.get(f.name, str))
             kind = {bool: "bool", int: "int", float: "float", tuple: "tuple", list: "tuple"}.get(typ, "str")
             entry = {
                 "quantity": dims.get(f.name),

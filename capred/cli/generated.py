@@ -57,8 +57,20 @@ def attribute_help(cls) -> dict[str, str]:
     return out
 
 
-def _base_type(annotation):
-    """(python type, optional?) of a field annotation such as ``float | None`` or ``tuple``."""
+def base_type(annotation):
+    """The Python type of an Options field's annotation, and whether it may be None.
+
+    Parameters
+    ----------
+    annotation : object
+        A field annotation such as ``float | None`` or ``tuple``.
+
+    Returns
+    -------
+    tuple
+        ``(type, optional)``: the type without ``None`` (``str`` for a union of several types), and whether
+        ``None`` is allowed.
+    """
     args = typing.get_args(annotation)
     optional = type(None) in args
     if args and typing.get_origin(annotation) in (typing.Union, getattr(__import__("types"), "UnionType", None)):
@@ -94,7 +106,7 @@ def option_parameters(options_cls) -> list[tuple[str, inspect.Parameter, object]
         default = f.default if f.default is not dataclasses.MISSING else None
         if f.default is dataclasses.MISSING and f.default_factory is not dataclasses.MISSING:
             default = f.default_factory()
-        typ, _ = _base_type(hints.get(f.name, str))
+        typ, _ = base_type(hints.get(f.name, str))
         flag = "--" + f.name.replace("_", "-")
         text = helps.get(f.name, f.name.replace("_", " "))
         convert = _identity
