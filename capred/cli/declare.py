@@ -330,7 +330,7 @@ def facts() -> dict:
     from importlib import import_module
 
     from ..nomenclature import QUANTITIES
-    from .generated import base_type, attribute_help
+    from .generated import attribute_help, base_type
 
     options: dict = {}
     for path in OPTIONS_CLASSES:
