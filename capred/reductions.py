@@ -156,7 +156,6 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("lenhard1989",),
             summary="A retention fit expressed in another model (fits.json --to MODEL), with the misfit.",
-            example=(("to", "bc"),),
             input_description=(
                 "FIT.json: the fits.json written by `capred retention` (or by `capred retention-convert`): per "
                 "branch (drying, wetting), each model's fitted parameters and the suctions of the data they were "
@@ -310,7 +309,7 @@ REDUCTIONS: dict[str, Reduction] = {
                 "(the end of compaction, point A of Fig. 13) unless initial yield stresses are given; steps "
                 "are split into sub-steps (|ΔS_r| ≤ 0.002, |Δ ln σ'| ≤ 0.02 by default).",
             ),
-            references=("pedrotti_tarantino",),
+            references=("pedrotti_tarantino_submitted",),
             summary="Void ratio along a stress path with two effective stresses.",
             example=(("example_kaolin", True),),
         ),
