@@ -156,6 +156,7 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("lenhard1989",),
             summary="A retention fit expressed in another model (fits.json --to MODEL), with the misfit.",
+            example=(("to", "bc"),),
             input_description=(
                 "FIT.json: the fits.json written by `capred retention` (or by `capred retention-convert`): per "
                 "branch (drying, wetting), each model's fitted parameters and the suctions of the data they were "
