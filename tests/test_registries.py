@@ -214,3 +214,57 @@ def test_unit_cell_capillary_stress_of_the_thesis_models():
     )
     with pytest.raises(ValueError, match="vanapalli"):  # needs S_res and kappa of a run
         esm.unit_cell_capillary_stress("vanapalli", S, s, R, g)
+
+
+@pytest.fixture
+def toy_chi_law(monkeypatch):
+    """chi = a S_R with a fitted per material: a chi law and its effective-stress model, one entry in each registry."""
+    from scipy import stats
+
+    from capred.fitting import chi_laws
+
+    def fit(w, mp, start=None, dry=None):
+        # tau - (c + sigma_N tan phi) = a (S_R s tan phi): least squares through the origin, closed form
+        x = w.S_R * w.suction * w.tan_phi
+        r = w.tau_max - (w.c + w.sigma_N * w.tan_phi)
+        a = float(x @ r / (x @ x))
+        rss = float(((r - a * x) ** 2).sum())
+        dof = x.size - 1
+        se = float(np.sqrt(rss / dof / (x @ x)))
+        t = float(stats.t.ppf(0.975, dof))
+        return chi_laws.FittedLaw({"a": a}, {"a": se}, rss, x.size, True, ci95={"a": (a - t * se, a + t * se)}, dof=dof)
+
+    monkeypatch.setitem(chi_laws.LAWS, "toy_chi", chi_laws.ChiLaw(fit, refit_batch=None))
+    entry = esm.EffectiveStressModel(
+        "toy_chi",
+        "χ = a S_R (fitted)",
+        (),
+        "bishop1959",
+        lambda d: d.sigma_N + d.per_test("toy_chi", "a") * d.S_R * d.suction,
+        fitted=("a",),
+        style={"color": "sky", "marker": "x"},
+        method="Toy: χ = a S_R with a fitted per material on the wet tests.",
+    )
+    monkeypatch.setitem(esm.REGISTRY, "toy_chi", entry)
+    return entry
+
+
+def test_toy_chi_law_is_two_registry_entries(toy_chi_law, tmp_path):
+    r = capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(models=("bishop", "toy_chi"), bootstrap=0))
+    t = r.tests
+    for material, fit in r.fits.items():
+        # by hand from the tests and the dry envelope: a = sum(x r) / sum(x^2), x = S_R s tan(phi)
+        wet = (np.asarray(t["material"]) == material) & (np.asarray(t["suction"]) > 0)
+        x = np.asarray(t["S_R"])[wet] * np.asarray(t["suction"])[wet] * fit.slope
+        res = np.asarray(t["tau_max"])[wet] - (fit.intercept + np.asarray(t["sigma_N"])[wet] * fit.slope)
+        law = r.laws["toy_chi"][material]
+        assert_allclose(law.params["a"].value, x @ res / (x @ x), rtol=1e-12)  # one closed form, float rounding
+        assert law.params["a"].stderr > 0 and "a" in law.summary()
+        js = r.to_json()["fitted"][material]["toy_chi"]["params"]
+        assert_allclose(js["a"], law.params["a"].value, rtol=1e-12)
+    res = runner.invoke(
+        app, ["shear", "--sample", "--models", "bishop,toy_chi", "--bootstrap", "0", "--out", str(tmp_path / "o")]
+    )
+    assert res.exit_code == 0, res.output
+    html = unescape((tmp_path / "o" / "report.html").read_text(encoding="utf-8"))
+    assert "Toy: χ = a S_R with a fitted per material on the wet tests." in html
