@@ -1,6 +1,7 @@
 """A model is one registry entry: a toy model of each family, added as one entry, runs end to end
 (API, CLI, JSON, results table, figure, report.html) with no other change."""
 
+import csv
 import json
 from html import unescape
 
@@ -268,3 +269,34 @@ def test_toy_chi_law_is_two_registry_entries(toy_chi_law, tmp_path):
     assert res.exit_code == 0, res.output
     html = unescape((tmp_path / "o" / "report.html").read_text(encoding="utf-8"))
     assert "Toy: χ = a S_R with a fitted per material on the wet tests." in html
+
+
+def test_toy_bridge_law_is_one_registry_entry(monkeypatch, tmp_path):
+    # F/(2 pi R1 gamma) = R* cos(theta) (Israelachvili's contact force with Derjaguin's radius), as one entry
+    from capred.physics import bridge_laws
+
+    law = bridge_laws.Law(
+        "toy_contact",
+        "Toy contact",
+        "Israelachvili (2011), Intermolecular and Surface Forces, 3rd ed.",
+        "10.1016/C2009-0-21560-1",
+        "F/(2πR*γ) = cos θ",
+        "spheres in contact",
+        ("equal", "unequal", "plane"),
+        lambda theta, V, D, rho: bridge_laws.effective_radius(rho) * np.cos(theta) + 0.0 * V * D,
+    )
+    monkeypatch.setitem(bridge_laws.LAWS, "toy_contact", law)
+    out = tmp_path / "o"
+    res = runner.invoke(app, ["bridge", "laws", "--sample", "--out", str(out)])
+    assert res.exit_code == 0, res.output
+    doc = json.loads((out / "laws.json").read_text(encoding="utf-8"))
+    p = doc["points"][0]
+    rho = float("inf") if p["R2_over_R"] == "plane" else p["R2_over_R"]
+    Rs = 2.0 if rho == float("inf") else 2 * rho / (1 + rho)  # Derjaguin: R*/R1 = 2 rho/(1 + rho), 2 on a plane
+    # by hand: R* cos(theta); float rounding only
+    assert_allclose(p["F_toy_contact"], Rs * np.cos(np.radians(p["contact_angle_deg"])), rtol=1e-14)
+    assert "toy_contact" in {row["law"] for row in doc["overall"]}
+    with (out / "laws.csv").open(encoding="utf-8") as fh:
+        assert "F_toy_contact [-]" in next(csv.reader(fh))
+    html = unescape((out / "report.html").read_text(encoding="utf-8"))
+    assert "Toy contact" in html and "F/(2πR*γ) = cos θ" in html
