@@ -36,17 +36,19 @@ def toy_stress_model(monkeypatch):
 
 
 def test_toy_effective_stress_model_runs_end_to_end(toy_stress_model, tmp_path):
-    opts = capred.ShearOptions(models=("bishop", "toy_half"), bootstrap=0)
+    opts = capred.ShearOptions(models=("no_suction", "bishop", "toy_half"), bootstrap=0)
     r = capred.run_shear(capred.sample_path("shear"), opts)
-    fit = r.fits[r.tests["material"][-1]]
-    i = len(r.tests["test_id"]) - 1  # a wet test of the sample
-    sig = r.tests["sigma_N"][i] + 0.5 * r.tests["S_R"][i] * r.tests["suction"][i]
+    row = r.to_json()["tests"][-1]  # a wet test of the sample, in the JSON's units (kPa)
+    fit = r.fits[row["material"]].params
+    sig = row["sigma_N_kPa"] + 0.5 * row["S_R"] * row["suction_kPa"]
     # by hand: tau = c + sigma' tan(phi); float rounding only
-    assert_allclose(r.predictions["toy_half"].tau[i], fit.intercept + sig * fit.slope, rtol=1e-12)
-    row = r.to_json()["tests"][i]
-    assert_allclose(row["tau_pred_kPa"]["toy_half"], (fit.intercept + sig * fit.slope) / 1e3, rtol=1e-12)
+    c, tan_phi = fit["c_kPa"].value, fit["tan_phi"].value
+    assert_allclose(row["tau_pred_kPa"]["toy_half"], c + sig * tan_phi, rtol=1e-12)
+    # the typed record, in any unit: half Bishop's capillary term, 2 tau_toy = tau_bishop + tau_no_suction
+    pred = r.predictions
+    assert_allclose(2 * pred["toy_half"].tau[-1], pred["bishop"].tau[-1] + pred["no_suction"].tau[-1], rtol=1e-12)
     assert "tau_pred_toy_half [kPa]" in r.table().columns
-    assert "toy_half" in r.to_json()["metrics"][r.tests["material"][-1]]
+    assert "toy_half" in r.to_json()["metrics"][row["material"]]
 
     res = runner.invoke(
         app, ["shear", "--sample", "--models", "bishop,toy_half", "--bootstrap", "0", "--out", str(tmp_path / "o")]
@@ -87,7 +89,7 @@ def test_toy_retention_model_recovers_its_parameter(toy_retention_model, tmp_pat
     r = capred.run_retention(path, capred.RetentionOptions(models=("toy_exp",)))
     fit = r.fits["drying"]["toy_exp"]
     # exact data: the optimum is the generating parameter to the solver's tolerance
-    assert_allclose(fit.params["a_exp"], 2e-4, rtol=1e-6)
+    assert_allclose(fit.params["a_exp_per_kPa"].value, 0.2, rtol=1e-6)  # 2e-4 1/Pa in the JSON's 1/kPa
     assert_allclose(fit.suction(0.05 + 0.35 * np.exp(-1.0)), 1 / 2e-4, rtol=1e-6)  # S_e = 1/e at s = 1/a
     js = r.to_json()["branches"]["drying"]["fits"]["toy_exp"]
     assert_allclose(js["a_exp_per_kPa"], 0.2, rtol=1e-6)
@@ -252,12 +254,13 @@ def toy_chi_law(monkeypatch):
 
 def test_toy_chi_law_is_two_registry_entries(toy_chi_law, tmp_path):
     r = capred.run_shear(capred.sample_path("shear"), capred.ShearOptions(models=("bishop", "toy_chi"), bootstrap=0))
-    t = r.tests
+    rows = r.to_json()["tests"]  # in the JSON's units (kPa): a is dimensionless
     for material, fit in r.fits.items():
-        # by hand from the tests and the dry envelope: a = sum(x r) / sum(x^2), x = S_R s tan(phi)
-        wet = (np.asarray(t["material"]) == material) & (np.asarray(t["suction"]) > 0)
-        x = np.asarray(t["S_R"])[wet] * np.asarray(t["suction"])[wet] * fit.slope
-        res = np.asarray(t["tau_max"])[wet] - (fit.intercept + np.asarray(t["sigma_N"])[wet] * fit.slope)
+        # by hand from the wet tests and the dry envelope: a = sum(x r) / sum(x^2), x = S_R s tan(phi)
+        c, tan_phi = fit.params["c_kPa"].value, fit.params["tan_phi"].value
+        wet = [t for t in rows if t["material"] == material and t["condition"] == "wet"]
+        x = np.array([t["S_R"] * t["suction_kPa"] * tan_phi for t in wet])
+        res = np.array([t["tau_max_kPa"] - (c + t["sigma_N_kPa"] * tan_phi) for t in wet])
         law = r.laws["toy_chi"][material]
         assert_allclose(law.params["a"].value, x @ res / (x @ x), rtol=1e-12)  # one closed form, float rounding
         assert law.params["a"].stderr > 0 and "a" in law.summary()
