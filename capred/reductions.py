@@ -310,7 +310,7 @@ REDUCTIONS: dict[str, Reduction] = {
                 "(the end of compaction, point A of Fig. 13) unless initial yield stresses are given; steps "
                 "are split into sub-steps (|ΔS_r| ≤ 0.002, |Δ ln σ'| ≤ 0.02 by default).",
             ),
-            references=("pedrotti_tarantino",),
+            references=("pedrotti_tarantino_submitted",),
             summary="Void ratio along a stress path with two effective stresses.",
             example=(("example_kaolin", True),),
         ),

@@ -52,7 +52,7 @@ REFERENCES: dict[str, Reference] = {
         "Eur. J. Environ. Civ. Eng., 1-26",
         "10.1080/19648189.2024.2314099",
     ),
-    "pedrotti_tarantino": Reference(
+    "pedrotti_tarantino_submitted": Reference(
         "Pedrotti & Tarantino",
         None,
         "Effective stresses for unsaturated states stemming from clay microstructure",

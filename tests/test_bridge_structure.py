@@ -63,3 +63,46 @@ def test_solve_columns_and_headers_come_from_the_typed_record():
         BridgeRecord.csv_headers()[k] for k in keys
     ]
     assert "V_w [mm^3]" in res.csv_tables()["solve"] and "S_R [-]" in res.csv_tables()["solve"]
+
+
+def _absolute(path: Path, node: ast.ImportFrom) -> str:
+    """The module an ``from X import ...`` of ``path`` names, relative imports resolved."""
+    if node.level == 0:
+        return node.module or ""
+    package = ["capred", *path.relative_to(PKG).parent.parts]
+    return ".".join(package[: len(package) - node.level + 1] + ([node.module] if node.module else []))
+
+
+def test_no_module_reads_a_private_name_of_the_bridge_physics():
+    # issue 28 item 7: the root finders and solvers other modules need are public in capred.physics.bridge
+    # (golden, illinois, suction_at_neck, solve_for_suction, ...); nothing outside it reads a `_name` of it
+    import capred.physics.bridge as br
+
+    private = {name for name in vars(br) if name.startswith("_") and not name.startswith("__")}
+    found = []
+    for path in PKG.rglob("*.py"):
+        if path == PKG / "physics" / "bridge.py":
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        aliases = set()
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom):
+                module = _absolute(path, node)
+                if module == "capred.physics.bridge":
+                    found += [f"{path.name}: {a.name}" for a in node.names if a.name in private]
+                elif module == "capred.physics":
+                    aliases |= {a.asname or a.name for a in node.names if a.name == "bridge"}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in aliases:
+                if node.attr in private:
+                    found.append(f"{path.name}: {node.value.id}.{node.attr}")
+    assert found == []
+    assert {"golden", "illinois", "suction_at_neck"} <= set(vars(br))  # what yade_files used privately before
+
+
+def test_absolute_resolves_relative_imports():
+    # the detector above: yade_files' `from ..physics import bridge as br` names capred.physics
+    node = ast.parse("from ..physics import bridge as br").body[0]
+    assert _absolute(PKG / "pipelines" / "yade_files.py", node) == "capred.physics"
+    node = ast.parse("from .bridge import _quad").body[0]
+    assert _absolute(PKG / "physics" / "shear.py", node) == "capred.physics.bridge"

@@ -337,6 +337,35 @@ class ModelInputs:
     c_sat: np.ndarray | None = None
     tan_phi_sat: np.ndarray | None = None
 
+    @classmethod
+    def of_unit_cell(cls, sigma_N, suction, S_R, R, surface_tension) -> ModelInputs:
+        """Inputs of wet tests known only by their stresses and the unit cell (no strength, material or run).
+
+        Parameters
+        ----------
+        sigma_N : array_like
+            Total normal stress [Pa].
+        suction : array_like
+            Matric suction Δu [Pa].
+        S_R : array_like
+            Degree of saturation [-].
+        R : array_like
+            Particle radius [m] (NaN where no model needs it).
+        surface_tension : float
+            γ [N/m].
+
+        Returns
+        -------
+        ModelInputs
+            The arrays broadcast together, every test wet; strength, dry envelope and material NaN, no run
+            parameters (``params`` None): enough for a model whose σ'_N depends on these quantities alone.
+        """
+        sigma_N, suction, S_R, R = np.broadcast_arrays(
+            *(np.asarray(v, dtype=float) for v in (sigma_N, suction, S_R, R))
+        )
+        nan = np.full(sigma_N.shape, np.nan)
+        return cls(sigma_N, suction, S_R, R, nan, np.ones(sigma_N.shape, bool), nan, nan, nan, surface_tension, None)
+
     def subset(self, mask) -> ModelInputs:
         """The same inputs for the tests selected by ``mask`` (a boolean mask or indices).
 
@@ -411,6 +440,25 @@ class Flag:
 
 
 @dataclass(frozen=True)
+class UnitCellCurve:
+    """How a model is drawn on the σ'-S_R curve of `capred bridge curve` (two equal spheres in contact).
+
+    The model's capillary stress on that unit cell is its own ``sigma_eff`` at σ_N = 0
+    (`unit_cell_capillary_stress`), compared there with the exact pendular bridge.
+
+    Attributes
+    ----------
+    label : str
+        Legend label of the curve (mathtext), naming the model and its capillary term.
+    line : dict
+        Matplotlib line width and dash (``lw``, ``ls``); the colour is the model's ``style``.
+    """
+
+    label: str
+    line: dict
+
+
+@dataclass(frozen=True)
 class EffectiveStressModel:
     """One entry of the registry: everything capred knows about a model.
 
@@ -449,6 +497,9 @@ class EffectiveStressModel:
         ``chi(S_R, params, fitted)`` for a model whose χ depends on S_R alone (drawn against the
         back-analysed χ); ``params`` is the run's ModelParams, ``fitted`` the material's fitted law parameters
         (or None).
+    bridge_curve : UnitCellCurve, optional
+        Drawn beside the exact bridge on `capred bridge curve` (σ' against S_R of the unit cell), with its
+        error against the exact bridge in curve.json (Evenepoel's comparison: Bishop, Own 1, Own 2).
     """
 
     name: str
@@ -466,6 +517,7 @@ class EffectiveStressModel:
     style: dict = field(default_factory=lambda: {"color": "black", "marker": "o"})
     method: str = ""
     chi_of_saturation: Callable[[np.ndarray, object, dict], np.ndarray] | None = None
+    bridge_curve: UnitCellCurve | None = None
 
 
 def _tan_phi_b(d: ModelInputs) -> np.ndarray:
@@ -549,6 +601,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {
             style={"color": "blue", "marker": "o"},
             method="Bishop: σ'_N = σ_N + S_R Δu (χ = S_R).",
             chi_of_saturation=lambda S, p, f: np.asarray(S, float),
+            bridge_curve=UnitCellCurve(r"Bishop $S_R\,\Delta u$", {"lw": 1.2, "ls": "-."}),
         ),
         EffectiveStressModel(
             "own1",
@@ -560,6 +613,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {
             style={"color": "orange", "marker": "^"},
             method="Own 1: σ'_N = σ_N + χ1 Δu with χ1 = (2π S_R/3)^(2/3).",
             chi_of_saturation=lambda S, p, f: ph.chi1(S),
+            bridge_curve=UnitCellCurve(r"Own 1 $\chi_1\,\Delta u$", {"lw": 1.2, "ls": ":"}),
         ),
         EffectiveStressModel(
             "own2",
@@ -570,6 +624,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {
             thesis=True,
             style={"color": "green", "marker": "D"},
             method="Own 2: σ'_N = σ_N + χ1 Δu + (2γ/R)(2π S_R/3)^(1/3).",
+            bridge_curve=UnitCellCurve(r"Own 2 $\chi_1\,\Delta u + \chi_2$", {"lw": 1.4, "ls": "-"}),
         ),
         EffectiveStressModel(
             "vanapalli",
@@ -615,7 +670,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {
             "pedrotti_tarantino",
             "Pedrotti-Tarantino",
             (),
-            "pedrotti_tarantino",
+            "pedrotti_tarantino_submitted",
             tau=_pedrotti_tarantino,
             style={"color": "sky", "marker": "h"},
             material_values=lambda d: {"water_envelope": str(_water_envelope(d)[2][0])},
@@ -627,7 +682,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {
             "pedrotti_tarantino_wet_area",
             "Pedrotti-Tarantino (wet area)",
             (),
-            "pedrotti_tarantino",
+            "pedrotti_tarantino_submitted",
             tau=_pedrotti_tarantino_wet_area,
             style={"color": "yellow", "marker": "H"},
             material_values=lambda d: {"water_envelope": str(_water_envelope(d)[2][0])},
@@ -688,6 +743,69 @@ REGISTRY: dict[str, EffectiveStressModel] = {
 
 #: The thesis's four models in display order (the default of `capred shear --models`).
 THESIS_MODELS = tuple(m for m, e in REGISTRY.items() if e.thesis)
+
+
+def bridge_curve_models() -> tuple[str, ...]:
+    """The models drawn on `capred bridge curve`, in registry order: those whose entry has a ``bridge_curve``.
+
+    No equation: a lookup in ``REGISTRY`` at each call (an entry added later is drawn too).
+
+    Returns
+    -------
+    tuple of str
+        Registry names (Bishop, Own 1 and Own 2 of Evenepoel's comparison).
+
+    References
+    ----------
+    .. [1] Evenepoel, Micro-mechanical characterization of the capillary effective stress in granular
+       materials, master thesis, Vrije Universiteit Brussel (no DOI): σ' against S_R of the unit cell.
+    """
+    return tuple(name for name, e in REGISTRY.items() if e.bridge_curve is not None)
+
+
+def unit_cell_capillary_stress(model: str, S_R, suction, R, surface_tension=ph.SURFACE_TENSION) -> np.ndarray:
+    r"""Capillary stress σ'_N − σ_N of a model on the unit cell of two equal spheres in contact [Pa].
+
+    .. math::
+
+        \sigma_{cap}(S_R, \Delta u) = \sigma'_N(\sigma_N = 0, \Delta u, S_R, R, \gamma)
+
+    the model's own ``sigma_eff`` of its registry entry at zero total stress (e.g. :math:`S_R\,\Delta u`
+    for Bishop, :math:`\chi_1\Delta u + \chi_2` for Own 2), the quantity Evenepoel compares with
+    the exact bridge's :math:`F_{cap}/(\pi R^2)`.
+
+    Parameters
+    ----------
+    model : str
+        A name of ``REGISTRY`` whose σ'_N depends on S_R, Δu, R and γ alone (see `bridge_curve_models`).
+    S_R : array_like
+        Degree of saturation [-].
+    suction : array_like
+        Matric suction Δu [Pa].
+    R : array_like
+        Particle radius [m], > 0.
+    surface_tension : float, optional
+        γ [N/m] (water at 20 °C by default).
+
+    Returns
+    -------
+    numpy.ndarray
+        σ_cap [Pa], broadcast over the inputs.
+
+    Raises
+    ------
+    ValueError
+        For a model that predicts τ directly, needs run parameters or fits per material.
+
+    References
+    ----------
+    .. [1] Evenepoel, Micro-mechanical characterization of the capillary effective stress in granular
+       materials, master thesis, Vrije Universiteit Brussel (no DOI): sections "Own approximation" and "Shape".
+    """
+    e = REGISTRY[model]
+    if e.sigma_eff is None or e.requires or e.fitted or e.wet_parameters:
+        raise ValueError(f"model '{model}' needs more than S_R, suction, R and surface tension")
+    return e.sigma_eff(ModelInputs.of_unit_cell(0.0, suction, S_R, R, surface_tension))
 
 
 class _Labels(Mapping):

@@ -250,8 +250,8 @@ def effective_normal_stress(model, sigma_N, suction, S_R, R=np.nan, surface_tens
 
     Parameters
     ----------
-    model : {"no_suction", "bishop", "own1", "own2"}
-        The effective-stress model (see Notes).
+    model : str
+        One of the thesis's models, ``capred.physics.effective_stress_models.THESIS_MODELS`` (see Notes).
     sigma_N : numeric
         Total normal stress [Pa].
     suction : numeric
@@ -295,10 +295,7 @@ def effective_normal_stress(model, sigma_N, suction, S_R, R=np.nan, surface_tens
 
     if model not in THESIS_MODELS:
         raise ValueError(f"unknown model '{model}'; choose from {', '.join(THESIS_MODELS)}")
-    sigma_N, suction, S_R, R = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (sigma_N, suction, S_R, R)))
-    nan = np.full(sigma_N.shape, np.nan)
-    d = ModelInputs(sigma_N, suction, S_R, R, nan, np.ones(sigma_N.shape, bool), nan, nan, nan, surface_tension, None)
-    return REGISTRY[model].sigma_eff(d)
+    return REGISTRY[model].sigma_eff(ModelInputs.of_unit_cell(sigma_N, suction, S_R, R, surface_tension))
 
 
 def mohr_coulomb_strength(c, tan_phi, sigma_eff):

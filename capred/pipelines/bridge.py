@@ -15,6 +15,7 @@ from ..errors import InputError, OptionError
 from ..io import Table
 from ..nomenclature import StableJsonKeys, renamed_keywords
 from ..physics import bridge as br
+from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
 from ..result import InputFile, Options, Result, input_file, num
 from . import bridge_blocks
@@ -127,7 +128,8 @@ class CurveResult(Result):
 
     def models(self) -> dict[str, np.ndarray]:
         """Capillary stress of every model at the curve's S_R: the exact bridges, Israelachvili
-        (2 gamma cos(theta) / R), Bishop (S_R s), Own 1 (chi1 s) and Own 2 (chi1 s + chi2).
+        (2 gamma cos(theta) / R) and each effective-stress model whose registry entry is drawn on this curve
+        (``bridge_curve``: Bishop S_R s, Own 1 chi1 s and Own 2 chi1 s + chi2), in registry order.
 
         Returns
         -------
@@ -138,9 +140,7 @@ class CurveResult(Result):
         return {
             "exact": self.sigma_exact,
             "israelachvili": np.full_like(S, 2.0 * self.gamma * np.cos(self.contact_angle_rad) / self.R),
-            "bishop": S * s,
-            "own1": ph.chi1(S) * s,
-            "own2": ph.chi1(S) * s + ph.chi2(S, self.R, self.gamma),
+            **{m: esm.unit_cell_capillary_stress(m, S, s, self.R, self.gamma) for m in esm.bridge_curve_models()},
         }
 
     def rows(self) -> list[dict]:

@@ -357,7 +357,7 @@ class PTVolumeResult(Result):
         e = self.points.e
         return {
             "source": self.source,
-            "model": f"{cite('pedrotti_tarantino')}, eq. 1-10",
+            "model": f"{cite('pedrotti_tarantino_submitted')}, eq. 1-10",
             "parameters": self.parameters_json(),
             "n_points": len(self.step),
             "e_initial": num(e[0]),
@@ -438,7 +438,7 @@ class PTVolumeResult(Result):
                 " " + ", ".join(self.options.illustrative()) + " are the illustrative EXAMPLE_KAOLIN values "
                 "(not from the paper, which prints none)."
             )
-        return [text], ["pedrotti_tarantino"]
+        return [text], ["pedrotti_tarantino_submitted"]
 
 
 def run_pt_volume(source, options: PTVolumeOptions | None = None) -> PTVolumeResult:

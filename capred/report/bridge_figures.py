@@ -4,16 +4,43 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..physics.effective_stress_models import REGISTRY
 from .sheets import Panel, Sheet
 from .style import LABEL, OKABE_ITO, style, untitled
 
+#: the curves of `bridge curve` that are not effective-stress models (those carry theirs in their registry entry,
+#: ``bridge_curve``)
 LINES = {
     "exact": dict(lw=2.0, ls="-", label="exact bridge (Young-Laplace)"),
     "israelachvili": dict(lw=1.2, ls="--", label=r"Israelachvili $2\gamma\cos\theta/R$"),
-    "bishop": dict(lw=1.2, ls="-.", label=r"Bishop $S_R\,\Delta u$"),
-    "own1": dict(lw=1.2, ls=":", label=r"Own 1 $\chi_1\,\Delta u$"),
-    "own2": dict(lw=1.4, ls="-", label=r"Own 2 $\chi_1\,\Delta u + \chi_2$"),
 }
+
+
+def curve_line(name: str) -> dict:
+    """Line width, dash and legend label of one curve of `capred bridge curve`.
+
+    No equation: a lookup in :data:`LINES` for the exact bridge and Israelachvili, else in the model's entry of
+    ``capred.physics.effective_stress_models.REGISTRY`` (``bridge_curve``).
+
+    Parameters
+    ----------
+    name : str
+        ``exact``, ``israelachvili`` or an effective-stress model drawn on the curve.
+
+    Returns
+    -------
+    dict
+        Matplotlib keywords ``lw``, ``ls`` and ``label``.
+
+    References
+    ----------
+    .. [1] Evenepoel, Micro-mechanical characterization of the capillary effective stress in granular
+       materials, master thesis, Vrije Universiteit Brussel (no DOI): the comparison of the approximations.
+    """
+    if name in LINES:
+        return LINES[name]
+    curve = REGISTRY[name].bridge_curve
+    return {**curve.line, "label": curve.label}
 
 
 def plot_curve(ax, curve, inside: bool):
@@ -35,7 +62,7 @@ def plot_curve(ax, curve, inside: bool):
     """
     sel = curve.S_R < curve.pendular_limit if inside else np.ones(curve.S_R.size, bool)
     for name, v in curve.models().items():
-        ax.plot(curve.S_R[sel], v[sel] / 1e3, color=style(name)["color"], **LINES[name])
+        ax.plot(curve.S_R[sel], v[sel] / 1e3, color=style(name)["color"], **curve_line(name))
     if not inside:
         ax.axvline(curve.pendular_limit, color="0.6", lw=0.8, ls=":")
     ax.set_xlabel(LABEL["S_R"])
