@@ -90,9 +90,8 @@ def _api_result(red):
     return red.run(source, red.options(**dict(red.example)))
 
 
-#: commands whose CSV still says a unit twice: TO BE EMPTIED (`bridge laws` writes `contact_angle_deg [-]` for an
-#: angle in degrees: capred/pipelines/bridge_laws.py, LawsResult.csv_tables)
-UNIT_TWICE = {"bridge laws"}
+#: commands whose CSV still says a unit twice: TO BE EMPTIED (none left; `bridge laws` wrote `contact_angle_deg [-]`)
+UNIT_TWICE: set[str] = set()
 
 
 @pytest.mark.parametrize(

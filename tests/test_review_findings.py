@@ -98,7 +98,6 @@ def test_a_long_csv_with_a_huge_cell_is_refused_for_the_cell(tmp_path):
         capred.run_shear(path, capred.ShearOptions(bootstrap=0))
 
 
-@pytest.mark.xfail(strict=True, reason="capred/report/bridge_tables.py: 'best' ignores the points a law cannot do")
 def test_best_law_of_a_region_gives_a_force_at_every_point_of_it(tmp_path):
     """Issue 34.2: the table of regions names the best law (smallest largest error). Willett et al.'s full
     regression is not defined at contact (D = 0): in a region holding a point at contact it is named best from

@@ -317,7 +317,7 @@ class LawsResult(Result):
         return {"laws": points, "regions": pd.DataFrame(self.regions())}
 
     def csv_tables(self) -> dict:
-        """The tables as the CSV writer takes them (``laws`` and ``regions``, dimensionless columns headed ``[-]``),
+        """The tables as the CSV writer takes them (``laws`` and ``regions``, dimensionless columns headed ``[-]``, the contact angle ``[deg]``),
         under ``name [unit]`` headers.
 
         Returns
@@ -327,7 +327,9 @@ class LawsResult(Result):
         """
         t = self.tables()
         return {
-            "laws": t["laws"].rename(columns=lambda k: k if k == "R2_over_R" else f"{k} [-]"),
+            "laws": t["laws"].rename(
+                columns=lambda k: {"R2_over_R": k, "contact_angle_deg": "contact_angle [deg]"}.get(k, f"{k} [-]")
+            ),
             "regions": t["regions"].rename(
                 columns={"median_error": "median_error [-]", "max_error": "max_error [-]", "n": "n [-]"}
             ),
