@@ -286,8 +286,15 @@ class ShearOptions(Options):
             models = esm.resolve_models(self.models)
         except (ValueError, TypeError) as exc:
             raise OptionError(f"models (--models): {exc}") from None
-        if not 0.0 < self.confidence < 1.0:
-            raise OptionError(f"confidence must lie between 0 and 1 (got {self.confidence})")
+        conf = self.confidence
+        if (
+            isinstance(conf, bool)
+            or not isinstance(conf, (int, float, np.integer, np.floating))
+            or not 0.0 < conf < 1.0
+        ):
+            raise OptionError(
+                f"confidence (--confidence) must lie strictly between 0 and 1, e.g. 0.95 (got {self.confidence!r})"
+            )
         skipped = {}
         if esm.asks_for_all(self.models):  # 'all': every model the inputs allow; the others named, with their needs
             skipped = {m: need for m in models if (need := self.model_params.missing(m))}
