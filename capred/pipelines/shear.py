@@ -412,6 +412,16 @@ class ShearResult(Result):
         return self.options.models
 
     @property
+    def best_model_pendular(self) -> dict[str, str | None]:
+        """Per material, the model with the lowest RMSE on its pendular wet tests (None: nothing to compare)."""
+        return {m: best_of(v) for m, v in self.metrics_pendular.items()}
+
+    @property
+    def best_model_pendular_overall(self) -> str | None:
+        """The model with the lowest RMSE on every pendular wet test (None: nothing to compare)."""
+        return best_of(self.metrics_pendular_overall)
+
+    @property
     def materials(self) -> list[str]:
         return list(self.fits)
 
@@ -764,8 +774,8 @@ class ShearResult(Result):
                 mat: {m: _metric_dict(v) for m, v in d.items()} for mat, d in self.metrics_pendular.items()
             },
             "metrics_pendular_overall": {m: _metric_dict(v) for m, v in self.metrics_pendular_overall.items()},
-            "best_model_pendular": {m: best_of(v) for m, v in self.metrics_pendular.items()},
-            "best_model_pendular_overall": best_of(self.metrics_pendular_overall),
+            "best_model_pendular": self.best_model_pendular,
+            "best_model_pendular_overall": self.best_model_pendular_overall,
             "best_model_probability": {m: r.probability for m, r in self.ranking.items()},
             "bootstrap": {m: _ranking_dict(r) for m, r in self.ranking.items()},
             "fitted": {
