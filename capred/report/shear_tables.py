@@ -188,7 +188,7 @@ def _wet_rows(result, limit: int = MAX_ROWS):
             "test_id": tid,
             "material": str(t["material"][i]),
             "S_R": t["S_R"][i],
-            "suction [kPa]": t["suction"][i] / 1e3,
+            "suction [kPa]": t["suction"][i] * QUANTITIES["suction"].factor,  # tests hold SI [Pa]
             "σ_cap [kPa]": b.sigma_cap_kPa[i],
             "± se": b.sigma_cap_se_kPa[i],
             "χ_back": b.chi_back[i],
