@@ -532,14 +532,14 @@ def model_label(name):
     return name
 
 
-#: JSON-style unit suffixes of season keys and the unit they stand for (longest first)
-_SUFFIX_UNITS = (("_per_kPa", "1/kPa"), ("_kPa", "kPa"), ("_deg", "deg"), ("_mm", "mm"), ("_N_per_m", "N/m"))
-
-
 def unit_header(key: str, values) -> str:
-    """A season column's header in the ``name [unit]`` form of every capred CSV: a header that has one kept,
-    a JSON suffix read as its unit (``alpha_per_kPa`` -> ``alpha [1/kPa]``), other numbers ``[-]``, text
-    columns their name alone.
+    """A season column's header in the ``name [unit]`` form of every capred CSV, from the names' one source.
+
+    A header that has its unit already (``c [kPa]``: a result's season rows write them from its records) is
+    kept; a JSON key with a unit suffix (``alpha_per_kPa``) gets the header every capred CSV gives it
+    (:func:`capred.result.csv_header`, ``alpha [1/kPa]``); a quantity of the glossary
+    (capred.nomenclature.QUANTITIES, ``B``) its glossary unit; another number ``[-]`` (a count, a
+    dimensionless score: ``n_points``, ``r2``); a text column its name alone.
 
     Parameters
     ----------
@@ -555,14 +555,18 @@ def unit_header(key: str, values) -> str:
     """
     import numbers
 
+    from .nomenclature import QUANTITIES
+    from .result import csv_header
+
     if key.endswith("]") and " [" in key:
         return key
-    for suffix, unit in _SUFFIX_UNITS:
-        if key.endswith(suffix) and len(key) > len(suffix):
-            return f"{key[: -len(suffix)]} [{unit}]"
+    head = csv_header(key)
+    if head != key:
+        return head
     present = [v for v in values if v is not None]
     if present and all(isinstance(v, numbers.Real) and not isinstance(v, bool) for v in present):
-        return f"{key} [-]"
+        q = QUANTITIES.get(key)
+        return f"{key} [{q.unit if q is not None else '-'}]"
     return key
 
 
@@ -919,3 +923,153 @@ def season_columns(rows: list[dict]) -> dict:
         else:
             out[name] = np.array(values, dtype=object)
     return out
+
+
+# --- `capred batch --json` as typed records: each field declares its JSON key once ----------------------
+def json_field(description: str):
+    """A field of :class:`BatchFile` or :class:`BatchDocument`: its JSON key is the field's name.
+
+    Parameters
+    ----------
+    description : str
+        What the key holds (the README's ``--json`` description).
+
+    Returns
+    -------
+    dataclasses.Field
+    """
+    return field(default=None, metadata={"description": description})
+
+
+def _record_json(record) -> dict:
+    """``{field name: value}`` of a JSON record, in declaration order (nested records and lists of them too)."""
+    import dataclasses
+
+    def plain(v):
+        if dataclasses.is_dataclass(v) and not isinstance(v, type):
+            return _record_json(v)
+        if isinstance(v, (list, tuple)):
+            return [plain(x) for x in v]
+        return v
+
+    return {f.name: plain(getattr(record, f.name)) for f in dataclasses.fields(record)}
+
+
+@dataclass(frozen=True)
+class BatchFile:
+    """One run of a batch as ``capred batch --json`` gives it (a JSON object per input).
+
+    Attributes
+    ----------
+    input : str
+        The input file, as the batch read it.
+    command : str
+        The command run.
+    status : str
+        ``ok``, ``failed``, ``crashed`` or ``interrupted``.
+    ok : bool
+        ``status == "ok"``.
+    error : str or None
+        Why the run did not succeed (None when ok).
+    out_dir : str or None
+        Its output folder (None when the batch wrote no files).
+    result : dict or None
+        The run's own JSON document (None unless ok).
+    """
+
+    input: str = json_field("the input file")
+    command: str = json_field("the command run")
+    status: str = json_field("ok, failed, crashed or interrupted")
+    ok: bool = json_field("whether the run succeeded")
+    error: str | None = json_field("why the run did not succeed (null when ok)")
+    out_dir: str | None = json_field("its output folder (null when the batch wrote no files)")
+    result: dict | None = json_field("the run's JSON document, as `capred <command> --json` prints it")
+
+    @classmethod
+    def of(cls, outcome: Outcome, wrote: bool) -> BatchFile:
+        """The record of one outcome.
+
+        Parameters
+        ----------
+        outcome : Outcome
+            A job's outcome.
+        wrote : bool
+            Whether the batch wrote output folders (``--out``, or a command that writes by default).
+
+        Returns
+        -------
+        BatchFile
+        """
+        return cls(
+            input=outcome.source,
+            command=outcome.command,
+            status=outcome.status,
+            ok=outcome.ok,
+            error=outcome.message or None,
+            out_dir=outcome.out_dir if wrote else None,
+            result=outcome.result_json,
+        )
+
+    def to_json(self) -> dict:
+        """The JSON object: one key per field, in declaration order.
+
+        Returns
+        -------
+        dict
+        """
+        return _record_json(self)
+
+
+@dataclass(frozen=True)
+class BatchDocument:
+    """What ``capred batch --json`` prints: every run, the index written and the counts of bad runs.
+
+    Attributes
+    ----------
+    files : list of BatchFile
+        Every run, in the order of the batch.
+    index : str or None
+        The index.csv written (None when the batch wrote no files).
+    failed : int
+        How many runs failed or crashed [-].
+    interrupted : int
+        How many runs Ctrl-C left undone [-].
+    """
+
+    files: list = json_field("every run, in the order of the batch")
+    index: str | None = json_field("the index.csv written (null when the batch wrote no files)")
+    failed: int = json_field("how many runs failed or crashed")
+    interrupted: int = json_field("how many runs Ctrl-C left undone")
+
+    @classmethod
+    def of(cls, outcomes: list[Outcome], index: Path | None, wrote: bool) -> BatchDocument:
+        """The document of a batch's outcomes.
+
+        Parameters
+        ----------
+        outcomes : list of Outcome
+            The outcome of every job.
+        index : Path or None
+            The index.csv written.
+        wrote : bool
+            Whether the batch wrote output folders.
+
+        Returns
+        -------
+        BatchDocument
+        """
+        return cls(
+            files=[BatchFile.of(o, wrote) for o in outcomes],
+            index=str(index) if index else None,
+            failed=sum(o.status in ("failed", "crashed") for o in outcomes),
+            interrupted=sum(o.status == "interrupted" for o in outcomes),
+        )
+
+    def to_json(self) -> dict:
+        """The JSON document: one key per field, in declaration order (``files`` as a list of objects).
+
+        Returns
+        -------
+        dict
+        """
+        return _record_json(self)

@@ -373,6 +373,8 @@ def scale_value(value, scale: float):
 
     if value is None:
         return None
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return float(value) * scale  # a scalar record (ModelMetrics.rmse_kPa) stays a Python float
     if isinstance(value, tuple):
         return tuple(scale_value(v, scale) for v in value)
     if hasattr(value, "scaled"):
@@ -476,11 +478,79 @@ def user_units(cls):
 
     def __repr__(self):
         head = [f"{k}={v!r}" for k, v in vars(self).items() if isinstance(v, str)]
-        shown = [renamed.get(k, k) for k, v in vars(self).items() if v is not None and not isinstance(v, str)]
+        shown = []
+        for k, v in vars(self).items():
+            if v is None or isinstance(v, str):
+                continue
+            if isinstance(v, (int, float)):  # a scalar: its value in the output unit
+                shown.append(f"{renamed.get(k, k)}={getattr(self, renamed.get(k, k))!r}")
+            else:
+                shown.append(renamed.get(k, k))
         return f"{cls.__name__}({', '.join(head + shown)})"
 
     cls.__repr__ = __repr__
     return cls
+
+
+def record_json(record, level: str = "95") -> dict:
+    """The JSON object of a record of scalars (one value per field): ``{key: value}`` in output units.
+
+    Keys and units come from each field's :func:`output` declaration, as for per-row records
+    (:func:`record_json_columns`); a value that is not finite is None (JSON null).
+
+    Parameters
+    ----------
+    record : dataclass instance
+        A typed record whose output fields hold numbers (``ModelMetrics``).
+    level : str, optional
+        Confidence level in percent, put into the ``{level}`` patterns (default "95").
+
+    Returns
+    -------
+    dict
+        JSON key -> number (or None), in the declared unit.
+    """
+    out = {}
+    for _, spec, value in record_outputs(record):
+        if spec.json is not None:
+            out[spec.json.format(level=level)] = _scalar_out(value, spec.scale)
+    return out
+
+
+def record_row(record, level: str = "95") -> dict:
+    """One table row of a record of scalars: ``{"name [unit]": value}`` in output units.
+
+    Headers come from each field's :func:`output` declaration, as :func:`record_columns` makes them
+    (``rmse [kPa]``, ``n [-]``).
+
+    Parameters
+    ----------
+    record : dataclass instance
+        A typed record whose output fields hold numbers.
+    level : str, optional
+        Confidence level in percent, put into the ``{level}`` patterns (default "95").
+
+    Returns
+    -------
+    dict
+        Header -> number (or None where not finite).
+    """
+    out = {}
+    for _, spec, value in record_outputs(record):
+        if spec.column is not None and not spec.pair:
+            out[f"{spec.column.format(level=level)} [{spec.unit or '-'}]"] = _scalar_out(value, spec.scale)
+    return out
+
+
+def _scalar_out(value, scale: float):
+    """A scalar field's value for JSON and tables: a count stays an int, a number is scaled (None if not finite)."""
+    import numpy as np
+
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        return value
+    if isinstance(value, (int, np.integer)) and scale == 1.0:
+        return int(value)
+    return num(float(value) * scale)
 
 
 def _scaled(values, scale: float):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import shutil
+from pathlib import Path
 
 import pandas as pd
 from typer.testing import CliRunner
@@ -50,3 +51,53 @@ def test_batch_files_match_the_records(tmp_path):
     assert list(table.columns) == HEADER
     assert list(table["command"]) == ["rumpf", "prism"] and set(table["status"]) == {"ok"}
     assert list(table["warnings [-]"]) == ["0", "0"]
+
+
+# --- `capred batch --json` from records (issue 28, items 1 and 4) ------------------------------------------
+#: the document's keys as capred 0.x and this release print them (a public interface)
+JSON_KEYS = ["files", "index", "failed", "interrupted"]
+FILE_KEYS = ["input", "command", "status", "ok", "error", "out_dir", "result"]
+
+
+def test_batch_json_keys_derive_from_the_fields():
+    from capred.batch import BatchDocument, BatchFile
+
+    assert [f.name for f in dataclasses.fields(BatchDocument)] == JSON_KEYS
+    assert [f.name for f in dataclasses.fields(BatchFile)] == FILE_KEYS
+    ok = Outcome("shear", "a.csv", "/out/a", "ok", result_json={"command": "shear"})
+    bad = Outcome("shear", "b.csv", "/out/b", "failed", "line 2: bad")
+    stop = Outcome("shear", "c.csv", "/out/c", "interrupted")
+    doc = BatchDocument.of([ok, bad, stop], None, wrote=False).to_json()
+    assert list(doc) == JSON_KEYS and doc["index"] is None
+    assert (doc["failed"], doc["interrupted"]) == (1, 1)
+    assert [list(f) for f in doc["files"]] == [FILE_KEYS] * 3
+    assert doc["files"][0] == {"input": "a.csv", "command": "shear", "status": "ok", "ok": True, "error": None,
+                               "out_dir": None, "result": {"command": "shear"}}  # fmt: skip
+    assert doc["files"][1]["error"] == "line 2: bad" and doc["files"][1]["ok"] is False
+    assert BatchDocument.of([ok], Path("/b/index.csv"), wrote=True).to_json()["files"][0]["out_dir"] == "/out/a"
+
+
+def test_batch_json_on_the_command_line(tmp_path):
+    import json
+
+    shutil.copy(capred.sample_path("rumpf"), tmp_path / "r.csv")
+    shutil.copy(capred.sample_path("prism"), tmp_path / "p.csv")
+    manifest = tmp_path / "m.csv"
+    manifest.write_text("command,input,options\nrumpf,r.csv,--no-plots\nprism,p.csv,--no-plots\n")
+    res = CliRunner().invoke(app, ["batch", str(manifest), "--json"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    assert list(doc) == JSON_KEYS and doc["failed"] == 0
+    assert [f["command"] for f in doc["files"]] == ["rumpf", "prism"]
+    assert all(list(f) == FILE_KEYS and f["ok"] and f["result"]["command"] == f["command"] for f in doc["files"])
+
+
+def test_season_detail_headers_come_from_the_one_rule_and_the_glossary():
+    from capred.batch import unit_header
+
+    assert unit_header("c [kPa]", [1.0]) == "c [kPa]"  # a record's header is kept
+    assert unit_header("alpha_per_kPa", [0.1]) == "alpha [1/kPa]"  # capred.result.csv_header, as every CSV
+    assert unit_header("V_w_mm3", [2.0]) == "V_w [mm^3]"  # a suffix the batch's own list used to miss
+    assert unit_header("sigma3", [100.0]) == "sigma3 [kPa]"  # a glossary quantity: its output unit
+    assert unit_header("n_points", [12]) == "n_points [-]"  # a count
+    assert unit_header("branch", ["drying"]) == "branch"  # text

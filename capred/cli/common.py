@@ -688,24 +688,8 @@ def run_batch(jobs, root: Path | None, json_out: bool, workers: int | None, extr
     season = batch.write_season(root, outcomes) if root is not None else []
     index = batch.write_index(root, outcomes, season) if root is not None else None  # lists every batch file
     bad = [o for o in outcomes if o.status in ("failed", "crashed")]
-    if json_out:
-        doc = {
-            "files": [
-                {
-                    "input": o.source,
-                    "command": o.command,
-                    "status": o.status,
-                    "ok": o.ok,
-                    "error": o.message or None,
-                    "out_dir": o.out_dir if root is not None else None,
-                    "result": o.result_json,
-                }
-                for o in outcomes
-            ],
-            "index": str(index) if index else None,
-            "failed": len(bad),
-            "interrupted": sum(o.status == "interrupted" for o in outcomes),
-        }
+    if json_out:  # the document's keys are the fields of its records (capred.batch.BatchDocument)
+        doc = batch.BatchDocument.of(outcomes, index, root is not None).to_json()
         typer.echo(encode_json(doc).decode("utf-8"), nl=False)
     else:
         _outcome_table(outcomes, index)

@@ -22,7 +22,19 @@ from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
 from ..progress import steps
 from ..references import cite
-from ..result import InputFile, Options, Result, Rows, input_file, json_list, num
+from ..result import (
+    InputFile,
+    Options,
+    Result,
+    Rows,
+    input_file,
+    json_list,
+    num,
+    output,
+    record_json,
+    record_row,
+    user_units,
+)
 from .shear_fits import envelope_fits, line_of
 from .shear_records import ModelPrediction
 
@@ -274,8 +286,15 @@ class ShearOptions(Options):
             models = esm.resolve_models(self.models)
         except (ValueError, TypeError) as exc:
             raise OptionError(f"models (--models): {exc}") from None
-        if not 0.0 < self.confidence < 1.0:
-            raise OptionError(f"confidence must lie between 0 and 1 (got {self.confidence})")
+        conf = self.confidence
+        if (
+            isinstance(conf, bool)
+            or not isinstance(conf, (int, float, np.integer, np.floating))
+            or not 0.0 < conf < 1.0
+        ):
+            raise OptionError(
+                f"confidence (--confidence) must lie strictly between 0 and 1, e.g. 0.95 (got {self.confidence!r})"
+            )
         skipped = {}
         if esm.asks_for_all(self.models):  # 'all': every model the inputs allow; the others named, with their needs
             skipped = {m: need for m in models if (need := self.model_params.missing(m))}
@@ -327,12 +346,30 @@ def _as_given(options: Options, exc: Exception, given: dict) -> str:
     return text
 
 
-@dataclass
+@user_units
+@dataclass(frozen=True, eq=False)
 class ModelMetrics:
-    n: int
-    rmse: float  # Pa
-    bias: float  # Pa, mean(predicted - measured)
-    r2: float
+    """How well one effective-stress model predicts the measured peak shear strength of a set of wet tests.
+
+    Attributes
+    ----------
+    n : int
+        Number of tests with a prediction [-].
+    rmse_kPa : float
+        Root-mean-square error of τ_pred − τ_max [kPa] (JSON ``rmse_kPa``, metrics.csv ``rmse [kPa]``).
+    bias_kPa : float
+        Mean of τ_pred − τ_max [kPa] (JSON ``bias_kPa``, metrics.csv ``bias [kPa]``).
+    r2 : float
+        Coefficient of determination 1 − SS_res/SS_tot [-] (NaN where undefined).
+    rmse, bias
+        The same in Pa (the fields, as the pipeline stores them): deprecated names, kept for one release with a
+        DeprecationWarning; ``.si.rmse`` reads them without one.
+    """
+
+    n: int = output("n", "n")
+    rmse: float = output("rmse_kPa", "rmse", "kPa", 1e-3)
+    bias: float = output("bias_kPa", "bias", "kPa", 1e-3)
+    r2: float = output("r2", "r2")
 
 
 @dataclass(repr=False)
@@ -373,6 +410,16 @@ class ShearResult(Result):
     @property
     def models(self) -> tuple[str, ...]:
         return self.options.models
+
+    @property
+    def best_model_pendular(self) -> dict[str, str | None]:
+        """Per material, the model with the lowest RMSE on its pendular wet tests (None: nothing to compare)."""
+        return {m: best_of(v) for m, v in self.metrics_pendular.items()}
+
+    @property
+    def best_model_pendular_overall(self) -> str | None:
+        """The model with the lowest RMSE on every pendular wet test (None: nothing to compare)."""
+        return best_of(self.metrics_pendular_overall)
 
     @property
     def materials(self) -> list[str]:
@@ -443,7 +490,7 @@ class ShearResult(Result):
                     "n_dry": f["n"],
                     "n_wet": int(np.sum((self.tests["material"] == m) & (self.tests["condition"] == "wet"))),
                     "best_model": best,
-                    "best_rmse [kPa]": num(met.rmse / 1e3) if met else None,
+                    "best_rmse [kPa]": num(met.rmse_kPa) if met else None,
                     "flagged_tests": int(np.sum(flags & (self.tests["material"] == m))),
                 }
             )
@@ -727,8 +774,8 @@ class ShearResult(Result):
                 mat: {m: _metric_dict(v) for m, v in d.items()} for mat, d in self.metrics_pendular.items()
             },
             "metrics_pendular_overall": {m: _metric_dict(v) for m, v in self.metrics_pendular_overall.items()},
-            "best_model_pendular": {m: best_of(v) for m, v in self.metrics_pendular.items()},
-            "best_model_pendular_overall": best_of(self.metrics_pendular_overall),
+            "best_model_pendular": self.best_model_pendular,
+            "best_model_pendular_overall": self.best_model_pendular_overall,
             "best_model_probability": {m: r.probability for m, r in self.ranking.items()},
             "bootstrap": {m: _ranking_dict(r) for m, r in self.ranking.items()},
             "fitted": {
@@ -858,7 +905,7 @@ def _json_ready(v):
 
 
 def _metric_dict(m: ModelMetrics) -> dict:
-    return {"n": m.n, "rmse_kPa": num(m.rmse / 1e3), "bias_kPa": num(m.bias / 1e3), "r2": num(m.r2)}
+    return record_json(m)
 
 
 def model_metrics(predicted, measured) -> ModelMetrics:
@@ -904,7 +951,7 @@ def best_of(metrics: dict[str, ModelMetrics]) -> str | None:
     str or None
         The model's name.
     """
-    scored = {m: v.rmse for m, v in metrics.items() if np.isfinite(v.rmse)}
+    scored = {m: v.si.rmse for m, v in metrics.items() if np.isfinite(v.si.rmse)}
     return min(scored, key=scored.get) if scored else None
 
 
@@ -1521,7 +1568,8 @@ def bootstrap_materials(result: ShearResult, wet, mat, cond, opt: ShearOptions) 
             continue
         dry = (mat == m) & (cond == "dry")
         ranked = sorted(
-            (k for k, v in result.metrics[m].items() if np.isfinite(v.rmse)), key=lambda k: result.metrics[m][k].rmse
+            (k for k, v in result.metrics[m].items() if np.isfinite(v.si.rmse)),
+            key=lambda k: result.metrics[m][k].si.rmse,
         )
         out[m] = sa.bootstrap_ranking(
             d,
@@ -1886,18 +1934,7 @@ def metrics_table(result: ShearResult, frame: bool = True):
     for mat, by_model in list(result.metrics.items()) + [("(all)", result.metrics_overall)]:
         best = result.best_model_overall if mat == "(all)" else result.best_model.get(mat)
         for m, met in by_model.items():
-            d = _metric_dict(met)
-            rows.append(
-                {
-                    "material": mat,
-                    "model": m,
-                    "n [-]": d["n"],
-                    "rmse [kPa]": d["rmse_kPa"],
-                    "bias [kPa]": d["bias_kPa"],
-                    "r2 [-]": d["r2"],
-                    "best": m == best,
-                }
-            )
+            rows.append({"material": mat, "model": m, **record_row(met), "best": m == best})
     return _rows_table(rows, frame)
 
 

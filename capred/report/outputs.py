@@ -29,6 +29,8 @@ from .sheets import NO_STAMP  # noqa: F401  (kept importable from here)
 PARALLEL_MIN_PANELS = 12
 #: which sheets ``figures`` draws: those drawn by default, or every sheet (also those on request)
 FIGURE_SETS = ("main", "all")
+#: resolutions a PNG may have [dots per inch], as the CLI's --dpi accepts them
+DPI_RANGE = (30, 2400)
 
 
 @dataclass(frozen=True)
@@ -42,6 +44,21 @@ class FigureOptions:
     panels: bool = False
     html: bool = True
     figures: str = "main"
+
+    def __post_init__(self) -> None:
+        """Refuse a resolution outside ``DPI_RANGE`` (the CLI's --dpi range): a whole number of dots per inch."""
+        import numbers
+
+        dpi = self.dpi
+        whole = isinstance(dpi, numbers.Real) and not isinstance(dpi, bool) and float(dpi).is_integer()
+        if not whole or not DPI_RANGE[0] <= dpi <= DPI_RANGE[1]:
+            from ..errors import OptionError
+
+            raise OptionError(
+                f"dpi (--dpi) must be a whole number of dots per inch between {DPI_RANGE[0]} and {DPI_RANGE[1]} "
+                f"(got {dpi!r})"
+            )
+        object.__setattr__(self, "dpi", int(dpi))
 
 
 def write_outputs(
@@ -103,7 +120,7 @@ def write_outputs(
         from ..errors import OptionError
 
         raise OptionError(f"figures must be one of {', '.join(FIGURE_SETS)} (got {figures!r})")
-    opts = FigureOptions(tuple(formats), int(dpi), bool(panels), bool(html), figures)
+    opts = FigureOptions(tuple(formats), dpi, bool(panels), bool(html), figures)
 
     with showing(wanted()), ExitStack() as tables:
         tables.enter_context(task("writing tables"))

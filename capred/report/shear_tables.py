@@ -4,22 +4,43 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..nomenclature import QUANTITIES
 from ..physics.effective_stress_models import MODEL_LABELS
-from ..result import TableSpec
+from ..result import TableSpec, num
 from .render import MAX_ROWS, fmt, row_table, spec
 
 
-def _outlier_label(outlier: dict) -> str:
-    """A dry outlier as the lab names it: its test id with its line ("D8 (line 13)"), or its line alone."""
-    line = f"line {outlier['line']}" if outlier.get("line") is not None else ""
-    if outlier.get("test_id") is None:
-        return line or "?"
-    return f"{outlier['test_id']} ({line})" if line else str(outlier["test_id"])
+def _outlier_labels(line) -> list[str]:
+    """The dry outliers of a fit as the lab names them: test id with its line ("D8 (line 13)"), or the line alone.
+
+    Parameters
+    ----------
+    line : capred.fitting.linear.LineFit
+        The SI fit of a dry envelope (its ``diagnostics`` flag the outliers).
+
+    Returns
+    -------
+    list of str
+    """
+    diag = line.diagnostics or {}
+    out = []
+    for k in np.flatnonzero(np.asarray(diag.get("outlier", []), bool)):
+        where = f"line {int(diag['lines'][k])}" if "lines" in diag else ""
+        if "test_ids" not in diag:
+            out.append(where or "?")
+        else:
+            tid = str(diag["test_ids"][k])
+            out.append(f"{tid} ({where})" if where else tid)
+    return out
 
 
 def shear_tables(result) -> list[TableSpec]:
     """Dry fits; model metrics on all wet tests and on the pendular ones; how sure the ranking is;
     model selection; the back-analysed capillary stress of the wet tests.
+
+    Every value comes from the run's typed records, in the units of the JSON: the envelopes'
+    ``fit.params`` (``c_kPa``, ``phi_deg``, ``tan_phi``), the ``ModelMetrics`` (``rmse_kPa``, ``bias_kPa``), the
+    fitted laws' ``law.params``, the back-analysis (``sigma_cap_kPa``), the bootstrap rankings.
 
     Parameters
     ----------
@@ -30,10 +51,10 @@ def shear_tables(result) -> list[TableSpec]:
     -------
     list of capred.result.TableSpec
     """
-    js = result.json_lazy()
-    phi_b = any("phi_b_deg" in f for f in js["materials"].values())
-    origin = js["dry_fit"] == "origin"
-    loss = js.get("dry_loss", "ols")
+    opt = result.options
+    phi_b = any("phi_b_deg" in result.per_material.get(m, {}) for m in result.fits)
+    origin = opt.dry_fit == "origin"
+    loss = opt.dry_loss
     fits = spec(
         "Dry envelope τ = c + σ_N tan φ"
         + (" (through the origin, c = 0)" if origin else "")
@@ -42,22 +63,23 @@ def shear_tables(result) -> list[TableSpec]:
         ["material", "n", "c [kPa]", "± se", "φ [°]", "± se", "tan φ", "R²", "scatter", "BP p", "outliers"]
         + (["φ_b [°]"] if phi_b else []),
     )
-    hetero = js.get("heteroscedasticity", {})
-    for mat, f in js["materials"].items():
+    for mat, fit in result.fits.items():
+        p, line = fit.params, fit.line
+        bp = ((result.heteroscedasticity.get(mat) or {}).get("dry_fit") or {}).get("p_value")
         fits.rows.append(
             [
                 mat,
-                fmt(f["n"]),
-                fmt(f["c_kPa"]),
-                fmt(f["c_se_kPa"]),
-                fmt(f["phi_deg"]),
-                fmt(f["phi_se_deg"]),
-                fmt(f["tan_phi"]),
-                fmt(f["r2"]),
-                f.get("errors", "constant"),
-                fmt(((hetero.get(mat) or {}).get("dry_fit") or {}).get("p_value")),
-                ", ".join(_outlier_label(o) for o in f.get("outliers", [])) or "none",
-                *([fmt(f.get("phi_b_deg"))] if phi_b else []),
+                fmt(int(line.n)),
+                fmt(p["c_kPa"].value),
+                fmt(p["c_kPa"].stderr),
+                fmt(p["phi_deg"].value),
+                fmt(p["phi_deg"].stderr),
+                fmt(p["tan_phi"].value),
+                fmt(line.r2),
+                getattr(line, "errors", "constant"),
+                fmt(bp),
+                ", ".join(_outlier_labels(line)) or "none",
+                *([fmt(result.per_material.get(mat, {}).get("phi_b_deg"))] if phi_b else []),
             ]
         )
     n_wet = int(np.sum(result.tests["condition"] == "wet"))
@@ -67,44 +89,44 @@ def shear_tables(result) -> list[TableSpec]:
         fits,
         _metrics_table(
             "Wet tests: model comparison (residual = predicted − measured)",
-            js["metrics"],
-            js["metrics_overall"],
-            js["best_model"],
-            js["best_model_overall"],
+            result.metrics,
+            result.metrics_overall,
+            result.best_model,
+            result.best_model_overall,
         ),
     ]
-    if js["metrics_pendular"]:
-        lim = result.options.pendular_limit
+    if result.metrics_pendular:
         out.append(
             _metrics_table(
-                f"Pendular wet tests only (S_R ≤ {lim:g})",
-                js["metrics_pendular"],
-                js["metrics_pendular_overall"],
-                js["best_model_pendular"],
-                js["best_model_pendular_overall"],
+                f"Pendular wet tests only (S_R ≤ {opt.pendular_limit:g})",
+                result.metrics_pendular,
+                result.metrics_pendular_overall,
+                result.best_model_pendular,
+                result.best_model_pendular_overall,
             )
         )
-    if js["bootstrap"]:
+    if result.ranking:
+        kpa = QUANTITIES["tau_pred"].factor  # the ranking's RMSE differences are SI [Pa]
         boot = spec(
             "How sure is the ranking? (paired bootstrap of wet and dry tests; ΔRMSE = runner-up − best)",
             ["material", "best model", "best in % of resamples", "runner-up", "ΔRMSE 95 % CI [kPa]", "replicates"],
         )
-        for mat, b in js["bootstrap"].items():
-            best = b["best"]
-            p = b["best_model_probability"].get(best) if best else None
-            diff = b["rmse_difference_ci95_kPa"]
+        for mat, b in result.ranking.items():
+            best = b.best
+            p = num(b.probability.get(best)) if best else None
+            diff = b.difference_ci
             boot.rows.append(
                 [
                     mat,
                     MODEL_LABELS.get(best, "—"),
                     "—" if p is None else f"{p:.0%}",
-                    MODEL_LABELS.get(b["runner_up"], "—"),
-                    "—" if diff is None else f"{fmt(diff[0])} to {fmt(diff[1])}",
-                    fmt(b["replicates"]),
+                    MODEL_LABELS.get(b.runner_up, "—"),
+                    "—" if diff is None else f"{fmt(num(diff[0] * kpa))} to {fmt(num(diff[1] * kpa))}",
+                    fmt(b.replicates),
                 ]
             )
         out.append(boot)
-    sel = js["model_selection"]
+    sel = result.model_selection()
     if sel and len(result.models) > 1:
         t = spec(
             "Model selection on the wet tests (Gaussian errors; k counts fitted parameters and the variance)",
@@ -129,15 +151,18 @@ def shear_tables(result) -> list[TableSpec]:
                     ]
                 )
         out.append(t)
-    if js["fitted"]:
+    if result.laws:
         f = spec("Fitted χ laws (dry c, φ held)", ["material", "model", "parameter", "value", "± se", "n"], left=3)
-        for mat, models in js["fitted"].items():
-            for m, v in models.items():
-                for name, value in v["params"].items():
-                    if name in v["fixed"]:
-                        continue
-                    f.rows.append([mat, MODEL_LABELS[m], name, fmt(value), fmt(v["se"].get(name)), fmt(v["n"])])
-        out.append(f)
+        for mat in result.materials:
+            for m, by_material in result.laws.items():
+                law = by_material.get(mat)
+                if law is None:
+                    continue
+                for name, par in law.params.items():
+                    if not par.fixed:
+                        f.rows.append([mat, MODEL_LABELS[m], name, fmt(par.value), fmt(par.stderr), fmt(law.n)])
+        if f.rows:
+            out.append(f)
     import itertools
 
     rows = list(itertools.islice(_wet_rows(result), MAX_ROWS))
@@ -163,7 +188,7 @@ def _wet_rows(result, limit: int = MAX_ROWS):
             "test_id": tid,
             "material": str(t["material"][i]),
             "S_R": t["S_R"][i],
-            "suction [kPa]": t["suction"][i] / 1e3,
+            "suction [kPa]": t["suction"][i] * QUANTITIES["suction"].factor,  # tests hold SI [Pa]
             "σ_cap [kPa]": b.sigma_cap_kPa[i],
             "± se": b.sigma_cap_se_kPa[i],
             "χ_back": b.chi_back[i],
@@ -172,6 +197,7 @@ def _wet_rows(result, limit: int = MAX_ROWS):
 
 
 def _metrics_table(title, metrics, overall, best_of_material, best_overall) -> TableSpec:
+    """One model-comparison table: per material (and "(all)") each model's ModelMetrics, the best in bold."""
     met = spec(title, ["material", "model", "n", "RMSE [kPa]", "bias [kPa]", "R²", "lowest RMSE"], left=2)
     groups = list(metrics.items())
     if overall and len(groups) > 1:
@@ -187,10 +213,10 @@ def _metrics_table(title, metrics, overall, best_of_material, best_overall) -> T
                 [
                     mat if k == 0 else "",
                     MODEL_LABELS[m],
-                    fmt(v["n"]),
-                    fmt(v["rmse_kPa"]),
-                    fmt(v["bias_kPa"], sign=True),
-                    fmt(v["r2"]),
+                    fmt(v.n),
+                    fmt(v.rmse_kPa),
+                    fmt(v.bias_kPa, sign=True),
+                    fmt(v.r2),
                     "best" if m == best else "",
                 ]
             )
