@@ -234,11 +234,6 @@ def test_chi_law_conforms(law, shear_runs):
     assert tex(entry.label) in _drawn_text(r.plot(sheets[0]))
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="issue 28 item 5: the fitted χ-law parameters reach summary.json, the console and report.html but no CSV "
-    "(ShearResult.csv_tables, capred/pipelines/shear.py); remove this mark when they do",
-)
 @pytest.mark.parametrize("law", list(CHI_LAWS))
 def test_chi_law_parameters_are_in_a_csv(law, shear_runs):
     out, doc, _ = shear_runs(law)

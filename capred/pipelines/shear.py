@@ -463,6 +463,8 @@ class ShearResult(Result):
                 "summary": summary_table(self, frame=False),
                 "metrics": metrics_table(self, frame=False),
             }
+            if self.laws:
+                cached["laws"] = laws_table(self)
         return cached
 
     def season_rows(self) -> list[dict]:
@@ -802,6 +804,41 @@ class ShearResult(Result):
             },
             "references": {m: cite(esm.REGISTRY[m].reference) for m in self.models},
         }
+
+
+def laws_table(result) -> dict:
+    """The fitted χ laws as a CSV table: one row per law and material, each parameter with its standard error and
+    95 % interval under ``name [unit]`` headers (the JSON's ``fitted`` block, in its units).
+
+    Parameters
+    ----------
+    result : ShearResult
+        A run with fitted laws (``--models chi_power``, ``khalili_fit`` ...).
+
+    Returns
+    -------
+    dict
+        Column header -> list of values (blank where a law has no such parameter; a fixed parameter has no
+        standard error or interval).
+    """
+    from ..result import csv_header
+
+    rows = []
+    for model, by_mat in result.laws.items():
+        for mat, law in by_mat.items():
+            row = {"model": model, "material": mat}
+            for name, p in law.params.items():
+                head = csv_header(name)
+                base, unit = (head[: head.index(" [")], head[head.index("[") + 1 : -1]) if "[" in head else (name, "-")
+                row[f"{base} [{unit}]"] = num(p.value)
+                row[f"{base}_se [{unit}]"] = num(p.stderr)
+                row[f"{base}_low95 [{unit}]"] = num(p.ci95[0])
+                row[f"{base}_high95 [{unit}]"] = num(p.ci95[1])
+            row.update({"fixed": ";".join(law.fixed), "n": law.n, "dof": law.dof, "converged": law.converged})
+            rows.append(row)
+    meta = ("fixed", "n", "dof", "converged")
+    keys = [k for k in dict.fromkeys(k for r in rows for k in r) if k not in meta] + list(meta)
+    return {k: [r.get(k) for r in rows] for k in keys}
 
 
 def _law_dict(model: str, law) -> dict:
