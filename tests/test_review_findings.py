@@ -162,10 +162,10 @@ def test_shear_retention_of_another_model_says_it_was_converted(tmp_path):
     assert "Traceback" not in res.output
 
 
-@pytest.mark.xfail(strict=True, reason="capred/pipelines/triaxial.py: --curves unused without a word")
 def test_curves_given_for_tests_with_q_f_are_used_or_said_unused(tmp_path):
     """Issue 33.2 / 'nothing silently dropped': `triaxial-bounds TESTS --curves CURVES` where every test has q_f
-    uses no curve, draws no q-ε1 figure and says nothing."""
+    used no curve, drew no q-ε1 figure and said nothing. Now a note names the tests whose q_f wins and compares
+    the curves' peaks with q_f, and the curves are drawn for reference (peak against q_f)."""
     tests, curves = capred.sample_path("triaxial-bounds"), capred.sample_path("triaxial-curves")
     res = runner.invoke(
         app,
@@ -175,3 +175,16 @@ def test_curves_given_for_tests_with_q_f_are_used_or_said_unused(tmp_path):
     assert res.exit_code == 0, res.output
     notes = json.loads(res.stdout)["notes"]
     assert any("curve" in n.lower() for n in notes), notes
+    note = next(n for n in notes if n.startswith("--curves:"))
+    assert "UNSAT-0, UNSAT-100, UNSAT-150 not used for failure: every test has q_f" in note, note
+    # the sample's curves were made to peak at the table's q_f (sample_data/README.md): 150.2 kPa both, 0 %
+    assert "'UNSAT-0', peak 150.2 kPa against q_f 150.2 kPa" in note, note
+    # drawn for reference: the q-eps1 panel marks each curve's peak and the table's q_f
+    from capred.pipelines.triaxial import run_triaxial_bounds
+    from capred.report.sheets import sheet_figure
+    from capred.report.triaxial_figures import sheet_triaxial
+
+    r = run_triaxial_bounds(tests, curves=curves)
+    assert r.curves == {} and sorted(r.reference_curves) == ["UNSAT-0", "UNSAT-100", "UNSAT-150"]
+    titles = [ax.get_title() for ax in sheet_figure(sheet_triaxial(r)).axes]
+    assert any("for reference: peak against" in t for t in titles), titles
