@@ -37,7 +37,7 @@ def test_prism_formula_inverts_mohr_relation():
 
 def test_prism_sample_file(tmp_path):
     js = _json(["prism", "--sample", "--out", str(tmp_path)])
-    assert js["cases"][0]["case"] == "bernatzik_1949"
+    assert js["cases"][0]["case"] == "bernatzik_1948"  # Bernatzik (1948), the reference
     assert js["cases"][0]["capillary_rise_cm"] == pytest.approx(40.3, abs=0.1)
 
 
