@@ -286,15 +286,6 @@ SNAPSHOT = {
                 "type": "bool",
                 "option": "--fit-eta",
             },
-            "retention_notes": {
-                "quantity": None,
-                "unit": "",
-                "range": "",
-                "text": "",
-                "default": "[default: ]",
-                "type": "tuple",
-                "option": "--retention-notes",
-            },
         },
         "capred.pipelines.triaxial:TriaxialOptions": {
             "c_eff": {

@@ -93,9 +93,6 @@ class ModelParams(Options):
     contact_angle: float = 0.0  # deg, of the exact bridge (exact_neck)
     eta: float = 0.55  # exponent of khalili_fit (fixed unless fit_eta)
     fit_eta: bool = False
-    #: what --retention FIT.json gave: ((fields, text, is_warning), ...), shown where a model compared uses one of
-    #: the fields (or always, with no fields): the branch read, a conversion to another model with its misfit
-    retention_notes: tuple = ()
 
     def __post_init__(self) -> None:
         given = {name: getattr(self, name) for name in self.QUANTITIES}
@@ -103,6 +100,14 @@ class ModelParams(Options):
             super().__post_init__()
         except OptionError as exc:  # quote the value as the API caller gave it, beside its reading in SI
             raise OptionError(_as_given(self, exc, given)) from None
+
+    @property
+    def retention_notes(self) -> tuple:
+        """What --retention FIT.json gave: ``(fields, text, is_warning)`` per note (the branch read, each conversion
+        to another model with its misfit), shown by ShearOptions where a model compared uses one of the fields (or
+        always, with no fields). Not an option (set by :func:`model_params_from_retention`, as ``warnings`` is by
+        the options' checks): the options record does not repeat it."""
+        return tuple(getattr(self, "_retention_notes", ()))
 
     def missing(self, model: str) -> str:
         """What ``model`` needs and is not given (its registry ``requires``), e.g. ``"--s-res"``; "" when nothing.
@@ -271,8 +276,9 @@ def model_params_from_retention(path: str | Path, branch: str | None = None, **o
         best = min(scored)[1]
         p["retention_model"] = (best, tuple(sorted(fits[best]["params_si"].items())), js.get("quantity", "S_R"))
     p.update({k: v for k, v in overrides.items() if v is not None})
-    p["retention_notes"] = tuple(notes)
-    return ModelParams(**p)
+    params = ModelParams(**p)
+    object.__setattr__(params, "_retention_notes", tuple(notes))  # frozen: set once, as Options sets _warnings
+    return params
 
 
 @dataclass(frozen=True)
@@ -370,9 +376,9 @@ class ShearOptions(Options):
             f"--models all: model '{m}' skipped: it needs {need} (or --retention FIT.json written by capred retention)"
             for m, need in self.skipped_models.items()
         ]
-        return out + self._retention_notes(warnings=False)
+        return out + self._from_retention(warnings=False)
 
-    def _retention_notes(self, warnings: bool) -> list[str]:
+    def _from_retention(self, warnings: bool) -> list[str]:
         """The notes (or warnings) of --retention that concern the models compared, each naming the models."""
         out = []
         for fields, note, is_warning in self.model_params.retention_notes:
@@ -387,7 +393,7 @@ class ShearOptions(Options):
 
     @property
     def warnings(self) -> list[str]:
-        return super().warnings + self.model_params.warnings + self._retention_notes(warnings=True)
+        return super().warnings + self.model_params.warnings + self._from_retention(warnings=True)
 
 
 def _as_given(options: Options, exc: Exception, given: dict) -> str:
