@@ -246,28 +246,6 @@ def parse_quantity(text: str, default_unit: str, kind: str, notes: list[str] | N
     return float(m.group(1)) * factor
 
 
-def with_unit(text: str | None, default_unit: str) -> str | None:
-    """An option as typed, with ``default_unit`` appended when it is a bare number ("9.81" -> "9.81 kN/m^3").
-
-    Parameters
-    ----------
-    text : str or None
-        The option as typed (None: None).
-    default_unit : str
-        Unit of a bare number ("" for none).
-
-    Returns
-    -------
-    str or None
-    """
-    if text is None:
-        return None
-    text = str(text).strip()
-    if default_unit and re.fullmatch(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?", text):
-        return f"{text} {default_unit}"
-    return text
-
-
 def to_si(value, name: str, where: str | None = None, notes: list[str] | None = None) -> float:
     """An API option of quantity ``name`` (a key of capred.nomenclature.QUANTITIES) in SI.
 

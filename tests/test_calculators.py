@@ -37,7 +37,7 @@ def test_prism_formula_inverts_mohr_relation():
 
 def test_prism_sample_file(tmp_path):
     js = _json(["prism", "--sample", "--out", str(tmp_path)])
-    assert js["cases"][0]["case"] == "bernatzik_1949"
+    assert js["cases"][0]["case"] == "bernatzik_1948"  # Bernatzik (1948), the reference
     assert js["cases"][0]["capillary_rise_cm"] == pytest.approx(40.3, abs=0.1)
 
 
@@ -212,8 +212,13 @@ def test_skempton_bounding_surface_cli(args, expected, tmp_path):
     csv = (tmp_path / "results.csv").read_text()
     assert BS_NAME in csv and BS_NAME in (tmp_path / "report.html").read_text()
     assert (tmp_path / "skempton-b.png").exists()
+    header = csv.splitlines()[0]
     if "gauge" in args:
         assert any("Boyle's law needs the absolute air pressure" in w for w in js["warnings"])
+        # the absolute initial air pressure takes no part under gauge: not shown as an input of the case
+        assert "pa0_kPa" not in js["cases"][0] and "pa0" not in header, header
+    else:
+        assert js["cases"][0]["pa0_kPa"] == 130 and "pa0 [kPa]" in header, header
 
 
 def test_skempton_bounding_surface_inverse_round_trip(tmp_path):

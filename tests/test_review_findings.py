@@ -113,11 +113,11 @@ def test_best_law_of_a_region_gives_a_force_at_every_point_of_it(tmp_path):
     assert not best.startswith("Willett (full)"), best
 
 
-@pytest.mark.xfail(strict=True, reason="capred/pipelines/shear.py: --retention converts another model silently")
 def test_shear_retention_of_another_model_says_it_was_converted(tmp_path):
     """Issue 34.1: `shear --retention FIT.json` converts a fit of another model where a χ law needs van Genuchten
-    or Brooks-Corey; skempton-b reports that conversion and its misfit, shear says nothing (no note, no misfit,
-    not the branch)."""
+    or Brooks-Corey; skempton-b reported that conversion and its misfit, shear said nothing (no note, no misfit,
+    not the branch). Now a note names the conversion, its misfit and the branch (drying by default, or the one
+    --retention-branch picks); a poor conversion is a warning."""
     fits = tmp_path / "r"
     res = runner.invoke(app, ["retention", "--sample", "--model", "kosugi", "--out", str(fits), "--no-plots"])
     assert res.exit_code == 0, res.output
@@ -127,14 +127,44 @@ def test_shear_retention_of_another_model_says_it_was_converted(tmp_path):
         + ["--bootstrap", "0", "--no-plots", "--json", "--out", str(tmp_path / "s")],
     )
     assert res.exit_code == 0, res.output
-    notes = json.loads(res.stdout)["notes"]
+    doc = json.loads(res.stdout)
+    notes = doc["notes"]
     assert any("kosugi" in n and "convert" in n for n in notes), notes
+    conv = next(n for n in notes if "converted to van Genuchten" in n)
+    assert "branch 'drying'" in conv and "RMSE" in conv and "largest deviation" in conv and "lu_likos" in conv
+    assert any("branch 'drying' used (the default)" in n and "wetting" in n for n in notes), notes
+    # Brooks-Corey is not converted when no model compared uses it (lu_likos takes van Genuchten only)
+    assert not any("Brooks-Corey" in n for n in notes), notes
+    # the converted α is the one retention-convert gives for the same fit and branch
+    conv_api = capred.convert_retention(fits / "fits.json", to="vg", branch="drying").converted
+    alpha = conv_api.params["alpha_per_kPa"].value
+    assert f"alpha_per_kPa = {alpha:.4g}" in conv
+    # the wetting branch when asked, said in the note; a branch the file lacks is a clear error
+    res = runner.invoke(
+        app,
+        ["shear", "--sample", "--models", "lu_likos,khalili", "--retention", str(fits / "fits.json")]
+        + ["--retention-branch", "wetting", "--bootstrap", "0", "--no-plots", "--json", "--out", str(tmp_path / "w")],
+    )
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    assert any("branch 'wetting' used (given by --retention-branch)" in n for n in doc["notes"]), doc["notes"]
+    assert any("kosugi fit of branch 'wetting' converted to Brooks-Corey" in n for n in doc["notes"]), doc["notes"]
+    # Brooks-Corey's sharp air entry cannot follow Kosugi's smooth curve within 0.02 in S_R (retention-convert's
+    # threshold): that is a warning, naming the model that uses it
+    assert any("bc cannot follow the kosugi curve" in w and "khalili" in w for w in doc["warnings"]), doc["warnings"]
+    res = runner.invoke(
+        app,
+        ["shear", "--sample", "--models", "lu_likos", "--retention", str(fits / "fits.json")]
+        + ["--retention-branch", "scanning", "--bootstrap", "0", "--no-plots", "--out", str(tmp_path / "x")],
+    )
+    assert res.exit_code != 0 and "has no branch 'scanning' (it has drying, wetting)" in res.output, res.output
+    assert "Traceback" not in res.output
 
 
-@pytest.mark.xfail(strict=True, reason="capred/pipelines/triaxial.py: --curves unused without a word")
 def test_curves_given_for_tests_with_q_f_are_used_or_said_unused(tmp_path):
     """Issue 33.2 / 'nothing silently dropped': `triaxial-bounds TESTS --curves CURVES` where every test has q_f
-    uses no curve, draws no q-ε1 figure and says nothing."""
+    used no curve, drew no q-ε1 figure and said nothing. Now a note names the tests whose q_f wins and compares
+    the curves' peaks with q_f, and the curves are drawn for reference (peak against q_f)."""
     tests, curves = capred.sample_path("triaxial-bounds"), capred.sample_path("triaxial-curves")
     res = runner.invoke(
         app,
@@ -144,3 +174,16 @@ def test_curves_given_for_tests_with_q_f_are_used_or_said_unused(tmp_path):
     assert res.exit_code == 0, res.output
     notes = json.loads(res.stdout)["notes"]
     assert any("curve" in n.lower() for n in notes), notes
+    note = next(n for n in notes if n.startswith("--curves:"))
+    assert "UNSAT-0, UNSAT-100, UNSAT-150 not used for failure: every test has q_f" in note, note
+    # the sample's curves were made to peak at the table's q_f (sample_data/README.md): 150.2 kPa both, 0 %
+    assert "'UNSAT-0', peak 150.2 kPa against q_f 150.2 kPa" in note, note
+    # drawn for reference: the q-eps1 panel marks each curve's peak and the table's q_f
+    from capred.pipelines.triaxial import run_triaxial_bounds
+    from capred.report.sheets import sheet_figure
+    from capred.report.triaxial_figures import sheet_triaxial
+
+    r = run_triaxial_bounds(tests, curves=curves)
+    assert r.curves == {} and sorted(r.reference_curves) == ["UNSAT-0", "UNSAT-100", "UNSAT-150"]
+    titles = [ax.get_title() for ax in sheet_figure(sheet_triaxial(r)).axes]
+    assert any("for reference: peak against" in t for t in titles), titles

@@ -52,3 +52,36 @@ def test_every_panel_cites_the_figure_it_follows_and_marks_the_peaks():
     for ax in groups.axes:
         if ax.get_title():
             assert re.search(r"\(Fig\. \d|range without pairs", ax.get_title()), ax.get_title()
+
+
+def test_curves_of_tests_with_q_f_are_compared_with_it_and_drawn_for_reference(tmp_path):
+    """A curve whose test has q_f in the table is not used for failure (the table wins); the note names it and
+    compares the curve's peak with q_f. Here UNSAT-0's q_f is blanked (its curve gives failure) and UNSAT-100's
+    set to 300 kPa against its curve's peak of 317.6 kPa: (317.6 - 300)/300 = +5.9 %, by hand."""
+    from capred.pipelines.triaxial import run_triaxial_bounds
+    from capred.report.sheets import sheet_figure
+    from capred.report.triaxial_figures import sheet_triaxial
+
+    text = capred.sample_path("triaxial-bounds").read_text(encoding="utf-8")
+    text = text.replace("UNSAT-0,unsaturated,0,150.2,", "UNSAT-0,unsaturated,0,,").replace(
+        "UNSAT-100,unsaturated,100,317.6,", "UNSAT-100,unsaturated,100,300,"
+    )
+    tests = tmp_path / "tests.csv"
+    tests.write_text(text, encoding="utf-8")
+    r = run_triaxial_bounds(tests, curves=capred.sample_path("triaxial-curves"))
+    assert sorted(r.curves) == ["UNSAT-0"] and sorted(r.reference_curves) == ["UNSAT-100", "UNSAT-150"]
+    note = next(n for n in r.notes if n.startswith("--curves:"))
+    assert "UNSAT-100, UNSAT-150 not used for failure: these tests have q_f" in note, note
+    assert "'UNSAT-100', peak 317.6 kPa against q_f 300 kPa (+5.9 %)" in note, note
+    # the failure of UNSAT-0 is its curve's peak (150.2 kPa, the sample's q_f it was made from)
+    assert r.states.q[list(r.states.test_id).index("UNSAT-0")] == pytest.approx(150.2, abs=0.05)
+    titles = [ax.get_title() for ax in sheet_figure(sheet_triaxial(r)).axes]
+    assert sum("for reference" in t for t in titles) == 2, titles  # q-eps1 and epsv-eps1
+    assert any("picked peaks" in t for t in titles), titles  # UNSAT-0's curve, used for failure
+    # no reference panels when every curve gave its test's failure
+    text = text.replace("UNSAT-100,unsaturated,100,300,", "UNSAT-100,unsaturated,100,,").replace(
+        "UNSAT-150,unsaturated,150,396.7,", "UNSAT-150,unsaturated,150,,"
+    )
+    tests.write_text(text, encoding="utf-8")
+    r = run_triaxial_bounds(tests, curves=capred.sample_path("triaxial-curves"))
+    assert r.reference_curves == {} and not any(n.startswith("--curves:") for n in r.notes)

@@ -256,3 +256,24 @@ def test_old_dict_access_of_groups_and_bounds_warns_and_keeps_its_unit():
         assert r.bounds["lower"].sigma3_cap[i] == pytest.approx(r.bound_states["lower"].sigma3_cap[i] * 1e3, rel=1e-15)
     with pytest.warns(DeprecationWarning, match="states.q_sat"):
         assert np.nanmax(r.q_sat) == pytest.approx(np.nanmax(r.states.q_sat) * 1e3, rel=1e-15)
+
+
+def test_float_noise_of_exact_groups_prints_as_zero_and_a_real_difference_does_not():
+    """The groups sample is exact (sample_data/README.md): its apparent φ equals φ' and its tensors are -10, -40 kPa
+    with zero scatter, but floating point leaves φ − φ' = 1.8e-14 deg and se = 4.6e-14 kPa, which the console
+    printed as '+1.776e-14' and '-10 ± 4.6e-14'. One rule (capred.report.render.fmt with ``scale``): a value
+    within ZERO_RTOL (1e-9) of the magnitude it was computed from prints 0; anything larger is printed."""
+    from capred.report.render import ZERO_RTOL, fmt
+    from capred.report.triaxial_tables import triaxial_tables
+
+    r = run_triaxial_bounds(capred.sample_path("triaxial-groups"))
+    tables = {t.title.split(" (")[0]: t for t in triaxial_tables(r)}
+    groups = tables["Groups: apparent envelope"]
+    col = [h for h, _ in groups.columns].index("φ − φ' [°]")
+    assert [row[col] for row in groups.rows] == ["0", "0", "0"]
+    tensor = next(t for k, t in tables.items() if k.startswith("Groups: shared capillary tensor"))
+    a = next(row for row in tensor.rows if row[0] == "A")
+    assert a[2:5] == ["-10 ± 0", "-40 ± 0", "-40 ± 0"]
+    # the rule at its threshold: 1e-9 of 31.5 deg is rounding, 1e-6 deg (1,000 times more) is a value
+    assert fmt(0.9 * ZERO_RTOL * 31.5, sign=True, scale=31.5) == "0"
+    assert fmt(1e-6, sign=True, scale=31.5) == "+1e-06"

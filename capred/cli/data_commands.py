@@ -85,6 +85,13 @@ def shear(
             help="fits.json from capred retention: S_res, s_e and van Genuchten parameters for the extra models."
         ),
     ] = None,
+    retention_branch: Annotated[
+        str | None,
+        typer.Option(
+            metavar="drying|wetting",
+            help="Branch of --retention's fits (default: drying, else the file's main branch); the note says which.",
+        ),
+    ] = None,
     s_res: option(PARAMS, "s_res", note="(Vanapalli et al. 1996)") = None,
     vanapalli_kappa: option(PARAMS, "vanapalli_kappa", note="(Vanapalli et al. 1996)") = None,
     air_entry: option(PARAMS, "air_entry", note="(Khalili & Khabbaz 1998)") = None,
@@ -165,6 +172,8 @@ def shear(
         Effective-stress models, comma-separated, or a named set.
     retention : Path, optional
         fits.json of `capred retention` for the extra models.
+    retention_branch : str, optional
+        drying or wetting: the branch of --retention's fits.
     s_res : float, optional
         Residual S_R [-].
     vanapalli_kappa : float, optional
@@ -213,7 +222,15 @@ def shear(
     envelope = _envelope_pair(water_envelope)
     if envelope is not None:
         params["water_envelope"] = envelope
-    mp = model_params_from_retention(retention, **params) if retention is not None else ModelParams(**params)
+    if retention_branch is not None and retention is None:
+        from ..errors import OptionError
+
+        raise OptionError("--retention-branch needs --retention FIT.json")
+    mp = (
+        model_params_from_retention(retention, retention_branch, **params)
+        if retention is not None
+        else ModelParams(**params)
+    )
     given = si_values(
         SHEAR,
         gamma_w=gamma_w,

@@ -788,6 +788,8 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
         raise OptionError(f"kappa must be below lambda0 = {bounding['lambda0']:g} (--lambda0) in every case")
     ins = {k: (x / 1e3 if k in ("p0", "u0", "pa0") else x) for k, x in v.items() if k not in ("S_r", "B", "kappa")}
     ins["kappa_elastic"] = v["kappa"]
+    if bounding is not None and bounding["air_pressure"] == "gauge":
+        del ins["pa0"]  # Boyle's law on the gauge u0: the absolute initial air pressure is not used, not shown
     if suction:  # the model's inputs in every row: the table and the CSV say what was computed
         n = v["kappa"].size
         ins["s_e"], ins["bc_lambda"] = np.full(n, s_e / 1e3), np.full(n, float(bc_lambda))

@@ -113,6 +113,14 @@ class ModelParams(Options):
         except OptionError as exc:  # quote the value as the API caller gave it, beside its reading in SI
             raise OptionError(_as_given(self, exc, given)) from None
 
+    @property
+    def retention_notes(self) -> tuple:
+        """What --retention FIT.json gave: ``(fields, text, is_warning)`` per note (the branch read, each conversion
+        to another model with its misfit), shown by ShearOptions where a model compared uses one of the fields (or
+        always, with no fields). Not an option (set by :func:`model_params_from_retention`, as ``warnings`` is by
+        the options' checks): the options record does not repeat it."""
+        return tuple(getattr(self, "_retention_notes", ()))
+
     def missing(self, model: str) -> str:
         """What ``model`` needs and is not given (its registry ``requires``), e.g. ``"--s-res"``; "" when nothing.
 
@@ -143,16 +151,29 @@ class ModelParams(Options):
         """
         missing = self.missing(model)
         if missing:
-            raise OptionError(f"model '{model}' needs {missing} (or --retention FIT.json written by capred retention)")
+            needs = {name for name, _ in esm.REGISTRY[model].requires}
+            why = "".join(f"; {note}" for fields, note, _ in self.retention_notes if needs & set(fields))
+            raise OptionError(
+                f"model '{model}' needs {missing} (or --retention FIT.json written by capred retention){why}"
+            )
 
 
-def model_params_from_retention(path: str | Path, **overrides) -> ModelParams:
+def model_params_from_retention(path: str | Path, branch: str | None = None, **overrides) -> ModelParams:
     """Retention parameters from a `capred retention` fits.json; options in ``overrides`` win.
+
+    The fits of one branch are read (``branch``; default drying, else the file's main branch). Van Genuchten's
+    α, n, m and S_res come from its van Genuchten fit, Brooks-Corey's air-entry suction from its Brooks-Corey fit;
+    where the branch has no such fit, its best fit (lowest AICc) is converted to that model over the suction
+    range of its data (:func:`capred.pipelines.retention_convert.run_retention_convert`), and a note names the
+    conversion, its misfit (RMSE, largest deviation) and the branch.
 
     Parameters
     ----------
     path : str or Path
         A fits.json written by `capred retention` (or `capred retention-convert`).
+    branch : str, optional
+        ``"drying"`` or ``"wetting"`` (``--retention-branch``): which branch's fits (default: drying, else the
+        file's main branch).
     **overrides
         ModelParams fields given as options (SI: vg_alpha [1/Pa], air_entry [Pa]); None values are ignored.
 
@@ -160,18 +181,27 @@ def model_params_from_retention(path: str | Path, **overrides) -> ModelParams:
     -------
     ModelParams
         s_res, vg_alpha [1/Pa], vg_n, vg_m, air_entry [Pa] and the best fit's S_R(s) relation, from the van
-        Genuchten and Brooks-Corey fits (another model converted to them).
+        Genuchten and Brooks-Corey fits (another model converted to them); ``retention_notes`` says which branch
+        and which conversion gave them.
 
     Raises
     ------
     OptionError
-        Where ``path`` cannot be read as a fits.json.
+        Where ``path`` cannot be read as a fits.json, or has no branch ``branch``.
+
+    References
+    ----------
+    van Genuchten, M. Th. (1980). Soil Sci. Soc. Am. J. 44, 892-898, doi:10.2136/sssaj1980.03615995004400050002x;
+    Brooks, R. H., Corey, A. T. (1964). Hydraulic properties of porous media. Hydrology Paper 3, Colorado State
+    University.
     """
     import json
 
     try:
         js = json.loads(Path(path).read_text(encoding="utf-8"))
-        fits = js["fits"]
+        branches = js.get("branches") or {js.get("main_branch") or "drying": {"fits": js["fits"]}}
+        if not isinstance(branches, dict):
+            raise TypeError("'branches' is not an object")
     except FileNotFoundError:  # the file is missing: say so, not that it is the wrong kind of file
         from ..errors import MissingFileError
 
@@ -180,24 +210,70 @@ def model_params_from_retention(path: str | Path, **overrides) -> ModelParams:
         raise OptionError(
             f"--retention {path}: not a fits.json written by capred retention (not JSON: {exc.msg}, line {exc.lineno})"
         ) from None
-    except (OSError, ValueError, KeyError, TypeError) as exc:
+    except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
         raise OptionError(f"--retention {path}: not a fits.json written by capred retention ({exc})") from None
+    if branch is not None and branch not in branches:
+        raise OptionError(
+            f"--retention-branch {branch}: {path} has no branch '{branch}' (it has {', '.join(branches) or 'none'})"
+        )
+    b = branch or ("drying" if "drying" in branches else js.get("main_branch") or next(iter(branches), "drying"))
+    try:
+        fits = branches[b]["fits"]
+        if not isinstance(fits, dict):
+            raise TypeError("'fits' is not an object")
+    except (KeyError, TypeError) as exc:
+        raise OptionError(f"--retention {path}: not a fits.json written by capred retention ({exc})") from None
+    others = [o for o in branches if o != b]
+    how = "given by --retention-branch" if branch is not None else "the default"
+    notes: list[tuple[tuple[str, ...], str, bool]] = [
+        (
+            (),
+            f"--retention {path}: the fits of branch '{b}' used ({how})"
+            + (f"; the file also has {', '.join(others)}: --retention-branch picks it" if others else ""),
+            False,
+        )
+    ]
     p: dict = {}
-    vg = fits.get("vg") or fits.get("vg_m_free")
-    if not vg and isinstance(fits, dict) and fits:  # another model: converted over its data's suction range
-        from .retention_convert import converted_fit_json
+    given = {k for k, v in overrides.items() if v is not None}
 
-        vg = converted_fit_json(js, "vg")
+    def take(to: str, label: str, fields: tuple[str, ...]) -> dict | None:
+        """The branch's ``to`` fit, or its best fit converted to ``to`` (with a note); None when impossible."""
+        own = fits.get(to) or (fits.get("vg_m_free") if to == "vg" else None)
+        used = tuple(f for f in fields if f not in given)
+        if own or not fits:
+            return own
+        from .retention_convert import ConvertOptions, run_retention_convert
+
+        try:
+            res = run_retention_convert(js, ConvertOptions(to=to, branch=b))
+        except (FitError, OptionError) as exc:
+            note = f"--retention {path}: branch '{b}' has no {label} fit and its fit could not be converted: {exc}"
+            notes.append((used, note, False))
+            return None
+        m, src = res.misfit, res.source_fit
+        unit = " m³/m³" if src.quantity == "theta" else ""
+        conv = res.to_json()["fits"][to]
+        shown = ", ".join(f"{k} = {conv[k]:.4g}" for k in conv.get("parameters", ()) if isinstance(conv.get(k), float))
+        notes.append(
+            (
+                used,
+                f"--retention {path}: the {src.model} fit of branch '{b}' converted to {label} ({shown}) by least "
+                f"squares over its data's suctions, {m['suction_range_kPa'][0]:.4g} to {m['suction_range_kPa'][1]:.4g}"
+                f" kPa: misfit in {src.quantity} RMSE {m['rmse']:.3g}{unit}, largest deviation "
+                f"{m['max_deviation']:.3g}{unit} at {m['at_suction_kPa']:.4g} kPa (as capred retention-convert)",
+                False,
+            )
+        )
+        notes.extend((used, f"--retention {path}, branch '{b}': {w}", True) for w in res.converted.warnings)
+        return conv
+
+    vg = take("vg", "van Genuchten", ("s_res", "vg_alpha", "vg_n", "vg_m"))
     if vg:
         ys, yr = (vg.get("S_s"), vg.get("S_res")) if "S_s" in vg else (vg.get("theta_s"), vg.get("theta_r"))
         if ys:
             p["s_res"] = yr / ys if "theta_s" in vg else yr
         p.update(vg_alpha=vg["alpha_per_kPa"] / 1e3, vg_n=vg["n"], vg_m=vg.get("m"))
-    bc = fits.get("bc")
-    if not bc and isinstance(fits, dict) and fits:
-        from .retention_convert import converted_fit_json
-
-        bc = converted_fit_json(js, "bc")
+    bc = take("bc", "Brooks-Corey", ("air_entry",) if "s_res" in p else ("air_entry", "s_res"))
     if bc:
         p["air_entry"] = bc["s_e_kPa"] * 1e3
         if "s_res" not in p:
@@ -212,7 +288,9 @@ def model_params_from_retention(path: str | Path, **overrides) -> ModelParams:
         best = min(scored)[1]
         p["retention_model"] = (best, tuple(sorted(fits[best]["params_si"].items())), js.get("quantity", "S_R"))
     p.update({k: v for k, v in overrides.items() if v is not None})
-    return ModelParams(**p)
+    params = ModelParams(**p)
+    object.__setattr__(params, "_retention_notes", tuple(notes))  # frozen: set once, as Options sets _warnings
+    return params
 
 
 @dataclass(frozen=True)
@@ -311,15 +389,30 @@ class ShearOptions(Options):
 
     @property
     def notes(self) -> list[str]:
-        """One line per model ``all`` skipped, naming what it needs."""
-        return [
+        """One line per model ``all`` skipped, naming what it needs; what --retention gave (the branch read, and
+        each conversion to another model with its misfit, where a model compared uses it)."""
+        out = [
             f"--models all: model '{m}' skipped: it needs {need} (or --retention FIT.json written by capred retention)"
             for m, need in self.skipped_models.items()
         ]
+        return out + self._from_retention(warnings=False)
+
+    def _from_retention(self, warnings: bool) -> list[str]:
+        """The notes (or warnings) of --retention that concern the models compared, each naming the models."""
+        out = []
+        for fields, note, is_warning in self.model_params.retention_notes:
+            users = [m for m in self.models if {name for name, _ in esm.REGISTRY[m].requires} & set(fields)]
+            if is_warning != warnings:
+                continue
+            if not fields:
+                out.append(note)
+            elif users:
+                out.append(f"{note}; used by {', '.join(users)}")
+        return out
 
     @property
     def warnings(self) -> list[str]:
-        return super().warnings + self.model_params.warnings
+        return super().warnings + self.model_params.warnings + self._from_retention(warnings=True)
 
 
 def _as_given(options: Options, exc: Exception, given: dict) -> str:

@@ -392,6 +392,9 @@ class TriaxialResult(Result):
         What the run did and what the user should check.
     curves : dict of str to Curve
         The raw curves (``--curves``) that gave a test's failure deviator, by test id.
+    reference_curves : dict of str to Curve
+        The raw curves of tests whose failure deviator the table gives (q_f or sigma1 wins over a curve's peak):
+        not used for failure, drawn for reference with the table's q_f beside the curve's peak.
     """
 
     command = "triaxial-bounds"
@@ -406,6 +409,7 @@ class TriaxialResult(Result):
     inputs: list[InputFile] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
     curves: dict[str, rec.Curve] = field(default_factory=dict)
+    reference_curves: dict[str, rec.Curve] = field(default_factory=dict)
 
     @property
     def unsaturated(self) -> np.ndarray:
@@ -647,6 +651,51 @@ def load_triaxial_table(table: Table, curves: dict[str, tuple[float, float]] | N
         if unknown:
             table.notes.append(f"curves for tests not in the table ignored: {', '.join(unknown)}")
     return table, {"q": q, "strain": strain, "from_curve": from_curve}
+
+
+def reference_curves_notes(test_ids, q: np.ndarray, from_curve: np.ndarray, peaks: dict) -> list[str]:
+    """A note on the curves (``--curves``) of tests whose failure deviator the table gives (q_f or sigma1).
+
+    The table's value wins over a curve's peak; such a curve is not used for failure, and saying nothing would
+    drop it silently (a user who gives curves expects them used). The note names those tests and compares each
+    curve's peak with the table's q_f: the largest difference says whether the two agree.
+
+    Parameters
+    ----------
+    test_ids : array of str
+        The tests, in the table's order.
+    q : ndarray
+        Failure deviator of every test [Pa] (after any membrane correction).
+    from_curve : ndarray of bool
+        True where the curve gave the failure deviator.
+    peaks : dict
+        Test id -> (q at the curve's peak [Pa], axial strain there [-]).
+
+    Returns
+    -------
+    list of str
+        One note, or none when every curve gave its test's failure (or no curves were given).
+
+    References
+    ----------
+    Prunier, F., et al. (2024), q-ε1 and εv-ε1 curves with the peak taken as failure (Fig. 10, 15);
+    ASTM D4767-11, section 10 (failure as the peak deviator stress, or another criterion a lab chooses).
+    """
+    ref = [
+        (str(t), float(qi), peaks[str(t)][0])
+        for t, qi, fc in zip(test_ids, q, from_curve)
+        if not fc and str(t) in peaks
+    ]
+    if not ref:
+        return []
+    every = "every test has" if not np.any(from_curve) else "these tests have"
+    tid, q_f, peak = max(ref, key=lambda r: abs(r[2] - r[1]) / abs(r[1]) if r[1] else np.inf)
+    return [
+        f"--curves: the curves of {', '.join(r[0] for r in ref)} not used for failure: {every} q_f (or sigma1) in "
+        "the table, which wins over a curve's peak; drawn for reference (panels 'reference_curves' of the figures); "
+        f"largest difference between a curve's peak and q_f: '{tid}', peak {peak / 1e3:.4g} kPa against q_f "
+        f"{q_f / 1e3:.4g} kPa ({(peak - q_f) / q_f * 100:+.2g} %)"
+    ]
 
 
 def consolidated_diameter(table: Table) -> tuple[np.ndarray, np.ndarray]:
@@ -1023,6 +1072,9 @@ def run_triaxial_bounds(
             "to apply ASTM D4767-11's)"
         )
 
+    notes += reference_curves_notes(
+        table.columns["test_id"], q, d["from_curve"], raw_curves.peaks if raw_curves else {}
+    )
     branch_col = (
         np.array([str(x).strip().lower() for x in table.columns["branch"]], dtype=object)
         if "branch" in table.columns
@@ -1232,12 +1284,15 @@ def run_triaxial_bounds(
             gain=np.where(np.isfinite(b.sigma1_cap), gain, np.nan),
             positive_component=np.asarray(b.positive, bool),
         )
-    curves_used = {}
+    curves_used, reference = {}, {}
     if raw_curves:  # the curves that gave a test's failure deviator, for the q-eps1 and epsv-eps1 figures
         used = {str(t) for t, f in zip(table.columns["test_id"], d["from_curve"]) if f}
         curves_used = {t: c for t, c in raw_curves.curves.items() if t in used}
+        # the others of the table's tests: their q_f wins, their curves are drawn for reference
+        listed = {str(t) for t in table.columns["test_id"]}
+        reference = {t: c for t, c in raw_curves.curves.items() if t in listed and t not in used}
     return TriaxialResult(
-        table.path, env, states, bound_states, group_records, notes, opt, inputs, warnings, curves_used
+        table.path, env, states, bound_states, group_records, notes, opt, inputs, warnings, curves_used, reference
     )
 
 

@@ -7,6 +7,7 @@ import numpy as np
 from .sheets import Panel, Sheet
 from .style import LABEL, OKABE_ITO, literal
 from .style import style as model_style
+from .triaxial_reference_curves import reference_panels
 
 #: one colour per group (Okabe-Ito, the bounds' vermillion, blue and green left to the bounds)
 GROUP_COLOURS = [OKABE_ITO[k] for k in ("orange", "sky", "purple", "yellow", "black", "grey")]
@@ -481,7 +482,8 @@ def sheet_triaxial(result) -> Sheet:
             ]
             if result.curves
             else []
-        ),
+        )
+        + reference_panels(result),  # curves given for tests whose q_f the table gives: drawn for reference
         2,
         spans={"qp_plane": 2},
     )

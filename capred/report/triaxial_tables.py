@@ -14,10 +14,11 @@ _BRANCH = {"compression": "comp.", "extension": "ext.", "general": "true tx."}
 
 
 def _pm(value, se, scale: float | None = None) -> str:
-    """'value ± se' (se omitted when unknown; 0 when the value is 0 within rounding of ``scale``)."""
+    """'value ± se' (se omitted when unknown; the value and the se 0 when 0 within rounding of ``scale``: an exact
+    fit's standard error of 4.6e-14 kPa beside -10 kPa is rounding, printed 0)."""
     if value is None:
         return "—"
-    return fmt(value, scale=scale) if se is None else f"{fmt(value, scale=scale)} ± {fmt(se, 2)}"
+    return fmt(value, scale=scale) if se is None else f"{fmt(value, scale=scale)} ± {fmt(se, 2, scale=scale)}"
 
 
 def _range(r) -> str:
@@ -133,7 +134,8 @@ def triaxial_tables(result) -> list[TableSpec]:
             apparent = [
                 fmt(r.C_apparent),
                 fmt(r.phi_apparent),
-                fmt(r.phi_difference, sign=True),
+                # φ − φ' is a difference of two angles: 0 within the rounding of the larger
+                fmt(r.phi_difference, sign=True, scale=magnitude([r.phi_apparent, result.envelope.phi_deg])),
                 fmt(r.eq37_sigma_cap),
             ]
             if r.C_apparent is None:
