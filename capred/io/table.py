@@ -568,8 +568,8 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
         notes.append((body[-1][0], text))
         body.pop()
     for n, text in reversed(notes):  # a long note is quoted in part (its length said); the file keeps it whole
-        shown = text if len(text) <= NOTE_CHARS else f"{text[:NOTE_CHARS]}… ({len(text):,} characters)"
-        table.notes.append(f"note under the data (line {n}): {shown}")
+        quoted = text if len(text) <= NOTE_CHARS else f"{text[:NOTE_CHARS]}… ({len(text):,} characters)"
+        table.notes.append(f"note under the data (line {n}): {quoted}")
     if not body:
         raise InputError(Problem(shown, header_line, None, "the file has a header but no data rows", sheet))
     table.lines = np.array([n for n, _ in body], dtype=int)
