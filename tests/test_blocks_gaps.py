@@ -73,6 +73,20 @@ def test_rows_of_delimiters_only_after_the_first_block_are_said_by_the_first(tmp
     )
 
 
+@pytest.mark.parametrize("units_row", [False, True])
+def test_a_note_under_trailing_rows_of_delimiters_is_a_note_as_in_the_whole_file(tmp_path, units_row):
+    """60,000 rows of ',,,,' (300 kB: the last block starts among them) then a remark: the whole-file reader says
+    the remark as a note under the data; the block reader refused its last block ('header but no data rows')."""
+    head = "R,contact_angle,gap,suction,remark\nmm,deg,mm,kPa,-\n" if units_row else HEADER
+    path = tmp_path / "remark.csv"
+    path.write_text(head + "".join(_rows(3000)) + ",,,,\n" * 60_000 + "Remarks: second series\n", encoding="utf-8")
+    blocks, whole = _read_both(path)
+    _assert_same(blocks, whole)
+    n = 3000 + len(head.splitlines()) + 60_000 + 1  # the remark's line
+    assert f"note under the data (line {n}): Remarks: second series" in whole.notes
+    assert [b.notes.count("units read from the row under the header (line 2)") for b in blocks][:1] == [units_row]
+
+
 @pytest.mark.parametrize(
     ("where", "chars"), [("header", 50_006), ("first data line", 50_001), ("middle", 50_001), ("last line", 50_001)]
 )

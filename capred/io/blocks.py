@@ -113,7 +113,11 @@ def read_table_blocks(
     counted = _delimiter_rows(p, block_bytes, limits, shown)
     seen: set[str] = set()
     prefix: list[str] = []  # the header line (and units row) that every later block repeats
-    for first_line, text in _pieces(p, block_bytes, limits, shown):
+    pieces = _with_data(_pieces(p, block_bytes, limits, shown))
+    piece, following = next(pieces, None), next(pieces, None)
+    while piece is not None:
+        first_line, text = piece
+        after = next(pieces, None) if following is not None else None
         tables = []
         if first_line == 1:
             # the head (header, metadata, the first rows) read as usual, the rest of the piece by the fast path
@@ -131,14 +135,29 @@ def read_table_blocks(
                 prefix = _prefix(text, table)
                 tables = [table]
         else:
-            if not text.strip(_EMPTY_ROW_CHARS):  # blank lines and rows of delimiters only: no data, said above
-                continue
             table = _numeric_block(shown, src, schema, prefix, first_line, text)
             if table is None:
                 # the header (and units row) just above the block's lines, which keep their line numbers
                 grid = _csv_grid(shown, "\n".join(prefix) + "\n" + text, first_line - len(prefix), limits)
                 table = _grid_table(_counted(grid, None), src, schema)
             tables = [table]
+        trailing = None  # looked for once this block has set the prefix
+        if following is not None and after is None and _delimiter_row_first(following[1]):
+            # the last piece begins with rows of delimiters only: the lines under them that are not data are notes
+            # under the data, said by this block (a block of no data would be refused as 'no data rows')
+            lines = "\n".join(prefix) + "\n" + following[1]
+            grid = _csv_grid(shown, lines, following[0] - len(prefix), limits)
+            trailing = _grid_table(_counted(grid, None), src, schema, empty_ok=True)
+            if len(trailing.lines):  # data rows: a block of its own
+                trailing = None
+            else:
+                following = None
+        if trailing is not None:
+            if trailing.units_line is not None:  # said by the first block
+                trailing.notes.remove(f"units read from the row under the header (line {trailing.units_line})")
+            tables[-1].notes += trailing.notes
+            tables[-1].warnings += trailing.warnings
+        piece, following = following, after
         for table in tables:
             if table.units_line is not None and first_line > 1:
                 # said once, by the first block
@@ -153,6 +172,20 @@ def read_table_blocks(
 _EMPTY_ROW_CHARS = " \t\n,;"
 #: the bytes a line of delimiters only ends with (before its line end: a delimiter or a blank)
 _DELIMITER_ROW_LAST = b",; \t"
+
+
+def _with_data(pieces: Iterator[tuple[int, str]]) -> Iterator[tuple[int, str]]:
+    """The pieces, less the later ones of blank lines and rows of delimiters only (no data; their rows are counted
+    by _delimiter_rows and said by the first block)."""
+    for first_line, text in pieces:
+        if first_line == 1 or text.strip(_EMPTY_ROW_CHARS):
+            yield first_line, text
+
+
+def _delimiter_row_first(text: str) -> bool:
+    """True when the first line of ``text`` holds only delimiters (and blanks), at least one of ',' or ';'."""
+    first = text[: text.find("\n")] if "\n" in text else text
+    return bool(first.strip(" \t")) and not first.strip(" \t,;")
 
 
 def _delimiter_rows(path: Path, block_bytes: int, limits: ReadLimits, shown: str) -> Grid:

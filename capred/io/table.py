@@ -428,8 +428,9 @@ def _with_options(src, ignore_columns, limits):
     return src
 
 
-def _grid_table(grid, src, schema: list[Column]) -> Table:
-    """The table of a grid read from ``src`` (see read_table)."""
+def _grid_table(grid, src, schema: list[Column], empty_ok: bool = False) -> Table:
+    """The table of a grid read from ``src`` (see read_table); ``empty_ok``: a grid of no data rows gives a table of
+    none (its notes, warnings and header problems), not the error (the last block of a long CSV, capred.io.blocks)."""
     limits = src.limits or ReadLimits()
     width_cap = limits.max_columns
     lookup = _lookup(schema)
@@ -571,6 +572,8 @@ def _grid_table(grid, src, schema: list[Column]) -> Table:
         quoted = text if len(text) <= NOTE_CHARS else f"{text[:NOTE_CHARS]}… ({len(text):,} characters)"
         table.notes.append(f"note under the data (line {n}): {quoted}")
     if not body:
+        if empty_ok:
+            return table
         raise InputError(Problem(shown, header_line, None, "the file has a header but no data rows", sheet))
     table.lines = np.array([n for n, _ in body], dtype=int)
     cells_by_row = [cells for _, cells in body]
