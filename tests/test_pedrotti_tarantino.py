@@ -8,17 +8,17 @@ section 4.2 describes for each stage of the path of Fig. 13.
 """
 
 from math import log
-from pathlib import Path
 
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
+import capred
 from capred.errors import OptionError
 from capred.physics import pedrotti_tarantino as pt
 
 kPa = 1.0e3
-SAMPLE = Path(__file__).resolve().parents[1] / "sample_data" / "pt_volume_path.csv"
+SAMPLE = capred.sample_path("pt-volume")  # the bundled sample, found as an installed wheel finds it (issue 32.8)
 
 # round lines for hand arithmetic: slurry lambda 0.2, kappa 0.02, e = 2.0 at 1 kPa;
 # dry powder lambda 0.1, kappa 0.01, e = 1.8 at 1 kPa

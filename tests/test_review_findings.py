@@ -70,7 +70,6 @@ def test_reading_stops_at_max_problems_with_every_problem_so_far(tmp_path, monke
 # --- gaps in files the review could not edit ----------------------------------------------------------------------
 
 
-@pytest.mark.xfail(strict=True, reason="capred/io/blocks.py: a block holding only delimiter rows is refused")
 def test_trailing_delimiter_rows_of_a_long_csv_are_skipped_like_a_short_ones(tmp_path):
     """Issue 32.4: rows of delimiters (as Excel exports leave them) are skipped with a note on every path. A CSV
     over 5 MiB goes through the block reader (io/blocks.py), whose later blocks of only ',,,' rows reach
@@ -85,7 +84,6 @@ def test_trailing_delimiter_rows_of_a_long_csv_are_skipped_like_a_short_ones(tmp
     assert sum("rows holding only delimiters" in n for n in r.notes) == 1  # one note with the count
 
 
-@pytest.mark.xfail(strict=True, reason="capred/io/blocks.py: a data line longer than a block leaves a header alone")
 def test_a_long_csv_with_a_huge_cell_is_refused_for_the_cell(tmp_path):
     """Issue 32.1: a cell over --max-cell-chars is refused with a short excerpt and its length. In a CSV over
     5 MiB whose data line is longer than a block, io/blocks.py yields the header alone as the first block and

@@ -21,7 +21,15 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..units import conversion
-from .grid import SPREADSHEET_SUFFIXES, ReadLimits, as_source, csv_grid
+from .grid import (
+    SPREADSHEET_SUFFIXES,
+    Grid,
+    ReadLimits,
+    as_source,
+    blank_delimiter_rows,
+    check_long_lines,
+    csv_grid,
+)
 from .table import Column, Table, check_column_rule, grid_table, read_table, source_with_options
 
 #: bytes of CSV text per block: about 50,000 rows of a four-column bridge table, enough for two processes to share
@@ -98,9 +106,18 @@ def read_table_blocks(
     ):
         yield read_table(src, schema)  # read whole: its own checks and messages
         return
+    limits = src.limits or ReadLimits()
+    shown = str(path)
+    # rows of delimiters only, counted over the whole file first: the first block's note gives their total and
+    # first lines, as the whole-file reader's does; a later block of nothing else is skipped (issue 32.4)
+    counted = _delimiter_rows(p, block_bytes, limits, shown)
     seen: set[str] = set()
     prefix: list[str] = []  # the header line (and units row) that every later block repeats
-    for first_line, text in _pieces(p, block_bytes):
+    pieces = _with_data(_pieces(p, block_bytes, limits, shown))
+    piece, following = next(pieces, None), next(pieces, None)
+    while piece is not None:
+        first_line, text = piece
+        after = next(pieces, None) if following is not None else None
         tables = []
         if first_line == 1:
             # the head (header, metadata, the first rows) read as usual, the rest of the piece by the fast path
@@ -108,24 +125,39 @@ def read_table_blocks(
             # as they were); else the piece read whole
             head, rest = _split_head(text)
             if rest and not rest[: rest.find("\n")].translate(_NUMERIC_CHARS):  # numbers after the head
-                table = grid_table(csv_grid(str(path), head), src, schema)
+                table = grid_table(_counted(csv_grid(shown, head, limits=limits), counted), src, schema)
                 prefix = _prefix(head, table)
-                fast = _numeric_block(str(path), src, schema, prefix, HEAD_LINES + 1, rest)
+                fast = _numeric_block(shown, src, schema, prefix, HEAD_LINES + 1, rest)
                 if fast is not None and _numeric_line(head[head.rfind("\n") + 1 :], len(prefix[0].split(","))):
                     tables = [_joined(table, fast)]
             if not tables:
-                table = grid_table(csv_grid(str(path), text), src, schema)
+                table = grid_table(_counted(csv_grid(shown, text, limits=limits), counted), src, schema)
                 prefix = _prefix(text, table)
                 tables = [table]
         else:
-            if not text.strip():
-                continue
-            table = _numeric_block(str(path), src, schema, prefix, first_line, text)
+            table = _numeric_block(shown, src, schema, prefix, first_line, text)
             if table is None:
                 # the header (and units row) just above the block's lines, which keep their line numbers
-                grid = csv_grid(str(path), "\n".join(prefix) + "\n" + text, first_line - len(prefix))
-                table = grid_table(grid, src, schema)
+                grid = csv_grid(shown, "\n".join(prefix) + "\n" + text, first_line - len(prefix), limits)
+                table = grid_table(_counted(grid, None), src, schema)
             tables = [table]
+        trailing = None  # looked for once this block has set the prefix
+        if following is not None and after is None and _delimiter_row_first(following[1]):
+            # the last piece begins with rows of delimiters only: the lines under them that are not data are notes
+            # under the data, said by this block (a block of no data would be refused as 'no data rows')
+            lines = "\n".join(prefix) + "\n" + following[1]
+            grid = csv_grid(shown, lines, following[0] - len(prefix), limits)
+            trailing = grid_table(_counted(grid, None), src, schema, empty_ok=True)
+            if len(trailing.lines):  # data rows: a block of its own
+                trailing = None
+            else:
+                following = None
+        if trailing is not None:
+            if trailing.units_line is not None:  # said by the first block
+                trailing.notes.remove(f"units read from the row under the header (line {trailing.units_line})")
+            tables[-1].notes += trailing.notes
+            tables[-1].warnings += trailing.warnings
+        piece, following = following, after
         for table in tables:
             if table.units_line is not None and first_line > 1:
                 # said once, by the first block
@@ -134,6 +166,71 @@ def read_table_blocks(
             table.warnings = _unseen(table.warnings, seen)
             yield table
         del tables, table
+
+
+#: the characters of a line that holds no data: blanks and the delimiters of a row of delimiters only
+_EMPTY_ROW_CHARS = " \t\n,;"
+#: the bytes a line of delimiters only ends with (before its line end: a delimiter or a blank)
+_DELIMITER_ROW_LAST = b",; \t"
+
+
+def _with_data(pieces: Iterator[tuple[int, str]]) -> Iterator[tuple[int, str]]:
+    """The pieces, less the later ones of blank lines and rows of delimiters only (no data; their rows are counted
+    by _delimiter_rows and said by the first block)."""
+    for first_line, text in pieces:
+        if first_line == 1 or text.strip(_EMPTY_ROW_CHARS):
+            yield first_line, text
+
+
+def _delimiter_row_first(text: str) -> bool:
+    """True when the first line of ``text`` holds only delimiters (and blanks), at least one of ',' or ';'."""
+    first = text[: text.find("\n")] if "\n" in text else text
+    return bool(first.strip(" \t")) and not first.strip(" \t,;")
+
+
+def _delimiter_rows(path: Path, block_bytes: int, limits: ReadLimits, shown: str) -> Grid:
+    """The rows of delimiters only of the whole file (",,,," as spreadsheet exports leave them), counted as the
+    whole-file reader counts them: a Grid holding their number and first line numbers.
+
+    The file is searched only when a line of it can be one (a line ending in a delimiter or a blank): a file of
+    numbers costs one read of its bytes.
+    """
+    counted = Grid(shown, None, [])
+    if _may_hold_delimiter_rows(path, block_bytes):
+        for first_line, text in _pieces(path, block_bytes, limits, shown):
+            counted.first_line = first_line
+            blank_delimiter_rows(counted, text)
+    return counted
+
+
+def _may_hold_delimiter_rows(path: Path, block_bytes: int) -> bool:
+    """True when a line of the file ends in a delimiter or a blank (',' ';' ' ' or tab), as a row of delimiters
+    only does; False proves the file holds none. Looked for with numpy, a block of bytes at a time."""
+    import numpy as np
+
+    last = np.zeros(256, bool)
+    last[list(_DELIMITER_ROW_LAST)] = True
+    before = b"\n"  # the last byte of the block before
+    with open(path, "rb") as fh:
+        while data := fh.read(block_bytes):
+            chars = np.frombuffer(data, np.uint8)
+            ends = np.flatnonzero(chars == 10)
+            if ends.size and ends[0] == 0:
+                if before in _DELIMITER_ROW_LAST:
+                    return True
+                ends = ends[1:]
+            if last[chars[ends - 1]].any():
+                return True
+            before = data[-1:]
+    return before in _DELIMITER_ROW_LAST  # the last line, without a line end
+
+
+def _counted(grid: Grid, counted: Grid | None) -> Grid:
+    """``grid`` (of one piece) with the rows of delimiters only of the whole file (``counted``; None: none), so
+    that the note on them is given once, with the file's total, by the first block."""
+    grid.delimiter_rows = counted.delimiter_rows if counted is not None else 0
+    grid.delimiter_lines = list(counted.delimiter_lines) if counted is not None else []
+    return grid
 
 
 #: lines of the first piece read by the whole-file reader (header, metadata, units row, first rows); the lines after
@@ -215,8 +312,11 @@ def _numeric_block(
     if text.count(",") != n * (width - 1):
         return None
     first = text[: text.find("\n")] if n > 1 else text
+    limits = src.limits or ReadLimits()
     try:
-        table = grid_table(csv_grid(shown, "\n".join(prefix) + "\n" + first, first_line - len(prefix)), src, schema)
+        check_long_lines(shown, text, first_line, limits)  # a cell over --max-cell-chars: the usual reader's
+        grid = csv_grid(shown, "\n".join(prefix) + "\n" + first, first_line - len(prefix), limits)
+        table = grid_table(grid, src, schema)
     except InputError:
         return None
     cols = {c.name: c for c in schema}
@@ -347,9 +447,19 @@ def _plain_utf8(path: Path, chunk: int = 2**22) -> bool:
     return True
 
 
-def _pieces(path: Path, block_bytes: int) -> Iterator[tuple[int, str]]:
+def _pieces(
+    path: Path, block_bytes: int, limits: ReadLimits | None = None, shown: str | None = None
+) -> Iterator[tuple[int, str]]:
     """(line number of the first line, text) of consecutive blocks of whole lines, each without its last line
-    end; the first without its BOM."""
+    end; the first without its BOM.
+
+    A line longer than half a block is read whole into the block where it starts (the lines before it keep it
+    company: a first block is never its header alone) and is first checked against ``limits.max_cell_chars``
+    [-]: a cell over the limit is refused as the whole-file reader refuses it (LimitError, with a short excerpt
+    and the cell's length, the file named as ``shown``), the line held once, not copied block after block.
+    """
+    limits = limits or ReadLimits()
+    shown = str(path) if shown is None else shown
     first_line = 1
     carry = b""
     with open(path, "rb") as fh:
@@ -363,13 +473,53 @@ def _pieces(path: Path, block_bytes: int) -> Iterator[tuple[int, str]]:
                 ahead = fh.read(block_bytes)
             if ahead:
                 cut = data.rfind(b"\n") + 1
-                if cut == 0:  # a line longer than a block: keep reading
-                    carry, data = data, ahead
-                    continue
-                carry = data[cut:]
+                k = ahead.find(b"\n")
+                if len(data) - cut + (k if k >= 0 else len(ahead)) > block_bytes // 2:
+                    # the line in progress is long: read to its end, check its cells, keep it in this block
+                    data, ahead = _long_line(fh, data, cut, ahead, block_bytes, first_line, start, shown, limits)
+                    cut, carry = len(data), b""
+                else:
+                    carry = data[cut:]
             else:
                 cut, carry = len(data), b""
             end = cut - 1 if cut > start and data[cut - 1] == 0x0A else cut
             yield first_line, str(memoryview(data)[start:end], "utf-8")  # decoded in place, no copy of the bytes
             first_line += data.count(b"\n", start, cut)
             data, start = ahead, 0  # the last block takes what is left: nothing is carried past the end
+
+
+def _long_line(fh, data: bytes, cut: int, ahead: bytes, block_bytes: int, first_line: int, start: int, shown, limits):
+    """(this block's bytes through the end of the long line begun at ``cut``, the bytes after it) for _pieces,
+    reading on from ``fh``; the line's cells checked against ``limits`` (LimitError for one over the limit)."""
+    line = bytearray(memoryview(data)[cut:])  # grown in place: the line is held once
+    rest = ahead
+    while rest:
+        k = rest.find(b"\n")
+        if k >= 0:
+            line += memoryview(rest)[: k + 1]
+            rest = rest[k + 1 :]
+            break
+        line += rest
+        rest = fh.read(block_bytes)
+    number = first_line + data.count(b"\n", start, cut)
+    # the line as the whole-file reader sees it: without its line end (nor the file's BOM)
+    text = str(memoryview(line)[max(0, start - cut) : len(line) - line.endswith(b"\n")], "utf-8")
+    try:
+        check_long_lines(shown, text, number, limits)
+    except InputError as exc:  # raised without the frames that hold the line (a 100 MB cell, twice)
+        error = exc.with_traceback(None)
+    else:
+        error = None
+    del text
+    if error is not None:
+        del line, data
+        raise error
+    data = data[:cut] + line
+    del line
+    if rest and len(rest) < block_bytes // 4:  # a short rest: the last piece joins this block
+        more = fh.read(block_bytes)
+        if not more:
+            data, rest = data + rest, b""
+        else:
+            rest += more
+    return data, rest

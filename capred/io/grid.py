@@ -397,9 +397,23 @@ _LINE_END = re.compile("\r\n|\r|\n")
 _DELIMITER_ROWS = re.compile(r"^(?:[ \t]*+[,;][,;\t ]*+(?:\n|\Z)){1,4096}+", re.M)
 
 
-def _blank_delimiter_rows(grid: Grid, text: str) -> str:
+def blank_delimiter_rows(grid: Grid, text: str) -> str:
     """``text`` with its rows of delimiters only blanked (their line numbers kept); counts them on ``grid``.
-    Runs of such rows are matched whole, so a file of millions of them costs one pass."""
+
+    Runs of such rows are matched whole, so a file of millions of them costs one pass.
+
+    Parameters
+    ----------
+    grid : Grid
+        The grid being read: its count of skipped delimiter rows (and their first lines) grows.
+    text : str
+        CSV text.
+
+    Returns
+    -------
+    str
+        The text with each row of delimiters only emptied (its line end kept).
+    """
     if _DELIMITER_ROWS.search(text) is None:
         return text
     where = [grid.first_line, 0]  # line number at position
@@ -418,11 +432,28 @@ def _blank_delimiter_rows(grid: Grid, text: str) -> str:
     return _DELIMITER_ROWS.sub(blank, text).rstrip("\n")
 
 
-def _check_long_lines(shown: str, text: str, first_line: int, limits: ReadLimits) -> None:
+def check_long_lines(shown: str, text: str, first_line: int, limits: ReadLimits) -> None:
     """Refuse a CSV one of whose cells (or headers, or notes) holds more than ``limits.max_cell_chars``
     characters, before any line is split. Stretches of max_cell_chars/2 characters are probed for a line end:
     only a line longer than that is split, at each candidate delimiter, and it is refused when even the
-    delimiter that cuts it finest leaves a cell over the limit."""
+    delimiter that cuts it finest leaves a cell over the limit.
+
+    Parameters
+    ----------
+    shown : str
+        The file's name as messages show it.
+    text : str
+        CSV text.
+    first_line : int
+        The file line number of the text's first line.
+    limits : ReadLimits
+        The reading limits (``max_cell_chars``).
+
+    Raises
+    ------
+    LimitError
+        Naming the line and quoting the cell's first 30 characters with its length.
+    """
     limit = limits.max_cell_chars
     step = max(1, limit // 2)
     end = -1
@@ -495,8 +526,8 @@ def csv_grid(shown: str, text: str, first_line: int = 1, limits: ReadLimits | No
     else:  # the usual file: nothing to blank, lines already end in '\n'
         kept = text[:-1] if text.endswith("\n") else text
     grid = Grid(shown, None, [], (",", ";", "\t"), first_line=first_line)
-    _check_long_lines(shown, kept, first_line, limits or ReadLimits())
-    kept = _blank_delimiter_rows(grid, kept)
+    check_long_lines(shown, kept, first_line, limits or ReadLimits())
+    kept = blank_delimiter_rows(grid, kept)
     head = "\n".join(kept.split("\n", 200)[:200])
     for delim in grid.delimiters:
         grid.text_rows[delim] = parse_rows(head, delim, first_line)

@@ -510,7 +510,7 @@ def source_with_options(src, ignore_columns, limits):
     return src
 
 
-def grid_table(grid, src, schema: list[Column]) -> Table:
+def grid_table(grid, src, schema: list[Column], empty_ok: bool = False) -> Table:
     """The table of a grid read from ``src`` (see read_table).
 
     Parameters
@@ -521,6 +521,9 @@ def grid_table(grid, src, schema: list[Column]) -> Table:
         Where the grid was read from (its name, sheet, options and limits).
     schema : list of Column
         The columns the command reads.
+    empty_ok : bool
+        A grid of no data rows gives a table of none (its notes, warnings and header problems), not the error
+        (the last block of a long CSV, `capred.io.blocks`).
 
     Returns
     -------
@@ -668,9 +671,11 @@ def grid_table(grid, src, schema: list[Column]) -> Table:
         notes.append((body[-1][0], text))
         body.pop()
     for n, text in reversed(notes):  # a long note is quoted in part (its length said); the file keeps it whole
-        shown = text if len(text) <= NOTE_CHARS else f"{text[:NOTE_CHARS]}… ({len(text):,} characters)"
-        table.notes.append(f"note under the data (line {n}): {shown}")
+        quoted = text if len(text) <= NOTE_CHARS else f"{text[:NOTE_CHARS]}… ({len(text):,} characters)"
+        table.notes.append(f"note under the data (line {n}): {quoted}")
     if not body:
+        if empty_ok:
+            return table
         raise InputError(Problem(shown, header_line, None, "the file has a header but no data rows", sheet))
     table.lines = np.array([n for n, _ in body], dtype=int)
     cells_by_row = [cells for _, cells in body]
