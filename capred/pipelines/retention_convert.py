@@ -118,6 +118,19 @@ class RetentionConvertResult(RetentionResult):
         t["points"] = pts.rename(columns={c: c.replace(f"_{self.converted.model} [", "_converted [") for c in pts})
         return t
 
+    def csv_tables(self) -> dict:
+        """The CSV tables of :meth:`tables` as column mappings (written without pandas).
+
+        Returns
+        -------
+        dict
+            File stem -> {``"name [unit]"``: array}.
+        """
+        t = dict(super().csv_tables())
+        tag = f"_{self.converted.model} ["
+        t["points"] = {c.replace(tag, "_converted ["): v for c, v in t["points"].items()}
+        return t
+
     def season_rows(self) -> list[dict]:
         """Rows of a batch's season.csv: none (a conversion is not a measurement).
 
