@@ -1,10 +1,12 @@
 """`capred retention-convert`: a fitted retention curve expressed in another retention model.
 
 The parameters of the target model are those that best reproduce the fitted curve over the suction range of
-the data it was fitted to: least squares on the fitted water quantity (S_R or θ) at the fit's own suctions
-and at a dense logarithmic grid between the smallest and largest of them, solved by capred's global retention
-fit (:func:`capred.fitting.retention_models.fit_model`). The misfit (RMSE and largest deviation, in the unit
-of the water quantity) says how well the target model can follow the curve; the converted fit is a fit like
+the data it was fitted to: least squares on the fitted water quantity (S_R or θ) over ln s between the
+smallest and largest of the data's suctions (Gauss-Legendre quadrature, split at a kink of the target such
+as Brooks-Corey's air entry, so that it is continuous), solved by capred's global retention fit
+(:func:`capred.fitting.retention_models.fit_model`) and polished across the kink. The misfit (RMSE and
+largest deviation at the data's own suctions and a logarithmic grid between, in the unit of the water
+quantity) says how well the target model can follow the curve; the converted fit is a fit like
 any other (callable, ``params`` by JSON name, a fits.json of the same shape as `capred retention` writes).
 
 It also serves the commands that need a given model: `skempton-b --retention FIT.json` takes Brooks-Corey's
@@ -48,7 +50,8 @@ class ConvertOptions(Options):
     gamma_w : float
         Unit weight of water [N/m^3] (the heads in cm of the JSON).
     points : int
-        Points of the dense grid between the data's smallest and largest suction.
+        Quadrature nodes (per piece) and points of the misfit's grid between the data's smallest and largest
+        suction.
     """
 
     QUANTITIES = {"gamma_w": "gamma_w"}
