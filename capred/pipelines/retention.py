@@ -25,7 +25,7 @@ from ..io.table import Column, read_table
 from ..parameters import Parameters
 from ..physics.shear import GAMMA_W
 from ..references import cite
-from ..result import InputFile, Options, Result, columns_of_rows, input_file, num, with_csv_headers
+from ..result import InputFile, Options, Result, columns_of_rows, csv_header, input_file, num, with_csv_headers
 
 SCHEMA = [
     Column("suction", "pressure", "kPa", "suction", ("s", "matric_suction", "delta_u", "ua_uw"), "nonnegative"),
@@ -549,24 +549,30 @@ class RetentionResult(Result):
         return float(n * np.log(rss / n) + 2 * k + (2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else np.nan))
 
     def season_rows(self) -> list[dict]:
-        """One row per branch for a batch's season.csv: the best model (lowest AICc) and its parameters."""
+        """One row per branch for a batch's season.csv: the best model (lowest AICc) and its parameters.
+
+        Headers follow the rule of fits.csv and parameters.csv: ``name [unit]`` with the unit of the record
+        (RMSE and θ_r, θ_s in m³/m³ for θ data, - for S_R; a JSON suffix read as its unit: ``alpha [1/kPa]``).
+
+        Returns
+        -------
+        list of dict
+            ``name [unit]`` (text columns: name) -> value.
+        """
         rows = []
         for b, fits in self.fits.items():
             if not fits:
                 continue
             recs = self.fit_records(b)
             best = min(recs, key=lambda r: (not np.isfinite(r.aicc), r.aicc if np.isfinite(r.aicc) else 0.0))
-            rows.append(
-                {
-                    "branch": b,
-                    "best_model": best.model,
-                    "n_points": best.n_points,
-                    "r2": num(best.r2),
-                    "rmse": num(best.rmse),
-                    "aicc": num(best.aicc),
-                    **{p.name: num(p.value) for p in best.params.values()},
-                }
-            )
+            row = {"branch": b, "best_model": best.model, "n_points [-]": best.n_points}
+            row["r2 [-]"] = num(best.r2)
+            row[f"rmse [{_y_unit(self.quantity)}]"] = num(best.rmse)
+            row["aicc [-]"] = num(best.aicc)
+            for p in best.params.values():
+                head = csv_header(p.name)
+                row[head if "[" in head else f"{p.name} [{p.unit}]"] = num(p.value)
+            rows.append(row)
         return rows
 
     def tables(self) -> dict:
