@@ -784,6 +784,48 @@ class RetentionParameters(Parameters):
     __hash__ = None
 
 
+class RetentionErrors(dict):
+    """Standard errors of a retention fit by JSON name in the JSON's units (``fit.stderr["alpha_per_kPa"]``
+    [1/kPa]; None where none applies: a fixed or held parameter, a converted curve).
+
+    The old internal names (``y_r``, ``alpha`` [1/Pa], ``s_e`` [Pa] ...) still work for one release: they return
+    the OLD value in the OLD (SI) unit and raise a DeprecationWarning naming the new key
+    (:func:`capred.parameters.deprecated`).
+
+    Attributes
+    ----------
+    si : dict[str, float or None]
+        ``{internal name: standard error}`` in SI units.
+    """
+
+    def __init__(self, by_name: dict, si: dict, renamed: dict):
+        super().__init__(by_name)
+        self.si = dict(si)
+        self.renamed = dict(renamed)
+
+    def __getitem__(self, name: str):
+        if not dict.__contains__(self, name) and name in self.renamed:
+            new = self.renamed[name]
+            unit = json_name(name)[2]
+            return deprecated(
+                f"fit.stderr[{name!r}] (SI units)",
+                f"fit.stderr[{new!r}] [{unit}]" if unit != "-" else f"fit.stderr[{new!r}]",
+                self.si[name],
+            )
+        return super().__getitem__(name)
+
+    def get(self, name: str, default=None):
+        """The standard error of ``name`` (a JSON name; an old internal name with a DeprecationWarning), or
+        ``default``."""
+        try:
+            return self[name]
+        except KeyError:
+            return default
+
+    def __contains__(self, name) -> bool:
+        return dict.__contains__(self, name) or name in self.renamed
+
+
 @dataclass
 class RetentionFit(NonlinearFit):
     """A fitted retention curve: the :class:`~capred.fitting.nonlinear.NonlinearFit` of one model, callable.
@@ -827,7 +869,7 @@ class RetentionFit(NonlinearFit):
             name, f, unit = json_name(k, self.quantity)
             if name != k:
                 renamed[k] = name
-            se = self.stderr.get(k)
+            se = self.stderr_si.get(k)
             se = float(se) * f if se is not None and np.isfinite(se) else float("nan")
             ci = self.ci95(k)
             items.append(
@@ -854,6 +896,27 @@ class RetentionFit(NonlinearFit):
 
     params = property(_get_params, _set_params)
 
+    # ``stderr`` of NonlinearFit is stored as ``stderr_si``; reading ``stderr`` gives JSON names and units
+    def _get_stderr(self) -> RetentionErrors:
+        si = self.__dict__["stderr_si"]
+        by_name, renamed = {}, {}
+        for k, v in si.items():
+            name, f, _ = json_name(k, self.quantity)
+            if name != k:
+                renamed[k] = name
+            by_name[name] = float(v) * f if v is not None else None
+        return RetentionErrors(by_name, si, renamed)
+
+    def _set_stderr(self, value) -> None:
+        self.__dict__["stderr_si"] = dict(value.si if isinstance(value, RetentionErrors) else value)
+
+    stderr = property(_get_stderr, _set_stderr)
+
+    @property
+    def stderr_si(self) -> dict[str, float | None]:
+        """``{internal name: standard error}`` in SI units (Pa, 1/Pa, -); None where none applies."""
+        return self.__dict__["stderr_si"]
+
     @property
     def params_si(self) -> dict[str, float]:
         """``{internal name: value}`` in SI units (Pa, 1/Pa, -), the arguments of the model's functions."""
@@ -872,7 +935,7 @@ class RetentionFit(NonlinearFit):
         tuple of float or None
             (lower, upper) in SI units (1/Pa, Pa, [-]).
         """
-        se = self.stderr.get(name)
+        se = self.stderr_si.get(name)
         if se is None or not np.isfinite(se):
             return None
         v = self.params_si[name]
@@ -1152,7 +1215,7 @@ def identifiability_warnings(fit) -> list[str]:
     for k in fit.free:
         if k in fit.held or k not in fit.log_params:
             continue
-        se = fit.stderr.get(k)
+        se = (fit.stderr_si if isinstance(fit, RetentionFit) else fit.stderr).get(k)
         v = fit.params_si[k]
         if se is not None and np.isfinite(se) and v != 0 and abs(se / v) > RELATIVE_SE_LIMIT:
             weak_se.append(f"{name(k)} (± {100 * abs(se / v):.3g} %)")
