@@ -240,6 +240,17 @@ class RetentionModel:
     steps : tuple of (str, str)
         ``(α, n)`` pairs of a pore system that may fit as a step (n at its upper bound), where the objective is
         piecewise flat in α between data suctions: α is then searched in every interval (Durner's second system).
+    default : bool
+        Fitted by `capred retention` when no ``--models`` are named.
+    derived : tuple of (str, callable)
+        ``(JSON name, f(params_si) -> value)`` of quantities reported beside the parameters (van Genuchten's
+        m = 1 − 1/n).
+    hysteresis_base : bool
+        The model of each branch of the Kool & Parker (1987) joint hysteresis fit (van Genuchten with
+        m = 1 − 1/n): fitted to each branch as well, to compare with the joint fit.
+    power_law : tuple of (str, str) or None
+        ``(air-entry suction, index)`` of a model S_e = (s_e/s)^λ above s_e: the form Morvan et al.'s suction
+        equilibrium takes (`skempton-b --retention`), and the default target of `retention-convert`.
     """
 
     name: str
@@ -257,6 +268,10 @@ class RetentionModel:
     grid_order: tuple[str, str] | None = None
     canonical: Callable | None = None
     steps: tuple[tuple[str, str], ...] = ()
+    default: bool = False
+    derived: tuple[tuple[str, Callable], ...] = ()
+    hysteresis_base: bool = False
+    power_law: tuple[str, str] | None = None
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -395,6 +410,9 @@ MODELS: dict[str, RetentionModel] = {
             "vg: van Genuchten (1980), m = 1 - 1/n",
             dict(ls="-"),
             inverse=lambda S, alpha, n: rp.vg_suction(S, alpha, n),
+            default=True,
+            derived=(("m", lambda p: 1.0 - 1.0 / p["n"]),),
+            hysteresis_base=True,
         ),
         RetentionModel(
             "vg_m_free",
@@ -413,6 +431,7 @@ MODELS: dict[str, RetentionModel] = {
             "vg_m_free: van Genuchten (1980) with m free",
             dict(ls="--"),
             inverse=lambda S, alpha, n, m: rp.vg_suction(S, alpha, n, m),
+            default=True,
         ),
         RetentionModel(
             "bc",
@@ -437,6 +456,8 @@ MODELS: dict[str, RetentionModel] = {
             "bc: Brooks & Corey (1964) with the air-entry suction",
             dict(ls="-."),
             inverse=_bc_inverse,
+            default=True,
+            power_law=("s_e", "lam"),
         ),
         RetentionModel(
             "kosugi",
@@ -627,6 +648,50 @@ JSON_NAMES: dict[str, tuple[str, float, str]] = {
     "w1": ("w1", 1.0, "-"),
     "sigma": ("sigma", 1.0, "-"),
 }
+
+
+def default_models() -> tuple[str, ...]:
+    """The models `capred retention` fits when none are named (registry entries with ``default``).
+
+    Returns
+    -------
+    tuple of str
+        Registry keys, in registry order.
+    """
+    return tuple(k for k, m in MODELS.items() if m.default)
+
+
+def hysteresis_model() -> RetentionModel:
+    """The model of each branch of the Kool & Parker (1987) joint hysteresis fit (the entry with
+    ``hysteresis_base``).
+
+    Returns
+    -------
+    RetentionModel
+        The registry entry.
+
+    References
+    ----------
+    Kool, J. B., Parker, J. C. (1987). Water Resour. Res. 23(1), 105-114. doi:10.1029/WR023i001p00105
+    """
+    return next(m for m in MODELS.values() if m.hysteresis_base)
+
+
+def power_law_model() -> RetentionModel:
+    """The model of the form S_e = (s_e/s)^λ above its air entry (the entry with ``power_law``): what
+    `skempton-b --retention` takes (Morvan et al. 2016, eq. 13) and `retention-convert` converts to by default.
+
+    Returns
+    -------
+    RetentionModel
+        The registry entry.
+
+    References
+    ----------
+    Brooks, R. H., Corey, A. T. (1964). Hydraulic properties of porous media. Hydrology Paper 3, Colorado State
+    University.
+    """
+    return next(m for m in MODELS.values() if m.power_law is not None)
 
 
 def json_name(internal: str, quantity: str = "S_R") -> tuple[str, float, str]:
@@ -2025,7 +2090,7 @@ def fit_hysteresis(s_d, y_d, s_w, y_w, fixed=None, weights=None) -> NonlinearFit
         alpha = np.where(branch == 0, alpha_d, alpha_w)
         return rp.vg_water(x, y_r, y_s, alpha, n)
 
-    b = bounds_for(s, y, "vg")
+    b = bounds_for(s, y, hysteresis_model().name)
     b = {**b, "alpha_d": b["alpha"], "alpha_w": b["alpha"]}
     pos = s[s > 0]
     mid = float(np.median(pos)) if pos.size else 1.0

@@ -14,8 +14,10 @@ from ..fitting.nonlinear import NonlinearFit
 from ..fitting.retention_models import (
     JSON_NAMES,
     confidence_band,
+    default_models,
     fit_hysteresis,
     fit_model,
+    hysteresis_model,
     identifiability_warnings,
     internal_name,
     json_name,
@@ -117,7 +119,7 @@ class RetentionOptions(Options):
 
     QUANTITIES = {"gamma_w": "gamma_w", "rho_w": "rho_w"}
 
-    models: tuple[str, ...] = ("vg", "vg_m_free", "bc")
+    models: tuple[str, ...] = default_models()
     fixed: dict[str, float] = field(default_factory=dict)
     gamma_w: float = GAMMA_W
     rho_w: float = 1000.0
@@ -432,8 +434,9 @@ class RetentionResult(Result):
             out[f"{p.name}_ci95"] = None if not np.isfinite(p.ci95[0]) else [num(p.ci95[0]), num(p.ci95[1])]
             if k in _HEAD:
                 out[_HEAD[k]] = num(si[k] * cm if k.startswith("alpha") else si[k] / cm)
-        if model in ("vg", "hysteresis", "kool_parker") and "n" in si:
-            out["m"] = num(1 - 1 / si["n"])
+        entry = FITTERS.get(model) or (hysteresis_model() if f is self.hysteresis else None)
+        for name, value in entry.derived if entry is not None else ():
+            out[name] = num(value(si))
         out.update(
             {
                 "r2": num(f.r2),
@@ -538,9 +541,11 @@ class RetentionResult(Result):
         return out
 
     def independent_aicc(self) -> float | None:
-        """AICc of van Genuchten fitted to each branch on its own (to compare with the joint hysteresis fit);
-        None without a van Genuchten fit of both branches, NaN where n − k − 1 ≤ 0."""
-        ind = [self.fits[b]["vg"] for b in ("drying", "wetting") if "vg" in self.fits.get(b, {})]
+        """AICc of the hysteresis fit's model (van Genuchten, ``hysteresis_base`` in the registry) fitted to each
+        branch on its own (to compare with the joint hysteresis fit); None without its fit of both branches, NaN
+        where n − k − 1 ≤ 0."""
+        base = hysteresis_model().name
+        ind = [self.fits[b][base] for b in ("drying", "wetting") if base in self.fits.get(b, {})]
         if len(ind) != 2:
             return None
         n = sum(f.n for f in ind)
@@ -830,11 +835,12 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
             {k: v for k, v in fixed_internal.items() if k in ("y_r", "y_s", "n")},
             np.concatenate([weights[d], weights[w]]),
         )
-        if "vg" not in opt.models:
+        base = hysteresis_model().name  # each branch on its own too, to compare with the joint fit
+        if base not in opt.models:
             for b in ("drying", "wetting"):
                 sel = branch == b
-                fits.setdefault(b, {})["vg"] = dataclasses.replace(
-                    fit_model("vg", s[sel], y[sel], {}, weights[sel]), quantity=quantity
+                fits.setdefault(b, {})[base] = dataclasses.replace(
+                    fit_model(base, s[sel], y[sel], {}, weights[sel]), quantity=quantity
                 )
     if hyst is not None:
         hyst = dataclasses.replace(hyst, quantity=quantity)

@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import FitError, OptionError
-from ..fitting.retention_models import MODELS, RetentionFit, fit_model, json_name
+from ..fitting.retention_models import MODELS, RetentionFit, fit_model, json_name, power_law_model
 from ..physics.shear import GAMMA_W
 from ..result import Options, input_file, num
 from .retention import RetentionResult
@@ -56,7 +56,7 @@ class ConvertOptions(Options):
 
     QUANTITIES = {"gamma_w": "gamma_w"}
 
-    to: str = "bc"
+    to: str = power_law_model().name
     model: str | None = None
     branch: str | None = None
     gamma_w: float = GAMMA_W
@@ -520,30 +520,32 @@ def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W) -> tuple[float, fl
     University.
     """
     src, where, _ = load_retention_fit(path)
-    if src.model == "bc":
+    target = power_law_model()
+    air, index = target.power_law
+    if src.model == target.name:
         p = src.params_si
         notes = [
-            f"--retention {where}: Brooks-Corey fit taken as it is: s_e = {p['s_e'] * 1e-3:.4g} kPa, λ = {p['lam']:.4g}"
+            f"--retention {where}: {target.label} fit taken as it is: s_e = {p[air] * 1e-3:.4g} kPa, λ = {p[index]:.4g}"
         ]
         warns = []
         s_res = p["y_r"] / p["y_s"] if src.quantity == "theta" else p["y_r"]
         if s_res > 0.01 or (src.quantity == "S_R" and abs(p["y_s"] - 1) > 0.01):
             warns.append(
-                f"--retention {where}: the Brooks-Corey fit has S_res = {s_res:.3g}"
+                f"--retention {where}: the {target.label} fit has S_res = {s_res:.3g}"
                 + (f", S_s = {p['y_s']:.3g}" if src.quantity == "S_R" else "")
                 + "; Morvan et al.'s s = s_e S_r^(-1/λ) takes S_r itself (S_res = 0, S_s = 1)"
             )
-        return p["s_e"], p["lam"], notes, warns
+        return p[air], p[index], notes, warns
     sr = _as_saturation(src) if src.quantity == "theta" else src  # the curve in S_R: θ/θ_s for a θ fit
-    new, misfit = convert_fit(sr, "bc", fixed={"y_r": 0.0, "y_s": 1.0})
+    new, misfit = convert_fit(sr, target.name, fixed={"y_r": 0.0, "y_s": 1.0})
     p = new.params_si
     notes = [
-        f"--retention {where}: the {src.model} fit converted to Brooks-Corey with S_res = 0, S_s = 1 "
-        f"(Morvan et al.'s s = s_e S_r^(-1/λ)): s_e = {p['s_e'] * 1e-3:.4g} kPa, λ = {p['lam']:.4g}; misfit in S_R: "
+        f"--retention {where}: the {src.model} fit converted to {target.label} with S_res = 0, S_s = 1 "
+        f"(Morvan et al.'s s = s_e S_r^(-1/λ)): s_e = {p[air] * 1e-3:.4g} kPa, λ = {p[index]:.4g}; misfit in S_R: "
         f"RMSE {misfit['rmse']:.3g}, largest deviation {misfit['max_deviation']:.3g} at "
         f"{misfit['at_suction_kPa']:.4g} kPa"
     ]
-    return p["s_e"], p["lam"], notes, [f"--retention {where}: {w}" for w in new.warnings]
+    return p[air], p[index], notes, [f"--retention {where}: {w}" for w in new.warnings]
 
 
 class _SaturationView(RetentionFit):

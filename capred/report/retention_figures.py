@@ -14,9 +14,14 @@ import numpy as np
 
 from ..fitting.retention_models import MODELS
 from .sheets import Panel, Sheet
-from .style import LABEL, OKABE_ITO, literal, note, style, thin, untitled
+from .style import LABEL, OKABE_ITO, literal, note, thin, untitled
 
 STRIP = 0.07  # width of the zero-suction strip, as a fraction of the axes
+#: colour and marker of the readings and curves of each branch (a model's line style comes from its registry entry)
+BRANCH_STYLES = {
+    "drying": dict(color=OKABE_ITO["orange"], marker="o"),
+    "wetting": dict(color=OKABE_ITO["blue"], marker="s"),
+}
 
 
 def model_key(name: str) -> str:
@@ -61,7 +66,7 @@ def plot_retention(ax, result):
     shown = ""
     for b, fits in result.fits.items():
         sel = result.branch == b
-        st = style(b)
+        st = BRANCH_STYLES.get(b, dict(color=OKABE_ITO["black"], marker="o"))
         keep, shown = thin(np.flatnonzero(sel & ~zero))
         ax.plot(
             result.suction[keep] / 1e3, result.water[keep], ls="none", ms=3.5, color=st["color"], marker=st["marker"]
