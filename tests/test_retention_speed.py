@@ -84,3 +84,27 @@ def test_csv_tables_write_the_bytes_of_the_dataframes(options):
             write_csv_file(b, with_csv_headers(frame), dialect)
             assert a.getvalue() == b.getvalue(), (stem, dialect)
     assert np.asarray(fast["points"]["suction [kPa]"]).size == r.suction.size
+
+
+def test_the_default_figure_builds_no_mathtext_parser(tmp_path, monkeypatch):
+    """The retention sheet's texts are plain (legend equations in Unicode, axis labels, tick labels as numbers):
+    matplotlib's mathtext parser, ~0.1 s of CPU to build and 10-50 ms per label, is never made. Counted by
+    wrapping its constructor in this process, which has not drawn mathtext yet (a fresh process)."""
+    code = (
+        "import sys\n"
+        "import matplotlib._mathtext as mt\n"
+        "built = []\n"
+        "init = mt.Parser.__init__\n"
+        "mt.Parser.__init__ = lambda self, *a, **k: (built.append(1), init(self, *a, **k))[1]\n"
+        "import capred\n"
+        f"r = capred.run_retention(capred.sample_path('retention'), capred.RetentionOptions(models='all'))\n"
+        f"capred.write_outputs(r, {str(tmp_path / 'out')!r})\n"
+        "print('PARSERS', len(built))\n"
+    )
+    env = {"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"}
+    out = subprocess.run(
+        [sys.executable, "-W", "ignore", "-c", code], capture_output=True, text=True, env=env, timeout=300
+    )
+    assert out.returncode == 0, out.stderr
+    assert "PARSERS 0" in out.stdout
+    assert (tmp_path / "out" / "retention.png").stat().st_size > 10_000
