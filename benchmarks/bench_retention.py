@@ -43,7 +43,9 @@ waited-for children, and wall time):
 - unsatfit's fit and a figure of the readings and the three curves saved as a PNG at 300 dpi with plain
   matplotlib (``PEER_PLOT``): the nearest unsatfit script to capred's default outputs.
 
-It prints the medians (CPU and wall), the ratios and the load average before and after.
+It prints the medians (CPU and wall), the ratios and the load average before and after. With
+``CAPRED_BASELINE=/path/to/another/checkout`` that checkout's capred is timed in the same rounds (before and
+after a change on the same load).
 """
 
 from __future__ import annotations
@@ -190,9 +192,10 @@ def process(rows: int = 10_000, repeats: int = 5) -> None:
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), *filter(None, [os.environ.get("PYTHONPATH")])])}
     py = sys.executable
 
-    def capred(*extra):
+    def capred(*extra, root=ROOT):
         out = tmp / "out"
-        return lambda: run_cmd([py, "-m", "capred", "retention", str(data), "--out", str(out), *extra], env=env)
+        env_r = {**env, "PYTHONPATH": env["PYTHONPATH"].replace(str(ROOT), str(root), 1)}
+        return lambda: run_cmd([py, "-m", "capred", "retention", str(data), "--out", str(out), *extra], env=env_r)
 
     peer_fit = [py, "-c", PEER_SCRIPT, str(data)]
     peer_plot = [py, "-c", PEER_SCRIPT + PEER_PLOT, str(data), str(tmp / "peer.png")]
@@ -202,6 +205,12 @@ def process(rows: int = 10_000, repeats: int = 5) -> None:
         "unsatfit fit (3 models)": lambda: run_cmd(peer_fit, env=env),
         "unsatfit fit + PNG (plain matplotlib)": lambda: run_cmd(peer_plot, env=env),
     }
+    baseline = os.environ.get("CAPRED_BASELINE")  # another checkout (e.g. an earlier commit), timed alongside
+    if baseline:
+        contestants[f"baseline {Path(baseline).name} (default outputs)"] = capred(root=Path(baseline))
+        contestants[f"baseline {Path(baseline).name} --no-plots --no-html"] = capred(
+            "--no-plots", "--no-html", root=Path(baseline)
+        )
     print(f"{rows:,} lab-shaped readings; {os.cpu_count()} cores; load average {os.getloadavg()} at the start")
     for fn in contestants.values():
         fn()  # warm-up: page cache, .pyc, matplotlib's font cache
@@ -214,6 +223,8 @@ def process(rows: int = 10_000, repeats: int = 5) -> None:
         print("  " + ratio_line(f"{name} / unsatfit fit, wall", med[name].wall, base.wall))
     both = med["unsatfit fit + PNG (plain matplotlib)"]
     print("  " + ratio_line("default outputs / unsatfit fit + PNG, CPU", med[list(contestants)[0]].cpu, both.cpu))
+    for name in list(contestants)[4:]:
+        print("  " + ratio_line(f"{name} / unsatfit fit, CPU", med[name].cpu, base.cpu))
     print(f"load average {os.getloadavg()} at the end")
     shutil.rmtree(tmp, ignore_errors=True)
 
