@@ -195,7 +195,8 @@ def process(rows: int = 10_000, repeats: int = 5) -> None:
     def capred(*extra, root=ROOT):
         out = tmp / "out"
         env_r = {**env, "PYTHONPATH": env["PYTHONPATH"].replace(str(ROOT), str(root), 1)}
-        return lambda: run_cmd([py, "-m", "capred", "retention", str(data), "--out", str(out), *extra], env=env_r)
+        cmd = [py, "-m", "capred", "retention", str(data), "--out", str(out), *extra]
+        return lambda: run_cmd(cmd, env=env_r, cwd=tmp)  # not from a checkout: python -m imports the cwd's capred
 
     peer_fit = [py, "-c", PEER_SCRIPT, str(data)]
     peer_plot = [py, "-c", PEER_SCRIPT + PEER_PLOT, str(data), str(tmp / "peer.png")]
