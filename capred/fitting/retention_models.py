@@ -658,6 +658,11 @@ def default_models() -> tuple[str, ...]:
     -------
     tuple of str
         Registry keys, in registry order.
+
+    References
+    ----------
+    Each entry's ``references`` (van Genuchten 1980, doi:10.2136/sssaj1980.03615995004400050002x; Brooks &
+    Corey 1964, Hydrology Paper 3, Colorado State University).
     """
     return tuple(k for k, m in MODELS.items() if m.default)
 
