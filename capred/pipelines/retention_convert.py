@@ -18,6 +18,7 @@ from __future__ import annotations
 import dataclasses
 import json
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -267,6 +268,12 @@ def conversion_points(fit: RetentionFit, points: int = GRID_POINTS) -> np.ndarra
     return np.unique(np.concatenate([np.asarray(fit.suction_points, float), np.geomspace(lo, hi, points)]))
 
 
+@lru_cache(maxsize=8)
+def _gauss_legendre(points: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss-Legendre nodes and weights on [-1, 1] (computed once per size: an eigenvalue problem)."""
+    return np.polynomial.legendre.leggauss(points)
+
+
 def log_quadrature(lo: float, hi: float, points: int, breaks=()) -> tuple[np.ndarray, np.ndarray]:
     """Gauss-Legendre nodes and weights of the mean over ln s of [lo, hi], ``points`` nodes in each piece
     between the ``breaks`` that lie inside.
@@ -290,7 +297,7 @@ def log_quadrature(lo: float, hi: float, points: int, breaks=()) -> tuple[np.nda
     ----------
     Abramowitz, M. & Stegun, I. A. (1964). Handbook of Mathematical Functions, eq. 25.4.29 (Gauss-Legendre).
     """
-    x, w = np.polynomial.legendre.leggauss(int(points))
+    x, w = _gauss_legendre(int(points))
     a, b = np.log(lo), np.log(hi)
     edges = [a, *sorted(np.log(t) for t in breaks if lo < t < hi), b]
     nodes, weights = [], []
