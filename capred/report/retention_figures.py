@@ -119,11 +119,11 @@ def plot_retention(ax, result):
 
 def _log_suction_axis(ax, lo: float, hi: float) -> None:
     """A logarithmic suction axis from ``lo`` to ``hi`` [kPa] with plain-number tick labels (0.1, 1, 10; and
-    2, 5 between the decades when the axis spans less than about a decade and a half), without mathtext."""
+    2, 5 between the decades when the axis spans less than two decades), without mathtext."""
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
     ax.set_xscale("log")
-    if hi / lo < 30:
+    if hi / lo < 100:
         ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
     ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     ax.xaxis.set_minor_formatter(NullFormatter())
