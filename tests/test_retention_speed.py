@@ -4,6 +4,7 @@ no number and no byte. Not timed: the benchmark is benchmarks/bench_retention.py
 from __future__ import annotations
 
 import io
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -60,7 +61,7 @@ def test_a_large_run_loads_neither_scipy_nor_pandas(tmp_path):
         "try:\n    runpy.run_module('capred', run_name='__main__')\nexcept SystemExit as e:\n    assert not e.code, e\n"
         "print('LOADED', sorted(m for m in ('scipy', 'pandas') if m in sys.modules))\n"
     )
-    env = {"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"}
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}  # matplotlib keeps its font cache (HOME)
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120)
     assert out.returncode == 0, out.stderr
     assert "LOADED []" in out.stdout
@@ -101,7 +102,7 @@ def test_the_default_figure_builds_no_mathtext_parser(tmp_path, monkeypatch):
         f"capred.write_outputs(r, {str(tmp_path / 'out')!r})\n"
         "print('PARSERS', len(built))\n"
     )
-    env = {"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"}
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}  # matplotlib keeps its font cache (HOME)
     out = subprocess.run(
         [sys.executable, "-W", "ignore", "-c", code], capture_output=True, text=True, env=env, timeout=300
     )
