@@ -28,6 +28,24 @@ capred keeps n <= 100 (m <= 0.99) where unsatfit lets m -> 1, so on very steep d
 a lower RSS outside capred's range; the column ``rss capred/unsatfit`` shows it.
 
 Run: python benchmarks/bench_retention.py [repeats]   (needs ``pip install unsatfit``; not a dependency)
+
+**Whole processes** (issue 31.5): ``python benchmarks/bench_retention.py --process [rows] [repeats]`` writes
+``rows`` (default 10,000) lab-shaped readings (``common.lab_retention_rows``: the sample's columns, scattered
+column heights) and times, interleaved, as whole process trees (``common.run``: CPU of the process and its
+waited-for children, and wall time):
+
+- ``capred retention FILE --out DIR`` with its default outputs (fits.json, fits/parameters/points.csv, the
+  figure retention.png at 300 dpi, report.html, provenance.json);
+- the same with ``--no-plots --no-html`` (tables and JSON only);
+- unsatfit fitting the same models to the same readings in its own process (``PEER_SCRIPT``: read the CSV
+  with numpy, S_R = (V_v - z2)/V_v, van Genuchten with q = 1, with q free, Brooks-Corey, each as its
+  documentation shows, the parameters printed): unsatfit's fit, no figure, no file;
+- unsatfit's fit and a figure of the readings and the three curves saved as a PNG at 300 dpi with plain
+  matplotlib (``PEER_PLOT``): the nearest unsatfit script to capred's default outputs.
+
+It prints the medians (CPU and wall), the ratios and the load average before and after. With
+``CAPRED_BASELINE=/path/to/another/checkout`` that checkout's capred is timed in the same rounds (before and
+after a change on the same load).
 """
 
 from __future__ import annotations
@@ -45,7 +63,9 @@ from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(1, str(ROOT))  # this checkout's capred
 CM = 98.1  # Pa per cm of head (gamma_w = 9.81 kN/m^3)
 PAIRS = {
     "vg": ("vg", ["q=1"]),
@@ -121,6 +141,95 @@ def compare(model, h, theta, repeats):
     return {k: (statistics.median(c), statistics.median(w), rss[k]) for k, (c, w) in times.items()}
 
 
+PEER_SCRIPT = """
+import sys
+import numpy as np
+import unsatfit
+
+d = np.loadtxt(sys.argv[1], delimiter=",", skiprows=1, usecols=(0, 1, 2))
+h, s_r = d[:, 0], (d[:, 2] - d[:, 1]) / d[:, 2]
+fits = []
+for name, const, extra in (("vg", ["q=1"], ()), ("vg", [], (1.0,)), ("bc", [], ())):
+    f = unsatfit.Fit()
+    f.swrc = (h, s_r)
+    f.set_model(name, const=const)
+    f.ini = (max(s_r), 0, *f.get_init(), *extra)
+    f.optimize()
+    print(name, const, f.success, f.fitted)
+    fits.append(f)
+"""
+PEER_PLOT = """
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+fig, ax = plt.subplots(figsize=(180 / 25.4, 120 / 25.4))
+ax.semilogx(h, s_r, "o", ms=2)
+hh = np.geomspace(h.min(), h.max(), 300)
+for f in fits:
+    ax.semilogx(hh, f.f_ht(f.fitted, hh))
+ax.set_xlabel("head [cm]")
+ax.set_ylabel("S_R [-]")
+fig.savefig(sys.argv[2], dpi=300)
+"""
+
+
+def process(rows: int = 10_000, repeats: int = 5) -> None:
+    """capred retention's whole process with its default outputs against unsatfit's fit as a whole process."""
+    import shutil
+    import tempfile
+
+    from common import interleaved, lab_retention_rows, ratio_line
+    from common import run as run_cmd
+
+    try:
+        import unsatfit  # noqa: F401
+    except ImportError:
+        raise SystemExit("unsatfit is not installed: pip install unsatfit (the benchmark compares with it)")
+    tmp = Path(tempfile.mkdtemp(prefix="bench_retention_"))
+    data = tmp / "readings.csv"
+    lab_retention_rows(data, rows)
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), *filter(None, [os.environ.get("PYTHONPATH")])])}
+    py = sys.executable
+
+    def capred(*extra, root=ROOT):
+        out = tmp / "out"
+        env_r = {**env, "PYTHONPATH": env["PYTHONPATH"].replace(str(ROOT), str(root), 1)}
+        cmd = [py, "-m", "capred", "retention", str(data), "--out", str(out), *extra]
+        return lambda: run_cmd(cmd, env=env_r, cwd=tmp)  # not from a checkout: python -m imports the cwd's capred
+
+    peer_fit = [py, "-c", PEER_SCRIPT, str(data)]
+    peer_plot = [py, "-c", PEER_SCRIPT + PEER_PLOT, str(data), str(tmp / "peer.png")]
+    contestants = {
+        "capred retention (default outputs)": capred(),
+        "capred retention --no-plots --no-html": capred("--no-plots", "--no-html"),
+        "unsatfit fit (3 models)": lambda: run_cmd(peer_fit, env=env),
+        "unsatfit fit + PNG (plain matplotlib)": lambda: run_cmd(peer_plot, env=env),
+    }
+    baseline = os.environ.get("CAPRED_BASELINE")  # another checkout (e.g. an earlier commit), timed alongside
+    if baseline:
+        contestants[f"baseline {Path(baseline).name} (default outputs)"] = capred(root=Path(baseline))
+        contestants[f"baseline {Path(baseline).name} --no-plots --no-html"] = capred(
+            "--no-plots", "--no-html", root=Path(baseline)
+        )
+    print(f"{rows:,} lab-shaped readings; {os.cpu_count()} cores; load average {os.getloadavg()} at the start")
+    for fn in contestants.values():
+        fn()  # warm-up: page cache, .pyc, matplotlib's font cache
+    med = interleaved(contestants, repeats)
+    for name, m in med.items():
+        print(f"  {name:40s} CPU {m.cpu:6.3f} s  wall {m.wall:6.3f} s")
+    base = med["unsatfit fit (3 models)"]
+    for name in list(contestants)[:2]:
+        print("  " + ratio_line(f"{name} / unsatfit fit, CPU", med[name].cpu, base.cpu, "<= 1.0x"))
+        print("  " + ratio_line(f"{name} / unsatfit fit, wall", med[name].wall, base.wall))
+    both = med["unsatfit fit + PNG (plain matplotlib)"]
+    print("  " + ratio_line("default outputs / unsatfit fit + PNG, CPU", med[list(contestants)[0]].cpu, both.cpu))
+    for name in list(contestants)[4:]:
+        print("  " + ratio_line(f"{name} / unsatfit fit, CPU", med[name].cpu, base.cpu))
+    print(f"load average {os.getloadavg()} at the end")
+    shutil.rmtree(tmp, ignore_errors=True)
+
+
 def main(repeats: int = 7) -> None:
     try:
         import unsatfit  # noqa: F401
@@ -150,4 +259,8 @@ def main(repeats: int = 7) -> None:
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 7)
+    if "--process" in sys.argv:
+        args = [int(a) for a in sys.argv[1:] if a != "--process"]
+        process(*args)
+    else:
+        main(int(sys.argv[1]) if len(sys.argv) > 1 else 7)

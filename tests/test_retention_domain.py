@@ -46,4 +46,4 @@ def test_fredlund_xing_reaches_n_below_one():
     assert f.rss <= REFERENCE["swrc_vg1980_beit_netofa_clay", "fx_no_c"] * (1 + REL)
     old = fit_model("fx_no_c", s, y, fixed={"n": 1.005})  # the old domain's edge, where its optimum lay
     assert old.rss > 1.01 * f.rss
-    assert np.isfinite(f.stderr["n"])
+    assert np.isfinite(f.stderr_si["n"])

@@ -82,7 +82,7 @@ def test_a_residual_near_zero_is_judged_by_correlation_only():
     s = np.geomspace(1e3, 1e5, 12)
     y = rp.vg_water(s, 0.0, 0.40, 1 / 5000, 1.6) + np.random.default_rng(5).normal(0, 0.004, s.size)
     f = fit_model("vg", s, y)
-    assert f.stderr["y_r"] / f.params_si["y_r"] > 1
+    assert f.stderr_si["y_r"] / f.params_si["y_r"] > 1
     assert not any("standard error" in w for w in f.warnings)
 
 

@@ -87,7 +87,7 @@ def test_statistics_band_and_correlation():
             assert corr[a][b] == pytest.approx(corr[b][a])
     # at s = 0 the curve is y_s exactly: the band's half-width is t * se(y_s) (delta method, d y/d y_s = 1)
     lo, hi = confidence_band("vg", f, np.array([0.0]))
-    assert (hi[0] - lo[0]) / 2 == pytest.approx(f.t * f.stderr["y_s"], rel=1e-6)
+    assert (hi[0] - lo[0]) / 2 == pytest.approx(f.t * f.stderr_si["y_s"], rel=1e-6)
     lo_ci, hi_ci = f.ci95("n")
     assert lo_ci < f.params_si["n"] < hi_ci
     k = f.nfree

@@ -112,3 +112,20 @@ def test_cli_writes_name_unit_headers(tmp_path):
     assert vg_alpha["branch"].tolist()[0] == "drying"
     assert vg_alpha["value"].tolist()[0] == pytest.approx(js["fits"]["vg"]["alpha_per_kPa"], rel=1e-12)
     assert np.isfinite(params["value"]).all()
+
+
+def test_stderr_by_json_name_and_the_old_names_deprecated():
+    """fit.stderr speaks the JSON's names and units, as fit.params does (issue 28.2; issue 34: the converted
+    fit's used internal names): alpha_per_kPa [1/kPa] is 1000 x the SI value [1/Pa]; an old internal name
+    returns the OLD SI value with a DeprecationWarning naming the new key; a converted fit has None for each."""
+    r = capred.run_retention(capred.sample_path("retention"))
+    f = r.fits["drying"]["vg"]
+    assert set(f.stderr) == {"S_res", "S_s", "alpha_per_kPa", "n"}
+    assert f.stderr["alpha_per_kPa"] == pytest.approx(1e3 * f.stderr_si["alpha"], rel=1e-15)
+    assert f.stderr["alpha_per_kPa"] == f.params["alpha_per_kPa"].stderr  # the same number as the record's
+    with pytest.warns(DeprecationWarning, match=r"fit.stderr\['alpha_per_kPa'\]"):
+        assert f.stderr["alpha"] == f.stderr_si["alpha"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", capred.CapredWarning)  # BC cannot follow the VG curve closely
+        c = capred.convert_retention(f, to="bc").converted
+    assert dict(c.stderr) == {"S_res": None, "S_s": None, "s_e_kPa": None, "lambda": None}

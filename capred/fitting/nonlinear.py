@@ -326,10 +326,60 @@ def _assemble(
     )
 
 
+#: degrees of freedom above which a fit's t quantile comes from its asymptotic series (t_quantile_large_dof)
+LARGE_DOF = 200
+
+
 def _t95(dof: int) -> float:
     from .linear import t_quantile
 
+    if dof > LARGE_DOF:  # a large data set: the series, without importing scipy.special (~0.3 s)
+        return t_quantile_large_dof(0.975, dof)
     return t_quantile(0.975, dof) if dof > 0 else float("nan")
+
+
+def t_quantile_large_dof(p: float, dof: float) -> float:
+    """Student-t quantile t_{p, ν} for many degrees of freedom, by its asymptotic series in 1/ν.
+
+    Parameters
+    ----------
+    p : float
+        Lower-tail probability [-], in (0, 1).
+    dof : float
+        Degrees of freedom ν [-]; meant for ν > 200, where four terms of the series suffice.
+
+    Returns
+    -------
+    float
+        t with P(T <= t) = p [-].
+
+    Notes
+    -----
+    With x the standard normal quantile of p (``statistics.NormalDist``),
+
+    .. math:: t = x + g_1/ν + g_2/ν^2 + g_3/ν^3 + g_4/ν^4,
+
+    g_1 = (x^3 + x)/4, g_2 = (5x^5 + 16x^3 + 3x)/96, g_3 = (3x^7 + 19x^5 + 17x^3 - 15x)/384,
+    g_4 = (79x^9 + 776x^7 + 1482x^5 - 1920x^3 - 945x)/92160 (Abramowitz & Stegun 1964, eq. 26.7.5, after
+    Fisher & Cornish). Against scipy's ``stdtrit`` its relative error for ν >= 201 is at most 1.2e-12 at
+    p = 0.975 and 8e-11 at p = 0.9995 (``tests/test_retention_speed.py``). It spares a fit of many readings
+    the import of scipy.special.
+
+    References
+    ----------
+    .. [1] Abramowitz, M. & Stegun, I. A. (1964). Handbook of Mathematical Functions. NBS Applied
+       Mathematics Series 55 (no DOI), eq. 26.7.5.
+    """
+    from statistics import NormalDist
+
+    x = NormalDist().inv_cdf(p)
+    x2 = x * x
+    g1 = (x2 + 1.0) * x / 4.0
+    g2 = ((5.0 * x2 + 16.0) * x2 + 3.0) * x / 96.0
+    g3 = (((3.0 * x2 + 19.0) * x2 + 17.0) * x2 - 15.0) * x / 384.0
+    g4 = ((((79.0 * x2 + 776.0) * x2 + 1482.0) * x2 - 1920.0) * x2 - 945.0) * x / 92160.0
+    nu = float(dof)
+    return x + (g1 + (g2 + (g3 + g4 / nu) / nu) / nu) / nu
 
 
 def summarize_fit(

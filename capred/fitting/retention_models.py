@@ -211,7 +211,8 @@ class RetentionModel:
     label : str
         Display name (plain text, also valid mathtext).
     equation : str
-        The model in matplotlib mathtext.
+        The model as its figure legend shows it: plain text with Unicode sub- and superscripts (no mathtext, so
+        that a figure never builds matplotlib's mathtext parser, ~0.1 s of a run).
     parameters : tuple[Parameter, ...]
         All parameters in order (y_r, y_s first where present).
     saturation : callable
@@ -240,6 +241,17 @@ class RetentionModel:
     steps : tuple of (str, str)
         ``(α, n)`` pairs of a pore system that may fit as a step (n at its upper bound), where the objective is
         piecewise flat in α between data suctions: α is then searched in every interval (Durner's second system).
+    default : bool
+        Fitted by `capred retention` when no ``--models`` are named.
+    derived : tuple of (str, callable)
+        ``(JSON name, f(params_si) -> value)`` of quantities reported beside the parameters (van Genuchten's
+        m = 1 − 1/n).
+    hysteresis_base : bool
+        The model of each branch of the Kool & Parker (1987) joint hysteresis fit (van Genuchten with
+        m = 1 − 1/n): fitted to each branch as well, to compare with the joint fit.
+    power_law : tuple of (str, str) or None
+        ``(air-entry suction, index)`` of a model S_e = (s_e/s)^λ above s_e: the form Morvan et al.'s suction
+        equilibrium takes (`skempton-b --retention`), and the default target of `retention-convert`.
     """
 
     name: str
@@ -257,6 +269,10 @@ class RetentionModel:
     grid_order: tuple[str, str] | None = None
     canonical: Callable | None = None
     steps: tuple[tuple[str, str], ...] = ()
+    default: bool = False
+    derived: tuple[tuple[str, Callable], ...] = ()
+    hysteresis_base: bool = False
+    power_law: tuple[str, str] | None = None
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -387,7 +403,7 @@ MODELS: dict[str, RetentionModel] = {
         RetentionModel(
             "vg",
             "van Genuchten, m = 1 - 1/n",
-            r"$S_e = [1 + (\alpha s)^n]^{-(1 - 1/n)}$",
+            "Sₑ = [1 + (αs)ⁿ]⁻ᵐ",
             (Y_R, Y_S, _alpha(), _n()),
             lambda s, alpha, n: rp.vg_effective_saturation(s, alpha, n),
             ("vangenuchten1980",),
@@ -395,11 +411,14 @@ MODELS: dict[str, RetentionModel] = {
             "vg: van Genuchten (1980), m = 1 - 1/n",
             dict(ls="-"),
             inverse=lambda S, alpha, n: rp.vg_suction(S, alpha, n),
+            default=True,
+            derived=(("m", lambda p: 1.0 - 1.0 / p["n"]),),
+            hysteresis_base=True,
         ),
         RetentionModel(
             "vg_m_free",
             "van Genuchten, m free",
-            r"$S_e = [1 + (\alpha s)^n]^{-m}$",
+            "Sₑ = [1 + (αs)ⁿ]⁻ᵐ",
             (
                 Y_R,
                 Y_S,
@@ -413,11 +432,12 @@ MODELS: dict[str, RetentionModel] = {
             "vg_m_free: van Genuchten (1980) with m free",
             dict(ls="--"),
             inverse=lambda S, alpha, n, m: rp.vg_suction(S, alpha, n, m),
+            default=True,
         ),
         RetentionModel(
             "bc",
             "Brooks-Corey",
-            r"$S_e = (s_e/s)^{\lambda}\ (s > s_e)$, $1$ below",
+            "Sₑ = (sₑ/s)^λ above sₑ, 1 below",
             (
                 Y_R,
                 Y_S,
@@ -437,11 +457,13 @@ MODELS: dict[str, RetentionModel] = {
             "bc: Brooks & Corey (1964) with the air-entry suction",
             dict(ls="-."),
             inverse=_bc_inverse,
+            default=True,
+            power_law=("s_e", "lam"),
         ),
         RetentionModel(
             "kosugi",
             "Kosugi (lognormal)",
-            r"$S_e = Q\left(\ln(s/s_m)/\sigma\right)$",
+            "Sₑ = Q(ln(s/sₘ)/σ)",
             (
                 Y_R,
                 Y_S,
@@ -485,7 +507,7 @@ MODELS: dict[str, RetentionModel] = {
         RetentionModel(
             "fx",
             "Fredlund-Xing with C(s)",
-            r"$\theta = \theta_s\, C(s)\, [\ln(e + (s/a)^n)]^{-m}$",
+            "θ = θₛ C(s) [ln(e + (s/a)ⁿ)]⁻ᵐ",
             (
                 Y_S,
                 _FX_A,
@@ -517,7 +539,7 @@ MODELS: dict[str, RetentionModel] = {
         RetentionModel(
             "fx_no_c",
             "Fredlund-Xing without C(s)",
-            r"$S_e = [\ln(e + (s/a)^n)]^{-m}$",
+            "Sₑ = [ln(e + (s/a)ⁿ)]⁻ᵐ",
             (
                 Y_R,
                 Y_S,
@@ -534,7 +556,7 @@ MODELS: dict[str, RetentionModel] = {
         RetentionModel(
             "durner",
             "Durner (bimodal van Genuchten)",
-            r"$S_e = w_1 [1 + (\alpha_1 s)^{n_1}]^{-m_1} + (1 - w_1)[1 + (\alpha_2 s)^{n_2}]^{-m_2}$",
+            "Sₑ = w₁ S₁ + (1 − w₁) S₂, Sᵢ = [1 + (αᵢs)^nᵢ]^−mᵢ",
             (
                 Y_R,
                 Y_S,
@@ -627,6 +649,55 @@ JSON_NAMES: dict[str, tuple[str, float, str]] = {
     "w1": ("w1", 1.0, "-"),
     "sigma": ("sigma", 1.0, "-"),
 }
+
+
+def default_models() -> tuple[str, ...]:
+    """The models `capred retention` fits when none are named (registry entries with ``default``).
+
+    Returns
+    -------
+    tuple of str
+        Registry keys, in registry order.
+
+    References
+    ----------
+    Each entry's ``references`` (van Genuchten 1980, doi:10.2136/sssaj1980.03615995004400050002x; Brooks &
+    Corey 1964, Hydrology Paper 3, Colorado State University).
+    """
+    return tuple(k for k, m in MODELS.items() if m.default)
+
+
+def hysteresis_model() -> RetentionModel:
+    """The model of each branch of the Kool & Parker (1987) joint hysteresis fit (the entry with
+    ``hysteresis_base``).
+
+    Returns
+    -------
+    RetentionModel
+        The registry entry.
+
+    References
+    ----------
+    Kool, J. B., Parker, J. C. (1987). Water Resour. Res. 23(1), 105-114. doi:10.1029/WR023i001p00105
+    """
+    return next(m for m in MODELS.values() if m.hysteresis_base)
+
+
+def power_law_model() -> RetentionModel:
+    """The model of the form S_e = (s_e/s)^λ above its air entry (the entry with ``power_law``): what
+    `skempton-b --retention` takes (Morvan et al. 2016, eq. 13) and `retention-convert` converts to by default.
+
+    Returns
+    -------
+    RetentionModel
+        The registry entry.
+
+    References
+    ----------
+    Brooks, R. H., Corey, A. T. (1964). Hydraulic properties of porous media. Hydrology Paper 3, Colorado State
+    University.
+    """
+    return next(m for m in MODELS.values() if m.power_law is not None)
 
 
 def json_name(internal: str, quantity: str = "S_R") -> tuple[str, float, str]:
@@ -784,6 +855,48 @@ class RetentionParameters(Parameters):
     __hash__ = None
 
 
+class RetentionErrors(dict):
+    """Standard errors of a retention fit by JSON name in the JSON's units (``fit.stderr["alpha_per_kPa"]``
+    [1/kPa]; None where none applies: a fixed or held parameter, a converted curve).
+
+    The old internal names (``y_r``, ``alpha`` [1/Pa], ``s_e`` [Pa] ...) still work for one release: they return
+    the OLD value in the OLD (SI) unit and raise a DeprecationWarning naming the new key
+    (:func:`capred.parameters.deprecated`).
+
+    Attributes
+    ----------
+    si : dict[str, float or None]
+        ``{internal name: standard error}`` in SI units.
+    """
+
+    def __init__(self, by_name: dict, si: dict, renamed: dict):
+        super().__init__(by_name)
+        self.si = dict(si)
+        self.renamed = dict(renamed)
+
+    def __getitem__(self, name: str):
+        if not dict.__contains__(self, name) and name in self.renamed:
+            new = self.renamed[name]
+            unit = json_name(name)[2]
+            return deprecated(
+                f"fit.stderr[{name!r}] (SI units)",
+                f"fit.stderr[{new!r}] [{unit}]" if unit != "-" else f"fit.stderr[{new!r}]",
+                self.si[name],
+            )
+        return super().__getitem__(name)
+
+    def get(self, name: str, default=None):
+        """The standard error of ``name`` (a JSON name; an old internal name with a DeprecationWarning), or
+        ``default``."""
+        try:
+            return self[name]
+        except KeyError:
+            return default
+
+    def __contains__(self, name) -> bool:
+        return dict.__contains__(self, name) or name in self.renamed
+
+
 @dataclass
 class RetentionFit(NonlinearFit):
     """A fitted retention curve: the :class:`~capred.fitting.nonlinear.NonlinearFit` of one model, callable.
@@ -827,7 +940,7 @@ class RetentionFit(NonlinearFit):
             name, f, unit = json_name(k, self.quantity)
             if name != k:
                 renamed[k] = name
-            se = self.stderr.get(k)
+            se = self.stderr_si.get(k)
             se = float(se) * f if se is not None and np.isfinite(se) else float("nan")
             ci = self.ci95(k)
             items.append(
@@ -854,6 +967,27 @@ class RetentionFit(NonlinearFit):
 
     params = property(_get_params, _set_params)
 
+    # ``stderr`` of NonlinearFit is stored as ``stderr_si``; reading ``stderr`` gives JSON names and units
+    def _get_stderr(self) -> RetentionErrors:
+        si = self.__dict__["stderr_si"]
+        by_name, renamed = {}, {}
+        for k, v in si.items():
+            name, f, _ = json_name(k, self.quantity)
+            if name != k:
+                renamed[k] = name
+            by_name[name] = float(v) * f if v is not None else None
+        return RetentionErrors(by_name, si, renamed)
+
+    def _set_stderr(self, value) -> None:
+        self.__dict__["stderr_si"] = dict(value.si if isinstance(value, RetentionErrors) else value)
+
+    stderr = property(_get_stderr, _set_stderr)
+
+    @property
+    def stderr_si(self) -> dict[str, float | None]:
+        """``{internal name: standard error}`` in SI units (Pa, 1/Pa, -); None where none applies."""
+        return self.__dict__["stderr_si"]
+
     @property
     def params_si(self) -> dict[str, float]:
         """``{internal name: value}`` in SI units (Pa, 1/Pa, -), the arguments of the model's functions."""
@@ -872,7 +1006,7 @@ class RetentionFit(NonlinearFit):
         tuple of float or None
             (lower, upper) in SI units (1/Pa, Pa, [-]).
         """
-        se = self.stderr.get(name)
+        se = self.stderr_si.get(name)
         if se is None or not np.isfinite(se):
             return None
         v = self.params_si[name]
@@ -1152,7 +1286,7 @@ def identifiability_warnings(fit) -> list[str]:
     for k in fit.free:
         if k in fit.held or k not in fit.log_params:
             continue
-        se = fit.stderr.get(k)
+        se = (fit.stderr_si if isinstance(fit, RetentionFit) else fit.stderr).get(k)
         v = fit.params_si[k]
         if se is not None and np.isfinite(se) and v != 0 and abs(se / v) > RELATIVE_SE_LIMIT:
             weak_se.append(f"{name(k)} (± {100 * abs(se / v):.3g} %)")
@@ -1957,7 +2091,7 @@ def fit_hysteresis(s_d, y_d, s_w, y_w, fixed=None, weights=None) -> NonlinearFit
         alpha = np.where(branch == 0, alpha_d, alpha_w)
         return rp.vg_water(x, y_r, y_s, alpha, n)
 
-    b = bounds_for(s, y, "vg")
+    b = bounds_for(s, y, hysteresis_model().name)
     b = {**b, "alpha_d": b["alpha"], "alpha_w": b["alpha"]}
     pos = s[s > 0]
     mid = float(np.median(pos)) if pos.size else 1.0

@@ -14,8 +14,10 @@ from ..fitting.nonlinear import NonlinearFit
 from ..fitting.retention_models import (
     JSON_NAMES,
     confidence_band,
+    default_models,
     fit_hysteresis,
     fit_model,
+    hysteresis_model,
     identifiability_warnings,
     internal_name,
     json_name,
@@ -25,7 +27,7 @@ from ..io import Column, read_table
 from ..parameters import Parameters
 from ..physics.shear import GAMMA_W
 from ..references import cite
-from ..result import InputFile, Options, Result, input_file, num
+from ..result import InputFile, Options, Result, columns_of_rows, csv_header, input_file, num, with_csv_headers
 
 SCHEMA = [
     Column("suction", "pressure", "kPa", "suction", ("s", "matric_suction", "delta_u", "ua_uw"), "nonnegative"),
@@ -111,7 +113,7 @@ class RetentionOptions(Options):
 
     QUANTITIES = {"gamma_w": "gamma_w", "rho_w": "rho_w"}
 
-    models: tuple[str, ...] = ("vg", "vg_m_free", "bc")
+    models: tuple[str, ...] = default_models()
     fixed: dict[str, float] = field(default_factory=dict)
     gamma_w: float = GAMMA_W
     rho_w: float = 1000.0
@@ -426,8 +428,9 @@ class RetentionResult(Result):
             out[f"{p.name}_ci95"] = None if not np.isfinite(p.ci95[0]) else [num(p.ci95[0]), num(p.ci95[1])]
             if k in _HEAD:
                 out[_HEAD[k]] = num(si[k] * cm if k.startswith("alpha") else si[k] / cm)
-        if model in ("vg", "hysteresis", "kool_parker") and "n" in si:
-            out["m"] = num(1 - 1 / si["n"])
+        entry = FITTERS.get(model) or (hysteresis_model() if f is self.hysteresis else None)
+        for name, value in entry.derived if entry is not None else ():
+            out[name] = num(value(si))
         out.update(
             {
                 "r2": num(f.r2),
@@ -532,9 +535,11 @@ class RetentionResult(Result):
         return out
 
     def independent_aicc(self) -> float | None:
-        """AICc of van Genuchten fitted to each branch on its own (to compare with the joint hysteresis fit);
-        None without a van Genuchten fit of both branches, NaN where n − k − 1 ≤ 0."""
-        ind = [self.fits[b]["vg"] for b in ("drying", "wetting") if "vg" in self.fits.get(b, {})]
+        """AICc of the hysteresis fit's model (van Genuchten, ``hysteresis_base`` in the registry) fitted to each
+        branch on its own (to compare with the joint hysteresis fit); None without its fit of both branches, NaN
+        where n − k − 1 ≤ 0."""
+        base = hysteresis_model().name
+        ind = [self.fits[b][base] for b in ("drying", "wetting") if base in self.fits.get(b, {})]
         if len(ind) != 2:
             return None
         n = sum(f.n for f in ind)
@@ -543,24 +548,30 @@ class RetentionResult(Result):
         return float(n * np.log(rss / n) + 2 * k + (2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else np.nan))
 
     def season_rows(self) -> list[dict]:
-        """One row per branch for a batch's season.csv: the best model (lowest AICc) and its parameters."""
+        """One row per branch for a batch's season.csv: the best model (lowest AICc) and its parameters.
+
+        Headers follow the rule of fits.csv and parameters.csv: ``name [unit]`` with the unit of the record
+        (RMSE and θ_r, θ_s in m³/m³ for θ data, - for S_R; a JSON suffix read as its unit: ``alpha [1/kPa]``).
+
+        Returns
+        -------
+        list of dict
+            ``name [unit]`` (text columns: name) -> value.
+        """
         rows = []
         for b, fits in self.fits.items():
             if not fits:
                 continue
             recs = self.fit_records(b)
             best = min(recs, key=lambda r: (not np.isfinite(r.aicc), r.aicc if np.isfinite(r.aicc) else 0.0))
-            rows.append(
-                {
-                    "branch": b,
-                    "best_model": best.model,
-                    "n_points": best.n_points,
-                    "r2": num(best.r2),
-                    "rmse": num(best.rmse),
-                    "aicc": num(best.aicc),
-                    **{p.name: num(p.value) for p in best.params.values()},
-                }
-            )
+            row = {"branch": b, "best_model": best.model, "n_points [-]": best.n_points}
+            row["r2 [-]"] = num(best.r2)
+            row[f"rmse [{_y_unit(self.quantity)}]"] = num(best.rmse)
+            row["aicc [-]"] = num(best.aicc)
+            for p in best.params.values():
+                head = csv_header(p.name)
+                row[head if "[" in head else f"{p.name} [{p.unit}]"] = num(p.value)
+            rows.append(row)
         return rows
 
     def tables(self) -> dict:
@@ -579,6 +590,25 @@ class RetentionResult(Result):
                 "points": pd.DataFrame(self.points().columns()),
             }
         return cached
+
+    def csv_tables(self) -> dict:
+        """The tables of :meth:`tables` as column mappings (name -> array), the same bytes in every CSV file,
+        written without importing pandas (a third of a second of a run's start-up).
+
+        Returns
+        -------
+        dict
+            File stem -> {``"name [unit]"``: array}.
+        """
+        recs = self.fit_records()
+        if self.hysteresis is not None:
+            recs = recs + [self.fit_record("both", "kool_parker")]
+        tables = {
+            "fits": columns_of_rows([r.row() for r in recs]),
+            "parameters": columns_of_rows([row for r in recs for row in r.parameter_rows()]),
+            "points": self.points().columns(),
+        }
+        return {stem: with_csv_headers(t) for stem, t in tables.items()}
 
     def curve(self, branch: str, model: str, s):
         """The fitted curve of one branch and model at suctions ``s`` [Pa] (θ [m³/m³] or S_R [-]).
@@ -799,11 +829,12 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
             {k: v for k, v in fixed_internal.items() if k in ("y_r", "y_s", "n")},
             np.concatenate([weights[d], weights[w]]),
         )
-        if "vg" not in opt.models:
+        base = hysteresis_model().name  # each branch on its own too, to compare with the joint fit
+        if base not in opt.models:
             for b in ("drying", "wetting"):
                 sel = branch == b
-                fits.setdefault(b, {})["vg"] = dataclasses.replace(
-                    fit_model("vg", s[sel], y[sel], {}, weights[sel]), quantity=quantity
+                fits.setdefault(b, {})[base] = dataclasses.replace(
+                    fit_model(base, s[sel], y[sel], {}, weights[sel]), quantity=quantity
                 )
     if hyst is not None:
         hyst = dataclasses.replace(hyst, quantity=quantity)

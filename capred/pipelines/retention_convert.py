@@ -1,10 +1,12 @@
 """`capred retention-convert`: a fitted retention curve expressed in another retention model.
 
 The parameters of the target model are those that best reproduce the fitted curve over the suction range of
-the data it was fitted to: least squares on the fitted water quantity (S_R or θ) at the fit's own suctions
-and at a dense logarithmic grid between the smallest and largest of them, solved by capred's global retention
-fit (:func:`capred.fitting.retention_models.fit_model`). The misfit (RMSE and largest deviation, in the unit
-of the water quantity) says how well the target model can follow the curve; the converted fit is a fit like
+the data it was fitted to: least squares on the fitted water quantity (S_R or θ) over ln s between the
+smallest and largest of the data's suctions (Gauss-Legendre quadrature, split at a kink of the target such
+as Brooks-Corey's air entry, so that it is continuous), solved by capred's global retention fit
+(:func:`capred.fitting.retention_models.fit_model`) and polished across the kink. The misfit (RMSE and
+largest deviation at the data's own suctions and a logarithmic grid between, in the unit of the water
+quantity) says how well the target model can follow the curve; the converted fit is a fit like
 any other (callable, ``params`` by JSON name, a fits.json of the same shape as `capred retention` writes).
 
 It also serves the commands that need a given model: `skempton-b --retention FIT.json` takes Brooks-Corey's
@@ -16,12 +18,13 @@ from __future__ import annotations
 import dataclasses
 import json
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import FitError, OptionError
-from ..fitting.retention_models import MODELS, RetentionFit, fit_model
+from ..fitting.retention_models import MODELS, RetentionFit, fit_model, json_name, power_law_model
 from ..physics.shear import GAMMA_W
 from ..result import Options, input_file, num
 from .retention import RetentionResult
@@ -48,12 +51,13 @@ class ConvertOptions(Options):
     gamma_w : float
         Unit weight of water [N/m^3] (the heads in cm of the JSON).
     points : int
-        Points of the dense grid between the data's smallest and largest suction.
+        Quadrature nodes (per piece) and points of the misfit's grid between the data's smallest and largest
+        suction.
     """
 
     QUANTITIES = {"gamma_w": "gamma_w"}
 
-    to: str = "bc"
+    to: str = power_law_model().name
     model: str | None = None
     branch: str | None = None
     gamma_w: float = GAMMA_W
@@ -116,6 +120,19 @@ class RetentionConvertResult(RetentionResult):
         t = dict(super().tables())
         pts = t["points"]
         t["points"] = pts.rename(columns={c: c.replace(f"_{self.converted.model} [", "_converted [") for c in pts})
+        return t
+
+    def csv_tables(self) -> dict:
+        """The CSV tables of :meth:`tables` as column mappings (written without pandas).
+
+        Returns
+        -------
+        dict
+            File stem -> {``"name [unit]"``: array}.
+        """
+        t = dict(super().csv_tables())
+        tag = f"_{self.converted.model} ["
+        t["points"] = {c.replace(tag, "_converted ["): v for c, v in t["points"].items()}
         return t
 
     def season_rows(self) -> list[dict]:
@@ -251,11 +268,57 @@ def conversion_points(fit: RetentionFit, points: int = GRID_POINTS) -> np.ndarra
     return np.unique(np.concatenate([np.asarray(fit.suction_points, float), np.geomspace(lo, hi, points)]))
 
 
+@lru_cache(maxsize=8)
+def _gauss_legendre(points: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss-Legendre nodes and weights on [-1, 1] (computed once per size: an eigenvalue problem)."""
+    return np.polynomial.legendre.leggauss(points)
+
+
+def log_quadrature(lo: float, hi: float, points: int, breaks=()) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss-Legendre nodes and weights of the mean over ln s of [lo, hi], ``points`` nodes in each piece
+    between the ``breaks`` that lie inside.
+
+    Parameters
+    ----------
+    lo, hi : float
+        The suction range [Pa], 0 < lo < hi.
+    points : int
+        Nodes per piece [-].
+    breaks : sequence of float, optional
+        Suctions [Pa] where the integrand has a kink (Brooks-Corey's air entry): each piece is smooth, so the
+        rule integrates it to the order of a smooth function, and the integral is smooth in the break.
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        Nodes s_j [Pa] and weights w_j [-] (sum 1): Σ w_j g(s_j) ≈ (1/ln(hi/lo)) ∫ g(s) d ln s.
+
+    References
+    ----------
+    Abramowitz, M. & Stegun, I. A. (1964). Handbook of Mathematical Functions, eq. 25.4.29 (Gauss-Legendre).
+    """
+    x, w = _gauss_legendre(int(points))
+    a, b = np.log(lo), np.log(hi)
+    edges = [a, *sorted(np.log(t) for t in breaks if lo < t < hi), b]
+    nodes, weights = [], []
+    for e0, e1 in zip(edges[:-1], edges[1:]):
+        half = 0.5 * (e1 - e0)
+        nodes.append(np.exp(e0 + half * (x + 1.0)))
+        weights.append(w * half / (b - a))
+    return np.concatenate(nodes), np.concatenate(weights)
+
+
 def convert_fit(fit: RetentionFit, to: str, points: int = GRID_POINTS, fixed: dict | None = None):
     """The ``to`` model that best reproduces a fitted curve over its data's suction range.
 
-    Least squares on the fit's water quantity (S_R or θ) at :func:`conversion_points`, at the global optimum
-    inside the target's bounds (:func:`capred.fitting.retention_models.fit_model`).
+    Least squares in the logarithm of suction over the data's range: the target's parameters minimise the mean
+    of (y_to(s) − y_fit(s))² over ln s from the smallest to the largest suction of the data (S_R or θ), by
+    Gauss-Legendre quadrature (:func:`log_quadrature`, ``points`` nodes), at the global optimum inside the
+    target's bounds (:func:`capred.fitting.retention_models.fit_model` at the nodes, with their weights). A
+    target with a kink (Brooks-Corey's air entry s_e) is then polished with the quadrature split at the kink,
+    so that the objective is smooth in it and the air entry is a continuous function of the source curve, not
+    one of the nodes. The misfit is reported at the data's own suctions and a log grid between
+    (:func:`conversion_points`).
 
     Parameters
     ----------
@@ -264,14 +327,14 @@ def convert_fit(fit: RetentionFit, to: str, points: int = GRID_POINTS, fixed: di
     to : str
         Target model.
     points : int
-        Grid points between the extremes of the data's suctions.
+        Quadrature nodes (per piece) and grid points of the misfit between the extremes of the data's suctions.
     fixed : dict, optional
         Target parameters held (internal names, SI), e.g. ``{"y_r": 0, "y_s": 1}``.
 
     Returns
     -------
     (RetentionFit, dict)
-        The converted fit (standard errors not applicable: NaN) and the misfit: ``rmse`` and
+        The converted fit (standard errors not applicable: None) and the misfit: ``rmse`` and
         ``max_deviation`` [unit of the water quantity], ``at_suction_kPa`` where the deviation is largest,
         ``n_points``, ``suction_range_kPa``.
 
@@ -281,11 +344,18 @@ def convert_fit(fit: RetentionFit, to: str, points: int = GRID_POINTS, fixed: di
     Genuchten models. J. Irrig. Drain. Eng. 115(4):744-751, doi:10.1061/(ASCE)0733-9437(1989)115:4(744)
     (a closed-form correspondence; capred fits the target curve instead, over the data's range).
     """
+    lo, hi = fit.suction_range
+    fixed = dict(fixed or {})
+    nodes, w = log_quadrature(lo, hi, points)
+    y_nodes = fit.water(nodes)
     s = conversion_points(fit, points)
     y = fit.water(s)
-    if not np.all(np.isfinite(y)):
+    if not (np.all(np.isfinite(y)) and np.all(np.isfinite(y_nodes))):
         raise FitError(f"the {fit.model} curve is not finite over its suction range: nothing to convert")
-    new = fit_model(to, s, y, fixed)
+    new = fit_model(to, nodes, y_nodes, fixed, w * nodes.size)
+    kinks = [p.name for p in MODELS[to].parameters if p.kinks_at_data and p.name not in fixed]
+    if kinks:
+        new = _polish_across_kinks(new, fit, to, kinks, fixed, (lo, hi), int(points))
     d = new.water(s) - y
     i = int(np.argmax(np.abs(d)))
     misfit = {
@@ -297,10 +367,11 @@ def convert_fit(fit: RetentionFit, to: str, points: int = GRID_POINTS, fixed: di
     }
     unit = "m³/m³" if fit.quantity == "theta" else ""
     note = (
-        f"converted from the {fit.model} fit by least squares at {s.size} suctions from {s[0] * 1e-3:.4g} to "
-        f"{s[-1] * 1e-3:.4g} kPa (the data's own and a logarithmic grid): RMSE {misfit['rmse']:.3g}{unit and ' '}"
-        f"{unit}, largest deviation {misfit['max_deviation']:.3g}{unit and ' '}{unit} at {s[i] * 1e-3:.4g} kPa; "
-        "standard errors do not apply to a converted curve"
+        f"converted from the {fit.model} fit by least squares over ln s from {lo * 1e-3:.4g} to {hi * 1e-3:.4g} kPa "
+        f"(the data's range; Gauss-Legendre, {points} nodes): at the data's suctions and a log grid "
+        f"({s.size} suctions) RMSE {misfit['rmse']:.3g}{unit and ' '}{unit}, largest deviation "
+        f"{misfit['max_deviation']:.3g}{unit and ' '}{unit} at {s[i] * 1e-3:.4g} kPa; standard errors do not apply "
+        "to a converted curve"
     )
     scale = fit.params_si.get("y_s", 1.0) if fit.quantity == "theta" else 1.0
     warns = []
@@ -308,6 +379,12 @@ def convert_fit(fit: RetentionFit, to: str, points: int = GRID_POINTS, fixed: di
         warns.append(
             f"{to} cannot follow the {fit.model} curve closely: largest deviation {misfit['max_deviation']:.3g}"
             f"{unit and ' '}{unit} at {s[i] * 1e-3:.4g} kPa (above {MISFIT_WARNING:g} in S_R)"
+        )
+    for k in new.at_bounds():
+        name, factor, unit_k = json_name(k, fit.quantity)
+        warns.append(
+            f"{name} = {new.params_si[k] * factor:.6g}{'' if unit_k in ('-', '') else ' ' + unit_k} lies at its "
+            f"bound: the {to} curve closest to the {fit.model} curve wants it beyond the model's range"
         )
     new = dataclasses.replace(
         new,
@@ -321,6 +398,40 @@ def convert_fit(fit: RetentionFit, to: str, points: int = GRID_POINTS, fixed: di
         suction_points=fit.suction_points,
     )
     return new, misfit
+
+
+def _polish_across_kinks(new: RetentionFit, src: RetentionFit, to: str, kinks, fixed, span, points) -> RetentionFit:
+    """The global fit ``new`` polished with the quadrature split at the target's kinks (its air entry), by bounded
+    least squares from ``new``: the residuals are smooth in every parameter there, so the kink moves freely."""
+    from scipy.optimize import least_squares
+
+    model = MODELS[to]
+    free = [k for k in model.names if k not in fixed]
+    lo_b = np.array([new.bounds[k][0] for k in free])
+    hi_b = np.array([new.bounds[k][1] for k in free])
+
+    def residuals(x):
+        p = {**fixed, **dict(zip(free, x))}
+        nodes, w = log_quadrature(*span, points, [p[k] for k in kinks])
+        return np.sqrt(w) * (model.water(nodes, **p) - src.water(nodes))
+
+    x0 = np.clip([new.params_si[k] for k in free], lo_b, hi_b)
+    scale = np.where(np.abs(x0) > 0, np.abs(x0), 1.0)
+    sol = least_squares(residuals, x0, bounds=(lo_b, hi_b), x_scale=scale, xtol=1e-12, ftol=1e-14, gtol=1e-14)
+    if not np.sum(sol.fun**2) < np.sum(residuals(x0) ** 2):  # the global fit stands
+        return new
+    # least_squares keeps strictly inside the bounds: a parameter within 1e-12 of its scale of a bound is on it
+    x = np.where(sol.x - lo_b <= 1e-12 * scale, lo_b, np.where(hi_b - sol.x <= 1e-12 * scale, hi_b, sol.x))
+    found = {**fixed, **dict(zip(free, x))}
+    params = {k: float(found[k]) for k in model.names}
+    nodes, w = log_quadrature(*span, points, [params[k] for k in kinks])
+    y_src = src.water(nodes)
+    rss = float(np.sum(w * (model.water(nodes, **params) - y_src) ** 2)) * nodes.size
+    ybar = float(np.sum(w * y_src))
+    tss = float(np.sum(w * (y_src - ybar) ** 2)) * nodes.size
+    return dataclasses.replace(
+        new, params=params, rss=rss, r2=1.0 - rss / tss if tss > 0 else float("nan"), n=int(nodes.size)
+    )
 
 
 def convert_retention(fit, to: str, model: str | None = None, branch: str | None = None, points: int = GRID_POINTS):
@@ -416,30 +527,32 @@ def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W) -> tuple[float, fl
     University.
     """
     src, where, _ = load_retention_fit(path)
-    if src.model == "bc":
+    target = power_law_model()
+    air, index = target.power_law
+    if src.model == target.name:
         p = src.params_si
         notes = [
-            f"--retention {where}: Brooks-Corey fit taken as it is: s_e = {p['s_e'] * 1e-3:.4g} kPa, λ = {p['lam']:.4g}"
+            f"--retention {where}: {target.label} fit taken as it is: s_e = {p[air] * 1e-3:.4g} kPa, λ = {p[index]:.4g}"
         ]
         warns = []
         s_res = p["y_r"] / p["y_s"] if src.quantity == "theta" else p["y_r"]
         if s_res > 0.01 or (src.quantity == "S_R" and abs(p["y_s"] - 1) > 0.01):
             warns.append(
-                f"--retention {where}: the Brooks-Corey fit has S_res = {s_res:.3g}"
+                f"--retention {where}: the {target.label} fit has S_res = {s_res:.3g}"
                 + (f", S_s = {p['y_s']:.3g}" if src.quantity == "S_R" else "")
                 + "; Morvan et al.'s s = s_e S_r^(-1/λ) takes S_r itself (S_res = 0, S_s = 1)"
             )
-        return p["s_e"], p["lam"], notes, warns
+        return p[air], p[index], notes, warns
     sr = _as_saturation(src) if src.quantity == "theta" else src  # the curve in S_R: θ/θ_s for a θ fit
-    new, misfit = convert_fit(sr, "bc", fixed={"y_r": 0.0, "y_s": 1.0})
+    new, misfit = convert_fit(sr, target.name, fixed={"y_r": 0.0, "y_s": 1.0})
     p = new.params_si
     notes = [
-        f"--retention {where}: the {src.model} fit converted to Brooks-Corey with S_res = 0, S_s = 1 "
-        f"(Morvan et al.'s s = s_e S_r^(-1/λ)): s_e = {p['s_e'] * 1e-3:.4g} kPa, λ = {p['lam']:.4g}; misfit in S_R: "
+        f"--retention {where}: the {src.model} fit converted to {target.label} with S_res = 0, S_s = 1 "
+        f"(Morvan et al.'s s = s_e S_r^(-1/λ)): s_e = {p[air] * 1e-3:.4g} kPa, λ = {p[index]:.4g}; misfit in S_R: "
         f"RMSE {misfit['rmse']:.3g}, largest deviation {misfit['max_deviation']:.3g} at "
         f"{misfit['at_suction_kPa']:.4g} kPa"
     ]
-    return p["s_e"], p["lam"], notes, [f"--retention {where}: {w}" for w in new.warnings]
+    return p[air], p[index], notes, [f"--retention {where}: {w}" for w in new.warnings]
 
 
 class _SaturationView(RetentionFit):

@@ -14,13 +14,27 @@ import numpy as np
 
 from ..fitting.retention_models import MODELS
 from .sheets import Panel, Sheet
-from .style import LABEL, OKABE_ITO, literal, note, style, thin, untitled
+from .style import OKABE_ITO, literal, note, thin, untitled
 
 STRIP = 0.07  # width of the zero-suction strip, as a fraction of the axes
+#: colour and marker of the readings and curves of each branch (a model's line style comes from its registry entry)
+BRANCH_STYLES = {
+    "drying": dict(color=OKABE_ITO["orange"], marker="o"),
+    "wetting": dict(color=OKABE_ITO["blue"], marker="s"),
+}
+
+
+#: axis labels in plain text (no mathtext: the figure then never builds matplotlib's mathtext parser, a tenth
+#: of a second of every run); tick labels are plain numbers for the same reason (and read as kPa directly)
+AXIS_LABELS = {
+    "suction": "suction s [kPa]",
+    "S_R": "degree of saturation S_R [–]",
+    "theta": "volumetric water content θ [m³/m³]",
+}
 
 
 def model_key(name: str) -> str:
-    """Legend text of a retention model: its registry label and equation (mathtext).
+    """Legend text of a retention model: its registry label and equation (plain text).
 
     Parameters
     ----------
@@ -61,7 +75,7 @@ def plot_retention(ax, result):
     shown = ""
     for b, fits in result.fits.items():
         sel = result.branch == b
-        st = style(b)
+        st = BRANCH_STYLES.get(b, dict(color=OKABE_ITO["black"], marker="o"))
         keep, shown = thin(np.flatnonzero(sel & ~zero))
         ax.plot(
             result.suction[keep] / 1e3, result.water[keep], ls="none", ms=3.5, color=st["color"], marker=st["marker"]
@@ -90,17 +104,29 @@ def plot_retention(ax, result):
         )
     for m in models:
         handles.append(Line2D([], [], color="k", lw=1.1, **_curve_style(m, legend=True), label=model_key(m)))
-    ax.set_xscale("log")
+    _log_suction_axis(ax, lo / 1e3, hi / 1e3)
     if zero.any():  # leave the strip free of the suction scale
         ax.set_xlim(lo / 1e3 / (hi / lo) ** (STRIP / (1 - STRIP)), hi / 1e3)
         ax.add_patch(Rectangle((0, 0), STRIP, 1, transform=ax.transAxes, color="#e6e6e6", zorder=0, lw=0))
         ax.text(STRIP / 2, 0.02, "s = 0", transform=ax.transAxes, ha="center", va="bottom", fontsize=6, rotation=90)
     note(ax, shown)
-    ax.set_xlabel(LABEL["suction_s"])
-    ax.set_ylabel(LABEL["theta"] if result.quantity == "theta" else LABEL["S_R"])
+    ax.set_xlabel(AXIS_LABELS["suction"])
+    ax.set_ylabel(AXIS_LABELS["theta"] if result.quantity == "theta" else AXIS_LABELS["S_R"])
     ax.set_title("Water retention")
     ax.legend(handles=handles, ncol=2 if len(models) > 3 else 1)
     return ax
+
+
+def _log_suction_axis(ax, lo: float, hi: float) -> None:
+    """A logarithmic suction axis from ``lo`` to ``hi`` [kPa] with plain-number tick labels (0.1, 1, 10; and
+    2, 5 between the decades when the axis spans less than two decades), without mathtext."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+    ax.set_xscale("log")
+    if hi / lo < 100:
+        ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    ax.xaxis.set_minor_formatter(NullFormatter())
 
 
 def _curve_style(model: str, legend: bool = False) -> dict:
@@ -204,9 +230,9 @@ def plot_conversion(ax, result):
     pts = np.asarray(src.suction_points, float)
     ax.plot(pts / 1e3, src.water(pts), ls="none", marker="|", ms=5, color="0.4", label="suctions of the data")
     ax.axvspan(lo / 1e3, hi / 1e3, color="0.92", lw=0, zorder=0)
-    ax.set_xscale("log")
-    ax.set_xlabel(LABEL["suction_s"])
-    ax.set_ylabel(LABEL["theta"] if result.quantity == "theta" else LABEL["S_R"])
+    _log_suction_axis(ax, lo / 1e4, hi / 1e2)
+    ax.set_xlabel(AXIS_LABELS["suction"])
+    ax.set_ylabel(AXIS_LABELS["theta"] if result.quantity == "theta" else AXIS_LABELS["S_R"])
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.22), ncol=2, fontsize=7, frameon=False)
     return ax
 
@@ -226,8 +252,8 @@ def plot_conversion_misfit(ax, result):
     s = np.geomspace(lo, hi, 400)
     ax.plot(s / 1e3, new.water(s) - src.water(s), color=OKABE_ITO["vermillion"], lw=1.2)
     ax.axhline(0.0, color="0.5", lw=0.6)
-    ax.set_xscale("log")
-    ax.set_xlabel(LABEL["suction_s"])
+    _log_suction_axis(ax, lo / 1e3, hi / 1e3)
+    ax.set_xlabel(AXIS_LABELS["suction"])
     unit = "m³/m³" if result.quantity == "theta" else "-"
     ax.set_ylabel(f"converted − source [{unit}]")
     m = result.misfit
