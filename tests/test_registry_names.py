@@ -35,8 +35,6 @@ REGISTRIES = {
 #: the entry when its site moves into the registry entry.
 ALLOWED = {
     # the retention pipelines pick van Genuchten / Brooks-Corey by name (default fits, the --retention reader)
-    "pipelines/retention.py": {"vg", "vg_m_free", "bc"},
-    "pipelines/retention_convert.py": {"bc"},
     # shear reads a fits.json of vg / bc into van Genuchten or Brooks-Corey parameters of the models
     "pipelines/shear.py": {"vg", "vg_m_free", "bc"},
     "pipelines/shear_analysis.py": {"vg"},

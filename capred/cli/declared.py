@@ -440,7 +440,7 @@ SNAPSHOT = {
                 "quantity": None,
                 "unit": "",
                 "range": "",
-                "text": "Points of the dense grid between the data's smallest and largest suction.",
+                "text": "Quadrature nodes (per piece) and points of the misfit's grid between the data's smallest and largest suction.",
                 "default": "[default: 100]",
                 "type": "int",
                 "option": "--points",
