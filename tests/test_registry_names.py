@@ -34,7 +34,6 @@ REGISTRIES = {
 #: short as true: `test_allow_list_is_as_short_as_true` fails on an entry that no longer special-cases, so remove
 #: the entry when its site moves into the registry entry.
 ALLOWED = {
-    # the retention pipelines pick van Genuchten / Brooks-Corey by name (default fits, the --retention reader)
     # shear reads a fits.json of vg / bc into van Genuchten or Brooks-Corey parameters of the models
     "pipelines/shear.py": {"vg", "vg_m_free", "bc"},
     "pipelines/shear_analysis.py": {"vg"},
