@@ -48,7 +48,13 @@ _NOT_PLAIN = (
 
 
 def read_table_blocks(
-    source, schema: list[Column], *, ignore_columns=(), limits: ReadLimits | None = None, block_bytes: int | None = None
+    source,
+    schema: list[Column],
+    *,
+    ignore_columns=(),
+    limits: ReadLimits | None = None,
+    block_bytes: int | None = None,
+    select=None,
 ) -> Iterator[Table]:
     """Read ``source`` against ``schema`` one block of lines at a time.
 
@@ -64,12 +70,17 @@ def read_table_blocks(
         Reading limits (see read_table).
     block_bytes : int, optional
         Bytes of text per block [B] (default :data:`BLOCK_BYTES`).
+    select : callable, optional
+        ``select(k)``: whether to parse the block of index ``k`` (from 0); a block not selected is yielded as
+        None, unparsed, so that processes that share a file's blocks see the same indices
+        (capred.pipelines.bridge_blocks). Default: every block. A note or warning is then not repeated among
+        the selected blocks only.
 
     Yields
     ------
-    Table
+    Table or None
         One per block, in file order: its columns in SI, its rows' own line
-        numbers, its problems. The first block carries the metadata above
+        numbers, its problems (None for a block not selected). The first block carries the metadata above
         the header; a note or warning already given by an earlier block is
         not repeated.
 
@@ -100,8 +111,17 @@ def read_table_blocks(
         return
     seen: set[str] = set()
     prefix: list[str] = []  # the header line (and units row) that every later block repeats
+    index = -1
     for first_line, text in _pieces(p, block_bytes):
         tables = []
+        if first_line != 1 and not text.strip():
+            continue
+        index += 1
+        if select is not None and not select(index):
+            if first_line == 1:  # its header (and units row) is what every later block repeats
+                prefix = _prefix(text, _grid_table(_csv_grid(str(path), _split_head(text)[0]), src, schema))
+            yield None
+            continue
         if first_line == 1:
             # the head (header, metadata, the first rows) read as usual, the rest of the piece by the fast path
             # when it can take it, joined as one block (the blocks, and so every number computed on them, stay

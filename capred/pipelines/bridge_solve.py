@@ -316,13 +316,31 @@ class HeadedSpool:
     """A :class:`capred.result.Spool` of JSON-keyed columns whose blocks the CSV writer reads under
     ``name [unit]`` headers (the spool itself is not copied)."""
 
-    def __init__(self, spool) -> None:
-        self.spool = spool
+    def __init__(self, spool, encoded=None) -> None:
+        self.spool, self.encoded = spool, encoded
 
     def blocks(self):
         """The spool's blocks with CSV headers."""
         for block in self.spool.blocks():
             yield with_csv_headers(block)
+
+    def csv_pieces(self, dialect: str):
+        """The CSV text of every block, already written by the run's processes (capred.pipelines.bridge_blocks),
+        header first: the bytes :func:`capred.io.writers.write_csv_file` writes of :meth:`blocks`; None where
+        the text was not written ahead (one process) or is wanted in another dialect than the standard one.
+
+        Parameters
+        ----------
+        dialect : str
+            The CSV dialect asked for.
+
+        Returns
+        -------
+        iterator of bytes or None
+        """
+        if self.encoded is None or dialect != "standard":
+            return None
+        return self.encoded.csv_pieces()
 
 
 def with_csv_headers(table):
@@ -741,6 +759,8 @@ def _in_parallel(solver, *columns, workers: int | None = None):
     any number of processes. A part holds at least _PARALLEL_ROWS / 2 rows (fewer rows: fewer processes).
     """
     n = columns[0].size
+    if _ONE_PROCESS:  # a process of a run spread block by block (capred.pipelines.bridge_blocks): its block whole
+        return solver(*columns)
     wanted = _RUN_PROCESSES if _IN_RUN and workers is None else processes(workers)
     k = max(1, min(wanted, n // max(1, _PARALLEL_ROWS // 2)))
     if k == 1:
@@ -912,6 +932,9 @@ def _read_exactly(fd: int, size: int) -> bytes | None:
 _HELPERS: list = []
 _RUN_PROCESSES = 1
 _IN_RUN = False
+#: True while a run spreads whole blocks over its processes (capred.pipelines.bridge_blocks): each block is then
+#: solved in the one process that read it
+_ONE_PROCESS = False
 
 
 class helper:
