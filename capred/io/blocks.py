@@ -46,6 +46,9 @@ _NOT_PLAIN = (
     b"\xe2\x80\xa9",
 )
 
+#: the markers of _NOT_PLAIN that are ASCII bytes
+_NOT_PLAIN_ASCII = tuple(m for m in _NOT_PLAIN if m.isascii())
+
 
 def read_table_blocks(
     source,
@@ -351,8 +354,10 @@ def _plain_utf8(path: Path, chunk: int = 2**22) -> bool:
     tail = b""
     with open(path, "rb") as fh:
         while data := fh.read(chunk):
-            # a marker split between two chunks is found at the seam (markers are at most 3 bytes)
-            if any(m in data or m in tail + data[:2] for m in _NOT_PLAIN):
+            # a marker split between two chunks is found at the seam (markers are at most 3 bytes); an ASCII chunk
+            # holds none of the multi-byte markers (each scan of those costs ~25x a one-byte scan)
+            markers = _NOT_PLAIN_ASCII if data.isascii() else _NOT_PLAIN
+            if any(m in data for m in markers) or any(m in tail + data[:2] for m in _NOT_PLAIN):
                 return False
             if not (data.isascii() and not decoder.getstate()[0]):  # ASCII after a whole character is UTF-8
                 try:

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import CapredError
 from ..io import blocks as blocks_module
 from ..io.blocks import read_table_blocks
 from ..progress import task
@@ -256,58 +257,112 @@ def _solve_in_blocks(source, opt: pb.BridgeOptions):
 
 
 def _solve_spread(source, opt: pb.BridgeOptions, k: int):
-    """Read, parse and solve the blocks of ``source`` on ``k`` processes: block ``i`` in process ``i % k`` (this
-    process solves blocks 0, k, 2k, ...; forked workers the others), each block whole, as one process would
-    solve it; the results are gathered here in file order. The result (a :class:`BridgeBlocks`) then writes
-    the CSV and JSON text of its blocks on ``k`` processes too, when its document is asked for.
+    """Read, parse and solve the blocks of ``source`` on ``k`` processes (this one and k - 1 forked workers),
+    each block whole, as one process would solve it, and gather the results in file order. The result (a
+    :class:`BridgeBlocks`) then writes the CSV and JSON text of its blocks on ``k`` processes too, when its
+    document is asked for (:func:`_encode_blocks`).
 
-    Each worker reads the file itself (capred.io.blocks.read_table_blocks with ``select``: only its own blocks
-    are parsed), so nothing but the results crosses between processes. The result is the same, to the bit, as
-    that of one process: the same blocks, each solved by the same operations.
+    Each process reads the file itself (capred.io.blocks.read_table_blocks with ``select``): a block is parsed
+    and solved by the first process to reach it (:class:`_Claims`; block 0, which names the run, by this
+    one), so a process slowed by other work takes fewer blocks. Each process keeps its blocks' output columns
+    in a file of its own (:class:`SpreadSpool`); only their places and statuses cross between processes. The
+    result is the same, to the bit, as that of one process: the same blocks, each solved by the same
+    operations.
 
-    Returns None (nothing done: the caller runs the usual path, which reports any problem) when a worker
-    fails or finds a problem in its blocks, or fork is missing.
+    Returns None (nothing kept: the caller runs the usual path, which reports any problem as one process
+    does) when a block has a problem or a process fails.
     """
+    import tempfile
+
+    size = Path(source).stat().st_size
+    claims = _Claims(2 * (size // blocks_module.BLOCK_BYTES) + 8)  # more than the blocks of the file
+    files = [tempfile.TemporaryFile() for _ in range(k)]
     workers: list[_Worker] = []
-    spool = Spool()
     out = None
     try:
         for j in range(1, k):
-            workers.append(_Worker(source, opt, j, k))
-        out = _gather(source, opt, k, workers, spool)
-    except _WorkerFailed:
+            workers.append(_Worker(source, opt, j, claims, files[j]))
+        out = _gather(source, opt, k, workers, claims, files)
+    except (_WorkerFailed, CapredError):
         out = None
     finally:
         for w in workers:
             w.close()
+        claims.close()
         if not isinstance(out, BridgeBlocks):
-            spool.close()
+            for f in files:
+                f.close()
     return out
 
 
 class _WorkerFailed(Exception):
-    """A worker could not give one of its blocks (a problem in it, or the worker failed)."""
+    """A process could not give one of its blocks (a problem in it, or the process failed)."""
 
 
-_END = object()
+class _Claims:
+    """Which process takes each block: the first to ask for it. One byte per block (0: free, else the
+    process's number + 1) in memory shared by the forked processes, changed under a POSIX record lock (held
+    per process). A block beyond the table is the first process's."""
+
+    def __init__(self, n: int) -> None:
+        import mmap
+        import tempfile
+
+        self.map = mmap.mmap(-1, max(1, n))
+        self.map[0] = 1  # block 0 names the run: the first process's
+        self._lock = tempfile.TemporaryFile()
+
+    def take(self, i: int, me: int) -> bool:
+        """True when block ``i`` is (now) process ``me``'s."""
+        import fcntl
+
+        if i >= len(self.map):
+            return me == 0
+        fcntl.lockf(self._lock, fcntl.LOCK_EX)
+        try:
+            if self.map[i] == 0:
+                self.map[i] = me + 1
+            return self.map[i] == me + 1
+        finally:
+            fcntl.lockf(self._lock, fcntl.LOCK_UN)
+
+    def close(self) -> None:
+        self.map.close()
+        self._lock.close()
 
 
-def _spread_blocks(source, j: int, k: int):
-    """The blocks of ``source`` that process ``j`` of ``k`` parses (every other one is None)."""
-    return read_table_blocks(source, pb.SOLVE_SCHEMA, select=lambda i: i % k == j)
+def _write_all(fd: int, data: bytes) -> None:
+    import os
+
+    view = memoryview(data)
+    while view:
+        view = view[os.write(fd, view) :]
 
 
-def _solved(table, opt):
-    """What the gathering process keeps of one solved block."""
+def _solve_block(table, opt, fd: int, offset: int):
+    """Solve one block, append its output columns (pickled) to file ``fd`` at ``offset``: (the result, what
+    the gathering process keeps of it: status, ratio, notes, warnings, (offset, bytes, rows))."""
+    import pickle
+
     part = pb.solve_table(table, opt)
-    return part, (part.status, part.inputs_si["ratio"], part._cols(), part.notes, part.warnings)
+    data = pickle.dumps(part._cols(), protocol=pickle.HIGHEST_PROTOCOL)
+    _write_all(fd, data)
+    return part, (
+        part.status,
+        part.inputs_si["ratio"],
+        part.notes,
+        part.warnings,
+        (offset, len(data), part.status.size),
+    )
 
 
 class _Worker:
-    """A forked process that reads, parses and solves blocks j, j + k, j + 2k, ... of the file and sends each
-    one's result back through a pipe (in order; ``None`` at the end, ``"fail"`` when it cannot go on)."""
+    """A forked process that reads, parses and solves the blocks it claims, keeps their columns in its own file
+    and sends, block by block, what the gathering process keeps (then ``None``; ``"fail"`` when it stops)."""
 
-    def __init__(self, source, opt, j: int, k: int) -> None:
+    live_fds: list = []
+
+    def __init__(self, source, opt, me: int, claims: _Claims, f) -> None:
         import gc
         import os
 
@@ -324,36 +379,42 @@ class _Worker:
                         os.close(fd)
                     except OSError:
                         pass
-                self._serve(source, opt, j, k, write_end)
+                self._serve(source, opt, me, claims, f.fileno(), write_end)
                 code = 0
             finally:
                 os._exit(code)
         os.close(write_end)
         _Worker.live_fds.append(self._from_child)
 
-    live_fds: list = []
-
     @staticmethod
-    def _serve(source, opt, j, k, outbox) -> None:
+    def _serve(source, opt, me, claims, fd, outbox) -> None:
         pb._ONE_PROCESS = True
+        offset = 0
         try:
-            for table in _spread_blocks(source, j, k):
+            blocks = read_table_blocks(source, pb.SOLVE_SCHEMA, select=lambda i: claims.take(i, me))
+            for i, table in enumerate(blocks):
                 if table is not None:
-                    pb._send(outbox, _solved(table, opt)[1])
+                    _, kept = _solve_block(table, opt, fd, offset)
                     del table
+                    offset += kept[-1][1]
+                    pb._send(outbox, (i, *kept))
             pb._send(outbox, None)
-        except Exception:  # a problem in a block (or anything else): the gathering process runs the usual path
+        except Exception:  # a problem in a block (or anything else): the usual path runs and reports it
             pb._send(outbox, "fail")
 
-    def result(self):
-        """The next block's result; raises _WorkerFailed when the worker failed or is gone."""
-        try:
-            got = pb._receive(self._from_child)
-        except (OSError, EOFError):
-            got = "fail"
-        if got is None or isinstance(got, str):
-            raise _WorkerFailed
-        return got
+    def results(self) -> list:
+        """Every message of the worker up to its end; raises _WorkerFailed when it failed or is gone."""
+        out = []
+        while True:
+            try:
+                got = pb._receive(self._from_child)
+            except (OSError, EOFError):
+                got = "fail"
+            if got is None:
+                return out
+            if isinstance(got, str):
+                raise _WorkerFailed
+            out.append(got)
 
     def close(self) -> None:
         import gc
@@ -376,49 +437,139 @@ class _Worker:
                 gc.unfreeze()
 
 
-def _gather(source, opt, k: int, workers: list, spool: Spool):
-    """This process's share of a spread run (blocks 0, k, 2k, ...) and the workers' results, in file order."""
+def _gather(source, opt, k: int, workers: list, claims: _Claims, files: list):
+    """This process's blocks and the workers' results, in file order."""
     first = inputs = head = path = None
-    status, ratio = [], []
-    notes, warnings = {}, {}
+    kept: dict[int, tuple] = {}
+    offset, n = 0, 0
     size = Path(source).stat().st_size
     pb._ONE_PROCESS = True
     try:
         with task("solving bridges, block by block", total=-(-size // blocks_module.BLOCK_BYTES)) as advance:
-            for i, table in enumerate(_spread_blocks(source, 0, k)):
+            blocks = read_table_blocks(source, pb.SOLVE_SCHEMA, select=lambda i: claims.take(i, 0))
+            for i, table in enumerate(blocks):
+                n = i + 1
                 if table is not None:
-                    part, got = _solved(table, opt)
+                    part, got = _solve_block(table, opt, files[0].fileno(), offset)
                     if i == 0:
                         first, inputs, path = part, [input_file(source, table)], str(table.path)
                         head = {key: v[: pb.HEAD_ROWS] for key, v in part.inputs_si.items() if key != "ratio"}
                     del table, part
-                else:
-                    got = workers[i % k - 1].result()
-                st, rt, cols, block_notes, block_warnings = got
-                spool.append(cols)
-                status.append(st)
-                ratio.append(rt)
-                notes.update(dict.fromkeys(block_notes))
-                warnings.update(dict.fromkeys(block_warnings))
-                del got, cols
+                    offset += got[-1][1]
+                    kept[i] = (0, *got)
                 advance(1)
     finally:
         pb._ONE_PROCESS = False
-    if len(status) == 1:  # one block: the ordinary result
+    for j, w in enumerate(workers, start=1):
+        for i, *got in w.results():
+            kept[i] = (j, *got)
+    if sorted(kept) != list(range(n)):  # pragma: no cover - a block nobody solved
+        raise _WorkerFailed
+    if n == 1:  # one block: the ordinary result
         first.inputs = inputs
         return first
+    notes, warnings = {}, {}
+    for i in range(n):
+        notes.update(dict.fromkeys(kept[i][3]))
+        warnings.update(dict.fromkeys(kept[i][4]))
+    spool = SpreadSpool(files, [(kept[i][0], *kept[i][5]) for i in range(n)])
     res = BridgeBlocks(
         path,
-        np.concatenate(status).astype(np.int8),
-        {"ratio": np.concatenate(ratio), **head},
+        np.concatenate([kept[i][1] for i in range(n)]).astype(np.int8),
+        {"ratio": np.concatenate([kept[i][2] for i in range(n)]), **head},
         spool,
         opt,
         inputs,
         list(notes),
         list(warnings),
     )
-    res.processes, res.n_blocks = k, len(status)
+    res.processes, res.n_blocks = k, n
     return res
+
+
+class SpreadSpool:
+    """The output columns of a spread run, block by block in the files of the processes that solved them: what
+    a :class:`capred.result.Spool` offers (``n``, ``block``, ``blocks``, ``columns``, ``close``).
+
+    Parameters
+    ----------
+    files : list of file
+        The processes' files (temporary, unnamed).
+    index : list of tuple
+        Per block in order: (file number, offset [B], size [B], rows).
+    """
+
+    def __init__(self, files: list, index: list) -> None:
+        import weakref
+
+        self._files, self._index = files, index
+        self._closer = weakref.finalize(self, _close_all, list(files))
+        self._cached: tuple[int, dict] | None = None
+        self.n = sum(rows for *_, rows in index)
+
+    def block(self, k: int) -> dict:
+        """The columns of block ``k`` (the last block read is kept).
+
+        Parameters
+        ----------
+        k : int
+            Index of the block, from 0.
+
+        Returns
+        -------
+        dict
+            Column name -> array.
+        """
+        import os
+        import pickle
+
+        if self._cached is not None and self._cached[0] == k:
+            return self._cached[1]
+        f, offset, size, _ = self._index[k]
+        block = pickle.loads(os.pread(self._files[f].fileno(), size, offset))
+        self._cached = (k, block)
+        return block
+
+    def blocks(self):
+        """The blocks' column dicts, in order."""
+        for k in range(len(self._index)):
+            yield self.block(k)
+
+    def columns(self, start: int, stop: int) -> dict:
+        """Every column of rows ``start`` .. ``stop - 1`` (possibly across blocks).
+
+        Parameters
+        ----------
+        start, stop : int
+            The rows, ``start`` included, ``stop`` excluded.
+
+        Returns
+        -------
+        dict
+            Column name -> array.
+        """
+        parts, first = [], 0
+        for k, (*_, rows) in enumerate(self._index):
+            lo, hi = max(start, first), min(stop, first + rows)
+            if lo < hi:
+                block = self.block(k)
+                parts.append({name: v[lo - first : hi - first] for name, v in block.items()})
+            first += rows
+            if first >= stop:
+                break
+        if len(parts) == 1:
+            return parts[0]
+        names = list(self.block(0)) if self._index else []
+        return {name: np.concatenate([p[name] for p in parts]) if parts else np.empty(0) for name in names}
+
+    def close(self) -> None:
+        """Close the files (unnamed: closing them frees their disk space)."""
+        self._closer()
+
+
+def _close_all(files) -> None:
+    for f in files:
+        f.close()
 
 
 class _EncodedRows(pb.ColumnRows):
@@ -449,62 +600,92 @@ class _Encoded:
     in temporary files: (file, CSV offset, CSV bytes, JSON offset, JSON bytes) per block."""
 
     def __init__(self, files, index) -> None:
+        import weakref
+
         self.files, self.index = files, index
-
-    def _read(self, f, offset: int, size: int) -> bytes:
-        import os
-
-        return os.pread(f.fileno(), size, offset)
+        self._closer = weakref.finalize(self, _close_all, list(files))
 
     def csv_pieces(self):
         """The CSV text, block by block (bytes)."""
+        import os
+
         for f, c_off, c_len, _, _ in self.index:
-            yield self._read(f, c_off, c_len)
+            yield os.pread(self.files[f].fileno(), c_len, c_off)
 
     def json_pieces(self):
         """The JSON rows, block by block (bytes: objects joined by commas; empty for a block of no rows)."""
+        import os
+
         for f, _, _, j_off, j_len in self.index:
-            yield self._read(f, j_off, j_len)
+            yield os.pread(self.files[f].fileno(), j_len, j_off)
 
 
-def _encode_block(block: dict, first: bool) -> tuple[bytes, bytes]:
-    """The CSV text (with the header for the first block) and the JSON rows of one spool block: the bytes the
-    writers write of it (capred.io.writers.write_csv_file, capred.io.writers.stream_json)."""
-    import io
+class _Sink:
+    """A binary file's ``write`` onto a file descriptor, unbuffered, counting the bytes; ``skip_line``: the
+    text up to its first line end is left out (the CSV header of a block after the first)."""
 
+    def __init__(self, fd: int, skip_line: bool = False) -> None:
+        self.fd, self.skip, self.size = fd, skip_line, 0
+
+    def write(self, data: bytes) -> None:
+        if self.skip:
+            cut = data.find(b"\n")
+            if cut < 0:
+                return
+            data, self.skip = data[cut + 1 :], False
+        _write_all(self.fd, data)
+        self.size += len(data)
+
+
+def _encode_block(block: dict, first: bool, fd: int) -> tuple[int, int]:
+    """Append to file ``fd`` the CSV text (with the header for the first block) and the JSON rows of one spool
+    block: the bytes the writers write of it (capred.io.writers.write_csv_file, and stream_json of
+    :meth:`capred.pipelines.bridge_solve.ColumnRows.json_chunks`, chunk by chunk); (CSV bytes, JSON bytes)."""
     from ..io.writers import encode_rows, write_csv_file
 
-    buf = io.BytesIO()
-    write_csv_file(buf, pb.with_csv_headers(block), "standard")
-    csv = buf.getvalue()
-    if not first:
-        csv = csv[csv.index(b"\n") + 1 :]
-    return csv, encode_rows(pb._json_chunk_rows(block))
+    csv = _Sink(fd, skip_line=not first)
+    write_csv_file(csv, pb.with_csv_headers(block), "standard")
+    js = _Sink(fd)
+    n = len(block["status"])
+    for start in range(0, n, _JSON_ROWS):  # as ColumnRows.json_chunks: memory bounded by one chunk of rows
+        data = encode_rows(pb._json_chunk_rows({key: v[start : start + _JSON_ROWS] for key, v in block.items()}))
+        if data:
+            js.write(data if js.size == 0 else b"," + data)
+    return csv.size, js.size
 
 
-def _encode_share(spool: Spool, j: int, k: int, n_blocks: int, f) -> list[tuple[int, int, int, int, int]]:
-    """Blocks j, j + k, ... of the spool written into file ``f``: (block, CSV offset, bytes, JSON offset, bytes)."""
+#: rows per chunk of JSON text (as capred.pipelines.bridge_solve.ColumnRows.json_chunks)
+_JSON_ROWS = 2000
+
+
+def _encode_share(spool, me: int, n_blocks: int, claims: _Claims, fd: int) -> list[tuple[int, int, int, int, int]]:
+    """The blocks process ``me`` claims, their text appended to file ``fd``: (block, CSV offset, bytes, JSON
+    offset, bytes) each."""
     out, offset = [], 0
-    for i in range(j, n_blocks, k):
-        csv, js = _encode_block(spool.block(i), i == 0)
-        f.write(csv)
-        f.write(js)
-        out.append((i, offset, len(csv), offset + len(csv), len(js)))
-        offset += len(csv) + len(js)
-    f.flush()
+    for i in range(n_blocks):
+        if not claims.take(i, me):
+            continue
+        csv, js = _encode_block(spool.block(i), i == 0, fd)
+        out.append((i, offset, csv, offset + csv, js))
+        offset += csv + js
     return out
 
 
-def _encode_blocks(spool: Spool, k: int, n_blocks: int):
-    """The CSV and JSON text of every block of ``spool``, written on ``k`` processes (this one and k - 1 forked);
-    None when a process failed (the writers then write from the spool, in one process)."""
+def _encode_blocks(spool, k: int, n_blocks: int):
+    """The CSV and JSON text of every block of ``spool``, written on ``k`` processes (this one and k - 1 forked,
+    each block by the first to reach it); None when a process failed (the writers then write from the spool,
+    in one process)."""
     import gc
     import os
     import tempfile
 
     k = max(1, min(k, n_blocks))
     files = [tempfile.TemporaryFile() for _ in range(k)]
+    claims = _Claims(n_blocks)
+    claims.map[0] = 0  # any process may take the first block here
     children = []
+    index: dict[int, tuple] = {}
+    ok = True
     gc.freeze()
     try:
         for j in range(1, k):
@@ -513,19 +694,18 @@ def _encode_blocks(spool: Spool, k: int, n_blocks: int):
             if pid == 0:
                 code = 1
                 try:
+                    gc.disable()
                     os.close(read_end)
                     for _, fd in children:
                         os.close(fd)
-                    pb._send(write_end, _encode_share(spool, j, k, n_blocks, files[j]))
+                    pb._send(write_end, _encode_share(spool, j, n_blocks, claims, files[j].fileno()))
                     code = 0
                 finally:
                     os._exit(code)
             os.close(write_end)
             children.append((pid, read_end))
-        index = {}
-        for i, *where in _encode_share(spool, 0, k, n_blocks, files[0]):
-            index[i] = (files[0], *where)
-        ok = True
+        for i, *where in _encode_share(spool, 0, n_blocks, claims, files[0].fileno()):
+            index[i] = (0, *where)
         for j, (pid, fd) in enumerate(children, start=1):
             try:
                 got = pb._receive(fd)
@@ -535,7 +715,7 @@ def _encode_blocks(spool: Spool, k: int, n_blocks: int):
                 ok = False
             else:
                 for i, *where in got:
-                    index[i] = (files[j], *where)
+                    index[i] = (j, *where)
     finally:
         for pid, fd in children:
             os.close(fd)
@@ -543,9 +723,9 @@ def _encode_blocks(spool: Spool, k: int, n_blocks: int):
                 os.waitpid(pid, 0)
             except OSError:
                 pass
+        claims.close()
         gc.unfreeze()
     if not ok or sorted(index) != list(range(n_blocks)):
-        for f in files:
-            f.close()
+        _close_all(files)
         return None
     return _Encoded(files, [index[i] for i in range(n_blocks)])
