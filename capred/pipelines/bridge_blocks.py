@@ -275,14 +275,16 @@ def _solve_spread(source, opt: pb.BridgeOptions, k: int):
     import tempfile
 
     size = Path(source).stat().st_size
-    claims = _Claims(2 * (size // blocks_module.BLOCK_BYTES) + 8)  # more than the blocks of the file
+    # four blocks a process at least (down to a quarter of the usual block): many processes share the file evenly
+    block_bytes = min(blocks_module.BLOCK_BYTES, max(size // (4 * k), blocks_module.BLOCK_BYTES // 4))
+    claims = _Claims(2 * (size // block_bytes) + 8)  # more than the blocks of the file
     files = [tempfile.TemporaryFile() for _ in range(k)]
     workers: list[_Worker] = []
     out = None
     try:
         for j in range(1, k):
-            workers.append(_Worker(source, opt, j, claims, files[j]))
-        out = _gather(source, opt, k, workers, claims, files)
+            workers.append(_Worker(source, opt, j, claims, files[j], block_bytes))
+        out = _gather(source, opt, k, workers, claims, files, block_bytes)
     except (_WorkerFailed, CapredError):
         out = None
     finally:
@@ -362,7 +364,7 @@ class _Worker:
 
     live_fds: list = []
 
-    def __init__(self, source, opt, me: int, claims: _Claims, f) -> None:
+    def __init__(self, source, opt, me: int, claims: _Claims, f, block_bytes: int) -> None:
         import gc
         import os
 
@@ -379,7 +381,7 @@ class _Worker:
                         os.close(fd)
                     except OSError:
                         pass
-                self._serve(source, opt, me, claims, f.fileno(), write_end)
+                self._serve(source, opt, me, claims, f.fileno(), write_end, block_bytes)
                 code = 0
             finally:
                 os._exit(code)
@@ -387,11 +389,13 @@ class _Worker:
         _Worker.live_fds.append(self._from_child)
 
     @staticmethod
-    def _serve(source, opt, me, claims, fd, outbox) -> None:
+    def _serve(source, opt, me, claims, fd, outbox, block_bytes) -> None:
         pb._ONE_PROCESS = True
         offset = 0
         try:
-            blocks = read_table_blocks(source, pb.SOLVE_SCHEMA, select=lambda i: claims.take(i, me))
+            blocks = read_table_blocks(
+                source, pb.SOLVE_SCHEMA, block_bytes=block_bytes, select=lambda i: claims.take(i, me)
+            )
             for i, table in enumerate(blocks):
                 if table is not None:
                     _, kept = _solve_block(table, opt, fd, offset)
@@ -437,7 +441,7 @@ class _Worker:
                 gc.unfreeze()
 
 
-def _gather(source, opt, k: int, workers: list, claims: _Claims, files: list):
+def _gather(source, opt, k: int, workers: list, claims: _Claims, files: list, block_bytes: int):
     """This process's blocks and the workers' results, in file order."""
     first = inputs = head = path = None
     kept: dict[int, tuple] = {}
@@ -445,8 +449,10 @@ def _gather(source, opt, k: int, workers: list, claims: _Claims, files: list):
     size = Path(source).stat().st_size
     pb._ONE_PROCESS = True
     try:
-        with task("solving bridges, block by block", total=-(-size // blocks_module.BLOCK_BYTES)) as advance:
-            blocks = read_table_blocks(source, pb.SOLVE_SCHEMA, select=lambda i: claims.take(i, 0))
+        with task("solving bridges, block by block", total=-(-size // block_bytes)) as advance:
+            blocks = read_table_blocks(
+                source, pb.SOLVE_SCHEMA, block_bytes=block_bytes, select=lambda i: claims.take(i, 0)
+            )
             for i, table in enumerate(blocks):
                 n = i + 1
                 if table is not None:
