@@ -1,10 +1,18 @@
-"""`capred bridge solve` on a long file: read, solved and kept block by block, so memory stays flat (issue 20).
+"""`capred bridge solve` on a long file: read, solved and kept block by block, so memory stays flat (issue 20), and
+spread over the processes the run may use, reading, parsing and writing included (issue 31).
 
 Rows of ``bridge solve`` are independent: each block of lines (capred.io.blocks)
 is solved as a table of its own and its output columns go to a
 :class:`capred.result.Spool` on disk; only the status and the radius ratio of
 every row stay in memory. A file of one block gives the ordinary
 :class:`capred.pipelines.bridge.BridgeResult`.
+
+On several processes (``--workers N`` / ``CAPRED_PROCESSES=N``, any N) each process reads the file, and
+parses and solves the blocks it is first to reach; each keeps its blocks' output columns in a file of its own
+(:class:`SpreadSpool`). When the document is written, the processes again share the blocks, writing their CSV
+and JSON text ahead, so the writers only copy it in order. The files are byte for byte those of one process
+(the same blocks, each solved by the same operations, written by the same functions); a problem in any block
+makes the run start again on the usual path, which reports it as one process does.
 """
 
 from __future__ import annotations

@@ -82,7 +82,9 @@ class BridgeOptions(Options):
         default): the row's ``contact_angle`` (one angle on both particles).
     workers : int, optional
         Processes that solve the rows (``--workers``); None: ``CAPRED_PROCESSES`` when set, else the cores this
-        process may use that the load leaves idle. The results are the same, to the bit, for any number.
+        process may use that the load leaves idle. On a long file each process also reads and parses its blocks
+        and writes their CSV and JSON text (capred.pipelines.bridge_blocks). The results are the same, to the
+        bit, for any number.
     """
 
     QUANTITIES = {"surface_tension": "surface_tension", "contact_angle2": "contact_angle"}
