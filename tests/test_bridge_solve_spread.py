@@ -122,3 +122,15 @@ def test_a_short_file_stays_in_one_process(tmp_path, forks):
     f = _cases(tmp_path / "cases.csv", n=200)
     res = pb.solve_bridges(f, pb.BridgeOptions(workers=4))
     assert isinstance(res, bs.BridgeResult) and res.status.size == 200
+
+
+def test_the_json_document_on_stdout_is_that_of_one_process(tmp_path, small_blocks):
+    """`--json` without `--out` prints the document: the rows come from the text written ahead, the same bytes."""
+    f = _cases(tmp_path / "cases.csv")
+    docs = []
+    for workers in (1, 2):
+        res = CliRunner().invoke(app, ["bridge", "solve", str(f), "--json", "--workers", str(workers)])
+        assert res.exit_code == 0, res.output
+        docs.append(res.stdout.encode())
+    assert docs[0][docs[0].index(b'"source":') :] == docs[1][docs[1].index(b'"source":') :]
+    assert _without_workers(docs[0]) == _without_workers(docs[1])
