@@ -350,20 +350,20 @@ def _write_all(fd: int, data: bytes) -> None:
 
 
 def _solve_block(table, opt, fd: int, offset: int):
-    """Solve one block, append its output columns (pickled) to file ``fd`` at ``offset``: (the result, what
-    the gathering process keeps of it: status, ratio, notes, warnings, (offset, bytes, rows))."""
+    """Solve one block and append to file ``fd`` (at ``offset``) what the gathering process keeps of it, pickled:
+    (status, ratio, notes, warnings), then its output columns; (the result, (offset and size [B] of the first,
+    offset and size [B] of the columns, rows)): only these few numbers cross between processes, so a pipe
+    never fills and a worker never waits for the gathering process."""
     import pickle
 
     part = pb.solve_table(table, opt)
-    data = pickle.dumps(part._cols(), protocol=pickle.HIGHEST_PROTOCOL)
-    _write_all(fd, data)
-    return part, (
-        part.status,
-        part.inputs_si["ratio"],
-        part.notes,
-        part.warnings,
-        (offset, len(data), part.status.size),
+    meta = pickle.dumps(
+        (part.status, part.inputs_si["ratio"], part.notes, part.warnings), protocol=pickle.HIGHEST_PROTOCOL
     )
+    data = pickle.dumps(part._cols(), protocol=pickle.HIGHEST_PROTOCOL)
+    _write_all(fd, meta)
+    _write_all(fd, data)
+    return part, (offset, len(meta), offset + len(meta), len(data), part.status.size)
 
 
 class _Worker:
@@ -408,7 +408,7 @@ class _Worker:
                 if table is not None:
                     _, kept = _solve_block(table, opt, fd, offset)
                     del table
-                    offset += kept[-1][1]
+                    offset += kept[1] + kept[3]
                     pb._send(outbox, (i, *kept))
             pb._send(outbox, None)
         except Exception:  # a problem in a block (or anything else): the usual path runs and reports it
@@ -469,7 +469,7 @@ def _gather(source, opt, k: int, workers: list, claims: _Claims, files: list, bl
                         first, inputs, path = part, [input_file(source, table)], str(table.path)
                         head = {key: v[: pb.HEAD_ROWS] for key, v in part.inputs_si.items() if key != "ratio"}
                     del table, part
-                    offset += got[-1][1]
+                    offset += got[1] + got[3]
                     kept[i] = (0, *got)
                 advance(1)
     finally:
@@ -482,15 +482,22 @@ def _gather(source, opt, k: int, workers: list, claims: _Claims, files: list, bl
     if n == 1:  # one block: the ordinary result
         first.inputs = inputs
         return first
-    notes, warnings = {}, {}
+    import os
+    import pickle
+
+    notes, warnings, status, ratio = {}, {}, [], []
     for i in range(n):
-        notes.update(dict.fromkeys(kept[i][3]))
-        warnings.update(dict.fromkeys(kept[i][4]))
-    spool = SpreadSpool(files, [(kept[i][0], *kept[i][5]) for i in range(n)])
+        j, meta_offset, meta_size, *_ = kept[i]
+        st, rt, block_notes, block_warnings = pickle.loads(os.pread(files[j].fileno(), meta_size, meta_offset))
+        status.append(st)
+        ratio.append(rt)
+        notes.update(dict.fromkeys(block_notes))
+        warnings.update(dict.fromkeys(block_warnings))
+    spool = SpreadSpool(files, [(kept[i][0], *kept[i][3:]) for i in range(n)])
     res = BridgeBlocks(
         path,
-        np.concatenate([kept[i][1] for i in range(n)]).astype(np.int8),
-        {"ratio": np.concatenate([kept[i][2] for i in range(n)]), **head},
+        np.concatenate(status).astype(np.int8),
+        {"ratio": np.concatenate(ratio), **head},
         spool,
         opt,
         inputs,
@@ -611,27 +618,35 @@ class _EncodedRows(pb.ColumnRows):
 
 class _Encoded:
     """The CSV (standard dialect, the header with the first block) and JSON text of every block of a spool,
-    in temporary files: (file, CSV offset, CSV bytes, JSON offset, JSON bytes) per block."""
+    in temporary files: (file, CSV offset, CSV bytes, JSON offset, JSON bytes) per block. The text is handed
+    out as views of the files mapped in memory (no copy: the writers write it straight from there)."""
 
     def __init__(self, files, index) -> None:
+        import mmap
         import weakref
 
         self.files, self.index = files, index
+        self.maps = [mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) if _size(f) else None for f in files]
         self._closer = weakref.finalize(self, _close_all, list(files))
 
-    def csv_pieces(self):
-        """The CSV text, block by block (bytes)."""
-        import os
+    def _text(self, f: int, offset: int, size: int):
+        return memoryview(self.maps[f])[offset : offset + size] if size else b""
 
+    def csv_pieces(self):
+        """The CSV text, block by block (bytes-like)."""
         for f, c_off, c_len, _, _ in self.index:
-            yield os.pread(self.files[f].fileno(), c_len, c_off)
+            yield self._text(f, c_off, c_len)
 
     def json_pieces(self):
-        """The JSON rows, block by block (bytes: objects joined by commas; empty for a block of no rows)."""
-        import os
-
+        """The JSON rows, block by block (bytes-like: objects joined by commas; empty for a block of no rows)."""
         for f, _, _, j_off, j_len in self.index:
-            yield os.pread(self.files[f].fileno(), j_len, j_off)
+            yield self._text(f, j_off, j_len)
+
+
+def _size(f) -> int:
+    import os
+
+    return os.fstat(f.fileno()).st_size
 
 
 class _Sink:
