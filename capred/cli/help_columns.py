@@ -5,7 +5,7 @@ python -c 'import capred.cli.help as h; h.write_snapshot()'
 """
 
 # fmt: off
-COLUMNS = {'bridge compare': {'digest': 'c6258977149861bb9700450aeadc02c41adcc5ed',
+COLUMNS = {'bridge compare': {'digest': '04817d2d3ee4f6814496360bd387424294dddbac',
                     'files': ['errors.py',
                               'io/__init__.py',
                               'io/blocks.py',
@@ -61,7 +61,7 @@ COLUMNS = {'bridge compare': {'digest': 'c6258977149861bb9700450aeadc02c41adcc5e
                            ['contact_angle [deg]', 'contact angle; also: theta'],
                            ['R2_over_R',
                             "R2 / R ('plane': a sphere and a plane; absent: equal spheres); also: ratio, R2/R"]]},
- 'bridge rupture': {'digest': 'c6258977149861bb9700450aeadc02c41adcc5ed',
+ 'bridge rupture': {'digest': '04817d2d3ee4f6814496360bd387424294dddbac',
                     'files': ['errors.py',
                               'io/__init__.py',
                               'io/blocks.py',
@@ -93,7 +93,7 @@ COLUMNS = {'bridge compare': {'digest': 'c6258977149861bb9700450aeadc02c41adcc5e
                                'contact angle on the second particle (sphere R2 or plane; absent or blank: '
                                '--contact-angle2, else contact_angle); also: theta2, wetting_angle2, contact_angle_2'],
                               ['V_w [mm^3]', 'water volume V_w; also: volume, V, Vw']]},
- 'bridge solve': {'digest': 'c6258977149861bb9700450aeadc02c41adcc5ed',
+ 'bridge solve': {'digest': '04817d2d3ee4f6814496360bd387424294dddbac',
                   'files': ['errors.py',
                             'io/__init__.py',
                             'io/blocks.py',

@@ -147,7 +147,11 @@ class BridgeBlocks(Result):
         if self.processes < 2:
             return None
         if "_encoded_text" not in self.__dict__:
-            self.__dict__["_encoded_text"] = _encode_blocks(self.spool, self.processes, self.n_blocks)
+            try:
+                encoded = _encode_blocks(self.spool, self.processes, self.n_blocks)
+            except Exception:  # pragma: no cover - a system limit (fork, files): the writers write from the spool
+                encoded = None
+            self.__dict__["_encoded_text"] = encoded
         return self.__dict__["_encoded_text"]
 
     def tables(self) -> dict:
@@ -294,6 +298,8 @@ def _solve_spread(source, opt: pb.BridgeOptions, k: int):
             workers.append(_Worker(source, opt, j, claims, files[j], block_bytes))
         out = _gather(source, opt, k, workers, claims, files, block_bytes)
     except (_WorkerFailed, CapredError):
+        out = None
+    except Exception:  # pragma: no cover - the spread machinery failed (a system limit): the usual path runs
         out = None
     finally:
         for w in workers:
