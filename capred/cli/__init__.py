@@ -211,7 +211,10 @@ def main() -> None:
     # no wall time saved); capred runs its own work on both cores where it pays (figures, batches, bridges)
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     _fast_help()
-    app(prog_name="capred")
+    from .lazy_group import lazy_command
+
+    # the commands are built when used: `capred --help` builds none, `capred shear ...` builds shear alone
+    lazy_command(app)(prog_name="capred")
 
 
 __all__ = ["app", "main"]

@@ -857,7 +857,7 @@ SNAPSHOT = {
                 "quantity": None,
                 "unit": "",
                 "range": "",
-                "text": "Processes that solve the rows (--workers); None: CAPRED_PROCESSES when set, else the cores this process may use that the load leaves idle. The results are the same, to the bit, for any number.",
+                "text": "Processes that solve the rows (--workers); None: CAPRED_PROCESSES when set, else the cores this process may use that the load leaves idle. On a long file each process also reads and parses its blocks and writes their CSV and JSON text (capred.pipelines.bridge_blocks). The results are the same, to the bit, for any number.",
                 "default": None,
                 "type": "int",
                 "option": "--workers",

@@ -39,6 +39,7 @@ if TYPE_CHECKING:  # what the names are, for readers and type checkers; at run t
         second_core_free,
         stream_json,
         write_batch_file,
+        write_csv_file,
         write_run,
     )
 
@@ -63,6 +64,7 @@ _WHERE = {
             "second_core_free",
             "stream_json",
             "write_batch_file",
+            "write_csv_file",
             "write_run",
         ),
         "writers",
@@ -95,6 +97,7 @@ __all__ = [
     "source_path",
     "stream_json",
     "write_batch_file",
+    "write_csv_file",
     "write_run",
 ]
 

@@ -54,9 +54,18 @@ _NOT_PLAIN = (
     b"\xe2\x80\xa9",
 )
 
+#: the markers of _NOT_PLAIN that are ASCII bytes
+_NOT_PLAIN_ASCII = tuple(m for m in _NOT_PLAIN if m.isascii())
+
 
 def read_table_blocks(
-    source, schema: list[Column], *, ignore_columns=(), limits: ReadLimits | None = None, block_bytes: int | None = None
+    source,
+    schema: list[Column],
+    *,
+    ignore_columns=(),
+    limits: ReadLimits | None = None,
+    block_bytes: int | None = None,
+    select=None,
 ) -> Iterator[Table]:
     """Read ``source`` against ``schema`` one block of lines at a time.
 
@@ -72,12 +81,17 @@ def read_table_blocks(
         Reading limits (see read_table).
     block_bytes : int, optional
         Bytes of text per block [B] (default :data:`BLOCK_BYTES`).
+    select : callable, optional
+        ``select(k)``: whether to parse the block of index ``k`` (from 0); a block not selected is yielded as
+        None, unparsed, so that processes that share a file's blocks see the same indices
+        (capred.pipelines.bridge_blocks). Default: every block. A note or warning is then not repeated among
+        the selected blocks only.
 
     Yields
     ------
-    Table
+    Table or None
         One per block, in file order: its columns in SI, its rows' own line
-        numbers, its problems. The first block carries the metadata above
+        numbers, its problems (None for a block not selected). The first block carries the metadata above
         the header; a note or warning already given by an earlier block is
         not repeated.
 
@@ -113,12 +127,25 @@ def read_table_blocks(
     counted = _delimiter_rows(p, block_bytes, limits, shown)
     seen: set[str] = set()
     prefix: list[str] = []  # the header line (and units row) that every later block repeats
+    index = -1  # the block's index among the blocks of data, the same in every process (``select``)
     pieces = _with_data(_pieces(p, block_bytes, limits, shown))
     piece, following = next(pieces, None), next(pieces, None)
     while piece is not None:
         first_line, text = piece
         after = next(pieces, None) if following is not None else None
         tables = []
+        index += 1
+        if select is not None and not select(index):
+            if first_line == 1:  # its header (and units row) is what every later block repeats
+                head = _split_head(text)[0]
+                prefix = _prefix(head, grid_table(csv_grid(shown, head, limits=limits), src, schema))
+            # the trailing rows a selected block would take in are taken here too: the indices stay those of
+            # every other process
+            if _trailing(following, after, prefix, shown, limits, src, schema) is not None:
+                following = None
+            piece, following = following, after
+            yield None
+            continue
         if first_line == 1:
             # the head (header, metadata, the first rows) read as usual, the rest of the piece by the fast path
             # when it can take it, joined as one block (the blocks, and so every number computed on them, stay
@@ -141,18 +168,9 @@ def read_table_blocks(
                 grid = csv_grid(shown, "\n".join(prefix) + "\n" + text, first_line - len(prefix), limits)
                 table = grid_table(_counted(grid, None), src, schema)
             tables = [table]
-        trailing = None  # looked for once this block has set the prefix
-        if following is not None and after is None and _delimiter_row_first(following[1]):
-            # the last piece begins with rows of delimiters only: the lines under them that are not data are notes
-            # under the data, said by this block (a block of no data would be refused as 'no data rows')
-            lines = "\n".join(prefix) + "\n" + following[1]
-            grid = csv_grid(shown, lines, following[0] - len(prefix), limits)
-            trailing = grid_table(_counted(grid, None), src, schema, empty_ok=True)
-            if len(trailing.lines):  # data rows: a block of its own
-                trailing = None
-            else:
-                following = None
+        trailing = _trailing(following, after, prefix, shown, limits, src, schema)  # once the prefix is set
         if trailing is not None:
+            following = None
             if trailing.units_line is not None:  # said by the first block
                 trailing.notes.remove(f"units read from the row under the header (line {trailing.units_line})")
             tables[-1].notes += trailing.notes
@@ -172,6 +190,18 @@ def read_table_blocks(
 _EMPTY_ROW_CHARS = " \t\n,;"
 #: the bytes a line of delimiters only ends with (before its line end: a delimiter or a blank)
 _DELIMITER_ROW_LAST = b",; \t"
+
+
+def _trailing(following, after, prefix: list[str], shown: str, limits: ReadLimits, src, schema) -> Table | None:
+    """The last piece read as notes under the data when it begins with rows of delimiters only and holds no data
+    rows (its lines under them that are not data are notes, said by the block before it: a block of no data would
+    be refused as 'no data rows'); None otherwise (the piece is a block of its own)."""
+    if following is None or after is not None or not _delimiter_row_first(following[1]):
+        return None
+    lines = "\n".join(prefix) + "\n" + following[1]
+    grid = csv_grid(shown, lines, following[0] - len(prefix), limits)
+    trailing = grid_table(_counted(grid, None), src, schema, empty_ok=True)
+    return None if len(trailing.lines) else trailing
 
 
 def _with_data(pieces: Iterator[tuple[int, str]]) -> Iterator[tuple[int, str]]:
@@ -431,8 +461,10 @@ def _plain_utf8(path: Path, chunk: int = 2**22) -> bool:
     tail = b""
     with open(path, "rb") as fh:
         while data := fh.read(chunk):
-            # a marker split between two chunks is found at the seam (markers are at most 3 bytes)
-            if any(m in data or m in tail + data[:2] for m in _NOT_PLAIN):
+            # a marker split between two chunks is found at the seam (markers are at most 3 bytes); an ASCII chunk
+            # holds none of the multi-byte markers (each scan of those costs ~25x a one-byte scan)
+            markers = _NOT_PLAIN_ASCII if data.isascii() else _NOT_PLAIN
+            if any(m in data for m in markers) or any(m in tail + data[:2] for m in _NOT_PLAIN):
                 return False
             if not (data.isascii() and not decoder.getstate()[0]):  # ASCII after a whole character is UTF-8
                 try:

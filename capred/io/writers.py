@@ -298,6 +298,11 @@ def write_csv_file(path, frame, dialect: str = "standard") -> None:
         fh = path if hasattr(path, "write") else stack.enter_context(open(path, "wb"))
         if eu:
             fh.write("\ufeff".encode("utf-8"))
+        pieces = frame.csv_pieces(dialect) if hasattr(frame, "csv_pieces") else None
+        if pieces is not None:  # a table whose CSV text its run has written ahead (capred.pipelines.bridge_blocks)
+            for data in pieces:
+                fh.write(data)
+            return
         blocks = frame.blocks() if hasattr(frame, "blocks") else [frame]  # a Spool: block by block
         for k, block in enumerate(blocks):
             names = list(block) if isinstance(block, dict) else list(block.columns)

@@ -82,7 +82,9 @@ class BridgeOptions(Options):
         default): the row's ``contact_angle`` (one angle on both particles).
     workers : int, optional
         Processes that solve the rows (``--workers``); None: ``CAPRED_PROCESSES`` when set, else the cores this
-        process may use that the load leaves idle. The results are the same, to the bit, for any number.
+        process may use that the load leaves idle. On a long file each process also reads and parses its blocks
+        and writes their CSV and JSON text (capred.pipelines.bridge_blocks). The results are the same, to the
+        bit, for any number.
     """
 
     QUANTITIES = {"surface_tension": "surface_tension", "contact_angle2": "contact_angle"}
@@ -316,13 +318,31 @@ class HeadedSpool:
     """A :class:`capred.result.Spool` of JSON-keyed columns whose blocks the CSV writer reads under
     ``name [unit]`` headers (the spool itself is not copied)."""
 
-    def __init__(self, spool) -> None:
-        self.spool = spool
+    def __init__(self, spool, encoded=None) -> None:
+        self.spool, self.encoded = spool, encoded
 
     def blocks(self):
         """The spool's blocks with CSV headers."""
         for block in self.spool.blocks():
             yield with_csv_headers(block)
+
+    def csv_pieces(self, dialect: str):
+        """The CSV text of every block, already written by the run's processes (capred.pipelines.bridge_blocks),
+        header first: the bytes :func:`capred.io.writers.write_csv_file` writes of :meth:`blocks`; None where
+        the text was not written ahead (one process) or is wanted in another dialect than the standard one.
+
+        Parameters
+        ----------
+        dialect : str
+            The CSV dialect asked for.
+
+        Returns
+        -------
+        iterator of bytes or None
+        """
+        if self.encoded is None or dialect != "standard":
+            return None
+        return self.encoded.csv_pieces()
 
 
 def with_csv_headers(table):
@@ -466,12 +486,23 @@ class ColumnRows(Rows):
         from ..io import encode_rows
 
         for start in range(0, self.n, size):
-            yield encode_rows(_json_chunk_rows(self.columns(start, min(self.n, start + size))))
+            yield encode_rows(json_chunk_rows(self.columns(start, min(self.n, start + size))))
 
 
-def _json_chunk_rows(cols: dict) -> list[dict]:
+def json_chunk_rows(cols: dict) -> list[dict]:
     """``json_rows(cols, nan_as_none=False)`` for the writer: the rows without any number (no bridge) and
-    without a note share one dict per status, so only the rows with a bridge cost a dict of their own."""
+    without a note share one dict per status, so only the rows with a bridge cost a dict of their own.
+
+    Parameters
+    ----------
+    cols : dict of str to ndarray
+        A block's output columns under their JSON keys.
+
+    Returns
+    -------
+    list of dict
+        One JSON row per bridge.
+    """
     n = len(cols["status"])
     numeric = [k for k, v in cols.items() if v.dtype != object]
     if not numeric or any(v.dtype == object and k not in ("status", "note") for k, v in cols.items()):
@@ -802,6 +833,8 @@ def _in_parallel(solver, *columns, workers: int | None = None):
     any number of processes. A part holds at least _PARALLEL_ROWS / 2 rows (fewer rows: fewer processes).
     """
     n = columns[0].size
+    if ONE_PROCESS:  # a process of a run spread block by block (capred.pipelines.bridge_blocks): its block whole
+        return solver(*columns)
     wanted = _RUN_PROCESSES if _IN_RUN and workers is None else processes(workers)
     k = max(1, min(wanted, n // max(1, _PARALLEL_ROWS // 2)))
     if k == 1:
@@ -863,7 +896,7 @@ class _Helper:
                         except OSError:
                             pass
                 if job is not None:
-                    _send(from_child, _run(job))
+                    send_message(from_child, _run(job))
                 self._serve(to_child, from_child)
                 code = 0
             finally:
@@ -875,13 +908,13 @@ class _Helper:
 
     @staticmethod
     def _serve(inbox: int, outbox: int) -> None:
-        while (job := _receive(inbox)) is not None:
-            _send(outbox, _run(job))
+        while (job := receive_message(inbox)) is not None:
+            send_message(outbox, _run(job))
 
     def submit(self, solver, columns) -> None:
         """Send a job (``solver`` must pickle: a module's function)."""
         try:
-            _send(self._to_child, (solver, columns))
+            send_message(self._to_child, (solver, columns))
         except (OSError, pickle.PicklingError, AttributeError, TypeError):
             self.alive = False
 
@@ -890,7 +923,7 @@ class _Helper:
         if not self.alive:
             return None
         try:
-            out = _receive(self._from_child)
+            out = receive_message(self._from_child)
         except (OSError, EOFError):
             out = None
         if out is None:
@@ -936,7 +969,16 @@ def _run(job):
         return None
 
 
-def _send(fd: int, obj) -> None:
+def send_message(fd: int, obj) -> None:
+    """Write one message (a picklable object, length-prefixed) to a pipe between the run's processes.
+
+    Parameters
+    ----------
+    fd : int
+        The pipe's writing end.
+    obj : object
+        What to send.
+    """
     import os
 
     data = pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
@@ -945,8 +987,19 @@ def _send(fd: int, obj) -> None:
         view = view[os.write(fd, view) :]
 
 
-def _receive(fd: int):
-    """The next message; None at the end of the pipe."""
+def receive_message(fd: int):
+    """The next message written by :func:`send_message`.
+
+    Parameters
+    ----------
+    fd : int
+        The pipe's reading end.
+
+    Returns
+    -------
+    object or None
+        The message; None at the end of the pipe.
+    """
 
     head = _read_exactly(fd, 8)
     if head is None:
@@ -973,6 +1026,9 @@ def _read_exactly(fd: int, size: int) -> bytes | None:
 _HELPERS: list = []
 _RUN_PROCESSES = 1
 _IN_RUN = False
+#: True while a run spreads whole blocks over its processes (capred.pipelines.bridge_blocks): each block is then
+#: solved in the one process that read it
+ONE_PROCESS = False
 
 
 class helper:
