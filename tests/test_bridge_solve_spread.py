@@ -134,3 +134,17 @@ def test_the_json_document_on_stdout_is_that_of_one_process(tmp_path, small_bloc
         docs.append(res.stdout.encode())
     assert docs[0][docs[0].index(b'"source":') :] == docs[1][docs[1].index(b'"source":') :]
     assert _without_workers(docs[0]) == _without_workers(docs[1])
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_report_html_of_a_long_file_shows_its_first_rows(tmp_path, small_blocks, workers):
+    """A file read block by block keeps its rows in a spool: report.html shows the first rows of the spool under
+    the CSV's headers, as of a short file (it raised AttributeError on 'HeadedSpool.columns')."""
+    f = _cases(tmp_path / "cases.csv")
+    out = tmp_path / f"html{workers}"
+    res = CliRunner().invoke(app, ["bridge", "solve", str(f), "--out", str(out), "--workers", str(workers)])
+    assert res.exit_code == 0, res.output
+    html = (out / "report.html").read_text(encoding="utf-8")
+    first = (out / "solve.csv").read_text(encoding="utf-8").splitlines()[0].split(",")
+    assert all(h.replace("^", "") in html.replace("<sup>", "").replace("</sup>", "") or "[" in h for h in first[:3])
+    assert html.count("<tr>") > 20  # rows of the table, not an empty section

@@ -326,6 +326,26 @@ class HeadedSpool:
         for block in self.spool.blocks():
             yield with_csv_headers(block)
 
+    @property
+    def n(self) -> int:
+        """Rows held."""
+        return self.spool.n
+
+    def columns(self, start: int, stop: int) -> dict:
+        """Rows ``start`` .. ``stop - 1`` under CSV headers (what report.html shows of a long run).
+
+        Parameters
+        ----------
+        start, stop : int
+            The rows, ``start`` included, ``stop`` excluded.
+
+        Returns
+        -------
+        dict
+            ``name [unit]`` header -> array.
+        """
+        return with_csv_headers(self.spool.columns(start, stop))
+
     def csv_pieces(self, dialect: str):
         """The CSV text of every block, already written by the run's processes (capred.pipelines.bridge_blocks),
         header first: the bytes :func:`capred.io.writers.write_csv_file` writes of :meth:`blocks`; None where
