@@ -73,7 +73,7 @@ def test_generating_model_wins(write_csv, name, truth, params):
     opts = ShearOptions(models=("bishop", "own1", name), model_params=params, bootstrap=0)
     r = run_shear(write_csv(_csv(truth)), opts)
     assert r.best_model["(all)"] == name
-    assert r.metrics["(all)"][name].rmse < 1e-9  # Pa: exact data
+    assert r.metrics["(all)"][name].si.rmse < 1e-9  # Pa: exact data
     if name == "fredlund":
         assert np.tan(np.radians(r.per_material["(all)"]["phi_b_deg"])) == pytest.approx(0.25, rel=1e-12)
 
@@ -143,7 +143,7 @@ def test_pedrotti_tarantino_takes_tau_w_from_saturated_tests(write_csv):
     r = run_shear(
         write_csv("\n".join(lines) + "\n"), ShearOptions(models=("bishop", "pedrotti_tarantino"), bootstrap=0)
     )
-    assert r.metrics["(all)"]["pedrotti_tarantino"].rmse < 1e-9  # Pa: exact data
+    assert r.metrics["(all)"]["pedrotti_tarantino"].si.rmse < 1e-9  # Pa: exact data
     mat = r.to_json()["materials"]["(all)"]
     assert mat["water_envelope"] == "saturated tests"
     assert_allclose([mat["saturated_envelope"]["c_kPa"], mat["saturated_envelope"]["tan_phi"]], [0.5, 0.5], rtol=1e-12)
@@ -198,7 +198,7 @@ def test_both_pedrotti_tarantino_entries_quote_the_paper_and_say_their_reading()
         ShearOptions(models=("pedrotti_tarantino", "pedrotti_tarantino_wet_area"), bootstrap=0),
     )
     wet = r.tests["condition"] == "wet"
-    a, b = r.predictions["pedrotti_tarantino"].tau[wet], r.predictions["pedrotti_tarantino_wet_area"].tau[wet]
+    a, b = r.predictions["pedrotti_tarantino"].si.tau[wet], r.predictions["pedrotti_tarantino_wet_area"].si.tau[wet]
     assert np.all(b >= a - 1e-9)  # on the same envelopes the wet-area reading carries friction on S_R, not S_R²
 
 

@@ -49,7 +49,7 @@ def test_shear_recovers_thesis_envelopes_exactly(write_csv):
 def test_shear_best_model_is_the_generating_one(write_csv, truth):
     r = run_shear(write_csv(exact_csv(truth)))
     assert r.best_model == {"steel": truth, "sand": truth}
-    assert r.metrics["steel"][truth].rmse < 1e-9
+    assert r.metrics["steel"][truth].si.rmse < 1e-9
     assert r.metrics["sand"][truth].r2 == pytest.approx(1.0, abs=1e-9)
 
 

@@ -82,21 +82,21 @@ def test_figure_and_table_inputs(pair):
 
     whole, long = pair
     assert [t.rows for t in console_tables(long)] == [t.rows for t in console_tables(whole)]
-    rows = long.back.sigma_cap.rows
+    rows = long.back.si.sigma_cap.rows
     assert rows.size > 0
     for m in whole.models:
         # the same numbers: the same computation on a slice of the tests (exact)
-        assert_allclose(long.predictions[m].tau[rows], whole.predictions[m].tau[rows], rtol=0, atol=0)
+        assert_allclose(long.predictions[m].si.tau[rows], whole.predictions[m].si.tau[rows], rtol=0, atol=0)
         assert_allclose(
-            long.predictions[m].tau_prediction_interval[1][rows],
-            whole.predictions[m].tau_prediction_interval[1][rows],
+            long.predictions[m].si.tau_prediction_interval[1][rows],
+            whole.predictions[m].si.tau_prediction_interval[1][rows],
             rtol=0,
             atol=0,
         )
     assert_allclose(long.back.chi_back[rows], whole.back.chi_back[rows], rtol=0, atol=0)
     assert long.test_ids(rows[:3]) == [str(x) for x in whole.tests["test_id"][rows[:3]]]
     with pytest.raises(IndexError):
-        long.back.sigma_cap[np.setdiff1d(np.arange(2600), rows)[:1]]  # a row not kept
+        long.back.si.sigma_cap[np.setdiff1d(np.arange(2600), rows)[:1]]  # a row not kept
     # whole columns read back from the spools on demand
     assert_array_equal(long.tests["test_id"], whole.tests["test_id"])
     assert_array_equal(long.tests["chi2"], whole.tests["chi2"])

@@ -208,16 +208,16 @@ def test_mean_band_and_prediction_interval_match_the_delta_method():
     fit = next(iter(res.fits.values())).line
     i = int(np.flatnonzero(t["condition"] == "wet")[0])
     p = res.predictions["bishop"]
-    sig = p.sigma_eff[i]
+    sig = p.si.sigma_eff[i]
     cov = fit.covariance
     var_mean = cov[0, 0] + 2 * sig * cov[0, 1] + sig**2 * cov[1, 1]
     half = fit.t * np.sqrt(var_mean)
     # the band of the mean: t times the delta-method SE of c + sigma' tan(phi) (numerical derivatives: 1e-6)
-    assert p.tau_mean_ci[1][i] - p.tau[i] == pytest.approx(half, rel=1e-6)
-    assert p.tau[i] - p.tau_mean_ci[0][i] == pytest.approx(half, rel=1e-6)
+    assert p.si.tau_mean_ci[1][i] - p.si.tau[i] == pytest.approx(half, rel=1e-6)
+    assert p.si.tau[i] - p.si.tau_mean_ci[0][i] == pytest.approx(half, rel=1e-6)
     # a new test adds the scatter of one test, the dry fit's residual variance s^2
     half_new = fit.t * np.sqrt(var_mean + fit.residual_variance)
-    assert p.tau_prediction_interval[1][i] - p.tau[i] == pytest.approx(half_new, rel=1e-6)
+    assert p.si.tau_prediction_interval[1][i] - p.si.tau[i] == pytest.approx(half_new, rel=1e-6)
 
 
 def test_dry_fit_through_origin():

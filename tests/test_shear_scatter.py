@@ -96,11 +96,11 @@ def test_proportional_intervals_widen_with_stress():
     r, _ = _run(_frame(), errors="proportional")
     pred = r.predictions["bishop"]
     wet = np.flatnonzero(r.tests["condition"] == "wet")
-    lo, hi = pred.tau_prediction_interval
+    lo, hi = pred.si.tau_prediction_interval
     width = (hi - lo)[wet]
     s = r.tests["sigma_N"][wet]
     assert width[np.argmax(s)] > 2 * width[np.argmin(s)]  # 85 kPa against 15 kPa: the scatter grows with tau
     const, _ = _run(_frame(), errors="constant")
-    lo_c, hi_c = const.predictions["bishop"].tau_prediction_interval
+    lo_c, hi_c = const.predictions["bishop"].si.tau_prediction_interval
     wc = (hi_c - lo_c)[wet]
     assert wc.max() < 1.5 * wc.min()  # constant scatter: nearly equal widths

@@ -168,7 +168,7 @@ def test_back_analysis_intervals_hand_worked():
         np.array([4]),
     )
     assert_allclose(
-        np.ravel(ba.sigma_cap_ci), [2 - 2.776445 * 0.44, 2 + 2.776445 * 0.44], rtol=1e-6
+        np.ravel(ba.si.sigma_cap_ci), [2 - 2.776445 * 0.44, 2 + 2.776445 * 0.44], rtol=1e-6
     )  # t table to 7 digits
     assert_allclose(np.ravel(ba.chi_back_ci), [(2 - 2.776445 * 0.44) / 4, (2 + 2.776445 * 0.44) / 4], rtol=1e-6)
     assert ba.dof[0] == 4
@@ -184,7 +184,7 @@ def test_back_analysis_intervals_hand_worked():
         np.array([4]),
         wet=np.array([False]),
     )
-    assert np.isnan(ba.sigma_cap[0]) and np.isnan(ba.sigma_cap_ci[0][0]) and np.isnan(ba.dof[0])
+    assert np.isnan(ba.si.sigma_cap[0]) and np.isnan(ba.si.sigma_cap_ci[0][0]) and np.isnan(ba.dof[0])
 
 
 def test_sigma_cap_interval_covers_the_true_capillary_stress():
@@ -206,9 +206,9 @@ def test_sigma_cap_interval_covers_the_true_capillary_stress():
             np.array([dry.residual_variance]),
             np.array([dry.dof]),
         )
-        (lo,), (hi,) = ba.sigma_cap_ci
+        (lo,), (hi,) = ba.si.sigma_cap_ci
         hits += lo <= truth <= hi
-        hits_z += abs(ba.sigma_cap[0] - truth) <= 1.96 * ba.sigma_cap_se[0]
+        hits_z += abs(ba.si.sigma_cap[0] - truth) <= 1.96 * ba.si.sigma_cap_se[0]
         (chi_lo,), (chi_hi,) = ba.chi_back_ci
         assert (chi_lo <= 0.3 <= chi_hi) == (lo <= truth <= hi)  # the same interval, divided by s
     COVERAGE["sigma_cap"], COVERAGE["sigma_cap_1.96"] = hits / n, hits_z / n
