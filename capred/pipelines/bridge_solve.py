@@ -380,7 +380,11 @@ def with_csv_headers(table):
     """
     if isinstance(table, dict):
         return {csv_header(k): v for k, v in table.items()}
-    return table.rename(columns=csv_header, copy=False)
+    import pandas as pd
+
+    # pandas >= 3 never copies here (copy-on-write) and deprecates the keyword; pandas 2 needs it not to copy
+    no_copy = {} if int(pd.__version__.split(".")[0]) >= 3 else {"copy": False}
+    return table.rename(columns=csv_header, **no_copy)
 
 
 #: rows of a long run whose inputs are kept to name them in the console and report tables
