@@ -1,4 +1,4 @@
-"""The block reader of long CSVs (capred.io.blocks) on the two gaps of issue 32 a review found (REVIEW.md, items 1-2).
+"""The block reader of long CSVs (capred.io.blocks) on the two gaps of issue 32 a review found (a review in session 8, items 1-2).
 
 Rows of delimiters only (",,,," as spreadsheet exports leave them) anywhere in a long file, and a line longer than a
 block (a huge cell, or a genuine long line): the whole-file reader (capred.io.table.read_table, one parse of the

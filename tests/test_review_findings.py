@@ -1,4 +1,4 @@
-"""Findings of the review of issues 29, 30, 32, 33 and 34 (REVIEW.md).
+"""Findings of the review of issues 29, 30, 32, 33 and 34 (a review in session 8).
 
 The first test guards a fix made in the review (the control chart's two charts share their runs axis). The tests
 marked ``xfail(strict=True)`` reproduce gaps in files the review could not edit: each fails today, and turns into an
