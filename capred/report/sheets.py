@@ -698,11 +698,21 @@ def _clear(ax) -> None:
     ``Axes.clear`` resets the artists, limits, labels, scales, locators and formatters, and throws away the
     ticks, which the next draw makes anew (about a sixth of a sheet's drawing: each tick is five artists whose
     properties are copied from the first). ``release`` pools only sheets whose panels left the tick settings
-    and scales as a new axes has them (``_tick_state``), so the kept ticks are those a new axes would make;
-    the aspect, adjustable box and anchor, which ``clear`` keeps, are reset as well.
+    and scales as a new axes has them (``_tick_state``), so the kept ticks are those a new axes would make:
+    while ``clear`` runs, its passing of the background patch and of the grid setting to fresh ticks (which
+    would make them) is skipped, the kept ticks having both already. The aspect, adjustable box and anchor,
+    which ``clear`` keeps, are reset as well.
     """
+    from matplotlib.artist import Artist
+
     kept = [(axis, vars(axis).get("majorTicks"), vars(axis).get("minorTicks")) for axis in (ax.xaxis, ax.yaxis)]
-    ax.clear()
+    for axis, _, _ in kept:
+        axis.set_clip_path = axis.set_tick_params = _later
+    try:
+        ax.clear()
+    finally:
+        for axis, _, _ in kept:
+            del axis.set_clip_path, axis.set_tick_params
     ax.set_aspect("auto")
     ax.set_adjustable("box")
     ax.set_anchor("C")
@@ -712,7 +722,11 @@ def _clear(ax) -> None:
             axis.majorTicks = major
         if minor is not None:
             axis.minorTicks = minor
-        axis.set_clip_path(ax.patch)  # the new background patch, as for the ticks a new axes makes
+        Artist.set_clip_path(axis, ax.patch)  # the axis' own; its ticks clip to the same box of the axes
+
+
+def _later(*args, **kwargs) -> None:
+    """``Axis.set_clip_path`` and ``Axis.set_tick_params`` while ``_clear`` clears an axes (see there)."""
 
 
 def release(fig) -> None:
@@ -760,6 +774,8 @@ def _template(key, figsize, dpi):
         fig.set_size_inches(*figsize)
     for ax in fig.axes:
         _clear(ax)
+    if [_tick_state(ax) for ax in fig.axes] != fig._capred_tick_state:  # not as new: a new figure instead
+        return None
     return fig
 
 
