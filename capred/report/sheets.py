@@ -363,6 +363,21 @@ def _draw_panel(panel, ax):
     return asked.get("handles"), asked.get("labels")
 
 
+#: the size of a legend beside its axes [px] (and its font size [pt]) by (labels, panel width and height [px],
+#: dpi): it depends on nothing else (the handles' boxes have a fixed size), so a panel whose legend was found
+#: too big to stand beside its axes builds it below them at once (a batch's files repeat their legends)
+_SIDE_LEGENDS: dict = {}
+#: legends whose size beside the axes is kept
+KEEP_SIDE_LEGENDS = 256
+
+
+def _below(size, width_px: float, height_px: float | None) -> bool:
+    """Whether a legend of ``size`` (width, height) [px] beside its axes is too wide or too tall for its panel."""
+    return not (
+        size[0] <= LEGEND_SIDE_MAX * width_px and (height_px is None or size[1] <= LEGEND_SIDE_HEIGHT * height_px)
+    )
+
+
 def _dress(ax, width_px: float, renderer, height_px: float | None = None, handles=None, labels=None) -> float:
     """Put the axes' legend outside its data: beside the axes (``style.legend_outside``), or, when that
     would take more than ``LEGEND_SIDE_MAX`` of the panel's width, below the x-axis label, in as many
@@ -375,21 +390,33 @@ def _dress(ax, width_px: float, renderer, height_px: float | None = None, handle
     """
     from matplotlib.transforms import ScaledTranslation
 
-    legend_outside(ax, handles=handles, labels=labels)
-    leg = ax.get_legend()
-    if leg is None:
-        return 0.0
-    box = leg.get_window_extent(renderer)
-    side = box.width
-    if side <= LEGEND_SIDE_MAX * width_px and (height_px is None or box.height <= LEGEND_SIDE_HEIGHT * height_px):
-        return 0.0
-    handles = list(leg.legend_handles)
-    labels = [t.get_text() for t in leg.get_texts()]
-    artists, own = ax.get_legend_handles_labels()
-    if own == labels:  # the axes' own artists: error bars keep their look in the new legend
-        handles = artists
-    fontsize = leg.get_texts()[0].get_fontsize() if labels else RC["legend.fontsize"]
-    leg.remove()
+    known = None
+    if handles is None and ax.get_legend() is None:  # the axes' own labelled artists
+        artists, own = ax.get_legend_handles_labels()
+        known = _SIDE_LEGENDS.get((tuple(own), width_px, height_px, renderer.dpi))
+    if known is not None and _below(known, width_px, height_px):  # measured before: straight below
+        side, fontsize = known[0], known[2]
+        handles, labels = artists, own
+    else:
+        legend_outside(ax, handles=handles, labels=labels)
+        leg = ax.get_legend()
+        if leg is None:
+            return 0.0
+        box = leg.get_window_extent(renderer)
+        labels = [t.get_text() for t in leg.get_texts()]
+        fontsize = leg.get_texts()[0].get_fontsize() if labels else RC["legend.fontsize"]
+        side = box.width
+        if known is None and handles is None:
+            if len(_SIDE_LEGENDS) >= KEEP_SIDE_LEGENDS:
+                _SIDE_LEGENDS.pop(next(iter(_SIDE_LEGENDS)))
+            _SIDE_LEGENDS[(tuple(labels), width_px, height_px, renderer.dpi)] = (box.width, box.height, fontsize)
+        if not _below((box.width, box.height), width_px, height_px):
+            return 0.0
+        handles = list(leg.legend_handles)
+        artists, own = ax.get_legend_handles_labels()
+        if own == labels:  # the axes' own artists: error bars keep their look in the new legend
+            handles = artists
+        leg.remove()
     drop = _below_axis_pt(ax) / 72 * ax.figure.dpi  # px from the axes' bottom to the legend's top
     fits = max(1, min(len(labels), int(0.95 * width_px // max(side, 1.0))))
     rows = -(-len(labels) // fits)
