@@ -14,8 +14,15 @@ run in turn (A B C D, A B C D, ...) so that a change of load hits each alike:
 - ``boot0``:       --no-plots --bootstrap 0          (the reduction without the bootstrap)
 - ``boot0-nohtml``: --no-plots --bootstrap 0 --no-html (tables and JSON only)
 - ``startup``:     one file, --no-plots --bootstrap 0 (the fixed cost of a run)
+- ``every-output``: no option at all: every default output (tables, JSON, the report sheets as 300-dpi PNGs,
+  report.html), the season of issue 31 (item 3: 1,000 files in <= 4 minutes of wall time on 2 cores)
 
-Run: python benchmarks/bench_batch.py [n_files=200] [repeats=3] [--workers W]
+``--only a,b`` runs those variants alone (``startup`` is always run: the fixed cost). ``--baseline COMMIT``
+also runs each variant from that commit (a temporary git worktree on PYTHONPATH), interleaved with the
+others: the before/after of a change in one session, under the same load.
+
+Run: python benchmarks/bench_batch.py [n_files=200] [repeats=3] [--workers W] [--only every-output]
+[--baseline COMMIT]
 """
 
 from __future__ import annotations
@@ -33,14 +40,21 @@ VARIANTS = {
     "default": "--no-plots",
     "boot0": "--no-plots --bootstrap 0",
     "boot0-nohtml": "--no-plots --bootstrap 0 --no-html",
+    "every-output": "",
 }
+#: the claim each variant is held to: (seconds of wall time for 1,000 files on an idle machine, what it is)
+CLAIMS = {
+    "default": (10.0, "1,000 files with default options and --no-plots (issue 20)"),
+    "every-output": (240.0, "1,000 files with every default output (issue 31)"),
+}
+ROOT = Path(__file__).resolve().parents[1]
 
 
-def timed(args: list[str]) -> tuple[float, float]:
+def timed(args: list[str], env: dict | None = None, cwd: Path | None = None) -> tuple[float, float]:
     """(wall seconds, CPU seconds of the child and every process it waited for)."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
-    proc = subprocess.run([sys.executable, "-m", "capred", *args], capture_output=True, text=True)
+    proc = subprocess.run([sys.executable, "-m", "capred", *args], capture_output=True, text=True, env=env, cwd=cwd)
     wall = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if proc.returncode != 0:
@@ -81,53 +95,99 @@ def cli_default_workers(n: int) -> int:
     return default_workers(n) if default is None else int(default)
 
 
-def main(n: int = 200, repeats: int = 3, workers: int | None = None) -> None:
+def main(
+    n: int = 200,
+    repeats: int = 3,
+    workers: int | None = None,
+    only: list[str] | None = None,
+    baseline: str | None = None,
+) -> None:
     extra = ["--workers", str(workers)] if workers else []
+    variants = {k: v for k, v in VARIANTS.items() if not only or k in only}
+    if not variants:
+        raise SystemExit(f"--only names none of {', '.join(VARIANTS)}")
+    loads = []
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
-        plans = {name: manifest(tmp, name, n, opts) for name, opts in VARIANTS.items()}
+        plans = {name: manifest(tmp, name, n, opts) for name, opts in variants.items()}
         plans["startup"] = manifest(tmp, "startup", 1, VARIANTS["boot0"])
+        envs = {name: None for name in plans}
+        base = tmp / "baseline"
+        if baseline:
+            subprocess.run(
+                ["git", "-C", str(ROOT), "worktree", "add", "--detach", str(base), baseline],
+                check=True,
+                capture_output=True,
+            )
+            env = {**os.environ, "PYTHONPATH": str(base)}
+            for name in list(plans):
+                plans[f"{name}@base"] = plans[name]
+                envs[f"{name}@base"] = env
+        mine = {**os.environ, "PYTHONPATH": str(ROOT)}
         times: dict[str, list[tuple[float, float]]] = {k: [] for k in plans}
-        for r in range(repeats):  # interleaved: each variant once per round
-            for name, path in plans.items():
-                # a new folder for every run, all removed at the end: ext4 scans its inode bitmaps for a while
-                # after many files are deleted (recently_deleted, find_inode_bit), which charged a run ~16 %
-                # more system time when the previous run's folder had just been removed
-                out = tmp / f"out_{name}_{r}"
-                times[name].append(timed(["batch", str(path), "--out", str(out), *extra]))
-        load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+        try:
+            for r in range(repeats):  # interleaved: each variant once per round
+                for name, path in plans.items():
+                    # a new folder for every run, all removed at the end: ext4 scans its inode bitmaps for a while
+                    # after many files are deleted (recently_deleted, find_inode_bit), which charged a run ~16 %
+                    # more system time when the previous run's folder had just been removed
+                    out = tmp / f"out_{name.replace('@', '_')}_{r}"
+                    times[name].append(timed(["batch", str(path), "--out", str(out), *extra], envs[name] or mine, tmp))
+                    loads.append(os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan"))
+        finally:
+            if baseline:
+                subprocess.run(
+                    ["git", "-C", str(ROOT), "worktree", "remove", "--force", str(base)], capture_output=True
+                )
     c = cores()
     w = min(c, workers or cli_default_workers(n), n)  # the processes that share the files
     med = {k: sorted(v)[len(v) // 2] for k, v in ((k, [x[0] for x in t]) for k, t in times.items())}
     cpu = {k: sorted(x[1] for x in t)[len(t) // 2] for k, t in times.items()}
-    start_cpu = cpu["startup"]
     print(
         f"capred batch over {n} copies of the shear sample; {repeats} interleaved repeats (medians); "
         f"{c} cores, {w} workers ({'--workers' if workers else 'the CLI default'}); "
-        f"load average at the end {load:.1f}"
+        f"load average (1 min) after each run {min(loads):.1f} to {max(loads):.1f}"
     )
     print(
-        f"{'variant':14s} {'wall s':>8s} {'CPU s':>8s} {'CPU ms/file':>12s} {'idle wall s':>12s} "
+        f"{'variant':20s} {'wall s':>8s} {'CPU s':>8s} {'CPU ms/file':>12s} {'idle wall s':>12s} "
         f"{'1000 files, idle wall s':>24s}"
     )
-    for name in VARIANTS:
-        per_file = (cpu[name] - start_cpu) / n
-        idle = start_cpu + per_file * n / w  # start-up is serial; the files spread over the workers
-        at_1000 = start_cpu + per_file * 1000 / w
-        print(f"{name:14s} {med[name]:8.2f} {cpu[name]:8.2f} {per_file * 1e3:12.1f} {idle:12.2f} {at_1000:24.1f}")
-    print(f"{'startup':14s} {med['startup']:8.2f} {start_cpu:8.2f}   (one file: the fixed cost of a batch)")
-    target = start_cpu + (cpu["default"] - start_cpu) / n * 1000 / w
-    print(
-        f"claim: 1,000 files with default options and --no-plots in {target:.1f} s wall on an idle "
-        f"{c}-core machine (target <= 10 s): {'met' if target <= 10 else 'NOT met'}"
-    )
+    for tag in ("", "@base") if baseline else ("",):
+        start_cpu = cpu["startup" + tag]
+        for name in variants:
+            key = name + tag
+            per_file = (cpu[key] - start_cpu) / n
+            idle = start_cpu + per_file * n / w  # start-up is serial; the files spread over the workers
+            at_1000 = start_cpu + per_file * 1000 / w
+            print(f"{key:20s} {med[key]:8.2f} {cpu[key]:8.2f} {per_file * 1e3:12.1f} {idle:12.2f} {at_1000:24.1f}")
+        print(f"{'startup' + tag:20s} {med['startup' + tag]:8.2f} {start_cpu:8.2f}   (one file: the fixed cost)")
+    for name in variants:
+        if baseline:
+            print(
+                f"{name}: this tree / {baseline}: CPU {cpu[name] / cpu[name + '@base']:.2f}x, "
+                f"wall {med[name] / med[name + '@base']:.2f}x"
+            )
+        if name in CLAIMS:
+            limit, what = CLAIMS[name]
+            start_cpu = cpu["startup"]
+            target = start_cpu + (cpu[name] - start_cpu) / n * 1000 / w
+            print(
+                f"claim: {what} in {target:.1f} s wall on an idle {c}-core machine, extrapolated from {n} files "
+                f"(target <= {limit:.0f} s): {'met' if target <= limit else 'NOT met'}"
+            )
 
 
 if __name__ == "__main__":
     argv = sys.argv[1:]
-    workers = None
-    if "--workers" in argv:
-        k = argv.index("--workers")
-        workers = int(argv[k + 1])
-        del argv[k : k + 2]
-    main(*(int(a) for a in argv[:2]), workers=workers)
+    flags: dict[str, str | None] = {"--workers": None, "--only": None, "--baseline": None}
+    for flag in flags:
+        if flag in argv:
+            k = argv.index(flag)
+            flags[flag] = argv[k + 1]
+            del argv[k : k + 2]
+    main(
+        *(int(a) for a in argv[:2]),
+        workers=int(flags["--workers"]) if flags["--workers"] else None,
+        only=flags["--only"].split(",") if flags["--only"] else None,
+        baseline=flags["--baseline"],
+    )

@@ -193,6 +193,7 @@ def _draw_sheet(name: str, sheet, folder, opts: FigureOptions) -> tuple[dict, li
         journal_style,
         panel_figure,
         raster,
+        release,
         sheet_figure,
         sheet_layout,
     )
@@ -225,7 +226,10 @@ def _draw_sheet(name: str, sheet, folder, opts: FigureOptions) -> tuple[dict, li
 
     entry["panels"] = [(p.name, p.caption) for p in sheet.panels]
     if not opts.panels:  # the sheet alone: one figure, laid out once, saved in each format
-        fig = sheet_figure(sheet, opts.dpi)
+        # drawn on the figure of the previous sheet of its shape (the other material's, a batch's previous
+        # file's) when there is one, and handed back once written: the same pixels, without making the axes
+        # and their ticks anew (sheets.release)
+        fig = sheet_figure(sheet, opts.dpi, reuse=not vector)
         if want_png:
             png = encode_png(raster(fig), opts.dpi)
             if "png" in opts.formats:
@@ -234,6 +238,8 @@ def _draw_sheet(name: str, sheet, folder, opts: FigureOptions) -> tuple[dict, li
             entry["svg"] = img_markup(name, png, sheet_layout(sheet)[1])
         for fmt in vector:
             save(fig, f"{name}.{fmt}", fmt)
+        if not vector:
+            release(fig)
         return _html_svg(entry, name, folder, opts), written
 
     # single panels asked for: each panel on its own figure, the sheet's PNG pasted from their pixels

@@ -211,6 +211,11 @@ _MATHTEXT = []  # the one mathtext parser of every capred figure drawn by Agg (m
 _RENDERERS: dict = {}
 #: sizes of figure whose renderer is kept (a run draws two or three sizes: sheets of 2 and 1 rows, a title)
 KEEP_RENDERERS = 4
+#: sheet figures handed back after their files were written (``release``), by (width px, height px, dpi,
+#: panels): the next sheet of that shape (the other material's, the next file's of a batch) is drawn on them
+_TEMPLATES: dict = {}
+#: shapes of sheet kept
+KEEP_TEMPLATES = 4
 
 
 def _forget_fonts_after_fork() -> None:
@@ -222,6 +227,7 @@ def _forget_fonts_after_fork() -> None:
 
     _MATHTEXT.clear()
     _RENDERERS.clear()  # they hold the parent's parser
+    _TEMPLATES.clear()  # their texts were measured with the parent's fonts
     mathtext = sys.modules.get("matplotlib.mathtext")
     if mathtext is not None:
         mathtext.MathTextParser._parse_cached.cache_clear()
@@ -247,6 +253,7 @@ def _canvas(fig):
     renderer = _RENDERERS.get(key)
     if renderer is None:
         renderer = canvas.get_renderer()
+        renderer._get_font_height_metrics = _font_heights(renderer.dpi)
         if len(_RENDERERS) >= KEEP_RENDERERS:
             _RENDERERS.pop(next(iter(_RENDERERS)))
         _RENDERERS[key] = renderer
@@ -255,6 +262,87 @@ def _canvas(fig):
         _MATHTEXT.append(renderer.mathtext_parser)
     renderer.mathtext_parser = _MATHTEXT[0]
     return renderer
+
+
+def _font_heights(dpi: float):
+    """The font's line metrics that matplotlib's text layout asks for every line of every text, once per font.
+
+    ``Text._get_layout`` asks a renderer for ``_get_font_height_metrics(prop)`` when it has one, else finds
+    the font file, opens it and reads its OS/2 or hhea table for each text it lays out (about a tenth of a
+    sheet's drawing). This gives the same three numbers from the same tables, computed once per font and size:
+    (ascent, descent, line gap) [px] at ``dpi``, the renderer's (and its figure's) resolution.
+    """
+    from matplotlib.font_manager import fontManager, get_font
+
+    seen: dict = {}
+
+    def metrics(prop):
+        key = (
+            tuple(prop.get_family()),
+            prop.get_slant(),
+            prop.get_variant(),
+            prop.get_weight(),
+            prop.get_stretch(),
+            prop.get_size_in_points(),
+            prop.get_file(),
+            prop.get_math_fontfamily(),
+        )
+        out = seen.get(key)
+        if out is None:
+            out = (None, None, None)
+            font = get_font(fontManager._find_fonts_by_props(prop))
+            for table_name, gap, ascent, descent in (
+                ("OS/2", "sTypoLineGap", "sTypoAscender", "sTypoDescender"),
+                ("hhea", "lineGap", "ascent", "descent"),
+            ):  # as matplotlib.text.Text._get_layout reads them
+                table = font.get_sfnt_table(table_name)
+                if table is None:
+                    continue
+                scale = 1 / font.get_sfnt_table("head")["unitsPerEm"] * prop.get_size_in_points() * dpi / 72
+                out = (table[ascent] * scale, -table[descent] * scale, table[gap] * scale)
+                break
+            seen[key] = out
+        return out
+
+    return metrics
+
+
+@contextmanager
+def _ticks_once(axes):
+    """While the block runs, each axis of ``axes`` places and labels its ticks once per state (its view interval,
+    its axes' box, its locator and formatter): matplotlib asks again for the tick labels' extents, the axis
+    label's place and each spine's extent (four to eight times per axis and draw), each time recomputing the
+    same tick positions and label texts. The same state gives the same ticks, so the first answer is kept."""
+    patched = []
+    for ax in axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            if "_update_ticks" in vars(axis):
+                continue
+            update = axis._update_ticks
+            memo: dict = {}
+
+            def once(axis=axis, update=update, memo=memo):
+                bounds = axis.axes.bbox.bounds
+                state = (
+                    *axis.get_view_interval(),
+                    *bounds,
+                    id(axis.get_major_locator()),
+                    id(axis.get_major_formatter()),
+                    id(axis.get_minor_locator()),
+                    id(axis.get_minor_formatter()),
+                    axis.get_scale(),
+                )
+                if memo.get("state") != state:
+                    memo["ticks"], memo["state"] = update(), state
+                return memo["ticks"]
+
+            axis._update_ticks = once
+            patched.append(axis)
+    try:
+        yield
+    finally:
+        for axis in patched:
+            del axis._update_ticks
 
 
 def _draw_panel(panel, ax):
@@ -275,6 +363,21 @@ def _draw_panel(panel, ax):
     return asked.get("handles"), asked.get("labels")
 
 
+#: the size of a legend beside its axes [px] (and its font size [pt]) by (labels, panel width and height [px],
+#: dpi): it depends on nothing else (the handles' boxes have a fixed size), so a panel whose legend was found
+#: too big to stand beside its axes builds it below them at once (a batch's files repeat their legends)
+_SIDE_LEGENDS: dict = {}
+#: legends whose size beside the axes is kept
+KEEP_SIDE_LEGENDS = 256
+
+
+def _below(size, width_px: float, height_px: float | None) -> bool:
+    """Whether a legend of ``size`` (width, height) [px] beside its axes is too wide or too tall for its panel."""
+    return not (
+        size[0] <= LEGEND_SIDE_MAX * width_px and (height_px is None or size[1] <= LEGEND_SIDE_HEIGHT * height_px)
+    )
+
+
 def _dress(ax, width_px: float, renderer, height_px: float | None = None, handles=None, labels=None) -> float:
     """Put the axes' legend outside its data: beside the axes (``style.legend_outside``), or, when that
     would take more than ``LEGEND_SIDE_MAX`` of the panel's width, below the x-axis label, in as many
@@ -287,21 +390,33 @@ def _dress(ax, width_px: float, renderer, height_px: float | None = None, handle
     """
     from matplotlib.transforms import ScaledTranslation
 
-    legend_outside(ax, handles=handles, labels=labels)
-    leg = ax.get_legend()
-    if leg is None:
-        return 0.0
-    box = leg.get_window_extent(renderer)
-    side = box.width
-    if side <= LEGEND_SIDE_MAX * width_px and (height_px is None or box.height <= LEGEND_SIDE_HEIGHT * height_px):
-        return 0.0
-    handles = list(leg.legend_handles)
-    labels = [t.get_text() for t in leg.get_texts()]
-    artists, own = ax.get_legend_handles_labels()
-    if own == labels:  # the axes' own artists: error bars keep their look in the new legend
-        handles = artists
-    fontsize = leg.get_texts()[0].get_fontsize() if labels else RC["legend.fontsize"]
-    leg.remove()
+    known = None
+    if handles is None and ax.get_legend() is None:  # the axes' own labelled artists
+        artists, own = ax.get_legend_handles_labels()
+        known = _SIDE_LEGENDS.get((tuple(own), width_px, height_px, renderer.dpi))
+    if known is not None and _below(known, width_px, height_px):  # measured before: straight below
+        side, fontsize = known[0], known[2]
+        handles, labels = artists, own
+    else:
+        legend_outside(ax, handles=handles, labels=labels)
+        leg = ax.get_legend()
+        if leg is None:
+            return 0.0
+        box = leg.get_window_extent(renderer)
+        labels = [t.get_text() for t in leg.get_texts()]
+        fontsize = leg.get_texts()[0].get_fontsize() if labels else RC["legend.fontsize"]
+        side = box.width
+        if known is None and handles is None:
+            if len(_SIDE_LEGENDS) >= KEEP_SIDE_LEGENDS:
+                _SIDE_LEGENDS.pop(next(iter(_SIDE_LEGENDS)))
+            _SIDE_LEGENDS[(tuple(labels), width_px, height_px, renderer.dpi)] = (box.width, box.height, fontsize)
+        if not _below((box.width, box.height), width_px, height_px):
+            return 0.0
+        handles = list(leg.legend_handles)
+        artists, own = ax.get_legend_handles_labels()
+        if own == labels:  # the axes' own artists: error bars keep their look in the new legend
+            handles = artists
+        leg.remove()
     drop = _below_axis_pt(ax) / 72 * ax.figure.dpi  # px from the axes' bottom to the legend's top
     fits = max(1, min(len(labels), int(0.95 * width_px // max(side, 1.0))))
     rows = -(-len(labels) // fits)
@@ -351,7 +466,8 @@ def _fit(fig, renderer, pad_mm: float = PAD_MM, axes=None, region=None) -> None:
     axes = [ax for ax in (fig.axes if axes is None else axes) if ax.get_visible()]
     if not axes:
         return
-    tight = Bbox.union([b for b in (ax.get_tightbbox(renderer) for ax in axes) if b is not None])
+    with _ticks_once(axes):
+        tight = Bbox.union([b for b in (ax.get_tightbbox(renderer) for ax in axes) if b is not None])
     inner = Bbox.union([ax.bbox for ax in axes])  # after apply_aspect: the boxes as drawn
     W, H = fig.bbox.width, fig.bbox.height
     X0, Y0, X1, Y1 = region if region is not None else (0.0, 0.0, W, H)
@@ -496,7 +612,7 @@ def raster(fig):
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
     canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
-    with journal_style():
+    with journal_style(), _ticks_once(fig.axes):
         canvas.draw()
     return np.array(canvas.buffer_rgba(), copy=True)
 
@@ -607,7 +723,102 @@ def encode_png(image, dpi: float, compress_level: int = 3) -> bytes:
 
 
 # --- one figure per sheet ------------------------------------------------------------------------------------
-def sheet_figure(sheet: Sheet, dpi: float = 300.0):
+def _tick_state(ax) -> tuple:
+    """What a panel may change of its axes' ticks: the tick settings (``tick_params``) and the scales."""
+    return tuple(
+        (repr(sorted(axis._major_tick_kw.items())), repr(sorted(axis._minor_tick_kw.items())), axis.get_scale())
+        for axis in (ax.xaxis, ax.yaxis)
+    )
+
+
+def _clear(ax) -> None:
+    """An axes of a released sheet (``release``) back to the state of a new one, keeping its tick objects.
+
+    ``Axes.clear`` resets the artists, limits, labels, scales, locators and formatters, and throws away the
+    ticks, which the next draw makes anew (about a sixth of a sheet's drawing: each tick is five artists whose
+    properties are copied from the first). ``release`` pools only sheets whose panels left the tick settings
+    and scales as a new axes has them (``_tick_state``), so the kept ticks are those a new axes would make:
+    while ``clear`` runs, its passing of the background patch and of the grid setting to fresh ticks (which
+    would make them) is skipped, the kept ticks having both already. The aspect, adjustable box and anchor,
+    which ``clear`` keeps, are reset as well.
+    """
+    from matplotlib.artist import Artist
+
+    kept = [(axis, vars(axis).get("majorTicks"), vars(axis).get("minorTicks")) for axis in (ax.xaxis, ax.yaxis)]
+    for axis, _, _ in kept:
+        axis.set_clip_path = axis.set_tick_params = _later
+    try:
+        ax.clear()
+    finally:
+        for axis, _, _ in kept:
+            del axis.set_clip_path, axis.set_tick_params
+    ax.set_aspect("auto")
+    ax.set_adjustable("box")
+    ax.set_anchor("C")
+    ax.set_box_aspect(None)
+    for axis, major, minor in kept:
+        if major is not None:
+            axis.majorTicks = major
+        if minor is not None:
+            axis.minorTicks = minor
+        Artist.set_clip_path(axis, ax.patch)  # the axis' own; its ticks clip to the same box of the axes
+
+
+def _later(*args, **kwargs) -> None:
+    """``Axis.set_clip_path`` and ``Axis.set_tick_params`` while ``_clear`` clears an axes (see there)."""
+
+
+def release(fig) -> None:
+    """Hand a sheet's figure back once its files are written: the next sheet of the same shape drawn with
+    ``sheet_figure(..., reuse=True)`` is drawn on it (its axes cleared, their ticks kept: ``_clear``).
+
+    Only a figure whose panels kept the axes as a new figure has them is kept (one axes per panel, linear
+    scales, the default tick settings, no figure legend or other text than the title); else nothing happens.
+    The caller must not use ``fig`` afterwards.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        A figure made by ``sheet_figure(..., reuse=True)``.
+    """
+    key = getattr(fig, "_capred_template", None)
+    if key is None:
+        return
+    fresh = fig._capred_tick_state
+    if (
+        len(fig.axes) != key[3]
+        or any(ax.name != "rectilinear" or _tick_state(ax) != state for ax, state in zip(fig.axes, fresh))
+        or fig.legends
+        or fig.lines
+        or fig.patches
+        or fig.images
+        or fig.artists
+        or [t for t in fig.texts if t is not fig._suptitle]
+    ):
+        return
+    if key not in _TEMPLATES and len(_TEMPLATES) >= KEEP_TEMPLATES:
+        _TEMPLATES.pop(next(iter(_TEMPLATES)))
+    _TEMPLATES[key] = fig
+
+
+def _template(key, figsize, dpi):
+    """A released figure of shape ``key`` set back to ``figsize`` with its axes cleared, or None."""
+    fig = _TEMPLATES.pop(key, None)
+    if fig is None:
+        return None
+    if fig._suptitle is not None:
+        fig._suptitle.remove()
+        fig._suptitle = None
+    if tuple(fig.get_size_inches()) != figsize:  # a long legend had made it taller
+        fig.set_size_inches(*figsize)
+    for ax in fig.axes:
+        _clear(ax)
+    if [_tick_state(ax) for ax in fig.axes] != fig._capred_tick_state:  # not as new: a new figure instead
+        return None
+    return fig
+
+
+def sheet_figure(sheet: Sheet, dpi: float = 300.0, reuse: bool = False):
     """A whole sheet drawn on one figure: the title band on top, each panel in its slot (``sheet_layout``),
     every panel's axes fitted to its slot in one pass (``_fit``), the layout then final.
 
@@ -617,12 +828,19 @@ def sheet_figure(sheet: Sheet, dpi: float = 300.0):
     layout. Its pixels
     at ``dpi`` are those of ``compose_raster`` of the panels' own figures (the same sizes and layout rule).
 
+    With ``reuse``, the sheet is drawn on a figure of the same shape handed back by ``release`` when there is
+    one (its axes cleared, their ticks kept), and the figure may be handed back after its files are written:
+    for writers that are done with a figure before they draw the next (``write_outputs``), never for a figure
+    given to a user. The pixels are those of a new figure.
+
     Parameters
     ----------
     sheet : Sheet
         The sheet.
     dpi : float
         Resolution the figure is laid out and drawn at [dots per inch].
+    reuse : bool, optional
+        Draw on a released figure of the same shape when there is one, and allow ``release``.
 
     Returns
     -------
@@ -633,33 +851,42 @@ def sheet_figure(sheet: Sheet, dpi: float = 300.0):
 
     slots, width, height = sheet_layout(sheet)
     grown: dict[str, float] = {}
+    figsize = (_inches(width, dpi), _inches(height, dpi))
+    key = (_px(width, dpi), _px(height, dpi), float(dpi), len(sheet.panels))
     with journal_style():
-        fig = Figure(figsize=(_inches(width, dpi), _inches(height, dpi)), dpi=dpi)
+        fig = _template(key, figsize, dpi) if reuse else None
+        pool = list(fig.axes) if fig is not None else []
+        if fig is None:
+            fig = Figure(figsize=figsize, dpi=dpi)
         renderer = _canvas(fig)
         W, H = fig.bbox.width, fig.bbox.height
         px = dpi / MM_PER_INCH
         title = fig.suptitle(
             literal(sheet.title), y=1 - 0.55 * TITLE_MM * px / H, va="center", wrap=len(sheet.title) > 80
         )
-        groups = []
-        for panel, slot in zip(sheet.panels, slots):
+        groups, states = [], []
+        for k, (panel, slot) in enumerate(zip(sheet.panels, slots)):
             x0, x1 = slot.x * px, (slot.x + slot.width) * px
             y1 = H - slot.y * px
             y0 = y1 - slot.height * px
-            before = len(fig.axes)
-            ax = fig.add_axes(
-                (
-                    x0 / W + 0.15 * slot.width * px / W,
-                    y0 / H + 0.15 * slot.height * px / H,
-                    0.7 * slot.width * px / W,
-                    0.7 * slot.height * px / H,
-                )
+            rect = (
+                x0 / W + 0.15 * slot.width * px / W,
+                y0 / H + 0.15 * slot.height * px / H,
+                0.7 * slot.width * px / W,
+                0.7 * slot.height * px / H,
             )
+            if k < len(pool):
+                ax = pool[k]
+                ax.set_position(rect)
+            else:
+                ax = fig.add_axes(rect)
+            states.append(_tick_state(ax))
+            before = len(fig.axes)
             handles, labels = _draw_panel(panel, ax)
             extra = _dress(ax, x1 - x0, renderer, y1 - y0, handles, labels)
             if extra > 0 and panel.name not in sheet.legend_room:
                 grown[panel.name] = extra / dpi * MM_PER_INCH
-            groups.append(fig.axes[before:])
+            groups.append([ax, *fig.axes[before:]])  # with any colour bar or twin the panel added
         if grown:  # a legend needs more room below its axes: those panels taller, the figure with them
             sheet.legend_room.update(grown)
             slots, width, height = sheet_layout(sheet)
@@ -671,6 +898,8 @@ def sheet_figure(sheet: Sheet, dpi: float = 300.0):
             y1 = H - slot.y * px
             region = (slot.x * px, y1 - slot.height * px, (slot.x + slot.width) * px, y1)
             _fit(fig, renderer, axes=group, region=region)
+    if reuse:
+        fig._capred_template, fig._capred_tick_state = key, states
     return fig
 
 
