@@ -37,8 +37,6 @@ ALLOWED = {
     # shear reads a fits.json of vg / bc into van Genuchten or Brooks-Corey parameters of the models
     "pipelines/shear.py": {"vg", "vg_m_free", "bc"},
     "pipelines/shear_analysis.py": {"vg"},
-    # a retention style dict beside the registry's own style
-    "report/style.py": {"vg", "vg_m_free", "bc"},
 }
 
 #: not special cases: a command's registry entry names a model as the value of an option of its example run (data,

@@ -46,10 +46,7 @@ MODEL_STYLE: dict[str, dict] = {
     "lower": dict(color=_C["vermillion"], marker="v"),
     "spherical": dict(color=_C["blue"], marker="o"),
     "edtp": dict(color=_C["green"], marker="^"),
-    # retention models and branches
-    "vg": dict(color=_C["blue"], marker="o", ls="-"),
-    "vg_m_free": dict(color=_C["sky"], marker="s", ls="--"),
-    "bc": dict(color=_C["vermillion"], marker="^", ls="-."),
+    # retention branches (a retention model's style is its registry entry's)
     "drying": dict(color=_C["orange"], marker="o"),
     "wetting": dict(color=_C["blue"], marker="s"),
 }
@@ -161,7 +158,7 @@ def style(name: str, **over) -> dict:
     if entry is not None:  # a line style of its own too (by registry order) where the entry names none
         base = {"ls": LINESTYLES[list(REGISTRY).index(name) % len(LINESTYLES)], **entry.style}
     elif retention is not None:
-        base = {"color": "black", **MODEL_STYLE.get(name, {}), **retention.style}
+        base = {"color": "black", **retention.style}
     else:
         base = MODEL_STYLE.get(name, dict(color=_C["black"], marker="o"))
     base = {**base, **over}
