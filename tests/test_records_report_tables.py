@@ -206,3 +206,21 @@ def test_yade_and_history_csv_headers_carry_units(yade, history):
         "beyond_limits",
         "mr_beyond_limit",
     ]
+
+
+@pytest.mark.parametrize("name", ["compare", "rupture", "history"])
+def test_figures_from_the_records(name, compare, rupture, history, monkeypatch):
+    # the compare and rupture sheets and the control chart take their numbers from the records too
+    from capred.report.presenters import figures
+
+    result = {"compare": compare, "rupture": rupture, "history": history}[name]
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("report/ read the JSON document, its rows or a DataFrame")
+
+    for blocked in BLOCKED:
+        if hasattr(result, blocked):
+            monkeypatch.setattr(result, blocked, refuse)
+    sheets = figures(result)
+    monkeypatch.undo()
+    assert list(sheets) == [{"compare": "compare", "rupture": "rupture", "history": "control_chart"}[name]]
