@@ -224,3 +224,29 @@ def test_figures_from_the_records(name, compare, rupture, history, monkeypatch):
     sheets = figures(result)
     monkeypatch.undo()
     assert list(sheets) == [{"compare": "compare", "rupture": "rupture", "history": "control_chart"}[name]]
+
+
+def test_pt_volume_stage_record():
+    result = capred.run_pt_volume(capred.sample_path("pt-volume"), capred.PTVolumeOptions(example_kaolin=True))
+    rec = result.stage_record()
+    # stages.csv headers as before: labels and lines plain, stresses [kPa], the rest dimensionless [-]
+    assert list(rec.csv_columns()) == [
+        "stage",
+        "first_step [-]",
+        "last_step [-]",
+        "first_line",
+        "last_line",
+        "e_end [-]",
+        "de [-]",
+        "de_W [-]",
+        "de_A [-]",
+        "S_r_end [-]",
+        "sigma_W_end [kPa]",
+        "sigma_A_end [kPa]",
+    ]
+    # Δe of a run is e at its last point minus e at the point before it (the first point for the first run),
+    # and the runs' Δe add up to e_final − e_initial: exact to the rounding of a few subtractions
+    e = result.points.e
+    assert rec.de[0] == pytest.approx(e[result.stages[0].last] - e[0], abs=1e-12)
+    assert sum(rec.de) == pytest.approx(e[result.stages[-1].last] - e[0], abs=1e-12)
+    assert rec.json_rows() == result.to_json()["stages"]

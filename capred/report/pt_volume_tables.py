@@ -80,20 +80,24 @@ def pt_volume_tables(result) -> list[TableSpec]:
             "Stages (runs of equal 'stage' labels; Δ from the point before the run)",
             ["stage", "steps", "S_r", "σ'_W [kPa]", "σ'_A [kPa]", "e", "Δe", "Δe_W", "Δe_A"],
         )
-        for s in result.stages:
-            first, last = num(result.step[s.first]), num(result.step[s.last])
-            steps = fmt(first) if first == last else f"{fmt(first)}–{fmt(last)}"
+        sr = result.stage_record()  # the typed record of the stages (stages.csv, the JSON's "stages")
+        for s in sr.json_rows():
+            steps = (
+                fmt(s["first_step"])
+                if s["first_step"] == s["last_step"]
+                else f"{fmt(s['first_step'])}–{fmt(s['last_step'])}"
+            )
             st.rows.append(
                 [
-                    s.label,
+                    s["stage"],
                     steps,
-                    fmt(num(pts.S_R[s.last])),
-                    fmt(num(pts.sigma_W[s.last] / 1e3)),
-                    fmt(num(pts.sigma_A[s.last] / 1e3)),
-                    fmt(num(pts.e[s.last])),
-                    fmt(num(s.de), sign=True),
-                    fmt(num(s.de_W), sign=True),
-                    fmt(num(s.de_A), sign=True),
+                    fmt(s["S_r_end"]),
+                    fmt(s["sigma_W_end_kPa"]),
+                    fmt(s["sigma_A_end_kPa"]),
+                    fmt(s["e_end"]),
+                    fmt(s["de"], sign=True),
+                    fmt(s["de_W"], sign=True),
+                    fmt(s["de_A"], sign=True),
                 ]
             )
         tables.append(st)
