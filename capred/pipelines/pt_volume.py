@@ -276,8 +276,8 @@ class StageRecord(RowRecord):
         Void ratio at the run's last point [-].
     de, de_W, de_A : ndarray
         Change of e, e^W, e^A over the run, from the point before it [-] (eq. 5).
-    S_r_end : ndarray
-        Degree of saturation at the last point [-].
+    S_R_end : ndarray
+        Degree of saturation at the last point [-] (JSON ``S_r_end``).
     sigma_W_end, sigma_A_end : ndarray
         σ'_W and σ'_A at the last point [kPa] (eq. 1-2).
 
@@ -297,7 +297,7 @@ class StageRecord(RowRecord):
     de: np.ndarray = output("de", "de", "")
     de_W: np.ndarray = output("de_W", "de_W", "")
     de_A: np.ndarray = output("de_A", "de_A", "")
-    S_r_end: np.ndarray = output("S_r_end", "S_r_end", "")
+    S_R_end: np.ndarray = output("S_r_end", "S_r_end", "")
     sigma_W_end: np.ndarray = output("sigma_W_end_kPa", "sigma_W_end", "kPa")
     sigma_A_end: np.ndarray = output("sigma_A_end_kPa", "sigma_A_end", "kPa")
 
@@ -437,7 +437,7 @@ class PTVolumeResult(Result):
             de=np.array([s.de for s in st], float),
             de_W=np.array([s.de_W for s in st], float),
             de_A=np.array([s.de_A for s in st], float),
-            S_r_end=np.asarray(self.points.S_R, float)[last],
+            S_R_end=np.asarray(self.points.S_R, float)[last],
             sigma_W_end=np.asarray(self.points.sigma_W, float)[last] / 1e3,
             sigma_A_end=np.asarray(self.points.sigma_A, float)[last] / 1e3,
         )
