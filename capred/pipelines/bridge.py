@@ -19,6 +19,7 @@ from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
 from ..result import InputFile, Options, Result, input_file, num
 from . import bridge_blocks
+from .bridge_records import CompareRecord, RuptureRecord
 from .bridge_solve import (  # noqa: F401  (re-exported: the names users and tests import from here)
     ANGLE,
     ANGLE2,
@@ -331,10 +332,21 @@ class CompareResult(Result):
     def notes(self):
         return self.bridges.notes
 
-    def _frame(self):
-        import pandas as pd
+    def record(self) -> CompareRecord:
+        """The comparison as a typed record: per micro-test the measured force, each model's force and residual
+        [mN], the filling angles [deg] and the exact bridge's status.
 
-        cached = self.__dict__.get("_table")
+        Returns
+        -------
+        CompareRecord
+            One value per micro-test in output units (NaN where a model gives no bridge).
+
+        References
+        ----------
+        .. [1] Willett, C. D., Adams, M. J., Johnson, S. A., Seville, J. P. K. (2000). Capillary bridges
+           between two spherical bodies. Langmuir 16, 9396-9405. doi:10.1021/la000657y
+        """
+        cached = self.__dict__.get("_record")
         if cached is not None:
             return cached
         b = self.bridges
@@ -354,15 +366,26 @@ class CompareResult(Result):
             "willett": (br.willett_force(r_eff, g, th_mean, self.volume_in, D), np.ones_like(ok)),
             "israelachvili": (br.israelachvili_force(r_eff, g, th_mean), np.ones_like(ok)),
         }
-        cols: dict = {"case": b.labels} if b.labels else {}
-        cols["F_measured_mN"] = self.measured_force * 1e3
+        cols: dict = {}
         for m, (F, good) in models.items():
-            cols[f"F_{m}_mN"] = np.where(good, F * 1e3, np.nan)
-            cols[f"residual_{m}_mN"] = np.where(good, (F - self.measured_force) * 1e3, np.nan)
-        cols["filling_angle_measured_deg"] = np.degrees(self.measured_beta)
-        cols["filling_angle_exact_deg"] = np.where(ok, np.degrees(b.beta), np.nan)
-        cols["status"] = [STATUS[int(k)] for k in b.status]
-        cached = self.__dict__["_table"] = pd.DataFrame(cols)
+            cols[f"F_{m}"] = np.where(good, F * 1e3, np.nan)
+            cols[f"residual_{m}"] = np.where(good, (F - self.measured_force) * 1e3, np.nan)
+        cached = self.__dict__["_record"] = CompareRecord(
+            case=b.labels or None,
+            F_measured=self.measured_force * 1e3,
+            filling_angle_measured=np.degrees(self.measured_beta),
+            filling_angle_exact=np.where(ok, np.degrees(b.beta), np.nan),
+            status=[STATUS[int(k)] for k in b.status],
+            **cols,
+        )
+        return cached
+
+    def _frame(self):
+        import pandas as pd
+
+        cached = self.__dict__.get("_table")
+        if cached is None:
+            cached = self.__dict__["_table"] = pd.DataFrame(self.record().columns())
         return cached
 
     def rows(self) -> list[dict]:
@@ -376,7 +399,7 @@ class CompareResult(Result):
         """
         cached = self.__dict__.get("_rows")
         if cached is None:
-            cached = self.__dict__["_rows"] = frame_records(self._frame())
+            cached = self.__dict__["_rows"] = self.record().json_rows()
         return cached
 
     def payload(self, lazy: bool = False) -> dict:
@@ -412,7 +435,9 @@ class CompareResult(Result):
         dict
             Stem -> table (DataFrame or column mapping).
         """
-        return {"compare": with_csv_headers(self._frame())}
+        import pandas as pd
+
+        return {"compare": pd.DataFrame(self.record().csv_columns())}
 
 
 def compare_measured(source, options: BridgeOptions | None = None) -> CompareResult:
@@ -489,10 +514,21 @@ class RuptureResult(Result):
     inputs: list[InputFile] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
 
-    def _frame(self):
-        import pandas as pd
+    def record(self) -> RuptureRecord:
+        """The rupture distances as a typed record: per case the inputs, the exact rupture distance beside Lian
+        et al.'s (1993) estimate, and the bridge at rupture.
 
-        cached = self.__dict__.get("_table")
+        Returns
+        -------
+        RuptureRecord
+            One value per case in output units (mm, deg, mm^3, kPa, mN; NaN where no rupture was found).
+
+        References
+        ----------
+        .. [1] Lian, G., Thornton, C., Adams, M. J. (1993). A theoretical study of the liquid bridge forces
+           between two rigid spherical bodies. J. Colloid Interface Sci. 161, 138-147. doi:10.1006/jcis.1993.1452
+        """
+        cached = self.__dict__.get("_record")
         if cached is not None:
             return cached
         i_ = self.inputs_si
@@ -503,23 +539,30 @@ class RuptureResult(Result):
             return np.where(ok, x, np.nan)
 
         lian = br.lian_rupture_gap(th, V / R**3) * R
-        cols: dict = {"case": self.labels} if self.labels else {}
-        cols |= {
-            "R_mm": R * 1e3,
-            "R2_mm": np.where(np.isinf(rho), np.inf, rho * R * 1e3),
-            "contact_angle_deg": np.degrees(th),
-            "V_w_mm3": V * 1e9,
-            "D_rupture_mm": out(self.gap * 1e3),
-            "D_rupture_lian_mm": lian * 1e3,
-            "ratio_to_lian": out(self.gap / lian),
-            "filling_angle_deg": out(np.degrees(self.beta)),
-            "filling_angle2_deg": out(np.degrees(self.shape.delta2)),
-            "suction_kPa": out(self.suction / 1e3),
-            "F_cap_mN": out(self.shape.force * np.pi * g * R * 1e3),
-            "r0_mm": out(self.shape.neck * R * 1e3),
-            "status": [STATUS[int(k)] for k in self.status],
-        }
-        cached = self.__dict__["_table"] = pd.DataFrame(cols)
+        cached = self.__dict__["_record"] = RuptureRecord(
+            case=self.labels or None,
+            R=R * 1e3,
+            R2=np.where(np.isinf(rho), np.inf, rho * R * 1e3),
+            contact_angle=np.degrees(th),
+            V_w=V * 1e9,
+            D_rupture=out(self.gap * 1e3),
+            D_rupture_lian=lian * 1e3,
+            ratio_to_lian=out(self.gap / lian),
+            filling_angle=out(np.degrees(self.beta)),
+            filling_angle2=out(np.degrees(self.shape.delta2)),
+            suction=out(self.suction / 1e3),
+            F_cap=out(self.shape.force * np.pi * g * R * 1e3),
+            r0=out(self.shape.neck * R * 1e3),
+            status=[STATUS[int(k)] for k in self.status],
+        )
+        return cached
+
+    def _frame(self):
+        import pandas as pd
+
+        cached = self.__dict__.get("_table")
+        if cached is None:
+            cached = self.__dict__["_table"] = pd.DataFrame(self.record().columns())
         return cached
 
     def rows(self) -> list[dict]:
@@ -533,10 +576,7 @@ class RuptureResult(Result):
         """
         cached = self.__dict__.get("_rows")
         if cached is None:
-            cached = self.__dict__["_rows"] = frame_records(self._frame())
-            for r in cached:  # a plane is written as the word, JSON has no infinity
-                if r["R2_mm"] is None or r["R2_mm"] == float("inf"):
-                    r["R2_mm"] = "plane"
+            cached = self.__dict__["_rows"] = self.record().json_rows()  # a plane's R2_mm is the word
         return cached
 
     def payload(self, lazy: bool = False) -> dict:
@@ -572,7 +612,9 @@ class RuptureResult(Result):
         dict
             Stem -> table (DataFrame or column mapping).
         """
-        return {"rupture": with_csv_headers(self._frame())}
+        import pandas as pd
+
+        return {"rupture": pd.DataFrame(self.record().csv_columns())}
 
 
 def rupture_distances(source, options: BridgeOptions | None = None) -> RuptureResult:

@@ -23,7 +23,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError, OptionError, Problem
-from ..result import InputFile, Options, Result, input_file, num
+from ..result import InputFile, Options, Result, input_file, num, output
+from .row_records import RowRecord, plain
 
 #: control-chart constants for moving ranges of two consecutive values (Montgomery 2013, Appendix VI)
 D2 = 1.128
@@ -115,6 +116,49 @@ def individuals_chart(values, baseline: int = 8, reference: float | None = None,
 
 
 @dataclass(frozen=True)
+class HistoryRecord(RowRecord):
+    """``capred history``: one row per recorded run, the charted quantity in its own unit (``unit``).
+
+    Attributes
+    ----------
+    unit : str
+        Unit of the charted quantity ("-" for a dimensionless one); the unit of value, ci_low, ci_high and
+        moving_range.
+    run : ndarray of int
+        The run's id in the store.
+    test_date, input : list of str
+        Test date and input file of the run.
+    value : ndarray
+        The quantity [unit].
+    ci_low, ci_high : ndarray
+        Its 95 % interval [unit] (NaN where the run has none).
+    moving_range : ndarray
+        |value − previous value| [unit] (NaN at the first run).
+    beyond_limits, mr_beyond_limit : ndarray of bool
+        The value beyond the control limits; the moving range beyond its upper limit.
+
+    References
+    ----------
+    .. [1] Montgomery, D. C. (2013). Introduction to Statistical Quality Control, 7th ed. Wiley, section 6.4.
+    """
+
+    unit: str = "-"
+    run: np.ndarray = plain("run")
+    test_date: list = plain("test_date")
+    input: list = plain("input")
+    value: np.ndarray = output("value", "value", "{unit}")
+    ci_low: np.ndarray = output("ci_low", "ci_low", "{unit}")
+    ci_high: np.ndarray = output("ci_high", "ci_high", "{unit}")
+    moving_range: np.ndarray = output("moving_range", "moving_range", "{unit}")
+    beyond_limits: np.ndarray = plain("beyond_limits")
+    mr_beyond_limit: np.ndarray = plain("mr_beyond_limit")
+
+    @property
+    def unit_fill(self) -> str:  # the declared "{unit}" is the charted quantity's unit
+        return "" if self.unit == "-" else self.unit
+
+
+@dataclass(frozen=True)
 class HistoryOptions(Options):
     """Options of `capred history`: the material and quantity (a JSON key such as ``phi_deg``) to chart, the
     number of first runs that set the limits, or a reference value and spread in the quantity's unit."""
@@ -150,30 +194,43 @@ class HistoryResult(Result):
         """Ids of the runs beyond the control limits."""
         return [int(r) for r, b in zip(self.runs["run"], self.runs["beyond"]) if b]
 
+    def record(self) -> HistoryRecord:
+        """The runs as a typed record: run id, test date, input, the value with its 95 % interval and moving
+        range in the quantity's unit, and the two flags.
+
+        Returns
+        -------
+        HistoryRecord
+            One value per run (``record.unit``: the quantity's unit).
+
+        References
+        ----------
+        .. [1] Montgomery, D. C. (2013). Introduction to Statistical Quality Control, 7th ed. Wiley, section 6.4.
+        """
+        r = self.runs
+        return HistoryRecord(
+            unit=self.unit,
+            run=np.asarray(r["run"], int),
+            test_date=list(r["test_date"]),
+            input=list(r["input"]),
+            value=np.asarray(r["value"], float),
+            ci_low=np.asarray(r["ci_low"], float),
+            ci_high=np.asarray(r["ci_high"], float),
+            moving_range=np.asarray(r["moving_range"], float),
+            beyond_limits=np.asarray(r["beyond"], bool),
+            mr_beyond_limit=np.asarray(r["mr_beyond"], bool),
+        )
+
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (per run: run id, test date, input, value with its 95 % interval,
-        moving range, beyond_limits), NaN written as None.
+        """The per-row records of the JSON document (:meth:`record` as rows: per run, run id, test date, input,
+        value with its 95 % interval, moving range, beyond_limits), NaN written as None.
 
         Returns
         -------
         list of dict
-            One dict per row, JSON keys with units in their suffix.
+            One dict per row, under the JSON keys.
         """
-        r = self.runs
-        return [
-            {
-                "run": int(r["run"][i]),
-                "test_date": r["test_date"][i],
-                "input": r["input"][i],
-                "value": num(r["value"][i]),
-                "ci_low": num(r["ci_low"][i]),
-                "ci_high": num(r["ci_high"][i]),
-                "moving_range": num(r["moving_range"][i]),
-                "beyond_limits": bool(r["beyond"][i]),
-                "mr_beyond_limit": bool(r["mr_beyond"][i]),
-            }
-            for i in range(len(r["run"]))
-        ]
+        return self.record().json_rows()
 
     def payload(self, lazy: bool = False) -> dict:
         """The command's own keys of the JSON document: material, quantity, unit, the control limits (centre, sigma,
@@ -217,7 +274,20 @@ class HistoryResult(Result):
         """
         import pandas as pd
 
-        return {"history": pd.DataFrame(self.rows())}
+        return {"history": pd.DataFrame(self.record().columns())}
+
+    def csv_tables(self) -> dict:
+        """The tables as the CSV writer takes them (``history``), under ``name [unit]`` headers (the unit of
+        the charted quantity).
+
+        Returns
+        -------
+        dict
+            Stem -> DataFrame.
+        """
+        import pandas as pd
+
+        return {"history": pd.DataFrame(self.record().csv_columns())}
 
 
 def _choose(frame, column: str, given, what: str, store) -> str:

@@ -26,6 +26,7 @@ from ..io import Column, read_table
 from ..physics import pedrotti_tarantino as pt
 from ..references import cite
 from ..result import InputFile, Options, Result, input_file, json_list, num, output
+from .row_records import RowRecord, plain
 
 SCHEMA = [
     Column("step", "dimensionless", "-", "step number of the point", ("point", "point_no"), None, decisive=False),
@@ -258,6 +259,49 @@ def stage_runs(labels, e, e_W, e_A) -> list[Stage]:
     return out
 
 
+@dataclass(frozen=True)
+class StageRecord(RowRecord):
+    """The stages of a labelled path, one row per run of equal ``stage`` labels (stages.csv, the JSON's
+    ``stages``), each column declared once.
+
+    Attributes
+    ----------
+    stage : list of str
+        The label.
+    first_step, last_step : ndarray
+        Step of the run's first and last point [-].
+    first_line, last_line : ndarray of int
+        Their lines in the file.
+    e_end : ndarray
+        Void ratio at the run's last point [-].
+    de, de_W, de_A : ndarray
+        Change of e, e^W, e^A over the run, from the point before it [-] (eq. 5).
+    S_R_end : ndarray
+        Degree of saturation at the last point [-] (JSON ``S_r_end``).
+    sigma_W_end, sigma_A_end : ndarray
+        σ'_W and σ'_A at the last point [kPa] (eq. 1-2).
+
+    References
+    ----------
+    .. [1] Pedrotti, M., Tarantino, A. (submitted). Effective stresses for unsaturated states stemming from clay
+       microstructure. Geomechanics for Energy and the Environment (capred.references,
+       ``pedrotti_tarantino_submitted``), eq. 1-2 and 5.
+    """
+
+    stage: list = plain("stage")
+    first_step: np.ndarray = output("first_step", "first_step", "")
+    last_step: np.ndarray = output("last_step", "last_step", "")
+    first_line: np.ndarray = plain("first_line")
+    last_line: np.ndarray = plain("last_line")
+    e_end: np.ndarray = output("e_end", "e_end", "")
+    de: np.ndarray = output("de", "de", "")
+    de_W: np.ndarray = output("de_W", "de_W", "")
+    de_A: np.ndarray = output("de_A", "de_A", "")
+    S_R_end: np.ndarray = output("S_r_end", "S_r_end", "")
+    sigma_W_end: np.ndarray = output("sigma_W_end_kPa", "sigma_W_end", "kPa")
+    sigma_A_end: np.ndarray = output("sigma_A_end_kPa", "sigma_A_end", "kPa")
+
+
 @dataclass(repr=False)
 class PTVolumeResult(Result):
     """Result of `capred pt-volume`.
@@ -364,24 +408,39 @@ class PTVolumeResult(Result):
             "e_final": num(e[-1]),
             "substeps": [int(x) for x in self.path.substeps],
             "points": self.rows(),
-            "stages": [
-                {
-                    "stage": s.label,
-                    "first_step": num(self.step[s.first]),
-                    "last_step": num(self.step[s.last]),
-                    "first_line": int(self.line[s.first]),
-                    "last_line": int(self.line[s.last]),
-                    "e_end": num(e[s.last]),
-                    "de": num(s.de),
-                    "de_W": num(s.de_W),
-                    "de_A": num(s.de_A),
-                    "S_r_end": num(self.points.S_R[s.last]),
-                    "sigma_W_end_kPa": num(self.points.sigma_W[s.last] / 1e3),
-                    "sigma_A_end_kPa": num(self.points.sigma_A[s.last] / 1e3),
-                }
-                for s in self.stages
-            ],
+            "stages": self.stage_record().json_rows(),
         }
+
+    def stage_record(self) -> StageRecord:
+        """The stages (runs of equal ``stage`` labels) as a typed record: their steps and lines, e, S_r, σ'_W and
+        σ'_A at each run's last point and the changes of e, e^W and e^A over it.
+
+        Returns
+        -------
+        StageRecord
+            One row per stage (none without labels); stresses in kPa.
+
+        References
+        ----------
+        .. [1] Pedrotti, M., Tarantino, A. (submitted), eq. 1-2 and 5 (capred.references,
+           ``pedrotti_tarantino_submitted``).
+        """
+        st, last = self.stages, [s.last for s in self.stages]
+        first = [s.first for s in st]
+        return StageRecord(
+            stage=[s.label for s in st],
+            first_step=np.asarray(self.step, float)[first],
+            last_step=np.asarray(self.step, float)[last],
+            first_line=np.asarray(self.line, int)[first],
+            last_line=np.asarray(self.line, int)[last],
+            e_end=np.asarray(self.points.e, float)[last],
+            de=np.array([s.de for s in st], float),
+            de_W=np.array([s.de_W for s in st], float),
+            de_A=np.array([s.de_A for s in st], float),
+            S_R_end=np.asarray(self.points.S_R, float)[last],
+            sigma_W_end=np.asarray(self.points.sigma_W, float)[last] / 1e3,
+            sigma_A_end=np.asarray(self.points.sigma_A, float)[last] / 1e3,
+        )
 
     def tables(self) -> dict:
         """results: one row per point; stages: one row per run of equal stage labels (when labelled)."""
@@ -404,13 +463,7 @@ class PTVolumeResult(Result):
         cols["fluid_change"] = self.fluid_change()
         out = {"results": pd.DataFrame(cols)}
         if self.stages:
-
-            def head(k: str) -> str:
-                if k.endswith("_kPa"):
-                    return k[:-4] + " [kPa]"
-                return k if k in ("stage", "first_line", "last_line") else f"{k} [-]"
-
-            out["stages"] = pd.DataFrame([{head(k): v for k, v in s.items()} for s in self.payload()["stages"]])
+            out["stages"] = pd.DataFrame(self.stage_record().csv_columns())
         return out
 
     def method_notes(self) -> tuple[list[str], list[str]]:

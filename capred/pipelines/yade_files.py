@@ -23,6 +23,7 @@ import numpy as np
 from ..errors import OptionError
 from ..physics import bridge as br
 from ..result import InputFile, Options, Result
+from .bridge_records import YadeFileRecord
 
 DEFAULT_RATIOS = (1.0, 1.1, 1.25, 1.5, 1.75, 2.0, 3.0, 4.0, 5.0, 10.0)
 #: the ratios YADE's law opens (its list is fixed in the C++ source)
@@ -191,26 +192,40 @@ class YadeResult(Result):
     warnings: list[str] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
 
+    def record(self) -> YadeFileRecord:
+        """One row per capillary file as a typed record: its name, ratio, largest d* and uc*, numbers of
+        distances and bridges and the smallest block.
+
+        Returns
+        -------
+        YadeFileRecord
+            One value per file, in YADE's dimensionless variables.
+
+        References
+        ----------
+        .. [1] Scholtès, L., Chareyre, B., Nicot, F., Darve, F. (2009). Micromechanics of granular materials
+           with capillary effects. Int. J. Eng. Sci. 47, 64-75 (the files' layout).
+        """
+        f = self.files
+        return YadeFileRecord(
+            file=[file_name(x.ratio) for x in f],
+            ratio=np.array([x.ratio for x in f], float),
+            d_star_max=np.array([x.d_max for x in f], float),
+            uc_star_max=np.array([x.uc_max for x in f], float),
+            distances=np.array([len(x.counts) for x in f], int),
+            bridges=np.array([x.rows.shape[0] for x in f], int),
+            smallest_block=np.array([x.counts.min() for x in f], int),
+        )
+
     def summary_rows(self) -> list[dict]:
-        """One row per capillary file: its name, ratio, largest d* and uc*, numbers of distances and
-        bridges and the smallest block.
+        """One row per capillary file (:meth:`record` as JSON rows): its name, ratio, largest d* and uc*,
+        numbers of distances and bridges and the smallest block.
 
         Returns
         -------
         list of dict
         """
-        return [
-            {
-                "file": file_name(f.ratio),
-                "ratio": f.ratio,
-                "d_star_max": f.d_max,
-                "uc_star_max": f.uc_max,
-                "distances": int(len(f.counts)),
-                "bridges": int(f.rows.shape[0]),
-                "smallest_block": int(f.counts.min()),
-            }
-            for f in self.files
-        ]
+        return self.record().json_rows()
 
     def payload(self, lazy: bool = False) -> dict:
         """The command's own keys of the JSON document: contact_angle_deg and the summary row of each file.
@@ -237,7 +252,19 @@ class YadeResult(Result):
         """
         import pandas as pd
 
-        return {"yade_files": pd.DataFrame(self.summary_rows())}
+        return {"yade_files": pd.DataFrame(self.record().columns())}
+
+    def csv_tables(self) -> dict:
+        """The tables as the CSV writer takes them (``yade_files``), under ``name [unit]`` headers.
+
+        Returns
+        -------
+        dict
+            Stem -> DataFrame.
+        """
+        import pandas as pd
+
+        return {"yade_files": pd.DataFrame(self.record().csv_columns())}
 
     def extra_files(self) -> dict[str, bytes]:
         """The capillary files themselves, ``M(r=<ratio>)``, in YADE's layout (ASCII).

@@ -64,7 +64,7 @@ def bridge_compare_tables(result) -> list[TableSpec]:
     list of capred.result.TableSpec
     """
     keys = ["case", "F_measured_mN", "F_exact_mN", "F_toroidal_mN", "F_willett_mN", "F_israelachvili_mN", "status"]
-    rows = result.rows()
+    rows = result.record().json_rows()  # the typed record (CompareRecord): JSON keys are the console headers
     present = [k for k in keys if rows and k in rows[0]]
     return [row_table("Measured against predicted capillary force [mN]", rows, present, "compare.csv")]
 
@@ -82,7 +82,7 @@ def bridge_curve_tables(result) -> list[TableSpec]:
     -------
     list of capred.result.TableSpec
     """
-    err = result.to_json()["rms_relative_error_vs_exact"]
+    err = result.summary()["rms_relative_error_vs_exact"]  # computed from the curve, not read from the JSON
     lim = result.pendular_limit
     t = spec("RMS relative error of σ' against the exact bridge", ["model", f"S_R < {lim:g}", f"S_R >= {lim:g}"])
     for m in err["inside"]:  # the curve's approximations: Israelachvili, then the registry's models drawn on it

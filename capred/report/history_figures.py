@@ -30,10 +30,10 @@ def _label(result) -> str:
 
 
 def _individuals(ax, result):
-    r, lim = result.runs, result.limits
-    k = np.arange(1, len(r["run"]) + 1)
-    x = np.asarray(r["value"], float)
-    lo, hi = np.asarray(r["ci_low"], float), np.asarray(r["ci_high"], float)
+    r, lim = result.record(), result.limits  # the typed record (HistoryRecord), in the quantity's unit
+    k = np.arange(1, len(r.run) + 1)
+    x = r.value
+    lo, hi = r.ci_low, r.ci_high
     has_ci = np.isfinite(lo) & np.isfinite(hi)
     if has_ci.any():
         ax.errorbar(
@@ -47,7 +47,7 @@ def _individuals(ax, result):
             label="95 % interval of the run",
         )
     ax.plot(k, x, "-o", color=OKABE_ITO["black"], ms=3.5, lw=0.8, label="value per run")
-    out = np.asarray(r["beyond"], bool)
+    out = r.beyond_limits
     if out.any():
         ax.plot(k[out], x[out], "s", color=OKABE_ITO["vermillion"], ms=7, mfc="none", mew=1.5, label="beyond limits")
     ax.axhline(lim.centre, **_CENTRE, label="centre line")
@@ -63,11 +63,11 @@ def _individuals(ax, result):
 
 
 def _moving_range(ax, result):
-    r, lim = result.runs, result.limits
-    k = np.arange(1, len(r["run"]) + 1)
-    mr = np.asarray(r["moving_range"], float)
+    r, lim = result.record(), result.limits
+    k = np.arange(1, len(r.run) + 1)
+    mr = r.moving_range
     ax.plot(k[1:], mr[1:], "-o", color=OKABE_ITO["black"], ms=3.5, lw=0.8, label="moving range")
-    out = np.asarray(r["mr_beyond"], bool)
+    out = r.mr_beyond_limit
     if out.any():
         ax.plot(k[out], mr[out], "s", color=OKABE_ITO["vermillion"], ms=7, mfc="none", mew=1.5, label="beyond limit")
     ax.axhline(lim.mr_centre, **_CENTRE, label=r"$\overline{MR}$")
@@ -163,7 +163,8 @@ def history_tables(result) -> list[TableSpec]:
     from .render import fmt, row_table
 
     rows = [
-        {**r, "flag": "OUT" if r["beyond_limits"] else ("MR" if r["mr_beyond_limit"] else "")} for r in result.rows()
+        {**r, "flag": "OUT" if r["beyond_limits"] else ("MR" if r["mr_beyond_limit"] else "")}
+        for r in result.record().json_rows()  # the typed record (HistoryRecord)
     ]
     keys = ["run", "test_date", "value", "ci_low", "ci_high", "moving_range", "flag"]
     what = f"{result.quantity}" + (f" of {result.material}" if result.material else "")

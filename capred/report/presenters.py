@@ -100,7 +100,7 @@ def _rupture_tables(result) -> list[TableSpec]:
         "ratio_to_lian",
         "status",
     ]
-    rows = result.rows()
+    rows = result.record().json_rows()  # the typed record (RuptureRecord): JSON keys are the console headers
     present = [k for k in keys if rows and k in rows[0]]
     return [row_table("Rupture distance at constant volume", rows, present, "rupture.csv")]
 
@@ -108,7 +108,7 @@ def _rupture_tables(result) -> list[TableSpec]:
 def _yade_tables(result) -> list[TableSpec]:
     from .render import row_table
 
-    rows = result.summary_rows()
+    rows = result.record().json_rows()  # the typed record (YadeFileRecord), one row per file
     return [
         row_table(
             "YADE capillary files (exact bridges, YADE's dimensionless variables)",
@@ -142,11 +142,11 @@ PRESENTERS: dict[str, Presenter] = {
         _one("bridge_figures", "sheet_curve", "curve"), _lazy("bridge_tables", "bridge_curve_tables")
     ),
     "bridge compare": Presenter(
-        lambda r: {"compare": _lazy("bridge_figures", "sheet_compare")(r.rows())},
+        lambda r: {"compare": _lazy("bridge_figures", "sheet_compare")(r.record().json_rows())},
         _lazy("bridge_tables", "bridge_compare_tables"),
     ),
     "bridge rupture": Presenter(
-        lambda r: {"rupture": _lazy("bridge_figures", "sheet_rupture")(r.rows())}, _rupture_tables
+        lambda r: {"rupture": _lazy("bridge_figures", "sheet_rupture")(r.record().json_rows())}, _rupture_tables
     ),
     "bridge yade-files": Presenter(_none, _yade_tables),
     "bridge laws": Presenter(

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ..result import TableSpec
+from ..result import TableSpec, num, record_outputs, scale_value
 from .render import MAX_ROWS, fmt, spec
 
 
@@ -18,18 +18,23 @@ def pt_volume_tables(result) -> list[TableSpec]:
     -------
     list of capred.result.TableSpec
     """
-    js = result.to_json()
-    p = js["parameters"]
+    # from the typed results (options, the lines used, PTVolumePoints, Stage), never the JSON document
+    par = result.params
+    illustrative = result.options.illustrative()
     lines = spec(
         "Compressibility lines (Pedrotti & Tarantino: slurry W, dry powder A; e = e_ncl − λ ln(σ'/σ_ref))",
         ["part", "λ", "κ", "e_ncl", "σ_ref [kPa]", "source"],
     )
     for part, name in (("W", "W (reconstituted from slurry)"), ("A", "A (compressed from dry powder)")):
         keys = (f"lambda_{part}", f"kappa_{part}", f"e_ncl_{part}")
-        source = "EXAMPLE_KAOLIN (illustrative)" if any(k in p["illustrative"] for k in keys) else "options"
-        lines.rows.append([name, *(fmt(p[k]) for k in keys), fmt(p["reference_stress_kPa"]), source])
+        source = "EXAMPLE_KAOLIN (illustrative)" if any(k in illustrative for k in keys) else "options"
+        lines.rows.append(
+            [name, *(fmt(num(getattr(par, k))) for k in keys), fmt(num(par.reference_stress / 1e3)), source]
+        )
 
-    labelled = js["points"] and "stage" in js["points"][0]
+    pts = result.points  # SI: stresses in Pa, shown in kPa
+    n = len(result.step)
+    labelled = n > 0 and result.stage is not None
     head = [
         "step",
         *(["stage"] if labelled else []),
@@ -48,31 +53,35 @@ def pt_volume_tables(result) -> list[TableSpec]:
         head,
         left=2 if labelled else 1,
     )
-    for r in js["points"][:MAX_ROWS]:
+    change = result.fluid_change()
+    # each column in the unit its PTVolumePoints field declares (capred.result.output: kPa for a stress)
+    out = {name: [num(x) for x in scale_value(v[: min(n, MAX_ROWS)], o.scale)] for name, o, v in record_outputs(pts)}
+    for i in range(min(n, MAX_ROWS)):
         points.rows.append(
             [
-                fmt(r["step"]),
-                *([r["stage"]] if labelled else []),
-                fmt(r["sigma_kPa"]),
-                fmt(r["suction_kPa"]),
-                fmt(r["S_r"]),
-                fmt(r["sigma_W_kPa"]),
-                fmt(r["sigma_A_kPa"]),
-                fmt(r["e"]),
-                fmt(r["e_W"]),
-                fmt(r["e_A"]),
-                r["fluid_change"].replace("_to_", " → "),
+                fmt(num(result.step[i])),
+                *([result.stage[i]] if labelled else []),
+                fmt(out["sigma"][i]),
+                fmt(out["suction"][i]),
+                fmt(out["S_R"][i]),
+                fmt(out["sigma_W"][i]),
+                fmt(out["sigma_A"][i]),
+                fmt(out["e"][i]),
+                fmt(out["e_W"][i]),
+                fmt(out["e_A"][i]),
+                change[i].replace("_to_", " → "),
             ]
         )
-    if len(js["points"]) > MAX_ROWS:
-        points.total_rows, points.full_table = len(js["points"]), "results.csv"
-    out = [lines, points]
-    if js["stages"]:
+    if n > MAX_ROWS:
+        points.total_rows, points.full_table = n, "results.csv"
+    tables = [lines, points]
+    if result.stages:
         st = spec(
             "Stages (runs of equal 'stage' labels; Δ from the point before the run)",
             ["stage", "steps", "S_r", "σ'_W [kPa]", "σ'_A [kPa]", "e", "Δe", "Δe_W", "Δe_A"],
         )
-        for s in js["stages"]:
+        sr = result.stage_record()  # the typed record of the stages (stages.csv, the JSON's "stages")
+        for s in sr.json_rows():
             steps = (
                 fmt(s["first_step"])
                 if s["first_step"] == s["last_step"]
@@ -91,5 +100,5 @@ def pt_volume_tables(result) -> list[TableSpec]:
                     fmt(s["de_A"], sign=True),
                 ]
             )
-        out.append(st)
-    return out
+        tables.append(st)
+    return tables
