@@ -287,9 +287,11 @@ def model_params_from_retention(path: str | Path, branch: str | None = None, **o
     if scored:
         best = min(scored)[1]
         p["retention_model"] = (best, tuple(sorted(fits[best]["params_si"].items())), js.get("quantity", "S_R"))
+    supplied = tuple(k for k in p if k != "retention_model" and overrides.get(k) is None)
     p.update({k: v for k, v in overrides.items() if v is not None})
     params = ModelParams(**p)
     object.__setattr__(params, "_retention_notes", tuple(notes))  # frozen: set once, as Options sets _warnings
+    object.__setattr__(params, "_retention_fields", supplied)  # the model parameters the file gave
     return params
 
 
@@ -400,6 +402,8 @@ class ShearOptions(Options):
     def _from_retention(self, warnings: bool) -> list[str]:
         """The notes (or warnings) of --retention that concern the models compared, each naming the models."""
         out = []
+        supplied = set(getattr(self.model_params, "_retention_fields", ()))
+        used = any({name for name, _ in esm.REGISTRY[m].requires} & supplied for m in self.models)
         for fields, note, is_warning in self.model_params.retention_notes:
             users = [m for m in self.models if {name for name, _ in esm.REGISTRY[m].requires} & set(fields)]
             if is_warning != warnings:
@@ -408,6 +412,11 @@ class ShearOptions(Options):
                 out.append(note)
             elif users:
                 out.append(f"{note}; used by {', '.join(users)}")
+        if out and not warnings and not used:
+            out[0] += (
+                "; no model compared takes its parameters (see --models): it gives the figures' S_R(s) relation, "
+                "along which the model curves are drawn"
+            )
         return out
 
     @property
@@ -1085,6 +1094,38 @@ def best_of(metrics: dict[str, ModelMetrics]) -> str | None:
     return min(scored, key=scored.get) if scored else None
 
 
+#: options that fill a column's blanks (column -> ShearOptions field)
+ROW_DEFAULT_OPTIONS = {"box_area": "box_area", "V_v": "void_volume", "cap_mass": "cap_mass", "R": "radius"}
+
+
+def unused_row_options(table: Table, opt: ShearOptions) -> list[str]:
+    """Warnings for the options given to fill a column's blanks where every row has its own value: the option
+    changes nothing, and a user who gave it should know (report.html lists it among the options in force).
+
+    Parameters
+    ----------
+    table : Table
+        The whole shear table read.
+    opt : ShearOptions
+        The run's options.
+
+    Returns
+    -------
+    list of str
+        One warning per such option.
+    """
+    out = []
+    for column, name in ROW_DEFAULT_OPTIONS.items():
+        if getattr(opt, name) is None or column not in table.columns or not len(table):
+            continue
+        if not np.isnan(table.get(column)).any():
+            out.append(
+                f"{opt.option_name(name)} is not used: every row gives its own '{column}' (the option fills "
+                "only blank cells)"
+            )
+    return out
+
+
 def filled_column(table: Table, name: str, option: float | None) -> np.ndarray:
     """Column values with blanks (or an absent column) filled from an option.
 
@@ -1375,6 +1416,7 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
         check_shear_table(table)
     else:
         table = load_shear_table(source, True)
+    table.warnings += unused_row_options(table, opt)
     box = filled_column(table, "box_area", opt.box_area)
     curves = None
     if opt.curves is not None:
