@@ -193,3 +193,17 @@ def test_a_converted_parameter_at_its_bound_is_a_warning(sample):
     assert c.converted.params_si["y_r"] == 0.0 and c.converted.at_bounds() == ["y_r"]
     assert any("S_res = 0 lies at its bound" in w for w in c.warnings)
     assert any("S_res = 0 lies at its bound" in w for w in c.to_json()["fits"]["bc"]["warnings"])
+
+
+def test_skempton_b_retention_note_names_the_branch_and_the_fit_taken(tmp_path):
+    """`skempton-b --retention fits.json` says which fit of the file it took: the main branch's lowest AICc."""
+    from typer.testing import CliRunner
+
+    from capred.cli import app
+    from capred.pipelines.retention_convert import brooks_corey_for_skempton
+
+    out = tmp_path / "r"
+    res = CliRunner().invoke(app, ["retention", "--sample", "--out", str(out), "--no-plots", "--no-html"])
+    assert res.exit_code == 0, res.output
+    _, _, notes, _ = brooks_corey_for_skempton(out / "fits.json")
+    assert "(branch 'drying', its lowest-AICc fit of 3: vg)" in notes[0]

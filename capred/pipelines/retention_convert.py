@@ -529,6 +529,7 @@ def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W) -> tuple[float, fl
     src, where, _ = load_retention_fit(path)
     target = power_law_model()
     air, index = target.power_law
+    where = f"{where}{_chosen(path, src.model)}"
     if src.model == target.name:
         p = src.params_si
         notes = [
@@ -553,6 +554,23 @@ def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W) -> tuple[float, fl
         f"{misfit['at_suction_kPa']:.4g} kPa"
     ]
     return p[air], p[index], notes, [f"--retention {where}: {w}" for w in new.warnings]
+
+
+def _chosen(path, model: str) -> str:
+    """Which fit of a fits.json was taken (its branch, and that it has the branch's lowest AICc where the branch
+    holds several), for the notes; empty for anything but a fits.json."""
+    try:
+        doc = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, TypeError, ValueError):
+        return ""
+    if not isinstance(doc, dict):
+        return ""
+    branches = doc.get("branches") or {}
+    b = doc.get("main_branch") or next(iter(branches), None)
+    fits = (branches.get(b) or {}).get("fits") or doc.get("fits") or {}
+    parts = [f"branch '{b}'"] if b else []
+    parts.append(f"its lowest-AICc fit of {len(fits)}: {model}" if len(fits) > 1 else model)
+    return f" ({', '.join(parts)})"
 
 
 class _SaturationView(RetentionFit):
