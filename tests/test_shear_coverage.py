@@ -81,12 +81,12 @@ def simulate(scenario: str, sets: int, seed: int = 0, errors: str = "constant", 
             )
         for m in MATERIALS:
             sel = (r.tests["material"] == m) & (r.tests["condition"] == "wet")
-            lo, hi = (v[sel] / 1e3 for v in r.back.sigma_cap_ci)
+            lo, hi = (v[sel] for v in r.back.sigma_cap_ci_kPa)
             cap_hit = (lo <= cap_true) & (cap_true <= hi)
-            plo, phi = (v[sel] / 1e3 for v in r.predictions["bishop"].tau_prediction_interval)
+            plo, phi = (v[sel] for v in r.predictions["bishop"].tau_prediction_interval_kPa)
             new = _scatter(tau_wet, scenario, rng)  # a new test at each state
             pred_hit = (plo <= new) & (new <= phi)
-            mlo, mhi = (v[sel] / 1e3 for v in r.predictions["bishop"].tau_mean_ci)
+            mlo, mhi = (v[sel] for v in r.predictions["bishop"].tau_mean_ci_kPa)
             hits["cap"] += cap_hit.tolist()
             hits["pred"] += pred_hit.tolist()
             hits["mean"] += ((mlo <= tau_wet) & (tau_wet <= mhi)).tolist()

@@ -28,7 +28,7 @@ BRANCH_STYLES = {
 #: of a second of every run); tick labels are plain numbers for the same reason (and read as kPa directly)
 AXIS_LABELS = {
     "suction": "suction s [kPa]",
-    "S_R": "degree of saturation S_R [–]",
+    "S_R": "degree of saturation [–]",  # S_R would need mathtext (a raw "S_R" is no journal label)
     "theta": "volumetric water content θ [m³/m³]",
 }
 
