@@ -27,6 +27,9 @@ class Reduction:
     example: tuple = ()
     #: what the input is, for a command whose input is not a table of columns (`--help` shows it in their place)
     input_description: str = ""
+    #: what its input table is called in "this looks like ..." hints, for a command whose table has a schema of
+    #: its own (capred.cli.common)
+    table_kind: str = ""
 
     def run(self, source, options):
         """Run the command: call its run function (``run_path``, imported on first use).
@@ -105,6 +108,7 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("evenepoel", "bishop1959"),
             summary="Direct shear with hanging-column suction: dry envelope, effective-stress models, σ_cap.",
+            table_kind="a direct-shear table",
         ),
         Reduction(
             "triaxial-bounds",
@@ -123,6 +127,7 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("prunier2024",),
             summary="Capillary stress tensor at failure from triaxial tests: bounds and groups.",
+            table_kind="a triaxial table (one row per test)",
         ),
         Reduction(
             "retention",
@@ -138,6 +143,7 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("vangenuchten1980", "brooks_corey1964"),
             summary="Water retention curves per branch: fits at the optimum, model selection.",
+            table_kind="a retention table",
         ),
         Reduction(
             "retention-convert",
@@ -312,6 +318,7 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("pedrotti_tarantino_submitted",),
             summary="Void ratio along a stress path with two effective stresses.",
+            table_kind="a stress path for pt-volume",
             example=(("example_kaolin", True),),
         ),
         Reduction(

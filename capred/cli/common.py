@@ -510,13 +510,11 @@ def execute(inv: Invocation) -> None:
         fail(exc)
 
 
-#: what each command's input is, for "this looks like ..." (commands whose table has a schema of its own)
-_TABLE_KINDS = {
-    "shear": "a direct-shear table",
-    "triaxial-bounds": "a triaxial table (one row per test)",
-    "retention": "a retention table",
-    "pt-volume": "a stress path for pt-volume",
-}
+def _table_kinds() -> dict[str, str]:
+    """What each command's input table is called, for "this looks like ..." (``Reduction.table_kind``)."""
+    from ..reductions import REDUCTIONS
+
+    return {name: red.table_kind for name, red in REDUCTIONS.items() if red.table_kind}
 
 
 def _schema_of(command: str):
@@ -561,7 +559,8 @@ def _looks_like(command: str, source, n_problems: int = 0):
         return None
     own = named(own_schema)
     best, best_cols = None, own
-    for other in _TABLE_KINDS:
+    kinds = _table_kinds()
+    for other in kinds:
         schema = _schema_of(other) if other != command else None
         if schema:
             cols = named(schema)
@@ -575,7 +574,7 @@ def _looks_like(command: str, source, n_problems: int = 0):
         str(path),
         None,
         None,
-        f"this looks like {_TABLE_KINDS[best]} (it has {shown}), not an input of capred {command}: "
+        f"this looks like {kinds[best]} (it has {shown}), not an input of capred {command}: "
         f"try capred {best} {path}" + (more if n_problems else ""),
     )
 
