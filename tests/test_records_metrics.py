@@ -55,7 +55,7 @@ def test_json_keys_and_csv_headers_follow_the_declaration():
 
 def test_best_of_ranks_without_warning():
     with warnings.catch_warnings():
-        warnings.simplefilter("error", DeprecationWarning)
+        warnings.filterwarnings("error", category=DeprecationWarning, module=r"capred(\.|$)")
         better = model_metrics([1100.0, 3100.0], [1000.0, 3000.0])
         assert best_of({"a": _hand_metrics(), "b": better}) == "b"
 
@@ -63,7 +63,9 @@ def test_best_of_ranks_without_warning():
 @pytest.mark.filterwarnings("ignore::capred.errors.CapredWarning")
 def test_sample_attributes_equal_the_json_and_the_metrics_table():
     with warnings.catch_warnings():
-        warnings.simplefilter("error", DeprecationWarning)  # run, JSON, tables and console: no old name read
+        warnings.filterwarnings(
+            "error", category=DeprecationWarning, module=r"capred(\.|$)"
+        )  # run, JSON, tables and console: no old name read
         r = capred.run_shear(capred.sample_path("shear"))
         doc = r.to_json()
         table = r.tables()["metrics"]

@@ -42,7 +42,9 @@ KPA_ATTRS = {
 @pytest.fixture(scope="module")
 def run():
     with warnings.catch_warnings():
-        warnings.simplefilter("error", DeprecationWarning)  # the pipeline reads no deprecated name
+        warnings.filterwarnings(
+            "error", category=DeprecationWarning, module=r"capred(\.|$)"
+        )  # the pipeline reads no deprecated name
         warnings.simplefilter("ignore", capred.CapredWarning)  # the sample's pendular-regime notes
         r = capred.run_shear(capred.sample_path("shear"))
         doc = json.loads(json.dumps(r.to_json()))
@@ -121,7 +123,7 @@ def test_si_view_and_replace_are_silent(run):
     r, _ = run
     p = r.predictions["bishop"]
     with warnings.catch_warnings():
-        warnings.simplefilter("error", DeprecationWarning)
+        warnings.filterwarnings("error", category=DeprecationWarning, module=r"capred(\.|$)")
         q = dataclasses.replace(p, tau=p.si.tau * 2)
         assert_array_equal(q.tau_kPa, p.tau_kPa * 2)
         assert_array_equal(q.si.residual, p.si.residual)
@@ -154,7 +156,7 @@ def test_cli_reads_no_deprecated_name(tmp_path):
     """Every figure, the console, the CSV/JSON writers and report.html of `capred shear --figures all`: no
     DeprecationWarning from capred's own code."""
     with warnings.catch_warnings():
-        warnings.simplefilter("error", DeprecationWarning)
+        warnings.filterwarnings("error", category=DeprecationWarning, module=r"capred(\.|$)")
         res = CliRunner().invoke(app, ["shear", "--sample", "--figures", "all", "--out", str(tmp_path / "o")])
     assert res.exit_code == 0, res.output
     assert (tmp_path / "o" / "results.csv").exists()
@@ -178,7 +180,7 @@ def test_user_units_on_any_record():
     assert_allclose(t.alpha_per_kPa, [0.2], rtol=1e-15)
     assert_allclose(t.radius_mm, [2.0], rtol=1e-15)
     with warnings.catch_warnings():
-        warnings.simplefilter("error", DeprecationWarning)
+        warnings.filterwarnings("error", category=DeprecationWarning, module=r"capred(\.|$)")
         assert t.n[0] == 1.5  # not renamed: no warning
     with pytest.warns(DeprecationWarning, match=r"Toy\.alpha \[1/Pa\].*Toy\.alpha_per_kPa \[1/kPa\]"):
         assert t.alpha[0] == 2e-4

@@ -35,7 +35,9 @@ def run():
 def test_tables_are_built_without_the_json_and_without_old_names(run, monkeypatch):
     _forbid_json(run, monkeypatch)
     with warnings.catch_warnings():
-        warnings.simplefilter("error", DeprecationWarning)  # no Pa attribute read (ModelMetrics.rmse ...)
+        warnings.filterwarnings(
+            "error", category=DeprecationWarning, module=r"capred(\.|$)"
+        )  # no Pa attribute read (ModelMetrics.rmse ...)
         titles = [t.title for t in shear_tables(run)]
     assert any(t.startswith("Dry envelope") for t in titles)
     assert any(t.startswith("Wet tests: model comparison") for t in titles)

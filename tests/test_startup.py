@@ -20,7 +20,18 @@ from capred.cli import help as cli_help
 from capred.cli.lazy_group import LazyGroup, lazy_command
 from capred.reductions import REDUCTIONS
 
-HEAVY = ("numpy", "pandas", "matplotlib", "scipy", "rich", "jinja2", "pint")
+HEAVY_ALL = ("numpy", "pandas", "matplotlib", "scipy", "rich", "jinja2", "pint")
+
+
+def _typer_own() -> set[str]:
+    """The heavy packages `import typer` loads by itself (typer before 0.20 imports rich): not capred's doing."""
+    code = "import json, sys, typer; print(json.dumps(sorted({m.split('.')[0] for m in sys.modules})))"
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    return set(json.loads(p.stdout)) & set(HEAVY_ALL)
+
+
+#: what capred's help must not import beyond typer itself
+HEAVY = tuple(m for m in HEAVY_ALL if m not in _typer_own())
 
 #: runs `capred ARGS` as the console script does and prints which heavy packages were imported
 PROBE = """

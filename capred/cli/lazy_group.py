@@ -115,6 +115,10 @@ def _lazy_group(group_info, *, pretty_exceptions_short, rich_markup_mode, sugges
     if solved.cls not in (None, typer.core.TyperGroup):
         raise _NotLazy
     kw = {"pretty_exceptions_short": pretty_exceptions_short, "rich_markup_mode": rich_markup_mode}
+    # typer before 0.20 builds a group without command suggestions (no such keyword)
+    group_kw = dict(kw)
+    if "suggest_commands" in inspect.signature(get_group_from_info).parameters:
+        group_kw["suggest_commands"] = suggest_commands
     stand_ins, builders = {}, {}
     for info in instance.registered_commands:
         if info.callback is None:  # pragma: no cover - typer refuses it when built
@@ -144,14 +148,14 @@ def _lazy_group(group_info, *, pretty_exceptions_short, rich_markup_mode, sugges
         )
         builders[sub_solved.name] = functools.partial(
             _lazy_or_full, sub, get_group_from_info, suggest_commands=suggest_commands, **kw
-        )
+        )  # _lazy_or_full hands get_group_from_info only the keywords it takes
     # the group itself (its callback's options, help, settings) as typer builds it, without its commands
     shell = copy.copy(instance)
     shell.registered_commands, shell.registered_groups = [], []
     shell_info = copy.copy(group_info)
     shell_info.typer_instance = shell
     shell_info.cls = LazyGroup
-    group = get_group_from_info(shell_info, suggest_commands=suggest_commands, **kw)
+    group = get_group_from_info(shell_info, **group_kw)
     if type(group) is not LazyGroup:  # pragma: no cover - other typer versions
         raise _NotLazy
     group.commands.update(stand_ins)
@@ -164,6 +168,8 @@ def _lazy_or_full(group_info, get_group_from_info, **kw):
     try:
         return _lazy_group(group_info, **kw)
     except _NotLazy:
+        if "suggest_commands" not in inspect.signature(get_group_from_info).parameters:
+            kw.pop("suggest_commands", None)
         return get_group_from_info(group_info, **kw)
 
 
