@@ -48,6 +48,8 @@ CLAIMS = {
     "every-output": (240.0, "1,000 files with every default output (issue 31)"),
 }
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "benchmarks"))
+from common import installed_env  # noqa: E402
 
 
 def timed(args: list[str], env: dict | None = None, cwd: Path | None = None) -> tuple[float, float]:
@@ -119,11 +121,11 @@ def main(
                 check=True,
                 capture_output=True,
             )
-            env = {**os.environ, "PYTHONPATH": str(base)}
+            env = {**installed_env(tmp / "pycache-base"), "PYTHONPATH": str(base)}
             for name in list(plans):
                 plans[f"{name}@base"] = plans[name]
                 envs[f"{name}@base"] = env
-        mine = {**os.environ, "PYTHONPATH": str(ROOT)}
+        mine = {**installed_env(tmp / "pycache"), "PYTHONPATH": str(ROOT)}
         times: dict[str, list[tuple[float, float]]] = {k: [] for k in plans}
         try:
             for r in range(repeats):  # interleaved: each variant once per round

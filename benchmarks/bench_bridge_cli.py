@@ -41,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 from bench_bridge import ivp_bridge  # one solve_ivp integration per bridge (this folder)
-from common import interleaved, ratio_line, run
+from common import installed_env, interleaved, ratio_line, run
 
 from capred.physics import bridge as br
 
@@ -91,15 +91,6 @@ def suction_file(path: Path, R, th, D, s) -> None:
 ENV: dict | None = None
 
 
-def cli_env(pycache: Path) -> dict | None:
-    """The environment of the CLI runs: bytecode cached under ``pycache`` unless CAPRED_BENCH_COMPILE=1."""
-    if os.environ.get("CAPRED_BENCH_COMPILE") == "1":
-        return None
-    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
-    env["PYTHONPYCACHEPREFIX"] = str(pycache)
-    return env
-
-
 def cli(csv: Path, out: Path):
     """One `capred bridge solve` run: (Timing of its process tree, peak RSS [kB])."""
     p, t = run([sys.executable, "-c", RUN, "bridge", "solve", str(csv), "--out", str(out), "--no-html"], env=ENV)
@@ -121,7 +112,7 @@ def main(n: int = 100_000, repeats: int = 3, sample: int = 300) -> None:
     global ENV
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
-        ENV = cli_env(tmp / "pycache")
+        ENV = installed_env(tmp / "pycache")
         print(
             "bytecode: "
             + (

@@ -26,7 +26,7 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-from common import interleaved, run, timed
+from common import installed_env, interleaved, run, timed
 
 from capred.pipelines import bridge_solve as bs
 
@@ -113,8 +113,7 @@ def _command(ks, repeats, R, th, D, s) -> None:
         tmp = Path(tmp)
         csv = tmp / "cases.csv"
         suction_file(csv, R, th, D, s)
-        env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
-        env["PYTHONPYCACHEPREFIX"] = str(tmp / "pycache")  # bytecode cached, as an installed package has it
+        env = installed_env(tmp / "pycache")
 
         def cli(k):
             cmd = [sys.executable, "-m", "capred", "bridge", "solve", str(csv), "--out", str(tmp / f"o{k}")]

@@ -179,7 +179,7 @@ def process(rows: int = 10_000, repeats: int = 5) -> None:
     import shutil
     import tempfile
 
-    from common import interleaved, lab_retention_rows, ratio_line
+    from common import installed_env, interleaved, lab_retention_rows, ratio_line
     from common import run as run_cmd
 
     try:
@@ -189,7 +189,10 @@ def process(rows: int = 10_000, repeats: int = 5) -> None:
     tmp = Path(tempfile.mkdtemp(prefix="bench_retention_"))
     data = tmp / "readings.csv"
     lab_retention_rows(data, rows)
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), *filter(None, [os.environ.get("PYTHONPATH")])])}
+    env = {
+        **installed_env(tmp / "pycache"),
+        "PYTHONPATH": os.pathsep.join([str(ROOT), *filter(None, [os.environ.get("PYTHONPATH")])]),
+    }
     py = sys.executable
 
     def capred(*extra, root=ROOT):

@@ -29,7 +29,7 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from common import interleaved, ratio_line, run  # noqa: E402
+from common import installed_env, interleaved, ratio_line, run  # noqa: E402
 
 
 def make_rows(path: Path, n: int, seed: int = 20) -> None:
@@ -65,12 +65,14 @@ def main(repeats: int = 3, n: int = 100_000, lab: bool = False) -> None:
             make_rows(data, n)
         print(f"load {os.getloadavg()}, {'lab-shaped rows (common.lab_shear_rows)' if lab else 'the sample repeated'}")
 
+        env = installed_env(Path(tmp) / "pycache")
+
         def shear(*args):
             out = Path(tmp) / "o"
 
             def go():
                 shutil.rmtree(out, ignore_errors=True)
-                run([py, "-m", "capred", "shear", str(data), *args, "--out", str(out)], cwd=tmp)
+                run([py, "-m", "capred", "shear", str(data), *args, "--out", str(out)], env=env, cwd=tmp)
 
             return go
 

@@ -20,7 +20,7 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from common import interleaved, ratio_line, run  # noqa: E402
+from common import installed_env, interleaved, ratio_line, run  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -28,10 +28,7 @@ ROOT = Path(__file__).resolve().parents[1]
 def main(repeats: int = 9) -> None:
     py = sys.executable
     with tempfile.TemporaryDirectory() as tmp:
-        env = {**os.environ, "PYTHONPATH": str(ROOT)}
-        if os.environ.get("CAPRED_BENCH_COMPILE") != "1":
-            env.pop("PYTHONDONTWRITEBYTECODE", None)
-            env["PYTHONPYCACHEPREFIX"] = tmp
+        env = {**installed_env(tmp), "PYTHONPATH": str(ROOT)}
         contestants = {
             "import typer": lambda: run([py, "-c", "import typer"], env=env),
             "capred --help": lambda: run([py, "-m", "capred", "--help"], env=env),

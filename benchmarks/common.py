@@ -13,6 +13,7 @@ shared machine; the median of the repeats is reported.
 
 from __future__ import annotations
 
+import os
 import resource
 import statistics
 import subprocess
@@ -75,6 +76,22 @@ def interleaved(contestants: dict[str, Callable[[], Any]], repeats: int = 5) -> 
         k: Medians(statistics.median(t.cpu for t in v), statistics.median(t.wall for t in v), v)
         for k, v in seen.items()
     }
+
+
+def installed_env(pycache: Path | str, base: dict | None = None) -> dict:
+    """The environment of a timed ``python -m capred`` run: capred's bytecode cached, as an installed package has it.
+
+    pip compiles a package's bytecode when it installs it, and any other install writes it on the first run. A
+    machine that sets PYTHONDONTWRITEBYTECODE (this project's shared one does) would make every timed run compile
+    capred's modules again (about 0.25 s for the shear command), a cost no user pays twice: the warm-up run
+    writes the bytecode under ``pycache`` (PYTHONPYCACHEPREFIX) instead. CAPRED_BENCH_COMPILE=1 keeps the
+    environment as it is. The peers (numpy, scipy, matplotlib, unsatfit) run from site-packages, compiled by pip.
+    """
+    env = dict(os.environ if base is None else base)
+    if os.environ.get("CAPRED_BENCH_COMPILE") != "1":
+        env.pop("PYTHONDONTWRITEBYTECODE", None)
+        env["PYTHONPYCACHEPREFIX"] = str(pycache)
+    return env
 
 
 def ratio_line(label: str, num: float, den: float, target: str = "") -> str:

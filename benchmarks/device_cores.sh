@@ -1,23 +1,52 @@
 #!/usr/bin/env bash
-# capred on a many-core machine (issue 31, item 4): the whole `capred bridge solve` command (CSV in, CSV and
-# JSON out) on 1, 2, 4, 8 and 16 processes for 1,000,000 bridges, and `capred --help` against `import typer`.
+# capred's issue-31 figures on a lent many-core measuring machine, as one prepared run (no network there):
+#   - `capred bridge solve` (CSV in, CSV and JSON out) on 1, 2, 4, 8 and 16 processes for 1,000,000 bridges;
+#   - the 2-core targets on two idle cores (every process pinned to cores 0 and 1, the rest of the machine
+#     idle): bridge solve on 1 and 2 processes, a season through `capred batch`, the README command against its
+#     floor, retention against unsatfit, 100,000 lab-shaped shear rows, and `capred --help` against typer;
+#   - the bridge solver against per-bridge solve_ivp on one pinned core.
 #
-# Run from the repository root, with the project's virtual environment carried along (no network needed):
-#     PYTHON=.venv/bin/python bash benchmarks/device_cores.sh [rows=1000000] [workers=1,2,4,8,16] [repeats=3]
-# Each figure is printed with the load average; every run's outputs are checked byte-identical to one process's.
-# About 3 minutes on 16 cores (1M rows: ~10 s on one process).
-set -euo pipefail
+# Run from the repository root, with the wheels of ../shared/tools/device-wheels.sh (plus unsatfit's) in .whl/:
+#     bash benchmarks/device_cores.sh [rows=1000000] [season files=300]
+# Each section has its own time limit and prints the load average; every output is checked as each benchmark
+# checks it (bridge solve: byte-identical to one process). The log is written to $OUT/device.log when OUT is set.
+set -uo pipefail
 cd "$(dirname "$0")/.."
-PY="${PYTHON:-python3}"
 ROWS="${1:-1000000}"
-WORKERS="${2:-1,2,4,8,16}"
-REPEATS="${3:-3}"
-export PYTHONPATH="$PWD${PYTHONPATH:+:$PYTHONPATH}"
-export OPENBLAS_NUM_THREADS=1  # as the console script sets it
-echo "== $(date -u +%FT%TZ) $(uname -srm); $(nproc) cores; $("$PY" --version 2>&1); load $(cut -d' ' -f1-3 /proc/loadavg)"
-grep -m1 "model name" /proc/cpuinfo || true
-echo "== capred --help against import typer (CPU of the process, medians of 15, interleaved)"
-"$PY" benchmarks/bench_startup.py 15
-echo "== capred bridge solve on ${WORKERS} processes, ${ROWS} bridges, ${REPEATS} interleaved repeats"
-(cd benchmarks && "$PY" bench_bridge_cores.py "$ROWS" "$WORKERS" "$REPEATS")
-echo "== done $(date -u +%FT%TZ); load $(cut -d' ' -f1-3 /proc/loadavg)"
+FILES="${2:-300}"
+LOG="${OUT:-/tmp}/device.log"
+PY="${PYTHON:-python3}"
+export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1  # as capred's console script sets them
+if ! "$PY" -c "import typer, pint, orjson, openpyxl, odf" 2>/dev/null && [ -d .whl ]; then
+  # the packages the machine lacks (capred itself runs from this tree)
+  "$PY" -m pip install -q --no-index --no-deps --target "$HOME/site" $(ls .whl/*.whl | grep -v '/capred-') \
+    >/dev/null 2>&1 || echo "pip install of .whl failed"
+  export PYTHONPATH="$PWD:$HOME/site"
+else
+  export PYTHONPATH="$PWD${PYTHONPATH:+:$PYTHONPATH}"
+fi
+# a command on two cores only (0 and 1), without needing taskset
+two() { "$PY" -c 'import os, sys; os.sched_setaffinity(0, {0, 1}); os.execvp(sys.argv[1], sys.argv[1:])' "$@"; }
+one() { "$PY" -c 'import os, sys; os.sched_setaffinity(0, {0}); os.execvp(sys.argv[1], sys.argv[1:])' "$@"; }
+section() {  # name, seconds, command...
+  local name="$1" limit="$2"
+  shift 2
+  echo "== $name ($(date -u +%T); load $(cut -d' ' -f1-3 /proc/loadavg))"
+  timeout "$limit" "$@"
+  echo "-- rc $? ($(date -u +%T); load $(cut -d' ' -f1-3 /proc/loadavg))"
+}
+{
+  echo "== $(date -u +%FT%TZ) $(uname -srm); $(nproc) cores; $("$PY" --version 2>&1)"
+  grep -m1 "model name" /proc/cpuinfo || true
+  "$PY" -c 'import numpy, scipy, matplotlib, pandas, typer; print("numpy", numpy.__version__, "scipy", scipy.__version__, "matplotlib", matplotlib.__version__, "pandas", pandas.__version__, "typer", typer.__version__)'
+  cd benchmarks
+  section "bridge solve, ${ROWS} bridges, 1-16 processes" 170 "$PY" bench_bridge_cores.py "$ROWS" 1,2,4,8,16 3 --command-only
+  section "two cores: bridge solve, ${ROWS} bridges, 1 and 2 processes" 100 two "$PY" bench_bridge_cores.py "$ROWS" 1,2 3 --command-only
+  section "two cores: a season of ${FILES} files, every default output, 2 workers" 140 two "$PY" bench_batch.py "$FILES" 1 --only every-output --workers 2
+  section "two cores: the README command against its floor" 90 two "$PY" bench_one_path.py 3
+  section "two cores: retention on 10,000 readings against unsatfit" 70 two "$PY" bench_retention.py --process 10000 3
+  section "one core: bridge solvers against solve_ivp" 70 one "$PY" bench_bridge.py 20000 3
+  section "two cores: 100,000 lab-shaped shear rows" 100 two "$PY" bench_shear.py 1 100000 --lab
+  section "two cores: capred --help against import typer" 40 two "$PY" bench_startup.py 9
+  echo "== done $(date -u +%FT%TZ)"
+} 2>&1 | tee "$LOG"
