@@ -656,6 +656,9 @@ class Rows:
     holding every row's dict; ``to_json()`` turns it into a plain list.
     """
 
+    #: True when the rows' JSON text is already written (the writer then only copies it, in its own process)
+    written_ahead = False
+
     def __init__(self, n: int, make: Callable[[int, int], list]):
         self.n = n
         self.make = make  # (start, stop) -> list of rows

@@ -10,7 +10,7 @@ Other layers (pipelines, report, batch, cli) import what they need from here, e.
 - `capred.io.manifest`: `read_manifest`;
 - `capred.io.writers`: the output files (`write_run`, `write_batch_file`, `RunFolder`, `check_target`,
   `encode_csv`, `encode_json`, `encode_rows`, `stream_json`, `safe_name`, `INDEX_HEADER`,
-  `second_core_free`);
+  `second_core_free`, `FileText` and `write_piece`: text written ahead, copied file to file);
 - `capred.io.spreadsheet_out`: `source_date_epoch`.
 
 Names are imported from their submodule on first use (PEP 562), so ``import capred.io`` costs nothing and
@@ -30,6 +30,7 @@ if TYPE_CHECKING:  # what the names are, for readers and type checkers; at run t
     from .table import Column, Table, column_lookup, find_header, header_key, match_header, read_table
     from .writers import (
         INDEX_HEADER,
+        FileText,
         RunFolder,
         check_target,
         encode_csv,
@@ -40,6 +41,7 @@ if TYPE_CHECKING:  # what the names are, for readers and type checkers; at run t
         stream_json,
         write_batch_file,
         write_csv_file,
+        write_piece,
         write_run,
     )
 
@@ -55,6 +57,7 @@ _WHERE = {
     **dict.fromkeys(
         (
             "INDEX_HEADER",
+            "FileText",
             "RunFolder",
             "check_target",
             "encode_csv",
@@ -65,6 +68,7 @@ _WHERE = {
             "stream_json",
             "write_batch_file",
             "write_csv_file",
+            "write_piece",
             "write_run",
         ),
         "writers",
@@ -73,6 +77,7 @@ _WHERE = {
 
 __all__ = [
     "Column",
+    "FileText",
     "INDEX_HEADER",
     "ReadLimits",
     "RunFolder",
@@ -98,6 +103,7 @@ __all__ = [
     "stream_json",
     "write_batch_file",
     "write_csv_file",
+    "write_piece",
     "write_run",
 ]
 

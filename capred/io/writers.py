@@ -114,6 +114,102 @@ def encode_json(doc, indent: bool | None = None) -> bytes:
     return _dumps(doc, indent=True) + b"\n"
 
 
+class FileText:
+    """Text already written to another file: ``length`` bytes at ``offset`` of the open file descriptor ``fd``
+    (a run's temporary file, capred.pipelines.bridge_blocks). :func:`write_piece` copies it file to file in
+    the kernel, without reading it into this process.
+
+    Parameters
+    ----------
+    fd : int
+        Open file descriptor of the file that holds the text.
+    offset : int
+        Where the text starts in it [bytes].
+    length : int
+        Its length [bytes].
+    """
+
+    __slots__ = ("fd", "offset", "length")
+
+    def __init__(self, fd: int, offset: int, length: int) -> None:
+        self.fd, self.offset, self.length = fd, offset, length
+
+    def __len__(self) -> int:
+        return self.length
+
+
+#: bytes read at a time where a FileText cannot be copied in the kernel
+_COPY_CHUNK = 1 << 22
+
+
+def write_piece(fh, piece) -> None:
+    """Write ``piece`` (bytes-like, or a :class:`FileText`) to the binary file ``fh``.
+
+    A FileText goes file to file (``os.copy_file_range``, else ``os.sendfile``) when ``fh`` is a file on disk,
+    else (a pipe, a file-like object, a system without either call) it is read a chunk at a time and written:
+    the same bytes either way.
+
+    Parameters
+    ----------
+    fh : binary file or object with ``write``
+        Where to write.
+    piece : bytes-like or FileText
+        What to write.
+    """
+    if not isinstance(piece, FileText):
+        fh.write(piece)
+        return
+    offset, left = piece.offset, piece.length
+    try:
+        fh.flush()
+        dst = fh.fileno()
+        fh.seek(0, os.SEEK_CUR)  # seekable: a file, whose position the kernel then moves
+    except (AttributeError, OSError, io.UnsupportedOperation, ValueError):
+        dst = None
+    if dst is not None:
+        for copy in (_copy_range, _send):
+            if copy is None:
+                continue
+            try:
+                while left:
+                    done = copy(piece.fd, dst, offset, left)
+                    if done <= 0:
+                        break
+                    offset, left = offset + done, left - done
+            except OSError:  # not between these files (another file system, an old kernel): what is left, read
+                pass
+            if not left:
+                break
+        fh.seek(os.lseek(dst, 0, os.SEEK_CUR))  # the file object's position: where the kernel's writes ended
+    while left:
+        data = os.pread(piece.fd, min(left, _COPY_CHUNK), offset)
+        if not data:
+            raise OSError(errno.EIO, f"text of a temporary file ended {left} bytes early")
+        fh.write(data)
+        offset, left = offset + len(data), left - len(data)
+
+
+class _Writes:
+    """A ``write`` callable as a file object that has only ``write``."""
+
+    def __init__(self, write) -> None:
+        self.write = write
+
+
+def _copy_range(src: int, dst: int, offset: int, count: int) -> int:
+    return os.copy_file_range(src, dst, count, offset)
+
+
+def _send(src: int, dst: int, offset: int, count: int) -> int:
+    return os.sendfile(dst, src, offset, count)
+
+
+if not hasattr(os, "copy_file_range"):  # pragma: no cover - not Linux
+    _copy_range = None
+if not hasattr(os, "sendfile"):  # pragma: no cover
+    _send = None
+
+
 def stream_json(doc: dict, write) -> None:
     """Write a document whose values may be Rows (made on demand) chunk by chunk through ``write(bytes)``.
 
@@ -125,9 +221,18 @@ def stream_json(doc: dict, write) -> None:
     doc : dict
         The JSON document; a value may be a :class:`capred.result.Rows`.
     write : callable
-        Takes each chunk of bytes in order (e.g. a binary file's ``write``).
+        Takes each chunk of bytes in order (e.g. a binary file's ``write``; text its run wrote ahead,
+        :class:`FileText`, is then copied file to file).
     """
     from ..result import Rows
+
+    owner = getattr(write, "__self__", None)  # the file of a bound ``write``
+
+    def put(data) -> None:
+        if isinstance(data, FileText):
+            write_piece(owner if hasattr(owner, "fileno") else _Writes(write), data)
+        else:
+            write(data)
 
     if not any(isinstance(v, Rows) for v in doc.values()):
         write(encode_json(doc))
@@ -141,8 +246,10 @@ def stream_json(doc: dict, write) -> None:
             # a Rows that can encode its rows itself (column by column, the same bytes) does
             pieces = value.json_chunks() if hasattr(value, "json_chunks") else map(encode_rows, value.chunks())
             for data in pieces:
-                if data:
-                    write((b"" if first else b",") + data)
+                if len(data):
+                    if not first:
+                        write(b",")
+                    put(data)
                     first = False
             write(b"]")
         else:
@@ -301,7 +408,7 @@ def write_csv_file(path, frame, dialect: str = "standard") -> None:
         pieces = frame.csv_pieces(dialect) if hasattr(frame, "csv_pieces") else None
         if pieces is not None:  # a table whose CSV text its run has written ahead (capred.pipelines.bridge_blocks)
             for data in pieces:
-                fh.write(data)
+                write_piece(fh, data)
             return
         blocks = frame.blocks() if hasattr(frame, "blocks") else [frame]  # a Spool: block by block
         for k, block in enumerate(blocks):
@@ -1035,8 +1142,17 @@ class _JsonWriter:
 
         from ..result import Rows
 
-        self.path, self.doc, self.pid = path, doc, None
-        long = sum(v.n for v in doc.values() if isinstance(v, Rows)) > PARALLEL_JSON_ROWS
+        self.path, self.doc, self.pid, self.thread, self.failed = path, doc, None, None, None
+        rows = [v for v in doc.values() if isinstance(v, Rows)]
+        # rows whose JSON text their run wrote ahead (capred.pipelines.bridge_blocks) are only copied, file to
+        # file in the kernel: a thread does it while the caller writes the other files (no process of its own)
+        if rows and all(v.written_ahead for v in rows):
+            import threading
+
+            self.thread = threading.Thread(target=self._write_caught, name="capred-json", daemon=True)
+            self.thread.start()
+            return
+        long = sum(v.n for v in rows) > PARALLEL_JSON_ROWS
         if long and second_core_free():
             import gc
 
@@ -1056,9 +1172,21 @@ class _JsonWriter:
         with open(self.path, "wb") as fh:
             stream_json(self.doc, fh.write)
 
+    def _write_caught(self) -> None:
+        try:
+            self._write()
+        except BaseException as exc:  # raised again by finish(), in the caller's thread
+            self.failed = exc
+
     def finish(self) -> None:
         import os
 
+        if self.thread is not None:
+            self.thread.join()
+            self.thread = None
+            if self.failed is not None:
+                raise self.failed
+            return
         if self.pid is None:
             return
         import gc
@@ -1075,6 +1203,9 @@ class _JsonWriter:
         import os
         import signal
 
+        if self.thread is not None:  # a copy in the kernel: let it end (the folder is removed after)
+            self.thread.join()
+            self.thread = None
         if self.pid is not None:
             import gc
 

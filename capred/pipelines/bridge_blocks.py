@@ -602,6 +602,8 @@ def _close_all(files) -> None:
 class _EncodedRows(pb.ColumnRows):
     """The rows of a spread run whose JSON text its processes have written ahead (:func:`_encode_blocks`)."""
 
+    written_ahead = True  # the JSON writer copies the text: no process of its own (capred.io.writers)
+
     def __init__(self, n: int, columns, encoded) -> None:
         super().__init__(n, columns)
         self.encoded = encoded
@@ -625,34 +627,29 @@ class _EncodedRows(pb.ColumnRows):
 class _Encoded:
     """The CSV (standard dialect, the header with the first block) and JSON text of every block of a spool,
     in temporary files: (file, CSV offset, CSV bytes, JSON offset, JSON bytes) per block. The text is handed
-    out as views of the files mapped in memory (no copy: the writers write it straight from there)."""
+    out as places in those files (capred.io.FileText: the writers copy it file to file, in the kernel)."""
 
     def __init__(self, files, index) -> None:
-        import mmap
         import weakref
 
         self.files, self.index = files, index
-        self.maps = [mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) if _size(f) else None for f in files]
         self._closer = weakref.finalize(self, _close_all, list(files))
 
     def _text(self, f: int, offset: int, size: int):
-        return memoryview(self.maps[f])[offset : offset + size] if size else b""
+        from ..io import FileText
+
+        return FileText(self.files[f].fileno(), offset, size) if size else b""
 
     def csv_pieces(self):
-        """The CSV text, block by block (bytes-like)."""
+        """The CSV text, block by block (capred.io.FileText)."""
         for f, c_off, c_len, _, _ in self.index:
             yield self._text(f, c_off, c_len)
 
     def json_pieces(self):
-        """The JSON rows, block by block (bytes-like: objects joined by commas; empty for a block of no rows)."""
+        """The JSON rows, block by block (capred.io.FileText: objects joined by commas; empty for a block of no
+        rows)."""
         for f, _, _, j_off, j_len in self.index:
             yield self._text(f, j_off, j_len)
-
-
-def _size(f) -> int:
-    import os
-
-    return os.fstat(f.fileno()).st_size
 
 
 class _Sink:
