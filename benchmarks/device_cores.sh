@@ -8,6 +8,7 @@
 #
 # Run from the repository root, with the wheels of ../shared/tools/device-wheels.sh (plus unsatfit's) in .whl/:
 #     bash benchmarks/device_cores.sh [rows=1000000] [season files=300]
+# SECTIONS="cores bridge2 season readme retention ivp shear100k startup" (any of them) runs those alone.
 # Each section has its own time limit and prints the load average; every output is checked as each benchmark
 # checks it (bridge solve: byte-identical to one process). The log is written to $OUT/device.log when OUT is set.
 set -uo pipefail
@@ -31,9 +32,10 @@ else
 fi
 # the command pinned to the cores listed (e.g. 0,1), its children with it, without needing taskset
 PIN='import os, sys; os.sched_setaffinity(0, {int(c) for c in sys.argv[1].split(",")}); os.execv(sys.argv[2], sys.argv[2:])'
-section() {  # name, seconds, cores (all: unpinned), python arguments...
-  local name="$1" limit="$2" cores="$3"
-  shift 3
+section() {  # key, name, seconds, cores (all: unpinned), python arguments...
+  local key="$1" name="$2" limit="$3" cores="$4"
+  shift 4
+  case " ${SECTIONS:-$key} " in *" $key "*) ;; *) return 0 ;; esac  # SECTIONS="key ...": those alone
   echo "== $name ($(date -u +%T); load $(cut -d' ' -f1-3 /proc/loadavg))"
   if [ "$cores" = all ]; then
     timeout "$limit" "$PY" "$@"
@@ -47,13 +49,13 @@ section() {  # name, seconds, cores (all: unpinned), python arguments...
   grep -m1 "model name" /proc/cpuinfo || true
   "$PY" -c 'import numpy, scipy, matplotlib, pandas, typer; print("numpy", numpy.__version__, "scipy", scipy.__version__, "matplotlib", matplotlib.__version__, "pandas", pandas.__version__, "typer", typer.__version__)'
   cd benchmarks
-  section "bridge solve, ${ROWS} bridges, 1-16 processes" 170 all bench_bridge_cores.py "$ROWS" 1,2,4,8,16 3 --command-only
-  section "two cores: bridge solve, ${ROWS} bridges, 1 and 2 processes" 100 0,1 bench_bridge_cores.py "$ROWS" 1,2 3 --command-only
-  section "two cores: a season of ${FILES} files, every default output, 2 workers" 140 0,1 bench_batch.py "$FILES" 1 --only every-output --workers 2
-  section "two cores: the README command against its floor" 90 0,1 bench_one_path.py 3
-  section "two cores: retention on 10,000 readings against unsatfit" 70 0,1 bench_retention.py --process 10000 3
-  CAPRED_PROCESSES=1 section "one core: bridge solve against per-bridge solve_ivp, 200,000 rows" 90 0 bench_bridge_cli.py 200000 3
-  section "two cores: 100,000 lab-shaped shear rows" 100 0,1 bench_shear.py 1 100000 --lab
-  section "two cores: capred --help against import typer" 40 0,1 bench_startup.py 9
+  section cores "bridge solve, ${ROWS} bridges, 1-16 processes" 170 all bench_bridge_cores.py "$ROWS" 1,2,4,8,16 3 --command-only
+  section bridge2 "two cores: bridge solve, ${ROWS} bridges, 1 and 2 processes" 100 0,1 bench_bridge_cores.py "$ROWS" 1,2 3 --command-only
+  section season "two cores: a season of ${FILES} files, every default output, 2 workers" 140 0,1 bench_batch.py "$FILES" 1 --only every-output --workers 2
+  section readme "two cores: the README command against its floor" 90 0,1 bench_one_path.py 3
+  section retention "two cores: retention on 10,000 readings against unsatfit" 70 0,1 bench_retention.py --process 10000 3
+  CAPRED_PROCESSES=1 section ivp "one core: bridge solve against per-bridge solve_ivp, 200,000 rows" 90 0 bench_bridge_cli.py 200000 3
+  section shear100k "two cores: 100,000 lab-shaped shear rows" 100 0,1 bench_shear.py 1 100000 --lab
+  section startup "two cores: capred --help against import typer" 40 0,1 bench_startup.py 9
   echo "== done $(date -u +%FT%TZ)"
 } 2>&1 | tee "$LOG"
