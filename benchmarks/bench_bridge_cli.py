@@ -100,7 +100,9 @@ def cli(csv: Path, out: Path):
 def main(n: int = 100_000, repeats: int = 3, sample: int = 300) -> None:
     # capred uses up to two processes on a long file (the JSON writer, and the solver on blocks of 40,000 rows or
     # more: capred.pipelines.bridge_solve._PARALLEL_ROWS); the wall-clock peer is spread over as many (its best case)
-    procs = 2 if n >= 40_000 and (os.cpu_count() or 1) >= 2 else 1
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    forced = os.environ.get("CAPRED_PROCESSES", "").strip()
+    procs = int(forced) if forced.isdigit() and int(forced) > 0 else (2 if n >= 40_000 and cores >= 2 else 1)
     R, th, D, s = cases(n)
     th_r, s_star, D_star = dimensionless(R, th, D, s)
     beta, status = br.solve_for_suction(th_r, s_star, D_star)

@@ -82,3 +82,30 @@ def test_stream_json_copies_text_written_ahead_to_a_file_or_a_callable(tmp_path)
     expected = b'{"command":"x","rows":[{"k":1},{"k":2}]}\n'
     assert (tmp_path / "doc.json").read_bytes() == expected
     assert b"".join(chunks) == expected
+
+
+def test_a_wrapping_file_object_gets_the_bytes_through_its_own_write(tmp_path):
+    """A gzip file has a descriptor, but the bytes must go through its compressor, not to the descriptor."""
+    import gzip
+
+    src, piece = _ahead(TEXT)
+    with src, gzip.open(tmp_path / "out.gz", "wb") as fh:
+        fh.write(b"[")
+        write_piece(fh, piece)
+    assert gzip.decompress((tmp_path / "out.gz").read_bytes()) == b"[" + TEXT
+
+
+def test_a_copy_asked_to_stop_stops_and_the_text_reads_as_bytes(tmp_path):
+    import threading
+
+    import pytest
+
+    from capred.io.writers import Stopped
+
+    src, piece = _ahead(TEXT)
+    stop = threading.Event()
+    stop.set()
+    with src:
+        assert bytes(piece) == TEXT
+        with open(tmp_path / "out", "wb") as fh, pytest.raises(Stopped):
+            write_piece(fh, piece, stop)

@@ -5,7 +5,7 @@ python -c 'import capred.cli.help as h; h.write_snapshot()'
 """
 
 # fmt: off
-COLUMNS = {'bridge compare': {'digest': '15e8aa34fed83d054a632f804a390a308038585c',
+COLUMNS = {'bridge compare': {'digest': 'f9799e3434e19293c7adf7377878f578e3a37054',
                     'files': ['errors.py',
                               'io/__init__.py',
                               'io/blocks.py',
@@ -64,7 +64,7 @@ COLUMNS = {'bridge compare': {'digest': '15e8aa34fed83d054a632f804a390a308038585
                            ['contact_angle [deg]', 'contact angle; also: theta'],
                            ['R2_over_R',
                             "R2 / R ('plane': a sphere and a plane; absent: equal spheres); also: ratio, R2/R"]]},
- 'bridge rupture': {'digest': '15e8aa34fed83d054a632f804a390a308038585c',
+ 'bridge rupture': {'digest': 'f9799e3434e19293c7adf7377878f578e3a37054',
                     'files': ['errors.py',
                               'io/__init__.py',
                               'io/blocks.py',
@@ -99,7 +99,7 @@ COLUMNS = {'bridge compare': {'digest': '15e8aa34fed83d054a632f804a390a308038585
                                'contact angle on the second particle (sphere R2 or plane; absent or blank: '
                                '--contact-angle2, else contact_angle); also: theta2, wetting_angle2, contact_angle_2'],
                               ['V_w [mm^3]', 'water volume V_w; also: volume, V, Vw']]},
- 'bridge solve': {'digest': '15e8aa34fed83d054a632f804a390a308038585c',
+ 'bridge solve': {'digest': 'f9799e3434e19293c7adf7377878f578e3a37054',
                   'files': ['errors.py',
                             'io/__init__.py',
                             'io/blocks.py',

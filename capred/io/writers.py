@@ -127,27 +127,45 @@ class FileText:
         Where the text starts in it [bytes].
     length : int
         Its length [bytes].
+    keep : object, optional
+        The file object that owns ``fd``, kept open as long as this piece is (its descriptor is not reused).
     """
 
-    __slots__ = ("fd", "offset", "length")
+    __slots__ = ("fd", "offset", "length", "keep")
 
-    def __init__(self, fd: int, offset: int, length: int) -> None:
-        self.fd, self.offset, self.length = fd, offset, length
+    def __init__(self, fd: int, offset: int, length: int, keep=None) -> None:
+        self.fd, self.offset, self.length, self.keep = fd, offset, length, keep
 
     def __len__(self) -> int:
         return self.length
 
+    def __bytes__(self) -> bytes:
+        return _pread(self.fd, self.length, self.offset)
 
-#: bytes read at a time where a FileText cannot be copied in the kernel
+
+#: bytes read at a time where a FileText cannot be copied in the kernel, and copied per call where it can
 _COPY_CHUNK = 1 << 22
+_KERNEL_CHUNK = 1 << 26
+#: errors that say "not between these two files" (another file system, a pipe, an append-only file, an old
+#: kernel): the text is then read and written; any other error (a full disk) is raised at once
+_NOT_HERE = {
+    getattr(errno, name)
+    for name in ("EXDEV", "EINVAL", "ENOSYS", "EOPNOTSUPP", "ENOTSUP", "EBADF", "ENOTSOCK", "ESPIPE")
+    if hasattr(errno, name)
+}
 
 
-def write_piece(fh, piece) -> None:
+class Stopped(Exception):
+    """A copy asked to stop (``write_piece``'s ``stop`` set): the run is being cancelled."""
+
+
+def write_piece(fh, piece, stop=None) -> None:
     """Write ``piece`` (bytes-like, or a :class:`FileText`) to the binary file ``fh``.
 
-    A FileText goes file to file (``os.copy_file_range``, else ``os.sendfile``) when ``fh`` is a file on disk,
-    else (a pipe, a file-like object, a system without either call) it is read a chunk at a time and written:
-    the same bytes either way.
+    A FileText goes file to file in the kernel (``os.copy_file_range``, else ``os.sendfile``) when ``fh`` is an
+    operating-system file (``open(path, "wb")``, ``sys.stdout.buffer`` redirected to a file); else (a pipe, a
+    BytesIO, a gzip or other wrapping file object, a system without either call) it is read a chunk at a time
+    and written through ``fh.write``: the same bytes either way.
 
     Parameters
     ----------
@@ -155,38 +173,62 @@ def write_piece(fh, piece) -> None:
         Where to write.
     piece : bytes-like or FileText
         What to write.
+    stop : threading.Event, optional
+        When set, the copy stops at its next chunk and raises :class:`Stopped`.
     """
     if not isinstance(piece, FileText):
         fh.write(piece)
         return
     offset, left = piece.offset, piece.length
-    try:
-        fh.flush()
-        dst = fh.fileno()
-        fh.seek(0, os.SEEK_CUR)  # seekable: a file, whose position the kernel then moves
-    except (AttributeError, OSError, io.UnsupportedOperation, ValueError):
-        dst = None
+    dst = _os_file(fh)
     if dst is not None:
         for copy in (_copy_range, _send):
             if copy is None:
                 continue
             try:
                 while left:
-                    done = copy(piece.fd, dst, offset, left)
+                    if stop is not None and stop.is_set():
+                        raise Stopped
+                    done = copy(piece.fd, dst, offset, min(left, _KERNEL_CHUNK))
                     if done <= 0:
                         break
                     offset, left = offset + done, left - done
-            except OSError:  # not between these files (another file system, an old kernel): what is left, read
-                pass
+            except OSError as exc:
+                if exc.errno not in _NOT_HERE:
+                    raise
             if not left:
                 break
         fh.seek(os.lseek(dst, 0, os.SEEK_CUR))  # the file object's position: where the kernel's writes ended
     while left:
-        data = os.pread(piece.fd, min(left, _COPY_CHUNK), offset)
+        if stop is not None and stop.is_set():
+            raise Stopped
+        data = _pread(piece.fd, min(left, _COPY_CHUNK), offset)
         if not data:
             raise OSError(errno.EIO, f"text of a temporary file ended {left} bytes early")
         fh.write(data)
         offset, left = offset + len(data), left - len(data)
+
+
+def _os_file(fh) -> int | None:
+    """The descriptor of ``fh`` when it is an operating-system file whose position the kernel may move (a
+    FileIO, or a buffered reader/writer straight on one), flushed; None for anything else."""
+    raw = getattr(fh, "raw", fh)
+    if not isinstance(raw, io.FileIO) or not (fh is raw or isinstance(fh, (io.BufferedWriter, io.BufferedRandom))):
+        return None
+    try:
+        fh.flush()
+        fd = raw.fileno()
+        os.lseek(fd, 0, os.SEEK_CUR)  # seekable (not a pipe)
+    except (OSError, ValueError):
+        return None
+    return fd
+
+
+def _pread(fd: int, size: int, offset: int) -> bytes:
+    if hasattr(os, "pread"):
+        return os.pread(fd, size, offset)
+    os.lseek(fd, offset, os.SEEK_SET)  # pragma: no cover - Windows
+    return os.read(fd, size)  # pragma: no cover
 
 
 class _Writes:
@@ -227,10 +269,11 @@ def stream_json(doc: dict, write) -> None:
     from ..result import Rows
 
     owner = getattr(write, "__self__", None)  # the file of a bound ``write``
+    target = owner if hasattr(owner, "write") else _Writes(write)
 
     def put(data) -> None:
-        if isinstance(data, FileText):
-            write_piece(owner if hasattr(owner, "fileno") else _Writes(write), data)
+        if isinstance(data, FileText) and not getattr(write, "takes_file_text", False):
+            write_piece(target, data)
         else:
             write(data)
 
@@ -1082,15 +1125,20 @@ def write_run(
         folder.write_bytes("provenance.json", encode_json(provenance(result, folder.names, command_line), True))
         return folder.commit()
     except OSError as exc:
-        if json_writer is not None:
-            json_writer.cancel()
-        folder.abort()
+        _cancel(json_writer, folder)
         raise _os_error(out, exc) from None
     except BaseException:
+        _cancel(json_writer, folder)
+        raise
+
+
+def _cancel(json_writer, folder) -> None:
+    """Stop the JSON writer, then remove the run's temporary folder, also when a second Ctrl-C cuts the wait."""
+    try:
         if json_writer is not None:
             json_writer.cancel()
+    finally:
         folder.abort()
-        raise
 
 
 #: a JSON document with more rows than this is written by a forked process while the tables are written
@@ -1143,12 +1191,14 @@ class _JsonWriter:
         from ..result import Rows
 
         self.path, self.doc, self.pid, self.thread, self.failed = path, doc, None, None, None
+        self.stop = None  # set to stop the thread between two pieces (cancel)
         rows = [v for v in doc.values() if isinstance(v, Rows)]
         # rows whose JSON text their run wrote ahead (capred.pipelines.bridge_blocks) are only copied, file to
         # file in the kernel: a thread does it while the caller writes the other files (no process of its own)
         if rows and all(v.written_ahead for v in rows):
             import threading
 
+            self.stop = threading.Event()
             self.thread = threading.Thread(target=self._write_caught, name="capred-json", daemon=True)
             self.thread.start()
             return
@@ -1170,7 +1220,17 @@ class _JsonWriter:
 
     def _write(self) -> None:
         with open(self.path, "wb") as fh:
-            stream_json(self.doc, fh.write)
+            if self.stop is None:
+                stream_json(self.doc, fh.write)
+                return
+
+            def write(data) -> None:
+                if self.stop.is_set():
+                    raise Stopped
+                write_piece(fh, data, self.stop)
+
+            write.takes_file_text = True  # the text written ahead, copied by write_piece above
+            stream_json(self.doc, write)
 
     def _write_caught(self) -> None:
         try:
@@ -1203,7 +1263,8 @@ class _JsonWriter:
         import os
         import signal
 
-        if self.thread is not None:  # a copy in the kernel: let it end (the folder is removed after)
+        if self.thread is not None:  # the copy stops at its next piece (at most _COPY_CHUNK bytes on)
+            self.stop.set()
             self.thread.join()
             self.thread = None
         if self.pid is not None:

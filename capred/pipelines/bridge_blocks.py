@@ -638,7 +638,7 @@ class _Encoded:
     def _text(self, f: int, offset: int, size: int):
         from ..io import FileText
 
-        return FileText(self.files[f].fileno(), offset, size) if size else b""
+        return FileText(self.files[f].fileno(), offset, size, keep=self) if size else b""  # self: files stay open
 
     def csv_pieces(self):
         """The CSV text, block by block (capred.io.FileText)."""
