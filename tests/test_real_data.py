@@ -27,7 +27,7 @@ def _failures(rows):
 
 def test_retention_fits_reach_unsatfits_optimum():
     rows = rc.retention_rows()
-    assert len(rows) == 32  # 4 models x (4 unsatfit samples + 2 UNSODA soils x 2 branches)
+    assert len(rows) == 40  # 4 models x (4 unsatfit samples + 2 pmsim sets + 2 UNSODA soils x 2 branches)
     assert not _failures(rows)
 
 

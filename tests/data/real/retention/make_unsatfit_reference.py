@@ -20,10 +20,13 @@ MODELS = {"VG": ["q=1"], "BC": [], "KO": [], "FX": []}
 
 
 def data_sets():
-    """(name, branch, h [cm], theta) of every data set: unsatfit's samples, and each branch of the UNSODA files."""
+    """(name, branch, suction, water content) of every data set: unsatfit's samples, and each branch of the UNSODA files."""
     for name in ["gilat", "clay2362", "IL", "andisol"]:
         table = pd.read_csv(f"unsatfit_{name}.csv")
         yield f"unsatfit_{name}", "", np.asarray(table["h"], float), np.asarray(table["theta"], float)
+    for name in ["fx_sand_fig17", "bc_silty_loam"]:
+        table = pd.read_csv(f"pmsim_{name}.csv")
+        yield f"pmsim_{name}", "", table["s [kPa]"].to_numpy(float), table["S_r"].to_numpy(float)
     for code in ["1410", "1301"]:
         table = pd.read_csv(f"unsoda_{code}.csv", comment="#")
         for branch, rows in table.groupby("branch"):
