@@ -68,7 +68,7 @@ class Column:
     unit: str | None
     description: str
     aliases: tuple[str, ...] = ()
-    rule: str | None = None  # "positive", "nonnegative", "fraction", or None
+    rule: str | None = None  # "positive", "nonnegative", "fraction", "coefficient" ((0, 1]), or None
     choices: tuple[str, ...] = ()  # allowed values of a text column (lower case)
     quantity: str | None = None  # nomenclature name: its range rule is used (the same as for options)
     words: tuple[tuple[str, float], ...] = ()  # words a numeric column also accepts, e.g. ("plane", inf)
@@ -92,6 +92,11 @@ class Column:
 def header_key(text: str) -> str:
     """Normalised spelling used to match headers: lower case, '_' between words.
 
+    Words are separated by any run of spaces and the punctuation instruments and locales put between them
+    (``-``, ``.``, ``/``, ``,``, ``;``, ``:``, ``_``): ``Eff. Axial Stress``, ``Eff, Axial Stress`` (an export
+    whose decimal points a regional setting turned into commas), ``Eff Axial Stress`` and ``eff_axial_stress``
+    are one key.
+
     Parameters
     ----------
     text : str
@@ -105,7 +110,7 @@ def header_key(text: str) -> str:
     References
     ----------
     capred's own input conventions (README, "`capred shear`: input format"); no external source."""
-    k = re.sub(r"[\s\-./]+", "_", text.strip().lower())
+    k = re.sub(r"[\s\-./,;:]+", "_", text.strip().lower())
     return re.sub(r"_+", "_", k).strip("_")
 
 
@@ -130,6 +135,9 @@ class Table:
     missing: set[str] = field(default_factory=set)  # required columns reported absent
     as_read: dict[str, np.ndarray] = field(default_factory=dict)  # numbers in the file's own unit (before SI)
     units_line: int | None = None  # the line of a units row under the header (None: no units row)
+    #: ``ignore_columns`` names (as given) the header does not have: each warned about once (see forget_ignores)
+    ignores_unused: list[str] = field(default_factory=list)
+    ignores_used: set[str] = field(default_factory=set)  # header_key of the ignore_columns names it has
 
     def __len__(self) -> int:
         return len(self.lines)
@@ -623,9 +631,11 @@ def grid_table(grid, src, schema: list[Column], empty_ok: bool = False) -> Table
             continue
         positions[col.name] = (j, col, unit)
         table.headers[col.name] = h.strip()
+    table.ignores_used = used_ignores
     for key, name in ignored.items():
         if key not in used_ignores:
-            table.warnings.append(f"ignore_columns: the header has no column '{name}'")
+            table.ignores_unused.append(name)
+            table.warnings.append(_unused_ignore(name))
     for j in _with_data(blank_headers, body):
         table.warnings.append(f"column {j + 1} has data but no header: it is not used")
     _unused_columns(table, schema, lookup, positions)
@@ -832,6 +842,31 @@ def _name_part(header: str) -> str:
     """A header without the unit it declares in brackets: 'Materiaal [-]' -> 'Materiaal'."""
     m = _UNIT_IN_HEADER.match(header.strip())
     return m.group("name") if m and m.group("name") else header.strip()
+
+
+def _unused_ignore(name: str) -> str:
+    return f"ignore_columns: the header has no column '{name}'"
+
+
+def forget_ignores(table: Table, used: set[str] | None = None) -> None:
+    """Take back the warnings of ``table`` about --ignore-column names its header lacks, where another file of
+    the same command has them (``used``: their header keys; None: every one).
+
+    A command that reads several files (a tests table and its ``--curves``) leaves every file its ignore list:
+    a name is warned about once, on the first file, and only when no file has it.
+
+    Parameters
+    ----------
+    table : Table
+        A table read with ``ignore_columns``.
+    used : set of str, optional
+        header_key of the names another file had (None: forget them all, the table being a secondary file).
+    """
+    gone = [n for n in table.ignores_unused if used is None or header_key(n) in used]
+    for name in gone:
+        table.ignores_unused.remove(name)
+        if _unused_ignore(name) in table.warnings:
+            table.warnings.remove(_unused_ignore(name))
 
 
 def _ignored(header: str, ignored: dict[str, str]) -> str | None:
@@ -1106,11 +1141,19 @@ def check_column_rule(table: Table, col: Column) -> None:
                 table.add_problem(i, col.name, why)
         return
     with np.errstate(invalid="ignore"):
-        bad = {"positive": v <= 0, "nonnegative": v < 0, "fraction": (v < 0) | (v > 1)}.get(col.rule)
+        bad = {
+            "positive": v <= 0,
+            "nonnegative": v < 0,
+            "fraction": (v < 0) | (v > 1),
+            "coefficient": (v <= 0) | (v > 1),
+        }.get(col.rule)
     if bad is None:
         return
-    what = {"positive": "must be > 0", "nonnegative": "must not be negative", "fraction": "must lie between 0 and 1"}[
-        col.rule
-    ]
+    what = {
+        "positive": "must be > 0",
+        "nonnegative": "must not be negative",
+        "fraction": "must lie between 0 and 1",
+        "coefficient": "must lie in (0, 1]",
+    }[col.rule]
     for i in np.flatnonzero(bad):
         table.add_problem(i, col.name, f"{col.description} {what} (got {table.raw[col.name][i]} {unit})".rstrip())
