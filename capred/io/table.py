@@ -444,11 +444,30 @@ def _is_units_row(cells: list[str], positions) -> bool:
     return False
 
 
-def _metadata(rows: list[tuple[int, list[str]]]) -> dict[str, str]:
+def _metadata(rows: list[tuple[int, list[str]]], merged: dict | None = None) -> dict[str, str]:
+    """The metadata block above the header: ``key: value`` in one cell, or a key and its value in the next cells.
+
+    A merged range is one cell, as the workbook shows it (``merged``: Grid.merged): its value once, not once per
+    column it spans. A merged cell alone on its row with no ``key:`` in it is a title: ``title`` (``title 2``
+    for a second one).
+    """
     out: dict[str, str] = {}
-    for _, cells in rows:
+    merged = merged or {}
+    titles = 0
+    for line, cells in rows:
+        cells, heads = list(cells), set()
+        for c1, c2, r1 in merged.get(line, ()):
+            first = c1 if line == r1 else c1 - 1  # the range's own cell keeps its value, its copies are blanked
+            for c in range(first, min(c2, len(cells))):
+                cells[c] = ""
+            if line == r1 and c2 > c1:
+                heads.add(c1 - 1)
         filled = [c for c in cells if c]
         if not filled:
+            continue
+        if len(filled) == 1 and ":" not in filled[0] and cells.index(filled[0]) in heads:
+            titles += 1
+            out["title" if titles == 1 else f"title {titles}"] = filled[0].strip()
             continue
         if len(filled) == 1 and ":" in filled[0]:
             key, _, value = filled[0].partition(":")
@@ -578,7 +597,7 @@ def grid_table(grid, src, schema: list[Column], empty_ok: bool = False) -> Table
         raise limits.error(
             "max_columns", f"the header has {len(_trimmed(headers)):,} columns", shown, header_line, sheet=sheet
         )
-    metadata = _metadata(rows[:k])
+    metadata = _metadata(rows[:k], grid.merged)
     body = rows[k + 1 :]
 
     table = Table(
