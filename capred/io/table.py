@@ -256,6 +256,23 @@ class Table:
         """
         return self.raw[name][row] if name in self.raw else ""
 
+    def forget_ignores(self, used: set[str] | None = None) -> None:
+        """Take back the warnings about --ignore-column names this table's header lacks, where another file of
+        the same command has them (``used``: their header keys; None: every one).
+
+        A command that reads several files (a tests table and its ``--curves``) leaves every file its ignore
+        list: a name is warned about once, on the first file, and only when no file has it.
+
+        Parameters
+        ----------
+        used : set of str, optional
+            header_key of the names another file had (None: forget them all, this being a secondary file).
+        """
+        for name in [n for n in self.ignores_unused if used is None or header_key(n) in used]:
+            self.ignores_unused.remove(name)
+            if _unused_ignore(name) in self.warnings:
+                self.warnings.remove(_unused_ignore(name))
+
     def raise_if_problems(self) -> None:
         """Raise InputError listing every problem recorded so far; do nothing when there is none."""
         if self.problems:
@@ -865,27 +882,6 @@ def _name_part(header: str) -> str:
 
 def _unused_ignore(name: str) -> str:
     return f"ignore_columns: the header has no column '{name}'"
-
-
-def forget_ignores(table: Table, used: set[str] | None = None) -> None:
-    """Take back the warnings of ``table`` about --ignore-column names its header lacks, where another file of
-    the same command has them (``used``: their header keys; None: every one).
-
-    A command that reads several files (a tests table and its ``--curves``) leaves every file its ignore list:
-    a name is warned about once, on the first file, and only when no file has it.
-
-    Parameters
-    ----------
-    table : Table
-        A table read with ``ignore_columns``.
-    used : set of str, optional
-        header_key of the names another file had (None: forget them all, the table being a secondary file).
-    """
-    gone = [n for n in table.ignores_unused if used is None or header_key(n) in used]
-    for name in gone:
-        table.ignores_unused.remove(name)
-        if _unused_ignore(name) in table.warnings:
-            table.warnings.remove(_unused_ignore(name))
 
 
 def _ignored(header: str, ignored: dict[str, str]) -> str | None:

@@ -1420,13 +1420,11 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
     box = filled_column(table, "box_area", opt.box_area)
     curves = None
     if opt.curves is not None:
-        from ..io.grid import as_source
-        from ..io.table import forget_ignores
         from .shear_curves import pick_peaks
 
         # --ignore-column applies to every file the command reads; a name no file has is warned about once
-        curves = pick_peaks(opt.curves, table, box, opt.area_correction, as_source(source).ignore_columns)
-        forget_ignores(table, curves.table.ignores_used)
+        curves = pick_peaks(opt.curves, table, box, opt.area_correction, getattr(source, "ignore_columns", ()))
+        table.forget_ignores(curves.table.ignores_used)
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # NaN and overflow are reported below
         d = derive_tests(table, opt, box, curves.tau_peak if curves else None)
     if curves is not None and opt.area_correction != "none":

@@ -17,7 +17,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..io import Column, Table, read_table
-from ..io.table import forget_ignores
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
@@ -112,7 +111,7 @@ def pick_peaks(
         ``none``, ``square`` or ``circular`` (see :func:`corrected_area`).
     ignore_columns : sequence of str, optional
         Columns to leave out (the command's --ignore-column list: it applies to every file the command reads;
-        the names this file lacks are not warned about here, see capred.io.table.forget_ignores).
+        the names this file lacks are not warned about here, see capred.io.Table.forget_ignores).
 
     Returns
     -------
@@ -121,7 +120,7 @@ def pick_peaks(
         problems of the file collected, not raised.
     """
     table = read_table(source, SCHEMA, ignore_columns=ignore_columns)
-    forget_ignores(table)  # the tests table warns about a name no file has
+    table.forget_ignores()  # the tests table warns about a name no file has
     for name in ("test_id", "displacement"):
         if name not in table.columns:
             table.missing_column(name)

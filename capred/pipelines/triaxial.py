@@ -17,8 +17,6 @@ import numpy as np
 from ..errors import CapredError, FitError, OptionError
 from ..fitting.linear import LineFit, fit_line
 from ..io import Column, Table, read_table
-from ..io.grid import as_source
-from ..io.table import forget_ignores
 from ..nomenclature import QUANTITIES as _GLOSSARY
 from ..parameters import Parameter, Parameters, deprecated, fit_report
 from ..physics import triaxial as tx
@@ -1043,8 +1041,8 @@ def run_triaxial_bounds(
             else {str(t): x for t, x, w in zip(table.columns["test_id"], D_c, D_c_source) if w in ("D_c", "dV_c")}
         )
         # --ignore-column applies to every file the command reads; a name no file has is warned about once
-        raw_curves = read_curves(curves, table, opt.membrane, dc, as_source(source).ignore_columns)
-        forget_ignores(table, raw_curves.ignores_used)
+        raw_curves = read_curves(curves, table, opt.membrane, dc, getattr(source, "ignore_columns", ()))
+        table.forget_ignores(raw_curves.ignores_used)
         table.problems += raw_curves.problems  # reported with the table's own, in one round
         table.notes += raw_curves.notes
         table.warnings += raw_curves.warnings

@@ -31,7 +31,6 @@ import numpy as np
 
 from ..errors import InputError, Problem
 from ..io import SPREADSHEET_SUFFIXES, Column, Table, header_key, read_table, source_path
-from ..io.table import forget_ignores
 from ..nomenclature import column_aliases
 from ..units import parse_quantity
 from .triaxial_records import Curve
@@ -219,7 +218,7 @@ class TriaxialCurves:
     warnings: list[str] = field(default_factory=list)
     #: test id -> its shear-stage readings in kPa and strains [-] (capred.pipelines.triaxial_records.Curve)
     curves: dict = field(default_factory=dict)
-    #: header keys of the ignore_columns names some curve file had (capred.io.table.forget_ignores)
+    #: header keys of the ignore_columns names some curve file had (capred.io.Table.forget_ignores)
     ignores_used: set = field(default_factory=set)
 
 
@@ -458,7 +457,7 @@ def read_curves(
     for f in curve_files(spec):
         table = read_table(f, SCHEMA, ignore_columns=ignore_columns)
         out.ignores_used |= table.ignores_used
-        forget_ignores(table)  # the command's first file warns about a name no file has
+        table.forget_ignores()  # the command's first file warns about a name no file has
         out.tables.append(table)
         out.warnings += table.warnings
         out.notes += table.notes  # what the reading says (a column ignored as asked, a note under the data)
