@@ -139,3 +139,12 @@ def test_skempton_a_from_the_pore_pressure_of_the_shear_stage(tmp_path):
     # the tests table's B wins over the export's: B = 1 gives A = 72/144 = 0.5
     tests.write_text(head.format(b=",B", x=",") + "G1,saturated,300,,200,1\n")
     assert capred.run_triaxial_bounds(tests, given, curves=f).states.skempton_A[2] == pytest.approx(0.5, rel=1e-12)
+
+
+def test_b_check_that_disagrees_with_the_logged_b_value_is_warned(tmp_path):
+    # stage 1 is a B check of du/dsigma3 = 45/50 = 0.9 while the export's B Value column says 0.96: capred takes
+    # the pressures' 0.9 (Skempton 1954) and a warning gives both
+    f = _export(tmp_path / "G1.csv", {1: [1, 2, 2], 4: [6, 80, 150, 120]}, du=0.5, b_check=0.9)
+    c = read_curves(f)
+    assert c.at_peak["G1"]["B"] == pytest.approx(0.9, rel=1e-12)
+    assert any("gives B = 0.9 but the export's B Value at its end is 0.96" in w for w in c.warnings)

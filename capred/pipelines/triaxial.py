@@ -744,19 +744,21 @@ def skempton_a_of_curves(table: Table, at_peak: dict) -> tuple[np.ndarray, list[
 
     A = (Δu − B Δσ3)/(B (Δσ1 − Δσ3)) with the changes over the shear stage, from its first reading to the
     peak (Skempton 1954; Morvan et al. 2016, eq. 1): Δσ1 − Δσ3 = Δq, for saturated tests sheared undrained
-    (not where the pore pressure held at the back pressure, a drained shear; noted). B is the tests table's column ``B``,
-    else the B check of the export (capred.pipelines.triaxial_curves.b_check: Δu/Δσ3 of its B-check stage,
-    never the shear stage's running ``B Value``), else 1 (a saturated specimen; said in a note). A B check
-    outside (0, 1] leaves A uncomputed (warned about where it was read). Δσ3 is the change of the export's
-    radial pressure (0, said in a note, when it logs none).
+    (not where the pore pressure stayed within the pressure tolerance over the whole shear stage, a drained
+    shear; noted). B is the tests table's column ``B``, else the B check of the export
+    (capred.pipelines.triaxial_curves.b_check: Δu/Δσ3 of its B-check stage, never the shear stage's running
+    ``B Value``), else 1 (a saturated specimen; said in a note). A B check outside (0, 1] leaves A uncomputed
+    (warned about where it was read). Δσ3 is the change of the export's radial pressure (0, said in a note,
+    when it logs none).
 
     Parameters
     ----------
     table : Table
         The tests table (test_id, optional B).
     at_peak : dict
-        Test id -> changes over the shear stage up to the peak: ``du``, ``dq``, ``dsigma3`` [Pa], the
-        export's B check ``B`` [-] and ``B_source`` ("b_check", "none" or "invalid").
+        Test id -> changes over the shear stage up to the peak: ``du``, ``dq``, ``dsigma3`` [Pa], the range of
+        the pore pressure over the stage ``du_range`` [Pa], the export's B check ``B`` [-] and ``B_source``
+        ("b_check", "none" or "invalid").
 
     Returns
     -------
@@ -782,9 +784,8 @@ def skempton_a_of_curves(table: Table, at_peak: dict) -> tuple[np.ndarray, list[
             continue
         if table.columns["condition"][i] != "saturated":
             continue  # A is a saturated specimen's undrained response; axis translation controls u_w
-        u_f, u_b = st.get("pore_pressure", np.nan), st.get("back_pressure", np.nan)
-        if abs(st["du"]) <= pressure_tolerance(u_f) and abs(u_f - u_b) <= pressure_tolerance(u_b):
-            drained.append(tid)  # the pore pressure held at the back pressure: drained shear, A has no meaning
+        if st.get("du_range", np.nan) <= pressure_tolerance(st.get("pore_pressure", np.nan)):
+            drained.append(tid)  # the pore pressure never moved in the shear stage: drained, A has no meaning
             continue
         B = b_col[i] if np.isfinite(b_col[i]) else st.get("B", np.nan)
         if not np.isfinite(B) and st.get("B_source") == "invalid":
@@ -807,8 +808,8 @@ def skempton_a_of_curves(table: Table, at_peak: dict) -> tuple[np.ndarray, list[
         notes.append(f"Skempton's A with Δσ3 = 0 (the export logs no radial pressure): {', '.join(assumed_s3)}")
     if drained:
         notes.append(
-            "Skempton's A not computed for tests sheared drained (the pore pressure held at the back pressure): "
-            + ", ".join(drained)
+            "Skempton's A not computed for tests sheared drained (the pore pressure stayed within the pressure "
+            "tolerance over the whole shear stage): " + ", ".join(drained)
         )
     return A, notes
 

@@ -544,6 +544,9 @@ def read_curves(
             # changes over the stage, first reading to the peak, for Skempton's A (Skempton 1954)
             first = int(sel[0])
             state["du"] = float(table.get("pore_pressure")[k] - table.get("pore_pressure")[first])
+            u_stage = table.get("pore_pressure")[sel]
+            u_stage = u_stage[np.isfinite(u_stage)]  # how far the pore pressure moved in the stage: ~0 when drained
+            state["du_range"] = float(np.ptp(u_stage)) if u_stage.size else float("nan")
             state["dsigma3"] = float(table.get("radial_pressure")[k] - table.get("radial_pressure")[first])
             state["dq"] = float(np.max(q[ok]) - q[0]) if np.isfinite(q[0]) else float("nan")
             b = b_check(table, every, sel, str(tid))  # never the shear stage's running B Value
