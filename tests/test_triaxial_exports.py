@@ -25,17 +25,21 @@ HEAD = (
 )
 
 
-def _export(path, stages, extra="", du=0.0):
+def _export(path, stages, extra="", du=0.0, b_check=None):
     """A GDS-style export: ``stages`` maps a stage number to its deviator readings [kPa]; in the shear stage
-    (the last) the pore pressure rises by ``du`` times the rise of q."""
+    (the last) the pore pressure rises by ``du`` times the rise of q. ``b_check`` = B makes the first stage a
+    B check: the cell pressure steps from 250 to 300 kPa, the pore pressure rises by B x 50 kPa to 200 kPa."""
     rows, t = [], 0
     for stage, qs in stages.items():
         for k, q in enumerate(qs):
             shear = stage == max(stages)
             eps = 0.5 * k if shear else 0.0  # axial strain [%] moves in the shear stage only
             u = 200 + (du * (q - qs[0]) if shear else 0.0)
+            cell = 300
+            if b_check is not None and stage == min(stages) and k == 0:
+                cell, u = 250, 200 - b_check * 50
             rows.append(
-                f"{stage},{t},{k},300,0,200,0,0,{u},0,{eps},0,0,{300 + q},{100 + q},100,{q},1,1,1134,0,"
+                f"{stage},{t},{k},{cell},0,200,0,0,{u},0,{eps},0,0,{300 + q},{100 + q},100,{q},1,1,1134,0,"
                 f"{300 + q / 3},{100 + q / 3},{q / 2},0,0.96" + (",x" if extra else "")
             )
             t += 60
@@ -113,8 +117,9 @@ def test_sample_compression_tests_print_lode_zero():
 
 def test_skempton_a_from_the_pore_pressure_of_the_shear_stage(tmp_path):
     # shear stage: q from 6 to 150 kPa (dq = 144) at constant cell pressure, u rises by q/2 (du = 72 kPa);
-    # the export's B Value is 0.96: A = (du - B dsigma3)/(B dq) = 72/(0.96 * 144) = 0.52083 (Skempton 1954)
-    f = _export(tmp_path / "G1.csv", {1: [1, 2, 2], 4: [6, 80, 150, 120]}, du=0.5)
+    # stage 1 is a B check giving du/dsigma3 = 48/50 = 0.96: A = (du - B dsigma3)/(B dq) = 72/(0.96 * 144) = 0.52083
+    # (Skempton 1954). The export's B Value column (0.96 on every row, shear included) is not what is read.
+    f = _export(tmp_path / "G1.csv", {1: [1, 2, 2], 4: [6, 80, 150, 120]}, du=0.5, b_check=0.96)
     tests = tmp_path / "tests.csv"
     head = "test_id,condition,sigma3,q_f,back_pressure{b}\ns1,saturated,100,200,0{x}\ns2,saturated,200,400,0{x}\n"
     tests.write_text(head.format(b="", x="") + "G1,saturated,300,,200\n")
@@ -124,6 +129,22 @@ def test_skempton_a_from_the_pore_pressure_of_the_shear_stage(tmp_path):
     assert np.isnan(r.states.skempton_A[:2]).all()  # no curve, no A
     assert r.to_json()["tests"][2]["skempton_A"] == r.states.skempton_A[2]
     assert "skempton_A [-]" in r.table().columns
+    assert any("Skempton's B = 0.96 from the B check (stage 1" in n for n in r.notes)
+    # without a B-check stage, B = 1 with a note (never the running B Value column): A = 72/144 = 0.5
+    g = _export(tmp_path / "G2.csv", {1: [1, 2, 2], 4: [6, 80, 150, 120]}, du=0.5)
+    tests.write_text(head.format(b="", x="") + "G1,saturated,300,,200\n")
+    r = capred.run_triaxial_bounds(tests, given, curves=g)
+    assert r.states.skempton_A[2] == pytest.approx(0.5, rel=1e-12)
+    assert any("B = 1" in n and "no B-check stage" in n for n in r.notes)
     # the tests table's B wins over the export's: B = 1 gives A = 72/144 = 0.5
     tests.write_text(head.format(b=",B", x=",") + "G1,saturated,300,,200,1\n")
     assert capred.run_triaxial_bounds(tests, given, curves=f).states.skempton_A[2] == pytest.approx(0.5, rel=1e-12)
+
+
+def test_b_check_that_disagrees_with_the_logged_b_value_is_warned(tmp_path):
+    # stage 1 is a B check of du/dsigma3 = 45/50 = 0.9 while the export's B Value column says 0.96: capred takes
+    # the pressures' 0.9 (Skempton 1954) and a warning gives both
+    f = _export(tmp_path / "G1.csv", {1: [1, 2, 2], 4: [6, 80, 150, 120]}, du=0.5, b_check=0.9)
+    c = read_curves(f)
+    assert c.at_peak["G1"]["B"] == pytest.approx(0.9, rel=1e-12)
+    assert any("gives B = 0.9 but the export's B Value at its end is 0.96" in w for w in c.warnings)

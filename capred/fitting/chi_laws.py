@@ -865,8 +865,11 @@ def refit_khalili_batch(
     cc, bb = np.asarray(c, float)[:, None], np.asarray(tan_phi, float)[:, None]
     R = cc.shape[0]
     drawn = (w > 0) & (s > 0)
-    lo = np.log(np.where(drawn, s, np.inf).min(axis=1) / 100.0)
-    hi = np.log(np.where(drawn, s, -np.inf).max(axis=1) * 100.0)
+    # a replicate that drew no test with suction has no bounds (NaN; it keeps the warm start below)
+    some = drawn.any(axis=1)
+    lo, hi = np.full(R, np.nan), np.full(R, np.nan)
+    lo[some] = np.log(np.where(drawn, s, np.inf).min(axis=1)[some] / 100.0)
+    hi[some] = np.log(np.where(drawn, s, 0.0).max(axis=1)[some] * 100.0)
     ls = np.log(np.where(s > 0, s, 1.0))
 
     def f(x):

@@ -1368,7 +1368,8 @@ def _projected_rss(pb: _Problem, W, Y, YY, mS, mSS, mSy):
         a11, a12, a22 = dot(c1, c1), dot(c1, c2), dot(c2, c2)
         b1, b2 = dot(c1, rhs), dot(c2, rhs)
         det = a11 * a22 - a12 * a12
-        u1, u2 = (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
+        with np.errstate(divide="ignore", invalid="ignore"):  # det = 0 (a singular row): not 'inside', edges below
+            u1, u2 = (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
 
         def q(x1, x2):
             return cc - 2 * (b1 * x1 + b2 * x2) + a11 * x1 * x1 + 2 * a12 * x1 * x2 + a22 * x2 * x2
@@ -1490,7 +1491,8 @@ class _Problem:
         a11, a12, a22, b1, b2 = gram[:, 0, 0], gram[:, 0, 1], gram[:, 1, 1], gram[:, 0, 2], gram[:, 1, 2]
         (lo1, hi1), (lo2, hi2) = b[lin[0]], b[lin[1]]
         det = a11 * a22 - a12 * a12
-        u1, u2 = (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
+        with np.errstate(divide="ignore", invalid="ignore"):  # det = 0 (a singular row): not 'inside', edges below
+            u1, u2 = (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det
         inside = (det > 1e-14 * np.maximum(a11 * a22, 1e-300)) & (u1 >= lo1) & (u1 <= hi1) & (u2 >= lo2) & (u2 <= hi2)
         x1, x2 = u1, u2
         if not inside.all():

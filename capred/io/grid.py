@@ -244,6 +244,9 @@ class Grid:
     notes: list[str] = field(default_factory=list)
     #: warnings of the reading itself (hidden sheets passed over), for Table.warnings
     warnings: list[str] = field(default_factory=list)
+    #: a workbook's merged ranges, by line: (first column, last column, first line) of each, from 1; their cells
+    #: hold the first cell's value (as the sheet shows it), and a metadata block reads them as one cell
+    merged: dict[int, list[tuple[int, int, int]]] = field(default_factory=dict)
 
     def parse_all(self, delimiter: str) -> None:
         """Every row of a CSV with the chosen delimiter (spreadsheets: nothing to do).
@@ -603,7 +606,7 @@ def _spreadsheet_grid(shown: str, data: bytes, suffix: str, sheet, limits: ReadL
             Problem(shown, None, None, f"cannot be read as a {suffix} workbook ({type(exc).__name__}: {exc})")
         ) from None
     rows = [(n, cells) for n, cells in rows if any(cells) and not cells[0].startswith("#")]
-    return Grid(shown, name, rows, (), notes=book.notes, warnings=book.warnings)
+    return Grid(shown, name, rows, (), notes=book.notes, warnings=book.warnings, merged=book.merged)
 
 
 def _pick_sheet(shown: str, names: list[str], sheet, hidden: set[int] = frozenset(), book=None) -> int:
@@ -691,6 +694,8 @@ class _Zip:
         self.used = 0  # bytes decompressed so far, across parts
         self.notes: list[str] = []  # what the reading of the workbook tells (merged cells, a hidden sheet read)
         self.warnings: list[str] = []  # hidden sheets passed over
+        #: line -> (first column, last column, first line) of each merged range over it that spans columns or rows
+        self.merged: dict[int, list[tuple[int, int, int]]] = {}
 
     def has(self, name: str) -> bool:
         return name in self.names
@@ -891,6 +896,7 @@ class _Rows:
                 j = at.get(line)
                 if j is None:
                     continue
+                book.merged.setdefault(line, []).append((c1, c2, r1))
                 row = self.rows[j][1]
                 if len(row) < c2:
                     row.extend([""] * (c2 - len(row)))

@@ -68,7 +68,7 @@ class Column:
     unit: str | None
     description: str
     aliases: tuple[str, ...] = ()
-    rule: str | None = None  # "positive", "nonnegative", "fraction", or None
+    rule: str | None = None  # "positive", "nonnegative", "fraction", "coefficient" ((0, 1]), or None
     choices: tuple[str, ...] = ()  # allowed values of a text column (lower case)
     quantity: str | None = None  # nomenclature name: its range rule is used (the same as for options)
     words: tuple[tuple[str, float], ...] = ()  # words a numeric column also accepts, e.g. ("plane", inf)
@@ -92,6 +92,11 @@ class Column:
 def header_key(text: str) -> str:
     """Normalised spelling used to match headers: lower case, '_' between words.
 
+    Words are separated by any run of spaces and the punctuation instruments and locales put between them
+    (``-``, ``.``, ``/``, ``,``, ``;``, ``:``, ``_``): ``Eff. Axial Stress``, ``Eff, Axial Stress`` (an export
+    whose decimal points a regional setting turned into commas), ``Eff Axial Stress`` and ``eff_axial_stress``
+    are one key.
+
     Parameters
     ----------
     text : str
@@ -105,7 +110,7 @@ def header_key(text: str) -> str:
     References
     ----------
     capred's own input conventions (README, "`capred shear`: input format"); no external source."""
-    k = re.sub(r"[\s\-./]+", "_", text.strip().lower())
+    k = re.sub(r"[\s\-./,;:]+", "_", text.strip().lower())
     return re.sub(r"_+", "_", k).strip("_")
 
 
@@ -130,6 +135,9 @@ class Table:
     missing: set[str] = field(default_factory=set)  # required columns reported absent
     as_read: dict[str, np.ndarray] = field(default_factory=dict)  # numbers in the file's own unit (before SI)
     units_line: int | None = None  # the line of a units row under the header (None: no units row)
+    #: ``ignore_columns`` names (as given) the header does not have: each warned about once (see forget_ignores)
+    ignores_unused: list[str] = field(default_factory=list)
+    ignores_used: set[str] = field(default_factory=set)  # header_key of the ignore_columns names it has
 
     def __len__(self) -> int:
         return len(self.lines)
@@ -247,6 +255,23 @@ class Table:
         str
         """
         return self.raw[name][row] if name in self.raw else ""
+
+    def forget_ignores(self, used: set[str] | None = None) -> None:
+        """Take back the warnings about --ignore-column names this table's header lacks, where another file of
+        the same command has them (``used``: their header keys; None: every one).
+
+        A command that reads several files (a tests table and its ``--curves``) leaves every file its ignore
+        list: a name is warned about once, on the first file, and only when no file has it.
+
+        Parameters
+        ----------
+        used : set of str, optional
+            header_key of the names another file had (None: forget them all, this being a secondary file).
+        """
+        for name in [n for n in self.ignores_unused if used is None or header_key(n) in used]:
+            self.ignores_unused.remove(name)
+            if _unused_ignore(name) in self.warnings:
+                self.warnings.remove(_unused_ignore(name))
 
     def raise_if_problems(self) -> None:
         """Raise InputError listing every problem recorded so far; do nothing when there is none."""
@@ -436,11 +461,30 @@ def _is_units_row(cells: list[str], positions) -> bool:
     return False
 
 
-def _metadata(rows: list[tuple[int, list[str]]]) -> dict[str, str]:
+def _metadata(rows: list[tuple[int, list[str]]], merged: dict | None = None) -> dict[str, str]:
+    """The metadata block above the header: ``key: value`` in one cell, or a key and its value in the next cells.
+
+    A merged range is one cell, as the workbook shows it (``merged``: Grid.merged): its value once, not once per
+    column it spans. A merged cell alone on its row with no ``key:`` in it is a title: ``title`` (``title 2``
+    for a second one).
+    """
     out: dict[str, str] = {}
-    for _, cells in rows:
+    merged = merged or {}
+    titles = 0
+    for line, cells in rows:
+        cells, heads = list(cells), set()
+        for c1, c2, r1 in merged.get(line, ()):
+            first = c1 if line == r1 else c1 - 1  # the range's own cell keeps its value, its copies are blanked
+            for c in range(first, min(c2, len(cells))):
+                cells[c] = ""
+            if line == r1 and c2 > c1:
+                heads.add(c1 - 1)
         filled = [c for c in cells if c]
         if not filled:
+            continue
+        if len(filled) == 1 and ":" not in filled[0] and cells.index(filled[0]) in heads:
+            titles += 1
+            out["title" if titles == 1 else f"title {titles}"] = filled[0].strip()
             continue
         if len(filled) == 1 and ":" in filled[0]:
             key, _, value = filled[0].partition(":")
@@ -570,7 +614,7 @@ def grid_table(grid, src, schema: list[Column], empty_ok: bool = False) -> Table
         raise limits.error(
             "max_columns", f"the header has {len(_trimmed(headers)):,} columns", shown, header_line, sheet=sheet
         )
-    metadata = _metadata(rows[:k])
+    metadata = _metadata(rows[:k], grid.merged)
     body = rows[k + 1 :]
 
     table = Table(
@@ -623,9 +667,11 @@ def grid_table(grid, src, schema: list[Column], empty_ok: bool = False) -> Table
             continue
         positions[col.name] = (j, col, unit)
         table.headers[col.name] = h.strip()
+    table.ignores_used = used_ignores
     for key, name in ignored.items():
         if key not in used_ignores:
-            table.warnings.append(f"ignore_columns: the header has no column '{name}'")
+            table.ignores_unused.append(name)
+            table.warnings.append(_unused_ignore(name))
     for j in _with_data(blank_headers, body):
         table.warnings.append(f"column {j + 1} has data but no header: it is not used")
     _unused_columns(table, schema, lookup, positions)
@@ -832,6 +878,10 @@ def _name_part(header: str) -> str:
     """A header without the unit it declares in brackets: 'Materiaal [-]' -> 'Materiaal'."""
     m = _UNIT_IN_HEADER.match(header.strip())
     return m.group("name") if m and m.group("name") else header.strip()
+
+
+def _unused_ignore(name: str) -> str:
+    return f"ignore_columns: the header has no column '{name}'"
 
 
 def _ignored(header: str, ignored: dict[str, str]) -> str | None:
@@ -1106,11 +1156,19 @@ def check_column_rule(table: Table, col: Column) -> None:
                 table.add_problem(i, col.name, why)
         return
     with np.errstate(invalid="ignore"):
-        bad = {"positive": v <= 0, "nonnegative": v < 0, "fraction": (v < 0) | (v > 1)}.get(col.rule)
+        bad = {
+            "positive": v <= 0,
+            "nonnegative": v < 0,
+            "fraction": (v < 0) | (v > 1),
+            "coefficient": (v <= 0) | (v > 1),
+        }.get(col.rule)
     if bad is None:
         return
-    what = {"positive": "must be > 0", "nonnegative": "must not be negative", "fraction": "must lie between 0 and 1"}[
-        col.rule
-    ]
+    what = {
+        "positive": "must be > 0",
+        "nonnegative": "must not be negative",
+        "fraction": "must lie between 0 and 1",
+        "coefficient": "must lie in (0, 1]",
+    }[col.rule]
     for i in np.flatnonzero(bad):
         table.add_problem(i, col.name, f"{col.description} {what} (got {table.raw[col.name][i]} {unit})".rstrip())

@@ -146,7 +146,8 @@ def saturation_from_b(B, p0_eff, e0, kappa_elastic, pa0):
     Returns
     -------
     numeric
-        Degree of saturation :math:`S_r` [-].
+        Degree of saturation :math:`S_r` [-]; B = 0 gives its limit, -inf (no S_r in [0, 1] gives a B below
+        the dry soil's, and a caller reports such values as outside [0, 1]).
 
     Notes
     -----
@@ -160,7 +161,9 @@ def saturation_from_b(B, p0_eff, e0, kappa_elastic, pa0):
        of B with Sr. E-UNSAT 2016, E3S Web of Conferences (DOI not given in
        the source), eq. 10.
     """
-    return 1.0 - (1.0 / np.asarray(B, float) - 1.0) * kappa_elastic * pa0 / (p0_eff * e0)
+    with np.errstate(divide="ignore"):  # 1/0 = inf: the limit B -> 0+, S_r -> -inf
+        inv = 1.0 / np.asarray(B, float)
+    return 1.0 - (inv - 1.0) * kappa_elastic * pa0 / (p0_eff * e0)
 
 
 def skempton_b_suction(S_R, p0, ua0, e0, kappa_elastic, pa0, s_e, bc_lambda):
@@ -189,7 +192,8 @@ def skempton_b_suction(S_R, p0, ua0, e0, kappa_elastic, pa0, s_e, bc_lambda):
     Returns
     -------
     numeric
-        :math:`B` [-]; falls as :math:`s_e` rises.
+        :math:`B` [-]; falls as :math:`s_e` rises. At :math:`S_r = 0` the limit of :math:`s S_r =
+        s_e S_r^{1 - 1/\alpha}`: B = 0 for :math:`\alpha < 1` (infinite suction stiffening).
 
     Notes
     -----
@@ -212,7 +216,10 @@ def skempton_b_suction(S_R, p0, ua0, e0, kappa_elastic, pa0, s_e, bc_lambda):
        media. Hydrology Paper 3, Colorado State University (no DOI).
     """
     S_R = np.asarray(S_R, float)
-    p0_eff = p0 - ua0 + bc_suction(S_R, s_e, bc_lambda) * S_R
+    wet = S_R > 0
+    with np.errstate(divide="ignore"):  # s S_r = s_e S_r^(1 - 1/α) at S_r = 0: inf (α < 1), s_e (α = 1), 0 (α > 1)
+        dry = s_e * np.zeros_like(S_R) ** (1.0 - 1.0 / np.asarray(bc_lambda, float))
+    p0_eff = p0 - ua0 + np.where(wet, bc_suction(np.where(wet, S_R, 1.0), s_e, bc_lambda) * S_R, dry)
     return skempton_b(S_R, p0_eff, e0, kappa_elastic, pa0)
 
 

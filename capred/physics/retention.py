@@ -64,7 +64,16 @@ def vg_effective_saturation(s, vg_alpha, vg_n, vg_m=None):
     van Genuchten (1980), doi:10.2136/sssaj1980.03615995004400050002x, eq. 3.
     """
     m = 1.0 - 1.0 / np.asarray(vg_n, float) if vg_m is None else vg_m
-    return (1.0 + (vg_alpha * np.maximum(np.asarray(s, float), 0.0)) ** vg_n) ** (-m)
+    x = vg_alpha * np.maximum(np.asarray(s, float), 0.0)
+    with np.errstate(over="ignore"):
+        p = x**vg_n
+        se = (1.0 + p) ** (-m)
+    if np.isinf(p).any():  # (αs)^n beyond the float range: S_e = (αs)^(-nm) (1 + (αs)^(-n))^(-m), the last 1
+        x, n_, m_, p = np.broadcast_arrays(x, vg_n, m, p)
+        big = np.isinf(p)
+        se = np.array(np.broadcast_to(se, big.shape), float)
+        se[big] = np.exp(-m_[big] * n_[big] * np.log(x[big]))
+    return se
 
 
 def vg_water(s, y_r, y_s, vg_alpha, vg_n, vg_m=None):
@@ -332,7 +341,16 @@ def fx_shape(s, a, n, m):
     Fredlund & Xing (1994), doi:10.1139/t94-061, eq. 26 (without C).
     """
     s = np.maximum(np.asarray(s, float), 0.0)
-    return np.log(np.e + (s / a) ** n) ** (-m)
+    x = s / a
+    with np.errstate(over="ignore"):
+        p = x**n
+    log_term = np.log(np.e + p)
+    if np.isinf(p).any():  # (s/a)^n beyond the float range: ln(e + (s/a)^n) = n ln(s/a), to 1e-308
+        x, n_, p = np.broadcast_arrays(x, n, p)
+        big = np.isinf(p)
+        log_term = np.array(np.broadcast_to(log_term, big.shape), float)
+        log_term[big] = n_[big] * np.log(x[big])
+    return log_term ** (-m)
 
 
 def durner_effective_saturation(s, w1, alpha1, n1, alpha2, n2):

@@ -1422,7 +1422,9 @@ def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
     if opt.curves is not None:
         from .shear_curves import pick_peaks
 
-        curves = pick_peaks(opt.curves, table, box, opt.area_correction)
+        # --ignore-column applies to every file the command reads; a name no file has is warned about once
+        curves = pick_peaks(opt.curves, table, box, opt.area_correction, getattr(source, "ignore_columns", ()))
+        table.forget_ignores(curves.table.ignores_used)
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # NaN and overflow are reported below
         d = derive_tests(table, opt, box, curves.tau_peak if curves else None)
     if curves is not None and opt.area_correction != "none":

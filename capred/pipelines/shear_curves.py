@@ -93,7 +93,9 @@ class ShearCurves:
         }
 
 
-def pick_peaks(source, tests: Table, box_area: np.ndarray, area_correction: str = "none") -> ShearCurves:
+def pick_peaks(
+    source, tests: Table, box_area: np.ndarray, area_correction: str = "none", ignore_columns=()
+) -> ShearCurves:
     """Peak tau of every test's curve, its displacement, the residual tau (mean over the last 10 % of the
     displacement) and, with vertical displacements, the dilatancy angle at the peak (atan of dv/dh).
 
@@ -107,6 +109,9 @@ def pick_peaks(source, tests: Table, box_area: np.ndarray, area_correction: str 
         Nominal box area of each test [m^2].
     area_correction : str, optional
         ``none``, ``square`` or ``circular`` (see :func:`corrected_area`).
+    ignore_columns : sequence of str, optional
+        Columns to leave out (the command's --ignore-column list: it applies to every file the command reads;
+        the names this file lacks are not warned about here, see capred.io.Table.forget_ignores).
 
     Returns
     -------
@@ -114,7 +119,8 @@ def pick_peaks(source, tests: Table, box_area: np.ndarray, area_correction: str 
         Per test: tau at peak [Pa], displacement at peak [m], residual tau [Pa], dilatancy angle [deg]; the
         problems of the file collected, not raised.
     """
-    table = read_table(source, SCHEMA)
+    table = read_table(source, SCHEMA, ignore_columns=ignore_columns)
+    table.forget_ignores()  # the tests table warns about a name no file has
     for name in ("test_id", "displacement"):
         if name not in table.columns:
             table.missing_column(name)

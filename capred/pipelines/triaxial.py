@@ -75,7 +75,7 @@ SCHEMA = [
         "axial strain at failure",
         ("eps_f", "axial_strain_f", "axial_strain_at_failure", "strain_f"),
     ),
-    Column("B", "dimensionless", "-", "Skempton's B of the test", ("b_value", "skempton_b"), "positive"),
+    Column("B", "dimensionless", "-", "Skempton's B of the test", ("b_value", "skempton_b"), "coefficient"),
     Column("D_c", "length", "mm", "diameter after consolidation", ("consolidated_diameter", "d_c"), "positive"),
     Column("H_c", "length", "mm", "height after consolidation", ("consolidated_height", "h_c"), "positive"),
     Column(
@@ -743,17 +743,22 @@ def skempton_a_of_curves(table: Table, at_peak: dict) -> tuple[np.ndarray, list[
     """Skempton's A at failure of every test whose curve logs the pore pressure, and the notes on B and Δσ3.
 
     A = (Δu − B Δσ3)/(B (Δσ1 − Δσ3)) with the changes over the shear stage, from its first reading to the
-    peak (Skempton 1954; Morvan et al. 2016, eq. 1): Δσ1 − Δσ3 = Δq. B is the tests table's column ``B``,
-    else the export's last ``B Value``, else 1 (a saturated specimen; said in a note). Δσ3 is the change of
-    the export's radial pressure (0, said in a note, when it logs none).
+    peak (Skempton 1954; Morvan et al. 2016, eq. 1): Δσ1 − Δσ3 = Δq, for saturated tests sheared undrained
+    (not where the pore pressure stayed within the pressure tolerance over the whole shear stage, a drained
+    shear; noted). B is the tests table's column ``B``, else the B check of the export
+    (capred.pipelines.triaxial_curves.b_check: Δu/Δσ3 of its B-check stage, never the shear stage's running
+    ``B Value``), else 1 (a saturated specimen; said in a note). A B check outside (0, 1] leaves A uncomputed
+    (warned about where it was read). Δσ3 is the change of the export's radial pressure (0, said in a note,
+    when it logs none).
 
     Parameters
     ----------
     table : Table
         The tests table (test_id, optional B).
     at_peak : dict
-        Test id -> changes over the shear stage up to the peak: ``du``, ``dq``, ``dsigma3`` [Pa] and the
-        export's last ``B`` [-].
+        Test id -> changes over the shear stage up to the peak: ``du``, ``dq``, ``dsigma3`` [Pa], the range of
+        the pore pressure over the stage ``du_range`` [Pa], the export's B check ``B`` [-] and ``B_source``
+        ("b_check", "none" or "invalid").
 
     Returns
     -------
@@ -771,13 +776,20 @@ def skempton_a_of_curves(table: Table, at_peak: dict) -> tuple[np.ndarray, list[
     n = len(table)
     A = np.full(n, np.nan)
     b_col = table.get("B")
-    assumed_b, assumed_s3 = [], []
+    assumed_b, assumed_s3, drained = [], [], []
     for i in range(n):
         tid = str(table.columns["test_id"][i])
         st = at_peak.get(tid)
         if not st or not np.isfinite(st.get("du", np.nan)) or not st.get("dq", np.nan) > 0:
             continue
+        if table.columns["condition"][i] != "saturated":
+            continue  # A is a saturated specimen's undrained response; axis translation controls u_w
+        if st.get("du_range", np.nan) <= pressure_tolerance(st.get("pore_pressure", np.nan)):
+            drained.append(tid)  # the pore pressure never moved in the shear stage: drained, A has no meaning
+            continue
         B = b_col[i] if np.isfinite(b_col[i]) else st.get("B", np.nan)
+        if not np.isfinite(B) and st.get("B_source") == "invalid":
+            continue  # the export's B check is outside (0, 1]: no A rather than a wrong one
         if not np.isfinite(B):
             B = 1.0
             assumed_b.append(tid)
@@ -789,10 +801,16 @@ def skempton_a_of_curves(table: Table, at_peak: dict) -> tuple[np.ndarray, list[
     notes = []
     if assumed_b:
         notes.append(
-            f"Skempton's A with B = 1 (a saturated specimen; give a column 'B' to use another): {', '.join(assumed_b)}"
+            "Skempton's A with B = 1 (a saturated specimen; the export has no B-check stage; give a column 'B' "
+            f"to use another): {', '.join(assumed_b)}"
         )
     if assumed_s3:
         notes.append(f"Skempton's A with Δσ3 = 0 (the export logs no radial pressure): {', '.join(assumed_s3)}")
+    if drained:
+        notes.append(
+            "Skempton's A not computed for tests sheared drained (the pore pressure stayed within the pressure "
+            "tolerance over the whole shear stage): " + ", ".join(drained)
+        )
     return A, notes
 
 
@@ -866,6 +884,14 @@ def pore_pressures(table: Table, at_peak: dict[str, dict[str, float]], q, ext=No
     u = np.zeros(n)
     notes, warnings = [], []
     filled_s3, from_export, already = [], [], []
+    suction0 = np.array([at_peak.get(t, {}).get("suction_initial", np.nan) for t in tids])
+    took = np.isnan(s0) & ~sat & np.isfinite(suction0)
+    if took.any():  # the export's Matric Suction at the first reading of the shear stage is the initial suction
+        s0[took] = suction0[took]
+        notes.append(
+            "s0 taken from the export's matric suction at the start of the shear stage: "
+            + ", ".join(f"{tids[i]} ({s0[i] / 1e3:.4g} kPa)" for i in np.flatnonzero(took))
+        )
     for i in range(n):
         tid = tids[i]
         if sat[i]:
@@ -919,11 +945,20 @@ def pore_pressures(table: Table, at_peak: dict[str, dict[str, float]], q, ext=No
                         "the table's stresses are already effective; the pore pressure of the table "
                         "is not subtracted again"
                     )
-            else:
+            else:  # a drifting cell: the table's stress is still total, never taken as effective (issue 39)
+                total = True
+                u_sub = u_tab if np.isfinite(u_tab) else u_exp
+                sub = (
+                    f"; the pore pressure {u_sub / 1e3:.4g} kPa is subtracted from it as from any total stress"
+                    if np.isfinite(u_sub) and u_sub != 0
+                    else ""
+                )
                 warnings.append(
                     f"test '{tid}': {name} = {cell / 1e3:.4g} kPa in the table but the export's radial "
-                    f"pressure at failure is {radial / 1e3:.4g} kPa (tolerance "
-                    f"{pressure_tolerance(radial) / 1e3:.3g} kPa, ASTM D4767); the table's value is used"
+                    f"pressure at failure is {radial / 1e3:.4g} kPa ("
+                    + (f"{(radial - cell) / cell * 100:+.2g} %, " if cell else "")
+                    + f"tolerance {pressure_tolerance(radial) / 1e3:.3g} kPa, ASTM D4767): the table's value is used"
+                    f"{sub}"
                 )
         if total:
             if np.isfinite(u_tab):
@@ -1006,7 +1041,9 @@ def run_triaxial_bounds(
             if D_c is None
             else {str(t): x for t, x, w in zip(table.columns["test_id"], D_c, D_c_source) if w in ("D_c", "dV_c")}
         )
-        raw_curves = read_curves(curves, table, opt.membrane, dc)
+        # --ignore-column applies to every file the command reads; a name no file has is warned about once
+        raw_curves = read_curves(curves, table, opt.membrane, dc, getattr(source, "ignore_columns", ()))
+        table.forget_ignores(raw_curves.ignores_used)
         table.problems += raw_curves.problems  # reported with the table's own, in one round
         table.notes += raw_curves.notes
         table.warnings += raw_curves.warnings
@@ -1257,16 +1294,23 @@ def run_triaxial_bounds(
         notes += [f"group {g.group}: {v}" for v in (g.needs, g.warning) if v]
     A, note_A = skempton_a_of_curves(table, raw_curves.at_peak if raw_curves else {})
     notes += note_A
+    from .triaxial_curves import export_states
+
+    unsat_state, note_state = export_states(table, raw_curves.at_peak if raw_curves else {})
+    notes += note_state
     states = rec.TestStates(
         **{k: tests[k] for k in _TEXT_FIELDS},
         **{
             f.name: np.asarray(tests[{v: k for k, v in _OLD_TEST_KEYS.items()}.get(f.name, f.name)], float)
             * (1.0 if f.name in ("lode_angle", "strain_at_failure") else 1 / KPA)
             for f in dataclasses.fields(rec.TestStates)
-            if f.name not in _TEXT_FIELDS and f.name not in ("q_sat", "skempton_A")
+            if f.name not in _TEXT_FIELDS and f.name not in ("q_sat", "skempton_A", "suction", "S_R", "void_ratio")
         },
         q_sat=np.where(unsat, q_sat, np.nan) / KPA,
         skempton_A=A,
+        suction=unsat_state["suction"] / KPA,
+        S_R=unsat_state["S_R"],
+        void_ratio=unsat_state["void_ratio"],
     )
     bound_states = {}
     for name, b in bounds.items():

@@ -111,17 +111,46 @@ EXPORT_COLUMNS = (
     "Local Radial",
     "Lower Chamber Pressure",
     "Lower Chamber Volume",
+    "Excess PWP",
+    "PWP Ratio",
+    "L/C Pressure",
+    "L/C Volume",
+    "Back Differential Pressure",
+    "Pore Air Volume",
+    "Atmospheric Pressure",
+    "Temperature",
+    "Mid Plane PWP",
+    "Back to Cell Differential",
+    "Total Volume Change",
+    "Undefined Tx 1",
+    "Undefined Tx 2",
+    "Undefined Tx 3",
+    "Lower Chamber Displacement",
+    "Lower Chamber Axial Load",
+    "Specimen Air Volume",
+    "Specimen Water Volume",
+    "kRT constant",
 )
 SCHEMA += [
     Column("stage", "text", None, "stage number of the export", ("stage_number", "stage_no", "stage_nr")),
+    # GDSLAB's running ratio of the pore-pressure change to the cell-pressure change since the stage began: B only
+    # at the end of a B check (read there, see b_check); in the shear stage a number without meaning
     Column("B", "dimensionless", "-", "Skempton's pore-pressure coefficient B", ("b_value", "skempton_b")),
+    # the state of an unsaturated specimen as the export logs it (GDSLAB's unsaturated module)
+    Column("suction", "pressure", "kPa", "matric suction u_a - u_w", ("matric_suction",)),
+    Column("S_R", "dimensionless", "-", "degree of saturation", ("degree_of_saturation", "s_r", "saturation_degree")),
+    Column("void_ratio", "dimensionless", "-", "void ratio", ("voids_ratio", "e")),
 ]
+# known and not used: their absence changes nothing, so a near miss of one is no reason to stop a run
 SCHEMA += [
-    Column(header_key(name), "text", None, f"{name} (instrument export; not used)", ()) for name in EXPORT_COLUMNS
+    Column(header_key(name), "text", None, f"{name} (instrument export; not used)", (), decisive=False)
+    for name in EXPORT_COLUMNS
 ]
 
 #: the pressures read at the peak of a curve (an export's columns)
 PEAK_PRESSURES = ("radial_pressure", "back_pressure", "pore_pressure", "air_pressure")
+#: the state of an unsaturated specimen an export logs, kept at the start of the shear stage and at the peak
+EXPORT_STATE = ("suction", "S_R", "void_ratio")
 _ID_KEYS = tuple(header_key(k) for k in ("test_id", *column_aliases("test_id")))
 _D0_KEYS = ("initial_diameter", "diameter", "d0", "sample_diameter", "specimen_diameter")
 _H0_KEYS = ("initial_height", "height", "h0", "sample_height", "specimen_height")
@@ -189,6 +218,8 @@ class TriaxialCurves:
     warnings: list[str] = field(default_factory=list)
     #: test id -> its shear-stage readings in kPa and strains [-] (capred.pipelines.triaxial_records.Curve)
     curves: dict = field(default_factory=dict)
+    #: header keys of the ignore_columns names some curve file had (capred.io.Table.forget_ignores)
+    ignores_used: set = field(default_factory=set)
 
 
 def curve_files(spec) -> list:
@@ -270,8 +301,123 @@ def _shear_stage(table: Table, sel: np.ndarray, tid: str, notes: list[str]) -> n
     return sel[stage == best]
 
 
+def b_check(table: Table, rows: np.ndarray, shear: np.ndarray, tid: str) -> dict:
+    """Skempton's B of a test from the B-check stage of its export, and how it was found.
+
+    A B check closes the drainage and raises the cell pressure: B = Δu/Δσ3 over the stage (Skempton 1954),
+    first reading to last. The B-check stage is the last stage before the shear stage in which the cell
+    pressure rises and the pore pressure rises with it (both by more than the pressure tolerance of ASTM
+    D4767, capred.pipelines.triaxial.pressure_tolerance) while the back pressure holds: a saturation ramp
+    moves the back pressure with the cell, and a consolidation ends with the excess pore pressure gone. The
+    export's running ``B Value`` column is not read as B (in the shear stage it is Δu over the cell's creep);
+    where it logs a value at the end of the B check that differs from Δu/Δσ3 by more than 0.02, a warning
+    names both.
+
+    Parameters
+    ----------
+    table : Table
+        The export (columns stage, radial_pressure, pore_pressure, optional back_pressure and B) [Pa].
+    rows : ndarray of int
+        The test's rows, every stage.
+    shear : ndarray of int
+        The rows of its shear stage.
+    tid : str
+        The test id (for messages).
+
+    Returns
+    -------
+    dict
+        ``B`` [-] (NaN: none found or outside (0, 1]), ``source`` ("b_check", "none" or "invalid"), ``note``
+        and ``warning`` (str or None).
+
+    References
+    ----------
+    .. [1] Skempton, A. W. (1954). The pore-pressure coefficients A and B. Geotechnique 4(4), 143-147.
+       doi:10.1680/geot.1954.4.4.143
+    .. [2] ASTM D4767-11, section 8.2 (B check of saturation). doi:10.1520/D4767-11
+    """
+    from .triaxial import pressure_tolerance
+
+    out = {"B": float("nan"), "source": "none", "note": None, "warning": None}
+    if "stage" not in table.columns or "pore_pressure" not in table.columns or "radial_pressure" not in table.columns:
+        return out
+    stage = np.array([str(x).strip() for x in table.columns["stage"][rows]], dtype=object)
+    start = int(shear[0]) if len(shear) else int(rows[-1]) + 1
+    cell, pore, back = (table.get(k)[rows] for k in ("radial_pressure", "pore_pressure", "back_pressure"))
+    found = None
+    for name in dict.fromkeys(stage[rows < start]):
+        if name in ("", "nan", "None"):
+            continue
+        k = np.flatnonzero((stage == name) & (rows < start))
+        c, u, b = cell[k][np.isfinite(cell[k])], pore[k][np.isfinite(pore[k])], back[k][np.isfinite(back[k])]
+        if c.size < 2 or u.size < 2:
+            continue
+        ds3, du = c[-1] - c[0], u[-1] - u[0]
+        holds = b.size < 2 or abs(b[-1] - b[0]) <= pressure_tolerance(b[-1])
+        if ds3 > pressure_tolerance(c[-1]) and du > pressure_tolerance(u[-1]) and holds:
+            found = (name, k, ds3, du)
+    if found is None:
+        return out
+    name, k, ds3, du = found
+    B = du / ds3
+    what = f"stage {name}: Δu = {du / 1e3:.4g} kPa over Δσ3 = {ds3 / 1e3:.4g} kPa"
+    logged = table.get("B")[rows[k]]
+    logged = logged[np.isfinite(logged)]
+    if logged.size and abs(logged[-1] - B) > 0.02:
+        out["warning"] = (
+            f"test '{tid}': the B check ({what}) gives B = {B:.3g} but the export's B Value at its end is "
+            f"{logged[-1]:.4g}; capred uses Δu/Δσ3 = {B:.3g} (Skempton 1954)"
+        )
+    if not 0 < B <= 1:
+        out.update(source="invalid")
+        out["warning"] = (
+            f"test '{tid}': the B check of the export ({what}) gives B = {B:.3g}, outside (0, 1]: Skempton's A is "
+            "not computed for this test; give its B in the tests table (column 'B') to compute it"
+        )
+        return out
+    out.update(B=float(B), source="b_check", note=f"test '{tid}': Skempton's B = {B:.3g} from the B check ({what})")
+    return out
+
+
+def export_states(table: Table, at_peak: dict) -> tuple[dict[str, np.ndarray], list[str]]:
+    """Matric suction, degree of saturation and void ratio at failure of every test, from its export.
+
+    The tests table's own column (``suction``, ``S_R``, ``void_ratio``, where its schema has one) wins; a blank
+    is filled with the export's value at the peak of the curve, and a note says which were taken.
+
+    Parameters
+    ----------
+    table : Table
+        The tests table (test_id).
+    at_peak : dict
+        Test id -> the export's values at the peak (read_curves' ``at_peak``: suction [Pa], S_R and
+        void_ratio [-]).
+
+    Returns
+    -------
+    values : dict of str to ndarray
+        ``suction`` [Pa], ``S_R`` [-], ``void_ratio`` [-] per test (NaN where neither gives one).
+    notes : list of str
+    """
+    tids = [str(t) for t in table.columns["test_id"]]
+    out, notes = {}, []
+    for name, words in zip(EXPORT_STATE, ("matric suction", "degree of saturation", "void ratio")):
+        v = table.get(name).copy()
+        exp = np.array([at_peak.get(t, {}).get(name, np.nan) for t in tids])
+        took = np.isnan(v) & np.isfinite(exp)
+        v[took] = exp[took]
+        out[name] = v
+        if took.any():
+            notes.append(f"{words} at failure taken from the export: {', '.join(np.array(tids)[took])}")
+    return out, notes
+
+
 def read_curves(
-    spec, tests: Table | None = None, membrane: tuple[float, float] | None = None, consolidated: dict | None = None
+    spec,
+    tests: Table | None = None,
+    membrane: tuple[float, float] | None = None,
+    consolidated: dict | None = None,
+    ignore_columns=(),
 ) -> TriaxialCurves:
     """Peak q and the axial strain at the peak of every test's curve.
 
@@ -292,6 +438,9 @@ def read_curves(
         (thickness [m], Young's modulus [Pa]) of the membrane; None: no correction.
     consolidated : dict, optional
         Test id -> diameter after consolidation [m].
+    ignore_columns : sequence of str, optional
+        Columns to leave out of every curve file (CLI ``--ignore-column``, the command's list); a name no curve
+        file has is not warned about here (``ignores_used`` tells the caller which ones some file had).
 
     Returns
     -------
@@ -306,9 +455,12 @@ def read_curves(
     out = TriaxialCurves()
     d0_col = {str(t): d for t, d in zip(tests.columns.get("test_id", []), tests.get("D0"))} if tests is not None else {}
     for f in curve_files(spec):
-        table = read_table(f, SCHEMA)
+        table = read_table(f, SCHEMA, ignore_columns=ignore_columns)
+        out.ignores_used |= table.ignores_used
+        table.forget_ignores()  # the command's first file warns about a name no file has
         out.tables.append(table)
         out.warnings += table.warnings
+        out.notes += table.notes  # what the reading says (a column ignored as asked, a note under the data)
         has_q, has_force = "q" in table.columns, "axial_force" in table.columns
         if not (has_q or has_force):
             table.missing_column("q", " (or 'axial_force' with the initial diameter D0)")
@@ -323,7 +475,7 @@ def read_curves(
             ids = np.array([tid] * len(table), dtype=object)
         eps = table.get("axial_strain")
         for tid in dict.fromkeys(ids):
-            sel = np.flatnonzero(ids == tid)
+            every = sel = np.flatnonzero(ids == tid)
             if "stage" in table.columns:
                 sel = _shear_stage(table, sel, str(tid), out.notes)
             q = table.get("q")[sel].copy()
@@ -392,10 +544,20 @@ def read_curves(
             # changes over the stage, first reading to the peak, for Skempton's A (Skempton 1954)
             first = int(sel[0])
             state["du"] = float(table.get("pore_pressure")[k] - table.get("pore_pressure")[first])
+            u_stage = table.get("pore_pressure")[sel]
+            u_stage = u_stage[np.isfinite(u_stage)]  # how far the pore pressure moved in the stage: ~0 when drained
+            state["du_range"] = float(np.ptp(u_stage)) if u_stage.size else float("nan")
             state["dsigma3"] = float(table.get("radial_pressure")[k] - table.get("radial_pressure")[first])
             state["dq"] = float(np.max(q[ok]) - q[0]) if np.isfinite(q[0]) else float("nan")
-            b = table.get("B")[np.flatnonzero(ids == tid)]  # logged in the B-check stage, not in the shear
-            state["B"] = float(b[np.isfinite(b)][-1]) if np.isfinite(b).any() else float("nan")
+            b = b_check(table, every, sel, str(tid))  # never the shear stage's running B Value
+            state["B"], state["B_source"] = b["B"], b["source"]
+            out.notes += [b["note"]] if b["note"] else []
+            out.warnings += [b["warning"]] if b["warning"] else []
+            for name in EXPORT_STATE:  # an unsaturated specimen's state: at the start of the shear and at the peak
+                v = table.get(name)[sel]
+                ok_v = np.flatnonzero(np.isfinite(v))
+                state[name + "_initial"] = float(v[ok_v[0]]) if ok_v.size else float("nan")
+                state[name] = float(table.get(name)[k])
             state["membrane"] = float(dq[int(np.flatnonzero(sel == k)[0])])
             state["D0"] = D0
             if membrane is not None:

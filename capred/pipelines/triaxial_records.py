@@ -265,6 +265,9 @@ class TestStates:
     skempton_A : ndarray
         Skempton's A at failure, (Δu − B Δσ3)/(B (Δσ1 − Δσ3)) over the shear stage of the test's curve [-]
         (NaN without a curve that logs the pore pressure; Skempton 1954).
+    suction, S_R, void_ratio : ndarray
+        Matric suction [kPa], degree of saturation [-] and void ratio [-] at failure, as the test's export logs
+        them (``Matric Suction``, ``Degree of Saturation``, ``Voids ratio``; NaN where it does not).
     """
 
     test_id: np.ndarray = text()
@@ -289,6 +292,9 @@ class TestStates:
     strain_at_failure: np.ndarray = quantity("strain_at_failure")
     q_sat: np.ndarray = quantity("q_sat")
     skempton_A: np.ndarray = quantity("skempton_A")
+    suction: np.ndarray = quantity("suction")
+    S_R: np.ndarray = quantity("S_R")
+    void_ratio: np.ndarray = quantity("void_ratio")
 
     def __len__(self) -> int:
         return len(self.test_id)
