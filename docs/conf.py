@@ -18,7 +18,6 @@ ROOT = DOCS.parent
 sys.path.insert(0, str(ROOT))  # document (and run the gallery on) the checked-out capred
 sys.path.insert(0, str(DOCS))
 os.environ.setdefault("MPLBACKEND", "Agg")
-os.environ.setdefault("SOURCE_DATE_EPOCH", "1764633600")  # reproducible figures and report dates
 
 import generate  # noqa: E402
 
@@ -98,10 +97,58 @@ html_theme_options = {
     "secondary_sidebar_items": ["page-toc"],
 }
 html_show_sourcelink = False
+html_css_files = ["capred.css"]
+# top-level pages have no section to navigate: their tables get the sidebar's width
+html_sidebars = {
+    "index": [],
+    "getting_started": [],
+    "whatsnew": [],
+    "changelog": [],
+    "contributing": [],
+    "generated/validation": [],
+}
 html_last_updated_fmt = None
 
 
 _ABSOLUTE = re.compile(r"(?<![\\`|])\|(?=[^\s|`])([^|`\n]*?[^\s|`\\])\|(?![\w|])")
+
+
+def _field_lines(obj) -> list[str]:
+    """An ``Attributes`` section for an Options or Result dataclass whose docstring has none.
+
+    Options fields read their meaning, unit, range, default and option from the snapshot the command line uses
+    (``capred.cli.declare.field_facts``); Result fields give their type.
+    """
+    from dataclasses import fields, is_dataclass
+
+    from capred.result import Options, Result
+
+    if not (isinstance(obj, type) and is_dataclass(obj) and issubclass(obj, Options | Result)):
+        return []
+    out = ["", "Attributes", "----------"]
+    for f in fields(obj):
+        if f.name.startswith("_"):
+            continue
+        kind = f.type if isinstance(f.type, str) else getattr(f.type, "__name__", "")
+        out.append(f"{f.name} : {kind}".replace("*", "\\*"))
+        text = ""
+        if issubclass(obj, Options):
+            try:
+                from capred.cli.declare import field_facts
+
+                facts = field_facts(f"{obj.__module__}:{obj.__name__}", f.name)
+            except Exception:  # a field the command line does not offer
+                facts = {}
+            unit = facts.get("unit") or ""
+            bits = [
+                facts.get("text") or "",
+                f"[{unit}]" if unit else "",
+                facts.get("range") or "",
+                facts.get("default") or "",
+            ]
+            text = " ".join(b for b in bits if b).replace("*", "\\*")
+        out.append("    " + (text or "See the class description."))
+    return out
 
 
 def _plain_docstrings(app, what, name, obj, options, lines):
@@ -113,6 +160,8 @@ def _plain_docstrings(app, what, name, obj, options, lines):
     if what == "module" and lines:
         lines[:] = ["::", ""] + ["    " + line for line in lines] + [""]
         return
+    if what == "class" and not any(line.strip() == "Attributes" for line in lines):
+        lines.extend(_field_lines(obj))
     for i, line in enumerate(lines):
         lines[i] = _ABSOLUTE.sub(r"\\|\1\\|", line)
 
