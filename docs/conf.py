@@ -166,5 +166,23 @@ def _plain_docstrings(app, what, name, obj, options, lines):
         lines[i] = _ABSOLUTE.sub(r"\\|\1\\|", line)
 
 
+_LINK = re.compile(r"(?<!!)\[([^\]`<>]+)\]\(((?:\.\./)+[^)#\s]+)\)")
+
+
+def _repository_links(app, docname, source):
+    """A Markdown link from a page to a file of the repository outside docs/ (``tests/data/real/SOURCES.md``)
+    becomes a download of that file, so that it resolves on the site as it does on the repository."""
+    page = (DOCS / docname).parent
+
+    def link(m):
+        target = (page / m.group(2)).resolve()
+        if DOCS in target.parents or not target.is_file() or ROOT not in target.parents:
+            return m.group(0)
+        return f"{{download}}`{m.group(1)} <{m.group(2)}>`"
+
+    source[0] = _LINK.sub(link, source[0])
+
+
 def setup(app):
     app.connect("autodoc-process-docstring", _plain_docstrings, priority=400)  # before napoleon (500)
+    app.connect("source-read", _repository_links)
