@@ -45,6 +45,8 @@ source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
 exclude_patterns = ["_build", "generated/*.bib", "examples/README.txt", "**/README.md", "auto_examples/*.ipynb"]
 templates_path = ["_templates"]
+# "--models" stays two hyphens (options, help texts), quotes stay as written
+smartquotes = False
 html_static_path = ["_static"]
 
 # MyST: the Markdown moved from the README builds as it was written

@@ -58,7 +58,7 @@ def _write(name: str, text: str) -> Path:
 
 
 def help_text(args: list[str]) -> str:
-    """The ``--help`` of a command as a terminal of 100 columns prints it, without colours.
+    """The ``--help`` of a command as a terminal of 80 columns prints it, without colours.
 
     Parameters
     ----------
@@ -73,7 +73,7 @@ def help_text(args: list[str]) -> str:
 
     from capred.cli import app
 
-    env = {"COLUMNS": "100", "NO_COLOR": "1", "TERM": "dumb", "_TYPER_FORCE_DISABLE_TERMINAL": "1"}
+    env = {"COLUMNS": "80", "NO_COLOR": "1", "TERM": "dumb", "_TYPER_FORCE_DISABLE_TERMINAL": "1"}
     res = CliRunner().invoke(app, [*args, "--help"], env=env)
     if res.exit_code != 0:
         raise RuntimeError(f"capred {' '.join(args)} --help failed: {res.output}")
@@ -335,23 +335,20 @@ def glossary_page() -> str:
     from capred import nomenclature as nm
 
     rows = [
-        [
-            f"`{name}`",
-            q.symbol,
-            q.unit,
-            q.description,
-            _limit(q),
-            ", ".join(f"`{a}`" for a in nm.column_aliases(name)[:6]),
-        ]
+        [f"`{name}`", q.symbol, q.unit, q.description, _limit(q)]
         for name, q in sorted(nm.QUANTITIES.items(), key=lambda kv: kv[0].lower())
     ]
+    spellings = [[f"`{name}`", ", ".join(f"`{a}`" for a in aliases)] for name, aliases in nm.COLUMN_ALIASES.items()]
     return (
         "# Glossary\n\n"
         "One name per concept, as `capred.nomenclature` defines it: options, input columns, JSON keys, CSV "
         "headers (`name [unit]`) and plot labels all use these names. *Range* is the physically possible range "
-        "in the output unit (outside it a value is an error); *also read as* lists spellings accepted in input "
-        "headers. Generated from `capred.nomenclature.QUANTITIES` at every build.\n\n"
-        + _table(["name", "symbol", "unit", "meaning", "range", "also read as"], rows)
+        "in the output unit (outside it a value is an error). Generated from `capred.nomenclature.QUANTITIES` "
+        "at every build.\n\n"
+        + _table(["name", "symbol", "unit", "meaning", "range"], rows)
+        + "\n## Spellings of the id columns\n\n"
+        "Headers are matched ignoring case, spaces, `-`, `.` and `/`; the id columns also accept these spellings "
+        "(`capred.nomenclature.COLUMN_ALIASES`):\n\n" + _table(["column", "also read as"], spellings)
     )
 
 
