@@ -118,6 +118,12 @@ def test_validation_page_takes_the_real_data_rows_when_present(monkeypatch):
     monkeypatch.setitem(generate.VALIDATIONS, "Capillary bridges: YADE's capillary-file generator", (list, ""))
     page = generate.validation_page()
     assert "| a data set | a paper, Table 1 | phi_deg | 31 | 31.2 | 0.2 | 0.5 | yes |" in page
+    # tests/real_cases.py's rows: difference and tolerance as text, NaN where the source has no value, and
+    # whether the row holds
+    other = {**row, "published": float("nan"), "difference": "-1.2 %", "tolerance": "2 %", "passed": False}
+    monkeypatch.setitem(generate.VALIDATIONS, "Real laboratory data", (lambda: [other], "text"))
+    page = generate.validation_page()
+    assert "| a data set | a paper, Table 1 | phi_deg | — | 31.2 | -1.2 % | 2 % | **no** |" in page
 
 
 def test_user_guide_glob_picks_up_new_pages():

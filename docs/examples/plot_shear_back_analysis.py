@@ -33,8 +33,13 @@ plt.show()
 
 # %%
 # χ_back = σ_cap/Δu of the first wet tests:
-print(
-    wet[
-        ["test_id", "material", "S_R [-]", "suction [kPa]", "chi_back [-]", "chi_back_low95 [-]", "chi_back_high95 [-]"]
-    ].head(8)
-)
+columns = [
+    "test_id",
+    "material",
+    "S_R [-]",
+    "suction [kPa]",
+    "chi_back [-]",
+    "chi_back_low95 [-]",
+    "chi_back_high95 [-]",
+]
+print(wet[columns].head(8).to_string(index=False))

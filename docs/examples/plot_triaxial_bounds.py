@@ -19,11 +19,16 @@ doc = result.to_json()
 env = doc["envelope"]
 print(f"c' = {env['c_kPa']:.3f} kPa, phi' = {env['phi_deg']:.3f} deg")
 table = result.table()
-print(
-    table[
-        ["test_id", "condition", "p0 [kPa]", "q [kPa]", "spherical_p_cap [kPa]", "spherical_gain [-]", "lower_gain [-]"]
-    ]
-)
+columns = [
+    "test_id",
+    "condition",
+    "p0 [kPa]",
+    "q [kPa]",
+    "spherical_p_cap [kPa]",
+    "spherical_gain [-]",
+    "lower_gain [-]",
+]
+print(table[columns].to_string(index=False))
 
 # %%
 # The failure states in the q-p plane, the envelope and the image points of the two bounds:
