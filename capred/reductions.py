@@ -259,7 +259,7 @@ REDUCTIONS: dict[str, Reduction] = {
             "bridge_laws",
             method=(
                 "The closed-form capillary forces of DEM codes (Willett et al. 2000, simple and full; Rabinovich "
-                "et al. 2005; Lambert et al. 2008; Soulié et al. 2006; Weigert & Ripperger 1999) against the exact "
+                "et al. 2005; Lambert et al. 2008; Soulié et al. 2006; Mikami et al. 1998; Weigert & Ripperger 1999) against the exact "
                 "Young-Laplace bridge at equal contact angle, volume and gap, the exact bridge on the stable branch "
                 "at constant volume; forces in units of 2πRγ, relative errors per region of gap × volume × angle "
                 "× geometry.",

@@ -1039,13 +1039,14 @@ SNAPSHOT = {
             ],
         },
         "bridge_laws": {
-            "names": "willett_simple, willett_full, rabinovich, lambert, soulie, weigert_ripperger",
+            "names": "willett_simple, willett_full, rabinovich, lambert, soulie, mikami, weigert_ripperger",
             "help": [
                 "willett_simple: Willett (simple)",
                 "willett_full: Willett (full)",
                 "rabinovich: Rabinovich",
                 "lambert: Lambert",
                 "soulie: Soulié",
+                "mikami: Mikami",
                 "weigert_ripperger: Weigert & Ripperger",
             ],
         },
