@@ -182,6 +182,13 @@ QUANTITIES: dict[str, Quantity] = {
     "url_slope": Quantity(
         "κ", "-", 1.0, "dimensionless", "slope of an unloading-reloading line in e-ln σ' (κ_W or κ_A)", 0.0, None, True
     ),
+    # compression tests (capred compression)
+    "solids_height": Quantity("H_s", "mm", 1e3, "length", "height of the solids of a specimen, V_s/A", 0.0, None, True),
+    "compression_index": Quantity("C_c", "-", 1.0, "dimensionless", "slope of the virgin line in e-log10 σ'", 0.0),
+    "swelling_index": Quantity("C_s", "-", 1.0, "dimensionless", "slope of an unloading line in e-log10 σ'", 0.0),
+    "preconsolidation_stress": Quantity(
+        "σ'_p", "kPa", 1e-3, "pressure", "pre-consolidation (yield) stress of a compression test", 0.0, None, True
+    ),
 }
 
 

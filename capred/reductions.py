@@ -322,6 +322,29 @@ REDUCTIONS: dict[str, Reduction] = {
             example=(("example_kaolin", True),),
         ),
         Reduction(
+            "compression",
+            _P + "compression:run_compression",
+            _P + "compression:CompressionOptions",
+            "required",
+            "compression",
+            "compression",
+            method=(
+                "The first loading of an oedometer or isotropic compression test is fitted (least squares, five "
+                "parameters, Jacobian covariance) with a smooth bilinear curve in e-log10 σ': a recompression and a "
+                "virgin line joined by a bend of width w decades. C_c is the virgin line's slope (λ = C_c/ln 10), "
+                "e_N its void ratio at the reference stress, σ'_y the meeting point of the two lines; on the fitted "
+                "curve the pre-consolidation stress is constructed after Casagrande (1936: largest curvature, "
+                "bisector of the horizontal and the tangent, virgin line) and Pacheco Silva (1970: virgin line at "
+                "e0, down to the curve, across to the virgin line). Unloading stages give C_s (κ = C_s/ln 10) and "
+                "reloading stages C_r, each a straight line in e-log10 σ' with one slope and an intercept per "
+                "stage. Standard errors by the delta method, 95 % intervals by Student's t (stresses: symmetric in "
+                "log σ').",
+            ),
+            references=("casagrande1936", "pacheco_silva1970", "schofield_wroth1968"),
+            summary="Oedometer or isotropic compression: λ (C_c), κ (C_s), e_N and the yield stress.",
+            table_kind="a compression test (one row per reading)",
+        ),
+        Reduction(
             "history",
             _P + "history:reduce_history",
             _P + "history:HistoryOptions",

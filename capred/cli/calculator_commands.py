@@ -130,6 +130,20 @@ def skempton_b(
         "suction equilibrium; with --model bounding-surface NC and (with --a-ini) OC; as Morvan et al. "
         "(2016) Fig. 1-3, 5, 6. Give --out for the figure.",
     ) = False,
+    compression: option(
+        SKEMPTON,
+        "compression",
+        "--compression",
+        help="compression.json of capred compression: kappa and e0 (and lambda0 with --model bounding-surface) "
+        "from it, instead of --kappa-elastic and --e0.",
+    ) = None,
+    compare: option(
+        SKEMPTON,
+        "compare",
+        "--compare",
+        help="With --curve: classical B(S_r) relations drawn beside eq. 10 on the same skeleton, comma separated: "
+        "skempton1954, hilf_lade, schuurman1966, or all (Morvan et al. 2016's comparison).",
+    ) = None,
 ) -> Invocation:
     """Skempton's B against degree of saturation (Morvan et al. 2016, eq. 10):
     B = 1/(1 + p'0 e0 (1 - S_r)/(kappa P_a0)) with p'0 = p0 - u0, or its inverse
@@ -178,6 +192,10 @@ def skempton_b(
         A fits.json of `capred retention` instead of --se and --bc-lambda.
     curve : bool, optional
         B against S_r for every model asked instead of cases.
+    compression : Path, optional
+        A compression.json of `capred compression` instead of --kappa-elastic and --e0.
+    compare : str, optional
+        Classical relations beside eq. 10 with --curve (comma separated, or all).
 
     Returns
     -------
@@ -204,9 +222,17 @@ def skempton_b(
         air_pressure=air_pressure,
         retention=retention,
         curve=curve,
+        compression=compression,
     )
+    if compression is not None and (kappa_elastic is not None or e0 is not None):
+        from ..errors import OptionError
+
+        raise OptionError("give --compression or --kappa-elastic/--e0, not both")
+    if compare:
+        given["compare"] = tuple(c.strip() for c in str(compare).split(",") if c.strip())
     opts = SkemptonOptions(**given)
-    return Invocation("skempton-b", opts, extra_inputs=[retention] if retention else [])
+    extra = [p for p in (retention, compression) if p]
+    return Invocation("skempton-b", opts, extra_inputs=extra)
 
 
 def rumpf(

@@ -276,6 +276,9 @@ class SkemptonCurves(Cases):
     B_eq10, B_suction, B_bounding_NC, B_bounding_OC : ndarray or None
         B of the elastic skeleton (eq. 10), with suction equilibrium, and of the bounding-surface
         reconstruction normally and over-consolidated [-] (None: not asked for).
+    B_skempton1954, B_hilf_lade, B_schuurman1966 : ndarray or None
+        The classical relations of ``--compare`` (capred.physics.calculators.SKEMPTON_RELATIONS) on the same
+        skeleton [-].
 
     References
     ----------
@@ -287,6 +290,9 @@ class SkemptonCurves(Cases):
     B_suction: np.ndarray = case_value("B", output=True)
     B_bounding_NC: np.ndarray = case_value("B", output=True)
     B_bounding_OC: np.ndarray = case_value("B", output=True)
+    B_skempton1954: np.ndarray = case_value("B", output=True)
+    B_hilf_lade: np.ndarray = case_value("B", output=True)
+    B_schuurman1966: np.ndarray = case_value("B", output=True)
 
     def console_columns(self) -> dict[str, np.ndarray]:
         """``{header: array}``: S_R [-] then each model's B under its name (one symbol, several curves).

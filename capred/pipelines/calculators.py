@@ -363,9 +363,24 @@ class SkemptonOptions(StableJsonKeys, Options):
     lambda0: float | None = None  # slope of the normal compression line (bounding-surface only; Table 3: 0.2)
     retention: str | None = None  # a fits.json of capred retention: s_e and the Brooks-Corey index from it
     curve: bool = False  # B against S_r over 0.5-1 for every model the options ask for, instead of cases
+    #: a compression.json of capred compression: kappa, e0 (and lambda0 with bounding-surface) from it
+    compression: str | None = None
+    #: the classical relations drawn beside eq. 10 with --curve (SKEMPTON_RELATIONS keys; "all" for every one)
+    compare: tuple = ()
 
     def __post_init__(self) -> None:
         super().__post_init__()
+        compare = (self.compare,) if isinstance(self.compare, str) else tuple(self.compare or ())
+        if compare == ("all",):
+            compare = tuple(calc.SKEMPTON_RELATIONS)
+        unknown = [c for c in compare if c not in calc.SKEMPTON_RELATIONS]
+        if unknown:
+            raise OptionError(
+                f"--compare: unknown relation(s) {', '.join(map(str, unknown))}; there are: "
+                + ", ".join(calc.SKEMPTON_RELATIONS)
+                + ", all"
+            )
+        object.__setattr__(self, "compare", compare)
         if self.model == "elastoplastic":
             raise OptionError(ELASTOPLASTIC_REFUSAL)
         if self.model not in SKEMPTON_MODELS:
@@ -434,6 +449,8 @@ def run_skempton_b(
     lambda0=None,
     retention=None,
     curve=False,
+    compression=None,
+    compare=(),
 ) -> CalcResult:
     """Morvan et al. (2016): B from the degree of saturation ``S_R`` [-] (eq. 10), or S_R from a measured B.
 
@@ -483,6 +500,10 @@ def run_skempton_b(
         A fits.json of `capred retention`.
     curve : bool, optional
         Give B against S_r for every model asked instead of the cases.
+    compression : str or Path, optional
+        A compression.json of `capred compression`: κ, e0 (and λ0 with bounding-surface) from it.
+    compare : tuple of str, optional
+        With ``curve``: classical relations drawn beside eq. 10 (keys of ``SKEMPTON_RELATIONS``, or "all").
 
     Returns
     -------
@@ -513,6 +534,8 @@ def run_skempton_b(
             lambda0,
             retention,
             curve,
+            compression,
+            compare,
         ),
     )
 
@@ -539,6 +562,8 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
        E3S Web of Conferences; eqs. 10, 13-24.
     """
     fit_notes, fit_warnings = [], []
+    if opt.compression is not None:
+        opt, fit_notes = _with_compression(opt)
     if opt.retention is not None:  # any retention fit: Brooks-Corey as it is, another model converted to it
         from .retention_convert import brooks_corey_for_skempton
 
@@ -548,7 +573,12 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
         opt = dataclasses.replace(opt, s_e=s_e, bc_lambda=lam)
     kw = dict(kappa=opt.kappa_elastic, e0=opt.e0, p0=opt.p0, u0=opt.u0, pa0=opt.pa0)  # keys: the figure's
     if opt.curve:
-        return skempton_curves(source, opt)
+        res = skempton_curves(source, opt)
+        res.warnings += fit_warnings
+        res.notes = list(res.notes) + fit_notes
+        return res
+    if opt.compare:
+        raise OptionError("--compare draws the classical relations beside eq. 10 on a curve: give it with --curve")
     bounding = None
     s_e, bc_lambda = opt.s_e, opt.bc_lambda
     if opt.model == "bounding-surface":
@@ -597,6 +627,29 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     return res
 
 
+def _with_compression(opt: SkemptonOptions) -> tuple[SkemptonOptions, list[str]]:
+    """κ and e0 (and λ0 with bounding-surface) from a compression.json; an error when the options give them too."""
+    from .compression import load_compression_fit
+
+    fields = {f.name: f.default for f in dataclasses.fields(SkemptonOptions)}
+    clash = [
+        name for name, key in (("--kappa-elastic", "kappa_elastic"), ("--e0", "e0")) if getattr(opt, key) != fields[key]
+    ]
+    if opt.model == "bounding-surface" and opt.lambda0 is not None:
+        clash.append("--lambda0")
+    if clash:
+        raise OptionError(f"give --compression or {', '.join(clash)}, not both")
+    lines = load_compression_fit(opt.compression)
+    if lines.kappa is None:
+        raise OptionError(f"--compression {lines.source}: the test has no unloading stage, so no κ for skempton-b")
+    new = {"kappa_elastic": lines.kappa, "e0": lines.e0}
+    text = f"κ = {lines.kappa:.4g} and e0 = {lines.e0:.4g}"
+    if opt.model == "bounding-surface":
+        new["lambda0"] = lines.lambda_
+        text += f" and λ0 = {lines.lambda_:.4g}"
+    return dataclasses.replace(opt, **new), [f"{text} from the compression test {lines.source}"]
+
+
 #: degrees of saturation of `skempton-b --curve` (the range of Morvan et al.'s 2016 figures)
 CURVE_S_R = np.round(np.linspace(0.5, 1.0, 101), 10)
 
@@ -641,6 +694,10 @@ def skempton_curves(source, opt: SkemptonOptions) -> CalcResult:
         raise OptionError("give both --se and --bc-lambda for the suction-equilibrium simulation, or neither")
     outputs = {"B_eq10": calc.skempton_b(S, p0 - u0, e0, k, pa0)}
     names = [f"B_eq10: elastic skeleton ({cite('morvan2016', 'eq. 10')})"]
+    for key in opt.compare:  # the classical relations on the same skeleton (the paper's comparison)
+        rel = calc.SKEMPTON_RELATIONS[key]
+        outputs[f"B_{key}"] = rel.b(S, p0 - u0, e0, k, pa0)
+        names.append(f"B_{key}: {rel.label} ({cite(rel.reference)}): {rel.equation}")
     if s_e is not None:
         outputs["B_suction"] = calc.skempton_b_suction(S, p0, u0, e0, k, pa0, s_e, bc_lambda)
         names.append(

@@ -152,6 +152,10 @@ PRESENTERS: dict[str, Presenter] = {
     "bridge laws": Presenter(
         _one("bridge_laws_figures", "sheet_laws", "laws"), _lazy("bridge_tables", "bridge_laws_tables")
     ),
+    "compression": Presenter(
+        _one("compression_figures", "sheet_compression", "compression"),
+        _lazy("compression_figures", "compression_tables"),
+    ),
     "pt-volume": Presenter(
         _one("pt_volume_figures", "sheet_pt_volume", "pt_volume"), _lazy("pt_volume_tables", "pt_volume_tables")
     ),
