@@ -320,7 +320,8 @@ def b_hilf_lade(S_R, p0_eff, e0, kappa_elastic, pa0, C_w=WATER_COMPRESSIBILITY, 
 
         B = \frac{1}{1 + n C_v / C_c},\quad C_v = S_r C_w + \frac{1 - S_r + H S_r}{P_{a0}}
 
-    (the air dissolved in the pore water, H S_r of the voids at P_a0, is compressed with the free air).
+    (the air dissolved in the pore water, H S_r of the voids at P_a0, is compressed with the free air, while free
+    air is left: at S_r = 1 the fluid is water alone, so B jumps to 1/(1 + n C_w/C_c) there).
 
     References
     ----------
@@ -331,7 +332,7 @@ def b_hilf_lade(S_R, p0_eff, e0, kappa_elastic, pa0, C_w=WATER_COMPRESSIBILITY, 
     """
     S = np.asarray(S_R, float)
     n = e0 / (1.0 + e0)
-    C_v = S * C_w + (1.0 - S + H * S) / pa0
+    C_v = S * C_w + np.where(S < 1.0, (1.0 - S + H * S) / pa0, 0.0)  # no free air left at S_r = 1
     return 1.0 / (1.0 + n * C_v / skeleton_compressibility(p0_eff, e0, kappa_elastic))
 
 
@@ -385,7 +386,7 @@ def b_schuurman1966(
     """
     S = np.asarray(S_R, float)
     n = e0 / (1.0 + e0)
-    C_v = S * C_w + (1.0 - S + H * S) / (pa0 + 4.0 * surface_tension / (3.0 * bubble_radius))
+    C_v = S * C_w + np.where(S < 1.0, (1.0 - S + H * S) / (pa0 + 4.0 * surface_tension / (3.0 * bubble_radius)), 0.0)
     return 1.0 / (1.0 + n * C_v / skeleton_compressibility(p0_eff, e0, kappa_elastic))
 
 
