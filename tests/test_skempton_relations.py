@@ -70,3 +70,26 @@ def test_cli_curve_with_every_relation(tmp_path):
     out = tmp_path / "fig"
     assert runner.invoke(app, ["skempton-b", "--curve", "--compare", "all", "--out", str(out)]).exit_code == 0
     assert (out / "skempton-b.png").exists()
+
+
+def test_bounding_surface_inverse_finds_every_root():
+    """Issue 41 part 5: with the over-consolidated reconstruction B is not monotonic along the drying path down to
+    S_r 0.01, which made the inverse refuse every B. B = 0.5 has the single root S_r = 0.9797 (the issue's value;
+    the path's step 1e-3 bounds the interpolation, 2e-3 allowed); B = 0.2 has two, said in a warning, the one
+    nearest saturation given; each root gives back its B by the forward computation (within 1e-3)."""
+    from capred.pipelines.calculators import run_skempton_b
+
+    kw = dict(model="bounding-surface", a_ini="10 kPa", interpolation_h=336)
+    one = run_skempton_b(b=0.5, **kw)
+    assert one.to_json()["S_r"] == pytest.approx(0.9797, abs=2e-3)
+    assert not [w for w in one.warnings if "reached at" in w]
+    two = run_skempton_b(b=0.2, **kw)
+    said = [w for w in two.warnings if "reached at 2 degrees of saturation" in w]
+    assert len(said) == 1
+    S = two.to_json()["S_r"]
+    assert 0.9 < S < 0.95
+    listed = said[0].split("(S_r = ")[1].split(")")[0].split(", ")
+    for root in map(float, listed):
+        assert run_skempton_b(S_R=root, **kw).to_json()["B"] == pytest.approx(0.2, abs=1e-3)
+    none = run_skempton_b(b=0.01, **kw)
+    assert none.to_json()["S_r"] is None and any("not reached" in n for n in none.notes)

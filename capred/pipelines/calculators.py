@@ -869,15 +869,27 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
             inputs=[input_file(source, table)] if source is not None else [],
         )
     if bounding is not None:
+        root_warnings: list[str] = []
 
-        def solve(bi, *c):
+        def solve(row, bi, *c):
             path = _bounding_b(None, *c, s_e, bc_lambda, bounding)
-            Bp, Sp = path.B[::-1], path.S_R[::-1]  # increasing S_r
-            if np.any(np.diff(Bp) <= 0) or not Bp[0] <= bi <= Bp[-1]:
+            roots = b_roots(path.S_R, path.B, bi)
+            where = f"row {row + 1}: " if len(cases) > 1 else ""
+            if not roots:
+                notes.append(
+                    f"{where}B = {bi:g} is not reached on the drying path from S_r = 1 to {path.S_R.min():g} "
+                    f"(B spans {np.nanmin(path.B):.4g} to {np.nanmax(path.B):.4g} there): no S_r"
+                )
                 return np.nan
-            return float(np.interp(bi, Bp, Sp))
+            if len(roots) > 1:
+                root_warnings.append(
+                    f"{where}B = {bi:g} is reached at {len(roots)} degrees of saturation on the drying path "
+                    f"(S_r = {', '.join(f'{r:.4f}' for r in roots)}): B is not monotonic in S_r along it; "
+                    f"S_r = {roots[0]:.4f}, the root nearest saturation, is given"
+                )
+            return roots[0]
 
-        S = np.array([solve(bi, *c) for bi, c in zip(v["B"], cases)])
+        S = np.array([solve(i, bi, *c) for i, (bi, c) in enumerate(zip(v["B"], cases))])
     elif suction:
         from scipy.optimize import brentq
 
@@ -889,7 +901,7 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
         S = np.array([solve(*args) for args in zip(v["B"], *zip(*cases))])
     else:
         S = calc.saturation_from_b(v["B"], p_eff, v["e0"], v["kappa"], v["pa0"])
-    if np.any(~np.isfinite(S) | (S < 0)):
+    if bounding is None and np.any(~np.isfinite(S) | (S < 0)):
         notes.append("some B values are below what these parameters give for dry soil: S_r is outside [0, 1] there")
     return CalcResult(
         "skempton-b",
@@ -898,12 +910,46 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
         notes,
         labels,
         title=_B_TITLE,
-        warnings=table.warnings if table is not None else [],
+        warnings=(list(table.warnings) if table is not None else []) + (root_warnings if bounding is not None else []),
         inputs=[input_file(source, table)] if source is not None else [],
     )
 
 
 _B_TITLE = f"Skempton's B and the degree of saturation ({cite('morvan2016', 'eq. 10')})"
+
+
+def b_roots(S_R, B, b) -> list[float]:
+    """Every degree of saturation where a path's B(S_r) equals ``b``, nearest saturation first.
+
+    Each crossing of ``b`` between two neighbouring points of the path (or a point equal to it) gives one root,
+    placed by linear interpolation between them (the path's step, 1e-3 in S_r, bounds its error).
+
+    Parameters
+    ----------
+    S_R : array_like
+        Degrees of saturation of the path [-], in any order.
+    B : array_like
+        B at each [-].
+    b : float
+        The measured B [-].
+
+    Returns
+    -------
+    list of float
+        The roots, in decreasing S_r (empty when ``b`` is not reached).
+
+    References
+    ----------
+    .. [1] Morvan, M., Vernay, M., Breul, P. (2016). E-UNSAT 2016, section 4: B along a drying path.
+    """
+    S = np.asarray(S_R, float)
+    Bv = np.asarray(B, float)
+    order = np.argsort(-S)
+    S, d = S[order], Bv[order] - b
+    roots = [float(S[i]) for i in np.flatnonzero(d == 0.0)]
+    for i in np.flatnonzero(d[:-1] * d[1:] < 0):
+        roots.append(float(S[i] + (S[i + 1] - S[i]) * d[i] / (d[i] - d[i + 1])))
+    return sorted(set(roots), reverse=True)
 
 
 RUMPF = [
