@@ -212,6 +212,25 @@ REDUCTIONS: dict[str, Reduction] = {
             summary="Rumpf's capillary pressure from S_r, void ratio and grain size.",
         ),
         Reduction(
+            "shear-band",
+            _P + "calculators:reduce_shear_band",
+            _P + "calculators:ShearBandOptions",
+            "optional",
+            None,
+            "shear_band",
+            method=(
+                "Shear-band angles to the major principal plane from the effective friction angle φ' (given, or "
+                "from the envelope of a triaxial-bounds summary.json) and the dilatancy angle ψ (given, or from "
+                "the dilatancy rate d = −dε_v/dε_1 at failure, sin ψ = d/(2 + d)): Coulomb 45 + φ'/2, Roscoe "
+                "(1970) 45 + ψ/2, Arthur et al. (1977) 45 + (φ' + ψ)/4, beside a measured angle (Prunier et al. "
+                "2024, Fig. 14: about 70 and 60 deg).",
+            ),
+            references=("roscoe1970", "arthur1977", "prunier2024"),
+            files_by_default=False,
+            summary="Shear-band angles (Coulomb, Roscoe, Arthur) beside a measured one.",
+            example=(("phi", 31.5), ("dilatancy_angle", 10), ("measured", 60)),
+        ),
+        Reduction(
             "bridge solve",
             _P + "bridge:solve_bridges",
             _P + "bridge:BridgeOptions",

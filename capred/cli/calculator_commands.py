@@ -8,6 +8,7 @@ from .declare import option, si_values
 PRISM = "capred.pipelines.calculators:PrismOptions"
 SKEMPTON = "capred.pipelines.calculators:SkemptonOptions"
 RUMPF = "capred.pipelines.calculators:RumpfOptions"
+SHEAR_BAND = "capred.pipelines.calculators:ShearBandOptions"
 HISTORY = "capred.pipelines.history:HistoryOptions"
 
 
@@ -27,6 +28,12 @@ def register(app: typer.Typer) -> None:
         data="Optional CSV of cases (shape_factor, void_ratio, S_r, diameter, surface_tension, contact_angle)",
         plots=False,
     )(rumpf)
+    command(
+        app,
+        "shear-band",
+        data="Optional CSV of cases: phi, dilatancy_angle (or dilatancy_rate), shear_band_angle (measured)",
+        plots=False,
+    )(shear_band)
     command(app, "history", data="The lab's store (SQLite), written by any command with --store or CAPRED_STORE")(
         history
     )
@@ -344,3 +351,53 @@ def history(
         command=of_command,
     )
     return Invocation("history", HistoryOptions(**given))
+
+
+def shear_band(
+    phi: option(SHEAR_BAND, "phi", note="(or --triaxial)") = None,
+    dilatancy_angle: option(SHEAR_BAND, "dilatancy_angle") = None,
+    dilatancy_rate: option(
+        SHEAR_BAND, "dilatancy_rate", help="Rate of dilation at failure -d eps_v/d eps_1 [-]"
+    ) = None,
+    measured: option(SHEAR_BAND, "measured", help="Measured angle of the band to the major principal plane") = None,
+    triaxial: option(
+        SHEAR_BAND, "triaxial", help="summary.json of capred triaxial-bounds: phi' of its envelope."
+    ) = None,
+) -> Invocation:
+    """Shear-band angles to the major principal plane: Coulomb 45 + phi'/2,
+    Roscoe (1970) 45 + psi/2 and Arthur et al. (1977) 45 + (phi' + psi)/4, beside
+    a measured angle (Prunier et al. 2024, Fig. 14: about 70 and 60 deg).
+
+    Example: capred shear-band --triaxial results/summary.json --dilatancy-angle 8 --measured 60
+
+    \f
+
+    Parameters
+    ----------
+    phi : str, optional
+        Effective friction angle [deg].
+    dilatancy_angle : str, optional
+        Dilatancy angle [deg].
+    dilatancy_rate : float, optional
+        -d eps_v/d eps_1 at failure [-].
+    measured : str, optional
+        Measured angle [deg].
+    triaxial : Path, optional
+        A triaxial-bounds summary.json.
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
+    """
+    from ..pipelines.calculators import ShearBandOptions
+
+    given = si_values(
+        SHEAR_BAND,
+        phi=phi,
+        dilatancy_angle=dilatancy_angle,
+        dilatancy_rate=dilatancy_rate,
+        measured=measured,
+        triaxial=None if triaxial is None else str(triaxial),
+    )
+    return Invocation("shear-band", ShearBandOptions(**given), extra_inputs=[triaxial] if triaxial else [])

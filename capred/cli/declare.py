@@ -34,6 +34,7 @@ OPTIONS_CLASSES = (
     "capred.pipelines.calculators:PrismOptions",
     "capred.pipelines.calculators:SkemptonOptions",
     "capred.pipelines.calculators:RumpfOptions",
+    "capred.pipelines.calculators:ShearBandOptions",
     "capred.pipelines.pt_volume:PTVolumeOptions",
     "capred.pipelines.bridge:CurveOptions",
     "capred.pipelines.bridge_solve:BridgeOptions",

@@ -19,7 +19,7 @@ from ..physics import calculators as calc
 from ..physics.shear import GAMMA_W, SURFACE_TENSION
 from ..references import cite
 from ..result import InputFile, Options, Result, input_file
-from .calculator_records import Cases, PrismCases, RumpfCases, SkemptonCases, SkemptonCurves
+from .calculator_records import Cases, PrismCases, RumpfCases, ShearBandCases, SkemptonCases, SkemptonCurves
 
 CASE = Column("case", "text", None, "case label")  # aliases: nomenclature.COLUMN_ALIASES
 
@@ -1106,3 +1106,139 @@ __all__ = [
     "InputError",
     "Problem",
 ]
+
+
+SHEAR_BAND = [
+    Column("phi", "angle", "deg", "effective friction angle phi'", ("phi_eff", "friction_angle", "phi_deg"), None),
+    Column("dilatancy_angle", "angle", "deg", "dilatancy angle psi", ("psi", "psi_deg"), None),
+    Column("dilatancy_rate", "dimensionless", "-", "-d eps_v/d eps_1 at failure", ("dilation_rate",), None),
+    Column(
+        "shear_band_angle",
+        "angle",
+        "deg",
+        "measured angle of the band to the major principal plane",
+        ("band_angle", "measured_angle", "shear_band"),
+        None,
+    ),
+]
+
+
+@dataclass(frozen=True)
+class ShearBandOptions(Options):
+    """Options of `capred shear-band`.
+
+    Attributes
+    ----------
+    phi : float, optional
+        Effective friction angle φ' [deg] (or ``triaxial``).
+    dilatancy_angle : float, optional
+        Dilatancy angle ψ [deg].
+    dilatancy_rate : float, optional
+        −dε_v/dε_1 at failure [-], instead of ψ (sin ψ = d/(2 + d)).
+    measured : float, optional
+        Measured angle of the band to the major principal plane [deg].
+    triaxial : str, optional
+        summary.json of `capred triaxial-bounds`: φ' of its fitted envelope.
+    """
+
+    QUANTITIES = {"phi": "phi", "dilatancy_angle": "dilatancy_angle", "measured": "shear_band_angle"}
+
+    phi: float | None = None
+    dilatancy_angle: float | None = None
+    dilatancy_rate: float | None = None
+    measured: float | None = None
+    triaxial: str | None = None
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if self.dilatancy_angle is not None and self.dilatancy_rate is not None:
+            raise OptionError("give --dilatancy-angle or --dilatancy-rate, not both")
+        if self.phi is not None and self.triaxial is not None:
+            raise OptionError("give --phi or --triaxial (the envelope's phi'), not both")
+
+
+def _phi_from_triaxial(path) -> float:
+    import json
+    from pathlib import Path
+
+    where = str(path)
+    try:
+        doc = json.loads(Path(path).read_text(encoding="utf-8"))
+        phi = float(doc["envelope"]["phi_deg"])
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise InputError(
+            Problem(where, None, None, f"not a summary.json of capred triaxial-bounds with an envelope ({exc})")
+        ) from None
+    return phi
+
+
+def reduce_shear_band(source, opt: ShearBandOptions) -> CalcResult:
+    """The classical shear-band angles (Coulomb, Roscoe, Arthur) per case, beside the measured one.
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame or None
+        Optional table of cases (phi, dilatancy_angle or dilatancy_rate, shear_band_angle, case).
+    opt : ShearBandOptions
+        φ' (or a triaxial-bounds summary.json), ψ or the dilatancy rate, the measured angle [deg].
+
+    Returns
+    -------
+    CalcResult
+        Per case: the angles [deg] and their differences to the measured one.
+
+    References
+    ----------
+    .. [1] Roscoe (1970); Arthur et al. (1977); Prunier et al. (2024), Fig. 14.
+    """
+    from ..physics import shear_band as sb
+
+    phi = opt.phi
+    notes_extra = []
+    if opt.triaxial is not None:
+        phi = _phi_from_triaxial(opt.triaxial)
+        notes_extra.append(f"φ' = {phi:.4g} deg from the envelope of {opt.triaxial}")
+    v, notes, src = _inputs(
+        source,
+        SHEAR_BAND,
+        {
+            "phi": phi,
+            "dilatancy_angle": opt.dilatancy_angle,
+            "dilatancy_rate": opt.dilatancy_rate,
+            "shear_band_angle": opt.measured,
+        },
+        optional=("dilatancy_angle", "dilatancy_rate", "shear_band_angle"),
+    )
+    table = v.pop("_table", None)
+    labels = _labels(v)
+    psi = v["dilatancy_angle"].copy()
+    from_rate = np.isnan(psi) & np.isfinite(v["dilatancy_rate"])
+    psi[from_rate] = sb.dilatancy_angle_triaxial(v["dilatancy_rate"][from_rate])
+    if from_rate.any():
+        notes_extra.append("ψ from the dilatancy rate d = −dε_v/dε_1: sin ψ = d/(2 + d)")
+    if np.all(np.isnan(psi)):
+        notes_extra.append("no dilatancy angle: Roscoe's and Arthur's angles need ψ (--dilatancy-angle or -rate)")
+    measured = v["shear_band_angle"]
+    coulomb, roscoe, arthur = sb.coulomb_angle(v["phi"]), sb.roscoe_angle(psi), sb.arthur_angle(v["phi"], psi)
+    has_m = bool(np.any(np.isfinite(measured)))
+    cases = ShearBandCases(
+        phi=v["phi"],
+        dilatancy_angle=psi if np.any(np.isfinite(psi)) else None,
+        measured=measured if has_m else None,
+        coulomb=coulomb,
+        roscoe=roscoe,
+        arthur=arthur,
+        coulomb_minus_measured=coulomb - measured if has_m else None,
+        arthur_minus_measured=arthur - measured if has_m else None,
+    )
+    return _finish(
+        "shear-band",
+        f"Shear-band angles: Coulomb 45 + φ'/2, {cite('roscoe1970')} 45 + ψ/2, {cite('arthur1977')} 45 + (φ' + ψ)/4",
+        cases,
+        src,
+        list(notes) + notes_extra,
+        labels,
+        opt,
+        source,
+        table,
+    )

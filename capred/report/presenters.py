@@ -134,6 +134,7 @@ PRESENTERS: dict[str, Presenter] = {
     "prism": Presenter(_calc_figures, _lazy("calculator_tables", "calc_tables")),
     "skempton-b": Presenter(_calc_figures, _lazy("calculator_tables", "calc_tables")),
     "rumpf": Presenter(_calc_figures, _lazy("calculator_tables", "calc_tables")),
+    "shear-band": Presenter(_none, _lazy("calculator_tables", "calc_tables")),
     "history": Presenter(
         _one("history_figures", "sheet_history", "control_chart"), _lazy("history_figures", "history_tables")
     ),
