@@ -945,6 +945,15 @@ SNAPSHOT = {
                 "type": "int",
                 "option": "--workers",
             },
+            "branch": {
+                "quantity": None,
+                "unit": "",
+                "range": "",
+                "text": "Volume-controlled rows: stable (default), the bridge continuous with the bridge at contact; thin, the second bridge of the same volume and gap on the thin-neck side of the volume's minimum along the arc (unstable at constant volume; near rupture only).",
+                "default": "[default: stable]",
+                "type": "str",
+                "option": "--branch",
+            },
         },
         "capred.pipelines.yade_files:YadeOptions": {
             "ratios": {

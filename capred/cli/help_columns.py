@@ -5,7 +5,7 @@ python -c 'import capred.cli.help as h; h.write_snapshot()'
 """
 
 # fmt: off
-COLUMNS = {'bridge compare': {'digest': 'f3160df55c7beab94eb7e841096f887a713a96cc',
+COLUMNS = {'bridge compare': {'digest': '582f0cb7b959a62747ae920cdac9ca60a71d17b4',
                     'files': ['errors.py',
                               'io/__init__.py',
                               'io/blocks.py',
@@ -44,7 +44,7 @@ COLUMNS = {'bridge compare': {'digest': 'f3160df55c7beab94eb7e841096f887a713a96c
                               ['V_w [mm^3]', 'water volume V_w; also: volume, V, Vw'],
                               ['F_cap [mN]', 'measured force F_cap; also: F, force, F_measured'],
                               ['filling_angle [deg]', 'measured filling angle; also: beta, half_filling_angle']]},
- 'bridge laws': {'digest': '0e0802a9f0db03a0e6860ce2c4274ad7a18c4fae',
+ 'bridge laws': {'digest': '9ce83432150b0630ba615ee5d281e7b4239b74a8',
                  'files': ['errors.py',
                            'io/__init__.py',
                            'io/grid.py',
@@ -64,7 +64,7 @@ COLUMNS = {'bridge compare': {'digest': 'f3160df55c7beab94eb7e841096f887a713a96c
                            ['contact_angle [deg]', 'contact angle; also: theta'],
                            ['R2_over_R',
                             "R2 / R ('plane': a sphere and a plane; absent: equal spheres); also: ratio, R2/R"]]},
- 'bridge rupture': {'digest': 'f3160df55c7beab94eb7e841096f887a713a96cc',
+ 'bridge rupture': {'digest': '582f0cb7b959a62747ae920cdac9ca60a71d17b4',
                     'files': ['errors.py',
                               'io/__init__.py',
                               'io/blocks.py',
@@ -99,7 +99,7 @@ COLUMNS = {'bridge compare': {'digest': 'f3160df55c7beab94eb7e841096f887a713a96c
                                'contact angle on the second particle (sphere R2 or plane; absent or blank: '
                                '--contact-angle2, else contact_angle); also: theta2, wetting_angle2, contact_angle_2'],
                               ['V_w [mm^3]', 'water volume V_w; also: volume, V, Vw']]},
- 'bridge solve': {'digest': 'f3160df55c7beab94eb7e841096f887a713a96cc',
+ 'bridge solve': {'digest': '582f0cb7b959a62747ae920cdac9ca60a71d17b4',
                   'files': ['errors.py',
                             'io/__init__.py',
                             'io/blocks.py',
