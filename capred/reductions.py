@@ -228,7 +228,7 @@ REDUCTIONS: dict[str, Reduction] = {
             references=("roscoe1970", "arthur1977", "prunier2024"),
             files_by_default=False,
             summary="Shear-band angles (Coulomb, Roscoe, Arthur) beside a measured one.",
-            example=(("phi", 31.5), ("dilatancy_angle", 10), ("measured", 60)),
+            example=(("phi_eff", 31.5), ("dilatancy_angle", 10), ("measured", 60)),
         ),
         Reduction(
             "bridge solve",

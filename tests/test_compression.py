@@ -128,7 +128,7 @@ def test_sample_writes_table_figure_and_json_that_feed_pt_volume_and_skempton(tm
     sk = runner.invoke(app, ["skempton-b", "--S-R", "0.9", "--compression", str(out / "compression.json"), "--json"])
     assert sk.exit_code == 0, sk.output
     B = json.loads(sk.output)["B"]
-    by_hand = 1 / (1 + 70e3 * fit.e0 * 0.1 / (fit.kappa * 130e3))  # eq. 10, p'0 = 100 - 30 kPa, P_a0 130 kPa
+    by_hand = 1 / (1 + 70e3 * fit.e0 * 0.1 / (fit.url_slope * 130e3))  # eq. 10, p'0 = 100 - 30 kPa, P_a0 130 kPa
     assert B == pytest.approx(by_hand, rel=1e-12)
     clash = runner.invoke(
         app, ["skempton-b", "--S-R", "0.9", "--compression", str(out / "compression.json"), "--e0", "1"]
@@ -141,7 +141,7 @@ def test_sample_writes_table_figure_and_json_that_feed_pt_volume_and_skempton(tm
     )  # fmt: skip
     assert pt.exit_code == 0, pt.output
     par = json.loads(pt.output)["parameters"]
-    assert par["lambda_W"] == pytest.approx(fit.lambda_, rel=1e-12) and par["kappa_A"] == pytest.approx(fit.kappa)
+    assert par["lambda_W"] == pytest.approx(fit.ncl_slope, rel=1e-12) and par["kappa_A"] == pytest.approx(fit.url_slope)
     assert par["e_ncl_W"] == pytest.approx(fit.e_ncl_at(1e3), rel=1e-12)
 
 

@@ -30,7 +30,7 @@ def test_prunier_fig14_measured_angles_beside_the_envelope(tmp_path):
     the two tests with phi' = 30 deg: Coulomb 60 deg meets the confined test, and is 10 deg below the unconfined
     one; the differences are those by hand."""
     f = tmp_path / "bands.csv"
-    f.write_text("case,phi,shear_band_angle\nsimple compression,30,70\np0 = 100 kPa,30,60\n")
+    f.write_text("case,phi_eff,shear_band_angle\nsimple compression,30,70\np0 = 100 kPa,30,60\n")
     res = reduce_shear_band(f, ShearBandOptions())
     doc = res.to_json()
     rows = doc["cases"]
@@ -62,5 +62,5 @@ def test_cli_from_a_triaxial_envelope(tmp_path):
     psi = np.degrees(np.arcsin(0.5 / 2.5))
     assert row["coulomb_deg"] == pytest.approx(45 + phi / 2, rel=1e-14)
     assert row["arthur_deg"] == pytest.approx(45 + (phi + psi) / 4, rel=1e-12)
-    both = runner.invoke(app, ["shear-band", "--phi", "30", "--triaxial", str(out / "summary.json")])
+    both = runner.invoke(app, ["shear-band", "--phi-eff", "30", "--triaxial", str(out / "summary.json")])
     assert both.exit_code == 1 and "not both" in both.output

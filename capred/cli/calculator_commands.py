@@ -354,7 +354,7 @@ def history(
 
 
 def shear_band(
-    phi: option(SHEAR_BAND, "phi", note="(or --triaxial)") = None,
+    phi_eff: option(SHEAR_BAND, "phi_eff", "--phi-eff", "--phi", note="(or --triaxial)") = None,
     dilatancy_angle: option(SHEAR_BAND, "dilatancy_angle") = None,
     dilatancy_rate: option(
         SHEAR_BAND, "dilatancy_rate", help="Rate of dilation at failure -d eps_v/d eps_1 [-]"
@@ -374,7 +374,7 @@ def shear_band(
 
     Parameters
     ----------
-    phi : str, optional
+    phi_eff : str, optional
         Effective friction angle [deg].
     dilatancy_angle : str, optional
         Dilatancy angle [deg].
@@ -394,7 +394,7 @@ def shear_band(
 
     given = si_values(
         SHEAR_BAND,
-        phi=phi,
+        phi_eff=phi_eff,
         dilatancy_angle=dilatancy_angle,
         dilatancy_rate=dilatancy_rate,
         measured=measured,

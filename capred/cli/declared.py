@@ -696,14 +696,14 @@ SNAPSHOT = {
             },
         },
         "capred.pipelines.calculators:ShearBandOptions": {
-            "phi": {
-                "quantity": "phi",
+            "phi_eff": {
+                "quantity": "phi_eff",
                 "unit": "deg",
                 "range": "0 to 90, 0 and 90 excluded",
-                "text": "Friction angle φ",
+                "text": "Effective friction angle φ'",
                 "default": None,
                 "type": "float",
-                "option": "--phi",
+                "option": "--phi-eff",
             },
             "dilatancy_angle": {
                 "quantity": "dilatancy_angle",

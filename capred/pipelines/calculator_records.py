@@ -345,7 +345,7 @@ class ShearBandCases(Cases):
 
     Attributes
     ----------
-    phi : ndarray
+    phi_eff : ndarray
         Effective friction angle φ' [deg].
     dilatancy_angle : ndarray or None
         Dilatancy angle ψ [deg] (given, or from the dilatancy rate).
@@ -362,7 +362,7 @@ class ShearBandCases(Cases):
        Prunier et al. (2024), Fig. 14 (measured 70 and 60 deg).
     """
 
-    phi: np.ndarray = case_value("phi")
+    phi_eff: np.ndarray = case_value("phi_eff")
     dilatancy_angle: np.ndarray = case_value("dilatancy_angle")
     measured: np.ndarray = case_value("shear_band_angle")
     coulomb: np.ndarray = case_value("shear_band_angle", output=True)

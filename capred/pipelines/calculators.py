@@ -640,13 +640,13 @@ def _with_compression(opt: SkemptonOptions) -> tuple[SkemptonOptions, list[str]]
     if clash:
         raise OptionError(f"give --compression or {', '.join(clash)}, not both")
     lines = load_compression_fit(opt.compression)
-    if lines.kappa is None:
+    if lines.url_slope is None:
         raise OptionError(f"--compression {lines.source}: the test has no unloading stage, so no κ for skempton-b")
-    new = {"kappa_elastic": lines.kappa, "e0": lines.e0}
-    text = f"κ = {lines.kappa:.4g} and e0 = {lines.e0:.4g}"
+    new = {"kappa_elastic": lines.url_slope, "e0": lines.e0}
+    text = f"κ = {lines.url_slope:.4g} and e0 = {lines.e0:.4g}"
     if opt.model == "bounding-surface":
-        new["lambda0"] = lines.lambda_
-        text += f" and λ0 = {lines.lambda_:.4g}"
+        new["lambda0"] = lines.ncl_slope
+        text += f" and λ0 = {lines.ncl_slope:.4g}"
     return dataclasses.replace(opt, **new), [f"{text} from the compression test {lines.source}"]
 
 
@@ -1109,7 +1109,7 @@ __all__ = [
 
 
 SHEAR_BAND = [
-    Column("phi", "angle", "deg", "effective friction angle phi'", ("phi_eff", "friction_angle", "phi_deg"), None),
+    Column("phi_eff", "angle", "deg", "effective friction angle phi'", ("phi", "friction_angle", "phi_deg"), None),
     Column("dilatancy_angle", "angle", "deg", "dilatancy angle psi", ("psi", "psi_deg"), None),
     Column("dilatancy_rate", "dimensionless", "-", "-d eps_v/d eps_1 at failure", ("dilation_rate",), None),
     Column(
@@ -1129,7 +1129,7 @@ class ShearBandOptions(Options):
 
     Attributes
     ----------
-    phi : float, optional
+    phi_eff : float, optional
         Effective friction angle φ' [deg] (or ``triaxial``).
     dilatancy_angle : float, optional
         Dilatancy angle ψ [deg].
@@ -1141,9 +1141,9 @@ class ShearBandOptions(Options):
         summary.json of `capred triaxial-bounds`: φ' of its fitted envelope.
     """
 
-    QUANTITIES = {"phi": "phi", "dilatancy_angle": "dilatancy_angle", "measured": "shear_band_angle"}
+    QUANTITIES = {"phi_eff": "phi_eff", "dilatancy_angle": "dilatancy_angle", "measured": "shear_band_angle"}
 
-    phi: float | None = None
+    phi_eff: float | None = None
     dilatancy_angle: float | None = None
     dilatancy_rate: float | None = None
     measured: float | None = None
@@ -1153,8 +1153,8 @@ class ShearBandOptions(Options):
         super().__post_init__()
         if self.dilatancy_angle is not None and self.dilatancy_rate is not None:
             raise OptionError("give --dilatancy-angle or --dilatancy-rate, not both")
-        if self.phi is not None and self.triaxial is not None:
-            raise OptionError("give --phi or --triaxial (the envelope's phi'), not both")
+        if self.phi_eff is not None and self.triaxial is not None:
+            raise OptionError("give --phi-eff or --triaxial (the envelope's phi'), not both")
 
 
 def _phi_from_triaxial(path) -> float:
@@ -1193,16 +1193,16 @@ def reduce_shear_band(source, opt: ShearBandOptions) -> CalcResult:
     """
     from ..physics import shear_band as sb
 
-    phi = opt.phi
+    phi_eff = opt.phi_eff
     notes_extra = []
     if opt.triaxial is not None:
-        phi = _phi_from_triaxial(opt.triaxial)
-        notes_extra.append(f"φ' = {phi:.4g} deg from the envelope of {opt.triaxial}")
+        phi_eff = _phi_from_triaxial(opt.triaxial)
+        notes_extra.append(f"φ' = {phi_eff:.4g} deg from the envelope of {opt.triaxial}")
     v, notes, src = _inputs(
         source,
         SHEAR_BAND,
         {
-            "phi": phi,
+            "phi_eff": phi_eff,
             "dilatancy_angle": opt.dilatancy_angle,
             "dilatancy_rate": opt.dilatancy_rate,
             "shear_band_angle": opt.measured,
@@ -1219,10 +1219,11 @@ def reduce_shear_band(source, opt: ShearBandOptions) -> CalcResult:
     if np.all(np.isnan(psi)):
         notes_extra.append("no dilatancy angle: Roscoe's and Arthur's angles need ψ (--dilatancy-angle or -rate)")
     measured = v["shear_band_angle"]
-    coulomb, roscoe, arthur = sb.coulomb_angle(v["phi"]), sb.roscoe_angle(psi), sb.arthur_angle(v["phi"], psi)
+    coulomb, roscoe = sb.coulomb_angle(v["phi_eff"]), sb.roscoe_angle(psi)
+    arthur = sb.arthur_angle(v["phi_eff"], psi)
     has_m = bool(np.any(np.isfinite(measured)))
     cases = ShearBandCases(
-        phi=v["phi"],
+        phi_eff=v["phi_eff"],
         dilatancy_angle=psi if np.any(np.isfinite(psi)) else None,
         measured=measured if has_m else None,
         coulomb=coulomb,

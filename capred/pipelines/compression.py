@@ -508,8 +508,9 @@ class CompressionLines:
 
     Attributes
     ----------
-    lambda_, kappa : float or None
-        Slopes of the normal compression and unloading lines in e - ln σ' [-] (kappa None without unloading).
+    ncl_slope, url_slope : float or None
+        λ and κ: slopes of the normal compression and unloading lines in e - ln σ' [-] (κ None without
+        unloading).
     e_ncl : float
         e on the normal compression line at ``reference_stress`` [-].
     reference_stress : float
@@ -520,8 +521,8 @@ class CompressionLines:
         The file it was read from.
     """
 
-    lambda_: float
-    kappa: float | None
+    ncl_slope: float
+    url_slope: float | None
     e_ncl: float
     reference_stress: float
     e0: float
@@ -529,7 +530,7 @@ class CompressionLines:
 
     def e_ncl_at(self, stress: float) -> float:
         """e on the normal compression line at another reference stress [Pa]: e_ncl − λ ln(σ/σ_ref)."""
-        return float(self.e_ncl - self.lambda_ * np.log(stress / self.reference_stress))
+        return float(self.e_ncl - self.ncl_slope * np.log(stress / self.reference_stress))
 
 
 def load_compression_fit(fit) -> CompressionLines:

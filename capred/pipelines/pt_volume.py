@@ -132,16 +132,20 @@ class PTVolumeOptions(Options):
         for part, path in (("W", self.compression_W), ("A", self.compression_A)):
             if path is None:
                 continue
-            given = [LINE_OPTIONS[k] for k in (f"lambda_{part}", f"kappa_{part}", f"e_ncl_{part}") if getattr(self, k)]
+            given = [
+                LINE_OPTIONS[k]
+                for k in (f"lambda_{part}", f"kappa_{part}", f"e_ncl_{part}")
+                if getattr(self, k) is not None
+            ]
             if given:
                 raise OptionError(f"give --compression-{part.lower()} or {', '.join(given)}, not both")
             lines = load_compression_fit(path)
-            if lines.kappa is None:
+            if lines.url_slope is None:
                 raise OptionError(
                     f"--compression-{part.lower()} {lines.source}: the test has no unloading stage, so no κ_{part}"
                 )
-            out[f"lambda_{part}"] = lines.lambda_
-            out[f"kappa_{part}"] = lines.kappa
+            out[f"lambda_{part}"] = lines.ncl_slope
+            out[f"kappa_{part}"] = lines.url_slope
             out[f"e_ncl_{part}"] = lines.e_ncl_at(self.reference_stress)
         return out
 
