@@ -170,3 +170,22 @@ def test_intervals_cover_by_simulation():
                 hits[x.name] += x.low <= truth[x.name] <= x.high
     for k, h in hits.items():
         assert 0.925 <= h / n <= 0.975, (k, h / n)
+
+
+def test_isotropic_without_stage_column_and_bad_stage_label(tmp_path):
+    """An isotropic test (p') without a stage column: the stages come from the stresses and the estimates equal
+    those of the labelled file (same readings; 1e-12); a stage label that is not one of the three is an error
+    naming its line."""
+    labelled = _test_table(tmp_path / "l.csv")
+    text = labelled.read_text().splitlines()
+    plain = tmp_path / "p.csv"
+    plain.write_text("\n".join(["p_eff [kPa],e"] + [",".join(r.split(",")[1:]) for r in text[1:]]) + "\n")
+    a = run_compression(labelled)
+    b = run_compression(plain, CompressionOptions(test="isotropic"))
+    assert b.readings.stage == a.readings.stage and b.stress_symbol == "p'"
+    for x, y in zip(a.estimates, b.estimates):
+        assert y.value == pytest.approx(x.value, rel=1e-12)
+    bad = tmp_path / "bad.csv"
+    bad.write_text(labelled.read_text().replace("unloading", "unloaded", 1))
+    with pytest.raises(CapredError, match="line 14.*unloaded|unloaded.*line 14|14"):
+        run_compression(bad)
