@@ -189,3 +189,14 @@ def test_isotropic_without_stage_column_and_bad_stage_label(tmp_path):
     bad.write_text(labelled.read_text().replace("unloading", "unloaded", 1))
     with pytest.raises(CapredError, match="line 14.*unloaded|unloaded.*line 14|14"):
         run_compression(bad)
+
+
+def test_a_test_that_has_not_yielded_is_said(tmp_path):
+    """Readings only on the recompression line (10-80 kPa, sigma'_y = 120 kPa): the fit cannot see the virgin line,
+    and a warning says that the yield stress and C_c are extrapolated or absent."""
+    f = tmp_path / "young.csv"
+    s = [10, 15, 20, 30, 40, 60, 80]
+    rows = [f"{x},{E_Y - C_R * np.log10(x / SY) + 0.001 * (-1) ** i}" for i, x in enumerate(s)]
+    f.write_text("sigma_v,e\n" + "\n".join(rows) + "\n")
+    res = run_compression(f)
+    assert any("extrapolated" in w or "not yielded" in w for w in res.warnings)

@@ -381,17 +381,37 @@ def run_compression(source, options: CompressionOptions | None = None) -> Compre
     if np.any(np.diff(xs) <= 0):
         warnings.append("the first loading's stresses are not increasing in the order read: fitted as sorted")
     order = np.argsort(sigma[first], kind="stable")
-    fit = cp.fit_first_loading(sigma[first][order], e[first][order])
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
+        fit = cp.fit_first_loading(sigma[first][order], e[first][order])
     if fit.w_at_bound:
         warnings.append(
             f"the bend of the first-loading curve ended at its bound (w = {fit.w:.3g} decades): too few readings "
             "around the yield stress to describe it; the yield stresses depend on that bound"
         )
+    sy = 10**fit.log_sigma_y
+    lo, hi = float(sigma[first].min()), float(sigma[first].max())
+    if not lo < sy < hi:
+        warnings.append(
+            f"the bilinear yield stress {sy / 1e3:.4g} kPa lies outside the first loading's stresses "
+            f"({lo / 1e3:g}-{hi / 1e3:g} kPa): the test does not show both lines, so C_c, σ'_y and the "
+            "constructions are extrapolated"
+        )
+    if not fit.C_c > max(fit.C_r, 0.0):
+        warnings.append(
+            f"the first loading shows no virgin line steeper than its recompression (C_c = {fit.C_c:.4g}, "
+            f"C_r = {fit.C_r:.4g}): the sample has not yielded, or the stages are mislabelled"
+        )
     e0 = float(e[0])
-    est = _estimates(fit, e0, opt, sigma, e, stages, first)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):  # NaN/inf become None
+        est = _estimates(fit, e0, opt, sigma, e, stages, first)
     unloading, reloading = est.pop("_unloading"), est.pop("_reloading")
     if unloading is None:
         notes.append("no unloading stage: κ (C_s) is not estimated")
+    elif not unloading.index < fit.C_c:
+        warnings.append(
+            f"C_s = {unloading.index:.4g} is not below C_c = {fit.C_c:.4g}: an unloading line as steep as the "
+            "virgin line is not physical (pt-volume and skempton-b's bounding surface need κ < λ)"
+        )
     e_fit = np.full(sigma.size, np.nan)
     e_fit[first] = fit.e_at(sigma[first])
     readings = CompressionReadings(
