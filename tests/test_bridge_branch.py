@@ -58,3 +58,18 @@ def test_cli_says_so_and_branch_thin_gives_it(tmp_path):
     del rows
     bad = runner.invoke(app, ["bridge", "solve", str(f), "--branch", "thick"])
     assert bad.exit_code == 1 and "stable or thin" in bad.output
+
+
+def test_existence_criterion_agrees_with_the_thin_solve():
+    """The cheap criterion (volume at most the thinnest catenoid's at this gap) agrees with solving for the thin
+    bridge on 300 random rows near rupture (fixed seed)."""
+    import numpy as np
+
+    rng = np.random.default_rng(5)
+    n = 300
+    th, V = rng.uniform(0, 0.6, n), 10 ** rng.uniform(-4, -1.5, n)
+    D = br.rupture_gap(th, V, np.ones(n))[0] * (1 - 10 ** rng.uniform(-4, -0.5, n))
+    ok = br.solve_for_volume(th, V, D)[2] == 0
+    thin = br.solve_for_volume(th, V, D, branch="thin")[2] == 0
+    exists = br.has_thin_bridge(th, V, D)
+    assert thin.sum() > 10 and np.array_equal(thin[ok], exists[ok])

@@ -5,7 +5,7 @@ python -c 'import capred.cli.help as h; h.write_snapshot()'
 """
 
 # fmt: off
-COLUMNS = {'bridge compare': {'digest': 'eeafd98cb388a3c89138e3871d9226b9557952bb',
+COLUMNS = {'bridge compare': {'digest': '79d09f317b130f3c35b8712a2d2c801fcff96f61',
                     'files': ['errors.py',
                               'io/__init__.py',
                               'io/blocks.py',
@@ -44,7 +44,7 @@ COLUMNS = {'bridge compare': {'digest': 'eeafd98cb388a3c89138e3871d9226b9557952b
                               ['V_w [mm^3]', 'water volume V_w; also: volume, V, Vw'],
                               ['F_cap [mN]', 'measured force F_cap; also: F, force, F_measured'],
                               ['filling_angle [deg]', 'measured filling angle; also: beta, half_filling_angle']]},
- 'bridge laws': {'digest': '2098dc1c3ee855ed97c2772477ff96ab0e9430fd',
+ 'bridge laws': {'digest': '4c3d03d010d2e544a15ac772d3de13280d61b77f',
                  'files': ['errors.py',
                            'io/__init__.py',
                            'io/grid.py',
@@ -64,7 +64,7 @@ COLUMNS = {'bridge compare': {'digest': 'eeafd98cb388a3c89138e3871d9226b9557952b
                            ['contact_angle [deg]', 'contact angle; also: theta'],
                            ['R2_over_R',
                             "R2 / R ('plane': a sphere and a plane; absent: equal spheres); also: ratio, R2/R"]]},
- 'bridge rupture': {'digest': 'eeafd98cb388a3c89138e3871d9226b9557952bb',
+ 'bridge rupture': {'digest': '79d09f317b130f3c35b8712a2d2c801fcff96f61',
                     'files': ['errors.py',
                               'io/__init__.py',
                               'io/blocks.py',
@@ -99,7 +99,7 @@ COLUMNS = {'bridge compare': {'digest': 'eeafd98cb388a3c89138e3871d9226b9557952b
                                'contact angle on the second particle (sphere R2 or plane; absent or blank: '
                                '--contact-angle2, else contact_angle); also: theta2, wetting_angle2, contact_angle_2'],
                               ['V_w [mm^3]', 'water volume V_w; also: volume, V, Vw']]},
- 'bridge solve': {'digest': 'eeafd98cb388a3c89138e3871d9226b9557952bb',
+ 'bridge solve': {'digest': '79d09f317b130f3c35b8712a2d2c801fcff96f61',
                   'files': ['errors.py',
                             'io/__init__.py',
                             'io/blocks.py',
@@ -137,7 +137,7 @@ COLUMNS = {'bridge compare': {'digest': 'eeafd98cb388a3c89138e3871d9226b9557952b
                             ['V_w [mm^3]', 'water volume V_w; also: volume, V, Vw'],
                             ['F_cap [mN]', 'measured force F_cap; also: F, force, F_measured'],
                             ['filling_angle [deg]', 'measured filling angle; also: beta, half_filling_angle']]},
- 'compression': {'digest': '28fa35c859ab127c9dc9df5fcad46bce9a61809c',
+ 'compression': {'digest': '589016279a0e43c76563990ce4f7d73c331a8107',
                  'files': ['errors.py',
                            'io/__init__.py',
                            'io/grid.py',

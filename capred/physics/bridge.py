@@ -947,7 +947,8 @@ def _scan_for_volume(theta, volume, gap, ratio, theta2, branch="stable"):
 
     ``branch="thin"``: the other bridge of the same volume and gap, on the thin-neck side of the volume's minimum
     (between the thinnest catenoid spanning the gap and the rupture bridge); status 1 where there is none (at
-    contact, or a volume above the thinnest catenoid's).
+    contact, or a volume above the thinnest catenoid's). ``branch="exists"``: status 0 where that bridge exists
+    (for a volume the stable branch holds: V at most the thinnest catenoid's volume, D > 0), without solving it.
 
     The fallback of :func:`_solve_for_volume` for the rows its Newton iteration
     does not settle (no bridge, too much water, bridges next to rupture). At a fixed gap the
@@ -1009,6 +1010,13 @@ def _scan_for_volume(theta, volume, gap, ratio, theta2, branch="stable"):
             c = np.minimum(y[rising, first], ypk[rising])
             y_lo[rising] = _log_root(lambda x, i: cat_gap(x, i, rising), a, c)
     has = np.flatnonzero(np.isfinite(y_hi) & np.isfinite(y_lo))
+    if branch == "exists":  # a thin-neck bridge of V at D exists iff V is at most the thinnest catenoid's volume
+        apart = has[D[has] > 0]
+        v_lo = _catenoid(y_lo[apart], th[apart], rho[apart], th2[apart]).volume
+        st[:] = 1
+        st[apart[V[apart] <= v_lo]] = 0
+        status[k] = st
+        return beta, suction, status
     v_top = np.full(m, np.nan)
     if has.size:
         v_top[has] = _catenoid(y_hi[has], th[has], rho[has], th2[has]).volume
@@ -1819,3 +1827,27 @@ def toroidal(beta, contact_angle_rad, gap):
     h = 1.0 - np.cos(beta)
     vol = 2.0 * (v_under - np.pi * h * h * (3.0 - h) / 3.0)
     return s, vol, 2.0 * r2 + s * r2 * r2, r2
+
+
+def has_thin_bridge(contact_angle_rad, volume, gap, ratio=1.0, contact_angle2_rad=None) -> np.ndarray:
+    """Whether a second, thin-neck bridge of this volume exists at this gap (for volumes the stable branch holds).
+
+    Parameters
+    ----------
+    contact_angle_rad, volume, gap, ratio, contact_angle2_rad
+        As :func:`solve_for_volume` (V / R1^3, D / R1).
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        True where the volume is at most that of the thinnest catenoid spanning the gap (D > 0): along the arc
+        of bridges at this gap the volume falls to its minimum and rises again to that catenoid, so a volume
+        between the two is held twice.
+
+    References
+    ----------
+    .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). J. Colloid Interface Sci. 161, 138-147.
+       doi:10.1006/jcis.1993.1452
+    """
+    th, volume, gap, ratio, th2 = _angles(contact_angle_rad, contact_angle2_rad, volume, gap, ratio)
+    return _scan_for_volume(th, volume, gap, ratio, th2, branch="exists")[2] == 0
