@@ -182,6 +182,19 @@ QUANTITIES: dict[str, Quantity] = {
     "url_slope": Quantity(
         "κ", "-", 1.0, "dimensionless", "slope of an unloading-reloading line in e-ln σ' (κ_W or κ_A)", 0.0, None, True
     ),
+    # compression tests (capred compression)
+    "solids_height": Quantity("H_s", "mm", 1e3, "length", "height of the solids of a specimen, V_s/A", 0.0, None, True),
+    "compression_index": Quantity("C_c", "-", 1.0, "dimensionless", "slope of the virgin line in e-log10 σ'", 0.0),
+    "swelling_index": Quantity("C_s", "-", 1.0, "dimensionless", "slope of an unloading line in e-log10 σ'", 0.0),
+    # shear-band orientation (capred shear-band)
+    "dilatancy_angle": Quantity("ψ", "deg", 1.0, "angle", "dilatancy angle", -90.0, 90.0, True, True),
+    "dilatancy_rate": Quantity("−dε_v/dε_1", "-", 1.0, "dimensionless", "rate of dilation at failure, −dε_v/dε_1"),
+    "shear_band_angle": Quantity(
+        "θ_b", "deg", 1.0, "angle", "angle between a shear band and the major principal plane", 0.0, 90.0
+    ),
+    "preconsolidation_stress": Quantity(
+        "σ'_p", "kPa", 1e-3, "pressure", "pre-consolidation (yield) stress of a compression test", 0.0, None, True
+    ),
 }
 
 

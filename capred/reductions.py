@@ -212,6 +212,25 @@ REDUCTIONS: dict[str, Reduction] = {
             summary="Rumpf's capillary pressure from S_r, void ratio and grain size.",
         ),
         Reduction(
+            "shear-band",
+            _P + "calculators:reduce_shear_band",
+            _P + "calculators:ShearBandOptions",
+            "optional",
+            None,
+            "shear_band",
+            method=(
+                "Shear-band angles to the major principal plane from the effective friction angle φ' (given, or "
+                "from the envelope of a triaxial-bounds summary.json) and the dilatancy angle ψ (given, or from "
+                "the dilatancy rate d = −dε_v/dε_1 at failure, sin ψ = d/(2 + d)): Coulomb 45 + φ'/2, Roscoe "
+                "(1970) 45 + ψ/2, Arthur et al. (1977) 45 + (φ' + ψ)/4, beside a measured angle (Prunier et al. "
+                "2024, Fig. 14: about 70 and 60 deg).",
+            ),
+            references=("roscoe1970", "arthur1977", "prunier2024"),
+            files_by_default=False,
+            summary="Shear-band angles (Coulomb, Roscoe, Arthur) beside a measured one.",
+            example=(("phi_eff", 31.5), ("dilatancy_angle", 10), ("measured", 60)),
+        ),
+        Reduction(
             "bridge solve",
             _P + "bridge:solve_bridges",
             _P + "bridge:BridgeOptions",
@@ -259,7 +278,7 @@ REDUCTIONS: dict[str, Reduction] = {
             "bridge_laws",
             method=(
                 "The closed-form capillary forces of DEM codes (Willett et al. 2000, simple and full; Rabinovich "
-                "et al. 2005; Lambert et al. 2008; Soulié et al. 2006; Weigert & Ripperger 1999) against the exact "
+                "et al. 2005; Lambert et al. 2008; Soulié et al. 2006; Mikami et al. 1998; Weigert & Ripperger 1999) against the exact "
                 "Young-Laplace bridge at equal contact angle, volume and gap, the exact bridge on the stable branch "
                 "at constant volume; forces in units of 2πRγ, relative errors per region of gap × volume × angle "
                 "× geometry.",
@@ -320,6 +339,29 @@ REDUCTIONS: dict[str, Reduction] = {
             summary="Void ratio along a stress path with two effective stresses.",
             table_kind="a stress path for pt-volume",
             example=(("example_kaolin", True),),
+        ),
+        Reduction(
+            "compression",
+            _P + "compression:run_compression",
+            _P + "compression:CompressionOptions",
+            "required",
+            "compression",
+            "compression",
+            method=(
+                "The first loading of an oedometer or isotropic compression test is fitted (least squares, five "
+                "parameters, Jacobian covariance) with a smooth bilinear curve in e-log10 σ': a recompression and a "
+                "virgin line joined by a bend of width w decades. C_c is the virgin line's slope (λ = C_c/ln 10), "
+                "e_N its void ratio at the reference stress, σ'_y the meeting point of the two lines; on the fitted "
+                "curve the pre-consolidation stress is constructed after Casagrande (1936: largest curvature, "
+                "bisector of the horizontal and the tangent, virgin line) and Pacheco Silva (1970: virgin line at "
+                "e0, down to the curve, across to the virgin line). Unloading stages give C_s (κ = C_s/ln 10) and "
+                "reloading stages C_r, each a straight line in e-log10 σ' with one slope and an intercept per "
+                "stage. Standard errors by the delta method, 95 % intervals by Student's t (stresses: symmetric in "
+                "log σ').",
+            ),
+            references=("casagrande1936", "pacheco_silva1970", "schofield_wroth1968"),
+            summary="Oedometer or isotropic compression: λ (C_c), κ (C_s), e_N and the yield stress.",
+            table_kind="a compression test (one row per reading)",
         ),
         Reduction(
             "history",

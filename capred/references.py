@@ -237,6 +237,67 @@ REFERENCES: dict[str, Reference] = {
         "having unimodal and bimodal pore structure",
         "Hydrol. Earth Syst. Sci. Discuss. 4:407-437",
     ),
+    # compression, the classical B(S_r) relations, shear-band angles and Mikami's bridge law (issue 45)
+    "casagrande1936": Reference(
+        "Casagrande",
+        1936,
+        "The determination of the pre-consolidation load and its practical significance",
+        "Proc. 1st Int. Conf. Soil Mech. Found. Eng., Cambridge MA, 3:60-64",
+    ),
+    "pacheco_silva1970": Reference(
+        "Pacheco Silva",
+        1970,
+        "A new graphical construction for determination of the pre-consolidation stress of a soil sample",
+        "Proc. 4th Brazilian Conf. Soil Mech. Found. Eng., Rio de Janeiro, 2(1):225-232",
+    ),
+    "schofield_wroth1968": Reference("Schofield & Wroth", 1968, "Critical State Soil Mechanics", "McGraw-Hill, London"),
+    "mikami1998": Reference(
+        "Mikami et al.",
+        1998,
+        "Numerical simulation of cohesive powder behavior in a fluidized bed",
+        "Chem. Eng. Sci. 53(10):1927-1940",
+        "10.1016/S0009-2509(97)00325-4",
+    ),
+    "hilf1948": Reference(
+        "Hilf",
+        1948,
+        "Estimating construction pore pressures in rolled earth dams",
+        "Proc. 2nd Int. Conf. Soil Mech. Found. Eng., Rotterdam, 3:234-240",
+    ),
+    "lade_hernandez1977": Reference(
+        "Lade & Hernandez",
+        1977,
+        "Membrane penetration effects in undrained tests",
+        "J. Geotech. Eng. Div. ASCE 103(GT2):109-125",
+    ),
+    "schuurman1966": Reference(
+        "Schuurman",
+        1966,
+        "The compressibility of an air/water mixture and a theoretical relation between the air and water pressures",
+        "Géotechnique 16(4):269-281",
+        "10.1680/geot.1966.16.4.269",
+    ),
+    "hasan_fredlund1980": Reference(
+        "Hasan & Fredlund",
+        1980,
+        "Pore pressure parameters for unsaturated soils",
+        "Can. Geotech. J. 17(3):395-404",
+        "10.1139/t80-046",
+    ),
+    "roscoe1970": Reference(
+        "Roscoe",
+        1970,
+        "The influence of strains in soil mechanics",
+        "Géotechnique 20(2):129-170",
+        "10.1680/geot.1970.20.2.129",
+    ),
+    "arthur1977": Reference(
+        "Arthur et al.",
+        1977,
+        "Plastic deformation and failure in granular media",
+        "Géotechnique 27(1):53-74",
+        "10.1680/geot.1977.27.1.53",
+    ),
 }
 
 

@@ -135,6 +135,15 @@ def solve(
         "else the cores this run may use that the load leaves idle]; with several files, worker processes "
         "of the batch.",
     ) = None,
+    branch: option(
+        BRIDGE,
+        "branch",
+        "--branch",
+        metavar="stable|thin",
+        help="Rows given V_w: stable (the bridge continuous with the bridge at contact) or thin (the second, "
+        "thin-neck bridge of the same volume and gap, near rupture, unstable at constant volume). Rows that have "
+        "a second bridge say so in their note.",
+    ) = None,
 ) -> Invocation:
     """Exact bridge per row between spheres of radii R and R2 (or a sphere and
     a plane): neck radius r0, F_cap = F_L + F_T, V_w, filling angles on both
@@ -157,6 +166,8 @@ def solve(
         Contact angle on the second particle [deg] of rows without one.
     workers : int, optional
         Processes that solve the rows [-].
+    branch : str, optional
+        stable or thin (rows given V_w).
 
     Returns
     -------
@@ -166,7 +177,9 @@ def solve(
     from ..pipelines.bridge import BridgeOptions
 
     opts = BridgeOptions(
-        **si_values(BRIDGE, surface_tension=surface_tension, contact_angle2=contact_angle2, workers=workers)
+        **si_values(
+            BRIDGE, surface_tension=surface_tension, contact_angle2=contact_angle2, workers=workers, branch=branch
+        )
     )
     return Invocation("bridge solve", opts)
 

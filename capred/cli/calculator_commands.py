@@ -8,6 +8,7 @@ from .declare import option, si_values
 PRISM = "capred.pipelines.calculators:PrismOptions"
 SKEMPTON = "capred.pipelines.calculators:SkemptonOptions"
 RUMPF = "capred.pipelines.calculators:RumpfOptions"
+SHEAR_BAND = "capred.pipelines.calculators:ShearBandOptions"
 HISTORY = "capred.pipelines.history:HistoryOptions"
 
 
@@ -27,6 +28,12 @@ def register(app: typer.Typer) -> None:
         data="Optional CSV of cases (shape_factor, void_ratio, S_r, diameter, surface_tension, contact_angle)",
         plots=False,
     )(rumpf)
+    command(
+        app,
+        "shear-band",
+        data="Optional CSV of cases: phi, dilatancy_angle (or dilatancy_rate), shear_band_angle (measured)",
+        plots=False,
+    )(shear_band)
     command(app, "history", data="The lab's store (SQLite), written by any command with --store or CAPRED_STORE")(
         history
     )
@@ -130,6 +137,20 @@ def skempton_b(
         "suction equilibrium; with --model bounding-surface NC and (with --a-ini) OC; as Morvan et al. "
         "(2016) Fig. 1-3, 5, 6. Give --out for the figure.",
     ) = False,
+    compression: option(
+        SKEMPTON,
+        "compression",
+        "--compression",
+        help="compression.json of capred compression: kappa and e0 (and lambda0 with --model bounding-surface) "
+        "from it, instead of --kappa-elastic and --e0.",
+    ) = None,
+    compare: option(
+        SKEMPTON,
+        "compare",
+        "--compare",
+        help="With --curve: classical B(S_r) relations drawn beside eq. 10 on the same skeleton, comma separated: "
+        "skempton1954, hilf_lade, schuurman1966, or all (Morvan et al. 2016's comparison).",
+    ) = None,
 ) -> Invocation:
     """Skempton's B against degree of saturation (Morvan et al. 2016, eq. 10):
     B = 1/(1 + p'0 e0 (1 - S_r)/(kappa P_a0)) with p'0 = p0 - u0, or its inverse
@@ -178,6 +199,10 @@ def skempton_b(
         A fits.json of `capred retention` instead of --se and --bc-lambda.
     curve : bool, optional
         B against S_r for every model asked instead of cases.
+    compression : Path, optional
+        A compression.json of `capred compression` instead of --kappa-elastic and --e0.
+    compare : str, optional
+        Classical relations beside eq. 10 with --curve (comma separated, or all).
 
     Returns
     -------
@@ -204,9 +229,17 @@ def skempton_b(
         air_pressure=air_pressure,
         retention=retention,
         curve=curve,
+        compression=compression,
     )
+    if compression is not None and (kappa_elastic is not None or e0 is not None):
+        from ..errors import OptionError
+
+        raise OptionError("give --compression or --kappa-elastic/--e0, not both")
+    if compare:
+        given["compare"] = tuple(c.strip() for c in str(compare).split(",") if c.strip())
     opts = SkemptonOptions(**given)
-    return Invocation("skempton-b", opts, extra_inputs=[retention] if retention else [])
+    extra = [p for p in (retention, compression) if p]
+    return Invocation("skempton-b", opts, extra_inputs=extra)
 
 
 def rumpf(
@@ -318,3 +351,53 @@ def history(
         command=of_command,
     )
     return Invocation("history", HistoryOptions(**given))
+
+
+def shear_band(
+    phi_eff: option(SHEAR_BAND, "phi_eff", "--phi-eff", "--phi", note="(or --triaxial)") = None,
+    dilatancy_angle: option(SHEAR_BAND, "dilatancy_angle") = None,
+    dilatancy_rate: option(
+        SHEAR_BAND, "dilatancy_rate", help="Rate of dilation at failure -d eps_v/d eps_1 [-]"
+    ) = None,
+    measured: option(SHEAR_BAND, "measured", help="Measured angle of the band to the major principal plane") = None,
+    triaxial: option(
+        SHEAR_BAND, "triaxial", help="summary.json of capred triaxial-bounds: phi' of its envelope."
+    ) = None,
+) -> Invocation:
+    """Shear-band angles to the major principal plane: Coulomb 45 + phi'/2,
+    Roscoe (1970) 45 + psi/2 and Arthur et al. (1977) 45 + (phi' + psi)/4, beside
+    a measured angle (Prunier et al. 2024, Fig. 14: about 70 and 60 deg).
+
+    Example: capred shear-band --triaxial results/summary.json --dilatancy-angle 8 --measured 60
+
+    \f
+
+    Parameters
+    ----------
+    phi_eff : str, optional
+        Effective friction angle [deg].
+    dilatancy_angle : str, optional
+        Dilatancy angle [deg].
+    dilatancy_rate : float, optional
+        -d eps_v/d eps_1 at failure [-].
+    measured : str, optional
+        Measured angle [deg].
+    triaxial : Path, optional
+        A triaxial-bounds summary.json.
+
+    Returns
+    -------
+    Invocation
+        The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
+    """
+    from ..pipelines.calculators import ShearBandOptions
+
+    given = si_values(
+        SHEAR_BAND,
+        phi_eff=phi_eff,
+        dilatancy_angle=dilatancy_angle,
+        dilatancy_rate=dilatancy_rate,
+        measured=measured,
+        triaxial=None if triaxial is None else str(triaxial),
+    )
+    return Invocation("shear-band", ShearBandOptions(**given), extra_inputs=[triaxial] if triaxial else [])

@@ -34,12 +34,14 @@ OPTIONS_CLASSES = (
     "capred.pipelines.calculators:PrismOptions",
     "capred.pipelines.calculators:SkemptonOptions",
     "capred.pipelines.calculators:RumpfOptions",
+    "capred.pipelines.calculators:ShearBandOptions",
     "capred.pipelines.pt_volume:PTVolumeOptions",
     "capred.pipelines.bridge:CurveOptions",
     "capred.pipelines.bridge_solve:BridgeOptions",
     "capred.pipelines.yade_files:YadeOptions",
     "capred.pipelines.bridge_laws:LawsOptions",
     "capred.pipelines.history:HistoryOptions",
+    "capred.pipelines.compression:CompressionOptions",
 )
 
 #: the registries whose entries the help lists: name -> (module:mapping, attribute giving an entry's help,

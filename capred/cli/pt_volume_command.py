@@ -1,5 +1,7 @@
 """`capred pt-volume`: the volume-change model of Pedrotti & Tarantino along a path read from a table."""
 
+from pathlib import Path
+
 import typer
 
 from .common import Invocation, SampleOpt, command
@@ -36,6 +38,18 @@ def pt_volume(
     initial_yield_w: option(PT, "initial_yield_W", note="default: the first point's (on the ncl)") = None,
     initial_yield_a: option(PT, "initial_yield_A", note="default: the first point's (on the ncl)") = None,
     substeps: option(PT, "substeps", note="1 takes the path as given") = None,
+    compression_w: option(
+        PT,
+        "compression_W",
+        "--compression-w",
+        help="compression.json of capred compression on the clay from slurry: lambda_W, kappa_W, e_ncl_W from it.",
+    ) = None,
+    compression_a: option(
+        PT,
+        "compression_A",
+        "--compression-a",
+        help="compression.json of capred compression on the clay from dry powder: lambda_A, kappa_A, e_ncl_A.",
+    ) = None,
     sample: SampleOpt = False,
 ) -> Invocation:
     """Void ratio along a path of total stress, pore pressures and degree of
@@ -67,6 +81,8 @@ def pt_volume(
         Largest sigma'_W, sigma'_A carried before the first point [kPa].
     substeps : int, optional
         Sub-steps per step [-] (default automatic).
+    compression_w, compression_a : Path, optional
+        compression.json files of `capred compression` giving the W or A lines.
     sample : bool, optional
         Run the bundled illustrative path.
 
@@ -87,7 +103,7 @@ def pt_volume(
         e_ncl_A=e_ncl_a,
     )
     # the bundled path is drawn for EXAMPLE_KAOLIN (its header says so): --sample alone runs with it
-    example = example_kaolin or (sample and not lines)
+    example = example_kaolin or (sample and not lines and not (compression_w or compression_a))
     given = si_values(
         PT,
         reference_stress=reference_stress,
@@ -95,5 +111,7 @@ def pt_volume(
         initial_yield_A=initial_yield_a,
         substeps=substeps,
     )
-    opts = PTVolumeOptions(**lines, **given, example_kaolin=example)
-    return Invocation("pt-volume", opts)
+    fits = {"compression_W": compression_w, "compression_A": compression_a}
+    fits = {k: str(v) for k, v in fits.items() if v is not None}
+    opts = PTVolumeOptions(**lines, **given, **fits, example_kaolin=example)
+    return Invocation("pt-volume", opts, extra_inputs=[Path(v) for v in fits.values()])

@@ -942,8 +942,13 @@ def _log_root(f, lo, hi):
     return np.exp(np.where(flip, hi_end, lo_end))
 
 
-def _scan_for_volume(theta, volume, gap, ratio, theta2):
+def _scan_for_volume(theta, volume, gap, ratio, theta2, branch="stable"):
     """(beta, s*, status) of the bridge holding volume* at gap*, stable at constant volume, by a scan of the arc.
+
+    ``branch="thin"``: the other bridge of the same volume and gap, on the thin-neck side of the volume's minimum
+    (between the thinnest catenoid spanning the gap and the rupture bridge); status 1 where there is none (at
+    contact, or a volume above the thinnest catenoid's). ``branch="exists"``: status 0 where that bridge exists
+    (for a volume the stable branch holds: V at most the thinnest catenoid's volume, D > 0), without solving it.
 
     The fallback of :func:`_solve_for_volume` for the rows its Newton iteration
     does not settle (no bridge, too much water, bridges next to rupture). At a fixed gap the
@@ -1005,6 +1010,13 @@ def _scan_for_volume(theta, volume, gap, ratio, theta2):
             c = np.minimum(y[rising, first], ypk[rising])
             y_lo[rising] = _log_root(lambda x, i: cat_gap(x, i, rising), a, c)
     has = np.flatnonzero(np.isfinite(y_hi) & np.isfinite(y_lo))
+    if branch == "exists":  # a thin-neck bridge of V at D exists iff V is at most the thinnest catenoid's volume
+        apart = has[D[has] > 0]
+        v_lo = _catenoid(y_lo[apart], th[apart], rho[apart], th2[apart]).volume
+        st[:] = 1
+        st[apart[V[apart] <= v_lo]] = 0
+        status[k] = st
+        return beta, suction, status
     v_top = np.full(m, np.nan)
     if has.size:
         v_top[has] = _catenoid(y_hi[has], th[has], rho[has], th2[has]).volume
@@ -1037,6 +1049,32 @@ def _scan_for_volume(theta, volume, gap, ratio, theta2):
             )
             y_min[apart], v_min[apart] = np.exp(x_min), v_sub
         inside = V[cand] >= v_min
+        if branch == "thin":
+            # the thin-neck side: from the thinnest catenoid spanning the gap (y_lo) up to the rupture bridge
+            # (y_min); the volume falls along it from the catenoid's to the minimum
+            apart_rows = D[cand] > 0
+            v_lo = np.full(cand.size, np.nan)
+            if apart_rows.any():
+                sub = cand[apart_rows]
+                v_lo[apart_rows] = _catenoid(y_lo[sub], th[sub], rho[sub], th2[sub]).volume
+            thin = apart_rows & (V[cand] > v_min) & (V[cand] <= v_lo)
+            go = cand[thin]
+            if go.size:
+
+                def g(x, i):
+                    return _below(_arc(np.exp(x), th[go][i], rho[go][i], th2[go][i], D[go][i])[0]) - V[go][i]
+
+                lo, hi = np.log(y_lo[go]), np.log(y_min[thin])
+                root = np.exp(
+                    illinois(g, lo, hi, v_lo[thin] - V[go], v_min[thin] - V[go], ftol=1e-3 * VERIFY_RTOL * V[go])
+                )
+                s = _suction_at_neck(root, th[go], rho[go], th2[go], D[go], "gap")
+                b1 = _from_neck(root, th[go], np.where(np.isfinite(s), s, 0.0), rho[go], th2[go])[0]
+                beta[k[go]], suction[k[go]] = b1, s
+                st[go] = 0
+            st[cand[~thin]] = np.where(st[cand[~thin]] == 3, 3, 1)
+            status[k] = st
+            return beta, suction, status
         go = cand[inside]
         if go.size:
 
@@ -1447,7 +1485,7 @@ def bridge_at_suction(contact_angle_rad, suction, gap, ratio=1.0, contact_angle2
     return beta, status, b
 
 
-def solve_for_volume(contact_angle_rad, volume, gap, ratio=1.0, contact_angle2_rad=None):
+def solve_for_volume(contact_angle_rad, volume, gap, ratio=1.0, contact_angle2_rad=None, branch="stable"):
     r"""Filling angle and suction of the bridge holding a given volume at a given gap (volume control), verified.
 
     Parameters
@@ -1463,6 +1501,11 @@ def solve_for_volume(contact_angle_rad, volume, gap, ratio=1.0, contact_angle2_r
     contact_angle2_rad : float or array_like, optional
         Contact angle on particle 2 (sphere or plane) [rad]; default: ``contact_angle_rad``. Each contact line
         meets its solid at its own angle.
+    branch : {"stable", "thin"}, default "stable"
+        ``stable``: the bridge continuous with the bridge at contact (below). ``thin``: the second bridge of the
+        same volume and gap, on the thin-neck side of the volume's minimum along the arc (unstable at constant
+        volume); status 1 where there is none (at contact, or a volume above the thinnest catenoid spanning
+        the gap).
 
     Returns
     -------
@@ -1471,8 +1514,8 @@ def solve_for_volume(contact_angle_rad, volume, gap, ratio=1.0, contact_angle2_r
     suction : numpy.ndarray
         s* = Delta_u R1 / gamma [-]; NaN without a bridge.
     status : numpy.ndarray of int
-        0 ok, 1 beyond rupture (volume too small to span the gap), 2 invalid
-        input, 3 too much water for a concave bridge, 4 no bridge reproduced
+        0 ok, 1 beyond rupture (volume too small to span the gap; with ``branch="thin"``: no thin-neck
+        bridge), 2 invalid input, 3 too much water for a concave bridge, 4 no bridge reproduced
         gap and volume to VERIFY_RTOL.
 
     Notes
@@ -1509,7 +1552,12 @@ def solve_for_volume(contact_angle_rad, volume, gap, ratio=1.0, contact_angle2_r
        capillary force. J. Fluid Mech. 67, 723-742. doi:10.1017/S0022112075000572
     """
     th, volume, gap, ratio, th2 = _angles(contact_angle_rad, contact_angle2_rad, volume, gap, ratio)
-    beta, s, status = _solve_for_volume(th, volume, gap, ratio, th2)
+    if branch not in ("stable", "thin"):
+        raise ValueError(f"branch must be 'stable' or 'thin' (got {branch!r})")
+    if branch == "thin":
+        beta, s, status = _scan_for_volume(th, volume, gap, ratio, th2, branch="thin")
+    else:
+        beta, s, status = _solve_for_volume(th, volume, gap, ratio, th2)
     status = _verify(status, beta, th, s, ratio, th2, gap=gap, volume=volume)
     bad = status != 0
     beta[bad], s[bad] = np.nan, np.nan
@@ -1779,3 +1827,27 @@ def toroidal(beta, contact_angle_rad, gap):
     h = 1.0 - np.cos(beta)
     vol = 2.0 * (v_under - np.pi * h * h * (3.0 - h) / 3.0)
     return s, vol, 2.0 * r2 + s * r2 * r2, r2
+
+
+def has_thin_bridge(contact_angle_rad, volume, gap, ratio=1.0, contact_angle2_rad=None) -> np.ndarray:
+    """Whether a second, thin-neck bridge of this volume exists at this gap (for volumes the stable branch holds).
+
+    Parameters
+    ----------
+    contact_angle_rad, volume, gap, ratio, contact_angle2_rad
+        As :func:`solve_for_volume` (V / R1^3, D / R1).
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        True where the volume is at most that of the thinnest catenoid spanning the gap (D > 0): along the arc
+        of bridges at this gap the volume falls to its minimum and rises again to that catenoid, so a volume
+        between the two is held twice.
+
+    References
+    ----------
+    .. [1] Lian, G., Thornton, C. & Adams, M. J. (1993). J. Colloid Interface Sci. 161, 138-147.
+       doi:10.1006/jcis.1993.1452
+    """
+    th, volume, gap, ratio, th2 = _angles(contact_angle_rad, contact_angle2_rad, volume, gap, ratio)
+    return _scan_for_volume(th, volume, gap, ratio, th2, branch="exists")[2] == 0

@@ -19,6 +19,9 @@ References
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
+
 import numpy as np
 
 from .retention import bc_suction
@@ -221,6 +224,230 @@ def skempton_b_suction(S_R, p0, ua0, e0, kappa_elastic, pa0, s_e, bc_lambda):
         dry = s_e * np.zeros_like(S_R) ** (1.0 - 1.0 / np.asarray(bc_lambda, float))
     p0_eff = p0 - ua0 + np.where(wet, bc_suction(np.where(wet, S_R, 1.0), s_e, bc_lambda) * S_R, dry)
     return skempton_b(S_R, p0_eff, e0, kappa_elastic, pa0)
+
+
+#: compressibility of water [1/Pa] (4.6e-10 at 20 °C; Skempton 1954 and Lade & Hernandez 1977 use 4.6e-7 1/kPa)
+WATER_COMPRESSIBILITY = 4.6e-10
+#: Henry's volumetric coefficient of solubility of air in water [-] (0.02 at 20 °C; Hilf 1948)
+HENRY_COEFFICIENT = 0.02
+#: radius of the air bubbles of Schuurman's (1966) mixture [m] unless given (an illustrative 0.05 mm)
+BUBBLE_RADIUS = 5e-5
+
+
+def skeleton_compressibility(p0_eff, e0, kappa_elastic):
+    """Volumetric compressibility of an elastic skeleton, C_c = κ/((1 + e0) p'0) [1/Pa] (Morvan et al. 2016, eq. 5).
+
+    Parameters
+    ----------
+    p0_eff : numeric
+        Mean effective stress p'0 [Pa].
+    e0 : numeric
+        Void ratio [-].
+    kappa_elastic : numeric
+        Slope of the elastic line in e - ln p' [-].
+
+    Returns
+    -------
+    numeric
+        C_c [1/Pa].
+
+    References
+    ----------
+    .. [1] Morvan, M., Vernay, M. & Breul, P. (2016). Study of the variation of B with Sr. E-UNSAT 2016, eq. 5.
+    """
+    return kappa_elastic / ((1.0 + e0) * p0_eff)
+
+
+def b_skempton1954(S_R, p0_eff, e0, kappa_elastic, pa0, C_w=WATER_COMPRESSIBILITY):
+    r"""Skempton (1954): B = 1/(1 + n C_v/C_c) with the pore fluid a mixture of water and free air (Boyle's law).
+
+    Parameters
+    ----------
+    S_R : numeric
+        Degree of saturation [-].
+    p0_eff : numeric
+        Mean effective stress p'0 [Pa].
+    e0 : numeric
+        Void ratio [-].
+    kappa_elastic : numeric
+        Slope of the elastic line in e - ln p' [-].
+    pa0 : numeric
+        Absolute pore-air pressure [Pa].
+    C_w : numeric, optional
+        Compressibility of water [1/Pa].
+
+    Returns
+    -------
+    numeric
+        B [-].
+
+    Notes
+    -----
+    .. math::
+
+        B = \frac{1}{1 + n C_v / C_c},\quad n = \frac{e_0}{1 + e_0},\quad
+        C_v = S_r C_w + \frac{1 - S_r}{P_{a0}},\quad C_c = \frac{\kappa}{(1 + e_0) p'_0};
+
+    with C_w = 0 it is Morvan et al.'s eq. 10.
+
+    References
+    ----------
+    .. [1] Skempton, A. W. (1954). The pore-pressure coefficients A and B. Géotechnique 4(4), 143-147.
+       doi:10.1680/geot.1954.4.4.143
+    .. [2] Morvan, M., Vernay, M. & Breul, P. (2016), eq. 3 (the same relation) and eq. 5.
+    """
+    S = np.asarray(S_R, float)
+    n = e0 / (1.0 + e0)
+    C_v = S * C_w + (1.0 - S) / pa0
+    return 1.0 / (1.0 + n * C_v / skeleton_compressibility(p0_eff, e0, kappa_elastic))
+
+
+def b_hilf_lade(S_R, p0_eff, e0, kappa_elastic, pa0, C_w=WATER_COMPRESSIBILITY, H=HENRY_COEFFICIENT):
+    r"""Hilf (1948) as Lade & Hernandez (1977) use it: Skempton's B with air that dissolves (Henry's law).
+
+    Parameters
+    ----------
+    S_R : numeric
+        Degree of saturation [-].
+    p0_eff, e0, kappa_elastic, pa0 : numeric
+        As :func:`b_skempton1954` [Pa, -, -, Pa].
+    C_w : numeric, optional
+        Compressibility of water [1/Pa].
+    H : numeric, optional
+        Henry's volumetric coefficient of solubility [-] (0.02).
+
+    Returns
+    -------
+    numeric
+        B [-].
+
+    Notes
+    -----
+    .. math::
+
+        B = \frac{1}{1 + n C_v / C_c},\quad C_v = S_r C_w + \frac{1 - S_r + H S_r}{P_{a0}}
+
+    (the air dissolved in the pore water, H S_r of the voids at P_a0, is compressed with the free air, while free
+    air is left: at S_r = 1 the fluid is water alone, so B jumps to 1/(1 + n C_w/C_c) there).
+
+    References
+    ----------
+    .. [1] Hilf, J. W. (1948). Estimating construction pore pressures in rolled earth dams. Proc. 2nd ICSMFE,
+       Rotterdam, 3, 234-240.
+    .. [2] Lade, P. V. & Hernandez, S. B. (1977). Membrane penetration effects in undrained tests. J. Geotech.
+       Eng. Div. ASCE 103(GT2), 109-125.
+    """
+    S = np.asarray(S_R, float)
+    n = e0 / (1.0 + e0)
+    C_v = S * C_w + np.where(S < 1.0, (1.0 - S + H * S) / pa0, 0.0)  # no free air left at S_r = 1
+    return 1.0 / (1.0 + n * C_v / skeleton_compressibility(p0_eff, e0, kappa_elastic))
+
+
+def b_schuurman1966(
+    S_R,
+    p0_eff,
+    e0,
+    kappa_elastic,
+    pa0,
+    C_w=WATER_COMPRESSIBILITY,
+    H=HENRY_COEFFICIENT,
+    surface_tension=0.0728,
+    bubble_radius=BUBBLE_RADIUS,
+):
+    r"""Schuurman (1966): the air as bubbles of constant number, their pressure raised by surface tension.
+
+    Parameters
+    ----------
+    S_R : numeric
+        Degree of saturation [-] (the bubble model holds above about 0.85).
+    p0_eff, e0, kappa_elastic, pa0 : numeric
+        As :func:`b_skempton1954`; ``pa0`` is the absolute pore-water pressure here [Pa].
+    C_w, H : numeric, optional
+        Compressibility of water [1/Pa] and Henry's coefficient [-].
+    surface_tension : numeric, optional
+        Surface tension of water [N/m].
+    bubble_radius : numeric, optional
+        Radius r of the bubbles [m].
+
+    Returns
+    -------
+    numeric
+        B [-].
+
+    Notes
+    -----
+    A bubble's air pressure is P_w + 2 gamma / r; with Boyle's law on a bubble of constant number of molecules
+    (r ~ V^(1/3)) its compressibility with respect to the water pressure is 1 / (P_w + 4 gamma / (3 r)), so
+
+    .. math::
+
+        C_v = S_r C_w + \frac{1 - S_r + H S_r}{P_{w0} + 4\gamma/(3r)}
+
+    (capred's reading of Schuurman's bubble model for the instantaneous B; the paper itself was not at hand).
+    As r -> infinity it is :func:`b_hilf_lade`.
+
+    References
+    ----------
+    .. [1] Schuurman, I. E. (1966). The compressibility of an air/water mixture and a theoretical relation
+       between the air and water pressures. Géotechnique 16(4), 269-281. doi:10.1680/geot.1966.16.4.269
+    """
+    S = np.asarray(S_R, float)
+    n = e0 / (1.0 + e0)
+    C_v = S * C_w + np.where(S < 1.0, (1.0 - S + H * S) / (pa0 + 4.0 * surface_tension / (3.0 * bubble_radius)), 0.0)
+    return 1.0 / (1.0 + n * C_v / skeleton_compressibility(p0_eff, e0, kappa_elastic))
+
+
+@dataclass(frozen=True)
+class BRelation:
+    """One classical B(S_r) relation: a registry entry of :data:`SKEMPTON_RELATIONS`.
+
+    Attributes
+    ----------
+    name : str
+        Key (``--compare`` spelling, output column ``B_<name>``).
+    label : str
+        Figure legend.
+    reference : str
+        Key of capred.references.REFERENCES.
+    equation : str
+        What it computes.
+    b : callable
+        ``b(S_R, p0_eff, e0, kappa_elastic, pa0) -> B``.
+    """
+
+    name: str
+    label: str
+    reference: str
+    equation: str
+    b: Callable
+
+
+SKEMPTON_RELATIONS: dict[str, BRelation] = {
+    r.name: r
+    for r in (
+        BRelation(
+            "skempton1954",
+            "Skempton (1954)",
+            "skempton1954",
+            "B = 1/(1 + n C_v/C_c), C_v = S_r C_w + (1 − S_r)/P_a0, C_c = κ/((1 + e0) p'0) (Morvan et al. eq. 3, 5)",
+            b_skempton1954,
+        ),
+        BRelation(
+            "hilf_lade",
+            "Hilf (1948) / Lade & Hernandez (1977)",
+            "lade_hernandez1977",
+            "as Skempton with C_v = S_r C_w + (1 − S_r + H S_r)/P_a0, H = 0.02 (air dissolved by Henry's law)",
+            b_hilf_lade,
+        ),
+        BRelation(
+            "schuurman1966",
+            "Schuurman (1966)",
+            "schuurman1966",
+            "bubbles of constant number: C_v = S_r C_w + (1 − S_r + H S_r)/(P_a0 + 4γ/(3r)), r = 0.05 mm",
+            b_schuurman1966,
+        ),
+    )
+}
 
 
 def rumpf_capillary_pressure(shape_factor, void_ratio, S_R, diameter, surface_tension, contact_angle_deg):

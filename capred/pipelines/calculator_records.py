@@ -276,6 +276,9 @@ class SkemptonCurves(Cases):
     B_eq10, B_suction, B_bounding_NC, B_bounding_OC : ndarray or None
         B of the elastic skeleton (eq. 10), with suction equilibrium, and of the bounding-surface
         reconstruction normally and over-consolidated [-] (None: not asked for).
+    B_skempton1954, B_hilf_lade, B_schuurman1966 : ndarray or None
+        The classical relations of ``--compare`` (capred.physics.calculators.SKEMPTON_RELATIONS) on the same
+        skeleton [-].
 
     References
     ----------
@@ -287,6 +290,9 @@ class SkemptonCurves(Cases):
     B_suction: np.ndarray = case_value("B", output=True)
     B_bounding_NC: np.ndarray = case_value("B", output=True)
     B_bounding_OC: np.ndarray = case_value("B", output=True)
+    B_skempton1954: np.ndarray = case_value("B", output=True)
+    B_hilf_lade: np.ndarray = case_value("B", output=True)
+    B_schuurman1966: np.ndarray = case_value("B", output=True)
 
     def console_columns(self) -> dict[str, np.ndarray]:
         """``{header: array}``: S_R [-] then each model's B under its name (one symbol, several curves).
@@ -331,3 +337,40 @@ class RumpfCases(Cases):
     surface_tension: np.ndarray = case_value("surface_tension")
     contact_angle: np.ndarray = case_value("contact_angle")
     p_cap: np.ndarray = case_value("p_cap", output=True)
+
+
+@dataclass(frozen=True, eq=False)
+class ShearBandCases(Cases):
+    """`capred shear-band` per case: the classical shear-band angles beside a measured one.
+
+    Attributes
+    ----------
+    phi_eff : ndarray
+        Effective friction angle φ' [deg].
+    dilatancy_angle : ndarray or None
+        Dilatancy angle ψ [deg] (given, or from the dilatancy rate).
+    measured : ndarray or None
+        Measured angle of the band [deg] (NaN where none).
+    coulomb, roscoe, arthur : ndarray
+        45 + φ'/2, 45 + ψ/2 and 45 + (φ' + ψ)/4 [deg] (Roscoe and Arthur need ψ).
+    coulomb_minus_measured, arthur_minus_measured : ndarray or None
+        Differences to the measured angle [deg].
+
+    References
+    ----------
+    .. [1] Roscoe (1970), Géotechnique 20(2), 129-170; Arthur et al. (1977), Géotechnique 27(1), 53-74;
+       Prunier et al. (2024), Fig. 14 (measured 70 and 60 deg).
+    """
+
+    phi_eff: np.ndarray = case_value("phi_eff")
+    dilatancy_angle: np.ndarray = case_value("dilatancy_angle")
+    measured: np.ndarray = case_value("shear_band_angle")
+    coulomb: np.ndarray = case_value("shear_band_angle", output=True)
+    roscoe: np.ndarray = case_value("shear_band_angle", output=True)
+    arthur: np.ndarray = case_value("shear_band_angle", output=True)
+    coulomb_minus_measured: np.ndarray = case_value("shear_band_angle", output=True)
+    arthur_minus_measured: np.ndarray = case_value("shear_band_angle", output=True)
+
+    def console_columns(self) -> dict[str, np.ndarray]:
+        """``{header: array}``: each angle under its own name (one symbol, several angles)."""
+        return {f"{f.name} [deg]": np.asarray(getattr(self, f.name), float) for f in self.columns()}

@@ -19,7 +19,7 @@ from ..physics import calculators as calc
 from ..physics.shear import GAMMA_W, SURFACE_TENSION
 from ..references import cite
 from ..result import InputFile, Options, Result, input_file
-from .calculator_records import Cases, PrismCases, RumpfCases, SkemptonCases, SkemptonCurves
+from .calculator_records import Cases, PrismCases, RumpfCases, ShearBandCases, SkemptonCases, SkemptonCurves
 
 CASE = Column("case", "text", None, "case label")  # aliases: nomenclature.COLUMN_ALIASES
 
@@ -363,9 +363,24 @@ class SkemptonOptions(StableJsonKeys, Options):
     lambda0: float | None = None  # slope of the normal compression line (bounding-surface only; Table 3: 0.2)
     retention: str | None = None  # a fits.json of capred retention: s_e and the Brooks-Corey index from it
     curve: bool = False  # B against S_r over 0.5-1 for every model the options ask for, instead of cases
+    #: a compression.json of capred compression: kappa, e0 (and lambda0 with bounding-surface) from it
+    compression: str | None = None
+    #: the classical relations drawn beside eq. 10 with --curve (SKEMPTON_RELATIONS keys; "all" for every one)
+    compare: tuple = ()
 
     def __post_init__(self) -> None:
         super().__post_init__()
+        compare = (self.compare,) if isinstance(self.compare, str) else tuple(self.compare or ())
+        if compare == ("all",):
+            compare = tuple(calc.SKEMPTON_RELATIONS)
+        unknown = [c for c in compare if c not in calc.SKEMPTON_RELATIONS]
+        if unknown:
+            raise OptionError(
+                f"--compare: unknown relation(s) {', '.join(map(str, unknown))}; there are: "
+                + ", ".join(calc.SKEMPTON_RELATIONS)
+                + ", all"
+            )
+        object.__setattr__(self, "compare", compare)
         if self.model == "elastoplastic":
             raise OptionError(ELASTOPLASTIC_REFUSAL)
         if self.model not in SKEMPTON_MODELS:
@@ -434,6 +449,8 @@ def run_skempton_b(
     lambda0=None,
     retention=None,
     curve=False,
+    compression=None,
+    compare=(),
 ) -> CalcResult:
     """Morvan et al. (2016): B from the degree of saturation ``S_R`` [-] (eq. 10), or S_R from a measured B.
 
@@ -483,6 +500,10 @@ def run_skempton_b(
         A fits.json of `capred retention`.
     curve : bool, optional
         Give B against S_r for every model asked instead of the cases.
+    compression : str or Path, optional
+        A compression.json of `capred compression`: κ, e0 (and λ0 with bounding-surface) from it.
+    compare : tuple of str, optional
+        With ``curve``: classical relations drawn beside eq. 10 (keys of ``SKEMPTON_RELATIONS``, or "all").
 
     Returns
     -------
@@ -513,6 +534,8 @@ def run_skempton_b(
             lambda0,
             retention,
             curve,
+            compression,
+            compare,
         ),
     )
 
@@ -539,6 +562,8 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
        E3S Web of Conferences; eqs. 10, 13-24.
     """
     fit_notes, fit_warnings = [], []
+    if opt.compression is not None:
+        opt, fit_notes = _with_compression(opt)
     if opt.retention is not None:  # any retention fit: Brooks-Corey as it is, another model converted to it
         from .retention_convert import brooks_corey_for_skempton
 
@@ -548,7 +573,12 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
         opt = dataclasses.replace(opt, s_e=s_e, bc_lambda=lam)
     kw = dict(kappa=opt.kappa_elastic, e0=opt.e0, p0=opt.p0, u0=opt.u0, pa0=opt.pa0)  # keys: the figure's
     if opt.curve:
-        return skempton_curves(source, opt)
+        res = skempton_curves(source, opt)
+        res.warnings += fit_warnings
+        res.notes = list(res.notes) + fit_notes
+        return res
+    if opt.compare:
+        raise OptionError("--compare draws the classical relations beside eq. 10 on a curve: give it with --curve")
     bounding = None
     s_e, bc_lambda = opt.s_e, opt.bc_lambda
     if opt.model == "bounding-surface":
@@ -597,6 +627,29 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     return res
 
 
+def _with_compression(opt: SkemptonOptions) -> tuple[SkemptonOptions, list[str]]:
+    """κ and e0 (and λ0 with bounding-surface) from a compression.json; an error when the options give them too."""
+    from .compression import load_compression_fit
+
+    fields = {f.name: f.default for f in dataclasses.fields(SkemptonOptions)}
+    clash = [
+        name for name, key in (("--kappa-elastic", "kappa_elastic"), ("--e0", "e0")) if getattr(opt, key) != fields[key]
+    ]
+    if opt.model == "bounding-surface" and opt.lambda0 is not None:
+        clash.append("--lambda0")
+    if clash:
+        raise OptionError(f"give --compression or {', '.join(clash)}, not both")
+    lines = load_compression_fit(opt.compression)
+    if lines.url_slope is None:
+        raise OptionError(f"--compression {lines.source}: the test has no unloading stage, so no κ for skempton-b")
+    new = {"kappa_elastic": lines.url_slope, "e0": lines.e0}
+    text = f"κ = {lines.url_slope:.4g} and e0 = {lines.e0:.4g}"
+    if opt.model == "bounding-surface":
+        new["lambda0"] = lines.ncl_slope
+        text += f" and λ0 = {lines.ncl_slope:.4g}"
+    return dataclasses.replace(opt, **new), [f"{text} from the compression test {lines.source}"]
+
+
 #: degrees of saturation of `skempton-b --curve` (the range of Morvan et al.'s 2016 figures)
 CURVE_S_R = np.round(np.linspace(0.5, 1.0, 101), 10)
 
@@ -641,6 +694,10 @@ def skempton_curves(source, opt: SkemptonOptions) -> CalcResult:
         raise OptionError("give both --se and --bc-lambda for the suction-equilibrium simulation, or neither")
     outputs = {"B_eq10": calc.skempton_b(S, p0 - u0, e0, k, pa0)}
     names = [f"B_eq10: elastic skeleton ({cite('morvan2016', 'eq. 10')})"]
+    for key in opt.compare:  # the classical relations on the same skeleton (the paper's comparison)
+        rel = calc.SKEMPTON_RELATIONS[key]
+        outputs[f"B_{key}"] = rel.b(S, p0 - u0, e0, k, pa0)
+        names.append(f"B_{key}: {rel.label} ({cite(rel.reference)}): {rel.equation}")
     if s_e is not None:
         outputs["B_suction"] = calc.skempton_b_suction(S, p0, u0, e0, k, pa0, s_e, bc_lambda)
         names.append(
@@ -812,15 +869,27 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
             inputs=[input_file(source, table)] if source is not None else [],
         )
     if bounding is not None:
+        root_warnings: list[str] = []
 
-        def solve(bi, *c):
+        def solve(row, bi, *c):
             path = _bounding_b(None, *c, s_e, bc_lambda, bounding)
-            Bp, Sp = path.B[::-1], path.S_R[::-1]  # increasing S_r
-            if np.any(np.diff(Bp) <= 0) or not Bp[0] <= bi <= Bp[-1]:
+            roots = b_roots(path.S_R, path.B, bi)
+            where = f"row {row + 1}: " if len(cases) > 1 else ""
+            if not roots:
+                notes.append(
+                    f"{where}B = {bi:g} is not reached on the drying path from S_r = 1 to {path.S_R.min():g} "
+                    f"(B spans {np.nanmin(path.B):.4g} to {np.nanmax(path.B):.4g} there): no S_r"
+                )
                 return np.nan
-            return float(np.interp(bi, Bp, Sp))
+            if len(roots) > 1:
+                root_warnings.append(
+                    f"{where}B = {bi:g} is reached at {len(roots)} degrees of saturation on the drying path "
+                    f"(S_r = {', '.join(f'{r:.4f}' for r in roots)}): B is not monotonic in S_r along it; "
+                    f"S_r = {roots[0]:.4f}, the root nearest saturation, is given"
+                )
+            return roots[0]
 
-        S = np.array([solve(bi, *c) for bi, c in zip(v["B"], cases)])
+        S = np.array([solve(i, bi, *c) for i, (bi, c) in enumerate(zip(v["B"], cases))])
     elif suction:
         from scipy.optimize import brentq
 
@@ -832,7 +901,7 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
         S = np.array([solve(*args) for args in zip(v["B"], *zip(*cases))])
     else:
         S = calc.saturation_from_b(v["B"], p_eff, v["e0"], v["kappa"], v["pa0"])
-    if np.any(~np.isfinite(S) | (S < 0)):
+    if bounding is None and np.any(~np.isfinite(S) | (S < 0)):
         notes.append("some B values are below what these parameters give for dry soil: S_r is outside [0, 1] there")
     return CalcResult(
         "skempton-b",
@@ -841,12 +910,46 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
         notes,
         labels,
         title=_B_TITLE,
-        warnings=table.warnings if table is not None else [],
+        warnings=(list(table.warnings) if table is not None else []) + (root_warnings if bounding is not None else []),
         inputs=[input_file(source, table)] if source is not None else [],
     )
 
 
 _B_TITLE = f"Skempton's B and the degree of saturation ({cite('morvan2016', 'eq. 10')})"
+
+
+def b_roots(S_R, B, b) -> list[float]:
+    """Every degree of saturation where a path's B(S_r) equals ``b``, nearest saturation first.
+
+    Each crossing of ``b`` between two neighbouring points of the path (or a point equal to it) gives one root,
+    placed by linear interpolation between them (the path's step, 1e-3 in S_r, bounds its error).
+
+    Parameters
+    ----------
+    S_R : array_like
+        Degrees of saturation of the path [-], in any order.
+    B : array_like
+        B at each [-].
+    b : float
+        The measured B [-].
+
+    Returns
+    -------
+    list of float
+        The roots, in decreasing S_r (empty when ``b`` is not reached).
+
+    References
+    ----------
+    .. [1] Morvan, M., Vernay, M., Breul, P. (2016). E-UNSAT 2016, section 4: B along a drying path.
+    """
+    S = np.asarray(S_R, float)
+    Bv = np.asarray(B, float)
+    order = np.argsort(-S)
+    S, d = S[order], Bv[order] - b
+    roots = [float(S[i]) for i in np.flatnonzero(d == 0.0)]
+    for i in np.flatnonzero(d[:-1] * d[1:] < 0):
+        roots.append(float(S[i] + (S[i + 1] - S[i]) * d[i] / (d[i] - d[i + 1])))
+    return sorted(set(roots), reverse=True)
 
 
 RUMPF = [
@@ -1003,3 +1106,140 @@ __all__ = [
     "InputError",
     "Problem",
 ]
+
+
+SHEAR_BAND = [
+    Column("phi_eff", "angle", "deg", "effective friction angle phi'", ("phi", "friction_angle", "phi_deg"), None),
+    Column("dilatancy_angle", "angle", "deg", "dilatancy angle psi", ("psi", "psi_deg"), None),
+    Column("dilatancy_rate", "dimensionless", "-", "-d eps_v/d eps_1 at failure", ("dilation_rate",), None),
+    Column(
+        "shear_band_angle",
+        "angle",
+        "deg",
+        "measured angle of the band to the major principal plane",
+        ("band_angle", "measured_angle", "shear_band"),
+        None,
+    ),
+]
+
+
+@dataclass(frozen=True)
+class ShearBandOptions(Options):
+    """Options of `capred shear-band`.
+
+    Attributes
+    ----------
+    phi_eff : float, optional
+        Effective friction angle φ' [deg] (or ``triaxial``).
+    dilatancy_angle : float, optional
+        Dilatancy angle ψ [deg].
+    dilatancy_rate : float, optional
+        −dε_v/dε_1 at failure [-], instead of ψ (sin ψ = d/(2 + d)).
+    measured : float, optional
+        Measured angle of the band to the major principal plane [deg].
+    triaxial : str, optional
+        summary.json of `capred triaxial-bounds`: φ' of its fitted envelope.
+    """
+
+    QUANTITIES = {"phi_eff": "phi_eff", "dilatancy_angle": "dilatancy_angle", "measured": "shear_band_angle"}
+
+    phi_eff: float | None = None
+    dilatancy_angle: float | None = None
+    dilatancy_rate: float | None = None
+    measured: float | None = None
+    triaxial: str | None = None
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if self.dilatancy_angle is not None and self.dilatancy_rate is not None:
+            raise OptionError("give --dilatancy-angle or --dilatancy-rate, not both")
+        if self.phi_eff is not None and self.triaxial is not None:
+            raise OptionError("give --phi-eff or --triaxial (the envelope's phi'), not both")
+
+
+def _phi_from_triaxial(path) -> float:
+    import json
+    from pathlib import Path
+
+    where = str(path)
+    try:
+        doc = json.loads(Path(path).read_text(encoding="utf-8"))
+        phi = float(doc["envelope"]["phi_deg"])
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise InputError(
+            Problem(where, None, None, f"not a summary.json of capred triaxial-bounds with an envelope ({exc})")
+        ) from None
+    return phi
+
+
+def reduce_shear_band(source, opt: ShearBandOptions) -> CalcResult:
+    """The classical shear-band angles (Coulomb, Roscoe, Arthur) per case, beside the measured one.
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame or None
+        Optional table of cases (phi, dilatancy_angle or dilatancy_rate, shear_band_angle, case).
+    opt : ShearBandOptions
+        φ' (or a triaxial-bounds summary.json), ψ or the dilatancy rate, the measured angle [deg].
+
+    Returns
+    -------
+    CalcResult
+        Per case: the angles [deg] and their differences to the measured one.
+
+    References
+    ----------
+    .. [1] Roscoe (1970); Arthur et al. (1977); Prunier et al. (2024), Fig. 14.
+    """
+    from ..physics import shear_band as sb
+
+    phi_eff = opt.phi_eff
+    notes_extra = []
+    if opt.triaxial is not None:
+        phi_eff = _phi_from_triaxial(opt.triaxial)
+        notes_extra.append(f"φ' = {phi_eff:.4g} deg from the envelope of {opt.triaxial}")
+    v, notes, src = _inputs(
+        source,
+        SHEAR_BAND,
+        {
+            "phi_eff": phi_eff,
+            "dilatancy_angle": opt.dilatancy_angle,
+            "dilatancy_rate": opt.dilatancy_rate,
+            "shear_band_angle": opt.measured,
+        },
+        optional=("dilatancy_angle", "dilatancy_rate", "shear_band_angle"),
+    )
+    table = v.pop("_table", None)
+    labels = _labels(v)
+    psi = v["dilatancy_angle"].copy()
+    from_rate = np.isnan(psi) & np.isfinite(v["dilatancy_rate"])
+    psi[from_rate] = sb.dilatancy_angle_triaxial(v["dilatancy_rate"][from_rate])
+    if from_rate.any():
+        notes_extra.append("ψ from the dilatancy rate d = −dε_v/dε_1: sin ψ = d/(2 + d)")
+    if np.all(np.isnan(psi)):
+        notes_extra.append("no dilatancy angle: Roscoe's and Arthur's angles need ψ (--dilatancy-angle or -rate)")
+    measured = v["shear_band_angle"]
+    coulomb, roscoe = sb.coulomb_angle(v["phi_eff"]), sb.roscoe_angle(psi)
+    arthur = sb.arthur_angle(v["phi_eff"], psi)
+    has_m = bool(np.any(np.isfinite(measured)))
+    cases = ShearBandCases(
+        phi_eff=v["phi_eff"],
+        dilatancy_angle=psi if np.any(np.isfinite(psi)) else None,
+        measured=measured if has_m else None,
+        coulomb=coulomb,
+        roscoe=roscoe,
+        arthur=arthur,
+        coulomb_minus_measured=coulomb - measured if has_m else None,
+        arthur_minus_measured=arthur - measured if has_m else None,
+    )
+    return _finish(
+        "shear-band",
+        f"Shear-band angles: Coulomb 45 + φ'/2, {cite('roscoe1970')} 45 + ψ/2, {cite('arthur1977')} 45 + (φ' + ψ)/4",
+        cases,
+        src,
+        list(notes) + notes_extra,
+        labels,
+        opt,
+        source,
+        table,
+    )

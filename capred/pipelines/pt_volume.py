@@ -77,6 +77,9 @@ class PTVolumeOptions(Options):
         (both parts on their ncl, the end of compaction).
     substeps : int, optional
         Sub-steps per step between two points; default: automatic (|ΔS_r| ≤ 0.002, |Δ ln σ'| ≤ 0.02).
+    compression_W, compression_A : str, optional
+        compression.json of `capred compression` on the clay reconstituted from slurry (W) or compressed from dry
+        powder (A): λ, κ and e_ncl (moved to ``reference_stress``) of the part whose options are not given.
     """
 
     QUANTITIES = {
@@ -103,6 +106,8 @@ class PTVolumeOptions(Options):
     initial_yield_W: float | None = None
     initial_yield_A: float | None = None
     substeps: int | None = None
+    compression_W: str | None = None
+    compression_A: str | None = None
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -114,16 +119,51 @@ class PTVolumeOptions(Options):
             raise OptionError(f"substeps (--substeps) must be a whole number from 1 to 100000 (got {self.substeps!r})")
         if not isinstance(self.example_kaolin, bool):
             raise OptionError(f"example_kaolin (--example-kaolin) must be True or False (got {self.example_kaolin!r})")
-        if all(getattr(self, k) is not None for k in LINE_OPTIONS) or self.example_kaolin:
+        if self.compression_W is not None or self.compression_A is not None:
+            object.__setattr__(self, "_from_fits", self._lines_from_compression())
+        if all(self._line(k) is not None for k in LINE_OPTIONS) or self.example_kaolin:
             self.parameters()  # kappa < lambda and the other joint checks, at once
+
+    def _lines_from_compression(self) -> dict:
+        """λ, κ, e_ncl of each part given by a compression.json (e_ncl moved to the run's reference stress)."""
+        from .compression import load_compression_fit
+
+        out = {}
+        for part, path in (("W", self.compression_W), ("A", self.compression_A)):
+            if path is None:
+                continue
+            given = [
+                LINE_OPTIONS[k]
+                for k in (f"lambda_{part}", f"kappa_{part}", f"e_ncl_{part}")
+                if getattr(self, k) is not None
+            ]
+            if given:
+                raise OptionError(f"give --compression-{part.lower()} or {', '.join(given)}, not both")
+            lines = load_compression_fit(path)
+            if lines.url_slope is None:
+                raise OptionError(
+                    f"--compression-{part.lower()} {lines.source}: the test has no unloading stage, so no κ_{part}"
+                )
+            out[f"lambda_{part}"] = lines.ncl_slope
+            out[f"kappa_{part}"] = lines.url_slope
+            out[f"e_ncl_{part}"] = lines.e_ncl_at(self.reference_stress)
+        return out
+
+    def _line(self, k: str):
+        v = getattr(self, k)
+        return v if v is not None else getattr(self, "_from_fits", {}).get(k)
+
+    def from_compression(self) -> list[str]:
+        """The line parameters taken from a compression.json (empty without one)."""
+        return list(getattr(self, "_from_fits", {}))
 
     def illustrative(self) -> list[str]:
         """The line parameters taken from EXAMPLE_KAOLIN (empty unless ``example_kaolin``)."""
-        return [k for k in LINE_OPTIONS if getattr(self, k) is None] if self.example_kaolin else []
+        return [k for k in LINE_OPTIONS if self._line(k) is None] if self.example_kaolin else []
 
     def parameters(self) -> pt.PTVolumeParameters:
         """The lines of the run; OptionError naming every missing option when some are not given."""
-        missing = [k for k in LINE_OPTIONS if getattr(self, k) is None]
+        missing = [k for k in LINE_OPTIONS if self._line(k) is None]
         if missing and not self.example_kaolin:
             raise OptionError(
                 "the volume-change model of Pedrotti & Tarantino needs the compressibility lines of the clay "
@@ -133,8 +173,7 @@ class PTVolumeOptions(Options):
                 "default 1 kPa), or --example-kaolin for illustrative kaolin values"
             )
         values = {
-            k: (getattr(self, k) if getattr(self, k) is not None else getattr(pt.EXAMPLE_KAOLIN, k))
-            for k in LINE_OPTIONS
+            k: (self._line(k) if self._line(k) is not None else getattr(pt.EXAMPLE_KAOLIN, k)) for k in LINE_OPTIONS
         }
         return pt.PTVolumeParameters(**values, reference_stress=self.reference_stress)
 
@@ -576,6 +615,9 @@ def run_pt_volume(source, options: PTVolumeOptions | None = None) -> PTVolumeRes
     stages = stage_runs(stage, path.e, path.e_W, path.e_A) if stage is not None else []
 
     warnings = list(opt.warnings) + list(table.warnings)
+    for part, fit_file in (("W", opt.compression_W), ("A", opt.compression_A)):
+        if fit_file is not None:
+            notes.append(f"λ_{part}, κ_{part}, e_ncl,{part} from the compression test {fit_file}")
     if opt.illustrative():
         warnings.append(
             "lines " + ", ".join(opt.illustrative()) + " are EXAMPLE_KAOLIN: illustrative values for "

@@ -101,12 +101,18 @@ _CURVE_STYLE = {
     "B_suction": dict(color=OKABE_ITO["blue"], ls="--"),
     "B_bounding_NC": dict(color=OKABE_ITO["vermillion"], ls="-."),
     "B_bounding_OC": dict(color=OKABE_ITO["green"], ls=":"),
+    "B_skempton1954": dict(color=OKABE_ITO["sky"], ls=(0, (1, 1)), lw=2.0),
+    "B_hilf_lade": dict(color=OKABE_ITO["orange"], ls="--"),
+    "B_schuurman1966": dict(color=OKABE_ITO["purple"], ls="-."),
 }
 _CURVE_LABEL = {
     "B_eq10": "eq. 10, elastic (Fig. 1)",
     "B_suction": "suction equilibrium (Fig. 5)",
     "B_bounding_NC": "bounding-surface reconstr., NC (Fig. 6)",
     "B_bounding_OC": "bounding-surface reconstr., OC (Fig. 6)",
+    "B_skempton1954": "Skempton (1954), eq. 3",
+    "B_hilf_lade": "Hilf (1948) / Lade & Hernandez (1977)",
+    "B_schuurman1966": "Schuurman (1966), bubbles",
 }
 
 
@@ -123,7 +129,8 @@ def plot_curves(ax, curves: dict):
     S = curves["S_r"]
     for key, B in curves.items():
         if key != "S_r":
-            ax.plot(S, B, label=_CURVE_LABEL.get(key, key), lw=1.3, **_CURVE_STYLE.get(key, {}))
+            style = {"lw": 1.3, **_CURVE_STYLE.get(key, {})}
+            ax.plot(S, B, label=_CURVE_LABEL.get(key, key), **style)
     ax.set_xlim(0.5, 1.0)
     return _axes(ax, r"B against $S_r$ by model (Morvan et al. 2016, Fig. 1, 5, 6)")
 

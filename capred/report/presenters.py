@@ -134,6 +134,7 @@ PRESENTERS: dict[str, Presenter] = {
     "prism": Presenter(_calc_figures, _lazy("calculator_tables", "calc_tables")),
     "skempton-b": Presenter(_calc_figures, _lazy("calculator_tables", "calc_tables")),
     "rumpf": Presenter(_calc_figures, _lazy("calculator_tables", "calc_tables")),
+    "shear-band": Presenter(_none, _lazy("calculator_tables", "calc_tables")),
     "history": Presenter(
         _one("history_figures", "sheet_history", "control_chart"), _lazy("history_figures", "history_tables")
     ),
@@ -151,6 +152,10 @@ PRESENTERS: dict[str, Presenter] = {
     "bridge yade-files": Presenter(_none, _yade_tables),
     "bridge laws": Presenter(
         _one("bridge_laws_figures", "sheet_laws", "laws"), _lazy("bridge_tables", "bridge_laws_tables")
+    ),
+    "compression": Presenter(
+        _one("compression_figures", "sheet_compression", "compression"),
+        _lazy("compression_figures", "compression_tables"),
     ),
     "pt-volume": Presenter(
         _one("pt_volume_figures", "sheet_pt_volume", "pt_volume"), _lazy("pt_volume_tables", "pt_volume_tables")

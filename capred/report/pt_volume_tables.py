@@ -27,7 +27,12 @@ def pt_volume_tables(result) -> list[TableSpec]:
     )
     for part, name in (("W", "W (reconstituted from slurry)"), ("A", "A (compressed from dry powder)")):
         keys = (f"lambda_{part}", f"kappa_{part}", f"e_ncl_{part}")
-        source = "EXAMPLE_KAOLIN (illustrative)" if any(k in illustrative for k in keys) else "options"
+        fitted = result.options.from_compression()
+        source = (
+            "EXAMPLE_KAOLIN (illustrative)"
+            if any(k in illustrative for k in keys)
+            else ("compression test" if any(k in fitted for k in keys) else "options")
+        )
         lines.rows.append(
             [name, *(fmt(num(getattr(par, k))) for k in keys), fmt(num(par.reference_stress / 1e3)), source]
         )
