@@ -495,10 +495,8 @@ def run_retention_convert(source, options: ConvertOptions | None = None) -> Rete
         list(new.notes),
         inputs,
         warnings,
-        None,
-        None,
-        src,
-        misfit,
+        source_fit=src,
+        misfit=misfit,
     )
 
 
