@@ -64,7 +64,8 @@ def vg_effective_saturation(s, vg_alpha, vg_n, vg_m=None):
     van Genuchten (1980), doi:10.2136/sssaj1980.03615995004400050002x, eq. 3.
     """
     m = 1.0 - 1.0 / np.asarray(vg_n, float) if vg_m is None else vg_m
-    return (1.0 + (vg_alpha * np.maximum(np.asarray(s, float), 0.0)) ** vg_n) ** (-m)
+    with np.errstate(over="ignore"):  # (αs)^n beyond the float range: S_e = 0, its limit
+        return (1.0 + (vg_alpha * np.maximum(np.asarray(s, float), 0.0)) ** vg_n) ** (-m)
 
 
 def vg_water(s, y_r, y_s, vg_alpha, vg_n, vg_m=None):
