@@ -531,7 +531,7 @@ def convert_fit(fit: RetentionFit, to: str, points: int = GRID_POINTS, fixed: di
         f"{misfit['max_deviation']:.3g}{unit and ' '}{unit} at {s[i] * 1e-3:.4g} kPa; standard errors do not apply "
         "to a converted curve"
     )
-    scale = fit.params_si.get("y_s", 1.0) if fit.quantity == "theta" else 1.0
+    scale = fit.params_si.get("y_s", 1.0) if fit.quantity in ("theta", "w") else 1.0  # θ/θ_s, w/w_s ~ S_R
     warns = []
     if misfit["max_deviation"] / scale > MISFIT_WARNING:
         warns.append(
@@ -692,7 +692,7 @@ def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W) -> tuple[float, fl
             f"--retention {where}: {target.label} fit taken as it is: s_e = {p[air] * 1e-3:.4g} kPa, λ = {p[index]:.4g}"
         ]
         warns = []
-        s_res = p["y_r"] / p["y_s"] if src.quantity == "theta" else p["y_r"]
+        s_res = p["y_r"] / p["y_s"] if src.quantity in ("theta", "w") else p["y_r"]
         if s_res > 0.01 or (src.quantity == "S_R" and abs(p["y_s"] - 1) > 0.01):
             warns.append(
                 f"--retention {where}: the {target.label} fit has S_res = {s_res:.3g}"
@@ -700,7 +700,8 @@ def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W) -> tuple[float, fl
                 + "; Morvan et al.'s s = s_e S_r^(-1/λ) takes S_r itself (S_res = 0, S_s = 1)"
             )
         return p[air], p[index], notes, warns
-    sr = _as_saturation(src) if src.quantity == "theta" else src  # the curve in S_R: θ/θ_s for a θ fit
+    # the curve in S_R: θ/θ_s for a θ fit, w/w_s for a w fit (S_R = w G_s/e at the specimen's constant e)
+    sr = _as_saturation(src) if src.quantity in ("theta", "w") else src
     new, misfit = convert_fit(sr, target.name, fixed={"y_r": 0.0, "y_s": 1.0})
     p = new.params_si
     notes = [
