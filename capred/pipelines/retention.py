@@ -876,6 +876,11 @@ def scanning_curves(s, y, branch, direction, turning, fits, hyst=None) -> tuple[
         tss = float(np.sum((y[idx] - y[idx].mean()) ** 2))
         r2 = 1.0 - float(np.sum(res**2)) / tss if tss > 0 and np.isfinite(rmse) else float("nan")
         out.append(ScanningCurve(name, idx, float(s[r]), float(y[r]), s_c, y_c, model, pred, rmse, r2, m))
+        if not np.all(np.isfinite(pred)):
+            warns.append(
+                f"{where}: the main {name} curve ({model}) is flat between the reversal at {s[r] * 1e-3:.4g} kPa and "
+                "the closure of the loop, so it cannot be scaled through both: no scanning curve is predicted"
+            )
         if idx.size >= 3 and np.isfinite(r2) and r2 < R2_WARNING:
             warns.append(
                 f"{where}: the scanning curve scaled from the main {name} curve ({model}) through the reversal at "
