@@ -344,7 +344,11 @@ class RetentionResult(Result):
 
     ``fits[branch][model]`` is a :class:`capred.fitting.retention_models.RetentionFit` (callable; ``.params`` by
     JSON name in the JSON's units, ``.summary()``); :meth:`fit_records` and :meth:`points` are the typed
-    records the tables, CSV files and console read.
+    records the tables, CSV files and console read. ``unfitted`` maps a branch too short to fit to the reason;
+    ``direction`` (+1/-1 per reading) and ``turning`` (indices of the reversals inferred, empty when the branches
+    came from a column or ``--branches single``) come from
+    :func:`capred.pipelines.retention_branches.infer_branches`; ``scanning`` lists the :class:`ScanningCurve`
+    of the readings labelled ``scanning``.
     """
 
     command = "retention"
@@ -1174,6 +1178,6 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
         weights,
         unfitted,
         found.direction,
-        found.turning,
+        found.turning if how.startswith("inferred") else (),
         scans,
     )
