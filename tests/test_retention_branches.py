@@ -214,3 +214,19 @@ def test_cli_branches_single(tmp_path):
     )
     assert res.exit_code == 0, res.output
     assert json.loads((out / "fits.json").read_text(encoding="utf-8"))["branch_source"].startswith("--branches")
+
+
+def test_first_order_drying_curve_closes_at_the_dry_end():
+    """A drying curve from the main wetting curve at 3 kPa (θ_w(3) = 0.05 + 0.4 (1 + 0.36)^-0.5 = 0.393) closes at
+    s → ∞ on θ_r = 0.05: at the reversal it equals the reversal's θ, far beyond it θ_r, and it lies below the main
+    drying curve it scales (θ_d(30 kPa) = 0.176491) and above the main wetting one between."""
+
+    def main_drying(s):
+        return rp.vg_water(s, 0.05, 0.45, 1e-4, 2.0)
+
+    y_rev = float(rp.vg_water(3e3, 0.05, 0.45, 2e-4, 2.0))
+    assert y_rev == pytest.approx(0.05 + 0.4 / np.sqrt(1.36), abs=1e-12)
+    s = np.array([3e3, 30e3, 1e12])
+    y = rp.scanning_water(s, main_drying, 3e3, y_rev, np.inf, float(main_drying(1e15)))
+    assert y[0] == pytest.approx(y_rev, abs=1e-12) and y[2] == pytest.approx(0.05, abs=1e-6)
+    assert rp.vg_water(30e3, 0.05, 0.45, 2e-4, 2.0) < y[1] < 0.176491

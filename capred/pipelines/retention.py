@@ -770,14 +770,19 @@ class ScanningCurve:
         return scanning_water(s, self.main, self.s_reversal, self.y_reversal, self.s_closure, self.y_closure)
 
     def json(self) -> dict:
-        """The curve in fits.json: direction, readings (1-based), reversal and closure points [kPa], model, RMSE,
-        R²."""
+        """The curve in fits.json: direction, readings (1-based), reversal and closure points [kPa] (null at the dry
+        end, s → ∞; ``closes_at`` says where), model, RMSE, R²."""
         return {
             "direction": self.direction,
             "readings": [int(i) + 1 for i in self.index],
             "reversal_kPa": num(self.s_reversal * 1e-3),
             "reversal_water": num(self.y_reversal),
-            "closure_kPa": num(self.s_closure * 1e-3) if np.isfinite(self.s_closure) else "inf",
+            "closure_kPa": num(self.s_closure * 1e-3) if np.isfinite(self.s_closure) else None,
+            "closes_at": "dry end"
+            if not np.isfinite(self.s_closure)
+            else "wet end"
+            if self.s_closure == 0
+            else ("previous reversal"),
             "closure_water": num(self.y_closure),
             "main_model": self.main_model,
             "rmse": num(self.rmse),
