@@ -230,3 +230,15 @@ def test_first_order_drying_curve_closes_at_the_dry_end():
     y = rp.scanning_water(s, main_drying, 3e3, y_rev, np.inf, float(main_drying(1e15)))
     assert y[0] == pytest.approx(y_rev, abs=1e-12) and y[2] == pytest.approx(0.05, abs=1e-6)
     assert rp.vg_water(30e3, 0.05, 0.45, 2e-4, 2.0) < y[1] < 0.176491
+
+
+def test_cli_public_evaporation_record_as_downloaded(tmp_path):
+    """unsatfit's file as it is (header 'h,theta': h read as a head in cm): one drying branch of 108 readings."""
+    out = tmp_path / "r"
+    res = runner.invoke(
+        app, ["retention", str(RECORDS / "unsatfit_il_sandstone.csv"), "--model", "vg", "--out", str(out), "--no-plots"]
+    )
+    assert res.exit_code == 0, res.output
+    doc = json.loads((out / "fits.json").read_text(encoding="utf-8"))
+    assert list(doc["branches"]) == ["drying"] and doc["branches"]["drying"]["n_points"] == 108
+    assert "reversals_kPa" not in doc
