@@ -28,7 +28,14 @@ from ..parameters import Parameters
 from ..physics.shear import GAMMA_W
 from ..references import cite
 from ..result import InputFile, Options, Result, columns_of_rows, csv_header, input_file, num, with_csv_headers
-from .retention_branches import LABELS, REVERSAL_RANGE, REVERSAL_RELATIVE, infer_branches, single_direction
+from .retention_branches import (
+    LABELS,
+    REVERSAL_RANGE,
+    REVERSAL_RELATIVE,
+    infer_branches,
+    reversal_points,
+    single_direction,
+)
 
 SCHEMA = [
     Column("suction", "pressure", "kPa", "suction", ("s", "matric_suction", "delta_u", "ua_uw"), "nonnegative"),
@@ -858,7 +865,7 @@ def scanning_curves(s, y, branch, direction, turning, fits, hyst=None) -> tuple[
             runs.append(cur)
             cur = [int(i)]
     runs.append(cur)
-    reversals = [(0, -int(direction[0]))] + [(int(t), int(direction[t])) for t in turning]
+    reversals = reversal_points(direction, turning)
     out, warns = [], []
     for run in runs:
         idx = np.array(run)
@@ -1055,7 +1062,7 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
         )
     found = infer_branches(s, opt.reversal_relative, opt.reversal_range)
     if opt.branches == "single":
-        one = single_direction(s)
+        one = single_direction(s, opt.reversal_relative, opt.reversal_range)
         branch = np.full(s.size, one, dtype=object)
         how = f"--branches single: every reading on one {one} curve"
         if "branch" in table.columns:

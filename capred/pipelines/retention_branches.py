@@ -169,33 +169,33 @@ def infer_branches(s, relative: float = REVERSAL_RELATIVE, of_range: float = REV
     return Branches(label, direction, seg, turning, against, (relative, of_range))
 
 
-def single_direction(s) -> str:
+def single_direction(s, relative: float = REVERSAL_RELATIVE, of_range: float = REVERSAL_RANGE) -> str:
     """``drying`` or ``wetting``: the direction of the longest run of a record (for ``--branches single``).
 
     Parameters
     ----------
     s : array_like
         Suction of each reading in time order [Pa].
+    relative, of_range : float
+        The noise tolerance (:data:`REVERSAL_RELATIVE`, :data:`REVERSAL_RANGE`).
 
     Returns
     -------
     str
         The label all readings take.
     """
-    direction, seg, _ = segments(s)
+    direction, seg, _ = segments(s, relative, of_range)
     if direction.size == 0:
         return "drying"
     counts = np.bincount(seg)
     return "drying" if direction[np.flatnonzero(seg == int(np.argmax(counts)))[0]] > 0 else "wetting"
 
 
-def reversal_points(s, y, direction, turning) -> list[tuple[int, int]]:
+def reversal_points(direction, turning) -> list[tuple[int, int]]:
     """The reversal points a record passed, with their kind, for the closure of scanning curves.
 
     Parameters
     ----------
-    s, y : array_like
-        Suction [Pa] and water quantity of the readings.
     direction : ndarray of int
         +1/-1 per reading.
     turning : sequence of int
