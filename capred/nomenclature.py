@@ -66,6 +66,8 @@ QUANTITIES: dict[str, Quantity] = {
     "vg_n": Quantity("n", "-", 1.0, "dimensionless", "van Genuchten n", 1.0, None, True),
     "vg_m": Quantity("m", "-", 1.0, "dimensionless", "van Genuchten m", 0.0, 1.0, True),
     "S_res": Quantity("S_res", "-", 1.0, "dimensionless", "residual degree of saturation", 0.0, 1.0, False, True),
+    "w_s": Quantity("w_s", "-", 1.0, "dimensionless", "saturated water content by mass of a w(s) fit", 0.0),
+    "w_r": Quantity("w_r", "-", 1.0, "dimensionless", "residual water content by mass of a w(s) fit", 0.0),
     "vanapalli_kappa": Quantity("κ", "-", 1.0, "dimensionless", "exponent κ of χ = S_e^κ (Vanapalli)", 0.0, None, True),
     "khalili_eta": Quantity(
         "η", "-", 1.0, "dimensionless", "exponent η of χ = (s/s_b)^−η (Khalili-Khabbaz)", 0.0, None, True

@@ -124,6 +124,20 @@ REFERENCES: dict[str, Reference] = {
         "Water Resour. Res. 23(1):105-114",
         "10.1029/WR023i001p00105",
     ),
+    "parker_lenhard1987": Reference(
+        "Parker & Lenhard",
+        1987,
+        "A model for hysteretic constitutive relations governing multiphase flow: 1. Saturation-pressure relations",
+        "Water Resour. Res. 23(12):2187-2196",
+        "10.1029/WR023i012p02187",
+    ),
+    "mualem1974": Reference(
+        "Mualem",
+        1974,
+        "A conceptual model of hysteresis",
+        "Water Resour. Res. 10(3):514-520",
+        "10.1029/WR010i003p00514",
+    ),
     "vanapalli1996": Reference(
         "Vanapalli et al.",
         1996,

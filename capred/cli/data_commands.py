@@ -326,6 +326,9 @@ def retention(
         help="kool-parker: fit the drying and wetting branches jointly (shared theta_s, theta_r, n; alpha_d, alpha_w).",
     ) = None,
     rho_w: option(RETENTION, "rho_w", note="for theta = w rho_d/rho_w") = None,
+    branches: option(RETENTION, "branches", metavar="auto|single") = None,
+    reversal_relative: option(RETENTION, "reversal_relative", metavar="FRACTION") = None,
+    reversal_range: option(RETENTION, "reversal_range", metavar="FRACTION") = None,
     fix: Annotated[
         list[str] | None,
         typer.Option(help="Fix a parameter, e.g. --fix theta_s=0.25 (alpha in 1/kPa, s_e in kPa); repeatable."),
@@ -338,8 +341,12 @@ def retention(
     standard errors, 95 % intervals, correlations, R^2, RMSE, AIC, AICc, BIC
     and a model-selection table; --hysteresis kool-parker fits both branches
     jointly. Suction as a pressure, a head or pF; water as theta, S_R, or w
-    with rho_d; an optional 'weight' column. Branches come from a 'branch'
-    column or, without one, from the order of readings (rising suction = drying).
+    with rho_d, or w alone (a w(s) fit); an optional 'weight' column. Branches
+    come from a 'branch' column (drying, wetting, scanning) or, without one,
+    from the order of readings (rising suction = drying; reversals below the
+    noise tolerance ignored; readings that start at a reversal inside the
+    measured range are scanning, kept out of the main fits and compared with
+    Parker & Lenhard's scanning curves); --branches single fits one curve.
 
     Example: capred retention column.csv --model vg,bc,kosugi --fix theta_r=0
 
@@ -353,6 +360,10 @@ def retention(
         kool-parker, or None.
     rho_w : str, optional
         Density of water [kg/m^3].
+    branches : str, optional
+        auto or single.
+    reversal_relative, reversal_range : float, optional
+        Noise tolerance of a reversal: fraction of the reading, of the measured range [-].
     fix : list of str, optional
         NAME=VALUE of fixed parameters (kPa, 1/kPa).
     gamma_w : str, optional
@@ -367,7 +378,15 @@ def retention(
     from ..fitting.retention_models import MODELS
     from ..pipelines.retention import RetentionOptions, parse_fixed
 
-    given = si_values(RETENTION, gamma_w=gamma_w, rho_w=rho_w, hysteresis=hysteresis)
+    given = si_values(
+        RETENTION,
+        gamma_w=gamma_w,
+        rho_w=rho_w,
+        hysteresis=hysteresis,
+        branches=branches.strip().lower() if branches else None,
+        reversal_relative=reversal_relative,
+        reversal_range=reversal_range,
+    )
     if model is not None:
         names = [m.strip().lower() for m in model.split(",") if m.strip()]
         if names == ["all"]:

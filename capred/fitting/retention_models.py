@@ -708,8 +708,8 @@ def json_name(internal: str, quantity: str = "S_R") -> tuple[str, float, str]:
     internal : str
         Internal name (``y_r``, ``alpha``, ``s_e`` ...).
     quantity : str
-        ``"theta"`` (θ [m³/m³] fitted) or ``"S_R"`` [-]: names y_r, y_s (``theta_r``/``S_res``,
-        ``theta_s``/``S_s``).
+        ``"theta"`` (θ [m³/m³] fitted), ``"S_R"`` [-] or ``"w"`` (water content by mass [-]): names y_r, y_s
+        (``theta_r``/``S_res``/``w_r``, ``theta_s``/``S_s``/``w_s``).
 
     Returns
     -------
@@ -721,9 +721,8 @@ def json_name(internal: str, quantity: str = "S_R") -> tuple[str, float, str]:
     The names of SWRC Fit (Seki 2007, Hydrol. Earth Syst. Sci. Discuss. 4:407-437) with the unit in the name.
     """
     if internal in ("y_r", "y_s"):
-        theta = quantity == "theta"
-        name = {"y_r": ("theta_r", "S_res"), "y_s": ("theta_s", "S_s")}[internal][0 if theta else 1]
-        return name, 1.0, "m³/m³" if theta else "-"
+        names = {"theta": ("theta_r", "theta_s"), "w": ("w_r", "w_s")}.get(quantity, ("S_res", "S_s"))
+        return names[internal == "y_s"], 1.0, "m³/m³" if quantity == "theta" else "-"
     if internal in JSON_NAMES:
         return JSON_NAMES[internal]
     unit = next((p.unit for m in MODELS.values() for p in m.parameters if p.name == internal), "-")
@@ -754,7 +753,8 @@ def internal_name(name: str) -> tuple[str, float]:
     ----------
     The inverse of :func:`json_name`.
     """
-    lin = {"theta_s": "y_s", "S_s": "y_s", "theta_r": "y_r", "S_res": "y_r", "y_s": "y_s", "y_r": "y_r"}
+    lin = {"theta_s": "y_s", "S_s": "y_s", "w_s": "y_s", "theta_r": "y_r", "S_res": "y_r", "w_r": "y_r"}
+    lin.update(y_s="y_s", y_r="y_r")
     if name in lin:
         return lin[name], 1.0
     for internal, (rep, f, _) in JSON_NAMES.items():

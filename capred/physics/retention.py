@@ -415,3 +415,47 @@ def monotone_suction(saturation, target, lo=1e-6, hi=FX_S_MAX, iterations=64):
         above = saturation(np.exp(mid)) > target
         a, b = np.where(above, mid, a), np.where(above, b, mid)
     return np.where(inside, np.exp(0.5 * (a + b)), np.nan)
+
+
+def scanning_water(s, main, s_reversal, y_reversal, s_closure, y_closure):
+    """A scanning curve by the scaling of a main curve between its reversal and closure points.
+
+    The scanning curve runs from the reversal point (s_Δ, y_Δ) to the point where its loop closes (s_c, y_c) along
+    the main curve M of its own direction (main wetting for a wetting scanning curve, main drying for a drying
+    one), scaled linearly so that it passes through both:
+
+    .. math:: y(s) = y_c + \\left[M(s) - M(s_c)\\right] \\frac{y_Δ - y_c}{M(s_Δ) - M(s_c)}
+
+    A first-order wetting curve from the main drying curve closes at s_c = 0 (y_c the main wetting curve's
+    saturated value), a first-order drying curve from the main wetting curve at s_c → ∞ (y_c its residual
+    value); a curve of higher order closes at the previous reversal point of the other kind.
+
+    Parameters
+    ----------
+    s : array_like
+        Suction [Pa].
+    main : callable
+        ``main(s) -> y``: the main curve of the scanning curve's direction.
+    s_reversal, y_reversal : float
+        The reversal point: suction [Pa] and water quantity (θ [m³/m³], S_R [-] or w [-]).
+    s_closure, y_closure : float
+        The closure point (``np.inf`` for the dry end).
+
+    Returns
+    -------
+    numpy.ndarray
+        y(s) on the scanning curve (NaN where M(s_Δ) = M(s_c): the main curve is flat between the two points).
+
+    References
+    ----------
+    Parker, J. C., Lenhard, R. J. (1987). A model for hysteretic constitutive relations governing multiphase
+    flow: 1. Saturation-pressure relations. Water Resour. Res. 23(12):2187-2196, doi:10.1029/WR023i012p02187
+    (the main curves scaled through the reversal points; here without air entrapment);
+    Kool, J. B., Parker, J. C. (1987). Water Resour. Res. 23(1):105-114, doi:10.1029/WR023i001p00105.
+    """
+    s = np.asarray(s, float)
+    m_c = float(np.asarray(main(np.asarray(min(s_closure, 1e15), float))))
+    m_r = float(np.asarray(main(np.asarray(s_reversal, float))))
+    if m_r == m_c:
+        return np.full(s.shape, np.nan)
+    return y_closure + (np.asarray(main(s), float) - m_c) * (y_reversal - y_closure) / (m_r - m_c)

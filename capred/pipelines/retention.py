@@ -28,6 +28,14 @@ from ..parameters import Parameters
 from ..physics.shear import GAMMA_W
 from ..references import cite
 from ..result import InputFile, Options, Result, columns_of_rows, csv_header, input_file, num, with_csv_headers
+from .retention_branches import (
+    LABELS,
+    REVERSAL_RANGE,
+    REVERSAL_RELATIVE,
+    infer_branches,
+    reversal_points,
+    single_direction,
+)
 
 SCHEMA = [
     Column("suction", "pressure", "kPa", "suction", ("s", "matric_suction", "delta_u", "ua_uw"), "nonnegative"),
@@ -61,7 +69,7 @@ SCHEMA = [
     Column("z2", "volume", "cm^3", "air volume z2", ("air_volume", "burette", "V_a"), "nonnegative"),
     Column("V_v", "volume", "cm^3", "void volume V_v", ("Vv", "void_volume"), "positive"),
     Column("weight", "dimensionless", "-", "weight", ("weights", "w_fit"), "positive"),
-    Column("branch", "text", None, "branch", ("path",), choices=("drying", "wetting")),
+    Column("branch", "text", None, "branch", ("path",), choices=LABELS),
 ]
 
 # the same as a head of water [cm] (SWRC Fit and RETC report these)
@@ -107,9 +115,28 @@ def _to_internal(name: str) -> tuple[str, float]:
 
 @dataclass(frozen=True)
 class RetentionOptions(Options):
-    """Options of `capred retention`: models to fit (names, or 'all'), fixed parameters (report names and
-    units: kPa, 1/kPa), the unit weight of water ``gamma_w`` [N/m^3, or a string with a unit] and its
-    density ``rho_w`` [kg/m^3] (for w rho_d/rho_w), and ``hysteresis`` ("kool-parker" or None)."""
+    """Options of `capred retention`.
+
+    Attributes
+    ----------
+    models : tuple of str
+        Models to fit (registry names, or 'all').
+    fixed : dict
+        Fixed parameters by report name, in report units (kPa, 1/kPa).
+    gamma_w : float
+        Unit weight of water [N/m^3, or a string with a unit].
+    rho_w : float
+        Density of water [kg/m^3] (theta = w rho_d/rho_w).
+    hysteresis : str or None
+        kool-parker: fit the drying and wetting branches jointly.
+    branches : str
+        auto: the 'branch' column, else drying, wetting and scanning branches inferred from the order of readings,
+        reversals below the noise tolerance ignored; single: every reading on one curve.
+    reversal_relative : float
+        Noise tolerance of a reversal, as a fraction of the suction at the reversal point [-].
+    reversal_range : float
+        Noise tolerance of a reversal, as a fraction of the measured suction range [-].
+    """
 
     QUANTITIES = {"gamma_w": "gamma_w", "rho_w": "rho_w"}
 
@@ -118,6 +145,9 @@ class RetentionOptions(Options):
     gamma_w: float = GAMMA_W
     rho_w: float = 1000.0
     hysteresis: str | None = None
+    branches: str = "auto"
+    reversal_relative: float = REVERSAL_RELATIVE
+    reversal_range: float = REVERSAL_RANGE
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -137,6 +167,25 @@ class RetentionOptions(Options):
                 raise OptionError(f"fixed: unknown parameter '{name}'") from None
         if self.hysteresis not in (None, "kool-parker"):
             raise OptionError(f"--hysteresis must be kool-parker (got '{self.hysteresis}')")
+        if self.branches not in ("auto", "single"):
+            raise OptionError(f"--branches must be auto or single (got '{self.branches}')")
+        for name in ("reversal_relative", "reversal_range"):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and not isinstance(v, bool) and 0 <= v < 1):
+                raise OptionError(f"{self.option_name(name)} must be a fraction in [0, 1) (got {v!r})")
+
+
+#: a branch is fitted with a model only when it holds at least the model's free parameters plus this many readings
+#: (issue 39: with k + 1 readings a curve of k parameters passes through them all; three more leave a residual
+#: with three degrees of freedom, and AICc needs n − k − 1 > 0)
+MIN_EXTRA_READINGS = 3
+#: a fit whose R² falls below this gets a warning: the curve misses the readings by more than their scatter
+#: around a retention curve of any of the registry's shapes (the public sets of tests/data/retention fit with
+#: R² ≥ 0.98)
+R2_WARNING = 0.95
+#: ΔAICc of the joint hysteresis model against the separate branches above which it is rejected (Burnham &
+#: Anderson 2002, section 2.6: ΔAICc > 10 means essentially no support)
+HYSTERESIS_DELTA_AICC = 10.0
 
 
 # --- typed records: one per fit and one per reading; JSON keys and CSV headers follow from these declarations
@@ -287,7 +336,7 @@ class RetentionPoints:
 
     def columns(self) -> dict:
         """``{"name [unit]": array}`` of points.csv."""
-        y, unit = ("theta", "m³/m³") if self.quantity == "theta" else ("S_R", "-")
+        y, unit = {"theta": ("theta", "m³/m³"), "w": ("w", "-")}.get(self.quantity, ("S_R", "-"))
         out = {"branch": np.asarray(self.branch, dtype=object), "suction [kPa]": self.suction * 1e-3}
         out[f"{y} [{unit}]"] = self.water
         out["weight [-]"] = self.weight
@@ -302,7 +351,11 @@ class RetentionResult(Result):
 
     ``fits[branch][model]`` is a :class:`capred.fitting.retention_models.RetentionFit` (callable; ``.params`` by
     JSON name in the JSON's units, ``.summary()``); :meth:`fit_records` and :meth:`points` are the typed
-    records the tables, CSV files and console read.
+    records the tables, CSV files and console read. ``unfitted`` maps a branch too short to fit to the reason;
+    ``direction`` (+1/-1 per reading) and ``turning`` (indices of the reversals inferred, empty when the branches
+    came from a column or ``--branches single``) come from
+    :func:`capred.pipelines.retention_branches.infer_branches`; ``scanning`` lists the :class:`ScanningCurve`
+    of the readings labelled ``scanning``.
     """
 
     command = "retention"
@@ -321,10 +374,14 @@ class RetentionResult(Result):
     warnings: list[str] = field(default_factory=list)
     hysteresis: NonlinearFit | None = None
     weights: np.ndarray | None = None
+    unfitted: dict = field(default_factory=dict)
+    direction: np.ndarray | None = None
+    turning: tuple = ()
+    scanning: list = field(default_factory=list)
 
     @property
     def names(self) -> tuple[str, str]:
-        return ("theta_s", "theta_r") if self.quantity == "theta" else ("S_s", "S_res")
+        return {"theta": ("theta_s", "theta_r"), "w": ("w_s", "w_r")}.get(self.quantity, ("S_s", "S_res"))
 
     def fit_record(self, branch: str, model: str) -> RetentionFitRecord:
         """The typed record of one fit (``branch`` ``"both"`` and ``model`` ``"kool_parker"``: the hysteresis).
@@ -400,6 +457,10 @@ class RetentionResult(Result):
             for m, f in fits.items():
                 col = fitted.setdefault(m, np.full(self.suction.size, np.nan))
                 col[sel] = f.water(self.suction[sel])
+        if self.scanning:
+            col = fitted.setdefault("scanning", np.full(self.suction.size, np.nan))
+            for c in self.scanning:
+                col[c.index] = c.predicted
         w = self.weights if self.weights is not None else np.ones(self.suction.size)
         return RetentionPoints(self.suction, self.water, self.branch, w, fitted, self.quantity)
 
@@ -515,6 +576,17 @@ class RetentionResult(Result):
             "branches": branches,
             "model_selection": branches[main]["model_selection"] if main else {},
         }
+        if self.turning:
+            out["reversals_kPa"] = [num(self.suction[i] * 1e-3) for i in self.turning]
+        if self.unfitted:
+            out["unfitted_branches"] = {
+                b: {"n_points": int(np.sum(self.branch == b)), "reason": why} for b, why in self.unfitted.items()
+            }
+        if (self.branch == "scanning").any():
+            out["scanning"] = {
+                "n_points": int(np.sum(self.branch == "scanning")),
+                "curves": [c.json() for c in self.scanning],
+            }
         if self.hysteresis is not None:
             h = self.hysteresis
             js = self.fit_json(h, "hysteresis")
@@ -649,6 +721,226 @@ class RetentionResult(Result):
         return confidence_band(model, self.fits[branch][model], s)
 
 
+@dataclass(frozen=True)
+class ScanningCurve:
+    """One scanning curve of a record: the readings of a ``scanning`` run and the curve the main curves predict
+    through its reversal point (Parker & Lenhard 1987 scaling, :func:`capred.physics.retention.scanning_water`).
+
+    Attributes
+    ----------
+    direction : str
+        ``drying`` or ``wetting``: the direction of the scanning curve.
+    index : ndarray of int
+        The readings on it (0-based rows).
+    s_reversal, y_reversal : float
+        Its reversal point: suction [Pa] and water quantity (the reading where the direction turned).
+    s_closure, y_closure : float
+        Where its loop closes: the previous reversal of the other kind, or the wet end (s = 0) / dry end
+        (s = inf) [Pa].
+    main_model : str
+        The fit of the main curve scaled (``kool_parker`` or a registry model).
+    predicted : ndarray
+        The scanning curve at the readings.
+    rmse, r2 : float
+        Agreement of the predicted curve with the readings [unit of the water quantity], [-].
+    main : callable
+        The main curve scaled, ``main(s) -> y``.
+    """
+
+    direction: str
+    index: np.ndarray
+    s_reversal: float
+    y_reversal: float
+    s_closure: float
+    y_closure: float
+    main_model: str
+    predicted: np.ndarray
+    rmse: float
+    r2: float
+    main: object = field(default=None, repr=False, compare=False)
+
+    def curve(self, s):
+        """The scanning curve at suctions ``s`` [Pa] (Parker & Lenhard 1987 scaling of the main curve).
+
+        Parameters
+        ----------
+        s : array_like
+            Suction [Pa].
+
+        Returns
+        -------
+        ndarray
+            The water quantity on the scanning curve.
+        """
+        from ..physics.retention import scanning_water
+
+        return scanning_water(s, self.main, self.s_reversal, self.y_reversal, self.s_closure, self.y_closure)
+
+    def json(self) -> dict:
+        """The curve in fits.json: direction, readings (1-based), reversal and closure points [kPa] (null at the dry
+        end, s → ∞; ``closes_at`` says where), model, RMSE, R²."""
+        return {
+            "direction": self.direction,
+            "readings": [int(i) + 1 for i in self.index],
+            "reversal_kPa": num(self.s_reversal * 1e-3),
+            "reversal_water": num(self.y_reversal),
+            "closure_kPa": num(self.s_closure * 1e-3) if np.isfinite(self.s_closure) else None,
+            "closes_at": "dry end"
+            if not np.isfinite(self.s_closure)
+            else "wet end"
+            if self.s_closure == 0
+            else ("previous reversal"),
+            "closure_water": num(self.y_closure),
+            "main_model": self.main_model,
+            "rmse": num(self.rmse),
+            "r2": num(self.r2),
+            "method": "Parker & Lenhard (1987) scaling of the main curve through the reversal and closure points",
+            "reference": cite("parker_lenhard1987"),
+        }
+
+
+def _main_curves(fits: dict, hyst) -> tuple[str, dict] | None:
+    """(model, {direction: y(s)}) of the main curves a scanning curve scales: the joint Kool & Parker fit when run,
+    else the model with the lowest summed AICc among those fitted to both main branches, else the best of one."""
+    from ..physics import retention as rp
+
+    if hyst is not None:
+        p = hyst.params_si
+        return "kool_parker", {
+            "drying": lambda x: rp.vg_water(x, p["y_r"], p["y_s"], p["alpha_d"], p["n"]),
+            "wetting": lambda x: rp.vg_water(x, p["y_r"], p["y_s"], p["alpha_w"], p["n"]),
+        }
+    both = [m for m in fits.get("drying", {}) if m in fits.get("wetting", {})]
+    score = {m: fits["drying"][m].aicc + fits["wetting"][m].aicc for m in both}
+    finite = [m for m in both if np.isfinite(score[m])]
+    if finite or both:
+        m = min(finite, key=score.get) if finite else both[0]
+        return m, {b: fits[b][m].water for b in ("drying", "wetting")}
+    for b in ("drying", "wetting"):
+        if fits.get(b):
+            m = min(fits[b], key=lambda k: fits[b][k].aicc if np.isfinite(fits[b][k].aicc) else np.inf)
+            return m, {b: fits[b][m].water}
+    return None
+
+
+def scanning_curves(s, y, branch, direction, turning, fits, hyst=None) -> tuple[list[ScanningCurve], list[str]]:
+    """The scanning curves of a record: each run of ``scanning`` readings compared with the curve the main curves
+    predict through its reversal point (Parker & Lenhard 1987).
+
+    Parameters
+    ----------
+    s, y : ndarray
+        Suction [Pa] and water quantity of every reading, in time order.
+    branch : ndarray of str
+        Label of each reading (``scanning`` marks the scanning readings).
+    direction : ndarray of int
+        +1 (suction rising) or -1 per reading.
+    turning : sequence of int
+        The reversal points (indices).
+    fits : dict
+        Main-curve fits by branch and model.
+    hyst : RetentionFit, optional
+        The joint Kool & Parker fit, scaled in preference.
+
+    Returns
+    -------
+    (list of ScanningCurve, list of str)
+        The curves and warnings.
+
+    References
+    ----------
+    Parker, J. C., Lenhard, R. J. (1987). Water Resour. Res. 23(12):2187-2196, doi:10.1029/WR023i012p02187.
+    """
+    from ..physics.retention import scanning_water
+
+    scan = np.flatnonzero(branch == "scanning")
+    if not scan.size:
+        return [], []
+    main = _main_curves(fits, hyst)
+    runs, cur = [], [int(scan[0])]
+    for i in scan[1:]:
+        if i == cur[-1] + 1 and direction[i] == direction[cur[-1]]:
+            cur.append(int(i))
+        else:
+            runs.append(cur)
+            cur = [int(i)]
+    runs.append(cur)
+    reversals = reversal_points(direction, turning)
+    out, warns = [], []
+    for run in runs:
+        idx = np.array(run)
+        d = int(direction[idx[0]])
+        name = "drying" if d > 0 else "wetting"
+        r = idx[0] - 1 if idx[0] > 0 else idx[0]
+        where = f"scanning {name} curve, readings {idx[0] + 1}-{idx[-1] + 1}"
+        if main is None or name not in main[1]:
+            warns.append(f"{where}: no main {name} curve fitted, so no scanning curve is predicted")
+            continue
+        model, curves = main
+        m = curves[name]
+        # the loop closes at the latest earlier reversal of the other kind beyond the reversal point
+        kind = 1 if d > 0 else -1
+        prev = [i for i, k in reversals if i < r and k == kind and (s[i] - s[r]) * d > 0]
+        if prev:
+            s_c, y_c = float(s[prev[-1]]), float(y[prev[-1]])
+        else:
+            s_c = np.inf if d > 0 else 0.0
+            y_c = float(np.asarray(m(np.asarray(1e15 if d > 0 else 0.0))))
+        pred = scanning_water(s[idx], m, float(s[r]), float(y[r]), s_c, y_c)
+        res = y[idx] - pred
+        rmse = float(np.sqrt(np.mean(res**2))) if np.all(np.isfinite(res)) else float("nan")
+        tss = float(np.sum((y[idx] - y[idx].mean()) ** 2))
+        r2 = 1.0 - float(np.sum(res**2)) / tss if tss > 0 and np.isfinite(rmse) else float("nan")
+        out.append(ScanningCurve(name, idx, float(s[r]), float(y[r]), s_c, y_c, model, pred, rmse, r2, m))
+        if not np.all(np.isfinite(pred)):
+            warns.append(
+                f"{where}: the main {name} curve ({model}) is flat between the reversal at {s[r] * 1e-3:.4g} kPa and "
+                "the closure of the loop, so it cannot be scaled through both: no scanning curve is predicted"
+            )
+        if idx.size >= 3 and np.isfinite(r2) and r2 < R2_WARNING:
+            warns.append(
+                f"{where}: the scanning curve scaled from the main {name} curve ({model}) through the reversal at "
+                f"{s[r] * 1e-3:.4g} kPa gives R² = {r2:.3f} < {R2_WARNING:g} (RMSE {rmse:.3g}): the readings do not "
+                "follow Parker & Lenhard's scaling of the main curves (air entrapment, or a mislabelled branch)"
+            )
+    return out, warns
+
+
+def _hysteresis_rejected(hyst, fits: dict, quantity: str) -> list[str]:
+    """A warning when the joint Kool & Parker model is rejected against the separate branches (ΔAICc > 10), saying
+    which shared parameter the branches disagree on (a wetting θ_s below the drying one: entrapped air)."""
+    base = hysteresis_model().name
+    ind = [fits[b][base] for b in ("drying", "wetting") if base in fits.get(b, {})]
+    if len(ind) != 2:
+        return []
+    n = sum(f.n for f in ind)
+    k = sum(f.nfree for f in ind)
+    if not n - k - 1 > 0 or not np.isfinite(hyst.aicc):
+        return []
+    rss = sum(f.rss for f in ind)
+    independent = float(n * np.log(rss / n) + 2 * k + 2 * k * (k + 1) / (n - k - 1))
+    delta = float(hyst.aicc) - independent
+    if not delta > HYSTERESIS_DELTA_AICC:
+        return []
+    d, w = (f.params_si for f in ind)
+    parts = []
+    for key in ("y_s", "y_r", "n"):
+        name = json_name(key, quantity)[0]
+        parts.append(f"{name} {d[key]:.3g} drying, {w[key]:.3g} wetting")
+    hint = ""
+    if w["y_s"] < d["y_s"] - 0.05 * max(abs(d["y_s"]), 1e-12):
+        hint = (
+            f"; a wetting {json_name('y_s', quantity)[0]} below the drying one is the mark of entrapped air "
+            "(the wetting branch does not return to the drying branch's saturated water content)"
+        )
+    return [
+        f"hysteresis (Kool & Parker): the joint model (θ_s, θ_r, n shared by both branches, α apart) is rejected "
+        f"against separate drying and wetting fits of {base}: ΔAICc = {delta:.3g} > {HYSTERESIS_DELTA_AICC:g} "
+        f"(Burnham & Anderson 2002: no support); the branches differ in more than α ({'; '.join(parts)}){hint}; "
+        "use the separate branch fits"
+    ]
+
+
 def parse_fixed(items: list[str]) -> dict[str, float]:
     """'theta_s=0.25' -> {'theta_s': 0.25}; values in the report units (kPa, 1/kPa).
 
@@ -682,26 +974,6 @@ def parse_fixed(items: list[str]) -> dict[str, float]:
             out[name] = float(value)
         except ValueError:
             raise OptionError(f"--fix '{item}': '{value}' is not a number") from None
-    return out
-
-
-def _infer_branches(s: np.ndarray) -> np.ndarray:
-    """Drying where suction rises from one reading to the next, wetting where it falls.
-
-    Each reading takes the direction of the step that leads to it (the first
-    reading that of the step after it); repeated suctions keep the current branch.
-    """
-    out = np.empty(len(s), dtype=object)
-    steps = np.diff(s)
-    first = next((d for d in steps if d != 0), 1.0)
-    current = "drying" if first > 0 else "wetting"
-    out[0] = current
-    for i, d in enumerate(steps, start=1):
-        if d > 0:
-            current = "drying"
-        elif d < 0:
-            current = "wetting"
-        out[i] = current
     return out
 
 
@@ -749,8 +1021,6 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
         table.missing_column("S_R", " (or 'theta', or 'w' with 'rho_d', or 'z2' with 'V_v')")
     if "z2" in table.columns and "V_v" not in table.columns and "S_R" not in table.columns:
         table.missing_column("V_v", " (needed with 'z2')")
-    if "w" in table.columns and "rho_d" not in table.columns and "theta" not in table.columns:
-        table.missing_column("rho_d", " (needed with the gravimetric 'w': theta = w rho_d/rho_w)")
     table.raise_if_problems()
     s = _suction(table, opt)
     positive = s[s > 0]
@@ -761,11 +1031,14 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
             f"{table.path}: suctions from {positive.min():.3g} to {positive.max():.3g} Pa cannot be "
             "fitted: check the units of the file and --gamma-w"
         )
-    if "theta" in table.columns or "w" in table.columns:
+    if "theta" in table.columns or ("w" in table.columns and "rho_d" in table.columns):
         quantity = "theta"
         y = table.get("theta").copy()
         grav = np.isnan(y)
         y[grav] = (table.get("w") * table.get("rho_d") / opt.rho_w)[grav]
+    elif "w" in table.columns:  # w(s) at the specimen's (constant) dry density: the same curve shape, w_s, w_r
+        quantity = "w"
+        y = table.get("w").copy()
     else:
         quantity = "S_R"
         y = table.get("S_R").copy()
@@ -781,26 +1054,65 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
     weights[np.isnan(weights)] = 1.0
     table.raise_if_problems()
 
-    if "branch" in table.columns and all(table.columns["branch"]):
-        branch, how = table.columns["branch"], "column 'branch'"
+    notes = list(table.notes)
+    if quantity == "w":
+        notes.append(
+            "water content by mass w without dry density: w(s) fitted (w_s, w_r), the shape of the retention "
+            "curve at the specimen's dry density; give 'rho_d' to fit theta = w rho_d/rho_w"
+        )
+    found = infer_branches(s, opt.reversal_relative, opt.reversal_range)
+    if opt.branches == "single":
+        one = single_direction(s, opt.reversal_relative, opt.reversal_range)
+        branch = np.full(s.size, one, dtype=object)
+        how = f"--branches single: every reading on one {one} curve"
+        if "branch" in table.columns:
+            notes.append("--branches single: the 'branch' column is not used")
+    elif "branch" in table.columns and all(table.columns["branch"]):
+        branch, how = np.asarray(table.columns["branch"], dtype=object), "column 'branch'"
     else:
-        branch, how = _infer_branches(s), "inferred from the order of readings (rising suction = drying)"
+        branch = found.label
+        rel, rng = found.tolerance
+        how = (
+            "inferred from the order of readings (rising suction = drying; reversals below "
+            f"max({100 * rel:g} % of the reading, {100 * rng:g} % of the range) ignored)"
+        )
+        if found.against:
+            notes.append(
+                f"{found.against} readings step against their branch's direction by less than the noise tolerance "
+                f"(max({100 * rel:g} % of the reading, {100 * rng:g} % of the measured range)): they stay in it "
+                "(--reversal-relative, --reversal-range, or a 'branch' column decide otherwise)"
+            )
+        if found.turning:
+            notes.append(
+                "branches inferred: reversals at "
+                + ", ".join(f"{s[i] * 1e-3:.4g} kPa (reading {i + 1})" for i in found.turning)
+                + "; check them, or give a 'branch' column"
+            )
+    n_scan = int(np.sum(branch == "scanning"))
+    if n_scan:
+        notes.append(
+            f"{n_scan} readings on scanning curves (they start at a reversal inside the measured range): kept out "
+            "of the main-curve fits, shown in the outputs and figures, and compared with the scanning curves the "
+            "main curves predict (Parker & Lenhard 1987 scaling)"
+        )
     fixed_internal = {}
     for name, v in opt.fixed.items():
         key, factor = _to_internal(name)
         fixed_internal[key] = v * factor
     warnings = list(opt.warnings) + table.warnings
     fits: dict[str, dict[str, NonlinearFit]] = {}
+    unfitted: dict[str, str] = {}
     for b in dict.fromkeys(branch):
+        if b == "scanning":
+            continue
         sel = branch == b
         fits[b] = {}
+        skipped = []
         for m in opt.models:
             fx = {k: v for k, v in fixed_internal.items() if k in FITTERS[m].names}
             n_free = len(FITTERS[m].names) - len(fx)
-            if sel.sum() <= n_free:
-                warnings.append(
-                    f"branch '{b}': {int(sel.sum())} readings for the {n_free} free parameters of {m}: not fitted"
-                )
+            if sel.sum() < n_free + MIN_EXTRA_READINGS:
+                skipped.append(f"{m} ({n_free} free parameters)")
                 continue
             try:
                 f = dataclasses.replace(fit_model(m, s[sel], y[sel], fx, weights[sel]), quantity=quantity)
@@ -813,6 +1125,25 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
             for k in f.at_bounds():
                 name, scale, _ = json_name(k, quantity)
                 warnings.append(f"branch '{b}', model {m}: {name} = {f.params_si[k] * scale:.6g} lies at its bound")
+        if skipped:
+            unfitted[b] = (
+                f"{int(sel.sum())} readings: fewer than the parameters plus {MIN_EXTRA_READINGS} of "
+                + ", ".join(skipped)
+            )
+            warnings.append(
+                f"branch '{b}': not fitted with {', '.join(skipped)}: {int(sel.sum())} readings, fewer than the "
+                f"model's free parameters plus {MIN_EXTRA_READINGS} (its readings are kept in the outputs; "
+                "if they are noise in a longer branch, widen --reversal-relative or give a 'branch' column)"
+            )
+        poor = [(m, f.r2) for m, f in fits[b].items() if np.isfinite(f.r2) and f.r2 < R2_WARNING]
+        if poor:
+            warnings.append(
+                f"branch '{b}': R² below {R2_WARNING:g} for "
+                + ", ".join(f"{m} ({r2:.3f})" for m, r2 in poor)
+                + ": the curve does not follow the readings; readings of another branch (a scanning loop, a "
+                "mislabelled reversal) or a shape the model cannot take; check the branches (a 'branch' column "
+                "with 'scanning') or the data"
+            )
     if not any(fits.values()):
         raise FitError(f"{table.path}: no model could be fitted to any branch ({'; '.join(warnings[-3:])})")
     fits = {b: f for b, f in fits.items() if f}
@@ -840,6 +1171,9 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
         hyst = dataclasses.replace(hyst, quantity=quantity)
         hyst.warnings = identifiability_warnings(hyst)
         warnings.extend(f"hysteresis (Kool & Parker): {w}" for w in hyst.warnings)
+        warnings.extend(_hysteresis_rejected(hyst, fits, quantity))
+    scans, scan_warnings = scanning_curves(s, y, branch, found.direction, found.turning, fits, hyst)
+    warnings.extend(scan_warnings)
     return RetentionResult(
         table.path,
         quantity,
@@ -849,9 +1183,13 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
         how,
         fits,
         opt,
-        list(table.notes),
+        notes,
         [input_file(source, table)],
         warnings,
         hyst,
         weights,
+        unfitted,
+        found.direction,
+        found.turning if how.startswith("inferred") else (),
+        scans,
     )

@@ -21,6 +21,7 @@ STRIP = 0.07  # width of the zero-suction strip, as a fraction of the axes
 BRANCH_STYLES = {
     "drying": dict(color=OKABE_ITO["orange"], marker="o"),
     "wetting": dict(color=OKABE_ITO["blue"], marker="s"),
+    "scanning": dict(color=OKABE_ITO["green"], marker="^"),
 }
 
 
@@ -30,6 +31,7 @@ AXIS_LABELS = {
     "suction": "suction s [kPa]",
     "S_R": "degree of saturation [–]",  # S_R would need mathtext (a raw "S_R" is no journal label)
     "theta": "volumetric water content θ [m³/m³]",
+    "w": "water content by mass w [–]",
 }
 
 
@@ -102,6 +104,42 @@ def plot_retention(ax, result):
         handles.append(
             Line2D([], [], ls="none", marker=st["marker"], color=st["color"], ms=3.5, label=f"{literal(b)}: readings")
         )
+    for b in dict.fromkeys(result.branch):  # readings of branches without a fit (scanning, too few readings)
+        if b in result.fits:
+            continue
+        sel = result.branch == b
+        st = BRANCH_STYLES.get(b, dict(color=OKABE_ITO["black"], marker="x"))
+        keep, _ = thin(np.flatnonzero(sel & ~zero))
+        ax.plot(
+            result.suction[keep] / 1e3,
+            result.water[keep],
+            ls="none",
+            ms=3.5,
+            mfc="none",
+            color=st["color"],
+            marker=st["marker"],
+        )
+        handles.append(
+            Line2D(
+                [], [], ls="none", marker=st["marker"], mfc="none", color=st["color"], ms=3.5,
+                label=f"{literal(b)}: readings (not in the main fits)",
+            )
+        )  # fmt: skip
+    for c in getattr(result, "scanning", []):
+        ends = [c.s_reversal, c.s_closure if np.isfinite(c.s_closure) and c.s_closure > 0 else None]
+        a = min(x for x in ends if x is not None)
+        z = max(x for x in ends if x is not None)
+        if ends[1] is None:  # open towards the wet or dry end: drawn over the readings and to the axis' end
+            a, z = (min(a, lo), z) if c.direction == "wetting" else (a, max(z, hi))
+        span = np.geomspace(max(a, lo), min(z, hi), 120)
+        ax.plot(span / 1e3, c.curve(span), color=BRANCH_STYLES["scanning"]["color"], lw=1.0, ls="--")
+    if getattr(result, "scanning", []):
+        handles.append(
+            Line2D(
+                [], [], color=BRANCH_STYLES["scanning"]["color"], lw=1.0, ls="--",
+                label="scanning curves (Parker & Lenhard 1987 scaling)",
+            )
+        )  # fmt: skip
     for m in models:
         handles.append(Line2D([], [], color="k", lw=1.1, **_curve_style(m, legend=True), label=model_key(m)))
     _log_suction_axis(ax, lo / 1e3, hi / 1e3)
@@ -111,7 +149,7 @@ def plot_retention(ax, result):
         ax.text(STRIP / 2, 0.02, "s = 0", transform=ax.transAxes, ha="center", va="bottom", fontsize=6, rotation=90)
     note(ax, shown)
     ax.set_xlabel(AXIS_LABELS["suction"])
-    ax.set_ylabel(AXIS_LABELS["theta"] if result.quantity == "theta" else AXIS_LABELS["S_R"])
+    ax.set_ylabel(AXIS_LABELS.get(result.quantity, AXIS_LABELS["S_R"]))
     ax.set_title("Water retention")
     ax.legend(handles=handles, ncol=2 if len(models) > 3 else 1)
     return ax
@@ -232,7 +270,7 @@ def plot_conversion(ax, result):
     ax.axvspan(lo / 1e3, hi / 1e3, color="0.92", lw=0, zorder=0)
     _log_suction_axis(ax, lo / 1e4, hi / 1e2)
     ax.set_xlabel(AXIS_LABELS["suction"])
-    ax.set_ylabel(AXIS_LABELS["theta"] if result.quantity == "theta" else AXIS_LABELS["S_R"])
+    ax.set_ylabel(AXIS_LABELS.get(result.quantity, AXIS_LABELS["S_R"]))
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.22), ncol=2, fontsize=7, frameon=False)
     return ax
 
@@ -254,7 +292,7 @@ def plot_conversion_misfit(ax, result):
     ax.axhline(0.0, color="0.5", lw=0.6)
     _log_suction_axis(ax, lo / 1e3, hi / 1e3)
     ax.set_xlabel(AXIS_LABELS["suction"])
-    unit = "m³/m³" if result.quantity == "theta" else "-"
+    unit = "m³/m³" if result.quantity == "theta" else "-"  # S_R and w are both [-]
     ax.set_ylabel(f"converted − source [{unit}]")
     m = result.misfit
     note(ax, f"RMSE {m['rmse']:.3g}, largest |deviation| {m['max_deviation']:.3g}")

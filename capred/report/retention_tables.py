@@ -110,6 +110,26 @@ def retention_tables(result) -> list[TableSpec]:
         t.rows.append(["  AICc joint", fmt(_num(rec.aicc)), "", "", "-"])
         t.rows.append(["  AICc independent", fmt(_num(result.independent_aicc())), "", "", "-"])
         out.append(t)
+    scans = getattr(result, "scanning", [])
+    if scans:
+        t = spec(
+            "Scanning curves, Parker & Lenhard (1987) scaling of the main curves",
+            ["direction", "readings", "reversal [kPa]", "closure [kPa]", "main", "RMSE", "R²"],
+        )
+        for c in scans:
+            closure = fmt(c.s_closure * 1e-3) if math.isfinite(c.s_closure) else "dry end"
+            t.rows.append(
+                [
+                    c.direction,
+                    f"{c.index[0] + 1}-{c.index[-1] + 1}",
+                    fmt(c.s_reversal * 1e-3),
+                    closure,
+                    c.main_model,
+                    fmt(_num(c.rmse)),
+                    fmt(_num(c.r2)),
+                ]
+            )
+        out.append(t)
     return out
 
 
@@ -126,7 +146,7 @@ def convert_tables(result) -> list[TableSpec]:
     list of capred.result.TableSpec
     """
     src, new, m = result.source_fit, result.converted, result.misfit
-    unit = "m³/m³" if result.quantity == "theta" else "-"
+    unit = "m³/m³" if result.quantity == "theta" else "-"  # S_R and w (by mass) are both [-]
     t = spec(f"Conversion of {result.source}", ["", "value", "unit"])
     t.rows += [
         ["from", src.model, ""],
