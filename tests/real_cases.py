@@ -203,7 +203,7 @@ def triaxial_rows() -> list[Row]:
     """The export's peak (its own `Deviator Stress`, `Axial Strain`) and a Skempton A in the range of a CU test."""
     js = triaxial_run().to_json()
     test = js["tests"][0]
-    q = float(test["q_f_kPa"])
+    q = float(test["q_kPa"])
     strain = 100.0 * float(test["strain_at_failure"])  # [-]: the export's `Axial Strain` is in per cent
     a = test.get("skempton_A")
     rows = [

@@ -69,7 +69,8 @@ def test_retention_cli_writes_the_fits_the_api_gives(tmp_path, name):
             # the same data through the same optimiser on one machine: the file holds the API's optimum (1e-12
             # relative leaves room for JSON's 17 significant digits, nothing more)
             assert disk[branch][model]["rss"] == pytest.approx(fit["rss"], rel=1e-12)
-            row = next(r for r in table if r["model"] == model and r.get("branch", "") in (branch, ""))
+            named = branch or written["main_branch"]  # "" holds the main branch's fits
+            row = next(r for r in table if r["model"] == model and r.get("branch", named) == named)
             assert float(row[rss_header]) == pytest.approx(fit["rss"], rel=1e-12)
 
 
@@ -100,4 +101,30 @@ def test_gdslab_export_cli_writes_its_report(tmp_path):
     (test,) = js["tests"]
     assert test["q_kPa"] == pytest.approx(rc.EXPORT_PEAK_Q_KPA, rel=1e-6)
     assert 0.45 <= test["skempton_A"] <= 0.8
+    # the export's strains are in per cent without saying so (14.99 at the end: impossible as a fraction)
+    assert test["strain_at_failure"] == pytest.approx(rc.EXPORT_PEAK_STRAIN_PERCENT / 100, rel=1e-9)
+    assert any("read in per cent" in n for n in js["notes"])
+    # its suction, S_R and void-ratio columns hold -u_w, a negative S_R and 0 (no phase data entered): refused,
+    # each with a warning, never reported as the specimen's state
+    assert test["suction_kPa"] is None and test["S_R"] is None and test["void_ratio"] is None
+    for words in ("matric suction", "degree of saturation", "void ratio"):
+        assert any(f"export's {words} at failure" in w and "not taken" in w for w in js["warnings"])
     assert (out / "results.csv").is_file() and (out / "provenance.json").is_file()
+
+
+def test_hostun_sand_scanning_loops_stay_out_of_the_main_curves(tmp_path):
+    # Lins et al.'s Hostun sand record, in the order measured: main drying (readings 1-17, to 2.59 kPa), a
+    # scanning wetting (18-28, to 0.99 kPa), a scanning drying (29-44) and the main wetting (45-71). The scanning
+    # readings are labelled and kept out of the main fits; the main drying curve alone is smooth (R2 >= 0.95)
+    source = rc.RETENTION / "pmsim_hostun_sand.csv"
+    out = tmp_path / "out"
+    res = runner.invoke(app, ["retention", str(source), "--model", "vg", "--out", str(out), "--no-plots"])
+    assert res.exit_code == 0, res.output
+    js = json.loads((out / "fits.json").read_text())
+    assert js["reversals_kPa"][:2] == pytest.approx([2.59, 0.99])
+    with (out / "points.csv").open(encoding="utf-8") as f:
+        points = list(csv.DictReader(f))
+    assert len(points) == 71  # nothing dropped
+    branch = [p["branch"] for p in points]
+    assert set(branch[17:28]) == {"scanning"}  # readings 18-28, the scanning wetting
+    assert js["branches"]["drying"]["fits"]["vg"]["r2"] >= 0.95

@@ -138,6 +138,7 @@ class Table:
     #: ``ignore_columns`` names (as given) the header does not have: each warned about once (see forget_ignores)
     ignores_unused: list[str] = field(default_factory=list)
     ignores_used: set[str] = field(default_factory=set)  # header_key of the ignore_columns names it has
+    unit_given: set[str] = field(default_factory=set)  # columns whose unit the header or a units row wrote
 
     def __len__(self) -> int:
         return len(self.lines)
@@ -769,6 +770,8 @@ def grid_table(grid, src, schema: list[Column], empty_ok: bool = False) -> Table
             table.columns[name] = values
             continue
         unit_used = unit if unit is not None else col.unit
+        if unit is not None:
+            table.unit_given.add(name)
         try:
             factor, note = conversion(unit_used, col.kind)
         except UnitError as exc:

@@ -1296,8 +1296,9 @@ def run_triaxial_bounds(
     notes += note_A
     from .triaxial_curves import export_states
 
-    unsat_state, note_state = export_states(table, raw_curves.at_peak if raw_curves else {})
+    unsat_state, note_state, warn_state = export_states(table, raw_curves.at_peak if raw_curves else {})
     notes += note_state
+    warnings += warn_state
     states = rec.TestStates(
         **{k: tests[k] for k in _TEXT_FIELDS},
         **{

@@ -379,11 +379,53 @@ def b_check(table: Table, rows: np.ndarray, shear: np.ndarray, tid: str) -> dict
     return out
 
 
-def export_states(table: Table, at_peak: dict) -> tuple[dict[str, np.ndarray], list[str]]:
+#: The physical domain of each export state: an export's value outside it is not a measurement of the specimen
+#: (GDSLAB writes -u_w as "Matric Suction", 0 as "Voids ratio" and a negative "Degree of Saturation" when the
+#: specimen's phase data were never entered) and is not taken.
+EXPORT_STATE_DOMAIN = {
+    "suction": (lambda v: v >= 0.0, "a matric suction is not negative"),
+    "S_R": (lambda v: (v >= 0.0) & (v <= 1.0), "a degree of saturation lies in [0, 1]"),
+    "void_ratio": (lambda v: v > 0.0, "a void ratio is positive"),
+}
+
+
+def _strains_in_percent(table: Table, notes: list[str]) -> None:
+    """Read a strain column without a unit in per cent when its readings are impossible as fractions.
+
+    A strain above 1 (100 %) in compression is impossible, so a unitless strain column that exceeds it is in per
+    cent, as GDSLAB and most triaxial software write strains; it is converted in place, with a note. A column
+    whose unit says [-] and that exceeds 1 is an error naming it.
+    """
+    for name in ("axial_strain", "vol_strain"):
+        if name not in table.columns:
+            continue
+        values = table.columns[name]
+        finite = values[np.isfinite(values)]
+        if not finite.size or np.max(np.abs(finite)) <= 1.0:
+            continue
+        largest = float(finite[np.argmax(np.abs(finite))])
+        header = table.headers[name]
+        if name in table.unit_given:
+            table.add_problem(
+                None,
+                name,
+                f"column '{header}' reaches {largest:.4g} in {table.units[name]!r}: a strain above 1 (100 %) "
+                f"is impossible; if the column is in per cent, write its unit ('{header} (%)')",
+            )
+            continue
+        table.columns[name] = values / 100.0
+        notes.append(
+            f"column '{header}' has no unit and reaches {largest:.4g}, impossible as a fraction (above 100 %): "
+            f"read in per cent, as GDSLAB and most triaxial software write strains (write '{header} (%)' to say so)"
+        )
+
+
+def export_states(table: Table, at_peak: dict) -> tuple[dict[str, np.ndarray], list[str], list[str]]:
     """Matric suction, degree of saturation and void ratio at failure of every test, from its export.
 
     The tests table's own column (``suction``, ``S_R``, ``void_ratio``, where its schema has one) wins; a blank
-    is filled with the export's value at the peak of the curve, and a note says which were taken.
+    is filled with the export's value at the peak of the curve, and a note says which were taken. An export's
+    value outside its physical domain (:data:`EXPORT_STATE_DOMAIN`) is not taken, and a warning says so.
 
     Parameters
     ----------
@@ -398,18 +440,29 @@ def export_states(table: Table, at_peak: dict) -> tuple[dict[str, np.ndarray], l
     values : dict of str to ndarray
         ``suction`` [Pa], ``S_R`` [-], ``void_ratio`` [-] per test (NaN where neither gives one).
     notes : list of str
+    warnings : list of str
     """
     tids = [str(t) for t in table.columns["test_id"]]
-    out, notes = {}, []
+    out, notes, warnings = {}, [], []
     for name, words in zip(EXPORT_STATE, ("matric suction", "degree of saturation", "void ratio")):
         v = table.get(name).copy()
         exp = np.array([at_peak.get(t, {}).get(name, np.nan) for t in tids])
-        took = np.isnan(v) & np.isfinite(exp)
+        inside, rule = EXPORT_STATE_DOMAIN[name]
+        with np.errstate(invalid="ignore"):
+            bad = np.isnan(v) & np.isfinite(exp) & ~inside(exp)
+        for i in np.flatnonzero(bad):
+            shown = exp[i] / 1e3 if name == "suction" else exp[i]
+            unit = " kPa" if name == "suction" else ""
+            warnings.append(
+                f"test '{tids[i]}': the export's {words} at failure is {shown:.4g}{unit}, outside its physical "
+                f"domain ({rule}): not a measurement of the specimen, not taken"
+            )
+        took = np.isnan(v) & np.isfinite(exp) & ~bad
         v[took] = exp[took]
         out[name] = v
         if took.any():
             notes.append(f"{words} at failure taken from the export: {', '.join(np.array(tids)[took])}")
-    return out, notes
+    return out, notes, warnings
 
 
 def read_curves(
@@ -464,7 +517,8 @@ def read_curves(
         has_q, has_force = "q" in table.columns, "axial_force" in table.columns
         if not (has_q or has_force):
             table.missing_column("q", " (or 'axial_force' with the initial diameter D0)")
-        if table.missing:
+        _strains_in_percent(table, out.notes)
+        if table.missing or table.problems:
             out.problems += table.problems
             continue
         if "test_id" in table.columns:
