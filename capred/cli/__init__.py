@@ -10,7 +10,14 @@ from typing import Annotated
 import typer
 
 from ..errors import CapredError
-from . import bridge_commands, calculator_commands, data_commands, pt_volume_command, retention_convert_command
+from . import (
+    bridge_commands,
+    calculator_commands,
+    data_commands,
+    pt_volume_command,
+    retention_convert_command,
+    triaxial_strength_command,
+)
 from .common import BUILDERS, JsonOpt, WorkersOpt, fail, run_batch
 from .generated import register_generated
 
@@ -48,6 +55,7 @@ bridge_commands.register(app)
 calculator_commands.register(app)
 pt_volume_command.register(app)
 retention_convert_command.register(app)
+triaxial_strength_command.register(app)
 # every other registered command: a CLI built from its Options (capred/cli/generated.py)
 register_generated(app, BUILDERS)
 

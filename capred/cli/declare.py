@@ -40,6 +40,7 @@ OPTIONS_CLASSES = (
     "capred.pipelines.yade_files:YadeOptions",
     "capred.pipelines.bridge_laws:LawsOptions",
     "capred.pipelines.history:HistoryOptions",
+    "capred.pipelines.triaxial_strength:TriaxialStrengthOptions",
 )
 
 #: the registries whose entries the help lists: name -> (module:mapping, attribute giving an entry's help,

@@ -1,0 +1,761 @@
+"""`capred triaxial`: unsaturated strength from triaxial failure states, per material, through shear's models.
+
+One row per test: the net cell pressure sigma3 (sigma3 - u_a), the deviator at failure q_f (or sigma1), the
+matric suction, and the sample state (S_r, or any consistent subset of rho_d, rho_s/G_s, e, n, w, theta from
+which capred.physics.phase completes it). Per material (a ``material`` column splits the run; never pooled):
+
+1. the extended Mohr-Coulomb envelope c', phi', phi_b (Fredlund et al. 1978) in its triaxial form
+   (`capred.fitting.extended_mc`);
+2. the effective envelope at s -> 0 of that fit (no saturated test needed), or --c-eff/--phi-eff;
+3. every model of the ONE effective-stress registry of `capred shear`
+   (`capred.physics.effective_stress_models.REGISTRY`) predicts q_f through its sigma'_3 = sigma3 + chi s:
+   with the envelope written q_f = a + b sigma'_3 (a = 2 sqrt(Kp) c', b = Kp - 1 in compression;
+   a = 2 c'/sqrt(Kp), b = 1 - 1/Kp in extension, with sigma3 the major radial stress) a model is exactly
+   shear's tau = c + tan(phi) sigma'_N with (c, tan phi, sigma_N, tau) -> (a, b, sigma3, q_f), so shear's
+   `predict`, fitted chi laws (`shear_analysis.fit_laws`), back-analysis (`shear_analysis.back_analysis`),
+   metrics (`shear.model_metrics`), AICc weights (`chi_laws.akaike_weights`) and ranking summary are reused
+   as they are;
+4. Prunier et al. (2024)'s spherical upper and lower bounds of the capillary tensor of each test on the named
+   envelope, with their standard errors from the envelope's covariance (delta method).
+
+References
+----------
+.. [1] Fredlund, D. G., Morgenstern, N. R. & Widger, R. A. (1978). Can. Geotech. J. 15(3):313-321,
+   doi:10.1139/t78-029.
+.. [2] Prunier, F., Branque, D., Duriez, J. & Darve, F. (2024). Eur. J. Environ. Civ. Eng.,
+   doi:10.1080/19648189.2024.2314099, eq. 15-27.
+.. [3] Bishop, A. W. (1959). The principle of effective stress. Teknisk Ukeblad 106(39):859-863.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import FitError, InputError, OptionError, Problem
+from ..fitting import chi_laws
+from ..fitting.extended_mc import ExtendedMCFit, coefficients, envelope_of, fit_extended_mc
+from ..fitting.linear import ERROR_MODELS
+from ..io import Column, read_table
+from ..physics import effective_stress_models as esm
+from ..physics import phase
+from ..physics import shear as ph
+from ..physics import triaxial as tx
+from ..result import Options, Result, input_file, num
+from .shear import ModelParams, model_metrics
+
+KPA = 1e3
+
+SCHEMA = [
+    Column("test_id", "text", None, "test identifier"),
+    Column("material", "text", None, "material name", ("soil", "material_name")),
+    Column(
+        "branch",
+        "text",
+        None,
+        "loading branch (compression or extension; blank: compression)",
+        ("loading", "triaxial_branch"),
+        choices=("compression", "extension"),
+    ),
+    Column(
+        "sigma3",
+        "pressure",
+        "kPa",
+        "net cell pressure sigma3 - u_a",
+        ("net_sigma3", "sigma3_net", "s3", "confining_pressure", "cell_pressure", "net_confining_pressure"),
+        "nonnegative",
+    ),
+    Column("q_f", "pressure", "kPa", "deviator at failure q_f", ("q", "qf", "q_max", "deviator", "q_peak")),
+    Column("sigma1", "pressure", "kPa", "net axial stress at failure", ("s1", "sigma_1"), "nonnegative"),
+    Column("suction", "pressure", "kPa", "matric suction u_a - u_w", ("s", "matric_suction", "ua_uw"), "nonnegative"),
+    Column("S_R", "dimensionless", "-", "degree of saturation", ("Sr", "S_r", "degree_of_saturation"), "fraction"),
+    Column("w", "dimensionless", "-", "gravimetric water content", ("water_content", "w0"), "nonnegative"),
+    Column("rho_d", "density", "kg/m^3", "dry density", ("dry_density", "rhod"), "positive"),
+    Column("rho_s", "density", "kg/m^3", "density of the solids", ("solid_density", "rhos"), "positive"),
+    Column("G_s", "dimensionless", "-", "specific gravity of the solids", ("Gs", "specific_gravity"), "positive"),
+    Column("e", "dimensionless", "-", "void ratio", ("void_ratio", "e0"), "positive"),
+    Column("n", "dimensionless", "-", "porosity", ("porosity",), "fraction"),
+    Column("theta", "dimensionless", "-", "volumetric water content", ("vwc",), "fraction"),
+    Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius")),
+]
+
+#: the sample-state columns completed by capred.physics.phase (column -> phase name)
+_STATE_COLUMNS = {"rho_d": "rho_d", "rho_s": "rho_s", "G_s": "G_s", "e": "e", "n": "n", "w": "w", "S_R": "S_r"}
+_STATE_COLUMNS["theta"] = "theta"
+
+#: the default model selection: every model of the registry the inputs allow
+DEFAULT_MODELS = "all"
+
+
+@dataclass(frozen=True)
+class TriaxialStrengthOptions(Options):
+    """Options of `capred triaxial`.
+
+    Attributes
+    ----------
+    models : str
+        Effective-stress models compared, comma separated (the registry of `capred shear`), ``thesis`` for the
+        thesis's four or ``all`` for every model the inputs allow (the default).
+    c_eff : float, optional
+        Effective cohesion c' [Pa]; with ``phi_eff`` it replaces the envelope at s -> 0 of the extended
+        Mohr-Coulomb fit.
+    phi_eff : float, optional
+        Effective friction angle φ' [deg], with ``c_eff``.
+    errors : str
+        Scatter of a test's strength in the extended Mohr-Coulomb fit: ``proportional`` (to the strength; the
+        default, measured to keep 95 % intervals at >= 93 % coverage when the scatter grows with stress),
+        ``constant`` (ordinary least squares) or ``auto`` (Breusch-Pagan, as `capred shear`).
+    confidence : float
+        Level of the intervals [-].
+    bootstrap : int
+        Replicates of the ranking bootstrap per material (0: none).
+    seed : int
+        Seed of the bootstrap.
+    model_params : ModelParams
+        Parameters of the models beyond the thesis's four (as `capred shear`).
+    surface_tension : float
+        γ [N/m], of Own 2 and the exact bridge.
+    """
+
+    QUANTITIES = {"c_eff": "c_eff", "phi_eff": "phi_eff", "surface_tension": "surface_tension"}
+
+    models: str = DEFAULT_MODELS
+    c_eff: float | None = None  # Pa
+    phi_eff: float | None = None  # deg
+    errors: str = "proportional"
+    confidence: float = 0.95
+    bootstrap: int = 200
+    seed: int = 12345
+    model_params: ModelParams = field(default_factory=ModelParams)
+    surface_tension: float = ph.SURFACE_TENSION
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if self.errors not in ERROR_MODELS:
+            raise OptionError(f"errors (--errors) must be one of {', '.join(ERROR_MODELS)} (got {self.errors!r})")
+        if (self.c_eff is None) != (self.phi_eff is None):
+            raise OptionError("give both --c-eff and --phi-eff (Python: c_eff and phi_eff), or neither")
+        if not 0.0 < self.confidence < 1.0:
+            raise OptionError(f"confidence must lie between 0 and 1 (got {self.confidence!r})")
+        if not isinstance(self.bootstrap, int) or self.bootstrap < 0:
+            raise OptionError(f"bootstrap (--bootstrap) must be a whole number >= 0 (got {self.bootstrap!r})")
+        try:
+            esm.resolve_models(self.models)
+        except ValueError as exc:
+            raise OptionError(f"models (--models): {exc}") from None
+
+    @property
+    def envelope_given(self) -> bool:
+        """True when --c-eff/--phi-eff replace the envelope at s -> 0."""
+        return self.c_eff is not None
+
+
+@dataclass(frozen=True)
+class MaterialStrength:
+    """Everything `capred triaxial` found for one material (SI inside; JSON in kPa and deg).
+
+    Attributes
+    ----------
+    material : str
+    form : str
+        ``"compression"`` or ``"extension"``.
+    rows : numpy.ndarray
+        Indices of the material's tests in the input table.
+    fit : ExtendedMCFit
+        The extended Mohr-Coulomb fit of its failure states.
+    envelope_source : str
+        What the effective envelope is: the extended fit at s -> 0 (named) or the options.
+    c_eff, phi_eff : float
+        The envelope used by the models and the bounds [Pa], [deg].
+    envelope_cov : numpy.ndarray
+        2 x 2 covariance of (c' [Pa], φ' [deg]) (zeros for an envelope given as options).
+    line_cov : numpy.ndarray
+        2 x 2 covariance of (a [Pa], b [-]) of q_f = a + b σ'3.
+    models : tuple of str
+        Models scored.
+    skipped : dict
+        Model -> why it was not scored.
+    predictions : dict
+        Model -> q_f predicted per test [Pa].
+    metrics : dict
+        Model -> ModelMetrics (capred.pipelines.shear) on the tests with suction.
+    information : dict
+        Model -> {"k", "aicc", "delta_aicc", "weight"}.
+    laws : dict
+        Model -> FittedLaw (chi laws fitted on this material).
+    back : dict
+        ``sigma_cap``, ``sigma_cap_se`` [Pa], ``chi_back``, ``chi_back_se`` [-] per test.
+    bounds : dict
+        ``spherical_p_cap``, ``lower_p_cap``, ``lower_sigma3_cap`` [Pa] and their ``_se`` per test.
+    ranking : object or None
+        capred.pipelines.shear_analysis.RankingUncertainty of the bootstrap.
+    best : str or None
+        Lowest RMSE.
+    """
+
+    material: str
+    form: str
+    rows: np.ndarray
+    fit: ExtendedMCFit
+    envelope_source: str
+    c_eff: float
+    phi_eff: float
+    envelope_cov: np.ndarray
+    line_cov: np.ndarray
+    models: tuple
+    skipped: dict
+    predictions: dict
+    metrics: dict
+    information: dict
+    laws: dict
+    back: dict
+    bounds: dict
+    ranking: object
+    best: str | None
+
+
+@dataclass(repr=False)
+class TriaxialStrengthResult(Result):
+    """Result of `capred triaxial`: per material the extended Mohr-Coulomb fit, the model comparison, the
+    back-analysed capillary stress and the bounds on the named envelope.
+
+    Attributes
+    ----------
+    tests : dict
+        Per test (input order): ``test_id``, ``material``, ``branch``, ``sigma3``, ``q_f``, ``suction`` [Pa] and
+        the completed sample state (``S_R``, ``rho_d``, ``e``, ``w`` ...).
+    materials : dict
+        Material -> MaterialStrength.
+    options : TriaxialStrengthOptions
+    inputs : list of InputFile
+    notes, warnings : list of str
+    """
+
+    command = "triaxial"
+    tests: dict
+    materials: dict
+    options: TriaxialStrengthOptions
+    inputs: list
+    notes: list
+    warnings: list
+
+    # --- per material -------------------------------------------------------------------------------------
+    def fits(self) -> dict[str, ExtendedMCFit]:
+        """Material -> its extended Mohr-Coulomb fit (``fit.params[NAME]``, ``fit.summary()``)."""
+        return {m: r.fit for m, r in self.materials.items()}
+
+    def best_model(self) -> dict[str, str | None]:
+        """Material -> the model of lowest RMSE on its tests with suction."""
+        return {m: r.best for m, r in self.materials.items()}
+
+    # --- tables -------------------------------------------------------------------------------------------
+    def test_rows(self) -> list[dict]:
+        """One dict per test: inputs, completed state, back-analysis, bounds and every model's q_f [kPa]."""
+        t = self.tests
+        out: list[dict] = [{} for _ in t["test_id"]]
+        for m, r in self.materials.items():
+            for j, i in enumerate(r.rows):
+                row = {
+                    "test_id": t["test_id"][i],
+                    "material": m,
+                    "branch": r.form,
+                    "sigma3_kPa": num(t["sigma3"][i] / KPA),
+                    "q_f_kPa": num(t["q_f"][i] / KPA),
+                    "suction_kPa": num(t["suction"][i] / KPA),
+                    **{k: num(t[k][i] * (1.0 if k not in ("rho_d", "rho_s") else 1e-3)) for k in _STATE_KEYS},
+                    "q_fit_kPa": num(r.fit.fitted[j] / KPA),
+                    "sigma_cap_kPa": num(r.back["sigma_cap"][j] / KPA),
+                    "sigma_cap_se_kPa": num(r.back["sigma_cap_se"][j] / KPA),
+                    "chi_back": num(r.back["chi_back"][j]),
+                    "chi_back_se": num(r.back["chi_back_se"][j]),
+                    "spherical_p_cap_kPa": num(r.bounds["spherical_p_cap"][j] / KPA),
+                    "spherical_p_cap_se_kPa": num(r.bounds["spherical_p_cap_se"][j] / KPA),
+                    "lower_sigma3_cap_kPa": num(r.bounds["lower_sigma3_cap"][j] / KPA),
+                    "lower_sigma3_cap_se_kPa": num(r.bounds["lower_sigma3_cap_se"][j] / KPA),
+                    "lower_p_cap_kPa": num(r.bounds["lower_p_cap"][j] / KPA),
+                    **{f"q_pred_{mod}_kPa": num(r.predictions[mod][j] / KPA) for mod in r.models},
+                    "flags": ";".join(self.flags(m, j)),
+                }
+                out[i] = row
+        return out
+
+    def flags(self, material: str, j: int) -> list[str]:
+        """The flags of the j-th test of ``material``: beyond the pendular regime, χ_back outside [0, 1]."""
+        r = self.materials[material]
+        i = r.rows[j]
+        out = []
+        S = self.tests["S_R"][i]
+        if np.isfinite(S) and S > 3 / (2 * np.pi):  # Own 1's chi1 = (2 pi S_R/3)^(2/3) exceeds 1 (SPEC 2)
+            out.append("chi1_above_1")
+        chi = r.back["chi_back"][j]
+        if np.isfinite(chi) and (chi < 0 or chi > 1):
+            out.append("chi_back_outside_0_1")
+        if r.bounds["spherical_p_cap"][j] > 0:
+            out.append("positive_capillary_pressure")
+        return out
+
+    def material_rows(self) -> list[dict]:
+        """One dict per material: the extended Mohr-Coulomb parameters, the envelope used and the best model."""
+        rows = []
+        for m, r in self.materials.items():
+            p = r.fit.params
+            row = {"material": m, "branch": r.form, "n": r.fit.n, "errors": r.fit.errors}
+            for name in ("c_eff_kPa", "phi_eff_deg", "phi_b_deg"):
+                row[name] = num(p[name].value)
+                row[name.rsplit("_", 1)[0] + "_se_" + name.rsplit("_", 1)[1]] = num(p[name].stderr)
+                row[name.rsplit("_", 1)[0] + "_ci95_low_" + name.rsplit("_", 1)[1]] = num(p[name].ci95[0])
+                row[name.rsplit("_", 1)[0] + "_ci95_high_" + name.rsplit("_", 1)[1]] = num(p[name].ci95[1])
+            row["r2"] = num(r.fit.r2)
+            row["rmse_fit_kPa"] = num(math.sqrt(r.fit.rss / r.fit.n) / KPA)
+            row["envelope"] = r.envelope_source
+            row["envelope_c_kPa"] = num(r.c_eff / KPA)
+            row["envelope_phi_deg"] = num(r.phi_eff)
+            row["best_model"] = r.best
+            rows.append(row)
+        return rows
+
+    def metric_rows(self) -> list[dict]:
+        """One dict per material and model: n, RMSE, bias, R², AICc, Akaike weight, bootstrap share."""
+        rows = []
+        for m, r in self.materials.items():
+            for mod in r.models:
+                mm, info = r.metrics[mod], r.information[mod]
+                rk = r.ranking
+                rows.append(
+                    {
+                        "material": m,
+                        "model": mod,
+                        "label": esm.REGISTRY[mod].label,
+                        "n": mm.n,
+                        "rmse_kPa": num(mm.si.rmse / KPA),
+                        "bias_kPa": num(mm.si.bias / KPA),
+                        "r2": num(mm.r2),
+                        "k": info["k"],
+                        "aicc": num(info["aicc"]),
+                        "delta_aicc": num(info["delta_aicc"]),
+                        "akaike_weight": num(info["weight"]),
+                        "p_best": None if rk is None else num(rk.probability.get(mod)),
+                        "rmse_ci95_low_kPa": None
+                        if rk is None or mod not in rk.rmse_ci
+                        else num(rk.rmse_ci[mod][0] / KPA),
+                        "rmse_ci95_high_kPa": None
+                        if rk is None or mod not in rk.rmse_ci
+                        else num(rk.rmse_ci[mod][1] / KPA),
+                    }
+                )
+        return rows
+
+    def law_rows(self) -> list[dict]:
+        """One dict per fitted chi law and material: its parameters with SE and 95 % interval."""
+        rows = []
+        for m, r in self.materials.items():
+            for mod, law in r.laws.items():
+                for name, par in law.params.items():
+                    rows.append(
+                        {
+                            "material": m,
+                            "model": mod,
+                            "parameter": name,
+                            "value": num(par.value),
+                            "se": num(par.stderr),
+                            "ci95_low": num(par.ci95[0]),
+                            "ci95_high": num(par.ci95[1]),
+                            "unit": par.unit,
+                        }
+                    )
+        return rows
+
+    def payload(self, lazy: bool = False) -> dict:
+        """JSON keys: ``materials`` (fit, envelope, models, laws, ranking), ``metrics``, ``tests``."""
+        mats = {}
+        for m, r in self.materials.items():
+            p = r.fit.params
+            mats[m] = {
+                "branch": r.form,
+                "extended_mohr_coulomb": {
+                    "n": r.fit.n,
+                    "dof": r.fit.dof,
+                    "errors": r.fit.errors,
+                    "heteroscedasticity": {k: _plain(v) for k, v in r.fit.heteroscedasticity.items()},
+                    "r2": num(r.fit.r2),
+                    "params": {
+                        n: {"value": num(v.value), "se": num(v.stderr), "ci95": [num(v.ci95[0]), num(v.ci95[1])]}
+                        for n, v in p.items()
+                    },
+                    "correlation": {f"{a}/{b}": num(c) for (a, b), c in p.correlation.items()},
+                    "warnings": list(r.fit.warnings),
+                },
+                "envelope": {
+                    "source": r.envelope_source,
+                    "c_kPa": num(r.c_eff / KPA),
+                    "phi_deg": num(r.phi_eff),
+                    "c_se_kPa": num(math.sqrt(max(r.envelope_cov[0, 0], 0.0)) / KPA),
+                    "phi_se_deg": num(math.sqrt(max(r.envelope_cov[1, 1], 0.0))),
+                },
+                "best_model": r.best,
+                "skipped_models": dict(r.skipped),
+                "laws": {
+                    mod: {
+                        n: {"value": num(v.value), "se": num(v.stderr), "unit": v.unit} for n, v in law.params.items()
+                    }
+                    for mod, law in r.laws.items()
+                },
+                "ranking": None
+                if r.ranking is None
+                else {
+                    "replicates": r.ranking.replicates,
+                    "seed": r.ranking.seed,
+                    "probability_best": {k: num(v) for k, v in r.ranking.probability.items()},
+                },
+            }
+        return {"materials": mats, "metrics": self.metric_rows(), "tests": self.test_rows()}
+
+    def tables(self) -> dict:
+        """results (per test), materials, metrics, laws: pandas DataFrames."""
+        import pandas as pd
+
+        return {
+            "results": pd.DataFrame(self.test_rows()),
+            "materials": pd.DataFrame(self.material_rows()),
+            "metrics": pd.DataFrame(self.metric_rows()),
+            "laws": pd.DataFrame(
+                self.law_rows(),
+                columns=["material", "model", "parameter", "value", "se", "ci95_low", "ci95_high", "unit"],
+            ),
+        }
+
+    def method_notes(self) -> tuple[list[str], list[str]]:
+        """The envelope of each material, named."""
+        return [f"{m}: {r.envelope_source}." for m, r in self.materials.items()], ["fredlund1978", "prunier2024"]
+
+
+_STATE_KEYS = ("S_R", "w", "rho_d", "e")
+
+
+def _plain(v):
+    if isinstance(v, (bool, np.bool_)):
+        return bool(v)
+    if isinstance(v, (int, float, np.floating, np.integer)):
+        return num(v)
+    return v
+
+
+# --- reading ----------------------------------------------------------------------------------------------------
+
+
+def load_table(source):
+    """Read and check a triaxial failure-state table (every problem collected, then raised once)."""
+    table = read_table(source, SCHEMA)
+    for name in ("test_id", "sigma3", "suction"):
+        if not table.has(name):
+            table.missing_column(name, " (needed for every failure state)")
+    if not table.has("q_f") and not table.has("sigma1"):
+        table.missing_column("q_f", " (or sigma1: q_f = |sigma1 - sigma3|)")
+    table.raise_if_problems()
+    table.check_unique("test_id")
+    q = table.get("q_f")
+    if table.has("sigma1"):
+        from_s1 = np.abs(table.get("sigma1") - table.get("sigma3"))
+        q = np.where(np.isfinite(q), q, from_s1)
+    for i in range(len(table)):
+        for name in ("sigma3", "suction"):
+            if not np.isfinite(table.get(name)[i]):
+                table.add_problem(i, name, f"{name} is blank")
+        if not np.isfinite(q[i]):
+            table.add_problem(i, "q_f" if table.has("q_f") else "sigma1", "no deviator at failure (q_f or sigma1)")
+        elif q[i] <= 0:
+            table.add_problem(i, "q_f", "the deviator at failure must be > 0")
+    table.raise_if_problems()
+    return table, np.abs(q)
+
+
+def complete_states(table) -> dict[str, np.ndarray]:
+    """The sample state of every test completed by the phase relations; one InputError naming each bad row."""
+    given = {p: table.get(col) for col, p in _STATE_COLUMNS.items() if table.has(col)}
+    try:
+        state = phase.complete_state(**given) if given else {}
+    except phase.InconsistentState as exc:
+        inv = {p: col for col, p in _STATE_COLUMNS.items()}
+        raise InputError(
+            [
+                Problem(
+                    table.path, int(table.lines[i]), table.headers.get(inv.get(q, q), inv.get(q, q)), msg, table.sheet
+                )
+                for i, q, msg in exc.problems
+            ]
+        ) from None
+    n = len(table)
+    return {col: np.asarray(state.get(p, np.full(n, np.nan)), float).reshape(n) for col, p in _STATE_COLUMNS.items()}
+
+
+# --- the run ----------------------------------------------------------------------------------------------------
+
+
+def run_triaxial_strength(source, options: TriaxialStrengthOptions | None = None) -> TriaxialStrengthResult:
+    """Unsaturated strength from triaxial failure states, per material (see the module docstring).
+
+    Parameters
+    ----------
+    source : str, pathlib.Path or pandas.DataFrame
+        The table of failure states.
+    options : TriaxialStrengthOptions, optional
+
+    Returns
+    -------
+    TriaxialStrengthResult
+
+    Raises
+    ------
+    InputError
+        Bad cells, inconsistent sample states, or a material mixing compression and extension.
+    FitError
+        A material whose failure states do not determine the extended envelope (fewer than 4 tests, one suction).
+    """
+    opt = options or TriaxialStrengthOptions()
+    table, q = load_table(source)
+    state = complete_states(table)
+    n = len(table)
+    material = (
+        np.array([v or "(no material)" for v in table.columns["material"]], dtype=object)
+        if table.has("material")
+        else np.full(n, "(all tests)", dtype=object)
+    )
+    branch = (
+        np.array([v or "compression" for v in table.columns["branch"]], dtype=object)
+        if table.has("branch")
+        else np.full(n, "compression", dtype=object)
+    )
+    tests = {
+        "test_id": np.asarray(table.columns["test_id"], dtype=object),
+        "material": material,
+        "branch": branch,
+        "sigma3": table.get("sigma3"),
+        "q_f": q,
+        "suction": table.get("suction"),
+        "R": table.get("R"),
+        **state,
+    }
+    problems = []
+    for m in dict.fromkeys(material):
+        forms = set(branch[material == m])
+        if len(forms) > 1:
+            i = int(np.flatnonzero((material == m) & (branch == "extension"))[0])
+            problems.append(
+                Problem(
+                    table.path,
+                    int(table.lines[i]),
+                    table.headers.get("branch", "branch"),
+                    f"material '{m}' mixes compression and extension tests: give each branch its own material name "
+                    "(their envelopes are fitted separately)",
+                    table.sheet,
+                )
+            )
+    if problems:
+        raise InputError(problems)
+    notes: list[str] = []
+    warnings: list[str] = list(opt.warnings) + list(table.warnings)
+    if not table.has("material"):
+        notes.append("no material column: every test is one material")
+    models = esm.resolve_models(opt.models)
+    all_asked = esm.asks_for_all(opt.models)
+    materials = {}
+    for m in dict.fromkeys(material):
+        rows = np.flatnonzero(material == m)
+        try:
+            materials[m] = _material(m, rows, tests, opt, models, all_asked)
+        except FitError as exc:
+            raise FitError(f"{table.path}, material '{m}': {exc}") from None
+        if not opt.envelope_given and not np.any(tests["suction"][rows] == 0):
+            notes.append(
+                f"{m}: no saturated (zero-suction) test; the effective envelope c', φ' is the extended Mohr-Coulomb "
+                "fit at s -> 0 (Fredlund et al. 1978), an extrapolation to the suction axis, with its uncertainty "
+                "carried into the bounds; --c-eff/--phi-eff override it"
+            )
+        warnings.extend(f"{m}: {w}" for w in materials[m].fit.warnings)
+    return TriaxialStrengthResult(
+        tests=tests,
+        materials=materials,
+        options=opt,
+        inputs=[input_file(source, table)],
+        notes=notes,
+        warnings=list(dict.fromkeys(warnings)),
+    )
+
+
+def _line(form: str, c_eff: float, phi_eff: float) -> tuple[float, float]:
+    a, b, _ = coefficients(form, c_eff, phi_eff)
+    return float(a), float(b)
+
+
+def _inputs(tests, rows, a, b, opt, m) -> esm.ModelInputs:
+    k = rows.size
+    return esm.ModelInputs(
+        sigma_N=tests["sigma3"][rows],
+        suction=tests["suction"][rows],
+        S_R=tests["S_R"][rows],
+        R=tests["R"][rows],
+        tau_max=tests["q_f"][rows],
+        wet=tests["suction"][rows] > 0,
+        material=np.full(k, m, dtype=object),
+        c=np.full(k, a),
+        tan_phi=np.full(k, b),
+        surface_tension=opt.surface_tension,
+        params=opt.model_params,
+    )
+
+
+def _usable(model: str, d: esm.ModelInputs, opt, all_asked: bool) -> str:
+    """Why ``model`` cannot be scored on these tests ("" when it can)."""
+    missing = opt.model_params.missing(model)
+    if missing:
+        return f"needs {missing}"
+    with np.errstate(all="ignore"):
+        pred = esm.predict(model, d)[1] if not esm.REGISTRY[model].fitted else np.zeros(1)
+    if not np.any(np.isfinite(pred[d.wet] if pred.size == d.wet.size else pred)):
+        need = "S_R (or a sample state it follows from)" if not np.any(np.isfinite(d.S_R)) else "R"
+        return f"no prediction on these tests (needs {need})"
+    if esm.REGISTRY[model].fitted and not np.any(np.isfinite(d.S_R[d.wet])) and model == "chi_power":
+        return "needs S_R"
+    return ""
+
+
+def _material(m, rows, tests, opt, models, all_asked) -> MaterialStrength:
+    form = str(tests["branch"][rows[0]])
+    x, s, y = tests["sigma3"][rows], tests["suction"][rows], tests["q_f"][rows]
+    fit = fit_extended_mc(x, s, y, form, opt.errors, opt.confidence)
+    if opt.envelope_given:
+        c_eff, phi_eff = float(opt.c_eff), float(opt.phi_eff)
+        env_cov = np.zeros((2, 2))
+        a, b = _line(form, c_eff, phi_eff)
+        line_cov = np.zeros((2, 2))
+        source = f"given as options (--c-eff {c_eff / KPA:g} kPa, --phi-eff {phi_eff:g} deg)"
+    else:
+        a, b, line_cov = fit.zero_suction_line()
+        c_eff, phi_eff, _ = fit.envelope
+        env_cov = fit.derived_covariance()[:2, :2]
+        source = (
+            "extended Mohr-Coulomb envelope at s -> 0 (Fredlund et al. 1978) fitted to the unsaturated failure "
+            f"states ({fit.n} tests, no saturated test needed)"
+        )
+    d = _inputs(tests, rows, a, b, opt, m)
+    skipped, scored = {}, []
+    for mod in models:
+        why = _usable(mod, d, opt, all_asked)
+        if why:
+            skipped[mod] = why
+        else:
+            scored.append(mod)
+    from . import shear_analysis as sa
+
+    laws = {}
+    if any(esm.REGISTRY[mod].fitted for mod in scored):
+        with np.errstate(all="ignore"):
+            fitted = sa.fit_laws(d, [mod for mod in scored if esm.REGISTRY[mod].fitted], [m], opt.model_params)
+        laws = {mod: by[m] for mod, by in fitted.items() if m in by}
+        for mod in [mod for mod in scored if esm.REGISTRY[mod].fitted and mod not in laws]:
+            scored.remove(mod)
+            skipped[mod] = "fewer than 2 tests with suction"
+    d = dataclasses.replace(d, fitted={mod: {m: law.values} for mod, law in laws.items()})
+    wet = d.wet
+    predictions, metrics, info_in = {}, {}, {}
+    for mod in scored:
+        with np.errstate(all="ignore"):
+            predictions[mod] = esm.predict(mod, d)[1]
+        metrics[mod] = model_metrics(predictions[mod][wet], y[wet])
+        e = esm.REGISTRY[mod]
+        k = len(e.fitted) + e.wet_parameters
+        rss = float(np.nansum((predictions[mod][wet] - y[wet]) ** 2))
+        info_in[mod] = (k, chi_laws.information_criteria(rss, metrics[mod].n, k)["aicc"])
+    weights = chi_laws.akaike_weights({mod: v[1] for mod, v in info_in.items()})
+    information = {
+        mod: {"k": info_in[mod][0], "aicc": info_in[mod][1], "delta_aicc": weights[mod][0], "weight": weights[mod][1]}
+        for mod in scored
+    }
+    ranked = sorted([mod for mod in scored if np.isfinite(metrics[mod].si.rmse)], key=lambda mod: metrics[mod].si.rmse)
+    best = ranked[0] if ranked else None
+    # back-analysis: the capillary stress sigma'_3 - sigma3 the envelope needs to carry the measured q_f
+    cov = np.broadcast_to(line_cov, (rows.size, 2, 2))
+    s2 = fit.new_test_variance(x, s)
+    cap, cap_se, chi, chi_se = sa.back_analysis(y, x, s, d.c, d.tan_phi, cov, s2)
+    bounds = _bounds(form, x, y, c_eff, phi_eff, env_cov)
+    ranking = _bootstrap(m, rows, tests, opt, scored, ranked, laws, form) if opt.bootstrap and len(ranked) > 1 else None
+    return MaterialStrength(
+        m, form, rows, fit, source, c_eff, phi_eff, env_cov, line_cov, tuple(scored), skipped, predictions,
+        metrics, information, laws, {"sigma_cap": cap, "sigma_cap_se": cap_se, "chi_back": chi, "chi_back_se": chi_se},
+        bounds, ranking, best,
+    )  # fmt: skip
+
+
+def _principal(form, x, q):
+    """(sigma1, sigma3) major and minor net stresses of each test: the cell pressure x is minor in compression."""
+    return (x + q, x) if form == "compression" else (x, x - q)
+
+
+def _bounds(form, x, q, c_eff, phi_eff, env_cov) -> dict:
+    """Prunier et al. (2024) spherical and lower bounds on the envelope, with SEs by the delta method."""
+    s1, s3 = _principal(form, x, q)
+
+    def values(c, phi):
+        sph = tx.spherical_bound(s1, s3, c, phi, form)
+        low = tx.lower_bound(s1, s3, c, phi, form)
+        return np.stack([sph.p_cap, low.p_cap, low.sigma3_cap])
+
+    base = values(c_eff, phi_eff)
+    grads = []
+    for k, (c, phi) in enumerate(((c_eff, phi_eff),) * 2):
+        h = 1e-6 * max(abs(c), 1.0) if k == 0 else 1e-6 * max(abs(phi), 1.0)
+        up = values(c + h, phi) if k == 0 else values(c, phi + h)
+        dn = values(c - h, phi) if k == 0 else values(c, phi - h)
+        grads.append((up - dn) / (2 * h))
+    gc, gp = grads
+    var = gc**2 * env_cov[0, 0] + 2 * gc * gp * env_cov[0, 1] + gp**2 * env_cov[1, 1]
+    se = np.sqrt(np.maximum(var, 0.0))
+    names = ("spherical_p_cap", "lower_p_cap", "lower_sigma3_cap")
+    return {**{n: base[k] for k, n in enumerate(names)}, **{n + "_se": se[k] for k, n in enumerate(names)}}
+
+
+def _bootstrap(m, rows, tests, opt, scored, ranked, laws, form):
+    """Paired bootstrap of the ranking: resample the material's tests, refit the extended envelope (its s -> 0
+    line, or the given one), refit the chi laws (warm start), score every model by RMSE on the resampled tests
+    with suction; summarised as `capred shear` does (shear_analysis._summarise)."""
+    from . import shear_analysis as sa
+
+    rng = np.random.default_rng(opt.seed)
+    k = rows.size
+    scores = np.full((opt.bootstrap, len(scored)), np.nan)
+    for r in range(opt.bootstrap):
+        pick = rows[rng.integers(0, k, k)]
+        x, s, y = tests["sigma3"][pick], tests["suction"][pick], tests["q_f"][pick]
+        try:
+            if opt.envelope_given:
+                a, b = _line(form, float(opt.c_eff), float(opt.phi_eff))
+            else:
+                a, b, _ = fit_extended_mc(x, s, y, form, opt.errors, opt.confidence).zero_suction_line()
+        except FitError:
+            continue
+        d = _inputs(tests, pick, a, b, opt, m)
+        fitted = {}
+        with np.errstate(all="ignore"):
+            for mod, law in laws.items():
+                try:
+                    fitted[mod] = {m: chi_laws.LAWS[mod].fit(d.subset(d.wet), opt.model_params, law.values).values}
+                except Exception:  # a replicate where the law does not converge: that model unscored there
+                    pass
+            d = dataclasses.replace(d, fitted=fitted)
+            for j, mod in enumerate(scored):
+                if esm.REGISTRY[mod].fitted and mod not in fitted:
+                    continue
+                pred = esm.predict(mod, d)[1][d.wet]
+                keep = np.isfinite(pred)
+                if keep.any():
+                    scores[r, j] = math.sqrt(float(np.mean((pred[keep] - d.tau_max[d.wet][keep]) ** 2)))
+    return sa._summarise(scores, list(scored), ranked, opt.seed)
+
+
+def envelope_from_fit(fit: ExtendedMCFit) -> tuple[float, float]:
+    """(c' [Pa], φ' [deg]) of an extended fit at s -> 0 (the envelope a run without saturated tests uses)."""
+    c, phi, _ = envelope_of(fit.form, *fit.coef)
+    return float(c), float(phi)
