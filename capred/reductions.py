@@ -134,7 +134,7 @@ REDUCTIONS: dict[str, Reduction] = {
             _P + "triaxial_strength:run_triaxial_strength",
             _P + "triaxial_strength:TriaxialStrengthOptions",
             "required",
-            None,
+            "triaxial",
             "triaxial_strength",
             method=(
                 "Per material (never pooled), the extended Mohr-Coulomb envelope q_f = (K_p − 1) σ3 + 2√K_p (c' + "

@@ -25,6 +25,7 @@ SAMPLES = {
     "triaxial-groups": "triaxial_groups.csv",
     "retention-convert": "retention_fits.json",
     "history": "lab_history.sqlite",
+    "triaxial": "triaxial_failure_states.csv",
 }
 
 

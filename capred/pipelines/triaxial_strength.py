@@ -265,7 +265,7 @@ class TriaxialStrengthResult(Result):
                     "sigma3_kPa": num(t["sigma3"][i] / KPA),
                     "q_f_kPa": num(t["q_f"][i] / KPA),
                     "suction_kPa": num(t["suction"][i] / KPA),
-                    **{k: num(t[k][i] * (1.0 if k not in ("rho_d", "rho_s") else 1e-3)) for k in _STATE_KEYS},
+                    **{k: num(t[k][i]) for k in _STATE_KEYS},
                     "q_fit_kPa": num(r.fit.fitted[j] / KPA),
                     "sigma_cap_kPa": num(r.back["sigma_cap"][j] / KPA),
                     "sigma_cap_se_kPa": num(r.back["sigma_cap_se"][j] / KPA),
@@ -432,7 +432,8 @@ class TriaxialStrengthResult(Result):
         return [f"{m}: {r.envelope_source}." for m, r in self.materials.items()], ["fredlund1978", "prunier2024"]
 
 
-_STATE_KEYS = ("S_R", "w", "rho_d", "e")
+#: the completed sample state repeated per test (dimensionless; G_s carries the densities)
+_STATE_KEYS = ("S_R", "w", "e", "n", "theta", "G_s")
 
 
 def _plain(v):
@@ -720,7 +721,7 @@ def _bounds(form, x, q, c_eff, phi_eff, env_cov) -> dict:
 def _bootstrap(m, rows, tests, opt, scored, ranked, laws, form):
     """Paired bootstrap of the ranking: resample the material's tests, refit the extended envelope (its s -> 0
     line, or the given one), refit the chi laws (warm start), score every model by RMSE on the resampled tests
-    with suction; summarised as `capred shear` does (shear_analysis._summarise)."""
+    with suction; summarised as `capred shear` does (shear_analysis.summarise_ranking)."""
     from . import shear_analysis as sa
 
     rng = np.random.default_rng(opt.seed)
@@ -752,7 +753,7 @@ def _bootstrap(m, rows, tests, opt, scored, ranked, laws, form):
                 keep = np.isfinite(pred)
                 if keep.any():
                     scores[r, j] = math.sqrt(float(np.mean((pred[keep] - d.tau_max[d.wet][keep]) ** 2)))
-    return sa._summarise(scores, list(scored), ranked, opt.seed)
+    return sa.summarise_ranking(scores, list(scored), ranked, opt.seed)
 
 
 def envelope_from_fit(fit: ExtendedMCFit) -> tuple[float, float]:

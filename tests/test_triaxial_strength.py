@@ -1,0 +1,149 @@
+"""capred triaxial (issue 40): per material extended Mohr-Coulomb, shear's models on q_f, named envelope, bounds."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+from typer.testing import CliRunner
+
+from capred.cli import app
+from capred.errors import CapredError
+from capred.pipelines.triaxial_strength import TriaxialStrengthOptions, run_triaxial_strength
+
+runner = CliRunner()
+
+# three materials, no saturated test; Bishop-like strength (chi = S_r) with 4 % scatter, S_r from w, G_s, e
+MATERIALS = {"clay A": (8.0, 32.0, 2.65), "silt B": (15.0, 27.0, 2.70), "sand C": (4.0, 35.0, 2.68)}
+
+
+def _csv(path, seed=2, n=10):
+    rng = np.random.default_rng(seed)
+    lines = ["test_id,material,sigma3,q_f,suction,w,G_s,e"]
+    for mat, (c, phi, gs) in MATERIALS.items():
+        kp = (1 + math.sin(math.radians(phi))) / (1 - math.sin(math.radians(phi)))
+        for k in range(n):
+            s3, s = rng.choice([50, 100, 200, 300]), rng.choice([50, 100, 200, 400])
+            sr = 0.9 - 0.0012 * s
+            q = (kp - 1) * (s3 + sr * s) + 2 * math.sqrt(kp) * c
+            q *= 1 + 0.04 * rng.normal()
+            lines.append(f"{mat[-1]}{k},{mat},{s3},{q:.2f},{s},{sr * 0.6 / gs:.5f},{gs},0.6")
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def _rows(path):
+    import pandas as pd
+
+    return pd.read_csv(path)
+
+
+@pytest.fixture
+def data(tmp_path):
+    return _csv(tmp_path / "failure_states.csv")
+
+
+def test_extended_mc_per_material_equals_numpy_lstsq(data):
+    """Done-when of issue 40: per material, with constant errors, the OLS fit of
+    q = (Kp - 1) sigma3 + 2 sqrt(Kp)(c' + s tan phi_b), computed here independently with numpy."""
+    res = run_triaxial_strength(data, TriaxialStrengthOptions(errors="constant", bootstrap=0))
+    df = _rows(data)
+    assert set(res.materials) == set(MATERIALS)  # split, never pooled
+    for mat in MATERIALS:
+        t = df[df.material == mat]
+        X = np.column_stack([np.ones(len(t)), t.sigma3, t.suction])
+        (a, b, d), *_ = np.linalg.lstsq(X, t.q_f.to_numpy(), rcond=None)
+        kp = 1 + b
+        p = res.fits()[mat].params
+        # two least-squares solvers on a 10 x 3 problem: 1e-9 relative
+        assert_allclose(p["phi_eff_deg"].value, 2 * math.degrees(math.atan(math.sqrt(kp))) - 90, rtol=1e-9)
+        assert_allclose(p["c_eff_kPa"].value, a / (2 * math.sqrt(kp)), rtol=1e-9)
+        assert_allclose(p["phi_b_deg"].value, math.degrees(math.atan(d / (2 * math.sqrt(kp)))), rtol=1e-9)
+
+
+def test_bishop_rmse_and_back_analysis_by_hand(data):
+    res = run_triaxial_strength(data, TriaxialStrengthOptions(models="thesis", bootstrap=0))
+    df = _rows(data)
+    for mat, r in res.materials.items():
+        t = df[df.material == mat]
+        sr = t.w * t.G_s / t.e  # phase relation S_r e = w G_s, by hand
+        a, b, _ = r.fit.zero_suction_line()  # Pa
+        q_bishop = a + b * (t.sigma3 * 1e3 + sr * t.suction * 1e3)
+        rmse = math.sqrt(float(np.mean((q_bishop - t.q_f * 1e3) ** 2))) / 1e3
+        row = next(x for x in res.metric_rows() if x["material"] == mat and x["model"] == "bishop")
+        assert_allclose(row["rmse_kPa"], rmse, rtol=1e-9)  # the same arithmetic, two code paths
+        # shear's back-analysed sigma_cap equals minus Prunier's spherical p_cap (q = q': sigma'3 - sigma3 = -p_cap)
+        assert_allclose(r.back["sigma_cap"], -r.bounds["spherical_p_cap"], rtol=1e-9, atol=1e-6)
+        assert_allclose(r.back["sigma_cap"], (t.q_f * 1e3 - a) / b - t.sigma3 * 1e3, rtol=1e-9)
+        # AICc weights of the scored models sum to one
+        w = [x["akaike_weight"] for x in res.metric_rows() if x["material"] == mat]
+        assert_allclose(sum(w), 1.0, rtol=1e-12)
+
+
+def test_envelope_named_and_overridden(data):
+    res = run_triaxial_strength(data, TriaxialStrengthOptions(bootstrap=0))
+    for r in res.materials.values():
+        assert "extended Mohr-Coulomb envelope at s -> 0" in r.envelope_source
+        assert r.envelope_cov[0, 0] > 0 and r.envelope_cov[1, 1] > 0  # its uncertainty reaches the bounds
+        assert np.all(r.bounds["spherical_p_cap_se"] > 0)
+    assert any("no saturated" in n for n in res.notes)
+    given = run_triaxial_strength(data, TriaxialStrengthOptions(c_eff=5e3, phi_eff=30.0, bootstrap=0))
+    for r in given.materials.values():
+        assert r.envelope_source.startswith("given as options") and r.c_eff == 5e3
+        assert np.all(r.bounds["spherical_p_cap_se"] == 0)  # an envelope given exactly carries no uncertainty
+
+
+def test_fitted_laws_and_bootstrap(data):
+    res = run_triaxial_strength(data, TriaxialStrengthOptions(models="bishop,chi_power,fredlund", bootstrap=50))
+    for r in res.materials.values():
+        assert "chi_power" in r.laws and r.laws["chi_power"].params["kappa"].value > 0
+        assert r.ranking.replicates == 50
+        assert_allclose(sum(r.ranking.probability.values()), 1.0, rtol=1e-12)
+
+
+def test_cli_writes_files_and_json(data, tmp_path):
+    out = tmp_path / "out"
+    res = runner.invoke(app, ["triaxial", str(data), "--out", str(out), "--bootstrap", "20", "--json"])
+    assert res.exit_code == 0, res.output
+    names = {p.name for p in out.iterdir()}
+    assert {"results.csv", "materials.csv", "metrics.csv", "laws.csv", "summary.json", "provenance.json"} <= names
+    assert len([n for n in names if n.startswith("report_") and n.endswith(".png")]) == 3  # a sheet per material
+    js = json.loads((out / "summary.json").read_text())
+    assert set(js["materials"]) == set(MATERIALS)
+    emc = js["materials"]["clay A"]["extended_mohr_coulomb"]["params"]
+    assert {"c_eff_kPa", "phi_eff_deg", "phi_b_deg"} <= set(emc)
+    assert "s -> 0" in js["materials"]["clay A"]["envelope"]["source"]
+    assert any(m["model"] == "bishop" and m["rmse_kPa"] > 0 for m in js["metrics"])
+    import pandas as pd
+
+    results = pd.read_csv(out / "results.csv")
+    assert len(results) == 30 and results["S_R"].between(0, 1).all()
+
+
+def test_inconsistent_sample_state_is_one_clear_error(tmp_path):
+    p = tmp_path / "bad.csv"
+    p.write_text(
+        "test_id,material,sigma3,q_f,suction,rho_d,rho_s,e\n"
+        "t1,A,50,200,100,1820,2720,0.494\nt2,A,100,300,100,1820,2720,0.6\n"
+        "t3,A,150,400,200,1820,2720,0.494\nt4,A,200,500,200,1820,2720,0.494\n"
+    )
+    out = tmp_path / "o"
+    res = runner.invoke(app, ["triaxial", str(p), "--out", str(out)])
+    assert res.exit_code != 0
+    assert "bad.csv" in res.output and "line 3" in res.output and "0.6" in res.output
+    assert "Traceback" not in res.output
+    assert not out.exists()  # nothing written
+    with pytest.raises(CapredError):
+        run_triaxial_strength(p)
+
+
+def test_mixed_branches_in_one_material_refused(tmp_path):
+    p = tmp_path / "mixed.csv"
+    p.write_text(
+        "test_id,material,branch,sigma3,q_f,suction,S_R\n"
+        "t1,A,compression,50,200,100,0.5\nt2,A,extension,100,90,100,0.5\n"
+        "t3,A,compression,150,400,200,0.4\nt4,A,compression,200,500,200,0.4\n"
+    )
+    with pytest.raises(CapredError, match="mixes compression and extension"):
+        run_triaxial_strength(p)
