@@ -81,6 +81,27 @@ def test_bishop_rmse_and_back_analysis_by_hand(data):
         assert_allclose(sum(w), 1.0, rtol=1e-12)
 
 
+def test_own_envelope_of_bishop_equals_numpy_lstsq(data):
+    """Each model's own envelope: for Bishop with constant errors, the OLS fit of q = a + b (sigma3 + S_r s)."""
+    res = run_triaxial_strength(
+        data, TriaxialStrengthOptions(models="bishop,no_suction", errors="constant", bootstrap=0)
+    )
+    df = _rows(data)
+    for mat, r in res.materials.items():
+        t = df[df.material == mat]
+        sr = t.w * t.G_s / t.e
+        X = np.column_stack([np.ones(len(t)), t.sigma3 + sr * t.suction])
+        (a, b), rss, *_ = np.linalg.lstsq(X, t.q_f.to_numpy(), rcond=None)
+        kp = 1 + b
+        own = r.own["bishop"]
+        # 1e-7: the model's affine coefficients come from probes of its prediction (differences of ~1e5 Pa values)
+        assert_allclose(own["phi_eff"], 2 * math.degrees(math.atan(math.sqrt(kp))) - 90, rtol=1e-7)
+        assert_allclose(own["c_eff"] / 1e3, a / (2 * math.sqrt(kp)), rtol=1e-7)
+        assert_allclose(own["rmse"] / 1e3, math.sqrt(rss[0] / len(t)), rtol=1e-7)
+    # the data were made with chi = S_r: on its own envelope Bishop beats No suction in every material
+    assert all(r.own["bishop"]["rmse"] < r.own["no_suction"]["rmse"] for r in res.materials.values())
+
+
 def test_envelope_named_and_overridden(data):
     res = run_triaxial_strength(data, TriaxialStrengthOptions(bootstrap=0))
     for r in res.materials.values():

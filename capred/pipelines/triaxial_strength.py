@@ -215,6 +215,9 @@ class MaterialStrength:
     bounds: dict
     ranking: object
     best: str | None
+    #: model -> its own envelope refitted under it (``c_eff`` [Pa], ``phi_eff`` [deg], ``rmse`` [Pa], ``k``,
+    #: ``aicc``, ``delta_aicc``, ``weight``): `own_envelopes`
+    own: dict = field(default_factory=dict)
 
 
 @dataclass(repr=False)
@@ -338,6 +341,7 @@ class TriaxialStrengthResult(Result):
                         "delta_aicc": num(info["delta_aicc"]),
                         "akaike_weight": num(info["weight"]),
                         "p_best": None if rk is None else num(rk.probability.get(mod)),
+                        **_own_columns(r.own.get(mod)),
                         "rmse_ci95_low_kPa": None
                         if rk is None or mod not in rk.rmse_ci
                         else num(rk.rmse_ci[mod][0] / KPA),
@@ -396,6 +400,17 @@ class TriaxialStrengthResult(Result):
                     "phi_se_deg": num(math.sqrt(max(r.envelope_cov[1, 1], 0.0))),
                 },
                 "best_model": r.best,
+                "own_envelopes": {
+                    mod: {
+                        "c_kPa": num(v["c_eff"] / KPA),
+                        "phi_deg": num(v["phi_eff"]),
+                        "rmse_kPa": num(v["rmse"] / KPA),
+                        "k": v["k"],
+                        "delta_aicc": num(v.get("delta_aicc")),
+                        "akaike_weight": num(v.get("weight")),
+                    }
+                    for mod, v in r.own.items()
+                },
                 "skipped_models": dict(r.skipped),
                 "laws": {
                     mod: {
@@ -433,6 +448,18 @@ class TriaxialStrengthResult(Result):
 
 
 #: the completed sample state repeated per test (dimensionless; G_s carries the densities)
+def _own_columns(own: dict | None) -> dict:
+    """The metrics.csv columns of a model's own envelope (None where the model has none)."""
+    own = own or {}
+    return {
+        "own_c_eff_kPa": num(own.get("c_eff", math.nan) / KPA),
+        "own_phi_eff_deg": num(own.get("phi_eff")),
+        "own_rmse_kPa": num(own.get("rmse", math.nan) / KPA),
+        "own_delta_aicc": num(own.get("delta_aicc")),
+        "own_akaike_weight": num(own.get("weight")),
+    }
+
+
 _STATE_KEYS = ("S_R", "w", "e", "n", "theta", "G_s")
 
 
@@ -686,8 +713,85 @@ def _material(m, rows, tests, opt, models, all_asked) -> MaterialStrength:
     return MaterialStrength(
         m, form, rows, fit, source, c_eff, phi_eff, env_cov, line_cov, tuple(scored), skipped, predictions,
         metrics, information, laws, {"sigma_cap": cap, "sigma_cap_se": cap_se, "chi_back": chi, "chi_back_se": chi_se},
-        bounds, ranking, best,
+        bounds, ranking, best, own_envelopes(d, scored, form, y, fit.weights),
     )  # fmt: skip
+
+
+def own_envelopes(d: esm.ModelInputs, models, form: str, y, weights=None) -> dict:
+    r"""Each model's own envelope: (c', φ') refitted to the material's failure states UNDER that model.
+
+    With no saturated test the shared envelope (the extended fit at s -> 0) is the planar envelope's intercept:
+    a model whose σ'_3 is not planar in s (Bishop with S_r falling with suction) is then scored on an envelope
+    fitted under another hypothesis. Refitting (a, b) of q = a + b σ'_3 under each model removes that bias. A
+    registry model's prediction is affine in (a, b) (checked here per model; the fitted χ laws are left out):
+
+    .. math:: q_i = f_{0,i} + a\,f_{a,i} + b\,f_{b,i}
+
+    so the refit is least squares on all the material's tests, weighted as the extended fit was (``weights``:
+    ones for constant errors, 1/q̂² for proportional ones; the model's own σ'_3 against the same
+    scatter); RMSE on the tests with suction, and AICc with k = 2 + the model's wet parameters.
+
+    Parameters
+    ----------
+    d : ModelInputs
+        The material's tests (``c``, ``tan_phi`` the shared envelope's a, b).
+    models : sequence of str
+        Scored models.
+    form : str
+        ``"compression"`` or ``"extension"``.
+    y : ndarray
+        Measured q_f [Pa].
+    weights : ndarray, optional
+        Least-squares weights per test (default ones).
+
+    Returns
+    -------
+    dict
+        model -> {c_eff [Pa], phi_eff [deg], rmse [Pa], k, aicc, delta_aicc, weight}; models that are not affine
+        (fitted laws) are left out.
+
+    References
+    ----------
+    .. [1] Draper & Smith (1998), doi:10.1002/9781118625590 (least squares); Burnham & Anderson (2002),
+       doi:10.1007/b97636 (AICc).
+    """
+    out, aicc = {}, {}
+    n = y.size
+    wet = d.wet
+    for mod in models:
+        e = esm.REGISTRY[mod]
+        if e.fitted:
+            continue
+
+        def at(a, b, mod=mod):
+            with np.errstate(all="ignore"):
+                return esm.predict(mod, dataclasses.replace(d, c=np.full(n, a), tan_phi=np.full(n, b)))[1]
+
+        # probes about the shared envelope (a0, b0): f = f0 + (a - a0) fa + (b - b0) fb where the model is affine
+        a0, b0 = float(d.c[0]), float(d.tan_phi[0])
+        ha, hb = max(abs(a0), 1.0), max(abs(b0), 1e-3)
+        f0 = at(a0, b0)
+        fa, fb = (at(a0 + ha, b0) - f0) / ha, (at(a0, b0 + hb) - f0) / hb
+        keep = np.isfinite(f0) & np.isfinite(fa) & np.isfinite(fb)
+        check = at(a0 - 0.5 * ha, b0 + 0.5 * hb)
+        if keep.sum() < 3 or not np.allclose(
+            check[keep], (f0 - 0.5 * ha * fa + 0.5 * hb * fb)[keep], rtol=1e-7, atol=1e-6 * float(np.max(np.abs(y)))
+        ):
+            continue
+        sw = np.sqrt(np.ones(n) if weights is None else np.asarray(weights, float))[keep]
+        X = np.column_stack([fa, fb])[keep] * sw[:, None]
+        (da, db), *_ = np.linalg.lstsq(X, (y - f0)[keep] * sw, rcond=None)
+        a, b = a0 + da, b0 + db
+        c_eff, phi, _ = envelope_of(form, a, b)
+        pred = f0 + da * fa + db * fb
+        sel = wet & keep
+        rmse = math.sqrt(float(np.mean((pred[sel] - y[sel]) ** 2))) if sel.any() else math.nan
+        k = 2 + e.wet_parameters
+        aicc[mod] = chi_laws.information_criteria(float(np.sum((pred[sel] - y[sel]) ** 2)), int(sel.sum()), k)["aicc"]
+        out[mod] = {"c_eff": float(c_eff), "phi_eff": float(phi), "rmse": rmse, "k": k, "aicc": aicc[mod]}
+    for mod, (delta, weight) in chi_laws.akaike_weights(aicc).items():
+        out[mod]["delta_aicc"], out[mod]["weight"] = delta, weight
+    return out
 
 
 def _principal(form, x, q):
