@@ -351,6 +351,15 @@ SNAPSHOT = {
                 "type": "str",
                 "option": "--extension-path",
             },
+            "material": {
+                "quantity": None,
+                "unit": "",
+                "range": "",
+                "text": "The material analysed, from the table's material column (needed when it holds several: materials are never pooled).",
+                "default": None,
+                "type": "str",
+                "option": "--material",
+            },
         },
         "capred.pipelines.retention:RetentionOptions": {
             "models": {

@@ -24,12 +24,14 @@ from ..references import cite
 from ..result import InputFile, Options, Result, input_file, num
 from ..units import parse_quantity
 from . import triaxial_records as rec
+from .triaxial_materials import one_material
 
 #: Pa per kPa: the records hold the user's units, the physics SI
 KPA = 1e3
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
+    Column("material", "text", None, "material name (one per run: --material)", ("soil", "material_name")),
     Column(
         "condition", "text", None, "test condition", ("state", "saturation_state"), choices=("saturated", "unsaturated")
     ),
@@ -307,6 +309,9 @@ class TriaxialOptions(Options):
         pressure, slope -3 in the q-p plane; the default) or
         ``"radial-loading"`` (the cell pressure rises at constant axial
         stress, slope 3/2) (capred.physics.triaxial.EXTENSION_PATHS).
+    material : str, optional
+        The material analysed, from the table's ``material`` column (needed
+        when it holds several: materials are never pooled).
     """
 
     QUANTITIES = {"c_eff": "c_eff", "phi_eff": "phi_eff", **{k: k for k in _MEMBRANE if k in _GLOSSARY}}
@@ -318,6 +323,7 @@ class TriaxialOptions(Options):
     membrane_thickness: float | None = None  # m
     membrane_modulus: float | None = None  # Pa
     extension_path: str = "axial-unloading"
+    material: str | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "_given", {"c_eff": self.c_eff, "phi_eff": self.phi_eff})  # as the caller typed
@@ -996,6 +1002,9 @@ def run_triaxial_bounds(
         opt = dataclasses.replace(opt, curves=curves)
     curves = opt.curves
     table = read_table(source, SCHEMA)
+    table, material = one_material(table, opt.material)  # one envelope per run: never pooled (issue 40)
+    if material is not None:
+        table.notes.append(f"material: {material or '(blank)'}")
     raw_curves = None
     D_c, D_c_source = consolidated_diameter(table) if opt.membrane is not None else (None, None)
     if curves is not None:
