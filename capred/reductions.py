@@ -147,6 +147,7 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("fredlund1978", "prunier2024", "bishop1959"),
             summary="Unsaturated strength from triaxial failure states: extended Mohr-Coulomb, models, bounds.",
+            example=(("bootstrap", 0),),
             table_kind="a table of triaxial failure states",
         ),
         Reduction(

@@ -227,6 +227,8 @@ class TriaxialStrengthResult(Result):
 
     Attributes
     ----------
+    source : str
+        The input table's path (``"<DataFrame>"`` for a DataFrame).
     tests : dict
         Per test (input order): ``test_id``, ``material``, ``branch``, ``sigma3``, ``q_f``, ``suction`` [Pa] and
         the completed sample state (``S_R``, ``rho_d``, ``e``, ``w`` ...).
@@ -238,6 +240,7 @@ class TriaxialStrengthResult(Result):
     """
 
     command = "triaxial"
+    source: str
     tests: dict
     materials: dict
     options: TriaxialStrengthOptions
@@ -426,7 +429,7 @@ class TriaxialStrengthResult(Result):
                     "probability_best": {k: num(v) for k, v in r.ranking.probability.items()},
                 },
             }
-        return {"materials": mats, "metrics": self.metric_rows(), "tests": self.test_rows()}
+        return {"source": self.source, "materials": mats, "metrics": self.metric_rows(), "tests": self.test_rows()}
 
     def tables(self) -> dict:
         """results (per test), materials, metrics, laws: pandas DataFrames."""
@@ -604,6 +607,7 @@ def run_triaxial_strength(source, options: TriaxialStrengthOptions | None = None
             )
         warnings.extend(f"{m}: {w}" for w in materials[m].fit.warnings)
     return TriaxialStrengthResult(
+        source=table.path,
         tests=tests,
         materials=materials,
         options=opt,
