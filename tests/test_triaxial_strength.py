@@ -183,3 +183,25 @@ def test_bound_intervals_cover_by_simulation():
     cov = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(cov)
     assert np.all(cov.bounds() >= 0.93)
+
+
+def test_extension_branch_exact_data_recovers_the_envelope(tmp_path):
+    # extension (cell pressure major): q = (1 - 1/Kp)(sigma_r + S_r s) + (2/sqrt(Kp)) c' exactly, Bishop's chi = S_r;
+    # phi' = 30 deg: Kp = 3, q = (2/3)(sigma_r + S_r s) + (2/sqrt(3)) c'
+    rows = ["test_id,material,branch,sigma3,q_f,suction,S_R"]
+    k = 0
+    for s3 in (50, 100, 200, 300):
+        for s, sr in ((50, 0.8), (150, 0.5), (300, 0.3)):
+            q = (2 / 3) * (s3 + sr * s) + 2 / math.sqrt(3) * 10.0
+            rows.append(f"e{k},E,extension,{s3},{q!r},{s},{sr}")
+            k += 1
+    p = tmp_path / "ext.csv"
+    p.write_text("\n".join(rows) + "\n")
+    res = run_triaxial_strength(p, TriaxialStrengthOptions(models="bishop", errors="constant", bootstrap=0))
+    r = res.materials["E"]
+    assert r.form == "extension"
+    # noise-free data: Bishop's own envelope is the true one to rounding
+    assert_allclose([r.own["bishop"]["c_eff"], r.own["bishop"]["phi_eff"]], [10e3, 30.0], rtol=1e-8)
+    assert r.own["bishop"]["rmse"] < 1e-6 * 1e3
+    # spherical bound in extension (sigma2 = sigma1 = cell pressure) against shear's back-analysis on the same line
+    assert_allclose(r.back["sigma_cap"], -r.bounds["spherical_p_cap"], rtol=1e-9, atol=1e-6)
