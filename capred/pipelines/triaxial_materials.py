@@ -1,4 +1,5 @@
-"""The ``material`` column of a triaxial table: one material per analysis, never pooled (issue 40).
+"""What `capred triaxial-bounds` shares with `capred triaxial` (issue 40): the ``material`` column (one material
+per analysis, never pooled) and the envelope at s -> 0 of the unsaturated tests when there is no saturated test.
 
 `capred triaxial` analyses every material of its table separately. `capred triaxial-bounds` fits ONE effective
 envelope per run, so a table with several materials runs one of them at a time (``--material NAME``); without it,
@@ -11,8 +12,14 @@ import dataclasses
 
 import numpy as np
 
-from ..errors import InputError, OptionError, Problem
+from ..errors import FitError, InputError, OptionError, Problem
 from ..io import Table
+
+#: how the envelope of a run without saturated tests is named, wherever it is shown
+EXTENDED_MC_METHOD = (
+    "extended Mohr-Coulomb envelope at s -> 0 (Fredlund et al. 1978) fitted to the unsaturated failure states, "
+    "their initial suction s0 taken as the suction at failure"
+)
 
 
 def materials_of(table: Table) -> dict[str, int]:
@@ -106,3 +113,66 @@ def one_material(table: Table, material: str | None) -> tuple[Table, str | None]
     if material not in found:
         raise OptionError(f"--material {material!r} is not in {table.path}; its materials: {', '.join(found)}")
     return subset_rows(table, np.asarray(table.columns["material"], dtype=object) == material), material
+
+
+def zero_suction_envelope(sigma3, sigma1, s0, branch, confidence: float = 0.95):
+    """The effective envelope of a triaxial-bounds run without saturated tests: the extended fit at s -> 0.
+
+    q_f = (K_p - 1) σ3 + 2 √K_p (c' + s tan φ_b) (compression; the extension form with the cell pressure as the
+    major stress), fitted with proportional errors (`capred.fitting.extended_mc`), s0 standing for the suction at
+    failure (Prunier et al.'s drained tests at constant water content do not measure it).
+
+    Parameters
+    ----------
+    sigma3, sigma1 : ndarray
+        Minor and major net principal stresses at failure of the unsaturated tests [Pa].
+    s0 : ndarray
+        Their initial suction [Pa].
+    branch : ndarray of str
+        ``"compression"`` or ``"extension"`` per test (one branch for all).
+    confidence : float
+        Level of the intervals.
+
+    Returns
+    -------
+    capred.pipelines.triaxial.Envelope
+        ``source="extended_mc"``, with standard errors and the c'-φ' correlation (delta method).
+
+    Raises
+    ------
+    FitError
+        s0 missing, several branches, or failure states that do not determine the plane (one suction only,
+        fewer than 4 tests).
+
+    References
+    ----------
+    .. [1] Fredlund, D. G., Morgenstern, N. R. & Widger, R. A. (1978). Can. Geotech. J. 15(3):313-321,
+       doi:10.1139/t78-029.
+    """
+    from ..fitting.extended_mc import fit_extended_mc
+    from .triaxial import KPA, Envelope
+
+    s0 = np.asarray(s0, float)
+    if not np.all(np.isfinite(s0)):
+        raise FitError(f"{int(np.sum(~np.isfinite(s0)))} unsaturated test(s) without s0")
+    forms = set(np.asarray(branch, dtype=object).tolist())
+    if len(forms) != 1 or not forms <= {"compression", "extension"}:
+        raise FitError(f"one branch, compression or extension, is needed (got {', '.join(map(str, sorted(forms)))})")
+    form = forms.pop()
+    sigma3, sigma1 = np.asarray(sigma3, float), np.asarray(sigma1, float)
+    x = sigma3 if form == "compression" else sigma1
+    fit = fit_extended_mc(x, s0, sigma1 - sigma3, form, "proportional", confidence)
+    c, phi, _ = fit.envelope
+    cov = fit.derived_covariance()[:2, :2]
+    c_se, phi_se = float(np.sqrt(max(cov[0, 0], 0.0))), float(np.sqrt(max(cov[1, 1], 0.0)))
+    corr = float(cov[0, 1] / (c_se * phi_se)) if c_se > 0 and phi_se > 0 else float("nan")
+    return Envelope(
+        c_kPa=c / KPA,
+        phi_deg=phi,
+        c_se_kPa=c_se / KPA,
+        phi_se_deg=phi_se,
+        source="extended_mc",
+        n=fit.n,
+        r2=float(fit.r2),
+        c_phi_correlation=corr,
+    )
