@@ -66,20 +66,24 @@ SCHEMA = [
         "kPa",
         "net cell pressure sigma3 - u_a",
         ("net_sigma3", "sigma3_net", "s3", "confining_pressure", "cell_pressure", "net_confining_pressure"),
-        "nonnegative",
+        quantity="sigma3",
     ),
-    Column("q_f", "pressure", "kPa", "deviator at failure q_f", ("q", "qf", "q_max", "deviator", "q_peak")),
+    Column(
+        "q_f", "pressure", "kPa", "deviator at failure q_f", ("q", "qf", "q_max", "deviator", "q_peak"), quantity="q_f"
+    ),
     Column("sigma1", "pressure", "kPa", "net axial stress at failure", ("s1", "sigma_1"), "nonnegative"),
-    Column("suction", "pressure", "kPa", "matric suction u_a - u_w", ("s", "matric_suction", "ua_uw"), "nonnegative"),
-    Column("S_R", "dimensionless", "-", "degree of saturation", ("Sr", "S_r", "degree_of_saturation"), "fraction"),
-    Column("w", "dimensionless", "-", "gravimetric water content", ("water_content", "w0"), "nonnegative"),
-    Column("rho_d", "density", "kg/m^3", "dry density", ("dry_density", "rhod"), "positive"),
-    Column("rho_s", "density", "kg/m^3", "density of the solids", ("solid_density", "rhos"), "positive"),
-    Column("G_s", "dimensionless", "-", "specific gravity of the solids", ("Gs", "specific_gravity"), "positive"),
-    Column("e", "dimensionless", "-", "void ratio", ("void_ratio", "e0"), "positive"),
-    Column("n", "dimensionless", "-", "porosity", ("porosity",), "fraction"),
-    Column("theta", "dimensionless", "-", "volumetric water content", ("vwc",), "fraction"),
-    Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius")),
+    Column(
+        "suction", "pressure", "kPa", "matric suction u_a - u_w", ("s", "matric_suction", "ua_uw"), quantity="suction"
+    ),
+    Column("S_R", "dimensionless", "-", "degree of saturation", ("Sr", "S_r", "degree_of_saturation"), quantity="S_R"),
+    Column("w", "dimensionless", "-", "gravimetric water content", ("water_content", "w0"), quantity="water_content"),
+    Column("rho_d", "density", "kg/m^3", "dry density", ("dry_density", "rhod"), quantity="rho_d"),
+    Column("rho_s", "density", "kg/m^3", "density of the solids", ("solid_density", "rhos"), quantity="rho_s"),
+    Column("G_s", "dimensionless", "-", "specific gravity of the solids", ("Gs", "specific_gravity"), quantity="G_s"),
+    Column("e", "dimensionless", "-", "void ratio", ("void_ratio", "e0"), quantity="void_ratio"),
+    Column("n", "dimensionless", "-", "porosity", ("porosity",), quantity="porosity"),
+    Column("theta", "dimensionless", "-", "volumetric water content", ("vwc",), quantity="theta"),
+    Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius"), quantity="R"),
 ]
 
 #: the sample-state columns completed by capred.physics.phase (column -> phase name)
