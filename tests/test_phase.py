@@ -65,3 +65,27 @@ def test_complete_state_impossible_value_is_an_error(given):
 def test_complete_state_implied_saturation_above_one_is_an_error():
     with pytest.raises(InconsistentState, match="implied"):
         complete_state(rho_d=1820.0, rho_s=2720.0, w=0.35)
+
+
+def test_shear_and_retention_check_a_rows_sample_state(tmp_path):
+    """Every command reading a sample state goes through the phase relations (capred.pipelines.sample_state)."""
+    from capred.errors import InputError
+    from capred.pipelines.retention import run_retention
+    from capred.pipelines.shear import run_shear
+
+    shear = tmp_path / "shear.csv"
+    shear.write_text(
+        "test_id,material,condition,sigma_N,tau_max,e,rho_d,G_s,height,box_area\n"
+        "a,s,dry,10,7,0.6,1650,2.65,20,36\nb,s,dry,20,14,0.9,1650,2.65,20,36\nc,s,dry,30,21,0.606,1650,2.65,20,36\n"
+    )
+    # line 3: e = 0.9 but G_s rho_w/rho_d - 1 = 0.606 (line 4's 0.606 agrees)
+    with pytest.raises(InputError, match=r"line 3, column 'e'.*0\.9") as exc:
+        run_shear(shear)
+    assert len(exc.value.problems) == 1
+    ret = tmp_path / "ret.csv"
+    ret.write_text(
+        "suction,w,rho_d,theta\n1,0.2,1600,0.32\n10,0.18,1600,0.40\n100,0.1,1600,0.16\n1000,0.05,1600,0.08\n"
+    )
+    # line 3: theta = 0.40 but w rho_d/rho_w = 0.288
+    with pytest.raises(InputError, match=r"line 3.*0\.288"):
+        run_retention(ret)

@@ -751,6 +751,9 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
         table.missing_column("V_v", " (needed with 'z2')")
     if "w" in table.columns and "rho_d" not in table.columns and "theta" not in table.columns:
         table.missing_column("rho_d", " (needed with the gravimetric 'w': theta = w rho_d/rho_w)")
+    from .sample_state import table_state
+
+    table_state(table, opt.rho_w, ("w", "rho_d", "theta", "S_R"))  # a row's w, rho_d, theta must agree
     table.raise_if_problems()
     s = _suction(table, opt)
     positive = s[s > 0]

@@ -41,7 +41,6 @@ from ..fitting.extended_mc import ExtendedMCFit, coefficients, envelope_of, fit_
 from ..fitting.linear import ERROR_MODELS
 from ..io import Column, read_table
 from ..physics import effective_stress_models as esm
-from ..physics import phase
 from ..physics import shear as ph
 from ..physics import triaxial as tx
 from ..result import Options, Result, input_file, num
@@ -86,9 +85,8 @@ SCHEMA = [
     Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius"), quantity="R"),
 ]
 
-#: the sample-state columns completed by capred.physics.phase (column -> phase name)
-_STATE_COLUMNS = {"rho_d": "rho_d", "rho_s": "rho_s", "G_s": "G_s", "e": "e", "n": "n", "w": "w", "S_R": "S_r"}
-_STATE_COLUMNS["theta"] = "theta"
+#: the sample-state columns completed by capred.physics.phase (capred.pipelines.sample_state)
+_STATE_COLUMNS = ("rho_d", "rho_s", "G_s", "e", "n", "w", "S_R", "theta")
 
 #: the default model selection: every model of the registry the inputs allow
 DEFAULT_MODELS = "all"
@@ -509,21 +507,12 @@ def load_table(source):
 
 def complete_states(table) -> dict[str, np.ndarray]:
     """The sample state of every test completed by the phase relations; one InputError naming each bad row."""
-    given = {p: table.get(col) for col, p in _STATE_COLUMNS.items() if table.has(col)}
-    try:
-        state = phase.complete_state(**given) if given else {}
-    except phase.InconsistentState as exc:
-        inv = {p: col for col, p in _STATE_COLUMNS.items()}
-        raise InputError(
-            [
-                Problem(
-                    table.path, int(table.lines[i]), table.headers.get(inv.get(q, q), inv.get(q, q)), msg, table.sheet
-                )
-                for i, q, msg in exc.problems
-            ]
-        ) from None
+    from .sample_state import table_state
+
+    state = table_state(table)
+    table.raise_if_problems()
     n = len(table)
-    return {col: np.asarray(state.get(p, np.full(n, np.nan)), float).reshape(n) for col, p in _STATE_COLUMNS.items()}
+    return {col: state.get(col, np.full(n, np.nan)) for col in _STATE_COLUMNS}
 
 
 # --- the run ----------------------------------------------------------------------------------------------------
