@@ -586,7 +586,9 @@ def run_triaxial_strength(source, options: TriaxialStrengthOptions | None = None
     models = esm.resolve_models(opt.models)
     all_asked = esm.asks_for_all(opt.models)
     materials = {}
-    for m in dict.fromkeys(material):
+    from ..progress import steps
+
+    for m in steps(list(dict.fromkeys(material)), "materials: extended envelope, models, bootstrap"):
         rows = np.flatnonzero(material == m)
         try:
             materials[m] = _material(m, rows, tests, opt, models, all_asked)
@@ -599,6 +601,12 @@ def run_triaxial_strength(source, options: TriaxialStrengthOptions | None = None
                 "carried into the bounds; --c-eff/--phi-eff override it"
             )
         warnings.extend(f"{m}: {w}" for w in materials[m].fit.warnings)
+        dry = int(np.sum(tests["suction"][rows] == 0))
+        if dry:
+            notes.append(
+                f"{m}: {dry} test(s) at zero suction enter the extended envelope but not the model scores (every "
+                "model gives them the envelope itself)"
+            )
     return TriaxialStrengthResult(
         source=table.path,
         tests=tests,
