@@ -58,6 +58,30 @@ def bounds(reps=1000, seed=4):
     return hit / reps
 
 
+def sigma_cap(reps=1000, seed=9):
+    """Coverage of sigma_cap +/- t SE of 5 new tests per material (shear_analysis.back_analysis on the s -> 0
+    line of the extended fit), where the strength is the plane: true sigma_cap = d s / b."""
+    from capred.pipelines import shear_analysis as sa
+
+    rng = np.random.default_rng(seed)
+    hit = tot = 0
+    for _ in range(reps):
+        n = rng.integers(6, 21)
+        x, s = rng.uniform(20e3, 400e3, n), rng.uniform(20e3, 400e3, n)
+        mu = A + B * x + D * s
+        f = fit_extended_mc(x, s, mu + rng.normal(size=n) * 0.06 * mu, "compression", "proportional")
+        a, b, cov = f.zero_suction_line()
+        x0, s0 = rng.uniform(20e3, 400e3, 5), rng.uniform(20e3, 400e3, 5)
+        mu0 = A + B * x0 + D * s0
+        y0 = mu0 + rng.normal(size=5) * 0.06 * mu0
+        cap, se, _, _ = sa.back_analysis(
+            y0, x0, s0, np.full(5, a), np.full(5, b), np.broadcast_to(cov, (5, 2, 2)), f.new_test_variance(x0, s0)
+        )
+        hit += int(np.sum(np.abs(cap - D * s0 / B) <= f.t * se))
+        tot += 5
+    return hit / tot
+
+
 if __name__ == "__main__":
     print("| scatter of a test | --errors | c' | φ' | φ_b | q_f, low third | q_f, middle third | q_f, high third |")
     print("|---|---|---|---|---|---|---|---|")
@@ -67,3 +91,4 @@ if __name__ == "__main__":
             extra = f" (proportional chosen in {100 * ch:.0f} %)" if errors == "auto" else ""
             print(f"| {label} | {errors}{extra} | " + " | ".join(f"{100 * v:.1f}" for v in (*h, *nw)) + " |")
     print("bounds (spherical, lower) at sigma3 = 50, 200, 380 kPa:", np.round(100 * bounds(), 1).tolist())
+    print(f"sigma_cap of a new test: {100 * sigma_cap():.1f}")
