@@ -205,3 +205,22 @@ def test_extension_branch_exact_data_recovers_the_envelope(tmp_path):
     assert r.own["bishop"]["rmse"] < 1e-6 * 1e3
     # spherical bound in extension (sigma2 = sigma1 = cell pressure) against shear's back-analysis on the same line
     assert_allclose(r.back["sigma_cap"], -r.bounds["spherical_p_cap"], rtol=1e-9, atol=1e-6)
+
+
+def test_models_without_what_they_need_are_skipped_with_the_reason(data):
+    import pandas as pd
+
+    from capred.errors import OptionError
+
+    df = pd.read_csv(data).drop(columns=["w"])  # no S_R, nor anything it follows from
+    res = run_triaxial_strength(df, TriaxialStrengthOptions(bootstrap=0))
+    r = res.materials["clay A"]
+    assert "no_suction" in r.models and "fredlund" in r.models
+    assert "bishop" not in r.models and "needs S_R" in r.skipped["bishop"]
+    assert "needs --s-res" == r.skipped["vanapalli"]
+    with pytest.raises(OptionError, match="vanapalli.*--s-res"):  # named explicitly: an error, as in shear
+        run_triaxial_strength(df, TriaxialStrengthOptions(models="vanapalli", bootstrap=0))
+    with pytest.warns(UserWarning, match="'bishop' not scored"):  # named explicitly, not scorable: a warning
+        import capred
+
+        capred.run_triaxial_strength(df, TriaxialStrengthOptions(models="bishop,no_suction", bootstrap=0))

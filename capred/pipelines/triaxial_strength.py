@@ -601,6 +601,8 @@ def run_triaxial_strength(source, options: TriaxialStrengthOptions | None = None
                 "carried into the bounds; --c-eff/--phi-eff override it"
             )
         warnings.extend(f"{m}: {w}" for w in materials[m].fit.warnings)
+        for mod, why in materials[m].skipped.items():  # named in --models but not scored: a warning, else a note
+            (notes if all_asked else warnings).append(f"{m}: model '{mod}' not scored: {why}")
         dry = int(np.sum(tests["suction"][rows] == 0))
         if dry:
             notes.append(
@@ -640,19 +642,22 @@ def _inputs(tests, rows, a, b, opt, m) -> esm.ModelInputs:
     )
 
 
-def _usable(model: str, d: esm.ModelInputs, opt, all_asked: bool) -> str:
-    """Why ``model`` cannot be scored on these tests ("" when it can)."""
+def _usable(model: str, d: esm.ModelInputs, opt) -> str:
+    """Why ``model`` cannot be scored on these tests ("" when it can): a missing parameter, or no finite prediction
+    (a fitted law is judged after its fit, in `_material`)."""
     missing = opt.model_params.missing(model)
     if missing:
         return f"needs {missing}"
+    if esm.REGISTRY[model].fitted:
+        return ""
     with np.errstate(all="ignore"):
-        pred = esm.predict(model, d)[1] if not esm.REGISTRY[model].fitted else np.zeros(1)
-    if not np.any(np.isfinite(pred[d.wet] if pred.size == d.wet.size else pred)):
-        need = "S_R (or a sample state it follows from)" if not np.any(np.isfinite(d.S_R)) else "R"
-        return f"no prediction on these tests (needs {need})"
-    if esm.REGISTRY[model].fitted and not np.any(np.isfinite(d.S_R[d.wet])) and model == "chi_power":
-        return "needs S_R"
-    return ""
+        pred = esm.predict(model, d)[1]
+    return "" if np.any(np.isfinite(pred[d.wet])) else _no_prediction(d)
+
+
+def _no_prediction(d: esm.ModelInputs) -> str:
+    need = "S_R (or a sample state it follows from)" if not np.any(np.isfinite(d.S_R[d.wet])) else "R"
+    return f"no prediction on these tests (needs {need})"
 
 
 def _material(m, rows, tests, opt, models, all_asked) -> MaterialStrength:
@@ -676,7 +681,9 @@ def _material(m, rows, tests, opt, models, all_asked) -> MaterialStrength:
     d = _inputs(tests, rows, a, b, opt, m)
     skipped, scored = {}, []
     for mod in models:
-        why = _usable(mod, d, opt, all_asked)
+        why = _usable(mod, d, opt)
+        if why and not all_asked and why.startswith("needs"):  # named in --models without its parameter, as shear
+            raise OptionError(f"model '{mod}' (--models) {why}")
         if why:
             skipped[mod] = why
         else:
@@ -684,13 +691,27 @@ def _material(m, rows, tests, opt, models, all_asked) -> MaterialStrength:
     from . import shear_analysis as sa
 
     laws = {}
-    if any(esm.REGISTRY[mod].fitted for mod in scored):
-        with np.errstate(all="ignore"):
-            fitted = sa.fit_laws(d, [mod for mod in scored if esm.REGISTRY[mod].fitted], [m], opt.model_params)
-        laws = {mod: by[m] for mod, by in fitted.items() if m in by}
-        for mod in [mod for mod in scored if esm.REGISTRY[mod].fitted and mod not in laws]:
+    for mod in [mod for mod in scored if esm.REGISTRY[mod].fitted]:
+        try:
+            with np.errstate(all="ignore"):
+                law = sa.fit_laws(d, [mod], [m], opt.model_params).get(mod, {}).get(m)
+        except (ValueError, FitError, np.linalg.LinAlgError) as exc:  # e.g. no S_R to fit chi = S_e^kappa on
+            law = None
+            why = f"its law could not be fitted ({exc})" if np.any(np.isfinite(d.S_R[d.wet])) else _no_prediction(d)
+        else:
+            why = "fewer than 2 tests with suction"
+        if law is None or not all(np.isfinite(v) for v in law.values.values()):
             scored.remove(mod)
-            skipped[mod] = "fewer than 2 tests with suction"
+            skipped[mod] = why if law is None else _no_prediction(d)
+        else:
+            laws[mod] = law
+    d = dataclasses.replace(d, fitted={mod: {m: law.values} for mod, law in laws.items()})
+    for mod in [mod for mod in scored if esm.REGISTRY[mod].fitted]:
+        with np.errstate(all="ignore"):
+            if not np.any(np.isfinite(esm.predict(mod, d)[1][d.wet])):
+                scored.remove(mod)
+                laws.pop(mod, None)
+                skipped[mod] = _no_prediction(d)
     d = dataclasses.replace(d, fitted={mod: {m: law.values} for mod, law in laws.items()})
     wet = d.wet
     predictions, metrics, info_in = {}, {}, {}
