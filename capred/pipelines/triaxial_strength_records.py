@@ -128,6 +128,9 @@ class TriaxialStrengthResult(Result):
         t = self.tests
         out: list[dict] = [{} for _ in t["test_id"]]
         for m, r in self.materials.items():
+            pi_low, pi_high = r.fit.prediction_interval(
+                r.fit.x, r.fit.s
+            )  # a new test at each test's state, at --confidence
             for j, i in enumerate(r.rows):
                 row = {
                     "test_id": t["test_id"][i],
@@ -138,6 +141,8 @@ class TriaxialStrengthResult(Result):
                     "suction_kPa": num(t["suction"][i] / KPA),
                     **{k: num(t[k][i]) for k in _STATE_KEYS},
                     "q_fit_kPa": num(r.fit.fitted[j] / KPA),
+                    "q_fit_pi_low_kPa": num(pi_low[j] / KPA),
+                    "q_fit_pi_high_kPa": num(pi_high[j] / KPA),
                     "sigma_cap_kPa": num(r.back["sigma_cap"][j] / KPA),
                     "sigma_cap_se_kPa": num(r.back["sigma_cap_se"][j] / KPA),
                     "chi_back": num(r.back["chi_back"][j]),
