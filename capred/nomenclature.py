@@ -197,6 +197,13 @@ QUANTITIES: dict[str, Quantity] = {
     "preconsolidation_stress": Quantity(
         "σ'_p", "kPa", 1e-3, "pressure", "pre-consolidation (yield) stress of a compression test", 0.0, None, True
     ),
+    # unsaturated strength from triaxial failure states (`capred triaxial`, issue 40)
+    "phi_b": Quantity("φ_b", "deg", 1.0, "angle", "angle of the strength gain with suction (Fredlund)", 0.0, 90.0),
+    "sigma_cap": Quantity("σ_cap", "kPa", 1e-3, "pressure", "back-analysed capillary stress σ'3 − σ3 of a test"),
+    "chi_back": Quantity("χ_back", "-", 1.0, "dimensionless", "back-analysed Bishop χ = σ_cap/s of a test"),
+    "rho_s": Quantity("ρ_s", "kg/m^3", 1.0, "density", "density of the solids", 0.0, None, True),
+    "porosity": Quantity("n", "-", 1.0, "dimensionless", "porosity e/(1 + e)", 0.0, 1.0, True, True),
+    "water_content": Quantity("w", "-", 1.0, "dimensionless", "gravimetric water content", 0.0),
 }
 
 

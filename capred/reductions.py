@@ -130,6 +130,27 @@ REDUCTIONS: dict[str, Reduction] = {
             table_kind="a triaxial table (one row per test)",
         ),
         Reduction(
+            "triaxial",
+            _P + "triaxial_strength:run_triaxial_strength",
+            _P + "triaxial_strength:TriaxialStrengthOptions",
+            "required",
+            "triaxial",
+            "triaxial_strength",
+            method=(
+                "Per material (never pooled), the extended Mohr-Coulomb envelope q_f = (K_p − 1) σ3 + 2√K_p (c' + "
+                "s tan φ_b) (Fredlund et al. 1978, in its triaxial form; net stresses) is fitted to the unsaturated "
+                "failure states with standard errors, 95 % intervals and correlations. Its trace at s → 0 is the "
+                "effective envelope c', φ' (named as such; --c-eff/--phi-eff override it). Every effective-stress "
+                "model of `capred shear` predicts q_f = a + b (σ3 + χ s) on that envelope, with the same scores, "
+                "AICc weights, fitted χ laws, back-analysed σ_cap and ranking bootstrap; Prunier et al.'s spherical "
+                "and lower bounds of each test's capillary tensor carry the envelope's uncertainty.",
+            ),
+            references=("fredlund1978", "prunier2024", "bishop1959"),
+            summary="Unsaturated strength from triaxial failure states: extended Mohr-Coulomb, models, bounds.",
+            example=(("bootstrap", 0),),
+            table_kind="a table of triaxial failure states",
+        ),
+        Reduction(
             "retention",
             _P + "retention:run_retention",
             _P + "retention:RetentionOptions",

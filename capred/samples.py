@@ -26,6 +26,7 @@ SAMPLES = {
     "retention-convert": "retention_fits.json",
     "history": "lab_history.sqlite",
     "compression": "compression_oedometer.csv",
+    "triaxial": "triaxial_failure_states.csv",
 }
 
 

@@ -17,6 +17,7 @@ from . import (
     data_commands,
     pt_volume_command,
     retention_convert_command,
+    triaxial_strength_command,
 )
 from .common import BUILDERS, JsonOpt, WorkersOpt, fail, run_batch
 from .generated import register_generated
@@ -56,6 +57,7 @@ calculator_commands.register(app)
 pt_volume_command.register(app)
 compression_command.register(app)
 retention_convert_command.register(app)
+triaxial_strength_command.register(app)
 # every other registered command: a CLI built from its Options (capred/cli/generated.py)
 register_generated(app, BUILDERS)
 

@@ -270,6 +270,7 @@ def triaxial_bounds(
         TRIAXIAL, "membrane_modulus", note="(latex: about 1400 kPa), with --membrane-thickness"
     ) = None,
     extension_path: option(TRIAXIAL, "extension_path") = None,
+    material: option(TRIAXIAL, "material", note="one material of the table's material column per run") = None,
 ) -> Invocation:
     """Bounds of the capillary stress tensor at failure from triaxial tests
     (Prunier et al. 2024): effective envelope from saturated drained tests, then
@@ -295,6 +296,8 @@ def triaxial_bounds(
         Young's modulus of the membrane E_m [kPa].
     extension_path : str, optional
         axial-unloading or radial-loading.
+    material : str, optional
+        The material analysed (a table with several materials needs it).
 
     Returns
     -------
@@ -312,6 +315,7 @@ def triaxial_bounds(
             membrane_thickness=membrane_thickness,
             membrane_modulus=membrane_modulus,
             extension_path=extension_path,
+            material=material,
         )
     )
     return Invocation("triaxial-bounds", opts, extra_inputs=[curves] if curves else [])

@@ -42,6 +42,7 @@ OPTIONS_CLASSES = (
     "capred.pipelines.bridge_laws:LawsOptions",
     "capred.pipelines.history:HistoryOptions",
     "capred.pipelines.compression:CompressionOptions",
+    "capred.pipelines.triaxial_strength:TriaxialStrengthOptions",
 )
 
 #: the registries whose entries the help lists: name -> (module:mapping, attribute giving an entry's help,

@@ -1021,6 +1021,9 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
         table.missing_column("S_R", " (or 'theta', or 'w' with 'rho_d', or 'z2' with 'V_v')")
     if "z2" in table.columns and "V_v" not in table.columns and "S_R" not in table.columns:
         table.missing_column("V_v", " (needed with 'z2')")
+    from .sample_state import table_state
+
+    table_state(table, opt.rho_w, ("w", "rho_d", "theta", "S_R"))  # a row's w, rho_d, theta must agree
     table.raise_if_problems()
     s = _suction(table, opt)
     positive = s[s > 0]

@@ -1156,6 +1156,9 @@ def filled_column(table: Table, name: str, option: float | None) -> np.ndarray:
 def _void_volume(table: Table, opt: ShearOptions, box: np.ndarray) -> np.ndarray:
     """V_v per row [m^3]: the column (or --void-volume), else A h e/(1 + e) from a void ratio e and the
     sample height, with e = G_s rho_w / rho_d - 1 from a dry density."""
+    from .sample_state import table_state
+
+    table_state(table, opt.rho_w, ("e", "rho_d", "G_s"))  # e, rho_d and G_s of a row must agree (phase relations)
     v_v = filled_column(table, "V_v", opt.void_volume)
     e = table.get("e").copy()
     from_density = np.isnan(e) & np.isfinite(table.get("rho_d"))

@@ -1135,3 +1135,31 @@ def model_curves(result, material, relation: RetentionRelation, sigma_N: float, 
         with np.errstate(invalid="ignore"):
             out[m] = esm.predict(m, d)[1]
     return S, out
+
+
+def summarise_ranking(scores: np.ndarray, models: list[str], ranked: list[str], seed: int) -> RankingUncertainty:
+    """The RankingUncertainty of a (replicates x models) matrix of RMSEs [Pa] (NaN: not scored in a replicate).
+
+    Win shares, 2.5/97.5 percentiles of each model's RMSE and of RMSE(runner-up) − RMSE(best): the summary of
+    `bootstrap_ranking`, for a command that draws its replicates itself (`capred triaxial`).
+
+    Parameters
+    ----------
+    scores : (R, M) ndarray
+        RMSE of each model in each replicate [Pa].
+    models : list of str
+        The M models, in the columns' order.
+    ranked : list of str
+        The models by RMSE on the full data (best first).
+    seed : int
+        Seed of the replicates (reported).
+
+    Returns
+    -------
+    RankingUncertainty
+
+    References
+    ----------
+    Efron & Tibshirani (1993), doi:10.1007/978-1-4899-4541-9, ch. 13 (percentile intervals).
+    """
+    return _summarise(scores, models, ranked, seed)

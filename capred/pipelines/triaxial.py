@@ -24,12 +24,14 @@ from ..references import cite
 from ..result import InputFile, Options, Result, input_file, num
 from ..units import parse_quantity
 from . import triaxial_records as rec
+from .triaxial_materials import EXTENDED_MC_METHOD, one_material, zero_suction_envelope
 
 #: Pa per kPa: the records hold the user's units, the physics SI
 KPA = 1e3
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
+    Column("material", "text", None, "material name (one per run: --material)", ("soil", "material_name")),
     Column(
         "condition", "text", None, "test condition", ("state", "saturation_state"), choices=("saturated", "unsaturated")
     ),
@@ -116,7 +118,9 @@ class Envelope:
     M_extension, k_extension_kPa : float
         The same in triaxial extension, M = 6 sin φ'/(3 + sin φ') [-], [kPa].
     source : str
-        ``"fit"`` (least squares of σ'1 on σ'3 of the saturated tests) or ``"options"``.
+        ``"fit"`` (least squares of σ'1 on σ'3 of the saturated tests), ``"options"``, or
+        ``"extended_mc"`` (no saturated test: the extended Mohr-Coulomb fit of the unsaturated tests at s -> 0,
+        their s0 taken as the suction at failure; capred.pipelines.triaxial_materials.zero_suction_envelope).
     n : int or None
         Saturated tests fitted.
     r2 : float or None
@@ -160,6 +164,8 @@ class Envelope:
             "method",
             f"least squares of sigma'_1 on sigma'_3 ({cite('prunier2024', 'eq. 25')})"
             if self.fit
+            else EXTENDED_MC_METHOD
+            if self.source == "extended_mc"
             else "given as options",
         )
 
@@ -168,8 +174,8 @@ class Envelope:
         """c_kPa and phi_deg with standard error and 95 % interval (t, n − 2 dof) [kPa], [deg]."""
         from ..fitting.linear import t_quantile
 
-        fixed = self.fit is None
-        dof = (self.n or 0) - 2
+        fixed = self.fit is None and self.source != "extended_mc"
+        dof = (self.n or 0) - (3 if self.source == "extended_mc" else 2)  # c', phi', phi_b fitted
         t = float(t_quantile(0.975, dof)) if dof > 0 else float("nan")
         out = []
         for name, v, se, unit, q in (
@@ -184,7 +190,9 @@ class Envelope:
 
     def summary(self) -> str:
         """A plain-text report of the envelope: c', φ' with SE and 95 % CI, their correlation, n, R²."""
-        stats = {"n": self.n, "dof": (self.n or 0) - 2, "R²": self.r2} if self.fit else {}
+        fitted = self.fit is not None or self.source == "extended_mc"
+        dof = (self.n or 0) - (3 if self.source == "extended_mc" else 2)
+        stats = {"n": self.n, "dof": dof, "R²": self.r2} if fitted else {}
         warn = [f"c' = {self.c_kPa:.4g} kPa < 0: a negative cohesion has no physical meaning"] if self.c_kPa < 0 else []
         return fit_report(f"Effective envelope, {self.method}", self.params, stats, warn)
 
@@ -307,6 +315,9 @@ class TriaxialOptions(Options):
         pressure, slope -3 in the q-p plane; the default) or
         ``"radial-loading"`` (the cell pressure rises at constant axial
         stress, slope 3/2) (capred.physics.triaxial.EXTENSION_PATHS).
+    material : str, optional
+        The material analysed, from the table's ``material`` column (needed
+        when it holds several: materials are never pooled).
     """
 
     QUANTITIES = {"c_eff": "c_eff", "phi_eff": "phi_eff", **{k: k for k in _MEMBRANE if k in _GLOSSARY}}
@@ -318,6 +329,7 @@ class TriaxialOptions(Options):
     membrane_thickness: float | None = None  # m
     membrane_modulus: float | None = None  # Pa
     extension_path: str = "axial-unloading"
+    material: str | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "_given", {"c_eff": self.c_eff, "phi_eff": self.phi_eff})  # as the caller typed
@@ -510,7 +522,9 @@ class TriaxialResult(Result):
             tests.append(row)
         env = rec.to_json(self.envelope)
         env = {k: env[k] for k in ENVELOPE_KEYS}  # the order of capred 0.x
-        if self.envelope.fit is not None:  # the 95 % intervals that params (Python) and the summary give
+        if (
+            self.envelope.fit is not None or self.envelope.source == "extended_mc"
+        ):  # the 95 % intervals that params (Python) and the summary give
             par = self.envelope.params
             env["c_ci95_kPa"] = [num(x) for x in par["c_kPa"].ci95]
             env["phi_ci95_deg"] = [num(x) for x in par["phi_deg"].ci95]
@@ -1031,6 +1045,9 @@ def run_triaxial_bounds(
         opt = dataclasses.replace(opt, curves=curves)
     curves = opt.curves
     table = read_table(source, SCHEMA)
+    table, material = one_material(table, opt.material)  # one envelope per run: never pooled (issue 40)
+    if material is not None:
+        table.notes.append(f"material: {material or '(blank)'}")
     raw_curves = None
     D_c, D_c_source = consolidated_diameter(table) if opt.membrane is not None else (None, None)
     if curves is not None:
@@ -1174,12 +1191,17 @@ def run_triaxial_bounds(
         if sat.any():
             notes.append("envelope taken from --c-eff/--phi-eff; the saturated tests are only plotted")
     elif sat.sum() == 0:
-        table.add_problem(
-            None,
-            "condition",
-            "no saturated test and no envelope given: add saturated drained tests or pass --c-eff and --phi-eff",
-        )
-        table.raise_if_problems()
+        try:  # issue 40: the unsaturated failure states fix c', phi' at s -> 0 (named as such)
+            env = zero_suction_envelope(s3[unsat], s1[unsat], table.get("s0")[unsat], branch[unsat], opt.confidence)
+            notes.append(f"no saturated test: {EXTENDED_MC_METHOD}; --c-eff/--phi-eff override it")
+        except FitError as exc:
+            table.add_problem(
+                None,
+                "condition",
+                "no saturated test and no envelope given: add saturated drained tests or pass --c-eff and --phi-eff "
+                f"(the envelope at s -> 0 of the unsaturated tests needs their suction s0: {exc})",
+            )
+            table.raise_if_problems()
     else:
         try:
             env = fit_envelope(s3[sat], s1[sat], opt.confidence)

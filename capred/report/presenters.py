@@ -125,6 +125,10 @@ PRESENTERS: dict[str, Presenter] = {
     "triaxial-bounds": Presenter(
         _one("triaxial_figures", "sheet_triaxial", "report"), _lazy("triaxial_tables", "triaxial_tables")
     ),
+    "triaxial": Presenter(
+        _lazy("triaxial_strength_figures", "triaxial_strength_figures"),
+        _lazy("triaxial_strength_figures", "triaxial_strength_tables"),
+    ),
     "retention": Presenter(
         _one("retention_figures", "sheet_retention", "retention"), _lazy("retention_tables", "retention_tables")
     ),

@@ -43,7 +43,11 @@ def triaxial_tables(result) -> list[TableSpec]:
     """
     e = result.envelope
     env = spec(
-        "Effective envelope (saturated drained tests)",
+        "Effective envelope ("
+        + {"extended_mc": "no saturated test: " + e.method, "options": "given as options"}.get(
+            e.source, "saturated drained tests"
+        )
+        + ")",
         ["source", "n", header("c_eff"), "± se", header("phi_eff"), "± se", header("M"), header("k")],
     )
     env.rows.append(
