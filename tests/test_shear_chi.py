@@ -215,8 +215,9 @@ def test_mean_band_and_prediction_interval_match_the_delta_method():
     # the band of the mean: t times the delta-method SE of c + sigma' tan(phi) (numerical derivatives: 1e-6)
     assert p.si.tau_mean_ci[1][i] - p.si.tau[i] == pytest.approx(half, rel=1e-6)
     assert p.si.tau[i] - p.si.tau_mean_ci[0][i] == pytest.approx(half, rel=1e-6)
-    # a new test adds the scatter of one test, the dry fit's residual variance s^2
-    half_new = fit.t * np.sqrt(var_mean + fit.residual_variance)
+    # a new test adds the scatter of one test at its strength (the default errors='either': max of s^2 and the
+    # proportional model's s_p^2 (tau/ref)^2)
+    half_new = fit.t * np.sqrt(var_mean + fit.scatter_variance(p.si.tau[i]))
     assert p.si.tau_prediction_interval[1][i] - p.si.tau[i] == pytest.approx(half_new, rel=1e-6)
 
 

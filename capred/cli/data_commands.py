@@ -117,8 +117,9 @@ def shear(
     errors: option(
         SHEAR,
         "errors",
-        metavar="constant|proportional|auto",
-        help="Scatter of a test: constant, proportional to its strength (weighted least squares), or auto "
+        metavar="either|constant|proportional|auto",
+        help="Scatter of a test: either (default: intervals valid whether the scatter is constant or proportional "
+        "to the strength), constant, proportional to its strength (weighted least squares), or auto "
         "(proportional when the Breusch-Pagan test of the dry residuals against sigma_N has p < 0.05).",
     ) = None,
     dry_loss: option(
@@ -193,7 +194,7 @@ def shear(
     dry_fit : str, optional
         free or origin.
     errors : str, optional
-        constant, proportional or auto.
+        either (default), constant, proportional or auto.
     dry_loss : str, optional
         ols, huber or tukey.
     bootstrap : int, optional
