@@ -5,7 +5,7 @@ python -c 'import capred.cli.help as h; h.write_snapshot()'
 """
 
 # fmt: off
-COLUMNS = {'bridge compare': {'digest': 'f9799e3434e19293c7adf7377878f578e3a37054',
+COLUMNS = {'bridge compare': {'digest': '99617c99fbdfedf685fc902e7a7f23a8d2050b3c',
                     'files': ['errors.py',
                               'io/__init__.py',
                               'io/blocks.py',
@@ -64,7 +64,7 @@ COLUMNS = {'bridge compare': {'digest': 'f9799e3434e19293c7adf7377878f578e3a3705
                            ['contact_angle [deg]', 'contact angle; also: theta'],
                            ['R2_over_R',
                             "R2 / R ('plane': a sphere and a plane; absent: equal spheres); also: ratio, R2/R"]]},
- 'bridge rupture': {'digest': 'f9799e3434e19293c7adf7377878f578e3a37054',
+ 'bridge rupture': {'digest': '99617c99fbdfedf685fc902e7a7f23a8d2050b3c',
                     'files': ['errors.py',
                               'io/__init__.py',
                               'io/blocks.py',
@@ -99,7 +99,7 @@ COLUMNS = {'bridge compare': {'digest': 'f9799e3434e19293c7adf7377878f578e3a3705
                                'contact angle on the second particle (sphere R2 or plane; absent or blank: '
                                '--contact-angle2, else contact_angle); also: theta2, wetting_angle2, contact_angle_2'],
                               ['V_w [mm^3]', 'water volume V_w; also: volume, V, Vw']]},
- 'bridge solve': {'digest': 'f9799e3434e19293c7adf7377878f578e3a37054',
+ 'bridge solve': {'digest': '99617c99fbdfedf685fc902e7a7f23a8d2050b3c',
                   'files': ['errors.py',
                             'io/__init__.py',
                             'io/blocks.py',
@@ -190,7 +190,7 @@ COLUMNS = {'bridge compare': {'digest': 'f9799e3434e19293c7adf7377878f578e3a3705
                           'pore-air pressure u_a (gauge; 0 when the air is atmospheric); also: ua, pore_air_pressure'],
                          ['suction [kPa]', 'matric suction u_a - u_w (instead of u_w); also: s, matric_suction, ua_uw'],
                          ['S_r', 'degree of saturation S_r, in [0, 1]; also: Sr, S_R, degree_of_saturation']]},
- 'retention': {'digest': 'ac41f59a88752bc0ba0ce39fb557299e2d3bbeab',
+ 'retention': {'digest': 'bec34b0616a1da2c6cfc74b7a743cfa02a986c4c',
                'files': ['errors.py',
                          'fitting/__init__.py',
                          'fitting/chi_laws.py',
@@ -225,7 +225,7 @@ COLUMNS = {'bridge compare': {'digest': 'f9799e3434e19293c7adf7377878f578e3a3705
                          ['V_v [cm^3]', 'void volume V_v; also: Vv, void_volume'],
                          ['weight', 'weight; also: weights, w_fit'],
                          ['branch', 'branch (drying|wetting); also: path']]},
- 'retention-convert': {'digest': 'de201cd7ef22631ea0f3944ccc40243834d80f6c',
+ 'retention-convert': {'digest': '74b911f993760e9fab5d52a9ff72fdd9af10aba6',
                        'files': ['errors.py',
                                  'fitting/__init__.py',
                                  'fitting/chi_laws.py',
@@ -268,7 +268,7 @@ COLUMNS = {'bridge compare': {'digest': 'f9799e3434e19293c7adf7377878f578e3a3705
                      'text_safety.py',
                      'units.py'],
            'lines': []},
- 'shear': {'digest': '21194087f337cad3246000c525c34a7d1107c823',
+ 'shear': {'digest': '577a9ed05855a180dc7f75d15c9c4a58b9593686',
            'files': ['errors.py',
                      'fitting/__init__.py',
                      'fitting/linear.py',

@@ -975,6 +975,8 @@ def _law_dict(model: str, law) -> dict:
         "bic": num(ic["bic"]),
         "n": law.n,
         "converged": law.converged,
+        # parameters the tests cannot determine: their se and ci95 are null (never a zero-width interval)
+        "not_identifiable": [scale.get(k, (k, 1.0))[0] for k in law.unidentified],
     }
 
 
@@ -1258,10 +1260,13 @@ def derive_tests(
         table.add_problem(i, column, what)
 
     # only rows with something missing or out of range need a look (the rest are fine)
+    # R is required only by the models that read it (issue 41.5): Own 2's chi2 and the exact bridge
+    by_radius = [esm.REGISTRY[m].label for m in opt.models if esm.REGISTRY[m].uses_radius]
+    no_radius = np.isnan(radius) if by_radius else np.zeros(n, bool)
     look = (
         np.isnan(sigma_N)
         | np.isnan(tau)
-        | (wet & (np.isnan(suction) | np.isnan(S_R) | np.isnan(radius) | (from_burette & ((S_R < 0) | (S_R > 1)))))
+        | (wet & (np.isnan(suction) | np.isnan(S_R) | no_radius | (from_burette & ((S_R < 0) | (S_R > 1)))))
     )
     for i in np.flatnonzero(look):
         if np.isnan(sigma_N[i]):
@@ -1299,9 +1304,13 @@ def derive_tests(
                 f"S_R = (V_v - z2)/V_v = {S_R[i]:.4g} lies outside [0, 1]: "
                 f"z2 = {table.value_text('z2', i)} exceeds V_v",
             )
-        if np.isnan(radius[i]):
+        if no_radius[i]:
             col = "R" if "R" in table.columns else None
-            missing(i, "wet test without particle radius: give 'R' or --radius (needed by Own 2)", col)
+            missing(
+                i,
+                f"wet test without particle radius: give 'R' or --radius (needed by {', '.join(by_radius)})",
+                col,
+            )
 
     suction = np.where(wet, suction, 0.0)
     S_R = np.where(wet, S_R, np.where(cond == "saturated", 1.0, 0.0))  # a saturated test: S_R = 1, no suction

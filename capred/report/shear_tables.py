@@ -158,9 +158,13 @@ def shear_tables(result) -> list[TableSpec]:
                 law = by_material.get(mat)
                 if law is None:
                     continue
+                from ..fitting.chi_laws import LAW_PARAMETERS
+
+                lost = {LAW_PARAMETERS.get(k, (k,))[0] for k in law.unidentified}
                 for name, par in law.params.items():
                     if not par.fixed:
-                        f.rows.append([mat, MODEL_LABELS[m], name, fmt(par.value), fmt(par.stderr), fmt(law.n)])
+                        se = "not identifiable" if name in lost else fmt(par.stderr)
+                        f.rows.append([mat, MODEL_LABELS[m], name, fmt(par.value), se, fmt(law.n)])
         if f.rows:
             out.append(f)
     import itertools
