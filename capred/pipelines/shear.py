@@ -829,9 +829,19 @@ class ShearResult(Result):
                         if r.size - (p + 1) - 1 <= 0
                         else "AICc undefined: zero residual sum of squares"
                     )
-            weights = akaike_weights({m: v["aicc"] for m, v in rows.items()})
+            # weights among the models scored on the same wet tests; the others listed apart (issue 41.2)
+            inside, apart = compared(self.metrics.get(mat, {}))
+            weights = akaike_weights({m: rows[m]["aicc"] for m in inside if m in rows})
             for m, (delta, w) in weights.items():
                 rows[m]["delta_aicc"], rows[m]["weight"] = num(delta), num(w)
+            for m, lack in apart.items():
+                if m in rows:
+                    rows[m]["delta_aicc"] = rows[m]["weight"] = None
+                    rows[m]["missing"] = lack
+                    rows[m]["aicc_note"] = (
+                        f"not compared: no prediction for {lack} of the {lack + rows[m]['n']} wet tests the others "
+                        "are scored on (AICc weights compare models on the same tests only)"
+                    )
             out[mat] = rows
         return out
 
@@ -876,6 +886,8 @@ class ShearResult(Result):
             "models": list(self.models),
             "tests": tests if lazy else tests.tolist(),
             "metrics": {mat: {m: _metric_dict(v) for m, v in d.items()} for mat, d in self.metrics.items()},
+            # models left out of the ranking, weights and bootstrap: {material: {model: wet tests it lacks}}
+            "not_compared": {mat: compared(d)[1] for mat, d in self.metrics.items() if compared(d)[1]},
             "metrics_overall": {m: _metric_dict(v) for m, v in self.metrics_overall.items()},
             "best_model": self.best_model,
             "best_model_overall": self.best_model_overall,
@@ -1084,8 +1096,33 @@ def model_metrics(predicted, measured) -> ModelMetrics:
     return ModelMetrics(int(y.size), float(np.sqrt(np.mean(r**2))), float(np.mean(r)), r2)
 
 
+def compared(metrics: dict[str, ModelMetrics]) -> tuple[list[str], dict[str, int]]:
+    """The models compared on one set of wet tests, and those listed apart with the count of tests they lack.
+
+    Every model is scored on the same candidate tests; a model that predicts fewer of them than the model that
+    predicts the most (e.g. the exact bridge, which has no concave bridge for a wet test holding much water) is
+    left out of the ranking, the AICc weights and the bootstrap, so that no model wins on an easier subset
+    (issue 41.2): ranking on the common subset instead would throw away the tests the others predict.
+
+    Parameters
+    ----------
+    metrics : dict
+        Model name -> ModelMetrics, all on the same candidate tests.
+
+    Returns
+    -------
+    (list of str, dict of str to int)
+        The compared models (in ``metrics``' order) and {model: wet tests it lacks} of the others.
+    """
+    most = max((v.n for v in metrics.values()), default=0)
+    inside = [m for m, v in metrics.items() if v.n == most and most > 0]
+    apart = {m: most - v.n for m, v in metrics.items() if m not in inside}
+    return inside, apart
+
+
 def best_of(metrics: dict[str, ModelMetrics]) -> str | None:
-    """Model with the lowest RMSE (None when there is nothing to compare).
+    """Model with the lowest RMSE among those `compared` on the same tests (None when there is nothing to
+    compare).
 
     Parameters
     ----------
@@ -1097,7 +1134,8 @@ def best_of(metrics: dict[str, ModelMetrics]) -> str | None:
     str or None
         The model's name.
     """
-    scored = {m: v.si.rmse for m, v in metrics.items() if np.isfinite(v.si.rmse)}
+    inside, _ = compared(metrics)
+    scored = {m: metrics[m].si.rmse for m in inside if np.isfinite(metrics[m].si.rmse)}
     return min(scored, key=scored.get) if scored else None
 
 
@@ -1720,7 +1758,10 @@ def run_warnings(wet, pend, mat, fits, laws, predictions, opt) -> list[str]:
         flag = esm.REGISTRY[model].no_prediction
         k = int(np.sum(wet & ~np.isfinite(predictions[model].si.tau))) if flag else 0
         if k:
-            out.append(f"{model}: {k} wet tests {flag.meaning} (flag {flag.name}) and are left out of its metrics")
+            out.append(
+                f"{model}: {k} wet tests {flag.meaning} (flag {flag.name}) and are left out of its metrics; it is "
+                "not ranked against models scored on every wet test (listed apart, with the count it lacks)"
+            )
     return out
 
 
@@ -1755,15 +1796,16 @@ def bootstrap_materials(result: ShearResult, wet, mat, cond, opt: ShearOptions) 
         if not sel.any():
             continue
         dry = (mat == m) & (cond == "dry")
+        inside, _ = compared(result.metrics[m])  # only models scored on the same wet tests (issue 41.2)
         ranked = sorted(
-            (k for k, v in result.metrics[m].items() if np.isfinite(v.si.rmse)),
+            (k for k in inside if np.isfinite(result.metrics[m][k].si.rmse)),
             key=lambda k: result.metrics[m][k].si.rmse,
         )
         out[m] = sa.bootstrap_ranking(
             d,
             t["sigma_N"][dry],
             t["tau_max"][dry],
-            opt.models,
+            [k for k in opt.models if k in inside],
             opt.model_params,
             d.fitted,
             ranked,

@@ -206,8 +206,11 @@ def _metrics_table(title, metrics, overall, best_of_material, best_overall) -> T
     groups = list(metrics.items())
     if overall and len(groups) > 1:
         groups.append(("(all)", overall))
+    from ..pipelines.shear import compared
+
     for mat, models in groups:
         best = best_overall if mat == "(all)" else best_of_material.get(mat)
+        _, apart = compared(models)
         for k, (m, v) in enumerate(models.items()):
             if m == best:
                 met.bold_rows.add(len(met.rows))
@@ -221,7 +224,7 @@ def _metrics_table(title, metrics, overall, best_of_material, best_overall) -> T
                     fmt(v.rmse_kPa),
                     fmt(v.bias_kPa, sign=True),
                     fmt(v.r2),
-                    "best" if m == best else "",
+                    "best" if m == best else f"not ranked: lacks {apart[m]}" if m in apart else "",
                 ]
             )
     return met
