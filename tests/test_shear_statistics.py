@@ -355,6 +355,37 @@ def test_dry_refit_by_weighted_sums_matches_polyfit():
         assert_allclose([c[k], b[k]], [cc, bb], rtol=1e-10)  # two least-squares routes, rounding only
 
 
+@pytest.mark.parametrize("errors,loss", [("proportional", "ols"), ("constant", "huber"), ("constant", "tukey")])
+def test_dry_refit_uses_the_runs_error_model_and_loss(errors, loss):
+    """Issue 41.4: each replicate's dry envelope is the fit of --errors and --dry-loss, not plain least squares.
+    With the counts of a resample, the vectorised reweighting reproduces fit_envelope on the repeated tests:
+    to 1e-9 for weighted least squares (no scale involved); for the robust losses within 0.2 standard errors,
+    since the replicate holds the scale at the full-data value while fit_envelope fits with the scale of its
+    previous pass (measured: 0.1 SE here)."""
+    from capred.fitting.linear import fit_envelope
+
+    rng = np.random.default_rng(5)
+    y = C + TAN_PHI * DRY_X
+    if errors == "proportional":
+        y = y + 0.04 * y * rng.standard_normal(6)  # scatter 4 % of the strength
+    else:
+        y = y + NOISE * rng.standard_normal(6)
+        y[3] += 8 * NOISE  # an outlier the robust losses bound
+    full = fit_envelope(DRY_X, y, errors=errors, loss=loss)
+    U = np.array([[1, 1, 1, 1, 1, 1], [2, 0, 1, 1, 1, 1]], float)
+    c, b = sa._dry_refit(U, DRY_X, y, False, errors, loss, full.scale)
+    if loss == "ols":
+        assert_allclose([c[0], b[0]], [full.intercept, full.slope], rtol=1e-9)
+    else:
+        assert abs(c[0] - full.intercept) < 0.2 * full.intercept_se and abs(b[0] - full.slope) < 0.2 * full.slope_se
+    if loss == "ols":
+        x_r, y_r = np.repeat(DRY_X, U[1].astype(int)), np.repeat(y, U[1].astype(int))
+        f = fit_envelope(x_r, y_r, errors=errors, loss=loss)
+        assert_allclose([c[1], b[1]], [f.intercept, f.slope], rtol=1e-9)
+    plain = sa._dry_refit(U, DRY_X, y, False)
+    assert abs(plain[1][0] - b[0]) > 1e-6 * abs(b[0])  # and it differs from plain least squares
+
+
 def _sample_material(copies: int):
     """The wet tests of the sample's steel repeated ``copies`` times (a long material), with its dry tests."""
     import capred

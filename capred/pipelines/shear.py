@@ -1813,6 +1813,9 @@ def bootstrap_materials(result: ShearResult, wet, mat, cond, opt: ShearOptions) 
             opt.seed,
             opt.dry_fit == "origin",
             rows=sel,
+            errors=line_of(result.fits[m]).errors,  # the run's error model and loss (issue 41.4)
+            loss=line_of(result.fits[m]).loss,
+            scale=line_of(result.fits[m]).scale,
         )
     return out
 
