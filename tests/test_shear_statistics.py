@@ -445,3 +445,46 @@ def test_bootstrap_memory_per_wet_test_is_bounded():
         peaks.append(tracemalloc.get_traced_memory()[1])
         tracemalloc.stop()
     assert (peaks[1] - peaks[0]) / 2800 < 500
+
+
+def test_adaptive_bootstrap_stops_when_the_printed_numbers_are_resolved():
+    """Issue 44.2 on the bundled sample's steel (Own 2 best, Own 1 runner-up): the adaptive bootstrap draws
+    rounds of 250 replicates and stops, at most at the cap, once every probability's Monte-Carlo SE is below
+    0.01 and each ΔRMSE end's below its printed resolution; it reports the replicates used; the same seed
+    gives the same numbers. Measured: 500 replicates (p = 0.974, ΔRMSE -0.3 to 69 Pa at a resolution of 10 Pa);
+    a contested ranking keeps drawing (`test_adaptive_stop_rule_by_hand`)."""
+    r, d, dry_x, dry_y = _sample_material(1)
+    models = ["bishop", "own1", "own2"]
+    args = (d, dry_x, dry_y, models, ModelParams(), r.model_inputs.fitted, ["own2", "own1"], 2000, 7, False)
+    a = sa.bootstrap_ranking(*args, adaptive=True)
+    again = sa.bootstrap_ranking(*args, adaptive=True)
+    assert a == again  # same seed, same result (every field, the replicates used included)
+    assert a.requested == 2000 and a.replicates % sa.ADAPTIVE_ROUND == 0 and sa.ADAPTIVE_MIN <= a.replicates <= 2000
+    R = a.replicates
+    assert R < 2000  # Own 2 wins ~97 %: resolved well before the cap
+    for p in a.probability.values():  # what it printed is resolved (the criterion, checked from its output)
+        wins = round(p * R)
+        q = (wins + 1) / (R + 2)
+        assert np.sqrt(q * (1 - q) / R) < sa.PROBABILITY_RESOLUTION
+    full = sa.bootstrap_ranking(*args)
+    assert full.replicates == full.requested == 2000
+    # the probability agrees with the full run within 4 Monte-Carlo SE of the two (independent streams)
+    p_a, p_f = a.probability["own2"], full.probability["own2"]
+    assert abs(p_a - p_f) <= 4 * np.sqrt(p_f * (1 - p_f) / R + p_f * (1 - p_f) / 2000) + 1e-9
+
+
+def test_adaptive_stop_rule_by_hand():
+    # 1000 replicates, model 0 wins all: p = 1001/1002, SE = sqrt(p (1 - p)/1000) = 0.001 < 0.01: resolved for
+    # the probabilities; a ΔRMSE with no paired runner-up: stop
+    scores = np.column_stack([np.zeros(1000), np.ones(1000)])
+    assert sa.adaptive_stop(scores, ["a", "b"], ["a"])
+    # a coin flip: p = 0.5, SE = 0.0158 >= 0.01 at R = 1000: not resolved
+    rng = np.random.default_rng(0)
+    coin = rng.random(1000) < 0.5
+    flip = np.column_stack([np.where(coin, 0.0, 1.0), np.where(coin, 1.0, 0.0)])
+    assert not sa.adaptive_stop(flip, ["a", "b"], ["a", "b"])
+    # the order-statistic SE of a quantile of N(0, 1) at R = 4000: sqrt(q(1-q)/R)/phi(z_q) = 0.0427 at q = 0.025
+    v = np.random.default_rng(1).standard_normal(4000)
+    assert sa.quantile_mc_se(v, 0.025) == pytest.approx(0.0427, rel=0.35)  # one draw of a noisy estimate
+    assert sa.difference_resolution((0.0263, 0.0865)) == pytest.approx(0.01)  # width 0.06: 6 steps of 0.01
+    assert sa.difference_resolution((0.35, 0.72)) == pytest.approx(0.01)  # width 0.37: 37 steps of 0.01

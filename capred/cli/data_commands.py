@@ -129,7 +129,10 @@ def shear(
         help="Loss of the dry fit: ols (least squares), huber or tukey (robust to an outlier, sandwich errors).",
     ) = None,
     bootstrap: option(
-        SHEAR, "bootstrap", help="Replicates of the paired bootstrap of the model ranking (0: none)."
+        SHEAR,
+        "bootstrap",
+        help="Most replicates of the paired bootstrap of the model ranking (0: none); it stops earlier, in rounds "
+        "of 250, once the printed probabilities and ΔRMSE ends are resolved.",
     ) = None,
     seed: option(SHEAR, "seed", help="Seed of the bootstrap: the same seed gives the same probabilities.") = None,
 ) -> Invocation:

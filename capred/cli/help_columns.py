@@ -268,7 +268,7 @@ COLUMNS = {'bridge compare': {'digest': '99617c99fbdfedf685fc902e7a7f23a8d2050b3
                      'text_safety.py',
                      'units.py'],
            'lines': []},
- 'shear': {'digest': '577a9ed05855a180dc7f75d15c9c4a58b9593686',
+ 'shear': {'digest': 'f004d7e881693a1ada34a2c2a7ba229148a78ce6',
            'files': ['errors.py',
                      'fitting/__init__.py',
                      'fitting/linear.py',

@@ -341,7 +341,7 @@ class ShearOptions(Options):
     #: has p < 0.05; covers only 84-87 % with scatter proportional to the strength on 6 dry tests)
     errors: str = "either"
     dry_loss: str = "ols"  # loss of the dry fit: ols, huber or tukey (robust, sandwich standard errors)
-    bootstrap: int = 2000  # replicates of the ranking bootstrap (0: none)
+    bootstrap: int = 2000  # most replicates of the ranking bootstrap (0: none); adaptive: it stops when resolved
     seed: int = 0  # of the bootstrap: the same seed gives the same probabilities
 
     def __post_init__(self) -> None:
@@ -996,14 +996,19 @@ def _ranking_dict(r) -> dict:
     def kpa(pair):
         return None if pair is None else [num(pair[0] / 1e3), num(pair[1] / 1e3)]
 
+    from .shear_analysis import difference_resolution
+
+    res = difference_resolution(r.difference_ci)
     return {
         "replicates": r.replicates,
+        "replicates_requested": r.requested,
         "seed": r.seed,
         "best_model_probability": r.probability,
         "rmse_ci95_kPa": {m: kpa(v) for m, v in r.rmse_ci.items()},
         "best": r.best,
         "runner_up": r.runner_up,
         "rmse_difference_ci95_kPa": kpa(r.difference_ci),
+        "rmse_difference_resolution_kPa": None if res is None else num(res / 1e3),
     }
 
 
@@ -1816,6 +1821,7 @@ def bootstrap_materials(result: ShearResult, wet, mat, cond, opt: ShearOptions) 
             errors=line_of(result.fits[m]).errors,  # the run's error model and loss (issue 41.4)
             loss=line_of(result.fits[m]).loss,
             scale=line_of(result.fits[m]).scale,
+            adaptive=True,  # stop once the printed numbers are resolved, at most opt.bootstrap (issue 44.2)
         )
     return out
 

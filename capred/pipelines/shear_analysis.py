@@ -391,6 +391,9 @@ class RankingUncertainty:
         The first two models by RMSE on the full data.
     difference_ci : (low, high) or None
         Percentile interval of RMSE(runner-up) - RMSE(best) [Pa].
+    requested : int or None
+        Replicates asked for: the cap of the adaptive bootstrap, which stops at ``replicates`` once the printed
+        numbers are resolved (`adaptive_stop`).
     """
 
     replicates: int
@@ -400,6 +403,8 @@ class RankingUncertainty:
     best: str | None
     runner_up: str | None
     difference_ci: tuple[float, float] | None  # Pa, RMSE(runner-up) - RMSE(best)
+    #: replicates asked for (``--bootstrap``, the cap of the adaptive bootstrap); ``replicates`` were used
+    requested: int | None = None
 
 
 #: Elements (replicates x tests) drawn and scored at once by the bootstrap: bounds its memory at any table
@@ -759,20 +764,132 @@ def bootstrap_ranking(
     scoring = _Scoring(affine, affine_cols, F_once, chunks, laws, per_replicate, col, params, fitted)
     scores = np.full((replicates, len(models)), np.nan)
     groups = _dry_groups(dry_x, through_origin)
-    if affine and not laws and not per_replicate and nw > KEEP_FEATURES_TESTS:
-        _score_long(rng, scores, material, scoring, groups)
-        return _summarise(scores, models, ranked, seed)
+    long = affine and not laws and not per_replicate and nw > KEEP_FEATURES_TESTS
     block = max(1, BLOCK_ELEMENTS // max(nw, dry_x.size, 1))
-    for first in range(0, replicates, block):
-        count = min(block, replicates - first)
-        U, idx, valid = _draw(rng, dry_x, nw, count, through_origin, groups)
-        kept = np.flatnonzero(valid)
-        if not kept.size:  # no dry sample of the block could be refitted
-            continue
-        if kept.size < count:
-            U, idx = U[kept], idx[kept]
-        _score_replicates(scores, first + kept, U, idx, material, scoring)
-    return _summarise(scores, models, ranked, seed)
+
+    def run(start: int, stop: int) -> None:  # replicates start..stop-1 into scores
+        if long:
+            _score_long(rng, scores[start:stop], material, scoring, groups)
+            return
+        for first in range(start, stop, block):
+            count = min(block, stop - first)
+            U, idx, valid = _draw(rng, dry_x, nw, count, through_origin, groups)
+            kept = np.flatnonzero(valid)
+            if not kept.size:  # no dry sample of the block could be refitted
+                continue
+            if kept.size < count:
+                U, idx = U[kept], idx[kept]
+            _score_replicates(scores, first + kept, U, idx, material, scoring)
+
+    if not adaptive:
+        run(0, replicates)
+        return _summarise(scores, models, ranked, seed, replicates)
+    done = 0
+    while done < replicates:  # rounds of ADAPTIVE_ROUND replicates until the printed numbers are resolved
+        stop = min(done + ADAPTIVE_ROUND, replicates)
+        run(done, stop)
+        done = stop
+        if done >= ADAPTIVE_MIN and adaptive_stop(scores[:done], models, ranked):
+            break
+    return _summarise(scores[:done], models, ranked, seed, replicates)
+
+
+#: the adaptive bootstrap (issue 44.2): replicates drawn in rounds of ADAPTIVE_ROUND, at least ADAPTIVE_MIN
+ADAPTIVE_ROUND = 250
+ADAPTIVE_MIN = 500
+#: printed resolution of a probability of being best (the console prints whole percents)
+PROBABILITY_RESOLUTION = 0.01
+
+
+def difference_resolution(ci) -> float | None:
+    """The printed resolution of the ends of a ΔRMSE interval [its unit]: the decimal step 10^floor(log10(w/5))
+    with w the interval's width (5 to 50 steps across it: about two significant digits of the width, what a
+    percentile interval of a few thousand resamples can claim), None for no interval or a zero width.
+
+    Parameters
+    ----------
+    ci : (float, float) or None
+        The interval's ends.
+
+    Returns
+    -------
+    float or None
+    """
+    if ci is None or not all(np.isfinite(ci)):
+        return None
+    width = float(ci[1] - ci[0])
+    if not width > 0:
+        return None
+    return float(10.0 ** np.floor(np.log10(width / 5.0)))
+
+
+def quantile_mc_se(values: np.ndarray, q: float) -> float:
+    """Monte-Carlo standard error of the q-quantile of ``values`` from its order statistics: half the distance
+    between the order statistics R q -/+ sqrt(R q (1 - q)) (the binomial 68 % interval of the quantile,
+    distribution-free; Efron & Tibshirani 1993, doi:10.1007/978-1-4899-4541-9, ch. 19).
+
+    Parameters
+    ----------
+    values : (R,) ndarray
+        Finite replicate values.
+    q : float
+        Quantile level in (0, 1).
+
+    Returns
+    -------
+    float
+        The standard error [unit of values] (inf with fewer than 2 values).
+    """
+    n = values.size
+    if n < 2:
+        return float("inf")
+    s = np.sort(values)
+    h = np.sqrt(n * q * (1.0 - q))
+    lo = int(np.clip(np.floor(n * q - h), 0, n - 1))
+    hi = int(np.clip(np.ceil(n * q + h), 0, n - 1))
+    return float(s[hi] - s[lo]) / 2.0
+
+
+def adaptive_stop(scores: np.ndarray, models: list[str], ranked: list[str]) -> bool:
+    """True when every printed number of the ranking is resolved: the Monte-Carlo standard error of each
+    model's probability of being best, sqrt(p(1 - p)/R) with p = (wins + 1)/(R + 2) (never 0 at 0 or R wins),
+    is below ``PROBABILITY_RESOLUTION``, and that of each end of the ΔRMSE interval (`quantile_mc_se`) below
+    its printed resolution (`difference_resolution`).
+
+    Parameters
+    ----------
+    scores : (R, models) ndarray
+        RMSE of each model in each replicate so far (NaN: not scored).
+    models : list of str
+        The columns.
+    ranked : list of str
+        Models by full-data RMSE (best, runner-up first).
+
+    Returns
+    -------
+    bool
+    """
+    finite = np.isfinite(scores)
+    rows = np.any(finite, axis=1)
+    R = int(rows.sum())
+    if R < 2:
+        return False
+    filled = np.where(finite[rows], scores[rows], np.inf)
+    wins = np.bincount(np.argmin(filled, axis=1), minlength=len(models))
+    p = (wins + 1.0) / (R + 2.0)
+    if np.any(np.sqrt(p * (1.0 - p) / R) >= PROBABILITY_RESOLUTION):
+        return False
+    best, runner = (list(ranked) + [None, None])[:2]
+    if best is None or runner is None:
+        return True
+    dd = scores[:, models.index(runner)] - scores[:, models.index(best)]
+    dd = dd[np.isfinite(dd)]
+    if dd.size < 2:
+        return True
+    res = difference_resolution(tuple(_percentiles(dd, (2.5, 97.5))))
+    if res is None:
+        return True
+    return all(quantile_mc_se(dd, q) < res for q in (0.025, 0.975))
 
 
 @dataclass(frozen=True)
@@ -944,8 +1061,11 @@ def _affine_features_t(affine: dict, rows: slice) -> np.ndarray:
     return out
 
 
-def _summarise(scores: np.ndarray, models: list[str], ranked: list[str], seed: int) -> RankingUncertainty:
-    """Win shares, RMSE percentiles and the best/runner-up difference from the (R, models) RMSE matrix."""
+def _summarise(
+    scores: np.ndarray, models: list[str], ranked: list[str], seed: int, cap: int | None = None
+) -> RankingUncertainty:
+    """Win shares, RMSE percentiles and the best/runner-up difference from the (R, models) RMSE matrix; ``cap``
+    the replicates asked for (the adaptive bootstrap may have stopped before)."""
     finite = np.isfinite(scores)
     everywhere = bool(finite.all())
     stack = scores if everywhere else scores[np.any(finite, axis=1)]
@@ -969,7 +1089,9 @@ def _summarise(scores: np.ndarray, models: list[str], ranked: list[str], seed: i
         }
         dd = dd[np.isfinite(dd)] if paired else None
         diff = tuple(float(v) for v in _percentiles(dd, (2.5, 97.5))) if paired and dd.size else None
-    return RankingUncertainty(int(stack.shape[0]), seed, prob, ci, best, runner, diff)
+    return RankingUncertainty(
+        int(stack.shape[0]), seed, prob, ci, best, runner, diff, cap if cap is not None else int(scores.shape[0])
+    )
 
 
 def _percentiles(a: np.ndarray, q: tuple[float, ...]) -> np.ndarray:

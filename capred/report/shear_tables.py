@@ -115,14 +115,15 @@ def shear_tables(result) -> list[TableSpec]:
             best = b.best
             p = num(b.probability.get(best)) if best else None
             diff = b.difference_ci
+            used = fmt(b.replicates) if b.requested in (None, b.replicates) else f"{b.replicates} of {b.requested}"
             boot.rows.append(
                 [
                     mat,
                     MODEL_LABELS.get(best, "—"),
                     "—" if p is None else f"{p:.0%}",
                     MODEL_LABELS.get(b.runner_up, "—"),
-                    "—" if diff is None else f"{fmt(num(diff[0] * kpa))} to {fmt(num(diff[1] * kpa))}",
-                    fmt(b.replicates),
+                    "—" if diff is None else _difference_text(diff, kpa),
+                    used,
                 ]
             )
         out.append(boot)
@@ -198,6 +199,21 @@ def _wet_rows(result, limit: int = MAX_ROWS):
             "χ_back": b.chi_back[i],
             "± se ": b.chi_back_se[i],
         }
+
+
+def _difference_text(diff, kpa: float) -> str:
+    """The ΔRMSE interval [kPa] at its printed resolution (`difference_resolution`: the adaptive bootstrap
+    stops once the Monte-Carlo error of each end is below it)."""
+    import math
+
+    from ..pipelines.shear_analysis import difference_resolution
+
+    lo, hi = num(diff[0] * kpa), num(diff[1] * kpa)
+    res = difference_resolution((lo, hi)) if lo is not None and hi is not None else None
+    if res is None:
+        return f"{fmt(lo)} to {fmt(hi)}"
+    places = max(0, -int(math.floor(math.log10(res))))
+    return f"{round(lo / res) * res:.{places}f} to {round(hi / res) * res:.{places}f}"
 
 
 def _metrics_table(title, metrics, overall, best_of_material, best_overall) -> TableSpec:
