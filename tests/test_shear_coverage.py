@@ -106,7 +106,7 @@ def simulate(
             chosen.append(r.fits[m].line.errors)
     out = {k: float(np.mean(v)) for k, v in hits.items()}
     out.update({f"{k}_third{t + 1}": float(np.mean(by_third[k][t])) for k in by_third for t in range(3)})
-    out["pred_width_kPa"] = float(np.mean(width)) / 1e3
+    out["pred_width_kPa"] = float(np.mean(width))  # the interval is in kPa already
     out["n_intervals"] = len(hits["cap"])
     out["n_fits"] = sets * len(MATERIALS)  # independent dry fits: the effective sample size of the tolerance
     out["n_kappa"] = len(kappa)

@@ -59,7 +59,8 @@ def shear_tables(result) -> list[TableSpec]:
         "Dry envelope τ = c + σ_N tan φ"
         + (" (through the origin, c = 0)" if origin else "")
         + (f", {loss} loss" if loss != "ols" else "")
-        + "; scatter: constant or proportional to τ (--errors), BP p: Breusch-Pagan test of growing scatter",
+        + "; scatter: either (valid for constant or proportional), constant or proportional to τ (--errors), "
+        "BP p: Breusch-Pagan test of growing scatter",
         ["material", "n", "c [kPa]", "± se", "φ [°]", "± se", "tan φ", "R²", "scatter", "BP p", "outliers"]
         + (["φ_b [°]"] if phi_b else []),
     )
