@@ -161,3 +161,16 @@ def test_either_intervals_are_at_least_those_of_each_model():
     level = either.predict(grid)
     assert np.all(either.scatter_variance(level) >= prop.scatter_variance(level) * (1 - 1e-12))
     assert np.all(either.scatter_variance(level) >= const.residual_variance * (1 - 1e-12))
+
+
+def test_either_flags_an_outlier_only_when_both_models_do():
+    x = np.array([10.0, 20.0, 30.0, 40.0, 50.0, 60.0])
+    y = 0.5 + 0.7 * x + np.array([0.1, -0.2, 0.15, 0.0, -0.1, 0.05])
+    y_out = y.copy()
+    y_out[2] += 3.0  # 15+ sd of the 0.15 kPa scatter at mid-range: an outlier under either model
+    f = fit_envelope(x, y_out, errors="either")
+    assert f.diagnostics["outlier"].tolist() == [False, False, True, False, False, False]
+    for k in range(6):  # the rule, test by test: the AND of the two models' flags
+        c = fit_envelope(x, y_out, errors="constant").diagnostics["outlier"][k]
+        p = fit_envelope(x, y_out, errors="proportional").diagnostics["outlier"][k]
+        assert f.diagnostics["outlier"][k] == (c and p)

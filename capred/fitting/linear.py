@@ -863,7 +863,9 @@ def _either(x, y, confidence, through_origin, loss) -> LineFit:
     (X^T X)^-1 X^T diag(s_p^2 v_i) X (X^T X)^-1 with v_i = (ŷ_i/ref)^2 and s_p the scale of the weighted fit
     (Carroll & Ruppert 1988, ch. 2); the variance of a new test of level y is max(s^2, s_p^2 (y/ref)^2)
     (`LineFit.variance_factor`). Each interval is thus at least as wide as the one either model gives on its
-    own: no choice between them is made, so no test of low power on 6 dry tests can pick the wrong one.
+    own: no choice between them is made, so no test of low power on 6 dry tests can pick the wrong one. A dry
+    test is flagged as an outlier only when the outlier test flags it under both models (`outlier_diagnostics`;
+    the studentized residuals reported are the constant model's).
     """
     base = fit_envelope(x, y, confidence, through_origin, "constant", loss)
     prop = fit_envelope(x, y, confidence, through_origin, "proportional", loss)
@@ -882,8 +884,15 @@ def _either(x, y, confidence, through_origin, loss) -> LineFit:
     else:
         cov_p[:, :] = Vp
     cov = loewner_max(base.covariance, cov_p)
+    # an outlier is a test neither model explains: flagged by the outlier test under both error models
+    diagnostics = dict(base.diagnostics or {})
+    if diagnostics and prop.diagnostics:
+        diagnostics["outlier"] = np.asarray(diagnostics["outlier"], bool) & np.asarray(
+            prop.diagnostics["outlier"], bool
+        )
     return dataclasses.replace(
         base,
+        diagnostics=diagnostics,
         covariance=cov,
         intercept_se=float(np.sqrt(max(cov[0, 0], 0.0))),
         slope_se=float(np.sqrt(max(cov[1, 1], 0.0))),
