@@ -198,3 +198,16 @@ def test_shear_bad_option_unit():
 def test_shear_missing_file():
     res = runner.invoke(app, ["shear", "nope.csv"])
     assert res.exit_code == 1 and "nope.csv: file not found" in res.stderr
+
+
+def test_shear_requires_R_only_for_the_models_that_read_it(tmp_path, write_csv):
+    """Issue 41.5: wet tests without R run with models that do not use it (Bishop, Own 1); Own 2 and the exact
+    bridge still need it, and the message names them."""
+    no_r = GOOD.replace(",R,", ",").replace(",0.156,", ",")
+    data = write_csv(no_r, "nor.csv")
+    ok = runner.invoke(app, ["shear", str(data), "--models", "bishop,own1", "--out", str(tmp_path / "a"), "--json"])
+    assert ok.exit_code == 0, ok.stderr
+    assert json.loads(ok.stdout)["metrics"]["sand"]["bishop"]["n"] == 1
+    bad = runner.invoke(app, ["shear", str(data), "--models", "bishop,own2,exact_neck", "--out", str(tmp_path / "b")])
+    assert bad.exit_code == 1 and "needed by Own 2, Exact bridge" in bad.stderr and "line 5" in bad.stderr
+    assert not (tmp_path / "b").exists()

@@ -126,3 +126,51 @@ def test_auto_rule_follows_the_test():
     y_const = 0.7 * x + 300 * rng.standard_normal(x.size)
     c2, t2 = choose_errors(x, y_const)
     assert c2 == ("proportional" if t2["significant"] else "constant")
+
+
+def test_loewner_max_bounds_both_and_equals_the_larger():
+    from capred.fitting.linear import loewner_max
+
+    A = np.array([[4.0, 1.0], [1.0, 2.0]])
+    B = np.array([[1.0, -0.5], [-0.5, 5.0]])
+    M = loewner_max(A, B)
+    # M - A and M - B are positive semi-definite (eigenvalues >= 0 up to rounding of 1e-12 of the entries)
+    assert np.linalg.eigvalsh(M - A).min() >= -1e-12 and np.linalg.eigvalsh(M - B).min() >= -1e-12
+    # B <= 0.5 A in the PSD order: the max is A itself
+    assert np.allclose(loewner_max(A, 0.25 * A), A, rtol=1e-12)
+    # a line through the origin keeps the intercept's row and column at zero: a scalar max
+    Z = loewner_max(np.diag([0.0, 2.0]), np.diag([0.0, 3.0]))
+    assert np.allclose(Z, np.diag([0.0, 3.0]))
+
+
+def test_either_intervals_are_at_least_those_of_each_model():
+    rng = np.random.default_rng(4)
+    x = np.array([10.0, 20.0, 30.0, 40.0, 50.0, 60.0])
+    y = 0.5 + 0.7 * x
+    y = y + 0.04 * y * rng.standard_normal(x.size)
+    either = fit_envelope(x, y, errors="either")
+    const = fit_envelope(x, y, errors="constant")
+    prop = fit_envelope(x, y, errors="proportional")
+    # the line is the least-squares line (unbiased under both models)
+    assert either.slope == pytest.approx(const.slope, rel=1e-12) and either.errors == "either"
+    grid = np.linspace(0.0, 80.0, 17)
+    lo_e, hi_e = either.prediction_interval(grid)
+    lo_c, hi_c = const.prediction_interval(grid)
+    assert np.all(hi_e - lo_e >= (hi_c - lo_c) * (1 - 1e-12))  # same centre: at least the constant model's width
+    # a new test's variance: at least the proportional model's s_p^2 (y/ref)^2 at every level
+    level = either.predict(grid)
+    assert np.all(either.scatter_variance(level) >= prop.scatter_variance(level) * (1 - 1e-12))
+    assert np.all(either.scatter_variance(level) >= const.residual_variance * (1 - 1e-12))
+
+
+def test_either_flags_an_outlier_only_when_both_models_do():
+    x = np.array([10.0, 20.0, 30.0, 40.0, 50.0, 60.0])
+    y = 0.5 + 0.7 * x + np.array([0.1, -0.2, 0.15, 0.0, -0.1, 0.05])
+    y_out = y.copy()
+    y_out[2] += 3.0  # 15+ sd of the 0.15 kPa scatter at mid-range: an outlier under either model
+    f = fit_envelope(x, y_out, errors="either")
+    assert f.diagnostics["outlier"].tolist() == [False, False, True, False, False, False]
+    for k in range(6):  # the rule, test by test: the AND of the two models' flags
+        c = fit_envelope(x, y_out, errors="constant").diagnostics["outlier"][k]
+        p = fit_envelope(x, y_out, errors="proportional").diagnostics["outlier"][k]
+        assert f.diagnostics["outlier"][k] == (c and p)

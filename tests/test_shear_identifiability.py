@@ -78,3 +78,69 @@ def test_run_names_the_unidentified_parameter_and_why_aicc_is_missing():
     sel = r.to_json()["model_selection"]["m"]["chi_power"]
     # 3 wet tests, k = 2 (kappa and the variance): n - k - 1 = 0, AICc undefined and the reason given
     assert sel["aicc"] is None and "n - k - 1 = 0" in sel["aicc_note"]
+
+
+def _one_suction_frame(rng) -> object:
+    import pandas as pd
+
+    rows = [
+        {
+            "test_id": f"D{k}",
+            "material": "m",
+            "condition": "dry",
+            "sigma_N [kPa]": s,
+            "tau_max [kPa]": 0.5 + 0.7 * s + 0.3 * rng.standard_normal(),
+        }
+        for k, s in enumerate((10.0, 20.0, 30.0, 40.0, 50.0, 60.0))
+    ]
+    chi = (12.0 / 3.0) ** -0.55  # Khalili's chi at s = 12 kPa, s_b = 3 kPa, eta = 0.55
+    rows += [
+        {
+            "test_id": f"W{k}",
+            "material": "m",
+            "condition": "wet",
+            "sigma_N [kPa]": s,
+            "tau_max [kPa]": 0.5 + 0.7 * (s + chi * 12.0) + 0.3 * rng.standard_normal(),
+            "suction [kPa]": 12.0,
+            "S_R": 0.3,
+        }
+        for k, s in enumerate(np.linspace(10.0, 60.0, 10))
+    ]
+    return pd.DataFrame(rows)
+
+
+def test_one_suction_leaves_s_b_and_eta_undetermined_never_zero_width():
+    """Issue 41.3: with every wet test at one suction only chi(s) is determined, not (s_b, eta) apart. Before,
+    inverting the singular J^T J printed SE = 0 (a zero-width interval) in 90 of 200 data sets; now both are
+    null in every one of 6 data sets (the old code gave 0 in about half of them, so 6 would have caught it but in
+    1 run of 36), the console says 'not identifiable', and the prediction at the tests' suction keeps a finite
+    band (the determined direction)."""
+    import warnings
+
+    import capred
+    from capred.report.shear_tables import shear_tables
+
+    rng = np.random.default_rng(41)
+    opt = capred.ShearOptions(models=("khalili_fit",), bootstrap=0, model_params=capred.ModelParams(fit_eta=True))
+    for k in range(6):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            r = capred.run_shear(_one_suction_frame(rng), opt)
+        law = r.laws["khalili_fit"]["m"]
+        assert law.se == {"s_b": None, "eta": None} and law.ci95 == {"s_b": None, "eta": None}, (k, law.se)
+        assert set(law.unidentified) == {"s_b", "eta"}
+        js = r.to_json()["fitted"]["m"]["khalili_fit"]
+        assert js["se"] == {"s_b_kPa": None, "eta": None} and js["not_identifiable"] == ["s_b_kPa", "eta"]
+        wet = r.tests["condition"] == "wet"
+        lo, hi = (v[wet] for v in r.predictions["khalili_fit"].si.tau_prediction_interval)
+        assert np.all(np.isfinite(lo) & np.isfinite(hi) & (hi > lo))
+    law_table = next(t for t in shear_tables(r) if t.title.startswith("Fitted χ laws"))
+    assert all(row[4] == "not identifiable" for row in law_table.rows)
+    assert any("not identifiable" in w for w in r.warnings)
+
+
+def test_unidentified_detects_a_zero_column_and_a_parallel_pair():
+    J = np.column_stack([np.linspace(1, 2, 5), 2 * np.linspace(1, 2, 5), np.zeros(5)])
+    assert chi_laws.unidentified(J, ["a", "b", "c"]) == ["a", "b", "c"]
+    J2 = np.column_stack([np.linspace(1, 2, 5), np.linspace(1, 2, 5) ** 2])
+    assert chi_laws.unidentified(J2, ["a", "b"]) == []

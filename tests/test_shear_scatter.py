@@ -83,7 +83,7 @@ def test_heteroscedasticity_reported_and_errors_option_used():
         assert key in h["dry_fit"] and key in h["models"]["bishop"]
     assert h["errors"] == "proportional" and js["materials"]["sand"]["errors"] == "proportional"
     assert "proportional to the strength" in " ".join(r.method_notes()[0])
-    auto, _ = _run(_frame())
+    auto, _ = _run(_frame(), errors="auto")
     p = auto.to_json()["heteroscedasticity"]["sand"]["dry_fit"]["p_value"]
     assert auto.fits["sand"].line.errors == ("proportional" if p < 0.05 else "constant")  # the written rule
     with pytest.raises(OptionError, match="errors"):

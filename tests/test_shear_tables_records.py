@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import warnings
 
+import numpy as np
 import pytest
 
 import capred
@@ -69,8 +70,13 @@ def test_tables_show_the_numbers_of_the_json(run):
         assert row[2:6] == [fmt(v["n"]), fmt(v["rmse_kPa"]), fmt(v["bias_kPa"], sign=True), fmt(v["r2"])]
     boot = tables["Howsure"]
     for row in boot.rows:
-        lo, hi = doc["bootstrap"][row[0]]["rmse_difference_ci95_kPa"]  # kPa in the JSON: converted once
-        assert row[4] == f"{fmt(lo)} to {fmt(hi)}"
+        b = doc["bootstrap"][row[0]]
+        lo, hi = b["rmse_difference_ci95_kPa"]  # kPa in the JSON: converted once
+        # printed at the resolution the adaptive bootstrap resolved (issue 44.2), given in the JSON
+        res = b["rmse_difference_resolution_kPa"]
+        places = max(0, -int(np.floor(np.log10(res))))
+        assert row[4] == f"{round(lo / res) * res:.{places}f} to {round(hi / res) * res:.{places}f}"
+        assert abs(float(row[4].split(" to ")[0]) - lo) <= res / 2 * (1 + 1e-9)
     laws = tables["Fittedχ"]
     for row in laws.rows:
         law = doc["fitted"][row[0]]["chi_power"]

@@ -117,8 +117,9 @@ def shear(
     errors: option(
         SHEAR,
         "errors",
-        metavar="constant|proportional|auto",
-        help="Scatter of a test: constant, proportional to its strength (weighted least squares), or auto "
+        metavar="either|constant|proportional|auto",
+        help="Scatter of a test: either (default: intervals valid whether the scatter is constant or proportional "
+        "to the strength), constant, proportional to its strength (weighted least squares), or auto "
         "(proportional when the Breusch-Pagan test of the dry residuals against sigma_N has p < 0.05).",
     ) = None,
     dry_loss: option(
@@ -128,7 +129,10 @@ def shear(
         help="Loss of the dry fit: ols (least squares), huber or tukey (robust to an outlier, sandwich errors).",
     ) = None,
     bootstrap: option(
-        SHEAR, "bootstrap", help="Replicates of the paired bootstrap of the model ranking (0: none)."
+        SHEAR,
+        "bootstrap",
+        help="Most replicates of the paired bootstrap of the model ranking (0: none); it stops earlier, in rounds "
+        "of 250, once the printed probabilities and ΔRMSE ends are resolved.",
     ) = None,
     seed: option(SHEAR, "seed", help="Seed of the bootstrap: the same seed gives the same probabilities.") = None,
 ) -> Invocation:
@@ -193,7 +197,7 @@ def shear(
     dry_fit : str, optional
         free or origin.
     errors : str, optional
-        constant, proportional or auto.
+        either (default), constant, proportional or auto.
     dry_loss : str, optional
         ols, huber or tukey.
     bootstrap : int, optional

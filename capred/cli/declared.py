@@ -154,7 +154,7 @@ SNAPSHOT = {
                 "unit": "",
                 "range": "",
                 "text": "",
-                "default": "[default: auto]",
+                "default": "[default: either]",
                 "type": "str",
                 "option": "--errors",
             },

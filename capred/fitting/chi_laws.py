@@ -110,6 +110,8 @@ class FittedLaw:
     names: tuple[str, ...] = ()
     residual_variance: float | None = None
     identifiability: list[str] = field(default_factory=list)
+    #: parameters the data cannot determine (`unidentified`): their ``se`` and ``ci95`` are None
+    unidentified: tuple[str, ...] = ()
 
     @property
     def params(self):
@@ -319,7 +321,9 @@ def law_uncertainty(
     -------
     dict
         ``se``, ``se_conditional``, ``ci`` ({name: (low, high) or None}), ``dof``, ``covariance``
-        (joint, over ``("c", "tan_phi", *names)``, or None), ``residual_variance`` [Pa^2].
+        (joint, over ``("c", "tan_phi", *names)``, or None), ``residual_variance`` [Pa^2], ``unidentified``
+        (the parameters the tests cannot determine, `unidentified`: their se and ci are None). The inverse
+        (J^T J)^-1 is taken on the directions the tests determine (`_pinv_scaled`).
 
     References
     ----------
@@ -336,7 +340,8 @@ def law_uncertainty(
     r = np.asarray(resid_wet, float)
     rss_wet = float(r @ r)
     n, p = jt.shape
-    A = _inv(jt.T @ jt) if n else np.full((p, p), np.nan)
+    unid = unidentified(jt, names)
+    A = _pinv_scaled(jt) if n else np.full((p, p), np.nan)
     se_cond = np.sqrt(np.maximum(np.diag(A) * rss_wet / (n - p), 0.0)) if n > p else np.full(p, np.nan)
     joint = None
     if dry is None:
@@ -377,6 +382,9 @@ def law_uncertainty(
         cov = s2 * (A + G @ M @ G.T)
         joint = np.block([[s2 * M, s2 * M @ G.T], [s2 * G @ M, cov]])
     se = np.sqrt(np.maximum(np.diag(cov), 0.0))
+    for k, name in enumerate(names):  # not identifiable: undetermined, never the 0 of a singular inverse
+        if name in unid:
+            se[k] = se_cond[k] = np.nan
     t = t_quantile(0.5 + confidence / 2.0, dof) if dof > 0 else np.nan
     ci: dict[str, tuple[float, float] | None] = {}
     for k, name in enumerate(names):
@@ -395,7 +403,66 @@ def law_uncertainty(
         "dof": int(dof),
         "covariance": joint,
         "residual_variance": _finite(s2),
+        "unidentified": tuple(unid),
     }
+
+
+#: column-scaled Jacobian condition number beyond which a direction of the parameters is not determined at all:
+#: J^T J then has fewer than 2 significant digits in double precision (cond(J)^2 > 1e14), so an inverse gives
+#: rounding noise (standard errors of 0 or 1e9 from one data set to the next)
+RANK_LIMIT = 1e7
+
+
+def unidentified(jac_law, names) -> list[str]:
+    """The parameters the data cannot determine: a Jacobian column of zeros (the law does not depend on it at
+    the tests), or a share above 1 % of a right singular vector of the column-scaled Jacobian whose singular
+    value is below 1/``RANK_LIMIT`` of the largest (a direction the tests do not see, e.g. s_b and eta of
+    Khalili's law when every wet test has one suction).
+
+    Parameters
+    ----------
+    jac_law : (n, p) ndarray
+        d tau / d theta at the optimum [Pa per unit of the parameter].
+    names : sequence of str
+        The parameters, in the order of the columns.
+
+    Returns
+    -------
+    list of str
+
+    References
+    ----------
+    Seber, G. A. F. & Wild, C. J. (1989). Nonlinear Regression. Wiley, doi:10.1002/0471725315, ch. 3
+    (parameter redundancy: a rank-deficient Jacobian).
+    """
+    J = np.asarray(jac_law, float).reshape(-1, len(names))
+    if J.shape[0] == 0 or not np.all(np.isfinite(J)):
+        return list(names)
+    norms = np.linalg.norm(J, axis=0)
+    out = {names[k] for k in np.flatnonzero(norms <= 0)}
+    live = np.flatnonzero(norms > 0)
+    if live.size:
+        _, sv, Vt = np.linalg.svd(J[:, live] / norms[live], full_matrices=True)
+        sv = np.concatenate([sv, np.zeros(live.size - sv.size)])
+        for j in np.flatnonzero(sv < sv[0] / RANK_LIMIT):
+            out |= {names[live[k]] for k in np.flatnonzero(np.abs(Vt[j]) > 0.01)}
+    return [k for k in names if k in out]
+
+
+def _pinv_scaled(J) -> np.ndarray:
+    """(J^T J)^-1 on the directions the tests determine: the pseudo-inverse of the column-scaled J^T J with the
+    singular values below 1/``RANK_LIMIT`` of the largest dropped (so a band at the tests stays finite and
+    right even when a parameter on its own is not identified), NaN when J is not finite."""
+    J = np.asarray(J, float)
+    if not np.all(np.isfinite(J)):
+        return np.full((J.shape[1],) * 2, np.nan)
+    norms = np.linalg.norm(J, axis=0)
+    d = np.where(norms > 0, norms, 1.0)
+    Js = J / d
+    U, sv, Vt = np.linalg.svd(Js, full_matrices=False)
+    keep = sv >= sv[0] / RANK_LIMIT if sv.size and sv[0] > 0 else np.zeros(sv.shape, bool)
+    inv = (Vt[keep].T / sv[keep] ** 2) @ Vt[keep]
+    return inv / np.outer(d, d)
 
 
 def _with_uncertainty(law: FittedLaw, names, values, jac_law, jac_env, resid, dry, log_scale=()) -> FittedLaw:
@@ -407,6 +474,7 @@ def _with_uncertainty(law: FittedLaw, names, values, jac_law, jac_env, resid, dr
     law.covariance = u["covariance"]
     law.names = ("c", "tan_phi", *names)
     law.residual_variance = u["residual_variance"]
+    law.unidentified = u["unidentified"]
     law.identifiability = identifiability(law, jac_law)
     return law
 
@@ -447,6 +515,11 @@ def identifiability(law: FittedLaw, jac_law=None) -> list[str]:
     """
     out = []
     free = [k for k in law.values if k not in law.fixed]
+    for k in getattr(law, "unidentified", ()):
+        out.append(
+            f"{LAW_PARAMETERS.get(k, (k,))[0]} is not identifiable from these tests: its standard error and interval "
+            "are undetermined (reported as null)"
+        )
     for k in free:
         se, v = law.se.get(k), law.values.get(k)
         if k in POSITIVE_PARAMETERS and se is not None and v and np.isfinite(v) and se / abs(v) > RELATIVE_SE_LIMIT:
@@ -454,7 +527,7 @@ def identifiability(law: FittedLaw, jac_law=None) -> list[str]:
             out.append(
                 f"{name} is not identified: its standard error is {se / abs(v):.3g} times its value (> {RELATIVE_SE_LIMIT:g})"
             )
-        if k in POSITIVE_PARAMETERS and law.se.get(k) is None and law.converged:
+        if k in POSITIVE_PARAMETERS and law.se.get(k) is None and law.converged and k not in law.unidentified:
             out.append(f"{LAW_PARAMETERS.get(k, (k,))[0]} has no standard error (singular fit): not identified")
     if law.covariance is not None and law.names:
         idx = [law.names.index(k) for k in free if k in law.names]

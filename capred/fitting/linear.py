@@ -161,6 +161,7 @@ class LineFit:
     scale : the scatter s behind the intervals [unit of y] when it is not sqrt(RSS/dof) (weighted or robust fits)
     ref : level of y at which ``scale`` holds for ``errors="proportional"`` [unit of y]
     heteroscedasticity : Breusch-Pagan test of the least-squares residuals against x (`breusch_pagan`)
+    scale_proportional : with ``errors="either"``, the scatter at ``ref`` of the proportional model [unit of y]
     diagnostics : per point ``studentized`` (externally studentized residual), ``cooks``, ``outlier`` (bool),
         ``threshold`` (`outlier_diagnostics`)
     """
@@ -184,6 +185,8 @@ class LineFit:
     ref: float = 1.0
     heteroscedasticity: dict | None = None
     diagnostics: dict | None = None
+    #: ``errors="either"``: the scatter s_p at ``ref`` of the proportional model [unit of y]
+    scale_proportional: float | None = None
 
     @property
     def dof(self) -> int:
@@ -199,7 +202,8 @@ class LineFit:
         return self.rss / self.dof
 
     def variance_factor(self, y):
-        """v(y) [-]: the variance of one measurement of level y is s^2 v(y); 1, or (y/ref)^2 for proportional errors.
+        """v(y) [-]: the variance of one measurement of level y is s^2 v(y); 1, or (y/ref)^2 for proportional errors,
+        or max(1, (s_p/s)^2 (y/ref)^2) for ``errors="either"`` (the larger of the two models' variances).
 
         Parameters
         ----------
@@ -213,6 +217,11 @@ class LineFit:
         y = np.asarray(y, dtype=float)
         if self.errors == "proportional":
             return (y / self.ref) ** 2
+        if self.errors == "either" and self.scale_proportional is not None:
+            s2 = self.residual_variance
+            if not s2 > 0:
+                return np.ones(y.shape)
+            return np.maximum(1.0, self.scale_proportional**2 / s2 * (y / self.ref) ** 2)
         return np.ones(y.shape)
 
     def scatter_variance(self, y):
@@ -463,8 +472,9 @@ def fit_line_origin(x, y, confidence: float = 0.95) -> LineFit:
 # ---------------------------------------------------------------------------------------------------------------
 # Scatter that grows with stress, outliers and robust losses (capred issue 30)
 
-#: error models of `fit_envelope` (``auto`` chooses one of the first two by `choose_errors`)
-ERROR_MODELS = ("constant", "proportional", "auto")
+#: error models of `fit_envelope` (``auto`` chooses one of the first two by `choose_errors`; ``either`` is valid
+#: under both: every interval is at least as wide as each model's)
+ERROR_MODELS = ("either", "constant", "proportional", "auto")
 #: losses of `fit_envelope`
 LOSSES = ("ols", "huber", "tukey")
 #: tuning constants (in units of the scale s) giving 95 % efficiency at normal errors (Huber 1981; Beaton & Tukey 1974)
@@ -680,7 +690,7 @@ def fit_envelope(
     function, Carroll & Ruppert 1988, ch. 2), Cov(a, b) = s² (XᵀWX)⁻¹, s² = Σ w_i r_i²/(n - p), Student's t
     with n - p dof. Chosen over HC3 sandwich errors because the prediction interval of a NEW test needs its
     variance at that test's strength, which a variance function gives and HC3 does not, and because HC3 with 6
-    dry tests is itself very noisy. ``auto``: `choose_errors`.
+    dry tests is itself very noisy. ``auto``: `choose_errors`. ``either``: valid under both models (`_either`).
 
     **Losses.** ``huber`` / ``tukey``: the M-estimate minimising Σ ρ(√w_i r_i / s) (scipy.optimize.least_squares
     with Huber's loss, k = 1.345 s, or Tukey's biweight, c = 4.685 s, started from the Huber fit), s the MAD
@@ -701,8 +711,9 @@ def fit_envelope(
         Level of the intervals [-].
     through_origin : bool
         c = 0 imposed (``--dry-fit origin``).
-    errors : {"constant", "proportional", "auto"}
-        Error model (``--errors``).
+    errors : {"either", "constant", "proportional", "auto"}
+        Error model (``--errors``); ``either`` (`_either`): intervals at least as wide as each of the constant
+        and proportional models' (valid under both, no choice made).
     loss : {"ols", "huber", "tukey"}
         Loss (``--dry-loss``).
 
@@ -737,6 +748,8 @@ def fit_envelope(
     bp = breusch_pagan(x, y - ols.predict(x), float(np.max(np.abs(y))))
     if errors == "auto":
         errors = "proportional" if bp["significant"] else "constant"
+    if errors == "either":
+        return _either(x, y, confidence, through_origin, loss)
     n, p = x.size, 1 if through_origin else 2
     w = np.ones(n)
     ref = float(np.mean(np.abs(y))) or 1.0
@@ -796,6 +809,97 @@ def fit_envelope(
         ref,
         bp,
         diagnostics,
+    )
+
+
+def loewner_max(A, B) -> np.ndarray:
+    """The covariance M >= A and M >= B (positive semi-definite order) that is smallest along the joint
+    eigen-directions: with A = L L^T and L^-1 B L^-T = Q diag(w) Q^T, M = L Q diag(max(w, 1)) Q^T L^T.
+
+    Every linear combination c^T theta then has c^T M c >= max(c^T A c, c^T B c), so an interval built on M
+    holds under either covariance; along the directions where one dominates, M equals it.
+
+    Parameters
+    ----------
+    A, B : (p, p) array_like
+        Symmetric positive semi-definite covariances (rows and columns of zeros are kept at zero).
+
+    Returns
+    -------
+    numpy.ndarray
+        (p, p) covariance.
+
+    References
+    ----------
+    Horn, R. A. & Johnson, C. R. (2013). Matrix Analysis, 2nd ed. Cambridge University Press,
+    doi:10.1017/CBO9781139020411, section 7.6 (simultaneous diagonalisation of two quadratic forms).
+    """
+    A = np.asarray(A, dtype=float)
+    B = np.asarray(B, dtype=float)
+    free = np.flatnonzero((np.abs(np.diag(A)) > 0) | (np.abs(np.diag(B)) > 0))
+    out = np.zeros_like(A)
+    if free.size == 0:
+        return out
+    a, b = A[np.ix_(free, free)], B[np.ix_(free, free)]
+    try:
+        L = np.linalg.cholesky(a)
+    except np.linalg.LinAlgError:  # A singular (an exact fit): the sum bounds both
+        out[np.ix_(free, free)] = a + b
+        return out
+    Li = np.linalg.inv(L)
+    C = Li @ b @ Li.T
+    w, Q = np.linalg.eigh((C + C.T) / 2.0)
+    m = L @ Q @ np.diag(np.maximum(w, 1.0)) @ Q.T @ L.T
+    out[np.ix_(free, free)] = (m + m.T) / 2.0
+    return out
+
+
+def _either(x, y, confidence, through_origin, loss) -> LineFit:
+    """``errors="either"`` of `fit_envelope`: intervals valid whether the scatter is constant or proportional.
+
+    The line is that of the constant model (least squares, or the robust M-estimate of ``loss``), unbiased
+    under both. Its covariance is the `loewner_max` of (i) its covariance under constant scatter and (ii) its
+    covariance under scatter proportional to the strength, the sandwich
+    (X^T X)^-1 X^T diag(s_p^2 v_i) X (X^T X)^-1 with v_i = (ŷ_i/ref)^2 and s_p the scale of the weighted fit
+    (Carroll & Ruppert 1988, ch. 2); the variance of a new test of level y is max(s^2, s_p^2 (y/ref)^2)
+    (`LineFit.variance_factor`). Each interval is thus at least as wide as the one either model gives on its
+    own: no choice between them is made, so no test of low power on 6 dry tests can pick the wrong one. A dry
+    test is flagged as an outlier only when the outlier test flags it under both models (`outlier_diagnostics`;
+    the studentized residuals reported are the constant model's).
+    """
+    base = fit_envelope(x, y, confidence, through_origin, "constant", loss)
+    prop = fit_envelope(x, y, confidence, through_origin, "proportional", loss)
+    sp = prop.scale
+    if sp is None or not np.isfinite(sp):
+        return dataclasses.replace(base, errors="either")
+    X = _design(x, through_origin)
+    ref = prop.ref
+    level = np.maximum(np.abs(prop.predict(x)), 1e-3 * ref)
+    v = (level / ref) ** 2
+    inv = np.linalg.inv(X.T @ X)
+    Vp = inv @ ((X.T * (sp**2 * v)) @ X) @ inv
+    cov_p = np.zeros((2, 2))
+    if through_origin:
+        cov_p[1, 1] = Vp[0, 0]
+    else:
+        cov_p[:, :] = Vp
+    cov = loewner_max(base.covariance, cov_p)
+    # an outlier is a test neither model explains: flagged by the outlier test under both error models
+    diagnostics = dict(base.diagnostics or {})
+    if diagnostics and prop.diagnostics:
+        diagnostics["outlier"] = np.asarray(diagnostics["outlier"], bool) & np.asarray(
+            prop.diagnostics["outlier"], bool
+        )
+    return dataclasses.replace(
+        base,
+        diagnostics=diagnostics,
+        covariance=cov,
+        intercept_se=float(np.sqrt(max(cov[0, 0], 0.0))),
+        slope_se=float(np.sqrt(max(cov[1, 1], 0.0))),
+        errors="either",
+        scale=base.scale if base.scale is not None else math.sqrt(base.rss / base.dof) if base.dof > 0 else None,
+        ref=ref,
+        scale_proportional=float(sp),
     )
 
 

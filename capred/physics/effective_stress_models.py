@@ -500,6 +500,9 @@ class EffectiveStressModel:
     bridge_curve : UnitCellCurve, optional
         Drawn beside the exact bridge on `capred bridge curve` (σ' against S_R of the unit cell), with its
         error against the exact bridge in curve.json (Evenepoel's comparison: Bishop, Own 1, Own 2).
+    uses_radius : bool
+        The model reads the particle radius R of a wet test (`capred shear` then requires it; other models
+        run without it).
     """
 
     name: str
@@ -518,6 +521,7 @@ class EffectiveStressModel:
     method: str = ""
     chi_of_saturation: Callable[[np.ndarray, object, dict], np.ndarray] | None = None
     bridge_curve: UnitCellCurve | None = None
+    uses_radius: bool = False
 
 
 def _tan_phi_b(d: ModelInputs) -> np.ndarray:
@@ -622,6 +626,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {
             "evenepoel",
             _own2,
             thesis=True,
+            uses_radius=True,
             style={"color": "green", "marker": "D"},
             method="Own 2: σ'_N = σ_N + χ1 Δu + (2γ/R)(2π S_R/3)^(1/3).",
             bridge_curve=UnitCellCurve(r"Own 2 $\chi_1\,\Delta u + \chi_2$", {"lw": 1.4, "ls": "-"}),
@@ -734,6 +739,7 @@ REGISTRY: dict[str, EffectiveStressModel] = {
                 )
             ),
             no_prediction=Flag("no_concave_bridge", "hold more water than the last concave bridge at contact"),
+            uses_radius=True,
             style={"color": "black", "marker": "*"},
             method="Exact bridge: σ'_N = σ_N + F_cap/(πR²) of the exact pendular bridge between two "
             "spheres in contact holding the test's water at its suction.",

@@ -335,11 +335,13 @@ class ShearOptions(Options):
     curves: object = None  # raw direct-shear curves (path or DataFrame): peaks give tau_max
     area_correction: str = "none"  # of the curves: none (nominal area, ASTM D3080), square or circular
     dry_fit: str = "free"  # "free" (c and phi) or "origin" (c = 0, cohesionless soil)
-    #: error model of the dry envelope: constant, proportional (sd proportional to the strength) or auto
-    #: (proportional when the Breusch-Pagan test of the least-squares residuals against sigma_N has p < 0.05)
-    errors: str = "auto"
+    #: error model of the dry envelope: either (the default: every interval at least as wide as both the constant
+    #: and the proportional model give, so valid under both), constant, proportional (sd proportional to the
+    #: strength) or auto (proportional when the Breusch-Pagan test of the least-squares residuals against sigma_N
+    #: has p < 0.05; covers only 84-87 % with scatter proportional to the strength on 6 dry tests)
+    errors: str = "either"
     dry_loss: str = "ols"  # loss of the dry fit: ols, huber or tukey (robust, sandwich standard errors)
-    bootstrap: int = 2000  # replicates of the ranking bootstrap (0: none)
+    bootstrap: int = 2000  # most replicates of the ranking bootstrap (0: none); adaptive: it stops when resolved
     seed: int = 0  # of the bootstrap: the same seed gives the same probabilities
 
     def __post_init__(self) -> None:
@@ -612,6 +614,9 @@ class ShearResult(Result):
         used = {m: line_of(f).errors for m, f in self.fits.items()}
         chosen = ", ".join(f"{m}: {e}" for m, e in used.items())
         errors = {
+            "either": "no particular error model: every interval is the wider of those of a constant scatter and "
+            "of a scatter proportional to the strength (the least-squares line, its covariance the larger of the "
+            "two models' in every direction, a new test's scatter max(s², s_p²(τ/τ_ref)²)), so it holds under both",
             "constant": "the same scatter for every test",
             "proportional": "a scatter proportional to the strength (weighted least squares with the variance "
             "function s²(τ/τ_ref)², iterated; prediction and σ_cap intervals widen with the strength)",
@@ -824,9 +829,19 @@ class ShearResult(Result):
                         if r.size - (p + 1) - 1 <= 0
                         else "AICc undefined: zero residual sum of squares"
                     )
-            weights = akaike_weights({m: v["aicc"] for m, v in rows.items()})
+            # weights among the models scored on the same wet tests; the others listed apart (issue 41.2)
+            inside, apart = compared(self.metrics.get(mat, {}))
+            weights = akaike_weights({m: rows[m]["aicc"] for m in inside if m in rows})
             for m, (delta, w) in weights.items():
                 rows[m]["delta_aicc"], rows[m]["weight"] = num(delta), num(w)
+            for m, lack in apart.items():
+                if m in rows:
+                    rows[m]["delta_aicc"] = rows[m]["weight"] = None
+                    rows[m]["missing"] = lack
+                    rows[m]["aicc_note"] = (
+                        f"not compared: no prediction for {lack} of the {lack + rows[m]['n']} wet tests the others "
+                        "are scored on (AICc weights compare models on the same tests only)"
+                    )
             out[mat] = rows
         return out
 
@@ -871,6 +886,8 @@ class ShearResult(Result):
             "models": list(self.models),
             "tests": tests if lazy else tests.tolist(),
             "metrics": {mat: {m: _metric_dict(v) for m, v in d.items()} for mat, d in self.metrics.items()},
+            # models left out of the ranking, weights and bootstrap: {material: {model: wet tests it lacks}}
+            "not_compared": {mat: compared(d)[1] for mat, d in self.metrics.items() if compared(d)[1]},
             "metrics_overall": {m: _metric_dict(v) for m, v in self.metrics_overall.items()},
             "best_model": self.best_model,
             "best_model_overall": self.best_model_overall,
@@ -970,6 +987,8 @@ def _law_dict(model: str, law) -> dict:
         "bic": num(ic["bic"]),
         "n": law.n,
         "converged": law.converged,
+        # parameters the tests cannot determine: their se and ci95 are null (never a zero-width interval)
+        "not_identifiable": [scale.get(k, (k, 1.0))[0] for k in law.unidentified],
     }
 
 
@@ -977,14 +996,19 @@ def _ranking_dict(r) -> dict:
     def kpa(pair):
         return None if pair is None else [num(pair[0] / 1e3), num(pair[1] / 1e3)]
 
+    from .shear_analysis import difference_resolution
+
+    res = difference_resolution(r.difference_ci)
     return {
         "replicates": r.replicates,
+        "replicates_requested": r.requested,
         "seed": r.seed,
         "best_model_probability": r.probability,
         "rmse_ci95_kPa": {m: kpa(v) for m, v in r.rmse_ci.items()},
         "best": r.best,
         "runner_up": r.runner_up,
         "rmse_difference_ci95_kPa": kpa(r.difference_ci),
+        "rmse_difference_resolution_kPa": None if res is None else num(res / 1e3),
     }
 
 
@@ -1077,8 +1101,33 @@ def model_metrics(predicted, measured) -> ModelMetrics:
     return ModelMetrics(int(y.size), float(np.sqrt(np.mean(r**2))), float(np.mean(r)), r2)
 
 
+def compared(metrics: dict[str, ModelMetrics]) -> tuple[list[str], dict[str, int]]:
+    """The models compared on one set of wet tests, and those listed apart with the count of tests they lack.
+
+    Every model is scored on the same candidate tests; a model that predicts fewer of them than the model that
+    predicts the most (e.g. the exact bridge, which has no concave bridge for a wet test holding much water) is
+    left out of the ranking, the AICc weights and the bootstrap, so that no model wins on an easier subset
+    (issue 41.2): ranking on the common subset instead would throw away the tests the others predict.
+
+    Parameters
+    ----------
+    metrics : dict
+        Model name -> ModelMetrics, all on the same candidate tests.
+
+    Returns
+    -------
+    (list of str, dict of str to int)
+        The compared models (in ``metrics``' order) and {model: wet tests it lacks} of the others.
+    """
+    most = max((v.n for v in metrics.values()), default=0)
+    inside = [m for m, v in metrics.items() if v.n == most and most > 0]
+    apart = {m: most - v.n for m, v in metrics.items() if m not in inside}
+    return inside, apart
+
+
 def best_of(metrics: dict[str, ModelMetrics]) -> str | None:
-    """Model with the lowest RMSE (None when there is nothing to compare).
+    """Model with the lowest RMSE among those `compared` on the same tests (None when there is nothing to
+    compare).
 
     Parameters
     ----------
@@ -1090,7 +1139,8 @@ def best_of(metrics: dict[str, ModelMetrics]) -> str | None:
     str or None
         The model's name.
     """
-    scored = {m: v.si.rmse for m, v in metrics.items() if np.isfinite(v.si.rmse)}
+    inside, _ = compared(metrics)
+    scored = {m: metrics[m].si.rmse for m in inside if np.isfinite(metrics[m].si.rmse)}
     return min(scored, key=scored.get) if scored else None
 
 
@@ -1256,10 +1306,13 @@ def derive_tests(
         table.add_problem(i, column, what)
 
     # only rows with something missing or out of range need a look (the rest are fine)
+    # R is required only by the models that read it (issue 41.5): Own 2's chi2 and the exact bridge
+    by_radius = [esm.REGISTRY[m].label for m in opt.models if esm.REGISTRY[m].uses_radius]
+    no_radius = np.isnan(radius) if by_radius else np.zeros(n, bool)
     look = (
         np.isnan(sigma_N)
         | np.isnan(tau)
-        | (wet & (np.isnan(suction) | np.isnan(S_R) | np.isnan(radius) | (from_burette & ((S_R < 0) | (S_R > 1)))))
+        | (wet & (np.isnan(suction) | np.isnan(S_R) | no_radius | (from_burette & ((S_R < 0) | (S_R > 1)))))
     )
     for i in np.flatnonzero(look):
         if np.isnan(sigma_N[i]):
@@ -1297,9 +1350,13 @@ def derive_tests(
                 f"S_R = (V_v - z2)/V_v = {S_R[i]:.4g} lies outside [0, 1]: "
                 f"z2 = {table.value_text('z2', i)} exceeds V_v",
             )
-        if np.isnan(radius[i]):
+        if no_radius[i]:
             col = "R" if "R" in table.columns else None
-            missing(i, "wet test without particle radius: give 'R' or --radius (needed by Own 2)", col)
+            missing(
+                i,
+                f"wet test without particle radius: give 'R' or --radius (needed by {', '.join(by_radius)})",
+                col,
+            )
 
     suction = np.where(wet, suction, 0.0)
     S_R = np.where(wet, S_R, np.where(cond == "saturated", 1.0, 0.0))  # a saturated test: S_R = 1, no suction
@@ -1586,6 +1643,8 @@ def _scatter_warnings(fits, hetero: dict) -> list[str]:
             used = (
                 "the intervals use proportional errors (weighted least squares)"
                 if fit.errors == "proportional"
+                else "the intervals hold under constant and under proportional scatter (--errors either)"
+                if fit.errors == "either"
                 else "the intervals assume a constant scatter (--errors constant): use --errors proportional"
             )
             out.append(
@@ -1709,7 +1768,10 @@ def run_warnings(wet, pend, mat, fits, laws, predictions, opt) -> list[str]:
         flag = esm.REGISTRY[model].no_prediction
         k = int(np.sum(wet & ~np.isfinite(predictions[model].si.tau))) if flag else 0
         if k:
-            out.append(f"{model}: {k} wet tests {flag.meaning} (flag {flag.name}) and are left out of its metrics")
+            out.append(
+                f"{model}: {k} wet tests {flag.meaning} (flag {flag.name}) and are left out of its metrics; it is "
+                "not ranked against models scored on every wet test (listed apart, with the count it lacks)"
+            )
     return out
 
 
@@ -1744,15 +1806,16 @@ def bootstrap_materials(result: ShearResult, wet, mat, cond, opt: ShearOptions) 
         if not sel.any():
             continue
         dry = (mat == m) & (cond == "dry")
+        inside, _ = compared(result.metrics[m])  # only models scored on the same wet tests (issue 41.2)
         ranked = sorted(
-            (k for k, v in result.metrics[m].items() if np.isfinite(v.si.rmse)),
+            (k for k in inside if np.isfinite(result.metrics[m][k].si.rmse)),
             key=lambda k: result.metrics[m][k].si.rmse,
         )
         out[m] = sa.bootstrap_ranking(
             d,
             t["sigma_N"][dry],
             t["tau_max"][dry],
-            opt.models,
+            [k for k in opt.models if k in inside],
             opt.model_params,
             d.fitted,
             ranked,
@@ -1760,6 +1823,10 @@ def bootstrap_materials(result: ShearResult, wet, mat, cond, opt: ShearOptions) 
             opt.seed,
             opt.dry_fit == "origin",
             rows=sel,
+            errors=line_of(result.fits[m]).errors,  # the run's error model and loss (issue 41.4)
+            loss=line_of(result.fits[m]).loss,
+            scale=line_of(result.fits[m]).scale,
+            adaptive=True,  # stop once the printed numbers are resolved, at most opt.bootstrap (issue 44.2)
         )
     return out
 

@@ -391,6 +391,9 @@ class RankingUncertainty:
         The first two models by RMSE on the full data.
     difference_ci : (low, high) or None
         Percentile interval of RMSE(runner-up) - RMSE(best) [Pa].
+    requested : int or None
+        Replicates asked for: the cap of the adaptive bootstrap, which stops at ``replicates`` once the printed
+        numbers are resolved (`adaptive_stop`).
     """
 
     replicates: int
@@ -400,6 +403,8 @@ class RankingUncertainty:
     best: str | None
     runner_up: str | None
     difference_ci: tuple[float, float] | None  # Pa, RMSE(runner-up) - RMSE(best)
+    #: replicates asked for (``--bootstrap``, the cap of the adaptive bootstrap); ``replicates`` were used
+    requested: int | None = None
 
 
 #: Elements (replicates x tests) drawn and scored at once by the bootstrap: bounds its memory at any table
@@ -567,14 +572,51 @@ def _draw_dry(rng, dry_x, count: int, through_origin: bool, groups="find"):
     return U.astype(float), valid
 
 
-def _dry_refit(U, dry_x, dry_y, through_origin: bool):
-    """(c, tan phi) of every replicate from its dry counts, by weighted sums (closed-form least squares).
+#: iterations of the vectorised reweighting of `_dry_refit` (proportional errors, robust losses): the full-data
+#: IRLS converges in a handful; 30 leave a change below 1e-10 of the slope on the test tables
+DRY_REFIT_ITERATIONS = 30
+
+
+def _dry_refit(U, dry_x, dry_y, through_origin: bool, errors: str = "constant", loss: str = "ols", scale=None):
+    """(c, tan phi) of every replicate from its dry counts, with the run's error model and loss (issue 41.4).
+
+    Least squares (``errors`` constant or either, ``loss`` ols): closed-form weighted sums
 
     .. math:: b = \\frac{\\sum u (x - \\bar x_u)(y - \\bar y_u)}{\\sum u (x - \\bar x_u)^2}, \\quad
               c = \\bar y_u - b \\bar x_u
 
     computed about the full sample's means (no cancellation); through the origin b = sum u x y / sum u x^2.
+    Otherwise the same fit as `capred.fitting.linear.fit_envelope`, by iteratively reweighted least squares
+    over all replicates at once (``DRY_REFIT_ITERATIONS``): weights u (ref/ŷ)² for proportional errors, times
+    Huber's min(1, k/|z|) or Tukey's (1 - (z/c)²)² (after the Huber iterations) for a robust loss, with
+    z = √w_prop r / ``scale`` and the scale that of the full-data fit (held: a MAD per replicate would cost a
+    sort per replicate and changes the fit by its second order only).
     """
+    if errors not in ("proportional",) and loss == "ols":
+        return _weighted_line(U, dry_x, dry_y, through_origin)
+    from ..fitting.linear import HUBER_K, TUKEY_C
+
+    c, b = _weighted_line(U, dry_x, dry_y, through_origin)
+    ref = float(np.mean(np.abs(dry_y))) or 1.0
+    s = float(scale) if scale is not None and np.isfinite(scale) and scale > 0 else None
+    half = DRY_REFIT_ITERATIONS // 2
+    for it in range(DRY_REFIT_ITERATIONS):
+        yhat = c[:, None] + b[:, None] * dry_x
+        wp = (ref / np.maximum(np.abs(yhat), 1e-3 * ref)) ** 2 if errors == "proportional" else np.ones_like(yhat)
+        W = U * wp
+        if loss != "ols" and s is not None:
+            z = np.sqrt(wp) * np.abs(dry_y - yhat) / s
+            if loss == "huber" or it < half:  # Tukey starts from the Huber fit, as fit_envelope does
+                W = W * np.minimum(1.0, HUBER_K / np.maximum(z, 1e-300))
+            else:
+                W = W * np.where(z < TUKEY_C, (1.0 - (z / TUKEY_C) ** 2) ** 2, 0.0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            c, b = _weighted_line(W, dry_x, dry_y, through_origin)
+    return c, b
+
+
+def _weighted_line(U, dry_x, dry_y, through_origin: bool):
+    """(c, b) of the weighted least-squares line of every row of weights U (`_dry_refit`)."""
     if through_origin:
         return np.zeros(U.shape[0]), (U @ (dry_x * dry_y)) / (U @ (dry_x * dry_x))
     xm, ym = dry_x.mean(), dry_y.mean()
@@ -597,6 +639,10 @@ def bootstrap_ranking(
     seed: int,
     through_origin: bool,
     rows=None,
+    errors: str = "constant",
+    loss: str = "ols",
+    scale: float | None = None,
+    adaptive: bool = False,
 ) -> RankingUncertainty:
     r"""Paired bootstrap over the wet tests of one material, refitting the dry envelope in every replicate.
 
@@ -660,6 +706,15 @@ def bootstrap_ranking(
         The material's wet tests within ``d_mat`` (then every test): their inputs are copied a chunk at a
         time for the affine models' coefficients, and whole only for a model that needs them in every
         replicate (a fitted law, a model scored replicate by replicate).
+    errors, loss : str
+        The dry envelope's error model and loss as the run fitted it (``LineFit.errors``, ``LineFit.loss``):
+        every replicate refits it the same way (`_dry_refit`; ``either`` and ``constant`` give the
+        least-squares line).
+    scale : float, optional
+        The full-data fit's scale [Pa] (``LineFit.scale``), held in a robust refit.
+    adaptive : bool
+        Stop before ``replicates`` once the Monte-Carlo error of every printed number is below its printed
+        resolution (`adaptive_stop`); the replicates used are in ``RankingUncertainty.replicates``.
 
     Returns
     -------
@@ -705,24 +760,136 @@ def bootstrap_ranking(
         d_mat = d_mat.subset(slice(None)) if per_replicate else None
     col = {m: k for k, m in enumerate(models)}
     affine_cols = np.array([col[m] for m in affine], dtype=int)
-    material = _Material(d_mat, nw, dry_x, dry_y, through_origin, c0, b0, mat)
+    material = _Material(d_mat, nw, dry_x, dry_y, through_origin, c0, b0, mat, (errors, loss, scale))
     scoring = _Scoring(affine, affine_cols, F_once, chunks, laws, per_replicate, col, params, fitted)
     scores = np.full((replicates, len(models)), np.nan)
     groups = _dry_groups(dry_x, through_origin)
-    if affine and not laws and not per_replicate and nw > KEEP_FEATURES_TESTS:
-        _score_long(rng, scores, material, scoring, groups)
-        return _summarise(scores, models, ranked, seed)
+    long = affine and not laws and not per_replicate and nw > KEEP_FEATURES_TESTS
     block = max(1, BLOCK_ELEMENTS // max(nw, dry_x.size, 1))
-    for first in range(0, replicates, block):
-        count = min(block, replicates - first)
-        U, idx, valid = _draw(rng, dry_x, nw, count, through_origin, groups)
-        kept = np.flatnonzero(valid)
-        if not kept.size:  # no dry sample of the block could be refitted
-            continue
-        if kept.size < count:
-            U, idx = U[kept], idx[kept]
-        _score_replicates(scores, first + kept, U, idx, material, scoring)
-    return _summarise(scores, models, ranked, seed)
+
+    def run(start: int, stop: int) -> None:  # replicates start..stop-1 into scores
+        if long:
+            _score_long(rng, scores[start:stop], material, scoring, groups)
+            return
+        for first in range(start, stop, block):
+            count = min(block, stop - first)
+            U, idx, valid = _draw(rng, dry_x, nw, count, through_origin, groups)
+            kept = np.flatnonzero(valid)
+            if not kept.size:  # no dry sample of the block could be refitted
+                continue
+            if kept.size < count:
+                U, idx = U[kept], idx[kept]
+            _score_replicates(scores, first + kept, U, idx, material, scoring)
+
+    if not adaptive:
+        run(0, replicates)
+        return _summarise(scores, models, ranked, seed, replicates)
+    done = 0
+    while done < replicates:  # rounds of ADAPTIVE_ROUND replicates until the printed numbers are resolved
+        stop = min(done + ADAPTIVE_ROUND, replicates)
+        run(done, stop)
+        done = stop
+        if done >= ADAPTIVE_MIN and adaptive_stop(scores[:done], models, ranked):
+            break
+    return _summarise(scores[:done], models, ranked, seed, replicates)
+
+
+#: the adaptive bootstrap (issue 44.2): replicates drawn in rounds of ADAPTIVE_ROUND, at least ADAPTIVE_MIN
+ADAPTIVE_ROUND = 250
+ADAPTIVE_MIN = 500
+#: printed resolution of a probability of being best (the console prints whole percents)
+PROBABILITY_RESOLUTION = 0.01
+
+
+def difference_resolution(ci) -> float | None:
+    """The printed resolution of the ends of a ΔRMSE interval [its unit]: the decimal step 10^floor(log10(w/5))
+    with w the interval's width (5 to 50 steps across it: about two significant digits of the width, what a
+    percentile interval of a few thousand resamples can claim), None for no interval or a zero width.
+
+    Parameters
+    ----------
+    ci : (float, float) or None
+        The interval's ends.
+
+    Returns
+    -------
+    float or None
+    """
+    if ci is None or not all(np.isfinite(ci)):
+        return None
+    width = float(ci[1] - ci[0])
+    if not width > 0:
+        return None
+    return float(10.0 ** np.floor(np.log10(width / 5.0)))
+
+
+def quantile_mc_se(values: np.ndarray, q: float) -> float:
+    """Monte-Carlo standard error of the q-quantile of ``values`` from its order statistics: half the distance
+    between the order statistics R q -/+ sqrt(R q (1 - q)) (the binomial 68 % interval of the quantile,
+    distribution-free; Efron & Tibshirani 1993, doi:10.1007/978-1-4899-4541-9, ch. 19).
+
+    Parameters
+    ----------
+    values : (R,) ndarray
+        Finite replicate values.
+    q : float
+        Quantile level in (0, 1).
+
+    Returns
+    -------
+    float
+        The standard error [unit of values] (inf with fewer than 2 values).
+    """
+    n = values.size
+    if n < 2:
+        return float("inf")
+    s = np.sort(values)
+    h = np.sqrt(n * q * (1.0 - q))
+    lo = int(np.clip(np.floor(n * q - h), 0, n - 1))
+    hi = int(np.clip(np.ceil(n * q + h), 0, n - 1))
+    return float(s[hi] - s[lo]) / 2.0
+
+
+def adaptive_stop(scores: np.ndarray, models: list[str], ranked: list[str]) -> bool:
+    """True when every printed number of the ranking is resolved: the Monte-Carlo standard error of each
+    model's probability of being best, sqrt(p(1 - p)/R) with p = (wins + 1)/(R + 2) (never 0 at 0 or R wins),
+    is below ``PROBABILITY_RESOLUTION``, and that of each end of the ΔRMSE interval (`quantile_mc_se`) below
+    its printed resolution (`difference_resolution`).
+
+    Parameters
+    ----------
+    scores : (R, models) ndarray
+        RMSE of each model in each replicate so far (NaN: not scored).
+    models : list of str
+        The columns.
+    ranked : list of str
+        Models by full-data RMSE (best, runner-up first).
+
+    Returns
+    -------
+    bool
+    """
+    finite = np.isfinite(scores)
+    rows = np.any(finite, axis=1)
+    R = int(rows.sum())
+    if R < 2:
+        return False
+    filled = np.where(finite[rows], scores[rows], np.inf)
+    wins = np.bincount(np.argmin(filled, axis=1), minlength=len(models))
+    p = (wins + 1.0) / (R + 2.0)
+    if np.any(np.sqrt(p * (1.0 - p) / R) >= PROBABILITY_RESOLUTION):
+        return False
+    best, runner = (list(ranked) + [None, None])[:2]
+    if best is None or runner is None:
+        return True
+    dd = scores[:, models.index(runner)] - scores[:, models.index(best)]
+    dd = dd[np.isfinite(dd)]
+    if dd.size < 2:
+        return True
+    res = difference_resolution(tuple(_percentiles(dd, (2.5, 97.5))))
+    if res is None:
+        return True
+    return all(quantile_mc_se(dd, q) < res for q in (0.025, 0.975))
 
 
 @dataclass(frozen=True)
@@ -740,6 +907,7 @@ class _Material:
     c0: float
     b0: float
     name: str
+    dry_model: tuple = ("constant", "ols", None)  # (errors, loss, scale) of the dry refit (`_dry_refit`)
 
 
 @dataclass(frozen=True)
@@ -773,7 +941,7 @@ def _score_replicates(scores, rows, U, idx, material: _Material, scoring: _Scori
         .reshape(idx.shape)
         .astype(float)
     )
-    c, b = _dry_refit(U, material.dry_x, material.dry_y, material.through_origin)
+    c, b = _dry_refit(U, material.dry_x, material.dry_y, material.through_origin, *material.dry_model)
     dc, db = c - material.c0, b - material.b0
     if affine:  # every affine model at once: (replicates, models) arrays of its seven sums
         WF = W @ F_once if F_once is not None else sum(W[:, ch] @ _affine_features_t(affine, ch).T for ch in chunks)
@@ -831,7 +999,7 @@ def _score_long(rng, scores: np.ndarray, material: _Material, scoring: _Scoring,
         U, ok = _draw_dry(rng, dry_x, count, material.through_origin, groups)
         kept = np.flatnonzero(ok)
         if kept.size:
-            c, b = _dry_refit(U[kept], dry_x, material.dry_y, material.through_origin)
+            c, b = _dry_refit(U[kept], dry_x, material.dry_y, material.through_origin, *material.dry_model)
             dc[first + kept], db[first + kept] = c - material.c0, b - material.b0
             valid[first + kept] = True
     WF = np.zeros((replicates, 7 * len(scoring.affine)))
@@ -893,8 +1061,11 @@ def _affine_features_t(affine: dict, rows: slice) -> np.ndarray:
     return out
 
 
-def _summarise(scores: np.ndarray, models: list[str], ranked: list[str], seed: int) -> RankingUncertainty:
-    """Win shares, RMSE percentiles and the best/runner-up difference from the (R, models) RMSE matrix."""
+def _summarise(
+    scores: np.ndarray, models: list[str], ranked: list[str], seed: int, cap: int | None = None
+) -> RankingUncertainty:
+    """Win shares, RMSE percentiles and the best/runner-up difference from the (R, models) RMSE matrix; ``cap``
+    the replicates asked for (the adaptive bootstrap may have stopped before)."""
     finite = np.isfinite(scores)
     everywhere = bool(finite.all())
     stack = scores if everywhere else scores[np.any(finite, axis=1)]
@@ -918,7 +1089,9 @@ def _summarise(scores: np.ndarray, models: list[str], ranked: list[str], seed: i
         }
         dd = dd[np.isfinite(dd)] if paired else None
         diff = tuple(float(v) for v in _percentiles(dd, (2.5, 97.5))) if paired and dd.size else None
-    return RankingUncertainty(int(stack.shape[0]), seed, prob, ci, best, runner, diff)
+    return RankingUncertainty(
+        int(stack.shape[0]), seed, prob, ci, best, runner, diff, cap if cap is not None else int(scores.shape[0])
+    )
 
 
 def _percentiles(a: np.ndarray, q: tuple[float, ...]) -> np.ndarray:

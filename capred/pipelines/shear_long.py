@@ -230,6 +230,13 @@ def run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks:
         fits = fit_dry_envelopes(problems, d, mat, cond, materials, opt)
         saturated_fits = fit_saturated_envelopes(problems, d, mat, cond, materials, opt)
         problems.raise_if_problems()
+        for fit in fits.values():  # an outlier is named by its id, read back from the spool (as a whole table)
+            diag = fit.diagnostics
+            flagged = np.flatnonzero(np.asarray(diag.get("outlier", []), bool))
+            if flagged.size and "rows" in diag:
+                ids = np.full(len(diag["rows"]), None, dtype=object)
+                ids[flagged] = _spooled(spool_in, starts, "test_id", np.asarray(diag["rows"][flagged], np.int64))
+                diag["test_ids"] = ids
 
         tests = _LongTests({"material": mat, "condition": cond, "line": lines_all, **d})
         md = model_inputs_of(tests, wet, mat, fits, opt, saturated_fits)
@@ -459,6 +466,9 @@ class ShearBlocks(ShearResult):
             predictions={m: _record(ModelPrediction, m, b, model=m) for m in self.models},
             back=_record(BackAnalysis, "back", b),
         )
+        # the flags of its rows from the whole run's (a dry outlier's row is a row of the whole table)
+        code, names = self._flag_codes()
+        part.__dict__["_flags"] = list(names[code[lo:hi]])
         self.__dict__["_block_cache"] = (k, part)
         return part
 

@@ -59,7 +59,8 @@ def shear_tables(result) -> list[TableSpec]:
         "Dry envelope τ = c + σ_N tan φ"
         + (" (through the origin, c = 0)" if origin else "")
         + (f", {loss} loss" if loss != "ols" else "")
-        + "; scatter: constant or proportional to τ (--errors), BP p: Breusch-Pagan test of growing scatter",
+        + "; scatter: either (valid for constant or proportional), constant or proportional to τ (--errors), "
+        "BP p: Breusch-Pagan test of growing scatter",
         ["material", "n", "c [kPa]", "± se", "φ [°]", "± se", "tan φ", "R²", "scatter", "BP p", "outliers"]
         + (["φ_b [°]"] if phi_b else []),
     )
@@ -115,14 +116,15 @@ def shear_tables(result) -> list[TableSpec]:
             best = b.best
             p = num(b.probability.get(best)) if best else None
             diff = b.difference_ci
+            used = fmt(b.replicates) if b.requested in (None, b.replicates) else f"{b.replicates} of {b.requested}"
             boot.rows.append(
                 [
                     mat,
                     MODEL_LABELS.get(best, "—"),
                     "—" if p is None else f"{p:.0%}",
                     MODEL_LABELS.get(b.runner_up, "—"),
-                    "—" if diff is None else f"{fmt(num(diff[0] * kpa))} to {fmt(num(diff[1] * kpa))}",
-                    fmt(b.replicates),
+                    "—" if diff is None else _difference_text(diff, kpa),
+                    used,
                 ]
             )
         out.append(boot)
@@ -158,9 +160,13 @@ def shear_tables(result) -> list[TableSpec]:
                 law = by_material.get(mat)
                 if law is None:
                     continue
+                from ..fitting.chi_laws import LAW_PARAMETERS
+
+                lost = {LAW_PARAMETERS.get(k, (k,))[0] for k in law.unidentified}
                 for name, par in law.params.items():
                     if not par.fixed:
-                        f.rows.append([mat, MODEL_LABELS[m], name, fmt(par.value), fmt(par.stderr), fmt(law.n)])
+                        se = "not identifiable" if name in lost else fmt(par.stderr)
+                        f.rows.append([mat, MODEL_LABELS[m], name, fmt(par.value), se, fmt(law.n)])
         if f.rows:
             out.append(f)
     import itertools
@@ -196,14 +202,32 @@ def _wet_rows(result, limit: int = MAX_ROWS):
         }
 
 
+def _difference_text(diff, kpa: float) -> str:
+    """The ΔRMSE interval [kPa] at its printed resolution (`difference_resolution`: the adaptive bootstrap
+    stops once the Monte-Carlo error of each end is below it)."""
+    import math
+
+    from ..pipelines.shear_analysis import difference_resolution
+
+    lo, hi = num(diff[0] * kpa), num(diff[1] * kpa)
+    res = difference_resolution((lo, hi)) if lo is not None and hi is not None else None
+    if res is None:
+        return f"{fmt(lo)} to {fmt(hi)}"
+    places = max(0, -int(math.floor(math.log10(res))))
+    return f"{round(lo / res) * res:.{places}f} to {round(hi / res) * res:.{places}f}"
+
+
 def _metrics_table(title, metrics, overall, best_of_material, best_overall) -> TableSpec:
     """One model-comparison table: per material (and "(all)") each model's ModelMetrics, the best in bold."""
     met = spec(title, ["material", "model", "n", "RMSE [kPa]", "bias [kPa]", "R²", "lowest RMSE"], left=2)
     groups = list(metrics.items())
     if overall and len(groups) > 1:
         groups.append(("(all)", overall))
+    from ..pipelines.shear import compared
+
     for mat, models in groups:
         best = best_overall if mat == "(all)" else best_of_material.get(mat)
+        _, apart = compared(models)
         for k, (m, v) in enumerate(models.items()):
             if m == best:
                 met.bold_rows.add(len(met.rows))
@@ -217,7 +241,7 @@ def _metrics_table(title, metrics, overall, best_of_material, best_overall) -> T
                     fmt(v.rmse_kPa),
                     fmt(v.bias_kPa, sign=True),
                     fmt(v.r2),
-                    "best" if m == best else "",
+                    "best" if m == best else f"not ranked: lacks {apart[m]}" if m in apart else "",
                 ]
             )
     return met
