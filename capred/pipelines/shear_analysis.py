@@ -1225,7 +1225,8 @@ def retention_relation(params, suction, S_R) -> RetentionRelation | None:
         name, items, quantity = params.retention_model
         p = dict(items)
         model = MODELS[name]
-        scale = 1.0 / p["y_s"] if quantity == "theta" else 1.0  # S_R = theta/theta_s
+        # S_R = theta/theta_s; w/w_s for a fit of the water content by mass (at constant rho_d, S_R = w/w_sat)
+        scale = 1.0 / p["y_s"] if quantity in ("theta", "w") else 1.0
         return RetentionRelation(lambda s: model.water(s, **p) * scale, f"{model.label} fitted by capred retention")
     if params.vg_alpha is not None and params.vg_n is not None:
         s_res = params.s_res or 0.0
