@@ -82,6 +82,28 @@ def test_too_few_or_degenerate_states_are_clear_errors():
         fit_extended_mc([1e3, 2e3, 3e3, 4e3], [5e3] * 4, [3e3, 5e3, 7e3, 9e3])
 
 
+def test_either_is_at_least_as_wide_as_each_model():
+    # the default error model: the OLS plane, every interval at least as wide as the constant and the proportional
+    # model's (the Loewner maximum of their covariances; a new test's variance the larger of theirs)
+    rng = np.random.default_rng(3)
+    a, b, d = coefficients("compression", 10e3, 30.0, math.tan(math.radians(18)))
+    x, s = rng.uniform(20e3, 400e3, 12), rng.uniform(20e3, 400e3, 12)
+    mu = a + b * x + d * s
+    y = mu + rng.normal(size=12) * 0.06 * mu
+    either = fit_extended_mc(x, s, y, "compression", "either")
+    const = fit_extended_mc(x, s, y, "compression", "constant")
+    prop = fit_extended_mc(x, s, y, "compression", "proportional")
+    assert either.errors == "either"
+    np.testing.assert_allclose(either.coef, const.coef, rtol=1e-12)  # the same least-squares plane
+    x0, s0 = np.array([30e3, 200e3, 390e3]), np.array([50e3, 200e3, 350e3])
+    w = np.diff(np.array(either.prediction_interval(x0, s0)), axis=0)
+    for other in (const, prop):
+        # prop's own interval is centred on its own (weighted) plane: compare half-widths, 1e-9 for rounding
+        assert np.all(w >= np.diff(np.array(other.prediction_interval(x0, s0)), axis=0) * (1 - 1e-9))
+    for name in ("c_eff_kPa", "phi_b_deg"):
+        assert either.params[name].stderr >= const.params[name].stderr * (1 - 1e-9)
+
+
 def _coverage(errors, noise, reps, seed=1):
     """Coverage of 95 % intervals of c', phi', phi_b and of a new test's q_f per third of the net-stress range.
 
@@ -113,10 +135,14 @@ def _coverage(errors, noise, reps, seed=1):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("errors, noise", [("proportional", "prop"), ("constant", "const")])
+@pytest.mark.parametrize(
+    "errors, noise",
+    [("proportional", "prop"), ("constant", "const"), ("either", "prop"), ("either", "const")],
+)
 def test_interval_coverage_by_simulation(errors, noise):
     # 1000 materials (and 30,000 new tests): the binomial SE of a 95 % coverage is 0.7 % (0.2 % for new tests);
-    # issue 40 asks >= 93 % for each interval and each third of the stress range (measured: 94-95 %)
+    # issue 40 asks >= 93 % for each interval and each third of the stress range (measured: 94-95 % for the
+    # matching model; 94.7-98.4 % for the default "either" under both kinds of scatter)
     params, new = _coverage(errors, noise, 1000)
     assert np.all(params >= 0.93), params
     assert np.all(new >= 0.93), new

@@ -146,7 +146,7 @@ def test_figure_heading_names_its_input_once(tmp_path):
     # report.html of capred retention read "Figure 1. Water retention curves (ret.csv) (ret.csv)."
     import re
 
-    s = np.array([1.0, 3, 10, 30, 100, 300])
+    s = np.array([1.0, 3, 10, 30, 100, 300, 1000])  # 7 readings: a 4-parameter fit needs parameters + 3
     path = tmp_path / "ret.csv"
     theta = 0.05 + 0.33 * (1 + (0.1 * s) ** 2) ** -0.5  # van Genuchten, n = 2
     path.write_text("suction [kPa],theta\n" + "".join(f"{a},{b:.5f}\n" for a, b in zip(s, theta)))

@@ -39,9 +39,10 @@ def triaxial(
     errors: option(
         TRIAX,
         "errors",
-        metavar="proportional|constant|auto",
-        help="Scatter of a test in the extended Mohr-Coulomb fit: proportional to its strength (default), "
-        "constant (ordinary least squares) or auto (Breusch-Pagan).",
+        metavar="either|proportional|constant|auto",
+        help="Scatter of a test in the extended Mohr-Coulomb fit: either (default: intervals that hold whether it "
+        "is constant or proportional to the strength), proportional, constant (ordinary least squares) or auto "
+        "(Breusch-Pagan).",
     ) = None,
     bootstrap: option(TRIAX, "bootstrap", help="Replicates of the ranking bootstrap per material (0: none).") = None,
     seed: option(TRIAX, "seed", help="Seed of the ranking bootstrap.") = None,
@@ -69,7 +70,7 @@ def triaxial(
     c_eff, phi_eff : str, optional
         The effective envelope [kPa, deg] instead of the fit at s -> 0.
     errors : str, optional
-        proportional, constant or auto.
+        either, proportional, constant or auto.
     bootstrap, seed : int, optional
         Ranking bootstrap.
     s_res, vanapalli_kappa, air_entry, vg_alpha, vg_n : optional

@@ -38,6 +38,7 @@ References
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -46,7 +47,7 @@ import numpy as np
 from ..errors import FitError
 from ..parameters import Parameter, Parameters, correlation_from_covariance, fit_report
 from .chi_laws import information_criteria
-from .linear import ERROR_MODELS, breusch_pagan, t_quantile
+from .linear import ERROR_MODELS, breusch_pagan, loewner_max, t_quantile
 
 #: the forms of the envelope: name -> what the strength y and the stress x are
 FORMS = {
@@ -179,9 +180,10 @@ class ExtendedMCFit:
     residual_variance : float
         s² [Pa²] (constant errors) or the variance of y/ŷ [-] (proportional errors).
     errors : str
-        The error model used: ``"constant"`` or ``"proportional"``.
+        The error model used: ``"constant"``, ``"proportional"`` or ``"either"`` (the constant model's plane
+        with intervals that hold under both, see `fit_extended_mc`).
     errors_option : str
-        As asked (``"auto"`` resolves to one of the above).
+        As asked (``"auto"`` resolves to constant or proportional).
     heteroscedasticity : dict
         Breusch-Pagan test of the ordinary residuals against the fitted strength (`capred.fitting.linear`).
     confidence : float
@@ -203,6 +205,9 @@ class ExtendedMCFit:
     confidence: float
     weights: np.ndarray
     warnings: tuple = field(default=())
+    #: ``errors="either"``: the variance of y/ŷ of the proportional model [-] (a new test's variance is the larger
+    #: of ``residual_variance`` and this times ŷ²)
+    residual_variance_proportional: float = math.nan
 
     # --- sizes and statistics ---------------------------------------------------------------------------
     @property
@@ -323,6 +328,8 @@ class ExtendedMCFit:
     def new_test_variance(self, x, s) -> np.ndarray:
         """Variance of one new test's strength about its mean at (x, s) [Pa²] (s², or s² ŷ² for proportional)."""
         y = self.predict(x, s)
+        if self.errors == "either":
+            return np.maximum(self.residual_variance, self.residual_variance_proportional * y**2)
         return self.residual_variance * (y**2 if self.errors == "proportional" else np.ones_like(y))
 
     def prediction_interval(self, x, s) -> tuple[np.ndarray, np.ndarray]:
@@ -381,9 +388,13 @@ def fit_extended_mc(
     y : array_like
         Strength at failure [Pa]: τ_f (direct shear) or q_f (triaxial).
     form : {"direct_shear", "compression", "extension"}, default "compression"
-    errors : {"constant", "proportional", "auto"}, default "constant"
+    errors : {"constant", "proportional", "auto", "either"}, default "constant"
         The scatter of a test: constant (ordinary least squares), proportional to the strength (weighted, iterated),
-        or chosen by the Breusch-Pagan test of the ordinary residuals against the fitted strength.
+        chosen by the Breusch-Pagan test of the ordinary residuals against the fitted strength, or ``either``: the
+        ordinary least-squares plane (unbiased under both) with the covariance `capred.fitting.linear.loewner_max`
+        of its covariance under constant scatter and its sandwich covariance under scatter proportional to the
+        strength, and a new test's variance the larger of the two models' (as ``--errors either`` of `capred
+        shear`): every interval at least as wide as either model's, with no choice made.
     confidence : float, default 0.95
         Level of the intervals.
 
@@ -421,6 +432,8 @@ def fit_extended_mc(
             "the failure states do not determine the plane: the net stress and the suction must each take at least "
             "two values, and not vary together"
         )
+    if errors == "either":
+        return _either(X, x, s, y, form, confidence)
     ols, *_ = np.linalg.lstsq(X, y, rcond=None)
     bp = breusch_pagan(X @ ols, y - X @ ols, float(np.max(np.abs(y))))
     used = errors if errors != "auto" else ("proportional" if bp["significant"] else "constant")
@@ -460,3 +473,26 @@ def fit_extended_mc(
     if c < 0:
         warns.append(f"negative cohesion c' = {1e-3 * c:.3g} kPa at zero suction (an extrapolation below the data)")
     return ExtendedMCFit(form, x, s, y, coef, cov, s2, used, errors, bp, confidence, w, tuple(warns))
+
+
+def _either(X, x, s, y, form, confidence) -> ExtendedMCFit:
+    """``errors="either"`` of `fit_extended_mc`: intervals valid whether the scatter is constant or proportional.
+
+    The sandwich covariance of the ordinary least-squares coefficients under Var y_i = s_p² ŷ_i² is
+    (X'X)⁻¹ X' diag(s_p² ŷ²) X (X'X)⁻¹ (Carroll & Ruppert 1988, ch. 2), with s_p² the variance of y/ŷ of the
+    proportional fit.
+    """
+    const = fit_extended_mc(x, s, y, form, "constant", confidence)
+    prop = fit_extended_mc(x, s, y, form, "proportional", confidence)
+    if prop.errors != "proportional" or not np.isfinite(prop.residual_variance):
+        return dataclasses.replace(const, errors_option="either")
+    level = np.maximum(np.abs(X @ const.coef), 1e-3 * float(np.max(np.abs(y))))
+    inv = np.linalg.inv(X.T @ X)
+    cov_p = inv @ ((X.T * (prop.residual_variance * level**2)) @ X) @ inv
+    return dataclasses.replace(
+        const,
+        covariance=loewner_max(const.covariance, cov_p),
+        errors="either",
+        errors_option="either",
+        residual_variance_proportional=float(prop.residual_variance),
+    )

@@ -72,6 +72,41 @@ def _second(t, C_r, C_c, w):
     return -(C_c - C_r) * s * (1.0 - s) * LN10 / w
 
 
+def casagrande_construction(e_y, C_r, C_c, w) -> tuple[float, float, float, float]:
+    """Casagrande's (1936) construction on the smooth bilinear curve, every point of it (for its figure too).
+
+    Parameters
+    ----------
+    e_y, C_r, C_c, w : float
+        The curve (see :func:`smooth_bilinear`).
+
+    Returns
+    -------
+    (float, float, float, float)
+        t_T, the point of largest curvature as log10(sigma'/sigma'_y) [-]; e_T, the void ratio there [-]; the
+        slope de/dlog10 sigma' of the curve there [-]; and t_p = log10(sigma'_p/sigma'_y) [-], where the bisector
+        of the horizontal and the tangent at T meets the virgin line e_y - C_c t.
+
+    References
+    ----------
+    .. [1] Casagrande, A. (1936). Proc. 1st ICSMFE, Cambridge MA, vol. 3, 60-64.
+    """
+    from scipy.optimize import minimize_scalar
+
+    def minus_curvature(t):
+        d1, d2 = _slope(t, C_r, C_c, w), _second(t, C_r, C_c, w)
+        return -abs(d2) / (1.0 + d1 * d1) ** 1.5
+
+    grid = np.linspace(-6 * w, 6 * w, 241)
+    k = int(np.argmin([minus_curvature(x) for x in grid]))
+    lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
+    tT = float(minimize_scalar(minus_curvature, bounds=(lo, hi), method="bounded", options={"xatol": 1e-12}).x)
+    eT = float(smooth_bilinear(tT, e_y, C_r, C_c, w))
+    slope = float(_slope(tT, C_r, C_c, w))
+    m = np.tan(0.5 * np.arctan(slope))  # the bisector's slope (half the tangent's angle)
+    return tT, eT, slope, float((e_y - eT + m * tT) / (m + C_c))
+
+
 def casagrande_t(e_y, C_r, C_c, w) -> float:
     """Casagrande's (1936) construction on the smooth bilinear curve: t = log10(sigma'_p/sigma'_y).
 
@@ -92,19 +127,7 @@ def casagrande_t(e_y, C_r, C_c, w) -> float:
     ----------
     .. [1] Casagrande, A. (1936). Proc. 1st ICSMFE, Cambridge MA, vol. 3, 60-64.
     """
-    from scipy.optimize import minimize_scalar
-
-    def minus_curvature(t):
-        d1, d2 = _slope(t, C_r, C_c, w), _second(t, C_r, C_c, w)
-        return -abs(d2) / (1.0 + d1 * d1) ** 1.5
-
-    grid = np.linspace(-6 * w, 6 * w, 241)
-    k = int(np.argmin([minus_curvature(x) for x in grid]))
-    lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
-    tT = float(minimize_scalar(minus_curvature, bounds=(lo, hi), method="bounded", options={"xatol": 1e-12}).x)
-    eT = float(smooth_bilinear(tT, e_y, C_r, C_c, w))
-    m = np.tan(0.5 * np.arctan(_slope(tT, C_r, C_c, w)))  # the bisector's slope (half the tangent's angle)
-    return float((e_y - eT + m * tT) / (m + C_c))
+    return casagrande_construction(e_y, C_r, C_c, w)[3]
 
 
 def pacheco_silva_t(e0, e_y, C_r, C_c, w) -> float:
@@ -241,6 +264,11 @@ def gradient(f, p, steps=None) -> np.ndarray:
     -------
     numpy.ndarray
         df/dp.
+
+    References
+    ----------
+    .. [1] Draper, N. R. & Smith, H. (1998). Applied Regression Analysis, 3rd ed., Wiley,
+       doi:10.1002/9781118625590 (the delta method's gradient).
     """
     p = np.asarray(p, float)
     h = 1e-6 * (1.0 + np.abs(p)) if steps is None else steps
@@ -322,6 +350,11 @@ def stage_labels(sigma) -> list[str]:
     -------
     list of str
         ``loading``, ``unloading`` or ``reloading`` per reading.
+
+    References
+    ----------
+    .. [1] ASTM D2435/D2435M-11, Standard test methods for one-dimensional consolidation properties of soils
+       using incremental loading (loading, unloading and reloading increments). doi:10.1520/D2435_D2435M-11
     """
     s = np.asarray(sigma, float)
     out: list[str] = []

@@ -16,6 +16,7 @@ import numpy as np
 
 from .. import nomenclature as nom
 from ..errors import FitError, OptionError
+from ..fitting.comparison import compared
 from ..fitting.linear import ERROR_MODELS, LOSSES, LineFit, breusch_pagan, fit_envelope
 from ..io import Column, Table, read_table
 from ..physics import effective_stress_models as esm
@@ -996,7 +997,7 @@ def _ranking_dict(r) -> dict:
     def kpa(pair):
         return None if pair is None else [num(pair[0] / 1e3), num(pair[1] / 1e3)]
 
-    from .shear_analysis import difference_resolution
+    from ..fitting.comparison import difference_resolution
 
     res = difference_resolution(r.difference_ci)
     return {
@@ -1099,30 +1100,6 @@ def model_metrics(predicted, measured) -> ModelMetrics:
     if y.size == 0:
         return ModelMetrics(0, float("nan"), float("nan"), float("nan"))
     return ModelMetrics(int(y.size), float(np.sqrt(np.mean(r**2))), float(np.mean(r)), r2)
-
-
-def compared(metrics: dict[str, ModelMetrics]) -> tuple[list[str], dict[str, int]]:
-    """The models compared on one set of wet tests, and those listed apart with the count of tests they lack.
-
-    Every model is scored on the same candidate tests; a model that predicts fewer of them than the model that
-    predicts the most (e.g. the exact bridge, which has no concave bridge for a wet test holding much water) is
-    left out of the ranking, the AICc weights and the bootstrap, so that no model wins on an easier subset
-    (issue 41.2): ranking on the common subset instead would throw away the tests the others predict.
-
-    Parameters
-    ----------
-    metrics : dict
-        Model name -> ModelMetrics, all on the same candidate tests.
-
-    Returns
-    -------
-    (list of str, dict of str to int)
-        The compared models (in ``metrics``' order) and {model: wet tests it lacks} of the others.
-    """
-    most = max((v.n for v in metrics.values()), default=0)
-    inside = [m for m, v in metrics.items() if v.n == most and most > 0]
-    apart = {m: most - v.n for m, v in metrics.items() if m not in inside}
-    return inside, apart
 
 
 def best_of(metrics: dict[str, ModelMetrics]) -> str | None:

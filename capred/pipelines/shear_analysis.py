@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..fitting import chi_laws
+from ..fitting.comparison import difference_resolution
 from ..fitting.linear import LineFit, fit_line, fit_line_origin, t_quantile
 from ..physics import effective_stress_models as esm
 
@@ -799,28 +800,6 @@ ADAPTIVE_ROUND = 250
 ADAPTIVE_MIN = 500
 #: printed resolution of a probability of being best (the console prints whole percents)
 PROBABILITY_RESOLUTION = 0.01
-
-
-def difference_resolution(ci) -> float | None:
-    """The printed resolution of the ends of a ΔRMSE interval [its unit]: the decimal step 10^floor(log10(w/5))
-    with w the interval's width (5 to 50 steps across it: about two significant digits of the width, what a
-    percentile interval of a few thousand resamples can claim), None for no interval or a zero width.
-
-    Parameters
-    ----------
-    ci : (float, float) or None
-        The interval's ends.
-
-    Returns
-    -------
-    float or None
-    """
-    if ci is None or not all(np.isfinite(ci)):
-        return None
-    width = float(ci[1] - ci[0])
-    if not width > 0:
-        return None
-    return float(10.0 ** np.floor(np.log10(width / 5.0)))
 
 
 def quantile_mc_se(values: np.ndarray, q: float) -> float:

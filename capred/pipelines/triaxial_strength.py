@@ -110,9 +110,9 @@ class TriaxialStrengthOptions(Options):
     phi_eff : float, optional
         Effective friction angle φ' [deg], with ``c_eff``.
     errors : str
-        Scatter of a test's strength in the extended Mohr-Coulomb fit: ``proportional`` (to the strength; the
-        default, measured to keep 95 % intervals at >= 93 % coverage when the scatter grows with stress),
-        ``constant`` (ordinary least squares) or ``auto`` (Breusch-Pagan, as `capred shear`).
+        Scatter of a test's strength in the extended Mohr-Coulomb fit: ``either`` (the default, as `capred shear`:
+        intervals that hold whether the scatter is constant or grows with the strength, with no choice made),
+        ``proportional`` (to the strength), ``constant`` (ordinary least squares) or ``auto`` (Breusch-Pagan).
     confidence : float
         Level of the intervals [-].
     bootstrap : int
@@ -130,7 +130,7 @@ class TriaxialStrengthOptions(Options):
     models: str = DEFAULT_MODELS
     c_eff: float | None = None  # Pa
     phi_eff: float | None = None  # deg
-    errors: str = "proportional"
+    errors: str = "either"
     confidence: float = 0.95
     bootstrap: int = 200
     seed: int = 12345

@@ -61,14 +61,7 @@ def plot_compression(ax, result, construction: str = "both"):
     ax.plot(s, f.e_at(s * 1e3), "-", color=OKABE_ITO["grey"], lw=1.0, label="fitted first loading")
     ax.plot(s, f.e_y - f.C_c * np.log10(s / sy), "--", color=OKABE_ITO["vermillion"], lw=0.9, label="virgin line (C_c)")
     if construction in ("casagrande", "both"):
-        tp = cp.casagrande_t(f.e_y, f.C_r, f.C_c, f.w)
-        # the point of largest curvature: found again on the same curve
-        grid = np.linspace(-6 * f.w, 6 * f.w, 2001)
-        d1 = cp._slope(grid, f.C_r, f.C_c, f.w)
-        d2 = cp._second(grid, f.C_r, f.C_c, f.w)
-        tT = grid[np.argmax(np.abs(d2) / (1 + d1 * d1) ** 1.5)]
-        eT = float(cp.smooth_bilinear(tT, f.e_y, f.C_r, f.C_c, f.w))
-        slope = float(cp._slope(tT, f.C_r, f.C_c, f.w))
+        tT, eT, slope, tp = cp.casagrande_construction(f.e_y, f.C_r, f.C_c, f.w)
         m = np.tan(0.5 * np.arctan(slope))
         tt = np.linspace(tT, tT + 0.8, 20)
         c = OKABE_ITO["green"]

@@ -207,7 +207,7 @@ def _difference_text(diff, kpa: float) -> str:
     stops once the Monte-Carlo error of each end is below it)."""
     import math
 
-    from ..pipelines.shear_analysis import difference_resolution
+    from ..fitting.comparison import difference_resolution
 
     lo, hi = num(diff[0] * kpa), num(diff[1] * kpa)
     res = difference_resolution((lo, hi)) if lo is not None and hi is not None else None
@@ -223,7 +223,7 @@ def _metrics_table(title, metrics, overall, best_of_material, best_overall) -> T
     groups = list(metrics.items())
     if overall and len(groups) > 1:
         groups.append(("(all)", overall))
-    from ..pipelines.shear import compared
+    from ..fitting.comparison import compared
 
     for mat, models in groups:
         best = best_overall if mat == "(all)" else best_of_material.get(mat)
