@@ -969,6 +969,17 @@ def _safe_svg(path: Path) -> None:
         path.write_text(xml_safe(text), encoding="utf-8", errors="surrogateescape")
 
 
+def _sealed(seal, undo) -> None:
+    """Call ``seal()`` (the new folder in place); on any failure ``undo()`` (the earlier folder back) and re-raise."""
+    if seal is None:
+        return
+    try:
+        seal()
+    except BaseException:
+        undo()
+        raise
+
+
 class RunFolder:
     """A hidden work folder that becomes ``out`` on ``commit()``; removed if anything fails."""
 
@@ -1027,11 +1038,17 @@ class RunFolder:
         os.chmod(self.tmp / name, 0o666 & ~_UMASK)
         self.names.append(name)
 
-    def commit(self) -> list[Path]:
+    def commit(self, seal=None) -> list[Path]:
         """Move the work folder into place as the output folder, replacing an earlier run of capred's (under a lock).
 
         Raises OutputError, leaving the earlier run intact, when the output folder is a file or now holds a file
-        its provenance.json does not list.
+        its provenance.json does not list (or a file capred wrote that was edited since).
+
+        Parameters
+        ----------
+        seal : callable or None, optional
+            Called once the new folder is in place, before the earlier run is removed (recording the run in a
+            lab store); if it raises, the earlier folder is put back and the new one removed (with ``abort``).
 
         Returns
         -------
@@ -1047,14 +1064,24 @@ class RunFolder:
                 foreign = foreign_files(out)  # again, under the lock: a file saved there while we computed
                 if foreign:
                     raise OutputError(_foreign_message(out, foreign))
-                if not _exchange(self.tmp, out):
+                if _exchange(self.tmp, out):  # self.tmp now holds the earlier run
+                    _sealed(seal, lambda: _exchange(self.tmp, out))
+                else:
                     old = Path(tempfile.mkdtemp(prefix=_prefix(out, _OLD), dir=out.parent))
                     os.replace(out, old / "run")
                     os.replace(self.tmp, out)
+
+                    def back():
+                        os.replace(out, self.tmp)
+                        os.replace(old / "run", out)
+                        shutil.rmtree(old, ignore_errors=True)
+
+                    _sealed(seal, back)
                     self.tmp = old
                 shutil.rmtree(self.tmp, ignore_errors=True)  # now holds the earlier run
             else:
                 os.replace(self.tmp, out)
+                _sealed(seal, lambda: os.replace(out, self.tmp))
         return [out / n for n in self.names]
 
     def abort(self) -> None:
@@ -1063,7 +1090,13 @@ class RunFolder:
 
 
 def write_run(
-    result, out, command_line: str | None = None, csv_dialect: str = "standard", xlsx: bool = False, artifacts=None
+    result,
+    out,
+    command_line: str | None = None,
+    csv_dialect: str = "standard",
+    xlsx: bool = False,
+    artifacts=None,
+    seal=None,
 ) -> list[Path]:
     """Write the files of ``result`` into the folder ``out``, whole or not at all.
 
@@ -1088,6 +1121,9 @@ def write_run(
         Also write every table into ``tables.xlsx``.
     artifacts : callable or None, optional
         ``artifacts(folder)`` writes further files (figures, report) into the :class:`RunFolder`.
+    seal : callable or None, optional
+        ``seal(out)`` is called once the folder is in place (see :meth:`RunFolder.commit`): recording the run in
+        a lab store; if it raises, the earlier folder is put back and nothing is written.
 
     Returns
     -------
@@ -1123,7 +1159,7 @@ def write_run(
                     raise
                 raise clear from None
         folder.write_bytes("provenance.json", encode_json(provenance(result, folder.names, command_line), True))
-        return folder.commit()
+        return folder.commit(None if seal is None else lambda: seal(out))
     except OSError as exc:
         _cancel(json_writer, folder)
         raise _os_error(out, exc) from None
