@@ -666,7 +666,41 @@ def foreign_files(folder) -> list[str]:
     parents = {"/".join(n.split("/")[:k]) for n in listed for k in range(1, n.count("/") + 1)}
     foreign = [f for f in files if f not in listed and f.rsplit("/", 1)[-1] not in OS_LITTER]
     foreign += [d + "/" for d in dirs if d not in parents]
+    foreign += edited_files(folder, prov, files)
     return sorted(foreign)
+
+
+def edited_files(folder, prov: dict | None = None, files=None) -> list[str]:
+    """Files a run's provenance.json lists with a SHA-256 (``outputs_sha256``) whose content differs now: a
+    user edited them after capred wrote them, so they are no longer capred's to replace.
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        A run folder.
+    prov : dict, optional
+        Its provenance.json (read when not given).
+    files : set of str, optional
+        The files present (listed when not given).
+
+    Returns
+    -------
+    list of str
+        Relative paths, sorted (empty for a folder written before hashes were recorded).
+    """
+    folder = Path(folder)
+    prov = _provenance(folder) if prov is None else prov
+    hashes = prov.get("outputs_sha256") if prov is not None else None
+    if not isinstance(hashes, dict):
+        return []
+    files = _listing(folder)[0] if files is None else files
+    edited = []
+    for name, digest in hashes.items():
+        if name in files and isinstance(digest, str):
+            path = folder / name
+            if path.is_symlink() or not path.is_file() or _sha256(path) != digest:
+                edited.append(name)
+    return sorted(edited)
 
 
 def _foreign_message(out: Path, foreign: list[str]) -> str:
@@ -682,6 +716,14 @@ def _foreign_message(out: Path, foreign: list[str]) -> str:
             f"--out {out} is a folder capred did not write (it holds {shown}); capred replaces its output "
             "folder as a whole: give a new or empty folder"
         )
+    edited = [f for f in foreign if f in edited_files(out, prov)]
+    if edited:
+        named = ", ".join(edited[:5]) + (f" and {len(edited) - 5} more" if len(edited) > 5 else "")
+        return (
+            f"--out {out}: {named} changed since capred wrote {'it' if len(edited) == 1 else 'them'} (the SHA-256 "
+            "recorded in provenance.json differs); capred never replaces a file a user edited: move it out "
+            "or give another folder"
+        )
     return (
         f"--out {out} holds files capred did not write: {shown}; capred replaces its output folder as a "
         "whole and never deletes a file it did not write: move them out or give another folder"
@@ -691,7 +733,8 @@ def _foreign_message(out: Path, foreign: list[str]) -> str:
 def _sha256(path: Path) -> str:
     import hashlib
 
-    return hashlib.sha256(path.read_bytes()).hexdigest()
+    with open(path, "rb") as fh:  # streamed: an output may be larger than the memory a run may take
+        return hashlib.file_digest(fh, "sha256").hexdigest()
 
 
 def batch_record(root) -> dict:
@@ -1158,7 +1201,8 @@ def write_run(
                 if clear is None:
                     raise
                 raise clear from None
-        folder.write_bytes("provenance.json", encode_json(provenance(result, folder.names, command_line), True))
+        hashes = {n: _sha256(folder.path_for(n)) for n in folder.names}  # a user's later edit is then seen
+        folder.write_bytes("provenance.json", encode_json(provenance(result, folder.names, command_line, hashes), True))
         return folder.commit(None if seal is None else lambda: seal(out))
     except OSError as exc:
         _cancel(json_writer, folder)
@@ -1315,7 +1359,7 @@ class _JsonWriter:
             gc.unfreeze()
 
 
-def provenance(result, outputs: list[str], command_line: str | None = None) -> dict:
+def provenance(result, outputs: list[str], command_line: str | None = None, hashes: dict | None = None) -> dict:
     """Record of a run: capred version, command line, input hashes, options, outputs.
 
     Parameters
@@ -1326,6 +1370,9 @@ def provenance(result, outputs: list[str], command_line: str | None = None) -> d
         Names of the files written (provenance.json is added).
     command_line : str or None, optional
         The command line to record (default: ``sys.argv`` joined).
+    hashes : dict, optional
+        SHA-256 of each output, recorded as ``outputs_sha256``: the next run into the folder refuses to replace
+        a file whose content changed since (:func:`edited_files`).
 
     Returns
     -------
@@ -1345,6 +1392,7 @@ def provenance(result, outputs: list[str], command_line: str | None = None) -> d
         "option_units": doc["option_units"],
         "warnings": doc["warnings"],
         "outputs": sorted(outputs + ["provenance.json"]),
+        **({"outputs_sha256": dict(sorted(hashes.items()))} if hashes is not None else {}),
         "created_utc": datetime.now(UTC).replace(microsecond=0).isoformat(),
     }
 
