@@ -390,7 +390,36 @@ def decode_text(data: bytes) -> str:
     return data.decode("latin-1")
 
 
-_LINE_END = re.compile("\r\n|\r|\n")
+#: a comment line: blanks (not line ends), then '#' (its line end kept, so the numbering holds)
+_COMMENT_LINE = re.compile(r"^[^\S\n]*+#[^\n]*", re.M)
+#: characters of text a CSV is split into at a time (whole lines): its blank stretches are skipped whole
+CHUNK_CHARS = 1 << 20
+
+
+def line_chunks(text: str, size: int = CHUNK_CHARS):
+    """``text`` in pieces of about ``size`` characters cut at line ends (the ``\\n`` between two pieces left out),
+    so that a pass over a file's lines never holds a list of all of them.
+
+    Parameters
+    ----------
+    text : str
+        Lines ending in ``\\n``.
+    size : int
+        Characters per piece, at least (a piece ends at the next line end).
+
+    Yields
+    ------
+    str
+        Whole lines joined by ``\\n``; ``"\\n".join`` of the pieces is ``text``.
+    """
+    a = 0
+    while True:
+        b = text.find("\n", a + size)
+        if b < 0:
+            yield text[a:]
+            return
+        yield text[a:b]
+        a = b + 1
 
 
 #: a run of CSV lines that hold only delimiters (and blanks): empty rows, as spreadsheet exports leave them
@@ -414,9 +443,19 @@ def blank_delimiter_rows(grid: Grid, text: str) -> str:
     str
         The text with each row of delimiters only emptied (its line end kept).
     """
-    if _DELIMITER_ROWS.search(text) is None:
-        return text
-    where = [grid.first_line, 0]  # line number at position
+    pieces, changed, line = [], False, grid.first_line
+    for piece in line_chunks(text):  # a chunk of blank lines is passed over whole
+        lines = piece.count("\n") + 1
+        if not piece.isspace() and _DELIMITER_ROWS.search(piece) is not None:
+            piece, changed = _blank_rows(grid, piece, line), True
+        pieces.append(piece)
+        line += lines
+    return "\n".join(pieces).rstrip("\n") if changed else text
+
+
+def _blank_rows(grid: Grid, text: str, first_line: int) -> str:
+    """``text`` (whole lines, the first numbered ``first_line``) with its rows of delimiters emptied."""
+    where = [first_line, 0]  # line number at position
 
     def blank(m) -> str:
         run = m.group()
@@ -429,7 +468,7 @@ def blank_delimiter_rows(grid: Grid, text: str) -> str:
         grid.delimiter_rows += rows
         return "\n" * n
 
-    return _DELIMITER_ROWS.sub(blank, text).rstrip("\n")
+    return _DELIMITER_ROWS.sub(blank, text)
 
 
 def check_long_lines(shown: str, text: str, first_line: int, limits: ReadLimits) -> None:
@@ -519,10 +558,13 @@ def csv_grid(shown: str, text: str, first_line: int = 1, limits: ReadLimits | No
         # comment lines become blank (keeping the numbering); a '#' inside a quoted field is left alone. Lines
         # end only at \n, \r\n or \r, as for the csv module (str.splitlines would also split at \v, \f, \x1c-\x1e,
         # U+0085 -- the '…' of a Windows-1252 file read as Latin-1 -- and U+2028/2029 inside a cell)
-        lines = _LINE_END.split(text)
-        if lines[-1] == "":  # the last line's end
-            lines.pop()
-        kept = "\n".join("" if ln.lstrip().startswith("#") else ln for ln in lines)
+        # (on the whole text, never as a list of every line: a file of millions of blank lines or lone CRs
+        # costs a few copies of its text, not a Python string per line)
+        kept = text.replace("\r\n", "\n").replace("\r", "\n") if "\r" in text else text
+        if kept.endswith("\n"):  # the last line's end
+            kept = kept[:-1]
+        if "#" in kept:
+            kept = _COMMENT_LINE.sub("", kept)
     else:  # the usual file: nothing to blank, lines already end in '\n'
         kept = text[:-1] if text.endswith("\n") else text
     grid = Grid(shown, None, [], (",", ";", "\t"), first_line=first_line)
@@ -559,8 +601,14 @@ def parse_rows(text: str, delim: str, first_line: int = 1) -> list[tuple[int, li
     RFC 4180, Common Format and MIME Type for Comma-Separated Values (CSV) Files, doi:10.17487/RFC4180."""
     rows = []
     if '"' not in text and "\r" not in text:  # no quoting: a line is a row, split on the delimiter (fast)
-        lines = text.split("\n")
-        rows = [(k + first_line, ln.split(delim)) for k, ln in enumerate(lines) if ln and not ln.isspace()]
+        # split a chunk at a time, and a chunk of blank lines not at all (counted, never listed)
+        line = first_line
+        for piece in line_chunks(text):
+            if not piece.isspace():
+                rows += [
+                    (line + k, ln.split(delim)) for k, ln in enumerate(piece.split("\n")) if ln and not ln.isspace()
+                ]
+            line += piece.count("\n") + 1
         for k in range(min(200, len(rows))):
             rows[k] = (rows[k][0], [c.strip() for c in rows[k][1]])
         return rows
@@ -917,7 +965,7 @@ class _Rows:
 
     def more_text(self, n: int, line: int | None) -> None:
         """Count ``n`` more characters of expanded text against ``max_bytes`` (what the XML's bytes do not bound:
-        an .ods's repeated spaces)."""
+        an .ods's repeated spaces, cells and rows, a workbook's shared strings times the cells referencing them)."""
         self.chars += n
         if self.chars > self.limits.max_bytes:
             raise self.limits.error(
@@ -968,6 +1016,8 @@ class _Rows:
                     self.sheet,
                 )
             )
+        if repeat > 1:  # the copies of a repeated row's text count as text made
+            self.more_text(sum(map(len, cells.values())) * (repeat - 1), line)
         row = [""] * width
         for col, text in cells.items():
             row[col - 1] = text
@@ -1253,6 +1303,8 @@ class _XlsxSheet:
                 self.out.formula(self.col, self.line, self.formula)
             if text:
                 self.out.column_ok(self.col, self.line)
+                if self.ctype == "s":  # a shared string's text is made again for every cell referencing it
+                    self.out.more_text(len(text), self.line)
                 if self.cells is None:  # a cell outside any row: its own row
                     self.cells = {}
                 self.cells[self.col] = text
@@ -1396,6 +1448,7 @@ class _OdsContent:
             if text:
                 self.out.column_ok(self.col + repeat, self.line + 1)
                 self.out.visit(repeat - 1, self.line + 1)
+                self.out.more_text(len(text) * (repeat - 1), self.line + 1)  # the copies of a repeated cell
                 for k in range(1, repeat + 1):
                     self.cells[self.col + k] = text
             self.col += repeat
