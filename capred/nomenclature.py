@@ -40,7 +40,8 @@ QUANTITIES: dict[str, Quantity] = {
     "z1": Quantity("z1", "cm", 1e2, "length", "height of the sample above the water level", 0.0),
     "z2": Quantity("z2", "cm^3", 1e6, "volume", "air volume entered, read on the burette", 0.0),
     "V_v": Quantity("V_v", "cm^3", 1e6, "volume", "void volume of the sample", 0.0, None, True),
-    "R": Quantity("R", "mm", 1e3, "length", "particle radius", 0.0, None, True),
+    # 1 nm: below it a "particle" is a molecule and a capillary bridge has no meniscus (water molecules 0.3 nm)
+    "R": Quantity("R", "mm", 1e3, "length", "particle radius", 1e-9),
     "box_area": Quantity("A", "cm^2", 1e4, "area", "shear box area", 0.0, None, True),
     "cap_mass": Quantity("m_cap", "g", 1e3, "mass", "mass of the top cap", 0.0),
     "added_mass": Quantity("m_added", "g", 1e3, "mass", "added weights on the top cap", 0.0),
@@ -208,6 +209,9 @@ STRESS_MAGNITUDE = Magnitude(50e6, 1e9, "no soil test reaches 1 GPa, above the c
 #: at zero water content); Kelvin's law, psi = -(RT/v_w) ln(RH), gives 0.93 GPa at a relative humidity of 0.1 % (20 °C) and 10 GPa only
 #: below RH = 10^-30
 SUCTION_MAGNITUDE = Magnitude(1e9, 10e9, "a soil's suction is at most about 1 GPa, when oven-dry")
+#: a particle's radius: cobbles reach 100 mm (200 mm across, ISO 14688-1:2017, table 1), no laboratory apparatus holds
+#: a grain of 10 m radius
+PARTICLE_MAGNITUDE = Magnitude(0.1, 10.0, "no laboratory test holds a grain of 10 m radius")
 #: magnitude bounds by glossary name; input columns of kind "pressure" without an entry use STRESS_MAGNITUDE
 MAGNITUDES: dict[str, Magnitude] = {
     **{
@@ -238,6 +242,7 @@ MAGNITUDES: dict[str, Magnitude] = {
         )
     },
     "suction": SUCTION_MAGNITUDE,
+    "R": PARTICLE_MAGNITUDE,
 }
 #: the default bound of a kind of quantity (capred.units kinds) where the name has none of its own
 MAGNITUDES_BY_KIND: dict[str, Magnitude] = {"pressure": STRESS_MAGNITUDE}

@@ -268,3 +268,47 @@ def deprecated(old: str, new: str, value):
         stacklevel=3,
     )
     return value
+
+
+def non_finite_options(options) -> list[str]:
+    """The fields of an Options record holding NaN or an infinity (alone or in a tuple or list of values)
+    that their default does not hold: an option is a number a user typed, and ``nan`` or ``inf`` parse as
+    floats but are no value of any quantity.
+
+    Parameters
+    ----------
+    options : dataclass instance
+        A command's Options (``ShearOptions``, ``LawsOptions`` ...).
+
+    Returns
+    -------
+    list of str
+        ``"--field-name = nan"`` for each such field, in field order (empty: every number is finite).
+    """
+    import dataclasses
+
+    if not dataclasses.is_dataclass(options) or isinstance(options, type):
+        return []
+
+    def bad(value) -> list:
+        if isinstance(value, bool):
+            return []
+        if isinstance(value, float):
+            return [] if math.isfinite(value) else [value]
+        if isinstance(value, (tuple, list)):
+            return [v for item in value for v in bad(item)]
+        return []
+
+    out = []
+    for f in dataclasses.fields(options):
+        if f.name.startswith("_"):
+            continue
+        values = bad(getattr(options, f.name, None))
+        if not values:
+            continue
+        default = f.default if f.default is not dataclasses.MISSING else None
+        if default is not None and repr(bad(default)) == repr(values):
+            continue  # the default itself (an unbounded limit written as inf)
+        shown = ", ".join(repr(v) for v in values[:3])
+        out.append(f"--{f.name.replace('_', '-')} = {shown}")
+    return out
