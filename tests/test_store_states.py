@@ -211,3 +211,31 @@ def test_store_failing_at_commit_puts_the_earlier_folder_back(tmp_path, monkeypa
     assert not [p for p in tmp_path.iterdir() if ".capred-" in p.name]  # no work folder left
     monkeypatch.undo()
     assert len(capred.history(store)["run"].unique()) == 1  # nothing recorded for the failed run
+
+
+def test_control_characters_from_the_store_never_reach_a_figure_raw(tmp_path):
+    """Another program wrote U+202E and ESC into the store's material and unit: the SVG is well-formed XML and
+    the terminal gets no raw ESC (the text is neutralised before matplotlib sees it)."""
+    import xml.etree.ElementTree as ET
+
+    store = _good_store(tmp_path)
+    res = _run(tmp_path, store, out="second", extra=("--gamma-w", "9.8"))
+    assert res.exit_code == 0, res.output
+    con = sqlite3.connect(store)
+    con.execute("UPDATE records SET unit = 'deg\u202e>gap', material = 'sand\u202e\x1b[2J' WHERE quantity = 'phi_deg'")
+    con.commit()
+    con.close()
+    out = tmp_path / "h"
+    res = runner.invoke(
+        app, ["history", str(store), "--quantity", "phi_deg", "--format", "svg", "--out", str(out), "--reference",
+              "35", "--spread", "1"],
+    )  # fmt: skip
+    assert res.exit_code == 0, res.output
+    assert "\x1b" not in res.output and "\u202e" not in res.output
+    svgs = list(out.rglob("*.svg"))
+    assert svgs
+    for svg in svgs:
+        text = svg.read_text(encoding="utf-8")
+        ET.fromstring(text)  # well-formed
+        assert "\u202e" not in text and "\x1b" not in text
+        assert "U+202E" in text  # shown, not dropped
