@@ -197,8 +197,10 @@ def model_params_from_retention(path: str | Path, branch: str | None = None, **o
     """
     import json
 
+    from ..io.json_input import read_json
+
     try:
-        js = json.loads(Path(path).read_text(encoding="utf-8"))
+        js = read_json(path, "--retention")  # bounded: --max-megabytes' default size, MAX_JSON_DEPTH
         branches = js.get("branches") or {js.get("main_branch") or "drying": {"fits": js["fits"]}}
         if not isinstance(branches, dict):
             raise TypeError("'branches' is not an object")
