@@ -1179,7 +1179,9 @@ def write_run(
     try:
         doc = result.json_lazy()
         json_writer = _JsonWriter(folder.path_for(result.json_name), doc)  # a long document: in a second process
-        for name, frame in result.csv_tables().items():
+        tables = result.csv_tables()
+        check_output_size(result, tables, out)  # said before a table is written
+        for name, frame in tables.items():
             write_csv_file(folder.path_for(f"{name}.csv"), frame, csv_dialect)
             folder.done(f"{name}.csv")
         if xlsx:
@@ -1210,6 +1212,96 @@ def write_run(
     except BaseException:
         _cancel(json_writer, folder)
         raise
+
+
+#: outputs may take this many times the bytes of the run's inputs ...
+OUTPUT_MULTIPLE = 40
+#: ... or this many bytes, whichever is larger (a calculator without input files, a small file's report) ...
+OUTPUT_FLOOR = 512 * 2**20
+#: ... and never more than this many bytes (a run's tables are read by people and spreadsheets)
+OUTPUT_MAX = 4 * 2**30
+#: the environment variable that raises the outputs' bound [MiB], for a run meant to write that much
+OUTPUT_VARIABLE = "CAPRED_MAX_OUTPUT_MEGABYTES"
+#: bytes a CSV cell and its share of the JSON document take, at most, as capred writes them (a float in
+#: shortest round-trip form, 17 significant digits with sign and exponent: 24 characters; twice for the JSON)
+_BYTES_PER_CELL = 3 * 24
+
+
+def output_budget(input_bytes: int) -> int:
+    """The most bytes a run's tables may take: OUTPUT_MULTIPLE times its inputs, at least OUTPUT_FLOOR, at most
+    OUTPUT_MAX, or ``$CAPRED_MAX_OUTPUT_MEGABYTES`` MiB where set.
+
+    Parameters
+    ----------
+    input_bytes : int
+        The bytes of the run's input files.
+
+    Returns
+    -------
+    int
+        Bytes.
+    """
+    given = os.environ.get(OUTPUT_VARIABLE, "").strip()
+    if given:
+        try:
+            return int(float(given) * 2**20)
+        except ValueError:
+            raise OutputError(f"{OUTPUT_VARIABLE}={given!r} is not a number of megabytes") from None
+    return min(OUTPUT_MAX, max(OUTPUT_FLOOR, OUTPUT_MULTIPLE * input_bytes))
+
+
+def _cells(table) -> int:
+    """Cells of a table as write_csv_file takes it (0 where its text is already written: csv_pieces)."""
+    if hasattr(table, "csv_pieces"):
+        return 0
+    if hasattr(table, "shape"):
+        return int(table.shape[0]) * max(1, int(table.shape[1]))
+    if isinstance(table, dict):
+        first = next(iter(table.values()), ())
+        return len(first) * len(table)
+    index = getattr(table, "_index", None)  # a Spool: its blocks' rows, the first block's columns
+    if index:
+        return sum(int(rows) for _, _, rows in index) * len(table.block(0))
+    return 0
+
+
+def check_output_size(result, tables: dict, out) -> None:
+    """Refuse, before anything is written, a run whose tables would take more than :func:`output_budget`.
+
+    The size is bounded from above by cells x :data:`_BYTES_PER_CELL` (the CSV and the JSON document).
+
+    Parameters
+    ----------
+    result : capred.result.Result
+        The run (its inputs' sizes).
+    tables : dict
+        Its CSV tables, name -> DataFrame.
+    out : pathlib.Path
+        The output folder (for the message).
+
+    Raises
+    ------
+    OutputError
+        Over the bound, saying how large, why and how to allow it.
+    """
+    cells = sum(_cells(t) for t in tables.values())
+    estimate = cells * _BYTES_PER_CELL
+    if estimate <= OUTPUT_FLOOR and not os.environ.get(OUTPUT_VARIABLE):  # the common case: no file looked at
+        return
+    size = 0
+    for i in result.inputs:
+        try:
+            size += os.path.getsize(i.path)
+        except (OSError, TypeError, ValueError):
+            pass
+    budget = output_budget(size)
+    if estimate > budget:
+        raise OutputError(
+            f"the outputs of this run would take up to {estimate / 2**30:.2f} GiB ({cells:,} table cells, as CSV "
+            f"and JSON), more than {budget / 2**30:.2f} GiB ({OUTPUT_MULTIPLE} times the inputs' "
+            f"{size / 2**20:.1f} MiB, at least {OUTPUT_FLOOR / 2**20:.0f} MiB and at most {OUTPUT_MAX / 2**30:.0f} "
+            f"GiB); nothing was written to {out}. To write them, set {OUTPUT_VARIABLE} to the megabytes allowed"
+        )
 
 
 def _cancel(json_writer, folder) -> None:
