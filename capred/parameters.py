@@ -307,8 +307,10 @@ def non_finite_options(options) -> list[str]:
         if not values:
             continue
         default = f.default if f.default is not dataclasses.MISSING else None
-        if default is not None and repr(bad(default)) == repr(values):
-            continue  # the default itself (an unbounded limit written as inf)
+        allowed = {v for v in bad(default) if not math.isnan(v)}  # what the default holds (inf: 'plane', no bound)
+        values = [v for v in values if v not in allowed]
+        if not values:
+            continue
         shown = ", ".join(repr(v) for v in values[:3])
         out.append(f"--{f.name.replace('_', '-')} = {shown}")
     return out

@@ -59,3 +59,28 @@ def test_grain_radius_outside_any_laboratory_is_refused(tmp_path):
     assert res.exit_code == 1, res.output
     assert "line 2" in res.stderr and "must be >= 1e-06 mm" in res.stderr  # 1 nm, the glossary's lower bound
     assert "line 4" in res.stderr and "10 m radius" in res.stderr
+
+
+def test_bridge_laws_grid_over_its_bound_asks_for_yes(tmp_path):
+    """200 gaps x 200 volumes x the 3 default angles x 3 ratios: 360,000 exact bridges (over 120 s before)."""
+    from capred.cli.bridge_commands import MAX_GRID_POINTS
+
+    gaps = ",".join(str(i / 1000) for i in range(200))
+    volumes = ",".join(str((i + 1) / 2000) for i in range(200))
+    res = runner.invoke(app, ["bridge", "laws", "--gaps", gaps, "--volumes", volumes, "--out", str(tmp_path / "o")])
+    assert res.exit_code != 0 and "360,000 points" in res.stderr and "--yes" in res.stderr, res.output
+    assert f"{MAX_GRID_POINTS:,}" in res.stderr and not (tmp_path / "o").exists()
+
+
+def test_bridge_laws_chunked_solve_gives_the_same_forces(monkeypatch):
+    """A grid solved a chunk at a time (with progress) gives the forces of one call (each point alone)."""
+    import numpy as np
+
+    from capred.pipelines import bridge_laws
+
+    opt = bridge_laws.LawsOptions(gaps=(0.0, 0.05), volumes=(1e-3, 1e-2), angles=(0.0, 20.0), ratios=(1.0,))
+    whole = bridge_laws.compare_laws(options=opt)
+    monkeypatch.setattr(bridge_laws, "CHUNK_POINTS", 3)
+    chunked = bridge_laws.compare_laws(options=opt)
+    np.testing.assert_array_equal(chunked.status, whole.status)
+    np.testing.assert_allclose(chunked.exact, whole.exact, rtol=1e-9, equal_nan=True)  # the same solver per point

@@ -796,7 +796,10 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
     cases = list(zip(v["kappa"], v["e0"], v["p0"], v["u0"], v["pa0"]))
     if forward:
         if bounding is not None:
-            B = np.array([_bounding_b(sr, *c, s_e, bc_lambda, bounding) for sr, c in zip(v["S_r"], cases)])
+            from ..progress import steps  # two incremental loops per row: seconds a row, a bar for many
+
+            rows = list(zip(v["S_r"], cases))
+            B = np.array([_bounding_b(sr, *c, s_e, bc_lambda, bounding) for sr, c in steps(rows, "B (rows)")])
         elif suction:
             B = calc.skempton_b_suction(v["S_r"], v["p0"], v["u0"], v["e0"], v["kappa"], v["pa0"], s_e, bc_lambda)
         else:
@@ -820,7 +823,10 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
                 return np.nan
             return float(np.interp(bi, Bp, Sp))
 
-        S = np.array([solve(bi, *c) for bi, c in zip(v["B"], cases)])
+        from ..progress import steps
+
+        rows = list(zip(v["B"], cases))
+        S = np.array([solve(bi, *c) for bi, c in steps(rows, "S_r (rows)")])
     elif suction:
         from scipy.optimize import brentq
 
