@@ -575,9 +575,8 @@ class Recorder:
         except sqlite3.Error as exc:
             self.close()
             raise _unwritable(path, exc) from None
-        except BaseException:
+        finally:  # no connection is held while the run draws (its figures may be drawn by a forked process)
             self.close()
-            raise
 
     def close(self) -> None:
         """Close the store's connection (nothing pending)."""
