@@ -45,12 +45,12 @@ def test_an_unedited_folder_is_replaced(tmp_path):
 
 
 def test_outputs_over_their_bound_are_refused_before_writing(tmp_path, monkeypatch):
-    """The bound is stated (40 x the inputs, 512 MiB to 4 GiB, or $CAPRED_MAX_OUTPUT_MEGABYTES): a tiny one set
+    """The bound is stated (100 x the inputs, 512 MiB to 4 GiB, or $CAPRED_MAX_OUTPUT_MEGABYTES): a tiny one set
     here refuses the sample's run, saying how large its tables would be, with nothing written."""
     from capred.io import writers
 
     assert writers.output_budget(1000) == writers.OUTPUT_FLOOR
-    assert writers.output_budget(50 * 2**20) == 40 * 50 * 2**20
+    assert writers.output_budget(20 * 2**20) == 100 * 20 * 2**20
     assert writers.output_budget(250 * 2**20) == writers.OUTPUT_MAX  # 250 MB of rows wrote 7.5 GB before
     monkeypatch.setenv("CAPRED_MAX_OUTPUT_MEGABYTES", "0.001")  # 1 kB
     with pytest.raises(capred.OutputError, match="table cells") as info:
