@@ -239,3 +239,21 @@ def test_control_characters_from_the_store_never_reach_a_figure_raw(tmp_path):
         ET.fromstring(text)  # well-formed
         assert "\u202e" not in text and "\x1b" not in text
         assert "U+202E" in text  # shown, not dropped
+
+
+def test_truncated_store_is_refused_by_its_header(tmp_path):
+    """A store cut short (a copy interrupted): its header's page count x page size exceeds the file's bytes."""
+    store = _good_store(tmp_path)
+    con = sqlite3.connect(store)
+    con.execute("PRAGMA wal_checkpoint(TRUNCATE)")
+    con.close()
+    for side in ("-wal", "-shm"):
+        if os.path.exists(f"{store}{side}"):
+            os.remove(f"{store}{side}")
+    data = store.read_bytes()
+    page = int.from_bytes(data[16:18], "big")
+    assert int.from_bytes(data[28:32], "big") * page == len(data)  # the header counts the file's pages
+    store.write_bytes(data[: len(data) - page])
+    res = _run(tmp_path, store)
+    assert res.exit_code == 1 and "truncated" in res.stderr and "Traceback" not in res.output, res.output
+    assert not (tmp_path / "o").exists()
