@@ -197,7 +197,7 @@ def model_params_from_retention(path: str | Path, branch: str | None = None, **o
     """
     import json
 
-    from ..io.json_input import read_json
+    from ..io import read_json
 
     try:
         js = read_json(path, "--retention")  # bounded: --max-megabytes' default size, MAX_JSON_DEPTH
