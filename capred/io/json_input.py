@@ -67,9 +67,9 @@ def read_json(path, what: str, limits=None):
     LimitError
         Larger than ``limits.max_bytes`` (nothing read).
     InputError
-        Not JSON (line and column named), or nested deeper than :data:`MAX_JSON_DEPTH`.
-    FileNotFoundError, OSError
-        As ``open`` raises them (the caller words them).
+        Nested deeper than :data:`MAX_JSON_DEPTH`.
+    json.JSONDecodeError, UnicodeDecodeError, FileNotFoundError, OSError
+        Not JSON, not UTF-8, or as ``open`` raises them: the caller words them for its option.
     """
     import json
 
@@ -86,8 +86,6 @@ def read_json(path, what: str, limits=None):
     except RecursionError:
         doc = None
         depth = MAX_JSON_DEPTH + 1
-    except json.JSONDecodeError as exc:
-        raise InputError(Problem(str(path), exc.lineno, None, f"{what}: not JSON ({exc.msg}, column {exc.colno})"))
     else:
         depth = json_depth(doc)
     if depth > MAX_JSON_DEPTH:
