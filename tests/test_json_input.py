@@ -47,3 +47,11 @@ def test_shear_retention_json_too_deep_is_one_message(tmp_path):
     )  # fmt: skip
     assert res.exit_code != 0 and "nested more than" in res.stderr and "Traceback" not in res.output, res.output
     assert not (tmp_path / "o").exists()
+
+
+def test_toml_manifest_nested_deeper_than_the_limit_is_one_message(tmp_path):
+    """tomllib parses by recursion: 50,000 nested arrays raised RecursionError through `capred batch`."""
+    manifest = tmp_path / "m.toml"
+    manifest.write_text('[[run]]\ncommand = "shear"\ninput = "a.csv"\noptions = ' + "[" * 50_000 + "]" * 50_000 + "\n")
+    res = runner.invoke(app, ["batch", str(manifest), "--out", str(tmp_path / "o")])
+    assert res.exit_code != 0 and "nested more than" in res.stderr and "Traceback" not in res.output, res.output
