@@ -164,3 +164,24 @@ def test_history_of_100000_runs_reads_only_what_is_asked(tmp_path):
         tmp_path,
         0,
     )
+
+
+def test_skempton_bounding_surface_over_20000_rows(tmp_path):
+    """20,000 rows of --model bounding-surface (a 180 KB file): two incremental loops a row, with a progress bar
+    (115 s of CPU in issue 46; 25 s here)."""
+    path = tmp_path / "sk.csv"
+    path.write_text("S_r\n" + "".join(f"{0.6 + 0.39 * i / 20_000:.6f}\n" for i in range(20_000)))
+    _bounded(
+        ["skempton-b", path, "--model", "bounding-surface", "--a-ini", "10", "--interpolation-h", "336",
+         "--no-plots", "--no-html", "--out", tmp_path / "o"],
+        tmp_path,
+        0,
+    )  # fmt: skip
+
+
+def test_bridge_laws_200_by_200_from_options_asks_first(tmp_path):
+    """200 gaps x 200 volumes from the command line: 360,000 exact bridges (over 120 s) unless --yes."""
+    gaps = ",".join(str(i / 1000) for i in range(200))
+    volumes = ",".join(str((i + 1) / 2000) for i in range(200))
+    err = _bounded(["bridge", "laws", "--gaps", gaps, "--volumes", volumes, "--out", tmp_path / "o"], tmp_path, 1)
+    assert "--yes" in err and not (tmp_path / "o").exists()
