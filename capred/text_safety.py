@@ -189,7 +189,21 @@ def safe_axes(ax, labels=None):
         label = artist.get_label()
         if has_unsafe(label):
             artist.set_label(fix(label))
+    for axis in (ax.xaxis, ax.yaxis):  # tick labels of user text: categories, or set_ticklabels
+        _safe_ticks(axis, fix)
     return None if labels is None else [fix(str(x)) for x in labels]
+
+
+def _safe_ticks(axis, fix) -> None:
+    """Wrap an axis's formatter in ``fix`` when its tick labels are user text holding controls."""
+    from matplotlib.ticker import FuncFormatter
+
+    inner = axis.get_major_formatter()
+    units = getattr(inner, "_units", None)  # matplotlib.category.StrCategoryFormatter
+    table = getattr(getattr(inner, "func", None), "args", ())  # FuncFormatter of Axis.set_ticklabels
+    texts = list(units) if isinstance(units, dict) else [v for d in table if isinstance(d, dict) for v in d.values()]
+    if any(has_unsafe(str(t)) for t in texts):
+        axis.set_major_formatter(FuncFormatter(lambda x, pos=None: fix(str(inner(x, pos)))))
 
 
 def json_escape(data: bytes) -> bytes:
