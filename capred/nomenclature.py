@@ -40,8 +40,7 @@ QUANTITIES: dict[str, Quantity] = {
     "z1": Quantity("z1", "cm", 1e2, "length", "height of the sample above the water level", 0.0),
     "z2": Quantity("z2", "cm^3", 1e6, "volume", "air volume entered, read on the burette", 0.0),
     "V_v": Quantity("V_v", "cm^3", 1e6, "volume", "void volume of the sample", 0.0, None, True),
-    # 1 nm: below it a "particle" is a molecule and a capillary bridge has no meniscus (water molecules 0.3 nm)
-    "R": Quantity("R", "mm", 1e3, "length", "particle radius", 1e-9),
+    "R": Quantity("R", "mm", 1e3, "length", "particle radius", 0.0, None, True),
     "box_area": Quantity("A", "cm^2", 1e4, "area", "shear box area", 0.0, None, True),
     "cap_mass": Quantity("m_cap", "g", 1e3, "mass", "mass of the top cap", 0.0),
     "added_mass": Quantity("m_added", "g", 1e3, "mass", "added weights on the top cap", 0.0),
@@ -192,12 +191,15 @@ class Magnitude:
 
     ``error``: above is physically impossible for the material or the apparatus (an error: usually a unit slip
     or a corrupt cell); ``warn``: above is implausible for a soil test (a warning: the run goes on, and says so).
-    ``why`` justifies both bounds.
+    ``why`` justifies both bounds. ``floor``: a non-zero magnitude below it is physically impossible too (a
+    particle smaller than a molecule), justified by ``floor_why``.
     """
 
     warn: float
     error: float
     why: str
+    floor: float = 0.0
+    floor_why: str = ""
 
 
 #: stresses and pressures in a soil test (total, effective, deviator, shear, cohesion, pore pressures)
@@ -211,7 +213,14 @@ STRESS_MAGNITUDE = Magnitude(50e6, 1e9, "no soil test reaches 1 GPa, above the c
 SUCTION_MAGNITUDE = Magnitude(1e9, 10e9, "a soil's suction is at most about 1 GPa, when oven-dry")
 #: a particle's radius: cobbles reach 100 mm (200 mm across, ISO 14688-1:2017, table 1), no laboratory apparatus holds
 #: a grain of 10 m radius
-PARTICLE_MAGNITUDE = Magnitude(0.1, 10.0, "no laboratory test holds a grain of 10 m radius")
+#: and 1 nm: below it a "particle" is a molecule and a capillary bridge has no meniscus (a water molecule: 0.3 nm)
+PARTICLE_MAGNITUDE = Magnitude(
+    0.1,
+    10.0,
+    "no laboratory test holds a grain of 10 m radius",
+    1e-9,
+    "below 1 nm a particle is a molecule, and a capillary bridge has no meniscus",
+)
 #: magnitude bounds by glossary name; input columns of kind "pressure" without an entry use STRESS_MAGNITUDE
 MAGNITUDES: dict[str, Magnitude] = {
     **{
@@ -293,10 +302,16 @@ def magnitude_problem(name: str, value: float, kind: str | None = None, unit: st
         The message, with the bound and its justification.
     """
     m = magnitude_of(name, kind)
-    if m is None or not abs(value) > m.error:
+    tiny = m is not None and 0 < abs(value) < m.floor
+    if m is None or not (abs(value) > m.error or tiny):
         return None
     q = QUANTITIES.get(name)
     unit, factor = (q.unit, q.factor) if q is not None and unit is None else (unit or "kPa", 1e-3)
+    if tiny:
+        return (
+            f"|{name}| = {abs(value) * factor:.4g} {unit} is below {m.floor * factor:g} {unit}: physically "
+            f"impossible ({m.floor_why})"
+        )
     return f"{_magnitude_words(name, value, m.error, unit, factor)}: physically impossible ({m.why})"
 
 

@@ -185,3 +185,16 @@ def test_bridge_laws_200_by_200_from_options_asks_first(tmp_path):
     volumes = ",".join(str((i + 1) / 2000) for i in range(200))
     err = _bounded(["bridge", "laws", "--gaps", gaps, "--volumes", volumes, "--out", tmp_path / "o"], tmp_path, 1)
     assert "--yes" in err and not (tmp_path / "o").exists()
+
+
+def test_rows_of_a_million_cells_are_refused_without_making_them(tmp_path):
+    """80 lines of 1,000,000 two-letter cells (240 MB) under a shear header: 80 million cells, each a string of
+    its own, took gigabytes; a line is now split into at most --max-columns + 1 cells."""
+    path = tmp_path / "wide.csv"
+    with open(path, "w") as fh:
+        fh.write(HEADER + ROWS)
+        line = ",".join(["ab"] * 1_000_000) + "\n"
+        for _ in range(80):
+            fh.write(line)
+    err = _shear(path, tmp_path, rc=1)
+    assert "cells" in err and "--max-columns" in err

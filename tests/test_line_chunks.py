@@ -46,3 +46,24 @@ def test_delimiter_rows_counted_across_chunk_boundaries(monkeypatch):
     assert chunked.delimiter_lines == whole.delimiter_lines
     lines = text.split("\n")
     assert all(set(lines[n - 1]) <= set(",;") for n in chunked.delimiter_lines)  # the lines named are such rows
+
+
+def test_rows_are_split_into_at_most_max_columns_cells(tmp_path):
+    """A line of 200,000 cells under a 3-column header: refused at that line without making its cells; a row of
+    trailing empty cells (a spreadsheet export) is read as the narrow row it is."""
+    import pytest
+
+    from capred.errors import LimitError
+    from capred.io import TableSource, read_grid
+
+    path = tmp_path / "wide.csv"
+    path.write_text("a,b,c\n1,2,3\n" + ",".join(["ab"] * 200_000) + "\n4,5,6" + "," * 5000 + "\n")
+    g = read_grid(TableSource(path))
+    with pytest.raises(LimitError, match="200,000 cells") as info:
+        g.parse_all(",")
+    assert info.value.problems[0].line == 3 and info.value.limit == "max_columns"
+    path.write_text("a,b,c\n1,2,3\n4,5,6" + "," * 5000 + "\n")
+    g = read_grid(TableSource(path))
+    g.parse_all(",")
+    assert [len(cells) for _, cells in g.rows] == [3, 3, 1001]  # trailing empties kept as one empty cell
+    assert g.rows[2][1][:3] == ["4", "5", "6"] and not any(g.rows[2][1][3:])

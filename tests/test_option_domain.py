@@ -57,7 +57,7 @@ def test_grain_radius_outside_any_laboratory_is_refused(tmp_path):
     path.write_text("R [mm],contact_angle [deg],gap [mm],suction [kPa]\n1e-300,0,0,10\n0.5,0,0,10\n1e300,0,0,10\n")
     res = runner.invoke(app, ["bridge", "solve", str(path), "--no-plots", "--out", str(tmp_path / "o")])
     assert res.exit_code == 1, res.output
-    assert "line 2" in res.stderr and "must be >= 1e-06 mm" in res.stderr  # 1 nm, the glossary's lower bound
+    assert "line 2" in res.stderr and "below 1e-06 mm" in res.stderr  # 1 nm, the glossary's floor
     assert "line 4" in res.stderr and "10 m radius" in res.stderr
 
 

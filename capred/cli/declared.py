@@ -71,7 +71,7 @@ SNAPSHOT = {
             "radius": {
                 "quantity": "R",
                 "unit": "mm",
-                "range": ">= 1e-06",
+                "range": "> 0",
                 "text": "Particle radius R",
                 "default": None,
                 "type": "float",
@@ -782,7 +782,7 @@ SNAPSHOT = {
             "radius": {
                 "quantity": "R",
                 "unit": "mm",
-                "range": ">= 1e-06",
+                "range": "> 0",
                 "text": "Particle radius R",
                 "default": "[default: 1]",
                 "type": "float",

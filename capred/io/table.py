@@ -977,7 +977,7 @@ def _plain_tail(grid, delimiter: str, lookup) -> tuple[int, list[str]] | None:
     200 lines become ``grid.rows`` and the rest is returned as (first line number, lines) to be split as
     columns at once; None where the row-by-row parse is needed."""
     text = grid.full_text
-    if text is None or '"' in text or "\r" in text:
+    if text is None or '"' in text or "\r" in text or grid.head_cut:  # cut first rows: the whole parse
         return None
     head = grid.text_rows[delimiter]
     k, found = find_header(head, lookup)
@@ -1058,7 +1058,7 @@ def _check_magnitude(table: Table, col: Column) -> None:
     v = table.columns[col.name]
     with np.errstate(invalid="ignore"):
         a = np.abs(v)
-        too_big = np.flatnonzero(a > m.error)
+        too_big = np.flatnonzero((a > m.error) | ((a > 0) & (a < m.floor)))  # or below a floor (a molecule)
         odd = np.flatnonzero((a > m.warn) & (a <= m.error))
     if too_big.size:
         shown = table.headers.get(col.name, col.name)
