@@ -301,12 +301,15 @@ def non_finite_options(options) -> list[str]:
 
     out = []
     for f in dataclasses.fields(options):
-        if f.name.startswith("_"):
+        if f.name.startswith("_") or not f.init:  # not an option a user sets
             continue
-        values = bad(getattr(options, f.name, None))
+        value = getattr(options, f.name, None)
+        values = bad(value)
         if not values:
             continue
         default = f.default if f.default is not dataclasses.MISSING else None
+        if repr(value) == repr(default):  # the default itself, not set by the user
+            continue
         allowed = {v for v in bad(default) if not math.isnan(v)}  # what the default holds (inf: 'plane', no bound)
         values = [v for v in values if v not in allowed]
         if not values:
