@@ -611,6 +611,9 @@ class Recorder:
         path = self.path
         try:
             if self.con is None:
+                why = _kind(path)  # again: the path may have changed while the run was drawn
+                if why is not None:
+                    raise _problem(path, why)
                 _side_files(path)
                 self.con = sqlite3.connect(str(path), timeout=BUSY_TIMEOUT_S, isolation_level=None)
                 self.con.execute(f"PRAGMA busy_timeout = {int(BUSY_TIMEOUT_S * 1000)}")
