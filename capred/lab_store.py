@@ -28,6 +28,7 @@ SQLite, "Write-Ahead Logging", https://www.sqlite.org/wal.html.
 
 from __future__ import annotations
 
+import errno
 import hashlib
 import json
 import math
@@ -85,34 +86,89 @@ def _problem(path, message: str) -> InputError:
     return InputError(Problem(str(path), None, None, message))
 
 
+def _kind(path: Path) -> str | None:
+    """None where ``path`` is absent or a regular file (after links); else why it cannot be a store.
+
+    Nothing is opened: a FIFO or a device as the store is refused by its ``stat`` alone (opening a FIFO for
+    reading waits for a writer forever)."""
+    import stat
+
+    try:
+        st = os.stat(path)
+    except FileNotFoundError:
+        if os.path.islink(path):
+            return f"is a symbolic link to {os.readlink(path)}, which does not exist"
+        return None
+    except OSError as exc:
+        if exc.errno == errno.ELOOP:
+            return "is a symbolic link that loops (it points back at itself)"
+        return f"cannot be examined ({exc.strerror or exc})"
+    if stat.S_ISDIR(st.st_mode):
+        return "is a folder, not a capred store (give a file such as lab.sqlite)"
+    if not stat.S_ISREG(st.st_mode):
+        what = "a FIFO (named pipe)" if stat.S_ISFIFO(st.st_mode) else "a device or socket"
+        return f"is {what}, not a file: a capred store is a SQLite file; it was not opened"
+    return None
+
+
+def _header_pages(head: bytes, size: int) -> str | None:
+    """Why the 100-byte SQLite header ``head`` does not fit a file of ``size`` bytes, or None.
+
+    The header's page size (offset 16) and page count (offset 28, valid while the change counter at 24 equals
+    the one at 92) give the file's length: a truncated or padded file is seen here without reading its pages.
+    References: SQLite, "Database File Format", section 1.3, https://www.sqlite.org/fileformat.html."""
+    raw = int.from_bytes(head[16:18], "big")
+    page = 65536 if raw == 1 else raw
+    if page < 512 or page > 65536 or page & (page - 1):
+        return f"its header gives a page size of {raw} bytes"
+    count = int.from_bytes(head[28:32], "big")
+    if count and head[24:28] == head[92:96] and count * page > size:
+        return f"its header counts {count} pages of {page} bytes but the file holds {size} bytes (truncated?)"
+    return None
+
+
 def _inspect(path: Path) -> tuple[int, int] | None:
     """(application_id, user_version) of an existing file, read-only; None for a new (absent or empty) store.
 
-    Raises InputError for a file that is not a SQLite database, is damaged or belongs to another application.
+    Raises InputError for a path that is not a regular file (a FIFO, a device, a dangling or looping link), a
+    file that is not a SQLite database, is damaged or belongs to another application.
+
+    The file is not scanned whole (no ``PRAGMA quick_check``, whose cost grows with every run recorded): the
+    header, the schema and the pages a run reads or writes are checked, SQLite verifying each page it reads.
     """
+    why = _kind(path)
+    if why is not None:
+        raise _problem(path, why)
     if not path.exists():
         return None
-    if path.is_dir():
-        raise _problem(path, "is a folder, not a capred store (give a file such as lab.sqlite)")
+    _side_files(path)  # before any connection, which would open (or create) them
     with open(path, "rb") as fh:
         head = fh.read(100)
     if not head:
         return None  # an empty file: another writer is creating the store, or `touch lab.sqlite`
     if not head.startswith(b"SQLite format 3\x00"):
         raise _problem(path, "is not a SQLite database, so not a capred store; it was left untouched")
+    wal = Path(f"{path}-wal")
+    # with a write-ahead log holding frames the file's header may run ahead of its pages (a checkpoint in
+    # progress writes page 1 first): the header's page count is then SQLite's to reconcile, not checked here
+    if len(head) < 100:
+        bad = "its header is cut short"
+    elif wal.exists() and wal.stat().st_size > 0:
+        bad = None
+    else:
+        bad = _header_pages(head, path.stat().st_size)
+    if bad is not None:
+        raise _problem(path, f"is a damaged SQLite file ({bad}); it was left untouched")
     try:
         con = sqlite3.connect(_readonly_uri(path), uri=True, timeout=BUSY_TIMEOUT_S)
         try:
             app = con.execute("PRAGMA application_id").fetchone()[0]
             version = con.execute("PRAGMA user_version").fetchone()[0]
             tables = [r[0] for r in con.execute("SELECT name FROM sqlite_master WHERE type = 'table'")]
-            check = con.execute("PRAGMA quick_check").fetchone()[0]
         finally:
             con.close()
     except sqlite3.DatabaseError as exc:
         raise _problem(path, f"is a damaged SQLite file ({exc}); it was left untouched") from None
-    if check != "ok":
-        raise _problem(path, f"is a damaged capred store (SQLite integrity check: {check}); it was left untouched")
     if app == 0 and version == 0 and not tables:
         return None  # an empty database
     if app != APPLICATION_ID:
@@ -128,6 +184,63 @@ def _inspect(path: Path) -> tuple[int, int] | None:
             "it was left untouched",
         )
     return app, version
+
+
+#: the columns of each table at SCHEMA_VERSION, in order (what :func:`verify_schema` expects)
+COLUMNS = {
+    "runs": (
+        "id",
+        "run_key",
+        "command",
+        "created_utc",
+        "capred_version",
+        "inputs",
+        "options",
+        "metadata",
+        "out_dir",
+        "document",
+        "test_date",
+    ),
+    "records": ("run", "material", "quantity", "value", "ci_low", "ci_high", "unit"),
+}
+
+
+def verify_schema(con: sqlite3.Connection, path) -> None:
+    """Raise InputError unless the store's schema is the one this capred writes: its version, each table with
+    its columns (:data:`COLUMNS`), and no trigger (capred creates none: a trigger would run another program's
+    statements on every run recorded).
+
+    Parameters
+    ----------
+    con : sqlite3.Connection
+        An open connection to the store.
+    path : str or Path
+        The store's file (for the message).
+    """
+    version = con.execute("PRAGMA user_version").fetchone()[0]
+    if version != SCHEMA_VERSION:
+        raise _problem(
+            path,
+            f"says schema version {version} but this capred writes schema {SCHEMA_VERSION}; it was left untouched",
+        )
+    for table, cols in COLUMNS.items():
+        have = tuple(r[1] for r in con.execute(f"PRAGMA table_info({table})"))
+        if not have:
+            raise _problem(path, f"has no table '{table}' (was it dropped?); it was left untouched")
+        missing = [c for c in cols if c not in have]
+        if missing:
+            raise _problem(
+                path,
+                f"has lost the column{'s' if len(missing) > 1 else ''} {', '.join(missing)} of table '{table}' "
+                "(altered by another program?); it was left untouched",
+            )
+    triggers = [r[0] for r in con.execute("SELECT name FROM sqlite_master WHERE type = 'trigger' LIMIT 5")]
+    if triggers:
+        raise _problem(
+            path,
+            f"holds triggers capred did not create ({', '.join(triggers)}): they would run on every run "
+            "recorded; it was left untouched",
+        )
 
 
 def connect(path, create: bool = True) -> sqlite3.Connection:
@@ -238,20 +351,35 @@ def _migrate(con: sqlite3.Connection, path: Path) -> None:
     """Bring the store to SCHEMA_VERSION in one transaction (another writer may have done it meanwhile)."""
     con.execute("BEGIN IMMEDIATE")
     try:
-        app = con.execute("PRAGMA application_id").fetchone()[0]
-        version = con.execute("PRAGMA user_version").fetchone()[0]
-        tables = con.execute("SELECT count(*) FROM sqlite_master WHERE type = 'table'").fetchone()[0]
-        if app != APPLICATION_ID and (app != 0 or version != 0 or tables):
-            raise _problem(path, "is not a capred store; it was left untouched")
-        for step in MIGRATIONS[version:]:
-            for sql in step:
-                con.execute(sql)
-        con.execute(f"PRAGMA application_id = {APPLICATION_ID}")
-        con.execute(f"PRAGMA user_version = {SCHEMA_VERSION}")
+        _migrate_within(con, path)
         con.execute("COMMIT")
     except BaseException:
         con.execute("ROLLBACK")
         raise
+
+
+def _migrate_within(con: sqlite3.Connection, path: Path) -> None:
+    """The migration's statements, inside the caller's transaction (SQLite's schema changes are transactional)."""
+    app = con.execute("PRAGMA application_id").fetchone()[0]
+    version = con.execute("PRAGMA user_version").fetchone()[0]
+    tables = con.execute("SELECT count(*) FROM sqlite_master WHERE type = 'table'").fetchone()[0]
+    if app != APPLICATION_ID and (app != 0 or version != 0 or tables):
+        raise _problem(path, "is not a capred store; it was left untouched")
+    if version > SCHEMA_VERSION:
+        raise _problem(path, f"was written by a newer capred (schema {version}); it was left untouched")
+    if app == APPLICATION_ID and version == SCHEMA_VERSION:
+        return
+    try:
+        for step in MIGRATIONS[version:]:
+            for sql in step:
+                con.execute(sql)
+    except sqlite3.OperationalError as exc:
+        raise _problem(
+            path,
+            f"says schema version {version} but its tables do not match that version ({exc}); it was left untouched",
+        ) from None
+    con.execute(f"PRAGMA application_id = {APPLICATION_ID}")
+    con.execute(f"PRAGMA user_version = {SCHEMA_VERSION}")
 
 
 # --- what a run records ---------------------------------------------------------------------------------------
@@ -387,18 +515,188 @@ def _test_date(meta: dict, created: str) -> str:
     return created[:10]
 
 
+def _side_files(path: Path) -> None:
+    """Refuse a store whose journal side files (``-wal``, ``-shm``, ``-journal``) are not regular files."""
+    for side in ("-wal", "-shm", "-journal"):
+        why = _kind(Path(f"{path}{side}"))
+        if why is not None:
+            raise _problem(path, f"cannot be written: its side file {path.name}{side} {why}; nothing was written")
+
+
+def _unwritable(path: Path, exc: BaseException) -> InputError:
+    return _problem(
+        path,
+        f"cannot be written ({exc}): is the file or its folder read-only, immutable, on a read-only file system, "
+        "or damaged? nothing was written",
+    )
+
+
+class Recorder:
+    """A store opened for recording one run, checked before the run's folder is written.
+
+    ``Recorder(store)`` refuses, with nothing written anywhere, a store that cannot take the run: a FIFO or
+    device (refused by ``stat``, never opened), a dangling or looping link, side files that are not files,
+    a foreign, damaged or newer file, a schema that lost a table or column or carries triggers, and a file or
+    folder that cannot be written (the write lock is taken and the schema migrated inside a transaction that
+    is rolled back). :meth:`record` is then called once the run's folder is in place
+    (:meth:`capred.io.writers.RunFolder.commit`), and a failure there puts the earlier folder back: the store
+    never holds a run without its folder, nor a folder its run.
+
+    Parameters
+    ----------
+    store : str or Path
+        The store's file (created by :meth:`record` where absent).
+
+    Raises
+    ------
+    InputError
+        The store cannot take the run (one clear message; nothing written).
+    """
+
+    def __init__(self, store):
+        self.path = path = Path(store)
+        state = _inspect(path)
+        self.con = None
+        if state is None:  # a new store: its folder must take a file (created when the run is recorded)
+            folder = path.parent
+            if not folder.is_dir():
+                raise _problem(path, f"the folder {folder} does not exist")
+            try:
+                import tempfile
+
+                fd, probe = tempfile.mkstemp(prefix=f".{path.name[:60]}.probe-", dir=folder)
+                os.close(fd)
+                os.unlink(probe)
+            except OSError as exc:
+                raise _problem(path, f"cannot be created in {folder} ({exc.strerror or exc}); nothing was written")
+            return
+        try:
+            self.con = sqlite3.connect(str(path), timeout=BUSY_TIMEOUT_S, isolation_level=None)
+            self.con.execute(f"PRAGMA busy_timeout = {int(BUSY_TIMEOUT_S * 1000)}")
+            self.con.execute("BEGIN IMMEDIATE")  # the write lock: fails on a store that cannot be written
+            try:
+                _migrate_within(self.con, path)
+                verify_schema(self.con, path)
+                self.con.execute(f"PRAGMA user_version = {SCHEMA_VERSION}")  # a write, rolled back
+            finally:
+                self.con.execute("ROLLBACK")
+        except sqlite3.Error as exc:
+            self.close()
+            raise _unwritable(path, exc) from None
+        finally:  # no connection is held while the run draws (its figures may be drawn by a forked process)
+            self.close()
+
+    def close(self) -> None:
+        """Close the store's connection (nothing pending)."""
+        if self.con is not None:
+            self.con.close()
+            self.con = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def record(self, result, out_dir=None) -> tuple[int, bool]:
+        """Record the run in one transaction (see :func:`record_run`); returns (run id, whether it was new)."""
+        from datetime import UTC, datetime
+
+        from .io import encode_json
+
+        doc = json.loads(encode_json(result.to_json()).decode("utf-8"))  # the JSON the run wrote, NaN as null
+        key = run_key(doc)
+        meta = _metadata(doc)
+        created = datetime.now(UTC).replace(microsecond=0).isoformat()
+        path = self.path
+        try:
+            if self.con is None:
+                why = _kind(path)  # again: the path may have changed while the run was drawn
+                if why is not None:
+                    raise _problem(path, why)
+                _side_files(path)
+                self.con = sqlite3.connect(str(path), timeout=BUSY_TIMEOUT_S, isolation_level=None)
+                self.con.execute(f"PRAGMA busy_timeout = {int(BUSY_TIMEOUT_S * 1000)}")
+            con = self.con
+            if con.execute("PRAGMA journal_mode").fetchone()[0] != "wal":
+                con.execute("PRAGMA journal_mode = WAL")
+            con.execute("PRAGMA foreign_keys = ON")
+            con.execute("BEGIN IMMEDIATE")
+            try:
+                _migrate_within(con, path)
+                verify_schema(con, path)
+                row = con.execute("SELECT id FROM runs WHERE run_key = ?", (key,)).fetchone()
+                if row is not None:
+                    con.execute("COMMIT")
+                    return int(row[0]), False
+                _check_tail(con, path)
+                cur = con.execute(
+                    "INSERT INTO runs (run_key, command, created_utc, capred_version, inputs, options, metadata, "
+                    "out_dir, document, test_date) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                    (
+                        key,
+                        doc.get("command", ""),
+                        created,
+                        doc.get("capred_version", ""),
+                        json.dumps(doc.get("inputs", [])),
+                        json.dumps(doc.get("options", {})),
+                        json.dumps(meta),
+                        None if out_dir is None else os.path.abspath(out_dir),
+                        json.dumps(doc),
+                        _test_date(meta, created),
+                    ),
+                )
+                run = cur.lastrowid
+                con.executemany(
+                    "INSERT INTO records (run, material, quantity, value, ci_low, ci_high, unit) "
+                    "VALUES (?,?,?,?,?,?,?)",
+                    [(run, *r) for r in records_of(doc, meta)],
+                )
+                con.execute("COMMIT")
+                return int(run), True
+            except BaseException:
+                if con.in_transaction:
+                    con.execute("ROLLBACK")
+                raise
+        except sqlite3.Error as exc:
+            raise _unwritable(path, exc) from None
+
+
+def _check_tail(con: sqlite3.Connection, path: Path) -> None:
+    """The pages a new run is appended next to hold the last run whole: its row reads back as UTF-8 JSON.
+
+    A damaged page elsewhere is found by SQLite when it is read (``database disk image is malformed``); this
+    catches damage in the text of the last run, which SQLite does not checksum. The cost is one run's row, not
+    the whole file."""
+    try:
+        row = con.execute(
+            "SELECT id, json_valid(document), json_valid(inputs), CAST(document AS BLOB) FROM runs "
+            "WHERE id = (SELECT max(id) FROM runs)"
+        ).fetchone()
+    except sqlite3.DatabaseError as exc:
+        raise _problem(path, f"is a damaged capred store ({exc}); nothing was appended to it") from None
+    if row is None:
+        return
+    ok = bool(row[1]) and bool(row[2])
+    try:
+        row[3].decode("utf-8")
+    except UnicodeDecodeError:
+        ok = False
+    if not ok:
+        raise _problem(
+            path, f"is a damaged capred store (the record of run {row[0]} is not intact); nothing was appended to it"
+        )
+
+
 def check_store(store) -> None:
-    """Raise InputError where ``store`` exists and is not a capred store this capred can write (nothing changes).
+    """Raise InputError where ``store`` cannot take a run (see :class:`Recorder`; nothing changes).
 
     Parameters
     ----------
     store : str or Path
         The store's file.
     """
-    path = Path(store)
-    _inspect(path)
-    if not path.exists() and not path.parent.exists():
-        raise _problem(path, f"the folder {path.parent} does not exist")
+    Recorder(store).close()
 
 
 def record_run(store, result, out_dir=None) -> tuple[int, bool]:
@@ -421,52 +719,10 @@ def record_run(store, result, out_dir=None) -> tuple[int, bool]:
     Raises
     ------
     InputError
-        The store is not a capred store, is damaged or newer (never modified).
+        The store cannot take the run (see :class:`Recorder`; never modified).
     """
-    from datetime import UTC, datetime
-
-    from .io import encode_json
-
-    doc = json.loads(encode_json(result.to_json()).decode("utf-8"))  # the JSON the run wrote, NaN as null
-    key = run_key(doc)
-    meta = _metadata(doc)
-    created = datetime.now(UTC).replace(microsecond=0).isoformat()
-    con = connect(store)
-    try:
-        con.execute("BEGIN IMMEDIATE")
-        try:
-            row = con.execute("SELECT id FROM runs WHERE run_key = ?", (key,)).fetchone()
-            if row is not None:
-                con.execute("COMMIT")
-                return int(row[0]), False
-            cur = con.execute(
-                "INSERT INTO runs (run_key, command, created_utc, capred_version, inputs, options, metadata, "
-                "out_dir, document, test_date) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-                (
-                    key,
-                    doc.get("command", ""),
-                    created,
-                    doc.get("capred_version", ""),
-                    json.dumps(doc.get("inputs", [])),
-                    json.dumps(doc.get("options", {})),
-                    json.dumps(meta),
-                    None if out_dir is None else os.path.abspath(out_dir),
-                    json.dumps(doc),
-                    _test_date(meta, created),
-                ),
-            )
-            run = cur.lastrowid
-            con.executemany(
-                "INSERT INTO records (run, material, quantity, value, ci_low, ci_high, unit) VALUES (?,?,?,?,?,?,?)",
-                [(run, *r) for r in records_of(doc, meta)],
-            )
-            con.execute("COMMIT")
-            return int(run), True
-        except BaseException:
-            con.execute("ROLLBACK")
-            raise
-    finally:
-        con.close()
+    with Recorder(store) as rec:
+        return rec.record(result, out_dir)
 
 
 def store_from(store=None):
@@ -517,28 +773,13 @@ def history(store, material: str | None = None, quantity: str | None = None, com
     """
     import pandas as pd
 
-    con = connect_readonly(store)
-    try:
-        where, args = [], []
-        for col, val in (("r.material", material), ("r.quantity", quantity), ("u.command", command)):
-            if val is not None:
-                where.append(f"{col} = ?")
-                args.append(val)
-        sql = (
-            "SELECT u.id AS run, u.test_date, u.created_utc, u.command, u.inputs, r.material, r.quantity, "
-            "r.value, r.ci_low, r.ci_high, r.unit, u.out_dir FROM records r JOIN runs u ON u.id = r.run"
-            + (" WHERE " + " AND ".join(where) if where else "")
-            + " ORDER BY u.id, r.rowid"
-        )
-        rows = con.execute(sql, args).fetchall()
-    finally:
-        con.close()
     cols = [
         "run",
         "test_date",
         "created_utc",
         "command",
-        "inputs",
+        "input",
+        "sha256",
         "material",
         "quantity",
         "value",
@@ -547,11 +788,76 @@ def history(store, material: str | None = None, quantity: str | None = None, com
         "unit",
         "out_dir",
     ]
+    where, args = _where(material, quantity, command)
+    sql = (
+        "SELECT u.id, u.test_date, u.created_utc, u.command, json_extract(u.inputs, '$[0].path'), "
+        "json_extract(u.inputs, '$[0].sha256'), r.material, r.quantity, r.value, r.ci_low, r.ci_high, r.unit, "
+        "u.out_dir FROM records r JOIN runs u ON u.id = r.run" + where + " ORDER BY u.id, r.rowid"
+    )
+    rows = _query(store, sql, args)
     frame = pd.DataFrame(rows, columns=cols)
-    first = [json.loads(s)[0] if json.loads(s) else {} for s in frame["inputs"]]
-    frame.insert(4, "input", [i.get("path") for i in first])
-    frame.insert(5, "sha256", [i.get("sha256") for i in first])
-    frame = frame.drop(columns="inputs")
     for c in ("value", "ci_low", "ci_high"):
         frame[c] = frame[c].astype(float)
     return frame
+
+
+def _where(material=None, quantity=None, command=None) -> tuple[str, list]:
+    where, args = [], []
+    for col, val in (("r.material", material), ("r.quantity", quantity), ("u.command", command)):
+        if val is not None:
+            where.append(f"{col} = ?")
+            args.append(val)
+    return (" WHERE " + " AND ".join(where) if where else ""), args
+
+
+class _NotText(ValueError):
+    """A text value of the store that is not UTF-8 (a damaged page)."""
+
+
+def _text(raw: bytes) -> str:
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise _NotText(f"a text value is not UTF-8 (byte 0x{raw[exc.start]:02x} at position {exc.start})") from None
+
+
+def _query(store, sql: str, args=()) -> list:
+    """Rows of one query on the store opened read-only; a damaged page or text is a clear InputError."""
+    con = connect_readonly(store)
+    con.text_factory = _text
+    try:
+        return con.execute(sql, args).fetchall()
+    except (sqlite3.DatabaseError, _NotText) as exc:
+        raise _problem(store, f"is a damaged capred store ({exc}); it was left untouched") from None
+    finally:
+        con.close()
+
+
+def present(store, column: str, quantity=None, command=None, limit: int = 41) -> list[str]:
+    """The distinct materials or quantities the store holds (for a quantity, a command), sorted, at most ``limit``.
+
+    Parameters
+    ----------
+    store : str or Path
+        The store's file.
+    column : {"material", "quantity"}
+        Which values.
+    quantity, command : str, optional
+        Only the records of this quantity, of runs of this command.
+    limit : int
+        At most this many values (the query stops there).
+
+    Returns
+    -------
+    list of str
+    """
+    if column not in ("material", "quantity"):
+        raise ValueError(column)
+    where, args = _where(None, quantity, command)
+    join = " JOIN runs u ON u.id = r.run" if command is not None else ""
+    sql = (
+        f"SELECT DISTINCT r.{column} FROM records r{join}{where}"
+        + (" AND" if where else " WHERE")
+        + f" r.{column} IS NOT NULL ORDER BY r.{column} LIMIT {int(limit)}"
+    )
+    return [str(r[0]) for r in _query(store, sql, args)]

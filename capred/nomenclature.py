@@ -213,12 +213,15 @@ class Magnitude:
 
     ``error``: above is physically impossible for the material or the apparatus (an error: usually a unit slip
     or a corrupt cell); ``warn``: above is implausible for a soil test (a warning: the run goes on, and says so).
-    ``why`` justifies both bounds.
+    ``why`` justifies both bounds. ``floor``: a non-zero magnitude below it is physically impossible too (a
+    particle smaller than a molecule), justified by ``floor_why``.
     """
 
     warn: float
     error: float
     why: str
+    floor: float = 0.0
+    floor_why: str = ""
 
 
 #: stresses and pressures in a soil test (total, effective, deviator, shear, cohesion, pore pressures)
@@ -230,6 +233,16 @@ STRESS_MAGNITUDE = Magnitude(50e6, 1e9, "no soil test reaches 1 GPa, above the c
 #: at zero water content); Kelvin's law, psi = -(RT/v_w) ln(RH), gives 0.93 GPa at a relative humidity of 0.1 % (20 °C) and 10 GPa only
 #: below RH = 10^-30
 SUCTION_MAGNITUDE = Magnitude(1e9, 10e9, "a soil's suction is at most about 1 GPa, when oven-dry")
+#: a particle's radius: cobbles reach 100 mm (200 mm across, ISO 14688-1:2017, table 1), no laboratory apparatus holds
+#: a grain of 10 m radius
+#: and 1 nm: below it a "particle" is a molecule and a capillary bridge has no meniscus (a water molecule: 0.3 nm)
+PARTICLE_MAGNITUDE = Magnitude(
+    0.1,
+    10.0,
+    "no laboratory test holds a grain of 10 m radius",
+    1e-9,
+    "below 1 nm a particle is a molecule, and a capillary bridge has no meniscus",
+)
 #: magnitude bounds by glossary name; input columns of kind "pressure" without an entry use STRESS_MAGNITUDE
 MAGNITUDES: dict[str, Magnitude] = {
     **{
@@ -260,6 +273,7 @@ MAGNITUDES: dict[str, Magnitude] = {
         )
     },
     "suction": SUCTION_MAGNITUDE,
+    "R": PARTICLE_MAGNITUDE,
 }
 #: the default bound of a kind of quantity (capred.units kinds) where the name has none of its own
 MAGNITUDES_BY_KIND: dict[str, Magnitude] = {"pressure": STRESS_MAGNITUDE}
@@ -310,10 +324,16 @@ def magnitude_problem(name: str, value: float, kind: str | None = None, unit: st
         The message, with the bound and its justification.
     """
     m = magnitude_of(name, kind)
-    if m is None or not abs(value) > m.error:
+    tiny = m is not None and 0 < abs(value) < m.floor
+    if m is None or not (abs(value) > m.error or tiny):
         return None
     q = QUANTITIES.get(name)
     unit, factor = (q.unit, q.factor) if q is not None and unit is None else (unit or "kPa", 1e-3)
+    if tiny:
+        return (
+            f"|{name}| = {abs(value) * factor:.4g} {unit} is below {m.floor * factor:g} {unit}: physically "
+            f"impossible ({m.floor_why})"
+        )
     return f"{_magnitude_words(name, value, m.error, unit, factor)}: physically impossible ({m.why})"
 
 

@@ -268,3 +268,52 @@ def deprecated(old: str, new: str, value):
         stacklevel=3,
     )
     return value
+
+
+def non_finite_options(options) -> list[str]:
+    """The fields of an Options record holding NaN or an infinity (alone or in a tuple or list of values)
+    that their default does not hold: an option is a number a user typed, and ``nan`` or ``inf`` parse as
+    floats but are no value of any quantity.
+
+    Parameters
+    ----------
+    options : dataclass instance
+        A command's Options (``ShearOptions``, ``LawsOptions`` ...).
+
+    Returns
+    -------
+    list of str
+        ``"--field-name = nan"`` for each such field, in field order (empty: every number is finite).
+    """
+    import dataclasses
+
+    if not dataclasses.is_dataclass(options) or isinstance(options, type):
+        return []
+
+    def bad(value) -> list:
+        if isinstance(value, bool):
+            return []
+        if isinstance(value, float):
+            return [] if math.isfinite(value) else [value]
+        if isinstance(value, (tuple, list)):
+            return [v for item in value for v in bad(item)]
+        return []
+
+    out = []
+    for f in dataclasses.fields(options):
+        if f.name.startswith("_") or not f.init:  # not an option a user sets
+            continue
+        value = getattr(options, f.name, None)
+        values = bad(value)
+        if not values:
+            continue
+        default = f.default if f.default is not dataclasses.MISSING else None
+        if repr(value) == repr(default):  # the default itself, not set by the user
+            continue
+        allowed = {v for v in bad(default) if not math.isnan(v)}  # what the default holds (inf: 'plane', no bound)
+        values = [v for v in values if v not in allowed]
+        if not values:
+            continue
+        shown = ", ".join(repr(v) for v in values[:3])
+        out.append(f"--{f.name.replace('_', '-')} = {shown}")
+    return out

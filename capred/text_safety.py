@@ -152,7 +152,58 @@ def xml_safe(text: str) -> str:
     -------
     str
     """
-    return visible(text, pictures=False)
+    if not isinstance(text, str) or _UNSAFE.search(text) is None:
+        return text
+    # no '<' or '&' is inserted: the text may be a whole SVG document, its markup already escaped
+    return _UNSAFE.sub(lambda m: _escaped(m.group()).replace("<", "[").replace(">", "]"), text)
+
+
+def safe_axes(ax, labels=None):
+    """Show the control and bidi characters of every text a panel put on ``ax`` (title, axis labels, texts and
+    annotations, the labels its legend will show), before matplotlib lays it out or draws it: the one
+    neutraliser of figure text whatever its source (a file, an option, a lab store), so no raw control reaches
+    an SVG (where XML forbids it) or the terminal (matplotlib's missing-glyph warning quotes the character).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        A panel's axes, drawn.
+    labels : list of str, optional
+        The labels the panel asked its legend to show.
+
+    Returns
+    -------
+    list of str or None
+        ``labels`` made visible (None stays None).
+    """
+
+    def fix(text):
+        return visible(text, pictures=False) if has_unsafe(text) else text
+
+    texts = [ax.title, getattr(ax, "_left_title", None), getattr(ax, "_right_title", None)]
+    texts += [ax.xaxis.label, ax.yaxis.label, *ax.texts]
+    for t in texts:
+        if t is not None and has_unsafe(t.get_text()):
+            t.set_text(fix(t.get_text()))
+    for artist in (*ax.lines, *ax.collections, *ax.patches, *ax.containers):
+        label = artist.get_label()
+        if has_unsafe(label):
+            artist.set_label(fix(label))
+    for axis in (ax.xaxis, ax.yaxis):  # tick labels of user text: categories, or set_ticklabels
+        _safe_ticks(axis, fix)
+    return None if labels is None else [fix(str(x)) for x in labels]
+
+
+def _safe_ticks(axis, fix) -> None:
+    """Wrap an axis's formatter in ``fix`` when its tick labels are user text holding controls."""
+    from matplotlib.ticker import FuncFormatter
+
+    inner = axis.get_major_formatter()
+    units = getattr(inner, "_units", None)  # matplotlib.category.StrCategoryFormatter
+    table = getattr(getattr(inner, "func", None), "args", ())  # FuncFormatter of Axis.set_ticklabels
+    texts = list(units) if isinstance(units, dict) else [v for d in table if isinstance(d, dict) for v in d.values()]
+    if any(has_unsafe(str(t)) for t in texts):
+        axis.set_major_formatter(FuncFormatter(lambda x, pos=None: fix(str(inner(x, pos)))))
 
 
 def json_escape(data: bytes) -> bytes:

@@ -121,3 +121,34 @@ def test_python_api_warnings_and_errors_show_controls_as_escapes(tmp_path):
         capred.run_shear(bad)
     assert "\x1b" not in str(err.value) and "\u241b[2J" in str(err.value)
     assert err.value.as_json()["errors"][0]["value"] == "\x1b[2J"  # scripts get the exact cell
+
+
+def test_safe_axes_shows_controls_in_every_text_before_drawing():
+    """Title, axis labels, texts, legend labels and category tick labels: no raw ESC or U+202E reaches the SVG."""
+    import io
+    import xml.etree.ElementTree as ET
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    from capred.text_safety import safe_axes
+
+    fig = Figure()
+    ax = fig.add_subplot()
+    ax.bar(["sand\x1b[2J", "clay\u202e"], [1, 2], label="bars\x1b")
+    ax.set_title("t\u202e")
+    ax.set_ylabel("y\x1b")
+    ax.text(0, 1, "note\x07")
+    labels = safe_axes(ax, ["legend\u202e"])
+    assert labels == ["legend<U+202E>"]
+    assert ax.get_title() == "t<U+202E>" and ax.get_ylabel() == "y\\x1b"
+    fig.canvas.draw()
+    ticks = [t.get_text() for t in ax.get_xticklabels()]
+    assert ticks == ["sand\\x1b[2J", "clay<U+202E>"]  # category labels shown, as drawn
+    buf = io.StringIO()
+    fig.savefig(buf, format="svg")
+    svg = buf.getvalue()
+    ET.fromstring(svg)  # well-formed XML
+    assert "\x1b" not in svg and "\u202e" not in svg and "\x07" not in svg

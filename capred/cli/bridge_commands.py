@@ -1,10 +1,15 @@
 """`capred bridge curve | solve | compare | rupture | laws | yade-files`: exact capillary bridges between two spheres or a
 sphere and a plane."""
 
+from typing import Annotated
+
 import typer
 
 from .common import Invocation, command
 from .declare import option, registry_help, si_values
+
+#: points of a `bridge laws` grid given by options solved without --yes (the default grid: 504)
+MAX_GRID_POINTS = 5000
 
 CURVE = "capred.pipelines.bridge:CurveOptions"
 BRIDGE = "capred.pipelines.bridge_solve:BridgeOptions"
@@ -304,6 +309,10 @@ def laws(
     tolerance: option(
         LAWS, "tolerance", help="Relative error under which a law counts as within, everywhere in a region."
     ) = None,
+    yes: Annotated[
+        bool,
+        typer.Option("--yes", help=f"Solve a grid of more than {MAX_GRID_POINTS:,} points given by options."),
+    ] = False,
 ) -> Invocation:
     """Which closed-form capillary force a DEM code should use: each law of
     the registry ({laws}) against the exact
@@ -329,16 +338,28 @@ def laws(
         R2/R of the grid, comma-separated ('plane': a sphere and a plane) [-].
     tolerance : float, optional
         Relative error under which a law counts as within [-].
+    yes : bool, optional
+        Solve a grid of more than MAX_GRID_POINTS points (a stated bound on the work an option asks for).
 
     Returns
     -------
     Invocation
         The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
+    from ..errors import OptionError
     from ..pipelines.bridge_laws import LawsOptions
 
     given = si_values(LAWS, gaps=gaps, volumes=volumes, angles=angles, ratios=ratios, tolerance=tolerance)
-    return Invocation("bridge laws", LawsOptions(**given))
+    opts = LawsOptions(**given)
+    n = len(opts.gaps) * len(opts.volumes) * len(opts.angles) * len(opts.ratios)
+    if n > MAX_GRID_POINTS and not yes:
+        raise OptionError(
+            f"the grid holds {n:,} points ({len(opts.gaps)} gaps x {len(opts.volumes)} volumes x {len(opts.angles)} "
+            f"angles x {len(opts.ratios)} ratios), more than {MAX_GRID_POINTS:,}: each is an exact bridge solved "
+            "(minutes for a grid this size); confirm with --yes, or give the points in a file (D_over_R, "
+            "V_over_R3, contact_angle, R2_over_R)"
+        )
+    return Invocation("bridge laws", opts)
 
 
 # the laws as the registry lists them (from the CLI's snapshot: `--help` imports no numerical module)

@@ -298,6 +298,15 @@ def command(app: typer.Typer, name: str, full_name: str | None = None, data: str
             common = {k: (params[k] if k in own else params.pop(k, d)) for k, (_, d) in shared.items()}
             out = _output_options(**{k: params.pop(k, d) for k, (_, d) in _OUTPUT_PARAMS.items()})
             inv = builder(**params)
+            from ..parameters import non_finite_options
+
+            bad = non_finite_options(inv.options)
+            if bad:  # nan and inf parse as floats: no value of any quantity (issue 46)
+                from ..errors import OptionError
+
+                raise OptionError(
+                    f"{'; '.join(bad)}: an option must be a finite number (NaN and infinities are not values)"
+                )
             if data is not None:
                 inv.sources = sources(
                     common["data"],

@@ -247,6 +247,10 @@ class Grid:
     #: a workbook's merged ranges, by line: (first column, last column, first line) of each, from 1; their cells
     #: hold the first cell's value (as the sheet shows it), and a metadata block reads them as one cell
     merged: dict[int, list[tuple[int, int, int]]] = field(default_factory=dict)
+    #: the reading limits of a CSV (its rows are split into at most max_columns + 1 cells)
+    limits: ReadLimits | None = None
+    #: a line of the first rows (``text_rows``) was cut (too long to split for each candidate delimiter)
+    head_cut: bool = False
 
     def parse_all(self, delimiter: str) -> None:
         """Every row of a CSV with the chosen delimiter (spreadsheets: nothing to do).
@@ -257,7 +261,13 @@ class Grid:
             The CSV delimiter detected or given.
         """
         if self.full_text is not None:
-            self.rows = parse_rows(self.full_text, delimiter, self.first_line)
+            limits = self.limits or ReadLimits()
+            try:
+                self.rows = parse_rows(self.full_text, delimiter, self.first_line, limits.max_columns)
+            except RowTooWide as exc:
+                raise limits.error(
+                    "max_columns", f"the line holds text in {exc.cells:,} cells", self.shown, exc.line
+                ) from None
             self.full_text = None
 
     def where(self) -> str:
@@ -393,7 +403,36 @@ def decode_text(data: bytes) -> str:
     return data.decode("latin-1")
 
 
-_LINE_END = re.compile("\r\n|\r|\n")
+#: a comment line: blanks (not line ends), then '#' (its line end kept, so the numbering holds)
+_COMMENT_LINE = re.compile(r"^[^\S\n]*+#[^\n]*", re.M)
+#: characters of text a CSV is split into at a time (whole lines): its blank stretches are skipped whole
+CHUNK_CHARS = 1 << 20
+
+
+def line_chunks(text: str, size: int = CHUNK_CHARS):
+    """``text`` in pieces of about ``size`` characters cut at line ends (the ``\\n`` between two pieces left out),
+    so that a pass over a file's lines never holds a list of all of them.
+
+    Parameters
+    ----------
+    text : str
+        Lines ending in ``\\n``.
+    size : int
+        Characters per piece, at least (a piece ends at the next line end).
+
+    Yields
+    ------
+    str
+        Whole lines joined by ``\\n``; ``"\\n".join`` of the pieces is ``text``.
+    """
+    a = 0
+    while True:
+        b = text.find("\n", a + size)
+        if b < 0:
+            yield text[a:]
+            return
+        yield text[a:b]
+        a = b + 1
 
 
 #: a run of CSV lines that hold only delimiters (and blanks): empty rows, as spreadsheet exports leave them
@@ -417,9 +456,19 @@ def blank_delimiter_rows(grid: Grid, text: str) -> str:
     str
         The text with each row of delimiters only emptied (its line end kept).
     """
-    if _DELIMITER_ROWS.search(text) is None:
-        return text
-    where = [grid.first_line, 0]  # line number at position
+    pieces, changed, line = [], False, grid.first_line
+    for piece in line_chunks(text):  # a chunk of blank lines is passed over whole
+        lines = piece.count("\n") + 1
+        if not piece.isspace() and _DELIMITER_ROWS.search(piece) is not None:
+            piece, changed = _blank_rows(grid, piece, line), True
+        pieces.append(piece)
+        line += lines
+    return "\n".join(pieces).rstrip("\n") if changed else text
+
+
+def _blank_rows(grid: Grid, text: str, first_line: int) -> str:
+    """``text`` (whole lines, the first numbered ``first_line``) with its rows of delimiters emptied."""
+    where = [first_line, 0]  # line number at position
 
     def blank(m) -> str:
         run = m.group()
@@ -432,7 +481,7 @@ def blank_delimiter_rows(grid: Grid, text: str) -> str:
         grid.delimiter_rows += rows
         return "\n" * n
 
-    return _DELIMITER_ROWS.sub(blank, text).rstrip("\n")
+    return _DELIMITER_ROWS.sub(blank, text)
 
 
 def check_long_lines(shown: str, text: str, first_line: int, limits: ReadLimits) -> None:
@@ -522,24 +571,93 @@ def csv_grid(shown: str, text: str, first_line: int = 1, limits: ReadLimits | No
         # comment lines become blank (keeping the numbering); a '#' inside a quoted field is left alone. Lines
         # end only at \n, \r\n or \r, as for the csv module (str.splitlines would also split at \v, \f, \x1c-\x1e,
         # U+0085 -- the '…' of a Windows-1252 file read as Latin-1 -- and U+2028/2029 inside a cell)
-        lines = _LINE_END.split(text)
-        if lines[-1] == "":  # the last line's end
-            lines.pop()
-        kept = "\n".join("" if ln.lstrip().startswith("#") else ln for ln in lines)
+        # (on the whole text, never as a list of every line: a file of millions of blank lines or lone CRs
+        # costs a few copies of its text, not a Python string per line)
+        kept = text.replace("\r\n", "\n").replace("\r", "\n") if "\r" in text else text
+        if kept.endswith("\n"):  # the last line's end
+            kept = kept[:-1]
+        if "#" in kept:
+            kept = _COMMENT_LINE.sub("", kept)
     else:  # the usual file: nothing to blank, lines already end in '\n'
-        kept = text[:-1] if text.endswith("\n") else text
+        kept = text  # its last line end kept (cutting it would copy the whole text): a blank last line, skipped
     grid = Grid(shown, None, [], (",", ";", "\t"), first_line=first_line)
     check_long_lines(shown, kept, first_line, limits or ReadLimits())
     kept = blank_delimiter_rows(grid, kept)
-    head = "\n".join(kept.split("\n", 200)[:200])
-    for delim in grid.delimiters:
-        grid.text_rows[delim] = parse_rows(head, delim, first_line)
+    head, grid.head_cut = _head(kept)
+    limits = limits or ReadLimits()
+    grid.limits = limits
+    for delim in grid.delimiters:  # each candidate: a line split into max_columns + 1 cells at most
+        grid.text_rows[delim] = parse_rows(head, delim, first_line, limits.max_columns, strict=False)
     grid.full_text = kept
     grid.rows = grid.text_rows[","]
     return grid
 
 
-def parse_rows(text: str, delim: str, first_line: int = 1) -> list[tuple[int, list[str]]]:
+class RowTooWide(Exception):
+    """A CSV line holding more cells with text than a table may have columns (raised by :func:`parse_rows`)."""
+
+    def __init__(self, line: int, cells: int):
+        super().__init__(line, cells)
+        self.line, self.cells = line, cells
+
+
+#: characters of the first 200 lines of a CSV split for each candidate delimiter, all together; a line beyond
+#: is cut to HEAD_LINE_CHARS (its cells are then read by the whole parse, not from the head)
+HEAD_CHARS = 4 * 2**20
+HEAD_LINE_CHARS = 64 * 2**10
+
+
+def _head(text: str, lines: int = 200) -> tuple[str, bool]:
+    """The first ``lines`` lines of ``text`` (at most HEAD_CHARS characters, each line at least HEAD_LINE_CHARS)
+    and whether a line was cut; made without a copy of the rest of the text."""
+    pieces, a, budget, cut = [], 0, HEAD_CHARS, False
+    for _ in range(lines):
+        b = text.find("\n", a)
+        end = len(text) if b < 0 else b
+        allow = max(HEAD_LINE_CHARS, budget)
+        if end - a > allow:
+            end, cut = a + allow, True
+        pieces.append(text[a:end])
+        budget -= end - a
+        if b < 0:
+            break
+        a = b + 1
+    return "\n".join(pieces), cut
+
+
+#: cells the first lines of a CSV may be split into, all together, for each candidate delimiter (a header wider
+#: than the limit is split whole, so that its message counts its columns; a file of such lines is not)
+HEAD_CELLS = 100_000
+
+
+def _head_cap(line: str, delim: str, cap: int, rows: list) -> int:
+    """The maxsplit of one of the first lines: -1 (whole) while the first lines' cells stay under HEAD_CELLS or the
+    line is narrower than ``cap`` cells, else ``cap``."""
+    if cap < 0:
+        return -1
+    n = line.count(delim) + 1
+    if n <= cap or sum(len(r[1]) for r in rows) + n <= HEAD_CELLS:
+        return -1
+    return cap
+
+
+def _cap_width(rows: list, start: int, delim: str, cap: int, strict: bool) -> None:
+    """Rows ``start:`` split with at most ``cap`` + 1 cells: the last, the rest of a longer line, emptied when it
+    holds only delimiters and blanks (a spreadsheet's trailing empty cells), else RowTooWide when ``strict``."""
+    for k in range(start, len(rows)):
+        cells = rows[k][1]
+        if len(cells) > cap:
+            rest = cells[cap]
+            if rest.strip(delim + " \t"):
+                if strict:
+                    raise RowTooWide(rows[k][0], cap + 1 + rest.count(delim))
+            else:
+                cells[cap] = ""
+
+
+def parse_rows(
+    text: str, delim: str, first_line: int = 1, max_cells: int | None = None, strict: bool = True
+) -> list[tuple[int, list[str]]]:
     """Rows with their first line number (the text's first line is ``first_line``); the cells of the first
     200 rows stripped (the header and the metadata are searched there), later cells as written (the table
     reader strips columns where needed).
@@ -557,13 +675,33 @@ def parse_rows(text: str, delim: str, first_line: int = 1) -> list[tuple[int, li
     -------
     list of (int, list of str)
 
+    Raises
+    ------
+    RowTooWide
+        With ``max_cells`` and ``strict``: a line holds text in more than ``max_cells`` cells (a line is split
+        into ``max_cells`` + 1 cells at most, so the cells made are bounded by rows x columns; trailing empty
+        cells are dropped). Without ``strict`` (a candidate delimiter tried on the first lines) the rest of the
+        line is kept in its last cell.
+
     References
     ----------
     RFC 4180, Common Format and MIME Type for Comma-Separated Values (CSV) Files, doi:10.17487/RFC4180."""
     rows = []
+    cap = -1 if max_cells is None else int(max_cells)
     if '"' not in text and "\r" not in text:  # no quoting: a line is a row, split on the delimiter (fast)
-        lines = text.split("\n")
-        rows = [(k + first_line, ln.split(delim)) for k, ln in enumerate(lines) if ln and not ln.isspace()]
+        # split a chunk at a time, and a chunk of blank lines not at all (counted, never listed)
+        line = first_line
+        for piece in line_chunks(text):
+            if not piece.isspace():
+                start = len(rows)
+                rows += [
+                    (line + k, ln.split(delim, cap if strict else _head_cap(ln, delim, cap, rows)))
+                    for k, ln in enumerate(piece.split("\n"))
+                    if ln and not ln.isspace()
+                ]
+                if cap >= 0 and strict:
+                    _cap_width(rows, start, delim, cap, strict)
+            line += piece.count("\n") + 1
         for k in range(min(200, len(rows))):
             rows[k] = (rows[k][0], [c.strip() for c in rows[k][1]])
         return rows
@@ -572,7 +710,12 @@ def parse_rows(text: str, delim: str, first_line: int = 1) -> list[tuple[int, li
     try:
         for cells in reader:
             if cells and (cells[0].strip() or "".join(cells).strip()):  # skip blank rows (first cell decides fast)
+                keep = cap if strict else _head_cap(delim.join(cells), delim, cap, rows)
+                if 0 <= keep < len(cells):  # one row at a time: its extra cells joined back, then bounded
+                    cells = [*cells[:keep], delim.join(cells[keep:])]
                 rows.append((start, [c.strip() for c in cells] if len(rows) < 200 else cells))
+                if strict and 0 <= cap < len(cells):
+                    _cap_width(rows, len(rows) - 1, delim, cap, strict)
             start = reader.line_num + first_line
     except csv.Error as exc:
         rows.append((start, [f"\x00csv error: {exc}"]))
@@ -923,7 +1066,7 @@ class _Rows:
 
     def more_text(self, n: int, line: int | None) -> None:
         """Count ``n`` more characters of expanded text against ``max_bytes`` (what the XML's bytes do not bound:
-        an .ods's repeated spaces)."""
+        an .ods's repeated spaces, cells and rows, a workbook's shared strings times the cells referencing them)."""
         self.chars += n
         if self.chars > self.limits.max_bytes:
             raise self.limits.error(
@@ -974,6 +1117,8 @@ class _Rows:
                     self.sheet,
                 )
             )
+        if repeat > 1:  # the copies of a repeated row's text count as text made
+            self.more_text(sum(map(len, cells.values())) * (repeat - 1), line)
         row = [""] * width
         for col, text in cells.items():
             row[col - 1] = text
@@ -1259,6 +1404,8 @@ class _XlsxSheet:
                 self.out.formula(self.col, self.line, self.formula)
             if text:
                 self.out.column_ok(self.col, self.line)
+                if self.ctype == "s":  # a shared string's text is made again for every cell referencing it
+                    self.out.more_text(len(text), self.line)
                 if self.cells is None:  # a cell outside any row: its own row
                     self.cells = {}
                 self.cells[self.col] = text
@@ -1402,6 +1549,7 @@ class _OdsContent:
             if text:
                 self.out.column_ok(self.col + repeat, self.line + 1)
                 self.out.visit(repeat - 1, self.line + 1)
+                self.out.more_text(len(text) * (repeat - 1), self.line + 1)  # the copies of a repeated cell
                 for k in range(1, repeat + 1):
                     self.cells[self.col + k] = text
             self.col += repeat

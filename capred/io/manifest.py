@@ -160,6 +160,20 @@ def _toml_runs(shown: str, text: str) -> list[tuple[int, str, str, list[str] | s
         where = re.search(r"\(at line (\d+), column (\d+)\)", str(exc))
         line = int(where.group(1)) if where else None
         raise InputError(Problem(shown, line, None, f"not valid TOML: {exc}")) from None
+    except RecursionError:  # tomllib parses nested arrays and tables by recursion
+        doc = None
+    from .json_input import MAX_JSON_DEPTH, json_depth
+
+    if doc is None or json_depth(doc) > MAX_JSON_DEPTH:
+        raise InputError(
+            Problem(
+                shown,
+                None,
+                None,
+                f"arrays or tables nested more than {MAX_JSON_DEPTH} deep: not a manifest (a run is a [[run]] "
+                "table of command, input and options)",
+            )
+        )
     runs = doc.get("run", [])
     run_line = _line_of(text, r"^\s*run\s*=") or _line_of(text, r"^\s*\[\[\s*run\s*\]\]")
     if isinstance(runs, dict):

@@ -1022,25 +1022,31 @@ def _note_text(cells: list[str], positions: dict) -> str | None:
     return None
 
 
+_BLANK_LINE = re.compile(r"^[^\S\n]*$", re.M)
+
+
 def _plain_tail(grid, delimiter: str, lookup) -> tuple[int, list[str]] | None:
     """A long plain CSV (no quotes, no blank line after its first 200 lines, every header named): the first
     200 lines become ``grid.rows`` and the rest is returned as (first line number, lines) to be split as
     columns at once; None where the row-by-row parse is needed."""
     text = grid.full_text
-    if text is None or '"' in text or "\r" in text:
+    if text is None or '"' in text or "\r" in text or grid.head_cut:  # cut first rows: the whole parse
         return None
     head = grid.text_rows[delimiter]
     k, found = find_header(head, lookup)
     if not found or k > len(head) - 3 or any(not h.strip() for h in head[k][1]):
         return None
-    lines = text.split("\n")
-    if len(lines) <= 200:
+    pos = 0  # the tail starts after the first 200 lines; it is split only when it holds no blank line (a
+    for _ in range(200):  # file padded with millions of blank lines is never made a list of them)
+        pos = text.find("\n", pos) + 1
+        if pos == 0:
+            return None
+    last = len(text.rstrip())  # blank lines at the end are dropped
+    end = text.find("\n", last)
+    tail_text = text[pos : len(text) if end < 0 else end]
+    if not tail_text.strip() or _BLANK_LINE.search(tail_text) is not None:
         return None
-    tail = lines[200:]
-    while tail and not tail[-1].strip():
-        tail.pop()
-    if not tail or any(not ln or ln.isspace() for ln in tail):
-        return None
+    tail = tail_text.split("\n")
     grid.rows, grid.full_text = head, None
     return grid.first_line + 200, tail
 
@@ -1105,7 +1111,7 @@ def _check_magnitude(table: Table, col: Column) -> None:
     v = table.columns[col.name]
     with np.errstate(invalid="ignore"):
         a = np.abs(v)
-        too_big = np.flatnonzero(a > m.error)
+        too_big = np.flatnonzero((a > m.error) | ((a > 0) & (a < m.floor)))  # or below a floor (a molecule)
         odd = np.flatnonzero((a > m.warn) & (a <= m.error))
     if too_big.size:
         shown = table.headers.get(col.name, col.name)

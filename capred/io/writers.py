@@ -666,7 +666,41 @@ def foreign_files(folder) -> list[str]:
     parents = {"/".join(n.split("/")[:k]) for n in listed for k in range(1, n.count("/") + 1)}
     foreign = [f for f in files if f not in listed and f.rsplit("/", 1)[-1] not in OS_LITTER]
     foreign += [d + "/" for d in dirs if d not in parents]
+    foreign += edited_files(folder, prov, files)
     return sorted(foreign)
+
+
+def edited_files(folder, prov: dict | None = None, files=None) -> list[str]:
+    """Files a run's provenance.json lists with a SHA-256 (``outputs_sha256``) whose content differs now: a
+    user edited them after capred wrote them, so they are no longer capred's to replace.
+
+    Parameters
+    ----------
+    folder : str or pathlib.Path
+        A run folder.
+    prov : dict, optional
+        Its provenance.json (read when not given).
+    files : set of str, optional
+        The files present (listed when not given).
+
+    Returns
+    -------
+    list of str
+        Relative paths, sorted (empty for a folder written before hashes were recorded).
+    """
+    folder = Path(folder)
+    prov = _provenance(folder) if prov is None else prov
+    hashes = prov.get("outputs_sha256") if prov is not None else None
+    if not isinstance(hashes, dict):
+        return []
+    files = _listing(folder)[0] if files is None else files
+    edited = []
+    for name, digest in hashes.items():
+        if name in files and isinstance(digest, str):
+            path = folder / name
+            if path.is_symlink() or not path.is_file() or _sha256(path) != digest:
+                edited.append(name)
+    return sorted(edited)
 
 
 def _foreign_message(out: Path, foreign: list[str]) -> str:
@@ -682,6 +716,14 @@ def _foreign_message(out: Path, foreign: list[str]) -> str:
             f"--out {out} is a folder capred did not write (it holds {shown}); capred replaces its output "
             "folder as a whole: give a new or empty folder"
         )
+    edited = [f for f in foreign if f in edited_files(out, prov)]
+    if edited:
+        named = ", ".join(edited[:5]) + (f" and {len(edited) - 5} more" if len(edited) > 5 else "")
+        return (
+            f"--out {out}: {named} changed since capred wrote {'it' if len(edited) == 1 else 'them'} (the SHA-256 "
+            "recorded in provenance.json differs); capred never replaces a file a user edited: move it out "
+            "or give another folder"
+        )
     return (
         f"--out {out} holds files capred did not write: {shown}; capred replaces its output folder as a "
         "whole and never deletes a file it did not write: move them out or give another folder"
@@ -691,7 +733,8 @@ def _foreign_message(out: Path, foreign: list[str]) -> str:
 def _sha256(path: Path) -> str:
     import hashlib
 
-    return hashlib.sha256(path.read_bytes()).hexdigest()
+    with open(path, "rb") as fh:  # streamed: an output may be larger than the memory a run may take
+        return hashlib.file_digest(fh, "sha256").hexdigest()
 
 
 def batch_record(root) -> dict:
@@ -969,6 +1012,17 @@ def _safe_svg(path: Path) -> None:
         path.write_text(xml_safe(text), encoding="utf-8", errors="surrogateescape")
 
 
+def _sealed(seal, undo) -> None:
+    """Call ``seal()`` (the new folder in place); on any failure ``undo()`` (the earlier folder back) and re-raise."""
+    if seal is None:
+        return
+    try:
+        seal()
+    except BaseException:
+        undo()
+        raise
+
+
 class RunFolder:
     """A hidden work folder that becomes ``out`` on ``commit()``; removed if anything fails."""
 
@@ -1027,11 +1081,17 @@ class RunFolder:
         os.chmod(self.tmp / name, 0o666 & ~_UMASK)
         self.names.append(name)
 
-    def commit(self) -> list[Path]:
+    def commit(self, seal=None) -> list[Path]:
         """Move the work folder into place as the output folder, replacing an earlier run of capred's (under a lock).
 
         Raises OutputError, leaving the earlier run intact, when the output folder is a file or now holds a file
-        its provenance.json does not list.
+        its provenance.json does not list (or a file capred wrote that was edited since).
+
+        Parameters
+        ----------
+        seal : callable or None, optional
+            Called once the new folder is in place, before the earlier run is removed (recording the run in a
+            lab store); if it raises, the earlier folder is put back and the new one removed (with ``abort``).
 
         Returns
         -------
@@ -1047,14 +1107,24 @@ class RunFolder:
                 foreign = foreign_files(out)  # again, under the lock: a file saved there while we computed
                 if foreign:
                     raise OutputError(_foreign_message(out, foreign))
-                if not _exchange(self.tmp, out):
+                if _exchange(self.tmp, out):  # self.tmp now holds the earlier run
+                    _sealed(seal, lambda: _exchange(self.tmp, out))
+                else:
                     old = Path(tempfile.mkdtemp(prefix=_prefix(out, _OLD), dir=out.parent))
                     os.replace(out, old / "run")
                     os.replace(self.tmp, out)
+
+                    def back():
+                        os.replace(out, self.tmp)
+                        os.replace(old / "run", out)
+                        shutil.rmtree(old, ignore_errors=True)
+
+                    _sealed(seal, back)
                     self.tmp = old
                 shutil.rmtree(self.tmp, ignore_errors=True)  # now holds the earlier run
             else:
                 os.replace(self.tmp, out)
+                _sealed(seal, lambda: os.replace(out, self.tmp))
         return [out / n for n in self.names]
 
     def abort(self) -> None:
@@ -1063,7 +1133,13 @@ class RunFolder:
 
 
 def write_run(
-    result, out, command_line: str | None = None, csv_dialect: str = "standard", xlsx: bool = False, artifacts=None
+    result,
+    out,
+    command_line: str | None = None,
+    csv_dialect: str = "standard",
+    xlsx: bool = False,
+    artifacts=None,
+    seal=None,
 ) -> list[Path]:
     """Write the files of ``result`` into the folder ``out``, whole or not at all.
 
@@ -1088,6 +1164,9 @@ def write_run(
         Also write every table into ``tables.xlsx``.
     artifacts : callable or None, optional
         ``artifacts(folder)`` writes further files (figures, report) into the :class:`RunFolder`.
+    seal : callable or None, optional
+        ``seal(out)`` is called once the folder is in place (see :meth:`RunFolder.commit`): recording the run in
+        a lab store; if it raises, the earlier folder is put back and nothing is written.
 
     Returns
     -------
@@ -1100,7 +1179,9 @@ def write_run(
     try:
         doc = result.json_lazy()
         json_writer = _JsonWriter(folder.path_for(result.json_name), doc)  # a long document: in a second process
-        for name, frame in result.csv_tables().items():
+        tables = result.csv_tables()
+        check_output_size(result, tables, out)  # said before a table is written
+        for name, frame in tables.items():
             write_csv_file(folder.path_for(f"{name}.csv"), frame, csv_dialect)
             folder.done(f"{name}.csv")
         if xlsx:
@@ -1122,14 +1203,108 @@ def write_run(
                 if clear is None:
                     raise
                 raise clear from None
-        folder.write_bytes("provenance.json", encode_json(provenance(result, folder.names, command_line), True))
-        return folder.commit()
+        hashes = {n: _sha256(folder.path_for(n)) for n in folder.names}  # a user's later edit is then seen
+        folder.write_bytes("provenance.json", encode_json(provenance(result, folder.names, command_line, hashes), True))
+        return folder.commit(None if seal is None else lambda: seal(out))
     except OSError as exc:
         _cancel(json_writer, folder)
         raise _os_error(out, exc) from None
     except BaseException:
         _cancel(json_writer, folder)
         raise
+
+
+#: outputs may take this many times the bytes of the run's inputs (a shear file's results and JSON take about 45
+#: times its bytes: 55 columns written for each 7 read) ...
+OUTPUT_MULTIPLE = 100
+#: ... or this many bytes, whichever is larger (a calculator without input files, a small file's report) ...
+OUTPUT_FLOOR = 512 * 2**20
+#: ... and never more than this many bytes (a run's tables are read by people and spreadsheets)
+OUTPUT_MAX = 4 * 2**30
+#: the environment variable that raises the outputs' bound [MiB], for a run meant to write that much
+OUTPUT_VARIABLE = "CAPRED_MAX_OUTPUT_MEGABYTES"
+#: bytes a table cell takes in the CSV and its share of the JSON document, about, with a margin (measured: a
+#: shear run's results of 27.5 million cells, 304 MB of CSV and 568 MB of JSON: 32 bytes a cell)
+_BYTES_PER_CELL = 40
+
+
+def output_budget(input_bytes: int) -> int:
+    """The most bytes a run's tables may take: OUTPUT_MULTIPLE times its inputs, at least OUTPUT_FLOOR, at most
+    OUTPUT_MAX, or ``$CAPRED_MAX_OUTPUT_MEGABYTES`` MiB where set.
+
+    Parameters
+    ----------
+    input_bytes : int
+        The bytes of the run's input files.
+
+    Returns
+    -------
+    int
+        Bytes.
+    """
+    given = os.environ.get(OUTPUT_VARIABLE, "").strip()
+    if given:
+        try:
+            return int(float(given) * 2**20)
+        except ValueError:
+            raise OutputError(f"{OUTPUT_VARIABLE}={given!r} is not a number of megabytes") from None
+    return min(OUTPUT_MAX, max(OUTPUT_FLOOR, OUTPUT_MULTIPLE * input_bytes))
+
+
+def _cells(table) -> int:
+    """Cells of a table as write_csv_file takes it (0 where its text is already written: csv_pieces)."""
+    if hasattr(table, "csv_pieces"):
+        return 0
+    if hasattr(table, "shape"):
+        return int(table.shape[0]) * max(1, int(table.shape[1]))
+    if isinstance(table, dict):
+        first = next(iter(table.values()), ())
+        return len(first) * len(table)
+    if callable(getattr(table, "columns", None)):  # a Spool or a long run's blocks: rows x the first row's columns
+        rows = getattr(table, "n", None)
+        if rows is None:
+            rows = sum(int(r) for _, _, r in getattr(table, "_index", ()))
+        return int(rows) * max(1, len(table.columns(0, 1))) if rows else 0
+    return 0
+
+
+def check_output_size(result, tables: dict, out) -> None:
+    """Refuse, before anything is written, a run whose tables would take more than :func:`output_budget`.
+
+    The size is estimated as cells x :data:`_BYTES_PER_CELL` (the CSV and the JSON document).
+
+    Parameters
+    ----------
+    result : capred.result.Result
+        The run (its inputs' sizes).
+    tables : dict
+        Its CSV tables, name -> DataFrame.
+    out : pathlib.Path
+        The output folder (for the message).
+
+    Raises
+    ------
+    OutputError
+        Over the bound, saying how large, why and how to allow it.
+    """
+    cells = sum(_cells(t) for t in tables.values())
+    estimate = cells * _BYTES_PER_CELL
+    if estimate <= OUTPUT_FLOOR and not os.environ.get(OUTPUT_VARIABLE):  # the common case: no file looked at
+        return
+    size = 0
+    for i in result.inputs:
+        try:
+            size += os.path.getsize(i.path)
+        except (OSError, TypeError, ValueError):
+            pass
+    budget = output_budget(size)
+    if estimate > budget:
+        raise OutputError(
+            f"the outputs of this run would take about {estimate / 2**30:.2f} GiB ({cells:,} table cells, as CSV "
+            f"and JSON), more than {budget / 2**30:.2f} GiB ({OUTPUT_MULTIPLE} times the inputs' "
+            f"{size / 2**20:.1f} MiB, at least {OUTPUT_FLOOR / 2**20:.0f} MiB and at most {OUTPUT_MAX / 2**30:.0f} "
+            f"GiB); nothing was written to {out}. To write them, set {OUTPUT_VARIABLE} to the megabytes allowed"
+        )
 
 
 def _cancel(json_writer, folder) -> None:
@@ -1279,7 +1454,7 @@ class _JsonWriter:
             gc.unfreeze()
 
 
-def provenance(result, outputs: list[str], command_line: str | None = None) -> dict:
+def provenance(result, outputs: list[str], command_line: str | None = None, hashes: dict | None = None) -> dict:
     """Record of a run: capred version, command line, input hashes, options, outputs.
 
     Parameters
@@ -1290,6 +1465,9 @@ def provenance(result, outputs: list[str], command_line: str | None = None) -> d
         Names of the files written (provenance.json is added).
     command_line : str or None, optional
         The command line to record (default: ``sys.argv`` joined).
+    hashes : dict, optional
+        SHA-256 of each output, recorded as ``outputs_sha256``: the next run into the folder refuses to replace
+        a file whose content changed since (:func:`edited_files`).
 
     Returns
     -------
@@ -1309,6 +1487,7 @@ def provenance(result, outputs: list[str], command_line: str | None = None) -> d
         "option_units": doc["option_units"],
         "warnings": doc["warnings"],
         "outputs": sorted(outputs + ["provenance.json"]),
+        **({"outputs_sha256": dict(sorted(hashes.items()))} if hashes is not None else {}),
         "created_utc": datetime.now(UTC).replace(microsecond=0).isoformat(),
     }
 

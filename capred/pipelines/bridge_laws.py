@@ -341,6 +341,25 @@ def _grid(opt: LawsOptions):
     return D.ravel(), V.ravel(), A.ravel(), Rh.ravel()
 
 
+#: points of a grid solved at once; a larger grid is solved a chunk at a time, with a progress bar
+CHUNK_POINTS = 2048
+
+
+def _exact(th, V, D, rho):
+    """``br.solve_for_volume`` over the points, a chunk of CHUNK_POINTS at a time (with progress) when more."""
+    if D.size <= CHUNK_POINTS:
+        return br.solve_for_volume(th, V, D, rho)
+    from ..progress import task
+
+    parts = []
+    with task("exact bridges (points)", total=D.size) as advance:
+        for a in range(0, D.size, CHUNK_POINTS):
+            sl = slice(a, a + CHUNK_POINTS)
+            parts.append(br.solve_for_volume(th[sl], V[sl], D[sl], rho[sl]))
+            advance(len(th[sl]))
+    return tuple(np.concatenate([p[k] for p in parts]) for k in range(3))
+
+
 def compare_laws(source=None, options: LawsOptions | None = None) -> LawsResult:
     """Every registered law against the exact bridge on a grid (a file of D_over_R, V_over_R3, contact_angle and
     optional R2_over_R rows, or the options' grid).
@@ -387,7 +406,7 @@ def compare_laws(source=None, options: LawsOptions | None = None) -> LawsResult:
         warnings += table.warnings
         notes += list(table.notes)
     th = np.radians(A)
-    beta, s, status = br.solve_for_volume(th, V, D, rho)
+    beta, s, status = _exact(th, V, D, rho)
     ok = status == 0
     exact = np.full(D.size, np.nan)
     if ok.any():

@@ -33,7 +33,7 @@ VERIFY_RTOL = br.VERIFY_RTOL
 _PLANE = (("plane", np.inf), ("inf", np.inf), ("infinity", np.inf), ("\u221e", np.inf))
 
 CASE = Column("case", "text", None, "case label")  # aliases: nomenclature.COLUMN_ALIASES
-RADIUS = Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius", "R1"), "positive")
+RADIUS = Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius", "R1"), "positive", quantity="R")
 RADIUS2 = Column(
     "R2",
     "length",

@@ -853,7 +853,10 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
     cases = list(zip(v["kappa"], v["e0"], v["p0"], v["u0"], v["pa0"]))
     if forward:
         if bounding is not None:
-            B = np.array([_bounding_b(sr, *c, s_e, bc_lambda, bounding) for sr, c in zip(v["S_r"], cases)])
+            from ..progress import steps  # two incremental loops per row: seconds a row, a bar for many
+
+            rows = list(zip(v["S_r"], cases))
+            B = np.array([_bounding_b(sr, *c, s_e, bc_lambda, bounding) for sr, c in steps(rows, "B (rows)")])
         elif suction:
             B = calc.skempton_b_suction(v["S_r"], v["p0"], v["u0"], v["e0"], v["kappa"], v["pa0"], s_e, bc_lambda)
         else:
@@ -889,7 +892,10 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
                 )
             return roots[0]
 
-        S = np.array([solve(i, bi, *c) for i, (bi, c) in enumerate(zip(v["B"], cases))])
+        from ..progress import steps
+
+        rows = list(enumerate(zip(v["B"], cases)))
+        S = np.array([solve(i, bi, *c) for i, (bi, c) in steps(rows, "S_r (rows)")])
     elif suction:
         from scipy.optimize import brentq
 

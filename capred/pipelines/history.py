@@ -290,8 +290,9 @@ class HistoryResult(Result):
         return {"history": pd.DataFrame(self.record().csv_columns())}
 
 
-def _choose(frame, column: str, given, what: str, store) -> str:
-    present = sorted({str(v) for v in frame[column].dropna()})
+def _choose(held: list, given, what: str, store) -> str:
+    """``given`` where the store holds it (``held``: what it holds, sorted), the only value held, else an error."""
+    present = [str(v) for v in held]
     if given is not None:
         if given not in present:
             raise InputError(
@@ -330,18 +331,25 @@ def reduce_history(source, opt: HistoryOptions) -> HistoryResult:
     ----------
     Montgomery (2013), section 6.4; ISO/IEC 17025:2017, clause 7.7.
     """
-    from ..lab_store import history
+    from ..lab_store import history, present
 
     path = getattr(source, "path", source)
-    frame = history(path, command=opt.command)
-    if frame.empty:
-        raise InputError(Problem(str(path), None, None, "this store holds no runs yet"))
+    # the store is filtered in SQL: only the records of the quantity (and material) asked are read
     if opt.quantity is None:
-        raise OptionError("--quantity is needed: this store holds " + ", ".join(sorted(set(frame["quantity"]))[:40]))
-    q = frame[frame["quantity"] == opt.quantity]
+        held = present(path, "quantity", command=opt.command)
+        if not held:
+            raise InputError(Problem(str(path), None, None, "this store holds no runs yet"))
+        raise OptionError("--quantity is needed: this store holds " + ", ".join(held[:40]))
+    q = history(path, quantity=opt.quantity, command=opt.command, material=opt.material)
     if q.empty:
-        _choose(frame, "quantity", opt.quantity, "quantity", path)
-    material = _choose(q, "material", opt.material, "material", path) if q["material"].notna().any() else None
+        held = present(path, "quantity", command=opt.command)
+        if not held:
+            raise InputError(Problem(str(path), None, None, "this store holds no runs yet"))
+        if opt.quantity not in held:
+            _choose(held, opt.quantity, "quantity", path)
+        _choose(present(path, "material", opt.quantity, opt.command), opt.material, "material", path)
+    materials = present(path, "material", opt.quantity, opt.command) if opt.material is None else [opt.material]
+    material = _choose(materials, opt.material, "material", path) if q["material"].notna().any() else None
     rows = q[q["material"] == material] if material is not None else q[q["material"].isna()]
     notes = []
     dup = rows["run"].duplicated()

@@ -198,8 +198,10 @@ def model_params_from_retention(path: str | Path, branch: str | None = None, **o
     """
     import json
 
+    from ..io import read_json
+
     try:
-        js = json.loads(Path(path).read_text(encoding="utf-8"))
+        js = read_json(path, "--retention")  # bounded: --max-megabytes' default size, MAX_JSON_DEPTH
         branches = js.get("branches") or {js.get("main_branch") or "drying": {"fits": js["fits"]}}
         if not isinstance(branches, dict):
             raise TypeError("'branches' is not an object")
@@ -1244,11 +1246,15 @@ def derive_tests(
 
     sigma_N = table.get("sigma_N").copy()
     from_masses = np.isnan(sigma_N)
-    sigma_N[from_masses] = ph.normal_stress(cap + added, box, opt.g)[from_masses]
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is the bound's error below, not numpy's
+        sigma_N[from_masses] = ph.normal_stress(cap + added, box, opt.g)[from_masses]
+    _bound_derived(table, sigma_N, from_masses, "sigma_N", ("added_mass", "cap_mass", "box_area"))
 
     tau = table.get("tau_max").copy()
     from_force = np.isnan(tau)
-    tau[from_force] = (table.get("F_max") / box)[from_force]
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        tau[from_force] = (table.get("F_max") / box)[from_force]
+    _bound_derived(table, tau, from_force, "tau_max", ("F_max", "box_area"))
     if tau_curve is not None:
         has_curve = np.isfinite(tau_curve)
         tau[has_curve] = tau_curve[has_curve]
@@ -2180,3 +2186,20 @@ def __getattr__(name: str):
 
         return ShearBlocks
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def _bound_derived(table, values, derived, name: str, sources: tuple[str, ...]) -> None:
+    """A stress derived from a row's masses or force gets the magnitude bound of a measured one (capred.nomenclature
+    MAGNITUDES): over it, or not finite from finite inputs (an overflow), the row's problem names the value and
+    the columns it came from; the value becomes NaN so nothing downstream computes with it."""
+    from ..nomenclature import magnitude_problem
+
+    for i in np.flatnonzero(derived & ~np.isnan(values)):
+        v = float(values[i])
+        why = magnitude_problem(name, v) if np.isfinite(v) else f"|{name}| overflows (beyond 1.8e308 Pa)"
+        if why is None:
+            continue
+        given = [c for c in sources if c in table.columns]
+        shown = ", ".join(f"{c} = {table.value_text(c, i)}" for c in given)
+        table.add_problem(i, given[0] if given else None, f"{name} derived from {shown}: {why}")
+        values[i] = np.nan

@@ -25,8 +25,11 @@ def _runs_axis(ax, n: int) -> None:
 
 
 def _label(result) -> str:
-    unit = "" if result.unit == "-" else f" [{result.unit}]"
-    return f"{result.quantity}{unit}"
+    """The y label: the quantity and unit as a store holds them (another program may have written them)."""
+    from .style import literal
+
+    unit = "" if result.unit == "-" else f" [{literal(result.unit)}]"
+    return f"{literal(result.quantity)}{unit}"
 
 
 def _individuals(ax, result):
@@ -73,7 +76,9 @@ def _moving_range(ax, result):
     ax.axhline(lim.mr_centre, **_CENTRE, label=r"$\overline{MR}$")
     ax.axhline(lim.mr_ucl, **_LIMIT, label=r"$D_4\,\overline{MR}$")
     _runs_axis(ax, len(k))
-    ax.set_ylabel(f"moving range{'' if result.unit == '-' else f' [{result.unit}]'}")
+    from .style import literal
+
+    ax.set_ylabel(f"moving range{'' if result.unit == '-' else f' [{literal(result.unit)}]'}")
     ax.set_title("Moving range")
     top = np.nanmax(np.append(mr[1:], lim.mr_ucl)) if len(mr) > 1 else lim.mr_ucl
     ax.set_ylim(0, 1.12 * top if np.isfinite(top) and top > 0 else None)  # room for the marks of the highest

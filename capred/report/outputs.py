@@ -134,17 +134,25 @@ def write_outputs(
                 with task("writing report.html"):
                     folder.write_bytes("report.html", render_html(result, drawn, plots).encode("utf-8"))
 
-        from ..lab_store import check_store, record_run, store_from
+        from ..lab_store import Recorder, store_from
 
         store = store_from(store) if result.command != "history" else None
-        if store is not None:
-            check_store(store)  # a foreign or damaged store stops the run before any file is written
-        written = write_run(
-            result, out, command_line=command_line, csv_dialect=csv_dialect, xlsx=xlsx, artifacts=artifacts
-        )
-        if store is not None:
-            record_run(store, result, out)
-        return written
+        # the store is opened and checked before any file is written; the run is recorded once its folder is
+        # in place, and a store that fails then puts the earlier folder back (capred.io.writers.RunFolder.commit)
+        recorder = Recorder(store) if store is not None else None
+        try:
+            return write_run(
+                result,
+                out,
+                command_line=command_line,
+                csv_dialect=csv_dialect,
+                xlsx=xlsx,
+                artifacts=artifacts,
+                seal=None if recorder is None else lambda folder: recorder.record(result, folder),
+            )
+        finally:
+            if recorder is not None:
+                recorder.close()
 
 
 # --- one sheet ----------------------------------------------------------------------------------------------

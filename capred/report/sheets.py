@@ -364,7 +364,9 @@ def _draw_panel(panel, ax):
         panel.draw(ax)
     finally:
         del ax.legend
-    return asked.get("handles"), asked.get("labels")
+    from ..text_safety import safe_axes  # controls shown before anything is measured or drawn
+
+    return asked.get("handles"), safe_axes(ax, asked.get("labels"))
 
 
 #: the size of a legend beside its axes [px] (and its font size [pt]) by (labels, panel width and height [px],

@@ -1,0 +1,57 @@
+"""JSON inputs bounded in size and nesting (capred.io.json_input; shear --retention)."""
+
+import pytest
+from typer.testing import CliRunner
+
+from capred.cli import app
+from capred.errors import InputError, LimitError
+from capred.io.grid import ReadLimits
+from capred.io.json_input import MAX_JSON_DEPTH, json_depth, read_json
+
+runner = CliRunner()
+
+
+def test_depth_by_hand():
+    assert json_depth(1) == 0
+    assert json_depth([]) == 1
+    assert json_depth({"a": [1, {"b": [2]}]}) == 4  # object > array > object > array
+
+
+def test_deep_nesting_is_refused_without_recursion_error(tmp_path):
+    path = tmp_path / "deep.json"
+    path.write_text("[" * 100_000 + "]" * 100_000)  # Python's parser alone raises RecursionError
+    with pytest.raises(InputError, match=f"nested more than {MAX_JSON_DEPTH} deep"):
+        read_json(path, "--retention")
+    path.write_text("[" * (MAX_JSON_DEPTH + 1) + "]" * (MAX_JSON_DEPTH + 1))
+    with pytest.raises(InputError, match="nested"):
+        read_json(path, "--retention")
+    path.write_text("[" * MAX_JSON_DEPTH + "]" * MAX_JSON_DEPTH)
+    assert json_depth(read_json(path, "--retention")) == MAX_JSON_DEPTH
+
+
+def test_size_is_refused_before_reading(tmp_path):
+    path = tmp_path / "big.json"
+    path.write_text("[" + "0," * 600_000 + "0]")  # 1.2 MB
+    with pytest.raises(LimitError, match="--max-megabytes"):
+        read_json(path, "--retention", ReadLimits(max_bytes=2**20))
+
+
+def test_shear_retention_json_too_deep_is_one_message(tmp_path):
+    import capred
+
+    fits = tmp_path / "fits.json"
+    fits.write_text('{"fits": ' + "[" * 5000 + "]" * 5000 + "}")
+    res = runner.invoke(
+        app, ["shear", str(capred.sample_path("shear")), "--retention", str(fits), "--bootstrap", "0", "--no-plots",
+              "--out", str(tmp_path / "o")],
+    )  # fmt: skip
+    assert res.exit_code != 0 and "nested more than" in res.stderr and "Traceback" not in res.output, res.output
+    assert not (tmp_path / "o").exists()
+
+
+def test_toml_manifest_nested_deeper_than_the_limit_is_one_message(tmp_path):
+    """tomllib parses by recursion: 50,000 nested arrays raised RecursionError through `capred batch`."""
+    manifest = tmp_path / "m.toml"
+    manifest.write_text('[[run]]\ncommand = "shear"\ninput = "a.csv"\noptions = ' + "[" * 50_000 + "]" * 50_000 + "\n")
+    res = runner.invoke(app, ["batch", str(manifest), "--out", str(tmp_path / "o")])
+    assert res.exit_code != 0 and "nested more than" in res.stderr and "Traceback" not in res.output, res.output
