@@ -482,7 +482,7 @@ provenance.json: a file edited since is never overwritten):</p>
 <ul class="files">{% for f in files %}<li><a href="{{ f }}">{{ f }}</a></li>{% endfor %}</ul>
 </body></html>
 """
-_SEASON_LEFT = ("input", "command", "status", "reason", "material", "headline", "best_model", "branch")
+_SEASON_LEFT = ("input", "command", "status", "reason", "material", "headline", "options", "best_model", "branch")
 #: printable width of season.html on A4 landscape (297 mm − 2 × 10 mm) [mm] and of one 7 pt character [mm]
 SEASON_WIDTH_MM = 277.0
 SEASON_CHAR_MM = 0.64 * 7 * 25.4 / 72
