@@ -177,11 +177,11 @@ def changed_options(options) -> str:
 
     if options is None or not dataclasses.is_dataclass(options) or isinstance(options, type):
         return ""
-    from .report.html import _option_value
+    from .report.html import option_value
 
     parts = []
     for name, value, quantity in _changed(options, ""):
-        text, unit = _option_value(value, quantity)
+        text, unit = option_value(value, quantity)
         parts.append(f"{name} {text}" + (f" {unit}" if unit else ""))
     return "; ".join(parts)
 
