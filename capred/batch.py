@@ -189,8 +189,6 @@ def changed_options(options) -> str:
 def _changed(options, prefix: str) -> list:
     """(dotted name, value, Quantity or None) of each field of a dataclass record that differs from its default."""
     import dataclasses
-    import math
-    import numbers
 
     from .nomenclature import QUANTITIES
 
@@ -209,7 +207,7 @@ def _changed(options, prefix: str) -> list:
         if dataclasses.is_dataclass(value) and not isinstance(value, type):
             out += _changed(value, f"{prefix}{f.name}.")
             continue
-        if _same(value, default, math, numbers):
+        if _same(value, default):
             continue
         if value is not None and hasattr(value, "to_csv"):  # a table given through the API
             value = "(a table)"
@@ -220,14 +218,17 @@ def _changed(options, prefix: str) -> list:
     return out
 
 
-def _same(value, default, math, numbers) -> bool:
+def _same(value, default) -> bool:
     """Whether an option's value is its default (numbers within 1e-12 relative; sequences element-wise)."""
+    import math
+    import numbers
+
     if default is value:
         return True
     if isinstance(value, numbers.Real) and isinstance(default, numbers.Real) and not isinstance(value, bool):
         return not isinstance(default, bool) and math.isclose(value, default, rel_tol=1e-12, abs_tol=0.0)
     if isinstance(value, (list, tuple)) and isinstance(default, (list, tuple)):
-        return len(value) == len(default) and all(_same(a, b, math, numbers) for a, b in zip(value, default))
+        return len(value) == len(default) and all(_same(a, b) for a, b in zip(value, default))
     try:
         return bool(value == default)
     except Exception:  # an array or a table compared with a default: not the default
