@@ -224,9 +224,11 @@ KEEP_TEMPLATES = 4
 
 #: text layouts and glyph bitmaps of capred's Agg renderers (``_cached_text``), by font, size, dpi and text or
 #: glyph: kept across the sheets of a run and the files of a batch, emptied at a fork and when this many are held
+#: (a 300-dpi glyph's bitmap is ~260 bytes, ~0.5 kB with its key: at most ~10 MB; a shear file's two sheets
+#: hold ~1,000)
 _LAYOUTS: dict = {}
 _GLYPHS: dict = {}
-KEEP_GLYPHS = 40_000
+KEEP_GLYPHS = 20_000
 #: the matplotlib versions whose Agg text drawing ``_cached_text`` repeats (tests/test_sheet_text_cache.py checks
 #: the pixels against matplotlib's own drawing); any other version draws its text itself
 CACHED_TEXT_VERSIONS = ("3.11.",)
