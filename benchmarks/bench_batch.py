@@ -15,11 +15,18 @@ run in turn (A B C D, A B C D, ...) so that a change of load hits each alike:
 - ``boot0-nohtml``: --no-plots --bootstrap 0 --no-html (tables and JSON only)
 - ``startup``:     one file, --no-plots --bootstrap 0 (the fixed cost of a run)
 - ``every-output``: no option at all: every default output (tables, JSON, the report sheets as 300-dpi PNGs,
-  report.html), the season of issue 31 (item 3: 1,000 files in <= 4 minutes of wall time on 2 cores)
+  report.html), the season of issue 31 (item 3: 1,000 files in <= 4 minutes of wall time on 2 cores; issue 44,
+  item 3: <= 3 minutes)
+- ``shear-glob``:  not a manifest: ``capred shear runs/*.csv --no-plots`` as a user types it (the shell's list of
+  files, the CLI's default workers): issue 44, item 1 (1,000 files in <= 10 s of wall time on 2 cores)
 
 ``--only a,b`` runs those variants alone (``startup`` is always run: the fixed cost). ``--baseline COMMIT``
 also runs each variant from that commit (a temporary git worktree on PYTHONPATH), interleaved with the
 others: the before/after of a change in one session, under the same load.
+
+Every run's CPU time (the whole process tree) and wall time are printed, with the CPU model and the load
+average before and after: on a shared machine compare CPU (and the ratios to the baseline, taken under the same
+load); the wall time of an idle machine is estimated from CPU as above.
 
 Run: python benchmarks/bench_batch.py [n_files=200] [repeats=3] [--workers W] [--only every-output]
 [--baseline COMMIT]
@@ -41,15 +48,17 @@ VARIANTS = {
     "boot0": "--no-plots --bootstrap 0",
     "boot0-nohtml": "--no-plots --bootstrap 0 --no-html",
     "every-output": "",
+    "shear-glob": None,  # `capred shear FILES --no-plots`, no manifest
 }
 #: the claim each variant is held to: (seconds of wall time for 1,000 files on an idle machine, what it is)
 CLAIMS = {
     "default": (10.0, "1,000 files with default options and --no-plots (issue 20)"),
-    "every-output": (240.0, "1,000 files with every default output (issue 31)"),
+    "every-output": (180.0, "1,000 files with every default output (issue 31: 240 s; issue 44: 180 s)"),
+    "shear-glob": (10.0, "`capred shear 1000 files --no-plots` (issue 44)"),
 }
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "benchmarks"))
-from common import installed_env  # noqa: E402
+from common import installed_env, machine_line  # noqa: E402
 
 
 def timed(args: list[str], env: dict | None = None, cwd: Path | None = None) -> tuple[float, float]:
@@ -64,8 +73,8 @@ def timed(args: list[str], env: dict | None = None, cwd: Path | None = None) -> 
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
-def manifest(folder: Path, name: str, n: int, options: str) -> Path:
-    """A manifest of one line over ``n`` copies of the shear sample."""
+def copies(folder: Path, n: int) -> Path:
+    """A folder of ``n`` copies of the shear sample (made once)."""
     from capred.samples import sample_path
 
     runs = folder / f"runs_{n}"
@@ -74,9 +83,19 @@ def manifest(folder: Path, name: str, n: int, options: str) -> Path:
         src = sample_path("shear")
         for k in range(n):
             shutil.copy(src, runs / f"s{k:05d}.csv")
+    return runs
+
+
+def manifest(folder: Path, name: str, n: int, options: str | None) -> list[str]:
+    """The arguments of a run over ``n`` copies of the shear sample (``--out`` is added by the caller): a
+    manifest of one line with ``options``, or (``options`` None) ``capred shear FILES --no-plots`` with the
+    files listed as a shell expands ``runs/*.csv``."""
+    runs = copies(folder, n)
+    if options is None:
+        return ["shear", *(str(p) for p in sorted(runs.glob("*.csv"))), "--no-plots"]
     path = folder / f"{name}.csv"
     path.write_text(f"command,input,options\nshear,{runs}/*.csv,{options}\n")
-    return path
+    return ["batch", str(path)]
 
 
 def cores() -> int:
@@ -109,6 +128,7 @@ def main(
     if not variants:
         raise SystemExit(f"--only names none of {', '.join(VARIANTS)}")
     loads = []
+    print(f"machine: {machine_line()}")
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         plans = {name: manifest(tmp, name, n, opts) for name, opts in variants.items()}
@@ -134,7 +154,7 @@ def main(
                     # after many files are deleted (recently_deleted, find_inode_bit), which charged a run ~16 %
                     # more system time when the previous run's folder had just been removed
                     out = tmp / f"out_{name.replace('@', '_')}_{r}"
-                    times[name].append(timed(["batch", str(path), "--out", str(out), *extra], envs[name] or mine, tmp))
+                    times[name].append(timed([*path, "--out", str(out), *extra], envs[name] or mine, tmp))
                     loads.append(os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan"))
         finally:
             if baseline:
@@ -145,6 +165,7 @@ def main(
     w = min(c, workers or cli_default_workers(n), n)  # the processes that share the files
     med = {k: sorted(v)[len(v) // 2] for k, v in ((k, [x[0] for x in t]) for k, t in times.items())}
     cpu = {k: sorted(x[1] for x in t)[len(t) // 2] for k, t in times.items()}
+    print(f"machine after: {machine_line()}")
     print(
         f"capred batch over {n} copies of the shear sample; {repeats} interleaved repeats (medians); "
         f"{c} cores, {w} workers ({'--workers' if workers else 'the CLI default'}); "

@@ -19,8 +19,12 @@ Axes (data shaped as labs have it, ``common.lab_shear_rows`` / ``lab_retention_r
                       ``--no-plots`` (``--figures``: every default output), one worker
 - ``batch-workers``:  the same 40 files on 1 .. all cores: CPU exponent (work added by more workers: ~0)
                       and the wall speed-up
+- ``shear-files``:    ``capred shear FILES --no-plots`` as a user types it (no manifest, the CLI's default
+                      workers) over 10 .. 100 sample-sized files (``--full``: 1,000); prints the CPU per file
+                      beyond the start-up (issue 44, item 1: a per-file cost that does not depend on the data)
+                      and flags it above ``PER_FILE_MS``
 
-Prints the machine, its core count and the load average before and after.
+Prints the machine (CPU model), its core count and the load average before and after.
 
 Run from the repository root: python benchmarks/bench_scaling.py [--full] [--figures] [--repeats N] [axis ...]
 """
@@ -38,16 +42,19 @@ import shutil  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
 import tempfile  # noqa: E402
-import time  # noqa: E402
 import warnings  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from common import lab_retention_rows, lab_shear_rows, timed  # noqa: E402
+from common import lab_retention_rows, lab_shear_rows, machine_line, timed  # noqa: E402
 
 FLAG = 1.15
 #: axes whose cost must not grow at all, and the exponent above which they are flagged (any neighbouring pair)
 FLAT = {"shear-distinct": 0.3}
+#: CPU per sample-sized file of `capred shear FILES --no-plots` beyond the start-up above which ``shear-files`` is
+#: flagged [ms]: 18-21 ms measured on this project's AMD EPYC pair at 30ddff3 (issue 44); 10 s of wall time for
+#: 1,000 files on 2 cores leaves at most ~19 ms per file
+PER_FILE_MS = 25.0
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -173,6 +180,45 @@ def axis_batch_files(tmp: Path, full: bool, repeats: int, figures: bool = False)
     return sizes, costs
 
 
+def axis_shear_files(tmp: Path, full: bool, repeats: int, figures: bool = False):
+    """CPU [s] of `capred shear FILES --no-plots` (default workers) over 10 .. 100 (1,000) sample files."""
+    import capred
+
+    sizes = [10, 30, 100] + ([300, 1_000] if full else [])
+    costs, walls = [], []
+    for n in sizes:
+        runs = tmp / f"runs_{n}"
+        if not runs.exists():
+            runs.mkdir()
+            for k in range(n):
+                shutil.copy(capred.sample_path("shear"), runs / f"s{k:05d}.csv")
+        files = [str(p) for p in sorted(runs.glob("*.csv"))]
+        env = {**os.environ, "PYTHONPATH": str(ROOT)}
+        best_cpu, best_wall = math.inf, math.inf
+        for _ in range(repeats if n <= 100 else 1):
+            out = tmp / "out_files"
+            shutil.rmtree(out, ignore_errors=True)
+            cmd = [sys.executable, "-m", "capred", "shear", *files, *([] if figures else ["--no-plots"])]
+            _, t = timed(lambda: subprocess.run([*cmd, "--out", str(out)], check=True, capture_output=True, env=env))
+            best_cpu, best_wall = min(best_cpu, t.cpu), min(best_wall, t.wall)
+        costs.append(best_cpu)
+        walls.append(best_wall)
+    per_file = (costs[-1] - costs[0]) / (sizes[-1] - sizes[0]) * 1e3
+    for n, c, w in zip(sizes, costs, walls):
+        print(f"    {n:5d} files: CPU {c:7.2f} s  wall {w:7.2f} s")
+    flag = per_file > PER_FILE_MS and not figures
+    print(
+        f"    CPU per file beyond the start-up {per_file:.1f} ms (flagged above {PER_FILE_MS:.0f} ms)"
+        + ("   <-- above" if flag else "")
+    )
+    if flag:
+        _PER_FILE_FLAGS.append("shear-files (CPU per file)")
+    return sizes, costs
+
+
+_PER_FILE_FLAGS: list[str] = []
+
+
 def axis_batch_workers(tmp: Path, full: bool, repeats: int, figures: bool = False, files: int = 40):
     try:
         cores = len(os.sched_getaffinity(0))
@@ -196,6 +242,7 @@ AXES = {
     "bridge-rows": axis_bridge_rows,
     "batch-files": axis_batch_files,
     "batch-workers": axis_batch_workers,
+    "shear-files": axis_shear_files,
 }
 
 
@@ -204,12 +251,12 @@ def main(argv: list[str]) -> int:
     figures = "--figures" in argv
     repeats = int(argv[argv.index("--repeats") + 1]) if "--repeats" in argv else 3
     names = [a for a in argv if a in AXES] or list(AXES)
-    print(f"capred scaling, {os.uname().machine}, {os.cpu_count()} cores, load {os.getloadavg()}, {time.ctime()}")
+    print(f"capred scaling on {machine_line()}")
     flagged = []
     with tempfile.TemporaryDirectory() as tmp:
         for name in names:
             fn = AXES[name]
-            kw = {"figures": figures} if name.startswith("batch") else {}
+            kw = {"figures": figures} if name.startswith("batch") or name == "shear-files" else {}
             sizes, costs = fn(Path(tmp), full, repeats, **kw)
             local, slope = exponents(sizes, costs)
             cells = "  ".join(f"{n:,}: {c:.3f} s" for n, c in zip(sizes, costs))
@@ -222,7 +269,8 @@ def main(argv: list[str]) -> int:
             )
             if flag:
                 flagged.append(name)
-    print(f"load {os.getloadavg()}; " + (f"FLAGGED: {', '.join(flagged)}" if flagged else "no exponent flagged"))
+    flagged += _PER_FILE_FLAGS
+    print(f"after: {machine_line()}; " + (f"FLAGGED: {', '.join(flagged)}" if flagged else "no exponent flagged"))
     return 1 if flagged else 0
 
 

@@ -94,6 +94,33 @@ def installed_env(pycache: Path | str, base: dict | None = None) -> dict:
     return env
 
 
+def cpu_model() -> str:
+    """The processor's model name (/proc/cpuinfo's ``model name``; the platform's processor elsewhere)."""
+    import platform
+
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8", errors="replace") as fh:
+            for line in fh:
+                if line.lower().startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or platform.machine()
+
+
+def machine_line() -> str:
+    """``AMD EPYC, 2 cores, load average 1.2 0.9 0.5, 2026-11-29 01:50 UTC``: what a timing was taken on."""
+    import datetime
+
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        cores = os.cpu_count() or 1
+    load = " ".join(f"{x:.1f}" for x in os.getloadavg()) if hasattr(os, "getloadavg") else "n/a"
+    when = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M UTC")
+    return f"{cpu_model()}, {cores} cores, load average {load}, {when}"
+
+
 def ratio_line(label: str, num: float, den: float, target: str = "") -> str:
     """``label: 12.3x (target ...)``: the ratio a benchmark claims, printed as it is computed."""
     return f"{label}: {num / den:,.2f}x" + (f" (target {target})" if target else "")

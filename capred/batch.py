@@ -46,6 +46,7 @@ class Outcome:
     season: list[dict] = field(default_factory=list)  # the result's season rows, model ids as their labels
     headline: str = ""  # the run's main results in a line, with labels (season.csv)
     warnings: int = 0  # how many warnings the run gave
+    options: str = ""  # the run's options that differ from its command's defaults (season.csv)
 
     @property
     def ok(self) -> bool:
@@ -116,10 +117,13 @@ def run_safely(job: Job) -> Outcome:
     from .io import source_path
 
     src = str(source_path(job.source)) if job.source is not None else ""
+    changed = changed_options(job.options)
     try:
         result, written = run_job(job)
     except CapredError as exc:
-        return Outcome(job.command, src, str(job.out_dir), "failed", str(exc), seconds=time.perf_counter() - t0)
+        return Outcome(
+            job.command, src, str(job.out_dir), "failed", str(exc), seconds=time.perf_counter() - t0, options=changed
+        )
     except Exception as exc:  # a bug: keep the traceback for the report, let the other files run
         log = _save_traceback(job, traceback.format_exc())
         return Outcome(
@@ -130,6 +134,7 @@ def run_safely(job: Job) -> Outcome:
             f"unexpected error {type(exc).__name__}: {exc} (traceback in {log})",
             [log] if log else [],
             time.perf_counter() - t0,
+            options=changed,
         )
     rows = labelled(result.season_rows())
     return Outcome(
@@ -144,7 +149,90 @@ def run_safely(job: Job) -> Outcome:
         rows,
         headline(rows) or _count_line(result),
         len(result.all_warnings()),
+        changed,
     )
+
+
+def changed_options(options) -> str:
+    """The options of a run that differ from its command's defaults, as a user types them, ``; ``-separated:
+    ``dry_loss huber; bootstrap 0; gamma_w 10 kN/m³`` ("" when every option has its default).
+
+    The defaults are those of the command's options record (the field defaults of its dataclass, which the CLI
+    leaves in force when an option is not given); a nested record (model parameters) is compared field by field
+    and shown as ``model_params.vg_n 1.6``. Numbers are compared with a relative tolerance of 1e-12, so a value
+    typed in another unit that converts back to the default (``9.81 kN/m^3``) is not a change. Output options
+    (--no-plots, --dpi) are not listed: they change no number of the run.
+
+    Parameters
+    ----------
+    options : object
+        A command's options record (a dataclass instance); anything else gives "".
+
+    Returns
+    -------
+    str
+        The changed options with their values and units.
+    """
+    import dataclasses
+
+    if options is None or not dataclasses.is_dataclass(options) or isinstance(options, type):
+        return ""
+    from .report.html import option_value
+
+    parts = []
+    for name, value, quantity in _changed(options, ""):
+        text, unit = option_value(value, quantity)
+        parts.append(f"{name} {text}" + (f" {unit}" if unit else ""))
+    return "; ".join(parts)
+
+
+def _changed(options, prefix: str) -> list:
+    """(dotted name, value, Quantity or None) of each field of a dataclass record that differs from its default."""
+    import dataclasses
+
+    from .nomenclature import QUANTITIES
+
+    out = []
+    quantities = getattr(options, "QUANTITIES", {})
+    for f in dataclasses.fields(options):
+        if f.name.startswith("_") or not f.init:
+            continue
+        value = getattr(options, f.name)
+        if f.default is not dataclasses.MISSING:
+            default = f.default
+        elif f.default_factory is not dataclasses.MISSING:
+            default = f.default_factory()
+        else:  # a required field: always the user's
+            default = dataclasses.MISSING
+        if dataclasses.is_dataclass(value) and not isinstance(value, type):
+            out += _changed(value, f"{prefix}{f.name}.")
+            continue
+        if _same(value, default):
+            continue
+        if value is not None and hasattr(value, "to_csv"):  # a table given through the API
+            value = "(a table)"
+        elif hasattr(value, "__fspath__"):  # a path: as typed
+            value = str(value)
+        q = quantities.get(f.name)
+        out.append((prefix + f.name, value, QUANTITIES.get(q) if q else None))
+    return out
+
+
+def _same(value, default) -> bool:
+    """Whether an option's value is its default (numbers within 1e-12 relative; sequences element-wise)."""
+    import math
+    import numbers
+
+    if default is value:
+        return True
+    if isinstance(value, numbers.Real) and isinstance(default, numbers.Real) and not isinstance(value, bool):
+        return not isinstance(default, bool) and math.isclose(value, default, rel_tol=1e-12, abs_tol=0.0)
+    if isinstance(value, (list, tuple)) and isinstance(default, (list, tuple)):
+        return len(value) == len(default) and all(_same(a, b) for a, b in zip(value, default))
+    try:
+        return bool(value == default)
+    except Exception:  # an array or a table compared with a default: not the default
+        return False
 
 
 def _save_traceback(job: Job, text: str) -> str:
@@ -740,6 +828,8 @@ class SeasonRun:
         The materials (or branches, envelopes) of its season rows, ``; ``-separated.
     headline : str
         The run's main results in a line, with labels and units.
+    options : str
+        The run's options that differ from its command's defaults, as a user types them ("" for none).
     warnings : int or None
         How many warnings the run gave [-] (None unless ok).
     report : str
@@ -752,6 +842,7 @@ class SeasonRun:
     reason: str = season_field(description="why a run did not succeed")
     material: str = season_field(description="the materials, branches or envelopes of its results")
     headline: str = season_field(description="its main results in a line")
+    options: str = season_field(description="its options that differ from the command's defaults")
     warnings: int | None = season_field("-", "how many warnings the run gave")
     report: str = season_field(description="its report.html, relative to the batch root")
 
@@ -800,6 +891,7 @@ def season_runs(root: Path, outcomes: list[Outcome]) -> list[SeasonRun]:
                 reason=one_line(o.message) if not o.ok else "",
                 material="; ".join(x for x in dict.fromkeys(labels) if x),
                 headline=o.headline,
+                options=o.options,
                 warnings=o.warnings if o.ok else None,
                 report=link,
             )
@@ -859,7 +951,8 @@ def season_file(command: str) -> str:
 
 
 def write_season(root: Path, outcomes: list[Outcome]) -> list[Path]:
-    """season.csv (one row per run: command, input, status, reason, material, headline, warnings, report), season_<command>.csv (each command's detail rows) and season.html (a section per command),
+    """season.csv (one row per run: command, input, status, reason, material, headline, options, warnings,
+    report), season_<command>.csv (each command's detail rows) and season.html (a section per command),
     each protected as every batch root file is (refused where a file of that name exists that capred did
     not write, e.g. a manifest called season.csv, or that a user edited since) and recorded in the batch's
     provenance.json.

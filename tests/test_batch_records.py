@@ -14,7 +14,7 @@ from capred.batch import Outcome, SeasonRun, season_runs, season_table, season_t
 from capred.cli import app
 
 #: season.csv's header as capred 0.x and this release write it (a public interface)
-HEADER = ["command", "input", "status", "reason", "material", "headline", "warnings [-]", "report"]
+HEADER = ["command", "input", "status", "reason", "material", "headline", "options", "warnings [-]", "report"]
 
 
 def test_headers_derive_from_the_fields():

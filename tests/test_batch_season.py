@@ -84,7 +84,7 @@ def test_each_command_has_its_details_file_and_section(season):
 
 def test_every_csv_header_of_the_batch_root_has_a_unit_or_is_text(season):
     out, _, _ = season
-    text_columns = {"command", "input", "status", "reason", "material", "headline", "report", "branch"}
+    text_columns = {"command", "input", "status", "reason", "material", "headline", "options", "report", "branch"}
     text_columns |= {"best_model", "message", "output"}
     for path in sorted(out.glob("*.csv")):
         for head in _csv(path).columns:

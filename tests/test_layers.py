@@ -7,6 +7,7 @@ function run only when it is called; the one that goes up is listed in ``LAZY_UP
 """
 
 import ast
+import functools
 import importlib
 from pathlib import Path
 
@@ -92,11 +93,19 @@ def _where(target: str, name: str) -> str:
     return target
 
 
+@functools.cache
+def _tree(path: Path) -> ast.Module:
+    """The syntax tree of a capred module, parsed once per test session (the tests below only read it)."""
+    return ast.parse(path.read_text(encoding="utf-8"))
+
+
+@functools.cache
 def graph() -> dict[str, tuple[set[str], set[str]]]:
-    """module -> (modules imported when it is imported, modules imported only inside its functions)."""
+    """module -> (modules imported when it is imported, modules imported only inside its functions); computed
+    once per session (several tests read it; every module's source is parsed once)."""
     out = {}
     for module, path in MODULES.items():
-        tree = ast.parse(path.read_text(encoding="utf-8"))
+        tree = _tree(path)
         package = path.name == "__init__.py"
         now: set[str] = set()
         for node in tree.body:  # module level (also under if/try at module level)
@@ -198,11 +207,13 @@ def private_uses(sources: dict[str, str] | None = None) -> list[tuple[str, str, 
     """(module, module it uses, private name, line) of every private name (one leading underscore, not a dunder)
     that a capred module imports from another (``from X import _name``) or reads off another module it imported
     (``X._name``). ``sources``: module -> source text (default: every capred module, read from disk)."""
-    if sources is None:
-        sources = {m: p.read_text(encoding="utf-8") for m, p in MODULES.items()}
+    trees = (
+        {m: _tree(p) for m, p in MODULES.items()}
+        if sources is None
+        else {m: ast.parse(text) for m, text in sources.items()}
+    )
     out = []
-    for module, text in sources.items():
-        tree = ast.parse(text)
+    for module, tree in trees.items():
         package = module in MODULES and MODULES[module].name == "__init__.py"
         bound: dict[str, str] = {}  # local name -> capred module it stands for
         for node in ast.walk(tree):
@@ -255,7 +266,7 @@ def test_io_has_a_small_public_api():
     for module, path in MODULES.items():
         if module.startswith("capred.io"):
             continue
-        tree = ast.parse(path.read_text(encoding="utf-8"))
+        tree = _tree(path)
         for node in ast.walk(tree):
             if isinstance(node, ast.ImportFrom):
                 for a, target in zip(node.names, _targets(module, node, path.name == "__init__.py")):

@@ -24,8 +24,13 @@ SHARED_KEYS = {"command", "capred_version", "inputs", "options", "warnings", "no
 
 
 def _api_run(red):
-    """The registry's quick run of a command through the API: its sample (if any) and its example options."""
-    return lambda: capred.run(red.name, capred.sample_path(red.sample) if red.sample else None, **dict(red.example))
+    """The registry's quick run of a command through the API: its sample (if any) and its example options, run
+    once per test session (both tests below compare with it; a bridge command's run costs ~1 s)."""
+    from functools import cache
+
+    return cache(
+        lambda: capred.run(red.name, capred.sample_path(red.sample) if red.sample else None, **dict(red.example))
+    )
 
 
 # every command of the registry (capred.reductions.REDUCTIONS, so a new command is tested without editing this

@@ -302,15 +302,21 @@ def test_workbook_bytes_do_not_depend_on_the_clock(tmp_path, monkeypatch):
     from capred.io.spreadsheet_out import write_workbook
 
     frame = pd.DataFrame({"material": ["a", "b"], "tau [kPa]": [1.0, np.nan]})
-    for epoch in ("1700000000", None):
+
+    def write(epoch, name):
         if epoch is None:
             monkeypatch.delenv("SOURCE_DATE_EPOCH", raising=False)
         else:
             monkeypatch.setenv("SOURCE_DATE_EPOCH", epoch)
-        write_workbook(tmp_path / "a.xlsx", {"t": frame})
-        time.sleep(2.1)  # zip entry times have a two-second resolution
-        write_workbook(tmp_path / "b.xlsx", {"t": frame})
-        assert (tmp_path / "a.xlsx").read_bytes() == (tmp_path / "b.xlsx").read_bytes()
+        write_workbook(tmp_path / name, {"t": frame})
+
+    epochs = ("1700000000", None)
+    for k, epoch in enumerate(epochs):
+        write(epoch, f"a{k}.xlsx")
+    time.sleep(2.1)  # zip entry times have a two-second resolution (one wait for both cases)
+    for k, epoch in enumerate(epochs):
+        write(epoch, f"b{k}.xlsx")
+        assert (tmp_path / f"a{k}.xlsx").read_bytes() == (tmp_path / f"b{k}.xlsx").read_bytes()
     import openpyxl
 
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")  # 2023-11-14 22:13:20 UTC
@@ -370,6 +376,15 @@ def _kill_trials(tmp_path: Path, trials: int, plots: bool, seed: int) -> dict[st
     return seen
 
 
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="needs fork")
+def test_sigkill_during_a_rerun_leaves_one_whole_run(tmp_path):
+    """6 kills at uniform random moments of the write of a rerun (tables, JSON, workbook, HTML); the slow set
+    kills 30 more (each kill costs a whole write: ~1 s of the everyday suite)."""
+    seen = _kill_trials(tmp_path, trials=6, plots=False, seed=18)
+    assert sum(seen.values()) == 6
+
+
+@pytest.mark.slow
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="needs fork")
 def test_sigkill_during_reruns_leaves_one_whole_run(tmp_path):
     """30 kills at uniform random moments of the write of a rerun (tables, JSON, workbook, HTML)."""

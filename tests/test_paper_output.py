@@ -63,10 +63,9 @@ def test_legends_never_cover_data(shear_result, make):
     for sheet in shear_result.figures().values():
         figs = [compose(sheet)] if make == "composite" else [single(sheet, p) for p in sheet.panels]
         for fig in figs:
-            fig.canvas.draw() if hasattr(fig.canvas, "draw") else None
             from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-            FigureCanvasAgg(fig).draw()
+            FigureCanvasAgg(fig).draw()  # one draw places the legends ("best") and gives their extents
             pts = _data_points(fig)
             pts = pts[np.all(np.isfinite(pts), axis=1)]
             for ax in fig.axes:

@@ -162,7 +162,12 @@ def test_readings_are_fitted_first_and_the_sample_runs(tmp_path):
         r = capred.run_retention(capred.sample_path("retention"))
         direct = capred.convert_retention(r, to="bc")
     assert js["conversion"]["from_model"] == direct.source_fit.model
-    assert js["fits"]["bc"]["params_si"] == pytest.approx(direct.converted.params_si, rel=1e-12)
+    # the same optimum, reached through the CLI (one BLAS thread) and the API (the process's BLAS threads), whose
+    # sums differ in their last bits on some CPUs: the optimum is asserted by its objective (1e-8; 1.2e-9 measured
+    # between AVX2 and AVX-512 BLAS kernels) and the parameters, near a minimum where the objective is flat to
+    # second order, to 1e-6 (5e-9 measured)
+    assert js["fits"]["bc"]["rss"] == pytest.approx(direct.converted.rss, rel=1e-8)
+    assert js["fits"]["bc"]["params_si"] == pytest.approx(direct.converted.params_si, rel=1e-6)
 
 
 def test_the_air_entry_of_a_conversion_is_continuous_not_a_node_of_the_grid():

@@ -43,9 +43,24 @@ def test_condition_number_of_two_nearly_parallel_columns():
     assert set(weak) == {"a", "b"}
 
 
+#: the residual sum of squares of the bundled sample's wetting Durner fit: a flat valley of optima (S_res and w1
+#: trade against each other) whose points agree to ~1e-10 relative in their objective
+DURNER_WETTING_RSS = 1.48353554e-4
+
+
 def test_unidentifiable_durner_is_named_everywhere(all_models, tmp_path):
     r, caught = all_models
     f = r.fits["wetting"]["durner"]
+    # the optimum asserted by its objective (1e-8: the valley's points agree to ~1e-10, the fit stops at 1e-12);
+    # where in the valley the fit stops depends on the CPU's floating-point kernels: with AVX-512 BLAS
+    # (Intel, AMD Zen 4) inside it, S_res = 0.0009 (the case, checked below); with AVX2 kernels
+    # (AMD Zen 2/3) at S_res's bound 0, where the Jacobian without S_res is well conditioned (3.9) and no
+    # parameter is unidentifiable: the fit then names its bound instead (tests/test_fit_undetermined.py
+    # checks the naming on a case every CPU fits alike)
+    assert f.rss == pytest.approx(DURNER_WETTING_RSS, rel=1e-8)
+    if "y_r" in f.at_bounds():  # the fit's own rule for a parameter at its bound
+        assert f.extra["condition_number"] < CONDITION_LIMIT and not f.warnings
+        return
     text = " ".join(f.warnings)
     # the case: alpha2 with a standard error of ~10^4 times its value, S_res and w1 correlated to 1.0000
     assert "alpha2_per_kPa" in text and "not identifiable" in text

@@ -92,6 +92,7 @@ def _noisy_group(rng, sd_kpa, n=5):
     )
 
 
+@pytest.mark.slow  # a coverage simulation of 2,000 groups (~9 s): the slow set; test_interval_by_hand stays everyday
 def test_interval_coverage():
     """2,000 seeded groups of 5 tests: the 95 % intervals of sigma1_cap, sigma3_cap and C cover the truth 95 % of
     the time (t intervals of means of per-test values, normal errors: exact). Binomial sd of a rate over 2,000

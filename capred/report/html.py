@@ -42,8 +42,21 @@ def _shown(value) -> bool:
     return value is not None and not (isinstance(value, (list, tuple, dict, str)) and len(value) == 0)
 
 
-def _option_value(value, quantity) -> tuple[str, str]:
-    """(value, unit) of one option as a user types it: the nomenclature's unit (kPa, kN/m³), not SI."""
+def option_value(value, quantity) -> tuple[str, str]:
+    """(value, unit) of one option as a user types it: the nomenclature's unit (kPa, kN/m³), not SI.
+
+    Parameters
+    ----------
+    value : object
+        The option's value (SI for a quantity).
+    quantity : capred.nomenclature.Quantity or None
+        Its glossary entry (its unit and factor), None for a value without one.
+
+    Returns
+    -------
+    tuple of str
+        ``(value as printed, unit)``; the unit "" for a value without one.
+    """
     if quantity is not None and isinstance(value, (int, float)) and not isinstance(value, bool):
         return fmt(value * quantity.factor, 6), _unit_text(quantity.unit)
     return _text(value), ""
@@ -94,7 +107,7 @@ def _options(result, doc: dict) -> list[tuple[str, str, str]]:
             used.update(name for name, _ in entry.requires)
     rows = []
     for name, value, quantity in _in_force(options, used):
-        text, unit = _option_value(value, quantity)
+        text, unit = option_value(value, quantity)
         rows.append((name, text, unit))
     return rows
 
@@ -482,7 +495,7 @@ provenance.json: a file edited since is never overwritten):</p>
 <ul class="files">{% for f in files %}<li><a href="{{ f }}">{{ f }}</a></li>{% endfor %}</ul>
 </body></html>
 """
-_SEASON_LEFT = ("input", "command", "status", "reason", "material", "headline", "best_model", "branch")
+_SEASON_LEFT = ("input", "command", "status", "reason", "material", "headline", "options", "best_model", "branch")
 #: printable width of season.html on A4 landscape (297 mm − 2 × 10 mm) [mm] and of one 7 pt character [mm]
 SEASON_WIDTH_MM = 277.0
 SEASON_CHAR_MM = 0.64 * 7 * 25.4 / 72

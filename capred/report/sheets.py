@@ -222,6 +222,121 @@ _TEMPLATES: dict = {}
 KEEP_TEMPLATES = 4
 
 
+#: text layouts and glyph bitmaps of capred's Agg renderers (``_cached_text``), by font, size, dpi and text or
+#: glyph: kept across the sheets of a run and the files of a batch, emptied at a fork and when this many are held
+#: (a 300-dpi glyph's bitmap is ~260 bytes, ~0.5 kB with its key: at most ~10 MB; a shear file's two sheets
+#: hold ~1,000)
+_LAYOUTS: dict = {}
+_GLYPHS: dict = {}
+KEEP_GLYPHS = 20_000
+#: the matplotlib versions whose Agg text drawing ``_cached_text`` repeats (tests/test_sheet_text_cache.py checks
+#: the pixels against matplotlib's own drawing); any other version draws its text itself
+CACHED_TEXT_VERSIONS = ("3.11.",)
+
+
+def _cached_text(renderer) -> None:
+    """Let an Agg renderer of capred's sheets lay out each text and render each glyph once (matplotlib 3.11).
+
+    matplotlib 3.11 draws a text glyph by glyph: it shapes the string (``FT2Font._layout``), then for every
+    glyph sets the font's size and a transform (two small numpy products) and renders the glyph's bitmap with
+    FreeType at its sub-pixel position. About half the time a 300-dpi sheet takes to draw is its ~90 texts
+    (55 of 105 ms, measured on the shear sample's sheet). Here a text's layout is kept by (font, size, dpi,
+    string, hinting, features, language), and a glyph's bitmap by (font, size, dpi, glyph, transform, the
+    sub-pixel part of its position, hinting, antialiasing): FreeType renders a glyph moved by whole pixels into
+    the same bitmap moved by whole pixels, so the kept bitmap is pasted where matplotlib would have rendered
+    it. The pixels are matplotlib's own (tests/test_sheet_text_cache.py); a tick label, axis label or legend
+    entry drawn again (the other material's sheet, the next file of a batch) costs one paste.
+    Applied to matplotlib 3.11 only (``CACHED_TEXT_VERSIONS``), where these private methods were checked.
+    """
+    import math
+
+    import matplotlib
+    import numpy as np
+
+    cls = type(renderer)
+    if not matplotlib.__version__.startswith(CACHED_TEXT_VERSIONS) or "draw_text" in vars(renderer):
+        return
+    try:
+        from matplotlib.backends.backend_agg import get_hinting_flag
+        from matplotlib.ft2font import FT2Font, RenderMode
+    except ImportError:  # pragma: no cover - another matplotlib
+        return
+    needed = ("_layout", "_render_glyph", "_set_transform")
+    if not all(hasattr(FT2Font, n) for n in needed) or not hasattr(cls, "_draw_text_glyphs_and_boxes"):
+        return  # pragma: no cover
+    own_glyphs = cls._draw_text_glyphs_and_boxes.__get__(renderer)
+
+    def draw_text(gc, x, y, s, prop, angle, ismath=False, mtext=None):  # RendererAgg.draw_text, layouts kept
+        if ismath:
+            return renderer.draw_mathtext(gc, x, y, s, prop, angle)
+        font = renderer._prepare_font(prop)
+        flags = get_hinting_flag()
+        features = mtext.get_fontfeatures() if mtext is not None else None
+        language = mtext.get_language() if mtext is not None else None
+        size = prop.get_size_in_points()
+        try:
+            key = (font, size, renderer.dpi, s, flags, _frozen(features), _frozen(language))
+            items = _LAYOUTS.get(key)
+        except TypeError:  # pragma: no cover - an unhashable feature list: no keeping
+            key, items = None, None
+        if items is None:
+            items = [
+                (item.ft_object, item.glyph_index, item.x, item.y)
+                for item in font._layout(s, flags=flags, features=features, language=language)
+            ]
+            if key is not None:
+                if len(_LAYOUTS) >= KEEP_GLYPHS:
+                    _LAYOUTS.clear()
+                _LAYOUTS[key] = items
+        glyphs(gc, x, y, angle, ((ft, size, index, 0, 1, dx, dy) for ft, index, dx, dy in items), [])
+
+    def glyphs(gc, x, y, angle, items, boxes):  # RendererAgg._draw_text_glyphs_and_boxes, bitmaps kept
+        if boxes:  # a mathtext with rules (fraction bars): matplotlib's own drawing
+            return own_glyphs(gc, x, y, angle, items, boxes)
+        cos = math.cos(math.radians(angle))
+        sin = math.sin(math.radians(angle))
+        flags = get_hinting_flag()
+        antialiased = gc.get_antialiased()
+        height = renderer.height
+        draw = renderer._renderer.draw_text_image
+        for font, size, index, slant, extend, dx, dy in items:  # dy is upwards
+            # matplotlib's transform (0x10000 R) @ [[extend, extend slant], [0, 1]], rounded as it rounds it
+            a, b, c, d = 0x10000 * cos, 0x10000 * -sin, 0x10000 * sin, 0x10000 * cos
+            matrix = (
+                round(a * extend),
+                round(a * (extend * slant) + b),
+                round(c * extend),
+                round(c * (extend * slant) + d),
+            )
+            px = round(0x40 * (x + dx * cos - dy * sin))
+            py = round(0x40 * (height - y + dx * sin + dy * cos))  # FreeType's y is upwards
+            key = (font, size, renderer.dpi, index, matrix, px & 63, py & 63, flags, antialiased)
+            kept = _GLYPHS.get(key)
+            if kept is None:
+                font.set_size(size, renderer.dpi)
+                font._set_transform(np.array(matrix, dtype=int).reshape(2, 2), [px & 63, py & 63])
+                bitmap = font._render_glyph(index, flags, RenderMode.NORMAL if antialiased else RenderMode.MONO)
+                buffer = np.array(bitmap.buffer, copy=True)
+                if not antialiased:
+                    buffer *= 0xFF
+                if len(_GLYPHS) >= KEEP_GLYPHS:
+                    _GLYPHS.clear()
+                kept = _GLYPHS[key] = (buffer, bitmap.left, bitmap.top)
+            buffer, left, top = kept
+            # draw_text_image's y is downwards and the bitmap's bottom side; whole pixels moved back in
+            draw(buffer, left + (px >> 6), int(height) - (top + (py >> 6)) + buffer.shape[0], 0, gc)
+
+    renderer.draw_text = draw_text
+    renderer._draw_text_glyphs_and_boxes = glyphs
+
+
+def _frozen(value):
+    """A list (of font features, of languages) as a tuple, so that it can be part of a key."""
+    if isinstance(value, list):
+        return tuple(_frozen(v) for v in value)
+    return value
+
+
 def _forget_fonts_after_fork() -> None:
     """In a forked child: drop the shared mathtext parser and every cached parse. A parse keeps the font
     objects its glyphs are drawn from, and font objects opened before the fork read their files through
@@ -232,6 +347,8 @@ def _forget_fonts_after_fork() -> None:
     _MATHTEXT.clear()
     _RENDERERS.clear()  # they hold the parent's parser
     _TEMPLATES.clear()  # their texts were measured with the parent's fonts
+    _LAYOUTS.clear()  # their glyphs' fonts are the parent's
+    _GLYPHS.clear()
     mathtext = sys.modules.get("matplotlib.mathtext")
     if mathtext is not None:
         mathtext.MathTextParser._parse_cached.cache_clear()
@@ -258,6 +375,7 @@ def _canvas(fig):
     if renderer is None:
         renderer = canvas.get_renderer()
         renderer._get_font_height_metrics = _font_heights(renderer.dpi)
+        _cached_text(renderer)
         if len(_RENDERERS) >= KEEP_RENDERERS:
             _RENDERERS.pop(next(iter(_RENDERERS)))
         _RENDERERS[key] = renderer
