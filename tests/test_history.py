@@ -248,9 +248,12 @@ def _record_many(args):
 def test_concurrent_writers_never_corrupt(tmp_path):
     """Four processes record 5 runs each at once into a new store: 20 runs, every record, integrity ok."""
     store = str(tmp_path / "lab.sqlite")
-    ctx = multiprocessing.get_context("fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn")
+    # fresh interpreters (spawn): a fork of the test process inherits whatever threads and locks earlier tests left
+    # (one full-suite run under load hung here with forked workers); a timeout turns any hang into a failure
+    ctx = multiprocessing.get_context("spawn")
     with ctx.Pool(4) as pool:
-        assert sorted(pool.map(_record_many, [(store, k) for k in range(4)])) == [0, 1, 2, 3]
+        done = pool.map_async(_record_many, [(store, k) for k in range(4)]).get(timeout=300)
+    assert sorted(done) == [0, 1, 2, 3]
     frame = capred.history(store, quantity="p_cap_kPa")
     assert sorted(frame["value"]) == sorted(-(k * 10 + j) for k in range(4) for j in range(5))
     con = sqlite3.connect(store)
