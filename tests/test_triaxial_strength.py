@@ -224,3 +224,15 @@ def test_models_without_what_they_need_are_skipped_with_the_reason(data):
         import capred
 
         capred.run_triaxial_strength(df, TriaxialStrengthOptions(models="bishop,no_suction", bootstrap=0))
+
+
+def test_scattered_suctions_are_drawn_in_a_few_classes():
+    # a lab's measured suctions are all different: the figure groups them in at most 6 ranges (one colour, line
+    # and legend entry each) and every test is in exactly one of them
+    from capred.report.triaxial_strength_figures import MAX_SUCTION_CLASSES, suction_classes
+
+    s = np.random.default_rng(0).uniform(10e3, 400e3, 86)
+    classes = suction_classes(s)
+    assert len(classes) == MAX_SUCTION_CLASSES
+    assert np.array_equal(np.sum([on for on, _, _ in classes], axis=0), np.ones(86))
+    assert [lab for _, _, lab in suction_classes(np.array([20e3, 20e3, 50e3]))] == ["s = 20 kPa", "s = 50 kPa"]

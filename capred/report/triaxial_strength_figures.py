@@ -14,8 +14,42 @@ from .style import OKABE_ITO, legend_outside
 KPA = 1e3
 
 
+#: at most this many suction classes are drawn (one colour, one envelope line and one legend entry each)
+MAX_SUCTION_CLASSES = 6
+
+
+def suction_classes(s) -> list[tuple[np.ndarray, float, str]]:
+    """The tests grouped by suction for drawing: one group per suction when there are at most
+    `MAX_SUCTION_CLASSES` of them (a lab's controlled suctions), else that many ranges of equal counts (a lab's
+    measured, scattered suctions), each drawn with the envelope at its median suction.
+
+    Parameters
+    ----------
+    s : numpy.ndarray
+        Suction of every test [Pa].
+
+    Returns
+    -------
+    list of (numpy.ndarray, float, str)
+        Per group: the tests in it (boolean mask), the suction its envelope line is drawn at [Pa], its label.
+    """
+    levels = np.unique(s)
+    if levels.size <= MAX_SUCTION_CLASSES:
+        return [(s == v, float(v), f"s = {v / KPA:g} kPa") for v in levels]
+    edges = np.quantile(s, np.linspace(0.0, 1.0, MAX_SUCTION_CLASSES + 1))
+    out = []
+    for k in range(MAX_SUCTION_CLASSES):
+        last = k == MAX_SUCTION_CLASSES - 1
+        on = (s >= edges[k]) & ((s <= edges[k + 1]) if last else (s < edges[k + 1]))
+        if on.any():
+            lo, hi = float(s[on].min()), float(s[on].max())
+            out.append((on, float(np.median(s[on])), f"s = {lo / KPA:.3g}-{hi / KPA:.3g} kPa"))
+    return out
+
+
 def plot_failure_states(ax, result, material: str):
-    """q_f against the net cell pressure, by suction, with the extended envelope at each suction and at s -> 0.
+    """q_f against the net cell pressure, by suction (`suction_classes`), with the extended envelope at each
+    suction class and at s -> 0.
 
     Parameters
     ----------
@@ -31,10 +65,9 @@ def plot_failure_states(ax, result, material: str):
     x, s, y = r.fit.x, r.fit.s, r.fit.y
     grid = np.linspace(0.0, float(np.max(x)) * 1.05, 60)
     colours = list(OKABE_ITO.values())[1:]
-    for k, level in enumerate(np.unique(s)):
-        on = s == level
+    for k, (on, level, label) in enumerate(suction_classes(s)):
         c = colours[k % len(colours)]
-        ax.plot(x[on] / KPA, y[on] / KPA, "o", color=c, label=f"s = {level / KPA:g} kPa")
+        ax.plot(x[on] / KPA, y[on] / KPA, "o", color=c, label=label)
         ax.plot(grid / KPA, r.fit.predict(grid, level) / KPA, "-", color=c, lw=0.8)
     lo, hi = r.fit.mean_band(grid, 0.0)
     ax.plot(grid / KPA, r.fit.predict(grid, 0.0) / KPA, "k--", lw=1.0, label="s → 0 (c', φ')")
