@@ -128,6 +128,8 @@ def test_sample_writes_table_figure_and_json_that_feed_pt_volume_and_skempton(tm
     sk = runner.invoke(app, ["skempton-b", "--S-R", "0.9", "--compression", str(out / "compression.json"), "--json"])
     assert sk.exit_code == 0, sk.output
     B = json.loads(sk.output)["B"]
+    # an oedometer's kappa is in e - ln sigma'_v, eq. 10 takes it in p': said, not hidden
+    assert any("oedometer test" in w and "K0" in w for w in json.loads(sk.output)["warnings"])
     by_hand = 1 / (1 + 70e3 * fit.e0 * 0.1 / (fit.url_slope * 130e3))  # eq. 10, p'0 = 100 - 30 kPa, P_a0 130 kPa
     assert B == pytest.approx(by_hand, rel=1e-12)
     clash = runner.invoke(

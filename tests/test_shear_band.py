@@ -64,3 +64,16 @@ def test_cli_from_a_triaxial_envelope(tmp_path):
     assert row["arthur_deg"] == pytest.approx(45 + (phi + psi) / 4, rel=1e-12)
     both = runner.invoke(app, ["shear-band", "--phi-eff", "30", "--triaxial", str(out / "summary.json")])
     assert both.exit_code == 1 and "not both" in both.output
+
+
+def test_phi_from_a_capred_triaxial_summary(tmp_path):
+    # the envelope of `capred triaxial` (one material) gives phi'; several materials are named with their phi'
+    one = tmp_path / "one.json"
+    one.write_text(json.dumps({"command": "triaxial", "materials": {"clay": {"envelope": {"phi_deg": 30.0}}}}))
+    res = reduce_shear_band(None, ShearBandOptions(triaxial=str(one), dilatancy_angle=10.0))
+    assert float(res.cases.coulomb[0]) == 60.0 and float(res.cases.arthur[0]) == 55.0
+    two = tmp_path / "two.json"
+    mats = {"clay": {"envelope": {"phi_deg": 30.0}}, "sand": {"envelope": {"phi_deg": 36.0}}}
+    two.write_text(json.dumps({"command": "triaxial", "materials": mats}))
+    out = runner.invoke(app, ["shear-band", "--triaxial", str(two)])
+    assert out.exit_code == 1 and "'clay' 30 deg, 'sand' 36 deg" in out.output and "Traceback" not in out.output

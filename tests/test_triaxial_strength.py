@@ -236,3 +236,19 @@ def test_scattered_suctions_are_drawn_in_a_few_classes():
     assert len(classes) == MAX_SUCTION_CLASSES
     assert np.array_equal(np.sum([on for on, _, _ in classes], axis=0), np.ones(86))
     assert [lab for _, _, lab in suction_classes(np.array([20e3, 20e3, 50e3]))] == ["s = 20 kPa", "s = 50 kPa"]
+
+
+def test_saturated_tests_carry_no_capillary_flags_and_are_counted_in_the_envelope_text(tmp_path):
+    # tests without suction in the file: no chi or capillary-pressure flag on them (they have no capillary stress),
+    # and the envelope's name counts them as saturated tests instead of "no saturated test needed"
+    p = _csv(tmp_path / "states.csv")
+    text = p.read_text().splitlines()
+    text += [
+        f"S{k},clay A,{s3},{q},0,0.2264,2.65,0.6" for k, (s3, q) in enumerate([(50, 170.0), (150, 460.0), (300, 900.0)])
+    ]
+    p.write_text("\n".join(text) + "\n")
+    res = run_triaxial_strength(p, TriaxialStrengthOptions(bootstrap=0))
+    js = res.to_json()
+    assert "10 unsaturated and 3 saturated tests" in js["materials"]["clay A"]["envelope"]["source"]
+    saturated = [t for t in js["tests"] if t["test_id"].startswith("S")]
+    assert len(saturated) == 3 and all(t["flags"] == "" for t in saturated)

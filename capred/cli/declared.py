@@ -772,7 +772,7 @@ SNAPSHOT = {
                 "quantity": None,
                 "unit": "",
                 "range": "",
-                "text": "summary.json of `capred triaxial-bounds`: φ' of its fitted envelope.",
+                "text": "summary.json of `capred triaxial-bounds` or of `capred triaxial` (one material): φ' of its envelope.",
                 "default": None,
                 "type": "str",
                 "option": "--triaxial",

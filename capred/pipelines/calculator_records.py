@@ -353,7 +353,7 @@ class ShearBandCases(Cases):
         Measured angle of the band [deg] (NaN where none).
     coulomb, roscoe, arthur : ndarray
         45 + φ'/2, 45 + ψ/2 and 45 + (φ' + ψ)/4 [deg] (Roscoe and Arthur need ψ).
-    coulomb_minus_measured, arthur_minus_measured : ndarray or None
+    coulomb_minus_measured, roscoe_minus_measured, arthur_minus_measured : ndarray or None
         Differences to the measured angle [deg].
 
     References
@@ -369,6 +369,7 @@ class ShearBandCases(Cases):
     roscoe: np.ndarray = case_value("shear_band_angle", output=True)
     arthur: np.ndarray = case_value("shear_band_angle", output=True)
     coulomb_minus_measured: np.ndarray = case_value("shear_band_angle", output=True)
+    roscoe_minus_measured: np.ndarray = case_value("shear_band_angle", output=True)
     arthur_minus_measured: np.ndarray = case_value("shear_band_angle", output=True)
 
     def console_columns(self) -> dict[str, np.ndarray]:

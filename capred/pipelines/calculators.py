@@ -563,13 +563,14 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     """
     fit_notes, fit_warnings = [], []
     if opt.compression is not None:
-        opt, fit_notes = _with_compression(opt)
+        opt, fit_notes, fit_warnings = _with_compression(opt)
     if opt.retention is not None:  # any retention fit: Brooks-Corey as it is, another model converted to it
         from .retention_convert import brooks_corey_for_skempton
 
         if opt.s_e is not None or opt.bc_lambda is not None:
             raise OptionError("give --retention or --se with --bc-lambda, not both")
-        s_e, lam, fit_notes, fit_warnings = brooks_corey_for_skempton(opt.retention)
+        s_e, lam, more_notes, more_warnings = brooks_corey_for_skempton(opt.retention)
+        fit_notes, fit_warnings = fit_notes + more_notes, fit_warnings + more_warnings
         opt = dataclasses.replace(opt, s_e=s_e, bc_lambda=lam)
     kw = dict(kappa=opt.kappa_elastic, e0=opt.e0, p0=opt.p0, u0=opt.u0, pa0=opt.pa0)  # keys: the figure's
     if opt.curve:
@@ -627,8 +628,9 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     return res
 
 
-def _with_compression(opt: SkemptonOptions) -> tuple[SkemptonOptions, list[str]]:
-    """κ and e0 (and λ0 with bounding-surface) from a compression.json; an error when the options give them too."""
+def _with_compression(opt: SkemptonOptions) -> tuple[SkemptonOptions, list[str], list[str]]:
+    """κ and e0 (and λ0 with bounding-surface) from a compression.json, with its notes and warnings; an error when
+    the options give them too."""
     from .compression import load_compression_fit
 
     fields = {f.name: f.default for f in dataclasses.fields(SkemptonOptions)}
@@ -647,7 +649,16 @@ def _with_compression(opt: SkemptonOptions) -> tuple[SkemptonOptions, list[str]]
     if opt.model == "bounding-surface":
         new["lambda0"] = lines.ncl_slope
         text += f" and λ0 = {lines.ncl_slope:.4g}"
-    return dataclasses.replace(opt, **new), [f"{text} from the compression test {lines.source}"]
+    warnings = []
+    if lines.test == "oedometer":
+        # Morvan et al.'s eq. 10 takes kappa in e - ln p'; an oedometer's lines are in e - ln sigma'_v, parallel to
+        # those in p' only while K0 stays constant, which it does not on unloading (K0 grows as sigma'_v falls)
+        warnings.append(
+            f"--compression {lines.source} is an oedometer test: its κ is the slope in e - ln σ'_v, and Morvan et "
+            "al.'s eq. 10 takes it in e - ln p'; the two agree only while K0 is constant (not on unloading, where "
+            "K0 grows); an isotropic test (capred compression --test isotropic) gives κ in p' directly"
+        )
+    return dataclasses.replace(opt, **new), [f"{text} from the compression test {lines.source}"], warnings
 
 
 #: degrees of saturation of `skempton-b --curve` (the range of Morvan et al.'s 2016 figures)
@@ -1144,7 +1155,7 @@ class ShearBandOptions(Options):
     measured : float, optional
         Measured angle of the band to the major principal plane [deg].
     triaxial : str, optional
-        summary.json of `capred triaxial-bounds`: φ' of its fitted envelope.
+        summary.json of `capred triaxial-bounds` or of `capred triaxial` (one material): φ' of its envelope.
     """
 
     QUANTITIES = {"phi_eff": "phi_eff", "dilatancy_angle": "dilatancy_angle", "measured": "shear_band_angle"}
@@ -1164,16 +1175,30 @@ class ShearBandOptions(Options):
 
 
 def _phi_from_triaxial(path) -> float:
+    """φ' [deg] of the envelope in a summary.json of `capred triaxial-bounds` or of `capred triaxial` (one
+    material; several are named with their φ', for --phi-eff)."""
     import json
     from pathlib import Path
 
     where = str(path)
     try:
         doc = json.loads(Path(path).read_text(encoding="utf-8"))
+        if isinstance(doc, dict) and doc.get("command") == "triaxial" and isinstance(doc.get("materials"), dict):
+            phis = {m: float(v["envelope"]["phi_deg"]) for m, v in doc["materials"].items()}
+            if len(phis) != 1:
+                listed = ", ".join(f"'{m}' {phi:.4g} deg" for m, phi in phis.items())
+                raise InputError(
+                    Problem(
+                        where, None, None, f"holds {len(phis)} materials ({listed}): give --phi-eff with the one meant"
+                    )
+                )
+            return next(iter(phis.values()))
         phi = float(doc["envelope"]["phi_deg"])
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise InputError(
-            Problem(where, None, None, f"not a summary.json of capred triaxial-bounds with an envelope ({exc})")
+            Problem(
+                where, None, None, f"not a summary.json of capred triaxial-bounds or triaxial with an envelope ({exc})"
+            )
         ) from None
     return phi
 
@@ -1236,6 +1261,7 @@ def reduce_shear_band(source, opt: ShearBandOptions) -> CalcResult:
         roscoe=roscoe,
         arthur=arthur,
         coulomb_minus_measured=coulomb - measured if has_m else None,
+        roscoe_minus_measured=roscoe - measured if has_m else None,
         arthur_minus_measured=arthur - measured if has_m else None,
     )
     return _finish(

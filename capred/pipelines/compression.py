@@ -539,6 +539,8 @@ class CompressionLines:
         Initial void ratio of the specimen [-].
     source : str
         The file it was read from.
+    test : str
+        ``oedometer`` (lines in e - ln σ'_v) or ``isotropic`` (in e - ln p').
     """
 
     ncl_slope: float
@@ -547,6 +549,7 @@ class CompressionLines:
     reference_stress: float
     e0: float
     source: str
+    test: str = "oedometer"
 
     def e_ncl_at(self, stress: float) -> float:
         """e on the normal compression line at another reference stress [Pa]: e_ncl − λ ln(σ/σ_ref)."""
@@ -591,7 +594,8 @@ def load_compression_fit(fit) -> CompressionLines:
             Problem(where, None, None, "its 'lines' lack lambda, e_ncl, reference_stress_kPa or e0")
         ) from None
     kappa = lines.get("kappa")
-    return CompressionLines(lam, None if kappa is None else float(kappa), e_ncl, ref, e0, where)
+    test = doc.get("test") if doc.get("test") in TESTS else "oedometer"
+    return CompressionLines(lam, None if kappa is None else float(kappa), e_ncl, ref, e0, where, test)
 
 
 __all__ = [

@@ -130,6 +130,8 @@ EXPORT_COLUMNS = (
     "Specimen Air Volume",
     "Specimen Water Volume",
     "kRT constant",
+    "Permeability IN",
+    "Permeability OUT",
 )
 SCHEMA += [
     Column("stage", "text", None, "stage number of the export", ("stage_number", "stage_no", "stage_nr")),

@@ -353,9 +353,15 @@ def _material(m, rows, tests, opt, models, all_asked) -> MaterialStrength:
         a, b, line_cov = fit.zero_suction_line()
         c_eff, phi_eff, _ = fit.envelope
         env_cov = fit.derived_covariance()[:2, :2]
+        n_sat = int(np.sum(s == 0))
+        tests_text = (
+            f"{fit.n - n_sat} unsaturated tests, no saturated test needed"
+            if n_sat == 0
+            else f"{fit.n - n_sat} unsaturated and {n_sat} saturated tests"
+        )
         source = (
-            "extended Mohr-Coulomb envelope at s -> 0 (Fredlund et al. 1978) fitted to the unsaturated failure "
-            f"states ({fit.n} tests, no saturated test needed)"
+            "extended Mohr-Coulomb envelope at s -> 0 (Fredlund et al. 1978) fitted to the failure states "
+            f"({tests_text})"
         )
     d = _inputs(tests, rows, a, b, opt, m)
     skipped, scored = {}, []

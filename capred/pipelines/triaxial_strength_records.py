@@ -159,10 +159,13 @@ class TriaxialStrengthResult(Result):
         return out
 
     def flags(self, material: str, j: int) -> list[str]:
-        """The flags of the j-th test of ``material``: beyond the pendular regime, χ_back outside [0, 1]."""
+        """The flags of the j-th test of ``material``: beyond the pendular regime, χ_back outside [0, 1], a positive
+        capillary pressure; none for a test without suction (a saturated test has no capillary stress to flag)."""
         r = self.materials[material]
         i = r.rows[j]
         out = []
+        if not r.fit.s[j] > 0:
+            return out
         S = self.tests["S_R"][i]
         if np.isfinite(S) and S > 3 / (2 * np.pi):  # Own 1's chi1 = (2 pi S_R/3)^(2/3) exceeds 1 (SPEC 2)
             out.append("chi1_above_1")

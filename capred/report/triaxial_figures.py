@@ -58,7 +58,8 @@ def plot_qp_plane(ax, result):
             label=r"effective envelope, extension ($M = 6\sin\phi'/(3 + \sin\phi')$)",
         )
     ax.plot(t.p[sat & ~ext], t.q[sat & ~ext], "ks", mfc="white", label=r"saturated failure ($p'$, $q$)")
-    ax.plot(t.p[uns & ~ext], t.q[uns & ~ext], "k*", ms=9, label=r"unsaturated failure ($p$, $q$), total")
+    if (uns & ~ext).any():  # a legend entry only for what is drawn
+        ax.plot(t.p[uns & ~ext], t.q[uns & ~ext], "k*", ms=9, label=r"unsaturated failure ($p$, $q$), total")
     if ext.any():
         ax.plot(
             t.p[sat & ext],
@@ -136,6 +137,12 @@ def plot_capillary_ranges(ax, result):
 
     t = result.states
     idx = np.flatnonzero(result.unsaturated)
+    ax.set_ylabel(LABEL["cap_component"])
+    ax.set_title("Capillary stresses per test (Fig. 18)")
+    if not idx.size:  # an all-saturated run has no capillary stress to show
+        ax.text(0.5, 0.5, "no unsaturated test", ha="center", va="center", transform=ax.transAxes)
+        ax.set_xticks([])
+        return ax
     comps = (
         ("sigma1_cap", r"$\sigma_{1,cap}$", ""),
         ("sigma3_cap", r"$\sigma_{3,cap}$", "///"),
@@ -161,8 +168,6 @@ def plot_capillary_ranges(ax, result):
     handles = [Patch(color=st["color"], label=st["label"]) for st in BOUND_STYLE.values()]
     handles += [Patch(facecolor="0.75", hatch=h, edgecolor="white", label=lab) for _, lab, h in comps]
     ax.legend(handles=handles)
-    ax.set_ylabel(LABEL["cap_component"])
-    ax.set_title("Capillary stresses per test (Fig. 18)")
     return ax
 
 
@@ -200,8 +205,12 @@ def plot_mohr_circles(ax, result):
         lw=1.0,
         label=r"$\tau = c' + \sigma' \tan\phi'$",
     )
-    for st in MOHR.values():
-        ax.plot([], [], color=st["color"], ls=st["ls"], label=st["label"])
+    drawn = {"saturated"} if (~np.asarray(result.unsaturated, bool)).any() else set()
+    if np.any(result.unsaturated):
+        drawn |= {"total", "effective"}
+    for key, st in MOHR.items():
+        if key in drawn:  # a legend entry only for circles drawn
+            ax.plot([], [], color=st["color"], ls=st["ls"], label=st["label"])
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(LABEL["sigma"])
     ax.set_ylabel(LABEL["tau"])
