@@ -252,3 +252,13 @@ def test_saturated_tests_carry_no_capillary_flags_and_are_counted_in_the_envelop
     assert "10 unsaturated and 3 saturated tests" in js["materials"]["clay A"]["envelope"]["source"]
     saturated = [t for t in js["tests"] if t["test_id"].startswith("S")]
     assert len(saturated) == 3 and all(t["flags"] == "" for t in saturated)
+
+
+def test_a_model_identical_to_another_on_these_tests_is_ranked_once(data):
+    # without saturated tests, Pedrotti-Tarantino's wet-area reading predicts Bishop's q_f on every test: one
+    # hypothesis, one share of the Akaike weights (it took half of Bishop's before), named as such
+    res = run_triaxial_strength(data, TriaxialStrengthOptions(models="bishop,pedrotti_tarantino_wet_area", bootstrap=0))
+    for r in res.materials.values():
+        assert r.models == ("bishop",)
+        assert "ranked once, as 'bishop'" in r.skipped["pedrotti_tarantino_wet_area"]
+        assert r.information["bishop"]["weight"] == pytest.approx(1.0)

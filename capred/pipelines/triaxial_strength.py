@@ -400,9 +400,21 @@ def _material(m, rows, tests, opt, models, all_asked) -> MaterialStrength:
     d = dataclasses.replace(d, fitted={mod: {m: law.values} for mod, law in laws.items()})
     wet = d.wet
     predictions, metrics, info_in = {}, {}, {}
-    for mod in scored:
+    for mod in list(scored):
         with np.errstate(all="ignore"):
-            predictions[mod] = esm.predict(mod, d)[1]
+            pred = esm.predict(mod, d)[1]
+        # two models that predict the same q_f on every test (Pedrotti-Tarantino's wet-area reading is Bishop's
+        # chi = S_r when no saturated test gives a water envelope of its own) are one hypothesis on these data:
+        # ranked once, so that it does not take two shares of the Akaike weights
+        same = next(
+            (o for o, p in predictions.items() if np.allclose(pred, p, rtol=1e-12, atol=0.0, equal_nan=True)), None
+        )
+        if same is not None:
+            scored.remove(mod)
+            skipped[mod] = f"predicts what '{same}' predicts on every test of this material: ranked once, as '{same}'"
+            continue
+        predictions[mod] = pred
+    for mod in scored:
         metrics[mod] = model_metrics(predictions[mod][wet], y[wet])
         e = esm.REGISTRY[mod]
         k = len(e.fitted) + e.wet_parameters
