@@ -29,3 +29,20 @@ def test_a_row_of_too_many_fields_above_a_note_names_the_file(tmp_path):
     path = tmp_path / "wide_row.csv"
     path.write_text(HEADER + "a,dry,1,1.0\nb,dry,2,1.7,extra\nc,dry,3,2.4\nRemarks: a note\n", encoding="utf-8")
     assert _problems(path) == [(str(path), 3, "5 fields but the header has 4")]
+
+
+def test_a_missing_column_names_the_headers_not_read(tmp_path):
+    # 'Net cell pressure' and 'Deviator at failure' are no spelling capred knows: the message says which headers
+    # of the file were left unread, so that the user sees what to rename; a second bracketed part is named as such
+    from capred.errors import InputError
+    from capred.pipelines.triaxial_strength import run_triaxial_strength
+
+    p = tmp_path / "t.csv"
+    p.write_text("test_id,material,Net cell pressure [kPa],Deviator at failure [kPa],suction [kPa]\nA1,c,50,150,100\n")
+    with pytest.raises(InputError) as info:
+        run_triaxial_strength(p)
+    text = str(info.value)
+    assert "missing column 'sigma3'" in text and "'Net cell pressure [kPa]', 'Deviator at failure [kPa]'" in text
+    p.write_text("test_id,material,Cell pressure (net) [kPa],q_f [kPa],suction [kPa]\nA1,c,50,150,100\n")
+    with pytest.raises(InputError, match="holds text in brackets besides its unit"):
+        run_triaxial_strength(p)

@@ -219,6 +219,9 @@ class Table:
         if near:
             original = next(h for h in self.unmatched if header_key(h) == near[0])
             hint = f"; did you mean '{original}'?"
+        elif self.unmatched:  # name the headers that were not read, so the user sees what to rename
+            shown = ", ".join(f"'{h}'" for h in self.unmatched[:8]) + (" ..." if len(self.unmatched) > 8 else "")
+            hint = f"; columns of the file not read: {shown} (the command's --help lists the accepted spellings)"
         self.problems.append(
             Problem(self.path, self.header_line, None, f"missing column '{name}'{why}{hint}", self.sheet)
         )
@@ -1090,13 +1093,19 @@ def _thousands(table: Table, name: str, cells: list[str], decimal_comma: bool, t
 
 
 def _bad_unit_header(header: str, lookup) -> str | None:
-    """Why a header that names a known column cannot be read (its brackets do not match), else None."""
+    """Why a header that names a known column cannot be read (its brackets do not match, or it holds bracketed text
+    besides its unit), else None."""
     if not any(ch in header for ch in "[]()"):
         return None
     name = re.split(r"[\[\]()]", header, maxsplit=1)[0]
     if lookup.get(header_key(name)) is None:
         return None
-    return f"cannot read the unit of '{header.strip()}': its brackets do not match (write e.g. 'name [kPa]')"
+    balanced = header.count("[") == header.count("]") and header.count("(") == header.count(")")
+    why = "it holds text in brackets besides its unit" if balanced else "its brackets do not match"
+    return (
+        f"cannot read the unit of '{header.strip()}': {why} (a header is a name and one unit in brackets at its "
+        f"end: write e.g. '{name.strip()} [kPa]')"
+    )
 
 
 def _check_magnitude(table: Table, col: Column) -> None:
