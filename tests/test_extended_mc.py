@@ -146,3 +146,11 @@ def test_interval_coverage_by_simulation(errors, noise):
     params, new = _coverage(errors, noise, 1000)
     assert np.all(params >= 0.93), params
     assert np.all(new >= 0.93), new
+
+
+def test_fit_displays_its_report_in_a_notebook():
+    x, s = np.array([50e3, 100e3, 200e3, 300e3, 100e3]), np.array([0.0, 100e3, 50e3, 200e3, 300e3])
+    y = 20e3 + 2.0 * x + 0.5 * s + np.array([1e3, -2e3, 1.5e3, -0.5e3, 0.7e3])
+    fit = fit_extended_mc(x, s, y)
+    page = fit._repr_html_()
+    assert page.startswith("<pre>") and "c_eff_kPa" in page and "phi_b_deg" in page and "&#x27;" in page

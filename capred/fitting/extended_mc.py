@@ -367,6 +367,12 @@ class ExtendedMCFit:
             f"φ_b = {math.degrees(math.atan(tb)):.4g} deg, n = {self.n}>"
         )
 
+    def _repr_html_(self) -> str:
+        """The plain-text report (`summary`) in a notebook, escaped."""
+        import html
+
+        return f"<pre>{html.escape(self.summary())}</pre>"
+
 
 def fit_extended_mc(
     x, s, y, form: str = "compression", errors: str = "constant", confidence: float = 0.95
