@@ -356,8 +356,8 @@ MAX_JSON_BYTES = 16 * 2**20
 
 
 def read_fit_json(path, max_bytes: int = MAX_JSON_BYTES) -> dict:
-    """A fits.json read safely: a regular file, at most ``max_bytes``, parsed by orjson (nesting deeper than 1024
-    levels is refused, NaN and Infinity are not JSON).
+    """A fits.json read safely: a regular file, at most ``max_bytes``, parsed by orjson (NaN and Infinity are not
+    JSON), nested at most `capred.io.json_input.MAX_JSON_DEPTH` levels deep.
 
     Parameters
     ----------
@@ -406,6 +406,14 @@ def read_fit_json(path, max_bytes: int = MAX_JSON_BYTES) -> dict:
         raise OptionError(f"{path}: cannot be read ({exc.strerror or exc})") from None
     except orjson.JSONDecodeError as exc:
         raise OptionError(f"{path}: not a fits.json written by capred retention (not valid JSON: {exc})") from None
+    from ..io.json_input import MAX_JSON_DEPTH, json_depth
+
+    # capred's own depth rule, whatever the orjson version (older ones parse any depth)
+    if json_depth(doc) > MAX_JSON_DEPTH:
+        raise OptionError(
+            f"{path}: not a fits.json written by capred retention (not valid JSON for capred: nested deeper than "
+            f"{MAX_JSON_DEPTH} levels)"
+        )
     if not isinstance(doc, dict):
         raise OptionError(f"{path}: not a fits.json written by capred retention (not a JSON object)")
     return doc
