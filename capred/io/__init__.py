@@ -8,7 +8,8 @@ Other layers (pipelines, report, batch, cli) import what they need from here, e.
 - `capred.io.grid`: `TableSource`, `ReadLimits`, `read_grid`, `source_path`, `SPREADSHEET_SUFFIXES`;
 - `capred.io.blocks`: `read_table_blocks` (a long CSV a block at a time);
 - `capred.io.manifest`: `read_manifest`;
-- `capred.io.json_input`: `read_json` (a JSON input bounded in size and nesting);
+- `capred.io.json_input`: `read_json` (a JSON input bounded in size and nesting), `json_depth` and
+  `MAX_JSON_DEPTH` (the nesting rule, for a reader of its own such as retention-convert's);
 - `capred.io.writers`: the output files (`write_run`, `write_batch_file`, `RunFolder`, `check_target`,
   `encode_csv`, `encode_json`, `encode_rows`, `stream_json`, `safe_name`, `INDEX_HEADER`,
   `second_core_free`, `FileText` and `write_piece`: text written ahead, copied file to file);
@@ -26,7 +27,7 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:  # what the names are, for readers and type checkers; at run time see __getattr__
     from .blocks import read_table_blocks
     from .grid import SPREADSHEET_SUFFIXES, ReadLimits, TableSource, read_grid, source_path
-    from .json_input import read_json
+    from .json_input import MAX_JSON_DEPTH, json_depth, read_json
     from .manifest import read_manifest
     from .spreadsheet_out import source_date_epoch
     from .table import Column, Table, column_lookup, find_header, header_key, match_header, read_table
@@ -52,7 +53,7 @@ _WHERE = {
     "read_table_blocks": "blocks",
     **dict.fromkeys(("SPREADSHEET_SUFFIXES", "ReadLimits", "TableSource", "read_grid", "source_path"), "grid"),
     "read_manifest": "manifest",
-    "read_json": "json_input",
+    **dict.fromkeys(("read_json", "json_depth", "MAX_JSON_DEPTH"), "json_input"),
     "source_date_epoch": "spreadsheet_out",
     **dict.fromkeys(
         ("Column", "Table", "column_lookup", "find_header", "header_key", "match_header", "read_table"), "table"
@@ -97,6 +98,8 @@ __all__ = [
     "match_header",
     "read_grid",
     "read_json",
+    "json_depth",
+    "MAX_JSON_DEPTH",
     "read_manifest",
     "read_table",
     "read_table_blocks",

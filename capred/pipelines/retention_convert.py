@@ -406,7 +406,7 @@ def read_fit_json(path, max_bytes: int = MAX_JSON_BYTES) -> dict:
         raise OptionError(f"{path}: cannot be read ({exc.strerror or exc})") from None
     except orjson.JSONDecodeError as exc:
         raise OptionError(f"{path}: not a fits.json written by capred retention (not valid JSON: {exc})") from None
-    from ..io.json_input import MAX_JSON_DEPTH, json_depth
+    from ..io import MAX_JSON_DEPTH, json_depth
 
     # capred's own depth rule, whatever the orjson version (older ones parse any depth)
     if json_depth(doc) > MAX_JSON_DEPTH:
