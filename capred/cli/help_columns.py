@@ -44,7 +44,7 @@ COLUMNS = {'bridge compare': {'digest': 'cc2ff84f6719276c43cb21c0955ab5908ac7e66
                               ['V_w [mm^3]', 'water volume V_w; also: volume, V, Vw'],
                               ['F_cap [mN]', 'measured force F_cap; also: F, force, F_measured'],
                               ['filling_angle [deg]', 'measured filling angle; also: beta, half_filling_angle']]},
- 'bridge laws': {'digest': 'bd10b14c000d2cbc21452283d9786031f3b7f14f',
+ 'bridge laws': {'digest': '978a406a5a0fa8a7bc6908a761c05a5bf6ea9950',
                  'files': ['errors.py',
                            'io/__init__.py',
                            'io/grid.py',

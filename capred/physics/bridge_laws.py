@@ -284,6 +284,22 @@ def rabinovich(contact_angle_rad, V, D, ratio=1.0):
     return Rs * (np.cos(theta) * (1.0 - 1.0 / q) + np.sin(alpha) * np.sin(theta + alpha))
 
 
+#: (b1, b2, c1) of the regression shared by Soulié et al. (2006) and Mikami et al. (1998), see
+#: `_exponential_regression`, as YADE cites Soulié et al. and as Mikami et al. print them
+SOULIE_COEFFICIENTS = (-0.148, -0.0082, 0.0018)
+MIKAMI_COEFFICIENTS = (-0.34, -0.019, 0.0042)
+
+
+def _exponential_regression(theta, Vp, h, coefficients):
+    """exp(A h + B) + C with A = -1.1 V+^-0.53, B = (b1 ln V+ - 0.96) theta^2 + b2 ln V+ + 0.48, C = c1 ln V+ + 0.078:
+    the form Mikami et al. (1998) fitted and Soulié et al. (2006) refitted (V+ volume and h gap over the radius)."""
+    b1, b2, c1 = coefficients
+    L = np.log(Vp)
+    A = -1.1 * Vp**-0.53
+    B = (b1 * L - 0.96) * theta * theta + b2 * L + 0.48
+    return np.exp(A * h + B) + (c1 * L + 0.078)
+
+
 def soulie(contact_angle_rad, V, D, ratio=1.0):
     r"""Soulié et al. (2006): the regression of the exact force between two spheres of radii R1 and R2.
 
@@ -322,12 +338,7 @@ def soulie(contact_angle_rad, V, D, ratio=1.0):
     theta, V, D, rho = _args(contact_angle_rad, V, D, ratio)
     with np.errstate(invalid="ignore", divide="ignore"):
         big = np.where(np.isinf(rho), np.nan, np.maximum(rho, 1.0))  # the larger radius / R1
-        Vp = V / big**3
-        L = np.log(Vp)
-        a = -1.1 * Vp**-0.53
-        b = (-0.148 * L - 0.96) * theta * theta - 0.0082 * L + 0.48
-        c = 0.0018 * L + 0.078
-        return 0.5 * np.sqrt(rho) * (c + np.exp(a * D / big + b))
+        return 0.5 * np.sqrt(rho) * _exponential_regression(theta, V / big**3, D / big, SOULIE_COEFFICIENTS)
 
 
 def mikami(contact_angle_rad, V, D, ratio=1.0):
@@ -372,12 +383,7 @@ def mikami(contact_angle_rad, V, D, ratio=1.0):
     theta, V, D, rho = _args(contact_angle_rad, V, D, ratio)
     Rs = effective_radius(rho)
     with np.errstate(invalid="ignore", divide="ignore"):
-        Vp = V / Rs**3
-        L = np.log(Vp)
-        A = -1.1 * Vp**-0.53
-        B = (-0.34 * L - 0.96) * theta * theta - 0.019 * L + 0.48
-        C = 0.0042 * L + 0.078
-        F = 0.5 * Rs * (np.exp(A * D / Rs + B) + C)
+        F = 0.5 * Rs * _exponential_regression(theta, V / Rs**3, D / Rs, MIKAMI_COEFFICIENTS)
     return np.where(np.isinf(rho), np.nan, F)
 
 
