@@ -810,9 +810,7 @@ def _bounding_b(S, k, e, p, u, pa, s_e, bc_lambda, bounding) -> float:
     """B at S_r (or, with S None, the whole path) by the two loops of Morvan et al. (2016) section 4."""
     from ..physics import skempton_elastoplastic as sep
 
-    comp = sep.BoundingSurfaceCompliance(k, bounding["lambda0"], bounding["a_ini"], bounding["interpolation_h"])
     kw = dict(
-        compliance=comp,
         kappa_elastic=k,
         p0=p,
         u0=u,
@@ -822,9 +820,15 @@ def _bounding_b(S, k, e, p, u, pa, s_e, bc_lambda, bounding) -> float:
         bc_lambda=bc_lambda,
         air_pressure=bounding["air_pressure"],
     )
-    if S is None:
-        return sep.skempton_b_incremental_path(0.01, **kw)
-    return sep.skempton_b_incremental(S, **kw)
+    try:  # the physics refuses a value (S_r outside (0, 1], ...) with a ValueError: the user's message
+        kw["compliance"] = sep.BoundingSurfaceCompliance(
+            k, bounding["lambda0"], bounding["a_ini"], bounding["interpolation_h"]
+        )
+        if S is None:
+            return sep.skempton_b_incremental_path(0.01, **kw)
+        return sep.skempton_b_incremental(S, **kw)
+    except ValueError as exc:
+        raise OptionError(str(exc)) from None
 
 
 def _saturation_from_b(v: dict, cases: list, p_eff, s_e, bc_lambda, bounding, notes: list[str]):
