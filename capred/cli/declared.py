@@ -91,7 +91,7 @@ SNAPSHOT = {
                 "unit": "",
                 "range": "",
                 "text": "",
-                "default": "[default: no_suction,bishop,own1,own2]",
+                "default": "[default: thesis]",
                 "type": "tuple",
                 "option": "--models",
             },
