@@ -190,6 +190,15 @@ class StrOptions(Constraint):
         return isinstance(value, str) and value in self.options
 
 
+class Flag(Constraint):
+    """True or False (a Python bool: not 0, 1 or a word)."""
+
+    text = "be True or False"
+
+    def accepts(self, value) -> bool:
+        return isinstance(value, bool)
+
+
 # --- the Options base ------------------------------------------------------------------------------------------
 
 
@@ -355,4 +364,4 @@ def _plain(v):
     return v
 
 
-__all__ = ["Constraint", "Interval", "Options", "Probability", "StrOptions", "Whole", "as_given"]
+__all__ = ["Constraint", "Flag", "Interval", "Options", "Probability", "StrOptions", "Whole", "as_given"]
