@@ -3,10 +3,12 @@
 This layer says *what* capred's commands are, never how they compute: each command's input schema
 (:class:`capred.spec.columns.Column` lists, ``capred.spec.<command>.SCHEMA``), its Options dataclass (each
 dimensional field a glossary quantity, each simple value check a declarative constraint of
-:mod:`capred.spec.options`) and the constants those declarations need as defaults. The command line and its
-``--help`` are built from these classes at run time (capred.cli.declare, capred.cli.help): nothing about an
-option or a column is generated into the package or cached on disk, and a model or option declared at run time
-shows at once.
+:mod:`capred.spec.options`), the constants those declarations need as defaults, and every registry's metadata
+(effective-stress models, retention models, bridge laws, chi laws: names, labels, references, required options)
+with its numerical callables named as ``"module:function"`` (:mod:`capred.spec.callables` resolves them on first
+use). The command line and its ``--help`` are built from these declarations at run time (capred.cli.declare,
+capred.cli.help): nothing about an option or a column is generated into the package or cached on disk, and a
+model or option declared at run time shows at once.
 
 The rule of the layer: a module of ``capred.spec`` imports only the standard library and the capred modules that
 are themselves free of numpy, pandas, pint, scipy, matplotlib and typer (``capred.spec.*``,
