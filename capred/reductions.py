@@ -80,6 +80,8 @@ class Reduction:
         return getattr(import_module(module), name)(**kw)
 
 
+#: where the options and input schemas are declared (numpy-free: `--help` reads them)
+_S = "capred.spec."
 _P = "capred.pipelines."
 REDUCTIONS: dict[str, Reduction] = {
     r.name: r
@@ -87,7 +89,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "shear",
             _P + "shear:run_shear",
-            _P + "shear:ShearOptions",
+            _S + "shear:ShearOptions",
             "required",
             "shear",
             "shear",
@@ -113,7 +115,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "triaxial-bounds",
             _P + "triaxial:run_triaxial_bounds",
-            _P + "triaxial:TriaxialOptions",
+            _S + "triaxial:TriaxialOptions",
             "required",
             "triaxial-bounds",
             "triaxial",
@@ -132,7 +134,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "triaxial",
             _P + "triaxial_strength:run_triaxial_strength",
-            _P + "triaxial_strength:TriaxialStrengthOptions",
+            _S + "triaxial_strength:TriaxialStrengthOptions",
             "required",
             "triaxial",
             "triaxial_strength",
@@ -153,7 +155,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "retention",
             _P + "retention:run_retention",
-            _P + "retention:RetentionOptions",
+            _S + "retention:RetentionOptions",
             "required",
             "retention",
             "retention",
@@ -169,7 +171,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "retention-convert",
             _P + "retention_convert:run_retention_convert",
-            _P + "retention_convert:ConvertOptions",
+            _S + "retention_convert:ConvertOptions",
             "required",
             "retention-convert",
             "retention_convert",
@@ -193,7 +195,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "prism",
             _P + "calculators:reduce_prism",
-            _P + "calculators:PrismOptions",
+            _S + "calculators:PrismOptions",
             "optional",
             "prism",
             "prism",
@@ -208,7 +210,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "skempton-b",
             _P + "calculators:reduce_skempton_b",
-            _P + "calculators:SkemptonOptions",
+            _S + "calculators:SkemptonOptions",
             "optional",
             "skempton-b",
             "skempton",
@@ -223,7 +225,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "rumpf",
             _P + "calculators:reduce_rumpf",
-            _P + "calculators:RumpfOptions",
+            _S + "calculators:RumpfOptions",
             "optional",
             "rumpf",
             "rumpf",
@@ -235,7 +237,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "shear-band",
             _P + "calculators:reduce_shear_band",
-            _P + "calculators:ShearBandOptions",
+            _S + "calculators:ShearBandOptions",
             "optional",
             None,
             "shear_band",
@@ -254,7 +256,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "bridge solve",
             _P + "bridge:solve_bridges",
-            _P + "bridge:BridgeOptions",
+            _S + "bridge:BridgeOptions",
             "required",
             "bridge-solve",
             "bridge",
@@ -269,7 +271,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "bridge compare",
             _P + "bridge:compare_measured",
-            _P + "bridge:BridgeOptions",
+            _S + "bridge:BridgeOptions",
             "required",
             "bridge-compare",
             "bridge_compare",
@@ -284,7 +286,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "bridge rupture",
             _P + "bridge:rupture_distances",
-            _P + "bridge:BridgeOptions",
+            _S + "bridge:BridgeOptions",
             "required",
             "bridge-rupture",
             "bridge_rupture",
@@ -293,7 +295,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "bridge laws",
             _P + "bridge_laws:compare_laws",
-            _P + "bridge_laws:LawsOptions",
+            _S + "bridge:LawsOptions",
             "optional",
             "bridge-laws",
             "bridge_laws",
@@ -310,7 +312,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "bridge yade-files",
             _P + "yade_files:reduce_yade_files",
-            _P + "yade_files:YadeOptions",
+            _S + "bridge:YadeOptions",
             "none",
             None,
             "yade_files",
@@ -320,7 +322,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "bridge curve",
             _P + "bridge:reduce_curve",
-            _P + "bridge:CurveOptions",
+            _S + "bridge:CurveOptions",
             "none",
             None,
             "bridge_curve",
@@ -335,7 +337,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "pt-volume",
             _P + "pt_volume:run_pt_volume",
-            _P + "pt_volume:PTVolumeOptions",
+            _S + "pt_volume:PTVolumeOptions",
             "required",
             "pt-volume",
             "pt_volume",
@@ -364,7 +366,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "compression",
             _P + "compression:run_compression",
-            _P + "compression:CompressionOptions",
+            _S + "compression:CompressionOptions",
             "required",
             "compression",
             "compression",
@@ -387,7 +389,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "history",
             _P + "history:reduce_history",
-            _P + "history:HistoryOptions",
+            _S + "history:HistoryOptions",
             "required",
             "history",
             "history",

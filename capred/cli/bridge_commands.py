@@ -11,10 +11,10 @@ from .declare import option, registry_help, si_values
 #: points of a `bridge laws` grid given by options solved without --yes (the default grid: 504)
 MAX_GRID_POINTS = 5000
 
-CURVE = "capred.pipelines.bridge:CurveOptions"
-BRIDGE = "capred.pipelines.bridge_solve:BridgeOptions"
-YADE = "capred.pipelines.yade_files:YadeOptions"
-LAWS = "capred.pipelines.bridge_laws:LawsOptions"
+CURVE = "capred.spec.bridge:CurveOptions"
+BRIDGE = "capred.spec.bridge:BridgeOptions"
+YADE = "capred.spec.bridge:YadeOptions"
+LAWS = "capred.spec.bridge:LawsOptions"
 
 
 def register(app: typer.Typer) -> None:

@@ -5,7 +5,7 @@ import typer
 from .common import Invocation, SampleOpt, command
 from .declare import option, si_values
 
-CO = "capred.pipelines.compression:CompressionOptions"
+CO = "capred.spec.compression:CompressionOptions"
 
 
 def register(app: typer.Typer) -> None:

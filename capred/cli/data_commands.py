@@ -8,10 +8,10 @@ import typer
 from .common import Invocation, ThousandsOpt, command
 from .declare import option, registry_help, registry_names, si_values
 
-SHEAR = "capred.pipelines.shear:ShearOptions"
-PARAMS = "capred.pipelines.shear:ModelParams"
-TRIAXIAL = "capred.pipelines.triaxial:TriaxialOptions"
-RETENTION = "capred.pipelines.retention:RetentionOptions"
+SHEAR = "capred.spec.shear:ShearOptions"
+PARAMS = "capred.spec.shear:ModelParams"
+TRIAXIAL = "capred.spec.triaxial:TriaxialOptions"
+RETENTION = "capred.spec.retention:RetentionOptions"
 
 
 def _models_help() -> str:
@@ -78,7 +78,7 @@ def shear(
     cap_mass: option(SHEAR, "cap_mass", note="for rows without 'cap_mass'") = None,
     radius: option(SHEAR, "radius", note="for rows without 'R'") = None,
     void_volume: option(SHEAR, "void_volume", note="for rows without 'V_v'") = None,
-    models: option(SHEAR, "models", help=_models_help(), shown="thesis") = None,
+    models: option(SHEAR, "models", help=_models_help, shown="thesis") = None,
     retention: Annotated[
         Path | None,
         typer.Option(
@@ -326,7 +326,7 @@ def triaxial_bounds(
 
 
 def retention(
-    model: option(RETENTION, "models", "--model", help=_retention_models_help()) = None,
+    model: option(RETENTION, "models", "--model", help=_retention_models_help) = None,
     hysteresis: option(
         RETENTION,
         "hysteresis",

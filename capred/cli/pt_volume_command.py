@@ -7,7 +7,7 @@ import typer
 from .common import Invocation, SampleOpt, command
 from .declare import option, si_values
 
-PT = "capred.pipelines.pt_volume:PTVolumeOptions"
+PT = "capred.spec.pt_volume:PTVolumeOptions"
 
 
 def register(app: typer.Typer) -> None:

@@ -7,7 +7,7 @@ import typer
 from .common import Invocation, command
 from .declare import option, registry_names, si_values
 
-CONVERT = "capred.pipelines.retention_convert:ConvertOptions"
+CONVERT = "capred.spec.retention_convert:ConvertOptions"
 
 
 def register(app: typer.Typer) -> None:

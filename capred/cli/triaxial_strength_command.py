@@ -5,8 +5,8 @@ import typer
 from .common import Invocation, command
 from .declare import option, registry_names, si_values
 
-TRIAX = "capred.pipelines.triaxial_strength:TriaxialStrengthOptions"
-PARAMS = "capred.pipelines.shear:ModelParams"
+TRIAX = "capred.spec.triaxial_strength:TriaxialStrengthOptions"
+PARAMS = "capred.spec.shear:ModelParams"
 
 
 def register(app: typer.Typer) -> None:
@@ -33,7 +33,7 @@ def _models_help() -> str:
 
 
 def triaxial(
-    models: option(TRIAX, "models", help=_models_help(), shown="all") = None,
+    models: option(TRIAX, "models", help=_models_help, shown="all") = None,
     c_eff: option(TRIAX, "c_eff", note="instead of the extended Mohr-Coulomb envelope at s -> 0") = None,
     phi_eff: option(TRIAX, "phi_eff", note="with --c-eff") = None,
     errors: option(

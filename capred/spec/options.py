@@ -35,6 +35,8 @@ class Constraint:
     """
 
     text = "be valid"
+    #: what the message adds after the value given, e.g. ``"0.95 for 95 %"``
+    hint = ""
 
     def accepts(self, value) -> bool:  # pragma: no cover - every constraint defines it
         """Whether ``value`` follows the rule.
@@ -67,7 +69,7 @@ class Constraint:
         """
         if value is None or self.accepts(value):
             return None
-        return f"{where} must {self.text} (got {value!r})"
+        return f"{where} must {self.text} (got {value!r}{'; ' + self.hint if self.hint else ''})"
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.text!r})"
@@ -135,10 +137,13 @@ class Probability(Interval):
     ----------
     text : str, optional
         The rule in the command's words (default ``"lie strictly between 0 and 1, e.g. 0.95"``).
+    hint : str, optional
+        What the message adds after the value given (``"0.95 for 95 %"``).
     """
 
-    def __init__(self, text: str | None = None):
+    def __init__(self, text: str | None = None, hint: str = ""):
         super().__init__(0.0, 1.0, closed="neither", text=text or "lie strictly between 0 and 1, e.g. 0.95")
+        self.hint = hint
 
 
 class Whole(Constraint):

@@ -1,7 +1,7 @@
 """`capred shear`: what it reads (``SCHEMA``) and its options (``ShearOptions``, ``ModelParams``).
 
-Numpy-free (see :mod:`capred.spec`): the effective-stress model registry is looked up when options are built,
-at run time.
+Numpy-free (see :mod:`capred.spec`): the effective-stress models are those of the registry
+capred.spec.effective_stress.
 """
 
 from __future__ import annotations
@@ -10,17 +10,10 @@ from dataclasses import dataclass, field
 
 from ..errors import OptionError
 from ..nomenclature import QUANTITIES
+from . import effective_stress as esm
 from .columns import Column
 from .constants import ERROR_MODELS, GAMMA_W, LOSSES, PENDULAR_LIMIT, SURFACE_TENSION, G
 from .options import Options, Probability, StrOptions, Whole
-
-
-def _esm():
-    """The effective-stress model registry's module (imported when options are built, not by ``--help``)."""
-    from ..physics import effective_stress_models
-
-    return effective_stress_models
-
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
@@ -112,7 +105,7 @@ class ModelParams(Options):
         str
             The missing options, joined by " and ".
         """
-        return " and ".join(opt for name, opt in _esm().REGISTRY[model].requires if getattr(self, name) is None)
+        return " and ".join(opt for name, opt in esm.REGISTRY[model].requires if getattr(self, name) is None)
 
     def require(self, model: str) -> None:
         """Refuse a model that lacks a parameter it needs.
@@ -129,7 +122,7 @@ class ModelParams(Options):
         """
         missing = self.missing(model)
         if missing:
-            needs = {name for name, _ in _esm().REGISTRY[model].requires}
+            needs = {name for name, _ in esm.REGISTRY[model].requires}
             why = "".join(f"; {note}" for fields, note, _ in self.retention_notes if needs & set(fields))
             raise OptionError(
                 f"model '{model}' needs {missing} (or --retention FIT.json written by capred retention){why}"
@@ -178,7 +171,7 @@ class ShearOptions(Options):
     cap_mass: float | None = None  # kg
     radius: float | None = None  # m
     void_volume: float | None = None  # m^3
-    models: tuple[str, ...] = ("thesis",)  # the thesis's four models (resolved in __post_init__)
+    models: tuple[str, ...] = esm.THESIS_MODELS
     model_params: ModelParams = field(default_factory=ModelParams)
     ambient_pressure: float = 101325.0  # Pa: the hanging column cavitates above (p_a - p_v)/gamma_w
     rho_w: float = 1000.0  # kg/m^3, for e = G_s rho_w/rho_d - 1
@@ -201,11 +194,11 @@ class ShearOptions(Options):
         except OptionError as exc:  # quote the value as the API caller gave it, beside its reading in SI
             raise OptionError(_as_given(self, exc, given)) from None
         try:
-            models = _esm().resolve_models(self.models)
+            models = esm.resolve_models(self.models)
         except (ValueError, TypeError) as exc:
             raise OptionError(f"models (--models): {exc}") from None
         skipped = {}
-        if _esm().asks_for_all(self.models):  # 'all': every model the inputs allow; the others named, with their needs
+        if esm.asks_for_all(self.models):  # 'all': every model the inputs allow; the others named, with their needs
             skipped = {m: need for m in models if (need := self.model_params.missing(m))}
             models = tuple(m for m in models if m not in skipped)
         object.__setattr__(self, "models", models)
@@ -232,9 +225,9 @@ class ShearOptions(Options):
         """The notes (or warnings) of --retention that concern the models compared, each naming the models."""
         out = []
         supplied = set(getattr(self.model_params, "_retention_fields", ()))
-        used = any({name for name, _ in _esm().REGISTRY[m].requires} & supplied for m in self.models)
+        used = any({name for name, _ in esm.REGISTRY[m].requires} & supplied for m in self.models)
         for fields, note, is_warning in self.model_params.retention_notes:
-            users = [m for m in self.models if {name for name, _ in _esm().REGISTRY[m].requires} & set(fields)]
+            users = [m for m in self.models if {name for name, _ in esm.REGISTRY[m].requires} & set(fields)]
             if is_warning != warnings:
                 continue
             if not fields:

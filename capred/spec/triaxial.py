@@ -120,7 +120,7 @@ class TriaxialOptions(Options):
     QUANTITIES = {"c_eff": "c_eff", "phi_eff": "phi_eff", **{k: k for k in _MEMBRANE if k in _GLOSSARY}}
     CONSTRAINTS = {
         "extension_path": StrOptions(EXTENSION_PATHS, text="be one of " + ", ".join(EXTENSION_PATHS)),
-        "confidence": Probability(text="lie between 0 and 1, both excluded (0.95 for 95 %)"),
+        "confidence": Probability(text="lie between 0 and 1, both excluded", hint="0.95 for 95 %"),
     }
 
     c_eff: float | None = None  # Pa

@@ -8,10 +8,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..errors import OptionError
+from . import effective_stress as esm
 from .columns import Column
 from .constants import ERROR_MODELS, SURFACE_TENSION
 from .options import Options, Probability, StrOptions, Whole
-from .shear import ModelParams, _esm
+from .shear import ModelParams
 
 SCHEMA = [
     Column("test_id", "text", None, "test identifier"),
@@ -108,7 +109,7 @@ class TriaxialStrengthOptions(Options):
         if (self.c_eff is None) != (self.phi_eff is None):
             raise OptionError("give both --c-eff and --phi-eff (Python: c_eff and phi_eff), or neither")
         try:
-            _esm().resolve_models(self.models)
+            esm.resolve_models(self.models)
         except ValueError as exc:
             raise OptionError(f"models (--models): {exc}") from None
 
