@@ -1,5 +1,7 @@
 """`capred prism`, `capred skempton-b`, `capred rumpf`: closed-form calculators, from options or a table of cases."""
 
+from __future__ import annotations
+
 import typer
 
 from .common import Invocation, command

@@ -1,5 +1,7 @@
 """`capred compression`: an oedometer or isotropic compression test reduced to its lines and yield stress."""
 
+from __future__ import annotations
+
 import typer
 
 from .common import Invocation, SampleOpt, command

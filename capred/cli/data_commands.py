@@ -1,5 +1,7 @@
 """`capred shear`, `capred triaxial-bounds`, `capred retention`: reductions of lab data tables."""
 
+from __future__ import annotations
+
 from pathlib import Path
 from typing import Annotated
 

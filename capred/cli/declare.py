@@ -148,6 +148,29 @@ def live_help(text: str) -> str:
     return fresh
 
 
+#: ``{name}`` in a command's help text -> a function giving what stands there when the help is shown
+#: (capred.cli.help fills them in): a registry's entries as they stand then, without importing it at start-up
+HELP_FIELDS = {"laws": lambda: "; ".join(registry_help("bridge_laws"))}
+
+
+def fill_help_fields(text: str) -> str:
+    """A command's help with its ``{name}`` fields (`HELP_FIELDS`) filled in now.
+
+    Parameters
+    ----------
+    text : str
+        The help as declared (the builder's docstring).
+
+    Returns
+    -------
+    str
+    """
+    for name, render in HELP_FIELDS.items():
+        if "{" + name + "}" in text:
+            text = text.replace("{" + name + "}", render())
+    return text
+
+
 def option(options: str, field: str, *flags: str, note: str = "", help: str | None = None, **kw):
     """The annotation of one command-line option declared by an Options field.
 

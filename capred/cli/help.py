@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import typer.core
 
-from .declare import live_help
+from .declare import fill_help_fields, live_help
 
 #: the shared options about what is read (declared once in capred.cli.common)
 INPUT_OPTIONS = (
@@ -131,6 +131,22 @@ def column_lines(schema: list) -> list[tuple[str, str]]:
 
 class GroupedCommand(typer.core.TyperCommand):
     """A typer command whose plain-text help groups its options and lists the input columns."""
+
+    def format_help_text(self, ctx, formatter) -> None:
+        """The command's help text, its ``{laws}``-style fields filled in with the registries as they stand now
+        (capred.cli.declare.HELP_FIELDS).
+
+        Parameters
+        ----------
+        ctx : click.Context
+            The command's context.
+        formatter : click.HelpFormatter
+            The formatter written to.
+        """
+        raw = self.__dict__.setdefault("_declared_help", self.help)
+        if raw:
+            self.help = fill_help_fields(raw)
+        super().format_help_text(ctx, formatter)
 
     def format_options(self, ctx, formatter) -> None:
         """Write the arguments, then the options panel by panel (the command's own, Input, Output,

@@ -1,5 +1,7 @@
 """`capred pt-volume`: the volume-change model of Pedrotti & Tarantino along a path read from a table."""
 
+from __future__ import annotations
+
 from pathlib import Path
 
 import typer

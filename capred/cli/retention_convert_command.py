@@ -1,5 +1,7 @@
 """`capred retention-convert FIT.json --to MODEL`: a retention fit expressed in another model."""
 
+from __future__ import annotations
+
 from typing import Annotated
 
 import typer

@@ -1,5 +1,7 @@
 """`capred triaxial`: unsaturated strength from triaxial failure states, per material (issue 40)."""
 
+from __future__ import annotations
+
 import typer
 
 from .common import Invocation, command
