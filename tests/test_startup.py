@@ -188,3 +188,20 @@ def test_a_model_registered_by_a_script_shows_in_shear_help_without_numpy():
     text = " ".join(p.stdout.split())
     assert "own2, vanapalli" in text and ", half_bishop;" in text  # in the --models list, in registry order
     assert json.loads(p.stdout.split("HEAVY=")[-1]) == []
+
+
+def test_the_command_list_reads_no_options_declaration():
+    """`capred --help` lists the commands without evaluating any command's options: the option annotations are
+    evaluated when typer builds the command asked for (capred.cli.common._Callback), so no capred.spec module
+    is imported for the list."""
+    code = (
+        "import io, json, sys, contextlib\n"
+        "sys.argv = ['capred', '--help']\n"
+        "from capred.cli import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        "    try:\n        main()\n    except SystemExit:\n        pass\n"
+        "print(json.dumps(sorted(m for m in sys.modules if m.startswith('capred.spec'))))"
+    )
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
+    assert json.loads(p.stdout) == []

@@ -104,7 +104,7 @@ __all__ = [
     "simulate_volume_path",
 ]
 
-from ..spec.pt_volume import PATH_COLUMNS  # noqa: E402 (declared once in spec: the schema takes it)
+from ..spec.constants import PATH_COLUMNS  # noqa: E402 (declared once in spec: the schema takes it)
 
 
 # --------------------------------------------------------------------------------------------

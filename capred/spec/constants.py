@@ -23,3 +23,13 @@ PENDULAR_LIMIT = 0.05
 ERROR_MODELS = ("either", "constant", "proportional", "auto")
 #: losses of `capred.fitting.linear.fit_envelope`
 LOSSES = ("ols", "huber", "tukey")
+
+#: Columns of a `capred pt-volume` path file, with their default unit (what
+#: capred.physics.pedrotti_tarantino.simulate_volume_path takes, in SI; the schema of capred.spec.pt_volume and
+#: the physics read them from here).
+PATH_COLUMNS: dict[str, tuple[str, str]] = {
+    "sigma": ("kPa", "total (mean) stress σ, compression positive"),
+    "u_w": ("kPa", "pore-water pressure u_w (gauge; negative under suction)"),
+    "u_a": ("kPa", "pore-air pressure u_a (gauge; 0 when the air is atmospheric)"),
+    "S_r": ("-", "degree of saturation S_r, in [0, 1]"),
+}

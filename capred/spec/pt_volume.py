@@ -11,19 +11,11 @@ from typing import TYPE_CHECKING
 
 from ..errors import OptionError
 from .columns import Column
+from .constants import PATH_COLUMNS
 from .options import Flag, Options, Whole
 
 if TYPE_CHECKING:
     from ..physics.pedrotti_tarantino import PTVolumeParameters
-
-#: Columns a path file needs, with their default unit (what
-#: capred.physics.pedrotti_tarantino.simulate_volume_path takes, in SI; it reads them from here).
-PATH_COLUMNS: dict[str, tuple[str, str]] = {
-    "sigma": ("kPa", "total (mean) stress σ, compression positive"),
-    "u_w": ("kPa", "pore-water pressure u_w (gauge; negative under suction)"),
-    "u_a": ("kPa", "pore-air pressure u_a (gauge; 0 when the air is atmospheric)"),
-    "S_r": ("-", "degree of saturation S_r, in [0, 1]"),
-}
 
 
 def _pt():
