@@ -310,3 +310,18 @@ def test_registrations_are_undone():
     assert not {"half_bishop", "toy_power"} & set(esm.REGISTRY)
     assert not {"vg_copy", "toy_exp"} & set(rm.MODELS)
     assert "toy_contact" not in bl.LAWS and "toy_power" not in chi_laws.LAWS
+
+
+def test_the_contributing_guide_example_passes_its_check():
+    # docs/contributing.md's half_bishop block, run as written: its check passes and it is registered
+    from pathlib import Path
+
+    text = (Path(__file__).parents[1] / "docs" / "contributing.md").read_text(encoding="utf-8")
+    (block,) = [b for b in re.findall(r"```python\n(.*?)```", text, re.S) if "half_bishop" in b]
+    try:
+        exec(compile(block, "contributing.md", "exec"), {})
+        assert esm.REGISTRY["half_bishop"].label == "Half Bishop"
+        assert "half_bishop" in esm.resolve_models("all")
+    finally:
+        esm.REGISTRY.pop("half_bishop", None)
+    assert "half_bishop" not in esm.REGISTRY
