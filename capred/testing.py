@@ -110,8 +110,8 @@ _S_R = np.array([0.04, 0.06, 0.08, 0.10])  # -, inside the pendular range of the
 _C, _TAN_PHI = 2e3, math.tan(math.radians(35.0))  # dry envelope: c = 2 kPa, phi = 35 deg
 
 
-def _model_params(entry):
-    """Run parameters every shipped model can use: Vanapalli's S_res, Khalili's air entry, van Genuchten's."""
+def _model_params():
+    """Run parameters every shipped model can use: Vanapalli's S_res and κ, Khalili's air entry, van Genuchten's."""
     from .pipelines.shear import ModelParams
 
     return ModelParams(s_res=0.0, vanapalli_kappa=1.5, air_entry=3e3, vg_alpha=1e-4, vg_n=1.8, water_envelope=None)
@@ -134,7 +134,7 @@ def _inputs(entry, sigma_N=_SIGMA_N, suction=_SUCTION, S_R=_S_R, fitted=None):
         c=np.full(n, _C),
         tan_phi=np.full(n, _TAN_PHI),
         surface_tension=0.0728,
-        params=_model_params(entry),
+        params=_model_params(),
         fitted={} if fitted is None else fitted,
     )
 
@@ -342,7 +342,7 @@ def check_retention_model(entry, fit: bool = True) -> None:
     for p in entry.parameters:
         chk.that(p.unit in _UNITS and p.kind in _KINDS, f"parameter {p.name}: unit {p.unit!r} or kind {p.kind!r}")
         chk.that(p.domain.strip() and p.description.strip(), f"parameter {p.name}: no domain or description")
-    pairs = [*entry.steps, *([entry.grid_order] if entry.grid_order else []), *([entry.power_law] or [])]
+    pairs = [*entry.steps, entry.grid_order, entry.power_law]
     used = {n for pair in pairs if pair for n in pair}
     mixture = _run(chk, "mixture", lambda: entry.mixture)
     if ref_of(entry, "mixture") is not None and mixture is not None:
