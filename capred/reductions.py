@@ -290,6 +290,13 @@ REDUCTIONS: dict[str, Reduction] = {
             "required",
             "bridge-rupture",
             "bridge_rupture",
+            method=(
+                "Each bridge of water volume V_w is pulled apart at constant volume: the rupture distance is the "
+                "widest gap at which a stable Young-Laplace bridge of that volume still exists between the two "
+                "bodies, found on the exact bridges, beside Lian et al.'s (1993) estimate "
+                "D_rupt = (1 + θ/2) V^(1/3) (θ in rad, lengths over R).",
+            ),
+            references=("lian1993",),
             summary="Rupture distance of bridges at constant volume.",
         ),
         Reduction(
@@ -316,6 +323,12 @@ REDUCTIONS: dict[str, Reduction] = {
             "none",
             None,
             "yade_files",
+            method=(
+                "One file per radius ratio R2/R1 in the layout YADE's capillary law reads (Duriez & Wan 2017): "
+                "per distance d* = D/R2, by rising suction uc* = Δu R2/γ, the exact stable Young-Laplace bridge's "
+                "volume, force F/(2πγR2), filling angles and the integrals of its normal; nothing is interpolated.",
+            ),
+            references=("duriez_wan2017",),
             summary="Capillary files for YADE's capillary law.",
             example=(("ratios", (1, 2)), ("distances", 4), ("suctions", 5)),
         ),

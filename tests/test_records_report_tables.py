@@ -167,6 +167,8 @@ def test_bridge_csv_headers_follow_the_one_rule(record):
     # bridge compare / rupture headers are as before: the JSON key's csv_header (name [unit]), a dimensionless
     # ratio [-], a label or status its key
     values = {f.name: (["a", "b"] if f.name in ("case", "status") else np.zeros(2)) for f in dataclasses.fields(record)}
+    if "laws" in values:  # compare: each registered law's force and residual
+        values["laws"] = {"toy_law": (np.zeros(2), np.zeros(2))}
     rec = record(**values)
     for key, head in zip(rec.columns(), rec.csv_columns()):
         assert head == {"ratio_to_lian": "ratio_to_lian [-]"}.get(key, csv_header(key))

@@ -50,11 +50,8 @@ from ..spec.retention_models import (  # noqa: F401  (the registry, declared wit
     Y_S,
     Parameter,
     RetentionModel,
-    _alpha,
-    _dom,
-    _n,
-    _p,
 )
+from ..spec.retention_models import make_parameter as _p  # noqa: F401  (the name scripts and tests use)
 from .nonlinear import NonlinearFit, fit_curve, summarize_fit
 
 _SCREEN_POINTS = 100  # data points used to rank the start grid (all points are used for the refinement)
@@ -143,6 +140,11 @@ def model_suction(model: RetentionModel, S, **shape):
     numpy.ndarray
         Suction [Pa]: the model's closed-form ``inverse`` where it has one, else a monotone root search
         (`capred.physics.retention.monotone_suction`).
+
+    References
+    ----------
+    .. [1] The model's own paper (``model.references``); van Genuchten (1980), eq. 21, for its inverse
+       s = [(S^(-1/m) - 1)^(1/n)]/α. doi:10.2136/sssaj1980.03615995004400050002x
     """
     S = np.asarray(S, float)
     if model.inverse is not None:

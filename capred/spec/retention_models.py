@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 from .callables import CallableField, resolve
 
-__all__ = ["MODELS", "N_POSITIVE", "REGISTRY", "Y_R", "Y_S", "Parameter", "RetentionModel"]
+__all__ = ["MODELS", "N_POSITIVE", "REGISTRY", "Y_R", "Y_S", "Parameter", "RetentionModel", "make_parameter"]
 
 #: where the registry's numerical functions live
 _F = "capred.fitting.retention_models:"
@@ -114,7 +114,7 @@ class Parameter:
         }.get(self.kind, f"{self.lower:g} … {self.upper:g}")
 
 
-def _p(
+def make_parameter(
     name,
     symbol,
     unit,
@@ -127,6 +127,19 @@ def _p(
     kinks=False,
     grid_span=100.0,
 ) -> Parameter:
+    """A :class:`Parameter` from its fields in order (``kinks`` for ``kinks_at_data``), its domain left empty.
+
+    Parameters
+    ----------
+    name, symbol, unit, description, kind : str
+        As the fields of :class:`Parameter`.
+    lower, upper, log_offset, grid, kinks, grid_span
+        As the fields ``lower``, ``upper``, ``log_offset``, ``grid``, ``kinks_at_data``, ``grid_span``.
+
+    Returns
+    -------
+    Parameter
+    """
     return Parameter(name, symbol, unit, description, kind, lower, upper, log_offset, grid, kinks, grid_span)
 
 
@@ -136,11 +149,11 @@ def _dom(p: Parameter, text: str) -> Parameter:
 
 
 Y_R = _dom(
-    _p("y_r", r"$\theta_r$", "y", "residual water content (or S_res)", "residual"),
+    make_parameter("y_r", r"$\theta_r$", "y", "residual water content (or S_res)", "residual"),
     "0 ≤ θ_r < θ_s (van Genuchten 1980, eq. 21; Brooks & Corey 1964)",
 )
 Y_S = _dom(
-    _p("y_s", r"$\theta_s$", "y", "saturated water content (or S_s)", "saturated"),
+    make_parameter("y_s", r"$\theta_s$", "y", "saturated water content (or S_s)", "saturated"),
     "θ_r < θ_s ≤ porosity (S_s ≤ 1 up to scatter) (van Genuchten 1980, eq. 21)",
 )
 
@@ -150,7 +163,7 @@ def _alpha(name="alpha", symbol=r"$\alpha$", grid=4, grid_span=100.0, domain="α
 
 
 def _alpha_p(name, symbol, grid, grid_span):
-    return _p(
+    return make_parameter(
         name,
         symbol,
         "1/Pa",
@@ -169,7 +182,7 @@ def _n(
 ):
     """The shape index n: n > 1 where m = 1 − 1/n (searched on ln(n − 1)), n > 0 where m is free (on ln n)."""
     offset = 1.0 if lower > 1 else 0.0
-    return _dom(_p(name, symbol, "-", "pore-size index", "absolute", lower, 100.0, offset, grid), domain)
+    return _dom(make_parameter(name, symbol, "-", "pore-size index", "absolute", lower, 100.0, offset, grid), domain)
 
 
 #: n > 0 where m is its own parameter (Fredlund & Xing 1994; van Genuchten 1980 with m free): the search reaches
@@ -343,12 +356,12 @@ class RetentionModel:
 # the registry
 
 _M = _dom(
-    _p("m", "$m$", "-", "shape exponent", "absolute", 1e-3, 20.0, 0.0, 10),
+    make_parameter("m", "$m$", "-", "shape exponent", "absolute", 1e-3, 20.0, 0.0, 10),
     "m > 0 (van Genuchten 1980, eq. 21 with m free; Fredlund & Xing 1994, eq. 26)",
 )
 
 _FX_A = _dom(
-    _p("a", "$a$", "Pa", "suction parameter (near the air entry)", "suction", 1e-3, 1e3, 0.0, 4),
+    make_parameter("a", "$a$", "Pa", "suction parameter (near the air entry)", "suction", 1e-3, 1e3, 0.0, 4),
     "a > 0 (Fredlund & Xing 1994, eq. 26)",
 )
 _FX_N = "n > 0 (Fredlund & Xing 1994, eq. 26: n controls the slope; they require n > 0, not n > 1)"
@@ -399,11 +412,13 @@ MODELS: dict[str, RetentionModel] = {
                 Y_R,
                 Y_S,
                 _dom(
-                    _p("s_e", "$s_e$", "Pa", "air-entry suction", "suction", 1e-3, 1.0, 0.0, 4, kinks=True),
+                    make_parameter("s_e", "$s_e$", "Pa", "air-entry suction", "suction", 1e-3, 1.0, 0.0, 4, kinks=True),
                     "s_e > 0 (Brooks & Corey 1964)",
                 ),
                 _dom(
-                    _p("lam", r"$\lambda$", "-", "pore-size distribution index", "absolute", 1e-3, 50.0, 0.0, 12),
+                    make_parameter(
+                        "lam", r"$\lambda$", "-", "pore-size distribution index", "absolute", 1e-3, 50.0, 0.0, 12
+                    ),
                     "λ > 0 (Brooks & Corey 1964)",
                 ),
             ),
@@ -425,7 +440,7 @@ MODELS: dict[str, RetentionModel] = {
                 Y_R,
                 Y_S,
                 _dom(
-                    _p(
+                    make_parameter(
                         "s_m",
                         "$s_m$",
                         "Pa",
@@ -439,7 +454,7 @@ MODELS: dict[str, RetentionModel] = {
                     "s_m > 0 (Kosugi 1996)",
                 ),
                 _dom(
-                    _p(
+                    make_parameter(
                         "sigma",
                         r"$\sigma$",
                         "-",
@@ -469,9 +484,9 @@ MODELS: dict[str, RetentionModel] = {
                 Y_S,
                 _FX_A,
                 _n(grid=8, domain=_FX_N, lower=N_POSITIVE),
-                _dom(_p("m", "$m$", "-", "shape exponent", "absolute", 1e-3, 20.0, 0.0, 8), _FX_M),
+                _dom(make_parameter("m", "$m$", "-", "shape exponent", "absolute", 1e-3, 20.0, 0.0, 8), _FX_M),
                 _dom(
-                    _p(
+                    make_parameter(
                         "s_r",
                         "$s_r$",
                         "Pa",
@@ -518,7 +533,7 @@ MODELS: dict[str, RetentionModel] = {
                 Y_R,
                 Y_S,
                 _dom(
-                    _p("w1", "$w_1$", "-", "weight of the first pore system", "absolute", 0.0, 1.0),
+                    make_parameter("w1", "$w_1$", "-", "weight of the first pore system", "absolute", 0.0, 1.0),
                     "0 ≤ w₁ ≤ 1 (Durner 1994)",
                 ),
                 _alpha("alpha1", r"$\alpha_1$", 4, 3.0, "α₁ > 0 (Durner 1994)"),
