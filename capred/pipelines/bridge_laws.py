@@ -20,7 +20,7 @@ from ..io import Table, read_table
 from ..physics import bridge as br
 from ..physics import bridge_laws as bl
 from ..result import InputFile, Result, input_file, num
-from ..spec.bridge import _PLANE, LAWS_SCHEMA, LawsOptions, _parse_list  # noqa: F401 (declared in spec; re-exported here)
+from ..spec.bridge import LAWS_SCHEMA, LawsOptions  # noqa: F401 (declared in spec; re-exported here)
 
 #: region edges: D/R, V/R^3, contact angle [deg] (each bin [lo, hi))
 GAP_EDGES = (0.0, 0.01, 0.05, np.inf)

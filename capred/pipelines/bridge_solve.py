@@ -15,7 +15,7 @@ from ..io import Table, read_table
 from ..physics import bridge as br
 from ..result import InputFile, Result, Rows, json_list, num
 from ..result import csv_header as result_csv_header
-from ..spec.bridge import _PLANE, ANGLE, ANGLE2, CASE, GAMMA, RADIUS, RADIUS2, SOLVE_SCHEMA, VOLUME, BridgeOptions  # noqa: F401 (declared in spec; re-exported here)
+from ..spec.bridge import ANGLE, ANGLE2, CASE, GAMMA, RADIUS, RADIUS2, SOLVE_SCHEMA, VOLUME, BridgeOptions  # noqa: F401 (declared in spec; re-exported here)
 from .bridge_records import BridgeRecord
 
 # 1: the gap is too wide for this suction or volume; 3: so much water that the bridge would be

@@ -25,7 +25,7 @@ from ..io import read_table
 from ..parameters import Parameters
 from ..references import cite
 from ..result import InputFile, Result, columns_of_rows, csv_header, input_file, num, with_csv_headers
-from ..spec.retention import SCHEMA, RetentionOptions, _to_internal  # noqa: F401 (declared in spec; re-exported here)
+from ..spec.retention import SCHEMA, RetentionOptions, to_internal  # noqa: F401 (declared in spec; re-exported here)
 from .retention_branches import (
     infer_branches,
     reversal_points,
@@ -854,7 +854,7 @@ def parse_fixed(items: list[str]) -> dict[str, float]:
         name, sep, value = item.partition("=")
         name = name.strip()
         try:
-            _to_internal(name)
+            to_internal(name)
         except KeyError:
             known = ", ".join(["theta_s", "theta_r", "S_s", "S_res", *sorted({v[0] for v in JSON_NAMES.values()})])
             raise OptionError(f"--fix '{item}': expected NAME=VALUE with NAME one of {known}") from None
@@ -990,7 +990,7 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
         )
     fixed_internal = {}
     for name, v in opt.fixed.items():
-        key, factor = _to_internal(name)
+        key, factor = to_internal(name)
         fixed_internal[key] = v * factor
     warnings = list(opt.warnings) + table.warnings
     fits: dict[str, dict[str, NonlinearFit]] = {}

@@ -7,15 +7,11 @@ when asked for, at run time.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 from ..errors import OptionError
 from .columns import Column
 from .constants import PATH_COLUMNS
 from .options import Flag, Options, Whole
-
-if TYPE_CHECKING:
-    from ..physics.pedrotti_tarantino import PTVolumeParameters
 
 
 def _pt():
@@ -155,8 +151,9 @@ class PTVolumeOptions(Options):
         """The line parameters taken from EXAMPLE_KAOLIN (empty unless ``example_kaolin``)."""
         return [k for k in LINE_OPTIONS if self._line(k) is None] if self.example_kaolin else []
 
-    def parameters(self) -> PTVolumeParameters:
-        """The lines of the run; OptionError naming every missing option when some are not given."""
+    def parameters(self):
+        """The lines of the run (a capred.physics.pedrotti_tarantino.PTVolumeParameters); OptionError naming every
+        missing option when some are not given."""
         missing = [k for k in LINE_OPTIONS if self._line(k) is None]
         if missing and not self.example_kaolin:
             raise OptionError(

@@ -31,7 +31,7 @@ def default_models() -> tuple[str, ...]:
     return tuple(k for k, m in FITTERS.items() if m.default)
 
 
-def _to_internal(name: str) -> tuple[str, float]:
+def to_internal(name: str) -> tuple[str, float]:
     """JSON name -> (internal name, factor JSON unit -> SI); the hysteresis α's are not options."""
     from ..fitting.retention_models import internal_name  # numpy: at run time only
 
@@ -132,9 +132,17 @@ class RetentionOptions(Options):
         object.__setattr__(self, "models", models)
         for name in self.fixed:
             try:
-                _to_internal(name)
+                to_internal(name)
             except KeyError:
                 raise OptionError(f"fixed: unknown parameter '{name}'") from None
 
 
-__all__ = ["LABELS", "REVERSAL_RANGE", "REVERSAL_RELATIVE", "SCHEMA", "RetentionOptions", "default_models"]
+__all__ = [
+    "to_internal",
+    "LABELS",
+    "REVERSAL_RANGE",
+    "REVERSAL_RELATIVE",
+    "SCHEMA",
+    "RetentionOptions",
+    "default_models",
+]
