@@ -367,21 +367,26 @@ class _Callback:
 
     @property
     def __signature__(self) -> inspect.Signature:
-        if self._signature is None:
-            sig = inspect.signature(self._builder)
+        sig = inspect.signature(self._builder)
+        if self._signature is None:  # the builder's own options, evaluated once
             names = self._builder.__globals__
-            mine = [
+            self._signature = [
                 p.replace(
                     kind=inspect.Parameter.KEYWORD_ONLY,
                     annotation=eval(p.annotation, names) if isinstance(p.annotation, str) else p.annotation,  # noqa: S307 (the module's own annotation)
                 )
                 for p in sig.parameters.values()
+                if p.kind is not inspect.Parameter.VAR_KEYWORD
             ]
-            first = [p for p in self._extra if p.name == "data"]  # the DATA argument leads
-            self._signature = sig.replace(
-                parameters=[*first, *mine, *(p for p in self._extra if p.name != "data")], return_annotation=None
-            )
-        return self._signature
+        mine = list(self._signature)
+        if any(p.kind is inspect.Parameter.VAR_KEYWORD for p in sig.parameters.values()):
+            from .declare import model_parameter_options  # **model_options: the models' own, as registered now
+
+            mine += [p for p in model_parameter_options() if p.name not in sig.parameters]
+        first = [p for p in self._extra if p.name == "data"]  # the DATA argument leads
+        return sig.replace(
+            parameters=[*first, *mine, *(p for p in self._extra if p.name != "data")], return_annotation=None
+        )
 
     @property
     def __annotations__(self) -> dict:

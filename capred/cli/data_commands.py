@@ -8,7 +8,7 @@ from typing import Annotated
 import typer
 
 from .common import Invocation, ThousandsOpt, command
-from .declare import option, registry_help, registry_names, si_values
+from .declare import model_parameter_values, option, registry_help, registry_names, si_values
 
 SHEAR = "capred.spec.shear:ShearOptions"
 PARAMS = "capred.spec.shear:ModelParams"
@@ -137,6 +137,7 @@ def shear(
         "of 250, once the printed probabilities and ΔRMSE ends are resolved.",
     ) = None,
     seed: option(SHEAR, "seed", help="Seed of the bootstrap: the same seed gives the same probabilities.") = None,
+    **model_options,
 ) -> Invocation:
     """Direct-shear tests with hanging-column suction (Evenepoel, VUB thesis):
     dry envelope per material, the effective-stress models (No suction,
@@ -206,6 +207,9 @@ def shear(
         Replicates of the bootstrap of the model ranking [-].
     seed : int, optional
         Seed of the bootstrap.
+    **model_options
+        The parameters registered models declare for themselves (capred.spec.shear.ModelParameter), one option
+        each (``--my-kappa``), read from the registry when the command is built.
 
     Returns
     -------
@@ -228,6 +232,9 @@ def shear(
     envelope = _envelope_pair(water_envelope)
     if envelope is not None:
         params["water_envelope"] = envelope
+    own = model_parameter_values(model_options)
+    if own:
+        params["extra"] = own
     if retention_branch is not None and retention is None:
         from ..errors import OptionError
 

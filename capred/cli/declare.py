@@ -171,6 +171,60 @@ def fill_help_fields(text: str) -> str:
     return text
 
 
+def model_parameter_options() -> list:
+    """The command-line options of the parameters registered effective-stress models declare for themselves
+    (capred.spec.shear.ModelParameter), read from the registry now: ``--my-kappa`` of a model a script
+    registered, with the unit, range and description its declaration gives.
+
+    Returns
+    -------
+    list of inspect.Parameter
+        Keyword-only parameters named after the parameters, annotated with their ``typer.Option`` (a number in
+        the declared output unit, or with a unit of its own; default None: not given).
+    """
+    from ..spec.shear import model_parameters
+
+    out = []
+    for name, p in model_parameters().items():
+        q = p.quantity
+        bracket = "; ".join(x for x in ("" if q.unit == "-" else q.unit, _range_text(q)) if x)
+        models = [
+            k for k, e in registry_entries("effective_stress_models").items() if p in getattr(e, "parameters", ())
+        ]
+        text = f"{_glossary_text(q)}{f' [{bracket}]' if bracket else ''}; of model {', '.join(models)}."
+        if p.default is not None:
+            text += f"  [default: {_shown(float(f'{p.default * q.factor:.12g}'))}]"
+        annotation = Annotated[
+            str | None, typer.Option(p.option, help=text, metavar="NUMBER", show_default=False, rich_help_panel=None)
+        ]
+        out.append(inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None, annotation=annotation))
+    return out
+
+
+def model_parameter_values(given: dict) -> dict:
+    """The models' own parameters given on the command line, for ``ModelParams(extra=...)``: None (not given)
+    left out, a bare number read once in the declared output unit to SI (range checked), a value with a unit
+    passed as typed.
+
+    Parameters
+    ----------
+    given : dict
+        Parameter name -> parsed value (the builder's ``**model_options``).
+
+    Returns
+    -------
+    dict
+    """
+    from ..spec.shear import model_parameters
+
+    declared = model_parameters()
+    return {
+        name: read_number(value, name, f"{name} ({declared[name].option})")
+        for name, value in given.items()
+        if value is not None and name in declared
+    }
+
+
 def option(options: str, field: str, *flags: str, note: str = "", help: str | None = None, **kw):
     """The annotation of one command-line option declared by an Options field.
 

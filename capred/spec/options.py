@@ -295,9 +295,9 @@ class Options:
 
         values, units = {}, {}
         for f in dataclasses.fields(self):
-            if f.name.startswith("_"):
-                continue
             v = getattr(self, f.name)
+            if f.name.startswith("_") or (f.metadata.get("omit_when_empty") and not v):
+                continue
             values[f.name] = _plain(v)
             if f.name in self.QUANTITIES:
                 units[f.name] = SI_UNIT[QUANTITIES[self.QUANTITIES[f.name]].kind].replace("**", "^")
@@ -356,8 +356,12 @@ def as_given(message: str, name: str, value, quantity: str) -> str:
 
 def _plain(v):
     """A JSON-ready copy of an option value (tuples as lists, dataclasses as dicts, paths as text)."""
-    if dataclasses.is_dataclass(v):
-        return {f.name: _plain(getattr(v, f.name)) for f in dataclasses.fields(v)}
+    if dataclasses.is_dataclass(v):  # a field declared omit_when_empty appears only when it holds something
+        return {
+            f.name: _plain(getattr(v, f.name))
+            for f in dataclasses.fields(v)
+            if getattr(v, f.name) or not f.metadata.get("omit_when_empty")
+        }
     if isinstance(v, (list, tuple)):
         return [_plain(x) for x in v]
     if isinstance(v, dict):

@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..errors import OptionError
-from ..nomenclature import QUANTITIES
+from ..nomenclature import QUANTITIES, Quantity
 from . import effective_stress as esm
 from .columns import Column
 from .constants import ERROR_MODELS, GAMMA_W, LOSSES, PENDULAR_LIMIT, SURFACE_TENSION, G
@@ -46,6 +46,54 @@ SCHEMA = [
 
 
 @dataclass(frozen=True)
+class ModelParameter:
+    """A parameter an effective-stress model declares for itself, in its registry entry (``parameters``).
+
+    From this declaration alone `capred shear` takes the option ``--<name>`` (a number in the quantity's output
+    unit, or with a unit of its own; its help shows the unit and range), the Python API takes
+    ``ModelParams(extra={name: value})``, and the model reads the value in SI as ``d.params.<name>``.
+
+    Attributes
+    ----------
+    name : str
+        The parameter's keyword, e.g. ``"my_kappa"`` (``--my-kappa``); its glossary entry is registered under
+        this name (capred.nomenclature.QUANTITIES) when the registry is read.
+    quantity : capred.nomenclature.Quantity
+        Symbol, output unit, factor, SI kind, description and hard limits, as a glossary entry has them.
+    default : float, optional
+        The SI value when the option is not given; None (the default): not given, and a model that lists the
+        parameter in its ``requires`` is refused without it.
+    """
+
+    name: str
+    quantity: Quantity
+    default: float | None = None
+
+    @property
+    def option(self) -> str:
+        """The command-line option, ``--my-kappa``."""
+        return "--" + self.name.replace("_", "-")
+
+
+def model_parameters() -> dict[str, ModelParameter]:
+    """The parameters the registered effective-stress models declare for themselves (an entry's ``parameters``),
+    read now: a model registered by a script is included. Each one's glossary entry is registered under its
+    name (capred.nomenclature.QUANTITIES), so that it is read and range checked as every option is.
+
+    Returns
+    -------
+    dict
+        Parameter name -> ModelParameter, in registry order (the first model declaring a name wins).
+    """
+    out: dict[str, ModelParameter] = {}
+    for entry in esm.REGISTRY.values():
+        for p in getattr(entry, "parameters", ()) or ():
+            QUANTITIES.setdefault(p.name, p.quantity)
+            out.setdefault(p.name, p)
+    return out
+
+
+@dataclass(frozen=True)
 class ModelParams(Options):
     """Parameters of the models beyond the thesis's four (SI; None = not given).
 
@@ -76,6 +124,9 @@ class ModelParams(Options):
     contact_angle: float = 0.0  # deg, of the exact bridge (exact_neck)
     eta: float = 0.55  # exponent of khalili_fit (fixed unless fit_eta)
     fit_eta: bool = False
+    #: the parameters registered models declare for themselves (ModelParameter): name -> value (SI after
+    #: construction); in the options record only when one is given
+    extra: dict = field(default_factory=dict, metadata={"omit_when_empty": True})
 
     def __post_init__(self) -> None:
         given = {name: getattr(self, name) for name in self.QUANTITIES}
@@ -83,6 +134,34 @@ class ModelParams(Options):
             super().__post_init__()
         except OptionError as exc:  # quote the value as the API caller gave it, beside its reading in SI
             raise OptionError(_as_given(self, exc, given)) from None
+        if self.extra:
+            object.__setattr__(self, "extra", self._read_extra(dict(self.extra)))
+
+    def _read_extra(self, extra: dict) -> dict:
+        """The models' own parameters in SI, each read and range checked with its declared quantity."""
+        from ..units import to_si  # pint: at run time only
+
+        declared = model_parameters()
+        unknown = sorted(set(extra) - set(declared))
+        if unknown:
+            raise OptionError(
+                f"extra: no registered model declares {', '.join(unknown)} (declared: {', '.join(declared) or 'none'})"
+            )
+        out = {}
+        for name, value in extra.items():
+            if value is not None:
+                out[name] = to_si(value, name, f"{name} ({declared[name].option})", self._notes)
+        return out
+
+    def __getattr__(self, name: str):
+        """A parameter a registered model declares for itself (``d.params.my_kappa``): the value given, else its
+        declared default."""
+        if name.startswith("_"):
+            raise AttributeError(name)
+        p = model_parameters().get(name)
+        if p is None:
+            raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+        return self.__dict__.get("extra", {}).get(name, p.default)
 
     @property
     def retention_notes(self) -> tuple:
@@ -270,4 +349,4 @@ def _as_given(options: Options, exc: Exception, given: dict) -> str:
     return text
 
 
-__all__ = ["SCHEMA", "ModelParams", "ShearOptions"]
+__all__ = ["SCHEMA", "ModelParameter", "ModelParams", "ShearOptions", "model_parameters"]
