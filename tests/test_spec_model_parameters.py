@@ -95,3 +95,8 @@ def test_the_api_takes_it_in_extra_and_the_record_keeps_it_only_when_given(scale
         ModelParams(extra={"nope": 1.0})
     with pytest.raises(OptionError, match="my_kappa"):
         ModelParams(extra={"my_kappa": math.nan})
+
+
+def test_triaxial_takes_the_declared_parameter_too(scaled_bishop):
+    res = runner.invoke(app, ["triaxial", "--help"], terminal_width=200)
+    assert "--my-kappa NUMBER" in " ".join(res.stdout.split())
