@@ -13,7 +13,7 @@ from ..errors import OptionError
 from ..nomenclature import StableJsonKeys, renamed_keywords
 from .columns import Column
 from .constants import PENDULAR_LIMIT, SURFACE_TENSION
-from .options import Interval, Options, StrOptions
+from .options import Interval, Options, StrOptions, Whole
 
 #: the words a radius-ratio column or option reads as a plane (R2 = inf)
 _PLANE = (("plane", math.inf), ("inf", math.inf), ("infinity", math.inf), ("\u221e", math.inf))
@@ -132,6 +132,7 @@ class CurveOptions(StableJsonKeys, Options):
     }
     OPTION_NAMES = {"S_R_max": "--S-R-max"}
     JSON_NAMES = {"S_R_max": "sr_max"}
+    CONSTRAINTS = {"points": Whole(min=2), "S_R_max": Interval(1e-4, 1, closed="right")}
 
     radius: float = 1e-3
     surface_tension: float = SURFACE_TENSION
@@ -139,13 +140,6 @@ class CurveOptions(StableJsonKeys, Options):
     points: int = 2000
     S_R_max: float = 0.3
     pendular_limit: float = PENDULAR_LIMIT
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        if self.contact_angle >= 90:
-            raise OptionError("--contact-angle must lie in [0, 90) deg")
-        if self.points < 2 or not 1e-4 < self.S_R_max <= 1:
-            raise OptionError("need --points >= 2 and 0.0001 < --S-R-max <= 1")
 
 
 RUPTURE_SCHEMA = [CASE, RADIUS, RADIUS2, GAMMA, ANGLE, ANGLE2, VOLUME]
@@ -159,7 +153,8 @@ class YadeOptions(Options):
     """Options of `capred bridge yade-files`: radius ratios R2/R1 >= 1, contact angle [deg], number of
     distances and of suctions per file."""
 
-    QUANTITIES = {"contact_angle": "contact_angle"}
+    QUANTITIES = {"contact_angle": "contact_angle"}  # the glossary's range: [0, 90) deg
+    CONSTRAINTS = {"distances": Whole(min=2), "suctions": Whole(min=3)}
 
     ratios: tuple[float, ...] = DEFAULT_RATIOS
     contact_angle: float = 0.0
@@ -175,10 +170,6 @@ class YadeOptions(Options):
             )
         if len(set(self.ratios)) != len(self.ratios):
             raise OptionError("--ratios: each ratio once")
-        if not 0 <= self.contact_angle < 90:
-            raise OptionError("--contact-angle must lie in [0, 90) deg")
-        if self.distances < 2 or self.suctions < 3:
-            raise OptionError("need --distances >= 2 and --suctions >= 3")
 
 
 LAWS_SCHEMA = [
