@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 from ..errors import OptionError
 from .constants import GAMMA_W
-from .options import Options
+from .options import Options, Whole
 from .retention_models import MODELS
 
 
@@ -42,6 +42,7 @@ class ConvertOptions(Options):
     """
 
     QUANTITIES = {"gamma_w": "gamma_w"}
+    CONSTRAINTS = {"points": Whole(min=10, max=100_000, text="be a whole number from 10 to 100000")}
 
     to: str = _power_law_model()
     model: str | None = None
@@ -55,8 +56,6 @@ class ConvertOptions(Options):
             raise OptionError(f"--to: unknown retention model '{self.to}'; choose from {', '.join(MODELS)}")
         if self.model is not None and self.model not in MODELS:
             raise OptionError(f"--model: unknown retention model '{self.model}'; choose from {', '.join(MODELS)}")
-        if not 10 <= int(self.points) <= 100_000:
-            raise OptionError(f"--points must lie between 10 and 100000 (got {self.points})")
 
 
 __all__ = ["GRID_POINTS", "ConvertOptions"]
