@@ -264,9 +264,9 @@ def option(options: str, field: str, *flags: str, note: str = "", help: str | No
         text = (help() if callable(help) else help) or f["text"]
         if not text:
             raise ValueError(f"{options}.{field}: no help text (document the field or pass help=)")
-        if f["quantity"] is not None:
+        if f["quantity"] is not None or f["range"]:  # the glossary's unit and range, or the declared constraint's
             bracket = "; ".join(x for x in (f["unit"], f["range"]) if x)
-            text = f"{text} [{bracket}]" if bracket else text
+            text = f"{text.rstrip('.')} [{bracket}]" if bracket else text
         text = text.rstrip(".")
         if note:
             text = f"{text} {note}" if note[0] == "(" else f"{text}{note}" if note[0] in ":," else f"{text}; {note}"
