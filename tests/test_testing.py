@@ -209,18 +209,18 @@ def test_a_broken_command_is_caught():
     sound = REDUCTIONS["bridge curve"]
     with pytest.raises(AssertionError, match="does not resolve"):
         testing.check_command(
-            dataclasses.replace(sound, name="bridge curve2", options_path="capred.pipelines.bridge:Nope")
+            dataclasses.replace(sound, name="bridge curvy", options_path="capred.pipelines.bridge:Nope")
         )
     with pytest.raises(AssertionError, match="are not options"):
-        testing.check_command(dataclasses.replace(sound, name="bridge curve2", example=(("pointz", 5),)))
+        testing.check_command(dataclasses.replace(sound, name="bridge curvy", example=(("pointz", 5),)))
     with pytest.raises(AssertionError, match="not a key of capred.samples"):
-        testing.check_command(dataclasses.replace(sound, name="bridge curve2", sample="nothing"))
+        testing.check_command(dataclasses.replace(sound, name="bridge curvy", sample="nothing"))
     with pytest.raises(AssertionError, match="another entry is registered"):
         testing.check_command(dataclasses.replace(sound, summary="another"))
     with pytest.raises(AssertionError, match="options of the example raised"):
-        testing.check_command(dataclasses.replace(sound, name="bridge curve2", example=(("points", -5),)))
+        testing.check_command(dataclasses.replace(sound, name="bridge curvy", example=(("points", -5),)))
     with pytest.raises(AssertionError, match="the example run raised"):  # its run function is another command's
-        wrong = dataclasses.replace(sound, name="bridge curve2", run_path="capred.pipelines.bridge:compare_measured")
+        wrong = dataclasses.replace(sound, name="bridge curvy", run_path="capred.pipelines.bridge:compare_measured")
         testing.check_command(wrong, run=True)
     assert isinstance(sound, Reduction)
 
