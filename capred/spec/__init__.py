@@ -17,3 +17,5 @@ are themselves free of numpy, pandas, pint, scipy, matplotlib and typer (``capre
 numerical layers at run time (reading a unit with pint, a registry's callable) is imported inside the method
 that needs it (tests/test_spec_layer.py imports every module of the layer in a fresh interpreter and checks).
 """
+
+from .callables import resolve  # noqa: F401  (one resolver of "module:function" references)
