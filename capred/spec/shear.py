@@ -129,11 +129,7 @@ class ModelParams(Options):
     extra: dict = field(default_factory=dict, metadata={"omit_when_empty": True})
 
     def __post_init__(self) -> None:
-        given = {name: getattr(self, name) for name in self.QUANTITIES}
-        try:
-            super().__post_init__()
-        except OptionError as exc:  # quote the value as the API caller gave it, beside its reading in SI
-            raise OptionError(_as_given(self, exc, given)) from None
+        super().__post_init__()  # a bad value is quoted as given (capred.spec.options.as_given)
         if self.extra:
             object.__setattr__(self, "extra", self._read_extra(dict(self.extra)))
 
@@ -267,11 +263,7 @@ class ShearOptions(Options):
     seed: int = 0  # of the bootstrap: the same seed gives the same probabilities
 
     def __post_init__(self) -> None:
-        given = {name: getattr(self, name) for name in self.QUANTITIES}
-        try:
-            super().__post_init__()
-        except OptionError as exc:  # quote the value as the API caller gave it, beside its reading in SI
-            raise OptionError(_as_given(self, exc, given)) from None
+        super().__post_init__()  # a bad value is quoted as given (capred.spec.options.as_given)
         try:
             models = esm.resolve_models(self.models)
         except (ValueError, TypeError) as exc:
@@ -323,30 +315,6 @@ class ShearOptions(Options):
     @property
     def warnings(self) -> list[str]:
         return super().warnings + self.model_params.warnings + self._from_retention(warnings=True)
-
-
-def _as_given(options: Options, exc: Exception, given: dict) -> str:
-    """The message of ``exc`` (a range problem of an option) with the value quoted as the caller typed it.
-
-    A plain number is read in SI (``box_area=-3`` is -3 m^2, shown as -30000 cm^2 by the glossary's range
-    check): the message says so and how to give a unit.
-    """
-    from ..units import SI_UNIT
-
-    text = str(exc)
-    if getattr(exc, "as_given", False):  # quoted already by capred.result.Options (as_given)
-        return text
-    for name, value in given.items():
-        if value is None or not text.startswith(options.option_name(name)):
-            continue
-        q = QUANTITIES[options.QUANTITIES[name]]
-        si = SI_UNIT[q.kind].replace("**", "^")
-        if isinstance(value, (int, float)) and not isinstance(value, bool):
-            return (
-                f"{text}; you gave {name}={value!r}, a plain number read in {si} (give a unit: {name}='... {q.unit}')"
-            )
-        return f"{text}; you gave {name}={value!r}"
-    return text
 
 
 __all__ = ["SCHEMA", "ModelParameter", "ModelParams", "ShearOptions", "model_parameters"]
