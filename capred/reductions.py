@@ -278,7 +278,9 @@ REDUCTIONS: dict[str, Reduction] = {
             method=(
                 "Measured capillary forces of micro-tests beside the exact bridge of the same R, gap, contact "
                 "angle and volume, the toroidal approximation, Willett et al. (2000) and Israelachvili's 2πRγ "
-                "cos θ.",
+                "cos θ, and beside every closed-form law of `capred bridge laws` (its registry), each with "
+                "Derjaguin's effective radius for unequal pairs and a plane, and NaN where a law does not apply "
+                "to the pair's geometry.",
             ),
             references=("willett2000", "israelachvili", "lian1993"),
             summary="Measured capillary forces beside the exact bridge and approximations.",

@@ -419,6 +419,8 @@ def check_chi_law(entry, fit: bool = True) -> None:
 
     - χ at the typical parameters is finite and in [0, 1] on S_R in [0, 1] × s in [0, 1 MPa], and 1 for a
       saturated test (S_R = 1, s = 0);
+    - the effective-stress model of its name, given those parameters as its material's fit, has
+      σ'_N = σ_N + χ s on four synthetic wet tests;
     - ``fit=True``: on eight wet tests whose τ = c + (σ_N + χ s) tan φ exactly (c = 2 kPa, φ = 35°, the
       typical parameters), ``fit`` returns those parameters (relative 10⁻³), and ``refit_batch`` on two
       replicates with unit weights returns them too.
@@ -465,6 +467,13 @@ def check_chi_law(entry, fit: bool = True) -> None:
         chk.that(((x >= -1e-12) & (x <= 1 + 1e-12)).all(), f"χ leaves [0, 1]: {np.nanmin(x):g} to {np.nanmax(x):g}")
         one = np.asarray(entry.chi(np.array([1.0]), np.array([0.0]), **entry.typical), float)
         chk.that(np.allclose(one, 1.0, atol=1e-12), f"χ(S_R = 1, s = 0) = {one}, not 1")
+    if model is not None and model.sigma_eff is not None and x is not None:
+        # the law and its model agree: the model's σ'_N with the law's parameters is σ_N + χ s
+        d = _inputs(model, fitted={entry.name: {"sand": dict(entry.typical)}})
+        got = _run(chk, "the model's sigma_eff", model.sigma_eff, d)
+        if got is not None:
+            want = d.sigma_N + np.asarray(chi(d.S_R, d.suction, **entry.typical), float) * d.suction
+            chk.that(np.allclose(got, want, rtol=1e-12, atol=1e-9), "the model's σ'_N ≠ σ_N + χ s of the law")
     chk.done()
     if not fit:
         return

@@ -67,3 +67,18 @@ def test_a_law_registered_at_run_time_is_compared(monkeypatch, tmp_path):
     with (out / "compare.csv").open(encoding="utf-8-sig", newline="") as fh:
         header = next(csv.reader(fh))
     assert "F_toy_contact [mN]" in header and "residual_toy_contact [mN]" in header
+
+
+def test_compare_console_rates_each_law_by_its_residuals(tmp_path):
+    from capred.report.bridge_tables import bridge_compare_tables
+
+    res = pb.compare_measured(_micro_tests(tmp_path))
+    rows = res.rows()
+    _, laws = bridge_compare_tables(res)
+    assert [r[0] for r in laws.rows] == [law.label for law in bl.LAWS.values()]
+    for line, name in zip(laws.rows, bl.LAWS):
+        # by hand from the JSON rows: the pairs a law applies to, RMS and mean of its residuals [mN]
+        r = np.array([row[f"residual_{name}_mN"] for row in rows if row[f"residual_{name}_mN"] is not None])
+        assert line[1] == str(r.size) and r.size in (1, 2)  # Soulie and Mikami: the sphere pair alone
+        assert float(line[2]) == pytest.approx(np.sqrt(np.mean(r**2)), rel=5e-4)  # printed to 4 digits
+        assert float(line[3]) == pytest.approx(np.mean(r), rel=5e-4)

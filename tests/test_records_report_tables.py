@@ -70,7 +70,8 @@ def history():
 
 
 def test_bridge_compare_table_from_the_record(compare, monkeypatch):
-    (table,) = _tables_without_json(compare, monkeypatch)
+    table, laws = _tables_without_json(compare, monkeypatch)  # the pairs, then each registry law's residuals
+    assert len(laws.rows) == len(compare.record().laws)
     keys = ["case", "F_measured_mN", "F_exact_mN", "F_toroidal_mN", "F_willett_mN", "F_israelachvili_mN", "status"]
     _same_as_json(table, compare.rows(), keys, "compare.csv")
     rec = compare.record()

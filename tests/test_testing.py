@@ -162,6 +162,9 @@ def test_a_broken_chi_law_is_caught(monkeypatch):
         check(dataclasses.replace(sound, fit=off))
     with pytest.raises(AssertionError, match="no typical value"):
         check(dataclasses.replace(sound, typical={}))
+    # a χ that is not its model's (S_R^(κ+1) instead of S_e^κ): in [0, 1] and 1 at saturation all the same
+    with pytest.raises(AssertionError, match="the model's σ'_N ≠ σ_N \\+ χ s of the law"):
+        check(dataclasses.replace(sound, chi=lambda S_R, s, kappa: np.asarray(S_R, float) ** (kappa + 1) + 0 * s))
     with pytest.raises(AssertionError, match="another entry is registered"):
         monkeypatch.setitem(chi_laws.LAWS, "chi_power", sound)
         testing.check_chi_law(dataclasses.replace(sound, typical={"kappa": 3.0}))

@@ -418,7 +418,8 @@ class CompareResult(Result):
 def compare_measured(source, options: BridgeOptions | None = None) -> CompareResult:
     """Micro-tests: the exact bridge of each measured (R, R2, gap, contact angle, V_w) beside the measured force,
     the toroidal approximation (equal spheres), Willett et al. (2000) and Israelachvili (with Derjaguin's
-    effective radius 2 R R2 / (R + R2) for unequal pairs and a plane).
+    effective radius 2 R R2 / (R + R2) for unequal pairs and a plane), and every closed-form law of the law
+    registry (`capred.spec.bridge_laws.LAWS`, the laws of ``capred bridge laws``).
 
     Parameters
     ----------
