@@ -2,12 +2,9 @@
 parameter is one declaration"): `capred shear` takes ``--<name>`` with the declared unit and range, the API takes
 ``ModelParams(extra=...)``, the model reads ``d.params.<name>``.
 
-The registry entry's field is ``parameters`` (a tuple of capred.spec.shear.ModelParameter). Until
-capred.spec.effective_stress.EffectiveStressModel declares that field itself, the test's model is a subclass that
-adds it, as a lab script could.
+The registry entry's field is ``parameters`` (a tuple of capred.spec.shear.ModelParameter).
 """
 
-import dataclasses
 import json
 import math
 
@@ -23,11 +20,6 @@ from capred.spec.shear import ModelParameter, ModelParams, model_parameters
 runner = CliRunner()
 
 
-@dataclasses.dataclass(frozen=True)
-class _Model(es.EffectiveStressModel):
-    parameters: tuple = ()
-
-
 def _scaled_bishop(d):
     """σ'_N = σ_N + κ S_R Δu: Bishop's χ = S_R scaled by the model's own κ (κ = 1 is Bishop, κ = 0 no suction)."""
     return d.sigma_N + d.params.my_kappa * d.S_R * d.suction
@@ -40,7 +32,7 @@ KAPPA = ModelParameter(
 
 @pytest.fixture
 def scaled_bishop(monkeypatch):
-    entry = _Model(
+    entry = es.EffectiveStressModel(
         "scaled_bishop",
         "scaled Bishop",
         (("my_kappa", "--my-kappa"),),

@@ -188,9 +188,7 @@ def model_parameter_options() -> list:
     for name, p in model_parameters().items():
         q = p.quantity
         bracket = "; ".join(x for x in ("" if q.unit == "-" else q.unit, _range_text(q)) if x)
-        models = [
-            k for k, e in registry_entries("effective_stress_models").items() if p in getattr(e, "parameters", ())
-        ]
+        models = [k for k, e in registry_entries("effective_stress_models").items() if p in e.parameters]
         text = f"{_glossary_text(q)}{f' [{bracket}]' if bracket else ''}; of model {', '.join(models)}."
         if p.default is not None:
             text += f"  [default: {_shown(float(f'{p.default * q.factor:.12g}'))}]"

@@ -87,7 +87,7 @@ def model_parameters() -> dict[str, ModelParameter]:
     """
     out: dict[str, ModelParameter] = {}
     for entry in esm.REGISTRY.values():
-        for p in getattr(entry, "parameters", ()) or ():
+        for p in entry.parameters:
             QUANTITIES.setdefault(p.name, p.quantity)
             out.setdefault(p.name, p)
     return out
