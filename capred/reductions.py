@@ -30,6 +30,32 @@ class Reduction:
     #: what its input table is called in "this looks like ..." hints, for a command whose table has a schema of
     #: its own (capred.cli.common)
     table_kind: str = ""
+    #: the cells its outputs take per input row: (the columns of its per-row table, the columns it adds per model
+    #: compared in ``options.models``), by which a long file's outputs are sized before anything is computed
+    #: (capred.report.outputs.check_outputs_ahead; tests/test_outputs_ahead.py checks them on the samples);
+    #: (0, 0): sized only once computed
+    row_cells: tuple[int, int] = (0, 0)
+
+    def output_cells(self, options) -> int:
+        """Table cells its outputs take per input row with these options (``row_cells``; 0: not declared).
+
+        Parameters
+        ----------
+        options : object
+            The command's options object (its ``models``, where it compares models).
+
+        Returns
+        -------
+        int
+            Cells per input row.
+        """
+        fixed, per_model = self.row_cells
+        models = getattr(options, "models", ()) if per_model else ()
+        if isinstance(models, str):  # "thesis", "all" or a comma-separated list, as the options take it
+            from .physics.effective_stress_models import resolve_models
+
+            models = resolve_models(models)
+        return fixed + per_model * len(models)
 
     def run(self, source, options):
         """Run the command: call its run function (``run_path``, imported on first use).
@@ -109,6 +135,7 @@ REDUCTIONS: dict[str, Reduction] = {
             references=("evenepoel", "bishop1959"),
             summary="Direct shear with hanging-column suction: dry envelope, effective-stress models, σ_cap.",
             table_kind="a direct-shear table",
+            row_cells=(27, 8),
         ),
         Reduction(
             "triaxial-bounds",
@@ -128,6 +155,7 @@ REDUCTIONS: dict[str, Reduction] = {
             references=("prunier2024",),
             summary="Capillary stress tensor at failure from triaxial tests: bounds and groups.",
             table_kind="a triaxial table (one row per test)",
+            row_cells=(53, 0),
         ),
         Reduction(
             "triaxial",
@@ -149,6 +177,7 @@ REDUCTIONS: dict[str, Reduction] = {
             summary="Unsaturated strength from triaxial failure states: extended Mohr-Coulomb, models, bounds.",
             example=(("bootstrap", 0),),
             table_kind="a table of triaxial failure states",
+            row_cells=(25, 1),
         ),
         Reduction(
             "retention",
@@ -165,6 +194,7 @@ REDUCTIONS: dict[str, Reduction] = {
             references=("vangenuchten1980", "brooks_corey1964"),
             summary="Water retention curves per branch: fits at the optimum, model selection.",
             table_kind="a retention table",
+            row_cells=(4, 1),
         ),
         Reduction(
             "retention-convert",
@@ -265,6 +295,7 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("evenepoel", "lian1993"),
             summary="Exact capillary bridges from a table of cases.",
+            row_cells=(16, 0),
         ),
         Reduction(
             "bridge compare",
@@ -280,6 +311,7 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("willett2000", "israelachvili", "lian1993"),
             summary="Measured capillary forces beside the exact bridge and approximations.",
+            row_cells=(13, 0),
         ),
         Reduction(
             "bridge rupture",
@@ -289,6 +321,7 @@ REDUCTIONS: dict[str, Reduction] = {
             "bridge-rupture",
             "bridge_rupture",
             summary="Rupture distance of bridges at constant volume.",
+            row_cells=(14, 0),
         ),
         Reduction(
             "bridge laws",
@@ -383,6 +416,7 @@ REDUCTIONS: dict[str, Reduction] = {
             references=("casagrande1936", "pacheco_silva1970", "schofield_wroth1968"),
             summary="Oedometer or isotropic compression: λ (C_c), κ (C_s), e_N and the yield stress.",
             table_kind="a compression test (one row per reading)",
+            row_cells=(6, 0),
         ),
         Reduction(
             "history",

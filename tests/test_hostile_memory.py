@@ -198,3 +198,41 @@ def test_rows_of_a_million_cells_are_refused_without_making_them(tmp_path):
             fh.write(line)
     err = _shear(path, tmp_path, rc=1)
     assert "cells" in err and "--max-columns" in err
+
+
+def _long_file(path, head, row, megabytes):
+    """``head`` then ``row`` (with {i} numbered) repeated to ``megabytes`` MB, written 10,000 rows at a time."""
+    with open(path, "w") as fh:
+        fh.write(head)
+        i = 0
+        while fh.tell() < megabytes * 1e6:
+            fh.write("".join(row.format(i=k) for k in range(i, i + 10_000)))
+            i += 10_000
+
+
+@pytest.mark.parametrize(
+    ("command", "head", "row"),
+    [
+        pytest.param(
+            ["shear"],
+            HEADER,
+            "T{i},Toyoura sand,wet,200.0,120.0,36.0,0.6104\n",
+            id="shear",
+        ),
+        pytest.param(
+            ["bridge", "solve"],
+            "case,R [mm],gamma [N/m],contact_angle [deg],gap [mm],suction [kPa],V_w [mm^3]\n",
+            "c{i},1,0.0728,0,0.02,1,\n",
+            id="bridge solve",
+        ),
+    ],
+)
+def test_250_mb_of_valid_rows_refused_for_their_outputs_before_computing(tmp_path, command, head, row):
+    """250 MB of valid rows would write more than the 4 GiB bound (shear: about 11 GiB; bridge solve: about 6
+    GiB): refused from the file's lines before any row is read as a table (2 min 49 s and 723 MB when the tables
+    were sized once computed), nothing written."""
+    path = tmp_path / "long.csv"
+    _long_file(path, head, row, 250)
+    err = _bounded([*command, path, "--no-plots", "--no-html", "--out", tmp_path / "o"], tmp_path, 1)
+    assert "would take about" in err and "CAPRED_MAX_OUTPUT_MEGABYTES" in err
+    assert not (tmp_path / "o").exists()

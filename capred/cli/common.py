@@ -597,7 +597,10 @@ def _single(inv: Invocation) -> None:
     write = inv.out is not None or (not inv.json and REDUCTIONS[inv.command].files_by_default)
     out_dir = inv.out or default_out(inv.command, source)
     if write:  # before anything is computed
+        from ..report.outputs import check_outputs_ahead
+
         check_target(out_dir, [source, *inv.extra_inputs])
+        check_outputs_ahead(inv.command, source, inv.options, out_dir, inv.extra_inputs)
     import sys
 
     from ..progress import showing

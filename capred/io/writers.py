@@ -1271,7 +1271,9 @@ def _cells(table) -> int:
 def check_output_size(result, tables: dict, out) -> None:
     """Refuse, before anything is written, a run whose tables would take more than :func:`output_budget`.
 
-    The size is estimated as cells x :data:`_BYTES_PER_CELL` (the CSV and the JSON document).
+    The size is estimated as cells x :data:`_BYTES_PER_CELL` (the CSV and the JSON document). A long file's run
+    was already sized from its rows before it was computed (:func:`check_output_estimate`); this is what a run
+    sized by no such count (a workbook, a DataFrame) is checked by.
 
     Parameters
     ----------
@@ -1288,13 +1290,37 @@ def check_output_size(result, tables: dict, out) -> None:
         Over the bound, saying how large, why and how to allow it.
     """
     cells = sum(_cells(t) for t in tables.values())
+    if cells * _BYTES_PER_CELL <= OUTPUT_FLOOR and not os.environ.get(OUTPUT_VARIABLE):  # no file looked at
+        return
+    check_output_estimate(cells, [i.path for i in result.inputs], out)
+
+
+def check_output_estimate(cells: int, inputs, out) -> None:
+    """Refuse a run whose outputs, ``cells`` table cells (about :data:`_BYTES_PER_CELL` bytes each as CSV and
+    JSON), would take more than :func:`output_budget` of its ``inputs``: before its tables are written, or before
+    anything is computed when its input's rows size them (capred.report.outputs.check_outputs_ahead).
+
+    Parameters
+    ----------
+    cells : int
+        Table cells the run writes (or would write).
+    inputs : sequence of path
+        The run's input files (their sizes set the bound; a path that is not a file counts 0).
+    out : pathlib.Path
+        The output folder (for the message).
+
+    Raises
+    ------
+    OutputError
+        Over the bound, saying how large, why and how to allow it; nothing is written.
+    """
     estimate = cells * _BYTES_PER_CELL
     if estimate <= OUTPUT_FLOOR and not os.environ.get(OUTPUT_VARIABLE):  # the common case: no file looked at
         return
     size = 0
-    for i in result.inputs:
+    for path in inputs:
         try:
-            size += os.path.getsize(i.path)
+            size += os.path.getsize(path)
         except (OSError, TypeError, ValueError):
             pass
     budget = output_budget(size)

@@ -61,6 +61,59 @@ class FigureOptions:
         object.__setattr__(self, "dpi", int(dpi))
 
 
+def check_outputs_ahead(command: str, source, options, out, extra_inputs=()) -> None:
+    """Refuse, before anything is read as a table or computed, a run whose outputs a long input file would make
+    larger than the writer's bound (capred.io.writers.output_budget): its data lines x the cells its outputs take
+    per row (``Reduction.row_cells``) x about 40 bytes a cell. The writer checks the tables again once computed.
+
+    Only a plain text file is counted (its lines, a block of bytes at a time); a workbook, a DataFrame, a command
+    that declares no per-row outputs or a file too short to matter costs nothing here.
+
+    Parameters
+    ----------
+    command : str
+        The command (a key of capred.reductions.REDUCTIONS).
+    source : str, pathlib.Path, pandas.DataFrame or capred.io.TableSource
+        Its input.
+    options : object
+        Its options (the models it compares set its columns).
+    out : pathlib.Path
+        The output folder (for the message).
+    extra_inputs : sequence of path, optional
+        Further inputs of the run (their bytes count toward the bound, as in the writer).
+
+    Raises
+    ------
+    capred.errors.OutputError
+        Over the bound, with nothing written.
+    """
+    from ..io.grid import SPREADSHEET_SUFFIXES, source_path
+    from ..io.writers import _BYTES_PER_CELL, OUTPUT_FLOOR, OUTPUT_VARIABLE, check_output_estimate
+    from ..reductions import REDUCTIONS
+
+    red = REDUCTIONS.get(command)
+    path = source_path(source) if source is not None else None
+    if red is None or not red.row_cells[0] or not isinstance(path, (str, os.PathLike)):
+        return
+    path = Path(path)
+    try:
+        size = path.stat().st_size if path.is_file() else 0  # never a FIFO or device opened here
+    except OSError:
+        return
+    if not size or path.suffix.lower() in SPREADSHEET_SUFFIXES:
+        return
+    per_row = red.output_cells(options)
+    if (size // 2) * per_row * _BYTES_PER_CELL <= OUTPUT_FLOOR and not os.environ.get(OUTPUT_VARIABLE):
+        return  # at most one row per two bytes: under the bound however the file is filled
+    from ..io.blocks import data_lines
+
+    try:
+        rows = max(0, data_lines(path) - 1)  # less the header
+    except OSError:
+        return  # the reader says what is wrong with the file
+    check_output_estimate(rows * per_row, [path, *extra_inputs], out)
+
+
 def write_outputs(
     result,
     out,
