@@ -67,7 +67,7 @@ MaxMbOpt = Annotated[
         "--max-megabytes",
         min=1,
         help="Largest input the reader takes "
-        "on: bytes of a CSV file or of a workbook once decompressed "
+        "on: bytes of a CSV or JSON file or of a workbook once decompressed "
         "[MiB; default 256].",
         show_default=False,
     ),

@@ -5,7 +5,7 @@ from typing import Annotated
 
 import typer
 
-from .common import Invocation, ThousandsOpt, command
+from .common import Invocation, MaxMbOpt, ThousandsOpt, command
 from .declare import option, registry_help, registry_names, si_values
 
 SHEAR = "capred.pipelines.shear:ShearOptions"
@@ -50,6 +50,7 @@ def register(app: typer.Typer) -> None:
 
 def shear(
     thousands: ThousandsOpt = None,
+    max_megabytes: MaxMbOpt = None,
     curves: Annotated[
         Path | None,
         typer.Option(
@@ -154,6 +155,8 @@ def shear(
     ----------
     thousands : str, optional
         Thousands separator of the curves file.
+    max_megabytes : int, optional
+        Largest input read [MiB]: the table, the curves file and --retention's JSON (default 256).
     curves : Path, optional
         Raw shear curves, long format.
     area_correction : str, optional
@@ -211,6 +214,7 @@ def shear(
         The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..pipelines.shear import ModelParams, ShearOptions, model_params_from_retention
+    from .common import _limits
 
     params = si_values(
         PARAMS,
@@ -230,8 +234,9 @@ def shear(
         from ..errors import OptionError
 
         raise OptionError("--retention-branch needs --retention FIT.json")
+    limits = _limits({"max_megabytes": max_megabytes})  # the table's own come from the shared options
     mp = (
-        model_params_from_retention(retention, retention_branch, **params)
+        model_params_from_retention(retention, retention_branch, limits, **params)
         if retention is not None
         else ModelParams(**params)
     )
@@ -256,7 +261,7 @@ def shear(
     )
     if models is not None:
         given["models"] = _model_list(models)
-    opts = ShearOptions(**given, model_params=mp, curves=_curves_source(curves, thousands))
+    opts = ShearOptions(**given, model_params=mp, curves=_curves_source(curves, thousands, limits))
     return Invocation("shear", opts, extra_inputs=[p for p in (retention, curves) if p])
 
 
@@ -409,12 +414,12 @@ def retention(
     return Invocation("retention", opts)
 
 
-def _curves_source(path: Path | None, thousands):
-    if path is None or thousands is None:
+def _curves_source(path: Path | None, thousands, limits=None):
+    if path is None or (thousands is None and limits is None):
         return path
     from ..io import TableSource
 
-    return TableSource(path, None, thousands)
+    return TableSource(path, None, thousands, limits=limits)
 
 
 def _model_list(text: str) -> tuple[str, ...]:

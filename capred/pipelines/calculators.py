@@ -563,7 +563,7 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     """
     fit_notes, fit_warnings = [], []
     if opt.compression is not None:
-        opt, fit_notes, fit_warnings = _with_compression(opt)
+        opt, fit_notes, fit_warnings = _with_compression(opt, getattr(source, "limits", None))
     if opt.retention is not None:  # any retention fit: Brooks-Corey as it is, another model converted to it
         from .retention_convert import brooks_corey_for_skempton
 
@@ -628,9 +628,9 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     return res
 
 
-def _with_compression(opt: SkemptonOptions) -> tuple[SkemptonOptions, list[str], list[str]]:
-    """κ and e0 (and λ0 with bounding-surface) from a compression.json, with its notes and warnings; an error when
-    the options give them too."""
+def _with_compression(opt: SkemptonOptions, limits=None) -> tuple[SkemptonOptions, list[str], list[str]]:
+    """κ and e0 (and λ0 with bounding-surface) from a compression.json (read within ``limits``: --max-megabytes),
+    with its notes and warnings; an error when the options give them too."""
     from .compression import load_compression_fit
 
     fields = {f.name: f.default for f in dataclasses.fields(SkemptonOptions)}
@@ -641,7 +641,7 @@ def _with_compression(opt: SkemptonOptions) -> tuple[SkemptonOptions, list[str],
         clash.append("--lambda0")
     if clash:
         raise OptionError(f"give --compression or {', '.join(clash)}, not both")
-    lines = load_compression_fit(opt.compression)
+    lines = load_compression_fit(opt.compression, limits)
     if lines.url_slope is None:
         raise OptionError(f"--compression {lines.source}: the test has no unloading stage, so no κ for skempton-b")
     new = {"kappa_elastic": lines.url_slope, "e0": lines.e0}
@@ -1174,15 +1174,15 @@ class ShearBandOptions(Options):
             raise OptionError("give --phi-eff or --triaxial (the envelope's phi'), not both")
 
 
-def _phi_from_triaxial(path) -> float:
+def _phi_from_triaxial(path, limits=None) -> float:
     """φ' [deg] of the envelope in a summary.json of `capred triaxial-bounds` or of `capred triaxial` (one
-    material; several are named with their φ', for --phi-eff)."""
-    import json
-    from pathlib import Path
+    material; several are named with their φ', for --phi-eff), read within ``limits`` (--max-megabytes) and
+    capred.io.MAX_JSON_DEPTH."""
+    from ..io import read_json
 
     where = str(path)
     try:
-        doc = json.loads(Path(path).read_text(encoding="utf-8"))
+        doc = read_json(path, "--triaxial", limits)
         if isinstance(doc, dict) and doc.get("command") == "triaxial" and isinstance(doc.get("materials"), dict):
             phis = {m: float(v["envelope"]["phi_deg"]) for m, v in doc["materials"].items()}
             if len(phis) != 1:
@@ -1227,7 +1227,7 @@ def reduce_shear_band(source, opt: ShearBandOptions) -> CalcResult:
     phi_eff = opt.phi_eff
     notes_extra = []
     if opt.triaxial is not None:
-        phi_eff = _phi_from_triaxial(opt.triaxial)
+        phi_eff = _phi_from_triaxial(opt.triaxial, getattr(source, "limits", None))
         notes_extra.append(f"φ' = {phi_eff:.4g} deg from the envelope of {opt.triaxial}")
     v, notes, src = _inputs(
         source,
