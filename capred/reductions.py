@@ -36,27 +36,6 @@ class Reduction:
     #: (0, 0): sized only once computed
     row_cells: tuple[int, int] = (0, 0)
 
-    def output_cells(self, options) -> int:
-        """Table cells its outputs take per input row with these options (``row_cells``; 0: not declared).
-
-        Parameters
-        ----------
-        options : object
-            The command's options object (its ``models``, where it compares models).
-
-        Returns
-        -------
-        int
-            Cells per input row.
-        """
-        fixed, per_model = self.row_cells
-        models = getattr(options, "models", ()) if per_model else ()
-        if isinstance(models, str):  # "thesis", "all" or a comma-separated list, as the options take it
-            from .physics.effective_stress_models import resolve_models
-
-            models = resolve_models(models)
-        return fixed + per_model * len(models)
-
     def run(self, source, options):
         """Run the command: call its run function (``run_path``, imported on first use).
 

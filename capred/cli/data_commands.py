@@ -214,7 +214,6 @@ def shear(
         The command's options record, run by :func:`capred.cli.common.execute` with the options every command shares.
     """
     from ..pipelines.shear import ModelParams, ShearOptions, model_params_from_retention
-    from .common import _limits
 
     params = si_values(
         PARAMS,
@@ -234,7 +233,10 @@ def shear(
         from ..errors import OptionError
 
         raise OptionError("--retention-branch needs --retention FIT.json")
-    limits = _limits({"max_megabytes": max_megabytes})  # the table's own come from the shared options
+    from ..io import ReadLimits
+
+    # --retention's JSON and the curves file read within --max-megabytes, as the table is
+    limits = None if max_megabytes is None else ReadLimits(max_bytes=max_megabytes * 2**20)
     mp = (
         model_params_from_retention(retention, retention_branch, limits, **params)
         if retention is not None

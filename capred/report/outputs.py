@@ -61,13 +61,40 @@ class FigureOptions:
         object.__setattr__(self, "dpi", int(dpi))
 
 
+def output_cells(command: str, options) -> int:
+    """Table cells a command's outputs take per input row with these options (its ``Reduction.row_cells``: the
+    columns of its per-row table, more for each model in ``options.models``); 0 where it declares none.
+
+    Parameters
+    ----------
+    command : str
+        The command (a key of capred.reductions.REDUCTIONS).
+    options : object
+        Its options object.
+
+    Returns
+    -------
+    int
+        Cells per input row.
+    """
+    from ..reductions import REDUCTIONS
+
+    fixed, per_model = REDUCTIONS[command].row_cells
+    models = getattr(options, "models", ()) if per_model else ()
+    if isinstance(models, str):  # "thesis", "all" or a comma-separated list, as triaxial's options take it
+        from ..physics.effective_stress_models import resolve_models
+
+        models = resolve_models(models)
+    return fixed + per_model * len(models)
+
+
 def check_outputs_ahead(command: str, source, options, out, extra_inputs=()) -> None:
     """Refuse, before anything is read as a table or computed, a run whose outputs a long input file would make
     larger than the writer's bound (capred.io.writers.output_budget): its data lines x the cells its outputs take
     per row (``Reduction.row_cells``) x about 40 bytes a cell. The writer checks the tables again once computed.
 
-    Only a plain text file is counted (its lines, a block of bytes at a time); a workbook, a DataFrame, a command
-    that declares no per-row outputs or a file too short to matter costs nothing here.
+    Only a plain text file is counted (capred.io.check_rows_output); a workbook, a DataFrame, a command that
+    declares no per-row outputs or a file too short to matter costs nothing here.
 
     Parameters
     ----------
@@ -87,31 +114,11 @@ def check_outputs_ahead(command: str, source, options, out, extra_inputs=()) -> 
     capred.errors.OutputError
         Over the bound, with nothing written.
     """
-    from ..io.grid import SPREADSHEET_SUFFIXES, source_path
-    from ..io.writers import _BYTES_PER_CELL, OUTPUT_FLOOR, OUTPUT_VARIABLE, check_output_estimate
+    from ..io import check_rows_output
     from ..reductions import REDUCTIONS
 
-    red = REDUCTIONS.get(command)
-    path = source_path(source) if source is not None else None
-    if red is None or not red.row_cells[0] or not isinstance(path, (str, os.PathLike)):
-        return
-    path = Path(path)
-    try:
-        size = path.stat().st_size if path.is_file() else 0  # never a FIFO or device opened here
-    except OSError:
-        return
-    if not size or path.suffix.lower() in SPREADSHEET_SUFFIXES:
-        return
-    per_row = red.output_cells(options)
-    if (size // 2) * per_row * _BYTES_PER_CELL <= OUTPUT_FLOOR and not os.environ.get(OUTPUT_VARIABLE):
-        return  # at most one row per two bytes: under the bound however the file is filled
-    from ..io.blocks import data_lines
-
-    try:
-        rows = max(0, data_lines(path) - 1)  # less the header
-    except OSError:
-        return  # the reader says what is wrong with the file
-    check_output_estimate(rows * per_row, [path, *extra_inputs], out)
+    if command in REDUCTIONS and REDUCTIONS[command].row_cells[0]:
+        check_rows_output(source, output_cells(command, options), out, extra_inputs)
 
 
 def write_outputs(
