@@ -109,3 +109,18 @@ def test_skempton_compression_json_honours_max_megabytes(tmp_path):
     )  # fmt: skip
     assert res.exit_code == 1 and "--max-megabytes" in res.stderr and "1.5 MiB" in res.stderr, res.output
     assert not (tmp_path / "o").exists()
+
+
+def test_skempton_retention_json_honours_max_megabytes(tmp_path):
+    """skempton-b's --retention (a fits.json, read by retention-convert's reader, 16 MiB by default) within the
+    run's --max-megabytes: a 1.5 MiB file is refused under --max-megabytes 1, naming its size."""
+    import capred
+
+    fits = tmp_path / "fits.json"
+    _padded_json(fits, 1.5)
+    res = runner.invoke(
+        app, ["skempton-b", str(capred.sample_path("skempton-b")), "--retention", str(fits), "--max-megabytes", "1",
+              "--out", str(tmp_path / "o")],
+    )  # fmt: skip
+    assert res.exit_code == 1 and "1.5 MiB, more than the 1 MiB" in res.stderr, res.output
+    assert not (tmp_path / "o").exists()

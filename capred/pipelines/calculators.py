@@ -569,7 +569,9 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
 
         if opt.s_e is not None or opt.bc_lambda is not None:
             raise OptionError("give --retention or --se with --bc-lambda, not both")
-        s_e, lam, more_notes, more_warnings = brooks_corey_for_skempton(opt.retention)
+        s_e, lam, more_notes, more_warnings = brooks_corey_for_skempton(
+            opt.retention, limits=getattr(source, "limits", None)
+        )
         fit_notes, fit_warnings = fit_notes + more_notes, fit_warnings + more_warnings
         opt = dataclasses.replace(opt, s_e=s_e, bc_lambda=lam)
     kw = dict(kappa=opt.kappa_elastic, e0=opt.e0, p0=opt.p0, u0=opt.u0, pa0=opt.pa0)  # keys: the figure's
