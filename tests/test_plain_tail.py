@@ -27,7 +27,8 @@ def _both(tmp_path, header, rows, schema, window=None, monkeypatch=None):
     if window is not None:
         monkeypatch.setattr(plain_tail, "WINDOW_CHARS", window)  # many windows in a small file
     out = []
-    for name, head in (("tail.csv", header), ("rows.csv", '"' + header.replace(",", '",', 1))):
+    d = ";" if ";" in header else ","
+    for name, head in (("tail.csv", header), ("rows.csv", '"' + header.replace(d, '"' + d, 1))):
         path = tmp_path / name
         path.write_text(head + "\n" + "\n".join(rows) + "\n")
         try:
@@ -99,3 +100,14 @@ def test_a_triaxial_table_with_ids_and_materials_is_read_alike(tmp_path):
     a, b = _both(tmp_path, header, rows, TRIAXIAL)
     _same(a, b)
     assert a.columns["test_id"][899] == "T899" and a.raw["test_id"][899] == "T899"
+
+
+def test_a_decimal_comma_table_is_read_alike(tmp_path):
+    """';' as delimiter and decimal commas: the tail's numbers are read cell by cell, as the row-by-row reader
+    reads them (a cell with a dot there is ambiguous and named)."""
+    rows = [r.replace(",", ";").replace(".", ",") for r in _rows(600)]
+    rows[400] = "1.000;0,3;30,5;drying"  # a thousands separator or a decimal point? (line 402)
+    a, b = _both(tmp_path, HEADER.replace(",", ";"), rows, RETENTION)
+    _same(a, b)
+    assert a.columns["z2"][1] == pytest.approx(0.3e-6)  # 0,30 cm^3
+    assert any(p.line == 402 and "ambiguous" in p.message for p in a.problems)

@@ -763,7 +763,7 @@ def grid_table(grid, src, schema: list[Column], empty_ok: bool = False) -> Table
         table.lines = np.concatenate([table.lines, np.arange(tail.first_line, tail.first_line + tail.n)])
         plain = [] if decimal_comma or src.thousands is not None else numeric
         fast = [positions[name][0] for name in plain if not positions[name][1].words]
-        texts = [positions[name][0] for name, (_, col, _) in positions.items() if col.kind == "text"]
+        texts = [j for j, _, _ in positions.values() if j not in fast]  # text, and numbers read cell by cell
         tail_values, tail_texts = read_columns(tail, fast, texts, _parse_column, _stripped)
         for name, (j, _, _) in positions.items():
             if tail_values.get(j) is None:  # a text column, or numbers read cell by cell
