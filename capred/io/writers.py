@@ -1272,7 +1272,7 @@ def check_output_size(result, tables: dict, out) -> None:
     """Refuse, before anything is written, a run whose tables would take more than :func:`output_budget`.
 
     The size is estimated as cells x :data:`BYTES_PER_CELL` (the CSV and the JSON document). A long file's run
-    was already sized from its rows before it was computed (:func:`check_output_estimate`); this is what a run
+    was already sized from its lines before it was computed (:func:`check_rows_output`); this is what a run
     sized by no such count (a workbook, a DataFrame) is checked by.
 
     Parameters
@@ -1289,16 +1289,13 @@ def check_output_size(result, tables: dict, out) -> None:
     OutputError
         Over the bound, saying how large, why and how to allow it.
     """
-    cells = sum(_cells(t) for t in tables.values())
-    if cells * BYTES_PER_CELL <= OUTPUT_FLOOR and not os.environ.get(OUTPUT_VARIABLE):  # no file looked at
-        return
-    check_output_estimate(cells, [i.path for i in result.inputs], out)
+    check_output_estimate(sum(_cells(t) for t in tables.values()), [i.path for i in result.inputs], out)
 
 
 def check_output_estimate(cells: int, inputs, out) -> None:
     """Refuse a run whose outputs, ``cells`` table cells (about :data:`BYTES_PER_CELL` bytes each as CSV and
     JSON), would take more than :func:`output_budget` of its ``inputs``: before its tables are written, or before
-    anything is computed when its input's rows size them (capred.report.outputs.check_outputs_ahead).
+    anything is computed when its input's lines size them (:func:`check_rows_output`).
 
     Parameters
     ----------
