@@ -20,7 +20,7 @@ __version__ = "0.1.0"
 _API = {
     "run": "capred.reductions",
     "write_outputs": "capred.report.outputs",
-    "run_shear": "capred.pipelines.shear",
+    "run_shear": "capred.pipelines.shear_run",
     "ShearOptions": "capred.pipelines.shear",
     "ModelParams": "capred.pipelines.shear",
     "ShearResult": "capred.pipelines.shear",

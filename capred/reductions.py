@@ -86,7 +86,7 @@ REDUCTIONS: dict[str, Reduction] = {
     for r in (
         Reduction(
             "shear",
-            _P + "shear:run_shear",
+            _P + "shear_run:run_shear",
             _P + "shear:ShearOptions",
             "required",
             "shear",

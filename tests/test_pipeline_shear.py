@@ -5,7 +5,8 @@ import pytest
 from numpy.testing import assert_allclose
 
 import capred
-from capred.pipelines.shear import ShearOptions, run_shear
+from capred.pipelines.shear import ShearOptions
+from capred.pipelines.shear_run import run_shear
 
 # Noise-free file built from the thesis's dry envelopes (Evenepoel (VUB thesis), "Dry tests"):
 # steel c = 0.3452 kPa, tan phi = 0.7146; sand c = 0.0721 kPa, tan phi = 0.7955.

@@ -1405,60 +1405,35 @@ def check_shear_table(table: Table, with_curves: bool = False, unique: bool = Tr
         table.check_unique("test_id")
 
 
-def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
-    """Reduce a direct-shear table and compare effective-stress models (Evenepoel's four by default).
+def run_table(source, opt: ShearOptions, table: Table | None = None) -> ShearResult:
+    """`capred shear` on a table held whole: derive, fit the dry envelopes, predict and score every model.
 
-    ``source`` is a path to a CSV file or a pandas DataFrame. Raises
-    InputError (every problem in the file, each with line and column),
-    OptionError or FitError; never writes anything.
-
-    A plain CSV longer than one block of capred.io.blocks (about 60,000
-    tests) is read and predicted block by block and gives a ShearBlocks (a
-    ShearResult whose per-test outputs stay in a temporary file: memory flat
-    in the number of tests, the same output files); its problems are raised
-    block by block (the first block that has any), repeated test ids after
-    the last. With raw curves (``options.curves``) a table is read whole.
+    What :func:`capred.pipelines.shear_run.run_shear` does with a table of one block, or with raw curves;
+    raises InputError (every problem in the file, each with line and column), OptionError or FitError.
 
     Parameters
     ----------
     source : str or Path or DataFrame
-        The direct-shear tests (one row per test).
-    options : ShearOptions, optional
+        The direct-shear tests (one row per test), as the user gave them.
+    opt : ShearOptions
         Constants, per-test defaults, models and fitting choices (SI).
+    table : capred.io.Table or None, optional
+        The table already read from ``source`` (its one block); None: read here (with ``opt.curves``).
 
     Returns
     -------
     ShearResult
-        The dry envelopes, each model's predictions and scores, the ranking and the back-analysis (a
-        ShearBlocks for a long plain CSV).
+        The dry envelopes, each model's predictions and scores, the ranking and the back-analysis.
 
     References
     ----------
     .. [1] Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular
        materials. Master thesis, Vrije Universiteit Brussel.
-
-    Example
-    -------
-    >>> import capred
-    >>> r = capred.run_shear(capred.sample_path("shear"))   # doctest: +SKIP
-    >>> r.to_json()["materials"]["steel_2mm"]["phi_deg"]     # doctest: +SKIP
     """
-    opt = options or ShearOptions()
-    if opt.curves is None:  # a long plain CSV is read, computed and kept block by block (issue 20)
-        from ..io import read_table_blocks
-
-        blocks = read_table_blocks(source, SCHEMA)
-        table = next(blocks)
-        more = next(blocks, None)
-        if more is not None:
-            pending = [table, more]
-            del table, more  # run_blocks lets go of each block once read
-            from .shear_long import run_blocks
-
-            return run_blocks(source, opt, pending, blocks)
-        check_shear_table(table)
+    if table is None:
+        table = load_shear_table(source, opt.curves is not None)
     else:
-        table = load_shear_table(source, True)
+        check_shear_table(table)
     table.warnings += unused_row_options(table, opt)
     box = filled_column(table, "box_area", opt.box_area)
     curves = None
@@ -2175,17 +2150,7 @@ def _rows_table(rows: list[dict], frame: bool):
     return pd.DataFrame(rows)
 
 
-__all__ = ["SCHEMA", "ModelParams", "ShearBlocks", "ShearOptions", "ShearResult", "run_shear"]  # noqa: F822 (ShearBlocks: __getattr__)
-
-
-def __getattr__(name: str):
-    """``ShearBlocks`` (the result of a long table) lives in `capred.pipelines.shear_long`, which imports this
-    module: named here on first use, as before."""
-    if name == "ShearBlocks":
-        from .shear_long import ShearBlocks
-
-        return ShearBlocks
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__all__ = ["SCHEMA", "ModelParams", "ShearOptions", "ShearResult", "run_table"]
 
 
 def _bound_derived(table, values, derived, name: str, sources: tuple[str, ...]) -> None:

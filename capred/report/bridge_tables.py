@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..result import TableSpec
+from ..table_spec import TableSpec
 from .render import MAX_ROWS, row_table, spec
 
 

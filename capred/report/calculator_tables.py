@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from ..result import TableSpec, num
+from ..records import num
+from ..table_spec import TableSpec
 from .render import row_table
 
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..physics import compression as cp
-from ..result import TableSpec
+from ..table_spec import TableSpec
 from .render import fmt, spec
 from .sheets import Panel, Sheet
 from .style import OKABE_ITO

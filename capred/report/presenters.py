@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ..result import TableSpec
+from ..table_spec import TableSpec
 
 
 @dataclass(frozen=True)

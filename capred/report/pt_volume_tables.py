@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from ..result import TableSpec, num, record_outputs, scale_value
+from ..records import num, record_outputs, scale_value
+from ..table_spec import TableSpec
 from .render import MAX_ROWS, fmt, spec
 
 

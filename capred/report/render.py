@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import math
 
-from ..result import TableSpec
 from ..sampling import MAX_ROWS  # per-row tables: the first rows only (re-exported)
+from ..table_spec import TableSpec
 
 #: The one rule for numbers in console tables: this many significant digits.
 SIGNIFICANT = 4
@@ -478,9 +478,7 @@ def render(result, out_dir=None, written=None, console=None) -> None:
 
     con = console or Console()
     terminal = con.is_terminal
-    from .presenters import console_tables
-
-    render_tables(console_tables(result), con)
+    render_tables(result.console_tables(), con)  # the run's tables, as capred.report.presenters makes them
     for w in result.all_warnings():
         _line(con, terminal, "warning: ", "yellow", w)
     for n in result.all_notes():

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from ..result import TableSpec
+from ..table_spec import TableSpec
 from .render import fmt, spec
 
 

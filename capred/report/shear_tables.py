@@ -6,7 +6,8 @@ import numpy as np
 
 from ..nomenclature import QUANTITIES
 from ..physics.effective_stress_models import MODEL_LABELS
-from ..result import TableSpec, num
+from ..records import num
+from ..table_spec import TableSpec
 from .render import MAX_ROWS, fmt, row_table, spec
 
 
