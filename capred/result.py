@@ -272,6 +272,18 @@ class Result:
         :func:`csv_header` (``name [unit]``)."""
         return {stem: with_csv_headers(table) for stem, table in self.tables().items()}
 
+    def quantity_units(self) -> dict[str, str]:
+        """JSON key -> declared unit of the numbers of the document that no glossary quantity names (a fit's
+        parameters, say); the lab store takes every unit from the declarations (capred.lab_store.declared_units
+        and this), none from a key's spelling. None by default.
+
+        Returns
+        -------
+        dict
+            Key -> unit ("-" when dimensionless).
+        """
+        return {}
+
     def extra_files(self) -> dict[str, bytes]:
         """Files of the command's own format written beside the tables (name -> bytes); none by default."""
         return {}
