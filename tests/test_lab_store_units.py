@@ -61,3 +61,5 @@ def test_units_come_from_the_glossary_not_the_suffix():
     assert units["phi_deg"] == ("phi", "deg") and units["c_kPa"] == ("c", "kPa") and units["c_se_kPa"] == ("c", "kPa")
     assert units["S_s"] == ("S_s", "-") and units["theta_s"] == ("theta_s", "m³/m³")
     assert "sigma_N_kPa" in units and units["sigma_N_kPa"][1] == "kPa"  # sigma_N: a stress, not newtons
+    # a shear envelope's numbers (capred shear's materials block)
+    assert [units[k][1] for k in ("tan_phi", "tan_phi_se", "r2", "scatter_kPa")] == ["-", "-", "-", "kPa"]
