@@ -83,7 +83,7 @@ def _calc_figures(result) -> dict:
         return {}
     from .calculator_figures import sheet_skempton
 
-    return {"skempton-b": sheet_skempton(**result.figure_data)}
+    return {"skempton-b": sheet_skempton(**result.figure_curves())}
 
 
 def _rupture_tables(result) -> list[TableSpec]:
