@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 import capred
-from capred.pipelines.calculators import run_skempton_b
 from capred.physics import calculators as calc
+from capred.pipelines.calculators import run_skempton_b
 
 
 def test_each_case_lies_on_its_own_curve():
