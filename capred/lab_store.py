@@ -38,7 +38,7 @@ import sqlite3
 from pathlib import Path
 
 from .errors import InputError, Problem
-from .records import unit_suffix
+from .nomenclature import unit_suffix
 
 #: identifies a capred store (PRAGMA application_id): "CAPR" in ASCII
 APPLICATION_ID = 0x43415052
@@ -390,7 +390,7 @@ def declared_units() -> dict[str, tuple[str, str]]:
     """JSON key -> (quantity, unit) of every number a run's document names by a declared quantity.
 
     From the declarations, never from a key's spelling: each glossary quantity (capred/nomenclature.py) gives
-    its JSON key, the name with its unit (:func:`capred.records.unit_suffix`, ``phi_deg``, ``c_kPa``; the name
+    its JSON key, the name with its unit (:func:`capred.nomenclature.json_key`, ``phi_deg``, ``c_kPa``; the name
     alone for a dimensionless one), and the key of its standard error (``c_se_kPa``); each retention parameter
     its JSON name (capred.fitting.retention_models.JSON_NAMES and ``json_name``: ``alpha_per_kPa`` in 1/kPa,
     ``S_s`` and ``S_res`` dimensionless, ``theta_s`` in m³/m³).
@@ -401,15 +401,12 @@ def declared_units() -> dict[str, tuple[str, str]]:
         Key -> (the quantity's name, its unit; "-" when dimensionless).
     """
     from .fitting.retention_models import JSON_NAMES, json_name
-    from .nomenclature import QUANTITIES
-    from .records import unit_suffix
+    from .nomenclature import QUANTITIES, json_key
 
     out: dict[str, tuple[str, str]] = {}
     for name, q in QUANTITIES.items():
         unit = q.unit if q.unit not in ("", "-") else "-"
-        suffix = "" if unit == "-" else "_" + unit_suffix(unit)
-        out[name + suffix] = (name, unit)
-        out[f"{name}_se{suffix}"] = (name, unit)
+        out[json_key(name)] = out[json_key(name, "_se")] = (name, unit)
     retention = [json_name(y, quantity) for y in ("y_r", "y_s") for quantity in ("theta", "S_R", "w")]
     for key, _, unit in list(JSON_NAMES.values()) + retention:
         out[key] = (key, unit)

@@ -616,6 +616,41 @@ def column(name: str, suffix: str = "") -> str:
     return f"{name}{suffix} [{QUANTITIES[name].unit}]"
 
 
+def unit_suffix(unit: str) -> str:
+    """The Python-name form of an output unit: ``kPa`` -> ``kPa``, ``1/kPa`` -> ``per_kPa``, ``cm^3`` -> ``cm3``.
+
+    Parameters
+    ----------
+    unit : str
+        An output unit as headers show it.
+
+    Returns
+    -------
+    str
+        The suffix of a JSON key or attribute that holds a value in that unit (``tau_kPa``).
+    """
+    s = unit.replace("1/", "per_").replace("/", "_per_").replace("^", "").replace(" ", "")
+    return s.replace("%", "pct").replace("°", "deg")
+
+
+def json_key(name: str, suffix: str = "") -> str:
+    """JSON key of a quantity: its name, ``suffix`` and its output unit (``sigma_N_kPa``; ``S_R``: dimensionless).
+
+    Parameters
+    ----------
+    name : str
+        A key of ``QUANTITIES``.
+    suffix : str, optional
+        Appended to the name before the unit, e.g. ``"_se"`` (``c_se_kPa``).
+
+    Returns
+    -------
+    str
+    """
+    unit = QUANTITIES[name].unit
+    return f"{name}{suffix}" if unit in ("", "-") else f"{name}{suffix}_{unit_suffix(unit)}"
+
+
 def to_output(name: str, value):
     """Convert an SI value of a quantity to its output unit.
 

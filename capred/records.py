@@ -101,23 +101,6 @@ def field_value(record, name: str):
         return getattr(record, name)
 
 
-def unit_suffix(unit: str) -> str:
-    """The Python-name form of an output unit: ``kPa`` -> ``kPa``, ``1/kPa`` -> ``per_kPa``, ``cm^3`` -> ``cm3``.
-
-    Parameters
-    ----------
-    unit : str
-        An output unit as headers show it.
-
-    Returns
-    -------
-    str
-        The suffix of the attribute that holds a value in that unit (``tau_kPa``).
-    """
-    s = unit.replace("1/", "per_").replace("/", "_per_").replace("^", "").replace(" ", "")
-    return s.replace("%", "pct").replace("°", "deg")
-
-
 def scale_value(value, scale: float):
     """A field's value times ``scale``: arrays, (low, high) pairs and sampled columns alike (None stays None).
 

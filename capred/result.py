@@ -30,6 +30,7 @@ from pathlib import Path
 from .csv_headers import UNIT_SUFFIXES, csv_header, with_csv_headers
 from .errors import OptionError
 from .inputs import InputFile, input_file
+from .nomenclature import unit_suffix
 from .records import (
     Output,
     columns_of_rows,
@@ -43,7 +44,6 @@ from .records import (
     record_outputs,
     record_row,
     scale_value,
-    unit_suffix,
 )
 from .spool import Rows, Spool
 from .table_spec import TableSpec

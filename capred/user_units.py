@@ -6,7 +6,8 @@ from __future__ import annotations
 
 import dataclasses
 
-from .records import scale_value, unit_suffix
+from .nomenclature import unit_suffix
+from .records import scale_value
 
 
 class _RenamedField:

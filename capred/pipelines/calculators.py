@@ -64,7 +64,7 @@ class CalcResult(Result):
         """
         from .skempton_figure import figure_curves
 
-        return figure_curves(**self.figure_data)
+        return figure_curves(self.figure_data)
 
     @property
     def values(self) -> dict[str, np.ndarray]:

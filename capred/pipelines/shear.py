@@ -70,6 +70,8 @@ SCHEMA = [
 
 
 #: input columns repeated in results.csv as read (in their documented units), before the derived columns
+#: the per-test quantities derived from the raw inputs, as the JSON rows and results.csv give them (glossary names)
+DERIVED_OUTPUTS = ("sigma_N", "suction", "S_R", "tau_max", "chi1", "chi2")
 RAW_INPUTS = ("z1", "z2", "V_v", "added_mass", "cap_mass", "box_area", "R", "F_max", "e", "height", "rho_d", "G_s")
 #: the documented unit of each input column (from its schema entry: one place for it)
 _SCHEMA_UNITS = {c.name: c.unit for c in SCHEMA}
@@ -709,8 +711,8 @@ class ShearResult(Result):
 
         t = self.tests
         sl = slice(start, stop)
-        kpa = {k: json_list(t[k][sl] / 1e3) for k in ("sigma_N", "suction", "tau_max", "chi2")}
-        plain = {k: json_list(t[k][sl]) for k in ("S_R", "chi1")}
+        # each derived quantity under its glossary JSON key (sigma_N_kPa, S_R), in its glossary unit
+        derived = {nom.json_key(k): json_list(nom.to_output(k, t[k][sl])) for k in DERIVED_OUTPUTS}
         flags = self._flag_texts()[sl]
         ids, mats, conds, lines = (t[k][sl].tolist() for k in ("test_id", "material", "condition", "line"))
         curve = (
@@ -728,12 +730,7 @@ class ShearResult(Result):
             "material": list(map(str, mats)),
             "condition": list(map(str, conds)),
             "line": list(map(int, lines)),
-            "sigma_N_kPa": kpa["sigma_N"],
-            "suction_kPa": kpa["suction"],
-            "S_R": plain["S_R"],
-            "tau_max_kPa": kpa["tau_max"],
-            "chi1": plain["chi1"],
-            "chi2_kPa": kpa["chi2"],
+            **derived,
             **record_json_columns(self.predictions, start, stop, self.level),
             **record_json_columns({None: self.back}, start, stop, self.level),
             "flags": [f.split(";") if f else [] for f in flags],
@@ -755,7 +752,7 @@ class ShearResult(Result):
         for name in RAW_INPUTS:  # the raw inputs as read, in their documented units
             if f"in_{name}" in t:
                 cols[f"{name} [{_SCHEMA_UNITS[name]}]"] = t[f"in_{name}"]
-        for name in ("sigma_N", "suction", "S_R", "tau_max", "chi1", "chi2"):
+        for name in DERIVED_OUTPUTS:
             cols[nom.column(name)] = nom.to_output(name, t[name])
         cols.update(record_columns(self.predictions, self.level))
         cols.update(record_columns({None: self.back}, self.level))

@@ -65,37 +65,24 @@ def bounding_curve(S, params, s_e, bc_lambda, bounding):
     )
 
 
-def figure_curves(
-    cases: dict | None = None,
-    kappa=0.006,
-    e0=0.8,
-    p0=100e3,
-    u0=30e3,
-    pa0=130e3,
-    s_e=None,
-    bc_lambda=None,
-    bounding=None,
-    curves: dict | None = None,
-    curve_names: list[str] | None = None,
-) -> dict:
+def figure_curves(figure_data: dict) -> dict:
     """Every curve of the skempton-b sheet, for capred.report.calculator_figures.sheet_skempton.
 
     Parameters
     ----------
-    cases : dict or None, optional
-        (κ, e0, p0 [Pa], u0 [Pa], pa0 [Pa]) -> (S_r values, B values) of the computed cases; None with ``curves``.
-    kappa, e0, p0, u0, pa0 : float, optional
-        The options' values, for the parameter studies: κ [-], e0 [-], p0, u0, pa0 [Pa].
-    s_e : float or None, optional
-        Air-entry suction [Pa]: each case's curve with suction equilibrium too.
-    bc_lambda : float or None, optional
-        Brooks-Corey index λ [-] of that curve (and of the s_e study; else 0.8).
-    bounding : dict or None, optional
-        ``lambda0``, ``a_ini`` [Pa], ``interpolation_h``, ``air_pressure``: each case's bounding-surface curve too.
-    curves : dict or None, optional
-        ``skempton-b --curve``: ``"S_r"`` and each model's B, as the run computed them.
-    curve_names : list of str or None, optional
-        The models of ``curves`` as the caption names them.
+    figure_data : dict
+        What the run kept for its figure (``CalcResult.figure_data``):
+
+        - ``cases``: (κ, e0, p0 [Pa], u0 [Pa], pa0 [Pa]) -> (S_r values, B values) of the computed cases (absent
+          or None with ``curves``);
+        - ``kappa``, ``e0``, ``p0``, ``u0``, ``pa0``: the options' values, for the parameter studies (κ of the
+          elastic line [-], e0 [-], p0, u0, pa0 [Pa]);
+        - ``s_e``: air-entry suction [Pa] or None: each case's curve with suction equilibrium too;
+        - ``bc_lambda``: Brooks-Corey index λ [-] of that curve (and of the s_e study; else 0.8) or None;
+        - ``bounding``: ``lambda0``, ``a_ini`` [Pa], ``interpolation_h``, ``air_pressure``, or None: each case's
+          bounding-surface curve too;
+        - ``curves``, ``curve_names`` (``skempton-b --curve``): ``"S_r"`` and each model's B as the run computed
+          them, and their names as the caption gives them.
 
     Returns
     -------
@@ -104,9 +91,12 @@ def figure_curves(
         (None where not asked) and the ``points`` (S_r, B) of its cases), ``studies`` (``kappa``, ``e0``, ``s_e``:
         value -> B; ``lambda``), and ``s_e``, ``bc_lambda``, ``bounding``, ``curves``, ``curve_names`` as given.
     """
+    d = figure_data
+    s_e, bc_lambda, bounding = d.get("s_e"), d.get("bc_lambda"), d.get("bounding")
+    k0, e0, p0, u0, pa0 = (d[k] for k in ("kappa", "e0", "p0", "u0", "pa0"))
     S = np.linspace(*S_GRID)
     drawn = []
-    for params, points in (cases or {}).items():
+    for params, points in (d.get("cases") or {}).items():
         k, e, p, u, pa = params
         drawn.append(
             {
@@ -120,8 +110,8 @@ def figure_curves(
     lam = bc_lambda if bc_lambda is not None else STUDY_LAMBDA
     studies = {
         "kappa": {k: calc.skempton_b(S, p0 - u0, e0, k, pa0) for k in STUDIES["kappa"]},
-        "e0": {e: calc.skempton_b(S, p0 - u0, e, kappa, pa0) for e in STUDIES["e0"]},
-        "s_e": {se: calc.skempton_b_suction(S, p0, u0, e0, kappa, pa0, se, lam) for se in STUDIES["s_e"]},
+        "e0": {e: calc.skempton_b(S, p0 - u0, e, k0, pa0) for e in STUDIES["e0"]},
+        "s_e": {se: calc.skempton_b_suction(S, p0, u0, e0, k0, pa0, se, lam) for se in STUDIES["s_e"]},
         "lambda": lam,
     }
     return {
@@ -131,6 +121,6 @@ def figure_curves(
         "s_e": s_e,
         "bc_lambda": bc_lambda,
         "bounding": bounding,
-        "curves": curves,
-        "curve_names": curve_names,
+        "curves": d.get("curves"),
+        "curve_names": d.get("curve_names"),
     }
