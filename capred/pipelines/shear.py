@@ -712,7 +712,8 @@ class ShearResult(Result):
         t = self.tests
         sl = slice(start, stop)
         # each derived quantity under its glossary JSON key (sigma_N_kPa, S_R), in its glossary unit
-        derived = {nom.json_key(k): json_list(nom.to_output(k, t[k][sl])) for k in DERIVED_OUTPUTS}
+        # (divided by SI per output unit, 1000 Pa per kPa: a value typed in kPa reads back as typed)
+        derived = {nom.json_key(k): json_list(t[k][sl] / (1 / nom.QUANTITIES[k].factor)) for k in DERIVED_OUTPUTS}
         flags = self._flag_texts()[sl]
         ids, mats, conds, lines = (t[k][sl].tolist() for k in ("test_id", "material", "condition", "line"))
         curve = (
@@ -1021,20 +1022,21 @@ def _fit_dict(fit) -> dict:
         phi_se = np.degrees(fit.slope_se / (1.0 + slope**2))
     lo, hi = fit.slope_ci
     c_lo, c_hi = fit.intercept_ci
+    key, kpa = nom.json_key, 1 / nom.QUANTITIES["c"].factor  # keys and units: the glossary's (c_kPa, ...); Pa/kPa
     return {
-        "c_kPa": num(fit.intercept / 1e3),
-        "phi_deg": num(phi),
-        "tan_phi": num(fit.slope),
-        "c_se_kPa": num(fit.intercept_se / 1e3),
-        "phi_se_deg": num(phi_se),
-        "tan_phi_se": num(fit.slope_se),
-        "c_ci95_kPa": [num(c_lo / 1e3), num(c_hi / 1e3)],
-        "phi_ci95_deg": [num(np.degrees(np.arctan(lo))), num(np.degrees(np.arctan(hi)))],
-        "r2": num(fit.r2),
+        key("c"): num(fit.intercept / kpa),
+        key("phi"): num(phi),
+        key("tan_phi"): num(fit.slope),
+        key("c", "_se"): num(fit.intercept_se / kpa),
+        key("phi", "_se"): num(phi_se),
+        key("tan_phi", "_se"): num(fit.slope_se),
+        key("c", "_ci95"): [num(c_lo / kpa), num(c_hi / kpa)],
+        key("phi", "_ci95"): [num(np.degrees(np.arctan(lo))), num(np.degrees(np.arctan(hi)))],
+        key("r2"): num(fit.r2),
         "n": fit.n,
         "errors": fit.errors,
         "dry_loss": fit.loss,
-        "scatter_kPa": num(np.sqrt(fit.residual_variance) / 1e3) if fit.dof > 0 else None,
+        key("scatter"): num(np.sqrt(fit.residual_variance) / kpa) if fit.dof > 0 else None,
         "outliers": _outliers(fit),
     }
 
@@ -2089,21 +2091,19 @@ def summary_table(result: ShearResult, frame: bool = True):
     for mat, fit in result.fits.items():
         f = _fit_dict(fit)
         line = line_of(fit)
+        envelope = {}  # the JSON's numbers under their glossary CSV headers (c [kPa], c_se [kPa], ...)
+        for name in ("c", "phi", "tan_phi", "r2"):
+            envelope[nom.column(name)] = f[nom.json_key(name)]
+            if name != "r2":
+                envelope[nom.column(name, "_se")] = f[nom.json_key(name, "_se")]
+            if name in ("c", "phi"):
+                low, high = f[nom.json_key(name, "_ci95")]
+                envelope.update({nom.column(name, "_ci95_low"): low, nom.column(name, "_ci95_high"): high})
         rows.append(
             {
                 "material": mat,
                 "n_dry [-]": f["n"],
-                "c [kPa]": f["c_kPa"],
-                "c_se [kPa]": f["c_se_kPa"],
-                "c_ci95_low [kPa]": f["c_ci95_kPa"][0],
-                "c_ci95_high [kPa]": f["c_ci95_kPa"][1],
-                "phi [deg]": f["phi_deg"],
-                "phi_se [deg]": f["phi_se_deg"],
-                "phi_ci95_low [deg]": f["phi_ci95_deg"][0],
-                "phi_ci95_high [deg]": f["phi_ci95_deg"][1],
-                "tan_phi [-]": f["tan_phi"],
-                "tan_phi_se [-]": f["tan_phi_se"],
-                "r2 [-]": f["r2"],
+                **envelope,
                 "dry_fit": "origin" if line.through_origin else "free",
                 "errors": getattr(line, "errors", "constant"),
                 "dry_loss": getattr(line, "loss", "ols"),
