@@ -18,7 +18,7 @@ def bridge_solve_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     keys = [
         "case",
@@ -61,7 +61,7 @@ def bridge_compare_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     keys = ["case", "F_measured_mN", "F_exact_mN", "F_toroidal_mN", "F_willett_mN", "F_israelachvili_mN", "status"]
     rows = result.record().json_rows()  # the typed record (CompareRecord): JSON keys are the console headers
@@ -80,7 +80,7 @@ def bridge_curve_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     err = result.summary()["rms_relative_error_vs_exact"]  # computed from the curve, not read from the JSON
     lim = result.pendular_limit
@@ -101,7 +101,7 @@ def bridge_laws_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     from ..physics.bridge_laws import LAWS
 

@@ -20,7 +20,7 @@ def calc_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     cols = result.cases.console_columns()
     labels = result.labels

@@ -136,7 +136,7 @@ def compression_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     t = spec(
         f"Compression ({result.options.test}, {result.stress_symbol}): lines and yield stress",

@@ -163,7 +163,7 @@ def history_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     from .render import fmt, row_table
 

@@ -223,6 +223,6 @@ def console_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     return presenter(result).tables(result)

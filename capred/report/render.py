@@ -120,7 +120,7 @@ def row_table(
 
     Returns
     -------
-    capred.result.TableSpec
+    capred.table_spec.TableSpec
     """
     spec = TableSpec(title, [(k, "left" if k in left else "right") for k in keys])
     shown = rows[:MAX_ROWS]
@@ -181,7 +181,7 @@ def label_columns(spec: TableSpec) -> list[int]:
 
     Parameters
     ----------
-    spec : capred.result.TableSpec
+    spec : capred.table_spec.TableSpec
         A console table.
 
     Returns
@@ -206,7 +206,7 @@ def plain_text(spec: TableSpec) -> str:
 
     Parameters
     ----------
-    spec : capred.result.TableSpec
+    spec : capred.table_spec.TableSpec
         A console table.
 
     Returns
@@ -240,7 +240,7 @@ def column_groups(spec: TableSpec, width: int) -> list[list[int]]:
 
     Parameters
     ----------
-    spec : capred.result.TableSpec
+    spec : capred.table_spec.TableSpec
         A console table.
     width : int
         Terminal width [characters].
@@ -299,7 +299,7 @@ def table_width(spec: TableSpec, compact: bool = False) -> int:
 
     Parameters
     ----------
-    spec : capred.result.TableSpec
+    spec : capred.table_spec.TableSpec
         A console table.
     compact : bool, optional
         Without borders.
@@ -321,7 +321,7 @@ def row_labels(spec: TableSpec) -> list[str]:
 
     Parameters
     ----------
-    spec : capred.result.TableSpec
+    spec : capred.table_spec.TableSpec
         A console table.
 
     Returns
@@ -392,7 +392,7 @@ def stacked_blocks(spec: TableSpec, width: int) -> list[tuple[str, bool]]:
 
     Parameters
     ----------
-    spec : capred.result.TableSpec
+    spec : capred.table_spec.TableSpec
         A console table.
     width : int
         Terminal width [characters].
@@ -419,7 +419,7 @@ def rich_tables(spec: TableSpec, width: int) -> list:
 
     Parameters
     ----------
-    spec : capred.result.TableSpec
+    spec : capred.table_spec.TableSpec
         A console table.
     width : int
         Terminal width [characters].
@@ -492,7 +492,7 @@ def render_tables(specs: list[TableSpec], con) -> None:
 
     Parameters
     ----------
-    specs : list of capred.result.TableSpec
+    specs : list of capred.table_spec.TableSpec
         The tables.
     con : rich.console.Console
         Where to print.
@@ -538,7 +538,7 @@ def spec(title: str, headers: list[str], left: int = 1) -> TableSpec:
 
     Returns
     -------
-    capred.result.TableSpec
+    capred.table_spec.TableSpec
         With no rows yet.
     """
     return TableSpec(title, [(h, "left" if j < left else "right") for j, h in enumerate(headers)])

@@ -50,7 +50,7 @@ def shear_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     opt = result.options
     phi_b = any("phi_b_deg" in result.per_material.get(m, {}) for m in result.fits)

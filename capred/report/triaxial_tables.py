@@ -39,7 +39,7 @@ def triaxial_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     e = result.envelope
     env = spec(
