@@ -509,6 +509,38 @@ def records_of(doc: dict, metadata: dict | None = None, units: dict[str, str] | 
     return out
 
 
+def rows_of(result, metadata: dict | None = None, doc: dict | None = None) -> list[tuple]:
+    """The long records ``(material, quantity, value, ci_low, ci_high, unit)`` of a run.
+
+    From the result's records through their declarations (``result.store_rows(material)``: the JSON key, value,
+    95 % interval and unit of one declaration each; capred.records.StoreRow), never from the JSON read back;
+    the material is the one the inputs' metadata block names (``material``), or none. A command whose result
+    gives no rows of its own (``store_rows`` returns None) is recorded from its JSON document
+    (:func:`records_of`), each unit from the declarations, NULL where none declares it.
+
+    Parameters
+    ----------
+    result : capred.result.Result
+        Any command's result.
+    metadata : dict, optional
+        The inputs' metadata block.
+    doc : dict, optional
+        ``result.to_json()`` (only read for a command without ``store_rows``).
+
+    Returns
+    -------
+    list of tuple
+    """
+    meta = metadata or {}
+    material = next((str(v) for k, v in meta.items() if str(k).strip().lower() == "material"), None)
+    rows = result.store_rows(material) if hasattr(result, "store_rows") else None
+    if rows is not None:
+        return [tuple(r) for r in rows]
+    if doc is None:
+        doc = result.to_json()
+    return records_of(doc, metadata, result.quantity_units())
+
+
 def run_key(doc: dict) -> str:
     """SHA-256 of what makes a run the same run: the command, the inputs' SHA-256 (and sheet) and the options.
 
@@ -633,9 +665,11 @@ class Recorder:
 
         from .io import encode_json
 
-        doc = json.loads(encode_json(result.to_json()).decode("utf-8"))  # the JSON the run wrote, NaN as null
+        # the document the run wrote (NaN as null), kept whole in the runs table with its provenance
+        doc = json.loads(encode_json(result.to_json()).decode("utf-8"))
         key = run_key(doc)
         meta = _metadata(doc)
+        rows = rows_of(result, meta, doc)
         created = datetime.now(UTC).replace(microsecond=0).isoformat()
         path = self.path
         try:
@@ -679,7 +713,7 @@ class Recorder:
                 con.executemany(
                     "INSERT INTO records (run, material, quantity, value, ci_low, ci_high, unit) "
                     "VALUES (?,?,?,?,?,?,?)",
-                    [(run, *r) for r in records_of(doc, meta, result.quantity_units())],
+                    [(run, *r) for r in rows],
                 )
                 con.execute("COMMIT")
                 return int(run), True

@@ -123,6 +123,23 @@ class Result:
         :func:`csv_header` (``name [unit]``)."""
         return {stem: with_csv_headers(table) for stem, table in self.tables().items()}
 
+    def store_rows(self, material: str | None = None) -> list | None:
+        """The rows the lab store records for the run (capred.lab_store), built from the records' declarations
+        (capred.records.StoreRow: quantity, value, 95 % interval and unit of one declaration each), never by
+        reading the JSON back. None by default: the store then walks the run's JSON document (the commands not
+        yet moved; see capred.lab_store.records_of).
+
+        Parameters
+        ----------
+        material : str, optional
+            The material the inputs' metadata block names (for a run that does not name its materials).
+
+        Returns
+        -------
+        list of capred.records.StoreRow or None
+        """
+        return None
+
     def quantity_units(self) -> dict[str, str]:
         """JSON key -> declared unit of the numbers of the document that no glossary quantity names (a fit's
         parameters, say); the lab store takes every unit from the declarations (capred.lab_store.declared_units
