@@ -126,3 +126,20 @@ def test_an_undeclared_per_material_value_is_flagged_not_stored(tmp_path):
     assert any(issubclass(w.category, CapredWarning) and "'mystery_s'" in str(w.message) for w in caught)
     stored = _stored(tmp_path / "lab.sqlite", "shear")
     assert (material, "mystery_s") not in stored and (material, "phi_deg") in stored
+
+
+def test_triaxial_store_rows_are_the_envelope_and_the_fitted_parameters(tmp_path):
+    """`capred triaxial` recorded nothing before (its numbers are nested in the JSON); now each material's
+    effective envelope and extended Mohr-Coulomb parameters, as its JSON gives them."""
+    lab, out = _run(tmp_path, "triaxial")
+    stored = _stored(lab, "triaxial")
+    materials = json.loads((out / "summary.json").read_text(encoding="utf-8"))["materials"]
+    assert {m for m, _ in stored} == set(materials)
+    for m, block in materials.items():
+        for key, unit in (("c_kPa", "kPa"), ("phi_deg", "deg"), ("c_se_kPa", "kPa"), ("phi_se_deg", "deg")):
+            assert stored[m, key] == (block["envelope"][key], None, None, unit)
+        for name, p in block["extended_mohr_coulomb"]["params"].items():
+            value, lo, hi, _ = stored[m, name]
+            assert value == p["value"] and [lo, hi] == p["ci95"]
+            assert stored[m, f"{name}_se"][0] == p["se"]
+        assert stored[m, "phi_b_deg"][3] == "deg" and stored[m, "tan_phi_b"][3] == "-"
