@@ -143,3 +143,25 @@ def test_triaxial_store_rows_are_the_envelope_and_the_fitted_parameters(tmp_path
             assert value == p["value"] and [lo, hi] == p["ci95"]
             assert stored[m, f"{name}_se"][0] == p["se"]
         assert stored[m, "phi_b_deg"][3] == "deg" and stored[m, "tan_phi_b"][3] == "-"
+
+
+def test_history_flags_runs_recorded_in_another_unit(tmp_path):
+    """A store written by an older capred labelled vg.S_s in seconds (its suffix rule): `capred history` charts
+    the values as recorded, heads them with the latest run's declared unit and says so; it infers nothing."""
+    lab, _ = _run(tmp_path, "retention")
+    with sqlite3.connect(lab) as con:  # the older run (recorded first: id 0): the same record, the suffix rule's unit
+        (run,) = con.execute("SELECT id FROM runs").fetchone()
+        con.execute(
+            "INSERT INTO runs (id, run_key, command, created_utc, capred_version, inputs, options, metadata, "
+            "document, test_date) SELECT 0, 'older', command, created_utc, capred_version, inputs, options, metadata, document, "
+            "'2000-01-01' FROM runs WHERE id = ?",
+            (run,),
+        )
+        con.execute(
+            "INSERT INTO records SELECT (SELECT id FROM runs WHERE run_key = 'older'), material, quantity, value, "
+            "ci_low, ci_high, CASE quantity WHEN 'vg.S_s' THEN 's' ELSE unit END FROM records WHERE run = ?",
+            (run,),
+        )
+    res = capred.run_history(lab, material="drying", quantity="vg.S_s", reference=1.0, spread=0.1)
+    assert res.unit == "-"
+    assert any("different units (-, s)" in w for w in res.warnings)
