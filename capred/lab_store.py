@@ -538,7 +538,20 @@ def rows_of(result, metadata: dict | None = None, doc: dict | None = None) -> li
         return [tuple(r) for r in rows]
     if doc is None:
         doc = result.to_json()
-    return records_of(doc, metadata, result.quantity_units())
+    rows = records_of(doc, metadata, result.quantity_units())
+    undeclared = sorted({r[1] for r in rows if r[5] is None})
+    if undeclared:
+        import warnings
+
+        from .errors import CapredWarning
+
+        warnings.warn(
+            f"the lab store records {', '.join(undeclared)} of this {doc.get('command', 'run')} without a unit: no "
+            "declaration gives one (capred does not guess a unit from a key's spelling)",
+            CapredWarning,
+            stacklevel=2,
+        )
+    return rows
 
 
 def run_key(doc: dict) -> str:

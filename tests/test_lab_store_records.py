@@ -165,3 +165,23 @@ def test_history_flags_runs_recorded_in_another_unit(tmp_path):
     res = capred.run_history(lab, material="drying", quantity="vg.S_s", reference=1.0, spread=0.1)
     assert res.unit == "-"
     assert any("different units (-, s)" in w for w in res.warnings)
+
+
+def test_a_run_without_store_rows_flags_its_undeclared_numbers(tmp_path):
+    """A result that gives no store rows of its own is recorded from its JSON document: a number that no
+    declaration names is stored without a unit (NULL) and named in a CapredWarning, never given a guessed one."""
+
+    class _Run:
+        def quantity_units(self):
+            return {}
+
+        def to_json(self):
+            doc = {"command": "rumpf", "capred_version": "t", "inputs": [], "options": {}}
+            return doc | {"p_cap_kPa": -1.5, "mystery_s": 2.0}
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        lab_store.record_run(tmp_path / "lab.sqlite", _Run())
+    assert any("mystery_s" in str(w.message) and "p_cap_kPa" not in str(w.message) for w in caught)
+    stored = _stored(tmp_path / "lab.sqlite", "rumpf")
+    assert stored[None, "p_cap_kPa"] == (-1.5, None, None, "kPa") and stored[None, "mystery_s"][3] is None
