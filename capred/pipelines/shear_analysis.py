@@ -854,11 +854,14 @@ def adaptive_stop(scores: np.ndarray, models: list[str], ranked: list[str]) -> b
     bool
     """
     finite = np.isfinite(scores)
-    rows = np.any(finite, axis=1)
-    R = int(rows.sum())
+    if finite.all():  # the usual case: every replicate scored every model (no copies to make)
+        R, filled = scores.shape[0], scores
+    else:
+        rows = np.any(finite, axis=1)
+        R = int(rows.sum())
+        filled = np.where(finite[rows], scores[rows], np.inf)
     if R < 2:
         return False
-    filled = np.where(finite[rows], scores[rows], np.inf)
     wins = np.bincount(np.argmin(filled, axis=1), minlength=len(models))
     p = (wins + 1.0) / (R + 2.0)
     if np.any(np.sqrt(p * (1.0 - p) / R) >= PROBABILITY_RESOLUTION):
