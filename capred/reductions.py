@@ -276,7 +276,9 @@ REDUCTIONS: dict[str, Reduction] = {
             method=(
                 "Measured capillary forces of micro-tests beside the exact bridge of the same R, gap, contact "
                 "angle and volume, the toroidal approximation, Willett et al. (2000) and Israelachvili's 2πRγ "
-                "cos θ.",
+                "cos θ, and beside every closed-form law of `capred bridge laws` (its registry), each with "
+                "Derjaguin's effective radius for unequal pairs and a plane, and NaN where a law does not apply "
+                "to the pair's geometry.",
             ),
             references=("willett2000", "israelachvili", "lian1993"),
             summary="Measured capillary forces beside the exact bridge and approximations.",
@@ -288,6 +290,13 @@ REDUCTIONS: dict[str, Reduction] = {
             "required",
             "bridge-rupture",
             "bridge_rupture",
+            method=(
+                "Each bridge of water volume V_w is pulled apart at constant volume: the rupture distance is the "
+                "widest gap at which a stable Young-Laplace bridge of that volume still exists between the two "
+                "bodies, found on the exact bridges, beside Lian et al.'s (1993) estimate "
+                "D_rupt = (1 + θ/2) V^(1/3) (θ in rad, lengths over R).",
+            ),
+            references=("lian1993",),
             summary="Rupture distance of bridges at constant volume.",
         ),
         Reduction(
@@ -314,6 +323,12 @@ REDUCTIONS: dict[str, Reduction] = {
             "none",
             None,
             "yade_files",
+            method=(
+                "One file per radius ratio R2/R1 in the layout YADE's capillary law reads (Duriez & Wan 2017): "
+                "per distance d* = D/R2, by rising suction uc* = Δu R2/γ, the exact stable Young-Laplace bridge's "
+                "volume, force F/(2πγR2), filling angles and the integrals of its normal; nothing is interpolated.",
+            ),
+            references=("duriez_wan2017",),
             summary="Capillary files for YADE's capillary law.",
             example=(("ratios", (1, 2)), ("distances", 4), ("suctions", 5)),
         ),

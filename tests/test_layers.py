@@ -19,6 +19,7 @@ import capred.io
 PACKAGE = Path(capred.__file__).resolve().parent
 #: layer of each top-level part of capred (a higher layer may import a lower one, never the reverse)
 LAYERS = {
+    "testing": 7,  # the shipped conformance checks: run an entry as the commands do (pipelines, report)
     "cli": 7,
     "batch": 6,
     "pipelines": 5,
@@ -41,6 +42,7 @@ LAYERS = {
             "samples",
             "reductions",
             "text_safety",  # pure string rules for terminals, HTML and SVG
+            "spec",  # numpy-free declarations: the registries, their functions named as "module:function"
         )
     },
 }

@@ -194,7 +194,8 @@ def compare(
 ) -> Invocation:
     """Microscopic tests against theory: the measured force of each sphere pair
     beside the exact bridge of the same R, gap, contact angle and V_w, the
-    toroidal approximation, Willett et al. (2000) and Israelachvili, with residuals.
+    toroidal approximation, Willett et al. (2000), Israelachvili and each
+    closed-form law of `capred bridge laws`, with residuals.
 
     Example: capred bridge compare micro_tests.csv --out micro
 

@@ -15,6 +15,7 @@ from ..errors import InputError, OptionError
 from ..io import Table
 from ..nomenclature import StableJsonKeys, renamed_keywords
 from ..physics import bridge as br
+from ..physics import bridge_laws as bl
 from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
 from ..result import InputFile, Options, Result, input_file, num
@@ -370,12 +371,19 @@ class CompareResult(Result):
         for m, (F, good) in models.items():
             cols[f"F_{m}"] = np.where(good, F * 1e3, np.nan)
             cols[f"residual_{m}"] = np.where(good, (F - self.measured_force) * 1e3, np.nan)
+        # every closed-form law of the one law registry (`bridge laws` reads the same), in its dimensionless form
+        # F / (2 pi R1 gamma) of (theta, V/R1^3, D/R1, R2/R1); NaN where a law does not apply to the geometry
+        laws = {}
+        for name in bl.LAWS:
+            F = bl.law_force(name, th_mean, self.volume_in / R**3, D / R, rho) * 2.0 * np.pi * R * g
+            laws[name] = (F * 1e3, (F - self.measured_force) * 1e3)
         cached = self.__dict__["_record"] = CompareRecord(
             case=b.labels or None,
             F_measured=self.measured_force * 1e3,
             filling_angle_measured=np.degrees(self.measured_beta),
             filling_angle_exact=np.where(ok, np.degrees(b.beta), np.nan),
             status=[STATUS[int(k)] for k in b.status],
+            laws=laws,
             **cols,
         )
         return cached
@@ -443,7 +451,8 @@ class CompareResult(Result):
 def compare_measured(source, options: BridgeOptions | None = None) -> CompareResult:
     """Micro-tests: the exact bridge of each measured (R, R2, gap, contact angle, V_w) beside the measured force,
     the toroidal approximation (equal spheres), Willett et al. (2000) and Israelachvili (with Derjaguin's
-    effective radius 2 R R2 / (R + R2) for unequal pairs and a plane).
+    effective radius 2 R R2 / (R + R2) for unequal pairs and a plane), and every closed-form law of the law
+    registry (`capred.spec.bridge_laws.LAWS`, the laws of ``capred bridge laws``).
 
     Parameters
     ----------
