@@ -30,6 +30,14 @@ class Reduction:
     #: what its input table is called in "this looks like ..." hints, for a command whose table has a schema of
     #: its own (capred.cli.common)
     table_kind: str = ""
+    #: the cells its outputs take per input row: (the columns of its per-row table, the columns it adds per model
+    #: compared in ``options.models``), by which a long file's outputs are sized before anything is computed
+    #: (capred.report.outputs.check_outputs_ahead; tests/test_outputs_ahead.py checks them on the samples);
+    #: (0, 0): sized only once computed
+    row_cells: tuple[int, int] = (0, 0)
+    #: what the second count of ``row_cells`` is per: "models" (each model in ``options.models``) or
+    #: "bridge_laws" (each law of the law registry, a law registered at run time included)
+    row_cells_per: str = "models"
 
     def run(self, source, options):
         """Run the command: call its run function (``run_path``, imported on first use).
@@ -80,14 +88,16 @@ class Reduction:
         return getattr(import_module(module), name)(**kw)
 
 
+#: where the options and input schemas are declared (numpy-free: `--help` reads them)
+_S = "capred.spec."
 _P = "capred.pipelines."
 REDUCTIONS: dict[str, Reduction] = {
     r.name: r
     for r in (
         Reduction(
             "shear",
-            _P + "shear:run_shear",
-            _P + "shear:ShearOptions",
+            _P + "shear_run:run_shear",
+            _S + "shear:ShearOptions",
             "required",
             "shear",
             "shear",
@@ -109,11 +119,12 @@ REDUCTIONS: dict[str, Reduction] = {
             references=("evenepoel", "bishop1959"),
             summary="Direct shear with hanging-column suction: dry envelope, effective-stress models, σ_cap.",
             table_kind="a direct-shear table",
+            row_cells=(27, 8),
         ),
         Reduction(
             "triaxial-bounds",
             _P + "triaxial:run_triaxial_bounds",
-            _P + "triaxial:TriaxialOptions",
+            _S + "triaxial:TriaxialOptions",
             "required",
             "triaxial-bounds",
             "triaxial",
@@ -128,11 +139,12 @@ REDUCTIONS: dict[str, Reduction] = {
             references=("prunier2024",),
             summary="Capillary stress tensor at failure from triaxial tests: bounds and groups.",
             table_kind="a triaxial table (one row per test)",
+            row_cells=(53, 0),
         ),
         Reduction(
             "triaxial",
             _P + "triaxial_strength:run_triaxial_strength",
-            _P + "triaxial_strength:TriaxialStrengthOptions",
+            _S + "triaxial_strength:TriaxialStrengthOptions",
             "required",
             "triaxial",
             "triaxial_strength",
@@ -149,11 +161,12 @@ REDUCTIONS: dict[str, Reduction] = {
             summary="Unsaturated strength from triaxial failure states: extended Mohr-Coulomb, models, bounds.",
             example=(("bootstrap", 0),),
             table_kind="a table of triaxial failure states",
+            row_cells=(25, 1),
         ),
         Reduction(
             "retention",
             _P + "retention:run_retention",
-            _P + "retention:RetentionOptions",
+            _S + "retention:RetentionOptions",
             "required",
             "retention",
             "retention",
@@ -165,11 +178,12 @@ REDUCTIONS: dict[str, Reduction] = {
             references=("vangenuchten1980", "brooks_corey1964"),
             summary="Water retention curves per branch: fits at the optimum, model selection.",
             table_kind="a retention table",
+            row_cells=(4, 1),
         ),
         Reduction(
             "retention-convert",
             _P + "retention_convert:run_retention_convert",
-            _P + "retention_convert:ConvertOptions",
+            _S + "retention_convert:ConvertOptions",
             "required",
             "retention-convert",
             "retention_convert",
@@ -193,7 +207,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "prism",
             _P + "calculators:reduce_prism",
-            _P + "calculators:PrismOptions",
+            _S + "calculators:PrismOptions",
             "optional",
             "prism",
             "prism",
@@ -208,7 +222,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "skempton-b",
             _P + "calculators:reduce_skempton_b",
-            _P + "calculators:SkemptonOptions",
+            _S + "calculators:SkemptonOptions",
             "optional",
             "skempton-b",
             "skempton",
@@ -223,7 +237,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "rumpf",
             _P + "calculators:reduce_rumpf",
-            _P + "calculators:RumpfOptions",
+            _S + "calculators:RumpfOptions",
             "optional",
             "rumpf",
             "rumpf",
@@ -235,7 +249,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "shear-band",
             _P + "calculators:reduce_shear_band",
-            _P + "calculators:ShearBandOptions",
+            _S + "calculators:ShearBandOptions",
             "optional",
             None,
             "shear_band",
@@ -254,7 +268,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "bridge solve",
             _P + "bridge:solve_bridges",
-            _P + "bridge:BridgeOptions",
+            _S + "bridge:BridgeOptions",
             "required",
             "bridge-solve",
             "bridge",
@@ -265,11 +279,12 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("evenepoel", "lian1993"),
             summary="Exact capillary bridges from a table of cases.",
+            row_cells=(16, 0),
         ),
         Reduction(
             "bridge compare",
             _P + "bridge:compare_measured",
-            _P + "bridge:BridgeOptions",
+            _S + "bridge:BridgeOptions",
             "required",
             "bridge-compare",
             "bridge_compare",
@@ -282,11 +297,13 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("willett2000", "israelachvili", "lian1993"),
             summary="Measured capillary forces beside the exact bridge and approximations.",
+            row_cells=(13, 2),
+            row_cells_per="bridge_laws",
         ),
         Reduction(
             "bridge rupture",
             _P + "bridge:rupture_distances",
-            _P + "bridge:BridgeOptions",
+            _S + "bridge:BridgeOptions",
             "required",
             "bridge-rupture",
             "bridge_rupture",
@@ -298,11 +315,12 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("lian1993",),
             summary="Rupture distance of bridges at constant volume.",
+            row_cells=(14, 0),
         ),
         Reduction(
             "bridge laws",
             _P + "bridge_laws:compare_laws",
-            _P + "bridge_laws:LawsOptions",
+            _S + "bridge:LawsOptions",
             "optional",
             "bridge-laws",
             "bridge_laws",
@@ -319,7 +337,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "bridge yade-files",
             _P + "yade_files:reduce_yade_files",
-            _P + "yade_files:YadeOptions",
+            _S + "bridge:YadeOptions",
             "none",
             None,
             "yade_files",
@@ -335,7 +353,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "bridge curve",
             _P + "bridge:reduce_curve",
-            _P + "bridge:CurveOptions",
+            _S + "bridge:CurveOptions",
             "none",
             None,
             "bridge_curve",
@@ -350,7 +368,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "pt-volume",
             _P + "pt_volume:run_pt_volume",
-            _P + "pt_volume:PTVolumeOptions",
+            _S + "pt_volume:PTVolumeOptions",
             "required",
             "pt-volume",
             "pt_volume",
@@ -379,7 +397,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "compression",
             _P + "compression:run_compression",
-            _P + "compression:CompressionOptions",
+            _S + "compression:CompressionOptions",
             "required",
             "compression",
             "compression",
@@ -398,11 +416,12 @@ REDUCTIONS: dict[str, Reduction] = {
             references=("casagrande1936", "pacheco_silva1970", "schofield_wroth1968"),
             summary="Oedometer or isotropic compression: λ (C_c), κ (C_s), e_N and the yield stress.",
             table_kind="a compression test (one row per reading)",
+            row_cells=(6, 0),
         ),
         Reduction(
             "history",
             _P + "history:reduce_history",
-            _P + "history:HistoryOptions",
+            _S + "history:HistoryOptions",
             "required",
             "history",
             "history",

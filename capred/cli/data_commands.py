@@ -1,17 +1,19 @@
 """`capred shear`, `capred triaxial-bounds`, `capred retention`: reductions of lab data tables."""
 
+from __future__ import annotations
+
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
-from .common import Invocation, ThousandsOpt, command
-from .declare import option, registry_help, registry_names, si_values
+from .common import Invocation, MaxMbOpt, ThousandsOpt, command
+from .declare import model_parameter_values, option, registry_help, registry_names, si_values
 
-SHEAR = "capred.pipelines.shear:ShearOptions"
-PARAMS = "capred.pipelines.shear:ModelParams"
-TRIAXIAL = "capred.pipelines.triaxial:TriaxialOptions"
-RETENTION = "capred.pipelines.retention:RetentionOptions"
+SHEAR = "capred.spec.shear:ShearOptions"
+PARAMS = "capred.spec.shear:ModelParams"
+TRIAXIAL = "capred.spec.triaxial:TriaxialOptions"
+RETENTION = "capred.spec.retention:RetentionOptions"
 
 
 def _models_help() -> str:
@@ -50,6 +52,7 @@ def register(app: typer.Typer) -> None:
 
 def shear(
     thousands: ThousandsOpt = None,
+    max_megabytes: MaxMbOpt = None,
     curves: Annotated[
         Path | None,
         typer.Option(
@@ -78,7 +81,7 @@ def shear(
     cap_mass: option(SHEAR, "cap_mass", note="for rows without 'cap_mass'") = None,
     radius: option(SHEAR, "radius", note="for rows without 'R'") = None,
     void_volume: option(SHEAR, "void_volume", note="for rows without 'V_v'") = None,
-    models: option(SHEAR, "models", help=_models_help(), shown="thesis") = None,
+    models: option(SHEAR, "models", help=_models_help, shown="thesis") = None,
     retention: Annotated[
         Path | None,
         typer.Option(
@@ -135,6 +138,7 @@ def shear(
         "of 250, once the printed probabilities and ΔRMSE ends are resolved.",
     ) = None,
     seed: option(SHEAR, "seed", help="Seed of the bootstrap: the same seed gives the same probabilities.") = None,
+    **model_options,
 ) -> Invocation:
     """Direct-shear tests with hanging-column suction (Evenepoel, VUB thesis):
     dry envelope per material, the effective-stress models (No suction,
@@ -154,6 +158,8 @@ def shear(
     ----------
     thousands : str, optional
         Thousands separator of the curves file.
+    max_megabytes : int, optional
+        Largest input read [MiB]: the table, the curves file and --retention's JSON (default 256).
     curves : Path, optional
         Raw shear curves, long format.
     area_correction : str, optional
@@ -204,6 +210,9 @@ def shear(
         Replicates of the bootstrap of the model ranking [-].
     seed : int, optional
         Seed of the bootstrap.
+    **model_options
+        The parameters registered models declare for themselves (capred.spec.shear.ModelParameter), one option
+        each (``--my-kappa``), read from the registry when the command is built.
 
     Returns
     -------
@@ -226,12 +235,19 @@ def shear(
     envelope = _envelope_pair(water_envelope)
     if envelope is not None:
         params["water_envelope"] = envelope
+    own = model_parameter_values(model_options)
+    if own:
+        params["extra"] = own
     if retention_branch is not None and retention is None:
         from ..errors import OptionError
 
         raise OptionError("--retention-branch needs --retention FIT.json")
+    from ..io import ReadLimits
+
+    # --retention's JSON and the curves file read within --max-megabytes, as the table is
+    limits = None if max_megabytes is None else ReadLimits(max_bytes=max_megabytes * 2**20)
     mp = (
-        model_params_from_retention(retention, retention_branch, **params)
+        model_params_from_retention(retention, retention_branch, limits, **params)
         if retention is not None
         else ModelParams(**params)
     )
@@ -256,7 +272,7 @@ def shear(
     )
     if models is not None:
         given["models"] = _model_list(models)
-    opts = ShearOptions(**given, model_params=mp, curves=_curves_source(curves, thousands))
+    opts = ShearOptions(**given, model_params=mp, curves=_curves_source(curves, thousands, limits))
     return Invocation("shear", opts, extra_inputs=[p for p in (retention, curves) if p])
 
 
@@ -326,7 +342,7 @@ def triaxial_bounds(
 
 
 def retention(
-    model: option(RETENTION, "models", "--model", help=_retention_models_help()) = None,
+    model: option(RETENTION, "models", "--model", help=_retention_models_help) = None,
     hysteresis: option(
         RETENTION,
         "hysteresis",
@@ -409,12 +425,12 @@ def retention(
     return Invocation("retention", opts)
 
 
-def _curves_source(path: Path | None, thousands):
-    if path is None or thousands is None:
+def _curves_source(path: Path | None, thousands, limits=None):
+    if path is None or (thousands is None and limits is None):
         return path
     from ..io import TableSource
 
-    return TableSource(path, None, thousands)
+    return TableSource(path, None, thousands, limits=limits)
 
 
 def _model_list(text: str) -> tuple[str, ...]:

@@ -26,11 +26,10 @@ import numpy as np
 from ..errors import FitError, OptionError
 from ..fitting.retention_models import MODELS, RetentionFit, fit_model, json_name, power_law_model
 from ..physics.shear import GAMMA_W
-from ..result import Options, input_file, num
+from ..result import input_file, num
+from ..spec.retention_convert import GRID_POINTS, ConvertOptions  # noqa: F401 (declared in spec; re-exported here)
 from .retention import RetentionResult
 
-#: points of the logarithmic grid between the smallest and largest suction of the data (besides the data's own)
-GRID_POINTS = 100
 #: start-grid minima refined by a conversion (fit_model's n_starts; its default, 3 or 8, left some conversions up
 #: to 0.8 % above the optimum of an independent 200-start search: issue 41; 40 reach it on every pair of
 #: tests/data/retention/reference_conversions.csv, and the curve of 100-200 nodes keeps it well under a second)
@@ -38,43 +37,6 @@ CONVERT_STARTS = 40
 #: a conversion whose largest deviation exceeds this (in S_R, or θ/θ_s) is flagged: the curves differ visibly
 #: on a retention plot (0.02 is about the scatter of a careful hanging-column or pressure-plate series)
 MISFIT_WARNING = 0.02
-
-
-@dataclass(frozen=True)
-class ConvertOptions(Options):
-    """Options of `capred retention-convert`.
-
-    Attributes
-    ----------
-    to : str
-        Target model (a key of the retention registry).
-    model : str or None
-        Which fit of FIT.json to convert (default: the lowest AICc of the branch).
-    branch : str or None
-        Which branch (default: the file's main branch, drying when present).
-    gamma_w : float
-        Unit weight of water [N/m^3] (the heads in cm of the JSON).
-    points : int
-        Quadrature nodes (per piece) and points of the misfit's grid between the data's smallest and largest
-        suction.
-    """
-
-    QUANTITIES = {"gamma_w": "gamma_w"}
-
-    to: str = power_law_model().name
-    model: str | None = None
-    branch: str | None = None
-    gamma_w: float = GAMMA_W
-    points: int = GRID_POINTS
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        if self.to not in MODELS:
-            raise OptionError(f"--to: unknown retention model '{self.to}'; choose from {', '.join(MODELS)}")
-        if self.model is not None and self.model not in MODELS:
-            raise OptionError(f"--model: unknown retention model '{self.model}'; choose from {', '.join(MODELS)}")
-        if not 10 <= int(self.points) <= 100_000:
-            raise OptionError(f"--points must lie between 10 and 100000 (got {self.points})")
 
 
 @dataclass(repr=False)
@@ -699,7 +661,7 @@ def run_retention_convert(source, options: ConvertOptions | None = None) -> Rete
     )
 
 
-def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W) -> tuple[float, float, list[str], list[str]]:
+def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W, limits=None) -> tuple[float, float, list[str], list[str]]:
     """Brooks-Corey s_e [Pa] and λ [-] of Morvan et al.'s suction equilibrium, s = s_e S_r^(−1/λ), from a fits.json.
 
     A Brooks-Corey fit is taken as it is; any other model is converted to Brooks-Corey on S_R with S_res = 0
@@ -711,6 +673,8 @@ def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W) -> tuple[float, fl
         fits.json written by `capred retention` (or `capred retention-convert`).
     gamma_w : float
         Unit weight of water [N/m^3].
+    limits : capred.io.ReadLimits, optional
+        The run's reading limits: ``max_bytes`` (--max-megabytes) bounds the file (default 16 MiB).
 
     Returns
     -------
@@ -723,10 +687,12 @@ def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W) -> tuple[float, fl
     Brooks, R. H., Corey, A. T. (1964). Hydraulic properties of porous media. Hydrology Paper 3, Colorado State
     University.
     """
-    src, where, _ = load_retention_fit(path)
+    from ..io import TableSource
+
+    src, where, _ = load_retention_fit(path if limits is None else TableSource(path, limits=limits))
     target = power_law_model()
     air, index = target.power_law
-    where = f"{where}{_chosen(path, src.model)}"
+    where = f"{where}{_chosen(path, src.model, MAX_JSON_BYTES if limits is None else limits.max_bytes)}"
     if src.model == target.name:
         p = src.params_si
         notes = [
@@ -754,11 +720,11 @@ def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W) -> tuple[float, fl
     return p[air], p[index], notes, [f"--retention {where}: {w}" for w in new.warnings]
 
 
-def _chosen(path, model: str) -> str:
+def _chosen(path, model: str, max_bytes: int = MAX_JSON_BYTES) -> str:
     """Which fit of a fits.json was taken (its branch, and that it has the branch's lowest AICc where the branch
     holds several), for the notes; empty for anything but a fits.json."""
     try:
-        doc = read_fit_json(path)
+        doc = read_fit_json(path, max_bytes)
     except (OptionError, OSError, TypeError, ValueError):
         return ""
     branches = doc.get("branches") or {}

@@ -17,15 +17,14 @@ import numpy as np
 from .. import nomenclature as nom
 from ..errors import FitError, OptionError
 from ..fitting.comparison import compared
-from ..fitting.linear import ERROR_MODELS, LOSSES, LineFit, breusch_pagan, fit_envelope
-from ..io import Column, Table, read_table
+from ..fitting.linear import LineFit, breusch_pagan, fit_envelope
+from ..io import Table, read_table
 from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
 from ..progress import steps
 from ..references import cite
 from ..result import (
     InputFile,
-    Options,
     Result,
     Rows,
     input_file,
@@ -36,130 +35,19 @@ from ..result import (
     record_row,
     user_units,
 )
+from ..spec.shear import SCHEMA, ModelParams, ShearOptions  # noqa: F401 (declared in spec; re-exported here)
 from .shear_fits import envelope_fits, line_of
 from .shear_records import ModelPrediction
 
-SCHEMA = [
-    Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
-    Column("material", "text", None, "material name", ("soil", "material_name")),
-    Column("condition", "text", None, "test condition", ("state", "dry_wet"), choices=("dry", "wet", "saturated")),
-    Column("z1", "length", "cm", "suction head z1", ("suction_head", "head", "z_1"), quantity="z1"),
-    Column("z2", "volume", "cm^3", "air volume z2", ("air_volume", "burette", "z_2", "V_a"), quantity="z2"),
-    Column("V_v", "volume", "cm^3", "void volume V_v", ("Vv", "void_volume"), quantity="V_v"),
-    Column("added_mass", "mass", "g", "added mass", ("added_weight", "m_added", "weight"), quantity="added_mass"),
-    Column("cap_mass", "mass", "g", "cap mass", ("m_cap", "top_cap_mass", "cap_weight"), quantity="cap_mass"),
-    Column("box_area", "area", "cm^2", "box area", ("A_box", "area", "shear_area"), quantity="box_area"),
-    Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius", "r_particle"), quantity="R"),
-    Column(
-        "tau_max",
-        "pressure",
-        "kPa",
-        "tau_max",
-        ("tau", "taumax", "shear_strength", "peak_shear_stress"),
-        quantity="tau_max",
-    ),
-    Column("F_max", "force", "N", "F_max", ("fmax", "peak_force", "max_force"), quantity="F_max"),
-    Column("sigma_N", "pressure", "kPa", "sigma_N", ("sigma_n", "normal_stress", "sigman"), quantity="sigma_N"),
-    Column("suction", "pressure", "kPa", "suction", ("delta_u", "matric_suction", "ua_uw"), quantity="suction"),
-    Column("S_R", "dimensionless", "-", "S_R", ("Sr", "degree_of_saturation", "saturation"), quantity="S_R"),
-    Column("e", "dimensionless", "-", "void ratio e", ("void_ratio", "e0"), quantity="void_ratio"),
-    Column("height", "length", "mm", "sample height", ("h", "sample_height", "H0", "H"), quantity="height"),
-    Column("rho_d", "density", "kg/m^3", "dry density", ("dry_density", "rhod"), quantity="rho_d"),
-    Column("G_s", "dimensionless", "-", "specific gravity of the solids", ("Gs", "specific_gravity"), quantity="G_s"),
-]
-
-
 #: input columns repeated in results.csv as read (in their documented units), before the derived columns
+#: the per-test quantities derived from the raw inputs, as the JSON rows and results.csv give them (glossary names)
+DERIVED_OUTPUTS = ("sigma_N", "suction", "S_R", "tau_max", "chi1", "chi2")
 RAW_INPUTS = ("z1", "z2", "V_v", "added_mass", "cap_mass", "box_area", "R", "F_max", "e", "height", "rho_d", "G_s")
 #: the documented unit of each input column (from its schema entry: one place for it)
 _SCHEMA_UNITS = {c.name: c.unit for c in SCHEMA}
 
 
-@dataclass(frozen=True)
-class ModelParams(Options):
-    """Parameters of the models beyond the thesis's four (SI; None = not given).
-
-    Retention parameters come from `capred retention` output (--retention) or options.
-    ``air_entry`` [Pa] and ``vg_alpha`` [1/Pa] also take a unit: ``air_entry="5 kPa"``.
-    """
-
-    QUANTITIES = {
-        "air_entry": "air_entry",
-        "vg_alpha": "vg_alpha",
-        "contact_angle": "contact_angle",
-        "s_res": "S_res",
-        "vanapalli_kappa": "vanapalli_kappa",
-        "vg_n": "vg_n",
-        "vg_m": "vg_m",
-        "eta": "khalili_eta",
-    }
-    OPTION_NAMES = {"s_res": "--s-res", "eta": "--eta"}
-
-    s_res: float | None = None  # residual S_R (Vanapalli)
-    vanapalli_kappa: float = 1.0
-    air_entry: float | None = None  # Pa (Khalili-Khabbaz)
-    vg_alpha: float | None = None  # 1/Pa (Lu-Likos)
-    vg_n: float | None = None
-    vg_m: float | None = None
-    water_envelope: tuple[float, float] | None = None  # (c [Pa], phi [deg]) of the saturated soil (P-T)
-    retention_model: tuple | None = None  # (model name, SI parameters, quantity) of a capred retention fit
-    contact_angle: float = 0.0  # deg, of the exact bridge (exact_neck)
-    eta: float = 0.55  # exponent of khalili_fit (fixed unless fit_eta)
-    fit_eta: bool = False
-
-    def __post_init__(self) -> None:
-        given = {name: getattr(self, name) for name in self.QUANTITIES}
-        try:
-            super().__post_init__()
-        except OptionError as exc:  # quote the value as the API caller gave it, beside its reading in SI
-            raise OptionError(_as_given(self, exc, given)) from None
-
-    @property
-    def retention_notes(self) -> tuple:
-        """What --retention FIT.json gave: ``(fields, text, is_warning)`` per note (the branch read, each conversion
-        to another model with its misfit), shown by ShearOptions where a model compared uses one of the fields (or
-        always, with no fields). Not an option (set by :func:`model_params_from_retention`, as ``warnings`` is by
-        the options' checks): the options record does not repeat it."""
-        return tuple(getattr(self, "_retention_notes", ()))
-
-    def missing(self, model: str) -> str:
-        """What ``model`` needs and is not given (its registry ``requires``), e.g. ``"--s-res"``; "" when nothing.
-
-        Parameters
-        ----------
-        model : str
-            An effective-stress model of the registry.
-
-        Returns
-        -------
-        str
-            The missing options, joined by " and ".
-        """
-        return " and ".join(opt for name, opt in esm.REGISTRY[model].requires if getattr(self, name) is None)
-
-    def require(self, model: str) -> None:
-        """Refuse a model that lacks a parameter it needs.
-
-        Parameters
-        ----------
-        model : str
-            An effective-stress model of the registry.
-
-        Raises
-        ------
-        OptionError
-            Naming the missing options (see :meth:`missing`).
-        """
-        missing = self.missing(model)
-        if missing:
-            needs = {name for name, _ in esm.REGISTRY[model].requires}
-            why = "".join(f"; {note}" for fields, note, _ in self.retention_notes if needs & set(fields))
-            raise OptionError(
-                f"model '{model}' needs {missing} (or --retention FIT.json written by capred retention){why}"
-            )
-
-
-def model_params_from_retention(path: str | Path, branch: str | None = None, **overrides) -> ModelParams:
+def model_params_from_retention(path: str | Path, branch: str | None = None, limits=None, **overrides) -> ModelParams:
     """Retention parameters from a `capred retention` fits.json; options in ``overrides`` win.
 
     The fits of one branch are read (``branch``; default drying, else the file's main branch). Van Genuchten's
@@ -175,6 +63,8 @@ def model_params_from_retention(path: str | Path, branch: str | None = None, **o
     branch : str, optional
         ``"drying"`` or ``"wetting"`` (``--retention-branch``): which branch's fits (default: drying, else the
         file's main branch).
+    limits : capred.io.ReadLimits, optional
+        The run's reading limits (``--max-megabytes``; default 256 MiB): the file's largest size.
     **overrides
         ModelParams fields given as options (SI: vg_alpha [1/Pa], air_entry [Pa]); None values are ignored.
 
@@ -201,7 +91,7 @@ def model_params_from_retention(path: str | Path, branch: str | None = None, **o
     from ..io import read_json
 
     try:
-        js = read_json(path, "--retention")  # bounded: --max-megabytes' default size, MAX_JSON_DEPTH
+        js = read_json(path, "--retention", limits)  # bounded: --max-megabytes, MAX_JSON_DEPTH
         branches = js.get("branches") or {js.get("main_branch") or "drying": {"fits": js["fits"]}}
         if not isinstance(branches, dict):
             raise TypeError("'branches' is not an object")
@@ -296,161 +186,6 @@ def model_params_from_retention(path: str | Path, branch: str | None = None, **o
     object.__setattr__(params, "_retention_notes", tuple(notes))  # frozen: set once, as Options sets _warnings
     object.__setattr__(params, "_retention_fields", supplied)  # the model parameters the file gave
     return params
-
-
-@dataclass(frozen=True)
-class ShearOptions(Options):
-    """Constants and per-test defaults.
-
-    Every dimensional option takes a number in the SI unit noted beside it, a
-    string with a unit (``gamma_w="10 kN/m^3"``) or a pint Quantity; it holds
-    SI after construction. Per-test values (box area, cap mass, R, V_v) given
-    as options fill the rows where the column is absent or blank; a value in
-    the file wins.
-    """
-
-    QUANTITIES = {
-        "gamma_w": "gamma_w",
-        "surface_tension": "surface_tension",
-        "g": "g",
-        "pendular_limit": "pendular_limit",
-        "box_area": "box_area",
-        "cap_mass": "cap_mass",
-        "radius": "R",
-        "void_volume": "V_v",
-        "ambient_pressure": "ambient_pressure",
-        "rho_w": "rho_w",
-    }
-
-    gamma_w: float = ph.GAMMA_W  # N/m^3
-    surface_tension: float = ph.SURFACE_TENSION  # N/m
-    g: float = ph.G  # m/s^2
-    pendular_limit: float = ph.PENDULAR_LIMIT  # -
-    confidence: float = 0.95
-    box_area: float | None = None  # m^2
-    cap_mass: float | None = None  # kg
-    radius: float | None = None  # m
-    void_volume: float | None = None  # m^3
-    models: tuple[str, ...] = esm.THESIS_MODELS
-    model_params: ModelParams = field(default_factory=ModelParams)
-    ambient_pressure: float = 101325.0  # Pa: the hanging column cavitates above (p_a - p_v)/gamma_w
-    rho_w: float = 1000.0  # kg/m^3, for e = G_s rho_w/rho_d - 1
-    curves: object = None  # raw direct-shear curves (path or DataFrame): peaks give tau_max
-    area_correction: str = "none"  # of the curves: none (nominal area, ASTM D3080), square or circular
-    dry_fit: str = "free"  # "free" (c and phi) or "origin" (c = 0, cohesionless soil)
-    #: error model of the dry envelope: either (the default: every interval at least as wide as both the constant
-    #: and the proportional model give, so valid under both), constant, proportional (sd proportional to the
-    #: strength) or auto (proportional when the Breusch-Pagan test of the least-squares residuals against sigma_N
-    #: has p < 0.05; covers only 84-87 % with scatter proportional to the strength on 6 dry tests)
-    errors: str = "either"
-    dry_loss: str = "ols"  # loss of the dry fit: ols, huber or tukey (robust, sandwich standard errors)
-    bootstrap: int = 2000  # most replicates of the ranking bootstrap (0: none); adaptive: it stops when resolved
-    seed: int = 0  # of the bootstrap: the same seed gives the same probabilities
-
-    def __post_init__(self) -> None:
-        given = {name: getattr(self, name) for name in self.QUANTITIES}
-        try:
-            super().__post_init__()
-        except OptionError as exc:  # quote the value as the API caller gave it, beside its reading in SI
-            raise OptionError(_as_given(self, exc, given)) from None
-        if self.area_correction not in ("none", "square", "circular"):
-            raise OptionError(
-                f"area_correction (--area-correction) must be none, square or circular (got '{self.area_correction}')"
-            )
-        if self.dry_fit not in ("free", "origin"):
-            raise OptionError(f"dry_fit (--dry-fit) must be 'free' or 'origin' (got '{self.dry_fit}')")
-        if self.errors not in ERROR_MODELS:
-            raise OptionError(f"errors (--errors) must be {', '.join(ERROR_MODELS)} (got {self.errors!r})")
-        if self.dry_loss not in LOSSES:
-            raise OptionError(f"dry_loss (--dry-loss) must be {', '.join(LOSSES)} (got {self.dry_loss!r})")
-        if isinstance(self.bootstrap, bool) or not isinstance(self.bootstrap, int) or self.bootstrap < 0:
-            raise OptionError(f"bootstrap (--bootstrap) must be a whole number >= 0 (got {self.bootstrap!r})")
-        if isinstance(self.seed, bool) or not isinstance(self.seed, int) or self.seed < 0:
-            raise OptionError(f"seed (--seed) must be a whole number >= 0 (got {self.seed!r})")
-        try:
-            models = esm.resolve_models(self.models)
-        except (ValueError, TypeError) as exc:
-            raise OptionError(f"models (--models): {exc}") from None
-        conf = self.confidence
-        if (
-            isinstance(conf, bool)
-            or not isinstance(conf, (int, float, np.integer, np.floating))
-            or not 0.0 < conf < 1.0
-        ):
-            raise OptionError(
-                f"confidence (--confidence) must lie strictly between 0 and 1, e.g. 0.95 (got {self.confidence!r})"
-            )
-        skipped = {}
-        if esm.asks_for_all(self.models):  # 'all': every model the inputs allow; the others named, with their needs
-            skipped = {m: need for m in models if (need := self.model_params.missing(m))}
-            models = tuple(m for m in models if m not in skipped)
-        object.__setattr__(self, "models", models)
-        object.__setattr__(self, "_skipped", skipped)
-        for m in models:
-            self.model_params.require(m)
-
-    @property
-    def skipped_models(self) -> dict[str, str]:
-        """Models that ``models="all"`` left out: {model: what it needs} (e.g. ``"--s-res"``)."""
-        return dict(getattr(self, "_skipped", {}))
-
-    @property
-    def notes(self) -> list[str]:
-        """One line per model ``all`` skipped, naming what it needs; what --retention gave (the branch read, and
-        each conversion to another model with its misfit, where a model compared uses it)."""
-        out = [
-            f"--models all: model '{m}' skipped: it needs {need} (or --retention FIT.json written by capred retention)"
-            for m, need in self.skipped_models.items()
-        ]
-        return out + self._from_retention(warnings=False)
-
-    def _from_retention(self, warnings: bool) -> list[str]:
-        """The notes (or warnings) of --retention that concern the models compared, each naming the models."""
-        out = []
-        supplied = set(getattr(self.model_params, "_retention_fields", ()))
-        used = any({name for name, _ in esm.REGISTRY[m].requires} & supplied for m in self.models)
-        for fields, note, is_warning in self.model_params.retention_notes:
-            users = [m for m in self.models if {name for name, _ in esm.REGISTRY[m].requires} & set(fields)]
-            if is_warning != warnings:
-                continue
-            if not fields:
-                out.append(note)
-            elif users:
-                out.append(f"{note}; used by {', '.join(users)}")
-        if out and not warnings and not used:
-            out[0] += (
-                "; no model compared takes its parameters (see --models): it gives the figures' S_R(s) relation, "
-                "along which the model curves are drawn"
-            )
-        return out
-
-    @property
-    def warnings(self) -> list[str]:
-        return super().warnings + self.model_params.warnings + self._from_retention(warnings=True)
-
-
-def _as_given(options: Options, exc: Exception, given: dict) -> str:
-    """The message of ``exc`` (a range problem of an option) with the value quoted as the caller typed it.
-
-    A plain number is read in SI (``box_area=-3`` is -3 m^2, shown as -30000 cm^2 by the glossary's range
-    check): the message says so and how to give a unit.
-    """
-    from ..units import SI_UNIT
-
-    text = str(exc)
-    if getattr(exc, "as_given", False):  # quoted already by capred.result.Options (as_given)
-        return text
-    for name, value in given.items():
-        if value is None or not text.startswith(options.option_name(name)):
-            continue
-        q = nom.QUANTITIES[options.QUANTITIES[name]]
-        si = SI_UNIT[q.kind].replace("**", "^")
-        if isinstance(value, (int, float)) and not isinstance(value, bool):
-            return (
-                f"{text}; you gave {name}={value!r}, a plain number read in {si} (give a unit: {name}='... {q.unit}')"
-            )
-        return f"{text}; you gave {name}={value!r}"
-    return text
 
 
 @user_units
@@ -709,8 +444,9 @@ class ShearResult(Result):
 
         t = self.tests
         sl = slice(start, stop)
-        kpa = {k: json_list(t[k][sl] / 1e3) for k in ("sigma_N", "suction", "tau_max", "chi2")}
-        plain = {k: json_list(t[k][sl]) for k in ("S_R", "chi1")}
+        # each derived quantity under its glossary JSON key (sigma_N_kPa, S_R), in its glossary unit
+        # (divided by SI per output unit, 1000 Pa per kPa: a value typed in kPa reads back as typed)
+        derived = {nom.json_key(k): json_list(t[k][sl] / (1 / nom.QUANTITIES[k].factor)) for k in DERIVED_OUTPUTS}
         flags = self._flag_texts()[sl]
         ids, mats, conds, lines = (t[k][sl].tolist() for k in ("test_id", "material", "condition", "line"))
         curve = (
@@ -728,12 +464,7 @@ class ShearResult(Result):
             "material": list(map(str, mats)),
             "condition": list(map(str, conds)),
             "line": list(map(int, lines)),
-            "sigma_N_kPa": kpa["sigma_N"],
-            "suction_kPa": kpa["suction"],
-            "S_R": plain["S_R"],
-            "tau_max_kPa": kpa["tau_max"],
-            "chi1": plain["chi1"],
-            "chi2_kPa": kpa["chi2"],
+            **derived,
             **record_json_columns(self.predictions, start, stop, self.level),
             **record_json_columns({None: self.back}, start, stop, self.level),
             "flags": [f.split(";") if f else [] for f in flags],
@@ -755,7 +486,7 @@ class ShearResult(Result):
         for name in RAW_INPUTS:  # the raw inputs as read, in their documented units
             if f"in_{name}" in t:
                 cols[f"{name} [{_SCHEMA_UNITS[name]}]"] = t[f"in_{name}"]
-        for name in ("sigma_N", "suction", "S_R", "tau_max", "chi1", "chi2"):
+        for name in DERIVED_OUTPUTS:
             cols[nom.column(name)] = nom.to_output(name, t[name])
         cols.update(record_columns(self.predictions, self.level))
         cols.update(record_columns({None: self.back}, self.level))
@@ -1024,20 +755,21 @@ def _fit_dict(fit) -> dict:
         phi_se = np.degrees(fit.slope_se / (1.0 + slope**2))
     lo, hi = fit.slope_ci
     c_lo, c_hi = fit.intercept_ci
+    key, kpa = nom.json_key, 1 / nom.QUANTITIES["c"].factor  # keys and units: the glossary's (c_kPa, ...); Pa/kPa
     return {
-        "c_kPa": num(fit.intercept / 1e3),
-        "phi_deg": num(phi),
-        "tan_phi": num(fit.slope),
-        "c_se_kPa": num(fit.intercept_se / 1e3),
-        "phi_se_deg": num(phi_se),
-        "tan_phi_se": num(fit.slope_se),
-        "c_ci95_kPa": [num(c_lo / 1e3), num(c_hi / 1e3)],
-        "phi_ci95_deg": [num(np.degrees(np.arctan(lo))), num(np.degrees(np.arctan(hi)))],
-        "r2": num(fit.r2),
+        key("c"): num(fit.intercept / kpa),
+        key("phi"): num(phi),
+        key("tan_phi"): num(fit.slope),
+        key("c", "_se"): num(fit.intercept_se / kpa),
+        key("phi", "_se"): num(phi_se),
+        key("tan_phi", "_se"): num(fit.slope_se),
+        key("c", "_ci95"): [num(c_lo / kpa), num(c_hi / kpa)],
+        key("phi", "_ci95"): [num(np.degrees(np.arctan(lo))), num(np.degrees(np.arctan(hi)))],
+        key("r2"): num(fit.r2),
         "n": fit.n,
         "errors": fit.errors,
         "dry_loss": fit.loss,
-        "scatter_kPa": num(np.sqrt(fit.residual_variance) / 1e3) if fit.dof > 0 else None,
+        key("scatter"): num(np.sqrt(fit.residual_variance) / kpa) if fit.dof > 0 else None,
         "outliers": _outliers(fit),
     }
 
@@ -1405,60 +1137,35 @@ def check_shear_table(table: Table, with_curves: bool = False, unique: bool = Tr
         table.check_unique("test_id")
 
 
-def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
-    """Reduce a direct-shear table and compare effective-stress models (Evenepoel's four by default).
+def run_table(source, opt: ShearOptions, table: Table | None = None) -> ShearResult:
+    """`capred shear` on a table held whole: derive, fit the dry envelopes, predict and score every model.
 
-    ``source`` is a path to a CSV file or a pandas DataFrame. Raises
-    InputError (every problem in the file, each with line and column),
-    OptionError or FitError; never writes anything.
-
-    A plain CSV longer than one block of capred.io.blocks (about 60,000
-    tests) is read and predicted block by block and gives a ShearBlocks (a
-    ShearResult whose per-test outputs stay in a temporary file: memory flat
-    in the number of tests, the same output files); its problems are raised
-    block by block (the first block that has any), repeated test ids after
-    the last. With raw curves (``options.curves``) a table is read whole.
+    What :func:`capred.pipelines.shear_run.run_shear` does with a table of one block, or with raw curves;
+    raises InputError (every problem in the file, each with line and column), OptionError or FitError.
 
     Parameters
     ----------
     source : str or Path or DataFrame
-        The direct-shear tests (one row per test).
-    options : ShearOptions, optional
+        The direct-shear tests (one row per test), as the user gave them.
+    opt : ShearOptions
         Constants, per-test defaults, models and fitting choices (SI).
+    table : capred.io.Table or None, optional
+        The table already read from ``source`` (its one block); None: read here (with ``opt.curves``).
 
     Returns
     -------
     ShearResult
-        The dry envelopes, each model's predictions and scores, the ranking and the back-analysis (a
-        ShearBlocks for a long plain CSV).
+        The dry envelopes, each model's predictions and scores, the ranking and the back-analysis.
 
     References
     ----------
     .. [1] Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular
        materials. Master thesis, Vrije Universiteit Brussel.
-
-    Example
-    -------
-    >>> import capred
-    >>> r = capred.run_shear(capred.sample_path("shear"))   # doctest: +SKIP
-    >>> r.to_json()["materials"]["steel_2mm"]["phi_deg"]     # doctest: +SKIP
     """
-    opt = options or ShearOptions()
-    if opt.curves is None:  # a long plain CSV is read, computed and kept block by block (issue 20)
-        from ..io import read_table_blocks
-
-        blocks = read_table_blocks(source, SCHEMA)
-        table = next(blocks)
-        more = next(blocks, None)
-        if more is not None:
-            pending = [table, more]
-            del table, more  # run_blocks lets go of each block once read
-            from .shear_long import run_blocks
-
-            return run_blocks(source, opt, pending, blocks)
-        check_shear_table(table)
+    if table is None:
+        table = load_shear_table(source, opt.curves is not None)
     else:
-        table = load_shear_table(source, True)
+        check_shear_table(table)
     table.warnings += unused_row_options(table, opt)
     box = filled_column(table, "box_area", opt.box_area)
     curves = None
@@ -2117,21 +1824,19 @@ def summary_table(result: ShearResult, frame: bool = True):
     for mat, fit in result.fits.items():
         f = _fit_dict(fit)
         line = line_of(fit)
+        envelope = {}  # the JSON's numbers under their glossary CSV headers (c [kPa], c_se [kPa], ...)
+        for name in ("c", "phi", "tan_phi", "r2"):
+            envelope[nom.column(name)] = f[nom.json_key(name)]
+            if name != "r2":
+                envelope[nom.column(name, "_se")] = f[nom.json_key(name, "_se")]
+            if name in ("c", "phi"):
+                low, high = f[nom.json_key(name, "_ci95")]
+                envelope.update({nom.column(name, "_ci95_low"): low, nom.column(name, "_ci95_high"): high})
         rows.append(
             {
                 "material": mat,
                 "n_dry [-]": f["n"],
-                "c [kPa]": f["c_kPa"],
-                "c_se [kPa]": f["c_se_kPa"],
-                "c_ci95_low [kPa]": f["c_ci95_kPa"][0],
-                "c_ci95_high [kPa]": f["c_ci95_kPa"][1],
-                "phi [deg]": f["phi_deg"],
-                "phi_se [deg]": f["phi_se_deg"],
-                "phi_ci95_low [deg]": f["phi_ci95_deg"][0],
-                "phi_ci95_high [deg]": f["phi_ci95_deg"][1],
-                "tan_phi [-]": f["tan_phi"],
-                "tan_phi_se [-]": f["tan_phi_se"],
-                "r2 [-]": f["r2"],
+                **envelope,
                 "dry_fit": "origin" if line.through_origin else "free",
                 "errors": getattr(line, "errors", "constant"),
                 "dry_loss": getattr(line, "loss", "ols"),
@@ -2175,17 +1880,7 @@ def _rows_table(rows: list[dict], frame: bool):
     return pd.DataFrame(rows)
 
 
-__all__ = ["SCHEMA", "ModelParams", "ShearBlocks", "ShearOptions", "ShearResult", "run_shear"]  # noqa: F822 (ShearBlocks: __getattr__)
-
-
-def __getattr__(name: str):
-    """``ShearBlocks`` (the result of a long table) lives in `capred.pipelines.shear_long`, which imports this
-    module: named here on first use, as before."""
-    if name == "ShearBlocks":
-        from .shear_long import ShearBlocks
-
-        return ShearBlocks
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__all__ = ["SCHEMA", "ModelParams", "ShearOptions", "ShearResult", "run_table"]
 
 
 def _bound_derived(table, values, derived, name: str, sources: tuple[str, ...]) -> None:

@@ -14,80 +14,17 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import CapredError, FitError, OptionError
-from ..fitting.linear import LineFit, fit_line
+from ..errors import FitError
+from ..fitting.linear import fit_line
 from ..io import Column, Table, read_table
-from ..nomenclature import QUANTITIES as _GLOSSARY
-from ..parameters import Parameter, Parameters, deprecated, fit_report
+from ..parameters import deprecated
 from ..physics import triaxial as tx
-from ..references import cite
-from ..result import InputFile, Options, Result, input_file, num
-from ..units import parse_quantity
+from ..result import InputFile, Result, input_file, num
+from ..spec.triaxial import SCHEMA, TriaxialOptions  # noqa: F401 (declared in spec; re-exported here)
 from . import triaxial_records as rec
-from .triaxial_materials import EXTENDED_MC_METHOD, one_material, zero_suction_envelope
-
-#: Pa per kPa: the records hold the user's units, the physics SI
-KPA = 1e3
-
-SCHEMA = [
-    Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
-    Column("material", "text", None, "material name (one per run: --material)", ("soil", "material_name")),
-    Column(
-        "condition", "text", None, "test condition", ("state", "saturation_state"), choices=("saturated", "unsaturated")
-    ),
-    Column(
-        "sigma3", "pressure", "kPa", "sigma3", ("s3", "confining_pressure", "sigma_3", "cell_pressure"), "nonnegative"
-    ),
-    Column("q_f", "pressure", "kPa", "q_f", ("q", "qf", "q_max", "deviator", "q_peak"), "positive"),
-    Column("sigma1", "pressure", "kPa", "sigma1", ("s1", "sigma_1"), "nonnegative"),
-    Column("sigma2", "pressure", "kPa", "sigma2", ("s2", "sigma_2"), "nonnegative"),
-    Column("p0", "pressure", "kPa", "p0", ("p_0", "initial_pressure"), "nonnegative"),
-    Column("s0", "pressure", "kPa", "s0", ("s_0", "initial_suction", "suction"), "nonnegative"),
-    Column("group", "text", None, "group", ("tensor_group",)),
-    Column("D0", "length", "mm", "initial diameter", ("initial_diameter", "diameter", "d_0"), "positive"),
-    Column("H0", "length", "mm", "initial height", ("initial_height", "height", "h_0"), "positive"),
-    Column(
-        "back_pressure",
-        "pressure",
-        "kPa",
-        "back pressure u_b (pore-water pressure)",
-        ("backpressure", "u_b", "bp", "back_pressure_kpa"),
-    ),
-    Column(
-        "u_a", "pressure", "kPa", "pore-air pressure (axis translation)", ("pore_air_pressure", "air_pressure", "ua")
-    ),
-    Column(
-        "branch",
-        "text",
-        None,
-        "loading branch (compression or extension; blank: from sigma2)",
-        ("loading", "triaxial_branch", "compression_extension"),
-    ),
-    Column(
-        "pair",
-        "text",
-        None,
-        "paired saturated test",
-        ("saturated_pair", "paired_test", "sat_pair", "pair_id", "saturated_test"),
-    ),
-    Column(
-        "strain_at_failure",
-        "dimensionless",
-        "-",
-        "axial strain at failure",
-        ("eps_f", "axial_strain_f", "axial_strain_at_failure", "strain_f"),
-    ),
-    Column("B", "dimensionless", "-", "Skempton's B of the test", ("b_value", "skempton_b"), "coefficient"),
-    Column("D_c", "length", "mm", "diameter after consolidation", ("consolidated_diameter", "d_c"), "positive"),
-    Column("H_c", "length", "mm", "height after consolidation", ("consolidated_height", "h_c"), "positive"),
-    Column(
-        "dV_c",
-        "volume",
-        "cm^3",
-        "volume decrease during consolidation",
-        ("consolidation_volume_change", "volume_change_consolidation", "delta_v_c"),
-    ),
-]
+from .triaxial_curves import export_states, pressure_tolerance
+from .triaxial_materials import one_material, zero_suction_envelope
+from .triaxial_records import EXTENDED_MC_METHOD, KPA, Envelope
 
 CURVE_SCHEMA = [
     Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
@@ -97,136 +34,6 @@ CURVE_SCHEMA = [
 ]
 
 BOUNDS = ("spherical", "lower", "edtp")
-
-
-@dataclass(frozen=True, kw_only=True)
-class Envelope:
-    """The effective (saturated drained) Mohr-Coulomb envelope c', φ' of a run, in the user's units.
-
-    A typed record (capred.pipelines.triaxial_records): each field names its glossary entry; the JSON
-    object ``envelope`` and the console table follow. ``params["c_kPa"]`` and ``params["phi_deg"]`` are the
-    fitted parameters with standard error and 95 % interval (capred.parameters); ``summary()`` reports them.
-
-    Attributes
-    ----------
-    c_kPa, c_se_kPa : float
-        Effective cohesion c' and its standard error [kPa] (SE None when given as options).
-    phi_deg, phi_se_deg : float
-        Effective friction angle φ' and its standard error [deg].
-    M, k_kPa : float
-        Slope [-] and intercept [kPa] of the envelope in the q-p plane, triaxial compression (eq. 25-26).
-    M_extension, k_extension_kPa : float
-        The same in triaxial extension, M = 6 sin φ'/(3 + sin φ') [-], [kPa].
-    source : str
-        ``"fit"`` (least squares of σ'1 on σ'3 of the saturated tests), ``"options"``, or
-        ``"extended_mc"`` (no saturated test: the extended Mohr-Coulomb fit of the unsaturated tests at s -> 0,
-        their s0 taken as the suction at failure; capred.pipelines.triaxial_materials.zero_suction_envelope).
-    n : int or None
-        Saturated tests fitted.
-    r2 : float or None
-        R² of the fit [-].
-    method : str
-        How the envelope was obtained, with its reference.
-    fit : LineFit or None
-        The straight line σ'1 = K_p σ'3 + b in SI (Pa), for whoever needs its covariance.
-    c_phi_correlation : float
-        Correlation of c' and φ' (delta method) [-] (NaN when given as options).
-
-    References
-    ----------
-    .. [1] Prunier, F., Branque, D., Duriez, J. & Darve, F. (2024). Eur. J. Environ. Civ. Eng.
-       doi:10.1080/19648189.2024.2314099, eq. 25-26.
-    """
-
-    c_kPa: float = rec.quantity("c")
-    phi_deg: float = rec.quantity("phi")
-    M: float = rec.quantity("M", init=False)
-    k_kPa: float = rec.quantity("k", init=False)
-    M_extension: float = rec.quantity("M_extension", init=False)
-    k_extension_kPa: float = rec.quantity("k_extension", init=False)
-    c_se_kPa: float | None = rec.quantity("c", se=True)
-    phi_se_deg: float | None = rec.quantity("phi", se=True)
-    source: str = rec.text()
-    n: int | None = rec.text(kind="int")
-    r2: float | None = rec.text(kind="number")
-    method: str = rec.text(init=False)
-    fit: LineFit | None = None
-    c_phi_correlation: float = float("nan")
-
-    def __post_init__(self) -> None:
-        c, phi = self.c_kPa * KPA, self.phi_deg
-        for attr, branch in (("", "compression"), ("_extension", "extension")):
-            M, k = tx.envelope_qp(c, phi, branch)
-            object.__setattr__(self, "M" + attr, float(M))
-            object.__setattr__(self, "k" + attr + "_kPa", float(k) / KPA)
-        object.__setattr__(
-            self,
-            "method",
-            f"least squares of sigma'_1 on sigma'_3 ({cite('prunier2024', 'eq. 25')})"
-            if self.fit
-            else EXTENDED_MC_METHOD
-            if self.source == "extended_mc"
-            else "given as options",
-        )
-
-    @property
-    def params(self) -> Parameters:
-        """c_kPa and phi_deg with standard error and 95 % interval (t, n − 2 dof) [kPa], [deg]."""
-        from ..fitting.linear import t_quantile
-
-        fixed = self.fit is None and self.source != "extended_mc"
-        dof = (self.n or 0) - (3 if self.source == "extended_mc" else 2)  # c', phi', phi_b fitted
-        t = float(t_quantile(0.975, dof)) if dof > 0 else float("nan")
-        out = []
-        for name, v, se, unit, q in (
-            ("c_kPa", self.c_kPa, self.c_se_kPa, "kPa", "c_eff"),
-            ("phi_deg", self.phi_deg, self.phi_se_deg, "deg", "phi_eff"),
-        ):
-            se = float("nan") if se is None else float(se)
-            ci = (v - t * se, v + t * se)
-            out.append(Parameter(name, float(v), se, ci, unit, _GLOSSARY[q].description, fixed))
-        corr = {} if fixed else {("c_kPa", "phi_deg"): self.c_phi_correlation}
-        return Parameters(tuple(out), corr)
-
-    def summary(self) -> str:
-        """A plain-text report of the envelope: c', φ' with SE and 95 % CI, their correlation, n, R²."""
-        fitted = self.fit is not None or self.source == "extended_mc"
-        dof = (self.n or 0) - (3 if self.source == "extended_mc" else 2)
-        stats = {"n": self.n, "dof": dof, "R²": self.r2} if fitted else {}
-        warn = [f"c' = {self.c_kPa:.4g} kPa < 0: a negative cohesion has no physical meaning"] if self.c_kPa < 0 else []
-        return fit_report(f"Effective envelope, {self.method}", self.params, stats, warn)
-
-    # --- the names of capred 0.x, in Pa (one release, with a DeprecationWarning) ---------------------
-    @property
-    def c(self) -> float:
-        """Deprecated: effective cohesion [Pa]; use ``params["c_kPa"]`` (kPa)."""
-        return deprecated("Envelope.c [Pa]", 'Envelope.params["c_kPa"] (or .c_kPa)', self.c_kPa * KPA)
-
-    @property
-    def c_se(self) -> float | None:
-        """Deprecated: standard error of c' [Pa]; use ``params["c_kPa"].stderr`` (kPa)."""
-        v = None if self.c_se_kPa is None else self.c_se_kPa * KPA
-        return deprecated("Envelope.c_se [Pa]", 'Envelope.params["c_kPa"].stderr (or .c_se_kPa)', v)
-
-    @property
-    def phi(self) -> float:
-        """Deprecated: effective friction angle [deg]; use ``params["phi_deg"]``."""
-        return deprecated("Envelope.phi", 'Envelope.params["phi_deg"] (or .phi_deg)', self.phi_deg)
-
-    @property
-    def phi_se(self) -> float | None:
-        """Deprecated: standard error of φ' [deg]; use ``params["phi_deg"].stderr``."""
-        return deprecated("Envelope.phi_se", 'Envelope.params["phi_deg"].stderr (or .phi_se_deg)', self.phi_se_deg)
-
-    @property
-    def k(self) -> float:
-        """Deprecated: intercept in the q-p plane [Pa]; use ``k_kPa``."""
-        return deprecated("Envelope.k [Pa]", "Envelope.k_kPa", self.k_kPa * KPA)
-
-    @property
-    def k_extension(self) -> float:
-        """Deprecated: intercept in the q-p plane in extension [Pa]; use ``k_extension_kPa``."""
-        return deprecated("Envelope.k_extension [Pa]", "Envelope.k_extension_kPa", self.k_extension_kPa * KPA)
 
 
 def fit_envelope(sigma3_eff, sigma1_eff, confidence=0.95) -> Envelope:
@@ -280,103 +87,6 @@ def fit_envelope(sigma3_eff, sigma1_eff, confidence=0.95) -> Envelope:
         fit=f,
         c_phi_correlation=corr,
     )
-
-
-#: membrane options and their SI unit; their glossary names are used once capred.nomenclature has them
-_MEMBRANE = {"membrane_thickness": ("m", "length"), "membrane_modulus": ("Pa", "pressure")}
-
-
-@dataclass(frozen=True)
-class TriaxialOptions(Options):
-    """Options of `capred triaxial-bounds`.
-
-    Attributes
-    ----------
-    c_eff : float or str, optional
-        Effective cohesion c' [Pa] (or a string with a unit); with ``phi_eff``
-        it replaces the fit of the saturated tests.
-    phi_eff : float, optional
-        Effective friction angle phi' [deg].
-    confidence : float
-        Confidence level of the envelope fit's intervals.
-    curves : path, optional
-        Raw curves (a long table with test_id, a file, a folder or a glob of
-        instrument exports) whose peaks give q_f.
-    membrane_thickness : float or str, optional
-        Membrane thickness t_m [m] (CLI in mm); with ``membrane_modulus`` the
-        deviator is corrected for the membrane (ASTM D4767); off by default.
-    membrane_modulus : float or str, optional
-        Young's modulus of the membrane E_m [Pa] (CLI in kPa; latex about
-        1400 kPa).
-    extension_path : str
-        The drained path of an extension test from its isotropic state, for
-        its saturated reference strength q'_sat and its EDTP bound:
-        ``"axial-unloading"`` (the axial stress falls at constant cell
-        pressure, slope -3 in the q-p plane; the default) or
-        ``"radial-loading"`` (the cell pressure rises at constant axial
-        stress, slope 3/2) (capred.physics.triaxial.EXTENSION_PATHS).
-    material : str, optional
-        The material analysed, from the table's ``material`` column (needed
-        when it holds several: materials are never pooled).
-    """
-
-    QUANTITIES = {"c_eff": "c_eff", "phi_eff": "phi_eff", **{k: k for k in _MEMBRANE if k in _GLOSSARY}}
-
-    c_eff: float | None = None  # Pa
-    phi_eff: float | None = None  # deg
-    confidence: float = 0.95
-    curves: str | Path | None = None
-    membrane_thickness: float | None = None  # m
-    membrane_modulus: float | None = None  # Pa
-    extension_path: str = "axial-unloading"
-    material: str | None = None
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "_given", {"c_eff": self.c_eff, "phi_eff": self.phi_eff})  # as the caller typed
-        super().__post_init__()
-        if self.extension_path not in tx.EXTENSION_PATHS:
-            raise OptionError(
-                f"{self.option_name('extension_path')} must be one of {', '.join(tx.EXTENSION_PATHS)} "
-                f"(got {self.extension_path!r})"
-            )
-        if not (isinstance(self.confidence, (int, float)) and 0.0 < self.confidence < 1.0):
-            raise OptionError(
-                "confidence (Python API): the confidence level must lie between 0 and 1, both excluded "
-                f"(got {self.confidence!r}; 0.95 for 95 %)"
-            )
-        if (self.c_eff is None) != (self.phi_eff is None):
-            given = "c_eff" if self.phi_eff is None else "phi_eff"
-            raise OptionError(
-                f"give both --c-eff and --phi-eff (Python: c_eff and phi_eff), or neither; you gave "
-                f"{given}={self._given[given]!r} alone"
-            )
-        for name, (unit, kind) in _MEMBRANE.items():
-            value = getattr(self, name)
-            if value is None or name in self.QUANTITIES:
-                continue
-            try:
-                si = float(value) if isinstance(value, (int, float)) else parse_quantity(str(value), unit, kind)
-            except (CapredError, ValueError) as exc:
-                raise OptionError(f"{self.option_name(name)}: {exc}") from None
-            if not np.isfinite(si) or si <= 0:
-                raise OptionError(f"{self.option_name(name)}: must be > 0 (got {value!r})")
-            object.__setattr__(self, name, si)
-        if (self.membrane_thickness is None) != (self.membrane_modulus is None):
-            raise OptionError(
-                "give both --membrane-thickness and --membrane-modulus for the membrane correction, or neither"
-            )
-
-    @property
-    def extension_slope(self) -> float:
-        """Slope dq/dp of the extension path in the q-p plane [-] (-3 or 3/2)."""
-        return tx.EXTENSION_PATHS[self.extension_path]
-
-    @property
-    def membrane(self) -> tuple[float, float] | None:
-        """(thickness [m], modulus [Pa]) of the membrane, or None (no correction)."""
-        if self.membrane_thickness is None:
-            return None
-        return self.membrane_thickness, self.membrane_modulus
 
 
 #: the keys of capred 0.x's ``TriaxialResult.tests`` dict [Pa] and the TestStates fields they came from
@@ -826,27 +536,6 @@ def skempton_a_of_curves(table: Table, at_peak: dict) -> tuple[np.ndarray, list[
             "tolerance over the whole shear stage): " + ", ".join(drained)
         )
     return A, notes
-
-
-def pressure_tolerance(pressure):
-    """Tolerance [Pa] of a cell or back pressure: 2 kPa below 200 kPa, 1 % above.
-
-    The accuracy ASTM D4767-11 (section 5, pressure-control devices;
-    doi:10.1520/D4767-11) asks of the devices that apply the chamber and back
-    pressures; two readings of one pressure that differ by more are two
-    different pressures.
-
-    Parameters
-    ----------
-    pressure : float or array_like
-        Cell or back pressure [Pa].
-
-    Returns
-    -------
-    float or ndarray
-        Tolerance [Pa], same shape.
-    """
-    return np.maximum(2e3, 0.01 * np.abs(pressure))
 
 
 def pore_pressures(table: Table, at_peak: dict[str, dict[str, float]], q, ext=None) -> dict:
@@ -1316,8 +1005,6 @@ def run_triaxial_bounds(
         notes += [f"group {g.group}: {v}" for v in (g.needs, g.warning) if v]
     A, note_A = skempton_a_of_curves(table, raw_curves.at_peak if raw_curves else {})
     notes += note_A
-    from .triaxial_curves import export_states
-
     unsat_state, note_state, warn_state = export_states(table, raw_curves.at_peak if raw_curves else {})
     notes += note_state
     warnings += warn_state

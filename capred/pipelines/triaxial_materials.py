@@ -9,17 +9,13 @@ a table of several materials is refused with the list of materials, rather than 
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Sequence
 
 import numpy as np
 
 from ..errors import FitError, InputError, OptionError, Problem
 from ..io import Table
-
-#: how the envelope of a run without saturated tests is named, wherever it is shown
-EXTENDED_MC_METHOD = (
-    "extended Mohr-Coulomb envelope at s -> 0 (Fredlund et al. 1978) fitted to the unsaturated failure states, "
-    "their initial suction s0 taken as the suction at failure"
-)
+from .triaxial_records import KPA, Envelope
 
 
 def materials_of(table: Table) -> dict[str, int]:
@@ -41,6 +37,22 @@ def materials_of(table: Table) -> dict[str, int]:
     return out
 
 
+class _Picked(Sequence):
+    """The cells ``cells[idx]`` of a column's text, each read when a message quotes it (a long file's cells are
+    cut out of its text on demand: capred.io.plain_tail)."""
+
+    def __init__(self, cells, idx: np.ndarray):
+        self.cells, self.idx = cells, idx
+
+    def __len__(self) -> int:
+        return len(self.idx)
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self.cells[int(k)] for k in self.idx[i]]
+        return self.cells[int(self.idx[i])]
+
+
 def subset_rows(table: Table, keep: np.ndarray) -> Table:
     """The same table restricted to the rows ``keep`` (a boolean mask); file lines and raw cells kept.
 
@@ -58,7 +70,7 @@ def subset_rows(table: Table, keep: np.ndarray) -> Table:
     return dataclasses.replace(
         table,
         columns={k: np.asarray(v)[keep] for k, v in table.columns.items()},
-        raw={k: [v[i] for i in idx] for k, v in table.raw.items()},
+        raw={k: _Picked(v, idx) for k, v in table.raw.items()},
         lines=np.asarray(table.lines)[keep],
         as_read={k: np.asarray(v)[keep] for k, v in table.as_read.items()},
         notes=list(table.notes),
@@ -150,7 +162,6 @@ def zero_suction_envelope(sigma3, sigma1, s0, branch, confidence: float = 0.95):
        doi:10.1139/t78-029.
     """
     from ..fitting.extended_mc import fit_extended_mc
-    from .triaxial import KPA, Envelope
 
     s0 = np.asarray(s0, float)
     if not np.all(np.isfinite(s0)):

@@ -114,6 +114,10 @@ class EffectiveStressModel:
     uses_radius : bool
         The model reads the particle radius R of a wet test (`capred shear` then requires it; other models
         run without it).
+    parameters : tuple of capred.spec.shear.ModelParameter
+        Parameters the model declares for itself: each becomes the option ``--<name>`` of `capred shear` and
+        `capred triaxial` (its unit and range from the declaration), ``ModelParams(extra={name: value})`` in
+        the API and ``d.params.<name>`` in the model; list it in ``requires`` to refuse a run without it.
     """
 
     name: str
@@ -133,6 +137,7 @@ class EffectiveStressModel:
     chi_of_saturation: object = field(default=CallableField(), repr=False)
     bridge_curve: UnitCellCurve | None = None
     uses_radius: bool = False
+    parameters: tuple = ()
 
 
 #: where the registry's numerical functions live
