@@ -254,6 +254,33 @@ def store_row(material, quantity: str, value, unit, ci=None) -> StoreRow | None:
     return StoreRow(material, quantity, v, lo, hi, unit if unit not in ("", "-") else "-")
 
 
+def quantity_store_row(material, quantity: str, value, key: str | None = None, ci=None) -> StoreRow | None:
+    """A :class:`StoreRow` of a glossary quantity (capred.nomenclature.QUANTITIES): its unit is the glossary's.
+
+    Parameters
+    ----------
+    material : str or None
+        The material the quantity belongs to.
+    quantity : str
+        A key of the glossary.
+    value : float
+        Its value in the glossary's output unit (as the JSON writes it).
+    key : str, optional
+        The JSON key it is written under where it is not the glossary's (``gamma_N_per_m`` for the surface
+        tension of `capred bridge curve`); default :func:`capred.nomenclature.json_key`.
+    ci : tuple of float, optional
+        Its 95 % interval in the same unit.
+
+    Returns
+    -------
+    StoreRow or None
+        None where ``value`` is not a finite number.
+    """
+    from .nomenclature import QUANTITIES, json_key
+
+    return store_row(material, key or json_key(quantity), value, QUANTITIES[quantity].unit, ci)
+
+
 def _finite(x) -> float | None:
     import numpy as np
 

@@ -126,8 +126,8 @@ class Result:
     def store_rows(self, material: str | None = None) -> list | None:
         """The rows the lab store records for the run (capred.lab_store), built from the records' declarations
         (capred.records.StoreRow: quantity, value, 95 % interval and unit of one declaration each), never by
-        reading the JSON back. None by default: the store then walks the run's JSON document (the commands not
-        yet moved; see capred.lab_store.records_of).
+        reading the JSON back. Every command declares its own (an empty list where it records none); None by
+        default: a run of a command that declares none cannot be recorded (capred.lab_store.rows_of refuses it).
 
         Parameters
         ----------
@@ -139,18 +139,6 @@ class Result:
         list of capred.records.StoreRow or None
         """
         return None
-
-    def quantity_units(self) -> dict[str, str]:
-        """JSON key -> declared unit of the numbers of the document that no glossary quantity names (a fit's
-        parameters, say); the lab store takes every unit from the declarations (capred.lab_store.declared_units
-        and this), none from a key's spelling. None by default.
-
-        Returns
-        -------
-        dict
-            Key -> unit ("-" when dimensionless).
-        """
-        return {}
 
     def extra_files(self) -> dict[str, bytes]:
         """Files of the command's own format written beside the tables (name -> bytes); none by default."""

@@ -167,21 +167,17 @@ def test_history_flags_runs_recorded_in_another_unit(tmp_path):
     assert any("different units (-, s)" in w for w in res.warnings)
 
 
-def test_a_run_without_store_rows_flags_its_undeclared_numbers(tmp_path):
-    """A result that gives no store rows of its own is recorded from its JSON document: a number that no
-    declaration names is stored without a unit (NULL) and named in a CapredWarning, never given a guessed one."""
+def test_a_run_without_store_rows_is_refused_not_read_from_its_json(tmp_path):
+    """A result that declares no store rows is refused with a message naming its command; its JSON document is
+    not walked for numbers (capred guesses no quantity and no unit from a key), and the store is not created."""
 
     class _Run:
-        def quantity_units(self):
-            return {}
+        command = "rumpf"
 
         def to_json(self):
             doc = {"command": "rumpf", "capred_version": "t", "inputs": [], "options": {}}
             return doc | {"p_cap_kPa": -1.5, "mystery_s": 2.0}
 
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
+    with pytest.raises(ValueError, match="`capred rumpf` declares no lab-store rows"):
         lab_store.record_run(tmp_path / "lab.sqlite", _Run())
-    assert any("mystery_s" in str(w.message) and "p_cap_kPa" not in str(w.message) for w in caught)
-    stored = _stored(tmp_path / "lab.sqlite", "rumpf")
-    assert stored[None, "p_cap_kPa"] == (-1.5, None, None, "kPa") and stored[None, "mystery_s"][3] is None
+    assert not (tmp_path / "lab.sqlite").exists()

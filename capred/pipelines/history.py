@@ -220,6 +220,16 @@ class HistoryResult(Result):
         """
         return self.record().json_rows()
 
+    def store_rows(self, material: str | None = None) -> list:
+        """Refused: a history run reads a store and is never recorded in one.
+
+        Raises
+        ------
+        ValueError
+            Always.
+        """
+        raise ValueError("`capred history` reads a lab store; its runs are not recorded in one")
+
     def payload(self, lazy: bool = False) -> dict:
         """The command's own keys of the JSON document: material, quantity, unit, the control limits (centre, sigma,
         lcl, ucl, moving-range centre) and the runs.
