@@ -107,3 +107,14 @@ def test_batch_reports_a_value_the_physics_refuses_in_a_manifest(tmp_path):
     assert res.exit_code == 1 and "Traceback" not in res.output
     assert "line 2" in res.stderr and "need 0 < kappa (0.006) < lambda0 (0.005)" in res.stderr
     assert not out.exists()
+
+
+def test_options_built_from_python_report_the_physics_refusal_as_an_option_error():
+    """The API keeps its contract: options whose values the physics refuses raise OptionError, with its text."""
+    from capred.spec.calculators import SkemptonOptions
+    from capred.spec.pt_volume import PTVolumeOptions
+
+    with pytest.raises(OptionError, match=r"need 0 < kappa \(0.3\) < lambda0 \(0.2\)"):
+        SkemptonOptions(model="bounding-surface", kappa_elastic=0.3, lambda0=0.2)
+    with pytest.raises(OptionError, match="kappa_W must lie in"):
+        PTVolumeOptions(lambda_W=0.1, kappa_W=0.2, e_ncl_W=2.0, lambda_A=0.1, kappa_A=0.01, e_ncl_A=1.8)
