@@ -55,7 +55,8 @@ class InputError(CapredError):
 
     def _grouped(self) -> list[str]:
         """The problems as shown: one line each, but the same problem in many lines of a column once, with the
-        count and the first lines (cells that are not numbers: with their first values)."""
+        count and the first lines (cells that are not numbers: with their first values).
+        """
         import re
 
         def key(p: Problem):

@@ -1,20 +1,20 @@
-"""Extended Mohr-Coulomb envelope of unsaturated soils (Fredlund et al. 1978): c', phi', phi_b from failure states.
+r"""Extended Mohr-Coulomb envelope of unsaturated soils (Fredlund et al. 1978): c', phi', phi_b from failure states.
 
 Direct shear (a plane in net normal stress and suction):
 
-.. math:: \\tau_f = c' + (\\sigma - u_a)\\tan\\phi' + (u_a - u_w)\\tan\\phi_b
+.. math:: \tau_f = c' + (\sigma - u_a)\tan\phi' + (u_a - u_w)\tan\phi_b
 
 and its triaxial forms, from the same plane written with the principal stresses at failure
-(:math:`K_p = \\tan^2(45° + \\phi'/2) = (1 + \\sin\\phi')/(1 - \\sin\\phi')`, :math:`c = c' + s\\tan\\phi_b`):
+(:math:`K_p = \tan^2(45° + \phi'/2) = (1 + \sin\phi')/(1 - \sin\phi')`, :math:`c = c' + s\tan\phi_b`):
 
 .. math::
 
-    \\text{compression: } q_f = (K_p - 1)\\,(\\sigma_3 - u_a) + 2\\sqrt{K_p}\\,(c' + s\\tan\\phi_b)
+    \text{compression: } q_f = (K_p - 1)\,(\sigma_3 - u_a) + 2\sqrt{K_p}\,(c' + s\tan\phi_b)
 
-    \\text{extension: } q_f = (1 - 1/K_p)\\,(\\sigma_r - u_a) + \\frac{2}{\\sqrt{K_p}}\\,(c' + s\\tan\\phi_b)
+    \text{extension: } q_f = (1 - 1/K_p)\,(\sigma_r - u_a) + \frac{2}{\sqrt{K_p}}\,(c' + s\tan\phi_b)
 
-with :math:`\\sigma_3` (:math:`\\sigma_r`) the net cell pressure and :math:`q_f = |\\sigma_a - \\sigma_r|` at failure.
-Each is linear in its coefficients, :math:`y = a + b\\,x + d\\,s`: fitted by least squares (``errors="constant"``:
+with :math:`\sigma_3` (:math:`\sigma_r`) the net cell pressure and :math:`q_f = |\sigma_a - \sigma_r|` at failure.
+Each is linear in its coefficients, :math:`y = a + b\,x + d\,s`: fitted by least squares (``errors="constant"``:
 ordinary; ``"proportional"``: weighted with a scatter proportional to the strength, iterated to its fixed
 point; ``"auto"``: proportional when the Breusch-Pagan test of the ordinary residuals against the fitted
 strength is significant, the rule of `capred shear`), then mapped to (c', phi', phi_b) with standard errors by

@@ -195,7 +195,8 @@ _DELIMITER_ROW_LAST = b",; \t"
 def _trailing(following, after, prefix: list[str], shown: str, limits: ReadLimits, src, schema) -> Table | None:
     """The last piece read as notes under the data when it begins with rows of delimiters only and holds no data
     rows (its lines under them that are not data are notes, said by the block before it: a block of no data would
-    be refused as 'no data rows'); None otherwise (the piece is a block of its own)."""
+    be refused as 'no data rows'); None otherwise (the piece is a block of its own).
+    """
     if following is None or after is not None or not _delimiter_row_first(following[1]):
         return None
     lines = "\n".join(prefix) + "\n" + following[1]
@@ -206,7 +207,8 @@ def _trailing(following, after, prefix: list[str], shown: str, limits: ReadLimit
 
 def _with_data(pieces: Iterator[tuple[int, str]]) -> Iterator[tuple[int, str]]:
     """The pieces, less the later ones of blank lines and rows of delimiters only (no data; their rows are counted
-    by _delimiter_rows and said by the first block)."""
+    by _delimiter_rows and said by the first block).
+    """
     for first_line, text in pieces:
         if first_line == 1 or text.strip(_EMPTY_ROW_CHARS):
             yield first_line, text
@@ -235,7 +237,8 @@ def _delimiter_rows(path: Path, block_bytes: int, limits: ReadLimits, shown: str
 
 def _may_hold_delimiter_rows(path: Path, block_bytes: int) -> bool:
     """True when a line of the file ends in a delimiter or a blank (',' ';' ' ' or tab), as a row of delimiters
-    only does; False proves the file holds none. Looked for with numpy, a block of bytes at a time."""
+    only does; False proves the file holds none. Looked for with numpy, a block of bytes at a time.
+    """
     import numpy as np
 
     last = np.zeros(256, bool)
@@ -257,7 +260,8 @@ def _may_hold_delimiter_rows(path: Path, block_bytes: int) -> bool:
 
 def _counted(grid: Grid, counted: Grid | None) -> Grid:
     """``grid`` (of one piece) with the rows of delimiters only of the whole file (``counted``; None: none), so
-    that the note on them is given once, with the file's total, by the first block."""
+    that the note on them is given once, with the file's total, by the first block.
+    """
     grid.delimiter_rows = counted.delimiter_rows if counted is not None else 0
     grid.delimiter_lines = list(counted.delimiter_lines) if counted is not None else []
     return grid
@@ -377,7 +381,8 @@ def _numeric_block(
 
 def _joined(head: Table, rest: Table) -> Table:
     """The table of the head's lines then the rest's (the rest read by _numeric_block after the head): what the
-    whole-file reader makes of both together."""
+    whole-file reader makes of both together.
+    """
     import numpy as np
 
     for name in head.columns:
@@ -410,7 +415,8 @@ class _Concatenated(Sequence):
 
 def _parse_numbers(text: str, n: int, width: int):
     """The cells of a plain numeric block as an (n, width) float array; None where a line has another width or
-    a cell is not a number."""
+    a cell is not a number.
+    """
     import numpy as np
 
     try:
@@ -522,7 +528,8 @@ def _pieces(
 
 def _long_line(fh, data: bytes, cut: int, ahead: bytes, block_bytes: int, first_line: int, start: int, shown, limits):
     """(this block's bytes through the end of the long line begun at ``cut``, the bytes after it) for _pieces,
-    reading on from ``fh``; the line's cells checked against ``limits`` (LimitError for one over the limit)."""
+    reading on from ``fh``; the line's cells checked against ``limits`` (LimitError for one over the limit).
+    """
     line = bytearray(memoryview(data)[cut:])  # grown in place: the line is held once
     rest = ahead
     while rest:

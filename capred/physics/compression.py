@@ -1,11 +1,11 @@
-"""One-dimensional (oedometer) and isotropic compression: lines, indices and the yield stress.
+r"""One-dimensional (oedometer) and isotropic compression: lines, indices and the yield stress.
 
 Pure functions on arrays (SI: stresses in Pa). The first loading is described by a smooth bilinear curve in
 e - log10 sigma',
 
 .. math::
 
-    e(t) = e_y - C_r\\,t - (C_c - C_r)\\,w \\log_{10}\\left(1 + 10^{t/w}\\right), \\qquad t = \\log_{10}(\\sigma'/\\sigma'_y),
+    e(t) = e_y - C_r\,t - (C_c - C_r)\,w \log_{10}\left(1 + 10^{t/w}\right), \qquad t = \log_{10}(\sigma'/\sigma'_y),
 
 whose asymptotes are the recompression line e_y - C_r t and the normal (virgin) compression line
 e_y - C_c t; they meet at sigma'_y (the bilinear yield stress) and w [decades] is the width of the bend. The

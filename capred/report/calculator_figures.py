@@ -1,5 +1,6 @@
 """Figure sheet of `capred skempton-b`: B against S_r, and the parameter studies of Morvan et al. (2016),
-Fig. 2, 3 and 5. Each computed case is drawn on the curve of its own parameters."""
+Fig. 2, 3 and 5. Each computed case is drawn on the curve of its own parameters.
+"""
 
 from __future__ import annotations
 

@@ -48,7 +48,8 @@ def stage_marks(result) -> list[tuple[str, int]]:
 
 def _log_axis(ax, values) -> None:
     """A logarithmic x axis in plain numbers: labels at 1, 2, 5 x 10^k over at most two decades of ``values``,
-    at the decades otherwise (never crowded, also in a one-column panel)."""
+    at the decades otherwise (never crowded, also in a one-column panel).
+    """
     from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
 
     v = np.asarray(values, float)

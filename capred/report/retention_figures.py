@@ -157,7 +157,8 @@ def plot_retention(ax, result):
 
 def _log_suction_axis(ax, lo: float, hi: float) -> None:
     """A logarithmic suction axis from ``lo`` to ``hi`` [kPa] with plain-number tick labels (0.1, 1, 10; and
-    2, 5 between the decades when the axis spans less than two decades), without mathtext."""
+    2, 5 between the decades when the axis spans less than two decades), without mathtext.
+    """
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
     ax.set_xscale("log")
@@ -169,7 +170,8 @@ def _log_suction_axis(ax, lo: float, hi: float) -> None:
 
 def _curve_style(model: str, legend: bool = False) -> dict:
     """Line style and marker of a retention model's curve: its registry entry's, else the next free pair of
-    RETENTION_STYLES (markers every 60 of 300 grid points on the curve, offset per model; one in the legend)."""
+    RETENTION_STYLES (markers every 60 of 300 grid points on the curve, offset per model; one in the legend).
+    """
     st = MODELS[model].style if model in MODELS else RETENTION_STYLES[hash(model) % len(RETENTION_STYLES)]
     out = {"ls": st.get("ls", "-")}
     if st.get("marker"):

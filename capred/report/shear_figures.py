@@ -178,7 +178,8 @@ def plot_measured_vs_predicted(ax, result, material):
 
 def _levels(sigma_N):
     """The normal-stress levels of the wet tests (rounded to 1e-6 Pa) with their test counts, most tests first,
-    at most MAX_LEVELS of them, in increasing order."""
+    at most MAX_LEVELS of them, in increasing order.
+    """
     levels, counts = np.unique(np.round(sigma_N, 6), return_counts=True)
     top = np.sort(levels[np.argsort(-counts, kind="stable")[:MAX_LEVELS]])
     return top, levels.size

@@ -204,7 +204,8 @@ def _wet_rows(result, limit: int = MAX_ROWS):
 
 def _difference_text(diff, kpa: float) -> str:
     """The ΔRMSE interval [kPa] at its printed resolution (`difference_resolution`: the adaptive bootstrap
-    stops once the Monte-Carlo error of each end is below it)."""
+    stops once the Monte-Carlo error of each end is below it).
+    """
     import math
 
     from ..fitting.comparison import difference_resolution

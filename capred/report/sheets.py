@@ -97,7 +97,8 @@ class Sheet:
     """Panels shown together: ``columns`` per row at most (wrapped to two, the width of a page), a panel
     named in ``spans`` with 2 takes a whole row at two-column width; ``panel_size`` gives the panels'
     aspect (height / width of its two numbers); an ``on_request`` sheet is written only when every sheet
-    is asked for (``write_outputs(..., figures="all")``, ``--figures all``)."""
+    is asked for (``write_outputs(..., figures="all")``, ``--figures all``).
+    """
 
     title: str
     panels: list[Panel]
@@ -341,7 +342,8 @@ def _forget_fonts_after_fork() -> None:
     """In a forked child: drop the shared mathtext parser and every cached parse. A parse keeps the font
     objects its glyphs are drawn from, and font objects opened before the fork read their files through
     offsets the parent shares (FreeType then fails: "too many hints", "invalid outline"); matplotlib forgets
-    its own font cache at a fork, this forgets the parses, so the child opens fonts of its own."""
+    its own font cache at a fork, this forgets the parses, so the child opens fonts of its own.
+    """
     import sys
 
     _MATHTEXT.clear()
@@ -359,10 +361,10 @@ if hasattr(os, "register_at_fork"):
 
 
 def _canvas(fig):
-    """Give ``fig`` an Agg canvas: layout and drawing then share one renderer and its text-size cache.
+    r"""Give ``fig`` an Agg canvas: layout and drawing then share one renderer and its text-size cache.
 
     Every such renderer also shares one mathtext parser, whose cache keeps each parsed label (a label such
-    as ``$\\tau_{max}$ [kPa]`` costs 10-50 ms to parse): a label repeated in another panel or sheet at the
+    as ``$\tau_{max}$ [kPa]`` costs 10-50 ms to parse): a label repeated in another panel or sheet at the
     same size and dpi is parsed once. Figures of one size share one renderer (``_RENDERERS``): its pixel
     buffer is allocated once and its text-size cache (tick labels, legend entries, titles) serves every
     sheet of a run and every file of a batch. A draw clears the buffer first, and ``raster`` copies it.
@@ -434,7 +436,8 @@ def _ticks_once(axes):
     """While the block runs, each axis of ``axes`` places and labels its ticks once per state (its view interval,
     its axes' box, its locator and formatter): matplotlib asks again for the tick labels' extents, the axis
     label's place and each spine's extent (four to eight times per axis and draw), each time recomputing the
-    same tick positions and label texts. The same state gives the same ticks, so the first answer is kept."""
+    same tick positions and label texts. The same state gives the same ticks, so the first answer is kept.
+    """
     patched = []
     for ax in axes:
         for axis in (ax.xaxis, ax.yaxis):
@@ -470,7 +473,8 @@ def _ticks_once(axes):
 def _draw_panel(panel, ax):
     """``panel.draw(ax)`` with its ``ax.legend(...)`` call recorded instead of run: the legend is then built
     once, where ``_dress`` puts it, not also where the panel asked. Returns (handles, labels) the panel gave
-    (None, None: the axes' labelled artists)."""
+    (None, None: the axes' labelled artists).
+    """
     asked = {}
 
     def legend(*args, **kwargs):
@@ -565,7 +569,8 @@ def _dress(ax, width_px: float, renderer, height_px: float | None = None, handle
 
 def _below_axis_pt(ax) -> float:
     """Height of what hangs below an axes' bottom spine [pt]: ticks, tick labels, the axis label (mathtext
-    with sub- or superscripts included), plus a 2 pt gap; from the settings, without laying out any text."""
+    with sub- or superscripts included), plus a 2 pt gap; from the settings, without laying out any text.
+    """
     import matplotlib as mpl
 
     rc = mpl.rcParams
@@ -625,7 +630,8 @@ def freeze_layout(fig) -> None:
 
     References
     ----------
-    Matplotlib layout engines, https://matplotlib.org/stable/api/layout_engine_api.html."""
+    Matplotlib layout engines, https://matplotlib.org/stable/api/layout_engine_api.html.
+    """
     engine = fig.get_layout_engine()
     if engine is not None:
         engine.execute(fig)

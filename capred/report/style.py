@@ -268,7 +268,7 @@ def tex(text: str) -> str:
 
 
 def symbol(name: str) -> str:
-    """A parameter name (``kappa``, ``s_b``, ``alpha1``) as mathtext (``$\\kappa$``, ``$s_{b}$``, ``$\\alpha_1$``).
+    r"""A parameter name (``kappa``, ``s_b``, ``alpha1``) as mathtext (``$\kappa$``, ``$s_{b}$``, ``$\alpha_1$``).
 
     Parameters
     ----------

@@ -1,5 +1,6 @@
 """Figures and console tables of `capred triaxial`: per material, the failure states on the extended envelope
-and every model's predicted against measured q_f."""
+and every model's predicted against measured q_f.
+"""
 
 from __future__ import annotations
 
