@@ -139,9 +139,10 @@ def excerpt(text: str, limit: int = EXCERPT) -> str:
 
 
 def xml_safe(text: str) -> str:
-    r"""``text`` fit for an XML 1.0 document (SVG): every control character shown (XML forbids C0 but tab, line
-    feed and carriage return), bidi controls shown, as ASCII escapes (``\x1b``: the fonts of figures lack the
-    control pictures).
+    r"""``text`` fit for an XML 1.0 document (SVG), every control character shown as an ASCII escape.
+
+    XML forbids C0 but tab, line feed and carriage return; bidi controls are shown too (``\x1b``: the fonts of figures
+    lack the control pictures).
 
     Parameters
     ----------
@@ -159,10 +160,11 @@ def xml_safe(text: str) -> str:
 
 
 def safe_axes(ax, labels=None):
-    """Show the control and bidi characters of every text a panel put on ``ax`` (title, axis labels, texts and
-    annotations, the labels its legend will show), before matplotlib lays it out or draws it: the one
-    neutraliser of figure text whatever its source (a file, an option, a lab store), so no raw control reaches
-    an SVG (where XML forbids it) or the terminal (matplotlib's missing-glyph warning quotes the character).
+    """Show the control and bidi characters of every text a panel put on ``ax``.
+
+    Title, axis labels, texts and annotations, the labels its legend will show, before matplotlib lays it out or draws
+    it: the one neutraliser of figure text whatever its source (a file, an option, a lab store), so no raw control
+    reaches an SVG (where XML forbids it) or the terminal (matplotlib's missing-glyph warning quotes the character).
 
     Parameters
     ----------
@@ -252,8 +254,9 @@ def safe_spec(spec):
 
 
 def html_finalize(value):
-    """The jinja ``finalize`` of capred's HTML templates: every value shown is made :func:`visible` (markup
-    stays markup; text is escaped afterwards by autoescape).
+    """The jinja ``finalize`` of capred's HTML templates: every value shown is made :func:`visible`.
+
+    Markup stays markup; text is escaped afterwards by autoescape.
 
     Parameters
     ----------

@@ -111,7 +111,15 @@ class NonlinearFit:
         return self.params[name] - self.t * se, self.params[name] + self.t * se
 
     def correlation(self) -> dict[str, dict[str, float]]:
-        """Correlation matrix of the free parameters that have a standard error (as unsatfit and SWRC Fit report)."""
+        """Correlation matrix of the free parameters, as unsatfit and SWRC Fit report it.
+
+        Only parameters with a standard error take part (held ones and those of zero variance are left out).
+
+        Returns
+        -------
+        dict of str to dict of str to float
+            ``r[a][b]``, the correlation of parameters ``a`` and ``b`` [-]; empty without a covariance.
+        """
         if self.covariance is None:
             return {}
         var = np.diag(self.covariance)

@@ -29,8 +29,9 @@ CHI1_UNITY_SR = 3.0 / (2.0 * np.pi)
 
 
 def __getattr__(name):
-    """``MODELS``: the four effective-stress models of the thesis [1], in display order, read from the registry
-    (capred.physics.effective_stress_models.REGISTRY, the one place for model names).
+    """``MODELS``: the four effective-stress models of the thesis [1], in display order.
+
+    Read from the registry (capred.physics.effective_stress_models.REGISTRY, the one place for model names).
     """
     if name == "MODELS":
         from .effective_stress_models import THESIS_MODELS

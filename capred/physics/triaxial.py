@@ -1141,7 +1141,7 @@ def _mean_se(x):
 
 
 def _apparent_friction(sigma1, sigma3):
-    """phi and its se [deg] of the least-squares line sigma1 = K sigma3 + b (eq. 25 form)."""
+    """Friction angle phi and its se [deg] of the least-squares line sigma1 = K sigma3 + b (eq. 25 form)."""
     s1, s3 = np.asarray(sigma1, float), np.asarray(sigma3, float)
     n = s1.size
     if n < 2 or np.ptp(s3) <= 0:

@@ -70,8 +70,9 @@ def bridge_compare_tables(result) -> list[TableSpec]:
 
 
 def bridge_curve_tables(result) -> list[TableSpec]:
-    """Console table of ``capred bridge curve``: each model's RMS relative error of σ' against the exact bridge,
-    inside and outside the pendular regime.
+    """Console table of ``capred bridge curve``: each model's RMS relative error of σ' against the exact bridge.
+
+    Inside and outside the pendular regime.
 
     Parameters
     ----------
@@ -91,8 +92,9 @@ def bridge_curve_tables(result) -> list[TableSpec]:
 
 
 def bridge_laws_tables(result) -> list[TableSpec]:
-    """`bridge laws`: each law over every point, the headline (geometry x gap), and the regions with the laws
-    within the tolerance.
+    """Console tables of `bridge laws`.
+
+    Each law over every point, the headline (geometry x gap), and the regions with the laws within the tolerance.
 
     Parameters
     ----------

@@ -1,5 +1,6 @@
-"""Figure sheet of `capred skempton-b`: B against S_r, and the parameter studies of Morvan et al. (2016),
-Fig. 2, 3 and 5. Each computed case is drawn on the curve of its own parameters.
+"""Figure sheet of `capred skempton-b`: B against S_r, and the parameter studies of Morvan et al. (2016).
+
+The studies are their Fig. 2, 3 and 5. Each computed case is drawn on the curve of its own parameters.
 """
 
 from __future__ import annotations
@@ -64,6 +65,11 @@ def plot_cases(ax, cases, s_e=None, bc_lambda=None, bounding=None):
     bounding : dict or None, optional
         ``lambda0``, ``a_ini`` [Pa], ``interpolation_h``, ``air_pressure``: also draw the bounding-surface
         reconstruction's B (Morvan et al. 2016, section 4).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     S = np.linspace(0.5, 1.0, 400)
     for k, (params, pts) in enumerate(cases.items()):
@@ -126,6 +132,11 @@ def plot_curves(ax, curves: dict):
         The panel to draw on.
     curves : dict
         ``"S_r"`` -> degrees of saturation [-], and each model's key -> its B values [-].
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     S = curves["S_r"]
     for key, B in curves.items():
@@ -149,8 +160,10 @@ def sheet_skempton(
     curves: dict | None = None,
     curve_names: list[str] | None = None,
 ) -> Sheet:
-    """``cases``: (kappa, e0, p0, u0, pa0) -> (S_r values, B values); or ``curves`` (``skempton-b --curve``):
-    S_r and B per model. The parameter studies (Morvan et al. 2016, Fig. 2, 3, 5) use the options' values.
+    """The figure sheet of `capred skempton-b`.
+
+    ``cases``: (kappa, e0, p0, u0, pa0) -> (S_r values, B values); or ``curves`` (``skempton-b --curve``): S_r and B per
+    model. The parameter studies (Morvan et al. 2016, Fig. 2, 3, 5) use the options' values.
 
     Parameters
     ----------
@@ -233,8 +246,10 @@ def sheet_skempton(
 
 
 def plot_prism_mohr(ax, break_tension_kPa, friction_angle_deg, P_kmax_kPa, labels=None):
-    """Mohr's diagram of the prism break (Bernatzik 1948): the circle from P_kmax to P_kmax + sigma_b touches
-    the envelope tau = sigma tan rho; the isotropic capillary pressure P_kmax is where the circle starts.
+    """Mohr's diagram of the prism break (Bernatzik 1948).
+
+    The circle from P_kmax to P_kmax + sigma_b touches the envelope tau = sigma tan rho; the isotropic capillary
+    pressure P_kmax is where the circle starts.
 
     Parameters
     ----------
@@ -248,6 +263,11 @@ def plot_prism_mohr(ax, break_tension_kPa, friction_angle_deg, P_kmax_kPa, label
         Isotropic capillary pressure P_kmax of each case [kPa].
     labels : list of str or None, optional
         Legend name of each case (default "case 1", ...).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     sb = np.asarray(break_tension_kPa, float)
     rho = np.asarray(friction_angle_deg, float)
