@@ -198,7 +198,7 @@ def test_the_measure_on_examples():
     assert missing_sections(ast.parse("def q(x):\n    return x").body[0]) == ["docstring"]
 
 
-def test_exemptions_are_the_lint_s():
+def test_measured_modules_are_the_linted_ones():
     # the measure leaves out exactly what ruff's D rules leave out: a module exempted from both or from neither
     exempt = _exempt_patterns()
     assert "tests/**/*.py" in exempt
