@@ -21,26 +21,26 @@ _API = {
     "run": "capred.reductions",
     "write_outputs": "capred.report.outputs",
     "run_shear": "capred.pipelines.shear",
-    "ShearOptions": "capred.pipelines.shear",
-    "ModelParams": "capred.pipelines.shear",
+    "ShearOptions": "capred.spec.shear",  # its declaration (numpy-free)
+    "ModelParams": "capred.spec.shear",  # its declaration (numpy-free)
     "ShearResult": "capred.pipelines.shear",
     "run_triaxial_bounds": "capred.pipelines.triaxial",
-    "TriaxialOptions": "capred.pipelines.triaxial",
+    "TriaxialOptions": "capred.spec.triaxial",  # its declaration (numpy-free)
     "TriaxialResult": "capred.pipelines.triaxial",
     "run_triaxial_strength": "capred.pipelines.triaxial_strength",
-    "TriaxialStrengthOptions": "capred.pipelines.triaxial_strength",
+    "TriaxialStrengthOptions": "capred.spec.triaxial_strength",  # its declaration (numpy-free)
     "TriaxialStrengthResult": "capred.pipelines.triaxial_strength",
     "fit_extended_mc": "capred.fitting.extended_mc",
     "complete_state": "capred.physics.phase",
     "run_retention": "capred.pipelines.retention",
-    "RetentionOptions": "capred.pipelines.retention",
+    "RetentionOptions": "capred.spec.retention",  # its declaration (numpy-free)
     "RetentionResult": "capred.pipelines.retention",
     "convert_retention": "capred.pipelines.retention_convert",
     "run_prism": "capred.pipelines.calculators",
     "run_skempton_b": "capred.pipelines.calculators",
     "run_rumpf": "capred.pipelines.calculators",
     "run_pt_volume": "capred.pipelines.pt_volume",
-    "PTVolumeOptions": "capred.pipelines.pt_volume",
+    "PTVolumeOptions": "capred.spec.pt_volume",  # its declaration (numpy-free)
     "PTVolumeResult": "capred.pipelines.pt_volume",
     "solve_bridges": "capred.pipelines.bridge",
     "bridge_curve": "capred.pipelines.bridge",

@@ -80,6 +80,8 @@ class Reduction:
         return getattr(import_module(module), name)(**kw)
 
 
+#: where the options and input schemas are declared (numpy-free: `--help` reads them)
+_S = "capred.spec."
 _P = "capred.pipelines."
 REDUCTIONS: dict[str, Reduction] = {
     r.name: r
@@ -87,7 +89,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "shear",
             _P + "shear:run_shear",
-            _P + "shear:ShearOptions",
+            _S + "shear:ShearOptions",
             "required",
             "shear",
             "shear",
@@ -113,7 +115,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "triaxial-bounds",
             _P + "triaxial:run_triaxial_bounds",
-            _P + "triaxial:TriaxialOptions",
+            _S + "triaxial:TriaxialOptions",
             "required",
             "triaxial-bounds",
             "triaxial",
@@ -132,7 +134,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "triaxial",
             _P + "triaxial_strength:run_triaxial_strength",
-            _P + "triaxial_strength:TriaxialStrengthOptions",
+            _S + "triaxial_strength:TriaxialStrengthOptions",
             "required",
             "triaxial",
             "triaxial_strength",
@@ -153,7 +155,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "retention",
             _P + "retention:run_retention",
-            _P + "retention:RetentionOptions",
+            _S + "retention:RetentionOptions",
             "required",
             "retention",
             "retention",
@@ -169,7 +171,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "retention-convert",
             _P + "retention_convert:run_retention_convert",
-            _P + "retention_convert:ConvertOptions",
+            _S + "retention_convert:ConvertOptions",
             "required",
             "retention-convert",
             "retention_convert",
@@ -193,7 +195,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "prism",
             _P + "calculators:reduce_prism",
-            _P + "calculators:PrismOptions",
+            _S + "calculators:PrismOptions",
             "optional",
             "prism",
             "prism",
@@ -208,7 +210,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "skempton-b",
             _P + "calculators:reduce_skempton_b",
-            _P + "calculators:SkemptonOptions",
+            _S + "calculators:SkemptonOptions",
             "optional",
             "skempton-b",
             "skempton",
@@ -223,7 +225,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "rumpf",
             _P + "calculators:reduce_rumpf",
-            _P + "calculators:RumpfOptions",
+            _S + "calculators:RumpfOptions",
             "optional",
             "rumpf",
             "rumpf",
@@ -235,7 +237,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "shear-band",
             _P + "calculators:reduce_shear_band",
-            _P + "calculators:ShearBandOptions",
+            _S + "calculators:ShearBandOptions",
             "optional",
             None,
             "shear_band",
@@ -254,7 +256,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "bridge solve",
             _P + "bridge:solve_bridges",
-            _P + "bridge:BridgeOptions",
+            _S + "bridge:BridgeOptions",
             "required",
             "bridge-solve",
             "bridge",
@@ -269,14 +271,16 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "bridge compare",
             _P + "bridge:compare_measured",
-            _P + "bridge:BridgeOptions",
+            _S + "bridge:BridgeOptions",
             "required",
             "bridge-compare",
             "bridge_compare",
             method=(
                 "Measured capillary forces of micro-tests beside the exact bridge of the same R, gap, contact "
                 "angle and volume, the toroidal approximation, Willett et al. (2000) and Israelachvili's 2πRγ "
-                "cos θ.",
+                "cos θ, and beside every closed-form law of `capred bridge laws` (its registry), each with "
+                "Derjaguin's effective radius for unequal pairs and a plane, and NaN where a law does not apply "
+                "to the pair's geometry.",
             ),
             references=("willett2000", "israelachvili", "lian1993"),
             summary="Measured capillary forces beside the exact bridge and approximations.",
@@ -284,16 +288,23 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "bridge rupture",
             _P + "bridge:rupture_distances",
-            _P + "bridge:BridgeOptions",
+            _S + "bridge:BridgeOptions",
             "required",
             "bridge-rupture",
             "bridge_rupture",
+            method=(
+                "Each bridge of water volume V_w is pulled apart at constant volume: the rupture distance is the "
+                "widest gap at which a stable Young-Laplace bridge of that volume still exists between the two "
+                "bodies, found on the exact bridges, beside Lian et al.'s (1993) estimate "
+                "D_rupt = (1 + θ/2) V^(1/3) (θ in rad, lengths over R).",
+            ),
+            references=("lian1993",),
             summary="Rupture distance of bridges at constant volume.",
         ),
         Reduction(
             "bridge laws",
             _P + "bridge_laws:compare_laws",
-            _P + "bridge_laws:LawsOptions",
+            _S + "bridge:LawsOptions",
             "optional",
             "bridge-laws",
             "bridge_laws",
@@ -310,17 +321,23 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "bridge yade-files",
             _P + "yade_files:reduce_yade_files",
-            _P + "yade_files:YadeOptions",
+            _S + "bridge:YadeOptions",
             "none",
             None,
             "yade_files",
+            method=(
+                "One file per radius ratio R2/R1 in the layout YADE's capillary law reads (Duriez & Wan 2017): "
+                "per distance d* = D/R2, by rising suction uc* = Δu R2/γ, the exact stable Young-Laplace bridge's "
+                "volume, force F/(2πγR2), filling angles and the integrals of its normal; nothing is interpolated.",
+            ),
+            references=("duriez_wan2017",),
             summary="Capillary files for YADE's capillary law.",
             example=(("ratios", (1, 2)), ("distances", 4), ("suctions", 5)),
         ),
         Reduction(
             "bridge curve",
             _P + "bridge:reduce_curve",
-            _P + "bridge:CurveOptions",
+            _S + "bridge:CurveOptions",
             "none",
             None,
             "bridge_curve",
@@ -335,7 +352,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "pt-volume",
             _P + "pt_volume:run_pt_volume",
-            _P + "pt_volume:PTVolumeOptions",
+            _S + "pt_volume:PTVolumeOptions",
             "required",
             "pt-volume",
             "pt_volume",
@@ -364,7 +381,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "compression",
             _P + "compression:run_compression",
-            _P + "compression:CompressionOptions",
+            _S + "compression:CompressionOptions",
             "required",
             "compression",
             "compression",
@@ -387,7 +404,7 @@ REDUCTIONS: dict[str, Reduction] = {
         Reduction(
             "history",
             _P + "history:reduce_history",
-            _P + "history:HistoryOptions",
+            _S + "history:HistoryOptions",
             "required",
             "history",
             "history",

@@ -17,12 +17,11 @@ reduction on one file, many files or a manifest.
 from __future__ import annotations
 
 import dataclasses
-import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .errors import OptionError
+from .spec.options import Options, as_given  # noqa: F401 (re-exported: capred.result.Options)
 
 
 @dataclass(frozen=True)
@@ -83,151 +82,6 @@ def input_file(source, table=None) -> InputFile:
         for block in iter(lambda: fh.read(1 << 20), b""):
             h.update(block)
     return InputFile(str(source), h.hexdigest())
-
-
-class Options:
-    """Base of every command's options dataclass.
-
-    ``QUANTITIES`` maps a dimensional field to its nomenclature name. Such a
-    field accepts a number in SI, a string with a unit (``"10 kN/m^3"``) or a
-    pint Quantity, and holds SI after construction. Values are range checked;
-    implausible constants give warnings (``self.warnings``).
-    """
-
-    QUANTITIES: dict[str, str] = {}
-    #: command-line spelling of a field where it is not --field-name
-    OPTION_NAMES: dict[str, str] = {}
-
-    def option_name(self, field_name: str) -> str:
-        """An option's name for messages: the Python keyword and the command-line option.
-
-        Parameters
-        ----------
-        field_name : str
-            The field of the options class, e.g. "gamma_w".
-
-        Returns
-        -------
-        str
-            E.g. ``"gamma_w (--gamma-w)"``.
-        """
-        cli = self.OPTION_NAMES.get(field_name, "--" + field_name.replace("_", "-"))
-        return f"{field_name} ({cli})"
-
-    def __post_init__(self) -> None:
-        from .nomenclature import plausibility_warning
-        from .units import to_si
-
-        warnings: list[str] = []
-        notes: list[str] = []
-        for name, quantity in self.QUANTITIES.items():
-            value = getattr(self, name)
-            if value is None:
-                continue
-            where = self.option_name(name)
-            try:
-                si = to_si(value, quantity, where, notes)
-            except OptionError as exc:  # quote the value as the API caller gave it, not its SI reading
-                err = OptionError(as_given(str(exc), name, value, quantity))
-                err.as_given = True  # quoted: a subclass's own quoting leaves it as it is
-                raise err from None
-            object.__setattr__(self, name, si)
-            w = plausibility_warning(quantity, si, where)
-            if w:
-                warnings.append(w)
-        object.__setattr__(self, "_warnings", warnings)
-        object.__setattr__(self, "_notes", notes)
-
-    @property
-    def warnings(self) -> list[str]:
-        """Implausible option values (e.g. a unit weight of water of 10 N/m^3)."""
-        return list(getattr(self, "_warnings", []))
-
-    @property
-    def unit_notes(self) -> list[str]:
-        """How option units were read (e.g. g/cm^2 as gram-force per cm^2)."""
-        return list(getattr(self, "_notes", []))
-
-    def record(self) -> tuple[dict, dict]:
-        """(values, units): every option with its SI value, and the SI unit of the dimensional ones."""
-        from .nomenclature import QUANTITIES
-        from .units import SI_UNIT
-
-        values, units = {}, {}
-        for f in dataclasses.fields(self):
-            if f.name.startswith("_"):
-                continue
-            v = getattr(self, f.name)
-            values[f.name] = _plain(v)
-            if f.name in self.QUANTITIES:
-                units[f.name] = SI_UNIT[QUANTITIES[self.QUANTITIES[f.name]].kind].replace("**", "^")
-        return values, units
-
-
-def as_given(message: str, name: str, value, quantity: str) -> str:
-    """An option's error message with its value quoted as the caller gave it (issue 28).
-
-    The glossary's range check shows the SI reading in the output unit: ``box_area=-3`` (a plain number, read in
-    m^2) reads "(got -30000 cm^2)", a value the caller never typed. The message keeps that reading beside the
-    value as given, says which unit a plain number is read in and how to give one; a string is quoted as typed
-    (with its reading where its unit is not the output unit).
-
-    Parameters
-    ----------
-    message : str
-        The message of capred.units.to_si, starting with the option's name.
-    name : str
-        The options field (the API keyword), e.g. "box_area".
-    value : object
-        The value as given.
-    quantity : str
-        Its glossary entry (a key of capred.nomenclature.QUANTITIES).
-
-    Returns
-    -------
-    str
-        E.g. ``"box_area (--box-area): shear box area must be > 0 cm^2 (got box_area=-3, a plain number read in
-        m^2, that is -30000 cm^2; give a unit, e.g. box_area='-3 cm^2')"``.
-    """
-    import numbers
-    import re
-
-    from .nomenclature import QUANTITIES
-    from .units import SI_UNIT
-
-    q = QUANTITIES[quantity]
-    m = re.search(r" \(got ([^()]*)\)$", message)
-    reading = m.group(1) if m else None
-    base = message[: m.start()] if m else message
-    that = f", that is {reading}" if reading else ""
-    if isinstance(value, str):
-        if reading is not None and reading.replace(" ", "") == value.strip().replace(" ", ""):
-            that = ""  # the reading is the value as typed
-        return f"{base} (got {name}={value!r}{that})"
-    if isinstance(value, numbers.Real) and not isinstance(value, bool):
-        si = SI_UNIT[q.kind].replace("**", "^")
-        if not math.isfinite(value) or q.unit in ("-", "", si):
-            return f"{base} (got {name}={value!r})"
-        return (
-            f"{base} (got {name}={value!r}, a plain number read in {si}{that}; give a unit, "
-            f"e.g. {name}='{value!r} {q.unit}')"
-        )
-    return f"{base} (got {value}{that})"  # a pint Quantity, as it prints
-
-
-def _plain(v):
-    """A JSON-ready copy of an option value (tuples as lists, dataclasses as dicts, paths as text)."""
-    if dataclasses.is_dataclass(v):
-        return {f.name: _plain(getattr(v, f.name)) for f in dataclasses.fields(v)}
-    if isinstance(v, (list, tuple)):
-        return [_plain(x) for x in v]
-    if isinstance(v, dict):
-        return {str(k): _plain(x) for k, x in v.items()}
-    if isinstance(v, Path):
-        return str(v)
-    if isinstance(v, float) and not math.isfinite(v):
-        return None  # as every JSON file writes it (null): the API's document equals the file's
-    return v
 
 
 @dataclass

@@ -235,7 +235,7 @@ def test_skempton_bounding_surface_inverse_round_trip(tmp_path):
         (["--air-pressure", "gauge"], "go(es) with --model bounding-surface"),
         (["--model", "bounding-surface", "--air-pressure", "relative"], "absolute or gauge"),
         (["--model", "bounding-surface", "--lambda0", "0.005"], "kappa"),
-        (["--model", "plastic"], "--model must be one of"),
+        (["--model", "plastic"], "model (--model) must be one of"),
     ],
 )
 def test_skempton_bounding_surface_bad_options(args, message):

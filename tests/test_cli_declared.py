@@ -1,8 +1,8 @@
 """Each CLI option declared once (issue 28 items 5 and 6): by its Options field and the glossary.
 
 The hand-written commands name the Options field of each option (capred.cli.declare.option); help text, unit,
-range and default come from the field and the glossary, the lists of models and laws from the registries,
-through the snapshot capred/cli/declared.py (so that `--help` imports no numerical module).
+range and default come from the field and the glossary, the lists of models and laws from the registries, read at
+run time from their numpy-free declarations in capred.spec (nothing generated, nothing cached on disk).
 """
 
 import ast
@@ -17,8 +17,7 @@ from typer.testing import CliRunner
 
 from capred.cli import _subcommand, app
 from capred.cli.common import BUILDERS
-from capred.cli.declare import OPTIONS_CLASSES, facts, si_values
-from capred.cli.declared import SNAPSHOT
+from capred.cli.declare import class_facts, si_values
 from capred.nomenclature import QUANTITIES
 from capred.reductions import REDUCTIONS
 from capred.units import parse_quantity
@@ -38,10 +37,10 @@ def _options_class(path: str):
     return getattr(import_module(module), name)
 
 
-def test_snapshot_is_what_the_options_glossary_and_registries_say():
-    """capred/cli/declared.py is derived, never edited: a changed Options field, glossary entry or registry
-    needs `python -m capred.cli.declare`."""
-    assert SNAPSHOT == facts(), "capred/cli/declared.py is out of date: run python -m capred.cli.declare"
+#: every Options class a command declares its options with (and shear's model parameters)
+OPTIONS_PATHS = sorted({r.options_path for r in REDUCTIONS.values()} | {"capred.spec.shear:ModelParams"})
+#: what each declares about its options, read now
+DECLARED = {path: class_facts(_options_class(path)) for path in OPTIONS_PATHS}
 
 
 def _registry(path: str):
@@ -89,18 +88,6 @@ def test_no_registry_name_alone_in_the_cli():
         assert not constants & names, f"{path.name}: {sorted(constants & names)}"
 
 
-def test_a_stale_snapshot_falls_back_to_the_options(monkeypatch):
-    """A snapshot of another layout (or without a field) does not stop the CLI: the Options are read afresh."""
-    import capred.cli.declared as declared
-    from capred.cli import declare
-
-    monkeypatch.setattr(declared, "SNAPSHOT", {"layout": -1})
-    declare._live.cache_clear()
-    help_text = declare.option("capred.pipelines.shear:ShearOptions", "gamma_w").__metadata__[0].help
-    assert help_text == "Unit weight of water γ_w [kN/m^3; > 0].  [default: 9.81]"
-    assert "pedrotti_tarantino_wet_area" in declare.registry_names("effective_stress_models")
-
-
 def test_glossary_options_show_the_glossary_unit_range_and_the_options_default():
     """Every option of a dimensional field: '[unit; range]' of its glossary entry in --help, and the default
     shown is the Options default in that unit (gamma_w 9810 N/m^3 -> 9.81 kN/m^3)."""
@@ -110,7 +97,7 @@ def test_glossary_options_show_the_glossary_unit_range_and_the_options_default()
     assert "Contact angle θ_c [deg; 0 to 90, 90 excluded]" in _help("bridge", "curve")
     assert "Mean total stress p0 [kPa; >= 0]. [default: 100]" in _help("skempton-b")
     checked = 0
-    for path, fields in SNAPSHOT["options"].items():
+    for path, fields in DECLARED.items():
         cls = _options_class(path)
         for f in dataclasses.fields(cls):
             entry = fields.get(f.name)
@@ -196,13 +183,9 @@ def test_no_hand_typed_unit_or_range_of_a_glossary_quantity_in_the_cli():
     """grep of capred/cli/*.py: an option of a field with a glossary entry is declared by option() (not a
     typer.Option of its own), and its help and note add no unit ('[kPa]', 'kN/m^3') or range: those are the
     glossary's. No quantity() call site is left."""
-    glossary_fields = {
-        name for fields in SNAPSHOT["options"].values() for name, e in fields.items() if e["quantity"] is not None
-    }
+    glossary_fields = {name for fields in DECLARED.values() for name, e in fields.items() if e["quantity"] is not None}
     problems = []
     for path in sorted(CLI.glob("*.py")):
-        if path.name == "declared.py":
-            continue
         source = path.read_text(encoding="utf-8")
         tree = ast.parse(source)
         if re.search(r"\bquantity\(", source):
@@ -220,7 +203,7 @@ def test_no_hand_typed_unit_or_range_of_a_glossary_quantity_in_the_cli():
                     continue
                 options = consts.get(getattr(call.args[0], "id", ""), "")
                 field = call.args[1].value
-                entry = SNAPSHOT["options"][options][field]
+                entry = DECLARED[options][field]
                 if entry["quantity"] is None:
                     continue
                 q = QUANTITIES[entry["quantity"]]
@@ -239,7 +222,7 @@ def test_the_grep_above_finds_a_hand_typed_unit(tmp_path, monkeypatch):
     """The check can fail: a help that types '[kPa]' for a glossary quantity is reported."""
     bad = tmp_path / "bad_command.py"
     bad.write_text(
-        'X = "capred.pipelines.shear:ShearOptions"\n\n\n'
+        'X = "capred.spec.shear:ShearOptions"\n\n\n'
         'def f(ambient_pressure: option(X, "ambient_pressure", help="Air pressure [kPa]") = None):\n    pass\n',
         encoding="utf-8",
     )
@@ -248,7 +231,33 @@ def test_the_grep_above_finds_a_hand_typed_unit(tmp_path, monkeypatch):
         test_no_hand_typed_unit_or_range_of_a_glossary_quantity_in_the_cli()
 
 
-def test_every_declared_options_class_is_a_commands_options():
-    """The snapshot covers the Options of every hand-written command (and shear's model parameters)."""
-    hand_written = {_options_class(REDUCTIONS[c].options_path) for c in BUILDERS if c in REDUCTIONS}
-    assert hand_written <= {_options_class(path) for path in OPTIONS_CLASSES}
+def test_every_commands_options_are_declared_in_the_numpy_free_spec():
+    """The Options of every command live in capred.spec (so that its --help imports no numerical library) and
+    keep their old import path (the pipeline module re-exports the same class)."""
+    for name, red in REDUCTIONS.items():
+        module, cls = red.options_path.split(":")
+        assert module.startswith("capred.spec."), name
+        pipeline = import_module(red.run_path.split(":")[0])
+        assert getattr(pipeline, cls, None) is _options_class(red.options_path), name
+
+
+def test_the_cli_holds_no_generated_source_and_declare_does_not_import_generated():
+    """No snapshot in the package (issue 42), and no import circle cli.declare <-> cli.generated."""
+    assert not (CLI / "declared.py").exists() and not (CLI / "help_columns.py").exists()
+    tree = ast.parse((CLI / "declare.py").read_text(encoding="utf-8"))
+    imported = {n.module for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)}
+    imported |= {a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
+    assert not {m for m in imported if m and m.endswith("generated")}, imported
+
+
+def test_a_model_registered_at_run_time_shows_in_shear_help(monkeypatch):
+    """A model added to the registry after the CLI was built (a lab script's own model) is listed by
+    `capred shear --help`: the --models help is rendered when the help is shown."""
+    import capred.spec.effective_stress as es
+
+    _help("shear")  # the command built (and its help shown) before the model exists
+    entry = dataclasses.replace(es.REGISTRY["bishop"], name="half_bishop_rt", label="half Bishop")
+    monkeypatch.setitem(es.REGISTRY, "half_bishop_rt", entry)
+    assert re.search(r"(?<![\w-])half_bishop_rt(?![\w-])", _help("shear"))
+    monkeypatch.delitem(es.REGISTRY, "half_bishop_rt")
+    assert "half_bishop_rt" not in _help("shear")

@@ -19,6 +19,7 @@ import capred.io
 PACKAGE = Path(capred.__file__).resolve().parent
 #: layer of each top-level part of capred (a higher layer may import a lower one, never the reverse)
 LAYERS = {
+    "testing": 7,  # the shipped conformance checks: run an entry as the commands do (pipelines, report)
     "cli": 7,
     "batch": 6,
     "pipelines": 5,
@@ -41,6 +42,7 @@ LAYERS = {
             "samples",
             "reductions",
             "text_safety",  # pure string rules for terminals, HTML and SVG
+            "spec",  # numpy-free declarations: the registries, their functions named as "module:function"
         )
     },
 }
@@ -49,6 +51,13 @@ LAZY_UP = {
     # a Result's display methods (plot, _repr_html_, figures, console_tables, report_html) are the user's way
     # into report/: imported when called, through report.notebook alone
     ("capred.result", "capred.report.notebook"): "Result's display methods",
+    # an Options class (capred.spec, numpy-free so that --help is cheap) whose checks need numerics when the
+    # options are built: imported inside the method, at run time only
+    ("capred.spec.calculators", "capred.physics.calculators"): "skempton-b --compare: the relations' names",
+    ("capred.spec.calculators", "capred.physics.skempton_elastoplastic"): "skempton-b: the bounding surface's check",
+    ("capred.spec.pt_volume", "capred.physics.pedrotti_tarantino"): "pt-volume: the model's parameters",
+    ("capred.spec.pt_volume", "capred.pipelines.compression"): "pt-volume --compression-w: a compression.json",
+    ("capred.spec.retention", "capred.fitting.retention_models"): "retention --fixed: the parameters' JSON names",
 }
 
 

@@ -70,7 +70,8 @@ def history():
 
 
 def test_bridge_compare_table_from_the_record(compare, monkeypatch):
-    (table,) = _tables_without_json(compare, monkeypatch)
+    table, laws = _tables_without_json(compare, monkeypatch)  # the pairs, then each registry law's residuals
+    assert len(laws.rows) == len(compare.record().laws)
     keys = ["case", "F_measured_mN", "F_exact_mN", "F_toroidal_mN", "F_willett_mN", "F_israelachvili_mN", "status"]
     _same_as_json(table, compare.rows(), keys, "compare.csv")
     rec = compare.record()
@@ -167,6 +168,8 @@ def test_bridge_csv_headers_follow_the_one_rule(record):
     # bridge compare / rupture headers are as before: the JSON key's csv_header (name [unit]), a dimensionless
     # ratio [-], a label or status its key
     values = {f.name: (["a", "b"] if f.name in ("case", "status") else np.zeros(2)) for f in dataclasses.fields(record)}
+    if "laws" in values:  # compare: each registered law's force and residual
+        values["laws"] = {"toy_law": (np.zeros(2), np.zeros(2))}
     rec = record(**values)
     for key, head in zip(rec.columns(), rec.csv_columns()):
         assert head == {"ratio_to_lian": "ratio_to_lian [-]"}.get(key, csv_header(key))

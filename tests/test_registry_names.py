@@ -22,11 +22,16 @@ from capred.physics.effective_stress_models import REGISTRY as STRESS_MODELS
 PACKAGE = Path(capred.__file__).parent
 
 #: registry module (relative to capred/) -> the names it registers; a name registered in two families (the fitted
-#: χ laws are effective-stress models too) may be spelled in both registry modules
+#: χ laws are effective-stress models too) may be spelled in both registry modules. Each family has two: its
+#: numpy-free declarations (capred/spec/) and the numerical functions they name.
 REGISTRIES = {
+    "spec/effective_stress.py": set(STRESS_MODELS),
     "physics/effective_stress_models.py": set(STRESS_MODELS),
+    "spec/chi_laws.py": set(CHI_LAWS),
     "fitting/chi_laws.py": set(CHI_LAWS),
+    "spec/bridge_laws.py": set(BRIDGE_LAWS),
     "physics/bridge_laws.py": set(BRIDGE_LAWS),
+    "spec/retention_models.py": set(RETENTION_MODELS),
     "fitting/retention_models.py": set(RETENTION_MODELS),
 }
 

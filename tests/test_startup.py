@@ -1,6 +1,7 @@
 """Start-up stays cheap (issue 31, item 5): `capred --help` and `capred COMMAND --help` import no numerical library,
 the commands are built only when used (capred.cli.lazy_group) with help and errors the same as typer's own
-group, and the snapshot of the input columns that help reads (capred/cli/help_columns.py) is current.
+group, and a command's help is read from the declarations themselves (capred.spec) at run time, so that a model
+a script registers shows in it.
 
 Not timed: what is imported and what is built are counted (benchmarks/bench_startup.py measures the time).
 """
@@ -15,7 +16,7 @@ import typer.testing
 from conftest import ROOT
 from typer.testing import CliRunner
 
-from capred.cli import app, help_columns
+from capred.cli import app
 from capred.cli import help as cli_help
 from capred.cli.lazy_group import LazyGroup, lazy_command
 from capred.reductions import REDUCTIONS
@@ -59,7 +60,7 @@ def _heavy_imports(*args: str) -> list[str]:
 @pytest.mark.parametrize("args", [["--help"], ["shear", "--help"], ["bridge", "solve", "--help"], ["--version"]])
 def test_help_imports_no_numerical_library(args):
     """Neither the command list nor a command's help (with its input columns) imports numpy, pandas, matplotlib,
-    scipy, rich, jinja2 or pint: the columns come from the snapshot, the commands are built from typer alone."""
+    scipy, rich, jinja2 or pint: the columns and options come from capred.spec, the commands from typer alone."""
     assert _heavy_imports(*args) == []
 
 
@@ -143,27 +144,64 @@ def test_a_command_runs_through_the_lazy_group(tmp_path):
     assert lazy == full
 
 
-def test_the_column_snapshot_is_current():
-    """Every command that reads a file has its entry; each entry's digest is that of its source files as they
-    are, and its lines are those of the schema. When this fails, rewrite the snapshot:
-    python -c 'import capred.cli.help as h; h.write_snapshot()'"""
-    readers = sorted(n for n, r in REDUCTIONS.items() if r.source != "none")
-    assert sorted(help_columns.COLUMNS) == readers
-    for name in readers:
-        entry = help_columns.COLUMNS[name]
-        assert cli_help.source_digest(entry["files"]) == entry["digest"], f"{name}: snapshot out of date"
-        assert [list(x) for x in cli_help.column_lines(cli_help.schema_of(name))] == entry["lines"], name
+def test_help_columns_are_the_schema_the_command_reads():
+    """Every command that reads a table shows the columns of the very schema its pipeline reads with (the
+    pipeline module re-exports the spec's list: one declaration)."""
+    from importlib import import_module
+
+    for name, red in REDUCTIONS.items():
+        schema = cli_help.schema_of(name)
+        if red.source == "none":
+            assert schema == []
+            continue
+        pipeline = import_module(red.run_path.split(":")[0])
+        last = name.split()[-1].replace("-", "_").upper()
+        own = getattr(pipeline, f"{last}_SCHEMA", None) or getattr(pipeline, "SCHEMA", None) or []
+        assert schema is own or schema == own == [], name
+        assert cli_help.column_help(name) == cli_help.column_lines(schema)
 
 
-def test_a_changed_source_file_makes_help_read_the_schema(monkeypatch):
-    """Where the digest no longer matches (a source file of the schema changed), help imports the schema
-    instead of showing the snapshot's (possibly stale) columns."""
-    entry = dict(help_columns.COLUMNS["shear"], digest="0" * 40, lines=[["stale", "stale"]])
-    monkeypatch.setitem(help_columns.COLUMNS, "shear", entry)
-    lines = cli_help.column_help("shear")
-    assert lines and ("stale", "stale") not in lines
-    assert lines == cli_help.column_lines(cli_help.schema_of("shear"))
+#: a lab script: registers its own effective-stress model, then runs `capred shear --help` in the same process
+REGISTERING_SCRIPT = """
+import json, sys
+import capred.spec.effective_stress as es
+es.REGISTRY["half_bishop"] = es.EffectiveStressModel(
+    "half_bishop", "Half Bishop", (), "bishop1959", lambda d: d.sigma_N + 0.5 * d.S_R * d.suction
+)
+sys.argv = ["capred", "shear", "--help"]
+from capred.cli import main
+try:
+    main()
+except SystemExit:
+    pass
+print("HEAVY=" + json.dumps(sorted({m.split(".")[0] for m in sys.modules} & set(json.loads(sys.argv_heavy)))))
+"""
 
 
-def test_digest_of_a_missing_file_is_none():
-    assert cli_help.source_digest(["no_such_module.py"]) is None
+def test_a_model_registered_by_a_script_shows_in_shear_help_without_numpy():
+    """Issue 42: the README's `half_bishop`, registered from a script, is listed by `capred shear --help`, which
+    still imports no numerical library (the registry's declaration is numpy-free)."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    script = REGISTERING_SCRIPT.replace("sys.argv_heavy", repr(json.dumps(HEAVY)))
+    p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=env)
+    assert "HEAVY=" in p.stdout, p.stderr
+    text = " ".join(p.stdout.split())
+    assert "own2, vanapalli" in text and ", half_bishop;" in text  # in the --models list, in registry order
+    assert json.loads(p.stdout.split("HEAVY=")[-1]) == []
+
+
+def test_the_command_list_reads_no_options_declaration():
+    """`capred --help` lists the commands without evaluating any command's options: the option annotations are
+    evaluated when typer builds the command asked for (capred.cli.common._Callback), so no capred.spec module
+    is imported for the list."""
+    code = (
+        "import io, json, sys, contextlib\n"
+        "sys.argv = ['capred', '--help']\n"
+        "from capred.cli import main\n"
+        "with contextlib.redirect_stdout(io.StringIO()):\n"
+        "    try:\n        main()\n    except SystemExit:\n        pass\n"
+        "print(json.dumps(sorted(m for m in sys.modules if m.startswith('capred.spec'))))"
+    )
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True)
+    assert json.loads(p.stdout) == []

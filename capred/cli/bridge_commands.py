@@ -1,20 +1,22 @@
 """`capred bridge curve | solve | compare | rupture | laws | yade-files`: exact capillary bridges between two spheres or a
 sphere and a plane."""
 
+from __future__ import annotations
+
 from typing import Annotated
 
 import typer
 
 from .common import Invocation, command
-from .declare import option, registry_help, si_values
+from .declare import option, si_values
 
 #: points of a `bridge laws` grid given by options solved without --yes (the default grid: 504)
 MAX_GRID_POINTS = 5000
 
-CURVE = "capred.pipelines.bridge:CurveOptions"
-BRIDGE = "capred.pipelines.bridge_solve:BridgeOptions"
-YADE = "capred.pipelines.yade_files:YadeOptions"
-LAWS = "capred.pipelines.bridge_laws:LawsOptions"
+CURVE = "capred.spec.bridge:CurveOptions"
+BRIDGE = "capred.spec.bridge:BridgeOptions"
+YADE = "capred.spec.bridge:YadeOptions"
+LAWS = "capred.spec.bridge:LawsOptions"
 
 
 def register(app: typer.Typer) -> None:
@@ -194,7 +196,8 @@ def compare(
 ) -> Invocation:
     """Microscopic tests against theory: the measured force of each sphere pair
     beside the exact bridge of the same R, gap, contact angle and V_w, the
-    toroidal approximation, Willett et al. (2000) and Israelachvili, with residuals.
+    toroidal approximation, Willett et al. (2000), Israelachvili and each
+    closed-form law of `capred bridge laws`, with residuals.
 
     Example: capred bridge compare micro_tests.csv --out micro
 
@@ -360,7 +363,3 @@ def laws(
             "V_over_R3, contact_angle, R2_over_R)"
         )
     return Invocation("bridge laws", opts)
-
-
-# the laws as the registry lists them (from the CLI's snapshot: `--help` imports no numerical module)
-laws.__doc__ = laws.__doc__.replace("{laws}", "; ".join(registry_help("bridge_laws")))

@@ -1,15 +1,17 @@
 """`capred prism`, `capred skempton-b`, `capred rumpf`: closed-form calculators, from options or a table of cases."""
 
+from __future__ import annotations
+
 import typer
 
 from .common import Invocation, command
 from .declare import option, si_values
 
-PRISM = "capred.pipelines.calculators:PrismOptions"
-SKEMPTON = "capred.pipelines.calculators:SkemptonOptions"
-RUMPF = "capred.pipelines.calculators:RumpfOptions"
-SHEAR_BAND = "capred.pipelines.calculators:ShearBandOptions"
-HISTORY = "capred.pipelines.history:HistoryOptions"
+PRISM = "capred.spec.calculators:PrismOptions"
+SKEMPTON = "capred.spec.calculators:SkemptonOptions"
+RUMPF = "capred.spec.calculators:RumpfOptions"
+SHEAR_BAND = "capred.spec.calculators:ShearBandOptions"
+HISTORY = "capred.spec.history:HistoryOptions"
 
 
 def register(app: typer.Typer) -> None:

@@ -330,23 +330,67 @@ def command(app: typer.Typer, name: str, full_name: str | None = None, data: str
             execute(inv)
 
         run.__name__, run.__doc__ = builder.__name__, builder.__doc__
-        first = [p for p in extra if p.name == "data"]  # the DATA argument leads
-        mine = [p.replace(kind=inspect.Parameter.KEYWORD_ONLY) for p in sig.parameters.values()]
-        run.__signature__ = sig.replace(
-            parameters=[*first, *mine, *(p for p in extra if p.name != "data")], return_annotation=None
-        )
-        run.__annotations__ = {
-            **{k: v for k, v in builder.__annotations__.items() if k != "return"},
-            **{p.name: p.annotation for p in extra},
-        }
         BUILDERS[full] = build
         from ..reductions import REDUCTIONS
 
         summary = REDUCTIONS[full].summary if full in REDUCTIONS else None
-        app.command(name, short_help=summary or None)(run)
+        app.command(name, short_help=summary or None)(_Callback(run, builder, extra))
         return builder
 
     return deco
+
+
+class _Callback:
+    """A command's callback whose signature (the options typer reads) is evaluated when typer builds the command,
+    not when it is registered: the option annotations of a builder module with postponed annotations
+    (``from __future__ import annotations``) call capred.cli.declare.option, which reads the Options declarations,
+    only for the command asked for (`capred --help` reads none).
+
+    Parameters
+    ----------
+    run : callable
+        What the command runs, with the shared and the builder's options as keywords.
+    builder : callable
+        The command's builder (its parameters: the command's own options).
+    extra : list of inspect.Parameter
+        The shared options the builder does not declare itself.
+    """
+
+    def __init__(self, run, builder, extra):
+        self._run, self._builder, self._extra = run, builder, extra
+        self.__name__ = self.__qualname__ = builder.__name__
+        self.__doc__, self.__module__ = builder.__doc__, builder.__module__
+        self._signature = None
+
+    def __call__(self, **params):
+        return self._run(**params)
+
+    @property
+    def __signature__(self) -> inspect.Signature:
+        sig = inspect.signature(self._builder)
+        if self._signature is None:  # the builder's own options, evaluated once
+            names = self._builder.__globals__
+            self._signature = [
+                p.replace(
+                    kind=inspect.Parameter.KEYWORD_ONLY,
+                    annotation=eval(p.annotation, names) if isinstance(p.annotation, str) else p.annotation,  # noqa: S307 (the module's own annotation)
+                )
+                for p in sig.parameters.values()
+                if p.kind is not inspect.Parameter.VAR_KEYWORD
+            ]
+        mine = list(self._signature)
+        if any(p.kind is inspect.Parameter.VAR_KEYWORD for p in sig.parameters.values()):
+            from .declare import model_parameter_options  # **model_options: the models' own, as registered now
+
+            mine += [p for p in model_parameter_options() if p.name not in sig.parameters]
+        first = [p for p in self._extra if p.name == "data"]  # the DATA argument leads
+        return sig.replace(
+            parameters=[*first, *mine, *(p for p in self._extra if p.name != "data")], return_annotation=None
+        )
+
+    @property
+    def __annotations__(self) -> dict:
+        return {p.name: p.annotation for p in self.__signature__.parameters.values()}
 
 
 def data_arg(what: str):

@@ -1,11 +1,13 @@
 """`capred compression`: an oedometer or isotropic compression test reduced to its lines and yield stress."""
 
+from __future__ import annotations
+
 import typer
 
 from .common import Invocation, SampleOpt, command
 from .declare import option, si_values
 
-CO = "capred.pipelines.compression:CompressionOptions"
+CO = "capred.spec.compression:CompressionOptions"
 
 
 def register(app: typer.Typer) -> None:

@@ -1,17 +1,19 @@
 """`capred shear`, `capred triaxial-bounds`, `capred retention`: reductions of lab data tables."""
 
+from __future__ import annotations
+
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
 from .common import Invocation, ThousandsOpt, command
-from .declare import option, registry_help, registry_names, si_values
+from .declare import model_parameter_values, option, registry_help, registry_names, si_values
 
-SHEAR = "capred.pipelines.shear:ShearOptions"
-PARAMS = "capred.pipelines.shear:ModelParams"
-TRIAXIAL = "capred.pipelines.triaxial:TriaxialOptions"
-RETENTION = "capred.pipelines.retention:RetentionOptions"
+SHEAR = "capred.spec.shear:ShearOptions"
+PARAMS = "capred.spec.shear:ModelParams"
+TRIAXIAL = "capred.spec.triaxial:TriaxialOptions"
+RETENTION = "capred.spec.retention:RetentionOptions"
 
 
 def _models_help() -> str:
@@ -78,7 +80,7 @@ def shear(
     cap_mass: option(SHEAR, "cap_mass", note="for rows without 'cap_mass'") = None,
     radius: option(SHEAR, "radius", note="for rows without 'R'") = None,
     void_volume: option(SHEAR, "void_volume", note="for rows without 'V_v'") = None,
-    models: option(SHEAR, "models", help=_models_help(), shown="thesis") = None,
+    models: option(SHEAR, "models", help=_models_help, shown="thesis") = None,
     retention: Annotated[
         Path | None,
         typer.Option(
@@ -135,6 +137,7 @@ def shear(
         "of 250, once the printed probabilities and ΔRMSE ends are resolved.",
     ) = None,
     seed: option(SHEAR, "seed", help="Seed of the bootstrap: the same seed gives the same probabilities.") = None,
+    **model_options,
 ) -> Invocation:
     """Direct-shear tests with hanging-column suction (Evenepoel, VUB thesis):
     dry envelope per material, the effective-stress models (No suction,
@@ -204,6 +207,9 @@ def shear(
         Replicates of the bootstrap of the model ranking [-].
     seed : int, optional
         Seed of the bootstrap.
+    **model_options
+        The parameters registered models declare for themselves (capred.spec.shear.ModelParameter), one option
+        each (``--my-kappa``), read from the registry when the command is built.
 
     Returns
     -------
@@ -226,6 +232,9 @@ def shear(
     envelope = _envelope_pair(water_envelope)
     if envelope is not None:
         params["water_envelope"] = envelope
+    own = model_parameter_values(model_options)
+    if own:
+        params["extra"] = own
     if retention_branch is not None and retention is None:
         from ..errors import OptionError
 
@@ -326,7 +335,7 @@ def triaxial_bounds(
 
 
 def retention(
-    model: option(RETENTION, "models", "--model", help=_retention_models_help()) = None,
+    model: option(RETENTION, "models", "--model", help=_retention_models_help) = None,
     hysteresis: option(
         RETENTION,
         "hysteresis",

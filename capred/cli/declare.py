@@ -1,15 +1,16 @@
-"""Each option of a hand-written command declared once: by its Options field and the glossary.
+"""Each option of a hand-written command declared once: by its Options field (capred.spec) and the glossary.
 
 A command's builder names the Options class and the field; the help text, the unit, the valid range and the
-default shown in ``--help`` come from the field (its default, its numpydoc ``Attributes`` text) and, for a
-dimensional field, from its glossary entry (``Options.QUANTITIES`` -> ``capred.nomenclature.QUANTITIES``:
-description, symbol, output unit, hard limits). The CLI adds only what is about the command line: the
-option's spelling and old aliases, and a note where the option needs one ("the thesis uses 10").
+default shown in ``--help`` come from the field (its default, its numpydoc ``Attributes`` text, its declared
+constraint) and, for a dimensional field, from its glossary entry (``Options.QUANTITIES`` ->
+``capred.nomenclature.QUANTITIES``: description, symbol, output unit, hard limits). The CLI adds only what is
+about the command line: the option's spelling and old aliases, and a note where the option needs one ("the
+thesis uses 10").
 
-`capred --help` must not import numpy, and every Options class lives in a numerical module; so what the
-Options, the glossary and the registries say is read once into ``capred/cli/declared.py`` (a generated
-snapshot, checked by ``tests/test_cli_declared.py``: regenerate it with ``python -m capred.cli.declare``).
-At run time nothing comes from the snapshot: the parsed values go to the live Options.
+Everything is read at run time from the declarations themselves: the Options classes live in capred.spec, which
+imports no numpy (so `capred --help` stays cheap), and the registries' names and help are read from their
+capred.spec modules when the help is shown, so a model registered by a script before the command runs shows in
+its ``--help``. Nothing is generated or cached on disk.
 
 Values stay numbers: a bare number is read once (in the glossary's output unit, the unit ``--help`` shows)
 and handed to the Options in SI; a value typed with a unit ("36 cm^2") goes to the Options as typed, which
@@ -18,90 +19,73 @@ read it once.
 
 from __future__ import annotations
 
+import inspect
 import re
-from functools import lru_cache
+import typing
+from functools import cache
 from typing import Annotated
 
 import typer
 
-#: the Options classes whose fields the hand-written commands declare (module:class)
-OPTIONS_CLASSES = (
-    "capred.pipelines.shear:ShearOptions",
-    "capred.pipelines.shear:ModelParams",
-    "capred.pipelines.triaxial:TriaxialOptions",
-    "capred.pipelines.retention:RetentionOptions",
-    "capred.pipelines.retention_convert:ConvertOptions",
-    "capred.pipelines.calculators:PrismOptions",
-    "capred.pipelines.calculators:SkemptonOptions",
-    "capred.pipelines.calculators:RumpfOptions",
-    "capred.pipelines.calculators:ShearBandOptions",
-    "capred.pipelines.pt_volume:PTVolumeOptions",
-    "capred.pipelines.bridge:CurveOptions",
-    "capred.pipelines.bridge_solve:BridgeOptions",
-    "capred.pipelines.yade_files:YadeOptions",
-    "capred.pipelines.bridge_laws:LawsOptions",
-    "capred.pipelines.history:HistoryOptions",
-    "capred.pipelines.compression:CompressionOptions",
-    "capred.pipelines.triaxial_strength:TriaxialStrengthOptions",
-)
-
 #: the registries whose entries the help lists: name -> (module:mapping, attribute giving an entry's help,
-#: flags naming subsets of the entries: ``thesis`` -> the entries whose ``thesis`` is true)
+#: flags naming subsets of the entries: ``thesis`` -> the entries whose ``thesis`` is true); every one is a
+#: numpy-free declaration of capred.spec, read when the help is shown
 REGISTRIES = {
-    "effective_stress_models": ("capred.physics.effective_stress_models:REGISTRY", "label", ("thesis", "fitted")),
-    "retention_models": ("capred.fitting.retention_models:MODELS", "help", ()),
-    "bridge_laws": ("capred.physics.bridge_laws:LAWS", "label", ()),
+    "effective_stress_models": ("capred.spec.effective_stress:REGISTRY", "label", ("thesis", "fitted")),
+    "retention_models": ("capred.spec.retention_models:MODELS", "help", ()),
+    "bridge_laws": ("capred.spec.bridge_laws:LAWS", "label", ()),
 }
 
 _NUMBER = re.compile(r"\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*")
 
 
-#: the layout of the snapshot (a snapshot of another layout is read afresh from the Options)
-LAYOUT = 2
+def _load(path: str):
+    """The object a ``"module:name"`` path names (a capred.spec module: no numerical library)."""
+    from importlib import import_module
 
-
-def _snapshot(fresh: bool = False) -> dict:
-    """The snapshot of capred/cli/declared.py; where it is missing, of another layout or lacks an entry
-    (``fresh``), what the Options, glossary and registries say now (slower: imports every pipeline; the CLI
-    still starts, and ``python -m capred.cli.declare`` can rewrite the snapshot)."""
-    if not fresh:
-        try:
-            from .declared import SNAPSHOT
-        except ImportError:
-            SNAPSHOT = {}
-        if SNAPSHOT.get("layout") == LAYOUT:
-            return SNAPSHOT
-    return _live()
-
-
-@lru_cache(maxsize=1)
-def _live() -> dict:
-    return facts()
+    module, name = path.split(":")
+    return getattr(import_module(module), name)
 
 
 def field_facts(options: str, field: str) -> dict:
-    """What the snapshot holds on one Options field (see `facts`).
+    """What an Options field declares about its command-line option (read from the class now).
 
     Parameters
     ----------
     options : str
-        The Options class as ``"module:Class"``.
+        The Options class as ``"module:Class"`` (a capred.spec module).
     field : str
         The field's name.
 
     Returns
     -------
     dict
-        ``quantity``, ``unit``, ``text``, ``range``, ``default``, ``option``.
+        ``quantity`` (its glossary name or None), ``unit`` (the glossary's output unit, "" for none or "-"),
+        ``range`` (its hard limits in that unit, or its constraint's), ``text`` (the Options ``Attributes`` text,
+        else the glossary description and symbol), ``default`` (the Options default as ``--help`` shows it, in
+        that unit: ``"[default: 9.81]"``), ``type`` and ``option`` (its command-line spelling in messages).
     """
-    try:
-        return _snapshot()["options"][options][field]
-    except KeyError:  # a field the snapshot does not know yet: read the Options now
-        return _snapshot(fresh=True)["options"][options][field]
+    return class_facts(_load(options))[field]
+
+
+def registry_entries(name: str) -> dict:
+    """A registry's entries as they stand now (a model registered by a script included).
+
+    Parameters
+    ----------
+    name : str
+        A key of `REGISTRIES`.
+
+    Returns
+    -------
+    dict
+        Entry name -> entry, in the registry's order.
+    """
+    return _load(REGISTRIES[name][0])
 
 
 def registry_names(name: str, subset: str | None = None) -> list[str]:
-    """The entries of a registry, in its order (from the snapshot, so that `--help` imports no numerical module).
+    """The entries of a registry, in its order (read now from its capred.spec module).
 
     Parameters
     ----------
@@ -114,12 +98,12 @@ def registry_names(name: str, subset: str | None = None) -> list[str]:
     -------
     list of str
     """
-    entry = _snapshot()["registries"].get(name) or _snapshot(fresh=True)["registries"][name]
-    return entry[subset or "names"].split(", ")
+    reg = registry_entries(name)
+    return [k for k, v in reg.items() if subset is None or getattr(v, subset, None)]
 
 
 def registry_help(name: str) -> list[str]:
-    """One line per entry of a registry, ``"name: its help"`` (from the snapshot).
+    """One line per entry of a registry, ``"name: its help"`` (read now from its capred.spec module).
 
     Parameters
     ----------
@@ -130,8 +114,113 @@ def registry_help(name: str) -> list[str]:
     -------
     list of str
     """
-    entry = _snapshot()["registries"].get(name) or _snapshot(fresh=True)["registries"][name]
-    return list(entry["help"])
+    attr = REGISTRIES[name][1]
+    out = []
+    for k, v in registry_entries(name).items():
+        h = str(getattr(v, attr, "") or "")
+        out.append(h if h.startswith(f"{k}:") else f"{k}: {h}" if h else k)
+    return out
+
+
+#: help text rendered when the help is shown: text as written -> a function giving it afresh (see `live_help`)
+LIVE_HELP: dict = {}
+
+
+def live_help(text: str) -> str:
+    """An option's help as it reads now: the text of an option whose help was given as a function (``option(...,
+    help=callable)``, e.g. the registry's models) is rendered again, so that an entry registered since the
+    command was declared shows; any other text is returned as it is.
+
+    Parameters
+    ----------
+    text : str
+        The help text of a click parameter.
+
+    Returns
+    -------
+    str
+    """
+    render = LIVE_HELP.get(text)
+    if render is None:
+        return text
+    fresh = render()
+    LIVE_HELP[fresh] = render
+    return fresh
+
+
+#: ``{name}`` in a command's help text -> a function giving what stands there when the help is shown
+#: (capred.cli.help fills them in): a registry's entries as they stand then, without importing it at start-up
+HELP_FIELDS = {"laws": lambda: "; ".join(registry_help("bridge_laws"))}
+
+
+def fill_help_fields(text: str) -> str:
+    """A command's help with its ``{name}`` fields (`HELP_FIELDS`) filled in now.
+
+    Parameters
+    ----------
+    text : str
+        The help as declared (the builder's docstring).
+
+    Returns
+    -------
+    str
+    """
+    for name, render in HELP_FIELDS.items():
+        if "{" + name + "}" in text:
+            text = text.replace("{" + name + "}", render())
+    return text
+
+
+def model_parameter_options() -> list:
+    """The command-line options of the parameters registered effective-stress models declare for themselves
+    (capred.spec.shear.ModelParameter), read from the registry now: ``--my-kappa`` of a model a script
+    registered, with the unit, range and description its declaration gives.
+
+    Returns
+    -------
+    list of inspect.Parameter
+        Keyword-only parameters named after the parameters, annotated with their ``typer.Option`` (a number in
+        the declared output unit, or with a unit of its own; default None: not given).
+    """
+    from ..spec.shear import model_parameters
+
+    out = []
+    for name, p in model_parameters().items():
+        q = p.quantity
+        bracket = "; ".join(x for x in ("" if q.unit == "-" else q.unit, _range_text(q)) if x)
+        models = [k for k, e in registry_entries("effective_stress_models").items() if p in e.parameters]
+        text = f"{_glossary_text(q)}{f' [{bracket}]' if bracket else ''}; of model {', '.join(models)}."
+        if p.default is not None:
+            text += f"  [default: {_shown(float(f'{p.default * q.factor:.12g}'))}]"
+        annotation = Annotated[
+            str | None, typer.Option(p.option, help=text, metavar="NUMBER", show_default=False, rich_help_panel=None)
+        ]
+        out.append(inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None, annotation=annotation))
+    return out
+
+
+def model_parameter_values(given: dict) -> dict:
+    """The models' own parameters given on the command line, for ``ModelParams(extra=...)``: None (not given)
+    left out, a bare number read once in the declared output unit to SI (range checked), a value with a unit
+    passed as typed.
+
+    Parameters
+    ----------
+    given : dict
+        Parameter name -> parsed value (the builder's ``**model_options``).
+
+    Returns
+    -------
+    dict
+    """
+    from ..spec.shear import model_parameters
+
+    declared = model_parameters()
+    return {
+        name: read_number(value, name, f"{name} ({declared[name].option})")
+        for name, value in given.items()
+        if value is not None and name in declared
+    }
 
 
 def option(options: str, field: str, *flags: str, note: str = "", help: str | None = None, **kw):
@@ -140,7 +229,7 @@ def option(options: str, field: str, *flags: str, note: str = "", help: str | No
     Parameters
     ----------
     options : str
-        The Options class as ``"module:Class"`` (one of `OPTIONS_CLASSES`).
+        The Options class as ``"module:Class"`` (a capred.spec module).
     field : str
         The field; the option is spelt as the Options' ``OPTION_NAMES`` say (default ``--field-name``) unless
         ``flags`` spell it (first the name, then old aliases).
@@ -148,8 +237,9 @@ def option(options: str, field: str, *flags: str, note: str = "", help: str | No
         The option's spellings, e.g. ``"--S-R", "--sr"``.
     note : str, optional
         What the help adds about the command line (appended after the field's own text).
-    help : str, optional
-        The option's description in the command line's words (default: the glossary's description and symbol
+    help : str or callable, optional
+        The option's description in the command line's words, or a function giving it (called again each time
+        the help is shown: a registry's entries as they stand then) (default: the glossary's description and symbol
         for a dimensional field, else the field's ``Attributes`` text); a dimensional field's unit and range
         are the glossary's all the same (a glossary entry shared by two fields, as ``a_ini`` shares ``p0``'s).
     **kw
@@ -164,24 +254,32 @@ def option(options: str, field: str, *flags: str, note: str = "", help: str | No
         the Options fill it in).
     """
     f = field_facts(options, field)
-    text = help or f["text"]
-    if not text:
-        raise ValueError(f"{options}.{field}: no help text (document the field or pass help=)")
-    if f["quantity"] is not None:
-        bracket = "; ".join(x for x in (f["unit"], f["range"]) if x)
-        text = f"{text} [{bracket}]" if bracket else text
-    text = text.rstrip(".")
-    if note:
-        text = f"{text} {note}" if note[0] == "(" else f"{text}{note}" if note[0] in ":," else f"{text}; {note}"
-    text = text if text.endswith((".", "?", "!")) else text + "."
     names = flags or (f["option"],)  # the Options' OPTION_NAMES, else --field-name
+    shown = kw.pop("shown", None)
+    with_default = f["type"] != "bool" and bool(f["default"]) and "show_default" not in kw
+
+    def render() -> str:
+        text = (help() if callable(help) else help) or f["text"]
+        if not text:
+            raise ValueError(f"{options}.{field}: no help text (document the field or pass help=)")
+        if f["quantity"] is not None or f["range"]:  # the glossary's unit and range, or the declared constraint's
+            bracket = "; ".join(x for x in (f["unit"], f["range"]) if x)
+            text = f"{text.rstrip('.')} [{bracket}]" if bracket else text
+        text = text.rstrip(".")
+        if note:
+            text = f"{text} {note}" if note[0] == "(" else f"{text}{note}" if note[0] in ":," else f"{text}; {note}"
+        text = text if text.endswith((".", "?", "!")) else text + "."
+        if with_default:  # the Options default (the signature's default is None)
+            text = f"{text}  [default: {shown}]" if shown else f"{text}  {f['default']}"
+        return text
+
+    text = render()
+    if callable(help):  # rendered again when the help is shown (capred.cli.help reads LIVE_HELP)
+        LIVE_HELP[text] = render
     if f["type"] == "bool":
         if not flags:
             names = (f"{names[0]}/--no-{names[0][2:]}",)
         return Annotated[bool, typer.Option(*names, help=text, **kw)]
-    shown = kw.pop("shown", None)
-    if f["default"] and "show_default" not in kw:  # the Options default (the signature's default is None)
-        text = f"{text}  [default: {shown}]" if shown else f"{text}  {f['default']}"
     kw.setdefault("show_default", False)
     if f["quantity"] is not None:
         kw.setdefault("metavar", "NUMBER")
@@ -298,7 +396,60 @@ def _factor(unit: str, kind: str) -> float:
     return conversion(unit, kind)[0]
 
 
-# --- the snapshot ----------------------------------------------------------------------------------------------
+# --- what an Options class declares ---------------------------------------------------------------------------
+
+
+def attribute_help(cls) -> dict[str, str]:
+    """The numpydoc ``Attributes`` section of a class docstring, as ``{name: first sentence of its text}``.
+
+    Parameters
+    ----------
+    cls : type
+        A documented dataclass (an Options class).
+
+    Returns
+    -------
+    dict
+        Field name -> its description (one line).
+    """
+    doc = inspect.cleandoc(cls.__doc__ or "")
+    m = re.search(r"^Attributes\n-+\n(.*?)(?:\n\n[A-Z][A-Za-z ]+\n-+\n|\Z)", doc, re.S | re.M)
+    out: dict[str, str] = {}
+    if not m:
+        return out
+    names: list[str] = []
+    for line in m.group(1).splitlines():
+        head = re.match(r"^([A-Za-z_]\w*(?:\s*,\s*[A-Za-z_]\w*)*)\s*(?::.*)?$", line)
+        if head and not line.startswith(" "):  # "name : type" or "a, b : type" (one text for each)
+            names = [n.strip() for n in head.group(1).split(",")]
+            out.update(dict.fromkeys(names, ""))
+        elif names and line.strip():
+            for name in names:
+                out[name] = (out[name] + " " + line.strip()).strip()
+    return out
+
+
+def base_type(annotation):
+    """The Python type of an Options field's annotation, and whether it may be None.
+
+    Parameters
+    ----------
+    annotation : object
+        A field annotation such as ``float | None`` or ``tuple``.
+
+    Returns
+    -------
+    tuple
+        ``(type, optional)``: the type without ``None`` (``str`` for a union of several types), and whether
+        ``None`` is allowed.
+    """
+    args = typing.get_args(annotation)
+    optional = type(None) in args
+    if args and typing.get_origin(annotation) in (typing.Union, getattr(__import__("types"), "UnionType", None)):
+        rest = [a for a in args if a is not type(None)]
+        annotation = rest[0] if len(rest) == 1 else str
+    origin = typing.get_origin(annotation) or annotation
+    return origin, optional
 
 
 def _range_text(q) -> str:
@@ -315,71 +466,56 @@ def _range_text(q) -> str:
     return ""
 
 
-def facts() -> dict:
-    """What the Options classes, the glossary and the registries say about the command-line options, read
-    from them now (imports every pipeline): the content of ``capred/cli/declared.py``.
+@cache
+def class_facts(cls) -> dict:
+    """What one Options class declares about each of its command-line options (see `field_facts`).
+
+    Parameters
+    ----------
+    cls : type
+        An Options dataclass (capred.spec).
 
     Returns
     -------
     dict
-        ``{"options": {class: {field: {...}}}, "registries": {name: [(entry, help), ...]}}``; a field holds
-        ``quantity`` (its glossary name or None), ``unit`` (the glossary's output unit, "" for none or "-"),
-        ``range`` (its hard limits in that unit), ``text`` (the Options ``Attributes`` text, else the glossary
-        description and symbol), ``default`` (the Options default as ``--help`` shows it, in that unit:
-        ``"[default: 9.81]"``), ``type`` and ``option`` (its command-line spelling in messages).
+        Field name -> ``{"quantity", "unit", "range", "text", "default", "type", "option"}``.
     """
     import dataclasses
-    import typing
-    from importlib import import_module
 
     from ..nomenclature import QUANTITIES
-    from .generated import attribute_help, base_type
 
-    options: dict = {}
-    for path in OPTIONS_CLASSES:
-        module, name = path.split(":")
-        cls = getattr(import_module(module), name)
-        hints = typing.get_type_hints(cls)
-        docs = _attribute_help(cls, attribute_help)
-        dims = getattr(cls, "QUANTITIES", {}) or {}
-        names = getattr(cls, "OPTION_NAMES", {}) or {}
-        fields = {}
-        for f in dataclasses.fields(cls):
-            if f.name.startswith("_") or not f.init:
-                continue
-            default = f.default if f.default is not dataclasses.MISSING else None
-            typ, _ = base_type(hints.get(f.name, str))
-            kind = {bool: "bool", int: "int", float: "float", tuple: "tuple", list: "tuple"}.get(typ, "str")
-            entry = {
-                "quantity": dims.get(f.name),
-                "unit": "",
-                "range": "",
-                "text": docs.get(f.name, ""),
-                "default": None if default is None else f"[default: {_shown(default)}]",
-                "type": kind,
-                "option": names.get(f.name, "--" + f.name.replace("_", "-")),
-            }
-            if f.name in dims:
-                q = QUANTITIES[dims[f.name]]
-                entry["unit"] = "" if q.unit == "-" else q.unit
-                entry["range"] = _range_text(q)
-                entry["text"] = _glossary_text(q)
-                if isinstance(default, (int, float)) and not isinstance(default, bool):  # in the glossary's unit
-                    entry["default"] = f"[default: {_shown(float(f'{default * q.factor:.12g}'))}]"
-                entry["type"] = "float"
-            fields[f.name] = entry
-        options[path] = fields
-    registries = {}  # names joined, never one name alone: the names live in their registry's module only
-    for key, (path, attr, subsets) in REGISTRIES.items():
-        module, name = path.split(":")
-        reg = getattr(import_module(module), name)
-        helps = [str(getattr(v, attr, "")) if attr else "" for v in reg.values()]
-        registries[key] = {
-            "names": ", ".join(reg),
-            "help": [h if h.startswith(f"{k}:") else f"{k}: {h}" if h else k for k, h in zip(reg, helps)],
-            **{flag: ", ".join(k for k, v in reg.items() if getattr(v, flag, None)) for flag in subsets},
+    hints = typing.get_type_hints(cls)
+    docs = _attribute_help(cls)
+    dims = getattr(cls, "QUANTITIES", {}) or {}
+    names = getattr(cls, "OPTION_NAMES", {}) or {}
+    rules = getattr(cls, "CONSTRAINTS", {}) or {}
+    fields = {}
+    for f in dataclasses.fields(cls):
+        if f.name.startswith("_") or not f.init:
+            continue
+        default = f.default if f.default is not dataclasses.MISSING else None
+        typ, _ = base_type(hints.get(f.name, str))
+        kind = {bool: "bool", int: "int", float: "float", tuple: "tuple", list: "tuple"}.get(typ, "str")
+        rule = rules.get(f.name)
+        entry = {
+            "quantity": dims.get(f.name),
+            "unit": "",
+            "range": rule.range_text() if hasattr(rule, "range_text") else "",
+            "text": docs.get(f.name, ""),
+            "default": None if default is None else f"[default: {_shown(default)}]",
+            "type": kind,
+            "option": names.get(f.name, "--" + f.name.replace("_", "-")),
         }
-    return {"layout": LAYOUT, "options": options, "registries": registries}
+        if f.name in dims:
+            q = QUANTITIES[dims[f.name]]
+            entry["unit"] = "" if q.unit == "-" else q.unit
+            entry["range"] = _range_text(q)
+            entry["text"] = _glossary_text(q)
+            if isinstance(default, (int, float)) and not isinstance(default, bool):  # in the glossary's unit
+                entry["default"] = f"[default: {_shown(float(f'{default * q.factor:.12g}'))}]"
+            entry["type"] = "float"
+        fields[f.name] = entry
+    return fields
 
 
 def _glossary_text(q) -> str:
@@ -389,65 +525,10 @@ def _glossary_text(q) -> str:
     return text if re.search(rf"(^|\W){re.escape(q.symbol)}(\W|$)", text) else f"{text} {q.symbol}"
 
 
-def _attribute_help(cls, reader) -> dict[str, str]:
+def _attribute_help(cls) -> dict[str, str]:
     """A class's ``Attributes`` texts with the SI units in brackets dropped (the option shows the glossary's
     unit) and the reST literal quotes."""
     out = {}
-    for name, text in reader(cls).items():
+    for name, text in attribute_help(cls).items():
         out[name] = re.sub(r"\s*\[[^\]]*\]", "", text).replace("``", "").strip()
     return out
-
-
-def _literal(value, indent: int = 0) -> str:
-    """Python source of a snapshot value as ``ruff format`` leaves it: every dict and list one item a line
-    with a trailing comma (kept as written), strings in double quotes."""
-    import json
-
-    pad, inner = " " * indent, " " * (indent + 4)
-    if isinstance(value, dict):
-        if not value:
-            return "{}"
-        items = "".join(f"{inner}{json.dumps(k)}: {_literal(v, indent + 4)},\n" for k, v in value.items())
-        return "{\n" + items + pad + "}"
-    if isinstance(value, (list, tuple)):
-        if not value:
-            return "[]"
-        return "[\n" + "".join(f"{inner}{_literal(v, indent + 4)},\n" for v in value) + pad + "]"
-    if isinstance(value, str):
-        text = json.dumps(value, ensure_ascii=False)
-        if value.count('"') > value.count("'"):  # ruff's choice: the quote that needs fewer escapes
-            return "'" + text[1:-1].replace('\\"', '"').replace("'", "\\'") + "'"
-        return text
-    return repr(value)
-
-
-def render(snapshot: dict) -> str:
-    """The text of ``capred/cli/declared.py`` holding ``snapshot`` (stable under ``ruff format``).
-
-    Parameters
-    ----------
-    snapshot : dict
-        As `facts` returns it.
-
-    Returns
-    -------
-    str
-    """
-    return (
-        '"""Generated by ``python -m capred.cli.declare`` from the Options classes, the glossary and the registries:\n'
-        'do not edit (tests/test_cli_declared.py fails when it is out of date)."""\n\n'
-        f"SNAPSHOT = {_literal(snapshot)}\n"
-    )
-
-
-def main() -> None:
-    """Rewrite ``capred/cli/declared.py`` from the Options classes, the glossary and the registries."""
-    from pathlib import Path
-
-    target = Path(__file__).with_name("declared.py")
-    target.write_text(render(facts()), encoding="utf-8")
-    print(f"wrote {target}")
-
-
-if __name__ == "__main__":
-    main()

@@ -24,60 +24,7 @@ from typing import Annotated
 import typer
 
 from .common import Invocation, command
-from .declare import read_number, unit_and_range
-
-
-def attribute_help(cls) -> dict[str, str]:
-    """The numpydoc ``Attributes`` section of a class docstring, as ``{name: first sentence of its text}``.
-
-    Parameters
-    ----------
-    cls : type
-        A documented dataclass (an Options class).
-
-    Returns
-    -------
-    dict
-        Field name -> its description (one line).
-    """
-    doc = inspect.cleandoc(cls.__doc__ or "")
-    m = re.search(r"^Attributes\n-+\n(.*?)(?:\n\n[A-Z][A-Za-z ]+\n-+\n|\Z)", doc, re.S | re.M)
-    out: dict[str, str] = {}
-    if not m:
-        return out
-    names: list[str] = []
-    for line in m.group(1).splitlines():
-        head = re.match(r"^([A-Za-z_]\w*(?:\s*,\s*[A-Za-z_]\w*)*)\s*(?::.*)?$", line)
-        if head and not line.startswith(" "):  # "name : type" or "a, b : type" (one text for each)
-            names = [n.strip() for n in head.group(1).split(",")]
-            out.update(dict.fromkeys(names, ""))
-        elif names and line.strip():
-            for name in names:
-                out[name] = (out[name] + " " + line.strip()).strip()
-    return out
-
-
-def base_type(annotation):
-    """The Python type of an Options field's annotation, and whether it may be None.
-
-    Parameters
-    ----------
-    annotation : object
-        A field annotation such as ``float | None`` or ``tuple``.
-
-    Returns
-    -------
-    tuple
-        ``(type, optional)``: the type without ``None`` (``str`` for a union of several types), and whether
-        ``None`` is allowed.
-    """
-    args = typing.get_args(annotation)
-    optional = type(None) in args
-    if args and typing.get_origin(annotation) in (typing.Union, getattr(__import__("types"), "UnionType", None)):
-        rest = [a for a in args if a is not type(None)]
-        annotation = rest[0] if len(rest) == 1 else str
-    origin = typing.get_origin(annotation) or annotation
-    return origin, optional
+from .declare import attribute_help, base_type, read_number, unit_and_range
 
 
 def option_parameters(options_cls) -> list[tuple[str, inspect.Parameter, object]]:

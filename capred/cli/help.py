@@ -7,19 +7,17 @@ groups are typer's ``rich_help_panel`` of each parameter where one is set, else 
 command's schema (the ``Column`` list its pipeline reads the table with: names, units, descriptions and the
 aliases of the glossary).
 
-A command's help must stay cheap (no numpy, pandas or matplotlib: a pipeline module imports them), so the
-input columns are read from a snapshot, ``capred/cli/help_columns.py``, written by
-``python -c "import capred.cli.help as h; h.write_snapshot()"`` from the schemas themselves. Each command's
-entry holds the digest of the source files its schema is made from (the modules its pipeline imports); where any
-of them has changed since the snapshot was written, the schema is imported as before, so help is never stale,
-only slower (tests/test_startup.py checks that the snapshot is current).
+A command's help must stay cheap (no numpy, pandas or matplotlib), so the schema is read from where the command
+declares it: the module of its Options class (``Reduction.options_path``), a numpy-free module of capred.spec,
+at run time (nothing is generated or cached). An option whose help lists a registry (``--models``) is rendered
+again when the help is shown (capred.cli.declare.live_help), so an entry registered by a script shows.
 """
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import typer.core
+
+from .declare import fill_help_fields, live_help
 
 #: the shared options about what is read (declared once in capred.cli.common)
 INPUT_OPTIONS = (
@@ -65,8 +63,9 @@ def panel_of(param, own: str) -> str:
 
 
 def schema_of(command: str) -> list:
-    """The input columns (capred.io.table.Column) a command reads: the ``SCHEMA`` of its pipeline module, or
-    ``<LAST WORD>_SCHEMA`` for a command of a group (``bridge solve`` -> ``SOLVE_SCHEMA``); [] when none.
+    """The input columns (capred.spec.columns.Column) a command reads: the ``SCHEMA`` of the module that declares
+    its options (a capred.spec module), or ``<LAST WORD>_SCHEMA`` for a command of a group (``bridge solve`` ->
+    ``SOLVE_SCHEMA``); [] when none.
 
     Parameters
     ----------
@@ -84,7 +83,7 @@ def schema_of(command: str) -> list:
     red = REDUCTIONS.get(command)
     if red is None or red.source == "none":
         return []
-    module = import_module(red.run_path.split(":")[0])
+    module = import_module(red.options_path.split(":")[0])
     last = command.split()[-1].replace("-", "_").upper()
     for name in (f"{last}_SCHEMA", "SCHEMA"):
         schema = getattr(module, name, None)
@@ -133,6 +132,22 @@ def column_lines(schema: list) -> list[tuple[str, str]]:
 class GroupedCommand(typer.core.TyperCommand):
     """A typer command whose plain-text help groups its options and lists the input columns."""
 
+    def format_help_text(self, ctx, formatter) -> None:
+        """The command's help text, its ``{laws}``-style fields filled in with the registries as they stand now
+        (capred.cli.declare.HELP_FIELDS).
+
+        Parameters
+        ----------
+        ctx : click.Context
+            The command's context.
+        formatter : click.HelpFormatter
+            The formatter written to.
+        """
+        raw = self.__dict__.setdefault("_declared_help", self.help)
+        if raw:
+            self.help = fill_help_fields(raw)
+        super().format_help_text(ctx, formatter)
+
     def format_options(self, ctx, formatter) -> None:
         """Write the arguments, then the options panel by panel (the command's own, Input, Output,
         Help), then the input columns the command reads.
@@ -147,6 +162,8 @@ class GroupedCommand(typer.core.TyperCommand):
         args, panels = [], {}
         own = f"{ctx.info_name or self.name} options"
         for param in self.get_params(ctx):
+            if getattr(param, "help", None):
+                param.help = live_help(param.help)  # a registry's entries as they stand now
             rv = param.get_help_record(ctx)
             if rv is None:
                 continue
@@ -174,13 +191,8 @@ class GroupedCommand(typer.core.TyperCommand):
                 formatter.write_text(input_description(command))
 
 
-#: the snapshot of the input columns (capred/cli/help_columns.py), relative to the package
-SNAPSHOT_MODULE = "capred.cli.help_columns"
-
-
 def column_help(command: str) -> list[tuple[str, str]]:
-    """The input-column lines of a command's help (:func:`column_lines` of :func:`schema_of`), from the snapshot
-    when the source files its schema is made from are unchanged (no pipeline imported), else from the schema.
+    """The input-column lines of a command's help (:func:`column_lines` of :func:`schema_of`).
 
     Parameters
     ----------
@@ -192,111 +204,7 @@ def column_help(command: str) -> list[tuple[str, str]]:
     list of tuple of str
         (``name [unit]``, description) per input column; [] for a command without a table of columns.
     """
-    entry = _snapshot().get(command)
-    if entry is not None and source_digest(entry["files"]) == entry["digest"]:
-        return [tuple(line) for line in entry["lines"]]
     return column_lines(schema_of(command))
-
-
-def _snapshot() -> dict:
-    try:
-        from . import help_columns
-    except ImportError:  # pragma: no cover - not written yet
-        return {}
-    return help_columns.COLUMNS
-
-
-def source_digest(files: list[str]) -> str | None:
-    """SHA-1 of the contents of some of capred's source files, in order (None when one cannot be read).
-
-    Parameters
-    ----------
-    files : list of str
-        Paths relative to the ``capred`` package folder, with ``/`` separators.
-
-    Returns
-    -------
-    str or None
-        The hexadecimal digest.
-    """
-    import hashlib
-
-    root = Path(__file__).resolve().parents[1]
-    digest = hashlib.sha1()
-    try:
-        for name in files:
-            digest.update(name.encode() + b"\0" + (root / name).read_bytes() + b"\0")
-    except OSError:
-        return None
-    return digest.hexdigest()
-
-
-_SCHEMA_FILES = """
-import json, sys
-from capred.cli.help import column_lines, schema_of
-before = set(sys.modules)
-lines = column_lines(schema_of(sys.argv[1]))
-files = sorted(
-    m.__file__ for n, m in list(sys.modules.items())
-    if n.split(".")[0] == "capred" and getattr(m, "__file__", None)
-    and not n.startswith("capred.cli") and (n not in before or n in ("capred.reductions", "capred.errors"))
-)
-print(json.dumps({"lines": lines, "files": files}))
-"""
-
-
-def snapshot_entries() -> dict:
-    """The snapshot of every command that reads a table of columns, computed from the schemas (one fresh process
-    per command, to see which of capred's modules its schema is made from).
-
-    Returns
-    -------
-    dict
-        Command -> ``{"files": [...], "digest": str, "lines": [[head, text], ...]}``.
-    """
-    import json
-    import os
-    import subprocess
-    import sys
-
-    from ..reductions import REDUCTIONS
-
-    root = Path(__file__).resolve().parents[1]
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(root.parent), os.environ.get("PYTHONPATH", "")])}
-    out = {}
-    for name, red in REDUCTIONS.items():
-        if red.source == "none":
-            continue
-        got = subprocess.run(
-            [sys.executable, "-c", _SCHEMA_FILES, name], capture_output=True, text=True, check=True, env=env
-        )
-        found = json.loads(got.stdout)  # no lines: a command whose input is not a table (kept: no import needed)
-        files = [Path(f).resolve().relative_to(root).as_posix() for f in found["files"]]
-        out[name] = {"files": files, "digest": source_digest(files), "lines": found["lines"]}
-    return out
-
-
-def write_snapshot() -> Path:
-    """Write capred/cli/help_columns.py from the schemas (:func:`snapshot_entries`).
-
-    Returns
-    -------
-    pathlib.Path
-        The file written.
-    """
-    import pprint
-
-    path = Path(__file__).with_name("help_columns.py")
-    text = (
-        '"""The input columns of each command\'s --help, and the digest of the source files they come from.\n\n'
-        "Written by capred.cli.help.write_snapshot(): do not edit. To rewrite it:\n"
-        "python -c 'import capred.cli.help as h; h.write_snapshot()'\n"
-        '"""\n\n'
-        "# fmt: off\n"
-        f"COLUMNS = {pprint.pformat(snapshot_entries(), width=120, sort_dicts=True)}\n"
-    )
-    path.write_text(text, encoding="utf-8")
-    return path
 
 
 def group_help(app) -> None:

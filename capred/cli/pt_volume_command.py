@@ -1,5 +1,7 @@
 """`capred pt-volume`: the volume-change model of Pedrotti & Tarantino along a path read from a table."""
 
+from __future__ import annotations
+
 from pathlib import Path
 
 import typer
@@ -7,7 +9,7 @@ import typer
 from .common import Invocation, SampleOpt, command
 from .declare import option, si_values
 
-PT = "capred.pipelines.pt_volume:PTVolumeOptions"
+PT = "capred.spec.pt_volume:PTVolumeOptions"
 
 
 def register(app: typer.Typer) -> None:

@@ -1,5 +1,7 @@
 """`capred retention-convert FIT.json --to MODEL`: a retention fit expressed in another model."""
 
+from __future__ import annotations
+
 from typing import Annotated
 
 import typer
@@ -7,7 +9,7 @@ import typer
 from .common import Invocation, command
 from .declare import option, registry_names, si_values
 
-CONVERT = "capred.pipelines.retention_convert:ConvertOptions"
+CONVERT = "capred.spec.retention_convert:ConvertOptions"
 
 
 def register(app: typer.Typer) -> None:

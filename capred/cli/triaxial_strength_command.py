@@ -1,12 +1,14 @@
 """`capred triaxial`: unsaturated strength from triaxial failure states, per material (issue 40)."""
 
+from __future__ import annotations
+
 import typer
 
 from .common import Invocation, command
-from .declare import option, registry_names, si_values
+from .declare import model_parameter_values, option, registry_names, si_values
 
-TRIAX = "capred.pipelines.triaxial_strength:TriaxialStrengthOptions"
-PARAMS = "capred.pipelines.shear:ModelParams"
+TRIAX = "capred.spec.triaxial_strength:TriaxialStrengthOptions"
+PARAMS = "capred.spec.shear:ModelParams"
 
 
 def register(app: typer.Typer) -> None:
@@ -33,7 +35,7 @@ def _models_help() -> str:
 
 
 def triaxial(
-    models: option(TRIAX, "models", help=_models_help(), shown="all") = None,
+    models: option(TRIAX, "models", help=_models_help, shown="all") = None,
     c_eff: option(TRIAX, "c_eff", note="instead of the extended Mohr-Coulomb envelope at s -> 0") = None,
     phi_eff: option(TRIAX, "phi_eff", note="with --c-eff") = None,
     errors: option(
@@ -51,6 +53,7 @@ def triaxial(
     air_entry: option(PARAMS, "air_entry", note="(Khalili & Khabbaz 1998)") = None,
     vg_alpha: option(PARAMS, "vg_alpha", note="(Lu & Likos 2006)") = None,
     vg_n: option(PARAMS, "vg_n", note="(Lu & Likos 2006)") = None,
+    **model_options,
 ) -> Invocation:
     """Unsaturated strength from triaxial failure states, per material: the
     extended Mohr-Coulomb envelope c', phi', phi_b (Fredlund et al. 1978), the
@@ -75,6 +78,8 @@ def triaxial(
         Ranking bootstrap.
     s_res, vanapalli_kappa, air_entry, vg_alpha, vg_n : optional
         Parameters of the models beyond the thesis's four.
+    **model_options
+        The parameters registered models declare for themselves (``--my-kappa``), as `capred shear` takes them.
 
     Returns
     -------
@@ -84,10 +89,10 @@ def triaxial(
     from ..pipelines.shear import ModelParams
     from ..pipelines.triaxial_strength import TriaxialStrengthOptions
 
-    mp = ModelParams(
-        **si_values(
-            PARAMS, s_res=s_res, vanapalli_kappa=vanapalli_kappa, air_entry=air_entry, vg_alpha=vg_alpha, vg_n=vg_n
-        )
+    params = si_values(
+        PARAMS, s_res=s_res, vanapalli_kappa=vanapalli_kappa, air_entry=air_entry, vg_alpha=vg_alpha, vg_n=vg_n
     )
+    own = model_parameter_values(model_options)
+    mp = ModelParams(**params, **({"extra": own} if own else {}))
     given = si_values(TRIAX, models=models, c_eff=c_eff, phi_eff=phi_eff, errors=errors, bootstrap=bootstrap, seed=seed)
     return Invocation("triaxial", TriaxialStrengthOptions(**given, model_params=mp))

@@ -53,6 +53,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..parameters import Parameter, Parameters, correlation_from_covariance, deprecated, fit_report
+from ..spec.chi_laws import LAWS, ChiLaw  # noqa: F401  (the registry, declared without numerics)
 from .linear import LineFit, t_quantile
 
 
@@ -968,39 +969,77 @@ def refit_khalili_batch(
     return {"s_b": s_b, "eta": e_hat}, r
 
 
-@dataclass(frozen=True)
-class ChiLaw:
-    """A fitted chi law of the effective-stress registry: its one-shot fit and its batch refit.
+def chi_power_law(S_R, suction, kappa, S_res: float = 0.0):
+    """χ of the law ``chi_power`` in the registry's form: `chi_power` of S_R (the suction is not used) [-].
 
-    Attributes
+    .. math:: \\chi = S_e^{\\kappa}, \\quad S_e = \\frac{S_R - S_{res}}{1 - S_{res}}
+
+    Parameters
     ----------
-    fit : callable
-        ``fit(w, model_params, start=None, dry=None) -> FittedLaw`` on the wet tests ``w``
-        (a `capred.physics.effective_stress_models.ModelInputs`).
-    refit_batch : callable
-        ``refit_batch(w, model_params, c, tan_phi, weights, start) -> (params, residuals)`` for R
-        replicates (see `refit_chi_power_batch`).
+    S_R : array_like
+        Degree of saturation [-].
+    suction : array_like
+        Matric suction [Pa] (broadcast only).
+    kappa : float or array_like
+        Exponent κ [-], > 0.
+    S_res : float
+        Residual degree of saturation [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        χ [-], in [0, 1].
+
+    References
+    ----------
+    Vanapalli et al. (1996), doi:10.1139/t96-060.
     """
+    S_R, _ = np.broadcast_arrays(np.asarray(S_R, float), np.asarray(suction, float))
+    return chi_power(S_R, kappa, S_res)
 
-    fit: Callable
-    refit_batch: Callable
+
+def khalili_law(S_R, suction, s_b, eta):
+    """χ of the law ``khalili_fit`` in the registry's form: (s/s_b)^-η above s_b, 1 below (S_R is not used) [-].
+
+    .. math:: \\chi = (s/s_b)^{-\\eta} \\; (s > s_b), \\quad \\chi = 1 \\; (s \\le s_b)
+
+    Parameters
+    ----------
+    S_R : array_like
+        Degree of saturation [-] (broadcast only).
+    suction : array_like
+        Matric suction s [Pa], >= 0.
+    s_b : float or array_like
+        Air-entry suction [Pa], > 0.
+    eta : float or array_like
+        Exponent η [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        χ [-], in (0, 1].
+
+    References
+    ----------
+    Khalili & Khabbaz (1998), doi:10.1680/geot.1998.48.5.681.
+    """
+    _, s = np.broadcast_arrays(np.asarray(S_R, float), np.asarray(suction, float))
+    return _khalili_chi(s, s_b, eta)
 
 
-LAWS: dict[str, ChiLaw] = {
-    "chi_power": ChiLaw(
-        lambda w, mp, start=None, dry=None: fit_chi_power(
-            w.sigma_N, w.suction, w.S_R, w.tau_max, w.c, w.tan_phi, mp.s_res or 0.0, start, dry
-        ),
-        lambda w, mp, c, b, weights, start: refit_chi_power_batch(
-            w.sigma_N, w.suction, w.S_R, w.tau_max, c, b, weights, start["kappa"], mp.s_res or 0.0
-        ),
-    ),
-    "khalili_fit": ChiLaw(
-        lambda w, mp, start=None, dry=None: fit_khalili(
-            w.sigma_N, w.suction, w.S_R, w.tau_max, w.c, w.tan_phi, mp.eta, mp.fit_eta, start, dry
-        ),
-        lambda w, mp, c, b, weights, start: refit_khalili_batch(
-            w.sigma_N, w.suction, w.S_R, w.tau_max, c, b, weights, start["s_b"], start.get("eta", mp.eta), mp.fit_eta
-        ),
-    ),
-}
+def _fit_chi_power_law(w, mp, start=None, dry=None):
+    return fit_chi_power(w.sigma_N, w.suction, w.S_R, w.tau_max, w.c, w.tan_phi, mp.s_res or 0.0, start, dry)
+
+
+def _refit_chi_power_law(w, mp, c, b, weights, start):
+    return refit_chi_power_batch(w.sigma_N, w.suction, w.S_R, w.tau_max, c, b, weights, start["kappa"], mp.s_res or 0.0)
+
+
+def _fit_khalili_law(w, mp, start=None, dry=None):
+    return fit_khalili(w.sigma_N, w.suction, w.S_R, w.tau_max, w.c, w.tan_phi, mp.eta, mp.fit_eta, start, dry)
+
+
+def _refit_khalili_law(w, mp, c, b, weights, start):
+    return refit_khalili_batch(
+        w.sigma_N, w.suction, w.S_R, w.tau_max, c, b, weights, start["s_b"], start.get("eta", mp.eta), mp.fit_eta
+    )

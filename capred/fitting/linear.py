@@ -472,11 +472,8 @@ def fit_line_origin(x, y, confidence: float = 0.95) -> LineFit:
 # ---------------------------------------------------------------------------------------------------------------
 # Scatter that grows with stress, outliers and robust losses (capred issue 30)
 
-#: error models of `fit_envelope` (``auto`` chooses one of the first two by `choose_errors`; ``either`` is valid
-#: under both: every interval is at least as wide as each model's)
-ERROR_MODELS = ("either", "constant", "proportional", "auto")
-#: losses of `fit_envelope`
-LOSSES = ("ols", "huber", "tukey")
+from ..spec.constants import ERROR_MODELS, LOSSES  # noqa: E402 (declared once in spec: the options take them)
+
 #: tuning constants (in units of the scale s) giving 95 % efficiency at normal errors (Huber 1981; Beaton & Tukey 1974)
 HUBER_K = 1.345
 TUKEY_C = 4.685

@@ -40,7 +40,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..errors import InputError, Problem, UnitError
-from ..nomenclature import column_aliases
+from ..spec.columns import DECISIVE_COLUMNS, Column  # noqa: F401 (re-exported: capred.io.table.Column)
 from ..text_safety import excerpt
 from ..units import conversion
 from .grid import MAX_COLUMNS, ReadLimits, as_source, parse_rows, read_grid
@@ -53,39 +53,9 @@ NOTE_CHARS = 500
 MAX_PROBLEMS = 100_000
 #: numeric columns whose absence changes what is computed (a default radius, equal spheres, no back pressure,
 #: equal weights); text columns (identities and groups) are decisive too. A near miss of one stops the run.
-DECISIVE_COLUMNS = frozenset({"R", "R2", "back_pressure", "u_a", "weight"})
 
 _BLANKS = {"", "na", "n/a", "nan", "none", "null"}
 _UNIT_IN_HEADER = re.compile(r"^(?P<name>.*?)\s*[\[(]\s*(?P<unit>[^\])]*?)\s*[\])]\s*$")
-
-
-@dataclass(frozen=True)
-class Column:
-    """One input column: canonical name, quantity kind, default unit and valid range."""
-
-    name: str
-    kind: str  # a key of capred.units.SI_UNIT, or "text"
-    unit: str | None
-    description: str
-    aliases: tuple[str, ...] = ()
-    rule: str | None = None  # "positive", "nonnegative", "fraction", "coefficient" ((0, 1]), or None
-    choices: tuple[str, ...] = ()  # allowed values of a text column (lower case)
-    quantity: str | None = None  # nomenclature name: its range rule is used (the same as for options)
-    words: tuple[tuple[str, float], ...] = ()  # words a numeric column also accepts, e.g. ("plane", inf)
-    decisive: bool | None = None  # its absence changes the analysis (None: text columns and DECISIVE_COLUMNS)
-
-    def __post_init__(self):
-        # the glossary's spellings of this column (capred.nomenclature.COLUMN_ALIASES) come with every schema
-        extra = tuple(a for a in column_aliases(self.name) if a not in self.aliases and a != self.name)
-        if extra:
-            object.__setattr__(self, "aliases", (*self.aliases, *extra))
-
-    @property
-    def is_decisive(self) -> bool:
-        """True when a near miss of this column's name must stop the run (see the module docstring)."""
-        if self.decisive is not None:
-            return self.decisive
-        return self.kind == "text" or self.name in DECISIVE_COLUMNS
 
 
 @lru_cache(maxsize=4096)

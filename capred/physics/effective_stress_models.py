@@ -1,8 +1,8 @@
 """Effective-stress and strength models of `capred shear`, and their one registry (SI units).
 
-A model is one entry of ``REGISTRY``: name, label, the parameters it needs,
-the function giving sigma'_N (or tau directly) and its reference. Adding a
-model is adding one entry.
+A model is one entry of ``REGISTRY``, declared in `capred.spec.effective_stress` (name, label, the
+parameters it needs, its reference and the names of its functions here); this module holds the functions
+giving sigma'_N (or tau directly) and re-exports the registry. Adding a model is adding one entry.
 
 References
 ----------
@@ -18,11 +18,21 @@ References
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..spec.effective_stress import (  # noqa: F401  (the registry and its lookups, declared without numerics)
+    MODEL_LABELS,
+    REGISTRY,
+    THESIS_MODELS,
+    EffectiveStressModel,
+    Flag,
+    UnitCellCurve,
+    asks_for_all,
+    bridge_curve_models,
+    resolve_models,
+)
 from . import shear as ph
 from .retention import vg_effective_saturation
 
@@ -308,14 +318,6 @@ def pedrotti_tarantino_wet_area_strength(sigma_N, suction, S_R, c_w, tan_phi_w, 
     return S_R * tau_w + (1.0 - S_R) * tau_a
 
 
-#: what both Pedrotti-Tarantino entries quote of the paper (eq. 1 and 11-14)
-_PT_EQUATIONS = (
-    "Pedrotti & Tarantino: eq. 1 σ'_W = (σ − u_w) S_R; eq. 11 T = τA = T^W + T^A; eq. 12 τ^W = T^W/A^W, "
-    "τ^A = T^A/A^A; eq. 13 τ = τ^W A^W/A + τ^A A^A/A; eq. 14 τ = τ^W S_R + τ^A (1 − S_R) with A^W/A = S_R; "
-    "τ^W on the envelope of the saturated (reconstituted) soil, τ^A on that of the dry one."
-)
-
-
 @dataclass(frozen=True)
 class ModelInputs:
     """What a model may use, per test (arrays, SI): the dry envelope of each test's material included."""
@@ -431,99 +433,6 @@ class ModelInputs:
         return np.array([fits[m][name] if m in fits else np.nan for m in self.material], dtype=float)
 
 
-@dataclass(frozen=True)
-class Flag:
-    """A per-test flag: its name in results.csv and what it means (completes "N wet tests ...")."""
-
-    name: str
-    meaning: str
-
-
-@dataclass(frozen=True)
-class UnitCellCurve:
-    """How a model is drawn on the σ'-S_R curve of `capred bridge curve` (two equal spheres in contact).
-
-    The model's capillary stress on that unit cell is its own ``sigma_eff`` at σ_N = 0
-    (`unit_cell_capillary_stress`), compared there with the exact pendular bridge.
-
-    Attributes
-    ----------
-    label : str
-        Legend label of the curve (mathtext), naming the model and its capillary term.
-    line : dict
-        Matplotlib line width and dash (``lw``, ``ls``); the colour is the model's ``style``.
-    """
-
-    label: str
-    line: dict
-
-
-@dataclass(frozen=True)
-class EffectiveStressModel:
-    """One entry of the registry: everything capred knows about a model.
-
-    Attributes
-    ----------
-    name : str
-        Name as typed in ``--models`` and used in JSON keys and columns.
-    label : str
-        Short label of tables and legends (mathtext allowed).
-    requires : tuple of (str, str)
-        (ModelParams field, command-line option) of each parameter the model needs.
-    reference : str
-        Key of capred.references.REFERENCES.
-    sigma_eff, tau : callable
-        ``sigma_eff(ModelInputs)`` gives σ'_N [Pa]; a model that predicts the strength directly gives ``tau``
-        [Pa] instead (its σ'_N is then NaN).
-    thesis : bool
-        One of the four models of Evenepoel's thesis (the default set).
-    fitted : tuple of str
-        Parameters fitted per material on the wet tests (capred.fitting.chi_laws).
-    wet_parameters : int
-        Parameters fitted on the wet tests outside a χ law (Fredlund's tan φ_b): counted in AICc and BIC.
-    material_values : callable, optional
-        ``material_values(ModelInputs of one material's wet tests) -> {json key: value}``: what the model
-        reports per material beside the dry envelope.
-    no_prediction : Flag, optional
-        The flag of wet tests the model cannot predict (NaN), left out of its metrics.
-    along_retention : bool
-        Drawn as a curve along the material's water-retention relation (False: markers per test only).
-    style : dict
-        Colour (an Okabe-Ito colour name: black, orange, sky, green, yellow, blue, vermillion, purple, grey)
-        and marker of every figure.
-    method : str
-        One sentence for the methods section of report.html (the equation of the model).
-    chi_of_saturation : callable, optional
-        ``chi(S_R, params, fitted)`` for a model whose χ depends on S_R alone (drawn against the
-        back-analysed χ); ``params`` is the run's ModelParams, ``fitted`` the material's fitted law parameters
-        (or None).
-    bridge_curve : UnitCellCurve, optional
-        Drawn beside the exact bridge on `capred bridge curve` (σ' against S_R of the unit cell), with its
-        error against the exact bridge in curve.json (Evenepoel's comparison: Bishop, Own 1, Own 2).
-    uses_radius : bool
-        The model reads the particle radius R of a wet test (`capred shear` then requires it; other models
-        run without it).
-    """
-
-    name: str
-    label: str
-    requires: tuple[tuple[str, str], ...]
-    reference: str
-    sigma_eff: Callable[[ModelInputs], np.ndarray] | None = None
-    tau: Callable[[ModelInputs], np.ndarray] | None = None
-    thesis: bool = False
-    fitted: tuple[str, ...] = ()
-    wet_parameters: int = 0
-    material_values: Callable[[ModelInputs], dict] | None = None
-    no_prediction: Flag | None = None
-    along_retention: bool = True
-    style: dict = field(default_factory=lambda: {"color": "black", "marker": "o"})
-    method: str = ""
-    chi_of_saturation: Callable[[np.ndarray, object, dict], np.ndarray] | None = None
-    bridge_curve: UnitCellCurve | None = None
-    uses_radius: bool = False
-
-
 def _tan_phi_b(d: ModelInputs) -> np.ndarray:
     """tan(phi_b) of each test, fitted per material on its wet tests [11]."""
     tb = np.zeros(d.sigma_N.size)
@@ -582,191 +491,56 @@ def _own2(d: ModelInputs) -> np.ndarray:
     return d.sigma_N + ph.chi1(d.S_R) * d.suction + ph.chi2(d.S_R, d.R, d.surface_tension)
 
 
-REGISTRY: dict[str, EffectiveStressModel] = {
-    m.name: m
-    for m in (
-        EffectiveStressModel(
-            "no_suction",
-            "No suction",
-            (),
-            "evenepoel",
-            _no_suction,
-            thesis=True,
-            style={"color": "grey", "marker": "s"},
-            method="No suction: σ'_N = σ_N, the dry envelope alone.",
-        ),
-        EffectiveStressModel(
-            "bishop",
-            "Bishop",
-            (),
-            "bishop1959",
-            _bishop,
-            thesis=True,
-            style={"color": "blue", "marker": "o"},
-            method="Bishop: σ'_N = σ_N + S_R Δu (χ = S_R).",
-            chi_of_saturation=lambda S, p, f: np.asarray(S, float),
-            bridge_curve=UnitCellCurve(r"Bishop $S_R\,\Delta u$", {"lw": 1.2, "ls": "-."}),
-        ),
-        EffectiveStressModel(
-            "own1",
-            "Own 1",
-            (),
-            "evenepoel",
-            _own1,
-            thesis=True,
-            style={"color": "orange", "marker": "^"},
-            method="Own 1: σ'_N = σ_N + χ1 Δu with χ1 = (2π S_R/3)^(2/3).",
-            chi_of_saturation=lambda S, p, f: ph.chi1(S),
-            bridge_curve=UnitCellCurve(r"Own 1 $\chi_1\,\Delta u$", {"lw": 1.2, "ls": ":"}),
-        ),
-        EffectiveStressModel(
-            "own2",
-            "Own 2",
-            (),
-            "evenepoel",
-            _own2,
-            thesis=True,
-            uses_radius=True,
-            style={"color": "green", "marker": "D"},
-            method="Own 2: σ'_N = σ_N + χ1 Δu + (2γ/R)(2π S_R/3)^(1/3).",
-            bridge_curve=UnitCellCurve(r"Own 2 $\chi_1\,\Delta u + \chi_2$", {"lw": 1.4, "ls": "-"}),
-        ),
-        EffectiveStressModel(
-            "vanapalli",
-            "Vanapalli",
-            (("s_res", "--s-res"),),
-            "vanapalli1996",
-            lambda d: d.sigma_N + chi_vanapalli(d.S_R, d.params.s_res, d.params.vanapalli_kappa) * d.suction,
-            style={"color": "purple", "marker": "v"},
-            method="Vanapalli: χ = S_e^κ with S_e = (S_R − S_res)/(1 − S_res), κ from --vanapalli-kappa.",
-            chi_of_saturation=lambda S, p, f: chi_vanapalli(S, p.s_res, p.vanapalli_kappa),
-        ),
-        EffectiveStressModel(
-            "khalili",
-            "Khalili-Khabbaz",
-            (("air_entry", "--air-entry"),),
-            "khalili_khabbaz1998",
-            lambda d: d.sigma_N + chi_khalili(d.suction, d.params.air_entry) * d.suction,
-            style={"color": "vermillion", "marker": "<"},
-            method="Khalili-Khabbaz: χ = (Δu/s_b)^−0.55 above the air-entry suction s_b, 1 below.",
-        ),
-        EffectiveStressModel(
-            "lu_likos",
-            "Lu-Likos",
-            (("vg_alpha", "--vg-alpha"), ("vg_n", "--vg-n")),
-            "lu_likos2006",
-            lambda d: d.sigma_N + chi_lu_likos(d.suction, d.params.vg_alpha, d.params.vg_n, d.params.vg_m) * d.suction,
-            style={"color": "sky", "marker": ">"},
-            method="Lu-Likos: χ = S_e of van Genuchten's curve at the test's suction (suction stress).",
-        ),
-        EffectiveStressModel(
-            "fredlund",
-            "Fredlund φ_b",
-            (),
-            "fredlund1978",
-            _fredlund,
-            wet_parameters=1,
-            material_values=lambda d: {"phi_b_deg": float(np.degrees(np.arctan(_tan_phi_b(d)[0])))},
-            along_retention=False,
-            style={"color": "black", "marker": "p"},
-            method="Fredlund: τ = c + σ_N tan φ + Δu tan φ_b, tan φ_b fitted per material on the wet tests.",
-        ),
-        EffectiveStressModel(
-            "pedrotti_tarantino",
-            "Pedrotti-Tarantino",
-            (),
-            "pedrotti_tarantino_submitted",
-            tau=_pedrotti_tarantino,
-            style={"color": "sky", "marker": "h"},
-            material_values=lambda d: {"water_envelope": str(_water_envelope(d)[2][0])},
-            method=_PT_EQUATIONS + " Read as printed: τ^W is evaluated at σ'_W = (σ − u_w) S_R and τ^A at "
-            "σ'_A = (σ − u_a)(1 − S_R) (\"τ^W is controlled by ... σ'_W\", after eq. 14), so friction is "
-            "weighted by S_R².",
-        ),
-        EffectiveStressModel(
-            "pedrotti_tarantino_wet_area",
-            "Pedrotti-Tarantino (wet area)",
-            (),
-            "pedrotti_tarantino_submitted",
-            tau=_pedrotti_tarantino_wet_area,
-            style={"color": "yellow", "marker": "H"},
-            material_values=lambda d: {"water_envelope": str(_water_envelope(d)[2][0])},
-            method=_PT_EQUATIONS + " Read consistently in area: τ^W = T^W/A^W is a stress on the wet area, "
-            "where the wet part's normal stress is σ'_W/S_R = σ − u_w (eq. 1 is a force per total area), so "
-            "τ = S_R τ^W(σ − u_w) + (1 − S_R) τ^A(σ − u_a).",
-        ),
-        EffectiveStressModel(
-            "chi_power",
-            "χ = S_e^κ (fitted)",
-            (),
-            "vanapalli1996",
-            lambda d: (
-                d.sigma_N + chi_vanapalli(d.S_R, d.params.s_res or 0.0, d.per_test("chi_power", "kappa")) * d.suction
-            ),
-            fitted=("kappa",),
-            style={"color": "purple", "marker": "P"},
-            method="χ = S_e^κ with κ fitted per material on the wet tests.",
-            chi_of_saturation=lambda S, p, f: (
-                np.full(np.shape(S), np.nan) if f is None else chi_vanapalli(S, p.s_res or 0.0, f["kappa"])
-            ),
-        ),
-        EffectiveStressModel(
-            "khalili_fit",
-            "Khalili-Khabbaz (fitted)",
-            (),
-            "khalili_khabbaz1998",
-            lambda d: (
-                d.sigma_N
-                + chi_khalili(d.suction, d.per_test("khalili_fit", "s_b"), d.per_test("khalili_fit", "eta")) * d.suction
-            ),
-            fitted=("s_b", "eta"),
-            style={"color": "vermillion", "marker": "X"},
-            method="Khalili-Khabbaz with the air-entry suction s_b (and optionally η) fitted per "
-            "material on the wet tests.",
-        ),
-        EffectiveStressModel(
-            "exact_neck",
-            "Exact bridge",
-            (),
-            "evenepoel",
-            lambda d: (
-                d.sigma_N
-                + d.cached(
-                    "exact_neck",
-                    lambda: exact_neck_capillary_stress(
-                        d.S_R, d.suction, d.R, d.surface_tension, d.params.contact_angle
-                    )[0],
-                )
-            ),
-            no_prediction=Flag("no_concave_bridge", "hold more water than the last concave bridge at contact"),
-            uses_radius=True,
-            style={"color": "black", "marker": "*"},
-            method="Exact bridge: σ'_N = σ_N + F_cap/(πR²) of the exact pendular bridge between two "
-            "spheres in contact holding the test's water at its suction.",
-        ),
-    )
-}
-
-#: The thesis's four models in display order (the default of `capred shear --models`).
-THESIS_MODELS = tuple(m for m, e in REGISTRY.items() if e.thesis)
+def _bishop_chi(S, p, f) -> np.ndarray:
+    return np.asarray(S, float)
 
 
-def bridge_curve_models() -> tuple[str, ...]:
-    """The models drawn on `capred bridge curve`, in registry order: those whose entry has a ``bridge_curve``.
+def _own1_chi(S, p, f) -> np.ndarray:
+    return ph.chi1(S)
 
-    No equation: a lookup in ``REGISTRY`` at each call (an entry added later is drawn too).
 
-    Returns
-    -------
-    tuple of str
-        Registry names (Bishop, Own 1 and Own 2 of Evenepoel's comparison).
+def _vanapalli(d: ModelInputs) -> np.ndarray:
+    return d.sigma_N + chi_vanapalli(d.S_R, d.params.s_res, d.params.vanapalli_kappa) * d.suction
 
-    References
-    ----------
-    .. [1] Evenepoel, Micro-mechanical characterization of the capillary effective stress in granular
-       materials, master thesis, Vrije Universiteit Brussel (no DOI): σ' against S_R of the unit cell.
-    """
-    return tuple(name for name, e in REGISTRY.items() if e.bridge_curve is not None)
+
+def _vanapalli_chi(S, p, f) -> np.ndarray:
+    return chi_vanapalli(S, p.s_res, p.vanapalli_kappa)
+
+
+def _khalili(d: ModelInputs) -> np.ndarray:
+    return d.sigma_N + chi_khalili(d.suction, d.params.air_entry) * d.suction
+
+
+def _lu_likos(d: ModelInputs) -> np.ndarray:
+    return d.sigma_N + chi_lu_likos(d.suction, d.params.vg_alpha, d.params.vg_n, d.params.vg_m) * d.suction
+
+
+def _fredlund_values(d: ModelInputs) -> dict:
+    return {"phi_b_deg": float(np.degrees(np.arctan(_tan_phi_b(d)[0])))}
+
+
+def _water_envelope_values(d: ModelInputs) -> dict:
+    return {"water_envelope": str(_water_envelope(d)[2][0])}
+
+
+def _chi_power(d: ModelInputs) -> np.ndarray:
+    return d.sigma_N + chi_vanapalli(d.S_R, d.params.s_res or 0.0, d.per_test("chi_power", "kappa")) * d.suction
+
+
+def _chi_power_chi(S, p, f) -> np.ndarray:
+    return np.full(np.shape(S), np.nan) if f is None else chi_vanapalli(S, p.s_res or 0.0, f["kappa"])
+
+
+def _khalili_fit(d: ModelInputs) -> np.ndarray:
+    s_b, eta = d.per_test("khalili_fit", "s_b"), d.per_test("khalili_fit", "eta")
+    return d.sigma_N + chi_khalili(d.suction, s_b, eta) * d.suction
+
+
+def _exact_neck(d: ModelInputs) -> np.ndarray:
+    def compute():
+        return exact_neck_capillary_stress(d.S_R, d.suction, d.R, d.surface_tension, d.params.contact_angle)[0]
+
+    return d.sigma_N + d.cached("exact_neck", compute)
 
 
 def unit_cell_capillary_stress(model: str, S_R, suction, R, surface_tension=ph.SURFACE_TENSION) -> np.ndarray:
@@ -812,81 +586,6 @@ def unit_cell_capillary_stress(model: str, S_R, suction, R, surface_tension=ph.S
     if e.sigma_eff is None or e.requires or e.fitted or e.wet_parameters:
         raise ValueError(f"model '{model}' needs more than S_R, suction, R and surface tension")
     return e.sigma_eff(ModelInputs.of_unit_cell(0.0, suction, S_R, R, surface_tension))
-
-
-class _Labels(Mapping):
-    """model name -> label, read from the registry at each access (an entry added later is labelled too)."""
-
-    def __getitem__(self, name: str) -> str:
-        return REGISTRY[name].label
-
-    def __iter__(self):
-        return iter(REGISTRY)
-
-    def __len__(self) -> int:
-        return len(REGISTRY)
-
-
-MODEL_LABELS = _Labels()
-
-
-def resolve_models(names) -> tuple[str, ...]:
-    """Model names as a user gives them: a comma-separated string or a sequence, where ``thesis`` stands for
-    the thesis's four and ``all`` for every model of the registry; duplicates dropped, order kept.
-
-    No equation: a lookup in ``REGISTRY`` (names are lower-cased, ``-`` read as ``_``).
-
-    Parameters
-    ----------
-    names : str or sequence of str
-        E.g. ``"thesis,vanapalli"`` or ``["bishop", "own1"]``.
-
-    Returns
-    -------
-    tuple of str
-        Registry names, in the order given.
-
-    Raises
-    ------
-    ValueError
-        For an unknown name (the message lists the choices) or an empty selection.
-
-    References
-    ----------
-    .. [1] Evenepoel, Micro-mechanical characterization of the capillary effective stress in granular
-       materials, master thesis, Vrije Universiteit Brussel (no DOI): the four models of ``thesis``.
-    """
-    items = names.split(",") if isinstance(names, str) else list(names)
-    out: list[str] = []
-    for name in (str(t).strip().lower().replace("-", "_") for t in items if str(t).strip()):
-        for m in {"thesis": THESIS_MODELS, "all": tuple(REGISTRY)}.get(name, (name,)):
-            if m not in REGISTRY:
-                raise ValueError(f"unknown model '{m}'; choose from {', '.join(REGISTRY)}, thesis or all")
-            if m not in out:
-                out.append(m)
-    if not out:
-        raise ValueError("no model named")
-    return tuple(out)
-
-
-def asks_for_all(names) -> bool:
-    """True when a ``--models`` selection contains ``all`` (run every model the inputs allow).
-
-    Parameters
-    ----------
-    names : str or sequence of str
-        As for `resolve_models`.
-
-    Returns
-    -------
-    bool
-
-    References
-    ----------
-    .. [1] capred issue 29.6 (no paper: a selection rule): ``all`` runs every model the inputs allow.
-    """
-    items = names.split(",") if isinstance(names, str) else list(names)
-    return any(str(t).strip().lower() == "all" for t in items)
 
 
 def predict(model: str, d: ModelInputs) -> tuple[np.ndarray, np.ndarray]:

@@ -104,13 +104,7 @@ __all__ = [
     "simulate_volume_path",
 ]
 
-#: Columns a path file needs, with their default unit (what `simulate_volume_path` takes, in SI).
-PATH_COLUMNS: dict[str, tuple[str, str]] = {
-    "sigma": ("kPa", "total (mean) stress σ, compression positive"),
-    "u_w": ("kPa", "pore-water pressure u_w (gauge; negative under suction)"),
-    "u_a": ("kPa", "pore-air pressure u_a (gauge; 0 when the air is atmospheric)"),
-    "S_r": ("-", "degree of saturation S_r, in [0, 1]"),
-}
+from ..spec.constants import PATH_COLUMNS  # noqa: E402 (declared once in spec: the schema takes it)
 
 
 # --------------------------------------------------------------------------------------------

@@ -16,14 +16,8 @@ from __future__ import annotations
 
 import numpy as np
 
-#: Unit weight of water [N/m^3] used by default; the thesis uses 10 kN/m^3 [1].
-GAMMA_W = 9810.0
-#: Surface tension of water at 20 C [N/m].
-SURFACE_TENSION = 0.0728
-#: Gravitational acceleration [m/s^2].
-G = 9.81
-#: Upper S_R of the pendular regime used in the thesis [1] ("S_R < 5 %").
-PENDULAR_LIMIT = 0.05
+from ..spec.constants import GAMMA_W, PENDULAR_LIMIT, SURFACE_TENSION, G  # noqa: F401 (declared once in spec)
+
 #: S_R above which chi1 = (2 pi S_R / 3)^(2/3) exceeds 1: 3 / (2 pi).
 CHI1_UNITY_SR = 3.0 / (2.0 * np.pi)
 

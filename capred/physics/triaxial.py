@@ -437,7 +437,7 @@ def sigma3_at_failure(sigma1_eff, c, phi_deg):
 #: Stress paths of a drained extension test from the isotropic state, by their slope dq/dp in the (p, q) plane
 #: (q = sigma1 - sigma3 > 0): the axial stress falls at constant cell pressure (slope -3, the default) or the
 #: cell pressure rises at constant axial stress (slope 3/2).
-EXTENSION_PATHS = {"axial-unloading": -3.0, "radial-loading": 1.5}
+from ..spec.triaxial import EXTENSION_PATHS  # noqa: E402, F401 (declared once in spec: the option takes it)
 
 
 def extension_failure_on_path(p0_eff, c, phi_deg, slope=-3.0):

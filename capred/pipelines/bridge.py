@@ -11,13 +11,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError, OptionError
+from ..errors import InputError
 from ..io import Table
-from ..nomenclature import StableJsonKeys, renamed_keywords
+from ..nomenclature import renamed_keywords
 from ..physics import bridge as br
+from ..physics import bridge_laws as bl
 from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
-from ..result import InputFile, Options, Result, input_file, num
+from ..result import InputFile, Result, input_file, num
+from ..spec.bridge import COMPARE_SCHEMA, RUPTURE_SCHEMA, CurveOptions  # noqa: F401 (declared in spec; re-exported here)
 from . import bridge_blocks
 from .bridge_records import CompareRecord, RuptureRecord
 from .bridge_solve import (  # noqa: F401  (re-exported: the names users and tests import from here)
@@ -41,9 +43,6 @@ from .bridge_solve import (  # noqa: F401  (re-exported: the names users and tes
     solve_table,
     with_csv_headers,
 )
-
-#: `bridge compare` reads the cases as `bridge solve` does (its --help lists these columns)
-COMPARE_SCHEMA = SOLVE_SCHEMA
 
 
 def solve_bridges(source, options: BridgeOptions | None = None) -> BridgeResult:
@@ -75,37 +74,6 @@ def solve_bridges(source, options: BridgeOptions | None = None) -> BridgeResult:
     if isinstance(source, Table):
         return solve_table(source, opt)
     return bridge_blocks.solve_in_blocks(source, opt)
-
-
-@renamed_keywords(sr_max="S_R_max")
-@dataclass(frozen=True)
-class CurveOptions(StableJsonKeys, Options):
-    """Options of `capred bridge curve`: radius R [m], surface tension [N/m] (or strings with units),
-    contact angle [deg], number of S_R values, largest S_R (``S_R_max``; the keyword ``sr_max`` still works
-    with a DeprecationWarning, and the JSON keeps the key ``sr_max``), pendular limit."""
-
-    QUANTITIES = {
-        "radius": "R",
-        "surface_tension": "surface_tension",
-        "contact_angle": "contact_angle",
-        "pendular_limit": "pendular_limit",
-    }
-    OPTION_NAMES = {"S_R_max": "--S-R-max"}
-    JSON_NAMES = {"S_R_max": "sr_max"}
-
-    radius: float = 1e-3
-    surface_tension: float = ph.SURFACE_TENSION
-    contact_angle: float = 0.0
-    points: int = 2000
-    S_R_max: float = 0.3
-    pendular_limit: float = ph.PENDULAR_LIMIT
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        if self.contact_angle >= 90:
-            raise OptionError("--contact-angle must lie in [0, 90) deg")
-        if self.points < 2 or not 1e-4 < self.S_R_max <= 1:
-            raise OptionError("need --points >= 2 and 0.0001 < --S-R-max <= 1")
 
 
 @dataclass(repr=False)
@@ -370,12 +338,19 @@ class CompareResult(Result):
         for m, (F, good) in models.items():
             cols[f"F_{m}"] = np.where(good, F * 1e3, np.nan)
             cols[f"residual_{m}"] = np.where(good, (F - self.measured_force) * 1e3, np.nan)
+        # every closed-form law of the one law registry (`bridge laws` reads the same), in its dimensionless form
+        # F / (2 pi R1 gamma) of (theta, V/R1^3, D/R1, R2/R1); NaN where a law does not apply to the geometry
+        laws = {}
+        for name in bl.LAWS:
+            F = bl.law_force(name, th_mean, self.volume_in / R**3, D / R, rho) * 2.0 * np.pi * R * g
+            laws[name] = (F * 1e3, (F - self.measured_force) * 1e3)
         cached = self.__dict__["_record"] = CompareRecord(
             case=b.labels or None,
             F_measured=self.measured_force * 1e3,
             filling_angle_measured=np.degrees(self.measured_beta),
             filling_angle_exact=np.where(ok, np.degrees(b.beta), np.nan),
             status=[STATUS[int(k)] for k in b.status],
+            laws=laws,
             **cols,
         )
         return cached
@@ -443,7 +418,8 @@ class CompareResult(Result):
 def compare_measured(source, options: BridgeOptions | None = None) -> CompareResult:
     """Micro-tests: the exact bridge of each measured (R, R2, gap, contact angle, V_w) beside the measured force,
     the toroidal approximation (equal spheres), Willett et al. (2000) and Israelachvili (with Derjaguin's
-    effective radius 2 R R2 / (R + R2) for unequal pairs and a plane).
+    effective radius 2 R R2 / (R + R2) for unequal pairs and a plane), and every closed-form law of the law
+    registry (`capred.spec.bridge_laws.LAWS`, the laws of ``capred bridge laws``).
 
     Parameters
     ----------
@@ -488,9 +464,6 @@ def compare_measured(source, options: BridgeOptions | None = None) -> CompareRes
     )
     res.options, res.inputs, res.warnings = opt, [input_file(source, table)], opt.warnings + table.warnings
     return CompareResult(res, table.columns["F_cap"], np.radians(table.get("filling_angle")), V)
-
-
-RUPTURE_SCHEMA = [CASE, RADIUS, RADIUS2, GAMMA, ANGLE, ANGLE2, VOLUME]
 
 
 @dataclass(repr=False)

@@ -16,94 +16,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import OptionError
-from ..io import Column, Table, read_table
+from ..io import Table, read_table
 from ..physics import bridge as br
 from ..physics import bridge_laws as bl
-from ..result import InputFile, Options, Result, input_file, num
-
-_PLANE = (("plane", np.inf), ("inf", np.inf), ("infinity", np.inf), ("\u221e", np.inf))
-LAWS_SCHEMA = [
-    Column("D_over_R", "dimensionless", "-", "gap D / R", ("gap_over_R", "D/R", "gap_R"), "nonnegative"),
-    Column("V_over_R3", "dimensionless", "-", "bridge volume V / R^3", ("V/R3", "volume_over_R3"), "positive"),
-    Column("contact_angle", "angle", "deg", "contact angle", ("theta",), "nonnegative"),
-    Column(
-        "R2_over_R",
-        "dimensionless",
-        "-",
-        "R2 / R ('plane': a sphere and a plane; absent: equal spheres)",
-        ("ratio", "R2/R"),
-        "positive",
-        words=_PLANE,
-    ),
-]
+from ..result import InputFile, Result, input_file, num
+from ..spec.bridge import LAWS_SCHEMA, LawsOptions  # noqa: F401 (declared in spec; re-exported here)
 
 #: region edges: D/R, V/R^3, contact angle [deg] (each bin [lo, hi))
 GAP_EDGES = (0.0, 0.01, 0.05, np.inf)
 VOLUME_EDGES = (0.0, 1e-3, 1e-2, np.inf)
 ANGLE_EDGES = (0.0, 15.0, 35.0, 90.0)
-
-
-def _parse_list(text, name: str, words=()) -> tuple[float, ...]:
-    if isinstance(text, (tuple, list)):
-        return tuple(float(x) for x in text)
-    out = []
-    for part in str(text).split(","):
-        p = part.strip().lower()
-        if not p:
-            continue
-        value = dict(words).get(p)
-        if value is None:
-            try:
-                value = float(p)
-            except ValueError:
-                raise OptionError(f"{name}: '{part.strip()}' is not a number (a comma-separated list)") from None
-        out.append(value)
-    if not out:
-        raise OptionError(f"{name}: give at least one value")
-    return tuple(out)
-
-
-@dataclass(frozen=True)
-class LawsOptions(Options):
-    """Options of `capred bridge laws`: the default grid (used without a grid file) and the tolerance.
-
-    Attributes
-    ----------
-    gaps : tuple of float
-        D / R [-] (``--gaps``, comma-separated).
-    volumes : tuple of float
-        V / R^3 [-] (``--volumes``).
-    angles : tuple of float
-        Contact angles [deg] (``--angles``), in [0, 90).
-    ratios : tuple of float
-        R2 / R [-] (``--ratios``; ``plane`` for a sphere and a plane).
-    tolerance : float
-        Largest relative error [-] at which a law counts as within (``--tolerance``, default 0.05).
-    """
-
-    gaps: tuple = (0.0, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2)
-    volumes: tuple = (1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1)
-    angles: tuple = (0.0, 20.0, 40.0)
-    ratios: tuple = (1.0, 2.0, np.inf)
-    tolerance: float = 0.05
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        object.__setattr__(self, "gaps", _parse_list(self.gaps, "gaps (--gaps)"))
-        object.__setattr__(self, "volumes", _parse_list(self.volumes, "volumes (--volumes)"))
-        object.__setattr__(self, "angles", _parse_list(self.angles, "angles (--angles)"))
-        object.__setattr__(self, "ratios", _parse_list(self.ratios, "ratios (--ratios)", _PLANE))
-        if any(g < 0 for g in self.gaps):
-            raise OptionError("gaps (--gaps): D/R must be >= 0")
-        if any(v <= 0 for v in self.volumes):
-            raise OptionError("volumes (--volumes): V/R^3 must be > 0")
-        if any(not 0 <= a < 90 for a in self.angles):
-            raise OptionError("angles (--angles): contact angles must lie in [0, 90) deg")
-        if any(r <= 0 for r in self.ratios):
-            raise OptionError("ratios (--ratios): R2/R must be > 0 (or 'plane')")
-        if not 0 < self.tolerance < 1:
-            raise OptionError(f"tolerance (--tolerance): a fraction in (0, 1) (got {self.tolerance!r})")
 
 
 def _label_bins(edges, fmt) -> list[str]:

@@ -105,6 +105,10 @@ class CompareRecord(RowRecord):
         Measured filling angle (NaN where not measured) and that of the exact bridge [deg].
     status : list of str
         Status of the exact bridge ('ok' ...).
+    laws : dict, optional
+        Law name -> (force, force minus the measured one) [mN] of every closed-form law of the law registry
+        (`capred.spec.bridge_laws.LAWS`), NaN where a law does not apply to the pair's geometry: the columns
+        ``F_<law>_mN`` and ``residual_<law>_mN`` after ``status``.
 
     References
     ----------
@@ -125,6 +129,13 @@ class CompareRecord(RowRecord):
     filling_angle_measured: np.ndarray = output("filling_angle_measured_deg", "filling_angle_measured", "deg")
     filling_angle_exact: np.ndarray = output("filling_angle_exact_deg", "filling_angle_exact", "deg")
     status: list = plain("status")
+    laws: dict | None = None
+
+    def _columns(self):
+        yield from super()._columns()
+        for name, (force, residual) in (self.laws or {}).items():
+            yield f"F_{name}_mN", f"F_{name} [mN]", force
+            yield f"residual_{name}_mN", f"residual_{name} [mN]", residual
 
 
 #: how a plane (R2 = inf) is written in the JSON rows of `bridge rupture` and shown in the console

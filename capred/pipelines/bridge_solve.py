@@ -11,12 +11,11 @@ from itertools import repeat
 
 import numpy as np
 
-from ..errors import OptionError
-from ..io import Column, Table, read_table
+from ..io import Table, read_table
 from ..physics import bridge as br
-from ..physics import shear as ph
-from ..result import InputFile, Options, Result, Rows, json_list, num
+from ..result import InputFile, Result, Rows, json_list, num
 from ..result import csv_header as result_csv_header
+from ..spec.bridge import ANGLE, ANGLE2, CASE, GAMMA, RADIUS, RADIUS2, SOLVE_SCHEMA, VOLUME, BridgeOptions  # noqa: F401 (declared in spec; re-exported here)
 from .bridge_records import BridgeRecord
 
 # 1: the gap is too wide for this suction or volume; 3: so much water that the bridge would be
@@ -30,87 +29,6 @@ STATUS = {
 }
 #: every bridge reported ok reproduces the requested gap and volume (or suction) to this relative tolerance
 VERIFY_RTOL = br.VERIFY_RTOL
-_PLANE = (("plane", np.inf), ("inf", np.inf), ("infinity", np.inf), ("\u221e", np.inf))
-
-CASE = Column("case", "text", None, "case label")  # aliases: nomenclature.COLUMN_ALIASES
-RADIUS = Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius", "R1"), "positive", quantity="R")
-RADIUS2 = Column(
-    "R2",
-    "length",
-    "mm",
-    "radius R2 of the second particle ('plane' or 'inf': a plane; absent: equal spheres)",
-    ("radius2", "second_radius"),
-    "positive",
-    words=_PLANE,
-)
-GAMMA = Column("gamma", "surface_tension", "N/m", "surface tension", ("surface_tension",), "positive")
-ANGLE = Column("contact_angle", "angle", "deg", "contact angle", ("theta", "wetting_angle"), "nonnegative")
-ANGLE2 = Column(
-    "contact_angle2",
-    "angle",
-    "deg",
-    "contact angle on the second particle (sphere R2 or plane; absent or blank: --contact-angle2, else contact_angle)",
-    ("theta2", "wetting_angle2", "contact_angle_2"),
-    "nonnegative",
-)
-VOLUME = Column("V_w", "volume", "mm^3", "water volume V_w", ("volume", "V", "Vw"), "positive")
-SOLVE_SCHEMA = [
-    CASE,
-    RADIUS,
-    RADIUS2,
-    GAMMA,
-    ANGLE,
-    ANGLE2,
-    Column("gap", "length", "mm", "gap D", ("D", "separation", "distance"), "nonnegative"),
-    Column("suction", "pressure", "kPa", "suction", ("delta_u", "ua_uw"), "nonnegative"),
-    VOLUME,
-    Column("F_cap", "force", "mN", "measured force F_cap", ("F", "force", "F_measured"), "nonnegative"),
-    Column("filling_angle", "angle", "deg", "measured filling angle", ("beta", "half_filling_angle"), "nonnegative"),
-]
-
-
-@dataclass(frozen=True)
-class BridgeOptions(Options):
-    """Options of `capred bridge solve`, `compare` and `rupture`.
-
-    Attributes
-    ----------
-    surface_tension : float
-        Surface tension [N/m, or a string with a unit] of rows without a ``gamma`` value.
-    contact_angle2 : float, optional
-        Contact angle on the second particle [deg] of rows without a ``contact_angle2`` value; None (the
-        default): the row's ``contact_angle`` (one angle on both particles).
-    workers : int, optional
-        Processes that solve the rows (``--workers``); None: ``CAPRED_PROCESSES`` when set, else the cores this
-        process may use that the load leaves idle. On a long file each process also reads and parses its blocks
-        and writes their CSV and JSON text (capred.pipelines.bridge_blocks). The results are the same, to the
-        bit, for any number.
-    branch : str
-        Volume-controlled rows: ``stable`` (default), the bridge continuous with the bridge at contact; ``thin``,
-        the second bridge of the same volume and gap on the thin-neck side of the volume's minimum along the
-        arc (unstable at constant volume; near rupture only).
-    """
-
-    QUANTITIES = {"surface_tension": "surface_tension", "contact_angle2": "contact_angle"}
-
-    surface_tension: float = ph.SURFACE_TENSION
-    contact_angle2: float | None = None
-    workers: int | None = None
-    branch: str = "stable"
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        if self.branch not in ("stable", "thin"):
-            raise OptionError(f"branch (--branch) must be stable or thin (got {self.branch!r})")
-        if self.contact_angle2 is not None and not 0 <= self.contact_angle2 < 90:
-            raise OptionError(
-                f"contact_angle2 (--contact-angle2): pendular bridges need a contact angle in [0, 90) deg "
-                f"(got {self.contact_angle2:g} deg)"
-            )
-        if self.workers is not None and (
-            isinstance(self.workers, bool) or int(self.workers) != self.workers or self.workers < 1
-        ):
-            raise OptionError(f"workers (--workers): a whole number of processes >= 1 (got {self.workers!r})")
 
 
 @dataclass(repr=False)

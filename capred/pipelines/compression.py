@@ -23,63 +23,15 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError, OptionError, Problem
-from ..io import Column, read_table
+from ..io import read_table
 from ..physics import compression as cp
-from ..result import InputFile, Options, Result, input_file, num, output
+from ..result import InputFile, Result, input_file, num, output
+from ..spec.compression import SCHEMA, TESTS, CompressionOptions  # noqa: F401 (declared in spec; re-exported here)
 from .row_records import RowRecord, plain
 
 STAGES = ("loading", "unloading", "reloading")
 _STAGE_WORDS = {"load": "loading", "l": "loading", "unload": "unloading", "u": "unloading", "reload": "reloading"}
 _STAGE_WORDS.update({"r": "reloading", **{s: s for s in STAGES}})
-
-SCHEMA = [
-    Column("step", "dimensionless", "-", "reading number", ("reading", "point"), None, decisive=False),
-    Column(
-        "stage",
-        "text",
-        None,
-        "loading, unloading or reloading (default: from the stress history)",
-        ("branch", "stage_label"),
-    ),
-    Column(
-        "sigma_eff",
-        "pressure",
-        "kPa",
-        "effective stress: vertical (oedometer) or mean p' (isotropic)",
-        ("sigma_v", "sigma_v_eff", "effective_stress", "vertical_stress", "p_eff", "p_prime", "sigma", "p"),
-        "positive",
-    ),
-    Column("e", "dimensionless", "-", "void ratio", ("void_ratio",), "positive"),
-    Column("height", "length", "mm", "specimen height (with --solids-height)", ("H", "specimen_height"), "positive"),
-]
-
-TESTS = ("oedometer", "isotropic")
-
-
-@dataclass(frozen=True)
-class CompressionOptions(Options):
-    """Options of `capred compression`.
-
-    Attributes
-    ----------
-    test : str
-        ``oedometer`` (σ'_v, one-dimensional) or ``isotropic`` (p'); names the stress in the outputs.
-    solids_height : float, optional
-        Height of the solids H_s [m] when the file gives the specimen height: e = H/H_s − 1.
-    reference_stress : float
-        Stress at which e_N on the normal compression line is read [Pa]; default 1 kPa.
-    """
-
-    QUANTITIES = {"solids_height": "solids_height", "reference_stress": "reference_stress"}
-
-    test: str = "oedometer"
-    solids_height: float | None = None
-    reference_stress: float = 1.0e3
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        if self.test not in TESTS:
-            raise OptionError(f"test (--test) must be oedometer or isotropic (got {self.test!r})")
 
 
 @dataclass(frozen=True)

@@ -24,6 +24,7 @@ import numpy as np
 
 from ..errors import InputError, OptionError, Problem
 from ..result import InputFile, Options, Result, input_file, num, output
+from ..spec.history import HistoryOptions  # noqa: F401 (declared in spec; re-exported here)
 from .row_records import RowRecord, plain
 
 #: control-chart constants for moving ranges of two consecutive values (Montgomery 2013, Appendix VI)
@@ -156,19 +157,6 @@ class HistoryRecord(RowRecord):
     @property
     def unit_fill(self) -> str:  # the declared "{unit}" is the charted quantity's unit
         return "" if self.unit == "-" else self.unit
-
-
-@dataclass(frozen=True)
-class HistoryOptions(Options):
-    """Options of `capred history`: the material and quantity (a JSON key such as ``phi_deg``) to chart, the
-    number of first runs that set the limits, or a reference value and spread in the quantity's unit."""
-
-    material: str | None = None
-    quantity: str | None = None
-    baseline: int = 8
-    reference: float | None = None
-    spread: float | None = None
-    command: str | None = None
 
 
 @dataclass(repr=False)

@@ -14,63 +14,23 @@ from ..fitting.nonlinear import NonlinearFit
 from ..fitting.retention_models import (
     JSON_NAMES,
     confidence_band,
-    default_models,
     fit_hysteresis,
     fit_model,
     hysteresis_model,
     identifiability_warnings,
-    internal_name,
     json_name,
 )
 from ..fitting.retention_models import MODELS as FITTERS
-from ..io import Column, read_table
+from ..io import read_table
 from ..parameters import Parameters
-from ..physics.shear import GAMMA_W
 from ..references import cite
-from ..result import InputFile, Options, Result, columns_of_rows, csv_header, input_file, num, with_csv_headers
+from ..result import InputFile, Result, columns_of_rows, csv_header, input_file, num, with_csv_headers
+from ..spec.retention import SCHEMA, RetentionOptions, to_internal  # noqa: F401 (declared in spec; re-exported here)
 from .retention_branches import (
-    LABELS,
-    REVERSAL_RANGE,
-    REVERSAL_RELATIVE,
     infer_branches,
     reversal_points,
     single_direction,
 )
-
-SCHEMA = [
-    Column("suction", "pressure", "kPa", "suction", ("s", "matric_suction", "delta_u", "ua_uw"), "nonnegative"),
-    Column(
-        "head",
-        "length",
-        "cm",
-        "suction head",
-        ("h", "suction_head", "pressure_head", "z1", "matric_head"),
-        "nonnegative",
-    ),
-    Column("pF", "dimensionless", "-", "pF (log10 of the head in cm of water)", ("pf", "p_f"), None),
-    Column("S_R", "dimensionless", "-", "S_R", ("Sr", "degree_of_saturation", "saturation"), "fraction"),
-    Column(
-        "theta",
-        "dimensionless",
-        "-",
-        "theta",
-        ("theta_vol", "vwc", "water_content_vol", "theta_vol_m3_per_m3", "volumetric_water_content"),
-        "fraction",
-    ),
-    Column(
-        "w",
-        "dimensionless",
-        "-",
-        "gravimetric water content w",
-        ("gravimetric_water_content", "w_grav", "water_content"),
-        "nonnegative",
-    ),
-    Column("rho_d", "density", "kg/m^3", "dry density", ("dry_density", "rhod"), "positive"),
-    Column("z2", "volume", "cm^3", "air volume z2", ("air_volume", "burette", "V_a"), "nonnegative"),
-    Column("V_v", "volume", "cm^3", "void volume V_v", ("Vv", "void_volume"), "positive"),
-    Column("weight", "dimensionless", "-", "weight", ("weights", "w_fit"), "positive"),
-    Column("branch", "text", None, "branch", ("path",), choices=LABELS),
-]
 
 # the same as a head of water [cm] (SWRC Fit and RETC report these)
 _HEAD = {
@@ -103,76 +63,6 @@ def report_name(internal: str, quantity: str) -> str:
         The JSON name.
     """
     return json_name(internal, quantity)[0]
-
-
-def _to_internal(name: str) -> tuple[str, float]:
-    """JSON name -> (internal name, factor JSON unit -> SI); the hysteresis α's are not options."""
-    internal, f = internal_name(name)
-    if internal in ("alpha_d", "alpha_w"):
-        raise KeyError(name)
-    return internal, f
-
-
-@dataclass(frozen=True)
-class RetentionOptions(Options):
-    """Options of `capred retention`.
-
-    Attributes
-    ----------
-    models : tuple of str
-        Models to fit (registry names, or 'all').
-    fixed : dict
-        Fixed parameters by report name, in report units (kPa, 1/kPa).
-    gamma_w : float
-        Unit weight of water [N/m^3, or a string with a unit].
-    rho_w : float
-        Density of water [kg/m^3] (theta = w rho_d/rho_w).
-    hysteresis : str or None
-        kool-parker: fit the drying and wetting branches jointly.
-    branches : str
-        auto: the 'branch' column, else drying, wetting and scanning branches inferred from the order of readings,
-        reversals below the noise tolerance ignored; single: every reading on one curve.
-    reversal_relative : float
-        Noise tolerance of a reversal, as a fraction of the suction at the reversal point [-].
-    reversal_range : float
-        Noise tolerance of a reversal, as a fraction of the measured suction range [-].
-    """
-
-    QUANTITIES = {"gamma_w": "gamma_w", "rho_w": "rho_w"}
-
-    models: tuple[str, ...] = default_models()
-    fixed: dict[str, float] = field(default_factory=dict)
-    gamma_w: float = GAMMA_W
-    rho_w: float = 1000.0
-    hysteresis: str | None = None
-    branches: str = "auto"
-    reversal_relative: float = REVERSAL_RELATIVE
-    reversal_range: float = REVERSAL_RANGE
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        models = (self.models,) if isinstance(self.models, str) else tuple(self.models)
-        if models == ("all",):
-            models = tuple(FITTERS)
-        unknown = [m for m in models if m not in FITTERS]
-        if unknown or not models:
-            raise OptionError(
-                f"unknown model {unknown[0] if unknown else ''!r}; choose from {', '.join(FITTERS)} or all"
-            )
-        object.__setattr__(self, "models", models)
-        for name in self.fixed:
-            try:
-                _to_internal(name)
-            except KeyError:
-                raise OptionError(f"fixed: unknown parameter '{name}'") from None
-        if self.hysteresis not in (None, "kool-parker"):
-            raise OptionError(f"--hysteresis must be kool-parker (got '{self.hysteresis}')")
-        if self.branches not in ("auto", "single"):
-            raise OptionError(f"--branches must be auto or single (got '{self.branches}')")
-        for name in ("reversal_relative", "reversal_range"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and not isinstance(v, bool) and 0 <= v < 1):
-                raise OptionError(f"{self.option_name(name)} must be a fraction in [0, 1) (got {v!r})")
 
 
 #: a branch is fitted with a model only when it holds at least the model's free parameters plus this many readings
@@ -964,7 +854,7 @@ def parse_fixed(items: list[str]) -> dict[str, float]:
         name, sep, value = item.partition("=")
         name = name.strip()
         try:
-            _to_internal(name)
+            to_internal(name)
         except KeyError:
             known = ", ".join(["theta_s", "theta_r", "S_s", "S_res", *sorted({v[0] for v in JSON_NAMES.values()})])
             raise OptionError(f"--fix '{item}': expected NAME=VALUE with NAME one of {known}") from None
@@ -1100,7 +990,7 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
         )
     fixed_internal = {}
     for name, v in opt.fixed.items():
-        key, factor = _to_internal(name)
+        key, factor = to_internal(name)
         fixed_internal[key] = v * factor
     warnings = list(opt.warnings) + table.warnings
     fits: dict[str, dict[str, NonlinearFit]] = {}

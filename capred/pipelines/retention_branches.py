@@ -30,16 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-#: a reversal must exceed this fraction of the suction at the reversal point (2 %: twice the ±1 % of reading a
-#: dew-point potentiameter states above 5 MPa, below any scanning loop worth comparing with a curve)
-REVERSAL_RELATIVE = 0.02
-#: ... and this fraction of the record's measured suction range (0.2 %: of the order of a tensiometer's absolute
-#: resolution on its ~85 kPa range; an evaporation record's dips of a few hundredths of a cm are far below; the
-#: floor near zero suction, where a fraction of the reading vanishes)
-REVERSAL_RANGE = 0.002
-
-#: the labels a branch may carry (column 'branch' or inferred)
-LABELS = ("drying", "wetting", "scanning")
+from ..spec.retention import LABELS, REVERSAL_RANGE, REVERSAL_RELATIVE  # noqa: E402, F401 (declared once in spec)
 
 
 @dataclass(frozen=True)

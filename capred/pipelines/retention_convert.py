@@ -26,11 +26,10 @@ import numpy as np
 from ..errors import FitError, OptionError
 from ..fitting.retention_models import MODELS, RetentionFit, fit_model, json_name, power_law_model
 from ..physics.shear import GAMMA_W
-from ..result import Options, input_file, num
+from ..result import input_file, num
+from ..spec.retention_convert import GRID_POINTS, ConvertOptions  # noqa: F401 (declared in spec; re-exported here)
 from .retention import RetentionResult
 
-#: points of the logarithmic grid between the smallest and largest suction of the data (besides the data's own)
-GRID_POINTS = 100
 #: start-grid minima refined by a conversion (fit_model's n_starts; its default, 3 or 8, left some conversions up
 #: to 0.8 % above the optimum of an independent 200-start search: issue 41; 40 reach it on every pair of
 #: tests/data/retention/reference_conversions.csv, and the curve of 100-200 nodes keeps it well under a second)
@@ -38,43 +37,6 @@ CONVERT_STARTS = 40
 #: a conversion whose largest deviation exceeds this (in S_R, or θ/θ_s) is flagged: the curves differ visibly
 #: on a retention plot (0.02 is about the scatter of a careful hanging-column or pressure-plate series)
 MISFIT_WARNING = 0.02
-
-
-@dataclass(frozen=True)
-class ConvertOptions(Options):
-    """Options of `capred retention-convert`.
-
-    Attributes
-    ----------
-    to : str
-        Target model (a key of the retention registry).
-    model : str or None
-        Which fit of FIT.json to convert (default: the lowest AICc of the branch).
-    branch : str or None
-        Which branch (default: the file's main branch, drying when present).
-    gamma_w : float
-        Unit weight of water [N/m^3] (the heads in cm of the JSON).
-    points : int
-        Quadrature nodes (per piece) and points of the misfit's grid between the data's smallest and largest
-        suction.
-    """
-
-    QUANTITIES = {"gamma_w": "gamma_w"}
-
-    to: str = power_law_model().name
-    model: str | None = None
-    branch: str | None = None
-    gamma_w: float = GAMMA_W
-    points: int = GRID_POINTS
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        if self.to not in MODELS:
-            raise OptionError(f"--to: unknown retention model '{self.to}'; choose from {', '.join(MODELS)}")
-        if self.model is not None and self.model not in MODELS:
-            raise OptionError(f"--model: unknown retention model '{self.model}'; choose from {', '.join(MODELS)}")
-        if not 10 <= int(self.points) <= 100_000:
-            raise OptionError(f"--points must lie between 10 and 100000 (got {self.points})")
 
 
 @dataclass(repr=False)

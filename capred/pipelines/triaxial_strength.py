@@ -31,131 +31,27 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..errors import FitError, InputError, OptionError, Problem
 from ..fitting import chi_laws
 from ..fitting.extended_mc import ExtendedMCFit, coefficients, envelope_of, fit_extended_mc
-from ..fitting.linear import ERROR_MODELS
-from ..io import Column, read_table
+from ..io import read_table
 from ..physics import effective_stress_models as esm
-from ..physics import shear as ph
 from ..physics import triaxial as tx
-from ..result import Options, input_file
-from .shear import ModelParams, model_metrics
+from ..result import input_file
+from ..spec.triaxial_strength import DEFAULT_MODELS, SCHEMA, TriaxialStrengthOptions  # noqa: F401 (declared in spec; re-exported here)
+from .shear import model_metrics
 from .triaxial_strength_records import MaterialStrength, TriaxialStrengthResult
 
 __all__ = ["TriaxialStrengthOptions", "TriaxialStrengthResult", "MaterialStrength", "run_triaxial_strength"]
 
 KPA = 1e3
 
-SCHEMA = [
-    Column("test_id", "text", None, "test identifier"),
-    Column("material", "text", None, "material name", ("soil", "material_name")),
-    Column(
-        "branch",
-        "text",
-        None,
-        "loading branch (compression or extension; blank: compression)",
-        ("loading", "triaxial_branch"),
-        choices=("compression", "extension"),
-    ),
-    Column(
-        "sigma3",
-        "pressure",
-        "kPa",
-        "net cell pressure sigma3 - u_a",
-        ("net_sigma3", "sigma3_net", "s3", "confining_pressure", "cell_pressure", "net_confining_pressure"),
-        quantity="sigma3",
-    ),
-    Column(
-        "q_f", "pressure", "kPa", "deviator at failure q_f", ("q", "qf", "q_max", "deviator", "q_peak"), quantity="q_f"
-    ),
-    Column("sigma1", "pressure", "kPa", "net axial stress at failure", ("s1", "sigma_1"), "nonnegative"),
-    Column(
-        "suction", "pressure", "kPa", "matric suction u_a - u_w", ("s", "matric_suction", "ua_uw"), quantity="suction"
-    ),
-    Column("S_R", "dimensionless", "-", "degree of saturation", ("Sr", "S_r", "degree_of_saturation"), quantity="S_R"),
-    Column("w", "dimensionless", "-", "gravimetric water content", ("water_content", "w0"), quantity="water_content"),
-    Column("rho_d", "density", "kg/m^3", "dry density", ("dry_density", "rhod"), quantity="rho_d"),
-    Column("rho_s", "density", "kg/m^3", "density of the solids", ("solid_density", "rhos"), quantity="rho_s"),
-    Column("G_s", "dimensionless", "-", "specific gravity of the solids", ("Gs", "specific_gravity"), quantity="G_s"),
-    Column("e", "dimensionless", "-", "void ratio", ("void_ratio", "e0"), quantity="void_ratio"),
-    Column("n", "dimensionless", "-", "porosity", ("porosity",), quantity="porosity"),
-    Column("theta", "dimensionless", "-", "volumetric water content", ("vwc",), quantity="theta"),
-    Column("R", "length", "mm", "particle radius R", ("radius", "particle_radius"), quantity="R"),
-]
 
 #: the sample-state columns completed by capred.physics.phase (capred.pipelines.sample_state)
 _STATE_COLUMNS = ("rho_d", "rho_s", "G_s", "e", "n", "w", "S_R", "theta")
-
-#: the default model selection: every model of the registry the inputs allow
-DEFAULT_MODELS = "all"
-
-
-@dataclass(frozen=True)
-class TriaxialStrengthOptions(Options):
-    """Options of `capred triaxial`.
-
-    Attributes
-    ----------
-    models : str
-        Effective-stress models compared, comma separated (the registry of `capred shear`), ``thesis`` for the
-        thesis's four or ``all`` for every model the inputs allow (the default).
-    c_eff : float, optional
-        Effective cohesion c' [Pa]; with ``phi_eff`` it replaces the envelope at s -> 0 of the extended
-        Mohr-Coulomb fit.
-    phi_eff : float, optional
-        Effective friction angle φ' [deg], with ``c_eff``.
-    errors : str
-        Scatter of a test's strength in the extended Mohr-Coulomb fit: ``either`` (the default, as `capred shear`:
-        intervals that hold whether the scatter is constant or grows with the strength, with no choice made),
-        ``proportional`` (to the strength), ``constant`` (ordinary least squares) or ``auto`` (Breusch-Pagan).
-    confidence : float
-        Level of the intervals [-].
-    bootstrap : int
-        Replicates of the ranking bootstrap per material (0: none).
-    seed : int
-        Seed of the bootstrap.
-    model_params : ModelParams
-        Parameters of the models beyond the thesis's four (as `capred shear`).
-    surface_tension : float
-        γ [N/m], of Own 2 and the exact bridge.
-    """
-
-    QUANTITIES = {"c_eff": "c_eff", "phi_eff": "phi_eff", "surface_tension": "surface_tension"}
-
-    models: str = DEFAULT_MODELS
-    c_eff: float | None = None  # Pa
-    phi_eff: float | None = None  # deg
-    errors: str = "either"
-    confidence: float = 0.95
-    bootstrap: int = 200
-    seed: int = 12345
-    model_params: ModelParams = field(default_factory=ModelParams)
-    surface_tension: float = ph.SURFACE_TENSION
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        if self.errors not in ERROR_MODELS:
-            raise OptionError(f"errors (--errors) must be one of {', '.join(ERROR_MODELS)} (got {self.errors!r})")
-        if (self.c_eff is None) != (self.phi_eff is None):
-            raise OptionError("give both --c-eff and --phi-eff (Python: c_eff and phi_eff), or neither")
-        if not 0.0 < self.confidence < 1.0:
-            raise OptionError(f"confidence must lie between 0 and 1 (got {self.confidence!r})")
-        if not isinstance(self.bootstrap, int) or self.bootstrap < 0:
-            raise OptionError(f"bootstrap (--bootstrap) must be a whole number >= 0 (got {self.bootstrap!r})")
-        try:
-            esm.resolve_models(self.models)
-        except ValueError as exc:
-            raise OptionError(f"models (--models): {exc}") from None
-
-    @property
-    def envelope_given(self) -> bool:
-        """True when --c-eff/--phi-eff replace the envelope at s -> 0."""
-        return self.c_eff is not None
 
 
 def load_table(source):

@@ -20,43 +20,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import OptionError
 from ..physics import bridge as br
-from ..result import InputFile, Options, Result
+from ..result import InputFile, Result
+from ..spec.bridge import DEFAULT_RATIOS, YadeOptions  # noqa: F401 (declared in spec; re-exported here)
 from .bridge_records import YadeFileRecord
 
-DEFAULT_RATIOS = (1.0, 1.1, 1.25, 1.5, 1.75, 2.0, 3.0, 4.0, 5.0, 10.0)
 #: the ratios YADE's law opens (its list is fixed in the C++ source)
 YADE_RATIOS = DEFAULT_RATIOS
 FIRST_SUCTION = 0.002  # smallest positive uc* (Scholtes' files start there)
 MIN_MEAN_FILLING_ANGLE = 1.0  # deg: the largest suction keeps this mean filling angle at contact
-
-
-@dataclass(frozen=True)
-class YadeOptions(Options):
-    """Options of `capred bridge yade-files`: radius ratios R2/R1 >= 1, contact angle [deg], number of
-    distances and of suctions per file."""
-
-    QUANTITIES = {"contact_angle": "contact_angle"}
-
-    ratios: tuple[float, ...] = DEFAULT_RATIOS
-    contact_angle: float = 0.0
-    distances: int = 80
-    suctions: int = 350
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        object.__setattr__(self, "ratios", tuple(float(r) for r in self.ratios))
-        if not self.ratios or any(not np.isfinite(r) or r < 1 for r in self.ratios):
-            raise OptionError(
-                "--ratios: radius ratios R2/R1 must be finite numbers >= 1 (the larger over the smaller radius)"
-            )
-        if len(set(self.ratios)) != len(self.ratios):
-            raise OptionError("--ratios: each ratio once")
-        if not 0 <= self.contact_angle < 90:
-            raise OptionError("--contact-angle must lie in [0, 90) deg")
-        if self.distances < 2 or self.suctions < 3:
-            raise OptionError("need --distances >= 2 and --suctions >= 3")
 
 
 def file_name(ratio: float) -> str:

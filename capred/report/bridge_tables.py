@@ -52,7 +52,8 @@ def bridge_solve_tables(result) -> list[TableSpec]:
 
 
 def bridge_compare_tables(result) -> list[TableSpec]:
-    """Console table of ``capred bridge compare``: measured against predicted force [mN] per pair (all in compare.csv).
+    """Console tables of ``capred bridge compare``: measured against predicted force [mN] per pair (all in
+    compare.csv), and each closed-form law's residuals over the pairs it applies to.
 
     Parameters
     ----------
@@ -63,10 +64,20 @@ def bridge_compare_tables(result) -> list[TableSpec]:
     -------
     list of capred.result.TableSpec
     """
+    from ..physics.bridge_laws import LAWS
+
     keys = ["case", "F_measured_mN", "F_exact_mN", "F_toroidal_mN", "F_willett_mN", "F_israelachvili_mN", "status"]
-    rows = result.record().json_rows()  # the typed record (CompareRecord): JSON keys are the console headers
+    record = result.record()
+    rows = record.json_rows()  # the typed record (CompareRecord): JSON keys are the console headers
     present = [k for k in keys if rows and k in rows[0]]
-    return [row_table("Measured against predicted capillary force [mN]", rows, present, "compare.csv")]
+    laws = spec("Closed-form laws against the measured forces [mN]", ["law", "pairs", "RMS residual", "mean residual"])
+    for name, (_, residual) in (record.laws or {}).items():
+        r = np.asarray(residual, float)
+        r = r[np.isfinite(r)]
+        rms, mean = (np.sqrt(np.mean(r**2)), np.mean(r)) if r.size else (None, None)
+        laws.rows.append([LAWS[name].label, str(r.size), *("—" if v is None else f"{v:.4g}" for v in (rms, mean))])
+    pairs = row_table("Measured against predicted capillary force [mN]", rows, present, "compare.csv")
+    return [pairs, laws] if laws.rows else [pairs]
 
 
 def bridge_curve_tables(result) -> list[TableSpec]:
