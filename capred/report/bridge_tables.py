@@ -52,8 +52,10 @@ def bridge_solve_tables(result) -> list[TableSpec]:
 
 
 def bridge_compare_tables(result) -> list[TableSpec]:
-    """Console tables of ``capred bridge compare``: measured against predicted force [mN] per pair (all in
-    compare.csv), and each closed-form law's residuals over the pairs it applies to.
+    """Console tables of ``capred bridge compare``.
+
+    Measured against predicted force [mN] per pair (all in compare.csv), and each closed-form law's residuals over
+    the pairs it applies to.
 
     Parameters
     ----------
