@@ -26,8 +26,10 @@ LABELS = ("drying", "wetting", "scanning")
 
 
 def default_models() -> tuple[str, ...]:
-    """The models `capred retention` fits when none are named (registry entries with ``default``), in registry
-    order."""
+    """The models `capred retention` fits when none are named.
+
+    The registry entries with ``default``, in registry order.
+    """
     return tuple(k for k, m in FITTERS.items() if m.default)
 
 
