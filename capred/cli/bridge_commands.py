@@ -1,5 +1,6 @@
 """`capred bridge curve | solve | compare | rupture | laws | yade-files`: exact capillary bridges between two spheres or a
-sphere and a plane."""
+sphere and a plane.
+"""
 
 from __future__ import annotations
 

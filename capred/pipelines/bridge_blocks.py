@@ -116,7 +116,8 @@ class BridgeBlocks(Result):
 
     def columns(self) -> dict[str, np.ndarray]:
         """The numeric output columns of every row, as :meth:`BridgeResult.columns` gives them (mm, mN, mm^3,
-        mm^2, deg, kPa; NaN where no bridge was found), read back into memory."""
+        mm^2, deg, kPa; NaN where no bridge was found), read back into memory.
+        """
         return {k: v for k, v in self._all().items() if k not in _TEXT_COLUMNS}
 
     def _all(self) -> dict[str, np.ndarray]:
@@ -318,7 +319,8 @@ class _WorkerFailed(Exception):
 class _Claims:
     """Which process takes each block: the first to ask for it. One byte per block (0: free, else the
     process's number + 1) in memory shared by the forked processes, changed under a POSIX record lock (held
-    per process). A block beyond the table is the first process's."""
+    per process). A block beyond the table is the first process's.
+    """
 
     def __init__(self, n: int) -> None:
         import mmap
@@ -359,7 +361,8 @@ def _solve_block(table, opt, fd: int, offset: int):
     """Solve one block and append to file ``fd`` (at ``offset``) what the gathering process keeps of it, pickled:
     (status, ratio, notes, warnings), then its output columns; (the result, (offset and size [B] of the first,
     offset and size [B] of the columns, rows)): only these few numbers cross between processes, so a pipe
-    never fills and a worker never waits for the gathering process."""
+    never fills and a worker never waits for the gathering process.
+    """
     import pickle
 
     part = pb.solve_table(table, opt)
@@ -374,7 +377,8 @@ def _solve_block(table, opt, fd: int, offset: int):
 
 class _Worker:
     """A forked process that reads, parses and solves the blocks it claims, keeps their columns in its own file
-    and sends, block by block, what the gathering process keeps (then ``None``; ``"fail"`` when it stops)."""
+    and sends, block by block, what the gathering process keeps (then ``None``; ``"fail"`` when it stops).
+    """
 
     live_fds: list = []
 
@@ -627,7 +631,8 @@ class _EncodedRows(pb.ColumnRows):
 class _Encoded:
     """The CSV (standard dialect, the header with the first block) and JSON text of every block of a spool,
     in temporary files: (file, CSV offset, CSV bytes, JSON offset, JSON bytes) per block. The text is handed
-    out as places in those files (capred.io.FileText: the writers copy it file to file, in the kernel)."""
+    out as places in those files (capred.io.FileText: the writers copy it file to file, in the kernel).
+    """
 
     def __init__(self, files, index) -> None:
         import weakref
@@ -647,14 +652,16 @@ class _Encoded:
 
     def json_pieces(self):
         """The JSON rows, block by block (capred.io.FileText: objects joined by commas; empty for a block of no
-        rows)."""
+        rows).
+        """
         for f, _, _, j_off, j_len in self.index:
             yield self._text(f, j_off, j_len)
 
 
 class _Sink:
     """A binary file's ``write`` onto a file descriptor, unbuffered, counting the bytes; ``skip_line``: the
-    text up to its first line end is left out (the CSV header of a block after the first)."""
+    text up to its first line end is left out (the CSV header of a block after the first).
+    """
 
     def __init__(self, fd: int, skip_line: bool = False) -> None:
         self.fd, self.skip, self.size = fd, skip_line, 0
@@ -672,7 +679,8 @@ class _Sink:
 def _encode_block(block: dict, first: bool, fd: int) -> tuple[int, int]:
     """Append to file ``fd`` the CSV text (with the header for the first block) and the JSON rows of one spool
     block: the bytes the writers write of it (capred.io.writers.write_csv_file, and stream_json of
-    :meth:`capred.pipelines.bridge_solve.ColumnRows.json_chunks`, chunk by chunk); (CSV bytes, JSON bytes)."""
+    :meth:`capred.pipelines.bridge_solve.ColumnRows.json_chunks`, chunk by chunk); (CSV bytes, JSON bytes).
+    """
     from ..io import encode_rows, write_csv_file
 
     csv = _Sink(fd, skip_line=not first)
@@ -692,7 +700,8 @@ _JSON_ROWS = 2000
 
 def _encode_share(spool, me: int, n_blocks: int, claims: _Claims, fd: int) -> list[tuple[int, int, int, int, int]]:
     """The blocks process ``me`` claims, their text appended to file ``fd``: (block, CSV offset, bytes, JSON
-    offset, bytes) each."""
+    offset, bytes) each.
+    """
     out, offset = [], 0
     for i in range(n_blocks):
         if not claims.take(i, me):
@@ -706,7 +715,8 @@ def _encode_share(spool, me: int, n_blocks: int, claims: _Claims, fd: int) -> li
 def _encode_blocks(spool, k: int, n_blocks: int):
     """The CSV and JSON text of every block of ``spool``, written on ``k`` processes (this one and k - 1 forked,
     each block by the first to reach it); None when a process failed (the writers then write from the spool,
-    in one process)."""
+    in one process).
+    """
     import gc
     import os
     import tempfile

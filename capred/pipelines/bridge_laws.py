@@ -86,7 +86,8 @@ class LawsResult(Result):
 
     def regions(self) -> list[dict]:
         """Per region (in first-seen order) and law: points compared, median and largest |relative error|, and
-        whether every point is within the tolerance."""
+        whether every point is within the tolerance.
+        """
         cached = self.__dict__.get("_regions")
         if cached is not None:
             return cached
@@ -136,7 +137,8 @@ class LawsResult(Result):
 
     def headline(self) -> list[dict]:
         """Per geometry and D/R bin (over every volume and angle): each law's median and largest |relative
-        error| [-] (the README's headline table)."""
+        error| [-] (the README's headline table).
+        """
         err = self.errors()
         geo = self.geometry()
         gi = _bin(self.gap, GAP_EDGES)

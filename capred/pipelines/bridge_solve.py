@@ -241,7 +241,8 @@ def csv_header(key: str) -> str:
 
 class HeadedSpool:
     """A :class:`capred.result.Spool` of JSON-keyed columns whose blocks the CSV writer reads under
-    ``name [unit]`` headers (the spool itself is not copied)."""
+    ``name [unit]`` headers (the spool itself is not copied).
+    """
 
     def __init__(self, spool, encoded=None) -> None:
         self.spool, self.encoded = spool, encoded
@@ -413,7 +414,8 @@ def json_rows(cols: dict[str, np.ndarray], nan_as_none: bool = True) -> list[dic
 
 class ColumnRows(Rows):
     """JSON rows made on demand from output columns (``columns(start, stop)``), which the writer encodes chunk
-    by chunk straight from the columns (:meth:`json_chunks`: no None per non-finite cell, the same bytes)."""
+    by chunk straight from the columns (:meth:`json_chunks`: no None per non-finite cell, the same bytes).
+    """
 
     def __init__(self, n: int, columns) -> None:
         super().__init__(n, lambda start, stop: json_rows(columns(start, stop)))
@@ -489,7 +491,8 @@ def frame_records(frame, drop_empty: str | None = None) -> list[dict]:
 
     References
     ----------
-    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
+    capred's own input conventions (README, "`capred shear`: input format"); no external source.
+    """
     keys = list(frame.columns)
     cols = [[num(x) if isinstance(x, float) else x for x in frame[k].tolist()] for k in keys]
     out = []
@@ -525,7 +528,8 @@ def read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, ..
 
     References
     ----------
-    Lian, G., Thornton, C. & Adams, M. J. (1993). A theoretical study of the liquid bridge forces between two rigid spherical bodies. J. Colloid Interface Sci. 161:138-147, doi:10.1006/jcis.1993.1452."""
+    Lian, G., Thornton, C. & Adams, M. J. (1993). A theoretical study of the liquid bridge forces between two rigid spherical bodies. J. Colloid Interface Sci. 161:138-147, doi:10.1006/jcis.1993.1452.
+    """
     table = source if isinstance(source, Table) else read_table(source, schema or SOLVE_SCHEMA)
     for name in required:
         if name not in table.columns:
@@ -633,7 +637,8 @@ def solve_arrays(
 
     References
     ----------
-    Lian, G., Thornton, C. & Adams, M. J. (1993). A theoretical study of the liquid bridge forces between two rigid spherical bodies. J. Colloid Interface Sci. 161:138-147, doi:10.1006/jcis.1993.1452."""
+    Lian, G., Thornton, C. & Adams, M. J. (1993). A theoretical study of the liquid bridge forces between two rigid spherical bodies. J. Colloid Interface Sci. 161:138-147, doi:10.1006/jcis.1993.1452.
+    """
     th2 = th if th2 is None else th2
     n = R.size
     beta, s_star, status = np.full(n, np.nan), np.full(n, np.nan), np.full(n, 2)
@@ -947,7 +952,8 @@ class _Helper:
 
 def _run(job):
     """A helper's answer to (solver, columns): the result, or None when it fails (the parent solves it again and
-    reports the error)."""
+    reports the error).
+    """
     solver, columns = job
     try:
         return solver(*columns)
@@ -986,7 +992,6 @@ def receive_message(fd: int):
     object or None
         The message; None at the end of the pipe.
     """
-
     head = _read_exactly(fd, 8)
     if head is None:
         return None

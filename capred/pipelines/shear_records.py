@@ -137,6 +137,7 @@ class Sampled:
 
     @property
     def shape(self) -> tuple[int]:
+        """``(n,)``: the shape of the whole per-test array the samples come from."""
         return (self.n,)
 
     def scaled(self, factor: float) -> Sampled:

@@ -160,7 +160,8 @@ class TriaxialStrengthResult(Result):
 
     def flags(self, material: str, j: int) -> list[str]:
         """The flags of the j-th test of ``material``: beyond the pendular regime, χ_back outside [0, 1], a positive
-        capillary pressure; none for a test without suction (a saturated test has no capillary stress to flag)."""
+        capillary pressure; none for a test without suction (a saturated test has no capillary stress to flag).
+        """
         r = self.materials[material]
         i = r.rows[j]
         out = []

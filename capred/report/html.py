@@ -65,7 +65,8 @@ def option_value(value, quantity) -> tuple[str, str]:
 def _in_force(options, used: set[str]) -> list[tuple[str, object, object]]:
     """(name, value, Quantity or None) of the options of one Options dataclass that are in force: every set
     top-level option; of a nested one (model parameters), those a model of the run needs and those set to
-    other than their default."""
+    other than their default.
+    """
     import dataclasses
 
     from ..nomenclature import QUANTITIES
@@ -124,7 +125,8 @@ def _text(v) -> str:
 
 def _row_table(result, limit: int | None = None) -> tuple[str, dict, int]:
     """(file stem, {header: the first ``limit`` values}, number of rows) of a result's per-row table, read from
-    the columns its CSV is written from (no DataFrame where the result gives plain columns)."""
+    the columns its CSV is written from (no DataFrame where the result gives plain columns).
+    """
     import numpy as np
 
     tables = result.csv_tables()
@@ -142,7 +144,8 @@ def _row_table(result, limit: int | None = None) -> tuple[str, dict, int]:
 
 def _flags(result) -> list[tuple[str, int, str]]:
     """(flag, tests, meaning) of the per-row table's flags column, counted block by block for a long run (a
-    Spool's blocks one at a time: never the whole table in memory)."""
+    Spool's blocks one at a time: never the whole table in memory).
+    """
     tables = result.csv_tables()
     if not tables:
         return []
@@ -177,7 +180,8 @@ CELL_MM = 2.2
 
 def _label_columns(columns: list[str]) -> list[int]:
     """Columns repeated in every column group of a split table: the test's identity (test_id, material, case,
-    condition) where present, else the first column."""
+    condition) where present, else the first column.
+    """
     keys = [j for j, c in enumerate(columns) if c.split(" [")[0] in ("test_id", "case", "material", "condition")]
     return keys or [0]
 
@@ -263,7 +267,8 @@ def _per_row(result) -> dict:
 
 def _cell(value) -> str:
     """One cell of a text or mixed column as printed: numbers as ``fmt`` prints them, a list (an interval) as
-    its numbers joined by '; ' (as in the CSV, never a Python repr), nothing for None."""
+    its numbers joined by '; ' (as in the CSV, never a Python repr), nothing for None.
+    """
     if isinstance(value, (list, tuple)):
         return "; ".join(_cell(v) for v in value)
     return fmt(value) if isinstance(value, float) else ("" if value is None else str(value))
@@ -271,7 +276,8 @@ def _cell(value) -> str:
 
 def _float_cells(values: np.ndarray) -> list[list[str]]:
     """Float columns (the rows of ``values``) as printed, as ``fmt`` prints each value: 4 significant digits,
-    '—' when not finite; one format call for every value."""
+    '—' when not finite; one format call for every value.
+    """
     rows, n = values.shape
     flat = (_FLOAT_FORMAT * values.size % tuple(values.ravel().tolist())).split("\x00")
     for k in np.flatnonzero(~np.isfinite(values.ravel())).tolist():
@@ -281,7 +287,8 @@ def _float_cells(values: np.ndarray) -> list[list[str]]:
 
 def _escape(text: str) -> str:
     """``markupsafe.escape(text)`` as a plain str (the same entities), at the cost of one regex search for the
-    usual cell with nothing to escape (a number as printed)."""
+    usual cell with nothing to escape (a number as printed).
+    """
     if _SPECIAL.search(text) is None:
         return text
     from markupsafe import escape
@@ -339,7 +346,8 @@ def _template(name: str):
 
 def _methods(result) -> tuple[list[str], list[str]]:
     """Paragraphs and reference keys of the methods section: the command's (capred.reductions), the run's own
-    notes (result.method_notes()) and, for retention, each fitted model's registry method and references."""
+    notes (result.method_notes()) and, for retention, each fitted model's registry method and references.
+    """
     from ..reductions import REDUCTIONS
 
     reduction = REDUCTIONS.get(result.command)
@@ -402,7 +410,8 @@ def render_html(result, figures: dict, plots: bool) -> str:
 
 def _numbered(result, figures: dict) -> list[tuple[str, dict, int | None, str]]:
     """(sheet, entry, figure number, heading) of each figure of the report: the drawn ones numbered in order,
-    each heading the sheet's title (it names the material of a per-material sheet) and the input it shows."""
+    each heading the sheet's title (it names the material of a per-material sheet) and the input it shows.
+    """
     names = ", ".join(i.path.replace("\\", "/").rsplit("/", 1)[-1] for i in getattr(result, "inputs", ()))
     out, number = [], 0
     for name, entry in figures.items():
@@ -451,8 +460,11 @@ def _split_spec(spec) -> dict:
 
 
 def _summary_rows(rows, left: list[bool], columns: list[int]):
-    """The rows of one column group of a summary table as HTML, each ``\n  <tr>...</tr>\n  `` (the layout the
-    template's row loop gave), cells escaped as the template escapes them."""
+    r"""The rows of one column group of a summary table as HTML.
+
+    Each row is ``\n  <tr>...</tr>\n  `` (the layout the template's row loop gave), cells escaped as the template
+    escapes them.
+    """
     from markupsafe import Markup
 
     opens = ['<td class="l">' if is_left else '<td class="">' for is_left in left]
@@ -540,7 +552,8 @@ def _season_markup(columns: list[str], texts: list[list[str]], group: list[int])
 
 def _season_groups(columns: list[str], texts: list[list[str]]) -> list[list[int]]:
     """Columns of a season table packed into groups that fit A4 landscape (the input and its labels repeated
-    in each): no column is lost in print."""
+    in each): no column is lost in print.
+    """
     from .render import pack_columns
 
     widths = []
