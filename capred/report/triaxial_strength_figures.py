@@ -1,4 +1,4 @@
-"""Figures and console tables of `capred triaxial-strength`.
+"""Figures and console tables of `capred triaxial`.
 
 Per material, the failure states on the extended envelope and every model's predicted against measured q_f.
 """
@@ -119,7 +119,7 @@ def plot_predicted_measured(ax, result, material: str):
 
 
 def triaxial_strength_figures(result) -> dict:
-    """The report's figure sheets of a ``capred triaxial-strength`` run, one per material.
+    """The report's figure sheets of a ``capred triaxial`` run, one per material.
 
     Parameters
     ----------
@@ -157,7 +157,7 @@ def triaxial_strength_figures(result) -> dict:
 
 
 def triaxial_strength_tables(result) -> list:
-    """The console tables of a ``capred triaxial-strength`` run.
+    """The console tables of a ``capred triaxial`` run.
 
     Parameters
     ----------

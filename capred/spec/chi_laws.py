@@ -1,4 +1,4 @@
-"""The χ laws fitted per material by `capred shear` and `capred triaxial-strength`.
+"""The χ laws fitted per material by `capred shear` and `capred triaxial`.
 
 One registry, declared without numerics.
 
