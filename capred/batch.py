@@ -77,8 +77,10 @@ def run_job(job: Job):
 
     if job.out_dir is not None:  # refuse a folder capred may not replace before computing anything
         from .io import check_target
+        from .report.outputs import check_outputs_ahead
 
         check_target(job.out_dir, [job.source] if job.source is not None else [])
+        check_outputs_ahead(job.command, job.source, job.options, job.out_dir)
     result = REDUCTIONS[job.command].run(job.source, job.options)
     if job.out_dir is None:  # --json without --out: nothing written
         return result, []

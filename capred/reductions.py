@@ -30,6 +30,14 @@ class Reduction:
     #: what its input table is called in "this looks like ..." hints, for a command whose table has a schema of
     #: its own (capred.cli.common)
     table_kind: str = ""
+    #: the cells its outputs take per input row: (the columns of its per-row table, the columns it adds per model
+    #: compared in ``options.models``), by which a long file's outputs are sized before anything is computed
+    #: (capred.report.outputs.check_outputs_ahead; tests/test_outputs_ahead.py checks them on the samples);
+    #: (0, 0): sized only once computed
+    row_cells: tuple[int, int] = (0, 0)
+    #: what the second count of ``row_cells`` is per: "models" (each model in ``options.models``) or
+    #: "bridge_laws" (each law of the law registry, a law registered at run time included)
+    row_cells_per: str = "models"
 
     def run(self, source, options):
         """Run the command: call its run function (``run_path``, imported on first use).
@@ -111,6 +119,7 @@ REDUCTIONS: dict[str, Reduction] = {
             references=("evenepoel", "bishop1959"),
             summary="Direct shear with hanging-column suction: dry envelope, effective-stress models, σ_cap.",
             table_kind="a direct-shear table",
+            row_cells=(27, 8),
         ),
         Reduction(
             "triaxial-bounds",
@@ -130,6 +139,7 @@ REDUCTIONS: dict[str, Reduction] = {
             references=("prunier2024",),
             summary="Capillary stress tensor at failure from triaxial tests: bounds and groups.",
             table_kind="a triaxial table (one row per test)",
+            row_cells=(53, 0),
         ),
         Reduction(
             "triaxial",
@@ -151,6 +161,7 @@ REDUCTIONS: dict[str, Reduction] = {
             summary="Unsaturated strength from triaxial failure states: extended Mohr-Coulomb, models, bounds.",
             example=(("bootstrap", 0),),
             table_kind="a table of triaxial failure states",
+            row_cells=(25, 1),
         ),
         Reduction(
             "retention",
@@ -167,6 +178,7 @@ REDUCTIONS: dict[str, Reduction] = {
             references=("vangenuchten1980", "brooks_corey1964"),
             summary="Water retention curves per branch: fits at the optimum, model selection.",
             table_kind="a retention table",
+            row_cells=(4, 1),
         ),
         Reduction(
             "retention-convert",
@@ -267,6 +279,7 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("evenepoel", "lian1993"),
             summary="Exact capillary bridges from a table of cases.",
+            row_cells=(16, 0),
         ),
         Reduction(
             "bridge compare",
@@ -284,6 +297,8 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("willett2000", "israelachvili", "lian1993"),
             summary="Measured capillary forces beside the exact bridge and approximations.",
+            row_cells=(13, 2),
+            row_cells_per="bridge_laws",
         ),
         Reduction(
             "bridge rupture",
@@ -300,6 +315,7 @@ REDUCTIONS: dict[str, Reduction] = {
             ),
             references=("lian1993",),
             summary="Rupture distance of bridges at constant volume.",
+            row_cells=(14, 0),
         ),
         Reduction(
             "bridge laws",
@@ -400,6 +416,7 @@ REDUCTIONS: dict[str, Reduction] = {
             references=("casagrande1936", "pacheco_silva1970", "schofield_wroth1968"),
             summary="Oedometer or isotropic compression: λ (C_c), κ (C_s), e_N and the yield stress.",
             table_kind="a compression test (one row per reading)",
+            row_cells=(6, 0),
         ),
         Reduction(
             "history",

@@ -55,3 +55,72 @@ def test_toml_manifest_nested_deeper_than_the_limit_is_one_message(tmp_path):
     manifest.write_text('[[run]]\ncommand = "shear"\ninput = "a.csv"\noptions = ' + "[" * 50_000 + "]" * 50_000 + "\n")
     res = runner.invoke(app, ["batch", str(manifest), "--out", str(tmp_path / "o")])
     assert res.exit_code != 0 and "nested more than" in res.stderr and "Traceback" not in res.output, res.output
+
+
+def _padded_json(path, megabytes: float) -> None:
+    """A JSON object of ``megabytes`` MB, most of it blanks (valid JSON whatever its content)."""
+    path.write_text('{"pad": 0' + " " * int(megabytes * 2**20) + "}")
+
+
+def test_shear_retention_json_honours_max_megabytes(tmp_path):
+    """--max-megabytes 1 reaches --retention's JSON (it was read up to the 256 MiB default): a 1.5 MiB file is
+    refused before it is read, naming the option, with nothing written."""
+    import capred
+
+    fits = tmp_path / "fits.json"
+    _padded_json(fits, 1.5)
+    res = runner.invoke(
+        app, ["shear", str(capred.sample_path("shear")), "--retention", str(fits), "--max-megabytes", "1",
+              "--bootstrap", "0", "--no-plots", "--out", str(tmp_path / "o")],
+    )  # fmt: skip
+    assert res.exit_code == 1 and "--retention" in res.stderr and "--max-megabytes" in res.stderr, res.output
+    assert "1.5 MiB" in res.stderr and "Traceback" not in res.output
+    assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        pytest.param(["skempton-b", "--sample", "--compression", "{json}"], id="skempton-b --compression"),
+        pytest.param(["shear-band", "--triaxial", "{json}"], id="shear-band --triaxial"),
+        pytest.param(["pt-volume", "--sample", "--compression-w", "{json}"], id="pt-volume --compression-w"),
+    ],
+)
+def test_every_json_input_refuses_deep_nesting_in_one_message(tmp_path, args):
+    """100,000 nested arrays (Python's parser alone raises RecursionError): one message, exit 1, nothing
+    written, for each command that reads a JSON of another run."""
+    deep = tmp_path / "deep.json"
+    deep.write_text("[" * 100_000 + "]" * 100_000)
+    args = [a.replace("{json}", str(deep)) for a in args]
+    res = runner.invoke(app, [*args, "--out", str(tmp_path / "o")])
+    assert res.exit_code == 1 and "nested more than" in res.stderr, res.output
+    assert "Traceback" not in res.output and not (tmp_path / "o").exists()
+
+
+def test_skempton_compression_json_honours_max_megabytes(tmp_path):
+    """skempton-b's --compression is read within the run's --max-megabytes (a table given: its limits)."""
+    import capred
+
+    big = tmp_path / "compression.json"
+    _padded_json(big, 1.5)
+    res = runner.invoke(
+        app, ["skempton-b", str(capred.sample_path("skempton-b")), "--compression", str(big), "--max-megabytes", "1",
+              "--out", str(tmp_path / "o")],
+    )  # fmt: skip
+    assert res.exit_code == 1 and "--max-megabytes" in res.stderr and "1.5 MiB" in res.stderr, res.output
+    assert not (tmp_path / "o").exists()
+
+
+def test_skempton_retention_json_honours_max_megabytes(tmp_path):
+    """skempton-b's --retention (a fits.json, read by retention-convert's reader, 16 MiB by default) within the
+    run's --max-megabytes: a 1.5 MiB file is refused under --max-megabytes 1, naming its size."""
+    import capred
+
+    fits = tmp_path / "fits.json"
+    _padded_json(fits, 1.5)
+    res = runner.invoke(
+        app, ["skempton-b", str(capred.sample_path("skempton-b")), "--retention", str(fits), "--max-megabytes", "1",
+              "--out", str(tmp_path / "o")],
+    )  # fmt: skip
+    assert res.exit_code == 1 and "1.5 MiB, more than the 1 MiB" in res.stderr, res.output
+    assert not (tmp_path / "o").exists()

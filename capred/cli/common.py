@@ -67,7 +67,7 @@ MaxMbOpt = Annotated[
         "--max-megabytes",
         min=1,
         help="Largest input the reader takes "
-        "on: bytes of a CSV file or of a workbook once decompressed "
+        "on: bytes of a CSV or JSON file or of a workbook once decompressed "
         "[MiB; default 256].",
         show_default=False,
     ),
@@ -641,7 +641,10 @@ def _single(inv: Invocation) -> None:
     write = inv.out is not None or (not inv.json and REDUCTIONS[inv.command].files_by_default)
     out_dir = inv.out or default_out(inv.command, source)
     if write:  # before anything is computed
+        from ..report.outputs import check_outputs_ahead
+
         check_target(out_dir, [source, *inv.extra_inputs])
+        check_outputs_ahead(inv.command, source, inv.options, out_dir, inv.extra_inputs)
     import sys
 
     from ..progress import showing

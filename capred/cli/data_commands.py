@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from .common import Invocation, ThousandsOpt, command
+from .common import Invocation, MaxMbOpt, ThousandsOpt, command
 from .declare import model_parameter_values, option, registry_help, registry_names, si_values
 
 SHEAR = "capred.spec.shear:ShearOptions"
@@ -52,6 +52,7 @@ def register(app: typer.Typer) -> None:
 
 def shear(
     thousands: ThousandsOpt = None,
+    max_megabytes: MaxMbOpt = None,
     curves: Annotated[
         Path | None,
         typer.Option(
@@ -157,6 +158,8 @@ def shear(
     ----------
     thousands : str, optional
         Thousands separator of the curves file.
+    max_megabytes : int, optional
+        Largest input read [MiB]: the table, the curves file and --retention's JSON (default 256).
     curves : Path, optional
         Raw shear curves, long format.
     area_correction : str, optional
@@ -239,8 +242,12 @@ def shear(
         from ..errors import OptionError
 
         raise OptionError("--retention-branch needs --retention FIT.json")
+    from ..io import ReadLimits
+
+    # --retention's JSON and the curves file read within --max-megabytes, as the table is
+    limits = None if max_megabytes is None else ReadLimits(max_bytes=max_megabytes * 2**20)
     mp = (
-        model_params_from_retention(retention, retention_branch, **params)
+        model_params_from_retention(retention, retention_branch, limits, **params)
         if retention is not None
         else ModelParams(**params)
     )
@@ -265,7 +272,7 @@ def shear(
     )
     if models is not None:
         given["models"] = _model_list(models)
-    opts = ShearOptions(**given, model_params=mp, curves=_curves_source(curves, thousands))
+    opts = ShearOptions(**given, model_params=mp, curves=_curves_source(curves, thousands, limits))
     return Invocation("shear", opts, extra_inputs=[p for p in (retention, curves) if p])
 
 
@@ -418,12 +425,12 @@ def retention(
     return Invocation("retention", opts)
 
 
-def _curves_source(path: Path | None, thousands):
-    if path is None or thousands is None:
+def _curves_source(path: Path | None, thousands, limits=None):
+    if path is None or (thousands is None and limits is None):
         return path
     from ..io import TableSource
 
-    return TableSource(path, None, thousands)
+    return TableSource(path, None, thousands, limits=limits)
 
 
 def _model_list(text: str) -> tuple[str, ...]:

@@ -11,7 +11,7 @@ Other layers (pipelines, report, batch, cli) import what they need from here, e.
 - `capred.io.json_input`: `read_json` (a JSON input bounded in size and nesting), `json_depth` and
   `MAX_JSON_DEPTH` (the nesting rule, for a reader of its own such as retention-convert's);
 - `capred.io.writers`: the output files (`write_run`, `write_batch_file`, `RunFolder`, `check_target`,
-  `encode_csv`, `encode_json`, `encode_rows`, `stream_json`, `safe_name`, `INDEX_HEADER`,
+  `check_rows_output` (outputs sized from an input's lines before a run), `encode_csv`, `encode_json`, `encode_rows`, `stream_json`, `safe_name`, `INDEX_HEADER`,
   `second_core_free`, `FileText` and `write_piece`: text written ahead, copied file to file);
 - `capred.io.spreadsheet_out`: `source_date_epoch`.
 
@@ -35,6 +35,7 @@ if TYPE_CHECKING:  # what the names are, for readers and type checkers; at run t
         INDEX_HEADER,
         FileText,
         RunFolder,
+        check_rows_output,
         check_target,
         encode_csv,
         encode_json,
@@ -63,6 +64,7 @@ _WHERE = {
             "INDEX_HEADER",
             "FileText",
             "RunFolder",
+            "check_rows_output",
             "check_target",
             "encode_csv",
             "encode_json",
@@ -88,6 +90,7 @@ __all__ = [
     "SPREADSHEET_SUFFIXES",
     "Table",
     "TableSource",
+    "check_rows_output",
     "check_target",
     "column_lookup",
     "encode_csv",

@@ -577,3 +577,47 @@ def _long_line(fh, data: bytes, cut: int, ahead: bytes, block_bytes: int, first_
         else:
             rest += more
     return data, rest
+
+
+#: the bytes of a line that hold no data (blanks, line ends, the delimiters of a row of delimiters only)
+_NO_DATA_BYTES = b" \t\r\n,;"
+
+
+def data_lines(path, block_bytes: int | None = None) -> int:
+    """How many lines of a text file hold anything but blanks and delimiters: about its rows (the header and any
+    note lines included; a quoted cell that spans lines counts once per line), counted without reading it as a
+    table, a block of bytes at a time with numpy (about 1 s for 250 MB).
+
+    A line ends at a line feed or a carriage return (CRLF, LF and lone CR files alike). Used to say, before a
+    run computes anything, how large its outputs would be (capred.report.outputs.check_outputs_ahead).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+    block_bytes : int, optional
+        Bytes read at a time (default :data:`BLOCK_BYTES`).
+
+    Returns
+    -------
+    int
+        Lines that hold data.
+    """
+    import numpy as np
+
+    data_byte = np.ones(256, bool)
+    data_byte[list(_NO_DATA_BYTES)] = False
+    count, open_line = 0, False  # open_line: the line the block before ended in holds data
+    with open(path, "rb") as fh:
+        while data := fh.read(block_bytes or BLOCK_BYTES):
+            chars = np.frombuffer(data, np.uint8)
+            filled = np.cumsum(data_byte[chars], dtype=np.int64)
+            ends = np.flatnonzero((chars == 10) | (chars == 13))
+            if not ends.size:
+                open_line = open_line or bool(filled[-1])
+                continue
+            at = filled[ends]
+            per_line = np.diff(at, prepend=0)
+            count += int(np.count_nonzero(per_line)) + (open_line and not per_line[0])
+            open_line = bool(filled[-1] - at[-1])
+    return count + open_line

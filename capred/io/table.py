@@ -44,6 +44,7 @@ from ..spec.columns import DECISIVE_COLUMNS, Column  # noqa: F401 (re-exported: 
 from ..text_safety import excerpt
 from ..units import conversion
 from .grid import MAX_COLUMNS, ReadLimits, as_source, parse_rows, read_grid
+from .plain_tail import PlainTail, TailCells, read_columns
 
 #: the most characters of a note under the data that messages quote
 NOTE_CHARS = 500
@@ -678,14 +679,16 @@ def grid_table(grid, src, schema: list[Column], empty_ok: bool = False) -> Table
         table.notes.append(f"units read from the row under the header (line {units_line})")
         table.units_line = units_line
         body = body[1:]
-    if tail is not None and any(ln.count(delimiter) != len(headers) - 1 for ln in tail[1]):
-        body = body + parse_rows("\n".join(tail[1]), delimiter, tail[0])  # ragged: row by row
-        tail = None
+    if tail is not None:
+        tail.width = len(headers)
+        if not tail.rectangular():  # ragged: row by row
+            body = body + parse_rows(tail.text[tail.start : tail.end], delimiter, tail.first_line)
+            tail = None
     notes = []  # text lines under the data ("Remarks: ..."): notes, not tests
-    while tail is not None and tail[1] and (text := _note_text(tail[1][-1].split(delimiter), positions)):
-        notes.append((tail[0] + len(tail[1]) - 1, text))
-        tail[1].pop()
-    if tail is not None and not tail[1]:
+    while tail is not None and tail.n and (text := _note_text(tail.last_line().split(delimiter), positions)):
+        notes.append((tail.first_line + tail.n - 1, text))
+        tail.drop_last_line()
+    if tail is not None and not tail.n:
         tail = None
     while tail is None and body and (text := _note_text(body[-1][1], positions)):
         notes.append((body[-1][0], text))
@@ -715,31 +718,43 @@ def grid_table(grid, src, schema: list[Column], empty_ok: bool = False) -> Table
         column_cells = {
             name: [row[j] if j < len(row) else "" for row in cells_by_row] for name, (j, _, _) in positions.items()
         }
-    if tail is not None:  # the rows after the first 200: split at once, as columns
-        first, lines = tail
-        flat = delimiter.join(lines).split(delimiter)
-        width = len(headers)
-        for name, (j, _, _) in positions.items():
-            column_cells[name].extend(flat[j::width])
-        table.lines = np.concatenate([table.lines, np.arange(first, first + len(lines))])
-        del flat
     del cells_by_row, body, rows  # the row lists: only the columns are kept
     grid.rows = []
 
-    numeric = [cells for name, cells in column_cells.items() if positions[name][1].kind != "text"]
+    numeric = [name for name, (_, col, _) in positions.items() if col.kind != "text"]
     decimal_comma = delimiter not in (None, ",") and any(
-        _DECIMAL_COMMA.fullmatch(c) for cells in numeric for c in cells[:2000] if "," in c
+        _DECIMAL_COMMA.fullmatch(c)
+        for name in numeric
+        for c in (column_cells[name] + (tail.first_cells(positions[name][0], 2000) if tail else []))[:2000]
+        if "," in c
     )
+    tail_values: dict[int, np.ndarray | None] = {}
+    if tail is not None:  # the rows after the first 200: as columns, a window of lines at a time
+        table.lines = np.concatenate([table.lines, np.arange(tail.first_line, tail.first_line + tail.n)])
+        plain = [] if decimal_comma or src.thousands is not None else numeric
+        fast = [positions[name][0] for name in plain if not positions[name][1].words]
+        texts = [j for j, _, _ in positions.values() if j not in fast]  # text, and numbers read cell by cell
+        tail_values, tail_texts = read_columns(tail, fast, texts, _parse_column, _stripped)
+        for name, (j, _, _) in positions.items():
+            if tail_values.get(j) is None:  # a text column, or numbers read cell by cell
+                column_cells[name] += tail_texts[j] if j in tail_texts else tail.cells(j)
+        del tail_texts
     for name, (j, col, unit) in positions.items():
         cells = _stripped(column_cells[name])
+        head_values = _parse_column(cells, False) if tail_values.get(j) is not None else None
+        if tail_values.get(j) is not None and head_values is None:  # the first rows hold another cell
+            cells = _stripped(column_cells[name] + tail.cells(j))
+        elif head_values is not None:  # the cells of the tail cut out of its text when a message quotes one
+            cells = TailCells(cells, tail, j)
         table.raw[name] = cells
         if col.kind == "text":
             values = np.array(cells, dtype=object)
             if col.choices:
-                bad = [i for i, c in enumerate(cells) if c.lower() not in col.choices]
+                lower = {c: c.lower() for c in dict.fromkeys(cells)}  # each distinct cell once
+                bad = [i for i, c in enumerate(cells) if lower[c] not in col.choices]
                 if bad:
                     _choice_problems(table, name, col, cells, bad)
-                values = np.array([c.lower() for c in cells], dtype=object)
+                values = np.array([lower[c] for c in cells], dtype=object)
             table.columns[name] = values
             continue
         unit_used = unit if unit is not None else col.unit
@@ -759,7 +774,10 @@ def grid_table(grid, src, schema: list[Column], empty_ok: bool = False) -> Table
             meaning = dict(col.words)
             worded = {i: meaning[c.lower()] for i, c in enumerate(cells) if c.lower() in meaning}
             cells = [("" if i in worded else c) for i, c in enumerate(cells)]
-        values = _parse_column(cells, decimal_comma)
+        if head_values is not None:
+            values = np.concatenate([head_values, tail_values[j]])
+        else:
+            values = _parse_column(cells, decimal_comma)
         if values is None:  # some cell is not a plain number: cell by cell, naming the bad ones
             values = np.empty(len(cells))
             not_numbers = []
@@ -998,10 +1016,10 @@ def _note_text(cells: list[str], positions: dict) -> str | None:
 _BLANK_LINE = re.compile(r"^[^\S\n]*$", re.M)
 
 
-def _plain_tail(grid, delimiter: str, lookup) -> tuple[int, list[str]] | None:
+def _plain_tail(grid, delimiter: str, lookup) -> PlainTail | None:
     """A long plain CSV (no quotes, no blank line after its first 200 lines, every header named): the first
-    200 lines become ``grid.rows`` and the rest is returned as (first line number, lines) to be split as
-    columns at once; None where the row-by-row parse is needed."""
+    200 lines become ``grid.rows`` and the rest is returned as a PlainTail, read as columns a window of lines
+    at a time; None where the row-by-row parse is needed."""
     text = grid.full_text
     if text is None or '"' in text or "\r" in text or grid.head_cut:  # cut first rows: the whole parse
         return None
@@ -1014,14 +1032,25 @@ def _plain_tail(grid, delimiter: str, lookup) -> tuple[int, list[str]] | None:
         pos = text.find("\n", pos) + 1
         if pos == 0:
             return None
-    last = len(text.rstrip())  # blank lines at the end are dropped
+    last = _data_end(text)  # blank lines at the end are dropped
     end = text.find("\n", last)
-    tail_text = text[pos : len(text) if end < 0 else end]
-    if not tail_text.strip() or _BLANK_LINE.search(tail_text) is not None:
+    end = len(text) if end < 0 else end
+    if last <= pos or _BLANK_LINE.search(text, pos, end) is not None:  # the text itself: no copy of it
         return None
-    tail = tail_text.split("\n")
     grid.rows, grid.full_text = head, None
-    return grid.first_line + 200, tail
+    return PlainTail(text, pos, end, grid.first_line + 200, delimiter)
+
+
+def _data_end(text: str, step: int = 2**20) -> int:
+    """The length of ``text`` without its trailing white space (text.rstrip() without copying the text)."""
+    hi = len(text)
+    while hi > 0:
+        lo = max(0, hi - step)
+        kept = len(text[lo:hi].rstrip())
+        if kept:
+            return lo + kept
+        hi = lo
+    return 0
 
 
 _EDGE_SPACE = re.compile(r"\s\x00|\x00\s|^\s|\s$")

@@ -1225,7 +1225,7 @@ OUTPUT_MAX = 4 * 2**30
 OUTPUT_VARIABLE = "CAPRED_MAX_OUTPUT_MEGABYTES"
 #: bytes a table cell takes in the CSV and its share of the JSON document, about, with a margin (measured: a
 #: shear run's results of 27.5 million cells, 304 MB of CSV and 568 MB of JSON: 32 bytes a cell)
-_BYTES_PER_CELL = 40
+BYTES_PER_CELL = 40
 
 
 def output_budget(input_bytes: int) -> int:
@@ -1271,7 +1271,9 @@ def _cells(table) -> int:
 def check_output_size(result, tables: dict, out) -> None:
     """Refuse, before anything is written, a run whose tables would take more than :func:`output_budget`.
 
-    The size is estimated as cells x :data:`_BYTES_PER_CELL` (the CSV and the JSON document).
+    The size is estimated as cells x :data:`BYTES_PER_CELL` (the CSV and the JSON document). A long file's run
+    was already sized from its lines before it was computed (:func:`check_rows_output`); this is what a run
+    sized by no such count (a workbook, a DataFrame) is checked by.
 
     Parameters
     ----------
@@ -1287,14 +1289,35 @@ def check_output_size(result, tables: dict, out) -> None:
     OutputError
         Over the bound, saying how large, why and how to allow it.
     """
-    cells = sum(_cells(t) for t in tables.values())
-    estimate = cells * _BYTES_PER_CELL
+    check_output_estimate(sum(_cells(t) for t in tables.values()), [i.path for i in result.inputs], out)
+
+
+def check_output_estimate(cells: int, inputs, out) -> None:
+    """Refuse a run whose outputs, ``cells`` table cells (about :data:`BYTES_PER_CELL` bytes each as CSV and
+    JSON), would take more than :func:`output_budget` of its ``inputs``: before its tables are written, or before
+    anything is computed when its input's lines size them (:func:`check_rows_output`).
+
+    Parameters
+    ----------
+    cells : int
+        Table cells the run writes (or would write).
+    inputs : sequence of path
+        The run's input files (their sizes set the bound; a path that is not a file counts 0).
+    out : pathlib.Path
+        The output folder (for the message).
+
+    Raises
+    ------
+    OutputError
+        Over the bound, saying how large, why and how to allow it; nothing is written.
+    """
+    estimate = cells * BYTES_PER_CELL
     if estimate <= OUTPUT_FLOOR and not os.environ.get(OUTPUT_VARIABLE):  # the common case: no file looked at
         return
     size = 0
-    for i in result.inputs:
+    for path in inputs:
         try:
-            size += os.path.getsize(i.path)
+            size += os.path.getsize(path)
         except (OSError, TypeError, ValueError):
             pass
     budget = output_budget(size)
@@ -1305,6 +1328,53 @@ def check_output_size(result, tables: dict, out) -> None:
             f"{size / 2**20:.1f} MiB, at least {OUTPUT_FLOOR / 2**20:.0f} MiB and at most {OUTPUT_MAX / 2**30:.0f} "
             f"GiB); nothing was written to {out}. To write them, set {OUTPUT_VARIABLE} to the megabytes allowed"
         )
+
+
+def check_rows_output(source, cells_per_row: int, out, extra_inputs=()) -> None:
+    """Refuse, before its input is read as a table, a run whose outputs would exceed :func:`output_budget`: the
+    input file's data lines (capred.io.blocks.data_lines, less the header) x ``cells_per_row`` x
+    :data:`BYTES_PER_CELL`.
+
+    Only a plain text file is counted, a block of bytes at a time (about 1 s for 250 MB); a workbook, a
+    DataFrame, a FIFO or device (never opened here) or a file too short to matter (at most one row per two bytes
+    under the bound) costs nothing.
+
+    Parameters
+    ----------
+    source : str, pathlib.Path, pandas.DataFrame or TableSource
+        The run's input table.
+    cells_per_row : int
+        Table cells its outputs take per input row.
+    out : pathlib.Path
+        The output folder (for the message).
+    extra_inputs : sequence of path, optional
+        Further inputs of the run (their bytes count toward the bound).
+
+    Raises
+    ------
+    OutputError
+        Over the bound, with nothing written.
+    """
+    from .blocks import data_lines
+    from .grid import SPREADSHEET_SUFFIXES, source_path
+
+    path = source_path(source) if source is not None else None
+    if not cells_per_row or not isinstance(path, (str, os.PathLike)):
+        return
+    path = Path(path)
+    try:
+        size = path.stat().st_size if path.is_file() else 0
+    except OSError:
+        return  # the reader says what is wrong with the file
+    if not size or path.suffix.lower() in SPREADSHEET_SUFFIXES:
+        return
+    if (size // 2) * cells_per_row * BYTES_PER_CELL <= OUTPUT_FLOOR and not os.environ.get(OUTPUT_VARIABLE):
+        return
+    try:
+        rows = max(0, data_lines(path) - 1)  # less the header
+    except OSError:
+        return
+    check_output_estimate(rows * cells_per_row, [path, *extra_inputs], out)
 
 
 def _cancel(json_writer, folder) -> None:

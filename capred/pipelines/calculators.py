@@ -438,13 +438,15 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     """
     fit_notes, fit_warnings = [], []
     if opt.compression is not None:
-        opt, fit_notes, fit_warnings = _with_compression(opt)
+        opt, fit_notes, fit_warnings = _with_compression(opt, getattr(source, "limits", None))
     if opt.retention is not None:  # any retention fit: Brooks-Corey as it is, another model converted to it
         from .retention_convert import brooks_corey_for_skempton
 
         if opt.s_e is not None or opt.bc_lambda is not None:
             raise OptionError("give --retention or --se with --bc-lambda, not both")
-        s_e, lam, more_notes, more_warnings = brooks_corey_for_skempton(opt.retention)
+        s_e, lam, more_notes, more_warnings = brooks_corey_for_skempton(
+            opt.retention, limits=getattr(source, "limits", None)
+        )
         fit_notes, fit_warnings = fit_notes + more_notes, fit_warnings + more_warnings
         opt = dataclasses.replace(opt, s_e=s_e, bc_lambda=lam)
     kw = dict(kappa=opt.kappa_elastic, e0=opt.e0, p0=opt.p0, u0=opt.u0, pa0=opt.pa0)  # keys: the figure's
@@ -503,9 +505,9 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     return res
 
 
-def _with_compression(opt: SkemptonOptions) -> tuple[SkemptonOptions, list[str], list[str]]:
-    """κ and e0 (and λ0 with bounding-surface) from a compression.json, with its notes and warnings; an error when
-    the options give them too."""
+def _with_compression(opt: SkemptonOptions, limits=None) -> tuple[SkemptonOptions, list[str], list[str]]:
+    """κ and e0 (and λ0 with bounding-surface) from a compression.json (read within ``limits``: --max-megabytes),
+    with its notes and warnings; an error when the options give them too."""
     from .compression import load_compression_fit
 
     fields = {f.name: f.default for f in dataclasses.fields(SkemptonOptions)}
@@ -516,7 +518,7 @@ def _with_compression(opt: SkemptonOptions) -> tuple[SkemptonOptions, list[str],
         clash.append("--lambda0")
     if clash:
         raise OptionError(f"give --compression or {', '.join(clash)}, not both")
-    lines = load_compression_fit(opt.compression)
+    lines = load_compression_fit(opt.compression, limits)
     if lines.url_slope is None:
         raise OptionError(f"--compression {lines.source}: the test has no unloading stage, so no κ for skempton-b")
     new = {"kappa_elastic": lines.url_slope, "e0": lines.e0}
@@ -989,15 +991,15 @@ SHEAR_BAND = [
 ]
 
 
-def _phi_from_triaxial(path) -> float:
+def _phi_from_triaxial(path, limits=None) -> float:
     """φ' [deg] of the envelope in a summary.json of `capred triaxial-bounds` or of `capred triaxial` (one
-    material; several are named with their φ', for --phi-eff)."""
-    import json
-    from pathlib import Path
+    material; several are named with their φ', for --phi-eff), read within ``limits`` (--max-megabytes) and
+    capred.io.MAX_JSON_DEPTH."""
+    from ..io import read_json
 
     where = str(path)
     try:
-        doc = json.loads(Path(path).read_text(encoding="utf-8"))
+        doc = read_json(path, "--triaxial", limits)
         if isinstance(doc, dict) and doc.get("command") == "triaxial" and isinstance(doc.get("materials"), dict):
             phis = {m: float(v["envelope"]["phi_deg"]) for m, v in doc["materials"].items()}
             if len(phis) != 1:
@@ -1042,7 +1044,7 @@ def reduce_shear_band(source, opt: ShearBandOptions) -> CalcResult:
     phi_eff = opt.phi_eff
     notes_extra = []
     if opt.triaxial is not None:
-        phi_eff = _phi_from_triaxial(opt.triaxial)
+        phi_eff = _phi_from_triaxial(opt.triaxial, getattr(source, "limits", None))
         notes_extra.append(f"φ' = {phi_eff:.4g} deg from the envelope of {opt.triaxial}")
     v, notes, src = _inputs(
         source,

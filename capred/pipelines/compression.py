@@ -16,14 +16,12 @@ Casagrande (1936); Pacheco Silva (1970); Schofield & Wroth (1968) for lambda and
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
 from ..errors import InputError, OptionError, Problem
-from ..io import read_table
+from ..io import read_json, read_table
 from ..physics import compression as cp
 from ..result import InputFile, Result, input_file, num, output
 from ..spec.compression import SCHEMA, TESTS, CompressionOptions  # noqa: F401 (declared in spec; re-exported here)
@@ -508,13 +506,15 @@ class CompressionLines:
         return float(self.e_ncl - self.ncl_slope * np.log(stress / self.reference_stress))
 
 
-def load_compression_fit(fit) -> CompressionLines:
+def load_compression_fit(fit, limits=None) -> CompressionLines:
     """The lines of a `capred compression` run: its compression.json, or a CompressionResult.
 
     Parameters
     ----------
     fit : str, Path or CompressionResult
         The JSON written by `capred compression`, or its result.
+    limits : capred.io.ReadLimits, optional
+        The run's reading limits (``--max-megabytes``; default 256 MiB): the file's largest size.
 
     Returns
     -------
@@ -523,14 +523,15 @@ def load_compression_fit(fit) -> CompressionLines:
     Raises
     ------
     InputError
-        The file cannot be read or is not a compression.json.
+        The file cannot be read (larger than the limit, nested deeper than capred.io.MAX_JSON_DEPTH) or is not
+        a compression.json.
     """
     if isinstance(fit, CompressionResult):
         doc, where = fit.to_json(), fit.source
     else:
         where = str(fit)
         try:
-            doc = json.loads(Path(fit).read_text(encoding="utf-8"))
+            doc = read_json(fit, "compression.json", limits)  # bounded in size and nesting
         except (OSError, UnicodeDecodeError, ValueError) as exc:
             raise InputError(
                 Problem(where, None, None, f"cannot read it as the JSON of capred compression ({exc})")

@@ -661,7 +661,7 @@ def run_retention_convert(source, options: ConvertOptions | None = None) -> Rete
     )
 
 
-def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W) -> tuple[float, float, list[str], list[str]]:
+def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W, limits=None) -> tuple[float, float, list[str], list[str]]:
     """Brooks-Corey s_e [Pa] and λ [-] of Morvan et al.'s suction equilibrium, s = s_e S_r^(−1/λ), from a fits.json.
 
     A Brooks-Corey fit is taken as it is; any other model is converted to Brooks-Corey on S_R with S_res = 0
@@ -673,6 +673,8 @@ def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W) -> tuple[float, fl
         fits.json written by `capred retention` (or `capred retention-convert`).
     gamma_w : float
         Unit weight of water [N/m^3].
+    limits : capred.io.ReadLimits, optional
+        The run's reading limits: ``max_bytes`` (--max-megabytes) bounds the file (default 16 MiB).
 
     Returns
     -------
@@ -685,10 +687,12 @@ def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W) -> tuple[float, fl
     Brooks, R. H., Corey, A. T. (1964). Hydraulic properties of porous media. Hydrology Paper 3, Colorado State
     University.
     """
-    src, where, _ = load_retention_fit(path)
+    from ..io import TableSource
+
+    src, where, _ = load_retention_fit(path if limits is None else TableSource(path, limits=limits))
     target = power_law_model()
     air, index = target.power_law
-    where = f"{where}{_chosen(path, src.model)}"
+    where = f"{where}{_chosen(path, src.model, MAX_JSON_BYTES if limits is None else limits.max_bytes)}"
     if src.model == target.name:
         p = src.params_si
         notes = [
@@ -716,11 +720,11 @@ def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W) -> tuple[float, fl
     return p[air], p[index], notes, [f"--retention {where}: {w}" for w in new.warnings]
 
 
-def _chosen(path, model: str) -> str:
+def _chosen(path, model: str, max_bytes: int = MAX_JSON_BYTES) -> str:
     """Which fit of a fits.json was taken (its branch, and that it has the branch's lowest AICc where the branch
     holds several), for the notes; empty for anything but a fits.json."""
     try:
-        doc = read_fit_json(path)
+        doc = read_fit_json(path, max_bytes)
     except (OptionError, OSError, TypeError, ValueError):
         return ""
     branches = doc.get("branches") or {}

@@ -45,7 +45,7 @@ RAW_INPUTS = ("z1", "z2", "V_v", "added_mass", "cap_mass", "box_area", "R", "F_m
 _SCHEMA_UNITS = {c.name: c.unit for c in SCHEMA}
 
 
-def model_params_from_retention(path: str | Path, branch: str | None = None, **overrides) -> ModelParams:
+def model_params_from_retention(path: str | Path, branch: str | None = None, limits=None, **overrides) -> ModelParams:
     """Retention parameters from a `capred retention` fits.json; options in ``overrides`` win.
 
     The fits of one branch are read (``branch``; default drying, else the file's main branch). Van Genuchten's
@@ -61,6 +61,8 @@ def model_params_from_retention(path: str | Path, branch: str | None = None, **o
     branch : str, optional
         ``"drying"`` or ``"wetting"`` (``--retention-branch``): which branch's fits (default: drying, else the
         file's main branch).
+    limits : capred.io.ReadLimits, optional
+        The run's reading limits (``--max-megabytes``; default 256 MiB): the file's largest size.
     **overrides
         ModelParams fields given as options (SI: vg_alpha [1/Pa], air_entry [Pa]); None values are ignored.
 
@@ -87,7 +89,7 @@ def model_params_from_retention(path: str | Path, branch: str | None = None, **o
     from ..io import read_json
 
     try:
-        js = read_json(path, "--retention")  # bounded: --max-megabytes' default size, MAX_JSON_DEPTH
+        js = read_json(path, "--retention", limits)  # bounded: --max-megabytes, MAX_JSON_DEPTH
         branches = js.get("branches") or {js.get("main_branch") or "drying": {"fits": js["fits"]}}
         if not isinstance(branches, dict):
             raise TypeError("'branches' is not an object")

@@ -9,6 +9,7 @@ a table of several materials is refused with the list of materials, rather than 
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -41,6 +42,22 @@ def materials_of(table: Table) -> dict[str, int]:
     return out
 
 
+class _Picked(Sequence):
+    """The cells ``cells[idx]`` of a column's text, each read when a message quotes it (a long file's cells are
+    cut out of its text on demand: capred.io.plain_tail)."""
+
+    def __init__(self, cells, idx: np.ndarray):
+        self.cells, self.idx = cells, idx
+
+    def __len__(self) -> int:
+        return len(self.idx)
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self.cells[int(k)] for k in self.idx[i]]
+        return self.cells[int(self.idx[i])]
+
+
 def subset_rows(table: Table, keep: np.ndarray) -> Table:
     """The same table restricted to the rows ``keep`` (a boolean mask); file lines and raw cells kept.
 
@@ -58,7 +75,7 @@ def subset_rows(table: Table, keep: np.ndarray) -> Table:
     return dataclasses.replace(
         table,
         columns={k: np.asarray(v)[keep] for k, v in table.columns.items()},
-        raw={k: [v[i] for i in idx] for k, v in table.raw.items()},
+        raw={k: _Picked(v, idx) for k, v in table.raw.items()},
         lines=np.asarray(table.lines)[keep],
         as_read={k: np.asarray(v)[keep] for k, v in table.as_read.items()},
         notes=list(table.notes),

@@ -61,6 +61,72 @@ class FigureOptions:
         object.__setattr__(self, "dpi", int(dpi))
 
 
+def output_cells(command: str, options) -> int:
+    """Table cells a command's outputs take per input row with these options (its ``Reduction.row_cells``: the
+    columns of its per-row table, more for each model in ``options.models`` or each registered bridge law); 0
+    where it declares none.
+
+    Parameters
+    ----------
+    command : str
+        The command (a key of capred.reductions.REDUCTIONS).
+    options : object
+        Its options object.
+
+    Returns
+    -------
+    int
+        Cells per input row.
+    """
+    from ..reductions import REDUCTIONS
+
+    red = REDUCTIONS[command]
+    fixed, per_model = red.row_cells
+    if per_model and red.row_cells_per == "bridge_laws":  # bridge compare: a force and a residual per law
+        from ..spec.bridge_laws import LAWS
+
+        return fixed + per_model * len(LAWS)
+    models = getattr(options, "models", ()) if per_model else ()
+    if isinstance(models, str):  # "thesis", "all" or a comma-separated list, as triaxial's options take it
+        from ..physics.effective_stress_models import resolve_models
+
+        models = resolve_models(models)
+    return fixed + per_model * len(models)
+
+
+def check_outputs_ahead(command: str, source, options, out, extra_inputs=()) -> None:
+    """Refuse, before anything is read as a table or computed, a run whose outputs a long input file would make
+    larger than the writer's bound (capred.io.writers.output_budget): its data lines x the cells its outputs take
+    per row (``Reduction.row_cells``) x about 40 bytes a cell. The writer checks the tables again once computed.
+
+    Only a plain text file is counted (capred.io.check_rows_output); a workbook, a DataFrame, a command that
+    declares no per-row outputs or a file too short to matter costs nothing here.
+
+    Parameters
+    ----------
+    command : str
+        The command (a key of capred.reductions.REDUCTIONS).
+    source : str, pathlib.Path, pandas.DataFrame or capred.io.TableSource
+        Its input.
+    options : object
+        Its options (the models it compares set its columns).
+    out : pathlib.Path
+        The output folder (for the message).
+    extra_inputs : sequence of path, optional
+        Further inputs of the run (their bytes count toward the bound, as in the writer).
+
+    Raises
+    ------
+    capred.errors.OutputError
+        Over the bound, with nothing written.
+    """
+    from ..io import check_rows_output
+    from ..reductions import REDUCTIONS
+
+    if command in REDUCTIONS and REDUCTIONS[command].row_cells[0]:
+        check_rows_output(source, output_cells(command, options), out, extra_inputs)
+
+
 def write_outputs(
     result,
     out,
