@@ -584,9 +584,10 @@ _NO_DATA_BYTES = b" \t\r\n,;"
 
 
 def data_lines(path, block_bytes: int | None = None) -> int:
-    """How many lines of a text file hold anything but blanks and delimiters: about its rows (the header and any
-    note lines included; a quoted cell that spans lines counts once per line), counted without reading it as a
-    table, a block of bytes at a time with numpy (about 1 s for 250 MB).
+    """How many lines of a text file hold anything but blanks and delimiters: about its rows.
+
+    The header and any note lines are included; a quoted cell that spans lines counts once per line. Counted
+    without reading the file as a table, a block of bytes at a time with numpy (about 1 s for 250 MB).
 
     A line ends at a line feed or a carriage return (CRLF, LF and lone CR files alike). Used to say, before a
     run computes anything, how large its outputs would be (capred.report.outputs.check_outputs_ahead).
