@@ -72,7 +72,7 @@ def monte_carlo_error(seeds: int = 50, counts=(250, 500, 1000, 2000, 4000)) -> d
 
     sa.bootstrap_ranking = record
     try:
-        shear.run_shear(sample_path("shear"), shear.ShearOptions())
+        shear.run_table(sample_path("shear"), shear.ShearOptions())
     finally:
         sa.bootstrap_ranking = original
     out = {}

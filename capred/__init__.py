@@ -20,7 +20,7 @@ __version__ = "0.1.0"
 _API = {
     "run": "capred.reductions",
     "write_outputs": "capred.report.outputs",
-    "run_shear": "capred.pipelines.shear",
+    "run_shear": "capred.pipelines.shear_run",
     "ShearOptions": "capred.spec.shear",  # its declaration (numpy-free)
     "ModelParams": "capred.spec.shear",  # its declaration (numpy-free)
     "ShearResult": "capred.pipelines.shear",

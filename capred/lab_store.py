@@ -29,6 +29,7 @@ SQLite, "Write-Ahead Logging", https://www.sqlite.org/wal.html.
 from __future__ import annotations
 
 import errno
+import functools
 import hashlib
 import json
 import math
@@ -37,6 +38,7 @@ import sqlite3
 from pathlib import Path
 
 from .errors import InputError, Problem
+from .nomenclature import unit_suffix
 
 #: identifies a capred store (PRAGMA application_id): "CAPR" in ASCII
 APPLICATION_ID = 0x43415052
@@ -383,17 +385,39 @@ def _migrate_within(con: sqlite3.Connection, path: Path) -> None:
 
 
 # --- what a run records ---------------------------------------------------------------------------------------
-_UNITS = ("kPa", "Pa", "MPa", "deg", "mm", "m", "um", "cm", "mm3", "N", "mN", "kN", "percent", "s")
+@functools.cache
+def declared_units() -> dict[str, tuple[str, str]]:
+    """JSON key -> (quantity, unit) of every number a run's document names by a declared quantity.
+
+    From the declarations, never from a key's spelling: each glossary quantity (capred/nomenclature.py) gives
+    its JSON key, the name with its unit (:func:`capred.nomenclature.json_key`, ``phi_deg``, ``c_kPa``; the name
+    alone for a dimensionless one), and the key of its standard error (``c_se_kPa``); each retention parameter
+    its JSON name (capred.fitting.retention_models.JSON_NAMES and ``json_name``: ``alpha_per_kPa`` in 1/kPa,
+    ``S_s`` and ``S_res`` dimensionless, ``theta_s`` in m³/m³).
+
+    Returns
+    -------
+    dict
+        Key -> (the quantity's name, its unit; "-" when dimensionless).
+    """
+    from .fitting.retention_models import JSON_NAMES, json_name
+    from .nomenclature import QUANTITIES, json_key
+
+    out: dict[str, tuple[str, str]] = {}
+    for name, q in QUANTITIES.items():
+        unit = q.unit if q.unit not in ("", "-") else "-"
+        out[json_key(name)] = out[json_key(name, "_se")] = (name, unit)
+    retention = [json_name(y, quantity) for y in ("y_r", "y_s") for quantity in ("theta", "S_R", "w")]
+    for key, _, unit in list(JSON_NAMES.values()) + retention:
+        out[key] = (key, unit)
+    return out
 
 
-def _unit(key: str) -> tuple[str, str]:
-    """(quantity stem, unit) of a JSON key such as ``phi_deg`` -> (``phi``, ``deg``); unitless: (key, "-")."""
-    stem, _, last = key.rpartition("_")
-    if stem and last in _UNITS:
-        if stem.endswith("_per") and len(stem) > 4:  # alpha_per_kPa: a reciprocal unit, 1/kPa
-            return stem[:-4], f"1/{last}"
-        return stem, last
-    return key, "-"
+def _unit(key: str, units: dict) -> tuple[str, str | None]:
+    """(quantity, unit) of a document's key as declared (``units``: :func:`declared_units` and the run's own,
+    ``Result.quantity_units``); an undeclared key: (key, None), its unit unknown (the store records NULL rather
+    than a guess)."""
+    return units.get(key, (key, None))
 
 
 def _number(x) -> float | None:
@@ -402,28 +426,29 @@ def _number(x) -> float | None:
     return float(x) if math.isfinite(x) else None
 
 
-def _interval(block: dict, key: str) -> tuple[float | None, float | None]:
+def _interval(block: dict, key: str, units: dict) -> tuple[float | None, float | None]:
     """The 95 % interval of ``key`` in ``block``: ``<stem>_ci95_<unit>`` or ``<key>_ci95`` as [low, high]."""
-    stem, unit = _unit(key)
-    for k in (f"{stem}_ci95_{unit}", f"{key}_ci95", f"{stem}_ci95"):
+    stem, unit = _unit(key, units)
+    suffix = "" if unit in (None, "-") else "_" + unit_suffix(unit)
+    for k in (f"{stem}_ci95{suffix}", f"{key}_ci95", f"{stem}_ci95"):
         ci = block.get(k)
         if isinstance(ci, (list, tuple)) and len(ci) == 2:
             return _number(ci[0]), _number(ci[1])
     return None, None
 
 
-def _scalars(block: dict, material, skip=("n", "line", "dof"), prefix: str = "") -> list[tuple]:
+def _scalars(block: dict, material, units: dict, skip=("n", "line", "dof"), prefix: str = "") -> list[tuple]:
     rows = []
     for key, value in block.items():
         v = _number(value)
         if v is None or "_ci95" in key or key in skip:
             continue
-        lo, hi = _interval(block, key)
-        rows.append((material, prefix + key, v, lo, hi, _unit(key)[1]))
+        lo, hi = _interval(block, key, units)
+        rows.append((material, prefix + key, v, lo, hi, _unit(key, units)[1]))
     return rows
 
 
-def _retention_records(branches: dict, material) -> list[tuple]:
+def _retention_records(branches: dict, material, units: dict) -> list[tuple]:
     """The records of a retention document: per branch (the record's material: the branch, after the inputs'
     material where the metadata names one) every fitted model's numbers as ``<model>.<key>`` (``vg.alpha_per_kPa``
     with its interval, ``vg.n``, ``vg.r2``)."""
@@ -435,11 +460,11 @@ def _retention_records(branches: dict, material) -> list[tuple]:
         label = f"{material} ({branch})" if material else str(branch)
         for model, fit in fits.items():
             if isinstance(fit, dict):  # 'n' is van Genuchten's exponent here, not a count
-                out += _scalars(fit, label, skip=("n_points", "n_free"), prefix=f"{model}.")
+                out += _scalars(fit, label, units, skip=("n_points", "n_free"), prefix=f"{model}.")
     return out
 
 
-def records_of(doc: dict, metadata: dict | None = None) -> list[tuple]:
+def records_of(doc: dict, metadata: dict | None = None, units: dict[str, str] | None = None) -> list[tuple]:
     """The long records ``(material, quantity, value, ci_low, ci_high, unit)`` of a run's JSON document.
 
     Per material (a ``materials`` mapping of the document: shear, triaxial, retention), every number with
@@ -456,27 +481,31 @@ def records_of(doc: dict, metadata: dict | None = None) -> list[tuple]:
         ``result.to_json()``.
     metadata : dict, optional
         The inputs' metadata block.
+    units : dict, optional
+        JSON key -> unit the run declares beyond the glossary (``Result.quantity_units()``).
 
     Returns
     -------
     list of tuple
-        One tuple per record; the quantity is the document's key, the unit its suffix (``-`` if none).
+        One tuple per record; the quantity is the document's key, the unit its declared one
+        (:func:`declared_units`, ``units``; ``-`` when dimensionless, None where nothing declares it).
     """
+    units = {**declared_units(), **{k: (k, u) for k, u in (units or {}).items()}}
     out = []
     materials = doc.get("materials")
     if isinstance(materials, dict):
         for name, block in materials.items():
             if isinstance(block, dict):
-                out += _scalars(block, str(name))
+                out += _scalars(block, str(name), units)
     meta = metadata or {}
     material = next((str(v) for k, v in meta.items() if str(k).strip().lower() == "material"), None)
     branches = doc.get("branches")
     if isinstance(branches, dict):  # capred retention: the fits of each branch
-        out += _retention_records(branches, material)
+        out += _retention_records(branches, material, units)
     envelope = doc.get("envelope")
     if isinstance(envelope, dict):  # capred triaxial-bounds: the effective envelope c', phi' (and M, k)
-        out += _scalars(envelope, material)
-    out += _scalars({k: v for k, v in doc.items() if k != "materials"}, material)
+        out += _scalars(envelope, material, units)
+    out += _scalars({k: v for k, v in doc.items() if k != "materials"}, material, units)
     return out
 
 
@@ -650,7 +679,7 @@ class Recorder:
                 con.executemany(
                     "INSERT INTO records (run, material, quantity, value, ci_low, ci_high, unit) "
                     "VALUES (?,?,?,?,?,?,?)",
-                    [(run, *r) for r in records_of(doc, meta)],
+                    [(run, *r) for r in records_of(doc, meta, result.quantity_units())],
                 )
                 con.execute("COMMIT")
                 return int(run), True

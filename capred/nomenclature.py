@@ -57,6 +57,9 @@ QUANTITIES: dict[str, Quantity] = {
     "chi2": Quantity("χ2", "kPa", 1e-3, "pressure", "own approximation 2 term, (2γ/R)(2π S_R/3)^(1/3)"),
     "c": Quantity("c", "kPa", 1e-3, "pressure", "cohesion intercept"),
     "phi": Quantity("φ", "deg", 1.0, "angle", "friction angle", 0.0, 90.0, True, True),
+    "tan_phi": Quantity("tan φ", "-", 1.0, "dimensionless", "slope of the envelope τ = c + σ_N tan φ"),
+    "scatter": Quantity("s", "kPa", 1e-3, "pressure", "residual standard deviation about a fitted envelope", 0.0),
+    "r2": Quantity("R²", "-", 1.0, "dimensionless", "coefficient of determination of a fit"),
     "z1": Quantity("z1", "cm", 1e2, "length", "height of the sample above the water level", 0.0),
     "z2": Quantity("z2", "cm^3", 1e6, "volume", "air volume entered, read on the burette", 0.0),
     "V_v": Quantity("V_v", "cm^3", 1e6, "volume", "void volume of the sample", 0.0, None, True),
@@ -633,6 +636,41 @@ def column(name: str, suffix: str = "") -> str:
     str
     """
     return f"{name}{suffix} [{QUANTITIES[name].unit}]"
+
+
+def unit_suffix(unit: str) -> str:
+    """The Python-name form of an output unit: ``kPa`` -> ``kPa``, ``1/kPa`` -> ``per_kPa``, ``cm^3`` -> ``cm3``.
+
+    Parameters
+    ----------
+    unit : str
+        An output unit as headers show it.
+
+    Returns
+    -------
+    str
+        The suffix of a JSON key or attribute that holds a value in that unit (``tau_kPa``).
+    """
+    s = unit.replace("1/", "per_").replace("/", "_per_").replace("^", "").replace(" ", "")
+    return s.replace("%", "pct").replace("°", "deg")
+
+
+def json_key(name: str, suffix: str = "") -> str:
+    """JSON key of a quantity: its name, ``suffix`` and its output unit (``sigma_N_kPa``; ``S_R``: dimensionless).
+
+    Parameters
+    ----------
+    name : str
+        A key of ``QUANTITIES``.
+    suffix : str, optional
+        Appended to the name before the unit, e.g. ``"_se"`` (``c_se_kPa``).
+
+    Returns
+    -------
+    str
+    """
+    unit = QUANTITIES[name].unit
+    return f"{name}{suffix}" if unit in ("", "-") else f"{name}{suffix}_{unit_suffix(unit)}"
 
 
 def to_output(name: str, value):

@@ -96,7 +96,7 @@ REDUCTIONS: dict[str, Reduction] = {
     for r in (
         Reduction(
             "shear",
-            _P + "shear:run_shear",
+            _P + "shear_run:run_shear",
             _S + "shear:ShearOptions",
             "required",
             "shear",

@@ -228,16 +228,16 @@ def json_escape(data: bytes) -> bytes:
 
 
 def safe_spec(spec):
-    """A console table (capred.result.TableSpec) with its title, headers and cells made :func:`visible`.
+    """A console table (capred.table_spec.TableSpec) with its title, headers and cells made :func:`visible`.
 
     Parameters
     ----------
-    spec : capred.result.TableSpec
+    spec : capred.table_spec.TableSpec
         A console table.
 
     Returns
     -------
-    capred.result.TableSpec
+    capred.table_spec.TableSpec
         ``spec`` itself when nothing needs to be shown.
     """
     import dataclasses

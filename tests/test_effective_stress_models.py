@@ -9,7 +9,8 @@ from typer.testing import CliRunner
 
 from capred.cli import app
 from capred.physics import effective_stress_models as esm
-from capred.pipelines.shear import ModelParams, ShearOptions, run_shear
+from capred.pipelines.shear import ModelParams, ShearOptions
+from capred.pipelines.shear_run import run_shear
 
 runner = CliRunner()
 

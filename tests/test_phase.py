@@ -71,7 +71,7 @@ def test_shear_and_retention_check_a_rows_sample_state(tmp_path):
     """Every command reading a sample state goes through the phase relations (capred.pipelines.sample_state)."""
     from capred.errors import InputError
     from capred.pipelines.retention import run_retention
-    from capred.pipelines.shear import run_shear
+    from capred.pipelines.shear_run import run_shear
 
     shear = tmp_path / "shear.csv"
     shear.write_text(

@@ -5,6 +5,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
+from capred.physics import effective_stress_models as esm
 from capred.physics import shear as ph
 
 
@@ -41,10 +42,10 @@ def test_four_models_worked_example():
     # sigma_N = 1 kPa, suction = 2 kPa, 2 pi S_R / 3 = 0.125 -> chi1 = 0.25, cube root 0.5
     S_R = 0.125 * 3 / (2 * np.pi)
     kw = dict(sigma_N=1000.0, suction=2000.0, S_R=S_R, R=1e-3, surface_tension=0.0728)
-    assert_allclose(ph.effective_normal_stress("no_suction", **kw), 1000.0)
-    assert_allclose(ph.effective_normal_stress("bishop", **kw), 1000.0 + 2000.0 * S_R, rtol=1e-14)
-    assert_allclose(ph.effective_normal_stress("own1", **kw), 1500.0, rtol=1e-14)
-    assert_allclose(ph.effective_normal_stress("own2", **kw), 1500.0 + 145.6 * 0.5, rtol=1e-14)
+    assert_allclose(esm.effective_normal_stress("no_suction", **kw), 1000.0)
+    assert_allclose(esm.effective_normal_stress("bishop", **kw), 1000.0 + 2000.0 * S_R, rtol=1e-14)
+    assert_allclose(esm.effective_normal_stress("own1", **kw), 1500.0, rtol=1e-14)
+    assert_allclose(esm.effective_normal_stress("own2", **kw), 1500.0 + 145.6 * 0.5, rtol=1e-14)
     # tau with the thesis steel-sphere envelope c = 0.3452 kPa, tan phi = 0.7146
     assert_allclose(ph.mohr_coulomb_strength(345.2, 0.7146, 1500.0), 345.2 + 1071.9, rtol=1e-14)
 
@@ -58,9 +59,9 @@ def test_chi1_exceeds_S_R(s):
 @given(st.floats(0.0, 1.0), st.floats(0.0, 1e5), st.floats(0.0, 1e5), st.floats(0.0, 1e5))
 def test_predictions_increase_with_suction(S_R, sigma_N, s1, s2):
     lo, hi = sorted((s1, s2))
-    for model in ph.MODELS:
-        a = ph.effective_normal_stress(model, sigma_N, lo, S_R, 1e-3)
-        b = ph.effective_normal_stress(model, sigma_N, hi, S_R, 1e-3)
+    for model in esm.THESIS_MODELS:
+        a = esm.effective_normal_stress(model, sigma_N, lo, S_R, 1e-3)
+        b = esm.effective_normal_stress(model, sigma_N, hi, S_R, 1e-3)
         assert b >= a
 
 

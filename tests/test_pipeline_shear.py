@@ -5,7 +5,8 @@ import pytest
 from numpy.testing import assert_allclose
 
 import capred
-from capred.pipelines.shear import ShearOptions, run_shear
+from capred.pipelines.shear import ShearOptions
+from capred.pipelines.shear_run import run_shear
 
 # Noise-free file built from the thesis's dry envelopes (Evenepoel (VUB thesis), "Dry tests"):
 # steel c = 0.3452 kPa, tan phi = 0.7146; sand c = 0.0721 kPa, tan phi = 0.7955.
@@ -19,7 +20,7 @@ def _sigma(m_g):
 
 
 def exact_csv(truth_model="own2"):
-    from capred.physics import shear as ph
+    from capred.physics import effective_stress_models as esm
 
     rows = ["test_id,material,condition,z1,z2,V_v,added_mass,cap_mass,box_area,R,tau_max"]
     for mat, (c, t, r_mm) in ENV.items():
@@ -28,7 +29,7 @@ def exact_csv(truth_model="own2"):
         for k, (z1, z2) in enumerate(((5, 25.65), (10, 26.0), (20, 5.4))):
             for m in (0.0, 77.47):
                 S_R = (27 - z2) / 27
-                eff = ph.effective_normal_stress(truth_model, _sigma(m), 9810 * z1 / 100, S_R, r_mm / 1e3)
+                eff = esm.effective_normal_stress(truth_model, _sigma(m), 9810 * z1 / 100, S_R, r_mm / 1e3)
                 rows.append(f"{mat}-w{k}-{m},{mat},wet,{z1},{z2},27,{m},120,36,{r_mm},{float((c + eff * t) / 1e3)!r}")
     return "\n".join(rows) + "\n"
 

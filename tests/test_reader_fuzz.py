@@ -7,7 +7,8 @@ from hypothesis import strategies as st
 
 from capred.errors import CapredError
 from capred.pipelines.retention import run_retention
-from capred.pipelines.shear import ShearOptions, run_shear
+from capred.pipelines.shear import ShearOptions
+from capred.pipelines.shear_run import run_shear
 from capred.pipelines.triaxial import run_triaxial_bounds
 
 NAMES = [

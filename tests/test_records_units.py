@@ -119,17 +119,25 @@ def test_warning_points_at_the_caller(run):
 
 
 def test_si_view_and_replace_are_silent(run):
-    """``rec.si.tau`` and ``dataclasses.replace`` (capred's long run uses it) read the stored values silently."""
+    """``rec.si.tau`` and ``rec.replace`` (capred's long run uses it) read the stored values silently;
+    ``dataclasses.replace`` reads every field by its attribute and so meets the old names' warning (no reader is
+    told apart by inspecting the call stack)."""
     r, _ = run
     p = r.predictions["bishop"]
     with warnings.catch_warnings():
         warnings.filterwarnings("error", category=DeprecationWarning, module=r"capred(\.|$)")
-        q = dataclasses.replace(p, tau=p.si.tau * 2)
+        q = p.replace(tau=p.si.tau * 2)
         assert_array_equal(q.tau_kPa, p.tau_kPa * 2)
         assert_array_equal(q.si.residual, p.si.residual)
         assert "tau_kPa" in repr(q) and "model='bishop'" in repr(q)
     with pytest.raises(AttributeError, match="no field 'nope'"):
         p.si.nope  # noqa: B018
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        q = dataclasses.replace(p, model="other")
+    assert any(w.category is DeprecationWarning and "tau_kPa" in str(w.message) for w in caught)
+    assert q.model == "other"
+    assert_array_equal(q.si.tau, p.si.tau)
 
 
 def test_headers_follow_the_declaration(run):

@@ -14,7 +14,9 @@ from numpy.testing import assert_allclose, assert_array_equal
 import capred.io.blocks as blocks_module
 import capred.pipelines.shear_long as shear_long_module
 from capred.io.writers import encode_csv, encode_json
-from capred.pipelines.shear import ShearBlocks, ShearOptions, ShearResult, run_shear
+from capred.pipelines.shear import ShearOptions, ShearResult
+from capred.pipelines.shear_long import ShearBlocks
+from capred.pipelines.shear_run import run_shear
 from capred.samples import sample_path
 
 

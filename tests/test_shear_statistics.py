@@ -389,7 +389,8 @@ def test_dry_refit_uses_the_runs_error_model_and_loss(errors, loss):
 def _sample_material(copies: int):
     """The wet tests of the sample's steel repeated ``copies`` times (a long material), with its dry tests."""
     import capred
-    from capred.pipelines.shear import ShearOptions, run_shear
+    from capred.pipelines.shear import ShearOptions
+    from capred.pipelines.shear_run import run_shear
 
     r = run_shear(capred.sample_path("shear"), ShearOptions(bootstrap=0))
     t = r.tests

@@ -266,7 +266,7 @@ def stream_json(doc: dict, write) -> None:
         Takes each chunk of bytes in order (e.g. a binary file's ``write``; text its run wrote ahead,
         :class:`FileText`, is then copied file to file).
     """
-    from ..result import Rows
+    from ..spool import Rows
 
     owner = getattr(write, "__self__", None)  # the file of a bound ``write``
     target = owner if hasattr(owner, "write") else _Writes(write)
@@ -1433,7 +1433,7 @@ class _JsonWriter:
     def __init__(self, path, doc: dict) -> None:
         import os
 
-        from ..result import Rows
+        from ..spool import Rows
 
         self.path, self.doc, self.pid, self.thread, self.failed = path, doc, None, None, None
         self.stop = None  # set to stop the thread between two pieces (cancel)

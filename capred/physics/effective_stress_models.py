@@ -626,3 +626,54 @@ def predict(model: str, d: ModelInputs) -> tuple[np.ndarray, np.ndarray]:
     with np.errstate(invalid="ignore"):
         eff = np.where(d.wet, e.sigma_eff(d), d.sigma_N)
     return eff, ph.mohr_coulomb_strength(d.c, d.tan_phi, eff)
+
+
+def effective_normal_stress(model, sigma_N, suction, S_R, R=np.nan, surface_tension=ph.SURFACE_TENSION):
+    r"""Effective normal stress :math:`\sigma'_N` under one of the thesis's four models.
+
+    Parameters
+    ----------
+    model : str
+        One of the thesis's models, ``capred.physics.effective_stress_models.THESIS_MODELS`` (see Notes).
+    sigma_N : numeric
+        Total normal stress [Pa].
+    suction : numeric
+        Matric suction :math:`\Delta u` [Pa].
+    S_R : numeric
+        Degree of saturation [-].
+    R : numeric, optional
+        Particle radius [m]; needed by ``own2`` only.
+    surface_tension : float, default :data:`capred.physics.shear.SURFACE_TENSION`
+        Surface tension :math:`\gamma` [N/m]; ``own2`` only.
+
+    Returns
+    -------
+    numeric
+        :math:`\sigma'_N` [Pa].
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``model``.
+
+    Notes
+    -----
+    .. math::
+
+       \sigma'_N = \sigma_N \ \text{(no_suction)},\quad
+       \sigma_N + S_R\Delta u \ \text{(bishop)},\quad
+       \sigma_N + \chi_1\Delta u \ \text{(own1)},\quad
+       \sigma_N + \chi_1\Delta u + \chi_2 \ \text{(own2)}
+
+    with :math:`\chi_1`, :math:`\chi_2` of :func:`capred.physics.shear.chi1`, :func:`capred.physics.shear.chi2`.
+
+    References
+    ----------
+    .. [1] Evenepoel, R. (n.d.). Micro-mechanical characterization of the
+       capillary effective stress in granular materials. Master thesis, Vrije
+       Universiteit Brussel (no DOI), section "Shear strength" (table of
+       the four models).
+    """
+    if model not in THESIS_MODELS:
+        raise ValueError(f"unknown model '{model}'; choose from {', '.join(THESIS_MODELS)}")
+    return REGISTRY[model].sigma_eff(ModelInputs.of_unit_cell(sigma_N, suction, S_R, R, surface_tension))

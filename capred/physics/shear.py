@@ -22,18 +22,6 @@ from ..spec.constants import GAMMA_W, PENDULAR_LIMIT, SURFACE_TENSION, G  # noqa
 CHI1_UNITY_SR = 3.0 / (2.0 * np.pi)
 
 
-def __getattr__(name):
-    """``MODELS``: the four effective-stress models of the thesis [1], in display order.
-
-    Read from the registry (capred.physics.effective_stress_models.REGISTRY, the one place for model names).
-    """
-    if name == "MODELS":
-        from .effective_stress_models import THESIS_MODELS
-
-        return THESIS_MODELS
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
 def suction_from_head(z1, gamma_w=GAMMA_W):
     r"""Matric suction applied by a hanging water column.
 
@@ -239,59 +227,6 @@ def chi2(S_R, R, surface_tension=SURFACE_TENSION):
     return (
         2.0 * surface_tension / np.asarray(R, dtype=float) * np.cbrt(2.0 * np.pi * np.asarray(S_R, dtype=float) / 3.0)
     )
-
-
-def effective_normal_stress(model, sigma_N, suction, S_R, R=np.nan, surface_tension=SURFACE_TENSION):
-    r"""Effective normal stress :math:`\sigma'_N` under one of the thesis's four models.
-
-    Parameters
-    ----------
-    model : str
-        One of the thesis's models, ``capred.physics.effective_stress_models.THESIS_MODELS`` (see Notes).
-    sigma_N : numeric
-        Total normal stress [Pa].
-    suction : numeric
-        Matric suction :math:`\Delta u` [Pa].
-    S_R : numeric
-        Degree of saturation [-].
-    R : numeric, optional
-        Particle radius [m]; needed by ``own2`` only.
-    surface_tension : float, default :data:`SURFACE_TENSION`
-        Surface tension :math:`\gamma` [N/m]; ``own2`` only.
-
-    Returns
-    -------
-    numeric
-        :math:`\sigma'_N` [Pa].
-
-    Raises
-    ------
-    ValueError
-        For an unknown ``model``.
-
-    Notes
-    -----
-    .. math::
-
-       \sigma'_N = \sigma_N \ \text{(no_suction)},\quad
-       \sigma_N + S_R\Delta u \ \text{(bishop)},\quad
-       \sigma_N + \chi_1\Delta u \ \text{(own1)},\quad
-       \sigma_N + \chi_1\Delta u + \chi_2 \ \text{(own2)}
-
-    with :math:`\chi_1`, :math:`\chi_2` of :func:`chi1`, :func:`chi2`.
-
-    References
-    ----------
-    .. [1] Evenepoel, R. (n.d.). Micro-mechanical characterization of the
-       capillary effective stress in granular materials. Master thesis, Vrije
-       Universiteit Brussel (no DOI), section "Shear strength" (table of
-       the four models).
-    """
-    from .effective_stress_models import REGISTRY, THESIS_MODELS, ModelInputs
-
-    if model not in THESIS_MODELS:
-        raise ValueError(f"unknown model '{model}'; choose from {', '.join(THESIS_MODELS)}")
-    return REGISTRY[model].sigma_eff(ModelInputs.of_unit_cell(sigma_N, suction, S_R, R, surface_tension))
 
 
 def mohr_coulomb_strength(c, tan_phi, sigma_eff):

@@ -63,6 +63,18 @@ class CalcResult(Result):
     def command(self) -> str:
         return self.calculator
 
+    def figure_curves(self) -> dict:
+        """skempton-b: every curve its figure sheet draws, computed from ``figure_data`` when asked for
+        (capred.pipelines.skempton_figure.figure_curves); capred.report draws them.
+
+        Returns
+        -------
+        dict
+        """
+        from .skempton_figure import figure_curves
+
+        return figure_curves(self.figure_data)
+
     @property
     def values(self) -> dict[str, np.ndarray]:
         """The cases' inputs, ``{JSON key: array}`` in output units (from ``cases``)."""

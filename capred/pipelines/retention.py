@@ -354,6 +354,27 @@ class RetentionResult(Result):
         w = self.weights if self.weights is not None else np.ones(self.suction.size)
         return RetentionPoints(self.suction, self.water, self.branch, w, fitted, self.quantity)
 
+    def quantity_units(self) -> dict[str, str]:
+        """JSON key -> unit of each number in a fit's object (:meth:`fit_json`), from the declarations: each
+        parameter's unit (capred.parameters.Parameter, also of its ``_se``), its head form (cm of water), the fit
+        statistics (``FIT_OUTPUTS``, "y" being the fitted quantity's unit).
+
+        Returns
+        -------
+        dict
+            Key -> unit ("-" when dimensionless).
+        """
+        y = _y_unit(self.quantity)
+        of_y = {"y": y, "y²": "-" if y == "-" else f"({y})²"}
+        out = {key: of_y.get(unit, unit) for _, key, _, unit in FIT_OUTPUTS if unit is not None}
+        fits = [f for branch in self.fits.values() for f in branch.values()] + [self.hysteresis or None]
+        for f in filter(None, fits):
+            for k, p in zip(f.params_si, f.params.values()):
+                out[p.name] = out[f"{p.name}_se"] = p.unit
+                if k in _HEAD:
+                    out[_HEAD[k]] = "1/cm" if k.startswith("alpha") else "cm"
+        return out
+
     def fit_json(self, f: NonlinearFit, model: str) -> dict:
         """The JSON of one fit: each parameter by JSON name with ``_se`` and ``_ci95``, its head form (cm),
         statistics, correlations, SI values, warnings.

@@ -40,6 +40,8 @@ from .shear_fits import envelope_fits, line_of
 from .shear_records import ModelPrediction
 
 #: input columns repeated in results.csv as read (in their documented units), before the derived columns
+#: the per-test quantities derived from the raw inputs, as the JSON rows and results.csv give them (glossary names)
+DERIVED_OUTPUTS = ("sigma_N", "suction", "S_R", "tau_max", "chi1", "chi2")
 RAW_INPUTS = ("z1", "z2", "V_v", "added_mass", "cap_mass", "box_area", "R", "F_max", "e", "height", "rho_d", "G_s")
 #: the documented unit of each input column (from its schema entry: one place for it)
 _SCHEMA_UNITS = {c.name: c.unit for c in SCHEMA}
@@ -442,8 +444,9 @@ class ShearResult(Result):
 
         t = self.tests
         sl = slice(start, stop)
-        kpa = {k: json_list(t[k][sl] / 1e3) for k in ("sigma_N", "suction", "tau_max", "chi2")}
-        plain = {k: json_list(t[k][sl]) for k in ("S_R", "chi1")}
+        # each derived quantity under its glossary JSON key (sigma_N_kPa, S_R), in its glossary unit
+        # (divided by SI per output unit, 1000 Pa per kPa: a value typed in kPa reads back as typed)
+        derived = {nom.json_key(k): json_list(t[k][sl] / (1 / nom.QUANTITIES[k].factor)) for k in DERIVED_OUTPUTS}
         flags = self._flag_texts()[sl]
         ids, mats, conds, lines = (t[k][sl].tolist() for k in ("test_id", "material", "condition", "line"))
         curve = (
@@ -461,12 +464,7 @@ class ShearResult(Result):
             "material": list(map(str, mats)),
             "condition": list(map(str, conds)),
             "line": list(map(int, lines)),
-            "sigma_N_kPa": kpa["sigma_N"],
-            "suction_kPa": kpa["suction"],
-            "S_R": plain["S_R"],
-            "tau_max_kPa": kpa["tau_max"],
-            "chi1": plain["chi1"],
-            "chi2_kPa": kpa["chi2"],
+            **derived,
             **record_json_columns(self.predictions, start, stop, self.level),
             **record_json_columns({None: self.back}, start, stop, self.level),
             "flags": [f.split(";") if f else [] for f in flags],
@@ -488,7 +486,7 @@ class ShearResult(Result):
         for name in RAW_INPUTS:  # the raw inputs as read, in their documented units
             if f"in_{name}" in t:
                 cols[f"{name} [{_SCHEMA_UNITS[name]}]"] = t[f"in_{name}"]
-        for name in ("sigma_N", "suction", "S_R", "tau_max", "chi1", "chi2"):
+        for name in DERIVED_OUTPUTS:
             cols[nom.column(name)] = nom.to_output(name, t[name])
         cols.update(record_columns(self.predictions, self.level))
         cols.update(record_columns({None: self.back}, self.level))
@@ -757,20 +755,21 @@ def _fit_dict(fit) -> dict:
         phi_se = np.degrees(fit.slope_se / (1.0 + slope**2))
     lo, hi = fit.slope_ci
     c_lo, c_hi = fit.intercept_ci
+    key, kpa = nom.json_key, 1 / nom.QUANTITIES["c"].factor  # keys and units: the glossary's (c_kPa, ...); Pa/kPa
     return {
-        "c_kPa": num(fit.intercept / 1e3),
-        "phi_deg": num(phi),
-        "tan_phi": num(fit.slope),
-        "c_se_kPa": num(fit.intercept_se / 1e3),
-        "phi_se_deg": num(phi_se),
-        "tan_phi_se": num(fit.slope_se),
-        "c_ci95_kPa": [num(c_lo / 1e3), num(c_hi / 1e3)],
-        "phi_ci95_deg": [num(np.degrees(np.arctan(lo))), num(np.degrees(np.arctan(hi)))],
-        "r2": num(fit.r2),
+        key("c"): num(fit.intercept / kpa),
+        key("phi"): num(phi),
+        key("tan_phi"): num(fit.slope),
+        key("c", "_se"): num(fit.intercept_se / kpa),
+        key("phi", "_se"): num(phi_se),
+        key("tan_phi", "_se"): num(fit.slope_se),
+        key("c", "_ci95"): [num(c_lo / kpa), num(c_hi / kpa)],
+        key("phi", "_ci95"): [num(np.degrees(np.arctan(lo))), num(np.degrees(np.arctan(hi)))],
+        key("r2"): num(fit.r2),
         "n": fit.n,
         "errors": fit.errors,
         "dry_loss": fit.loss,
-        "scatter_kPa": num(np.sqrt(fit.residual_variance) / 1e3) if fit.dof > 0 else None,
+        key("scatter"): num(np.sqrt(fit.residual_variance) / kpa) if fit.dof > 0 else None,
         "outliers": _outliers(fit),
     }
 
@@ -1138,60 +1137,35 @@ def check_shear_table(table: Table, with_curves: bool = False, unique: bool = Tr
         table.check_unique("test_id")
 
 
-def run_shear(source, options: ShearOptions | None = None) -> ShearResult:
-    """Reduce a direct-shear table and compare effective-stress models (Evenepoel's four by default).
+def run_table(source, opt: ShearOptions, table: Table | None = None) -> ShearResult:
+    """`capred shear` on a table held whole: derive, fit the dry envelopes, predict and score every model.
 
-    ``source`` is a path to a CSV file or a pandas DataFrame. Raises
-    InputError (every problem in the file, each with line and column),
-    OptionError or FitError; never writes anything.
-
-    A plain CSV longer than one block of capred.io.blocks (about 60,000
-    tests) is read and predicted block by block and gives a ShearBlocks (a
-    ShearResult whose per-test outputs stay in a temporary file: memory flat
-    in the number of tests, the same output files); its problems are raised
-    block by block (the first block that has any), repeated test ids after
-    the last. With raw curves (``options.curves``) a table is read whole.
+    What :func:`capred.pipelines.shear_run.run_shear` does with a table of one block, or with raw curves;
+    raises InputError (every problem in the file, each with line and column), OptionError or FitError.
 
     Parameters
     ----------
     source : str or Path or DataFrame
-        The direct-shear tests (one row per test).
-    options : ShearOptions, optional
+        The direct-shear tests (one row per test), as the user gave them.
+    opt : ShearOptions
         Constants, per-test defaults, models and fitting choices (SI).
+    table : capred.io.Table or None, optional
+        The table already read from ``source`` (its one block); None: read here (with ``opt.curves``).
 
     Returns
     -------
     ShearResult
-        The dry envelopes, each model's predictions and scores, the ranking and the back-analysis (a
-        ShearBlocks for a long plain CSV).
+        The dry envelopes, each model's predictions and scores, the ranking and the back-analysis.
 
     References
     ----------
     .. [1] Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular
        materials. Master thesis, Vrije Universiteit Brussel.
-
-    Example
-    -------
-    >>> import capred
-    >>> r = capred.run_shear(capred.sample_path("shear"))   # doctest: +SKIP
-    >>> r.to_json()["materials"]["steel_2mm"]["phi_deg"]     # doctest: +SKIP
     """
-    opt = options or ShearOptions()
-    if opt.curves is None:  # a long plain CSV is read, computed and kept block by block (issue 20)
-        from ..io import read_table_blocks
-
-        blocks = read_table_blocks(source, SCHEMA)
-        table = next(blocks)
-        more = next(blocks, None)
-        if more is not None:
-            pending = [table, more]
-            del table, more  # run_blocks lets go of each block once read
-            from .shear_long import run_blocks
-
-            return run_blocks(source, opt, pending, blocks)
-        check_shear_table(table)
+    if table is None:
+        table = load_shear_table(source, opt.curves is not None)
     else:
-        table = load_shear_table(source, True)
+        check_shear_table(table)
     table.warnings += unused_row_options(table, opt)
     box = filled_column(table, "box_area", opt.box_area)
     curves = None
@@ -1850,21 +1824,19 @@ def summary_table(result: ShearResult, frame: bool = True):
     for mat, fit in result.fits.items():
         f = _fit_dict(fit)
         line = line_of(fit)
+        envelope = {}  # the JSON's numbers under their glossary CSV headers (c [kPa], c_se [kPa], ...)
+        for name in ("c", "phi", "tan_phi", "r2"):
+            envelope[nom.column(name)] = f[nom.json_key(name)]
+            if name != "r2":
+                envelope[nom.column(name, "_se")] = f[nom.json_key(name, "_se")]
+            if name in ("c", "phi"):
+                low, high = f[nom.json_key(name, "_ci95")]
+                envelope.update({nom.column(name, "_ci95_low"): low, nom.column(name, "_ci95_high"): high})
         rows.append(
             {
                 "material": mat,
                 "n_dry [-]": f["n"],
-                "c [kPa]": f["c_kPa"],
-                "c_se [kPa]": f["c_se_kPa"],
-                "c_ci95_low [kPa]": f["c_ci95_kPa"][0],
-                "c_ci95_high [kPa]": f["c_ci95_kPa"][1],
-                "phi [deg]": f["phi_deg"],
-                "phi_se [deg]": f["phi_se_deg"],
-                "phi_ci95_low [deg]": f["phi_ci95_deg"][0],
-                "phi_ci95_high [deg]": f["phi_ci95_deg"][1],
-                "tan_phi [-]": f["tan_phi"],
-                "tan_phi_se [-]": f["tan_phi_se"],
-                "r2 [-]": f["r2"],
+                **envelope,
                 "dry_fit": "origin" if line.through_origin else "free",
                 "errors": getattr(line, "errors", "constant"),
                 "dry_loss": getattr(line, "loss", "ols"),
@@ -1908,17 +1880,7 @@ def _rows_table(rows: list[dict], frame: bool):
     return pd.DataFrame(rows)
 
 
-__all__ = ["SCHEMA", "ModelParams", "ShearBlocks", "ShearOptions", "ShearResult", "run_shear"]  # noqa: F822 (ShearBlocks: __getattr__)
-
-
-def __getattr__(name: str):
-    """``ShearBlocks`` (the result of a long table) lives in `capred.pipelines.shear_long`, which imports this
-    module: named here on first use, as before."""
-    if name == "ShearBlocks":
-        from .shear_long import ShearBlocks
-
-        return ShearBlocks
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+__all__ = ["SCHEMA", "ModelParams", "ShearOptions", "ShearResult", "run_table"]
 
 
 def _bound_derived(table, values, derived, name: str, sources: tuple[str, ...]) -> None:

@@ -3,7 +3,7 @@
 A plain CSV longer than one block of `capred.io.blocks` is read, checked and derived block by block; the
 compact per-test arrays every fit needs stay in memory, the test ids, raw inputs and every per-test output are
 spooled to a temporary file (`capred.result.Spool`) and written back block by block. `run_blocks` is what
-`capred.pipelines.shear.run_shear` calls for such a table; `ShearBlocks` is the result (a ShearResult whose
+`capred.pipelines.shear_run.run_shear` calls for such a table; `ShearBlocks` is the result (a ShearResult whose
 per-test outputs stay in the spool). The reduction itself (derivation, fits, predictions, scores, bootstrap)
 is `capred.pipelines.shear`'s: outputs are those of the whole-table run, byte for byte.
 """
@@ -309,7 +309,7 @@ def run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks:
         code, names = ShearResult._flag_codes(result)
         result.__dict__["_flag_code"] = (code.astype(np.uint8 if len(names) <= 256 else np.int64), names)
         result.model_selection()
-        result.predictions = {m: dataclasses.replace(p, tau=sampled[f"{m}|tau"]) for m, p in predictions.items()}
+        result.predictions = {m: p.replace(tau=sampled[f"{m}|tau"]) for m, p in predictions.items()}
         del predictions, taus
         _trim()
         if opt.bootstrap > 0:

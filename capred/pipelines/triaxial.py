@@ -15,20 +15,16 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import FitError
-from ..fitting.linear import LineFit, fit_line
+from ..fitting.linear import fit_line
 from ..io import Column, Table, read_table
-from ..nomenclature import QUANTITIES as _GLOSSARY
-from ..parameters import Parameter, Parameters, deprecated, fit_report
+from ..parameters import deprecated
 from ..physics import triaxial as tx
-from ..references import cite
 from ..result import InputFile, Result, input_file, num
 from ..spec.triaxial import SCHEMA, TriaxialOptions  # noqa: F401 (declared in spec; re-exported here)
 from . import triaxial_records as rec
-from .triaxial_materials import EXTENDED_MC_METHOD, one_material, zero_suction_envelope
-
-#: Pa per kPa: the records hold the user's units, the physics SI
-KPA = 1e3
-
+from .triaxial_curves import export_states, pressure_tolerance
+from .triaxial_materials import one_material, zero_suction_envelope
+from .triaxial_records import EXTENDED_MC_METHOD, KPA, Envelope
 
 CURVE_SCHEMA = [
     Column("test_id", "text", None, "test identifier"),  # aliases: nomenclature.COLUMN_ALIASES
@@ -38,136 +34,6 @@ CURVE_SCHEMA = [
 ]
 
 BOUNDS = ("spherical", "lower", "edtp")
-
-
-@dataclass(frozen=True, kw_only=True)
-class Envelope:
-    """The effective (saturated drained) Mohr-Coulomb envelope c', φ' of a run, in the user's units.
-
-    A typed record (capred.pipelines.triaxial_records): each field names its glossary entry; the JSON
-    object ``envelope`` and the console table follow. ``params["c_kPa"]`` and ``params["phi_deg"]`` are the
-    fitted parameters with standard error and 95 % interval (capred.parameters); ``summary()`` reports them.
-
-    Attributes
-    ----------
-    c_kPa, c_se_kPa : float
-        Effective cohesion c' and its standard error [kPa] (SE None when given as options).
-    phi_deg, phi_se_deg : float
-        Effective friction angle φ' and its standard error [deg].
-    M, k_kPa : float
-        Slope [-] and intercept [kPa] of the envelope in the q-p plane, triaxial compression (eq. 25-26).
-    M_extension, k_extension_kPa : float
-        The same in triaxial extension, M = 6 sin φ'/(3 + sin φ') [-], [kPa].
-    source : str
-        ``"fit"`` (least squares of σ'1 on σ'3 of the saturated tests), ``"options"``, or
-        ``"extended_mc"`` (no saturated test: the extended Mohr-Coulomb fit of the unsaturated tests at s -> 0,
-        their s0 taken as the suction at failure; capred.pipelines.triaxial_materials.zero_suction_envelope).
-    n : int or None
-        Saturated tests fitted.
-    r2 : float or None
-        R² of the fit [-].
-    method : str
-        How the envelope was obtained, with its reference.
-    fit : LineFit or None
-        The straight line σ'1 = K_p σ'3 + b in SI (Pa), for whoever needs its covariance.
-    c_phi_correlation : float
-        Correlation of c' and φ' (delta method) [-] (NaN when given as options).
-
-    References
-    ----------
-    .. [1] Prunier, F., Branque, D., Duriez, J. & Darve, F. (2024). Eur. J. Environ. Civ. Eng.
-       doi:10.1080/19648189.2024.2314099, eq. 25-26.
-    """
-
-    c_kPa: float = rec.quantity("c")
-    phi_deg: float = rec.quantity("phi")
-    M: float = rec.quantity("M", init=False)
-    k_kPa: float = rec.quantity("k", init=False)
-    M_extension: float = rec.quantity("M_extension", init=False)
-    k_extension_kPa: float = rec.quantity("k_extension", init=False)
-    c_se_kPa: float | None = rec.quantity("c", se=True)
-    phi_se_deg: float | None = rec.quantity("phi", se=True)
-    source: str = rec.text()
-    n: int | None = rec.text(kind="int")
-    r2: float | None = rec.text(kind="number")
-    method: str = rec.text(init=False)
-    fit: LineFit | None = None
-    c_phi_correlation: float = float("nan")
-
-    def __post_init__(self) -> None:
-        c, phi = self.c_kPa * KPA, self.phi_deg
-        for attr, branch in (("", "compression"), ("_extension", "extension")):
-            M, k = tx.envelope_qp(c, phi, branch)
-            object.__setattr__(self, "M" + attr, float(M))
-            object.__setattr__(self, "k" + attr + "_kPa", float(k) / KPA)
-        object.__setattr__(
-            self,
-            "method",
-            f"least squares of sigma'_1 on sigma'_3 ({cite('prunier2024', 'eq. 25')})"
-            if self.fit
-            else EXTENDED_MC_METHOD
-            if self.source == "extended_mc"
-            else "given as options",
-        )
-
-    @property
-    def params(self) -> Parameters:
-        """c_kPa and phi_deg with standard error and 95 % interval (t, n − 2 dof) [kPa], [deg]."""
-        from ..fitting.linear import t_quantile
-
-        fixed = self.fit is None and self.source != "extended_mc"
-        dof = (self.n or 0) - (3 if self.source == "extended_mc" else 2)  # c', phi', phi_b fitted
-        t = float(t_quantile(0.975, dof)) if dof > 0 else float("nan")
-        out = []
-        for name, v, se, unit, q in (
-            ("c_kPa", self.c_kPa, self.c_se_kPa, "kPa", "c_eff"),
-            ("phi_deg", self.phi_deg, self.phi_se_deg, "deg", "phi_eff"),
-        ):
-            se = float("nan") if se is None else float(se)
-            ci = (v - t * se, v + t * se)
-            out.append(Parameter(name, float(v), se, ci, unit, _GLOSSARY[q].description, fixed))
-        corr = {} if fixed else {("c_kPa", "phi_deg"): self.c_phi_correlation}
-        return Parameters(tuple(out), corr)
-
-    def summary(self) -> str:
-        """A plain-text report of the envelope: c', φ' with SE and 95 % CI, their correlation, n, R²."""
-        fitted = self.fit is not None or self.source == "extended_mc"
-        dof = (self.n or 0) - (3 if self.source == "extended_mc" else 2)
-        stats = {"n": self.n, "dof": dof, "R²": self.r2} if fitted else {}
-        warn = [f"c' = {self.c_kPa:.4g} kPa < 0: a negative cohesion has no physical meaning"] if self.c_kPa < 0 else []
-        return fit_report(f"Effective envelope, {self.method}", self.params, stats, warn)
-
-    # --- the names of capred 0.x, in Pa (one release, with a DeprecationWarning) ---------------------
-    @property
-    def c(self) -> float:
-        """Deprecated: effective cohesion [Pa]; use ``params["c_kPa"]`` (kPa)."""
-        return deprecated("Envelope.c [Pa]", 'Envelope.params["c_kPa"] (or .c_kPa)', self.c_kPa * KPA)
-
-    @property
-    def c_se(self) -> float | None:
-        """Deprecated: standard error of c' [Pa]; use ``params["c_kPa"].stderr`` (kPa)."""
-        v = None if self.c_se_kPa is None else self.c_se_kPa * KPA
-        return deprecated("Envelope.c_se [Pa]", 'Envelope.params["c_kPa"].stderr (or .c_se_kPa)', v)
-
-    @property
-    def phi(self) -> float:
-        """Deprecated: effective friction angle [deg]; use ``params["phi_deg"]``."""
-        return deprecated("Envelope.phi", 'Envelope.params["phi_deg"] (or .phi_deg)', self.phi_deg)
-
-    @property
-    def phi_se(self) -> float | None:
-        """Deprecated: standard error of φ' [deg]; use ``params["phi_deg"].stderr``."""
-        return deprecated("Envelope.phi_se", 'Envelope.params["phi_deg"].stderr (or .phi_se_deg)', self.phi_se_deg)
-
-    @property
-    def k(self) -> float:
-        """Deprecated: intercept in the q-p plane [Pa]; use ``k_kPa``."""
-        return deprecated("Envelope.k [Pa]", "Envelope.k_kPa", self.k_kPa * KPA)
-
-    @property
-    def k_extension(self) -> float:
-        """Deprecated: intercept in the q-p plane in extension [Pa]; use ``k_extension_kPa``."""
-        return deprecated("Envelope.k_extension [Pa]", "Envelope.k_extension_kPa", self.k_extension_kPa * KPA)
 
 
 def fit_envelope(sigma3_eff, sigma1_eff, confidence=0.95) -> Envelope:
@@ -672,27 +538,6 @@ def skempton_a_of_curves(table: Table, at_peak: dict) -> tuple[np.ndarray, list[
     return A, notes
 
 
-def pressure_tolerance(pressure):
-    """Tolerance [Pa] of a cell or back pressure: 2 kPa below 200 kPa, 1 % above.
-
-    The accuracy ASTM D4767-11 (section 5, pressure-control devices;
-    doi:10.1520/D4767-11) asks of the devices that apply the chamber and back
-    pressures; two readings of one pressure that differ by more are two
-    different pressures.
-
-    Parameters
-    ----------
-    pressure : float or array_like
-        Cell or back pressure [Pa].
-
-    Returns
-    -------
-    float or ndarray
-        Tolerance [Pa], same shape.
-    """
-    return np.maximum(2e3, 0.01 * np.abs(pressure))
-
-
 def pore_pressures(table: Table, at_peak: dict[str, dict[str, float]], q, ext=None) -> dict:
     """The pore pressure to subtract from each test's stresses and whether the table's stresses are total.
 
@@ -1160,8 +1005,6 @@ def run_triaxial_bounds(
         notes += [f"group {g.group}: {v}" for v in (g.needs, g.warning) if v]
     A, note_A = skempton_a_of_curves(table, raw_curves.at_peak if raw_curves else {})
     notes += note_A
-    from .triaxial_curves import export_states
-
     unsat_state, note_state, warn_state = export_states(table, raw_curves.at_peak if raw_curves else {})
     notes += note_state
     warnings += warn_state

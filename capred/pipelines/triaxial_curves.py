@@ -159,6 +159,27 @@ _H0_KEYS = ("initial_height", "height", "h0", "sample_height", "specimen_height"
 _KEY_UNIT = re.compile(r"^(?P<name>.*?)\s*[\[(]\s*(?P<unit>[^\])]+?)\s*[\])]\s*$")
 
 
+def pressure_tolerance(pressure):
+    """Tolerance [Pa] of a cell or back pressure: 2 kPa below 200 kPa, 1 % above.
+
+    The accuracy ASTM D4767-11 (section 5, pressure-control devices;
+    doi:10.1520/D4767-11) asks of the devices that apply the chamber and back
+    pressures; two readings of one pressure that differ by more are two
+    different pressures.
+
+    Parameters
+    ----------
+    pressure : float or array_like
+        Cell or back pressure [Pa].
+
+    Returns
+    -------
+    float or ndarray
+        Tolerance [Pa], same shape.
+    """
+    return np.maximum(2e3, 0.01 * np.abs(pressure))
+
+
 def membrane_correction(axial_strain, diameter, membrane_thickness, membrane_modulus):
     r"""Deviator stress carried by a rubber membrane in triaxial compression.
 
@@ -309,7 +330,7 @@ def b_check(table: Table, rows: np.ndarray, shear: np.ndarray, tid: str) -> dict
     A B check closes the drainage and raises the cell pressure: B = Δu/Δσ3 over the stage (Skempton 1954),
     first reading to last. The B-check stage is the last stage before the shear stage in which the cell
     pressure rises and the pore pressure rises with it (both by more than the pressure tolerance of ASTM
-    D4767, capred.pipelines.triaxial.pressure_tolerance) while the back pressure holds: a saturation ramp
+    D4767, pressure_tolerance) while the back pressure holds: a saturation ramp
     moves the back pressure with the cell, and a consolidation ends with the excess pore pressure gone. The
     export's running ``B Value`` column is not read as B (in the shear stage it is Δu over the cell's creep);
     where it logs a value at the end of the B check that differs from Δu/Δσ3 by more than 0.02, a warning
@@ -338,8 +359,6 @@ def b_check(table: Table, rows: np.ndarray, shear: np.ndarray, tid: str) -> dict
        doi:10.1680/geot.1954.4.4.143
     .. [2] ASTM D4767-11, section 8.2 (B check of saturation). doi:10.1520/D4767-11
     """
-    from .triaxial import pressure_tolerance
-
     out = {"B": float("nan"), "source": "none", "note": None, "warning": None}
     if "stage" not in table.columns or "pore_pressure" not in table.columns or "radial_pressure" not in table.columns:
         return out

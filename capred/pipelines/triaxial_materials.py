@@ -15,12 +15,7 @@ import numpy as np
 
 from ..errors import FitError, InputError, OptionError, Problem
 from ..io import Table
-
-#: how the envelope of a run without saturated tests is named, wherever it is shown
-EXTENDED_MC_METHOD = (
-    "extended Mohr-Coulomb envelope at s -> 0 (Fredlund et al. 1978) fitted to the unsaturated failure states, "
-    "their initial suction s0 taken as the suction at failure"
-)
+from .triaxial_records import KPA, Envelope
 
 
 def materials_of(table: Table) -> dict[str, int]:
@@ -167,7 +162,6 @@ def zero_suction_envelope(sigma3, sigma1, s0, branch, confidence: float = 0.95):
        doi:10.1139/t78-029.
     """
     from ..fitting.extended_mc import fit_extended_mc
-    from .triaxial import KPA, Envelope
 
     s0 = np.asarray(s0, float)
     if not np.all(np.isfinite(s0)):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..result import TableSpec
+from ..table_spec import TableSpec
 from .render import MAX_ROWS, row_table, spec
 
 
@@ -18,7 +18,7 @@ def bridge_solve_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     keys = [
         "case",
@@ -64,7 +64,7 @@ def bridge_compare_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     from ..physics.bridge_laws import LAWS
 
@@ -94,7 +94,7 @@ def bridge_curve_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     err = result.summary()["rms_relative_error_vs_exact"]  # computed from the curve, not read from the JSON
     lim = result.pendular_limit
@@ -116,7 +116,7 @@ def bridge_laws_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     from ..physics.bridge_laws import LAWS
 

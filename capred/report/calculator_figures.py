@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..physics import calculators as calc
 from .sheets import Panel, Sheet
 from .style import LABEL, LINESTYLES, OKABE_ITO, SERIES_COLOURS
 
@@ -28,57 +27,38 @@ def _axes(ax, title):
     return ax
 
 
-def _bounding_curve(S, params, s_e, bc_lambda, bounding):
-    """B(S_r) of the bounding-surface reconstruction along one drying path (Morvan et al. 2016, section 4)."""
-    from ..physics import skempton_elastoplastic as sep
-
-    kappa, e0, p0, u0, pa0 = params
-    comp = sep.BoundingSurfaceCompliance(kappa, bounding["lambda0"], bounding["a_ini"], bounding["interpolation_h"])
-    return sep.skempton_b_incremental(
-        S,
-        compliance=comp,
-        kappa_elastic=kappa,
-        p0=p0,
-        u0=u0,
-        e0=e0,
-        pa0=pa0,
-        air_entry=s_e,
-        bc_lambda=bc_lambda,
-        air_pressure=bounding["air_pressure"],
-        S_R_step=2e-3,
-    )
-
-
-def plot_cases(ax, cases, s_e=None, bc_lambda=None, bounding=None):
+def plot_cases(ax, S, cases: list[dict], s_e=None, bc_lambda=None, bounding=None):
     """B(S_r) of every distinct parameter set among the cases, with the cases of that set on it.
 
     Parameters
     ----------
     ax : matplotlib.axes.Axes
         The panel to draw on.
-    cases : dict
-        (kappa [-], e0 [-], p0 [Pa], u0 [Pa], pa0 [Pa]) -> (S_r values [-], B values [-]).
+    S : ndarray
+        Degrees of saturation of the curves [-].
+    cases : list of dict
+        Per parameter set (capred.pipelines.skempton_figure.figure_curves): ``params`` (κ [-], e0 [-], p0, u0,
+        pa0 [Pa]), ``B_eq10``, ``B_suction`` and ``B_bounding`` (None where not computed) at ``S``, and the
+        ``points`` (S_r values, B values) of its cases.
     s_e : float or None, optional
-        Air-entry suction [Pa]: also draw B with suction equilibrium (Morvan et al. 2016, section 3).
+        Air-entry suction [Pa] of the suction-equilibrium curves, for their label.
     bc_lambda : float or None, optional
-        Brooks-Corey index λ [-] of that curve.
+        Brooks-Corey index λ [-] of those curves, for their label.
     bounding : dict or None, optional
-        ``lambda0``, ``a_ini`` [Pa], ``interpolation_h``, ``air_pressure``: also draw the bounding-surface
-        reconstruction's B (Morvan et al. 2016, section 4).
+        ``a_ini`` [Pa] and ``air_pressure`` of the bounding-surface curves, for their label.
 
     Returns
     -------
     matplotlib.axes.Axes
         ``ax``, drawn on.
     """
-    S = np.linspace(0.5, 1.0, 400)
-    for k, (params, pts) in enumerate(cases.items()):
-        kappa, e0, p0, u0, pa0 = params
+    for k, case in enumerate(cases):
+        kappa, e0, p0, u0, pa0 = case["params"]
         color = _COLORS[k % len(_COLORS)]
-        if bounding is not None:
+        if case["B_bounding"] is not None:
             ax.plot(
                 S,
-                _bounding_curve(S, params, s_e, bc_lambda, bounding),
+                case["B_bounding"],
                 "-.",
                 color=color,
                 lw=1.2,
@@ -89,17 +69,17 @@ def plot_cases(ax, cases, s_e=None, bc_lambda=None, bounding=None):
             rf"$\kappa$ = {kappa:g}, $e_0$ = {e0:g}, $p'_0$ = {(p0 - u0) / 1e3:g} kPa, "
             rf"$P_{{a0}}$ = {pa0 / 1e3:g} kPa"
         )
-        ax.plot(S, calc.skempton_b(S, p0 - u0, e0, kappa, pa0), "-", color=color, lw=1.2, label=label)
-        if s_e is not None:
+        ax.plot(S, case["B_eq10"], "-", color=color, lw=1.2, label=label)
+        if case["B_suction"] is not None:
             ax.plot(
                 S,
-                calc.skempton_b_suction(S, p0, u0, e0, kappa, pa0, s_e, bc_lambda),
+                case["B_suction"],
                 "--",
                 color=color,
                 lw=1.0,
                 label=rf"  with suction ($s_e$ = {s_e / 1e3:g} kPa, $\lambda$ = {bc_lambda:g})",
             )
-        ax.plot(pts[0], pts[1], "o", color=color, ms=5, ls="none", label="  computed cases")
+        ax.plot(*case["points"], "o", color=color, ms=5, ls="none", label="  computed cases")
     return _axes(ax, "Computed cases on their own curves")
 
 
@@ -148,44 +128,30 @@ def plot_curves(ax, curves: dict):
 
 
 def sheet_skempton(
-    cases: dict | None = None,
-    kappa=0.006,
-    e0=0.8,
-    p0=100e3,
-    u0=30e3,
-    pa0=130e3,
+    S_r,
+    cases: list[dict],
+    studies: dict,
     s_e=None,
     bc_lambda=None,
     bounding=None,
     curves: dict | None = None,
     curve_names: list[str] | None = None,
 ) -> Sheet:
-    """The figure sheet of `capred skempton-b`.
+    """The skempton-b sheet, drawn from the curves the pipeline computed.
 
-    ``cases``: (kappa, e0, p0, u0, pa0) -> (S_r values, B values); or ``curves`` (``skempton-b --curve``): S_r and B per
-    model. The parameter studies (Morvan et al. 2016, Fig. 2, 3, 5) use the options' values.
+    The curves come from capred.pipelines.skempton_figure.figure_curves: the cases on their own curves (or the models
+    of ``skempton-b --curve``) and the parameter studies of Morvan et al. (2016), Fig. 2, 3, 5.
 
     Parameters
     ----------
-    cases : dict or None, optional
-        See :func:`plot_cases` (used when ``curves`` is None).
-    kappa : float, optional
-        Slope of the elastic line [-] of the parameter studies.
-    e0 : float, optional
-        Initial void ratio [-].
-    p0 : float, optional
-        Total mean stress [Pa].
-    u0 : float, optional
-        Initial pore pressure [Pa].
-    pa0 : float, optional
-        Absolute initial air pressure [Pa].
-    s_e : float or None, optional
-        Air-entry suction [Pa]: also draw B with suction equilibrium (Morvan et al. 2016, section 3).
-    bc_lambda : float or None, optional
-        Brooks-Corey index λ [-] of that curve.
-    bounding : dict or None, optional
-        ``lambda0``, ``a_ini`` [Pa], ``interpolation_h``, ``air_pressure``: also draw the bounding-surface
-        reconstruction's B (Morvan et al. 2016, section 4).
+    S_r : ndarray
+        Degrees of saturation of the curves [-].
+    cases : list of dict
+        See :func:`plot_cases` (drawn when ``curves`` is None).
+    studies : dict
+        ``kappa``, ``e0``, ``s_e`` [Pa]: each value -> B at ``S_r``; ``lambda``: λ [-] of the s_e study.
+    s_e, bc_lambda, bounding : optional
+        See :func:`plot_cases`.
     curves : dict or None, optional
         See :func:`plot_curves`.
     curve_names : list of str or None, optional
@@ -195,29 +161,22 @@ def sheet_skempton(
     -------
     capred.report.sheets.Sheet
     """
-    S = np.linspace(0.5, 1.0, 400)
-    pe = p0 - u0
-    lam = bc_lambda if bc_lambda is not None else 0.8
+    S = S_r
 
     def kappa_study(ax):
-        for j, k in enumerate((0.0006, 0.006, 0.06)):
-            ax.plot(S, calc.skempton_b(S, pe, e0, k, pa0), label=rf"$\kappa$ = {k:g}", **_line(j))
+        for j, (k, B) in enumerate(studies["kappa"].items()):
+            ax.plot(S, B, label=rf"$\kappa$ = {k:g}", **_line(j))
         return _axes(ax, r"Effect of $\kappa$ (Morvan et al. 2016, Fig. 2)")
 
     def e0_study(ax):
-        for j, e in enumerate((0.6, 0.8, 1.2)):
-            ax.plot(S, calc.skempton_b(S, pe, e, kappa, pa0), label=f"$e_0$ = {e:g}", **_line(j))
+        for j, (e, B) in enumerate(studies["e0"].items()):
+            ax.plot(S, B, label=f"$e_0$ = {e:g}", **_line(j))
         return _axes(ax, r"Effect of $e_0$ (Morvan et al. 2016, Fig. 3)")
 
     def se_study(ax):
-        for j, se in enumerate((5e3, 20e3, 100e3, 1000e3)):
-            ax.plot(
-                S,
-                calc.skempton_b_suction(S, p0, u0, e0, kappa, pa0, se, lam),
-                label=f"$s_e$ = {se / 1e3:g} kPa",
-                **_line(j),
-            )
-        return _axes(ax, rf"Effect of $s_e$, $\lambda$ = {lam:g} (Morvan et al. 2016, Fig. 5)")
+        for j, (se, B) in enumerate(studies["s_e"].items()):
+            ax.plot(S, B, label=f"$s_e$ = {se / 1e3:g} kPa", **_line(j))
+        return _axes(ax, rf"Effect of $s_e$, $\lambda$ = {studies['lambda']:g} (Morvan et al. 2016, Fig. 5)")
 
     if curves is not None:
         first = Panel(
@@ -230,7 +189,7 @@ def sheet_skempton(
     else:
         first = Panel(
             "cases",
-            lambda ax: plot_cases(ax, cases, s_e, bc_lambda, bounding),
+            lambda ax: plot_cases(ax, S, cases, s_e, bc_lambda, bounding),
             "B(S_r) of eq. 10 for each parameter set of the computed cases, the cases on their own curve.",
         )
     return Sheet(

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from ..result import TableSpec, num
+from ..records import num
+from ..table_spec import TableSpec
 from .render import row_table
 
 
@@ -19,7 +20,7 @@ def calc_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     cols = result.cases.console_columns()
     labels = result.labels

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..physics import compression as cp
-from ..result import TableSpec
+from ..table_spec import TableSpec
 from .render import fmt, spec
 from .sheets import Panel, Sheet
 from .style import OKABE_ITO
@@ -136,7 +136,7 @@ def compression_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     t = spec(
         f"Compression ({result.options.test}, {result.stress_symbol}): lines and yield stress",

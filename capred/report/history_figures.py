@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..result import TableSpec
+from ..table_spec import TableSpec
 from .sheets import Panel, Sheet
 from .style import OKABE_ITO, legend_outside
 
@@ -165,7 +165,7 @@ def history_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     from .render import fmt, row_table
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ..result import TableSpec
+from ..table_spec import TableSpec
 
 
 @dataclass(frozen=True)
@@ -83,7 +83,7 @@ def _calc_figures(result) -> dict:
         return {}
     from .calculator_figures import sheet_skempton
 
-    return {"skempton-b": sheet_skempton(**result.figure_data)}
+    return {"skempton-b": sheet_skempton(**result.figure_curves())}
 
 
 def _rupture_tables(result) -> list[TableSpec]:
@@ -223,6 +223,6 @@ def console_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     return presenter(result).tables(result)

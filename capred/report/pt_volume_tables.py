@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from ..result import TableSpec, num, record_outputs, scale_value
+from ..records import num, record_outputs, scale_value
+from ..table_spec import TableSpec
 from .render import MAX_ROWS, fmt, spec
 
 
@@ -16,7 +17,7 @@ def pt_volume_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     # from the typed results (options, the lines used, PTVolumePoints, Stage), never the JSON document
     par = result.params
@@ -59,7 +60,7 @@ def pt_volume_tables(result) -> list[TableSpec]:
         left=2 if labelled else 1,
     )
     change = result.fluid_change()
-    # each column in the unit its PTVolumePoints field declares (capred.result.output: kPa for a stress)
+    # each column in the unit its PTVolumePoints field declares (capred.records.output: kPa for a stress)
     out = {name: [num(x) for x in scale_value(v[: min(n, MAX_ROWS)], o.scale)] for name, o, v in record_outputs(pts)}
     for i in range(min(n, MAX_ROWS)):
         points.rows.append(

@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import math
 
-from ..result import TableSpec
 from ..sampling import MAX_ROWS  # per-row tables: the first rows only (re-exported)
+from ..table_spec import TableSpec
 
 #: The one rule for numbers in console tables: this many significant digits.
 SIGNIFICANT = 4
@@ -120,7 +120,7 @@ def row_table(
 
     Returns
     -------
-    capred.result.TableSpec
+    capred.table_spec.TableSpec
     """
     spec = TableSpec(title, [(k, "left" if k in left else "right") for k in keys])
     shown = rows[:MAX_ROWS]
@@ -181,7 +181,7 @@ def label_columns(spec: TableSpec) -> list[int]:
 
     Parameters
     ----------
-    spec : capred.result.TableSpec
+    spec : capred.table_spec.TableSpec
         A console table.
 
     Returns
@@ -206,7 +206,7 @@ def plain_text(spec: TableSpec) -> str:
 
     Parameters
     ----------
-    spec : capred.result.TableSpec
+    spec : capred.table_spec.TableSpec
         A console table.
 
     Returns
@@ -240,7 +240,7 @@ def column_groups(spec: TableSpec, width: int) -> list[list[int]]:
 
     Parameters
     ----------
-    spec : capred.result.TableSpec
+    spec : capred.table_spec.TableSpec
         A console table.
     width : int
         Terminal width [characters].
@@ -299,7 +299,7 @@ def table_width(spec: TableSpec, compact: bool = False) -> int:
 
     Parameters
     ----------
-    spec : capred.result.TableSpec
+    spec : capred.table_spec.TableSpec
         A console table.
     compact : bool, optional
         Without borders.
@@ -321,7 +321,7 @@ def row_labels(spec: TableSpec) -> list[str]:
 
     Parameters
     ----------
-    spec : capred.result.TableSpec
+    spec : capred.table_spec.TableSpec
         A console table.
 
     Returns
@@ -392,7 +392,7 @@ def stacked_blocks(spec: TableSpec, width: int) -> list[tuple[str, bool]]:
 
     Parameters
     ----------
-    spec : capred.result.TableSpec
+    spec : capred.table_spec.TableSpec
         A console table.
     width : int
         Terminal width [characters].
@@ -419,7 +419,7 @@ def rich_tables(spec: TableSpec, width: int) -> list:
 
     Parameters
     ----------
-    spec : capred.result.TableSpec
+    spec : capred.table_spec.TableSpec
         A console table.
     width : int
         Terminal width [characters].
@@ -478,9 +478,7 @@ def render(result, out_dir=None, written=None, console=None) -> None:
 
     con = console or Console()
     terminal = con.is_terminal
-    from .presenters import console_tables
-
-    render_tables(console_tables(result), con)
+    render_tables(result.console_tables(), con)  # the run's tables, as capred.report.presenters makes them
     for w in result.all_warnings():
         _line(con, terminal, "warning: ", "yellow", w)
     for n in result.all_notes():
@@ -494,7 +492,7 @@ def render_tables(specs: list[TableSpec], con) -> None:
 
     Parameters
     ----------
-    specs : list of capred.result.TableSpec
+    specs : list of capred.table_spec.TableSpec
         The tables.
     con : rich.console.Console
         Where to print.
@@ -540,7 +538,7 @@ def spec(title: str, headers: list[str], left: int = 1) -> TableSpec:
 
     Returns
     -------
-    capred.result.TableSpec
+    capred.table_spec.TableSpec
         With no rows yet.
     """
     return TableSpec(title, [(h, "left" if j < left else "right") for j, h in enumerate(headers)])

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from ..result import TableSpec
+from ..table_spec import TableSpec
 from .render import fmt, spec
 
 
@@ -97,7 +97,7 @@ def retention_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     out = []
     for b in result.fits:
@@ -145,7 +145,7 @@ def convert_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     src, new, m = result.source_fit, result.converted, result.misfit
     unit = "m³/m³" if result.quantity == "theta" else "-"  # S_R and w (by mass) are both [-]

@@ -6,7 +6,8 @@ import numpy as np
 
 from ..nomenclature import QUANTITIES
 from ..physics.effective_stress_models import MODEL_LABELS
-from ..result import TableSpec, num
+from ..records import num
+from ..table_spec import TableSpec
 from .render import MAX_ROWS, fmt, row_table, spec
 
 
@@ -51,7 +52,7 @@ def shear_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     opt = result.options
     phi_b = any("phi_b_deg" in result.per_material.get(m, {}) for m in result.fits)

@@ -7,7 +7,7 @@ import numpy as np
 from ..nomenclature import QUANTITIES
 from ..nomenclature import label as header
 from ..references import cite
-from ..result import TableSpec
+from ..table_spec import TableSpec
 from .render import fmt, magnitude, spec
 
 _BRANCH = {"compression": "comp.", "extension": "ext.", "general": "true tx."}
@@ -42,7 +42,7 @@ def triaxial_tables(result) -> list[TableSpec]:
 
     Returns
     -------
-    list of capred.result.TableSpec
+    list of capred.table_spec.TableSpec
     """
     e = result.envelope
     env = spec(
