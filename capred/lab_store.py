@@ -92,7 +92,8 @@ def _kind(path: Path) -> str | None:
     """None where ``path`` is absent or a regular file (after links); else why it cannot be a store.
 
     Nothing is opened: a FIFO or a device as the store is refused by its ``stat`` alone (opening a FIFO for
-    reading waits for a writer forever)."""
+    reading waits for a writer forever).
+    """
     import stat
 
     try:
@@ -118,7 +119,8 @@ def _header_pages(head: bytes, size: int) -> str | None:
 
     The header's page size (offset 16) and page count (offset 28, valid while the change counter at 24 equals
     the one at 92) give the file's length: a truncated or padded file is seen here without reading its pages.
-    References: SQLite, "Database File Format", section 1.3, https://www.sqlite.org/fileformat.html."""
+    References: SQLite, "Database File Format", section 1.3, https://www.sqlite.org/fileformat.html.
+    """
     raw = int.from_bytes(head[16:18], "big")
     page = 65536 if raw == 1 else raw
     if page < 512 or page > 65536 or page & (page - 1):
@@ -208,9 +210,10 @@ COLUMNS = {
 
 
 def verify_schema(con: sqlite3.Connection, path) -> None:
-    """Raise InputError unless the store's schema is the one this capred writes: its version, each table with
-    its columns (:data:`COLUMNS`), and no trigger (capred creates none: a trigger would run another program's
-    statements on every run recorded).
+    """Raise InputError unless the store's schema is the one this capred writes.
+
+    Its version, each table with its columns (:data:`COLUMNS`), and no trigger (capred creates none: a trigger would run
+    another program's statements on every run recorded).
 
     Parameters
     ----------
@@ -286,13 +289,15 @@ def connect(path, create: bool = True) -> sqlite3.Connection:
 
 
 def _readonly_uri(path: Path) -> str:
-    """The URI that opens ``path`` for reading only: ``mode=rw`` where the file and its folder can be written
-    (the connection is then made ``query_only``), else ``mode=ro&immutable=1`` (a store shipped inside an
-    installed package), so that SQLite leaves no side file.
+    """The URI that opens ``path`` for reading only, so that SQLite leaves no side file.
+
+    ``mode=rw`` where the file and its folder can be written (the connection is then made ``query_only``), else
+    ``mode=ro&immutable=1`` (a store shipped inside an installed package).
 
     A ``mode=ro`` connection to a store in WAL mode (every store capred records into) creates ``-wal`` and
     ``-shm`` beside it and, being read-only, cannot remove them when it closes: every ``capred history`` left
-    two files behind. A read-write connection that only queries removes them as the last one to close."""
+    two files behind. A read-write connection that only queries removes them as the last one to close.
+    """
     from urllib.parse import quote
 
     uri = f"file:{quote(str(path.resolve()))}"
@@ -414,9 +419,11 @@ def declared_units() -> dict[str, tuple[str, str]]:
 
 
 def _unit(key: str, units: dict) -> tuple[str, str | None]:
-    """(quantity, unit) of a document's key as declared (``units``: :func:`declared_units` and the run's own,
-    ``Result.quantity_units``); an undeclared key: (key, None), its unit unknown (the store records NULL rather
-    than a guess)."""
+    """(quantity, unit) of a document's key as declared.
+
+    ``units``: :func:`declared_units` and the run's own, ``Result.quantity_units``; an undeclared key: (key, None), its
+    unit unknown (the store records NULL rather than a guess).
+    """
     return units.get(key, (key, None))
 
 
@@ -449,9 +456,11 @@ def _scalars(block: dict, material, units: dict, skip=("n", "line", "dof"), pref
 
 
 def _retention_records(branches: dict, material, units: dict) -> list[tuple]:
-    """The records of a retention document: per branch (the record's material: the branch, after the inputs'
-    material where the metadata names one) every fitted model's numbers as ``<model>.<key>`` (``vg.alpha_per_kPa``
-    with its interval, ``vg.n``, ``vg.r2``)."""
+    """The records of a retention document: every fitted model's numbers as ``<model>.<key>``, per branch.
+
+    The record's material is the branch, after the inputs' material where the metadata names one; keys such as
+    ``vg.alpha_per_kPa`` with its interval, ``vg.n``, ``vg.r2``.
+    """
     out = []
     for branch, block in branches.items():
         fits = block.get("fits") if isinstance(block, dict) else None
@@ -696,7 +705,8 @@ def _check_tail(con: sqlite3.Connection, path: Path) -> None:
 
     A damaged page elsewhere is found by SQLite when it is read (``database disk image is malformed``); this
     catches damage in the text of the last run, which SQLite does not checksum. The cost is one run's row, not
-    the whole file."""
+    the whole file.
+    """
     try:
         row = con.execute(
             "SELECT id, json_valid(document), json_valid(inputs), CAST(document AS BLOB) FROM runs "

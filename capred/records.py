@@ -239,8 +239,9 @@ def record_columns(records: dict, level: str = "95") -> dict:
 
 
 def record_json_columns(records: dict, start: int, stop: int, level: str = "95") -> dict:
-    """Per-row JSON values of records for rows start..stop-1: ``{key: list}``; a model-indexed field gives a
-    list of ``{model: value}`` dicts, a pair a list of ``[low, high]``.
+    """Per-row JSON values of records for rows start..stop-1: ``{key: list}``.
+
+    A model-indexed field gives a list of ``{model: value}`` dicts, a pair a list of ``[low, high]``.
 
     Parameters
     ----------
@@ -286,10 +287,11 @@ def record_json_columns(records: dict, start: int, stop: int, level: str = "95")
 
 
 def columns_of_rows(rows: list[dict]) -> dict:
-    """Rows (dicts, some keys absent) as columns in order of first appearance, typed as pandas would type
-    them, so that capred.io.writers.write_csv_file writes the bytes it writes for ``pandas.DataFrame(rows)``:
-    whole numbers stay integers unless a row lacks them, numbers with a gap are floats with NaN there,
-    anything else is an object column (None where absent).
+    """Rows (dicts, some keys absent) as columns in order of first appearance, typed as pandas would type them.
+
+    So that capred.io.writers.write_csv_file writes the bytes it writes for ``pandas.DataFrame(rows)``: whole numbers
+    stay integers unless a row lacks them, numbers with a gap are floats with NaN there, anything else is an object
+    column (None where absent).
 
     Parameters
     ----------

@@ -118,14 +118,17 @@ class Result:
         return []
 
     def csv_tables(self) -> dict:
-        """The tables the writer puts in CSV files: ``tables()`` by default; a large result may give plain
-        column mappings (name -> array) instead, which write without pandas. Headers follow
-        :func:`csv_header` (``name [unit]``)."""
+        """The tables the writer puts in CSV files: ``tables()`` by default.
+
+        A large result may give plain column mappings (name -> array) instead, which write without pandas. Headers
+        follow :func:`csv_header` (``name [unit]``).
+        """
         return {stem: with_csv_headers(table) for stem, table in self.tables().items()}
 
     def quantity_units(self) -> dict[str, str]:
-        """JSON key -> declared unit of the numbers of the document that no glossary quantity names (a fit's
-        parameters, say); the lab store takes every unit from the declarations (capred.lab_store.declared_units
+        """JSON key -> declared unit of the numbers of the document that no glossary quantity names.
+
+        A fit's parameters, say; the lab store takes every unit from the declarations (capred.lab_store.declared_units
         and this), none from a key's spelling. None by default.
 
         Returns

@@ -66,8 +66,9 @@ def quantity(
 
 
 def text(json: str | None = None, *, optional: bool = False, kind: str = "text", init: bool = True):
-    """A record field of text (or ``kind`` "int", "bool", "number", "list", "record", "records"); ``json``
-    overrides its JSON key (the field's name by default).
+    """A record field of text (or ``kind`` "int", "bool", "number", "list", "record", "records").
+
+    ``json`` overrides its JSON key (the field's name by default).
 
     Parameters
     ----------
@@ -622,8 +623,10 @@ class GroupRecord:
 
 
 def group_csv(g: GroupRecord) -> dict:
-    """A group as one flat CSV row: lists joined by ';', intervals and ranges as _low/_high (_lower/_upper)
-    columns, the closures' tensors as ``<closure>.<component> [kPa]``.
+    """A group as one flat CSV row.
+
+    Lists joined by ';', intervals and ranges as _low/_high (_lower/_upper) columns, the closures' tensors as
+    ``<closure>.<component> [kPa]``.
 
     Parameters
     ----------
