@@ -637,7 +637,20 @@ class Recorder:
         self.close()
 
     def record(self, result, out_dir=None) -> tuple[int, bool]:
-        """Record the run in one transaction (see :func:`record_run`); returns (run id, whether it was new)."""
+        """Record the run in one transaction (see :func:`record_run`).
+
+        Parameters
+        ----------
+        result : capred.result.Result
+            Any command's result.
+        out_dir : str or Path, optional
+            The folder its files were written to (recorded).
+
+        Returns
+        -------
+        (int, bool)
+            The run's id and whether it was new.
+        """
         from datetime import UTC, datetime
 
         from .io import encode_json

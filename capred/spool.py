@@ -117,7 +117,13 @@ class Spool:
         return block
 
     def blocks(self):
-        """The blocks' column dicts, in order."""
+        """The blocks' column dicts, in order.
+
+        Yields
+        ------
+        dict of str to numpy.ndarray
+            One block's columns, name -> values.
+        """
         for k in range(len(self._index)):
             yield self._block(k)
 

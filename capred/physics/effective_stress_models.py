@@ -198,7 +198,7 @@ def chi_lu_likos(suction, vg_alpha, vg_n, vg_m=None):
 
 
 def fit_tan_phi_b(suction, excess_strength):
-    r"""tan φ_b of Fredlund et al. (1978) by least squares through the origin.
+    r"""The tan φ_b of Fredlund et al. (1978) by least squares through the origin.
 
     .. math::
 

@@ -87,6 +87,11 @@ class RetentionConvertResult(RetentionResult):
         """Output tables: fits and parameters of the converted fit (as `capred retention`), and points.
 
         Points: the source curve and the converted one at the conversion's points.
+
+        Returns
+        -------
+        dict of str to pandas.DataFrame
+            ``fits``, ``parameters`` and ``points``.
         """
         t = dict(super().tables())
         pts = t["points"]

@@ -58,6 +58,13 @@ def quantity(
     many : bool
         A list of values per record (e.g. the Lode angles of a group's tests): its JSON key and CSV header
         take the field's name (``lode_angles_deg``) with the quantity's unit.
+    init : bool
+        The field is an argument of the record's constructor.
+
+    Returns
+    -------
+    dataclasses.Field
+        The field, default None, its declaration in ``metadata``.
     """
     if name not in QUANTITIES:
         raise KeyError(f"{name!r} is not in the glossary (capred.nomenclature.QUANTITIES)")
@@ -776,7 +783,13 @@ class Envelope:
         return Parameters(tuple(out), corr)
 
     def summary(self) -> str:
-        """A plain-text report of the envelope: c', φ' with SE and 95 % CI, their correlation, n, R²."""
+        """A plain-text report of the envelope: c', φ' with SE and 95 % CI, their correlation, n, R².
+
+        Returns
+        -------
+        str
+            capred.parameters.fit_report of the envelope's parameters.
+        """
         fitted = self.fit is not None or self.source == "extended_mc"
         dof = (self.n or 0) - (3 if self.source == "extended_mc" else 2)
         stats = {"n": self.n, "dof": dof, "R²": self.r2} if fitted else {}
