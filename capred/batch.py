@@ -468,6 +468,41 @@ def run_all(jobs: list[Job], workers: int | None = None, on_done=None) -> tuple[
     return result, interrupted
 
 
+#: most jobs a worker is handed at once (`job_chunks`)
+MAX_CHUNK = 8
+
+
+def job_chunks(first: int, stop: int, workers: int) -> list[tuple[int, int]]:
+    """The jobs ``first`` .. ``stop - 1`` cut into the pool's tasks, (start, stop) each, in order: guided
+    scheduling, each task a quarter of a worker's share of the jobs left, at most MAX_CHUNK and at least one.
+
+    A task of several jobs pays the pool's per-task cost (pickling, queues, wake-ups: ~0.1 ms of CPU, measured
+    with 2,000 empty jobs) once; the last tasks hold one job each, so that the workers finish together.
+
+    Parameters
+    ----------
+    first, stop : int
+        The jobs to cut [-].
+    workers : int
+        Worker processes [-].
+
+    Returns
+    -------
+    list of (int, int)
+    """
+    out, k = [], first
+    while k < stop:
+        size = max(1, min(MAX_CHUNK, (stop - k) // (4 * max(workers, 1))))
+        out.append((k, k + size))
+        k += size
+    return out
+
+
+def run_chunk(jobs: list[Job]) -> list[Outcome]:
+    """The outcomes of a few jobs run in turn in one worker (`run_safely` each)."""
+    return [run_safely(job) for job in jobs]
+
+
 def _run(jobs: list[Job], workers: int, outcomes: dict, on_done) -> None:
     """Run the jobs, in this process or in a pool, filling ``outcomes`` (job index -> Outcome) as they end.
 
@@ -495,9 +530,10 @@ def _run(jobs: list[Job], workers: int, outcomes: dict, on_done) -> None:
     try:
         pool = _pool(min(workers, len(jobs) - 1))
         try:
-            futures = {pool.submit(run_safely, job): k for k, job in enumerate(jobs) if k > 0}
+            futures = {pool.submit(run_chunk, jobs[a:b]): a for a, b in job_chunks(1, len(jobs), workers)}
             for fut in as_completed(futures):
-                done(futures[fut], fut.result())
+                for j, outcome in enumerate(fut.result()):
+                    done(futures[fut] + j, outcome)
         finally:
             pool.shutdown(wait=True, cancel_futures=True)
     finally:
@@ -573,8 +609,12 @@ def relative(path, root) -> str:
 
     if not path:
         return ""
+    full, base = os.path.abspath(path), os.path.abspath(root)
+    under = base if base.endswith(os.sep) else base + os.sep
+    if full.startswith(under):  # the usual case, a file of the batch: what relpath gives, without its cost
+        return full[len(under) :].replace(os.sep, "/")
     try:
-        return Path(os.path.relpath(os.path.abspath(path), os.path.abspath(root))).as_posix()
+        return Path(os.path.relpath(full, base)).as_posix()
     except ValueError:  # pragma: no cover - another drive (Windows)
         return Path(path).as_posix()
 

@@ -639,9 +639,10 @@ def _design(x, through_origin):
     return x[:, None] if through_origin else np.column_stack([np.ones(x.size), x])
 
 
-def _wls(x, y, w, through_origin):
-    """(beta, (X^T W X)^-1) of weighted least squares."""
-    X = _design(x, through_origin)
+def _wls(x, y, w, through_origin, X=None):
+    """(beta, (X^T W X)^-1) of weighted least squares (``X``: the design `_design` gives, when built already)."""
+    if X is None:
+        X = _design(x, through_origin)
     XtW = X.T * w
     inv = np.linalg.inv(XtW @ X)
     return inv @ (XtW @ y), inv
@@ -746,17 +747,25 @@ def fit_envelope(
     if errors == "auto":
         errors = "proportional" if bp["significant"] else "constant"
     if errors == "either":
-        return _either(x, y, confidence, through_origin, loss)
+        return _either(x, y, confidence, through_origin, loss, ols, bp)
+    return _fit_model(x, y, confidence, through_origin, errors, loss, ols, bp)
+
+
+def _fit_model(x, y, confidence, through_origin, errors, loss, ols: LineFit, bp: dict) -> LineFit:
+    """`fit_envelope` under one error model ("constant" or "proportional") and loss, given the least-squares
+    line ``ols`` of the same points and the Breusch-Pagan test ``bp`` of its residuals (computed once by the
+    caller: `_either` fits both models on the same least-squares line)."""
     n, p = x.size, 1 if through_origin else 2
     w = np.ones(n)
     ref = float(np.mean(np.abs(y))) or 1.0
+    X = _design(x, through_origin)  # built once: every weighted fit below uses it
     if errors == "proportional":
         yhat = ols.predict(x)
         for _ in range(50):  # IRLS on the variance function (ŷ/ref)²: converges in a handful of steps
             level = np.maximum(np.abs(yhat), 1e-3 * ref)
             w = (ref / level) ** 2
-            beta, _ = _wls(x, y, w, through_origin)
-            new = _design(x, through_origin) @ beta
+            beta, _ = _wls(x, y, w, through_origin, X)
+            new = X @ beta
             if np.max(np.abs(new - yhat)) <= 1e-12 * ref:
                 yhat = new
                 break
@@ -766,8 +775,7 @@ def fit_envelope(
     diagnostics = outlier_diagnostics(x, y, w, through_origin)
     if errors == "constant" and loss == "ols":
         return dataclasses.replace(ols, heteroscedasticity=bp, diagnostics=diagnostics)
-    beta, inv = _wls(x, y, w, through_origin)
-    X = _design(x, through_origin)
+    beta, inv = _wls(x, y, w, through_origin, X)
     sw = np.sqrt(w)
     if loss == "ols":
         e = (y - X @ beta) * sw
@@ -851,7 +859,7 @@ def loewner_max(A, B) -> np.ndarray:
     return out
 
 
-def _either(x, y, confidence, through_origin, loss) -> LineFit:
+def _either(x, y, confidence, through_origin, loss, ols: LineFit, bp: dict) -> LineFit:
     """``errors="either"`` of `fit_envelope`: intervals valid whether the scatter is constant or proportional.
 
     The line is that of the constant model (least squares, or the robust M-estimate of ``loss``), unbiased
@@ -864,8 +872,9 @@ def _either(x, y, confidence, through_origin, loss) -> LineFit:
     test is flagged as an outlier only when the outlier test flags it under both models (`outlier_diagnostics`;
     the studentized residuals reported are the constant model's).
     """
-    base = fit_envelope(x, y, confidence, through_origin, "constant", loss)
-    prop = fit_envelope(x, y, confidence, through_origin, "proportional", loss)
+    # both models start from the same least-squares line and its Breusch-Pagan test (``ols``, ``bp``)
+    base = _fit_model(x, y, confidence, through_origin, "constant", loss, ols, bp)
+    prop = _fit_model(x, y, confidence, through_origin, "proportional", loss, ols, bp)
     sp = prop.scale
     if sp is None or not np.isfinite(sp):
         return dataclasses.replace(base, errors="either")

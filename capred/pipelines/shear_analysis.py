@@ -27,6 +27,7 @@ References
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -819,13 +820,17 @@ def quantile_mc_se(values: np.ndarray, q: float) -> float:
     float
         The standard error [unit of values] (inf with fewer than 2 values).
     """
-    n = values.size
+    return _sorted_quantile_se(np.sort(values), q)
+
+
+def _sorted_quantile_se(s: np.ndarray, q: float) -> float:
+    """`quantile_mc_se` of values already sorted (``s``): the adaptive stop sorts them once for every use."""
+    n = s.size
     if n < 2:
         return float("inf")
-    s = np.sort(values)
-    h = np.sqrt(n * q * (1.0 - q))
-    lo = int(np.clip(np.floor(n * q - h), 0, n - 1))
-    hi = int(np.clip(np.ceil(n * q + h), 0, n - 1))
+    h = math.sqrt(n * q * (1.0 - q))  # scalars: math, not numpy's per-call overhead (the same IEEE results)
+    lo = min(max(math.floor(n * q - h), 0), n - 1)
+    hi = min(max(math.ceil(n * q + h), 0), n - 1)
     return float(s[hi] - s[lo]) / 2.0
 
 
@@ -849,11 +854,14 @@ def adaptive_stop(scores: np.ndarray, models: list[str], ranked: list[str]) -> b
     bool
     """
     finite = np.isfinite(scores)
-    rows = np.any(finite, axis=1)
-    R = int(rows.sum())
+    if finite.all():  # the usual case: every replicate scored every model (no copies to make)
+        R, filled = scores.shape[0], scores
+    else:
+        rows = np.any(finite, axis=1)
+        R = int(rows.sum())
+        filled = np.where(finite[rows], scores[rows], np.inf)
     if R < 2:
         return False
-    filled = np.where(finite[rows], scores[rows], np.inf)
     wins = np.bincount(np.argmin(filled, axis=1), minlength=len(models))
     p = (wins + 1.0) / (R + 2.0)
     if np.any(np.sqrt(p * (1.0 - p) / R) >= PROBABILITY_RESOLUTION):
@@ -862,13 +870,13 @@ def adaptive_stop(scores: np.ndarray, models: list[str], ranked: list[str]) -> b
     if best is None or runner is None:
         return True
     dd = scores[:, models.index(runner)] - scores[:, models.index(best)]
-    dd = dd[np.isfinite(dd)]
+    dd = np.sort(dd[np.isfinite(dd)])  # sorted once: the interval's ends and their errors read it
     if dd.size < 2:
         return True
-    res = difference_resolution(tuple(_percentiles(dd, (2.5, 97.5))))
+    res = difference_resolution(tuple(_sorted_percentiles(dd, (2.5, 97.5))))
     if res is None:
         return True
-    return all(quantile_mc_se(dd, q) < res for q in (0.025, 0.975))
+    return all(_sorted_quantile_se(dd, q) < res for q in (0.025, 0.975))
 
 
 @dataclass(frozen=True)
@@ -1079,7 +1087,11 @@ def _percentiles(a: np.ndarray, q: tuple[float, ...]) -> np.ndarray:
 
     The q-th percentile of n sorted values lies at the virtual index (n - 1) q / 100 and is interpolated
     between its two neighbours as numpy's ``_lerp`` does (from the upper one above the midpoint)."""
-    s = np.sort(a, axis=0)
+    return _sorted_percentiles(np.sort(a, axis=0), q)
+
+
+def _sorted_percentiles(s: np.ndarray, q: tuple[float, ...]) -> np.ndarray:
+    """`_percentiles` of values already sorted along axis 0 (``s``)."""
     n = s.shape[0]
     out = []
     for p in q:
