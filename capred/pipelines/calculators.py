@@ -121,6 +121,20 @@ class CalcResult(Result):
             out = {"model": self.model, "model_inputs": self.model_inputs or {}, **out}
         return out
 
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows: a single case's results, each in its glossary unit (``Cases.store_rows``).
+
+        Parameters
+        ----------
+        material : str, optional
+            The material of the inputs' metadata block.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+        """
+        return self.cases.store_rows(material)
+
     def method_notes(self) -> tuple[list[str], list[str]]:
         """The skeleton model of a `skempton-b` run, for the methods section of report.html."""
         if self.model is None or "bounding-surface" not in self.model:

@@ -102,6 +102,8 @@ FIT_OUTPUTS: tuple[tuple[str, str, str, str | None], ...] = (
     ("weight", "weight", "Akaike weight", "-"),
     ("converged", "converged", "converged", None),
 )
+#: the fit statistics of FIT_OUTPUTS that a fit's JSON object (and the lab store) gives
+_STATS = ("r2", "rmse", "aic", "aicc", "bic", "rss")
 #: columns of one parameter in parameters.csv: (attribute of capred.parameters.Parameter, CSV column)
 PARAMETER_COLUMNS = (("value", "value"), ("stderr", "standard error"), ("ci95", "95 % CI"))
 
@@ -375,6 +377,68 @@ class RetentionResult(Result):
                     out[_HEAD[k]] = "1/cm" if k.startswith("alpha") else "cm"
         return out
 
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows: per branch (labelled ``material (branch)`` where the inputs name a material),
+        every fitted model's numbers as ``<model>.<key>``, each from the declaration :meth:`fit_json` writes it
+        by: a parameter's JSON name, value, standard error, 95 % interval and unit (capred.parameters.Parameter),
+        its head form (cm of water), the values the model derives (``m``, unit from the retention JSON names) and
+        the fit statistics (``FIT_OUTPUTS``; the counts n_points and n_free are not recorded). A derived value
+        that no declaration gives a unit is not recorded and is named in a CapredWarning.
+
+        Parameters
+        ----------
+        material : str, optional
+            The material of the inputs' metadata block.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+        """
+        import warnings
+
+        from ..errors import CapredWarning
+        from ..fitting.retention_models import JSON_NAMES
+        from ..records import parameter_store_rows, store_row
+
+        units = self.quantity_units()
+        derived_units = {key: unit for key, _, unit in JSON_NAMES.values()}
+        rows = []
+        for branch, fits in self.fits.items():
+            label = f"{material} ({branch})" if material else str(branch)
+            for model, f in fits.items():
+                prefix = f"{model}."
+                si, heads = f.params_si, self._head_forms(f)
+                for k, p in zip(si, f.params.values()):  # each parameter, then its head form (as fit_json)
+                    rows += parameter_store_rows([p], label, prefix)
+                    if k in _HEAD:
+                        rows += filter(
+                            None, [store_row(label, prefix + _HEAD[k], num(heads[_HEAD[k]]), units[_HEAD[k]])]
+                        )
+                found = []
+                entry = FITTERS.get(model)
+                for name, value in entry.derived if entry is not None else ():
+                    if name not in derived_units:
+                        warnings.warn(
+                            f"retention model '{model}': '{name}' has no declared unit; the lab store does not "
+                            "record it",
+                            CapredWarning,
+                            stacklevel=2,
+                        )
+                        continue
+                    found.append((name, value(si), derived_units[name]))
+                found += [(key, getattr(f, key), units[key]) for key in _STATS]  # their units: FIT_OUTPUTS
+                for key, value, unit in found:
+                    row = store_row(label, prefix + key, num(value), unit)
+                    if row is not None:
+                        rows.append(row)
+        return rows
+
+    def _head_forms(self, f: NonlinearFit) -> dict:
+        """JSON key -> value of a fit's suction parameters as heads of water (``alpha_per_cm``, ``h_b_cm``)."""
+        cm = self.options.gamma_w * 0.01  # Pa per cm of water head
+        si = f.params_si
+        return {_HEAD[k]: si[k] * cm if k.startswith("alpha") else si[k] / cm for k in si if k in _HEAD}
+
     def fit_json(self, f: NonlinearFit, model: str) -> dict:
         """The JSON of one fit: each parameter by JSON name with ``_se`` and ``_ci95``, its head form (cm),
         statistics, correlations, SI values, warnings.
@@ -391,15 +455,15 @@ class RetentionResult(Result):
         dict
             JSON key -> value (kPa, 1/kPa, cm of head, -).
         """
-        cm = self.options.gamma_w * 0.01  # Pa per cm of water head
         si = f.params_si
+        heads = self._head_forms(f)
         out: dict = {}
         for k, p in zip(si, f.params.values()):
             out[p.name] = num(p.value)
             out[f"{p.name}_se"] = num(p.stderr) if np.isfinite(p.stderr) else None
             out[f"{p.name}_ci95"] = None if not np.isfinite(p.ci95[0]) else [num(p.ci95[0]), num(p.ci95[1])]
             if k in _HEAD:
-                out[_HEAD[k]] = num(si[k] * cm if k.startswith("alpha") else si[k] / cm)
+                out[_HEAD[k]] = num(heads[_HEAD[k]])
         entry = FITTERS.get(model) or (hysteresis_model() if f is self.hysteresis else None)
         for name, value in entry.derived if entry is not None else ():
             out[name] = num(value(si))

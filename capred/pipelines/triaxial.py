@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import nomenclature as nom
 from ..errors import FitError
 from ..fitting.linear import fit_line
 from ..io import Column, Table, read_table
@@ -232,13 +233,34 @@ class TriaxialResult(Result):
             tests.append(row)
         env = rec.to_json(self.envelope)
         env = {k: env[k] for k in ENVELOPE_KEYS}  # the order of capred 0.x
-        if (
-            self.envelope.fit is not None or self.envelope.source == "extended_mc"
-        ):  # the 95 % intervals that params (Python) and the summary give
-            par = self.envelope.params
-            env["c_ci95_kPa"] = [num(x) for x in par["c_kPa"].ci95]
-            env["phi_ci95_deg"] = [num(x) for x in par["phi_deg"].ci95]
+        for key, ci in self._envelope_intervals().items():
+            env[nom.json_key(key, "_ci95")] = [num(x) for x in ci]
         return {"source": self.source, "envelope": env, "tests": tests, "groups": [rec.to_json(g) for g in self.groups]}
+
+    def _envelope_intervals(self) -> dict:
+        """Glossary name -> 95 % interval of c' [kPa] and phi' [deg], where the envelope was fitted (params and
+        the summary give them); {} for an envelope given by --c-eff/--phi-eff."""
+        if self.envelope.fit is None and self.envelope.source != "extended_mc":
+            return {}
+        par = self.envelope.params
+        return {name: par[nom.json_key(name)].ci95 for name in ("c", "phi")}
+
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows: the effective envelope's glossary quantities (c_kPa, phi_deg with their 95 %
+        intervals, M, k_kPa, their extension twins, the standard errors, r2), from the record's declarations
+        (capred.pipelines.triaxial_records.store_rows), for the material of the inputs' metadata block.
+
+        Parameters
+        ----------
+        material : str, optional
+            The material of the inputs' metadata block.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+        """
+        intervals = {nom.json_key(name): ci for name, ci in self._envelope_intervals().items()}
+        return rec.store_rows(self.envelope, material, intervals)
 
     def tables(self) -> dict:
         """results (one row per test, bounds side by side) and, with groups, groups."""
@@ -266,10 +288,11 @@ class TriaxialResult(Result):
         return [
             {
                 "material": "(envelope)",
-                "c [kPa]": num(e.c_kPa),
-                "c_se [kPa]": num(e.c_se_kPa),
-                "phi [deg]": num(e.phi_deg),
-                "phi_se [deg]": num(e.phi_se_deg),
+                **{  # the envelope's declared quantities (JSON c_kPa ...), under their glossary CSV headers
+                    nom.column(name, se): num(getattr(e, _envelope_field(name, se).name))
+                    for name in ("c", "phi")
+                    for se in ("", "_se")
+                },
                 "n_dry": e.n,
                 "n_wet": int(self.unsaturated.sum()),
                 "best_model": None,
@@ -291,6 +314,15 @@ class TriaxialResult(Result):
                 cols[k] = np.where(keep, v, None) if v.dtype == bool else np.where(keep, v, np.nan)
         cols["flags"] = [";".join(self.flags(i)) for i in range(len(self.states))]
         return pd.DataFrame(cols)
+
+
+def _envelope_field(name: str, se: str):
+    """The field of the Envelope record that declares glossary quantity ``name`` (its standard error: se="_se")."""
+    return next(
+        f
+        for f in dataclasses.fields(Envelope)
+        if f.metadata.get("quantity") == name and f.metadata["se"] == (se == "_se") and not f.metadata["ci"]
+    )
 
 
 #: the keys of the JSON object ``envelope``, in their order
