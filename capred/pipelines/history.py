@@ -228,6 +228,11 @@ class HistoryResult(Result):
     def store_rows(self, material: str | None = None) -> list:
         """Refused: a history run reads a store and is never recorded in one.
 
+        Parameters
+        ----------
+        material : str or None, optional
+            The material of the inputs' metadata block (unused).
+
         Raises
         ------
         ValueError
