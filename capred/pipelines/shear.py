@@ -984,6 +984,99 @@ def _void_volume(table: Table, opt: ShearOptions, box: np.ndarray) -> np.ndarray
     return v_v
 
 
+@dataclass
+class _DerivedColumns:
+    """The per-test arrays :func:`derive_tests` builds [SI], with the inputs its check of missing values names."""
+
+    wet: np.ndarray
+    cap: np.ndarray
+    added: np.ndarray
+    box: np.ndarray
+    radius: np.ndarray
+    sigma_N: np.ndarray
+    tau: np.ndarray
+    suction: np.ndarray
+    S_R: np.ndarray
+    from_burette: np.ndarray
+
+
+def _report_missing(table: Table, opt: ShearOptions, cols: _DerivedColumns, with_curves: bool) -> None:
+    """A problem for every value that cannot be derived (unless its cause is already reported: a bad cell on the
+    line, an absent column), and for a burette's S_R outside [0, 1]."""
+    n = len(table)
+    bad_lines = {p.line for p in table.problems}
+
+    def missing(i: int, what: str, column: str | None) -> None:
+        """A value that cannot be derived: reported unless its cause is already (a bad cell on the line, an
+        absent column)."""
+        if table.missing or int(table.lines[i]) in bad_lines:
+            return
+        table.add_problem(i, column, what)
+
+    wet, cap, added, box, sigma_N, tau, suction, S_R = (
+        cols.wet,
+        cols.cap,
+        cols.added,
+        cols.box,
+        cols.sigma_N,
+        cols.tau,
+        cols.suction,
+        cols.S_R,
+    )
+    # only rows with something missing or out of range need a look (the rest are fine)
+    # R is required only by the models that read it (issue 41.5): Own 2's chi2 and the exact bridge
+    by_radius = [esm.REGISTRY[m].label for m in opt.models if esm.REGISTRY[m].uses_radius]
+    no_radius = np.isnan(cols.radius) if by_radius else np.zeros(n, bool)
+    look = (
+        np.isnan(sigma_N)
+        | np.isnan(tau)
+        | (wet & (np.isnan(suction) | np.isnan(S_R) | no_radius | (cols.from_burette & ((S_R < 0) | (S_R > 1)))))
+    )
+    for i in np.flatnonzero(look):
+        if np.isnan(sigma_N[i]):
+            parts = [
+                c for c, v in (("added_mass", added[i]), ("cap_mass", cap[i]), ("box_area", box[i])) if np.isnan(v)
+            ]
+            col = parts[0] if parts and parts[0] in table.columns else None
+            missing(
+                i,
+                "no normal stress: give 'sigma_N', or 'added_mass' with 'cap_mass' and 'box_area' "
+                f"(missing here: {', '.join(parts)}; cap mass and box area may come from "
+                "--cap-mass and --box-area)",
+                col,
+            )
+        if np.isnan(tau[i]):
+            col = "tau_max" if "tau_max" in table.columns else None
+            missing(
+                i,
+                "no shear strength: give 'tau_max', or 'F_max' with 'box_area'"
+                + (", or a curve for this test" if with_curves else ""),
+                col,
+            )
+        if not wet[i]:
+            continue
+        if np.isnan(suction[i]):
+            col = "z1" if "z1" in table.columns else None
+            missing(i, "wet test without suction: give 'suction' or the head 'z1'", col)
+        if np.isnan(S_R[i]):
+            col = "z2" if "z2" in table.columns else None
+            missing(i, "wet test without S_R: give 'S_R', or 'z2' with 'V_v' (or --void-volume)", col)
+        elif cols.from_burette[i] and not 0.0 <= S_R[i] <= 1.0:
+            table.add_problem(
+                i,
+                "z2",
+                f"S_R = (V_v - z2)/V_v = {S_R[i]:.4g} lies outside [0, 1]: "
+                f"z2 = {table.value_text('z2', i)} exceeds V_v",
+            )
+        if no_radius[i]:
+            col = "R" if "R" in table.columns else None
+            missing(
+                i,
+                f"wet test without particle radius: give 'R' or --radius (needed by {', '.join(by_radius)})",
+                col,
+            )
+
+
 def derive_tests(
     table: Table, opt: ShearOptions, box: np.ndarray, tau_curve: np.ndarray | None = None
 ) -> dict[str, np.ndarray]:
@@ -1054,68 +1147,8 @@ def derive_tests(
     z2 = table.get("z2")
     S_R[from_burette] = ph.degree_of_saturation(z2, v_v)[from_burette]
 
-    bad_lines = {p.line for p in table.problems}
-
-    def missing(i: int, what: str, column: str | None) -> None:
-        """A value that cannot be derived: reported unless its cause is already (a bad cell on the line, an
-        absent column)."""
-        if table.missing or int(table.lines[i]) in bad_lines:
-            return
-        table.add_problem(i, column, what)
-
-    # only rows with something missing or out of range need a look (the rest are fine)
-    # R is required only by the models that read it (issue 41.5): Own 2's chi2 and the exact bridge
-    by_radius = [esm.REGISTRY[m].label for m in opt.models if esm.REGISTRY[m].uses_radius]
-    no_radius = np.isnan(radius) if by_radius else np.zeros(n, bool)
-    look = (
-        np.isnan(sigma_N)
-        | np.isnan(tau)
-        | (wet & (np.isnan(suction) | np.isnan(S_R) | no_radius | (from_burette & ((S_R < 0) | (S_R > 1)))))
-    )
-    for i in np.flatnonzero(look):
-        if np.isnan(sigma_N[i]):
-            parts = [
-                c for c, v in (("added_mass", added[i]), ("cap_mass", cap[i]), ("box_area", box[i])) if np.isnan(v)
-            ]
-            col = parts[0] if parts and parts[0] in table.columns else None
-            missing(
-                i,
-                "no normal stress: give 'sigma_N', or 'added_mass' with 'cap_mass' and 'box_area' "
-                f"(missing here: {', '.join(parts)}; cap mass and box area may come from "
-                "--cap-mass and --box-area)",
-                col,
-            )
-        if np.isnan(tau[i]):
-            col = "tau_max" if "tau_max" in table.columns else None
-            missing(
-                i,
-                "no shear strength: give 'tau_max', or 'F_max' with 'box_area'"
-                + (", or a curve for this test" if tau_curve is not None else ""),
-                col,
-            )
-        if not wet[i]:
-            continue
-        if np.isnan(suction[i]):
-            col = "z1" if "z1" in table.columns else None
-            missing(i, "wet test without suction: give 'suction' or the head 'z1'", col)
-        if np.isnan(S_R[i]):
-            col = "z2" if "z2" in table.columns else None
-            missing(i, "wet test without S_R: give 'S_R', or 'z2' with 'V_v' (or --void-volume)", col)
-        elif from_burette[i] and not 0.0 <= S_R[i] <= 1.0:
-            table.add_problem(
-                i,
-                "z2",
-                f"S_R = (V_v - z2)/V_v = {S_R[i]:.4g} lies outside [0, 1]: "
-                f"z2 = {table.value_text('z2', i)} exceeds V_v",
-            )
-        if no_radius[i]:
-            col = "R" if "R" in table.columns else None
-            missing(
-                i,
-                f"wet test without particle radius: give 'R' or --radius (needed by {', '.join(by_radius)})",
-                col,
-            )
-
+    columns = _DerivedColumns(wet, cap, added, box, radius, sigma_N, tau, suction, S_R, from_burette)
+    _report_missing(table, opt, columns, tau_curve is not None)
     suction = np.where(wet, suction, 0.0)
     S_R = np.where(wet, S_R, np.where(cond == "saturated", 1.0, 0.0))  # a saturated test: S_R = 1, no suction
     return {"sigma_N": sigma_N, "suction": suction, "S_R": S_R, "tau_max": tau, "R": radius}
