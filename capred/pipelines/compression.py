@@ -186,7 +186,11 @@ class CompressionResult(Result):
         }
 
     def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows: the initial void ratio (glossary ``e0``, dimensionless).
+        """The lab store's rows: the initial void ratio (glossary ``e0``) and every estimate.
+
+        Each estimate (C_c, λ, e_N, the yield stresses, C_s, ...) is stored under its JSON name with its 95 %
+        interval and its standard error (``name_se``), in its declared unit (``-`` when dimensionless), so that
+        `capred history --quantity C_c` charts it.
 
         Parameters
         ----------
@@ -197,10 +201,14 @@ class CompressionResult(Result):
         -------
         list of capred.records.StoreRow
         """
-        from ..records import quantity_store_row
+        from ..records import quantity_store_row, store_row
 
-        row = quantity_store_row(material, "e0", self.e0)
-        return [] if row is None else [row]
+        rows = [quantity_store_row(material, "e0", self.e0)]
+        for x in self.estimates:
+            unit = x.unit or "-"
+            rows.append(store_row(material, x.name, x.value, unit, (x.low, x.high)))
+            rows.append(store_row(material, f"{x.name}_se", x.se, unit))
+        return [r for r in rows if r is not None]
 
     def payload(self, lazy: bool = False) -> dict:
         """The command's keys of compression.json: test, e0, the estimates, the lines and the readings.
