@@ -124,3 +124,18 @@ def test_skempton_retention_json_honours_max_megabytes(tmp_path):
     )  # fmt: skip
     assert res.exit_code == 1 and "1.5 MiB, more than the 1 MiB" in res.stderr, res.output
     assert not (tmp_path / "o").exists()
+
+
+def test_pt_volume_compression_json_honours_max_megabytes(tmp_path):
+    """pt-volume's --compression-w is read within the run's --max-megabytes (it was read as the options were built,
+    always within the 256 MiB default): a 1.5 MiB file is refused under --max-megabytes 1, naming the file and the
+    limit, with nothing written."""
+    big = tmp_path / "compression.json"
+    _padded_json(big, 1.5)
+    res = runner.invoke(
+        app, ["pt-volume", "--sample", "--compression-w", str(big), "--max-megabytes", "1",
+              "--out", str(tmp_path / "o")],
+    )  # fmt: skip
+    assert res.exit_code == 1 and "--max-megabytes" in res.stderr and "1.5 MiB" in res.stderr, res.output
+    assert str(big) in res.stderr and "limit of 1 MiB" in res.stderr and "Traceback" not in res.output
+    assert not (tmp_path / "o").exists()

@@ -472,6 +472,7 @@ def run_pt_volume(source, options: PTVolumeOptions | None = None) -> PTVolumeRes
     Pedrotti & Tarantino (submitted), eq. 1-2 (σ'_W, σ'_A), 5 (coupling), 6-10 (pore classes), Fig. 13-17.
     """
     opt = options if options is not None else PTVolumeOptions()
+    opt.read_fits(getattr(source, "limits", None))  # the compression.json files, within the run's --max-megabytes
     params = opt.parameters()
     table = read_table(source, SCHEMA)
     notes = list(table.notes)

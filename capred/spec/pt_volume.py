@@ -109,12 +109,44 @@ class PTVolumeOptions(Options):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        if self.compression_W is not None or self.compression_A is not None:
-            object.__setattr__(self, "_from_fits", self._lines_from_compression())
-        if all(self._line(k) is not None for k in LINE_OPTIONS) or self.example_kaolin:
-            self.parameters()  # kappa < lambda and the other joint checks, at once
+        for part, path in (("W", self.compression_W), ("A", self.compression_A)):
+            given = [
+                LINE_OPTIONS[k]
+                for k in (f"lambda_{part}", f"kappa_{part}", f"e_ncl_{part}")
+                if getattr(self, k) is not None
+            ]
+            if path is not None and given:
+                raise OptionError(f"give --compression-{part.lower()} or {', '.join(given)}, not both")
+        if self.compression_W is None and self.compression_A is None:
+            object.__setattr__(self, "_from_fits", {})
+            if all(self._line(k) is not None for k in LINE_OPTIONS) or self.example_kaolin:
+                self.parameters()  # kappa < lambda and the other joint checks, at once
 
-    def _lines_from_compression(self) -> dict:
+    def read_fits(self, limits=None) -> None:
+        """Read the compression.json files given (``compression_W``, ``compression_A``), once, within ``limits``.
+
+        The run calls it with its reading limits (``--max-megabytes``) before anything else; without that call the
+        files are read, when first needed, within the reader's defaults (256 MiB).
+
+        Parameters
+        ----------
+        limits : capred.io.ReadLimits, optional
+            The run's reading limits.
+
+        Raises
+        ------
+        InputError
+            A file larger than the limit, or not a compression.json.
+        OptionError
+            A test without unloading stage (no κ), or lines out of their joint domain (κ < λ ...).
+        """
+        if hasattr(self, "_from_fits"):
+            return
+        object.__setattr__(self, "_from_fits", self._lines_from_compression(limits))
+        if all(self._line(k) is not None for k in LINE_OPTIONS) or self.example_kaolin:
+            self.parameters()  # kappa < lambda and the other joint checks, as soon as the lines are known
+
+    def _lines_from_compression(self, limits=None) -> dict:
         """λ, κ, e_ncl of each part given by a compression.json (e_ncl moved to the run's reference stress)."""
         from ..pipelines.compression import load_compression_fit
 
@@ -122,14 +154,7 @@ class PTVolumeOptions(Options):
         for part, path in (("W", self.compression_W), ("A", self.compression_A)):
             if path is None:
                 continue
-            given = [
-                LINE_OPTIONS[k]
-                for k in (f"lambda_{part}", f"kappa_{part}", f"e_ncl_{part}")
-                if getattr(self, k) is not None
-            ]
-            if given:
-                raise OptionError(f"give --compression-{part.lower()} or {', '.join(given)}, not both")
-            lines = load_compression_fit(path)
+            lines = load_compression_fit(path, limits)
             if lines.url_slope is None:
                 raise OptionError(
                     f"--compression-{part.lower()} {lines.source}: the test has no unloading stage, so no κ_{part}"
@@ -141,7 +166,10 @@ class PTVolumeOptions(Options):
 
     def _line(self, k: str):
         v = getattr(self, k)
-        return v if v is not None else getattr(self, "_from_fits", {}).get(k)
+        if v is None:
+            self.read_fits()
+            return self._from_fits.get(k)
+        return v
 
     def from_compression(self) -> list[str]:
         """The line parameters taken from a compression.json.
@@ -151,7 +179,8 @@ class PTVolumeOptions(Options):
         list of str
             Their option names; empty without a compression.json.
         """
-        return list(getattr(self, "_from_fits", {}))
+        self.read_fits()
+        return list(self._from_fits)
 
     def illustrative(self) -> list[str]:
         """The line parameters taken from EXAMPLE_KAOLIN.
