@@ -378,3 +378,18 @@ def test_extension_path_is_settable_by_hand(tmp_path, write_csv):
     assert json.loads(res.stdout)["tests"][0]["q_sat_kPa"] == pytest.approx(600.0, rel=1e-12)
     bad = runner.invoke(app, ["triaxial-bounds", str(data), "--extension-path", "sideways", "--out", str(tmp_path)])
     assert bad.exit_code != 0 and "axial-unloading, radial-loading" in bad.output
+
+
+def test_triaxial_curves_honour_max_megabytes(tmp_path):
+    """--max-megabytes reaches the --curves file (it was read within the 256 MiB default whatever the run asked): a
+    1.5 MiB curves file is refused under --max-megabytes 1 before it is read, naming it and the limit; nothing
+    written. The tests table itself is small and within the limit."""
+    curves = tmp_path / "curves.csv"
+    curves.write_text(capred.sample_path("triaxial-curves").read_text() + "\n" * int(1.5 * 2**20))
+    res = runner.invoke(
+        app, ["triaxial-bounds", str(capred.sample_path("triaxial-bounds")), "--curves", str(curves),
+              "--max-megabytes", "1", "--no-plots", "--out", str(tmp_path / "o")],
+    )  # fmt: skip
+    assert res.exit_code == 1 and "--max-megabytes" in res.stderr and "limit of 1 MiB" in res.stderr, res.output
+    assert str(curves) in res.stderr and "Traceback" not in res.output
+    assert not (tmp_path / "o").exists()

@@ -844,7 +844,9 @@ def _read_tests(source, opt: TriaxialOptions) -> _Loaded:
             else {str(t): x for t, x, w in zip(table.columns["test_id"], D_c, D_c_source) if w in ("D_c", "dV_c")}
         )
         # --ignore-column applies to every file the command reads; a name no file has is warned about once
-        raw_curves = read_curves(curves, table, opt.membrane, dc, getattr(source, "ignore_columns", ()))
+        raw_curves = read_curves(  # within the run's reading limits (--max-megabytes ...), as its tests table
+            curves, table, opt.membrane, dc, getattr(source, "ignore_columns", ()), getattr(source, "limits", None)
+        )
         table.forget_ignores(raw_curves.ignores_used)
         table.problems += raw_curves.problems  # reported with the table's own, in one round
         table.notes += raw_curves.notes

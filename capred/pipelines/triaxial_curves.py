@@ -628,6 +628,7 @@ def read_curves(
     membrane: tuple[float, float] | None = None,
     consolidated: dict | None = None,
     ignore_columns=(),
+    limits=None,
 ) -> TriaxialCurves:
     """Peak q and the axial strain at the peak of every test's curve.
 
@@ -651,6 +652,9 @@ def read_curves(
     ignore_columns : sequence of str, optional
         Columns to leave out of every curve file (CLI ``--ignore-column``, the command's list); a name no curve
         file has is not warned about here (``ignores_used`` tells the caller which ones some file had).
+    limits : capred.io.ReadLimits, optional
+        The run's reading limits (``--max-megabytes`` and the others), applied to every curve file; default: the
+        reader's.
 
     Returns
     -------
@@ -665,7 +669,7 @@ def read_curves(
     out = TriaxialCurves()
     d0_col = {str(t): d for t, d in zip(tests.columns.get("test_id", []), tests.get("D0"))} if tests is not None else {}
     for f in curve_files(spec):
-        table = read_table(f, SCHEMA, ignore_columns=ignore_columns)
+        table = read_table(f, SCHEMA, ignore_columns=ignore_columns, limits=limits)
         out.ignores_used |= table.ignores_used
         table.forget_ignores()  # the command's first file warns about a name no file has
         out.tables.append(table)
