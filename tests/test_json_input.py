@@ -139,3 +139,35 @@ def test_pt_volume_compression_json_honours_max_megabytes(tmp_path):
     assert res.exit_code == 1 and "--max-megabytes" in res.stderr and "1.5 MiB" in res.stderr, res.output
     assert str(big) in res.stderr and "limit of 1 MiB" in res.stderr and "Traceback" not in res.output
     assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        pytest.param(["skempton-b", "--S-R", "0.9", "--compression", "{json}"], id="skempton-b --compression"),
+        pytest.param(["skempton-b", "--S-R", "0.9", "--retention", "{json}"], id="skempton-b --retention"),
+        pytest.param(["shear-band", "--triaxial", "{json}", "--dilatancy-angle", "8"], id="shear-band --triaxial"),
+    ],
+)
+def test_json_inputs_of_a_run_without_a_table_honour_max_megabytes(tmp_path, args):
+    """A run from options only has no table to carry --max-megabytes: the CLI states it for the run (run_limits),
+    so a 1.5 MiB JSON input is refused under --max-megabytes 1, naming the file and its size, nothing written."""
+    big = tmp_path / "input.json"
+    _padded_json(big, 1.5)
+    args = [a.replace("{json}", str(big)) for a in args]
+    res = runner.invoke(app, [*args, "--max-megabytes", "1", "--out", str(tmp_path / "o")])
+    assert res.exit_code == 1 and "--max-megabytes" in res.stderr and "1.5 MiB" in res.stderr, res.output
+    assert str(big) in res.stderr and "Traceback" not in res.output
+    assert not (tmp_path / "o").exists()
+
+
+def test_run_limits_reach_a_python_run_without_a_table(tmp_path):
+    """From Python: ``run_limits`` states the limits of a run with no table (the reader's default is 256 MiB)."""
+    from capred.io import run_limits
+    from capred.pipelines.calculators import ShearBandOptions, reduce_shear_band
+
+    big = tmp_path / "summary.json"
+    _padded_json(big, 1.5)
+    opt = ShearBandOptions(triaxial=str(big), dilatancy_angle=8.0)
+    with run_limits(ReadLimits(max_bytes=2**20)), pytest.raises(LimitError, match="1.5 MiB"):
+        reduce_shear_band(None, opt)

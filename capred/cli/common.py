@@ -130,6 +130,7 @@ class Invocation:
     workers: int | None = None  # None: one per core
     extra_inputs: list = field(default_factory=list)  # further files read (curves, a retention fit)
     output: OutputOptions = field(default_factory=OutputOptions)
+    limits: object = None  # the reading limits asked for (--max-megabytes ...): a run without a table reads within them
 
 
 def physics_refusal(exc: ValueError):
@@ -339,6 +340,7 @@ def command(app: typer.Typer, name: str, full_name: str | None = None, data: str
                     f"{'; '.join(bad)}: an option must be a finite number (NaN and infinities are not values)"
                 )
             if data is not None:
+                inv.limits = _limits(common)
                 inv.sources = sources(
                     common["data"],
                     common["sample"],
@@ -346,7 +348,7 @@ def command(app: typer.Typer, name: str, full_name: str | None = None, data: str
                     common["sheet"],
                     common["thousands"],
                     common["ignore_column"],
-                    _limits(common),
+                    inv.limits,
                 )
                 inv.workers = common["workers"]
             inv.out, inv.json, inv.output = common["out"], common["json_out"], out
@@ -687,9 +689,10 @@ def _single(inv: Invocation) -> None:
         check_outputs_ahead(inv.command, source, inv.options, out_dir, inv.extra_inputs)
     import sys
 
+    from ..io import run_limits
     from ..progress import showing
 
-    with showing(not inv.json and sys.stderr.isatty()):
+    with showing(not inv.json and sys.stderr.isatty()), run_limits(inv.limits):  # a table carries them too
         result = REDUCTIONS[inv.command].run(source, inv.options)
     o = inv.output
     written = (

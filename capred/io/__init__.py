@@ -9,7 +9,8 @@ Other layers (pipelines, report, batch, cli) import what they need from here, e.
 - `capred.io.blocks`: `read_table_blocks` (a long CSV a block at a time);
 - `capred.io.manifest`: `read_manifest`;
 - `capred.io.json_input`: `read_json` (a JSON input bounded in size and nesting), `json_depth` and
-  `MAX_JSON_DEPTH` (the nesting rule, for a reader of its own such as retention-convert's);
+  `MAX_JSON_DEPTH` (the nesting rule, for a reader of its own such as retention-convert's), `run_limits` and
+  `limits_of` (the reading limits of a run with no table);
 - `capred.io.writers`: the output files (`write_run`, `write_batch_file`, `RunFolder`, `check_target`,
   `check_rows_output` (outputs sized from an input's lines before a run), `encode_csv`, `encode_json`, `encode_rows`, `stream_json`, `safe_name`, `INDEX_HEADER`,
   `second_core_free`, `FileText` and `write_piece`: text written ahead, copied file to file);
@@ -27,7 +28,7 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:  # what the names are, for readers and type checkers; at run time see __getattr__
     from .blocks import read_table_blocks
     from .grid import SPREADSHEET_SUFFIXES, ReadLimits, TableSource, read_grid, source_path
-    from .json_input import MAX_JSON_DEPTH, json_depth, read_json
+    from .json_input import MAX_JSON_DEPTH, json_depth, limits_of, read_json, run_limits
     from .manifest import read_manifest
     from .spreadsheet_out import source_date_epoch
     from .table import Column, Table, column_lookup, find_header, header_key, match_header, read_table
@@ -54,7 +55,7 @@ _WHERE = {
     "read_table_blocks": "blocks",
     **dict.fromkeys(("SPREADSHEET_SUFFIXES", "ReadLimits", "TableSource", "read_grid", "source_path"), "grid"),
     "read_manifest": "manifest",
-    **dict.fromkeys(("read_json", "json_depth", "MAX_JSON_DEPTH"), "json_input"),
+    **dict.fromkeys(("read_json", "json_depth", "MAX_JSON_DEPTH", "run_limits", "limits_of"), "json_input"),
     "source_date_epoch": "spreadsheet_out",
     **dict.fromkeys(
         ("Column", "Table", "column_lookup", "find_header", "header_key", "match_header", "read_table"), "table"
@@ -103,6 +104,8 @@ __all__ = [
     "read_json",
     "json_depth",
     "MAX_JSON_DEPTH",
+    "run_limits",
+    "limits_of",
     "read_manifest",
     "read_table",
     "read_table_blocks",

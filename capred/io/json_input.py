@@ -8,9 +8,56 @@ nest about 6 deep; Python's parser would otherwise raise ``RecursionError`` at a
 
 from __future__ import annotations
 
+from contextlib import contextmanager
+from contextvars import ContextVar
 from pathlib import Path
 
 from ..errors import InputError, Problem
+
+#: the reading limits of a run with no table to carry them (set by :func:`run_limits`)
+_RUN_LIMITS: ContextVar = ContextVar("capred_run_limits", default=None)
+
+
+@contextmanager
+def run_limits(limits):
+    """Within the block, a run without a table reads its JSON inputs within ``limits``.
+
+    A table carries the run's limits (``TableSource.limits``); a run from options only (``capred skempton-b
+    --retention fits.json``, ``capred shear-band --triaxial summary.json``) has no table, so the CLI states its
+    ``--max-megabytes`` here, and a script may too: ``with run_limits(ReadLimits(max_bytes=2**20)): ...``.
+
+    Parameters
+    ----------
+    limits : capred.io.grid.ReadLimits or None
+        The limits; None: the readers' defaults.
+
+    Yields
+    ------
+    None
+    """
+    token = _RUN_LIMITS.set(limits)
+    try:
+        yield
+    finally:
+        _RUN_LIMITS.reset(token)
+
+
+def limits_of(source):
+    """The reading limits of a run: its table's (``source.limits``), else those of the enclosing :func:`run_limits`.
+
+    Parameters
+    ----------
+    source : str, Path, DataFrame, TableSource or None
+        The run's table, None for a run from options only.
+
+    Returns
+    -------
+    capred.io.grid.ReadLimits or None
+        None: the readers' defaults.
+    """
+    limits = getattr(source, "limits", None)
+    return limits if limits is not None else _RUN_LIMITS.get()
+
 
 #: deepest nesting of arrays and objects a JSON input may have (capred's own documents nest about 6 deep)
 MAX_JSON_DEPTH = 64

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError, OptionError, Problem
-from ..io import Column, read_table
+from ..io import Column, limits_of, read_table
 from ..nomenclature import renamed_keywords
 from ..physics import calculators as calc
 from ..physics.shear import GAMMA_W, SURFACE_TENSION
@@ -478,15 +478,13 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
     """
     fit_notes, fit_warnings = [], []
     if opt.compression is not None:
-        opt, fit_notes, fit_warnings = _with_compression(opt, getattr(source, "limits", None))
+        opt, fit_notes, fit_warnings = _with_compression(opt, limits_of(source))
     if opt.retention is not None:  # any retention fit: Brooks-Corey as it is, another model converted to it
         from .retention_convert import brooks_corey_for_skempton
 
         if opt.s_e is not None or opt.bc_lambda is not None:
             raise OptionError("give --retention or --se with --bc-lambda, not both")
-        s_e, lam, more_notes, more_warnings = brooks_corey_for_skempton(
-            opt.retention, limits=getattr(source, "limits", None)
-        )
+        s_e, lam, more_notes, more_warnings = brooks_corey_for_skempton(opt.retention, limits=limits_of(source))
         fit_notes, fit_warnings = fit_notes + more_notes, fit_warnings + more_warnings
         opt = dataclasses.replace(opt, s_e=s_e, bc_lambda=lam)
     kw = dict(kappa=opt.kappa_elastic, e0=opt.e0, p0=opt.p0, u0=opt.u0, pa0=opt.pa0)  # keys: the figure's
@@ -1108,7 +1106,7 @@ def reduce_shear_band(source, opt: ShearBandOptions) -> CalcResult:
     phi_eff = opt.phi_eff
     notes_extra = []
     if opt.triaxial is not None:
-        phi_eff = _phi_from_triaxial(opt.triaxial, getattr(source, "limits", None))
+        phi_eff = _phi_from_triaxial(opt.triaxial, limits_of(source))
         notes_extra.append(f"φ' = {phi_eff:.4g} deg from the envelope of {opt.triaxial}")
     v, notes, src = _inputs(
         source,
