@@ -1109,7 +1109,21 @@ class _Problem:
         return f + x1[:, None] * c1 + x2[:, None] * c2
 
     def resid_rows(self, U):
-        """Weighted projected residuals (m, n) at rows ``U`` (m, k) of the fitting coordinates."""
+        """Weighted projected residuals (m, n) at rows ``U`` (m, k) of the fitting coordinates.
+
+        Evaluated a block of rows at a time (about ``_CHUNK`` rows x data points), so a long file's fit holds a few
+        blocks in memory and not every temporary of every row; each row's arithmetic is its own, so the blocks give
+        the same numbers as one evaluation.
+        """
+        rows = max(1, _CHUNK // max(self.s.size, 1))
+        if U.shape[0] <= rows:
+            return self._resid_block(U)
+        out = np.empty((U.shape[0], self.s.size))
+        for i in range(0, U.shape[0], rows):
+            out[i : i + rows] = self._resid_block(U[i : i + rows])
+        return out
+
+    def _resid_block(self, U):
         X = self.x_rows(U)
         with np.errstate(all="ignore"):
             S = self.model.saturation(
