@@ -68,7 +68,7 @@ def test_declared_cells_per_row_are_the_per_row_tables_columns(command, options,
 def test_a_tiny_output_bound_refuses_before_the_reduction(tmp_path, monkeypatch):
     """$CAPRED_MAX_OUTPUT_MEGABYTES of 0.01 (10 kiB): the shear sample's 52 tests x 59 cells x 40 B = 123 kB are
     refused from its lines alone; the reduction is never called and nothing is written."""
-    import capred.pipelines.shear as shear
+    import capred.pipelines.shear_run as shear
 
     def not_called(*args, **kwargs):
         raise AssertionError("the reduction ran")
@@ -84,7 +84,7 @@ def test_a_tiny_output_bound_refuses_before_the_reduction(tmp_path, monkeypatch)
 
 
 def test_the_batch_runner_sizes_each_file_before_its_reduction(tmp_path, monkeypatch):
-    import capred.pipelines.shear as shear
+    import capred.pipelines.shear_run as shear
     from capred import batch
 
     monkeypatch.setattr(shear, "run_shear", lambda *a, **k: pytest.fail("the reduction ran"))
