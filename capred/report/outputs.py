@@ -156,7 +156,8 @@ def write_outputs(
     dpi : int
         Resolution of PNG figures [dots per inch].
     command_line : str, optional
-        Recorded in provenance.json (default: this process's argv).
+        Recorded in provenance.json and report.html (default: this process's argv; a batch gives each file the
+        command that reproduces that file's run alone).
     html : bool
         Write report.html (it embeds each composite: the PNG already drawn, or the SVG when ``svg`` is
         one of ``formats``).
@@ -198,7 +199,8 @@ def write_outputs(
                 from .html import render_html
 
                 with task("writing report.html"):
-                    folder.write_bytes("report.html", render_html(result, drawn, plots).encode("utf-8"))
+                    page = render_html(result, drawn, plots, command_line=command_line)
+                    folder.write_bytes("report.html", page.encode("utf-8"))
 
         from ..lab_store import Recorder, store_from
 
