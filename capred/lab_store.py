@@ -32,13 +32,11 @@ import errno
 import functools
 import hashlib
 import json
-import math
 import os
 import sqlite3
 from pathlib import Path
 
 from .errors import InputError, Problem
-from .nomenclature import unit_suffix
 
 #: identifies a capred store (PRAGMA application_id): "CAPR" in ASCII
 APPLICATION_ID = 0x43415052
@@ -413,100 +411,38 @@ def declared_units() -> dict[str, tuple[str, str]]:
     return out
 
 
-def _unit(key: str, units: dict) -> tuple[str, str | None]:
-    """(quantity, unit) of a document's key as declared (``units``: :func:`declared_units` and the run's own,
-    ``Result.quantity_units``); an undeclared key: (key, None), its unit unknown (the store records NULL rather
-    than a guess)."""
-    return units.get(key, (key, None))
+def rows_of(result, metadata: dict | None = None) -> list[tuple]:
+    """The long records ``(material, quantity, value, ci_low, ci_high, unit)`` of a run.
 
-
-def _number(x) -> float | None:
-    if isinstance(x, bool) or not isinstance(x, (int, float)):
-        return None
-    return float(x) if math.isfinite(x) else None
-
-
-def _interval(block: dict, key: str, units: dict) -> tuple[float | None, float | None]:
-    """The 95 % interval of ``key`` in ``block``: ``<stem>_ci95_<unit>`` or ``<key>_ci95`` as [low, high]."""
-    stem, unit = _unit(key, units)
-    suffix = "" if unit in (None, "-") else "_" + unit_suffix(unit)
-    for k in (f"{stem}_ci95{suffix}", f"{key}_ci95", f"{stem}_ci95"):
-        ci = block.get(k)
-        if isinstance(ci, (list, tuple)) and len(ci) == 2:
-            return _number(ci[0]), _number(ci[1])
-    return None, None
-
-
-def _scalars(block: dict, material, units: dict, skip=("n", "line", "dof"), prefix: str = "") -> list[tuple]:
-    rows = []
-    for key, value in block.items():
-        v = _number(value)
-        if v is None or "_ci95" in key or key in skip:
-            continue
-        lo, hi = _interval(block, key, units)
-        rows.append((material, prefix + key, v, lo, hi, _unit(key, units)[1]))
-    return rows
-
-
-def _retention_records(branches: dict, material, units: dict) -> list[tuple]:
-    """The records of a retention document: per branch (the record's material: the branch, after the inputs'
-    material where the metadata names one) every fitted model's numbers as ``<model>.<key>`` (``vg.alpha_per_kPa``
-    with its interval, ``vg.n``, ``vg.r2``)."""
-    out = []
-    for branch, block in branches.items():
-        fits = block.get("fits") if isinstance(block, dict) else None
-        if not isinstance(fits, dict):
-            continue
-        label = f"{material} ({branch})" if material else str(branch)
-        for model, fit in fits.items():
-            if isinstance(fit, dict):  # 'n' is van Genuchten's exponent here, not a count
-                out += _scalars(fit, label, units, skip=("n_points", "n_free"), prefix=f"{model}.")
-    return out
-
-
-def records_of(doc: dict, metadata: dict | None = None, units: dict[str, str] | None = None) -> list[tuple]:
-    """The long records ``(material, quantity, value, ci_low, ci_high, unit)`` of a run's JSON document.
-
-    Per material (a ``materials`` mapping of the document: shear, triaxial, retention), every number with
-    its 95 % interval where the document gives one (``phi_deg`` with ``phi_ci95_deg``); of a retention
-    document (``branches``), each branch's fits as ``<model>.<key>`` for the branch; of a triaxial one, its
-    effective ``envelope`` (``c_kPa``, ``phi_deg`` with their intervals) for the material of the inputs'
-    metadata block (or none); and the document's
-    top-level numbers (a calculator's single case), for the material named in the inputs' metadata block
-    (``material``) or none.
+    From the result's records through their declarations (``result.store_rows(material)``: the JSON key, value,
+    95 % interval and unit of one declaration each; capred.records.StoreRow), never from the JSON read back;
+    the material is the one the inputs' metadata block names (``material``), or none.
 
     Parameters
     ----------
-    doc : dict
-        ``result.to_json()``.
+    result : capred.result.Result
+        Any command's result.
     metadata : dict, optional
         The inputs' metadata block.
-    units : dict, optional
-        JSON key -> unit the run declares beyond the glossary (``Result.quantity_units()``).
 
     Returns
     -------
     list of tuple
-        One tuple per record; the quantity is the document's key, the unit its declared one
-        (:func:`declared_units`, ``units``; ``-`` when dimensionless, None where nothing declares it).
+
+    Raises
+    ------
+    ValueError
+        The result declares no rows (``store_rows`` returns None: a command that has not declared them).
     """
-    units = {**declared_units(), **{k: (k, u) for k, u in (units or {}).items()}}
-    out = []
-    materials = doc.get("materials")
-    if isinstance(materials, dict):
-        for name, block in materials.items():
-            if isinstance(block, dict):
-                out += _scalars(block, str(name), units)
     meta = metadata or {}
     material = next((str(v) for k, v in meta.items() if str(k).strip().lower() == "material"), None)
-    branches = doc.get("branches")
-    if isinstance(branches, dict):  # capred retention: the fits of each branch
-        out += _retention_records(branches, material, units)
-    envelope = doc.get("envelope")
-    if isinstance(envelope, dict):  # capred triaxial-bounds: the effective envelope c', phi' (and M, k)
-        out += _scalars(envelope, material, units)
-    out += _scalars({k: v for k, v in doc.items() if k != "materials"}, material, units)
-    return out
+    declared = getattr(result, "store_rows", None)
+    rows = None if declared is None else declared(material)
+    if rows is None:
+        raise ValueError(
+            f"`capred {getattr(result, 'command', '?')}` declares no lab-store rows (Result.store_rows): its run cannot be recorded"
+        )
+    return [tuple(r) for r in rows]
 
 
 def run_key(doc: dict) -> str:
@@ -633,9 +569,11 @@ class Recorder:
 
         from .io import encode_json
 
-        doc = json.loads(encode_json(result.to_json()).decode("utf-8"))  # the JSON the run wrote, NaN as null
+        # the document the run wrote (NaN as null), kept whole in the runs table with its provenance
+        doc = json.loads(encode_json(result.to_json()).decode("utf-8"))
         key = run_key(doc)
         meta = _metadata(doc)
+        rows = rows_of(result, meta)
         created = datetime.now(UTC).replace(microsecond=0).isoformat()
         path = self.path
         try:
@@ -679,7 +617,7 @@ class Recorder:
                 con.executemany(
                     "INSERT INTO records (run, material, quantity, value, ci_low, ci_high, unit) "
                     "VALUES (?,?,?,?,?,?,?)",
-                    [(run, *r) for r in records_of(doc, meta, result.quantity_units())],
+                    [(run, *r) for r in rows],
                 )
                 con.execute("COMMIT")
                 return int(run), True

@@ -9,7 +9,9 @@ scale from SI): :func:`record_json`, :func:`record_row`, :func:`record_columns` 
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 
 @dataclass(frozen=True)
@@ -31,9 +33,19 @@ class Output:
     unit: str = ""
     scale: float = 1.0
     pair: bool = False
+    of: str | None = None
+    store: bool = True
 
 
-def output(json: str | None, column=None, unit: str = "", scale: float = 1.0, pair: bool = False):
+def output(
+    json: str | None,
+    column=None,
+    unit: str = "",
+    scale: float = 1.0,
+    pair: bool = False,
+    of: str | None = None,
+    store: bool = True,
+):
     """Field metadata of a record attribute (see Output); use as ``x: np.ndarray = output(...)``.
 
     Parameters
@@ -48,13 +60,18 @@ def output(json: str | None, column=None, unit: str = "", scale: float = 1.0, pa
         Factor from the SI value to ``unit`` (1000 Pa -> 1 kPa: 1e-3).
     pair : bool, optional
         The field holds (low, high) arrays.
+    of : str, optional
+        For a ``pair`` field: the name of the field whose 95 % interval it is (the lab store records it beside
+        that field's value, :func:`record_store_rows`).
+    store : bool, optional
+        False: the lab store does not record the field (a count such as ``n``, a label).
 
     Returns
     -------
     dataclasses.Field
         A field defaulting to None, with the :class:`Output` in its metadata.
     """
-    return field(default=None, metadata={"output": Output(json, column, unit, scale, pair)})
+    return field(default=None, metadata={"output": Output(json, column, unit, scale, pair, of, store)})
 
 
 def record_outputs(record) -> list[tuple[str, Output, object]]:
@@ -149,8 +166,13 @@ def record_json(record, level: str = "95") -> dict:
     """
     out = {}
     for _, spec, value in record_outputs(record):
-        if spec.json is not None:
-            out[spec.json.format(level=level)] = _scalar_out(value, spec.scale)
+        if spec.json is None:
+            continue
+        key = spec.json.format(level=level)
+        if spec.pair:  # a scalar (low, high): the JSON list [low, high]
+            out[key] = [_scalar_out(v, spec.scale) for v in value]
+        else:
+            out[key] = _scalar_out(value, spec.scale)
     return out
 
 
@@ -177,6 +199,167 @@ def record_row(record, level: str = "95") -> dict:
         if spec.column is not None and not spec.pair:
             out[f"{spec.column.format(level=level)} [{spec.unit or '-'}]"] = _scalar_out(value, spec.scale)
     return out
+
+
+class StoreRow(NamedTuple):
+    """One row of the lab store's long table (capred.lab_store): a declared quantity of one material.
+
+    ``quantity`` is the quantity's JSON key (with a model's prefix, ``vg.alpha_per_kPa``), ``value`` and the
+    interval are in ``unit`` (``-`` when dimensionless), all from one declaration.
+    """
+
+    material: str | None
+    quantity: str
+    value: float
+    ci_low: float | None
+    ci_high: float | None
+    unit: str
+
+
+class UndeclaredQuantity(ValueError):
+    """A number offered to the lab store without a declared unit: refused, never guessed from its name."""
+
+
+def store_row(material, quantity: str, value, unit, ci=None) -> StoreRow | None:
+    """A :class:`StoreRow` of a declared quantity; None where ``value`` is not a finite number (nothing to record).
+
+    Parameters
+    ----------
+    material : str or None
+        The material (or branch) the quantity belongs to.
+    quantity : str
+        Its JSON key.
+    value : float
+        Its value in ``unit``.
+    unit : str
+        Its declared unit (``"-"`` or ``""`` when dimensionless).
+    ci : tuple of float, optional
+        Its 95 % interval in ``unit``.
+
+    Returns
+    -------
+    StoreRow or None
+
+    Raises
+    ------
+    UndeclaredQuantity
+        ``unit`` is None: the quantity has no declaration.
+    """
+    if unit is None:
+        raise UndeclaredQuantity(f"the quantity '{quantity}' has no declared unit; the lab store does not guess one")
+    v = _finite(value)
+    if v is None:
+        return None
+    lo, hi = (None, None) if ci is None else (_finite(ci[0]), _finite(ci[1]))
+    return StoreRow(material, quantity, v, lo, hi, unit if unit not in ("", "-") else "-")
+
+
+def quantity_store_row(material, quantity: str, value, key: str | None = None, ci=None) -> StoreRow | None:
+    """A :class:`StoreRow` of a glossary quantity (capred.nomenclature.QUANTITIES): its unit is the glossary's.
+
+    Parameters
+    ----------
+    material : str or None
+        The material the quantity belongs to.
+    quantity : str
+        A key of the glossary.
+    value : float
+        Its value in the glossary's output unit (as the JSON writes it).
+    key : str, optional
+        The JSON key it is written under where it is not the glossary's (``gamma_N_per_m`` for the surface
+        tension of `capred bridge curve`); default :func:`capred.nomenclature.json_key`.
+    ci : tuple of float, optional
+        Its 95 % interval in the same unit.
+
+    Returns
+    -------
+    StoreRow or None
+        None where ``value`` is not a finite number.
+    """
+    from .nomenclature import QUANTITIES, json_key
+
+    return store_row(material, key or json_key(quantity), value, QUANTITIES[quantity].unit, ci)
+
+
+def _finite(x) -> float | None:
+    import numpy as np
+
+    if x is None or isinstance(x, (bool, np.bool_, str)):
+        return None
+    try:
+        v = float(x)
+    except (TypeError, ValueError):
+        return None
+    return v if math.isfinite(v) else None
+
+
+def record_store_rows(record, material=None, prefix: str = "", level: str = "95") -> list[StoreRow]:
+    """The lab store's rows of a record of scalars, from its :func:`output` declarations.
+
+    Each field with a JSON key (not a ``pair``, not declared ``store=False``) gives one row: the quantity is
+    its JSON key (as :func:`record_json` writes it, after ``prefix``), the value its JSON value, the unit its
+    declared unit, the interval the ``pair`` field declared ``of`` it. A value that is not a finite number is
+    left out, as :func:`record_json` writes it null.
+
+    Parameters
+    ----------
+    record : dataclass instance
+        A typed record whose output fields hold numbers.
+    material : str, optional
+        The material of the rows.
+    prefix : str, optional
+        Put before each JSON key (a model's name and a dot, ``vg.``).
+    level : str, optional
+        Confidence level in percent, put into the ``{level}`` patterns (default "95").
+
+    Returns
+    -------
+    list of StoreRow
+    """
+    outputs = record_outputs(record)
+    intervals = {spec.of: (value, spec.scale) for _, spec, value in outputs if spec.pair and spec.of}
+    rows = []
+    for name, spec, value in outputs:
+        if spec.json is None or spec.pair or not spec.store:
+            continue
+        if not isinstance(value, (int, float)) and not hasattr(value, "__float__"):
+            continue  # a label or a list: not a quantity
+        ci = None
+        if name in intervals:
+            pair, scale = intervals[name]
+            ci = [_scalar_out(v, scale) for v in pair]
+        row = store_row(material, prefix + spec.json.format(level=level), _scalar_out(value, spec.scale), spec.unit, ci)
+        if row is not None:
+            rows.append(row)
+    return rows
+
+
+def parameter_store_rows(params, material=None, prefix: str = "") -> list[StoreRow]:
+    """The lab store's rows of fitted parameters (:class:`capred.parameters.Parameter`, each with its JSON name,
+    value, standard error, 95 % interval and unit): ``name`` with its interval and ``name_se``, both in its unit.
+
+    Parameters
+    ----------
+    params : iterable of Parameter
+        The parameters (``fit.params.values()``).
+    material : str, optional
+        The material of the rows.
+    prefix : str, optional
+        Put before each name (``vg.``).
+
+    Returns
+    -------
+    list of StoreRow
+    """
+    rows = []
+    for p in params:
+        for row in (
+            store_row(material, prefix + p.name, p.value, p.unit, p.ci95),
+            store_row(material, f"{prefix}{p.name}_se", p.stderr, p.unit),
+        ):
+            if row is not None:
+                rows.append(row)
+    return rows
 
 
 def _scalar_out(value, scale: float):

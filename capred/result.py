@@ -123,17 +123,22 @@ class Result:
         :func:`csv_header` (``name [unit]``)."""
         return {stem: with_csv_headers(table) for stem, table in self.tables().items()}
 
-    def quantity_units(self) -> dict[str, str]:
-        """JSON key -> declared unit of the numbers of the document that no glossary quantity names (a fit's
-        parameters, say); the lab store takes every unit from the declarations (capred.lab_store.declared_units
-        and this), none from a key's spelling. None by default.
+    def store_rows(self, material: str | None = None) -> list | None:
+        """The rows the lab store records for the run (capred.lab_store), built from the records' declarations
+        (capred.records.StoreRow: quantity, value, 95 % interval and unit of one declaration each), never by
+        reading the JSON back. Every command declares its own (an empty list where it records none); None by
+        default: a run of a command that declares none cannot be recorded (capred.lab_store.rows_of refuses it).
+
+        Parameters
+        ----------
+        material : str, optional
+            The material the inputs' metadata block names (for a run that does not name its materials).
 
         Returns
         -------
-        dict
-            Key -> unit ("-" when dimensionless).
+        list of capred.records.StoreRow or None
         """
-        return {}
+        return None
 
     def extra_files(self) -> dict[str, bytes]:
         """Files of the command's own format written beside the tables (name -> bytes); none by default."""

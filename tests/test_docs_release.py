@@ -61,3 +61,16 @@ def test_paper_cites_only_what_paper_bib_holds():
         assert field in front, field
     for section in ("# Summary", "# Statement of need", "# Validation"):
         assert section in paper, section
+
+
+def test_every_package_of_capred_is_installed():
+    """A wheel holds only the packages pyproject.toml lists: every folder of capred/ with an __init__.py must be one
+    of them (capred.spec was once left out, and only a non-editable install showed it)."""
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+    listed = set(project["tool"]["setuptools"]["packages"])
+    on_disk = {
+        ".".join(p.parent.relative_to(ROOT).parts)
+        for p in (ROOT / "capred").rglob("__init__.py")
+        if "__pycache__" not in p.parts
+    }
+    assert on_disk - listed == set()

@@ -230,8 +230,10 @@ def _record_many(args):
     class _R:
         command = "rumpf"
 
-        def quantity_units(self):  # a Result's units beyond the glossary: none here
-            return {}
+        def store_rows(self, material=None):  # the rows a Result declares: p_cap in kPa
+            from capred.records import store_row
+
+            return [store_row(material, "p_cap_kPa", self.to_json()["p_cap_kPa"], "kPa")]
 
         def to_json(self):
             return {"command": "rumpf", "capred_version": "t", "inputs": [], "options": {"k": k}, "p_cap_kPa": -k}

@@ -14,7 +14,6 @@ import pytest
 from numpy.testing import assert_allclose
 
 import capred
-from capred.errors import OptionError
 from capred.physics import pedrotti_tarantino as pt
 
 kPa = 1.0e3
@@ -254,7 +253,7 @@ def test_initial_yield_starts_overconsolidated():
 
 # --- bad input ------------------------------------------------------------------------------------
 def test_parameters_rejected_with_all_problems():
-    with pytest.raises(OptionError, match="kappa_W.*lambda_W") as err:
+    with pytest.raises(ValueError, match="kappa_W.*lambda_W") as err:
         pt.PTVolumeParameters(lambda_W=0.1, kappa_W=0.2, e_ncl_W=2.0, lambda_A=-0.1, kappa_A=0.01, e_ncl_A=1.8)
     assert "lambda_A must be > 0" in str(err.value)
 
@@ -265,7 +264,7 @@ def test_path_problems_located():
     )
     assert (2, "S_r", "degree of saturation must lie between 0 and 1 (got 1.2)") in probs
     assert any(i == 1 and c == "u_a" for i, c, _ in probs)  # sigma - u_a = -10 kPa with S_r < 1
-    with pytest.raises(OptionError, match="point 3, S_r"):
+    with pytest.raises(ValueError, match="point 3, S_r"):
         pt.simulate_volume_path(
             [100 * kPa, 10 * kPa, 50 * kPa], [-50 * kPa, 0.0, 0.0], [0.0, 20 * kPa, 0.0], [0.5, 0.5, 1.2], params=HAND
         )

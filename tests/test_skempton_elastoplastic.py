@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from capred.errors import OptionError
 from capred.physics import calculators as calc
 from capred.physics import skempton_elastoplastic as sep
 
@@ -126,12 +125,12 @@ def test_path_records_requested_points():
 
 @pytest.mark.parametrize("S_R", [0.0, -0.1, 1.2, np.nan])
 def test_invalid_saturation_raises(S_R):
-    with pytest.raises(OptionError, match="S_R"):
+    with pytest.raises(ValueError, match="S_R"):
         sep.skempton_b_incremental([0.9, S_R], **TABLE3)
 
 
 def test_invalid_increment_raises():
-    with pytest.raises(OptionError, match="dp"):
+    with pytest.raises(ValueError, match="dp"):
         sep.skempton_b_incremental(0.9, dp=0.0, **TABLE3)
 
 
@@ -205,11 +204,11 @@ def test_bounding_surface_state_nc_stays_on_surface_oc_approaches():
 
 
 def test_bounding_surface_needs_h_with_a_ini():
-    with pytest.raises(OptionError, match="interpolation-h"):
+    with pytest.raises(ValueError, match="interpolation-h"):
         _bs(10e3, None)
-    with pytest.raises(OptionError, match="kappa"):
+    with pytest.raises(ValueError, match="kappa"):
         sep.BoundingSurfaceCompliance(kappa_elastic=0.3, lambda0=0.2)
-    with pytest.raises(OptionError, match="absolute or gauge"):
+    with pytest.raises(ValueError, match="absolute or gauge"):
         sep.skempton_b_incremental(0.9, air_pressure="relative", **TABLE3)
 
 

@@ -19,7 +19,7 @@ from . import (
     retention_convert_command,
     triaxial_strength_command,
 )
-from .common import BUILDERS, JsonOpt, WorkersOpt, fail, run_batch
+from .common import BUILDERS, JsonOpt, WorkersOpt, fail, physics_refusal, run_batch
 from .generated import register_generated
 
 app = typer.Typer(
@@ -162,6 +162,9 @@ def _manifest_jobs(manifest: Path, out, json_out: bool):
         except CapredError as exc:
             problems.append(Problem(str(manifest), line, None, str(exc)))
         except Exception as exc:  # usage errors: bad option names or values in the manifest
+            if isinstance(exc, ValueError) and physics_refusal(exc) is not None:  # a value the physics refuses
+                problems.append(Problem(str(manifest), line, None, str(exc)))
+                continue
             if type(exc).__module__.split(".")[0] not in ("click", "typer"):
                 raise
             message = exc.format_message() if hasattr(exc, "format_message") else str(exc)

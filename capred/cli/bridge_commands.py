@@ -31,6 +31,7 @@ def register(app: typer.Typer) -> None:
         help="Exact capillary bridges between two spheres or a sphere and a plane "
         "(Young-Laplace): solve, rupture, the thesis's analytical comparison, checks "
         "against microscopic tests and YADE capillary files.",
+        short_help="Exact capillary bridges (Young-Laplace): solve, rupture, laws, YADE files.",
         no_args_is_help=True,
         rich_markup_mode=None,
     )

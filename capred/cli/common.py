@@ -129,6 +129,34 @@ class Invocation:
     output: OutputOptions = field(default_factory=OutputOptions)
 
 
+def physics_refusal(exc: ValueError):
+    """The OptionError that a ValueError raised by capred.physics stands for, or None for any other ValueError.
+
+    The physics raises a plain ValueError, with a clear text, for a value it refuses (a parameter out of its
+    range: κ not below λ, a degree of saturation outside (0, 1]); options built from a command line meet it
+    when they check such values at once. The message is kept word for word. A ValueError raised anywhere else
+    (numpy's, the CLI's own) is a bug and keeps its traceback.
+
+    Parameters
+    ----------
+    exc : ValueError
+        The error caught.
+
+    Returns
+    -------
+    OptionError or None
+        The error to report, or None where ``exc`` was not raised in capred.physics.
+    """
+    tb = exc.__traceback__
+    while tb is not None and tb.tb_next is not None:
+        tb = tb.tb_next
+    if tb is None or not str(tb.tb_frame.f_globals.get("__name__", "")).startswith("capred.physics."):
+        return None
+    from ..errors import OptionError
+
+    return OptionError(str(exc))
+
+
 def fail(exc: CapredError, code: int = 1) -> None:
     """One clean message on stderr and a non-zero exit (no traceback).
 
@@ -327,6 +355,11 @@ def command(app: typer.Typer, name: str, full_name: str | None = None, data: str
                 inv = build(**params)
             except CapredError as exc:
                 fail(exc)
+            except ValueError as exc:  # a value the physics refuses, checked as the options are built
+                refusal = physics_refusal(exc)
+                if refusal is None:
+                    raise
+                fail(refusal)
             execute(inv)
 
         run.__name__, run.__doc__ = builder.__name__, builder.__doc__

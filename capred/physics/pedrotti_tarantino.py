@@ -82,8 +82,6 @@ from dataclasses import dataclass, field, fields
 
 import numpy as np
 
-from ..errors import OptionError
-
 __all__ = [
     "PTVolumeParameters",
     "PTVolumePath",
@@ -197,7 +195,7 @@ class PTVolumeParameters:
 
     Raises
     ------
-    OptionError
+    ValueError
         When a value lies outside its range (every problem in one message).
 
     References
@@ -220,7 +218,7 @@ class PTVolumeParameters:
             if not isinstance(v, (int, float, np.floating, np.integer)) or not np.isfinite(v):
                 problems.append(f"{f.name} must be a finite number (got {v!r})")
         if problems:
-            raise OptionError("; ".join(problems))
+            raise ValueError("; ".join(problems))
         for part in ("W", "A"):
             lam, kap, e0 = (getattr(self, f"{n}_{part}") for n in ("lambda", "kappa", "e_ncl"))
             if not lam > 0:
@@ -232,7 +230,7 @@ class PTVolumeParameters:
         if not self.reference_stress > 0:
             problems.append(f"reference_stress must be > 0 Pa (got {self.reference_stress:g})")
         if problems:
-            raise OptionError("Pedrotti-Tarantino parameters: " + "; ".join(problems))
+            raise ValueError("Pedrotti-Tarantino parameters: " + "; ".join(problems))
 
     def line(self, part: str) -> tuple[float, float, float]:
         """(λ, κ, e_ncl) of part ``"W"`` (slurry) or ``"A"`` (dry powder).
@@ -867,7 +865,7 @@ def simulate_volume_path(
 
     Raises
     ------
-    OptionError
+    ValueError
         A path that cannot be simulated (:func:`path_problems`) or substeps < 1.
 
     References
@@ -877,11 +875,11 @@ def simulate_volume_path(
     """
     problems = path_problems(sigma, u_w, u_a, S_R)
     if problems:
-        raise OptionError(
+        raise ValueError(
             "path: " + "; ".join((f"point {i + 1}, {c}: " if i >= 0 else "") + m for i, c, m in problems[:20])
         )
     if substeps is not None and not (isinstance(substeps, (int, np.integer)) and substeps >= 1):
-        raise OptionError(f"substeps must be None or an integer >= 1 (got {substeps!r})")
+        raise ValueError(f"substeps must be None or an integer >= 1 (got {substeps!r})")
     sigma, u_w, u_a, S_R = (np.atleast_1d(np.asarray(x, float)) for x in (sigma, u_w, u_a, S_R))
     n = sigma.size
     p = params

@@ -61,7 +61,6 @@ from typing import Protocol
 
 import numpy as np
 
-from ..errors import OptionError
 from .retention import bc_suction
 
 __all__ = [
@@ -368,17 +367,17 @@ class BoundingSurfaceCompliance(SkeletonCompliance):
 
     def __post_init__(self) -> None:
         if not 0.0 < self.kappa_elastic < self.lambda0:
-            raise OptionError(f"need 0 < kappa ({self.kappa_elastic}) < lambda0 ({self.lambda0})")
+            raise ValueError(f"need 0 < kappa ({self.kappa_elastic}) < lambda0 ({self.lambda0})")
         if not (self.a_ini >= 0.0 and math.isfinite(self.a_ini)):
-            raise OptionError(f"A_ini must be >= 0 (got {self.a_ini / 1e3:g} kPa)")
+            raise ValueError(f"A_ini must be >= 0 (got {self.a_ini / 1e3:g} kPa)")
         if self.a_ini > 0 and self.interpolation_h is None:
-            raise OptionError(
+            raise ValueError(
                 "--interpolation-h is required with --a-ini > 0: the Dafalias-type constant h of the "
                 "reconstruction has no published value (h = 336 meets the paper's Fig. 6 value 0.04 under the "
                 "gauge convention)"
             )
         if self.interpolation_h is not None and not self.interpolation_h > 0:
-            raise OptionError(f"--interpolation-h must be > 0 (got {self.interpolation_h})")
+            raise ValueError(f"--interpolation-h must be > 0 (got {self.interpolation_h})")
 
     def initial_apex(self, p_eff0: float) -> float:
         """Apex ``p_pi0 = p'_0 + A_ini`` [Pa] of the bounding surface at the start of the drying path.
@@ -686,7 +685,7 @@ def skempton_b_incremental_path(
 
     Raises
     ------
-    OptionError
+    ValueError
         ``S_R_min`` outside (0, 1], a recording point outside ``[S_R_min, 1]``,
         or a non-positive ``dp``, ``n_dp`` or ``S_R_step``.
 
@@ -697,15 +696,15 @@ def skempton_b_incremental_path(
     """
     model = _as_model(ElasticCompliance(kappa_elastic) if compliance is None else compliance)
     if air_pressure not in AIR_PRESSURE_CONVENTIONS:
-        raise OptionError(f"air_pressure must be absolute or gauge (got '{air_pressure}')")
+        raise ValueError(f"air_pressure must be absolute or gauge (got '{air_pressure}')")
     if air_pressure == "gauge":
         pa0, u0 = u0, 0.0
     if not pa0 > 0:
-        raise OptionError(f"the air pressure in Boyle's law must be > 0 (got {pa0 / 1e3:g} kPa)")
+        raise ValueError(f"the air pressure in Boyle's law must be > 0 (got {pa0 / 1e3:g} kPa)")
     if not 0.0 < S_R_min <= 1.0:
-        raise OptionError(f"S_R_min must be in (0, 1], got {S_R_min}")
+        raise ValueError(f"S_R_min must be in (0, 1], got {S_R_min}")
     if dp <= 0 or n_dp < 1 or S_R_step <= 0:
-        raise OptionError("dp, n_dp and S_R_step must be positive")
+        raise ValueError("dp, n_dp and S_R_step must be positive")
     n = max(1, int(np.ceil((1.0 - S_R_min) / S_R_step - 1e-9)))
     grid = np.linspace(1.0, S_R_min, n + 1)
     if at is None:
@@ -713,14 +712,14 @@ def skempton_b_incremental_path(
     else:
         stops = np.unique(np.asarray(at, float).ravel())[::-1]
         if stops.size and (stops[0] > 1.0 or stops[-1] < S_R_min):
-            raise OptionError(f"recording points must lie in [{S_R_min}, 1]")
+            raise ValueError(f"recording points must lie in [{S_R_min}, 1]")
         near = np.abs(grid[:, None] - stops[None, :]).min(axis=1) < 1e-9  # grid points a stop replaces
         grid = np.unique(np.concatenate([grid[~near], stops]))[::-1]
 
     out = {k: [] for k in ("S_R", "suction", "p_eff", "void_ratio", "A11", "B", "p_pi")}
     p_eff = p0 - u0 + air_entry  # eq. 13 at S_R = 1, s = s_e
     if not p_eff > 0:
-        raise OptionError(f"the initial mean effective stress p0 - u0 + s_e must be > 0 (got {p_eff / 1e3:g} kPa)")
+        raise ValueError(f"the initial mean effective stress p0 - u0 + s_e must be > 0 (got {p_eff / 1e3:g} kPa)")
     state = SkeletonState(p_eff, e0, model.initial_apex(p_eff))
     j = 0  # next recording point
     for i, sr in enumerate(grid):
@@ -789,7 +788,7 @@ def skempton_b_incremental(
 
     Raises
     ------
-    OptionError
+    ValueError
         A degree of saturation outside (0, 1], or an invalid step (see
         :func:`skempton_b_incremental_path`).
 
@@ -810,7 +809,7 @@ def skempton_b_incremental(
     if S.size == 0:
         return S.copy()
     if np.any(~np.isfinite(S)) or np.any(S <= 0.0) or np.any(S > 1.0):
-        raise OptionError("S_R must lie in (0, 1]")
+        raise ValueError("S_R must lie in (0, 1]")
     path = skempton_b_incremental_path(
         float(S.min()),
         compliance=compliance,

@@ -144,6 +144,29 @@ class CurveResult(Result):
             }
         return {"rms_relative_error_vs_exact": out}
 
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows: the sphere radius, surface tension, contact angle and pendular limit the curve
+        was computed for, each under its JSON key in its glossary unit (capred.records.quantity_store_row).
+
+        Parameters
+        ----------
+        material : str, optional
+            The material of the inputs' metadata block.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+        """
+        from ..records import quantity_store_row
+
+        rows = [
+            quantity_store_row(material, "R", self.R * 1e3),
+            quantity_store_row(material, "surface_tension", self.gamma, key="gamma_N_per_m"),
+            quantity_store_row(material, "contact_angle", float(np.degrees(self.contact_angle_rad))),
+            quantity_store_row(material, "pendular_limit", self.pendular_limit),
+        ]
+        return [r for r in rows if r is not None]
+
     def payload(self, lazy: bool = False) -> dict:
         """The command's own keys of the JSON document: R_mm, gamma_N_per_m, contact_angle_deg, the error summary and
         the curve rows.
@@ -377,6 +400,22 @@ class CompareResult(Result):
             cached = self.__dict__["_rows"] = self.record().json_rows()
         return cached
 
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows: none. Its numbers are per case (a table of bridges), not quantities of one material
+        across runs; the run and its document are recorded with their provenance.
+
+        Parameters
+        ----------
+        material : str, optional
+            The material of the inputs' metadata block.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+            Empty.
+        """
+        return []
+
     def payload(self, lazy: bool = False) -> dict:
         """The command's own keys of the JSON document: the source and the comparison rows.
 
@@ -551,6 +590,22 @@ class RuptureResult(Result):
         if cached is None:
             cached = self.__dict__["_rows"] = self.record().json_rows()  # a plane's R2_mm is the word
         return cached
+
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows: none. Its numbers are per case (a table of bridges), not quantities of one material
+        across runs; the run and its document are recorded with their provenance.
+
+        Parameters
+        ----------
+        material : str, optional
+            The material of the inputs' metadata block.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+            Empty.
+        """
+        return []
 
     def payload(self, lazy: bool = False) -> dict:
         """The command's own keys of the JSON document: the source and the rupture rows.

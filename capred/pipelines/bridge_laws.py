@@ -189,6 +189,23 @@ class LawsResult(Result):
             out.append(r)
         return out
 
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows: the tolerance, a relative error (dimensionless; LawsOptions.tolerance).
+
+        Parameters
+        ----------
+        material : str, optional
+            The material of the inputs' metadata block.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+        """
+        from ..records import store_row
+
+        row = store_row(material, "tolerance", self.tolerance, "-")
+        return [] if row is None else [row]
+
     def payload(self, lazy: bool = False) -> dict:
         """The command's own keys of the JSON document: the source, the tolerance, each law with its citation, the
         regions and the points.

@@ -172,6 +172,22 @@ class BridgeResult(Result):
         """
         return row_context(self.inputs_si, self.status, start, stop)
 
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows: none. Its numbers are per case (a table of bridges), not quantities of one material
+        across runs; the run and its document are recorded with their provenance.
+
+        Parameters
+        ----------
+        material : str, optional
+            The material of the inputs' metadata block.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+            Empty.
+        """
+        return []
+
     def payload(self, lazy: bool = False) -> dict:
         """The command's own keys of the JSON document: the source and the bridges (a ColumnRows when lazy).
 

@@ -147,6 +147,33 @@ class Cases:
             if outputs is None or self.is_output(f) == outputs
         }
 
+    def store_rows(self, material=None) -> list:
+        """The lab store's rows of a single case: each result (not the inputs) under its JSON key, in its glossary
+        unit (capred.records.StoreRow); none for several cases, whose results the JSON document does not give
+        at its top level (a calculator's table of cases is not a series of one material).
+
+        Parameters
+        ----------
+        material : str, optional
+            The material of the inputs' metadata block.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+        """
+        from ..records import store_row
+
+        if len(self) != 1:
+            return []
+        rows = []
+        for f in self.columns():
+            if self.is_output(f):
+                unit = QUANTITIES[f.metadata["quantity"]].unit
+                row = store_row(material, json_key(f), np.asarray(getattr(self, f.name), float)[0], unit)
+                if row is not None:
+                    rows.append(row)
+        return rows
+
     def csv_columns(self) -> dict[str, np.ndarray]:
         """``{name [unit]: array}`` of every field the run has, in output order.
 

@@ -121,6 +121,20 @@ class CalcResult(Result):
             out = {"model": self.model, "model_inputs": self.model_inputs or {}, **out}
         return out
 
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows: a single case's results, each in its glossary unit (``Cases.store_rows``).
+
+        Parameters
+        ----------
+        material : str, optional
+            The material of the inputs' metadata block.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+        """
+        return self.cases.store_rows(material)
+
     def method_notes(self) -> tuple[list[str], list[str]]:
         """The skeleton model of a `skempton-b` run, for the methods section of report.html."""
         if self.model is None or "bounding-surface" not in self.model:
@@ -699,9 +713,7 @@ def _bounding_b(S, k, e, p, u, pa, s_e, bc_lambda, bounding) -> float:
     """B at S_r (or, with S None, the whole path) by the two loops of Morvan et al. (2016) section 4."""
     from ..physics import skempton_elastoplastic as sep
 
-    comp = sep.BoundingSurfaceCompliance(k, bounding["lambda0"], bounding["a_ini"], bounding["interpolation_h"])
     kw = dict(
-        compliance=comp,
         kappa_elastic=k,
         p0=p,
         u0=u,
@@ -711,9 +723,58 @@ def _bounding_b(S, k, e, p, u, pa, s_e, bc_lambda, bounding) -> float:
         bc_lambda=bc_lambda,
         air_pressure=bounding["air_pressure"],
     )
-    if S is None:
-        return sep.skempton_b_incremental_path(0.01, **kw)
-    return sep.skempton_b_incremental(S, **kw)
+    try:  # the physics refuses a value (S_r outside (0, 1], ...) with a ValueError: the user's message
+        kw["compliance"] = sep.BoundingSurfaceCompliance(
+            k, bounding["lambda0"], bounding["a_ini"], bounding["interpolation_h"]
+        )
+        if S is None:
+            return sep.skempton_b_incremental_path(0.01, **kw)
+        return sep.skempton_b_incremental(S, **kw)
+    except ValueError as exc:
+        raise OptionError(str(exc)) from None
+
+
+def _saturation_from_b(v: dict, cases: list, p_eff, s_e, bc_lambda, bounding, notes: list[str]):
+    """S_r of every case from its measured B: on the bounding-surface drying path (its root nearest saturation),
+    with the suction-equilibrium model (Brent's root in (0, 1]), or in closed form; returns S_r and the warnings
+    on several roots. A B not reached on the drying path is noted (S_r NaN)."""
+    root_warnings: list[str] = []
+    if bounding is not None:
+
+        def solve(row, bi, *c):
+            path = _bounding_b(None, *c, s_e, bc_lambda, bounding)
+            roots = b_roots(path.S_R, path.B, bi)
+            where = f"row {row + 1}: " if len(cases) > 1 else ""
+            if not roots:
+                notes.append(
+                    f"{where}B = {bi:g} is not reached on the drying path from S_r = 1 to {path.S_R.min():g} "
+                    f"(B spans {np.nanmin(path.B):.4g} to {np.nanmax(path.B):.4g} there): no S_r"
+                )
+                return np.nan
+            if len(roots) > 1:
+                root_warnings.append(
+                    f"{where}B = {bi:g} is reached at {len(roots)} degrees of saturation on the drying path "
+                    f"(S_r = {', '.join(f'{r:.4f}' for r in roots)}): B is not monotonic in S_r along it; "
+                    f"S_r = {roots[0]:.4f}, the root nearest saturation, is given"
+                )
+            return roots[0]
+
+        from ..progress import steps
+
+        rows = list(enumerate(zip(v["B"], cases)))
+        S = np.array([solve(i, bi, *c) for i, (bi, c) in steps(rows, "S_r (rows)")])
+    elif s_e is not None and bc_lambda is not None:  # the suction-equilibrium simulation
+        from scipy.optimize import brentq
+
+        def solve(bi, k, e, p, u, pa):
+            f = lambda s: calc.skempton_b_suction(s, p, u, e, k, pa, s_e, bc_lambda) - bi  # noqa: E731
+            lo, hi = 1e-9, 1.0
+            return brentq(f, lo, hi, xtol=1e-14) if f(lo) * f(hi) < 0 else np.nan
+
+        S = np.array([solve(*args) for args in zip(v["B"], *zip(*cases))])
+    else:
+        S = calc.saturation_from_b(v["B"], p_eff, v["e0"], v["kappa"], v["pa0"])
+    return S, root_warnings
 
 
 def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=None) -> CalcResult:
@@ -771,42 +832,7 @@ def _skempton(source, S_R, b, kappa, e0, p0, u0, pa0, s_e, bc_lambda, bounding=N
             warnings=table.warnings if table is not None else [],
             inputs=[input_file(source, table)] if source is not None else [],
         )
-    if bounding is not None:
-        root_warnings: list[str] = []
-
-        def solve(row, bi, *c):
-            path = _bounding_b(None, *c, s_e, bc_lambda, bounding)
-            roots = b_roots(path.S_R, path.B, bi)
-            where = f"row {row + 1}: " if len(cases) > 1 else ""
-            if not roots:
-                notes.append(
-                    f"{where}B = {bi:g} is not reached on the drying path from S_r = 1 to {path.S_R.min():g} "
-                    f"(B spans {np.nanmin(path.B):.4g} to {np.nanmax(path.B):.4g} there): no S_r"
-                )
-                return np.nan
-            if len(roots) > 1:
-                root_warnings.append(
-                    f"{where}B = {bi:g} is reached at {len(roots)} degrees of saturation on the drying path "
-                    f"(S_r = {', '.join(f'{r:.4f}' for r in roots)}): B is not monotonic in S_r along it; "
-                    f"S_r = {roots[0]:.4f}, the root nearest saturation, is given"
-                )
-            return roots[0]
-
-        from ..progress import steps
-
-        rows = list(enumerate(zip(v["B"], cases)))
-        S = np.array([solve(i, bi, *c) for i, (bi, c) in steps(rows, "S_r (rows)")])
-    elif suction:
-        from scipy.optimize import brentq
-
-        def solve(bi, k, e, p, u, pa):
-            f = lambda s: calc.skempton_b_suction(s, p, u, e, k, pa, s_e, bc_lambda) - bi  # noqa: E731
-            lo, hi = 1e-9, 1.0
-            return brentq(f, lo, hi, xtol=1e-14) if f(lo) * f(hi) < 0 else np.nan
-
-        S = np.array([solve(*args) for args in zip(v["B"], *zip(*cases))])
-    else:
-        S = calc.saturation_from_b(v["B"], p_eff, v["e0"], v["kappa"], v["pa0"])
+    S, root_warnings = _saturation_from_b(v, cases, p_eff, s_e, bc_lambda, bounding, notes)
     if bounding is None and np.any(~np.isfinite(S) | (S < 0)):
         notes.append("some B values are below what these parameters give for dry soil: S_r is outside [0, 1] there")
     return CalcResult(

@@ -167,6 +167,23 @@ class CompressionResult(Result):
             "e0": num(self.e0),
         }
 
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows: the initial void ratio (glossary ``e0``, dimensionless).
+
+        Parameters
+        ----------
+        material : str, optional
+            The material of the inputs' metadata block.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+        """
+        from ..records import quantity_store_row
+
+        row = quantity_store_row(material, "e0", self.e0)
+        return [] if row is None else [row]
+
     def payload(self, lazy: bool = False) -> dict:
         """The command's keys of compression.json: test, e0, the estimates, the lines and the readings."""
         f = self.fit

@@ -220,6 +220,16 @@ class HistoryResult(Result):
         """
         return self.record().json_rows()
 
+    def store_rows(self, material: str | None = None) -> list:
+        """Refused: a history run reads a store and is never recorded in one.
+
+        Raises
+        ------
+        ValueError
+            Always.
+        """
+        raise ValueError("`capred history` reads a lab store; its runs are not recorded in one")
+
     def payload(self, lazy: bool = False) -> dict:
         """The command's own keys of the JSON document: material, quantity, unit, the control limits (centre, sigma,
         lcl, ucl, moving-range centre) and the runs.
@@ -362,7 +372,8 @@ def reduce_history(source, opt: HistoryOptions) -> HistoryResult:
     notes.append(f"runs in order of {order}")
     x = rows["value"].to_numpy(float)
     limits, mr, beyond, mr_beyond = individuals_chart(x, opt.baseline, opt.reference, opt.spread)
-    unit = str(rows["unit"].iloc[0]) if len(rows) else "-"
+    warnings: list[str] = []
+    unit = _chart_unit(rows, opt.quantity, warnings)
     runs = {
         "run": rows["run"].to_numpy(int),
         "test_date": [str(d) for d in rows["test_date"]],
@@ -374,7 +385,6 @@ def reduce_history(source, opt: HistoryOptions) -> HistoryResult:
         "beyond": beyond,
         "mr_beyond": mr_beyond,
     }
-    warnings = []
     n_base = min(opt.baseline, x.size) if opt.reference is None else 0
     if opt.reference is None and x.size < opt.baseline:
         warnings.append(f"the limits rest on {x.size} runs only (the chart asks for {opt.baseline})")
@@ -412,6 +422,32 @@ def reduce_history(source, opt: HistoryOptions) -> HistoryResult:
         opt.warnings + warnings,
         notes,
     )
+
+
+def _chart_unit(rows, quantity: str, warnings: list) -> str:
+    """The unit of the charted runs, as the store recorded it from each run's declarations.
+
+    A unit is never inferred from the quantity's name: runs recorded without one (a store written by an older
+    capred, or a command that declares none) and runs that disagree are named in a warning; the chart then
+    takes the latest run's unit ("?" where no run has one).
+    """
+    units = [None if u is None or (isinstance(u, float) and u != u) else str(u) for u in rows["unit"]]
+    if not units:
+        return "-"
+    known = [u for u in units if u is not None]
+    latest = max(zip(rows["run"], units), key=lambda t: int(t[0]))[1]
+    if len(known) < len(units):
+        warnings.append(
+            f"{len(units) - len(known)} runs recorded '{quantity}' without a declared unit (an older capred or a "
+            "command that declares none): their values are charted as recorded"
+        )
+    if len(set(known)) > 1:
+        warnings.append(
+            f"the runs recorded '{quantity}' in different units ({', '.join(sorted(set(known)))}): the chart takes "
+            f"'{latest or known[-1]}' of the latest run; the values are charted as recorded (an older capred read "
+            "some units from a key's spelling)"
+        )
+    return latest or (known[-1] if known else "?")
 
 
 def run_history(store, material=None, quantity=None, baseline=8, reference=None, spread=None) -> HistoryResult:

@@ -274,6 +274,27 @@ class PTVolumeResult(Result):
         keys = tuple(cols)
         return [dict(zip(keys, vals)) for vals in zip(*cols.values())]
 
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows: the initial and final void ratios (``e_initial``, ``e_final``; the glossary's
+        void ratio, dimensionless), for the material of the inputs' metadata block. The count of points is not
+        recorded.
+
+        Parameters
+        ----------
+        material : str, optional
+            The material of the inputs' metadata block.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+        """
+        from .. import nomenclature as nom
+        from ..records import store_row
+
+        e, unit = self.points.e, nom.QUANTITIES["void_ratio"].unit
+        rows = [store_row(material, "e_initial", num(e[0]), unit), store_row(material, "e_final", num(e[-1]), unit)]
+        return [r for r in rows if r is not None]
+
     def payload(self, lazy: bool = False) -> dict:
         """The command's own keys of the JSON document: source, model, parameters, number of points, initial and final
         e, sub-steps, points and stages.

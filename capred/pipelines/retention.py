@@ -21,7 +21,7 @@ from ..fitting.retention_models import (
     json_name,
 )
 from ..fitting.retention_models import MODELS as FITTERS
-from ..io import read_table
+from ..io import Table, read_table
 from ..parameters import Parameters
 from ..references import cite
 from ..result import InputFile, Result, columns_of_rows, csv_header, input_file, num, with_csv_headers
@@ -102,6 +102,8 @@ FIT_OUTPUTS: tuple[tuple[str, str, str, str | None], ...] = (
     ("weight", "weight", "Akaike weight", "-"),
     ("converged", "converged", "converged", None),
 )
+#: the fit statistics of FIT_OUTPUTS that a fit's JSON object (and the lab store) gives
+_STATS = ("r2", "rmse", "aic", "aicc", "bic", "rss")
 #: columns of one parameter in parameters.csv: (attribute of capred.parameters.Parameter, CSV column)
 PARAMETER_COLUMNS = (("value", "value"), ("stderr", "standard error"), ("ci95", "95 % CI"))
 
@@ -375,6 +377,68 @@ class RetentionResult(Result):
                     out[_HEAD[k]] = "1/cm" if k.startswith("alpha") else "cm"
         return out
 
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows: per branch (labelled ``material (branch)`` where the inputs name a material),
+        every fitted model's numbers as ``<model>.<key>``, each from the declaration :meth:`fit_json` writes it
+        by: a parameter's JSON name, value, standard error, 95 % interval and unit (capred.parameters.Parameter),
+        its head form (cm of water), the values the model derives (``m``, unit from the retention JSON names) and
+        the fit statistics (``FIT_OUTPUTS``; the counts n_points and n_free are not recorded). A derived value
+        that no declaration gives a unit is not recorded and is named in a CapredWarning.
+
+        Parameters
+        ----------
+        material : str, optional
+            The material of the inputs' metadata block.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+        """
+        import warnings
+
+        from ..errors import CapredWarning
+        from ..fitting.retention_models import JSON_NAMES
+        from ..records import parameter_store_rows, store_row
+
+        units = self.quantity_units()
+        derived_units = {key: unit for key, _, unit in JSON_NAMES.values()}
+        rows = []
+        for branch, fits in self.fits.items():
+            label = f"{material} ({branch})" if material else str(branch)
+            for model, f in fits.items():
+                prefix = f"{model}."
+                si, heads = f.params_si, self._head_forms(f)
+                for k, p in zip(si, f.params.values()):  # each parameter, then its head form (as fit_json)
+                    rows += parameter_store_rows([p], label, prefix)
+                    if k in _HEAD:
+                        rows += filter(
+                            None, [store_row(label, prefix + _HEAD[k], num(heads[_HEAD[k]]), units[_HEAD[k]])]
+                        )
+                found = []
+                entry = FITTERS.get(model)
+                for name, value in entry.derived if entry is not None else ():
+                    if name not in derived_units:
+                        warnings.warn(
+                            f"retention model '{model}': '{name}' has no declared unit; the lab store does not "
+                            "record it",
+                            CapredWarning,
+                            stacklevel=2,
+                        )
+                        continue
+                    found.append((name, value(si), derived_units[name]))
+                found += [(key, getattr(f, key), units[key]) for key in _STATS]  # their units: FIT_OUTPUTS
+                for key, value, unit in found:
+                    row = store_row(label, prefix + key, num(value), unit)
+                    if row is not None:
+                        rows.append(row)
+        return rows
+
+    def _head_forms(self, f: NonlinearFit) -> dict:
+        """JSON key -> value of a fit's suction parameters as heads of water (``alpha_per_cm``, ``h_b_cm``)."""
+        cm = self.options.gamma_w * 0.01  # Pa per cm of water head
+        si = f.params_si
+        return {_HEAD[k]: si[k] * cm if k.startswith("alpha") else si[k] / cm for k in si if k in _HEAD}
+
     def fit_json(self, f: NonlinearFit, model: str) -> dict:
         """The JSON of one fit: each parameter by JSON name with ``_se`` and ``_ci95``, its head form (cm),
         statistics, correlations, SI values, warnings.
@@ -391,15 +455,15 @@ class RetentionResult(Result):
         dict
             JSON key -> value (kPa, 1/kPa, cm of head, -).
         """
-        cm = self.options.gamma_w * 0.01  # Pa per cm of water head
         si = f.params_si
+        heads = self._head_forms(f)
         out: dict = {}
         for k, p in zip(si, f.params.values()):
             out[p.name] = num(p.value)
             out[f"{p.name}_se"] = num(p.stderr) if np.isfinite(p.stderr) else None
             out[f"{p.name}_ci95"] = None if not np.isfinite(p.ci95[0]) else [num(p.ci95[0]), num(p.ci95[1])]
             if k in _HEAD:
-                out[_HEAD[k]] = num(si[k] * cm if k.startswith("alpha") else si[k] / cm)
+                out[_HEAD[k]] = num(heads[_HEAD[k]])
         entry = FITTERS.get(model) or (hysteresis_model() if f is self.hysteresis else None)
         for name, value in entry.derived if entry is not None else ():
             out[name] = num(value(si))
@@ -898,33 +962,37 @@ def _suction(table, opt) -> np.ndarray:
     return s
 
 
-def run_retention(source, options: RetentionOptions | None = None) -> RetentionResult:
-    """Fit the chosen retention models to every branch of a retention table (CSV path, spreadsheet or DataFrame).
+@dataclass
+class _Readings:
+    """A retention table read and checked: suction [Pa], the water quantity fitted and its readings, weights."""
 
-    Parameters
-    ----------
-    source : str or Path or DataFrame
-        Retention readings: suction (or head, pF) and water (S_R, theta, or w with rho_d), optional branch and
-        weight columns.
-    options : RetentionOptions, optional
-        Models, fixed parameters, unit weight [N/m^3] and density [kg/m^3] of water, hysteresis.
+    table: Table
+    s: np.ndarray
+    y: np.ndarray
+    quantity: str
+    weights: np.ndarray
 
-    Returns
-    -------
-    RetentionResult
-        Every fit per branch with standard errors, 95 % intervals, statistics and model selection.
 
-    References
-    ----------
-    .. [1] van Genuchten, M. Th. (1980). Soil Sci. Soc. Am. J. 44, 892-898. doi:10.2136/sssaj1980.03615995004400050002x
-    .. [2] Brooks, R. H., Corey, A. T. (1964). Hydraulic properties of porous media. Hydrology Paper 3,
-       Colorado State University.
-    .. [3] Kosugi, K. (1996). Water Resour. Res. 32(9), 2697-2703. doi:10.1029/96WR01776
-    .. [4] Fredlund, D. G., Xing, A. (1994). Can. Geotech. J. 31(4), 521-532. doi:10.1139/t94-061
-    .. [5] Durner, W. (1994). Water Resour. Res. 30(2), 211-223. doi:10.1029/93WR02676
-    .. [6] Kool, J. B., Parker, J. C. (1987). Water Resour. Res. 23(1), 105-114. doi:10.1029/WR023i001p00105
-    """
-    opt = options or RetentionOptions()
+def _water_readings(table: Table, opt: RetentionOptions) -> tuple[str, np.ndarray]:
+    """The water quantity fitted ('theta', 'w' or 'S_R') and its readings; a burette's S_R outside [0, 1] is a
+    problem of the table."""
+    if "theta" in table.columns or ("w" in table.columns and "rho_d" in table.columns):
+        y = table.get("theta").copy()
+        grav = np.isnan(y)
+        y[grav] = (table.get("w") * table.get("rho_d") / opt.rho_w)[grav]
+        return "theta", y
+    if "w" in table.columns:  # w(s) at the specimen's (constant) dry density: the same curve shape, w_s, w_r
+        return "w", table.get("w").copy()
+    y = table.get("S_R").copy()
+    burette = np.isnan(y)
+    y[burette] = ((table.get("V_v") - table.get("z2")) / table.get("V_v"))[burette]
+    for i in np.flatnonzero(burette & np.isfinite(y) & ((y < 0) | (y > 1))):
+        table.add_problem(i, "z2", f"S_R = (V_v - z2)/V_v = {y[i]:.4g} lies outside [0, 1]")
+    return "S_R", y
+
+
+def _read_readings(source, opt: RetentionOptions) -> _Readings:
+    """Read a retention table: its suctions, water readings and weights, every problem raised at once."""
     table = read_table(source, SCHEMA)
     if not any(c in table.columns for c in ("suction", "head", "pF")):
         table.missing_column("suction", " (or 'head' / 'z1', or 'pF')")
@@ -945,21 +1013,7 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
             f"{table.path}: suctions from {positive.min():.3g} to {positive.max():.3g} Pa cannot be "
             "fitted: check the units of the file and --gamma-w"
         )
-    if "theta" in table.columns or ("w" in table.columns and "rho_d" in table.columns):
-        quantity = "theta"
-        y = table.get("theta").copy()
-        grav = np.isnan(y)
-        y[grav] = (table.get("w") * table.get("rho_d") / opt.rho_w)[grav]
-    elif "w" in table.columns:  # w(s) at the specimen's (constant) dry density: the same curve shape, w_s, w_r
-        quantity = "w"
-        y = table.get("w").copy()
-    else:
-        quantity = "S_R"
-        y = table.get("S_R").copy()
-        burette = np.isnan(y)
-        y[burette] = ((table.get("V_v") - table.get("z2")) / table.get("V_v"))[burette]
-        for i in np.flatnonzero(burette & np.isfinite(y) & ((y < 0) | (y > 1))):
-            table.add_problem(i, "z2", f"S_R = (V_v - z2)/V_v = {y[i]:.4g} lies outside [0, 1]")
+    quantity, y = _water_readings(table, opt)
     for i in np.flatnonzero(np.isnan(s)):
         table.add_problem(i, next((c for c in ("suction", "head", "pF") if c in table.columns), None), "no suction")
     for i in np.flatnonzero(np.isnan(y)):
@@ -967,13 +1021,11 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
     weights = table.get("weight", 1.0).copy()
     weights[np.isnan(weights)] = 1.0
     table.raise_if_problems()
+    return _Readings(table, s, y, quantity, weights)
 
-    notes = list(table.notes)
-    if quantity == "w":
-        notes.append(
-            "water content by mass w without dry density: w(s) fitted (w_s, w_r), the shape of the retention "
-            "curve at the specimen's dry density; give 'rho_d' to fit theta = w rho_d/rho_w"
-        )
+
+def _branch_labels(table: Table, s: np.ndarray, opt: RetentionOptions, notes: list[str]):
+    """The branch of every reading, how it was found, and the branches inferred from the order of readings."""
     found = infer_branches(s, opt.reversal_relative, opt.reversal_range)
     if opt.branches == "single":
         one = single_direction(s, opt.reversal_relative, opt.reversal_range)
@@ -1009,36 +1061,48 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
             "of the main-curve fits, shown in the outputs and figures, and compared with the scanning curves the "
             "main curves predict (Parker & Lenhard 1987 scaling)"
         )
-    fixed_internal = {}
-    for name, v in opt.fixed.items():
-        key, factor = to_internal(name)
-        fixed_internal[key] = v * factor
-    warnings = list(opt.warnings) + table.warnings
+    return branch, how, found
+
+
+def _fit_branch(
+    b: str, sel: np.ndarray, r: _Readings, opt: RetentionOptions, fixed_internal: dict, warnings: list[str]
+) -> tuple[dict[str, NonlinearFit], list[str]]:
+    """Every model of ``opt.models`` fitted to the readings ``sel`` of branch ``b``, and the models skipped
+    for want of readings; warnings (not fitted, identifiability, parameters at a bound) appended."""
+    s, y, weights, quantity = r.s, r.y, r.weights, r.quantity
+    fits: dict[str, NonlinearFit] = {}
+    skipped = []
+    for m in opt.models:
+        fx = {k: v for k, v in fixed_internal.items() if k in FITTERS[m].names}
+        n_free = len(FITTERS[m].names) - len(fx)
+        if sel.sum() < n_free + MIN_EXTRA_READINGS:
+            skipped.append(f"{m} ({n_free} free parameters)")
+            continue
+        try:
+            f = dataclasses.replace(fit_model(m, s[sel], y[sel], fx, weights[sel]), quantity=quantity)
+        except FitError as exc:
+            warnings.append(f"branch '{b}', model {m}: not fitted ({exc})")
+            continue
+        f.warnings = identifiability_warnings(f)  # named by the data kind (theta_r or S_res)
+        warnings.extend(f"branch '{b}', model {m}: {w}" for w in f.warnings)
+        fits[m] = f
+        for k in f.at_bounds():
+            name, scale, _ = json_name(k, quantity)
+            warnings.append(f"branch '{b}', model {m}: {name} = {f.params_si[k] * scale:.6g} lies at its bound")
+    return fits, skipped
+
+
+def _fit_branches(
+    r: _Readings, branch: np.ndarray, opt: RetentionOptions, fixed_internal: dict, warnings: list[str]
+) -> tuple[dict[str, dict[str, NonlinearFit]], dict[str, str]]:
+    """The fits of every main branch (scanning readings left out), and why a branch went unfitted by a model."""
     fits: dict[str, dict[str, NonlinearFit]] = {}
     unfitted: dict[str, str] = {}
     for b in dict.fromkeys(branch):
         if b == "scanning":
             continue
         sel = branch == b
-        fits[b] = {}
-        skipped = []
-        for m in opt.models:
-            fx = {k: v for k, v in fixed_internal.items() if k in FITTERS[m].names}
-            n_free = len(FITTERS[m].names) - len(fx)
-            if sel.sum() < n_free + MIN_EXTRA_READINGS:
-                skipped.append(f"{m} ({n_free} free parameters)")
-                continue
-            try:
-                f = dataclasses.replace(fit_model(m, s[sel], y[sel], fx, weights[sel]), quantity=quantity)
-            except FitError as exc:
-                warnings.append(f"branch '{b}', model {m}: not fitted ({exc})")
-                continue
-            f.warnings = identifiability_warnings(f)  # named by the data kind (theta_r or S_res)
-            warnings.extend(f"branch '{b}', model {m}: {w}" for w in f.warnings)
-            fits[b][m] = f
-            for k in f.at_bounds():
-                name, scale, _ = json_name(k, quantity)
-                warnings.append(f"branch '{b}', model {m}: {name} = {f.params_si[k] * scale:.6g} lies at its bound")
+        fits[b], skipped = _fit_branch(b, sel, r, opt, fixed_internal, warnings)
         if skipped:
             unfitted[b] = (
                 f"{int(sel.sum())} readings: fewer than the parameters plus {MIN_EXTRA_READINGS} of "
@@ -1058,34 +1122,91 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
                 "mislabelled reversal) or a shape the model cannot take; check the branches (a 'branch' column "
                 "with 'scanning') or the data"
             )
+    return fits, unfitted
+
+
+def _kool_parker_fit(
+    r: _Readings, branch: np.ndarray, opt: RetentionOptions, fixed_internal: dict, fits: dict, warnings: list[str]
+):
+    """The joint drying-wetting fit of Kool & Parker (1987) (None unless --hysteresis kool-parker).
+
+    Each branch is also fitted alone with the base model when ``opt.models`` lacks it (added to ``fits``), to
+    compare with the joint fit.
+    """
+    if opt.hysteresis != "kool-parker":
+        return None
+    s, y, weights, quantity = r.s, r.y, r.weights, r.quantity
+    d, w = branch == "drying", branch == "wetting"
+    if not (d.any() and w.any()):
+        raise OptionError("--hysteresis kool-parker needs a drying and a wetting branch")
+    hyst = fit_hysteresis(
+        s[d],
+        y[d],
+        s[w],
+        y[w],
+        {k: v for k, v in fixed_internal.items() if k in ("y_r", "y_s", "n")},
+        np.concatenate([weights[d], weights[w]]),
+    )
+    base = hysteresis_model().name  # each branch on its own too, to compare with the joint fit
+    if base not in opt.models:
+        for b in ("drying", "wetting"):
+            sel = branch == b
+            fits.setdefault(b, {})[base] = dataclasses.replace(
+                fit_model(base, s[sel], y[sel], {}, weights[sel]), quantity=quantity
+            )
+    hyst = dataclasses.replace(hyst, quantity=quantity)
+    hyst.warnings = identifiability_warnings(hyst)
+    warnings.extend(f"hysteresis (Kool & Parker): {w}" for w in hyst.warnings)
+    warnings.extend(_hysteresis_rejected(hyst, fits, quantity))
+    return hyst
+
+
+def run_retention(source, options: RetentionOptions | None = None) -> RetentionResult:
+    """Fit the chosen retention models to every branch of a retention table (CSV path, spreadsheet or DataFrame).
+
+    Parameters
+    ----------
+    source : str or Path or DataFrame
+        Retention readings: suction (or head, pF) and water (S_R, theta, or w with rho_d), optional branch and
+        weight columns.
+    options : RetentionOptions, optional
+        Models, fixed parameters, unit weight [N/m^3] and density [kg/m^3] of water, hysteresis.
+
+    Returns
+    -------
+    RetentionResult
+        Every fit per branch with standard errors, 95 % intervals, statistics and model selection.
+
+    References
+    ----------
+    .. [1] van Genuchten, M. Th. (1980). Soil Sci. Soc. Am. J. 44, 892-898. doi:10.2136/sssaj1980.03615995004400050002x
+    .. [2] Brooks, R. H., Corey, A. T. (1964). Hydraulic properties of porous media. Hydrology Paper 3,
+       Colorado State University.
+    .. [3] Kosugi, K. (1996). Water Resour. Res. 32(9), 2697-2703. doi:10.1029/96WR01776
+    .. [4] Fredlund, D. G., Xing, A. (1994). Can. Geotech. J. 31(4), 521-532. doi:10.1139/t94-061
+    .. [5] Durner, W. (1994). Water Resour. Res. 30(2), 211-223. doi:10.1029/93WR02676
+    .. [6] Kool, J. B., Parker, J. C. (1987). Water Resour. Res. 23(1), 105-114. doi:10.1029/WR023i001p00105
+    """
+    opt = options or RetentionOptions()
+    r = _read_readings(source, opt)
+    table, s, y, quantity = r.table, r.s, r.y, r.quantity
+    notes = list(table.notes)
+    if quantity == "w":
+        notes.append(
+            "water content by mass w without dry density: w(s) fitted (w_s, w_r), the shape of the retention "
+            "curve at the specimen's dry density; give 'rho_d' to fit theta = w rho_d/rho_w"
+        )
+    branch, how, found = _branch_labels(table, s, opt, notes)
+    fixed_internal = {}
+    for name, v in opt.fixed.items():
+        key, factor = to_internal(name)
+        fixed_internal[key] = v * factor
+    warnings = list(opt.warnings) + table.warnings
+    fits, unfitted = _fit_branches(r, branch, opt, fixed_internal, warnings)
     if not any(fits.values()):
         raise FitError(f"{table.path}: no model could be fitted to any branch ({'; '.join(warnings[-3:])})")
     fits = {b: f for b, f in fits.items() if f}
-    hyst = None
-    if opt.hysteresis == "kool-parker":
-        d, w = branch == "drying", branch == "wetting"
-        if not (d.any() and w.any()):
-            raise OptionError("--hysteresis kool-parker needs a drying and a wetting branch")
-        hyst = fit_hysteresis(
-            s[d],
-            y[d],
-            s[w],
-            y[w],
-            {k: v for k, v in fixed_internal.items() if k in ("y_r", "y_s", "n")},
-            np.concatenate([weights[d], weights[w]]),
-        )
-        base = hysteresis_model().name  # each branch on its own too, to compare with the joint fit
-        if base not in opt.models:
-            for b in ("drying", "wetting"):
-                sel = branch == b
-                fits.setdefault(b, {})[base] = dataclasses.replace(
-                    fit_model(base, s[sel], y[sel], {}, weights[sel]), quantity=quantity
-                )
-    if hyst is not None:
-        hyst = dataclasses.replace(hyst, quantity=quantity)
-        hyst.warnings = identifiability_warnings(hyst)
-        warnings.extend(f"hysteresis (Kool & Parker): {w}" for w in hyst.warnings)
-        warnings.extend(_hysteresis_rejected(hyst, fits, quantity))
+    hyst = _kool_parker_fit(r, branch, opt, fixed_internal, fits, warnings)
     scans, scan_warnings = scanning_curves(s, y, branch, found.direction, found.turning, fits, hyst)
     warnings.extend(scan_warnings)
     return RetentionResult(
@@ -1101,7 +1222,7 @@ def run_retention(source, options: RetentionOptions | None = None) -> RetentionR
         [input_file(source, table)],
         warnings,
         hyst,
-        weights,
+        r.weights,
         unfitted,
         found.direction,
         found.turning if how.startswith("inferred") else (),

@@ -9,6 +9,7 @@ them.
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -37,7 +38,7 @@ from ..result import (
 )
 from ..spec.shear import SCHEMA, ModelParams, ShearOptions  # noqa: F401 (declared in spec; re-exported here)
 from .shear_fits import envelope_fits, line_of
-from .shear_records import ModelPrediction
+from .shear_records import EnvelopeNumbers, ModelPrediction
 
 #: input columns repeated in results.csv as read (in their documented units), before the derived columns
 #: the per-test quantities derived from the raw inputs, as the JSON rows and results.csv give them (glossary names)
@@ -309,6 +310,45 @@ class ShearResult(Result):
                 cached["laws"] = laws_table(self)
         return cached
 
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows: per material the dry envelope's numbers through their declarations
+        (:class:`EnvelopeNumbers`, the ones the JSON's materials block writes), and what the models report per
+        material (``phi_b_deg``) where the glossary declares the key; an undeclared key is not recorded and is
+        named in a CapredWarning (its unit is never guessed).
+
+        Parameters
+        ----------
+        material : str, optional
+            Not used: a shear run names its materials itself.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+        """
+        import warnings
+
+        from ..errors import CapredWarning
+        from ..lab_store import declared_units
+        from ..records import record_store_rows, store_row
+
+        rows, units = [], declared_units()
+        for m, fit in self.fits.items():
+            rows += record_store_rows(envelope_numbers(fit), m)
+            for k, v in self.per_material.get(m, {}).items():
+                if isinstance(v, str):
+                    continue
+                if k not in units:
+                    warnings.warn(
+                        f"material '{m}': '{k}' has no declared unit; the lab store does not record it",
+                        CapredWarning,
+                        stacklevel=2,
+                    )
+                    continue
+                row = store_row(m, k, num(v), units[k][1])
+                if row is not None:
+                    rows.append(row)
+        return rows
+
     def season_rows(self) -> list[dict]:
         """Rows of a batch's season.csv: one per material with c and phi [kPa, deg] and their standard
         errors, the numbers of dry and wet tests, the best model and its RMSE [kPa] and the number of flagged tests.
@@ -321,17 +361,14 @@ class ShearResult(Result):
         rows = []
         flags = np.array([bool(f) for f in self._flag_texts()])
         for m, fit in self.fits.items():
-            f = _fit_dict(fit)
+            e = envelope_numbers(fit)  # the JSON's declared numbers, under their glossary CSV headers
             best = self.best_model.get(m)
             met = self.metrics.get(m, {}).get(best) if best else None
             rows.append(
                 {
                     "material": m,
-                    "c [kPa]": f["c_kPa"],
-                    "c_se [kPa]": f["c_se_kPa"],
-                    "phi [deg]": f["phi_deg"],
-                    "phi_se [deg]": f["phi_se_deg"],
-                    "n_dry": f["n"],
+                    **{nom.column(name, se): num(getattr(e, name + se)) for name in ("c", "phi") for se in ("", "_se")},
+                    "n_dry": e.n,
                     "n_wet": int(np.sum((self.tests["material"] == m) & (self.tests["condition"] == "wet"))),
                     "best_model": best,
                     "best_rmse [kPa]": num(met.rmse_kPa) if met else None,
@@ -746,7 +783,8 @@ def _ranking_dict(r) -> dict:
     }
 
 
-def _fit_dict(fit) -> dict:
+def envelope_numbers(fit) -> EnvelopeNumbers:
+    """The numbers of a fitted envelope in their output units (kPa, deg), as declared by EnvelopeNumbers."""
     fit = line_of(fit)
     slope = np.float64(fit.slope)  # numpy arithmetic: an absurd input overflows to inf (null in JSON), no exception
     phi = np.degrees(np.arctan(slope))
@@ -755,23 +793,28 @@ def _fit_dict(fit) -> dict:
         phi_se = np.degrees(fit.slope_se / (1.0 + slope**2))
     lo, hi = fit.slope_ci
     c_lo, c_hi = fit.intercept_ci
-    key, kpa = nom.json_key, 1 / nom.QUANTITIES["c"].factor  # keys and units: the glossary's (c_kPa, ...); Pa/kPa
-    return {
-        key("c"): num(fit.intercept / kpa),
-        key("phi"): num(phi),
-        key("tan_phi"): num(fit.slope),
-        key("c", "_se"): num(fit.intercept_se / kpa),
-        key("phi", "_se"): num(phi_se),
-        key("tan_phi", "_se"): num(fit.slope_se),
-        key("c", "_ci95"): [num(c_lo / kpa), num(c_hi / kpa)],
-        key("phi", "_ci95"): [num(np.degrees(np.arctan(lo))), num(np.degrees(np.arctan(hi)))],
-        key("r2"): num(fit.r2),
-        "n": fit.n,
-        "errors": fit.errors,
-        "dry_loss": fit.loss,
-        key("scatter"): num(np.sqrt(fit.residual_variance) / kpa) if fit.dof > 0 else None,
-        "outliers": _outliers(fit),
-    }
+    kpa = 1 / nom.QUANTITIES["c"].factor  # Pa per kPa
+    return EnvelopeNumbers(
+        c=fit.intercept / kpa,
+        phi=phi,
+        tan_phi=fit.slope,
+        c_se=fit.intercept_se / kpa,
+        phi_se=phi_se,
+        tan_phi_se=fit.slope_se,
+        c_ci=(c_lo / kpa, c_hi / kpa),
+        phi_ci=(np.degrees(np.arctan(lo)), np.degrees(np.arctan(hi))),
+        r2=fit.r2,
+        n=fit.n,
+        errors=fit.errors,
+        loss=fit.loss,
+        scatter=np.sqrt(fit.residual_variance) / kpa if fit.dof > 0 else math.nan,
+        outliers=_outliers(fit),
+    )
+
+
+def _fit_dict(fit) -> dict:
+    """The JSON object of a fitted envelope: :func:`envelope_numbers` through its declarations (record_json)."""
+    return record_json(envelope_numbers(fit))
 
 
 def _outliers(fit: LineFit) -> list[dict]:
@@ -941,6 +984,99 @@ def _void_volume(table: Table, opt: ShearOptions, box: np.ndarray) -> np.ndarray
     return v_v
 
 
+@dataclass
+class _DerivedColumns:
+    """The per-test arrays :func:`derive_tests` builds [SI], with the inputs its check of missing values names."""
+
+    wet: np.ndarray
+    cap: np.ndarray
+    added: np.ndarray
+    box: np.ndarray
+    radius: np.ndarray
+    sigma_N: np.ndarray
+    tau: np.ndarray
+    suction: np.ndarray
+    S_R: np.ndarray
+    from_burette: np.ndarray
+
+
+def _report_missing(table: Table, opt: ShearOptions, cols: _DerivedColumns, with_curves: bool) -> None:
+    """A problem for every value that cannot be derived (unless its cause is already reported: a bad cell on the
+    line, an absent column), and for a burette's S_R outside [0, 1]."""
+    n = len(table)
+    bad_lines = {p.line for p in table.problems}
+
+    def missing(i: int, what: str, column: str | None) -> None:
+        """A value that cannot be derived: reported unless its cause is already (a bad cell on the line, an
+        absent column)."""
+        if table.missing or int(table.lines[i]) in bad_lines:
+            return
+        table.add_problem(i, column, what)
+
+    wet, cap, added, box, sigma_N, tau, suction, S_R = (
+        cols.wet,
+        cols.cap,
+        cols.added,
+        cols.box,
+        cols.sigma_N,
+        cols.tau,
+        cols.suction,
+        cols.S_R,
+    )
+    # only rows with something missing or out of range need a look (the rest are fine)
+    # R is required only by the models that read it (issue 41.5): Own 2's chi2 and the exact bridge
+    by_radius = [esm.REGISTRY[m].label for m in opt.models if esm.REGISTRY[m].uses_radius]
+    no_radius = np.isnan(cols.radius) if by_radius else np.zeros(n, bool)
+    look = (
+        np.isnan(sigma_N)
+        | np.isnan(tau)
+        | (wet & (np.isnan(suction) | np.isnan(S_R) | no_radius | (cols.from_burette & ((S_R < 0) | (S_R > 1)))))
+    )
+    for i in np.flatnonzero(look):
+        if np.isnan(sigma_N[i]):
+            parts = [
+                c for c, v in (("added_mass", added[i]), ("cap_mass", cap[i]), ("box_area", box[i])) if np.isnan(v)
+            ]
+            col = parts[0] if parts and parts[0] in table.columns else None
+            missing(
+                i,
+                "no normal stress: give 'sigma_N', or 'added_mass' with 'cap_mass' and 'box_area' "
+                f"(missing here: {', '.join(parts)}; cap mass and box area may come from "
+                "--cap-mass and --box-area)",
+                col,
+            )
+        if np.isnan(tau[i]):
+            col = "tau_max" if "tau_max" in table.columns else None
+            missing(
+                i,
+                "no shear strength: give 'tau_max', or 'F_max' with 'box_area'"
+                + (", or a curve for this test" if with_curves else ""),
+                col,
+            )
+        if not wet[i]:
+            continue
+        if np.isnan(suction[i]):
+            col = "z1" if "z1" in table.columns else None
+            missing(i, "wet test without suction: give 'suction' or the head 'z1'", col)
+        if np.isnan(S_R[i]):
+            col = "z2" if "z2" in table.columns else None
+            missing(i, "wet test without S_R: give 'S_R', or 'z2' with 'V_v' (or --void-volume)", col)
+        elif cols.from_burette[i] and not 0.0 <= S_R[i] <= 1.0:
+            table.add_problem(
+                i,
+                "z2",
+                f"S_R = (V_v - z2)/V_v = {S_R[i]:.4g} lies outside [0, 1]: "
+                f"z2 = {table.value_text('z2', i)} exceeds V_v",
+            )
+        if no_radius[i]:
+            col = "R" if "R" in table.columns else None
+            missing(
+                i,
+                f"wet test without particle radius: give 'R' or --radius (needed by {', '.join(by_radius)})",
+                col,
+            )
+
+
 def derive_tests(
     table: Table, opt: ShearOptions, box: np.ndarray, tau_curve: np.ndarray | None = None
 ) -> dict[str, np.ndarray]:
@@ -1011,68 +1147,8 @@ def derive_tests(
     z2 = table.get("z2")
     S_R[from_burette] = ph.degree_of_saturation(z2, v_v)[from_burette]
 
-    bad_lines = {p.line for p in table.problems}
-
-    def missing(i: int, what: str, column: str | None) -> None:
-        """A value that cannot be derived: reported unless its cause is already (a bad cell on the line, an
-        absent column)."""
-        if table.missing or int(table.lines[i]) in bad_lines:
-            return
-        table.add_problem(i, column, what)
-
-    # only rows with something missing or out of range need a look (the rest are fine)
-    # R is required only by the models that read it (issue 41.5): Own 2's chi2 and the exact bridge
-    by_radius = [esm.REGISTRY[m].label for m in opt.models if esm.REGISTRY[m].uses_radius]
-    no_radius = np.isnan(radius) if by_radius else np.zeros(n, bool)
-    look = (
-        np.isnan(sigma_N)
-        | np.isnan(tau)
-        | (wet & (np.isnan(suction) | np.isnan(S_R) | no_radius | (from_burette & ((S_R < 0) | (S_R > 1)))))
-    )
-    for i in np.flatnonzero(look):
-        if np.isnan(sigma_N[i]):
-            parts = [
-                c for c, v in (("added_mass", added[i]), ("cap_mass", cap[i]), ("box_area", box[i])) if np.isnan(v)
-            ]
-            col = parts[0] if parts and parts[0] in table.columns else None
-            missing(
-                i,
-                "no normal stress: give 'sigma_N', or 'added_mass' with 'cap_mass' and 'box_area' "
-                f"(missing here: {', '.join(parts)}; cap mass and box area may come from "
-                "--cap-mass and --box-area)",
-                col,
-            )
-        if np.isnan(tau[i]):
-            col = "tau_max" if "tau_max" in table.columns else None
-            missing(
-                i,
-                "no shear strength: give 'tau_max', or 'F_max' with 'box_area'"
-                + (", or a curve for this test" if tau_curve is not None else ""),
-                col,
-            )
-        if not wet[i]:
-            continue
-        if np.isnan(suction[i]):
-            col = "z1" if "z1" in table.columns else None
-            missing(i, "wet test without suction: give 'suction' or the head 'z1'", col)
-        if np.isnan(S_R[i]):
-            col = "z2" if "z2" in table.columns else None
-            missing(i, "wet test without S_R: give 'S_R', or 'z2' with 'V_v' (or --void-volume)", col)
-        elif from_burette[i] and not 0.0 <= S_R[i] <= 1.0:
-            table.add_problem(
-                i,
-                "z2",
-                f"S_R = (V_v - z2)/V_v = {S_R[i]:.4g} lies outside [0, 1]: "
-                f"z2 = {table.value_text('z2', i)} exceeds V_v",
-            )
-        if no_radius[i]:
-            col = "R" if "R" in table.columns else None
-            missing(
-                i,
-                f"wet test without particle radius: give 'R' or --radius (needed by {', '.join(by_radius)})",
-                col,
-            )
-
+    columns = _DerivedColumns(wet, cap, added, box, radius, sigma_N, tau, suction, S_R, from_burette)
+    _report_missing(table, opt, columns, tau_curve is not None)
     suction = np.where(wet, suction, 0.0)
     S_R = np.where(wet, S_R, np.where(cond == "saturated", 1.0, 0.0))  # a saturated test: S_R = 1, no suction
     return {"sigma_N": sigma_N, "suction": suction, "S_R": S_R, "tau_max": tau, "R": radius}

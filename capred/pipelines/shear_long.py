@@ -11,7 +11,7 @@ is `capred.pipelines.shear`'s: outputs are those of the whole-table run, byte fo
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -145,6 +145,178 @@ def _sample_rows(wet, mat, suction, materials) -> np.ndarray:
     return np.unique(np.concatenate(parts)).astype(np.int64)
 
 
+@dataclass
+class _Harvest:
+    """Pass 1's harvest of every block: the compact per-test arrays of ``_COMPACT``, line numbers, interned
+    materials and conditions, hashes of the test ids, sizes of the spooled pieces, notes, warnings and the
+    problems of the blocks that have some."""
+
+    keep: dict[str, list]
+    lines: list = field(default_factory=list)
+    mats: list = field(default_factory=list)
+    conds: list = field(default_factory=list)
+    hashes: list = field(default_factory=list)
+    sizes: list = field(default_factory=list)
+    mat_names: dict[str, str] = field(default_factory=dict)
+    cond_names: dict[str, str] = field(default_factory=dict)
+    notes: dict[str, None] = field(default_factory=dict)
+    warnings: dict[str, None] = field(default_factory=dict)
+    found: list = field(default_factory=list)
+
+
+def _harvest_block(table, d: dict, h: _Harvest, spool_in: Spool) -> None:
+    """Keep one block's compact arrays in ``h`` and spool its test ids and raw inputs, in pieces."""
+    ids = table.columns["test_id"]
+    for k in _COMPACT:
+        h.keep[k].append(d[k])
+    h.lines.append(table.lines.astype(np.int32))  # line numbers of a file below max_bytes fit
+    h.mats.append(_interned(table.columns["material"], h.mat_names))
+    h.conds.append(_interned(table.columns["condition"], h.cond_names))
+    h.hashes.append(np.fromiter(map(hash, ids.tolist()), dtype=np.int64, count=len(ids)))
+    spooled = {
+        "test_id": ids,
+        **{f"in_{name}": documented_column(table, name) for name in RAW_INPUTS if name in table.columns},
+    }
+    for lo in range(0, len(table), _SPOOL_ROWS):
+        spool_in.append({k: v[lo : lo + _SPOOL_ROWS] for k, v in spooled.items()})
+        h.sizes.append(min(_SPOOL_ROWS, len(table) - lo))
+    h.notes.update(dict.fromkeys(table.notes))
+    h.warnings.update(dict.fromkeys(table.warnings))
+
+
+def _read_blocks(pending: list, blocks, opt: ShearOptions, spool_in: Spool) -> _Harvest:
+    """Pass 1: read, check and derive each block, one block's cells in memory at a time."""
+    import itertools
+
+    h = _Harvest({k: [] for k in _COMPACT})
+
+    def tables():
+        while pending:
+            yield pending.pop(0)  # the caller keeps no reference: one block's cells in memory at a time
+
+    with task("reading tests, block by block") as advance_read:  # a bar on a terminal
+        for table in itertools.chain(tables(), blocks):
+            check_shear_table(table, unique=False)
+            if "test_id" in table.columns:
+                for i in np.flatnonzero(table.columns["test_id"] == ""):
+                    table.add_problem(int(i), "test_id", "empty test_id")
+            box = filled_column(table, "box_area", opt.box_area)
+            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                d = derive_tests(table, opt, box)
+            if table.problems:  # every block is read: the file's problems are reported at once
+                h.found += table.problems
+                del table, d, box
+                advance_read()
+                continue
+            _harvest_block(table, d, h, spool_in)
+            del table, d, box
+            _trim()
+            advance_read()
+    return h
+
+
+@dataclass
+class _Gathered:
+    """The blocks' arrays joined: piece starts in the spools, line numbers, materials, conditions, the compact
+    per-test arrays, and the problems of the whole table."""
+
+    starts: np.ndarray
+    lines: np.ndarray
+    mat: np.ndarray
+    cond: np.ndarray
+    d: dict[str, np.ndarray]
+    problems: _RowProblems
+
+
+def _gather(h: _Harvest, path, sheet, headers: dict, spool_in: Spool) -> _Gathered:
+    """Join the blocks' arrays (letting go of the per-block lists) and raise the problems of the whole table,
+    repeated test ids among the blocks included."""
+    if h.found and not h.sizes:  # no block without problems
+        from ..errors import InputError
+
+        raise InputError(h.found)
+    starts = np.concatenate([[0], np.cumsum(h.sizes)]).astype(np.int64)
+    lines_all = np.concatenate(h.lines)
+    mat, cond = np.concatenate(h.mats), np.concatenate(h.conds)
+    h.lines = h.mats = h.conds = None
+    d = {k: np.concatenate(v) for k, v in h.keep.items()}
+    h.keep = None
+    problems = _RowProblems(path, sheet, headers, lines_all, {"condition": cond, "material": mat})
+    problems.problems += h.found  # with the repeated test ids among the blocks without problems
+    _duplicate_ids(np.concatenate(h.hashes) if h.hashes else np.zeros(0, np.int64), spool_in, starts, problems)
+    h.hashes = None
+    _trim()
+    problems.raise_if_problems()
+    return _Gathered(starts, lines_all, mat, cond, d, problems)
+
+
+def _fit_envelopes(g: _Gathered, materials: list, opt: ShearOptions, spool_in: Spool) -> tuple[dict, dict]:
+    """The dry and saturated envelopes of every material; an outlier is named by its id, read back from the
+    spool (as a whole table names it)."""
+    fits = fit_dry_envelopes(g.problems, g.d, g.mat, g.cond, materials, opt)
+    saturated_fits = fit_saturated_envelopes(g.problems, g.d, g.mat, g.cond, materials, opt)
+    g.problems.raise_if_problems()
+    for fit in fits.values():
+        diag = fit.diagnostics
+        flagged = np.flatnonzero(np.asarray(diag.get("outlier", []), bool))
+        if flagged.size and "rows" in diag:
+            ids = np.full(len(diag["rows"]), None, dtype=object)
+            ids[flagged] = _spooled(spool_in, g.starts, "test_id", np.asarray(diag["rows"][flagged], np.int64))
+            diag["test_ids"] = ids
+    return fits, saturated_fits
+
+
+def _predict_by_piece(
+    g: _Gathered, wet: np.ndarray, md, fits: dict, laws: dict, opt: ShearOptions, spool_out: Spool
+) -> tuple[dict[str, Sampled], dict[str, np.ndarray]]:
+    """Pass 2: every model's prediction piece by piece, spooled whole; kept in memory at the sampled rows only
+    (and every test's tau, for the scores)."""
+    d, starts = g.d, g.starts
+    rows = _sample_rows(wet, g.mat, d["suction"], list(fits))
+    n = int(starts[-1])
+    taus = {m: np.empty(n) for m in opt.models}
+    samples: dict[str, list] = {}
+    for k in steps(range(len(starts) - 1), "predicting, piece by piece"):
+        lo, hi = int(starts[k]), int(starts[k + 1])
+        sl = slice(lo, hi)
+        part = {name: d[name][sl] for name in ("sigma_N", "suction", "tau_max")}
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            preds, back = predict_models(part, wet[sl], md.subset(sl), fits, laws, opt)
+            cols = {
+                "chi1": np.where(wet[sl], ph.chi1(d["S_R"][sl]), 0.0),
+                "chi2": np.where(wet[sl], ph.chi2(d["S_R"][sl], d["R"][sl], opt.surface_tension), 0.0),
+                **_flat(preds),
+                **_flat({"back": back}),
+            }
+        spool_out.append(cols)
+        for m in opt.models:
+            taus[m][lo:hi] = preds[m].si.tau
+        here = rows[(rows >= lo) & (rows < hi)] - lo
+        for key, v in cols.items():
+            samples.setdefault(key, []).append(v[here])
+        del preds, back, cols, part
+        _trim()
+    sampled = {key: Sampled(rows, np.concatenate(v), n) for key, v in samples.items()}
+    return sampled, taus
+
+
+def _bootstrap_and_forget_tests(
+    result: ShearBlocks, tests, g: _Gathered, wet, fits: dict, saturated_fits: dict, fitted, opt: ShearOptions
+) -> None:
+    """The bootstrap of the model ranking (``--bootstrap``), on every test; then ``result.model_inputs`` keeps
+    the fitted laws and no tests."""
+    d, mat, cond = g.d, g.mat, g.cond
+    if opt.bootstrap > 0:
+        result.model_inputs = dataclasses.replace(
+            model_inputs_of(tests, wet, mat, fits, opt, saturated_fits), fitted=fitted
+        )
+        result.ranking = bootstrap_materials(result, wet, mat, cond, opt)
+    none = {k: d[k][:0] for k in _COMPACT}
+    result.model_inputs = dataclasses.replace(  # the fitted laws, no tests
+        model_inputs_of(none, wet[:0], mat[:0], fits, opt, saturated_fits), fitted=fitted
+    )
+
+
 def run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks:
     """`capred shear` on a table of several blocks (capred.io.blocks): memory flat in the number of tests.
 
@@ -153,8 +325,6 @@ def run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks:
     every test. Pass 2 predicts block by block and spools every per-test output; the writer reads both spools
     back block by block. Outputs are those of the whole-table run, byte for byte.
     """
-    import itertools
-
     from . import shear_analysis as sa
 
     first = pending[0]
@@ -163,115 +333,21 @@ def run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks:
     del first
     spool_in, spool_out = Spool(), Spool()
     try:
-        keep: dict[str, list] = {k: [] for k in _COMPACT}
-        lines, mats, conds, hashes, sizes = [], [], [], [], []
-        mat_names: dict[str, str] = {}
-        cond_names: dict[str, str] = {}
-        notes: dict[str, None] = {}
-        warnings: dict[str, None] = {}
-
-        def tables():
-            while pending:
-                yield pending.pop(0)  # the caller keeps no reference: one block's cells in memory at a time
-
-        found: list = []  # the problems of every block
-        with task("reading tests, block by block") as advance_read:  # a bar on a terminal
-            for table in itertools.chain(tables(), blocks):
-                check_shear_table(table, unique=False)
-                if "test_id" in table.columns:
-                    for i in np.flatnonzero(table.columns["test_id"] == ""):
-                        table.add_problem(int(i), "test_id", "empty test_id")
-                box = filled_column(table, "box_area", opt.box_area)
-                with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-                    d = derive_tests(table, opt, box)
-                if table.problems:  # every block is read: the file's problems are reported at once
-                    found += table.problems
-                    del table, d, box
-                    advance_read()
-                    continue
-                ids = table.columns["test_id"]
-                for k in _COMPACT:
-                    keep[k].append(d[k])
-                lines.append(table.lines.astype(np.int32))  # line numbers of a file below max_bytes fit
-                mats.append(_interned(table.columns["material"], mat_names))
-                conds.append(_interned(table.columns["condition"], cond_names))
-                hashes.append(np.fromiter(map(hash, ids.tolist()), dtype=np.int64, count=len(ids)))
-                spooled = {
-                    "test_id": ids,
-                    **{f"in_{name}": documented_column(table, name) for name in RAW_INPUTS if name in table.columns},
-                }
-                for lo in range(0, len(table), _SPOOL_ROWS):
-                    spool_in.append({k: v[lo : lo + _SPOOL_ROWS] for k, v in spooled.items()})
-                    sizes.append(min(_SPOOL_ROWS, len(table) - lo))
-                notes.update(dict.fromkeys(table.notes))
-                warnings.update(dict.fromkeys(table.warnings))
-                del table, d, ids, box, spooled
-                _trim()
-                advance_read()
-        if found and not sizes:  # no block without problems
-            from ..errors import InputError
-
-            raise InputError(found)
-        starts = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
-        lines_all = np.concatenate(lines)
-        mat, cond = np.concatenate(mats), np.concatenate(conds)
-        del lines, mats, conds
-        d = {k: np.concatenate(v) for k, v in keep.items()}
-        del keep
-        problems = _RowProblems(path, sheet, headers, lines_all, {"condition": cond, "material": mat})
-        problems.problems += found  # with the repeated test ids among the blocks without problems
-        _duplicate_ids(np.concatenate(hashes) if hashes else np.zeros(0, np.int64), spool_in, starts, problems)
-        del hashes
-        _trim()
-        problems.raise_if_problems()
-
-        materials = list(mat_names)
+        h = _read_blocks(pending, blocks, opt, spool_in)
+        g = _gather(h, path, sheet, headers, spool_in)
+        d, mat, cond = g.d, g.mat, g.cond
+        materials = list(h.mat_names)
         wet = cond == "wet"
-        fits = fit_dry_envelopes(problems, d, mat, cond, materials, opt)
-        saturated_fits = fit_saturated_envelopes(problems, d, mat, cond, materials, opt)
-        problems.raise_if_problems()
-        for fit in fits.values():  # an outlier is named by its id, read back from the spool (as a whole table)
-            diag = fit.diagnostics
-            flagged = np.flatnonzero(np.asarray(diag.get("outlier", []), bool))
-            if flagged.size and "rows" in diag:
-                ids = np.full(len(diag["rows"]), None, dtype=object)
-                ids[flagged] = _spooled(spool_in, starts, "test_id", np.asarray(diag["rows"][flagged], np.int64))
-                diag["test_ids"] = ids
+        fits, saturated_fits = _fit_envelopes(g, materials, opt, spool_in)
 
-        tests = _LongTests({"material": mat, "condition": cond, "line": lines_all, **d})
+        tests = _LongTests({"material": mat, "condition": cond, "line": g.lines, **d})
         md = model_inputs_of(tests, wet, mat, fits, opt, saturated_fits)
         laws = sa.fit_laws(md, opt.models, list(fits), opt.model_params, fits=fits)
         md = dataclasses.replace(
             md, fitted={model: {m: law.values for m, law in by_mat.items()} for model, by_mat in laws.items()}
         )
         per_material = values_by_material(md, wet, mat, fits, opt)
-
-        rows = _sample_rows(wet, mat, d["suction"], list(fits))
-        n = int(starts[-1])
-        taus = {m: np.empty(n) for m in opt.models}
-        samples: dict[str, list] = {}
-        for k in steps(range(len(sizes)), "predicting, piece by piece"):
-            lo, hi = int(starts[k]), int(starts[k + 1])
-            sl = slice(lo, hi)
-            part = {name: d[name][sl] for name in ("sigma_N", "suction", "tau_max")}
-            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-                preds, back = predict_models(part, wet[sl], md.subset(sl), fits, laws, opt)
-                cols = {
-                    "chi1": np.where(wet[sl], ph.chi1(d["S_R"][sl]), 0.0),
-                    "chi2": np.where(wet[sl], ph.chi2(d["S_R"][sl], d["R"][sl], opt.surface_tension), 0.0),
-                    **_flat(preds),
-                    **_flat({"back": back}),
-                }
-            spool_out.append(cols)
-            for m in opt.models:
-                taus[m][lo:hi] = preds[m].si.tau
-            here = rows[(rows >= lo) & (rows < hi)] - lo
-            for key, v in cols.items():
-                samples.setdefault(key, []).append(v[here])
-            del preds, back, cols, part
-            _trim()
-        sampled = {key: Sampled(rows, np.concatenate(v), n) for key, v in samples.items()}
-        del samples
+        sampled, taus = _predict_by_piece(g, wet, md, fits, laws, opt, spool_out)
         predictions = {m: _record(ModelPrediction, m, {**sampled, f"{m}|tau": taus[m]}, model=m) for m in opt.models}
         back = _record(BackAnalysis, "back", sampled)
         fitted = md.fitted
@@ -287,10 +363,10 @@ def run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks:
             metrics_overall=scored["overall"],
             best_model={m: best_of(v) for m, v in scored["metrics"].items()},
             best_model_overall=best_of(scored["overall"]),
-            notes=opt.notes + list(notes),
+            notes=opt.notes + list(h.notes),
             per_material=per_material,
             inputs=inputs,
-            warnings=list(opt.warnings) + list(warnings) + scored["warnings"],
+            warnings=list(opt.warnings) + list(h.warnings) + scored["warnings"],
             metrics_pendular=scored["pendular"],
             metrics_pendular_overall=scored["overall_pendular"],
             laws=laws,
@@ -302,7 +378,7 @@ def run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks:
             heteroscedasticity=scored["heteroscedasticity"],
             spool_in=spool_in,
             spool_out=spool_out,
-            starts=starts,
+            starts=g.starts,
         )
         tests.result = result
         # what needs every test's prediction, made now; then the predictions are kept at the sampled rows only
@@ -312,15 +388,7 @@ def run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks:
         result.predictions = {m: p.replace(tau=sampled[f"{m}|tau"]) for m, p in predictions.items()}
         del predictions, taus
         _trim()
-        if opt.bootstrap > 0:
-            result.model_inputs = dataclasses.replace(
-                model_inputs_of(tests, wet, mat, fits, opt, saturated_fits), fitted=fitted
-            )
-            result.ranking = bootstrap_materials(result, wet, mat, cond, opt)
-        none = {k: d[k][:0] for k in _COMPACT}
-        result.model_inputs = dataclasses.replace(  # the fitted laws, no tests
-            model_inputs_of(none, wet[:0], mat[:0], fits, opt, saturated_fits), fitted=fitted
-        )
+        _bootstrap_and_forget_tests(result, tests, g, wet, fits, saturated_fits, fitted, opt)
         _trim()
         return result
     except BaseException:

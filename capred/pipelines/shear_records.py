@@ -172,3 +172,57 @@ class Sampled:
         if self.rows.size == 0 or np.any(self.rows[pos_ok] != idx):
             raise IndexError("rows not kept in memory by a long run (the whole column is in results.csv)")
         return self.values[pos_ok]
+
+
+def _glossary(name: str, suffix: str = "", **kw):
+    """An :func:`output` declaration of a glossary quantity: its JSON key and unit (capred.nomenclature)."""
+    from .. import nomenclature as nom
+
+    q = nom.QUANTITIES[name]
+    return output(nom.json_key(name, suffix), unit=q.unit if q.unit not in ("", "-") else "", **kw)
+
+
+@dataclass(frozen=True, eq=False)
+class EnvelopeNumbers:
+    """The numbers of a fitted straight envelope tau = c + sigma_N tan(phi) as the JSON's materials block gives
+    them (and the lab store records them): each field one declaration, its JSON key and unit the glossary's.
+
+    The values are held in the output units (kPa, deg), computed once from the fit by
+    ``capred.pipelines.shear.envelope_numbers``.
+
+    Attributes
+    ----------
+    c, c_se : float
+        Cohesion intercept and its standard error [kPa].
+    phi, phi_se : float
+        Friction angle and its standard error (delta method) [deg].
+    tan_phi, tan_phi_se : float
+        Slope and its standard error [-].
+    c_ci, phi_ci : tuple of float
+        95 % intervals of c [kPa] and phi [deg].
+    r2 : float
+        Coefficient of determination [-].
+    n : int
+        Number of tests fitted (a count: not recorded in the lab store).
+    errors, loss : str
+        Error model and loss of the fit.
+    scatter : float
+        Residual standard deviation [kPa] (NaN without degrees of freedom).
+    outliers : list of dict
+        The tests flagged as outliers.
+    """
+
+    c: float = _glossary("c")
+    phi: float = _glossary("phi")
+    tan_phi: float = _glossary("tan_phi")
+    c_se: float = _glossary("c", "_se")
+    phi_se: float = _glossary("phi", "_se")
+    tan_phi_se: float = _glossary("tan_phi", "_se")
+    c_ci: tuple = _glossary("c", "_ci95", pair=True, of="c")
+    phi_ci: tuple = _glossary("phi", "_ci95", pair=True, of="phi")
+    r2: float = _glossary("r2")
+    n: int = output("n", store=False)
+    errors: str = output("errors", store=False)
+    loss: str = output("dry_loss", store=False)
+    scatter: float = _glossary("scatter")
+    outliers: list = output("outliers", store=False)

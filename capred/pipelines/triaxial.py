@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import nomenclature as nom
 from ..errors import FitError
 from ..fitting.linear import fit_line
 from ..io import Column, Table, read_table
@@ -232,13 +233,34 @@ class TriaxialResult(Result):
             tests.append(row)
         env = rec.to_json(self.envelope)
         env = {k: env[k] for k in ENVELOPE_KEYS}  # the order of capred 0.x
-        if (
-            self.envelope.fit is not None or self.envelope.source == "extended_mc"
-        ):  # the 95 % intervals that params (Python) and the summary give
-            par = self.envelope.params
-            env["c_ci95_kPa"] = [num(x) for x in par["c_kPa"].ci95]
-            env["phi_ci95_deg"] = [num(x) for x in par["phi_deg"].ci95]
+        for key, ci in self._envelope_intervals().items():
+            env[nom.json_key(key, "_ci95")] = [num(x) for x in ci]
         return {"source": self.source, "envelope": env, "tests": tests, "groups": [rec.to_json(g) for g in self.groups]}
+
+    def _envelope_intervals(self) -> dict:
+        """Glossary name -> 95 % interval of c' [kPa] and phi' [deg], where the envelope was fitted (params and
+        the summary give them); {} for an envelope given by --c-eff/--phi-eff."""
+        if self.envelope.fit is None and self.envelope.source != "extended_mc":
+            return {}
+        par = self.envelope.params
+        return {name: par[nom.json_key(name)].ci95 for name in ("c", "phi")}
+
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows: the effective envelope's glossary quantities (c_kPa, phi_deg with their 95 %
+        intervals, M, k_kPa, their extension twins, the standard errors, r2), from the record's declarations
+        (capred.pipelines.triaxial_records.store_rows), for the material of the inputs' metadata block.
+
+        Parameters
+        ----------
+        material : str, optional
+            The material of the inputs' metadata block.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+        """
+        intervals = {nom.json_key(name): ci for name, ci in self._envelope_intervals().items()}
+        return rec.store_rows(self.envelope, material, intervals)
 
     def tables(self) -> dict:
         """results (one row per test, bounds side by side) and, with groups, groups."""
@@ -266,10 +288,11 @@ class TriaxialResult(Result):
         return [
             {
                 "material": "(envelope)",
-                "c [kPa]": num(e.c_kPa),
-                "c_se [kPa]": num(e.c_se_kPa),
-                "phi [deg]": num(e.phi_deg),
-                "phi_se [deg]": num(e.phi_se_deg),
+                **{  # the envelope's declared quantities (JSON c_kPa ...), under their glossary CSV headers
+                    nom.column(name, se): num(getattr(e, _envelope_field(name, se).name))
+                    for name in ("c", "phi")
+                    for se in ("", "_se")
+                },
                 "n_dry": e.n,
                 "n_wet": int(self.unsaturated.sum()),
                 "best_model": None,
@@ -291,6 +314,15 @@ class TriaxialResult(Result):
                 cols[k] = np.where(keep, v, None) if v.dtype == bool else np.where(keep, v, np.nan)
         cols["flags"] = [";".join(self.flags(i)) for i in range(len(self.states))]
         return pd.DataFrame(cols)
+
+
+def _envelope_field(name: str, se: str):
+    """The field of the Envelope record that declares glossary quantity ``name`` (its standard error: se="_se")."""
+    return next(
+        f
+        for f in dataclasses.fields(Envelope)
+        if f.metadata.get("quantity") == name and f.metadata["se"] == (se == "_se") and not f.metadata["ci"]
+    )
 
 
 #: the keys of the JSON object ``envelope``, in their order
@@ -538,6 +570,122 @@ def skempton_a_of_curves(table: Table, at_peak: dict) -> tuple[np.ndarray, list[
     return A, notes
 
 
+@dataclass
+class _PorePressureLog:
+    """What :func:`pore_pressures` notes and warns about while it goes through the tests."""
+
+    notes: list[str] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+    filled_s3: list[str] = field(default_factory=list)  # sigma3 taken from the export's radial pressure
+    from_export: list[str] = field(default_factory=list)  # pore pressure taken from the export
+    already: list[str] = field(default_factory=list)  # sigma3 already effective
+
+    def close(self) -> None:
+        """The notes that name the tests of each list, once every test has been seen."""
+        if self.filled_s3:
+            self.notes.append(f"sigma3 taken from the export's radial pressure at failure: {', '.join(self.filled_s3)}")
+        if self.from_export:
+            self.notes.append(
+                f"pore pressure taken from the export at failure (sigma' = sigma - u_w saturated, "
+                f"sigma - u_a unsaturated): {', '.join(self.from_export)}"
+            )
+        if self.already:
+            self.notes.append(
+                f"sigma3 already effective (= radial pressure - pore pressure of the export): {', '.join(self.already)}"
+            )
+
+
+def _initial_suction_from_export(tids, sat, s0, at_peak: dict, log: _PorePressureLog) -> None:
+    """Fill blank s0 of unsaturated tests with the export's matric suction at the start of the shear stage."""
+    suction0 = np.array([at_peak.get(t, {}).get("suction_initial", np.nan) for t in tids])
+    took = np.isnan(s0) & ~sat & np.isfinite(suction0)
+    if took.any():  # the export's Matric Suction at the first reading of the shear stage is the initial suction
+        s0[took] = suction0[took]
+        log.notes.append(
+            "s0 taken from the export's matric suction at the start of the shear stage: "
+            + ", ".join(f"{tids[i]} ({s0[i] / 1e3:.4g} kPa)" for i in np.flatnonzero(took))
+        )
+
+
+def _table_and_export_pore_pressure(
+    table: Table, i: int, tid: str, sat: bool, ub_col, ua_col, exp: dict, s0, log: _PorePressureLog
+) -> tuple[float, float]:
+    """The pore pressure of test ``i`` from the table and from the export [Pa] (NaN where not given).
+
+    A saturated test's is its back pressure u_w, an unsaturated test's its pore-air pressure u_a (axis
+    translation); a blank s0 of an unsaturated test is filled with u_a - u_w where both are known.
+    """
+    if sat:
+        if np.isfinite(ua_col[i]):
+            table.add_problem(
+                i,
+                "u_a",
+                "u_a is for unsaturated tests (net stress sigma - u_a); the pore "
+                "pressure of a saturated test is its back_pressure",
+            )
+        u_tab = ub_col[i]
+        u_exp = exp["pore_pressure"][i] if np.isfinite(exp["pore_pressure"][i]) else exp["back_pressure"][i]
+        return u_tab, u_exp
+    u_tab = ua_col[i]
+    u_exp = exp["air_pressure"][i]
+    u_w = ub_col[i] if np.isfinite(ub_col[i]) else exp["back_pressure"][i]
+    if np.isfinite(ub_col[i]) and not (np.isfinite(ua_col[i]) or np.isfinite(u_exp)):
+        table.add_problem(
+            i,
+            "back_pressure",
+            "an unsaturated test's back pressure is the pore-water "
+            "pressure of axis translation: give the pore-air pressure 'u_a' too (the "
+            "stresses are net of u_a)",
+        )
+    u_a = u_tab if np.isfinite(u_tab) else u_exp
+    if np.isnan(s0[i]) and np.isfinite(u_a) and np.isfinite(u_w):
+        s0[i] = u_a - u_w
+        log.notes.append(f"test '{tid}': s0 = u_a - u_w = {s0[i] / 1e3:.4g} kPa (axis translation)")
+    return u_tab, u_exp
+
+
+def _stresses_are_total(
+    tid: str, cell: float, name: str, radial: float, u_tab: float, u_exp: float, log: _PorePressureLog
+) -> bool:
+    """Whether the table's cell stress ``name`` = ``cell`` [Pa] is total, against the export's radial pressure.
+
+    Equal within :func:`pressure_tolerance` -> total; equal to radial - u -> already effective; otherwise the
+    table's value stays total and a warning says so.
+    """
+    u_known = u_tab if np.isfinite(u_tab) else u_exp
+    if abs(cell - radial) <= pressure_tolerance(radial):
+        return True
+    if (
+        np.isfinite(u_known)
+        and abs(u_known) > pressure_tolerance(radial)
+        and abs(cell - (radial - u_known)) <= pressure_tolerance(radial)
+    ):
+        log.already.append(tid)
+        if np.isfinite(u_tab):
+            log.warnings.append(
+                f"test '{tid}': {name} = {cell / 1e3:.4g} kPa equals the export's radial "
+                f"pressure {radial / 1e3:.4g} kPa minus the pore pressure {u_known / 1e3:.4g} kPa: "
+                "the table's stresses are already effective; the pore pressure of the table "
+                "is not subtracted again"
+            )
+        return False
+    # a drifting cell: the table's stress is still total, never taken as effective (issue 39)
+    u_sub = u_tab if np.isfinite(u_tab) else u_exp
+    sub = (
+        f"; the pore pressure {u_sub / 1e3:.4g} kPa is subtracted from it as from any total stress"
+        if np.isfinite(u_sub) and u_sub != 0
+        else ""
+    )
+    log.warnings.append(
+        f"test '{tid}': {name} = {cell / 1e3:.4g} kPa in the table but the export's radial "
+        f"pressure at failure is {radial / 1e3:.4g} kPa ("
+        + (f"{(radial - cell) / cell * 100:+.2g} %, " if cell else "")
+        + f"tolerance {pressure_tolerance(radial) / 1e3:.3g} kPa, ASTM D4767): the table's value is used"
+        f"{sub}"
+    )
+    return True
+
+
 def pore_pressures(table: Table, at_peak: dict[str, dict[str, float]], q, ext=None) -> dict:
     """The pore pressure to subtract from each test's stresses and whether the table's stresses are total.
 
@@ -585,101 +733,26 @@ def pore_pressures(table: Table, at_peak: dict[str, dict[str, float]], q, ext=No
         for k in ("radial_pressure", "back_pressure", "pore_pressure", "air_pressure")
     }
     u = np.zeros(n)
-    notes, warnings = [], []
-    filled_s3, from_export, already = [], [], []
-    suction0 = np.array([at_peak.get(t, {}).get("suction_initial", np.nan) for t in tids])
-    took = np.isnan(s0) & ~sat & np.isfinite(suction0)
-    if took.any():  # the export's Matric Suction at the first reading of the shear stage is the initial suction
-        s0[took] = suction0[took]
-        notes.append(
-            "s0 taken from the export's matric suction at the start of the shear stage: "
-            + ", ".join(f"{tids[i]} ({s0[i] / 1e3:.4g} kPa)" for i in np.flatnonzero(took))
-        )
+    log = _PorePressureLog()
+    _initial_suction_from_export(tids, sat, s0, at_peak, log)
     for i in range(n):
         tid = tids[i]
-        if sat[i]:
-            if np.isfinite(ua_col[i]):
-                table.add_problem(
-                    i,
-                    "u_a",
-                    "u_a is for unsaturated tests (net stress sigma - u_a); the pore "
-                    "pressure of a saturated test is its back_pressure",
-                )
-            u_tab = ub_col[i]
-            u_exp = exp["pore_pressure"][i] if np.isfinite(exp["pore_pressure"][i]) else exp["back_pressure"][i]
-        else:
-            u_tab = ua_col[i]
-            u_exp = exp["air_pressure"][i]
-            u_w = ub_col[i] if np.isfinite(ub_col[i]) else exp["back_pressure"][i]
-            if np.isfinite(ub_col[i]) and not (np.isfinite(ua_col[i]) or np.isfinite(u_exp)):
-                table.add_problem(
-                    i,
-                    "back_pressure",
-                    "an unsaturated test's back pressure is the pore-water "
-                    "pressure of axis translation: give the pore-air pressure 'u_a' too (the "
-                    "stresses are net of u_a)",
-                )
-            u_a = u_tab if np.isfinite(u_tab) else u_exp
-            if np.isnan(s0[i]) and np.isfinite(u_a) and np.isfinite(u_w):
-                s0[i] = u_a - u_w
-                notes.append(f"test '{tid}': s0 = u_a - u_w = {s0[i] / 1e3:.4g} kPa (axis translation)")
+        u_tab, u_exp = _table_and_export_pore_pressure(table, i, tid, sat[i], ub_col, ua_col, exp, s0, log)
         radial = exp["radial_pressure"][i]
         if np.isnan(s3[i]) and np.isfinite(radial) and not ext[i]:
             s3[i] = radial
-            filled_s3.append(tid)
+            log.filled_s3.append(tid)
         total = np.isfinite(u_tab)
         if np.isfinite(radial) and np.isfinite(s3[i]):
             cell = s3[i] + q[i] if ext[i] else s3[i]
-            u_known = u_tab if np.isfinite(u_tab) else u_exp
-            name = "sigma1" if ext[i] else "sigma3"
-            if abs(cell - radial) <= pressure_tolerance(radial):
-                total = True
-            elif (
-                np.isfinite(u_known)
-                and abs(u_known) > pressure_tolerance(radial)
-                and abs(cell - (radial - u_known)) <= pressure_tolerance(radial)
-            ):
-                total = False
-                already.append(tid)
-                if np.isfinite(u_tab):
-                    warnings.append(
-                        f"test '{tid}': {name} = {cell / 1e3:.4g} kPa equals the export's radial "
-                        f"pressure {radial / 1e3:.4g} kPa minus the pore pressure {u_known / 1e3:.4g} kPa: "
-                        "the table's stresses are already effective; the pore pressure of the table "
-                        "is not subtracted again"
-                    )
-            else:  # a drifting cell: the table's stress is still total, never taken as effective (issue 39)
-                total = True
-                u_sub = u_tab if np.isfinite(u_tab) else u_exp
-                sub = (
-                    f"; the pore pressure {u_sub / 1e3:.4g} kPa is subtracted from it as from any total stress"
-                    if np.isfinite(u_sub) and u_sub != 0
-                    else ""
-                )
-                warnings.append(
-                    f"test '{tid}': {name} = {cell / 1e3:.4g} kPa in the table but the export's radial "
-                    f"pressure at failure is {radial / 1e3:.4g} kPa ("
-                    + (f"{(radial - cell) / cell * 100:+.2g} %, " if cell else "")
-                    + f"tolerance {pressure_tolerance(radial) / 1e3:.3g} kPa, ASTM D4767): the table's value is used"
-                    f"{sub}"
-                )
+            total = _stresses_are_total(tid, cell, "sigma1" if ext[i] else "sigma3", radial, u_tab, u_exp, log)
         if total:
             if np.isfinite(u_tab):
                 u[i] = u_tab
             elif np.isfinite(u_exp):
                 u[i] = u_exp
-                from_export.append(tid)
-    if filled_s3:
-        notes.append(f"sigma3 taken from the export's radial pressure at failure: {', '.join(filled_s3)}")
-    if from_export:
-        notes.append(
-            f"pore pressure taken from the export at failure (sigma' = sigma - u_w saturated, "
-            f"sigma - u_a unsaturated): {', '.join(from_export)}"
-        )
-    if already:
-        notes.append(
-            f"sigma3 already effective (= radial pressure - pore pressure of the export): {', '.join(already)}"
-        )
+                log.from_export.append(tid)
+    log.close()
     ub = np.where(sat, np.where(np.isfinite(ub_col), ub_col, np.where(u != 0, u, np.nan)), ub_col)
     ua = np.where(~sat, np.where(np.isfinite(ua_col), ua_col, np.where(u != 0, u, np.nan)), np.nan)
     return {
@@ -689,9 +762,432 @@ def pore_pressures(table: Table, at_peak: dict[str, dict[str, float]], q, ext=No
         "radial": exp["radial_pressure"],
         "sigma3": s3,
         "s0": s0,
-        "notes": notes,
-        "warnings": warnings,
+        "notes": log.notes,
+        "warnings": log.warnings,
     }
+
+
+@dataclass
+class _Loaded:
+    """The tests table read and checked, its raw curves (``--curves``) and the failure deviator of each test.
+
+    ``d`` is :func:`load_triaxial_table`'s (``q`` [Pa], ``strain`` [-], ``from_curve``); ``D_c`` [m] and
+    ``D_c_source`` are :func:`consolidated_diameter`'s, None without a membrane correction.
+    """
+
+    table: Table
+    raw_curves: object | None
+    d: dict
+    D_c: np.ndarray | None
+    D_c_source: np.ndarray | None
+
+    @property
+    def at_peak(self) -> dict:
+        """Test id -> the export's readings at the peak (empty without curves)."""
+        return self.raw_curves.at_peak if self.raw_curves else {}
+
+
+@dataclass
+class _Stresses:
+    """Each test's stresses at failure net of its pore pressure [Pa], with its Lode angle [deg] and branch."""
+
+    q: np.ndarray
+    dq: np.ndarray
+    s1: np.ndarray
+    s2: np.ndarray
+    s3: np.ndarray
+    s3_total: np.ndarray
+    u: np.ndarray
+    p0: np.ndarray
+    s0: np.ndarray
+    lode: np.ndarray
+    branch: np.ndarray
+    axi: np.ndarray
+    phys_branch: np.ndarray
+    pp: dict
+
+
+def _read_tests(source, opt: TriaxialOptions) -> _Loaded:
+    """Read the tests table of one material and its raw curves; the failure deviator of every test."""
+    curves = opt.curves
+    table = read_table(source, SCHEMA)
+    table, material = one_material(table, opt.material)  # one envelope per run: never pooled (issue 40)
+    if material is not None:
+        table.notes.append(f"material: {material or '(blank)'}")
+    raw_curves = None
+    D_c, D_c_source = consolidated_diameter(table) if opt.membrane is not None else (None, None)
+    if curves is not None:
+        from .triaxial_curves import read_curves
+
+        dc = (
+            None
+            if D_c is None
+            else {str(t): x for t, x, w in zip(table.columns["test_id"], D_c, D_c_source) if w in ("D_c", "dV_c")}
+        )
+        # --ignore-column applies to every file the command reads; a name no file has is warned about once
+        raw_curves = read_curves(curves, table, opt.membrane, dc, getattr(source, "ignore_columns", ()))
+        table.forget_ignores(raw_curves.ignores_used)
+        table.problems += raw_curves.problems  # reported with the table's own, in one round
+        table.notes += raw_curves.notes
+        table.warnings += raw_curves.warnings
+    table, d = load_triaxial_table(table, raw_curves.peaks if raw_curves else None)
+    table.raise_if_problems()
+    return _Loaded(table, raw_curves, d, D_c, D_c_source)
+
+
+def _membrane_corrected(loaded: _Loaded, opt: TriaxialOptions, notes: list[str]) -> tuple[np.ndarray, np.ndarray]:
+    """The deviator at failure [Pa] after the membrane correction (ASTM D4767-11), and the correction [Pa].
+
+    A curve's readings were corrected before its peak; the others are corrected here with the strain at
+    failure and the diameter after consolidation. Problems are added to the table.
+    """
+    table, d, D_c, D_c_source = loaded.table, loaded.d, loaded.D_c, loaded.D_c_source
+    q = d["q"].copy()
+    dq = np.zeros(len(table))
+    if opt.membrane is None:
+        notes.append(
+            "no membrane correction of the deviator (give --membrane-thickness and --membrane-modulus "
+            "to apply ASTM D4767-11's)"
+        )
+        return q, dq
+    from .triaxial_curves import membrane_correction
+
+    at = loaded.at_peak
+    initial = []
+    for i in range(len(table)):
+        tid = str(table.columns["test_id"][i])
+        if d["from_curve"][i]:
+            dq[i] = at[tid]["membrane"]
+            if at[tid].get("diameter_source") == "D0":
+                initial.append(tid)
+            continue
+        need = [
+            w
+            for w, ok in (
+                ("'strain_at_failure'", np.isfinite(d["strain"][i])),
+                ("'D_c' (or 'D0')", np.isfinite(D_c[i])),
+            )
+            if not ok
+        ]
+        if need:
+            table.add_problem(
+                i,
+                "test_id",
+                f"the membrane correction of '{tid}' needs {' and '.join(need)} (or its raw curve with --curves)",
+            )
+            continue
+        dq[i] = float(membrane_correction(d["strain"][i], D_c[i], *opt.membrane))
+        if D_c_source[i] == "D0":
+            initial.append(tid)
+    q = q - np.where(d["from_curve"], 0.0, dq)  # a curve's readings were corrected before its peak
+    for i in np.flatnonzero(q <= 0):
+        table.add_problem(int(i), "test_id", f"after the membrane correction ({dq[i] / 1e3:.4g} kPa) q_f <= 0")
+    t_m, E_m = opt.membrane
+    notes.append(
+        f"membrane correction of the deviator (ASTM D4767-11): Δq = 4 E_m t_m ε_a / D_c with "
+        f"t_m = {t_m * 1e3:.4g} mm, E_m = {E_m / 1e3:.4g} kPa and D_c the diameter after consolidation "
+        "(column 'D_c', or from the volume decrease 'dV_c' with D0 and H0)"
+    )
+    if initial:
+        notes.append(
+            "membrane correction with the initial diameter D0 for want of the diameter after consolidation "
+            f"(give 'D_c' or 'dV_c'): {', '.join(initial)}; a consolidation that reduces the diameter by "
+            "x % underestimates the correction by about x %"
+        )
+    return q, dq
+
+
+def _branch_column(table: Table) -> np.ndarray:
+    """The ``branch`` column in lower case ('' where blank or absent); other values are problems."""
+    branch_col = (
+        np.array([str(x).strip().lower() for x in table.columns["branch"]], dtype=object)
+        if "branch" in table.columns
+        else np.array([""] * len(table), dtype=object)
+    )
+    for i in np.flatnonzero(~np.isin(branch_col, ("", "compression", "extension"))):
+        table.add_problem(
+            int(i),
+            "branch",
+            f"'{table.value_text('branch', int(i))}' is not one of 'compression' "
+            "or 'extension' (or blank: the branch follows from sigma2)",
+        )
+    return branch_col
+
+
+def _net_stresses(
+    loaded: _Loaded, q: np.ndarray, dq: np.ndarray, sat: np.ndarray, notes: list[str], warnings: list[str]
+) -> _Stresses:
+    """Every test's stresses net of its pore pressure (Terzaghi saturated, u_a unsaturated), Lode angle, branch.
+
+    Raises the table's problems once sigma3 is known; the later problems (a negative net sigma3, sigma2
+    outside [sigma3, sigma1], a branch that its sigma2 contradicts) are added to the table.
+    """
+    table = loaded.table
+    branch_col = _branch_column(table)
+    s2_raw = table.get("sigma2")
+    ext_raw = (branch_col == "extension") | (np.abs(s2_raw - (table.columns["sigma3"] + q)) <= 1e-9 * np.abs(s2_raw))
+    pp = pore_pressures(table, loaded.at_peak, q, ext_raw)
+    notes += pp["notes"]
+    warnings += pp["warnings"]
+    u = pp["u"]
+    for i in np.flatnonzero(np.isnan(pp["sigma3"])):
+        table.add_problem(int(i), "sigma3", "sigma3 is blank")
+    table.raise_if_problems()
+    s3_total = pp["sigma3"]
+    s3 = s3_total - u
+    s1 = s3 + q
+    s2 = s2_raw - u
+    s2 = np.where(np.isnan(s2), np.where(branch_col == "extension", s1, s3), s2)
+    lode = np.asarray(tx.lode_angle_deg(s1, s2, s3), float)
+    branch = np.atleast_1d(tx.lode_branch(s1, s2, s3)).astype(object)
+    for i in np.flatnonzero((branch_col != "") & (branch != branch_col)):
+        table.add_problem(
+            int(i),
+            "branch",
+            f"branch '{branch_col[i]}' but sigma2 = {s2_raw[i] / 1e3:.4g} kPa gives a "
+            f"Lode angle of {lode[i]:.3g} deg ({branch[i]}; compression is 0, extension 60, within "
+            f"{tx.LODE_TOL_DEG:g} deg)",
+        )
+    axi = branch != "general"
+    phys_branch = np.where(axi, branch, "compression")
+    p0 = table.get("p0") - u
+    p0[np.isnan(p0)] = s3[np.isnan(p0)]
+    for i in np.flatnonzero(s3 < 0):
+        kind = "effective" if sat[i] else "net"
+        table.add_problem(
+            int(i),
+            "sigma3",
+            f"the {kind} confining stress sigma3 - {'u_b' if sat[i] else 'u_a'} = {s3[i] / 1e3:.4g} kPa is negative",
+        )
+    for i in np.flatnonzero(np.isfinite(s2_raw)):
+        if not s3[i] * (1 - 1e-12) <= s2[i] <= s1[i] * (1 + 1e-12):
+            table.add_problem(i, "sigma2", "sigma2 must lie between sigma3 and sigma1")
+    if np.any(u != 0):
+        notes.append(
+            "stresses net of the pore pressure: sigma' = sigma - u_b (saturated tests, Terzaghi), "
+            "sigma - u_a (unsaturated tests, axis translation); sigma3_total_kPa keeps the cell pressure"
+        )
+    return _Stresses(q, dq, s1, s2, s3, s3_total, u, p0, pp["s0"], lode, branch, axi, phys_branch, pp)
+
+
+def _effective_envelope(
+    table: Table, opt: TriaxialOptions, sat: np.ndarray, st: _Stresses, notes: list[str]
+) -> Envelope | None:
+    """The effective envelope c', phi': given, fitted on the saturated tests, or at s -> 0 of the unsaturated.
+
+    None where the saturated tests give none (the problem is added to the table).
+    """
+    unsat = ~sat
+    if opt.c_eff is not None:
+        env = Envelope(c_kPa=opt.c_eff / KPA, phi_deg=opt.phi_eff, source="options")
+        if sat.any():
+            notes.append("envelope taken from --c-eff/--phi-eff; the saturated tests are only plotted")
+        return env
+    if sat.sum() == 0:
+        try:  # issue 40: the unsaturated failure states fix c', phi' at s -> 0 (named as such)
+            env = zero_suction_envelope(
+                st.s3[unsat], st.s1[unsat], table.get("s0")[unsat], st.branch[unsat], opt.confidence
+            )
+            notes.append(f"no saturated test: {EXTENDED_MC_METHOD}; --c-eff/--phi-eff override it")
+            return env
+        except FitError as exc:
+            table.add_problem(
+                None,
+                "condition",
+                "no saturated test and no envelope given: add saturated drained tests or pass --c-eff and --phi-eff "
+                f"(the envelope at s -> 0 of the unsaturated tests needs their suction s0: {exc})",
+            )
+            table.raise_if_problems()  # raises: the problem just added
+    try:
+        return fit_envelope(st.s3[sat], st.s1[sat], opt.confidence)
+    except FitError as exc:
+        first = int(np.flatnonzero(sat)[0])
+        table.add_problem(
+            first,
+            "condition",
+            f"effective envelope from the saturated tests: {exc} (or pass --c-eff and --phi-eff)",
+        )
+        return None
+
+
+def _groups_and_pairs(table: Table, sat: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The ``group`` and ``pair`` columns ('' where absent), checked: problems are added to the table."""
+    groups = table.get("group") if "group" in table.columns else np.array([""] * len(table), dtype=object)
+    pairs = table.columns["pair"] if "pair" in table.columns else np.array([""] * len(table), dtype=object)
+    for g in set(groups) - {""}:
+        members = np.flatnonzero(groups == g)
+        if len(members) < 2:
+            table.add_problem(int(members[0]), "group", f"group '{g}' has one test: a shared tensor needs at least two")
+        elif sat[members].any():
+            table.add_problem(
+                int(members[sat[members]][0]),
+                "group",
+                f"group '{g}' holds a saturated test; groups are for unsaturated tests",
+            )
+        elif 0 < sum(bool(x) for x in pairs[members]) < len(members):
+            table.add_problem(
+                int(members[0]),
+                "pair",
+                f"group '{g}': give a paired saturated test for every test of the group, or for none",
+            )
+    ids = {str(x): i for i, x in enumerate(table.columns["test_id"])}
+    for i in np.flatnonzero(pairs != ""):
+        j = ids.get(str(pairs[i]))
+        if sat[i]:
+            table.add_problem(
+                int(i),
+                "pair",
+                "a pair is the saturated test paired with an unsaturated one; give it on the unsaturated test's row",
+            )
+        elif j is None:
+            table.add_problem(int(i), "pair", f"no test '{pairs[i]}' in the table")
+        elif not sat[j]:
+            table.add_problem(int(i), "pair", f"'{pairs[i]}' is not a saturated test")
+    return groups, pairs
+
+
+def _negative_cohesion_warning(env: Envelope, u: np.ndarray, sat: np.ndarray) -> list[str]:
+    """A warning where c' < 0: no physical meaning, and the bounds rest on it."""
+    if env.c_kPa * KPA >= 0:
+        return []
+    hint = (
+        "; if sigma3 is the cell pressure of back-pressured tests, give their 'back_pressure' (sigma' = sigma - u_b)"
+        if not np.any(u[sat] != 0)
+        else ""
+    )
+    return [
+        f"c' = {env.c_kPa:.4g} kPa < 0 from the saturated tests: a negative cohesion has no "
+        f"physical meaning and the bounds below rest on it{hint}"
+    ]
+
+
+def _capillary_bounds(
+    table: Table, st: _Stresses, unsat: np.ndarray, c_eff: float, phi_eff: float, opt: TriaxialOptions, notes: list
+) -> dict[str, tx.Bound]:
+    """The spherical, lower and EDTP bounds of every unsaturated axisymmetric test (NaN elsewhere) [Pa]."""
+    s1, s3, axi, phys_branch, s0 = st.s1, st.s3, st.axi, st.phys_branch, st.s0
+    nan = np.full(len(table), np.nan)
+    bounds = {}
+    s0_or_0 = np.where(np.isnan(s0), 0.0, s0)
+    for name, b in (
+        ("spherical", tx.spherical_bound(s1, s3, c_eff, phi_eff, phys_branch)),
+        ("lower", tx.lower_bound(s1, s3, c_eff, phi_eff, phys_branch)),
+        ("edtp", tx.edtp_bound(s1, s3, st.p0, s0_or_0, c_eff, phi_eff, phys_branch, opt.extension_slope)),
+    ):
+        keep = unsat & axi if name != "edtp" else unsat & axi & np.isfinite(s0)
+        bounds[name] = tx.Bound(
+            *(
+                np.where(keep, getattr(b, f), nan)
+                for f in ("sigma1_cap", "sigma3_cap", "p_prime", "q_prime", "sigma2_cap")
+            )
+        )
+    if (unsat & axi & np.isnan(s0)).any():
+        notes.append("EDTP bound skipped where s0 (initial suction) is not given")
+    if (unsat & ~axi).any():
+        notes.append(
+            "bounds (section 4 of Prunier et al. 2024) are for axisymmetric tests: none for the "
+            f"true-triaxial tests {', '.join(str(x) for x in table.columns['test_id'][unsat & ~axi])}; "
+            "a group of them at one Lode angle gets eq. 50"
+        )
+    if (st.branch == "extension").any():
+        notes.append(
+            "extension tests (sigma2 = sigma1) use the extension form of the criterion, "
+            "M = 6 sin phi'/(3 + sin phi'), in the bounds, q'_sat and the figures; their saturated reference "
+            f"strength q'_sat and EDTP bound follow the path '{opt.extension_path}' (slope "
+            f"{opt.extension_slope:g} in the q-p plane; --extension-path)"
+        )
+    return bounds
+
+
+def _test_columns(
+    table: Table, st: _Stresses, groups, pairs, strain: np.ndarray, opt: TriaxialOptions
+) -> dict[str, np.ndarray]:
+    """Per test, the columns of the group analysis and of the records (SI, the old keys)."""
+    nan = np.full(len(table), np.nan)
+    return {
+        "test_id": table.columns["test_id"],
+        "condition": table.columns["condition"],
+        "group": groups,
+        "line": table.lines,
+        "sigma1": st.s1,
+        "sigma2": st.s2,
+        "sigma3": st.s3,
+        "p": tx.mean_stress(st.s1, st.s3, st.s2),
+        "q": st.q,
+        "p0": st.p0,
+        "s0": st.s0,
+        "strain_f": strain,
+        "lode": st.lode,
+        "branch": st.branch,
+        "pair": pairs,
+        "sigma3_total": st.s3_total,
+        "back_pressure": st.pp["u_b"],
+        "u_a": st.pp["u_a"],
+        "radial_pressure": st.pp["radial"],
+        "membrane": np.where(st.dq != 0, st.dq, np.nan) if opt.membrane is not None else nan,
+    }
+
+
+def _test_states(
+    loaded: _Loaded, tests: dict, unsat: np.ndarray, q_sat: np.ndarray, notes: list[str], warnings: list[str]
+) -> rec.TestStates:
+    """The records of every test [kPa], with Skempton's A and the export's state at failure."""
+    table = loaded.table
+    A, note_A = skempton_a_of_curves(table, loaded.at_peak)
+    notes += note_A
+    unsat_state, note_state, warn_state = export_states(table, loaded.at_peak)
+    notes += note_state
+    warnings += warn_state
+    return rec.TestStates(
+        **{k: tests[k] for k in _TEXT_FIELDS},
+        **{
+            f.name: np.asarray(tests[{v: k for k, v in _OLD_TEST_KEYS.items()}.get(f.name, f.name)], float)
+            * (1.0 if f.name in ("lode_angle", "strain_at_failure") else 1 / KPA)
+            for f in dataclasses.fields(rec.TestStates)
+            if f.name not in _TEXT_FIELDS and f.name not in ("q_sat", "skempton_A", "suction", "S_R", "void_ratio")
+        },
+        q_sat=np.where(unsat, q_sat, np.nan) / KPA,
+        skempton_A=A,
+        suction=unsat_state["suction"] / KPA,
+        S_R=unsat_state["S_R"],
+        void_ratio=unsat_state["void_ratio"],
+    )
+
+
+def _bound_states(bounds: dict[str, tx.Bound], q_sat: np.ndarray) -> dict[str, rec.BoundStates]:
+    """The records of each bound [kPa], with the strength gain q'/q'_sat."""
+    bound_states = {}
+    for name, b in bounds.items():
+        s2c = b.sigma3_cap if b.sigma2_cap is None else b.sigma2_cap
+        with np.errstate(invalid="ignore", divide="ignore"):
+            gain = b.q_prime / q_sat
+        bound_states[name] = rec.BoundStates(
+            sigma1_cap=b.sigma1_cap / KPA,
+            sigma2_cap=s2c / KPA,
+            sigma3_cap=b.sigma3_cap / KPA,
+            p_cap=b.p_cap / KPA,
+            q_cap=b.q_cap / KPA,
+            p_prime=b.p_prime / KPA,
+            q_prime=b.q_prime / KPA,
+            gain=np.where(np.isfinite(b.sigma1_cap), gain, np.nan),
+            positive_component=np.asarray(b.positive, bool),
+        )
+    return bound_states
+
+
+def _figure_curves(loaded: _Loaded) -> tuple[dict, dict]:
+    """The raw curves that gave a test's failure deviator, and those of the table's other tests (for reference)."""
+    raw_curves = loaded.raw_curves
+    if not raw_curves:
+        return {}, {}
+    # the curves that gave a test's failure deviator, for the q-eps1 and epsv-eps1 figures
+    table = loaded.table
+    used = {str(t) for t, f in zip(table.columns["test_id"], loaded.d["from_curve"]) if f}
+    curves_used = {t: c for t, c in raw_curves.curves.items() if t in used}
+    # the others of the table's tests: their q_f wins, their curves are drawn for reference
+    listed = {str(t) for t in table.columns["test_id"]}
+    reference = {t: c for t, c in raw_curves.curves.items() if t in listed and t not in used}
+    return curves_used, reference
 
 
 def run_triaxial_bounds(
@@ -732,321 +1228,45 @@ def run_triaxial_bounds(
     opt = options or TriaxialOptions()
     if curves is not None:
         opt = dataclasses.replace(opt, curves=curves)
-    curves = opt.curves
-    table = read_table(source, SCHEMA)
-    table, material = one_material(table, opt.material)  # one envelope per run: never pooled (issue 40)
-    if material is not None:
-        table.notes.append(f"material: {material or '(blank)'}")
-    raw_curves = None
-    D_c, D_c_source = consolidated_diameter(table) if opt.membrane is not None else (None, None)
-    if curves is not None:
-        from .triaxial_curves import read_curves
-
-        dc = (
-            None
-            if D_c is None
-            else {str(t): x for t, x, w in zip(table.columns["test_id"], D_c, D_c_source) if w in ("D_c", "dV_c")}
-        )
-        # --ignore-column applies to every file the command reads; a name no file has is warned about once
-        raw_curves = read_curves(curves, table, opt.membrane, dc, getattr(source, "ignore_columns", ()))
-        table.forget_ignores(raw_curves.ignores_used)
-        table.problems += raw_curves.problems  # reported with the table's own, in one round
-        table.notes += raw_curves.notes
-        table.warnings += raw_curves.warnings
-    table, d = load_triaxial_table(table, raw_curves.peaks if raw_curves else None)
-    table.raise_if_problems()
+    loaded = _read_tests(source, opt)
+    table, raw_curves = loaded.table, loaded.raw_curves
     notes = list(table.notes)
     warnings = list(opt.warnings) + list(table.warnings)
 
-    cond = table.columns["condition"]
-    sat = cond == "saturated"
+    sat = table.columns["condition"] == "saturated"
     unsat = ~sat
-    q = d["q"].copy()
-    # membrane correction of the deviator (the curves' readings are corrected before their peak)
-    dq = np.zeros(len(table))
-    if opt.membrane is not None:
-        from .triaxial_curves import membrane_correction
-
-        at = raw_curves.at_peak if raw_curves else {}
-        initial = []
-        for i in range(len(table)):
-            tid = str(table.columns["test_id"][i])
-            if d["from_curve"][i]:
-                dq[i] = at[tid]["membrane"]
-                if at[tid].get("diameter_source") == "D0":
-                    initial.append(tid)
-                continue
-            need = [
-                w
-                for w, ok in (
-                    ("'strain_at_failure'", np.isfinite(d["strain"][i])),
-                    ("'D_c' (or 'D0')", np.isfinite(D_c[i])),
-                )
-                if not ok
-            ]
-            if need:
-                table.add_problem(
-                    i,
-                    "test_id",
-                    f"the membrane correction of '{tid}' needs {' and '.join(need)} (or its raw curve with --curves)",
-                )
-                continue
-            dq[i] = float(membrane_correction(d["strain"][i], D_c[i], *opt.membrane))
-            if D_c_source[i] == "D0":
-                initial.append(tid)
-        q = q - np.where(d["from_curve"], 0.0, dq)  # a curve's readings were corrected before its peak
-        for i in np.flatnonzero(q <= 0):
-            table.add_problem(int(i), "test_id", f"after the membrane correction ({dq[i] / 1e3:.4g} kPa) q_f <= 0")
-        t_m, E_m = opt.membrane
-        notes.append(
-            f"membrane correction of the deviator (ASTM D4767-11): Δq = 4 E_m t_m ε_a / D_c with "
-            f"t_m = {t_m * 1e3:.4g} mm, E_m = {E_m / 1e3:.4g} kPa and D_c the diameter after consolidation "
-            "(column 'D_c', or from the volume decrease 'dV_c' with D0 and H0)"
-        )
-        if initial:
-            notes.append(
-                "membrane correction with the initial diameter D0 for want of the diameter after consolidation "
-                f"(give 'D_c' or 'dV_c'): {', '.join(initial)}; a consolidation that reduces the diameter by "
-                "x % underestimates the correction by about x %"
-            )
-    else:
-        notes.append(
-            "no membrane correction of the deviator (give --membrane-thickness and --membrane-modulus "
-            "to apply ASTM D4767-11's)"
-        )
-
+    q, dq = _membrane_corrected(loaded, opt, notes)
     notes += reference_curves_notes(
-        table.columns["test_id"], q, d["from_curve"], raw_curves.peaks if raw_curves else {}
+        table.columns["test_id"], q, loaded.d["from_curve"], raw_curves.peaks if raw_curves else {}
     )
-    branch_col = (
-        np.array([str(x).strip().lower() for x in table.columns["branch"]], dtype=object)
-        if "branch" in table.columns
-        else np.array([""] * len(table), dtype=object)
-    )
-    for i in np.flatnonzero(~np.isin(branch_col, ("", "compression", "extension"))):
-        table.add_problem(
-            int(i),
-            "branch",
-            f"'{table.value_text('branch', int(i))}' is not one of 'compression' "
-            "or 'extension' (or blank: the branch follows from sigma2)",
-        )
-    s2_raw = table.get("sigma2")
-    ext_raw = (branch_col == "extension") | (np.abs(s2_raw - (table.columns["sigma3"] + q)) <= 1e-9 * np.abs(s2_raw))
-    pp = pore_pressures(table, raw_curves.at_peak if raw_curves else {}, q, ext_raw)
-    notes += pp["notes"]
-    warnings += pp["warnings"]
-    u = pp["u"]
-    for i in np.flatnonzero(np.isnan(pp["sigma3"])):
-        table.add_problem(int(i), "sigma3", "sigma3 is blank")
-    table.raise_if_problems()
-    s3_total = pp["sigma3"]
-    s3 = s3_total - u
-    s1 = s3 + q
-    s2 = s2_raw - u
-    s2 = np.where(np.isnan(s2), np.where(branch_col == "extension", s1, s3), s2)
-    lode = np.asarray(tx.lode_angle_deg(s1, s2, s3), float)
-    branch = np.atleast_1d(tx.lode_branch(s1, s2, s3)).astype(object)
-    for i in np.flatnonzero((branch_col != "") & (branch != branch_col)):
-        table.add_problem(
-            int(i),
-            "branch",
-            f"branch '{branch_col[i]}' but sigma2 = {s2_raw[i] / 1e3:.4g} kPa gives a "
-            f"Lode angle of {lode[i]:.3g} deg ({branch[i]}; compression is 0, extension 60, within "
-            f"{tx.LODE_TOL_DEG:g} deg)",
-        )
-    axi = branch != "general"
-    phys_branch = np.where(axi, branch, "compression")
-    p0 = table.get("p0") - u
-    p0[np.isnan(p0)] = s3[np.isnan(p0)]
-    s0 = pp["s0"]
-    for i in np.flatnonzero(s3 < 0):
-        kind = "effective" if sat[i] else "net"
-        table.add_problem(
-            int(i),
-            "sigma3",
-            f"the {kind} confining stress sigma3 - {'u_b' if sat[i] else 'u_a'} = {s3[i] / 1e3:.4g} kPa is negative",
-        )
-    for i in np.flatnonzero(np.isfinite(s2_raw)):
-        if not s3[i] * (1 - 1e-12) <= s2[i] <= s1[i] * (1 + 1e-12):
-            table.add_problem(i, "sigma2", "sigma2 must lie between sigma3 and sigma1")
-    if np.any(u != 0):
-        notes.append(
-            "stresses net of the pore pressure: sigma' = sigma - u_b (saturated tests, Terzaghi), "
-            "sigma - u_a (unsaturated tests, axis translation); sigma3_total_kPa keeps the cell pressure"
-        )
-
-    if opt.c_eff is not None:
-        env = Envelope(c_kPa=opt.c_eff / KPA, phi_deg=opt.phi_eff, source="options")
-        if sat.any():
-            notes.append("envelope taken from --c-eff/--phi-eff; the saturated tests are only plotted")
-    elif sat.sum() == 0:
-        try:  # issue 40: the unsaturated failure states fix c', phi' at s -> 0 (named as such)
-            env = zero_suction_envelope(s3[unsat], s1[unsat], table.get("s0")[unsat], branch[unsat], opt.confidence)
-            notes.append(f"no saturated test: {EXTENDED_MC_METHOD}; --c-eff/--phi-eff override it")
-        except FitError as exc:
-            table.add_problem(
-                None,
-                "condition",
-                "no saturated test and no envelope given: add saturated drained tests or pass --c-eff and --phi-eff "
-                f"(the envelope at s -> 0 of the unsaturated tests needs their suction s0: {exc})",
-            )
-            table.raise_if_problems()
-    else:
-        try:
-            env = fit_envelope(s3[sat], s1[sat], opt.confidence)
-        except FitError as exc:
-            first = int(np.flatnonzero(sat)[0])
-            table.add_problem(
-                first,
-                "condition",
-                f"effective envelope from the saturated tests: {exc} (or pass --c-eff and --phi-eff)",
-            )
-    groups = table.get("group") if "group" in table.columns else np.array([""] * len(table), dtype=object)
-    pairs = table.columns["pair"] if "pair" in table.columns else np.array([""] * len(table), dtype=object)
-    for g in set(groups) - {""}:
-        members = np.flatnonzero(groups == g)
-        if len(members) < 2:
-            table.add_problem(int(members[0]), "group", f"group '{g}' has one test: a shared tensor needs at least two")
-        elif sat[members].any():
-            table.add_problem(
-                int(members[sat[members]][0]),
-                "group",
-                f"group '{g}' holds a saturated test; groups are for unsaturated tests",
-            )
-        elif 0 < sum(bool(x) for x in pairs[members]) < len(members):
-            table.add_problem(
-                int(members[0]),
-                "pair",
-                f"group '{g}': give a paired saturated test for every test of the group, or for none",
-            )
-    ids = {str(x): i for i, x in enumerate(table.columns["test_id"])}
-    for i in np.flatnonzero(pairs != ""):
-        j = ids.get(str(pairs[i]))
-        if sat[i]:
-            table.add_problem(
-                int(i),
-                "pair",
-                "a pair is the saturated test paired with an unsaturated one; give it on the unsaturated test's row",
-            )
-        elif j is None:
-            table.add_problem(int(i), "pair", f"no test '{pairs[i]}' in the table")
-        elif not sat[j]:
-            table.add_problem(int(i), "pair", f"'{pairs[i]}' is not a saturated test")
+    st = _net_stresses(loaded, q, dq, sat, notes, warnings)
+    env = _effective_envelope(table, opt, sat, st, notes)
+    groups, pairs = _groups_and_pairs(table, sat)
     table.raise_if_problems()
     c_eff, phi_eff = env.c_kPa * KPA, env.phi_deg  # SI for the physics
-    if c_eff < 0:
-        hint = (
-            "; if sigma3 is the cell pressure of back-pressured tests, give their 'back_pressure' "
-            "(sigma' = sigma - u_b)"
-            if not np.any(u[sat] != 0)
-            else ""
-        )
-        warnings.append(
-            f"c' = {env.c_kPa:.4g} kPa < 0 from the saturated tests: a negative cohesion has no "
-            f"physical meaning and the bounds below rest on it{hint}"
-        )
+    warnings += _negative_cohesion_warning(env, st.u, sat)
 
-    nan = np.full(len(table), np.nan)
-    bounds = {}
-    s0_or_0 = np.where(np.isnan(s0), 0.0, s0)
-    for name, b in (
-        ("spherical", tx.spherical_bound(s1, s3, c_eff, phi_eff, phys_branch)),
-        ("lower", tx.lower_bound(s1, s3, c_eff, phi_eff, phys_branch)),
-        ("edtp", tx.edtp_bound(s1, s3, p0, s0_or_0, c_eff, phi_eff, phys_branch, opt.extension_slope)),
-    ):
-        keep = unsat & axi if name != "edtp" else unsat & axi & np.isfinite(s0)
-        bounds[name] = tx.Bound(
-            *(
-                np.where(keep, getattr(b, f), nan)
-                for f in ("sigma1_cap", "sigma3_cap", "p_prime", "q_prime", "sigma2_cap")
-            )
-        )
-    if (unsat & axi & np.isnan(s0)).any():
-        notes.append("EDTP bound skipped where s0 (initial suction) is not given")
-    if (unsat & ~axi).any():
-        notes.append(
-            "bounds (section 4 of Prunier et al. 2024) are for axisymmetric tests: none for the "
-            f"true-triaxial tests {', '.join(str(x) for x in table.columns['test_id'][unsat & ~axi])}; "
-            "a group of them at one Lode angle gets eq. 50"
-        )
-    if (branch == "extension").any():
-        notes.append(
-            "extension tests (sigma2 = sigma1) use the extension form of the criterion, "
-            "M = 6 sin phi'/(3 + sin phi'), in the bounds, q'_sat and the figures; their saturated reference "
-            f"strength q'_sat and EDTP bound follow the path '{opt.extension_path}' (slope "
-            f"{opt.extension_slope:g} in the q-p plane; --extension-path)"
-        )
-    q_sat = tx.drained_strength(p0, c_eff, phi_eff, phys_branch, opt.extension_slope)
-    tests = {
-        "test_id": table.columns["test_id"],
-        "condition": cond,
-        "group": groups,
-        "line": table.lines,
-        "sigma1": s1,
-        "sigma2": s2,
-        "sigma3": s3,
-        "p": tx.mean_stress(s1, s3, s2),
-        "q": q,
-        "p0": p0,
-        "s0": s0,
-        "strain_f": d["strain"],
-        "lode": lode,
-        "branch": branch,
-        "pair": pairs,
-        "sigma3_total": s3_total,
-        "back_pressure": pp["u_b"],
-        "u_a": pp["u_a"],
-        "radial_pressure": pp["radial"],
-        "membrane": np.where(dq != 0, dq, np.nan) if opt.membrane is not None else nan,
-    }
+    bounds = _capillary_bounds(table, st, unsat, c_eff, phi_eff, opt, notes)
+    q_sat = tx.drained_strength(st.p0, c_eff, phi_eff, st.phys_branch, opt.extension_slope)
+    tests = _test_columns(table, st, groups, pairs, loaded.d["strain"], opt)
     inputs = [input_file(source, table)] + ([input_file(t.path, t) for t in raw_curves.tables] if raw_curves else [])
     group_records = _group_analysis(tests, c_eff, phi_eff)
     for g in group_records:
         notes += [f"group {g.group}: {v}" for v in (g.needs, g.warning) if v]
-    A, note_A = skempton_a_of_curves(table, raw_curves.at_peak if raw_curves else {})
-    notes += note_A
-    unsat_state, note_state, warn_state = export_states(table, raw_curves.at_peak if raw_curves else {})
-    notes += note_state
-    warnings += warn_state
-    states = rec.TestStates(
-        **{k: tests[k] for k in _TEXT_FIELDS},
-        **{
-            f.name: np.asarray(tests[{v: k for k, v in _OLD_TEST_KEYS.items()}.get(f.name, f.name)], float)
-            * (1.0 if f.name in ("lode_angle", "strain_at_failure") else 1 / KPA)
-            for f in dataclasses.fields(rec.TestStates)
-            if f.name not in _TEXT_FIELDS and f.name not in ("q_sat", "skempton_A", "suction", "S_R", "void_ratio")
-        },
-        q_sat=np.where(unsat, q_sat, np.nan) / KPA,
-        skempton_A=A,
-        suction=unsat_state["suction"] / KPA,
-        S_R=unsat_state["S_R"],
-        void_ratio=unsat_state["void_ratio"],
-    )
-    bound_states = {}
-    for name, b in bounds.items():
-        s2c = b.sigma3_cap if b.sigma2_cap is None else b.sigma2_cap
-        with np.errstate(invalid="ignore", divide="ignore"):
-            gain = b.q_prime / q_sat
-        bound_states[name] = rec.BoundStates(
-            sigma1_cap=b.sigma1_cap / KPA,
-            sigma2_cap=s2c / KPA,
-            sigma3_cap=b.sigma3_cap / KPA,
-            p_cap=b.p_cap / KPA,
-            q_cap=b.q_cap / KPA,
-            p_prime=b.p_prime / KPA,
-            q_prime=b.q_prime / KPA,
-            gain=np.where(np.isfinite(b.sigma1_cap), gain, np.nan),
-            positive_component=np.asarray(b.positive, bool),
-        )
-    curves_used, reference = {}, {}
-    if raw_curves:  # the curves that gave a test's failure deviator, for the q-eps1 and epsv-eps1 figures
-        used = {str(t) for t, f in zip(table.columns["test_id"], d["from_curve"]) if f}
-        curves_used = {t: c for t, c in raw_curves.curves.items() if t in used}
-        # the others of the table's tests: their q_f wins, their curves are drawn for reference
-        listed = {str(t) for t in table.columns["test_id"]}
-        reference = {t: c for t, c in raw_curves.curves.items() if t in listed and t not in used}
+    states = _test_states(loaded, tests, unsat, q_sat, notes, warnings)
+    curves_used, reference = _figure_curves(loaded)
     return TriaxialResult(
-        table.path, env, states, bound_states, group_records, notes, opt, inputs, warnings, curves_used, reference
+        table.path,
+        env,
+        states,
+        _bound_states(bounds, q_sat),
+        group_records,
+        notes,
+        opt,
+        inputs,
+        warnings,
+        curves_used,
+        reference,
     )
 
 

@@ -486,6 +486,133 @@ def export_states(table: Table, at_peak: dict) -> tuple[dict[str, np.ndarray], l
     return out, notes, warnings
 
 
+def _initial_diameter(table: Table, tid, d0_col: dict) -> float:
+    """D0 [m] of a test: the tests table's, else the curve file's metadata; NaN where unknown or not > 0."""
+    D0 = d0_col.get(str(tid), np.nan)
+    if not np.isfinite(D0):
+        found = _meta(table.metadata, _D0_KEYS)
+        D0 = _length(*found) if found else None
+    return np.nan if D0 is None or not np.isfinite(D0) or D0 <= 0 else float(D0)
+
+
+def _state_at_peak(
+    table: Table,
+    tid,
+    every: np.ndarray,
+    sel: np.ndarray,
+    k: int,
+    q: np.ndarray,
+    ok: np.ndarray,
+    dq,
+    D0: float,
+    out: TriaxialCurves,
+) -> dict:
+    """The export's pressures at the peak reading ``k`` and their changes over the shear stage [Pa], the B check,
+    the specimen's state at the start of the shear and at the peak, the membrane correction there [Pa] and D0 [m].
+
+    The B check's note and warning are added to ``out``.
+    """
+    state = {name: float(table.get(name)[k]) for name in PEAK_PRESSURES}
+    # changes over the stage, first reading to the peak, for Skempton's A (Skempton 1954)
+    first = int(sel[0])
+    state["du"] = float(table.get("pore_pressure")[k] - table.get("pore_pressure")[first])
+    u_stage = table.get("pore_pressure")[sel]
+    u_stage = u_stage[np.isfinite(u_stage)]  # how far the pore pressure moved in the stage: ~0 when drained
+    state["du_range"] = float(np.ptp(u_stage)) if u_stage.size else float("nan")
+    state["dsigma3"] = float(table.get("radial_pressure")[k] - table.get("radial_pressure")[first])
+    state["dq"] = float(np.max(q[ok]) - q[0]) if np.isfinite(q[0]) else float("nan")
+    b = b_check(table, every, sel, str(tid))  # never the shear stage's running B Value
+    state["B"], state["B_source"] = b["B"], b["source"]
+    out.notes += [b["note"]] if b["note"] else []
+    out.warnings += [b["warning"]] if b["warning"] else []
+    for name in EXPORT_STATE:  # an unsaturated specimen's state: at the start of the shear and at the peak
+        v = table.get(name)[sel]
+        ok_v = np.flatnonzero(np.isfinite(v))
+        state[name + "_initial"] = float(v[ok_v[0]]) if ok_v.size else float("nan")
+        state[name] = float(table.get(name)[k])
+    state["membrane"] = float(dq[int(np.flatnonzero(sel == k)[0])])
+    state["D0"] = D0
+    return state
+
+
+def _read_test_curve(
+    table: Table,
+    out: TriaxialCurves,
+    tid,
+    every: np.ndarray,
+    sel: np.ndarray,
+    D0: float,
+    membrane: tuple[float, float] | None,
+    consolidated: dict | None,
+) -> None:
+    """One test's curve (readings ``sel`` of its shear stage, ``every`` of the file): q from the axial force where
+    the file has no q, the membrane correction, then its peak, curve and state at the peak added to ``out``.
+
+    Problems are added to ``table`` (the test is then left out).
+    """
+    has_q, has_force = "q" in table.columns, "axial_force" in table.columns
+    eps = table.get("axial_strain")
+    q = table.get("q")[sel].copy()
+    if not np.isfinite(q).any() and has_force:
+        if not np.isfinite(D0):
+            table.add_problem(
+                int(sel[0]),
+                "axial_force",
+                f"test '{tid}': q from the axial force needs the "
+                "initial diameter: a column 'D0' in the tests table or a metadata line "
+                "'Initial diameter (mm): ...'",
+            )
+            return
+        ea = eps[sel]
+        ev = table.get("vol_strain")[sel]
+        area = np.pi * D0**2 / 4 * np.where(np.isfinite(ev), 1.0 - ev, 1.0) / (1.0 - ea)
+        q = table.columns["axial_force"][sel] / area
+        out.notes.append(f"test '{tid}': q = F/A with A = A0 (1 - eps_v)/(1 - eps_a), D0 = {D0 * 1e3:.4g} mm")
+    dq = np.zeros(len(sel))
+    if membrane is not None:
+        if not np.isfinite(D0):
+            table.add_problem(
+                int(sel[0]),
+                "axial_strain" if "axial_strain" in table.columns else None,
+                f"test '{tid}': the membrane correction needs the diameter: a column 'D0' in "
+                "the tests table or a metadata line 'Initial diameter (mm): ...'",
+            )
+            return
+        if "axial_strain" not in table.columns:
+            table.add_problem(
+                int(sel[0]),
+                None,
+                f"test '{tid}': the membrane correction needs the axial "
+                "strain of every reading (column 'axial_strain')",
+            )
+            return
+        dc = (consolidated or {}).get(str(tid), np.nan)
+        dc_known = dc is not None and np.isfinite(dc) and dc > 0
+        diameter_source = "D_c" if dc_known else "D0"
+        dq = membrane_correction(np.where(np.isfinite(eps[sel]), eps[sel], 0.0), dc if dc_known else D0, *membrane)
+        q = q - dq
+    ok = np.isfinite(q)
+    if not ok.any():
+        table.add_problem(int(sel[0]), "q" if has_q else "axial_force", f"test '{tid}' has no q values")
+        return
+    k = sel[ok][int(np.argmax(q[ok]))]
+    if str(tid) in out.peaks:
+        table.add_problem(int(sel[0]), "test_id", f"a second curve for test '{tid}'")
+        return
+    out.peaks[str(tid)] = (float(np.max(q[ok])), float(eps[k]))
+    out.curves[str(tid)] = Curve(
+        str(tid),
+        eps[sel].copy(),
+        q / 1e3,
+        table.get("vol_strain")[sel].copy(),
+        int(np.flatnonzero(sel == k)[0]),
+    )
+    state = _state_at_peak(table, tid, every, sel, k, q, ok, dq, D0, out)
+    if membrane is not None:
+        state["diameter_source"] = diameter_source
+    out.at_peak[str(tid)] = state
+
+
 def read_curves(
     spec,
     tests: Table | None = None,
@@ -535,8 +662,7 @@ def read_curves(
         out.tables.append(table)
         out.warnings += table.warnings
         out.notes += table.notes  # what the reading says (a column ignored as asked, a note under the data)
-        has_q, has_force = "q" in table.columns, "axial_force" in table.columns
-        if not (has_q or has_force):
+        if not ("q" in table.columns or "axial_force" in table.columns):
             table.missing_column("q", " (or 'axial_force' with the initial diameter D0)")
         _strains_in_percent(table, out.notes)
         if table.missing or table.problems:
@@ -548,95 +674,11 @@ def read_curves(
             found = _meta(table.metadata, _ID_KEYS)
             tid = found[0] if found and found[0] else Path(str(source_path(f))).stem
             ids = np.array([tid] * len(table), dtype=object)
-        eps = table.get("axial_strain")
         for tid in dict.fromkeys(ids):
             every = sel = np.flatnonzero(ids == tid)
             if "stage" in table.columns:
                 sel = _shear_stage(table, sel, str(tid), out.notes)
-            q = table.get("q")[sel].copy()
-            D0 = d0_col.get(str(tid), np.nan)
-            if not np.isfinite(D0):
-                found = _meta(table.metadata, _D0_KEYS)
-                D0 = _length(*found) if found else None
-            D0 = np.nan if D0 is None or not np.isfinite(D0) or D0 <= 0 else float(D0)
-            if not np.isfinite(q).any() and has_force:
-                if not np.isfinite(D0):
-                    table.add_problem(
-                        int(sel[0]),
-                        "axial_force",
-                        f"test '{tid}': q from the axial force needs the "
-                        "initial diameter: a column 'D0' in the tests table or a metadata line "
-                        "'Initial diameter (mm): ...'",
-                    )
-                    continue
-                ea = eps[sel]
-                ev = table.get("vol_strain")[sel]
-                area = np.pi * D0**2 / 4 * np.where(np.isfinite(ev), 1.0 - ev, 1.0) / (1.0 - ea)
-                q = table.columns["axial_force"][sel] / area
-                out.notes.append(f"test '{tid}': q = F/A with A = A0 (1 - eps_v)/(1 - eps_a), D0 = {D0 * 1e3:.4g} mm")
-            dq = np.zeros(len(sel))
-            if membrane is not None:
-                if not np.isfinite(D0):
-                    table.add_problem(
-                        int(sel[0]),
-                        "axial_strain" if "axial_strain" in table.columns else None,
-                        f"test '{tid}': the membrane correction needs the diameter: a column 'D0' in "
-                        "the tests table or a metadata line 'Initial diameter (mm): ...'",
-                    )
-                    continue
-                if "axial_strain" not in table.columns:
-                    table.add_problem(
-                        int(sel[0]),
-                        None,
-                        f"test '{tid}': the membrane correction needs the axial "
-                        "strain of every reading (column 'axial_strain')",
-                    )
-                    continue
-                dc = (consolidated or {}).get(str(tid), np.nan)
-                dc_known = dc is not None and np.isfinite(dc) and dc > 0
-                diameter_source = "D_c" if dc_known else "D0"
-                dq = membrane_correction(
-                    np.where(np.isfinite(eps[sel]), eps[sel], 0.0), dc if dc_known else D0, *membrane
-                )
-                q = q - dq
-            ok = np.isfinite(q)
-            if not ok.any():
-                table.add_problem(int(sel[0]), "q" if has_q else "axial_force", f"test '{tid}' has no q values")
-                continue
-            k = sel[ok][int(np.argmax(q[ok]))]
-            if str(tid) in out.peaks:
-                table.add_problem(int(sel[0]), "test_id", f"a second curve for test '{tid}'")
-                continue
-            out.peaks[str(tid)] = (float(np.max(q[ok])), float(eps[k]))
-            out.curves[str(tid)] = Curve(
-                str(tid),
-                eps[sel].copy(),
-                q / 1e3,
-                table.get("vol_strain")[sel].copy(),
-                int(np.flatnonzero(sel == k)[0]),
-            )
-            state = {name: float(table.get(name)[k]) for name in PEAK_PRESSURES}
-            # changes over the stage, first reading to the peak, for Skempton's A (Skempton 1954)
-            first = int(sel[0])
-            state["du"] = float(table.get("pore_pressure")[k] - table.get("pore_pressure")[first])
-            u_stage = table.get("pore_pressure")[sel]
-            u_stage = u_stage[np.isfinite(u_stage)]  # how far the pore pressure moved in the stage: ~0 when drained
-            state["du_range"] = float(np.ptp(u_stage)) if u_stage.size else float("nan")
-            state["dsigma3"] = float(table.get("radial_pressure")[k] - table.get("radial_pressure")[first])
-            state["dq"] = float(np.max(q[ok]) - q[0]) if np.isfinite(q[0]) else float("nan")
-            b = b_check(table, every, sel, str(tid))  # never the shear stage's running B Value
-            state["B"], state["B_source"] = b["B"], b["source"]
-            out.notes += [b["note"]] if b["note"] else []
-            out.warnings += [b["warning"]] if b["warning"] else []
-            for name in EXPORT_STATE:  # an unsaturated specimen's state: at the start of the shear and at the peak
-                v = table.get(name)[sel]
-                ok_v = np.flatnonzero(np.isfinite(v))
-                state[name + "_initial"] = float(v[ok_v[0]]) if ok_v.size else float("nan")
-                state[name] = float(table.get(name)[k])
-            state["membrane"] = float(dq[int(np.flatnonzero(sel == k)[0])])
-            state["D0"] = D0
-            if membrane is not None:
-                state["diameter_source"] = diameter_source
-            out.at_peak[str(tid)] = state
+            D0 = _initial_diameter(table, tid, d0_col)
+            _read_test_curve(table, out, tid, every, sel, D0, membrane, consolidated)
         out.problems += table.problems
     return out

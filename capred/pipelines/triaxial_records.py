@@ -190,6 +190,47 @@ def to_json(record) -> dict:
     return out
 
 
+def store_rows(record, material=None, intervals=None) -> list:
+    """The lab store's rows of a scalar record: each glossary quantity field (value or standard error) with
+    its JSON key (:func:`json_key`, as :func:`to_json` writes it), value and glossary unit; a value's 95 %
+    interval is its ``ci`` field or ``intervals[key]``. Text fields are not recorded; a value that is not a
+    finite number is left out.
+
+    Parameters
+    ----------
+    record : dataclass
+        A record of this module (the envelope).
+    material : str, optional
+        The material of the rows.
+    intervals : dict, optional
+        JSON key -> (low, high), for values whose interval the record does not hold.
+
+    Returns
+    -------
+    list of capred.records.StoreRow
+    """
+    from ..records import store_row
+
+    fields = [f for f in dataclasses.fields(record) if "quantity" in f.metadata and not f.metadata["many"]]
+    found = dict(intervals or {})
+    for f in fields:
+        if f.metadata["ci"]:
+            value = getattr(record, f.name)
+            twin = [g for g in fields if g.metadata["quantity"] == f.metadata["quantity"] and not g.metadata["se"]]
+            if value is not None and twin:
+                found.setdefault(json_key(twin[0]), value)
+    rows = []
+    for f in fields:
+        if f.metadata["ci"]:
+            continue
+        key, unit = json_key(f), QUANTITIES[f.metadata["quantity"]].unit
+        ci = None if f.metadata["se"] else found.get(key)
+        row = store_row(material, key, num(getattr(record, f.name)), unit, ci)
+        if row is not None:
+            rows.append(row)
+    return rows
+
+
 def row_json(record, i: int) -> dict:
     """Row ``i`` of a per-test record (arrays over the tests) as its JSON object.
 
@@ -732,7 +773,7 @@ class Envelope:
     phi_se_deg: float | None = quantity("phi", se=True)
     source: str = text()
     n: int | None = text(kind="int")
-    r2: float | None = text(kind="number")
+    r2: float | None = quantity("r2")
     method: str = text(init=False)
     fit: LineFit | None = None  # capred.fitting.linear.LineFit
     c_phi_correlation: float = float("nan")

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import nomenclature as nom
 from ..fitting.extended_mc import ExtendedMCFit
 from ..physics import effective_stress_models as esm
 from ..result import Result, num
@@ -270,10 +271,8 @@ class TriaxialStrengthResult(Result):
                 },
                 "envelope": {
                     "source": r.envelope_source,
-                    "c_kPa": num(r.c_eff / KPA),
-                    "phi_deg": num(r.phi_eff),
-                    "c_se_kPa": num(math.sqrt(max(r.envelope_cov[0, 0], 0.0)) / KPA),
-                    "phi_se_deg": num(math.sqrt(max(r.envelope_cov[1, 1], 0.0))),
+                    **{nom.json_key(q): num(v) for q, (v, _) in _envelope(r).items()},
+                    **{nom.json_key(q, "_se"): num(se) for q, (_, se) in _envelope(r).items()},
                 },
                 "best_model": r.best,
                 "own_envelopes": {
@@ -303,6 +302,35 @@ class TriaxialStrengthResult(Result):
                 },
             }
         return {"source": self.source, "materials": mats, "metrics": self.metric_rows(), "tests": self.test_rows()}
+
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows, per material: the effective envelope (``c_kPa``, ``phi_deg`` and their standard
+        errors, glossary units, as the JSON's ``envelope``), the extended Mohr-Coulomb fit's parameters
+        (``c_eff_kPa``, ``phi_eff_deg``, ``phi_b_deg``, ``tan_phi_b``: capred.parameters.Parameter, with their 95 %
+        intervals and standard errors) and its ``r2``.
+
+        Parameters
+        ----------
+        material : str, optional
+            Not used: a triaxial run names its materials itself.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+        """
+        from ..records import parameter_store_rows, store_row
+
+        rows = []
+        for m, r in self.materials.items():
+            for q, (value, se) in _envelope(r).items():
+                unit = nom.QUANTITIES[q].unit
+                rows += [
+                    store_row(m, nom.json_key(q), num(value), unit),
+                    store_row(m, nom.json_key(q, "_se"), num(se), unit),
+                ]
+            rows += parameter_store_rows(r.fit.params.values(), m)
+            rows.append(store_row(m, nom.json_key("r2"), num(r.fit.r2), nom.QUANTITIES["r2"].unit))
+        return [row for row in rows if row is not None]
 
     def tables(self) -> dict:
         """results (per test), materials, metrics, laws: pandas DataFrames."""
@@ -348,3 +376,11 @@ def _plain(v):
 
 
 # --- reading ----------------------------------------------------------------------------------------------------
+
+
+def _envelope(r) -> dict:
+    """Glossary name -> (value, standard error) of a material's effective envelope: c' [kPa], phi' [deg]."""
+    return {
+        "c": (r.c_eff / KPA, math.sqrt(max(r.envelope_cov[0, 0], 0.0)) / KPA),
+        "phi": (r.phi_eff, math.sqrt(max(r.envelope_cov[1, 1], 0.0))),
+    }

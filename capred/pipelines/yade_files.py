@@ -199,6 +199,23 @@ class YadeResult(Result):
         """
         return self.record().json_rows()
 
+    def store_rows(self, material: str | None = None) -> list:
+        """The lab store's rows: the contact angle of the files (glossary ``contact_angle``, deg).
+
+        Parameters
+        ----------
+        material : str, optional
+            The material of the inputs' metadata block.
+
+        Returns
+        -------
+        list of capred.records.StoreRow
+        """
+        from ..records import quantity_store_row
+
+        row = quantity_store_row(material, "contact_angle", self.options.contact_angle if self.options else 0.0)
+        return [] if row is None else [row]
+
     def payload(self, lazy: bool = False) -> dict:
         """The command's own keys of the JSON document: contact_angle_deg and the summary row of each file.
 

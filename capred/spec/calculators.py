@@ -131,9 +131,12 @@ class SkemptonOptions(StableJsonKeys, Options):
             return
         from ..physics.skempton_elastoplastic import BoundingSurfaceCompliance
 
-        BoundingSurfaceCompliance(  # checks kappa < lambda0, A_ini >= 0 and h where it is needed
-            self.kappa_elastic, self.lambda0_or_default, self.a_ini_or_default, self.interpolation_h
-        )
+        try:  # checks kappa < lambda0, A_ini >= 0 and h where it is needed; the physics' text is the option's
+            BoundingSurfaceCompliance(
+                self.kappa_elastic, self.lambda0_or_default, self.a_ini_or_default, self.interpolation_h
+            )
+        except ValueError as exc:
+            raise OptionError(str(exc)) from None
         if self.air_pressure == "gauge":
             self._warnings.append(
                 "--air-pressure gauge: Boyle's law needs the absolute air pressure; the gauge pressure u0 in Boyle's "

@@ -166,7 +166,10 @@ class PTVolumeOptions(Options):
         values = {
             k: (self._line(k) if self._line(k) is not None else getattr(_pt().EXAMPLE_KAOLIN, k)) for k in LINE_OPTIONS
         }
-        return _pt().PTVolumeParameters(**values, reference_stress=self.reference_stress)
+        try:  # the physics refuses lines out of their domain (kappa < lambda ...): its text is the options'
+            return _pt().PTVolumeParameters(**values, reference_stress=self.reference_stress)
+        except ValueError as exc:
+            raise OptionError(str(exc)) from None
 
 
 __all__ = ["LINE_OPTIONS", "PATH_COLUMNS", "SCHEMA", "PTVolumeOptions"]
