@@ -90,7 +90,8 @@ def _kind(path: Path) -> str | None:
     """None where ``path`` is absent or a regular file (after links); else why it cannot be a store.
 
     Nothing is opened: a FIFO or a device as the store is refused by its ``stat`` alone (opening a FIFO for
-    reading waits for a writer forever)."""
+    reading waits for a writer forever).
+    """
     import stat
 
     try:
@@ -116,7 +117,8 @@ def _header_pages(head: bytes, size: int) -> str | None:
 
     The header's page size (offset 16) and page count (offset 28, valid while the change counter at 24 equals
     the one at 92) give the file's length: a truncated or padded file is seen here without reading its pages.
-    References: SQLite, "Database File Format", section 1.3, https://www.sqlite.org/fileformat.html."""
+    References: SQLite, "Database File Format", section 1.3, https://www.sqlite.org/fileformat.html.
+    """
     raw = int.from_bytes(head[16:18], "big")
     page = 65536 if raw == 1 else raw
     if page < 512 or page > 65536 or page & (page - 1):
@@ -206,9 +208,10 @@ COLUMNS = {
 
 
 def verify_schema(con: sqlite3.Connection, path) -> None:
-    """Raise InputError unless the store's schema is the one this capred writes: its version, each table with
-    its columns (:data:`COLUMNS`), and no trigger (capred creates none: a trigger would run another program's
-    statements on every run recorded).
+    """Raise InputError unless the store's schema is the one this capred writes.
+
+    Its version, each table with its columns (:data:`COLUMNS`), and no trigger (capred creates none: a trigger would run
+    another program's statements on every run recorded).
 
     Parameters
     ----------
@@ -284,13 +287,15 @@ def connect(path, create: bool = True) -> sqlite3.Connection:
 
 
 def _readonly_uri(path: Path) -> str:
-    """The URI that opens ``path`` for reading only: ``mode=rw`` where the file and its folder can be written
-    (the connection is then made ``query_only``), else ``mode=ro&immutable=1`` (a store shipped inside an
-    installed package), so that SQLite leaves no side file.
+    """The URI that opens ``path`` for reading only, so that SQLite leaves no side file.
+
+    ``mode=rw`` where the file and its folder can be written (the connection is then made ``query_only``), else
+    ``mode=ro&immutable=1`` (a store shipped inside an installed package).
 
     A ``mode=ro`` connection to a store in WAL mode (every store capred records into) creates ``-wal`` and
     ``-shm`` beside it and, being read-only, cannot remove them when it closes: every ``capred history`` left
-    two files behind. A read-write connection that only queries removes them as the last one to close."""
+    two files behind. A read-write connection that only queries removes them as the last one to close.
+    """
     from urllib.parse import quote
 
     uri = f"file:{quote(str(path.resolve()))}"
@@ -564,7 +569,20 @@ class Recorder:
         self.close()
 
     def record(self, result, out_dir=None) -> tuple[int, bool]:
-        """Record the run in one transaction (see :func:`record_run`); returns (run id, whether it was new)."""
+        """Record the run in one transaction (see :func:`record_run`).
+
+        Parameters
+        ----------
+        result : capred.result.Result
+            Any command's result.
+        out_dir : str or Path, optional
+            The folder its files were written to (recorded).
+
+        Returns
+        -------
+        (int, bool)
+            The run's id and whether it was new.
+        """
         from datetime import UTC, datetime
 
         from .io import encode_json
@@ -634,7 +652,8 @@ def _check_tail(con: sqlite3.Connection, path: Path) -> None:
 
     A damaged page elsewhere is found by SQLite when it is read (``database disk image is malformed``); this
     catches damage in the text of the last run, which SQLite does not checksum. The cost is one run's row, not
-    the whole file."""
+    the whole file.
+    """
     try:
         row = con.execute(
             "SELECT id, json_valid(document), json_valid(inputs), CAST(document AS BLOB) FROM runs "

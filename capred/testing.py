@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 import re
+from contextlib import contextmanager
 
 import numpy as np
 
@@ -155,9 +156,9 @@ def check_effective_stress_model(entry) -> None:
 
     Declaration: the name is a ``--models`` token, unique in the registry; label, method and reference (a key of
     `capred.references.REFERENCES`) present; style of the palette; each required parameter a field of
-    `capred.pipelines.shear.ModelParams` with its ``--option``; exactly one of ``sigma_eff`` and ``tau``; every
-    callable resolves; a fitted model has its χ law. Numbers (four wet tests of one material, σ_N 50-200 kPa,
-    s 2-20 kPa, S_R 0.04-0.10, R = 0.5 mm, c = 2 kPa, φ = 35°):
+    `capred.pipelines.shear.ModelParams` (or one of the model's own ``parameters``) with its ``--option``;
+    exactly one of ``sigma_eff`` and ``tau``; every callable resolves; a fitted model has its χ law. Numbers
+    (four wet tests of one material, σ_N 50-200 kPa, s 2-20 kPa, S_R 0.04-0.10, R = 0.5 mm, c = 2 kPa, φ = 35°):
 
     - σ'_N (or τ) is a finite array of one value per test (NaN only for a model that declares ``no_prediction``);
     - σ'_N − σ_N does not depend on σ_N (shifting σ_N by 10 kPa shifts σ'_N by 10 kPa);
@@ -181,11 +182,43 @@ def check_effective_stress_model(entry) -> None:
     ValueError
         When ``entry`` is not an EffectiveStressModel.
     """
-    from .pipelines.shear import ModelParams
     from .spec.effective_stress import REGISTRY, EffectiveStressModel
 
     if not isinstance(entry, EffectiveStressModel):
         raise ValueError(f"an EffectiveStressModel is needed, not {type(entry).__name__}")
+    if entry.name in REGISTRY and REGISTRY[entry.name] is not entry:  # never replace another entry, even for a check
+        chk = _Check("effective-stress model", entry.name)
+        _name(chk, entry.name, REGISTRY, entry)
+        chk.done()
+    with _registered_for_the_check(entry, REGISTRY):  # its own parameters are read as a registered model's
+        _check_effective_stress_model(entry)
+
+
+@contextmanager
+def _registered_for_the_check(entry, registry: dict):
+    """Hold ``entry`` in ``registry`` while the check runs; the registry and the glossary as they were after.
+
+    A model checked before it is registered, as the docs show, reads its own parameters as it will once registered.
+    """
+    from .nomenclature import QUANTITIES
+
+    if registry.get(entry.name) is entry:
+        yield
+        return
+    glossary = dict(QUANTITIES)
+    registry[entry.name] = entry
+    try:
+        yield
+    finally:
+        del registry[entry.name]
+        QUANTITIES.clear()
+        QUANTITIES.update(glossary)
+
+
+def _check_effective_stress_model(entry) -> None:
+    from .pipelines.shear import ModelParams
+    from .spec.effective_stress import REGISTRY
+
     chk = _Check("effective-stress model", entry.name)
     _name(chk, entry.name, REGISTRY, entry)
     _text(chk, entry, "label", "method")
@@ -194,7 +227,7 @@ def check_effective_stress_model(entry) -> None:
     chk.that(entry.label not in others, f"label {entry.label!r} is another model's")
     chk.that(entry.style.get("color") in COLOURS, f"style colour {entry.style.get('color')!r} is not of {COLOURS}")
     chk.that(entry.style.get("marker"), "style has no marker")
-    params = {f for f in ModelParams.__dataclass_fields__}
+    params = set(ModelParams.__dataclass_fields__) | {p.name for p in entry.parameters}  # its own too
     for field_name, option in entry.requires:
         chk.that(field_name in params, f"required {field_name!r} is not a ModelParams field")
         chk.that(isinstance(option, str) and option.startswith("--"), f"required {field_name!r}: option {option!r}")

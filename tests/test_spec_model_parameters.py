@@ -5,6 +5,7 @@ parameter is one declaration"): `capred shear` takes ``--<name>`` with the decla
 The registry entry's field is ``parameters`` (a tuple of capred.spec.shear.ModelParameter).
 """
 
+import dataclasses
 import json
 import math
 
@@ -92,3 +93,23 @@ def test_the_api_takes_it_in_extra_and_the_record_keeps_it_only_when_given(scale
 def test_triaxial_takes_the_declared_parameter_too(scaled_bishop):
     res = runner.invoke(app, ["triaxial", "--help"], terminal_width=200)
     assert "--my-kappa NUMBER" in " ".join(res.stdout.split())
+
+
+def test_a_model_with_its_own_parameter_is_checked_before_it_is_registered():
+    """docs/contributing.md checks a model, then registers it: the check reads the model's own parameter at its
+    declared default (κ = 1: Bishop) and leaves the registry and the glossary as they were."""
+    from capred.testing import check_effective_stress_model
+
+    entry = es.EffectiveStressModel(
+        "scaled_bishop_unregistered",
+        "scaled Bishop (unregistered)",
+        (),
+        "bishop1959",
+        _scaled_bishop,
+        parameters=(dataclasses.replace(KAPPA, default=1.0),),
+        style={"color": "blue", "marker": "x"},
+        method="σ'_N = σ_N + κ S_R Δu.",
+    )
+    before, glossary = dict(es.REGISTRY), dict(nom.QUANTITIES)
+    check_effective_stress_model(entry)
+    assert es.REGISTRY == before and nom.QUANTITIES == glossary

@@ -115,8 +115,11 @@ class OutputOptions:
 
 @dataclass
 class Invocation:
-    """A parsed command: the builder of a command gives ``command``, ``options`` and ``extra_inputs``;
-    ``command()`` fills in the inputs, output folder and output options shared by every command."""
+    """A parsed command.
+
+    The builder of a command gives ``command``, ``options`` and ``extra_inputs``; ``command()`` fills in the inputs,
+    output folder and output options shared by every command.
+    """
 
     command: str
     options: object
@@ -374,10 +377,11 @@ def command(app: typer.Typer, name: str, full_name: str | None = None, data: str
 
 
 class _Callback:
-    """A command's callback whose signature (the options typer reads) is evaluated when typer builds the command,
-    not when it is registered: the option annotations of a builder module with postponed annotations
-    (``from __future__ import annotations``) call capred.cli.declare.option, which reads the Options declarations,
-    only for the command asked for (`capred --help` reads none).
+    """A command's callback whose signature is evaluated when typer builds the command, not when it is registered.
+
+    The signature holds the options typer reads: the option annotations of a builder module with postponed annotations
+    (``from __future__ import annotations``) call capred.cli.declare.option, which reads the Options declarations, only
+    for the command asked for (`capred --help` reads none).
 
     Parameters
     ----------
@@ -469,8 +473,9 @@ def sources(
     ignore_columns=None,
     limits=None,
 ) -> list:
-    """Input files: the arguments with globs expanded (sorted), the bundled sample, or [None];
-    as TableSources when a sheet, a thousands separator, columns to ignore or reading limits are given.
+    """Input files: the arguments with globs expanded (sorted), the bundled sample, or [None].
+
+    As TableSources when a sheet, a thousands separator, columns to ignore or reading limits are given.
 
     Parameters
     ----------
@@ -616,8 +621,10 @@ def _schema_of(command: str):
 
 
 def _looks_like(command: str, source, n_problems: int = 0):
-    """A Problem saying which command to try when the table that failed is clearly another command's input (its
-    header names at least two more of that command's columns than of this one's, three it lacks), else None."""
+    """A Problem saying which command to try when the failed table is clearly another command's input, else None.
+
+    Clearly: its header names at least two more of that command's columns than of this one's, three it lacks.
+    """
     from ..errors import Problem
     from ..io import TableSource, column_lookup, find_header, match_header, read_grid, source_path
 

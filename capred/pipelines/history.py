@@ -156,6 +156,7 @@ class HistoryRecord(RowRecord):
 
     @property
     def unit_fill(self) -> str:  # the declared "{unit}" is the charted quantity's unit
+        """The unit that fills the declared ``{unit}`` of the columns: the charted quantity's ("" when dimensionless)."""
         return "" if self.unit == "-" else self.unit
 
 
@@ -183,8 +184,10 @@ class HistoryResult(Result):
         return [int(r) for r, b in zip(self.runs["run"], self.runs["beyond"]) if b]
 
     def record(self) -> HistoryRecord:
-        """The runs as a typed record: run id, test date, input, the value with its 95 % interval and moving
-        range in the quantity's unit, and the two flags.
+        """The runs as a typed record.
+
+        Run id, test date, input, the value with its 95 % interval and moving range in the quantity's unit, and the two
+        flags.
 
         Returns
         -------
@@ -210,8 +213,10 @@ class HistoryResult(Result):
         )
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (:meth:`record` as rows: per run, run id, test date, input,
-        value with its 95 % interval, moving range, beyond_limits), NaN written as None.
+        """The per-row records of the JSON document, NaN written as None.
+
+        :meth:`record` as rows: per run, run id, test date, input, value with its 95 % interval, moving range,
+        beyond_limits.
 
         Returns
         -------
@@ -223,6 +228,11 @@ class HistoryResult(Result):
     def store_rows(self, material: str | None = None) -> list:
         """Refused: a history run reads a store and is never recorded in one.
 
+        Parameters
+        ----------
+        material : str or None, optional
+            The material of the inputs' metadata block (unused).
+
         Raises
         ------
         ValueError
@@ -231,8 +241,9 @@ class HistoryResult(Result):
         raise ValueError("`capred history` reads a lab store; its runs are not recorded in one")
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: material, quantity, unit, the control limits (centre, sigma,
-        lcl, ucl, moving-range centre) and the runs.
+        """The command's own keys of the JSON document.
+
+        Material, quantity, unit, the control limits (centre, sigma, lcl, ucl, moving-range centre) and the runs.
 
         Parameters
         ----------
@@ -275,8 +286,9 @@ class HistoryResult(Result):
         return {"history": pd.DataFrame(self.record().columns())}
 
     def csv_tables(self) -> dict:
-        """The tables as the CSV writer takes them (``history``), under ``name [unit]`` headers (the unit of
-        the charted quantity).
+        """The tables as the CSV writer takes them (``history``).
+
+        Under ``name [unit]`` headers (the unit of the charted quantity).
 
         Returns
         -------
