@@ -18,7 +18,8 @@ The file is protected like a user's data:
 - an older schema is migrated in one transaction (:data:`MIGRATIONS`);
 - each run is one ``BEGIN IMMEDIATE`` transaction, in WAL mode with a busy
   timeout, so that a batch's workers may record at the same time;
-- a run recorded twice (same command, inputs' SHA-256 and options) is stored once.
+- a run recorded twice (same command, inputs' SHA-256 and options) is stored once, and the second run's
+  notes say so (:func:`recorded_as`); a run that writes no files is not recorded, and says so.
 
 References
 ----------
@@ -890,8 +891,10 @@ def commands_present(store) -> list[str]:
 
 
 def recorded_as(store, result) -> int | None:
-    """The id of the run of the store that is ``result``'s run (same command, inputs' SHA-256 and options), or
-    None where it holds none (or there is no store yet). The store is only read.
+    """The id of the run of the store that is ``result``'s run, or None.
+
+    The same run: the same command, inputs' SHA-256 and options (:func:`run_key`). None where the store holds
+    none (or there is no store yet). The store is only read.
 
     Parameters
     ----------

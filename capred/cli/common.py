@@ -734,7 +734,8 @@ def _store_unrecorded(inv: Invocation) -> str | None:
 
     A store keeps each run beside the folder of its files (its ``out_dir``; capred.lab_store.Recorder records
     the run once that folder is in place), so a run that only prints is not recorded; saying so is better than
-    recording nothing in silence."""
+    recording nothing in silence.
+    """
     from ..lab_store import STORE_VARIABLE, store_from
     from ..reductions import REDUCTIONS
 

@@ -305,8 +305,10 @@ SHOWN = 30
 
 
 def _names(path, column: str, quantity=None, command=None) -> str:
-    """The materials or quantities the store holds (filtered by quantity and command), at most :data:`SHOWN`
-    of them, the rest counted with the way to list them all; "none" where it holds none."""
+    """The materials or quantities the store holds (filtered by quantity and command), as a message says them.
+
+    At most :data:`SHOWN` of them, the rest counted with the way to list them all; "none" where it holds none.
+    """
     from ..lab_store import count_present, present
 
     held = present(path, column, quantity, command, limit=SHOWN)
@@ -329,8 +331,11 @@ def _runs(command) -> str:
 
 
 def _explain_empty(path, opt: HistoryOptions) -> None:
-    """Raise the error that says why the store holds no record of ``opt.quantity`` (of ``opt.material``, of runs of
-    ``opt.command``): what the filtered runs hold, and what the store holds overall."""
+    """Raise the error that says why the store holds no record asked for.
+
+    No record of ``opt.quantity`` (of ``opt.material``, of runs of ``opt.command``): the message says what the
+    filtered runs hold, and what the store holds overall.
+    """
     from ..lab_store import commands_present, history, present
 
     def fail(message: str):

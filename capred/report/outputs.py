@@ -230,8 +230,11 @@ def write_outputs(
 
 
 def _note_recorded_before(result, store) -> None:
-    """Add a note to ``result`` (console, JSON, report) where the store already holds its run: the same command,
-    inputs' SHA-256 and options are recorded once (capred.lab_store.run_key), so this run is not recorded again."""
+    """Add a note to ``result`` (console, JSON, report) where the store already holds its run.
+
+    The same command, inputs' SHA-256 and options are recorded once (capred.lab_store.run_key), so this run is
+    not recorded again.
+    """
     from ..lab_store import recorded_as
 
     run = recorded_as(store, result)
@@ -245,8 +248,9 @@ def _note_recorded_before(result, store) -> None:
 
 
 def add_line(result, kind: str, text: str) -> None:
-    """Append ``text`` to ``result``'s ``kind`` ("notes" or "warnings"), which the console, the JSON document
-    and the report show; the document is built again. A result that cannot take it prints it on stderr.
+    """Append ``text`` to ``result``'s notes or warnings, which the console, the JSON document and report show.
+
+    The document is built again. A result that cannot take it prints it on stderr.
 
     Parameters
     ----------
