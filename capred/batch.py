@@ -24,6 +24,26 @@ STATUSES = ("ok", "failed", "crashed", "interrupted")
 
 @dataclass
 class Job:
+    """One run of a batch: the command, its input, output folder and options, as the manifest gives them.
+
+    Attributes
+    ----------
+    command : str
+        The command as typed (``"shear"``, ``"bridge solve"``).
+    source : Path or None
+        The input file (None for a calculator run from its options).
+    out_dir : Path
+        The run's output folder.
+    options : object
+        The command's Options record.
+    plots : bool
+        Draw the figures.
+    keep_json : bool
+        Keep the JSON document in the outcome (``Outcome.result_json``).
+    output : capred.cli.common.OutputOptions or None
+        How the files are written (None: the defaults).
+    """
+
     command: str
     source: Path | None
     out_dir: Path
@@ -38,6 +58,13 @@ class Job:
 
 @dataclass
 class Outcome:
+    """How one run of a batch ended, as index.csv and season.csv record it.
+
+    Each field is described where it is declared: the command, input and output folder, the status (one of
+    ``STATUSES``) and its message, the files written, the seconds taken, and the run's season rows, headline,
+    warning count and options.
+    """
+
     command: str
     source: str
     out_dir: str
@@ -53,6 +80,7 @@ class Outcome:
 
     @property
     def ok(self) -> bool:
+        """Whether the run succeeded (status ``"ok"``)."""
         return self.status == "ok"
 
 
@@ -159,8 +187,9 @@ def run_safely(job: Job) -> Outcome:
 
 
 def changed_options(options) -> str:
-    """The options of a run that differ from its command's defaults, as a user types them, ``; ``-separated:
-    ``dry_loss huber; bootstrap 0; gamma_w 10 kN/m³`` ("" when every option has its default).
+    """The options of a run that differ from its command's defaults, as a user types them, ``; ``-separated.
+
+    E.g. ``dry_loss huber; bootstrap 0; gamma_w 10 kN/m³`` ("" when every option has its default).
 
     The defaults are those of the command's options record (the field defaults of its dataclass, which the CLI
     leaves in force when an option is not given); a nested record (model parameters) is compared field by field
@@ -297,8 +326,10 @@ def default_workers(n_jobs: int) -> int:
 
 
 def _warm(jobs: list[Job]) -> None:
-    """Import what every job needs once, in the parent, so that forked workers inherit it (a worker
-    otherwise spends ~1 s of CPU importing pandas, the pipeline and the report before its first file)."""
+    """Import what every job needs once, in the parent, so that forked workers inherit it.
+
+    A worker otherwise spends ~1 s of CPU importing pandas, the pipeline and the report before its first file.
+    """
     from importlib import import_module
 
     from .reductions import REDUCTIONS
@@ -316,8 +347,10 @@ def _warm(jobs: list[Job]) -> None:
 
 
 def _openblas_controls() -> list:
-    """(set, get) C functions of every OpenBLAS library loaded in this process (numpy's and scipy's each bundle
-    one), found through /proc/self/maps; none elsewhere than Linux or without OpenBLAS."""
+    """(set, get) C functions of every OpenBLAS library loaded in this process.
+
+    numpy's and scipy's each bundle one, found through /proc/self/maps; none elsewhere than Linux or without OpenBLAS.
+    """
     import ctypes
 
     try:
@@ -370,8 +403,9 @@ PR_SET_PDEATHSIG = 1
 
 
 def die_with_parent(parent: int) -> None:
-    """Make this worker process end when ``parent`` (the batch) dies, even by ``kill -9``: Linux's
-    PR_SET_PDEATHSIG sends SIGKILL to the worker then. Elsewhere a thread watches the parent's pid twice a
+    """Make this worker process end when ``parent`` (the batch) dies, even by ``kill -9``.
+
+    Linux's PR_SET_PDEATHSIG sends SIGKILL to the worker then. Elsewhere a thread watches the parent's pid twice a
     second and ends the worker when it is gone. A parent already gone ends the worker at once.
 
     Parameters
@@ -407,8 +441,10 @@ def die_with_parent(parent: int) -> None:
 
 
 def _pool(workers: int):
-    """A process pool whose workers die with this process (``die_with_parent``); forked workers where the
-    platform offers it (they start with capred imported)."""
+    """A process pool whose workers die with this process (``die_with_parent``).
+
+    Forked workers where the platform offers it (they start with capred imported).
+    """
     import multiprocessing
     import os
     import sys
@@ -476,8 +512,9 @@ MAX_CHUNK = 8
 
 
 def job_chunks(first: int, stop: int, workers: int) -> list[tuple[int, int]]:
-    """The jobs ``first`` .. ``stop - 1`` cut into the pool's tasks, (start, stop) each, in order: guided
-    scheduling, each task a quarter of a worker's share of the jobs left, at most MAX_CHUNK and at least one.
+    """The jobs ``first`` .. ``stop - 1`` cut into the pool's tasks, (start, stop) each, in order.
+
+    Guided scheduling: each task a quarter of a worker's share of the jobs left, at most MAX_CHUNK and at least one.
 
     A task of several jobs pays the pool's per-task cost (pickling, queues, wake-ups: ~0.1 ms of CPU, measured
     with 2,000 empty jobs) once; the last tasks hold one job each, so that the workers finish together.
@@ -502,7 +539,18 @@ def job_chunks(first: int, stop: int, workers: int) -> list[tuple[int, int]]:
 
 
 def run_chunk(jobs: list[Job]) -> list[Outcome]:
-    """The outcomes of a few jobs run in turn in one worker (`run_safely` each)."""
+    """The outcomes of a few jobs run in turn in one worker (`run_safely` each).
+
+    Parameters
+    ----------
+    jobs : list of Job
+        The jobs, run in order.
+
+    Returns
+    -------
+    list of Outcome
+        One per job, in the same order.
+    """
     return [run_safely(job) for job in jobs]
 
 
@@ -640,8 +688,9 @@ def one_line(message: str) -> str:
 
 # --- labels and units of the season tables --------------------------------------------------------------
 def model_label(name):
-    """The label of a model, law or retention model as its registry gives it (``own1`` -> ``Own 1``, ``vg`` ->
-    ``van Genuchten, m = 1 - 1/n``); other values as they are.
+    """The label of a model, law or retention model as its registry gives it; other values as they are.
+
+    ``own1`` -> ``Own 1``, ``vg`` -> ``van Genuchten, m = 1 - 1/n``.
 
     Parameters
     ----------
@@ -720,9 +769,10 @@ def labelled(rows: list[dict]) -> list[dict]:
 
 
 def headline(rows: list[dict]) -> str:
-    """The main results of a run in one line, from its season rows: per row its label (material, branch),
-    its first two measured values with units and its best model, e.g. ``steel_2mm: c 0.3701 kPa, phi 34.59
-    deg, best model: Own 2``; rows separated by `` | ``.
+    """The main results of a run in one line, from its season rows.
+
+    Per row its label (material, branch), its first two measured values with units and its best model, e.g. ``steel_2mm:
+    c 0.3701 kPa, phi 34.59 deg, best model: Own 2``; rows separated by `` | ``.
 
     Parameters
     ----------
@@ -765,9 +815,11 @@ def _count_line(result) -> str:
 
 
 def write_index(root: Path, outcomes: list[Outcome], batch_files=()) -> Path:
-    """index.csv: every input with its status, message and each output file written, then every file of the
-    batch root (``batch_files``: season.csv, season_<command>.csv, season.html; provenance.json) as rows of
-    command ``batch``: the one list of everything a batch wrote. Paths are relative to the batch root.
+    """index.csv: the one list of everything a batch wrote.
+
+    Every input with its status, message and each output file written, then every file of the batch root
+    (``batch_files``: season.csv, season_<command>.csv, season.html; provenance.json) as rows of command ``batch``.
+    Paths are relative to the batch root.
 
     Refused (OutputError) where an index.csv exists that capred did not write (or a user edited since);
     recorded with its hash in the batch's provenance.json.
@@ -979,8 +1031,9 @@ def _with_units(columns: dict) -> dict:
 
 
 def season_file(command: str) -> str:
-    """The file of one command's season details: ``season_<command>.csv`` (``bridge solve`` ->
-    ``season_bridge-solve.csv``).
+    """The file of one command's season details: ``season_<command>.csv``.
+
+    ``bridge solve`` -> ``season_bridge-solve.csv``.
 
     Parameters
     ----------
@@ -996,11 +1049,12 @@ def season_file(command: str) -> str:
 
 
 def write_season(root: Path, outcomes: list[Outcome]) -> list[Path]:
-    """season.csv (one row per run: command, input, status, reason, material, headline, options, warnings,
-    report), season_<command>.csv (each command's detail rows) and season.html (a section per command),
-    each protected as every batch root file is (refused where a file of that name exists that capred did
-    not write, e.g. a manifest called season.csv, or that a user edited since) and recorded in the batch's
-    provenance.json.
+    """Write season.csv, season_<command>.csv and season.html, each protected and recorded.
+
+    season.csv has one row per run (command, input, status, reason, material, headline, options, warnings, report),
+    season_<command>.csv each command's detail rows and season.html a section per command; each is protected as every
+    batch root file is (refused where a file of that name exists that capred did not write, e.g. a manifest called
+    season.csv, or that a user edited since) and recorded in the batch's provenance.json.
 
     Parameters
     ----------
@@ -1031,9 +1085,10 @@ def write_season(root: Path, outcomes: list[Outcome]) -> list[Path]:
 
 
 def season_columns(rows: list[dict]) -> dict:
-    """The season table's columns (every key of any row, in order of first appearance) as arrays: counts stay
-    whole numbers (Python ints, None where a run has none: ``n_dry`` of a retention row), other numbers floats
-    (NaN where a run has none), text and mixed columns objects (None where missing).
+    """The season table's columns (every key of any row, in order of first appearance) as arrays.
+
+    Counts stay whole numbers (Python ints, None where a run has none: ``n_dry`` of a retention row), other numbers
+    floats (NaN where a run has none), text and mixed columns objects (None where missing).
 
     Parameters
     ----------

@@ -54,8 +54,11 @@ class InputError(CapredError):
     SAME = 3
 
     def _grouped(self) -> list[str]:
-        """The problems as shown: one line each, but the same problem in many lines of a column once, with the
-        count and the first lines (cells that are not numbers: with their first values)."""
+        """The problems as shown, one line each.
+
+        The same problem in many lines of a column is shown once, with the count and the first lines (cells that are not
+        numbers: with their first values).
+        """
         import re
 
         def key(p: Problem):
@@ -99,7 +102,14 @@ class InputError(CapredError):
         return "\n".join(lines)
 
     def as_json(self) -> dict:
-        """{"errors": [{file, sheet, line, column, value, message}]}: every problem, for scripts."""
+        """Every problem as a JSON-ready mapping, for scripts.
+
+        Returns
+        -------
+        dict
+            ``{"errors": [{"file", "sheet", "line", "column", "value", "message"}, ...]}``, one entry per problem
+            in the order found.
+        """
         return {
             "errors": [
                 {

@@ -31,8 +31,9 @@ class InputFile:
 
 
 def input_file(source, table=None) -> InputFile:
-    """InputFile of a path, a TableSource or a DataFrame (hash of its CSV text); with the sheet and the
-    metadata block of the ``table`` read from it.
+    """InputFile of a path, a TableSource or a DataFrame (hash of its CSV text).
+
+    With the sheet and the metadata block of the ``table`` read from it.
 
     Parameters
     ----------

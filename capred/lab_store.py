@@ -18,7 +18,8 @@ The file is protected like a user's data:
 - an older schema is migrated in one transaction (:data:`MIGRATIONS`);
 - each run is one ``BEGIN IMMEDIATE`` transaction, in WAL mode with a busy
   timeout, so that a batch's workers may record at the same time;
-- a run recorded twice (same command, inputs' SHA-256 and options) is stored once.
+- a run recorded twice (same command, inputs' SHA-256 and options) is stored once, and the second run's
+  notes say so (:func:`recorded_as`); a run that writes no files is not recorded, and says so.
 
 References
 ----------
@@ -90,7 +91,8 @@ def _kind(path: Path) -> str | None:
     """None where ``path`` is absent or a regular file (after links); else why it cannot be a store.
 
     Nothing is opened: a FIFO or a device as the store is refused by its ``stat`` alone (opening a FIFO for
-    reading waits for a writer forever)."""
+    reading waits for a writer forever).
+    """
     import stat
 
     try:
@@ -116,7 +118,8 @@ def _header_pages(head: bytes, size: int) -> str | None:
 
     The header's page size (offset 16) and page count (offset 28, valid while the change counter at 24 equals
     the one at 92) give the file's length: a truncated or padded file is seen here without reading its pages.
-    References: SQLite, "Database File Format", section 1.3, https://www.sqlite.org/fileformat.html."""
+    References: SQLite, "Database File Format", section 1.3, https://www.sqlite.org/fileformat.html.
+    """
     raw = int.from_bytes(head[16:18], "big")
     page = 65536 if raw == 1 else raw
     if page < 512 or page > 65536 or page & (page - 1):
@@ -206,9 +209,10 @@ COLUMNS = {
 
 
 def verify_schema(con: sqlite3.Connection, path) -> None:
-    """Raise InputError unless the store's schema is the one this capred writes: its version, each table with
-    its columns (:data:`COLUMNS`), and no trigger (capred creates none: a trigger would run another program's
-    statements on every run recorded).
+    """Raise InputError unless the store's schema is the one this capred writes.
+
+    Its version, each table with its columns (:data:`COLUMNS`), and no trigger (capred creates none: a trigger would run
+    another program's statements on every run recorded).
 
     Parameters
     ----------
@@ -284,13 +288,15 @@ def connect(path, create: bool = True) -> sqlite3.Connection:
 
 
 def _readonly_uri(path: Path) -> str:
-    """The URI that opens ``path`` for reading only: ``mode=rw`` where the file and its folder can be written
-    (the connection is then made ``query_only``), else ``mode=ro&immutable=1`` (a store shipped inside an
-    installed package), so that SQLite leaves no side file.
+    """The URI that opens ``path`` for reading only, so that SQLite leaves no side file.
+
+    ``mode=rw`` where the file and its folder can be written (the connection is then made ``query_only``), else
+    ``mode=ro&immutable=1`` (a store shipped inside an installed package).
 
     A ``mode=ro`` connection to a store in WAL mode (every store capred records into) creates ``-wal`` and
     ``-shm`` beside it and, being read-only, cannot remove them when it closes: every ``capred history`` left
-    two files behind. A read-write connection that only queries removes them as the last one to close."""
+    two files behind. A read-write connection that only queries removes them as the last one to close.
+    """
     from urllib.parse import quote
 
     uri = f"file:{quote(str(path.resolve()))}"
@@ -564,7 +570,20 @@ class Recorder:
         self.close()
 
     def record(self, result, out_dir=None) -> tuple[int, bool]:
-        """Record the run in one transaction (see :func:`record_run`); returns (run id, whether it was new)."""
+        """Record the run in one transaction (see :func:`record_run`).
+
+        Parameters
+        ----------
+        result : capred.result.Result
+            Any command's result.
+        out_dir : str or Path, optional
+            The folder its files were written to (recorded).
+
+        Returns
+        -------
+        (int, bool)
+            The run's id and whether it was new.
+        """
         from datetime import UTC, datetime
 
         from .io import encode_json
@@ -634,7 +653,8 @@ def _check_tail(con: sqlite3.Connection, path: Path) -> None:
 
     A damaged page elsewhere is found by SQLite when it is read (``database disk image is malformed``); this
     catches damage in the text of the last run, which SQLite does not checksum. The cost is one run's row, not
-    the whole file."""
+    the whole file.
+    """
     try:
         row = con.execute(
             "SELECT id, json_valid(document), json_valid(inputs), CAST(document AS BLOB) FROM runs "
@@ -800,7 +820,7 @@ def _query(store, sql: str, args=()) -> list:
         con.close()
 
 
-def present(store, column: str, quantity=None, command=None, limit: int = 41) -> list[str]:
+def present(store, column: str, quantity=None, command=None, limit: int | None = 41) -> list[str]:
     """The distinct materials or quantities the store holds (for a quantity, a command), sorted, at most ``limit``.
 
     Parameters
@@ -811,8 +831,8 @@ def present(store, column: str, quantity=None, command=None, limit: int = 41) ->
         Which values.
     quantity, command : str, optional
         Only the records of this quantity, of runs of this command.
-    limit : int
-        At most this many values (the query stops there).
+    limit : int or None
+        At most this many values (the query stops there); None: all of them.
 
     Returns
     -------
@@ -825,6 +845,73 @@ def present(store, column: str, quantity=None, command=None, limit: int = 41) ->
     sql = (
         f"SELECT DISTINCT r.{column} FROM records r{join}{where}"
         + (" AND" if where else " WHERE")
-        + f" r.{column} IS NOT NULL ORDER BY r.{column} LIMIT {int(limit)}"
+        + f" r.{column} IS NOT NULL ORDER BY r.{column}"
+        + ("" if limit is None else f" LIMIT {int(limit)}")
     )
     return [str(r[0]) for r in _query(store, sql, args)]
+
+
+def count_present(store, column: str, quantity=None, command=None) -> int:
+    """How many distinct materials or quantities the store holds (filtered as in :func:`present`).
+
+    Parameters
+    ----------
+    store : str or Path
+        The store's file.
+    column : {"material", "quantity"}
+        Which values.
+    quantity, command : str, optional
+        Only the records of this quantity, of runs of this command.
+
+    Returns
+    -------
+    int
+    """
+    if column not in ("material", "quantity"):
+        raise ValueError(column)
+    where, args = _where(None, quantity, command)
+    join = " JOIN runs u ON u.id = r.run" if command is not None else ""
+    sql = f"SELECT COUNT(DISTINCT r.{column}) FROM records r{join}{where}"
+    return int(_query(store, sql, args)[0][0])
+
+
+def commands_present(store) -> list[str]:
+    """The commands whose runs the store holds, sorted.
+
+    Parameters
+    ----------
+    store : str or Path
+        The store's file.
+
+    Returns
+    -------
+    list of str
+    """
+    return [str(r[0]) for r in _query(store, "SELECT DISTINCT command FROM runs ORDER BY command")]
+
+
+def recorded_as(store, result) -> int | None:
+    """The id of the run of the store that is ``result``'s run, or None.
+
+    The same run: the same command, inputs' SHA-256 and options (:func:`run_key`). None where the store holds
+    none (or there is no store yet). The store is only read.
+
+    Parameters
+    ----------
+    store : str or Path
+        The store's file.
+    result : capred.result.Result
+        Any command's result.
+
+    Returns
+    -------
+    int or None
+    """
+    from .io import encode_json
+
+    if _inspect(Path(store)) is None:
+        return None
+    # the run's identity is in the document's header (command, inputs, options): the payload is not built
+    doc = json.loads(encode_json(result.header()).decode("utf-8"))
+    row = _query(store, "SELECT id FROM runs WHERE run_key = ?", (run_key(doc),))
+    return int(row[0][0]) if row else None

@@ -14,6 +14,26 @@ from dataclasses import dataclass
 
 @dataclass(frozen=True)
 class Quantity:
+    """One quantity of the glossary: its symbol, output unit and scale, kind and physical limits.
+
+    Attributes
+    ----------
+    symbol : str
+        The symbol of plots and console headers (``"σ_N"``).
+    unit : str
+        The output unit (``"kPa"``).
+    factor : float
+        SI value × factor = value in the output unit.
+    kind : str
+        A key of ``capred.units.SI_UNIT`` (``"pressure"``): the SI unit of the value computed with.
+    description : str
+        What the quantity is, in words.
+    lower, upper : float or None
+        Hard limits in SI: a value outside is physically impossible (None: no limit).
+    lower_open, upper_open : bool
+        True when the limit itself is excluded (x > lower, x < upper).
+    """
+
     symbol: str  # for plots and console headers
     unit: str  # output unit
     factor: float  # SI value * factor = value in the output unit
@@ -558,8 +578,10 @@ def renamed_keywords(**old_to_new: str):
 
 
 class StableJsonKeys:
-    """Mixin of an options dataclass whose fields were renamed to the glossary: ``record()`` (the JSON
-    ``options`` and ``option_units``) keeps the keys users have, ``JSON_NAMES`` mapping field -> key.
+    """Mixin of an options dataclass whose fields were renamed to the glossary.
+
+    ``record()`` (the JSON ``options`` and ``option_units``) keeps the keys users have, ``JSON_NAMES`` mapping field ->
+    key.
 
     Put it before ``capred.result.Options`` among the bases.
     """

@@ -54,7 +54,7 @@ class Parameter:
 
     @property
     def relative_stderr(self) -> float:
-        """stderr / |value| [-] (inf when the value is 0 and the error is not)."""
+        """Relative standard error, stderr / |value| [-] (inf when the value is 0 and the error is not)."""
         if self.value == 0:
             return 0.0 if self.stderr == 0 else math.inf
         return abs(self.stderr / self.value)
@@ -149,7 +149,13 @@ class Parameters(Mapping):
         return len(self.items_)
 
     def valuesdict(self) -> dict[str, float]:
-        """``{name: value}`` as plain floats (lmfit's name for the same thing)."""
+        """The values by name, as lmfit's method of the same name.
+
+        Returns
+        -------
+        dict of str to float
+            ``{name: value}`` as plain floats, in the record's units.
+        """
         return {p.name: float(p.value) for p in self.items_}
 
     def __repr__(self) -> str:
@@ -271,9 +277,10 @@ def deprecated(old: str, new: str, value):
 
 
 def non_finite_options(options) -> list[str]:
-    """The fields of an Options record holding NaN or an infinity (alone or in a tuple or list of values)
-    that their default does not hold: an option is a number a user typed, and ``nan`` or ``inf`` parse as
-    floats but are no value of any quantity.
+    """The fields of an Options record holding NaN or an infinity that their default does not hold.
+
+    Alone or in a tuple or list of values: an option is a number a user typed, and ``nan`` or ``inf`` parse as floats
+    but are no value of any quantity.
 
     Parameters
     ----------

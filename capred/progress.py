@@ -1,5 +1,7 @@
-"""Progress of long single runs on a terminal: the reduction's loops (``steps()``), the figures and the files
-(``task()``) advance a rich progress bar on standard error while ``showing()`` is active.
+"""Progress of long single runs on a terminal.
+
+The reduction's loops (``steps()``), the figures and the files (``task()``) advance a rich progress bar on standard
+error while ``showing()`` is active.
 
 The bar appears only once a run has lasted ``DELAY`` seconds (a quick run prints
 nothing extra) and disappears when the block ends. The command line turns it on
@@ -80,7 +82,13 @@ def task(description: str, total: int | None = None) -> Iterator[Callable[[int],
 
 
 def wanted() -> bool:
-    """Whether this process is a command-line run that shows progress (``showing(True)`` was entered)."""
+    """Whether this process is a command-line run that shows progress.
+
+    Returns
+    -------
+    bool
+        True once ``showing(True)`` was entered.
+    """
     return _wanted
 
 
@@ -91,8 +99,9 @@ def detach() -> None:
 
 @contextmanager
 def showing(enabled: bool, delay: float = DELAY):
-    """Show the progress of ``steps()`` and ``task()`` on standard error while the block runs (when
-    ``enabled``), from ``delay`` seconds on; inside another ``showing`` block, its display is reused.
+    """Show the progress of ``steps()`` and ``task()`` on standard error while the block runs.
+
+    Shown when ``enabled``, from ``delay`` seconds on; inside another ``showing`` block, its display is reused.
 
     Parameters
     ----------

@@ -335,8 +335,10 @@ def record_store_rows(record, material=None, prefix: str = "", level: str = "95"
 
 
 def parameter_store_rows(params, material=None, prefix: str = "") -> list[StoreRow]:
-    """The lab store's rows of fitted parameters (:class:`capred.parameters.Parameter`, each with its JSON name,
-    value, standard error, 95 % interval and unit): ``name`` with its interval and ``name_se``, both in its unit.
+    """The lab store's rows of fitted parameters (:class:`capred.parameters.Parameter`).
+
+    Each with its JSON name, value, standard error, 95 % interval and unit: ``name`` with its interval and ``name_se``,
+    both in its unit.
 
     Parameters
     ----------
@@ -422,8 +424,9 @@ def record_columns(records: dict, level: str = "95") -> dict:
 
 
 def record_json_columns(records: dict, start: int, stop: int, level: str = "95") -> dict:
-    """Per-row JSON values of records for rows start..stop-1: ``{key: list}``; a model-indexed field gives a
-    list of ``{model: value}`` dicts, a pair a list of ``[low, high]``.
+    """Per-row JSON values of records for rows start..stop-1: ``{key: list}``.
+
+    A model-indexed field gives a list of ``{model: value}`` dicts, a pair a list of ``[low, high]``.
 
     Parameters
     ----------
@@ -469,10 +472,11 @@ def record_json_columns(records: dict, start: int, stop: int, level: str = "95")
 
 
 def columns_of_rows(rows: list[dict]) -> dict:
-    """Rows (dicts, some keys absent) as columns in order of first appearance, typed as pandas would type
-    them, so that capred.io.writers.write_csv_file writes the bytes it writes for ``pandas.DataFrame(rows)``:
-    whole numbers stay integers unless a row lacks them, numbers with a gap are floats with NaN there,
-    anything else is an object column (None where absent).
+    """Rows (dicts, some keys absent) as columns in order of first appearance, typed as pandas would type them.
+
+    So that capred.io.writers.write_csv_file writes the bytes it writes for ``pandas.DataFrame(rows)``: whole numbers
+    stay integers unless a row lacks them, numbers with a gap are floats with NaN there, anything else is an object
+    column (None where absent).
 
     Parameters
     ----------

@@ -12,6 +12,12 @@ from importlib import import_module
 
 @dataclass(frozen=True)
 class Reduction:
+    """One command of capred: what it runs and with which options, its sample, outputs and methods text.
+
+    The callables are named as ``"module:function"`` strings, imported only when the command runs, so that
+    ``--help`` imports no numpy. Each field is described where it is declared.
+    """
+
     name: str  # the command as typed: "shear", "bridge solve"
     run_path: str  # "module:function" taking (source, options)
     options_path: str  # "module:class" of its options

@@ -11,6 +11,22 @@ from dataclasses import dataclass
 
 @dataclass(frozen=True)
 class Reference:
+    """One published source of capred's models and methods.
+
+    Attributes
+    ----------
+    authors : str
+        As cited in text: ``"Prunier et al."``, ``"Kool & Parker"``.
+    year : int or None
+        Year of publication (None: not dated).
+    title : str
+        Title of the work.
+    source : str
+        Journal, volume and pages, or the kind of document.
+    doi : str or None
+        Its DOI, without ``https://doi.org/``.
+    """
+
     authors: str  # as cited in text: "Prunier et al.", "Kool & Parker"
     year: int | None
     title: str
@@ -19,6 +35,7 @@ class Reference:
 
     @property
     def short(self) -> str:
+        """The citation in text: ``authors (year)``, or ``authors (n.d.)`` without a year."""
         return f"{self.authors} ({self.year})" if self.year else f"{self.authors} (n.d.)"
 
     def full(self) -> str:

@@ -110,24 +110,46 @@ class Result:
         raise NotImplementedError
 
     def method_notes(self) -> tuple[list[str], list[str]]:
-        """(paragraphs, reference keys) the run adds to its command's methods text (e.g. the models in force)."""
+        """(paragraphs, reference keys) the run adds to its command's methods text (e.g. the models in force).
+
+        Returns
+        -------
+        paragraphs : list of str
+            Text added to the methods section.
+        references : list of str
+            Keys of capred.references.REFERENCES they cite.
+        """
         return [], []
 
     def season_rows(self) -> list[dict]:
-        """Rows of a batch's season.csv (per material: c, phi, their se, n, best model...); none by default."""
+        """Rows of a batch's season.csv (per material: c, phi, their se, n, best model...); none by default.
+
+        Returns
+        -------
+        list of dict
+            One dict per season.csv row (empty by default).
+        """
         return []
 
     def csv_tables(self) -> dict:
-        """The tables the writer puts in CSV files: ``tables()`` by default; a large result may give plain
-        column mappings (name -> array) instead, which write without pandas. Headers follow
-        :func:`csv_header` (``name [unit]``)."""
+        """The tables the writer puts in CSV files: ``tables()`` by default.
+
+        A large result may give plain column mappings (name -> array) instead, which write without pandas. Headers
+        follow :func:`csv_header` (``name [unit]``).
+
+        Returns
+        -------
+        dict
+            File stem -> a DataFrame, a column mapping or a Spool, under ``name [unit]`` headers.
+        """
         return {stem: with_csv_headers(table) for stem, table in self.tables().items()}
 
     def store_rows(self, material: str | None = None) -> list | None:
-        """The rows the lab store records for the run (capred.lab_store), built from the records' declarations
-        (capred.records.StoreRow: quantity, value, 95 % interval and unit of one declaration each), never by
-        reading the JSON back. Every command declares its own (an empty list where it records none); None by
-        default: a run of a command that declares none cannot be recorded (capred.lab_store.rows_of refuses it).
+        """The rows the lab store records for the run (capred.lab_store), built from the records' declarations.
+
+        capred.records.StoreRow: quantity, value, 95 % interval and unit of one declaration each, never by reading the
+        JSON back. Every command declares its own (an empty list where it records none); None by default: a run of a
+        command that declares none cannot be recorded (capred.lab_store.rows_of refuses it).
 
         Parameters
         ----------
@@ -141,19 +163,35 @@ class Result:
         return None
 
     def extra_files(self) -> dict[str, bytes]:
-        """Files of the command's own format written beside the tables (name -> bytes); none by default."""
+        """Files of the command's own format written beside the tables (name -> bytes); none by default.
+
+        Returns
+        -------
+        dict of str to bytes
+            File name -> its content (empty by default).
+        """
         return {}
 
     # --- display: capred.report presents every result; its one entry, report.notebook, is imported when a
     # display method is called (never when this module loads: result.py sits below report/) -------------
     def figures(self) -> dict:
-        """The figure sheets of the run, {file stem: capred.report.sheets.Sheet} (nothing drawn yet)."""
+        """The figure sheets of the run, {file stem: capred.report.sheets.Sheet} (nothing drawn yet).
+
+        Returns
+        -------
+        dict of str to capred.report.sheets.Sheet
+        """
         from .report.notebook import figures
 
         return figures(self)
 
     def console_tables(self) -> list[TableSpec]:
-        """The summary tables of the run, as the console and report.html show them."""
+        """The summary tables of the run, as the console and report.html show them.
+
+        Returns
+        -------
+        list of capred.table_spec.TableSpec
+        """
         from .report.notebook import console_tables
 
         return console_tables(self)
@@ -208,24 +246,54 @@ class Result:
 
     # --- shared -------------------------------------------------------------------------------
     def row_count(self) -> int:
-        """Rows of the per-row table (a long result counts them without building it)."""
+        """Rows of the per-row table (a long result counts them without building it).
+
+        Returns
+        -------
+        int
+            0 for a result without tables.
+        """
         return len(self.table()) if self.tables() else 0
 
     def all_warnings(self) -> list[str]:
-        """Warnings of the run (implausible options and data), as JSON, console and report show them."""
+        """Warnings of the run (implausible options and data), as JSON, console and report show them.
+
+        Returns
+        -------
+        list of str
+            Each warning once, in the order raised.
+        """
         return list(dict.fromkeys(self.warnings))
 
     def all_notes(self) -> list[str]:
-        """Notes of the run: how option units were read, then the command's own notes."""
+        """Notes of the run: how option units were read, then the command's own notes.
+
+        Returns
+        -------
+        list of str
+            Each note once, in that order.
+        """
         unit_notes = self.options.unit_notes if self.options is not None else []
         return list(dict.fromkeys(unit_notes + list(self.notes)))
 
     def table(self):
-        """The per-row table as a pandas DataFrame."""
+        """The per-row table as a pandas DataFrame.
+
+        Returns
+        -------
+        pandas.DataFrame
+            The first of :meth:`tables`.
+        """
         return next(iter(self.tables().values()))
 
     def header(self) -> dict:
-        """The keys every command's document starts with."""
+        """The keys every command's document starts with.
+
+        Returns
+        -------
+        dict
+            ``command``, ``capred_version``, ``inputs``, ``options`` (SI values), ``option_units``, ``warnings`` and ``notes``.
+        """
         from . import __version__
 
         values, units = self.options.record() if self.options is not None else ({}, {})
@@ -240,7 +308,13 @@ class Result:
         }
 
     def json_lazy(self) -> dict:
-        """The JSON document with long row lists left as Rows (for streaming and summaries); cached."""
+        """The JSON document with long row lists left as Rows (for streaming and summaries); cached.
+
+        Returns
+        -------
+        dict
+            JSON key -> value; long lists may be :class:`capred.spool.Rows`.
+        """
         cached = self.__dict__.get("_json_lazy")
         if cached is None:
             cached = self.__dict__["_json_lazy"] = {**self.header(), **self.payload(lazy=True)}
@@ -250,6 +324,11 @@ class Result:
         """The JSON document of the run: the keys every command shares, then the command's own.
 
         Built once per result and cached: do not modify the returned dict.
+
+        Returns
+        -------
+        dict
+            The document ``--json`` prints, JSON key -> value.
         """
         cached = self.__dict__.get("_json_cache")
         if cached is None:

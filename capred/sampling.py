@@ -1,5 +1,7 @@
-"""Which rows of a long table are shown: the one rule shared by the pipelines (which keep those rows of a long
-run in memory) and report/ (which draws and prints them).
+"""Which rows of a long table are shown.
+
+The one rule shared by the pipelines (which keep those rows of a long run in memory) and report/ (which draws and prints
+them).
 
 Figures draw at most ``MAX_MARKERS`` markers per series (a seeded random sample above it), and per-row
 console tables list the first ``MAX_ROWS`` rows; every output file holds every row.
@@ -17,8 +19,9 @@ MAX_ROWS = 20
 
 
 def sample_rows(index, limit: int = MAX_MARKERS, seed: int = THIN_SEED) -> np.ndarray:
-    """At most ``limit`` of the row indices ``index`` (a boolean mask or indices): all of them, or a random
-    sample without replacement (``numpy.random.default_rng(seed)``), in increasing order.
+    """At most ``limit`` of the row indices ``index`` (a boolean mask or indices), in increasing order.
+
+    All of them, or a random sample without replacement (``numpy.random.default_rng(seed)``).
 
     Parameters
     ----------

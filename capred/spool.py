@@ -1,5 +1,8 @@
-"""Long outputs made or kept out of memory: :class:`Rows` (a JSON list made on demand, block by block) and
-:class:`Spool` (table columns spooled to a temporary file), which capred.io.writers streams to disk."""
+"""Long outputs made or kept out of memory, which capred.io.writers streams to disk.
+
+:class:`Rows` (a JSON list made on demand, block by block) and :class:`Spool` (table columns spooled to a temporary
+file).
+"""
 
 from __future__ import annotations
 
@@ -114,7 +117,13 @@ class Spool:
         return block
 
     def blocks(self):
-        """The blocks' column dicts, in order."""
+        """The blocks' column dicts, in order.
+
+        Yields
+        ------
+        dict of str to numpy.ndarray
+            One block's columns, name -> values.
+        """
         for k in range(len(self._index)):
             yield self._block(k)
 

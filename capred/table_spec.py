@@ -1,5 +1,7 @@
-"""A console table as every command hands it to capred.report (console, report.html, notebooks): title,
-headers with alignment, rows of text."""
+"""A console table as every command hands it to capred.report (console, report.html, notebooks).
+
+Title, headers with alignment, rows of text.
+"""
 
 from __future__ import annotations
 

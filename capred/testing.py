@@ -196,8 +196,10 @@ def check_effective_stress_model(entry) -> None:
 
 @contextmanager
 def _registered_for_the_check(entry, registry: dict):
-    """``entry`` in ``registry`` while the check runs (a model checked before it is registered, as the docs show,
-    reads its own parameters as it will once registered); the registry and the glossary as they were after."""
+    """Hold ``entry`` in ``registry`` while the check runs; the registry and the glossary as they were after.
+
+    A model checked before it is registered, as the docs show, reads its own parameters as it will once registered.
+    """
     from .nomenclature import QUANTITIES
 
     if registry.get(entry.name) is entry:

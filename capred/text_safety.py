@@ -1,15 +1,15 @@
-"""What a user's text may not carry raw out of capred: terminal controls, bidi overrides, characters XML forbids.
+r"""What a user's text may not carry raw out of capred: terminal controls, bidi overrides, characters XML forbids.
 
-A material named ``"\\x1b]0;owned\\x07sand"`` or ``"sand\\u202egnp.exe"`` is data: capred keeps it exactly
-(JSON holds the same characters, written as ``\\u`` escapes) but never lets it act on a terminal, an HTML page
+A material named ``"\x1b]0;owned\x07sand"`` or ``"sand\u202egnp.exe"`` is data: capred keeps it exactly
+(JSON holds the same characters, written as ``\u`` escapes) but never lets it act on a terminal, an HTML page
 or an SVG file. The rules, in one place:
 
 - C0 controls (U+0000-001F, but tab and line feed) and DEL are shown as their Unicode control pictures
   (ESC as ␛, BEL as ␇: U+2400-2421);
-- C1 controls (U+0080-009F, e.g. the CSI U+009B that some terminals obey like ESC [) are shown as ``\\x9b``;
+- C1 controls (U+0080-009F, e.g. the CSI U+009B that some terminals obey like ESC [) are shown as ``\x9b``;
 - bidi embeddings, overrides and isolates (U+202A-202E, U+2066-2069), which reorder what a reader sees, are
   shown as ``<U+202E>``, and a file holding any is flagged once, as a warning (:func:`controls_warning`);
-- JSON keeps every character; C1 and bidi controls are written as ``\\u`` escapes (C0 always are).
+- JSON keeps every character; C1 and bidi controls are written as ``\u`` escapes (C0 always are).
 
 Where text leaves capred: the console (capred.report.render), report.html (a jinja finalize of
 capred.report.html), SVG figures (capred.io.writers makes every saved .svg well-formed), error messages (the
@@ -43,7 +43,7 @@ def _escaped(ch: str) -> str:
 
 
 def visible(text: str, pictures: bool = True) -> str:
-    """``text`` with its control and bidi characters shown (control pictures, ``\\x9b``, ``<U+202E>``).
+    r"""``text`` with its control and bidi characters shown (control pictures, ``\x9b``, ``<U+202E>``).
 
     Parameters
     ----------
@@ -61,7 +61,7 @@ def visible(text: str, pictures: bool = True) -> str:
 
     Examples
     --------
-    >>> visible("sand\\x1b[2J")
+    >>> visible("sand\x1b[2J")
     'sand␛[2J'
     """
     if not isinstance(text, str) or _UNSAFE.search(text) is None:
@@ -139,9 +139,10 @@ def excerpt(text: str, limit: int = EXCERPT) -> str:
 
 
 def xml_safe(text: str) -> str:
-    """``text`` fit for an XML 1.0 document (SVG): every control character shown (XML forbids C0 but tab, line
-    feed and carriage return), bidi controls shown, as ASCII escapes (``\x1b``: the fonts of figures lack the
-    control pictures).
+    r"""``text`` fit for an XML 1.0 document (SVG), every control character shown as an ASCII escape.
+
+    XML forbids C0 but tab, line feed and carriage return; bidi controls are shown too (``\x1b``: the fonts of figures
+    lack the control pictures).
 
     Parameters
     ----------
@@ -159,10 +160,11 @@ def xml_safe(text: str) -> str:
 
 
 def safe_axes(ax, labels=None):
-    """Show the control and bidi characters of every text a panel put on ``ax`` (title, axis labels, texts and
-    annotations, the labels its legend will show), before matplotlib lays it out or draws it: the one
-    neutraliser of figure text whatever its source (a file, an option, a lab store), so no raw control reaches
-    an SVG (where XML forbids it) or the terminal (matplotlib's missing-glyph warning quotes the character).
+    """Show the control and bidi characters of every text a panel put on ``ax``.
+
+    Title, axis labels, texts and annotations, the labels its legend will show, before matplotlib lays it out or draws
+    it: the one neutraliser of figure text whatever its source (a file, an option, a lab store), so no raw control
+    reaches an SVG (where XML forbids it) or the terminal (matplotlib's missing-glyph warning quotes the character).
 
     Parameters
     ----------
@@ -207,7 +209,7 @@ def _safe_ticks(axis, fix) -> None:
 
 
 def json_escape(data: bytes) -> bytes:
-    """UTF-8 JSON bytes with C1 and bidi controls written as ``\\u`` escapes (the same characters, inert).
+    r"""UTF-8 JSON bytes with C1 and bidi controls written as ``\u`` escapes (the same characters, inert).
 
     JSON's structure is ASCII, so these bytes occur only inside strings.
 
@@ -252,8 +254,9 @@ def safe_spec(spec):
 
 
 def html_finalize(value):
-    """The jinja ``finalize`` of capred's HTML templates: every value shown is made :func:`visible` (markup
-    stays markup; text is escaped afterwards by autoescape).
+    """The jinja ``finalize`` of capred's HTML templates: every value shown is made :func:`visible`.
+
+    Markup stays markup; text is escaped afterwards by autoescape.
 
     Parameters
     ----------

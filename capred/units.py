@@ -41,7 +41,13 @@ _STANDARD_GRAVITY = 9.80665  # m/s^2, the definition of gram-force / kilogram-fo
 
 @lru_cache(maxsize=1)
 def registry():
-    """The one pint UnitRegistry of the process (built on first use: it is slow to create)."""
+    """The one pint UnitRegistry of the process, built on first use (it is slow to create).
+
+    Returns
+    -------
+    pint.UnitRegistry
+        The registry, its parsed definitions cached on disk where the cache folder can be written.
+    """
     import pint
 
     try:  # parsed definitions cached on disk: 20 ms instead of 350 ms per process
@@ -61,8 +67,9 @@ _WATER_HEAD = re.compile(r"^\s*(?P<len>[a-zµμ]*m)\s*(?:_?H2O|water|of water|wc
 
 
 def ascii_unit(unit: str) -> str:
-    """A unit as typed with superscripts and product signs, in plain text: ``'cm³'`` -> ``'cm^3'``,
-    ``'kN·m⁻³'`` -> ``'kN*m^-3'``. Other text is returned unchanged.
+    """A unit as typed with superscripts and product signs, in plain text.
+
+    ``'cm³'`` -> ``'cm^3'``, ``'kN·m⁻³'`` -> ``'kN*m^-3'``. Other text is returned unchanged.
 
     Parameters
     ----------
@@ -162,9 +169,24 @@ _COMMON = {
 def conversion(unit: str, kind: str) -> tuple[float, str | None]:
     """Factor that turns a value in ``unit`` into SI for a quantity of ``kind``.
 
-    Returns ``(factor, note)``; ``note`` says when a mass per area was read as
-    a force per area (g/cm^2 as gram-force per cm^2), else None.
-    Raises UnitError for an unknown unit or one of the wrong dimension.
+    Parameters
+    ----------
+    unit : str
+        The unit as a file or an option writes it (``"kPa"``, ``"g/cm^3"``, ``"kN·m⁻³"``).
+    kind : str
+        The kind of quantity, a key of ``SI_UNIT`` (its SI unit is the target).
+
+    Returns
+    -------
+    factor : float
+        SI value = factor × value in ``unit``.
+    note : str or None
+        Said when a mass per area was read as a force per area (g/cm^2 as gram-force per cm^2), else None.
+
+    Raises
+    ------
+    UnitError
+        For an unknown unit, or one of the wrong dimension.
     """
     if (unit, kind) in _COMMON:  # the usual lab units need no unit registry (it takes 0.2 s to build)
         return _COMMON[unit, kind], None

@@ -1,6 +1,8 @@
-"""Records that hold SI values and offer each in its output unit (``rec.tau_kPa``), derived from the field's one
-:func:`capred.records.output` declaration; the old SI names warn for one release (README, "Renamed in this
-release")."""
+"""Records that hold SI values and offer each in its output unit (``rec.tau_kPa``).
+
+Derived from the field's one :func:`capred.records.output` declaration; the old SI names warn for one release (README,
+"Renamed in this release").
+"""
 
 from __future__ import annotations
 
@@ -11,8 +13,9 @@ from .records import scale_value
 
 
 class _RenamedField:
-    """The old attribute of a field stored in SI: every read warns (capred.parameters.deprecated) and gives the SI
-    value.
+    """The old attribute of a field stored in SI.
+
+    Every read warns (capred.parameters.deprecated) and gives the SI value.
 
     A data descriptor: the dataclass's ``__init__`` stores through it (into the instance's ``__dict__``, under
     the field's name). capred's own code never reads through it: :func:`capred.records.field_value`,

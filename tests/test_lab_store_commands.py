@@ -108,3 +108,16 @@ def test_shear_band_angles_are_recorded_in_degrees(tmp_path):
     rows = {r.quantity: r for r in res.store_rows(None)}
     assert rows["coulomb_deg"].value == 60.75 and rows["coulomb_deg"].unit == "deg"
     assert rows["coulomb_minus_measured_deg"].value == 0.75  # measured 60 deg in the registry's example
+
+
+def test_compression_records_its_estimates_for_history(tmp_path):
+    """capred compression once recorded e0 alone: its estimates (C_c, lambda = C_c/ln 10, the yield stresses ...)
+    are what a lab charts, each with its interval and standard error in its declared unit."""
+    res = _result(REDUCTIONS["compression"])
+    rows = {r.quantity: r for r in res.store_rows("clay")}
+    est = res.to_json()["estimates"]
+    c_c, lam = rows["C_c"], rows["lambda"]
+    assert c_c.value == est["C_c"]["value"] and (c_c.ci_low, c_c.ci_high) == tuple(est["C_c"]["ci95"])
+    assert c_c.unit == "-" and rows["C_c_se"].value == est["C_c"]["se"]
+    assert math.isclose(lam.value, c_c.value / math.log(10), rel_tol=1e-12)
+    assert rows["sigma_y_kPa"].unit == "kPa"

@@ -42,6 +42,8 @@ ALLOWED = {
     # glossary "phi": the friction angle phi [deg] (Prunier et al. 2024 write phi'); Envelope.phi is that angle
     # in degrees, beside c [Pa] -- the one meaning "phi" has in capred/nomenclature.py.
     ("capred.pipelines.triaxial_records.Envelope", "phi"): "glossary 'phi': friction angle [deg]",
+    # the shear envelope's numbers, named by their glossary keys (phi: the friction angle [deg], as above)
+    ("capred.pipelines.shear_records.EnvelopeNumbers", "phi"): "glossary 'phi': friction angle [deg]",
     # the fitted law chi_power's parameter, named as its JSON key and its registry entry's fitted=("kappa",)
     # (capred.testing calls a law with **entry.typical, keyed by those names): one meaning, the fitted exponent
     ("capred.fitting.chi_laws.chi_power_law", "kappa"): "chi_power's fitted exponent, its JSON key 'kappa'",

@@ -47,8 +47,11 @@ def _root(
         bool, typer.Option("--version", callback=_version, is_eager=True, help="Show the version and exit.")
     ] = False,
 ):
-    """capred turns raw unsaturated-soil lab readings into effective stresses,
-    strength parameters, model comparisons and report figures."""
+    """The capred command line: unsaturated-soil lab readings to effective stresses, strength and figures.
+
+    capred turns raw unsaturated-soil lab readings into effective stresses, strength parameters, model comparisons and
+    report figures.
+    """
 
 
 data_commands.register(app)
@@ -79,12 +82,12 @@ def batch(
         typer.Option("--store", help="Record every run in this lab store (SQLite; see `capred history`)."),
     ] = None,
 ):
-    """Run a season's worth of reductions listed in a manifest: one line per run,
-    with the command (shear, triaxial-bounds, retention, prism, skempton-b,
-    rumpf, bridge solve, bridge compare), the input file or glob, and that
-    command's options as on the command line. Every file gets its own folder
-    under --out; bad files are reported and the others still complete;
-    index.csv lists every output; the exit code is 1 if anything failed.
+    """Run a season's worth of reductions listed in a manifest.
+
+    One line per run, with the command (shear, triaxial-bounds, retention, prism, skempton-b, rumpf, bridge solve,
+    bridge compare), the input file or glob, and that command's options as on the command line. Every file gets its own
+    folder under --out; bad files are reported and the others still complete; index.csv lists every output; the exit
+    code is 1 if anything failed.
 
     Example: capred batch season.csv --out results   (season.csv: command,input,options /
     shear,runs/*.csv,--gamma-w 10 --no-plots)

@@ -1,5 +1,7 @@
-"""`capred bridge curve | solve | compare | rupture | laws | yade-files`: exact capillary bridges between two spheres or a
-sphere and a plane."""
+"""`capred bridge curve | solve | compare | rupture | laws | yade-files`: exact capillary bridges.
+
+Between two spheres or a sphere and a plane.
+"""
 
 from __future__ import annotations
 
@@ -81,9 +83,9 @@ def curve(
     ) = None,
     pendular_limit: option(CURVE, "pendular_limit", note="the bound of the pendular regime panel") = None,
 ) -> Invocation:
-    """Evenepoel's analytical comparison: sigma' = F_cap/(pi R^2) against
-    S_R = 3 V_w/(2 pi R^3) for two spheres in contact, from exact bridges,
-    beside Israelachvili, Bishop, Own 1 and Own 2; one panel inside the
+    """Evenepoel's analytical comparison: sigma' = F_cap/(pi R^2) against S_R = 3 V_w/(2 pi R^3).
+
+    For two spheres in contact, from exact bridges, beside Israelachvili, Bishop, Own 1 and Own 2; one panel inside the
     pendular regime and one over the whole concave range.
 
     Example: capred bridge curve --radius 1 --contact-angle 0 --points 2000
@@ -153,14 +155,12 @@ def solve(
         "a second bridge say so in their note.",
     ) = None,
 ) -> Invocation:
-    """Exact bridge per row between spheres of radii R and R2 (or a sphere and
-    a plane): neck radius r0, F_cap = F_L + F_T, V_w, filling angles on both
-    particles, liquid-gas area and its n(x)n integrals (nn11, nn33),
-    S_R = 3V_w/(2 pi R^3) and sigma' = F_cap/(pi R^2). Each particle may have
-    its own contact angle (columns contact_angle and contact_angle2). Every
-    bridge is verified to reproduce its gap and volume (or suction) to 1e-9; a
-    row without one (beyond rupture, too much water) gets a status, not an
-    error.
+    """Exact bridge per row between spheres of radii R and R2 (or a sphere and a plane).
+
+    Neck radius r0, F_cap = F_L + F_T, V_w, filling angles on both particles, liquid-gas area and its n(x)n integrals
+    (nn11, nn33), S_R = 3V_w/(2 pi R^3) and sigma' = F_cap/(pi R^2). Each particle may have its own contact angle
+    (columns contact_angle and contact_angle2). Every bridge is verified to reproduce its gap and volume (or suction) to
+    1e-9; a row without one (beyond rupture, too much water) gets a status, not an error.
 
     Example: capred bridge solve cases.csv --json
 
@@ -195,10 +195,10 @@ def solve(
 def compare(
     surface_tension: option(BRIDGE, "surface_tension", note="of rows without 'gamma'") = None,
 ) -> Invocation:
-    """Microscopic tests against theory: the measured force of each sphere pair
-    beside the exact bridge of the same R, gap, contact angle and V_w, the
-    toroidal approximation, Willett et al. (2000), Israelachvili and each
-    closed-form law of `capred bridge laws`, with residuals.
+    """Microscopic tests against theory: the measured force of each sphere pair beside the models, with residuals.
+
+    The exact bridge of the same R, gap, contact angle and V_w, the toroidal approximation, Willett et al. (2000),
+    Israelachvili and each closed-form law of `capred bridge laws`.
 
     Example: capred bridge compare micro_tests.csv --out micro
 
@@ -225,10 +225,10 @@ def rupture(
         BRIDGE, "surface_tension", note="of rows without 'gamma' (for the suction and force at rupture)"
     ) = None,
 ) -> Invocation:
-    """Rupture distance at constant volume: the widest gap a bridge of volume
-    V_w spans between particles of radii R and R2 (or a sphere and a plane),
-    beside Lian et al.'s (1993) estimate D = (1 + theta/2) V^(1/3), with the
-    bridge at rupture; figure of both against V^(1/3).
+    """Rupture distance at constant volume, beside Lian et al.'s (1993) estimate.
+
+    The widest gap a bridge of volume V_w spans between particles of radii R and R2 (or a sphere and a plane), beside
+    the estimate D = (1 + theta/2) V^(1/3), with the bridge at rupture; figure of both against V^(1/3).
 
     Example: capred bridge rupture volumes.csv --out rupture
 
@@ -262,11 +262,11 @@ def yade_files(
         help="Suctions per distance: 0, then geometric from uc* = 0.002 to a mean filling angle of 1 deg at contact.",
     ) = None,
 ) -> Invocation:
-    """Capillary files for YADE's Law2_ScGeom_CapillaryPhys_Capillarity: one
-    file M(r=<ratio>) per radius ratio, in YADE's layout and dimensionless
-    variables, every row an exact stable bridge (with delta1, delta2, nn11,
-    nn33). Run YADE from the output folder (or copy the M(r=...) files next
-    to your script).
+    """Capillary files for YADE's Law2_ScGeom_CapillaryPhys_Capillarity.
+
+    One file M(r=<ratio>) per radius ratio, in YADE's layout and dimensionless variables, every row an exact stable
+    bridge (with delta1, delta2, nn11, nn33). Run YADE from the output folder (or copy the M(r=...) files next to your
+    script).
 
     Example: capred bridge yade-files --contact-angle 0 --out capillary_files
 
@@ -318,13 +318,12 @@ def laws(
         typer.Option("--yes", help=f"Solve a grid of more than {MAX_GRID_POINTS:,} points given by options."),
     ] = False,
 ) -> Invocation:
-    """Which closed-form capillary force a DEM code should use: each law of
-    the registry ({laws}) against the exact
-    Young-Laplace bridge at the same contact angle, volume and gap (the stable
-    bridge at constant volume), forces in units of 2 pi R gamma; per region of
-    gap x volume x angle x geometry each law's median and largest relative
-    error and which laws stay within the tolerance; error maps, one panel per
-    law.
+    """Which closed-form capillary force a DEM code should use.
+
+    Each law of the registry ({laws}) against the exact Young-Laplace bridge at the same contact angle, volume and gap
+    (the stable bridge at constant volume), forces in units of 2 pi R gamma; per region of gap x volume x angle x
+    geometry each law's median and largest relative error and which laws stay within the tolerance; error maps, one
+    panel per law.
 
     Example: capred bridge laws --sample --out laws
 

@@ -46,8 +46,9 @@ def prism(
     friction_angle: option(PRISM, "friction_angle") = None,
     gamma_w: option(PRISM, "gamma_w") = None,
 ) -> Invocation:
-    """Bernatzik's (1948) prism test: maximal capillary pressure
-    P_kmax = sigma_b (1 - sin rho)/(2 sin rho) and capillary rise h_c = P_kmax/gamma_w.
+    """Bernatzik's (1948) prism test: maximal capillary pressure and capillary rise.
+
+    P_kmax = sigma_b (1 - sin rho)/(2 sin rho) and h_c = P_kmax/gamma_w.
 
     Example: capred prism --break-tension "115 g/cm^2" --friction-angle 36
 
@@ -154,14 +155,13 @@ def skempton_b(
         "skempton1954, hilf_lade, schuurman1966, or all (Morvan et al. 2016's comparison).",
     ) = None,
 ) -> Invocation:
-    """Skempton's B against degree of saturation (Morvan et al. 2016, eq. 10):
-    B = 1/(1 + p'0 e0 (1 - S_r)/(kappa P_a0)) with p'0 = p0 - u0, or its inverse
-    S_r from a measured B; with --se and --bc-lambda, the simulation with suction
-    equilibrium (p'0 = p0 - u_a0 + s S_r). Defaults are those of Morvan et al.
-    (2016), Table 1. With --model bounding-surface, the two incremental loops of
-    section 4 with capred's Cam-clay bounding-surface reconstruction (not the BDNS
-    model of the paper's ref. [16], whose equations are not published in a source
-    we could reach); Table 3 fills s_e = 20 kPa, lambda = 0.8, lambda0 = 0.2, A_ini = 0.
+    """Skempton's B against degree of saturation (Morvan et al. 2016, eq. 10).
+
+    B = 1/(1 + p'0 e0 (1 - S_r)/(kappa P_a0)) with p'0 = p0 - u0, or its inverse S_r from a measured B; with --se and
+    --bc-lambda, the simulation with suction equilibrium (p'0 = p0 - u_a0 + s S_r). Defaults are those of Morvan et al.
+    (2016), Table 1. With --model bounding-surface, the two incremental loops of section 4 with capred's Cam-clay
+    bounding-surface reconstruction (not the BDNS model of the paper's ref. [16], whose equations are not published in a
+    source we could reach); Table 3 fills s_e = 20 kPa, lambda = 0.8, lambda0 = 0.2, A_ini = 0.
 
     Example: capred skempton-b --S-R 0.9 --kappa-elastic 0.06
 
@@ -252,8 +252,9 @@ def rumpf(
     surface_tension: option(RUMPF, "surface_tension") = None,
     contact_angle: option(RUMPF, "contact_angle") = None,
 ) -> Invocation:
-    """Rumpf's capillary pressure p_cap = -(6/phi)(S_r/e)(gamma/d_p) cos(theta)
-    (Prunier et al. 2024, eq. 19); negative means tension.
+    """Rumpf's capillary pressure (Prunier et al. 2024, eq. 19); negative means tension.
+
+    p_cap = -(6/phi)(S_r/e)(gamma/d_p) cos(theta).
 
     Example: capred rumpf --shape-factor 1 --void-ratio 0.5 --S-R 0.3 --diameter 0.2
 
@@ -311,11 +312,11 @@ def history(
     ) = None,
     of_command: option(HISTORY, "command", "--of-command", help="Only the runs of this command (e.g. shear).") = None,
 ) -> Invocation:
-    """A lab's history: one quantity of one material per recorded run, with its 95 %
-    interval, on an individuals chart with moving range (centre line and 3-sigma
-    limits from the first 8 runs, sigma = mean moving range / 1.128, or from
-    --reference and --spread); runs beyond the limits are flagged. Record runs
-    with --store lab.sqlite on any command (or CAPRED_STORE).
+    """A lab's history: one quantity of one material per recorded run, on an individuals chart.
+
+    Each run's value with its 95 % interval, on an individuals chart with moving range (centre line and 3-sigma limits
+    from the first 8 runs, sigma = mean moving range / 1.128, or from --reference and --spread); runs beyond the limits
+    are flagged. Record runs with --store lab.sqlite on any command (or CAPRED_STORE).
 
     Example: capred history lab.sqlite --material "Toyoura sand" --quantity phi_deg --out chart
 
@@ -366,9 +367,10 @@ def shear_band(
         SHEAR_BAND, "triaxial", help="summary.json of capred triaxial-bounds: phi' of its envelope."
     ) = None,
 ) -> Invocation:
-    """Shear-band angles to the major principal plane: Coulomb 45 + phi'/2,
-    Roscoe (1970) 45 + psi/2 and Arthur et al. (1977) 45 + (phi' + psi)/4, beside
-    a measured angle (Prunier et al. 2024, Fig. 14: about 70 and 60 deg).
+    """Shear-band angles to the major principal plane, beside a measured angle.
+
+    Coulomb 45 + phi'/2, Roscoe (1970) 45 + psi/2 and Arthur et al. (1977) 45 + (phi' + psi)/4 (Prunier et al. 2024,
+    Fig. 14: about 70 and 60 deg).
 
     Example: capred shear-band --triaxial results/summary.json --dilatancy-angle 8 --measured 60
 

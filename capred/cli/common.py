@@ -115,8 +115,11 @@ class OutputOptions:
 
 @dataclass
 class Invocation:
-    """A parsed command: the builder of a command gives ``command``, ``options`` and ``extra_inputs``;
-    ``command()`` fills in the inputs, output folder and output options shared by every command."""
+    """A parsed command.
+
+    The builder of a command gives ``command``, ``options`` and ``extra_inputs``; ``command()`` fills in the inputs,
+    output folder and output options shared by every command.
+    """
 
     command: str
     options: object
@@ -374,10 +377,11 @@ def command(app: typer.Typer, name: str, full_name: str | None = None, data: str
 
 
 class _Callback:
-    """A command's callback whose signature (the options typer reads) is evaluated when typer builds the command,
-    not when it is registered: the option annotations of a builder module with postponed annotations
-    (``from __future__ import annotations``) call capred.cli.declare.option, which reads the Options declarations,
-    only for the command asked for (`capred --help` reads none).
+    """A command's callback whose signature is evaluated when typer builds the command, not when it is registered.
+
+    The signature holds the options typer reads: the option annotations of a builder module with postponed annotations
+    (``from __future__ import annotations``) call capred.cli.declare.option, which reads the Options declarations, only
+    for the command asked for (`capred --help` reads none).
 
     Parameters
     ----------
@@ -469,8 +473,9 @@ def sources(
     ignore_columns=None,
     limits=None,
 ) -> list:
-    """Input files: the arguments with globs expanded (sorted), the bundled sample, or [None];
-    as TableSources when a sheet, a thousands separator, columns to ignore or reading limits are given.
+    """Input files: the arguments with globs expanded (sorted), the bundled sample, or [None].
+
+    As TableSources when a sheet, a thousands separator, columns to ignore or reading limits are given.
 
     Parameters
     ----------
@@ -616,8 +621,10 @@ def _schema_of(command: str):
 
 
 def _looks_like(command: str, source, n_problems: int = 0):
-    """A Problem saying which command to try when the table that failed is clearly another command's input (its
-    header names at least two more of that command's columns than of this one's, three it lacks), else None."""
+    """A Problem saying which command to try when the failed table is clearly another command's input, else None.
+
+    Clearly: its header names at least two more of that command's columns than of this one's, three it lacks.
+    """
     from ..errors import Problem
     from ..io import TableSource, column_lookup, find_header, match_header, read_grid, source_path
 
@@ -685,6 +692,11 @@ def _single(inv: Invocation) -> None:
     with showing(not inv.json and sys.stderr.isatty()):
         result = REDUCTIONS[inv.command].run(source, inv.options)
     o = inv.output
+    unrecorded = None if write else _store_unrecorded(inv)
+    if unrecorded is not None:
+        from ..report.outputs import add_line
+
+        add_line(result, "warnings", unrecorded)
     written = (
         write_outputs(
             result,
@@ -717,11 +729,39 @@ def _single(inv: Invocation) -> None:
     render(result, out_dir, written)
 
 
+def _store_unrecorded(inv: Invocation) -> str | None:
+    """Why a run that writes no files is not recorded in the store it names (--store or $CAPRED_STORE), or None.
+
+    A store keeps each run beside the folder of its files (its ``out_dir``; capred.lab_store.Recorder records
+    the run once that folder is in place), so a run that only prints is not recorded; saying so is better than
+    recording nothing in silence.
+    """
+    from ..lab_store import STORE_VARIABLE, store_from
+    from ..reductions import REDUCTIONS
+
+    store = store_from(inv.output.store)
+    if store is None or inv.command == "history":
+        return None
+    given = f"--store {store}" if inv.output.store is not None else f"{STORE_VARIABLE}={store}"
+    why = (
+        "with --json and no --out it writes none"
+        if REDUCTIONS[inv.command].files_by_default
+        else f"`capred {inv.command}` writes them only with --out (it prints by default)"
+    )
+    return (
+        f"this run was not recorded in the store: {given} records a run only when its files are written, and {why};"
+        " give --out FOLDER to record it"
+    )
+
+
 def _batch(inv: Invocation) -> None:
     from .. import batch
     from ..reductions import REDUCTIONS
 
     write = inv.out is not None or (not inv.json and REDUCTIONS[inv.command].files_by_default)
+    unrecorded = None if write else _store_unrecorded(inv)
+    if unrecorded is not None:
+        typer.echo(f"Warning: {unrecorded}", err=True)
     root = inv.out or Path.cwd() / "capred_out"
     dirs = batch.output_dirs([inv.command] * len(inv.sources), inv.sources, root)
     lines = file_command_lines(inv.command, inv.sources, [d if write else None for d in dirs])

@@ -32,13 +32,13 @@ def compression(
     reference_stress: option(CO, "reference_stress", note="where e_N is read") = None,
     sample: SampleOpt = False,
 ) -> Invocation:
-    """Compression index C_c (lambda = C_c/ln 10), swelling index C_s (kappa),
-    e_N at a reference stress and the yield stress of an oedometer or isotropic
-    compression test: a smooth bilinear curve fitted to the first loading gives
-    C_c and the bilinear yield stress, and on it the pre-consolidation stress
-    by Casagrande (1936) and Pacheco Silva (1970); unloading stages give C_s,
-    reloading stages C_r; each with SE and 95 % interval. compression.json feeds
-    `skempton-b --compression` and `pt-volume --compression-w/--compression-a`.
+    """Compression and swelling indices and the yield stress of an oedometer or isotropic compression test.
+
+    Compression index C_c (lambda = C_c/ln 10), swelling index C_s (kappa), e_N at a reference stress and the yield
+    stress: a smooth bilinear curve fitted to the first loading gives C_c and the bilinear yield stress, and on it the
+    pre-consolidation stress by Casagrande (1936) and Pacheco Silva (1970); unloading stages give C_s, reloading stages
+    C_r; each with SE and 95 % interval. compression.json feeds `skempton-b --compression` and `pt-volume
+    --compression-w/--compression-a`.
 
     Example: capred compression oedometer.csv --out results/oedometer
 

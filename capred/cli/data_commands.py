@@ -140,12 +140,11 @@ def shear(
     seed: option(SHEAR, "seed", help="Seed of the bootstrap: the same seed gives the same probabilities.") = None,
     **model_options,
 ) -> Invocation:
-    """Direct-shear tests with hanging-column suction (Evenepoel, VUB thesis):
-    dry envelope per material, the effective-stress models (No suction,
-    Bishop, Own 1, Own 2 by default) on every wet test, their scores (all wet
-    tests and pendular ones), how sure the ranking is (bootstrap), the
-    capillary stress each wet test carried (back-analysed from the dry
-    envelope) and report sheets per material.
+    """Direct-shear tests with hanging-column suction (Evenepoel, VUB thesis).
+
+    Dry envelope per material, the effective-stress models (No suction, Bishop, Own 1, Own 2 by default) on every wet
+    test, their scores (all wet tests and pendular ones), how sure the ranking is (bootstrap), the capillary stress each
+    wet test carried (back-analysed from the dry envelope) and report sheets per material.
 
     Values in the file win over the options; options fill absent columns and
     blank cells. Any option may carry a unit: --box-area "36 cm^2".
@@ -292,11 +291,11 @@ def triaxial_bounds(
     extension_path: option(TRIAXIAL, "extension_path") = None,
     material: option(TRIAXIAL, "material", note="one material of the table's material column per run") = None,
 ) -> Invocation:
-    """Bounds of the capillary stress tensor at failure from triaxial tests
-    (Prunier et al. 2024): effective envelope from saturated drained tests, then
-    for every unsaturated test the spherical upper bound (q = q'), the lower
-    bound (sigma1_cap = 0) and the EDTP upper bound (needs s0), with the
-    strength gain q'/q'_sat; groups sharing one tensor get the Appendix 1 analysis.
+    """Bounds of the capillary stress tensor at failure from triaxial tests (Prunier et al. 2024).
+
+    Effective envelope from saturated drained tests, then for every unsaturated test the spherical upper bound (q = q'),
+    the lower bound (sigma1_cap = 0) and the EDTP upper bound (needs s0), with the strength gain q'/q'_sat; groups
+    sharing one tensor get the Appendix 1 analysis.
 
     Example: capred triaxial-bounds tests.csv --out bounds
 
@@ -359,18 +358,15 @@ def retention(
     ] = None,
     gamma_w: option(RETENTION, "gamma_w", note="to turn heads into suction") = None,
 ) -> Invocation:
-    """Fit water retention curves for every branch (drying, wetting): van
-    Genuchten (1980) (m = 1 - 1/n, m free), Brooks & Corey (1964), Kosugi
-    (1996), Fredlund & Xing (1994) (with and without C), Durner (1994), with
-    standard errors, 95 % intervals, correlations, R^2, RMSE, AIC, AICc, BIC
-    and a model-selection table; --hysteresis kool-parker fits both branches
-    jointly. Suction as a pressure, a head or pF; water as theta, S_R, or w
-    with rho_d, or w alone (a w(s) fit); an optional 'weight' column. Branches
-    come from a 'branch' column (drying, wetting, scanning) or, without one,
-    from the order of readings (rising suction = drying; reversals below the
-    noise tolerance ignored; readings that start at a reversal inside the
-    measured range are scanning, kept out of the main fits and compared with
-    Parker & Lenhard's scanning curves); --branches single fits one curve.
+    """Fit water retention curves for every branch (drying, wetting), with a model-selection table.
+
+    van Genuchten (1980) (m = 1 - 1/n, m free), Brooks & Corey (1964), Kosugi (1996), Fredlund & Xing (1994) (with and
+    without C), Durner (1994), with standard errors, 95 % intervals, correlations, R^2, RMSE, AIC, AICc, BIC;
+    --hysteresis kool-parker fits both branches jointly. Suction as a pressure, a head or pF; water as theta, S_R, or w
+    with rho_d, or w alone (a w(s) fit); an optional 'weight' column. Branches come from a 'branch' column (drying,
+    wetting, scanning) or, without one, from the order of readings (rising suction = drying; reversals below the noise
+    tolerance ignored; readings that start at a reversal inside the measured range are scanning, kept out of the main
+    fits and compared with Parker & Lenhard's scanning curves); --branches single fits one curve.
 
     Example: capred retention column.csv --model vg,bc,kosugi --fix theta_r=0
 

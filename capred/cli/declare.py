@@ -127,9 +127,11 @@ LIVE_HELP: dict = {}
 
 
 def live_help(text: str) -> str:
-    """An option's help as it reads now: the text of an option whose help was given as a function (``option(...,
-    help=callable)``, e.g. the registry's models) is rendered again, so that an entry registered since the
-    command was declared shows; any other text is returned as it is.
+    """An option's help as it reads now.
+
+    The text of an option whose help was given as a function (``option(..., help=callable)``, e.g. the registry's
+    models) is rendered again, so that an entry registered since the command was declared shows; any other text is
+    returned as it is.
 
     Parameters
     ----------
@@ -172,9 +174,10 @@ def fill_help_fields(text: str) -> str:
 
 
 def model_parameter_options() -> list:
-    """The command-line options of the parameters registered effective-stress models declare for themselves
-    (capred.spec.shear.ModelParameter), read from the registry now: ``--my-kappa`` of a model a script
-    registered, with the unit, range and description its declaration gives.
+    """The command-line options of the parameters registered effective-stress models declare for themselves.
+
+    Read from the registry now (capred.spec.shear.ModelParameter): ``--my-kappa`` of a model a script registered, with
+    the unit, range and description its declaration gives.
 
     Returns
     -------
@@ -200,9 +203,10 @@ def model_parameter_options() -> list:
 
 
 def model_parameter_values(given: dict) -> dict:
-    """The models' own parameters given on the command line, for ``ModelParams(extra=...)``: None (not given)
-    left out, a bare number read once in the declared output unit to SI (range checked), a value with a unit
-    passed as typed.
+    """The models' own parameters given on the command line, for ``ModelParams(extra=...)``.
+
+    None (not given) left out, a bare number read once in the declared output unit to SI (range checked), a value with a
+    unit passed as typed.
 
     Parameters
     ----------
@@ -297,10 +301,11 @@ def _shown(value) -> str:
 
 
 def si_values(options: str, **given) -> dict:
-    """The options given on the command line, ready for the Options class: None (not given) left out, so
-    that the Options' own default applies; a bare number of a dimensional field read once, in the unit
-    ``--help`` shows, to SI (range checked here with the glossary's wording); a value with a unit passed
-    as typed (the Options read it, and note how, e.g. g/cm^2 as gram-force).
+    """The options given on the command line, ready for the Options class.
+
+    None (not given) left out, so that the Options' own default applies; a bare number of a dimensional field read once,
+    in the unit ``--help`` shows, to SI (range checked here with the glossary's wording); a value with a unit passed as
+    typed (the Options read it, and note how, e.g. g/cm^2 as gram-force).
 
     Parameters
     ----------
@@ -329,9 +334,10 @@ def si_values(options: str, **given) -> dict:
 
 
 def read_number(value, quantity: str, where: str):
-    """One option of a dimensional field as the command line gives it: a bare number is read once, in the
-    glossary's output unit (the unit ``--help`` shows), to SI and range checked; text with a unit of its own
-    is returned as typed (the Options read it once).
+    """One option of a dimensional field as the command line gives it.
+
+    A bare number is read once, in the glossary's output unit (the unit ``--help`` shows), to SI and range checked; text
+    with a unit of its own is returned as typed (the Options read it once).
 
     Parameters
     ----------
@@ -519,15 +525,19 @@ def class_facts(cls) -> dict:
 
 
 def _glossary_text(q) -> str:
-    """An option's text from its glossary entry: the description, capitalised (not "van Genuchten"), then the
-    symbol unless the description already names it."""
+    """An option's text from its glossary entry.
+
+    The description, capitalised (not "van Genuchten"), then the symbol unless the description already names it.
+    """
     text = q.description if q.description.startswith("van ") else q.description[0].upper() + q.description[1:]
     return text if re.search(rf"(^|\W){re.escape(q.symbol)}(\W|$)", text) else f"{text} {q.symbol}"
 
 
 def _attribute_help(cls) -> dict[str, str]:
-    """A class's ``Attributes`` texts with the SI units in brackets dropped (the option shows the glossary's
-    unit) and the reST literal quotes."""
+    """A class's ``Attributes`` texts, cleaned for the command line.
+
+    The SI units in brackets are dropped (the option shows the glossary's unit), and so are the reST literal quotes.
+    """
     out = {}
     for name, text in attribute_help(cls).items():
         out[name] = re.sub(r"\s*\[[^\]]*\]", "", text).replace("``", "").strip()

@@ -1,5 +1,7 @@
-"""`capred COMMAND --help` in groups: the command's own options, its input, its outputs, then its input columns
-(or, for a command whose input is not a table, what that input is: the reduction's ``input_description``).
+"""`capred COMMAND --help` in groups.
+
+The command's own options, its input, its outputs, then its input columns (or, for a command whose input is not a table,
+what that input is: the reduction's ``input_description``).
 
 Help stays plain text (rendering it through rich would double the start-up time of `capred --help`); the
 groups are typer's ``rich_help_panel`` of each parameter where one is set, else the panel of the shared option
@@ -37,8 +39,9 @@ OUTPUT_PANEL = "Output"
 
 
 def panel_of(param, own: str) -> str:
-    """The help group of one click parameter: its ``rich_help_panel``, else Input / Output for the shared
-    options, else ``own`` (the command's options).
+    """The help group of one click parameter.
+
+    Its ``rich_help_panel``, else Input / Output for the shared options, else ``own`` (the command's options).
 
     Parameters
     ----------
@@ -63,9 +66,10 @@ def panel_of(param, own: str) -> str:
 
 
 def schema_of(command: str) -> list:
-    """The input columns (capred.spec.columns.Column) a command reads: the ``SCHEMA`` of the module that declares
-    its options (a capred.spec module), or ``<LAST WORD>_SCHEMA`` for a command of a group (``bridge solve`` ->
-    ``SOLVE_SCHEMA``); [] when none.
+    """The input columns (capred.spec.columns.Column) a command reads; [] when none.
+
+    The ``SCHEMA`` of the module that declares its options (a capred.spec module), or ``<LAST WORD>_SCHEMA`` for a
+    command of a group (``bridge solve`` -> ``SOLVE_SCHEMA``).
 
     Parameters
     ----------
@@ -93,8 +97,18 @@ def schema_of(command: str) -> list:
 
 
 def input_description(command: str) -> str:
-    """What a command reads when it is not a table of columns (a fits.json, a lab store): the
-    ``input_description`` of its reduction; "" when none."""
+    """What a command reads when it is not a table of columns (a fits.json, a lab store).
+
+    Parameters
+    ----------
+    command : str
+        The command's name as the CLI spells it (``"history"``, ``"bridge laws"``).
+
+    Returns
+    -------
+    str
+        The ``input_description`` of its reduction; "" when none.
+    """
     from ..reductions import REDUCTIONS
 
     red = REDUCTIONS.get(command)
@@ -133,8 +147,9 @@ class GroupedCommand(typer.core.TyperCommand):
     """A typer command whose plain-text help groups its options and lists the input columns."""
 
     def format_help_text(self, ctx, formatter) -> None:
-        """The command's help text, its ``{laws}``-style fields filled in with the registries as they stand now
-        (capred.cli.declare.HELP_FIELDS).
+        """The command's help text, its ``{laws}``-style fields filled in with the registries as they stand now.
+
+        The fields are capred.cli.declare.HELP_FIELDS.
 
         Parameters
         ----------
@@ -149,8 +164,9 @@ class GroupedCommand(typer.core.TyperCommand):
         super().format_help_text(ctx, formatter)
 
     def format_options(self, ctx, formatter) -> None:
-        """Write the arguments, then the options panel by panel (the command's own, Input, Output,
-        Help), then the input columns the command reads.
+        """Write the arguments, the options panel by panel, then the input columns the command reads.
+
+        The panels are the command's own, Input, Output and Help.
 
         Parameters
         ----------
@@ -208,8 +224,9 @@ def column_help(command: str) -> list[tuple[str, str]]:
 
 
 def group_help(app) -> None:
-    """Give every command of ``app`` (and of its sub-apps: ``bridge``) the grouped help, unless it already
-    has a class of its own (other than typer's default).
+    """Give every command of ``app`` (and of its sub-apps: ``bridge``) the grouped help.
+
+    A command that already has a class of its own (other than typer's default) keeps it.
 
     Parameters
     ----------

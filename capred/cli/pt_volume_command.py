@@ -54,16 +54,14 @@ def pt_volume(
     ) = None,
     sample: SampleOpt = False,
 ) -> Invocation:
-    """Void ratio along a path of total stress, pore pressures and degree of
-    saturation with the volume-change model of Pedrotti & Tarantino
-    (submitted, eq. 1-10): sigma'_W = (sigma - u_w) S_r for the water-saturated
-    pores on the lines of clay reconstituted from slurry, sigma'_A =
-    (sigma - u_a)(1 - S_r) for the air-saturated pores on the lines of clay
-    compressed from dry powder, pores changing fluid through the equivalent
-    pre-consolidation stress, e of the sample from eq. 5. Needs the six line
-    parameters (--lambda-w --kappa-w --e-ncl-w --lambda-a --kappa-a --e-ncl-a)
-    or --example-kaolin; --sample runs the bundled illustrative path with
-    EXAMPLE_KAOLIN unless lines are given.
+    """Void ratio along a path of total stress, pore pressures and degree of saturation.
+
+    With the volume-change model of Pedrotti & Tarantino (submitted, eq. 1-10): sigma'_W = (sigma - u_w) S_r for the
+    water-saturated pores on the lines of clay reconstituted from slurry, sigma'_A = (sigma - u_a)(1 - S_r) for the
+    air-saturated pores on the lines of clay compressed from dry powder, pores changing fluid through the equivalent
+    pre-consolidation stress, e of the sample from eq. 5. Needs the six line parameters (--lambda-w --kappa-w --e-ncl-w
+    --lambda-a --kappa-a --e-ncl-a) or --example-kaolin; --sample runs the bundled illustrative path with EXAMPLE_KAOLIN
+    unless lines are given.
 
     Example: capred pt-volume path.csv --lambda-w 0.18 --kappa-w 0.03 --e-ncl-w 2.23 --lambda-a 0.13 --kappa-a 0.01 --e-ncl-a 2.06
 

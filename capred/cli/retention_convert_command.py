@@ -39,11 +39,11 @@ def retention_convert(
     points: option(CONVERT, "points") = None,
     gamma_w: option(CONVERT, "gamma_w", note="(heads in cm in the JSON)") = None,
 ) -> Invocation:
-    """Express a retention fit in another model: the parameters of --to that best
-    reproduce the fitted curve (least squares on S_R or theta at the data's own
-    suctions and a dense grid between), with the misfit (RMSE, largest
-    deviation) and a figure of both curves. The output fits.json has the shape
-    of capred retention's, so --retention of shear and skempton-b reads it.
+    """Express a retention fit in another model.
+
+    The parameters of --to that best reproduce the fitted curve (least squares on S_R or theta at the data's own
+    suctions and a dense grid between), with the misfit (RMSE, largest deviation) and a figure of both curves. The
+    output fits.json has the shape of capred retention's, so --retention of shear and skempton-b reads it.
 
     Example: capred retention-convert capred_out/retention_column/fits.json --to bc
 

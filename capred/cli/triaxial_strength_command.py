@@ -55,12 +55,11 @@ def triaxial(
     vg_n: option(PARAMS, "vg_n", note="(Lu & Likos 2006)") = None,
     **model_options,
 ) -> Invocation:
-    """Unsaturated strength from triaxial failure states, per material: the
-    extended Mohr-Coulomb envelope c', phi', phi_b (Fredlund et al. 1978), the
-    comparison of the effective-stress models of capred shear on q_f, the
-    back-analysed capillary stress and chi of each test, fitted chi laws, and
-    Prunier et al.'s bounds on the envelope at s -> 0 (named; --c-eff/--phi-eff
-    override it).
+    """Unsaturated strength from triaxial failure states, per material.
+
+    The extended Mohr-Coulomb envelope c', phi', phi_b (Fredlund et al. 1978), the comparison of the effective-stress
+    models of capred shear on q_f, the back-analysed capillary stress and chi of each test, fitted chi laws, and Prunier
+    et al.'s bounds on the envelope at s -> 0 (named; --c-eff/--phi-eff override it).
 
     Example: capred triaxial failure_states.csv --out triaxial
 

@@ -1,8 +1,8 @@
-"""Chi laws fitted per material on the wet tests, their honest uncertainty, and the information criteria.
+r"""Chi laws fitted per material on the wet tests, their honest uncertainty, and the information criteria.
 
 With the dry envelope (c, tan phi) of the material, a wet test's strength is
 
-.. math:: \\tau = c + (\\sigma_N + \\chi(\\theta)\\,\\Delta u)\\tan\\phi
+.. math:: \tau = c + (\sigma_N + \chi(\theta)\,\Delta u)\tan\phi
 
 and the law's parameters theta are fitted by least squares on the measured tau
 with (c, tan phi) held at the dry fit (two-step estimation: every model of a
@@ -12,8 +12,8 @@ Uncertainty: the dry fit is itself uncertain, and its error moves theta. The
 covariance of the two-step estimate is (Murphy & Topel 1985, their corrected
 second-step covariance, for a first step fitted on independent data)
 
-.. math:: V_\\theta = s^2\\,[A + G M G^T], \\quad A = (J_\\theta^T J_\\theta)^{-1}, \\quad
-          G = -A J_\\theta^T J_{c\\phi}, \\quad M = (X^T X)^{-1}_{dry}
+.. math:: V_\theta = s^2\,[A + G M G^T], \quad A = (J_\theta^T J_\theta)^{-1}, \quad
+          G = -A J_\theta^T J_{c\phi}, \quad M = (X^T X)^{-1}_{dry}
 
 with J_theta and J_cphi the Jacobians of the wet predictions with respect to
 theta and to (c, tan phi), and s^2 the residual variance of the joint fit of
@@ -195,11 +195,11 @@ class _LawParameters(Parameters):
 
 
 def information_criteria(rss: float, n: int, p: int) -> dict[str, float | None]:
-    """AIC, AICc and BIC of a least-squares fit with p fitted parameters on n points (k = p + 1).
+    r"""AIC, AICc and BIC of a least-squares fit with p fitted parameters on n points (k = p + 1).
 
-    .. math:: \\mathrm{AIC} = n\\ln(\\mathrm{RSS}/n) + 2k, \\quad
-              \\mathrm{AICc} = \\mathrm{AIC} + \\frac{2k(k+1)}{n-k-1}, \\quad
-              \\mathrm{BIC} = n\\ln(\\mathrm{RSS}/n) + k\\ln n
+    .. math:: \mathrm{AIC} = n\ln(\mathrm{RSS}/n) + 2k, \quad
+              \mathrm{AICc} = \mathrm{AIC} + \frac{2k(k+1)}{n-k-1}, \quad
+              \mathrm{BIC} = n\ln(\mathrm{RSS}/n) + k\ln n
 
     Parameters
     ----------
@@ -230,10 +230,10 @@ def information_criteria(rss: float, n: int, p: int) -> dict[str, float | None]:
 
 
 def akaike_weights(aicc: dict[str, float | None]) -> dict[str, tuple[float | None, float | None]]:
-    """(delta AICc, Akaike weight) of each model; models without an AICc get (None, None).
+    r"""(delta AICc, Akaike weight) of each model; models without an AICc get (None, None).
 
-    .. math:: w_i = \\frac{\\exp(-\\Delta_i/2)}{\\sum_j \\exp(-\\Delta_j/2)}, \\quad
-              \\Delta_i = \\mathrm{AICc}_i - \\min_j \\mathrm{AICc}_j
+    .. math:: w_i = \frac{\exp(-\Delta_i/2)}{\sum_j \exp(-\Delta_j/2)}, \quad
+              \Delta_i = \mathrm{AICc}_i - \min_j \mathrm{AICc}_j
 
     Parameters
     ----------
@@ -279,19 +279,19 @@ def law_uncertainty(
     log_scale: tuple[str, ...] = (),
     confidence: float = 0.95,
 ) -> dict:
-    """Standard errors, t intervals and joint covariance of a law fitted with the dry envelope held.
+    r"""Standard errors, t intervals and joint covariance of a law fitted with the dry envelope held.
 
-    .. math:: V_\\theta = s^2\\,[A + G M G^T], \\quad A = (J_\\theta^T J_\\theta)^{-1}, \\quad
-              G = -A J_\\theta^T J_{c\\phi}, \\quad M = (X^T X)^{-1}_{dry}
+    .. math:: V_\theta = s^2\,[A + G M G^T], \quad A = (J_\theta^T J_\theta)^{-1}, \quad
+              G = -A J_\theta^T J_{c\phi}, \quad M = (X^T X)^{-1}_{dry}
 
     (Murphy & Topel 1985, doi:10.1080/07350015.1985.10509470: the corrected covariance of a second-step
     estimate, the first step fitted on independent data). The variance s^2 is that of the JOINT
     least-squares fit of (c, tan phi, theta) on the dry and wet tests together, linearised at the two-step
     estimate,
 
-    .. math:: s^2 = \\frac{\\mathrm{RSS}_{dry} + \\mathrm{RSS}_{wet} - g^T (J^T J)^{-1} g}
-                         {n_{dry} + n_{wet} - p_{env} - p}, \\quad
-              g = J^T r = (J_{c\\phi}^T r_{wet},\\; J_\\theta^T r_{wet})
+    .. math:: s^2 = \frac{\mathrm{RSS}_{dry} + \mathrm{RSS}_{wet} - g^T (J^T J)^{-1} g}
+                         {n_{dry} + n_{wet} - p_{env} - p}, \quad
+              g = J^T r = (J_{c\phi}^T r_{wet},\; J_\theta^T r_{wet})
 
     with J the stacked Jacobian [[X, 0], [J_cphi, J_theta]] (the dry residuals are orthogonal to X). Not the
     two-step residuals alone: the dry fit's error leaves a lack of fit in the wet residuals that would
@@ -415,10 +415,11 @@ RANK_LIMIT = 1e7
 
 
 def unidentified(jac_law, names) -> list[str]:
-    """The parameters the data cannot determine: a Jacobian column of zeros (the law does not depend on it at
-    the tests), or a share above 1 % of a right singular vector of the column-scaled Jacobian whose singular
-    value is below 1/``RANK_LIMIT`` of the largest (a direction the tests do not see, e.g. s_b and eta of
-    Khalili's law when every wet test has one suction).
+    """The parameters the data cannot determine.
+
+    A Jacobian column of zeros (the law does not depend on it at the tests), or a share above 1 % of a right singular
+    vector of the column-scaled Jacobian whose singular value is below 1/``RANK_LIMIT`` of the largest (a direction the
+    tests do not see, e.g. s_b and eta of Khalili's law when every wet test has one suction).
 
     Parameters
     ----------
@@ -451,9 +452,11 @@ def unidentified(jac_law, names) -> list[str]:
 
 
 def _pinv_scaled(J) -> np.ndarray:
-    """(J^T J)^-1 on the directions the tests determine: the pseudo-inverse of the column-scaled J^T J with the
-    singular values below 1/``RANK_LIMIT`` of the largest dropped (so a band at the tests stays finite and
-    right even when a parameter on its own is not identified), NaN when J is not finite."""
+    """(J^T J)^-1 on the directions the tests determine; NaN when J is not finite.
+
+    The pseudo-inverse of the column-scaled J^T J with the singular values below 1/``RANK_LIMIT`` of the largest
+    dropped, so a band at the tests stays finite and right even when a parameter on its own is not identified.
+    """
     J = np.asarray(J, float)
     if not np.all(np.isfinite(J)):
         return np.full((J.shape[1],) * 2, np.nan)
@@ -558,9 +561,9 @@ def identifiability(law: FittedLaw, jac_law=None) -> list[str]:
 
 
 def chi_power(S_R, vanapalli_kappa, S_res: float = 0.0):
-    """chi = S_e^kappa with S_e = (S_R - S_res)/(1 - S_res) clipped to [0, 1] [-] (Vanapalli et al. 1996).
+    r"""Bishop's chi = S_e^kappa with S_e = (S_R - S_res)/(1 - S_res) clipped to [0, 1] [-] (Vanapalli et al. 1996).
 
-    .. math:: \\chi = S_e^{\\kappa}, \\quad S_e = \\frac{S_R - S_{res}}{1 - S_{res}}
+    .. math:: \chi = S_e^{\kappa}, \quad S_e = \frac{S_R - S_{res}}{1 - S_{res}}
 
     Parameters
     ----------
@@ -588,10 +591,10 @@ def chi_power(S_R, vanapalli_kappa, S_res: float = 0.0):
 def fit_chi_power(
     sigma_N, suction, S_R, tau, c, tan_phi, S_res: float = 0.0, start: dict | None = None, dry: LineFit | None = None
 ) -> FittedLaw:
-    """kappa > 0 of chi = S_e^kappa on the wet tests of one material, with its honest uncertainty.
+    r"""Exponent kappa > 0 of chi = S_e^kappa on the wet tests of one material, with its honest uncertainty.
 
-    .. math:: \\min_\\kappa \\sum_i [c + (\\sigma_{N,i} + S_{e,i}^\\kappa\\,\\Delta u_i)\\tan\\phi - \\tau_i]^2,
-              \\quad S_e = (S_R - S_{res})/(1 - S_{res})
+    .. math:: \min_\kappa \sum_i [c + (\sigma_{N,i} + S_{e,i}^\kappa\,\Delta u_i)\tan\phi - \tau_i]^2,
+              \quad S_e = (S_R - S_{res})/(1 - S_{res})
 
     Three starting values (0.3, 1, 3), or one from ``start`` (a warm start). Bounds 1e-6 <= kappa <= 100.
 
@@ -669,9 +672,9 @@ def fit_khalili(
     start: dict | None = None,
     dry: LineFit | None = None,
 ) -> FittedLaw:
-    """s_b (and eta with ``fit_eta``) of chi = (s/s_b)^-eta for s > s_b, else 1, with its honest uncertainty.
+    r"""s_b (and eta with ``fit_eta``) of chi = (s/s_b)^-eta for s > s_b, else 1, with its honest uncertainty.
 
-    .. math:: \\chi = (s/s_b)^{-\\eta} \\; (s > s_b), \\quad \\chi = 1 \\; (s \\le s_b)
+    .. math:: \chi = (s/s_b)^{-\eta} \; (s > s_b), \quad \chi = 1 \; (s \le s_b)
 
     The objective is not smooth where s_b passes a measured suction, so s_b is first located on a fine
     logarithmic grid (within [min s / 100, max s * 100]) and then refined locally (from ``start`` alone
@@ -786,9 +789,9 @@ def batch_least_squares(
     max_iter: int = 100,
     xtol: float = 1e-12,
 ):
-    """Minimise sum_i w_ri r_i(x_r)^2 for every replicate r at once (Levenberg-Marquardt, box bounds).
+    r"""Minimise sum_i w_ri r_i(x_r)^2 for every replicate r at once (Levenberg-Marquardt, box bounds).
 
-    .. math:: (J^T W J + \\lambda\\,\\mathrm{diag}(J^T W J))\\,\\delta = -J^T W r
+    .. math:: (J^T W J + \lambda\,\mathrm{diag}(J^T W J))\,\delta = -J^T W r
 
     A step is taken only where it lowers the replicate's weighted RSS (then lambda /= 10, else
     lambda *= 10); iteration stops when every replicate's step is below ``xtol`` (relative) or its
@@ -853,10 +856,10 @@ def batch_least_squares(
 
 
 def refit_chi_power_batch(sigma_N, suction, S_R, tau, c, tan_phi, weights, kappa0: float, S_res: float = 0.0):
-    """kappa of chi = S_e^kappa refitted in every bootstrap replicate at once (weighted least squares).
+    r"""Exponent kappa of chi = S_e^kappa refitted in every bootstrap replicate at once (weighted least squares).
 
-    .. math:: \\min_{\\kappa_r} \\sum_i w_{ri}\\,[c_r + (\\sigma_{N,i} + S_{e,i}^{\\kappa_r}\\Delta u_i)
-              \\tan\\phi_r - \\tau_i]^2
+    .. math:: \min_{\kappa_r} \sum_i w_{ri}\,[c_r + (\sigma_{N,i} + S_{e,i}^{\kappa_r}\Delta u_i)
+              \tan\phi_r - \tau_i]^2
 
     Parameters
     ----------
@@ -970,9 +973,9 @@ def refit_khalili_batch(
 
 
 def chi_power_law(S_R, suction, kappa, S_res: float = 0.0):
-    """χ of the law ``chi_power`` in the registry's form: `chi_power` of S_R (the suction is not used) [-].
+    r"""χ of the law ``chi_power`` in the registry's form: `chi_power` of S_R (the suction is not used) [-].
 
-    .. math:: \\chi = S_e^{\\kappa}, \\quad S_e = \\frac{S_R - S_{res}}{1 - S_{res}}
+    .. math:: \chi = S_e^{\kappa}, \quad S_e = \frac{S_R - S_{res}}{1 - S_{res}}
 
     Parameters
     ----------
@@ -999,9 +1002,9 @@ def chi_power_law(S_R, suction, kappa, S_res: float = 0.0):
 
 
 def khalili_law(S_R, suction, s_b, eta):
-    """χ of the law ``khalili_fit`` in the registry's form: (s/s_b)^-η above s_b, 1 below (S_R is not used) [-].
+    r"""χ of the law ``khalili_fit`` in the registry's form: (s/s_b)^-η above s_b, 1 below (S_R is not used) [-].
 
-    .. math:: \\chi = (s/s_b)^{-\\eta} \\; (s > s_b), \\quad \\chi = 1 \\; (s \\le s_b)
+    .. math:: \chi = (s/s_b)^{-\eta} \; (s > s_b), \quad \chi = 1 \; (s \le s_b)
 
     Parameters
     ----------

@@ -10,9 +10,11 @@ import numpy as np
 
 
 def difference_resolution(ci) -> float | None:
-    """The printed resolution of the ends of a ΔRMSE interval [its unit]: the decimal step 10^floor(log10(w/5))
-    with w the interval's width (5 to 50 steps across it: about two significant digits of the width, what a
-    percentile interval of a few thousand resamples can claim), None for no interval or a zero width.
+    """The printed resolution of the ends of a ΔRMSE interval [its unit].
+
+    The decimal step 10^floor(log10(w/5)) with w the interval's width (5 to 50 steps across it: about two significant
+    digits of the width, what a percentile interval of a few thousand resamples can claim), None for no interval or a
+    zero width.
 
     Parameters
     ----------

@@ -1,20 +1,20 @@
-"""Extended Mohr-Coulomb envelope of unsaturated soils (Fredlund et al. 1978): c', phi', phi_b from failure states.
+r"""Extended Mohr-Coulomb envelope of unsaturated soils (Fredlund et al. 1978): c', phi', phi_b from failure states.
 
 Direct shear (a plane in net normal stress and suction):
 
-.. math:: \\tau_f = c' + (\\sigma - u_a)\\tan\\phi' + (u_a - u_w)\\tan\\phi_b
+.. math:: \tau_f = c' + (\sigma - u_a)\tan\phi' + (u_a - u_w)\tan\phi_b
 
 and its triaxial forms, from the same plane written with the principal stresses at failure
-(:math:`K_p = \\tan^2(45° + \\phi'/2) = (1 + \\sin\\phi')/(1 - \\sin\\phi')`, :math:`c = c' + s\\tan\\phi_b`):
+(:math:`K_p = \tan^2(45° + \phi'/2) = (1 + \sin\phi')/(1 - \sin\phi')`, :math:`c = c' + s\tan\phi_b`):
 
 .. math::
 
-    \\text{compression: } q_f = (K_p - 1)\\,(\\sigma_3 - u_a) + 2\\sqrt{K_p}\\,(c' + s\\tan\\phi_b)
+    \text{compression: } q_f = (K_p - 1)\,(\sigma_3 - u_a) + 2\sqrt{K_p}\,(c' + s\tan\phi_b)
 
-    \\text{extension: } q_f = (1 - 1/K_p)\\,(\\sigma_r - u_a) + \\frac{2}{\\sqrt{K_p}}\\,(c' + s\\tan\\phi_b)
+    \text{extension: } q_f = (1 - 1/K_p)\,(\sigma_r - u_a) + \frac{2}{\sqrt{K_p}}\,(c' + s\tan\phi_b)
 
-with :math:`\\sigma_3` (:math:`\\sigma_r`) the net cell pressure and :math:`q_f = |\\sigma_a - \\sigma_r|` at failure.
-Each is linear in its coefficients, :math:`y = a + b\\,x + d\\,s`: fitted by least squares (``errors="constant"``:
+with :math:`\sigma_3` (:math:`\sigma_r`) the net cell pressure and :math:`q_f = |\sigma_a - \sigma_r|` at failure.
+Each is linear in its coefficients, :math:`y = a + b\,x + d\,s`: fitted by least squares (``errors="constant"``:
 ordinary; ``"proportional"``: weighted with a scatter proportional to the strength, iterated to its fixed
 point; ``"auto"``: proportional when the Breusch-Pagan test of the ordinary residuals against the fitted
 strength is significant, the rule of `capred shear`), then mapped to (c', phi', phi_b) with standard errors by
@@ -232,7 +232,7 @@ class ExtendedMCFit:
 
     @property
     def residuals(self) -> np.ndarray:
-        """y − ŷ [Pa]."""
+        """Residuals y − ŷ of the fitted tests [Pa]."""
         return self.y - self.fitted
 
     @property
@@ -247,7 +247,14 @@ class ExtendedMCFit:
         return 1.0 - self.rss / tss if tss > 0 else math.nan
 
     def information_criteria(self) -> dict:
-        """AIC, AICc, BIC with three fitted coefficients (capred.fitting.chi_laws.information_criteria)."""
+        """AIC, AICc and BIC with three fitted coefficients.
+
+        Returns
+        -------
+        dict
+            ``aic``, ``aicc``, ``bic`` [-] as :func:`capred.fitting.chi_laws.information_criteria` computes them
+            (k = 3 coefficients + the error variance); None where undefined.
+        """
         return information_criteria(self.rss, self.n, 3)
 
     # --- the envelope -----------------------------------------------------------------------------------
@@ -262,7 +269,16 @@ class ExtendedMCFit:
         return np.array([c, phi, np.degrees(np.arctan(tb)), tb], dtype=float)
 
     def derived_covariance(self) -> np.ndarray:
-        """Covariance of (c' [Pa], φ' [deg], φ_b [deg], tan φ_b [-]) by the delta method (central differences)."""
+        """Covariance of the envelope's parameters by the delta method.
+
+        The Jacobian of (c', φ', φ_b, tan φ_b) with respect to ``coef`` is taken by central differences (steps of
+        1e-6 relative) and carried through ``covariance``.
+
+        Returns
+        -------
+        numpy.ndarray
+            4 x 4 covariance of (c' [Pa], φ' [deg], φ_b [deg], tan φ_b [-]) in those units squared.
+        """
         base = self.coef
         J = np.zeros((4, 3))
         for k in range(3):
@@ -284,7 +300,7 @@ class ExtendedMCFit:
 
     @property
     def params(self) -> Parameters:
-        """c' [kPa], φ' [deg], φ_b [deg] and tan φ_b [-] with standard error and interval at ``confidence``."""
+        """The envelope's parameters: c' [kPa], φ' [deg], φ_b [deg] and tan φ_b [-], with standard error and interval at ``confidence``."""
         values = self._derived(self.coef)
         cov = self.derived_covariance()
         se = np.sqrt(np.maximum(np.diag(cov), 0.0))
@@ -310,7 +326,25 @@ class ExtendedMCFit:
 
     # --- prediction -------------------------------------------------------------------------------------
     def predict(self, x, s) -> np.ndarray:
-        """ŷ = a + b x + d s [Pa] at net stress x [Pa] and suction s [Pa]."""
+        """Strength on the fitted plane, ŷ = a + b x + d s (Fredlund et al. 1978).
+
+        Parameters
+        ----------
+        x : float or array_like
+            Net stress [Pa] (σ_N − u_a, or the net cell pressure).
+        s : float or array_like
+            Suction u_a − u_w [Pa], broadcast against ``x``.
+
+        Returns
+        -------
+        numpy.ndarray
+            Predicted strength (τ_f or q_f, as ``form``) [Pa].
+
+        References
+        ----------
+        .. [1] Fredlund, D. G., Morgenstern, N. R. & Widger, R. A. (1978). The shear strength of unsaturated soils.
+           Canadian Geotechnical Journal 15(3), 313-321. doi:10.1139/t78-029
+        """
         a, b, d = self.coef
         return a + b * np.asarray(x, float) + d * np.asarray(s, float)
 
@@ -319,21 +353,65 @@ class ExtendedMCFit:
         return np.stack([np.ones(x.shape), x, s], axis=-1)
 
     def mean_band(self, x, s) -> tuple[np.ndarray, np.ndarray]:
-        """Confidence band of the mean strength at (x, s) [Pa] (ŷ ∓ t √(g'Vg))."""
+        """Confidence band of the mean strength, ŷ ∓ t √(g' V g).
+
+        g is the design row (1, x, s), V the covariance of ``coef`` and t the two-sided Student-t quantile at
+        ``confidence``.
+
+        Parameters
+        ----------
+        x : float or array_like
+            Net stress [Pa].
+        s : float or array_like
+            Suction [Pa], broadcast against ``x``.
+
+        Returns
+        -------
+        lower, upper : numpy.ndarray
+            The band's edges [Pa].
+        """
         X = self._design(x, s)
         half = self.t * np.sqrt(np.maximum(np.einsum("...i,ij,...j->...", X, self.covariance, X), 0.0))
         y = self.predict(x, s)
         return y - half, y + half
 
     def new_test_variance(self, x, s) -> np.ndarray:
-        """Variance of one new test's strength about its mean at (x, s) [Pa²] (s², or s² ŷ² for proportional)."""
+        """Variance of one new test's strength about its mean.
+
+        s² for constant errors, s² ŷ² for proportional errors, and the larger of the two for ``errors="either"``.
+
+        Parameters
+        ----------
+        x : float or array_like
+            Net stress [Pa].
+        s : float or array_like
+            Suction [Pa], broadcast against ``x``.
+
+        Returns
+        -------
+        numpy.ndarray
+            The variance [Pa²].
+        """
         y = self.predict(x, s)
         if self.errors == "either":
             return np.maximum(self.residual_variance, self.residual_variance_proportional * y**2)
         return self.residual_variance * (y**2 if self.errors == "proportional" else np.ones_like(y))
 
     def prediction_interval(self, x, s) -> tuple[np.ndarray, np.ndarray]:
-        """Interval of a new test's strength at (x, s) [Pa]: ŷ ∓ t √(g'Vg + var of a test)."""
+        """Interval of a new test's strength, ŷ ∓ t √(g' V g + variance of one test).
+
+        Parameters
+        ----------
+        x : float or array_like
+            Net stress [Pa].
+        s : float or array_like
+            Suction [Pa], broadcast against ``x``.
+
+        Returns
+        -------
+        lower, upper : numpy.ndarray
+            The interval's edges [Pa] at level ``confidence``.
+        """
         X = self._design(x, s)
         var = np.einsum("...i,ij,...j->...", X, self.covariance, X) + self.new_test_variance(x, s)
         half = self.t * np.sqrt(np.maximum(var, 0.0))
@@ -342,7 +420,21 @@ class ExtendedMCFit:
 
     # --- report -----------------------------------------------------------------------------------------
     def summary(self, title: str = "") -> str:
-        """Plain-text report: parameters with SE and interval, strong correlations, statistics, warnings."""
+        """Plain-text report of the fit, as lmfit's ``fit_report``.
+
+        Parameters, standard errors and intervals, strong correlations, statistics (n, dof, R², RMSE [kPa], AICc) and
+        warnings.
+
+        Parameters
+        ----------
+        title : str, optional
+            First line of the report (default: the fit's name and form).
+
+        Returns
+        -------
+        str
+            The report.
+        """
         crit = self.information_criteria()
         stats = {
             "form": self.form,

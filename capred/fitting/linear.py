@@ -26,7 +26,7 @@ from ..errors import FitError
 
 
 def t_quantile(p, dof):
-    """Student-t quantile t_{p, dof}.
+    r"""Student-t quantile t_{p, dof}.
 
     Parameters
     ----------
@@ -44,8 +44,8 @@ def t_quantile(p, dof):
     -----
     The inverse in t of Student's distribution function,
 
-    .. math:: p = \\int_{-\\infty}^{t} \\frac{\\Gamma((\\nu + 1)/2)}{\\sqrt{\\nu\\pi}\\,\\Gamma(\\nu/2)}
-              \\left(1 + \\frac{u^2}{\\nu}\\right)^{-(\\nu + 1)/2} du, \\qquad \\nu = \\text{dof}.
+    .. math:: p = \int_{-\infty}^{t} \frac{\Gamma((\nu + 1)/2)}{\sqrt{\nu\pi}\,\Gamma(\nu/2)}
+              \left(1 + \frac{u^2}{\nu}\right)^{-(\nu + 1)/2} du, \qquad \nu = \text{dof}.
 
     For whole ν up to ``_CLOSED_FORM_DOF`` (the fits of a lab table) it is solved here from the closed form
     of P(|T| <= t) in θ = arctan(t / sqrt(ν)) (Abramowitz & Stegun 1964, eq. 26.7.3 and 26.7.4: a finite sum
@@ -195,15 +195,19 @@ class LineFit:
 
     @property
     def residual_variance(self) -> float:
-        """s^2 = RSS / dof, the variance of one measurement about the line (at ``ref`` for proportional
-        errors; the robust scale squared for a robust fit)."""
+        """s^2 = RSS / dof, the variance of one measurement about the line.
+
+        At ``ref`` for proportional errors; the robust scale squared for a robust fit.
+        """
         if self.scale is not None:
             return self.scale**2
         return self.rss / self.dof
 
     def variance_factor(self, y):
-        """v(y) [-]: the variance of one measurement of level y is s^2 v(y); 1, or (y/ref)^2 for proportional errors,
-        or max(1, (s_p/s)^2 (y/ref)^2) for ``errors="either"`` (the larger of the two models' variances).
+        """v(y) [-]: the variance of one measurement of level y is s^2 v(y).
+
+        1, or (y/ref)^2 for proportional errors, or max(1, (s_p/s)^2 (y/ref)^2) for ``errors="either"`` (the larger of
+        the two models' variances).
 
         Parameters
         ----------
@@ -253,18 +257,18 @@ class LineFit:
 
     @property
     def intercept_ci(self) -> tuple[float, float]:
-        """a -/+ t se(a) at ``confidence`` [unit of y]."""
+        """Interval of the intercept, a -/+ t se(a) at ``confidence`` [unit of y]."""
         h = self.t * self.intercept_se
         return self.intercept - h, self.intercept + h
 
     @property
     def slope_ci(self) -> tuple[float, float]:
-        """b -/+ t se(b) at ``confidence`` [unit of y / unit of x]."""
+        """Interval of the slope, b -/+ t se(b) at ``confidence`` [unit of y / unit of x]."""
         h = self.t * self.slope_se
         return self.slope - h, self.slope + h
 
     def predict(self, x):
-        """a + b x [unit of y] at ``x`` [unit of x].
+        """The line a + b x [unit of y] at ``x`` [unit of x].
 
         Parameters
         ----------
@@ -279,9 +283,9 @@ class LineFit:
         return self.intercept + self.slope * np.asarray(x, dtype=float)
 
     def mean_band(self, x):
-        """Lower and upper confidence band of the fitted mean line at ``x`` [unit of y], at ``confidence``.
+        r"""Lower and upper confidence band of the fitted mean line at ``x`` [unit of y], at ``confidence``.
 
-        .. math:: \\hat y(x) \\mp t_{1-\\alpha/2,\\,\\nu}\\sqrt{V_{aa} + 2xV_{ab} + x^2V_{bb}}
+        .. math:: \hat y(x) \mp t_{1-\alpha/2,\,\nu}\sqrt{V_{aa} + 2xV_{ab} + x^2V_{bb}}
 
         with V the covariance of (a, b) and nu = ``dof`` [1]. It covers the true mean line, not a new point:
         see :meth:`prediction_interval`.
@@ -303,9 +307,9 @@ class LineFit:
         return y - self.t * se, y + self.t * se
 
     def prediction_interval(self, x, confidence: float | None = None):
-        """Lower and upper limit [unit of y] of a NEW observation at ``x`` (default level ``confidence``).
+        r"""Lower and upper limit [unit of y] of a NEW observation at ``x`` (default level ``confidence``).
 
-        .. math:: \\hat y(x) \\mp t_{1-\\alpha/2,\\,\\nu}\\sqrt{s^2 + V_{aa} + 2xV_{ab} + x^2V_{bb}}
+        .. math:: \hat y(x) \mp t_{1-\alpha/2,\,\nu}\sqrt{s^2 + V_{aa} + 2xV_{ab} + x^2V_{bb}}
 
         The new observation's own scatter s^2 = RSS/nu is added to the variance of the fitted mean [1]; with
         proportional errors it is s^2 (y_hat(x)/ref)^2, growing with the strength (`fit_envelope`).
@@ -333,10 +337,10 @@ class LineFit:
 
 
 def fit_line(x, y, confidence: float = 0.95) -> LineFit:
-    """Fit y = a + b x by ordinary least squares; needs >= 3 points and two distinct x.
+    r"""Fit y = a + b x by ordinary least squares; needs >= 3 points and two distinct x.
 
-    .. math:: b = S_{xy}/S_{xx}, \\quad a = \\bar y - b\\bar x, \\quad
-              \\mathrm{Cov}(a, b) = s^2 (X^T X)^{-1}, \\quad s^2 = \\mathrm{RSS}/(n - 2)
+    .. math:: b = S_{xy}/S_{xx}, \quad a = \bar y - b\bar x, \quad
+              \mathrm{Cov}(a, b) = s^2 (X^T X)^{-1}, \quad s^2 = \mathrm{RSS}/(n - 2)
 
     (centred two-pass sums, [1] ch. 1).
 
@@ -401,10 +405,10 @@ def fit_line(x, y, confidence: float = 0.95) -> LineFit:
 
 
 def fit_line_origin(x, y, confidence: float = 0.95) -> LineFit:
-    """Fit y = b x through the origin by least squares (cohesionless soil, c = 0); needs >= 2 points.
+    r"""Fit y = b x through the origin by least squares (cohesionless soil, c = 0); needs >= 2 points.
 
-    .. math:: b = \\sum xy / \\sum x^2, \\quad \\mathrm{se}(b) = \\sqrt{s^2/\\sum x^2}, \\quad
-              s^2 = \\mathrm{RSS}/(n - 1)
+    .. math:: b = \sum xy / \sum x^2, \quad \mathrm{se}(b) = \sqrt{s^2/\sum x^2}, \quad
+              s^2 = \mathrm{RSS}/(n - 1)
 
     R^2 is 1 - RSS/TSS about the mean of y, as for the free fit, so both compare ([1] ch. 1,
     the line through the origin).
@@ -490,9 +494,9 @@ def _exact(resid, y_scale) -> bool:
 
 
 def breusch_pagan(x, resid, y_scale: float | None = None) -> dict:
-    """Breusch-Pagan test (Koenker's studentized form) of residuals whose variance grows with x.
+    r"""Breusch-Pagan test (Koenker's studentized form) of residuals whose variance grows with x.
 
-    .. math:: LM = n R^2_{e^2 \\sim x}, \\qquad p = P(\\chi^2_1 > LM) = \\mathrm{erfc}\\sqrt{LM/2}
+    .. math:: LM = n R^2_{e^2 \sim x}, \qquad p = P(\chi^2_1 > LM) = \mathrm{erfc}\sqrt{LM/2}
 
     with R² that of the least-squares regression of the squared residuals on (1, x). Koenker's form does not
     assume normal errors (the original LM = ESS/(2 σ⁴) does).
@@ -551,8 +555,10 @@ def breusch_pagan(x, resid, y_scale: float | None = None) -> dict:
 
 
 def choose_errors(x, y, through_origin: bool = False) -> tuple[str, dict]:
-    """The rule of ``errors="auto"``: "proportional" when the Breusch-Pagan test of the least-squares residuals
-    against x is significant at ``BP_LEVEL`` with a variance that grows with x, else "constant".
+    """The rule of ``errors="auto"``: "proportional" or "constant".
+
+    "proportional" when the Breusch-Pagan test of the least-squares residuals against x is significant at ``BP_LEVEL``
+    with a variance that grows with x, else "constant".
 
     Parameters
     ----------
@@ -577,11 +583,11 @@ def choose_errors(x, y, through_origin: bool = False) -> tuple[str, dict]:
 
 
 def outlier_diagnostics(x, y, weights=None, through_origin: bool = False, level: float = OUTLIER_LEVEL) -> dict:
-    """Externally studentized residuals, leverages and Cook's distances of a (weighted) least-squares line.
+    r"""Externally studentized residuals, leverages and Cook's distances of a (weighted) least-squares line.
 
-    .. math:: t_i = \\frac{e_i}{s_{(i)}\\sqrt{1 - h_{ii}}}, \\quad
-              s_{(i)}^2 = \\frac{(n-p)s^2 - e_i^2/(1-h_{ii})}{n - p - 1}, \\quad
-              D_i = \\frac{e_i^2}{p s^2}\\frac{h_{ii}}{(1-h_{ii})^2}
+    .. math:: t_i = \frac{e_i}{s_{(i)}\sqrt{1 - h_{ii}}}, \quad
+              s_{(i)}^2 = \frac{(n-p)s^2 - e_i^2/(1-h_{ii})}{n - p - 1}, \quad
+              D_i = \frac{e_i^2}{p s^2}\frac{h_{ii}}{(1-h_{ii})^2}
 
     (weighted residuals e_i = sqrt(w_i) r_i). Under normal errors t_i follows Student's t with n - p - 1 dof, so
     a point is flagged when |t_i| exceeds the Bonferroni quantile t_{1 - level/(2n), n-p-1}: the chance that a fit
@@ -660,7 +666,7 @@ def _psi(u, loss):
 
 
 def _tukey_rho(z):
-    """scipy least_squares loss of Tukey's biweight: rho(z), rho'(z), rho''(z) with z = (f/f_scale)^2."""
+    """The scipy least_squares loss of Tukey's biweight: rho(z), rho'(z), rho''(z) with z = (f/f_scale)^2."""
     inside = z < 1
     zz = np.minimum(z, 1.0)
     return np.vstack(
@@ -680,7 +686,7 @@ def _mad_scale(e, n, p):
 def fit_envelope(
     x, y, confidence: float = 0.95, through_origin: bool = False, errors: str = "constant", loss: str = "ols"
 ) -> LineFit:
-    """The envelope y = a + b x under the chosen error model and loss, with intervals that hold under it.
+    r"""The envelope y = a + b x under the chosen error model and loss, with intervals that hold under it.
 
     **Error models.** ``constant``: ordinary least squares (`fit_line`, `fit_line_origin`). ``proportional``:
     the standard deviation of a test is proportional to its expected strength, Var(y_i) = s² (ŷ_i/ref)²
@@ -695,8 +701,8 @@ def fit_envelope(
     scale (1.4826 median |e|, re-estimated twice from the robust residuals, times sqrt(n/(n-p))); covariance by
     the sandwich
 
-    .. math:: V = s^2 \\frac{n}{n-p} A^{-1} B A^{-1}, \\quad A = \\sum \\psi'(u_i) x_i x_i^T,
-              \\quad B = \\sum \\psi(u_i)^2 x_i x_i^T
+    .. math:: V = s^2 \frac{n}{n-p} A^{-1} B A^{-1}, \quad A = \sum \psi'(u_i) x_i x_i^T,
+              \quad B = \sum \psi(u_i)^2 x_i x_i^T
 
     (Huber 1981, ch. 7), and the scatter of a new test is s² (an outlier does not widen the intervals of
     the regular tests). Student's t with n - p dof.
@@ -752,9 +758,11 @@ def fit_envelope(
 
 
 def _fit_model(x, y, confidence, through_origin, errors, loss, ols: LineFit, bp: dict) -> LineFit:
-    """`fit_envelope` under one error model ("constant" or "proportional") and loss, given the least-squares
-    line ``ols`` of the same points and the Breusch-Pagan test ``bp`` of its residuals (computed once by the
-    caller: `_either` fits both models on the same least-squares line)."""
+    """`fit_envelope` under one error model ("constant" or "proportional") and loss.
+
+    Given the least-squares line ``ols`` of the same points and the Breusch-Pagan test ``bp`` of its residuals (computed
+    once by the caller: `_either` fits both models on the same least-squares line).
+    """
     n, p = x.size, 1 if through_origin else 2
     w = np.ones(n)
     ref = float(np.mean(np.abs(y))) or 1.0
@@ -818,8 +826,9 @@ def _fit_model(x, y, confidence, through_origin, errors, loss, ols: LineFit, bp:
 
 
 def loewner_max(A, B) -> np.ndarray:
-    """The covariance M >= A and M >= B (positive semi-definite order) that is smallest along the joint
-    eigen-directions: with A = L L^T and L^-1 B L^-T = Q diag(w) Q^T, M = L Q diag(max(w, 1)) Q^T L^T.
+    """The covariance M >= A and M >= B (positive semi-definite order) smallest along the joint eigen-directions.
+
+    With A = L L^T and L^-1 B L^-T = Q diag(w) Q^T, M = L Q diag(max(w, 1)) Q^T L^T.
 
     Every linear combination c^T theta then has c^T M c >= max(c^T A c, c^T B c), so an interval built on M
     holds under either covariance; along the directions where one dominates, M equals it.

@@ -1,9 +1,9 @@
-"""Bounded nonlinear least squares with fixed parameters, several starts and standard errors.
+r"""Bounded nonlinear least squares with fixed parameters, several starts and standard errors.
 
 The result record :class:`NonlinearFit` follows lmfit's ``MinimizerResult``:
 estimates, standard errors, covariance, n, dof, RSS, R², AIC, AICc, BIC.
 Standard errors come from the Jacobian of the weighted residuals at the
-optimum, :math:`\\mathrm{Cov} = (J^T J)^{-1}\\, \\mathrm{RSS}/(n - k)`
+optimum, :math:`\mathrm{Cov} = (J^T J)^{-1}\, \mathrm{RSS}/(n - k)`
 (the linearisation at the optimum); a parameter that ends on one of its bounds is
 held there for the standard errors of the others (the same numbers as a refit
 with it fixed), and the fit's ``notes`` say so.
@@ -20,7 +20,7 @@ from ..errors import FitError
 
 @dataclass
 class NonlinearFit:
-    """One least-squares fit.
+    r"""One least-squares fit.
 
     Attributes
     ----------
@@ -33,12 +33,12 @@ class NonlinearFit:
     n : int
         Number of data points.
     rss : float
-        Weighted residual sum of squares, :math:`\\sum w_i (f(x_i) - y_i)^2` [unit of y squared].
+        Weighted residual sum of squares, :math:`\sum w_i (f(x_i) - y_i)^2` [unit of y squared].
     r2 : float
         Weighted coefficient of determination, 1 - RSS/TSS [-].
     aic, bic : float
-        Akaike and Bayesian information criteria, :math:`n \\ln(\\mathrm{RSS}/n) + 2k` and
-        :math:`n \\ln(\\mathrm{RSS}/n) + k \\ln n`, k the number of estimated parameters.
+        Akaike and Bayesian information criteria, :math:`n \ln(\mathrm{RSS}/n) + 2k` and
+        :math:`n \ln(\mathrm{RSS}/n) + k \ln n`, k the number of estimated parameters.
     converged : bool
         The optimiser met its tolerances.
     message : str
@@ -83,7 +83,7 @@ class NonlinearFit:
 
     @property
     def aicc(self) -> float:
-        """AIC with the small-sample correction, :math:`\\mathrm{AIC} + 2k(k + 1)/(n - k - 1)` (k free parameters)."""
+        r"""AIC with the small-sample correction, :math:`\mathrm{AIC} + 2k(k + 1)/(n - k - 1)` (k free parameters)."""
         k = self.nfree
         return self.aic + 2 * k * (k + 1) / (self.n - k - 1) if self.n - k - 1 > 0 else float("nan")
 
@@ -111,7 +111,15 @@ class NonlinearFit:
         return self.params[name] - self.t * se, self.params[name] + self.t * se
 
     def correlation(self) -> dict[str, dict[str, float]]:
-        """Correlation matrix of the free parameters that have a standard error (as unsatfit and SWRC Fit report)."""
+        """Correlation matrix of the free parameters, as unsatfit and SWRC Fit report it.
+
+        Only parameters with a standard error take part (held ones and those of zero variance are left out).
+
+        Returns
+        -------
+        dict of str to dict of str to float
+            ``r[a][b]``, the correlation of parameters ``a`` and ``b`` [-]; empty without a covariance.
+        """
         if self.covariance is None:
             return {}
         var = np.diag(self.covariance)
@@ -176,7 +184,7 @@ def _at_bound(value: float, bounds, offset, rel: float) -> bool:
 
 
 def fit_curve(model, x, y, names, starts, bounds, fixed=None, weights=None, log_params=None) -> NonlinearFit:
-    """Minimise :math:`\\sum_i w_i\\,(f(x_i; p) - y_i)^2` over the free parameters p, from several starts.
+    r"""Minimise :math:`\sum_i w_i\,(f(x_i; p) - y_i)^2` over the free parameters p, from several starts.
 
     Parameters
     ----------

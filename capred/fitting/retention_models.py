@@ -1,4 +1,4 @@
-"""The water-retention models of `capred retention`: one registry entry each, and their fitting.
+r"""The water-retention models of `capred retention`: one registry entry each, and their fitting.
 
 Each :class:`RetentionModel` of :data:`MODELS` (declared in `capred.spec.retention_models`, re-exported here)
 holds everything about a model:
@@ -9,9 +9,9 @@ entry.
 
 Suction s is in Pa inside. Every model gives
 
-.. math:: y(s) = y_r + (y_s - y_r)\\, S(s)
+.. math:: y(s) = y_r + (y_s - y_r)\, S(s)
 
-except Fredlund-Xing with its correction factor, :math:`y = y_s\\, C(s) S(s)`.
+except Fredlund-Xing with its correction factor, :math:`y = y_s\, C(s) S(s)`.
 The fit (:func:`fit_model`) reaches the global least-squares optimum inside
 the bounds by
 
@@ -87,7 +87,7 @@ def _vg_inverse(S, alpha, n):
 
 
 def _vg_m(p: dict) -> float:
-    """van Genuchten's m = 1 - 1/n (Mualem's constraint) of the fitted parameters."""
+    """The m = 1 - 1/n of van Genuchten (Mualem's constraint) of the fitted parameters."""
     return 1.0 - 1.0 / p["n"]
 
 
@@ -233,8 +233,9 @@ def default_models() -> tuple[str, ...]:
 
 
 def hysteresis_model() -> RetentionModel:
-    """The model of each branch of the Kool & Parker (1987) joint hysteresis fit (the entry with
-    ``hysteresis_base``).
+    """The model of each branch of the Kool & Parker (1987) joint hysteresis fit.
+
+    The registry entry with ``hysteresis_base``.
 
     Returns
     -------
@@ -249,8 +250,9 @@ def hysteresis_model() -> RetentionModel:
 
 
 def power_law_model() -> RetentionModel:
-    """The model of the form S_e = (s_e/s)^λ above its air entry (the entry with ``power_law``): what
-    `skempton-b --retention` takes (Morvan et al. 2016, eq. 13) and `retention-convert` converts to by default.
+    """The model of the form S_e = (s_e/s)^λ above its air entry (the entry with ``power_law``).
+
+    What `skempton-b --retention` takes (Morvan et al. 2016, eq. 13) and `retention-convert` converts to by default.
 
     Returns
     -------
@@ -337,8 +339,10 @@ def _description(internal: str) -> str:
 
 
 class _Number:
-    """Arithmetic and formatting of a parameter record through its value, so that a script's
-    ``fit.params["n"] * 2`` (a float before, a record now) keeps working."""
+    """Arithmetic and formatting of a parameter record through its value.
+
+    So that a script's ``fit.params["n"] * 2`` (a float before, a record now) keeps working.
+    """
 
     def __format__(self, spec):
         return format(float(self.value), spec)
@@ -421,8 +425,9 @@ class RetentionParameters(Parameters):
 
 
 class RetentionErrors(dict):
-    """Standard errors of a retention fit by JSON name in the JSON's units (``fit.stderr["alpha_per_kPa"]``
-    [1/kPa]; None where none applies: a fixed or held parameter, a converted curve).
+    """Standard errors of a retention fit by JSON name, in the JSON's units.
+
+    ``fit.stderr["alpha_per_kPa"]`` [1/kPa]; None where none applies: a fixed or held parameter, a converted curve.
 
     The old internal names (``y_r``, ``alpha`` [1/Pa], ``s_e`` [Pa] ...) still work for one release: they return
     the OLD value in the OLD (SI) unit and raise a DeprecationWarning naming the new key
@@ -451,8 +456,20 @@ class RetentionErrors(dict):
         return super().__getitem__(name)
 
     def get(self, name: str, default=None):
-        """The standard error of ``name`` (a JSON name; an old internal name with a DeprecationWarning), or
-        ``default``."""
+        """The standard error of ``name``, or ``default``.
+
+        Parameters
+        ----------
+        name : str
+            A JSON name (``"alpha_per_kPa"``); an old internal name works with a DeprecationWarning.
+        default : object, optional
+            What is returned where ``name`` has no standard error.
+
+        Returns
+        -------
+        float or None
+            The standard error in the JSON's unit of ``name``, else ``default``.
+        """
         try:
             return self[name]
         except KeyError:
@@ -601,7 +618,13 @@ class RetentionFit(NonlinearFit):
         return MODELS[self.model].label if self.model in MODELS else "Kool & Parker (1987) hysteresis"
 
     def statistics(self) -> dict:
-        """``{label: value}`` of the fit statistics shown by :meth:`summary` (n, k, RSS, R², AIC, AICc, BIC)."""
+        """The fit statistics shown by :meth:`summary`.
+
+        Returns
+        -------
+        dict of str to float
+            ``{label: value}`` of n, k, RSS, RMSE, R², AIC, AICc and BIC (RSS and RMSE in the fitted quantity's unit).
+        """
         return {
             "data points": self.n,
             "free params": self.nfree,
@@ -665,9 +688,10 @@ class RetentionFit(NonlinearFit):
     __call__ = water
 
     def S_R(self, suction):
-        """Degree of saturation S_R [-] at ``suction`` [Pa] (>= 0): the fitted curve itself when S_R was fitted,
-        θ/θ_s when a volumetric water content was (θ_s taken as the porosity: the soil saturated at zero
-        suction). A negative suction raises OptionError.
+        """Degree of saturation S_R [-] at ``suction`` [Pa] (>= 0).
+
+        The fitted curve itself when S_R was fitted, θ/θ_s when a volumetric water content was (θ_s taken as the
+        porosity: the soil saturated at zero suction). A negative suction raises OptionError.
 
         Parameters
         ----------
@@ -688,7 +712,8 @@ class RetentionFit(NonlinearFit):
         return y if self.quantity == "S_R" else y / self.params_si["y_s"]
 
     def suction_at_S_R(self, S_R):
-        """Suction [Pa] at which the fitted curve gives the degree of saturation ``S_R`` [-] (inverse of S_R);
+        """Suction [Pa] at which the fitted curve gives the degree of saturation ``S_R`` [-] (inverse of S_R).
+
         NaN where S_R lies outside the fitted curve's range (S_res, S_s].
 
         Parameters
@@ -893,8 +918,10 @@ def identifiability_warnings(fit) -> list[str]:
 
 
 def _projected_rss(pb: _Problem, W, Y, YY, mS, mSS, mSy):
-    """Projected RSS of curves S known by their weighted moments: the bounded weighted least-squares y_r, y_s
-    of each curve, from its moments alone (every column of the linear problem is affine in S and y).
+    """Projected RSS of curves S known by their weighted moments.
+
+    The bounded weighted least-squares y_r, y_s of each curve, from its moments alone (every column of the linear
+    problem is affine in S and y).
 
     ``W, Y, YY`` are Σw, Σw y, Σw y² of the data; ``mS, mSS, mSy`` are Σw S, Σw S², Σw S y of each curve (any
     broadcastable shape). With two linear parameters the box-constrained quadratic is solved exactly: the
@@ -1033,8 +1060,11 @@ class _Problem:
         return U
 
     def fitted_rows(self, S):
-        """The fitted curve of each row of S (m, n): y_r + (y_s - y_r) S (or y_s S) with the bounded weighted
-        least-squares y_r, y_s of that row (the arithmetic of :meth:`linear`, vectorised over the rows)."""
+        """The fitted curve of each row of S (m, n): y_r + (y_s - y_r) S (or y_s S).
+
+        With the bounded weighted least-squares y_r, y_s of that row (the arithmetic of :meth:`linear`, vectorised over
+        the rows).
+        """
         lin, b, w2 = self.lin, self.b, self.w2
         cols = {"y_r": 1.0 - S, "y_s": S} if self.model.residual_form else {"y_s": S}
         rhs, f = self.y, 0.0
@@ -1090,9 +1120,11 @@ class _Problem:
         return np.where(np.isfinite(r), r, 1e10)
 
     def resid_jac_rows(self, U, hi):
-        """Residuals (m, n) at rows ``U`` (m, k) and their forward-difference Jacobians (m, n, k), all in one
-        evaluation of the model (backward where a forward step would leave the box ``U <= hi``: a one-sided
-        derivative from inside)."""
+        """Residuals (m, n) at rows ``U`` (m, k) and their forward-difference Jacobians (m, n, k).
+
+        All in one evaluation of the model (backward where a forward step would leave the box ``U <= hi``: a one-sided
+        derivative from inside).
+        """
         m, k = U.shape
         h = 1.49e-8 * np.maximum(np.abs(U), 1.0)
         h = np.where(U + h > hi, -h, h)
@@ -1129,8 +1161,9 @@ def _grid_values(par: Parameter, lo: float, hi: float, s_min: float, s_max: floa
 
 
 def _screen(pb: _Problem, idx):
-    """Projected RSS over the start grid: (names, axes, rss array of the grid's shape, mixture weights or None,
-    mixture).
+    """Projected RSS over the start grid.
+
+    Returns (names, axes, rss array of the grid's shape, mixture weights or None, mixture).
 
     The grid parameters are passed to the model on separate broadcast axes, so a part of the model that
     depends on some of them only is evaluated once per combination of those; each curve enters the projection
@@ -1182,8 +1215,10 @@ def _screen(pb: _Problem, idx):
 
 
 def _cross(A, B, shape):
-    """Σ_n A[..., n] B[..., n] of two arrays broadcast over the grid axes, each summed on its own axes only
-    (a matrix product when they share none): the result broadcasts to ``shape``."""
+    """Σ_n A[..., n] B[..., n] of two arrays broadcast over the grid axes.
+
+    Each is summed on its own axes only (a matrix product when they share none): the result broadcasts to ``shape``.
+    """
     nd = len(shape)
     letters = "abcdefghijklmnopqrstuvwxy"[:nd]
     ax_a = [i for i in range(nd) if A.shape[i] > 1]
@@ -1199,9 +1234,11 @@ def _cross(A, B, shape):
 
 
 def _mixture_weight(W, Y, m1, m2, G11, G12, G22, m1y, m2y):
-    """The weight w = c1/(c1 + c2) of S = w S1 + (1 - w) S2 from the unconstrained weighted linear fit
-    y = c0 + c1 S1 + c2 S2 (its normal equations from the moments, regularised by 1e-14 of their trace), clipped
-    to [0, 1]; 0.5 where undefined."""
+    """The weight w = c1/(c1 + c2) of S = w S1 + (1 - w) S2, clipped to [0, 1]; 0.5 where undefined.
+
+    From the unconstrained weighted linear fit y = c0 + c1 S1 + c2 S2 (its normal equations from the moments,
+    regularised by 1e-14 of their trace).
+    """
     m1, m2, G11, G12, G22, m1y, m2y = np.broadcast_arrays(m1, m2, G11, G12, G22, m1y, m2y)
     A = np.stack(
         [np.stack([np.full_like(m1, W), m1, m2], -1), np.stack([m1, G11, G12], -1), np.stack([m2, G12, G22], -1)], -2
@@ -1232,8 +1269,10 @@ def _local_minima(rss: np.ndarray) -> np.ndarray:
 
 
 def _screen_points(s) -> np.ndarray:
-    """Indices of the data points that rank the start grid and run the first, loose refinement: all points, or
-    ``_SCREEN_POINTS`` of them evenly spread in the order of suction."""
+    """Indices of the data points that rank the start grid and run the first, loose refinement.
+
+    All points, or ``_SCREEN_POINTS`` of them evenly spread in the order of suction.
+    """
     order = np.argsort(s, kind="stable")
     if s.size <= _SCREEN_POINTS:
         return order
@@ -1267,8 +1306,11 @@ def _point(pb, names, axes, weights, mix, pos) -> np.ndarray:
 
 
 def _interval_starts(pb, names, axes, rss, weights, mix, axis, lo, hi, knots, n_starts):
-    """Starts of a model with kinks at the data suctions in one parameter: the best grid point of each interval
-    between neighbouring data suctions, the intervals ranked by it; the box of each start is its interval."""
+    """Starts of a model with kinks at the data suctions in one parameter.
+
+    The best grid point of each interval between neighbouring data suctions, the intervals ranked by it; the box of each
+    start is its interval.
+    """
     j = pb.shape.index(names[axis])
     edges = np.unique(np.concatenate([[lo[j]], knots[(knots > lo[j]) & (knots < hi[j])], [hi[j]]]))
     values = axes[axis]
@@ -1297,8 +1339,10 @@ def _interval_starts(pb, names, axes, rss, weights, mix, axis, lo, hi, knots, n_
 
 
 def _distinct(U, cost, close: float) -> np.ndarray:
-    """Indices of the rows of ``U`` with a cost within ``close`` (relative) of the lowest, best first, without
-    the rows that repeat a better one (every coordinate within 1e-6 of it, relative)."""
+    """Indices of the rows of ``U`` with a cost within ``close`` (relative) of the lowest, best first.
+
+    Without the rows that repeat a better one (every coordinate within 1e-6 of it, relative).
+    """
     order = np.argsort(cost, kind="stable")
     order = order[cost[order] <= cost[order[0]] * (1 + close) + 1e-300]
     out: list[int] = []
@@ -1309,10 +1353,12 @@ def _distinct(U, cost, close: float) -> np.ndarray:
 
 
 def _interval_walk(pb: _Problem, u, j: int, lo, hi):
-    """Polish a start of a model with kinks at the data suctions in parameter ``j`` (fitting coordinates ``u``,
-    box ``lo``, ``hi``): a bounded fit in each interval between neighbouring distinct data suctions around
-    ``u[j]`` (one each side), moving on while the lowest lies next to an unexplored one.
-    Returns (u, cost, converged)."""
+    """Polish a start of a model with kinks at the data suctions in parameter ``j``.
+
+    Fitting coordinates ``u``, box ``lo``, ``hi``: a bounded fit in each interval between neighbouring distinct data
+    suctions around ``u[j]`` (one each side), moving on while the lowest lies next to an unexplored one. Returns (u,
+    cost, converged).
+    """
     o = pb.offset[j]
     knots = np.unique(pb.s[pb.s > 0])
     knots = np.log(knots - o) if o is not None else knots
@@ -1339,10 +1385,12 @@ def _interval_walk(pb: _Problem, u, j: int, lo, hi):
 
 
 def _step_search(pb: _Problem, model: RetentionModel, u, converged: bool):
-    """Search a pore system as a step: its n at the upper bound and its α in every interval between neighbouring
-    data suctions (the objective is piecewise flat in α there, so a local fit stays where it starts), each
-    refined within its interval, the best then refined in the whole box; kept when it lowers the cost.
-    Returns (u, converged)."""
+    """Search a pore system as a step.
+
+    Its n at the upper bound and its α in every interval between neighbouring data suctions (the objective is piecewise
+    flat in α there, so a local fit stays where it starts), each refined within its interval, the best then refined in
+    the whole box; kept when it lowers the cost. Returns (u, converged).
+    """
     lo_all, hi_all = pb.u_rows(np.array([[pb.b[k][0] for k in pb.shape], [pb.b[k][1] for k in pb.shape]]))
     R, _ = pb.resid_jac_rows(u[None, :], hi_all[None, :])
     best_c = float(R[0] @ R[0])
@@ -1378,8 +1426,9 @@ def _knots(s, most: int = 150) -> np.ndarray:
 
 
 def _levenberg_marquardt(pb: _Problem, U, lo, hi, ftol: float, max_iter: int, prune: float = 0.0):
-    """Box-constrained Levenberg-Marquardt from every row of ``U`` at once (steps projected on each row's box
-    ``lo``, ``hi``; Marquardt's diagonal scaling).
+    """Box-constrained Levenberg-Marquardt from every row of ``U`` at once.
+
+    Steps are projected on each row's box ``lo``, ``hi``; Marquardt's diagonal scaling.
 
     Each row runs its own iteration (its own damping, acceptance and stop), the rows are only evaluated
     together. A variable on a bound whose gradient points outwards is frozen for the step (an active
@@ -1461,9 +1510,9 @@ def _levenberg_marquardt(pb: _Problem, U, lo, hi, ftol: float, max_iter: int, pr
 
 
 def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = None) -> RetentionFit:
-    """Fit one retention model by (weighted) least squares at the global optimum inside the bounds.
+    r"""Fit one retention model by (weighted) least squares at the global optimum inside the bounds.
 
-    Minimises :math:`\\sum_i w_i\\,(y(s_i) - y_i)^2` with y(s) the model of ``MODELS[name]`` (see the
+    Minimises :math:`\sum_i w_i\,(y(s_i) - y_i)^2` with y(s) the model of ``MODELS[name]`` (see the
     module docstring for the search: variable projection of y_r, y_s; a grid over the shape parameters;
     bounded refinement of the best grid minima).
 
@@ -1503,7 +1552,6 @@ def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = 
     problems whose variables separate. SIAM J. Numer. Anal. 10(2):413-432, doi:10.1137/0710036
     (variable projection).
     """
-
     if name not in MODELS:
         raise FitError(f"unknown retention model '{name}'; choose from {', '.join(MODELS)}")
     s = np.asarray(s, float)
@@ -1579,9 +1627,9 @@ def fit_model(name: str, s, y, fixed=None, weights=None, n_starts: int | None = 
 
 
 def confidence_band(name: str, fit: NonlinearFit, s_grid, level_t: float | None = None):
-    """95 % confidence band of the mean fitted curve (delta method).
+    r"""95 % confidence band of the mean fitted curve (delta method).
 
-    .. math:: y(s) \\pm t\\, \\sqrt{g(s)^T\\, \\mathrm{Cov}\\, g(s)}, \\qquad g = \\partial y / \\partial p
+    .. math:: y(s) \pm t\, \sqrt{g(s)^T\, \mathrm{Cov}\, g(s)}, \qquad g = \partial y / \partial p
 
     Parameters
     ----------
@@ -1623,11 +1671,11 @@ def confidence_band(name: str, fit: NonlinearFit, s_grid, level_t: float | None 
 
 
 def fit_hysteresis(s_d, y_d, s_w, y_w, fixed=None, weights=None) -> NonlinearFit:
-    """Drying and wetting branches fitted jointly by van Genuchten (m = 1 - 1/n) after Kool & Parker (1987).
+    r"""Drying and wetting branches fitted jointly by van Genuchten (m = 1 - 1/n) after Kool & Parker (1987).
 
     Both branches share y_s, y_r and n; α differs (α_d drying, α_w wetting):
 
-    .. math:: y = y_r + (y_s - y_r)\\left[1 + (\\alpha_{d|w}\\, s)^n\\right]^{-(1 - 1/n)}
+    .. math:: y = y_r + (y_s - y_r)\left[1 + (\alpha_{d|w}\, s)^n\right]^{-(1 - 1/n)}
 
     Parameters
     ----------

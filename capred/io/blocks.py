@@ -193,9 +193,12 @@ _DELIMITER_ROW_LAST = b",; \t"
 
 
 def _trailing(following, after, prefix: list[str], shown: str, limits: ReadLimits, src, schema) -> Table | None:
-    """The last piece read as notes under the data when it begins with rows of delimiters only and holds no data
-    rows (its lines under them that are not data are notes, said by the block before it: a block of no data would
-    be refused as 'no data rows'); None otherwise (the piece is a block of its own)."""
+    """The last piece read as notes under the data, or None.
+
+    It is read so when it begins with rows of delimiters only and holds no data rows (its lines under them that are not
+    data are notes, said by the block before it: a block of no data would be refused as 'no data rows'); None otherwise
+    (the piece is a block of its own).
+    """
     if following is None or after is not None or not _delimiter_row_first(following[1]):
         return None
     lines = "\n".join(prefix) + "\n" + following[1]
@@ -205,8 +208,10 @@ def _trailing(following, after, prefix: list[str], shown: str, limits: ReadLimit
 
 
 def _with_data(pieces: Iterator[tuple[int, str]]) -> Iterator[tuple[int, str]]:
-    """The pieces, less the later ones of blank lines and rows of delimiters only (no data; their rows are counted
-    by _delimiter_rows and said by the first block)."""
+    """The pieces, less the later ones of blank lines and rows of delimiters only.
+
+    Those hold no data; their rows are counted by _delimiter_rows and said by the first block.
+    """
     for first_line, text in pieces:
         if first_line == 1 or text.strip(_EMPTY_ROW_CHARS):
             yield first_line, text
@@ -219,8 +224,9 @@ def _delimiter_row_first(text: str) -> bool:
 
 
 def _delimiter_rows(path: Path, block_bytes: int, limits: ReadLimits, shown: str) -> Grid:
-    """The rows of delimiters only of the whole file (",,,," as spreadsheet exports leave them), counted as the
-    whole-file reader counts them: a Grid holding their number and first line numbers.
+    """The rows of delimiters only of the whole file (",,,," as spreadsheet exports leave them).
+
+    They are counted as the whole-file reader counts them: a Grid holding their number and first line numbers.
 
     The file is searched only when a line of it can be one (a line ending in a delimiter or a blank): a file of
     numbers costs one read of its bytes.
@@ -234,8 +240,11 @@ def _delimiter_rows(path: Path, block_bytes: int, limits: ReadLimits, shown: str
 
 
 def _may_hold_delimiter_rows(path: Path, block_bytes: int) -> bool:
-    """True when a line of the file ends in a delimiter or a blank (',' ';' ' ' or tab), as a row of delimiters
-    only does; False proves the file holds none. Looked for with numpy, a block of bytes at a time."""
+    """Whether a line of the file ends in a delimiter or a blank, as a row of delimiters only does.
+
+    The ends looked for are ',' ';' ' ' or tab; False proves the file holds no such row. Looked for with numpy, a block
+    of bytes at a time.
+    """
     import numpy as np
 
     last = np.zeros(256, bool)
@@ -256,8 +265,11 @@ def _may_hold_delimiter_rows(path: Path, block_bytes: int) -> bool:
 
 
 def _counted(grid: Grid, counted: Grid | None) -> Grid:
-    """``grid`` (of one piece) with the rows of delimiters only of the whole file (``counted``; None: none), so
-    that the note on them is given once, with the file's total, by the first block."""
+    """``grid`` (of one piece) with the rows of delimiters only of the whole file.
+
+    ``counted`` holds them (None: none), so that the note on them is given once, with the file's total, by the first
+    block.
+    """
     grid.delimiter_rows = counted.delimiter_rows if counted is not None else 0
     grid.delimiter_lines = list(counted.delimiter_lines) if counted is not None else []
     return grid
@@ -312,8 +324,10 @@ class _Cells(Sequence):
 def _numeric_block(
     shown: str, src, schema: list[Column], prefix: list[str], first_line: int, text: str
 ) -> Table | None:
-    """The Table the whole-file reader makes of a block whose every cell is a plain number, made without a
-    Python object per cell; None where the block is anything else (or has any problem), for the usual reader.
+    """The Table of a block whose every cell is a plain number, or None.
+
+    It is the Table the whole-file reader makes, made without a Python object per cell; None where the block is anything
+    else (or has any problem), for the usual reader.
 
     Taken only when every line has as many filled cells as the header (no blank cell, line or header cell),
     every character is a digit, sign, point, exponent mark, comma or line end, the header is comma-separated,
@@ -376,8 +390,10 @@ def _numeric_block(
 
 
 def _joined(head: Table, rest: Table) -> Table:
-    """The table of the head's lines then the rest's (the rest read by _numeric_block after the head): what the
-    whole-file reader makes of both together."""
+    """The table of the head's lines then the rest's.
+
+    The rest is read by _numeric_block after the head: the table is what the whole-file reader makes of both together.
+    """
     import numpy as np
 
     for name in head.columns:
@@ -409,8 +425,10 @@ class _Concatenated(Sequence):
 
 
 def _parse_numbers(text: str, n: int, width: int):
-    """The cells of a plain numeric block as an (n, width) float array; None where a line has another width or
-    a cell is not a number."""
+    """The cells of a plain numeric block as an (n, width) float array, or None.
+
+    None where a line has another width or a cell is not a number.
+    """
     import numpy as np
 
     try:
@@ -482,8 +500,9 @@ def _plain_utf8(path: Path, chunk: int = 2**22) -> bool:
 def _pieces(
     path: Path, block_bytes: int, limits: ReadLimits | None = None, shown: str | None = None
 ) -> Iterator[tuple[int, str]]:
-    """(line number of the first line, text) of consecutive blocks of whole lines, each without its last line
-    end; the first without its BOM.
+    """(line number of the first line, text) of consecutive blocks of whole lines.
+
+    Each block is without its last line end; the first without its BOM.
 
     A line longer than half a block is read whole into the block where it starts (the lines before it keep it
     company: a first block is never its header alone) and is first checked against ``limits.max_cell_chars``
@@ -521,8 +540,11 @@ def _pieces(
 
 
 def _long_line(fh, data: bytes, cut: int, ahead: bytes, block_bytes: int, first_line: int, start: int, shown, limits):
-    """(this block's bytes through the end of the long line begun at ``cut``, the bytes after it) for _pieces,
-    reading on from ``fh``; the line's cells checked against ``limits`` (LimitError for one over the limit)."""
+    """(the block's bytes through the end of the long line begun at ``cut``, the bytes after it) for _pieces.
+
+    The bytes are read on from ``fh``; the line's cells are checked against ``limits`` (LimitError for one over the
+    limit).
+    """
     line = bytearray(memoryview(data)[cut:])  # grown in place: the line is held once
     rest = ahead
     while rest:
@@ -562,9 +584,10 @@ _NO_DATA_BYTES = b" \t\r\n,;"
 
 
 def data_lines(path, block_bytes: int | None = None) -> int:
-    """How many lines of a text file hold anything but blanks and delimiters: about its rows (the header and any
-    note lines included; a quoted cell that spans lines counts once per line), counted without reading it as a
-    table, a block of bytes at a time with numpy (about 1 s for 250 MB).
+    """How many lines of a text file hold anything but blanks and delimiters: about its rows.
+
+    The header and any note lines are included; a quoted cell that spans lines counts once per line. Counted
+    without reading the file as a table, a block of bytes at a time with numpy (about 1 s for 250 MB).
 
     A line ends at a line feed or a carriage return (CRLF, LF and lone CR files alike). Used to say, before a
     run computes anything, how large its outputs would be (capred.report.outputs.check_outputs_ahead).

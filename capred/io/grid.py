@@ -168,10 +168,12 @@ class ReadLimits:
 
 @dataclass(frozen=True)
 class TableSource:
-    """A table to read: a path (CSV, .xlsx, .ods) or a DataFrame, the sheet of a workbook, how to
-    read thousands separators ("." to read 1.000 as one thousand in a decimal-comma file), the
-    columns to leave out (``ignore_columns``: names as the header writes them) and the reading
-    limits (``limits``: a :class:`ReadLimits`; None for the defaults)."""
+    """A table to read and how to read it.
+
+    A path (CSV, .xlsx, .ods) or a DataFrame, the sheet of a workbook, how to read thousands separators ("." to read
+    1.000 as one thousand in a decimal-comma file), the columns to leave out (``ignore_columns``: names as the header
+    writes them) and the reading limits (``limits``: a :class:`ReadLimits`; None for the defaults).
+    """
 
     path: object
     sheet: str | int | None = None
@@ -230,6 +232,13 @@ def as_source(source) -> TableSource:
 
 @dataclass
 class Grid:
+    """The cells of a table as read, before any column is interpreted: a CSV's rows or one sheet's.
+
+    Each field is described where it is declared: the file as messages name it (``shown``), the sheet, the rows
+    with their line numbers, a CSV's candidate delimiters and text, and what the reading itself noticed (rows of
+    delimiters only, lines of another encoding, merged cells, hidden sheets) for the Table's notes and warnings.
+    """
+
     shown: str  # the file as messages name it
     sheet: str | None
     rows: list[tuple[int, list[str]]]  # (line number, cells)
@@ -345,9 +354,11 @@ def read_grid(source: TableSource) -> Grid:
 
 
 def _decode_mixed(data: bytes) -> tuple[str, list[int]]:
-    """(text, lines read as Windows-1252): UTF-8 (or UTF-16 with a BOM) as a whole where it can be; a file whose
-    lines mix UTF-8 and Windows-1252 (one pasted from another program) line by line, each in its own encoding,
-    never garbled silently; a file of Windows-1252 alone as a whole."""
+    """(text, lines read as Windows-1252) of a file's bytes, never garbled silently.
+
+    UTF-8 (or UTF-16 with a BOM) as a whole where it can be; a file whose lines mix UTF-8 and Windows-1252 (one pasted
+    from another program) line by line, each in its own encoding; a file of Windows-1252 alone as a whole.
+    """
     if data[:2] in (b"\xff\xfe", b"\xfe\xff"):
         return decode_text(data), []
     try:
@@ -393,7 +404,8 @@ def decode_text(data: bytes) -> str:
 
     References
     ----------
-    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
+    capred's own input conventions (README, "`capred shear`: input format"); no external source.
+    """
     encodings = ("utf-8-sig", "utf-16") if data[:2] in (b"\xff\xfe", b"\xfe\xff") else ("utf-8-sig", "cp1252")
     for enc in encodings:
         try:
@@ -410,20 +422,21 @@ CHUNK_CHARS = 1 << 20
 
 
 def line_chunks(text: str, size: int = CHUNK_CHARS):
-    """``text`` in pieces of about ``size`` characters cut at line ends (the ``\\n`` between two pieces left out),
-    so that a pass over a file's lines never holds a list of all of them.
+    r"""``text`` in pieces of about ``size`` characters cut at line ends.
+
+    The ``\n`` between two pieces is left out, so that a pass over a file's lines never holds a list of all of them.
 
     Parameters
     ----------
     text : str
-        Lines ending in ``\\n``.
+        Lines ending in ``\n``.
     size : int
         Characters per piece, at least (a piece ends at the next line end).
 
     Yields
     ------
     str
-        Whole lines joined by ``\\n``; ``"\\n".join`` of the pieces is ``text``.
+        Whole lines joined by ``\n``; ``"\n".join`` of the pieces is ``text``.
     """
     a = 0
     while True:
@@ -485,10 +498,11 @@ def _blank_rows(grid: Grid, text: str, first_line: int) -> str:
 
 
 def check_long_lines(shown: str, text: str, first_line: int, limits: ReadLimits) -> None:
-    """Refuse a CSV one of whose cells (or headers, or notes) holds more than ``limits.max_cell_chars``
-    characters, before any line is split. Stretches of max_cell_chars/2 characters are probed for a line end:
-    only a line longer than that is split, at each candidate delimiter, and it is refused when even the
-    delimiter that cuts it finest leaves a cell over the limit.
+    """Refuse a CSV one of whose cells (or headers, or notes) is over ``limits.max_cell_chars`` characters.
+
+    This runs before any line is split. Stretches of max_cell_chars/2 characters are probed for a line end: only a line
+    longer than that is split, at each candidate delimiter, and it is refused when even the delimiter that cuts it
+    finest leaves a cell over the limit.
 
     Parameters
     ----------
@@ -527,8 +541,10 @@ def check_long_lines(shown: str, text: str, first_line: int, limits: ReadLimits)
 
 
 def _widest_field(text: str, start: int, end: int, delim: str, step: int) -> int:
-    """(length, start) of the longest run between ``delim``s in text[start:end], looked for where a stretch of
-    ``step`` characters holds none."""
+    """(length, start) of the longest run between ``delim``s in text[start:end].
+
+    Runs are looked for where a stretch of ``step`` characters holds no ``delim``.
+    """
     widest, at, last = 0, start, -1
     for pos in range(start, end, step):
         if pos < last or text.find(delim, pos, min(end, pos + step)) >= 0:
@@ -566,7 +582,8 @@ def csv_grid(shown: str, text: str, first_line: int = 1, limits: ReadLimits | No
 
     References
     ----------
-    RFC 4180, Common Format and MIME Type for Comma-Separated Values (CSV) Files, doi:10.17487/RFC4180."""
+    RFC 4180, Common Format and MIME Type for Comma-Separated Values (CSV) Files, doi:10.17487/RFC4180.
+    """
     if "#" in text or "\r" in text:
         # comment lines become blank (keeping the numbering); a '#' inside a quoted field is left alone. Lines
         # end only at \n, \r\n or \r, as for the csv module (str.splitlines would also split at \v, \f, \x1c-\x1e,
@@ -608,8 +625,10 @@ HEAD_LINE_CHARS = 64 * 2**10
 
 
 def _head(text: str, lines: int = 200) -> tuple[str, bool]:
-    """The first ``lines`` lines of ``text`` (at most HEAD_CHARS characters, each line at least HEAD_LINE_CHARS)
-    and whether a line was cut; made without a copy of the rest of the text."""
+    """The first ``lines`` lines of ``text`` and whether a line was cut.
+
+    At most HEAD_CHARS characters, each line at least HEAD_LINE_CHARS; made without a copy of the rest of the text.
+    """
     pieces, a, budget, cut = [], 0, HEAD_CHARS, False
     for _ in range(lines):
         b = text.find("\n", a)
@@ -631,8 +650,10 @@ HEAD_CELLS = 100_000
 
 
 def _head_cap(line: str, delim: str, cap: int, rows: list) -> int:
-    """The maxsplit of one of the first lines: -1 (whole) while the first lines' cells stay under HEAD_CELLS or the
-    line is narrower than ``cap`` cells, else ``cap``."""
+    """The maxsplit of one of the first lines: -1 (whole) or ``cap``.
+
+    -1 while the first lines' cells stay under HEAD_CELLS or the line is narrower than ``cap`` cells, else ``cap``.
+    """
     if cap < 0:
         return -1
     n = line.count(delim) + 1
@@ -642,8 +663,11 @@ def _head_cap(line: str, delim: str, cap: int, rows: list) -> int:
 
 
 def _cap_width(rows: list, start: int, delim: str, cap: int, strict: bool) -> None:
-    """Rows ``start:`` split with at most ``cap`` + 1 cells: the last, the rest of a longer line, emptied when it
-    holds only delimiters and blanks (a spreadsheet's trailing empty cells), else RowTooWide when ``strict``."""
+    """Rows ``start:`` split with at most ``cap`` + 1 cells.
+
+    The last cell, the rest of a longer line, is emptied when it holds only delimiters and blanks (a spreadsheet's
+    trailing empty cells), else RowTooWide is raised when ``strict``.
+    """
     for k in range(start, len(rows)):
         cells = rows[k][1]
         if len(cells) > cap:
@@ -658,9 +682,10 @@ def _cap_width(rows: list, start: int, delim: str, cap: int, strict: bool) -> No
 def parse_rows(
     text: str, delim: str, first_line: int = 1, max_cells: int | None = None, strict: bool = True
 ) -> list[tuple[int, list[str]]]:
-    """Rows with their first line number (the text's first line is ``first_line``); the cells of the first
-    200 rows stripped (the header and the metadata are searched there), later cells as written (the table
-    reader strips columns where needed).
+    """Rows with their first line number (the text's first line is ``first_line``).
+
+    The cells of the first 200 rows are stripped (the header and the metadata are searched there), later cells kept as
+    written (the table reader strips columns where needed).
 
     Parameters
     ----------
@@ -685,7 +710,8 @@ def parse_rows(
 
     References
     ----------
-    RFC 4180, Common Format and MIME Type for Comma-Separated Values (CSV) Files, doi:10.17487/RFC4180."""
+    RFC 4180, Common Format and MIME Type for Comma-Separated Values (CSV) Files, doi:10.17487/RFC4180.
+    """
     rows = []
     cap = -1 if max_cells is None else int(max_cells)
     if '"' not in text and "\r" not in text:  # no quoting: a line is a row, split on the delimiter (fast)
@@ -753,9 +779,11 @@ def _spreadsheet_grid(shown: str, data: bytes, suffix: str, sheet, limits: ReadL
 
 
 def _pick_sheet(shown: str, names: list[str], sheet, hidden: set[int] = frozenset(), book=None) -> int:
-    """Index (from 0) of the sheet asked for: the first *visible* one when None, a name, or a number counted
-    from 1. ``hidden`` holds the indices of hidden sheets: one passed over, or one asked for, is said on
-    ``book.warnings``."""
+    """Index (from 0) of the sheet asked for.
+
+    The first *visible* one when None, a name, or a number counted from 1. ``hidden`` holds the indices of hidden
+    sheets: one passed over, or one asked for, is said on ``book.warnings``.
+    """
     if not names:
         raise InputError(Problem(shown, None, None, "the workbook has no sheets"))
     if sheet is None:
@@ -803,8 +831,10 @@ class _Stop(Exception):
 
 
 class _Zip:
-    """A workbook's zip archive, opened after its declared sizes were checked against ``limits.max_bytes``;
-    its parts are parsed as streams, decompression stopping at the limit whatever the zip declares."""
+    """A workbook's zip archive, opened after its declared sizes were checked against ``limits.max_bytes``.
+
+    Its parts are parsed as streams, decompression stopping at the limit whatever the zip declares.
+    """
 
     def __init__(self, shown: str, data: bytes, limits: ReadLimits):
         import zipfile
@@ -956,8 +986,11 @@ def _attr(attrs: dict, local: str, default=None):
 
 
 def _number_text(text: str, integral_floats: bool = False) -> str:
-    """A number as the XML writes it, as text: a whole number when written as one (and, with ``integral_floats``,
-    a float of integral value, as .ods readers give it), else the shortest float that round-trips."""
+    """A number as the XML writes it, as text.
+
+    A whole number when written as one (and, with ``integral_floats``, a float of integral value, as .ods readers give
+    it), else the shortest float that round-trips.
+    """
     t = text.strip()
     try:
         if t.lstrip("+-").isdigit():
@@ -971,8 +1004,11 @@ def _number_text(text: str, integral_floats: bool = False) -> str:
 
 
 class _Rows:
-    """The rows of one sheet being read: each row's cells (column -> text), padded to its last cell holding data;
-    counts every cell against ``max_cells`` and the columns against ``max_columns``."""
+    """The rows of one sheet being read.
+
+    Each row's cells (column -> text), padded to its last cell holding data; every cell is counted against ``max_cells``
+    and the columns against ``max_columns``.
+    """
 
     def __init__(self, shown: str, limits: ReadLimits):
         self.shown, self.limits = shown, limits
@@ -1023,8 +1059,10 @@ class _Rows:
             )
 
     def fill_merges(self, book) -> None:
-        """Each merged range takes the value of its top-left cell in every row holding data (as it looks); the
-        fill is said once in ``book.notes``."""
+        """Give each merged range the value of its top-left cell in every row holding data (as it looks).
+
+        The fill is said once in ``book.notes``.
+        """
         if not self.merges:
             return
         at = {line: k for k, (line, _) in enumerate(self.rows)}
@@ -1065,8 +1103,11 @@ class _Rows:
             )
 
     def more_text(self, n: int, line: int | None) -> None:
-        """Count ``n`` more characters of expanded text against ``max_bytes`` (what the XML's bytes do not bound:
-        an .ods's repeated spaces, cells and rows, a workbook's shared strings times the cells referencing them)."""
+        """Count ``n`` more characters of expanded text against ``max_bytes``.
+
+        That is what the XML's bytes do not bound: an .ods's repeated spaces, cells and rows, a workbook's shared
+        strings times the cells referencing them.
+        """
         self.chars += n
         if self.chars > self.limits.max_bytes:
             raise self.limits.error(
@@ -1455,8 +1496,10 @@ class _XlsxSheet:
 
 # --- .ods (OpenDocument) ---------------------------------------------------------------------------------------------
 class _OdsContent:
-    """content.xml of an .ods: the rows of the sheet asked for (repeated rows and cells expanded only where they
-    hold data), the names of the sheets seen."""
+    """content.xml of an .ods: the rows of the sheet asked for and the names of the sheets seen.
+
+    Repeated rows and cells are expanded only where they hold data.
+    """
 
     def __init__(self, rows: _Rows, sheet):
         self.out, self.want = rows, sheet

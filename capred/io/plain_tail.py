@@ -19,8 +19,10 @@ WINDOW_CHARS = 4 * 2**20
 
 
 class PlainTail:
-    """The lines ``text[start:end]`` (no line end after the last), the first of them line ``first_line`` of the
-    file, every line holding ``width`` cells separated by ``delimiter`` (see :meth:`rectangular`)."""
+    """The lines ``text[start:end]`` of a file, every one holding ``width`` cells separated by ``delimiter``.
+
+    No line end after the last; the first of them is line ``first_line`` of the file (see :meth:`rectangular`).
+    """
 
     def __init__(self, text: str, start: int, end: int, first_line: int, delimiter: str, width: int = 0):
         self.text, self.start, self.end = text, start, end
@@ -29,7 +31,13 @@ class PlainTail:
         self.n = text.count("\n", start, end) + 1
 
     def windows(self):
-        """(start, end) of consecutive pieces of whole lines, about :data:`WINDOW_CHARS` each."""
+        """(start, end) of consecutive pieces of whole lines, about :data:`WINDOW_CHARS` each.
+
+        Yields
+        ------
+        (int, int)
+            Offsets in ``text`` of each piece's first character and of the line end after it.
+        """
         a = self.start
         while a < self.end:
             b = self.text.find("\n", min(a + WINDOW_CHARS, self.end), self.end)
@@ -38,7 +46,12 @@ class PlainTail:
             a = b + 1
 
     def rectangular(self) -> bool:
-        """True when every line holds ``width - 1`` delimiters (the table's header width)."""
+        """True when every line holds ``width - 1`` delimiters (the table's header width).
+
+        Returns
+        -------
+        bool
+        """
         d, want = self.delimiter, self.width - 1
         for a, b in self.windows():
             if any(ln.count(d) != want for ln in self.text[a:b].split("\n")):
@@ -46,7 +59,13 @@ class PlainTail:
         return True
 
     def last_line(self) -> str:
-        """The last line."""
+        """The last line of the tail.
+
+        Returns
+        -------
+        str
+            Its text, without a line end.
+        """
         return self.text[self.text.rfind("\n", self.start, self.end) + 1 : self.end]
 
     def drop_last_line(self) -> None:
@@ -57,12 +76,34 @@ class PlainTail:
         self._starts = None
 
     def split(self, a: int, b: int) -> list[str]:
-        """The cells of the lines ``text[a:b]``, row after row."""
+        """The cells of the lines ``text[a:b]``, row after row.
+
+        Parameters
+        ----------
+        a, b : int
+            Offsets in ``text`` of a piece of whole lines (as :meth:`windows` gives them).
+
+        Returns
+        -------
+        list of str
+            The cells as written, ``width`` per line.
+        """
         d = self.delimiter
         return self.text[a:b].replace("\n", d).split(d)
 
     def cells(self, j: int) -> list[str]:
-        """Column ``j`` as a list of its cells' text (as written; equal cells one string)."""
+        """Column ``j`` as a list of its cells' text.
+
+        Parameters
+        ----------
+        j : int
+            The column's index (from 0).
+
+        Returns
+        -------
+        list of str
+            The cells as written, one per line; equal cells are one string.
+        """
         out: list[str] = []
         seen: dict[str, str] = {}
         for a, b in self.windows():
@@ -72,13 +113,38 @@ class PlainTail:
         return out
 
     def first_cells(self, j: int, k: int) -> list[str]:
-        """The first ``k`` cells of column ``j`` (or fewer)."""
+        """The first ``k`` cells of column ``j`` (or fewer).
+
+        Parameters
+        ----------
+        j : int
+            The column's index (from 0).
+        k : int
+            How many cells.
+
+        Returns
+        -------
+        list of str
+            The cells as written, from the first window only.
+        """
         for a, b in self.windows():
             return self.split(a, b)[j :: self.width][:k]
         return []
 
     def cell(self, i: int, j: int) -> str:
-        """Cell ``j`` of line ``i`` (from 0), as written."""
+        """Cell ``j`` of line ``i``, as written.
+
+        Parameters
+        ----------
+        i : int
+            The line's index in the tail (from 0).
+        j : int
+            The column's index (from 0).
+
+        Returns
+        -------
+        str
+        """
         if self._starts is None:
             self._starts = self._line_starts()
         a = int(self._starts[i])
@@ -97,8 +163,10 @@ class PlainTail:
 
 
 class TailCells(Sequence):
-    """Column ``j`` of a :class:`PlainTail` as text, stripped, cut out when a message needs a cell (Table.raw);
-    ``head`` holds the cells of the rows read before the tail."""
+    """Column ``j`` of a :class:`PlainTail` as text, stripped, cut out when a message needs a cell (Table.raw).
+
+    ``head`` holds the cells of the rows read before the tail.
+    """
 
     def __init__(self, head: list[str], tail: PlainTail, j: int):
         self.head, self.tail, self.j = head, tail, j
@@ -118,12 +186,24 @@ class TailCells(Sequence):
 
 
 def read_columns(tail: PlainTail, numeric: list[int], text: list[int], parse, stripped):
-    """The tail's numeric columns ``numeric`` as floats and its text columns ``text`` as lists, one window of lines
-    at a time (each window split once).
+    """The tail's numeric columns as floats and its text columns as lists, one window of lines at a time.
+
+    The columns ``numeric`` and ``text``; each window is split once.
 
     A numeric column is parsed by ``parse`` (capred.io.table's _parse_column) on its cells as ``stripped`` gives
     them; where a window holds a cell that is not a plain number or blank, the column is None (the caller reads it
     cell by cell, naming the bad cells). A text column's equal cells are one string.
+
+    Parameters
+    ----------
+    tail : PlainTail
+        The lines to read.
+    numeric, text : list of int
+        The indices of the numeric and of the text columns.
+    parse : callable
+        Parser of a numeric column's stripped cells (capred.io.table's _parse_column).
+    stripped : callable
+        The cells of a column as ``parse`` takes them.
 
     Returns
     -------

@@ -56,7 +56,13 @@ def safe_text(text: str) -> str:
 
 
 def source_date_epoch():
-    """The UTC datetime of ``SOURCE_DATE_EPOCH`` (reproducible builds), or None when unset or not a number."""
+    """The time ``SOURCE_DATE_EPOCH`` sets, for reproducible builds.
+
+    Returns
+    -------
+    datetime.datetime or None
+        The UTC datetime of the variable's seconds since 1970; None when it is unset or not a number.
+    """
     import os
     from datetime import datetime
 

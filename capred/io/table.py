@@ -80,7 +80,8 @@ def header_key(text: str) -> str:
 
     References
     ----------
-    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
+    capred's own input conventions (README, "`capred shear`: input format"); no external source.
+    """
     k = re.sub(r"[\s\-./,;:]+", "_", text.strip().lower())
     return re.sub(r"_+", "_", k).strip("_")
 
@@ -232,8 +233,9 @@ class Table:
         return self.raw[name][row] if name in self.raw else ""
 
     def forget_ignores(self, used: set[str] | None = None) -> None:
-        """Take back the warnings about --ignore-column names this table's header lacks, where another file of
-        the same command has them (``used``: their header keys; None: every one).
+        """Take back the warnings about --ignore-column names this table's header lacks, where another file has them.
+
+        Another file of the same command; ``used``: their header keys; None: every one.
 
         A command that reads several files (a tests table and its ``--curves``) leaves every file its ignore
         list: a name is warned about once, on the first file, and only when no file has it.
@@ -322,7 +324,8 @@ def match_header(header: str, lookup: dict[str, Column]) -> tuple[Column | None,
 
     References
     ----------
-    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
+    capred's own input conventions (README, "`capred shear`: input format"); no external source.
+    """
     declared, key, unit, stem, suffix = _header_spellings(header)
     col = lookup.get(key)
     if declared:
@@ -338,9 +341,11 @@ def match_header(header: str, lookup: dict[str, Column]) -> tuple[Column | None,
 
 @lru_cache(maxsize=8192)
 def _header_spellings(header: str) -> tuple[bool, str, str | None, str | None, str | None]:
-    """(declares a unit in brackets, key of the name, that unit, key of the stem before a last '_', the suffix)
-    of a header cell: what match_header looks up (cached: the first rows of a file are searched for every
-    candidate delimiter)."""
+    """What match_header looks up of a header cell.
+
+    (declares a unit in brackets, key of the name, that unit, key of the stem before a last '_', the suffix); cached:
+    the first rows of a file are searched for every candidate delimiter.
+    """
     text = header.strip()
     m = _UNIT_IN_HEADER.match(text)
     if m and m.group("name"):
@@ -366,7 +371,8 @@ def column_lookup(schema: list[Column]) -> dict[str, Column]:
 
     References
     ----------
-    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
+    capred's own input conventions (README, "`capred shear`: input format"); no external source.
+    """
     lookup: dict[str, Column] = {}
     for col in schema:
         for spelling in (col.name, *col.aliases):
@@ -379,9 +385,10 @@ def _header_hits(cells: list[str], lookup) -> int:
 
 
 def find_header(rows: list[tuple[int, list[str]]], lookup, width: int = MAX_COLUMNS) -> tuple[int, int]:
-    """(index of the header row, known columns it names): the first row naming two known columns
-    (or, failing that, the first naming one; else the first row). Only the first ``width`` + 1 cells of a
-    row are looked at (a wider header is refused afterwards), so the search is bounded.
+    """(index of the header row, known columns it names).
+
+    The first row naming two known columns (or, failing that, the first naming one; else the first row). Only the first
+    ``width`` + 1 cells of a row are looked at (a wider header is refused afterwards), so the search is bounded.
 
     Parameters
     ----------
@@ -399,7 +406,8 @@ def find_header(rows: list[tuple[int, list[str]]], lookup, width: int = MAX_COLU
 
     References
     ----------
-    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
+    capred's own input conventions (README, "`capred shear`: input format"); no external source.
+    """
     first_one = None
     for k, (_, cells) in enumerate(rows[:60]):
         hits = _header_hits(cells[: width + 1], lookup)
@@ -418,8 +426,11 @@ def _unit_cell(text: str) -> str:
 
 
 def _is_units_row(cells: list[str], positions) -> bool:
-    """A row of units under the header: no number in it, and a valid unit under at least one numeric column
-    (a unit that is not valid under another column is then reported as such, not read as a data row)."""
+    """A row of units under the header.
+
+    No number in it, and a valid unit under at least one numeric column (a unit that is not valid under another column
+    is then reported as such, not read as a data row).
+    """
     if not any(cells) or any(_PLAIN_RE.fullmatch(c.strip().replace(",", ".")) for c in cells if c.strip()):
         return False
     for j, col, _ in positions.values():
@@ -472,8 +483,10 @@ def _metadata(rows: list[tuple[int, list[str]]], merged: dict | None = None) -> 
 
 
 def read_table(source, schema: list[Column], *, ignore_columns=(), limits: ReadLimits | None = None) -> Table:
-    """Read ``source`` (a path to a CSV, .xlsx or .ods file, a DataFrame, or a TableSource naming the
-    sheet, the thousands separator, the columns to ignore and the limits) against ``schema``.
+    """Read ``source`` against ``schema``.
+
+    ``source`` is a path to a CSV, .xlsx or .ods file, a DataFrame, or a TableSource naming the sheet, the thousands
+    separator, the columns to ignore and the limits.
 
     Parameters
     ----------
@@ -520,7 +533,8 @@ def source_with_options(src, ignore_columns, limits):
 
     References
     ----------
-    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
+    capred's own input conventions (README, "`capred shear`: input format"); no external source.
+    """
     if ignore_columns or limits is not None:
         extra = (ignore_columns,) if isinstance(ignore_columns, str) else tuple(ignore_columns or ())
         src = replace(
@@ -551,7 +565,8 @@ def grid_table(grid, src, schema: list[Column], empty_ok: bool = False) -> Table
 
     References
     ----------
-    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
+    capred's own input conventions (README, "`capred shear`: input format"); no external source.
+    """
     limits = src.limits or ReadLimits()
     width_cap = limits.max_columns
     lookup = column_lookup(schema)
@@ -807,9 +822,11 @@ def grid_table(grid, src, schema: list[Column], empty_ok: bool = False) -> Table
 
 
 def _choice_problems(table: Table, name: str, col: Column, cells: list[str], bad: list[int]) -> None:
-    """Values of a text column outside its choices: one problem per cell (the console shows the same value in many
-    cells once, capred.errors.InputError), with a hint when it is a known word of another language
-    (capred.nomenclature.VALUE_TRANSLATIONS)."""
+    """Values of a text column outside its choices: one problem per cell.
+
+    The console shows the same value in many cells once (capred.errors.InputError), with a hint when it is a known word
+    of another language (capred.nomenclature.VALUE_TRANSLATIONS).
+    """
     from ..nomenclature import VALUE_TRANSLATIONS
 
     allowed = " or ".join(f"'{x}'" for x in col.choices)
@@ -825,8 +842,11 @@ _DECIMAL_COMMA_CELL = re.compile(r"\s*[-+]?\d+,\d+\s*")
 
 
 def _number_problems(table: Table, name: str, cells: list[str], rows: list[int], delimiter: str | None) -> None:
-    """Cells that are not numbers, one problem each (the console shows many of a column as one line,
-    capred.errors.InputError); a decimal comma in a comma-delimited file suggests ';'."""
+    """Cells that are not numbers, one problem each.
+
+    The console shows many of a column as one line (capred.errors.InputError); a decimal comma in a comma-delimited file
+    suggests ';'.
+    """
     comma = any(_DECIMAL_COMMA_CELL.fullmatch(cells[i]) for i in rows)
     hint = (
         " — decimal commas in a comma-delimited file: save it with ';' as the delimiter (capred then reads "
@@ -839,8 +859,11 @@ def _number_problems(table: Table, name: str, cells: list[str], rows: list[int],
 
 
 def _flag_controls(table: Table) -> None:
-    """One warning when the table's text (headers, text cells, notes, metadata) holds control or bidi characters:
-    they are kept, and shown as escapes wherever text meets a reader (capred.text_safety)."""
+    """One warning when the table's text holds control or bidi characters.
+
+    Headers, text cells, notes, metadata: the characters are kept, and shown as escapes wherever text meets a reader
+    (capred.text_safety).
+    """
     from ..text_safety import controls_warning, has_unsafe
 
     for name, header in table.headers.items():
@@ -901,8 +924,10 @@ def _with_data(columns: list[int], body, rows: int = 10_000) -> list[int]:
 
 
 def edits_within(a: str, b: str, limit: int) -> bool:
-    """True when ``a`` becomes ``b`` with at most ``limit`` insertions, deletions, substitutions or swaps of
-    neighbours (optimal string alignment distance), computed in a band of width ``limit``.
+    """True when ``a`` becomes ``b`` with at most ``limit`` edits.
+
+    Insertions, deletions, substitutions or swaps of neighbours (optimal string alignment distance), computed in a band
+    of width ``limit``.
 
     Parameters
     ----------
@@ -918,7 +943,8 @@ def edits_within(a: str, b: str, limit: int) -> bool:
     References
     ----------
     Damerau, F. J. (1964). A technique for computer detection and correction of spelling errors.
-    Commun. ACM 7(3):171-176, doi:10.1145/363958.363994 (the edit operations counted here)."""
+    Commun. ACM 7(3):171-176, doi:10.1145/363958.363994 (the edit operations counted here).
+    """
     if abs(len(a) - len(b)) > limit:
         return False
     prev2, prev = None, list(range(len(b) + 1))
@@ -937,8 +963,10 @@ def edits_within(a: str, b: str, limit: int) -> bool:
 
 
 def _near_miss(header: str, spellings: dict[str, Column]) -> Column | None:
-    """The decisive column one of whose ``spellings`` is one edit from the header (two edits for spellings of 8 or
-    more letters), case, spaces and '_' ignored; None when there is none."""
+    """The decisive column one of whose ``spellings`` is one edit from the header; None when there is none.
+
+    Two edits for spellings of 8 or more letters; case, spaces and '_' ignored.
+    """
     h = header_key(_name_part(header)).replace("_", "")
     if len(h) < 4:
         return None
@@ -953,8 +981,10 @@ _UNUSED_SHOWN = 50
 
 
 def _unused_columns(table: Table, schema: list[Column], lookup: dict[str, Column], positions: dict) -> None:
-    """A warning per unused column, with the nearest known name; an error for a near miss of a decisive column
-    that is absent (it would change the analysis without a word)."""
+    """A warning per unused column, with the nearest known name.
+
+    An error for a near miss of a decisive column that is absent (it would change the analysis without a word).
+    """
     if not table.unmatched:
         return
     spellings = {}
@@ -1000,8 +1030,11 @@ def _unused_columns(table: Table, schema: list[Column], lookup: dict[str, Column
 
 
 def _note_text(cells: list[str], positions: dict) -> str | None:
-    """The text of a line under the data that is a note, not a test: only its first cell filled, not a number,
-    and a sentence ('Remarks: ...', three words or more) or text under a numeric or unused first column."""
+    """The text of a line under the data that is a note, not a test.
+
+    Only its first cell filled, not a number, and a sentence ('Remarks: ...', three words or more) or text under a
+    numeric or unused first column.
+    """
     first = cells[0].strip() if cells else ""
     if not first or len(positions) < 2 or any(c.strip() for c in cells[1:]):
         return None
@@ -1017,9 +1050,11 @@ _BLANK_LINE = re.compile(r"^[^\S\n]*$", re.M)
 
 
 def _plain_tail(grid, delimiter: str, lookup) -> PlainTail | None:
-    """A long plain CSV (no quotes, no blank line after its first 200 lines, every header named): the first
-    200 lines become ``grid.rows`` and the rest is returned as a PlainTail, read as columns a window of lines
-    at a time; None where the row-by-row parse is needed."""
+    """A long plain CSV read as columns, a window of lines at a time; None where rows must be parsed.
+
+    No quotes, no blank line after its first 200 lines, every header named: the first 200 lines become ``grid.rows`` and
+    the rest is returned as a PlainTail; None where the row-by-row parse is needed.
+    """
     text = grid.full_text
     if text is None or '"' in text or "\r" in text or grid.head_cut:  # cut first rows: the whole parse
         return None
@@ -1092,8 +1127,10 @@ def _thousands(table: Table, name: str, cells: list[str], decimal_comma: bool, t
 
 
 def _bad_unit_header(header: str, lookup) -> str | None:
-    """Why a header that names a known column cannot be read (its brackets do not match, or it holds bracketed text
-    besides its unit), else None."""
+    """Why a header that names a known column cannot be read, else None.
+
+    Its brackets do not match, or it holds bracketed text besides its unit.
+    """
     if not any(ch in header for ch in "[]()"):
         return None
     name = re.split(r"[\[\]()]", header, maxsplit=1)[0]
@@ -1108,8 +1145,10 @@ def _bad_unit_header(header: str, lookup) -> str | None:
 
 
 def _check_magnitude(table: Table, col: Column) -> None:
-    """Magnitudes no soil test reaches are errors (one per cell), implausible ones one warning per column
-    (the bounds and their reasons: capred.nomenclature.MAGNITUDES)."""
+    """Magnitudes no soil test reaches are errors (one per cell), implausible ones one warning per column.
+
+    The bounds and their reasons: capred.nomenclature.MAGNITUDES.
+    """
     from ..nomenclature import magnitude_of, magnitude_problem, magnitude_warning
 
     name = col.quantity or col.name
@@ -1154,7 +1193,8 @@ def check_column_rule(table: Table, col: Column) -> None:
 
     References
     ----------
-    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
+    capred's own input conventions (README, "`capred shear`: input format"); no external source.
+    """
     v = table.columns[col.name]
     unit = table.units.get(col.name, "")
     if col.quantity is not None:

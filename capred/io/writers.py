@@ -115,9 +115,10 @@ def encode_json(doc, indent: bool | None = None) -> bytes:
 
 
 class FileText:
-    """Text already written to another file: ``length`` bytes at ``offset`` of the open file descriptor ``fd``
-    (a run's temporary file, capred.pipelines.bridge_blocks). :func:`write_piece` copies it file to file in
-    the kernel, without reading it into this process.
+    """Text already written to another file: ``length`` bytes at ``offset`` of the open file descriptor ``fd``.
+
+    A run's temporary file (capred.pipelines.bridge_blocks). :func:`write_piece` copies it file to file in the kernel,
+    without reading it into this process.
 
     Parameters
     ----------
@@ -210,8 +211,10 @@ def write_piece(fh, piece, stop=None) -> None:
 
 
 def _os_file(fh) -> int | None:
-    """The descriptor of ``fh`` when it is an operating-system file whose position the kernel may move (a
-    FileIO, or a buffered reader/writer straight on one), flushed; None for anything else."""
+    """The descriptor of ``fh``, flushed, when it is an operating-system file; None for anything else.
+
+    A file whose position the kernel may move: a FileIO, or a buffered reader/writer straight on one.
+    """
     raw = getattr(fh, "raw", fh)
     if not isinstance(raw, io.FileIO) or not (fh is raw or isinstance(fh, (io.BufferedWriter, io.BufferedRandom))):
         return None
@@ -301,8 +304,9 @@ def stream_json(doc: dict, write) -> None:
 
 
 def encode_rows(rows: list) -> bytes:
-    """The JSON of a list of rows without its brackets (what stream_json writes of each chunk of Rows): NaN and
-    infinities as null, floats in shortest round-trip form; empty for no rows.
+    """The JSON of a list of rows without its brackets; empty for no rows.
+
+    What stream_json writes of each chunk of Rows: NaN and infinities as null, floats in shortest round-trip form.
 
     Parameters
     ----------
@@ -344,8 +348,10 @@ def defuse(text: str) -> str:
 
 
 def _csv_cell(value, sep: str = ",", joiner: str = ";", eu: bool = False) -> str:
-    """One cell of an object column: text quoted as CSV needs, lists joined, blanks empty;
-    with ``eu`` (the Excel dialect) decimal commas, and text that would start a formula defused."""
+    """One cell of an object column: text quoted as CSV needs, lists joined, blanks empty.
+
+    With ``eu`` (the Excel dialect) decimal commas, and text that would start a formula defused.
+    """
     if hasattr(value, "item") and not isinstance(value, str):  # a numpy scalar
         value = value.item()
     if value is None or (isinstance(value, float) and not math.isfinite(value)):
@@ -424,8 +430,10 @@ def np_array(values):
 
 
 def write_csv_file(path, frame, dialect: str = "standard") -> None:
-    """A DataFrame (a mapping of column name to array, or a capred.result.Spool of them) as UTF-8 CSV: floats in shortest round-trip form (every digit kept), NaN as an
-    empty cell, lists joined with ';', text quoted where CSV needs it. ``path`` may be a binary file.
+    """A DataFrame (a mapping of column name to array, or a capred.result.Spool of them) as UTF-8 CSV.
+
+    Floats in shortest round-trip form (every digit kept), NaN as an empty cell, lists joined with ';', text quoted
+    where CSV needs it. ``path`` may be a binary file.
 
     ``dialect="excel-eu"``: what a Belgian, French or German Excel opens as columns: ';' separators,
     decimal commas, lists joined with '|', a UTF-8 byte-order mark (so 'µ' and '°' survive), and text that
@@ -500,9 +508,11 @@ def _float_runs(arrays) -> list[tuple[int, int]]:
 
 
 def _float_lines(arrays, sep: str, eu: bool, start: int, stop: int) -> list[str]:
-    """Rows start..stop of float columns as CSV text, one string per row: the cells _csv_column writes
-    (shortest round-trip form, NaN and infinities empty, decimal commas with ``eu``), printed by one orjson call
-    on the rows that hold a number, as a matrix; a row without any is its separators alone."""
+    """Rows start..stop of float columns as CSV text, one string per row.
+
+    The cells _csv_column writes (shortest round-trip form, NaN and infinities empty, decimal commas with ``eu``),
+    printed by one orjson call on the rows that hold a number, as a matrix; a row without any is its separators alone.
+    """
     import numpy as np
     import orjson
 
@@ -583,8 +593,9 @@ BATCH_FILE_PATTERNS = ("season_*.csv",)
 
 
 def batch_file_names(root) -> list[str]:
-    """Every root file name a batch writes or has written in ``root``: BATCH_FILES, the files there that
-    match BATCH_FILE_PATTERNS, and those its provenance.json records.
+    """Every root file name a batch writes or has written in ``root``.
+
+    BATCH_FILES, the files there that match BATCH_FILE_PATTERNS, and those its provenance.json records.
 
     Parameters
     ----------
@@ -671,8 +682,9 @@ def foreign_files(folder) -> list[str]:
 
 
 def edited_files(folder, prov: dict | None = None, files=None) -> list[str]:
-    """Files a run's provenance.json lists with a SHA-256 (``outputs_sha256``) whose content differs now: a
-    user edited them after capred wrote them, so they are no longer capred's to replace.
+    """Files a run's provenance.json lists with a SHA-256 (``outputs_sha256``) whose content differs now.
+
+    A user edited them after capred wrote them, so they are no longer capred's to replace.
 
     Parameters
     ----------
@@ -972,7 +984,8 @@ def _sweep_stale(parent: Path, stem: str) -> None:
     """Remove hidden work folders of earlier runs into the same target that were killed.
 
     The folder's names are compared as text (no glob pattern: a batch's folder holds one folder per input,
-    and a stem may hold characters a pattern would read, such as '[')."""
+    and a stem may hold characters a pattern would read, such as '[').
+    """
     prefix = f".{stem}.capred-"
     try:
         names = [n for n in os.listdir(parent) if n.startswith(prefix)]
@@ -1068,8 +1081,9 @@ class RunFolder:
         return self.tmp / name
 
     def done(self, name: str) -> None:
-        """Record a file written into the work folder (with the usual permissions); an SVG is made well-formed
-        (a control character in a label, which XML forbids, is shown as its control picture).
+        """Record a file written into the work folder (with the usual permissions).
+
+        An SVG is made well-formed (a control character in a label, which XML forbids, is shown as its control picture).
 
         Parameters
         ----------
@@ -1229,8 +1243,10 @@ BYTES_PER_CELL = 40
 
 
 def output_budget(input_bytes: int) -> int:
-    """The most bytes a run's tables may take: OUTPUT_MULTIPLE times its inputs, at least OUTPUT_FLOOR, at most
-    OUTPUT_MAX, or ``$CAPRED_MAX_OUTPUT_MEGABYTES`` MiB where set.
+    """The most bytes a run's tables may take.
+
+    OUTPUT_MULTIPLE times its inputs, at least OUTPUT_FLOOR, at most OUTPUT_MAX, or ``$CAPRED_MAX_OUTPUT_MEGABYTES`` MiB
+    where set.
 
     Parameters
     ----------
@@ -1293,9 +1309,10 @@ def check_output_size(result, tables: dict, out) -> None:
 
 
 def check_output_estimate(cells: int, inputs, out) -> None:
-    """Refuse a run whose outputs, ``cells`` table cells (about :data:`BYTES_PER_CELL` bytes each as CSV and
-    JSON), would take more than :func:`output_budget` of its ``inputs``: before its tables are written, or before
-    anything is computed when its input's lines size them (:func:`check_rows_output`).
+    """Refuse a run whose outputs would take more than :func:`output_budget` of its ``inputs``.
+
+    The outputs are ``cells`` table cells, about :data:`BYTES_PER_CELL` bytes each as CSV and JSON; checked before its
+    tables are written, or before anything is computed when its input's lines size them (:func:`check_rows_output`).
 
     Parameters
     ----------
@@ -1331,8 +1348,9 @@ def check_output_estimate(cells: int, inputs, out) -> None:
 
 
 def check_rows_output(source, cells_per_row: int, out, extra_inputs=()) -> None:
-    """Refuse, before its input is read as a table, a run whose outputs would exceed :func:`output_budget`: the
-    input file's data lines (capred.io.blocks.data_lines, less the header) x ``cells_per_row`` x
+    """Refuse, before its input is read as a table, a run whose outputs would exceed :func:`output_budget`.
+
+    The input file's data lines (capred.io.blocks.data_lines, less the header) x ``cells_per_row`` x
     :data:`BYTES_PER_CELL`.
 
     Only a plain text file is counted, a block of bytes at a time (about 1 s for 250 MB); a workbook, a
@@ -1391,9 +1409,10 @@ PARALLEL_JSON_ROWS = 20_000
 
 
 def second_core_free(variable: str = "CAPRED_PROCESSES") -> bool:
-    """True when a second process would run on a core of its own: two cores or more, a load average that leaves
-    one idle, not a batch's worker (the batch already uses the cores), fork available. The environment
-    ``variable`` set to 1 or 2 decides instead.
+    """True when a second process would run on a core of its own.
+
+    Two cores or more, a load average that leaves one idle, not a batch's worker (the batch already uses the cores),
+    fork available. The environment ``variable`` set to 1 or 2 decides instead.
 
     On a busy shared machine a forked helper's extra CPU (its copied pages, its own start) buys no time: measured on
     ``capred bridge solve`` of 100,000 rows with the other core busy, 1.30 s CPU and 1.10 s wall in two processes
@@ -1427,8 +1446,11 @@ def second_core_free(variable: str = "CAPRED_PROCESSES") -> bool:
 
 
 class _JsonWriter:
-    """Writes the JSON document to ``path``: at once, or (a long one, on a POSIX machine with two cores) in a
-    forked child while the caller writes the other files; ``finish()`` waits and re-raises its failure."""
+    """Writes the JSON document to ``path``, at once or in a forked child.
+
+    A long one, on a POSIX machine with two cores, is written in a forked child while the caller writes the other files;
+    ``finish()`` waits and re-raises its failure.
+    """
 
     def __init__(self, path, doc: dict) -> None:
         import os
@@ -1563,8 +1585,9 @@ def provenance(result, outputs: list[str], command_line: str | None = None, hash
 
 
 def write_batch_file(root, name: str, data: bytes, runs=None, command_line: str | None = None) -> Path:
-    """Write one of a batch's root files (``BATCH_FILES``) into ``root`` and record it in the batch's
-    provenance.json; refuse (OutputError) where a file of that name exists that capred did not write.
+    """Write one of a batch's root files (``BATCH_FILES``) into ``root`` and record it in provenance.json.
+
+    Refuse (OutputError) where a file of that name exists that capred did not write.
 
     Parameters
     ----------

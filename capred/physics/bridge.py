@@ -109,9 +109,11 @@ def _arr(*xs):
 
 
 def _blocks(beta, theta, suction, ratio, fields, theta2=None, **how):
-    """``fields`` outputs of :func:`_pair` over broadcast inputs, block by block (memory bounded by a block);
-    a case with any non-finite output is NaN throughout, with no warning. ``theta2``: the contact angle on
-    particle 2 (None: ``theta``)."""
+    """``fields`` outputs of :func:`_pair` over broadcast inputs, block by block (memory bounded by a block).
+
+    A case with any non-finite output is NaN throughout, with no warning. ``theta2``: the contact angle on particle 2
+    (None: ``theta``).
+    """
     beta, theta, suction, ratio, theta2 = _arr(beta, theta, suction, ratio, theta if theta2 is None else theta2)
     cols = [a.ravel() for a in (beta, theta, suction, ratio, theta2)]
     out = np.full((fields, cols[0].size), np.nan)
@@ -396,10 +398,12 @@ def _gap_equal(b, th, s, coarse=False):
 
 
 def _pair(b, th, s, rho, th2, full=True, coarse=False):
-    """The bridge of filling angle b on particle 1 (contact angle th) and th2 on particle 2 (ratio rho): its
-    fields (see _FIELDS; ``full`` False: the gap alone, "gap volume": those two), NaN where there is none.
-    Each contact meets its solid at its own angle: particle 1 sets the force F* = 2 sin b sin(b + th) + s* sin^2 b,
-    particle 2 carries it at its own filling angle (sin(d2 + th2) there; sin th2 on a plane)."""
+    """The bridge of filling angle b on particle 1 (contact angle th) and th2 on particle 2 (ratio rho).
+
+    Its fields (see _FIELDS; ``full`` False: the gap alone, "gap volume": those two), NaN where there is none. Each
+    contact meets its solid at its own angle: particle 1 sets the force F* = 2 sin b sin(b + th) + s* sin^2 b, particle
+    2 carries it at its own filling angle (sin(d2 + th2) there; sin th2 on a plane).
+    """
     same = th2 is th or np.array_equal(th2, th)
     if full is False and same and np.all(rho == 1.0):
         return [_gap_equal(b, th, s, coarse)]
@@ -651,8 +655,11 @@ def _neck_gap(y0, th, s, rho, th2):
 
 
 def _floor_suction(y0, th, rho, th2):
-    """The smallest suction of the bridges with neck y0: 0 (the catenoid), or 1e-9 / y0^2 where no catenoid
-    exists (a plane at theta = 0: its bridge grows without bound as s* -> 0)."""
+    """The smallest suction of the bridges with neck y0.
+
+    0 (the catenoid), or 1e-9 / y0^2 where no catenoid exists (a plane at theta = 0: its bridge grows without bound as
+    s* -> 0).
+    """
     y0, th, rho, th2 = _arr(y0, th, rho, th2)
     g = _neck_gap(y0, th, 0.0, rho, th2)
     return np.where(np.isfinite(g), 0.0, 1e-9 / (y0 * y0))
@@ -931,8 +938,10 @@ def _solve_for_suction(theta, suction, gap, ratio, theta2):
 
 
 def _log_root(f, lo, hi):
-    """Root of an increasing-or-decreasing f between necks lo < hi (bracketed), searched in log(neck); the
-    bracket end on the side f >= 0 is returned."""
+    """Root of an increasing-or-decreasing f between necks lo < hi (bracketed), searched in log(neck).
+
+    The bracket end on the side f >= 0 is returned.
+    """
     a, c = np.log(lo), np.log(hi)
     fa, fc = f(a, np.arange(a.size)), f(c, np.arange(a.size))
     flip = fa < fc  # Illinois wants f(lo) >= 0 >= f(hi)
@@ -1223,9 +1232,11 @@ def _newton_volume(th, V, D, rho, th2, iters=40, start=None, loose=False):
 
 
 def _continue_volume(th, V, D, rho, th2, stages=8, factor=0.5):
-    """:func:`_newton_volume` by continuation for rows it does not settle from its guess (large bridges):
-    from (V, D) scaled by factor^stages, where the thin-film guess holds (and D / V^(1/3), the gap over the
-    rupture distance, is smaller still), back to (V, D), each stage starting from the bridge of the last."""
+    """:func:`_newton_volume` by continuation, for rows it does not settle from its guess (large bridges).
+
+    From (V, D) scaled by factor^stages, where the thin-film guess holds (and D / V^(1/3), the gap over the rupture
+    distance, is smaller still), back to (V, D), each stage starting from the bridge of the last.
+    """
     y0, s = np.exp(_volume_guess(th, V * factor**stages, D * factor**stages, rho, th2))
     alive = np.ones(th.size, dtype=bool)
     for j in range(stages - 1, -1, -1):
@@ -1360,8 +1371,11 @@ def _rupture(theta, volume, ratio, theta2):
 
 
 def _verify(status, beta, theta, s, ratio, theta2, gap=None, volume=None, found=None):
-    """Status 4 for every 'ok' row whose bridge does not reproduce the requested gap (absolute 1e-12
-    near contact) or volume to VERIFY_RTOL relative. ``found``: the bridges already computed (a Bridge)."""
+    """Status 4 for every 'ok' row whose bridge does not reproduce the requested gap or volume.
+
+    The gap to absolute 1e-12 near contact, the volume to VERIFY_RTOL relative. ``found``: the bridges already computed
+    (a Bridge).
+    """
     status = status.copy()
     ok = status == 0
     if not ok.any():

@@ -161,7 +161,10 @@ def willett_full(contact_angle_rad, V, D, ratio=1.0):
 
 
 def _immersion(V, D, Rs):
-    """q = sqrt(1 + 2 V / (pi R* D^2)) [-] (Rabinovich et al. 2005, eq. 20: d = D/2 (q - 1)); inf at D = 0."""
+    """Immersion factor q = sqrt(1 + 2 V / (pi R* D^2)) [-]; inf at D = 0.
+
+    Rabinovich et al. (2005), eq. 20: the immersion depth is d = D/2 (q - 1).
+    """
     with np.errstate(divide="ignore"):
         return np.sqrt(1.0 + 2.0 * V / (np.pi * Rs * D * D))
 
@@ -207,8 +210,9 @@ def lambert(contact_angle_rad, V, D, ratio=1.0):
 
 
 def rabinovich(contact_angle_rad, V, D, ratio=1.0):
-    r"""Rabinovich et al. (2005), eqs. 19, 20 and A3 (the force at the neck with its surface-tension term),
-    with Derjaguin's R*.
+    r"""Rabinovich et al. (2005), eqs. 19, 20 and A3, with Derjaguin's R*.
+
+    The force at the neck with its surface-tension term.
 
     Parameters
     ----------
@@ -258,8 +262,11 @@ MIKAMI_COEFFICIENTS = (-0.34, -0.019, 0.0042)
 
 
 def _exponential_regression(theta, Vp, h, coefficients):
-    """exp(A h + B) + C with A = -1.1 V+^-0.53, B = (b1 ln V+ - 0.96) theta^2 + b2 ln V+ + 0.48, C = c1 ln V+ + 0.078:
-    the form Mikami et al. (1998) fitted and Soulié et al. (2006) refitted (V+ volume and h gap over the radius)."""
+    """exp(A h + B) + C, the form Mikami et al. (1998) fitted and Soulié et al. (2006) refitted.
+
+    A = -1.1 V+^-0.53, B = (b1 ln V+ - 0.96) theta^2 + b2 ln V+ + 0.48, C = c1 ln V+ + 0.078, with V+ the volume and h
+    the gap over the radius.
+    """
     b1, b2, c1 = coefficients
     L = np.log(Vp)
     A = -1.1 * Vp**-0.53
@@ -309,8 +316,9 @@ def soulie(contact_angle_rad, V, D, ratio=1.0):
 
 
 def mikami(contact_angle_rad, V, D, ratio=1.0):
-    r"""Mikami, Kamiya & Horio (1998): the regression of the exact force between two equal spheres, with
-    Derjaguin's R* for other pairs.
+    r"""Mikami, Kamiya & Horio (1998): the regression of the exact force between two equal spheres.
+
+    With Derjaguin's R* for other pairs.
 
     Parameters
     ----------
@@ -382,8 +390,9 @@ def mikami_rupture_gap(contact_angle_rad, V, ratio=1.0):
 
 
 def weigert_ripperger(contact_angle_rad, V, D, ratio=1.0):
-    r"""Weigert & Ripperger (1999): the toroidal bridge whose filling angle follows the volume by their fit
-    (eqs. 5, 6, 15-17, 21, 22), with Derjaguin's R* as the sphere radius.
+    r"""Weigert & Ripperger (1999): the toroidal bridge whose filling angle follows the volume by their fit.
+
+    Eqs. 5, 6, 15-17, 21, 22, with Derjaguin's R* as the sphere radius.
 
     Parameters
     ----------
@@ -433,7 +442,7 @@ def weigert_ripperger(contact_angle_rad, V, D, ratio=1.0):
 
 
 def geometry_of(ratio) -> np.ndarray:
-    """ "equal", "unequal" or "plane" per pair (the key of :attr:`Law.geometries`).
+    """Geometry "equal", "unequal" or "plane" of each pair (the key of :attr:`Law.geometries`).
 
     Parameters
     ----------

@@ -1,11 +1,11 @@
-"""One-dimensional (oedometer) and isotropic compression: lines, indices and the yield stress.
+r"""One-dimensional (oedometer) and isotropic compression: lines, indices and the yield stress.
 
 Pure functions on arrays (SI: stresses in Pa). The first loading is described by a smooth bilinear curve in
 e - log10 sigma',
 
 .. math::
 
-    e(t) = e_y - C_r\\,t - (C_c - C_r)\\,w \\log_{10}\\left(1 + 10^{t/w}\\right), \\qquad t = \\log_{10}(\\sigma'/\\sigma'_y),
+    e(t) = e_y - C_r\,t - (C_c - C_r)\,w \log_{10}\left(1 + 10^{t/w}\right), \qquad t = \log_{10}(\sigma'/\sigma'_y),
 
 whose asymptotes are the recompression line e_y - C_r t and the normal (virgin) compression line
 e_y - C_c t; they meet at sigma'_y (the bilinear yield stress) and w [decades] is the width of the bend. The
@@ -189,10 +189,22 @@ class FirstLoadingFit:
 
     @property
     def params(self) -> np.ndarray:
+        """The fitted parameters as one vector, in the order of ``cov``: (e_y, C_r, C_c, log_sigma_y, w)."""
         return np.array([self.e_y, self.C_r, self.C_c, self.log_sigma_y, self.w])
 
     def e_at(self, sigma):
-        """Void ratio of the fitted curve at sigma' [Pa]."""
+        """Void ratio of the fitted curve at an effective vertical stress.
+
+        Parameters
+        ----------
+        sigma : float or array_like
+            Effective vertical stress σ' [Pa].
+
+        Returns
+        -------
+        numpy.ndarray
+            Void ratio e [-] of :func:`smooth_bilinear` with the fitted parameters.
+        """
         return smooth_bilinear(np.log10(sigma) - self.log_sigma_y, self.e_y, self.C_r, self.C_c, self.w)
 
 
@@ -304,7 +316,7 @@ class LineFit:
 
 
 def fit_line(sigma, e) -> LineFit:
-    """e = a - C log10 sigma' by least squares (an unloading or reloading stage).
+    """Line e = a - C log10 sigma' fitted by least squares (an unloading or reloading stage).
 
     Parameters
     ----------

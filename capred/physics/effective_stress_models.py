@@ -198,7 +198,7 @@ def chi_lu_likos(suction, vg_alpha, vg_n, vg_m=None):
 
 
 def fit_tan_phi_b(suction, excess_strength):
-    r"""tan φ_b of Fredlund et al. (1978) by least squares through the origin.
+    r"""The tan φ_b of Fredlund et al. (1978) by least squares through the origin.
 
     .. math::
 
@@ -450,8 +450,11 @@ def _fredlund(d: ModelInputs) -> np.ndarray:
 
 
 def _water_envelope(d: ModelInputs):
-    """(c_W [Pa], tan phi_W, source) of each test [12, eq. 13]: its material's saturated tests where the run has
-    them, else --water-envelope, else the dry envelope (a stand-in the result names)."""
+    """(c_W [Pa], tan phi_W, source) of each test [12, eq. 13].
+
+    Its material's saturated tests where the run has them, else --water-envelope, else the dry envelope (a stand-in the
+    result names).
+    """
     env = d.params.water_envelope
     c_w, tan_w = (
         (d.c, d.tan_phi)

@@ -1,4 +1,4 @@
-"""Volume change of unsaturated clay with two effective stresses (Pedrotti & Tarantino).
+r"""Volume change of unsaturated clay with two effective stresses (Pedrotti & Tarantino).
 
 Compacted clay is pictured as a water-saturated part (the micro-pores, filled
 with water) and an air-saturated part (the macro-pores, filled with air). Each
@@ -6,7 +6,7 @@ part has its own effective stress [1, eq. 1-2],
 
 .. math::
 
-    \\sigma'_W = (\\sigma - u_w)\\,S_r, \\qquad \\sigma'_A = (\\sigma - u_a)\\,(1 - S_r),
+    \sigma'_W = (\sigma - u_w)\,S_r, \qquad \sigma'_A = (\sigma - u_a)\,(1 - S_r),
 
 and its own compressibility lines in the e-ln σ' plane: the water-saturated
 pores follow the normal-compression and unloading-reloading lines (ncl, url)
@@ -109,9 +109,9 @@ from ..spec.constants import PATH_COLUMNS  # noqa: E402 (declared once in spec: 
 # eq. 1-2: the two effective stresses
 # --------------------------------------------------------------------------------------------
 def water_saturated_effective_stress(sigma, u_w, S_R):
-    """Effective stress of the water-saturated part, σ'_W = (σ − u_w) S_r [Pa].
+    r"""Effective stress of the water-saturated part, σ'_W = (σ − u_w) S_r [Pa].
 
-    .. math:: \\sigma'_W = (\\sigma - u_w)\\,S_r
+    .. math:: \sigma'_W = (\sigma - u_w)\,S_r
 
     Parameters
     ----------
@@ -136,9 +136,9 @@ def water_saturated_effective_stress(sigma, u_w, S_R):
 
 
 def air_saturated_effective_stress(sigma, u_a, S_R):
-    """Effective stress of the air-saturated part, σ'_A = (σ − u_a)(1 − S_r) [Pa].
+    r"""Effective stress of the air-saturated part, σ'_A = (σ − u_a)(1 − S_r) [Pa].
 
-    .. math:: \\sigma'_A = (\\sigma - u_a)\\,(1 - S_r)
+    .. math:: \sigma'_A = (\sigma - u_a)\,(1 - S_r)
 
     Parameters
     ----------
@@ -311,12 +311,12 @@ def ncl_void_ratio(sigma_eff, ncl_slope, e_ncl, reference_stress=1.0e3):
 
 
 def compression_void_ratio(sigma_eff, yield_stress, ncl_slope, url_slope, e_ncl, reference_stress=1.0e3):
-    """Void ratio of pores with past yield stress σ_y at effective stress σ' [-] (ncl/url model).
+    r"""Void ratio of pores with past yield stress σ_y at effective stress σ' [-] (ncl/url model).
 
     .. math::
 
-        \\sigma_c = \\max(\\sigma_y, \\sigma'), \\qquad
-        e = e_{ncl} - \\lambda \\ln(\\sigma_c/\\sigma_{ref}) - \\kappa \\ln(\\sigma'/\\sigma_c)
+        \sigma_c = \max(\sigma_y, \sigma'), \qquad
+        e = e_{ncl} - \lambda \ln(\sigma_c/\sigma_{ref}) - \kappa \ln(\sigma'/\sigma_c)
 
     On the ncl (σ' ≥ σ_y) this is eq. 10 of [1]; below it, the url of eq. 6-7.
 
@@ -392,9 +392,9 @@ def ncl_void_ratio_change(ncl_slope, sigma_before, sigma_after):
 
 
 def equivalent_preconsolidation_stress(void_ratio, ncl_slope, e_ncl, reference_stress=1.0e3):
-    """σ* [Pa]: the effective stress at which an ncl passes through a given void ratio.
+    r"""σ* [Pa]: the effective stress at which an ncl passes through a given void ratio.
 
-    .. math:: \\sigma^* = \\sigma_{ref}\\,\\exp\\left((e_{ncl} - e)/\\lambda\\right)
+    .. math:: \sigma^* = \sigma_{ref}\,\exp\left((e_{ncl} - e)/\lambda\right)
 
     Pores that change fluid keep, at that instant, the void ratio e they had;
     σ* places them on the lines of their new fluid [1, Fig. 14-15].
@@ -421,12 +421,12 @@ def equivalent_preconsolidation_stress(void_ratio, ncl_slope, e_ncl, reference_s
 
 
 def transition_void_ratio_change(sigma_eff, sigma_star, ncl_slope, url_slope):
-    """Δe of pores that change fluid: from σ* onto the lines of the new fluid [-].
+    r"""Δe of pores that change fluid: from σ* onto the lines of the new fluid [-].
 
     .. math::
 
-        \\Delta e = -\\lambda \\ln(\\sigma'/\\sigma^*) \\;\\; (\\sigma' \\ge \\sigma^*), \\qquad
-        \\Delta e = -\\kappa \\ln(\\sigma'/\\sigma^*) \\;\\; (\\sigma' < \\sigma^*)
+        \Delta e = -\lambda \ln(\sigma'/\sigma^*) \;\; (\sigma' \ge \sigma^*), \qquad
+        \Delta e = -\kappa \ln(\sigma'/\sigma^*) \;\; (\sigma' < \sigma^*)
 
     The first branch is eq. 9 (air to water, collapse onto the slurry ncl,
     λ_W); the second is eq. 8 (water to air, rebound on the dry-powder url,
@@ -527,9 +527,9 @@ def air_saturated_increment(de_AA, de_WA, S_R, dS_R):
 
 
 def coupled_void_ratio(e_W, e_A, S_R):
-    """Void ratio of the sample from those of its two parts, e = e^W e^A / (e^W (1 − S_r) + e^A S_r) [-].
+    r"""Void ratio of the sample from those of its two parts, e = e^W e^A / (e^W (1 − S_r) + e^A S_r) [-].
 
-    .. math:: \\frac{1}{e} = \\frac{S_r}{e^W} + \\frac{1 - S_r}{e^A}
+    .. math:: \frac{1}{e} = \frac{S_r}{e^W} + \frac{1 - S_r}{e^A}
 
     With solids M_W, M_A (M_W + M_A = 1) in the water- and air-saturated parts,
     e = M_W e^W + M_A e^A and S_r = M_W e^W / e; eliminating M_W gives the
@@ -671,7 +671,7 @@ class PTVolumePath:
 
 
 def path_problems(sigma, u_w, u_a, S_R) -> list[tuple[int, str, str]]:
-    """Every reason a path cannot be simulated, as (point index, column, message); empty when fine.
+    r"""Every reason a path cannot be simulated, as (point index, column, message); empty when fine.
 
     Checks: equal lengths (≥ 1 point), finite values, S_r in [0, 1], σ − u_w > 0
     where S_r > 0 and σ − u_a > 0 where S_r < 1, at the point or at a
@@ -680,8 +680,8 @@ def path_problems(sigma, u_w, u_a, S_R) -> list[tuple[int, str, str]]:
 
     .. math::
 
-        \\sigma'_W = (\\sigma - u_w)\\,S_r > 0 \\;\\text{where}\\; S_r > 0, \\qquad
-        \\sigma'_A = (\\sigma - u_a)\\,(1 - S_r) > 0 \\;\\text{where}\\; S_r < 1
+        \sigma'_W = (\sigma - u_w)\,S_r > 0 \;\text{where}\; S_r > 0, \qquad
+        \sigma'_A = (\sigma - u_a)\,(1 - S_r) > 0 \;\text{where}\; S_r < 1
 
     Parameters
     ----------
@@ -808,7 +808,7 @@ def simulate_volume_path(
     initial_yield_A=None,
     substeps: int | None = None,
 ) -> PTVolumePath:
-    """Void ratio along a path of total stress, pore pressures and S_r (Pedrotti & Tarantino, eq. 1-10).
+    r"""Void ratio along a path of total stress, pore pressures and S_r (Pedrotti & Tarantino, eq. 1-10).
 
     At each step the two effective stresses follow from eq. 1-2. The pores
     that keep their fluid move on the ncl/url of their part: slurry lines for
@@ -821,13 +821,13 @@ def simulate_volume_path(
     that makes the water-saturated share of the voids equal the path's S_r,
     solved in closed form. The void ratio of the sample then satisfies eq. 5,
 
-    .. math:: e = \\frac{e^W e^A}{e^W (1 - S_r) + e^A S_r}.
+    .. math:: e = \frac{e^W e^A}{e^W (1 - S_r) + e^A S_r}.
 
     For an A→W transfer of a fraction x of the air-saturated solids (V: void
     volumes per unit solids after the step at constant fluid content, e_T the
     void ratio of the transferred pores after eq. 9),
 
-    .. math:: x = \\frac{S_r V_A - (1 - S_r) V_W}{(1 - S_r) M_A e_T + S_r V_A},
+    .. math:: x = \frac{S_r V_A - (1 - S_r) V_W}{(1 - S_r) M_A e_T + S_r V_A},
 
     and symmetrically for W→A. See the module notes for the choices the paper
     leaves open (stresses, eq. 5, the combination eq. 3-4, the transition law).

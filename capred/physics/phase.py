@@ -1,11 +1,11 @@
-"""Phase relations of a soil sample: any consistent subset of its state completes the rest (SI units).
+r"""Phase relations of a soil sample: any consistent subset of its state completes the rest (SI units).
 
 The state of a sample is eight numbers tied by five relations (solids, water and air in a unit volume):
 
 .. math::
 
-    \\rho_s = G_s\\,\\rho_w, \\qquad e = \\frac{\\rho_s}{\\rho_d} - 1, \\qquad n = \\frac{e}{1 + e}, \\qquad
-    S_r\\,e = w\\,G_s, \\qquad \\theta = \\frac{w\\,\\rho_d}{\\rho_w} = S_r\\,n
+    \rho_s = G_s\,\rho_w, \qquad e = \frac{\rho_s}{\rho_d} - 1, \qquad n = \frac{e}{1 + e}, \qquad
+    S_r\,e = w\,G_s, \qquad \theta = \frac{w\,\rho_d}{\rho_w} = S_r\,n
 
 (e.g. Lambe & Whitman 1969, ch. 3; Craig's Soil Mechanics, ch. 1). `complete_state` propagates what is
 given through these relations until nothing more follows; a value given AND implied by others is checked

@@ -1,4 +1,4 @@
-"""Water-retention curves: the effective saturation S_e(s) of each model and its inverse.
+r"""Water-retention curves: the effective saturation S_e(s) of each model and its inverse.
 
 Suction ``s`` is in any pressure unit consistent with the parameters (capred
 passes Pa: ``vg_alpha`` in 1/Pa, ``s_e``, ``s_m``, ``a``, ``s_r`` in Pa). The water
@@ -6,7 +6,7 @@ quantity ``y`` is the volumetric water content θ [m³/m³] or the degree of
 saturation S_R [-]; ``y_s`` and ``y_r`` are its saturated and residual values
 (θ_s, θ_r or S_s, S_res), and
 
-.. math:: y(s) = y_r + (y_s - y_r)\\, S_e(s).
+.. math:: y(s) = y_r + (y_s - y_r)\, S_e(s).
 
 Every function takes scalars or arrays (broadcast together) and returns an
 array of the broadcast shape. Suctions below zero are treated as zero.
@@ -39,16 +39,16 @@ FX_S_MAX = 1e9
 
 
 def vg_effective_saturation(s, vg_alpha, vg_n, vg_m=None):
-    """Effective saturation of van Genuchten (1980).
+    r"""Effective saturation of van Genuchten (1980).
 
-    .. math:: S_e = \\left[1 + (\\alpha s)^n\\right]^{-m}, \\qquad m = 1 - 1/n \\text{ unless given}
+    .. math:: S_e = \left[1 + (\alpha s)^n\right]^{-m}, \qquad m = 1 - 1/n \text{ unless given}
 
     Parameters
     ----------
     s : array_like
         Suction [Pa] (any unit, the inverse of ``vg_alpha``'s), >= 0.
     vg_alpha : array_like
-        :math:`\\alpha`, the inverse of a characteristic suction [1/Pa], > 0.
+        :math:`\alpha`, the inverse of a characteristic suction [1/Pa], > 0.
     vg_n : array_like
         Pore-size index :math:`n` [-], > 1 when ``vg_m = 1 - 1/vg_n``.
     vg_m : array_like, optional
@@ -77,9 +77,9 @@ def vg_effective_saturation(s, vg_alpha, vg_n, vg_m=None):
 
 
 def vg_water(s, y_r, y_s, vg_alpha, vg_n, vg_m=None):
-    """Water content (or S_R) of van Genuchten (1980).
+    r"""Water content (or S_R) of van Genuchten (1980).
 
-    .. math:: y = y_r + \\frac{y_s - y_r}{\\left[1 + (\\alpha s)^n\\right]^{m}}
+    .. math:: y = y_r + \frac{y_s - y_r}{\left[1 + (\alpha s)^n\right]^{m}}
 
     Parameters
     ----------
@@ -88,7 +88,7 @@ def vg_water(s, y_r, y_s, vg_alpha, vg_n, vg_m=None):
     y_r, y_s : array_like
         Residual and saturated water content [m³/m³] or degree of saturation [-].
     vg_alpha : array_like
-        :math:`\\alpha` [1/Pa].
+        :math:`\alpha` [1/Pa].
     vg_n : array_like
         :math:`n` [-].
     vg_m : array_like, optional
@@ -107,16 +107,16 @@ def vg_water(s, y_r, y_s, vg_alpha, vg_n, vg_m=None):
 
 
 def vg_suction(S_e, vg_alpha, vg_n, vg_m=None):
-    """Suction at a given effective saturation, the inverse of :func:`vg_effective_saturation`.
+    r"""Suction at a given effective saturation, the inverse of :func:`vg_effective_saturation`.
 
-    .. math:: s = \\frac{1}{\\alpha}\\left(S_e^{-1/m} - 1\\right)^{1/n}
+    .. math:: s = \frac{1}{\alpha}\left(S_e^{-1/m} - 1\right)^{1/n}
 
     Parameters
     ----------
     S_e : array_like
         Effective saturation [-] in (0, 1]; outside, NaN.
     vg_alpha : array_like
-        :math:`\\alpha` [1/Pa].
+        :math:`\alpha` [1/Pa].
     vg_n : array_like
         :math:`n` [-].
     vg_m : array_like, optional
@@ -140,9 +140,9 @@ def vg_suction(S_e, vg_alpha, vg_n, vg_m=None):
 
 
 def bc_effective_saturation(s, s_e, bc_lambda):
-    """Effective saturation of Brooks & Corey (1964).
+    r"""Effective saturation of Brooks & Corey (1964).
 
-    .. math:: S_e = (s_e / s)^{\\lambda} \\ (s > s_e), \\qquad S_e = 1 \\ (s \\le s_e)
+    .. math:: S_e = (s_e / s)^{\lambda} \ (s > s_e), \qquad S_e = 1 \ (s \le s_e)
 
     Parameters
     ----------
@@ -196,9 +196,9 @@ def bc_water(s, y_r, y_s, s_e, bc_lambda):
 
 
 def bc_suction(S_R, s_e, bc_lambda):
-    """Suction from Brooks-Corey as Morvan et al. (2016) use it, the inverse of :func:`bc_effective_saturation`.
+    r"""Suction from Brooks-Corey as Morvan et al. (2016) use it, the inverse of :func:`bc_effective_saturation`.
 
-    .. math:: s = s_e\\, S_R^{-1/\\lambda}
+    .. math:: s = s_e\, S_R^{-1/\lambda}
 
     Parameters
     ----------
@@ -223,10 +223,10 @@ def bc_suction(S_R, s_e, bc_lambda):
 
 
 def kosugi_effective_saturation(s, s_m, sigma):
-    """Effective saturation of Kosugi's (1996) lognormal model.
+    r"""Effective saturation of Kosugi's (1996) lognormal model.
 
-    .. math:: S_e = Q\\!\\left(\\frac{\\ln(s/s_m)}{\\sigma}\\right) = \\tfrac12\\,
-              \\mathrm{erfc}\\!\\left(\\frac{\\ln(s/s_m)}{\\sqrt{2}\\,\\sigma}\\right)
+    .. math:: S_e = Q\!\left(\frac{\ln(s/s_m)}{\sigma}\right) = \tfrac12\,
+              \mathrm{erfc}\!\left(\frac{\ln(s/s_m)}{\sqrt{2}\,\sigma}\right)
 
     with Q the complementary standard normal distribution function.
 
@@ -257,9 +257,9 @@ def kosugi_effective_saturation(s, s_m, sigma):
 
 
 def kosugi_suction(S_e, s_m, sigma):
-    """Suction at a given effective saturation, the inverse of :func:`kosugi_effective_saturation`.
+    r"""Suction at a given effective saturation, the inverse of :func:`kosugi_effective_saturation`.
 
-    .. math:: s = s_m \\exp\\!\\left(\\sigma\\, Q^{-1}(S_e)\\right)
+    .. math:: s = s_m \exp\!\left(\sigma\, Q^{-1}(S_e)\right)
 
     Parameters
     ----------
@@ -289,9 +289,9 @@ def kosugi_suction(S_e, s_m, sigma):
 
 
 def fx_correction(s, s_r, s_max=FX_S_MAX):
-    """Correction factor C(s) of Fredlund & Xing (1994): the water content reaches zero at ``s_max``.
+    r"""Correction factor C(s) of Fredlund & Xing (1994): the water content reaches zero at ``s_max``.
 
-    .. math:: C(s) = 1 - \\frac{\\ln(1 + s/s_r)}{\\ln(1 + s_{max}/s_r)}
+    .. math:: C(s) = 1 - \frac{\ln(1 + s/s_r)}{\ln(1 + s_{max}/s_r)}
 
     Parameters
     ----------
@@ -316,9 +316,9 @@ def fx_correction(s, s_r, s_max=FX_S_MAX):
 
 
 def fx_shape(s, a, n, m):
-    """The shape factor of Fredlund & Xing (1994).
+    r"""The shape factor of Fredlund & Xing (1994).
 
-    .. math:: S(s) = \\left[\\ln\\!\\left(e + (s/a)^n\\right)\\right]^{-m}
+    .. math:: S(s) = \left[\ln\!\left(e + (s/a)^n\right)\right]^{-m}
 
     Parameters
     ----------
@@ -354,10 +354,10 @@ def fx_shape(s, a, n, m):
 
 
 def durner_effective_saturation(s, w1, alpha1, n1, alpha2, n2):
-    """Effective saturation of Durner (1994), two van Genuchten curves (m_i = 1 - 1/n_i) weighted.
+    r"""Effective saturation of Durner (1994), two van Genuchten curves (m_i = 1 - 1/n_i) weighted.
 
-    .. math:: S_e = w_1 \\left[1 + (\\alpha_1 s)^{n_1}\\right]^{-m_1}
-              + (1 - w_1) \\left[1 + (\\alpha_2 s)^{n_2}\\right]^{-m_2}
+    .. math:: S_e = w_1 \left[1 + (\alpha_1 s)^{n_1}\right]^{-m_1}
+              + (1 - w_1) \left[1 + (\alpha_2 s)^{n_2}\right]^{-m_2}
 
     Parameters
     ----------
@@ -418,13 +418,13 @@ def monotone_suction(saturation, target, lo=1e-6, hi=FX_S_MAX, iterations=64):
 
 
 def scanning_water(s, main, s_reversal, y_reversal, s_closure, y_closure):
-    """A scanning curve by the scaling of a main curve between its reversal and closure points.
+    r"""A scanning curve by the scaling of a main curve between its reversal and closure points.
 
     The scanning curve runs from the reversal point (s_Δ, y_Δ) to the point where its loop closes (s_c, y_c) along
     the main curve M of its own direction (main wetting for a wetting scanning curve, main drying for a drying
     one), scaled linearly so that it passes through both:
 
-    .. math:: y(s) = y_c + \\left[M(s) - M(s_c)\\right] \\frac{y_Δ - y_c}{M(s_Δ) - M(s_c)}
+    .. math:: y(s) = y_c + \left[M(s) - M(s_c)\right] \frac{y_Δ - y_c}{M(s_Δ) - M(s_c)}
 
     A first-order wetting curve from the main drying curve closes at s_c = 0 (y_c the main wetting curve's
     saturated value), a first-order drying curve from the main wetting curve at s_c → ∞ (y_c its residual

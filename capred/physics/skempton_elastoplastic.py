@@ -91,7 +91,22 @@ class Compliance(Protocol):
     carries the state it needs (the apex ``p_pi``, an ``A13`` slot).
     """
 
-    def __call__(self, p_eff: float, void_ratio: float) -> float: ...
+    def __call__(self, p_eff: float, void_ratio: float) -> float:
+        """Isotropic compliance ``A11`` [1/Pa] at a state, the :class:`Compliance` call of eq. 14 of [1].
+
+        Parameters
+        ----------
+        p_eff : float
+            Mean effective stress p' [Pa] (eq. 13).
+        void_ratio : float
+            Void ratio e [-].
+
+        Returns
+        -------
+        float
+            ``A11 = d eps_p / dp'`` [1/Pa], > 0.
+        """
+        ...
 
 
 @dataclass
@@ -211,6 +226,24 @@ class SkeletonCompliance:
         return state.p_pi
 
     def __call__(self, p_eff: float, void_ratio: float) -> float:
+        """Isotropic compliance ``A11`` [1/Pa] at a state, the :class:`Compliance` call of eq. 14 of [1].
+
+        Parameters
+        ----------
+        p_eff : float
+            Mean effective stress p' [Pa] (eq. 13).
+        void_ratio : float
+            Void ratio e [-].
+
+        Returns
+        -------
+        float
+            ``A11 = d eps_p / dp'`` [1/Pa], > 0.
+
+        Notes
+        -----
+        The skeleton's own apex at ``p_eff`` (``initial_apex``) is taken as the state, with the loading branch.
+        """
         return self.a11(SkeletonState(p_eff, void_ratio, self.initial_apex(p_eff)))
 
 
@@ -305,6 +338,24 @@ class ElasticCompliance(SkeletonCompliance):
         return float(elastic_compliance(state.p_eff, state.void_ratio, self.kappa_elastic))
 
     def __call__(self, p_eff: float, void_ratio: float) -> float:
+        """Isotropic compliance ``A11`` [1/Pa] at a state, the :class:`Compliance` call of eq. 14 of [1].
+
+        Parameters
+        ----------
+        p_eff : float
+            Mean effective stress p' [Pa] (eq. 13).
+        void_ratio : float
+            Void ratio e [-].
+
+        Returns
+        -------
+        float
+            ``A11 = d eps_p / dp'`` [1/Pa], > 0.
+
+        Notes
+        -----
+        The elastic ``kappa_elastic / ((1 + e) p')`` of eq. 5 of Morvan et al. (2016).
+        """
         return float(elastic_compliance(p_eff, void_ratio, self.kappa_elastic))
 
 

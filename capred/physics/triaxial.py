@@ -534,7 +534,7 @@ def drained_strength(p0_eff, c, phi_deg, branch="compression", extension_slope=-
 
 @dataclass
 class Bound:
-    """A capillary stress tensor at failure and its effective image point (arrays, one value per test).
+    r"""A capillary stress tensor at failure and its effective image point (arrays, one value per test).
 
     Attributes
     ----------
@@ -545,7 +545,7 @@ class Bound:
     p_prime : ndarray
         Mean effective stress of the image point on the envelope [Pa].
     q_prime : ndarray
-        Effective deviator of the image point, :math:`\\sigma'_1 - \\sigma'_3` [Pa].
+        Effective deviator of the image point, :math:`\sigma'_1 - \sigma'_3` [Pa].
     sigma2_cap : ndarray or None
         Capillary component along the intermediate direction [Pa]: the
         radial component, equal to ``sigma3_cap`` in compression and to
@@ -1056,7 +1056,7 @@ def intermediate_friction_angle_deg(lode_ratio, phi_deg):
 
 @dataclass
 class GroupTensor:
-    """The capillary tensor shared by a group of unsaturated tests (eq. 48 or 50 of Prunier et al. 2024).
+    r"""The capillary tensor shared by a group of unsaturated tests (eq. 48 or 50 of Prunier et al. 2024).
 
     Every stress in Pa, every angle in degrees. Standard errors come from the
     scatter of the tests about the group's lines (least squares with the slope
@@ -1077,22 +1077,22 @@ class GroupTensor:
     sigma1_cap_se, sigma2_cap_se, sigma3_cap_se : float
         Their standard errors [Pa].
     C_apparent, C_apparent_se : float
-        Cohesion :math:`C` of the line of slope :math:`\\sin\\varphi'` through
+        Cohesion :math:`C` of the line of slope :math:`\sin\varphi'` through
         the unsaturated circles, and its standard error [Pa].
     C_fictive, C_fictive_se : float
         Cohesion :math:`C''` of the line through the fictive circles [Pa].
     Ci_apparent, Ci_fictive : float
         Intermediate cohesions :math:`C_i`, :math:`C_i''` of the
-        :math:`\\sigma_1`-:math:`\\sigma_2` circles [Pa]; NaN for eq. 48.
+        :math:`\sigma_1`-:math:`\sigma_2` circles [Pa]; NaN for eq. 48.
     phi_i_deg : float
-        Friction angle of the :math:`\\sigma_1`-:math:`\\sigma_2` lines [deg];
+        Friction angle of the :math:`\sigma_1`-:math:`\sigma_2` lines [deg];
         NaN for eq. 48.
     phi_apparent_deg, phi_apparent_se_deg : float
         Friction angle of the free least-squares line
-        :math:`\\sigma_1 = K\\sigma_3 + b` through the unsaturated failure
+        :math:`\sigma_1 = K\sigma_3 + b` through the unsaturated failure
         states, and its standard error [deg]: eq. 48 presumes it equals
-        :math:`\\varphi'` (eq. 43). NaN when the tests share one
-        :math:`\\sigma_3` (and the error when ``n`` < 3).
+        :math:`\varphi'` (eq. 43). NaN when the tests share one
+        :math:`\sigma_3` (and the error when ``n`` < 3).
     lode_angle_deg : ndarray
         Lode angle of each test [deg] (eq. 53).
     per_test : ndarray, shape (n, 3)
@@ -1141,7 +1141,7 @@ def _mean_se(x):
 
 
 def _apparent_friction(sigma1, sigma3):
-    """phi and its se [deg] of the least-squares line sigma1 = K sigma3 + b (eq. 25 form)."""
+    """Friction angle phi and its se [deg] of the least-squares line sigma1 = K sigma3 + b (eq. 25 form)."""
     s1, s3 = np.asarray(sigma1, float), np.asarray(sigma3, float)
     n = s1.size
     if n < 2 or np.ptp(s3) <= 0:

@@ -1,5 +1,6 @@
-"""`capred bridge solve | curve | compare | rupture`: exact capillary bridges between two spheres of radii
-R and R2, or a sphere and a plane.
+"""`capred bridge solve | curve | compare | rupture`: exact capillary bridges.
+
+Between two spheres of radii R and R2, or a sphere and a plane.
 
 The contact angle is ``contact_angle`` everywhere (input column ``contact_angle``,
 also accepted as ``theta``); ``contact_angle2`` (optional) is the second particle's, equal to the first by default.
@@ -46,8 +47,9 @@ from .bridge_solve import (  # noqa: F401  (re-exported: the names users and tes
 
 
 def solve_bridges(source, options: BridgeOptions | None = None) -> BridgeResult:
-    """One bridge per row of a table (CSV path, DataFrame or a Table read): R (and R2), gamma, contact_angle (and
-    contact_angle2), gap and suction or V_w.
+    """One bridge per row of a table (CSV path, DataFrame or a Table read).
+
+    The table gives R (and R2), gamma, contact_angle (and contact_angle2), gap and suction or V_w.
 
     A long plain CSV is read, solved and kept block by block (:mod:`capred.pipelines.bridge_blocks`); a Table
     already read is solved at once (:func:`capred.pipelines.bridge_solve.solve_table`).
@@ -96,9 +98,11 @@ class CurveResult(Result):
     notes: list[str] = field(default_factory=list)
 
     def models(self) -> dict[str, np.ndarray]:
-        """Capillary stress of every model at the curve's S_R: the exact bridges, Israelachvili
-        (2 gamma cos(theta) / R) and each effective-stress model whose registry entry is drawn on this curve
-        (``bridge_curve``: Bishop S_R s, Own 1 chi1 s and Own 2 chi1 s + chi2), in registry order.
+        """Capillary stress of every model at the curve's S_R.
+
+        The exact bridges, Israelachvili (2 gamma cos(theta) / R) and each effective-stress model whose registry entry
+        is drawn on this curve (``bridge_curve``: Bishop S_R s, Own 1 chi1 s and Own 2 chi1 s + chi2), in registry
+        order.
 
         Returns
         -------
@@ -113,8 +117,9 @@ class CurveResult(Result):
         }
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (the table ``curve``: S_R, suction, sigma' of each model), NaN
-        written as None.
+        """The per-row records of the JSON document, NaN written as None.
+
+        The table ``curve``: S_R, suction, sigma' of each model.
 
         Returns
         -------
@@ -124,8 +129,9 @@ class CurveResult(Result):
         return frame_records(self.tables()["curve"])
 
     def summary(self) -> dict:
-        """Relative RMS error of each model against the exact bridges, inside and outside the
-        pendular regime (S_R below or above ``pendular_limit``).
+        """Relative RMS error of each model against the exact bridges, inside and outside the pendular regime.
+
+        Inside: S_R below ``pendular_limit``; outside: above it.
 
         Returns
         -------
@@ -145,8 +151,9 @@ class CurveResult(Result):
         return {"rms_relative_error_vs_exact": out}
 
     def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows: the sphere radius, surface tension, contact angle and pendular limit the curve
-        was computed for, each under its JSON key in its glossary unit (capred.records.quantity_store_row).
+        """The lab store's rows: the sphere radius, surface tension, contact angle and pendular limit of the curve.
+
+        Each under its JSON key in its glossary unit (capred.records.quantity_store_row).
 
         Parameters
         ----------
@@ -168,8 +175,9 @@ class CurveResult(Result):
         return [r for r in rows if r is not None]
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: R_mm, gamma_N_per_m, contact_angle_deg, the error summary and
-        the curve rows.
+        """The command's own keys of the JSON document.
+
+        R_mm, gamma_N_per_m, contact_angle_deg, the error summary and the curve rows.
 
         Parameters
         ----------
@@ -309,23 +317,29 @@ class CompareResult(Result):
 
     @property
     def options(self):
+        """The options of the exact bridges solved (``bridges.options``)."""
         return self.bridges.options
 
     @property
     def inputs(self):
+        """The input files of the run (``bridges.inputs``)."""
         return self.bridges.inputs
 
     @property
     def warnings(self):
+        """The warnings of the exact bridges solved (``bridges.warnings``)."""
         return self.bridges.warnings
 
     @property
     def notes(self):
+        """The notes of the exact bridges solved (``bridges.notes``)."""
         return self.bridges.notes
 
     def record(self) -> CompareRecord:
-        """The comparison as a typed record: per micro-test the measured force, each model's force and residual
-        [mN], the filling angles [deg] and the exact bridge's status.
+        """The comparison as a typed record.
+
+        Per micro-test the measured force, each model's force and residual [mN], the filling angles [deg] and the exact
+        bridge's status.
 
         Returns
         -------
@@ -387,8 +401,9 @@ class CompareResult(Result):
         return cached
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (per micro-test: measured and modelled forces and residuals [mN],
-        filling angles [deg], status), NaN written as None.
+        """The per-row records of the JSON document, NaN written as None.
+
+        Per micro-test: measured and modelled forces and residuals [mN], filling angles [deg], status.
 
         Returns
         -------
@@ -401,8 +416,10 @@ class CompareResult(Result):
         return cached
 
     def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows: none. Its numbers are per case (a table of bridges), not quantities of one material
-        across runs; the run and its document are recorded with their provenance.
+        """The lab store's rows: none.
+
+        Its numbers are per case (a table of bridges), not quantities of one material across runs; the run and its
+        document are recorded with their provenance.
 
         Parameters
         ----------
@@ -455,10 +472,11 @@ class CompareResult(Result):
 
 
 def compare_measured(source, options: BridgeOptions | None = None) -> CompareResult:
-    """Micro-tests: the exact bridge of each measured (R, R2, gap, contact angle, V_w) beside the measured force,
-    the toroidal approximation (equal spheres), Willett et al. (2000) and Israelachvili (with Derjaguin's
-    effective radius 2 R R2 / (R + R2) for unequal pairs and a plane), and every closed-form law of the law
-    registry (`capred.spec.bridge_laws.LAWS`, the laws of ``capred bridge laws``).
+    """Micro-tests: the exact bridge of each measured (R, R2, gap, contact angle, V_w) beside the measured force.
+
+    With the toroidal approximation (equal spheres), Willett et al. (2000) and Israelachvili (with Derjaguin's effective
+    radius 2 R R2 / (R + R2) for unequal pairs and a plane), and every closed-form law of the law registry
+    (`capred.spec.bridge_laws.LAWS`, the laws of ``capred bridge laws``).
 
     Parameters
     ----------
@@ -527,8 +545,9 @@ class RuptureResult(Result):
     warnings: list[str] = field(default_factory=list)
 
     def record(self) -> RuptureRecord:
-        """The rupture distances as a typed record: per case the inputs, the exact rupture distance beside Lian
-        et al.'s (1993) estimate, and the bridge at rupture.
+        """The rupture distances as a typed record.
+
+        Per case the inputs, the exact rupture distance beside Lian et al.'s (1993) estimate, and the bridge at rupture.
 
         Returns
         -------
@@ -578,8 +597,9 @@ class RuptureResult(Result):
         return cached
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (per case: rupture distance and the bridge at rupture; a plane's
-        R2_mm is 'plane'), NaN written as None.
+        """The per-row records of the JSON document, NaN written as None.
+
+        Per case: rupture distance and the bridge at rupture; a plane's R2_mm is 'plane'.
 
         Returns
         -------
@@ -592,8 +612,10 @@ class RuptureResult(Result):
         return cached
 
     def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows: none. Its numbers are per case (a table of bridges), not quantities of one material
-        across runs; the run and its document are recorded with their provenance.
+        """The lab store's rows: none.
+
+        Its numbers are per case (a table of bridges), not quantities of one material across runs; the run and its
+        document are recorded with their provenance.
 
         Parameters
         ----------
@@ -646,8 +668,9 @@ class RuptureResult(Result):
 
 
 def rupture_distances(source, options: BridgeOptions | None = None) -> RuptureResult:
-    """Rupture distance of each (R, R2, contact_angle, V_w) row: the widest gap a bridge of that volume spans
-    (Lian et al. 1993; pulled apart at constant volume), with the bridge at rupture.
+    """Rupture distance of each (R, R2, contact_angle, V_w) row, with the bridge at rupture.
+
+    The widest gap a bridge of that volume spans (Lian et al. 1993; pulled apart at constant volume).
 
     Parameters
     ----------

@@ -1,5 +1,7 @@
-"""`capred bridge solve` on a long file: read, solved and kept block by block, so memory stays flat (issue 20), and
-spread over the processes the run may use, reading, parsing and writing included (issue 31).
+"""`capred bridge solve` on a long file: read, solved and kept block by block.
+
+So memory stays flat (issue 20), and spread over the processes the run may use, reading, parsing and writing included
+(issue 31).
 
 Rows of ``bridge solve`` are independent: each block of lines (capred.io.blocks)
 is solved as a table of its own and its output columns go to a
@@ -89,8 +91,9 @@ class BridgeBlocks(Result):
         return pb.json_rows(self.spool.columns(start, stop))
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (every row of the run, read back from the spool), NaN written as
-        None.
+        """The per-row records of the JSON document, NaN written as None.
+
+        Every row of the run, read back from the spool.
 
         Returns
         -------
@@ -115,16 +118,25 @@ class BridgeBlocks(Result):
         return pb.row_context(self.inputs_si, self.status, start, stop)
 
     def columns(self) -> dict[str, np.ndarray]:
-        """The numeric output columns of every row, as :meth:`BridgeResult.columns` gives them (mm, mN, mm^3,
-        mm^2, deg, kPa; NaN where no bridge was found), read back into memory."""
+        """The numeric output columns of every row, read back into memory.
+
+        As :meth:`BridgeResult.columns` gives them (mm, mN, mm^3, mm^2, deg, kPa; NaN where no bridge was found).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            JSON key -> values of every row.
+        """
         return {k: v for k, v in self._all().items() if k not in _TEXT_COLUMNS}
 
     def _all(self) -> dict[str, np.ndarray]:
         return self.spool.columns(0, self.status.size)
 
     def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows: none. Its numbers are per case (a table of bridges), not quantities of one material
-        across runs; the run and its document are recorded with their provenance.
+        """The lab store's rows: none.
+
+        Its numbers are per case (a table of bridges), not quantities of one material across runs; the run and its
+        document are recorded with their provenance.
 
         Parameters
         ----------
@@ -183,8 +195,9 @@ class BridgeBlocks(Result):
         return {"solve": pd.DataFrame(self._all(), copy=False)}  # tables.xlsx: every row in memory
 
     def csv_tables(self) -> dict:
-        """The tables as the CSV writer takes them (``solve``: a HeadedSpool written block by block), under ``name
-        [unit]`` headers.
+        """The tables as the CSV writer takes them, under ``name [unit]`` headers.
+
+        ``solve``: a HeadedSpool written block by block.
 
         Returns
         -------
@@ -285,10 +298,11 @@ def _solve_in_blocks(source, opt: pb.BridgeOptions):
 
 
 def _solve_spread(source, opt: pb.BridgeOptions, k: int):
-    """Read, parse and solve the blocks of ``source`` on ``k`` processes (this one and k - 1 forked workers),
-    each block whole, as one process would solve it, and gather the results in file order. The result (a
-    :class:`BridgeBlocks`) then writes the CSV and JSON text of its blocks on ``k`` processes too, when its
-    document is asked for (:func:`_encode_blocks`).
+    """Read, parse and solve the blocks of ``source`` on ``k`` processes, gathered in file order.
+
+    This one and k - 1 forked workers, each block whole, as one process would solve it. The result (a
+    :class:`BridgeBlocks`) then writes the CSV and JSON text of its blocks on ``k`` processes too, when its document is
+    asked for (:func:`_encode_blocks`).
 
     Each process reads the file itself (capred.io.blocks.read_table_blocks with ``select``): a block is parsed
     and solved by the first process to reach it (:class:`_Claims`; block 0, which names the run, by this
@@ -332,9 +346,11 @@ class _WorkerFailed(Exception):
 
 
 class _Claims:
-    """Which process takes each block: the first to ask for it. One byte per block (0: free, else the
-    process's number + 1) in memory shared by the forked processes, changed under a POSIX record lock (held
-    per process). A block beyond the table is the first process's."""
+    """Which process takes each block: the first to ask for it.
+
+    One byte per block (0: free, else the process's number + 1) in memory shared by the forked processes, changed under
+    a POSIX record lock (held per process). A block beyond the table is the first process's.
+    """
 
     def __init__(self, n: int) -> None:
         import mmap
@@ -372,10 +388,12 @@ def _write_all(fd: int, data: bytes) -> None:
 
 
 def _solve_block(table, opt, fd: int, offset: int):
-    """Solve one block and append to file ``fd`` (at ``offset``) what the gathering process keeps of it, pickled:
-    (status, ratio, notes, warnings), then its output columns; (the result, (offset and size [B] of the first,
-    offset and size [B] of the columns, rows)): only these few numbers cross between processes, so a pipe
-    never fills and a worker never waits for the gathering process."""
+    """Solve one block and append to file ``fd`` (at ``offset``) what the gathering process keeps of it.
+
+    Pickled: (status, ratio, notes, warnings), then its output columns; returns (the result, (offset and size [B] of the
+    first, offset and size [B] of the columns, rows)): only these few numbers cross between processes, so a pipe never
+    fills and a worker never waits for the gathering process.
+    """
     import pickle
 
     part = pb.solve_table(table, opt)
@@ -389,8 +407,11 @@ def _solve_block(table, opt, fd: int, offset: int):
 
 
 class _Worker:
-    """A forked process that reads, parses and solves the blocks it claims, keeps their columns in its own file
-    and sends, block by block, what the gathering process keeps (then ``None``; ``"fail"`` when it stops)."""
+    """A forked process that reads, parses and solves the blocks it claims.
+
+    It keeps their columns in its own file and sends, block by block, what the gathering process keeps (then ``None``;
+    ``"fail"`` when it stops).
+    """
 
     live_fds: list = []
 
@@ -472,7 +493,7 @@ class _Worker:
 
 
 def _gather(source, opt, k: int, workers: list, claims: _Claims, files: list, block_bytes: int):
-    """This process's blocks and the workers' results, in file order."""
+    """The blocks of the gathering process and the workers' results, in file order."""
     first = inputs = head = path = None
     kept: dict[int, tuple] = {}
     offset, n = 0, 0
@@ -531,8 +552,9 @@ def _gather(source, opt, k: int, workers: list, claims: _Claims, files: list, bl
 
 
 class SpreadSpool:
-    """The output columns of a spread run, block by block in the files of the processes that solved them: what
-    a :class:`capred.result.Spool` offers (``n``, ``block``, ``blocks``, ``columns``, ``close``).
+    """The output columns of a spread run, block by block in the files of the processes that solved them.
+
+    What a :class:`capred.result.Spool` offers (``n``, ``block``, ``blocks``, ``columns``, ``close``).
 
     Parameters
     ----------
@@ -574,7 +596,13 @@ class SpreadSpool:
         return block
 
     def blocks(self):
-        """The blocks' column dicts, in order."""
+        """The blocks' column dicts, in order.
+
+        Yields
+        ------
+        dict of str to numpy.ndarray
+            One block's columns, JSON key -> values.
+        """
         for k in range(len(self._index)):
             yield self.block(k)
 
@@ -625,8 +653,9 @@ class _EncodedRows(pb.ColumnRows):
         self.encoded = encoded
 
     def json_chunks(self, size: int = 2000):
-        """The rows' JSON objects joined by commas, one block per chunk (the bytes of
-        :meth:`capred.pipelines.bridge_solve.ColumnRows.json_chunks`, cut at the blocks' ends).
+        """The rows' JSON objects joined by commas, one block per chunk.
+
+        The bytes of :meth:`capred.pipelines.bridge_solve.ColumnRows.json_chunks`, cut at the blocks' ends.
 
         Parameters
         ----------
@@ -641,9 +670,12 @@ class _EncodedRows(pb.ColumnRows):
 
 
 class _Encoded:
-    """The CSV (standard dialect, the header with the first block) and JSON text of every block of a spool,
-    in temporary files: (file, CSV offset, CSV bytes, JSON offset, JSON bytes) per block. The text is handed
-    out as places in those files (capred.io.FileText: the writers copy it file to file, in the kernel)."""
+    """The CSV and JSON text of every block of a spool, in temporary files.
+
+    The CSV in the standard dialect, the header with the first block; (file, CSV offset, CSV bytes, JSON offset, JSON
+    bytes) per block. The text is handed out as places in those files (capred.io.FileText: the writers copy it file to
+    file, in the kernel).
+    """
 
     def __init__(self, files, index) -> None:
         import weakref
@@ -662,15 +694,19 @@ class _Encoded:
             yield self._text(f, c_off, c_len)
 
     def json_pieces(self):
-        """The JSON rows, block by block (capred.io.FileText: objects joined by commas; empty for a block of no
-        rows)."""
+        """The JSON rows, block by block.
+
+        capred.io.FileText: objects joined by commas; empty for a block of no rows.
+        """
         for f, _, _, j_off, j_len in self.index:
             yield self._text(f, j_off, j_len)
 
 
 class _Sink:
-    """A binary file's ``write`` onto a file descriptor, unbuffered, counting the bytes; ``skip_line``: the
-    text up to its first line end is left out (the CSV header of a block after the first)."""
+    """A binary file's ``write`` onto a file descriptor, unbuffered, counting the bytes.
+
+    ``skip_line``: the text up to its first line end is left out (the CSV header of a block after the first).
+    """
 
     def __init__(self, fd: int, skip_line: bool = False) -> None:
         self.fd, self.skip, self.size = fd, skip_line, 0
@@ -686,9 +722,11 @@ class _Sink:
 
 
 def _encode_block(block: dict, first: bool, fd: int) -> tuple[int, int]:
-    """Append to file ``fd`` the CSV text (with the header for the first block) and the JSON rows of one spool
-    block: the bytes the writers write of it (capred.io.writers.write_csv_file, and stream_json of
-    :meth:`capred.pipelines.bridge_solve.ColumnRows.json_chunks`, chunk by chunk); (CSV bytes, JSON bytes)."""
+    """Append to file ``fd`` the CSV text and the JSON rows of one spool block; (CSV bytes, JSON bytes).
+
+    The CSV with the header for the first block: the bytes the writers write of it (capred.io.writers.write_csv_file,
+    and stream_json of :meth:`capred.pipelines.bridge_solve.ColumnRows.json_chunks`, chunk by chunk).
+    """
     from ..io import encode_rows, write_csv_file
 
     csv = _Sink(fd, skip_line=not first)
@@ -707,8 +745,10 @@ _JSON_ROWS = 2000
 
 
 def _encode_share(spool, me: int, n_blocks: int, claims: _Claims, fd: int) -> list[tuple[int, int, int, int, int]]:
-    """The blocks process ``me`` claims, their text appended to file ``fd``: (block, CSV offset, bytes, JSON
-    offset, bytes) each."""
+    """The blocks process ``me`` claims, their text appended to file ``fd``.
+
+    (block, CSV offset, bytes, JSON offset, bytes) each.
+    """
     out, offset = [], 0
     for i in range(n_blocks):
         if not claims.take(i, me):
@@ -720,9 +760,11 @@ def _encode_share(spool, me: int, n_blocks: int, claims: _Claims, fd: int) -> li
 
 
 def _encode_blocks(spool, k: int, n_blocks: int):
-    """The CSV and JSON text of every block of ``spool``, written on ``k`` processes (this one and k - 1 forked,
-    each block by the first to reach it); None when a process failed (the writers then write from the spool,
-    in one process)."""
+    """The CSV and JSON text of every block of ``spool``, written on ``k`` processes.
+
+    This one and k - 1 forked, each block by the first to reach it; None when a process failed (the writers then write
+    from the spool, in one process).
+    """
     import gc
     import os
     import tempfile

@@ -61,16 +61,34 @@ class LawsResult(Result):
     notes: list[str] = field(default_factory=list)
 
     def errors(self) -> dict[str, np.ndarray]:
-        """Relative error of each law, F_law / F_exact - 1 [-]; NaN without an exact bridge or a law force."""
+        """Relative error of each law, F_law / F_exact - 1 [-]; NaN without an exact bridge or a law force.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            Law name -> relative error per point [-].
+        """
         with np.errstate(invalid="ignore", divide="ignore"):
             return {k: F / self.exact - 1.0 for k, F in self.forces.items()}
 
     def geometry(self) -> np.ndarray:
-        """ "equal", "unequal" or "plane" per point."""
+        """Geometry "equal", "unequal" or "plane" of each point.
+
+        Returns
+        -------
+        numpy.ndarray of str
+            One label per point (:func:`capred.physics.bridge_laws.geometry_of`).
+        """
         return bl.geometry_of(self.ratio)
 
     def region_keys(self) -> np.ndarray:
-        """Per point, its region: (geometry, D/R bin, V/R^3 bin, angle bin) as one label."""
+        """Per point, its region: (geometry, D/R bin, V/R^3 bin, angle bin) as one label.
+
+        Returns
+        -------
+        numpy.ndarray of str
+            One label per point.
+        """
         g = _label_bins(GAP_EDGES, lambda x: f"{x:g}")
         v = _label_bins(VOLUME_EDGES, lambda x: f"{x:g}")
         a = _label_bins(ANGLE_EDGES, lambda x: f"{x:g}°")
@@ -85,8 +103,16 @@ class LawsResult(Result):
         )
 
     def regions(self) -> list[dict]:
-        """Per region (in first-seen order) and law: points compared, median and largest |relative error|, and
-        whether every point is within the tolerance."""
+        """Per region (in first-seen order) and law: the errors of the law there.
+
+        Points compared, median and largest |relative error|, and whether every point is within the tolerance.
+
+        Returns
+        -------
+        list of dict
+            One dict per region and law: ``region``, ``law``, ``n``, ``beyond_rupture``, ``median_error`` and
+            ``max_error`` [-] (None without points), ``within``.
+        """
         cached = self.__dict__.get("_regions")
         if cached is not None:
             return cached
@@ -115,7 +141,14 @@ class LawsResult(Result):
         return out
 
     def overall(self) -> list[dict]:
-        """Per law over every point with an exact bridge: n, median and largest |relative error|, regions within."""
+        """Per law over every point with an exact bridge: n, median and largest |relative error|, regions within.
+
+        Returns
+        -------
+        list of dict
+            One dict per law: ``law``, ``n``, ``median_error`` and ``max_error`` [-] (None without points), and
+            ``regions_within`` of its ``regions``.
+        """
         err = self.errors()
         regions = self.regions()
         out = []
@@ -135,8 +168,15 @@ class LawsResult(Result):
         return out
 
     def headline(self) -> list[dict]:
-        """Per geometry and D/R bin (over every volume and angle): each law's median and largest |relative
-        error| [-] (the README's headline table)."""
+        """Per geometry and D/R bin (over every volume and angle): each law's median and largest |relative error| [-].
+
+        The README's headline table.
+
+        Returns
+        -------
+        list of dict
+            One dict per geometry, D/R bin and law.
+        """
         err = self.errors()
         geo = self.geometry()
         gi = _bin(self.gap, GAP_EDGES)
@@ -157,7 +197,13 @@ class LawsResult(Result):
         return out
 
     def point_columns(self) -> dict[str, np.ndarray]:
-        """Per point: inputs, the exact force, each law's force and relative error (JSON keys)."""
+        """Per point: inputs, the exact force, each law's force and relative error (JSON keys).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            JSON key -> values per point (forces in units of 2 pi R gamma).
+        """
         cols = {
             "D_over_R": self.gap,
             "V_over_R3": self.volume,
@@ -172,9 +218,10 @@ class LawsResult(Result):
         return cols
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (per grid point: D_over_R, V_over_R3, contact_angle_deg,
-        R2_over_R ('plane' for a plane), F_exact, and each law's force F_<law> and relative error error_<law>;
-        forces in units of 2 pi R gamma), NaN written as None.
+        """The per-row records of the JSON document, NaN written as None.
+
+        Per grid point: D_over_R, V_over_R3, contact_angle_deg, R2_over_R ('plane' for a plane), F_exact, and each law's
+        force F_<law> and relative error error_<law>; forces in units of 2 pi R gamma.
 
         Returns
         -------
@@ -207,8 +254,9 @@ class LawsResult(Result):
         return [] if row is None else [row]
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: the source, the tolerance, each law with its citation, the
-        regions and the points.
+        """The command's own keys of the JSON document.
+
+        The source, the tolerance, each law with its citation, the regions and the points.
 
         Parameters
         ----------
@@ -241,8 +289,9 @@ class LawsResult(Result):
         }
 
     def tables(self) -> dict:
-        """Output tables: file stem -> pandas DataFrame (``laws``: one row per grid point; ``regions``: each law's
-        median and largest error per region).
+        """Output tables: file stem -> pandas DataFrame.
+
+        ``laws``: one row per grid point; ``regions``: each law's median and largest error per region.
 
         Returns
         -------
@@ -256,8 +305,9 @@ class LawsResult(Result):
         return {"laws": points, "regions": pd.DataFrame(self.regions())}
 
     def csv_tables(self) -> dict:
-        """The tables as the CSV writer takes them (``laws`` and ``regions``, dimensionless columns headed ``[-]``, the contact angle ``[deg]``),
-        under ``name [unit]`` headers.
+        """The tables as the CSV writer takes them, under ``name [unit]`` headers.
+
+        ``laws`` and ``regions``, dimensionless columns headed ``[-]``, the contact angle ``[deg]``.
 
         Returns
         -------
@@ -300,8 +350,9 @@ def _exact(th, V, D, rho):
 
 
 def compare_laws(source=None, options: LawsOptions | None = None) -> LawsResult:
-    """Every registered law against the exact bridge on a grid (a file of D_over_R, V_over_R3, contact_angle and
-    optional R2_over_R rows, or the options' grid).
+    """Every registered law against the exact bridge on a grid.
+
+    The grid is a file of D_over_R, V_over_R3, contact_angle and optional R2_over_R rows, or the options' grid.
 
     Parameters
     ----------

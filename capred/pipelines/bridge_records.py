@@ -1,6 +1,9 @@
-"""Typed records of `capred bridge solve | compare | rupture | yade-files`: one field per
-output column, each with its JSON key, CSV column and unit declared once (capred.result.output, or
-:func:`capred.pipelines.row_records.plain` for a label or status); JSON keys, CSV headers and console headers follow from it."""
+"""Typed records of `capred bridge solve | compare | rupture | yade-files`.
+
+One field per output column, each with its JSON key, CSV column and unit declared once (capred.result.output, or
+:func:`capred.pipelines.row_records.plain` for a label or status); JSON keys, CSV headers and console headers follow
+from it.
+"""
 
 from __future__ import annotations
 
@@ -87,8 +90,9 @@ class BridgeRecord:
 
 @dataclass(frozen=True)
 class CompareRecord(RowRecord):
-    """``capred bridge compare``: per micro-test, the measured force beside the exact bridge and three
-    approximations, in output units (NaN where a model gives no bridge).
+    """``capred bridge compare``: per micro-test, the measured force beside the exact bridge and approximations.
+
+    Three approximations, in output units (NaN where a model gives no bridge).
 
     Attributes
     ----------
@@ -144,8 +148,9 @@ PLANE = "plane"
 
 @dataclass(frozen=True)
 class RuptureRecord(RowRecord):
-    """``capred bridge rupture``: per case, the rupture distance at constant volume beside Lian et al.'s (1993)
-    estimate, and the bridge at rupture, in output units (NaN where no rupture was found).
+    """``capred bridge rupture``: per case, the rupture distance at constant volume and the bridge at rupture.
+
+    Beside Lian et al.'s (1993) estimate, in output units (NaN where no rupture was found).
 
     Attributes
     ----------
@@ -194,8 +199,9 @@ class RuptureRecord(RowRecord):
     status: list = plain("status")
 
     def json_rows(self, start: int = 0, stop: int | None = None) -> list[dict]:
-        """Rows as :meth:`RowRecord.json_rows` gives them, a plane's ``R2_mm`` written ``plane`` (JSON has no
-        infinity).
+        """Rows as :meth:`RowRecord.json_rows` gives them, a plane's ``R2_mm`` written ``plane``.
+
+        JSON has no infinity.
 
         Parameters
         ----------

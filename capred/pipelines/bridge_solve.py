@@ -1,6 +1,7 @@
-"""`capred bridge solve` on one table: its columns, options, result record, and the solver spread over the
-processes the run may use. capred.pipelines.bridge (the commands) and capred.pipelines.bridge_blocks (a long file
-block by block) both build on it; it imports neither.
+"""`capred bridge solve` on one table: its columns, options, result record, and the solver.
+
+The solver is spread over the processes the run may use. capred.pipelines.bridge (the commands) and
+capred.pipelines.bridge_blocks (a long file block by block) both build on it; it imports neither.
 """
 
 from __future__ import annotations
@@ -68,8 +69,9 @@ class BridgeResult(Result):
         return self.shape.neck * self.inputs_si["R"]
 
     def record(self) -> BridgeRecord:
-        """The bridges as a typed record in output units (mm, mN, mm^3, mm^2, deg, kPa); NaN where no bridge was
-        found.
+        """The bridges as a typed record in output units (mm, mN, mm^3, mm^2, deg, kPa).
+
+        NaN where no bridge was found.
 
         S_R = 3 V_w / (2 pi R^3) and sigma' = F / (pi R^2) are the unit cell of the particle of radius R
         (Evenepoel's thesis); nn11 = nn22 and nn33 are the transverse and axial components of the
@@ -104,11 +106,29 @@ class BridgeResult(Result):
         )
 
     def columns(self) -> dict[str, np.ndarray]:
-        """Output columns under their JSON keys (:meth:`record`, :meth:`BridgeRecord.columns`)."""
+        """Output columns under their JSON keys (:meth:`record`, :meth:`BridgeRecord.columns`).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            JSON key -> values per row, in output units (mm, mN, mm^3, mm^2, deg, kPa).
+        """
         return self.record().columns()
 
     @staticmethod
     def status_text(code: int) -> str:
+        """The meaning of a bridge's status code.
+
+        Parameters
+        ----------
+        code : int
+            A status of the ``status`` column (0 to 4).
+
+        Returns
+        -------
+        str
+            Its text in ``STATUS`` ("ok", "no bridge: beyond rupture", ...).
+        """
         return STATUS[int(code)]
 
     def _cols(self) -> dict:
@@ -145,8 +165,9 @@ class BridgeResult(Result):
         return {k: v[start:stop] for k, v in self._cols().items()}
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (every bridge: inputs, r0, forces, V_w, filling angles, area, S_R,
-        sigma', status), NaN written as None.
+        """The per-row records of the JSON document, NaN written as None.
+
+        Every bridge: inputs, r0, forces, V_w, filling angles, area, S_R, sigma', status.
 
         Returns
         -------
@@ -173,8 +194,10 @@ class BridgeResult(Result):
         return row_context(self.inputs_si, self.status, start, stop)
 
     def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows: none. Its numbers are per case (a table of bridges), not quantities of one material
-        across runs; the run and its document are recorded with their provenance.
+        """The lab store's rows: none.
+
+        Its numbers are per case (a table of bridges), not quantities of one material across runs; the run and its
+        document are recorded with their provenance.
 
         Parameters
         ----------
@@ -215,8 +238,9 @@ class BridgeResult(Result):
         return {"solve": self._frame()}
 
     def csv_tables(self) -> dict:
-        """The tables as the CSV writer takes them (``solve``, built from the output columns), under ``name [unit]``
-        headers.
+        """The tables as the CSV writer takes them, under ``name [unit]`` headers.
+
+        ``solve``, built from the output columns.
 
         Returns
         -------
@@ -232,9 +256,10 @@ TEXT_COLUMNS = ("case", "status", "note", "model", "law", "region")
 
 
 def csv_header(key: str) -> str:
-    """The CSV header of a JSON key of a bridge table: ``name [unit]`` (``r0_mm`` -> ``r0 [mm]``, ``S_R`` ->
-    ``S_R [-]``); a text column keeps its name. The columns of `bridge solve` take theirs from
-    :class:`BridgeRecord`; the other bridge tables' keys end in their unit.
+    """The CSV header of a JSON key of a bridge table: ``name [unit]``.
+
+    ``r0_mm`` -> ``r0 [mm]``, ``S_R`` -> ``S_R [-]``; a text column keeps its name. The columns of `bridge solve` take
+    theirs from :class:`BridgeRecord`; the other bridge tables' keys end in their unit.
 
     Parameters
     ----------
@@ -256,14 +281,22 @@ def csv_header(key: str) -> str:
 
 
 class HeadedSpool:
-    """A :class:`capred.result.Spool` of JSON-keyed columns whose blocks the CSV writer reads under
-    ``name [unit]`` headers (the spool itself is not copied)."""
+    """A :class:`capred.result.Spool` of JSON-keyed columns read under ``name [unit]`` headers.
+
+    The CSV writer reads its blocks so; the spool itself is not copied.
+    """
 
     def __init__(self, spool, encoded=None) -> None:
         self.spool, self.encoded = spool, encoded
 
     def blocks(self):
-        """The spool's blocks with CSV headers."""
+        """The spool's blocks with CSV headers.
+
+        Yields
+        ------
+        dict
+            One block's columns under ``name [unit]`` headers.
+        """
         for block in self.spool.blocks():
             yield with_csv_headers(block)
 
@@ -288,9 +321,10 @@ class HeadedSpool:
         return with_csv_headers(self.spool.columns(start, stop))
 
     def csv_pieces(self, dialect: str):
-        """The CSV text of every block, already written by the run's processes (capred.pipelines.bridge_blocks),
-        header first: the bytes :func:`capred.io.writers.write_csv_file` writes of :meth:`blocks`; None where
-        the text was not written ahead (one process) or is wanted in another dialect than the standard one.
+        """The CSV text of every block, already written by the run's processes, header first.
+
+        The bytes :func:`capred.io.writers.write_csv_file` writes of :meth:`blocks` (capred.pipelines.bridge_blocks);
+        None where the text was not written ahead (one process) or is wanted in another dialect than the standard one.
 
         Parameters
         ----------
@@ -372,8 +406,9 @@ def rupture_gap_of_rows(inputs_si: dict, rows: np.ndarray) -> np.ndarray:
 
 
 def row_context(inputs_si: dict, status: np.ndarray, start: int, stop: int) -> dict[str, np.ndarray]:
-    """``R_mm``, ``gap_mm`` and, on rows beyond rupture, ``D_rupture_mm`` of rows start..stop (NaN where the
-    inputs are not kept: past the HEAD_ROWS of a long run); see :meth:`BridgeResult.row_context`.
+    """``R_mm``, ``gap_mm`` and, on rows beyond rupture, ``D_rupture_mm`` of rows start..stop.
+
+    NaN where the inputs are not kept: past the HEAD_ROWS of a long run; see :meth:`BridgeResult.row_context`.
 
     Parameters
     ----------
@@ -428,8 +463,11 @@ def json_rows(cols: dict[str, np.ndarray], nan_as_none: bool = True) -> list[dic
 
 
 class ColumnRows(Rows):
-    """JSON rows made on demand from output columns (``columns(start, stop)``), which the writer encodes chunk
-    by chunk straight from the columns (:meth:`json_chunks`: no None per non-finite cell, the same bytes)."""
+    """JSON rows made on demand from output columns (``columns(start, stop)``).
+
+    The writer encodes them chunk by chunk straight from the columns (:meth:`json_chunks`: no None per non-finite cell,
+    the same bytes).
+    """
 
     def __init__(self, n: int, columns) -> None:
         super().__init__(n, lambda start, stop: json_rows(columns(start, stop)))
@@ -455,8 +493,10 @@ class ColumnRows(Rows):
 
 
 def json_chunk_rows(cols: dict) -> list[dict]:
-    """``json_rows(cols, nan_as_none=False)`` for the writer: the rows without any number (no bridge) and
-    without a note share one dict per status, so only the rows with a bridge cost a dict of their own.
+    """``json_rows(cols, nan_as_none=False)`` for the writer.
+
+    The rows without any number (no bridge) and without a note share one dict per status, so only the rows with a bridge
+    cost a dict of their own.
 
     Parameters
     ----------
@@ -505,7 +545,8 @@ def frame_records(frame, drop_empty: str | None = None) -> list[dict]:
 
     References
     ----------
-    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
+    capred's own input conventions (README, "`capred shear`: input format"); no external source.
+    """
     keys = list(frame.columns)
     cols = [[num(x) if isinstance(x, float) else x for x in frame[k].tolist()] for k in keys]
     out = []
@@ -518,8 +559,10 @@ def frame_records(frame, drop_empty: str | None = None) -> list[dict]:
 
 
 def read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, ...], opt: BridgeOptions, schema=None):
-    """The table of cases (read from ``source``, or a Table already read) with its surface tension, radius
-    ratio R2/R (1 without an R2 column) and the contact angle on the second particle [rad].
+    """The table of cases with its surface tension, radius ratio and second contact angle.
+
+    Read from ``source``, or a Table already read; the radius ratio R2/R is 1 without an R2 column, the contact angle on
+    the second particle in rad.
 
     Parameters
     ----------
@@ -541,7 +584,8 @@ def read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, ..
 
     References
     ----------
-    Lian, G., Thornton, C. & Adams, M. J. (1993). A theoretical study of the liquid bridge forces between two rigid spherical bodies. J. Colloid Interface Sci. 161:138-147, doi:10.1006/jcis.1993.1452."""
+    Lian, G., Thornton, C. & Adams, M. J. (1993). A theoretical study of the liquid bridge forces between two rigid spherical bodies. J. Colloid Interface Sci. 161:138-147, doi:10.1006/jcis.1993.1452.
+    """
     table = source if isinstance(source, Table) else read_table(source, schema or SOLVE_SCHEMA)
     for name in required:
         if name not in table.columns:
@@ -578,8 +622,10 @@ def read_cases(source, required: tuple[str, ...], required_one_of: tuple[str, ..
 
 
 def solve_table(table: Table, options: BridgeOptions | None = None) -> BridgeResult:
-    """One bridge per row of a table already read: R (and R2), gamma, contact_angle (and contact_angle2), gap and
-    suction or V_w (the work of :func:`capred.pipelines.bridge.solve_bridges` on one table or block).
+    """One bridge per row of a table already read.
+
+    R (and R2), gamma, contact_angle (and contact_angle2), gap and suction or V_w (the work of
+    :func:`capred.pipelines.bridge.solve_bridges` on one table or block).
 
     Parameters
     ----------
@@ -624,8 +670,10 @@ def solve_table(table: Table, options: BridgeOptions | None = None) -> BridgeRes
 def solve_arrays(
     source, R, gamma, th, D, ratio, s_in, v_in, labels=None, notes=None, th2=None, workers=None, branch="stable"
 ) -> BridgeResult:
-    """Suction-controlled rows (s_in finite) and volume-controlled rows (v_in finite), SI in; ``th2`` the contact
-    angle on the second particle [rad] (None: ``th``); ``workers``: processes (None: see :func:`processes`).
+    """Suction-controlled rows (s_in finite) and volume-controlled rows (v_in finite), SI in.
+
+    ``th2`` the contact angle on the second particle [rad] (None: ``th``); ``workers``: processes (None: see
+    :func:`processes`).
 
     Parameters
     ----------
@@ -649,7 +697,8 @@ def solve_arrays(
 
     References
     ----------
-    Lian, G., Thornton, C. & Adams, M. J. (1993). A theoretical study of the liquid bridge forces between two rigid spherical bodies. J. Colloid Interface Sci. 161:138-147, doi:10.1006/jcis.1993.1452."""
+    Lian, G., Thornton, C. & Adams, M. J. (1993). A theoretical study of the liquid bridge forces between two rigid spherical bodies. J. Colloid Interface Sci. 161:138-147, doi:10.1006/jcis.1993.1452.
+    """
     th2 = th if th2 is None else th2
     n = R.size
     beta, s_star, status = np.full(n, np.nan), np.full(n, np.nan), np.full(n, 2)
@@ -748,9 +797,10 @@ def _volume_rows_thin(th, V, D, rho, th2):
 
 
 def _volume_rows(th, V, D, rho, th2):
-    """Volume-controlled rows (V = V_w / R^3): (beta, s*, status, a code (+1 past the suction-controlled fold,
-    +2 a second thin-neck bridge of the same volume and gap exists), every field of the bridge) — one unit of
-    parallel work.
+    """Volume-controlled rows (V = V_w / R^3), one unit of parallel work.
+
+    Returns (beta, s*, status, a code (+1 past the suction-controlled fold, +2 a second thin-neck bridge of the same
+    volume and gap exists), every field of the bridge).
 
     A bridge is past the fold when the stable bridge at its own suction and gap (suction control) is not
     this one: an open water supply would make it jump to a larger bridge.
@@ -962,8 +1012,10 @@ class _Helper:
 
 
 def _run(job):
-    """A helper's answer to (solver, columns): the result, or None when it fails (the parent solves it again and
-    reports the error)."""
+    """A helper's answer to (solver, columns): the result, or None when it fails.
+
+    The parent then solves it again and reports the error.
+    """
     solver, columns = job
     try:
         return solver(*columns)
@@ -1002,7 +1054,6 @@ def receive_message(fd: int):
     object or None
         The message; None at the end of the pipe.
     """
-
     head = _read_exactly(fd, 8)
     if head is None:
         return None
@@ -1034,8 +1085,9 @@ ONE_PROCESS = False
 
 
 class helper:
-    """Context of a long run: parts 2..k of its blocks go to the same k - 1 helper processes, forked at the
-    first block that needs them (or at once with ``start``) and closed at the end
+    """Context of a long run: parts 2..k of its blocks go to the same k - 1 helper processes.
+
+    They are forked at the first block that needs them (or at once with ``start``) and closed at the end
     (capred.pipelines.bridge_blocks.solve_in_blocks). The number of processes is decided once for the run
     (:func:`processes`).
 

@@ -148,9 +148,10 @@ class Cases:
         }
 
     def store_rows(self, material=None) -> list:
-        """The lab store's rows of a single case: each result (not the inputs) under its JSON key, in its glossary
-        unit (capred.records.StoreRow); none for several cases, whose results the JSON document does not give
-        at its top level (a calculator's table of cases is not a series of one material).
+        """The lab store's rows of a single case: each result (not the inputs) under its JSON key.
+
+        In its glossary unit (capred.records.StoreRow); none for several cases, whose results the JSON document does not
+        give at its top level (a calculator's table of cases is not a series of one material).
 
         Parameters
         ----------
@@ -276,7 +277,18 @@ class SkemptonCases(Cases):
     bc_lambda: np.ndarray = case_value("bc_lambda")
     solved: str = "B"
 
-    def is_output(self, f: dataclasses.Field) -> bool:  # noqa: D102 (see Cases.is_output)
+    def is_output(self, f: dataclasses.Field) -> bool:
+        """True for the one of S_R and B the calculator solved for, False for every other field.
+
+        Parameters
+        ----------
+        f : dataclasses.Field
+            One of the record's fields.
+
+        Returns
+        -------
+        bool
+        """
         return f.name == self.solved
 
     def columns(self) -> list[dataclasses.Field]:
@@ -400,5 +412,11 @@ class ShearBandCases(Cases):
     arthur_minus_measured: np.ndarray = case_value("shear_band_angle", output=True)
 
     def console_columns(self) -> dict[str, np.ndarray]:
-        """``{header: array}``: each angle under its own name (one symbol, several angles)."""
+        """The console table's columns: each angle under its own name (one symbol, several angles).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            ``{header: angles [deg]}``.
+        """
         return {f"{f.name} [deg]": np.asarray(getattr(self, f.name), float) for f in self.columns()}

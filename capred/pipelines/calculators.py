@@ -61,11 +61,13 @@ class CalcResult(Result):
 
     @property
     def command(self) -> str:
+        """The command's name: the calculator's (``prism``, ``skempton-b``, ``rumpf``, ``shear-band``)."""
         return self.calculator
 
     def figure_curves(self) -> dict:
-        """skempton-b: every curve its figure sheet draws, computed from ``figure_data`` when asked for
-        (capred.pipelines.skempton_figure.figure_curves); capred.report draws them.
+        """skempton-b: every curve its figure sheet draws, computed from ``figure_data`` when asked for.
+
+        capred.pipelines.skempton_figure.figure_curves computes them; capred.report draws them.
 
         Returns
         -------
@@ -86,8 +88,9 @@ class CalcResult(Result):
         return self.cases.json_columns(outputs=True)
 
     def rows(self) -> list[dict]:
-        """The per-row records of the JSON document (per case: its label (if any), inputs and results in output units),
-        NaN written as None.
+        """The per-row records of the JSON document, NaN written as None.
+
+        Per case: its label (if any), inputs and results in output units.
 
         Returns
         -------
@@ -100,8 +103,9 @@ class CalcResult(Result):
         return cached
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: the source and the cases (a single case's results also at the
-        top; the skeleton model and its inputs where one applies).
+        """The command's own keys of the JSON document: the source and the cases.
+
+        A single case's results also at the top; the skeleton model and its inputs where one applies.
 
         Parameters
         ----------
@@ -136,7 +140,13 @@ class CalcResult(Result):
         return self.cases.store_rows(material)
 
     def method_notes(self) -> tuple[list[str], list[str]]:
-        """The skeleton model of a `skempton-b` run, for the methods section of report.html."""
+        """The skeleton model of a `skempton-b` run, for the methods section of report.html.
+
+        Returns
+        -------
+        (list of str, list of str)
+            The paragraph on the bounding-surface reconstruction and its references; empty for other runs.
+        """
         if self.model is None or "bounding-surface" not in self.model:
             return [], []
         return [
@@ -149,8 +159,9 @@ class CalcResult(Result):
         ], ["morvan2016", "morvan_wong_branque2010"]
 
     def tables(self) -> dict:
-        """Output tables: file stem -> pandas DataFrame (``results``: one row per case, led by the model where one
-        applies).
+        """Output tables: file stem -> pandas DataFrame.
+
+        ``results``: one row per case, led by the model where one applies.
 
         Returns
         -------
@@ -323,8 +334,10 @@ SKEMPTON = [
 
 
 def _p_eff_message(p0: float, u0: float) -> str:
-    """The error of a non-positive p0 - u0 with the values as read [kPa]; a p0 below 1 kPa is most likely kPa
-    typed as a script's plain number, which is in Pa."""
+    """The error of a non-positive p0 - u0 with the values as read [kPa].
+
+    A p0 below 1 kPa is most likely kPa typed as a script's plain number, which is in Pa.
+    """
     text = f"p0 - u0 (initial mean effective stress) must be > 0; read p0 = {p0 / 1e3:g} kPa, u0 = {u0 / 1e3:g} kPa"
     if p0 < 1e3:
         text += " (a plain number given to run_skempton_b is in Pa: write p0='100 kPa' or 100e3)"
@@ -442,8 +455,9 @@ def run_skempton_b(
 
 
 def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
-    """B or S_r per case (see run_skempton_b), with the figure of the B-S_r relation; the title, the tables and
-    the JSON name the skeleton model and its inputs.
+    """B or S_r per case (see run_skempton_b), with the figure of the B-S_r relation.
+
+    The title, the tables and the JSON name the skeleton model and its inputs.
 
     Parameters
     ----------
@@ -532,8 +546,10 @@ def reduce_skempton_b(source, opt: SkemptonOptions) -> CalcResult:
 
 
 def _with_compression(opt: SkemptonOptions, limits=None) -> tuple[SkemptonOptions, list[str], list[str]]:
-    """κ and e0 (and λ0 with bounding-surface) from a compression.json (read within ``limits``: --max-megabytes),
-    with its notes and warnings; an error when the options give them too."""
+    """κ and e0 (and λ0 with bounding-surface) from a compression.json, with its notes and warnings.
+
+    Read within ``limits`` (--max-megabytes); an error when the options give them too.
+    """
     from .compression import load_compression_fit
 
     fields = {f.name: f.default for f in dataclasses.fields(SkemptonOptions)}
@@ -677,6 +693,11 @@ def skempton_model_description(model: str, s_e, bc_lambda, bounding: dict | None
     bounding : dict or None
         ``lambda0`` [-], ``a_ini`` [Pa], ``interpolation_h`` [-] or None, ``air_pressure``.
 
+    Returns
+    -------
+    (str, str, dict)
+        The title, the model's name, and its inputs by JSON key in JSON units.
+
     References
     ----------
     Morvan et al. (2016), eq. 10 (elastic), section 3 (suction equilibrium), section 4 (elasto-plastic).
@@ -735,9 +756,11 @@ def _bounding_b(S, k, e, p, u, pa, s_e, bc_lambda, bounding) -> float:
 
 
 def _saturation_from_b(v: dict, cases: list, p_eff, s_e, bc_lambda, bounding, notes: list[str]):
-    """S_r of every case from its measured B: on the bounding-surface drying path (its root nearest saturation),
-    with the suction-equilibrium model (Brent's root in (0, 1]), or in closed form; returns S_r and the warnings
-    on several roots. A B not reached on the drying path is noted (S_r NaN)."""
+    """S_r of every case from its measured B, and the warnings on several roots.
+
+    On the bounding-surface drying path (its root nearest saturation), with the suction-equilibrium model (Brent's root
+    in (0, 1]), or in closed form. A B not reached on the drying path is noted (S_r NaN).
+    """
     root_warnings: list[str] = []
     if bounding is not None:
 
@@ -904,9 +927,10 @@ def run_rumpf(
     surface_tension=SURFACE_TENSION,
     contact_angle=0.0,
 ) -> CalcResult:
-    """Rumpf's capillary pressure p_cap = -(6/phi)(S_R/e)(gamma/d_p) cos(contact_angle) (Prunier et al. 2024,
-    eq. 19); ``contact_angle`` in degrees. The former keyword ``sr`` still works for one release, with a
-    DeprecationWarning.
+    """Rumpf's capillary pressure (Prunier et al. 2024, eq. 19).
+
+    p_cap = -(6/phi)(S_R/e)(gamma/d_p) cos(contact_angle), ``contact_angle`` in degrees. The former keyword ``sr`` still
+    works for one release, with a DeprecationWarning.
 
     Parameters
     ----------
@@ -1030,9 +1054,11 @@ SHEAR_BAND = [
 
 
 def _phi_from_triaxial(path, limits=None) -> float:
-    """φ' [deg] of the envelope in a summary.json of `capred triaxial-bounds` or of `capred triaxial` (one
-    material; several are named with their φ', for --phi-eff), read within ``limits`` (--max-megabytes) and
-    capred.io.MAX_JSON_DEPTH."""
+    """φ' [deg] of the envelope in a summary.json of `capred triaxial-bounds` or of `capred triaxial`.
+
+    One material; several are named with their φ', for --phi-eff. Read within ``limits`` (--max-megabytes) and
+    capred.io.MAX_JSON_DEPTH.
+    """
     from ..io import read_json
 
     where = str(path)

@@ -90,6 +90,13 @@ class Estimate:
     method: str
 
     def as_json(self) -> dict:
+        """The estimate as the JSON writes it.
+
+        Returns
+        -------
+        dict
+            ``value``, ``se``, ``ci95`` (a pair) in ``unit``, NaN as None; ``unit`` and ``method``.
+        """
         return {
             "value": num(self.value),
             "se": num(self.se),
@@ -143,11 +150,22 @@ class CompressionResult(Result):
     warnings: list[str] = field(default_factory=list)
 
     def estimate(self, name: str) -> Estimate | None:
-        """The estimate of one quantity by its JSON key, or None."""
+        """The estimate of one quantity by its JSON key, or None.
+
+        Parameters
+        ----------
+        name : str
+            The JSON key (``"C_c"``, ``"kappa"``, ``"sigma_p_casagrande_kPa"``).
+
+        Returns
+        -------
+        Estimate or None
+        """
         return next((x for x in self.estimates if x.name == name), None)
 
     @property
     def stress_symbol(self) -> str:
+        """The symbol of the effective stress of the test: σ'_v (oedometer) or p' (isotropic)."""
         return "σ'_v" if self.options.test == "oedometer" else "p'"
 
     def lines(self) -> dict:
@@ -168,7 +186,11 @@ class CompressionResult(Result):
         }
 
     def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows: the initial void ratio (glossary ``e0``, dimensionless).
+        """The lab store's rows: the initial void ratio (glossary ``e0``) and every estimate.
+
+        Each estimate (C_c, λ, e_N, the yield stresses, C_s, ...) is stored under its JSON name with its 95 %
+        interval and its standard error (``name_se``), in its declared unit (``-`` when dimensionless), so that
+        `capred history --quantity C_c` charts it.
 
         Parameters
         ----------
@@ -179,13 +201,28 @@ class CompressionResult(Result):
         -------
         list of capred.records.StoreRow
         """
-        from ..records import quantity_store_row
+        from ..records import quantity_store_row, store_row
 
-        row = quantity_store_row(material, "e0", self.e0)
-        return [] if row is None else [row]
+        rows = [quantity_store_row(material, "e0", self.e0)]
+        for x in self.estimates:
+            unit = x.unit or "-"
+            rows.append(store_row(material, x.name, x.value, unit, (x.low, x.high)))
+            rows.append(store_row(material, f"{x.name}_se", x.se, unit))
+        return [r for r in rows if r is not None]
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's keys of compression.json: test, e0, the estimates, the lines and the readings."""
+        """The command's keys of compression.json: test, e0, the estimates, the lines and the readings.
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Allow :class:`capred.spool.Rows` in place of long lists (unused: the lists are short).
+
+        Returns
+        -------
+        dict
+            JSON key -> value.
+        """
         f = self.fit
         return {
             "source": self.source,
@@ -206,7 +243,13 @@ class CompressionResult(Result):
         }
 
     def tables(self) -> dict:
-        """results: one row per reading; estimates: one row per quantity."""
+        """results: one row per reading; estimates: one row per quantity.
+
+        Returns
+        -------
+        dict of str to pandas.DataFrame
+            ``results``: one row per reading; ``estimates``: one row per quantity.
+        """
         import pandas as pd
 
         est = pd.DataFrame(
@@ -223,6 +266,13 @@ class CompressionResult(Result):
         return {"results": pd.DataFrame(self.readings.csv_columns()), "estimates": est}
 
     def method_notes(self) -> tuple[list[str], list[str]]:
+        """The test, its e0 and the stress e_N is read at, for the methods text.
+
+        Returns
+        -------
+        (list of str, list of str)
+            The paragraph, and the keys of Casagrande (1936) and Pacheco Silva (1970).
+        """
         return [
             f"Test: {self.options.test} ({self.stress_symbol}); e0 = {self.e0:.4g}; e_N read at "
             f"{self.options.reference_stress / 1e3:g} kPa."
@@ -519,7 +569,18 @@ class CompressionLines:
     test: str = "oedometer"
 
     def e_ncl_at(self, stress: float) -> float:
-        """e on the normal compression line at another reference stress [Pa]: e_ncl − λ ln(σ/σ_ref)."""
+        """Void ratio on the normal compression line at another reference stress, e_ncl − λ ln(σ/σ_ref).
+
+        Parameters
+        ----------
+        stress : float
+            The reference stress σ [Pa], > 0.
+
+        Returns
+        -------
+        float
+            The void ratio e [-].
+        """
         return float(self.e_ncl - self.ncl_slope * np.log(stress / self.reference_stress))
 
 

@@ -84,6 +84,18 @@ class PTVolumePoints:
 
     @classmethod
     def from_path(cls, path: pt.PTVolumePath) -> PTVolumePoints:
+        """The points of a simulated path as the record's columns.
+
+        Parameters
+        ----------
+        path : capred.physics.pedrotti_tarantino.PTVolumePath
+            The path the model computed (SI units).
+
+        Returns
+        -------
+        PTVolumePoints
+            Its columns, with the suction u_a - u_w [Pa] added.
+        """
         names = {f.name for f in fields(cls)} - {"suction"}
         return cls(suction=path.u_a - path.u_w, **{k: getattr(path, k) for k in names})
 
@@ -151,8 +163,9 @@ def stage_runs(labels, e, e_W, e_A) -> list[Stage]:
 
 @dataclass(frozen=True)
 class StageRecord(RowRecord):
-    """The stages of a labelled path, one row per run of equal ``stage`` labels (stages.csv, the JSON's
-    ``stages``), each column declared once.
+    """The stages of a labelled path, one row per run of equal ``stage`` labels.
+
+    stages.csv and the JSON's ``stages``, each column declared once.
 
     Attributes
     ----------
@@ -231,10 +244,17 @@ class PTVolumeResult(Result):
 
     @property
     def params(self) -> pt.PTVolumeParameters:
+        """The compressibility lines the path was computed with (``path.params``)."""
         return self.path.params
 
     def fluid_change(self) -> list[str]:
-        """Per point: 'air_to_water', 'water_to_air' or '' (pores that changed fluid in the step ending there)."""
+        """Which pores changed fluid in the step ending at each point.
+
+        Returns
+        -------
+        list of str
+            Per point: 'air_to_water', 'water_to_air' or ''.
+        """
         aw, wa = self.points.w_AW > 0, self.points.w_WA > 0
         return ["air_to_water" if a else ("water_to_air" if w else "") for a, w in zip(aw, wa)]
 
@@ -260,7 +280,13 @@ class PTVolumeResult(Result):
         }
 
     def rows(self) -> list[dict]:
-        """JSON rows of the points."""
+        """JSON rows of the points.
+
+        Returns
+        -------
+        list of dict
+            One dict per point: line, step, the stage where labelled, and the columns in their JSON units.
+        """
         from ..result import record_json_columns
 
         n = len(self.step)
@@ -275,9 +301,10 @@ class PTVolumeResult(Result):
         return [dict(zip(keys, vals)) for vals in zip(*cols.values())]
 
     def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows: the initial and final void ratios (``e_initial``, ``e_final``; the glossary's
-        void ratio, dimensionless), for the material of the inputs' metadata block. The count of points is not
-        recorded.
+        """The lab store's rows: the initial and final void ratios (``e_initial``, ``e_final``).
+
+        The glossary's void ratio, dimensionless, for the material of the inputs' metadata block. The count of points is
+        not recorded.
 
         Parameters
         ----------
@@ -296,8 +323,9 @@ class PTVolumeResult(Result):
         return [r for r in rows if r is not None]
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: source, model, parameters, number of points, initial and final
-        e, sub-steps, points and stages.
+        """The command's own keys of the JSON document.
+
+        Source, model, parameters, number of points, initial and final e, sub-steps, points and stages.
 
         Parameters
         ----------
@@ -323,8 +351,9 @@ class PTVolumeResult(Result):
         }
 
     def stage_record(self) -> StageRecord:
-        """The stages (runs of equal ``stage`` labels) as a typed record: their steps and lines, e, S_r, σ'_W and
-        σ'_A at each run's last point and the changes of e, e^W and e^A over it.
+        """The stages (runs of equal ``stage`` labels) as a typed record.
+
+        Their steps and lines, e, S_r, σ'_W and σ'_A at each run's last point and the changes of e, e^W and e^A over it.
 
         Returns
         -------
@@ -354,7 +383,13 @@ class PTVolumeResult(Result):
         )
 
     def tables(self) -> dict:
-        """results: one row per point; stages: one row per run of equal stage labels (when labelled)."""
+        """Output tables: file stem -> pandas DataFrame.
+
+        Returns
+        -------
+        dict of str to pandas.DataFrame
+            ``results``: one row per point; ``stages``: one row per run of equal stage labels (when labelled).
+        """
         cached = self.__dict__.get("_tables")
         if cached is None:
             cached = self.__dict__["_tables"] = self._tables()
@@ -378,8 +413,9 @@ class PTVolumeResult(Result):
         return out
 
     def method_notes(self) -> tuple[list[str], list[str]]:
-        """The run's lines for the methods text (and, where used, that they are the illustrative
-        EXAMPLE_KAOLIN values).
+        """The run's lines for the methods text.
+
+        And, where used, that they are the illustrative EXAMPLE_KAOLIN values.
 
         Returns
         -------

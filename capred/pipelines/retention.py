@@ -1,5 +1,7 @@
-"""`capred retention`: water-retention models fitted per branch, with uncertainties and model selection,
-and hysteresis fitted jointly (Kool & Parker 1987)."""
+"""`capred retention`: water-retention models fitted per branch, with uncertainties and model selection.
+
+And hysteresis fitted jointly (Kool & Parker 1987).
+"""
 
 from __future__ import annotations
 
@@ -47,8 +49,9 @@ _HEAD = {
 
 
 def report_name(internal: str, quantity: str) -> str:
-    """The JSON name of an internal retention parameter (``alpha`` -> ``alpha_per_kPa``, ``y_r`` -> ``theta_r``
-    or ``S_res``).
+    """The JSON name of an internal retention parameter.
+
+    ``alpha`` -> ``alpha_per_kPa``, ``y_r`` -> ``theta_r`` or ``S_res``.
 
     Parameters
     ----------
@@ -173,7 +176,13 @@ class RetentionFitRecord:
     reference: str = ""
 
     def row(self) -> dict:
-        """The record as one row of fits.csv: ``{"name [unit]": value}`` (text columns without a unit)."""
+        """The record as one row of fits.csv: ``{"name [unit]": value}`` (text columns without a unit).
+
+        Returns
+        -------
+        dict
+            ``{"name [unit]": value}``.
+        """
         out = {}
         for attr, _, column, unit in FIT_OUTPUTS:
             if unit is None:
@@ -185,8 +194,15 @@ class RetentionFitRecord:
         return out
 
     def parameter_rows(self) -> list[dict]:
-        """One row of parameters.csv per parameter: branch, model, parameter, value, standard error, 95 % CI,
-        and the unit of those three (one table holds parameters of several units: the unit is a column)."""
+        """One row of parameters.csv per parameter.
+
+        Branch, model, parameter, value, standard error, 95 % CI, and the unit of those three (one table holds
+        parameters of several units: the unit is a column).
+
+        Returns
+        -------
+        list of dict
+        """
         rows = []
         for p in self.params.values():
             r = {"branch": self.branch, "model": self.model, "parameter": p.name}
@@ -227,7 +243,13 @@ class RetentionPoints:
     quantity: str
 
     def columns(self) -> dict:
-        """``{"name [unit]": array}`` of points.csv."""
+        """``{"name [unit]": array}`` of points.csv.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            Branch, suction [kPa], the water quantity and each model's fitted value.
+        """
         y, unit = {"theta": ("theta", "m³/m³"), "w": ("w", "-")}.get(self.quantity, ("S_R", "-"))
         out = {"branch": np.asarray(self.branch, dtype=object), "suction [kPa]": self.suction * 1e-3}
         out[f"{y} [{unit}]"] = self.water
@@ -273,6 +295,7 @@ class RetentionResult(Result):
 
     @property
     def names(self) -> tuple[str, str]:
+        """The names of the saturated and residual values of the fitted quantity (``("theta_s", "theta_r")``, ...)."""
         return {"theta": ("theta_s", "theta_r"), "w": ("w_s", "w_r")}.get(self.quantity, ("S_s", "S_res"))
 
     def fit_record(self, branch: str, model: str) -> RetentionFitRecord:
@@ -342,7 +365,12 @@ class RetentionResult(Result):
         return [self.fit_record(b, m) for b, fits in self.fits.items() if branch in (None, b) for m in fits]
 
     def points(self) -> RetentionPoints:
-        """The readings and each model's fitted value at them."""
+        """The readings and each model's fitted value at them.
+
+        Returns
+        -------
+        RetentionPoints
+        """
         fitted = {}
         for b, fits in self.fits.items():
             sel = self.branch == b
@@ -357,8 +385,9 @@ class RetentionResult(Result):
         return RetentionPoints(self.suction, self.water, self.branch, w, fitted, self.quantity)
 
     def quantity_units(self) -> dict[str, str]:
-        """JSON key -> unit of each number in a fit's object (:meth:`fit_json`), from the declarations: each
-        parameter's unit (capred.parameters.Parameter, also of its ``_se``), its head form (cm of water), the fit
+        """JSON key -> unit of each number in a fit's object (:meth:`fit_json`), from the declarations.
+
+        Each parameter's unit (capred.parameters.Parameter, also of its ``_se``), its head form (cm of water), the fit
         statistics (``FIT_OUTPUTS``, "y" being the fitted quantity's unit).
 
         Returns
@@ -378,12 +407,13 @@ class RetentionResult(Result):
         return out
 
     def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows: per branch (labelled ``material (branch)`` where the inputs name a material),
-        every fitted model's numbers as ``<model>.<key>``, each from the declaration :meth:`fit_json` writes it
-        by: a parameter's JSON name, value, standard error, 95 % interval and unit (capred.parameters.Parameter),
-        its head form (cm of water), the values the model derives (``m``, unit from the retention JSON names) and
-        the fit statistics (``FIT_OUTPUTS``; the counts n_points and n_free are not recorded). A derived value
-        that no declaration gives a unit is not recorded and is named in a CapredWarning.
+        """The lab store's rows: per branch, every fitted model's numbers as ``<model>.<key>``.
+
+        The branch is labelled ``material (branch)`` where the inputs name a material; each number from the declaration
+        :meth:`fit_json` writes it by: a parameter's JSON name, value, standard error, 95 % interval and unit
+        (capred.parameters.Parameter), its head form (cm of water), the values the model derives (``m``, unit from the
+        retention JSON names) and the fit statistics (``FIT_OUTPUTS``; the counts n_points and n_free are not recorded).
+        A derived value that no declaration gives a unit is not recorded and is named in a CapredWarning.
 
         Parameters
         ----------
@@ -440,8 +470,10 @@ class RetentionResult(Result):
         return {_HEAD[k]: si[k] * cm if k.startswith("alpha") else si[k] / cm for k in si if k in _HEAD}
 
     def fit_json(self, f: NonlinearFit, model: str) -> dict:
-        """The JSON of one fit: each parameter by JSON name with ``_se`` and ``_ci95``, its head form (cm),
-        statistics, correlations, SI values, warnings.
+        """The JSON of one fit.
+
+        Each parameter by JSON name with ``_se`` and ``_ci95``, its head form (cm), statistics, correlations, SI values,
+        warnings.
 
         Parameters
         ----------
@@ -520,8 +552,10 @@ class RetentionResult(Result):
         }
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: source, quantity, branch source, main branch and its fits, every
-        branch with its fits and model selection, the hysteresis fit if any.
+        """The command's own keys of the JSON document.
+
+        Source, quantity, branch source, main branch and its fits, every branch with its fits and model selection, the
+        hysteresis fit if any.
 
         Parameters
         ----------
@@ -582,9 +616,15 @@ class RetentionResult(Result):
         return out
 
     def independent_aicc(self) -> float | None:
-        """AICc of the hysteresis fit's model (van Genuchten, ``hysteresis_base`` in the registry) fitted to each
-        branch on its own (to compare with the joint hysteresis fit); None without its fit of both branches, NaN
-        where n − k − 1 ≤ 0."""
+        """AICc of the hysteresis fit's model fitted to each branch on its own.
+
+        The model is van Genuchten, ``hysteresis_base`` in the registry; to compare with the joint hysteresis fit.
+
+        Returns
+        -------
+        float or None
+            None without its fit of both branches, NaN where n − k − 1 ≤ 0.
+        """
         base = hysteresis_model().name
         ind = [self.fits[b][base] for b in ("drying", "wetting") if base in self.fits.get(b, {})]
         if len(ind) != 2:
@@ -622,8 +662,15 @@ class RetentionResult(Result):
         return rows
 
     def tables(self) -> dict:
-        """fits: one row per branch and model (statistics); parameters: one row per fitted parameter (value,
-        standard error, 95 % CI and unit); points: one row per reading with each model's fitted value."""
+        """Output tables: file stem -> pandas DataFrame.
+
+        ``fits``: one row per branch and model (statistics); ``parameters``: one row per fitted parameter (value,
+        standard error, 95 % CI and unit); ``points``: one row per reading with each model's fitted value.
+
+        Returns
+        -------
+        dict of str to pandas.DataFrame
+        """
         cached = self.__dict__.get("_tables")
         if cached is None:
             import pandas as pd
@@ -639,8 +686,9 @@ class RetentionResult(Result):
         return cached
 
     def csv_tables(self) -> dict:
-        """The tables of :meth:`tables` as column mappings (name -> array), the same bytes in every CSV file,
-        written without importing pandas (a third of a second of a run's start-up).
+        """The tables of :meth:`tables` as column mappings (name -> array), written without importing pandas.
+
+        The same bytes in every CSV file (pandas costs a third of a second of a run's start-up).
 
         Returns
         -------
@@ -698,8 +746,10 @@ class RetentionResult(Result):
 
 @dataclass(frozen=True)
 class ScanningCurve:
-    """One scanning curve of a record: the readings of a ``scanning`` run and the curve the main curves predict
-    through its reversal point (Parker & Lenhard 1987 scaling, :func:`capred.physics.retention.scanning_water`).
+    """One scanning curve of a record.
+
+    The readings of a ``scanning`` run and the curve the main curves predict through its reversal point (Parker &
+    Lenhard 1987 scaling, :func:`capred.physics.retention.scanning_water`).
 
     Attributes
     ----------
@@ -752,8 +802,15 @@ class ScanningCurve:
         return scanning_water(s, self.main, self.s_reversal, self.y_reversal, self.s_closure, self.y_closure)
 
     def json(self) -> dict:
-        """The curve in fits.json: direction, readings (1-based), reversal and closure points [kPa] (null at the dry
-        end, s → ∞; ``closes_at`` says where), model, RMSE, R²."""
+        """The curve in fits.json.
+
+        Direction, readings (1-based), reversal and closure points [kPa] (null at the dry end, s → ∞; ``closes_at`` says
+        where), model, RMSE, R².
+
+        Returns
+        -------
+        dict
+        """
         return {
             "direction": self.direction,
             "readings": [int(i) + 1 for i in self.index],
@@ -775,8 +832,11 @@ class ScanningCurve:
 
 
 def _main_curves(fits: dict, hyst) -> tuple[str, dict] | None:
-    """(model, {direction: y(s)}) of the main curves a scanning curve scales: the joint Kool & Parker fit when run,
-    else the model with the lowest summed AICc among those fitted to both main branches, else the best of one."""
+    """(model, {direction: y(s)}) of the main curves a scanning curve scales.
+
+    The joint Kool & Parker fit when run, else the model with the lowest summed AICc among those fitted to both main
+    branches, else the best of one.
+    """
     from ..physics import retention as rp
 
     if hyst is not None:
@@ -799,8 +859,10 @@ def _main_curves(fits: dict, hyst) -> tuple[str, dict] | None:
 
 
 def scanning_curves(s, y, branch, direction, turning, fits, hyst=None) -> tuple[list[ScanningCurve], list[str]]:
-    """The scanning curves of a record: each run of ``scanning`` readings compared with the curve the main curves
-    predict through its reversal point (Parker & Lenhard 1987).
+    """The scanning curves of a record.
+
+    Each run of ``scanning`` readings compared with the curve the main curves predict through its reversal point (Parker
+    & Lenhard 1987).
 
     Parameters
     ----------
@@ -882,8 +944,10 @@ def scanning_curves(s, y, branch, direction, turning, fits, hyst=None) -> tuple[
 
 
 def _hysteresis_rejected(hyst, fits: dict, quantity: str) -> list[str]:
-    """A warning when the joint Kool & Parker model is rejected against the separate branches (ΔAICc > 10), saying
-    which shared parameter the branches disagree on (a wetting θ_s below the drying one: entrapped air)."""
+    """A warning when the joint Kool & Parker model is rejected against the separate branches (ΔAICc > 10).
+
+    It says which shared parameter the branches disagree on (a wetting θ_s below the drying one: entrapped air).
+    """
     base = hysteresis_model().name
     ind = [fits[b][base] for b in ("drying", "wetting") if base in fits.get(b, {})]
     if len(ind) != 2:
@@ -974,8 +1038,10 @@ class _Readings:
 
 
 def _water_readings(table: Table, opt: RetentionOptions) -> tuple[str, np.ndarray]:
-    """The water quantity fitted ('theta', 'w' or 'S_R') and its readings; a burette's S_R outside [0, 1] is a
-    problem of the table."""
+    """The water quantity fitted ('theta', 'w' or 'S_R') and its readings.
+
+    A burette's S_R outside [0, 1] is a problem of the table.
+    """
     if "theta" in table.columns or ("w" in table.columns and "rho_d" in table.columns):
         y = table.get("theta").copy()
         grav = np.isnan(y)
@@ -1067,8 +1133,10 @@ def _branch_labels(table: Table, s: np.ndarray, opt: RetentionOptions, notes: li
 def _fit_branch(
     b: str, sel: np.ndarray, r: _Readings, opt: RetentionOptions, fixed_internal: dict, warnings: list[str]
 ) -> tuple[dict[str, NonlinearFit], list[str]]:
-    """Every model of ``opt.models`` fitted to the readings ``sel`` of branch ``b``, and the models skipped
-    for want of readings; warnings (not fitted, identifiability, parameters at a bound) appended."""
+    """Every model of ``opt.models`` fitted to the readings ``sel`` of branch ``b``, and the models skipped.
+
+    Skipped for want of readings; warnings (not fitted, identifiability, parameters at a bound) appended.
+    """
     s, y, weights, quantity = r.s, r.y, r.weights, r.quantity
     fits: dict[str, NonlinearFit] = {}
     skipped = []

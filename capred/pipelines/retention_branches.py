@@ -1,9 +1,9 @@
-"""Drying, wetting and scanning branches of a retention record read in time order.
+r"""Drying, wetting and scanning branches of a retention record read in time order.
 
 A reversal of the suction's direction starts a new branch only when the suction has moved back from its running
 extreme by more than a noise tolerance,
 
-.. math:: \\tau(s_x) = \\max(r\\, s_x,\\; f\\,(s_{max} - s_{min})),
+.. math:: \tau(s_x) = \max(r\, s_x,\; f\,(s_{max} - s_{min})),
 
 with s_x the extreme (the reversal point), r :data:`REVERSAL_RELATIVE` of the reading and f :data:`REVERSAL_RANGE`
 of the measured range (both options of `capred retention`; the defaults are justified in

@@ -41,8 +41,10 @@ MISFIT_WARNING = 0.02
 
 @dataclass(repr=False)
 class RetentionConvertResult(RetentionResult):
-    """Result of `capred retention-convert`: the converted fit (``fits[branch][to]``), the source fit and the
-    misfit. ``suction`` and ``water`` hold the points the conversion was fitted to (the source curve)."""
+    """Result of `capred retention-convert`: the converted fit (``fits[branch][to]``), the source fit and the misfit.
+
+    ``suction`` and ``water`` hold the points the conversion was fitted to (the source curve).
+    """
 
     command = "retention-convert"
     json_name = "fits.json"
@@ -56,8 +58,9 @@ class RetentionConvertResult(RetentionResult):
         return next(iter(next(iter(self.fits.values())).values()))
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: those of ``capred retention`` plus ``conversion``: source and
-        target models, the source parameters (report units and SI) and the misfit.
+        """The command's own keys of the JSON document: those of ``capred retention`` plus ``conversion``.
+
+        ``conversion``: source and target models, the source parameters (report units and SI) and the misfit.
 
         Parameters
         ----------
@@ -81,8 +84,15 @@ class RetentionConvertResult(RetentionResult):
         return out
 
     def tables(self) -> dict:
-        """fits and parameters of the converted fit (as `capred retention`), and points: the source curve and the
-        converted one at the conversion's points."""
+        """Output tables: fits and parameters of the converted fit (as `capred retention`), and points.
+
+        Points: the source curve and the converted one at the conversion's points.
+
+        Returns
+        -------
+        dict of str to pandas.DataFrame
+            ``fits``, ``parameters`` and ``points``.
+        """
         t = dict(super().tables())
         pts = t["points"]
         t["points"] = pts.rename(columns={c: c.replace(f"_{self.converted.model} [", "_converted [") for c in pts})
@@ -128,9 +138,10 @@ def _optional_real(f: dict, key: str, where: str) -> float:
 
 
 def check_domain(model: str, si: dict, quantity: str, where: str) -> None:
-    """Every parameter of a fitted model inside the model's natural domain (the registry's ``domain`` of each
-    parameter: a parameter on a logarithmic scale exceeds its offset, n > 1 where m = 1 − 1/n, α > 0 ...;
-    Durner's w1 in [0, 1]; 0 ≤ y_r < y_s; S_res < 1 for a fit on S_R).
+    """Every parameter of a fitted model inside the model's natural domain.
+
+    The registry's ``domain`` of each parameter: a parameter on a logarithmic scale exceeds its offset, n > 1 where m =
+    1 − 1/n, α > 0 ...; Durner's w1 in [0, 1]; 0 ≤ y_r < y_s; S_res < 1 for a fit on S_R.
 
     Parameters
     ----------
@@ -178,8 +189,10 @@ Y_DOMAIN = "0 ≤ θ_r < θ_s, van Genuchten 1980, eq. 21"
 
 
 def _fit_from_json(doc: dict, where: str, model: str | None, branch: str | None) -> RetentionFit:
-    """The RetentionFit a fits.json describes (its SI parameters, quantity and suction points), each value checked:
-    parameters inside the model's domain, counts and statistics numbers, the suction range positive and finite."""
+    """The RetentionFit a fits.json describes (its SI parameters, quantity and suction points), each value checked.
+
+    Parameters inside the model's domain, counts and statistics numbers, the suction range positive and finite.
+    """
     try:
         branches = doc.get("branches") or {doc.get("main_branch") or "drying": {"fits": doc["fits"]}}
         b = branch or doc.get("main_branch") or next(iter(branches))
@@ -318,8 +331,9 @@ MAX_JSON_BYTES = 16 * 2**20
 
 
 def read_fit_json(path, max_bytes: int = MAX_JSON_BYTES) -> dict:
-    """A fits.json read safely: a regular file, at most ``max_bytes``, parsed by orjson (NaN and Infinity are not
-    JSON), nested at most `capred.io.json_input.MAX_JSON_DEPTH` levels deep.
+    """A fits.json read safely: a regular file, at most ``max_bytes``, parsed by orjson.
+
+    NaN and Infinity are not JSON; nested at most `capred.io.json_input.MAX_JSON_DEPTH` levels deep.
 
     Parameters
     ----------
@@ -407,8 +421,9 @@ def _gauss_legendre(points: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 def log_quadrature(lo: float, hi: float, points: int, breaks=()) -> tuple[np.ndarray, np.ndarray]:
-    """Gauss-Legendre nodes and weights of the mean over ln s of [lo, hi], ``points`` nodes in each piece
-    between the ``breaks`` that lie inside.
+    """Gauss-Legendre nodes and weights of the mean over ln s of [lo, hi].
+
+    ``points`` nodes in each piece between the ``breaks`` that lie inside.
 
     Parameters
     ----------
@@ -533,8 +548,9 @@ def convert_fit(fit: RetentionFit, to: str, points: int = GRID_POINTS, fixed: di
 
 
 def conversion_objective(fit: RetentionFit, to: str, params: dict, points: int = GRID_POINTS) -> float:
-    """What a conversion minimises: the mean over ln s of (y_to(s) − y_fit(s))² over the data's suction range, by
-    Gauss-Legendre quadrature split at the target's kinks (:func:`log_quadrature`).
+    """What a conversion minimises: the mean over ln s of (y_to(s) − y_fit(s))² over the data's suction range.
+
+    By Gauss-Legendre quadrature split at the target's kinks (:func:`log_quadrature`).
 
     Parameters
     ----------
@@ -562,8 +578,10 @@ def conversion_objective(fit: RetentionFit, to: str, params: dict, points: int =
 
 
 def _polish_across_kinks(new: RetentionFit, src: RetentionFit, to: str, kinks, fixed, span, points) -> RetentionFit:
-    """The global fit ``new`` polished with the quadrature split at the target's kinks (its air entry), by bounded
-    least squares from ``new``: the residuals are smooth in every parameter there, so the kink moves freely."""
+    """The global fit ``new`` polished with the quadrature split at the target's kinks (its air entry).
+
+    By bounded least squares from ``new``: the residuals are smooth in every parameter there, so the kink moves freely.
+    """
     from scipy.optimize import least_squares
 
     model = MODELS[to]
@@ -721,8 +739,10 @@ def brooks_corey_for_skempton(path, gamma_w: float = GAMMA_W, limits=None) -> tu
 
 
 def _chosen(path, model: str, max_bytes: int = MAX_JSON_BYTES) -> str:
-    """Which fit of a fits.json was taken (its branch, and that it has the branch's lowest AICc where the branch
-    holds several), for the notes; empty for anything but a fits.json."""
+    """Which fit of a fits.json was taken, for the notes; empty for anything but a fits.json.
+
+    Its branch, and that it has the branch's lowest AICc where the branch holds several.
+    """
     try:
         doc = read_fit_json(path, max_bytes)
     except (OptionError, OSError, TypeError, ValueError):
@@ -752,9 +772,11 @@ def _as_saturation(fit: RetentionFit) -> RetentionFit:
 
 
 def converted_fit_json(doc: dict, to: str) -> dict | None:
-    """The fits.json entry of a file's best fit (main branch) converted to ``to``, for readers that need one model
-    (`shear --retention`: van Genuchten for Lu & Likos, Brooks-Corey's air entry for Khalili); None when the file
-    cannot be converted (no suction range: a file of an older capred), so that the reader goes on without it.
+    """The fits.json entry of a file's best fit (main branch) converted to ``to``, or None.
+
+    For readers that need one model (`shear --retention`: van Genuchten for Lu & Likos, Brooks-Corey's air entry for
+    Khalili); None when the file cannot be converted (no suction range: a file of an older capred), so that the reader
+    goes on without it.
 
     Parameters
     ----------

@@ -1,7 +1,9 @@
-"""Per-row typed records: a frozen dataclass whose fields are the columns of one output table, each declared once
-with :func:`capred.result.output` (a quantity: JSON key, column, unit) or :func:`plain` (a label, an identifier, a
-status, a flag). The JSON key, the CSV header (``name [unit]``) and the console header follow from it
-(`bridge compare`, `bridge rupture`, `bridge yade-files`, `history`)."""
+"""Per-row typed records: a frozen dataclass whose fields are the columns of one output table.
+
+Each column is declared once with :func:`capred.result.output` (a quantity: JSON key, column, unit) or :func:`plain` (a
+label, an identifier, a status, a flag). The JSON key, the CSV header (``name [unit]``) and the console header follow
+from it (`bridge compare`, `bridge rupture`, `bridge yade-files`, `history`).
+"""
 
 from __future__ import annotations
 
@@ -43,8 +45,10 @@ def _cell(x):
 
 
 class RowRecord:
-    """Mixin of a frozen dataclass whose fields are columns of one table, each declared once with
-    :func:`capred.result.output` (a quantity: JSON key, column, unit) or :func:`plain` (no unit).
+    """Mixin of a frozen dataclass whose fields are columns of one table.
+
+    Each is declared once with :func:`capred.result.output` (a quantity: JSON key, column, unit) or :func:`plain` (no
+    unit).
 
     The JSON key, the CSV header (``name [unit]``, ``[-]`` for a dimensionless number) and the console header
     (the JSON key) of every column follow from that declaration. Values are held in output units.

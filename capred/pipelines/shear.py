@@ -252,6 +252,7 @@ class ShearResult(Result):
 
     @property
     def models(self) -> tuple[str, ...]:
+        """The effective-stress models compared (``options.models``), in display order."""
         return self.options.models
 
     @property
@@ -266,6 +267,7 @@ class ShearResult(Result):
 
     @property
     def materials(self) -> list[str]:
+        """The materials of the run, in the order of their dry fits."""
         return list(self.fits)
 
     def flags(self, i: int) -> list[str]:
@@ -285,7 +287,12 @@ class ShearResult(Result):
         return text.split(";") if text else []
 
     def tables(self) -> dict:
-        """results (one row per test) and summary (one row per material and model)."""
+        """Output tables: ``results`` (one row per test) and ``summary`` (one row per material and model).
+
+        Returns
+        -------
+        dict of str to pandas.DataFrame
+        """
         cached = self.__dict__.get("_tables")
         if cached is None:
             import pandas as pd
@@ -298,7 +305,13 @@ class ShearResult(Result):
         return cached
 
     def csv_tables(self) -> dict:
-        """The tables as CSV files take them: results as plain columns (no DataFrame is built); made once."""
+        """The tables as CSV files take them: results as plain columns (no DataFrame is built); made once.
+
+        Returns
+        -------
+        dict
+            File stem -> a DataFrame or plain columns, under ``name [unit]`` headers.
+        """
         cached = self.__dict__.get("_tables") or self.__dict__.get("_csv_tables")
         if cached is None:
             cached = self.__dict__["_csv_tables"] = {
@@ -311,10 +324,11 @@ class ShearResult(Result):
         return cached
 
     def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows: per material the dry envelope's numbers through their declarations
-        (:class:`EnvelopeNumbers`, the ones the JSON's materials block writes), and what the models report per
-        material (``phi_b_deg``) where the glossary declares the key; an undeclared key is not recorded and is
-        named in a CapredWarning (its unit is never guessed).
+        """The lab store's rows: per material the dry envelope's numbers and what the models report.
+
+        The envelope's numbers through their declarations (:class:`EnvelopeNumbers`, the ones the JSON's materials block
+        writes), and what the models report per material (``phi_b_deg``) where the glossary declares the key; an
+        undeclared key is not recorded and is named in a CapredWarning (its unit is never guessed).
 
         Parameters
         ----------
@@ -350,8 +364,10 @@ class ShearResult(Result):
         return rows
 
     def season_rows(self) -> list[dict]:
-        """Rows of a batch's season.csv: one per material with c and phi [kPa, deg] and their standard
-        errors, the numbers of dry and wet tests, the best model and its RMSE [kPa] and the number of flagged tests.
+        """Rows of a batch's season.csv: one per material.
+
+        With c and phi [kPa, deg] and their standard errors, the numbers of dry and wet tests, the best model and its
+        RMSE [kPa] and the number of flagged tests.
 
         Returns
         -------
@@ -378,7 +394,13 @@ class ShearResult(Result):
         return rows
 
     def method_notes(self) -> tuple[list[str], list[str]]:
-        """The models of the run, one sentence each, and their references."""
+        """The models of the run, one sentence each, and their references.
+
+        Returns
+        -------
+        (list of str, list of str)
+            The paragraphs (the models, the dry fit), and the keys of the models' references.
+        """
         entries = [esm.REGISTRY[m] for m in self.models]
         text = "Models compared: " + " ".join(e.method for e in entries if e.method)
         return [text, self._dry_method()], [e.reference for e in entries]
@@ -567,7 +589,13 @@ class ShearResult(Result):
         return code, names
 
     def model_selection(self) -> dict:
-        """Per material: each model's k, n, RSS, AICc, BIC, delta AICc and Akaike weight on its wet tests."""
+        """Per material: each model's k, n, RSS, AICc, BIC, delta AICc and Akaike weight on its wet tests.
+
+        Returns
+        -------
+        dict
+            Material -> model -> its criteria (RSS in Pa²).
+        """
         from ..fitting.chi_laws import akaike_weights, information_criteria
 
         cached = self.__dict__.get("_model_selection")
@@ -617,7 +645,13 @@ class ShearResult(Result):
         return out
 
     def summary_rows(self) -> list[dict]:
-        """Long table of fits and metrics for the summary CSV."""
+        """Long table of fits and metrics for the summary CSV.
+
+        Returns
+        -------
+        list of dict
+            One row per material for its dry fit, then one per material and model.
+        """
         rows = []
         for mat, fit in self.fits.items():
             rows.append({"material": mat, "model": "dry_fit", **_fit_dict(fit)})
@@ -628,9 +662,11 @@ class ShearResult(Result):
         return rows
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: source, per material its envelope (and saturated envelope),
-        models, tests, the metrics (all wet tests and pendular ones, per material and overall), the best models, the
-        bootstrap ranking, the fitted laws and the back-analysis.
+        """The command's own keys of the JSON document.
+
+        Source, per material its envelope (and saturated envelope), models, tests, the metrics (all wet tests and
+        pendular ones, per material and overall), the best models, the bootstrap ranking, the fitted laws and the
+        back-analysis.
 
         Parameters
         ----------
@@ -697,8 +733,10 @@ class ShearResult(Result):
 
 
 def laws_table(result) -> dict:
-    """The fitted χ laws as a CSV table: one row per law and material, each parameter with its standard error and
-    95 % interval under ``name [unit]`` headers (the JSON's ``fitted`` block, in its units).
+    """The fitted χ laws as a CSV table: one row per law and material.
+
+    Each parameter with its standard error and 95 % interval under ``name [unit]`` headers (the JSON's ``fitted`` block,
+    in its units).
 
     Parameters
     ----------
@@ -784,7 +822,18 @@ def _ranking_dict(r) -> dict:
 
 
 def envelope_numbers(fit) -> EnvelopeNumbers:
-    """The numbers of a fitted envelope in their output units (kPa, deg), as declared by EnvelopeNumbers."""
+    """The numbers of a fitted envelope in their output units (kPa, deg), as declared by EnvelopeNumbers.
+
+    Parameters
+    ----------
+    fit : capred.fitting.linear.LineFit or an envelope fit holding one
+        The fitted straight envelope tau = c + sigma_N tan(phi) (SI units; :func:`capred.pipelines.shear_fits.line_of`).
+
+    Returns
+    -------
+    EnvelopeNumbers
+        c [kPa], phi [deg], tan(phi), their standard errors and 95 % intervals, R², n and the fit's error model.
+    """
     fit = line_of(fit)
     slope = np.float64(fit.slope)  # numpy arithmetic: an absurd input overflows to inf (null in JSON), no exception
     phi = np.degrees(np.arctan(slope))
@@ -880,8 +929,9 @@ def model_metrics(predicted, measured) -> ModelMetrics:
 
 
 def best_of(metrics: dict[str, ModelMetrics]) -> str | None:
-    """Model with the lowest RMSE among those `compared` on the same tests (None when there is nothing to
-    compare).
+    """Model with the lowest RMSE among those `compared` on the same tests.
+
+    None when there is nothing to compare.
 
     Parameters
     ----------
@@ -903,8 +953,9 @@ ROW_DEFAULT_OPTIONS = {"box_area": "box_area", "V_v": "void_volume", "cap_mass":
 
 
 def unused_row_options(table: Table, opt: ShearOptions) -> list[str]:
-    """Warnings for the options given to fill a column's blanks where every row has its own value: the option
-    changes nothing, and a user who gave it should know (report.html lists it among the options in force).
+    """Warnings for the options given to fill a column's blanks where every row has its own value.
+
+    The option changes nothing, and a user who gave it should know (report.html lists it among the options in force).
 
     Parameters
     ----------
@@ -950,7 +1001,8 @@ def filled_column(table: Table, name: str, option: float | None) -> np.ndarray:
     References
     ----------
     Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
-    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`).
+    """
     v = table.get(name).copy()
     if option is not None:
         v[np.isnan(v)] = option
@@ -958,8 +1010,10 @@ def filled_column(table: Table, name: str, option: float | None) -> np.ndarray:
 
 
 def _void_volume(table: Table, opt: ShearOptions, box: np.ndarray) -> np.ndarray:
-    """V_v per row [m^3]: the column (or --void-volume), else A h e/(1 + e) from a void ratio e and the
-    sample height, with e = G_s rho_w / rho_d - 1 from a dry density."""
+    """V_v per row [m^3]: the column (or --void-volume), else from a void ratio and the sample height.
+
+    A h e/(1 + e) from a void ratio e and the sample height, with e = G_s rho_w / rho_d - 1 from a dry density.
+    """
     from .sample_state import table_state
 
     table_state(table, opt.rho_w, ("e", "rho_d", "G_s"))  # e, rho_d and G_s of a row must agree (phase relations)
@@ -1001,14 +1055,18 @@ class _DerivedColumns:
 
 
 def _report_missing(table: Table, opt: ShearOptions, cols: _DerivedColumns, with_curves: bool) -> None:
-    """A problem for every value that cannot be derived (unless its cause is already reported: a bad cell on the
-    line, an absent column), and for a burette's S_R outside [0, 1]."""
+    """A problem for every value that cannot be derived, and for a burette's S_R outside [0, 1].
+
+    Unless its cause is already reported: a bad cell on the line, an absent column.
+    """
     n = len(table)
     bad_lines = {p.line for p in table.problems}
 
     def missing(i: int, what: str, column: str | None) -> None:
-        """A value that cannot be derived: reported unless its cause is already (a bad cell on the line, an
-        absent column)."""
+        """A value that cannot be derived.
+
+        Reported unless its cause is already (a bad cell on the line, an absent column).
+        """
         if table.missing or int(table.lines[i]) in bad_lines:
             return
         table.add_problem(i, column, what)
@@ -1103,7 +1161,8 @@ def derive_tests(
     References
     ----------
     Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
-    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`).
+    """
     n = len(table)
     cond = table.columns.get("condition", np.array([""] * n, dtype=object))
     wet = cond == "wet"
@@ -1193,7 +1252,8 @@ def check_shear_table(table: Table, with_curves: bool = False, unique: bool = Tr
     References
     ----------
     Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
-    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`).
+    """
     for name in ("test_id", "condition"):
         if name not in table.columns:
             table.missing_column(name)
@@ -1345,7 +1405,8 @@ def score_models(d: dict, wet, mat, fits, laws, predictions, opt: ShearOptions) 
     References
     ----------
     Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
-    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`).
+    """
     pend = wet & (d["S_R"] <= opt.pendular_limit)
     of_material = {m: mat == m for m in fits}
 
@@ -1380,8 +1441,10 @@ def score_models(d: dict, wet, mat, fits, laws, predictions, opt: ShearOptions) 
 
 
 def _heteroscedasticity(d: dict, wet, of_material: dict, fits, predictions, opt: ShearOptions) -> dict:
-    """Per material: the Breusch-Pagan test of the dry fit's least-squares residuals and of each model's wet
-    residuals against sigma_N (capred.fitting.linear.breusch_pagan), and the error model used."""
+    """Per material: the Breusch-Pagan tests of the residuals against sigma_N, and the error model used.
+
+    Of the dry fit's least-squares residuals and of each model's wet residuals (capred.fitting.linear.breusch_pagan).
+    """
     out = {}
     for m, fit in fits.items():
         rows = np.flatnonzero(of_material[m] & wet)
@@ -1458,7 +1521,8 @@ def documented_column(table: Table, name: str) -> np.ndarray:
     References
     ----------
     Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
-    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`).
+    """
     from ..units import conversion
 
     q = nom.QUANTITIES.get(name)
@@ -1494,7 +1558,8 @@ def run_warnings(wet, pend, mat, fits, laws, predictions, opt) -> list[str]:
     References
     ----------
     Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
-    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`).
+    """
     out = []
     n_wet, n_pend = int(wet.sum()), int(pend.sum())
     if n_wet and n_wet - n_pend > n_wet / 2:
@@ -1561,7 +1626,8 @@ def bootstrap_materials(result: ShearResult, wet, mat, cond, opt: ShearOptions) 
 
     References
     ----------
-    Efron & Tibshirani (1993), doi:10.1007/978-1-4899-4541-9, ch. 9."""
+    Efron & Tibshirani (1993), doi:10.1007/978-1-4899-4541-9, ch. 9.
+    """
     from . import shear_analysis as sa
 
     t = result.tests
@@ -1598,8 +1664,10 @@ def bootstrap_materials(result: ShearResult, wet, mat, cond, opt: ShearOptions) 
 
 
 def fit_dry_envelopes(table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[str, LineFit]:
-    """Per material, the dry envelope tau = c + sigma_N tan(phi) (through the origin with ``dry_fit='origin'``);
-    a material without dry tests, or whose fit is impossible, is a problem of its first row in ``table``.
+    """Per material, the dry envelope tau = c + sigma_N tan(phi).
+
+    Through the origin with ``dry_fit='origin'``; a material without dry tests, or whose fit is impossible, is a problem
+    of its first row in ``table``.
 
     Parameters
     ----------
@@ -1621,7 +1689,8 @@ def fit_dry_envelopes(table, d: dict, mat, cond, materials, opt: ShearOptions) -
     References
     ----------
     Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
-    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`).
+    """
     fits: dict[str, LineFit] = {}
     for m in materials:
         of_m = mat == m
@@ -1648,9 +1717,10 @@ def fit_dry_envelopes(table, d: dict, mat, cond, materials, opt: ShearOptions) -
 
 
 def fit_saturated_envelopes(table: Table, d: dict, mat, cond, materials, opt: ShearOptions) -> dict[str, LineFit]:
-    """Per material, the envelope tau = c_W + sigma_N tan(phi_W) of its saturated tests (clay reconstituted from
-    slurry and sheared saturated, drained: sigma'_W = sigma_N), the tau^W envelope of Pedrotti & Tarantino
-    (submitted), eq. 13; problems go into ``table``.
+    """Per material, the envelope tau = c_W + sigma_N tan(phi_W) of its saturated tests.
+
+    Clay reconstituted from slurry and sheared saturated, drained: sigma'_W = sigma_N; the tau^W envelope of Pedrotti &
+    Tarantino (submitted), eq. 13; problems go into ``table``.
 
     Parameters
     ----------
@@ -1671,7 +1741,8 @@ def fit_saturated_envelopes(table: Table, d: dict, mat, cond, materials, opt: Sh
 
     References
     ----------
-    Pedrotti & Tarantino (submitted), eq. 13."""
+    Pedrotti & Tarantino (submitted), eq. 13.
+    """
     out: dict[str, LineFit] = {}
     for m in materials:
         sat = (mat == m) & (cond == "saturated")
@@ -1691,8 +1762,9 @@ def fit_saturated_envelopes(table: Table, d: dict, mat, cond, materials, opt: Sh
 
 
 def _predict(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearOptions, saturated_fits=None):
-    """Per test and model: sigma'_N (NaN where a model predicts tau directly), tau_pred and its bands, the
-    predicted capillary stress; and the back-analysed capillary stress of the wet tests.
+    """Per test and model: sigma'_N, tau_pred and its bands, the predicted capillary stress.
+
+    sigma'_N is NaN where a model predicts tau directly; and the back-analysed capillary stress of the wet tests.
 
     Returns the ModelPrediction of each model, the BackAnalysis, what models report per material (Fredlund's
     phi_b), the fitted chi laws and the ModelInputs.
@@ -1731,7 +1803,8 @@ def model_inputs_of(tests: dict, wet, mat, fits: dict[str, LineFit], opt: ShearO
     References
     ----------
     Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
-    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`).
+    """
     names = list(fits)
     saturated_fits = saturated_fits or {}
     if len(mat) > 10_000:  # a long table: by material code (a Python list of a million floats is ~30 MB)
@@ -1802,7 +1875,8 @@ def predict_models(tests: dict, wet, d, fits: dict[str, LineFit], laws: dict, op
     References
     ----------
     Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
-    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`).
+    """
     from . import shear_analysis as sa
 
     c, tan_phi = d.c, d.tan_phi
@@ -1864,7 +1938,8 @@ def values_by_material(d, wet, mat, fits: dict[str, LineFit], opt: ShearOptions)
     References
     ----------
     Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
-    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`).
+    """
     extra: dict[str, dict] = {}  # per material: what a model reports beside the dry fit (Fredlund's phi_b)
     for model in opt.models:
         per_material = esm.REGISTRY[model].material_values
@@ -1878,9 +1953,10 @@ def values_by_material(d, wet, mat, fits: dict[str, LineFit], opt: ShearOptions)
 
 
 def summary_table(result: ShearResult, frame: bool = True):
-    """summary.csv: one row per material, its dry envelope (``name [unit]`` headers); a DataFrame, or with
-    ``frame=False`` plain columns that write the same CSV without pandas. The models' scores are metrics.csv
-    (`metrics_table`): one kind of record per table.
+    """summary.csv: one row per material, its dry envelope (``name [unit]`` headers).
+
+    A DataFrame, or with ``frame=False`` plain columns that write the same CSV without pandas. The models' scores are
+    metrics.csv (`metrics_table`): one kind of record per table.
 
     Parameters
     ----------
@@ -1895,7 +1971,8 @@ def summary_table(result: ShearResult, frame: bool = True):
     References
     ----------
     Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
-    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`).
+    """
     rows = []
     for mat, fit in result.fits.items():
         f = _fit_dict(fit)
@@ -1937,7 +2014,8 @@ def metrics_table(result: ShearResult, frame: bool = True):
     References
     ----------
     Evenepoel, R. Micro-mechanical characterization of the capillary effective stress in granular materials,
-    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`)."""
+    master thesis, Vrije Universiteit Brussel (the reduction of `capred shear`).
+    """
     rows = []
     for mat, by_model in list(result.metrics.items()) + [("(all)", result.metrics_overall)]:
         best = result.best_model_overall if mat == "(all)" else result.best_model.get(mat)
@@ -1960,9 +2038,11 @@ __all__ = ["SCHEMA", "ModelParams", "ShearOptions", "ShearResult", "run_table"]
 
 
 def _bound_derived(table, values, derived, name: str, sources: tuple[str, ...]) -> None:
-    """A stress derived from a row's masses or force gets the magnitude bound of a measured one (capred.nomenclature
-    MAGNITUDES): over it, or not finite from finite inputs (an overflow), the row's problem names the value and
-    the columns it came from; the value becomes NaN so nothing downstream computes with it."""
+    """A stress derived from a row's masses or force gets the magnitude bound of a measured one.
+
+    capred.nomenclature MAGNITUDES: over it, or not finite from finite inputs (an overflow), the row's problem names the
+    value and the columns it came from; the value becomes NaN so nothing downstream computes with it.
+    """
     from ..nomenclature import magnitude_problem
 
     for i in np.flatnonzero(derived & ~np.isnan(values)):

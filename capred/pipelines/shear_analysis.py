@@ -1,5 +1,7 @@
-"""What `capred shear` says about chi: back-analysed capillary stress, fitted chi laws, confidence bands
-and prediction intervals, and the bootstrap uncertainty of the model ranking.
+"""What `capred shear` says about chi.
+
+Back-analysed capillary stress, fitted chi laws, confidence bands and prediction intervals, and the bootstrap
+uncertainty of the model ranking.
 
 All SI inside (Pa). The dry envelope of each material is tau = c + sigma_N tan(phi), fitted by ordinary
 least squares (`capred.fitting.linear`); every interval here carries its uncertainty.
@@ -213,7 +215,7 @@ def _tau(model: str, d: esm.ModelInputs, **changes) -> np.ndarray:
 
 
 def _envelope_gradient(model: str, d: esm.ModelInputs):
-    """d tau_pred / dc and d tau_pred / d tan(phi) per test, by central differences of the model itself."""
+    """Gradient d tau_pred / dc and d tau_pred / d tan(phi) per test, by central differences of the model itself."""
     grads = []
     for name, ref in (("c", np.maximum(np.abs(d.c), 1.0)), ("tan_phi", np.maximum(np.abs(d.tan_phi), 1e-3))):
         h = 1e-6 * ref
@@ -496,8 +498,10 @@ def _pointwise_affine(model: str, d: esm.ModelInputs, probes: dict | None = None
 
 
 class _Selected:
-    """The tests ``index`` of a ModelInputs, copied a slice at a time on demand (``subset``): a long material's
-    inputs are never all copied when only the affine models' coefficients need them."""
+    """The tests ``index`` of a ModelInputs, copied a slice at a time on demand (``subset``).
+
+    A long material's inputs are never all copied when only the affine models' coefficients need them.
+    """
 
     def __init__(self, d: esm.ModelInputs, index: np.ndarray):
         self.d, self.index, self.size = d, index, index.size
@@ -518,8 +522,11 @@ def _all_close(a: np.ndarray, b: np.ndarray, atol: float) -> bool:
 
 
 def _dry_groups(dry_x, through_origin: bool) -> np.ndarray:
-    """(nd,) integer code of each dry test's group: its distinct normal stress (through the origin: 1 for a
-    usable test, whose square is not 0, else 0). What `_draw` checks a sample's fit on, in O(nd) memory."""
+    """(nd,) integer code of each dry test's group: its distinct normal stress.
+
+    Through the origin: 1 for a usable test, whose square is not 0, else 0. What `_draw` checks a sample's fit on, in
+    O(nd) memory.
+    """
     if through_origin:
         return (dry_x * dry_x > 0).astype(np.intp)
     return np.unique(dry_x, return_inverse=True)[1].ravel().astype(np.intp)
@@ -545,8 +552,10 @@ def _draw(rng, dry_x, nw: int, count: int, through_origin: bool, groups="find"):
 
 
 def _draw_dry(rng, dry_x, count: int, through_origin: bool, groups="find"):
-    """The dry part of `_draw`: counts (count, nd) as floats and the rows whose sample fits a line (the same
-    draws, in the same order, as `_draw` makes before its wet indices)."""
+    """The dry part of `_draw`: counts (count, nd) as floats and the rows whose sample fits a line.
+
+    The same draws, in the same order, as `_draw` makes before its wet indices.
+    """
     nd = dry_x.size
     code = _dry_groups(dry_x, through_origin) if isinstance(groups, str) else groups
 
@@ -580,12 +589,12 @@ DRY_REFIT_ITERATIONS = 30
 
 
 def _dry_refit(U, dry_x, dry_y, through_origin: bool, errors: str = "constant", loss: str = "ols", scale=None):
-    """(c, tan phi) of every replicate from its dry counts, with the run's error model and loss (issue 41.4).
+    r"""(c, tan phi) of every replicate from its dry counts, with the run's error model and loss (issue 41.4).
 
     Least squares (``errors`` constant or either, ``loss`` ols): closed-form weighted sums
 
-    .. math:: b = \\frac{\\sum u (x - \\bar x_u)(y - \\bar y_u)}{\\sum u (x - \\bar x_u)^2}, \\quad
-              c = \\bar y_u - b \\bar x_u
+    .. math:: b = \frac{\sum u (x - \bar x_u)(y - \bar y_u)}{\sum u (x - \bar x_u)^2}, \quad
+              c = \bar y_u - b \bar x_u
 
     computed about the full sample's means (no cancellation); through the origin b = sum u x y / sum u x^2.
     Otherwise the same fit as `capred.fitting.linear.fit_envelope`, by iteratively reweighted least squares
@@ -804,9 +813,10 @@ PROBABILITY_RESOLUTION = 0.01
 
 
 def quantile_mc_se(values: np.ndarray, q: float) -> float:
-    """Monte-Carlo standard error of the q-quantile of ``values`` from its order statistics: half the distance
-    between the order statistics R q -/+ sqrt(R q (1 - q)) (the binomial 68 % interval of the quantile,
-    distribution-free; Efron & Tibshirani 1993, doi:10.1007/978-1-4899-4541-9, ch. 19).
+    """Monte-Carlo standard error of the q-quantile of ``values`` from its order statistics.
+
+    Half the distance between the order statistics R q -/+ sqrt(R q (1 - q)) (the binomial 68 % interval of the
+    quantile, distribution-free; Efron & Tibshirani 1993, doi:10.1007/978-1-4899-4541-9, ch. 19).
 
     Parameters
     ----------
@@ -835,10 +845,11 @@ def _sorted_quantile_se(s: np.ndarray, q: float) -> float:
 
 
 def adaptive_stop(scores: np.ndarray, models: list[str], ranked: list[str]) -> bool:
-    """True when every printed number of the ranking is resolved: the Monte-Carlo standard error of each
-    model's probability of being best, sqrt(p(1 - p)/R) with p = (wins + 1)/(R + 2) (never 0 at 0 or R wins),
-    is below ``PROBABILITY_RESOLUTION``, and that of each end of the ΔRMSE interval (`quantile_mc_se`) below
-    its printed resolution (`difference_resolution`).
+    """True when every printed number of the ranking is resolved.
+
+    The Monte-Carlo standard error of each model's probability of being best, sqrt(p(1 - p)/R) with p = (wins + 1)/(R +
+    2) (never 0 at 0 or R wins), is below ``PROBABILITY_RESOLUTION``, and that of each end of the ΔRMSE interval
+    (`quantile_mc_se`) below its printed resolution (`difference_resolution`).
 
     Parameters
     ----------
@@ -881,10 +892,12 @@ def adaptive_stop(scores: np.ndarray, models: list[str], ranked: list[str]) -> b
 
 @dataclass(frozen=True)
 class _Material:
-    """One material as the bootstrap resamples it: its wet tests (``wet``, a ModelInputs or `_Selected`; None
-    when no model needs their inputs in every replicate), their number ``nw``, its dry tests ``dry_x``,
-    ``dry_y`` [Pa], whether its dry envelope goes through the origin, the full-data envelope ``c0`` [Pa],
-    ``b0`` [-] and its name."""
+    """One material as the bootstrap resamples it.
+
+    Its wet tests (``wet``, a ModelInputs or `_Selected`; None when no model needs their inputs in every replicate),
+    their number ``nw``, its dry tests ``dry_x``, ``dry_y`` [Pa], whether its dry envelope goes through the origin, the
+    full-data envelope ``c0`` [Pa], ``b0`` [-] and its name.
+    """
 
     wet: object
     nw: int
@@ -899,11 +912,13 @@ class _Material:
 
 @dataclass(frozen=True)
 class _Scoring:
-    """How the bootstrap scores each model: the affine models' coefficients (``affine``: model -> (e, beta,
-    gamma, ok)) and their columns in the scores, their products kept once (``features``; None beyond
-    KEEP_FEATURES_TESTS wet tests, then formed a chunk of tests at a time, ``chunks``), the fitted laws and the
-    models scored replicate by replicate, each model's column, the run's ModelParams and the full-data fitted
-    laws (warm starts)."""
+    """How the bootstrap scores each model.
+
+    The affine models' coefficients (``affine``: model -> (e, beta, gamma, ok)) and their columns in the scores, their
+    products kept once (``features``; None beyond KEEP_FEATURES_TESTS wet tests, then formed a chunk of tests at a time,
+    ``chunks``), the fitted laws and the models scored replicate by replicate, each model's column, the run's
+    ModelParams and the full-data fitted laws (warm starts).
+    """
 
     affine: dict
     affine_cols: np.ndarray
@@ -917,9 +932,11 @@ class _Scoring:
 
 
 def _score_replicates(scores, rows, U, idx, material: _Material, scoring: _Scoring) -> None:
-    """Each model's RMSE in the replicates ``rows`` (dry counts U, wet indices idx of ``material.nw`` tests)
-    into ``scores``; the wet tests' inputs are needed only by fitted laws and models scored replicate by
-    replicate."""
+    """Each model's RMSE in the replicates ``rows`` into ``scores``.
+
+    The replicates are dry counts U and wet indices idx of ``material.nw`` tests; the wet tests' inputs are needed only
+    by fitted laws and models scored replicate by replicate.
+    """
     nw, d_mat, mat = material.nw, material.wet, material.name
     affine, F_once, chunks = scoring.affine, scoring.features, scoring.chunks
     laws, per_replicate, col = scoring.laws, scoring.per_replicate, scoring.col
@@ -953,9 +970,11 @@ def _score_replicates(scores, rows, U, idx, material: _Material, scoring: _Scori
 
 
 def _affine_rmse(WF: np.ndarray, dc: np.ndarray, db: np.ndarray, models: int) -> np.ndarray:
-    """(replicates, models) RMSEs of the affine models from their seven weighted sums per replicate (``WF``,
-    replicates x 7 models, as `_affine_features` orders them) and each replicate's envelope shift ``dc`` [Pa],
-    ``db`` [-] from the full-data one; NaN where a replicate holds no test a model predicts."""
+    """(replicates, models) RMSEs of the affine models from their seven weighted sums per replicate.
+
+    ``WF``, replicates x 7 models, as `_affine_features` orders them, and each replicate's envelope shift ``dc`` [Pa],
+    ``db`` [-] from the full-data one; NaN where a replicate holds no test a model predicts.
+    """
     n_ok, ee, eb, eg, bb, bg, gg = np.moveaxis(WF.reshape(-1, models, 7), 2, 0)
     dcm, dbm = dc[:, None], db[:, None]
     ss = ee + 2 * dcm * eb + 2 * dbm * eg + dcm * dcm * bb + 2 * dcm * dbm * bg + dbm * dbm * gg
@@ -964,8 +983,9 @@ def _affine_rmse(WF: np.ndarray, dc: np.ndarray, db: np.ndarray, models: int) ->
 
 
 def _score_long(rng, scores: np.ndarray, material: _Material, scoring: _Scoring, groups) -> None:
-    """The affine models' RMSEs of every replicate of a long material (beyond KEEP_FEATURES_TESTS wet tests, every
-    model affine) into ``scores``, chunk by chunk of wet tests: linear in the tests, memory flat.
+    """The affine models' RMSEs of every replicate of a long material into ``scores``, chunk by chunk of wet tests.
+
+    A long material is one beyond KEEP_FEATURES_TESTS wet tests, every model affine: linear in the tests, memory flat.
 
     First the dry refit of every replicate (`_draw_dry`, a block of replicates at a time). Then each
     replicate's ``nw`` wet draws are split among the chunks of CHUNK_TESTS tests by a multinomial draw with
@@ -1020,8 +1040,11 @@ def _wet_counts(rng, nw: int, replicates: int, chunks: list):
 
 
 def _affine_features(affine: dict, rows: slice) -> np.ndarray:
-    """(tests, 7 m) products [ok, e^2, e beta, e gamma, beta^2, beta gamma, gamma^2] of the affine models'
-    coefficients (zero where not finite) at the tests ``rows``: their weighted sums give each replicate's RMSE."""
+    """(tests, 7 m) products of the affine models' coefficients at the tests ``rows``.
+
+    [ok, e^2, e beta, e gamma, beta^2, beta gamma, gamma^2], zero where not finite: their weighted sums give each
+    replicate's RMSE.
+    """
     out = []
     for e, be, ga, ok in affine.values():
         e, be, ga = e[rows], be[rows], ga[rows]
@@ -1030,9 +1053,11 @@ def _affine_features(affine: dict, rows: slice) -> np.ndarray:
 
 
 def _affine_features_t(affine: dict, rows: slice) -> np.ndarray:
-    """`_affine_features` transposed, (7 m, tests), each row filled in place: what a material beyond
-    KEEP_FEATURES_TESTS wet tests forms in every block. Without the interleaving copy of ``np.column_stack``
-    (before: 40 % of such a bootstrap, and a step of 3-4x in its cost per test at that size)."""
+    """`_affine_features` transposed, (7 m, tests), each row filled in place.
+
+    What a material beyond KEEP_FEATURES_TESTS wet tests forms in every block. Without the interleaving copy of
+    ``np.column_stack`` (before: 40 % of such a bootstrap, and a step of 3-4x in its cost per test at that size).
+    """
     e0 = next(iter(affine.values()))[0][rows]
     out = np.empty((7 * len(affine), e0.size))
     for j, (e, be, ga, ok) in enumerate(affine.values()):
@@ -1051,8 +1076,10 @@ def _affine_features_t(affine: dict, rows: slice) -> np.ndarray:
 def _summarise(
     scores: np.ndarray, models: list[str], ranked: list[str], seed: int, cap: int | None = None
 ) -> RankingUncertainty:
-    """Win shares, RMSE percentiles and the best/runner-up difference from the (R, models) RMSE matrix; ``cap``
-    the replicates asked for (the adaptive bootstrap may have stopped before)."""
+    """Win shares, RMSE percentiles and the best/runner-up difference from the (R, models) RMSE matrix.
+
+    ``cap``: the replicates asked for (the adaptive bootstrap may have stopped before).
+    """
     finite = np.isfinite(scores)
     everywhere = bool(finite.all())
     stack = scores if everywhere else scores[np.any(finite, axis=1)]
@@ -1082,11 +1109,13 @@ def _summarise(
 
 
 def _percentiles(a: np.ndarray, q: tuple[float, ...]) -> np.ndarray:
-    """``np.percentile(a, q, axis=0)`` (its default linear method, bit for bit) from one sort, without its
-    per-call overhead (~0.2 ms, half the bootstrap's summary).
+    """``np.percentile(a, q, axis=0)`` (its default linear method, bit for bit) from one sort.
+
+    Without its per-call overhead (~0.2 ms, half the bootstrap's summary).
 
     The q-th percentile of n sorted values lies at the virtual index (n - 1) q / 100 and is interpolated
-    between its two neighbours as numpy's ``_lerp`` does (from the upper one above the midpoint)."""
+    between its two neighbours as numpy's ``_lerp`` does (from the upper one above the midpoint).
+    """
     return _sorted_percentiles(np.sort(a, axis=0), q)
 
 
@@ -1185,9 +1214,10 @@ class RetentionRelation:
 
 
 def retention_relation(params, suction, S_R) -> RetentionRelation | None:
-    """The water-retention relation of a material's wet tests: van Genuchten from the options (--retention
-    or --vg-alpha/--vg-n), else a van Genuchten fit (m = 1 - 1/n) of the tests' own (suction, S_R) pairs;
-    None when neither is possible (fewer than 4 tests at 3 suctions).
+    """The water-retention relation of a material's wet tests, or None.
+
+    van Genuchten from the options (--retention or --vg-alpha/--vg-n), else a van Genuchten fit (m = 1 - 1/n) of the
+    tests' own (suction, S_R) pairs; None when neither is possible (fewer than 4 tests at 3 suctions).
 
     Parameters
     ----------
@@ -1251,8 +1281,9 @@ def retention_relation(params, suction, S_R) -> RetentionRelation | None:
 
 
 def model_curves(result, material, relation: RetentionRelation, sigma_N: float, points: int = 120):
-    """(S_R, {model: tau [Pa]}) along the retention relation at one normal stress; models whose registry entry
-    says ``along_retention=False`` (fitted on the tests' own strengths) are left out.
+    """(S_R, {model: tau [Pa]}) along the retention relation at one normal stress.
+
+    Models whose registry entry says ``along_retention=False`` (fitted on the tests' own strengths) are left out.
 
     Parameters
     ----------

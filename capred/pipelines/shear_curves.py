@@ -44,10 +44,18 @@ def corrected_area(area, displacement, kind: str = "none"):
 
     Parameters
     ----------
-    area : nominal box area A [m^2]
-    displacement : horizontal displacement delta [m], >= 0
-    kind : "none" (A), "square" (A_c = L (L - delta), L = sqrt(A)) or "circular"
-        (A_c = (D^2/2)(acos(delta/D) - (delta/D) sqrt(1 - (delta/D)^2)), D = sqrt(4A/pi))
+    area : float or array_like
+        Nominal box area A [m^2].
+    displacement : float or array_like
+        Horizontal displacement delta [m], >= 0 (its magnitude is taken).
+    kind : str, optional
+        ``"none"`` (A), ``"square"`` (A_c = L (L - delta), L = sqrt(A)) or ``"circular"``
+        (A_c = (D^2/2)(acos(delta/D) - (delta/D) sqrt(1 - (delta/D)^2)), D = sqrt(4A/pi)).
+
+    Returns
+    -------
+    numpy.ndarray
+        The contact area A_c [m^2], broadcast over ``area`` and ``displacement``.
     """
     A = np.asarray(area, float)
     d = np.abs(np.asarray(displacement, float))
@@ -96,8 +104,10 @@ class ShearCurves:
 def pick_peaks(
     source, tests: Table, box_area: np.ndarray, area_correction: str = "none", ignore_columns=()
 ) -> ShearCurves:
-    """Peak tau of every test's curve, its displacement, the residual tau (mean over the last 10 % of the
-    displacement) and, with vertical displacements, the dilatancy angle at the peak (atan of dv/dh).
+    """Peak tau of every test's curve, its displacement, the residual tau and the dilatancy angle at the peak.
+
+    The residual tau is the mean over the last 10 % of the displacement; the dilatancy angle (atan of dv/dh) needs
+    vertical displacements.
 
     Parameters
     ----------

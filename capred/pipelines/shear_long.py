@@ -134,8 +134,11 @@ def _record(cls, prefix: str, arrays: dict, **fixed):
 
 
 def _sample_rows(wet, mat, suction, materials) -> np.ndarray:
-    """Rows whose per-test outputs a long run keeps in memory: the samples its figures draw (capred.sampling of the
-    same index sets as the report's figures) and the first wet tests its console table lists."""
+    """Rows whose per-test outputs a long run keeps in memory.
+
+    The samples its figures draw (capred.sampling of the same index sets as the report's figures) and the first wet
+    tests its console table lists.
+    """
     from ..sampling import MAX_ROWS, sample_rows
 
     parts = [np.flatnonzero(wet)[:MAX_ROWS]]
@@ -147,9 +150,11 @@ def _sample_rows(wet, mat, suction, materials) -> np.ndarray:
 
 @dataclass
 class _Harvest:
-    """Pass 1's harvest of every block: the compact per-test arrays of ``_COMPACT``, line numbers, interned
-    materials and conditions, hashes of the test ids, sizes of the spooled pieces, notes, warnings and the
-    problems of the blocks that have some."""
+    """Pass 1's harvest of every block.
+
+    The compact per-test arrays of ``_COMPACT``, line numbers, interned materials and conditions, hashes of the test
+    ids, sizes of the spooled pieces, notes, warnings and the problems of the blocks that have some.
+    """
 
     keep: dict[str, list]
     lines: list = field(default_factory=list)
@@ -217,8 +222,11 @@ def _read_blocks(pending: list, blocks, opt: ShearOptions, spool_in: Spool) -> _
 
 @dataclass
 class _Gathered:
-    """The blocks' arrays joined: piece starts in the spools, line numbers, materials, conditions, the compact
-    per-test arrays, and the problems of the whole table."""
+    """The blocks' arrays joined.
+
+    Piece starts in the spools, line numbers, materials, conditions, the compact per-test arrays, and the problems of
+    the whole table.
+    """
 
     starts: np.ndarray
     lines: np.ndarray
@@ -229,8 +237,10 @@ class _Gathered:
 
 
 def _gather(h: _Harvest, path, sheet, headers: dict, spool_in: Spool) -> _Gathered:
-    """Join the blocks' arrays (letting go of the per-block lists) and raise the problems of the whole table,
-    repeated test ids among the blocks included."""
+    """Join the blocks' arrays (letting go of the per-block lists) and raise the problems of the whole table.
+
+    Repeated test ids among the blocks included.
+    """
     if h.found and not h.sizes:  # no block without problems
         from ..errors import InputError
 
@@ -251,8 +261,10 @@ def _gather(h: _Harvest, path, sheet, headers: dict, spool_in: Spool) -> _Gather
 
 
 def _fit_envelopes(g: _Gathered, materials: list, opt: ShearOptions, spool_in: Spool) -> tuple[dict, dict]:
-    """The dry and saturated envelopes of every material; an outlier is named by its id, read back from the
-    spool (as a whole table names it)."""
+    """The dry and saturated envelopes of every material.
+
+    An outlier is named by its id, read back from the spool (as a whole table names it).
+    """
     fits = fit_dry_envelopes(g.problems, g.d, g.mat, g.cond, materials, opt)
     saturated_fits = fit_saturated_envelopes(g.problems, g.d, g.mat, g.cond, materials, opt)
     g.problems.raise_if_problems()
@@ -269,8 +281,10 @@ def _fit_envelopes(g: _Gathered, materials: list, opt: ShearOptions, spool_in: S
 def _predict_by_piece(
     g: _Gathered, wet: np.ndarray, md, fits: dict, laws: dict, opt: ShearOptions, spool_out: Spool
 ) -> tuple[dict[str, Sampled], dict[str, np.ndarray]]:
-    """Pass 2: every model's prediction piece by piece, spooled whole; kept in memory at the sampled rows only
-    (and every test's tau, for the scores)."""
+    """Pass 2: every model's prediction piece by piece, spooled whole.
+
+    Kept in memory at the sampled rows only (and every test's tau, for the scores).
+    """
     d, starts = g.d, g.starts
     rows = _sample_rows(wet, g.mat, d["suction"], list(fits))
     n = int(starts[-1])
@@ -303,8 +317,10 @@ def _predict_by_piece(
 def _bootstrap_and_forget_tests(
     result: ShearBlocks, tests, g: _Gathered, wet, fits: dict, saturated_fits: dict, fitted, opt: ShearOptions
 ) -> None:
-    """The bootstrap of the model ranking (``--bootstrap``), on every test; then ``result.model_inputs`` keeps
-    the fitted laws and no tests."""
+    """The bootstrap of the model ranking (``--bootstrap``), on every test.
+
+    Then ``result.model_inputs`` keeps the fitted laws and no tests.
+    """
     d, mat, cond = g.d, g.mat, g.cond
     if opt.bootstrap > 0:
         result.model_inputs = dataclasses.replace(
@@ -324,6 +340,22 @@ def run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks:
     material and condition) and spools the test ids and raw inputs; then the dry fits and chi laws are fitted on
     every test. Pass 2 predicts block by block and spools every per-test output; the writer reads both spools
     back block by block. Outputs are those of the whole-table run, byte for byte.
+
+    Parameters
+    ----------
+    source : str, Path or capred.io.grid.TableSource
+        The long table.
+    opt : ShearOptions
+        The run's options.
+    pending : list of capred.io.Table
+        The first two blocks, already read (let go of as they are used).
+    blocks : iterator of capred.io.Table
+        The blocks that follow (capred.io.blocks.read_table_blocks).
+
+    Returns
+    -------
+    ShearBlocks
+        The run, its per-test outputs spooled on disk.
     """
     from . import shear_analysis as sa
 
@@ -398,8 +430,11 @@ def run_blocks(source, opt: ShearOptions, pending: list, blocks) -> ShearBlocks:
 
 
 def _duplicate_ids(hashes: np.ndarray, spool: Spool, starts: np.ndarray, problems: _RowProblems) -> None:
-    """Repeated test ids of a long table (as Table.check_unique words them), found by their hashes and confirmed
-    on the ids themselves, read back from the spool (no Python str per test held at once)."""
+    """Repeated test ids of a long table (as Table.check_unique words them).
+
+    Found by their hashes and confirmed on the ids themselves, read back from the spool (no Python str per test held at
+    once).
+    """
     sorted_h = np.sort(hashes)
     repeated = np.unique(sorted_h[1:][sorted_h[1:] == sorted_h[:-1]])
     del sorted_h
@@ -426,8 +461,10 @@ def _spooled(spool: Spool, starts: np.ndarray, key: str, rows: np.ndarray) -> li
 
 
 class _LongTests(dict):
-    """``ShearBlocks.tests``: the compact per-test arrays in memory; any other column (test_id, the raw inputs,
-    chi1, chi2) is read back from the spools, whole, when asked for."""
+    """``ShearBlocks.tests``: the compact per-test arrays in memory.
+
+    Any other column (test_id, the raw inputs, chi1, chi2) is read back from the spools, whole, when asked for.
+    """
 
     result = None
 
@@ -445,8 +482,11 @@ class _LongTests(dict):
 
 
 class _ResultsBlocks:
-    """results.csv of a long run for capred.io.writers.write_csv_file: ``blocks()`` gives each block's columns,
-    made from the spools one block at a time; ``columns(start, stop)`` as a Spool's."""
+    """results.csv of a long run for capred.io.writers.write_csv_file.
+
+    ``blocks()`` gives each block's columns, made from the spools one block at a time; ``columns(start, stop)`` as a
+    Spool's.
+    """
 
     def __init__(self, result: ShearBlocks):
         self.result = result
@@ -486,8 +526,9 @@ class _LazyColumns(dict):
 
 @dataclass(repr=False)
 class ShearBlocks(ShearResult):
-    """The result of `capred shear` on a long table (several blocks of capred.io.blocks): a ShearResult whose
-    per-test outputs stay on disk.
+    """The result of `capred shear` on a long table (several blocks of capred.io.blocks).
+
+    A ShearResult whose per-test outputs stay on disk.
 
     In memory, for every test: ``tests`` sigma_N, suction, S_R, tau_max, R, material, condition, line, and
     a flag code. Every per-test array of ``predictions`` and ``back`` is a
@@ -596,8 +637,9 @@ class ShearBlocks(ShearResult):
         return int(self.starts[-1])
 
     def csv_tables(self) -> dict:
-        """The tables as the CSV writer takes them (``results`` written block by block, ``summary`` and ``metrics``),
-        under ``name [unit]`` headers.
+        """The tables as the CSV writer takes them, under ``name [unit]`` headers.
+
+        ``results`` written block by block, ``summary`` and ``metrics``.
 
         Returns
         -------
@@ -614,7 +656,12 @@ class ShearBlocks(ShearResult):
         return cached
 
     def tables(self) -> dict:
-        """results (every test, in memory: for tables.xlsx or a script) and summary."""
+        """Output tables: ``results`` (every test, in memory: for tables.xlsx or a script) and ``summary``.
+
+        Returns
+        -------
+        dict of str to pandas.DataFrame
+        """
         cached = self.__dict__.get("_tables")
         if cached is None:
             import pandas as pd

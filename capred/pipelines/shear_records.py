@@ -137,6 +137,7 @@ class Sampled:
 
     @property
     def shape(self) -> tuple[int]:
+        """``(n,)``: the shape of the whole per-test array the samples come from."""
         return (self.n,)
 
     def scaled(self, factor: float) -> Sampled:
@@ -184,8 +185,9 @@ def _glossary(name: str, suffix: str = "", **kw):
 
 @dataclass(frozen=True, eq=False)
 class EnvelopeNumbers:
-    """The numbers of a fitted straight envelope tau = c + sigma_N tan(phi) as the JSON's materials block gives
-    them (and the lab store records them): each field one declaration, its JSON key and unit the glossary's.
+    """The numbers of a fitted straight envelope tau = c + sigma_N tan(phi) as the JSON's materials block gives them.
+
+    The lab store records them so: each field one declaration, its JSON key and unit the glossary's.
 
     The values are held in the output units (kPa, deg), computed once from the fit by
     ``capred.pipelines.shear.envelope_numbers``.

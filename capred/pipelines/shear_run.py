@@ -1,5 +1,7 @@
-"""`capred shear`'s entry: a direct-shear table reduced whole (capred.pipelines.shear.run_table) or, when a plain
-CSV is longer than one block of capred.io.blocks, block by block (capred.pipelines.shear_long.run_blocks).
+"""`capred shear`'s entry: a direct-shear table reduced whole or block by block.
+
+Whole by capred.pipelines.shear.run_table or, when a plain CSV is longer than one block of capred.io.blocks, block by
+block (capred.pipelines.shear_long.run_blocks).
 
 Both ways share the steps of capred.pipelines.shear; this module sits above them, so that neither imports the
 other's caller.

@@ -165,7 +165,13 @@ class TriaxialResult(Result):
         return deprecated("TriaxialResult.q_sat [Pa]", "TriaxialResult.states.q_sat (kPa)", self.states.q_sat * KPA)
 
     def method_notes(self) -> tuple[list[str], list[str]]:
-        """The run's choices the methods text states: the extension path, the membrane correction's diameter."""
+        """The run's choices the methods text states: the extension path, the membrane correction's diameter.
+
+        Returns
+        -------
+        (list of str, list of str)
+            The paragraphs, and the keys of the references they cite.
+        """
         opt = self.options or TriaxialOptions()
         out = []
         if (self.states.branch == "extension").any():
@@ -209,8 +215,10 @@ class TriaxialResult(Result):
         return out
 
     def payload(self, lazy: bool = False) -> dict:
-        """The command's own keys of the JSON document: source, envelope, per test its state and bounds (None where a
-        bound does not apply) with its flags, and the groups.
+        """The command's own keys of the JSON document.
+
+        Source, envelope, per test its state and bounds (None where a bound does not apply) with its flags, and the
+        groups.
 
         Parameters
         ----------
@@ -238,17 +246,21 @@ class TriaxialResult(Result):
         return {"source": self.source, "envelope": env, "tests": tests, "groups": [rec.to_json(g) for g in self.groups]}
 
     def _envelope_intervals(self) -> dict:
-        """Glossary name -> 95 % interval of c' [kPa] and phi' [deg], where the envelope was fitted (params and
-        the summary give them); {} for an envelope given by --c-eff/--phi-eff."""
+        """Glossary name -> 95 % interval of c' [kPa] and phi' [deg], where the envelope was fitted.
+
+        params and the summary give them; {} for an envelope given by --c-eff/--phi-eff.
+        """
         if self.envelope.fit is None and self.envelope.source != "extended_mc":
             return {}
         par = self.envelope.params
         return {name: par[nom.json_key(name)].ci95 for name in ("c", "phi")}
 
     def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows: the effective envelope's glossary quantities (c_kPa, phi_deg with their 95 %
-        intervals, M, k_kPa, their extension twins, the standard errors, r2), from the record's declarations
-        (capred.pipelines.triaxial_records.store_rows), for the material of the inputs' metadata block.
+        """The lab store's rows: the effective envelope's glossary quantities.
+
+        c_kPa, phi_deg with their 95 % intervals, M, k_kPa, their extension twins, the standard errors, r2, from the
+        record's declarations (capred.pipelines.triaxial_records.store_rows), for the material of the inputs' metadata
+        block.
 
         Parameters
         ----------
@@ -263,7 +275,12 @@ class TriaxialResult(Result):
         return rec.store_rows(self.envelope, material, intervals)
 
     def tables(self) -> dict:
-        """results (one row per test, bounds side by side) and, with groups, groups."""
+        """Output tables: ``results`` (one row per test, bounds side by side) and, with groups, ``groups``.
+
+        Returns
+        -------
+        dict of str to pandas.DataFrame
+        """
         cached = self.__dict__.get("_tables")
         if cached is None:
             import pandas as pd
@@ -275,8 +292,10 @@ class TriaxialResult(Result):
         return cached
 
     def season_rows(self) -> list[dict]:
-        """Rows of a batch's season.csv: one, the effective envelope c and phi [kPa, deg] with their
-        standard errors, the numbers of saturated and unsaturated tests and of flagged tests.
+        """Rows of a batch's season.csv: one, the effective envelope with its standard errors and the test counts.
+
+        c and phi [kPa, deg] with their standard errors, the numbers of saturated and unsaturated tests and of flagged
+        tests.
 
         Returns
         -------
@@ -347,7 +366,7 @@ def _kpa(x) -> float | None:
 
 
 def load_triaxial_table(table: Table, curves: dict[str, tuple[float, float]] | None) -> tuple[Table, dict]:
-    """q at failure (from q_f, sigma1 or the curves) per test; problems collected in ``table``.
+    """The deviator q at failure (from q_f, sigma1 or the curves) per test; problems collected in ``table``.
 
     Returns the table and a dict with ``q`` [Pa], ``strain`` (axial strain at
     failure [-], from the curve or the column ``strain_at_failure``) and

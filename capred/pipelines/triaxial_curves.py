@@ -231,6 +231,12 @@ def membrane_correction(axial_strain, diameter, membrane_thickness, membrane_mod
 
 @dataclass
 class TriaxialCurves:
+    """What the curves of a triaxial export give the triaxial commands: each test's peak and state there.
+
+    Each field is described where it is declared: the peak (q and axial strain) and the pressures at it per test
+    id, the curve tables, and the problems, notes and warnings of the reading.
+    """
+
     peaks: dict[str, tuple[float, float]] = field(default_factory=dict)  # test id -> (q_peak [Pa], eps_a at peak)
     #: test id -> pressures at the peak [Pa] (keys of PEAK_PRESSURES, NaN where the export has none),
     #: "membrane" (the correction at the peak [Pa]) and "D0" [m]
@@ -507,8 +513,10 @@ def _state_at_peak(
     D0: float,
     out: TriaxialCurves,
 ) -> dict:
-    """The export's pressures at the peak reading ``k`` and their changes over the shear stage [Pa], the B check,
-    the specimen's state at the start of the shear and at the peak, the membrane correction there [Pa] and D0 [m].
+    """The export's pressures at the peak reading ``k`` and their changes over the shear stage [Pa].
+
+    With the B check, the specimen's state at the start of the shear and at the peak, the membrane correction there [Pa]
+    and D0 [m].
 
     The B check's note and warning are added to ``out``.
     """
@@ -545,8 +553,9 @@ def _read_test_curve(
     membrane: tuple[float, float] | None,
     consolidated: dict | None,
 ) -> None:
-    """One test's curve (readings ``sel`` of its shear stage, ``every`` of the file): q from the axial force where
-    the file has no q, the membrane correction, then its peak, curve and state at the peak added to ``out``.
+    """One test's curve (readings ``sel`` of its shear stage, ``every`` of the file), added to ``out``.
+
+    q from the axial force where the file has no q, the membrane correction, then its peak, curve and state at the peak.
 
     Problems are added to ``table`` (the test is then left out).
     """

@@ -1,5 +1,7 @@
-"""What `capred triaxial-bounds` shares with `capred triaxial` (issue 40): the ``material`` column (one material
-per analysis, never pooled) and the envelope at s -> 0 of the unsaturated tests when there is no saturated test.
+"""What `capred triaxial-bounds` shares with `capred triaxial` (issue 40).
+
+The ``material`` column (one material per analysis, never pooled) and the envelope at s -> 0 of the unsaturated tests
+when there is no saturated test.
 
 `capred triaxial` analyses every material of its table separately. `capred triaxial-bounds` fits ONE effective
 envelope per run, so a table with several materials runs one of them at a time (``--material NAME``); without it,
@@ -38,8 +40,10 @@ def materials_of(table: Table) -> dict[str, int]:
 
 
 class _Picked(Sequence):
-    """The cells ``cells[idx]`` of a column's text, each read when a message quotes it (a long file's cells are
-    cut out of its text on demand: capred.io.plain_tail)."""
+    """The cells ``cells[idx]`` of a column's text, each read when a message quotes it.
+
+    A long file's cells are cut out of its text on demand (capred.io.plain_tail).
+    """
 
     def __init__(self, cells, idx: np.ndarray):
         self.cells, self.idx = cells, idx

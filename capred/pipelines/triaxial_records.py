@@ -58,6 +58,13 @@ def quantity(
     many : bool
         A list of values per record (e.g. the Lode angles of a group's tests): its JSON key and CSV header
         take the field's name (``lode_angles_deg``) with the quantity's unit.
+    init : bool
+        The field is an argument of the record's constructor.
+
+    Returns
+    -------
+    dataclasses.Field
+        The field, default None, its declaration in ``metadata``.
     """
     if name not in QUANTITIES:
         raise KeyError(f"{name!r} is not in the glossary (capred.nomenclature.QUANTITIES)")
@@ -66,8 +73,9 @@ def quantity(
 
 
 def text(json: str | None = None, *, optional: bool = False, kind: str = "text", init: bool = True):
-    """A record field of text (or ``kind`` "int", "bool", "number", "list", "record", "records"); ``json``
-    overrides its JSON key (the field's name by default).
+    """A record field of text (or ``kind`` "int", "bool", "number", "list", "record", "records").
+
+    ``json`` overrides its JSON key (the field's name by default).
 
     Parameters
     ----------
@@ -191,10 +199,11 @@ def to_json(record) -> dict:
 
 
 def store_rows(record, material=None, intervals=None) -> list:
-    """The lab store's rows of a scalar record: each glossary quantity field (value or standard error) with
-    its JSON key (:func:`json_key`, as :func:`to_json` writes it), value and glossary unit; a value's 95 %
-    interval is its ``ci`` field or ``intervals[key]``. Text fields are not recorded; a value that is not a
-    finite number is left out.
+    """The lab store's rows of a scalar record: each glossary quantity field with its JSON key, value and unit.
+
+    Value or standard error, its JSON key as :func:`to_json` writes it (:func:`json_key`), the glossary unit; a value's
+    95 % interval is its ``ci`` field or ``intervals[key]``. Text fields are not recorded; a value that is not a finite
+    number is left out.
 
     Parameters
     ----------
@@ -663,8 +672,10 @@ class GroupRecord:
 
 
 def group_csv(g: GroupRecord) -> dict:
-    """A group as one flat CSV row: lists joined by ';', intervals and ranges as _low/_high (_lower/_upper)
-    columns, the closures' tensors as ``<closure>.<component> [kPa]``.
+    """A group as one flat CSV row.
+
+    Lists joined by ';', intervals and ranges as _low/_high (_lower/_upper) columns, the closures' tensors as
+    ``<closure>.<component> [kPa]``.
 
     Parameters
     ----------
@@ -814,7 +825,13 @@ class Envelope:
         return Parameters(tuple(out), corr)
 
     def summary(self) -> str:
-        """A plain-text report of the envelope: c', φ' with SE and 95 % CI, their correlation, n, R²."""
+        """A plain-text report of the envelope: c', φ' with SE and 95 % CI, their correlation, n, R².
+
+        Returns
+        -------
+        str
+            capred.parameters.fit_report of the envelope's parameters.
+        """
         fitted = self.fit is not None or self.source == "extended_mc"
         dof = (self.n or 0) - (3 if self.source == "extended_mc" else 2)
         stats = {"n": self.n, "dof": dof, "R²": self.r2} if fitted else {}

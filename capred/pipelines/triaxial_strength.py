@@ -55,7 +55,23 @@ _STATE_COLUMNS = ("rho_d", "rho_s", "G_s", "e", "n", "w", "S_R", "theta")
 
 
 def load_table(source):
-    """Read and check a triaxial failure-state table (every problem collected, then raised once)."""
+    """Read and check a triaxial failure-state table (every problem collected, then raised once).
+
+    Parameters
+    ----------
+    source : str, path, DataFrame or capred.io.grid.TableSource
+        The table: a CSV, .xlsx or .ods file, or a DataFrame.
+
+    Returns
+    -------
+    capred.io.Table
+        The table read against ``SCHEMA``, with q_f completed from sigma1 where only sigma1 is given.
+
+    Raises
+    ------
+    InputError
+        Naming every missing column and bad cell (file, sheet, line, column).
+    """
     table = read_table(source, SCHEMA)
     for name in ("test_id", "sigma3", "suction"):
         if not table.has(name):
@@ -81,7 +97,23 @@ def load_table(source):
 
 
 def complete_states(table) -> dict[str, np.ndarray]:
-    """The sample state of every test completed by the phase relations; one InputError naming each bad row."""
+    """The sample state of every test completed by the phase relations.
+
+    Parameters
+    ----------
+    table : capred.io.Table
+        The failure-state table, as :func:`load_table` returns it.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        rho_d, rho_s, G_s, e, n, w, S_R and theta per test (SI units), NaN where the table does not give it.
+
+    Raises
+    ------
+    InputError
+        One error naming each bad row.
+    """
     from .sample_state import table_state
 
     state = table_state(table)
@@ -218,8 +250,10 @@ def _inputs(tests, rows, a, b, opt, m) -> esm.ModelInputs:
 
 
 def _usable(model: str, d: esm.ModelInputs, opt) -> str:
-    """Why ``model`` cannot be scored on these tests ("" when it can): a missing parameter, or no finite prediction
-    (a fitted law is judged after its fit, in `_material`)."""
+    """Why ``model`` cannot be scored on these tests ("" when it can).
+
+    A missing parameter, or no finite prediction (a fitted law is judged after its fit, in `_material`).
+    """
     missing = opt.model_params.missing(model)
     if missing:
         return f"needs {missing}"
@@ -467,9 +501,12 @@ def bounds_on_envelope(form, x, q, c_eff, phi_eff, env_cov) -> dict:
 
 
 def _bootstrap(m, rows, tests, opt, scored, ranked, laws, form):
-    """Paired bootstrap of the ranking: resample the material's tests, refit the extended envelope (its s -> 0
-    line, or the given one), refit the chi laws (warm start), score every model by RMSE on the resampled tests
-    with suction; summarised as `capred shear` does (shear_analysis.summarise_ranking)."""
+    """Paired bootstrap of the ranking of the models.
+
+    Resample the material's tests, refit the extended envelope (its s -> 0 line, or the given one), refit the chi laws
+    (warm start), score every model by RMSE on the resampled tests with suction; summarised as `capred shear` does
+    (shear_analysis.summarise_ranking).
+    """
     from . import shear_analysis as sa
 
     rng = np.random.default_rng(opt.seed)
@@ -505,6 +542,19 @@ def _bootstrap(m, rows, tests, opt, scored, ranked, laws, form):
 
 
 def envelope_from_fit(fit: ExtendedMCFit) -> tuple[float, float]:
-    """(c' [Pa], φ' [deg]) of an extended fit at s -> 0 (the envelope a run without saturated tests uses)."""
+    """The envelope of an extended fit at s -> 0 (the one a run without saturated tests uses).
+
+    Parameters
+    ----------
+    fit : capred.fitting.extended_mc.ExtendedMCFit
+        The extended Mohr-Coulomb fit of one material.
+
+    Returns
+    -------
+    c_eff : float
+        Effective cohesion c' [Pa].
+    phi_eff : float
+        Effective friction angle φ' [deg].
+    """
     c, phi, _ = envelope_of(fit.form, *fit.coef)
     return float(c), float(phi)

@@ -88,8 +88,10 @@ class MaterialStrength:
 
 @dataclass(repr=False)
 class TriaxialStrengthResult(Result):
-    """Result of `capred triaxial`: per material the extended Mohr-Coulomb fit, the model comparison, the
-    back-analysed capillary stress and the bounds on the named envelope.
+    """Result of `capred triaxial`, per material.
+
+    The extended Mohr-Coulomb fit, the model comparison, the back-analysed capillary stress and the bounds on the named
+    envelope.
 
     Attributes
     ----------
@@ -116,16 +118,34 @@ class TriaxialStrengthResult(Result):
 
     # --- per material -------------------------------------------------------------------------------------
     def fits(self) -> dict[str, ExtendedMCFit]:
-        """Material -> its extended Mohr-Coulomb fit (``fit.params[NAME]``, ``fit.summary()``)."""
+        """Material -> its extended Mohr-Coulomb fit (``fit.params[NAME]``, ``fit.summary()``).
+
+        Returns
+        -------
+        dict of str to capred.fitting.extended_mc.ExtendedMCFit
+            One fit per material.
+        """
         return {m: r.fit for m, r in self.materials.items()}
 
     def best_model(self) -> dict[str, str | None]:
-        """Material -> the model of lowest RMSE on its tests with suction."""
+        """Material -> the model of lowest RMSE on its tests with suction.
+
+        Returns
+        -------
+        dict of str to str or None
+            The model's name per material (None where no model could be scored).
+        """
         return {m: r.best for m, r in self.materials.items()}
 
     # --- tables -------------------------------------------------------------------------------------------
     def test_rows(self) -> list[dict]:
-        """One dict per test: inputs, completed state, back-analysis, bounds and every model's q_f [kPa]."""
+        """One dict per test: inputs, completed state, back-analysis, bounds and every model's q_f [kPa].
+
+        Returns
+        -------
+        list of dict
+            One dict per test, stresses in kPa.
+        """
         t = self.tests
         out: list[dict] = [{} for _ in t["test_id"]]
         for m, r in self.materials.items():
@@ -160,8 +180,23 @@ class TriaxialStrengthResult(Result):
         return out
 
     def flags(self, material: str, j: int) -> list[str]:
-        """The flags of the j-th test of ``material``: beyond the pendular regime, χ_back outside [0, 1], a positive
-        capillary pressure; none for a test without suction (a saturated test has no capillary stress to flag)."""
+        """The flags of the j-th test of ``material``.
+
+        Beyond the pendular regime, χ_back outside [0, 1], a positive capillary pressure; none for a test without suction
+        (a saturated test has no capillary stress to flag).
+
+        Parameters
+        ----------
+        material : str
+            The material.
+        j : int
+            The test's index among the material's tests (from 0).
+
+        Returns
+        -------
+        list of str
+            The flags' names (empty when none applies).
+        """
         r = self.materials[material]
         i = r.rows[j]
         out = []
@@ -178,7 +213,13 @@ class TriaxialStrengthResult(Result):
         return out
 
     def material_rows(self) -> list[dict]:
-        """One dict per material: the extended Mohr-Coulomb parameters, the envelope used and the best model."""
+        """One dict per material: the extended Mohr-Coulomb parameters, the envelope used and the best model.
+
+        Returns
+        -------
+        list of dict
+            One dict per material, c' in kPa and the angles in degrees.
+        """
         rows = []
         for m, r in self.materials.items():
             p = r.fit.params
@@ -198,7 +239,13 @@ class TriaxialStrengthResult(Result):
         return rows
 
     def metric_rows(self) -> list[dict]:
-        """One dict per material and model: n, RMSE, bias, R², AICc, Akaike weight, bootstrap share."""
+        """One dict per material and model: n, RMSE, bias, R², AICc, Akaike weight, bootstrap share.
+
+        Returns
+        -------
+        list of dict
+            One dict per material and model, RMSE and bias in kPa.
+        """
         rows = []
         for m, r in self.materials.items():
             for mod in r.models:
@@ -230,7 +277,13 @@ class TriaxialStrengthResult(Result):
         return rows
 
     def law_rows(self) -> list[dict]:
-        """One dict per fitted chi law and material: its parameters with SE and 95 % interval."""
+        """One dict per fitted chi law and material: its parameters with SE and 95 % interval.
+
+        Returns
+        -------
+        list of dict
+            One dict per law, material and parameter.
+        """
         rows = []
         for m, r in self.materials.items():
             for mod, law in r.laws.items():
@@ -250,7 +303,20 @@ class TriaxialStrengthResult(Result):
         return rows
 
     def payload(self, lazy: bool = False) -> dict:
-        """JSON keys: ``materials`` (fit, envelope, models, laws, ranking), ``metrics``, ``tests``."""
+        """The command's own keys of the JSON document.
+
+        ``materials`` (fit, envelope, models, laws, ranking), ``metrics`` and ``tests``.
+
+        Parameters
+        ----------
+        lazy : bool, optional
+            Allow :class:`capred.result.Rows` in place of long lists (default False: plain lists).
+
+        Returns
+        -------
+        dict
+            JSON key -> value.
+        """
         mats = {}
         for m, r in self.materials.items():
             p = r.fit.params
@@ -304,10 +370,11 @@ class TriaxialStrengthResult(Result):
         return {"source": self.source, "materials": mats, "metrics": self.metric_rows(), "tests": self.test_rows()}
 
     def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows, per material: the effective envelope (``c_kPa``, ``phi_deg`` and their standard
-        errors, glossary units, as the JSON's ``envelope``), the extended Mohr-Coulomb fit's parameters
-        (``c_eff_kPa``, ``phi_eff_deg``, ``phi_b_deg``, ``tan_phi_b``: capred.parameters.Parameter, with their 95 %
-        intervals and standard errors) and its ``r2``.
+        """The lab store's rows, per material: the effective envelope and the extended Mohr-Coulomb fit.
+
+        The envelope's ``c_kPa``, ``phi_deg`` and their standard errors (glossary units, as the JSON's ``envelope``),
+        the fit's parameters (``c_eff_kPa``, ``phi_eff_deg``, ``phi_b_deg``, ``tan_phi_b``: capred.parameters.Parameter,
+        with their 95 % intervals and standard errors) and its ``r2``.
 
         Parameters
         ----------
@@ -333,7 +400,13 @@ class TriaxialStrengthResult(Result):
         return [row for row in rows if row is not None]
 
     def tables(self) -> dict:
-        """results (per test), materials, metrics, laws: pandas DataFrames."""
+        """Output tables: file stem -> pandas DataFrame.
+
+        Returns
+        -------
+        dict of str to pandas.DataFrame
+            ``results`` (per test), ``materials``, ``metrics`` and ``laws``.
+        """
         import pandas as pd
 
         return {
@@ -347,7 +420,13 @@ class TriaxialStrengthResult(Result):
         }
 
     def method_notes(self) -> tuple[list[str], list[str]]:
-        """The envelope of each material, named."""
+        """What the run adds to the methods text: the envelope of each material, named.
+
+        Returns
+        -------
+        tuple of (list of str, list of str)
+            The paragraphs, and the keys of the references they cite (capred.references.REFERENCES).
+        """
         return [f"{m}: {r.envelope_source}." for m, r in self.materials.items()], ["fredlund1978", "prunier2024"]
 
 

@@ -59,7 +59,13 @@ class CapillaryFile:
     counts: np.ndarray  # rows per distance block
 
     def text(self) -> str:
-        """The file as YADE reads it (shortest round-trip numbers)."""
+        """The file as YADE reads it.
+
+        Returns
+        -------
+        str
+            The ratio, the number of blocks, then each block's header and rows (shortest round-trip numbers).
+        """
         lines = [f"{self.ratio:g}", str(len(self.counts))]
         start = 0
         for c in self.counts:
@@ -165,8 +171,9 @@ class YadeResult(Result):
     notes: list[str] = field(default_factory=list)
 
     def record(self) -> YadeFileRecord:
-        """One row per capillary file as a typed record: its name, ratio, largest d* and uc*, numbers of
-        distances and bridges and the smallest block.
+        """One row per capillary file as a typed record.
+
+        Its name, ratio, largest d* and uc*, numbers of distances and bridges and the smallest block.
 
         Returns
         -------
@@ -190,8 +197,9 @@ class YadeResult(Result):
         )
 
     def summary_rows(self) -> list[dict]:
-        """One row per capillary file (:meth:`record` as JSON rows): its name, ratio, largest d* and uc*,
-        numbers of distances and bridges and the smallest block.
+        """One row per capillary file (:meth:`record` as JSON rows).
+
+        Its name, ratio, largest d* and uc*, numbers of distances and bridges and the smallest block.
 
         Returns
         -------

@@ -111,8 +111,9 @@ COMPARE_LABEL = {
 
 
 def plot_compare(ax, rows):
-    """Predicted against measured capillary force [mN] of each sphere pair: exact bridge, toroidal, Willett et al. (2000)
-    and Israelachvili, with the 1:1 line.
+    """Predicted against measured capillary force [mN] of each sphere pair, with the 1:1 line.
+
+    The exact bridge, the toroidal approximation, Willett et al. (2000) and Israelachvili.
 
     Parameters
     ----------
@@ -175,6 +176,11 @@ def plot_rupture(ax, rows):
         The panel to draw on.
     rows : list of dict
         The JSON rows of a ``capred bridge rupture`` run (volumes in mm³, distances in mm, angles in deg).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     palette = [OKABE_ITO[c] for c in ("black", "blue", "vermillion", "green", "purple", "orange", "sky")]
     ok = [r for r in rows if r["status"] == "ok"]

@@ -11,8 +11,9 @@ ERROR_RANGE = (1e-3, 1.0)
 
 
 def error_map(result, name: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Per (D/R, V/R^3) node of the grid: the largest |relative error| of law ``name`` over the contact angles
-    and geometries there (NaN where no point has both forces).
+    """Per (D/R, V/R^3) node of the grid: the largest |relative error| of law ``name``.
+
+    Over the contact angles and geometries there (NaN where no point has both forces).
 
     Parameters
     ----------
@@ -38,8 +39,9 @@ def error_map(result, name: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def plot_error_map(ax, result, name: str):
-    """Squares at the grid's (D/R, V/R^3) coloured by the law's worst |error| there; open circles: within the
-    tolerance at every angle and geometry.
+    """Squares at the grid's (D/R, V/R^3) coloured by the law's worst |error| there.
+
+    Open circles: within the tolerance at every angle and geometry.
 
     Parameters
     ----------
@@ -49,6 +51,11 @@ def plot_error_map(ax, result, name: str):
         A ``capred bridge laws`` run.
     name : str
         A key of ``capred.physics.bridge_laws.LAWS``.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     from matplotlib.colors import LogNorm
 

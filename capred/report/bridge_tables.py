@@ -52,8 +52,10 @@ def bridge_solve_tables(result) -> list[TableSpec]:
 
 
 def bridge_compare_tables(result) -> list[TableSpec]:
-    """Console tables of ``capred bridge compare``: measured against predicted force [mN] per pair (all in
-    compare.csv), and each closed-form law's residuals over the pairs it applies to.
+    """Console tables of ``capred bridge compare``.
+
+    Measured against predicted force [mN] per pair (all in compare.csv), and each closed-form law's residuals over
+    the pairs it applies to.
 
     Parameters
     ----------
@@ -81,8 +83,9 @@ def bridge_compare_tables(result) -> list[TableSpec]:
 
 
 def bridge_curve_tables(result) -> list[TableSpec]:
-    """Console table of ``capred bridge curve``: each model's RMS relative error of σ' against the exact bridge,
-    inside and outside the pendular regime.
+    """Console table of ``capred bridge curve``: each model's RMS relative error of σ' against the exact bridge.
+
+    Inside and outside the pendular regime.
 
     Parameters
     ----------
@@ -102,8 +105,9 @@ def bridge_curve_tables(result) -> list[TableSpec]:
 
 
 def bridge_laws_tables(result) -> list[TableSpec]:
-    """`bridge laws`: each law over every point, the headline (geometry x gap), and the regions with the laws
-    within the tolerance.
+    """Console tables of `bridge laws`.
+
+    Each law over every point, the headline (geometry x gap), and the regions with the laws within the tolerance.
 
     Parameters
     ----------

@@ -1,5 +1,7 @@
-"""Figure sheet of `capred skempton-b`: B against S_r, and the parameter studies of Morvan et al. (2016),
-Fig. 2, 3 and 5. Each computed case is drawn on the curve of its own parameters."""
+"""Figure sheet of `capred skempton-b`: B against S_r, and the parameter studies of Morvan et al. (2016).
+
+The studies are their Fig. 2, 3 and 5. Each computed case is drawn on the curve of its own parameters.
+"""
 
 from __future__ import annotations
 
@@ -44,6 +46,11 @@ def plot_cases(ax, S, cases: list[dict], s_e=None, bc_lambda=None, bounding=None
         Brooks-Corey index λ [-] of those curves, for their label.
     bounding : dict or None, optional
         ``a_ini`` [Pa] and ``air_pressure`` of the bounding-surface curves, for their label.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     for k, case in enumerate(cases):
         kappa, e0, p0, u0, pa0 = case["params"]
@@ -105,6 +112,11 @@ def plot_curves(ax, curves: dict):
         The panel to draw on.
     curves : dict
         ``"S_r"`` -> degrees of saturation [-], and each model's key -> its B values [-].
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     S = curves["S_r"]
     for key, B in curves.items():
@@ -125,9 +137,10 @@ def sheet_skempton(
     curves: dict | None = None,
     curve_names: list[str] | None = None,
 ) -> Sheet:
-    """The skempton-b sheet, drawn from the curves the pipeline computed
-    (capred.pipelines.skempton_figure.figure_curves): the cases on their own curves (or the models of
-    ``skempton-b --curve``) and the parameter studies of Morvan et al. (2016), Fig. 2, 3, 5.
+    """The skempton-b sheet, drawn from the curves the pipeline computed.
+
+    The curves come from capred.pipelines.skempton_figure.figure_curves: the cases on their own curves (or the models
+    of ``skempton-b --curve``) and the parameter studies of Morvan et al. (2016), Fig. 2, 3, 5.
 
     Parameters
     ----------
@@ -192,8 +205,10 @@ def sheet_skempton(
 
 
 def plot_prism_mohr(ax, break_tension_kPa, friction_angle_deg, P_kmax_kPa, labels=None):
-    """Mohr's diagram of the prism break (Bernatzik 1948): the circle from P_kmax to P_kmax + sigma_b touches
-    the envelope tau = sigma tan rho; the isotropic capillary pressure P_kmax is where the circle starts.
+    """Mohr's diagram of the prism break (Bernatzik 1948).
+
+    The circle from P_kmax to P_kmax + sigma_b touches the envelope tau = sigma tan rho; the isotropic capillary
+    pressure P_kmax is where the circle starts.
 
     Parameters
     ----------
@@ -207,6 +222,11 @@ def plot_prism_mohr(ax, break_tension_kPa, friction_angle_deg, P_kmax_kPa, label
         Isotropic capillary pressure P_kmax of each case [kPa].
     labels : list of str or None, optional
         Legend name of each case (default "case 1", ...).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     sb = np.asarray(break_tension_kPa, float)
     rho = np.asarray(friction_angle_deg, float)

@@ -33,7 +33,7 @@ def _log_axis(ax) -> None:
 
 
 def plot_compression(ax, result, construction: str = "both"):
-    """e against log σ' by stage, the fitted first-loading curve, its virgin line and the constructions.
+    """Void ratio e against log σ' by stage, the fitted first-loading curve, its virgin line and the constructions.
 
     Parameters
     ----------

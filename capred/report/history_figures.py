@@ -92,8 +92,10 @@ _SPLIT = (0.57, 0.14, 0.29)
 
 
 def plot_control_chart(ax, result):
-    """The individuals chart over the moving-range chart, as one panel: two axes laid out as one group, so that
-    both span the same width and run k sits at the same x in both (as Montgomery 2013 draws them, Fig. 6.18).
+    """The individuals chart over the moving-range chart, as one panel.
+
+    Two axes laid out as one group, so that both span the same width and run k sits at the same x in both (as Montgomery
+    2013 draws them, Fig. 6.18).
 
     Parameters
     ----------

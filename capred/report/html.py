@@ -63,9 +63,11 @@ def option_value(value, quantity) -> tuple[str, str]:
 
 
 def _in_force(options, used: set[str]) -> list[tuple[str, object, object]]:
-    """(name, value, Quantity or None) of the options of one Options dataclass that are in force: every set
-    top-level option; of a nested one (model parameters), those a model of the run needs and those set to
-    other than their default."""
+    """(name, value, Quantity or None) of the options of one Options dataclass that are in force.
+
+    Every set top-level option; of a nested one (model parameters), those a model of the run needs and those set to
+    other than their default.
+    """
     import dataclasses
 
     from ..nomenclature import QUANTITIES
@@ -123,8 +125,10 @@ def _text(v) -> str:
 
 
 def _row_table(result, limit: int | None = None) -> tuple[str, dict, int]:
-    """(file stem, {header: the first ``limit`` values}, number of rows) of a result's per-row table, read from
-    the columns its CSV is written from (no DataFrame where the result gives plain columns)."""
+    """(file stem, {header: the first ``limit`` values}, number of rows) of a result's per-row table.
+
+    Read from the columns its CSV is written from (no DataFrame where the result gives plain columns).
+    """
     import numpy as np
 
     tables = result.csv_tables()
@@ -141,8 +145,10 @@ def _row_table(result, limit: int | None = None) -> tuple[str, dict, int]:
 
 
 def _flags(result) -> list[tuple[str, int, str]]:
-    """(flag, tests, meaning) of the per-row table's flags column, counted block by block for a long run (a
-    Spool's blocks one at a time: never the whole table in memory)."""
+    """(flag, tests, meaning) of the per-row table's flags column.
+
+    Counted block by block for a long run (a Spool's blocks one at a time: never the whole table in memory).
+    """
     tables = result.csv_tables()
     if not tables:
         return []
@@ -176,8 +182,10 @@ CELL_MM = 2.2
 
 
 def _label_columns(columns: list[str]) -> list[int]:
-    """Columns repeated in every column group of a split table: the test's identity (test_id, material, case,
-    condition) where present, else the first column."""
+    """Columns repeated in every column group of a split table.
+
+    The test's identity (test_id, material, case, condition) where present, else the first column.
+    """
     keys = [j for j, c in enumerate(columns) if c.split(" [")[0] in ("test_id", "case", "material", "condition")]
     return keys or [0]
 
@@ -262,16 +270,21 @@ def _per_row(result) -> dict:
 
 
 def _cell(value) -> str:
-    """One cell of a text or mixed column as printed: numbers as ``fmt`` prints them, a list (an interval) as
-    its numbers joined by '; ' (as in the CSV, never a Python repr), nothing for None."""
+    """One cell of a text or mixed column as printed.
+
+    Numbers as ``fmt`` prints them, a list (an interval) as its numbers joined by '; ' (as in the CSV, never a Python
+    repr), nothing for None.
+    """
     if isinstance(value, (list, tuple)):
         return "; ".join(_cell(v) for v in value)
     return fmt(value) if isinstance(value, float) else ("" if value is None else str(value))
 
 
 def _float_cells(values: np.ndarray) -> list[list[str]]:
-    """Float columns (the rows of ``values``) as printed, as ``fmt`` prints each value: 4 significant digits,
-    '—' when not finite; one format call for every value."""
+    """Float columns (the rows of ``values``) as printed, as ``fmt`` prints each value.
+
+    4 significant digits, '—' when not finite; one format call for every value.
+    """
     rows, n = values.shape
     flat = (_FLOAT_FORMAT * values.size % tuple(values.ravel().tolist())).split("\x00")
     for k in np.flatnonzero(~np.isfinite(values.ravel())).tolist():
@@ -280,8 +293,10 @@ def _float_cells(values: np.ndarray) -> list[list[str]]:
 
 
 def _escape(text: str) -> str:
-    """``markupsafe.escape(text)`` as a plain str (the same entities), at the cost of one regex search for the
-    usual cell with nothing to escape (a number as printed)."""
+    """``markupsafe.escape(text)`` as a plain str (the same entities).
+
+    At the cost of one regex search for the usual cell with nothing to escape (a number as printed).
+    """
     if _SPECIAL.search(text) is None:
         return text
     from markupsafe import escape
@@ -338,8 +353,11 @@ def _template(name: str):
 
 
 def _methods(result) -> tuple[list[str], list[str]]:
-    """Paragraphs and reference keys of the methods section: the command's (capred.reductions), the run's own
-    notes (result.method_notes()) and, for retention, each fitted model's registry method and references."""
+    """Paragraphs and reference keys of the methods section.
+
+    The command's (capred.reductions), the run's own notes (result.method_notes()) and, for retention, each fitted
+    model's registry method and references.
+    """
     from ..reductions import REDUCTIONS
 
     reduction = REDUCTIONS.get(result.command)
@@ -405,8 +423,11 @@ def render_html(result, figures: dict, plots: bool, command_line: str | None = N
 
 
 def _numbered(result, figures: dict) -> list[tuple[str, dict, int | None, str]]:
-    """(sheet, entry, figure number, heading) of each figure of the report: the drawn ones numbered in order,
-    each heading the sheet's title (it names the material of a per-material sheet) and the input it shows."""
+    """(sheet, entry, figure number, heading) of each figure of the report.
+
+    The drawn ones numbered in order, each heading the sheet's title (it names the material of a per-material sheet) and
+    the input it shows.
+    """
     names = ", ".join(i.path.replace("\\", "/").rsplit("/", 1)[-1] for i in getattr(result, "inputs", ()))
     out, number = [], 0
     for name, entry in figures.items():
@@ -455,8 +476,11 @@ def _split_spec(spec) -> dict:
 
 
 def _summary_rows(rows, left: list[bool], columns: list[int]):
-    """The rows of one column group of a summary table as HTML, each ``\n  <tr>...</tr>\n  `` (the layout the
-    template's row loop gave), cells escaped as the template escapes them."""
+    r"""The rows of one column group of a summary table as HTML.
+
+    Each row is ``\n  <tr>...</tr>\n  `` (the layout the template's row loop gave), cells escaped as the template
+    escapes them.
+    """
     from markupsafe import Markup
 
     opens = ['<td class="l">' if is_left else '<td class="">' for is_left in left]
@@ -543,8 +567,10 @@ def _season_markup(columns: list[str], texts: list[list[str]], group: list[int])
 
 
 def _season_groups(columns: list[str], texts: list[list[str]]) -> list[list[int]]:
-    """Columns of a season table packed into groups that fit A4 landscape (the input and its labels repeated
-    in each): no column is lost in print."""
+    """Columns of a season table packed into groups that fit A4 landscape: no column is lost in print.
+
+    The input and its labels are repeated in each group.
+    """
     from .render import pack_columns
 
     widths = []
@@ -558,8 +584,10 @@ def _season_groups(columns: list[str], texts: list[list[str]]) -> list[list[int]
 
 
 def render_season(frame, sections: dict | None = None, files=()) -> str:
-    """The season page of a batch: its runs (``frame``, a mapping of column name to array), one section per
-    command (``sections``: {command: its detail columns}) and the list of the batch's files.
+    """The season page of a batch.
+
+    Its runs (``frame``, a mapping of column name to array), one section per command (``sections``: {command: its detail
+    columns}) and the list of the batch's files.
 
     The page fits 1280 px and prints on A4 landscape without losing a column: wide tables are split into
     column groups that repeat the input. Rows are built here, column by column (a template loop per cell

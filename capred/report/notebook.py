@@ -1,5 +1,7 @@
-"""A result in a notebook: ``result.plot()`` shows its figures, ``result._repr_html_()`` a compact summary,
-``result.report_html()`` the full report.
+"""A result in a notebook.
+
+``result.plot()`` shows its figures, ``result._repr_html_()`` a compact summary, ``result.report_html()`` the full
+report.
 
 capred draws on ``matplotlib.figure.Figure`` (never pyplot), so no IPython formatter knows its figures unless
 one is registered: ``plot()`` registers a PNG formatter for Figure in the running IPython kernel (nothing
@@ -71,9 +73,15 @@ def figure_png(fig) -> bytes:
 
 
 def register_figure_formatter() -> bool:
-    """Let the running IPython kernel show a matplotlib Figure as PNG (what pyplot's inline backend does for
-    pyplot figures), unless a formatter for Figure is registered already; True when a kernel is running (a
-    Figure then displays as an image), False elsewhere."""
+    """Let the running IPython kernel show a matplotlib Figure as PNG.
+
+    As pyplot's inline backend does for pyplot figures, unless a formatter for Figure is registered already.
+
+    Returns
+    -------
+    bool
+        True when a kernel is running (a Figure then displays as an image), False elsewhere.
+    """
     import sys
 
     if "IPython" not in sys.modules:
@@ -162,9 +170,10 @@ def _table_html(spec) -> str:
 
 
 def repr_html(result, figure: bool = True) -> str:
-    """A compact summary of a result for Jupyter (under ``REPR_HTML_LIMIT`` bytes): title, warnings, the key
-    summary tables (the first ``NOTEBOOK_TABLES``, ``NOTEBOOK_ROWS`` rows each) and the first panel of the
-    first figure sheet as a small PNG; the full report is ``result.report_html()``.
+    """A compact summary of a result for Jupyter (under ``REPR_HTML_LIMIT`` bytes).
+
+    Title, warnings, the key summary tables (the first ``NOTEBOOK_TABLES``, ``NOTEBOOK_ROWS`` rows each) and the first
+    panel of the first figure sheet as a small PNG; the full report is ``result.report_html()``.
 
     Parameters
     ----------
@@ -178,7 +187,6 @@ def repr_html(result, figure: bool = True) -> str:
     str
         An HTML fragment.
     """
-
     parts = [f"<h4>capred {html.escape(result.command)}</h4>"]
     for w in result.all_warnings():
         parts.append(f"<p style='color:#a15c00'>warning: {html.escape(w)}</p>")

@@ -35,9 +35,12 @@ DPI_RANGE = (30, 2400)
 
 @dataclass(frozen=True)
 class FigureOptions:
-    """What to draw: figure ``formats`` (png, pdf, svg), ``dpi`` of PNGs, single ``panels`` under figures/,
-    whether report.html wants each composite (``html``), and which sheets (``figures``: "main" leaves out
-    the sheets drawn only on request, "all" draws them too)."""
+    """What to draw: figure formats, resolution, single panels and which sheets.
+
+    Figure ``formats`` (png, pdf, svg), ``dpi`` of PNGs, single ``panels`` under figures/, whether report.html wants
+    each composite (``html``), and which sheets (``figures``: "main" leaves out the sheets drawn only on request, "all"
+    draws them too).
+    """
 
     formats: tuple[str, ...] = ("png",)
     dpi: int = 300
@@ -62,9 +65,10 @@ class FigureOptions:
 
 
 def output_cells(command: str, options) -> int:
-    """Table cells a command's outputs take per input row with these options (its ``Reduction.row_cells``: the
-    columns of its per-row table, more for each model in ``options.models`` or each registered bridge law); 0
-    where it declares none.
+    """Table cells a command's outputs take per input row with these options; 0 where it declares none.
+
+    Its ``Reduction.row_cells``: the columns of its per-row table, more for each model in ``options.models`` or each
+    registered bridge law.
 
     Parameters
     ----------
@@ -95,9 +99,11 @@ def output_cells(command: str, options) -> int:
 
 
 def check_outputs_ahead(command: str, source, options, out, extra_inputs=()) -> None:
-    """Refuse, before anything is read as a table or computed, a run whose outputs a long input file would make
-    larger than the writer's bound (capred.io.writers.output_budget): its data lines x the cells its outputs take
-    per row (``Reduction.row_cells``) x about 40 bytes a cell. The writer checks the tables again once computed.
+    """Refuse a run whose outputs would exceed the writer's bound, before anything is read or computed.
+
+    A long input file's data lines x the cells its outputs take per row (``Reduction.row_cells``) x about 40 bytes a
+    cell, against the writer's bound (capred.io.writers.output_budget). The writer checks the tables again once
+    computed.
 
     Only a plain text file is counted (capred.io.check_rows_output); a workbook, a DataFrame, a command that
     declares no per-row outputs or a file too short to matter costs nothing here.
@@ -208,6 +214,8 @@ def write_outputs(
         # the store is opened and checked before any file is written; the run is recorded once its folder is
         # in place, and a store that fails then puts the earlier folder back (capred.io.writers.RunFolder.commit)
         recorder = Recorder(store) if store is not None else None
+        if recorder is not None:
+            _note_recorded_before(result, store)
         try:
             return write_run(
                 result,
@@ -221,6 +229,53 @@ def write_outputs(
         finally:
             if recorder is not None:
                 recorder.close()
+
+
+def _note_recorded_before(result, store) -> None:
+    """Add a note to ``result`` (console, JSON, report) where the store already holds its run.
+
+    The same command, inputs' SHA-256 and options are recorded once (capred.lab_store.run_key), so this run is
+    not recorded again.
+    """
+    from ..lab_store import recorded_as
+
+    run = recorded_as(store, result)
+    if run is None:
+        return
+    note = (
+        f"already recorded in {store} as run {run} (same inputs and options); not recorded again (its files "
+        "are written all the same)"
+    )
+    add_line(result, "notes", note)
+
+
+def add_line(result, kind: str, text: str) -> None:
+    """Append ``text`` to ``result``'s notes or warnings, which the console, the JSON document and report show.
+
+    The document is built again. A result that cannot take it prints it on stderr.
+
+    Parameters
+    ----------
+    result : Result
+        Any command's result.
+    kind : {"notes", "warnings"}
+        Which list.
+    text : str
+        The line.
+    """
+    lines = getattr(result, kind, None)
+    if isinstance(lines, list):
+        lines.append(text)
+    else:
+        try:
+            setattr(result, kind, [*(lines or ()), text])
+        except (AttributeError, TypeError):  # a result that cannot take it: the console still says it
+            import sys
+
+            print(f"{kind[:-1]}: {text}", file=sys.stderr)
+            return
+    for cached in ("_json_lazy", "_json_cache"):  # the document is built again with the line
+        result.__dict__.pop(cached, None)
 
 
 # --- one sheet ----------------------------------------------------------------------------------------------
@@ -248,7 +303,8 @@ def img_markup(name: str, png: bytes, width_mm: float) -> str:
 
     References
     ----------
-    RFC 2397, The "data" URL scheme, doi:10.17487/RFC2397."""
+    RFC 2397, The "data" URL scheme, doi:10.17487/RFC2397.
+    """
     import base64
     import html
 
@@ -386,8 +442,9 @@ def _write_figures(result, folder, opts: FigureOptions) -> dict:
 
 
 def on_request_entry(sheet) -> dict:
-    """report.html's entry of a sheet not drawn (drawn on request only): no picture, a caption saying how to
-    have it.
+    """report.html's entry of a sheet not drawn (drawn on request only).
+
+    No picture, a caption saying how to have it.
 
     Parameters
     ----------
@@ -401,7 +458,8 @@ def on_request_entry(sheet) -> dict:
 
     References
     ----------
-    capred's own input conventions (README, "`capred shear`: input format"); no external source."""
+    capred's own input conventions (README, "`capred shear`: input format"); no external source.
+    """
     what = getattr(sheet, "title", "") or ""
     return {
         "svg": "",
@@ -413,9 +471,11 @@ def on_request_entry(sheet) -> dict:
 
 
 def _parallel(cost: list[int]) -> bool:
-    """Two processes for several sheets with enough panels (PARALLEL_MIN_PANELS), when a second core is free
-    (`capred.io.writers.second_core_free`: on a busy shared machine the fork's extra CPU buys no time,
-    benchmarks/bench_one_path.py). CAPRED_FIGURE_PROCESSES=1 or 2 decides instead."""
+    """Two processes for several sheets with enough panels (PARALLEL_MIN_PANELS), when a second core is free.
+
+    `capred.io.writers.second_core_free`: on a busy shared machine the fork's extra CPU buys no time,
+    benchmarks/bench_one_path.py. CAPRED_FIGURE_PROCESSES=1 or 2 decides instead.
+    """
     from ..io import second_core_free
 
     if len(cost) < 2:

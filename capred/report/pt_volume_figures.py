@@ -29,8 +29,9 @@ LABEL = {
 
 
 def stage_marks(result) -> list[tuple[str, int]]:
-    """(label, point index) to annotate: points with a label of their own (A, B, C, D), else the first point
-    of every run of labels.
+    """(label, point index) to annotate.
+
+    Points with a label of their own (A, B, C, D), else the first point of every run of labels.
 
     Parameters
     ----------
@@ -47,8 +48,11 @@ def stage_marks(result) -> list[tuple[str, int]]:
 
 
 def _log_axis(ax, values) -> None:
-    """A logarithmic x axis in plain numbers: labels at 1, 2, 5 x 10^k over at most two decades of ``values``,
-    at the decades otherwise (never crowded, also in a one-column panel)."""
+    """A logarithmic x axis in plain numbers.
+
+    Labels at 1, 2, 5 x 10^k over at most two decades of ``values``, at the decades otherwise (never crowded, also in a
+    one-column panel).
+    """
     from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
 
     v = np.asarray(values, float)
@@ -79,6 +83,11 @@ def plot_e_ln_sigma(ax, result):
         The panel to draw on.
     result : capred.pipelines.pt_volume.PTVolumeResult
         A ``capred pt-volume`` run.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     pts, p = result.points, result.params
     positive = [v[np.isfinite(v) & (v > 0)] for v in (pts.sigma_W, pts.sigma_A, pts.sigma_star_W, pts.sigma_star_A)]
@@ -110,6 +119,11 @@ def plot_e_step(ax, result):
         The panel to draw on.
     result : capred.pipelines.pt_volume.PTVolumeResult
         A ``capred pt-volume`` run.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     pts = result.points
     x = result.step
@@ -138,7 +152,7 @@ def plot_e_step(ax, result):
 
 
 def plot_e_net_stress(ax, result):
-    """e of the sample against the net stress σ − u_a (log axis), as the paper's Fig. 17 compares with tests.
+    """Void ratio e of the sample against the net stress σ − u_a (log axis), as the paper's Fig. 17 compares with tests.
 
     Parameters
     ----------
@@ -146,6 +160,11 @@ def plot_e_net_stress(ax, result):
         The panel to draw on.
     result : capred.pipelines.pt_volume.PTVolumeResult
         A ``capred pt-volume`` run.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     pts = result.points
     net = pts.sigma - pts.u_a

@@ -73,8 +73,9 @@ def fmt(x, sig: int = SIGNIFICANT, sign: bool = False, scale: float | None = Non
 
 
 def magnitude(values) -> float:
-    """The largest finite magnitude among ``values`` (numbers, None and text ignored), 0 when there is none:
-    the ``scale`` of ``fmt`` for a row or a column of one quantity.
+    """The largest finite magnitude among ``values`` (numbers, None and text ignored), 0 when there is none.
+
+    The ``scale`` of ``fmt`` for a row or a column of one quantity.
 
     Parameters
     ----------
@@ -100,8 +101,9 @@ def row_table(
     left: tuple[str, ...] = ("case", "test_id", "status", "material"),
     total: int | None = None,
 ) -> TableSpec:
-    """A per-row table of at most MAX_ROWS rows, saying how many there are (``total``, when ``rows`` holds only
-    the first ones) and where the rest is.
+    """A per-row table of at most MAX_ROWS rows, saying how many there are and where the rest is.
+
+    ``total``, when ``rows`` holds only the first ones.
 
     Parameters
     ----------
@@ -175,8 +177,9 @@ def wrap_header(head: str, width: int) -> str:
 
 
 def label_columns(spec: TableSpec) -> list[int]:
-    """The row labels of a table: its leading left-aligned columns whose cells are short (at most
-    MAX_LABEL_COLUMNS columns of at most MAX_LABEL_WIDTH characters; a table may set ``label_columns`` to the
+    """The row labels of a table: its leading left-aligned columns whose cells are short.
+
+    At most MAX_LABEL_COLUMNS columns of at most MAX_LABEL_WIDTH characters (a table may set ``label_columns`` to the
     number it wants), repeated in every piece when a table is split and heading each stacked block.
 
     Parameters
@@ -235,8 +238,9 @@ def _more(spec: TableSpec) -> str:
 
 
 def column_groups(spec: TableSpec, width: int) -> list[list[int]]:
-    """Columns packed into groups that fit ``width`` characters, the row labels (``label_columns``) repeated
-    in each group; headers wrap at spaces before a column moves to the next group.
+    """Columns packed into groups that fit ``width`` characters, the row labels repeated in each group.
+
+    The row labels are ``label_columns``; headers wrap at spaces before a column moves to the next group.
 
     Parameters
     ----------
@@ -255,8 +259,10 @@ def column_groups(spec: TableSpec, width: int) -> list[list[int]]:
 
 
 def pack_columns(widths, labels: list[int], limit: float, base: float = 0.0) -> list[list[int]]:
-    """Column indices packed in order into groups whose widths (the label columns', repeated in each group,
-    included; plus ``base``) fit ``limit``; every other column is in exactly one group.
+    """Column indices packed in order into groups whose widths fit ``limit``.
+
+    The label columns' widths, repeated in each group, are included, plus ``base``; every other column is in exactly one
+    group.
 
     Parameters
     ----------
@@ -293,9 +299,9 @@ _column_groups = column_groups
 
 
 def table_width(spec: TableSpec, compact: bool = False) -> int:
-    """Characters a rich table of ``spec`` takes, its headers wrapped at their spaces (cells never wrap): with
-    borders (3 per column and 1), or ``compact`` (no border, a rule under the header, two spaces between
-    columns).
+    """Characters a rich table of ``spec`` takes, its headers wrapped at their spaces (cells never wrap).
+
+    With borders (3 per column and 1), or ``compact`` (no border, a rule under the header, two spaces between columns).
 
     Parameters
     ----------
@@ -316,8 +322,10 @@ def table_width(spec: TableSpec, compact: bool = False) -> int:
 
 
 def row_labels(spec: TableSpec) -> list[str]:
-    """The label of each row as a stacked block heads it: its label cells joined by ' · ', a blank label cell
-    taking the value of the row above (a model row under its material).
+    """The label of each row as a stacked block heads it.
+
+    Its label cells joined by ' · ', a blank label cell taking the value of the row above (a model row under its
+    material).
 
     Parameters
     ----------
@@ -346,8 +354,11 @@ def row_labels(spec: TableSpec) -> list[str]:
 
 
 def _pack(pairs: list[str], width: int, indent: str) -> list[str]:
-    """``name: value`` pairs packed into lines of at most ``width`` characters; a pair longer than a line is
-    broken at its spaces only (a number is never cut), a word longer than the line stays whole."""
+    """``name: value`` pairs packed into lines of at most ``width`` characters.
+
+    A pair longer than a line is broken at its spaces only (a number is never cut); a word longer than the line stays
+    whole.
+    """
     lines: list[str] = []
     current = ""
     for pair in pairs:
@@ -375,8 +386,11 @@ def _pack(pairs: list[str], width: int, indent: str) -> list[str]:
 
 
 def _pieces(text: str, width: int) -> list[str]:
-    """The words of ``text`` for line breaking: its '; '-separated parts kept whole where they fit ``width``
-    (a parameter with its value and error), else split at their spaces."""
+    """The words of ``text`` for line breaking.
+
+    Its '; '-separated parts kept whole where they fit ``width`` (a parameter with its value and error), else split at
+    their spaces.
+    """
     out = []
     parts = text.split("; ")
     for k, part in enumerate(parts):
@@ -386,9 +400,10 @@ def _pieces(text: str, width: int) -> list[str]:
 
 
 def stacked_blocks(spec: TableSpec, width: int) -> list[tuple[str, bool]]:
-    """A table too wide for ``width`` as text lines: its title, then per row its label line and its other
-    cells as ``name: value`` pairs packed into lines of ``width`` (cells that are empty left out). Returns
-    (line, bold) pairs; a row of ``bold_rows`` is bold.
+    """A table too wide for ``width`` as text lines.
+
+    Its title, then per row its label line and its other cells as ``name: value`` pairs packed into lines of ``width``
+    (cells that are empty left out). Returns (line, bold) pairs; a row of ``bold_rows`` is bold.
 
     Parameters
     ----------
@@ -413,9 +428,10 @@ def stacked_blocks(spec: TableSpec, width: int) -> list[tuple[str, bool]]:
 
 
 def rich_tables(spec: TableSpec, width: int) -> list:
-    """What a terminal of ``width`` columns prints for a table: one rich Table when it fits (headers wrapped
-    at spaces), with borders or else compact (no borders), else the stacked blocks (``stacked_blocks``) as one
-    rich Text.
+    """What a terminal of ``width`` columns prints for a table.
+
+    One rich Table when it fits (headers wrapped at spaces), with borders or else compact (no borders), else the stacked
+    blocks (``stacked_blocks``) as one rich Text.
 
     Parameters
     ----------

@@ -62,6 +62,11 @@ def plot_retention(ax, result):
         The panel to draw on.
     result : capred.pipelines.retention.RetentionResult
         A ``capred retention`` run.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     from matplotlib.lines import Line2D
     from matplotlib.patches import Rectangle
@@ -156,8 +161,10 @@ def plot_retention(ax, result):
 
 
 def _log_suction_axis(ax, lo: float, hi: float) -> None:
-    """A logarithmic suction axis from ``lo`` to ``hi`` [kPa] with plain-number tick labels (0.1, 1, 10; and
-    2, 5 between the decades when the axis spans less than two decades), without mathtext."""
+    """A logarithmic suction axis from ``lo`` to ``hi`` [kPa] with plain-number tick labels.
+
+    0.1, 1, 10; and 2, 5 between the decades when the axis spans less than two decades; without mathtext.
+    """
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
     ax.set_xscale("log")
@@ -168,8 +175,11 @@ def _log_suction_axis(ax, lo: float, hi: float) -> None:
 
 
 def _curve_style(model: str, legend: bool = False) -> dict:
-    """Line style and marker of a retention model's curve: its registry entry's, else the next free pair of
-    RETENTION_STYLES (markers every 60 of 300 grid points on the curve, offset per model; one in the legend)."""
+    """Line style and marker of a retention model's curve.
+
+    Its registry entry's, else the next free pair of RETENTION_STYLES (markers every 60 of 300 grid points on the curve,
+    offset per model; one in the legend).
+    """
     st = MODELS[model].style if model in MODELS else RETENTION_STYLES[hash(model) % len(RETENTION_STYLES)]
     out = {"ls": st.get("ls", "-")}
     if st.get("marker"):
@@ -197,8 +207,10 @@ RETENTION_STYLES = [
 
 
 def sheet_retention(result) -> Sheet:
-    """One panel, two columns wide; its height grows with the legend (each model's name and equation, two
-    lines, two entries a row, below the axes), so that the axes keep their height however many models.
+    """One panel, two columns wide, whose height grows with the legend.
+
+    The legend shows each model's name and equation, two lines, two entries a row, below the axes, so that the axes keep
+    their height however many models.
 
     Parameters
     ----------
@@ -239,6 +251,11 @@ def plot_conversion(ax, result):
         The panel to draw on.
     result : capred.pipelines.retention_convert.RetentionConvertResult
         A ``capred retention-convert`` run.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     src, new = result.source_fit, result.converted
     lo, hi = src.suction_range
@@ -284,6 +301,11 @@ def plot_conversion_misfit(ax, result):
         The panel to draw on.
     result : capred.pipelines.retention_convert.RetentionConvertResult
         A ``capred retention-convert`` run.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     src, new = result.source_fit, result.converted
     lo, hi = src.suction_range

@@ -55,8 +55,10 @@ def model_table(branch: str, records, how: str) -> TableSpec:
 
 
 def parameter_table(title: str, records) -> TableSpec:
-    """Parameters of fits in long form: a bold row naming the model, then one row per parameter with its value,
-    ± standard error, 95 % interval and unit (narrow enough for an 80-column terminal).
+    """Parameters of fits in long form.
+
+    A bold row naming the model, then one row per parameter with its value, ± standard error, 95 % interval and unit
+    (narrow enough for an 80-column terminal).
 
     Parameters
     ----------

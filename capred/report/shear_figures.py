@@ -75,6 +75,11 @@ def plot_dry_envelope(ax, result, material):
         A ``capred shear`` run.
     material : str
         The material drawn.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     t = result.tests
     fit = result.fits[material].line
@@ -140,6 +145,11 @@ def plot_measured_vs_predicted(ax, result, material):
         A ``capred shear`` run.
     material : str
         The material drawn.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     t = result.tests
     keep, shown = thin(np.flatnonzero(_wet(result, material)))
@@ -177,16 +187,20 @@ def plot_measured_vs_predicted(ax, result, material):
 
 
 def _levels(sigma_N):
-    """The normal-stress levels of the wet tests (rounded to 1e-6 Pa) with their test counts, most tests first,
-    at most MAX_LEVELS of them, in increasing order."""
+    """The normal-stress levels of the wet tests (rounded to 1e-6 Pa) with their test counts.
+
+    Most tests first, at most MAX_LEVELS of them, in increasing order.
+    """
     levels, counts = np.unique(np.round(sigma_N, 6), return_counts=True)
     top = np.sort(levels[np.argsort(-counts, kind="stable")[:MAX_LEVELS]])
     return top, levels.size
 
 
 def plot_strength_vs_saturation(ax, result, material):
-    """Measured τ against S_R at each normal stress, with each model's strength along the water-retention
-    relation (one line style per normal stress) or, without a relation, each model's prediction per test.
+    """Measured τ against S_R at each normal stress, with each model's strength.
+
+    Each model's strength along the water-retention relation (one line style per normal stress) or, without a relation,
+    each model's prediction per test.
 
     Colour and marker say which model, line style and marker of the black measured points which normal
     stress; the legend lists both.
@@ -199,6 +213,11 @@ def plot_strength_vs_saturation(ax, result, material):
         A ``capred shear`` run.
     material : str
         The material drawn.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     from matplotlib.lines import Line2D
 
@@ -308,6 +327,11 @@ def plot_residuals(ax, result, material):
         A ``capred shear`` run.
     material : str
         The material drawn.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     t = result.tests
     keep, shown = thin(np.flatnonzero(_wet(result, material)))
@@ -405,8 +429,9 @@ def sheet_shear_report(result, material) -> Sheet:
 
 
 def plot_capillary_stress(ax, result, material, x: str):
-    """Back-analysed capillary stress of the wet tests (error bars: standard uncertainty) against S_R or
-    suction, with each model's predicted capillary stress per test.
+    """Back-analysed capillary stress of the wet tests against S_R or suction.
+
+    Error bars: standard uncertainty; with each model's predicted capillary stress per test.
 
     Parameters
     ----------
@@ -418,6 +443,11 @@ def plot_capillary_stress(ax, result, material, x: str):
         The material drawn.
     x : {"S_R", "suction"}
         The abscissa: degree of saturation [-] or suction (drawn in kPa).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     t = result.tests
     keep, shown = thin(np.flatnonzero(_wet(result, material)))
@@ -458,8 +488,9 @@ def plot_capillary_stress(ax, result, material, x: str):
 
 
 def plot_chi_back(ax, result, material):
-    """χ_back = σ_cap/Δu of the wet tests against S_R, with the χ(S_R) of every model of the run that has one
-    (Bishop's S_R, Own 1's χ1, a fitted S_e^κ ...).
+    """χ_back = σ_cap/Δu of the wet tests against S_R, with each model's χ(S_R).
+
+    Every model of the run that has one: Bishop's S_R, Own 1's χ1, a fitted S_e^κ ...
 
     Parameters
     ----------
@@ -469,6 +500,11 @@ def plot_chi_back(ax, result, material):
         A ``capred shear`` run.
     material : str
         The material drawn.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     t = result.tests
     keep, shown = thin(np.flatnonzero(_wet(result, material) & (t["suction"] > 0)))
@@ -508,8 +544,9 @@ def plot_chi_back(ax, result, material):
 
 
 def sheet_capillary_stress(result, material) -> Sheet:
-    """What capillary stress each wet test carried and which χ law explains it: 3 panels, drawn on request
-    (``figures="all"``).
+    """What capillary stress each wet test carried and which χ law explains it.
+
+    Three panels, drawn on request (``figures="all"``).
 
     Parameters
     ----------
@@ -591,8 +628,9 @@ def has_vertical(result) -> bool:
 
 
 def plot_curves(ax, result, material, condition: str):
-    """The raw shear curves of one material's dry or wet tests (τ against horizontal displacement), each test
-    in its own colour, line style and marker; the marker sits on the picked peak.
+    """The raw shear curves (τ against horizontal displacement) of one material's dry or wet tests.
+
+    Each test in its own colour, line style and marker; the marker sits on the picked peak.
 
     Parameters
     ----------
@@ -604,6 +642,11 @@ def plot_curves(ax, result, material, condition: str):
         The material drawn.
     condition : {"dry", "wet"}
         Which tests.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     t = result.tests
     _, keep, shown = _curve_tests(result, material, condition)
@@ -632,8 +675,9 @@ def plot_curves(ax, result, material, condition: str):
 
 
 def plot_vertical_displacement(ax, result, material, condition: str):
-    """Vertical against horizontal displacement of one material's dry or wet tests (positive: dilation), in
-    the tests' styles of ``plot_curves``; the marker is at the peak of shear stress.
+    """Vertical against horizontal displacement of one material's dry or wet tests (positive: dilation).
+
+    In the tests' styles of ``plot_curves``; the marker is at the peak of shear stress.
 
     Parameters
     ----------
@@ -645,6 +689,11 @@ def plot_vertical_displacement(ax, result, material, condition: str):
         The material drawn.
     condition : {"dry", "wet"}
         Which tests.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     t = result.tests
     _, keep, shown = _curve_tests(result, material, condition)
@@ -687,6 +736,11 @@ def plot_dilatancy(ax, result, material):
         A ``capred shear`` run.
     material : str
         The material drawn.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     t = result.tests
     psi = t.get("dilatancy_angle")
@@ -713,8 +767,10 @@ def plot_dilatancy(ax, result, material):
 
 
 def sheet_curves(result, material) -> Sheet:
-    """Raw curves of one material, dry and wet tests apart: τ-δ and, when vertical displacements are given,
-    δ_v-δ of the same tests in the same styles and the dilatancy angle at the peak.
+    """Raw curves of one material, dry and wet tests apart.
+
+    τ-δ and, when vertical displacements are given, δ_v-δ of the same tests in the same styles and the dilatancy angle
+    at the peak.
 
     Parameters
     ----------

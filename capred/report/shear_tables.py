@@ -36,8 +36,10 @@ def _outlier_labels(line) -> list[str]:
 
 
 def shear_tables(result) -> list[TableSpec]:
-    """Dry fits; model metrics on all wet tests and on the pendular ones; how sure the ranking is;
-    model selection; the back-analysed capillary stress of the wet tests.
+    """The console tables of a ``capred shear`` run.
+
+    Dry fits; model metrics on all wet tests and on the pendular ones; how sure the ranking is; model selection; the
+    back-analysed capillary stress of the wet tests.
 
     Every value comes from the run's typed records, in the units of the JSON: the envelopes'
     ``fit.params`` (``c_kPa``, ``phi_deg``, ``tan_phi``), the ``ModelMetrics`` (``rmse_kPa``, ``bias_kPa``), the
@@ -204,8 +206,10 @@ def _wet_rows(result, limit: int = MAX_ROWS):
 
 
 def _difference_text(diff, kpa: float) -> str:
-    """The ΔRMSE interval [kPa] at its printed resolution (`difference_resolution`: the adaptive bootstrap
-    stops once the Monte-Carlo error of each end is below it)."""
+    """The ΔRMSE interval [kPa] at its printed resolution.
+
+    `difference_resolution`: the adaptive bootstrap stops once the Monte-Carlo error of each end is below it.
+    """
     import math
 
     from ..fitting.comparison import difference_resolution

@@ -94,10 +94,13 @@ class Panel:
 
 @dataclass
 class Sheet:
-    """Panels shown together: ``columns`` per row at most (wrapped to two, the width of a page), a panel
-    named in ``spans`` with 2 takes a whole row at two-column width; ``panel_size`` gives the panels'
-    aspect (height / width of its two numbers); an ``on_request`` sheet is written only when every sheet
-    is asked for (``write_outputs(..., figures="all")``, ``--figures all``)."""
+    """Panels shown together on one figure.
+
+    ``columns`` per row at most (wrapped to two, the width of a page), a panel named in ``spans`` with 2 takes a whole
+    row at two-column width; ``panel_size`` gives the panels' aspect (height / width of its two numbers); an
+    ``on_request`` sheet is written only when every sheet is asked for (``write_outputs(..., figures="all")``,
+    ``--figures all``).
+    """
 
     title: str
     panels: list[Panel]
@@ -132,9 +135,10 @@ def journal_style(salt: str | None = None):
 
 # --- geometry -----------------------------------------------------------------------------------------------
 def panel_size_mm(sheet: Sheet, panel: Panel) -> tuple[float, float]:
-    """Printed size of a panel [mm]: one column (85 mm) wide, or the page width (180 mm) when the sheet spans
-    it over two columns; its height from the sheet's aspect, plus any room its legend needs below the axes
-    (``Sheet.legend_room``).
+    """Printed size of a panel [mm].
+
+    One column (85 mm) wide, or the page width (180 mm) when the sheet spans it over two columns; its height from the
+    sheet's aspect, plus any room its legend needs below the axes (``Sheet.legend_room``).
 
     Parameters
     ----------
@@ -167,8 +171,10 @@ class Slot:
 
 
 def sheet_layout(sheet: Sheet) -> tuple[list[Slot], float, float]:
-    """Slots of the panels and the sheet's (width, height) [mm]: rows of at most two one-column panels
-    (``min(columns, 2)``), a spanned panel alone in its row, the title band on top.
+    """Slots of the panels and the sheet's (width, height) [mm].
+
+    Rows of at most two one-column panels (``min(columns, 2)``), a spanned panel alone in its row, the title band on
+    top.
 
     Parameters
     ----------
@@ -395,10 +401,12 @@ def _frozen(value):
 
 
 def _forget_fonts_after_fork() -> None:
-    """In a forked child: drop the shared mathtext parser and every cached parse. A parse keeps the font
-    objects its glyphs are drawn from, and font objects opened before the fork read their files through
-    offsets the parent shares (FreeType then fails: "too many hints", "invalid outline"); matplotlib forgets
-    its own font cache at a fork, this forgets the parses, so the child opens fonts of its own."""
+    """In a forked child: drop the shared mathtext parser and every cached parse.
+
+    A parse keeps the font objects its glyphs are drawn from, and font objects opened before the fork read their files
+    through offsets the parent shares (FreeType then fails: "too many hints", "invalid outline"); matplotlib forgets its
+    own font cache at a fork, this forgets the parses, so the child opens fonts of its own.
+    """
     import sys
 
     _MATHTEXT.clear()
@@ -417,10 +425,10 @@ if hasattr(os, "register_at_fork"):
 
 
 def _canvas(fig):
-    """Give ``fig`` an Agg canvas: layout and drawing then share one renderer and its text-size cache.
+    r"""Give ``fig`` an Agg canvas: layout and drawing then share one renderer and its text-size cache.
 
     Every such renderer also shares one mathtext parser, whose cache keeps each parsed label (a label such
-    as ``$\\tau_{max}$ [kPa]`` costs 10-50 ms to parse): a label repeated in another panel or sheet at the
+    as ``$\tau_{max}$ [kPa]`` costs 10-50 ms to parse): a label repeated in another panel or sheet at the
     same size and dpi is parsed once. Figures of one size share one renderer (``_RENDERERS``): its pixel
     buffer is allocated once and its text-size cache (tick labels, legend entries, titles) serves every
     sheet of a run and every file of a batch. A draw clears the buffer first, and ``raster`` copies it.
@@ -489,10 +497,13 @@ def _font_heights(dpi: float):
 
 @contextmanager
 def _ticks_once(axes):
-    """While the block runs, each axis of ``axes`` places and labels its ticks once per state (its view interval,
-    its axes' box, its locator and formatter): matplotlib asks again for the tick labels' extents, the axis
-    label's place and each spine's extent (four to eight times per axis and draw), each time recomputing the
-    same tick positions and label texts. The same state gives the same ticks, so the first answer is kept."""
+    """Make each axis of ``axes`` place and label its ticks once per state while the block runs.
+
+    A state is the axis's view interval, its axes' box, its locator and formatter: matplotlib asks again for the tick
+    labels' extents, the axis label's place and each spine's extent (four to eight times per axis and draw), each time
+    recomputing the same tick positions and label texts. The same state gives the same ticks, so the first answer is
+    kept.
+    """
     patched = []
     for ax in axes:
         for axis in (ax.xaxis, ax.yaxis):
@@ -526,9 +537,11 @@ def _ticks_once(axes):
 
 
 def _draw_panel(panel, ax):
-    """``panel.draw(ax)`` with its ``ax.legend(...)`` call recorded instead of run: the legend is then built
-    once, where ``_dress`` puts it, not also where the panel asked. Returns (handles, labels) the panel gave
-    (None, None: the axes' labelled artists)."""
+    """``panel.draw(ax)`` with its ``ax.legend(...)`` call recorded instead of run.
+
+    The legend is then built once, where ``_dress`` puts it, not also where the panel asked. Returns (handles, labels)
+    the panel gave (None, None: the axes' labelled artists).
+    """
     asked = {}
 
     def legend(*args, **kwargs):
@@ -561,9 +574,10 @@ def _below(size, width_px: float, height_px: float | None) -> bool:
 
 
 def _dress(ax, width_px: float, renderer, height_px: float | None = None, handles=None, labels=None) -> float:
-    """Put the axes' legend outside its data: beside the axes (``style.legend_outside``), or, when that
-    would take more than ``LEGEND_SIDE_MAX`` of the panel's width, below the x-axis label, in as many
-    columns as the panel's width holds (rows balanced).
+    """Put the axes' legend outside its data.
+
+    Beside the axes (``style.legend_outside``), or, when that would take more than ``LEGEND_SIDE_MAX`` of the panel's
+    width, below the x-axis label, in as many columns as the panel's width holds (rows balanced).
 
     Returns the height [px] the legend below needs beyond ``LEGEND_BELOW_MAX`` of ``height_px`` (the
     panel's height; 0 when it fits or is beside the axes): the room to add to the panel so that the
@@ -622,8 +636,11 @@ def _dress(ax, width_px: float, renderer, height_px: float | None = None, handle
 
 
 def _below_axis_pt(ax) -> float:
-    """Height of what hangs below an axes' bottom spine [pt]: ticks, tick labels, the axis label (mathtext
-    with sub- or superscripts included), plus a 2 pt gap; from the settings, without laying out any text."""
+    """Height of what hangs below an axes' bottom spine [pt].
+
+    Ticks, tick labels, the axis label (mathtext with sub- or superscripts included), plus a 2 pt gap; from the
+    settings, without laying out any text.
+    """
     import matplotlib as mpl
 
     rc = mpl.rcParams
@@ -637,8 +654,10 @@ def _below_axis_pt(ax) -> float:
 
 
 def _fit(fig, renderer, pad_mm: float = PAD_MM, axes=None, region=None) -> None:
-    """Fixed layout in one pass: move and scale a panel's axes (with any colour bar or twin, as a group) so
-    that everything drawn around them (tick labels, axis labels, title, legend) just fits its region.
+    """Fixed layout in one pass.
+
+    Move and scale a panel's axes (with any colour bar or twin, as a group) so that everything drawn around them (tick
+    labels, axis labels, title, legend) just fits its region.
 
     ``axes``: the group (default: every axes of the figure); ``region``: (x0, y0, x1, y1) of the room it
     has [figure pixels, from the lower left corner] (default: the whole figure).
@@ -683,7 +702,8 @@ def freeze_layout(fig) -> None:
 
     References
     ----------
-    Matplotlib layout engines, https://matplotlib.org/stable/api/layout_engine_api.html."""
+    Matplotlib layout engines, https://matplotlib.org/stable/api/layout_engine_api.html.
+    """
     engine = fig.get_layout_engine()
     if engine is not None:
         engine.execute(fig)
@@ -749,8 +769,10 @@ def single(sheet: Sheet, panel: Panel, dpi: float = 300.0):
 
 
 def warm_up(dpi: float = 300.0) -> None:
-    """Draw a tiny panel (title, mathtext labels, ticks, legend, markers) so that fonts, glyph caches and
-    the mathtext parser are loaded: a process forked afterwards inherits them instead of loading its own.
+    """Draw a tiny panel so that fonts, glyph caches and the mathtext parser are loaded.
+
+    The panel has a title, mathtext labels, ticks, a legend and markers: a process forked afterwards inherits what it
+    loaded instead of loading its own.
 
     Parameters
     ----------
@@ -951,8 +973,10 @@ def _later(*args, **kwargs) -> None:
 
 
 def release(fig) -> None:
-    """Hand a sheet's figure back once its files are written: the next sheet of the same shape drawn with
-    ``sheet_figure(..., reuse=True)`` is drawn on it (its axes cleared, their ticks kept: ``_clear``).
+    """Hand a sheet's figure back once its files are written.
+
+    The next sheet of the same shape drawn with ``sheet_figure(..., reuse=True)`` is drawn on it (its axes cleared,
+    their ticks kept: ``_clear``).
 
     Only a figure whose panels kept the axes as a new figure has them is kept (one axes per panel, linear
     scales, the default tick settings, no figure legend or other text than the title); else nothing happens.
@@ -1001,8 +1025,10 @@ def _template(key, figsize, dpi):
 
 
 def sheet_figure(sheet: Sheet, dpi: float = 300.0, reuse: bool = False):
-    """A whole sheet drawn on one figure: the title band on top, each panel in its slot (``sheet_layout``),
-    every panel's axes fitted to its slot in one pass (``_fit``), the layout then final.
+    """A whole sheet drawn on one figure.
+
+    The title band on top, each panel in its slot (``sheet_layout``), every panel's axes fitted to its slot in one pass
+    (``_fit``), the layout then final.
 
     The panels share one renderer, so a text seen in several panels (axis labels, tick labels, legend
     entries) is measured once; the figure is drawn once whatever is saved from it (PNG, PDF, SVG); a

@@ -1,5 +1,7 @@
-"""The one look of capred's figures: colour-blind-safe colours and markers per model, axis labels with
-symbols and units, user text drawn literally, and legends placed where they never cover data.
+"""The one look of capred's figures.
+
+Colour-blind-safe colours and markers per model, axis labels with symbols and units, user text drawn literally, and
+legends placed where they never cover data.
 
 Colours are the Okabe & Ito (2008) palette; every model keeps its colour and
 marker in every figure of every command (``style(name)``: effective-stress
@@ -113,8 +115,9 @@ SINGLE_PANEL_SIZE = (3.5, 2.8)
 
 
 def literal(text) -> str:
-    """User text (a material name, a test id) as drawn: '$' escaped, so no mathtext is read into it; control and
-    bidi characters shown (capred.text_safety.visible).
+    """User text (a material name, a test id) as drawn.
+
+    '$' is escaped, so no mathtext is read into it; control and bidi characters are shown (capred.text_safety.visible).
 
     Parameters
     ----------
@@ -268,7 +271,7 @@ def tex(text: str) -> str:
 
 
 def symbol(name: str) -> str:
-    """A parameter name (``kappa``, ``s_b``, ``alpha1``) as mathtext (``$\\kappa$``, ``$s_{b}$``, ``$\\alpha_1$``).
+    r"""A parameter name (``kappa``, ``s_b``, ``alpha1``) as mathtext (``$\kappa$``, ``$s_{b}$``, ``$\alpha_1$``).
 
     Parameters
     ----------
@@ -290,9 +293,10 @@ def symbol(name: str) -> str:
 
 
 def thin(index, limit: int = MAX_MARKERS, seed: int = THIN_SEED):
-    """At most ``limit`` of the row indices ``index`` (a random sample without replacement, in order), and a
-    note saying so ("" when all are kept). Figures of large tables draw this sample so that their cost does
-    not grow with the number of tests; statistics in legends and tables use every test.
+    """At most ``limit`` of the row indices ``index``, and a note saying so.
+
+    A random sample without replacement, in order; the note is "" when all are kept. Figures of large tables draw this
+    sample so that their cost does not grow with the number of tests; statistics in legends and tables use every test.
 
     Parameters
     ----------
@@ -326,6 +330,11 @@ def pendular_band(ax, limit: float):
         An axes whose x axis is S_R [-].
     limit : float
         The pendular limit [-] (``ShearOptions.pendular_limit``).
+
+    Returns
+    -------
+    matplotlib.patches.Rectangle
+        The shaded band (``ax.axvspan``'s artist).
     """
     return ax.axvspan(0.0, limit, label=rf"pendular, $S_R \leq$ {limit:g}", **PENDULAR_STYLE)
 
@@ -390,8 +399,10 @@ def legend_outside(ax, ncol: int = 1, handles=None, labels=None) -> None:
 
 
 def untitled(draw):
-    """A panel's draw function without its axes title: for a sheet of one panel, whose figure title (and the
-    report's caption) already names it, so that no figure carries two titles.
+    """A panel's draw function without its axes title.
+
+    For a sheet of one panel, whose figure title (and the report's caption) already names it, so that no figure carries
+    two titles.
 
     Parameters
     ----------

@@ -33,6 +33,11 @@ def plot_qp_plane(ax, result):
         The panel to draw on.
     result : capred.pipelines.triaxial.TriaxialResult
         A ``capred triaxial`` run.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     t = result.states  # kPa
     env = result.envelope
@@ -132,6 +137,11 @@ def plot_capillary_ranges(ax, result):
         The panel to draw on.
     result : capred.pipelines.triaxial.TriaxialResult
         A ``capred triaxial`` run.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     from matplotlib.patches import Patch
 
@@ -180,6 +190,11 @@ def plot_mohr_circles(ax, result):
         The panel to draw on.
     result : capred.pipelines.triaxial.TriaxialResult
         A ``capred triaxial`` run.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     t = result.states  # kPa
     env = result.envelope
@@ -220,8 +235,9 @@ def plot_mohr_circles(ax, result):
 
 
 def plot_group_circles(ax, result):
-    """Each group's unsaturated Mohr circles (solid), fictive circles sigma'' (dashed, eq. 44) and the lines of
-    cohesion C and C'' at the effective friction angle (eq. 43, 48).
+    """Each group's unsaturated Mohr circles (solid) and fictive circles sigma'' (dashed, eq. 44).
+
+    With the lines of cohesion C and C'' at the effective friction angle (eq. 43, 48).
 
     Parameters
     ----------
@@ -229,6 +245,11 @@ def plot_group_circles(ax, result):
         The panel to draw on.
     result : capred.pipelines.triaxial.TriaxialResult
         A ``capred triaxial`` run.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     t = result.states  # kPa
     env = result.envelope
@@ -274,9 +295,10 @@ def plot_group_circles(ax, result):
 
 
 def plot_group_tensors(ax, result):
-    """sigma1_cap, sigma2_cap, sigma3_cap of each group: eq. 48 or 50 with standard errors, or, for a group
-    without paired saturated tests, the admissible range of each component between the closures (eq. 37)
-    with the chosen closure marked.
+    """sigma1_cap, sigma2_cap, sigma3_cap of each group.
+
+    Eq. 48 or 50 with standard errors, or, for a group without paired saturated tests, the admissible range of each
+    component between the closures (eq. 37) with the chosen closure marked.
 
     Parameters
     ----------
@@ -284,6 +306,11 @@ def plot_group_tensors(ax, result):
         The panel to draw on.
     result : capred.pipelines.triaxial.TriaxialResult
         A ``capred triaxial`` run.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
@@ -356,8 +383,9 @@ def _curve_label(result, i: int) -> str:
 
 
 def plot_q_axial_strain(ax, result):
-    """Deviator q against axial strain ε1 of every curve, its picked peak marked (after Prunier et al. 2024,
-    Fig. 10 and 15): saturated tests dashed, unsaturated solid.
+    """Deviator q against axial strain ε1 of every curve, its picked peak marked.
+
+    After Prunier et al. 2024, Fig. 10 and 15: saturated tests dashed, unsaturated solid.
 
     Parameters
     ----------
@@ -365,6 +393,11 @@ def plot_q_axial_strain(ax, result):
         The panel to draw on.
     result : capred.pipelines.triaxial.TriaxialResult
         A ``capred triaxial`` run.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     for k, (i, c) in enumerate(_curves_in_order(result)):
         colour, marker = CURVE_COLOURS[k % len(CURVE_COLOURS)], CURVE_MARKERS[k % len(CURVE_MARKERS)]
@@ -381,8 +414,9 @@ def plot_q_axial_strain(ax, result):
 
 
 def plot_volumetric_strain(ax, result):
-    """Volumetric strain εv against axial strain ε1 of every curve (compression positive; the paper plots
-    contraction up), the reading at the picked peak marked (after Prunier et al. 2024, Fig. 10 and 15).
+    """Volumetric strain εv against axial strain ε1 of every curve, the reading at the picked peak marked.
+
+    Compression positive (the paper plots contraction up); after Prunier et al. 2024, Fig. 10 and 15.
 
     Parameters
     ----------
@@ -390,6 +424,11 @@ def plot_volumetric_strain(ax, result):
         The panel to draw on.
     result : capred.pipelines.triaxial.TriaxialResult
         A ``capred triaxial`` run.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``, drawn on.
     """
     drawn = False
     for k, (i, c) in enumerate(_curves_in_order(result)):
@@ -417,8 +456,10 @@ def plot_volumetric_strain(ax, result):
 
 
 def sheet_triaxial(result) -> Sheet:
-    """The sheet of ``capred triaxial``: q-p plane, capillary stresses, Mohr circles; the groups' circles and tensors
-    when a group's tensor is determined or bounded; the q-ε1 and εv-ε1 curves when it has curves (after Prunier et al. 2024, Fig. 10, 15-21).
+    """The sheet of ``capred triaxial``: q-p plane, capillary stresses, Mohr circles.
+
+    The groups' circles and tensors when a group's tensor is determined or bounded; the q-ε1 and εv-ε1 curves when it
+    has curves (after Prunier et al. 2024, Fig. 10, 15-21).
 
     Parameters
     ----------

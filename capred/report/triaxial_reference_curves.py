@@ -43,8 +43,10 @@ def _label(result, i: int) -> str:
 
 
 def plot_reference_q(ax, result):
-    """Deviator q against axial strain ε1 of the curves not used for failure: each curve's peak (marker) and the
-    table's q_f (a horizontal bar at the peak's strain) compared (after Prunier et al. 2024, Fig. 10 and 15).
+    """Deviator q against axial strain ε1 of the curves not used for failure.
+
+    Each curve's peak (marker) and the table's q_f (a horizontal bar at the peak's strain) compared (after Prunier et
+    al. 2024, Fig. 10 and 15).
 
     Parameters
     ----------
@@ -80,8 +82,9 @@ def plot_reference_q(ax, result):
 
 
 def plot_reference_volumetric(ax, result):
-    """Volumetric strain εv against axial strain ε1 of the curves not used for failure (compression positive), the
-    reading at the curve's peak marked (after Prunier et al. 2024, Fig. 10 and 15).
+    """Volumetric strain εv against axial strain ε1 of the curves not used for failure.
+
+    Compression positive, the reading at the curve's peak marked (after Prunier et al. 2024, Fig. 10 and 15).
 
     Parameters
     ----------

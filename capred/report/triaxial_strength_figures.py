@@ -1,5 +1,7 @@
-"""Figures and console tables of `capred triaxial`: per material, the failure states on the extended envelope
-and every model's predicted against measured q_f."""
+"""Figures and console tables of `capred triaxial`.
+
+Per material, the failure states on the extended envelope and every model's predicted against measured q_f.
+"""
 
 from __future__ import annotations
 
@@ -19,9 +21,11 @@ MAX_SUCTION_CLASSES = 6
 
 
 def suction_classes(s) -> list[tuple[np.ndarray, float, str]]:
-    """The tests grouped by suction for drawing: one group per suction when there are at most
-    `MAX_SUCTION_CLASSES` of them (a lab's controlled suctions), else that many ranges of equal counts (a lab's
-    measured, scattered suctions), each drawn with the envelope at its median suction.
+    """The tests grouped by suction for drawing.
+
+    One group per suction when there are at most `MAX_SUCTION_CLASSES` of them (a lab's controlled suctions), else that
+    many ranges of equal counts (a lab's measured, scattered suctions), each drawn with the envelope at its median
+    suction.
 
     Parameters
     ----------
@@ -48,8 +52,9 @@ def suction_classes(s) -> list[tuple[np.ndarray, float, str]]:
 
 
 def plot_failure_states(ax, result, material: str):
-    """q_f against the net cell pressure, by suction (`suction_classes`), with the extended envelope at each
-    suction class and at s -> 0.
+    """q_f against the net cell pressure, by suction (`suction_classes`).
+
+    With the extended envelope at each suction class and at s -> 0.
 
     Parameters
     ----------
@@ -114,7 +119,19 @@ def plot_predicted_measured(ax, result, material: str):
 
 
 def triaxial_strength_figures(result) -> dict:
-    """One sheet per material: {``report_<material>``: Sheet}."""
+    """The report's figure sheets of a ``capred triaxial`` run, one per material.
+
+    Parameters
+    ----------
+    result : capred.pipelines.triaxial_strength_records.TriaxialStrengthResult
+        The run.
+
+    Returns
+    -------
+    dict of str to Sheet
+        ``{"report_<material>": Sheet}``: the failure states with the extended Mohr-Coulomb envelope, and the
+        q_f each effective-stress model predicts against the measured one.
+    """
     taken: set[str] = set()
     out = {}
     for m in result.materials:
@@ -140,7 +157,18 @@ def triaxial_strength_figures(result) -> dict:
 
 
 def triaxial_strength_tables(result) -> list:
-    """Console tables: per material the extended Mohr-Coulomb fit and the envelope; the model comparison."""
+    """The console tables of a ``capred triaxial`` run.
+
+    Parameters
+    ----------
+    result : capred.pipelines.triaxial_strength_records.TriaxialStrengthResult
+        The run.
+
+    Returns
+    -------
+    list of capred.result.TableSpec
+        Per material the extended Mohr-Coulomb fit and its envelope, then the comparison of the models.
+    """
     mats = result.material_rows()
     keys = [
         "material",

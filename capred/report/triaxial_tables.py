@@ -14,8 +14,11 @@ _BRANCH = {"compression": "comp.", "extension": "ext.", "general": "true tx."}
 
 
 def _pm(value, se, scale: float | None = None) -> str:
-    """'value ± se' (se omitted when unknown; the value and the se 0 when 0 within rounding of ``scale``: an exact
-    fit's standard error of 4.6e-14 kPa beside -10 kPa is rounding, printed 0)."""
+    """'value ± se', se omitted when unknown.
+
+    The value and the se are 0 when 0 within rounding of ``scale``: an exact fit's standard error of 4.6e-14 kPa beside
+    -10 kPa is rounding, printed 0.
+    """
     if value is None:
         return "—"
     return fmt(value, scale=scale) if se is None else f"{fmt(value, scale=scale)} ± {fmt(se, 2, scale=scale)}"

@@ -1,5 +1,7 @@
-"""The liquid-bridge commands: what `capred bridge solve`, `compare`, `rupture` and `laws` read and the options
-of every `capred bridge` command (``BridgeOptions``, ``CurveOptions``, ``YadeOptions``, ``LawsOptions``).
+"""The liquid-bridge commands: what they read and the options of every `capred bridge` command.
+
+What `capred bridge solve`, `compare`, `rupture` and `laws` read, and ``BridgeOptions``, ``CurveOptions``,
+``YadeOptions``, ``LawsOptions``.
 
 Numpy-free (see :mod:`capred.spec`). The law registry is capred.spec.bridge_laws.
 """
@@ -120,9 +122,12 @@ COMPARE_SCHEMA = SOLVE_SCHEMA
 @renamed_keywords(sr_max="S_R_max")
 @dataclass(frozen=True)
 class CurveOptions(StableJsonKeys, Options):
-    """Options of `capred bridge curve`: radius R [m], surface tension [N/m] (or strings with units),
-    contact angle [deg], number of S_R values, largest S_R (``S_R_max``; the keyword ``sr_max`` still works
-    with a DeprecationWarning, and the JSON keeps the key ``sr_max``), pendular limit."""
+    """Options of `capred bridge curve`.
+
+    Radius R [m], surface tension [N/m] (or strings with units), contact angle [deg], number of S_R values, largest S_R
+    (``S_R_max``; the keyword ``sr_max`` still works with a DeprecationWarning, and the JSON keeps the key ``sr_max``),
+    pendular limit.
+    """
 
     QUANTITIES = {
         "radius": "R",
@@ -150,8 +155,10 @@ DEFAULT_RATIOS = (1.0, 1.1, 1.25, 1.5, 1.75, 2.0, 3.0, 4.0, 5.0, 10.0)
 
 @dataclass(frozen=True)
 class YadeOptions(Options):
-    """Options of `capred bridge yade-files`: radius ratios R2/R1 >= 1, contact angle [deg], number of
-    distances and of suctions per file."""
+    """Options of `capred bridge yade-files`.
+
+    Radius ratios R2/R1 >= 1, contact angle [deg], number of distances and of suctions per file.
+    """
 
     QUANTITIES = {"contact_angle": "contact_angle"}  # the glossary's range: [0, 90) deg
     CONSTRAINTS = {"distances": Whole(min=2), "suctions": Whole(min=3)}

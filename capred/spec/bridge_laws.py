@@ -1,5 +1,6 @@
-"""The closed-form capillary-force laws of `capred bridge laws` and `capred bridge compare`: one registry,
-declared without numerics.
+"""The closed-form capillary-force laws of `capred bridge laws` and `capred bridge compare`.
+
+One registry, declared without numerics.
 
 Each law is one entry of :data:`LAWS`: its name, label, paper, equation, validity and the geometries it applies
 to, with its force function named as ``"module:function"`` (the functions live in `capred.physics.bridge_laws`,

@@ -146,19 +146,23 @@ class SkemptonOptions(StableJsonKeys, Options):
 
     @property
     def lambda0_or_default(self) -> float:
+        """Slope ``lambda0`` of the normal compression line [-]: the option, else Morvan et al.'s (2016) Table 3."""
         return TABLE3["lambda0"] if self.lambda0 is None else self.lambda0
 
     @property
     def a_ini_or_default(self) -> float:
+        """Initial apex distance ``a_ini = p_pi0 - p'_0`` [Pa]: the option, else Table 3 of Morvan et al. (2016) (0)."""
         return TABLE3["a_ini"] if self.a_ini is None else self.a_ini
 
 
 @renamed_keywords(sr="S_R")
 @dataclass(frozen=True)
 class RumpfOptions(StableJsonKeys, Options):
-    """Options of `capred rumpf`: degree of saturation ``S_R`` [-], diameter [m], surface tension [N/m] (or
-    strings with units), contact angle [deg]. The keyword ``sr`` still works (DeprecationWarning); the JSON
-    keeps the option key ``sr``."""
+    """Options of `capred rumpf`.
+
+    Degree of saturation ``S_R`` [-], diameter [m], surface tension [N/m] (or strings with units), contact angle [deg].
+    The keyword ``sr`` still works (DeprecationWarning); the JSON keeps the option key ``sr``.
+    """
 
     QUANTITIES = {
         "shape_factor": "shape_factor",

@@ -92,8 +92,9 @@ class CallableField:
 
 
 def ref_of(entry, name: str):
-    """What an entry declares for its callable field ``name`` (a ``"module:function"`` string, a callable or None),
-    without importing the function's module.
+    """What an entry declares for its callable field ``name``, without importing the function's module.
+
+    The field holds a ``"module:function"`` string, a callable or None.
 
     Parameters
     ----------

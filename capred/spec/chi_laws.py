@@ -1,5 +1,6 @@
-"""The χ laws fitted per material by `capred shear` and `capred triaxial-strength`: one registry, declared
-without numerics.
+"""The χ laws fitted per material by `capred shear` and `capred triaxial`.
+
+One registry, declared without numerics.
 
 A χ law is fitted on the wet tests of the effective-stress model of the same name (its ``fitted`` parameters).
 Each entry of :data:`LAWS` names its parameters, a typical value of each (SI) and its functions as

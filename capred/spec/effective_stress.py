@@ -339,8 +339,9 @@ MODEL_LABELS = _Labels()
 
 
 def resolve_models(names) -> tuple[str, ...]:
-    """Model names as a user gives them: a comma-separated string or a sequence, where ``thesis`` stands for
-    the thesis's four and ``all`` for every model of the registry; duplicates dropped, order kept.
+    """Model names as a user gives them: a comma-separated string or a sequence.
+
+    ``thesis`` stands for the thesis's four and ``all`` for every model of the registry; duplicates dropped, order kept.
 
     No equation: a lookup in ``REGISTRY`` (names are lower-cased, ``-`` read as ``_``).
 

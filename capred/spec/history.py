@@ -12,8 +12,11 @@ from .options import Options
 
 @dataclass(frozen=True)
 class HistoryOptions(Options):
-    """Options of `capred history`: the material and quantity (a JSON key such as ``phi_deg``) to chart, the
-    number of first runs that set the limits, or a reference value and spread in the quantity's unit."""
+    """Options of `capred history`.
+
+    The material and quantity (a JSON key such as ``phi_deg``) to chart, the number of first runs that set the limits,
+    or a reference value and spread in the quantity's unit.
+    """
 
     material: str | None = None
     quantity: str | None = None

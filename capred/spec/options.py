@@ -110,7 +110,13 @@ class Interval(Constraint):
         return "be a finite number"
 
     def range_text(self) -> str:
-        """The interval as ``--help`` shows it: ``"> 0"``, ``"0 to 1, both excluded"``."""
+        """The interval as ``--help`` shows it: ``"> 0"``, ``"0 to 1, both excluded"``.
+
+        Returns
+        -------
+        str
+            Empty for an interval without limits.
+        """
         lo_in, hi_in = self.closed in ("both", "left"), self.closed in ("both", "right")
         if self.low is not None and self.high is not None:
             ends = [f"{v:g}" for v, inside in ((self.low, lo_in), (self.high, hi_in)) if not inside]
@@ -122,6 +128,17 @@ class Interval(Constraint):
         return ""
 
     def accepts(self, value) -> bool:
+        """Whether ``value`` is a finite real number inside the interval.
+
+        Parameters
+        ----------
+        value : object
+            The field's value (not None).
+
+        Returns
+        -------
+        bool
+        """
         if not _real(value):
             return False
         lo_in, hi_in = self.closed in ("both", "left"), self.closed in ("both", "right")
@@ -165,11 +182,28 @@ class Whole(Constraint):
         self.text = text or ("be a whole number" + (f" {limits}" if limits else ""))
 
     def range_text(self) -> str:
-        """The limits as ``--help`` shows them: ``">= 0"``."""
+        """The limits as ``--help`` shows them: ``">= 0"``.
+
+        Returns
+        -------
+        str
+            Empty without limits.
+        """
         parts = [f">= {self.min}" if self.min is not None else "", f"<= {self.max}" if self.max is not None else ""]
         return " and ".join(p for p in parts if p)
 
     def accepts(self, value) -> bool:
+        """Whether ``value`` is a whole number (an ``int``, not a bool) within the limits.
+
+        Parameters
+        ----------
+        value : object
+            The field's value (not None).
+
+        Returns
+        -------
+        bool
+        """
         if isinstance(value, bool) or not isinstance(value, int):
             return False
         return (self.min is None or value >= self.min) and (self.max is None or value <= self.max)
@@ -192,6 +226,17 @@ class StrOptions(Constraint):
         self.text = text or ("be " + (", ".join(words[:-1]) + " or " + words[-1] if len(words) > 1 else words[0]))
 
     def accepts(self, value) -> bool:
+        """Whether ``value`` is one of the words allowed.
+
+        Parameters
+        ----------
+        value : object
+            The field's value (not None).
+
+        Returns
+        -------
+        bool
+        """
         return isinstance(value, str) and value in self.options
 
 
@@ -201,6 +246,17 @@ class Flag(Constraint):
     text = "be True or False"
 
     def accepts(self, value) -> bool:
+        """Whether ``value`` is a bool.
+
+        Parameters
+        ----------
+        value : object
+            The field's value (not None).
+
+        Returns
+        -------
+        bool
+        """
         return isinstance(value, bool)
 
 
@@ -289,7 +345,15 @@ class Options:
         return list(getattr(self, "_notes", []))
 
     def record(self) -> tuple[dict, dict]:
-        """(values, units): every option with its SI value, and the SI unit of the dimensional ones."""
+        """The options as the JSON records them.
+
+        Returns
+        -------
+        values : dict
+            Every option by field name, with its SI value.
+        units : dict
+            The SI unit of each dimensional option (``"Pa"``, ``"N/m"``).
+        """
         from ..nomenclature import QUANTITIES
         from ..units import SI_UNIT
 

@@ -144,16 +144,38 @@ class PTVolumeOptions(Options):
         return v if v is not None else getattr(self, "_from_fits", {}).get(k)
 
     def from_compression(self) -> list[str]:
-        """The line parameters taken from a compression.json (empty without one)."""
+        """The line parameters taken from a compression.json.
+
+        Returns
+        -------
+        list of str
+            Their option names; empty without a compression.json.
+        """
         return list(getattr(self, "_from_fits", {}))
 
     def illustrative(self) -> list[str]:
-        """The line parameters taken from EXAMPLE_KAOLIN (empty unless ``example_kaolin``)."""
+        """The line parameters taken from EXAMPLE_KAOLIN.
+
+        Returns
+        -------
+        list of str
+            Their option names; empty unless ``example_kaolin``.
+        """
         return [k for k in LINE_OPTIONS if self._line(k) is None] if self.example_kaolin else []
 
     def parameters(self):
-        """The lines of the run (a capred.physics.pedrotti_tarantino.PTVolumeParameters); OptionError naming every
-        missing option when some are not given."""
+        """The compressibility lines of the run.
+
+        Returns
+        -------
+        capred.physics.pedrotti_tarantino.PTVolumeParameters
+            The lines given, those not given taken from EXAMPLE_KAOLIN with ``example_kaolin``.
+
+        Raises
+        ------
+        OptionError
+            Naming every missing option when some are not given (and ``example_kaolin`` is not set).
+        """
         missing = [k for k in LINE_OPTIONS if self._line(k) is None]
         if missing and not self.example_kaolin:
             raise OptionError(

@@ -26,13 +26,40 @@ LABELS = ("drying", "wetting", "scanning")
 
 
 def default_models() -> tuple[str, ...]:
-    """The models `capred retention` fits when none are named (registry entries with ``default``), in registry
-    order."""
+    """The models `capred retention` fits when none are named.
+
+    The registry entries with ``default``, in registry order.
+
+    Returns
+    -------
+    tuple of str
+        Their registry names.
+    """
     return tuple(k for k, m in FITTERS.items() if m.default)
 
 
 def to_internal(name: str) -> tuple[str, float]:
-    """JSON name -> (internal name, factor JSON unit -> SI); the hysteresis α's are not options."""
+    """The internal name of a retention parameter and the factor from its JSON unit to SI.
+
+    The hysteresis α's are not options.
+
+    Parameters
+    ----------
+    name : str
+        A parameter's JSON name (``"alpha_per_kPa"``; an internal name works too).
+
+    Returns
+    -------
+    internal : str
+        Its internal name (``"alpha"``).
+    factor : float
+        SI value = factor × value in the JSON's unit (1e-3 for 1/kPa -> 1/Pa).
+
+    Raises
+    ------
+    KeyError
+        For an unknown name, or a hysteresis α.
+    """
     from ..fitting.retention_models import internal_name  # numpy: at run time only
 
     internal, f = internal_name(name)

@@ -28,14 +28,14 @@ _F = "capred.fitting.retention_models:"
 
 @dataclass(frozen=True)
 class Parameter:
-    """One parameter of a retention model.
+    r"""One parameter of a retention model.
 
     Attributes
     ----------
     name : str
         Internal name (the key of ``NonlinearFit.params``).
     symbol : str
-        Matplotlib mathtext, e.g. ``r"$\\alpha$"``.
+        Matplotlib mathtext, e.g. ``r"$\alpha$"``.
     unit : str
         Unit of the internal value: "Pa", "1/Pa", "-", or "y" (the unit of the fitted water quantity,
         m³/m³ for θ, - for S_R).

@@ -76,9 +76,10 @@ class ModelParameter:
 
 
 def model_parameters() -> dict[str, ModelParameter]:
-    """The parameters the registered effective-stress models declare for themselves (an entry's ``parameters``),
-    read now: a model registered by a script is included. Each one's glossary entry is registered under its
-    name (capred.nomenclature.QUANTITIES), so that it is read and range checked as every option is.
+    """The parameters the registered effective-stress models declare for themselves (an entry's ``parameters``).
+
+    Read now: a model registered by a script is included. Each one's glossary entry is registered under its name
+    (capred.nomenclature.QUANTITIES), so that it is read and range checked as every option is.
 
     Returns
     -------
@@ -150,8 +151,10 @@ class ModelParams(Options):
         return out
 
     def __getattr__(self, name: str):
-        """A parameter a registered model declares for itself (``d.params.my_kappa``): the value given, else its
-        declared default."""
+        """A parameter a registered model declares for itself (``d.params.my_kappa``).
+
+        The value given, else its declared default.
+        """
         if name.startswith("_"):
             raise AttributeError(name)
         p = model_parameters().get(name)
@@ -161,10 +164,12 @@ class ModelParams(Options):
 
     @property
     def retention_notes(self) -> tuple:
-        """What --retention FIT.json gave: ``(fields, text, is_warning)`` per note (the branch read, each conversion
-        to another model with its misfit), shown by ShearOptions where a model compared uses one of the fields (or
-        always, with no fields). Not an option (set by :func:`model_params_from_retention`, as ``warnings`` is by
-        the options' checks): the options record does not repeat it."""
+        """What --retention FIT.json gave: ``(fields, text, is_warning)`` per note.
+
+        The branch read, each conversion to another model with its misfit; shown by ShearOptions where a model compared
+        uses one of the fields (or always, with no fields). Not an option (set by :func:`model_params_from_retention`,
+        as ``warnings`` is by the options' checks): the options record does not repeat it.
+        """
         return tuple(getattr(self, "_retention_notes", ()))
 
     def missing(self, model: str) -> str:
@@ -284,8 +289,10 @@ class ShearOptions(Options):
 
     @property
     def notes(self) -> list[str]:
-        """One line per model ``all`` skipped, naming what it needs; what --retention gave (the branch read, and
-        each conversion to another model with its misfit, where a model compared uses it)."""
+        """One line per model ``all`` skipped, naming what it needs, and what --retention gave.
+
+        The branch read, and each conversion to another model with its misfit, where a model compared uses it.
+        """
         out = [
             f"--models all: model '{m}' skipped: it needs {need} (or --retention FIT.json written by capred retention)"
             for m, need in self.skipped_models.items()
@@ -314,6 +321,7 @@ class ShearOptions(Options):
 
     @property
     def warnings(self) -> list[str]:
+        """Implausible option values, the model parameters' warnings and those of the retention parameters."""
         return super().warnings + self.model_params.warnings + self._from_retention(warnings=True)
 
 
