@@ -246,6 +246,22 @@ class GroupedCommand(typer.core.TyperCommand):
 
     context_class = HelpContext
 
+    def format_usage(self, ctx, formatter) -> None:
+        """The usage line, its arguments named by their metavar (``[FILE]...``, as the Arguments section names them).
+
+        Parameters
+        ----------
+        ctx : click.Context
+            The command's context.
+        formatter : click.HelpFormatter
+            The formatter written to.
+        """
+        for param in self.get_params(ctx):
+            shown = param_metavar(param)
+            if shown is not None:
+                param.metavar = shown
+        super().format_usage(ctx, formatter)
+
     def format_help_text(self, ctx, formatter) -> None:
         """The command's help text, its ``{laws}``-style fields filled in with the registries as they stand now.
 
