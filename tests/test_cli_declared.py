@@ -298,15 +298,15 @@ def test_help_never_splits_an_option_name_at_its_hyphen(command, width):
 
 
 def test_the_reviewed_options_show_their_kind():
-    """The options the review found (issue: help polish): a file as FILE, a number as NUMBER, a whole number as
-    INTEGER, the files argument as FILE... (not ``data... <list[Path]>``)."""
+    """The options the review found (issue: help polish): a file as PATH (as --out and --store), a number as
+    NUMBER, a whole number as INTEGER, the data files argument as FILE... (not ``data... <list[Path]>``)."""
     skempton = _raw_help("skempton-b", 200)
-    assert re.search(r"^  --retention FILE ", skempton, re.M) and re.search(r"^  --compression FILE ", skempton, re.M)
+    assert re.search(r"^  --retention PATH ", skempton, re.M) and re.search(r"^  --compression PATH ", skempton, re.M)
     assert re.search(r"^  --interpolation-h NUMBER ", skempton, re.M)
     assert re.search(r"^  FILE\.\.\. ", skempton, re.M) and "[OPTIONS] [FILE]..." in skempton
     band = _raw_help("shear-band", 200)
-    assert re.search(r"^  --triaxial FILE ", band, re.M) and re.search(r"^  --dilatancy-rate NUMBER ", band, re.M)
-    assert re.search(r"^  --compression-w FILE ", _raw_help("pt-volume", 200), re.M)
+    assert re.search(r"^  --triaxial PATH ", band, re.M) and re.search(r"^  --dilatancy-rate NUMBER ", band, re.M)
+    assert re.search(r"^  --compression-w PATH ", _raw_help("pt-volume", 200), re.M)
     assert re.search(r"^  --S-R-max, --sr-max NUMBER ", _raw_help("bridge curve", 200), re.M)
     shear = _raw_help("shear", 200)
     assert re.search(r"^  --bootstrap INTEGER ", shear, re.M) and re.search(r"^  --ignore-column TEXT ", shear, re.M)

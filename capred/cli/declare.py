@@ -42,8 +42,8 @@ _NUMBER = re.compile(r"\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*")
 METAVARS = {
     "float": "NUMBER",  # a number, with a unit of its own where the option is dimensional
     "int": "INTEGER",
-    "path": "FILE",  # a file the command reads (a Path, or a path given as text)
-    "dir": "PATH",  # a file or folder (an option typed Path: --out, --store)
+    "path": "PATH",  # an option's file or folder (a Path, or a path given as text: --retention, --out)
+    "files": "FILE",  # the data files a command reads (its argument: "FILE...")
     "str": "TEXT",
     "tuple": "NAME[,NAME...]",  # a comma-separated list (of words, or of numbers: NUMBER[,NUMBER...])
 }
@@ -206,7 +206,8 @@ def model_parameter_options() -> list:
         if p.default is not None:
             text += f"  [default: {_shown(float(f'{p.default * q.factor:.12g}'))}]"
         annotation = Annotated[
-            str | None, typer.Option(p.option, help=text, metavar="NUMBER", show_default=False, rich_help_panel=None)
+            str | None,
+            typer.Option(p.option, help=text, metavar=metavar("float"), show_default=False, rich_help_panel=None),
         ]
         out.append(inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None, annotation=annotation))
     return out
@@ -243,7 +244,7 @@ def metavar(kind: str, numbers: bool = False) -> str:
     Parameters
     ----------
     kind : str
-        ``"float"``, ``"int"``, ``"path"``, ``"dir"``, ``"str"`` or ``"tuple"`` (`class_facts`' ``type``).
+        ``"float"``, ``"int"``, ``"path"``, ``"files"``, ``"str"`` or ``"tuple"`` (`class_facts`' ``type``).
     numbers : bool, optional
         For a ``tuple``: its items are numbers (``NUMBER[,NUMBER...]``).
 
@@ -260,8 +261,8 @@ def param_metavar(param) -> str | None:
     """The metavar of a click parameter declared without one (a shared option, the files argument), by its type.
 
     The same vocabulary as the declared options (`metavar`): ``int`` -> INTEGER, ``float`` -> NUMBER, ``Path`` ->
-    PATH (FILE for the files a command reads), ``str`` -> TEXT; a repeatable option or an argument of several
-    values shows one item (the help says "repeat"; the argument adds "...").
+    PATH (FILE for the data files a command reads, its argument), ``str`` -> TEXT; a repeatable option or an
+    argument of several values shows one item (the help says "repeat"; the argument adds "...").
 
     Parameters
     ----------
@@ -286,7 +287,7 @@ def param_metavar(param) -> str | None:
     if typ is bool:
         return None
     if isinstance(typ, type) and issubclass(typ, Path):
-        return metavar("path" if param.param_type_name == "argument" else "dir")
+        return metavar("files" if param.param_type_name == "argument" else "path")
     return metavar({int: "int", float: "float"}.get(typ, "str"))
 
 
