@@ -692,6 +692,11 @@ def _single(inv: Invocation) -> None:
     with showing(not inv.json and sys.stderr.isatty()):
         result = REDUCTIONS[inv.command].run(source, inv.options)
     o = inv.output
+    unrecorded = None if write else _store_unrecorded(inv)
+    if unrecorded is not None:
+        from ..report.outputs import add_line
+
+        add_line(result, "warnings", unrecorded)
     written = (
         write_outputs(
             result,
@@ -724,11 +729,39 @@ def _single(inv: Invocation) -> None:
     render(result, out_dir, written)
 
 
+def _store_unrecorded(inv: Invocation) -> str | None:
+    """Why a run that writes no files is not recorded in the store it names (--store or $CAPRED_STORE), or None.
+
+    A store keeps each run beside the folder of its files (its ``out_dir``; capred.lab_store.Recorder records
+    the run once that folder is in place), so a run that only prints is not recorded; saying so is better than
+    recording nothing in silence.
+    """
+    from ..lab_store import STORE_VARIABLE, store_from
+    from ..reductions import REDUCTIONS
+
+    store = store_from(inv.output.store)
+    if store is None or inv.command == "history":
+        return None
+    given = f"--store {store}" if inv.output.store is not None else f"{STORE_VARIABLE}={store}"
+    why = (
+        "with --json and no --out it writes none"
+        if REDUCTIONS[inv.command].files_by_default
+        else f"`capred {inv.command}` writes them only with --out (it prints by default)"
+    )
+    return (
+        f"this run was not recorded in the store: {given} records a run only when its files are written, and {why};"
+        " give --out FOLDER to record it"
+    )
+
+
 def _batch(inv: Invocation) -> None:
     from .. import batch
     from ..reductions import REDUCTIONS
 
     write = inv.out is not None or (not inv.json and REDUCTIONS[inv.command].files_by_default)
+    unrecorded = None if write else _store_unrecorded(inv)
+    if unrecorded is not None:
+        typer.echo(f"Warning: {unrecorded}", err=True)
     root = inv.out or Path.cwd() / "capred_out"
     dirs = batch.output_dirs([inv.command] * len(inv.sources), inv.sources, root)
     jobs = [
