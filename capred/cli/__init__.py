@@ -21,6 +21,7 @@ from . import (
 )
 from .common import BUILDERS, JsonOpt, WorkersOpt, fail, physics_refusal, run_batch
 from .generated import register_generated
+from .help import HelpGroup
 
 app = typer.Typer(
     name="capred",
@@ -30,6 +31,7 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
     # plain help text: rendering help through rich would double `capred --help` start-up time
     rich_markup_mode=None,
+    cls=HelpGroup,  # help wrapped between words, never at a hyphen
 )
 
 
