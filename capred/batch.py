@@ -51,6 +51,9 @@ class Job:
     plots: bool = True
     keep_json: bool = False
     output: object = None  # capred.cli.common.OutputOptions (None: the defaults)
+    #: the command that reproduces this file's run alone (``capred shear FILE OPTIONS``), recorded in its
+    #: provenance.json and report.html; None: this process's command line
+    command_line: str | None = None
 
 
 @dataclass
@@ -127,7 +130,7 @@ def run_job(job: Job):
         if o
         else {}
     )
-    return result, write_outputs(result, job.out_dir, plots=job.plots, **kw)
+    return result, write_outputs(result, job.out_dir, plots=job.plots, command_line=job.command_line, **kw)
 
 
 def run_safely(job: Job) -> Outcome:
@@ -285,7 +288,7 @@ def _save_traceback(job: Job, text: str) -> str:
                 {
                     "capred_version": __version__,
                     "command": job.command,
-                    "command_line": " ".join(sys.argv),
+                    "command_line": job.command_line if job.command_line is not None else " ".join(sys.argv),
                     "python": sys.version.split()[0],
                     "inputs": [str(job.source)] if job.source is not None else [],
                     "outputs": ["errors.log", "provenance.json"],

@@ -18,7 +18,8 @@ The file is protected like a user's data:
 - an older schema is migrated in one transaction (:data:`MIGRATIONS`);
 - each run is one ``BEGIN IMMEDIATE`` transaction, in WAL mode with a busy
   timeout, so that a batch's workers may record at the same time;
-- a run recorded twice (same command, inputs' SHA-256 and options) is stored once.
+- a run recorded twice (same command, inputs' SHA-256 and options) is stored once, and the second run's
+  notes say so (:func:`recorded_as`); a run that writes no files is not recorded, and says so.
 
 References
 ----------
@@ -819,7 +820,7 @@ def _query(store, sql: str, args=()) -> list:
         con.close()
 
 
-def present(store, column: str, quantity=None, command=None, limit: int = 41) -> list[str]:
+def present(store, column: str, quantity=None, command=None, limit: int | None = 41) -> list[str]:
     """The distinct materials or quantities the store holds (for a quantity, a command), sorted, at most ``limit``.
 
     Parameters
@@ -830,8 +831,8 @@ def present(store, column: str, quantity=None, command=None, limit: int = 41) ->
         Which values.
     quantity, command : str, optional
         Only the records of this quantity, of runs of this command.
-    limit : int
-        At most this many values (the query stops there).
+    limit : int or None
+        At most this many values (the query stops there); None: all of them.
 
     Returns
     -------
@@ -844,6 +845,73 @@ def present(store, column: str, quantity=None, command=None, limit: int = 41) ->
     sql = (
         f"SELECT DISTINCT r.{column} FROM records r{join}{where}"
         + (" AND" if where else " WHERE")
-        + f" r.{column} IS NOT NULL ORDER BY r.{column} LIMIT {int(limit)}"
+        + f" r.{column} IS NOT NULL ORDER BY r.{column}"
+        + ("" if limit is None else f" LIMIT {int(limit)}")
     )
     return [str(r[0]) for r in _query(store, sql, args)]
+
+
+def count_present(store, column: str, quantity=None, command=None) -> int:
+    """How many distinct materials or quantities the store holds (filtered as in :func:`present`).
+
+    Parameters
+    ----------
+    store : str or Path
+        The store's file.
+    column : {"material", "quantity"}
+        Which values.
+    quantity, command : str, optional
+        Only the records of this quantity, of runs of this command.
+
+    Returns
+    -------
+    int
+    """
+    if column not in ("material", "quantity"):
+        raise ValueError(column)
+    where, args = _where(None, quantity, command)
+    join = " JOIN runs u ON u.id = r.run" if command is not None else ""
+    sql = f"SELECT COUNT(DISTINCT r.{column}) FROM records r{join}{where}"
+    return int(_query(store, sql, args)[0][0])
+
+
+def commands_present(store) -> list[str]:
+    """The commands whose runs the store holds, sorted.
+
+    Parameters
+    ----------
+    store : str or Path
+        The store's file.
+
+    Returns
+    -------
+    list of str
+    """
+    return [str(r[0]) for r in _query(store, "SELECT DISTINCT command FROM runs ORDER BY command")]
+
+
+def recorded_as(store, result) -> int | None:
+    """The id of the run of the store that is ``result``'s run, or None.
+
+    The same run: the same command, inputs' SHA-256 and options (:func:`run_key`). None where the store holds
+    none (or there is no store yet). The store is only read.
+
+    Parameters
+    ----------
+    store : str or Path
+        The store's file.
+    result : capred.result.Result
+        Any command's result.
+
+    Returns
+    -------
+    int or None
+    """
+    from .io import encode_json
+
+    if _inspect(Path(store)) is None:
+        return None
+    # the run's identity is in the document's header (command, inputs, options): the payload is not built
+    doc = json.loads(encode_json(result.header()).decode("utf-8"))
+    row = _query(store, "SELECT id FROM runs WHERE run_key = ?", (run_key(doc),))
+    return int(row[0][0]) if row else None

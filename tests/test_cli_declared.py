@@ -261,3 +261,78 @@ def test_a_model_registered_at_run_time_shows_in_shear_help(monkeypatch):
     assert re.search(r"(?<![\w-])half_bishop_rt(?![\w-])", _help("shear"))
     monkeypatch.delitem(es.REGISTRY, "half_bishop_rt")
     assert "half_bishop_rt" not in _help("shear")
+
+
+# --- the help as a new user reads it (one vocabulary of metavars, no option split at its hyphen) ---------------
+
+#: every command `capred --help` lists, and those of its groups (bridge)
+EVERY_COMMAND = sorted({*REDUCTIONS, "batch"})
+
+
+def _raw_help(command: str, width: int) -> str:
+    """`capred COMMAND --help` as printed in a terminal ``width`` columns wide (lines as wrapped)."""
+    res = runner.invoke(app, [*command.split(), "--help"], terminal_width=width)
+    assert res.exit_code == 0, res.output
+    return res.stdout
+
+
+@pytest.mark.parametrize("width", [80, 120])
+@pytest.mark.parametrize("command", EVERY_COMMAND)
+def test_help_shows_values_in_one_vocabulary_without_python_types(command, width):
+    """No Python type repr (``<list[Path]>``, ``<str>``, ``<int range>``, ``<float>``) and no range in click's
+    words (``[x>=1]``) beside the one the text states: a value shows as NUMBER, INTEGER, FILE, PATH, TEXT or
+    NAME[,NAME...] (capred.cli.declare.METAVARS), or as the words it may be."""
+    text = _raw_help(command, width)
+    for typer_words in ("<list[", "<str>", "<int range>", "<int>", "<float>", "<path>", "[x>=", "[x<=", "<=x<="):
+        assert typer_words not in text, f"capred {command} --help shows {typer_words!r}"
+
+
+@pytest.mark.parametrize("width", [80, 120])
+@pytest.mark.parametrize("command", [*EVERY_COMMAND, "bridge", ""])
+def test_help_never_splits_an_option_name_at_its_hyphen(command, width):
+    """An option named in prose (``--reference-stress``, ``--model bounding-surface``) stays on one line, so it
+    can be copied: no line ends in a hyphenated word cut after its hyphen."""
+    text = _raw_help(command, width) if command else runner.invoke(app, ["--help"], terminal_width=width).stdout
+    cut = [line for line in text.splitlines() if re.search(r"\w-$", line.rstrip())]
+    assert not cut, f"capred {command} --help breaks at a hyphen: {cut}"
+
+
+def test_the_reviewed_options_show_their_kind():
+    """The options the review found (issue: help polish): a file as PATH (as --out and --store), a number as
+    NUMBER, a whole number as INTEGER, the data files argument as FILE... (not ``data... <list[Path]>``)."""
+    skempton = _raw_help("skempton-b", 200)
+    assert re.search(r"^  --retention PATH ", skempton, re.M) and re.search(r"^  --compression PATH ", skempton, re.M)
+    assert re.search(r"^  --interpolation-h NUMBER ", skempton, re.M)
+    assert re.search(r"^  FILE\.\.\. ", skempton, re.M) and "[OPTIONS] [FILE]..." in skempton
+    band = _raw_help("shear-band", 200)
+    assert re.search(r"^  --triaxial PATH ", band, re.M) and re.search(r"^  --dilatancy-rate NUMBER ", band, re.M)
+    assert re.search(r"^  --compression-w PATH ", _raw_help("pt-volume", 200), re.M)
+    assert re.search(r"^  --S-R-max, --sr-max NUMBER ", _raw_help("bridge curve", 200), re.M)
+    shear = _raw_help("shear", 200)
+    assert re.search(r"^  --bootstrap INTEGER ", shear, re.M) and re.search(r"^  --ignore-column TEXT ", shear, re.M)
+    assert re.search(r"^  --max-megabytes INTEGER .*\[>= 1\]$", shear, re.M)  # the range once, in capred's words
+
+
+@pytest.mark.parametrize(
+    "args,message",
+    [
+        (["shear", "--sample", "--bootstrap", "1.5"], "bootstrap (--bootstrap) must be a whole number >= 0 (got 1.5)"),
+        (["shear", "--sample", "--seed", "-1"], "seed (--seed) must be a whole number >= 0 (got -1)"),
+        (
+            ["triaxial", "--sample", "--bootstrap", "many"],
+            "bootstrap (--bootstrap) must be a whole number >= 0 (got 'many')",
+        ),
+        (
+            ["bridge", "solve", "--sample", "--workers", "2.5"],
+            "workers (--workers) must be a whole number >= 1 (got 2.5)",
+        ),
+    ],
+)
+def test_a_non_integer_for_an_integer_option_reads_as_its_declared_constraint(args, message, tmp_path):
+    """``--bootstrap 1.5`` is refused in the words of the field's Whole constraint, exit 1, as ``--seed -1`` is
+    (not typer's "Input should be a valid integer", exit 2), and nothing is written."""
+    out = tmp_path / "out"
+    res = runner.invoke(app, [*args, "--out", str(out)])
+    assert res.exit_code == 1, res.output
+    assert message in " ".join(res.output.split())
+    assert "valid integer" not in res.output and not out.exists()

@@ -295,7 +295,8 @@ def test_individuals_chart_reference_and_errors():
 def test_history_errors_name_what_the_store_holds(season):
     _, store = season
     res = runner.invoke(app, ["history", str(store), "--quantity", "phi_deg", "--material", "Ottawa sand"])
-    assert res.exit_code == 1 and "no material 'Ottawa sand'" in res.stderr and "Toyoura sand" in res.stderr
+    assert res.exit_code == 1 and "no run records 'phi_deg' of material 'Ottawa sand'" in res.stderr
+    assert "this store records it for the materials: Toyoura sand;" in res.stderr
     res = runner.invoke(app, ["history", str(store)])
     assert res.exit_code == 1 and "--quantity is needed" in res.stderr and "phi_deg" in res.stderr
     with pytest.raises(InputError, match="no capred store"):

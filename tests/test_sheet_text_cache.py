@@ -41,6 +41,7 @@ def results():
 def test_kept_glyphs_give_matplotlibs_pixels(results):
     sheets._LAYOUTS.clear()
     sheets._GLYPHS.clear()
+    sheets._TEXT_BOXES.clear()
     drawn = 0
     for result, n in zip(results, (2, 1)):  # two shear sheets (rotated labels, mathtext, legends), one retention
         for sheet in list(result.figures().values())[:n]:
@@ -55,3 +56,32 @@ def test_kept_glyphs_give_matplotlibs_pixels(results):
             assert np.array_equal(again, own), sheet.title
             drawn += 1
     assert drawn == 3 and len(sheets._GLYPHS) > 100  # glyphs were kept, and the pixels are matplotlib's
+
+
+@pytest.mark.skipif(
+    not matplotlib.__version__.startswith(sheets.CACHED_TEXT_VERSIONS), reason="texts laid out by matplotlib itself"
+)
+def test_kept_text_layouts_are_matplotlibs(results):
+    """Every text of a sheet drawn twice (the second time from the kept layouts) has the layout matplotlib's own
+    Text._get_layout gives it: the same box and the same lines at the same offsets, to the last bit."""
+    from matplotlib.text import Text
+
+    sheets._TEXT_BOXES.clear()
+    sheet = next(s for s in results[0].figures().values() if isinstance(s, sheets.Sheet))
+    fig = sheet_figure(sheet, 100.0)
+    raster(fig)
+    renderer = fig.canvas.get_renderer()
+    own = Text._get_layout.own
+    texts = [t for t in fig.findobj(Text) if t.get_text()]
+    assert len(texts) > 50 and len(sheets._TEXT_BOXES) > 20  # tick labels, axis labels, legends were kept
+    with sheets.journal_style():  # the style the sheet was laid out in (hinting)
+        for t in texts:
+            kept, fresh = t._get_layout(renderer), own(t, renderer)
+            assert kept[0].bounds == fresh[0].bounds, t.get_text()
+            assert kept[1] == fresh[1] and kept[2] == fresh[2], t.get_text()
+    # a user's own renderer is left to matplotlib: nothing is kept for it
+    n = len(sheets._TEXT_BOXES)
+    mine = FigureCanvasAgg(fig).get_renderer()
+    for t in texts:
+        t._get_layout(mine)
+    assert len(sheets._TEXT_BOXES) == n

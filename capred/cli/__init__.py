@@ -21,6 +21,7 @@ from . import (
 )
 from .common import BUILDERS, JsonOpt, WorkersOpt, fail, physics_refusal, run_batch
 from .generated import register_generated
+from .help import HelpGroup
 
 app = typer.Typer(
     name="capred",
@@ -30,6 +31,7 @@ app = typer.Typer(
     pretty_exceptions_enable=False,
     # plain help text: rendering help through rich would double `capred --help` start-up time
     rich_markup_mode=None,
+    cls=HelpGroup,  # help wrapped between words, never at a hyphen
 )
 
 
@@ -141,6 +143,7 @@ def _manifest_jobs(manifest: Path, out, json_out: bool):
     from ..errors import InputError, Problem
     from ..io import read_manifest
     from ..reductions import REDUCTIONS
+    from .common import file_command_lines
 
     group = typer.main.get_command(app)
     problems: list = []
@@ -158,8 +161,9 @@ def _manifest_jobs(manifest: Path, out, json_out: bool):
             problems.append(Problem(str(manifest), line, "options", str(exc)))
             continue
         try:
+            typed = ["capred", *command.split(), *argv]  # before click consumes argv
             ctx = cmd.make_context(command, argv)
-            invocations.append(BUILDERS[command](**ctx.params))
+            invocations.append((BUILDERS[command](**ctx.params), cmd, typed))
         except CapredError as exc:
             problems.append(Problem(str(manifest), line, None, str(exc)))
         except Exception as exc:  # usage errors: bad option names or values in the manifest
@@ -174,13 +178,25 @@ def _manifest_jobs(manifest: Path, out, json_out: bool):
         raise InputError(problems)
     write = out is not None or not json_out
     root = out or Path.cwd() / "capred_out"
-    flat = [(inv, src) for inv in invocations for src in inv.sources]
+    flat = [(inv, src) for inv, _, _ in invocations for src in inv.sources]
     dirs = batch_mod.output_dirs([inv.command for inv, _ in flat], [src for _, src in flat], root)
+    lines, k = [], 0  # each file's own command line (provenance.json, report.html): its line's options
+    for inv, cmd, argv in invocations:
+        n = len(inv.sources)
+        lines += file_command_lines(inv.command, inv.sources, dirs[k : k + n] if write else [None] * n, argv, cmd)
+        k += n
     return [
         batch_mod.Job(
-            inv.command, src, d if write else None, inv.options, inv.plots, keep_json=json_out, output=inv.output
+            inv.command,
+            src,
+            d if write else None,
+            inv.options,
+            inv.plots,
+            keep_json=json_out,
+            output=inv.output,
+            command_line=line,
         )
-        for (inv, src), d in zip(flat, dirs)
+        for (inv, src), d, line in zip(flat, dirs, lines)
     ]
 
 

@@ -11,6 +11,7 @@ import typer
 
 from .common import Invocation, command
 from .declare import option, si_values
+from .help import HelpGroup
 
 #: points of a `bridge laws` grid given by options solved without --yes (the default grid: 504)
 MAX_GRID_POINTS = 5000
@@ -36,6 +37,7 @@ def register(app: typer.Typer) -> None:
         short_help="Exact capillary bridges (Young-Laplace): solve, rupture, laws, YADE files.",
         no_args_is_help=True,
         rich_markup_mode=None,
+        cls=HelpGroup,  # help wrapped between words, never at a hyphen
     )
     app.add_typer(bridge_app, name="bridge")
     command(bridge_app, "curve", "bridge curve")(curve)
@@ -140,7 +142,6 @@ def solve(
     workers: option(
         BRIDGE,
         "workers",
-        min=1,
         help="Processes that solve the rows (results identical for any number) [default: CAPRED_PROCESSES, "
         "else the cores this run may use that the load leaves idle]; with several files, worker processes "
         "of the batch.",

@@ -695,6 +695,11 @@ def _single(inv: Invocation) -> None:
     with showing(not inv.json and sys.stderr.isatty()), run_limits(inv.limits):  # a table carries them too
         result = REDUCTIONS[inv.command].run(source, inv.options)
     o = inv.output
+    unrecorded = None if write else _store_unrecorded(inv)
+    if unrecorded is not None:
+        from ..report.outputs import add_line
+
+        add_line(result, "warnings", unrecorded)
     written = (
         write_outputs(
             result,
@@ -727,18 +732,143 @@ def _single(inv: Invocation) -> None:
     render(result, out_dir, written)
 
 
+def _store_unrecorded(inv: Invocation) -> str | None:
+    """Why a run that writes no files is not recorded in the store it names (--store or $CAPRED_STORE), or None.
+
+    A store keeps each run beside the folder of its files (its ``out_dir``; capred.lab_store.Recorder records
+    the run once that folder is in place), so a run that only prints is not recorded; saying so is better than
+    recording nothing in silence.
+    """
+    from ..lab_store import STORE_VARIABLE, store_from
+    from ..reductions import REDUCTIONS
+
+    store = store_from(inv.output.store)
+    if store is None or inv.command == "history":
+        return None
+    given = f"--store {store}" if inv.output.store is not None else f"{STORE_VARIABLE}={store}"
+    why = (
+        "with --json and no --out it writes none"
+        if REDUCTIONS[inv.command].files_by_default
+        else f"`capred {inv.command}` writes them only with --out (it prints by default)"
+    )
+    return (
+        f"this run was not recorded in the store: {given} records a run only when its files are written, and {why};"
+        " give --out FOLDER to record it"
+    )
+
+
 def _batch(inv: Invocation) -> None:
     from .. import batch
     from ..reductions import REDUCTIONS
 
     write = inv.out is not None or (not inv.json and REDUCTIONS[inv.command].files_by_default)
+    unrecorded = None if write else _store_unrecorded(inv)
+    if unrecorded is not None:
+        typer.echo(f"Warning: {unrecorded}", err=True)
     root = inv.out or Path.cwd() / "capred_out"
     dirs = batch.output_dirs([inv.command] * len(inv.sources), inv.sources, root)
+    lines = file_command_lines(inv.command, inv.sources, [d if write else None for d in dirs])
     jobs = [
-        batch.Job(inv.command, src, d if write else None, inv.options, inv.plots, keep_json=inv.json, output=inv.output)
-        for src, d in zip(inv.sources, dirs)
+        batch.Job(
+            inv.command,
+            src,
+            d if write else None,
+            inv.options,
+            inv.plots,
+            keep_json=inv.json,
+            output=inv.output,
+            command_line=line,
+        )
+        for src, d, line in zip(inv.sources, dirs, lines)
     ]
     run_batch(jobs, root if write else None, inv.json, inv.workers, extra_inputs=inv.extra_inputs)
+
+
+def file_command_lines(command: str, sources, out_dirs, argv=None, cmd=None) -> list:
+    """The command line that reproduces each file's run of a batch alone: ``capred COMMAND FILE OPTIONS``.
+
+    A batch ``capred shear k/*.csv --no-plots`` records in each file's provenance.json and report.html the run
+    of that file (``capred shear k/a.csv --no-plots --out capred_out/a``), not the whole command line with every
+    other file's path (which made each file's record grow with the batch); the batch root's provenance.json
+    keeps the whole command line once. The options are the tokens of the command line that are not input
+    arguments, as typed (an option's value is known from the command's declaration, so a value is never taken
+    for an input), with ``--out`` naming the file's own folder and without ``--workers`` (one file).
+
+    Parameters
+    ----------
+    command : str
+        The command's name (``shear``, ``bridge solve``).
+    sources : list of path
+        The batch's input files, in order.
+    out_dirs : list of (Path or None)
+        Each file's output folder (None: nothing written).
+    argv : list of str, optional
+        The process's arguments (default ``sys.argv``).
+    cmd : click.Command, optional
+        The command that parses them (default: the command running now).
+
+    Returns
+    -------
+    list of (str or None)
+        One command line per source; None for every source where the arguments are not this command's
+        (the library called outside the command line): the process's command line is recorded then.
+    """
+    import os
+    import shlex
+    import sys
+
+    try:  # typer >= 0.2x carries its own click
+        from typer._click.globals import get_current_context
+    except ImportError:  # pragma: no cover - typer on the click package
+        from click import get_current_context
+
+    from ..io import source_path
+
+    argv = list(sys.argv if argv is None else argv)
+    if cmd is None:
+        ctx = get_current_context(silent=True)
+        cmd = ctx.command if ctx is not None else None
+    words = command.split()
+    start = next((i for i in range(1, len(argv)) if argv[i : i + len(words)] == words), None)
+    if cmd is None or start is None:
+        return [None] * len(sources)
+    options = {}
+    for p in cmd.params:
+        if getattr(p, "param_type_name", "") == "option":
+            for name in (*p.opts, *p.secondary_opts):
+                options[name] = p
+    kept: list[str] = []
+    rest = argv[start + len(words) :]
+    i, positional_only = 0, False
+    while i < len(rest):
+        tok = rest[i]
+        i += 1
+        if positional_only or tok == "-" or not tok.startswith("-"):
+            continue  # an input argument
+        if tok == "--":
+            positional_only = True
+            continue
+        p = options.get(tok.split("=", 1)[0])
+        takes = 0 if p is None or "=" in tok or p.is_flag or p.count else p.nargs
+        if p is None or p.name not in ("out", "workers"):  # the file's own folder is named below
+            kept += rest[i - 1 : i + takes]
+        i += takes
+    tail = "".join(" " + shlex.quote(t) for t in kept)
+    head = "capred " + " ".join(words)
+    cwd = os.getcwd()
+
+    def shown(path) -> str:
+        text = str(path)
+        if os.path.isabs(text) and text.startswith(cwd + os.sep):  # under the working folder: as typed there
+            text = text[len(cwd) + 1 :]
+        return shlex.quote(text)
+
+    return [
+        None
+        if src is None
+        else f"{head} {shown(source_path(src))}{tail}" + (f" --out {shown(d)}" if d is not None else "")
+        for src, d in zip(sources, out_dirs)
+    ]
 
 
 def run_batch(jobs, root: Path | None, json_out: bool, workers: int | None, extra_inputs=()) -> None:

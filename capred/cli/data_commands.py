@@ -350,8 +350,8 @@ def retention(
     ) = None,
     rho_w: option(RETENTION, "rho_w", note="for theta = w rho_d/rho_w") = None,
     branches: option(RETENTION, "branches", metavar="auto|single") = None,
-    reversal_relative: option(RETENTION, "reversal_relative", metavar="FRACTION") = None,
-    reversal_range: option(RETENTION, "reversal_range", metavar="FRACTION") = None,
+    reversal_relative: option(RETENTION, "reversal_relative") = None,
+    reversal_range: option(RETENTION, "reversal_range") = None,
     fix: Annotated[
         list[str] | None,
         typer.Option(help="Fix a parameter, e.g. --fix theta_s=0.25 (alpha in 1/kPa, s_e in kPa); repeatable."),

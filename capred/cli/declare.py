@@ -38,6 +38,16 @@ REGISTRIES = {
 
 _NUMBER = re.compile(r"\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*")
 
+#: the one vocabulary of values in ``--help``: the kind of an option's value -> how it is shown (`metavar`)
+METAVARS = {
+    "float": "NUMBER",  # a number, with a unit of its own where the option is dimensional
+    "int": "INTEGER",
+    "path": "PATH",  # an option's file or folder (a Path, or a path given as text: --retention, --out)
+    "files": "FILE",  # the data files a command reads (its argument: "FILE...")
+    "str": "TEXT",
+    "tuple": "NAME[,NAME...]",  # a comma-separated list (of words, or of numbers: NUMBER[,NUMBER...])
+}
+
 
 def _load(path: str):
     """The object a ``"module:name"`` path names (a capred.spec module: no numerical library)."""
@@ -196,7 +206,8 @@ def model_parameter_options() -> list:
         if p.default is not None:
             text += f"  [default: {_shown(float(f'{p.default * q.factor:.12g}'))}]"
         annotation = Annotated[
-            str | None, typer.Option(p.option, help=text, metavar="NUMBER", show_default=False, rich_help_panel=None)
+            str | None,
+            typer.Option(p.option, help=text, metavar=metavar("float"), show_default=False, rich_help_panel=None),
         ]
         out.append(inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=None, annotation=annotation))
     return out
@@ -225,6 +236,83 @@ def model_parameter_values(given: dict) -> dict:
         for name, value in given.items()
         if value is not None and name in declared
     }
+
+
+def metavar(kind: str, numbers: bool = False) -> str:
+    """How ``--help`` shows the value of an option of one kind (`METAVARS`): one vocabulary for every option.
+
+    Parameters
+    ----------
+    kind : str
+        ``"float"``, ``"int"``, ``"path"``, ``"files"``, ``"str"`` or ``"tuple"`` (`class_facts`' ``type``).
+    numbers : bool, optional
+        For a ``tuple``: its items are numbers (``NUMBER[,NUMBER...]``).
+
+    Returns
+    -------
+    str
+    """
+    if kind == "tuple" and numbers:
+        return "NUMBER[,NUMBER...]"
+    return METAVARS.get(kind, METAVARS["str"])
+
+
+def param_metavar(param) -> str | None:
+    """The metavar of a click parameter declared without one (a shared option, the files argument), by its type.
+
+    The same vocabulary as the declared options (`metavar`): ``int`` -> INTEGER, ``float`` -> NUMBER, ``Path`` ->
+    PATH (FILE for the data files a command reads, its argument), ``str`` -> TEXT; a repeatable option or an
+    argument of several values shows one item (the help says "repeat"; the argument adds "...").
+
+    Parameters
+    ----------
+    param : click.Parameter
+        A typer option or argument.
+
+    Returns
+    -------
+    str or None
+        None for a flag, a choice (its words show) or a parameter that names its own metavar.
+    """
+    from pathlib import Path
+
+    if getattr(param, "metavar", None) is not None or getattr(param, "is_flag", False):
+        return None
+    desc = getattr(param, "type_descriptor", None)
+    if desc is None or desc.is_choice:
+        return None
+    typ, _ = base_type(desc.annotation)
+    if typ is list:
+        (typ,) = typing.get_args(desc.annotation) or (str,)
+    if typ is bool:
+        return None
+    if isinstance(typ, type) and issubclass(typ, Path):
+        return metavar("files" if param.param_type_name == "argument" else "path")
+    return metavar({int: "int", float: "float"}.get(typ, "str"))
+
+
+def whole_or_as_given(value):
+    """An integer option as typed, read as an int where it is one, else left for its constraint to refuse.
+
+    ``"12"`` -> 12; ``"1.5"`` -> 1.5 and ``"many"`` -> "many", which the field's declared constraint (`Whole`)
+    refuses in its own words (``"bootstrap (--bootstrap) must be a whole number >= 0 (got 1.5)"``), as it refuses
+    ``-1``: one message style and exit status for every option error.
+
+    Parameters
+    ----------
+    value : str, int or None
+        The option as parsed.
+
+    Returns
+    -------
+    int, float, str or None
+    """
+    if not isinstance(value, str):
+        return value
+    text = value.strip()
+    if re.fullmatch(r"[-+]?\d+", text):
+        return int(text)
+    return float(text) if _NUMBER.fullmatch(text) else value
 
 
 def option(options: str, field: str, *flags: str, note: str = "", help: str | None = None, **kw):
@@ -285,10 +373,11 @@ def option(options: str, field: str, *flags: str, note: str = "", help: str | No
             names = (f"{names[0]}/--no-{names[0][2:]}",)
         return Annotated[bool, typer.Option(*names, help=text, **kw)]
     kw.setdefault("show_default", False)
+    kw.setdefault("metavar", metavar(f["type"], f["numbers"]))
     if f["quantity"] is not None:
-        kw.setdefault("metavar", "NUMBER")
         return Annotated[str | None, typer.Option(*names, help=text, **kw)]
-    typ = {"int": int, "float": float}.get(f["type"], str)
+    # an integer is read as text (`whole_or_as_given` in `si_values`) so that its constraint words what is wrong
+    typ = float if f["type"] == "float" else str
     return Annotated[typ | None, typer.Option(*names, help=text, **kw)]
 
 
@@ -329,7 +418,10 @@ def si_values(options: str, **given) -> dict:
         if value is None:
             continue
         f = field_facts(options, name)
-        out[name] = value if f["quantity"] is None else read_number(value, f["quantity"], f"{name} ({f['option']})")
+        if f["quantity"] is not None:
+            out[name] = read_number(value, f["quantity"], f"{name} ({f['option']})")
+        else:
+            out[name] = whole_or_as_given(value) if f["type"] == "int" else value
     return out
 
 
@@ -453,7 +545,12 @@ def base_type(annotation):
     optional = type(None) in args
     if args and typing.get_origin(annotation) in (typing.Union, getattr(__import__("types"), "UnionType", None)):
         rest = [a for a in args if a is not type(None)]
-        annotation = rest[0] if len(rest) == 1 else str
+        from pathlib import Path
+
+        if len(rest) == 2 and set(rest) == {str, Path}:  # a file given as a path or as text
+            annotation = Path
+        else:
+            annotation = rest[0] if len(rest) == 1 else str
     origin = typing.get_origin(annotation) or annotation
     return origin, optional
 
@@ -487,6 +584,7 @@ def class_facts(cls) -> dict:
         Field name -> ``{"quantity", "unit", "range", "text", "default", "type", "option"}``.
     """
     import dataclasses
+    from pathlib import Path
 
     from ..nomenclature import QUANTITIES
 
@@ -501,7 +599,7 @@ def class_facts(cls) -> dict:
             continue
         default = f.default if f.default is not dataclasses.MISSING else None
         typ, _ = base_type(hints.get(f.name, str))
-        kind = {bool: "bool", int: "int", float: "float", tuple: "tuple", list: "tuple"}.get(typ, "str")
+        kind = {bool: "bool", int: "int", float: "float", tuple: "tuple", list: "tuple", Path: "path"}.get(typ, "str")
         rule = rules.get(f.name)
         entry = {
             "quantity": dims.get(f.name),
@@ -511,6 +609,9 @@ def class_facts(cls) -> dict:
             "default": None if default is None else f"[default: {_shown(default)}]",
             "type": kind,
             "option": names.get(f.name, "--" + f.name.replace("_", "-")),
+            "numbers": isinstance(default, tuple)
+            and bool(default)
+            and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in default),
         }
         if f.name in dims:
             q = QUANTITIES[dims[f.name]]

@@ -24,7 +24,7 @@ from typing import Annotated
 import typer
 
 from .common import Invocation, command
-from .declare import attribute_help, base_type, read_number, unit_and_range
+from .declare import attribute_help, base_type, metavar, read_number, unit_and_range
 
 
 def option_parameters(options_cls) -> list[tuple[str, inspect.Parameter, object]]:
@@ -62,13 +62,18 @@ def option_parameters(options_cls) -> list[tuple[str, inspect.Parameter, object]
             text = re.sub(r"\s*\[[^\]]*\]", "", text).rstrip(".") + " " + unit_and_range(dims[f.name])
             if default is not None:
                 text += f".  [default: {float(default) * q.factor:.12g}]"
-            annotation = Annotated[str | None, typer.Option(flag, help=text, metavar="NUMBER", show_default=False)]
+            annotation = Annotated[
+                str | None, typer.Option(flag, help=text, metavar=metavar("float"), show_default=False)
+            ]
             default, convert = None, _reader(dims[f.name], f"{f.name} ({flag})")
         elif typ is bool:
             annotation = Annotated[bool, typer.Option(f"{flag}/--no-{f.name.replace('_', '-')}", help=text)]
         elif typ in (tuple, list):
             shown = None if default is None else ",".join(map(str, default))
-            annotation = Annotated[str | None, typer.Option(flag, help=text + " (comma separated)")]
+            numbers = bool(default) and all(isinstance(v, (int, float)) for v in default)
+            annotation = Annotated[
+                str | None, typer.Option(flag, help=text + " (comma separated)", metavar=metavar("tuple", numbers))
+            ]
             default, convert = shown, _split
         elif typ in (int, float):
             annotation = Annotated[typ | None, typer.Option(flag, help=text)]

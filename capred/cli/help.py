@@ -17,9 +17,13 @@ again when the help is shown (capred.cli.declare.live_help), so an entry registe
 
 from __future__ import annotations
 
-import typer.core
+import contextlib
 
-from .declare import fill_help_fields, live_help
+import typer.core
+from typer._click import formatting as _formatting
+from typer._click.core import Context as _Context
+
+from .declare import fill_help_fields, live_help, param_metavar
 
 #: the shared options about what is read (declared once in capred.cli.common)
 INPUT_OPTIONS = (
@@ -143,8 +147,120 @@ def column_lines(schema: list) -> list[tuple[str, str]]:
     return out
 
 
+@contextlib.contextmanager
+def _unbroken_hyphens():
+    """Wrap help text without breaking a word at its hyphens (``--reference-stress``, ``bounding-surface``).
+
+    click's wrapper breaks lines after a hyphen, so an option named in prose read ``--reference-`` / ``stress``
+    and could not be copied; here its ``wrap_text`` builds its wrapper with ``break_on_hyphens=False`` (the
+    rest of its paragraph handling as it is), for the help being written only.
+    """
+    from typer._click import _textwrap
+
+    plain = _textwrap.TextWrapper
+
+    class Unbroken(plain):
+        def __init__(self, *args, **kwargs):
+            kwargs.setdefault("break_on_hyphens", False)
+            super().__init__(*args, **kwargs)
+
+    _textwrap.TextWrapper = Unbroken
+    try:
+        yield
+    finally:
+        _textwrap.TextWrapper = plain
+
+
+class HelpFormatter(_formatting.HelpFormatter):
+    """click's help formatter, wrapping lines between words only (never at a word's hyphen)."""
+
+    def write_usage(self, prog: str, args: str = "", prefix: str | None = None) -> None:
+        """Click's usage line, wrapped between words (see `_unbroken_hyphens`)."""
+        with _unbroken_hyphens():
+            super().write_usage(prog, args, prefix)
+
+    def write_text(self, text: str) -> None:
+        """Click's paragraph, wrapped between words (see `_unbroken_hyphens`)."""
+        with _unbroken_hyphens():
+            super().write_text(text)
+
+    def write_dl(self, rows, col_max: int = 30, col_spacing: int = 2) -> None:
+        """Click's definition list, its help column wrapped between words (see `_unbroken_hyphens`)."""
+        with _unbroken_hyphens():
+            super().write_dl(rows, col_max, col_spacing)
+
+
+class HelpContext(_Context):
+    """The context of capred's commands and groups: their help written by `HelpFormatter`."""
+
+    formatter_class = HelpFormatter
+
+
+def help_record(param, ctx) -> tuple[str, str] | None:
+    """One parameter's line of ``--help``, its value shown in capred's one vocabulary.
+
+    The metavar is the one rule of capred.cli.declare (`param_metavar`: INTEGER, NUMBER, FILE, PATH, TEXT),
+    never a Python type (``<list[Path]>``); the range of an option declared with ``min``/``max`` is not
+    repeated in click's words (``[x>=1]``): the help text states it (``[>= 1]``), added where it does not.
+
+    Parameters
+    ----------
+    param : click.Parameter
+        An option or argument of the command.
+    ctx : click.Context
+        The command's context.
+
+    Returns
+    -------
+    tuple of str or None
+        (name and metavar, help), or None for a hidden parameter.
+    """
+    shown = param_metavar(param)
+    if shown is not None:
+        param.metavar = shown
+    low, high = getattr(param, "min", None), getattr(param, "max", None)
+    if low is not None or high is not None:
+        param._get_number_range_help_str = lambda: None  # stated in capred's words below
+    rv = param.get_help_record(ctx)
+    if rv is None:
+        return None
+    name, text = rv
+    if param.param_type_name == "argument":  # its name is its metavar, "..." for several values
+        name = (param.metavar or param.name) + ("..." if param.nargs != 1 else "")
+    limits = " and ".join(
+        x for x in (f">= {low}" if low is not None else "", f"<= {high}" if high is not None else "") if x
+    )
+    if limits and limits not in text:
+        text = f"{text}  [{limits}]" if text else f"[{limits}]"
+    return name, text
+
+
+class HelpGroup(typer.core.TyperGroup):
+    """A typer group (``capred``, ``capred bridge``) whose help is wrapped as its commands' is (`HelpFormatter`)."""
+
+    context_class = HelpContext
+
+
 class GroupedCommand(typer.core.TyperCommand):
     """A typer command whose plain-text help groups its options and lists the input columns."""
+
+    context_class = HelpContext
+
+    def format_usage(self, ctx, formatter) -> None:
+        """The usage line, its arguments named by their metavar (``[FILE]...``, as the Arguments section names them).
+
+        Parameters
+        ----------
+        ctx : click.Context
+            The command's context.
+        formatter : click.HelpFormatter
+            The formatter written to.
+        """
+        for param in self.get_params(ctx):
+            shown = param_metavar(param)
+            if shown is not None:
+                param.metavar = shown
+        super().format_usage(ctx, formatter)
 
     def format_help_text(self, ctx, formatter) -> None:
         """The command's help text, its ``{laws}``-style fields filled in with the registries as they stand now.
@@ -180,7 +296,7 @@ class GroupedCommand(typer.core.TyperCommand):
         for param in self.get_params(ctx):
             if getattr(param, "help", None):
                 param.help = live_help(param.help)  # a registry's entries as they stand now
-            rv = param.get_help_record(ctx)
+            rv = help_record(param, ctx)
             if rv is None:
                 continue
             if param.param_type_name == "argument":

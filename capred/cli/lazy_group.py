@@ -22,8 +22,10 @@ import typer
 import typer.core
 import typer.main
 
+from .help import HelpGroup
 
-class LazyGroup(typer.core.TyperGroup):
+
+class LazyGroup(HelpGroup):
     """A typer group whose commands are built on first use (:meth:`get_command`).
 
     ``commands`` holds every command from the start (names in typer's order), as a stand-in until the command
@@ -112,7 +114,7 @@ def _lazy_group(group_info, *, pretty_exceptions_short, rich_markup_mode, sugges
         solved = solve(group_info)
     except AttributeError as exc:  # pragma: no cover - other typer versions
         raise _NotLazy from exc
-    if solved.cls not in (None, typer.core.TyperGroup):
+    if solved.cls not in (None, typer.core.TyperGroup, HelpGroup):
         raise _NotLazy
     kw = {"pretty_exceptions_short": pretty_exceptions_short, "rich_markup_mode": rich_markup_mode}
     # typer before 0.20 builds a group without command suggestions (no such keyword)

@@ -300,21 +300,83 @@ class HistoryResult(Result):
         return {"history": pd.DataFrame(self.record().csv_columns())}
 
 
-def _choose(held: list, given, what: str, store) -> str:
-    """``given`` where the store holds it (``held``: what it holds, sorted), the only value held, else an error."""
-    present = [str(v) for v in held]
-    if given is not None:
-        if given not in present:
-            raise InputError(
-                Problem(
-                    str(store), None, None, f"no {what} '{given}' in this store; it holds: {', '.join(present[:30])}"
-                )
-            )
-        return given
-    if len(present) == 1:
-        return present[0]
-    option = "--" + what
-    raise OptionError(f"{option} is needed: this store holds {', '.join(present[:30]) or 'none'}")
+#: at most this many names in a message; the rest are counted and the way to list them all is named
+SHOWN = 30
+
+
+def _names(path, column: str, quantity=None, command=None) -> str:
+    """The materials or quantities the store holds (filtered by quantity and command), as a message says them.
+
+    At most :data:`SHOWN` of them, the rest counted with the way to list them all; "none" where it holds none.
+    """
+    from ..lab_store import count_present, present
+
+    held = present(path, column, quantity, command, limit=SHOWN)
+    total = count_present(path, column, quantity, command) if len(held) == SHOWN else len(held)
+    if not held:
+        return "none"
+    text = ", ".join(held)
+    if total > len(held):
+        args = ", ".join([repr(str(path)), repr(column)] + [f"{k}={v!r}" for k, v in (("quantity", quantity),
+                         ("command", command)) if v is not None])  # fmt: skip
+        text += (
+            f' and {total - len(held)} more (list them all: python -c "from capred.lab_store import present; '
+            f"print(*present({args}, limit=None), sep='\\n')\")"
+        )
+    return text
+
+
+def _runs(command) -> str:
+    return f"`{command}` run" if command is not None else "run"
+
+
+def _explain_empty(path, opt: HistoryOptions) -> None:
+    """Raise the error that says why the store holds no record asked for.
+
+    No record of ``opt.quantity`` (of ``opt.material``, of runs of ``opt.command``): the message says what the
+    filtered runs hold, and what the store holds overall.
+    """
+    from ..lab_store import commands_present, history, present
+
+    def fail(message: str):
+        raise InputError(Problem(str(path), None, None, message))
+
+    if not present(path, "quantity", limit=1):
+        fail("this store holds no runs yet")
+    if opt.command is not None and not present(path, "quantity", command=opt.command, limit=1):
+        fail(f"no `{opt.command}` run is recorded in this store; it holds runs of: {', '.join(commands_present(path))}")
+    scope = f"the `{opt.command}` runs" if opt.command is not None else "this store"
+    if not present(path, "quantity", opt.quantity, opt.command, limit=1):
+        overall = f"; the whole store holds: {_names(path, 'quantity')}" if opt.command is not None else ""
+        fail(
+            f"no {_runs(opt.command)} records quantity '{opt.quantity}'; {scope} hold"
+            f"{'s' if opt.command is None else ''} the quantities: {_names(path, 'quantity', command=opt.command)}{overall}"
+        )
+    held = _names(path, "material", opt.quantity, opt.command)
+    unnamed = history(path, quantity=opt.quantity, command=opt.command)["material"].isna().any()
+    record = "records" if opt.command is None else "record"
+    if held == "none":  # the quantity is recorded, but only without a material
+        what = f"{scope} {record} it only without a material (leave out --material to chart it)"
+    else:
+        what = f"{scope} {record} it for the materials: {held}" + (
+            ", and without a material (leave out --material to chart those)" if unnamed else ""
+        )
+    fail(
+        f"no {_runs(opt.command)} records '{opt.quantity}' of material '{opt.material}'; {what}; the whole store "
+        f"holds the materials: {_names(path, 'material')}"
+    )
+
+
+def _choose(materials: list, path, opt: HistoryOptions) -> str:
+    """The material to chart: ``opt.material``, else the only one the records hold, else an error."""
+    if opt.material is not None:
+        return opt.material
+    if len(materials) == 1:
+        return str(materials[0])
+    raise OptionError(
+        f"--material is needed: the {_runs(opt.command)}s record '{opt.quantity}' for "
+        f"{_names(path, 'material', opt.quantity, opt.command)}"
+    )
 
 
 def reduce_history(source, opt: HistoryOptions) -> HistoryResult:
@@ -346,20 +408,19 @@ def reduce_history(source, opt: HistoryOptions) -> HistoryResult:
     path = getattr(source, "path", source)
     # the store is filtered in SQL: only the records of the quantity (and material) asked are read
     if opt.quantity is None:
-        held = present(path, "quantity", command=opt.command)
-        if not held:
+        if not present(path, "quantity", limit=1):
             raise InputError(Problem(str(path), None, None, "this store holds no runs yet"))
-        raise OptionError("--quantity is needed: this store holds " + ", ".join(held[:40]))
+        if opt.command is not None and not present(path, "quantity", command=opt.command, limit=1):
+            _explain_empty(path, opt)
+        raise OptionError(
+            f"--quantity is needed: the {_runs(opt.command)}s of this store hold "
+            + _names(path, "quantity", command=opt.command)
+        )
     q = history(path, quantity=opt.quantity, command=opt.command, material=opt.material)
     if q.empty:
-        held = present(path, "quantity", command=opt.command)
-        if not held:
-            raise InputError(Problem(str(path), None, None, "this store holds no runs yet"))
-        if opt.quantity not in held:
-            _choose(held, opt.quantity, "quantity", path)
-        _choose(present(path, "material", opt.quantity, opt.command), opt.material, "material", path)
-    materials = present(path, "material", opt.quantity, opt.command) if opt.material is None else [opt.material]
-    material = _choose(materials, opt.material, "material", path) if q["material"].notna().any() else None
+        _explain_empty(path, opt)
+    materials = present(path, "material", opt.quantity, opt.command, limit=2) if opt.material is None else []
+    material = _choose(materials, path, opt) if q["material"].notna().any() else None
     rows = q[q["material"] == material] if material is not None else q[q["material"].isna()]
     notes = []
     dup = rows["run"].duplicated()

@@ -375,7 +375,7 @@ def _methods(result) -> tuple[list[str], list[str]]:
     return list(dict.fromkeys(paragraphs)), list(dict.fromkeys(refs))
 
 
-def render_html(result, figures: dict, plots: bool) -> str:
+def render_html(result, figures: dict, plots: bool, command_line: str | None = None) -> str:
     """The report of one run as an HTML string.
 
     Parameters
@@ -386,6 +386,8 @@ def render_html(result, figures: dict, plots: bool) -> str:
         ``{sheet: {"svg": inline SVG, "caption": str, "panels": [(name, caption), ...]}}`` of the drawn sheets.
     plots : bool
         Whether figures were asked for (the report says so when they were not).
+    command_line : str, optional
+        The command shown (default: this process's command line, or ``capred COMMAND`` outside the CLI).
 
     Returns
     -------
@@ -402,7 +404,9 @@ def render_html(result, figures: dict, plots: bool) -> str:
         title=f"capred {result.command}: {names}",
         doc=doc,
         created=_created(),
-        command_line=" ".join(["capred", *sys.argv[1:]])
+        command_line=command_line
+        if command_line is not None
+        else " ".join(["capred", *sys.argv[1:]])
         if sys.argv and "capred" in sys.argv[0]
         else f"capred {result.command}",
         options=_options(result, doc),

@@ -162,7 +162,8 @@ def write_outputs(
     dpi : int
         Resolution of PNG figures [dots per inch].
     command_line : str, optional
-        Recorded in provenance.json (default: this process's argv).
+        Recorded in provenance.json and report.html (default: this process's argv; a batch gives each file the
+        command that reproduces that file's run alone).
     html : bool
         Write report.html (it embeds each composite: the PNG already drawn, or the SVG when ``svg`` is
         one of ``formats``).
@@ -204,7 +205,8 @@ def write_outputs(
                 from .html import render_html
 
                 with task("writing report.html"):
-                    folder.write_bytes("report.html", render_html(result, drawn, plots).encode("utf-8"))
+                    page = render_html(result, drawn, plots, command_line=command_line)
+                    folder.write_bytes("report.html", page.encode("utf-8"))
 
         from ..lab_store import Recorder, store_from
 
@@ -212,6 +214,8 @@ def write_outputs(
         # the store is opened and checked before any file is written; the run is recorded once its folder is
         # in place, and a store that fails then puts the earlier folder back (capred.io.writers.RunFolder.commit)
         recorder = Recorder(store) if store is not None else None
+        if recorder is not None:
+            _note_recorded_before(result, store)
         try:
             return write_run(
                 result,
@@ -225,6 +229,53 @@ def write_outputs(
         finally:
             if recorder is not None:
                 recorder.close()
+
+
+def _note_recorded_before(result, store) -> None:
+    """Add a note to ``result`` (console, JSON, report) where the store already holds its run.
+
+    The same command, inputs' SHA-256 and options are recorded once (capred.lab_store.run_key), so this run is
+    not recorded again.
+    """
+    from ..lab_store import recorded_as
+
+    run = recorded_as(store, result)
+    if run is None:
+        return
+    note = (
+        f"already recorded in {store} as run {run} (same inputs and options); not recorded again (its files "
+        "are written all the same)"
+    )
+    add_line(result, "notes", note)
+
+
+def add_line(result, kind: str, text: str) -> None:
+    """Append ``text`` to ``result``'s notes or warnings, which the console, the JSON document and report show.
+
+    The document is built again. A result that cannot take it prints it on stderr.
+
+    Parameters
+    ----------
+    result : Result
+        Any command's result.
+    kind : {"notes", "warnings"}
+        Which list.
+    text : str
+        The line.
+    """
+    lines = getattr(result, kind, None)
+    if isinstance(lines, list):
+        lines.append(text)
+    else:
+        try:
+            setattr(result, kind, [*(lines or ()), text])
+        except (AttributeError, TypeError):  # a result that cannot take it: the console still says it
+            import sys
+
+            print(f"{kind[:-1]}: {text}", file=sys.stderr)
+            return
+    for cached in ("_json_lazy", "_json_cache"):  # the document is built again with the line
+        result.__dict__.pop(cached, None)
 
 
 # --- one sheet ----------------------------------------------------------------------------------------------

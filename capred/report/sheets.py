@@ -334,6 +334,63 @@ def _cached_text(renderer) -> None:
 
     renderer.draw_text = draw_text
     renderer._draw_text_glyphs_and_boxes = glyphs
+    renderer._capred_text_boxes = True  # Text._get_layout kept for this renderer's texts (_kept_text_boxes)
+    _kept_text_boxes()
+
+
+#: each text's layout (its box, lines and their offsets from its anchor, ``Text._get_layout``) on capred's Agg
+#: renderers, by what it depends on (``_kept_text_boxes``): kept across sheets and files, emptied at a fork
+_TEXT_BOXES: dict = {}
+
+
+def _kept_text_boxes() -> None:
+    """Let ``Text._get_layout`` answer once per text state on capred's Agg renderers (matplotlib 3.11).
+
+    matplotlib lays a text out again each time its extent is asked: a tick label's box for the axis's tight
+    box, for the axis label's place, for the spines, then its drawing; a legend's entries for the legend's
+    box at every packing (some 850 layouts a shear file, a tenth of a season's CPU). A layout is the text's
+    box and its lines' offsets *relative to its anchor*: it depends on the string, the font, the dpi, the
+    alignment, the rotation and its mode, the line spacing, whether mathtext is parsed and the hinting, not
+    on where the text stands, so it is kept by those (wrapped texts, whose lines depend on their place, and TeX texts are
+    laid out each time). Callers read the layout and never change it (matplotlib 3.11: ``Text.draw``,
+    ``Text.get_window_extent``, ``Text.update_bbox_position_size``, ``TextArea.get_bbox``). Renderers other
+    than capred's (a user's own figures) are untouched: their texts are laid out by matplotlib as always.
+    """
+    from matplotlib import rcParams as rc
+    from matplotlib.text import Text
+
+    if getattr(Text._get_layout, "_capred", False):
+        return
+    own = Text._get_layout
+
+    def _get_layout(self, renderer):
+        if not getattr(renderer, "_capred_text_boxes", False) or self.get_wrap() or self.get_usetex():
+            return own(self, renderer)
+        key = (
+            self.get_text(),
+            hash(self._fontproperties),  # FontProperties compare by their hash (matplotlib's own text caches)
+            self.get_figure(root=True).dpi,
+            self._linespacing,
+            self._multialignment,
+            self._horizontalalignment,
+            self._verticalalignment,
+            self.get_rotation(),
+            self.get_rotation_mode(),
+            self._parse_math,
+            rc["text.hinting"],  # the text's measure depends on the hinting in force (a notebook's own style)
+            rc["text.hinting_factor"],
+        )
+        kept = _TEXT_BOXES.get(key)
+        if kept is None:
+            kept = own(self, renderer)
+            if len(_TEXT_BOXES) >= KEEP_GLYPHS:
+                _TEXT_BOXES.clear()
+            _TEXT_BOXES[key] = kept
+        return kept
+
+    _get_layout._capred = True
+    _get_layout.own = own  # matplotlib's own (tests/test_sheet_text_cache.py compares the two)
+    Text._get_layout = _get_layout
 
 
 def _frozen(value):
@@ -356,6 +413,7 @@ def _forget_fonts_after_fork() -> None:
     _RENDERERS.clear()  # they hold the parent's parser
     _TEMPLATES.clear()  # their texts were measured with the parent's fonts
     _LAYOUTS.clear()  # their glyphs' fonts are the parent's
+    _TEXT_BOXES.clear()
     _GLYPHS.clear()
     mathtext = sys.modules.get("matplotlib.mathtext")
     if mathtext is not None:

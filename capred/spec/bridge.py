@@ -95,7 +95,7 @@ class BridgeOptions(Options):
     """
 
     QUANTITIES = {"surface_tension": "surface_tension", "contact_angle2": "contact_angle"}
-    CONSTRAINTS = {"branch": StrOptions(("stable", "thin"))}
+    CONSTRAINTS = {"branch": StrOptions(("stable", "thin")), "workers": Whole(min=1)}
 
     surface_tension: float = SURFACE_TENSION
     contact_angle2: float | None = None
@@ -109,10 +109,6 @@ class BridgeOptions(Options):
                 f"contact_angle2 (--contact-angle2): pendular bridges need a contact angle in [0, 90) deg "
                 f"(got {self.contact_angle2:g} deg)"
             )
-        if self.workers is not None and (
-            isinstance(self.workers, bool) or int(self.workers) != self.workers or self.workers < 1
-        ):
-            raise OptionError(f"workers (--workers): a whole number of processes >= 1 (got {self.workers!r})")
 
 
 #: `bridge compare` reads the cases as `bridge solve` does (its --help lists these columns)

@@ -7,6 +7,7 @@ imported when options are built, at run time.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 
 from ..errors import OptionError
 from ..nomenclature import StableJsonKeys, renamed_keywords
@@ -94,10 +95,10 @@ class SkemptonOptions(StableJsonKeys, Options):
     interpolation_h: float | None = None  # Dafalias-type constant h of the reconstruction (bounding-surface only)
     air_pressure: str = "absolute"  # Boyle's law on absolute or gauge air pressure (bounding-surface only)
     lambda0: float | None = None  # slope of the normal compression line (bounding-surface only; Table 3: 0.2)
-    retention: str | None = None  # a fits.json of capred retention: s_e and the Brooks-Corey index from it
+    retention: str | Path | None = None  # a fits.json of capred retention: s_e and the Brooks-Corey index from it
     curve: bool = False  # B against S_r over 0.5-1 for every model the options ask for, instead of cases
     #: a compression.json of capred compression: kappa, e0 (and lambda0 with bounding-surface) from it
-    compression: str | None = None
+    compression: str | Path | None = None
     #: the classical relations drawn beside eq. 10 with --curve (SKEMPTON_RELATIONS keys; "all" for every one)
     compare: tuple = ()
 
@@ -207,7 +208,7 @@ class ShearBandOptions(Options):
     dilatancy_angle: float | None = None
     dilatancy_rate: float | None = None
     measured: float | None = None
-    triaxial: str | None = None
+    triaxial: str | Path | None = None
 
     def __post_init__(self) -> None:
         super().__post_init__()

@@ -7,6 +7,7 @@ when asked for, at run time.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 
 from ..errors import OptionError
 from .columns import Column
@@ -104,8 +105,8 @@ class PTVolumeOptions(Options):
     initial_yield_W: float | None = None
     initial_yield_A: float | None = None
     substeps: int | None = None
-    compression_W: str | None = None
-    compression_A: str | None = None
+    compression_W: str | Path | None = None
+    compression_A: str | Path | None = None
 
     def __post_init__(self) -> None:
         super().__post_init__()
