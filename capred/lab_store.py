@@ -113,6 +113,18 @@ def _kind(path: Path) -> str | None:
     return None
 
 
+def _has_frames(wal: Path) -> bool:
+    """Whether the write-ahead log ``wal`` holds frames (False where it is absent or vanishes meanwhile).
+
+    Another writer's last connection deletes its log when it closes, at any moment: the log is examined in one
+    ``stat``, never as "exists, then its size".
+    """
+    try:
+        return wal.stat().st_size > 0
+    except FileNotFoundError:
+        return False
+
+
 def _header_pages(head: bytes, size: int) -> str | None:
     """Why the 100-byte SQLite header ``head`` does not fit a file of ``size`` bytes, or None.
 
@@ -156,7 +168,7 @@ def _inspect(path: Path) -> tuple[int, int] | None:
     # progress writes page 1 first): the header's page count is then SQLite's to reconcile, not checked here
     if len(head) < 100:
         bad = "its header is cut short"
-    elif wal.exists() and wal.stat().st_size > 0:
+    elif _has_frames(wal):
         bad = None
     else:
         bad = _header_pages(head, path.stat().st_size)

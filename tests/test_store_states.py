@@ -257,3 +257,26 @@ def test_truncated_store_is_refused_by_its_header(tmp_path):
     res = _run(tmp_path, store)
     assert res.exit_code == 1 and "truncated" in res.stderr and "Traceback" not in res.output, res.output
     assert not (tmp_path / "o").exists()
+
+
+def test_a_write_ahead_log_that_vanishes_while_the_store_is_examined(tmp_path, monkeypatch):
+    """Another writer's last connection deletes lab.sqlite-wal when it closes, at any moment: a log seen to exist
+    and gone when its size is read is a log without frames (in a season batch of two workers, each asking whether
+    its run is already recorded, this once crashed a run with FileNotFoundError)."""
+    from pathlib import Path
+
+    store = _good_store(tmp_path)
+    wal = f"{store}-wal"
+    real_exists, real_stat = Path.exists, Path.stat
+
+    def exists(self, *a, **k):
+        return True if str(self) == wal else real_exists(self, *a, **k)
+
+    def stat(self, *a, **k):
+        if str(self) == wal:
+            raise FileNotFoundError(2, "No such file or directory", wal)
+        return real_stat(self, *a, **k)
+
+    monkeypatch.setattr(Path, "exists", exists)
+    monkeypatch.setattr(Path, "stat", stat)
+    assert lab_store._inspect(store) is not None
