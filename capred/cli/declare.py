@@ -279,7 +279,14 @@ def param_metavar(param) -> str | None:
     if getattr(param, "metavar", None) is not None or getattr(param, "is_flag", False):
         return None
     desc = getattr(param, "type_descriptor", None)
-    if desc is None or desc.is_choice:
+    if desc is None:  # typer on the click package (its floor, 0.16): the click type names the kind of value
+        kind = str(getattr(getattr(param, "type", None), "name", "text"))
+        if kind in ("boolean", "choice"):
+            return None
+        if kind == "path":
+            return metavar("files" if param.param_type_name == "argument" else "path")
+        return metavar("int" if kind.startswith("integer") else "float" if kind.startswith("float") else "str")
+    if desc.is_choice:
         return None
     typ, _ = base_type(desc.annotation)
     if typ is list:

@@ -20,8 +20,15 @@ from __future__ import annotations
 import contextlib
 
 import typer.core
-from typer._click import formatting as _formatting
-from typer._click.core import Context as _Context
+
+try:  # typer >= 0.2x carries its own click
+    from typer._click import _textwrap
+    from typer._click import formatting as _formatting
+    from typer._click.core import Context as _Context
+except ImportError:  # typer on the click package (its floor, 0.16)
+    from click import _textwrap
+    from click import formatting as _formatting
+    from click.core import Context as _Context
 
 from .declare import fill_help_fields, live_help, param_metavar
 
@@ -155,8 +162,6 @@ def _unbroken_hyphens():
     and could not be copied; here its ``wrap_text`` builds its wrapper with ``break_on_hyphens=False`` (the
     rest of its paragraph handling as it is), for the help being written only.
     """
-    from typer._click import _textwrap
-
     plain = _textwrap.TextWrapper
 
     class Unbroken(plain):
@@ -219,6 +224,10 @@ def help_record(param, ctx) -> tuple[str, str] | None:
     if shown is not None:
         param.metavar = shown
     low, high = getattr(param, "min", None), getattr(param, "max", None)
+    ranged = getattr(param, "type", None)  # typer on the click package (0.16): the range is the click type's
+    if low is None and high is None and hasattr(ranged, "_describe_range"):
+        low, high = getattr(ranged, "min", None), getattr(ranged, "max", None)
+        ranged._describe_range = lambda: ""  # this parameter's own range type: stated in capred's words below
     if low is not None or high is not None:
         param._get_number_range_help_str = lambda: None  # stated in capred's words below
     rv = param.get_help_record(ctx)
