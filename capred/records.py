@@ -543,3 +543,24 @@ def num(x) -> float | None:
         return None
     x = float(x)
     return x if x == x and x not in (float("inf"), float("-inf")) else None
+
+
+def per_case_store_rows(result, material: str | None = None) -> list:
+    """The lab store's rows of a command whose numbers are per case: none (a `Result.store_rows`).
+
+    Its numbers are per case (a table of bridges), not quantities of one material across runs; the run and its
+    document are recorded with their provenance.
+
+    Parameters
+    ----------
+    result : capred.result.Result
+        The run's result.
+    material : str, optional
+        The material of the inputs' metadata block.
+
+    Returns
+    -------
+    list of capred.records.StoreRow
+        Empty.
+    """
+    return []

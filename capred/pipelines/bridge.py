@@ -19,6 +19,7 @@ from ..physics import bridge as br
 from ..physics import bridge_laws as bl
 from ..physics import effective_stress_models as esm
 from ..physics import shear as ph
+from ..records import per_case_store_rows
 from ..result import InputFile, Result, input_file, num
 from ..spec.bridge import COMPARE_SCHEMA, RUPTURE_SCHEMA, CurveOptions  # noqa: F401 (declared in spec; re-exported here)
 from . import bridge_blocks
@@ -415,23 +416,7 @@ class CompareResult(Result):
             cached = self.__dict__["_rows"] = self.record().json_rows()
         return cached
 
-    def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows: none.
-
-        Its numbers are per case (a table of bridges), not quantities of one material across runs; the run and its
-        document are recorded with their provenance.
-
-        Parameters
-        ----------
-        material : str, optional
-            The material of the inputs' metadata block.
-
-        Returns
-        -------
-        list of capred.records.StoreRow
-            Empty.
-        """
-        return []
+    store_rows = per_case_store_rows  # bridges per case: nothing to chart across runs
 
     def payload(self, lazy: bool = False) -> dict:
         """The command's own keys of the JSON document: the source and the comparison rows.
@@ -611,23 +596,7 @@ class RuptureResult(Result):
             cached = self.__dict__["_rows"] = self.record().json_rows()  # a plane's R2_mm is the word
         return cached
 
-    def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows: none.
-
-        Its numbers are per case (a table of bridges), not quantities of one material across runs; the run and its
-        document are recorded with their provenance.
-
-        Parameters
-        ----------
-        material : str, optional
-            The material of the inputs' metadata block.
-
-        Returns
-        -------
-        list of capred.records.StoreRow
-            Empty.
-        """
-        return []
+    store_rows = per_case_store_rows  # bridges per case: nothing to chart across runs
 
     def payload(self, lazy: bool = False) -> dict:
         """The command's own keys of the JSON document: the source and the rupture rows.

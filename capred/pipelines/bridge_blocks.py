@@ -28,6 +28,7 @@ from ..errors import CapredError
 from ..io import blocks as blocks_module
 from ..io import read_table_blocks
 from ..progress import task
+from ..records import per_case_store_rows
 from ..result import InputFile, Result, Spool, input_file
 from . import bridge_solve as pb
 
@@ -132,23 +133,7 @@ class BridgeBlocks(Result):
     def _all(self) -> dict[str, np.ndarray]:
         return self.spool.columns(0, self.status.size)
 
-    def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows: none.
-
-        Its numbers are per case (a table of bridges), not quantities of one material across runs; the run and its
-        document are recorded with their provenance.
-
-        Parameters
-        ----------
-        material : str, optional
-            The material of the inputs' metadata block.
-
-        Returns
-        -------
-        list of capred.records.StoreRow
-            Empty.
-        """
-        return []
+    store_rows = per_case_store_rows  # bridges per case: nothing to chart across runs
 
     def payload(self, lazy: bool = False) -> dict:
         """The command's own keys of the JSON document: the source and the bridges (a ColumnRows when lazy).

@@ -14,6 +14,7 @@ import numpy as np
 
 from ..io import Table, read_table
 from ..physics import bridge as br
+from ..records import per_case_store_rows
 from ..result import InputFile, Result, Rows, json_list, num
 from ..result import csv_header as result_csv_header
 from ..spec.bridge import ANGLE, ANGLE2, CASE, GAMMA, RADIUS, RADIUS2, SOLVE_SCHEMA, VOLUME, BridgeOptions  # noqa: F401 (declared in spec; re-exported here)
@@ -193,23 +194,7 @@ class BridgeResult(Result):
         """
         return row_context(self.inputs_si, self.status, start, stop)
 
-    def store_rows(self, material: str | None = None) -> list:
-        """The lab store's rows: none.
-
-        Its numbers are per case (a table of bridges), not quantities of one material across runs; the run and its
-        document are recorded with their provenance.
-
-        Parameters
-        ----------
-        material : str, optional
-            The material of the inputs' metadata block.
-
-        Returns
-        -------
-        list of capred.records.StoreRow
-            Empty.
-        """
-        return []
+    store_rows = per_case_store_rows  # bridges per case: nothing to chart across runs
 
     def payload(self, lazy: bool = False) -> dict:
         """The command's own keys of the JSON document: the source and the bridges (a ColumnRows when lazy).
